@@ -1,0 +1,163 @@
+// tessera/core.h — status codes, results, images, colour conversion and parallel loops.
+//
+// Everything else in tessera is built on the types in this header:
+//  * `Status` / `Result<T>`: the library never throws across its boundary; every fallible call
+//    returns a status with an error code and a one-line human-readable message.
+//  * `ImageRGBA8` / `ImageRGBAF`: tightly packed, row-major, top-down RGBA images.
+//  * sRGB <-> linear conversion with the exact IEC 61966-2-1 piecewise curve.
+//  * `parallel_for`: the one parallel loop, with an explicit thread count. Callers write each
+//    output element from exactly one iteration, so results are identical for any thread count.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace tessera {
+
+// ---------------------------------------------------------------------------------------------
+// Errors
+// ---------------------------------------------------------------------------------------------
+
+/// Error categories. The CLI maps every non-ok code to exit status 1 ("bad input").
+enum class ErrorCode {
+  ok = 0,
+  invalid_argument,  ///< A parameter is out of range (caller error).
+  io_error,          ///< A file could not be opened, read, written or renamed.
+  corrupt_data,      ///< A file is truncated or its contents are inconsistent.
+  unsupported,       ///< A valid file uses a feature tessera does not implement.
+  too_large,         ///< A size exceeds tessera's limits (checked before allocating).
+  size_mismatch,     ///< Two inputs that must have equal sizes do not.
+};
+
+/// Short lowercase name of an error code ("io_error", ...).
+const char* error_code_name(ErrorCode code);
+
+/// Outcome of a fallible operation: a code and, on error, a one-line message that names the
+/// file (when there is one) and the problem.
+struct Status {
+  ErrorCode code = ErrorCode::ok;
+  std::string message;
+
+  bool ok() const { return code == ErrorCode::ok; }
+  static Status success() { return {}; }
+  static Status error(ErrorCode c, std::string msg) { return {c, std::move(msg)}; }
+};
+
+/// A value or an error status (a minimal `std::expected`).
+template <class T>
+class Result {
+ public:
+  Result(T value) : value_(std::move(value)) {}  // NOLINT(google-explicit-constructor)
+  Result(Status status) : status_(std::move(status)) {}  // NOLINT(google-explicit-constructor)
+
+  bool ok() const { return value_.has_value(); }
+  explicit operator bool() const { return ok(); }
+  const Status& status() const { return status_; }
+  T& value() & { return *value_; }
+  const T& value() const& { return *value_; }
+  T&& value() && { return std::move(*value_); }
+  T* operator->() { return &*value_; }
+  const T* operator->() const { return &*value_; }
+  T& operator*() & { return *value_; }
+  const T& operator*() const& { return *value_; }
+
+ private:
+  std::optional<T> value_;
+  Status status_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Images
+// ---------------------------------------------------------------------------------------------
+
+/// Largest width or height tessera accepts for any image.
+inline constexpr int kMaxImageDimension = 1 << 16;
+/// Largest pixel count tessera accepts for any image (256 Mpx = 1 GiB as RGBA8).
+inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 28;
+
+/// Checks `width` x `height` against the limits above before anything is allocated.
+/// `what` names the source (usually a file path) for the error message.
+Status check_image_size(std::int64_t width, std::int64_t height, const std::string& what);
+
+/// 8-bit RGBA image, 4 bytes per pixel, rows top to bottom, no padding.
+struct ImageRGBA8 {
+  int width = 0;
+  int height = 0;
+  /// True when the source had an alpha channel (or alpha was otherwise meaningful). Metrics
+  /// report alpha PSNR separately when either compared image has alpha.
+  bool has_alpha = false;
+  std::vector<std::uint8_t> pixels;  ///< width * height * 4 bytes.
+
+  ImageRGBA8() = default;
+  /// Allocates a zero-filled image. Sizes must already be checked (see `check_image_size`).
+  ImageRGBA8(int w, int h) : width(w), height(h), pixels(std::size_t(w) * std::size_t(h) * 4) {}
+
+  std::size_t pixel_count() const { return std::size_t(width) * std::size_t(height); }
+  std::uint8_t* at(int x, int y) { return &pixels[(std::size_t(y) * width + x) * 4]; }
+  const std::uint8_t* at(int x, int y) const { return &pixels[(std::size_t(y) * width + x) * 4]; }
+  bool empty() const { return width == 0 || height == 0; }
+};
+
+/// Floating-point RGBA image, 4 floats per pixel, rows top to bottom. The colour space is the
+/// caller's convention (tessera uses linear RGB unless a function says otherwise).
+struct ImageRGBAF {
+  int width = 0;
+  int height = 0;
+  std::vector<float> pixels;  ///< width * height * 4 floats.
+
+  ImageRGBAF() = default;
+  ImageRGBAF(int w, int h) : width(w), height(h), pixels(std::size_t(w) * std::size_t(h) * 4) {}
+
+  std::size_t pixel_count() const { return std::size_t(width) * std::size_t(height); }
+  float* at(int x, int y) { return &pixels[(std::size_t(y) * width + x) * 4]; }
+  const float* at(int x, int y) const { return &pixels[(std::size_t(y) * width + x) * 4]; }
+  bool empty() const { return width == 0 || height == 0; }
+};
+
+// ---------------------------------------------------------------------------------------------
+// Colour
+// ---------------------------------------------------------------------------------------------
+
+/// Exact sRGB decoding curve (IEC 61966-2-1): x/12.92 below 0.04045, else ((x+0.055)/1.055)^2.4.
+/// Input and output in [0, 1]; values outside are clamped.
+float srgb_to_linear(float srgb);
+/// Exact sRGB encoding curve, the inverse of `srgb_to_linear`. Clamps to [0, 1].
+float linear_to_srgb(float linear);
+/// Table lookup of `srgb_to_linear(v / 255)` for an 8-bit value.
+float srgb8_to_linear(std::uint8_t v);
+/// Encodes linear [0, 1] to the nearest 8-bit sRGB value (round to nearest).
+std::uint8_t linear_to_srgb8(float linear);
+
+/// Converts 8-bit sRGB colour to linear float; alpha is mapped linearly to [0, 1].
+ImageRGBAF to_linear(const ImageRGBA8& srgb, int threads = 0);
+/// Converts linear float colour to 8-bit sRGB (rounded); alpha is mapped linearly.
+ImageRGBA8 to_srgb8(const ImageRGBAF& linear, int threads = 0);
+
+// ---------------------------------------------------------------------------------------------
+// Parallelism
+// ---------------------------------------------------------------------------------------------
+
+/// Number of worker threads `threads == 0` stands for (the hardware concurrency).
+int default_thread_count();
+
+/// Runs `body(begin_i, end_i)` over disjoint sub-ranges covering [begin, end), each at most
+/// `grain` long, on up to `threads` threads (0 = all hardware threads, 1 = the calling thread
+/// only). Sub-range boundaries are multiples of `grain` from `begin`, independent of the thread
+/// count, so a body that writes only its own outputs gives identical results for any `threads`.
+/// Blocks until all iterations finished. Thread-safe; may be nested.
+void parallel_for(std::int64_t begin, std::int64_t end, std::int64_t grain,
+                  const std::function<void(std::int64_t, std::int64_t)>& body, int threads = 0);
+
+/// Deterministic parallel sum: evaluates `chunk(begin_i, end_i)` on the same fixed sub-ranges
+/// as `parallel_for` and adds the partial sums in index order, so the result is bit-identical
+/// for any thread count.
+double parallel_sum(std::int64_t begin, std::int64_t end, std::int64_t grain,
+                    const std::function<double(std::int64_t, std::int64_t)>& chunk,
+                    int threads = 0);
+
+}  // namespace tessera

@@ -1,0 +1,94 @@
+// tessera/metrics.h — image quality metrics shared by every experiment.
+//
+// Definitions (each pinned by tests, SSIM and PSNR cross-checked against scikit-image):
+//  * MSE over RGB: mean over pixels of the mean of the three squared channel differences, on
+//    8-bit values. PSNR = 10 log10(255^2 / MSE); +infinity when MSE == 0.
+//  * Alpha MSE/PSNR: the same on the alpha channel alone, reported when either image has alpha.
+//  * SSIM (Wang et al. 2004) on Rec.709 luma Y = 0.2126 R + 0.7152 G + 0.0722 B computed in
+//    floating point from the 8-bit values (not rounded), 11x11 Gaussian window with sigma 1.5
+//    (normalised), K1 = 0.01, K2 = 0.03, L = 255, population (not sample) covariances, the
+//    'valid' region only (no padding), and the mean of the SSIM map. Equals
+//    skimage.metrics.structural_similarity(gaussian_weights=True, sigma=1.5,
+//    use_sample_covariance=False, data_range=255).
+//  * Error CDF (Toth 2013, Figure 5): per-pixel 2-norm of the linear-RGB difference; for each
+//    threshold x, the fraction of counted pixels whose error is >= x.
+//
+// All functions are deterministic (identical results for any thread count) and thread-safe.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "tessera/core.h"
+
+namespace tessera {
+
+/// Full-reference comparison of two equally sized 8-bit images.
+struct ImageComparison {
+  double mse_rgb = 0.0;     ///< Mean squared error over R, G, B (8-bit units squared).
+  double psnr_rgb = 0.0;    ///< dB, peak 255; +infinity for identical RGB.
+  bool has_alpha = false;   ///< Whether either input has alpha (then the alpha fields are set).
+  double mse_alpha = 0.0;   ///< Mean squared error of alpha.
+  double psnr_alpha = 0.0;  ///< dB, peak 255; +infinity for identical alpha.
+  double ssim_gray = 1.0;   ///< Mean SSIM on Rec.709 luma (see header comment).
+  int max_abs = 0;          ///< Largest absolute difference over all compared channels.
+};
+
+/// Options for `compare_images`.
+struct CompareOptions {
+  bool compute_ssim = true;  ///< SSIM is the expensive part; skip it when not needed.
+  int threads = 0;           ///< 0 = all hardware threads.
+};
+
+/// Compares `a` against `b`. Fails with `size_mismatch` when their sizes differ.
+Result<ImageComparison> compare_images(const ImageRGBA8& a, const ImageRGBA8& b,
+                                       const CompareOptions& options = {});
+
+/// PSNR in dB for a given MSE and peak value (+infinity when mse == 0).
+double psnr_from_mse(double mse, double peak = 255.0);
+
+/// Rec.709 luma of an 8-bit image as floats on the 0..255 scale, row-major.
+std::vector<float> luma709(const ImageRGBA8& image);
+
+/// Mean SSIM of two luma planes of `width` x `height` (values on a 0..`data_range` scale),
+/// with the window and constants of the header comment. Images smaller than 11x11 have no
+/// valid window: their SSIM is the global SSIM of the whole image (uniform weights).
+double ssim_plane(std::span<const float> a, std::span<const float> b, int width, int height,
+                  double data_range = 255.0, int threads = 0);
+
+/// SSIM map over the valid region ((width-10) x (height-10) values), for heatmaps.
+std::vector<float> ssim_map(std::span<const float> a, std::span<const float> b, int width,
+                            int height, double data_range = 255.0, int threads = 0);
+
+/// Mean SSIM on Rec.709 luma of two 8-bit images (sizes must match, else an error).
+Result<double> ssim_gray(const ImageRGBA8& a, const ImageRGBA8& b, int threads = 0);
+
+/// Error CDF of Toth 2013, Figure 5. `a` and `b` are linear RGB (alpha ignored). For each
+/// threshold x in `thresholds`, returns the fraction of counted pixels with
+/// ||a - b||_2 >= x. When `mask` is non-empty (one byte per pixel), only pixels with a non-zero
+/// mask byte are counted. An empty set of counted pixels gives all zeros.
+Result<std::vector<double>> error_cdf(const ImageRGBAF& a, const ImageRGBAF& b,
+                                      std::span<const double> thresholds,
+                                      std::span<const std::uint8_t> mask = {});
+
+/// Per-pixel 2-norm of the linear-RGB difference (the quantity `error_cdf` counts).
+Result<std::vector<float>> error_norms(const ImageRGBAF& a, const ImageRGBAF& b);
+
+/// Colour maps for heatmaps.
+enum class ColorMap { inferno, viridis, grey };
+
+/// Maps t in [0, 1] (clamped) to an 8-bit RGB colour of `map`.
+void colormap_rgb(ColorMap map, float t, std::uint8_t rgb[3]);
+
+/// Colours a scalar field of `width` x `height` values: value / scale in [0, 1] through `map`.
+ImageRGBA8 heatmap(std::span<const float> values, int width, int height, float scale,
+                   ColorMap map = ColorMap::inferno);
+
+/// Difference heatmap of two 8-bit images: the per-pixel maximum absolute channel difference
+/// (over RGB, and alpha when either image has alpha) divided by `scale` (8-bit units; e.g. 32
+/// saturates at a difference of 32) through `map`. Fails on a size mismatch.
+Result<ImageRGBA8> difference_heatmap(const ImageRGBA8& a, const ImageRGBA8& b,
+                                      float scale = 64.0f, ColorMap map = ColorMap::inferno);
+
+}  // namespace tessera

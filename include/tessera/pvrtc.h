@@ -1,0 +1,85 @@
+// tessera/pvrtc.h — PVRTC1 (4 bpp and 2 bpp) encoder and decoder.
+//
+// The decoder is bit-exact with Imagination's PVRTexTool 4.17 (the reference), including
+// punch-through blocks, translucent colours, non-square power-of-two sizes and textures
+// smaller than the 2x2-block minimum. The encoder implements "Fast PVRTC Compression using
+// Intensity Dilation" (Krajcevski & Manocha, JCGT 3(4), 2014) for `Quality::fast`, and refines
+// that result by alternating least-squares optimisation of the block colours and brute-force
+// modulation (the two-stage scheme of the paper's §1.2) for `normal` and `high`.
+//
+// Data layout: compressed data is a sequence of 64-bit little-endian blocks in Morton
+// (twiddled) order, exactly as stored in a PVR v3 file's level data. Each level holds
+// `block_count(format, width, height)` blocks; dimensions must be powers of two (not
+// necessarily equal); anything smaller than 2x2 blocks is padded to 2x2 blocks.
+//
+// Threading: every function is thread-safe; `threads` in the options is the number of worker
+// threads (0 = all). Output bytes are identical for any thread count.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tessera/core.h"
+
+namespace tessera::pvrtc {
+
+/// PVRTC1 variants.
+enum class Format {
+  pvrtc1_4bpp,  ///< 4x4 texels per 64-bit block.
+  pvrtc1_2bpp,  ///< 8x4 texels per 64-bit block.
+};
+
+/// Encoder effort.
+enum class Quality {
+  fast,    ///< Intensity dilation only (the paper's algorithm).
+  normal,  ///< Dilation + a few refinement iterations.
+  high,    ///< Dilation + refinement to convergence (or the iteration budget).
+};
+
+/// Block width in texels (4 for 4 bpp, 8 for 2 bpp); blocks are always 4 texels high.
+int block_width(Format format);
+/// Number of blocks along x / y for a level of the given size (at least 2 each).
+int blocks_x(Format format, int width);
+int blocks_y(Format format, int height);
+/// Number of 64-bit blocks in one level.
+std::size_t block_count(Format format, int width, int height);
+/// Bytes of one level (block_count * 8).
+std::size_t level_size(Format format, int width, int height);
+
+/// Checks that `width` x `height` is encodable: both powers of two, within
+/// `kMaxImageDimension`. `what` names the source for the message.
+Status check_dimensions(int width, int height, const std::string& what);
+
+/// Morton (twiddled) index of block (bx, by) in a grid of `bw` x `bh` blocks (powers of two):
+/// y bit 0, x bit 1, alternating; the surplus high bits of the larger dimension come above.
+std::uint32_t morton_index(std::uint32_t bx, std::uint32_t by, std::uint32_t bw,
+                           std::uint32_t bh);
+
+/// Encoder options.
+struct EncodeOptions {
+  Format format = Format::pvrtc1_4bpp;
+  Quality quality = Quality::normal;
+  /// Refinement iterations; -1 = the quality preset's default (fast 0, normal a few, high until
+  /// convergence within a budget).
+  int iterations = -1;
+  /// Allow punch-through (modulation mode 1) blocks for RGBA input.
+  bool punch_through = true;
+  /// Treat the input as RGBA even if `image.has_alpha` is false (otherwise alpha is ignored and
+  /// only opaque colours are written).
+  bool force_alpha = false;
+  int threads = 0;
+};
+
+/// Encodes one level. `image` dimensions must pass `check_dimensions`. Output size is
+/// `level_size(options.format, image.width, image.height)`.
+Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOptions& options);
+
+/// Decodes one level of `width` x `height` from `data` (at least `level_size` bytes) to RGBA8.
+/// Output `has_alpha` is true when any decoded alpha differs from 255.
+Result<ImageRGBA8> decode(std::span<const std::uint8_t> data, Format format, int width,
+                          int height, int threads = 0);
+
+}  // namespace tessera::pvrtc

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Sets up everything tessera needs on Debian 12, then configures and builds it.
+# Idempotent: packages already installed are not touched, the PVRTexTool oracle is fetched once
+# into a cache, and an up-to-date build is a no-op. Run as root (or with sudo available).
+#
+#   bash scripts/setup.sh            # Release build in build/ (CLI at build/bin/tessera)
+#
+# Environment:
+#   TESSERA_CACHE   where peers are cached (default: ${XDG_CACHE_HOME:-$HOME/.cache}/tessera)
+#   TESSERA_BUILD   build folder (default: build)
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+log() { printf '[setup] %s\n' "$*"; }
+
+# --- Debian packages -------------------------------------------------------------------------
+packages=(
+  build-essential cmake ninja-build pkg-config git ca-certificates
+  clang lld libclang-rt-14-dev                 # second compiler, sanitizers, libFuzzer
+  libspng-dev zlib1g-dev libstb-dev            # PNG, zlib, JPEG/TGA/BMP
+  libtbb-dev                                   # parallel_for
+  libcli11-dev nlohmann-json3-dev              # CLI, --json
+  libgtest-dev libgmock-dev libbenchmark-dev   # tests, benchmarks
+  python3 python3-numpy python3-skimage        # independent SSIM/PSNR cross-check
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+# npm ships the PVRTexTool oracle; any Node.js install with npm will do.
+command -v npm >/dev/null 2>&1 || missing+=(nodejs npm)
+if ((${#missing[@]})); then
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  log "installing: ${missing[*]}"
+  $SUDO apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+# --- PVRTexToolCLI 4.17 (test oracle and benchmark peer; never committed) --------------------
+cache="${TESSERA_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/tessera}"
+pvrtextool="$cache/peers/PVRTexToolCLI"
+if [ ! -x "$pvrtextool" ]; then
+  log "fetching PVRTexToolCLI from the npm package texture-compressor@1.0.2"
+  tmp="$(mktemp -d)"
+  trap 'rm -rf "$tmp"' EXIT
+  (cd "$tmp" && npm pack --silent texture-compressor@1.0.2 >/dev/null && tar xzf texture-compressor-1.0.2.tgz)
+  mkdir -p "$cache/peers"
+  install -m 0755 "$tmp/package/bin/linux/PVRTexToolCLI" "$pvrtextool.tmp"
+  mv "$pvrtextool.tmp" "$pvrtextool"
+fi
+
+# --- Configure and build ---------------------------------------------------------------------
+build="${TESSERA_BUILD:-build}"
+log "building in $build/"
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DTESSERA_WERROR=ON \
+  -DTESSERA_PVRTEXTOOL="$pvrtextool" >/dev/null
+cmake --build "$build"

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Sets up everything and runs every test:
+#   1. GCC Release build (warnings are errors): the whole CTest suite, PVRTexTool oracle included;
+#   2. Clang build with AddressSanitizer + UndefinedBehaviorSanitizer (warnings are errors), with
+#      the libFuzzer targets: the unit tests again, and each fuzzer over its seeds plus a bounded
+#      number of generated inputs.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+bash scripts/setup.sh
+jobs="$(nproc)"
+
+echo "== GCC Release: all tests"
+ctest --test-dir build --output-on-failure -j "$jobs"
+
+echo "== Clang ASan+UBSan: unit and fuzz tests"
+cache="${TESSERA_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/tessera}"
+CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DTESSERA_SANITIZE=ON -DTESSERA_WERROR=ON -DTESSERA_BUILD_BENCH=OFF -DTESSERA_BUILD_FUZZ=ON \
+  -DTESSERA_PVRTEXTOOL="$cache/peers/PVRTexToolCLI" >/dev/null
+cmake --build build-asan
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  ctest --test-dir build-asan --output-on-failure -j "$jobs" -L 'unit|fuzz'

@@ -1,0 +1,221 @@
+// Image decoding (libspng for PNG, stb_image for JPEG/TGA/BMP) and PNG encoding.
+#include <spng.h>
+#include <stb_image.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <memory>
+
+#include "tessera/io.h"
+
+namespace tessera {
+
+namespace {
+
+struct SpngDeleter {
+  void operator()(spng_ctx* ctx) const { spng_ctx_free(ctx); }
+};
+using SpngPtr = std::unique_ptr<spng_ctx, SpngDeleter>;
+
+Status spng_status(const std::string& name, const char* what, int err) {
+  // Truncation shows up as SPNG_EOF or as a failed read of a chunk.
+  const ErrorCode code = ErrorCode::corrupt_data;
+  return Status::error(code, name + ": " + what + ": " + spng_strerror(err));
+}
+
+/// Raw decoded PNG: either 8-bit (`samples8`) or 16-bit (`samples16`) RGBA.
+struct PngRaw {
+  int width = 0, height = 0;
+  bool has_alpha = false;
+  bool sixteen = false;
+  std::vector<std::uint8_t> samples8;
+  std::vector<std::uint16_t> samples16;
+};
+
+Result<PngRaw> decode_png_raw(std::span<const std::uint8_t> bytes, const std::string& name,
+                              bool want16) {
+  SpngPtr ctx(spng_ctx_new(0));
+  if (!ctx) return Status::error(ErrorCode::io_error, name + ": out of memory");
+  spng_set_crc_action(ctx.get(), SPNG_CRC_ERROR, SPNG_CRC_ERROR);
+  spng_set_image_limits(ctx.get(), kMaxImageDimension, kMaxImageDimension);
+  spng_set_chunk_limits(ctx.get(), 64u << 20, 256u << 20);
+  if (int e = spng_set_png_buffer(ctx.get(), bytes.data(), bytes.size())) {
+    return spng_status(name, "cannot read PNG", e);
+  }
+  spng_ihdr ihdr{};
+  if (int e = spng_get_ihdr(ctx.get(), &ihdr)) return spng_status(name, "bad PNG header", e);
+  if (Status s = check_image_size(ihdr.width, ihdr.height, name); !s.ok()) return s;
+
+  PngRaw raw;
+  raw.width = int(ihdr.width);
+  raw.height = int(ihdr.height);
+  spng_trns trns{};
+  raw.has_alpha = ihdr.color_type == SPNG_COLOR_TYPE_TRUECOLOR_ALPHA ||
+                  ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE_ALPHA ||
+                  spng_get_trns(ctx.get(), &trns) == 0;
+  raw.sixteen = want16 || ihdr.bit_depth == 16;
+  const int fmt = raw.sixteen ? SPNG_FMT_RGBA16 : SPNG_FMT_RGBA8;
+  std::size_t out_size = 0;
+  if (int e = spng_decoded_image_size(ctx.get(), fmt, &out_size)) {
+    return spng_status(name, "cannot decode PNG", e);
+  }
+  void* out = nullptr;
+  if (raw.sixteen) {
+    raw.samples16.resize(out_size / 2);
+    out = raw.samples16.data();
+  } else {
+    raw.samples8.resize(out_size);
+    out = raw.samples8.data();
+  }
+  if (int e = spng_decode_image(ctx.get(), out, out_size, fmt, SPNG_DECODE_TRNS)) {
+    return spng_status(name, "corrupt or truncated PNG data", e);
+  }
+  return raw;
+}
+
+bool has_prefix(std::span<const std::uint8_t> b, std::initializer_list<std::uint8_t> magic) {
+  if (b.size() < magic.size()) return false;
+  return std::equal(magic.begin(), magic.end(), b.begin());
+}
+
+Result<ImageRGBA8> decode_stb(std::span<const std::uint8_t> bytes, const std::string& name,
+                              ImageFormat format) {
+  if (bytes.size() > std::size_t(std::numeric_limits<int>::max())) {
+    return Status::error(ErrorCode::too_large, name + ": file too large");
+  }
+  int w = 0, h = 0, comp = 0;
+  if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp)) {
+    return Status::error(ErrorCode::corrupt_data,
+                         name + ": cannot read image header: " + stbi_failure_reason());
+  }
+  if (Status s = check_image_size(w, h, name); !s.ok()) return s;
+  std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> data(
+      stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp, 4), &stbi_image_free);
+  if (!data) {
+    return Status::error(ErrorCode::corrupt_data,
+                         name + ": corrupt or truncated image: " + stbi_failure_reason());
+  }
+  ImageRGBA8 img(w, h);
+  std::memcpy(img.pixels.data(), data.get(), img.pixels.size());
+  img.has_alpha = (comp == 2 || comp == 4) && format != ImageFormat::jpeg;
+  return img;
+}
+
+}  // namespace
+
+ImageFormat detect_image_format(std::span<const std::uint8_t> b) {
+  if (has_prefix(b, {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A})) return ImageFormat::png;
+  if (has_prefix(b, {0xFF, 0xD8, 0xFF})) return ImageFormat::jpeg;
+  if (has_prefix(b, {'B', 'M'})) return ImageFormat::bmp;
+  // TGA has no magic: accept a plausible header (colour-map type 0/1, a known image type and
+  // pixel depth).
+  if (b.size() >= 18) {
+    const std::uint8_t cmap = b[1], type = b[2], depth = b[16];
+    const bool type_ok = type == 1 || type == 2 || type == 3 || type == 9 || type == 10 ||
+                         type == 11;
+    const bool depth_ok = depth == 8 || depth == 15 || depth == 16 || depth == 24 || depth == 32;
+    if (cmap <= 1 && type_ok && depth_ok) return ImageFormat::tga;
+  }
+  return ImageFormat::unknown;
+}
+
+Result<ImageRGBA8> decode_image(std::span<const std::uint8_t> bytes, const std::string& name) {
+  const ImageFormat format = detect_image_format(bytes);
+  if (format == ImageFormat::unknown) {
+    if (bytes.empty()) return Status::error(ErrorCode::corrupt_data, name + ": empty file");
+    return Status::error(ErrorCode::corrupt_data,
+                         name + ": not a PNG, JPEG, TGA or BMP image (unrecognised magic)");
+  }
+  if (format != ImageFormat::png) return decode_stb(bytes, name, format);
+
+  Result<PngRaw> raw = decode_png_raw(bytes, name, false);
+  if (!raw) return raw.status();
+  ImageRGBA8 img(raw->width, raw->height);
+  img.has_alpha = raw->has_alpha;
+  if (raw->sixteen) {
+    for (std::size_t i = 0; i < img.pixels.size(); ++i) {
+      img.pixels[i] = std::uint8_t((std::uint32_t(raw->samples16[i]) * 255u + 32767u) / 65535u);
+    }
+  } else {
+    img.pixels = std::move(raw->samples8);
+  }
+  return img;
+}
+
+Result<ImageRGBAF> decode_image_float(std::span<const std::uint8_t> bytes,
+                                      const std::string& name) {
+  if (detect_image_format(bytes) == ImageFormat::png) {
+    Result<PngRaw> raw = decode_png_raw(bytes, name, true);
+    if (!raw) return raw.status();
+    ImageRGBAF img(raw->width, raw->height);
+    for (std::size_t i = 0; i < img.pixels.size(); ++i) {
+      img.pixels[i] = float(raw->samples16[i]) / 65535.0f;
+    }
+    return img;
+  }
+  Result<ImageRGBA8> img8 = decode_image(bytes, name);
+  if (!img8) return img8.status();
+  ImageRGBAF img(img8->width, img8->height);
+  for (std::size_t i = 0; i < img.pixels.size(); ++i) img.pixels[i] = img8->pixels[i] / 255.0f;
+  return img;
+}
+
+Result<ImageRGBA8> read_image(const std::string& path) {
+  Result<std::vector<std::uint8_t>> bytes = read_file(path);
+  if (!bytes) return bytes.status();
+  return decode_image(*bytes, path);
+}
+
+Result<ImageRGBAF> read_image_float(const std::string& path) {
+  Result<std::vector<std::uint8_t>> bytes = read_file(path);
+  if (!bytes) return bytes.status();
+  return decode_image_float(*bytes, path);
+}
+
+Result<std::vector<std::uint8_t>> encode_png(const ImageRGBA8& image) {
+  if (Status s = check_image_size(image.width, image.height, "PNG encoder"); !s.ok()) return s;
+  if (image.pixels.size() != image.pixel_count() * 4) {
+    return Status::error(ErrorCode::invalid_argument, "PNG encoder: pixel buffer size mismatch");
+  }
+  SpngPtr ctx(spng_ctx_new(SPNG_CTX_ENCODER));
+  if (!ctx) return Status::error(ErrorCode::io_error, "PNG encoder: out of memory");
+  spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1);
+  spng_ihdr ihdr{};
+  ihdr.width = std::uint32_t(image.width);
+  ihdr.height = std::uint32_t(image.height);
+  ihdr.bit_depth = 8;
+  ihdr.color_type = image.has_alpha ? SPNG_COLOR_TYPE_TRUECOLOR_ALPHA : SPNG_COLOR_TYPE_TRUECOLOR;
+  if (int e = spng_set_ihdr(ctx.get(), &ihdr)) return spng_status("PNG encoder", "header", e);
+
+  std::vector<std::uint8_t> rgb;
+  const void* data = image.pixels.data();
+  std::size_t size = image.pixels.size();
+  if (!image.has_alpha) {
+    rgb.resize(image.pixel_count() * 3);
+    for (std::size_t i = 0; i < image.pixel_count(); ++i) {
+      std::memcpy(&rgb[i * 3], &image.pixels[i * 4], 3);
+    }
+    data = rgb.data();
+    size = rgb.size();
+  }
+  if (int e = spng_encode_image(ctx.get(), data, size, SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE)) {
+    return spng_status("PNG encoder", "encode", e);
+  }
+  std::size_t png_size = 0;
+  int err = 0;
+  void* png = spng_get_png_buffer(ctx.get(), &png_size, &err);
+  if (!png) return spng_status("PNG encoder", "buffer", err);
+  std::vector<std::uint8_t> out(static_cast<std::uint8_t*>(png),
+                                static_cast<std::uint8_t*>(png) + png_size);
+  std::free(png);
+  return out;
+}
+
+Status write_png(const std::string& path, const ImageRGBA8& image) {
+  Result<std::vector<std::uint8_t>> png = encode_png(image);
+  if (!png) return Status::error(png.status().code, path + ": " + png.status().message);
+  return write_file_atomic(path, *png);
+}
+
+}  // namespace tessera

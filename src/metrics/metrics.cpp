@@ -1,0 +1,117 @@
+// MSE / PSNR / max error, image comparison and the error CDF of Toth 2013.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+#include "tessera/metrics.h"
+
+namespace tessera {
+
+namespace {
+Status size_mismatch(const char* what, int aw, int ah, int bw, int bh) {
+  return Status::error(ErrorCode::size_mismatch,
+                       std::string(what) + ": image sizes differ (" + std::to_string(aw) + "x" +
+                           std::to_string(ah) + " vs " + std::to_string(bw) + "x" +
+                           std::to_string(bh) + ")");
+}
+}  // namespace
+
+double psnr_from_mse(double mse, double peak) {
+  if (mse <= 0.0) return std::numeric_limits<double>::infinity();
+  return 10.0 * std::log10(peak * peak / mse);
+}
+
+Result<ImageComparison> compare_images(const ImageRGBA8& a, const ImageRGBA8& b,
+                                       const CompareOptions& options) {
+  if (a.width != b.width || a.height != b.height) {
+    return size_mismatch("compare", a.width, a.height, b.width, b.height);
+  }
+  ImageComparison r;
+  r.has_alpha = a.has_alpha || b.has_alpha;
+  const std::int64_t n = std::int64_t(a.pixel_count());
+  if (n == 0) return r;
+  constexpr std::int64_t kGrain = 1 << 14;
+  // Sums of squared 8-bit differences are integers: exact in double up to 2^53.
+  const double sse_rgb = parallel_sum(
+      0, n, kGrain,
+      [&](std::int64_t i0, std::int64_t i1) {
+        std::int64_t s = 0;
+        for (std::int64_t i = i0; i < i1; ++i) {
+          for (int c = 0; c < 3; ++c) {
+            const int d = int(a.pixels[i * 4 + c]) - int(b.pixels[i * 4 + c]);
+            s += d * d;
+          }
+        }
+        return double(s);
+      },
+      options.threads);
+  const double sse_alpha = parallel_sum(
+      0, n, kGrain,
+      [&](std::int64_t i0, std::int64_t i1) {
+        std::int64_t s = 0;
+        for (std::int64_t i = i0; i < i1; ++i) {
+          const int d = int(a.pixels[i * 4 + 3]) - int(b.pixels[i * 4 + 3]);
+          s += d * d;
+        }
+        return double(s);
+      },
+      options.threads);
+  const int channels = r.has_alpha ? 4 : 3;
+  int max_abs = 0;
+  for (std::int64_t i = 0; i < n; ++i) {
+    for (int c = 0; c < channels; ++c) {
+      max_abs = std::max(max_abs, std::abs(int(a.pixels[i * 4 + c]) - int(b.pixels[i * 4 + c])));
+    }
+  }
+  r.max_abs = max_abs;
+  r.mse_rgb = sse_rgb / (3.0 * double(n));
+  r.psnr_rgb = psnr_from_mse(r.mse_rgb);
+  if (r.has_alpha) {
+    r.mse_alpha = sse_alpha / double(n);
+    r.psnr_alpha = psnr_from_mse(r.mse_alpha);
+  }
+  if (options.compute_ssim) r.ssim_gray = *ssim_gray(a, b, options.threads);
+  return r;
+}
+
+Result<std::vector<float>> error_norms(const ImageRGBAF& a, const ImageRGBAF& b) {
+  if (a.width != b.width || a.height != b.height) {
+    return size_mismatch("error norms", a.width, a.height, b.width, b.height);
+  }
+  std::vector<float> e(a.pixel_count());
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    const float* pa = &a.pixels[i * 4];
+    const float* pb = &b.pixels[i * 4];
+    const double dr = pa[0] - pb[0], dg = pa[1] - pb[1], db = pa[2] - pb[2];
+    e[i] = float(std::sqrt(dr * dr + dg * dg + db * db));
+  }
+  return e;
+}
+
+Result<std::vector<double>> error_cdf(const ImageRGBAF& a, const ImageRGBAF& b,
+                                      std::span<const double> thresholds,
+                                      std::span<const std::uint8_t> mask) {
+  Result<std::vector<float>> norms = error_norms(a, b);
+  if (!norms) return norms.status();
+  if (!mask.empty() && mask.size() != norms->size()) {
+    return Status::error(ErrorCode::size_mismatch, "error CDF: mask size differs from image");
+  }
+  std::vector<float> counted;
+  counted.reserve(norms->size());
+  for (std::size_t i = 0; i < norms->size(); ++i) {
+    if (mask.empty() || mask[i]) counted.push_back((*norms)[i]);
+  }
+  std::sort(counted.begin(), counted.end());
+  std::vector<double> cdf(thresholds.size(), 0.0);
+  if (counted.empty()) return cdf;
+  for (std::size_t t = 0; t < thresholds.size(); ++t) {
+    // Count of values >= x: everything from the first element not less than x.
+    const auto first = std::lower_bound(counted.begin(), counted.end(), thresholds[t],
+                                        [](float v, double x) { return double(v) < x; });
+    cdf[t] = double(counted.end() - first) / double(counted.size());
+  }
+  return cdf;
+}
+
+}  // namespace tessera

@@ -1,0 +1,48 @@
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+namespace tessera::test {
+
+namespace fs = std::filesystem;
+
+std::optional<fs::path> shared_data_dir() {
+  fs::path p;
+  if (const char* env = std::getenv("TESSERA_SHARED")) {
+    p = fs::path(env) / "data";
+  } else {
+    p = fs::path(TESSERA_SOURCE_DIR) / ".." / "shared" / "data";
+  }
+  std::error_code ec;
+  if (fs::is_directory(p, ec)) return fs::weakly_canonical(p);
+  return std::nullopt;
+}
+
+std::optional<fs::path> pvrtextool() {
+  fs::path p = TESSERA_PVRTEXTOOL_PATH;
+  if (const char* env = std::getenv("TESSERA_PVRTEXTOOL")) p = env;
+  std::error_code ec;
+  if (!p.empty() && fs::is_regular_file(p, ec)) return p;
+  return std::nullopt;
+}
+
+fs::path temp_dir(const std::string& name) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string leaf = name;
+  if (info) leaf = std::string(info->test_suite_name()) + "." + info->name() + "." + name;
+  fs::path p = fs::path(TESSERA_BINARY_DIR) / "test-tmp" / leaf;
+  std::error_code ec;
+  fs::remove_all(p, ec);
+  fs::create_directories(p);
+  return p;
+}
+
+fs::path artifacts_dir() {
+  fs::path p = fs::path(TESSERA_BINARY_DIR) / "test-artifacts";
+  fs::create_directories(p);
+  return p;
+}
+
+}  // namespace tessera::test

@@ -1,0 +1,40 @@
+// Shared plumbing of the tessera command-line tool: exit codes, error printing and the
+// registration interface every subcommand implements.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "tessera/core.h"
+
+namespace tessera::cli {
+
+/// Process exit codes of every subcommand.
+enum ExitCode : int {
+  kExitOk = 0,        ///< Success.
+  kExitBadInput = 1,  ///< A file is missing, unreadable, corrupt, or an output cannot be written.
+  kExitUsage = 2,     ///< The command line itself is wrong.
+};
+
+/// Options shared by every subcommand.
+struct GlobalOptions {
+  int threads = 0;  ///< -j N; 0 = all hardware threads.
+};
+
+/// Prints "tessera: <message>" on one line to stderr and returns kExitBadInput.
+int fail(const Status& status);
+/// Prints "tessera: <message>" on one line to stderr and returns kExitUsage.
+int usage_error(const std::string& message);
+
+/// A registered subcommand: the CLI11 sub-app and the action run when it was selected.
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
+
+Command add_compare_command(CLI::App& app, const GlobalOptions& global);
+Command add_demo_command(CLI::App& app, const GlobalOptions& global);
+
+}  // namespace tessera::cli

@@ -1,0 +1,47 @@
+// A small HTML report builder for `tessera demo`: sections of text, tables and image rows,
+// with the images written as PNG files next to the page.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tessera/core.h"
+
+namespace tessera::cli {
+
+/// One image in a row of figures.
+struct Figure {
+  std::string path;     ///< Relative to the report folder.
+  std::string caption;  ///< Plain text.
+};
+
+/// Accumulates an HTML page; `write` stores it atomically as DIR/report.html.
+class Report {
+ public:
+  Report(std::string dir, std::string title);
+
+  /// Writes `image` to DIR/img/NAME.png; on success sets `rel` to its relative path.
+  Status save_image(const std::string& name, const ImageRGBA8& image, std::string& rel);
+
+  void heading(const std::string& text);
+  /// Raw HTML (callers escape what they insert; see `escape`).
+  void html(const std::string& text);
+  void paragraph(const std::string& text);
+  void table(const std::vector<std::string>& header,
+             const std::vector<std::vector<std::string>>& rows);
+  /// A row of images shown at `zoom` times their size without smoothing.
+  void figures(const std::vector<Figure>& figures, int zoom = 1);
+
+  /// Writes DIR/report.html (folder created if needed).
+  Status write() const;
+  const std::string& dir() const { return dir_; }
+
+  static std::string escape(const std::string& text);
+
+ private:
+  std::string dir_;
+  std::string title_;
+  std::string body_;
+};
+
+}  // namespace tessera::cli
