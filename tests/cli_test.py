@@ -1,2 +1,119 @@
+#!/usr/bin/env python3
+"""CLI tests of the foundation commands: `tessera compare` output and every error path.
+
+Usage: cli_test.py PATH/TO/tessera
+Checks exit codes (0 ok, 1 bad input, 2 bad usage), that errors are one line naming the file,
+and that failed commands leave no output behind.
+"""
+import json
+import os
+import shutil
+import subprocess
 import sys
-sys.exit(0)
+import tempfile
+
+TESSERA = sys.argv[1]
+failures = []
+passed = 0
+
+
+def run(*args):
+    p = subprocess.run([TESSERA, *args], capture_output=True, text=True, timeout=120)
+    return p.returncode, p.stdout, p.stderr
+
+
+def check(name, cond, detail=""):
+    global passed
+    if cond:
+        passed += 1
+    else:
+        failures.append(f"{name}: {detail}")
+        print(f"FAIL {name}: {detail}")
+
+
+def expect_error(name, args, code, must_name=None):
+    rc, out, err = run(*args)
+    lines = [l for l in err.splitlines() if l.strip()]
+    check(name + " exit code", rc == code, f"rc={rc} stderr={err!r}")
+    if code == 1:
+        check(name + " one line", len(lines) == 1, f"stderr={err!r}")
+        if must_name:
+            check(name + " names file", must_name in err, f"stderr={err!r}")
+    return err
+
+
+tmp = tempfile.mkdtemp(prefix="tessera-cli-")
+try:
+    # Make inputs with the demo (procedural PNGs).
+    rc, out, err = run("demo", "-o", os.path.join(tmp, "demo"), "--size", "64")
+    check("demo runs", rc == 0, err)
+    img = os.path.join(tmp, "demo", "img")
+    a = os.path.join(img, "images-noise.png")
+    b = os.path.join(img, "images-noise-half.png")
+    rgba = os.path.join(img, "images-foliage.png")
+    check("demo report", os.path.isfile(os.path.join(tmp, "demo", "report.html")))
+
+    # Happy paths.
+    rc, out, err = run("compare", a, b, "--json")
+    check("compare --json rc", rc == 0, err)
+    j = json.loads(out)
+    for key in ("psnr_rgb", "ssim_gray", "mse", "max_abs"):
+        check("json key " + key, key in j, out)
+    check("psnr plausible", 20 < j["psnr_rgb"] < 80, out)
+    check("ssim plausible", 0.5 < j["ssim_gray"] < 1.0, out)
+    rc, out, err = run("compare", a, a, "--json")
+    j = json.loads(out)
+    check("identical: psnr null", j["psnr_rgb"] is None and j["identical_rgb"], out)
+    check("identical: ssim 1", j["ssim_gray"] == 1.0 and j["mse"] == 0 and j["max_abs"] == 0, out)
+    rc, out, err = run("compare", rgba, rgba)
+    check("text output has alpha line", rc == 0 and "PSNR alpha" in out, out)
+    heat = os.path.join(tmp, "heat.png")
+    rc, out, err = run("compare", a, b, "--heatmap", heat)
+    check("heatmap written", rc == 0 and os.path.isfile(heat), err)
+
+    # Help and usage.
+    rc, out, err = run("--help")
+    check("--help", rc == 0 and "compare" in out and "demo" in out, out)
+    rc, out, err = run("compare", "--help")
+    check("compare --help", rc == 0 and "--json" in out, out)
+    expect_error("no subcommand", [], 2)
+    expect_error("missing operand", ["compare", a], 2)
+    expect_error("unknown flag", ["compare", a, b, "--bogus"], 2)
+    expect_error("bad -j", ["-j", "-3", "compare", a, b], 2)
+
+    # Bad input.
+    missing = os.path.join(tmp, "nope.png")
+    expect_error("missing file", ["compare", missing, b], 1, missing)
+    with open(a, "rb") as f:
+        data = f.read()
+    for cut in (0, 8, 30, len(data) // 2, len(data) - 1):
+        t = os.path.join(tmp, f"trunc{cut}.png")
+        with open(t, "wb") as f:
+            f.write(data[:cut])
+        expect_error(f"truncated at {cut}", ["compare", a, t], 1, t)
+    corrupt = os.path.join(tmp, "corrupt.png")
+    with open(corrupt, "wb") as f:
+        f.write(data[:60] + bytes(b ^ 0xFF for b in data[60:90]) + data[90:])
+    expect_error("corrupt", ["compare", corrupt, a], 1, corrupt)
+    wrong = os.path.join(tmp, "wrong.png")
+    with open(wrong, "wb") as f:
+        f.write(b"GIF89a" + data[6:])
+    expect_error("wrong magic", ["compare", wrong, a], 1, wrong)
+    small = os.path.join(tmp, "demo32", "img", "images-noise.png")
+    run("demo", "-o", os.path.join(tmp, "demo32"), "--size", "32")
+    expect_error("size mismatch", ["compare", a, small], 1, small)
+    expect_error("directory as input", ["compare", tmp, a], 1, tmp)
+
+    # Unwritable outputs leave nothing behind.
+    heat2 = os.path.join(tmp, "no", "such", "dir", "heat.png")
+    expect_error("unwritable heatmap", ["compare", a, b, "--heatmap", heat2], 1, heat2)
+    blocker = os.path.join(tmp, "blocker")
+    open(blocker, "w").close()
+    expect_error("demo into a file", ["demo", "-o", os.path.join(blocker, "sub")], 1, "blocker")
+    leftovers = [n for n in os.listdir(tmp) if ".tmp." in n]
+    check("no temp files left", not leftovers, str(leftovers))
+finally:
+    shutil.rmtree(tmp, ignore_errors=True)
+
+print(f"{passed} passed, {len(failures)} failed")
+sys.exit(1 if failures else 0)

@@ -1,1 +1,128 @@
+// Tests of tessera/core.h: status plumbing, size limits, sRGB curves, parallel loops.
 #include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <numeric>
+
+#include "tessera/core.h"
+#include "tessera/procedural.h"
+
+namespace tessera {
+namespace {
+
+TEST(Result, CarriesValueOrStatus) {
+  Result<int> good = 42;
+  ASSERT_TRUE(good.ok());
+  EXPECT_EQ(*good, 42);
+  Result<int> bad = Status::error(ErrorCode::corrupt_data, "x.png: broken");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().code, ErrorCode::corrupt_data);
+  EXPECT_EQ(bad.status().message, "x.png: broken");
+  EXPECT_STREQ(error_code_name(ErrorCode::too_large), "too_large");
+}
+
+TEST(ImageSize, LimitsCheckedBeforeAllocation) {
+  EXPECT_TRUE(check_image_size(1, 1, "a").ok());
+  EXPECT_TRUE(check_image_size(kMaxImageDimension, 4096, "a").ok());
+  EXPECT_EQ(check_image_size(0, 5, "a").code, ErrorCode::corrupt_data);
+  EXPECT_EQ(check_image_size(-3, 5, "a").code, ErrorCode::corrupt_data);
+  EXPECT_EQ(check_image_size(kMaxImageDimension + 1, 1, "a").code, ErrorCode::too_large);
+  const Status s = check_image_size(kMaxImageDimension, kMaxImageDimension, "big.png");
+  EXPECT_EQ(s.code, ErrorCode::too_large);
+  EXPECT_NE(s.message.find("big.png"), std::string::npos);
+  EXPECT_EQ(s.message.find('\n'), std::string::npos);
+}
+
+TEST(Srgb, ExactCurveAtKnownPoints) {
+  EXPECT_FLOAT_EQ(srgb_to_linear(0.0f), 0.0f);
+  EXPECT_FLOAT_EQ(srgb_to_linear(1.0f), 1.0f);
+  // Linear segment and its boundary.
+  EXPECT_NEAR(srgb_to_linear(0.04045f), 0.04045 / 12.92, 1e-8);
+  EXPECT_NEAR(srgb_to_linear(0.02f), 0.02 / 12.92, 1e-8);
+  // Power segment: ((0.5 + 0.055) / 1.055)^2.4 = 0.21404114...
+  EXPECT_NEAR(srgb_to_linear(0.5f), 0.214041140, 1e-6);
+  EXPECT_NEAR(linear_to_srgb(0.214041140f), 0.5, 1e-6);
+  EXPECT_NEAR(linear_to_srgb(0.001f), 0.01292, 1e-7);
+  // Clamping.
+  EXPECT_EQ(srgb_to_linear(-1.0f), 0.0f);
+  EXPECT_EQ(linear_to_srgb(2.0f), 1.0f);
+}
+
+TEST(Srgb, EightBitRoundTripIsExact) {
+  for (int v = 0; v < 256; ++v) {
+    EXPECT_EQ(linear_to_srgb8(srgb8_to_linear(std::uint8_t(v))), v) << v;
+  }
+  // The curve is continuous at the segment boundary.
+  EXPECT_NEAR(srgb_to_linear(0.04045f), srgb_to_linear(0.040451f), 1e-6);
+}
+
+TEST(Srgb, ImageConversionRoundTrips) {
+  const ImageRGBA8 img = make_procedural(Procedural::foliage, 64, 48);
+  const ImageRGBAF lin = to_linear(img, 2);
+  EXPECT_NEAR(lin.at(3, 5)[3], img.at(3, 5)[3] / 255.0f, 1e-7);
+  const ImageRGBA8 back = to_srgb8(lin, 1);
+  EXPECT_EQ(back.pixels, img.pixels);
+}
+
+TEST(Parallel, CoversRangeOnceWithFixedChunks) {
+  for (int threads : {1, 2, 3, 0}) {
+    std::vector<int> hits(1000, 0);
+    std::vector<std::int64_t> starts(1000, -1);
+    parallel_for(
+        0, 1000, 64,
+        [&](std::int64_t b, std::int64_t e) {
+          EXPECT_EQ(b % 64, 0);
+          EXPECT_LE(e - b, 64);
+          for (std::int64_t i = b; i < e; ++i) {
+            ++hits[i];
+            starts[i] = b;
+          }
+        },
+        threads);
+    for (int i = 0; i < 1000; ++i) {
+      EXPECT_EQ(hits[i], 1);
+      EXPECT_EQ(starts[i], (i / 64) * 64);
+    }
+  }
+  int calls = 0;
+  parallel_for(5, 5, 1, [&](std::int64_t, std::int64_t) { ++calls; });
+  EXPECT_EQ(calls, 0);
+}
+
+TEST(Parallel, SumIsBitIdenticalForAnyThreadCount) {
+  auto chunk = [](std::int64_t b, std::int64_t e) {
+    double s = 0.0;
+    for (std::int64_t i = b; i < e; ++i) s += 1.0 / double(i + 1) * std::sin(double(i));
+    return s;
+  };
+  const double one = parallel_sum(0, 200000, 1000, chunk, 1);
+  for (int threads : {2, 4, 0}) {
+    EXPECT_EQ(parallel_sum(0, 200000, 1000, chunk, threads), one);
+  }
+}
+
+TEST(Parallel, NestedLoopsComplete) {
+  std::atomic<int> total{0};
+  parallel_for(
+      0, 8, 1,
+      [&](std::int64_t, std::int64_t) {
+        parallel_for(0, 100, 10, [&](std::int64_t b, std::int64_t e) { total += int(e - b); }, 2);
+      },
+      2);
+  EXPECT_EQ(total.load(), 800);
+}
+
+TEST(Procedural, DeterministicAndDistinct) {
+  for (Procedural kind : all_procedurals()) {
+    const ImageRGBA8 a = make_procedural(kind, 64, 32, 5);
+    const ImageRGBA8 b = make_procedural(kind, 64, 32, 5);
+    EXPECT_EQ(a.pixels, b.pixels) << procedural_name(kind);
+    EXPECT_EQ(a.has_alpha, kind == Procedural::foliage);
+  }
+  EXPECT_NE(make_procedural(Procedural::noise, 32, 32, 1).pixels,
+            make_procedural(Procedural::noise, 32, 32, 2).pixels);
+}
+
+}  // namespace
+}  // namespace tessera

@@ -1,1 +1,264 @@
+// Tests of tessera/io.h: PNG in all its flavours, JPEG/TGA/BMP through stb, atomic writes and
+// the error paths (missing, truncated, corrupt, wrong magic, absurd sizes).
 #include <gtest/gtest.h>
+#include <spng.h>
+#include <stb_image_write.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+
+#include "tessera/io.h"
+#include "tessera/procedural.h"
+#include "test_support.h"
+
+namespace tessera {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Encodes raw samples as PNG with libspng directly (to make 16-bit, grey and palette files).
+std::vector<std::uint8_t> encode_raw_png(const void* data, std::size_t size, std::uint32_t w,
+                                         std::uint32_t h, std::uint8_t color_type,
+                                         std::uint8_t depth, const spng_plte* plte = nullptr,
+                                         const spng_trns* trns = nullptr) {
+  std::unique_ptr<spng_ctx, decltype(&spng_ctx_free)> ctx(spng_ctx_new(SPNG_CTX_ENCODER),
+                                                          &spng_ctx_free);
+  spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1);
+  spng_ihdr ihdr{};
+  ihdr.width = w;
+  ihdr.height = h;
+  ihdr.bit_depth = depth;
+  ihdr.color_type = color_type;
+  EXPECT_EQ(spng_set_ihdr(ctx.get(), &ihdr), 0);
+  if (plte) {
+    EXPECT_EQ(spng_set_plte(ctx.get(), const_cast<spng_plte*>(plte)), 0);
+  }
+  if (trns) {
+    EXPECT_EQ(spng_set_trns(ctx.get(), const_cast<spng_trns*>(trns)), 0);
+  }
+  EXPECT_EQ(spng_encode_image(ctx.get(), data, size, SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE), 0);
+  std::size_t n = 0;
+  int err = 0;
+  void* buf = spng_get_png_buffer(ctx.get(), &n, &err);
+  std::vector<std::uint8_t> out(static_cast<std::uint8_t*>(buf), static_cast<std::uint8_t*>(buf) + n);
+  std::free(buf);
+  return out;
+}
+
+void append(void* ctx, void* data, int size) {
+  auto* v = static_cast<std::vector<std::uint8_t>*>(ctx);
+  v->insert(v->end(), static_cast<std::uint8_t*>(data), static_cast<std::uint8_t*>(data) + size);
+}
+
+TEST(Png, Rgba8RoundTripIsLossless) {
+  const ImageRGBA8 img = make_procedural(Procedural::foliage, 37, 23);
+  Result<std::vector<std::uint8_t>> png = encode_png(img);
+  ASSERT_TRUE(png.ok());
+  EXPECT_EQ(detect_image_format(*png), ImageFormat::png);
+  Result<ImageRGBA8> back = decode_image(*png, "mem");
+  ASSERT_TRUE(back.ok()) << back.status().message;
+  EXPECT_EQ(back->width, 37);
+  EXPECT_EQ(back->height, 23);
+  EXPECT_TRUE(back->has_alpha);
+  EXPECT_EQ(back->pixels, img.pixels);
+}
+
+TEST(Png, RgbWritesOpaqueAndReadsBackWithoutAlpha) {
+  const ImageRGBA8 img = make_procedural(Procedural::bricks, 16, 16);
+  Result<ImageRGBA8> back = decode_image(*encode_png(img), "mem");
+  ASSERT_TRUE(back.ok());
+  EXPECT_FALSE(back->has_alpha);
+  EXPECT_EQ(back->pixels, img.pixels);
+}
+
+TEST(Png, SixteenBitIsRoundedNotTruncated) {
+  // 2x1 RGB16: values chosen where truncation (>> 8) and rounding differ.
+  const std::uint16_t px[6] = {0x0080, 0xFF7F, 0xFFFF, 0x7F80, 0x0000, 0x8080};
+  // libspng takes 16-bit samples in host byte order.
+  const auto png = encode_raw_png(px, sizeof px, 2, 1, SPNG_COLOR_TYPE_TRUECOLOR, 16);
+  Result<ImageRGBA8> img = decode_image(png, "sixteen.png");
+  ASSERT_TRUE(img.ok()) << img.status().message;
+  for (int i = 0; i < 6; ++i) {
+    const int expect = int((std::uint32_t(px[i]) * 255u + 32767u) / 65535u);
+    EXPECT_EQ(img->pixels[(i / 3) * 4 + (i % 3)], expect) << i;
+  }
+  EXPECT_EQ(img->pixels[3], 255);
+  Result<ImageRGBAF> f = decode_image_float(png, "sixteen.png");
+  ASSERT_TRUE(f.ok());
+  EXPECT_FLOAT_EQ(f->pixels[1], 0xFF7F / 65535.0f);
+}
+
+TEST(Png, GreyAndGreyAlphaExpandToRgba) {
+  const std::uint8_t grey[4] = {0, 100, 200, 255};
+  Result<ImageRGBA8> g = decode_image(encode_raw_png(grey, 4, 2, 2, SPNG_COLOR_TYPE_GRAYSCALE, 8), "g");
+  ASSERT_TRUE(g.ok());
+  EXPECT_FALSE(g->has_alpha);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(g->pixels[i * 4 + 0], grey[i]);
+    EXPECT_EQ(g->pixels[i * 4 + 1], grey[i]);
+    EXPECT_EQ(g->pixels[i * 4 + 2], grey[i]);
+    EXPECT_EQ(g->pixels[i * 4 + 3], 255);
+  }
+  const std::uint8_t ga[4] = {10, 20, 30, 40};
+  Result<ImageRGBA8> a =
+      decode_image(encode_raw_png(ga, 4, 2, 1, SPNG_COLOR_TYPE_GRAYSCALE_ALPHA, 8), "ga");
+  ASSERT_TRUE(a.ok());
+  EXPECT_TRUE(a->has_alpha);
+  EXPECT_EQ(a->pixels[0], 10);
+  EXPECT_EQ(a->pixels[3], 20);
+  EXPECT_EQ(a->pixels[6], 30);
+  EXPECT_EQ(a->pixels[7], 40);
+  // 16-bit grey+alpha.
+  const std::uint16_t ga16[2] = {0xFFFF, 0x0001};  // grey 0xFFFF, alpha 1/65535 -> 0
+  Result<ImageRGBA8> a16 =
+      decode_image(encode_raw_png(ga16, 4, 1, 1, SPNG_COLOR_TYPE_GRAYSCALE_ALPHA, 16), "ga16");
+  ASSERT_TRUE(a16.ok());
+  EXPECT_EQ(a16->pixels[0], 255);
+  EXPECT_EQ(a16->pixels[3], 0);
+}
+
+TEST(Png, PaletteWithTransparency) {
+  spng_plte plte{};
+  plte.n_entries = 2;
+  plte.entries[0] = {255, 0, 0, 0};
+  plte.entries[1] = {0, 0, 255, 0};
+  spng_trns trns{};
+  trns.n_type3_entries = 1;
+  trns.type3_alpha[0] = 128;
+  const std::uint8_t idx[2] = {0, 1};
+  Result<ImageRGBA8> img = decode_image(
+      encode_raw_png(idx, 2, 2, 1, SPNG_COLOR_TYPE_INDEXED, 8, &plte, &trns), "pal");
+  ASSERT_TRUE(img.ok()) << img.status().message;
+  EXPECT_TRUE(img->has_alpha);
+  const std::uint8_t expect[8] = {255, 0, 0, 128, 0, 0, 255, 255};
+  EXPECT_EQ(0, std::memcmp(img->pixels.data(), expect, 8));
+}
+
+TEST(Stb, TgaAndJpegAndBmpDecode) {
+  const ImageRGBA8 img = make_procedural(Procedural::gradient, 32, 16);
+  std::vector<std::uint8_t> tga;
+  ASSERT_TRUE(stbi_write_tga_to_func(append, &tga, 32, 16, 4, img.pixels.data()));
+  EXPECT_EQ(detect_image_format(tga), ImageFormat::tga);
+  Result<ImageRGBA8> t = decode_image(tga, "a.tga");
+  ASSERT_TRUE(t.ok()) << t.status().message;
+  EXPECT_EQ(t->pixels, img.pixels);
+  EXPECT_TRUE(t->has_alpha);
+
+  std::vector<std::uint8_t> jpg;
+  ASSERT_TRUE(stbi_write_jpg_to_func(append, &jpg, 32, 16, 4, img.pixels.data(), 95));
+  EXPECT_EQ(detect_image_format(jpg), ImageFormat::jpeg);
+  Result<ImageRGBA8> j = decode_image(jpg, "a.jpg");
+  ASSERT_TRUE(j.ok()) << j.status().message;
+  EXPECT_FALSE(j->has_alpha);
+  int max_err = 0;
+  for (std::size_t i = 0; i < img.pixel_count(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      max_err = std::max(max_err, std::abs(int(j->pixels[i * 4 + c]) - int(img.pixels[i * 4 + c])));
+    }
+  }
+  EXPECT_LT(max_err, 24);  // q95 JPEG of a smooth gradient
+}
+
+TEST(Errors, MissingFileNamesThePath) {
+  Result<ImageRGBA8> r = read_image("/nonexistent/dir/x.png");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code, ErrorCode::io_error);
+  EXPECT_NE(r.status().message.find("/nonexistent/dir/x.png"), std::string::npos);
+}
+
+TEST(Errors, TruncatedPngAtEveryRegionIsAnError) {
+  const ImageRGBA8 img = make_procedural(Procedural::noise, 64, 64);
+  const std::vector<std::uint8_t> png = *encode_png(img);
+  for (std::size_t cut : {std::size_t(0), std::size_t(4), std::size_t(8), std::size_t(20),
+                          std::size_t(33), png.size() / 2, png.size() - 13, png.size() - 1}) {
+    std::vector<std::uint8_t> part(png.begin(), png.begin() + std::ptrdiff_t(cut));
+    Result<ImageRGBA8> r = decode_image(part, "cut.png");
+    EXPECT_FALSE(r.ok()) << "cut at " << cut;
+    if (!r.ok()) {
+      EXPECT_EQ(r.status().message.rfind("cut.png: ", 0), 0u) << r.status().message;
+      EXPECT_EQ(r.status().message.find('\n'), std::string::npos);
+    }
+  }
+}
+
+TEST(Errors, CorruptCrcAndWrongMagic) {
+  std::vector<std::uint8_t> png = *encode_png(make_procedural(Procedural::text, 32, 32));
+  std::vector<std::uint8_t> bad = png;
+  bad[png.size() / 2] ^= 0x5A;  // inside IDAT: CRC mismatch
+  EXPECT_FALSE(decode_image(bad, "crc.png").ok());
+  std::vector<std::uint8_t> text = {'h', 'e', 'l', 'l', 'o', ' ', 'w', 'o', 'r', 'l', 'd'};
+  Result<ImageRGBA8> r = decode_image(text, "notes.txt");
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message.find("unrecognised magic"), std::string::npos);
+}
+
+TEST(Errors, AbsurdSizeRefusedBeforeAllocating) {
+  // A valid 1x1 PNG whose IHDR claims 60000 x 60000 (CRC fixed up): must be refused by the
+  // size limit, not by a failed 14 GB allocation.
+  std::vector<std::uint8_t> png = *encode_png(make_procedural(Procedural::gradient, 1, 1));
+  auto put32 = [&](std::size_t off, std::uint32_t v) {
+    png[off] = std::uint8_t(v >> 24);
+    png[off + 1] = std::uint8_t(v >> 16);
+    png[off + 2] = std::uint8_t(v >> 8);
+    png[off + 3] = std::uint8_t(v);
+  };
+  put32(16, 60000);
+  put32(20, 60000);
+  // CRC-32 over "IHDR" + 13 data bytes.
+  std::uint32_t crc = 0xFFFFFFFFu;
+  for (std::size_t i = 12; i < 12 + 17; ++i) {
+    crc ^= png[i];
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+  }
+  put32(29, ~crc);
+  Result<ImageRGBA8> r = decode_image(png, "huge.png");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code, ErrorCode::too_large) << r.status().message;
+  // stb path: a TGA header claiming 65535 x 65535 with no data.
+  std::vector<std::uint8_t> tga(18, 0);
+  tga[2] = 2;
+  tga[12] = tga[13] = tga[14] = tga[15] = 0xFF;
+  tga[16] = 32;
+  Result<ImageRGBA8> t = decode_image(tga, "huge.tga");
+  EXPECT_FALSE(t.ok());
+}
+
+TEST(AtomicWrite, ReplacesOnlyOnSuccess) {
+  const fs::path dir = test::temp_dir("atomic");
+  const std::string path = (dir / "out.png").string();
+  const ImageRGBA8 img = make_procedural(Procedural::bricks, 8, 8);
+  ASSERT_TRUE(write_png(path, img).ok());
+  Result<ImageRGBA8> back = read_image(path);
+  ASSERT_TRUE(back.ok());
+  EXPECT_EQ(back->pixels, img.pixels);
+  // An unwritable destination (a folder that does not exist) leaves nothing behind.
+  const Status s = write_png((dir / "missing" / "x.png").string(), img);
+  EXPECT_EQ(s.code, ErrorCode::io_error);
+  EXPECT_NE(s.message.find("missing/x.png"), std::string::npos);
+  // A directory in the way of the rename: the old content survives, no temp file remains.
+  fs::create_directories(dir / "isdir.png");
+  EXPECT_FALSE(write_png((dir / "isdir.png").string(), img).ok());
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    (void)e;
+    ++files;
+  }
+  EXPECT_EQ(files, 2);  // out.png and the isdir.png folder
+}
+
+TEST(SharedData, RealImagesDecode) {
+  TESSERA_REQUIRE_SHARED_DATA(data);
+  Result<ImageRGBA8> a = read_image((data / "images" / "ldr-rgba-00.png").string());
+  ASSERT_TRUE(a.ok()) << a.status().message;
+  EXPECT_EQ(a->width, 256);
+  EXPECT_TRUE(a->has_alpha);
+  Result<ImageRGBA8> npot = read_image((data / "images" / "ldr-rgb-10.png").string());
+  ASSERT_TRUE(npot.ok());
+  EXPECT_EQ(npot->width, 127);
+  EXPECT_EQ(npot->height, 128);
+}
+
+}  // namespace
+}  // namespace tessera

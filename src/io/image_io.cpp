@@ -2,7 +2,9 @@
 #include <spng.h>
 #include <stb_image.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <iterator>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -70,6 +72,16 @@ Result<PngRaw> decode_png_raw(std::span<const std::uint8_t> bytes, const std::st
   }
   if (int e = spng_decode_image(ctx.get(), out, out_size, fmt, SPNG_DECODE_TRNS)) {
     return spng_status(name, "corrupt or truncated PNG data", e);
+  }
+  // Read the chunks after the image data up to IEND, so a file cut short after its last IDAT
+  // is reported as truncated rather than silently accepted.
+  if (int e = spng_decode_chunks(ctx.get())) {
+    return spng_status(name, "truncated PNG (no IEND)", e);
+  }
+  // libspng does not insist on IEND's CRC; the chunk is fixed, so look for all 12 bytes.
+  static constexpr std::uint8_t kIend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+  if (std::search(bytes.begin(), bytes.end(), std::begin(kIend), std::end(kIend)) == bytes.end()) {
+    return Status::error(ErrorCode::corrupt_data, name + ": truncated PNG (incomplete IEND chunk)");
   }
   return raw;
 }
