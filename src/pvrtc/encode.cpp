@@ -1,0 +1,431 @@
+// PVRTC1 encoder driver: intensity-dilation endpoints (dilation.cpp), the homogeneous-block
+// shortcut, brute-force modulation against the exactly upscaled endpoint images, and the
+// least-squares refinement (refine.cpp) for Quality::normal / high.
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <limits>
+
+#include "pvrtc/encode_internal.h"
+#include "tessera/pvrtc.h"
+
+namespace tessera::pvrtc {
+
+using namespace detail;
+
+namespace detail {
+
+std::uint16_t quantise_endpoint(const float c[4], bool is_b, bool allow_translucent) {
+  int bits[4];
+  EndpointCodes o;
+  o.opaque = true;
+  channel_bits(is_b, true, bits);
+  float eo = allow_translucent ? (255.0f - c[3]) * (255.0f - c[3]) : 0.0f;
+  std::uint32_t* oc[3] = {&o.r, &o.g, &o.b};
+  for (int ch = 0; ch < 3; ++ch) {
+    *oc[ch] = code_nearest(c[ch], bits[ch], ch);
+    const float d = float(code_level_rgb(*oc[ch], bits[ch])) - c[ch];
+    eo += d * d;
+  }
+  if (!allow_translucent) return std::uint16_t(pack_endpoint(is_b, o));
+  EndpointCodes t;
+  t.opaque = false;
+  channel_bits(is_b, false, bits);
+  t.a = code_nearest(c[3], 3, 3);
+  float et = (float(code_level_alpha(t.a)) - c[3]) * (float(code_level_alpha(t.a)) - c[3]);
+  std::uint32_t* tc[3] = {&t.r, &t.g, &t.b};
+  for (int ch = 0; ch < 3; ++ch) {
+    *tc[ch] = code_nearest(c[ch], bits[ch], ch);
+    const float d = float(code_level_rgb(*tc[ch], bits[ch])) - c[ch];
+    et += d * d;
+  }
+  return std::uint16_t(pack_endpoint(is_b, et < eo ? t : o));
+}
+
+namespace {
+
+// Optimal single-colour endpoint codes: for an 8-bit value v, codes (a, b) of an A channel
+// with `abits` bits and a B channel with 5 bits such that (LA (8 - m) + LB m) / 8 is nearest
+// to v in a uniform region, for modulation weight m = 3 (index 0) or 5 (index 1).
+struct SingleColour {
+  std::uint8_t a, b, err;
+};
+using SingleTable = std::array<SingleColour, 256>;
+
+SingleTable make_single_table(int abits, int m) {
+  SingleTable t{};
+  for (int v = 0; v < 256; ++v) {
+    SingleColour best{0, 0, 255};
+    for (int a = 0; a < (1 << abits); ++a) {
+      for (int b = 0; b < 32; ++b) {
+        const int la = code_level_rgb(std::uint32_t(a), abits), lb = code_level_rgb(std::uint32_t(b), 5);
+        const int d = std::abs((la * (8 - m) + lb * m) / 8 - v);
+        if (d < best.err) best = {std::uint8_t(a), std::uint8_t(b), std::uint8_t(d)};
+      }
+    }
+    t[std::size_t(v)] = best;
+  }
+  return t;
+}
+
+const SingleTable& single_table(int abits, int mi) {
+  static const std::array<SingleTable, 4> tables = {make_single_table(5, 3), make_single_table(5, 5),
+                                                    make_single_table(4, 3), make_single_table(4, 5)};
+  return tables[std::size_t((abits == 4 ? 2 : 0) + mi)];
+}
+
+inline std::uint32_t texel_error(const std::uint8_t* t, const std::uint8_t* a,
+                                 const std::uint8_t* b, std::int32_t m, bool punch, int nch) {
+  std::uint32_t e = 0;
+  for (int c = 0; c < nch; ++c) {
+    std::int32_t v = (a[c] * (8 - m) + b[c] * m) / 8;
+    if (c == 3 && punch) v = 0;
+    const std::int32_t d = v - t[c];
+    e += std::uint32_t(d * d);
+  }
+  return e;
+}
+
+void choose_modulation_4bpp(EncoderState& s) {
+  const Grid& g = s.g;
+  std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
+  for (std::size_t i = 0; i < g.blocks(); ++i) {
+    ea[i] = expand_a(s.ca[i]);
+    eb[i] = expand_b(s.cb[i]);
+  }
+  const int nch = s.alpha_mode ? 4 : 3;
+  parallel_for(
+      0, g.nby, 4,
+      [&](std::int64_t by0, std::int64_t by1) {
+        std::vector<std::uint8_t> ua(std::size_t(g.pw) * 16), ub(ua.size());
+        for (int by = int(by0); by < int(by1); ++by) {
+          upscale_rows(g, ea.data(), by * 4, by * 4 + 4, ua.data());
+          upscale_rows(g, eb.data(), by * 4, by * 4 + 4, ub.data());
+          for (int bx = 0; bx < g.nbx; ++bx) {
+            const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+            std::uint32_t bits0 = 0, err0 = 0, bits1 = 0, err1 = 0;
+            bool any_clear = false;
+            for (int y = 0; y < 4; ++y) {
+              for (int x = 0; x < 4; ++x) {
+                const std::size_t li = std::size_t(y) * std::size_t(g.pw) + std::size_t(bx * 4 + x);
+                const std::uint8_t* t =
+                    &s.target[(std::size_t(by * 4 + y) * std::size_t(g.pw) + std::size_t(bx * 4 + x)) * 4];
+                const std::uint8_t* a = &ua[li * 4];
+                const std::uint8_t* b = &ub[li * 4];
+                any_clear |= t[3] < 128;
+                std::uint32_t best = std::numeric_limits<std::uint32_t>::max(), bc = 0;
+                for (std::uint32_t c = 0; c < 4; ++c) {
+                  const std::uint32_t e = texel_error(t, a, b, kMod4Mode0[c], false, nch);
+                  if (e < best) {
+                    best = e;
+                    bc = c;
+                  }
+                }
+                bits0 |= bc << (2 * (4 * y + x));
+                err0 += best;
+              }
+            }
+            std::uint8_t mode = 0;
+            if (s.punch && any_clear) {
+              for (int y = 0; y < 4; ++y) {
+                for (int x = 0; x < 4; ++x) {
+                  const std::size_t li = std::size_t(y) * std::size_t(g.pw) + std::size_t(bx * 4 + x);
+                  const std::uint8_t* t = &s.target[(std::size_t(by * 4 + y) * std::size_t(g.pw) +
+                                                     std::size_t(bx * 4 + x)) * 4];
+                  std::uint32_t best = std::numeric_limits<std::uint32_t>::max(), bc = 0;
+                  for (std::uint32_t c = 0; c < 4; ++c) {
+                    const std::uint32_t e =
+                        texel_error(t, &ua[li * 4], &ub[li * 4], kMod4Mode1[c], c == 2, nch);
+                    if (e < best) {
+                      best = e;
+                      bc = c;
+                    }
+                  }
+                  bits1 |= bc << (2 * (4 * y + x));
+                  err1 += best;
+                }
+              }
+              if (err1 < err0) mode = 1;
+            }
+            s.mode[bi] = mode;
+            s.mod[bi] = mode ? bits1 : bits0;
+          }
+        }
+      },
+      s.threads);
+}
+
+// 2 bpp: per block, direct 1-bit modulation (mode 0) or 2-bit checkerboard with interpolated
+// texels (mode 1: H+V, H only or V only), whichever has the smaller estimated error. The
+// estimate for interpolated texels assumes neighbouring blocks store their greedy 2-bit values.
+void choose_modulation_2bpp(EncoderState& s) {
+  const Grid& g = s.g;
+  std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
+  for (std::size_t i = 0; i < g.blocks(); ++i) {
+    ea[i] = expand_a(s.ca[i]);
+    eb[i] = expand_b(s.cb[i]);
+  }
+  const int nch = s.alpha_mode ? 4 : 3;
+  const std::size_t n = g.texels();
+  std::vector<std::uint8_t> ua(n * 4), ub(n * 4), greedy(n);
+  parallel_for(
+      0, g.ph, 16,
+      [&](std::int64_t y0, std::int64_t y1) {
+        upscale_rows(g, ea.data(), int(y0), int(y1), &ua[std::size_t(y0) * std::size_t(g.pw) * 4]);
+        upscale_rows(g, eb.data(), int(y0), int(y1), &ub[std::size_t(y0) * std::size_t(g.pw) * 4]);
+        for (std::size_t i = std::size_t(y0) * std::size_t(g.pw); i < std::size_t(y1) * std::size_t(g.pw); ++i) {
+          std::uint32_t best = std::numeric_limits<std::uint32_t>::max(), bc = 0;
+          for (std::uint32_t c = 0; c < 4; ++c) {
+            const std::uint32_t e = texel_error(&s.target[i * 4], &ua[i * 4], &ub[i * 4], kMod4Mode0[c], false, nch);
+            if (e < best) {
+              best = e;
+              bc = c;
+            }
+          }
+          greedy[i] = std::uint8_t(bc);
+        }
+      },
+      s.threads);
+  const int wm = g.pw - 1, hm = g.ph - 1;
+  parallel_for(
+      0, g.nby, 4,
+      [&](std::int64_t by0, std::int64_t by1) {
+        for (int by = int(by0); by < int(by1); ++by) {
+          for (int bx = 0; bx < g.nbx; ++bx) {
+            const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+            auto at = [&](int x, int y) {
+              return std::size_t(y & hm) * std::size_t(g.pw) + std::size_t(x & wm);
+            };
+            auto err_m = [&](std::size_t i, std::int32_t m) {
+              return texel_error(&s.target[i * 4], &ua[i * 4], &ub[i * 4], m, false, nch);
+            };
+            // Mode 0.
+            std::uint32_t bits0 = 0, err0 = 0;
+            for (int y = 0; y < 4; ++y) {
+              for (int x = 0; x < 8; ++x) {
+                const std::size_t i = at(bx * 8 + x, by * 4 + y);
+                const std::uint32_t e0 = err_m(i, 0), e1 = err_m(i, 8);
+                if (e1 < e0) bits0 |= 1u << (y * 8 + x);
+                err0 += std::min(e0, e1);
+              }
+            }
+            // Mode 1 variants: 0 = H+V, 1 = H only, 2 = V only.
+            std::uint32_t best_err = err0, best_bits = bits0;
+            std::uint8_t best_mode = 0;
+            // Stored values of this block, with texel (0,0) restricted to 0/3, and (4,2) too for
+            // the H/V-only variants.
+            for (int variant = 0; variant < 3; ++variant) {
+              std::uint8_t code[4][8];
+              std::uint32_t err = 0;
+              auto restricted = [&](std::size_t i) -> std::uint8_t {
+                return err_m(i, 8) < err_m(i, 0) ? 3 : 0;
+              };
+              for (int y = 0; y < 4; ++y) {
+                for (int x = 0; x < 8; ++x) {
+                  if ((x ^ y) & 1) continue;
+                  const std::size_t i = at(bx * 8 + x, by * 4 + y);
+                  std::uint8_t c = greedy[i];
+                  if ((x == 0 && y == 0) || (variant > 0 && x == 4 && y == 2)) c = restricted(i);
+                  code[y][x] = c;
+                  err += err_m(i, kMod4Mode0[c]);
+                }
+              }
+              auto stored = [&](int x, int y) -> std::int32_t {
+                if (x >= 0 && x < 8 && y >= 0 && y < 4) return kMod4Mode0[code[y][x]];
+                return kMod4Mode0[greedy[at(bx * 8 + x, by * 4 + y)]];
+              };
+              for (int y = 0; y < 4 && err < best_err; ++y) {
+                for (int x = 0; x < 8; ++x) {
+                  if (((x ^ y) & 1) == 0) continue;
+                  std::int32_t m;
+                  if (variant == 0) {
+                    m = (stored(x, y - 1) + stored(x, y + 1) + stored(x - 1, y) + stored(x + 1, y) + 2) / 4;
+                  } else if (variant == 1) {
+                    m = (stored(x - 1, y) + stored(x + 1, y) + 1) / 2;
+                  } else {
+                    m = (stored(x, y - 1) + stored(x, y + 1) + 1) / 2;
+                  }
+                  err += err_m(at(bx * 8 + x, by * 4 + y), m);
+                }
+              }
+              if (err < best_err) {
+                std::uint32_t bits = 0;
+                int k = 0;
+                for (int y = 0; y < 4; ++y) {
+                  for (int x = 0; x < 8; ++x) {
+                    if ((x ^ y) & 1) continue;
+                    bits |= std::uint32_t(code[y][x]) << (2 * k);
+                    ++k;
+                  }
+                }
+                // Texel (0,0): only its high bit is stored; bit 0 flags the H/V-only variants,
+                // and bit 20 (the low bit of texel (4,2)) tells V-only from H-only.
+                bits &= ~1u;
+                bits &= ~(1u << 20);
+                if (variant > 0) {
+                  bits |= 1u;
+                  if (variant == 2) bits |= 1u << 20;
+                }
+                best_err = err;
+                best_bits = bits;
+                best_mode = 1;
+              }
+            }
+            s.mode[bi] = best_mode;
+            s.mod[bi] = best_bits;
+          }
+        }
+      },
+      s.threads);
+}
+
+}  // namespace
+
+void choose_modulation(EncoderState& s) {
+  if (s.g.format == Format::pvrtc1_4bpp) {
+    choose_modulation_4bpp(s);
+  } else {
+    choose_modulation_2bpp(s);
+  }
+}
+
+std::uint64_t total_error(const EncoderState& s) {
+  const Grid& g = s.g;
+  const std::vector<std::uint64_t> w = s.words();
+  std::vector<std::uint8_t> dec(g.texels() * 4);
+  decode_padded(g, w.data(), dec.data(), s.threads);
+  const int nch = s.alpha_mode ? 4 : 3;
+  const double sum = parallel_sum(
+      0, std::int64_t(g.texels()), 1 << 14,
+      [&](std::int64_t i0, std::int64_t i1) {
+        std::uint64_t e = 0;
+        for (std::int64_t i = i0; i < i1; ++i) {
+          for (int c = 0; c < nch; ++c) {
+            const std::int32_t d = std::int32_t(dec[std::size_t(i) * 4 + std::size_t(c)]) -
+                                   std::int32_t(s.target[std::size_t(i) * 4 + std::size_t(c)]);
+            e += std::uint64_t(d * d);
+          }
+        }
+        return double(e);
+      },
+      s.threads);
+  return std::uint64_t(sum);
+}
+
+}  // namespace detail
+
+namespace {
+
+int default_iterations(Quality q) {
+  switch (q) {
+    case Quality::fast:
+      return 0;
+    case Quality::normal:
+      return 3;
+    case Quality::high:
+      return 16;
+  }
+  return 0;
+}
+
+// Homogeneous blocks (all texels equal and opaque): optimal single-colour endpoints from the
+// lookup tables, replacing the dilation result.
+void homogeneous_shortcut(EncoderState& s) {
+  const Grid& g = s.g;
+  parallel_for(
+      0, g.nby, 16,
+      [&](std::int64_t by0, std::int64_t by1) {
+        for (int by = int(by0); by < int(by1); ++by) {
+          for (int bx = 0; bx < g.nbx; ++bx) {
+            const std::uint8_t* first =
+                &s.target[(std::size_t(by * 4) * std::size_t(g.pw) + std::size_t(bx * g.bw)) * 4];
+            bool uniform = first[3] == 255;
+            for (int y = 0; y < 4 && uniform; ++y) {
+              const std::uint8_t* row =
+                  &s.target[(std::size_t(by * 4 + y) * std::size_t(g.pw) + std::size_t(bx * g.bw)) * 4];
+              for (int x = 0; x < g.bw && uniform; ++x) uniform = std::memcmp(row + x * 4, first, 4) == 0;
+            }
+            if (!uniform) continue;
+            int best_mi = 0, best_err = 1 << 30;
+            for (int mi = 0; mi < 2; ++mi) {
+              const int e = single_table(5, mi)[first[0]].err + single_table(5, mi)[first[1]].err +
+                            single_table(4, mi)[first[2]].err;
+              if (e < best_err) {
+                best_err = e;
+                best_mi = mi;
+              }
+            }
+            EndpointCodes a, b;
+            const SingleColour& r = single_table(5, best_mi)[first[0]];
+            const SingleColour& gg = single_table(5, best_mi)[first[1]];
+            const SingleColour& bb = single_table(4, best_mi)[first[2]];
+            a.r = r.a;
+            a.g = gg.a;
+            a.b = bb.a;
+            b.r = r.b;
+            b.g = gg.b;
+            b.b = bb.b;
+            const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+            s.ca[bi] = std::uint16_t(pack_endpoint(false, a));
+            s.cb[bi] = std::uint16_t(pack_endpoint(true, b));
+          }
+        }
+      },
+      s.threads);
+}
+
+}  // namespace
+
+Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOptions& options) {
+  if (Status st = check_dimensions(image.width, image.height, "pvrtc::encode"); !st.ok()) return st;
+  if (image.pixels.size() != image.pixel_count() * 4) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "pvrtc::encode: pixel buffer size does not match the image size");
+  }
+  if (options.iterations < -1) {
+    return Status::error(ErrorCode::invalid_argument, "pvrtc::encode: iterations must be >= -1");
+  }
+  EncoderState s;
+  s.g = make_grid(options.format, image.width, image.height);
+  s.alpha_mode = image.has_alpha || options.force_alpha;
+  s.punch = s.alpha_mode && options.punch_through && options.format == Format::pvrtc1_4bpp;
+  s.threads = options.threads;
+  const Grid& g = s.g;
+  // Target: the source tiled over the padded level (only textures under 2x2 blocks differ).
+  s.target.resize(g.texels() * 4);
+  for (int y = 0; y < g.ph; ++y) {
+    for (int x = 0; x < g.pw; ++x) {
+      std::uint8_t* d = &s.target[(std::size_t(y) * std::size_t(g.pw) + std::size_t(x)) * 4];
+      std::memcpy(d, image.at(x % image.width, y % image.height), 4);
+      if (!s.alpha_mode) d[3] = 255;
+    }
+  }
+  s.ca.assign(g.blocks(), 0);
+  s.cb.assign(g.blocks(), 0);
+  s.mode.assign(g.blocks(), 0);
+  s.mod.assign(g.blocks(), 0);
+  {
+    std::vector<float> low, high;
+    dilation_endpoints(s, low, high);
+    parallel_for(
+        0, std::int64_t(g.blocks()), 4096,
+        [&](std::int64_t b0, std::int64_t b1) {
+          for (std::int64_t i = b0; i < b1; ++i) {
+            s.ca[std::size_t(i)] = quantise_endpoint(&low[std::size_t(i) * 4], false, s.alpha_mode);
+            s.cb[std::size_t(i)] = quantise_endpoint(&high[std::size_t(i) * 4], true, s.alpha_mode);
+          }
+        },
+        s.threads);
+  }
+  homogeneous_shortcut(s);
+  choose_modulation(s);
+  const int iterations =
+      options.iterations >= 0 ? options.iterations : default_iterations(options.quality);
+  if (iterations > 0) refine(s, iterations);
+  std::vector<std::uint8_t> out(level_size(options.format, image.width, image.height));
+  const std::vector<std::uint64_t> w = s.words();
+  store_words(g, w.data(), out.data());
+  return out;
+}
+
+}  // namespace tessera::pvrtc

@@ -1,0 +1,57 @@
+// encode_internal.h — state shared by the PVRTC encoder passes (dilation, modulation,
+// refinement). One `EncoderState` is owned by one `encode` call.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "pvrtc/pvrtc_internal.h"
+
+namespace tessera::pvrtc::detail {
+
+struct EncoderState {
+  Grid g;
+  bool alpha_mode = false;  ///< Translucent endpoints and alpha error are allowed/counted.
+  bool punch = false;       ///< Punch-through (4 bpp mode 1) may be used.
+  int threads = 0;
+  /// Padded target texels (pw * ph RGBA; the source tiled; alpha 255 unless alpha_mode).
+  std::vector<std::uint8_t> target;
+  /// Packed endpoint fields per block, linear order (A: bits 1-15 of its 16-bit field).
+  std::vector<std::uint16_t> ca, cb;
+  std::vector<std::uint8_t> mode;   ///< Modulation mode bit per block.
+  std::vector<std::uint32_t> mod;   ///< Modulation bits per block.
+  /// Effective modulation map (pw * ph) used by the refinement passes.
+  std::vector<std::uint8_t> scratch_m;
+
+  std::uint64_t word(std::size_t i) const {
+    return std::uint64_t(mod[i]) | (std::uint64_t(ca[i] | mode[i]) << 32) |
+           (std::uint64_t(cb[i]) << 48);
+  }
+  std::vector<std::uint64_t> words() const {
+    std::vector<std::uint64_t> w(ca.size());
+    for (std::size_t i = 0; i < w.size(); ++i) w[i] = word(i);
+    return w;
+  }
+};
+
+/// Quantises a float RGBA endpoint (8-bit scale) to a packed endpoint field, choosing opaque or
+/// translucent (when `allow_translucent`) by the smaller quantisation error.
+std::uint16_t quantise_endpoint(const float c[4], bool is_b, bool allow_translucent);
+
+/// The paper's initial endpoints: intensity labelling, 3x dilation of extrema, block averages.
+/// Writes low (A) and high (B) float RGBA per block (4 floats each, linear block order).
+void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vector<float>& high);
+
+/// Brute-force modulation for the current endpoints (exact decoder arithmetic); chooses the
+/// per-block mode (punch-through for 4 bpp, direct vs interpolated for 2 bpp).
+void choose_modulation(EncoderState& s);
+
+/// Sum of squared errors of the exact decode against the target (RGB, + alpha in alpha mode).
+std::uint64_t total_error(const EncoderState& s);
+
+/// Least-squares refinement of endpoints with modulation fixed, alternating with
+/// `choose_modulation`; keeps the best state. Runs at most `iterations` sweeps and stops early
+/// when a sweep does not improve the error.
+void refine(EncoderState& s, int iterations);
+
+}  // namespace tessera::pvrtc::detail

@@ -1,0 +1,203 @@
+// Least-squares refinement of PVRTC endpoints (the second stage of Fenney 2003, §1.2 of the
+// paper): with modulation fixed, every texel is linear in the endpoint values of its four
+// blocks, so each block's A and B colours have a closed-form 2x2 least-squares solution given
+// its neighbours. Blocks are solved in a 2x2 colouring (blocks with the same (bx & 1, by & 1)
+// share no texels), so each of the four passes is parallel and deterministic. Each solution is
+// quantised by trying the floor/ceil code of every channel of A and B, then modulation is
+// re-chosen and the whole sweep is kept only if the exact decoded error dropped.
+#include <algorithm>
+#include <cmath>
+
+#include "pvrtc/encode_internal.h"
+
+namespace tessera::pvrtc::detail {
+
+namespace {
+
+// Level (8-bit scale, linear in the expanded value) of an expanded channel value.
+constexpr float kRgbScale = 8.25f;   // (e << 3) | (e >> 2) ~ 8.25 e for 5-bit e
+constexpr float kAlphaScale = 17.0f;  // 4-bit alpha a -> 17 a
+
+// Per-block endpoint levels: A rgba then B rgba.
+void endpoint_levels(std::uint16_t ca, std::uint16_t cb, float* out) {
+  const Rgba5 a = expand_a(ca), b = expand_b(cb);
+  out[0] = float(a.r) * kRgbScale;
+  out[1] = float(a.g) * kRgbScale;
+  out[2] = float(a.b) * kRgbScale;
+  out[3] = float(a.a) * kAlphaScale;
+  out[4] = float(b.r) * kRgbScale;
+  out[5] = float(b.g) * kRgbScale;
+  out[6] = float(b.b) * kRgbScale;
+  out[7] = float(b.a) * kAlphaScale;
+}
+
+// Expanded-value level of a code of `bits` bits for channel `ch` (alpha codes are 3-bit).
+float code_value(std::uint32_t code, int bits, int ch) {
+  if (ch == 3) return float(code * 2) * kAlphaScale;
+  const std::int32_t e = bits == 5 ? std::int32_t(code) : bits == 4 ? expand4to5(code) : expand3to5(code);
+  return float(e) * kRgbScale;
+}
+
+// Two candidate codes bracketing `level`.
+void bracket(float level, int bits, int ch, std::uint32_t out[2]) {
+  const std::uint32_t maxc = (1u << bits) - 1;
+  std::uint32_t c = 0;
+  while (c < maxc && code_value(c + 1, bits, ch) <= level) ++c;
+  out[0] = c;
+  out[1] = std::min(c + 1, maxc);
+}
+
+struct Sums {
+  double aa = 0, ab = 0, bb = 0;
+  double ra = 0, rb = 0;
+};
+
+void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by) {
+  const Grid& g = s.g;
+  const int bw = g.bw;
+  const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+  const std::vector<std::uint8_t>& m_eff = s.scratch_m;
+  Sums rgb[3];
+  Sums alpha;
+  const double inv_total = 1.0 / double(4 * bw);
+  for (int yy = by * 4 - 2; yy < by * 4 + 6; ++yy) {
+    const AxisTap ty = axis_tap(yy, 4, g.ph);
+    const int y = yy & (g.ph - 1);
+    for (int xx = bx * bw - bw / 2; xx < bx * bw + bw + bw / 2; ++xx) {
+      const AxisTap tx = axis_tap(xx, bw, g.pw);
+      const int x = xx & (g.pw - 1);
+      const std::size_t blk[4] = {std::size_t(ty.b0) * std::size_t(g.nbx) + std::size_t(tx.b0),
+                                  std::size_t(ty.b0) * std::size_t(g.nbx) + std::size_t(tx.b1),
+                                  std::size_t(ty.b1) * std::size_t(g.nbx) + std::size_t(tx.b0),
+                                  std::size_t(ty.b1) * std::size_t(g.nbx) + std::size_t(tx.b1)};
+      const double wt[4] = {double((bw - tx.d) * (4 - ty.d)) * inv_total,
+                            double(tx.d * (4 - ty.d)) * inv_total,
+                            double((bw - tx.d) * ty.d) * inv_total, double(tx.d * ty.d) * inv_total};
+      double wj = 0;
+      double other[4] = {0, 0, 0, 0};
+      const std::size_t ti = std::size_t(y) * std::size_t(g.pw) + std::size_t(x);
+      const std::uint8_t me = m_eff[ti];
+      const double fb = double(me & 0x0f) / 8.0, fa = 1.0 - fb;
+      for (int k = 0; k < 4; ++k) {
+        if (blk[k] == j) {
+          wj += wt[k];
+          continue;
+        }
+        const float* l = &lv[blk[k] * 8];
+        for (int c = 0; c < 4; ++c) other[c] += wt[k] * (fa * l[c] + fb * l[4 + c]);
+      }
+      if (wj == 0) continue;
+      const std::uint8_t* t = &s.target[ti * 4];
+      const double ca = wj * fa, cbv = wj * fb;
+      for (int c = 0; c < 3; ++c) {
+        const double r = double(t[c]) - other[c];
+        rgb[c].aa += ca * ca;
+        rgb[c].ab += ca * cbv;
+        rgb[c].bb += cbv * cbv;
+        rgb[c].ra += ca * r;
+        rgb[c].rb += cbv * r;
+      }
+      if (s.alpha_mode && !(me & kPunchFlag)) {
+        const double r = double(t[3]) - other[3];
+        alpha.aa += ca * ca;
+        alpha.ab += ca * cbv;
+        alpha.bb += cbv * cbv;
+        alpha.ra += ca * r;
+        alpha.rb += cbv * r;
+      }
+    }
+  }
+  float* cur = &lv[j * 8];
+  EndpointCodes ea = unpack_endpoint(false, s.ca[j]);
+  EndpointCodes eb = unpack_endpoint(true, s.cb[j]);
+  int bits_a[4], bits_b[4];
+  channel_bits(false, ea.opaque, bits_a);
+  channel_bits(true, eb.opaque, bits_b);
+  std::uint32_t* code_a[4] = {&ea.r, &ea.g, &ea.b, &ea.a};
+  std::uint32_t* code_b[4] = {&eb.r, &eb.g, &eb.b, &eb.a};
+  for (int c = 0; c < 4; ++c) {
+    Sums sm = c < 3 ? rgb[c] : alpha;
+    if (c == 3 && (!s.alpha_mode || (ea.opaque && eb.opaque))) break;
+    const bool var_a = c < 3 || !ea.opaque, var_b = c < 3 || !eb.opaque;
+    // Regularise towards the current values so degenerate systems stay put.
+    const double lambda = 1e-3 * (sm.aa + sm.bb) + 1e-9;
+    double A = cur[c], B = cur[4 + c];
+    if (var_a && var_b) {
+      const double m00 = sm.aa + lambda, m01 = sm.ab, m11 = sm.bb + lambda;
+      const double r0 = sm.ra + lambda * cur[c], r1 = sm.rb + lambda * cur[4 + c];
+      const double det = m00 * m11 - m01 * m01;
+      if (det > 0) {
+        A = (r0 * m11 - r1 * m01) / det;
+        B = (m00 * r1 - m01 * r0) / det;
+      }
+    } else if (var_a) {
+      A = (sm.ra - sm.ab * B + lambda * cur[c]) / (sm.aa + lambda);
+    } else {
+      B = (sm.rb - sm.ab * A + lambda * cur[4 + c]) / (sm.bb + lambda);
+    }
+    std::uint32_t cand_a[2] = {*code_a[c], *code_a[c]}, cand_b[2] = {*code_b[c], *code_b[c]};
+    const int ba = c < 3 ? bits_a[c] : 3, bb = c < 3 ? bits_b[c] : 3;
+    if (var_a) bracket(float(A), ba, c, cand_a);
+    if (var_b) bracket(float(B), bb, c, cand_b);
+    double best = 1e300;
+    for (std::uint32_t qa : cand_a) {
+      const double la = var_a ? code_value(qa, ba, c) : double(cur[c]);
+      for (std::uint32_t qb : cand_b) {
+        const double lb = var_b ? code_value(qb, bb, c) : double(cur[4 + c]);
+        const double e = sm.aa * la * la + 2 * sm.ab * la * lb + sm.bb * lb * lb -
+                         2 * sm.ra * la - 2 * sm.rb * lb;
+        if (e < best) {
+          best = e;
+          if (var_a) *code_a[c] = qa;
+          if (var_b) *code_b[c] = qb;
+        }
+      }
+    }
+  }
+  s.ca[j] = std::uint16_t(pack_endpoint(false, ea));
+  s.cb[j] = std::uint16_t(pack_endpoint(true, eb));
+  endpoint_levels(s.ca[j], s.cb[j], cur);
+}
+
+}  // namespace
+
+void refine(EncoderState& s, int iterations) {
+  const Grid& g = s.g;
+  std::uint64_t best_err = total_error(s);
+  std::vector<float> lv(g.blocks() * 8);
+  for (int it = 0; it < iterations; ++it) {
+    const std::vector<std::uint16_t> save_a = s.ca, save_b = s.cb;
+    const std::vector<std::uint8_t> save_mode = s.mode;
+    const std::vector<std::uint32_t> save_mod = s.mod;
+    for (std::size_t i = 0; i < g.blocks(); ++i) endpoint_levels(s.ca[i], s.cb[i], &lv[i * 8]);
+    s.scratch_m.resize(g.texels());
+    {
+      const std::vector<std::uint64_t> w = s.words();
+      modulation_map(g, w.data(), s.scratch_m.data(), s.threads);
+    }
+    for (int cls = 0; cls < 4; ++cls) {
+      const int ox = cls & 1, oy = cls >> 1;
+      const int rows = g.nby / 2;
+      parallel_for(
+          0, rows, 4,
+          [&](std::int64_t r0, std::int64_t r1) {
+            for (int r = int(r0); r < int(r1); ++r) {
+              for (int bx = ox; bx < g.nbx; bx += 2) solve_block(s, lv, bx, 2 * r + oy);
+            }
+          },
+          s.threads);
+    }
+    choose_modulation(s);
+    const std::uint64_t err = total_error(s);
+    if (err >= best_err) {
+      s.ca = save_a;
+      s.cb = save_b;
+      s.mode = save_mode;
+      s.mod = save_mod;
+      break;
+    }
+    best_err = err;
+  }
+}
+
+}  // namespace tessera::pvrtc::detail
