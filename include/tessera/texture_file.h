@@ -4,6 +4,19 @@
 // gives `corrupt_data`, never a huge allocation) and return one-line errors naming the file.
 // Writers produce files PVRTexTool and OpenGL ES loaders accept; write them with
 // `write_texture_file`, which is atomic.
+//
+// PVR v3 (what PVRTexTool writes): 52-byte little-endian header, a metadata block (tessera
+// writes PVRTexTool's 15-byte orientation entry and skips any metadata when reading), then the
+// levels, largest first, each `pvrtc::level_size` bytes. Pixel formats 0..3 (PVRTC1 2bpp RGB,
+// 2bpp RGBA, 4bpp RGB, 4bpp RGBA) are supported; depth, surfaces and faces must be 1.
+// Big-endian PVR files are rejected.
+//
+// KTX 1.1: 64-byte header, glType 0 / glFormat 0, glInternalFormat one of the
+// GL_IMG_texture_compression_pvrtc (0x8C00..0x8C03) or GL_EXT_pvrtc_sRGB (0x8A54..0x8A57)
+// formats, key/value data (tessera writes "KTXorientation" = "S=r,T=d"), then per level a
+// u32 imageSize and the data padded to 4 bytes. Both byte orders are read; files are written
+// little-endian. 2D textures only (no arrays, cube maps or 3D). Note: PVRTexTool 4.17 reads
+// the 0x8C0x formats but rejects the sRGB EXT ones, and itself writes sRGB data as 0x8C0x.
 #pragma once
 
 #include <cstdint>
@@ -25,18 +38,43 @@ struct CompressedTexture {
   bool srgb = false;           ///< Colour space flag (PVR v3 colour space / KTX sRGB format).
   bool premultiplied = false;  ///< PVR v3 flag 0x02.
   std::vector<std::vector<std::uint8_t>> levels;  ///< Level i is (width>>i) x (height>>i), min 1.
+
+  int level_count() const { return int(levels.size()); }
+  int level_width(int level) const;
+  int level_height(int level) const;
 };
+
+/// Checks a texture before it is written: power-of-two size, 1..mip_level_count levels, every
+/// level exactly `pvrtc::level_size` bytes. `what` names it in the message.
+Status validate_texture(const CompressedTexture& texture, const std::string& what);
+
+/// Decodes level `level` to RGBA8. RGB formats (has_alpha false) decode with alpha forced to
+/// 255 and `has_alpha` false. Fails with invalid_argument when `level` is out of range.
+Result<ImageRGBA8> decode_texture_level(const CompressedTexture& texture, int level,
+                                        int threads = 0);
+
+/// Human-readable name of a PVRTC format ("PVRTC1 4bpp RGBA", ...).
+std::string texture_format_name(const CompressedTexture& texture);
 
 /// Container formats.
 enum class ContainerFormat { unknown, pvr3, ktx1 };
+
+/// "PVR v3", "KTX 1.1" or "unknown".
+const char* container_name(ContainerFormat format);
 
 /// Detects PVR v3 / KTX 1.1 by magic.
 ContainerFormat detect_container(std::span<const std::uint8_t> bytes);
 /// Chooses by file extension (.pvr, .ktx; case-insensitive); unknown otherwise.
 ContainerFormat container_from_extension(const std::string& path);
 
+/// Parses a PVR v3 / KTX 1.1 file held in memory. Safe on arbitrary input: every size is
+/// checked against `bytes.size()` before anything is allocated. `name` prefixes messages.
 Result<CompressedTexture> parse_pvr3(std::span<const std::uint8_t> bytes, const std::string& name);
 Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const std::string& name);
+/// Parses either container (chosen by magic); unknown magic gives corrupt_data.
+Result<CompressedTexture> parse_texture(std::span<const std::uint8_t> bytes,
+                                        const std::string& name);
+/// Serialises a texture (validated with `validate_texture` first).
 Result<std::vector<std::uint8_t>> serialize_pvr3(const CompressedTexture& texture);
 Result<std::vector<std::uint8_t>> serialize_ktx1(const CompressedTexture& texture);
 

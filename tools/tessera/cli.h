@@ -36,5 +36,8 @@ struct Command {
 
 Command add_compare_command(CLI::App& app, const GlobalOptions& global);
 Command add_demo_command(CLI::App& app, const GlobalOptions& global);
+Command add_compress_command(CLI::App& app, const GlobalOptions& global);
+Command add_decompress_command(CLI::App& app, const GlobalOptions& global);
+Command add_info_command(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace tessera::cli

@@ -34,6 +34,9 @@ int main(int argc, char** argv) {
   std::vector<Command> commands = {
       add_compare_command(app, global),
       add_demo_command(app, global),
+      add_compress_command(app, global),
+      add_decompress_command(app, global),
+      add_info_command(app, global),
   };
 
   try {

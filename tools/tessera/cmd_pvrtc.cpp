@@ -1,0 +1,292 @@
+// tessera compress / decompress / info: PVRTC1 textures in PVR v3 and KTX 1.1 files.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+#include "tessera/io.h"
+#include "tessera/metrics.h"
+#include "tessera/mipmap.h"
+#include "tessera/pvrtc.h"
+#include "tessera/texture_file.h"
+
+namespace tessera::cli {
+
+namespace {
+
+nlohmann::json db_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+// ---------------------------------------------------------------------------------------------
+// compress
+// ---------------------------------------------------------------------------------------------
+
+struct CompressArgs {
+  std::string input, output;
+  std::string format = "pvrtc1-4";
+  std::string quality = "normal";
+  bool mipmaps = false;
+  bool srgb = false;
+  bool resize_pot = false;
+  bool json = false;
+};
+
+int run_compress(const CompressArgs& args, const GlobalOptions& global) {
+  if (container_from_extension(args.output) == ContainerFormat::unknown) {
+    return usage_error(args.output + ": unknown output extension (use .pvr or .ktx)");
+  }
+  Result<ImageRGBA8> loaded = read_image(args.input);
+  if (!loaded) return fail(loaded.status());
+  ImageRGBA8 image = std::move(loaded).value();
+  // An alpha channel that is opaque everywhere (common in RGBA PNGs) gives an RGB texture.
+  if (image.has_alpha) {
+    bool translucent = false;
+    for (std::size_t i = 3; i < image.pixels.size() && !translucent; i += 4) {
+      translucent = image.pixels[i] != 255;
+    }
+    image.has_alpha = translucent;
+  }
+
+  MipmapOptions filter;
+  filter.srgb = args.srgb;
+  filter.threads = global.threads;
+  const bool pot = pvrtc::check_dimensions(image.width, image.height, args.input).ok();
+  if (!pot) {
+    const int pw = nearest_power_of_two(image.width), ph = nearest_power_of_two(image.height);
+    if (!args.resize_pot) {
+      return fail(Status::error(
+          ErrorCode::invalid_argument,
+          args.input + ": size " + size_text(image.width, image.height) +
+              " is not a power of two (PVRTC needs power-of-two sides); use --resize-pot to "
+              "resample to " + size_text(pw, ph)));
+    }
+    Result<ImageRGBA8> resized = resize_image(image, pw, ph, filter);
+    if (!resized) return fail(resized.status());
+    image = std::move(resized).value();
+  }
+  if (Status s = pvrtc::check_dimensions(image.width, image.height, args.input); !s.ok()) {
+    return fail(s);
+  }
+
+  pvrtc::EncodeOptions eo;
+  eo.format = args.format == "pvrtc1-2" ? pvrtc::Format::pvrtc1_2bpp : pvrtc::Format::pvrtc1_4bpp;
+  eo.quality = args.quality == "fast"   ? pvrtc::Quality::fast
+               : args.quality == "high" ? pvrtc::Quality::high
+                                        : pvrtc::Quality::normal;
+  eo.threads = global.threads;
+
+  std::vector<ImageRGBA8> chain;
+  if (args.mipmaps) {
+    Result<std::vector<ImageRGBA8>> c = generate_mipmaps(image, filter);
+    if (!c) return fail(c.status());
+    chain = std::move(c).value();
+  } else {
+    chain.push_back(image);
+  }
+
+  CompressedTexture tex;
+  tex.format = eo.format;
+  tex.width = image.width;
+  tex.height = image.height;
+  tex.has_alpha = image.has_alpha;
+  tex.srgb = args.srgb;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (const ImageRGBA8& level : chain) {
+    Result<std::vector<std::uint8_t>> enc = pvrtc::encode(level, eo);
+    if (!enc) {
+      Status s = enc.status();
+      s.message = args.input + ": " + s.message;
+      return fail(s);
+    }
+    tex.levels.push_back(std::move(enc).value());
+  }
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+
+  std::size_t bytes = 0;
+  {
+    Result<std::vector<std::uint8_t>> file =
+        container_from_extension(args.output) == ContainerFormat::ktx1 ? serialize_ktx1(tex)
+                                                                       : serialize_pvr3(tex);
+    if (!file) return fail(file.status());
+    bytes = file->size();
+    if (Status s = write_file_atomic(args.output, *file); !s.ok()) return fail(s);
+  }
+
+  if (!args.json) {
+    std::printf("wrote %s: %s %s, %s%s, %d level(s), %zu bytes, encoded in %.1f ms (%s)\n",
+                args.output.c_str(), size_text(tex.width, tex.height).c_str(),
+                texture_format_name(tex).c_str(), args.srgb ? "sRGB" : "linear",
+                pot ? "" : " (resized with Lanczos-3)", tex.level_count(), bytes, ms,
+                args.quality.c_str());
+    return kExitOk;
+  }
+  Result<ImageRGBA8> decoded = decode_texture_level(tex, 0, global.threads);
+  if (!decoded) return fail(decoded.status());
+  CompareOptions co;
+  co.threads = global.threads;
+  Result<ImageComparison> cmp = compare_images(image, *decoded, co);
+  if (!cmp) return fail(cmp.status());
+  nlohmann::json j = {
+      {"input", args.input},
+      {"output", args.output},
+      {"container", container_name(container_from_extension(args.output))},
+      {"width", tex.width},
+      {"height", tex.height},
+      {"resized", !pot},
+      {"format", args.format},
+      {"quality", args.quality},
+      {"srgb", args.srgb},
+      {"has_alpha", tex.has_alpha},
+      {"levels", tex.level_count()},
+      {"bytes", bytes},
+      {"time_ms", ms},
+      {"threads", global.threads > 0 ? global.threads : default_thread_count()},
+      {"psnr_rgb", db_or_null(cmp->psnr_rgb)},
+      {"ssim_gray", cmp->ssim_gray},
+  };
+  if (tex.has_alpha) j["psnr_alpha"] = db_or_null(cmp->psnr_alpha);
+  std::printf("%s\n", j.dump(2).c_str());
+  return kExitOk;
+}
+
+// ---------------------------------------------------------------------------------------------
+// decompress
+// ---------------------------------------------------------------------------------------------
+
+struct DecompressArgs {
+  std::string input, output;
+  int level = 0;
+};
+
+int run_decompress(const DecompressArgs& args, const GlobalOptions& global) {
+  Result<CompressedTexture> tex = read_texture_file(args.input);
+  if (!tex) return fail(tex.status());
+  if (args.level < 0 || args.level >= tex->level_count()) {
+    return fail(Status::error(ErrorCode::invalid_argument,
+                              args.input + ": --level " + std::to_string(args.level) +
+                                  " is out of range (the file has " +
+                                  std::to_string(tex->level_count()) + " level(s), 0 to " +
+                                  std::to_string(tex->level_count() - 1) + ")"));
+  }
+  Result<ImageRGBA8> img = decode_texture_level(*tex, args.level, global.threads);
+  if (!img) {
+    Status s = img.status();
+    s.message = args.input + ": " + s.message;
+    return fail(s);
+  }
+  if (Status s = write_png(args.output, *img); !s.ok()) return fail(s);
+  std::printf("wrote %s: level %d, %s\n", args.output.c_str(), args.level,
+              size_text(img->width, img->height).c_str());
+  return kExitOk;
+}
+
+// ---------------------------------------------------------------------------------------------
+// info
+// ---------------------------------------------------------------------------------------------
+
+struct InfoArgs {
+  std::string input;
+  bool json = false;
+};
+
+int run_info(const InfoArgs& args) {
+  Result<std::vector<std::uint8_t>> bytes = read_file(args.input);
+  if (!bytes) return fail(bytes.status());
+  Result<CompressedTexture> tex = parse_texture(*bytes, args.input);
+  if (!tex) return fail(tex.status());
+  const ContainerFormat container = detect_container(*bytes);
+  if (args.json) {
+    nlohmann::json levels = nlohmann::json::array();
+    for (int i = 0; i < tex->level_count(); ++i) {
+      levels.push_back({{"level", i},
+                        {"width", tex->level_width(i)},
+                        {"height", tex->level_height(i)},
+                        {"bytes", tex->levels[std::size_t(i)].size()}});
+    }
+    nlohmann::json j = {
+        {"file", args.input},
+        {"container", container_name(container)},
+        {"format", texture_format_name(*tex)},
+        {"bpp", tex->format == pvrtc::Format::pvrtc1_4bpp ? 4 : 2},
+        {"has_alpha", tex->has_alpha},
+        {"width", tex->width},
+        {"height", tex->height},
+        {"colour_space", tex->srgb ? "sRGB" : "linear"},
+        {"premultiplied", tex->premultiplied},
+        {"file_bytes", bytes->size()},
+        {"levels", levels},
+    };
+    std::printf("%s\n", j.dump(2).c_str());
+    return kExitOk;
+  }
+  std::printf("%s\n", args.input.c_str());
+  std::printf("  container     : %s\n", container_name(container));
+  std::printf("  format        : %s\n", texture_format_name(*tex).c_str());
+  std::printf("  size          : %s\n", size_text(tex->width, tex->height).c_str());
+  std::printf("  colour space  : %s\n", tex->srgb ? "sRGB" : "linear");
+  std::printf("  premultiplied : %s\n", tex->premultiplied ? "yes" : "no");
+  std::printf("  file size     : %zu bytes\n", bytes->size());
+  std::printf("  levels        : %d\n", tex->level_count());
+  for (int i = 0; i < tex->level_count(); ++i) {
+    std::printf("    %2d  %5d x %-5d %9zu bytes\n", i, tex->level_width(i), tex->level_height(i),
+                tex->levels[std::size_t(i)].size());
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_compress_command(CLI::App& app, const GlobalOptions& global) {
+  auto args = std::make_shared<CompressArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "compress", "Compress an image to PVRTC1 (PVR v3 or KTX 1.1 by output extension)");
+  sub->add_option("INPUT", args->input, "Input image (PNG, JPEG, TGA, BMP)")->required();
+  sub->add_option("-o,--output", args->output, "Output texture: .pvr or .ktx")->required();
+  sub->add_option("--format", args->format, "PVRTC1 variant")
+      ->check(CLI::IsMember({"pvrtc1-4", "pvrtc1-2"}))
+      ->capture_default_str();
+  sub->add_option("--quality", args->quality,
+                  "fast = intensity dilation only; normal/high add refinement")
+      ->check(CLI::IsMember({"fast", "normal", "high"}))
+      ->capture_default_str();
+  sub->add_flag("--mipmaps", args->mipmaps,
+                "Build and encode the full mip chain (2x2 box, alpha-weighted; in linear light "
+                "with --srgb)");
+  sub->add_flag("--srgb", args->srgb,
+                "Mark the texture sRGB (colour space flag / sRGB KTX format) and filter in "
+                "linear light");
+  sub->add_flag("--resize-pot", args->resize_pot,
+                "Resample non-power-of-two input to the nearest power of two (separable "
+                "Lanczos-3)");
+  sub->add_flag("--json", args->json,
+                "Print one JSON object: time_ms (encode), width, height, format, quality, levels, "
+                "bytes, psnr_rgb, ssim_gray (and psnr_alpha) of level 0 vs the input");
+  return {sub, [args, &global] { return run_compress(*args, global); }};
+}
+
+Command add_decompress_command(CLI::App& app, const GlobalOptions& global) {
+  auto args = std::make_shared<DecompressArgs>();
+  CLI::App* sub =
+      app.add_subcommand("decompress", "Decode one level of a PVRTC .pvr/.ktx file to PNG");
+  sub->add_option("INPUT", args->input, "Input texture (.pvr or .ktx)")->required();
+  sub->add_option("-o,--output", args->output, "Output PNG")->required();
+  sub->add_option("--level", args->level, "Mip level to decode (0 = largest)")
+      ->capture_default_str();
+  return {sub, [args, &global] { return run_decompress(*args, global); }};
+}
+
+Command add_info_command(CLI::App& app, const GlobalOptions& /*global*/) {
+  auto args = std::make_shared<InfoArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "info", "Describe a .pvr/.ktx texture: container, format, size, colour space, levels");
+  sub->add_option("FILE", args->input, "Texture file")->required();
+  sub->add_flag("--json", args->json, "Print one JSON object");
+  return {sub, [args] { return run_info(*args); }};
+}
+
+}  // namespace tessera::cli
