@@ -13,4 +13,7 @@ struct DemoOptions {
 /// Images and metrics: the procedural content, sRGB round trip, metric examples.
 Status demo_images_section(Report& report, const DemoOptions& options);
 
+/// PVRTC1: every quality and 2 bpp on the procedural images, heatmaps, crops, a mip chain.
+Status demo_pvrtc_section(Report& report, const DemoOptions& options);
+
 }  // namespace tessera::cli
