@@ -1,0 +1,28 @@
+// libFuzzer target: PVR v3 parsing on arbitrary bytes. A file that parses must decode at every
+// level, re-serialise and parse back to the same texture.
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <span>
+
+#include "tessera/texture_file.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::span<const std::uint8_t> bytes(data, size);
+  tessera::Result<tessera::CompressedTexture> tex = tessera::parse_pvr3(bytes, "fuzz.pvr");
+  if (!tex) {
+    if (tex.status().message.empty()) std::abort();
+    return 0;
+  }
+  for (int i = 0; i < tex->level_count(); ++i) {
+    if (!tessera::decode_texture_level(*tex, i, 1).ok()) std::abort();
+  }
+  tessera::Result<std::vector<std::uint8_t>> again = tessera::serialize_pvr3(*tex);
+  if (!again) std::abort();
+  tessera::Result<tessera::CompressedTexture> back = tessera::parse_pvr3(*again, "again.pvr");
+  if (!back || back->levels != tex->levels || back->width != tex->width ||
+      back->height != tex->height || back->format != tex->format) {
+    std::abort();
+  }
+  return 0;
+}

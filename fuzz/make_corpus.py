@@ -1,0 +1,100 @@
+#!/usr/bin/env python3
+"""Regenerates the committed seed corpora in fuzz/corpus/<target>/ (tiny valid files).
+
+Usage: make_corpus.py PATH/TO/tessera [OUT_DIR (default: fuzz/corpus next to this script)]
+PVR v3 / KTX 1.1 seeds are made with `tessera compress` from small generated PNGs; the
+pvrtc::decode seeds are the fuzzer's input layout (format byte, int32 width, int32 height,
+block data); image seeds are PNGs (written here with the standard library) plus JPEG, BMP and
+TGA when Pillow is available. Every file stays under 8 KiB (the fuzzers' -max_len).
+"""
+import math
+import os
+import struct
+import subprocess
+import sys
+import tempfile
+import zlib
+
+TESSERA = sys.argv[1]
+OUT = sys.argv[2] if len(sys.argv) > 2 else os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                                         "corpus")
+
+
+def png_bytes(width, height, channels, pixel):
+    colour_type = {1: 0, 2: 4, 3: 2, 4: 6}[channels]
+    raw = bytearray()
+    for y in range(height):
+        raw.append(0)
+        for x in range(width):
+            raw.extend(pixel(x, y)[:channels])
+
+    def chunk(kind, data):
+        c = kind + data
+        return struct.pack(">I", len(data)) + c + struct.pack(">I", zlib.crc32(c) & 0xFFFFFFFF)
+
+    ihdr = struct.pack(">IIBBBBB", width, height, 8, colour_type, 0, 0, 0)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(bytes(raw), 9))
+            + chunk(b"IEND", b""))
+
+
+def pattern(x, y):
+    return (int(128 + 120 * math.sin(x * 0.7)), int(128 + 120 * math.cos(y * 0.5)), (x * 16 + y * 8) % 256,
+            0 if (x + y) % 5 == 0 else 255 - 8 * x)
+
+
+def write(target, name, data):
+    folder = os.path.join(OUT, target)
+    os.makedirs(folder, exist_ok=True)
+    assert len(data) <= 8192, (name, len(data))
+    with open(os.path.join(folder, name), "wb") as f:
+        f.write(data)
+
+
+def main():
+    with tempfile.TemporaryDirectory() as tmp:
+        textures = [  # (name, width, height, alpha, args)
+            ("4x4-4bpp-rgba", 4, 4, True, ["--format", "pvrtc1-4"]),
+            ("8x8-2bpp-rgb-mips", 8, 8, False, ["--format", "pvrtc1-2", "--mipmaps"]),
+            ("16x8-4bpp-rgb-srgb-mips", 16, 8, False, ["--mipmaps", "--srgb"]),
+            ("32x16-2bpp-rgba", 32, 16, True, ["--format", "pvrtc1-2"]),
+            ("8x32-4bpp-rgba-mips", 8, 32, True, ["--mipmaps", "--quality", "fast"]),
+        ]
+        for name, w, h, alpha, args in textures:
+            src = os.path.join(tmp, name + ".png")
+            with open(src, "wb") as f:
+                f.write(png_bytes(w, h, 4 if alpha else 3, pattern))
+            for ext, target in ((".pvr", "fuzz_parse_pvr3"), (".ktx", "fuzz_parse_ktx1")):
+                out = os.path.join(tmp, name + ext)
+                subprocess.run([TESSERA, "-j", "1", "compress", src, "-o", out, *args], check=True,
+                               capture_output=True)
+                with open(out, "rb") as f:
+                    write(target, name + ext, f.read())
+            # pvrtc::decode seed: level 0 of the .pvr (after the 52-byte header + 15 metadata).
+            with open(os.path.join(tmp, name + ".pvr"), "rb") as f:
+                pvr = f.read()
+            bpp2 = "pvrtc1-2" in args
+            block_w = 8 if bpp2 else 4
+            level0 = max(w // block_w, 2) * max(h // 4, 2) * 8
+            header = struct.pack("<Bii", 1 if bpp2 else 0, w, h)
+            write("fuzz_pvrtc_decode", name + ".bin", header + pvr[67:67 + level0])
+
+    write("fuzz_decode_image", "rgb.png", png_bytes(7, 5, 3, pattern))
+    write("fuzz_decode_image", "rgba.png", png_bytes(9, 4, 4, pattern))
+    write("fuzz_decode_image", "grey.png", png_bytes(6, 6, 1, pattern))
+    write("fuzz_decode_image", "grey-alpha.png", png_bytes(5, 3, 2, pattern))
+    try:
+        from PIL import Image  # optional: Debian's python3-pil
+    except ImportError:
+        print("Pillow not available: PNG image seeds only")
+        return
+    img = Image.new("RGB", (8, 8))
+    img.putdata([pattern(x, y)[:3] for y in range(8) for x in range(8)])
+    for fmt, name in (("JPEG", "tiny.jpg"), ("BMP", "tiny.bmp"), ("TGA", "tiny.tga")):
+        path = os.path.join(OUT, "fuzz_decode_image", name)
+        img.save(path, fmt)
+    pal = img.convert("P", palette=Image.ADAPTIVE, colors=8)
+    pal.save(os.path.join(OUT, "fuzz_decode_image", "palette.png"), "PNG")
+
+
+if __name__ == "__main__":
+    main()
