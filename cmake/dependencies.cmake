@@ -6,3 +6,5 @@ find_package(ZLIB REQUIRED)                             # zlib streams (Ptex, PN
 find_package(TBB REQUIRED)                              # parallel_for (libtbb-dev)
 find_package(CLI11 CONFIG REQUIRED)                     # command line (libcli11-dev)
 find_package(nlohmann_json 3 CONFIG REQUIRED)           # --json output (nlohmann-json3-dev)
+find_package(tinyobjloader CONFIG REQUIRED)             # OBJ scenes (libtinyobjloader-dev)
+find_package(TinyGLTF CONFIG REQUIRED)                  # glTF 2.0 scenes (libtinygltf-dev)

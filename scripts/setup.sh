@@ -20,6 +20,7 @@ packages=(
   libspng-dev zlib1g-dev libstb-dev            # PNG, zlib, JPEG/TGA/BMP
   libtbb-dev                                   # parallel_for
   libcli11-dev nlohmann-json3-dev              # CLI, --json
+  libtinyobjloader-dev libtinygltf-dev         # OBJ and glTF scenes
   libgtest-dev libgmock-dev libbenchmark-dev   # tests, benchmarks
   python3 python3-numpy python3-skimage        # independent SSIM/PSNR cross-check
 )
