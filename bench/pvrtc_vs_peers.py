@@ -1,0 +1,278 @@
+#!/usr/bin/env python3
+"""tessera vs PVRTexToolCLI, side by side: PVRTC1 4bpp on the power-of-two shared images.
+
+Usage (from the repository root):
+    /usr/bin/python3 bench/pvrtc_vs_peers.py [--runs N] [--tessera build/bin/tessera]
+        [--pvrtextool PATH] [--images ../shared/data/images] [--max-size PIXELS]
+        [--out docs/benchmarks/pvrtc.md] [--bench-binary build/bin/pvrtc_bench]
+
+For every power-of-two image (ldr-rgb-10.png, 127x128, is skipped; nothing is resized):
+  * tessera compress --quality fast|normal|high, with -j 1 and with all hardware threads;
+  * PVRTexToolCLI -f PVRTC1_4[_RGB],UBN,lRGB -q pvrtcfastest|pvrtcfast|pvrtcnormal|pvrtchigh|
+    pvrtcbest (it picks its own thread count: one core for fastest/fast, more for the others).
+Timing is whole-process wall time (PNG read + encode + file write), median of N runs.
+Quality: tessera's file decoded by `tessera decompress`, PVRTexTool's by PVRTexTool itself
+(-d), both compared against the original with `tessera compare --json`: PSNR over RGB, alpha
+PSNR when the image has alpha, SSIM on Rec.709 grey. The RGB/RGBA variant follows the image
+(tessera chooses RGB when alpha is 255 everywhere; PVRTexTool is told the same).
+Writes a Markdown report (machine, date, command, per-image and mean tables, ratios) and, if the
+Google Benchmark binary exists, the in-process MPixel/s it measures. Standard library only.
+"""
+import argparse
+import datetime
+import json
+import os
+import platform
+import shlex
+import statistics
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+TESSERA_QUALITIES = ["fast", "normal", "high"]
+PVR_QUALITIES = ["pvrtcfastest", "pvrtcfast", "pvrtcnormal", "pvrtchigh", "pvrtcbest"]
+# Pairs compared in the ratio table (tessera setting, PVRTexTool setting).
+PAIRS = [("fast", "pvrtcfastest"), ("fast", "pvrtcfast"), ("normal", "pvrtcnormal"),
+         ("high", "pvrtchigh"), ("high", "pvrtcbest")]
+
+
+def png_size(path):
+    with open(path, "rb") as f:
+        head = f.read(24)
+    if head[:8] != b"\x89PNG\r\n\x1a\n":
+        return None
+    return struct.unpack(">II", head[16:24])
+
+
+def is_pow2(n):
+    return n > 0 and n & (n - 1) == 0
+
+
+def run(cmd):
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        raise RuntimeError(f"{shlex.join(cmd)} failed ({p.returncode}): {p.stderr.strip()}")
+    return p.stdout
+
+
+def timed(cmd, runs):
+    times = []
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        run(cmd)
+        times.append((time.perf_counter() - t0) * 1000.0)
+    return statistics.median(times)
+
+
+def compare(tessera, ref, test):
+    j = json.loads(run([tessera, "compare", ref, test, "--json"]))
+    return {"psnr_rgb": j["psnr_rgb"], "ssim": j["ssim_gray"], "psnr_alpha": j.get("psnr_alpha")}
+
+
+def cpu_model():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def fmt(v, spec=".2f"):
+    if v is None:
+        return "-"
+    if isinstance(v, float) and v == float("inf"):
+        return "inf"
+    return format(v, spec)
+
+
+def google_benchmark(binary):
+    if not binary or not os.path.isfile(binary):
+        return None
+    try:
+        out = run([binary, "--benchmark_format=json", "--benchmark_min_time=0.3"])
+    except RuntimeError as e:
+        return [f"(running {binary} failed: {e})"]
+    rows = []
+    for b in json.loads(out).get("benchmarks", []):
+        ips = b.get("items_per_second")
+        if ips:
+            extra = f", PSNR {b['psnr_rgb']:.2f} dB" if "psnr_rgb" in b else ""
+            rows.append(f"| `{b['name']}` | {ips / 1e6:.2f} | {b['real_time']:.2f} {b['time_unit']}"
+                        f"{extra} |")
+    return rows
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--runs", type=int, default=3, help="timed runs per configuration (median)")
+    ap.add_argument("--tessera", default=os.path.join(ROOT, "build", "bin", "tessera"))
+    ap.add_argument("--pvrtextool", default=os.environ.get(
+        "TESSERA_PVRTEXTOOL", os.path.expanduser("~/.cache/tessera/peers/PVRTexToolCLI")))
+    ap.add_argument("--images", default=os.path.join(ROOT, "..", "shared", "data", "images"))
+    ap.add_argument("--max-size", type=int, default=0,
+                    help="skip images with more pixels than this (0 = no limit)")
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "benchmarks", "pvrtc.md"))
+    ap.add_argument("--bench-binary", default=os.path.join(ROOT, "build", "bin", "pvrtc_bench"))
+    args = ap.parse_args()
+
+    for tool in (args.tessera, args.pvrtextool):
+        if not os.path.isfile(tool):
+            sys.exit(f"pvrtc_vs_peers: {tool} not found (build tessera; run scripts/setup.sh)")
+    if not os.path.isdir(args.images):
+        sys.exit(f"pvrtc_vs_peers: {args.images} not found (the shared data folder)")
+    nthreads = os.cpu_count() or 1
+
+    images = []
+    for name in sorted(os.listdir(args.images)):
+        path = os.path.join(args.images, name)
+        size = png_size(path) if name.endswith(".png") else None
+        if not size or not (is_pow2(size[0]) and is_pow2(size[1])):
+            print(f"skip {name}: not a power-of-two PNG")
+            continue
+        if args.max_size and size[0] * size[1] > args.max_size:
+            print(f"skip {name}: {size[0]}x{size[1]} over --max-size")
+            continue
+        images.append((name, path, size))
+
+    results = []  # dicts: image, size, encoder, setting, ms1, msn, psnr_rgb, ssim, psnr_alpha
+    with tempfile.TemporaryDirectory(prefix="pvrtc-bench-") as tmp:
+        for name, path, (w, h) in images:
+            print(f"{name} ({w}x{h})", flush=True)
+            has_alpha = False
+            for q in TESSERA_QUALITIES:
+                out = os.path.join(tmp, f"t-{q}.pvr")
+                base = ["compress", path, "-o", out, "--quality", q]
+                ms1 = timed([args.tessera, "-j", "1", *base], args.runs)
+                with open(out, "rb") as f:
+                    bytes1 = f.read()
+                msn = timed([args.tessera, "-j", str(nthreads), *base], args.runs)
+                with open(out, "rb") as f:
+                    if f.read() != bytes1:
+                        raise RuntimeError(f"{name} {q}: output differs between -j 1 and -j {nthreads}")
+                info = json.loads(run([args.tessera, "info", out, "--json"]))
+                has_alpha = info["has_alpha"]
+                dec = os.path.join(tmp, f"t-{q}.png")
+                run([args.tessera, "decompress", out, "-o", dec])
+                m = compare(args.tessera, path, dec)
+                results.append(dict(image=name, size=f"{w}x{h}", encoder="tessera", setting=q,
+                                    ms1=ms1, msn=msn, alpha=has_alpha, **m))
+                print(f"  tessera {q:7s} {ms1:9.1f} ms (-j1) {msn:9.1f} ms (-j{nthreads}) "
+                      f"PSNR {fmt(m['psnr_rgb'])} SSIM {fmt(m['ssim'], '.4f')}", flush=True)
+            fmt_arg = "PVRTC1_4,UBN,lRGB" if has_alpha else "PVRTC1_4_RGB,UBN,lRGB"
+            for q in PVR_QUALITIES:
+                out = os.path.join(tmp, f"p-{q}.pvr")
+                ms = timed([args.pvrtextool, "-i", path, "-o", out, "-f", fmt_arg, "-q", q, "-shh"],
+                           args.runs)
+                dec = os.path.join(tmp, f"p-{q}.png")
+                run([args.pvrtextool, "-i", out, "-o", os.path.join(tmp, "scratch.pvr"), "-f",
+                     "r8g8b8a8", "-d", dec, "-shh"])
+                m = compare(args.tessera, path, dec)
+                results.append(dict(image=name, size=f"{w}x{h}", encoder="PVRTexTool", setting=q,
+                                    ms1=None, msn=ms, alpha=has_alpha, **m))
+                print(f"  PVRTexTool {q:12s} {ms:9.1f} ms PSNR {fmt(m['psnr_rgb'])} "
+                      f"SSIM {fmt(m['ssim'], '.4f')}", flush=True)
+
+    gbench = google_benchmark(args.bench_binary)
+    write_report(args, results, images, nthreads, gbench)
+    print(f"wrote {args.out}")
+
+
+def mean(values):
+    values = [v for v in values if v is not None and v != float("inf")]
+    return statistics.fmean(values) if values else None
+
+
+def write_report(args, results, images, nthreads, gbench):
+    cmd = "/usr/bin/python3 " + shlex.join([os.path.relpath(sys.argv[0], ROOT), *sys.argv[1:]])
+    lines = [
+        "# PVRTC1 4bpp: tessera vs PVRTexToolCLI",
+        "",
+        f"Generated by `bench/pvrtc_vs_peers.py` on {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M UTC}.",
+        "",
+        f"- Machine: {cpu_model()}, {nthreads} hardware threads (`nproc`), {platform.system()} "
+        f"{platform.release()}",
+        f"- Command: `{cmd}` (from the repository root)",
+        f"- Runs per configuration: {args.runs} (median whole-process wall time: PNG read, "
+        "encode, file write)",
+        f"- Images: {len(images)} power-of-two PNGs from `../shared/data/images` "
+        "(ldr-rgb-10.png, 127x128, is skipped; nothing is resized)"
+        + (f", at most {args.max_size} pixels" if args.max_size else ""),
+        "- tessera: `tessera -j 1|" + str(nthreads) + " compress IMG -o OUT.pvr --quality "
+        "fast|normal|high`; decoded with `tessera decompress`.",
+        "- PVRTexToolCLI 4.17: `-f PVRTC1_4[_RGB],UBN,lRGB -q pvrtcfastest|...|pvrtcbest`; it "
+        "chooses its own threads (one core for fastest/fast, all cores for normal and above); "
+        "decoded with its own `-d`.",
+        "- Quality: `tessera compare --json` against the original: PSNR over RGB (dB), alpha "
+        "PSNR for images with alpha, SSIM on Rec.709 grey.",
+        "- Wall times on a shared machine are noisy; compare settings within one run.",
+        "",
+        "## Mean over all images",
+        "",
+        "| encoder | setting | time -j 1 (ms) | time all threads (ms) | PSNR RGB (dB) | "
+        "PSNR alpha (dB) | SSIM grey |",
+        "|---|---|---:|---:|---:|---:|---:|",
+    ]
+    means = {}
+    for enc, settings in (("tessera", TESSERA_QUALITIES), ("PVRTexTool", PVR_QUALITIES)):
+        for s in settings:
+            rs = [r for r in results if r["encoder"] == enc and r["setting"] == s]
+            m = dict(ms1=mean([r["ms1"] for r in rs]), msn=mean([r["msn"] for r in rs]),
+                     psnr=mean([r["psnr_rgb"] for r in rs]),
+                     alpha=mean([r["psnr_alpha"] for r in rs if r["alpha"]]),
+                     ssim=mean([r["ssim"] for r in rs]))
+            means[(enc, s)] = m
+            lines.append(f"| {enc} | {s} | {fmt(m['ms1'], '.1f')} | {fmt(m['msn'], '.1f')} | "
+                         f"{fmt(m['psnr'])} | {fmt(m['alpha'])} | {fmt(m['ssim'], '.4f')} |")
+    lines += [
+        "",
+        "## Ratios tessera / PVRTexTool (means over all images)",
+        "",
+        "Time ratio < 1: tessera faster (tessera with all threads; PVRTexTool as it runs). "
+        "ΔPSNR and ΔSSIM > 0: tessera better.",
+        "",
+        "| tessera | PVRTexTool | time ratio (all threads) | time ratio (tessera -j 1) | "
+        "ΔPSNR RGB (dB) | ΔSSIM |",
+        "|---|---|---:|---:|---:|---:|",
+    ]
+    for t, p in PAIRS:
+        a, b = means[("tessera", t)], means[("PVRTexTool", p)]
+        if None in (a["msn"], b["msn"], a["psnr"], b["psnr"]):
+            continue
+        lines.append(f"| {t} | {p} | {a['msn'] / b['msn']:.3f} | {a['ms1'] / b['msn']:.3f} | "
+                     f"{a['psnr'] - b['psnr']:+.2f} | {a['ssim'] - b['ssim']:+.4f} |")
+    lines += [
+        "",
+        "## Per image",
+        "",
+        "| image | size | encoder | setting | time -j 1 (ms) | time all threads (ms) | "
+        "PSNR RGB (dB) | PSNR alpha (dB) | SSIM grey |",
+        "|---|---|---|---|---:|---:|---:|---:|---:|",
+    ]
+    for r in results:
+        lines.append(f"| {r['image']} | {r['size']} | {r['encoder']} | {r['setting']} | "
+                     f"{fmt(r['ms1'], '.1f')} | {fmt(r['msn'], '.1f')} | {fmt(r['psnr_rgb'])} | "
+                     f"{fmt(r['psnr_alpha']) if r['alpha'] else '-'} | {fmt(r['ssim'], '.4f')} |")
+    lines += ["", "## In-process throughput (Google Benchmark)", ""]
+    if gbench is None:
+        lines.append(f"`{os.path.relpath(args.bench_binary, ROOT)}` was not built; run it for "
+                     "in-process MPixel/s without process start-up and PNG I/O.")
+    else:
+        lines += [f"From `{os.path.relpath(args.bench_binary, ROOT)}` in the same run "
+                  "(pixels encoded or decoded per second):", "",
+                  "| benchmark | MPixel/s | time per iteration |", "|---|---:|---:|", *gbench]
+    lines.append("")
+    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+    tmp = args.out + ".tmp"
+    with open(tmp, "w") as f:
+        f.write("\n".join(lines))
+    os.replace(tmp, args.out)
+
+
+if __name__ == "__main__":
+    main()
