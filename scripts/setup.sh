@@ -21,6 +21,7 @@ packages=(
   libtbb-dev                                   # parallel_for
   libcli11-dev nlohmann-json3-dev              # CLI, --json
   libtinyobjloader-dev libtinygltf-dev         # OBJ and glTF scenes
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri  # OpenGL peer (Mesa llvmpipe, EGL surfaceless)
   libgtest-dev libgmock-dev libbenchmark-dev   # tests, benchmarks
   python3 python3-numpy python3-skimage        # independent SSIM/PSNR cross-check
 )
