@@ -1,0 +1,246 @@
+// Texture storage (all levels of all layers in one float buffer) and the sampling driver that
+// resolves the kernel's taps to texels.
+#include <algorithm>
+#include <string>
+#include <utility>
+
+#include "tessera/texture.h"
+#include "texture/sampler_kernel.h"
+
+namespace tessera {
+
+/// Assembles per-layer chains into a Texture's flat storage (friend of Texture).
+struct TextureBuilder {
+  static Texture assemble(const std::vector<std::vector<ImageRGBAF>>& chains) {
+    Texture tex;
+    const ImageRGBAF& base = chains.front().front();
+    tex.shape_ = TextureShape{base.width, base.height, int(chains.front().size()),
+                              int(chains.size())};
+    std::size_t total = 0;
+    for (const auto& chain : chains)
+      for (const ImageRGBAF& level : chain) total += level.pixels.size();
+    tex.texels_.reserve(total);
+    tex.offsets_.reserve(chains.size() * chains.front().size());
+    for (const auto& chain : chains) {
+      for (const ImageRGBAF& level : chain) {
+        tex.offsets_.push_back(tex.texels_.size());
+        tex.texels_.insert(tex.texels_.end(), level.pixels.begin(), level.pixels.end());
+      }
+    }
+    return tex;
+  }
+};
+
+namespace {
+
+Status check_layers(int width, int height, std::size_t layers, const char* what) {
+  if (layers == 0) {
+    return Status::error(ErrorCode::invalid_argument, std::string(what) + ": no layers");
+  }
+  if (width <= 0 || height <= 0) {
+    return Status::error(ErrorCode::invalid_argument, std::string(what) + ": empty image");
+  }
+  Status s = check_image_size(width, height, what);
+  if (!s.ok()) return s;
+  if (std::uint64_t(width) * std::uint64_t(height) * layers > kMaxImagePixels) {
+    return Status::error(ErrorCode::too_large,
+                         std::string(what) + ": " + std::to_string(layers) + " layers of " +
+                             std::to_string(width) + "x" + std::to_string(height) +
+                             " exceed the texel limit");
+  }
+  return Status::success();
+}
+
+Status check_options(const TextureOptions& options, const char* what) {
+  if (options.max_levels < 0) {
+    return Status::error(ErrorCode::invalid_argument,
+                         std::string(what) + ": max_levels must be >= 0");
+  }
+  return Status::success();
+}
+
+ImageRGBAF decode_rgba8(const ImageRGBA8& image, bool srgb, int threads) {
+  if (srgb) return to_linear(image, threads);
+  ImageRGBAF out(image.width, image.height);
+  const std::size_t n = image.pixels.size();
+  for (std::size_t i = 0; i < n; ++i) out.pixels[i] = float(image.pixels[i]) / 255.0f;
+  return out;
+}
+
+template <class Image, class Decode>
+Result<Texture> build_array(const std::vector<Image>& layers, const TextureOptions& options,
+                            const char* what, Decode decode) {
+  if (layers.empty()) return Status::error(ErrorCode::invalid_argument, std::string(what) + ": no layers");
+  const int w = layers.front().width;
+  const int h = layers.front().height;
+  if (Status s = check_layers(w, h, layers.size(), what); !s.ok()) return s;
+  if (Status s = check_options(options, what); !s.ok()) return s;
+  for (std::size_t i = 1; i < layers.size(); ++i) {
+    if (layers[i].width != w || layers[i].height != h) {
+      return Status::error(ErrorCode::size_mismatch,
+                           std::string(what) + ": layer " + std::to_string(i) + " is " +
+                               std::to_string(layers[i].width) + "x" +
+                               std::to_string(layers[i].height) + ", layer 0 is " +
+                               std::to_string(w) + "x" + std::to_string(h));
+    }
+  }
+  std::vector<std::vector<ImageRGBAF>> chains;
+  chains.reserve(layers.size());
+  for (const Image& layer : layers) {
+    chains.push_back(build_mip_chain(decode(layer), options.alpha_weighted, options.max_levels,
+                                     options.threads));
+  }
+  return TextureBuilder::assemble(chains);
+}
+
+/// Accumulates tap values as the kernel produces them, in the same order and arithmetic as
+/// `Texture::resolve`, so both paths agree bit for bit.
+struct AccumulateSink {
+  const float* texels;
+  const std::size_t* level_offsets;  // offsets of the lookup's layer, indexed by level
+  const TextureShape* shape;
+  const float* border;
+  float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+
+  void operator()(const TexelTap& tap) {
+    const float* p = border;
+    if (!tap.is_border()) {
+      const std::size_t row = std::size_t(tap.resolved_y) * std::size_t(shape->level_width(tap.level));
+      p = texels + level_offsets[tap.level] + (row + std::size_t(tap.resolved_x)) * 4;
+    }
+    acc[0] += tap.weight * p[0];
+    acc[1] += tap.weight * p[1];
+    acc[2] += tap.weight * p[2];
+    acc[3] += tap.weight * p[3];
+  }
+};
+
+}  // namespace
+
+Result<Texture> Texture::from_rgba8(const ImageRGBA8& image, const TextureOptions& options) {
+  return array_from_rgba8(std::vector<ImageRGBA8>{image}, options);
+}
+
+Result<Texture> Texture::from_float(const ImageRGBAF& image, const TextureOptions& options) {
+  return array_from_float(std::vector<ImageRGBAF>{image}, options);
+}
+
+Result<Texture> Texture::array_from_rgba8(const std::vector<ImageRGBA8>& layers,
+                                          const TextureOptions& options) {
+  for (const ImageRGBA8& layer : layers) {
+    if (layer.pixels.size() != layer.pixel_count() * 4) {
+      return Status::error(ErrorCode::invalid_argument, "texture: pixel buffer size mismatch");
+    }
+  }
+  return build_array(layers, options, "texture", [&options](const ImageRGBA8& img) {
+    return decode_rgba8(img, options.srgb, options.threads);
+  });
+}
+
+Result<Texture> Texture::array_from_float(const std::vector<ImageRGBAF>& layers,
+                                          const TextureOptions& options) {
+  for (const ImageRGBAF& layer : layers) {
+    if (layer.pixels.size() != layer.pixel_count() * 4) {
+      return Status::error(ErrorCode::invalid_argument, "texture: pixel buffer size mismatch");
+    }
+  }
+  return build_array(layers, options, "texture",
+                     [](const ImageRGBAF& img) -> const ImageRGBAF& { return img; });
+}
+
+Result<Texture> Texture::from_float_levels(std::vector<ImageRGBAF> levels) {
+  if (levels.empty()) return Status::error(ErrorCode::invalid_argument, "texture: no levels");
+  const int w = levels.front().width;
+  const int h = levels.front().height;
+  if (Status s = check_layers(w, h, 1, "texture"); !s.ok()) return s;
+  const int full = TextureShape::full_level_count(w, h);
+  if (int(levels.size()) > full) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "texture: " + std::to_string(levels.size()) + " levels given, a " +
+                             std::to_string(w) + "x" + std::to_string(h) + " chain has " +
+                             std::to_string(full));
+  }
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    const int ew = TextureShape::level_size(w, int(l));
+    const int eh = TextureShape::level_size(h, int(l));
+    if (levels[l].width != ew || levels[l].height != eh ||
+        levels[l].pixels.size() != levels[l].pixel_count() * 4) {
+      return Status::error(ErrorCode::size_mismatch,
+                           "texture: level " + std::to_string(l) + " is " +
+                               std::to_string(levels[l].width) + "x" +
+                               std::to_string(levels[l].height) + ", expected " +
+                               std::to_string(ew) + "x" + std::to_string(eh));
+    }
+  }
+  std::vector<std::vector<ImageRGBAF>> chains;
+  chains.push_back(std::move(levels));
+  return TextureBuilder::assemble(chains);
+}
+
+TextureLevelView Texture::level(int layer, int level) const {
+  const std::size_t index = std::size_t(layer) * std::size_t(shape_.levels) + std::size_t(level);
+  return {shape_.level_width(level), shape_.level_height(level), texels_.data() + offsets_[index]};
+}
+
+ImageRGBAF Texture::level_image(int layer, int level) const {
+  const TextureLevelView view = this->level(layer, level);
+  ImageRGBAF out(view.width, view.height);
+  std::copy(view.texels, view.texels + out.pixels.size(), out.pixels.begin());
+  return out;
+}
+
+std::array<float, 4> Texture::sample_footprint(const SamplerState& sampler,
+                                               const Footprint& footprint, int layer) const {
+  if (empty()) return sampler.border_color;
+  layer = std::clamp(layer, 0, shape_.layers - 1);
+  Footprint fp = footprint;
+  const float last = float(shape_.levels - 1);
+  if (!(fp.lod >= 0.0f)) fp.lod = 0.0f;
+  if (fp.lod > last) fp.lod = last;
+  AccumulateSink sink{texels_.data(), offsets_.data() + std::size_t(layer) * shape_.levels,
+                      &shape_, sampler.border_color.data()};
+  texture_detail::for_each_tap(sampler, shape_, fp, layer, sink);
+  return {sink.acc[0], sink.acc[1], sink.acc[2], sink.acc[3]};
+}
+
+std::array<float, 4> Texture::sample(const SamplerState& sampler, Uv uv,
+                                     const UvGradients& gradients, int layer) const {
+  return sample_footprint(sampler, compute_footprint(sampler, shape_, uv, gradients), layer);
+}
+
+std::array<float, 4> Texture::sample_lod(const SamplerState& sampler, Uv uv, float lod,
+                                         int layer) const {
+  return sample_footprint(sampler, footprint_at_lod(sampler, shape_, uv, lod), layer);
+}
+
+std::array<std::array<float, 4>, 4> Texture::sample_quad(const SamplerState& sampler,
+                                                         const std::array<Uv, 4>& quad,
+                                                         int layer) const {
+  const UvGradients g = quad_gradients(quad);
+  std::array<std::array<float, 4>, 4> out;
+  for (int i = 0; i < 4; ++i) out[std::size_t(i)] = sample(sampler, quad[std::size_t(i)], g, layer);
+  return out;
+}
+
+void Texture::taps(const SamplerState& sampler, Uv uv, const UvGradients& gradients, int layer,
+                   TapList& out) const {
+  generate_taps(sampler, shape_, compute_footprint(sampler, shape_, uv, gradients), layer, out);
+}
+
+std::array<float, 4> Texture::fetch(const SamplerState& sampler, const TexelTap& tap) const {
+  if (tap.is_border() || empty()) return sampler.border_color;
+  const TextureLevelView view = level(tap.layer, tap.level);
+  const float* p = view.at(tap.resolved_x, tap.resolved_y);
+  return {p[0], p[1], p[2], p[3]};
+}
+
+std::array<float, 4> Texture::resolve(const SamplerState& sampler, const TapList& taps) const {
+  float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  for (const TexelTap& tap : taps) {
+    const std::array<float, 4> c = fetch(sampler, tap);
+    for (int i = 0; i < 4; ++i) acc[i] += tap.weight * c[std::size_t(i)];
+  }
+  return {acc[0], acc[1], acc[2], acc[3]};
+}
+
+}  // namespace tessera

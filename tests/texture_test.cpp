@@ -1,0 +1,589 @@
+// Texture system: analytic LOD and anisotropy, tap weights, address modes, bilinear/trilinear
+// exactness, NPOT box mip chains, gamma-correct chains, texture arrays, tap/sample agreement.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <thread>
+#include <vector>
+
+#include "tessera/core.h"
+#include "tessera/procedural.h"
+#include "tessera/texture.h"
+
+namespace tessera {
+namespace {
+
+constexpr TextureFilter kAllFilters[] = {TextureFilter::nearest, TextureFilter::bilinear,
+                                         TextureFilter::trilinear, TextureFilter::anisotropic};
+constexpr AddressMode kAllModes[] = {AddressMode::wrap, AddressMode::clamp, AddressMode::mirror,
+                                     AddressMode::border};
+
+ImageRGBAF constant_image(int w, int h, float r, float g, float b, float a) {
+  ImageRGBAF img(w, h);
+  for (std::size_t i = 0; i < img.pixel_count(); ++i) {
+    img.pixels[i * 4 + 0] = r;
+    img.pixels[i * 4 + 1] = g;
+    img.pixels[i * 4 + 2] = b;
+    img.pixels[i * 4 + 3] = a;
+  }
+  return img;
+}
+
+/// Red channel = column index, green = row index: bilinear must reproduce both ramps.
+ImageRGBAF ramp_image(int w, int h) {
+  ImageRGBAF img(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float* p = img.at(x, y);
+      p[0] = float(x);
+      p[1] = float(y);
+      p[2] = 0.0f;
+      p[3] = 1.0f;
+    }
+  return img;
+}
+
+ImageRGBAF random_image(int w, int h, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  ImageRGBAF img(w, h);
+  for (float& v : img.pixels) v = float(rng() % 100000) / 100000.0f;
+  return img;
+}
+
+Texture make_texture(const ImageRGBAF& img, const TextureOptions& options = {}) {
+  Result<Texture> r = Texture::from_float(img, options);
+  EXPECT_TRUE(r.ok()) << r.status().message;
+  return std::move(r).value();
+}
+
+double channel_mean(const ImageRGBAF& img, int c) {
+  double sum = 0;
+  for (std::size_t i = 0; i < img.pixel_count(); ++i) sum += img.pixels[i * 4 + std::size_t(c)];
+  return sum / double(img.pixel_count());
+}
+
+/// Gradients (normalised units) of a footprint given in texels of level 0.
+UvGradients texel_grad(const TextureShape& s, float dxu, float dxv, float dyu, float dyv) {
+  return {dxu / float(s.width), dxv / float(s.height), dyu / float(s.width),
+          dyv / float(s.height)};
+}
+
+// ---------------------------------------------------------------------------------------------
+// LOD and anisotropy
+// ---------------------------------------------------------------------------------------------
+
+TEST(TextureLod, KnownQuadOnNonSquareTexture) {
+  // 256x64 texture; a screen quad where one pixel step advances 4 texels in u and 4 in v.
+  const TextureShape shape{256, 64, TextureShape::full_level_count(256, 64), 1};
+  ASSERT_EQ(shape.levels, 9);
+  const float du = 4.0f / 256.0f;
+  const float dv = 4.0f / 64.0f;
+  const std::array<Uv, 4> quad = {Uv{0.25f, 0.5f}, Uv{0.25f + du, 0.5f}, Uv{0.25f, 0.5f + dv},
+                                  Uv{0.25f + du, 0.5f + dv}};
+  const UvGradients g = quad_gradients(quad);
+  EXPECT_FLOAT_EQ(g.dudx, du);
+  EXPECT_FLOAT_EQ(g.dvdx, 0.0f);
+  EXPECT_FLOAT_EQ(g.dudy, 0.0f);
+  EXPECT_FLOAT_EQ(g.dvdy, dv);
+  SamplerState s;
+  const Footprint fp = compute_footprint(s, shape, quad[0], g);
+  EXPECT_NEAR(fp.lod, 2.0f, 1e-6f);
+  EXPECT_EQ(fp.probes, 1);
+  // Other footprints: 1 texel -> 0, 8 -> 3, 2 x 6 (isotropic takes the max) -> log2 6.
+  EXPECT_NEAR(compute_footprint(s, shape, {}, texel_grad(shape, 1, 0, 0, 1)).lod, 0.0f, 1e-6f);
+  EXPECT_NEAR(compute_footprint(s, shape, {}, texel_grad(shape, 8, 0, 0, 8)).lod, 3.0f, 1e-6f);
+  EXPECT_NEAR(compute_footprint(s, shape, {}, texel_grad(shape, 2, 0, 0, 6)).lod, std::log2(6.0f),
+              1e-5f);
+  // Diagonal gradient: |(3, 4)| = 5.
+  EXPECT_NEAR(isotropic_lod({3, 4, 0, 1}), std::log2(5.0f), 1e-6f);
+
+  // The trilinear lookup at exactly lod 2 reads level 2 only (64x16).
+  const Texture tex = make_texture(constant_image(256, 64, 0.5f, 0.5f, 0.5f, 1.0f));
+  TapList taps;
+  tex.taps(s, quad[0], g, 0, taps);
+  ASSERT_EQ(taps.count, 4);
+  for (const TexelTap& t : taps) EXPECT_EQ(t.level, 2);
+}
+
+TEST(TextureLod, BiasAndClamps) {
+  const TextureShape shape{64, 64, 7, 1};
+  SamplerState s;
+  const UvGradients g = texel_grad(shape, 4, 0, 0, 4);  // lod 2
+  s.lod_bias = 1.5f;
+  EXPECT_NEAR(compute_footprint(s, shape, {}, g).lod, 3.5f, 1e-6f);
+  s.lod_bias = 0.0f;
+  s.max_lod = 1.25f;
+  EXPECT_NEAR(compute_footprint(s, shape, {}, g).lod, 1.25f, 1e-6f);
+  s.max_lod = 1000.0f;
+  s.min_lod = 2.5f;
+  EXPECT_NEAR(compute_footprint(s, shape, {}, g).lod, 2.5f, 1e-6f);
+  s.min_lod = -1000.0f;
+  // Magnification clamps to 0, huge footprints to the last level; zero and NaN gradients give
+  // a finite LOD.
+  EXPECT_EQ(compute_footprint(s, shape, {}, texel_grad(shape, 0.1f, 0, 0, 0.1f)).lod, 0.0f);
+  EXPECT_EQ(compute_footprint(s, shape, {}, texel_grad(shape, 1e6f, 0, 0, 1e6f)).lod, 6.0f);
+  EXPECT_EQ(compute_footprint(s, shape, {}, {}).lod, 0.0f);
+  const float nan = std::nanf("");
+  EXPECT_EQ(compute_footprint(s, shape, {}, {nan, nan, nan, nan}).lod, 0.0f);
+  EXPECT_EQ(footprint_at_lod(s, shape, {}, 2.75f).lod, 2.75f);
+  EXPECT_EQ(footprint_at_lod(s, shape, {}, -3.0f).lod, 0.0f);
+}
+
+TEST(TextureAniso, ProbeCountAndLod) {
+  // 8:1 footprint along x -> 8 probes, lod log2(8 / 8) = 0.
+  AnisoFootprint a = anisotropic_footprint({8, 0, 0, 1}, 16);
+  EXPECT_EQ(a.probes, 8);
+  EXPECT_NEAR(a.lod, 0.0f, 1e-6f);
+  EXPECT_EQ(a.axis_x, 8.0f);
+  EXPECT_EQ(a.axis_y, 0.0f);
+  // 32:1 clamps to 16 probes, lod log2(32 / 16) = 1.
+  a = anisotropic_footprint({32, 0, 0, 1}, 16);
+  EXPECT_EQ(a.probes, 16);
+  EXPECT_NEAR(a.lod, 1.0f, 1e-6f);
+  // Major axis along y, rotated: |d/dy| = 20 * sqrt(2), |d/dx| = 4 * sqrt(2) -> ratio 5.
+  a = anisotropic_footprint({4, -4, 20, 20}, 16);
+  EXPECT_EQ(a.probes, 5);
+  EXPECT_NEAR(a.lod, std::log2(20.0f * std::sqrt(2.0f) / 5.0f), 1e-5f);
+  EXPECT_EQ(a.axis_x, 20.0f);
+  EXPECT_EQ(a.axis_y, 20.0f);
+  // Non-integer ratio rounds up; max_aniso limits; isotropic footprints take one probe.
+  EXPECT_EQ(anisotropic_footprint({5.5f, 0, 0, 2}, 16).probes, 3);
+  EXPECT_EQ(anisotropic_footprint({8, 0, 0, 1}, 4).probes, 4);
+  EXPECT_NEAR(anisotropic_footprint({8, 0, 0, 1}, 4).lod, 1.0f, 1e-6f);
+  EXPECT_EQ(anisotropic_footprint({3, 0, 0, 3}, 16).probes, 1);
+  EXPECT_EQ(anisotropic_footprint({8, 0, 0, 1}, 99).probes, 8);  // clamped to 16, ratio 8
+  EXPECT_EQ(anisotropic_footprint({8, 0, 0, 0}, 16).probes, 16);  // degenerate minor axis
+  EXPECT_EQ(anisotropic_footprint({0, 0, 0, 0}, 16).probes, 1);
+}
+
+TEST(TextureAniso, ProbesSpreadAlongMajorAxisWithEqualWeights) {
+  const Texture tex = make_texture(random_image(128, 128, 3));
+  SamplerState s;
+  s.filter = TextureFilter::anisotropic;
+  s.address_u = s.address_v = AddressMode::clamp;
+  // 8:1 along x at lod 1: 16 texels along x, 2 along y -> 8 probes at lod log2(16/8) = 1.
+  const UvGradients g = texel_grad(tex.shape(), 16, 0, 0, 2);
+  const Footprint fp = compute_footprint(s, tex.shape(), {0.5f, 0.5f}, g);
+  EXPECT_EQ(fp.probes, 8);
+  EXPECT_NEAR(fp.lod, 1.0f, 1e-6f);
+  TapList taps;
+  tex.taps(s, {0.5f, 0.5f}, g, 0, taps);
+  ASSERT_EQ(taps.count, 8 * 4);  // integer lod: one level, 8 bilinear quads
+  EXPECT_NEAR(taps.weight_sum(), 1.0f, 1e-5f);
+  for (int p = 0; p < 8; ++p) {
+    float probe_weight = 0.0f;
+    for (int k = 0; k < 4; ++k) probe_weight += taps.taps[std::size_t(p * 4 + k)].weight;
+    EXPECT_NEAR(probe_weight, 1.0f / 8.0f, 1e-6f);
+    // Level 1 is 64 wide; probes at 32 + ((p + 0.5) / 8 - 0.5) * 8 texels of level 1, i.e.
+    // texel centres 28.5 .. 35.5 -> bilinear quads start at columns 28 .. 35.
+    EXPECT_EQ(taps.taps[std::size_t(p * 4)].x, 28 + p);
+    EXPECT_EQ(taps.taps[std::size_t(p * 4)].y, 31);
+  }
+}
+
+TEST(TextureTaps, WeightsSumToOneForEveryFilterAndRandomFootprints) {
+  const Texture tex = make_texture(random_image(96, 40, 5));
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> coord(-2.0f, 3.0f);
+  std::uniform_real_distribution<float> grad(-0.3f, 0.3f);
+  TapList taps;
+  for (TextureFilter filter : kAllFilters) {
+    for (AddressMode mode : kAllModes) {
+      SamplerState s;
+      s.filter = filter;
+      s.address_u = mode;
+      s.address_v = mode;
+      for (int i = 0; i < 300; ++i) {
+        const Uv uv{coord(rng), coord(rng)};
+        const float scale = std::exp2(float(i % 12) - 8.0f);
+        const UvGradients g{grad(rng) * scale, grad(rng) * scale, grad(rng) * scale,
+                            grad(rng) * scale};
+        tex.taps(s, uv, g, 0, taps);
+        ASSERT_GT(taps.count, 0);
+        ASSERT_LE(taps.count, kMaxTexelTaps);
+        EXPECT_NEAR(taps.weight_sum(), 1.0f, 2e-5f);
+        for (const TexelTap& t : taps) {
+          EXPECT_GE(t.weight, 0.0f);
+          EXPECT_GE(t.level, 0);
+          EXPECT_LT(t.level, tex.level_count());
+          if (!t.is_border()) {
+            EXPECT_LT(t.resolved_x, tex.shape().level_width(t.level));
+            EXPECT_LT(t.resolved_y, tex.shape().level_height(t.level));
+          }
+        }
+        // The sampling driver agrees bit for bit with resolving the tap list.
+        const auto a = tex.sample(s, uv, g);
+        const auto b = tex.resolve(s, taps);
+        for (int c = 0; c < 4; ++c) EXPECT_EQ(a[std::size_t(c)], b[std::size_t(c)]);
+      }
+    }
+  }
+}
+
+TEST(TextureTaps, CountsPerFilter) {
+  const Texture tex = make_texture(random_image(64, 64, 9));
+  TapList taps;
+  SamplerState s;
+  const UvGradients g = texel_grad(tex.shape(), 3, 0, 0, 3);  // lod log2 3: fractional
+  s.filter = TextureFilter::nearest;
+  tex.taps(s, {0.3f, 0.6f}, g, 0, taps);
+  EXPECT_EQ(taps.count, 1);
+  EXPECT_EQ(taps.taps[0].level, 2);  // round(1.585) = 2
+  s.filter = TextureFilter::bilinear;
+  tex.taps(s, {0.3f, 0.6f}, g, 0, taps);
+  EXPECT_EQ(taps.count, 4);
+  s.filter = TextureFilter::trilinear;
+  tex.taps(s, {0.3f, 0.6f}, g, 0, taps);
+  EXPECT_EQ(taps.count, 8);
+  s.filter = TextureFilter::anisotropic;
+  tex.taps(s, {0.3f, 0.6f}, texel_grad(tex.shape(), 48, 0, 0, 1.5f), 0, taps);
+  EXPECT_EQ(taps.count, kMaxTexelTaps);  // 32:1 -> 16 probes, lod log2 3 -> two levels
+  EXPECT_NEAR(taps.weight_sum(), 1.0f, 1e-5f);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Address modes
+// ---------------------------------------------------------------------------------------------
+
+TEST(TextureAddress, ResolveAtTheEdges) {
+  const int n = 5;
+  // wrap: period n, negatives included.
+  EXPECT_EQ(resolve_address(-1, n, AddressMode::wrap), 4);
+  EXPECT_EQ(resolve_address(5, n, AddressMode::wrap), 0);
+  EXPECT_EQ(resolve_address(-6, n, AddressMode::wrap), 4);
+  EXPECT_EQ(resolve_address(-5, n, AddressMode::wrap), 0);
+  EXPECT_EQ(resolve_address(12, n, AddressMode::wrap), 2);
+  // clamp to edge.
+  EXPECT_EQ(resolve_address(-3, n, AddressMode::clamp), 0);
+  EXPECT_EQ(resolve_address(7, n, AddressMode::clamp), 4);
+  EXPECT_EQ(resolve_address(2, n, AddressMode::clamp), 2);
+  // mirror: period 2n; -1 -> 0, n -> n-1, 2n -> 0, 2n-1 -> 0, -n-1 -> n-1.
+  const int expected_mirror[] = {0, 1, 2, 3, 4, 4, 3, 2, 1, 0};
+  for (int x = -20; x < 20; ++x) {
+    const int m = ((x % 10) + 10) % 10;
+    EXPECT_EQ(resolve_address(x, n, AddressMode::mirror), expected_mirror[m]) << x;
+  }
+  EXPECT_EQ(resolve_address(-1, n, AddressMode::mirror), 0);
+  EXPECT_EQ(resolve_address(-6, n, AddressMode::mirror), 4);
+  // border.
+  EXPECT_EQ(resolve_address(-1, n, AddressMode::border), -1);
+  EXPECT_EQ(resolve_address(5, n, AddressMode::border), -1);
+  EXPECT_EQ(resolve_address(4, n, AddressMode::border), 4);
+  // Extreme coordinates do not overflow.
+  EXPECT_EQ(resolve_address(INT32_MIN, n, AddressMode::wrap), ((INT32_MIN % 5) + 5) % 5);
+  EXPECT_GE(resolve_address(INT32_MIN, n, AddressMode::mirror), 0);
+}
+
+TEST(TextureAddress, SamplesAtTheEdges) {
+  // 4x1 texture with red = column index.
+  const Texture tex = make_texture(ramp_image(4, 1), {.max_levels = 1});
+  SamplerState s;
+  s.filter = TextureFilter::nearest;
+  auto red_at = [&](AddressMode mode, float u) {
+    s.address_u = mode;
+    return tex.sample_lod(s, {u, 0.5f}, 0.0f)[0];
+  };
+  // Texel -1 (u in [-0.25, 0)) and texel 4 (u in [1, 1.25)).
+  EXPECT_EQ(red_at(AddressMode::wrap, -0.1f), 3.0f);
+  EXPECT_EQ(red_at(AddressMode::wrap, 1.1f), 0.0f);
+  EXPECT_EQ(red_at(AddressMode::clamp, -0.1f), 0.0f);
+  EXPECT_EQ(red_at(AddressMode::clamp, 1.1f), 3.0f);
+  EXPECT_EQ(red_at(AddressMode::mirror, -0.1f), 0.0f);
+  EXPECT_EQ(red_at(AddressMode::mirror, -0.3f), 1.0f);
+  EXPECT_EQ(red_at(AddressMode::mirror, 1.1f), 3.0f);
+  EXPECT_EQ(red_at(AddressMode::mirror, 1.6f), 1.0f);  // texel 6 -> 1
+  EXPECT_EQ(red_at(AddressMode::mirror, 2.1f), 0.0f);  // texel 8 = one full period
+  s.border_color = {0.25f, 0.5f, 0.75f, 1.0f};
+  const auto b = (s.address_u = AddressMode::border, tex.sample_lod(s, {-0.1f, 0.5f}, 0.0f));
+  EXPECT_EQ(b, s.border_color);
+
+  // Bilinear at u = 0 blends texel -1 and texel 0 half and half.
+  s.filter = TextureFilter::bilinear;
+  s.address_u = AddressMode::wrap;
+  EXPECT_NEAR(tex.sample_lod(s, {0.0f, 0.5f}, 0.0f)[0], 1.5f, 1e-6f);  // (3 + 0) / 2
+  s.address_u = AddressMode::clamp;
+  EXPECT_NEAR(tex.sample_lod(s, {0.0f, 0.5f}, 0.0f)[0], 0.0f, 1e-6f);
+  s.address_u = AddressMode::mirror;
+  EXPECT_NEAR(tex.sample_lod(s, {1.0f, 0.5f}, 0.0f)[0], 3.0f, 1e-6f);
+  s.address_u = AddressMode::border;
+  s.border_color = {10.0f, 0.0f, 0.0f, 0.0f};
+  EXPECT_NEAR(tex.sample_lod(s, {0.0f, 0.5f}, 0.0f)[0], 5.0f, 1e-6f);  // (10 + 0) / 2
+
+  // The tap list marks the outside taps (what Discard drops) and the border reads.
+  TapList taps;
+  tex.taps(s, {0.0f, 0.5f}, {}, 0, taps);
+  ASSERT_EQ(taps.count, 4);
+  int outside = 0;
+  for (const TexelTap& t : taps) {
+    if (t.x < 0) {
+      EXPECT_TRUE(t.outside);
+      EXPECT_TRUE(t.is_border());
+      ++outside;
+    }
+  }
+  EXPECT_EQ(outside, 2);
+}
+
+TEST(TextureAddress, HugeAndNonFiniteCoordinatesAreSafe) {
+  const Texture tex = make_texture(random_image(7, 5, 1));
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::nanf("");
+  for (TextureFilter filter : kAllFilters) {
+    for (AddressMode mode : kAllModes) {
+      SamplerState s;
+      s.filter = filter;
+      s.address_u = s.address_v = mode;
+      for (float c : {inf, -inf, nan, 1e30f, -1e30f, 3e9f}) {
+        const auto a = tex.sample(s, {c, 0.5f}, {0.01f, 0.0f, 0.0f, 0.5f});
+        const auto b = tex.sample(s, {0.5f, c}, {c, c, c, c});
+        for (int i = 0; i < 4; ++i) {
+          EXPECT_TRUE(std::isfinite(a[std::size_t(i)]));
+          EXPECT_TRUE(std::isfinite(b[std::size_t(i)]));
+        }
+      }
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Filtering exactness
+// ---------------------------------------------------------------------------------------------
+
+TEST(TextureFiltering, BilinearReproducesLinearRamp) {
+  const Texture tex = make_texture(ramp_image(16, 8), {.max_levels = 1});
+  SamplerState s;
+  s.filter = TextureFilter::bilinear;
+  s.address_u = s.address_v = AddressMode::clamp;
+  for (float x = 0.0f; x <= 15.0f; x += 0.125f) {
+    for (float y = 0.0f; y <= 7.0f; y += 0.25f) {
+      // Texel-space position x (texel centres at integers) is u = (x + 0.5) / 16.
+      const auto c = tex.sample_lod(s, {(x + 0.5f) / 16.0f, (y + 0.5f) / 8.0f}, 0.0f);
+      EXPECT_NEAR(c[0], x, 1e-5f);
+      EXPECT_NEAR(c[1], y, 1e-5f);
+    }
+  }
+}
+
+TEST(TextureFiltering, TrilinearBlendsLevelsByFractionalLod) {
+  // Hand-made chain: level 0 all 0, level 1 all 1, level 2 all 2.
+  std::vector<ImageRGBAF> levels = {constant_image(8, 4, 0, 0, 0, 1),
+                                    constant_image(4, 2, 1, 1, 1, 1),
+                                    constant_image(2, 1, 2, 2, 2, 1)};
+  Result<Texture> r = Texture::from_float_levels(levels);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  const Texture& tex = *r;
+  SamplerState s;
+  for (float lod : {0.0f, 0.3f, 0.5f, 1.0f, 1.25f, 1.9f, 2.0f, 5.0f}) {
+    const float expected = lod > 2.0f ? 2.0f : lod;
+    EXPECT_NEAR(tex.sample_lod(s, {0.37f, 0.61f}, lod)[0], expected, 1e-6f) << lod;
+  }
+  // Through gradients: footprint 2^1.25 texels.
+  const float f = std::exp2(1.25f);
+  EXPECT_NEAR(tex.sample(s, {0.5f, 0.5f}, texel_grad(tex.shape(), f, 0, 0, f))[0], 1.25f, 1e-5f);
+  // Nearest-level filters round: lod 0.5 -> level 0, 0.6 -> level 1, 1.5 -> 1, 1.6 -> 2.
+  s.filter = TextureFilter::bilinear;
+  EXPECT_EQ(tex.sample_lod(s, {0.5f, 0.5f}, 0.5f)[0], 0.0f);
+  EXPECT_EQ(tex.sample_lod(s, {0.5f, 0.5f}, 0.6f)[0], 1.0f);
+  EXPECT_EQ(tex.sample_lod(s, {0.5f, 0.5f}, 1.5f)[0], 1.0f);
+  EXPECT_EQ(tex.sample_lod(s, {0.5f, 0.5f}, 1.6f)[0], 2.0f);
+  // max_lod = 0 disables mipmapping.
+  s.filter = TextureFilter::trilinear;
+  s.max_lod = 0.0f;
+  EXPECT_EQ(tex.sample_lod(s, {0.5f, 0.5f}, 1.6f)[0], 0.0f);
+}
+
+TEST(TextureFiltering, AnisotropicOfRampAlongMajorAxisIsCentreValue) {
+  // The probes are symmetric about the centre, so on a linear ramp the average is exact.
+  const Texture tex = make_texture(ramp_image(64, 64), {.max_levels = 1});
+  SamplerState s;
+  s.filter = TextureFilter::anisotropic;
+  s.address_u = s.address_v = AddressMode::clamp;
+  const auto c = tex.sample(s, {0.5f, 0.5f}, texel_grad(tex.shape(), 8, 4, 0.5f, -1));
+  EXPECT_NEAR(c[0], 31.5f, 1e-4f);
+  EXPECT_NEAR(c[1], 31.5f, 1e-4f);
+}
+
+TEST(TextureFiltering, SampleQuadUsesSharedCoarseGradients) {
+  const Texture tex = make_texture(random_image(32, 32, 4));
+  SamplerState s;
+  const std::array<Uv, 4> quad = {Uv{0.1f, 0.2f}, Uv{0.16f, 0.21f}, Uv{0.12f, 0.27f},
+                                  Uv{0.19f, 0.3f}};
+  const auto out = tex.sample_quad(s, quad);
+  const UvGradients g = quad_gradients(quad);
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(out[i], tex.sample(s, quad[i], g));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Mip chains
+// ---------------------------------------------------------------------------------------------
+
+TEST(TextureMips, ConstantTextureStaysConstantIncludingNpot) {
+  for (auto [w, h] : {std::pair{5, 3}, std::pair{7, 7}, std::pair{6, 5}, std::pair{1, 9},
+                      std::pair{64, 16}, std::pair{33, 1}}) {
+    const Texture tex = make_texture(constant_image(w, h, 0.3f, 0.6f, 0.9f, 0.7f));
+    ASSERT_EQ(tex.level_count(), TextureShape::full_level_count(w, h));
+    for (int l = 0; l < tex.level_count(); ++l) {
+      const TextureLevelView v = tex.level(0, l);
+      EXPECT_EQ(v.width, std::max(1, w >> l));
+      EXPECT_EQ(v.height, std::max(1, h >> l));
+      for (int i = 0; i < v.width * v.height * 4; i += 4) {
+        EXPECT_NEAR(v.texels[i + 0], 0.3f, 1e-6f);
+        EXPECT_NEAR(v.texels[i + 1], 0.6f, 1e-6f);
+        EXPECT_NEAR(v.texels[i + 2], 0.9f, 1e-6f);
+        EXPECT_NEAR(v.texels[i + 3], 0.7f, 1e-6f);
+      }
+    }
+  }
+  // The GL size rule: 5x3 -> 2x1 -> 1x1.
+  const Texture t = make_texture(constant_image(5, 3, 1, 1, 1, 1));
+  ASSERT_EQ(t.level_count(), 3);
+  EXPECT_EQ(t.level(0, 1).width, 2);
+  EXPECT_EQ(t.level(0, 1).height, 1);
+  EXPECT_EQ(t.level(0, 2).width, 1);
+  EXPECT_EQ(t.level(0, 2).height, 1);
+}
+
+TEST(TextureMips, BoxDownsamplePreservesTheMean) {
+  for (auto [w, h] : {std::pair{5, 3}, std::pair{7, 9}, std::pair{3, 3}, std::pair{16, 6},
+                      std::pair{11, 1}}) {
+    const ImageRGBAF img = random_image(w, h, std::uint32_t(w * 100 + h));
+    const ImageRGBAF half = downsample_box(img);
+    for (int c = 0; c < 4; ++c) {
+      EXPECT_NEAR(channel_mean(half, c), channel_mean(img, c), 1e-6) << w << "x" << h;
+    }
+  }
+  // 3 -> 1 averages all three texels; 5 -> 2 weighs texel 2 half to each side.
+  ImageRGBAF row(5, 1);
+  for (int x = 0; x < 5; ++x) row.at(x, 0)[0] = float(x * x);  // 0 1 4 9 16
+  const ImageRGBAF d = downsample_box(row);
+  ASSERT_EQ(d.width, 2);
+  EXPECT_NEAR(d.at(0, 0)[0], (0.0f + 1.0f + 0.5f * 4.0f) / 2.5f, 1e-6f);
+  EXPECT_NEAR(d.at(1, 0)[0], (0.5f * 4.0f + 9.0f + 16.0f) / 2.5f, 1e-6f);
+}
+
+TEST(TextureMips, SrgbAwareChainDiffersFromNaive) {
+  ImageRGBA8 checker(2, 2);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x) {
+      std::uint8_t* p = checker.at(x, y);
+      p[0] = p[1] = p[2] = (x + y) % 2 ? 255 : 0;
+      p[3] = 255;
+    }
+  Result<Texture> correct = Texture::from_rgba8(checker, {.srgb = true});
+  Result<Texture> naive = Texture::from_rgba8(checker, {.srgb = false});
+  ASSERT_TRUE(correct.ok() && naive.ok());
+  const float lin = correct->level(0, 1).texels[0];
+  EXPECT_NEAR(lin, 0.5f, 1e-6f);
+  EXPECT_EQ(linear_to_srgb8(lin), 188);
+  // The naive chain averages the encoded values: 0.5 stored as-is, i.e. byte 128 (127.5).
+  const float raw = naive->level(0, 1).texels[0];
+  EXPECT_NEAR(raw, 0.5f, 1e-6f);
+  EXPECT_EQ(int(std::lround(raw * 255.0f)), 128);
+  EXPECT_NE(linear_to_srgb8(lin), int(std::lround(raw * 255.0f)));
+  // sRGB level 0 is decoded: byte 255 -> 1, byte 0 -> 0; alpha stays linear.
+  EXPECT_EQ(correct->level(0, 0).at(1, 0)[0], 1.0f);
+  EXPECT_EQ(correct->level(0, 0).at(1, 0)[3], 1.0f);
+}
+
+TEST(TextureMips, AlphaWeightedDoesNotBleedTransparentColour) {
+  ImageRGBAF img(2, 1);
+  const float opaque_red[4] = {1, 0, 0, 1};
+  const float clear_green[4] = {0, 1, 0, 0};
+  std::copy(opaque_red, opaque_red + 4, img.at(0, 0));
+  std::copy(clear_green, clear_green + 4, img.at(1, 0));
+  const ImageRGBAF weighted = downsample_box(img, true);
+  EXPECT_NEAR(weighted.at(0, 0)[0], 1.0f, 1e-6f);
+  EXPECT_NEAR(weighted.at(0, 0)[1], 0.0f, 1e-6f);
+  EXPECT_NEAR(weighted.at(0, 0)[3], 0.5f, 1e-6f);
+  const ImageRGBAF plain = downsample_box(img, false);
+  EXPECT_NEAR(plain.at(0, 0)[0], 0.5f, 1e-6f);
+  EXPECT_NEAR(plain.at(0, 0)[1], 0.5f, 1e-6f);
+  // Fully transparent footprint keeps the plain average.
+  img.at(0, 0)[3] = 0.0f;
+  EXPECT_NEAR(downsample_box(img, true).at(0, 0)[0], 0.5f, 1e-6f);
+}
+
+TEST(TextureMips, DeterministicForAnyThreadCount) {
+  const ImageRGBA8 src = make_procedural(Procedural::noise, 97, 61, 3);
+  Result<Texture> a = Texture::from_rgba8(src, {.threads = 1});
+  Result<Texture> b = Texture::from_rgba8(src, {.threads = 4});
+  ASSERT_TRUE(a.ok() && b.ok());
+  ASSERT_EQ(a->level_count(), b->level_count());
+  for (int l = 0; l < a->level_count(); ++l) {
+    EXPECT_EQ(a->level_image(0, l).pixels, b->level_image(0, l).pixels) << l;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Arrays, construction errors, concurrency
+// ---------------------------------------------------------------------------------------------
+
+TEST(TextureArray, LayerSelectionAndClamping) {
+  std::vector<ImageRGBAF> layers;
+  for (int i = 0; i < 3; ++i) layers.push_back(constant_image(6, 4, float(i), 0, 0, 1));
+  Result<Texture> r = Texture::array_from_float(layers);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  const Texture& tex = *r;
+  EXPECT_EQ(tex.layer_count(), 3);
+  SamplerState s;
+  const UvGradients g = texel_grad(tex.shape(), 2.5f, 0, 0, 2.5f);
+  for (int layer = -2; layer < 6; ++layer) {
+    const float expected = float(std::clamp(layer, 0, 2));
+    EXPECT_NEAR(tex.sample(s, {0.4f, 0.4f}, g, layer)[0], expected, 1e-6f) << layer;
+  }
+  TapList taps;
+  tex.taps(s, {0.4f, 0.4f}, g, 7, taps);
+  for (const TexelTap& t : taps) EXPECT_EQ(t.layer, 2);
+  // GL's layer coordinate rule.
+  EXPECT_EQ(array_layer(1.4f, 3), 1);
+  EXPECT_EQ(array_layer(1.5f, 3), 2);
+  EXPECT_EQ(array_layer(-0.7f, 3), 0);
+  EXPECT_EQ(array_layer(9.0f, 3), 2);
+  EXPECT_EQ(array_layer(std::nanf(""), 3), 0);
+}
+
+TEST(TextureConstruction, Errors) {
+  EXPECT_EQ(Texture::from_float(ImageRGBAF{}).status().code, ErrorCode::invalid_argument);
+  EXPECT_EQ(Texture::array_from_float({}).status().code, ErrorCode::invalid_argument);
+  EXPECT_EQ(Texture::array_from_float({ImageRGBAF(4, 4), ImageRGBAF(4, 5)}).status().code,
+            ErrorCode::size_mismatch);
+  EXPECT_EQ(Texture::from_float(ImageRGBAF(4, 4), {.max_levels = -1}).status().code,
+            ErrorCode::invalid_argument);
+  EXPECT_EQ(Texture::from_float_levels({ImageRGBAF(4, 4), ImageRGBAF(3, 2)}).status().code,
+            ErrorCode::size_mismatch);
+  EXPECT_EQ(Texture::from_float_levels({ImageRGBAF(2, 2), ImageRGBAF(1, 1), ImageRGBAF(1, 1)})
+                .status()
+                .code,
+            ErrorCode::invalid_argument);
+  // max_levels limits the chain; an empty texture samples the border colour.
+  Result<Texture> two = Texture::from_float(ImageRGBAF(16, 16), {.max_levels = 2});
+  ASSERT_TRUE(two.ok());
+  EXPECT_EQ(two->level_count(), 2);
+  SamplerState s;
+  s.border_color = {1, 2, 3, 4};
+  EXPECT_EQ(Texture{}.sample_lod(s, {0.5f, 0.5f}, 0.0f), s.border_color);
+}
+
+TEST(TextureConcurrency, ConstSamplingFromManyThreads) {
+  const Texture tex = make_texture(random_image(64, 64, 8));
+  SamplerState s;
+  s.filter = TextureFilter::anisotropic;
+  auto run = [&](std::vector<float>& out) {
+    for (int i = 0; i < 2000; ++i) {
+      const float t = float(i) * 0.001f;
+      out.push_back(tex.sample(s, {t, 1.0f - t}, {0.05f, 0.01f, -0.002f, 0.004f})[0]);
+    }
+  };
+  std::vector<float> serial;
+  run(serial);
+  std::vector<std::vector<float>> results(4);
+  std::vector<std::thread> threads;
+  for (auto& r : results) threads.emplace_back([&run, &r] { run(r); });
+  for (auto& t : threads) t.join();
+  for (const auto& r : results) EXPECT_EQ(r, serial);
+}
+
+}  // namespace
+}  // namespace tessera
