@@ -201,7 +201,7 @@ def write_report(args, results, images, nthreads, gbench):
         f"- Command: `{cmd}` (from the repository root)",
         f"- Runs per configuration: {args.runs} (median whole-process wall time: PNG read, "
         "encode, file write)",
-        f"- Images: {len(images)} power-of-two PNGs from `../shared/data/images` "
+        f"- Images: {len(images)} power-of-two PNGs from `{os.path.relpath(args.images, ROOT)}` "
         "(ldr-rgb-10.png, 127x128, is skipped; nothing is resized)"
         + (f", at most {args.max_size} pixels" if args.max_size else ""),
         "- tessera: `tessera -j 1|" + str(nthreads) + " compress IMG -o OUT.pvr --quality "
