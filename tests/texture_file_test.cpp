@@ -218,6 +218,17 @@ TEST(Pvr3, HeaderLiesAreRejected) {
   expect_pvr_error(b, ErrorCode::corrupt_data, "metadata size");
 }
 
+TEST(Pvr3, LegacyV2IsRecognisedAndRejected) {
+  Bytes v2(52 + 32, 0);
+  put_u32(v2, 0, 52);
+  put_u32(v2, 44, 0x21525650u);  // "PVR!"
+  EXPECT_EQ(detect_container(v2), ContainerFormat::pvr3);
+  Result<CompressedTexture> r = parse_texture(v2, "old.pvr");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code, ErrorCode::unsupported);
+  EXPECT_NE(r.status().message.find("legacy PVR v2"), std::string::npos) << r.status().message;
+}
+
 TEST(Pvr3, UnknownMetadataIsSkipped) {
   CompressedTexture t = fake_texture(pvrtc::Format::pvrtc1_2bpp, 32, 8, 1, true, false);
   Bytes b = pvr_bytes(t);
@@ -640,6 +651,13 @@ TEST(Oracle, ReadsPvrTexToolFilesAndMatchesItsDecode) {
     EXPECT_EQ(ktx->height, tex->height);
     EXPECT_EQ(ktx->format, tex->format);
     EXPECT_EQ(ktx->levels, tex->levels) << stem;
+    // Its legacy (v2) output is recognised and rejected with a clear message.
+    ASSERT_TRUE(run_tool(*tool, "-i " + stem + ".png -o " + stem + "-v2.pvr -f " + c.format +
+                                    " -q pvrtcfastest -legacypvr -shh"));
+    Result<CompressedTexture> v2 = read_texture_file(stem + "-v2.pvr");
+    ASSERT_FALSE(v2.ok());
+    EXPECT_NE(v2.status().message.find("legacy PVR v2"), std::string::npos)
+        << v2.status().message;
   }
 }
 

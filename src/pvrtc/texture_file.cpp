@@ -32,6 +32,11 @@ ContainerFormat detect_container(std::span<const std::uint8_t> bytes) {
     // Both byte orders: parse_pvr3 explains why a big-endian file is rejected.
     if (magic == 0x03525650u || magic == 0x50565203u) return ContainerFormat::pvr3;
   }
+  // Legacy PVR v2 (header size 52, "PVR!" at offset 44): parse_pvr3 says it is unsupported.
+  if (bytes.size() >= 52 && container::load_u32(bytes, 0) == 52 &&
+      container::load_u32(bytes, 44) == 0x21525650u) {
+    return ContainerFormat::pvr3;
+  }
   if (bytes.size() >= 12 && std::memcmp(bytes.data(), "\xABKTX 11\xBB\r\n\x1A\n", 12) == 0) {
     return ContainerFormat::ktx1;
   }
