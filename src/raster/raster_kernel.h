@@ -1,0 +1,179 @@
+// Rasterization kernels: pure functions for fixed-point edge functions with the top-left rule,
+// bounding boxes, sample offsets, interpolation planes, perspective-correct interpolation,
+// quad derivatives and centroid selection. Drivers (setup.cpp, tile.cpp) call these; nothing
+// here touches a frame buffer or a thread.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "raster/raster_internal.h"
+
+namespace tessera::raster::detail {
+
+// ---------------------------------------------------------------------------------------------
+// Fixed point and edge functions
+// ---------------------------------------------------------------------------------------------
+
+/// Rounds a grid coordinate (pixels) to 1/256 pixel, half away from zero. The caller has
+/// checked |v| is far below 2^40.
+inline std::int64_t snap(double v) { return std::llround(v * double(kSubpixel)); }
+
+/// Floor division by 256 (arithmetic shift; defined for negative values in C++20).
+inline std::int64_t floor_pixel(std::int64_t v) { return v >> kSubpixelBits; }
+
+/// Top-left rule (Direct3D) for the edge a -> b of a triangle wound so that the interior is on
+/// the positive side of every edge with y pointing down (visually clockwise). A top edge is
+/// horizontal and traversed to the right; a left edge goes up the screen.
+inline bool is_top_left(std::int64_t dx, std::int64_t dy) { return dy < 0 || (dy == 0 && dx > 0); }
+
+/// Edge function of a -> b: E(X, Y) = (Xb - Xa)(Y - Ya) - (Yb - Ya)(X - Xa) = a X + b Y + c,
+/// positive on the interior side; samples exactly on a non-top-left edge are excluded by
+/// subtracting 1 from c, so "inside" is simply E >= 0 for all three edges.
+struct Edge {
+  std::int64_t a, b, c;
+};
+inline Edge make_edge(std::int64_t xa, std::int64_t ya, std::int64_t xb, std::int64_t yb) {
+  Edge e;
+  e.a = ya - yb;
+  e.b = xb - xa;
+  e.c = -(e.a * xa + e.b * ya);
+  if (!is_top_left(xb - xa, yb - ya)) e.c -= 1;
+  return e;
+}
+
+/// Twice the signed area of the snapped triangle, in (1/256 px)^2; > 0 when visually clockwise
+/// with y down (the orientation `make_edge` expects).
+inline std::int64_t doubled_area(const std::int64_t x[3], const std::int64_t y[3]) {
+  return (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+}
+
+/// Inclusive range of pixels whose samples can lie in [lo, hi] (fixed point). Samples of pixel
+/// p lie in [256 p, 256 p + 240] for every pattern (offsets -8..7 sixteenths from the centre).
+inline void pixel_range(std::int64_t lo, std::int64_t hi, std::int64_t& p0, std::int64_t& p1) {
+  p0 = floor_pixel(lo);  // smallest p with 256 p + 255 >= lo
+  p1 = floor_pixel(hi);
+}
+
+/// Fixed-point position of sample `s` inside its pixel (relative to the pixel's top-left
+/// corner): 128 + 16 * offset.
+inline std::int64_t sample_fixed(int offset_sixteenths) {
+  return kSubpixel / 2 + std::int64_t(offset_sixteenths) * (kSubpixel / 16);
+}
+
+/// Coverage mask of one pixel: bit s set when sample s is inside all three edges.
+/// `e` holds the edge values at the pixel's top-left corner, `off[k][s]` the per-sample edge
+/// increments.
+inline std::uint32_t coverage_mask(const std::int64_t e[3], const std::int64_t* const off[3],
+                                   int samples) {
+  std::uint32_t mask = 0;
+  for (int s = 0; s < samples; ++s) {
+    const std::int64_t v = (e[0] + off[0][s]) | (e[1] + off[1][s]) | (e[2] + off[2][s]);
+    mask |= std::uint32_t(v >= 0) << s;
+  }
+  return mask;
+}
+
+/// Block classification against one edge over the fixed-point rectangle [x0, x1] x [y0, y1]:
+/// -1 no point inside (reject), 1 every point inside (accept), 0 partial.
+inline int classify_block(const Edge& e, std::int64_t x0, std::int64_t y0, std::int64_t x1,
+                          std::int64_t y1) {
+  const std::int64_t hi = e.c + e.a * (e.a > 0 ? x1 : x0) + e.b * (e.b > 0 ? y1 : y0);
+  if (hi < 0) return -1;
+  const std::int64_t lo = e.c + e.a * (e.a > 0 ? x0 : x1) + e.b * (e.b > 0 ? y0 : y1);
+  return lo >= 0 ? 1 : 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Interpolation
+// ---------------------------------------------------------------------------------------------
+
+/// Screen-space geometry of a snapped triangle for plane set-up (double precision, pixels).
+struct PlaneBasis {
+  double px0, py0;    ///< Vertex 0.
+  double e1x, e1y;    ///< Vertex 1 - vertex 0.
+  double e2x, e2y;    ///< Vertex 2 - vertex 0.
+  double inv_area;    ///< 1 / (e1 x e2).
+  double ax, ay;      ///< Anchor (where the plane constant is evaluated).
+};
+
+/// Plane (value at anchor, d/dx, d/dy) of a quantity that is linear in screen space and takes
+/// q0, q1, q2 at the three vertices.
+inline void make_plane(const PlaneBasis& g, double q0, double q1, double q2, float out[3]) {
+  const double d1 = q1 - q0, d2 = q2 - q0;
+  const double ddx = (d1 * g.e2y - d2 * g.e1y) * g.inv_area;
+  const double ddy = (d2 * g.e1x - d1 * g.e2x) * g.inv_area;
+  out[0] = float(q0 + ddx * (g.ax - g.px0) + ddy * (g.ay - g.py0));
+  out[1] = float(ddx);
+  out[2] = float(ddy);
+}
+
+/// Evaluates a plane at grid position (x, y), given as offsets from the anchor.
+inline float eval_plane(const float p[3], float dx, float dy) {
+  return p[0] + p[1] * dx + p[2] * dy;
+}
+
+/// Perspective-correct varyings at offsets (dx, dy) from the triangle's anchor:
+/// v = v0 + b1 (v1 - v0) + b2 (v2 - v0) with b_i = (lambda_i / w_i) / (1 / w).
+/// `base` is the triangle's varying block (v0, v1 - v0, v2 - v0). Returns 1/w.
+inline float interpolate(const TriSetup& t, const float* base, int n, float dx, float dy,
+                         float* out) {
+  const float iw = eval_plane(t.inv_w, dx, dy);
+  const float rcp = 1.0f / iw;
+  const float b1 = eval_plane(t.l1, dx, dy) * rcp;
+  const float b2 = eval_plane(t.l2, dx, dy) * rcp;
+  const float* v0 = base;
+  const float* d1 = base + n;
+  const float* d2 = base + 2 * n;
+  for (int i = 0; i < n; ++i) out[i] = v0[i] + b1 * d1[i] + b2 * d2[i];
+  return iw;
+}
+
+/// Quad derivatives of `n` values given at the four lanes (lane = 2 * row + column).
+/// Fine: each lane differences along its own row / column. Coarse: the top row and the left
+/// column for all lanes.
+inline void quad_derivatives(const float* const v[4], int n, bool fine, float* ddx[4],
+                             float* ddy[4]) {
+  for (int lane = 0; lane < 4; ++lane) {
+    const int row = fine ? (lane >> 1) : 0;
+    const int col = fine ? (lane & 1) : 0;
+    const float* l = v[2 * row];
+    const float* r = v[2 * row + 1];
+    const float* t = v[col];
+    const float* b = v[2 + col];
+    for (int i = 0; i < n; ++i) {
+      ddx[lane][i] = r[i] - l[i];
+      ddy[lane][i] = b[i] - t[i];
+    }
+  }
+}
+
+/// Centroid sample of a partially covered pixel: the covered sample nearest the pixel centre,
+/// lowest index on ties. `mask` must be non-zero.
+inline int centroid_sample(std::uint32_t mask, const SampleOffset* pos, int samples) {
+  int best = -1;
+  int best_d = 0;
+  for (int s = 0; s < samples; ++s) {
+    if (!(mask >> s & 1u)) continue;
+    const int d = pos[s].x * pos[s].x + pos[s].y * pos[s].y;
+    if (best < 0 || d < best_d) {
+      best = s;
+      best_d = d;
+    }
+  }
+  return best;
+}
+
+/// Depth test of a new value against the stored one.
+inline bool depth_passes(DepthTest test, float z, float stored) {
+  switch (test) {
+    case DepthTest::less: return z < stored;
+    case DepthTest::less_equal: return z <= stored;
+    case DepthTest::equal: return z == stored;
+    case DepthTest::always: return true;
+  }
+  return false;
+}
+
+}  // namespace tessera::raster::detail

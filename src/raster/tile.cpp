@@ -1,0 +1,293 @@
+// Raster stage for one screen tile: 8x8 block trivial accept/reject, 2x2 quad coverage with
+// per-sample masks, early depth test, perspective-correct interpolation at the four quad
+// pixels (helpers included), quad derivatives, shading once per pixel, and per-sample writes.
+// A tile is owned by one task and its triangles are visited in submission order, so the
+// result does not depend on how tiles are spread over threads.
+#include <algorithm>
+#include <cstring>
+
+#include "raster/raster_internal.h"
+#include "raster/raster_kernel.h"
+
+namespace tessera::raster::detail {
+
+namespace {
+
+constexpr int kMaxSamples = 16;
+
+/// Per-frame sample tables derived from the MSAA pattern.
+struct SampleTable {
+  int count = 1;
+  std::uint32_t full = 1;
+  const SampleOffset* pos = nullptr;
+  std::int64_t fx[kMaxSamples];  ///< Fixed-point position inside the pixel (from its corner).
+  std::int64_t fy[kMaxSamples];
+  float ox[kMaxSamples];  ///< Offset from the pixel centre in pixels.
+  float oy[kMaxSamples];
+};
+
+class TileRasterizer {
+ public:
+  TileRasterizer(const FrameContext& ctx, int x0, int y0, int x1, int y1, RasterStats& stats)
+      : ctx_(ctx), fb_(*ctx.fb), opt_(*ctx.options), rx0_(x0), ry0_(y0), rx1_(x1), ry1_(y1),
+        stats_(stats) {
+    const auto pos = sample_positions(fb_.msaa());
+    st_.count = int(pos.size());
+    st_.full = (1u << st_.count) - 1u;
+    st_.pos = pos.data();
+    for (int s = 0; s < st_.count; ++s) {
+      st_.fx[s] = sample_fixed(pos[std::size_t(s)].x);
+      st_.fy[s] = sample_fixed(pos[std::size_t(s)].y);
+      st_.ox[s] = float(pos[std::size_t(s)].x) / 16.0f;
+      st_.oy[s] = float(pos[std::size_t(s)].y) / 16.0f;
+    }
+    gw_ = fb_.grid_width();
+    gh_ = fb_.grid_height();
+    channels_ = fb_.channels();
+    data_ = fb_.data().data();
+    depth_ = fb_.depth_data().data();
+    ids_ = fb_.desc().primitive_ids ? fb_.primitive_id_data().data() : nullptr;
+    counts_ = fb_.desc().coverage_counts ? fb_.coverage_count_data().data() : nullptr;
+  }
+
+  void triangle(const TriSetup& t, const float* varyings);
+
+ private:
+  void quad(int qx, int qy, std::uint32_t mask[4]);
+
+  const FrameContext& ctx_;
+  FrameBuffer& fb_;
+  const RasterOptions& opt_;
+  int rx0_, ry0_, rx1_, ry1_;  // tile rectangle, exclusive max
+  RasterStats& stats_;
+  SampleTable st_;
+  int gw_ = 0, gh_ = 0, channels_ = 4;
+  float* data_ = nullptr;
+  float* depth_ = nullptr;
+  std::uint32_t* ids_ = nullptr;
+  std::uint32_t* counts_ = nullptr;
+
+  // Current triangle.
+  const TriSetup* t_ = nullptr;
+  const DrawCall* draw_ = nullptr;
+  const float* tv_ = nullptr;  // varying block
+  std::int64_t off_[3][kMaxSamples];
+  float dz_[kMaxSamples];
+
+  // Quad scratch.
+  float zs_[4][kMaxSamples];
+  float v_[4][kMaxVaryings];
+  float ddx_[4][kMaxVaryings];
+  float ddy_[4][kMaxVaryings];
+  float vc_[kMaxVaryings];
+  float out_[4][kMaxChannels];
+};
+
+void TileRasterizer::triangle(const TriSetup& t, const float* varyings) {
+  const int x0 = std::max(t.x0, rx0_) & ~1;
+  const int y0 = std::max(t.y0, ry0_) & ~1;
+  const int x1 = std::min(t.x1, rx1_ - 1);
+  const int y1 = std::min(t.y1, ry1_ - 1);
+  if (x0 > x1 || y0 > y1) return;
+  t_ = &t;
+  draw_ = &ctx_.draws[t.draw];
+  tv_ = varyings;
+  const int ns = st_.count;
+  for (int e = 0; e < 3; ++e) {
+    for (int s = 0; s < ns; ++s) off_[e][s] = t.a[e] * st_.fx[s] + t.b[e] * st_.fy[s];
+  }
+  for (int s = 0; s < ns; ++s) dz_[s] = t.z[1] * st_.ox[s] + t.z[2] * st_.oy[s];
+  const std::int64_t* off[3] = {off_[0], off_[1], off_[2]};
+  const Edge edges[3] = {{t.a[0], t.b[0], t.c[0]}, {t.a[1], t.b[1], t.c[1]},
+                         {t.a[2], t.b[2], t.c[2]}};
+  const std::int64_t step_x[3] = {t.a[0] * kSubpixel, t.a[1] * kSubpixel, t.a[2] * kSubpixel};
+  const std::int64_t step_y[3] = {t.b[0] * kSubpixel, t.b[1] * kSubpixel, t.b[2] * kSubpixel};
+  // Samples of pixel p lie in [256 p, 256 p + 240]; a block's sample region is therefore
+  // [256 bx, 256 (bx + 8) - 16] on each axis.
+  constexpr std::int64_t kBlockSpan = std::int64_t(kBlockSize) * kSubpixel - kSubpixel / 16;
+  const bool small = x1 - x0 < kBlockSize && y1 - y0 < kBlockSize;
+
+  for (int by = small ? y0 : (y0 & ~(kBlockSize - 1)); by <= y1; by += kBlockSize) {
+    for (int bx = small ? x0 : (x0 & ~(kBlockSize - 1)); bx <= x1; bx += kBlockSize) {
+      bool accept = false;
+      if (!small) {
+        const std::int64_t fx0 = std::int64_t(bx) * kSubpixel;
+        const std::int64_t fy0 = std::int64_t(by) * kSubpixel;
+        int worst = 1;
+        for (int e = 0; e < 3 && worst >= 0; ++e) {
+          worst = std::min(worst,
+                           classify_block(edges[e], fx0, fy0, fx0 + kBlockSpan, fy0 + kBlockSpan));
+        }
+        if (worst < 0) continue;
+        accept = worst > 0;
+      }
+      const int qx0 = std::max(bx, x0), qy0 = std::max(by, y0);
+      const int qx1 = small ? x1 : std::min(bx + kBlockSize - 1, x1);
+      const int qy1 = small ? y1 : std::min(by + kBlockSize - 1, y1);
+      for (int qy = qy0; qy <= qy1; qy += 2) {
+        const std::int64_t fy = std::int64_t(qy) * kSubpixel;
+        for (int qx = qx0; qx <= qx1; qx += 2) {
+          std::uint32_t mask[4];
+          if (accept) {
+            mask[0] = mask[1] = mask[2] = mask[3] = st_.full;
+          } else {
+            const std::int64_t fx = std::int64_t(qx) * kSubpixel;
+            std::int64_t e0[3], e1[3], e2[3], e3[3];
+            for (int e = 0; e < 3; ++e) {
+              e0[e] = edges[e].c + edges[e].a * fx + edges[e].b * fy;
+              e1[e] = e0[e] + step_x[e];
+              e2[e] = e0[e] + step_y[e];
+              e3[e] = e2[e] + step_x[e];
+            }
+            mask[0] = coverage_mask(e0, off, ns);
+            mask[1] = coverage_mask(e1, off, ns);
+            mask[2] = coverage_mask(e2, off, ns);
+            mask[3] = coverage_mask(e3, off, ns);
+            if (!(mask[0] | mask[1] | mask[2] | mask[3])) continue;
+          }
+          quad(qx, qy, mask);
+        }
+      }
+    }
+  }
+}
+
+void TileRasterizer::quad(int qx, int qy, std::uint32_t mask[4]) {
+  // Lanes beyond the grid (odd sizes) are helpers with no coverage.
+  if (qx + 1 >= gw_) mask[1] = mask[3] = 0;
+  if (qy + 1 >= gh_) mask[2] = mask[3] = 0;
+  if (!(mask[0] | mask[1] | mask[2] | mask[3])) return;
+  const TriSetup& t = *t_;
+  const DrawCall& draw = *draw_;
+  const int ns = st_.count;
+  const std::size_t row = std::size_t(gw_);
+  std::size_t base[4];
+  base[0] = (std::size_t(qy) * row + std::size_t(qx)) * std::size_t(ns);
+  base[1] = base[0] + std::size_t(ns);
+  base[2] = base[0] + row * std::size_t(ns);
+  base[3] = base[2] + std::size_t(ns);
+
+  if (counts_) {
+    for (int lane = 0; lane < 4; ++lane) {
+      for (int s = 0; s < ns; ++s) counts_[base[lane] + std::size_t(s)] += mask[lane] >> s & 1u;
+    }
+  }
+
+  // Early depth test at every covered sample.
+  const float cdx = float(qx - t.x0) + 0.5f;
+  const float cdy = float(qy - t.y0) + 0.5f;
+  std::uint32_t visible[4] = {0, 0, 0, 0};
+  for (int lane = 0; lane < 4; ++lane) {
+    if (!mask[lane]) continue;
+    const float zc = eval_plane(t.z, cdx + float(lane & 1), cdy + float(lane >> 1));
+    const float* stored = depth_ + base[lane];
+    std::uint32_t vis = 0;
+    for (int s = 0; s < ns; ++s) {
+      if (!(mask[lane] >> s & 1u)) continue;
+      const float z = std::clamp(zc + dz_[s], 0.0f, 1.0f);
+      zs_[lane][s] = z;
+      vis |= std::uint32_t(depth_passes(draw.depth_test, z, stored[s])) << s;
+    }
+    visible[lane] = vis;
+  }
+  if (!(visible[0] | visible[1] | visible[2] | visible[3])) return;
+  ++stats_.quads;
+
+  // Perspective-correct varyings at the four pixel centres, then quad derivatives.
+  const int n = draw.varying_count;
+  float iw[4];
+  for (int lane = 0; lane < 4; ++lane) {
+    iw[lane] = interpolate(t, tv_, n, cdx + float(lane & 1), cdy + float(lane >> 1), v_[lane]);
+  }
+  if (n > 0) {
+    const float* vv[4] = {v_[0], v_[1], v_[2], v_[3]};
+    float* dx[4] = {ddx_[0], ddx_[1], ddx_[2], ddx_[3]};
+    float* dy[4] = {ddy_[0], ddy_[1], ddy_[2], ddy_[3]};
+    quad_derivatives(vv, n, opt_.derivatives == Derivatives::fine, dx, dy);
+  }
+
+  const int nc = channels_;
+  for (int lane = 0; lane < 4; ++lane) {
+    const bool helper = visible[lane] == 0;
+    if (helper) {
+      ++stats_.helper_lanes;
+      if (!opt_.shade_helpers) continue;
+    }
+    ++stats_.lanes_shaded;
+    float* out = out_[lane];
+    std::fill(out, out + nc, 0.0f);
+    if (!draw.shader) continue;
+    ShadeInput in;
+    in.varying_count = n;
+    in.varyings = v_[lane];
+    in.ddx = ddx_[lane];
+    in.ddy = ddy_[lane];
+    in.quad_varyings = {v_[0], v_[1], v_[2], v_[3]};
+    in.px = qx + (lane & 1);
+    in.py = qy + (lane >> 1);
+    in.lane = lane;
+    in.x = float(in.px) + 0.5f;
+    in.y = float(in.py) + 0.5f;
+    in.inv_w = iw[lane];
+    float sdx = cdx + float(lane & 1), sdy = cdy + float(lane >> 1);
+    if (draw.centroid && mask[lane] && mask[lane] != st_.full) {
+      const int s = centroid_sample(mask[lane], st_.pos, ns);
+      in.x += st_.ox[s];
+      in.y += st_.oy[s];
+      sdx += st_.ox[s];
+      sdy += st_.oy[s];
+      in.inv_w = interpolate(t, tv_, n, sdx, sdy, vc_);
+      in.varyings = vc_;
+    }
+    in.depth = std::clamp(eval_plane(t.z, sdx, sdy), 0.0f, 1.0f);
+    in.primitive_id = t.primitive_id;
+    in.coverage = mask[lane];
+    in.visible = visible[lane];
+    in.helper = helper;
+    in.front_facing = t.front_facing;
+    draw.shader(in, out);
+  }
+
+  // Per-sample writes of depth, payload and id.
+  for (int lane = 0; lane < 4; ++lane) {
+    const std::uint32_t vis = visible[lane];
+    if (!vis) continue;
+    const float* out = out_[lane];
+    for (int s = 0; s < ns; ++s) {
+      if (!(vis >> s & 1u)) continue;
+      const std::size_t i = base[lane] + std::size_t(s);
+      if (draw.depth_write) depth_[i] = zs_[lane][s];
+      float* d = data_ + i * std::size_t(nc);
+      if (nc == 4) {
+        std::memcpy(d, out, 4 * sizeof(float));
+      } else {
+        std::memcpy(d, out, std::size_t(nc) * sizeof(float));
+      }
+      if (ids_) ids_[i] = t.primitive_id;
+      ++stats_.samples_written;
+    }
+  }
+}
+
+}  // namespace
+
+void render_tile(const FrameContext& ctx, int tile, RasterStats& stats) {
+  const int tx = tile % ctx.tiles_x;
+  const int ty = tile / ctx.tiles_x;
+  FrameBuffer& fb = *ctx.fb;
+  const int x0 = tx * kTileSize, y0 = ty * kTileSize;
+  const int x1 = std::min(x0 + kTileSize, fb.grid_width());
+  const int y1 = std::min(y0 + kTileSize, fb.grid_height());
+  if (ctx.clear) fb.clear_rect(x0, y0, x1, y1, ctx.clear->value.data(), ctx.clear->depth);
+  TileRasterizer r(ctx, x0, y0, x1, y1, stats);
+  for (const Chunk& chunk : ctx.chunks) {
+    const std::uint32_t b = chunk.tile_offsets[std::size_t(tile)];
+    const std::uint32_t e = chunk.tile_offsets[std::size_t(tile) + 1];
+    for (std::uint32_t k = b; k < e; ++k) {
+      const TriSetup& t = chunk.tris[chunk.items[k]];
+      r.triangle(t, chunk.varyings.data() + t.varying_offset);
+    }
+  }
+}
+
+}  // namespace tessera::raster::detail
