@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <cstdlib>
 #include <limits>
 
 #include "pvrtc/encode_internal.h"
@@ -46,21 +47,25 @@ namespace {
 
 // Optimal single-colour endpoint codes: for an 8-bit value v, codes (a, b) of an A channel
 // with `abits` bits and a B channel with 5 bits such that (LA (8 - m) + LB m) / 8 is nearest
-// to v in a uniform region, for modulation weight m = 3 (index 0) or 5 (index 1).
+// to v in a uniform region, for modulation weight m = 3 (index 0) or 5 (index 1). The 2 bpp
+// tables also weigh the error of LA itself (1 texel in 16 of an interpolated-mode block can
+// only use weight 0 or 8).
 struct SingleColour {
-  std::uint8_t a, b, err;
+  std::uint8_t a, b;
+  std::uint16_t err;  ///< Squared-error cost of the pair.
 };
 using SingleTable = std::array<SingleColour, 256>;
 
-SingleTable make_single_table(int abits, int m) {
+SingleTable make_single_table(int abits, int m, bool two_bpp) {
   SingleTable t{};
   for (int v = 0; v < 256; ++v) {
-    SingleColour best{0, 0, 255};
+    SingleColour best{0, 0, 0xffff};
     for (int a = 0; a < (1 << abits); ++a) {
       for (int b = 0; b < 32; ++b) {
         const int la = code_level_rgb(std::uint32_t(a), abits), lb = code_level_rgb(std::uint32_t(b), 5);
-        const int d = std::abs((la * (8 - m) + lb * m) / 8 - v);
-        if (d < best.err) best = {std::uint8_t(a), std::uint8_t(b), std::uint8_t(d)};
+        const int d = (la * (8 - m) + lb * m) / 8 - v;
+        const int cost = two_bpp ? 15 * d * d + (la - v) * (la - v) : d * d;
+        if (cost < best.err) best = {std::uint8_t(a), std::uint8_t(b), std::uint16_t(std::min(cost, 0xfffe))};
       }
     }
     t[std::size_t(v)] = best;
@@ -68,10 +73,13 @@ SingleTable make_single_table(int abits, int m) {
   return t;
 }
 
-const SingleTable& single_table(int abits, int mi) {
-  static const std::array<SingleTable, 4> tables = {make_single_table(5, 3), make_single_table(5, 5),
-                                                    make_single_table(4, 3), make_single_table(4, 5)};
-  return tables[std::size_t((abits == 4 ? 2 : 0) + mi)];
+const SingleTable& single_table(int abits, int mi, bool two_bpp) {
+  static const std::array<SingleTable, 8> tables = {
+      make_single_table(5, 3, false), make_single_table(5, 5, false),
+      make_single_table(4, 3, false), make_single_table(4, 5, false),
+      make_single_table(5, 3, true),  make_single_table(5, 5, true),
+      make_single_table(4, 3, true),  make_single_table(4, 5, true)};
+  return tables[std::size_t((two_bpp ? 4 : 0) + (abits == 4 ? 2 : 0) + mi)];
 }
 
 inline std::uint32_t texel_error(const std::uint8_t* t, const std::uint8_t* a,
@@ -86,14 +94,42 @@ inline std::uint32_t texel_error(const std::uint8_t* t, const std::uint8_t* a,
   return e;
 }
 
-void choose_modulation_4bpp(EncoderState& s) {
+// Squared errors of one texel for the blends 0, 3, 5, 8 (mode 0), 4 and 4 with alpha punched
+// through (mode 1), in that order.
+template <bool kAlpha>
+inline void texel_errors(const std::uint8_t* t, const std::uint8_t* a, const std::uint8_t* b,
+                         std::uint32_t e[6]) {
+  constexpr int nch = kAlpha ? 4 : 3;
+  std::int32_t e0 = 0, e3 = 0, e5 = 0, e8 = 0, e4 = 0, e4p = 0;
+  for (int c = 0; c < nch; ++c) {
+    const std::int32_t av = a[c], bv = b[c], tv = t[c];
+    const std::int32_t d0 = av - tv, d8 = bv - tv;
+    const std::int32_t d3 = ((av * 5 + bv * 3) >> 3) - tv;
+    const std::int32_t d5 = ((av * 3 + bv * 5) >> 3) - tv;
+    const std::int32_t d4 = ((av + bv) >> 1) - tv;
+    e0 += d0 * d0;
+    e3 += d3 * d3;
+    e5 += d5 * d5;
+    e8 += d8 * d8;
+    e4 += d4 * d4;
+    e4p += c == 3 ? tv * tv : d4 * d4;
+  }
+  e[0] = std::uint32_t(e0);
+  e[1] = std::uint32_t(e3);
+  e[2] = std::uint32_t(e5);
+  e[3] = std::uint32_t(e8);
+  e[4] = std::uint32_t(e4);
+  e[5] = std::uint32_t(e4p);
+}
+
+template <bool kAlpha>
+void choose_modulation_4bpp_impl(EncoderState& s) {
   const Grid& g = s.g;
   std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
   for (std::size_t i = 0; i < g.blocks(); ++i) {
     ea[i] = expand_a(s.ca[i]);
     eb[i] = expand_b(s.cb[i]);
   }
-  const int nch = s.alpha_mode ? 4 : 3;
   parallel_for(
       0, g.nby, 4,
       [&](std::int64_t by0, std::int64_t by1) {
@@ -103,56 +139,73 @@ void choose_modulation_4bpp(EncoderState& s) {
           upscale_rows(g, eb.data(), by * 4, by * 4 + 4, ub.data());
           for (int bx = 0; bx < g.nbx; ++bx) {
             const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-            std::uint32_t bits0 = 0, err0 = 0, bits1 = 0, err1 = 0;
+            std::uint32_t bits0 = 0, err0 = 0, bits1 = 0, err1 = 0, bits1p = 0, err1p = 0;
             bool any_clear = false;
             for (int y = 0; y < 4; ++y) {
               for (int x = 0; x < 4; ++x) {
                 const std::size_t li = std::size_t(y) * std::size_t(g.pw) + std::size_t(bx * 4 + x);
                 const std::uint8_t* t =
                     &s.target[(std::size_t(by * 4 + y) * std::size_t(g.pw) + std::size_t(bx * 4 + x)) * 4];
-                const std::uint8_t* a = &ua[li * 4];
-                const std::uint8_t* b = &ub[li * 4];
-                any_clear |= t[3] < 128;
-                std::uint32_t best = std::numeric_limits<std::uint32_t>::max(), bc = 0;
-                for (std::uint32_t c = 0; c < 4; ++c) {
-                  const std::uint32_t e = texel_error(t, a, b, kMod4Mode0[c], false, nch);
-                  if (e < best) {
-                    best = e;
+                if constexpr (kAlpha) any_clear |= t[3] < 128;
+                std::uint32_t e[6];
+                texel_errors<kAlpha>(t, &ua[li * 4], &ub[li * 4], e);
+                const int shift = 2 * (4 * y + x);
+                // Mode 0: codes 0..3 -> e[0..3].
+                std::uint32_t best = e[0], bc = 0;
+                for (std::uint32_t c = 1; c < 4; ++c) {
+                  if (e[c] < best) {
+                    best = e[c];
                     bc = c;
                   }
                 }
-                bits0 |= bc << (2 * (4 * y + x));
+                bits0 |= bc << shift;
                 err0 += best;
+                // Mode 1 without punch-through: codes 0, 1 (weight 4), 3.
+                std::uint32_t b1 = e[0], c1 = 0;
+                if (e[4] < b1) {
+                  b1 = e[4];
+                  c1 = 1;
+                }
+                if (e[3] < b1) {
+                  b1 = e[3];
+                  c1 = 3;
+                }
+                bits1 |= c1 << shift;
+                err1 += b1;
+                // With punch-through (code 2).
+                if (e[5] < b1) {
+                  b1 = e[5];
+                  c1 = 2;
+                }
+                bits1p |= c1 << shift;
+                err1p += b1;
               }
             }
             std::uint8_t mode = 0;
-            if (s.punch && any_clear) {
-              for (int y = 0; y < 4; ++y) {
-                for (int x = 0; x < 4; ++x) {
-                  const std::size_t li = std::size_t(y) * std::size_t(g.pw) + std::size_t(bx * 4 + x);
-                  const std::uint8_t* t = &s.target[(std::size_t(by * 4 + y) * std::size_t(g.pw) +
-                                                     std::size_t(bx * 4 + x)) * 4];
-                  std::uint32_t best = std::numeric_limits<std::uint32_t>::max(), bc = 0;
-                  for (std::uint32_t c = 0; c < 4; ++c) {
-                    const std::uint32_t e =
-                        texel_error(t, &ua[li * 4], &ub[li * 4], kMod4Mode1[c], c == 2, nch);
-                    if (e < best) {
-                      best = e;
-                      bc = c;
-                    }
-                  }
-                  bits1 |= bc << (2 * (4 * y + x));
-                  err1 += best;
-                }
-              }
-              if (err1 < err0) mode = 1;
+            std::uint32_t bits = bits0, err = err0;
+            if (s.mode1 && err1 < err) {
+              mode = 1;
+              bits = bits1;
+              err = err1;
+            }
+            if (s.punch && any_clear && err1p < err) {
+              mode = 1;
+              bits = bits1p;
             }
             s.mode[bi] = mode;
-            s.mod[bi] = mode ? bits1 : bits0;
+            s.mod[bi] = bits;
           }
         }
       },
       s.threads);
+}
+
+void choose_modulation_4bpp(EncoderState& s) {
+  if (s.alpha_mode) {
+    choose_modulation_4bpp_impl<true>(s);
+  } else {
+    choose_modulation_4bpp_impl<false>(s);
+  }
 }
 
 // 2 bpp: per block, direct 1-bit modulation (mode 0) or 2-bit checkerboard with interpolated
@@ -346,19 +399,21 @@ void homogeneous_shortcut(EncoderState& s) {
               for (int x = 0; x < g.bw && uniform; ++x) uniform = std::memcmp(row + x * 4, first, 4) == 0;
             }
             if (!uniform) continue;
+            const bool two = g.format == Format::pvrtc1_2bpp;
             int best_mi = 0, best_err = 1 << 30;
             for (int mi = 0; mi < 2; ++mi) {
-              const int e = single_table(5, mi)[first[0]].err + single_table(5, mi)[first[1]].err +
-                            single_table(4, mi)[first[2]].err;
+              const int e = single_table(5, mi, two)[first[0]].err +
+                            single_table(5, mi, two)[first[1]].err +
+                            single_table(4, mi, two)[first[2]].err;
               if (e < best_err) {
                 best_err = e;
                 best_mi = mi;
               }
             }
             EndpointCodes a, b;
-            const SingleColour& r = single_table(5, best_mi)[first[0]];
-            const SingleColour& gg = single_table(5, best_mi)[first[1]];
-            const SingleColour& bb = single_table(4, best_mi)[first[2]];
+            const SingleColour& r = single_table(5, best_mi, two)[first[0]];
+            const SingleColour& gg = single_table(5, best_mi, two)[first[1]];
+            const SingleColour& bb = single_table(4, best_mi, two)[first[2]];
             a.r = r.a;
             a.g = gg.a;
             a.b = bb.a;
@@ -389,6 +444,7 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   s.g = make_grid(options.format, image.width, image.height);
   s.alpha_mode = image.has_alpha || options.force_alpha;
   s.punch = s.alpha_mode && options.punch_through && options.format == Format::pvrtc1_4bpp;
+  s.mode1 = options.quality != Quality::fast;
   s.threads = options.threads;
   const Grid& g = s.g;
   // Target: the source tiled over the padded level (only textures under 2x2 blocks differ).
@@ -406,7 +462,13 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   s.mod.assign(g.blocks(), 0);
   {
     std::vector<float> low, high;
-    dilation_endpoints(s, low, high);
+    // fast: the paper's intensity dilation; normal / high start the refinement from
+    // principal-axis endpoints, which separate equally bright colours (see principal.cpp).
+    if (options.quality != Quality::fast) {
+      principal_endpoints(s, low, high);
+    } else {
+      dilation_endpoints(s, low, high);
+    }
     parallel_for(
         0, std::int64_t(g.blocks()), 4096,
         [&](std::int64_t b0, std::int64_t b1) {
@@ -422,6 +484,7 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   const int iterations =
       options.iterations >= 0 ? options.iterations : default_iterations(options.quality);
   if (iterations > 0) refine(s, iterations);
+  if (const char* pr = std::getenv("POLISH")) polish(s, std::atoi(pr));
   std::vector<std::uint8_t> out(level_size(options.format, image.width, image.height));
   const std::vector<std::uint64_t> w = s.words();
   store_words(g, w.data(), out.data());

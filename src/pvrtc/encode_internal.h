@@ -12,7 +12,8 @@ namespace tessera::pvrtc::detail {
 struct EncoderState {
   Grid g;
   bool alpha_mode = false;  ///< Translucent endpoints and alpha error are allowed/counted.
-  bool punch = false;       ///< Punch-through (4 bpp mode 1) may be used.
+  bool punch = false;       ///< Punch-through (4 bpp mode 1 code 2) may be used.
+  bool mode1 = false;       ///< 4 bpp: also try mode 1 (weights 0, 4, 8) on every block.
   int threads = 0;
   /// Padded target texels (pw * ph RGBA; the source tiled; alpha 255 unless alpha_mode).
   std::vector<std::uint8_t> target;
@@ -42,6 +43,10 @@ std::uint16_t quantise_endpoint(const float c[4], bool is_b, bool allow_transluc
 /// Writes low (A) and high (B) float RGBA per block (4 floats each, linear block order).
 void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vector<float>& high);
 
+/// Principal-axis endpoints over each block's bilinear footprint (see principal.cpp); same
+/// output layout as `dilation_endpoints`.
+void principal_endpoints(const EncoderState& s, std::vector<float>& low, std::vector<float>& high);
+
 /// Brute-force modulation for the current endpoints (exact decoder arithmetic); chooses the
 /// per-block mode (punch-through for 4 bpp, direct vs interpolated for 2 bpp).
 void choose_modulation(EncoderState& s);
@@ -53,5 +58,9 @@ std::uint64_t total_error(const EncoderState& s);
 /// `choose_modulation`; keeps the best state. Runs at most `iterations` sweeps and stops early
 /// when a sweep does not improve the error.
 void refine(EncoderState& s, int iterations);
+
+/// 4 bpp only: exact greedy search over +-1 perturbations of each block's endpoint codes,
+/// keeping moves that lower the exact error of the block's texel window (see polish.cpp).
+void polish(EncoderState& s, int rounds);
 
 }  // namespace tessera::pvrtc::detail

@@ -7,6 +7,7 @@
 // re-chosen and the whole sweep is kept only if the exact decoded error dropped.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "pvrtc/encode_internal.h"
 
@@ -17,6 +18,13 @@ namespace {
 // Level (8-bit scale, linear in the expanded value) of an expanded channel value.
 constexpr float kRgbScale = 8.25f;   // (e << 3) | (e >> 2) ~ 8.25 e for 5-bit e
 constexpr float kAlphaScale = 17.0f;  // 4-bit alpha a -> 17 a
+// Mean loss of the decoder's truncations: the 8-bit conversion floors twice (about 0.5
+// measured) and the modulation blend (A (8 - m) + B m) / 8 floors unless m is 0 or 8
+// (7/16 on average).
+constexpr double kTruncBias = 0.5;
+constexpr double kModBias = 0.4375;
+constexpr double kSpread = 0.0;
+constexpr int kContinuousSweeps = 0;
 
 // Per-block endpoint levels: A rgba then B rgba.
 void endpoint_levels(std::uint16_t ca, std::uint16_t cb, float* out) {
@@ -52,7 +60,7 @@ struct Sums {
   double ra = 0, rb = 0;
 };
 
-void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by) {
+void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by, bool continuous) {
   const Grid& g = s.g;
   const int bw = g.bw;
   const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
@@ -89,8 +97,11 @@ void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by) {
       if (wj == 0) continue;
       const std::uint8_t* t = &s.target[ti * 4];
       const double ca = wj * fa, cbv = wj * fb;
+      // The decoder truncates twice (8-bit conversion, modulation): aim above the target by
+      // the mean truncation loss so the linear model is unbiased.
+      const double bias = kTruncBias + ((me & 0x0f) % 8 != 0 ? kModBias : 0.0);
       for (int c = 0; c < 3; ++c) {
-        const double r = double(t[c]) - other[c];
+        const double r = double(t[c]) + bias - other[c];
         rgb[c].aa += ca * ca;
         rgb[c].ab += ca * cbv;
         rgb[c].bb += cbv * cbv;
@@ -123,7 +134,8 @@ void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by) {
     const double lambda = 1e-3 * (sm.aa + sm.bb) + 1e-9;
     double A = cur[c], B = cur[4 + c];
     if (var_a && var_b) {
-      const double m00 = sm.aa + lambda, m01 = sm.ab, m11 = sm.bb + lambda;
+      const double mu = kSpread * (sm.aa + sm.bb);
+      const double m00 = sm.aa + lambda + mu, m01 = sm.ab - mu, m11 = sm.bb + lambda + mu;
       const double r0 = sm.ra + lambda * cur[c], r1 = sm.rb + lambda * cur[4 + c];
       const double det = m00 * m11 - m01 * m01;
       if (det > 0) {
@@ -134,6 +146,12 @@ void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by) {
       A = (sm.ra - sm.ab * B + lambda * cur[c]) / (sm.aa + lambda);
     } else {
       B = (sm.rb - sm.ab * A + lambda * cur[4 + c]) / (sm.bb + lambda);
+    }
+    if (continuous) {
+      const double hi = c == 3 ? 255.0 : 255.75;
+      if (var_a) cur[c] = float(std::clamp(A, 0.0, hi));
+      if (var_b) cur[4 + c] = float(std::clamp(B, 0.0, hi));
+      continue;
     }
     std::uint32_t cand_a[2] = {*code_a[c], *code_a[c]}, cand_b[2] = {*code_b[c], *code_b[c]};
     const int ba = c < 3 ? bits_a[c] : 3, bb = c < 3 ? bits_b[c] : 3;
@@ -154,6 +172,7 @@ void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by) {
       }
     }
   }
+  if (continuous) return;
   s.ca[j] = std::uint16_t(pack_endpoint(false, ea));
   s.cb[j] = std::uint16_t(pack_endpoint(true, eb));
   endpoint_levels(s.ca[j], s.cb[j], cur);
@@ -175,17 +194,20 @@ void refine(EncoderState& s, int iterations) {
       const std::vector<std::uint64_t> w = s.words();
       modulation_map(g, w.data(), s.scratch_m.data(), s.threads);
     }
-    for (int cls = 0; cls < 4; ++cls) {
-      const int ox = cls & 1, oy = cls >> 1;
-      const int rows = g.nby / 2;
-      parallel_for(
-          0, rows, 4,
-          [&](std::int64_t r0, std::int64_t r1) {
-            for (int r = int(r0); r < int(r1); ++r) {
-              for (int bx = ox; bx < g.nbx; bx += 2) solve_block(s, lv, bx, 2 * r + oy);
-            }
-          },
-          s.threads);
+    for (int sweep = 0; sweep <= kContinuousSweeps; ++sweep) {
+      const bool continuous = sweep < kContinuousSweeps;
+      for (int cls = 0; cls < 4; ++cls) {
+        const int ox = cls & 1, oy = cls >> 1;
+        const int rows = g.nby / 2;
+        parallel_for(
+            0, rows, 4,
+            [&](std::int64_t r0, std::int64_t r1) {
+              for (int r = int(r0); r < int(r1); ++r) {
+                for (int bx = ox; bx < g.nbx; bx += 2) solve_block(s, lv, bx, 2 * r + oy, continuous);
+              }
+            },
+            s.threads);
+      }
     }
     choose_modulation(s);
     const std::uint64_t err = total_error(s);

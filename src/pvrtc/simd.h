@@ -1,0 +1,188 @@
+// simd.h — the one small SIMD wrapper the PVRTC kernels use: `vint4`, four 32-bit lanes
+// (one RGBA texel in the decoder's working precision). SSE2 on x86-64 (always available
+// there), SSE4.1 when the compiler targets it, and a portable scalar backend otherwise
+// (define TESSERA_NO_SIMD to force it). Every backend gives bit-identical results.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+#if !defined(TESSERA_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64))
+#define TESSERA_SIMD_SSE2 1
+#include <emmintrin.h>
+#if defined(__SSE4_1__)
+#define TESSERA_SIMD_SSE41 1
+#include <smmintrin.h>
+#endif
+#endif
+
+namespace tessera::simd {
+
+#if defined(TESSERA_SIMD_SSE2)
+
+struct vint4 {
+  __m128i v;
+  vint4() : v(_mm_setzero_si128()) {}
+  explicit vint4(__m128i x) : v(x) {}
+  vint4(std::int32_t a, std::int32_t b, std::int32_t c, std::int32_t d)
+      : v(_mm_setr_epi32(a, b, c, d)) {}
+  explicit vint4(std::int32_t a) : v(_mm_set1_epi32(a)) {}
+  std::int32_t lane(int i) const {
+    alignas(16) std::int32_t t[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(t), v);
+    return t[i];
+  }
+};
+inline vint4 load4(const std::int32_t* p) {
+  return vint4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+inline vint4 operator+(vint4 a, vint4 b) { return vint4(_mm_add_epi32(a.v, b.v)); }
+inline vint4 operator-(vint4 a, vint4 b) { return vint4(_mm_sub_epi32(a.v, b.v)); }
+inline vint4& operator+=(vint4& a, vint4 b) { return a = a + b; }
+/// Lane-wise product of small values (|a*b| < 2^31).
+inline vint4 operator*(vint4 a, vint4 b) {
+#if defined(TESSERA_SIMD_SSE41)
+  return vint4(_mm_mullo_epi32(a.v, b.v));
+#else
+  const __m128i even = _mm_mul_epu32(a.v, b.v);
+  const __m128i odd = _mm_mul_epu32(_mm_srli_epi64(a.v, 32), _mm_srli_epi64(b.v, 32));
+  return vint4(_mm_unpacklo_epi32(_mm_shuffle_epi32(even, _MM_SHUFFLE(0, 0, 2, 0)),
+                                  _mm_shuffle_epi32(odd, _MM_SHUFFLE(0, 0, 2, 0))));
+#endif
+}
+template <int N>
+inline vint4 sra(vint4 a) {
+  return vint4(_mm_srai_epi32(a.v, N));
+}
+/// Lanes 0-2 from `rgb`, lane 3 from `a`.
+inline vint4 select_alpha(vint4 rgb, vint4 a) {
+  const __m128i m = _mm_setr_epi32(0, 0, 0, -1);
+  return vint4(_mm_or_si128(_mm_andnot_si128(m, rgb.v), _mm_and_si128(m, a.v)));
+}
+/// Stores the four lanes (each 0..255) as bytes.
+inline void store_u8x4(vint4 a, std::uint8_t* out) {
+  const __m128i p16 = _mm_packs_epi32(a.v, a.v);
+  const __m128i p8 = _mm_packus_epi16(p16, p16);
+  const std::int32_t w = _mm_cvtsi128_si32(p8);
+  std::memcpy(out, &w, 4);
+}
+
+
+/// Eight unsigned 16-bit lanes (texels of one plane widened from bytes).
+struct vu16x8 {
+  __m128i v;
+  vu16x8() : v(_mm_setzero_si128()) {}
+  explicit vu16x8(__m128i x) : v(x) {}
+  explicit vu16x8(std::uint16_t a) : v(_mm_set1_epi16(static_cast<short>(a))) {}
+};
+/// Loads 8 bytes, zero-extended to 16-bit lanes.
+inline vu16x8 load_u8x8(const std::uint8_t* p) {
+  return vu16x8(_mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)),
+                                  _mm_setzero_si128()));
+}
+inline vu16x8 load_u16x8(const std::uint16_t* p) {
+  return vu16x8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+inline void store_u16x8(vu16x8 a, std::uint16_t* p) {
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(p), a.v);
+}
+/// Stores the low byte of each lane (lanes must be <= 255).
+inline void store_u8x8(vu16x8 a, std::uint8_t* p) {
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(p), _mm_packus_epi16(a.v, a.v));
+}
+inline vu16x8 operator+(vu16x8 a, vu16x8 b) { return vu16x8(_mm_add_epi16(a.v, b.v)); }
+inline vu16x8 operator&(vu16x8 a, vu16x8 b) { return vu16x8(_mm_and_si128(a.v, b.v)); }
+inline vu16x8 operator|(vu16x8 a, vu16x8 b) { return vu16x8(_mm_or_si128(a.v, b.v)); }
+/// High 16 bits of the 32-bit products.
+inline vu16x8 mulhi(vu16x8 a, vu16x8 b) { return vu16x8(_mm_mulhi_epu16(a.v, b.v)); }
+template <int N>
+inline vu16x8 srl(vu16x8 a) {
+  return vu16x8(_mm_srli_epi16(a.v, N));
+}
+/// All-ones lanes where a == b.
+inline vu16x8 cmpeq(vu16x8 a, vu16x8 b) { return vu16x8(_mm_cmpeq_epi16(a.v, b.v)); }
+/// Lanes of `a` where `mask` is all ones, else lanes of `b`.
+inline vu16x8 select(vu16x8 mask, vu16x8 a, vu16x8 b) {
+  return vu16x8(_mm_or_si128(_mm_and_si128(mask.v, a.v), _mm_andnot_si128(mask.v, b.v)));
+}
+
+#else  // scalar backend
+
+struct vint4 {
+  std::int32_t l[4] = {0, 0, 0, 0};
+  vint4() = default;
+  vint4(std::int32_t a, std::int32_t b, std::int32_t c, std::int32_t d) : l{a, b, c, d} {}
+  explicit vint4(std::int32_t a) : l{a, a, a, a} {}
+  std::int32_t lane(int i) const { return l[i]; }
+};
+inline vint4 load4(const std::int32_t* p) { return {p[0], p[1], p[2], p[3]}; }
+inline vint4 operator+(vint4 a, vint4 b) {
+  return {a.l[0] + b.l[0], a.l[1] + b.l[1], a.l[2] + b.l[2], a.l[3] + b.l[3]};
+}
+inline vint4 operator-(vint4 a, vint4 b) {
+  return {a.l[0] - b.l[0], a.l[1] - b.l[1], a.l[2] - b.l[2], a.l[3] - b.l[3]};
+}
+inline vint4& operator+=(vint4& a, vint4 b) { return a = a + b; }
+inline vint4 operator*(vint4 a, vint4 b) {
+  return {a.l[0] * b.l[0], a.l[1] * b.l[1], a.l[2] * b.l[2], a.l[3] * b.l[3]};
+}
+template <int N>
+inline vint4 sra(vint4 a) {
+  return {a.l[0] >> N, a.l[1] >> N, a.l[2] >> N, a.l[3] >> N};
+}
+inline vint4 select_alpha(vint4 rgb, vint4 a) { return {rgb.l[0], rgb.l[1], rgb.l[2], a.l[3]}; }
+inline void store_u8x4(vint4 a, std::uint8_t* out) {
+  for (int i = 0; i < 4; ++i) out[i] = std::uint8_t(a.l[i]);
+}
+
+
+struct vu16x8 {
+  std::uint16_t l[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  vu16x8() = default;
+  explicit vu16x8(std::uint16_t a) {
+    for (auto& x : l) x = a;
+  }
+};
+inline vu16x8 load_u8x8(const std::uint8_t* p) {
+  vu16x8 r;
+  for (int i = 0; i < 8; ++i) r.l[i] = p[i];
+  return r;
+}
+inline vu16x8 load_u16x8(const std::uint16_t* p) {
+  vu16x8 r;
+  for (int i = 0; i < 8; ++i) r.l[i] = p[i];
+  return r;
+}
+inline void store_u16x8(vu16x8 a, std::uint16_t* p) {
+  for (int i = 0; i < 8; ++i) p[i] = a.l[i];
+}
+inline void store_u8x8(vu16x8 a, std::uint8_t* p) {
+  for (int i = 0; i < 8; ++i) p[i] = std::uint8_t(a.l[i] > 255 ? 255 : a.l[i]);
+}
+#define TESSERA_SIMD_U16_BINOP(op, expr)                   \
+  inline vu16x8 op(vu16x8 a, vu16x8 b) {                   \
+    vu16x8 r;                                              \
+    for (int i = 0; i < 8; ++i) r.l[i] = std::uint16_t(expr); \
+    return r;                                              \
+  }
+TESSERA_SIMD_U16_BINOP(operator+, a.l[i] + b.l[i])
+TESSERA_SIMD_U16_BINOP(operator&, a.l[i] & b.l[i])
+TESSERA_SIMD_U16_BINOP(operator|, a.l[i] | b.l[i])
+TESSERA_SIMD_U16_BINOP(mulhi, (std::uint32_t(a.l[i]) * b.l[i]) >> 16)
+TESSERA_SIMD_U16_BINOP(cmpeq, a.l[i] == b.l[i] ? 0xffff : 0)
+#undef TESSERA_SIMD_U16_BINOP
+template <int N>
+inline vu16x8 srl(vu16x8 a) {
+  vu16x8 r;
+  for (int i = 0; i < 8; ++i) r.l[i] = std::uint16_t(a.l[i] >> N);
+  return r;
+}
+inline vu16x8 select(vu16x8 mask, vu16x8 a, vu16x8 b) {
+  vu16x8 r;
+  for (int i = 0; i < 8; ++i) r.l[i] = std::uint16_t((mask.l[i] & a.l[i]) | (~mask.l[i] & b.l[i]));
+  return r;
+}
+
+#endif
+
+}  // namespace tessera::simd
