@@ -208,10 +208,11 @@ TEST(TextureTaps, WeightsSumToOneForEveryFilterAndRandomFootprints) {
           EXPECT_GE(t.weight, 0.0f);
           EXPECT_GE(t.level, 0);
           EXPECT_LT(t.level, tex.level_count());
-          if (!t.is_border()) {
-            EXPECT_LT(t.resolved_x, tex.shape().level_width(t.level));
-            EXPECT_LT(t.resolved_y, tex.shape().level_height(t.level));
-          }
+          const int w = tex.shape().level_width(t.level);
+          const int h = tex.shape().level_height(t.level);
+          EXPECT_EQ(t.resolved_x, resolve_address(t.x, w, mode));
+          EXPECT_EQ(t.resolved_y, resolve_address(t.y, h, mode));
+          EXPECT_EQ(t.outside, t.x < 0 || t.x >= w || t.y < 0 || t.y >= h);
         }
         // The sampling driver agrees bit for bit with resolving the tap list.
         const auto a = tex.sample(s, uv, g);
@@ -324,6 +325,45 @@ TEST(TextureAddress, SamplesAtTheEdges) {
     }
   }
   EXPECT_EQ(outside, 2);
+}
+
+TEST(TextureTaps, DiscardByTapsEqualsBorderZeroNormalisation) {
+  // Toth 2013: with alpha = 1 inside and a zero border colour, rgb / a of a border-mode lookup
+  // equals dropping the outside taps and renormalising the remaining weights.
+  ImageRGBAF img = random_image(16, 8, 21);
+  for (std::size_t i = 0; i < img.pixel_count(); ++i) img.pixels[i * 4 + 3] = 1.0f;
+  const Texture tex = make_texture(img);
+  SamplerState s;
+  s.filter = TextureFilter::anisotropic;
+  s.address_u = s.address_v = AddressMode::border;
+  TapList taps;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coord(-0.1f, 1.1f);
+  int partial = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Uv uv{coord(rng), coord(rng)};
+    const UvGradients g{0.05f, 0.01f, -0.004f, 0.02f};
+    tex.taps(s, uv, g, 0, taps);
+    float inside = 0.0f;
+    double rgb[3] = {0, 0, 0};
+    for (const TexelTap& t : taps) {
+      if (t.outside) {
+        EXPECT_TRUE(t.is_border());
+        continue;
+      }
+      const auto c = tex.fetch(s, t);
+      inside += t.weight;
+      for (int k = 0; k < 3; ++k) rgb[k] += double(t.weight) * c[std::size_t(k)];
+    }
+    const auto bordered = tex.sample(s, uv, g);
+    EXPECT_NEAR(bordered[3], inside, 1e-5f);
+    if (inside < 1e-3f) continue;
+    if (inside < 0.999f) ++partial;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(bordered[std::size_t(k)] / bordered[3], rgb[k] / inside, 1e-4);
+    }
+  }
+  EXPECT_GT(partial, 20);  // the test did exercise footprints that straddle the edge
 }
 
 TEST(TextureAddress, HugeAndNonFiniteCoordinatesAreSafe) {

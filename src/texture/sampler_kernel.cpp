@@ -149,8 +149,7 @@ void generate_taps(const SamplerState& sampler, const TextureShape& shape,
   const float last = float(shape.levels - 1);
   if (!(fp.lod >= 0.0f)) fp.lod = 0.0f;
   if (fp.lod > last) fp.lod = last;
-  texture_detail::for_each_tap(sampler, shape, fp, layer,
-                               [&out](const TexelTap& tap) { out.taps[out.count++] = tap; });
+  texture_detail::for_each_tap(sampler, shape, fp, layer, texture_detail::TapListSink{out});
 }
 
 }  // namespace tessera

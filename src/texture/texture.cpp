@@ -94,24 +94,48 @@ Result<Texture> build_array(const std::vector<Image>& layers, const TextureOptio
 }
 
 /// Accumulates tap values as the kernel produces them, in the same order and arithmetic as
-/// `Texture::resolve`, so both paths agree bit for bit.
+/// `Texture::resolve` (acc += weight * value per tap, weight = wx * wy), so both paths agree
+/// bit for bit. Quads read their 2x2 texels through two row pointers.
 struct AccumulateSink {
   const float* texels;
   const std::size_t* level_offsets;  // offsets of the lookup's layer, indexed by level
   const TextureShape* shape;
   const float* border;
-  float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  texture_detail::Accum4 acc;
 
-  void operator()(const TexelTap& tap) {
+  void add(float w, const float* p) { acc.add(w, p); }
+
+  void point(const TexelTap& tap) {
     const float* p = border;
     if (!tap.is_border()) {
-      const std::size_t row = std::size_t(tap.resolved_y) * std::size_t(shape->level_width(tap.level));
-      p = texels + level_offsets[tap.level] + (row + std::size_t(tap.resolved_x)) * 4;
+      const std::size_t stride = std::size_t(shape->level_width(tap.level)) * 4;
+      p = texels + level_offsets[tap.level] + std::size_t(tap.resolved_y) * stride +
+          std::size_t(tap.resolved_x) * 4;
     }
-    acc[0] += tap.weight * p[0];
-    acc[1] += tap.weight * p[1];
-    acc[2] += tap.weight * p[2];
-    acc[3] += tap.weight * p[3];
+    add(tap.weight, p);
+  }
+
+  void quad(const texture_detail::QuadTaps& q) {
+    const float* base = texels + level_offsets[q.level];
+    const std::size_t stride = std::size_t(shape->level_width(q.level)) * 4;
+    const std::ptrdiff_t c0 = std::ptrdiff_t(q.rx[0]) * 4;
+    const std::ptrdiff_t c1 = std::ptrdiff_t(q.rx[1]) * 4;
+    if ((q.rx[0] | q.rx[1] | q.ry[0] | q.ry[1]) >= 0) {  // no border reads (the common case)
+      const float* r0 = base + std::size_t(q.ry[0]) * stride;
+      const float* r1 = base + std::size_t(q.ry[1]) * stride;
+      add(q.wx[0] * q.wy[0], r0 + c0);
+      add(q.wx[1] * q.wy[0], r0 + c1);
+      add(q.wx[0] * q.wy[1], r1 + c0);
+      add(q.wx[1] * q.wy[1], r1 + c1);
+      return;
+    }
+    for (int j = 0; j < 2; ++j) {
+      const float* row = base + std::size_t(q.ry[j] < 0 ? 0 : q.ry[j]) * stride;
+      for (int k = 0; k < 2; ++k) {
+        const bool is_border = q.ry[j] < 0 || q.rx[k] < 0;
+        add(q.wx[k] * q.wy[j], is_border ? border : row + (k ? c1 : c0));
+      }
+    }
   }
 };
 
@@ -198,9 +222,9 @@ std::array<float, 4> Texture::sample_footprint(const SamplerState& sampler,
   if (!(fp.lod >= 0.0f)) fp.lod = 0.0f;
   if (fp.lod > last) fp.lod = last;
   AccumulateSink sink{texels_.data(), offsets_.data() + std::size_t(layer) * shape_.levels,
-                      &shape_, sampler.border_color.data()};
+                      &shape_, sampler.border_color.data(), {}};
   texture_detail::for_each_tap(sampler, shape_, fp, layer, sink);
-  return {sink.acc[0], sink.acc[1], sink.acc[2], sink.acc[3]};
+  return sink.acc.value();
 }
 
 std::array<float, 4> Texture::sample(const SamplerState& sampler, Uv uv,
@@ -235,12 +259,12 @@ std::array<float, 4> Texture::fetch(const SamplerState& sampler, const TexelTap&
 }
 
 std::array<float, 4> Texture::resolve(const SamplerState& sampler, const TapList& taps) const {
-  float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  texture_detail::Accum4 acc;
   for (const TexelTap& tap : taps) {
     const std::array<float, 4> c = fetch(sampler, tap);
-    for (int i = 0; i < 4; ++i) acc[i] += tap.weight * c[std::size_t(i)];
+    acc.add(tap.weight, c.data());
   }
-  return {acc[0], acc[1], acc[2], acc[3]};
+  return acc.value();
 }
 
 }  // namespace tessera
