@@ -73,7 +73,8 @@ std::vector<Lookup> scattered_lookups(float ratio) {
 void run_sample(benchmark::State& state, TextureFilter filter, int max_aniso, float ratio,
                 bool scattered = false) {
   const tessera::Texture& tex = bench_texture();
-  const std::vector<Lookup> lookups = scattered ? scattered_lookups(ratio) : coherent_lookups(ratio);
+  const std::vector<Lookup> lookups =
+      scattered ? scattered_lookups(ratio) : coherent_lookups(ratio);
   SamplerState sampler;
   sampler.filter = filter;
   sampler.max_aniso = max_aniso;

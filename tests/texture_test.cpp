@@ -1,5 +1,7 @@
 // Texture system: analytic LOD and anisotropy, tap weights, address modes, bilinear/trilinear
 // exactness, NPOT box mip chains, gamma-correct chains, texture arrays, tap/sample agreement.
+#include "tessera/texture.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +12,6 @@
 
 #include "tessera/core.h"
 #include "tessera/procedural.h"
-#include "tessera/texture.h"
 
 namespace tessera {
 namespace {
@@ -66,8 +67,7 @@ double channel_mean(const ImageRGBAF& img, int c) {
 
 /// Gradients (normalised units) of a footprint given in texels of level 0.
 UvGradients texel_grad(const TextureShape& s, float dxu, float dxv, float dyu, float dyv) {
-  return {dxu / float(s.width), dxv / float(s.height), dyu / float(s.width),
-          dyv / float(s.height)};
+  return {dxu / float(s.width), dxv / float(s.height), dyu / float(s.width), dyv / float(s.height)};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -153,7 +153,7 @@ TEST(TextureAniso, ProbeCountAndLod) {
   EXPECT_EQ(anisotropic_footprint({8, 0, 0, 1}, 4).probes, 4);
   EXPECT_NEAR(anisotropic_footprint({8, 0, 0, 1}, 4).lod, 1.0f, 1e-6f);
   EXPECT_EQ(anisotropic_footprint({3, 0, 0, 3}, 16).probes, 1);
-  EXPECT_EQ(anisotropic_footprint({8, 0, 0, 1}, 99).probes, 8);  // clamped to 16, ratio 8
+  EXPECT_EQ(anisotropic_footprint({8, 0, 0, 1}, 99).probes, 8);   // clamped to 16, ratio 8
   EXPECT_EQ(anisotropic_footprint({8, 0, 0, 0}, 16).probes, 16);  // degenerate minor axis
   EXPECT_EQ(anisotropic_footprint({0, 0, 0, 0}, 16).probes, 1);
 }
@@ -486,8 +486,8 @@ TEST(TextureMips, ConstantTextureStaysConstantIncludingNpot) {
 }
 
 TEST(TextureMips, BoxDownsamplePreservesTheMean) {
-  for (auto [w, h] : {std::pair{5, 3}, std::pair{7, 9}, std::pair{3, 3}, std::pair{16, 6},
-                      std::pair{11, 1}}) {
+  for (auto [w, h] :
+       {std::pair{5, 3}, std::pair{7, 9}, std::pair{3, 3}, std::pair{16, 6}, std::pair{11, 1}}) {
     const ImageRGBAF img = random_image(w, h, std::uint32_t(w * 100 + h));
     const ImageRGBAF half = downsample_box(img);
     for (int c = 0; c < 4; ++c) {

@@ -1,9 +1,9 @@
 // Sampler kernel: gradients, LOD selection (GL / EXT_texture_filter_anisotropic), address modes
 // and tap lists. Pure functions; no texture data is touched here.
+#include "texture/sampler_kernel.h"
+
 #include <cmath>
 #include <limits>
-
-#include "texture/sampler_kernel.h"
 
 namespace tessera {
 

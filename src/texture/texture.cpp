@@ -1,21 +1,126 @@
-// Texture storage (all levels of all layers in one float buffer) and the sampling driver that
-// resolves the kernel's taps to texels.
+// Texture storage (all levels of all layers in one float buffer), float mip chains for any size
+// (exact area box downsampling, optionally alpha-weighted; GL level sizes max(1, floor(s / 2))),
+// and the sampling driver that resolves the kernel's taps to texels.
+#include "tessera/texture.h"
+
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <string>
 #include <utility>
+#include <vector>
 
-#include "tessera/texture.h"
 #include "texture/sampler_kernel.h"
 
 namespace tessera {
+
+// ---------------------------------------------------------------------------------------------
+// Mip chains
+// ---------------------------------------------------------------------------------------------
+
+namespace {
+
+/// For one axis, the source texels each destination texel covers and their weights: destination
+/// texel d covers the source interval [d * s, (d + 1) * s) with s = src / dst, and source texel
+/// i weighs the overlap of [i, i + 1) with that interval / s. Weights of one destination texel sum
+/// to 1, and every source texel's weights sum to 1 / s over all destinations, so means are
+/// preserved.
+struct AxisFilter {
+  std::vector<int> first;             ///< First source texel of destination d.
+  std::vector<int> count;             ///< Number of source texels of destination d.
+  std::vector<double> weight;         ///< kMaxSpan weights per destination.
+  static constexpr int kMaxSpan = 4;  // s <= 3 (3 -> 1), so at most 4 texels are touched.
+
+  AxisFilter(int src, int dst) : first(dst), count(dst), weight(std::size_t(dst) * kMaxSpan) {
+    const double s = double(src) / double(dst);
+    for (int d = 0; d < dst; ++d) {
+      // d * src is an exact integer, so interval ends that fall on texel edges stay exact.
+      const double lo = double(d) * src / dst;
+      const double hi = double(d + 1) * src / dst;
+      int i0 = int(std::floor(lo));
+      int i1 = int(std::ceil(hi)) - 1;
+      if (i1 > src - 1) i1 = src - 1;
+      // Drop slivers that come only from rounding (overlap below 1e-12 texels).
+      while (i0 < i1 && double(i0 + 1) - lo < 1e-12) ++i0;
+      while (i1 > i0 && hi - double(i1) < 1e-12) --i1;
+      first[d] = i0;
+      count[d] = i1 - i0 + 1;
+      for (int k = 0; k < count[d]; ++k) {
+        const double a = std::max(lo, double(i0 + k));
+        const double b = std::min(hi, double(i0 + k + 1));
+        weight[std::size_t(d) * kMaxSpan + k] = (b - a) / s;
+      }
+    }
+  }
+};
+
+}  // namespace
+
+ImageRGBAF downsample_box(const ImageRGBAF& image, bool alpha_weighted, int threads) {
+  if (image.empty()) return {};
+  const int dw = TextureShape::level_size(image.width, 1);
+  const int dh = TextureShape::level_size(image.height, 1);
+  const AxisFilter fx(image.width, dw);
+  const AxisFilter fy(image.height, dh);
+  ImageRGBAF out(dw, dh);
+  parallel_for(
+      0, dh, 8,
+      [&](std::int64_t y_begin, std::int64_t y_end) {
+        for (std::int64_t yy = y_begin; yy < y_end; ++yy) {
+          const int y = int(yy);
+          for (int x = 0; x < dw; ++x) {
+            double plain[3] = {0, 0, 0};  // sum w * c
+            double pre[3] = {0, 0, 0};    // sum w * a * c
+            double alpha = 0;             // sum w * a
+            for (int j = 0; j < fy.count[y]; ++j) {
+              const double wy = fy.weight[std::size_t(y) * AxisFilter::kMaxSpan + j];
+              const int sy = fy.first[y] + j;
+              for (int i = 0; i < fx.count[x]; ++i) {
+                const double w = wy * fx.weight[std::size_t(x) * AxisFilter::kMaxSpan + i];
+                const float* s = image.at(fx.first[x] + i, sy);
+                for (int c = 0; c < 3; ++c) {
+                  plain[c] += w * s[c];
+                  pre[c] += w * s[3] * s[c];
+                }
+                alpha += w * s[3];
+              }
+            }
+            float* d = out.at(x, y);
+            const bool use_pre = alpha_weighted && alpha > 0.0;
+            for (int c = 0; c < 3; ++c) d[c] = float(use_pre ? pre[c] / alpha : plain[c]);
+            d[3] = float(alpha);
+          }
+        }
+      },
+      threads);
+  return out;
+}
+
+std::vector<ImageRGBAF> build_mip_chain(const ImageRGBAF& image, bool alpha_weighted,
+                                        int max_levels, int threads) {
+  std::vector<ImageRGBAF> chain;
+  if (image.empty()) return chain;
+  int levels = TextureShape::full_level_count(image.width, image.height);
+  if (max_levels > 0 && max_levels < levels) levels = max_levels;
+  chain.reserve(std::size_t(levels));
+  chain.push_back(image);
+  for (int l = 1; l < levels; ++l) {
+    chain.push_back(downsample_box(chain.back(), alpha_weighted, threads));
+  }
+  return chain;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Storage
+// ---------------------------------------------------------------------------------------------
 
 /// Assembles per-layer chains into a Texture's flat storage (friend of Texture).
 struct TextureBuilder {
   static Texture assemble(const std::vector<std::vector<ImageRGBAF>>& chains) {
     Texture tex;
     const ImageRGBAF& base = chains.front().front();
-    tex.shape_ = TextureShape{base.width, base.height, int(chains.front().size()),
-                              int(chains.size())};
+    tex.shape_ =
+        TextureShape{base.width, base.height, int(chains.front().size()), int(chains.size())};
     std::size_t total = 0;
     for (const auto& chain : chains)
       for (const ImageRGBAF& level : chain) total += level.pixels.size();
@@ -43,10 +148,10 @@ Status check_layers(int width, int height, std::size_t layers, const char* what)
   Status s = check_image_size(width, height, what);
   if (!s.ok()) return s;
   if (std::uint64_t(width) * std::uint64_t(height) * layers > kMaxImagePixels) {
-    return Status::error(ErrorCode::too_large,
-                         std::string(what) + ": " + std::to_string(layers) + " layers of " +
-                             std::to_string(width) + "x" + std::to_string(height) +
-                             " exceed the texel limit");
+    return Status::error(ErrorCode::too_large, std::string(what) + ": " + std::to_string(layers) +
+                                                   " layers of " + std::to_string(width) + "x" +
+                                                   std::to_string(height) +
+                                                   " exceed the texel limit");
   }
   return Status::success();
 }
@@ -70,7 +175,8 @@ ImageRGBAF decode_rgba8(const ImageRGBA8& image, bool srgb, int threads) {
 template <class Image, class Decode>
 Result<Texture> build_array(const std::vector<Image>& layers, const TextureOptions& options,
                             const char* what, Decode decode) {
-  if (layers.empty()) return Status::error(ErrorCode::invalid_argument, std::string(what) + ": no layers");
+  if (layers.empty())
+    return Status::error(ErrorCode::invalid_argument, std::string(what) + ": no layers");
   const int w = layers.front().width;
   const int h = layers.front().height;
   if (Status s = check_layers(w, h, layers.size(), what); !s.ok()) return s;
@@ -179,21 +285,21 @@ Result<Texture> Texture::from_float_levels(std::vector<ImageRGBAF> levels) {
   if (Status s = check_layers(w, h, 1, "texture"); !s.ok()) return s;
   const int full = TextureShape::full_level_count(w, h);
   if (int(levels.size()) > full) {
-    return Status::error(ErrorCode::invalid_argument,
-                         "texture: " + std::to_string(levels.size()) + " levels given, a " +
-                             std::to_string(w) + "x" + std::to_string(h) + " chain has " +
-                             std::to_string(full));
+    return Status::error(ErrorCode::invalid_argument, "texture: " + std::to_string(levels.size()) +
+                                                          " levels given, a " + std::to_string(w) +
+                                                          "x" + std::to_string(h) + " chain has " +
+                                                          std::to_string(full));
   }
   for (std::size_t l = 0; l < levels.size(); ++l) {
     const int ew = TextureShape::level_size(w, int(l));
     const int eh = TextureShape::level_size(h, int(l));
     if (levels[l].width != ew || levels[l].height != eh ||
         levels[l].pixels.size() != levels[l].pixel_count() * 4) {
-      return Status::error(ErrorCode::size_mismatch,
-                           "texture: level " + std::to_string(l) + " is " +
-                               std::to_string(levels[l].width) + "x" +
-                               std::to_string(levels[l].height) + ", expected " +
-                               std::to_string(ew) + "x" + std::to_string(eh));
+      return Status::error(ErrorCode::size_mismatch, "texture: level " + std::to_string(l) +
+                                                         " is " + std::to_string(levels[l].width) +
+                                                         "x" + std::to_string(levels[l].height) +
+                                                         ", expected " + std::to_string(ew) + "x" +
+                                                         std::to_string(eh));
     }
   }
   std::vector<std::vector<ImageRGBAF>> chains;
@@ -221,8 +327,11 @@ std::array<float, 4> Texture::sample_footprint(const SamplerState& sampler,
   const float last = float(shape_.levels - 1);
   if (!(fp.lod >= 0.0f)) fp.lod = 0.0f;
   if (fp.lod > last) fp.lod = last;
-  AccumulateSink sink{texels_.data(), offsets_.data() + std::size_t(layer) * shape_.levels,
-                      &shape_, sampler.border_color.data(), {}};
+  AccumulateSink sink{texels_.data(),
+                      offsets_.data() + std::size_t(layer) * shape_.levels,
+                      &shape_,
+                      sampler.border_color.data(),
+                      {}};
   texture_detail::for_each_tap(sampler, shape_, fp, layer, sink);
   return sink.acc.value();
 }
