@@ -83,6 +83,16 @@ def cpu_model():
     return platform.processor() or "unknown"
 
 
+def source_commit(binary):
+    """Short git commit of the tree the binary was built in (None outside a git checkout)."""
+    try:
+        p = subprocess.run(["git", "-C", os.path.dirname(os.path.abspath(binary)), "rev-parse",
+                            "--short", "HEAD"], capture_output=True, text=True)
+        return p.stdout.strip() if p.returncode == 0 else None
+    except OSError:
+        return None
+
+
 def fmt(v, spec=".2f"):
     if v is None:
         return "-"
@@ -199,6 +209,9 @@ def write_report(args, results, images, nthreads, gbench):
         f"- Machine: {cpu_model()}, {nthreads} hardware threads (`nproc`), {platform.system()} "
         f"{platform.release()}",
         f"- Command: `{cmd}` (from the repository root)",
+        f"- tessera binary: `{args.tessera}`"
+        + (f", built from commit {source_commit(args.tessera)}" if source_commit(args.tessera) else "")
+        + " (Release)",
         f"- Runs per configuration: {args.runs} (median whole-process wall time: PNG read, "
         "encode, file write)",
         f"- Images: {len(images)} power-of-two PNGs from `{os.path.relpath(args.images, ROOT)}` "
