@@ -225,6 +225,38 @@ TEST(Errors, AbsurdSizeRefusedBeforeAllocating) {
   EXPECT_FALSE(t.ok());
 }
 
+TEST(Errors, LyingHeadersAreRefusedBeforeStbAllocates) {
+  // The fuzzer's finding: 23 bytes claiming a 15359 x 16392 24-bit TGA (251.8 Mpx, under the
+  // size limit). stb_image would allocate ~1.7 GiB before noticing the missing data.
+  std::vector<std::uint8_t> tga(23, 0);
+  tga[2] = 2;
+  tga[12] = 0xFF;
+  tga[13] = 0x3B;  // 15359
+  tga[14] = 0x08;
+  tga[15] = 0x40;  // 16392
+  tga[16] = 24;
+  Result<ImageRGBA8> t = decode_image(tga, "lying.tga");
+  ASSERT_FALSE(t.ok());
+  EXPECT_NE(t.status().message.find("lying.tga: truncated image"), std::string::npos)
+      << t.status().message;
+  // The same for RLE TGA, BMP and JPEG headers: valid small files with enlarged dimensions.
+  const ImageRGBA8 img = make_procedural(Procedural::gradient, 16, 16);
+  std::vector<std::uint8_t> jpg;
+  ASSERT_TRUE(stbi_write_jpg_to_func(append, &jpg, 16, 16, 4, img.pixels.data(), 90));
+  for (std::size_t i = 2; i + 8 < jpg.size(); ++i) {
+    if (jpg[i] == 0xFF && jpg[i + 1] == 0xC0) {  // SOF0: height at +5, width at +7 (big-endian)
+      jpg[i + 5] = 0x3F;
+      jpg[i + 6] = 0xFF;
+      jpg[i + 7] = 0x3F;
+      jpg[i + 8] = 0xFF;
+      break;
+    }
+  }
+  Result<ImageRGBA8> j = decode_image(jpg, "lying.jpg");
+  ASSERT_FALSE(j.ok());
+  EXPECT_NE(j.status().message.find("truncated image"), std::string::npos) << j.status().message;
+}
+
 TEST(AtomicWrite, ReplacesOnlyOnSuccess) {
   const fs::path dir = test::temp_dir("atomic");
   const std::string path = (dir / "out.png").string();

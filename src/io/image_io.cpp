@@ -91,6 +91,48 @@ bool has_prefix(std::span<const std::uint8_t> b, std::initializer_list<std::uint
   return std::equal(magic.begin(), magic.end(), b.begin());
 }
 
+std::uint32_t le16(std::span<const std::uint8_t> b, std::size_t o) {
+  return std::uint32_t(b[o]) | (std::uint32_t(b[o + 1]) << 8);
+}
+std::uint32_t le32(std::span<const std::uint8_t> b, std::size_t o) {
+  return le16(b, o) | (le16(b, o + 2) << 16);
+}
+
+/// stb_image allocates the whole image before it finds out that the data is missing, so a
+/// tiny file with a lying header costs a gigabyte. Refuse files too short to hold the pixels
+/// their header announces: exact for uncompressed TGA/BMP, a lower bound for RLE (at most 128
+/// or 255 pixels per packet) and JPEG (at least 2 bits per 8x8 block, halved for slack).
+Status check_payload(std::span<const std::uint8_t> b, ImageFormat format, std::uint64_t w,
+                     std::uint64_t h, const std::string& name) {
+  const std::uint64_t px = w * h;
+  std::uint64_t need = 0, have = b.size();
+  if (format == ImageFormat::tga && b.size() >= 18) {
+    const std::uint64_t bytes_pp = (std::uint64_t(b[16]) + 7) / 8;
+    const std::uint64_t cmap = std::uint64_t(le16(b, 5)) * ((std::uint64_t(b[7]) + 7) / 8);
+    const std::uint64_t offset = 18 + std::uint64_t(b[0]) + (b[1] ? cmap : 0);
+    have = b.size() > offset ? b.size() - offset : 0;
+    need = b[2] >= 9 ? (px + 127) / 128 * (1 + bytes_pp) : px * bytes_pp;
+  } else if (format == ImageFormat::bmp && b.size() >= 34) {
+    const std::uint64_t offset = le32(b, 10), bpp = le16(b, 28), compression = le32(b, 30);
+    have = b.size() > offset ? b.size() - offset : 0;
+    if (compression == 0 || compression == 3) {
+      need = (w * bpp + 31) / 32 * 4 * h;
+    } else if (compression == 1 || compression == 2) {
+      need = (px + 254) / 255 * 2;
+    }
+  } else if (format == ImageFormat::jpeg) {
+    need = px / 512;
+  }
+  if (have < need) {
+    return Status::error(ErrorCode::corrupt_data,
+                         name + ": truncated image: header says " + std::to_string(w) + "x" +
+                             std::to_string(h) + " but only " + std::to_string(have) +
+                             " bytes of pixel data follow (at least " + std::to_string(need) +
+                             " needed)");
+  }
+  return Status::success();
+}
+
 Result<ImageRGBA8> decode_stb(std::span<const std::uint8_t> bytes, const std::string& name,
                               ImageFormat format) {
   if (bytes.size() > std::size_t(std::numeric_limits<int>::max())) {
@@ -102,6 +144,9 @@ Result<ImageRGBA8> decode_stb(std::span<const std::uint8_t> bytes, const std::st
                          name + ": cannot read image header: " + stbi_failure_reason());
   }
   if (Status s = check_image_size(w, h, name); !s.ok()) return s;
+  if (Status s = check_payload(bytes, format, std::uint64_t(w), std::uint64_t(h), name); !s.ok()) {
+    return s;
+  }
   std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> data(
       stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp, 4), &stbi_image_free);
   if (!data) {
