@@ -166,8 +166,9 @@ struct Footprint {
 
 /// Footprint of a lookup at `uv` with explicit gradients (normalised units), the `textureGrad`
 /// analogue: LOD from the gradients (isotropic or anisotropic per `sampler.filter`), plus
-/// `lod_bias`, clamped to [min_lod, max_lod] and then to [0, levels - 1]. Non-finite input
-/// yields a finite footprint (NaN LOD counts as 0).
+/// `lod_bias`, clamped to [min_lod, max_lod] and then to [0, levels - 1]. Non-finite gradients
+/// still give a finite LOD in range (NaN counts as 0); non-finite coordinates are passed through
+/// and clamped to +-2^24 texels when taps are generated.
 Footprint compute_footprint(const SamplerState& sampler, const TextureShape& shape, Uv uv,
                             const UvGradients& gradients);
 
