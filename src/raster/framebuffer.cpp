@@ -63,7 +63,15 @@ void FrameBuffer::clear_rect(int x0, int y0, int x1, int y1, const float* value,
   for (int y = y0; y < y1; ++y) {
     const std::size_t first = sample_index(x0, y, 0);
     float* d = &data_[first * std::size_t(nc)];
-    for (std::size_t i = 0; i < run; ++i, d += nc) std::copy(pattern, pattern + nc, d);
+    if (nc == 4) {
+      for (std::size_t i = 0; i < run; ++i, d += 4) {
+        d[0] = pattern[0], d[1] = pattern[1], d[2] = pattern[2], d[3] = pattern[3];
+      }
+    } else {
+      for (std::size_t i = 0; i < run; ++i, d += nc) {
+        for (int c = 0; c < nc; ++c) d[c] = pattern[c];
+      }
+    }
     std::fill_n(&depth_[first], run, depth);
     if (!ids_.empty()) std::fill_n(&ids_[first], run, kNoPrimitive);
     if (!counts_.empty()) std::fill_n(&counts_[first], run, 0u);

@@ -35,7 +35,8 @@ struct TriSetup {
   float l1[3];                  ///< lambda1 / w1 plane (perspective barycentric numerator).
   float l2[3];                  ///< lambda2 / w2 plane.
   std::uint32_t primitive_id;
-  std::uint32_t varying_offset;  ///< Into Chunk::varyings: v0[n], v1-v0[n], v2-v0[n].
+  std::uint32_t varying_offset;  ///< Into Chunk::varyings: v0, v1-v0, v2-v0, each padded
+                                 ///< to a multiple of 4 floats with zeros.
   std::uint32_t draw;
   bool front_facing;
 };

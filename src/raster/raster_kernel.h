@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "raster/raster_internal.h"
 
@@ -114,38 +115,50 @@ inline float eval_plane(const float p[3], float dx, float dy) {
   return p[0] + p[1] * dx + p[2] * dy;
 }
 
+/// Varying count rounded up to a multiple of 4: the stored and interpolated width, so the
+/// fixed-size loops below vectorize; the padding holds zeros.
+inline constexpr int padded_varyings(int n) { return (n + 3) & ~3; }
+
+/// Four floats in one SSE/NEON register (GCC/Clang vector extension); the loops below run on
+/// N4 / 4 of them. Loads and stores go through memcpy, so no alignment is assumed.
+using f32x4 = float __attribute__((vector_size(16)));
+inline f32x4 load4(const float* p) {
+  f32x4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void store4(float* p, f32x4 v) { std::memcpy(p, &v, sizeof v); }
+
 /// Perspective-correct varyings at offsets (dx, dy) from the triangle's anchor:
 /// v = v0 + b1 (v1 - v0) + b2 (v2 - v0) with b_i = (lambda_i / w_i) / (1 / w).
-/// `base` is the triangle's varying block (v0, v1 - v0, v2 - v0). Returns 1/w.
-inline float interpolate(const TriSetup& t, const float* base, int n, float dx, float dy,
-                         float* out) {
+/// `base` is the triangle's varying block (v0, v1 - v0, v2 - v0, each N4 floats). Returns 1/w.
+template <int N4>
+inline float interpolate(const TriSetup& t, const float* base, float dx, float dy, float* out) {
   const float iw = eval_plane(t.inv_w, dx, dy);
   const float rcp = 1.0f / iw;
   const float b1 = eval_plane(t.l1, dx, dy) * rcp;
   const float b2 = eval_plane(t.l2, dx, dy) * rcp;
-  const float* v0 = base;
-  const float* d1 = base + n;
-  const float* d2 = base + 2 * n;
-  for (int i = 0; i < n; ++i) out[i] = v0[i] + b1 * d1[i] + b2 * d2[i];
+  for (int i = 0; i < N4; i += 4) {
+    store4(out + i, load4(base + i) + b1 * load4(base + N4 + i) + b2 * load4(base + 2 * N4 + i));
+  }
   return iw;
 }
 
-/// Quad derivatives of `n` values given at the four lanes (lane = 2 * row + column).
-/// Fine: each lane differences along its own row / column. Coarse: the top row and the left
-/// column for all lanes.
-inline void quad_derivatives(const float* const v[4], int n, bool fine, float* ddx[4],
-                             float* ddy[4]) {
-  for (int lane = 0; lane < 4; ++lane) {
-    const int row = fine ? (lane >> 1) : 0;
-    const int col = fine ? (lane & 1) : 0;
-    const float* l = v[2 * row];
-    const float* r = v[2 * row + 1];
-    const float* t = v[col];
-    const float* b = v[2 + col];
-    for (int i = 0; i < n; ++i) {
-      ddx[lane][i] = r[i] - l[i];
-      ddy[lane][i] = b[i] - t[i];
-    }
+/// Quad derivatives for one lane (lane = 2 * row + column) from the N4 values of all four
+/// lanes, `v[lane][i]`. Fine: the lane's own row / column. Coarse: the top row and the left
+/// column for every lane.
+template <int N4>
+inline void quad_derivatives(const float (*v)[kMaxVaryings], int lane, bool fine, float* ddx,
+                             float* ddy) {
+  const int row = fine ? (lane >> 1) : 0;
+  const int col = fine ? (lane & 1) : 0;
+  const float* l = v[2 * row];
+  const float* r = v[2 * row + 1];
+  const float* t = v[col];
+  const float* b = v[2 + col];
+  for (int i = 0; i < N4; i += 4) {
+    store4(ddx + i, load4(r + i) - load4(l + i));
+    store4(ddy + i, load4(b + i) - load4(t + i));
   }
 }
 

@@ -99,16 +99,17 @@ bool setup_triangle(const float* const p[3], const float* const v[3], int nv,
   t.front_facing = front;
   t.varying_offset = std::uint32_t(chunk.varyings.size());
   if (nv > 0) {
+    const int n4 = padded_varyings(nv);
     const std::size_t o = chunk.varyings.size();
-    chunk.varyings.resize(o + 3 * std::size_t(nv));
+    chunk.varyings.resize(o + 3 * std::size_t(n4), 0.0f);
     float* out = &chunk.varyings[o];
     const float* v0 = v[i0];
     const float* v1 = v[i1];
     const float* v2 = v[i2];
     for (int k = 0; k < nv; ++k) {
       out[k] = v0[k];
-      out[nv + k] = v1[k] - v0[k];
-      out[2 * nv + k] = v2[k] - v0[k];
+      out[n4 + k] = v1[k] - v0[k];
+      out[2 * n4 + k] = v2[k] - v0[k];
     }
   }
   chunk.tris.push_back(t);

@@ -4,6 +4,7 @@
 // A tile is owned by one task and its triangles are visited in submission order, so the
 // result does not depend on how tiles are spread over threads.
 #include <algorithm>
+#include <bit>
 #include <cstring>
 
 #include "raster/raster_internal.h"
@@ -53,7 +54,9 @@ class TileRasterizer {
   void triangle(const TriSetup& t, const float* varyings);
 
  private:
-  void quad(int qx, int qy, std::uint32_t mask[4]);
+  using QuadFn = void (TileRasterizer::*)(int, int, std::uint32_t*);
+  template <int N4>
+  void quad(int qx, int qy, std::uint32_t* mask);
 
   const FrameContext& ctx_;
   FrameBuffer& fb_;
@@ -71,16 +74,18 @@ class TileRasterizer {
   const TriSetup* t_ = nullptr;
   const DrawCall* draw_ = nullptr;
   const float* tv_ = nullptr;  // varying block
+  QuadFn quad_fn_ = nullptr;
+  ShadeInput in_;              // fields shared by the triangle's invocations
   std::int64_t off_[3][kMaxSamples];
   float dz_[kMaxSamples];
 
   // Quad scratch.
   float zs_[4][kMaxSamples];
-  float v_[4][kMaxVaryings];
-  float ddx_[4][kMaxVaryings];
-  float ddy_[4][kMaxVaryings];
-  float vc_[kMaxVaryings];
-  float out_[4][kMaxChannels];
+  alignas(16) float v_[4][kMaxVaryings];
+  alignas(16) float ddx_[4][kMaxVaryings];
+  alignas(16) float ddy_[4][kMaxVaryings];
+  alignas(16) float vc_[kMaxVaryings];
+  alignas(16) float out_[4][kMaxChannels];
 };
 
 void TileRasterizer::triangle(const TriSetup& t, const float* varyings) {
@@ -92,6 +97,18 @@ void TileRasterizer::triangle(const TriSetup& t, const float* varyings) {
   t_ = &t;
   draw_ = &ctx_.draws[t.draw];
   tv_ = varyings;
+  switch (padded_varyings(draw_->varying_count)) {
+    case 0: quad_fn_ = &TileRasterizer::quad<0>; break;
+    case 4: quad_fn_ = &TileRasterizer::quad<4>; break;
+    case 8: quad_fn_ = &TileRasterizer::quad<8>; break;
+    case 12: quad_fn_ = &TileRasterizer::quad<12>; break;
+    default: quad_fn_ = &TileRasterizer::quad<16>; break;
+  }
+  in_ = ShadeInput{};
+  in_.varying_count = draw_->varying_count;
+  in_.quad_varyings = {v_[0], v_[1], v_[2], v_[3]};
+  in_.primitive_id = t.primitive_id;
+  in_.front_facing = t.front_facing;
   const int ns = st_.count;
   for (int e = 0; e < 3; ++e) {
     for (int s = 0; s < ns; ++s) off_[e][s] = t.a[e] * st_.fx[s] + t.b[e] * st_.fy[s];
@@ -145,14 +162,15 @@ void TileRasterizer::triangle(const TriSetup& t, const float* varyings) {
             mask[3] = coverage_mask(e3, off, ns);
             if (!(mask[0] | mask[1] | mask[2] | mask[3])) continue;
           }
-          quad(qx, qy, mask);
+          (this->*quad_fn_)(qx, qy, mask);
         }
       }
     }
   }
 }
 
-void TileRasterizer::quad(int qx, int qy, std::uint32_t mask[4]) {
+template <int N4>
+void TileRasterizer::quad(int qx, int qy, std::uint32_t* mask) {
   // Lanes beyond the grid (odd sizes) are helpers with no coverage.
   if (qx + 1 >= gw_) mask[1] = mask[3] = 0;
   if (qy + 1 >= gh_) mask[2] = mask[3] = 0;
@@ -181,6 +199,12 @@ void TileRasterizer::quad(int qx, int qy, std::uint32_t mask[4]) {
     if (!mask[lane]) continue;
     const float zc = eval_plane(t.z, cdx + float(lane & 1), cdy + float(lane >> 1));
     const float* stored = depth_ + base[lane];
+    if (ns == 1) {
+      const float z = std::clamp(zc, 0.0f, 1.0f);
+      zs_[lane][0] = z;
+      visible[lane] = std::uint32_t(depth_passes(draw.depth_test, z, stored[0]));
+      continue;
+    }
     std::uint32_t vis = 0;
     for (int s = 0; s < ns; ++s) {
       if (!(mask[lane] >> s & 1u)) continue;
@@ -194,19 +218,14 @@ void TileRasterizer::quad(int qx, int qy, std::uint32_t mask[4]) {
   ++stats_.quads;
 
   // Perspective-correct varyings at the four pixel centres, then quad derivatives.
-  const int n = draw.varying_count;
   float iw[4];
   for (int lane = 0; lane < 4; ++lane) {
-    iw[lane] = interpolate(t, tv_, n, cdx + float(lane & 1), cdy + float(lane >> 1), v_[lane]);
-  }
-  if (n > 0) {
-    const float* vv[4] = {v_[0], v_[1], v_[2], v_[3]};
-    float* dx[4] = {ddx_[0], ddx_[1], ddx_[2], ddx_[3]};
-    float* dy[4] = {ddy_[0], ddy_[1], ddy_[2], ddy_[3]};
-    quad_derivatives(vv, n, opt_.derivatives == Derivatives::fine, dx, dy);
+    iw[lane] = interpolate<N4>(t, tv_, cdx + float(lane & 1), cdy + float(lane >> 1), v_[lane]);
   }
 
   const int nc = channels_;
+  const bool fine = opt_.derivatives == Derivatives::fine;
+  ShadeInput& in = in_;
   for (int lane = 0; lane < 4; ++lane) {
     const bool helper = visible[lane] == 0;
     if (helper) {
@@ -215,14 +234,16 @@ void TileRasterizer::quad(int qx, int qy, std::uint32_t mask[4]) {
     }
     ++stats_.lanes_shaded;
     float* out = out_[lane];
-    std::fill(out, out + nc, 0.0f);
+    if (nc == 4) {
+      out[0] = out[1] = out[2] = out[3] = 0.0f;
+    } else {
+      std::fill(out, out + nc, 0.0f);
+    }
     if (!draw.shader) continue;
-    ShadeInput in;
-    in.varying_count = n;
+    quad_derivatives<N4>(v_, lane, fine, ddx_[lane], ddy_[lane]);
     in.varyings = v_[lane];
     in.ddx = ddx_[lane];
     in.ddy = ddy_[lane];
-    in.quad_varyings = {v_[0], v_[1], v_[2], v_[3]};
     in.px = qx + (lane & 1);
     in.py = qy + (lane >> 1);
     in.lane = lane;
@@ -236,27 +257,28 @@ void TileRasterizer::quad(int qx, int qy, std::uint32_t mask[4]) {
       in.y += st_.oy[s];
       sdx += st_.ox[s];
       sdy += st_.oy[s];
-      in.inv_w = interpolate(t, tv_, n, sdx, sdy, vc_);
+      in.inv_w = interpolate<N4>(t, tv_, sdx, sdy, vc_);
       in.varyings = vc_;
     }
     in.depth = std::clamp(eval_plane(t.z, sdx, sdy), 0.0f, 1.0f);
-    in.primitive_id = t.primitive_id;
     in.coverage = mask[lane];
     in.visible = visible[lane];
     in.helper = helper;
-    in.front_facing = t.front_facing;
     draw.shader(in, out);
   }
 
   // Per-sample writes of depth, payload and id.
+  const bool write_depth = draw.depth_write;
   for (int lane = 0; lane < 4; ++lane) {
-    const std::uint32_t vis = visible[lane];
+    std::uint32_t vis = visible[lane];
     if (!vis) continue;
     const float* out = out_[lane];
-    for (int s = 0; s < ns; ++s) {
-      if (!(vis >> s & 1u)) continue;
+    while (vis) {
+      ++stats_.samples_written;
+      const int s = std::countr_zero(vis);
+      vis &= vis - 1;
       const std::size_t i = base[lane] + std::size_t(s);
-      if (draw.depth_write) depth_[i] = zs_[lane][s];
+      if (write_depth) depth_[i] = zs_[lane][s];
       float* d = data_ + i * std::size_t(nc);
       if (nc == 4) {
         std::memcpy(d, out, 4 * sizeof(float));
@@ -264,7 +286,6 @@ void TileRasterizer::quad(int qx, int qy, std::uint32_t mask[4]) {
         std::memcpy(d, out, std::size_t(nc) * sizeof(float));
       }
       if (ids_) ids_[i] = t.primitive_id;
-      ++stats_.samples_written;
     }
   }
 }
