@@ -201,16 +201,17 @@ TEST_P(PvrtcRoundTrip, PsnrAboveThresholdAndMonotoneInQuality) {
 
 INSTANTIATE_TEST_SUITE_P(
     Procedural, PvrtcRoundTrip,
-    ::testing::Values(QualityCase{Procedural::gradient, Format::pvrtc1_4bpp, {0, 0, 0}},
-                      QualityCase{Procedural::bricks, Format::pvrtc1_4bpp, {0, 0, 0}},
-                      QualityCase{Procedural::noise, Format::pvrtc1_4bpp, {0, 0, 0}},
-                      QualityCase{Procedural::foliage, Format::pvrtc1_4bpp, {0, 0, 0}},
-                      QualityCase{Procedural::text, Format::pvrtc1_4bpp, {0, 0, 0}},
-                      QualityCase{Procedural::gradient, Format::pvrtc1_2bpp, {0, 0, 0}},
-                      QualityCase{Procedural::bricks, Format::pvrtc1_2bpp, {0, 0, 0}},
-                      QualityCase{Procedural::noise, Format::pvrtc1_2bpp, {0, 0, 0}},
-                      QualityCase{Procedural::foliage, Format::pvrtc1_2bpp, {0, 0, 0}},
-                      QualityCase{Procedural::text, Format::pvrtc1_2bpp, {0, 0, 0}}));
+    // Thresholds: values measured at 128x128 when this test was written, minus 0.1 dB.
+    ::testing::Values(QualityCase{Procedural::gradient, Format::pvrtc1_4bpp, {30.69, 41.18, 41.48}},
+                      QualityCase{Procedural::bricks, Format::pvrtc1_4bpp, {21.68, 27.52, 28.30}},
+                      QualityCase{Procedural::noise, Format::pvrtc1_4bpp, {36.80, 41.12, 41.27}},
+                      QualityCase{Procedural::foliage, Format::pvrtc1_4bpp, {29.83, 32.64, 32.67}},
+                      QualityCase{Procedural::text, Format::pvrtc1_4bpp, {16.80, 42.04, 43.05}},
+                      QualityCase{Procedural::gradient, Format::pvrtc1_2bpp, {28.64, 38.73, 38.88}},
+                      QualityCase{Procedural::bricks, Format::pvrtc1_2bpp, {20.95, 26.01, 26.61}},
+                      QualityCase{Procedural::noise, Format::pvrtc1_2bpp, {34.54, 37.62, 37.82}},
+                      QualityCase{Procedural::foliage, Format::pvrtc1_2bpp, {29.22, 31.03, 31.03}},
+                      QualityCase{Procedural::text, Format::pvrtc1_2bpp, {16.35, 42.80, 42.88}}));
 
 TEST(PvrtcEncode, IdenticalForAnyThreadCount) {
   const ImageRGBA8 img = make_procedural(Procedural::foliage, 256, 128);
@@ -304,7 +305,9 @@ TEST(PvrtcEncode, AlphaQualityOnFoliage) {
   EncodeOptions opt;
   opt.quality = Quality::high;
   const ImageComparison cmp = compare(img, round_trip(img, opt));
-  EXPECT_GE(cmp.psnr_alpha, 0.0);
+  // Measured 36.64 dB RGB / 29.97 dB alpha (PVRTexTool pvrtcbest: 35.58 / 30.60).
+  EXPECT_GE(cmp.psnr_rgb, 36.5);
+  EXPECT_GE(cmp.psnr_alpha, 29.8);
 }
 
 TEST(PvrtcEncode, TinyAndNonSquareSizes) {
@@ -329,8 +332,8 @@ TEST(PvrtcEncode, TinyAndNonSquareSizes) {
 TEST(PvrtcEncode, FrozenBitstreams) {
   const ImageRGBA8 img = make_procedural(Procedural::noise, 64, 64);
   const std::uint64_t expected[2][3] = {
-      {0, 0, 0},  // 4 bpp: fast, normal, high
-      {0, 0, 0},  // 2 bpp
+      {0x1e5fa49357527200ull, 0xc649ce42af7df1b7ull, 0x9bfe8c8e9d1d8c3full},  // 4 bpp: fast, normal, high
+      {0x8166b2980efe00d2ull, 0xdac4bce45c3aa22eull, 0x6568807a4b771a1dull},  // 2 bpp
   };
   for (int f = 0; f < 2; ++f) {
     for (int q = 0; q < 3; ++q) {

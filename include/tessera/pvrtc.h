@@ -65,6 +65,10 @@ struct EncodeOptions {
   /// Refinement iterations; -1 = the quality preset's default (fast 0, normal a few, high until
   /// convergence within a budget).
   int iterations = -1;
+  /// 4 bpp only: rounds of exact greedy search over +-1 changes of each block's endpoint codes
+  /// after the refinement, keeping changes that lower the exactly decoded error (0 = off).
+  /// About +0.1 to +0.2 dB over `high` on photos, at several times its encode time.
+  int exact_search_rounds = 0;
   /// Allow punch-through (modulation mode 1) blocks for RGBA input.
   bool punch_through = true;
   /// Treat the input as RGBA even if `image.has_alpha` is false (otherwise alpha is ignored and

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
-#include <cstdlib>
 #include <limits>
 
 #include "pvrtc/encode_internal.h"
@@ -437,8 +436,9 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
     return Status::error(ErrorCode::invalid_argument,
                          "pvrtc::encode: pixel buffer size does not match the image size");
   }
-  if (options.iterations < -1) {
-    return Status::error(ErrorCode::invalid_argument, "pvrtc::encode: iterations must be >= -1");
+  if (options.iterations < -1 || options.exact_search_rounds < 0) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "pvrtc::encode: iterations must be >= -1 and exact_search_rounds >= 0");
   }
   EncoderState s;
   s.g = make_grid(options.format, image.width, image.height);
@@ -484,7 +484,7 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   const int iterations =
       options.iterations >= 0 ? options.iterations : default_iterations(options.quality);
   if (iterations > 0) refine(s, iterations);
-  if (const char* pr = std::getenv("POLISH")) polish(s, std::atoi(pr));
+  if (options.exact_search_rounds > 0) polish(s, options.exact_search_rounds);
   std::vector<std::uint8_t> out(level_size(options.format, image.width, image.height));
   const std::vector<std::uint64_t> w = s.words();
   store_words(g, w.data(), out.data());

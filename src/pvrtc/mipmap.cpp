@@ -142,11 +142,12 @@ std::vector<Taps> make_taps(int src, int dst) {
 
 /// 7-channel intermediate: alpha-weighted colour (3), plain colour (3), alpha (1), so the
 /// vertical pass can finish the alpha-weighted average exactly as a 2D filter would.
+/// 28 bytes per texel of the (target width x source height) image.
 struct Wide {
   int width = 0, height = 0;
-  std::vector<double> v;  // width * height * 7
-  double* at(int x, int y) { return &v[(std::size_t(y) * width + x) * 7]; }
-  const double* at(int x, int y) const { return &v[(std::size_t(y) * width + x) * 7]; }
+  std::vector<float> v;  // width * height * 7
+  float* at(int x, int y) { return &v[(std::size_t(y) * width + x) * 7]; }
+  const float* at(int x, int y) const { return &v[(std::size_t(y) * width + x) * 7]; }
 };
 
 }  // namespace
@@ -201,24 +202,26 @@ Result<ImageRGBA8> resize_image(const ImageRGBA8& image, int width, int height,
   const std::vector<Taps> ty = make_taps(image.height, height);
 
   // Horizontal pass: src.width x src.height -> width x src.height (7 channels).
-  Wide mid{width, image.height, std::vector<double>(std::size_t(width) * image.height * 7)};
+  Wide mid{width, image.height, std::vector<float>(std::size_t(width) * image.height * 7)};
   parallel_for(
       0, image.height, 8,
       [&](std::int64_t y0, std::int64_t y1) {
         for (std::int64_t y = y0; y < y1; ++y) {
           for (int x = 0; x < width; ++x) {
             const Taps& t = tx[std::size_t(x)];
-            double* o = mid.at(x, int(y));
+            double acc[7] = {0, 0, 0, 0, 0, 0, 0};
             for (std::size_t k = 0; k < t.weights.size(); ++k) {
               const int sx = std::clamp(t.first + int(k), 0, image.width - 1);
               const float* p = src.at(sx, int(y));
               const double wgt = t.weights[k];
               for (int c = 0; c < 3; ++c) {
-                o[c] += wgt * p[3] * p[c];
-                o[3 + c] += wgt * p[c];
+                acc[c] += wgt * p[3] * p[c];
+                acc[3 + c] += wgt * p[c];
               }
-              o[6] += wgt * p[3];
+              acc[6] += wgt * p[3];
             }
+            float* o = mid.at(x, int(y));
+            for (int c = 0; c < 7; ++c) o[c] = float(acc[c]);
           }
         }
       },
@@ -235,7 +238,7 @@ Result<ImageRGBA8> resize_image(const ImageRGBA8& image, int width, int height,
             double acc[7] = {0, 0, 0, 0, 0, 0, 0};
             for (std::size_t k = 0; k < t.weights.size(); ++k) {
               const int sy = std::clamp(t.first + int(k), 0, image.height - 1);
-              const double* p = mid.at(x, sy);
+              const float* p = mid.at(x, sy);
               for (int c = 0; c < 7; ++c) acc[c] += t.weights[k] * p[c];
             }
             float* o = dst.at(x, int(y));

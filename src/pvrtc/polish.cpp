@@ -117,6 +117,8 @@ bool apply_move(int move, EndpointCodes& a, EndpointCodes& b) {
 }
 
 constexpr int kMoves = 24;
+// Windows whose error is already this small (64 texels; ~5 per channel RMS) are skipped.
+constexpr std::uint32_t kSkipBelow = 3000;
 
 }  // namespace
 
@@ -153,7 +155,7 @@ void polish(EncoderState& s, int rounds) {
                 const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
                 std::uint16_t cur_a = s.ca[j], cur_b = s.cb[j];
                 std::uint32_t best = window_error(w, bx, by, ea[j], eb[j], best_codes);
-                if (best == 0) continue;
+                if (best <= kSkipBelow) continue;
                 bool improved = true;
                 for (int pass = 0; pass < 4 && improved; ++pass) {
                   improved = false;

@@ -25,6 +25,7 @@ constexpr double kTruncBias = 0.5;
 constexpr double kModBias = 0.4375;
 constexpr double kSpread = 0.0;
 constexpr int kContinuousSweeps = 0;
+constexpr double kMinGain = 0.0025;
 
 // Per-block endpoint levels: A rgba then B rgba.
 void endpoint_levels(std::uint16_t ca, std::uint16_t cb, float* out) {
@@ -65,48 +66,56 @@ void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by, bool c
   const int bw = g.bw;
   const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
   const std::vector<std::uint8_t>& m_eff = s.scratch_m;
-  Sums rgb[3];
+  // Levels of the 3x3 block neighbourhood (wrapping); [1][1] is this block.
+  const float* nb[3][3];
+  for (int dy = 0; dy < 3; ++dy) {
+    const int yb = (by - 1 + dy) & (g.nby - 1);
+    for (int dx = 0; dx < 3; ++dx) {
+      const int xb = (bx - 1 + dx) & (g.nbx - 1);
+      nb[dy][dx] = &lv[(std::size_t(yb) * std::size_t(g.nbx) + std::size_t(xb)) * 8];
+    }
+  }
+  // Texel (u, v) of the window lies between blocks (u >= bw) and (u >= bw) + 1 of the
+  // neighbourhood horizontally (weight of the right one u % bw), likewise vertically.
+  float rgb_aa = 0, rgb_ab = 0, rgb_bb = 0;
+  float ra[4] = {0, 0, 0, 0}, rb[4] = {0, 0, 0, 0};
   Sums alpha;
-  const double inv_total = 1.0 / double(4 * bw);
-  for (int yy = by * 4 - 2; yy < by * 4 + 6; ++yy) {
-    const AxisTap ty = axis_tap(yy, 4, g.ph);
-    const int y = yy & (g.ph - 1);
-    for (int xx = bx * bw - bw / 2; xx < bx * bw + bw + bw / 2; ++xx) {
-      const AxisTap tx = axis_tap(xx, bw, g.pw);
-      const int x = xx & (g.pw - 1);
-      const std::size_t blk[4] = {std::size_t(ty.b0) * std::size_t(g.nbx) + std::size_t(tx.b0),
-                                  std::size_t(ty.b0) * std::size_t(g.nbx) + std::size_t(tx.b1),
-                                  std::size_t(ty.b1) * std::size_t(g.nbx) + std::size_t(tx.b0),
-                                  std::size_t(ty.b1) * std::size_t(g.nbx) + std::size_t(tx.b1)};
-      const double wt[4] = {double((bw - tx.d) * (4 - ty.d)) * inv_total,
-                            double(tx.d * (4 - ty.d)) * inv_total,
-                            double((bw - tx.d) * ty.d) * inv_total, double(tx.d * ty.d) * inv_total};
-      double wj = 0;
-      double other[4] = {0, 0, 0, 0};
+  const float inv_total = 1.0f / float(4 * bw);
+  for (int v = 1; v < 8; ++v) {
+    const int y = (by * 4 - 2 + v) & (g.ph - 1);
+    const int top = v >= 4 ? 1 : 0, dy = v & 3;
+    const int own_y = top == 0 ? dy : 4 - dy;
+    for (int u = 1; u < 2 * bw; ++u) {
+      const int x = (bx * bw - bw / 2 + u) & (g.pw - 1);
+      const int left = u >= bw ? 1 : 0, dx = u % bw;
+      const int own_x = left == 0 ? dx : bw - dx;
       const std::size_t ti = std::size_t(y) * std::size_t(g.pw) + std::size_t(x);
       const std::uint8_t me = m_eff[ti];
-      const double fb = double(me & 0x0f) / 8.0, fa = 1.0 - fb;
-      for (int k = 0; k < 4; ++k) {
-        if (blk[k] == j) {
-          wj += wt[k];
-          continue;
+      const float fb = float(me & 0x0f) * 0.125f, fa = 1.0f - fb;
+      const float wts[2][2] = {{float((bw - dx) * (4 - dy)), float(dx * (4 - dy))},
+                               {float((bw - dx) * dy), float(dx * dy)}};
+      float other[4] = {0, 0, 0, 0};
+      for (int cy = 0; cy < 2; ++cy) {
+        for (int cx = 0; cx < 2; ++cx) {
+          if (top + cy == 1 && left + cx == 1) continue;  // this block
+          const float* l = nb[top + cy][left + cx];
+          const float wt = wts[cy][cx] * inv_total;
+          for (int c = 0; c < 4; ++c) other[c] += wt * (fa * l[c] + fb * l[4 + c]);
         }
-        const float* l = &lv[blk[k] * 8];
-        for (int c = 0; c < 4; ++c) other[c] += wt[k] * (fa * l[c] + fb * l[4 + c]);
       }
-      if (wj == 0) continue;
+      const float wj = float(own_x * own_y) * inv_total;
       const std::uint8_t* t = &s.target[ti * 4];
-      const double ca = wj * fa, cbv = wj * fb;
+      const float ca = wj * fa, cbv = wj * fb;
       // The decoder truncates twice (8-bit conversion, modulation): aim above the target by
       // the mean truncation loss so the linear model is unbiased.
-      const double bias = kTruncBias + ((me & 0x0f) % 8 != 0 ? kModBias : 0.0);
+      const float bias = float(kTruncBias) + ((me & 0x0f) % 8 != 0 ? float(kModBias) : 0.0f);
+      rgb_aa += ca * ca;
+      rgb_ab += ca * cbv;
+      rgb_bb += cbv * cbv;
       for (int c = 0; c < 3; ++c) {
-        const double r = double(t[c]) + bias - other[c];
-        rgb[c].aa += ca * ca;
-        rgb[c].ab += ca * cbv;
-        rgb[c].bb += cbv * cbv;
-        rgb[c].ra += ca * r;
-        rgb[c].rb += cbv * r;
+        const float r = float(t[c]) + bias - other[c];
+        ra[c] += ca * r;
+        rb[c] += cbv * r;
       }
       if (s.alpha_mode && !(me & kPunchFlag)) {
         const double r = double(t[3]) - other[3];
@@ -117,6 +126,14 @@ void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by, bool c
         alpha.rb += cbv * r;
       }
     }
+  }
+  Sums rgb[3];
+  for (int c = 0; c < 3; ++c) {
+    rgb[c].aa = rgb_aa;
+    rgb[c].ab = rgb_ab;
+    rgb[c].bb = rgb_bb;
+    rgb[c].ra = ra[c];
+    rgb[c].rb = rb[c];
   }
   float* cur = &lv[j * 8];
   EndpointCodes ea = unpack_endpoint(false, s.ca[j]);
@@ -218,7 +235,10 @@ void refine(EncoderState& s, int iterations) {
       s.mod = save_mod;
       break;
     }
+    // Converged: the sweep gained less than kMinGain of the error (~0.01 dB).
+    const bool small_gain = double(best_err - err) < kMinGain * double(best_err);
     best_err = err;
+    if (small_gain) break;
   }
 }
 
