@@ -656,6 +656,35 @@ TEST(RasterResolve, BoxFilterAndSrgb) {
   EXPECT_FLOAT_EQ(resolve(one).at(1, 1)[3], 1.0f);
 }
 
+// The fused sRGB resolve (table-driven encoder) equals to_srgb8(resolve(fb)) bit for bit,
+// including values at and around every 8-bit threshold, out-of-range values and NaN.
+TEST(RasterResolve, Srgb8MatchesExactEncoder) {
+  FrameBuffer fb = make_fb(256, 64, 2);
+  std::span<float> d = fb.data();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-0.1f, 1.1f);
+  std::size_t i = 0;
+  // Exact thresholds: 2x MSAA averages two equal samples, so each pixel sees the value itself.
+  for (int k = 0; k < 256 && i + 8 <= d.size(); ++k) {
+    const float t = srgb_to_linear((float(k) + 0.5f) / 255.0f);
+    for (float v : {t, std::nextafter(t, 0.0f), std::nextafter(t, 2.0f)}) {
+      d[i] = d[i + 4] = v;
+      i += 1;
+    }
+    i = (i + 7) / 8 * 8;
+  }
+  for (; i < d.size(); i += 8) {
+    for (int c = 0; c < 4; ++c) d[i + c] = d[i + 4 + c] = u(rng);
+  }
+  d[0] = d[4] = NAN;
+  const ImageRGBA8 fast = resolve_srgb8(fb);
+  const ImageRGBA8 slow = to_srgb8(resolve(fb));
+  ASSERT_EQ(fast.pixels.size(), slow.pixels.size());
+  for (std::size_t k = 0; k < fast.pixels.size(); ++k) {
+    ASSERT_EQ(int(fast.pixels[k]), int(slow.pixels[k])) << "byte " << k;
+  }
+}
+
 TEST(RasterCulling, BackFacesAndFacingFlag) {
   constexpr int kSize = 16;
   Mesh m(0);

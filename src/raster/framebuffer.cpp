@@ -1,5 +1,7 @@
 // Frame buffer allocation, clears and the box resolve.
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <string>
 
 #include "tessera/raster.h"
@@ -88,29 +90,102 @@ void FrameBuffer::clear(const float* value, float depth, int threads) {
       threads);
 }
 
+namespace {
+
+/// Mean of the `nc` channels over output pixel (x, y)'s grid pixels and samples, in a fixed
+/// order (rows, columns, samples), so every resolve path produces the same floats.
+inline void average_pixel(const FrameBuffer& fb, const float* data, int x, int y, int nc,
+                          float scale, float* out) {
+  const int m = fb.ssaa(), ns = fb.msaa();
+  float acc[kMaxChannels] = {};
+  for (int gy = y * m; gy < y * m + m; ++gy) {
+    for (int gx = x * m; gx < x * m + m; ++gx) {
+      const float* s = data + fb.sample_index(gx, gy, 0) * std::size_t(nc);
+      for (int k = 0; k < ns * nc; k += nc) {
+        for (int c = 0; c < nc; ++c) acc[c] += s[k + c];
+      }
+    }
+  }
+  for (int c = 0; c < nc; ++c) out[c] = acc[c] * scale;
+}
+
+/// Table-driven, bit-exact equivalent of `linear_to_srgb8` (which evaluates pow per call).
+/// Floats in [2^-13, 1) are split into buckets of 2^15 consecutive bit patterns (256 per
+/// octave); the encoding changes at most once inside a bucket, so a bucket stores its value
+/// at the low end and the first bit pattern of the next value. Below 2^-13 the result is 0,
+/// from 1 up it is 255.
+class Srgb8Encoder {
+ public:
+  Srgb8Encoder() {
+    for (std::uint32_t i = 0; i < kBuckets; ++i) {
+      const std::uint32_t lo = kLo + (i << kShift), hi = lo + (1u << kShift) - 1u;
+      const std::uint8_t vlo = linear_to_srgb8(from_bits(lo));
+      const std::uint8_t vhi = linear_to_srgb8(from_bits(hi));
+      base_[i] = vlo;
+      if (vlo == vhi) {
+        next_[i] = ~0u;
+        continue;
+      }
+      if (vhi != vlo + 1) {  // not expected; fall back to the exact function
+        slow_ = true;
+        next_[i] = 0;
+        continue;
+      }
+      std::uint32_t a = lo, b = hi;  // f(a) = vlo, f(b) = vhi
+      while (b - a > 1) {
+        const std::uint32_t mid = a + (b - a) / 2;
+        (linear_to_srgb8(from_bits(mid)) == vlo ? a : b) = mid;
+      }
+      next_[i] = b;
+    }
+  }
+
+  std::uint8_t encode(float v) const {
+    if (!(v >= kMin)) return 0;  // also NaN
+    if (v >= 1.0f) return 255;
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    const std::uint32_t i = (bits - kLo) >> kShift;
+    if (slow_) return linear_to_srgb8(v);
+    return std::uint8_t(base_[i] + (bits >= next_[i] ? 1 : 0));
+  }
+
+ private:
+  static float from_bits(std::uint32_t b) {
+    float f;
+    std::memcpy(&f, &b, sizeof f);
+    return f;
+  }
+  static constexpr std::uint32_t kLo = 0x39000000u;  // 2^-13
+  static constexpr std::uint32_t kHi = 0x3F800000u;  // 1.0
+  static constexpr int kShift = 15;
+  static constexpr std::uint32_t kBuckets = (kHi - kLo) >> kShift;
+  static constexpr float kMin = 1.0f / 8192.0f;
+  std::uint8_t base_[kBuckets];
+  std::uint32_t next_[kBuckets];
+  bool slow_ = false;
+};
+
+const Srgb8Encoder& srgb8_encoder() {
+  static const Srgb8Encoder e;
+  return e;
+}
+
+}  // namespace
+
 std::vector<float> resolve_channels(const FrameBuffer& fb, int threads) {
-  const int w = fb.width(), h = fb.height(), m = fb.ssaa(), ns = fb.msaa();
-  const int nc = fb.channels();
+  const int w = fb.width(), h = fb.height(), nc = fb.channels();
   std::vector<float> out(std::size_t(w) * std::size_t(h) * std::size_t(nc));
-  const float scale = 1.0f / float(m * m * ns);
-  const std::span<const float> data = fb.data();
+  const float scale = 1.0f / float(fb.ssaa() * fb.ssaa() * fb.msaa());
+  const float* data = fb.data().data();
   parallel_for(
       0, h, 8,
       [&](std::int64_t yb, std::int64_t ye) {
-        float acc[kMaxChannels];
         for (std::int64_t y = yb; y < ye; ++y) {
           for (int x = 0; x < w; ++x) {
-            std::fill(acc, acc + nc, 0.0f);
-            for (int gy = int(y) * m; gy < int(y) * m + m; ++gy) {
-              for (int gx = x * m; gx < x * m + m; ++gx) {
-                const float* s = &data[fb.sample_index(gx, gy, 0) * std::size_t(nc)];
-                for (int k = 0; k < ns * nc; k += nc) {
-                  for (int c = 0; c < nc; ++c) acc[c] += s[k + c];
-                }
-              }
-            }
-            float* d = &out[(std::size_t(y) * std::size_t(w) + std::size_t(x)) * std::size_t(nc)];
-            for (int c = 0; c < nc; ++c) d[c] = acc[c] * scale;
+            average_pixel(fb, data, x, int(y), nc, scale,
+                          &out[(std::size_t(y) * std::size_t(w) + std::size_t(x)) *
+                               std::size_t(nc)]);
           }
         }
       },
@@ -119,20 +194,49 @@ std::vector<float> resolve_channels(const FrameBuffer& fb, int threads) {
 }
 
 ImageRGBAF resolve(const FrameBuffer& fb, int threads) {
-  const std::vector<float> all = resolve_channels(fb, threads);
-  const int nc = fb.channels();
-  ImageRGBAF img(fb.width(), fb.height());
-  const std::size_t n = img.pixel_count();
-  for (std::size_t i = 0; i < n; ++i) {
-    const float* s = &all[i * std::size_t(nc)];
-    float* d = &img.pixels[i * 4];
-    for (int c = 0; c < 4; ++c) d[c] = c < nc ? s[c] : (c == 3 ? 1.0f : 0.0f);
-  }
+  const int w = fb.width(), h = fb.height(), nc = fb.channels();
+  ImageRGBAF img(w, h);
+  const float scale = 1.0f / float(fb.ssaa() * fb.ssaa() * fb.msaa());
+  const float* data = fb.data().data();
+  parallel_for(
+      0, h, 8,
+      [&](std::int64_t yb, std::int64_t ye) {
+        float px[kMaxChannels];
+        for (std::int64_t y = yb; y < ye; ++y) {
+          for (int x = 0; x < w; ++x) {
+            average_pixel(fb, data, x, int(y), nc, scale, px);
+            float* d = img.at(x, int(y));
+            for (int c = 0; c < 4; ++c) d[c] = c < nc ? px[c] : (c == 3 ? 1.0f : 0.0f);
+          }
+        }
+      },
+      threads);
   return img;
 }
 
 ImageRGBA8 resolve_srgb8(const FrameBuffer& fb, int threads) {
-  return to_srgb8(resolve(fb, threads), threads);
+  const int w = fb.width(), h = fb.height(), nc = fb.channels();
+  ImageRGBA8 img(w, h);
+  const float scale = 1.0f / float(fb.ssaa() * fb.ssaa() * fb.msaa());
+  const float* data = fb.data().data();
+  const Srgb8Encoder& enc = srgb8_encoder();
+  parallel_for(
+      0, h, 8,
+      [&](std::int64_t yb, std::int64_t ye) {
+        float px[kMaxChannels];
+        for (std::int64_t y = yb; y < ye; ++y) {
+          for (int x = 0; x < w; ++x) {
+            average_pixel(fb, data, x, int(y), nc, scale, px);
+            std::uint8_t* d = img.at(x, int(y));
+            for (int c = 0; c < 3; ++c) d[c] = c < nc ? enc.encode(px[c]) : 0;
+            // Alpha as in to_srgb8: linear, clamped, NaN -> 0.
+            const float a = nc > 3 ? px[3] : 1.0f;
+            d[3] = std::uint8_t(std::lround(std::clamp(a == a ? a : 0.0f, 0.0f, 1.0f) * 255.0f));
+          }
+        }
+      },
+      threads);
+  return img;
 }
 
 }  // namespace tessera::raster
