@@ -114,4 +114,10 @@ Result<Camera> parse_camera(const std::string& text);
 /// fitted to the bounds.
 Camera orbit_camera(const Scene& scene, int frame, int frames);
 
+/// Camera from command-line text: `camera` ("ex,ey,ez,tx,ty,tz,ux,uy,uz,fov") when non-empty,
+/// else `orbit` ("FRAME/N") when non-empty, else the orbit's frame 0; near and far are always
+/// fitted to the scene's bounds. Fails with invalid_argument on malformed text.
+Result<Camera> camera_from_text(const Scene& scene, const std::string& camera,
+                                const std::string& orbit);
+
 }  // namespace tessera::scene

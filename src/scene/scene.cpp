@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <cstdio>
 #include <sstream>
 
 #include "tessera/scene.h"
@@ -91,6 +92,28 @@ Camera orbit_camera(const Scene& scene, int frame, int frames) {
   c.near_z = std::max(1e-3f, half_diag * 0.002f);
   c.far_z = half_diag * 4.0f;
   return c;
+}
+
+Result<Camera> camera_from_text(const Scene& scene, const std::string& camera,
+                                const std::string& orbit) {
+  const Camera fit = orbit_camera(scene, 0, 1);
+  if (!camera.empty()) {
+    Result<Camera> c = parse_camera(camera);
+    if (!c) return c.status();
+    c->near_z = fit.near_z;
+    c->far_z = fit.far_z;
+    return c;
+  }
+  if (!orbit.empty()) {
+    int f = -1, n = 0;
+    char tail = 0;
+    if (std::sscanf(orbit.c_str(), "%d/%d%c", &f, &n, &tail) != 2 || n <= 0 || f < 0) {
+      return Status::error(ErrorCode::invalid_argument,
+                           "orbit: expected FRAME/N with 0 <= FRAME and N > 0, got '" + orbit + "'");
+    }
+    return orbit_camera(scene, f, n);
+  }
+  return fit;
 }
 
 }  // namespace tessera::scene

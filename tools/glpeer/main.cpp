@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "tessera/io.h"
+#include "tessera/render.h"
 #include "tessera/scene.h"
 
 #ifndef EGL_PLATFORM_SURFACELESS_MESA
@@ -88,7 +89,8 @@ struct GpuMesh {
 int main(int argc, char** argv) {
   CLI::App app{"Render a scene with OpenGL (Mesa llvmpipe) as the peer of `tessera render`",
                "tessera-glpeer"};
-  std::string scene_path, out_path, camera_text, orbit_text, json_path, filter = "trilinear";
+  std::string scene_path, out_path, camera_text, orbit_text, json_path, filter = "trilinear",
+      shading = "textured";
   int width = 1024, height = 768, msaa = 1, frames = 1;
   app.add_option("SCENE", scene_path, "Scene file (.obj, .gltf, .glb) or 'builtin'")->required();
   app.add_option("--width", width)->check(CLI::Range(1, 8192));
@@ -97,6 +99,8 @@ int main(int argc, char** argv) {
   app.add_option("--orbit", orbit_text, "FRAME/N: camera on the scene's orbit");
   app.add_option("--msaa", msaa, "Samples per pixel (1, 2, 4, 8)")->check(CLI::IsMember({1, 2, 4, 8, 16}));
   app.add_option("--filter", filter)->check(CLI::IsMember({"trilinear", "aniso16"}));
+  app.add_option("--shading", shading, "textured, or flat white (coverage only)")
+      ->check(CLI::IsMember({"textured", "flat"}));
   app.add_option("--frames", frames, "Frames to time (same camera); the image is the last")
       ->check(CLI::Range(1, 10000));
   app.add_option("-o,--out", out_path, "Output PNG")->required();
@@ -112,22 +116,12 @@ int main(int argc, char** argv) {
       scene_path == "builtin" ? Result<scene::Scene>(scene::builtin_scene()) : scene::load_scene(scene_path);
   if (!loaded) return fail(loaded.status().message);
   const scene::Scene& sc = *loaded;
-  scene::Camera camera = scene::orbit_camera(sc, 0, 1);
-  if (!camera_text.empty()) {
-    Result<scene::Camera> c = scene::parse_camera(camera_text);
-    if (!c) return fail(c.status().message);
-    camera = *c;
-    const scene::Camera fit = scene::orbit_camera(sc, 0, 1);
-    camera.near_z = fit.near_z;
-    camera.far_z = fit.far_z;
-  } else if (!orbit_text.empty()) {
-    int f = 0, n = 0;
-    if (std::sscanf(orbit_text.c_str(), "%d/%d", &f, &n) != 2 || n <= 0 || f < 0) {
-      std::fprintf(stderr, "tessera-glpeer: --orbit expects FRAME/N\n");
-      return 2;
-    }
-    camera = scene::orbit_camera(sc, f, n);
+  Result<scene::Camera> cam = scene::camera_from_text(sc, camera_text, orbit_text);
+  if (!cam) {
+    std::fprintf(stderr, "tessera-glpeer: %s\n", cam.status().message.c_str());
+    return 2;
   }
+  const scene::Camera camera = *cam;
 
   // EGL, surfaceless, OpenGL 4.5 core.
   EGLDisplay dpy = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
@@ -235,14 +229,16 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     glBindFramebuffer(GL_FRAMEBUFFER, ms_fbo);
     glViewport(0, 0, width, height);
-    glClearColor(0.05f, 0.05f, 0.08f, 1.0f);
+    glClearColor(render::kBackground[0], render::kBackground[1], render::kBackground[2], 1.0f);
     glClearDepth(1.0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glActiveTexture(GL_TEXTURE0);
     for (const GpuMesh& g : meshes) {
       const scene::Material& m = sc.materials[std::size_t(g.material)];
-      glUniform4fv(loc_color, 1, m.base_color);
-      const bool has = m.base_color_texture >= 0;
+      const float white[4] = {1, 1, 1, 1};
+      const bool flat = shading == "flat";
+      glUniform4fv(loc_color, 1, flat ? white : m.base_color);
+      const bool has = !flat && m.base_color_texture >= 0;
       glUniform1i(loc_has, has ? 1 : 0);
       if (has) glBindTexture(GL_TEXTURE_2D, textures[std::size_t(m.base_color_texture)]);
       glBindVertexArray(g.vao);

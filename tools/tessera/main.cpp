@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
       add_compress_command(app, global),
       add_decompress_command(app, global),
       add_info_command(app, global),
+      add_render_command(app, global),
   };
 
   try {
