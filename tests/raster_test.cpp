@@ -206,6 +206,31 @@ TEST(RasterCoverage, WatertightSharedEdges) {
   }
 }
 
+// Two triangles far beyond the guard band (vertices at +-10^7 pixels) are clipped against it
+// and still cover every sample exactly once.
+TEST(RasterClipping, GuardBandClippedQuadIsWatertight) {
+  constexpr int kW = 40, kH = 30;
+  for (int n : {1, 4}) {
+    Mesh m(0);
+    const double far = 1e7;
+    // The shared diagonal a-c crosses the screen through (20.3, 15.1).
+    const auto a = m.add(20.3 - far, 15.1 - 0.75 * far, kW, kH), b = m.add(far, -far, kW, kH);
+    const auto c = m.add(20.3 + far, 15.1 + 0.75 * far, kW, kH), d = m.add(-far, far, kW, kH);
+    m.tri(a, b, c);
+    m.tri(a, c, d);
+    FrameBuffer fb = make_fb(kW, kH, n, 1, 1, true, true);
+    Rasterizer r({.threads = 1});
+    const RasterStats st = render_ok(r, fb, m.draw());
+    EXPECT_EQ(fb.primitive_id(0, kH - 1, 0), 1u);  // below the diagonal
+    EXPECT_EQ(fb.primitive_id(kW - 1, 0, 0), 0u);  // above it
+    EXPECT_EQ(st.triangles_clipped, 2u);
+    EXPECT_GE(st.triangles_setup, 2u);
+    for (std::size_t i = 0; i < fb.sample_count(); ++i) {
+      ASSERT_EQ(fb.coverage_count_data()[i], 1u) << "msaa " << n << " sample " << i;
+    }
+  }
+}
+
 // Top-left rule on axis-aligned edges through sample positions: a sample exactly on a shared
 // vertical edge belongs to the triangle on its right (left edge), on a shared horizontal edge
 // to the triangle below it (top edge).

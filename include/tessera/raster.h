@@ -11,7 +11,10 @@
 //    every grid pixel is shaded, box-resolved to w x h; MSAA and supersampling may combine;
 //  * shading in 2x2 quads: every varying is interpolated (perspective-correct) at all four quad
 //    pixels, including helper pixels outside the triangle, and ddx/ddy are the finite
-//    differences inside the quad, as on a GPU;
+//    differences inside the quad, as on a GPU (fine derivatives by default, coarse on request).
+//    Helper lanes are not passed to the shader unless `RasterOptions::shade_helpers` is set;
+//    their varyings still feed the derivatives, and every lane's varyings are visible to the
+//    shader (`ShadeInput::quad_varyings`) for derivatives of shader-computed values;
 //  * depth per sample (interpolated at each sample position), early depth test, depth write;
 //  * a generic per-sample payload of 1..16 float channels, so the same machinery renders colour
 //    (4 channels, linear RGBA) or a G-buffer (depth, normal, material, UV, UV derivatives, ...).
@@ -24,6 +27,11 @@
 //  * Sample positions are offsets from the pixel centre in 1/16 pixel, x right, y down (the
 //    Direct3D convention), see `sample_positions`.
 //  * Front faces are counter-clockwise in NDC (y up) unless `DrawCall::front_ccw` is false.
+//
+// Pipeline: `Rasterizer::render` runs a geometry stage (fetch, clip, snap, cull, set up, bin;
+// parallel over fixed chunks of 1024 input triangles) and then a raster stage (parallel over
+// tiles: optional clear, 8x8 block trivial accept/reject, 2x2 quads, early depth test, shading,
+// per-sample writes). Memory: the rasterizer keeps its per-chunk buffers between calls.
 //
 // Determinism and threads: triangles are binned into 64x64 grid-pixel tiles; every tile is
 // rasterized by exactly one task, visiting its triangles in submission order (draw order, then
@@ -166,7 +174,8 @@ class FrameBuffer {
 /// Channels 0..3 become RGBA; with fewer than 4 channels the missing colour channels are 0 and
 /// alpha is 1. Deterministic for any `threads`.
 ImageRGBAF resolve(const FrameBuffer& fb, int threads = 0);
-/// `resolve` followed by the exact sRGB encoding to 8 bits (channels are linear RGB).
+/// Box resolve to 8-bit sRGB: bit-identical to `to_srgb8(resolve(fb))` (a table-driven exact
+/// encoder avoids the per-channel pow). Channels 0..2 are linear RGB, channel 3 linear alpha.
 ImageRGBA8 resolve_srgb8(const FrameBuffer& fb, int threads = 0);
 /// Box resolve of all channels: `channels` floats per output pixel, row-major.
 std::vector<float> resolve_channels(const FrameBuffer& fb, int threads = 0);
