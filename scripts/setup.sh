@@ -23,7 +23,7 @@ packages=(
   libtinyobjloader-dev libtinygltf-dev         # OBJ and glTF scenes
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri  # OpenGL peer (Mesa llvmpipe, EGL surfaceless)
   libgtest-dev libgmock-dev libbenchmark-dev   # tests, benchmarks
-  python3 python3-numpy python3-skimage        # independent SSIM/PSNR cross-check
+  python3 python3-numpy python3-skimage python3-pil  # independent SSIM/PSNR, image checks
 )
 missing=()
 for p in "${packages[@]}"; do
