@@ -74,6 +74,12 @@ struct vu16x8 {
   vu16x8() : v(_mm_setzero_si128()) {}
   explicit vu16x8(__m128i x) : v(x) {}
   explicit vu16x8(std::uint16_t a) : v(_mm_set1_epi16(static_cast<short>(a))) {}
+  /// Square of lane i read as a signed 16-bit value.
+  std::int32_t lane_sq(int i) const {
+    alignas(16) std::int16_t t[8];
+    _mm_store_si128(reinterpret_cast<__m128i*>(t), v);
+    return std::int32_t(t[i]) * t[i];
+  }
 };
 /// Loads 8 bytes, zero-extended to 16-bit lanes.
 inline vu16x8 load_u8x8(const std::uint8_t* p) {
@@ -91,6 +97,19 @@ inline void store_u8x8(vu16x8 a, std::uint8_t* p) {
   _mm_storel_epi64(reinterpret_cast<__m128i*>(p), _mm_packus_epi16(a.v, a.v));
 }
 inline vu16x8 operator+(vu16x8 a, vu16x8 b) { return vu16x8(_mm_add_epi16(a.v, b.v)); }
+inline vu16x8 operator-(vu16x8 a, vu16x8 b) { return vu16x8(_mm_sub_epi16(a.v, b.v)); }
+/// Low 16 bits of the lane products.
+inline vu16x8 mullo(vu16x8 a, vu16x8 b) { return vu16x8(_mm_mullo_epi16(a.v, b.v)); }
+/// Signed lanes: sums of adjacent products, a0*b0 + a1*b1, ... as four 32-bit lanes.
+inline vint4 madd(vu16x8 a, vu16x8 b) { return vint4(_mm_madd_epi16(a.v, b.v)); }
+/// Loads 8 bytes, zero-extended, from two 4-byte texels.
+inline vu16x8 load_u8x4x2(const std::uint8_t* p0, const std::uint8_t* p1) {
+  std::int32_t a, b;
+  std::memcpy(&a, p0, 4);
+  std::memcpy(&b, p1, 4);
+  return vu16x8(_mm_unpacklo_epi8(_mm_unpacklo_epi32(_mm_cvtsi32_si128(a), _mm_cvtsi32_si128(b)),
+                                  _mm_setzero_si128()));
+}
 inline vu16x8 operator&(vu16x8 a, vu16x8 b) { return vu16x8(_mm_and_si128(a.v, b.v)); }
 inline vu16x8 operator|(vu16x8 a, vu16x8 b) { return vu16x8(_mm_or_si128(a.v, b.v)); }
 /// High 16 bits of the 32-bit products.
@@ -142,6 +161,7 @@ struct vu16x8 {
   explicit vu16x8(std::uint16_t a) {
     for (auto& x : l) x = a;
   }
+  std::int32_t lane_sq(int i) const { return std::int32_t(std::int16_t(l[i])) * std::int16_t(l[i]); }
 };
 inline vu16x8 load_u8x8(const std::uint8_t* p) {
   vu16x8 r;
@@ -167,6 +187,24 @@ inline void store_u8x8(vu16x8 a, std::uint8_t* p) {
   }
 TESSERA_SIMD_U16_BINOP(operator+, a.l[i] + b.l[i])
 TESSERA_SIMD_U16_BINOP(operator&, a.l[i] & b.l[i])
+TESSERA_SIMD_U16_BINOP(operator-, a.l[i] - b.l[i])
+TESSERA_SIMD_U16_BINOP(mullo, a.l[i] * b.l[i])
+inline vint4 madd(vu16x8 a, vu16x8 b) {
+  vint4 r;
+  for (int i = 0; i < 4; ++i) {
+    r.l[i] = std::int32_t(std::int16_t(a.l[2 * i])) * std::int16_t(b.l[2 * i]) +
+             std::int32_t(std::int16_t(a.l[2 * i + 1])) * std::int16_t(b.l[2 * i + 1]);
+  }
+  return r;
+}
+inline vu16x8 load_u8x4x2(const std::uint8_t* p0, const std::uint8_t* p1) {
+  vu16x8 r;
+  for (int i = 0; i < 4; ++i) {
+    r.l[i] = p0[i];
+    r.l[4 + i] = p1[i];
+  }
+  return r;
+}
 TESSERA_SIMD_U16_BINOP(operator|, a.l[i] | b.l[i])
 TESSERA_SIMD_U16_BINOP(mulhi, (std::uint32_t(a.l[i]) * b.l[i]) >> 16)
 TESSERA_SIMD_U16_BINOP(cmpeq, a.l[i] == b.l[i] ? 0xffff : 0)
