@@ -64,7 +64,8 @@ int main(int argc, char** argv) {
     }
   }
   if (n > 0) {
-    for (int q = 0; q < 3; ++q) std::printf("| mean (%d) | %s | %.2f | | | |\n", n, names[q], sum_psnr[q] / n);
+    for (int q = 0; q < 3; ++q)
+      std::printf("| mean (%d) | %s | %.2f | | | |\n", n, names[q], sum_psnr[q] / n);
   }
   return 0;
 }

@@ -293,7 +293,8 @@ TEST(PvrtcEncode, RgbInputStaysOpaque) {
     EXPECT_TRUE((*enc)[i + 5] & 0x80) << i;  // A opaque flag (bit 47)
     EXPECT_TRUE((*enc)[i + 7] & 0x80) << i;  // B opaque flag (bit 63)
     if ((*enc)[i + 4] & 1) {  // mode 1 (weights 0, 4, 8) may be used, but not punch-through
-      for (int t = 0; t < 16; ++t) EXPECT_NE(((*enc)[i + std::size_t(t / 4)] >> (2 * (t % 4))) & 3, 2);
+      for (int t = 0; t < 16; ++t)
+        EXPECT_NE(((*enc)[i + std::size_t(t / 4)] >> (2 * (t % 4))) & 3, 2);
     }
   }
   auto dec = decode(*enc, Format::pvrtc1_4bpp, 64, 64);
@@ -311,7 +312,8 @@ TEST(PvrtcEncode, AlphaQualityOnFoliage) {
 }
 
 TEST(PvrtcEncode, TinyAndNonSquareSizes) {
-  const int sizes[][2] = {{1, 1}, {2, 2}, {4, 4}, {8, 8}, {2, 16}, {16, 2}, {8, 64}, {64, 8}, {256, 32}};
+  const int sizes[][2] = {{1, 1},  {2, 2},  {4, 4},  {8, 8},   {2, 16},
+                          {16, 2}, {8, 64}, {64, 8}, {256, 32}};
   for (const auto& s : sizes) {
     const ImageRGBA8 img = make_procedural(Procedural::foliage, s[0], s[1]);
     for (Format f : {Format::pvrtc1_4bpp, Format::pvrtc1_2bpp}) {
@@ -332,7 +334,8 @@ TEST(PvrtcEncode, TinyAndNonSquareSizes) {
 TEST(PvrtcEncode, FrozenBitstreams) {
   const ImageRGBA8 img = make_procedural(Procedural::noise, 64, 64);
   const std::uint64_t expected[2][3] = {
-      {0x1e5fa49357527200ull, 0xc649ce42af7df1b7ull, 0x9bfe8c8e9d1d8c3full},  // 4 bpp: fast, normal, high
+      {0x1e5fa49357527200ull, 0xc649ce42af7df1b7ull,
+       0x9bfe8c8e9d1d8c3full},  // 4 bpp: fast, normal, high
       {0x8166b2980efe00d2ull, 0xdac4bce45c3aa22eull, 0x6568807a4b771a1dull},  // 2 bpp
   };
   for (int f = 0; f < 2; ++f) {

@@ -103,8 +103,8 @@ struct Case {
 std::vector<Case> decode_cases() {
   std::vector<Case> cases;
   for (Procedural k : all_procedurals()) cases.push_back({k, 256, 256});
-  const int sizes[][2] = {{512, 128}, {1024, 256}, {8, 64}, {64, 8}, {16, 32}, {8, 8}, {4, 4},
-                          {128, 512}, {32, 16}};
+  const int sizes[][2] = {{512, 128}, {1024, 256}, {8, 64},    {64, 8}, {16, 32},
+                          {8, 8},     {4, 4},      {128, 512}, {32, 16}};
   for (const auto& s : sizes) {
     cases.push_back({Procedural::foliage, s[0], s[1]});
     cases.push_back({Procedural::noise, s[0], s[1]});
@@ -123,9 +123,9 @@ void check_oracle_encoded(const ImageRGBA8& img, Format format, const std::strin
   std::string fmt = format == Format::pvrtc1_4bpp ? "PVRTC1_4" : "PVRTC1_2";
   if (!alpha) fmt += "_RGB";
   const fs::path pvr = dir / "enc.pvr", png = dir / "dec.png";
-  const std::string cmd = shell({tool->string(), "-i", (dir / "in.png").string(), "-o",
-                                 pvr.string(), "-f", fmt + ",UBN,lRGB", "-q", "pvrtcfastest", "-d",
-                                 png.string()});
+  const std::string cmd =
+      shell({tool->string(), "-i", (dir / "in.png").string(), "-o", pvr.string(), "-f",
+             fmt + ",UBN,lRGB", "-q", "pvrtcfastest", "-d", png.string()});
   ASSERT_EQ(run(cmd), 0) << cmd;
   auto file = read_file(pvr.string());
   ASSERT_TRUE(file.ok());
@@ -162,8 +162,8 @@ TEST(OracleDecode, RgbInputUsesOpaqueFormat) {
 TEST(OracleDecode, SharedImages) {
   TESSERA_REQUIRE_SHARED_DATA(data);
   int n = 0;
-  for (const char* name : {"ldr-rgb-00.png", "ldr-rgb-05.png", "ldr-rgba-00.png",
-                           "ldr-rgba-01.png", "ldr-rgb-emissive.png"}) {
+  for (const char* name : {"ldr-rgb-00.png", "ldr-rgb-05.png", "ldr-rgba-00.png", "ldr-rgba-01.png",
+                           "ldr-rgb-emissive.png"}) {
     auto img = read_image((data / "images" / name).string());
     if (!img.ok()) continue;
     ++n;
@@ -174,8 +174,7 @@ TEST(OracleDecode, SharedImages) {
 }
 
 // tessera-encoded files must decode identically in the oracle.
-class OracleEncode
-    : public ::testing::TestWithParam<std::tuple<Case, Format, Quality>> {};
+class OracleEncode : public ::testing::TestWithParam<std::tuple<Case, Format, Quality>> {};
 
 TEST_P(OracleEncode, OracleDecodesOurFilesLikeWeDo) {
   auto tool = test::pvrtextool();

@@ -55,8 +55,7 @@ Status check_dimensions(int width, int height, const std::string& what);
 
 /// Morton (twiddled) index of block (bx, by) in a grid of `bw` x `bh` blocks (powers of two):
 /// y bit 0, x bit 1, alternating; the surplus high bits of the larger dimension come above.
-std::uint32_t morton_index(std::uint32_t bx, std::uint32_t by, std::uint32_t bw,
-                           std::uint32_t bh);
+std::uint32_t morton_index(std::uint32_t bx, std::uint32_t by, std::uint32_t bw, std::uint32_t bh);
 
 /// Encoder options.
 struct EncodeOptions {
@@ -83,7 +82,7 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
 
 /// Decodes one level of `width` x `height` from `data` (at least `level_size` bytes) to RGBA8.
 /// Output `has_alpha` is true when any decoded alpha differs from 255.
-Result<ImageRGBA8> decode(std::span<const std::uint8_t> data, Format format, int width,
-                          int height, int threads = 0);
+Result<ImageRGBA8> decode(std::span<const std::uint8_t> data, Format format, int width, int height,
+                          int threads = 0);
 
 }  // namespace tessera::pvrtc

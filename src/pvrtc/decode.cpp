@@ -37,8 +37,7 @@ Status check_dimensions(int width, int height, const std::string& what) {
   return check_image_size(width, height, what);
 }
 
-std::uint32_t morton_index(std::uint32_t bx, std::uint32_t by, std::uint32_t bw,
-                           std::uint32_t bh) {
+std::uint32_t morton_index(std::uint32_t bx, std::uint32_t by, std::uint32_t bw, std::uint32_t bh) {
   return morton(bx, by, bw, bh);
 }
 
@@ -58,8 +57,8 @@ Grid make_grid(Format format, int width, int height) {
 void load_words(const Grid& g, const std::uint8_t* data, std::uint64_t* words) {
   for (int by = 0; by < g.nby; ++by) {
     for (int bx = 0; bx < g.nbx; ++bx) {
-      const std::uint32_t m = morton(std::uint32_t(bx), std::uint32_t(by), std::uint32_t(g.nbx),
-                                     std::uint32_t(g.nby));
+      const std::uint32_t m =
+          morton(std::uint32_t(bx), std::uint32_t(by), std::uint32_t(g.nbx), std::uint32_t(g.nby));
       std::uint64_t w = 0;
       for (int i = 7; i >= 0; --i) w = (w << 8) | data[std::size_t(m) * 8 + std::size_t(i)];
       words[std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx)] = w;
@@ -70,8 +69,8 @@ void load_words(const Grid& g, const std::uint8_t* data, std::uint64_t* words) {
 void store_words(const Grid& g, const std::uint64_t* words, std::uint8_t* data) {
   for (int by = 0; by < g.nby; ++by) {
     for (int bx = 0; bx < g.nbx; ++bx) {
-      const std::uint32_t m = morton(std::uint32_t(bx), std::uint32_t(by), std::uint32_t(g.nbx),
-                                     std::uint32_t(g.nby));
+      const std::uint32_t m =
+          morton(std::uint32_t(bx), std::uint32_t(by), std::uint32_t(g.nbx), std::uint32_t(g.nby));
       std::uint64_t w = words[std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx)];
       for (int i = 0; i < 8; ++i) {
         data[std::size_t(m) * 8 + std::size_t(i)] = std::uint8_t(w & 0xff);
@@ -132,8 +131,7 @@ void unpack_2bpp_block(std::uint64_t word, std::uint8_t values[32], int& mode) {
 
 }  // namespace
 
-void modulation_map(const Grid& g, const std::uint64_t* words, std::uint8_t* m_eff,
-                    int threads) {
+void modulation_map(const Grid& g, const std::uint64_t* words, std::uint8_t* m_eff, int threads) {
   const int pw = g.pw;
   if (g.format == Format::pvrtc1_4bpp) {
     parallel_for(
@@ -145,7 +143,8 @@ void modulation_map(const Grid& g, const std::uint64_t* words, std::uint8_t* m_e
               const bool mode1 = (w >> 32) & 1;
               const std::uint32_t bits = std::uint32_t(w);
               for (int y = 0; y < 4; ++y) {
-                std::uint8_t* row = m_eff + (std::size_t(by) * 4 + std::size_t(y)) * std::size_t(pw) +
+                std::uint8_t* row = m_eff +
+                                    (std::size_t(by) * 4 + std::size_t(y)) * std::size_t(pw) +
                                     std::size_t(bx) * 4;
                 for (int x = 0; x < 4; ++x) {
                   const std::uint32_t v = (bits >> (2 * (4 * y + x))) & 3;
@@ -271,14 +270,14 @@ void decode_padded(const Grid& g, const std::uint64_t* words, std::uint8_t* out,
 
 }  // namespace detail
 
-Result<ImageRGBA8> decode(std::span<const std::uint8_t> data, Format format, int width,
-                          int height, int threads) {
+Result<ImageRGBA8> decode(std::span<const std::uint8_t> data, Format format, int width, int height,
+                          int threads) {
   if (Status s = check_dimensions(width, height, "pvrtc::decode"); !s.ok()) return s;
   const std::size_t need = level_size(format, width, height);
   if (data.size() < need) {
-    return Status::error(ErrorCode::corrupt_data,
-                         "pvrtc::decode: level needs " + std::to_string(need) + " bytes, got " +
-                             std::to_string(data.size()));
+    return Status::error(ErrorCode::corrupt_data, "pvrtc::decode: level needs " +
+                                                      std::to_string(need) + " bytes, got " +
+                                                      std::to_string(data.size()));
   }
   const Grid g = make_grid(format, width, height);
   std::vector<std::uint64_t> words(g.blocks());

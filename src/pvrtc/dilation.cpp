@@ -71,7 +71,8 @@ void dilate_band(int w, const BandPlanes& src, BandPlanes& dst, int nplanes, int
     std::uint8_t* fo = &dst.p[4][row];
     const std::uint16_t *n0 = hrow(4, r - 1), *n1 = hrow(4, r), *n2 = hrow(4, r + 1);
     for (int x = 0; x < w8; x += 8) {
-      const vu16x8 n = simd::load_u16x8(n0 + x) + simd::load_u16x8(n1 + x) + simd::load_u16x8(n2 + x);
+      const vu16x8 n =
+          simd::load_u16x8(n0 + x) + simd::load_u16x8(n1 + x) + simd::load_u16x8(n2 + x);
       vu16x8 rcv = zero;
       for (std::uint16_t k = 2; k < 10; ++k) {
         rcv = rcv | (simd::cmpeq(n, vu16x8(k)) & vu16x8(kRecip16[k]));
@@ -93,7 +94,8 @@ void dilate_band(int w, const BandPlanes& src, BandPlanes& dst, int nplanes, int
       const std::uint32_t n = std::uint32_t(n0[x]) + n1[x] + n2[x];
       fo[x] = std::uint8_t(f[x] | (n != 0));
       for (int k = 0; k < nplanes; ++k) {
-        const std::uint32_t sum = std::uint32_t(hrow(k, r - 1)[x]) + hrow(k, r)[x] + hrow(k, r + 1)[x];
+        const std::uint32_t sum =
+            std::uint32_t(hrow(k, r - 1)[x]) + hrow(k, r)[x] + hrow(k, r + 1)[x];
         const std::uint32_t avg = n == 1 ? sum : ((sum + n / 2) * kRecip16[n]) >> 16;
         dst.p[k][row + std::size_t(x)] = f[x] ? src.p[k][row + std::size_t(x)] : std::uint8_t(avg);
       }
@@ -157,7 +159,8 @@ void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vec
             const std::size_t i = std::size_t(r) * W + std::size_t(x);
             for (int k = 0; k < 2; ++k) {
               if (!(k == 0 ? is_max : is_min)) continue;
-              for (int c = 0; c < nplanes; ++c) pl[k][0].p[c][i] = src[std::size_t(x) * 4 + std::size_t(c)];
+              for (int c = 0; c < nplanes; ++c)
+                pl[k][0].p[c][i] = src[std::size_t(x) * 4 + std::size_t(c)];
               pl[k][0].p[4][i] = 1;
             }
           }

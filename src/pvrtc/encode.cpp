@@ -62,10 +62,12 @@ SingleTable make_single_table(int abits, int m, bool two_bpp) {
     SingleColour best{0, 0, 0xffff};
     for (int a = 0; a < (1 << abits); ++a) {
       for (int b = 0; b < 32; ++b) {
-        const int la = code_level_rgb(std::uint32_t(a), abits), lb = code_level_rgb(std::uint32_t(b), 5);
+        const int la = code_level_rgb(std::uint32_t(a), abits),
+                  lb = code_level_rgb(std::uint32_t(b), 5);
         const int d = (la * (8 - m) + lb * m) / 8 - v;
         const int cost = two_bpp ? 15 * d * d + (la - v) * (la - v) : d * d;
-        if (cost < best.err) best = {std::uint8_t(a), std::uint8_t(b), std::uint16_t(std::min(cost, 0xfffe))};
+        if (cost < best.err)
+          best = {std::uint8_t(a), std::uint8_t(b), std::uint16_t(std::min(cost, 0xfffe))};
       }
     }
     t[std::size_t(v)] = best;
@@ -179,7 +181,8 @@ void choose_modulation_4bpp_impl(EncoderState& s) {
               {
                 const std::size_t li = std::size_t(y) * std::size_t(g.pw) + std::size_t(bx * 4);
                 const std::uint8_t* t =
-                    &s.target[(std::size_t(by * 4 + y) * std::size_t(g.pw) + std::size_t(bx * 4)) * 4];
+                    &s.target[(std::size_t(by * 4 + y) * std::size_t(g.pw) + std::size_t(bx * 4)) *
+                              4];
                 if constexpr (kAlpha) {
                   any_clear |= (t[3] < 128) | (t[7] < 128) | (t[11] < 128) | (t[15] < 128);
                 }
@@ -189,7 +192,8 @@ void choose_modulation_4bpp_impl(EncoderState& s) {
               {
                 const std::size_t li = std::size_t(y) * std::size_t(g.pw) + std::size_t(bx * 4 + 2);
                 const std::uint8_t* t = &s.target[(std::size_t(by * 4 + y) * std::size_t(g.pw) +
-                                                   std::size_t(bx * 4 + 2)) * 4];
+                                                   std::size_t(bx * 4 + 2)) *
+                                                  4];
                 texel_errors2<kAlpha>(t, &ua[li * 4], &ub[li * 4], e2b);
               }
               for (int x = 0; x < 4; ++x) {
@@ -271,10 +275,12 @@ void choose_modulation_2bpp(EncoderState& s) {
       [&](std::int64_t y0, std::int64_t y1) {
         upscale_rows(g, ea.data(), int(y0), int(y1), &ua[std::size_t(y0) * std::size_t(g.pw) * 4]);
         upscale_rows(g, eb.data(), int(y0), int(y1), &ub[std::size_t(y0) * std::size_t(g.pw) * 4]);
-        for (std::size_t i = std::size_t(y0) * std::size_t(g.pw); i < std::size_t(y1) * std::size_t(g.pw); ++i) {
+        for (std::size_t i = std::size_t(y0) * std::size_t(g.pw);
+             i < std::size_t(y1) * std::size_t(g.pw); ++i) {
           std::uint32_t best = std::numeric_limits<std::uint32_t>::max(), bc = 0;
           for (std::uint32_t c = 0; c < 4; ++c) {
-            const std::uint32_t e = texel_error(&s.target[i * 4], &ua[i * 4], &ub[i * 4], kMod4Mode0[c], false, nch);
+            const std::uint32_t e =
+                texel_error(&s.target[i * 4], &ua[i * 4], &ub[i * 4], kMod4Mode0[c], false, nch);
             if (e < best) {
               best = e;
               bc = c;
@@ -337,7 +343,9 @@ void choose_modulation_2bpp(EncoderState& s) {
                   if (((x ^ y) & 1) == 0) continue;
                   std::int32_t m;
                   if (variant == 0) {
-                    m = (stored(x, y - 1) + stored(x, y + 1) + stored(x - 1, y) + stored(x + 1, y) + 2) / 4;
+                    m = (stored(x, y - 1) + stored(x, y + 1) + stored(x - 1, y) + stored(x + 1, y) +
+                         2) /
+                        4;
                   } else if (variant == 1) {
                     m = (stored(x - 1, y) + stored(x + 1, y) + 1) / 2;
                   } else {
@@ -440,8 +448,10 @@ void homogeneous_shortcut(EncoderState& s) {
             bool uniform = first[3] == 255;
             for (int y = 0; y < 4 && uniform; ++y) {
               const std::uint8_t* row =
-                  &s.target[(std::size_t(by * 4 + y) * std::size_t(g.pw) + std::size_t(bx * g.bw)) * 4];
-              for (int x = 0; x < g.bw && uniform; ++x) uniform = std::memcmp(row + x * 4, first, 4) == 0;
+                  &s.target[(std::size_t(by * 4 + y) * std::size_t(g.pw) + std::size_t(bx * g.bw)) *
+                            4];
+              for (int x = 0; x < g.bw && uniform; ++x)
+                uniform = std::memcmp(row + x * 4, first, 4) == 0;
             }
             if (!uniform) continue;
             const bool two = g.format == Format::pvrtc1_2bpp;

@@ -19,8 +19,8 @@ struct EncoderState {
   std::vector<std::uint8_t> target;
   /// Packed endpoint fields per block, linear order (A: bits 1-15 of its 16-bit field).
   std::vector<std::uint16_t> ca, cb;
-  std::vector<std::uint8_t> mode;   ///< Modulation mode bit per block.
-  std::vector<std::uint32_t> mod;   ///< Modulation bits per block.
+  std::vector<std::uint8_t> mode;  ///< Modulation mode bit per block.
+  std::vector<std::uint32_t> mod;  ///< Modulation bits per block.
   /// Effective modulation map (pw * ph) used by the refinement passes.
   std::vector<std::uint8_t> scratch_m;
 

@@ -160,12 +160,14 @@ void polish(EncoderState& s, int rounds) {
                 for (int pass = 0; pass < 4 && improved; ++pass) {
                   improved = false;
                   for (int mv = 0; mv < kMoves; ++mv) {
-                    EndpointCodes a = unpack_endpoint(false, cur_a), b = unpack_endpoint(true, cur_b);
+                    EndpointCodes a = unpack_endpoint(false, cur_a),
+                                  b = unpack_endpoint(true, cur_b);
                     if (!apply_move(mv, a, b)) continue;
                     const std::uint16_t na = std::uint16_t(pack_endpoint(false, a));
                     const std::uint16_t nb = std::uint16_t(pack_endpoint(true, b));
                     std::uint8_t trial[64];
-                    const std::uint32_t e = window_error(w, bx, by, expand_a(na), expand_b(nb), trial);
+                    const std::uint32_t e =
+                        window_error(w, bx, by, expand_a(na), expand_b(nb), trial);
                     if (e < best) {
                       best = e;
                       cur_a = na;

@@ -24,8 +24,7 @@ struct Grid {
 Grid make_grid(Format format, int width, int height);
 
 /// Expanded endpoints A and B of every block, in linear (row-major) block order.
-void expand_endpoints(const Grid& g, const std::uint64_t* words, Rgba5* ea, Rgba5* eb,
-                      int threads);
+void expand_endpoints(const Grid& g, const std::uint64_t* words, Rgba5* ea, Rgba5* eb, int threads);
 
 /// Effective modulation weight (0..8, | kPunchFlag when alpha is punched through) of every
 /// texel of the padded level, row-major, from linear-order block words. Exactly PVRTexTool's

@@ -123,7 +123,8 @@ inline std::uint32_t code_floor(float level, int bits, int channel) {
   const std::uint32_t maxc = (1u << bits) - 1;
   float f = level * float(maxc) / 255.0f;
   std::int32_t c = std::clamp(std::int32_t(f), 0, std::int32_t(maxc));
-  while (c < std::int32_t(maxc) && float(code_level(std::uint32_t(c + 1), bits, channel)) <= level) ++c;
+  while (c < std::int32_t(maxc) && float(code_level(std::uint32_t(c + 1), bits, channel)) <= level)
+    ++c;
   while (c > 0 && float(code_level(std::uint32_t(c), bits, channel)) > level) --c;
   return std::uint32_t(c);
 }

@@ -16,7 +16,7 @@ namespace tessera::pvrtc::detail {
 namespace {
 
 // Level (8-bit scale, linear in the expanded value) of an expanded channel value.
-constexpr float kRgbScale = 8.25f;   // (e << 3) | (e >> 2) ~ 8.25 e for 5-bit e
+constexpr float kRgbScale = 8.25f;    // (e << 3) | (e >> 2) ~ 8.25 e for 5-bit e
 constexpr float kAlphaScale = 17.0f;  // 4-bit alpha a -> 17 a
 // Mean loss of the decoder's truncations: the 8-bit conversion floors twice (about 0.5
 // measured) and the modulation blend (A (8 - m) + B m) / 8 floors unless m is 0 or 8
@@ -43,7 +43,9 @@ void endpoint_levels(std::uint16_t ca, std::uint16_t cb, float* out) {
 // Expanded-value level of a code of `bits` bits for channel `ch` (alpha codes are 3-bit).
 float code_value(std::uint32_t code, int bits, int ch) {
   if (ch == 3) return float(code * 2) * kAlphaScale;
-  const std::int32_t e = bits == 5 ? std::int32_t(code) : bits == 4 ? expand4to5(code) : expand3to5(code);
+  const std::int32_t e = bits == 5   ? std::int32_t(code)
+                         : bits == 4 ? expand4to5(code)
+                                     : expand3to5(code);
   return float(e) * kRgbScale;
 }
 
@@ -179,8 +181,8 @@ void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by, bool c
       const double la = var_a ? code_value(qa, ba, c) : double(cur[c]);
       for (std::uint32_t qb : cand_b) {
         const double lb = var_b ? code_value(qb, bb, c) : double(cur[4 + c]);
-        const double e = sm.aa * la * la + 2 * sm.ab * la * lb + sm.bb * lb * lb -
-                         2 * sm.ra * la - 2 * sm.rb * lb;
+        const double e = sm.aa * la * la + 2 * sm.ab * la * lb + sm.bb * lb * lb - 2 * sm.ra * la -
+                         2 * sm.rb * lb;
         if (e < best) {
           best = e;
           if (var_a) *code_a[c] = qa;
@@ -220,7 +222,8 @@ void refine(EncoderState& s, int iterations) {
             0, rows, 4,
             [&](std::int64_t r0, std::int64_t r1) {
               for (int r = int(r0); r < int(r1); ++r) {
-                for (int bx = ox; bx < g.nbx; bx += 2) solve_block(s, lv, bx, 2 * r + oy, continuous);
+                for (int bx = ox; bx < g.nbx; bx += 2)
+                  solve_block(s, lv, bx, 2 * r + oy, continuous);
               }
             },
             s.threads);

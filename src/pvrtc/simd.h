@@ -67,7 +67,6 @@ inline void store_u8x4(vint4 a, std::uint8_t* out) {
   std::memcpy(out, &w, 4);
 }
 
-
 /// Eight unsigned 16-bit lanes (texels of one plane widened from bytes).
 struct vu16x8 {
   __m128i v;
@@ -83,8 +82,8 @@ struct vu16x8 {
 };
 /// Loads 8 bytes, zero-extended to 16-bit lanes.
 inline vu16x8 load_u8x8(const std::uint8_t* p) {
-  return vu16x8(_mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)),
-                                  _mm_setzero_si128()));
+  return vu16x8(
+      _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)), _mm_setzero_si128()));
 }
 inline vu16x8 load_u16x8(const std::uint16_t* p) {
   return vu16x8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
@@ -154,14 +153,15 @@ inline void store_u8x4(vint4 a, std::uint8_t* out) {
   for (int i = 0; i < 4; ++i) out[i] = std::uint8_t(a.l[i]);
 }
 
-
 struct vu16x8 {
   std::uint16_t l[8] = {0, 0, 0, 0, 0, 0, 0, 0};
   vu16x8() = default;
   explicit vu16x8(std::uint16_t a) {
     for (auto& x : l) x = a;
   }
-  std::int32_t lane_sq(int i) const { return std::int32_t(std::int16_t(l[i])) * std::int16_t(l[i]); }
+  std::int32_t lane_sq(int i) const {
+    return std::int32_t(std::int16_t(l[i])) * std::int16_t(l[i]);
+  }
 };
 inline vu16x8 load_u8x8(const std::uint8_t* p) {
   vu16x8 r;
@@ -179,11 +179,11 @@ inline void store_u16x8(vu16x8 a, std::uint16_t* p) {
 inline void store_u8x8(vu16x8 a, std::uint8_t* p) {
   for (int i = 0; i < 8; ++i) p[i] = std::uint8_t(a.l[i] > 255 ? 255 : a.l[i]);
 }
-#define TESSERA_SIMD_U16_BINOP(op, expr)                   \
-  inline vu16x8 op(vu16x8 a, vu16x8 b) {                   \
-    vu16x8 r;                                              \
+#define TESSERA_SIMD_U16_BINOP(op, expr)                      \
+  inline vu16x8 op(vu16x8 a, vu16x8 b) {                      \
+    vu16x8 r;                                                 \
     for (int i = 0; i < 8; ++i) r.l[i] = std::uint16_t(expr); \
-    return r;                                              \
+    return r;                                                 \
   }
 TESSERA_SIMD_U16_BINOP(operator+, a.l[i] + b.l[i])
 TESSERA_SIMD_U16_BINOP(operator&, a.l[i] & b.l[i])
