@@ -7,7 +7,6 @@
 // re-chosen and the whole sweep is kept only if the exact decoded error dropped.
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "pvrtc/encode_internal.h"
 
