@@ -16,4 +16,7 @@ Status demo_images_section(Report& report, const DemoOptions& options);
 /// PVRTC1: every quality and 2 bpp on the procedural images, heatmaps, crops, a mip chain.
 Status demo_pvrtc_section(Report& report, const DemoOptions& options);
 
+/// Rendering core: the built-in scene at 1x, 4x MSAA and a 4x4 SSAA reference, with zooms.
+Status demo_render_section(Report& report, const DemoOptions& options);
+
 }  // namespace tessera::cli

@@ -9,11 +9,6 @@
 namespace tessera::cli {
 
 namespace {
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 /// 2x2 box downsample in linear light followed by nearest upsampling: a known, visible loss
 /// to show what the metrics report.

@@ -15,25 +15,9 @@ namespace tessera::cli {
 
 namespace {
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 std::string db(double v) { return std::isfinite(v) ? fmt("%.2f", v) : "inf"; }
 
-ImageRGBA8 crop(const ImageRGBA8& img, int x0, int y0, int w, int h) {
-  ImageRGBA8 out(w, h);
-  out.has_alpha = img.has_alpha;
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const std::uint8_t* s = img.at(x0 + x, y0 + y);
-      std::copy(s, s + 4, out.at(x, y));
-    }
-  }
-  return out;
-}
 
 struct Variant {
   const char* label;

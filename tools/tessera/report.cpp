@@ -1,5 +1,7 @@
 #include "report.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 
 #include "tessera/io.h"
@@ -7,6 +9,22 @@
 namespace tessera::cli {
 
 namespace fs = std::filesystem;
+
+ImageRGBA8 crop(const ImageRGBA8& img, int x0, int y0, int w, int h) {
+  ImageRGBA8 out(w, h);
+  out.has_alpha = img.has_alpha;
+  for (int y = 0; y < h; ++y) {
+    const std::uint8_t* s = img.at(x0, y0 + y);
+    std::copy(s, s + std::size_t(w) * 4, out.at(0, y));
+  }
+  return out;
+}
+
+std::string fmt(const char* format, double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, value);
+  return buf;
+}
 
 Report::Report(std::string dir, std::string title) : dir_(std::move(dir)), title_(std::move(title)) {}
 

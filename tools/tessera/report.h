@@ -15,6 +15,11 @@ struct Figure {
   std::string caption;  ///< Plain text.
 };
 
+/// Copies the w x h rectangle at (x0, y0) of `img` (must lie inside it).
+ImageRGBA8 crop(const ImageRGBA8& img, int x0, int y0, int w, int h);
+/// printf-style formatting of one number ("%.2f", ...).
+std::string fmt(const char* format, double value);
+
 /// Accumulates an HTML page; `write` stores it atomically as DIR/report.html.
 class Report {
  public:
