@@ -3,9 +3,16 @@
 // The decoder is bit-exact with Imagination's PVRTexTool 4.17 (the reference), including
 // punch-through blocks, translucent colours, non-square power-of-two sizes and textures
 // smaller than the 2x2-block minimum. The encoder implements "Fast PVRTC Compression using
-// Intensity Dilation" (Krajcevski & Manocha, JCGT 3(4), 2014) for `Quality::fast`, and refines
-// that result by alternating least-squares optimisation of the block colours and brute-force
-// modulation (the two-stage scheme of the paper's §1.2) for `normal` and `high`.
+// Intensity Dilation" (Krajcevski & Manocha, JCGT 3(4), 2014) for `Quality::fast`. `normal` and
+// `high` run the two-stage scheme of the paper's §1.2: initial endpoints (principal-axis split of
+// each block's bilinear footprint: unlike intensity labelling it separates equally bright
+// colours, e.g. across the wrap-around seam), then alternating least-squares optimisation of
+// the block colours (modulation fixed) and brute-force modulation (colours fixed).
+//
+// Modulation is always chosen against the exact decoder arithmetic, so the bytes an encode
+// returns decode (in tessera or PVRTexTool) to exactly the image the encoder scored.
+// 4 bpp RGBA input uses translucent endpoints where they quantise better and punch-through
+// (mode 1) blocks where they lower the error; RGB input writes only opaque endpoints.
 //
 // Data layout: compressed data is a sequence of 64-bit little-endian blocks in Morton
 // (twiddled) order, exactly as stored in a PVR v3 file's level data. Each level holds
@@ -34,9 +41,9 @@ enum class Format {
 
 /// Encoder effort.
 enum class Quality {
-  fast,    ///< Intensity dilation only (the paper's algorithm).
-  normal,  ///< Dilation + a few refinement iterations.
-  high,    ///< Dilation + refinement to convergence (or the iteration budget).
+  fast,    ///< Intensity dilation only (the paper's algorithm), 4 bpp mode 0 (+ punch-through).
+  normal,  ///< Principal-axis start + up to 3 refinement sweeps; 4 bpp also tries mode 1.
+  high,    ///< As normal, refinement until a sweep gains < 0.25% (at most 16 sweeps).
 };
 
 /// Block width in texels (4 for 4 bpp, 8 for 2 bpp); blocks are always 4 texels high.
