@@ -54,11 +54,28 @@ Grid make_grid(Format format, int width, int height) {
   return g;
 }
 
+namespace {
+
+// The Morton index is the bitwise or of a part that depends on bx only and one on by only.
+void morton_tables(const Grid& g, std::vector<std::uint32_t>& mx, std::vector<std::uint32_t>& my) {
+  mx.resize(std::size_t(g.nbx));
+  my.resize(std::size_t(g.nby));
+  for (int bx = 0; bx < g.nbx; ++bx) {
+    mx[std::size_t(bx)] = morton(std::uint32_t(bx), 0, std::uint32_t(g.nbx), std::uint32_t(g.nby));
+  }
+  for (int by = 0; by < g.nby; ++by) {
+    my[std::size_t(by)] = morton(0, std::uint32_t(by), std::uint32_t(g.nbx), std::uint32_t(g.nby));
+  }
+}
+
+}  // namespace
+
 void load_words(const Grid& g, const std::uint8_t* data, std::uint64_t* words) {
+  std::vector<std::uint32_t> mx, my;
+  morton_tables(g, mx, my);
   for (int by = 0; by < g.nby; ++by) {
     for (int bx = 0; bx < g.nbx; ++bx) {
-      const std::uint32_t m =
-          morton(std::uint32_t(bx), std::uint32_t(by), std::uint32_t(g.nbx), std::uint32_t(g.nby));
+      const std::uint32_t m = mx[std::size_t(bx)] | my[std::size_t(by)];
       std::uint64_t w = 0;
       for (int i = 7; i >= 0; --i) w = (w << 8) | data[std::size_t(m) * 8 + std::size_t(i)];
       words[std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx)] = w;
@@ -67,10 +84,11 @@ void load_words(const Grid& g, const std::uint8_t* data, std::uint64_t* words) {
 }
 
 void store_words(const Grid& g, const std::uint64_t* words, std::uint8_t* data) {
+  std::vector<std::uint32_t> mx, my;
+  morton_tables(g, mx, my);
   for (int by = 0; by < g.nby; ++by) {
     for (int bx = 0; bx < g.nbx; ++bx) {
-      const std::uint32_t m =
-          morton(std::uint32_t(bx), std::uint32_t(by), std::uint32_t(g.nbx), std::uint32_t(g.nby));
+      const std::uint32_t m = mx[std::size_t(bx)] | my[std::size_t(by)];
       std::uint64_t w = words[std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx)];
       for (int i = 0; i < 8; ++i) {
         data[std::size_t(m) * 8 + std::size_t(i)] = std::uint8_t(w & 0xff);

@@ -143,22 +143,40 @@ void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vec
             }
           }
         }
+        // Separable 3x3 max / min of the intensity (horizontal pass per row, then vertical):
+        // a texel is a local maximum (minimum) when it equals the max (min) of its 3x3.
+        std::vector<std::int32_t> hmax(std::size_t(irows) * W), hmin(std::size_t(irows) * W);
+        for (int r = 0; r < irows; ++r) {
+          const std::int32_t* in = &inten[std::size_t(r) * W];
+          std::int32_t* mx = &hmax[std::size_t(r) * W];
+          std::int32_t* mn = &hmin[std::size_t(r) * W];
+          for (int x = 1; x + 1 < w; ++x) {
+            mx[x] = std::max(std::max(in[x - 1], in[x]), in[x + 1]);
+            mn[x] = std::min(std::min(in[x - 1], in[x]), in[x + 1]);
+          }
+          for (int x : {0, w - 1}) {
+            const std::int32_t l = in[(x - 1) & wm], c = in[x], rr = in[(x + 1) & wm];
+            mx[x] = std::max(std::max(l, c), rr);
+            mn[x] = std::min(std::min(l, c), rr);
+          }
+        }
+        std::vector<std::uint8_t> lab(W);
         for (int r = 0; r < prows; ++r) {
-          const std::int32_t* rows[3] = {&inten[std::size_t(r) * W], &inten[std::size_t(r + 1) * W],
-                                         &inten[std::size_t(r + 2) * W]};
+          const std::size_t r0 = std::size_t(r) * W, r1 = r0 + W, r2 = r1 + W;
+          const std::int32_t* v = &inten[r1];
+          for (int x = 0; x < w; ++x) {
+            const std::size_t i0 = r0 + std::size_t(x), i1 = r1 + std::size_t(x),
+                              i2 = r2 + std::size_t(x);
+            const std::int32_t m = std::max(std::max(hmax[i0], hmax[i1]), hmax[i2]);
+            const std::int32_t n = std::min(std::min(hmin[i0], hmin[i1]), hmin[i2]);
+            lab[std::size_t(x)] = std::uint8_t((m == v[x] ? 1 : 0) | (n == v[x] ? 2 : 0));
+          }
           const std::uint8_t* src = t + std::size_t((Y0 - kDilations + r) & hm) * W * 4;
           for (int x = 0; x < w; ++x) {
-            const std::int32_t v = rows[1][x];
-            const int xl = (x - 1) & wm, xr = (x + 1) & wm;
-            bool is_max = true, is_min = true;
-            for (const std::int32_t* row : rows) {
-              const std::int32_t a = row[xl], b = row[x], c = row[xr];
-              is_max &= (a <= v) & (b <= v) & (c <= v);
-              is_min &= (a >= v) & (b >= v) & (c >= v);
-            }
+            if (!lab[std::size_t(x)]) continue;
             const std::size_t i = std::size_t(r) * W + std::size_t(x);
             for (int k = 0; k < 2; ++k) {
-              if (!(k == 0 ? is_max : is_min)) continue;
+              if (!(lab[std::size_t(x)] & (1 << k))) continue;
               for (int c = 0; c < nplanes; ++c)
                 pl[k][0].p[c][i] = src[std::size_t(x) * 4 + std::size_t(c)];
               pl[k][0].p[4][i] = 1;

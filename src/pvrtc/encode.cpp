@@ -506,10 +506,13 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   // Target: the source tiled over the padded level (only textures under 2x2 blocks differ).
   s.target.resize(g.texels() * 4);
   for (int y = 0; y < g.ph; ++y) {
-    for (int x = 0; x < g.pw; ++x) {
-      std::uint8_t* d = &s.target[(std::size_t(y) * std::size_t(g.pw) + std::size_t(x)) * 4];
-      std::memcpy(d, image.at(x % image.width, y % image.height), 4);
-      if (!s.alpha_mode) d[3] = 255;
+    std::uint8_t* d = &s.target[std::size_t(y) * std::size_t(g.pw) * 4];
+    for (int x0 = 0; x0 < g.pw; x0 += image.width) {
+      std::memcpy(d + std::size_t(x0) * 4, image.at(0, y % image.height),
+                  std::size_t(std::min(image.width, g.pw - x0)) * 4);
+    }
+    if (!s.alpha_mode) {
+      for (int x = 0; x < g.pw; ++x) d[std::size_t(x) * 4 + 3] = 255;
     }
   }
   s.ca.assign(g.blocks(), 0);
