@@ -1,0 +1,261 @@
+// tessera/deferred.h — deferred shading with adaptive supersampling (Hollander, Boubekeur &
+// Eisemann 2013, "Adaptive Supersampling for Deferred Anti-Aliasing", JCGT 2(1)), and FXAA 3.11.
+//
+// The method, as in the paper's Listing 1:
+//  1. `DeferredRenderer::render_gbuffer` rasterizes the scene into an enlarged G-buffer of
+//     (m*w) x (m*h) samples (tessera's rasterizer with ssaa = m, msaa = 1); output pixel (x, y)
+//     owns the m x m "window" of grid pixels (m*x + i, m*y + j). The G-buffer stores geometry and
+//     the *inputs* of the albedo lookup (material id, UV, UV derivatives), not the albedo (§4).
+//  2. The first sample of every window (position 0 of the index matrix, `sample_order`) is
+//     shaded into S (w x h).
+//  3. Per pixel, k = clamp(round(max(k_d, k_n, k_s)), 0, m^2 - 1) from the depth variance and the
+//     normal cone of the window (geometry) and the luminance range of S around the pixel
+//     (shading); see `AdaptiveOptions` for the exact formulas and constants.
+//  4. k more samples, positions 1..k of the index matrix, are shaded and averaged with the first.
+//
+// Baselines on the same G-buffer: `shade_reference` (all m^2 samples, a box filter: brute-force
+// SSAA with the same shader and texture filtering) and `shade_default` (one sample per pixel —
+// the window's first sample in index order — with a one-pixel texture footprint: plain 1x
+// deferred shading; identical to adaptive with k forced to 0). `fxaa` post-processes an 8-bit
+// image with FXAA 3.11 (quality preset 39 by default).
+//
+// Texture filtering (§4.1): every sample's albedo is an anisotropic `textureGrad` lookup with
+// the UV derivatives stored in the G-buffer (derivatives per grid pixel, computed by the
+// rasterizer from the geometry pass's 2x2 quads, so they never difference two triangles),
+// scaled by sqrt(area / samples) — the number of grid pixels each shaded sample stands for:
+//  * reference: scale 1 (each sample is one grid pixel);
+//  * one sample per pixel (S, default, adaptive k = 0): scale m (the sample stands for the pixel);
+//  * adaptive with k > 0 in a window of one material with no UV seam: m / sqrt(k + 1);
+//  * material-boundary rule: when the window holds several material ids (background counts as
+//    one) the scale of a sample is sqrt(A / N) with A the window's grid pixels of the sample's
+//    material and N the shaded samples of that material, so no footprint is enlarged over
+//    another material's part of the window; when a UV seam is detected (two adjacent samples of
+//    the window whose UV difference exceeds `AdaptiveOptions::seam_factor` times what their
+//    derivatives predict — a discontinuity of the texture coordinates), the scale is 1.
+// With k = m^2 - 1 every scale is 1 and adaptive equals the reference bit for bit.
+//
+// Shading is Blinn-Phong with any number of point lights (`ShadingOptions`), split as
+// colour = albedo * D + P (D: ambient + diffuse light, including the optional heavy term;
+// P: specular). S keeps D and P, so when k > 0 changes the first sample's texture footprint only
+// its albedo lookup is repeated, never its lighting.
+//
+// Threads and determinism: every driver runs `parallel_for` over rows and writes each output
+// pixel from one iteration; results are bit-identical for any thread count. A `DeferredRenderer`
+// is not thread-safe (it owns the rasterizer); its const shading methods may run concurrently.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "tessera/core.h"
+#include "tessera/math.h"
+#include "tessera/raster.h"
+#include "tessera/scene.h"
+#include "tessera/texture.h"
+
+namespace tessera::deferred {
+
+// ---------------------------------------------------------------------------------------------
+// G-buffer layout
+// ---------------------------------------------------------------------------------------------
+
+/// Channel offsets of one G-buffer sample (11 floats).
+inline constexpr int kChDepth = 0;     ///< Linear view depth (distance along the view axis,
+                                       ///< world units, > 0); the camera's far plane if empty.
+inline constexpr int kChNormal = 1;    ///< World-space normal, 3 floats (interpolated vertex
+                                       ///< normals, not renormalised); 0 if empty.
+inline constexpr int kChMaterial = 4;  ///< Material index as a float; -1 if empty (background).
+inline constexpr int kChUv = 5;        ///< Texture coordinates u, v.
+inline constexpr int kChDuvDx = 7;     ///< d(u, v)/dx per grid pixel.
+inline constexpr int kChDuvDy = 9;     ///< d(u, v)/dy per grid pixel.
+inline constexpr int kGBufferChannels = 11;
+
+/// Linear RGB of pixels with no geometry.
+inline constexpr std::array<float, 3> kBackground = {0.05f, 0.05f, 0.08f};
+
+/// An enlarged G-buffer and what the shading pass needs to reconstruct positions.
+struct GBuffer {
+  raster::FrameBuffer fb;       ///< ssaa = m, msaa = 1, kGBufferChannels channels.
+  int m = 1;                    ///< Window size (supersampling factor).
+  Mat4 inv_view;                ///< Camera to world.
+  Vec3 eye;                     ///< Camera position (world).
+  float tan_half_fov_y = 0.5f;  ///< tan(fov_y / 2).
+  float aspect = 1.0f;          ///< width / height.
+
+  int width() const { return fb.width(); }
+  int height() const { return fb.height(); }
+  /// The 11 channels of grid pixel (gx, gy).
+  const float* sample(int gx, int gy) const { return fb.data(gx, gy, 0); }
+  /// World position of grid pixel (gx, gy), reconstructed from its linear depth.
+  Vec3 position(int gx, int gy) const;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Index matrices (Figure 3)
+// ---------------------------------------------------------------------------------------------
+
+/// The index matrix of an m x m window, row-major: entry (row j, column i) is the position in
+/// the sampling order of grid pixel (i, j) of the window. m = 2, 3, 4 are the paper's Figure 3;
+/// other m in [1, 8] are generated greedily by farthest-point insertion (the first sample nearest
+/// the centre; each next one maximises its distance to those already chosen, ties to the one
+/// nearest the centre, then to the lowest row-major index). Empty for m outside [1, 8].
+std::span<const std::uint8_t> index_matrix(int m);
+/// The inverse permutation: entry p is the row-major window index (j * m + i) of the p-th sample.
+std::span<const std::uint8_t> sample_order(int m);
+
+// ---------------------------------------------------------------------------------------------
+// Shading
+// ---------------------------------------------------------------------------------------------
+
+/// A point light (world space), attenuated as KHR_lights_punctual: intensity / d^2 times the
+/// range window clamp(1 - (d / range)^4, 0, 1)^2 when range > 0.
+struct Light {
+  Vec3 position;
+  std::array<float, 3> color = {1, 1, 1};
+  float intensity = 1.0f;
+  float range = 0.0f;
+};
+
+/// The deferred shader: Blinn-Phong, many point lights, optional heavy per-sample term.
+struct ShadingOptions {
+  std::vector<Light> lights;
+  std::array<float, 3> ambient = {0.06f, 0.06f, 0.07f};  ///< Linear RGB ambient light.
+  float specular = 0.3f;    ///< Specular colour (grey) of every material.
+  float shininess = 48.0f;  ///< Blinn-Phong exponent.
+  float exposure = 1.0f;    ///< Multiplies all light (D and P).
+  /// Texture filtering of the albedo lookup. Anisotropic with `max_aniso` probes by default.
+  TextureFilter filter = TextureFilter::anisotropic;
+  int max_aniso = 16;
+  /// The paper's "stalled" column: adds a genuinely expensive per-sample computation whose
+  /// result modulates the diffuse light — a sum of `heavy_terms` smooth sinusoids of the world
+  /// position (wavelengths between 1/8 and 1/2 of `heavy_wavelength`), i.e. heavy_terms cos and
+  /// sin evaluations per shaded sample. No sleeping: the cost is real arithmetic.
+  bool heavy = false;
+  int heavy_terms = 96;
+  float heavy_wavelength = 4.0f;  ///< World units; `scene_shading` sets it from the bounds.
+  int threads = 0;  ///< Worker threads (0 = all). Results are identical for any value.
+};
+
+/// Shading options for a scene: its point lights plus `extra_lights` generated ones (on a
+/// ring inside the bounds, deterministic, intensities scaled to the scene size), the heavy
+/// wavelength from the bounds. With no lights at all, 4 extra ones are added.
+ShadingOptions scene_shading(const scene::Scene& scene, int extra_lights = 0);
+
+// ---------------------------------------------------------------------------------------------
+// Adaptive sampling
+// ---------------------------------------------------------------------------------------------
+
+/// Constants of the metrics. With n = m^2 the window size and K = n - 1 the most extra samples,
+/// per pixel (the paper's formulas; the constants c are expressed in units of K so that one set
+/// serves every m, and depth is made scale-free by dividing by the mean):
+///   k_d = c_depth  * K * Var(d_i / mean(d))                       (over the n window samples)
+///   k_n = c_normal * K * sqrt(1 - min_ij |nbar . n_ij|)           (nbar: normalised mean)
+///   k_s = 0 if r < max(t_min, l_max * t_edge), else c_shade * K * r
+///         with l_max, l_min, r = l_max - l_min over the luma of S at the pixel and its four
+///         direct neighbours (luma: Rec.601 weights on sRGB-encoded, clamped colour, as FXAA)
+///   k   = clamp(round(max(k_d, k_n, k_s)), 0, K)
+/// Background samples (no geometry) take part in k_d with the far-plane depth and are skipped
+/// by k_n; a window mixing background and geometry gets k = K.
+struct AdaptiveOptions {
+  float c_depth = 200.0f;
+  float c_normal = 2.0f;
+  float c_shade = 4.0f;
+  float t_min = 0.0312f;     ///< FXAA's "edge threshold min" (visible limit).
+  float t_edge = 0.125f;     ///< FXAA's "edge threshold" (high quality).
+  bool use_geometry = true;  ///< k_d and k_n (Figure 8 ablation: shading only when false).
+  bool use_shading = true;   ///< k_s (Figure 8 ablation: geometry only when false).
+  /// UV seam detection for the material-boundary rule: a jump larger than this many times the
+  /// derivative prediction (plus 1e-6) between adjacent window samples is a seam.
+  float seam_factor = 4.0f;
+  /// Tests and experiments: when >= 0, every pixel uses k = min(force_k, m^2 - 1).
+  int force_k = -1;
+};
+
+/// Depth term k_d of a window of `n` linear depths (kernel; K = n - 1).
+float metric_depth(std::span<const float> depths, float c_depth);
+/// Normal term k_n of a window: `normals` holds 3 floats per sample; zero normals (background)
+/// are skipped. 0 with fewer than two valid normals; K when the valid normals cancel out.
+float metric_normal(std::span<const float> normals, float c_normal, int n);
+/// Shading term k_s from the luma of the pixel and its four direct neighbours (kernel).
+float metric_shading(float luma_m, float luma_n, float luma_s, float luma_w, float luma_e,
+                     float t_min, float t_edge, float c_shade, int n);
+
+/// Output of the adaptive pass.
+struct AdaptiveResult {
+  ImageRGBAF image;                   ///< Linear RGB, alpha 1.
+  std::vector<std::uint8_t> samples;  ///< Shaded samples per pixel (k + 1), row-major.
+  std::uint64_t samples_shaded = 0;   ///< Sum of `samples`.
+  std::uint64_t extra_lookups = 0;    ///< Albedo re-lookups of first samples (k > 0, textured).
+  double ms_first = 0;                ///< Shading S.
+  double ms_metric = 0;               ///< Evaluating k.
+  double ms_rest = 0;                 ///< Shading the k extra samples and averaging.
+};
+
+// ---------------------------------------------------------------------------------------------
+// FXAA 3.11
+// ---------------------------------------------------------------------------------------------
+
+/// FXAA 3.11 "quality" (PC) settings. Presets: 10..15, 20..29 and 39 (the search step tables
+/// of Fxaa3_11.h); the paper compares against "high quality settings".
+struct FxaaOptions {
+  int preset = 39;                     ///< 39 = "extreme quality": 12 search steps.
+  float subpix = 0.75f;                ///< fxaaQualitySubpix (0 = off, 1 = softest).
+  float edge_threshold = 0.125f;       ///< fxaaQualityEdgeThreshold ("high quality").
+  float edge_threshold_min = 0.0312f;  ///< fxaaQualityEdgeThresholdMin ("visible limit").
+  int threads = 0;
+};
+
+/// True for a preset number FXAA 3.11 defines.
+bool valid_fxaa_preset(int preset);
+
+/// FXAA 3.11 on an 8-bit sRGB image (the LDR back buffer FXAA is designed for): luma =
+/// Rec.601 weights on the sRGB values, local contrast early exit, edge orientation, end-of-edge
+/// search with the preset's steps, sub-pixel blend, then one bilinear fetch at the offset
+/// position (clamp to edge). Alpha is copied. Fails on an empty image or a bad preset.
+Result<ImageRGBA8> fxaa(const ImageRGBA8& image, const FxaaOptions& options = {});
+
+// ---------------------------------------------------------------------------------------------
+// The renderer
+// ---------------------------------------------------------------------------------------------
+
+/// Deferred renderer of one scene: owns the textures (mipmapped, linear) and the rasterizer.
+class DeferredRenderer {
+ public:
+  /// Builds textures; fails if one cannot be built. `scene` must outlive the renderer.
+  static Result<std::unique_ptr<DeferredRenderer>> create(const scene::Scene& scene,
+                                                          int threads = 0);
+  ~DeferredRenderer();
+
+  /// Rasterizes the G-buffer of `width` x `height` pixels with window m in [1, 8] into `out`
+  /// (reallocated only when the size changes). Optional raster counters in `stats`.
+  Status render_gbuffer(const scene::Camera& camera, int width, int height, int m, GBuffer& out,
+                        raster::RasterStats* stats = nullptr);
+
+  /// Full supersampling: all m^2 samples per pixel, footprint scale 1, mean in index order.
+  ImageRGBAF shade_reference(const GBuffer& gb, const ShadingOptions& shading) const;
+  /// Plain 1x deferred shading: the window's first sample (index order), footprint scale m.
+  ImageRGBAF shade_default(const GBuffer& gb, const ShadingOptions& shading) const;
+  /// The adaptive method (Listing 1).
+  AdaptiveResult shade_adaptive(const GBuffer& gb, const ShadingOptions& shading,
+                                const AdaptiveOptions& adaptive) const;
+
+ private:
+  DeferredRenderer() = default;
+  struct MaterialInfo {
+    std::array<float, 3> base{1, 1, 1};
+    const Texture* texture = nullptr;
+  };
+  const scene::Scene* scene_ = nullptr;
+  std::vector<Texture> textures_;
+  std::vector<MaterialInfo> materials_;
+  std::vector<std::vector<float>> clip_;      // per mesh: 4 floats per vertex
+  std::vector<std::vector<float>> varyings_;  // per mesh: depth, normal, uv per vertex
+  raster::Rasterizer rasterizer_;
+  int threads_ = 0;
+  friend struct ShadeContext;
+};
+
+}  // namespace tessera::deferred
