@@ -49,7 +49,8 @@ void principal_endpoints(const EncoderState& s, std::vector<float>& low, std::ve
 
 /// Brute-force modulation for the current endpoints (exact decoder arithmetic); chooses the
 /// per-block mode (punch-through for 4 bpp, direct vs interpolated for 2 bpp).
-void choose_modulation(EncoderState& s);
+/// Returns the total error of the result (as `total_error`).
+std::uint64_t choose_modulation(EncoderState& s);
 
 /// Sum of squared errors of the exact decode against the target (RGB, + alpha in alpha mode).
 std::uint64_t total_error(const EncoderState& s);

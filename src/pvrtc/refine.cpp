@@ -228,8 +228,7 @@ void refine(EncoderState& s, int iterations) {
             s.threads);
       }
     }
-    choose_modulation(s);
-    const std::uint64_t err = total_error(s);
+    const std::uint64_t err = choose_modulation(s);
     if (err >= best_err) {
       s.ca = save_a;
       s.cb = save_b;
