@@ -1,0 +1,315 @@
+// tessera/faces.h — per-face textures without seams: Discard (Toth 2013) vs Traverse
+// (McDonald 2013), on quad meshes with one texture per face (Ptex style).
+//
+// Three layers, as in Ptex's kernel/traversal split:
+//  * Kernel (pure functions): the 16 edge-to-edge UV transforms (`edge_transform`), UV-gradient
+//    transforms, and the per-method tap arithmetic (`sample_face` divides the summed taps by the
+//    summed coverage weight, Equation 6 of the paper).
+//  * Data: `FaceAdjacency` (neighbour face and edge per edge, -1 on a boundary) built from any
+//    quad mesh by a directed-edge map (`build_adjacency`) or read from a .ptx file; the
+//    valence-4 diagonal neighbours (`CornerLink`); `FaceTextureSet` (one mipmapped `Texture` per
+//    face, own resolution, non-square allowed, alpha = the constant-one coverage channel).
+//  * Drivers: `sample_face` walks the neighbours for Traverse; `FaceRenderer` rasterizes a quad
+//    mesh with a texture lookup plus a light Lambert term; `render_reference` is the paper's
+//    high-quality reference (Traverse at f x f the resolution, Mitchell-Netravali downsampling).
+//
+// Face conventions (those of Ptex): a quad's vertices 0..3 sit at (u, v) = (0,0), (1,0), (1,1),
+// (0,1); edge e joins vertex e to vertex e+1 (0: v = 0, 1: u = 1, 2: v = 1, 3: u = 0); texel
+// row 0 is v = 0 (the `Texture` convention). Neighbouring faces share an edge in opposite
+// directions (consistently oriented meshes), so my edge e from vertex A to B is the neighbour's
+// edge e' from B to A.
+//
+// Methods (`Method`), each with trilinear or up to 16x anisotropic filtering:
+//  * clamp: the face texture with clamp-to-edge addressing (the artefact baseline).
+//  * discard: border colour 0 and the coverage channel (alpha = 1 inside): the lookup sums
+//    w*T and w over the in-face taps only and returns Σ(w·T)/Σw. When no tap is inside
+//    (Σw = 0: a pixel centre or helper lane well outside its face at magnification) the paper's
+//    fallback repeats the lookup with clamp addressing. Without the fallback the result is
+//    0/0 = NaN; `SampleOptions::clamp_fallback = false` shows it (the experiment counts the NaN
+//    pixels it produces).
+//  * traverse: McDonald 2013 as in Listing 1 of the paper: the own face with border addressing
+//    plus the 4 edge neighbours, each sampled in its own UV space through the edge transform
+//    (gradients transformed too, so every face picks its own LOD and anisotropy), summed and
+//    divided by the summed coverage. All 4 neighbours are sampled unconditionally, as in the
+//    listing (a GPU would not branch per lane either).
+//  * traverse_corners (beyond the paper): traverse plus, at each corner whose vertex has
+//    valence 4, the diagonal face (reached by two edge steps, transform composed), so taps in
+//    the diagonal region are read instead of dropped. At other valences (3, 5, ..., and
+//    boundaries) the diagonal region is dropped (its weight renormalised away): at valence 3
+//    there is no surface there, at valence 5 no single face.
+//
+// Thread safety: all types are immutable after construction; sampling and rendering functions
+// are const and may run concurrently (a `FaceRenderer` owns a rasterizer: one per thread).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tessera/core.h"
+#include "tessera/math.h"
+#include "tessera/raster.h"
+#include "tessera/scene.h"
+#include "tessera/texture.h"
+
+namespace tessera::ptex {
+struct PtexFile;
+}
+
+namespace tessera::faces {
+
+// ---------------------------------------------------------------------------------------------
+// Kernel: edge transforms
+// ---------------------------------------------------------------------------------------------
+
+/// 2x3 affine map of face UVs: u' = a u + b v + c, v' = d u + e v + f.
+struct UvTransform {
+  float a = 1, b = 0, c = 0;
+  float d = 0, e = 1, f = 0;
+
+  Uv apply(Uv p) const { return {a * p.u + b * p.v + c, d * p.u + e * p.v + f}; }
+  /// The linear part applied to both gradient vectors (d/dx and d/dy).
+  UvGradients apply(const UvGradients& g) const {
+    return {a * g.dudx + b * g.dvdx, d * g.dudx + e * g.dvdx, a * g.dudy + b * g.dvdy,
+            d * g.dudy + e * g.dvdy};
+  }
+  /// `next` after this: p -> next(this(p)).
+  UvTransform then(const UvTransform& next) const;
+};
+
+/// The map from my face's UV space to the UV space of the neighbour across my edge `my_edge`,
+/// whose shared edge is `neighbour_edge` (both 0..3). Points on the shared edge map to the same
+/// surface point; points outside my edge map inside the neighbour (a rigid unfolding in
+/// normalised units, rotations by multiples of 90 degrees plus reflections of the edge
+/// parameter).
+UvTransform edge_transform(int my_edge, int neighbour_edge);
+
+/// All 16 transforms, indexed my_edge * 4 + neighbour_edge (the shader's constant table).
+const std::array<UvTransform, 16>& edge_transform_table();
+
+// ---------------------------------------------------------------------------------------------
+// Data: meshes and adjacency
+// ---------------------------------------------------------------------------------------------
+
+/// Neighbours of one quad face.
+struct FaceAdjacency {
+  std::array<int, 4> face{-1, -1, -1, -1};  ///< Neighbour across edge e, -1 on a boundary.
+  std::array<int, 4> edge{0, 0, 0, 0};      ///< The neighbour's shared edge (0..3).
+};
+
+/// The diagonal neighbour at a corner: the face across the vertex (valence 4 only).
+struct CornerLink {
+  int face = -1;           ///< -1 when the vertex is not an interior valence-4 vertex.
+  UvTransform transform;   ///< My UV space -> the diagonal face's UV space.
+};
+
+/// A polygon mesh as read from OBJ: positions and faces of any vertex count.
+struct PolygonMesh {
+  std::vector<Vec3> positions;
+  std::vector<std::vector<int>> faces;  ///< 0-based position indices.
+};
+
+/// An all-quad mesh.
+struct QuadMesh {
+  std::vector<Vec3> positions;
+  std::vector<std::array<int, 4>> quads;  ///< Vertex indices in order 0..3 (see conventions).
+
+  int face_count() const { return int(quads.size()); }
+  /// Surface point of the bilinear patch of `face` at (u, v).
+  Vec3 point(int face, Uv uv) const;
+};
+
+/// Reads the `v` and `f` records of an OBJ file (other records ignored; negative indices
+/// resolved). Fails with corrupt_data on malformed or out-of-range indices.
+Result<PolygonMesh> load_obj_polygons(const std::string& path);
+
+/// The quad mesh of `mesh`, or unsupported naming the first non-quad face ("face 12 has 3
+/// vertices: only all-quad meshes are supported; split it into quads, e.g. one Catmull-Clark
+/// step"). `name` prefixes the message.
+Result<QuadMesh> to_quad_mesh(const PolygonMesh& mesh, const std::string& name);
+
+/// Adjacency from a directed-edge map: my edge (a -> b) pairs with the neighbour's (b -> a).
+/// Fails with invalid_argument on a degenerate quad, an edge used twice in the same direction
+/// (inconsistent orientation or non-manifold) or an edge shared by more than two faces.
+Result<std::vector<FaceAdjacency>> build_adjacency(const QuadMesh& mesh);
+
+/// Diagonal links of every corner (4 per face, corner c = vertex c), found by walking around
+/// each vertex through the adjacency: a vertex is valence 4 when four edge steps return to the
+/// start face.
+std::vector<std::array<CornerLink, 4>> corner_links(const std::vector<FaceAdjacency>& adjacency);
+
+/// Counts of the 16 (my edge, neighbour edge) pairings over all interior edges, index
+/// my_edge * 4 + neighbour_edge.
+std::array<int, 16> edge_pairing_histogram(const std::vector<FaceAdjacency>& adjacency);
+
+/// Rotates the vertex order of every quad by a pseudo-random 0..3 steps (winding unchanged),
+/// so that all 16 edge pairings occur. Deterministic for a given seed.
+void randomize_orientation(QuadMesh& mesh, std::uint32_t seed);
+
+// ---------------------------------------------------------------------------------------------
+// Data: per-face textures
+// ---------------------------------------------------------------------------------------------
+
+/// One mipmapped texture per face, the adjacency and the corner links.
+class FaceTextureSet {
+ public:
+  FaceTextureSet() = default;
+
+  /// Builds the set from linear RGB face images (alpha is replaced by the coverage channel 1)
+  /// and the adjacency (sizes must match; neighbour indices in range). Mip chains are built
+  /// on `threads` threads; the result does not depend on it.
+  static Result<FaceTextureSet> create(const std::vector<ImageRGBAF>& images,
+                                       std::vector<FaceAdjacency> adjacency, int threads = 0);
+  /// Builds the set from a decoded .ptx file: level-0 texels (1 channel -> grey, 2 -> grey
+  /// and alpha ignored, 3+ -> RGB; u8/u16 data decoded from sRGB, half/float taken as linear)
+  /// and the file's adjacency. Triangle meshes are refused (unsupported); subfaces of split
+  /// non-quad faces are accepted as ordinary quads (their adjacency is what the file says).
+  static Result<FaceTextureSet> from_ptex(const ptex::PtexFile& file, const std::string& name,
+                                          int threads = 0);
+
+  int face_count() const { return int(textures_.size()); }
+  const Texture& texture(int face) const { return textures_[std::size_t(face)]; }
+  const FaceAdjacency& adjacency(int face) const { return adjacency_[std::size_t(face)]; }
+  const std::vector<FaceAdjacency>& adjacency() const { return adjacency_; }
+  const CornerLink& corner(int face, int c) const {
+    return corners_[std::size_t(face)][std::size_t(c)];
+  }
+  /// Corners (over all faces) with a valence-4 diagonal link.
+  int linked_corner_count() const;
+  /// Total texels of level 0 over all faces.
+  std::uint64_t texel_count() const;
+
+ private:
+  std::vector<Texture> textures_;
+  std::vector<FaceAdjacency> adjacency_;
+  std::vector<std::array<CornerLink, 4>> corners_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Sampling methods
+// ---------------------------------------------------------------------------------------------
+
+enum class Method { clamp, discard, traverse, traverse_corners };
+
+/// All methods in a fixed order.
+const std::vector<Method>& all_methods();
+/// "clamp", "discard", "traverse", "traverse_corners".
+const char* method_name(Method m);
+/// Parses a method name; false if unknown.
+bool parse_method(const std::string& text, Method& out);
+
+struct SampleOptions {
+  Method method = Method::discard;
+  TextureFilter filter = TextureFilter::anisotropic;  ///< trilinear or anisotropic.
+  int max_aniso = 16;                                 ///< 1..16.
+  /// The paper's zero-coverage fallback (clamp lookup). Off: 0/0 gives NaN.
+  bool clamp_fallback = true;
+};
+
+/// Filtered colour of face `face` at `uv` with UV gradients per pixel (normalised units of
+/// that face). Returns linear RGB and, in [3], the coverage Σw that was divided out (1 for
+/// clamp; after a fallback, 0).
+std::array<float, 4> sample_face(const FaceTextureSet& set, int face, Uv uv,
+                                 const UvGradients& gradients, const SampleOptions& options);
+
+// ---------------------------------------------------------------------------------------------
+// Scenes
+// ---------------------------------------------------------------------------------------------
+
+/// The continuous procedural 3D colour function the Figure-1 textures are baked from (linear
+/// RGB in [0, 1]): coloured value noise with stripes, band-limited at about `1 / scale`.
+std::array<float, 3> procedural_color(const Vec3& p, float scale = 1.0f);
+
+/// A quad mesh with per-face texture resolutions (log2 per side).
+struct FaceScene {
+  std::string name;
+  QuadMesh mesh;
+  std::vector<int> ulog2, vlog2;
+  int ground_faces = 0;     ///< Faces of the ground plane (the first ones), 0 if none.
+};
+
+struct Figure1Options {
+  int ground = 32;           ///< Ground plane of ground x ground quads.
+  int character = 16;        ///< Character: a deformed cube-sphere of 6 x n x n quads.
+  float texels_per_unit = 48.0f;  ///< Texel density setting the face resolutions.
+  int min_log2 = 2, max_log2 = 7;  ///< Face side between 2^min and 2^max texels.
+  std::uint32_t seed = 1;    ///< Face orientations.
+};
+
+/// The Figure-1-like scene: a ground plane and a blobby character made of quads, every face's
+/// vertex order randomly rotated, per-side resolutions from the face's edge lengths.
+FaceScene figure1_scene(const Figure1Options& options = {});
+
+/// Per-side resolutions for an arbitrary quad mesh: 2^round(log2(edge length x density)),
+/// clamped, so neighbouring faces may differ and faces may be non-square.
+void assign_resolutions(FaceScene& scene, float texels_per_unit, int min_log2, int max_log2);
+
+/// Bakes each face's texture: texel (x, y) = procedural_color of the surface point at the texel
+/// centre (so the seamless truth is known). Linear RGBA, alpha 1.
+std::vector<ImageRGBAF> bake_faces(const FaceScene& scene, float scale = 1.0f, int threads = 0);
+
+// ---------------------------------------------------------------------------------------------
+// Rendering
+// ---------------------------------------------------------------------------------------------
+
+struct FaceRenderOptions {
+  int width = 480;
+  int height = 540;
+  int msaa = 1;            ///< 1, 2, 4, 8, 16.
+  SampleOptions sampling;
+  bool shading_only = false;  ///< Lighting without the texture lookup (the shading cost).
+  int threads = 0;
+  /// Sub-rectangle [x0, x0 + w) x [y0, y0 + h) of a virtual full_width x full_height image
+  /// that this frame shows (used to render the reference in tiles); 0 = the whole image.
+  int full_width = 0, full_height = 0, x0 = 0, y0 = 0;
+};
+
+/// A resolved frame: linear RGB, alpha = geometry coverage (0 background .. 1 covered).
+struct FaceFrame {
+  ImageRGBAF image;
+  raster::RasterStats stats;
+  double ms_raster = 0;   ///< Rasterization and shading.
+  double ms_resolve = 0;  ///< MSAA box resolve.
+  double ms() const { return ms_raster + ms_resolve; }
+};
+
+/// Linear RGB background of face renders.
+inline constexpr std::array<float, 3> kFaceBackground = {0.45f, 0.55f, 0.7f};
+
+/// Draws a textured quad mesh. Not thread-safe (owns a rasterizer and frame buffer).
+class FaceRenderer {
+ public:
+  /// `scene` and `textures` must outlive the renderer; face counts must match.
+  static Result<std::unique_ptr<FaceRenderer>> create(const FaceScene& scene,
+                                                      const FaceTextureSet& textures);
+  ~FaceRenderer();
+
+  Result<FaceFrame> render(const scene::Camera& camera, const FaceRenderOptions& options);
+
+  /// The paper's reference: Traverse (16x anisotropic) at factor x factor the resolution,
+  /// downsampled with the Mitchell-Netravali filter (B = C = 1/3, radius 2 output pixels),
+  /// rendered in tiles of `tile` output pixels so memory stays bounded.
+  Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
+                                      int factor = 8, int threads = 0, int tile = 96);
+
+ private:
+  FaceRenderer() = default;
+  const FaceScene* scene_ = nullptr;
+  const FaceTextureSet* textures_ = nullptr;
+  std::vector<float> clip_;       // 4 floats per face-vertex (4 vertices per face)
+  std::vector<float> varyings_;   // u, v, nx, ny, nz per face-vertex
+  std::vector<std::uint32_t> indices_;
+  raster::Rasterizer rasterizer_;
+  raster::FrameBuffer fb_;
+};
+
+/// Mitchell-Netravali kernel with parameters B, C at distance x (support |x| < 2).
+float mitchell_netravali(float x, float b = 1.0f / 3.0f, float c = 1.0f / 3.0f);
+
+/// Camera on an orbit around a face scene (`scene::orbit_camera` on its bounds), frame
+/// `frame` of `frames`, looking at the character's centre from a little above.
+scene::Camera face_orbit_camera(const FaceScene& scene, int frame, int frames);
+
+}  // namespace tessera::faces

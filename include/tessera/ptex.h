@@ -1,0 +1,121 @@
+// tessera/ptex.h — a reader for Ptex (.ptx) per-face texture files.
+//
+// Written from the Ptex file-format documentation (Burley & Lacewell 2008; the layout of the
+// public Ptex library's files). A .ptx file is little-endian:
+//
+//   Header (64 bytes)      magic "Ptex", version 1, mesh type (0 triangle, 1 quad), data type
+//                          (0 u8, 1 u16, 2 half, 3 float), alpha channel (-1 = none), channel
+//                          count, level count, face count, the sizes of the blocks below, the
+//                          minor version, the level-data size and the meta-data sizes.
+//   Extended header        `extheadersize` bytes (40 in current files): border modes, edge
+//                          filter mode, large-meta-data sizes, edit-data size and position.
+//   Face info              zlib: 20 bytes per face — ulog2, vlog2 (int8), adjacent edges
+//                          (2 bits per edge), flags (1 constant, 2 has edits, 4 neighbourhood
+//                          constant, 8 subface), 4 adjacent faces (int32, -1 = none).
+//   Constant data          zlib: one pixel per face (the face's average colour).
+//   Level info             16 bytes per level: level-data size (u64), level-header size
+//                          (u32), face count (u32).
+//   Level data             per level: a zlib array of one u32 per face (bits 0..29 block size,
+//                          30..31 encoding), then the faces' blocks back to back. Encodings:
+//                          0 constant (one raw pixel), 1 zip, 2 zip of the running difference
+//                          (u8 / u16 only), 3 tiled (tile resolution, u32 tile-header size,
+//                          zlib tile headers, then the tiles, each encoded like a face).
+//                          Zipped pixel data is planar: each channel's plane of u x v values,
+//                          rows of increasing v.
+//   Meta data, edits       skipped (edits: rejected as unsupported, see below).
+//
+// What tessera does with it: `parse_ptex` validates every size and offset against the bytes
+// before allocating, decodes level 0 of every face (all four encodings and data types) to
+// normalised floats (u8 / 255, u16 / 65535, half and float as stored), and checks the stored
+// reduction levels' headers for consistency (their pixels are not decoded: `FaceTextureSet`
+// builds its own box-filtered mip chains from level 0). Triangle meshes, files with face-data
+// edits and face resolutions beyond 2^15 per side are refused with `unsupported`. Quad meshes
+// whose non-quad faces were split into subfaces (flag 8, the nonquad/pentagon samples) parse;
+// `subface` tells which faces are subfaces.
+//
+// Conventions: face f's texel (x, y) covers u in [x/w, (x+1)/w], v in [y/h, (y+1)/h] of the
+// face, where (u, v) = (0,0), (1,0), (1,1), (0,1) at the face's vertices 0..3 in mesh order,
+// and edge e joins vertices e and e+1 (0 bottom v=0, 1 right u=1, 2 top v=1, 3 left u=0).
+//
+// Errors are one line naming the file: "teapot.ptx: level 0 face 12: zlib data corrupt". The
+// parser never reads outside the given bytes and is fuzzed (fuzz/fuzz_ptex.cpp). Thread-safe
+// (pure functions).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tessera/core.h"
+
+namespace tessera::ptex {
+
+enum class MeshType { triangle = 0, quad = 1 };
+enum class DataType { u8 = 0, u16 = 1, half = 2, f32 = 3 };
+
+/// Largest log2 resolution of a face side tessera accepts (32768 texels).
+inline constexpr int kMaxFaceLog2 = 15;
+
+/// One face's header entry.
+struct FaceInfo {
+  int ulog2 = 0;                        ///< log2 of the width in texels (0..kMaxFaceLog2).
+  int vlog2 = 0;                        ///< log2 of the height.
+  std::array<int, 4> adj_faces{-1, -1, -1, -1};  ///< Neighbour across edge e, -1 on a border.
+  std::array<int, 4> adj_edges{0, 0, 0, 0};      ///< The neighbour's edge that is shared.
+  bool constant = false;   ///< The face is a single colour (its constant-data pixel).
+  bool subface = false;    ///< Part of a non-quad face split into quads.
+  int width() const { return 1 << ulog2; }
+  int height() const { return 1 << vlog2; }
+};
+
+/// Size and encoding of one stored level (as found in the file).
+struct LevelInfo {
+  std::uint64_t data_size = 0;  ///< Bytes of the level including its header.
+  std::uint32_t header_size = 0;  ///< Zipped size of the face-data-header array.
+  std::uint32_t face_count = 0;   ///< Faces stored at this level.
+};
+
+/// Counts of the face encodings met at level 0 (for tests and `ptex info`-like output).
+struct EncodingCounts {
+  int constant = 0, zipped = 0, diff_zipped = 0, tiled = 0;
+};
+
+/// A decoded .ptx file: per-face level-0 texels as normalised floats.
+struct PtexFile {
+  MeshType mesh_type = MeshType::quad;
+  DataType data_type = DataType::u8;
+  int channels = 0;             ///< 1..64 channels per texel.
+  int alpha_channel = -1;       ///< Index of alpha, -1 = none.
+  int minor_version = 0;
+  int border_mode_u = 0, border_mode_v = 0;  ///< 0 clamp, 1 black, 2 periodic (unused here).
+  std::vector<FaceInfo> faces;
+  std::vector<LevelInfo> levels;       ///< Stored levels (level 0 first).
+  EncodingCounts encodings;            ///< Level-0 face encodings (tiles counted once per face).
+  /// Constant (average) colour of each face: `channels` floats per face.
+  std::vector<float> constant_data;
+  /// Level-0 texels of face f: width * height * channels floats, row-major (rows of
+  /// increasing v, u fastest), channels interleaved.
+  std::vector<std::vector<float>> texels;
+
+  int face_count() const { return int(faces.size()); }
+};
+
+/// Limits of `parse_ptex` (a hostile file cannot make it allocate more).
+struct ParseOptions {
+  /// Largest number of decoded floats over all faces (texels x channels); too_large beyond.
+  std::uint64_t max_floats = std::uint64_t{1} << 27;
+};
+
+/// Parses a whole .ptx file from memory. `name` (usually the path) prefixes every error.
+Result<PtexFile> parse_ptex(std::span<const std::uint8_t> bytes, const std::string& name,
+                            const ParseOptions& options = {});
+
+/// Reads and parses a .ptx file.
+Result<PtexFile> read_ptex(const std::string& path, const ParseOptions& options = {});
+
+/// Converts an IEEE 754 binary16 value to float (all cases: zero, subnormal, inf, NaN).
+float half_to_float(std::uint16_t h);
+
+}  // namespace tessera::ptex

@@ -1,0 +1,176 @@
+// Driver: quad meshes, OBJ polygons, directed-edge adjacency and valence-4 corner links.
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <unordered_map>
+
+#include "tessera/faces.h"
+
+namespace tessera::faces {
+
+Vec3 QuadMesh::point(int face, Uv uv) const {
+  const std::array<int, 4>& q = quads[std::size_t(face)];
+  const Vec3& p0 = positions[std::size_t(q[0])];
+  const Vec3& p1 = positions[std::size_t(q[1])];
+  const Vec3& p2 = positions[std::size_t(q[2])];
+  const Vec3& p3 = positions[std::size_t(q[3])];
+  const float u = uv.u, v = uv.v;
+  return p0 * ((1 - u) * (1 - v)) + p1 * (u * (1 - v)) + p2 * (u * v) + p3 * ((1 - u) * v);
+}
+
+Result<PolygonMesh> load_obj_polygons(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return Status::error(ErrorCode::io_error, path + ": cannot open");
+  PolygonMesh mesh;
+  std::string line;
+  int line_no = 0;
+  auto bad = [&](const std::string& what) {
+    return Status::error(ErrorCode::corrupt_data,
+                         path + ":" + std::to_string(line_no) + ": " + what);
+  };
+  while (std::getline(in, line)) {
+    ++line_no;
+    std::istringstream ls(line);
+    std::string tag;
+    ls >> tag;
+    if (tag == "v") {
+      Vec3 p;
+      if (!(ls >> p.x >> p.y >> p.z)) return bad("malformed vertex");
+      mesh.positions.push_back(p);
+    } else if (tag == "f") {
+      std::vector<int> face;
+      std::string tok;
+      while (ls >> tok) {
+        char* end = nullptr;
+        const long idx = std::strtol(tok.c_str(), &end, 10);
+        if (end == tok.c_str()) return bad("malformed face index '" + tok + "'");
+        const long n = long(mesh.positions.size());
+        const long resolved = idx < 0 ? n + idx : idx - 1;
+        if (idx == 0 || resolved < 0 || resolved >= n) {
+          return bad("face index " + std::to_string(idx) + " out of range");
+        }
+        face.push_back(int(resolved));
+      }
+      if (face.size() < 3) return bad("face with fewer than 3 vertices");
+      mesh.faces.push_back(std::move(face));
+    }
+  }
+  if (mesh.faces.empty()) return Status::error(ErrorCode::corrupt_data, path + ": no faces");
+  return mesh;
+}
+
+Result<QuadMesh> to_quad_mesh(const PolygonMesh& mesh, const std::string& name) {
+  QuadMesh q;
+  q.positions = mesh.positions;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const std::vector<int>& face = mesh.faces[f];
+    if (face.size() != 4) {
+      return Status::error(ErrorCode::unsupported,
+                           name + ": face " + std::to_string(f) + " has " +
+                               std::to_string(face.size()) +
+                               " vertices: only all-quad meshes are supported (split non-quad "
+                               "faces into quads, e.g. one Catmull-Clark step)");
+    }
+    q.quads.push_back({face[0], face[1], face[2], face[3]});
+  }
+  return q;
+}
+
+Result<std::vector<FaceAdjacency>> build_adjacency(const QuadMesh& mesh) {
+  // Directed edge (a -> b) -> face * 4 + edge.
+  std::unordered_map<std::uint64_t, int> edges;
+  edges.reserve(mesh.quads.size() * 4);
+  auto key = [](int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); };
+  const int nverts = int(mesh.positions.size());
+  for (std::size_t f = 0; f < mesh.quads.size(); ++f) {
+    for (int e = 0; e < 4; ++e) {
+      const int a = mesh.quads[f][std::size_t(e)], b = mesh.quads[f][std::size_t((e + 1) & 3)];
+      if (a < 0 || b < 0 || a >= nverts || b >= nverts) {
+        return Status::error(ErrorCode::invalid_argument,
+                             "face " + std::to_string(f) + ": vertex index out of range");
+      }
+      if (a == b) {
+        return Status::error(ErrorCode::invalid_argument,
+                             "face " + std::to_string(f) + ": degenerate edge " +
+                                 std::to_string(e));
+      }
+      if (!edges.emplace(key(a, b), int(f) * 4 + e).second) {
+        return Status::error(ErrorCode::invalid_argument,
+                             "face " + std::to_string(f) + " edge " + std::to_string(e) +
+                                 ": directed edge used twice (inconsistent orientation or "
+                                 "non-manifold mesh)");
+      }
+    }
+  }
+  std::vector<FaceAdjacency> adj(mesh.quads.size());
+  for (std::size_t f = 0; f < mesh.quads.size(); ++f) {
+    for (int e = 0; e < 4; ++e) {
+      const int a = mesh.quads[f][std::size_t(e)], b = mesh.quads[f][std::size_t((e + 1) & 3)];
+      auto it = edges.find(key(b, a));
+      if (it == edges.end()) continue;
+      adj[f].face[std::size_t(e)] = it->second / 4;
+      adj[f].edge[std::size_t(e)] = it->second % 4;
+    }
+  }
+  return adj;
+}
+
+std::vector<std::array<CornerLink, 4>> corner_links(const std::vector<FaceAdjacency>& adjacency) {
+  std::vector<std::array<CornerLink, 4>> links(adjacency.size());
+  const int n = int(adjacency.size());
+  for (int f = 0; f < n; ++f) {
+    for (int c = 0; c < 4; ++c) {
+      // Corner c is the start of edge c and the end of edge c - 1. Walk around the vertex:
+      // across my edge c, then in each face across the edge after the shared one.
+      int face = f, edge = c;
+      int faces[4];
+      int in_edges[4];
+      bool ok = true;
+      UvTransform t;
+      for (int step = 0; step < 4 && ok; ++step) {
+        const FaceAdjacency& a = adjacency[std::size_t(face)];
+        const int nb = a.face[std::size_t(edge)];
+        if (nb < 0 || nb >= n) {
+          ok = false;
+          break;
+        }
+        const int nb_edge = a.edge[std::size_t(edge)];
+        if (step < 2) t = t.then(edge_transform(edge, nb_edge));
+        faces[step] = nb;
+        in_edges[step] = nb_edge;
+        face = nb;
+        edge = (nb_edge + 1) & 3;
+      }
+      // Valence 4: four steps return to me, entering across my edge c - 1.
+      if (!ok || faces[3] != f || in_edges[3] != ((c + 3) & 3) || faces[1] == f) continue;
+      links[std::size_t(f)][std::size_t(c)].face = faces[1];
+      links[std::size_t(f)][std::size_t(c)].transform = t;
+    }
+  }
+  return links;
+}
+
+std::array<int, 16> edge_pairing_histogram(const std::vector<FaceAdjacency>& adjacency) {
+  std::array<int, 16> h{};
+  for (const FaceAdjacency& a : adjacency) {
+    for (int e = 0; e < 4; ++e) {
+      if (a.face[std::size_t(e)] >= 0) ++h[std::size_t(e * 4 + a.edge[std::size_t(e)])];
+    }
+  }
+  return h;
+}
+
+void randomize_orientation(QuadMesh& mesh, std::uint32_t seed) {
+  std::uint32_t s = seed * 2654435761u + 12345u;
+  for (std::array<int, 4>& q : mesh.quads) {
+    s ^= s << 13;
+    s ^= s >> 17;
+    s ^= s << 5;
+    const int r = int((s >> 7) & 3);
+    std::array<int, 4> o;
+    for (int i = 0; i < 4; ++i) o[std::size_t(i)] = q[std::size_t((i + r) & 3)];
+    q = o;
+  }
+}
+
+}  // namespace tessera::faces
