@@ -113,8 +113,9 @@ def google_benchmark(binary):
         ips = b.get("items_per_second")
         if ips:
             extra = f", PSNR {b['psnr_rgb']:.2f} dB" if "psnr_rgb" in b else ""
-            rows.append(f"| `{b['name']}` | {ips / 1e6:.2f} | {b['real_time']:.2f} {b['time_unit']}"
-                        f"{extra} |")
+            scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}.get(b.get("time_unit"), None)
+            t = f"{b['real_time'] * scale:.2f} ms" if scale else f"{b['real_time']:.2f} {b['time_unit']}"
+            rows.append(f"| `{b['name']}` | {ips / 1e6:.2f} | {t}{extra} |")
     return rows
 
 
@@ -199,6 +200,12 @@ def mean(values):
     return statistics.fmean(values) if values else None
 
 
+def shown(path):
+    """A path relative to the repository when inside it, else as given."""
+    rel = os.path.relpath(os.path.abspath(path), ROOT)
+    return path if rel.startswith("..") else rel
+
+
 def write_report(args, results, images, nthreads, gbench):
     cmd = "/usr/bin/python3 " + shlex.join([os.path.relpath(sys.argv[0], ROOT), *sys.argv[1:]])
     lines = [
@@ -274,11 +281,11 @@ def write_report(args, results, images, nthreads, gbench):
                      f"{fmt(r['psnr_alpha']) if r['alpha'] else '-'} | {fmt(r['ssim'], '.4f')} |")
     lines += ["", "## In-process throughput (Google Benchmark)", ""]
     if gbench is None:
-        lines.append(f"`{os.path.relpath(args.bench_binary, ROOT)}` was not built; run it for "
+        lines.append(f"`{shown(args.bench_binary)}` was not built; run it for "
                      "in-process MPixel/s without process start-up and PNG I/O.")
     else:
-        lines += [f"From `{os.path.relpath(args.bench_binary, ROOT)}` in the same run "
-                  "(pixels encoded or decoded per second):", "",
+        lines += [f"From `{shown(args.bench_binary)}` in the same run (pixels encoded or decoded "
+                  "per second, on the benchmark's own image: see bench/pvrtc_bench.cpp):", "",
                   "| benchmark | MPixel/s | time per iteration |", "|---|---:|---:|", *gbench]
     lines.append("")
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
