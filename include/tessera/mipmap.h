@@ -48,6 +48,8 @@ Result<std::vector<ImageRGBA8>> generate_mipmaps(const ImageRGBA8& image,
 /// Resamples `image` to `width` x `height` with a separable Lanczos-3 filter (scaled to the
 /// minification ratio), in linear light when `options.srgb`, premultiplied when
 /// `options.premultiply` and the image has alpha. Results are clamped to [0, 255].
+/// Working memory: about 16 bytes per source texel plus 28 per (target width x source height)
+/// texel.
 Result<ImageRGBA8> resize_image(const ImageRGBA8& image, int width, int height,
                                 const MipmapOptions& options = {});
 
