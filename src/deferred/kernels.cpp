@@ -153,24 +153,33 @@ Vec3 GBuffer::position(int gx, int gy) const {
   return inv_view.transform_point(view);
 }
 
-ShadingOptions scene_shading(const scene::Scene& sc, int extra_lights) {
+ShadingOptions scene_shading(const scene::Scene& sc, int extra_lights,
+                             const scene::Camera* camera) {
   ShadingOptions o;
   for (const scene::PointLight& l : sc.lights) {
     o.lights.push_back({l.position, {l.color[0], l.color[1], l.color[2]}, l.intensity, l.range});
   }
   if (o.lights.empty() && extra_lights <= 0) extra_lights = 4;
-  const Vec3 c = (sc.bounds_min + sc.bounds_max) * 0.5f;
   const Vec3 ext = sc.bounds_max - sc.bounds_min;
   const float half_diag = std::max(1e-3f, length(ext) * 0.5f);
+  Vec3 centre = (sc.bounds_min + sc.bounds_max) * 0.5f;
+  float rx = 0.35f * ext.x, rz = 0.35f * ext.z, height = 0.25f * ext.y;
+  if (camera) {
+    centre = camera->target;
+    const float d = std::max(1e-3f, length(camera->eye - camera->target));
+    rx = rz = 0.5f * d;
+    height = 0.35f * d;
+  }
   for (int i = 0; i < extra_lights; ++i) {
     const float a = 2.0f * std::numbers::pi_v<float> * (float(i) + 0.5f) / float(extra_lights);
     Light l;
-    l.position = {c.x + 0.35f * ext.x * std::cos(a), c.y + 0.25f * ext.y,
-                  c.z + 0.35f * ext.z * std::sin(a)};
+    l.position = {centre.x + rx * std::cos(a), centre.y + height, centre.z + rz * std::sin(a)};
     l.color = {0.9f + 0.1f * hash01(std::uint64_t(i) * 3), 0.85f + 0.15f * hash01(i * 3 + 1ull),
                0.8f + 0.2f * hash01(i * 3 + 2ull)};
-    // About 1.0 at a third of the half diagonal, falling off as 1/d^2.
-    l.intensity = 0.6f * (half_diag / 3.0f) * (half_diag / 3.0f) * 8.0f / float(extra_lights);
+    const Vec3 to = l.position - centre;
+    const float d2 = std::max(dot(to, to), 1e-6f);
+    const float cosine = std::max(0.2f, height / std::sqrt(d2));
+    l.intensity = 0.8f * d2 / (cosine * float(extra_lights));
     o.lights.push_back(l);
   }
   o.heavy_wavelength = half_diag * 0.25f;

@@ -34,6 +34,7 @@ struct Command {
   std::function<int()> run;
 };
 
+Command add_aa_command(CLI::App& app, const GlobalOptions& global);
 Command add_compare_command(CLI::App& app, const GlobalOptions& global);
 Command add_demo_command(CLI::App& app, const GlobalOptions& global);
 Command add_compress_command(CLI::App& app, const GlobalOptions& global);

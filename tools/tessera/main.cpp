@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "tessera 0.1.0");
 
   std::vector<Command> commands = {
+      add_aa_command(app, global),
       add_compare_command(app, global),
       add_demo_command(app, global),
       add_compress_command(app, global),

@@ -1,0 +1,86 @@
+#!/usr/bin/env python3
+"""CLI tests of `tessera aa` (adaptive supersampling experiment): outputs and error paths.
+
+Usage: aa_cli_test.py PATH/TO/tessera
+Exit codes: 0 ok, 1 bad input (missing scene, unwritable output), 2 bad usage (--ssaa list).
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+TESSERA = sys.argv[1]
+failures = []
+passed = 0
+
+
+def run(*args):
+    p = subprocess.run([TESSERA, *args], capture_output=True, text=True, timeout=300)
+    return p.returncode, p.stdout, p.stderr
+
+
+def check(name, cond, detail=""):
+    global passed
+    if cond:
+        passed += 1
+    else:
+        failures.append(f"{name}: {detail}")
+        print(f"FAIL {name}: {detail}")
+
+
+def expect_error(name, args, code, must_name=None):
+    rc, out, err = run(*args)
+    lines = [l for l in err.splitlines() if l.strip()]
+    check(name + " exit code", rc == code, f"rc={rc} stderr={err!r}")
+    if code == 1:
+        check(name + " one line", len(lines) == 1, f"stderr={err!r}")
+    if must_name:
+        check(name + " names it", must_name in err, f"stderr={err!r}")
+
+
+tmp = tempfile.mkdtemp(prefix="tessera-aa-")
+try:
+    out = os.path.join(tmp, "aa")
+    rc, so, se = run("-j", "2", "aa", "--width", "64", "--height", "48", "--ssaa", "2,3",
+                     "--frames", "2", "--heavy", "--heavy-terms", "4", "-o", out)
+    check("aa runs", rc == 0, se)
+    j = json.load(open(os.path.join(out, "aa.json")))
+    check("json rates", [r["m"] for r in j["rates"]] == [2, 3], j.get("rates"))
+    for r in j["rates"]:
+        m = r["m"]
+        for key in ("default", "fxaa", "reference", "adaptive"):
+            check(f"{m}: {key} timed", r[key]["shade_ms"] > 0 and "shade_ms_heavy" in r[key], r[key])
+        ad = r["adaptive"]
+        check(f"{m}: samples pct", 100.0 / (m * m) <= ad["samples_pct"] <= 100.0, ad)
+        check(f"{m}: adaptive beats 1x",
+              ad["quality"]["mse_8bit"] < r["default"]["quality"]["mse_8bit"], r)
+        check(f"{m}: reference 100%", r["reference"]["samples_pct"] == 100.0, r)
+        for name in r["images"].values():
+            check(f"{m}: {name} written", os.path.isfile(os.path.join(out, name)), name)
+        for ab in ("ablation_geometry", "ablation_shading"):
+            check(f"{m}: {ab}", ab in r and r[ab]["samples_pct"] <= ad["samples_pct"] + 1e-9, r.get(ab))
+    md = open(os.path.join(out, "aa.md")).read()
+    check("markdown table", "| 2×2 | Adaptive |" in md and "| 1×1 | FXAA |" in md, md[:400])
+    check("no probe left", not os.path.exists(os.path.join(out, ".tessera-aa-probe")))
+
+    # Usage errors.
+    for bad in ("2,x", "0", "9", "", "2,,3", "-1"):
+        expect_error(f"--ssaa {bad!r}", ["aa", "--ssaa", bad, "--width", "8", "--height", "8",
+                                         "-o", os.path.join(tmp, "bad")], 2, "--ssaa")
+    expect_error("bad fxaa preset", ["aa", "--fxaa-preset", "30", "-o", os.path.join(tmp, "bad")], 2)
+    expect_error("missing -o", ["aa"], 2)
+    # Bad input.
+    missing = os.path.join(tmp, "nope.gltf")
+    expect_error("missing scene", ["aa", "--scene", missing, "--width", "8", "--height", "8",
+                                   "-o", os.path.join(tmp, "m")], 1, missing)
+    blocker = os.path.join(tmp, "file")
+    open(blocker, "w").write("x")
+    expect_error("unwritable -o", ["aa", "--width", "8", "--height", "8", "-o",
+                                   os.path.join(blocker, "sub")], 1, blocker)
+finally:
+    shutil.rmtree(tmp, ignore_errors=True)
+
+print(f"{passed} checks passed, {len(failures)} failed")
+sys.exit(1 if failures else 0)
