@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <set>
 
 #include "tessera/faces.h"
@@ -220,6 +221,31 @@ TEST(Ptex, CorruptFilesGiveOneLineErrors) {
   small.max_floats = 10;
   EXPECT_EQ(ptex::parse_ptex(good, "b.ptx", small).status().code, ErrorCode::too_large);
   EXPECT_EQ(ptex::read_ptex("/nonexistent/x.ptx").status().code, ErrorCode::io_error);
+}
+
+TEST(Ptex, FuzzSeedsParse) {
+  // The committed fuzz seeds (fuzz/make_ptex_corpus.py) freeze the reader's accepted layout.
+  int n = 0;
+  for (const auto& e : std::filesystem::directory_iterator(TESSERA_PTEX_CORPUS)) {
+    Result<ptex::PtexFile> f = ptex::read_ptex(e.path().string());
+    ASSERT_TRUE(f.ok()) << f.status().message;
+    EXPECT_GE(f->face_count(), 1);
+    ++n;
+  }
+  EXPECT_GE(n, 5);
+  Result<ptex::PtexFile> tiled = ptex::read_ptex(std::string(TESSERA_PTEX_CORPUS) + "/float-tiled.ptx");
+  ASSERT_TRUE(tiled.ok());
+  EXPECT_EQ(tiled->data_type, ptex::DataType::f32);
+  EXPECT_EQ(tiled->encodings.tiled, 1);
+  // value(3, i) = (i % 17) / 16 in the generator; texel (x, y), channel c is index
+  // (y * 4 + x) * 3 + c of the interleaved pixels.
+  for (int i = 0; i < 48; ++i) EXPECT_EQ(tiled->texels[0][std::size_t(i)], float(i % 17) / 16.0f);
+  Result<ptex::PtexFile> diff = ptex::read_ptex(std::string(TESSERA_PTEX_CORPUS) + "/u16-diffzip.ptx");
+  ASSERT_TRUE(diff.ok());
+  EXPECT_EQ(diff->encodings.diff_zipped, 2);
+  for (int i = 0; i < 16; ++i) {
+    EXPECT_EQ(diff->texels[0][std::size_t(i)], float((i * 4099 + 7) & 65535) / 65535.0f);
+  }
 }
 
 // ---- The shared Disney samples ----

@@ -59,12 +59,15 @@ std::array<float, 3> procedural_color(const Vec3& p, float scale) {
   const float n1 = value_noise(p.x * s, p.y * s, p.z * s);
   const float n2 = value_noise(p.x * s * 2.7f + 17, p.y * s * 2.7f, p.z * s * 2.7f);
   const float n = 0.65f * n1 + 0.35f * n2;
-  const float stripe = 0.5f + 0.5f * std::sin(9.0f * scale * (p.x + 0.6f * p.z + 0.3f * p.y) +
-                                              7.0f * n);
-  const float t = smooth(std::clamp((stripe - 0.25f) * 2.0f, 0.0f, 1.0f));
-  const std::array<float, 3> a = {0.75f, 0.32f, 0.08f};
-  const std::array<float, 3> b = {0.10f, 0.35f, 0.55f};
-  const float bright = 0.55f + 0.6f * n;
+  // Fine detail: thin bands and a small-scale noise octave (periods of a few texels on the
+  // Figure-1 faces), so filtering across face edges matters.
+  const float stripe = 0.5f + 0.5f * std::sin(24.0f * scale * (p.x + 0.6f * p.z + 0.3f * p.y) +
+                                              9.0f * n);
+  const float fine = value_noise(p.x * s * 8.0f + 5, p.y * s * 8.0f, p.z * s * 8.0f - 3);
+  const float t = smooth(std::clamp((stripe - 0.3f) * 2.5f, 0.0f, 1.0f));
+  const std::array<float, 3> a = {0.80f, 0.35f, 0.06f};
+  const std::array<float, 3> b = {0.06f, 0.30f, 0.60f};
+  const float bright = (0.45f + 0.7f * n) * (0.6f + 0.5f * fine);
   std::array<float, 3> c;
   for (int k = 0; k < 3; ++k) {
     c[std::size_t(k)] = std::clamp((a[std::size_t(k)] * t + b[std::size_t(k)] * (1 - t)) * bright,
@@ -202,8 +205,12 @@ scene::Camera face_orbit_camera(const FaceScene& s, int frame, int frames) {
   const float angle = 6.2831853f * float(frame) / float(std::max(frames, 1));
   scene::Camera c;
   c.target = centre;
-  c.eye = {centre.x + 1.6f * r * std::cos(angle), centre.y + 0.55f * r,
-           centre.z + 1.6f * r * std::sin(angle)};
+  // Far enough to see the whole character and the ground at grazing angles (where 16x
+  // anisotropic footprints are long and cross many face edges).
+  const float dist = s.ground_faces > 0 ? 2.3f : 1.7f;
+  c.eye = {centre.x + dist * r * std::cos(angle), centre.y + 0.35f * r,
+           centre.z + dist * r * std::sin(angle)};
+  if (s.ground_faces > 0) c.target = {centre.x, centre.y - 0.25f * r, centre.z};
   c.fov_y_degrees = 50.0f;
   c.near_z = 0.02f * r;
   c.far_z = 20.0f * r;

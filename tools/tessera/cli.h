@@ -41,5 +41,6 @@ Command add_compress_command(CLI::App& app, const GlobalOptions& global);
 Command add_decompress_command(CLI::App& app, const GlobalOptions& global);
 Command add_info_command(CLI::App& app, const GlobalOptions& global);
 Command add_render_command(CLI::App& app, const GlobalOptions& global);
+Command add_seams_command(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace tessera::cli

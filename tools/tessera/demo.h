@@ -19,4 +19,7 @@ Status demo_pvrtc_section(Report& report, const DemoOptions& options);
 /// Rendering core: the built-in scene at 1x, 4x MSAA and a 4x4 SSAA reference, with zooms.
 Status demo_render_section(Report& report, const DemoOptions& options);
 
+/// Seamless per-face texturing: the seam experiment run small on the built-in scene.
+Status demo_seams_section(Report& report, const DemoOptions& options);
+
 }  // namespace tessera::cli

@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
       add_decompress_command(app, global),
       add_info_command(app, global),
       add_render_command(app, global),
+      add_seams_command(app, global),
   };
 
   try {

@@ -1,0 +1,82 @@
+// Demo section: seamless per-face texturing (Toth 2013) — the seam experiment run small on the
+// built-in Figure-1 scene: Table 1 and Figure 5 analogues, zooms on a seam.
+#include "demo.h"
+#include "seams.h"
+
+namespace tessera::cli {
+
+Status demo_seams_section(Report& report, const DemoOptions& options) {
+  report.heading("Seamless per-face texturing: Discard vs Traverse (Toth 2013)");
+  report.paragraph(
+      "Every face of a quad mesh has its own texture (own resolution and mip chain, no guard "
+      "band). Clamp uses the plain clamp-to-edge address mode; Discard drops the filter taps "
+      "outside the face and renormalises (border colour 0 plus a constant-one coverage "
+      "channel); Traverse (McDonald 2013) also samples the four edge neighbours through the "
+      "edge transforms; Traverse+corners adds the diagonal face at valence-4 vertices. The "
+      "experiment below is `tessera seams` run small on the built-in scene (ground of 16x16 "
+      "faces and a cube-sphere character of 6x8x8 faces, random face orientations, textures "
+      "baked from one procedural 3D function), 2 orbit frames, 16x anisotropic filtering. The "
+      "reference is Traverse at 8x8 the resolution downsampled with the Mitchell-Netravali "
+      "filter. Errors are linear-RGB 2-norms over geometry pixels. docs/benchmarks/seams.md has "
+      "the full-size run.");
+  SeamsConfig c;
+  c.figure1.ground = 16;
+  c.figure1.character = 8;
+  c.figure1.texels_per_unit = 80.0f;
+  c.width = 160;
+  c.height = 180;
+  c.frames = 2;
+  c.msaa = {1, 4, 8};
+  c.threads = options.threads;
+  c.out = report.dir() + "/seams";
+  nlohmann::json j;
+  if (Status s = run_seams(c, j, false); !s.ok()) return s;
+  std::vector<std::vector<std::string>> rows;
+  const char* names[] = {"clamp", "discard", "traverse", "traverse_corners", "shading_only"};
+  for (const char* n : names) {
+    std::vector<std::string> row = {n};
+    for (int r : c.msaa) {
+      row.push_back(fmt("%.1f", j["timing"][std::to_string(r) + "x"][n]["median_ms"].get<double>()));
+    }
+    rows.push_back(row);
+  }
+  std::vector<std::string> header = {"median ms / frame"};
+  for (int r : c.msaa) header.push_back(std::to_string(r) + "x MSAA");
+  report.table(header, rows);
+  rows.clear();
+  for (const char* n : {"clamp", "discard", "traverse", "traverse_corners"}) {
+    std::vector<std::string> row = {std::string(n) + " vs reference"};
+    for (int r : c.msaa) {
+      row.push_back(fmt(
+          "%.5f", j["quality"]["vs_reference"][n][std::to_string(r) + "x"]["mean"].get<double>()));
+    }
+    rows.push_back(row);
+  }
+  {
+    std::vector<std::string> row = {"traverse vs discard"};
+    for (int r : c.msaa) {
+      row.push_back(
+          fmt("%.5f", j["quality"]["traverse_vs_discard"][std::to_string(r) + "x"]["mean"].get<double>()));
+    }
+    rows.push_back(row);
+  }
+  header[0] = "mean linear-RGB error";
+  report.table(header, rows);
+  report.figures({{"seams/fig5_left.svg", "Figure 5 left: Traverse vs Discard"},
+                  {"seams/fig5_right.svg", "Figure 5 right: vs the reference"}});
+  std::vector<Figure> zooms;
+  for (const char* n : {"clamp", "discard", "traverse"}) {
+    for (int r : {1, 8}) {
+      zooms.push_back({std::string("seams/images/zoom_") + n + "_" + std::to_string(r) + "x.png",
+                       std::string(n) + " " + std::to_string(r) + "x"});
+    }
+  }
+  zooms.push_back({"seams/images/zoom_reference.png", "reference"});
+  report.figures(zooms);
+  report.figures({{"seams/images/discard_4x.png", "Discard, 4x MSAA (frame 0)"},
+                  {"seams/images/reference.png", "reference"}},
+                 2);
+  return Status::success();
+}
+
+}  // namespace tessera::cli
