@@ -134,7 +134,7 @@ struct ShadingOptions {
   /// position (wavelengths between 1/8 and 1/2 of `heavy_wavelength`), i.e. heavy_terms cos and
   /// sin evaluations per shaded sample. No sleeping: the cost is real arithmetic.
   bool heavy = false;
-  int heavy_terms = 96;
+  int heavy_terms = 256;
   float heavy_wavelength = 4.0f;  ///< World units; `scene_shading` sets it from the bounds.
   int threads = 0;  ///< Worker threads (0 = all). Results are identical for any value.
 };

@@ -434,7 +434,7 @@ Command add_aa_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_flag("--heavy", args->heavy,
                 "Also time a heavy per-sample shader (the paper's 'stalled' column)");
   sub->add_option("--heavy-terms", args->heavy_terms,
-                  "Sinusoids evaluated per shaded sample in heavy mode (default 96)")
+                  "Sinusoids evaluated per shaded sample in heavy mode (default 256)")
       ->check(CLI::Range(0, 100000));
   sub->add_option("--frames", args->frames, "Timed frames per method (medians reported)")
       ->check(CLI::Range(1, 1000))

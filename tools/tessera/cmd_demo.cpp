@@ -29,6 +29,7 @@ int run_demo(const DemoArgs& args, const GlobalOptions& global) {
   if (Status s = demo_pvrtc_section(report, options); !s.ok()) return fail(s);
   if (Status s = demo_render_section(report, options); !s.ok()) return fail(s);
   if (Status s = demo_seams_section(report, options); !s.ok()) return fail(s);
+  if (Status s = demo_aa_section(report, options); !s.ok()) return fail(s);
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   char buf[128];

@@ -22,4 +22,7 @@ Status demo_render_section(Report& report, const DemoOptions& options);
 /// Seamless per-face texturing: the seam experiment run small on the built-in scene.
 Status demo_seams_section(Report& report, const DemoOptions& options);
 
+/// Adaptive supersampling for deferred shading: 4x4 reference, adaptive, 1x and FXAA, heatmaps.
+Status demo_aa_section(Report& report, const DemoOptions& options);
+
 }  // namespace tessera::cli
