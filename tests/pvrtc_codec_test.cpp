@@ -202,16 +202,16 @@ TEST_P(PvrtcRoundTrip, PsnrAboveThresholdAndMonotoneInQuality) {
 INSTANTIATE_TEST_SUITE_P(
     Procedural, PvrtcRoundTrip,
     // Thresholds: values measured at 128x128 when this test was written, minus 0.1 dB.
-    ::testing::Values(QualityCase{Procedural::gradient, Format::pvrtc1_4bpp, {30.69, 41.18, 41.48}},
-                      QualityCase{Procedural::bricks, Format::pvrtc1_4bpp, {21.68, 27.52, 28.30}},
-                      QualityCase{Procedural::noise, Format::pvrtc1_4bpp, {36.80, 41.12, 41.27}},
-                      QualityCase{Procedural::foliage, Format::pvrtc1_4bpp, {29.83, 32.64, 32.67}},
+    ::testing::Values(QualityCase{Procedural::gradient, Format::pvrtc1_4bpp, {30.70, 41.45, 41.53}},
+                      QualityCase{Procedural::bricks, Format::pvrtc1_4bpp, {21.69, 29.47, 29.64}},
+                      QualityCase{Procedural::noise, Format::pvrtc1_4bpp, {36.80, 41.15, 41.27}},
+                      QualityCase{Procedural::foliage, Format::pvrtc1_4bpp, {29.84, 32.80, 32.82}},
                       QualityCase{Procedural::text, Format::pvrtc1_4bpp, {16.80, 42.04, 43.05}},
-                      QualityCase{Procedural::gradient, Format::pvrtc1_2bpp, {28.64, 38.73, 38.88}},
-                      QualityCase{Procedural::bricks, Format::pvrtc1_2bpp, {20.95, 26.01, 26.61}},
-                      QualityCase{Procedural::noise, Format::pvrtc1_2bpp, {34.54, 37.62, 37.82}},
-                      QualityCase{Procedural::foliage, Format::pvrtc1_2bpp, {29.22, 31.03, 31.03}},
-                      QualityCase{Procedural::text, Format::pvrtc1_2bpp, {16.35, 42.80, 42.88}}));
+                      QualityCase{Procedural::gradient, Format::pvrtc1_2bpp, {28.64, 39.71, 39.85}},
+                      QualityCase{Procedural::bricks, Format::pvrtc1_2bpp, {20.95, 27.01, 27.22}},
+                      QualityCase{Procedural::noise, Format::pvrtc1_2bpp, {34.55, 37.66, 37.87}},
+                      QualityCase{Procedural::foliage, Format::pvrtc1_2bpp, {29.23, 31.03, 31.03}},
+                      QualityCase{Procedural::text, Format::pvrtc1_2bpp, {16.36, 42.80, 42.89}}));
 
 TEST(PvrtcEncode, IdenticalForAnyThreadCount) {
   const ImageRGBA8 img = make_procedural(Procedural::foliage, 256, 128);
@@ -334,9 +334,9 @@ TEST(PvrtcEncode, TinyAndNonSquareSizes) {
 TEST(PvrtcEncode, FrozenBitstreams) {
   const ImageRGBA8 img = make_procedural(Procedural::noise, 64, 64);
   const std::uint64_t expected[2][3] = {
-      {0x1e5fa49357527200ull, 0xc649ce42af7df1b7ull,
-       0x9bfe8c8e9d1d8c3full},  // 4 bpp: fast, normal, high
-      {0x8166b2980efe00d2ull, 0xdac4bce45c3aa22eull, 0x6568807a4b771a1dull},  // 2 bpp
+      {0x1e5fa49357527200ull, 0xca527661a5dae71full,
+       0xa49fd24ba3cb59a4ull},  // 4 bpp: fast, normal, high
+      {0x8166b2980efe00d2ull, 0x3b9137047795cbaaull, 0xc09ca44dd2e748f0ull},  // 2 bpp
   };
   for (int f = 0; f < 2; ++f) {
     for (int q = 0; q < 3; ++q) {

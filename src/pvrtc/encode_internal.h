@@ -64,4 +64,9 @@ void refine(EncoderState& s, int iterations);
 /// keeping moves that lower the exact error of the block's texel window (see polish.cpp).
 void polish(EncoderState& s, int rounds);
 
+/// 4 bpp only: replaces the endpoints of blocks whose exact window error exceeds `min_error`
+/// by pairs derived from the block's own texels where that lowers the exact window error
+/// (see polish.cpp); modulation is left stale (call `choose_modulation`). Returns the count.
+int reseed(EncoderState& s, std::uint32_t min_error);
+
 }  // namespace tessera::pvrtc::detail

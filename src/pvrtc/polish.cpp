@@ -1,4 +1,11 @@
-// Exact local search on 4 bpp endpoints ("polish"), run after the least-squares refinement.
+// Exact local search on 4 bpp endpoints: "reseed" (before the refinement) and "polish" (after).
+//
+// Reseed: the principal-axis start sees each block's whole bilinear footprint, so where the
+// block's own texels span only part of it (stripes, thin dark creases next to bright areas)
+// one endpoint lands far from every texel, no texel selects it and the least-squares
+// refinement cannot move it again. Each block whose exact window error is high tries endpoint
+// pairs from its own 4x4 texels (principal split means and extreme texels, both orientations)
+// and keeps the best if it lowers the exact error of its window.
 //
 // The least-squares model is linear and ignores the decoder's truncations, so it stalls where
 // quantisation matters most (edges, saturated colours). Here each block's endpoint codes are
@@ -7,6 +14,7 @@
 // with every texel's modulation re-chosen within its block's mode. Blocks are visited in the
 // same 2x2 colouring as the refinement, so the passes are parallel and deterministic.
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "pvrtc/encode_internal.h"
@@ -120,7 +128,124 @@ constexpr int kMoves = 24;
 // Windows whose error is already this small (64 texels; ~5 per channel RMS) are skipped.
 constexpr std::uint32_t kSkipBelow = 3000;
 
+// Candidate endpoint pairs for block (bx, by) from its own 4x4 texels: their principal axis
+// splits them into two halves; the half means and the two extreme texels each give a pair, in
+// both orientations. Writes up to 4 (A, B) field pairs; returns the count.
+int reseed_candidates(const EncoderState& s, int bx, int by, std::uint16_t out[4][2]) {
+  const Grid& g = s.g;
+  const int nch = s.alpha_mode ? 4 : 3;
+  float px[16][4];
+  float mean[4] = {0, 0, 0, 0};
+  for (int i = 0; i < 16; ++i) {
+    const std::uint8_t* t =
+        &s.target[(std::size_t(by * 4 + i / 4) * std::size_t(g.pw) + std::size_t(bx * 4 + i % 4)) *
+                  4];
+    for (int c = 0; c < 4; ++c) {
+      px[i][c] = float(t[c]);
+      mean[c] += float(t[c]) / 16.0f;
+    }
+  }
+  float cov[4][4] = {};
+  for (int i = 0; i < 16; ++i) {
+    for (int a = 0; a < nch; ++a) {
+      for (int b = 0; b < nch; ++b) cov[a][b] += (px[i][a] - mean[a]) * (px[i][b] - mean[b]);
+    }
+  }
+  float axis[4] = {0.2126f, 0.7152f, 0.0722f, 0.5f};
+  for (int it = 0; it < 8; ++it) {
+    float n[4] = {0, 0, 0, 0}, len = 0;
+    for (int a = 0; a < nch; ++a) {
+      for (int b = 0; b < nch; ++b) n[a] += cov[a][b] * axis[b];
+      len += n[a] * n[a];
+    }
+    if (len < 1e-6f) return 0;
+    len = std::sqrt(len);
+    for (int a = 0; a < nch; ++a) axis[a] = n[a] / len;
+  }
+  float lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0}, nlo = 0, nhi = 0;
+  float pmin = 1e30f, pmax = -1e30f;
+  int imin = 0, imax = 0;
+  for (int i = 0; i < 16; ++i) {
+    float p = 0;
+    for (int a = 0; a < nch; ++a) p += (px[i][a] - mean[a]) * axis[a];
+    float* acc = p < 0 ? lo : hi;
+    (p < 0 ? nlo : nhi) += 1;
+    for (int c = 0; c < 4; ++c) acc[c] += px[i][c];
+    if (p < pmin) {
+      pmin = p;
+      imin = i;
+    }
+    if (p > pmax) {
+      pmax = p;
+      imax = i;
+    }
+  }
+  if (nlo == 0 || nhi == 0) return 0;
+  for (int c = 0; c < 4; ++c) {
+    lo[c] /= nlo;
+    hi[c] /= nhi;
+  }
+  const bool ta = s.alpha_mode;
+  out[0][0] = quantise_endpoint(lo, false, ta);
+  out[0][1] = quantise_endpoint(hi, true, ta);
+  out[1][0] = quantise_endpoint(hi, false, ta);
+  out[1][1] = quantise_endpoint(lo, true, ta);
+  out[2][0] = quantise_endpoint(px[imin], false, ta);
+  out[2][1] = quantise_endpoint(px[imax], true, ta);
+  out[3][0] = quantise_endpoint(px[imax], false, ta);
+  out[3][1] = quantise_endpoint(px[imin], true, ta);
+  return 4;
+}
+
 }  // namespace
+
+int reseed(EncoderState& s, std::uint32_t min_error) {
+  const Grid& g = s.g;
+  if (g.format != Format::pvrtc1_4bpp) return 0;
+  std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
+  for (std::size_t i = 0; i < g.blocks(); ++i) {
+    ea[i] = expand_a(s.ca[i]);
+    eb[i] = expand_b(s.cb[i]);
+  }
+  const Window w{&s, &ea, &eb, &s.mode, s.alpha_mode ? 4 : 3};
+  std::vector<std::uint8_t> changed(g.blocks(), 0);
+  for (int cls = 0; cls < 4; ++cls) {
+    const int ox = cls & 1, oy = cls >> 1;
+    parallel_for(
+        0, g.nby / 2, 4,
+        [&](std::int64_t r0, std::int64_t r1) {
+          for (int r = int(r0); r < int(r1); ++r) {
+            const int by = 2 * r + oy;
+            for (int bx = ox; bx < g.nbx; bx += 2) {
+              const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+              std::uint32_t best = window_error(w, bx, by, ea[j], eb[j], nullptr);
+              if (best <= min_error) continue;
+              std::uint16_t cand[4][2];
+              const int n = reseed_candidates(s, bx, by, cand);
+              int pick = -1;
+              for (int k = 0; k < n; ++k) {
+                const std::uint32_t e =
+                    window_error(w, bx, by, expand_a(cand[k][0]), expand_b(cand[k][1]), nullptr);
+                if (e < best) {
+                  best = e;
+                  pick = k;
+                }
+              }
+              if (pick < 0) continue;
+              s.ca[j] = cand[pick][0];
+              s.cb[j] = cand[pick][1];
+              ea[j] = expand_a(s.ca[j]);
+              eb[j] = expand_b(s.cb[j]);
+              changed[j] = 1;
+            }
+          }
+        },
+        s.threads);
+  }
+  int count = 0;
+  for (std::uint8_t c : changed) count += c;
+  return count;
+}
 
 void polish(EncoderState& s, int rounds) {
   const Grid& g = s.g;
