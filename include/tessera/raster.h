@@ -215,6 +215,16 @@ struct ShadeInput {
 /// first four are linear RGBA. Called concurrently from worker threads; must be thread-safe.
 using ShadeFn = std::function<void(const ShadeInput& in, float* out)>;
 
+/// A material that shades a whole 2x2 quad per call: one indirect call per quad instead of
+/// one per pixel, and room for quad-wide work (shared texture set-up, SIMD across lanes).
+/// `lanes[i]` is exactly what a `ShadeFn` would see for lane i; the shader must write the
+/// `channels` floats of every lane whose bit is set in `active`, at `out + i * kMaxChannels`
+/// (pre-filled with zeros); other lanes' inputs are unspecified and their outputs are ignored.
+/// Results must be the same as shading each active lane alone (the rasterizer may call either
+/// form). Called concurrently from worker threads; must be thread-safe.
+using QuadShadeFn =
+    std::function<void(const ShadeInput* lanes, std::uint32_t active, float* out)>;
+
 // ---------------------------------------------------------------------------------------------
 // Draw calls
 // ---------------------------------------------------------------------------------------------
@@ -236,6 +246,8 @@ struct DrawCall {
   const std::uint32_t* indices = nullptr;
   std::size_t index_count = 0;
   ShadeFn shader;                    ///< Null = output zeros (depth-only pass).
+  /// Per-quad form of the material; when set it is used instead of `shader`.
+  QuadShadeFn quad_shader;
   std::uint32_t primitive_id_base = 0;
   CullMode cull = CullMode::back;
   bool front_ccw = true;             ///< Counter-clockwise in NDC is front.

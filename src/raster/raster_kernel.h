@@ -9,6 +9,10 @@
 #include <cstdint>
 #include <cstring>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "raster/raster_internal.h"
 
 namespace tessera::raster::detail {
@@ -74,6 +78,56 @@ inline std::uint32_t coverage_mask(const std::int64_t e[3], const std::int64_t* 
     mask |= std::uint32_t(v >= 0) << s;
   }
   return mask;
+}
+
+/// Coverage masks of the four pixels of a quad: `e0` holds the edge values at the top-left
+/// pixel's corner, `sx` / `sy` the steps to the next pixel right / down, `off[k][s]` the
+/// per-sample increments. Same results as `coverage_mask` per lane; with SSE2 two 64-bit edge
+/// values are tested per instruction (sign bits gathered with movmskpd).
+inline void quad_coverage(const std::int64_t e0[3], const std::int64_t sx[3],
+                          const std::int64_t sy[3], const std::int64_t* const off[3], int samples,
+                          std::uint32_t mask[4]) {
+#if defined(__SSE2__)
+  if (samples == 1) {
+    // Lanes (0, 1) and (2, 3) in one register each.
+    __m128i top = _mm_setzero_si128(), bottom = _mm_setzero_si128();
+    for (int k = 0; k < 3; ++k) {
+      const __m128i l01 = _mm_add_epi64(_mm_set_epi64x(e0[k] + sx[k], e0[k]),
+                                        _mm_set1_epi64x(off[k][0]));
+      top = _mm_or_si128(top, l01);
+      bottom = _mm_or_si128(bottom, _mm_add_epi64(l01, _mm_set1_epi64x(sy[k])));
+    }
+    const int t = _mm_movemask_pd(_mm_castsi128_pd(top));
+    const int b = _mm_movemask_pd(_mm_castsi128_pd(bottom));
+    mask[0] = ~t & 1u;
+    mask[1] = ~t >> 1 & 1u;
+    mask[2] = ~b & 1u;
+    mask[3] = ~b >> 1 & 1u;
+    return;
+  }
+  if (samples % 2 == 0) {
+    for (int lane = 0; lane < 4; ++lane) {
+      __m128i e[3];
+      for (int k = 0; k < 3; ++k) {
+        e[k] = _mm_set1_epi64x(e0[k] + (lane & 1 ? sx[k] : 0) + (lane >> 1 ? sy[k] : 0));
+      }
+      std::uint32_t m = 0;
+      for (int s = 0; s < samples; s += 2) {
+        __m128i v = _mm_add_epi64(e[0], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off[0] + s)));
+        v = _mm_or_si128(v, _mm_add_epi64(e[1], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off[1] + s))));
+        v = _mm_or_si128(v, _mm_add_epi64(e[2], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off[2] + s))));
+        m |= std::uint32_t(~_mm_movemask_pd(_mm_castsi128_pd(v)) & 3) << s;
+      }
+      mask[lane] = m;
+    }
+    return;
+  }
+#endif
+  for (int lane = 0; lane < 4; ++lane) {
+    std::int64_t e[3];
+    for (int k = 0; k < 3; ++k) e[k] = e0[k] + (lane & 1 ? sx[k] : 0) + (lane >> 1 ? sy[k] : 0);
+    mask[lane] = coverage_mask(e, off, samples);
+  }
 }
 
 /// Block classification against one edge over the fixed-point rectangle [x0, x1] x [y0, y1]:
@@ -144,6 +198,33 @@ inline float interpolate(const TriSetup& t, const float* base, float dx, float d
   return iw;
 }
 
+/// Varyings from the perspective-correct barycentrics b1, b2 (see `interpolate`).
+template <int N4>
+inline void interpolate_at(const float* base, float b1, float b2, float* out) {
+  for (int i = 0; i < N4; i += 4) {
+    store4(out + i, load4(base + i) + b1 * load4(base + N4 + i) + b2 * load4(base + 2 * N4 + i));
+  }
+}
+
+/// `eval_plane` at four positions at once (lane-wise the same operations).
+inline f32x4 eval_plane4(const float p[3], f32x4 dx, f32x4 dy) {
+  return f32x4{p[0], p[0], p[0], p[0]} + f32x4{p[1], p[1], p[1], p[1]} * dx +
+         f32x4{p[2], p[2], p[2], p[2]} * dy;
+}
+
+/// Lane-wise std::clamp(v, 0, 1) (NaN stays NaN, -0 stays -0).
+inline f32x4 clamp01(f32x4 v) {
+#if defined(__SSE2__)
+  // maxps / minps return their second operand when the comparison fails (NaN included), which
+  // is exactly std::clamp's `v < 0 ? 0 : (1 < v ? 1 : v)`.
+  return _mm_min_ps(_mm_set1_ps(1.0f), _mm_max_ps(_mm_setzero_ps(), v));
+#else
+  f32x4 r;
+  for (int i = 0; i < 4; ++i) r[i] = std::clamp(v[i], 0.0f, 1.0f);
+  return r;
+#endif
+}
+
 /// Quad derivatives for one lane (lane = 2 * row + column) from the N4 values of all four
 /// lanes, `v[lane][i]`. Fine: the lane's own row / column. Coarse: the top row and the left
 /// column for every lane.
@@ -187,6 +268,23 @@ inline bool depth_passes(DepthTest test, float z, float stored) {
     case DepthTest::always: return true;
   }
   return false;
+}
+
+/// `depth_passes` for four samples: bit i set when lane i passes.
+inline std::uint32_t depth_mask4(DepthTest test, f32x4 z, f32x4 stored) {
+#if defined(__SSE2__)
+  switch (test) {
+    case DepthTest::less: return std::uint32_t(_mm_movemask_ps(_mm_cmplt_ps(z, stored)));
+    case DepthTest::less_equal: return std::uint32_t(_mm_movemask_ps(_mm_cmple_ps(z, stored)));
+    case DepthTest::equal: return std::uint32_t(_mm_movemask_ps(_mm_cmpeq_ps(z, stored)));
+    case DepthTest::always: return 15u;
+  }
+  return 0u;
+#else
+  std::uint32_t m = 0;
+  for (int i = 0; i < 4; ++i) m |= std::uint32_t(depth_passes(test, z[i], stored[i])) << i;
+  return m;
+#endif
 }
 
 }  // namespace tessera::raster::detail

@@ -76,15 +76,16 @@ class TileRasterizer {
   const float* tv_ = nullptr;  // varying block
   QuadFn quad_fn_ = nullptr;
   ShadeInput in_;              // fields shared by the triangle's invocations
+  ShadeInput lanes_[4];        // per-lane inputs of the quad shader
   std::int64_t off_[3][kMaxSamples];
-  float dz_[kMaxSamples];
+  alignas(16) float dz_[kMaxSamples];
 
   // Quad scratch.
-  float zs_[4][kMaxSamples];
+  alignas(16) float zs_[4][kMaxSamples];
   alignas(16) float v_[4][kMaxVaryings];
   alignas(16) float ddx_[4][kMaxVaryings];
   alignas(16) float ddy_[4][kMaxVaryings];
-  alignas(16) float vc_[kMaxVaryings];
+  alignas(16) float vc_[4][kMaxVaryings];
   alignas(16) float out_[4][kMaxChannels];
 };
 
@@ -109,6 +110,14 @@ void TileRasterizer::triangle(const TriSetup& t, const float* varyings) {
   in_.quad_varyings = {v_[0], v_[1], v_[2], v_[3]};
   in_.primitive_id = t.primitive_id;
   in_.front_facing = t.front_facing;
+  for (int lane = 0; lane < 4; ++lane) {
+    ShadeInput& l = lanes_[lane];
+    l = in_;
+    l.varyings = v_[lane];
+    l.ddx = ddx_[lane];
+    l.ddy = ddy_[lane];
+    l.lane = lane;
+  }
   const int ns = st_.count;
   for (int e = 0; e < 3; ++e) {
     for (int s = 0; s < ns; ++s) off_[e][s] = t.a[e] * st_.fx[s] + t.b[e] * st_.fy[s];
@@ -143,25 +152,19 @@ void TileRasterizer::triangle(const TriSetup& t, const float* varyings) {
       const int qy1 = small ? y1 : std::min(by + kBlockSize - 1, y1);
       for (int qy = qy0; qy <= qy1; qy += 2) {
         const std::int64_t fy = std::int64_t(qy) * kSubpixel;
+        const std::int64_t fx0 = std::int64_t(qx0) * kSubpixel;
+        // Edge values at the row's first quad, stepped by two pixels per quad (exact).
+        std::int64_t e0[3];
+        for (int e = 0; e < 3; ++e) e0[e] = edges[e].c + edges[e].a * fx0 + edges[e].b * fy;
         for (int qx = qx0; qx <= qx1; qx += 2) {
           std::uint32_t mask[4];
           if (accept) {
             mask[0] = mask[1] = mask[2] = mask[3] = st_.full;
           } else {
-            const std::int64_t fx = std::int64_t(qx) * kSubpixel;
-            std::int64_t e0[3], e1[3], e2[3], e3[3];
-            for (int e = 0; e < 3; ++e) {
-              e0[e] = edges[e].c + edges[e].a * fx + edges[e].b * fy;
-              e1[e] = e0[e] + step_x[e];
-              e2[e] = e0[e] + step_y[e];
-              e3[e] = e2[e] + step_x[e];
-            }
-            mask[0] = coverage_mask(e0, off, ns);
-            mask[1] = coverage_mask(e1, off, ns);
-            mask[2] = coverage_mask(e2, off, ns);
-            mask[3] = coverage_mask(e3, off, ns);
-            if (!(mask[0] | mask[1] | mask[2] | mask[3])) continue;
+            quad_coverage(e0, step_x, step_y, off, ns, mask);
           }
+          for (int e = 0; e < 3; ++e) e0[e] += 2 * step_x[e];
+          if (!(mask[0] | mask[1] | mask[2] | mask[3])) continue;
           (this->*quad_fn_)(qx, qy, mask);
         }
       }
@@ -191,41 +194,65 @@ void TileRasterizer::quad(int qx, int qy, std::uint32_t* mask) {
     }
   }
 
-  // Early depth test at every covered sample.
+  // Early depth test at every covered sample. The depth plane is evaluated at the four
+  // lane centres at once (the same operations per lane as `eval_plane`).
   const float cdx = float(qx - t.x0) + 0.5f;
   const float cdy = float(qy - t.y0) + 0.5f;
+  const f32x4 ldx = f32x4{cdx, cdx, cdx, cdx} + f32x4{0.0f, 1.0f, 0.0f, 1.0f};
+  const f32x4 ldy = f32x4{cdy, cdy, cdy, cdy} + f32x4{0.0f, 0.0f, 1.0f, 1.0f};
+  const f32x4 zc = eval_plane4(t.z, ldx, ldy);
+  const f32x4 zcl = clamp01(zc);
   std::uint32_t visible[4] = {0, 0, 0, 0};
-  for (int lane = 0; lane < 4; ++lane) {
-    if (!mask[lane]) continue;
-    const float zc = eval_plane(t.z, cdx + float(lane & 1), cdy + float(lane >> 1));
-    const float* stored = depth_ + base[lane];
-    if (ns == 1) {
-      const float z = std::clamp(zc, 0.0f, 1.0f);
-      zs_[lane][0] = z;
-      visible[lane] = std::uint32_t(depth_passes(draw.depth_test, z, stored[0]));
-      continue;
+  if (ns == 1) {
+    const DepthTest test = draw.depth_test;
+    for (int lane = 0; lane < 4; ++lane) {
+      zs_[lane][0] = zcl[lane];
+      // Lanes outside the grid have no coverage and must not read.
+      visible[lane] =
+          mask[lane] ? std::uint32_t(depth_passes(test, zcl[lane], depth_[base[lane]])) : 0u;
     }
-    std::uint32_t vis = 0;
-    for (int s = 0; s < ns; ++s) {
-      if (!(mask[lane] >> s & 1u)) continue;
-      const float z = std::clamp(zc + dz_[s], 0.0f, 1.0f);
-      zs_[lane][s] = z;
-      vis |= std::uint32_t(depth_passes(draw.depth_test, z, stored[s])) << s;
+  } else if (ns % 4 == 0) {
+    // Four samples per vector: clamp, test, and keep the covered ones.
+    for (int lane = 0; lane < 4; ++lane) {
+      if (!mask[lane]) continue;
+      const float* stored = depth_ + base[lane];
+      const f32x4 z0 = {zc[lane], zc[lane], zc[lane], zc[lane]};
+      std::uint32_t vis = 0;
+      for (int s = 0; s < ns; s += 4) {
+        const f32x4 z = clamp01(z0 + load4(dz_ + s));
+        store4(zs_[lane] + s, z);
+        vis |= depth_mask4(draw.depth_test, z, load4(stored + s)) << s;
+      }
+      visible[lane] = vis & mask[lane];
     }
-    visible[lane] = vis;
+  } else {
+    for (int lane = 0; lane < 4; ++lane) {
+      if (!mask[lane]) continue;
+      const float* stored = depth_ + base[lane];
+      std::uint32_t vis = 0;
+      for (int s = 0; s < ns; ++s) {
+        if (!(mask[lane] >> s & 1u)) continue;
+        const float z = std::clamp(zc[lane] + dz_[s], 0.0f, 1.0f);
+        zs_[lane][s] = z;
+        vis |= std::uint32_t(depth_passes(draw.depth_test, z, stored[s])) << s;
+      }
+      visible[lane] = vis;
+    }
   }
   if (!(visible[0] | visible[1] | visible[2] | visible[3])) return;
   ++stats_.quads;
 
-  // Perspective-correct varyings at the four pixel centres, then quad derivatives.
-  float iw[4];
-  for (int lane = 0; lane < 4; ++lane) {
-    iw[lane] = interpolate<N4>(t, tv_, cdx + float(lane & 1), cdy + float(lane >> 1), v_[lane]);
-  }
+  // Perspective-correct varyings at the four pixel centres (1/w and the barycentrics for all
+  // lanes at once, then N4 varyings per lane), then quad derivatives.
+  const f32x4 iw = eval_plane4(t.inv_w, ldx, ldy);
+  const f32x4 rcp = f32x4{1.0f, 1.0f, 1.0f, 1.0f} / iw;
+  const f32x4 b1 = eval_plane4(t.l1, ldx, ldy) * rcp;
+  const f32x4 b2 = eval_plane4(t.l2, ldx, ldy) * rcp;
+  for (int lane = 0; lane < 4; ++lane) interpolate_at<N4>(tv_, b1[lane], b2[lane], v_[lane]);
 
   const int nc = channels_;
   const bool fine = opt_.derivatives == Derivatives::fine;
-  ShadeInput& in = in_;
+  std::uint32_t active = 0;
   for (int lane = 0; lane < 4; ++lane) {
     const bool helper = visible[lane] == 0;
     if (helper) {
@@ -239,33 +266,33 @@ void TileRasterizer::quad(int qx, int qy, std::uint32_t* mask) {
     } else {
       std::fill(out, out + nc, 0.0f);
     }
-    if (!draw.shader) continue;
+    if (!draw.shader && !draw.quad_shader) continue;
+    active |= 1u << lane;
     quad_derivatives<N4>(v_, lane, fine, ddx_[lane], ddy_[lane]);
+    ShadeInput& in = lanes_[lane];
     in.varyings = v_[lane];
-    in.ddx = ddx_[lane];
-    in.ddy = ddy_[lane];
     in.px = qx + (lane & 1);
     in.py = qy + (lane >> 1);
-    in.lane = lane;
     in.x = float(in.px) + 0.5f;
     in.y = float(in.py) + 0.5f;
     in.inv_w = iw[lane];
-    float sdx = cdx + float(lane & 1), sdy = cdy + float(lane >> 1);
+    in.depth = zcl[lane];
     if (draw.centroid && mask[lane] && mask[lane] != st_.full) {
       const int s = centroid_sample(mask[lane], st_.pos, ns);
       in.x += st_.ox[s];
       in.y += st_.oy[s];
-      sdx += st_.ox[s];
-      sdy += st_.oy[s];
-      in.inv_w = interpolate<N4>(t, tv_, sdx, sdy, vc_);
-      in.varyings = vc_;
+      const float sdx = ldx[lane] + st_.ox[s];
+      const float sdy = ldy[lane] + st_.oy[s];
+      in.inv_w = interpolate<N4>(t, tv_, sdx, sdy, vc_[lane]);
+      in.varyings = vc_[lane];
+      in.depth = std::clamp(eval_plane(t.z, sdx, sdy), 0.0f, 1.0f);
     }
-    in.depth = std::clamp(eval_plane(t.z, sdx, sdy), 0.0f, 1.0f);
     in.coverage = mask[lane];
     in.visible = visible[lane];
     in.helper = helper;
-    draw.shader(in, out);
+    if (!draw.quad_shader) draw.shader(in, out);
   }
+  if (active && draw.quad_shader) draw.quad_shader(lanes_, active, out_[0]);
 
   // Per-sample writes of depth, payload and id.
   const bool write_depth = draw.depth_write;

@@ -106,17 +106,25 @@ Result<Frame> SceneRenderer::render(const scene::Camera& camera, const FrameOpti
         options.shading == Shading::flat
             ? std::array<float, 4>{1, 1, 1, 1}
             : std::array<float, 4>{mat.base_color[0], mat.base_color[1], mat.base_color[2], 1};
-    d.shader = [tex, base, sampler](const raster::ShadeInput& in, float* out) {
-      std::array<float, 4> c = base;
-      if (tex) {
-        const UvGradients g{in.ddx[0], in.ddx[1], in.ddy[0], in.ddy[1]};
-        const std::array<float, 4> t = tex->sample(sampler, {in.varyings[0], in.varyings[1]}, g);
-        for (int k = 0; k < 3; ++k) c[k] *= t[k];
+    // One call per 2x2 quad; each active lane is shaded exactly as a per-pixel shader would.
+    d.quad_shader = [tex, base, sampler](const raster::ShadeInput* lanes, std::uint32_t active,
+                                         float* out) {
+      for (int lane = 0; lane < 4; ++lane) {
+        if (!(active >> lane & 1u)) continue;
+        const raster::ShadeInput& in = lanes[lane];
+        float* o = out + lane * raster::kMaxChannels;
+        std::array<float, 4> c = base;
+        if (tex) {
+          const UvGradients g{in.ddx[0], in.ddx[1], in.ddy[0], in.ddy[1]};
+          const std::array<float, 4> t =
+              tex->sample(sampler, {in.varyings[0], in.varyings[1]}, g);
+          for (int k = 0; k < 3; ++k) c[k] *= t[k];
+        }
+        o[0] = c[0];
+        o[1] = c[1];
+        o[2] = c[2];
+        o[3] = 1.0f;
       }
-      out[0] = c[0];
-      out[1] = c[1];
-      out[2] = c[2];
-      out[3] = 1.0f;
     };
     draws.push_back(std::move(d));
   }

@@ -245,6 +245,64 @@ struct AccumulateSink {
   }
 };
 
+/// Bilinear or trilinear lookup of a one-probe footprint (the shading hot path): exactly the
+/// taps `for_each_tap` generates for it, accumulated in the same order with the same
+/// arithmetic as `AccumulateSink`, without materialising `QuadTaps`, so the result is
+/// bit-identical to the generic path. `footprint.lod` must be clamped to [0, levels - 1].
+std::array<float, 4> sample_one_probe(const AccumulateSink& sink, const SamplerState& sampler,
+                                      const Footprint& footprint) {
+  using namespace texture_detail;
+  const TextureShape& shape = *sink.shape;
+  const LevelPlan plan = plan_levels(sampler.filter, footprint.lod, shape.levels);
+  // for_each_tap with one probe: inv_probes = 1 and t = 0, kept as operations so that
+  // non-finite axes behave the same.
+  constexpr float inv_probes = 1.0f;
+  const float t = (0.0f + 0.5f) * inv_probes - 0.5f;
+  const float u = footprint.center.u + t * footprint.axis_u;
+  const float v = footprint.center.v + t * footprint.axis_v;
+  Accum4 acc;
+  for (int li = 0; li < plan.count; ++li) {
+    const int level = plan.level[li];
+    const int w = shape.level_width(level);
+    const int h = shape.level_height(level);
+    const float level_weight = plan.weight[li] * inv_probes;
+    const float px = clamp_coord(u * float(w) - 0.5f);
+    const float py = clamp_coord(v * float(h) - 0.5f);
+    const int x0 = floor_to_int(px);
+    const int y0 = floor_to_int(py);
+    const float ax = px - float(x0);
+    const float ay = py - float(y0);
+    int rx[2], ry[2];
+    resolve_pair(x0, w, sampler.address_u, rx);
+    resolve_pair(y0, h, sampler.address_v, ry);
+    const float wx0 = 1.0f - ax, wx1 = ax;
+    const float wy0 = (1.0f - ay) * level_weight, wy1 = ay * level_weight;
+    const float* base = sink.texels + sink.level_offsets[level];
+    const std::size_t stride = std::size_t(w) * 4;
+    const std::ptrdiff_t c0 = std::ptrdiff_t(rx[0]) * 4;
+    const std::ptrdiff_t c1 = std::ptrdiff_t(rx[1]) * 4;
+    if ((rx[0] | rx[1] | ry[0] | ry[1]) >= 0) {
+      const float* r0 = base + std::size_t(ry[0]) * stride;
+      const float* r1 = base + std::size_t(ry[1]) * stride;
+      acc.add(wx0 * wy0, r0 + c0);
+      acc.add(wx1 * wy0, r0 + c1);
+      acc.add(wx0 * wy1, r1 + c0);
+      acc.add(wx1 * wy1, r1 + c1);
+      continue;
+    }
+    const float wy[2] = {wy0, wy1};
+    const float wx[2] = {wx0, wx1};
+    for (int j = 0; j < 2; ++j) {
+      const float* row = base + std::size_t(ry[j] < 0 ? 0 : ry[j]) * stride;
+      for (int k = 0; k < 2; ++k) {
+        const bool is_border = ry[j] < 0 || rx[k] < 0;
+        acc.add(wx[k] * wy[j], is_border ? sink.border : row + (k ? c1 : c0));
+      }
+    }
+  }
+  return acc.value();
+}
+
 }  // namespace
 
 Result<Texture> Texture::from_rgba8(const ImageRGBA8& image, const TextureOptions& options) {
@@ -332,6 +390,10 @@ std::array<float, 4> Texture::sample_footprint(const SamplerState& sampler,
                       &shape_,
                       sampler.border_color.data(),
                       {}};
+  if ((sampler.filter == TextureFilter::trilinear || sampler.filter == TextureFilter::bilinear) &&
+      fp.probes <= 1) {
+    return sample_one_probe(sink, sampler, fp);
+  }
   texture_detail::for_each_tap(sampler, shape_, fp, layer, sink);
   return sink.acc.value();
 }
