@@ -293,7 +293,8 @@ Status run_seams(const SeamsConfig& c, nlohmann::json& summary, bool verbose) {
 
   for (int f = 0; f < c.frames; ++f) {
     const scene::Camera cam = faces::face_orbit_camera(scene, f, c.frames);
-    const bool quality = f < qframes;
+    // Quality frames are spread evenly over the orbit (frame 0 always included).
+    const bool quality = f == 0 || (f * qframes) / c.frames != ((f - 1) * qframes) / c.frames;
     ImageRGBAF ref;
     std::vector<std::uint8_t> mask;
     if (quality) {
@@ -585,7 +586,7 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--frames", c.frames, "Orbit frames")->check(CLI::Range(1, 100000))
       ->capture_default_str();
   sub->add_option("--quality-frames", c.quality_frames,
-                  "Frames compared against a reference (0 = all)")
+                  "Frames compared against a reference, spread over the orbit (0 = all)")
       ->check(CLI::Range(0, 100000));
   sub->add_option("--width", c.width)->check(CLI::Range(8, 8192))->capture_default_str();
   sub->add_option("--height", c.height)->check(CLI::Range(8, 8192))->capture_default_str();

@@ -23,8 +23,8 @@ Status demo_seams_section(Report& report, const DemoOptions& options) {
   c.figure1.ground = 16;
   c.figure1.character = 8;
   c.figure1.texels_per_unit = 80.0f;
-  c.width = 160;
-  c.height = 180;
+  c.width = 128;
+  c.height = 144;
   c.frames = 2;
   c.msaa = {1, 4, 8};
   c.threads = options.threads;
