@@ -130,6 +130,64 @@ inline void quad_coverage(const std::int64_t e0[3], const std::int64_t sx[3],
   }
 }
 
+/// Largest |a|, |b| of a "narrow" triangle (edges shorter than 512 grid pixels on each axis),
+/// whose coverage can be computed in 32-bit arithmetic: see `quad_coverage32`.
+inline constexpr std::int64_t kNarrowEdgeLimit = std::int64_t{1} << 17;
+/// Quad-corner edge values are clamped to +-2^30 before narrowing to 32 bits.
+inline constexpr std::int64_t kNarrowClamp = std::int64_t{1} << 30;
+
+/// 32-bit coverage of a quad of a narrow triangle: `e0` as in `quad_coverage`, `sx32` / `sy32`
+/// the one-pixel steps and `off32[k][s]` the sample increments as int32 (all below 2^26 in
+/// magnitude for a narrow triangle). Exact: a corner value is clamped to [-2^30, 2^30], and
+/// adding at most 2^27 of steps and offsets neither overflows nor changes the sign of a value
+/// that was clamped. Same masks as `quad_coverage`. `samples` is 1 or a multiple of 4.
+inline void quad_coverage32(const std::int64_t e0[3], const std::int32_t sx32[3],
+                            const std::int32_t sy32[3], const std::int32_t (*off32)[16],
+                            int samples, std::uint32_t mask[4]) {
+  std::int32_t c[3];
+  for (int k = 0; k < 3; ++k) {
+    c[k] = std::int32_t(std::clamp(e0[k], -kNarrowClamp, kNarrowClamp));
+  }
+#if defined(__SSE2__)
+  if (samples == 1) {
+    __m128i v = _mm_setzero_si128();
+    for (int k = 0; k < 3; ++k) {
+      const __m128i lanes = _mm_set_epi32(sx32[k] + sy32[k], sy32[k], sx32[k], 0);
+      v = _mm_or_si128(v, _mm_add_epi32(_mm_set1_epi32(c[k] + off32[k][0]), lanes));
+    }
+    const std::uint32_t in = ~std::uint32_t(_mm_movemask_ps(_mm_castsi128_ps(v)));
+    for (int lane = 0; lane < 4; ++lane) mask[lane] = in >> lane & 1u;
+    return;
+  }
+  for (int lane = 0; lane < 4; ++lane) {
+    __m128i e[3];
+    for (int k = 0; k < 3; ++k) {
+      e[k] = _mm_set1_epi32(c[k] + (lane & 1 ? sx32[k] : 0) + (lane >> 1 ? sy32[k] : 0));
+    }
+    std::uint32_t m = 0;
+    for (int s = 0; s < samples; s += 4) {
+      __m128i v = _mm_add_epi32(e[0], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off32[0] + s)));
+      v = _mm_or_si128(v, _mm_add_epi32(e[1], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off32[1] + s))));
+      v = _mm_or_si128(v, _mm_add_epi32(e[2], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off32[2] + s))));
+      m |= (~std::uint32_t(_mm_movemask_ps(_mm_castsi128_ps(v))) & 15u) << s;
+    }
+    mask[lane] = m;
+  }
+#else
+  for (int lane = 0; lane < 4; ++lane) {
+    std::uint32_t m = 0;
+    for (int s = 0; s < samples; ++s) {
+      std::int32_t v = 0;
+      for (int k = 0; k < 3; ++k) {
+        v |= c[k] + (lane & 1 ? sx32[k] : 0) + (lane >> 1 ? sy32[k] : 0) + off32[k][s];
+      }
+      m |= std::uint32_t(v >= 0) << s;
+    }
+    mask[lane] = m;
+  }
+#endif
+}
+
 /// Block classification against one edge over the fixed-point rectangle [x0, x1] x [y0, y1]:
 /// -1 no point inside (reject), 1 every point inside (accept), 0 partial.
 inline int classify_block(const Edge& e, std::int64_t x0, std::int64_t y0, std::int64_t x1,

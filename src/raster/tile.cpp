@@ -78,6 +78,7 @@ class TileRasterizer {
   ShadeInput in_;              // fields shared by the triangle's invocations
   ShadeInput lanes_[4];        // per-lane inputs of the quad shader
   std::int64_t off_[3][kMaxSamples];
+  alignas(16) std::int32_t off32_[3][kMaxSamples];  // narrow triangles: off_ as int32
   alignas(16) float dz_[kMaxSamples];
 
   // Quad scratch.
@@ -124,6 +125,20 @@ void TileRasterizer::triangle(const TriSetup& t, const float* varyings) {
   }
   for (int s = 0; s < ns; ++s) dz_[s] = t.z[1] * st_.ox[s] + t.z[2] * st_.oy[s];
   const std::int64_t* off[3] = {off_[0], off_[1], off_[2]};
+  // Narrow triangles (and sample counts 1, 4, 8, 16) take the 32-bit coverage path.
+  bool narrow = ns == 1 || ns % 4 == 0;
+  for (int e = 0; e < 3; ++e) {
+    narrow = narrow && t.a[e] < kNarrowEdgeLimit && t.a[e] > -kNarrowEdgeLimit &&
+             t.b[e] < kNarrowEdgeLimit && t.b[e] > -kNarrowEdgeLimit;
+  }
+  std::int32_t sx32[3] = {0, 0, 0}, sy32[3] = {0, 0, 0};
+  if (narrow) {
+    for (int e = 0; e < 3; ++e) {
+      sx32[e] = std::int32_t(t.a[e] * kSubpixel);
+      sy32[e] = std::int32_t(t.b[e] * kSubpixel);
+      for (int s = 0; s < ns; ++s) off32_[e][s] = std::int32_t(off_[e][s]);
+    }
+  }
   const Edge edges[3] = {{t.a[0], t.b[0], t.c[0]}, {t.a[1], t.b[1], t.c[1]},
                          {t.a[2], t.b[2], t.c[2]}};
   const std::int64_t step_x[3] = {t.a[0] * kSubpixel, t.a[1] * kSubpixel, t.a[2] * kSubpixel};
@@ -161,7 +176,11 @@ void TileRasterizer::triangle(const TriSetup& t, const float* varyings) {
           if (accept) {
             mask[0] = mask[1] = mask[2] = mask[3] = st_.full;
           } else {
-            quad_coverage(e0, step_x, step_y, off, ns, mask);
+            if (narrow) {
+              quad_coverage32(e0, sx32, sy32, off32_, ns, mask);
+            } else {
+              quad_coverage(e0, step_x, step_y, off, ns, mask);
+            }
           }
           for (int e = 0; e < 3; ++e) e0[e] += 2 * step_x[e];
           if (!(mask[0] | mask[1] | mask[2] | mask[3])) continue;
