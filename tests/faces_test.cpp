@@ -245,6 +245,28 @@ TEST(Faces, Figure1SceneHasAllPairingsAndValences) {
   EXPECT_GT(res.size(), 1u);
 }
 
+TEST(Faces, SubdivideKeepsAClosedMeshClosed) {
+  faces::Figure1Options fo;
+  fo.ground = 2;
+  fo.character = 3;
+  const faces::FaceScene s = faces::figure1_scene(fo);
+  QuadMesh cube;
+  cube.positions = s.mesh.positions;
+  for (int f = s.ground_faces; f < s.mesh.face_count(); ++f) cube.quads.push_back(s.mesh.quads[std::size_t(f)]);
+  const QuadMesh sub = faces::subdivide(cube);
+  EXPECT_EQ(sub.face_count(), 4 * cube.face_count());
+  Result<std::vector<FaceAdjacency>> adj = faces::build_adjacency(sub);
+  ASSERT_TRUE(adj.ok()) << adj.status().message;
+  for (const FaceAdjacency& a : *adj) {
+    for (int e = 0; e < 4; ++e) EXPECT_GE(a.face[std::size_t(e)], 0);
+  }
+  // As a Figure-1 character: ground + the subdivided mesh.
+  fo.character_mesh = sub;
+  const faces::FaceScene s2 = faces::figure1_scene(fo);
+  EXPECT_EQ(s2.mesh.face_count(), 4 + sub.face_count());
+  EXPECT_TRUE(faces::build_adjacency(s2.mesh).ok());
+}
+
 TEST(Faces, RendersEveryMethod) {
   faces::Figure1Options fo;
   fo.ground = 8;

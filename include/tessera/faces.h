@@ -144,6 +144,10 @@ std::vector<std::array<CornerLink, 4>> corner_links(const std::vector<FaceAdjace
 /// my_edge * 4 + neighbour_edge.
 std::array<int, 16> edge_pairing_histogram(const std::vector<FaceAdjacency>& adjacency);
 
+/// One linear subdivision step: every quad becomes 4 (edge midpoints and the face centre as new
+/// vertices, shared between neighbours), orientation kept. Positions are not smoothed.
+QuadMesh subdivide(const QuadMesh& mesh);
+
 /// Rotates the vertex order of every quad by a pseudo-random 0..3 steps (winding unchanged),
 /// so that all 16 edge pairings occur. Deterministic for a given seed.
 void randomize_orientation(QuadMesh& mesh, std::uint32_t seed);
@@ -233,6 +237,9 @@ struct FaceScene {
 struct Figure1Options {
   int ground = 32;           ///< Ground plane of ground x ground quads.
   int character = 16;        ///< Character: a deformed cube-sphere of 6 x n x n quads.
+  /// Optional character mesh used instead of the cube-sphere (e.g. the Ptex teapot after one
+  /// `subdivide` step); it is scaled to stand 2 units tall at the centre of the ground.
+  QuadMesh character_mesh;
   float texels_per_unit = 48.0f;  ///< Texel density setting the face resolutions.
   int min_log2 = 2, max_log2 = 7;  ///< Face side between 2^min and 2^max texels.
   std::uint32_t seed = 1;    ///< Face orientations.

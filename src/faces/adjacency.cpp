@@ -1,4 +1,5 @@
 // Driver: quad meshes, OBJ polygons, directed-edge adjacency and valence-4 corner links.
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -158,6 +159,35 @@ std::array<int, 16> edge_pairing_histogram(const std::vector<FaceAdjacency>& adj
     }
   }
   return h;
+}
+
+QuadMesh subdivide(const QuadMesh& mesh) {
+  QuadMesh out;
+  out.positions = mesh.positions;
+  std::unordered_map<std::uint64_t, int> mids;
+  auto mid = [&](int a, int b) {
+    const std::uint64_t k = (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) |
+                            std::uint32_t(std::max(a, b));
+    auto it = mids.find(k);
+    if (it != mids.end()) return it->second;
+    const int id = int(out.positions.size());
+    out.positions.push_back((mesh.positions[std::size_t(a)] + mesh.positions[std::size_t(b)]) *
+                            0.5f);
+    mids.emplace(k, id);
+    return id;
+  };
+  for (int f = 0; f < mesh.face_count(); ++f) {
+    const std::array<int, 4>& q = mesh.quads[std::size_t(f)];
+    const int ab = mid(q[0], q[1]), bc = mid(q[1], q[2]), cd = mid(q[2], q[3]),
+              da = mid(q[3], q[0]);
+    const int c = int(out.positions.size());
+    out.positions.push_back(mesh.point(f, {0.5f, 0.5f}));
+    out.quads.push_back({q[0], ab, c, da});
+    out.quads.push_back({ab, q[1], bc, c});
+    out.quads.push_back({c, bc, q[2], cd});
+    out.quads.push_back({da, c, cd, q[3]});
+  }
+  return out;
 }
 
 void randomize_orientation(QuadMesh& mesh, std::uint32_t seed) {

@@ -117,6 +117,26 @@ FaceScene figure1_scene(const Figure1Options& o) {
     return id;
   };
   const int first_char = m.face_count();
+  if (!o.character_mesh.quads.empty()) {
+    // A user mesh: scaled to 2 units tall, standing at the centre of the ground.
+    const QuadMesh& cm = o.character_mesh;
+    Vec3 lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
+    for (const Vec3& p : cm.positions) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    const float sc = 2.0f / std::max(hi.y - lo.y, 1e-6f);
+    for (const Vec3& p : cm.positions) {
+      m.positions.push_back({(p.x - 0.5f * (lo.x + hi.x)) * sc, (p.y - lo.y) * sc,
+                             (p.z - 0.5f * (lo.z + hi.z)) * sc});
+    }
+    for (const std::array<int, 4>& q : cm.quads) {
+      m.quads.push_back({q[0] + base, q[1] + base, q[2] + base, q[3] + base});
+    }
+    randomize_orientation(m, o.seed);
+    assign_resolutions(s, o.texels_per_unit, o.min_log2, o.max_log2);
+    return s;
+  }
   for (int axis = 0; axis < 3; ++axis) {
     for (int side = 0; side <= 1; ++side) {
       for (int a = 0; a < n; ++a) {
@@ -135,7 +155,6 @@ FaceScene figure1_scene(const Figure1Options& o) {
       }
     }
   }
-  (void)base;
   const Vec3 centre{0, 1.0f, 0};
   orient(m, first_char, [&](const Vec3& c) { return c - centre; });
   randomize_orientation(m, o.seed);

@@ -185,7 +185,16 @@ struct Loaded {
 Result<Loaded> load_content(const SeamsConfig& c) {
   Loaded l;
   if (c.scene == "figure1") {
-    l.scene = faces::figure1_scene(c.figure1);
+    faces::Figure1Options fo = c.figure1;
+    if (!c.character.empty()) {
+      Result<faces::PolygonMesh> poly = faces::load_obj_polygons(c.character);
+      if (!poly) return poly.status();
+      Result<faces::QuadMesh> quads = faces::to_quad_mesh(*poly, c.character);
+      if (!quads) return quads.status();
+      fo.character_mesh = std::move(*quads);
+      for (int i = 0; i < c.subdivide; ++i) fo.character_mesh = faces::subdivide(fo.character_mesh);
+    }
+    l.scene = faces::figure1_scene(fo);
     Result<std::vector<faces::FaceAdjacency>> adj = faces::build_adjacency(l.scene.mesh);
     if (!adj) return adj.status();
     Result<faces::FaceTextureSet> set =
@@ -193,8 +202,11 @@ Result<Loaded> load_content(const SeamsConfig& c) {
     if (!set) return set.status();
     l.set = std::move(*set);
     l.description = "built-in Figure-1 scene: ground plane of " +
-                    std::to_string(l.scene.ground_faces) + " faces and a cube-sphere character "
-                    "of " + std::to_string(l.scene.mesh.face_count() - l.scene.ground_faces) +
+                    std::to_string(l.scene.ground_faces) + " faces and " +
+                    (c.character.empty() ? std::string("a cube-sphere character")
+                                         : c.character + " (" + std::to_string(c.subdivide) +
+                                               " subdivision step(s))") +
+                    " of " + std::to_string(l.scene.mesh.face_count() - l.scene.ground_faces) +
                     " faces, textures baked from a procedural 3D function";
     return l;
   }
@@ -580,6 +592,11 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--scene", c.scene, "'figure1' (built in) or an all-quad .obj")
       ->capture_default_str();
   sub->add_option("--ptex", c.ptex, "Ptex file with the textures of the .obj scene");
+  sub->add_option("--character", c.character,
+                  "figure1: all-quad .obj to use as the character instead of the cube-sphere");
+  sub->add_option("--subdivide", c.subdivide, "Linear subdivision steps of --character")
+      ->check(CLI::Range(0, 4))
+      ->capture_default_str();
   sub->add_option("--msaa", c.msaa, "MSAA rates, comma-separated")
       ->delimiter(',')
       ->check(CLI::IsMember({1, 2, 4, 8, 16}));

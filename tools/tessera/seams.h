@@ -14,6 +14,8 @@ namespace tessera::cli {
 struct SeamsConfig {
   std::string scene = "figure1";  ///< "figure1" or an all-quad .obj.
   std::string ptex;               ///< Optional .ptx for the .obj (else procedural textures).
+  std::string character;          ///< figure1: an all-quad .obj replacing the cube-sphere.
+  int subdivide = 1;              ///< Linear subdivision steps applied to `character`.
   std::vector<int> msaa = {1, 2, 4, 8};
   int frames = 8;                 ///< Orbit frames (timed and, up to quality_frames, compared).
   int quality_frames = 0;         ///< Frames with a reference (0 = all).
