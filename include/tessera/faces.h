@@ -267,6 +267,9 @@ struct FaceRenderOptions {
   int msaa = 1;            ///< 1, 2, 4, 8, 16.
   SampleOptions sampling;
   bool shading_only = false;  ///< Lighting without the texture lookup (the shading cost).
+  /// With `shading_only`: output unlit white for faces >= this index and black below (a
+  /// coverage mask of e.g. the character); -1 = off.
+  int mask_faces_from = -1;
   int threads = 0;
   /// Sub-rectangle [x0, x0 + w) x [y0, y0 + h) of a virtual full_width x full_height image
   /// that this frame shows (used to render the reference in tiles); 0 = the whole image.

@@ -118,8 +118,15 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera,
   const FaceTextureSet* set = textures_;
   const SampleOptions so = o.sampling;
   const bool shading_only = o.shading_only;
-  d.shader = [set, so, shading_only](const raster::ShadeInput& in, float* out) {
+  const int mask_from = o.mask_faces_from;
+  d.shader = [set, so, shading_only, mask_from](const raster::ShadeInput& in, float* out) {
     const float* v = in.varyings;
+    if (shading_only && mask_from >= 0) {
+      const float flag = int(in.primitive_id >> 1) >= mask_from ? 1.0f : 0.0f;
+      out[0] = out[1] = out[2] = flag;
+      out[3] = 1.0f;
+      return;
+    }
     std::array<float, 4> c = {0.8f, 0.8f, 0.8f, 1.0f};
     if (!shading_only) {
       const int face = int(in.primitive_id >> 1);
