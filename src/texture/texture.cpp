@@ -12,6 +12,10 @@
 
 #include "texture/sampler_kernel.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace tessera {
 
 // ---------------------------------------------------------------------------------------------
@@ -245,60 +249,118 @@ struct AccumulateSink {
   }
 };
 
+/// Resolves the adjacent pair (x0, x0 + 1) like `resolve_pair`, with a mask instead of a
+/// modulo for the common wrap of a power-of-two size (two's complement `x & (size - 1)` is the
+/// mathematical x mod size, negative x included).
+inline void resolve_pair_fast(int x0, int size, AddressMode mode, int out[2]) {
+  if (mode == AddressMode::wrap && (size & (size - 1)) == 0) {
+    out[0] = x0 & (size - 1);
+    out[1] = (x0 + 1) & (size - 1);
+    return;
+  }
+  texture_detail::resolve_pair(x0, size, mode, out);
+}
+
+/// Adds the four taps of one bilinear block (tap weight wx[k] * wy[j], rows then columns), as
+/// `AccumulateSink::quad` does.
+inline void add_bilinear(const AccumulateSink& sink, texture_detail::Accum4& acc,
+                         const float* base, std::size_t stride, const int rx[2], const int ry[2],
+                         const float wx[2], const float wy[2]) {
+  const std::ptrdiff_t c0 = std::ptrdiff_t(rx[0]) * 4;
+  const std::ptrdiff_t c1 = std::ptrdiff_t(rx[1]) * 4;
+  if ((rx[0] | rx[1] | ry[0] | ry[1]) >= 0) {
+    const float* r0 = base + std::size_t(ry[0]) * stride;
+    const float* r1 = base + std::size_t(ry[1]) * stride;
+    acc.add(wx[0] * wy[0], r0 + c0);
+    acc.add(wx[1] * wy[0], r0 + c1);
+    acc.add(wx[0] * wy[1], r1 + c0);
+    acc.add(wx[1] * wy[1], r1 + c1);
+    return;
+  }
+  for (int j = 0; j < 2; ++j) {
+    const float* row = base + std::size_t(ry[j] < 0 ? 0 : ry[j]) * stride;
+    for (int k = 0; k < 2; ++k) {
+      const bool is_border = ry[j] < 0 || rx[k] < 0;
+      acc.add(wx[k] * wy[j], is_border ? sink.border : row + (k ? c1 : c0));
+    }
+  }
+}
+
 /// Bilinear or trilinear lookup of a one-probe footprint (the shading hot path): exactly the
 /// taps `for_each_tap` generates for it, accumulated in the same order with the same
 /// arithmetic as `AccumulateSink`, without materialising `QuadTaps`, so the result is
-/// bit-identical to the generic path. `footprint.lod` must be clamped to [0, levels - 1].
+/// bit-identical to the generic path. With SSE2 the texel coordinates and weights of both
+/// levels are computed in one vector (lane-wise the same IEEE operations).
+/// `footprint.lod` must be clamped to [0, levels - 1].
 std::array<float, 4> sample_one_probe(const AccumulateSink& sink, const SamplerState& sampler,
                                       const Footprint& footprint) {
   using namespace texture_detail;
   const TextureShape& shape = *sink.shape;
   const LevelPlan plan = plan_levels(sampler.filter, footprint.lod, shape.levels);
   // for_each_tap with one probe: inv_probes = 1 and t = 0, kept as operations so that
-  // non-finite axes behave the same.
-  constexpr float inv_probes = 1.0f;
-  const float t = (0.0f + 0.5f) * inv_probes - 0.5f;
+  // non-finite axes behave the same; level weights times inv_probes = 1 are exact.
+  const float t = (0.0f + 0.5f) * 1.0f - 0.5f;
   const float u = footprint.center.u + t * footprint.axis_u;
   const float v = footprint.center.v + t * footprint.axis_v;
+  int lv[2] = {plan.level[0], plan.level[plan.count - 1]};
+  int w[2], h[2];
+  for (int li = 0; li < 2; ++li) {
+    w[li] = shape.level_width(lv[li]);
+    h[li] = shape.level_height(lv[li]);
+  }
+  // Per level li: x0, y0, the weights wx[2] (= 1 - ax, ax) and wy[2] (times the level weight).
+  int x0[2], y0[2];
+  float wx[2][2], wy[2][2];
+#if defined(__SSE2__)
+  {
+    const __m128 size = _mm_set_ps(float(h[1]), float(w[1]), float(h[0]), float(w[0]));
+    const __m128 p = _mm_sub_ps(_mm_mul_ps(_mm_set_ps(v, u, v, u), size), _mm_set1_ps(0.5f));
+    // clamp_coord: p > -L ? (p < L ? p : L) : -L (NaN -> -L).
+    const __m128 lim = _mm_set1_ps(kCoordLimit);
+    const __m128 nlim = _mm_set1_ps(-kCoordLimit);
+    const __m128 above = _mm_cmpgt_ps(p, nlim);
+    const __m128 pc = _mm_or_ps(_mm_and_ps(above, _mm_min_ps(p, lim)), _mm_andnot_ps(above, nlim));
+    // floor_to_int: truncate, then subtract 1 where p < float(trunc).
+    const __m128i tr = _mm_cvttps_epi32(pc);
+    const __m128i fl = _mm_add_epi32(tr, _mm_castps_si128(_mm_cmplt_ps(pc, _mm_cvtepi32_ps(tr))));
+    const __m128 frac = _mm_sub_ps(pc, _mm_cvtepi32_ps(fl));
+    const __m128 lw = _mm_set_ps(plan.weight[1], 1.0f, plan.weight[0], 1.0f);
+    alignas(16) float lo[4], hi[4];
+    alignas(16) int ic[4];
+    // x lanes: 1 - ax and ax (times 1, exact); y lanes: (1 - ay) * lw and ay * lw.
+    _mm_store_ps(lo, _mm_mul_ps(_mm_sub_ps(_mm_set1_ps(1.0f), frac), lw));
+    _mm_store_ps(hi, _mm_mul_ps(frac, lw));
+    _mm_store_si128(reinterpret_cast<__m128i*>(ic), fl);
+    for (int li = 0; li < 2; ++li) {
+      x0[li] = ic[2 * li];
+      y0[li] = ic[2 * li + 1];
+      wx[li][0] = lo[2 * li];
+      wx[li][1] = hi[2 * li];
+      wy[li][0] = lo[2 * li + 1];
+      wy[li][1] = hi[2 * li + 1];
+    }
+  }
+#else
+  for (int li = 0; li < 2; ++li) {
+    const float px = clamp_coord(u * float(w[li]) - 0.5f);
+    const float py = clamp_coord(v * float(h[li]) - 0.5f);
+    x0[li] = floor_to_int(px);
+    y0[li] = floor_to_int(py);
+    const float ax = px - float(x0[li]);
+    const float ay = py - float(y0[li]);
+    wx[li][0] = 1.0f - ax;
+    wx[li][1] = ax;
+    wy[li][0] = (1.0f - ay) * plan.weight[li];
+    wy[li][1] = ay * plan.weight[li];
+  }
+#endif
   Accum4 acc;
   for (int li = 0; li < plan.count; ++li) {
-    const int level = plan.level[li];
-    const int w = shape.level_width(level);
-    const int h = shape.level_height(level);
-    const float level_weight = plan.weight[li] * inv_probes;
-    const float px = clamp_coord(u * float(w) - 0.5f);
-    const float py = clamp_coord(v * float(h) - 0.5f);
-    const int x0 = floor_to_int(px);
-    const int y0 = floor_to_int(py);
-    const float ax = px - float(x0);
-    const float ay = py - float(y0);
     int rx[2], ry[2];
-    resolve_pair(x0, w, sampler.address_u, rx);
-    resolve_pair(y0, h, sampler.address_v, ry);
-    const float wx0 = 1.0f - ax, wx1 = ax;
-    const float wy0 = (1.0f - ay) * level_weight, wy1 = ay * level_weight;
-    const float* base = sink.texels + sink.level_offsets[level];
-    const std::size_t stride = std::size_t(w) * 4;
-    const std::ptrdiff_t c0 = std::ptrdiff_t(rx[0]) * 4;
-    const std::ptrdiff_t c1 = std::ptrdiff_t(rx[1]) * 4;
-    if ((rx[0] | rx[1] | ry[0] | ry[1]) >= 0) {
-      const float* r0 = base + std::size_t(ry[0]) * stride;
-      const float* r1 = base + std::size_t(ry[1]) * stride;
-      acc.add(wx0 * wy0, r0 + c0);
-      acc.add(wx1 * wy0, r0 + c1);
-      acc.add(wx0 * wy1, r1 + c0);
-      acc.add(wx1 * wy1, r1 + c1);
-      continue;
-    }
-    const float wy[2] = {wy0, wy1};
-    const float wx[2] = {wx0, wx1};
-    for (int j = 0; j < 2; ++j) {
-      const float* row = base + std::size_t(ry[j] < 0 ? 0 : ry[j]) * stride;
-      for (int k = 0; k < 2; ++k) {
-        const bool is_border = ry[j] < 0 || rx[k] < 0;
-        acc.add(wx[k] * wy[j], is_border ? sink.border : row + (k ? c1 : c0));
-      }
-    }
+    resolve_pair_fast(x0[li], w[li], sampler.address_u, rx);
+    resolve_pair_fast(y0[li], h[li], sampler.address_v, ry);
+    add_bilinear(sink, acc, sink.texels + sink.level_offsets[lv[li]], std::size_t(w[li]) * 4, rx,
+                 ry, wx[li], wy[li]);
   }
   return acc.value();
 }
