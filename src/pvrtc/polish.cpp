@@ -18,6 +18,7 @@
 #include <limits>
 
 #include "pvrtc/encode_internal.h"
+#include "pvrtc/simd.h"
 
 namespace tessera::pvrtc::detail {
 
@@ -131,7 +132,7 @@ constexpr std::uint32_t kSkipBelow = 3000;
 // Candidate endpoint pairs for block (bx, by) from its own 4x4 texels: their principal axis
 // splits them into two halves; the half means and the two extreme texels each give a pair, in
 // both orientations. Writes up to 4 (A, B) field pairs; returns the count.
-int reseed_candidates(const EncoderState& s, int bx, int by, std::uint16_t out[4][2]) {
+int reseed_candidates(const EncoderState& s, int bx, int by, std::uint16_t out[8][2]) {
   const Grid& g = s.g;
   const int nch = s.alpha_mode ? 4 : 3;
   float px[16][4];
@@ -194,12 +195,175 @@ int reseed_candidates(const EncoderState& s, int bx, int by, std::uint16_t out[4
   out[2][1] = quantise_endpoint(px[imax], true, ta);
   out[3][0] = quantise_endpoint(px[imax], false, ta);
   out[3][1] = quantise_endpoint(px[imin], true, ta);
-  return 4;
+  const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+  out[4][0] = s.ca[j];
+  out[4][1] = quantise_endpoint(px[imax], true, ta);
+  out[5][0] = quantise_endpoint(px[imin], false, ta);
+  out[5][1] = s.cb[j];
+  out[6][0] = s.ca[j];
+  out[6][1] = quantise_endpoint(hi, true, ta);
+  out[7][0] = quantise_endpoint(lo, false, ta);
+  out[7][1] = s.cb[j];
+  return 8;
+}
+
+// The 7x7 texels block j influences (its bilinear weight is 0 elsewhere), with the other three
+// blocks' share of each texel's A and B sums precomputed, so a candidate pair for block j costs
+// one multiply-add per channel and endpoint per texel. Exact: same arithmetic as the decoder.
+struct LocalWindow {
+  std::int32_t rest_a[49][4], rest_b[49][4];
+  // The same, 16-bit, padded to 50 texels (the last one all zero: error 0) for the SIMD path;
+  // `own16` repeats the own weight in the four lanes, `t16` the target (alpha lane 0 if RGB),
+  // `bias35` / `bias4` exclude the blends a texel's block mode lacks.
+  alignas(16) std::uint16_t rest16_a[50][4], rest16_b[50][4], own16[50][4], t16[50][4];
+  alignas(16) std::int32_t bias35[25][4], bias4[25][4];
+  std::int32_t own[49];
+  const std::uint8_t* t[49];
+  bool mode1[49];
+  int nch;
+  bool punch;
+};
+
+void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
+  const EncoderState& s = *w.s;
+  const Grid& g = s.g;
+  const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+  lw.nch = w.nch;
+  lw.punch = s.punch;
+  int k = 0;
+  for (int yy = by * 4 - 1; yy < by * 4 + 6; ++yy) {
+    const AxisTap ty = axis_tap(yy, 4, g.ph);
+    const int y = yy & (g.ph - 1);
+    for (int xx = bx * 4 - 1; xx < bx * 4 + 6; ++xx, ++k) {
+      const AxisTap tx = axis_tap(xx, 4, g.pw);
+      const int x = xx & (g.pw - 1);
+      const std::size_t blk[4] = {std::size_t(ty.b0) * std::size_t(g.nbx) + std::size_t(tx.b0),
+                                  std::size_t(ty.b0) * std::size_t(g.nbx) + std::size_t(tx.b1),
+                                  std::size_t(ty.b1) * std::size_t(g.nbx) + std::size_t(tx.b0),
+                                  std::size_t(ty.b1) * std::size_t(g.nbx) + std::size_t(tx.b1)};
+      const std::int32_t wt[4] = {(4 - tx.d) * (4 - ty.d), tx.d * (4 - ty.d), (4 - tx.d) * ty.d,
+                                  tx.d * ty.d};
+      std::int32_t ra[4] = {0, 0, 0, 0}, rb[4] = {0, 0, 0, 0}, own = 0;
+      for (int i = 0; i < 4; ++i) {
+        if (blk[i] == j) {
+          own += wt[i];
+          continue;
+        }
+        const Rgba5& a = (*w.ea)[blk[i]];
+        const Rgba5& b = (*w.eb)[blk[i]];
+        ra[0] += a.r * wt[i];
+        ra[1] += a.g * wt[i];
+        ra[2] += a.b * wt[i];
+        ra[3] += a.a * wt[i];
+        rb[0] += b.r * wt[i];
+        rb[1] += b.g * wt[i];
+        rb[2] += b.b * wt[i];
+        rb[3] += b.a * wt[i];
+      }
+      for (int c = 0; c < 4; ++c) {
+        lw.rest_a[k][c] = ra[c];
+        lw.rest_b[k][c] = rb[c];
+      }
+      lw.own[k] = own;
+      lw.t[k] = &s.target[(std::size_t(y) * std::size_t(g.pw) + std::size_t(x)) * 4];
+      lw.mode1[k] = (*w.modes)[std::size_t(y >> 2) * std::size_t(g.nbx) + std::size_t(x >> 2)];
+    }
+  }
+  constexpr std::int32_t kExclude = 1 << 24;
+  for (int i = 0; i < 50; ++i) {
+    for (int c = 0; c < 4; ++c) {
+      const bool used = i < 49 && c < lw.nch;
+      lw.rest16_a[i][c] = used ? std::uint16_t(lw.rest_a[i][c]) : 0;
+      lw.rest16_b[i][c] = used ? std::uint16_t(lw.rest_b[i][c]) : 0;
+      lw.own16[i][c] = used ? std::uint16_t(lw.own[i]) : 0;
+      lw.t16[i][c] = used ? lw.t[i][c] : 0;
+    }
+    const bool m1 = i < 49 && lw.mode1[i];
+    for (int c = 0; c < 2; ++c) {
+      lw.bias35[i / 2][(i & 1) * 2 + c] = m1 ? kExclude : 0;
+      lw.bias4[i / 2][(i & 1) * 2 + c] = i < 49 && !m1 ? kExclude : 0;
+    }
+  }
+}
+
+// `local_error` two texels at a time (RGB only, no punch-through); identical results.
+std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
+                               std::uint32_t bound) {
+  using simd::vint4;
+  using simd::vu16x8;
+  alignas(16) const std::uint16_t a16[8] = {
+      std::uint16_t(a.r), std::uint16_t(a.g), std::uint16_t(a.b), std::uint16_t(a.a),
+      std::uint16_t(a.r), std::uint16_t(a.g), std::uint16_t(a.b), std::uint16_t(a.a)};
+  alignas(16) const std::uint16_t b16[8] = {
+      std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a),
+      std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a)};
+  const vu16x8 av = simd::load_u16x8(a16), bv = simd::load_u16x8(b16);
+  const vu16x8 w3(3), w4(4), w5(5);
+  vint4 acc;
+  for (int p = 0; p < 25; ++p) {
+    const vu16x8 own = simd::load_u16x8(&lw.own16[2 * p][0]);
+    // Bilinear sums S (weights sum to 16); 8-bit value (2S >> 7) + (2S >> 2).
+    const vu16x8 sa = simd::load_u16x8(&lw.rest16_a[2 * p][0]) + simd::mullo(own, av);
+    const vu16x8 sb = simd::load_u16x8(&lw.rest16_b[2 * p][0]) + simd::mullo(own, bv);
+    const vu16x8 ua = simd::srl<6>(sa) + simd::srl<1>(sa);
+    const vu16x8 ub = simd::srl<6>(sb) + simd::srl<1>(sb);
+    const vu16x8 t = simd::load_u16x8(&lw.t16[2 * p][0]);
+    auto err = [&](vu16x8 d) {
+      const vint4 sq = simd::madd(d, d);
+      return sq + simd::swap_pairs(sq);
+    };
+    const vint4 e0 = err(ua - t), e8 = err(ub - t);
+    const vint4 e3 = err(simd::srl<3>(simd::mullo(ua, w5) + simd::mullo(ub, w3)) - t);
+    const vint4 e5 = err(simd::srl<3>(simd::mullo(ua, w3) + simd::mullo(ub, w5)) - t);
+    const vint4 e4 = err(simd::srl<3>(simd::mullo(ua, w4) + simd::mullo(ub, w4)) - t);
+    const vint4 b35 = simd::load4(lw.bias35[p]);
+    const vint4 m = simd::min(
+        simd::min(e0, e8), simd::min(simd::min(e3 + b35, e5 + b35), e4 + simd::load4(lw.bias4[p])));
+    acc += m;
+    if ((p & 3) == 3 && std::uint32_t(acc.lane(0) + acc.lane(2)) >= bound) break;
+  }
+  return std::uint32_t(acc.lane(0) + acc.lane(2));
+}
+
+// Exact error of the local window with (a, b) as block j's endpoints; stops once it reaches
+// `bound` (the result is then >= bound).
+std::uint32_t local_error(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
+                          std::uint32_t bound) {
+  const std::int32_t av[4] = {a.r, a.g, a.b, a.a}, bv[4] = {b.r, b.g, b.b, b.a};
+  std::uint32_t total = 0;
+  for (int k = 0; k < 49; ++k) {
+    std::int32_t ua[4], ub[4];
+    for (int c = 0; c < lw.nch; ++c) {
+      const std::int32_t A = (lw.rest_a[k][c] + lw.own[k] * av[c]) * 2;
+      const std::int32_t B = (lw.rest_b[k][c] + lw.own[k] * bv[c]) * 2;
+      ua[c] = c == 3 ? w32_to_alpha8(A) : w32_to_rgb8(A);
+      ub[c] = c == 3 ? w32_to_alpha8(B) : w32_to_rgb8(B);
+    }
+    const std::uint8_t* t = lw.t[k];
+    const std::int32_t* tab = lw.mode1[k] ? kMod4Mode1 : kMod4Mode0;
+    std::uint32_t best = std::numeric_limits<std::uint32_t>::max();
+    for (int code = 0; code < 4; ++code) {
+      const bool punch = lw.mode1[k] && code == 2;
+      if (punch && !lw.punch) continue;
+      const std::int32_t m = tab[code];
+      std::uint32_t e = 0;
+      for (int c = 0; c < lw.nch; ++c) {
+        std::int32_t v = (ua[c] * (8 - m) + ub[c] * m) >> 3;
+        if (c == 3 && punch) v = 0;
+        const std::int32_t d = v - t[c];
+        e += std::uint32_t(d * d);
+      }
+      best = std::min(best, e);
+    }
+    total += best;
+    if (total >= bound) return total;
+  }
+  return total;
 }
 
 }  // namespace
 
-int reseed(EncoderState& s, std::uint32_t min_error) {
+int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& changed) {
   const Grid& g = s.g;
   if (g.format != Format::pvrtc1_4bpp) return 0;
   std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
@@ -208,7 +372,24 @@ int reseed(EncoderState& s, std::uint32_t min_error) {
     eb[i] = expand_b(s.cb[i]);
   }
   const Window w{&s, &ea, &eb, &s.mode, s.alpha_mode ? 4 : 3};
-  std::vector<std::uint8_t> changed(g.blocks(), 0);
+  // A repeat pass visits only blocks with a block changed by the previous pass in their 3x3
+  // neighbourhood: elsewhere the window and the candidates are as before.
+  std::vector<std::uint8_t> active(g.blocks(), 1);
+  if (changed.size() == g.blocks()) {
+    for (int by = 0; by < g.nby; ++by) {
+      for (int bx = 0; bx < g.nbx; ++bx) {
+        std::uint8_t any = 0;
+        for (int dy = -1; dy <= 1; ++dy) {
+          for (int dx = -1; dx <= 1; ++dx) {
+            any |= changed[std::size_t((by + dy) & (g.nby - 1)) * std::size_t(g.nbx) +
+                           std::size_t((bx + dx) & (g.nbx - 1))];
+          }
+        }
+        active[std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx)] = any;
+      }
+    }
+  }
+  changed.assign(g.blocks(), 0);
   for (int cls = 0; cls < 4; ++cls) {
     const int ox = cls & 1, oy = cls >> 1;
     parallel_for(
@@ -218,14 +399,20 @@ int reseed(EncoderState& s, std::uint32_t min_error) {
             const int by = 2 * r + oy;
             for (int bx = ox; bx < g.nbx; bx += 2) {
               const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-              std::uint32_t best = window_error(w, bx, by, ea[j], eb[j], nullptr);
+              if (!active[j]) continue;
+              LocalWindow lw;
+              build_local(w, bx, by, lw);
+              auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
+                return lw.nch == 3 ? local_error_simd(lw, a, b, bound)
+                                   : local_error(lw, a, b, bound);
+              };
+              std::uint32_t best = eval(ea[j], eb[j], ~0u);
               if (best <= min_error) continue;
-              std::uint16_t cand[4][2];
+              std::uint16_t cand[8][2];
               const int n = reseed_candidates(s, bx, by, cand);
               int pick = -1;
               for (int k = 0; k < n; ++k) {
-                const std::uint32_t e =
-                    window_error(w, bx, by, expand_a(cand[k][0]), expand_b(cand[k][1]), nullptr);
+                const std::uint32_t e = eval(expand_a(cand[k][0]), expand_b(cand[k][1]), best);
                 if (e < best) {
                   best = e;
                   pick = k;

@@ -54,6 +54,17 @@ template <int N>
 inline vint4 sra(vint4 a) {
   return vint4(_mm_srai_epi32(a.v, N));
 }
+/// Lane-wise signed minimum.
+inline vint4 min(vint4 a, vint4 b) {
+#if defined(TESSERA_SIMD_SSE41)
+  return vint4(_mm_min_epi32(a.v, b.v));
+#else
+  const __m128i lt = _mm_cmplt_epi32(a.v, b.v);
+  return vint4(_mm_or_si128(_mm_and_si128(lt, a.v), _mm_andnot_si128(lt, b.v)));
+#endif
+}
+/// Lanes (1, 0, 3, 2): swaps adjacent lanes.
+inline vint4 swap_pairs(vint4 a) { return vint4(_mm_shuffle_epi32(a.v, _MM_SHUFFLE(2, 3, 0, 1))); }
 /// Lanes 0-2 from `rgb`, lane 3 from `a`.
 inline vint4 select_alpha(vint4 rgb, vint4 a) {
   const __m128i m = _mm_setr_epi32(0, 0, 0, -1);
@@ -148,6 +159,12 @@ template <int N>
 inline vint4 sra(vint4 a) {
   return {a.l[0] >> N, a.l[1] >> N, a.l[2] >> N, a.l[3] >> N};
 }
+inline vint4 min(vint4 a, vint4 b) {
+  vint4 r;
+  for (int i = 0; i < 4; ++i) r.l[i] = a.l[i] < b.l[i] ? a.l[i] : b.l[i];
+  return r;
+}
+inline vint4 swap_pairs(vint4 a) { return {a.l[1], a.l[0], a.l[3], a.l[2]}; }
 inline vint4 select_alpha(vint4 rgb, vint4 a) { return {rgb.l[0], rgb.l[1], rgb.l[2], a.l[3]}; }
 inline void store_u8x4(vint4 a, std::uint8_t* out) {
   for (int i = 0; i < 4; ++i) out[i] = std::uint8_t(a.l[i]);
