@@ -6,8 +6,11 @@
 // Intensity Dilation" (Krajcevski & Manocha, JCGT 3(4), 2014) for `Quality::fast`. `normal` and
 // `high` run the two-stage scheme of the paper's §1.2: initial endpoints (principal-axis split of
 // each block's bilinear footprint: unlike intensity labelling it separates equally bright
-// colours, e.g. across the wrap-around seam), then alternating least-squares optimisation of
-// the block colours (modulation fixed) and brute-force modulation (colours fixed).
+// colours, e.g. across the wrap-around seam; pairs of about equal brightness are oriented to
+// agree with their neighbours), an exact "reseed" of 4 bpp blocks the footprint start misses
+// (endpoints from the block's own texels, kept where the exactly decoded error drops), then
+// alternating least-squares optimisation of the block colours (modulation fixed) and
+// brute-force modulation (colours fixed).
 //
 // Modulation is always chosen against the exact decoder arithmetic, so the bytes an encode
 // returns decode (in tessera or PVRTexTool) to exactly the image the encoder scored.
@@ -42,8 +45,10 @@ enum class Format {
 /// Encoder effort.
 enum class Quality {
   fast,    ///< Intensity dilation only (the paper's algorithm), 4 bpp mode 0 (+ punch-through).
-  normal,  ///< Principal-axis start + up to 3 refinement sweeps; 4 bpp also tries mode 1.
-  high,    ///< As normal, refinement until a sweep gains < 0.25% (at most 16 sweeps).
+  normal,  ///< Principal-axis start, 1 reseed pass (4 bpp), up to 3 refinement sweeps; 4 bpp
+           ///< also tries mode 1.
+  high,    ///< As normal with 2 reseed passes and refinement until a sweep gains < 0.25% (at
+           ///< most 16 sweeps).
 };
 
 /// Block width in texels (4 for 4 bpp, 8 for 2 bpp); blocks are always 4 texels high.
