@@ -214,6 +214,22 @@ TEST(Deferred, AdaptiveIsBetweenDefaultAndReferenceAndThreadIndependent) {
   EXPECT_LE(f.renderer->shade_adaptive(gb, f.shading, shd).samples_shaded, ad.samples_shaded);
 }
 
+TEST(Deferred, ReferenceDefaultAndFxaaAreThreadIndependent) {
+  Fixture f;
+  const GBuffer gb = f.gbuffer(72, 40, 3);
+  ShadingOptions one = f.shading, many = f.shading;
+  one.threads = 1;
+  many.threads = 3;
+  EXPECT_TRUE(
+      same_pixels(f.renderer->shade_reference(gb, one), f.renderer->shade_reference(gb, many)));
+  const ImageRGBAF a = f.renderer->shade_default(gb, one);
+  EXPECT_TRUE(same_pixels(a, f.renderer->shade_default(gb, many)));
+  FxaaOptions fo1, fo3;
+  fo1.threads = 1;
+  fo3.threads = 3;
+  EXPECT_EQ(fxaa(to_srgb8(a), fo1)->pixels, fxaa(to_srgb8(a), fo3)->pixels);
+}
+
 TEST(Deferred, RejectsBadWindow) {
   Fixture f;
   GBuffer gb;

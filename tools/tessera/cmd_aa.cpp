@@ -439,8 +439,10 @@ Command add_aa_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--frames", args->frames, "Timed frames per method (medians reported)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  auto* cam = sub->add_option("--camera", args->camera,
-                              "Camera eye,target,up,fov: 10 comma-separated numbers");
+  auto* cam =
+      sub->add_option("--camera", args->camera,
+                      "Camera eye,target,up,fov: 10 comma-separated numbers (default: orbit "
+                      "1/8 for 'builtin', 0/1 for files)");
   sub->add_option("--orbit", args->orbit, "FRAME/N: camera on the scene's orbit")->excludes(cam);
   sub->add_option("--lights", args->lights,
                   "Extra point lights on a ring above the camera target (besides the scene's)")
