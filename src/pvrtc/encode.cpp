@@ -75,13 +75,33 @@ SingleTable make_single_table(int abits, int m, bool two_bpp) {
   return t;
 }
 
+// Each table is built on first use (thread-safe local statics): a 4 bpp encode with
+// homogeneous blocks needs only four of the eight (about 15M instructions saved).
+template <int kABits, int kM, bool kTwoBpp>
+const SingleTable& single_table_of() {
+  static const SingleTable t = make_single_table(kABits, kM, kTwoBpp);
+  return t;
+}
+
 const SingleTable& single_table(int abits, int mi, bool two_bpp) {
-  static const std::array<SingleTable, 8> tables = {
-      make_single_table(5, 3, false), make_single_table(5, 5, false),
-      make_single_table(4, 3, false), make_single_table(4, 5, false),
-      make_single_table(5, 3, true),  make_single_table(5, 5, true),
-      make_single_table(4, 3, true),  make_single_table(4, 5, true)};
-  return tables[std::size_t((two_bpp ? 4 : 0) + (abits == 4 ? 2 : 0) + mi)];
+  switch ((two_bpp ? 4 : 0) + (abits == 4 ? 2 : 0) + mi) {
+    case 0:
+      return single_table_of<5, 3, false>();
+    case 1:
+      return single_table_of<5, 5, false>();
+    case 2:
+      return single_table_of<4, 3, false>();
+    case 3:
+      return single_table_of<4, 5, false>();
+    case 4:
+      return single_table_of<5, 3, true>();
+    case 5:
+      return single_table_of<5, 5, true>();
+    case 6:
+      return single_table_of<4, 3, true>();
+    default:
+      return single_table_of<4, 5, true>();
+  }
 }
 
 inline std::uint32_t texel_error(const std::uint8_t* t, const std::uint8_t* a,
