@@ -159,11 +159,16 @@ inline void quad_coverage32(const std::int64_t e0[3], const std::int32_t sx32[3]
     for (int lane = 0; lane < 4; ++lane) mask[lane] = in >> lane & 1u;
     return;
   }
+  std::int32_t lanes[3][4];
+  for (int k = 0; k < 3; ++k) {
+    lanes[k][0] = c[k];
+    lanes[k][1] = c[k] + sx32[k];
+    lanes[k][2] = c[k] + sy32[k];
+    lanes[k][3] = lanes[k][2] + sx32[k];
+  }
   for (int lane = 0; lane < 4; ++lane) {
-    __m128i e[3];
-    for (int k = 0; k < 3; ++k) {
-      e[k] = _mm_set1_epi32(c[k] + (lane & 1 ? sx32[k] : 0) + (lane >> 1 ? sy32[k] : 0));
-    }
+    const __m128i e[3] = {_mm_set1_epi32(lanes[0][lane]), _mm_set1_epi32(lanes[1][lane]),
+                          _mm_set1_epi32(lanes[2][lane])};
     std::uint32_t m = 0;
     for (int s = 0; s < samples; s += 4) {
       __m128i v = _mm_add_epi32(e[0], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off32[0] + s)));
