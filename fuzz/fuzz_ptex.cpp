@@ -13,7 +13,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::span<const std::uint8_t> bytes(data, size);
   tessera::ptex::ParseOptions options;
   options.max_floats = std::uint64_t{1} << 22;  // keep the fuzzer's memory small
-  tessera::Result<tessera::ptex::PtexFile> file = tessera::ptex::parse_ptex(bytes, "fuzz.ptx", options);
+  tessera::Result<tessera::ptex::PtexFile> file =
+      tessera::ptex::parse_ptex(bytes, "fuzz.ptx", options);
   if (!file) {
     const std::string& m = file.status().message;
     if (m.empty() || m.find('\n') != std::string::npos || m.rfind("fuzz.ptx: ", 0) != 0) {

@@ -1,11 +1,12 @@
 // Per-face texturing: edge transforms, adjacency, the sampling methods (Discard, Traverse,
 // corners), the Figure-1 scene and rendering.
+#include "tessera/faces.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <set>
 
-#include "tessera/faces.h"
 #include "test_support.h"
 
 namespace tessera {
@@ -131,7 +132,8 @@ TEST(Faces, InFaceSamplesAreIdenticalForAllMethods) {
   const TwoFaces t = make_two_faces(1, 3, 32, false);
   const UvGradients g{0.01f, 0.002f, -0.003f, 0.02f};  // anisotropic, well inside the face
   for (float u : {0.3f, 0.5f, 0.7f}) {
-    const std::array<float, 4> ref = faces::sample_face(t.set, 0, {u, 0.4f}, g, opts(Method::clamp));
+    const std::array<float, 4> ref =
+        faces::sample_face(t.set, 0, {u, 0.4f}, g, opts(Method::clamp));
     for (Method m : faces::all_methods()) {
       const std::array<float, 4> c = faces::sample_face(t.set, 0, {u, 0.4f}, g, opts(m));
       for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[std::size_t(k)], ref[std::size_t(k)], 1e-6f);
@@ -167,8 +169,9 @@ TEST(Faces, DiscardRenormalisesWeightsToOne) {
   float in_w = 0;
   for (const TexelTap& tap : taps) in_w += tap.outside ? 0.0f : tap.weight;
   EXPECT_NEAR(in_w, d[3], 1e-5f);
-  const std::array<float, 4> tr = faces::sample_face(t.set, 0, near_edge, g, opts(Method::traverse));
-  EXPECT_GT(tr[0], 0.25f);  // blended towards the neighbour's 0.9
+  const std::array<float, 4> tr =
+      faces::sample_face(t.set, 0, near_edge, g, opts(Method::traverse));
+  EXPECT_GT(tr[0], 0.25f);          // blended towards the neighbour's 0.9
   EXPECT_NEAR(tr[3], 1.0f, 1e-4f);  // both faces together cover the footprint
 }
 
@@ -180,14 +183,15 @@ TEST(Faces, TraverseIsContinuousAcrossAnEdgeAtMagnification) {
       for (int e = 0; e < 4; ++e) {
         if (t.set.adjacency(0).face[std::size_t(e)] == 1) e0 = e;
       }
-      const faces::UvTransform tr = faces::edge_transform(e0, t.set.adjacency(0).edge[std::size_t(e0)]);
+      const faces::UvTransform tr =
+          faces::edge_transform(e0, t.set.adjacency(0).edge[std::size_t(e0)]);
       const UvGradients g{0.001f, 0, 0, 0.001f};  // magnification: bilinear in level 0
       const float pts[4][2] = {{0.37f, 0}, {1, 0.37f}, {0.37f, 1}, {0, 0.37f}};
       const Uv on{pts[e0][0], pts[e0][1]};
       const std::array<float, 4> a =
           faces::sample_face(t.set, 0, on, g, opts(Method::traverse, TextureFilter::trilinear));
-      const std::array<float, 4> b = faces::sample_face(t.set, 1, tr.apply(on), tr.apply(g),
-                                                        opts(Method::traverse, TextureFilter::trilinear));
+      const std::array<float, 4> b = faces::sample_face(
+          t.set, 1, tr.apply(on), tr.apply(g), opts(Method::traverse, TextureFilter::trilinear));
       for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[std::size_t(k)], b[std::size_t(k)], 1e-5f);
       // The texture is linear in 3D, so bilinear reconstruction across the seam is exact
       // (the value at the edge is the function there); Discard and Clamp are not.
@@ -221,7 +225,8 @@ TEST(Faces, Figure1SceneHasAllPairingsAndValences) {
   for (int i = 0; i < 16; ++i) EXPECT_GT(h[std::size_t(i)], 0) << "pairing " << i;
   // The character is closed: every edge has a neighbour; the ground has a boundary.
   for (int f = s.ground_faces; f < s.mesh.face_count(); ++f) {
-    for (int e = 0; e < 4; ++e) EXPECT_GE((*adj)[std::size_t(f)].face[std::size_t(e)], s.ground_faces);
+    for (int e = 0; e < 4; ++e)
+      EXPECT_GE((*adj)[std::size_t(f)].face[std::size_t(e)], s.ground_faces);
   }
   const auto corners = faces::corner_links(*adj);
   int unlinked_char = 0;
@@ -252,7 +257,8 @@ TEST(Faces, SubdivideKeepsAClosedMeshClosed) {
   const faces::FaceScene s = faces::figure1_scene(fo);
   QuadMesh cube;
   cube.positions = s.mesh.positions;
-  for (int f = s.ground_faces; f < s.mesh.face_count(); ++f) cube.quads.push_back(s.mesh.quads[std::size_t(f)]);
+  for (int f = s.ground_faces; f < s.mesh.face_count(); ++f)
+    cube.quads.push_back(s.mesh.quads[std::size_t(f)]);
   const QuadMesh sub = faces::subdivide(cube);
   EXPECT_EQ(sub.face_count(), 4 * cube.face_count());
   Result<std::vector<FaceAdjacency>> adj = faces::build_adjacency(sub);
@@ -292,7 +298,8 @@ TEST(Faces, RendersEveryMethod) {
     ASSERT_TRUE(f.ok());
     double covered = 0;
     for (std::size_t i = 0; i < f->image.pixel_count(); ++i) {
-      for (int k = 0; k < 4; ++k) ASSERT_TRUE(std::isfinite(f->image.pixels[i * 4 + std::size_t(k)]));
+      for (int k = 0; k < 4; ++k)
+        ASSERT_TRUE(std::isfinite(f->image.pixels[i * 4 + std::size_t(k)]));
       covered += f->image.pixels[i * 4 + 3];
     }
     EXPECT_GT(covered, 0.3 * double(f->image.pixel_count()));
@@ -304,7 +311,8 @@ TEST(Faces, RendersEveryMethod) {
   double err = 0;
   for (std::size_t i = 0; i < ref->pixel_count(); ++i) {
     for (int k = 0; k < 3; ++k) {
-      err += std::fabs(ref->pixels[i * 4 + std::size_t(k)] - images[2].pixels[i * 4 + std::size_t(k)]);
+      err +=
+          std::fabs(ref->pixels[i * 4 + std::size_t(k)] - images[2].pixels[i * 4 + std::size_t(k)]);
     }
   }
   EXPECT_LT(err / double(ref->pixel_count() * 3), 0.05);

@@ -1,5 +1,7 @@
 // Ptex reader: synthetic files in every encoding and data type, the shared Disney samples
 // (face counts, resolutions and adjacency against the accompanying .obj), and corrupt input.
+#include "tessera/ptex.h"
+
 #include <gtest/gtest.h>
 #include <zlib.h>
 
@@ -10,7 +12,6 @@
 
 #include "tessera/faces.h"
 #include "tessera/io.h"
-#include "tessera/ptex.h"
 #include "test_support.h"
 
 namespace tessera {
@@ -38,7 +39,7 @@ std::vector<std::uint8_t> zip(const std::vector<std::uint8_t>& in) {
 
 struct TestFace {
   int ulog2, vlog2;
-  int encoding;                     // 0 constant, 1 zip, 2 diff-zip, 3 tiled (2x2 tiles, zip)
+  int encoding;                      // 0 constant, 1 zip, 2 diff-zip, 3 tiled (2x2 tiles, zip)
   std::vector<std::uint8_t> pixels;  // interleaved u8, channels per texel
   std::array<int, 4> adj{-1, -1, -1, -1};
   std::array<int, 4> adj_edge{0, 0, 0, 0};
@@ -208,8 +209,7 @@ TEST(Ptex, CorruptFilesGiveOneLineErrors) {
   }
   std::vector<std::uint8_t> magic = good;
   magic[0] = 'X';
-  EXPECT_NE(ptex::parse_ptex(magic, "m.ptx").status().message.find("bad magic"),
-            std::string::npos);
+  EXPECT_NE(ptex::parse_ptex(magic, "m.ptx").status().message.find("bad magic"), std::string::npos);
   // A face count that cannot fit the face-info block is refused before allocation.
   std::vector<std::uint8_t> many = good;
   many[24] = 0xFF;
@@ -233,14 +233,16 @@ TEST(Ptex, FuzzSeedsParse) {
     ++n;
   }
   EXPECT_GE(n, 5);
-  Result<ptex::PtexFile> tiled = ptex::read_ptex(std::string(TESSERA_PTEX_CORPUS) + "/float-tiled.ptx");
+  Result<ptex::PtexFile> tiled =
+      ptex::read_ptex(std::string(TESSERA_PTEX_CORPUS) + "/float-tiled.ptx");
   ASSERT_TRUE(tiled.ok());
   EXPECT_EQ(tiled->data_type, ptex::DataType::f32);
   EXPECT_EQ(tiled->encodings.tiled, 1);
   // value(3, i) = (i % 17) / 16 in the generator; texel (x, y), channel c is index
   // (y * 4 + x) * 3 + c of the interleaved pixels.
   for (int i = 0; i < 48; ++i) EXPECT_EQ(tiled->texels[0][std::size_t(i)], float(i % 17) / 16.0f);
-  Result<ptex::PtexFile> diff = ptex::read_ptex(std::string(TESSERA_PTEX_CORPUS) + "/u16-diffzip.ptx");
+  Result<ptex::PtexFile> diff =
+      ptex::read_ptex(std::string(TESSERA_PTEX_CORPUS) + "/u16-diffzip.ptx");
   ASSERT_TRUE(diff.ok());
   EXPECT_EQ(diff->encodings.diff_zipped, 2);
   for (int i = 0; i < 16; ++i) {
@@ -273,9 +275,8 @@ TEST(PtexShared, TeapotMatchesObj) {
 
 TEST(PtexShared, AdjacencyMatchesObj) {
   TESSERA_REQUIRE_SHARED_DATA(data);
-  const Sample samples[] = {{"teapot", "teapot.ptx"},
-                            {"holeycube", "holeycube.ptx"},
-                            {"envcube", "envcube.ptx"}};
+  const Sample samples[] = {
+      {"teapot", "teapot.ptx"}, {"holeycube", "holeycube.ptx"}, {"envcube", "envcube.ptx"}};
   for (const Sample& s : samples) {
     const std::string dir = (data / "ptex" / s.dir).string();
     Result<ptex::PtexFile> f = ptex::read_ptex(dir + "/" + s.ptx);

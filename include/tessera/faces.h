@@ -101,8 +101,8 @@ struct FaceAdjacency {
 
 /// The diagonal neighbour at a corner: the face across the vertex (valence 4 only).
 struct CornerLink {
-  int face = -1;           ///< -1 when the vertex is not an interior valence-4 vertex.
-  UvTransform transform;   ///< My UV space -> the diagonal face's UV space.
+  int face = -1;          ///< -1 when the vertex is not an interior valence-4 vertex.
+  UvTransform transform;  ///< My UV space -> the diagonal face's UV space.
 };
 
 /// A polygon mesh as read from OBJ: positions and faces of any vertex count.
@@ -231,18 +231,18 @@ struct FaceScene {
   std::string name;
   QuadMesh mesh;
   std::vector<int> ulog2, vlog2;
-  int ground_faces = 0;     ///< Faces of the ground plane (the first ones), 0 if none.
+  int ground_faces = 0;  ///< Faces of the ground plane (the first ones), 0 if none.
 };
 
 struct Figure1Options {
-  int ground = 32;           ///< Ground plane of ground x ground quads.
-  int character = 16;        ///< Character: a deformed cube-sphere of 6 x n x n quads.
+  int ground = 32;     ///< Ground plane of ground x ground quads.
+  int character = 16;  ///< Character: a deformed cube-sphere of 6 x n x n quads.
   /// Optional character mesh used instead of the cube-sphere (e.g. the Ptex teapot after one
   /// `subdivide` step); it is scaled to stand 2 units tall at the centre of the ground.
   QuadMesh character_mesh;
-  float texels_per_unit = 48.0f;  ///< Texel density setting the face resolutions.
+  float texels_per_unit = 48.0f;   ///< Texel density setting the face resolutions.
   int min_log2 = 2, max_log2 = 7;  ///< Face side between 2^min and 2^max texels.
-  std::uint32_t seed = 1;    ///< Face orientations.
+  std::uint32_t seed = 1;          ///< Face orientations.
 };
 
 /// The Figure-1-like scene: a ground plane and a blobby character made of quads, every face's
@@ -264,7 +264,7 @@ std::vector<ImageRGBAF> bake_faces(const FaceScene& scene, float scale = 1.0f, i
 struct FaceRenderOptions {
   int width = 480;
   int height = 540;
-  int msaa = 1;            ///< 1, 2, 4, 8, 16.
+  int msaa = 1;  ///< 1, 2, 4, 8, 16.
   SampleOptions sampling;
   bool shading_only = false;  ///< Lighting without the texture lookup (the shading cost).
   /// With `shading_only`: output unlit white for faces >= this index and black below (a
@@ -308,8 +308,8 @@ class FaceRenderer {
   FaceRenderer() = default;
   const FaceScene* scene_ = nullptr;
   const FaceTextureSet* textures_ = nullptr;
-  std::vector<float> clip_;       // 4 floats per face-vertex (4 vertices per face)
-  std::vector<float> varyings_;   // u, v, nx, ny, nz per face-vertex
+  std::vector<float> clip_;      // 4 floats per face-vertex (4 vertices per face)
+  std::vector<float> varyings_;  // u, v, nx, ny, nz per face-vertex
   std::vector<std::uint32_t> indices_;
   raster::Rasterizer rasterizer_;
   raster::FrameBuffer fb_;

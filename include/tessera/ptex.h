@@ -60,19 +60,19 @@ inline constexpr int kMaxFaceLog2 = 15;
 
 /// One face's header entry.
 struct FaceInfo {
-  int ulog2 = 0;                        ///< log2 of the width in texels (0..kMaxFaceLog2).
-  int vlog2 = 0;                        ///< log2 of the height.
+  int ulog2 = 0;                                 ///< log2 of the width in texels (0..kMaxFaceLog2).
+  int vlog2 = 0;                                 ///< log2 of the height.
   std::array<int, 4> adj_faces{-1, -1, -1, -1};  ///< Neighbour across edge e, -1 on a border.
   std::array<int, 4> adj_edges{0, 0, 0, 0};      ///< The neighbour's edge that is shared.
-  bool constant = false;   ///< The face is a single colour (its constant-data pixel).
-  bool subface = false;    ///< Part of a non-quad face split into quads.
+  bool constant = false;  ///< The face is a single colour (its constant-data pixel).
+  bool subface = false;   ///< Part of a non-quad face split into quads.
   int width() const { return 1 << ulog2; }
   int height() const { return 1 << vlog2; }
 };
 
 /// Size and encoding of one stored level (as found in the file).
 struct LevelInfo {
-  std::uint64_t data_size = 0;  ///< Bytes of the level including its header.
+  std::uint64_t data_size = 0;    ///< Bytes of the level including its header.
   std::uint32_t header_size = 0;  ///< Zipped size of the face-data-header array.
   std::uint32_t face_count = 0;   ///< Faces stored at this level.
 };
@@ -86,13 +86,13 @@ struct EncodingCounts {
 struct PtexFile {
   MeshType mesh_type = MeshType::quad;
   DataType data_type = DataType::u8;
-  int channels = 0;             ///< 1..64 channels per texel.
-  int alpha_channel = -1;       ///< Index of alpha, -1 = none.
+  int channels = 0;        ///< 1..64 channels per texel.
+  int alpha_channel = -1;  ///< Index of alpha, -1 = none.
   int minor_version = 0;
   int border_mode_u = 0, border_mode_v = 0;  ///< 0 clamp, 1 black, 2 periodic (unused here).
   std::vector<FaceInfo> faces;
-  std::vector<LevelInfo> levels;       ///< Stored levels (level 0 first).
-  EncodingCounts encodings;            ///< Level-0 face encodings (tiles counted once per face).
+  std::vector<LevelInfo> levels;  ///< Stored levels (level 0 first).
+  EncodingCounts encodings;       ///< Level-0 face encodings (tiles counted once per face).
   /// Constant (average) colour of each face: `channels` floats per face.
   std::vector<float> constant_data;
   /// Level-0 texels of face f: width * height * channels floats, row-major (rows of

@@ -81,7 +81,9 @@ Result<std::vector<FaceAdjacency>> build_adjacency(const QuadMesh& mesh) {
   // Directed edge (a -> b) -> face * 4 + edge.
   std::unordered_map<std::uint64_t, int> edges;
   edges.reserve(mesh.quads.size() * 4);
-  auto key = [](int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); };
+  auto key = [](int a, int b) {
+    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+  };
   const int nverts = int(mesh.positions.size());
   for (std::size_t f = 0; f < mesh.quads.size(); ++f) {
     for (int e = 0; e < 4; ++e) {
@@ -91,9 +93,9 @@ Result<std::vector<FaceAdjacency>> build_adjacency(const QuadMesh& mesh) {
                              "face " + std::to_string(f) + ": vertex index out of range");
       }
       if (a == b) {
-        return Status::error(ErrorCode::invalid_argument,
-                             "face " + std::to_string(f) + ": degenerate edge " +
-                                 std::to_string(e));
+        return Status::error(
+            ErrorCode::invalid_argument,
+            "face " + std::to_string(f) + ": degenerate edge " + std::to_string(e));
       }
       if (!edges.emplace(key(a, b), int(f) * 4 + e).second) {
         return Status::error(ErrorCode::invalid_argument,
@@ -166,8 +168,8 @@ QuadMesh subdivide(const QuadMesh& mesh) {
   out.positions = mesh.positions;
   std::unordered_map<std::uint64_t, int> mids;
   auto mid = [&](int a, int b) {
-    const std::uint64_t k = (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) |
-                            std::uint32_t(std::max(a, b));
+    const std::uint64_t k =
+        (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
     auto it = mids.find(k);
     if (it != mids.end()) return it->second;
     const int id = int(out.positions.size());

@@ -18,8 +18,7 @@ constexpr int kVaryings = 5;  // u, v, normal
 float mitchell_netravali(float x, float b, float c) {
   x = std::fabs(x);
   if (x < 1.0f) {
-    return ((12 - 9 * b - 6 * c) * x * x * x + (-18 + 12 * b + 6 * c) * x * x + (6 - 2 * b)) /
-           6.0f;
+    return ((12 - 9 * b - 6 * c) * x * x * x + (-18 + 12 * b + 6 * c) * x * x + (6 - 2 * b)) / 6.0f;
   }
   if (x < 2.0f) {
     return ((-b - 6 * c) * x * x * x + (6 * b + 30 * c) * x * x + (-12 * b - 48 * c) * x +
@@ -49,7 +48,8 @@ Result<std::unique_ptr<FaceRenderer>> FaceRenderer::create(const FaceScene& scen
     const auto& q = m.quads[std::size_t(f)];
     const Vec3 n = cross(m.positions[std::size_t(q[2])] - m.positions[std::size_t(q[0])],
                          m.positions[std::size_t(q[3])] - m.positions[std::size_t(q[1])]);
-    for (int k = 0; k < 4; ++k) normals[std::size_t(q[std::size_t(k)])] = normals[std::size_t(q[std::size_t(k)])] + n;
+    for (int k = 0; k < 4; ++k)
+      normals[std::size_t(q[std::size_t(k)])] = normals[std::size_t(q[std::size_t(k)])] + n;
   }
   const float corner_uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   r->varyings_.resize(std::size_t(m.face_count()) * 4 * kVaryings);
@@ -70,8 +70,7 @@ Result<std::unique_ptr<FaceRenderer>> FaceRenderer::create(const FaceScene& scen
   return r;
 }
 
-Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera,
-                                       const FaceRenderOptions& o) {
+Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceRenderOptions& o) {
   if (fb_.width() != o.width || fb_.height() != o.height || fb_.msaa() != o.msaa) {
     raster::FrameBufferDesc desc;
     desc.width = o.width;
@@ -157,8 +156,7 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera,
 }
 
 Result<ImageRGBAF> FaceRenderer::render_reference(const scene::Camera& camera, int width,
-                                                  int height, int factor, int threads,
-                                                  int tile) {
+                                                  int height, int factor, int threads, int tile) {
   if (width < 1 || height < 1 || factor < 1 || factor > 16 || tile < 1) {
     return Status::error(ErrorCode::invalid_argument, "reference: bad size or factor");
   }

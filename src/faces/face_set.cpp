@@ -8,12 +8,11 @@
 namespace tessera::faces {
 
 Result<FaceTextureSet> FaceTextureSet::create(const std::vector<ImageRGBAF>& images,
-                                              std::vector<FaceAdjacency> adjacency,
-                                              int threads) {
+                                              std::vector<FaceAdjacency> adjacency, int threads) {
   if (images.size() != adjacency.size()) {
-    return Status::error(ErrorCode::size_mismatch,
-                         std::to_string(images.size()) + " face images for " +
-                             std::to_string(adjacency.size()) + " faces");
+    return Status::error(ErrorCode::size_mismatch, std::to_string(images.size()) +
+                                                       " face images for " +
+                                                       std::to_string(adjacency.size()) + " faces");
   }
   const int n = int(images.size());
   for (int f = 0; f < n; ++f) {
@@ -62,11 +61,12 @@ Result<FaceTextureSet> FaceTextureSet::from_ptex(const ptex::PtexFile& file,
                                                  const std::string& name, int threads) {
   if (file.mesh_type != ptex::MeshType::quad) {
     return Status::error(ErrorCode::unsupported,
-                         name + ": triangle-mesh Ptex files are not supported (per-face "
-                                "seamless sampling is implemented for quad faces only)");
+                         name +
+                             ": triangle-mesh Ptex files are not supported (per-face "
+                             "seamless sampling is implemented for quad faces only)");
   }
-  const bool linear = file.data_type == ptex::DataType::half ||
-                      file.data_type == ptex::DataType::f32;
+  const bool linear =
+      file.data_type == ptex::DataType::half || file.data_type == ptex::DataType::f32;
   std::vector<ImageRGBAF> images(file.faces.size());
   std::vector<FaceAdjacency> adj(file.faces.size());
   const int ch = file.channels;

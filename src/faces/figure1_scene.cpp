@@ -10,8 +10,8 @@ namespace tessera::faces {
 
 namespace {
 float hash3(int x, int y, int z) {
-  std::uint32_t h = std::uint32_t(x) * 73856093u ^ std::uint32_t(y) * 19349663u ^
-                    std::uint32_t(z) * 83492791u;
+  std::uint32_t h =
+      std::uint32_t(x) * 73856093u ^ std::uint32_t(y) * 19349663u ^ std::uint32_t(z) * 83492791u;
   h ^= h >> 13;
   h *= 0x5bd1e995u;
   h ^= h >> 15;
@@ -61,8 +61,8 @@ std::array<float, 3> procedural_color(const Vec3& p, float scale) {
   const float n = 0.65f * n1 + 0.35f * n2;
   // Fine detail: thin bands and a small-scale noise octave (periods of a few texels on the
   // Figure-1 faces), so filtering across face edges matters.
-  const float stripe = 0.5f + 0.5f * std::sin(24.0f * scale * (p.x + 0.6f * p.z + 0.3f * p.y) +
-                                              9.0f * n);
+  const float stripe =
+      0.5f + 0.5f * std::sin(24.0f * scale * (p.x + 0.6f * p.z + 0.3f * p.y) + 9.0f * n);
   const float fine = value_noise(p.x * s * 8.0f + 5, p.y * s * 8.0f, p.z * s * 8.0f - 3);
   const float t = smooth(std::clamp((stripe - 0.3f) * 2.5f, 0.0f, 1.0f));
   const std::array<float, 3> a = {0.80f, 0.35f, 0.06f};
@@ -70,8 +70,8 @@ std::array<float, 3> procedural_color(const Vec3& p, float scale) {
   const float bright = (0.45f + 0.7f * n) * (0.6f + 0.5f * fine);
   std::array<float, 3> c;
   for (int k = 0; k < 3; ++k) {
-    c[std::size_t(k)] = std::clamp((a[std::size_t(k)] * t + b[std::size_t(k)] * (1 - t)) * bright,
-                                   0.0f, 1.0f);
+    c[std::size_t(k)] =
+        std::clamp((a[std::size_t(k)] * t + b[std::size_t(k)] * (1 - t)) * bright, 0.0f, 1.0f);
   }
   return c;
 }
@@ -85,8 +85,8 @@ FaceScene figure1_scene(const Figure1Options& o) {
   const float half = 4.0f;
   for (int j = 0; j <= g; ++j) {
     for (int i = 0; i <= g; ++i) {
-      m.positions.push_back({-half + 2 * half * float(i) / float(g), 0.0f,
-                             -half + 2 * half * float(j) / float(g)});
+      m.positions.push_back(
+          {-half + 2 * half * float(i) / float(g), 0.0f, -half + 2 * half * float(j) / float(g)});
     }
   }
   for (int j = 0; j < g; ++j) {
@@ -191,8 +191,8 @@ std::vector<ImageRGBAF> bake_faces(const FaceScene& s, float scale, int threads)
           ImageRGBAF img(w, h);
           for (int y = 0; y < h; ++y) {
             for (int x = 0; x < w; ++x) {
-              const Vec3 p = s.mesh.point(int(f), {(float(x) + 0.5f) / float(w),
-                                                   (float(y) + 0.5f) / float(h)});
+              const Vec3 p = s.mesh.point(
+                  int(f), {(float(x) + 0.5f) / float(w), (float(y) + 0.5f) / float(h)});
               const std::array<float, 3> c = procedural_color(p, scale);
               float* px = img.at(x, y);
               px[0] = c[0];

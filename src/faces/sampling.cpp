@@ -32,10 +32,14 @@ const std::vector<Method>& all_methods() {
 
 const char* method_name(Method m) {
   switch (m) {
-    case Method::clamp: return "clamp";
-    case Method::discard: return "discard";
-    case Method::traverse: return "traverse";
-    case Method::traverse_corners: return "traverse_corners";
+    case Method::clamp:
+      return "clamp";
+    case Method::discard:
+      return "discard";
+    case Method::traverse:
+      return "traverse";
+    case Method::traverse_corners:
+      return "traverse_corners";
   }
   return "?";
 }
@@ -50,8 +54,8 @@ bool parse_method(const std::string& text, Method& out) {
   return false;
 }
 
-std::array<float, 4> sample_face(const FaceTextureSet& set, int face, Uv uv,
-                                 const UvGradients& g, const SampleOptions& options) {
+std::array<float, 4> sample_face(const FaceTextureSet& set, int face, Uv uv, const UvGradients& g,
+                                 const SampleOptions& options) {
   const Texture& tex = set.texture(face);
   if (options.method == Method::clamp) {
     std::array<float, 4> c = tex.sample(make_sampler(options, AddressMode::clamp), uv, g);

@@ -32,10 +32,14 @@ std::uint64_t rd64(const std::uint8_t* p) {
 
 int data_size(DataType t) {
   switch (t) {
-    case DataType::u8: return 1;
-    case DataType::u16: return 2;
-    case DataType::half: return 2;
-    case DataType::f32: return 4;
+    case DataType::u8:
+      return 1;
+    case DataType::u16:
+      return 2;
+    case DataType::half:
+      return 2;
+    case DataType::f32:
+      return 4;
   }
   return 1;
 }
@@ -77,9 +81,12 @@ bool inflate_exact(std::span<const std::uint8_t> in, std::span<std::uint8_t> out
 
 float to_float(const std::uint8_t* p, DataType t) {
   switch (t) {
-    case DataType::u8: return float(p[0]) / 255.0f;
-    case DataType::u16: return float(rd16(p)) / 65535.0f;
-    case DataType::half: return half_to_float(rd16(p));
+    case DataType::u8:
+      return float(p[0]) / 255.0f;
+    case DataType::u16:
+      return float(rd16(p)) / 65535.0f;
+    case DataType::half:
+      return half_to_float(rd16(p));
     case DataType::f32: {
       float f;
       const std::uint32_t u = rd32(p);
@@ -105,8 +112,8 @@ void fill_block(const Format& f, const std::uint8_t* pixel, float* dst, int stri
   for (int y = 0; y < h; ++y) {
     float* row = dst + (std::size_t(y0 + y) * std::size_t(stride) + std::size_t(x0)) *
                            std::size_t(f.channels);
-    for (int x = 0; x < w; ++x) std::memcpy(row + std::size_t(x) * f.channels, px,
-                                            sizeof(float) * std::size_t(f.channels));
+    for (int x = 0; x < w; ++x)
+      std::memcpy(row + std::size_t(x) * f.channels, px, sizeof(float) * std::size_t(f.channels));
   }
 }
 
@@ -192,8 +199,7 @@ Status decode_face(const Ctx& ctx, const std::string& where, const Format& f,
     if (size > block.size() - pos) return ctx.corrupt(where + ": tile data runs past the block");
     const int tx = int(t % std::size_t(ntu)), ty = int(t / std::size_t(ntu));
     Status s = decode_block(ctx, where + " tile " + std::to_string(t), f, fdh >> 30,
-                            block.subspan(pos, size), dst, w, tx << tu, ty << tv, 1 << tu,
-                            1 << tv);
+                            block.subspan(pos, size), dst, w, tx << tu, ty << tv, 1 << tu, 1 << tv);
     if (!s.ok()) return s;
     pos += size;
   }
@@ -306,17 +312,17 @@ Result<PtexFile> parse_ptex(std::span<const std::uint8_t> bytes, const std::stri
       info.vlog2 = std::int8_t(p[1]);
       if (info.ulog2 < 0 || info.vlog2 < 0 || info.ulog2 > kMaxFaceLog2 ||
           info.vlog2 > kMaxFaceLog2) {
-        return ctx.error(ErrorCode::unsupported,
-                         "face " + std::to_string(f) + ": resolution 2^" +
-                             std::to_string(info.ulog2) + " x 2^" + std::to_string(info.vlog2) +
-                             " out of range 0..15");
+        return ctx.error(ErrorCode::unsupported, "face " + std::to_string(f) + ": resolution 2^" +
+                                                     std::to_string(info.ulog2) + " x 2^" +
+                                                     std::to_string(info.vlog2) +
+                                                     " out of range 0..15");
       }
       for (int e = 0; e < 4; ++e) {
         info.adj_edges[std::size_t(e)] = (p[2] >> (2 * e)) & 3;
         const std::int32_t a = std::int32_t(rd32(p + 4 + 4 * e));
         if (a < -1 || a >= std::int32_t(nfaces)) {
-          return ctx.corrupt("face " + std::to_string(f) + ": adjacent face " +
-                             std::to_string(a) + " out of range");
+          return ctx.corrupt("face " + std::to_string(f) + ": adjacent face " + std::to_string(a) +
+                             " out of range");
         }
         info.adj_faces[std::size_t(e)] = a;
       }
@@ -381,8 +387,8 @@ Result<PtexFile> parse_ptex(std::span<const std::uint8_t> bytes, const std::stri
     for (std::uint32_t f = 0; f < li.face_count; ++f) {
       const std::uint32_t d = rd32(&fdh[std::size_t(f) * 4]);
       const std::uint32_t size = d & 0x3FFFFFFFu;
-      if (size > end - p) return ctx.corrupt(lname + " face " + std::to_string(f) +
-                                             ": data runs past the level");
+      if (size > end - p)
+        return ctx.corrupt(lname + " face " + std::to_string(f) + ": data runs past the level");
       if (l == 0) {
         const FaceInfo& info = file.faces[f];
         std::vector<float>& tex = file.texels[f];

@@ -147,8 +147,8 @@ std::string cdf_svg(const std::string& title, const std::vector<Curve>& curves, 
     }
     s << "\"/>\n";
     const int ly = T + 10 + int(c) * 16;
-    s << "<line x1=\"" << L + pw + 10 << "\" x2=\"" << L + pw + 40 << "\" y1=\"" << ly
-      << "\" y2=\"" << ly << "\" stroke=\"" << curves[c].color << "\" stroke-width=\"2\"";
+    s << "<line x1=\"" << L + pw + 10 << "\" x2=\"" << L + pw + 40 << "\" y1=\"" << ly << "\" y2=\""
+      << ly << "\" stroke=\"" << curves[c].color << "\" stroke-width=\"2\"";
     if (!curves[c].dash.empty()) s << " stroke-dasharray=\"" << curves[c].dash << "\"";
     s << "/><text x=\"" << L + pw + 46 << "\" y=\"" << ly + 4 << "\">" << curves[c].label
       << "</text>\n";
@@ -158,8 +158,9 @@ std::string cdf_svg(const std::string& title, const std::vector<Curve>& curves, 
 }
 
 Status write_text(const std::string& path, const std::string& text) {
-  return write_file_atomic(path, std::span<const std::uint8_t>(
-                                     reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+  return write_file_atomic(
+      path, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()),
+                                          text.size()));
 }
 
 const char* rate_color(std::size_t i) {
@@ -168,10 +169,14 @@ const char* rate_color(std::size_t i) {
 }
 const char* method_dash(faces::Method m) {
   switch (m) {
-    case faces::Method::clamp: return "2,3";
-    case faces::Method::discard: return "";
-    case faces::Method::traverse: return "8,4";
-    case faces::Method::traverse_corners: return "12,3,2,3";
+    case faces::Method::clamp:
+      return "2,3";
+    case faces::Method::discard:
+      return "";
+    case faces::Method::traverse:
+      return "8,4";
+    case faces::Method::traverse_corners:
+      return "12,3,2,3";
   }
   return "";
 }
@@ -223,9 +228,8 @@ Result<Loaded> load_content(const SeamsConfig& c) {
     if (!file) return file.status();
     if (file->face_count() != l.scene.mesh.face_count()) {
       return Status::error(ErrorCode::size_mismatch,
-                           c.ptex + ": " + std::to_string(file->face_count()) +
-                               " faces, but " + c.scene + " has " +
-                               std::to_string(l.scene.mesh.face_count()));
+                           c.ptex + ": " + std::to_string(file->face_count()) + " faces, but " +
+                               c.scene + " has " + std::to_string(l.scene.mesh.face_count()));
     }
     Result<faces::FaceTextureSet> set = faces::FaceTextureSet::from_ptex(*file, c.ptex, c.threads);
     if (!set) return set.status();
@@ -289,7 +293,8 @@ Status run_seams(const SeamsConfig& c, nlohmann::json& summary, bool verbose) {
   const std::size_t nm = methods.size(), nr = c.msaa.size();
   const int qframes = c.quality_frames > 0 ? std::min(c.quality_frames, c.frames) : c.frames;
   // timing[r][v]: v = method index, or nm for shading only.
-  std::vector<std::vector<std::vector<double>>> timing(nr, std::vector<std::vector<double>>(nm + 1));
+  std::vector<std::vector<std::vector<double>>> timing(nr,
+                                                       std::vector<std::vector<double>>(nm + 1));
   std::vector<std::vector<Cdf>> vs_ref(nr, std::vector<Cdf>(nm));
   // The same, counting only character pixels (Figure-1 scenes): curved geometry, where
   // Traverse's extrapolation is approximate.
@@ -315,11 +320,11 @@ Status run_seams(const SeamsConfig& c, nlohmann::json& summary, bool verbose) {
     std::vector<std::uint8_t> mask, char_mask;
     if (quality) {
       const auto t0 = std::chrono::steady_clock::now();
-      Result<ImageRGBAF> r = (*renderer)->render_reference(cam, c.width, c.height,
-                                                           c.reference_factor, c.threads);
+      Result<ImageRGBAF> r =
+          (*renderer)->render_reference(cam, c.width, c.height, c.reference_factor, c.threads);
       if (!r) return r.status();
-      ref_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                    .count();
+      ref_ms +=
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       ref = std::move(*r);
       mask = geometry_mask(ref);
       if (f == 0) ref0 = ref;
@@ -407,12 +412,12 @@ Status run_seams(const SeamsConfig& c, nlohmann::json& summary, bool verbose) {
     }
     for (std::size_t ri = 0; ri < nr; ++ri) {
       for (std::size_t m = 0; m < nm; ++m) {
-        const std::string stem = std::string(faces::method_name(methods[m])) + "_" +
-                                 rate_key(c.msaa[ri]);
+        const std::string stem =
+            std::string(faces::method_name(methods[m])) + "_" + rate_key(c.msaa[ri]);
         const ImageRGBA8 img = to_png_image(frame0[ri][m], c.threads);
         if (Status s = write_png(dir + "/images/" + stem + ".png", img); !s.ok()) return s;
-        if (Status s = write_png(dir + "/images/zoom_" + stem + ".png",
-                                 zoom(img, bx, by, zw, zh, zs));
+        if (Status s =
+                write_png(dir + "/images/zoom_" + stem + ".png", zoom(img, bx, by, zw, zh, zs));
             !s.ok()) {
           return s;
         }
@@ -512,8 +517,7 @@ Status run_seams(const SeamsConfig& c, nlohmann::json& summary, bool verbose) {
                          rate_color(ri), method_dash(methods[m]), vs_ref[ri][m].fractions()});
       }
     }
-    if (Status s = write_text(dir + "/fig5_left.svg",
-                              cdf_svg("Traverse vs Discard", left, 0.15));
+    if (Status s = write_text(dir + "/fig5_left.svg", cdf_svg("Traverse vs Discard", left, 0.15));
         !s.ok()) {
       return s;
     }
@@ -561,7 +565,8 @@ Status run_seams(const SeamsConfig& c, nlohmann::json& summary, bool verbose) {
         "Mitchell-filtered supersampled reference) exceeds 0.01, over the quality frames, the "
         "same set for every method and rate. Error = per-pixel 2-norm of the linear-RGB "
         "difference. Plots: `fig5_left.svg` (Traverse vs Discard), `fig5_right.svg` (each "
-        "method vs the reference: Traverse at " << c.reference_factor << "x" << c.reference_factor
+        "method vs the reference: Traverse at "
+     << c.reference_factor << "x" << c.reference_factor
      << " the resolution, downsampled with Mitchell-Netravali B = C = 1/3); data in `cdf.csv` "
         "and `seams.json`.\n\n";
   md << "| comparison | rate | mean error | fraction >= 0.01 | fraction >= 0.05 |\n"
@@ -643,15 +648,15 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--msaa", c.msaa, "MSAA rates, comma-separated")
       ->delimiter(',')
       ->check(CLI::IsMember({1, 2, 4, 8, 16}));
-  sub->add_option("--frames", c.frames, "Orbit frames")->check(CLI::Range(1, 100000))
+  sub->add_option("--frames", c.frames, "Orbit frames")
+      ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   sub->add_option("--quality-frames", c.quality_frames,
                   "Frames compared against a reference, spread over the orbit (0 = all)")
       ->check(CLI::Range(0, 100000));
   sub->add_option("--width", c.width)->check(CLI::Range(8, 8192))->capture_default_str();
   sub->add_option("--height", c.height)->check(CLI::Range(8, 8192))->capture_default_str();
-  sub->add_option("--reference-factor", c.reference_factor,
-                  "Reference supersampling per axis")
+  sub->add_option("--reference-factor", c.reference_factor, "Reference supersampling per axis")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
   sub->add_flag("--quiet", args->quiet, "No progress on stderr");

@@ -36,7 +36,8 @@ Status demo_seams_section(Report& report, const DemoOptions& options) {
   for (const char* n : names) {
     std::vector<std::string> row = {n};
     for (int r : c.msaa) {
-      row.push_back(fmt("%.1f", j["timing"][std::to_string(r) + "x"][n]["median_ms"].get<double>()));
+      row.push_back(
+          fmt("%.1f", j["timing"][std::to_string(r) + "x"][n]["median_ms"].get<double>()));
     }
     rows.push_back(row);
   }
@@ -56,7 +57,8 @@ Status demo_seams_section(Report& report, const DemoOptions& options) {
     std::vector<std::string> row = {"traverse vs discard"};
     for (int r : c.msaa) {
       row.push_back(
-          fmt("%.5f", j["quality"]["traverse_vs_discard"][std::to_string(r) + "x"]["mean"].get<double>()));
+          fmt("%.5f",
+              j["quality"]["traverse_vs_discard"][std::to_string(r) + "x"]["mean"].get<double>()));
     }
     rows.push_back(row);
   }

@@ -23,7 +23,7 @@ struct SeamsConfig {
   int reference_factor = 8;       ///< Reference at factor x factor the resolution.
   faces::Figure1Options figure1;
   int threads = 0;
-  std::string out;                ///< Output folder.
+  std::string out;  ///< Output folder.
   bool write_images = true;
 };
 
