@@ -15,19 +15,6 @@ int clamp_aniso(int max_aniso) {
   return max_aniso < 1 ? 1 : (max_aniso > kMaxAnisotropy ? kMaxAnisotropy : max_aniso);
 }
 
-/// Applies bias, the sampler's [min_lod, max_lod] and the texture's [0, levels - 1]. NaN in,
-/// 0 out; the comparisons are ordered so that NaN settings cannot leak through either.
-float clamp_lod(const SamplerState& sampler, const TextureShape& shape, float lod) {
-  if (std::isnan(lod)) lod = 0.0f;
-  lod += sampler.lod_bias;
-  if (lod > sampler.max_lod) lod = sampler.max_lod;
-  if (lod < sampler.min_lod) lod = sampler.min_lod;
-  const float last = float(shape.levels > 1 ? shape.levels - 1 : 0);
-  if (!(lod >= 0.0f)) lod = 0.0f;
-  if (lod > last) lod = last;
-  return lod;
-}
-
 }  // namespace
 
 int TextureShape::full_level_count(int w, int h) {
@@ -50,11 +37,7 @@ UvGradients quad_gradients(const std::array<Uv, 4>& quad) {
   return g;
 }
 
-float isotropic_lod(const UvGradients& g) {
-  const float px = length2d(g.dudx, g.dvdx);
-  const float py = length2d(g.dudy, g.dvdy);
-  return std::log2(px > py ? px : py);
-}
+float isotropic_lod(const UvGradients& g) { return texture_detail::isotropic_lod_inline(g); }
 
 AnisoFootprint anisotropic_footprint(const UvGradients& g, int max_aniso) {
   const float px = length2d(g.dudx, g.dvdx);
@@ -103,9 +86,9 @@ Footprint compute_footprint(const SamplerState& sampler, const TextureShape& sha
       fp.probes = 1;
     }
   } else {
-    lod = isotropic_lod(texel);
+    lod = texture_detail::isotropic_lod_inline(texel);
   }
-  fp.lod = clamp_lod(sampler, shape, lod);
+  fp.lod = texture_detail::clamp_lod(sampler, shape, lod);
   return fp;
 }
 
@@ -113,7 +96,7 @@ Footprint footprint_at_lod(const SamplerState& sampler, const TextureShape& shap
                            float lod) {
   Footprint fp;
   fp.center = uv;
-  fp.lod = clamp_lod(sampler, shape, lod);
+  fp.lod = texture_detail::clamp_lod(sampler, shape, lod);
   return fp;
 }
 

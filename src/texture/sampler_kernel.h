@@ -61,6 +61,26 @@ inline void resolve_pair(int x0, int size, AddressMode mode, int out[2]) {
   }
 }
 
+/// Applies bias, the sampler's [min_lod, max_lod] and the texture's [0, levels - 1]. NaN in,
+/// 0 out; the comparisons are ordered so that NaN settings cannot leak through either.
+inline float clamp_lod(const SamplerState& sampler, const TextureShape& shape, float lod) {
+  if (std::isnan(lod)) lod = 0.0f;
+  lod += sampler.lod_bias;
+  if (lod > sampler.max_lod) lod = sampler.max_lod;
+  if (lod < sampler.min_lod) lod = sampler.min_lod;
+  const float last = float(shape.levels > 1 ? shape.levels - 1 : 0);
+  if (!(lod >= 0.0f)) lod = 0.0f;
+  if (lod > last) lod = last;
+  return lod;
+}
+
+/// `isotropic_lod`, inline for the sampling hot path.
+inline float isotropic_lod_inline(const UvGradients& g) {
+  const float px = std::sqrt(g.dudx * g.dudx + g.dvdx * g.dvdx);
+  const float py = std::sqrt(g.dudy * g.dudy + g.dvdy * g.dvdy);
+  return std::log2(px > py ? px : py);
+}
+
 /// The (at most two) mip levels a lookup reads and their weights.
 struct LevelPlan {
   int level[2] = {0, 0};

@@ -462,6 +462,25 @@ std::array<float, 4> Texture::sample_footprint(const SamplerState& sampler,
 
 std::array<float, 4> Texture::sample(const SamplerState& sampler, Uv uv,
                                      const UvGradients& gradients, int layer) const {
+  if (!empty() &&
+      (sampler.filter == TextureFilter::trilinear || sampler.filter == TextureFilter::bilinear)) {
+    // The hot path, inlined: `compute_footprint` for an isotropic filter (one probe, zero
+    // axis) followed by `sample_footprint`, with the same operations.
+    const float w = float(shape_.width);
+    const float h = float(shape_.height);
+    const UvGradients texel{gradients.dudx * w, gradients.dvdx * h, gradients.dudy * w,
+                            gradients.dvdy * h};
+    Footprint fp;
+    fp.center = uv;
+    fp.lod = texture_detail::clamp_lod(sampler, shape_, texture_detail::isotropic_lod_inline(texel));
+    layer = std::clamp(layer, 0, shape_.layers - 1);
+    const AccumulateSink sink{texels_.data(),
+                              offsets_.data() + std::size_t(layer) * shape_.levels,
+                              &shape_,
+                              sampler.border_color.data(),
+                              {}};
+    return sample_one_probe(sink, sampler, fp);
+  }
   return sample_footprint(sampler, compute_footprint(sampler, shape_, uv, gradients), layer);
 }
 
