@@ -622,6 +622,40 @@ TEST(RasterDeterminism, IdenticalForAnyThreadCount) {
   }
 }
 
+// A QuadShadeFn sees exactly what the per-pixel ShadeFn sees (centroid included) and produces
+// the same frame buffer, at every MSAA rate (the 1x, 2x and 4x/8x/16x coverage paths differ).
+TEST(RasterShading, QuadShaderMatchesPixelShader) {
+  constexpr int kW = 157, kH = 93;  // odd sizes: quads on the last row/column are partial
+  const Mesh m = random_scene(1500, kW, kH, 7);
+  for (int n : {1, 2, 4, 8, 16}) {
+    for (bool centroid : {false, true}) {
+      DrawCall pixel = m.draw(shade_rgb);
+      pixel.centroid = centroid;
+      DrawCall quad = m.draw();
+      quad.centroid = centroid;
+      quad.quad_shader = [](const ShadeInput* lanes, std::uint32_t active, float* out) {
+        for (int lane = 0; lane < 4; ++lane) {
+          if (!(active >> lane & 1u)) continue;
+          EXPECT_EQ(lanes[lane].lane, lane);
+          shade_rgb(lanes[lane], out + lane * kMaxChannels);
+        }
+      };
+      FrameBuffer a = make_fb(kW, kH, n, 1, 4, true);
+      FrameBuffer b = make_fb(kW, kH, n, 1, 4, true);
+      Rasterizer r({.threads = 2});
+      const RasterStats sa = render_ok(r, a, pixel);
+      const RasterStats sb = render_ok(r, b, quad);
+      ASSERT_EQ(0, std::memcmp(a.data().data(), b.data().data(), a.data().size_bytes()))
+          << n << "x, centroid " << centroid;
+      ASSERT_EQ(0, std::memcmp(a.depth_data().data(), b.depth_data().data(),
+                               a.depth_data().size_bytes()));
+      EXPECT_EQ(sa.lanes_shaded, sb.lanes_shaded);
+      EXPECT_EQ(sa.samples_written, sb.samples_written);
+      EXPECT_GT(sa.samples_written, 0u);
+    }
+  }
+}
+
 // Supersampling m x m at w x h is exactly a (m w) x (m h) render, box-downsampled.
 TEST(RasterSupersampling, EqualsLargeRenderBoxDownsampled) {
   constexpr int kW = 70, kH = 50;
