@@ -202,8 +202,8 @@ TEST_P(PvrtcRoundTrip, PsnrAboveThresholdAndMonotoneInQuality) {
 INSTANTIATE_TEST_SUITE_P(
     Procedural, PvrtcRoundTrip,
     // Thresholds: values measured at 128x128 when this test was written, minus 0.1 dB.
-    ::testing::Values(QualityCase{Procedural::gradient, Format::pvrtc1_4bpp, {30.70, 41.51, 41.53}},
-                      QualityCase{Procedural::bricks, Format::pvrtc1_4bpp, {21.69, 29.50, 29.96}},
+    ::testing::Values(QualityCase{Procedural::gradient, Format::pvrtc1_4bpp, {30.70, 41.51, 41.54}},
+                      QualityCase{Procedural::bricks, Format::pvrtc1_4bpp, {21.69, 29.50, 29.99}},
                       QualityCase{Procedural::noise, Format::pvrtc1_4bpp, {36.80, 41.15, 41.32}},
                       QualityCase{Procedural::foliage, Format::pvrtc1_4bpp, {29.84, 32.84, 32.87}},
                       QualityCase{Procedural::text, Format::pvrtc1_4bpp, {16.80, 42.04, 43.05}},
@@ -335,7 +335,7 @@ TEST(PvrtcEncode, FrozenBitstreams) {
   const ImageRGBA8 img = make_procedural(Procedural::noise, 64, 64);
   const std::uint64_t expected[2][3] = {
       {0x1e5fa49357527200ull, 0x79045ae81b60bf35ull,
-       0x2870842bc381815eull},  // 4 bpp: fast, normal, high
+       0x796e4d6a58bd564aull},  // 4 bpp: fast, normal, high
       {0x8166b2980efe00d2ull, 0x3b9137047795cbaaull, 0xc09ca44dd2e748f0ull},  // 2 bpp
   };
   for (int f = 0; f < 2; ++f) {

@@ -61,8 +61,11 @@ std::uint64_t total_error(const EncoderState& s);
 void refine(EncoderState& s, int iterations);
 
 /// 4 bpp only: exact greedy search over +-1 perturbations of each block's endpoint codes,
-/// keeping moves that lower the exact error of the block's texel window (see polish.cpp).
-void polish(EncoderState& s, int rounds);
+/// keeping moves that lower the exact error of the block's texel window (see polish.cpp);
+/// `passes` bounds the sweeps over the move list per block and round; blocks whose exact
+/// window error (7x7 texels) is at most `min_error` are skipped. Re-chooses the modulation at
+/// the end.
+void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error);
 
 /// 4 bpp only: replaces the endpoints of blocks whose exact window error exceeds `min_error`
 /// by pairs derived from the block's own texels where that lowers the exact window error

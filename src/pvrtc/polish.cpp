@@ -32,62 +32,6 @@ struct Window {
   int nch;
 };
 
-// Error of the 8x8 window of block (bx, by) with endpoints (a, b) substituted for the block's
-// own; writes the best code of each window texel to `codes` (64 entries) when not null.
-std::uint32_t window_error(const Window& w, int bx, int by, const Rgba5& a, const Rgba5& b,
-                           std::uint8_t* codes) {
-  const EncoderState& s = *w.s;
-  const Grid& g = s.g;
-  const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-  std::uint32_t total = 0;
-  int k = 0;
-  for (int yy = by * 4 - 2; yy < by * 4 + 6; ++yy) {
-    const AxisTap ty = axis_tap(yy, 4, g.ph);
-    const int y = yy & (g.ph - 1);
-    for (int xx = bx * 4 - 2; xx < bx * 4 + 6; ++xx, ++k) {
-      const AxisTap tx = axis_tap(xx, 4, g.pw);
-      const int x = xx & (g.pw - 1);
-      const std::size_t blk[4] = {std::size_t(ty.b0) * std::size_t(g.nbx) + std::size_t(tx.b0),
-                                  std::size_t(ty.b0) * std::size_t(g.nbx) + std::size_t(tx.b1),
-                                  std::size_t(ty.b1) * std::size_t(g.nbx) + std::size_t(tx.b0),
-                                  std::size_t(ty.b1) * std::size_t(g.nbx) + std::size_t(tx.b1)};
-      const Rgba5* pa[4];
-      const Rgba5* pb[4];
-      for (int i = 0; i < 4; ++i) {
-        pa[i] = blk[i] == j ? &a : &(*w.ea)[blk[i]];
-        pb[i] = blk[i] == j ? &b : &(*w.eb)[blk[i]];
-      }
-      std::uint8_t ua[4], ub[4];
-      upscale_texel(*pa[0], *pa[1], *pa[2], *pa[3], tx.d, ty.d, 4, ua);
-      upscale_texel(*pb[0], *pb[1], *pb[2], *pb[3], tx.d, ty.d, 4, ub);
-      const std::uint8_t* t = &s.target[(std::size_t(y) * std::size_t(g.pw) + std::size_t(x)) * 4];
-      const bool mode1 = (*w.modes)[std::size_t(y >> 2) * std::size_t(g.nbx) + std::size_t(x >> 2)];
-      const std::int32_t* tab = mode1 ? kMod4Mode1 : kMod4Mode0;
-      std::uint32_t best = std::numeric_limits<std::uint32_t>::max();
-      std::uint8_t bc = 0;
-      for (int c = 0; c < 4; ++c) {
-        const bool punch = mode1 && c == 2;
-        if (punch && !s.punch) continue;
-        const std::int32_t m = tab[c];
-        std::uint32_t e = 0;
-        for (int ch = 0; ch < w.nch; ++ch) {
-          std::int32_t v = (ua[ch] * (8 - m) + ub[ch] * m) >> 3;
-          if (ch == 3 && punch) v = 0;
-          const std::int32_t d = v - t[ch];
-          e += std::uint32_t(d * d);
-        }
-        if (e < best) {
-          best = e;
-          bc = std::uint8_t(c);
-        }
-      }
-      total += best;
-      if (codes) codes[k] = bc;
-    }
-  }
-  return total;
-}
-
 // Candidate moves on the codes of one endpoint pair. Returns false when the move is invalid.
 bool apply_move(int move, EndpointCodes& a, EndpointCodes& b) {
   int ba[4], bb[4];
@@ -126,8 +70,6 @@ bool apply_move(int move, EndpointCodes& a, EndpointCodes& b) {
 }
 
 constexpr int kMoves = 24;
-// Windows whose error is already this small (64 texels; ~5 per channel RMS) are skipped.
-constexpr std::uint32_t kSkipBelow = 3000;
 
 // Candidate endpoint pairs for block (bx, by) from its own 4x4 texels: their principal axis
 // splits them into two halves; the half means and the two extreme texels each give a pair, in
@@ -434,24 +376,13 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
   return count;
 }
 
-void polish(EncoderState& s, int rounds) {
+void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
   const Grid& g = s.g;
   if (g.format != Format::pvrtc1_4bpp || rounds <= 0) return;
   std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
   for (std::size_t i = 0; i < g.blocks(); ++i) {
     ea[i] = expand_a(s.ca[i]);
     eb[i] = expand_b(s.cb[i]);
-  }
-  // Per-texel codes, written back to the block words at the end.
-  std::vector<std::uint8_t> codes(g.texels());
-  for (int by = 0; by < g.nby; ++by) {
-    for (int bx = 0; bx < g.nbx; ++bx) {
-      const std::uint32_t bits = s.mod[std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx)];
-      for (int i = 0; i < 16; ++i) {
-        codes[std::size_t(by * 4 + i / 4) * std::size_t(g.pw) + std::size_t(bx * 4 + i % 4)] =
-            std::uint8_t((bits >> (2 * i)) & 3);
-      }
-    }
   }
   const Window w{&s, &ea, &eb, &s.mode, s.alpha_mode ? 4 : 3};
   for (int round = 0; round < rounds; ++round) {
@@ -460,16 +391,21 @@ void polish(EncoderState& s, int rounds) {
       parallel_for(
           0, g.nby / 2, 4,
           [&](std::int64_t r0, std::int64_t r1) {
-            std::uint8_t best_codes[64];
             for (int r = int(r0); r < int(r1); ++r) {
               const int by = 2 * r + oy;
               for (int bx = ox; bx < g.nbx; bx += 2) {
                 const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+                LocalWindow lw;
+                build_local(w, bx, by, lw);
+                auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
+                  return lw.nch == 3 ? local_error_simd(lw, a, b, bound)
+                                     : local_error(lw, a, b, bound);
+                };
                 std::uint16_t cur_a = s.ca[j], cur_b = s.cb[j];
-                std::uint32_t best = window_error(w, bx, by, ea[j], eb[j], best_codes);
-                if (best <= kSkipBelow) continue;
+                std::uint32_t best = eval(ea[j], eb[j], ~0u);
+                if (best <= min_error) continue;
                 bool improved = true;
-                for (int pass = 0; pass < 4 && improved; ++pass) {
+                for (int pass = 0; pass < passes && improved; ++pass) {
                   improved = false;
                   for (int mv = 0; mv < kMoves; ++mv) {
                     EndpointCodes a = unpack_endpoint(false, cur_a),
@@ -477,14 +413,11 @@ void polish(EncoderState& s, int rounds) {
                     if (!apply_move(mv, a, b)) continue;
                     const std::uint16_t na = std::uint16_t(pack_endpoint(false, a));
                     const std::uint16_t nb = std::uint16_t(pack_endpoint(true, b));
-                    std::uint8_t trial[64];
-                    const std::uint32_t e =
-                        window_error(w, bx, by, expand_a(na), expand_b(nb), trial);
+                    const std::uint32_t e = eval(expand_a(na), expand_b(nb), best);
                     if (e < best) {
                       best = e;
                       cur_a = na;
                       cur_b = nb;
-                      std::copy(trial, trial + 64, best_codes);
                       improved = true;
                     }
                   }
@@ -494,30 +427,15 @@ void polish(EncoderState& s, int rounds) {
                 s.cb[j] = cur_b;
                 ea[j] = expand_a(cur_a);
                 eb[j] = expand_b(cur_b);
-                int k = 0;
-                for (int yy = by * 4 - 2; yy < by * 4 + 6; ++yy) {
-                  for (int xx = bx * 4 - 2; xx < bx * 4 + 6; ++xx, ++k) {
-                    codes[std::size_t(yy & (g.ph - 1)) * std::size_t(g.pw) +
-                          std::size_t(xx & (g.pw - 1))] = best_codes[k];
-                  }
-                }
               }
             }
           },
           s.threads);
     }
   }
-  for (int by = 0; by < g.nby; ++by) {
-    for (int bx = 0; bx < g.nbx; ++bx) {
-      std::uint32_t bits = 0;
-      for (int i = 0; i < 16; ++i) {
-        bits |= std::uint32_t(codes[std::size_t(by * 4 + i / 4) * std::size_t(g.pw) +
-                                    std::size_t(bx * 4 + i % 4)])
-                << (2 * i);
-      }
-      s.mod[std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx)] = bits;
-    }
-  }
+  // The windows were scored with every texel's best code within its block's mode: re-choosing
+  // the modulation (and mode) of every block reproduces or improves on that.
+  choose_modulation(s);
 }
 
 }  // namespace tessera::pvrtc::detail
