@@ -16,6 +16,15 @@ namespace {
 
 constexpr int kMaxSamples = 16;
 
+/// Bits set in a 16-bit mask (std::popcount is a libgcc call without POPCNT, which baseline
+/// x86-64 lacks).
+inline std::uint32_t popcount16(std::uint32_t v) {
+  v = v - ((v >> 1) & 0x5555u);
+  v = (v & 0x3333u) + ((v >> 2) & 0x3333u);
+  v = (v + (v >> 4)) & 0x0F0Fu;
+  return (v + (v >> 8)) & 0x1Fu;
+}
+
 /// Per-frame sample tables derived from the MSAA pattern.
 struct SampleTable {
   int count = 1;
@@ -320,7 +329,7 @@ void TileRasterizer::quad(int qx, int qy, std::uint32_t* mask) {
     std::uint32_t vis = visible[lane];
     if (!vis) continue;
     const float* out = out_[lane];
-    stats_.samples_written += std::uint64_t(std::popcount(vis));
+    stats_.samples_written += popcount16(vis);
     if (vis == st_.full && ns % 4 == 0 && nc == 4 && !ids_) {
       // Fully visible multisampled pixel: contiguous depth and colour runs.
       if (write_depth) std::memcpy(depth_ + base[lane], zs_[lane], std::size_t(ns) * sizeof(float));
