@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -271,6 +272,29 @@ TEST(Faces, SubdivideKeepsAClosedMeshClosed) {
   const faces::FaceScene s2 = faces::figure1_scene(fo);
   EXPECT_EQ(s2.mesh.face_count(), 4 + sub.face_count());
   EXPECT_TRUE(faces::build_adjacency(s2.mesh).ok());
+}
+
+TEST(Faces, TriangleMeshSplitsIntoClosedQuadMesh) {
+  // A tetrahedron: 4 triangles -> 12 quads (one Catmull-Clark-style split, unsmoothed).
+  faces::PolygonMesh tet;
+  tet.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  tet.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  std::vector<bool> sub;
+  const QuadMesh q = faces::ptex_face_layout(tet, &sub);
+  EXPECT_EQ(q.face_count(), 12);
+  EXPECT_EQ(std::count(sub.begin(), sub.end(), true), 12);
+  Result<std::vector<FaceAdjacency>> adj = faces::build_adjacency(q);
+  ASSERT_TRUE(adj.ok()) << adj.status().message;
+  for (const FaceAdjacency& a : *adj) {
+    for (int e = 0; e < 4; ++e) EXPECT_GE(a.face[std::size_t(e)], 0);
+  }
+  // Valence 3 at the original vertices, 4 at edge midpoints, 3 at face centres.
+  const auto corners = faces::corner_links(*adj);
+  int linked = 0;
+  for (const auto& c : corners) {
+    for (const faces::CornerLink& l : c) linked += l.face >= 0;
+  }
+  EXPECT_EQ(linked, 2 * 12);  // each quad's two edge-midpoint corners
 }
 
 TEST(Faces, RendersEveryMethod) {

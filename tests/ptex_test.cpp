@@ -340,6 +340,42 @@ TEST(PtexShared, SubfacesAndTrianglesAreHandled) {
     ASSERT_FALSE(q.ok());
     EXPECT_NE(q.status().message.find("only all-quad meshes"), std::string::npos);
   }
+  // Split into Ptex subfaces, the polygon meshes match the files' faces and adjacency.
+  for (const char* name : {"nonquad", "pentagon"}) {
+    const std::string dir = (data / "ptex" / name).string();
+    Result<ptex::PtexFile> f = ptex::read_ptex(dir + "/" + name + ".ptx");
+    Result<faces::PolygonMesh> poly = faces::load_obj_polygons(dir + "/" + name + ".obj");
+    ASSERT_TRUE(f.ok() && poly.ok());
+    std::vector<bool> sub;
+    const faces::QuadMesh q = faces::ptex_face_layout(*poly, &sub);
+    ASSERT_EQ(q.face_count(), f->face_count()) << name;
+    Result<std::vector<faces::FaceAdjacency>> adj = faces::build_adjacency(q);
+    ASSERT_TRUE(adj.ok()) << adj.status().message;
+    int t_junctions = 0;
+    for (int i = 0; i < q.face_count(); ++i) {
+      EXPECT_EQ(sub[std::size_t(i)], f->faces[std::size_t(i)].subface) << name << " " << i;
+      for (int e = 0; e < 4; ++e) {
+        const int nb = f->faces[std::size_t(i)].adj_faces[std::size_t(e)];
+        if (nb >= 0 && sub[std::size_t(i)] != sub[std::size_t(nb)]) {
+          // A quad edge meets two subface half-edges (a T-junction): Ptex links one of them;
+          // the directed-edge map (and FaceTextureSet::from_ptex) treat it as a border.
+          EXPECT_EQ((*adj)[std::size_t(i)].face[std::size_t(e)], -1);
+          ++t_junctions;
+          continue;
+        }
+        EXPECT_EQ((*adj)[std::size_t(i)].face[std::size_t(e)],
+                  f->faces[std::size_t(i)].adj_faces[std::size_t(e)])
+            << name << " face " << i << " edge " << e;
+        if ((*adj)[std::size_t(i)].face[std::size_t(e)] >= 0) {
+          EXPECT_EQ((*adj)[std::size_t(i)].edge[std::size_t(e)],
+                    f->faces[std::size_t(i)].adj_edges[std::size_t(e)]);
+        }
+      }
+    }
+    if (std::string(name) == "nonquad") {
+      EXPECT_GT(t_junctions, 0);
+    }
+  }
   Result<ptex::PtexFile> tri = ptex::read_ptex((data / "ptex/triangle/triangle.ptx").string());
   ASSERT_TRUE(tri.ok()) << tri.status().message;
   EXPECT_EQ(tri->mesh_type, ptex::MeshType::triangle);

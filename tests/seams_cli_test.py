@@ -81,8 +81,14 @@ try:
     tri = os.path.join(tmp, "tri.obj")
     with open(tri, "w") as f:
         f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
-    expect_error("triangle mesh", ["seams", "--scene", tri, "--quiet", "-o",
-                                   os.path.join(tmp, "e2")], 1, "tri.obj", os.path.join(tmp, "e2"))
+    # A triangle mesh is split into quads (3 per triangle) and renders.
+    rc, so, se = run("seams", "--scene", tri, "--frames", "1", "--msaa", "1", "--width", "32",
+                     "--height", "24", "--reference-factor", "2", "--quiet", "-o",
+                     os.path.join(tmp, "tri"))
+    check("triangle obj split rc", rc == 0, se)
+    if rc == 0:
+        j = json.load(open(os.path.join(tmp, "tri", "seams.json")))
+        check("triangle obj split faces", j["scene"]["faces"] == 3, str(j["scene"]["faces"]))
     quad = os.path.join(tmp, "quad.obj")
     with open(quad, "w") as f:
         f.write("v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nf 1 2 3 4\n")
@@ -109,9 +115,17 @@ try:
                          "--width", "48", "--height", "40", "--reference-factor", "2", "--quiet",
                          "-o", os.path.join(tmp, "teapot"))
         check("teapot with ptx rc", rc == 0, se)
-        expect_error("nonquad obj", ["seams", "--scene", os.path.join(p, "nonquad", "nonquad.obj"),
-                                     "--ptex", os.path.join(p, "nonquad", "nonquad.ptx"), "--quiet",
-                                     "-o", os.path.join(tmp, "e6")], 1, "nonquad.obj",
+        # Non-quad faces split into Ptex subfaces match the file's faces.
+        for name in ("nonquad", "pentagon"):
+            rc, so, se = run("seams", "--scene", os.path.join(p, name, name + ".obj"), "--ptex",
+                             os.path.join(p, name, name + ".ptx"), "--frames", "1", "--msaa", "1",
+                             "--width", "32", "--height", "24", "--reference-factor", "2",
+                             "--quiet", "-o", os.path.join(tmp, name))
+            check(name + " with subfaces rc", rc == 0, se)
+        # A triangle-mesh Ptex file is refused with a clear message.
+        expect_error("triangle ptex", ["seams", "--scene", os.path.join(p, "triangle", "triangle.obj"),
+                                       "--ptex", os.path.join(p, "triangle", "triangle.ptx"),
+                                       "--quiet", "-o", os.path.join(tmp, "e6")], 1, "triangle-mesh",
                      os.path.join(tmp, "e6"))
         expect_error("face count mismatch", ["seams", "--scene", quad, "--ptex",
                                              os.path.join(p, "teapot", "teapot.ptx"), "--quiet",

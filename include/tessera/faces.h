@@ -130,6 +130,13 @@ Result<PolygonMesh> load_obj_polygons(const std::string& path);
 /// step"). `name` prefixes the message.
 Result<QuadMesh> to_quad_mesh(const PolygonMesh& mesh, const std::string& name);
 
+/// The Ptex face layout of a polygon mesh: quads stay one face; an n-gon (n = 3 or n >= 5)
+/// becomes n subfaces, subface i being the quad (corner i, midpoint of edge i, face centre,
+/// midpoint of edge i-1) in face order — the layout of the Ptex samples' split faces (tests
+/// check it against nonquad.ptx and pentagon.ptx). `subface` (optional) receives a flag per
+/// output face.
+QuadMesh ptex_face_layout(const PolygonMesh& mesh, std::vector<bool>* subface = nullptr);
+
 /// Adjacency from a directed-edge map: my edge (a -> b) pairs with the neighbour's (b -> a).
 /// Fails with invalid_argument on a degenerate quad, an edge used twice in the same direction
 /// (inconsistent orientation or non-manifold) or an edge shared by more than two faces.
@@ -169,7 +176,9 @@ class FaceTextureSet {
   /// Builds the set from a decoded .ptx file: level-0 texels (1 channel -> grey, 2 -> grey
   /// and alpha ignored, 3+ -> RGB; u8/u16 data decoded from sRGB, half/float taken as linear)
   /// and the file's adjacency. Triangle meshes are refused (unsupported); subfaces of split
-  /// non-quad faces are accepted as ordinary quads (their adjacency is what the file says).
+  /// non-quad faces are accepted as ordinary quads, except that an edge between a subface and
+  /// a regular quad (a T-junction: one quad edge against two subface half-edges) becomes a
+  /// border, since the full-edge transforms do not apply there.
   static Result<FaceTextureSet> from_ptex(const ptex::PtexFile& file, const std::string& name,
                                           int threads = 0);
 

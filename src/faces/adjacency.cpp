@@ -77,6 +77,42 @@ Result<QuadMesh> to_quad_mesh(const PolygonMesh& mesh, const std::string& name) 
   return q;
 }
 
+QuadMesh ptex_face_layout(const PolygonMesh& mesh, std::vector<bool>* subface) {
+  QuadMesh q;
+  q.positions = mesh.positions;
+  if (subface) subface->clear();
+  std::unordered_map<std::uint64_t, int> mids;
+  auto mid = [&](int a, int b) {
+    const std::uint64_t k =
+        (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
+    auto it = mids.find(k);
+    if (it != mids.end()) return it->second;
+    const int id = int(q.positions.size());
+    q.positions.push_back((mesh.positions[std::size_t(a)] + mesh.positions[std::size_t(b)]) * 0.5f);
+    mids.emplace(k, id);
+    return id;
+  };
+  for (const std::vector<int>& f : mesh.faces) {
+    const int n = int(f.size());
+    if (n == 4) {
+      q.quads.push_back({f[0], f[1], f[2], f[3]});
+      if (subface) subface->push_back(false);
+      continue;
+    }
+    Vec3 c;
+    for (int v : f) c = c + mesh.positions[std::size_t(v)];
+    const int centre = int(q.positions.size());
+    q.positions.push_back(c * (1.0f / float(n)));
+    for (int i = 0; i < n; ++i) {
+      const int prev = f[std::size_t((i + n - 1) % n)], cur = f[std::size_t(i)],
+                next = f[std::size_t((i + 1) % n)];
+      q.quads.push_back({cur, mid(cur, next), centre, mid(prev, cur)});
+      if (subface) subface->push_back(true);
+    }
+  }
+  return q;
+}
+
 Result<std::vector<FaceAdjacency>> build_adjacency(const QuadMesh& mesh) {
   // Directed edge (a -> b) -> face * 4 + edge.
   std::unordered_map<std::uint64_t, int> edges;

@@ -86,6 +86,14 @@ Result<FaceTextureSet> FaceTextureSet::from_ptex(const ptex::PtexFile& file,
     images[f] = std::move(img);
     adj[f].face = info.adj_faces;
     adj[f].edge = info.adj_edges;
+    // Between a subface and a regular quad the shared edge is a T-junction (one quad edge, two
+    // subface half-edges): the 16 full-edge transforms do not apply, so it is a border here.
+    for (int e = 0; e < 4; ++e) {
+      const int nb = info.adj_faces[std::size_t(e)];
+      if (nb >= 0 && file.faces[std::size_t(nb)].subface != info.subface) {
+        adj[f].face[std::size_t(e)] = -1;
+      }
+    }
   }
   return create(images, std::move(adj), threads);
 }

@@ -194,9 +194,8 @@ Result<Loaded> load_content(const SeamsConfig& c) {
     if (!c.character.empty()) {
       Result<faces::PolygonMesh> poly = faces::load_obj_polygons(c.character);
       if (!poly) return poly.status();
-      Result<faces::QuadMesh> quads = faces::to_quad_mesh(*poly, c.character);
-      if (!quads) return quads.status();
-      fo.character_mesh = std::move(*quads);
+      // Non-quad faces are split into quads (a triangle mesh: 3 quads per triangle).
+      fo.character_mesh = faces::ptex_face_layout(*poly);
       for (int i = 0; i < c.subdivide; ++i) fo.character_mesh = faces::subdivide(fo.character_mesh);
     }
     l.scene = faces::figure1_scene(fo);
@@ -217,28 +216,31 @@ Result<Loaded> load_content(const SeamsConfig& c) {
   }
   Result<faces::PolygonMesh> poly = faces::load_obj_polygons(c.scene);
   if (!poly) return poly.status();
-  Result<faces::QuadMesh> quads = faces::to_quad_mesh(*poly, c.scene);
-  if (!quads) return quads.status();
+  // Quads stay faces; other polygons are split into Ptex subfaces (triangles into 3 quads).
+  std::vector<bool> subface;
+  l.scene.mesh = faces::ptex_face_layout(*poly, &subface);
+  const bool split = std::count(subface.begin(), subface.end(), true) > 0;
   l.scene.name = fs::path(c.scene).stem().string();
-  l.scene.mesh = std::move(*quads);
   Result<std::vector<faces::FaceAdjacency>> adj = faces::build_adjacency(l.scene.mesh);
   if (!adj) return Status::error(adj.status().code, c.scene + ": " + adj.status().message);
   if (!c.ptex.empty()) {
     Result<ptex::PtexFile> file = ptex::read_ptex(c.ptex);
     if (!file) return file.status();
+    // Refuses triangle-mesh files before any comparison with the mesh.
+    Result<faces::FaceTextureSet> set = faces::FaceTextureSet::from_ptex(*file, c.ptex, c.threads);
+    if (!set) return set.status();
     if (file->face_count() != l.scene.mesh.face_count()) {
       return Status::error(ErrorCode::size_mismatch,
                            c.ptex + ": " + std::to_string(file->face_count()) + " faces, but " +
                                c.scene + " has " + std::to_string(l.scene.mesh.face_count()));
     }
-    Result<faces::FaceTextureSet> set = faces::FaceTextureSet::from_ptex(*file, c.ptex, c.threads);
-    if (!set) return set.status();
     for (const ptex::FaceInfo& fi : file->faces) {
       l.scene.ulog2.push_back(fi.ulog2);
       l.scene.vlog2.push_back(fi.vlog2);
     }
     l.set = std::move(*set);
-    l.description = c.scene + " with its Ptex file " + c.ptex + " (adjacency from the file)";
+    l.description = c.scene + " with its Ptex file " + c.ptex + " (adjacency from the file" +
+                    (split ? std::string(", non-quad faces split into subfaces)") : ")");
     return l;
   }
   // Procedural textures, resolution from edge lengths, pattern scaled to the mesh size.
@@ -253,7 +255,8 @@ Result<Loaded> load_content(const SeamsConfig& c) {
       faces::bake_faces(l.scene, 4.0f / diag, c.threads), *adj, c.threads);
   if (!set) return set.status();
   l.set = std::move(*set);
-  l.description = c.scene + " with procedural per-face textures";
+  l.description = c.scene + (split ? " (non-quad faces split into quads)" : "") +
+                  " with procedural per-face textures";
   return l;
 }
 
@@ -641,7 +644,8 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   sub->add_option("--ptex", c.ptex, "Ptex file with the textures of the .obj scene");
   sub->add_option("--character", c.character,
-                  "figure1: all-quad .obj to use as the character instead of the cube-sphere");
+                  "figure1: .obj to use as the character instead of the cube-sphere (non-quad "
+                  "faces are split into quads)");
   sub->add_option("--subdivide", c.subdivide, "Linear subdivision steps of --character")
       ->check(CLI::Range(0, 4))
       ->capture_default_str();
