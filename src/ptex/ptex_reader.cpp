@@ -58,6 +58,12 @@ struct Ctx {
   }
 };
 
+/// deflate cannot expand data by more than about 1032:1, so a zipped block of `zipped` bytes
+/// that claims to hold more than this cannot be genuine: checked before allocating its output.
+bool plausible_zip(std::uint64_t zipped, std::uint64_t unzipped) {
+  return unzipped <= zipped * 1040 + 64;
+}
+
 /// Inflates exactly `out.size()` bytes from `in`; the stream must end there.
 bool inflate_exact(std::span<const std::uint8_t> in, std::span<std::uint8_t> out) {
   z_stream zs;
@@ -134,6 +140,9 @@ Status decode_block(const Ctx& ctx, const std::string& where, const Format& f,
   }
   const std::size_t ds = std::size_t(data_size(f.type));
   const std::size_t plane = std::size_t(w) * std::size_t(h);
+  if (!plausible_zip(block.size(), std::uint64_t(plane) * std::uint64_t(f.pixel_size))) {
+    return ctx.corrupt(where + ": zipped block too small for its texels");
+  }
   std::vector<std::uint8_t> raw(plane * std::size_t(f.pixel_size));
   if (!inflate_exact(block, raw)) return ctx.corrupt(where + ": zlib data corrupt or wrong size");
   if (encoding == kDiffZipped) {
@@ -188,6 +197,9 @@ Status decode_face(const Ctx& ctx, const std::string& where, const Format& f,
   }
   const int ntu = 1 << (ulog2 - tu), ntv = 1 << (vlog2 - tv);
   const std::size_t ntiles = std::size_t(ntu) * std::size_t(ntv);
+  if (!plausible_zip(tile_header_size, std::uint64_t(ntiles) * 4)) {
+    return ctx.corrupt(where + ": tile header too small for " + std::to_string(ntiles) + " tiles");
+  }
   std::vector<std::uint8_t> hdr(ntiles * 4);
   if (!inflate_exact(block.subspan(6, tile_header_size), hdr)) {
     return ctx.corrupt(where + ": tile header zlib data corrupt");
@@ -261,8 +273,7 @@ Result<PtexFile> parse_ptex(std::span<const std::uint8_t> bytes, const std::stri
   }
   if (nfaces < 1) return ctx.corrupt("no faces");
   // zlib cannot expand by more than ~1032:1, so the face count is bounded by the block size.
-  if (std::uint64_t(nfaces) * kFaceInfoSize > std::uint64_t(faceinfo_size) * 1040 + 64 ||
-      nfaces > (1u << 24)) {
+  if (!plausible_zip(faceinfo_size, std::uint64_t(nfaces) * kFaceInfoSize) || nfaces > (1u << 24)) {
     return ctx.corrupt("face count " + std::to_string(nfaces) +
                        " does not fit the face-info block");
   }
@@ -334,6 +345,9 @@ Result<PtexFile> parse_ptex(std::span<const std::uint8_t> bytes, const std::stri
   // Constant data.
   file.constant_data.resize(std::size_t(nfaces) * std::size_t(file.channels));
   {
+    if (!plausible_zip(const_size, std::uint64_t(nfaces) * std::uint64_t(fmt.pixel_size))) {
+      return ctx.corrupt("constant-data block too small for " + std::to_string(nfaces) + " faces");
+    }
     std::vector<std::uint8_t> cd(std::size_t(nfaces) * std::size_t(fmt.pixel_size));
     if (!inflate_exact(bytes.subspan(std::size_t(const_pos), const_size), cd)) {
       return ctx.corrupt("constant-data zlib data corrupt or wrong size");
@@ -378,6 +392,9 @@ Result<PtexFile> parse_ptex(std::span<const std::uint8_t> bytes, const std::stri
   for (int l = 0; l < nlevels; ++l) {
     const LevelInfo& li = file.levels[std::size_t(l)];
     const std::string lname = "level " + std::to_string(l);
+    if (!plausible_zip(li.header_size, std::uint64_t(li.face_count) * 4)) {
+      return ctx.corrupt(lname + ": face-data header too small for its faces");
+    }
     std::vector<std::uint8_t> fdh(std::size_t(li.face_count) * 4);
     if (!inflate_exact(bytes.subspan(std::size_t(level_pos), li.header_size), fdh)) {
       return ctx.corrupt(lname + ": face-data header zlib data corrupt or wrong size");
