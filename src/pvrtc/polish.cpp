@@ -156,9 +156,10 @@ struct LocalWindow {
   std::int32_t rest_a[49][4], rest_b[49][4];
   // The same, 16-bit, padded to 50 texels (the last one all zero: error 0) for the SIMD path;
   // `own16` repeats the own weight in the four lanes, `t16` the target (alpha lane 0 if RGB),
-  // `bias35` / `bias4` exclude the blends a texel's block mode lacks.
+  // `bias35` / `bias4` / `bias4p` exclude the blends a texel's block mode lacks (4p: weight 4
+  // with alpha punched through, mode 1 with punch-through allowed only).
   alignas(16) std::uint16_t rest16_a[50][4], rest16_b[50][4], own16[50][4], t16[50][4];
-  alignas(16) std::int32_t bias35[25][4], bias4[25][4];
+  alignas(16) std::int32_t bias35[25][4], bias4[25][4], bias4p[25][4];
   std::int32_t own[49];
   const std::uint8_t* t[49];
   bool mode1[49];
@@ -224,11 +225,13 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
     for (int c = 0; c < 2; ++c) {
       lw.bias35[i / 2][(i & 1) * 2 + c] = m1 ? kExclude : 0;
       lw.bias4[i / 2][(i & 1) * 2 + c] = i < 49 && !m1 ? kExclude : 0;
+      lw.bias4p[i / 2][(i & 1) * 2 + c] = m1 && lw.punch ? 0 : kExclude;
     }
   }
 }
 
-// `local_error` two texels at a time (RGB only, no punch-through); identical results.
+// Exact error of the local window with (a, b) as block j's endpoints, two texels at a time;
+// stops once it reaches `bound` (the result is then >= bound).
 std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
                                std::uint32_t bound) {
   using simd::vint4;
@@ -241,14 +244,21 @@ std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba
       std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a)};
   const vu16x8 av = simd::load_u16x8(a16), bv = simd::load_u16x8(b16);
   const vu16x8 w3(3), w4(4), w5(5);
+  alignas(16) static constexpr std::uint16_t kAlphaLanes[8] = {0, 0, 0, 0xffff, 0, 0, 0, 0xffff};
+  alignas(16) static constexpr std::uint16_t kRgbLanes[8] = {0xffff, 0xffff, 0xffff, 0,
+                                                             0xffff, 0xffff, 0xffff, 0};
+  const vu16x8 alpha = simd::load_u16x8(kAlphaLanes), rgb = simd::load_u16x8(kRgbLanes);
   vint4 acc;
   for (int p = 0; p < 25; ++p) {
     const vu16x8 own = simd::load_u16x8(&lw.own16[2 * p][0]);
-    // Bilinear sums S (weights sum to 16); 8-bit value (2S >> 7) + (2S >> 2).
+    // Bilinear sums S (weights sum to 16); 8-bit colour (2S >> 7) + (2S >> 2), alpha
+    // (2S >> 5) + (2S >> 1). (Alpha lanes are all zero for RGB input.)
     const vu16x8 sa = simd::load_u16x8(&lw.rest16_a[2 * p][0]) + simd::mullo(own, av);
     const vu16x8 sb = simd::load_u16x8(&lw.rest16_b[2 * p][0]) + simd::mullo(own, bv);
-    const vu16x8 ua = simd::srl<6>(sa) + simd::srl<1>(sa);
-    const vu16x8 ub = simd::srl<6>(sb) + simd::srl<1>(sb);
+    const vu16x8 ua =
+        simd::select(alpha, simd::srl<4>(sa) + sa, simd::srl<6>(sa) + simd::srl<1>(sa));
+    const vu16x8 ub =
+        simd::select(alpha, simd::srl<4>(sb) + sb, simd::srl<6>(sb) + simd::srl<1>(sb));
     const vu16x8 t = simd::load_u16x8(&lw.t16[2 * p][0]);
     auto err = [&](vu16x8 d) {
       const vint4 sq = simd::madd(d, d);
@@ -257,50 +267,17 @@ std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba
     const vint4 e0 = err(ua - t), e8 = err(ub - t);
     const vint4 e3 = err(simd::srl<3>(simd::mullo(ua, w5) + simd::mullo(ub, w3)) - t);
     const vint4 e5 = err(simd::srl<3>(simd::mullo(ua, w3) + simd::mullo(ub, w5)) - t);
-    const vint4 e4 = err(simd::srl<3>(simd::mullo(ua, w4) + simd::mullo(ub, w4)) - t);
+    const vu16x8 v4 = simd::srl<3>(simd::mullo(ua, w4) + simd::mullo(ub, w4));
+    const vint4 e4 = err(v4 - t);
+    const vint4 e4p = err((v4 & rgb) - t);
     const vint4 b35 = simd::load4(lw.bias35[p]);
-    const vint4 m = simd::min(
-        simd::min(e0, e8), simd::min(simd::min(e3 + b35, e5 + b35), e4 + simd::load4(lw.bias4[p])));
+    const vint4 m =
+        simd::min(simd::min(simd::min(e0, e8), simd::min(e3 + b35, e5 + b35)),
+                  simd::min(e4 + simd::load4(lw.bias4[p]), e4p + simd::load4(lw.bias4p[p])));
     acc += m;
     if ((p & 3) == 3 && std::uint32_t(acc.lane(0) + acc.lane(2)) >= bound) break;
   }
   return std::uint32_t(acc.lane(0) + acc.lane(2));
-}
-
-// Exact error of the local window with (a, b) as block j's endpoints; stops once it reaches
-// `bound` (the result is then >= bound).
-std::uint32_t local_error(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
-                          std::uint32_t bound) {
-  const std::int32_t av[4] = {a.r, a.g, a.b, a.a}, bv[4] = {b.r, b.g, b.b, b.a};
-  std::uint32_t total = 0;
-  for (int k = 0; k < 49; ++k) {
-    std::int32_t ua[4], ub[4];
-    for (int c = 0; c < lw.nch; ++c) {
-      const std::int32_t A = (lw.rest_a[k][c] + lw.own[k] * av[c]) * 2;
-      const std::int32_t B = (lw.rest_b[k][c] + lw.own[k] * bv[c]) * 2;
-      ua[c] = c == 3 ? w32_to_alpha8(A) : w32_to_rgb8(A);
-      ub[c] = c == 3 ? w32_to_alpha8(B) : w32_to_rgb8(B);
-    }
-    const std::uint8_t* t = lw.t[k];
-    const std::int32_t* tab = lw.mode1[k] ? kMod4Mode1 : kMod4Mode0;
-    std::uint32_t best = std::numeric_limits<std::uint32_t>::max();
-    for (int code = 0; code < 4; ++code) {
-      const bool punch = lw.mode1[k] && code == 2;
-      if (punch && !lw.punch) continue;
-      const std::int32_t m = tab[code];
-      std::uint32_t e = 0;
-      for (int c = 0; c < lw.nch; ++c) {
-        std::int32_t v = (ua[c] * (8 - m) + ub[c] * m) >> 3;
-        if (c == 3 && punch) v = 0;
-        const std::int32_t d = v - t[c];
-        e += std::uint32_t(d * d);
-      }
-      best = std::min(best, e);
-    }
-    total += best;
-    if (total >= bound) return total;
-  }
-  return total;
 }
 
 }  // namespace
@@ -345,8 +322,7 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
               LocalWindow lw;
               build_local(w, bx, by, lw);
               auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
-                return lw.nch == 3 ? local_error_simd(lw, a, b, bound)
-                                   : local_error(lw, a, b, bound);
+                return local_error_simd(lw, a, b, bound);
               };
               std::uint32_t best = eval(ea[j], eb[j], ~0u);
               if (best <= min_error) continue;
@@ -398,8 +374,7 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
                 LocalWindow lw;
                 build_local(w, bx, by, lw);
                 auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
-                  return lw.nch == 3 ? local_error_simd(lw, a, b, bound)
-                                     : local_error(lw, a, b, bound);
+                  return local_error_simd(lw, a, b, bound);
                 };
                 std::uint16_t cur_a = s.ca[j], cur_b = s.cb[j];
                 std::uint32_t best = eval(ea[j], eb[j], ~0u);
