@@ -47,8 +47,9 @@ enum class Quality {
   fast,    ///< Intensity dilation only (the paper's algorithm), 4 bpp mode 0 (+ punch-through).
   normal,  ///< Principal-axis start, 1 reseed pass (4 bpp), up to 3 refinement sweeps; 4 bpp
            ///< also tries mode 1.
-  high,    ///< As normal, refinement until a sweep gains < 0.25% (at most 16 sweeps), then
-           ///< one round of the exact search (see `exact_search_rounds`), 4 bpp.
+  high,    ///< As normal, refinement until a sweep gains < 0.25% (at most 16 sweeps); 4 bpp
+           ///< RGB adds a second reseed pass and one round of the exact search (see
+           ///< `exact_search_rounds`).
 };
 
 /// Block width in texels (4 for 4 bpp, 8 for 2 bpp); blocks are always 4 texels high.

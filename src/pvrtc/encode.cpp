@@ -620,7 +620,9 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   // normal +0.28 dB).
   if (options.quality != Quality::fast && g.format == Format::pvrtc1_4bpp) {
     std::vector<std::uint8_t> changed;
-    const int passes = options.quality == Quality::high ? 2 : 1;
+    // RGBA: one pass (the exact window scores four channels and punch-through, so it costs
+    // more; this keeps high within 20x of PVRTexTool's pvrtcbest on RGBA too).
+    const int passes = options.quality == Quality::high && !s.alpha_mode ? 2 : 1;
     for (int pass = 0; pass < passes; ++pass) {
       if (reseed(s, kReseedMinError, changed) == 0) break;
       choose_modulation(s);
@@ -631,7 +633,7 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   if (iterations > 0) refine(s, iterations);
   if (options.exact_search_rounds > 0) {
     polish(s, options.exact_search_rounds, 4, 3000);
-  } else if (options.quality == Quality::high && g.format == Format::pvrtc1_4bpp) {
+  } else if (options.quality == Quality::high && g.format == Format::pvrtc1_4bpp && !s.alpha_mode) {
     // One round of the exact search, one sweep of the moves per block, blocks above ~6.4 RMS
     // per channel only: photos +0.05 dB for +14% instructions.
     polish(s, 1, 1, 6000);
