@@ -222,8 +222,7 @@ using ShadeFn = std::function<void(const ShadeInput& in, float* out)>;
 /// (pre-filled with zeros); other lanes' inputs are unspecified and their outputs are ignored.
 /// Results must be the same as shading each active lane alone (the rasterizer may call either
 /// form). Called concurrently from worker threads; must be thread-safe.
-using QuadShadeFn =
-    std::function<void(const ShadeInput* lanes, std::uint32_t active, float* out)>;
+using QuadShadeFn = std::function<void(const ShadeInput* lanes, std::uint32_t active, float* out)>;
 
 // ---------------------------------------------------------------------------------------------
 // Draw calls

@@ -183,8 +183,8 @@ inline std::uint8_t alpha8(float a) {
 /// Resolves one row of a 4-channel, ssaa 1 frame buffer to sRGB8: `src` is the row's first
 /// sample, `ns` samples per pixel. Bit-identical to `average_pixel` + encode (lane-wise IEEE
 /// additions in the same order, then one multiply).
-inline void resolve_row_rgba(const float* src, int w, int ns, float scale,
-                             const Srgb8Encoder& enc, std::uint8_t* d) {
+inline void resolve_row_rgba(const float* src, int w, int ns, float scale, const Srgb8Encoder& enc,
+                             std::uint8_t* d) {
   using f32x4 = float __attribute__((vector_size(16)));
   const f32x4 vscale = {scale, scale, scale, scale};
   for (int x = 0; x < w; ++x, d += 4) {
@@ -261,8 +261,7 @@ ImageRGBA8 resolve_srgb8(const FrameBuffer& fb, int threads) {
           if (rgba_fast) {
             // The common colour case: the same sums in the same order as `average_pixel`,
             // four channels per vector operation.
-            resolve_row_rgba(data + fb.sample_index(0, int(y), 0) * 4, w, fb.msaa(), scale,
-                             enc, d);
+            resolve_row_rgba(data + fb.sample_index(0, int(y), 0) * 4, w, fb.msaa(), scale, enc, d);
             continue;
           }
           for (int x = 0; x < w; ++x, d += 4) {

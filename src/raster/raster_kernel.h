@@ -92,8 +92,8 @@ inline void quad_coverage(const std::int64_t e0[3], const std::int64_t sx[3],
     // Lanes (0, 1) and (2, 3) in one register each.
     __m128i top = _mm_setzero_si128(), bottom = _mm_setzero_si128();
     for (int k = 0; k < 3; ++k) {
-      const __m128i l01 = _mm_add_epi64(_mm_set_epi64x(e0[k] + sx[k], e0[k]),
-                                        _mm_set1_epi64x(off[k][0]));
+      const __m128i l01 =
+          _mm_add_epi64(_mm_set_epi64x(e0[k] + sx[k], e0[k]), _mm_set1_epi64x(off[k][0]));
       top = _mm_or_si128(top, l01);
       bottom = _mm_or_si128(bottom, _mm_add_epi64(l01, _mm_set1_epi64x(sy[k])));
     }
@@ -113,9 +113,12 @@ inline void quad_coverage(const std::int64_t e0[3], const std::int64_t sx[3],
       }
       std::uint32_t m = 0;
       for (int s = 0; s < samples; s += 2) {
-        __m128i v = _mm_add_epi64(e[0], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off[0] + s)));
-        v = _mm_or_si128(v, _mm_add_epi64(e[1], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off[1] + s))));
-        v = _mm_or_si128(v, _mm_add_epi64(e[2], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off[2] + s))));
+        __m128i v =
+            _mm_add_epi64(e[0], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off[0] + s)));
+        v = _mm_or_si128(
+            v, _mm_add_epi64(e[1], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off[1] + s))));
+        v = _mm_or_si128(
+            v, _mm_add_epi64(e[2], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off[2] + s))));
         m |= std::uint32_t(~_mm_movemask_pd(_mm_castsi128_pd(v)) & 3) << s;
       }
       mask[lane] = m;
@@ -171,9 +174,12 @@ inline void quad_coverage32(const std::int64_t e0[3], const std::int32_t sx32[3]
                           _mm_set1_epi32(lanes[2][lane])};
     std::uint32_t m = 0;
     for (int s = 0; s < samples; s += 4) {
-      __m128i v = _mm_add_epi32(e[0], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off32[0] + s)));
-      v = _mm_or_si128(v, _mm_add_epi32(e[1], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off32[1] + s))));
-      v = _mm_or_si128(v, _mm_add_epi32(e[2], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off32[2] + s))));
+      __m128i v =
+          _mm_add_epi32(e[0], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off32[0] + s)));
+      v = _mm_or_si128(
+          v, _mm_add_epi32(e[1], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off32[1] + s))));
+      v = _mm_or_si128(
+          v, _mm_add_epi32(e[2], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off32[2] + s))));
       m |= (~std::uint32_t(_mm_movemask_ps(_mm_castsi128_ps(v))) & 15u) << s;
     }
     mask[lane] = m;
@@ -337,10 +343,14 @@ inline bool depth_passes(DepthTest test, float z, float stored) {
 inline std::uint32_t depth_mask4(DepthTest test, f32x4 z, f32x4 stored) {
 #if defined(__SSE2__)
   switch (test) {
-    case DepthTest::less: return std::uint32_t(_mm_movemask_ps(_mm_cmplt_ps(z, stored)));
-    case DepthTest::less_equal: return std::uint32_t(_mm_movemask_ps(_mm_cmple_ps(z, stored)));
-    case DepthTest::equal: return std::uint32_t(_mm_movemask_ps(_mm_cmpeq_ps(z, stored)));
-    case DepthTest::always: return 15u;
+    case DepthTest::less:
+      return std::uint32_t(_mm_movemask_ps(_mm_cmplt_ps(z, stored)));
+    case DepthTest::less_equal:
+      return std::uint32_t(_mm_movemask_ps(_mm_cmple_ps(z, stored)));
+    case DepthTest::equal:
+      return std::uint32_t(_mm_movemask_ps(_mm_cmpeq_ps(z, stored)));
+    case DepthTest::always:
+      return 15u;
   }
   return 0u;
 #else

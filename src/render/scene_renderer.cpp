@@ -116,8 +116,7 @@ Result<Frame> SceneRenderer::render(const scene::Camera& camera, const FrameOpti
         std::array<float, 4> c = base;
         if (tex) {
           const UvGradients g{in.ddx[0], in.ddx[1], in.ddy[0], in.ddy[1]};
-          const std::array<float, 4> t =
-              tex->sample(sampler, {in.varyings[0], in.varyings[1]}, g);
+          const std::array<float, 4> t = tex->sample(sampler, {in.varyings[0], in.varyings[1]}, g);
           for (int k = 0; k < 3; ++k) c[k] *= t[k];
         }
         o[0] = c[0];

@@ -263,9 +263,9 @@ inline void resolve_pair_fast(int x0, int size, AddressMode mode, int out[2]) {
 
 /// Adds the four taps of one bilinear block (tap weight wx[k] * wy[j], rows then columns), as
 /// `AccumulateSink::quad` does.
-inline void add_bilinear(const AccumulateSink& sink, texture_detail::Accum4& acc,
-                         const float* base, std::size_t stride, const int rx[2], const int ry[2],
-                         const float wx[2], const float wy[2]) {
+inline void add_bilinear(const AccumulateSink& sink, texture_detail::Accum4& acc, const float* base,
+                         std::size_t stride, const int rx[2], const int ry[2], const float wx[2],
+                         const float wy[2]) {
   const std::ptrdiff_t c0 = std::ptrdiff_t(rx[0]) * 4;
   const std::ptrdiff_t c1 = std::ptrdiff_t(rx[1]) * 4;
   if ((rx[0] | rx[1] | ry[0] | ry[1]) >= 0) {
@@ -472,7 +472,8 @@ std::array<float, 4> Texture::sample(const SamplerState& sampler, Uv uv,
                             gradients.dvdy * h};
     Footprint fp;
     fp.center = uv;
-    fp.lod = texture_detail::clamp_lod(sampler, shape_, texture_detail::isotropic_lod_inline(texel));
+    fp.lod =
+        texture_detail::clamp_lod(sampler, shape_, texture_detail::isotropic_lod_inline(texel));
     layer = std::clamp(layer, 0, shape_.layers - 1);
     const AccumulateSink sink{texels_.data(),
                               offsets_.data() + std::size_t(layer) * shape_.levels,
