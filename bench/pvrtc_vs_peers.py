@@ -31,6 +31,9 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from benchlib import cpu_model  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TESSERA_QUALITIES = ["fast", "normal", "high"]
 PVR_QUALITIES = ["pvrtcfastest", "pvrtcfast", "pvrtcnormal", "pvrtchigh", "pvrtcbest"]
@@ -70,17 +73,6 @@ def timed(cmd, runs):
 def compare(tessera, ref, test):
     j = json.loads(run([tessera, "compare", ref, test, "--json"]))
     return {"psnr_rgb": j["psnr_rgb"], "ssim": j["ssim_gray"], "psnr_alpha": j.get("psnr_alpha")}
-
-
-def cpu_model():
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
 
 
 def source_commit(binary):

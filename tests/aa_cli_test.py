@@ -11,23 +11,12 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cli_harness import check, finish, run_command  # noqa: E402
+
 TESSERA = sys.argv[1]
-failures = []
-passed = 0
-
-
 def run(*args):
-    p = subprocess.run([TESSERA, *args], capture_output=True, text=True, timeout=300)
-    return p.returncode, p.stdout, p.stderr
-
-
-def check(name, cond, detail=""):
-    global passed
-    if cond:
-        passed += 1
-    else:
-        failures.append(f"{name}: {detail}")
-        print(f"FAIL {name}: {detail}")
+    return run_command([TESSERA, *args], timeout=300)
 
 
 def expect_error(name, args, code, must_name=None):
@@ -82,5 +71,4 @@ try:
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
 
-print(f"{passed} checks passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+sys.exit(finish())

@@ -16,26 +16,15 @@ import struct
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cli_harness import check, finish, run_command  # noqa: E402
 import zlib
 
 TESSERA = sys.argv[1]
 PVRTEXTOOL = sys.argv[2] if len(sys.argv) > 2 and os.path.isfile(sys.argv[2]) else None
-failures = []
-passed = 0
-
-
 def run(*args, tool=None):
-    p = subprocess.run([tool or TESSERA, *args], capture_output=True, text=True, timeout=300)
-    return p.returncode, p.stdout, p.stderr
-
-
-def check(name, cond, detail=""):
-    global passed
-    if cond:
-        passed += 1
-    else:
-        failures.append(f"{name}: {detail}")
-        print(f"FAIL {name}: {detail}")
+    return run_command([tool or TESSERA, *args], timeout=300)
 
 
 def write_png(path, width, height, pixel, alpha):
@@ -288,5 +277,4 @@ try:
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
 
-print(f"{passed} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+sys.exit(finish())

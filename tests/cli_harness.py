@@ -1,0 +1,31 @@
+"""Shared plumbing of the CLI test scripts: running a program, counting checks, the summary.
+
+Each script keeps its own `expect_error` (the error contracts differ per command) and calls
+`check` from here; `finish()` prints the closing 'N passed, M failed' line CTest logs show.
+"""
+import subprocess
+
+_passed = 0
+_failures = []
+
+
+def run_command(cmd, timeout=300):
+    """Runs `cmd` (a list) and returns (exit code, stdout, stderr) as text."""
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+    return p.returncode, p.stdout, p.stderr
+
+
+def check(name, cond, detail=""):
+    """Counts one check; prints and remembers a failure."""
+    global _passed
+    if cond:
+        _passed += 1
+    else:
+        _failures.append(f"{name}: {detail}")
+        print(f"FAIL {name}: {detail}")
+
+
+def finish():
+    """Prints the summary line and returns the process exit code (1 if anything failed)."""
+    print(f"{_passed} passed, {len(_failures)} failed")
+    return 1 if _failures else 0
