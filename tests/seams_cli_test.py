@@ -42,6 +42,7 @@ try:
                      "--reference-factor", "4", "--quiet", "-o", out)
     check("tiny run rc", rc == 0, se)
     for f in ("seams.json", "seams.md", "cdf.csv", "fig5_left.svg", "fig5_right.svg",
+              "fig5_left.png", "fig5_right.png",
               "images/reference.png", "images/discard_1x.png", "images/traverse_4x.png",
               "images/zoom_clamp_1x.png", "images/zoom_reference.png"):
         check("output " + f, os.path.isfile(os.path.join(out, f)))
@@ -62,6 +63,9 @@ try:
     check("markdown says which pixels", "geometry only" in md)
     svg = open(os.path.join(out, "fig5_left.svg")).read() if os.path.isfile(os.path.join(out, "fig5_left.svg")) else ""
     check("svg plot", svg.startswith("<svg") and "polyline" in svg)
+    png_path = os.path.join(out, "fig5_right.png")
+    png = open(png_path, "rb").read() if os.path.isfile(png_path) else b""
+    check("png plot", png.startswith(b"\x89PNG") and len(png) > 2000, f"{len(png)} bytes")
 
     # Error paths.
     expect_error("missing mesh", ["seams", "--scene", os.path.join(tmp, "nope.obj"), "--quiet",

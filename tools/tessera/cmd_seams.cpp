@@ -157,6 +157,98 @@ std::string cdf_svg(const std::string& title, const std::vector<Curve>& curves, 
   return s.str();
 }
 
+/// The same plot as `cdf_svg`, rasterised to a PNG image (same axes, grid, colours and dash
+/// patterns; the legend swatches are in the same order as the SVG's labelled legend, which
+/// carries the text). Pure code: no font or SVG library needed.
+ImageRGBA8 cdf_png(const std::vector<Curve>& curves, double xmax) {
+  const int W = 640, H = 420, L = 70, R = 190, T = 40, B = 50;
+  const int pw = W - L - R, ph = H - T - B;
+  const double ymin = -4.0;
+  auto px = [&](double x) { return L + pw * std::min(x, xmax) / xmax; };
+  auto py = [&](double f) {
+    const double l = f > 0 ? std::max(std::log10(f), ymin) : ymin;
+    return T + ph * (l / ymin);
+  };
+  ImageRGBA8 img(W, H);
+  std::fill(img.pixels.begin(), img.pixels.end(), std::uint8_t(255));
+  auto dot = [&](int x, int y, const std::uint8_t rgb[3], int size) {
+    for (int dy = 0; dy < size; ++dy) {
+      for (int dx = 0; dx < size; ++dx) {
+        const int xx = x + dx, yy = y + dy;
+        if (xx < 0 || yy < 0 || xx >= W || yy >= H) continue;
+        std::copy(rgb, rgb + 3, img.at(xx, yy));
+      }
+    }
+  };
+  // A line from (x0, y0) to (x1, y1) walked in half-pixel steps; `dash` alternates on/off
+  // lengths in pixels (empty = solid), continuing its phase across segments via `phase`.
+  auto line = [&](double x0, double y0, double x1, double y1, const std::uint8_t rgb[3],
+                  const std::vector<double>& dash, double& phase, int size) {
+    const double len = std::hypot(x1 - x0, y1 - y0);
+    const int steps = std::max(1, int(len * 2.0));
+    double period = 0;
+    for (double d : dash) period += d;
+    for (int i = 0; i <= steps; ++i) {
+      const double t = double(i) / steps;
+      bool on = true;
+      if (period > 0) {
+        double q = std::fmod(phase + t * len, period);
+        for (std::size_t k = 0; k < dash.size(); ++k) {
+          if (q < dash[k]) {
+            on = (k % 2) == 0;
+            break;
+          }
+          q -= dash[k];
+        }
+      }
+      if (on) dot(int(std::lround(x0 + t * (x1 - x0))), int(std::lround(y0 + t * (y1 - y0))), rgb, size);
+    }
+    phase += len;
+  };
+  auto parse_rgb = [](const std::string& hex, std::uint8_t rgb[3]) {
+    const unsigned v = unsigned(std::stoul(hex.substr(1), nullptr, 16));
+    rgb[0] = std::uint8_t(v >> 16);
+    rgb[1] = std::uint8_t(v >> 8);
+    rgb[2] = std::uint8_t(v);
+  };
+  auto parse_dash = [](const std::string& text) {
+    std::vector<double> d;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) d.push_back(std::stod(item));
+    return d;
+  };
+  const std::uint8_t grid[3] = {221, 221, 221}, black[3] = {0, 0, 0};
+  double phase = 0;
+  for (int e = 0; e >= -4; --e) {
+    const double y = py(std::pow(10.0, e));
+    line(L, y, L + pw, y, grid, {}, phase, 1);
+  }
+  for (int i = 0; i <= 6; ++i) {
+    const double x = px(xmax * i / 6);
+    line(x, T, x, T + ph, grid, {}, phase, 1);
+  }
+  line(L, T, L + pw, T, black, {}, phase, 1);
+  line(L, T + ph, L + pw, T + ph, black, {}, phase, 1);
+  line(L, T, L, T + ph, black, {}, phase, 1);
+  line(L + pw, T, L + pw, T + ph, black, {}, phase, 1);
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    std::uint8_t rgb[3];
+    parse_rgb(curves[c].color, rgb);
+    const std::vector<double> dash = parse_dash(curves[c].dash);
+    phase = 0;
+    for (std::size_t i = 1; i < curves[c].y.size(); ++i) {
+      const double x0 = double(i - 1) * kStep, x1 = double(i) * kStep;
+      if (x1 > xmax) break;
+      line(px(x0), py(curves[c].y[i - 1]), px(x1), py(curves[c].y[i]), rgb, dash, phase, 2);
+    }
+    const int ly = T + 10 + int(c) * 16;
+    phase = 0;
+    line(L + pw + 10, ly, L + pw + 40, ly, rgb, dash, phase, 2);
+  }
+  return img;
+}
+
 Status write_text(const std::string& path, const std::string& text) {
   return write_file_atomic(
       path, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()),
@@ -524,6 +616,8 @@ Status run_seams(const SeamsConfig& c, nlohmann::json& summary, bool verbose) {
         !s.ok()) {
       return s;
     }
+    if (Status s = write_png(dir + "/fig5_left.png", cdf_png(left, 0.15)); !s.ok()) return s;
+    if (Status s = write_png(dir + "/fig5_right.png", cdf_png(right, 0.15)); !s.ok()) return s;
     if (Status s = write_text(dir + "/fig5_right.svg",
                               cdf_svg("Deviation from the reference (solid Discard, dashed "
                                       "Traverse, dotted Clamp)",
@@ -570,8 +664,9 @@ Status run_seams(const SeamsConfig& c, nlohmann::json& summary, bool verbose) {
         "difference. Plots: `fig5_left.svg` (Traverse vs Discard), `fig5_right.svg` (each "
         "method vs the reference: Traverse at "
      << c.reference_factor << "x" << c.reference_factor
-     << " the resolution, downsampled with Mitchell-Netravali B = C = 1/3); data in `cdf.csv` "
-        "and `seams.json`.\n\n";
+     << " the resolution, downsampled with Mitchell-Netravali B = C = 1/3), each also as PNG "
+        "(`fig5_left.png`, `fig5_right.png`: same curves and legend order, labels in the SVG); "
+        "data in `cdf.csv` and `seams.json`.\n\n";
   md << "| comparison | rate | mean error | fraction >= 0.01 | fraction >= 0.05 |\n"
         "|---|---|---:|---:|---:|\n";
   for (std::size_t ri = 0; ri < nr; ++ri) {

@@ -27,8 +27,8 @@ struct SeamsConfig {
   bool write_images = true;
 };
 
-/// Runs the experiment and writes DIR/seams.json, seams.md, cdf.csv, fig5_left.svg,
-/// fig5_right.svg and images/. `summary` receives the JSON written. Progress goes to stderr
+/// Runs the experiment and writes DIR/seams.json, seams.md, cdf.csv, fig5_left.svg/.png,
+/// fig5_right.svg/.png and images/. `summary` receives the JSON written. Progress goes to stderr
 /// when `verbose`.
 Status run_seams(const SeamsConfig& config, nlohmann::json& summary, bool verbose);
 
