@@ -24,6 +24,14 @@ def human(v):
     return f"{v:.1f}"
 
 
+def duration(ns):
+    """A time in nanoseconds with a readable unit."""
+    for unit, div in (("s", 1e9), ("ms", 1e6), ("µs", 1e3)):
+        if ns >= div:
+            return f"{ns / div:.3g} {unit}"
+    return f"{ns:.3g} ns"
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("binary")
@@ -44,12 +52,14 @@ def main():
         if b.get("aggregate_name") != "median":
             continue
         name = b["run_name"]
-        scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b.get("time_unit", "ns")]
+        scale = {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}[b.get("time_unit", "ns")]
         ips = b.get("items_per_second")
-        rows.append(f"| `{name}` | {b['real_time'] * scale:.4g} ms | {b['cpu_time'] * scale:.4g} ms | "
+        rows.append(f"| `{name}` | {duration(b['real_time'] * scale)} | "
+                    f"{duration(b['cpu_time'] * scale)} | "
                     f"{human(ips) + '/s' if ips else '-'} |")
     title = a.title or os.path.basename(a.binary)
-    rel = os.path.relpath(a.binary)
+    # Name the binary as a user's build tree has it, wherever this copy was built.
+    rel = os.path.join("build", "bin", os.path.basename(a.binary))
     lines = [f"# {title}", "",
              f"Machine: {cpu_model()}, {os.cpu_count()} logical CPUs; date "
              f"{datetime.date.today().isoformat()}; 1-minute load average at start {load:.1f} "
