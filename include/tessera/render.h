@@ -25,6 +25,13 @@ namespace tessera::render {
 /// Linear RGB clear colour of every rendered frame (also used by tools/glpeer).
 inline constexpr std::array<float, 4> kBackground = {0.05f, 0.05f, 0.08f, 1.0f};
 
+/// A draw call for one scene mesh: clip-space positions `clip` (4 floats per vertex),
+/// `varying_count` floats per vertex in `varyings`, the mesh's indices, no culling (the test
+/// scenes' materials are double-sided), primitive ids from `primitive_id_base`. The shader is
+/// left empty for the caller. Arrays are borrowed (see raster::DrawCall).
+raster::DrawCall mesh_draw(const scene::Mesh& mesh, const float* clip, const float* varyings,
+                           int varying_count, std::uint32_t primitive_id_base);
+
 /// Texture filtering of the unlit material.
 enum class Filter { trilinear, aniso16 };
 

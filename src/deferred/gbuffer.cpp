@@ -3,6 +3,7 @@
 #include <numbers>
 
 #include "deferred_internal.h"
+#include "tessera/render.h"
 
 namespace tessera::deferred {
 
@@ -100,15 +101,8 @@ Status DeferredRenderer::render_gbuffer(const scene::Camera& camera, int width, 
   std::uint32_t prim_base = 0;
   for (std::size_t mi = 0; mi < sc.meshes.size(); ++mi) {
     const scene::Mesh& mesh = sc.meshes[mi];
-    raster::DrawCall d;
-    d.positions = clip_[mi].data();
-    d.varyings = varyings_[mi].data();
-    d.varying_count = 6;
-    d.vertex_count = mesh.positions.size();
-    d.indices = mesh.indices.data();
-    d.index_count = mesh.indices.size();
-    d.cull = raster::CullMode::none;
-    d.primitive_id_base = prim_base;
+    raster::DrawCall d =
+        render::mesh_draw(mesh, clip_[mi].data(), varyings_[mi].data(), 6, prim_base);
     prim_base += std::uint32_t(mesh.triangle_count());
     const float material = float(mesh.material);
     d.shader = [material](const raster::ShadeInput& in, float* o) {

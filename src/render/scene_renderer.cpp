@@ -11,6 +11,20 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 }
 }  // namespace
 
+raster::DrawCall mesh_draw(const scene::Mesh& mesh, const float* clip, const float* varyings,
+                           int varying_count, std::uint32_t primitive_id_base) {
+  raster::DrawCall d;
+  d.positions = clip;
+  d.varyings = varyings;
+  d.varying_count = varying_count;
+  d.vertex_count = mesh.positions.size();
+  d.indices = mesh.indices.data();
+  d.index_count = mesh.indices.size();
+  d.cull = raster::CullMode::none;
+  d.primitive_id_base = primitive_id_base;
+  return d;
+}
+
 SceneRenderer::~SceneRenderer() = default;
 
 Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const scene::Scene& scene,
@@ -89,15 +103,7 @@ Result<Frame> SceneRenderer::render(const scene::Camera& camera, const FrameOpti
   for (std::size_t mi = 0; mi < sc.meshes.size(); ++mi) {
     const scene::Mesh& m = sc.meshes[mi];
     const scene::Material& mat = sc.materials[std::size_t(m.material)];
-    raster::DrawCall d;
-    d.positions = clip_[mi].data();
-    d.varyings = varyings_[mi].data();
-    d.varying_count = 2;
-    d.vertex_count = m.positions.size();
-    d.indices = m.indices.data();
-    d.index_count = m.indices.size();
-    d.cull = raster::CullMode::none;
-    d.primitive_id_base = prim_base;
+    raster::DrawCall d = mesh_draw(m, clip_[mi].data(), varyings_[mi].data(), 2, prim_base);
     prim_base += std::uint32_t(m.triangle_count());
     const Texture* tex = (options.shading == Shading::textured && mat.base_color_texture >= 0)
                              ? &textures_[std::size_t(mat.base_color_texture)]
