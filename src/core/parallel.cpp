@@ -37,7 +37,10 @@ void parallel_for(std::int64_t begin, std::int64_t end, std::int64_t grain,
         },
         tbb::simple_partitioner());
   };
-  if (threads <= 0) {
+  // More threads than the hardware has would only make TBB warn that it ignores the request;
+  // the chunking (and so the result) does not depend on the count anyway.
+  threads = std::min(threads, default_thread_count());
+  if (threads <= 0 || threads == default_thread_count()) {
     loop();
   } else {
     tbb::task_arena arena(threads);
