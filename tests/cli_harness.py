@@ -25,6 +25,19 @@ def check(name, cond, detail=""):
         print(f"FAIL {name}: {detail}")
 
 
+def expect_error(run, name, args, code, must_name=None):
+    """Runs `run(*args)` and checks the error contract: exit `code`; for bad input (1) exactly
+    one line on stderr; `must_name` (a path, usually) appears in it. Returns stderr."""
+    rc, _, err = run(*args)
+    lines = [line for line in err.splitlines() if line.strip()]
+    check(name + " exit code", rc == code, f"rc={rc} stderr={err!r}")
+    if code == 1:
+        check(name + " one line", len(lines) == 1, f"stderr={err!r}")
+    if must_name:
+        check(name + " names it", must_name in err, f"stderr={err!r}")
+    return err
+
+
 def finish():
     """Prints the summary line and returns the process exit code (1 if anything failed)."""
     print(f"{_passed} passed, {len(_failures)} failed")

@@ -14,21 +14,17 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cli_harness import check, finish, run_command  # noqa: E402
+from cli_harness import expect_error as harness_expect_error  # noqa: E402
 
 TESSERA = sys.argv[1]
+
+
 def run(*args):
     return run_command([TESSERA, *args], timeout=120)
 
 
 def expect_error(name, args, code, must_name=None):
-    rc, out, err = run(*args)
-    lines = [l for l in err.splitlines() if l.strip()]
-    check(name + " exit code", rc == code, f"rc={rc} stderr={err!r}")
-    if code == 1:
-        check(name + " one line", len(lines) == 1, f"stderr={err!r}")
-        if must_name:
-            check(name + " names file", must_name in err, f"stderr={err!r}")
-    return err
+    return harness_expect_error(run, name, args, code, must_name)
 
 
 tmp = tempfile.mkdtemp(prefix="tessera-cli-")

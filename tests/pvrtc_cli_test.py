@@ -23,6 +23,8 @@ import zlib
 
 TESSERA = sys.argv[1]
 PVRTEXTOOL = sys.argv[2] if len(sys.argv) > 2 and os.path.isfile(sys.argv[2]) else None
+
+
 def run(*args, tool=None):
     return run_command([tool or TESSERA, *args], timeout=300)
 

@@ -19,6 +19,8 @@ from cli_harness import check, finish, run_command  # noqa: E402
 
 TESSERA = sys.argv[1]
 SHARED = sys.argv[2] if len(sys.argv) > 2 else ""
+
+
 def run(*args):
     return run_command([TESSERA, "-j", "2", *args], timeout=300)
 
