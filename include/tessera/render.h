@@ -32,6 +32,10 @@ inline constexpr std::array<float, 4> kBackground = {0.05f, 0.05f, 0.08f, 1.0f};
 raster::DrawCall mesh_draw(const scene::Mesh& mesh, const float* clip, const float* varyings,
                            int varying_count, std::uint32_t primitive_id_base);
 
+/// Builds the mipmapped linear-light textures of every scene texture (sRGB ones decoded before
+/// filtering), in scene order. Fails on the first texture that cannot be built.
+Result<std::vector<Texture>> build_scene_textures(const scene::Scene& scene, int threads = 0);
+
 /// Texture filtering of the unlit material.
 enum class Filter { trilinear, aniso16 };
 

@@ -14,15 +14,9 @@ Result<std::unique_ptr<DeferredRenderer>> DeferredRenderer::create(const scene::
   std::unique_ptr<DeferredRenderer> r(new DeferredRenderer());
   r->scene_ = &scene;
   r->threads_ = threads;
-  r->textures_.reserve(scene.textures.size());
-  for (const scene::Texture& t : scene.textures) {
-    TextureOptions o;
-    o.srgb = t.srgb;
-    o.threads = threads;
-    Result<Texture> tex = Texture::from_rgba8(t.image, o);
-    if (!tex) return tex.status();
-    r->textures_.push_back(std::move(*tex));
-  }
+  Result<std::vector<Texture>> textures = render::build_scene_textures(scene, threads);
+  if (!textures) return textures.status();
+  r->textures_ = std::move(*textures);
   for (const scene::Material& m : scene.materials) {
     MaterialInfo mi;
     mi.base = {m.base_color[0], m.base_color[1], m.base_color[2]};

@@ -25,20 +25,29 @@ raster::DrawCall mesh_draw(const scene::Mesh& mesh, const float* clip, const flo
   return d;
 }
 
-SceneRenderer::~SceneRenderer() = default;
-
-Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const scene::Scene& scene,
-                                                             int threads) {
-  std::unique_ptr<SceneRenderer> r(new SceneRenderer());
-  r->scene_ = &scene;
+Result<std::vector<Texture>> build_scene_textures(const scene::Scene& scene, int threads) {
+  std::vector<Texture> textures;
+  textures.reserve(scene.textures.size());
   for (const scene::Texture& t : scene.textures) {
     TextureOptions o;
     o.srgb = t.srgb;
     o.threads = threads;
     Result<Texture> tex = Texture::from_rgba8(t.image, o);
     if (!tex) return tex.status();
-    r->textures_.push_back(std::move(*tex));
+    textures.push_back(std::move(*tex));
   }
+  return textures;
+}
+
+SceneRenderer::~SceneRenderer() = default;
+
+Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const scene::Scene& scene,
+                                                             int threads) {
+  std::unique_ptr<SceneRenderer> r(new SceneRenderer());
+  r->scene_ = &scene;
+  Result<std::vector<Texture>> textures = build_scene_textures(scene, threads);
+  if (!textures) return textures.status();
+  r->textures_ = std::move(*textures);
   // UVs do not change between frames.
   for (const scene::Mesh& m : scene.meshes) {
     std::vector<float> uv(m.uvs.size() * 2);
