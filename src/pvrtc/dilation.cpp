@@ -8,9 +8,13 @@
 // 4. Block colours: the mean over the block's texels of the dilated image, where texels still
 //    empty take the block's own extreme (brightest / darkest) texel colour.
 //
-// Everything runs fused in bands of block rows (with a 4-texel halo above and below), so each
-// thread's working set stays in cache; bands write only their own blocks, so the output does not
-// depend on the thread count.
+// The stages run as a row pipeline over a band of block rows: each new intensity row lets the
+// labelling produce the row above it, which lets dilation pass 1 produce the row above that, and
+// so on; every stage keeps only its last three rows (a ring), so the working set is a few rows
+// whatever the image size and each row is computed once per stage (plus a 4-row halo per band).
+// Bands write only their own blocks and the halo makes each band exact, so the output does not
+// depend on the band size or the thread count. Rows are stored with a wrap-around pad on both
+// sides, so the 3x3 kernels need no edge cases.
 #include <algorithm>
 #include <cstring>
 
@@ -23,217 +27,334 @@ namespace {
 
 constexpr int kDilations = 3;
 constexpr int kHalo = kDilations + 1;  // rows of intensity needed above/below a band
+constexpr int kPad = 16;               // elements of padding on each side of a stored row
 
 // Rounded mean of n filled neighbours: floor(x / n) for x < 2400 and 2 <= n <= 9 equals
 // mulhi(x, ceil(65536 / n)) (the error term stays below 1 / 9); n == 1 is passed through.
 constexpr std::uint16_t kRecip16[10] = {0, 0, 32768, 21846, 16384, 13108, 10923, 9363, 8192, 7282};
 
-// Planar extremum image of a band: colour planes and the filled flag (0/1), u8 each; rows are
-// padded by 8 bytes so 8-wide loads at the row end stay inside the buffer.
-struct BandPlanes {
-  std::vector<std::uint8_t> p[5];
+/// Ring of the last three rows of `planes` planes of element type T, rows padded by kPad.
+template <typename T>
+struct Ring {
+  int planes = 0;
+  std::size_t stride = 0;
+  std::vector<T> buf;
+  void init(int nplanes, int w) {
+    planes = nplanes;
+    stride = std::size_t(w) + 2 * kPad;
+    buf.assign(3 * std::size_t(planes) * stride, T(0));
+  }
+  /// Row `r` (any integer >= 0 in band-local numbering) of plane `k`, pointing at texel 0.
+  T* row(int k, int r) {
+    return &buf[(std::size_t(r % 3) * std::size_t(planes) + std::size_t(k)) * stride + kPad];
+  }
 };
 
-// One 3x3 dilation pass over local rows [r0, r1) (all 0 <= r0 - 1 and r1 + 1 <= rows): empty
-// texels next to filled ones take the rounded mean of the filled neighbours.
-void dilate_band(int w, const BandPlanes& src, BandPlanes& dst, int nplanes, int r0, int r1,
-                 std::vector<std::uint16_t>& hs) {
-  using simd::vu16x8;
-  const int hr0 = r0 - 1, hr1 = r1 + 1, hrows = hr1 - hr0;
-  const std::size_t W = std::size_t(w);
-  hs.resize(5 * std::size_t(hrows) * W + 8);
-  const int wv = w >= 10 ? ((w - 2) / 8) * 8 : 0;  // texels [1, 1 + wv) done 8 at a time
-  for (int k = 0; k < 5; ++k) {
-    if (k < 4 && k >= nplanes) continue;
-    for (int r = hr0; r < hr1; ++r) {
-      const std::uint8_t* in = &src.p[k][std::size_t(r) * W];
-      std::uint16_t* out = &hs[(std::size_t(k) * std::size_t(hrows) + std::size_t(r - hr0)) * W];
-      for (int x = 1; x < 1 + wv; x += 8) {
-        simd::store_u16x8(
-            simd::load_u8x8(in + x - 1) + simd::load_u8x8(in + x) + simd::load_u8x8(in + x + 1),
-            out + x);
-      }
-      auto edge = [&](int x) {
-        out[x] = std::uint16_t(in[(x - 1) & (w - 1)] + in[x] + in[(x + 1) & (w - 1)]);
-      };
-      edge(0);
-      for (int x = 1 + wv; x < w; ++x) edge(x);
+/// Sets the wrap-around pad elements next to a row of w elements (x = -1 and x = w).
+template <typename T>
+inline void wrap_pad(T* row, int w) {
+  row[-1] = row[w - 1];
+  row[w] = row[0];
+}
+
+// Plane layout of one extremum image: colour planes 0..nplanes-1, then the filled flag (0/1).
+struct Band {
+  int w = 0, nplanes = 3;
+  Ring<float> inten;              // intensity
+  Ring<std::uint8_t> lab;         // 1 = local maximum, 2 = local minimum
+  Ring<std::uint8_t> img[2][3];   // [max/min][initial, pass 1, pass 2]
+  std::vector<std::uint8_t> last[2];  // pass 3 rows (consumed at once), nplanes + 1 planes
+  std::vector<float> tmax, tmin;      // vertical 3-max / 3-min of one row (padded)
+  std::vector<std::uint8_t> vf;       // vertical flag sums of one row (padded)
+  std::vector<std::uint16_t> vs;      // vertical colour sums of one row, per plane (padded)
+  std::vector<std::uint16_t> acc[2];  // per column, per plane: sums over the block row so far
+};
+
+// Intensity of texel row `src` (w texels) into `out`: Rec.709 luma with weights summing to
+// 65536, times alpha / 255 in alpha mode (floored). Below 2^24, so exact as float.
+void intensity_row(const std::uint8_t* src, int w, bool alpha, float* out) {
+  using namespace simd;
+  const vint4 m8(0xff);
+  const vf4 kr(13933.0f), kg(46871.0f), kb(4732.0f);
+  for (int x = 0; x < w; x += 4) {
+    const vint4 t = load_texels4(src + std::size_t(x) * 4);
+    const vf4 y = to_float(t & m8) * kr + to_float(srl<8>(t) & m8) * kg +
+                  to_float(srl<16>(t) & m8) * kb;
+    storef4(y, out + x);
+  }
+  if (alpha) {
+    for (int x = 0; x < w; ++x) {
+      const std::uint32_t y = std::uint32_t(out[x]);  // <= 255 * 65536: y * a fits 32 bits
+      out[x] = float(y * src[std::size_t(x) * 4 + 3] / 255u);
     }
   }
-  auto hrow = [&](int k, int r) {
-    return &hs[(std::size_t(k) * std::size_t(hrows) + std::size_t(r - hr0)) * W];
-  };
-  const vu16x8 one(1), zero(0);
-  const int w8 = (w / 8) * 8;
-  for (int r = r0; r < r1; ++r) {
-    const std::size_t row = std::size_t(r) * W;
-    const std::uint8_t* f = &src.p[4][row];
-    std::uint8_t* fo = &dst.p[4][row];
-    const std::uint16_t *n0 = hrow(4, r - 1), *n1 = hrow(4, r), *n2 = hrow(4, r + 1);
-    for (int x = 0; x < w8; x += 8) {
-      const vu16x8 n =
-          simd::load_u16x8(n0 + x) + simd::load_u16x8(n1 + x) + simd::load_u16x8(n2 + x);
-      vu16x8 rcv = zero;
-      for (std::uint16_t k = 2; k < 10; ++k) {
-        rcv = rcv | (simd::cmpeq(n, vu16x8(k)) & vu16x8(kRecip16[k]));
+  wrap_pad(out, w);
+}
+
+// Labels of the row whose intensity is `i1` (neighbours i0 above, i2 below).
+void label_row(Band& b, const float* i0, const float* i1, const float* i2, std::uint8_t* out) {
+  using namespace simd;
+  const int w = b.w;
+  float* mx = b.tmax.data() + kPad;
+  float* mn = b.tmin.data() + kPad;
+  for (int x = 0; x < w; x += 4) {
+    const vf4 a = loadf4(i0 + x), c = loadf4(i1 + x), d = loadf4(i2 + x);
+    storef4(max(max(a, c), d), mx + x);
+    storef4(min(min(a, c), d), mn + x);
+  }
+  wrap_pad(mx, w);
+  wrap_pad(mn, w);
+  const vint4 one(1), two(2);
+  for (int x = 0; x < w; x += 4) {
+    const vf4 v = loadf4(i1 + x);
+    const vf4 m = max(max(loadf4(mx + x - 1), loadf4(mx + x)), loadf4(mx + x + 1));
+    const vf4 n = min(min(loadf4(mn + x - 1), loadf4(mn + x)), loadf4(mn + x + 1));
+    store_u8x4((cmpeq(m, v) & one) | (cmpeq(n, v) & two), out + x);
+  }
+}
+
+// Initial planes of both extremum images for one row: the texel's colour where labelled.
+void init_rows(Band& b, const std::uint8_t* lab, const std::uint8_t* src, std::uint8_t* const* p0,
+               std::uint8_t* const* p1) {
+  const int w = b.w, np = b.nplanes;
+  int x = 0;
+  if (w >= 16) {
+    using namespace simd;
+    const vint4 m8(0xff);
+    const vu8x16 bit1(1), bit2(2), zero(0);
+    for (; x < w; x += 16) {
+      const std::uint8_t* s = src + std::size_t(x) * 4;
+      const vint4 t0 = load_texels4(s), t1 = load_texels4(s + 16), t2 = load_texels4(s + 32),
+                  t3 = load_texels4(s + 48);
+      const vu8x16 l = load_u8x16(lab + x);
+      const vu8x16 k0 = andnot(cmpeq(l & bit1, zero), vu8x16(0xff));
+      const vu8x16 k1 = andnot(cmpeq(l & bit2, zero), vu8x16(0xff));
+      vu8x16 ch[4];
+      ch[0] = narrow(t0 & m8, t1 & m8, t2 & m8, t3 & m8);
+      ch[1] = narrow(srl<8>(t0) & m8, srl<8>(t1) & m8, srl<8>(t2) & m8, srl<8>(t3) & m8);
+      ch[2] = narrow(srl<16>(t0) & m8, srl<16>(t1) & m8, srl<16>(t2) & m8, srl<16>(t3) & m8);
+      ch[3] = narrow(srl<24>(t0), srl<24>(t1), srl<24>(t2), srl<24>(t3));
+      for (int c = 0; c < np; ++c) {
+        store_u8x16(ch[c] & k0, p0[c] + x);
+        store_u8x16(ch[c] & k1, p1[c] + x);
       }
-      const vu16x8 hv = simd::srl<1>(n);
-      const vu16x8 single = simd::cmpeq(n, one);
-      const vu16x8 fv = simd::load_u8x8(f + x);
-      const vu16x8 filled = simd::cmpeq(fv, one);
-      simd::store_u8x8(simd::select(simd::cmpeq(n, zero), fv, one), fo + x);
-      for (int k = 0; k < nplanes; ++k) {
-        const vu16x8 sum = simd::load_u16x8(hrow(k, r - 1) + x) + simd::load_u16x8(hrow(k, r) + x) +
-                           simd::load_u16x8(hrow(k, r + 1) + x);
-        const vu16x8 avg = simd::select(single, sum, simd::mulhi(sum + hv, rcv));
-        simd::store_u8x8(simd::select(filled, simd::load_u8x8(&src.p[k][row] + x), avg),
-                         &dst.p[k][row] + x);
-      }
+      store_u8x16(k0 & bit1, p0[np] + x);
+      store_u8x16(k1 & bit1, p1[np] + x);
     }
-    for (int x = w8; x < w; ++x) {
-      const std::uint32_t n = std::uint32_t(n0[x]) + n1[x] + n2[x];
-      fo[x] = std::uint8_t(f[x] | (n != 0));
-      for (int k = 0; k < nplanes; ++k) {
-        const std::uint32_t sum =
-            std::uint32_t(hrow(k, r - 1)[x]) + hrow(k, r)[x] + hrow(k, r + 1)[x];
-        const std::uint32_t avg = n == 1 ? sum : ((sum + n / 2) * kRecip16[n]) >> 16;
-        dst.p[k][row + std::size_t(x)] = f[x] ? src.p[k][row + std::size_t(x)] : std::uint8_t(avg);
+  }
+  for (; x < w; ++x) {
+    const bool f0 = lab[x] & 1, f1 = lab[x] & 2;
+    for (int c = 0; c < np; ++c) {
+      p0[c][x] = f0 ? src[std::size_t(x) * 4 + std::size_t(c)] : 0;
+      p1[c][x] = f1 ? src[std::size_t(x) * 4 + std::size_t(c)] : 0;
+    }
+    p0[np][x] = f0;
+    p1[np][x] = f1;
+  }
+}
+
+// One 3x3 dilation pass for one row: `in[k][c]` is plane c of rows r-1, r, r+1 (k = 0, 1, 2);
+// empty texels next to filled ones take the rounded mean of the filled neighbours.
+void dilate_row(Band& b, const std::uint8_t* const in[3][5], std::uint8_t* const* out) {
+  using namespace simd;
+  const int w = b.w, np = b.nplanes;
+  const std::size_t vstride = std::size_t(w) + 2 * kPad;
+  std::uint8_t* vf = b.vf.data() + kPad;
+  auto vsrow = [&](int c) { return b.vs.data() + std::size_t(c) * vstride + kPad; };
+  // Vertical sums (16 texels at a time; with w == 8 the extra lanes land in the pads).
+  for (int x = 0; x < w; x += 16) {
+    store_u8x16(load_u8x16(in[0][np] + x) + load_u8x16(in[1][np] + x) + load_u8x16(in[2][np] + x),
+                vf + x);
+    for (int c = 0; c < np; ++c) {
+      const vu8x16 a = load_u8x16(in[0][c] + x), m = load_u8x16(in[1][c] + x),
+                   z = load_u8x16(in[2][c] + x);
+      store_u16x8(widen_lo(a) + widen_lo(m) + widen_lo(z), vsrow(c) + x);
+      store_u16x8(widen_hi(a) + widen_hi(m) + widen_hi(z), vsrow(c) + x + 8);
+    }
+  }
+  wrap_pad(vf, w);
+  for (int c = 0; c < np; ++c) wrap_pad(vsrow(c), w);
+  const vu8x16 zero8(0), one8(1);
+  const vu16x8 zero(0), one(1);
+  for (int x = 0; x < w; x += 16) {
+    const vu8x16 n = load_u8x16(vf + x - 1) + load_u8x16(vf + x) + load_u8x16(vf + x + 1);
+    const vu8x16 f = load_u8x16(in[1][np] + x);
+    const vu8x16 need = andnot(cmpeq(n, zero8), cmpeq(f, zero8));
+    store_u8x16(f | (need & one8), out[np] + x);
+    if (!any(need)) {
+      for (int c = 0; c < np; ++c) store_u8x16(load_u8x16(in[1][c] + x), out[c] + x);
+      continue;
+    }
+    vu16x8 nn[2] = {widen_lo(n), widen_hi(n)}, rcv[2], hv[2], single[2];
+    for (int h = 0; h < 2; ++h) {
+      rcv[h] = zero;
+      for (std::uint16_t k = 2; k < 10; ++k) {
+        rcv[h] = rcv[h] | (cmpeq(nn[h], vu16x8(k)) & vu16x8(kRecip16[k]));
+      }
+      hv[h] = srl<1>(nn[h]);
+      single[h] = cmpeq(nn[h], one);
+    }
+    for (int c = 0; c < np; ++c) {
+      const std::uint16_t* v = vsrow(c) + x;
+      vu16x8 avg[2];
+      for (int h = 0; h < 2; ++h) {
+        const vu16x8 sum = load_u16x8(v + 8 * h - 1) + load_u16x8(v + 8 * h) +
+                           load_u16x8(v + 8 * h + 1);
+        avg[h] = select(single[h], sum, mulhi(sum + hv[h], rcv[h]));
+      }
+      store_u8x16(select(need, narrow(avg[0], avg[1]), load_u8x16(in[1][c] + x)), out[c] + x);
+    }
+  }
+}
+
+// Adds the final (pass 3) row of one image to the per-column block-row sums (`first`: the
+// block row's top row, which starts the sums).
+void accumulate_row(int w, int planes, const std::uint8_t* row, std::size_t stride,
+                    std::uint16_t* acc, bool first) {
+  using namespace simd;
+  for (int k = 0; k < planes; ++k) {
+    const std::uint8_t* p = row + std::size_t(k) * stride;
+    std::uint16_t* a = acc + std::size_t(k) * std::size_t(w + 16);
+    for (int x = 0; x < w; x += 16) {
+      const vu8x16 v = load_u8x16(p + x);
+      if (first) {
+        store_u16x8(widen_lo(v), a + x);
+        store_u16x8(widen_hi(v), a + x + 8);
+      } else {
+        store_u16x8(load_u16x8(a + x) + widen_lo(v), a + x);
+        store_u16x8(load_u16x8(a + x + 8) + widen_hi(v), a + x + 8);
       }
     }
   }
 }
+
+struct Extremes {
+  float vmax = -1.0f, vmin = float(1 << 30);
+  int xmax = 0, ymax = 0, xmin = 0, ymin = 0;
+};
 
 }  // namespace
 
 void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vector<float>& high) {
   const Grid& g = s.g;
   const std::uint8_t* t = s.target.data();
-  const int w = g.pw, wm = g.pw - 1, hm = g.ph - 1, bw = g.bw;
+  const int w = g.pw, hm = g.ph - 1, bw = g.bw;
   const std::size_t W = std::size_t(w);
   const int nplanes = s.alpha_mode ? 4 : 3;  // alpha is 255 everywhere otherwise
   low.assign(g.blocks() * 4, 0.0f);
   high.assign(g.blocks() * 4, 0.0f);
+  // Bands of block rows: long enough that the halo is cheap, at least 8 per image for threads.
+  const int band = std::clamp(g.nby / 8, 1, 32);
   parallel_for(
-      0, g.nby, 4,
+      0, g.nby, band,
       [&](std::int64_t by0, std::int64_t by1) {
-        const int Y0 = int(by0) * 4, Y1 = int(by1) * 4, R = Y1 - Y0;
-        // Intensity of rows [Y0 - kHalo, Y1 + kHalo): Rec.709 luma (weights sum 65536), times
-        // alpha / 255 in alpha mode.
-        const int irows = R + 2 * kHalo;
-        std::vector<std::int32_t> inten(std::size_t(irows) * W);
-        for (int r = 0; r < irows; ++r) {
-          const std::uint8_t* src = t + std::size_t((Y0 - kHalo + r) & hm) * W * 4;
-          std::int32_t* out = &inten[std::size_t(r) * W];
-          for (int x = 0; x < w; ++x) {
-            const std::uint8_t* p = src + std::size_t(x) * 4;
-            std::int32_t y = 13933 * p[0] + 46871 * p[1] + 4732 * p[2];
-            if (s.alpha_mode) y = std::int32_t((std::int64_t(y) * p[3]) / 255);
-            out[x] = y;
-          }
+        const int Y0 = int(by0) * 4, Y1 = int(by1) * 4;
+        // Band-local row numbering: texel row y is local row y - Y0 + 8 (>= 0).
+        auto local = [&](int y) { return y - Y0 + 8; };
+        Band b;
+        b.w = w;
+        b.nplanes = nplanes;
+        const int np1 = nplanes + 1;
+        b.inten.init(1, w);
+        b.lab.init(1, w);
+        for (auto& img : b.img) {
+          for (auto& r : img) r.init(np1, w);
         }
-        // Labels for rows [Y0 - kDilations, Y1 + kDilations): local plane row r is texel row
-        // Y0 - kDilations + r, intensity row r + 1.
-        const int prows = R + 2 * kDilations;
-        BandPlanes pl[2][2];  // [max/min][ping/pong]
-        for (auto& kk : pl) {
-          for (BandPlanes& p : kk) {
-            for (int k = 0; k < 5; ++k) {
-              if (k < 4 && k >= nplanes) continue;
-              p.p[k].assign(std::size_t(prows) * W + 8, 0);
+        const std::size_t rstride = W + 2 * kPad;
+        for (auto& l : b.last) l.assign(std::size_t(np1) * rstride, 0);
+        b.tmax.assign(rstride, 0.0f);
+        b.tmin.assign(rstride, 0.0f);
+        b.vf.assign(rstride, 0);
+        b.vs.assign(std::size_t(nplanes) * rstride, 0);
+        for (auto& a : b.acc) a.assign(std::size_t(np1) * (W + 16), 0);
+        // Block extremes of two block rows: the pipeline finishes a block row 4 rows after its
+        // intensity, while the next block row's extremes are being found.
+        std::vector<Extremes> ext_rows[2];
+        for (auto& e : ext_rows) e.resize(std::size_t(g.nbx));
+
+        auto planes_of = [&](Ring<std::uint8_t>& r, int y, std::uint8_t** p) {
+          for (int k = 0; k < np1; ++k) p[k] = r.row(k, local(y));
+        };
+        for (int L = Y0 - kHalo; L < Y1 + kHalo; ++L) {
+          // Intensity row L, and the block extremes of the band's own rows.
+          const std::uint8_t* srcL = t + std::size_t(L & hm) * W * 4;
+          float* il = b.inten.row(0, local(L));
+          intensity_row(srcL, w, s.alpha_mode, il);
+          if (L >= Y0 && L < Y1) {
+            std::vector<Extremes>& ext = ext_rows[(L >> 2) & 1];
+            if ((L & 3) == 0) std::fill(ext.begin(), ext.end(), Extremes{});
+            for (int bx = 0; bx < g.nbx; ++bx) {
+              Extremes& e = ext[std::size_t(bx)];
+              for (int x = bx * bw; x < bx * bw + bw; ++x) {
+                if (il[x] > e.vmax) {
+                  e.vmax = il[x];
+                  e.xmax = x;
+                  e.ymax = L;
+                }
+                if (il[x] < e.vmin) {
+                  e.vmin = il[x];
+                  e.xmin = x;
+                  e.ymin = L;
+                }
+              }
             }
           }
-        }
-        // Separable 3x3 max / min of the intensity (horizontal pass per row, then vertical):
-        // a texel is a local maximum (minimum) when it equals the max (min) of its 3x3.
-        std::vector<std::int32_t> hmax(std::size_t(irows) * W), hmin(std::size_t(irows) * W);
-        for (int r = 0; r < irows; ++r) {
-          const std::int32_t* in = &inten[std::size_t(r) * W];
-          std::int32_t* mx = &hmax[std::size_t(r) * W];
-          std::int32_t* mn = &hmin[std::size_t(r) * W];
-          for (int x = 1; x + 1 < w; ++x) {
-            mx[x] = std::max(std::max(in[x - 1], in[x]), in[x + 1]);
-            mn[x] = std::min(std::min(in[x - 1], in[x]), in[x + 1]);
+          // Labels and initial planes of row L - 1.
+          const int yl = L - 1;
+          if (yl < Y0 - kDilations) continue;
+          std::uint8_t* lab = b.lab.row(0, local(yl));
+          label_row(b, b.inten.row(0, local(yl - 1)), b.inten.row(0, local(yl)), il, lab);
+          {
+            std::uint8_t *p0[5], *p1[5];
+            planes_of(b.img[0][0], yl, p0);
+            planes_of(b.img[1][0], yl, p1);
+            init_rows(b, lab, t + std::size_t(yl & hm) * W * 4, p0, p1);
           }
-          for (int x : {0, w - 1}) {
-            const std::int32_t l = in[(x - 1) & wm], c = in[x], rr = in[(x + 1) & wm];
-            mx[x] = std::max(std::max(l, c), rr);
-            mn[x] = std::min(std::min(l, c), rr);
-          }
-        }
-        std::vector<std::uint8_t> lab(W);
-        for (int r = 0; r < prows; ++r) {
-          const std::size_t r0 = std::size_t(r) * W, r1 = r0 + W, r2 = r1 + W;
-          const std::int32_t* v = &inten[r1];
-          for (int x = 0; x < w; ++x) {
-            const std::size_t i0 = r0 + std::size_t(x), i1 = r1 + std::size_t(x),
-                              i2 = r2 + std::size_t(x);
-            const std::int32_t m = std::max(std::max(hmax[i0], hmax[i1]), hmax[i2]);
-            const std::int32_t n = std::min(std::min(hmin[i0], hmin[i1]), hmin[i2]);
-            lab[std::size_t(x)] = std::uint8_t((m == v[x] ? 1 : 0) | (n == v[x] ? 2 : 0));
-          }
-          const std::uint8_t* src = t + std::size_t((Y0 - kDilations + r) & hm) * W * 4;
-          for (int x = 0; x < w; ++x) {
-            if (!lab[std::size_t(x)]) continue;
-            const std::size_t i = std::size_t(r) * W + std::size_t(x);
+          // Dilation passes: pass p produces row L - 1 - p from rows L - 2 - p .. L - p.
+          for (int pass = 1; pass <= kDilations; ++pass) {
+            const int y = L - 1 - pass;
+            if (y < Y0 - kDilations + pass) break;
             for (int k = 0; k < 2; ++k) {
-              if (!(lab[std::size_t(x)] & (1 << k))) continue;
-              for (int c = 0; c < nplanes; ++c)
-                pl[k][0].p[c][i] = src[std::size_t(x) * 4 + std::size_t(c)];
-              pl[k][0].p[4][i] = 1;
+              const std::uint8_t* in[3][5];
+              for (int d = 0; d < 3; ++d) {
+                for (int c = 0; c < np1; ++c) in[d][c] = b.img[k][pass - 1].row(c, local(y - 1 + d));
+              }
+              std::uint8_t* out[5];
+              if (pass < kDilations) {
+                planes_of(b.img[k][pass], y, out);
+              } else {
+                for (int c = 0; c < np1; ++c) out[c] = b.last[k].data() + std::size_t(c) * rstride + kPad;
+              }
+              dilate_row(b, in, out);
+              if (pass == kDilations) {
+                accumulate_row(w, np1, out[0], rstride, b.acc[k].data(), (y & 3) == 0);
+              }
             }
           }
-        }
-        std::vector<std::uint16_t> hs;
-        for (int pass = 0; pass < kDilations; ++pass) {
-          const int src = pass & 1, dst = src ^ 1;
-          for (int k = 0; k < 2; ++k) {
-            dilate_band(w, pl[k][src], pl[k][dst], nplanes, pass + 1, prows - pass - 1, hs);
-          }
-        }
-        const int fin = kDilations & 1;
-        for (int by = int(by0); by < int(by1); ++by) {
+          // A finished block row: block means, empty texels taking the block's extreme colour.
+          const int yf = L - 1 - kDilations;
+          if (yf < Y0 || (yf & 3) != 3) continue;
+          const int by = yf >> 2;
+          const std::uint32_t n = std::uint32_t(4 * bw);
+          const float inv = 1.0f / float(n);
           for (int bx = 0; bx < g.nbx; ++bx) {
-            // The block's own brightest and darkest texels (filler for empty texels).
-            int xmax = 0, ymax = 0, xmin = 0, ymin = 0;
-            std::int32_t vmax = -1, vmin = 1 << 30;
-            for (int y = by * 4; y < by * 4 + 4; ++y) {
-              const std::int32_t* row = &inten[std::size_t(y - Y0 + kHalo) * W];
-              for (int x = bx * bw; x < bx * bw + bw; ++x) {
-                if (row[x] > vmax) {
-                  vmax = row[x];
-                  xmax = x;
-                  ymax = y;
-                }
-                if (row[x] < vmin) {
-                  vmin = row[x];
-                  xmin = x;
-                  ymin = y;
-                }
+            const Extremes& e = ext_rows[by & 1][std::size_t(bx)];
+            const std::uint8_t* fill_c[2] = {t + (std::size_t(e.ymax) * W + std::size_t(e.xmax)) * 4,
+                                             t + (std::size_t(e.ymin) * W + std::size_t(e.xmin)) * 4};
+            const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+            float* dst[2] = {&high[bi * 4], &low[bi * 4]};
+            for (int k = 0; k < 2; ++k) {
+              std::uint32_t sum[5] = {};
+              for (int c = 0; c < np1; ++c) {
+                const std::uint16_t* a = b.acc[k].data() + std::size_t(c) * (W + 16) + std::size_t(bx * bw);
+                for (int x = 0; x < bw; ++x) sum[c] += a[x];
               }
-            }
-            const std::uint8_t* fill_c[2] = {t + (std::size_t(ymax) * W + std::size_t(xmax)) * 4,
-                                             t + (std::size_t(ymin) * W + std::size_t(xmin)) * 4};
-            std::uint32_t sum[2][4] = {};
-            for (int y = by * 4; y < by * 4 + 4; ++y) {
-              const std::size_t row = std::size_t(y - Y0 + kDilations) * W;
-              for (int x = bx * bw; x < bx * bw + bw; ++x) {
-                const std::size_t i = row + std::size_t(x);
-                for (int k = 0; k < 2; ++k) {
-                  const BandPlanes& p = pl[k][fin];
-                  if (p.p[4][i]) {
-                    for (int ch = 0; ch < nplanes; ++ch) sum[k][ch] += p.p[ch][i];
-                  } else {
-                    for (int ch = 0; ch < nplanes; ++ch) sum[k][ch] += fill_c[k][ch];
-                  }
-                }
+              const std::uint32_t empty = n - sum[nplanes];
+              for (int c = 0; c < 4; ++c) {
+                const std::uint32_t v =
+                    c < nplanes ? sum[c] + empty * fill_c[k][c] : 255u * n;
+                dst[k][c] = float(v) * inv;
               }
-            }
-            if (nplanes == 3) sum[0][3] = sum[1][3] = 255u * std::uint32_t(4 * bw);
-            const float inv = 1.0f / float(4 * bw);
-            const std::size_t b = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-            for (int ch = 0; ch < 4; ++ch) {
-              high[b * 4 + std::size_t(ch)] = float(sum[0][ch]) * inv;
-              low[b * 4 + std::size_t(ch)] = float(sum[1][ch]) * inv;
             }
           }
         }

@@ -135,6 +135,69 @@ inline vu16x8 select(vu16x8 mask, vu16x8 a, vu16x8 b) {
   return vu16x8(_mm_or_si128(_mm_and_si128(mask.v, a.v), _mm_andnot_si128(mask.v, b.v)));
 }
 
+/// Four float lanes (exact integer arithmetic below 2^24 in the PVRTC kernels).
+struct vf4 {
+  __m128 v;
+  vf4() : v(_mm_setzero_ps()) {}
+  explicit vf4(__m128 x) : v(x) {}
+  explicit vf4(float a) : v(_mm_set1_ps(a)) {}
+};
+inline vf4 loadf4(const float* p) { return vf4(_mm_loadu_ps(p)); }
+inline void storef4(vf4 a, float* p) { _mm_storeu_ps(p, a.v); }
+inline vf4 operator+(vf4 a, vf4 b) { return vf4(_mm_add_ps(a.v, b.v)); }
+inline vf4 operator*(vf4 a, vf4 b) { return vf4(_mm_mul_ps(a.v, b.v)); }
+inline vf4 max(vf4 a, vf4 b) { return vf4(_mm_max_ps(a.v, b.v)); }
+inline vf4 min(vf4 a, vf4 b) { return vf4(_mm_min_ps(a.v, b.v)); }
+/// All-ones 32-bit lanes where a == b.
+inline vint4 cmpeq(vf4 a, vf4 b) { return vint4(_mm_castps_si128(_mm_cmpeq_ps(a.v, b.v))); }
+inline vf4 to_float(vint4 a) { return vf4(_mm_cvtepi32_ps(a.v)); }
+inline vint4 operator&(vint4 a, vint4 b) { return vint4(_mm_and_si128(a.v, b.v)); }
+inline vint4 operator|(vint4 a, vint4 b) { return vint4(_mm_or_si128(a.v, b.v)); }
+/// Logical right shift of the 32-bit lanes.
+template <int N>
+inline vint4 srl(vint4 a) {
+  return vint4(_mm_srli_epi32(a.v, N));
+}
+/// Loads four 4-byte texels as four 32-bit lanes.
+inline vint4 load_texels4(const std::uint8_t* p) {
+  return vint4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+
+/// Sixteen unsigned 8-bit lanes.
+struct vu8x16 {
+  __m128i v;
+  vu8x16() : v(_mm_setzero_si128()) {}
+  explicit vu8x16(__m128i x) : v(x) {}
+  explicit vu8x16(std::uint8_t a) : v(_mm_set1_epi8(static_cast<char>(a))) {}
+};
+inline vu8x16 load_u8x16(const std::uint8_t* p) {
+  return vu8x16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+inline void store_u8x16(vu8x16 a, std::uint8_t* p) {
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(p), a.v);
+}
+/// Wrapping 8-bit addition.
+inline vu8x16 operator+(vu8x16 a, vu8x16 b) { return vu8x16(_mm_add_epi8(a.v, b.v)); }
+inline vu8x16 operator&(vu8x16 a, vu8x16 b) { return vu8x16(_mm_and_si128(a.v, b.v)); }
+inline vu8x16 operator|(vu8x16 a, vu8x16 b) { return vu8x16(_mm_or_si128(a.v, b.v)); }
+inline vu8x16 cmpeq(vu8x16 a, vu8x16 b) { return vu8x16(_mm_cmpeq_epi8(a.v, b.v)); }
+/// ~a & b.
+inline vu8x16 andnot(vu8x16 a, vu8x16 b) { return vu8x16(_mm_andnot_si128(a.v, b.v)); }
+inline vu8x16 select(vu8x16 mask, vu8x16 a, vu8x16 b) {
+  return vu8x16(_mm_or_si128(_mm_and_si128(mask.v, a.v), _mm_andnot_si128(mask.v, b.v)));
+}
+/// True when any lane is non-zero in its top bit (masks from cmpeq).
+inline bool any(vu8x16 mask) { return _mm_movemask_epi8(mask.v) != 0; }
+/// Lanes 0-7 / 8-15 zero-extended to 16 bits.
+inline vu16x8 widen_lo(vu8x16 a) { return vu16x8(_mm_unpacklo_epi8(a.v, _mm_setzero_si128())); }
+inline vu16x8 widen_hi(vu8x16 a) { return vu16x8(_mm_unpackhi_epi8(a.v, _mm_setzero_si128())); }
+/// Lanes of lo then hi, each (<= 255) as a byte.
+inline vu8x16 narrow(vu16x8 lo, vu16x8 hi) { return vu8x16(_mm_packus_epi16(lo.v, hi.v)); }
+/// Sixteen 32-bit lanes (each 0..255, in order a, b, c, d) as bytes.
+inline vu8x16 narrow(vint4 a, vint4 b, vint4 c, vint4 d) {
+  return vu8x16(_mm_packus_epi16(_mm_packs_epi32(a.v, b.v), _mm_packs_epi32(c.v, d.v)));
+}
+
 #else  // scalar backend
 
 struct vint4 {
@@ -235,6 +298,130 @@ inline vu16x8 srl(vu16x8 a) {
 inline vu16x8 select(vu16x8 mask, vu16x8 a, vu16x8 b) {
   vu16x8 r;
   for (int i = 0; i < 8; ++i) r.l[i] = std::uint16_t((mask.l[i] & a.l[i]) | (~mask.l[i] & b.l[i]));
+  return r;
+}
+
+
+struct vf4 {
+  float l[4] = {0, 0, 0, 0};
+  vf4() = default;
+  explicit vf4(float a) : l{a, a, a, a} {}
+};
+inline vf4 loadf4(const float* p) {
+  vf4 r;
+  for (int i = 0; i < 4; ++i) r.l[i] = p[i];
+  return r;
+}
+inline void storef4(vf4 a, float* p) {
+  for (int i = 0; i < 4; ++i) p[i] = a.l[i];
+}
+#define TESSERA_SIMD_F4_BINOP(op, expr) \
+  inline vf4 op(vf4 a, vf4 b) {         \
+    vf4 r;                              \
+    for (int i = 0; i < 4; ++i) {       \
+      const float x = a.l[i], y = b.l[i]; \
+      r.l[i] = (expr);                  \
+    }                                   \
+    return r;                           \
+  }
+TESSERA_SIMD_F4_BINOP(operator+, x + y)
+TESSERA_SIMD_F4_BINOP(operator*, x * y)
+TESSERA_SIMD_F4_BINOP(max, x > y ? x : y)
+TESSERA_SIMD_F4_BINOP(min, x < y ? x : y)
+#undef TESSERA_SIMD_F4_BINOP
+inline vint4 cmpeq(vf4 a, vf4 b) {
+  vint4 r;
+  for (int i = 0; i < 4; ++i) r.l[i] = a.l[i] == b.l[i] ? -1 : 0;
+  return r;
+}
+inline vf4 to_float(vint4 a) {
+  vf4 r;
+  for (int i = 0; i < 4; ++i) r.l[i] = float(a.l[i]);
+  return r;
+}
+inline vint4 operator&(vint4 a, vint4 b) {
+  return {a.l[0] & b.l[0], a.l[1] & b.l[1], a.l[2] & b.l[2], a.l[3] & b.l[3]};
+}
+inline vint4 operator|(vint4 a, vint4 b) {
+  return {a.l[0] | b.l[0], a.l[1] | b.l[1], a.l[2] | b.l[2], a.l[3] | b.l[3]};
+}
+template <int N>
+inline vint4 srl(vint4 a) {
+  vint4 r;
+  for (int i = 0; i < 4; ++i) r.l[i] = std::int32_t(std::uint32_t(a.l[i]) >> N);
+  return r;
+}
+inline vint4 load_texels4(const std::uint8_t* p) {
+  vint4 r;
+  for (int i = 0; i < 4; ++i) {
+    std::uint32_t x;
+    std::memcpy(&x, p + 4 * i, 4);
+    r.l[i] = std::int32_t(x);
+  }
+  return r;
+}
+
+struct vu8x16 {
+  std::uint8_t l[16] = {};
+  vu8x16() = default;
+  explicit vu8x16(std::uint8_t a) {
+    for (auto& x : l) x = a;
+  }
+};
+inline vu8x16 load_u8x16(const std::uint8_t* p) {
+  vu8x16 r;
+  std::memcpy(r.l, p, 16);
+  return r;
+}
+inline void store_u8x16(vu8x16 a, std::uint8_t* p) { std::memcpy(p, a.l, 16); }
+#define TESSERA_SIMD_U8_BINOP(op, expr)                        \
+  inline vu8x16 op(vu8x16 a, vu8x16 b) {                       \
+    vu8x16 r;                                                  \
+    for (int i = 0; i < 16; ++i) r.l[i] = std::uint8_t(expr);  \
+    return r;                                                  \
+  }
+TESSERA_SIMD_U8_BINOP(operator+, a.l[i] + b.l[i])
+TESSERA_SIMD_U8_BINOP(operator&, a.l[i] & b.l[i])
+TESSERA_SIMD_U8_BINOP(operator|, a.l[i] | b.l[i])
+TESSERA_SIMD_U8_BINOP(cmpeq, a.l[i] == b.l[i] ? 0xff : 0)
+TESSERA_SIMD_U8_BINOP(andnot, ~a.l[i] & b.l[i])
+#undef TESSERA_SIMD_U8_BINOP
+inline vu8x16 select(vu8x16 mask, vu8x16 a, vu8x16 b) {
+  vu8x16 r;
+  for (int i = 0; i < 16; ++i) r.l[i] = std::uint8_t((mask.l[i] & a.l[i]) | (~mask.l[i] & b.l[i]));
+  return r;
+}
+inline bool any(vu8x16 mask) {
+  for (std::uint8_t x : mask.l) {
+    if (x & 0x80) return true;
+  }
+  return false;
+}
+inline vu16x8 widen_lo(vu8x16 a) {
+  vu16x8 r;
+  for (int i = 0; i < 8; ++i) r.l[i] = a.l[i];
+  return r;
+}
+inline vu16x8 widen_hi(vu8x16 a) {
+  vu16x8 r;
+  for (int i = 0; i < 8; ++i) r.l[i] = a.l[8 + i];
+  return r;
+}
+inline vu8x16 narrow(vu16x8 lo, vu16x8 hi) {
+  vu8x16 r;
+  for (int i = 0; i < 8; ++i) {
+    r.l[i] = std::uint8_t(lo.l[i] > 255 ? 255 : lo.l[i]);
+    r.l[8 + i] = std::uint8_t(hi.l[i] > 255 ? 255 : hi.l[i]);
+  }
+  return r;
+}
+inline vu8x16 narrow(vint4 a, vint4 b, vint4 c, vint4 d) {
+  vu8x16 r;
+  const vint4* v[4] = {&a, &b, &c, &d};
+  for (int i = 0; i < 16; ++i) {
+    const std::int32_t x = v[i / 4]->l[i % 4];
+    r.l[i] = std::uint8_t(x < 0 ? 0 : x > 255 ? 255 : x);
+  }
   return r;
 }
 
