@@ -153,6 +153,7 @@ inline vint4 cmpeq(vf4 a, vf4 b) { return vint4(_mm_castps_si128(_mm_cmpeq_ps(a.
 inline vf4 to_float(vint4 a) { return vf4(_mm_cvtepi32_ps(a.v)); }
 inline vint4 operator&(vint4 a, vint4 b) { return vint4(_mm_and_si128(a.v, b.v)); }
 inline vint4 operator|(vint4 a, vint4 b) { return vint4(_mm_or_si128(a.v, b.v)); }
+inline vint4 operator^(vint4 a, vint4 b) { return vint4(_mm_xor_si128(a.v, b.v)); }
 /// Logical right shift of the 32-bit lanes.
 template <int N>
 inline vint4 srl(vint4 a) {
@@ -196,6 +197,27 @@ inline vu8x16 narrow(vu16x8 lo, vu16x8 hi) { return vu8x16(_mm_packus_epi16(lo.v
 /// Sixteen 32-bit lanes (each 0..255, in order a, b, c, d) as bytes.
 inline vu8x16 narrow(vint4 a, vint4 b, vint4 c, vint4 d) {
   return vu8x16(_mm_packus_epi16(_mm_packs_epi32(a.v, b.v), _mm_packs_epi32(c.v, d.v)));
+}
+
+/// Lanes 0-3 of a then 0-3 of b (each 0..32767) as 16-bit lanes.
+inline vu16x8 narrow16(vint4 a, vint4 b) { return vu16x8(_mm_packs_epi32(a.v, b.v)); }
+/// Interleaves lanes 0-3 (zip_lo) or 4-7 (zip_hi) of a and b: a0 b0 a1 b1 ...
+inline vu16x8 zip_lo(vu16x8 a, vu16x8 b) { return vu16x8(_mm_unpacklo_epi16(a.v, b.v)); }
+inline vu16x8 zip_hi(vu16x8 a, vu16x8 b) { return vu16x8(_mm_unpackhi_epi16(a.v, b.v)); }
+template <int N>
+inline vint4 sll(vint4 a) {
+  return vint4(_mm_slli_epi32(a.v, N));
+}
+inline void store4(vint4 a, std::int32_t* p) { _mm_storeu_si128(reinterpret_cast<__m128i*>(p), a.v); }
+/// Bilinear taps of 8 texels spanning two 4-texel blocks: from p[0..3], left =
+/// (p0 p0 p1 p1 p1 p1 p2 p2) and right = (p1 p1 p2 p2 p2 p2 p3 p3).
+inline void taps8(const std::uint16_t* p, vu16x8& left, vu16x8& right) {
+  const __m128i x = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p));
+  const __m128i xx = _mm_unpacklo_epi64(x, x);
+  left = vu16x8(_mm_shufflehi_epi16(_mm_shufflelo_epi16(xx, _MM_SHUFFLE(1, 1, 0, 0)),
+                                    _MM_SHUFFLE(2, 2, 1, 1)));
+  right = vu16x8(_mm_shufflehi_epi16(_mm_shufflelo_epi16(xx, _MM_SHUFFLE(2, 2, 1, 1)),
+                                     _MM_SHUFFLE(3, 3, 2, 2)));
 }
 
 #else  // scalar backend
@@ -345,6 +367,9 @@ inline vint4 operator&(vint4 a, vint4 b) {
 inline vint4 operator|(vint4 a, vint4 b) {
   return {a.l[0] | b.l[0], a.l[1] | b.l[1], a.l[2] | b.l[2], a.l[3] | b.l[3]};
 }
+inline vint4 operator^(vint4 a, vint4 b) {
+  return {a.l[0] ^ b.l[0], a.l[1] ^ b.l[1], a.l[2] ^ b.l[2], a.l[3] ^ b.l[3]};
+}
 template <int N>
 inline vint4 srl(vint4 a) {
   vint4 r;
@@ -423,6 +448,48 @@ inline vu8x16 narrow(vint4 a, vint4 b, vint4 c, vint4 d) {
     r.l[i] = std::uint8_t(x < 0 ? 0 : x > 255 ? 255 : x);
   }
   return r;
+}
+
+
+inline vu16x8 narrow16(vint4 a, vint4 b) {
+  vu16x8 r;
+  for (int i = 0; i < 4; ++i) {
+    r.l[i] = std::uint16_t(a.l[i]);
+    r.l[4 + i] = std::uint16_t(b.l[i]);
+  }
+  return r;
+}
+inline vu16x8 zip_lo(vu16x8 a, vu16x8 b) {
+  vu16x8 r;
+  for (int i = 0; i < 4; ++i) {
+    r.l[2 * i] = a.l[i];
+    r.l[2 * i + 1] = b.l[i];
+  }
+  return r;
+}
+inline vu16x8 zip_hi(vu16x8 a, vu16x8 b) {
+  vu16x8 r;
+  for (int i = 0; i < 4; ++i) {
+    r.l[2 * i] = a.l[4 + i];
+    r.l[2 * i + 1] = b.l[4 + i];
+  }
+  return r;
+}
+template <int N>
+inline vint4 sll(vint4 a) {
+  vint4 r;
+  for (int i = 0; i < 4; ++i) r.l[i] = std::int32_t(std::uint32_t(a.l[i]) << N);
+  return r;
+}
+inline void store4(vint4 a, std::int32_t* p) {
+  for (int i = 0; i < 4; ++i) p[i] = a.l[i];
+}
+inline void taps8(const std::uint16_t* p, vu16x8& left, vu16x8& right) {
+  static constexpr int kL[8] = {0, 0, 1, 1, 1, 1, 2, 2};
+  for (int i = 0; i < 8; ++i) {
+    left.l[i] = p[kL[i]];
+    right.l[i] = p[kL[i] + 1];
+  }
 }
 
 #endif
