@@ -74,4 +74,9 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error);
 /// flags, only blocks next to a changed one are visited. Returns the count changed.
 int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& changed);
 
+/// The passes after the first modulation choice (see optimise.cpp): normal / high, 4 bpp:
+/// reseed; then the least-squares refinement (`iterations` sweeps, -1: the quality's default)
+/// and, for high or `exact_search_rounds` > 0, the exact search (polish).
+void optimise(EncoderState& s, Quality quality, int iterations, int exact_search_rounds);
+
 }  // namespace tessera::pvrtc::detail

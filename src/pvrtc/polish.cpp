@@ -361,9 +361,16 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
     eb[i] = expand_b(s.cb[i]);
   }
   const Window w{&s, &ea, &eb, &s.mode, s.alpha_mode ? 4 : 3};
+  // A block's search depends only on the endpoints in its 3x3 neighbourhood (and the modes,
+  // fixed here): once it has been searched, it is searched again only after one of those
+  // changed (step stamps: phase 4 * round + colour class). Skipping is exact, so rounds can run
+  // to convergence at a fraction of the cost.
+  std::vector<int> changed_at(g.blocks(), -1), searched_at(g.blocks(), -2);
   for (int round = 0; round < rounds; ++round) {
+    std::vector<std::uint8_t> any_change(std::size_t(g.nby / 2), 0);
     for (int cls = 0; cls < 4; ++cls) {
       const int ox = cls & 1, oy = cls >> 1;
+      const int step = 4 * round + cls;
       parallel_for(
           0, g.nby / 2, 4,
           [&](std::int64_t r0, std::int64_t r1) {
@@ -371,6 +378,17 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
               const int by = 2 * r + oy;
               for (int bx = ox; bx < g.nbx; bx += 2) {
                 const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+                int latest = -1;
+                for (int dy = -1; dy <= 1; ++dy) {
+                  for (int dx = -1; dx <= 1; ++dx) {
+                    latest = std::max(
+                        latest, changed_at[std::size_t((by + dy) & (g.nby - 1)) *
+                                               std::size_t(g.nbx) +
+                                           std::size_t((bx + dx) & (g.nbx - 1))]);
+                  }
+                }
+                if (latest < searched_at[j]) continue;
+                searched_at[j] = step;
                 LocalWindow lw;
                 build_local(w, bx, by, lw);
                 auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
@@ -402,11 +420,14 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
                 s.cb[j] = cur_b;
                 ea[j] = expand_a(cur_a);
                 eb[j] = expand_b(cur_b);
+                changed_at[j] = step;
+                any_change[std::size_t(r)] = 1;
               }
             }
           },
           s.threads);
     }
+    if (std::find(any_change.begin(), any_change.end(), 1) == any_change.end()) break;
   }
   // The windows were scored with every texel's best code within its block's mode: re-choosing
   // the modulation (and mode) of every block reproduces or improves on that.
