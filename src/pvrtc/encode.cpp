@@ -149,21 +149,6 @@ const SingleTable& single_table(int abits, int mi, bool two_bpp) {
 
 namespace {
 
-// Blocks whose exact 8x8-window error is at most this (~4 per channel RMS) are not reseeded.
-constexpr std::uint32_t kReseedMinError = 3000;
-
-int default_iterations(Quality q) {
-  switch (q) {
-    case Quality::fast:
-      return 0;
-    case Quality::normal:
-      return 3;
-    case Quality::high:
-      return 16;
-  }
-  return 0;
-}
-
 // Homogeneous blocks (all texels equal and opaque): optimal single-colour endpoints from the
 // lookup tables, replacing the dilation result.
 void homogeneous_shortcut(EncoderState& s) {
@@ -320,28 +305,10 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   }
   homogeneous_shortcut(s);
   choose_modulation(s);
-  // normal / high, 4 bpp: blocks whose footprint-wide start misses their own texels (thin
-  // features, stripes) get endpoints from those texels where the exact error drops (photos:
-  // normal +0.28 dB).
-  if (options.quality != Quality::fast && g.format == Format::pvrtc1_4bpp) {
-    std::vector<std::uint8_t> changed;
-    // RGBA: one pass (the exact window scores four channels and punch-through, so it costs
-    // more; this keeps high within 20x of PVRTexTool's pvrtcbest on RGBA too).
-    const int passes = options.quality == Quality::high && !s.alpha_mode ? 2 : 1;
-    for (int pass = 0; pass < passes; ++pass) {
-      if (reseed(s, kReseedMinError, changed) == 0) break;
-      choose_modulation(s);
-    }
-  }
-  const int iterations =
-      options.iterations >= 0 ? options.iterations : default_iterations(options.quality);
-  if (iterations > 0) refine(s, iterations);
-  if (options.exact_search_rounds > 0) {
-    polish(s, options.exact_search_rounds, 4, 3000);
-  } else if (options.quality == Quality::high && g.format == Format::pvrtc1_4bpp && !s.alpha_mode) {
-    // One round of the exact search, one sweep of the moves per block, blocks above ~6.4 RMS
-    // per channel only: photos +0.05 dB for +14% instructions.
-    polish(s, 1, 1, 6000);
+  // normal / high: reseed, least-squares refinement and the exact search (optimise.cpp).
+  if (options.quality != Quality::fast || options.iterations > 0 ||
+      options.exact_search_rounds > 0) {
+    optimise(s, options.quality, options.iterations, options.exact_search_rounds);
   }
   std::vector<std::uint8_t> out(level_size(options.format, image.width, image.height));
   const std::vector<std::uint64_t> w = s.words();
