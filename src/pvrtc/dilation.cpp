@@ -114,9 +114,10 @@ void label_row(Band& b, const float* i0, const float* i1, const float* i2, std::
 }
 
 // Initial planes of both extremum images for one row: the texel's colour where labelled.
+template <int np>
 void init_rows(Band& b, const std::uint8_t* lab, const std::uint8_t* src, std::uint8_t* const* p0,
                std::uint8_t* const* p1) {
-  const int w = b.w, np = b.nplanes;
+  const int w = b.w;
   int x = 0;
   if (w >= 16) {
     using namespace simd;
@@ -155,9 +156,10 @@ void init_rows(Band& b, const std::uint8_t* lab, const std::uint8_t* src, std::u
 
 // One 3x3 dilation pass for one row: `in[k][c]` is plane c of rows r-1, r, r+1 (k = 0, 1, 2);
 // empty texels next to filled ones take the rounded mean of the filled neighbours.
+template <int np>
 void dilate_row(Band& b, const std::uint8_t* const in[3][5], std::uint8_t* const* out) {
   using namespace simd;
-  const int w = b.w, np = b.nplanes;
+  const int w = b.w;
   const std::size_t vstride = std::size_t(w) + 2 * kPad;
   std::uint8_t* vf = b.vf.data() + kPad;
   auto vsrow = [&](int c) { return b.vs.data() + std::size_t(c) * vstride + kPad; };
@@ -209,7 +211,8 @@ void dilate_row(Band& b, const std::uint8_t* const in[3][5], std::uint8_t* const
 
 // Adds the final (pass 3) row of one image to the per-column block-row sums (`first`: the
 // block row's top row, which starts the sums).
-void accumulate_row(int w, int planes, const std::uint8_t* row, std::size_t stride,
+template <int planes>
+void accumulate_row(int w, const std::uint8_t* row, std::size_t stride,
                     std::uint16_t* acc, bool first) {
   using namespace simd;
   for (int k = 0; k < planes; ++k) {
@@ -233,28 +236,21 @@ struct Extremes {
   int xmax = 0, ymax = 0, xmin = 0, ymin = 0;
 };
 
-}  // namespace
-
-void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vector<float>& high) {
-  const Grid& g = s.g;
-  const std::uint8_t* t = s.target.data();
-  const int w = g.pw, hm = g.ph - 1, bw = g.bw;
-  const std::size_t W = std::size_t(w);
-  const int nplanes = s.alpha_mode ? 4 : 3;  // alpha is 255 everywhere otherwise
-  low.assign(g.blocks() * 4, 0.0f);
-  high.assign(g.blocks() * 4, 0.0f);
-  // Bands of block rows: long enough that the halo is cheap, at least 8 per image for threads.
-  const int band = std::clamp(g.nby / 8, 1, 32);
-  parallel_for(
-      0, g.nby, band,
-      [&](std::int64_t by0, std::int64_t by1) {
+// Block rows [by0, by1) with `nplanes` colour planes (3, or 4 in alpha mode).
+template <int nplanes>
+void dilate_band(const EncoderState& s, int by0, int by1, std::vector<float>& low,
+                 std::vector<float>& high) {
+        const Grid& g = s.g;
+        const std::uint8_t* t = s.target.data();
+        const int w = g.pw, hm = g.ph - 1, bw = g.bw;
+        const std::size_t W = std::size_t(w);
         const int Y0 = int(by0) * 4, Y1 = int(by1) * 4;
         // Band-local row numbering: texel row y is local row y - Y0 + 8 (>= 0).
         auto local = [&](int y) { return y - Y0 + 8; };
         Band b;
         b.w = w;
         b.nplanes = nplanes;
-        const int np1 = nplanes + 1;
+        constexpr int np1 = nplanes + 1;
         b.inten.init(1, w);
         b.lab.init(1, w);
         for (auto& img : b.img) {
@@ -308,7 +304,7 @@ void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vec
             std::uint8_t *p0[5], *p1[5];
             planes_of(b.img[0][0], yl, p0);
             planes_of(b.img[1][0], yl, p1);
-            init_rows(b, lab, t + std::size_t(yl & hm) * W * 4, p0, p1);
+            init_rows<nplanes>(b, lab, t + std::size_t(yl & hm) * W * 4, p0, p1);
           }
           // Dilation passes: pass p produces row L - 1 - p from rows L - 2 - p .. L - p.
           for (int pass = 1; pass <= kDilations; ++pass) {
@@ -325,9 +321,9 @@ void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vec
               } else {
                 for (int c = 0; c < np1; ++c) out[c] = b.last[k].data() + std::size_t(c) * rstride + kPad;
               }
-              dilate_row(b, in, out);
+              dilate_row<nplanes>(b, in, out);
               if (pass == kDilations) {
-                accumulate_row(w, np1, out[0], rstride, b.acc[k].data(), (y & 3) == 0);
+                accumulate_row<np1>(w, out[0], rstride, b.acc[k].data(), (y & 3) == 0);
               }
             }
           }
@@ -357,6 +353,25 @@ void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vec
               }
             }
           }
+        }
+}
+
+}  // namespace
+
+void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vector<float>& high) {
+  const Grid& g = s.g;
+  low.assign(g.blocks() * 4, 0.0f);
+  high.assign(g.blocks() * 4, 0.0f);
+  // Bands of block rows: long enough that the halo is cheap, at least 8 per image for threads.
+  const int band = std::clamp(g.nby / 8, 1, 32);
+  parallel_for(
+      0, g.nby, band,
+      [&](std::int64_t by0, std::int64_t by1) {
+        // Alpha is 255 everywhere unless alpha_mode: three colour planes.
+        if (s.alpha_mode) {
+          dilate_band<4>(s, int(by0), int(by1), low, high);
+        } else {
+          dilate_band<3>(s, int(by0), int(by1), low, high);
         }
       },
       s.threads);
