@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <random>
 #include <thread>
 #include <vector>
@@ -453,6 +454,67 @@ TEST(TextureFiltering, SampleQuadUsesSharedCoarseGradients) {
   const auto out = tex.sample_quad(s, quad);
   const UvGradients g = quad_gradients(quad);
   for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(out[i], tex.sample(s, quad[i], g));
+}
+
+TEST(TextureFiltering, Sample4IsBitIdenticalToPerLaneSample) {
+  // Power-of-two (vector addressing for wrap), NPOT, non-square and one-level textures; every
+  // filter (bilinear/trilinear take the four-lane path), address mode, LOD setting and lane mask.
+  const Texture textures[] = {
+      make_texture(random_image(64, 64, 21)), make_texture(random_image(37, 20, 22)),
+      make_texture(random_image(128, 8, 23)),
+      make_texture(random_image(16, 16, 24), TextureOptions{true, false, 1, 0})};
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<float> coord(-3.0f, 4.0f);
+  std::uniform_real_distribution<float> grad(-1.0f, 1.0f);
+  std::uniform_int_distribution<int> special(0, 40);
+  const float kSpecial[] = {0.0f, -0.0f, 1.0f, std::nanf(""), INFINITY, -INFINITY, 1e-30f, 1e30f};
+  auto value = [&](float v) { return special(rng) == 0 ? kSpecial[rng() % 8] : v; };
+  for (const Texture& tex : textures) {
+    for (TextureFilter filter : kAllFilters) {
+      for (AddressMode mu : kAllModes) {
+        for (AddressMode mv : {AddressMode::wrap, AddressMode::clamp, AddressMode::border}) {
+          SamplerState s;
+          s.filter = filter;
+          s.address_u = mu;
+          s.address_v = mv;
+          s.border_color = {0.25f, 0.5f, 0.75f, 1.0f};
+          for (int i = 0; i < 120; ++i) {
+            s.lod_bias = i % 5 == 1 ? 0.7f : (i % 5 == 2 ? -1.3f : 0.0f);
+            s.min_lod = i % 7 == 3 ? 1.5f : (i % 7 == 4 ? -0.0f : -1000.0f);
+            s.max_lod = i % 11 == 5 ? 0.0f : (i % 11 == 6 ? 2.25f : 1000.0f);
+            std::array<Uv, 4> uv;
+            std::array<UvGradients, 4> g;
+            const float scale = std::exp2(float(i % 14) - 9.0f);
+            for (std::size_t lane = 0; lane < 4; ++lane) {
+              uv[lane] = {value(coord(rng)), value(coord(rng))};
+              g[lane] = {value(grad(rng) * scale), value(grad(rng) * scale),
+                         value(grad(rng) * scale), value(grad(rng) * scale)};
+            }
+            const std::uint32_t active = i % 16 == 0 ? 15u : std::uint32_t(i % 16);
+            std::array<std::array<float, 4>, 4> out;
+            const std::array<float, 4> untouched = {-7.0f, -7.0f, -7.0f, -7.0f};
+            out.fill(untouched);
+            tex.sample4(s, uv, g, active, out, i % 3);
+            for (std::size_t lane = 0; lane < 4; ++lane) {
+              if (!(active >> lane & 1u)) {
+                EXPECT_EQ(out[lane], untouched);
+                continue;
+              }
+              const auto want = tex.sample(s, uv[lane], g[lane], i % 3);
+              for (std::size_t c = 0; c < 4; ++c) {
+                // Bitwise: also catches -0 vs +0 (NaN texels do not occur here).
+                std::uint32_t a, b;
+                std::memcpy(&a, &out[lane][c], 4);
+                std::memcpy(&b, &want[c], 4);
+                ASSERT_EQ(a, b) << "filter " << int(filter) << " modes " << int(mu) << int(mv)
+                                << " i " << i << " lane " << lane << " c " << c;
+              }
+            }
+          }
+        }
+      }
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -286,6 +286,15 @@ class Texture {
   /// `layer` is clamped to [0, layers - 1]. Returns linear RGBA.
   std::array<float, 4> sample(const SamplerState& sampler, Uv uv, const UvGradients& gradients,
                               int layer = 0) const;
+  /// Four independent `sample` lookups, e.g. the pixels of a 2x2 quad with per-pixel (fine)
+  /// gradients: for every lane i whose bit is set in `active` (bits 0..3),
+  /// `out[i] = sample(sampler, uv[i], gradients[i], layer)`, bit for bit. Other lanes' outputs
+  /// are left as they were; their inputs must be initialised but do not matter. Bilinear and
+  /// trilinear lookups share the footprint, LOD, level and weight arithmetic across the four lanes
+  /// (SSE2 where available); texels are still read and weighted per lane.
+  void sample4(const SamplerState& sampler, const std::array<Uv, 4>& uv,
+               const std::array<UvGradients, 4>& gradients, std::uint32_t active,
+               std::array<std::array<float, 4>, 4>& out, int layer = 0) const;
   /// Filtered lookup at an explicit LOD (one probe even when anisotropic): GLSL `textureLod`.
   std::array<float, 4> sample_lod(const SamplerState& sampler, Uv uv, float lod,
                                   int layer = 0) const;

@@ -121,18 +121,28 @@ Result<Frame> SceneRenderer::render(const scene::Camera& camera, const FrameOpti
         options.shading == Shading::flat
             ? std::array<float, 4>{1, 1, 1, 1}
             : std::array<float, 4>{mat.base_color[0], mat.base_color[1], mat.base_color[2], 1};
-    // One call per 2x2 quad; each active lane is shaded exactly as a per-pixel shader would.
+    // One call per 2x2 quad; each active lane is shaded exactly as a per-pixel shader would
+    // (Texture::sample4 is bit-identical to a `sample` per lane).
     d.quad_shader = [tex, base, sampler](const raster::ShadeInput* lanes, std::uint32_t active,
                                          float* out) {
+      std::array<std::array<float, 4>, 4> texel;
+      if (tex) {
+        std::array<Uv, 4> uv{};
+        std::array<UvGradients, 4> g{};
+        for (int lane = 0; lane < 4; ++lane) {
+          if (!(active >> lane & 1u)) continue;
+          const raster::ShadeInput& in = lanes[lane];
+          uv[std::size_t(lane)] = {in.varyings[0], in.varyings[1]};
+          g[std::size_t(lane)] = {in.ddx[0], in.ddx[1], in.ddy[0], in.ddy[1]};
+        }
+        tex->sample4(sampler, uv, g, active, texel);
+      }
       for (int lane = 0; lane < 4; ++lane) {
         if (!(active >> lane & 1u)) continue;
-        const raster::ShadeInput& in = lanes[lane];
         float* o = out + lane * raster::kMaxChannels;
         std::array<float, 4> c = base;
         if (tex) {
-          const UvGradients g{in.ddx[0], in.ddx[1], in.ddy[0], in.ddy[1]};
-          const std::array<float, 4> t = tex->sample(sampler, {in.varyings[0], in.varyings[1]}, g);
-          for (int k = 0; k < 3; ++k) c[k] *= t[k];
+          for (int k = 0; k < 3; ++k) c[std::size_t(k)] *= texel[std::size_t(lane)][std::size_t(k)];
         }
         o[0] = c[0];
         o[1] = c[1];

@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "texture/sampler_kernel.h"
+#include "texture/sampler_quad_kernel.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -261,29 +263,39 @@ inline void resolve_pair_fast(int x0, int size, AddressMode mode, int out[2]) {
   texture_detail::resolve_pair(x0, size, mode, out);
 }
 
-/// Adds the four taps of one bilinear block (tap weight wx[k] * wy[j], rows then columns), as
-/// `AccumulateSink::quad` does.
-inline void add_bilinear(const AccumulateSink& sink, texture_detail::Accum4& acc, const float* base,
-                         std::size_t stride, const int rx[2], const int ry[2], const float wx[2],
-                         const float wy[2]) {
+/// Adds the four taps of one bilinear block with weights `w` = (w00, w10, w01, w11), tap (k, j)
+/// at column rx[k], row ry[j], rows then columns, as `AccumulateSink::quad` does. Border taps
+/// (rx or ry < 0) read `border`.
+inline void add_bilinear_weights(texture_detail::Accum4& acc, const float* base, std::size_t stride,
+                                 const int rx[2], const int ry[2], const float w[4],
+                                 const float* border) {
   const std::ptrdiff_t c0 = std::ptrdiff_t(rx[0]) * 4;
   const std::ptrdiff_t c1 = std::ptrdiff_t(rx[1]) * 4;
   if ((rx[0] | rx[1] | ry[0] | ry[1]) >= 0) {
     const float* r0 = base + std::size_t(ry[0]) * stride;
     const float* r1 = base + std::size_t(ry[1]) * stride;
-    acc.add(wx[0] * wy[0], r0 + c0);
-    acc.add(wx[1] * wy[0], r0 + c1);
-    acc.add(wx[0] * wy[1], r1 + c0);
-    acc.add(wx[1] * wy[1], r1 + c1);
+    acc.add(w[0], r0 + c0);
+    acc.add(w[1], r0 + c1);
+    acc.add(w[2], r1 + c0);
+    acc.add(w[3], r1 + c1);
     return;
   }
   for (int j = 0; j < 2; ++j) {
     const float* row = base + std::size_t(ry[j] < 0 ? 0 : ry[j]) * stride;
     for (int k = 0; k < 2; ++k) {
       const bool is_border = ry[j] < 0 || rx[k] < 0;
-      acc.add(wx[k] * wy[j], is_border ? sink.border : row + (k ? c1 : c0));
+      acc.add(w[2 * j + k], is_border ? border : row + (k ? c1 : c0));
     }
   }
+}
+
+/// Adds the four taps of one bilinear block (tap weight wx[k] * wy[j]), as
+/// `AccumulateSink::quad` does.
+inline void add_bilinear(const AccumulateSink& sink, texture_detail::Accum4& acc, const float* base,
+                         std::size_t stride, const int rx[2], const int ry[2], const float wx[2],
+                         const float wy[2]) {
+  const float w[4] = {wx[0] * wy[0], wx[1] * wy[0], wx[0] * wy[1], wx[1] * wy[1]};
+  add_bilinear_weights(acc, base, stride, rx, ry, w, sink.border);
 }
 
 /// Bilinear or trilinear lookup of a one-probe footprint (the shading hot path): exactly the
@@ -483,6 +495,82 @@ std::array<float, 4> Texture::sample(const SamplerState& sampler, Uv uv,
     return sample_one_probe(sink, sampler, fp);
   }
   return sample_footprint(sampler, compute_footprint(sampler, shape_, uv, gradients), layer);
+}
+
+void Texture::sample4(const SamplerState& sampler, const std::array<Uv, 4>& uv,
+                      const std::array<UvGradients, 4>& gradients, std::uint32_t active,
+                      std::array<std::array<float, 4>, 4>& out, int layer) const {
+  active &= 15u;
+#if defined(__SSE2__)
+  constexpr int kExact = 1 << 24;  // level sizes stay exact in float (see level_size4)
+  if (active && !empty() &&
+      (sampler.filter == TextureFilter::trilinear || sampler.filter == TextureFilter::bilinear) &&
+      shape_.width < kExact && shape_.height < kExact) {
+    using namespace texture_detail;
+    // Structure-of-arrays inputs; inactive lanes compute on zeros and their results are dropped.
+    alignas(16) static constexpr std::uint32_t kLaneBits[16][4] = {
+        {0, 0, 0, 0},     {~0u, 0, 0, 0},     {0, ~0u, 0, 0},     {~0u, ~0u, 0, 0},
+        {0, 0, ~0u, 0},   {~0u, 0, ~0u, 0},   {0, ~0u, ~0u, 0},   {~0u, ~0u, ~0u, 0},
+        {0, 0, 0, ~0u},   {~0u, 0, 0, ~0u},   {0, ~0u, 0, ~0u},   {~0u, ~0u, 0, ~0u},
+        {0, 0, ~0u, ~0u}, {~0u, 0, ~0u, ~0u}, {0, ~0u, ~0u, ~0u}, {~0u, ~0u, ~0u, ~0u}};
+    const __m128 lanes = _mm_load_ps(reinterpret_cast<const float*>(kLaneBits[active]));
+    float in[16];
+    std::memcpy(in, gradients.data(), sizeof in);  // dudx, dvdx, dudy, dvdy per lane
+    __m128 dudx = _mm_loadu_ps(in), dvdx = _mm_loadu_ps(in + 4);
+    __m128 dudy = _mm_loadu_ps(in + 8), dvdy = _mm_loadu_ps(in + 12);
+    _MM_TRANSPOSE4_PS(dudx, dvdx, dudy, dvdy);
+    std::memcpy(in, uv.data(), 8 * sizeof(float));  // u, v per lane
+    const __m128 uv01 = _mm_loadu_ps(in), uv23 = _mm_loadu_ps(in + 4);
+    const __m128 u = _mm_and_ps(lanes, _mm_shuffle_ps(uv01, uv23, _MM_SHUFFLE(2, 0, 2, 0)));
+    const __m128 v = _mm_and_ps(lanes, _mm_shuffle_ps(uv01, uv23, _MM_SHUFFLE(3, 1, 3, 1)));
+    alignas(16) float len[4], raw_lod[4];
+    _mm_store_ps(len, footprint_length4(_mm_and_ps(lanes, dudx), _mm_and_ps(lanes, dvdx),
+                                        _mm_and_ps(lanes, dudy), _mm_and_ps(lanes, dvdy),
+                                        float(shape_.width), float(shape_.height)));
+    // The scalar path's log2, per lane; skipped where the LOD is known to end at level 0.
+    const bool shortcut = magnification_shortcut(sampler);
+    for (int lane = 0; lane < 4; ++lane) {
+      const bool skip = !(active >> lane & 1u) || (shortcut && len[lane] <= 1.0f);
+      raw_lod[lane] = skip ? 0.0f : std::log2(len[lane]);
+    }
+    OneProbe4 plan;
+    plan_one_probe4(sampler, shape_, clamp_lod4(sampler, shape_, _mm_load_ps(raw_lod)), u, v, plan);
+    layer = std::clamp(layer, 0, shape_.layers - 1);
+    const std::size_t* level_offsets = offsets_.data() + std::size_t(layer) * shape_.levels;
+    const float* texels = texels_.data();
+    for (int lane = 0; lane < 4; ++lane) {
+      if (!(active >> lane & 1u)) continue;
+      Accum4 acc;
+      for (int li = 0; li < plan.count[lane]; ++li) {
+        const float* base = texels + level_offsets[plan.level[li][lane]];
+        const float* w4 = plan.weight[li][lane];
+        if (plan.has_offsets) {
+          // Same taps and order as add_bilinear_weights without border reads.
+          const int* o = plan.offset[li][lane];
+          acc.add(w4[0], base + o[0]);
+          acc.add(w4[1], base + o[1]);
+          acc.add(w4[2], base + o[2]);
+          acc.add(w4[3], base + o[3]);
+          continue;
+        }
+        const int w = plan.w[li][lane], h = plan.h[li][lane];
+        int rx[2], ry[2];
+        resolve_pair_fast(plan.x0[li][lane], w, sampler.address_u, rx);
+        resolve_pair_fast(plan.y0[li][lane], h, sampler.address_v, ry);
+        add_bilinear_weights(acc, base, std::size_t(w) * 4, rx, ry, w4,
+                             sampler.border_color.data());
+      }
+      out[std::size_t(lane)] = acc.value();
+    }
+    return;
+  }
+#endif
+  for (int lane = 0; lane < 4; ++lane) {
+    if (active >> lane & 1u) {
+      out[std::size_t(lane)] =
+          sample(sampler, uv[std::size_t(lane)], gradients[std::size_t(lane)], layer);
+    }
+  }
 }
 
 std::array<float, 4> Texture::sample_lod(const SamplerState& sampler, Uv uv, float lod,
