@@ -188,9 +188,12 @@ Result<ImageRGBA8> decode_image(std::span<const std::uint8_t> bytes, const std::
 
   Result<PngRaw> raw = decode_png_raw(bytes, name, false);
   if (!raw) return raw.status();
-  ImageRGBA8 img(raw->width, raw->height);
+  ImageRGBA8 img;  // no zero-filled buffer: the decoded samples become the pixels
+  img.width = raw->width;
+  img.height = raw->height;
   img.has_alpha = raw->has_alpha;
   if (raw->sixteen) {
+    img.pixels.resize(img.pixel_count() * 4);
     for (std::size_t i = 0; i < img.pixels.size(); ++i) {
       img.pixels[i] = std::uint8_t((std::uint32_t(raw->samples16[i]) * 255u + 32767u) / 65535u);
     }

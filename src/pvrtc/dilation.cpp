@@ -362,8 +362,9 @@ void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vec
   const Grid& g = s.g;
   low.assign(g.blocks() * 4, 0.0f);
   high.assign(g.blocks() * 4, 0.0f);
-  // Bands of block rows: long enough that the halo is cheap, at least 8 per image for threads.
-  const int band = std::clamp(g.nby / 8, 1, 32);
+  // Bands of block rows: long enough that the 8-row halo is cheap (at most 1/8 of the work),
+  // at least 4 per image for threads.
+  const int band = std::clamp(g.nby / 4, 1, 32);
   parallel_for(
       0, g.nby, band,
       [&](std::int64_t by0, std::int64_t by1) {

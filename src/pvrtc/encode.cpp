@@ -61,6 +61,12 @@ std::uint16_t quantise_endpoint(const float c[4], bool is_b, bool allow_transluc
   EndpointCodes o;
   o.opaque = true;
   channel_bits(is_b, true, bits);
+  if (!allow_translucent) {  // the nearest codes; no errors needed
+    o.r = nearest_code(c[0], bits[0], 0);
+    o.g = nearest_code(c[1], bits[1], 1);
+    o.b = nearest_code(c[2], bits[2], 2);
+    return std::uint16_t(pack_endpoint(is_b, o));
+  }
   float eo = allow_translucent ? (255.0f - c[3]) * (255.0f - c[3]) : 0.0f;
   std::uint32_t* oc[3] = {&o.r, &o.g, &o.b};
   for (int ch = 0; ch < 3; ++ch) {

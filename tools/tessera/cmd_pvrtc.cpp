@@ -79,13 +79,15 @@ int run_compress(const CompressArgs& args, const GlobalOptions& global) {
                                         : pvrtc::Quality::normal;
   eo.threads = global.threads;
 
-  std::vector<ImageRGBA8> chain;
+  // Level 0 is `image` itself (no copy); the smaller levels come from generate_mipmaps.
+  std::vector<ImageRGBA8> mips;
+  std::vector<const ImageRGBA8*> chain = {&image};
   if (args.mipmaps) {
     Result<std::vector<ImageRGBA8>> c = generate_mipmaps(image, filter);
     if (!c) return fail(c.status());
-    chain = std::move(c).value();
-  } else {
-    chain.push_back(image);
+    mips = std::move(c).value();
+    chain.clear();
+    for (const ImageRGBA8& m : mips) chain.push_back(&m);
   }
 
   CompressedTexture tex;
@@ -95,8 +97,8 @@ int run_compress(const CompressArgs& args, const GlobalOptions& global) {
   tex.has_alpha = image.has_alpha;
   tex.srgb = args.srgb;
   const auto t0 = std::chrono::steady_clock::now();
-  for (const ImageRGBA8& level : chain) {
-    Result<std::vector<std::uint8_t>> enc = pvrtc::encode(level, eo);
+  for (const ImageRGBA8* level : chain) {
+    Result<std::vector<std::uint8_t>> enc = pvrtc::encode(*level, eo);
     if (!enc) {
       Status s = enc.status();
       s.message = args.input + ": " + s.message;
