@@ -16,6 +16,7 @@
 // depend on the band size or the thread count. Rows are stored with a wrap-around pad on both
 // sides, so the 3x3 kernels need no edge cases.
 #include <algorithm>
+#include <bit>
 #include <cstring>
 
 #include "pvrtc/encode_internal.h"
@@ -232,9 +233,68 @@ void accumulate_row(int w, const std::uint8_t* row, std::size_t stride,
 }
 
 struct Extremes {
-  float vmax = -1.0f, vmin = float(1 << 30);
   int xmax = 0, ymax = 0, xmin = 0, ymin = 0;
 };
+
+// The brightest and darkest texel of each block of a block row (the first in raster order on
+// ties, as a scalar scan with strict comparisons): `rows` holds the block row's 4 intensity
+// rows, W apart; y0 is its first texel row.
+void block_extremes(const float* rows, std::size_t W, int bw, int nbx, int y0, Extremes* ext) {
+  using namespace simd;
+  const int nq = bw / 4;
+  for (int bx = 0; bx < nbx; ++bx) {
+    const float* base = rows + bx * bw;
+    vf4 mx = loadf4(base), mn = mx;
+    for (int j = 0; j < 4; ++j) {
+      for (int q = 0; q < nq; ++q) {
+        const vf4 v = loadf4(base + std::size_t(j) * W + std::size_t(q) * 4);
+        mx = max(mx, v);
+        mn = min(mn, v);
+      }
+    }
+    mx = hmax(mx);
+    mn = hmin(mn);
+    Extremes& e = ext[bx];
+    bool found_max = false, found_min = false;
+    for (int j = 0; j < 4 && !(found_max && found_min); ++j) {
+      for (int q = 0; q < nq; ++q) {
+        const vf4 v = loadf4(base + std::size_t(j) * W + std::size_t(q) * 4);
+        const int fmax = movemask(cmpeq(v, mx)), fmin = movemask(cmpeq(v, mn));
+        if (!found_max && fmax) {
+          found_max = true;
+          e.xmax = bx * bw + q * 4 + std::countr_zero(unsigned(fmax));
+          e.ymax = y0 + j;
+        }
+        if (!found_min && fmin) {
+          found_min = true;
+          e.xmin = bx * bw + q * 4 + std::countr_zero(unsigned(fmin));
+          e.ymin = y0 + j;
+        }
+      }
+    }
+  }
+}
+
+// Per-block sums of one block row's column sums (`acc`, planes `astride` apart), per plane.
+void block_sums(const std::uint16_t* acc, std::size_t astride, int planes, int w, int bw,
+                std::uint32_t* out, std::size_t ostride) {
+  using namespace simd;
+  const vu16x8 ones(1);
+  for (int c = 0; c < planes; ++c) {
+    const std::uint16_t* a = acc + std::size_t(c) * astride;
+    std::uint32_t* o = out + std::size_t(c) * ostride;
+    for (int x = 0; x < w; x += 8) {
+      std::int32_t p[4];
+      store4(madd(load_u16x8(a + x), ones), p);  // column pairs
+      if (bw == 4) {
+        o[x / 4] = std::uint32_t(p[0] + p[1]);
+        o[x / 4 + 1] = std::uint32_t(p[2] + p[3]);
+      } else {
+        o[x / 8] = std::uint32_t(p[0] + p[1] + p[2] + p[3]);
+      }
+    }
+  }
+}
 
 // Block rows [by0, by1) with `nplanes` colour planes (3, or 4 in alpha mode).
 template <int nplanes>
@@ -267,6 +327,9 @@ void dilate_band(const EncoderState& s, int by0, int by1, std::vector<float>& lo
         // intensity, while the next block row's extremes are being found.
         std::vector<Extremes> ext_rows[2];
         for (auto& e : ext_rows) e.resize(std::size_t(g.nbx));
+        std::vector<float> brow(4 * W);  // intensity of the current block row
+        std::vector<std::uint32_t> bsum[2];  // per image: block sums of each plane
+        for (auto& v : bsum) v.resize(std::size_t(np1) * std::size_t(g.nbx));
 
         auto planes_of = [&](Ring<std::uint8_t>& r, int y, std::uint8_t** p) {
           for (int k = 0; k < np1; ++k) p[k] = r.row(k, local(y));
@@ -277,22 +340,9 @@ void dilate_band(const EncoderState& s, int by0, int by1, std::vector<float>& lo
           float* il = b.inten.row(0, local(L));
           intensity_row(srcL, w, s.alpha_mode, il);
           if (L >= Y0 && L < Y1) {
-            std::vector<Extremes>& ext = ext_rows[(L >> 2) & 1];
-            if ((L & 3) == 0) std::fill(ext.begin(), ext.end(), Extremes{});
-            for (int bx = 0; bx < g.nbx; ++bx) {
-              Extremes& e = ext[std::size_t(bx)];
-              for (int x = bx * bw; x < bx * bw + bw; ++x) {
-                if (il[x] > e.vmax) {
-                  e.vmax = il[x];
-                  e.xmax = x;
-                  e.ymax = L;
-                }
-                if (il[x] < e.vmin) {
-                  e.vmin = il[x];
-                  e.xmin = x;
-                  e.ymin = L;
-                }
-              }
+            std::memcpy(&brow[std::size_t(L & 3) * W], il, W * sizeof(float));
+            if ((L & 3) == 3) {
+              block_extremes(brow.data(), W, bw, g.nbx, L - 3, ext_rows[(L >> 2) & 1].data());
             }
           }
           // Labels and initial planes of row L - 1.
@@ -333,6 +383,9 @@ void dilate_band(const EncoderState& s, int by0, int by1, std::vector<float>& lo
           const int by = yf >> 2;
           const std::uint32_t n = std::uint32_t(4 * bw);
           const float inv = 1.0f / float(n);
+          for (int k = 0; k < 2; ++k) {
+            block_sums(b.acc[k].data(), W + 16, np1, w, bw, bsum[k].data(), std::size_t(g.nbx));
+          }
           for (int bx = 0; bx < g.nbx; ++bx) {
             const Extremes& e = ext_rows[by & 1][std::size_t(bx)];
             const std::uint8_t* fill_c[2] = {t + (std::size_t(e.ymax) * W + std::size_t(e.xmax)) * 4,
@@ -342,8 +395,7 @@ void dilate_band(const EncoderState& s, int by0, int by1, std::vector<float>& lo
             for (int k = 0; k < 2; ++k) {
               std::uint32_t sum[5] = {};
               for (int c = 0; c < np1; ++c) {
-                const std::uint16_t* a = b.acc[k].data() + std::size_t(c) * (W + 16) + std::size_t(bx * bw);
-                for (int x = 0; x < bw; ++x) sum[c] += a[x];
+                sum[c] = bsum[k][std::size_t(c) * std::size_t(g.nbx) + std::size_t(bx)];
               }
               const std::uint32_t empty = n - sum[nplanes];
               for (int c = 0; c < 4; ++c) {

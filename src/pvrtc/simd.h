@@ -220,6 +220,18 @@ inline void taps8(const std::uint16_t* p, vu16x8& left, vu16x8& right) {
                                      _MM_SHUFFLE(3, 3, 2, 2)));
 }
 
+/// Every lane = the maximum (minimum) of the four lanes.
+inline vf4 hmax(vf4 a) {
+  const __m128 m = _mm_max_ps(a.v, _mm_shuffle_ps(a.v, a.v, _MM_SHUFFLE(2, 3, 0, 1)));
+  return vf4(_mm_max_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2))));
+}
+inline vf4 hmin(vf4 a) {
+  const __m128 m = _mm_min_ps(a.v, _mm_shuffle_ps(a.v, a.v, _MM_SHUFFLE(2, 3, 0, 1)));
+  return vf4(_mm_min_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2))));
+}
+/// Bit i set when lane i of a mask (all ones / zero lanes) is set.
+inline int movemask(vint4 mask) { return _mm_movemask_ps(_mm_castsi128_ps(mask.v)); }
+
 #else  // scalar backend
 
 struct vint4 {
@@ -490,6 +502,23 @@ inline void taps8(const std::uint16_t* p, vu16x8& left, vu16x8& right) {
     left.l[i] = p[kL[i]];
     right.l[i] = p[kL[i] + 1];
   }
+}
+
+
+inline vf4 hmax(vf4 a) {
+  float m = a.l[0];
+  for (int i = 1; i < 4; ++i) m = a.l[i] > m ? a.l[i] : m;
+  return vf4(m);
+}
+inline vf4 hmin(vf4 a) {
+  float m = a.l[0];
+  for (int i = 1; i < 4; ++i) m = a.l[i] < m ? a.l[i] : m;
+  return vf4(m);
+}
+inline int movemask(vint4 mask) {
+  int m = 0;
+  for (int i = 0; i < 4; ++i) m |= (mask.l[i] < 0 ? 1 : 0) << i;
+  return m;
 }
 
 #endif
