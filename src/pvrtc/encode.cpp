@@ -36,6 +36,16 @@ std::uint32_t nearest_memo(float level, int k) {
   return c - 1u;
 }
 
+/// `code_nearest` of an RGB channel of `kBits` bits (memoised when the level allows).
+template <int kBits>
+inline std::uint32_t nearest_rgb(float level) {
+  const float k = level * 32.0f;  // exact: a power of two
+  if (k >= 0.0f && k < float(kMemoLevels) && k == float(int(k))) {
+    return nearest_memo<kBits, 0>(level, int(k));
+  }
+  return code_nearest(level, kBits, 0);
+}
+
 std::uint32_t nearest_code(float level, int bits, int channel) {
   const float k = level * 32.0f;  // exact: a power of two
   if (k >= 0.0f && k < float(kMemoLevels) && k == float(int(k))) {
@@ -62,9 +72,9 @@ std::uint16_t quantise_endpoint(const float c[4], bool is_b, bool allow_transluc
   o.opaque = true;
   channel_bits(is_b, true, bits);
   if (!allow_translucent) {  // the nearest codes; no errors needed
-    o.r = nearest_code(c[0], bits[0], 0);
-    o.g = nearest_code(c[1], bits[1], 1);
-    o.b = nearest_code(c[2], bits[2], 2);
+    o.r = nearest_rgb<5>(c[0]);
+    o.g = nearest_rgb<5>(c[1]);
+    o.b = is_b ? nearest_rgb<5>(c[2]) : nearest_rgb<4>(c[2]);
     return std::uint16_t(pack_endpoint(is_b, o));
   }
   float eo = allow_translucent ? (255.0f - c[3]) * (255.0f - c[3]) : 0.0f;
@@ -274,15 +284,26 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   s.threads = options.threads;
   const Grid& g = s.g;
   // Target: the source tiled over the padded level (only textures under 2x2 blocks differ).
-  s.target.resize(g.texels() * 4);
-  for (int y = 0; y < g.ph; ++y) {
-    std::uint8_t* d = &s.target[std::size_t(y) * std::size_t(g.pw) * 4];
-    for (int x0 = 0; x0 < g.pw; x0 += image.width) {
-      std::memcpy(d + std::size_t(x0) * 4, image.at(0, y % image.height),
-                  std::size_t(std::min(image.width, g.pw - x0)) * 4);
+  if (g.pw == image.width && g.ph == image.height) {
+    s.target = image.pixels;  // no zero-filled buffer first
+  } else {
+    s.target.resize(g.texels() * 4);
+    for (int y = 0; y < g.ph; ++y) {
+      std::uint8_t* d = &s.target[std::size_t(y) * std::size_t(g.pw) * 4];
+      for (int x0 = 0; x0 < g.pw; x0 += image.width) {
+        std::memcpy(d + std::size_t(x0) * 4, image.at(0, y % image.height),
+                    std::size_t(std::min(image.width, g.pw - x0)) * 4);
+      }
     }
-    if (!s.alpha_mode) {
-      for (int x = 0; x < g.pw; ++x) d[std::size_t(x) * 4 + 3] = 255;
+  }
+  if (!s.alpha_mode) {
+    // Alpha 255: or-ing whole texels (little-endian words) vectorises.
+    std::uint8_t* d = s.target.data();
+    for (std::size_t i = 0; i < g.texels(); ++i) {
+      std::uint32_t v;
+      std::memcpy(&v, d + i * 4, 4);
+      v |= 0xff000000u;
+      std::memcpy(d + i * 4, &v, 4);
     }
   }
   s.ca.assign(g.blocks(), 0);
