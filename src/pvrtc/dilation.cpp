@@ -239,9 +239,10 @@ struct Extremes {
 // The brightest and darkest texel of each block of a block row (the first in raster order on
 // ties, as a scalar scan with strict comparisons): `rows` holds the block row's 4 intensity
 // rows, W apart; y0 is its first texel row.
-void block_extremes(const float* rows, std::size_t W, int bw, int nbx, int y0, Extremes* ext) {
+template <int nq>  // vectors of 4 texels per block row (block width / 4)
+void block_extremes(const float* rows, std::size_t W, int nbx, int y0, Extremes* ext) {
   using namespace simd;
-  const int nq = bw / 4;
+  constexpr int bw = nq * 4;
   for (int bx = 0; bx < nbx; ++bx) {
     const float* base = rows + bx * bw;
     vf4 mx = loadf4(base), mn = mx;
@@ -342,7 +343,12 @@ void dilate_band(const EncoderState& s, int by0, int by1, std::vector<float>& lo
           if (L >= Y0 && L < Y1) {
             std::memcpy(&brow[std::size_t(L & 3) * W], il, W * sizeof(float));
             if ((L & 3) == 3) {
-              block_extremes(brow.data(), W, bw, g.nbx, L - 3, ext_rows[(L >> 2) & 1].data());
+              Extremes* ext = ext_rows[(L >> 2) & 1].data();
+              if (bw == 4) {
+                block_extremes<1>(brow.data(), W, g.nbx, L - 3, ext);
+              } else {
+                block_extremes<2>(brow.data(), W, g.nbx, L - 3, ext);
+              }
             }
           }
           // Labels and initial planes of row L - 1.
