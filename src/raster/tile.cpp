@@ -64,7 +64,8 @@ class TileRasterizer {
 
  private:
   using QuadFn = void (TileRasterizer::*)(int, int, std::uint32_t*);
-  template <int N4>
+  /// One 2x2 quad; `kSingle`: the frame buffer has one sample per pixel (st_.count == 1).
+  template <int N4, bool kSingle>
   void quad(int qx, int qy, std::uint32_t* mask);
 
   const FrameContext& ctx_;
@@ -108,12 +109,23 @@ void TileRasterizer::triangle(const TriSetup& t, const float* varyings) {
   t_ = &t;
   draw_ = &ctx_.draws[t.draw];
   tv_ = varyings;
+  const bool single = st_.count == 1;
   switch (padded_varyings(draw_->varying_count)) {
-    case 0: quad_fn_ = &TileRasterizer::quad<0>; break;
-    case 4: quad_fn_ = &TileRasterizer::quad<4>; break;
-    case 8: quad_fn_ = &TileRasterizer::quad<8>; break;
-    case 12: quad_fn_ = &TileRasterizer::quad<12>; break;
-    default: quad_fn_ = &TileRasterizer::quad<16>; break;
+    case 0:
+      quad_fn_ = single ? &TileRasterizer::quad<0, true> : &TileRasterizer::quad<0, false>;
+      break;
+    case 4:
+      quad_fn_ = single ? &TileRasterizer::quad<4, true> : &TileRasterizer::quad<4, false>;
+      break;
+    case 8:
+      quad_fn_ = single ? &TileRasterizer::quad<8, true> : &TileRasterizer::quad<8, false>;
+      break;
+    case 12:
+      quad_fn_ = single ? &TileRasterizer::quad<12, true> : &TileRasterizer::quad<12, false>;
+      break;
+    default:
+      quad_fn_ = single ? &TileRasterizer::quad<16, true> : &TileRasterizer::quad<16, false>;
+      break;
   }
   in_ = ShadeInput{};
   in_.varying_count = draw_->varying_count;
@@ -201,7 +213,7 @@ void TileRasterizer::triangle(const TriSetup& t, const float* varyings) {
   }
 }
 
-template <int N4>
+template <int N4, bool kSingle>
 void TileRasterizer::quad(int qx, int qy, std::uint32_t* mask) {
   // Lanes beyond the grid (odd sizes) are helpers with no coverage.
   if (qx + 1 >= gw_) mask[1] = mask[3] = 0;
@@ -209,7 +221,7 @@ void TileRasterizer::quad(int qx, int qy, std::uint32_t* mask) {
   if (!(mask[0] | mask[1] | mask[2] | mask[3])) return;
   const TriSetup& t = *t_;
   const DrawCall& draw = *draw_;
-  const int ns = st_.count;
+  const int ns = kSingle ? 1 : st_.count;
   const std::size_t row = std::size_t(gw_);
   std::size_t base[4];
   base[0] = (std::size_t(qy) * row + std::size_t(qx)) * std::size_t(ns);
@@ -232,7 +244,7 @@ void TileRasterizer::quad(int qx, int qy, std::uint32_t* mask) {
   const f32x4 zc = eval_plane4(t.z, ldx, ldy);
   const f32x4 zcl = clamp01(zc);
   std::uint32_t visible[4] = {0, 0, 0, 0};
-  if (ns == 1) {
+  if (kSingle) {
     const DepthTest test = draw.depth_test;
     for (int lane = 0; lane < 4; ++lane) {
       zs_[lane][0] = zcl[lane];
@@ -325,6 +337,23 @@ void TileRasterizer::quad(int qx, int qy, std::uint32_t* mask) {
 
   // Per-sample writes of depth, payload and id.
   const bool write_depth = draw.depth_write;
+  if (kSingle) {
+    // One sample per pixel (visible[lane] is 0 or 1): the general loop below for one bit.
+    for (int lane = 0; lane < 4; ++lane) {
+      if (!visible[lane]) continue;
+      ++stats_.samples_written;
+      const std::size_t i = base[lane];
+      if (write_depth) depth_[i] = zs_[lane][0];
+      float* d = data_ + i * std::size_t(nc);
+      if (nc == 4) {
+        std::memcpy(d, out_[lane], 4 * sizeof(float));
+      } else {
+        std::memcpy(d, out_[lane], std::size_t(nc) * sizeof(float));
+      }
+      if (ids_) ids_[i] = t.primitive_id;
+    }
+    return;
+  }
   for (int lane = 0; lane < 4; ++lane) {
     std::uint32_t vis = visible[lane];
     if (!vis) continue;
