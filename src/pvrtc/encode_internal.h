@@ -79,4 +79,8 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
 /// and, for high or `exact_search_rounds` > 0, the exact search (polish).
 void optimise(EncoderState& s, Quality quality, int iterations, int exact_search_rounds);
 
+/// `reseed` with the squared alpha error counted `alpha_weight` times (the one above: 1).
+int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& changed,
+           int alpha_weight);
+
 }  // namespace tessera::pvrtc::detail

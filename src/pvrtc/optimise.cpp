@@ -11,6 +11,9 @@ namespace {
 constexpr std::uint32_t kReseedMinError = 3000;
 // Round bound of the exact search for high; it converges after 10-20 rounds on the set.
 constexpr int kPolishUntilConverged = 64;
+// high, RGBA: the reseed's exact window error counts alpha twice, as the exact search does
+// (polish.cpp): +0.14 dB alpha.
+constexpr int kHighAlphaWeight = 2;
 
 int default_iterations(Quality q) {
   switch (q) {
@@ -38,7 +41,8 @@ void optimise(EncoderState& s, Quality quality, int iterations, int exact_search
     // more).
     const int passes = quality == Quality::high && !s.alpha_mode ? 2 : 1;
     for (int pass = 0; pass < passes; ++pass) {
-      if (reseed(s, kReseedMinError, changed) == 0) break;
+      if (reseed(s, kReseedMinError, changed, quality == Quality::high ? kHighAlphaWeight : 1) == 0)
+        break;
       choose_modulation(s);
     }
   }
