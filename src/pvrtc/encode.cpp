@@ -110,52 +110,54 @@ struct SingleColour {
   std::uint8_t a, b;
   std::uint16_t err;  ///< Squared-error cost of the pair.
 };
-using SingleTable = std::array<SingleColour, 256>;
-
-constexpr SingleTable make_single_table(int abits, int m, bool two_bpp) {
-  SingleTable t{};
-  for (int v = 0; v < 256; ++v) {
-    SingleColour best{0, 0, 0xffff};
-    for (int a = 0; a < (1 << abits); ++a) {
-      for (int b = 0; b < 32; ++b) {
-        const int la = code_level_rgb(std::uint32_t(a), abits),
-                  lb = code_level_rgb(std::uint32_t(b), 5);
-        const int d = (la * (8 - m) + lb * m) / 8 - v;
-        const int cost = two_bpp ? 15 * d * d + (la - v) * (la - v) : d * d;
-        if (cost < best.err)
-          best = {std::uint8_t(a), std::uint8_t(b), std::uint16_t(std::min(cost, 0xfffe))};
-      }
+SingleColour best_single(int abits, int m, bool two_bpp, int v) {
+  SingleColour best{0, 0, 0xffff};
+  for (int a = 0; a < (1 << abits); ++a) {
+    for (int b = 0; b < 32; ++b) {
+      const int la = code_level_rgb(std::uint32_t(a), abits),
+                lb = code_level_rgb(std::uint32_t(b), 5);
+      const int d = (la * (8 - m) + lb * m) / 8 - v;
+      const int cost = two_bpp ? 15 * d * d + (la - v) * (la - v) : d * d;
+      if (cost < best.err)
+        best = {std::uint8_t(a), std::uint8_t(b), std::uint16_t(std::min(cost, 0xfffe))};
     }
-    t[std::size_t(v)] = best;
   }
-  return t;
+  return best;
 }
 
-// The tables are built at compile time (about 15M instructions a run otherwise).
+// Entries are found on first use: a uniform block needs three per mode, and building whole
+// tables cost about 15M instructions a run. Relaxed atomics (bit 31 = known): racing threads
+// store the same value.
 template <int kABits, int kM, bool kTwoBpp>
-const SingleTable& single_table_of() {
-  static constexpr SingleTable t = make_single_table(kABits, kM, kTwoBpp);
-  return t;
+SingleColour single_entry(int v) {
+  static std::atomic<std::uint32_t> memo[256] = {};
+  std::uint32_t e = memo[v].load(std::memory_order_relaxed);
+  if (e == 0) {
+    const SingleColour c = best_single(kABits, kM, kTwoBpp, v);
+    e = 0x80000000u | (std::uint32_t(c.a) << 21) | (std::uint32_t(c.b) << 16) | c.err;
+    memo[v].store(e, std::memory_order_relaxed);
+  }
+  return {std::uint8_t((e >> 21) & 31), std::uint8_t((e >> 16) & 31), std::uint16_t(e & 0xffff)};
 }
 
-const SingleTable& single_table(int abits, int mi, bool two_bpp) {
+SingleColour single_colour(int abits, int mi, bool two_bpp, int v) {
   switch ((two_bpp ? 4 : 0) + (abits == 4 ? 2 : 0) + mi) {
     case 0:
-      return single_table_of<5, 3, false>();
+      return single_entry<5, 3, false>(v);
     case 1:
-      return single_table_of<5, 5, false>();
+      return single_entry<5, 5, false>(v);
     case 2:
-      return single_table_of<4, 3, false>();
+      return single_entry<4, 3, false>(v);
     case 3:
-      return single_table_of<4, 5, false>();
+      return single_entry<4, 5, false>(v);
     case 4:
-      return single_table_of<5, 3, true>();
+      return single_entry<5, 3, true>(v);
     case 5:
-      return single_table_of<5, 5, true>();
+      return single_entry<5, 5, true>(v);
     case 6:
-      return single_table_of<4, 3, true>();
+      return single_entry<4, 3, true>(v);
     default:
-      return single_table_of<4, 5, true>();
+      return single_entry<4, 5, true>(v);
   }
 }
 
@@ -188,18 +190,18 @@ void homogeneous_shortcut(EncoderState& s) {
             const bool two = g.format == Format::pvrtc1_2bpp;
             int best_mi = 0, best_err = 1 << 30;
             for (int mi = 0; mi < 2; ++mi) {
-              const int e = single_table(5, mi, two)[first[0]].err +
-                            single_table(5, mi, two)[first[1]].err +
-                            single_table(4, mi, two)[first[2]].err;
+              const int e = single_colour(5, mi, two, first[0]).err +
+                            single_colour(5, mi, two, first[1]).err +
+                            single_colour(4, mi, two, first[2]).err;
               if (e < best_err) {
                 best_err = e;
                 best_mi = mi;
               }
             }
             EndpointCodes a, b;
-            const SingleColour& r = single_table(5, best_mi, two)[first[0]];
-            const SingleColour& gg = single_table(5, best_mi, two)[first[1]];
-            const SingleColour& bb = single_table(4, best_mi, two)[first[2]];
+            const SingleColour r = single_colour(5, best_mi, two, first[0]);
+            const SingleColour gg = single_colour(5, best_mi, two, first[1]);
+            const SingleColour bb = single_colour(4, best_mi, two, first[2]);
             a.r = r.a;
             a.g = gg.a;
             a.b = bb.a;

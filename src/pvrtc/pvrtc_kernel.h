@@ -23,8 +23,8 @@ struct Rgba5 {
   std::int32_t r = 0, g = 0, b = 0, a = 0;
 };
 
-constexpr std::int32_t expand4to5(std::uint32_t v) { return std::int32_t((v << 1) | (v >> 3)); }
-constexpr std::int32_t expand3to5(std::uint32_t v) { return std::int32_t((v << 2) | (v >> 1)); }
+inline std::int32_t expand4to5(std::uint32_t v) { return std::int32_t((v << 1) | (v >> 3)); }
+inline std::int32_t expand3to5(std::uint32_t v) { return std::int32_t((v << 2) | (v >> 1)); }
 
 /// Expands colour A (16-bit field; bit 15 opaque flag, bit 0 ignored).
 inline Rgba5 expand_a(std::uint32_t c) {
@@ -106,7 +106,7 @@ inline EndpointCodes unpack_endpoint(bool is_b, std::uint32_t c) {
 }
 
 /// 8-bit value a colour code of `bits` (3, 4 or 5) decodes to in a uniform region.
-constexpr int code_level_rgb(std::uint32_t code, int bits) {
+inline int code_level_rgb(std::uint32_t code, int bits) {
   std::int32_t e = bits == 5 ? std::int32_t(code) : bits == 4 ? expand4to5(code) : expand3to5(code);
   return (e << 3) | (e >> 2);
 }
