@@ -15,15 +15,16 @@ constexpr int kPolishUntilConverged = 64;
 // (polish.cpp): +0.14 dB alpha.
 constexpr int kHighAlphaWeight = 2;
 
-int default_iterations(Quality q) {
+int default_iterations(Quality q, Format f) {
   switch (q) {
     case Quality::fast:
       return 0;
     case Quality::normal:
       return 3;
     case Quality::high:
-      // The exact search below does most of the work: 16 sweeps instead of 6 bought <0.005 dB.
-      return 6;
+      // 4 bpp: the exact search below does most of the work; 16 sweeps instead of 3 bought
+      // +0.01 dB RGB (alpha -0.01) for +15% time. 2 bpp has no exact search.
+      return f == Format::pvrtc1_4bpp ? 3 : 16;
   }
   return 0;
 }
@@ -46,7 +47,7 @@ void optimise(EncoderState& s, Quality quality, int iterations, int exact_search
       choose_modulation(s);
     }
   }
-  const int sweeps = iterations >= 0 ? iterations : default_iterations(quality);
+  const int sweeps = iterations >= 0 ? iterations : default_iterations(quality, g.format);
   if (sweeps > 0) refine(s, sweeps);
   if (exact_search_rounds > 0) {
     polish(s, exact_search_rounds, 4, 3000);

@@ -247,9 +247,12 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
 }
 
 // Exact error of the local window with (a, b) as block j's endpoints, two texels at a time;
-// stops once it reaches `bound` (the result is then >= bound).
-std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
-                               std::uint32_t bound) {
+// stops once it reaches `bound` (the result is then >= bound). kAlpha: RGBA input (alpha
+// lanes, punch-through blend, weighted alpha error); RGB skips those. With the blends from
+// A + B and A - B: high -9% time over the 21 images, same output.
+template <bool kAlpha>
+std::uint32_t local_error_simd_t(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
+                                 std::uint32_t bound) {
   using simd::vint4;
   using simd::vu16x8;
   alignas(16) const std::uint16_t a16[8] = {
@@ -259,7 +262,6 @@ std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba
       std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a),
       std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a)};
   const vu16x8 av = simd::load_u16x8(a16), bv = simd::load_u16x8(b16);
-  const vu16x8 w3(3), w4(4), w5(5);
   alignas(16) static constexpr std::uint16_t kAlphaLanes[8] = {0, 0, 0, 0xffff, 0, 0, 0, 0xffff};
   alignas(16) static constexpr std::uint16_t kRgbLanes[8] = {0xffff, 0xffff, 0xffff, 0,
                                                              0xffff, 0xffff, 0xffff, 0};
@@ -272,29 +274,38 @@ std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba
     // (2S >> 5) + (2S >> 1). (Alpha lanes are all zero for RGB input.)
     const vu16x8 sa = simd::load_u16x8(&lw.rest16_a[2 * p][0]) + simd::mullo(own, av);
     const vu16x8 sb = simd::load_u16x8(&lw.rest16_b[2 * p][0]) + simd::mullo(own, bv);
-    const vu16x8 ua =
-        simd::select(alpha, simd::srl<4>(sa) + sa, simd::srl<6>(sa) + simd::srl<1>(sa));
-    const vu16x8 ub =
-        simd::select(alpha, simd::srl<4>(sb) + sb, simd::srl<6>(sb) + simd::srl<1>(sb));
+    vu16x8 ua = simd::srl<6>(sa) + simd::srl<1>(sa), ub = simd::srl<6>(sb) + simd::srl<1>(sb);
+    if constexpr (kAlpha) {
+      ua = simd::select(alpha, simd::srl<4>(sa) + sa, ua);
+      ub = simd::select(alpha, simd::srl<4>(sb) + sb, ub);
+    }
     const vu16x8 t = simd::load_u16x8(&lw.t16[2 * p][0]);
     auto err = [&](vu16x8 d) {
-      const vint4 sq = simd::madd(d, simd::mullo(d, aw));
+      const vint4 sq = kAlpha ? simd::madd(d, simd::mullo(d, aw)) : simd::madd(d, d);
       return sq + simd::swap_pairs(sq);
     };
+    // Blends (A (8 - m) + B m) >> 3 from the sum: 4 (A + B) +- (A - B) for m = 3, 5 (the u16
+    // lanes wrap in between, the results are exact), (A + B) >> 1 for m = 4.
+    const vu16x8 sum = ua + ub, sum2 = sum + sum, sum4 = sum2 + sum2, diff = ua - ub;
     const vint4 e0 = err(ua - t), e8 = err(ub - t);
-    const vint4 e3 = err(simd::srl<3>(simd::mullo(ua, w5) + simd::mullo(ub, w3)) - t);
-    const vint4 e5 = err(simd::srl<3>(simd::mullo(ua, w3) + simd::mullo(ub, w5)) - t);
-    const vu16x8 v4 = simd::srl<3>(simd::mullo(ua, w4) + simd::mullo(ub, w4));
+    const vint4 e3 = err(simd::srl<3>(sum4 + diff) - t);
+    const vint4 e5 = err(simd::srl<3>(sum4 - diff) - t);
+    const vu16x8 v4 = simd::srl<1>(sum);
     const vint4 e4 = err(v4 - t);
-    const vint4 e4p = err((v4 & rgb) - t);
     const vint4 b35 = simd::load4(lw.bias35[p]);
-    const vint4 m =
-        simd::min(simd::min(simd::min(e0, e8), simd::min(e3 + b35, e5 + b35)),
-                  simd::min(e4 + simd::load4(lw.bias4[p]), e4p + simd::load4(lw.bias4p[p])));
+    vint4 m4 = e4 + simd::load4(lw.bias4[p]);
+    if constexpr (kAlpha) m4 = simd::min(m4, err((v4 & rgb) - t) + simd::load4(lw.bias4p[p]));
+    const vint4 m = simd::min(simd::min(simd::min(e0, e8), simd::min(e3 + b35, e5 + b35)), m4);
     acc += m;
     if ((p & 3) == 3 && std::uint32_t(acc.lane(0) + acc.lane(2)) >= bound) break;
   }
   return std::uint32_t(acc.lane(0) + acc.lane(2));
+}
+
+std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
+                               std::uint32_t bound) {
+  return lw.nch == 4 ? local_error_simd_t<true>(lw, a, b, bound)
+                     : local_error_simd_t<false>(lw, a, b, bound);
 }
 
 }  // namespace
