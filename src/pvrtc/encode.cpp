@@ -66,37 +66,50 @@ std::uint32_t nearest_code(float level, int bits, int channel) {
 
 }  // namespace
 
-std::uint16_t quantise_endpoint(const float c[4], bool is_b, bool allow_translucent) {
-  int bits[4];
+namespace {
+
+/// The squared error of channel level c against code `code` of `kBits` bits.
+template <int kBits>
+inline float code_err(std::uint32_t code, float c) {
+  const float d = float(code_level_rgb(code, kBits)) - c;
+  return d * d;
+}
+
+/// Opaque and translucent candidates for endpoint B (kB) or A; the smaller error wins.
+template <bool kB>
+std::uint16_t quantise_either(const float c[4]) {
   EndpointCodes o;
   o.opaque = true;
-  channel_bits(is_b, true, bits);
-  if (!allow_translucent) {  // the nearest codes; no errors needed
-    o.r = nearest_rgb<5>(c[0]);
-    o.g = nearest_rgb<5>(c[1]);
-    o.b = is_b ? nearest_rgb<5>(c[2]) : nearest_rgb<4>(c[2]);
-    return std::uint16_t(pack_endpoint(is_b, o));
-  }
-  float eo = allow_translucent ? (255.0f - c[3]) * (255.0f - c[3]) : 0.0f;
-  std::uint32_t* oc[3] = {&o.r, &o.g, &o.b};
-  for (int ch = 0; ch < 3; ++ch) {
-    *oc[ch] = nearest_code(c[ch], bits[ch], ch);
-    const float d = float(code_level_rgb(*oc[ch], bits[ch])) - c[ch];
-    eo += d * d;
-  }
-  if (!allow_translucent) return std::uint16_t(pack_endpoint(is_b, o));
+  o.r = nearest_rgb<5>(c[0]);
+  o.g = nearest_rgb<5>(c[1]);
+  o.b = nearest_rgb<kB ? 5 : 4>(c[2]);
+  float eo = (255.0f - c[3]) * (255.0f - c[3]);
+  eo += code_err<5>(o.r, c[0]);
+  eo += code_err<5>(o.g, c[1]);
+  eo += code_err<kB ? 5 : 4>(o.b, c[2]);
   EndpointCodes t;
   t.opaque = false;
-  channel_bits(is_b, false, bits);
   t.a = nearest_code(c[3], 3, 3);
   float et = (float(code_level_alpha(t.a)) - c[3]) * (float(code_level_alpha(t.a)) - c[3]);
-  std::uint32_t* tc[3] = {&t.r, &t.g, &t.b};
-  for (int ch = 0; ch < 3; ++ch) {
-    *tc[ch] = nearest_code(c[ch], bits[ch], ch);
-    const float d = float(code_level_rgb(*tc[ch], bits[ch])) - c[ch];
-    et += d * d;
-  }
-  return std::uint16_t(pack_endpoint(is_b, et < eo ? t : o));
+  t.r = nearest_rgb<4>(c[0]);
+  t.g = nearest_rgb<4>(c[1]);
+  t.b = nearest_rgb<kB ? 4 : 3>(c[2]);
+  et += code_err<4>(t.r, c[0]);
+  et += code_err<4>(t.g, c[1]);
+  et += code_err<kB ? 4 : 3>(t.b, c[2]);
+  return std::uint16_t(pack_endpoint(kB, et < eo ? t : o));
+}
+
+}  // namespace
+
+std::uint16_t quantise_endpoint(const float c[4], bool is_b, bool allow_translucent) {
+  if (allow_translucent) return is_b ? quantise_either<true>(c) : quantise_either<false>(c);
+  EndpointCodes o;  // opaque: the nearest codes, no errors needed
+  o.opaque = true;
+  o.r = nearest_rgb<5>(c[0]);
+  o.g = nearest_rgb<5>(c[1]);
+  o.b = is_b ? nearest_rgb<5>(c[2]) : nearest_rgb<4>(c[2]);
+  return std::uint16_t(pack_endpoint(is_b, o));
 }
 
 namespace {
