@@ -415,9 +415,9 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
                 for (int dy = -1; dy <= 1; ++dy) {
                   for (int dx = -1; dx <= 1; ++dx) {
                     latest = std::max(
-                        latest, changed_at[std::size_t((by + dy) & (g.nby - 1)) *
-                                               std::size_t(g.nbx) +
-                                           std::size_t((bx + dx) & (g.nbx - 1))]);
+                        latest,
+                        changed_at[std::size_t((by + dy) & (g.nby - 1)) * std::size_t(g.nbx) +
+                                   std::size_t((bx + dx) & (g.nbx - 1))]);
                   }
                 }
                 if (latest < searched_at[j]) continue;
