@@ -9,10 +9,12 @@
 //
 // The least-squares model is linear and ignores the decoder's truncations, so it stalls where
 // quantisation matters most (edges, saturated colours). Here each block's endpoint codes are
-// perturbed (one channel +-1, or all colour channels of A, of B or of both together) and a move
-// is kept only when the exact decoded error over the 8x8 texels the block influences drops,
-// with every texel's modulation re-chosen within its block's mode. Blocks are visited in the
-// same 2x2 colouring as the refinement, so the passes are parallel and deterministic.
+// perturbed (one channel +-1, one channel of A and B together, or all colour channels of A, of
+// B or of both together) and a move is kept only when the exact decoded error over the 7x7
+// texels the block influences drops, with every texel's modulation re-chosen within its
+// block's mode. Blocks are visited in the same 2x2 colouring as the refinement, so the passes
+// are parallel and deterministic; after the first round only blocks with a changed neighbour
+// are searched again (exact: nothing else in their window moved).
 #include <algorithm>
 #include <cmath>
 #include <limits>
