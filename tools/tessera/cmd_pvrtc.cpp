@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
@@ -44,10 +45,19 @@ int run_compress(const CompressArgs& args, const GlobalOptions& global) {
   ImageRGBA8 image = std::move(loaded).value();
   // An alpha channel that is opaque everywhere (common in RGBA PNGs) gives an RGB texture.
   if (image.has_alpha) {
-    bool translucent = false;
-    for (std::size_t i = 3; i < image.pixels.size() && !translucent; i += 4) {
-      translucent = image.pixels[i] != 255;
+    // Two texels a step: their alpha bytes are the top bytes of each little-endian half.
+    constexpr std::uint64_t kAlpha2 = 0xff000000ff000000ull;
+    const std::uint8_t* p = image.pixels.data();
+    const std::size_t n = image.pixels.size();
+    std::uint64_t all = kAlpha2;
+    std::size_t i = 0;
+    for (; i + 8 <= n && all == kAlpha2; i += 8) {
+      std::uint64_t v;
+      std::memcpy(&v, p + i, 8);
+      all &= v | ~kAlpha2;
     }
+    bool translucent = all != kAlpha2;
+    for (i += 3; i < n && !translucent; i += 4) translucent = p[i] != 255;
     image.has_alpha = translucent;
   }
 
