@@ -14,9 +14,14 @@
 // texels the block influences drops, with every texel's modulation re-chosen within its
 // block's mode. Blocks are visited in the same 2x2 colouring as the refinement, so the passes
 // are parallel and deterministic; after the first round only blocks with a changed neighbour
-// are searched again (exact: nothing else in their window moved).
+// are searched again (exact: nothing else in their window moved). A candidate's window error
+// is summed with the texels that erred most under the current endpoints first and stops once
+// it reaches the best so far (integer sums: every kept move is the same).
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "pvrtc/encode_internal.h"
@@ -169,82 +174,109 @@ int reseed_candidates(const EncoderState& s, int bx, int by, std::uint16_t out[8
 // blocks' share of each texel's A and B sums precomputed, so a candidate pair for block j costs
 // one multiply-add per channel and endpoint per texel. Exact: same arithmetic as the decoder.
 struct LocalWindow {
-  std::int32_t rest_a[49][4], rest_b[49][4];
-  // The same, 16-bit, padded to 50 texels (the last one all zero: error 0) for the SIMD path;
-  // `own16` repeats the own weight in the four lanes, `t16` the target (alpha lane 0 if RGB),
-  // `bias35` / `bias4` / `bias4p` exclude the blends a texel's block mode lacks (4p: weight 4
-  // with alpha punched through, mode 1 with punch-through allowed only).
+  // Per texel, 16-bit, padded to 50 texels (the last one all zero: error 0) for the SIMD path:
+  // `rest16_a` / `rest16_b` the other blocks' share of the A / B bilinear sums (channels past
+  // nch zero), `own16` block j's weight in the channel lanes, `t16` the target (alpha lane 0
+  // if RGB), `bias35` / `bias4` / `bias4p` exclude the blends a texel's block mode lacks (4p:
+  // weight 4 with alpha punched through, mode 1 with punch-through allowed only).
   alignas(16) std::uint16_t rest16_a[50][4], rest16_b[50][4], own16[50][4], t16[50][4];
   alignas(16) std::int32_t bias35[25][4], bias4[25][4], bias4p[25][4];
-  std::int32_t own[49];
-  const std::uint8_t* t[49];
-  bool mode1[49];
   int nch;
   bool punch;
   alignas(16) std::uint16_t weight16[8];  ///< Per-lane error weights (RGBA RGBA).
 };
 
+// Reorders the window's texels in the SIMD layout: slot i takes texel order[i] (slots 0-48;
+// slot 49, the zero pad, stays). The error is an integer sum, so the order changes only where
+// the bounded evaluation stops, never a result below the bound.
+void permute_local(LocalWindow& lw, const std::uint8_t* order) {
+  auto permute = [&](void* rows) {  // 50 rows of 8 bytes
+    std::uint64_t tmp[49], out[49];
+    std::memcpy(tmp, rows, sizeof(tmp));
+    for (int i = 0; i < 49; ++i) out[i] = tmp[order[i]];
+    std::memcpy(rows, out, sizeof(out));
+  };
+  permute(lw.rest16_a);
+  permute(lw.rest16_b);
+  permute(lw.own16);
+  permute(lw.t16);
+  permute(lw.bias35);
+  permute(lw.bias4);
+  permute(lw.bias4p);
+}
+
 void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
+  using simd::vu16x8;
   const EncoderState& s = *w.s;
   const Grid& g = s.g;
   const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
   lw.nch = w.nch;
   lw.punch = s.punch;
   for (int c = 0; c < 8; ++c) lw.weight16[c] = std::uint16_t((c & 3) == 3 ? w.alpha_weight : 1);
-  int k = 0;
-  for (int yy = by * 4 - 1; yy < by * 4 + 6; ++yy) {
-    const AxisTap ty = axis_tap(yy, 4, g.ph);
-    const int y = yy & (g.ph - 1);
-    for (int xx = bx * 4 - 1; xx < bx * 4 + 6; ++xx, ++k) {
-      const AxisTap tx = axis_tap(xx, 4, g.pw);
-      const int x = xx & (g.pw - 1);
-      const std::size_t blk[4] = {std::size_t(ty.b0) * std::size_t(g.nbx) + std::size_t(tx.b0),
-                                  std::size_t(ty.b0) * std::size_t(g.nbx) + std::size_t(tx.b1),
-                                  std::size_t(ty.b1) * std::size_t(g.nbx) + std::size_t(tx.b0),
-                                  std::size_t(ty.b1) * std::size_t(g.nbx) + std::size_t(tx.b1)};
-      const std::int32_t wt[4] = {(4 - tx.d) * (4 - ty.d), tx.d * (4 - ty.d), (4 - tx.d) * ty.d,
-                                  tx.d * ty.d};
-      std::int32_t ra[4] = {0, 0, 0, 0}, rb[4] = {0, 0, 0, 0}, own = 0;
-      for (int i = 0; i < 4; ++i) {
-        if (blk[i] == j) {
-          own += wt[i];
-          continue;
-        }
-        const Rgba5& a = (*w.ea)[blk[i]];
-        const Rgba5& b = (*w.eb)[blk[i]];
-        ra[0] += a.r * wt[i];
-        ra[1] += a.g * wt[i];
-        ra[2] += a.b * wt[i];
-        ra[3] += a.a * wt[i];
-        rb[0] += b.r * wt[i];
-        rb[1] += b.g * wt[i];
-        rb[2] += b.b * wt[i];
-        rb[3] += b.a * wt[i];
-      }
+  // The 3x3 blocks around j (wrapping) that the window's texels read: A in lanes 0-3, B in
+  // lanes 4-7 (channels past nch zero); block j itself (also where the wrap lands on it) is
+  // zero there and its bilinear weight goes to `own` instead.
+  alignas(16) std::uint16_t nb[3][3][8];
+  bool is_own[3][3];
+  for (int dy = 0; dy < 3; ++dy) {
+    for (int dx = 0; dx < 3; ++dx) {
+      const std::size_t k = std::size_t((by + dy - 1) & (g.nby - 1)) * std::size_t(g.nbx) +
+                            std::size_t((bx + dx - 1) & (g.nbx - 1));
+      is_own[dy][dx] = k == j;
+      const Rgba5& a = (*w.ea)[k];
+      const Rgba5& b = (*w.eb)[k];
+      const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
       for (int c = 0; c < 4; ++c) {
-        lw.rest_a[k][c] = ra[c];
-        lw.rest_b[k][c] = rb[c];
+        const bool used = k != j && c < lw.nch;
+        nb[dy][dx][c] = used ? std::uint16_t(va[c]) : 0;
+        nb[dy][dx][4 + c] = used ? std::uint16_t(vb[c]) : 0;
       }
-      lw.own[k] = own;
-      lw.t[k] = &s.target[(std::size_t(y) * std::size_t(g.pw) + std::size_t(x)) * 4];
-      lw.mode1[k] = (*w.modes)[std::size_t(y >> 2) * std::size_t(g.nbx) + std::size_t(x >> 2)];
     }
   }
+  // Window row / column r (texel by*4 - 1 + r) interpolates neighbour rows (r < 3 ? 0 : 1) and
+  // the next with weights 4 - d and d, d = (r + 1) & 3 (the decoder's axis_tap).
   constexpr std::int32_t kExclude = 1 << 24;
-  for (int i = 0; i < 50; ++i) {
-    for (int c = 0; c < 4; ++c) {
-      const bool used = i < 49 && c < lw.nch;
-      lw.rest16_a[i][c] = used ? std::uint16_t(lw.rest_a[i][c]) : 0;
-      lw.rest16_b[i][c] = used ? std::uint16_t(lw.rest_b[i][c]) : 0;
-      lw.own16[i][c] = used ? std::uint16_t(lw.own[i]) : 0;
-      lw.t16[i][c] = used ? lw.t[i][c] : 0;
+  int k = 0;
+  for (int r = 0; r < 7; ++r) {
+    const int y = (by * 4 - 1 + r) & (g.ph - 1);
+    const int n0y = r < 3 ? 0 : 1, dy = (r + 1) & 3;
+    const std::uint8_t* trow = &s.target[std::size_t(y) * std::size_t(g.pw) * 4];
+    const std::uint8_t* mrow = &(*w.modes)[std::size_t(y >> 2) * std::size_t(g.nbx)];
+    for (int q = 0; q < 7; ++q, ++k) {
+      const int x = (bx * 4 - 1 + q) & (g.pw - 1);
+      const int n0x = q < 3 ? 0 : 1, dx = (q + 1) & 3;
+      const int wt[4] = {(4 - dx) * (4 - dy), dx * (4 - dy), (4 - dx) * dy, dx * dy};
+      const int ny[4] = {n0y, n0y, n0y + 1, n0y + 1}, nx[4] = {n0x, n0x + 1, n0x, n0x + 1};
+      vu16x8 rest(std::uint16_t(0));
+      std::uint16_t own = 0;
+      for (int i = 0; i < 4; ++i) {
+        rest = rest + simd::mullo(simd::load_u16x8(nb[ny[i]][nx[i]]), vu16x8(std::uint16_t(wt[i])));
+        if (is_own[ny[i]][nx[i]]) own = std::uint16_t(own + wt[i]);
+      }
+      alignas(16) std::uint16_t r8[8];
+      simd::store_u16x8(rest, r8);
+      const std::uint8_t* t = trow + std::size_t(x) * 4;
+      for (int c = 0; c < 4; ++c) {
+        lw.rest16_a[k][c] = r8[c];
+        lw.rest16_b[k][c] = r8[4 + c];
+        lw.own16[k][c] = c < lw.nch ? own : 0;
+        lw.t16[k][c] = c < lw.nch ? t[c] : 0;
+      }
+      const bool m1 = mrow[x >> 2] != 0;
+      for (int c = 0; c < 2; ++c) {
+        lw.bias35[k / 2][(k & 1) * 2 + c] = m1 ? kExclude : 0;
+        lw.bias4[k / 2][(k & 1) * 2 + c] = m1 ? 0 : kExclude;
+        lw.bias4p[k / 2][(k & 1) * 2 + c] = m1 && lw.punch ? 0 : kExclude;
+      }
     }
-    const bool m1 = i < 49 && lw.mode1[i];
-    for (int c = 0; c < 2; ++c) {
-      lw.bias35[i / 2][(i & 1) * 2 + c] = m1 ? kExclude : 0;
-      lw.bias4[i / 2][(i & 1) * 2 + c] = i < 49 && !m1 ? kExclude : 0;
-      lw.bias4p[i / 2][(i & 1) * 2 + c] = m1 && lw.punch ? 0 : kExclude;
-    }
+  }
+  for (int c = 0; c < 4; ++c) {  // texel 49: the zero pad (error 0)
+    lw.rest16_a[49][c] = lw.rest16_b[49][c] = lw.own16[49][c] = lw.t16[49][c] = 0;
+  }
+  for (int c = 2; c < 4; ++c) {
+    lw.bias35[24][c] = 0;
+    lw.bias4[24][c] = 0;
+    lw.bias4p[24][c] = kExclude;
   }
 }
 
@@ -252,9 +284,10 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
 // stops once it reaches `bound` (the result is then >= bound). kAlpha: RGBA input (alpha
 // lanes, punch-through blend, weighted alpha error); RGB skips those. With the blends from
 // A + B and A - B: high -9% time over the 21 images, same output.
-template <bool kAlpha>
+// kStore: no bound; each texel's error goes to texel_err[slot] (slots in layout order).
+template <bool kAlpha, bool kStore = false>
 std::uint32_t local_error_simd_t(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
-                                 std::uint32_t bound) {
+                                 std::uint32_t bound, std::uint32_t* texel_err = nullptr) {
   using simd::vint4;
   using simd::vu16x8;
   alignas(16) const std::uint16_t a16[8] = {
@@ -299,7 +332,12 @@ std::uint32_t local_error_simd_t(const LocalWindow& lw, const Rgba5& a, const Rg
     if constexpr (kAlpha) m4 = simd::min(m4, err((v4 & rgb) - t) + simd::load4(lw.bias4p[p]));
     const vint4 m = simd::min(simd::min(simd::min(e0, e8), simd::min(e3 + b35, e5 + b35)), m4);
     acc += m;
-    if ((p & 3) == 3 && std::uint32_t(acc.lane(0) + acc.lane(2)) >= bound) break;
+    if constexpr (kStore) {
+      texel_err[2 * p] = std::uint32_t(m.lane(0));
+      texel_err[2 * p + 1] = std::uint32_t(m.lane(2));
+    } else {
+      if (std::uint32_t(acc.lane(0) + acc.lane(2)) >= bound) break;
+    }
   }
   return std::uint32_t(acc.lane(0) + acc.lane(2));
 }
@@ -308,6 +346,29 @@ std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba
                                std::uint32_t bound) {
   return lw.nch == 4 ? local_error_simd_t<true>(lw, a, b, bound)
                      : local_error_simd_t<false>(lw, a, b, bound);
+}
+
+// Reorders the window (built by build_local) by decreasing texel error (bit length) under
+// (a, b), the block's current endpoints, so that a worse candidate reaches the bound after
+// fewer texels; returns the window's error under (a, b). A window whose error is at most
+// `min_error` will not be searched and is left as it is.
+std::uint32_t order_local(LocalWindow& lw, const Rgba5& a, const Rgba5& b,
+                          std::uint32_t min_error) {
+  std::uint32_t err[50];
+  const std::uint32_t total = lw.nch == 4 ? local_error_simd_t<true, true>(lw, a, b, 0, err)
+                                          : local_error_simd_t<false, true>(lw, a, b, 0, err);
+  if (total <= min_error) return total;
+  // Counting sort on the error's bit length (33 classes, largest first, raster order within).
+  int key[49], start[34] = {};
+  for (int i = 0; i < 49; ++i) {
+    key[i] = 32 - std::countl_zero(err[i]);
+    ++start[32 - key[i] + 1];
+  }
+  for (int c = 1; c < 34; ++c) start[c] += start[c - 1];
+  std::uint8_t order[49];
+  for (int i = 0; i < 49; ++i) order[start[32 - key[i]]++] = std::uint8_t(i);
+  permute_local(lw, order);
+  return total;
 }
 
 }  // namespace
@@ -359,7 +420,7 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
               auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
                 return local_error_simd(lw, a, b, bound);
               };
-              std::uint32_t best = eval(ea[j], eb[j], ~0u);
+              std::uint32_t best = order_local(lw, ea[j], eb[j], min_error);
               if (best <= min_error) continue;
               std::uint16_t cand[8][2];
               const int n = reseed_candidates(s, bx, by, cand);
@@ -430,8 +491,12 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
                   return local_error_simd(lw, a, b, bound);
                 };
                 std::uint16_t cur_a = s.ca[j], cur_b = s.cb[j];
-                std::uint32_t best = eval(ea[j], eb[j], ~0u);
+                std::uint32_t best = order_local(lw, ea[j], eb[j], min_error);
                 if (best <= min_error) continue;
+                // The pair before the last kept move (a move back to it, e.g. the opposite
+                // step) scored at least the best error of its time, so it cannot beat the
+                // current best and is not scored again (exact).
+                std::uint32_t prev = ~0u;
                 bool improved = true;
                 for (int pass = 0; pass < passes && improved; ++pass) {
                   improved = false;
@@ -441,8 +506,11 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
                     if (!apply_move(mv, a, b)) continue;
                     const std::uint16_t na = std::uint16_t(pack_endpoint(false, a));
                     const std::uint16_t nb = std::uint16_t(pack_endpoint(true, b));
+                    const std::uint32_t key = (std::uint32_t(na) << 16) | nb;
+                    if (key == prev) continue;
                     const std::uint32_t e = eval(expand_a(na), expand_b(nb), best);
                     if (e < best) {
+                      prev = (std::uint32_t(cur_a) << 16) | cur_b;
                       best = e;
                       cur_a = na;
                       cur_b = nb;
