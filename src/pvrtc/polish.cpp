@@ -328,18 +328,28 @@ std::uint32_t local_error_simd_t(const LocalWindow& lw, const Rgba5& a, const Rg
     const vu16x8 v4 = simd::srl<1>(sum);
     const vint4 e4 = err(v4 - t);
     const vint4 b35 = simd::load4(lw.bias35[p]);
-    vint4 m4 = e4 + simd::load4(lw.bias4[p]);
-    if constexpr (kAlpha) m4 = simd::min(m4, err((v4 & rgb) - t) + simd::load4(lw.bias4p[p]));
-    const vint4 m = simd::min(simd::min(simd::min(e0, e8), simd::min(e3 + b35, e5 + b35)), m4);
+    // The minimum in float lanes (SSE2 has no 32-bit integer min; RGB 256^2 high -9%
+    // instructions): errors are far below 2^24 (exact in float), excluded blends (2^24 and
+    // up) stay at least 2^24 once rounded, and e0 / e8 are never excluded, so the minimum is
+    // the exact integer minimum.
+    using simd::to_float;
+    simd::vf4 m4 = to_float(e4 + simd::load4(lw.bias4[p]));
+    if constexpr (kAlpha) {
+      m4 = simd::min(m4, to_float(err((v4 & rgb) - t) + simd::load4(lw.bias4p[p])));
+    }
+    const vint4 m =
+        simd::to_int_trunc(simd::min(simd::min(simd::min(to_float(e0), to_float(e8)),
+                                               simd::min(to_float(e3 + b35), to_float(e5 + b35))),
+                                     m4));
     acc += m;
     if constexpr (kStore) {
       texel_err[2 * p] = std::uint32_t(m.lane(0));
       texel_err[2 * p + 1] = std::uint32_t(m.lane(2));
     } else {
-      if (std::uint32_t(acc.lane(0) + acc.lane(2)) >= bound) break;
+      if (std::uint32_t(simd::sum_lanes02(acc)) >= bound) break;
     }
   }
-  return std::uint32_t(acc.lane(0) + acc.lane(2));
+  return std::uint32_t(simd::sum_lanes02(acc));
 }
 
 std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,

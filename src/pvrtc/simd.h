@@ -523,4 +523,19 @@ inline int movemask(vint4 mask) {
 
 #endif
 
+/// sum_lanes02: lane 0 + lane 2 of `a` (the PVRTC exact search keeps two texel sums there),
+/// without a round trip through memory on SSE2.
+/// to_int_trunc: float lanes to 32-bit integers, truncating toward zero (lanes within int32).
+#if defined(TESSERA_SIMD_SSE2)
+inline std::int32_t sum_lanes02(vint4 a) {
+  return _mm_cvtsi128_si32(_mm_add_epi32(a.v, _mm_shuffle_epi32(a.v, _MM_SHUFFLE(1, 0, 3, 2))));
+}
+inline vint4 to_int_trunc(vf4 a) { return vint4(_mm_cvttps_epi32(a.v)); }
+#else
+inline std::int32_t sum_lanes02(vint4 a) { return a.lane(0) + a.lane(2); }
+inline vint4 to_int_trunc(vf4 a) {
+  return {std::int32_t(a.l[0]), std::int32_t(a.l[1]), std::int32_t(a.l[2]), std::int32_t(a.l[3])};
+}
+#endif
+
 }  // namespace tessera::simd
