@@ -25,6 +25,9 @@ inline std::uint32_t popcount16(std::uint32_t v) {
   return (v + (v >> 8)) & 0x1Fu;
 }
 
+/// Bits set in a 4-bit mask.
+inline std::uint32_t popcount4(std::uint32_t v) { return (0x4332322132212110ull >> (4 * v)) & 15u; }
+
 /// Per-frame sample tables derived from the MSAA pattern.
 struct SampleTable {
   int count = 1;
@@ -85,6 +88,7 @@ class TileRasterizer {
   const DrawCall* draw_ = nullptr;
   const float* tv_ = nullptr;  // varying block
   QuadFn quad_fn_ = nullptr;
+  bool has_shader_ = false;    // draw_->shader or draw_->quad_shader is set
   ShadeInput in_;              // fields shared by the triangle's invocations
   ShadeInput lanes_[4];        // per-lane inputs of the quad shader
   std::int64_t off_[3][kMaxSamples];
@@ -94,8 +98,11 @@ class TileRasterizer {
   // Quad scratch.
   alignas(16) float zs_[4][kMaxSamples];
   alignas(16) float v_[4][kMaxVaryings];
-  alignas(16) float ddx_[4][kMaxVaryings];
-  alignas(16) float ddy_[4][kMaxVaryings];
+  // Quad derivatives, shared by the lanes that see the same difference: fine ddx of row r in
+  // ddx_[r], fine ddy of column c in ddy_[c]; coarse derivatives use ddx_[0] / ddy_[0] for
+  // every lane (lanes_[lane].ddx / .ddy point at the right one).
+  alignas(16) float ddx_[2][kMaxVaryings];
+  alignas(16) float ddy_[2][kMaxVaryings];
   alignas(16) float vc_[4][kMaxVaryings];
   alignas(16) float out_[4][kMaxChannels];
 };
@@ -132,14 +139,16 @@ void TileRasterizer::triangle(const TriSetup& t, const float* varyings) {
   in_.quad_varyings = {v_[0], v_[1], v_[2], v_[3]};
   in_.primitive_id = t.primitive_id;
   in_.front_facing = t.front_facing;
+  const bool fine = opt_.derivatives == Derivatives::fine;
   for (int lane = 0; lane < 4; ++lane) {
     ShadeInput& l = lanes_[lane];
     l = in_;
     l.varyings = v_[lane];
-    l.ddx = ddx_[lane];
-    l.ddy = ddy_[lane];
+    l.ddx = ddx_[fine ? lane >> 1 : 0];
+    l.ddy = ddy_[fine ? lane & 1 : 0];
     l.lane = lane;
   }
+  has_shader_ = draw_->shader || draw_->quad_shader;
   const int ns = st_.count;
   for (int e = 0; e < 3; ++e) {
     for (int s = 0; s < ns; ++s) off_[e][s] = t.a[e] * st_.fx[s] + t.b[e] * st_.fy[s];
@@ -246,11 +255,22 @@ void TileRasterizer::quad(int qx, int qy, std::uint32_t* mask) {
   std::uint32_t visible[4] = {0, 0, 0, 0};
   if (kSingle) {
     const DepthTest test = draw.depth_test;
-    for (int lane = 0; lane < 4; ++lane) {
-      zs_[lane][0] = zcl[lane];
-      // Lanes outside the grid have no coverage and must not read.
-      visible[lane] =
-          mask[lane] ? std::uint32_t(depth_passes(test, zcl[lane], depth_[base[lane]])) : 0u;
+    if (qx + 1 < gw_ && qy + 1 < gh_) {
+      // The whole quad is inside the grid: one compare for the four lanes (depth_mask4 is
+      // depth_passes lane-wise), kept for the covered lanes.
+      alignas(16) float stored[4];
+      std::memcpy(stored, depth_ + base[0], 2 * sizeof(float));
+      std::memcpy(stored + 2, depth_ + base[2], 2 * sizeof(float));
+      const std::uint32_t pass = depth_mask4(test, zcl, load4(stored));
+      for (int lane = 0; lane < 4; ++lane) {
+        visible[lane] = mask[lane] ? (pass >> lane & 1u) : 0u;
+      }
+    } else {
+      for (int lane = 0; lane < 4; ++lane) {
+        // Lanes outside the grid have no coverage and must not read.
+        visible[lane] =
+            mask[lane] ? std::uint32_t(depth_passes(test, zcl[lane], depth_[base[lane]])) : 0u;
+      }
     }
   } else if (ns % 4 == 0) {
     // Four samples per vector: clamp, test, and keep the covered ones.
@@ -292,58 +312,76 @@ void TileRasterizer::quad(int qx, int qy, std::uint32_t* mask) {
   for (int lane = 0; lane < 4; ++lane) interpolate_at<N4>(tv_, b1[lane], b2[lane], v_[lane]);
 
   const int nc = channels_;
-  const bool fine = opt_.derivatives == Derivatives::fine;
-  std::uint32_t active = 0;
-  for (int lane = 0; lane < 4; ++lane) {
-    const bool helper = visible[lane] == 0;
-    if (helper) {
-      ++stats_.helper_lanes;
-      if (!opt_.shade_helpers) continue;
-    }
-    ++stats_.lanes_shaded;
-    float* out = out_[lane];
-    if (nc == 4) {
-      out[0] = out[1] = out[2] = out[3] = 0.0f;
-    } else {
-      std::fill(out, out + nc, 0.0f);
-    }
-    if (!draw.shader && !draw.quad_shader) continue;
-    active |= 1u << lane;
-    quad_derivatives<N4>(v_, lane, fine, ddx_[lane], ddy_[lane]);
-    ShadeInput& in = lanes_[lane];
-    in.varyings = v_[lane];
-    in.px = qx + (lane & 1);
-    in.py = qy + (lane >> 1);
-    in.x = float(in.px) + 0.5f;
-    in.y = float(in.py) + 0.5f;
-    in.inv_w = iw[lane];
-    in.depth = zcl[lane];
-    if (draw.centroid && mask[lane] && mask[lane] != st_.full) {
-      const int s = centroid_sample(mask[lane], st_.pos, ns);
-      in.x += st_.ox[s];
-      in.y += st_.oy[s];
-      const float sdx = ldx[lane] + st_.ox[s];
-      const float sdy = ldy[lane] + st_.oy[s];
-      in.inv_w = interpolate<N4>(t, tv_, sdx, sdy, vc_[lane]);
-      in.varyings = vc_[lane];
-      in.depth = std::clamp(eval_plane(t.z, sdx, sdy), 0.0f, 1.0f);
-    }
-    in.coverage = mask[lane];
-    in.visible = visible[lane];
-    in.helper = helper;
-    if (!draw.quad_shader) draw.shader(in, out);
+  // Helper lanes (no visible sample) are shaded only on request; a shaded lane's outputs start
+  // at zero (outputs of lanes that are not shaded are never written to the frame buffer).
+  std::uint32_t helpers = 0;
+  for (int lane = 0; lane < 4; ++lane) helpers |= std::uint32_t(visible[lane] == 0) << lane;
+  const std::uint32_t shaded = opt_.shade_helpers ? 15u : (~helpers & 15u);
+  stats_.helper_lanes += popcount4(helpers);
+  stats_.lanes_shaded += popcount4(shaded);
+  if (nc == 4) {
+    for (int lane = 0; lane < 4; ++lane) store4(out_[lane], f32x4{0.0f, 0.0f, 0.0f, 0.0f});
+  } else {
+    for (int lane = 0; lane < 4; ++lane) std::fill(out_[lane], out_[lane] + nc, 0.0f);
   }
-  if (active && draw.quad_shader) draw.quad_shader(lanes_, active, out_[0]);
+  const std::uint32_t active = has_shader_ ? shaded : 0u;
+  if (active) {
+    // Fine: ddx of each row, ddy of each column; coarse: the top row and left column only.
+    for (int i = 0; i < N4; i += 4) {
+      store4(ddx_[0] + i, load4(v_[1] + i) - load4(v_[0] + i));
+      store4(ddy_[0] + i, load4(v_[2] + i) - load4(v_[0] + i));
+    }
+    if (opt_.derivatives == Derivatives::fine) {
+      for (int i = 0; i < N4; i += 4) {
+        store4(ddx_[1] + i, load4(v_[3] + i) - load4(v_[2] + i));
+        store4(ddy_[1] + i, load4(v_[3] + i) - load4(v_[1] + i));
+      }
+    }
+    const bool centroid = draw.centroid;
+    for (int lane = 0; lane < 4; ++lane) {
+      if (!(active >> lane & 1u)) continue;
+      ShadeInput& in = lanes_[lane];
+      in.px = qx + (lane & 1);
+      in.py = qy + (lane >> 1);
+      in.x = float(in.px) + 0.5f;
+      in.y = float(in.py) + 0.5f;
+      in.inv_w = iw[lane];
+      in.depth = zcl[lane];
+      if (centroid) {
+        in.varyings = v_[lane];
+        if (mask[lane] && mask[lane] != st_.full) {
+          const int s = centroid_sample(mask[lane], st_.pos, ns);
+          in.x += st_.ox[s];
+          in.y += st_.oy[s];
+          const float sdx = ldx[lane] + st_.ox[s];
+          const float sdy = ldy[lane] + st_.oy[s];
+          in.inv_w = interpolate<N4>(t, tv_, sdx, sdy, vc_[lane]);
+          in.varyings = vc_[lane];
+          in.depth = std::clamp(eval_plane(t.z, sdx, sdy), 0.0f, 1.0f);
+        }
+      }
+      in.coverage = mask[lane];
+      in.visible = visible[lane];
+      in.helper = visible[lane] == 0;
+    }
+    if (draw.quad_shader) {
+      draw.quad_shader(lanes_, active, out_[0]);
+    } else {
+      for (int lane = 0; lane < 4; ++lane) {
+        if (active >> lane & 1u) draw.shader(lanes_[lane], out_[lane]);
+      }
+    }
+  }
 
   // Per-sample writes of depth, payload and id.
   const bool write_depth = draw.depth_write;
   if (kSingle) {
     // One sample per pixel (visible[lane] is 0 or 1): the general loop below for one bit.
+    stats_.samples_written += popcount4(~helpers & 15u);
     for (int lane = 0; lane < 4; ++lane) {
       if (!visible[lane]) continue;
-      ++stats_.samples_written;
       const std::size_t i = base[lane];
-      if (write_depth) depth_[i] = zs_[lane][0];
+      if (write_depth) depth_[i] = zcl[lane];
       float* d = data_ + i * std::size_t(nc);
       if (nc == 4) {
         std::memcpy(d, out_[lane], 4 * sizeof(float));
