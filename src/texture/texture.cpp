@@ -538,6 +538,26 @@ void Texture::sample4(const SamplerState& sampler, const std::array<Uv, 4>& uv,
     layer = std::clamp(layer, 0, shape_.layers - 1);
     const std::size_t* level_offsets = offsets_.data() + std::size_t(layer) * shape_.levels;
     const float* texels = texels_.data();
+    if (plan.has_offsets) {
+      // Same taps and order as add_bilinear_weights without border reads (the loop below with
+      // its address resolution hoisted out).
+      for (int lane = 0; lane < 4; ++lane) {
+        if (!(active >> lane & 1u)) continue;
+        Accum4 acc;
+        const int count = plan.count[lane];
+        for (int li = 0; li < count; ++li) {
+          const float* base = texels + level_offsets[plan.level[li][lane]];
+          const float* w4 = plan.weight[li][lane];
+          const int* o = plan.offset[li][lane];
+          acc.add(w4[0], base + o[0]);
+          acc.add(w4[1], base + o[1]);
+          acc.add(w4[2], base + o[2]);
+          acc.add(w4[3], base + o[3]);
+        }
+        out[std::size_t(lane)] = acc.value();
+      }
+      return;
+    }
     for (int lane = 0; lane < 4; ++lane) {
       if (!(active >> lane & 1u)) continue;
       Accum4 acc;
