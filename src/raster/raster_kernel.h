@@ -294,24 +294,6 @@ inline f32x4 clamp01(f32x4 v) {
 #endif
 }
 
-/// Quad derivatives for one lane (lane = 2 * row + column) from the N4 values of all four
-/// lanes, `v[lane][i]`. Fine: the lane's own row / column. Coarse: the top row and the left
-/// column for every lane.
-template <int N4>
-inline void quad_derivatives(const float (*v)[kMaxVaryings], int lane, bool fine, float* ddx,
-                             float* ddy) {
-  const int row = fine ? (lane >> 1) : 0;
-  const int col = fine ? (lane & 1) : 0;
-  const float* l = v[2 * row];
-  const float* r = v[2 * row + 1];
-  const float* t = v[col];
-  const float* b = v[2 + col];
-  for (int i = 0; i < N4; i += 4) {
-    store4(ddx + i, load4(r + i) - load4(l + i));
-    store4(ddy + i, load4(b + i) - load4(t + i));
-  }
-}
-
 /// Centroid sample of a partially covered pixel: the covered sample nearest the pixel centre,
 /// lowest index on ties. `mask` must be non-zero.
 inline int centroid_sample(std::uint32_t mask, const SampleOffset* pos, int samples) {
