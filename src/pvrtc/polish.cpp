@@ -234,40 +234,49 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
     }
   }
   // Window row / column r (texel by*4 - 1 + r) interpolates neighbour rows (r < 3 ? 0 : 1) and
-  // the next with weights 4 - d and d, d = (r + 1) & 3 (the decoder's axis_tap).
+  // the next with weights 4 - d and d, d = (r + 1) & 3 (the decoder's axis_tap); separably:
+  // each row's three vertical mixes first (16-bit lanes, all sums below 2^9).
   constexpr std::int32_t kExclude = 1 << 24;
+  const std::uint16_t amask = lw.nch == 4 ? 0xffff : 0;
+  const std::int32_t punch_bias = lw.punch ? 0 : kExclude;
   int k = 0;
   for (int r = 0; r < 7; ++r) {
     const int y = (by * 4 - 1 + r) & (g.ph - 1);
     const int n0y = r < 3 ? 0 : 1, dy = (r + 1) & 3;
+    const vu16x8 wy0{std::uint16_t(4 - dy)}, wy1{std::uint16_t(dy)};
+    vu16x8 v[3];
+    int own_v[3];
+    for (int c = 0; c < 3; ++c) {
+      v[c] = simd::mullo(simd::load_u16x8(nb[n0y][c]), wy0) +
+             simd::mullo(simd::load_u16x8(nb[n0y + 1][c]), wy1);
+      own_v[c] = (is_own[n0y][c] ? 4 - dy : 0) + (is_own[n0y + 1][c] ? dy : 0);
+    }
     const std::uint8_t* trow = &s.target[std::size_t(y) * std::size_t(g.pw) * 4];
     const std::uint8_t* mrow = &(*w.modes)[std::size_t(y >> 2) * std::size_t(g.nbx)];
     for (int q = 0; q < 7; ++q, ++k) {
       const int x = (bx * 4 - 1 + q) & (g.pw - 1);
       const int n0x = q < 3 ? 0 : 1, dx = (q + 1) & 3;
-      const int wt[4] = {(4 - dx) * (4 - dy), dx * (4 - dy), (4 - dx) * dy, dx * dy};
-      const int ny[4] = {n0y, n0y, n0y + 1, n0y + 1}, nx[4] = {n0x, n0x + 1, n0x, n0x + 1};
-      vu16x8 rest(std::uint16_t(0));
-      std::uint16_t own = 0;
-      for (int i = 0; i < 4; ++i) {
-        rest = rest + simd::mullo(simd::load_u16x8(nb[ny[i]][nx[i]]), vu16x8(std::uint16_t(wt[i])));
-        if (is_own[ny[i]][nx[i]]) own = std::uint16_t(own + wt[i]);
-      }
+      const vu16x8 rest = simd::mullo(v[n0x], vu16x8(std::uint16_t(4 - dx))) +
+                          simd::mullo(v[n0x + 1], vu16x8(std::uint16_t(dx)));
+      const std::uint16_t own = std::uint16_t((4 - dx) * own_v[n0x] + dx * own_v[n0x + 1]);
       alignas(16) std::uint16_t r8[8];
       simd::store_u16x8(rest, r8);
+      std::memcpy(lw.rest16_a[k], r8, 8);
+      std::memcpy(lw.rest16_b[k], r8 + 4, 8);
       const std::uint8_t* t = trow + std::size_t(x) * 4;
-      for (int c = 0; c < 4; ++c) {
-        lw.rest16_a[k][c] = r8[c];
-        lw.rest16_b[k][c] = r8[4 + c];
-        lw.own16[k][c] = c < lw.nch ? own : 0;
-        lw.t16[k][c] = c < lw.nch ? t[c] : 0;
-      }
+      const std::uint16_t own4[4] = {own, own, own, std::uint16_t(own & amask)};
+      const std::uint16_t t4[4] = {t[0], t[1], t[2], std::uint16_t(t[3] & amask)};
+      std::memcpy(lw.own16[k], own4, 8);
+      std::memcpy(lw.t16[k], t4, 8);
       const bool m1 = mrow[x >> 2] != 0;
-      for (int c = 0; c < 2; ++c) {
-        lw.bias35[k / 2][(k & 1) * 2 + c] = m1 ? kExclude : 0;
-        lw.bias4[k / 2][(k & 1) * 2 + c] = m1 ? 0 : kExclude;
-        lw.bias4p[k / 2][(k & 1) * 2 + c] = m1 && lw.punch ? 0 : kExclude;
-      }
+      const std::int32_t b35 = m1 ? kExclude : 0, b4 = m1 ? 0 : kExclude,
+                         b4p = m1 ? punch_bias : kExclude;
+      std::int32_t* p35 = &lw.bias35[k / 2][(k & 1) * 2];
+      std::int32_t* p4 = &lw.bias4[k / 2][(k & 1) * 2];
+      std::int32_t* p4p = &lw.bias4p[k / 2][(k & 1) * 2];
+      p35[0] = p35[1] = b35;
+      p4[0] = p4[1] = b4;
+      p4p[0] = p4p[1] = b4p;
     }
   }
   for (int c = 0; c < 4; ++c) {  // texel 49: the zero pad (error 0)
