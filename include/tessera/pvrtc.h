@@ -10,7 +10,8 @@
 // agree with their neighbours), an exact "reseed" of 4 bpp blocks the footprint start misses
 // (endpoints from the block's own texels, kept where the exactly decoded error drops), then
 // alternating least-squares optimisation of the block colours (modulation fixed) and
-// brute-force modulation (colours fixed).
+// brute-force modulation (colours fixed), then (4 bpp) an exact greedy search over +-1 moves of
+// each block's endpoint codes scored by the exactly decoded error of its 7x7 texel window.
 //
 // Modulation is always chosen against the exact decoder arithmetic, so the bytes an encode
 // returns decode (in tessera or PVRTexTool) to exactly the image the encoder scored.
@@ -45,11 +46,13 @@ enum class Format {
 /// Encoder effort.
 enum class Quality {
   fast,    ///< Intensity dilation only (the paper's algorithm), 4 bpp mode 0 (+ punch-through).
-  normal,  ///< Principal-axis start, 1 reseed pass (4 bpp), up to 3 refinement sweeps; 4 bpp
+  normal,  ///< Principal-axis start, 1 reseed pass (4 bpp), 3 refinement sweeps, then (4 bpp)
+           ///< one round of the exact search on blocks above ~6.4 RMS per channel; 4 bpp
            ///< also tries mode 1.
-  high,    ///< As normal, refinement until a sweep gains < 0.25% (at most 16 sweeps); 4 bpp
-           ///< RGB adds a second reseed pass and one round of the exact search (see
-           ///< `exact_search_rounds`).
+  high,    ///< Principal-axis start, 2 reseed passes (4 bpp), then 4 bpp: 3 refinement sweeps
+           ///< and the exact search on every block until no block changes (alpha error
+           ///< weighted x2 for RGBA); 2 bpp: refinement until a sweep gains < 0.25% (at most
+           ///< 16 sweeps).
 };
 
 /// Block width in texels (4 for 4 bpp, 8 for 2 bpp); blocks are always 4 texels high.
@@ -74,13 +77,13 @@ std::uint32_t morton_index(std::uint32_t bx, std::uint32_t by, std::uint32_t bw,
 struct EncodeOptions {
   Format format = Format::pvrtc1_4bpp;
   Quality quality = Quality::normal;
-  /// Refinement iterations; -1 = the quality preset's default (fast 0, normal a few, high until
-  /// convergence within a budget).
+  /// Refinement sweeps; -1 = the quality preset's default (fast 0, normal 3, high 3 at 4 bpp
+  /// and up to 16, until a sweep gains < 0.25%, at 2 bpp).
   int iterations = -1;
   /// 4 bpp only: rounds of exact greedy search over +-1 changes of each block's endpoint codes
-  /// after the refinement, keeping changes that lower the exactly decoded error (0 = the
-  /// preset's default: one short round for `high`, none otherwise). Each round costs roughly
-  /// a third of a `high` encode; photos gain about +0.03 dB per round beyond high's.
+  /// after the refinement, keeping changes that lower the exactly decoded error, on blocks
+  /// above ~4.5 RMS per channel with up to 4 sweeps of the moves per block (0 = the preset's
+  /// default: see `Quality`). A positive value replaces the preset's search.
   int exact_search_rounds = 0;
   /// Allow punch-through (modulation mode 1) blocks for RGBA input.
   bool punch_through = true;
