@@ -158,20 +158,8 @@ inline void load_row(const Consts& k, const Row2& r, int bx, int j, vu16x8 a[4],
   constexpr int nch = kAlpha ? 4 : 3;
   const std::uint8_t* tp = r.t[j] + std::size_t(bx) * 32;
   const vint4 t0 = simd::load_texels4(tp), t1 = simd::load_texels4(tp + 16);
-  const vint4 m8(0xff);
   for (int c = 0; c < nch; ++c) {
-    vint4 c0 = t0, c1 = t1;
-    if (c == 1) {
-      c0 = simd::srl<8>(t0);
-      c1 = simd::srl<8>(t1);
-    } else if (c == 2) {
-      c0 = simd::srl<16>(t0);
-      c1 = simd::srl<16>(t1);
-    } else if (c == 3) {
-      c0 = simd::srl<24>(t0);
-      c1 = simd::srl<24>(t1);
-    }
-    t[c] = simd::narrow16(c0 & m8, c1 & m8);
+    t[c] = simd::channel16(t0, t1, c);
     for (int img = 0; img < 2; ++img) {
       const std::uint16_t* p = r.v[j] + std::size_t(img * 4 + c) * r.vstride + bx;
       const vint4 p1(p[1]);

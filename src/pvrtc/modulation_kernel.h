@@ -93,7 +93,7 @@ template <bool kAlpha, bool kExtra>
 inline void block_pair_errors(const ModRow4& r, int bx, BlockMod out[2]) {
   using namespace modk;
   constexpr int nch = kAlpha ? 4 : 3;
-  const vint4 m8(0xff), three(3);
+  const vint4 three(3);
   const vu16x8 w_left = simd::narrow16(vint4(2, 1, 4, 3), vint4(2, 1, 4, 3));
   const vu16x8 w_right = simd::narrow16(vint4(2, 3, 0, 1), vint4(2, 3, 0, 1));
   const vu16x8 k3(3), k5(5), zero(0);
@@ -104,18 +104,7 @@ inline void block_pair_errors(const ModRow4& r, int bx, BlockMod out[2]) {
     const vint4 t0 = simd::load_texels4(tp), t1 = simd::load_texels4(tp + 16);
     vu16x8 d0[4], d3[4], d5[4], d8[4], d4[4], tv[4];
     for (int c = 0; c < nch; ++c) {
-      vint4 c0 = t0, c1 = t1;
-      if (c == 1) {
-        c0 = simd::srl<8>(t0);
-        c1 = simd::srl<8>(t1);
-      } else if (c == 2) {
-        c0 = simd::srl<16>(t0);
-        c1 = simd::srl<16>(t1);
-      } else if (c == 3) {
-        c0 = simd::srl<24>(t0);
-        c1 = simd::srl<24>(t1);
-      }
-      const vu16x8 t = simd::narrow16(c0 & m8, c1 & m8);
+      const vu16x8 t = simd::channel16(t0, t1, c);
       tv[c] = t;
       vu16x8 up[2];
       for (int img = 0; img < 2; ++img) {

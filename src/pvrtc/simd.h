@@ -538,4 +538,20 @@ inline vint4 to_int_trunc(vf4 a) {
 }
 #endif
 
+/// channel16: channel `c` (0 = R ... 3 = A) of the eight RGBA8 texels held in `t0` and `t1`
+/// (from load_texels4), as 16-bit lanes in texel order.
+inline vu16x8 channel16(vint4 t0, vint4 t1, int c) {
+  const vint4 m8(0xff);
+  switch (c) {
+    case 1:
+      return narrow16(srl<8>(t0) & m8, srl<8>(t1) & m8);
+    case 2:
+      return narrow16(srl<16>(t0) & m8, srl<16>(t1) & m8);
+    case 3:
+      return narrow16(srl<24>(t0) & m8, srl<24>(t1) & m8);
+    default:
+      return narrow16(t0 & m8, t1 & m8);
+  }
+}
+
 }  // namespace tessera::simd
