@@ -56,19 +56,6 @@ inline std::uint32_t hsum(vint4 v) {
   return std::uint32_t(l[0]) + std::uint32_t(l[1]) + std::uint32_t(l[2]) + std::uint32_t(l[3]);
 }
 
-inline vint4 shl_row(vint4 v, int row) {
-  switch (row) {
-    case 0:
-      return v;
-    case 1:
-      return simd::sll<8>(v);
-    case 2:
-      return simd::sll<16>(v);
-    default:
-      return simd::sll<24>(v);
-  }
-}
-
 /// Constants shared by the passes.
 struct Consts {
   vu16x8 wl, wr;       // horizontal bilinear weights of the 8 texels (left / right sums)
@@ -277,7 +264,7 @@ std::uint64_t choose_2bpp_impl(EncoderState& s) {
               simd::store_u8x8(simd::narrow16(code[0] | simd::sll<2>(bit[0]),
                                               code[1] | simd::sll<2>(bit[1])),
                                maps.row(maps.greedy, by * 4 + j) + x0);
-              acc_bits += shl_row(simd::madd(simd::narrow16(bit[0], bit[1]), k.lanebit), j);
+              acc_bits += simd::sll_bytes(simd::madd(simd::narrow16(bit[0], bit[1]), k.lanebit), j);
             }
             const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
             err0[bi] = hsum(acc_err);

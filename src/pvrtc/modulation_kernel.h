@@ -47,19 +47,6 @@ struct Acc {
   vint4 err0, bits0, err1, bits1, err1p, bits1p;
 };
 
-inline vint4 shl_row(vint4 v, int row) {
-  switch (row) {
-    case 0:
-      return v;
-    case 1:
-      return simd::sll<8>(v);
-    case 2:
-      return simd::sll<16>(v);
-    default:
-      return simd::sll<24>(v);
-  }
-}
-
 inline void finish(const Acc& a, bool extra, BlockMod& m) {
   std::int32_t l[6][4];
   simd::store4(a.err0, l[0]);
@@ -149,7 +136,7 @@ inline void block_pair_errors(const ModRow4& r, int bx, BlockMod out[2]) {
       k = simd::min(k, simd::sll<2>(e5[h]) | vint4(2));
       k = simd::min(k, simd::sll<2>(e8[h]) | vint4(3));
       acc[h].err0 += simd::srl<2>(k);
-      acc[h].bits0 = acc[h].bits0 | shl_row(k & three, j);
+      acc[h].bits0 = acc[h].bits0 | simd::sll_bytes(k & three, j);
       if constexpr (kExtra) {
         // Mode 1 ranks 0, 1, 2, 3 = codes 0 (weight 0), 1 (4), 3 (8), 2 (4, punch-through):
         // code = rank ^ (rank >> 1).
@@ -159,9 +146,9 @@ inline void block_pair_errors(const ModRow4& r, int bx, BlockMod out[2]) {
         const vint4 k1p = simd::min(k1, simd::sll<2>(e4p[h]) | vint4(3));
         const vint4 r1 = k1 & three, r1p = k1p & three;
         acc[h].err1 += simd::srl<2>(k1);
-        acc[h].bits1 = acc[h].bits1 | shl_row(r1 ^ simd::srl<1>(r1), j);
+        acc[h].bits1 = acc[h].bits1 | simd::sll_bytes(r1 ^ simd::srl<1>(r1), j);
         acc[h].err1p += simd::srl<2>(k1p);
-        acc[h].bits1p = acc[h].bits1p | shl_row(r1p ^ simd::srl<1>(r1p), j);
+        acc[h].bits1p = acc[h].bits1p | simd::sll_bytes(r1p ^ simd::srl<1>(r1p), j);
       }
     }
   }

@@ -538,6 +538,21 @@ inline vint4 to_int_trunc(vf4 a) {
 }
 #endif
 
+/// sll_bytes: each 32-bit lane shifted left by 8 * `k` bits (k = 0..3), e.g. to put row k's
+/// 8-bit code into byte k of a packed word.
+inline vint4 sll_bytes(vint4 v, int k) {
+  switch (k) {
+    case 0:
+      return v;
+    case 1:
+      return sll<8>(v);
+    case 2:
+      return sll<16>(v);
+    default:
+      return sll<24>(v);
+  }
+}
+
 /// channel16: channel `c` (0 = R ... 3 = A) of the eight RGBA8 texels held in `t0` and `t1`
 /// (from load_texels4), as 16-bit lanes in texel order.
 inline vu16x8 channel16(vint4 t0, vint4 t1, int c) {
