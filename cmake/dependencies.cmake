@@ -2,6 +2,7 @@
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(SPNG REQUIRED IMPORTED_TARGET spng)   # PNG read/write (libspng-dev)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)     # JPEG/TGA/BMP read (libstb-dev)
+pkg_check_modules(DEFLATE REQUIRED IMPORTED_TARGET libdeflate)  # PNG fast path (libdeflate-dev)
 find_package(ZLIB REQUIRED)                             # zlib streams (Ptex, PNG)
 find_package(TBB REQUIRED)                              # parallel_for (libtbb-dev)
 find_package(CLI11 CONFIG REQUIRED)                     # command line (libcli11-dev)

@@ -37,6 +37,48 @@ def png_bytes(width, height, channels, pixel):
             + chunk(b"IEND", b""))
 
 
+def filtered_png_bytes(width, height, channels, pixel, extra_chunks=(), idat_parts=1):
+    """An 8-bit PNG whose row y uses filter y % 5 (None, Sub, Up, Average, Paeth)."""
+    colour_type = {1: 0, 2: 4, 3: 2, 4: 6}[channels]
+    rows = [bytes(v for x in range(width) for v in pixel(x, y)[:channels]) for y in range(height)]
+    raw = bytearray()
+    prev = bytes(len(rows[0]))
+    for y, row in enumerate(rows):
+        kind = y % 5
+        raw.append(kind)
+        for i, v in enumerate(row):
+            a = row[i - channels] if i >= channels else 0
+            b = prev[i]
+            c = prev[i - channels] if i >= channels else 0
+            p = a + b - c
+            pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+            paeth = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
+            raw.append((v - (0, a, b, (a + b) // 2, paeth)[kind]) % 256)
+        prev = row
+
+    def chunk(kind, data):
+        c = kind + data
+        return struct.pack(">I", len(data)) + c + struct.pack(">I", zlib.crc32(c) & 0xFFFFFFFF)
+
+    stream = zlib.compress(bytes(raw), 9)
+    step = -(-len(stream) // idat_parts)
+    idats = b"".join(chunk(b"IDAT", stream[i:i + step]) for i in range(0, len(stream), step))
+    ihdr = struct.pack(">IIBBBBB", width, height, 8, colour_type, 0, 0, 0)
+    extras = b"".join(chunk(kind, data) for kind, data in extra_chunks)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + extras + idats + chunk(b"IEND", b"")
+
+
+def png_diff_seeds():
+    """Seeds for fuzz_png_diff: files the PNG fast path takes, every filter and colour type."""
+    phys = (b"pHYs", struct.pack(">IIB", 2835, 2835, 1))
+    text = (b"tEXt", b"Comment\0seed")
+    write("fuzz_png_diff", "rgb-filters.png", filtered_png_bytes(7, 10, 3, pattern, [phys]))
+    write("fuzz_png_diff", "rgba-filters.png", filtered_png_bytes(9, 10, 4, pattern, [], 3))
+    write("fuzz_png_diff", "grey-filters.png", filtered_png_bytes(6, 10, 1, pattern, [text]))
+    write("fuzz_png_diff", "grey-alpha-filters.png", filtered_png_bytes(5, 10, 2, pattern))
+    write("fuzz_png_diff", "rgb-1-wide.png", filtered_png_bytes(1, 5, 3, pattern))
+
+
 def pattern(x, y):
     return (int(128 + 120 * math.sin(x * 0.7)), int(128 + 120 * math.cos(y * 0.5)), (x * 16 + y * 8) % 256,
             0 if (x + y) % 5 == 0 else 255 - 8 * x)
@@ -78,6 +120,7 @@ def main():
             header = struct.pack("<Bii", 1 if bpp2 else 0, w, h)
             write("fuzz_pvrtc_decode", name + ".bin", header + pvr[67:67 + level0])
 
+    png_diff_seeds()
     write("fuzz_decode_image", "rgb.png", png_bytes(7, 5, 3, pattern))
     write("fuzz_decode_image", "rgba.png", png_bytes(9, 4, 4, pattern))
     write("fuzz_decode_image", "grey.png", png_bytes(6, 6, 1, pattern))

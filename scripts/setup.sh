@@ -18,6 +18,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git ca-certificates
   clang lld libclang-rt-14-dev                 # second compiler, sanitizers, libFuzzer
   libspng-dev zlib1g-dev libstb-dev            # PNG, zlib, JPEG/TGA/BMP
+  libdeflate-dev                               # PNG fast path (inflate)
   libtbb-dev                                   # parallel_for
   libcli11-dev nlohmann-json3-dev              # CLI, --json
   libtinyobjloader-dev libtinygltf-dev         # OBJ and glTF scenes

@@ -8,7 +8,9 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
+#include "io/png_fast.h"
 #include "tessera/io.h"
 #include "tessera/procedural.h"
 #include "test_support.h"
@@ -19,18 +21,23 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Encodes raw samples as PNG with libspng directly (to make 16-bit, grey and palette files).
+/// `filters`: an SPNG_FILTER_CHOICE_* mask (libspng picks per row among those allowed).
 std::vector<std::uint8_t> encode_raw_png(const void* data, std::size_t size, std::uint32_t w,
                                          std::uint32_t h, std::uint8_t color_type,
                                          std::uint8_t depth, const spng_plte* plte = nullptr,
-                                         const spng_trns* trns = nullptr) {
+                                         const spng_trns* trns = nullptr,
+                                         int filters = SPNG_FILTER_CHOICE_ALL,
+                                         std::uint8_t interlace = 0) {
   std::unique_ptr<spng_ctx, decltype(&spng_ctx_free)> ctx(spng_ctx_new(SPNG_CTX_ENCODER),
                                                           &spng_ctx_free);
   spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1);
+  spng_set_option(ctx.get(), SPNG_FILTER_CHOICE, filters);
   spng_ihdr ihdr{};
   ihdr.width = w;
   ihdr.height = h;
   ihdr.bit_depth = depth;
   ihdr.color_type = color_type;
+  ihdr.interlace_method = interlace;
   EXPECT_EQ(spng_set_ihdr(ctx.get(), &ihdr), 0);
   if (plte) {
     EXPECT_EQ(spng_set_plte(ctx.get(), const_cast<spng_plte*>(plte)), 0);
@@ -290,6 +297,242 @@ TEST(SharedData, RealImagesDecode) {
   ASSERT_TRUE(npot.ok());
   EXPECT_EQ(npot->width, 127);
   EXPECT_EQ(npot->height, 128);
+}
+
+
+// ---- PNG fast path (src/io/png_fast.cpp) against libspng ------------------------------------
+
+std::uint32_t crc32_of(const std::uint8_t* p, std::size_t n) {
+  std::uint32_t crc = 0xFFFFFFFFu;
+  for (std::size_t i = 0; i < n; ++i) {
+    crc ^= p[i];
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+void put_be32(std::vector<std::uint8_t>& b, std::size_t off, std::uint32_t v) {
+  b[off] = std::uint8_t(v >> 24);
+  b[off + 1] = std::uint8_t(v >> 16);
+  b[off + 2] = std::uint8_t(v >> 8);
+  b[off + 3] = std::uint8_t(v);
+}
+
+std::uint32_t get_be32(const std::vector<std::uint8_t>& b, std::size_t off) {
+  return (std::uint32_t(b[off]) << 24) | (std::uint32_t(b[off + 1]) << 16) |
+         (std::uint32_t(b[off + 2]) << 8) | std::uint32_t(b[off + 3]);
+}
+
+/// Offset of the first chunk of `type` (its length field), or 0.
+std::size_t find_chunk(const std::vector<std::uint8_t>& png, const char* type) {
+  for (std::size_t pos = 8; pos + 12 <= png.size(); pos += 12 + get_be32(png, pos)) {
+    if (std::memcmp(&png[pos + 4], type, 4) == 0) return pos;
+  }
+  return 0;
+}
+
+/// Recomputes the CRC of the chunk at `pos`, so only the deliberate damage remains.
+void fix_crc(std::vector<std::uint8_t>& png, std::size_t pos) {
+  const std::uint32_t len = get_be32(png, pos);
+  put_be32(png, pos + 8 + len, crc32_of(&png[pos + 4], len + 4));
+}
+
+/// Inserts a chunk before the one at `pos`.
+void insert_chunk(std::vector<std::uint8_t>& png, std::size_t pos, const char* type,
+                  const std::vector<std::uint8_t>& body) {
+  std::vector<std::uint8_t> c(12 + body.size());
+  put_be32(c, 0, std::uint32_t(body.size()));
+  std::memcpy(&c[4], type, 4);
+  std::copy(body.begin(), body.end(), c.begin() + 8);
+  put_be32(c, 8 + body.size(), crc32_of(&c[4], body.size() + 4));
+  png.insert(png.begin() + std::ptrdiff_t(pos), c.begin(), c.end());
+}
+
+/// Samples with smooth runs, edges and noise, so every filter and Paeth branch gets used.
+std::vector<std::uint8_t> test_samples(std::uint32_t w, std::uint32_t h, int channels) {
+  std::vector<std::uint8_t> s(std::size_t(w) * h * std::size_t(channels));
+  std::uint32_t rng = 12345;
+  for (std::uint32_t y = 0; y < h; ++y) {
+    for (std::uint32_t x = 0; x < w; ++x) {
+      for (int c = 0; c < channels; ++c) {
+        rng = rng * 1664525u + 1013904223u;
+        const std::uint32_t smooth = x * (3 + std::uint32_t(c)) + y * 5;
+        const std::uint32_t v = ((x / 4 + y / 3) % 3 == 0) ? smooth : (rng >> 24);
+        s[(std::size_t(y) * w + x) * std::size_t(channels) + std::size_t(c)] = std::uint8_t(v);
+      }
+    }
+  }
+  return s;
+}
+
+/// decode_image must give exactly what libspng gives: the same pixels, or the same error.
+void expect_same_as_spng(const std::vector<std::uint8_t>& png, const std::string& what) {
+  Result<ImageRGBA8> got = decode_image(png, "x.png");
+  Result<ImageRGBA8> want = detail::decode_png_spng(png, "x.png");
+  ASSERT_EQ(got.ok(), want.ok()) << what << ": " << (got.ok() ? want : got).status().message;
+  if (!want.ok()) {
+    EXPECT_EQ(got.status().message, want.status().message) << what;
+    EXPECT_EQ(got.status().message.rfind("x.png: ", 0), 0u) << got.status().message;
+    EXPECT_EQ(got.status().message.find('\n'), std::string::npos);
+    return;
+  }
+  EXPECT_EQ(got->width, want->width) << what;
+  EXPECT_EQ(got->height, want->height) << what;
+  EXPECT_EQ(got->has_alpha, want->has_alpha) << what;
+  EXPECT_TRUE(got->pixels == want->pixels) << what;
+}
+
+TEST(PngFastPath, MatchesLibspngForEveryFilterWidthAndColourType) {
+  const int choices[] = {SPNG_FILTER_CHOICE_NONE, SPNG_FILTER_CHOICE_SUB, SPNG_FILTER_CHOICE_UP,
+                         SPNG_FILTER_CHOICE_AVG, SPNG_FILTER_CHOICE_PAETH, SPNG_FILTER_CHOICE_ALL};
+  const std::pair<std::uint8_t, int> types[] = {{0, 1}, {2, 3}, {4, 2}, {6, 4}};
+  for (auto [color_type, channels] : types) {
+    for (std::uint32_t w : {1u, 3u, 17u, 257u}) {
+      for (int filters : choices) {
+        const std::uint32_t h = 7;
+        const std::vector<std::uint8_t> samples = test_samples(w, h, channels);
+        const std::vector<std::uint8_t> png = encode_raw_png(
+            samples.data(), samples.size(), w, h, color_type, 8, nullptr, nullptr, filters);
+        const std::string what = "type " + std::to_string(color_type) + " width " +
+                                 std::to_string(w) + " filters " + std::to_string(filters);
+        std::optional<ImageRGBA8> fast = detail::decode_png_fast(png);
+        ASSERT_TRUE(fast.has_value()) << what << ": the fast path should take this file";
+        Result<ImageRGBA8> ref = detail::decode_png_spng(png, "ref");
+        ASSERT_TRUE(ref.ok()) << ref.status().message;
+        EXPECT_EQ(fast->width, ref->width);
+        EXPECT_EQ(fast->height, ref->height);
+        EXPECT_EQ(fast->has_alpha, ref->has_alpha) << what;
+        EXPECT_TRUE(fast->pixels == ref->pixels) << what;
+      }
+    }
+  }
+}
+
+TEST(PngFastPath, IgnoresTheSameAncillaryChunksAsLibspng) {
+  const std::vector<std::uint8_t> samples = test_samples(17, 5, 3);
+  const std::vector<std::uint8_t> base =
+      encode_raw_png(samples.data(), samples.size(), 17, 5, 2, 8);
+  const std::size_t idat = find_chunk(base, "IDAT");
+  // Well-formed and malformed (libspng discards those) ancillary chunks before and after IDAT.
+  const std::vector<std::pair<const char*, std::vector<std::uint8_t>>> chunks = {
+      {"pHYs", {0, 0, 0x0B, 0x13, 0, 0, 0x0B, 0x13, 1}},
+      {"gAMA", {0, 0, 0xB1, 0x8F}},
+      {"gAMA", {0, 0, 0, 0}},  // a duplicate, and an invalid value
+      {"sRGB", {9}},           // invalid rendering intent
+      {"cHRM", {1, 2, 3}},     // wrong size
+      {"tEXt", {'C', 'o', 'm', 'm', 'e', 'n', 't', 0, 'h', 'i'}},
+      {"zTXt", {'k', 0, 0, 1, 2, 3}},                // corrupt zlib stream
+      {"iCCP", {'p', 0, 0, 0x78, 0x9C, 3, 0, 0, 0, 0, 1}},  // empty profile
+      {"iCCP", {'p', 'r', 'o'}},                             // no name terminator
+      {"tEXt", {0, 'x'}},                                    // empty keyword
+      {"tIME", {0x07, 0xE6, 13, 40, 25, 61, 61}},            // impossible date
+      {"pHYs", {0, 0, 0, 1, 0, 0, 0, 1, 7}},                 // unknown unit
+      {"bKGD", {0, 1}},                                      // wrong size for RGB
+      {"sBIT", {0, 9, 8}},                                   // out of range
+      {"hIST", {0, 1, 0, 2}},                                // no PLTE
+      {"oFFs", {0, 0, 0, 1, 0, 0, 0, 1, 2}},                 // unknown unit
+      {"prVt", {1, 2, 3}},                                   // unknown, safe to copy
+  };
+  for (const auto& [type, body] : chunks) {
+    std::vector<std::uint8_t> before = base;
+    insert_chunk(before, idat, type, body);
+    ASSERT_TRUE(detail::decode_png_fast(before).has_value()) << type;
+    expect_same_as_spng(before, std::string(type) + " before IDAT");
+    std::vector<std::uint8_t> after = base;
+    insert_chunk(after, find_chunk(after, "IEND"), type, body);
+    expect_same_as_spng(after, std::string(type) + " after IDAT");
+  }
+}
+
+TEST(PngFastPath, DeclinesWhatItDoesNotHandle) {
+  const std::vector<std::uint8_t> rgb = test_samples(9, 6, 3);
+  // tRNS changes alpha: libspng decides.
+  spng_trns trns{};
+  trns.red = rgb[0];
+  trns.green = rgb[1];
+  trns.blue = rgb[2];
+  const std::vector<std::uint8_t> keyed =
+      encode_raw_png(rgb.data(), rgb.size(), 9, 6, 2, 8, nullptr, &trns);
+  EXPECT_FALSE(detail::decode_png_fast(keyed).has_value());
+  Result<ImageRGBA8> k = decode_image(keyed, "keyed.png");
+  ASSERT_TRUE(k.ok());
+  EXPECT_TRUE(k->has_alpha);
+  EXPECT_EQ(k->pixels[3], 0);
+  // 16-bit samples and Adam7 interlacing.
+  std::vector<std::uint16_t> wide(9 * 6 * 3, 0x1234);
+  const std::vector<std::uint8_t> sixteen =
+      encode_raw_png(wide.data(), wide.size() * 2, 9, 6, 2, 16);
+  EXPECT_FALSE(detail::decode_png_fast(sixteen).has_value());
+  EXPECT_TRUE(decode_image(sixteen, "16.png").ok());
+  const std::vector<std::uint8_t> interlaced = encode_raw_png(
+      rgb.data(), rgb.size(), 9, 6, 2, 8, nullptr, nullptr, SPNG_FILTER_CHOICE_ALL, 1);
+  EXPECT_FALSE(detail::decode_png_fast(interlaced).has_value());
+  expect_same_as_spng(interlaced, "interlaced");
+}
+
+TEST(PngFastPath, CorruptFilesGiveTheSameResultAsLibspng) {
+  const std::vector<std::uint8_t> samples = test_samples(33, 17, 4);
+  const std::vector<std::uint8_t> png = encode_raw_png(samples.data(), samples.size(), 33, 17, 6, 8);
+  ASSERT_TRUE(detail::decode_png_fast(png).has_value());
+  const std::size_t ihdr = find_chunk(png, "IHDR"), idat = find_chunk(png, "IDAT");
+  const std::uint32_t idat_len = get_be32(png, idat);
+
+  // A flipped bit inside the zlib data, CRC fixed up: inflate or Adler-32 must catch it.
+  for (std::size_t at : {std::size_t(2), std::size_t(idat_len / 2), std::size_t(idat_len - 2)}) {
+    std::vector<std::uint8_t> bad = png;
+    bad[idat + 8 + at] ^= 0x10;
+    fix_crc(bad, idat);
+    EXPECT_FALSE(detail::decode_png_fast(bad).has_value()) << "flip at " << at;
+    expect_same_as_spng(bad, "flip at " + std::to_string(at));
+  }
+  // A bad CRC anywhere is an error.
+  for (std::size_t pos : {ihdr, idat, find_chunk(png, "IEND")}) {
+    std::vector<std::uint8_t> bad = png;
+    bad[pos + 8 + get_be32(png, pos)] ^= 1;
+    EXPECT_FALSE(detail::decode_png_fast(bad).has_value());
+    Result<ImageRGBA8> r = decode_image(bad, "crc.png");
+    ASSERT_FALSE(r.ok()) << "CRC at " << pos;
+    EXPECT_EQ(r.status().message.rfind("crc.png: ", 0), 0u) << r.status().message;
+  }
+  // Truncated anywhere is an error.
+  for (std::size_t cut : {std::size_t(8), std::size_t(30), idat + 4, idat + 20,
+                          idat + 8 + idat_len, png.size() - 12, png.size() - 1}) {
+    std::vector<std::uint8_t> part(png.begin(), png.begin() + std::ptrdiff_t(cut));
+    EXPECT_FALSE(detail::decode_png_fast(part).has_value()) << "cut at " << cut;
+    Result<ImageRGBA8> r = decode_image(part, "cut.png");
+    ASSERT_FALSE(r.ok()) << "cut at " << cut;
+    EXPECT_EQ(r.status().message.rfind("cut.png: ", 0), 0u) << r.status().message;
+    EXPECT_EQ(r.status().message.find('\n'), std::string::npos);
+  }
+  // IHDR lying about the size (CRC fixed up): larger, smaller, another colour type.
+  struct Lie {
+    std::uint32_t w, h;
+    std::uint8_t color_type;
+  };
+  for (Lie lie : {Lie{33, 18, 6}, Lie{34, 17, 6}, Lie{33, 16, 6}, Lie{32, 17, 6}, Lie{33, 17, 2},
+                  Lie{60000, 60000, 6}, Lie{4096, 4096, 6}}) {
+    std::vector<std::uint8_t> bad = png;
+    put_be32(bad, ihdr + 8, lie.w);
+    put_be32(bad, ihdr + 12, lie.h);
+    bad[ihdr + 17] = lie.color_type;
+    fix_crc(bad, ihdr);
+    const std::string what = std::to_string(lie.w) + "x" + std::to_string(lie.h);
+    EXPECT_FALSE(detail::decode_png_fast(bad).has_value()) << what;
+    expect_same_as_spng(bad, "IHDR says " + what);
+  }
+}
+
+TEST(SharedData, PngFastPathMatchesLibspngOnRealImages) {
+  TESSERA_REQUIRE_SHARED_DATA(data);
+  int taken = 0;
+  for (const auto& e : fs::directory_iterator(data / "images")) {
+    if (e.path().extension() != ".png") continue;
+    Result<std::vector<std::uint8_t>> bytes = read_file(e.path().string());
+    ASSERT_TRUE(bytes.ok());
+    taken += detail::decode_png_fast(*bytes).has_value() ? 1 : 0;
+    expect_same_as_spng(*bytes, e.path().filename().string());
+  }
+  EXPECT_GT(taken, 0);
 }
 
 }  // namespace

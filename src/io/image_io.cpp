@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 
+#include "io/png_fast.h"
 #include "tessera/io.h"
 
 namespace tessera {
@@ -185,7 +186,15 @@ Result<ImageRGBA8> decode_image(std::span<const std::uint8_t> bytes, const std::
                          name + ": not a PNG, JPEG, TGA or BMP image (unrecognised magic)");
   }
   if (format != ImageFormat::png) return decode_stb(bytes, name, format);
+  // libdeflate fast path for the common files; anything it declines (corrupt files included)
+  // goes through libspng, which gives the same pixels and writes the error messages.
+  if (std::optional<ImageRGBA8> fast = detail::decode_png_fast(bytes)) return std::move(*fast);
+  return detail::decode_png_spng(bytes, name);
+}
 
+namespace detail {
+
+Result<ImageRGBA8> decode_png_spng(std::span<const std::uint8_t> bytes, const std::string& name) {
   Result<PngRaw> raw = decode_png_raw(bytes, name, false);
   if (!raw) return raw.status();
   ImageRGBA8 img;  // no zero-filled buffer: the decoded samples become the pixels
@@ -202,6 +211,8 @@ Result<ImageRGBA8> decode_image(std::span<const std::uint8_t> bytes, const std::
   }
   return img;
 }
+
+}  // namespace detail
 
 Result<ImageRGBAF> decode_image_float(std::span<const std::uint8_t> bytes,
                                       const std::string& name) {
