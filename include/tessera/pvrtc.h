@@ -12,6 +12,9 @@
 // alternating least-squares optimisation of the block colours (modulation fixed) and
 // brute-force modulation (colours fixed), then (4 bpp) an exact greedy search over +-1 moves of
 // each block's endpoint codes scored by the exactly decoded error of its 7x7 texel window.
+// `high` at 4 bpp also encodes from the dilation start and keeps, block by block, the endpoints
+// of whichever encoding errs less (a crossover: the two starts stop in different local minima,
+// the dilation one wins along sharp edges), then resumes the exact search.
 //
 // Modulation is always chosen against the exact decoder arithmetic, so the bytes an encode
 // returns decode (in tessera or PVRTexTool) to exactly the image the encoder scored.
@@ -50,9 +53,11 @@ enum class Quality {
            ///< one round of the exact search on blocks above ~6.4 RMS per channel; 4 bpp
            ///< also tries mode 1.
   high,    ///< Principal-axis start, 2 reseed passes (4 bpp), then 4 bpp: 3 refinement sweeps
-           ///< and the exact search on every block until no block changes (alpha error
-           ///< weighted x2 for RGBA); 2 bpp: refinement until a sweep gains < 0.25% (at most
-           ///< 16 sweeps).
+           ///< and the exact search (with neighbour-copy moves) on every block until no block
+           ///< changes (alpha error weighted x2 for RGBA); then a second encoding from the
+           ///< dilation start, searched the same way, is crossed in block by block where it
+           ///< errs less, and the search resumes where the two meet. 2 bpp: refinement until a
+           ///< sweep gains < 0.25% (at most 16 sweeps).
 };
 
 /// Block width in texels (4 for 4 bpp, 8 for 2 bpp); blocks are always 4 texels high.

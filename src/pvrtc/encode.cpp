@@ -279,6 +279,30 @@ void orient_endpoints(const Grid& g, int nch, std::vector<float>& low, std::vect
   }
 }
 
+// Initial endpoints of every block (the dilation start or the principal-axis start, then the
+// homogeneous-block shortcut) and their modulation.
+void start_endpoints(EncoderState& s, bool dilation) {
+  const Grid& g = s.g;
+  std::vector<float> low, high;
+  if (dilation) {
+    dilation_endpoints(s, low, high);
+  } else {
+    principal_endpoints(s, low, high);
+    orient_endpoints(g, s.alpha_mode ? 4 : 3, low, high);
+  }
+  parallel_for(
+      0, std::int64_t(g.blocks()), 4096,
+      [&](std::int64_t b0, std::int64_t b1) {
+        for (std::int64_t i = b0; i < b1; ++i) {
+          s.ca[std::size_t(i)] = quantise_endpoint(&low[std::size_t(i) * 4], false, s.alpha_mode);
+          s.cb[std::size_t(i)] = quantise_endpoint(&high[std::size_t(i) * 4], true, s.alpha_mode);
+        }
+      },
+      s.threads);
+  homogeneous_shortcut(s);
+  choose_modulation(s);
+}
+
 }  // namespace
 
 Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOptions& options) {
@@ -325,32 +349,23 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   s.cb.assign(g.blocks(), 0);
   s.mode.assign(g.blocks(), 0);
   s.mod.assign(g.blocks(), 0);
-  {
-    std::vector<float> low, high;
-    // fast: the paper's intensity dilation; normal / high start the refinement from
-    // principal-axis endpoints, which separate equally bright colours (see principal.cpp).
-    if (options.quality != Quality::fast) {
-      principal_endpoints(s, low, high);
-      orient_endpoints(g, s.alpha_mode ? 4 : 3, low, high);
-    } else {
-      dilation_endpoints(s, low, high);
-    }
-    parallel_for(
-        0, std::int64_t(g.blocks()), 4096,
-        [&](std::int64_t b0, std::int64_t b1) {
-          for (std::int64_t i = b0; i < b1; ++i) {
-            s.ca[std::size_t(i)] = quantise_endpoint(&low[std::size_t(i) * 4], false, s.alpha_mode);
-            s.cb[std::size_t(i)] = quantise_endpoint(&high[std::size_t(i) * 4], true, s.alpha_mode);
-          }
-        },
-        s.threads);
-  }
-  homogeneous_shortcut(s);
-  choose_modulation(s);
+  // high, 4 bpp, preset schedule: a second encoding from the dilation start, crossed with the
+  // first at the end (crossover.cpp).
+  const bool cross = options.quality == Quality::high && options.format == Format::pvrtc1_4bpp &&
+                     options.iterations < 0 && options.exact_search_rounds == 0;
+  EncoderState alt;
+  if (cross) alt = s;
+  // fast: the paper's intensity dilation; normal / high start the refinement from
+  // principal-axis endpoints, which separate equally bright colours (see principal.cpp).
+  start_endpoints(s, options.quality == Quality::fast);
   // normal / high: reseed, least-squares refinement and the exact search (optimise.cpp).
   if (options.quality != Quality::fast || options.iterations > 0 ||
       options.exact_search_rounds > 0) {
     optimise(s, options.quality, options.iterations, options.exact_search_rounds);
+  }
+  if (cross) {
+    start_endpoints(alt, true);
+    optimise_crossover(s, alt);
   }
   std::vector<std::uint8_t> out(level_size(options.format, image.width, image.height));
   const std::vector<std::uint64_t> w = s.words();

@@ -67,6 +67,17 @@ void refine(EncoderState& s, int iterations);
 /// the end.
 void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error);
 
+/// Extra choices of `polish`.
+struct PolishOptions {
+  /// Also try each neighbour's A, B or both as the block's pair (high).
+  bool neighbour_moves = false;
+  /// One flag per block: the first round searches only flagged blocks; the others are searched
+  /// once a neighbour changes. Null: every block.
+  const std::vector<std::uint8_t>* seeds = nullptr;
+};
+void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
+            const PolishOptions& options);
+
 /// 4 bpp only: replaces the endpoints of blocks whose exact window error exceeds `min_error`
 /// by pairs derived from the block's own texels where that lowers the exact window error
 /// (see polish.cpp); modulation is left stale (call `choose_modulation`). `changed` (one flag
@@ -78,6 +89,18 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
 /// reseed; then the least-squares refinement (`iterations` sweeps, -1: the quality's default)
 /// and, for high or `exact_search_rounds` > 0, the exact search (polish).
 void optimise(EncoderState& s, Quality quality, int iterations, int exact_search_rounds);
+
+/// 4 bpp: gives each block of `s` the endpoints of `other` (an encoding of the same target)
+/// where those decode its 4x4 texels with less error (alpha error counted `alpha_weight`
+/// times); modulation is left stale. `seeds` gets one flag per block whose 3x3 neighbourhood
+/// mixes the two encodings (see crossover.cpp). Returns the count of blocks taken.
+int crossover(EncoderState& s, const EncoderState& other, int alpha_weight,
+              std::vector<std::uint8_t>& seeds);
+
+/// high, 4 bpp: runs the dilation-started encoding `alt` (endpoints and modulation set) through
+/// the refinement and the exact search, crosses it into `s` (see crossover.cpp) and resumes the
+/// exact search on `s` where the two were mixed.
+void optimise_crossover(EncoderState& s, EncoderState& alt);
 
 /// `reseed` with the squared alpha error counted `alpha_weight` times (the one above: 1).
 int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& changed,

@@ -10,7 +10,7 @@
 // The least-squares model is linear and ignores the decoder's truncations, so it stalls where
 // quantisation matters most (edges, saturated colours). Here each block's endpoint codes are
 // perturbed (one channel +-1, one channel of A and B together, or all colour channels of A, of
-// B or of both together) and a move is kept only when the exact decoded error over the 7x7
+// B or of both together; optionally a neighbour's A, B or both copied in) and a move is kept only when the exact decoded error over the 7x7
 // texels the block influences drops, with every texel's modulation re-chosen within its
 // block's mode. Blocks are visited in the same 2x2 colouring as the refinement, so the passes
 // are parallel and deterministic; after the first round only blocks with a changed neighbour
@@ -468,6 +468,11 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
 }
 
 void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
+  polish(s, rounds, passes, min_error, PolishOptions{});
+}
+
+void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
+            const PolishOptions& options) {
   const Grid& g = s.g;
   if (g.format != Format::pvrtc1_4bpp || rounds <= 0) return;
   std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
@@ -481,6 +486,13 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
   // changed (step stamps: phase 4 * round + colour class). Skipping is exact, so rounds can run
   // to convergence at a fraction of the cost.
   std::vector<int> changed_at(g.blocks(), -1), searched_at(g.blocks(), -2);
+  // Seeded: the first round searches only the seed blocks; the rest wait for a changed
+  // neighbour.
+  if (options.seeds != nullptr) {
+    for (std::size_t j = 0; j < g.blocks(); ++j) {
+      if (!(*options.seeds)[j]) searched_at[j] = 0;
+    }
+  }
   for (int round = 0; round < rounds; ++round) {
     std::vector<std::uint8_t> any_change(std::size_t(g.nby / 2), 0);
     for (int cls = 0; cls < 4; ++cls) {
@@ -534,6 +546,31 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
                       cur_a = na;
                       cur_b = nb;
                       improved = true;
+                    }
+                  }
+                  if (!options.neighbour_moves) continue;  // next pass
+                  // Copy moves: a neighbour's A, its B, or both (edges that cross several
+                  // blocks want the same pair on both sides; the 2x2 colouring keeps the
+                  // neighbours fixed while this class is searched, so this is deterministic).
+                  for (int dy = -1; dy <= 1; ++dy) {
+                    for (int dx = -1; dx <= 1; ++dx) {
+                      if (dx == 0 && dy == 0) continue;
+                      const std::size_t k =
+                          std::size_t((by + dy) & (g.nby - 1)) * std::size_t(g.nbx) +
+                          std::size_t((bx + dx) & (g.nbx - 1));
+                      const std::uint16_t cand[3][2] = {
+                          {s.ca[k], cur_b}, {cur_a, s.cb[k]}, {s.ca[k], s.cb[k]}};
+                      for (const auto& c : cand) {
+                        if (c[0] == cur_a && c[1] == cur_b) continue;
+                        const std::uint32_t e = eval(expand_a(c[0]), expand_b(c[1]), best);
+                        if (e < best) {
+                          prev = (std::uint32_t(cur_a) << 16) | cur_b;
+                          best = e;
+                          cur_a = c[0];
+                          cur_b = c[1];
+                          improved = true;
+                        }
+                      }
                     }
                   }
                 }

@@ -1,0 +1,183 @@
+// Tests of the PVRTC encoder's internal search passes (src/pvrtc/encode_internal.h): the exact
+// search's neighbour-copy moves and seeded rounds, and the crossover of two encodings.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "pvrtc/encode_internal.h"
+#include "tessera/procedural.h"
+#include "tessera/pvrtc.h"
+
+using namespace tessera;
+using namespace tessera::pvrtc;
+using namespace tessera::pvrtc::detail;
+
+namespace {
+
+// An encoder state for `img` holding the blocks of `data` (an encoding of it), 4 bpp, opaque.
+// `mode1`: whether the modulation choice may use mode 1.
+EncoderState state_from(const ImageRGBA8& img, const std::vector<std::uint8_t>& data, bool mode1) {
+  EncoderState s;
+  s.g = make_grid(Format::pvrtc1_4bpp, img.width, img.height);
+  s.mode1 = mode1;
+  s.threads = 1;
+  s.target = img.pixels;
+  for (std::size_t i = 0; i < s.g.texels(); ++i) s.target[i * 4 + 3] = 255;
+  std::vector<std::uint64_t> w(s.g.blocks());
+  load_words(s.g, data.data(), w.data());
+  s.ca.resize(w.size());
+  s.cb.resize(w.size());
+  s.mode.resize(w.size());
+  s.mod.resize(w.size());
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    s.mod[i] = std::uint32_t(w[i]);
+    const auto a = std::uint16_t(w[i] >> 32);
+    s.mode[i] = a & 1;
+    s.ca[i] = a & 0xfffe;
+    s.cb[i] = std::uint16_t(w[i] >> 48);
+  }
+  return s;
+}
+
+std::vector<std::uint8_t> encode_or_die(const ImageRGBA8& img, Quality q) {
+  EncodeOptions o;
+  o.quality = q;
+  o.threads = 1;
+  auto r = encode(img, o);
+  EXPECT_TRUE(r.ok());
+  return r.ok() ? *r : std::vector<std::uint8_t>{};
+}
+
+// Own-texel squared error (RGB) of every block of `s` as decoded with its current words.
+std::vector<std::uint64_t> own_errors(const EncoderState& s) {
+  const std::vector<std::uint64_t> w = s.words();
+  std::vector<std::uint8_t> dec(s.g.texels() * 4);
+  decode_padded(s.g, w.data(), dec.data(), 1);
+  std::vector<std::uint64_t> e(s.g.blocks(), 0);
+  for (int y = 0; y < s.g.ph; ++y) {
+    for (int x = 0; x < s.g.pw; ++x) {
+      const std::size_t i = std::size_t(y) * std::size_t(s.g.pw) + std::size_t(x);
+      for (int c = 0; c < 3; ++c) {
+        const int d = int(dec[i * 4 + std::size_t(c)]) - int(s.target[i * 4 + std::size_t(c)]);
+        e[std::size_t(y / 4) * std::size_t(s.g.nbx) + std::size_t(x / 4)] += std::uint64_t(d * d);
+      }
+    }
+  }
+  return e;
+}
+
+}  // namespace
+
+// After the exact search with neighbour moves has converged, no block can lower the exact
+// error of the whole image by taking a neighbour's A, B or both. With mode 1 off every block
+// stays in mode 0, so the search's window error is exactly the block's share of the total.
+TEST(PvrtcSearch, NeighbourMovesReachALocalMinimum) {
+  const ImageRGBA8 img = make_procedural(Procedural::bricks, 32, 32);
+  EncoderState s = state_from(img, encode_or_die(img, Quality::fast), false);
+  choose_modulation(s);
+  const std::uint64_t before = total_error(s);
+  PolishOptions po;
+  po.neighbour_moves = true;
+  polish(s, 64, 1, 0, po);
+  const std::uint64_t after = total_error(s);
+  EXPECT_LT(after, before);
+  const Grid& g = s.g;
+  int tried = 0;
+  for (int by = 0; by < g.nby; ++by) {
+    for (int bx = 0; bx < g.nbx; ++bx) {
+      const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const std::size_t k = std::size_t((by + dy) & (g.nby - 1)) * std::size_t(g.nbx) +
+                                std::size_t((bx + dx) & (g.nbx - 1));
+          if (k == j) continue;
+          const std::uint16_t cand[3][2] = {
+              {s.ca[k], s.cb[j]}, {s.ca[j], s.cb[k]}, {s.ca[k], s.cb[k]}};
+          for (const auto& c : cand) {
+            EncoderState t = s;
+            t.ca[j] = c[0];
+            t.cb[j] = c[1];
+            choose_modulation(t);
+            EXPECT_GE(total_error(t), after) << "block " << bx << "," << by;
+            ++tried;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(tried, int(g.blocks()) * 24);
+}
+
+// A seeded search first visits only the seed blocks: with no seeds and nothing changed it
+// leaves the state as it is; seeding every block is the unseeded search.
+TEST(PvrtcSearch, SeededRoundsStartFromTheSeeds) {
+  const ImageRGBA8 img = make_procedural(Procedural::noise, 32, 32);
+  const EncoderState start = state_from(img, encode_or_die(img, Quality::fast), true);
+  PolishOptions po;
+  po.neighbour_moves = true;
+  const std::vector<std::uint8_t> none(start.g.blocks(), 0), all(start.g.blocks(), 1);
+  EncoderState a = start;
+  po.seeds = &none;
+  polish(a, 64, 1, 0, po);
+  EXPECT_EQ(a.ca, start.ca);
+  EXPECT_EQ(a.cb, start.cb);
+  EncoderState b = start, c = start;
+  po.seeds = &all;
+  polish(b, 64, 1, 0, po);
+  po.seeds = nullptr;
+  polish(c, 64, 1, 0, po);
+  EXPECT_NE(b.ca, start.ca);
+  EXPECT_EQ(b.words(), c.words());
+}
+
+// The crossover takes exactly the blocks whose own texels the other encoding decodes with
+// less error (when the pair points the same way), and seeds the blocks next to a switch.
+TEST(PvrtcSearch, CrossoverTakesTheBetterBlocks) {
+  const ImageRGBA8 img = make_procedural(Procedural::bricks, 64, 64);
+  const EncoderState fast = state_from(img, encode_or_die(img, Quality::fast), true);
+  const EncoderState high = state_from(img, encode_or_die(img, Quality::high), true);
+  std::vector<std::uint8_t> seeds;
+  EncoderState self = high;
+  EXPECT_EQ(crossover(self, high, 2, seeds), 0);
+  EXPECT_EQ(seeds, std::vector<std::uint8_t>(high.g.blocks(), 0));
+
+  EncoderState s = fast;
+  const std::vector<std::uint64_t> mine = own_errors(fast), theirs = own_errors(high);
+  const int taken = crossover(s, high, 2, seeds);
+  EXPECT_GT(taken, 0);
+  const Grid& g = s.g;
+  std::vector<std::uint8_t> took(g.blocks(), 0);
+  int count = 0;
+  for (std::size_t j = 0; j < g.blocks(); ++j) {
+    const bool from_high = s.ca[j] != fast.ca[j] || s.cb[j] != fast.cb[j];
+    if (from_high) {
+      EXPECT_EQ(s.ca[j], high.ca[j]);
+      EXPECT_EQ(s.cb[j], high.cb[j]);
+      EXPECT_LT(theirs[j], mine[j]) << "block " << j;
+      took[j] = 1;
+      ++count;
+    } else if (high.ca[j] != fast.ca[j] || high.cb[j] != fast.cb[j]) {
+      // Kept: not better, or pointing the other way.
+      const Rgba5 a0 = expand_a(fast.ca[j]), b0 = expand_b(fast.cb[j]);
+      const Rgba5 a1 = expand_a(high.ca[j]), b1 = expand_b(high.cb[j]);
+      const int dot = (b0.r - a0.r) * (b1.r - a1.r) + (b0.g - a0.g) * (b1.g - a1.g) +
+                      (b0.b - a0.b) * (b1.b - a1.b);
+      EXPECT_TRUE(theirs[j] >= mine[j] || dot < 0) << "block " << j;
+    }
+  }
+  EXPECT_EQ(count, taken);
+  for (int by = 0; by < g.nby; ++by) {
+    for (int bx = 0; bx < g.nbx; ++bx) {
+      const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+      bool mixed = false;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          mixed |= took[std::size_t((by + dy) & (g.nby - 1)) * std::size_t(g.nbx) +
+                        std::size_t((bx + dx) & (g.nbx - 1))] != took[j];
+        }
+      }
+      EXPECT_EQ(seeds[j] != 0, mixed) << "block " << bx << "," << by;
+    }
+  }
+}
