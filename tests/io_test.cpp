@@ -472,7 +472,8 @@ TEST(PngFastPath, DeclinesWhatItDoesNotHandle) {
 
 TEST(PngFastPath, CorruptFilesGiveTheSameResultAsLibspng) {
   const std::vector<std::uint8_t> samples = test_samples(33, 17, 4);
-  const std::vector<std::uint8_t> png = encode_raw_png(samples.data(), samples.size(), 33, 17, 6, 8);
+  const std::vector<std::uint8_t> png =
+      encode_raw_png(samples.data(), samples.size(), 33, 17, 6, 8);
   ASSERT_TRUE(detail::decode_png_fast(png).has_value());
   const std::size_t ihdr = find_chunk(png, "IHDR"), idat = find_chunk(png, "IDAT");
   const std::uint32_t idat_len = get_be32(png, idat);

@@ -62,7 +62,9 @@ void unfilter_scalar(int filter, std::uint8_t* row, const std::uint8_t* prev, st
       for (std::size_t i = bpp; i < n; ++i) row[i] = std::uint8_t(row[i] + row[i - bpp]);
       break;
     case 3:
-      for (std::size_t i = 0; i < std::min(bpp, n); ++i) row[i] = std::uint8_t(row[i] + prev[i] / 2);
+      for (std::size_t i = 0; i < std::min(bpp, n); ++i) {
+        row[i] = std::uint8_t(row[i] + prev[i] / 2);
+      }
       for (std::size_t i = bpp; i < n; ++i) {
         row[i] = std::uint8_t(row[i] + ((unsigned(row[i - bpp]) + prev[i]) >> 1));
       }
