@@ -390,6 +390,36 @@ std::uint32_t order_local(LocalWindow& lw, const Rgba5& a, const Rgba5& b,
   return total;
 }
 
+// The endpoint pairs one block visit has met (candidates scored and pairs that were current):
+// each one's window error is at least the current best (a rejected candidate scored at least
+// the best of its time, a pair left by a kept move scored more than its successor), so meeting
+// one again it need not be scored (exact). Open addressing on the packed (A, B) fields.
+class SeenPairs {
+ public:
+  SeenPairs() { std::memset(slot_, 0xff, sizeof(slot_)); }
+  /// True when `key` was inserted before; inserts it otherwise.
+  bool check_insert(std::uint32_t key) {
+    if (key == kEmpty) return false;  // not representable: always scored
+    std::uint32_t h = (key * 0x9e3779b1u) >> (32 - kBits);
+    for (;;) {
+      if (slot_[h] == key) return true;
+      if (slot_[h] == kEmpty) {
+        if (count_ == kMaxCount) return false;  // full: score it (exact either way)
+        slot_[h] = key;
+        ++count_;
+        return false;
+      }
+      h = (h + 1) & (kSize - 1);
+    }
+  }
+
+ private:
+  static constexpr int kBits = 9, kSize = 1 << kBits, kMaxCount = kSize / 2;
+  static constexpr std::uint32_t kEmpty = ~0u;
+  std::uint32_t slot_[kSize];
+  int count_ = 0;
+};
+
 }  // namespace
 
 int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& changed) {
@@ -524,10 +554,8 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
                 std::uint16_t cur_a = s.ca[j], cur_b = s.cb[j];
                 std::uint32_t best = order_local(lw, ea[j], eb[j], min_error);
                 if (best <= min_error) continue;
-                // The pair before the last kept move (a move back to it, e.g. the opposite
-                // step) scored at least the best error of its time, so it cannot beat the
-                // current best and is not scored again (exact).
-                std::uint32_t prev = ~0u;
+                SeenPairs seen;
+                seen.check_insert((std::uint32_t(cur_a) << 16) | cur_b);
                 bool improved = true;
                 for (int pass = 0; pass < passes && improved; ++pass) {
                   improved = false;
@@ -538,10 +566,9 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
                     const std::uint16_t na = std::uint16_t(pack_endpoint(false, a));
                     const std::uint16_t nb = std::uint16_t(pack_endpoint(true, b));
                     const std::uint32_t key = (std::uint32_t(na) << 16) | nb;
-                    if (key == prev) continue;
+                    if (seen.check_insert(key)) continue;
                     const std::uint32_t e = eval(expand_a(na), expand_b(nb), best);
                     if (e < best) {
-                      prev = (std::uint32_t(cur_a) << 16) | cur_b;
                       best = e;
                       cur_a = na;
                       cur_b = nb;
@@ -561,10 +588,9 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
                       const std::uint16_t cand[3][2] = {
                           {s.ca[k], cur_b}, {cur_a, s.cb[k]}, {s.ca[k], s.cb[k]}};
                       for (const auto& c : cand) {
-                        if (c[0] == cur_a && c[1] == cur_b) continue;
+                        if (seen.check_insert((std::uint32_t(c[0]) << 16) | c[1])) continue;
                         const std::uint32_t e = eval(expand_a(c[0]), expand_b(c[1]), best);
                         if (e < best) {
-                          prev = (std::uint32_t(cur_a) << 16) | cur_b;
                           best = e;
                           cur_a = c[0];
                           cur_b = c[1];
