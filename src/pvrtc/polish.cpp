@@ -25,6 +25,7 @@
 #include <limits>
 
 #include "pvrtc/encode_internal.h"
+#include "pvrtc/polish_kernel.h"
 #include "pvrtc/simd.h"
 
 namespace tessera::pvrtc::detail {
@@ -170,27 +171,11 @@ int reseed_candidates(const EncoderState& s, int bx, int by, std::uint16_t out[8
   return 8;
 }
 
-// The 7x7 texels block j influences (its bilinear weight is 0 elsewhere), with the other three
-// blocks' share of each texel's A and B sums precomputed, so a candidate pair for block j costs
-// one multiply-add per channel and endpoint per texel. Exact: same arithmetic as the decoder.
-struct LocalWindow {
-  // Per texel, 16-bit, padded to 50 texels (the last one all zero: error 0) for the SIMD path:
-  // `rest16_a` / `rest16_b` the other blocks' share of the A / B bilinear sums (channels past
-  // nch zero), `own16` block j's weight in the channel lanes, `t16` the target (alpha lane 0
-  // if RGB), `bias35` / `bias4` / `bias4p` exclude the blends a texel's block mode lacks (4p:
-  // weight 4 with alpha punched through, mode 1 with punch-through allowed only).
-  alignas(16) std::uint16_t rest16_a[50][4], rest16_b[50][4], own16[50][4], t16[50][4];
-  alignas(16) std::int32_t bias35[25][4], bias4[25][4], bias4p[25][4];
-  int nch;
-  bool punch;
-  alignas(16) std::uint16_t weight16[8];  ///< Per-lane error weights (RGBA RGBA).
-};
-
 // Reorders the window's texels in the SIMD layout: slot i takes texel order[i] (slots 0-48;
 // slot 49, the zero pad, stays). The error is an integer sum, so the order changes only where
 // the bounded evaluation stops, never a result below the bound.
 void permute_local(LocalWindow& lw, const std::uint8_t* order) {
-  auto permute = [&](void* rows) {  // 50 rows of 8 bytes
+  auto permute = [&](void* rows) {  // rows of 8 bytes; the first 49 permuted
     std::uint64_t tmp[49], out[49];
     std::memcpy(tmp, rows, sizeof(tmp));
     for (int i = 0; i < 49; ++i) out[i] = tmp[order[i]];
@@ -279,92 +264,16 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
       p4p[0] = p4p[1] = b4p;
     }
   }
-  for (int c = 0; c < 4; ++c) {  // texel 49: the zero pad (error 0)
-    lw.rest16_a[49][c] = lw.rest16_b[49][c] = lw.own16[49][c] = lw.t16[49][c] = 0;
+  for (int q = 49; q < 56; ++q) {  // texels 49-55: the zero pad (error 0)
+    for (int c = 0; c < 4; ++c) {
+      lw.rest16_a[q][c] = lw.rest16_b[q][c] = lw.own16[q][c] = lw.t16[q][c] = 0;
+    }
   }
   for (int c = 2; c < 4; ++c) {
     lw.bias35[24][c] = 0;
     lw.bias4[24][c] = 0;
     lw.bias4p[24][c] = kExclude;
   }
-}
-
-// Exact error of the local window with (a, b) as block j's endpoints, two texels at a time;
-// stops once it reaches `bound` (the result is then >= bound). kAlpha: RGBA input (alpha
-// lanes, punch-through blend, weighted alpha error); RGB skips those. With the blends from
-// A + B and A - B: high -9% time over the 21 images, same output.
-// kStore: no bound; each texel's error goes to texel_err[slot] (slots in layout order).
-template <bool kAlpha, bool kStore = false>
-std::uint32_t local_error_simd_t(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
-                                 std::uint32_t bound, std::uint32_t* texel_err = nullptr) {
-  using simd::vint4;
-  using simd::vu16x8;
-  alignas(16) const std::uint16_t a16[8] = {
-      std::uint16_t(a.r), std::uint16_t(a.g), std::uint16_t(a.b), std::uint16_t(a.a),
-      std::uint16_t(a.r), std::uint16_t(a.g), std::uint16_t(a.b), std::uint16_t(a.a)};
-  alignas(16) const std::uint16_t b16[8] = {
-      std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a),
-      std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a)};
-  const vu16x8 av = simd::load_u16x8(a16), bv = simd::load_u16x8(b16);
-  alignas(16) static constexpr std::uint16_t kAlphaLanes[8] = {0, 0, 0, 0xffff, 0, 0, 0, 0xffff};
-  alignas(16) static constexpr std::uint16_t kRgbLanes[8] = {0xffff, 0xffff, 0xffff, 0,
-                                                             0xffff, 0xffff, 0xffff, 0};
-  const vu16x8 alpha = simd::load_u16x8(kAlphaLanes), rgb = simd::load_u16x8(kRgbLanes);
-  const vu16x8 aw = simd::load_u16x8(lw.weight16);
-  vint4 acc;
-  for (int p = 0; p < 25; ++p) {
-    const vu16x8 own = simd::load_u16x8(&lw.own16[2 * p][0]);
-    // Bilinear sums S (weights sum to 16); 8-bit colour (2S >> 7) + (2S >> 2), alpha
-    // (2S >> 5) + (2S >> 1). (Alpha lanes are all zero for RGB input.)
-    const vu16x8 sa = simd::load_u16x8(&lw.rest16_a[2 * p][0]) + simd::mullo(own, av);
-    const vu16x8 sb = simd::load_u16x8(&lw.rest16_b[2 * p][0]) + simd::mullo(own, bv);
-    vu16x8 ua = simd::srl<6>(sa) + simd::srl<1>(sa), ub = simd::srl<6>(sb) + simd::srl<1>(sb);
-    if constexpr (kAlpha) {
-      ua = simd::select(alpha, simd::srl<4>(sa) + sa, ua);
-      ub = simd::select(alpha, simd::srl<4>(sb) + sb, ub);
-    }
-    const vu16x8 t = simd::load_u16x8(&lw.t16[2 * p][0]);
-    auto err = [&](vu16x8 d) {
-      const vint4 sq = kAlpha ? simd::madd(d, simd::mullo(d, aw)) : simd::madd(d, d);
-      return sq + simd::swap_pairs(sq);
-    };
-    // Blends (A (8 - m) + B m) >> 3 from the sum: 4 (A + B) +- (A - B) for m = 3, 5 (the u16
-    // lanes wrap in between, the results are exact), (A + B) >> 1 for m = 4.
-    const vu16x8 sum = ua + ub, sum2 = sum + sum, sum4 = sum2 + sum2, diff = ua - ub;
-    const vint4 e0 = err(ua - t), e8 = err(ub - t);
-    const vint4 e3 = err(simd::srl<3>(sum4 + diff) - t);
-    const vint4 e5 = err(simd::srl<3>(sum4 - diff) - t);
-    const vu16x8 v4 = simd::srl<1>(sum);
-    const vint4 e4 = err(v4 - t);
-    const vint4 b35 = simd::load4(lw.bias35[p]);
-    // The minimum in float lanes (SSE2 has no 32-bit integer min; RGB 256^2 high -9%
-    // instructions): errors are far below 2^24 (exact in float), excluded blends (2^24 and
-    // up) stay at least 2^24 once rounded, and e0 / e8 are never excluded, so the minimum is
-    // the exact integer minimum.
-    using simd::to_float;
-    simd::vf4 m4 = to_float(e4 + simd::load4(lw.bias4[p]));
-    if constexpr (kAlpha) {
-      m4 = simd::min(m4, to_float(err((v4 & rgb) - t) + simd::load4(lw.bias4p[p])));
-    }
-    const vint4 m =
-        simd::to_int_trunc(simd::min(simd::min(simd::min(to_float(e0), to_float(e8)),
-                                               simd::min(to_float(e3 + b35), to_float(e5 + b35))),
-                                     m4));
-    acc += m;
-    if constexpr (kStore) {
-      texel_err[2 * p] = std::uint32_t(m.lane(0));
-      texel_err[2 * p + 1] = std::uint32_t(m.lane(2));
-    } else {
-      if (std::uint32_t(simd::sum_lanes02(acc)) >= bound) break;
-    }
-  }
-  return std::uint32_t(simd::sum_lanes02(acc));
-}
-
-std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
-                               std::uint32_t bound) {
-  return lw.nch == 4 ? local_error_simd_t<true>(lw, a, b, bound)
-                     : local_error_simd_t<false>(lw, a, b, bound);
 }
 
 // Reorders the window (built by build_local) by decreasing texel error (bit length) under
@@ -548,12 +457,41 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
                 searched_at[j] = step;
                 LocalWindow lw;
                 build_local(w, bx, by, lw);
-                auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
-                  return local_error_simd(lw, a, b, bound);
-                };
                 std::uint16_t cur_a = s.ca[j], cur_b = s.cb[j];
                 std::uint32_t best = order_local(lw, ea[j], eb[j], min_error);
                 if (best <= min_error) continue;
+                // Candidates differing from the current pair in one colour channel only (most
+                // of the +-1 moves) go to the channel-planar evaluator; its per-pair tables are
+                // built when first needed after each change of the current pair.
+                PlanarWindow pw;
+                bool planar_built = false;
+                unsigned planar_valid = 0;  // bit 0: planar_refresh; bit 1 + c: planar_rest(c)
+                Rgba5 cur5a = ea[j], cur5b = eb[j];
+                auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
+                  const int c = single_colour_channel(a, b, cur5a, cur5b, lw.nch);
+                  if (c < 0) return local_error_simd(lw, a, b, bound);
+                  if (!planar_built) {
+                    build_planar(lw, pw);
+                    planar_built = true;
+                  }
+                  if (!(planar_valid & 1u)) {
+                    planar_refresh(pw, cur5a, cur5b);
+                    planar_valid = 1;
+                  }
+                  if (!(planar_valid & (2u << c))) {
+                    planar_rest(pw, c);
+                    planar_valid |= 2u << c;
+                  }
+                  const std::int32_t va[3] = {a.r, a.g, a.b}, vb[3] = {b.r, b.g, b.b};
+                  return planar_error(pw, c, va[c], vb[c], bound);
+                };
+                auto take = [&](std::uint16_t na, std::uint16_t nb) {
+                  cur_a = na;
+                  cur_b = nb;
+                  cur5a = expand_a(na);
+                  cur5b = expand_b(nb);
+                  planar_valid = 0;
+                };
                 SeenPairs seen;
                 seen.check_insert((std::uint32_t(cur_a) << 16) | cur_b);
                 bool improved = true;
@@ -570,8 +508,7 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
                     const std::uint32_t e = eval(expand_a(na), expand_b(nb), best);
                     if (e < best) {
                       best = e;
-                      cur_a = na;
-                      cur_b = nb;
+                      take(na, nb);
                       improved = true;
                     }
                   }
@@ -592,8 +529,7 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
                         const std::uint32_t e = eval(expand_a(c[0]), expand_b(c[1]), best);
                         if (e < best) {
                           best = e;
-                          cur_a = c[0];
-                          cur_b = c[1];
+                          take(c[0], c[1]);
                           improved = true;
                         }
                       }

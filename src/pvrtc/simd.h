@@ -232,6 +232,39 @@ inline vf4 hmin(vf4 a) {
 /// Bit i set when lane i of a mask (all ones / zero lanes) is set.
 inline int movemask(vint4 mask) { return _mm_movemask_ps(_mm_castsi128_ps(mask.v)); }
 
+/// 2^23 + lane i of `a` (lanes 0-3: _lo, 4-7: _hi) as floats, exact: the 16-bit value placed in
+/// the mantissa of 2^23.
+inline vf4 f2p23_plus_lo(vu16x8 a) {
+  return vf4(_mm_castsi128_ps(_mm_unpacklo_epi16(a.v, _mm_set1_epi16(0x4b00))));
+}
+inline vf4 f2p23_plus_hi(vu16x8 a) {
+  return vf4(_mm_castsi128_ps(_mm_unpackhi_epi16(a.v, _mm_set1_epi16(0x4b00))));
+}
+inline vf4 operator-(vf4 a, vf4 b) { return vf4(_mm_sub_ps(a.v, b.v)); }
+/// Lanes 0-3 (_lo) or 4-7 (_hi) zero-extended to 32 bits.
+inline vint4 widen32_lo(vu16x8 a) { return vint4(_mm_unpacklo_epi16(a.v, _mm_setzero_si128())); }
+inline vint4 widen32_hi(vu16x8 a) { return vint4(_mm_unpackhi_epi16(a.v, _mm_setzero_si128())); }
+/// Sum of the four lanes.
+inline std::int32_t sum_lanes(vint4 a) {
+  const __m128i s = _mm_add_epi32(a.v, _mm_shuffle_epi32(a.v, _MM_SHUFFLE(1, 0, 3, 2)));
+  return _mm_cvtsi128_si32(_mm_add_epi32(s, _mm_shuffle_epi32(s, _MM_SHUFFLE(2, 3, 0, 1))));
+}
+/// Eight texels of four 16-bit channels (p: 32 values, texel by texel) as one vector per
+/// channel: out[c] lane i = p[4 i + c].
+inline void transpose_8x4(const std::uint16_t* p, vu16x8 out[4]) {
+  const __m128i* q = reinterpret_cast<const __m128i*>(p);
+  const __m128i v0 = _mm_loadu_si128(q), v1 = _mm_loadu_si128(q + 1);
+  const __m128i v2 = _mm_loadu_si128(q + 2), v3 = _mm_loadu_si128(q + 3);
+  const __m128i a0 = _mm_unpacklo_epi16(v0, v1), a1 = _mm_unpackhi_epi16(v0, v1);
+  const __m128i a2 = _mm_unpacklo_epi16(v2, v3), a3 = _mm_unpackhi_epi16(v2, v3);
+  const __m128i b0 = _mm_unpacklo_epi16(a0, a1), b1 = _mm_unpackhi_epi16(a0, a1);
+  const __m128i b2 = _mm_unpacklo_epi16(a2, a3), b3 = _mm_unpackhi_epi16(a2, a3);
+  out[0] = vu16x8(_mm_unpacklo_epi64(b0, b2));
+  out[1] = vu16x8(_mm_unpackhi_epi64(b0, b2));
+  out[2] = vu16x8(_mm_unpacklo_epi64(b1, b3));
+  out[3] = vu16x8(_mm_unpackhi_epi64(b1, b3));
+}
+
 #else  // scalar backend
 
 struct vint4 {
@@ -302,7 +335,7 @@ inline void store_u8x8(vu16x8 a, std::uint8_t* p) {
 TESSERA_SIMD_U16_BINOP(operator+, a.l[i] + b.l[i])
 TESSERA_SIMD_U16_BINOP(operator&, a.l[i] & b.l[i])
 TESSERA_SIMD_U16_BINOP(operator-, a.l[i] - b.l[i])
-TESSERA_SIMD_U16_BINOP(mullo, a.l[i] * b.l[i])
+TESSERA_SIMD_U16_BINOP(mullo, std::uint32_t(a.l[i]) * b.l[i])
 inline vint4 madd(vu16x8 a, vu16x8 b) {
   vint4 r;
   for (int i = 0; i < 4; ++i) {
@@ -519,6 +552,29 @@ inline int movemask(vint4 mask) {
   int m = 0;
   for (int i = 0; i < 4; ++i) m |= (mask.l[i] < 0 ? 1 : 0) << i;
   return m;
+}
+inline vf4 f2p23_plus_lo(vu16x8 a) {
+  vf4 r;
+  for (int i = 0; i < 4; ++i) r.l[i] = 8388608.0f + float(a.l[i]);
+  return r;
+}
+inline vf4 f2p23_plus_hi(vu16x8 a) {
+  vf4 r;
+  for (int i = 0; i < 4; ++i) r.l[i] = 8388608.0f + float(a.l[4 + i]);
+  return r;
+}
+inline vf4 operator-(vf4 a, vf4 b) {
+  vf4 r;
+  for (int i = 0; i < 4; ++i) r.l[i] = a.l[i] - b.l[i];
+  return r;
+}
+inline vint4 widen32_lo(vu16x8 a) { return {a.l[0], a.l[1], a.l[2], a.l[3]}; }
+inline vint4 widen32_hi(vu16x8 a) { return {a.l[4], a.l[5], a.l[6], a.l[7]}; }
+inline std::int32_t sum_lanes(vint4 a) { return a.l[0] + a.l[1] + a.l[2] + a.l[3]; }
+inline void transpose_8x4(const std::uint16_t* p, vu16x8 out[4]) {
+  for (int c = 0; c < 4; ++c) {
+    for (int i = 0; i < 8; ++i) out[c].l[i] = p[4 * i + c];
+  }
 }
 
 #endif

@@ -1,0 +1,302 @@
+// polish_kernel.h — the exact window evaluators of the PVRTC 4 bpp exact search (polish.cpp):
+// `LocalWindow` / `local_error_simd` score any candidate endpoint pair of one block over the 7x7
+// texels it influences; `PlanarWindow` / `planar_error` score a candidate that differs from the
+// block's current pair in one colour channel only, eight texels per vector, from each texel's
+// per-blend error of the other channels under the current pair. Both are exact integer sums
+// that stop once they reach a bound (the result is then >= the bound).
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+#include "pvrtc/pvrtc_kernel.h"
+#include "pvrtc/simd.h"
+
+namespace tessera::pvrtc::detail {
+
+// The 7x7 texels block j influences (its bilinear weight is 0 elsewhere), with the other three
+// blocks' share of each texel's A and B sums precomputed, so a candidate pair for block j costs
+// one multiply-add per channel and endpoint per texel. Exact: same arithmetic as the decoder.
+struct LocalWindow {
+  // Per texel, 16-bit, padded to 56 texels (texels 49-55 all zero: error 0) for the SIMD paths:
+  // `rest16_a` / `rest16_b` the other blocks' share of the A / B bilinear sums (channels past
+  // nch zero), `own16` block j's weight in the channel lanes, `t16` the target (alpha lane 0
+  // if RGB), `bias35` / `bias4` / `bias4p` exclude the blends a texel's block mode lacks (4p:
+  // weight 4 with alpha punched through, mode 1 with punch-through allowed only).
+  alignas(16) std::uint16_t rest16_a[56][4], rest16_b[56][4], own16[56][4], t16[56][4];
+  alignas(16) std::int32_t bias35[25][4], bias4[25][4], bias4p[25][4];
+  int nch;
+  bool punch;
+  alignas(16) std::uint16_t weight16[8];  ///< Per-lane error weights (RGBA RGBA).
+};
+
+// Exact error of the local window with (a, b) as block j's endpoints, two texels at a time;
+// stops once it reaches `bound` (the result is then >= bound). kAlpha: RGBA input (alpha
+// lanes, punch-through blend, weighted alpha error); RGB skips those. With the blends from
+// A + B and A - B: high -9% time over the 21 images, same output.
+// kStore: no bound; each texel's error goes to texel_err[slot] (slots in layout order).
+template <bool kAlpha, bool kStore = false>
+inline std::uint32_t local_error_simd_t(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
+                                 std::uint32_t bound, std::uint32_t* texel_err = nullptr) {
+  using simd::vint4;
+  using simd::vu16x8;
+  alignas(16) const std::uint16_t a16[8] = {
+      std::uint16_t(a.r), std::uint16_t(a.g), std::uint16_t(a.b), std::uint16_t(a.a),
+      std::uint16_t(a.r), std::uint16_t(a.g), std::uint16_t(a.b), std::uint16_t(a.a)};
+  alignas(16) const std::uint16_t b16[8] = {
+      std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a),
+      std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a)};
+  const vu16x8 av = simd::load_u16x8(a16), bv = simd::load_u16x8(b16);
+  alignas(16) static constexpr std::uint16_t kAlphaLanes[8] = {0, 0, 0, 0xffff, 0, 0, 0, 0xffff};
+  alignas(16) static constexpr std::uint16_t kRgbLanes[8] = {0xffff, 0xffff, 0xffff, 0,
+                                                             0xffff, 0xffff, 0xffff, 0};
+  const vu16x8 alpha = simd::load_u16x8(kAlphaLanes), rgb = simd::load_u16x8(kRgbLanes);
+  const vu16x8 aw = simd::load_u16x8(lw.weight16);
+  vint4 acc;
+  for (int p = 0; p < 25; ++p) {
+    const vu16x8 own = simd::load_u16x8(&lw.own16[2 * p][0]);
+    // Bilinear sums S (weights sum to 16); 8-bit colour (2S >> 7) + (2S >> 2), alpha
+    // (2S >> 5) + (2S >> 1). (Alpha lanes are all zero for RGB input.)
+    const vu16x8 sa = simd::load_u16x8(&lw.rest16_a[2 * p][0]) + simd::mullo(own, av);
+    const vu16x8 sb = simd::load_u16x8(&lw.rest16_b[2 * p][0]) + simd::mullo(own, bv);
+    vu16x8 ua = simd::srl<6>(sa) + simd::srl<1>(sa), ub = simd::srl<6>(sb) + simd::srl<1>(sb);
+    if constexpr (kAlpha) {
+      ua = simd::select(alpha, simd::srl<4>(sa) + sa, ua);
+      ub = simd::select(alpha, simd::srl<4>(sb) + sb, ub);
+    }
+    const vu16x8 t = simd::load_u16x8(&lw.t16[2 * p][0]);
+    auto err = [&](vu16x8 d) {
+      const vint4 sq = kAlpha ? simd::madd(d, simd::mullo(d, aw)) : simd::madd(d, d);
+      return sq + simd::swap_pairs(sq);
+    };
+    // Blends (A (8 - m) + B m) >> 3 from the sum: 4 (A + B) +- (A - B) for m = 3, 5 (the u16
+    // lanes wrap in between, the results are exact), (A + B) >> 1 for m = 4.
+    const vu16x8 sum = ua + ub, sum2 = sum + sum, sum4 = sum2 + sum2, diff = ua - ub;
+    const vint4 e0 = err(ua - t), e8 = err(ub - t);
+    const vint4 e3 = err(simd::srl<3>(sum4 + diff) - t);
+    const vint4 e5 = err(simd::srl<3>(sum4 - diff) - t);
+    const vu16x8 v4 = simd::srl<1>(sum);
+    const vint4 e4 = err(v4 - t);
+    const vint4 b35 = simd::load4(lw.bias35[p]);
+    // The minimum in float lanes (SSE2 has no 32-bit integer min; RGB 256^2 high -9%
+    // instructions): errors are far below 2^24 (exact in float), excluded blends (2^24 and
+    // up) stay at least 2^24 once rounded, and e0 / e8 are never excluded, so the minimum is
+    // the exact integer minimum.
+    using simd::to_float;
+    simd::vf4 m4 = to_float(e4 + simd::load4(lw.bias4[p]));
+    if constexpr (kAlpha) {
+      m4 = simd::min(m4, to_float(err((v4 & rgb) - t) + simd::load4(lw.bias4p[p])));
+    }
+    const vint4 m =
+        simd::to_int_trunc(simd::min(simd::min(simd::min(to_float(e0), to_float(e8)),
+                                               simd::min(to_float(e3 + b35), to_float(e5 + b35))),
+                                     m4));
+    acc += m;
+    if constexpr (kStore) {
+      texel_err[2 * p] = std::uint32_t(m.lane(0));
+      texel_err[2 * p + 1] = std::uint32_t(m.lane(2));
+    } else {
+      if (std::uint32_t(simd::sum_lanes02(acc)) >= bound) break;
+    }
+  }
+  return std::uint32_t(simd::sum_lanes02(acc));
+}
+
+inline std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
+                               std::uint32_t bound) {
+  return lw.nch == 4 ? local_error_simd_t<true>(lw, a, b, bound)
+                     : local_error_simd_t<false>(lw, a, b, bound);
+}
+
+// A block's window in channel-planar form (texels in the LocalWindow's order, 8 per vector,
+// 49-55 zero pads), with, for the block's current pair, each texel's error per blend slot
+// (0: weight 0, 1: weight 8, 2: weight 3, 3: weight 5, 4: weight 4, or with alpha punched
+// through where that is less) over all channels (`total`), and each colour channel's part of it
+// (`e`). A candidate changing only colour channel c then scores, per texel, the minimum over
+// the slots of total - e[c] (`rest[c]`, precomputed) plus the candidate's squared error in c.
+struct PlanarWindow {
+  static constexpr int kGroups = 7;
+  static constexpr int kSlots = 5;
+  // Excluded blends (not in the texel's block mode): 2^22 added to the slot's error keeps every
+  // float below 2^24 (exact) and far above any real texel error (at most 5 * 255^2).
+  static constexpr std::int32_t kExclude = 1 << 22;
+  alignas(16) std::uint16_t ra[4][56], rb[4][56], t[4][56], own[56];
+  alignas(16) std::int32_t excl35[56], excl4[56], excl4p[56];
+  alignas(16) std::uint16_t e[3][kSlots][56];
+  alignas(16) float total[kSlots][56];
+  alignas(16) float rest[3][kSlots][56];  ///< total - e[c] - 2^23.
+  int nch;
+  std::int32_t alpha_weight;
+};
+
+/// Channel-planar copy of `lw` (after any reordering of its texels).
+inline void build_planar(const LocalWindow& lw, PlanarWindow& pw) {
+  using simd::vu16x8;
+  pw.nch = lw.nch;
+  pw.alpha_weight = lw.weight16[3];
+  for (int g = 0; g < PlanarWindow::kGroups; ++g) {
+    vu16x8 v[4];
+    simd::transpose_8x4(&lw.rest16_a[8 * g][0], v);
+    for (int c = 0; c < 4; ++c) simd::store_u16x8(v[c], &pw.ra[c][8 * g]);
+    simd::transpose_8x4(&lw.rest16_b[8 * g][0], v);
+    for (int c = 0; c < 4; ++c) simd::store_u16x8(v[c], &pw.rb[c][8 * g]);
+    simd::transpose_8x4(&lw.t16[8 * g][0], v);
+    for (int c = 0; c < 4; ++c) simd::store_u16x8(v[c], &pw.t[c][8 * g]);
+    simd::transpose_8x4(&lw.own16[8 * g][0], v);
+    simd::store_u16x8(v[0], &pw.own[8 * g]);
+  }
+  for (int k = 0; k < 56; ++k) {
+    const bool pad = k >= 49;
+    const int i = (k & 1) * 2;
+    pw.excl35[k] = !pad && lw.bias35[k / 2][i] != 0 ? PlanarWindow::kExclude : 0;
+    pw.excl4[k] = !pad && lw.bias4[k / 2][i] != 0 ? PlanarWindow::kExclude : 0;
+    pw.excl4p[k] = !pad && lw.bias4p[k / 2][i] != 0 ? PlanarWindow::kExclude : 0;
+  }
+}
+
+namespace planar_detail {
+// The five blends of 8 texels of one channel (c < 3: colour, 3: alpha) for endpoint values
+// av, bv: slots 0: A, 1: B, 2: (5A + 3B) >> 3, 3: (3A + 5B) >> 3, 4: (A + B) >> 1.
+template <bool kAlphaChannel>
+inline void blends(simd::vu16x8 own, simd::vu16x8 ra, simd::vu16x8 rb, simd::vu16x8 av,
+                   simd::vu16x8 bv, simd::vu16x8 out[5]) {
+  using simd::vu16x8;
+  const vu16x8 sa = ra + simd::mullo(own, av), sb = rb + simd::mullo(own, bv);
+  vu16x8 ua, ub;
+  if constexpr (kAlphaChannel) {
+    ua = simd::srl<4>(sa) + sa;
+    ub = simd::srl<4>(sb) + sb;
+  } else {
+    ua = simd::srl<6>(sa) + simd::srl<1>(sa);
+    ub = simd::srl<6>(sb) + simd::srl<1>(sb);
+  }
+  const vu16x8 sum = ua + ub, sum2 = sum + sum, sum4 = sum2 + sum2, diff = ua - ub;
+  out[0] = ua;
+  out[1] = ub;
+  out[2] = simd::srl<3>(sum4 + diff);
+  out[3] = simd::srl<3>(sum4 - diff);
+  out[4] = simd::srl<1>(sum);
+}
+inline std::int32_t channel_value(const Rgba5& x, int c) {
+  return c == 0 ? x.r : c == 1 ? x.g : c == 2 ? x.b : x.a;
+}
+}  // namespace planar_detail
+
+/// Per-texel slot errors of the pair (a, b) (the block's current pair): `total` and `e`.
+inline void planar_refresh(PlanarWindow& pw, const Rgba5& a, const Rgba5& b) {
+  using simd::vf4;
+  using simd::vint4;
+  using simd::vu16x8;
+  for (int g = 0; g < PlanarWindow::kGroups; ++g) {
+    const int o = 8 * g;
+    vint4 tot[6][2];
+    for (int h = 0; h < 2; ++h) {
+      tot[2][h] = tot[3][h] = simd::load4(&pw.excl35[o + 4 * h]);
+      tot[4][h] = simd::load4(&pw.excl4[o + 4 * h]);
+      tot[5][h] = simd::load4(&pw.excl4p[o + 4 * h]);
+    }
+    const vu16x8 own = simd::load_u16x8(&pw.own[o]);
+    for (int c = 0; c < pw.nch; ++c) {
+      const vu16x8 av(std::uint16_t(planar_detail::channel_value(a, c)));
+      const vu16x8 bv(std::uint16_t(planar_detail::channel_value(b, c)));
+      vu16x8 bl[5];
+      if (c == 3) {
+        planar_detail::blends<true>(own, simd::load_u16x8(&pw.ra[c][o]),
+                                    simd::load_u16x8(&pw.rb[c][o]), av, bv, bl);
+      } else {
+        planar_detail::blends<false>(own, simd::load_u16x8(&pw.ra[c][o]),
+                                     simd::load_u16x8(&pw.rb[c][o]), av, bv, bl);
+      }
+      const vu16x8 t = simd::load_u16x8(&pw.t[c][o]);
+      const vint4 w(c == 3 ? pw.alpha_weight : 1);
+      for (int sl = 0; sl < PlanarWindow::kSlots; ++sl) {
+        const vu16x8 d = bl[sl] - t;
+        const vu16x8 sq = simd::mullo(d, d);  // d^2 <= 255^2: exact in the u16 lane
+        if (c < 3) simd::store_u16x8(sq, &pw.e[c][sl][o]);
+        vint4 lo = simd::widen32_lo(sq), hi = simd::widen32_hi(sq);
+        if (c == 3) {
+          lo = lo * w;
+          hi = hi * w;
+        }
+        tot[sl][0] += lo;
+        tot[sl][1] += hi;
+      }
+      // Punch-through: the colour of weight 4, alpha 0.
+      if (c < 3) {
+        const vu16x8 sq = simd::load_u16x8(&pw.e[c][4][o]);
+        tot[5][0] += simd::widen32_lo(sq);
+        tot[5][1] += simd::widen32_hi(sq);
+      } else {
+        const vu16x8 sq = simd::mullo(t, t);
+        tot[5][0] += simd::widen32_lo(sq) * w;
+        tot[5][1] += simd::widen32_hi(sq) * w;
+      }
+    }
+    for (int h = 0; h < 2; ++h) {
+      for (int sl = 0; sl < 4; ++sl) {
+        simd::storef4(simd::to_float(tot[sl][h]), &pw.total[sl][o + 4 * h]);
+      }
+      vf4 t4 = simd::to_float(tot[4][h]);
+      if (pw.nch == 4) t4 = simd::min(t4, simd::to_float(tot[5][h]));
+      simd::storef4(t4, &pw.total[4][o + 4 * h]);
+    }
+  }
+}
+
+/// rest[c] from total and e[c] (after planar_refresh); c < 3.
+inline void planar_rest(PlanarWindow& pw, int c) {
+  for (int sl = 0; sl < PlanarWindow::kSlots; ++sl) {
+    for (int g = 0; g < PlanarWindow::kGroups; ++g) {
+      const int o = 8 * g;
+      const simd::vu16x8 e = simd::load_u16x8(&pw.e[c][sl][o]);
+      simd::storef4(simd::loadf4(&pw.total[sl][o]) - simd::f2p23_plus_lo(e), &pw.rest[c][sl][o]);
+      simd::storef4(simd::loadf4(&pw.total[sl][o + 4]) - simd::f2p23_plus_hi(e),
+                    &pw.rest[c][sl][o + 4]);
+    }
+  }
+}
+
+/// Exact window error of the current pair with colour channel c (< 3) of A and B set to av, bv
+/// (5-bit values), given planar_refresh and planar_rest(c) for the current pair; stops once it
+/// reaches `bound` (the result is then >= bound).
+inline std::uint32_t planar_error(const PlanarWindow& pw, int c, std::int32_t av,
+                                  std::int32_t bv, std::uint32_t bound) {
+  using simd::vf4;
+  using simd::vint4;
+  using simd::vu16x8;
+  const vu16x8 a16{std::uint16_t(av)}, b16{std::uint16_t(bv)};
+  vint4 acc;
+  for (int g = 0; g < PlanarWindow::kGroups; ++g) {
+    const int o = 8 * g;
+    vu16x8 bl[5];
+    planar_detail::blends<false>(simd::load_u16x8(&pw.own[o]), simd::load_u16x8(&pw.ra[c][o]),
+                                 simd::load_u16x8(&pw.rb[c][o]), a16, b16, bl);
+    const vu16x8 t = simd::load_u16x8(&pw.t[c][o]);
+    vf4 mlo, mhi;
+    for (int sl = 0; sl < PlanarWindow::kSlots; ++sl) {
+      const vu16x8 d = bl[sl] - t;
+      const vu16x8 sq = simd::mullo(d, d);
+      // (2^23 + d^2) + (total - e - 2^23): exact integers below 2^24.
+      const vf4 lo = simd::f2p23_plus_lo(sq) + simd::loadf4(&pw.rest[c][sl][o]);
+      const vf4 hi = simd::f2p23_plus_hi(sq) + simd::loadf4(&pw.rest[c][sl][o + 4]);
+      mlo = sl == 0 ? lo : simd::min(mlo, lo);
+      mhi = sl == 0 ? hi : simd::min(mhi, hi);
+    }
+    acc += simd::to_int_trunc(mlo) + simd::to_int_trunc(mhi);
+    if (std::uint32_t(simd::sum_lanes(acc)) >= bound) break;
+  }
+  return std::uint32_t(simd::sum_lanes(acc));
+}
+
+/// The one colour channel (0-2) in which (a, b) differs from (ca, cb), or -1 (none, or another
+/// channel too; alpha counts only when nch is 4).
+inline int single_colour_channel(const Rgba5& a, const Rgba5& b, const Rgba5& ca,
+                                 const Rgba5& cb, int nch) {
+  if (nch == 4 && (a.a != ca.a || b.a != cb.a)) return -1;
+  const bool dr = a.r != ca.r || b.r != cb.r, dg = a.g != ca.g || b.g != cb.g,
+             db = a.b != ca.b || b.b != cb.b;
+  if (int(dr) + int(dg) + int(db) != 1) return -1;
+  return dr ? 0 : dg ? 1 : 2;
+}
+
+}  // namespace tessera::pvrtc::detail
