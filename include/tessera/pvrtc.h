@@ -51,13 +51,16 @@ enum class Quality {
   fast,    ///< Intensity dilation only (the paper's algorithm), 4 bpp mode 0 (+ punch-through).
   normal,  ///< Principal-axis start, 1 reseed pass (4 bpp), 3 refinement sweeps, then (4 bpp)
            ///< one round of the exact search on blocks above ~6.4 RMS per channel; 4 bpp
-           ///< also tries mode 1.
+           ///< also tries mode 1. 2 bpp: every modulation choice of the refinement is followed
+           ///< by one sweep of exact coordinate descent on the stored modulation values and
+           ///< interpolation variants.
   high,    ///< Principal-axis start, 2 reseed passes (4 bpp), then 4 bpp: 3 refinement sweeps
            ///< and the exact search (with neighbour-copy moves) on every block until no block
            ///< changes (alpha error weighted x2 for RGBA); then a second encoding from the
            ///< dilation start, searched the same way, is crossed in block by block where it
-           ///< errs less, and the search resumes where the two meet. 2 bpp: refinement until a
-           ///< sweep gains < 0.25% (at most 16 sweeps).
+           ///< errs less, and the search resumes where the two meet. 2 bpp: refinement (with
+           ///< the modulation descent, as normal) until a sweep gains < 0.25% (at most 16
+           ///< sweeps), then two more descent sweeps.
 };
 
 /// Block width in texels (4 for 4 bpp, 8 for 2 bpp); blocks are always 4 texels high.

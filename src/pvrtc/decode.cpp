@@ -111,10 +111,6 @@ void expand_endpoints(const Grid& g, const std::uint64_t* words, Rgba5* ea, Rgba
       threads);
 }
 
-namespace {
-
-// 2 bpp: the 2-bit "stored" value of every texel (0..3) as PVRTexTool unpacks it, and the
-// per-block mode (0 direct, 1 H+V interpolated, 2 H only, 3 V only).
 void unpack_2bpp_block(std::uint64_t word, std::uint8_t values[32], int& mode) {
   std::uint32_t bits = std::uint32_t(word);
   mode = int((word >> 32) & 1);
@@ -147,7 +143,29 @@ void unpack_2bpp_block(std::uint64_t word, std::uint8_t values[32], int& mode) {
   }
 }
 
-}  // namespace
+std::uint32_t pack_2bpp_block(const std::uint8_t v[32], int mode) {
+  if (mode == 0) {
+    std::uint32_t bits = 0;
+    for (int i = 0; i < 32; ++i) bits |= std::uint32_t(v[i] == 3) << i;
+    return bits;
+  }
+  std::uint32_t bits = 0;
+  int k = 0;
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 8; ++x) {
+      if ((x ^ y) & 1) continue;
+      bits |= std::uint32_t(v[y * 8 + x]) << (2 * k);
+      ++k;
+    }
+  }
+  // Texel (0, 0): bit 1 is its value (0 or 3), bit 0 flags H / V only.
+  bits = (bits & ~3u) | (v[0] == 3 ? 2u : 0u) | (mode != 1 ? 1u : 0u);
+  if (mode != 1) {  // texel (4, 2) is bits 20-21: bit 21 its value, bit 20 flags V only
+    bits = (bits & ~(3u << 20)) | (v[2 * 8 + 4] == 3 ? 1u << 21 : 0u) |
+           (mode == 3 ? 1u << 20 : 0u);
+  }
+  return bits;
+}
 
 void modulation_map(const Grid& g, const std::uint64_t* words, std::uint8_t* m_eff, int threads) {
   const int pw = g.pw;

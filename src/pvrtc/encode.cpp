@@ -321,6 +321,11 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   s.punch = s.alpha_mode && options.punch_through && options.format == Format::pvrtc1_4bpp;
   s.mode1 = options.quality != Quality::fast;
   s.threads = options.threads;
+  // normal / high, 2 bpp: one sweep of the modulation descent after every modulation choice
+  // of the refinement (modulation_2bpp_descent.cpp).
+  if (options.format == Format::pvrtc1_2bpp && options.quality != Quality::fast) {
+    s.modulation_descent = 1;
+  }
   const Grid& g = s.g;
   // Target: the source tiled over the padded level (only textures under 2x2 blocks differ).
   if (g.pw == image.width && g.ph == image.height) {

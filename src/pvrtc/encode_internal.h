@@ -15,6 +15,9 @@ struct EncoderState {
   bool punch = false;       ///< Punch-through (4 bpp mode 1 code 2) may be used.
   bool mode1 = false;       ///< 4 bpp: also try mode 1 (weights 0, 4, 8) on every block.
   int threads = 0;
+  /// 2 bpp: coordinate-descent sweeps after every modulation choice of the refinement
+  /// (`refine_modulation_2bpp`); 0: none.
+  int modulation_descent = 0;
   /// Padded target texels (pw * ph RGBA; the source tiled; alpha 255 unless alpha_mode).
   std::vector<std::uint8_t> target;
   /// Packed endpoint fields per block, linear order (A: bits 1-15 of its 16-bit field).
@@ -89,6 +92,12 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
 /// reseed; then the least-squares refinement (`iterations` sweeps, -1: the quality's default)
 /// and, for high or `exact_search_rounds` > 0, the exact search (polish).
 void optimise(EncoderState& s, Quality quality, int iterations, int exact_search_rounds);
+
+/// 2 bpp only: with the endpoints fixed, re-chooses every stored modulation value by the exact
+/// error of its texel and of the interpolated texels that read it, and the interpolation
+/// variant of every interpolated block, in `sweeps` coordinate-descent sweeps (see
+/// modulation_2bpp_descent.cpp). Returns the total error (as `total_error`).
+std::uint64_t refine_modulation_2bpp(EncoderState& s, int sweeps);
 
 /// 4 bpp: gives each block of `s` the endpoints of `other` (an encoding of the same target)
 /// where those decode its 4x4 texels with less error (alpha error counted `alpha_weight`

@@ -31,6 +31,16 @@ void expand_endpoints(const Grid& g, const std::uint64_t* words, Rgba5* ea, Rgba
 /// rules, including 2 bpp interpolated modes whose neighbours lie in adjacent blocks.
 void modulation_map(const Grid& g, const std::uint64_t* words, std::uint8_t* m_eff, int threads);
 
+/// 2 bpp: the 2-bit "stored" value of every texel of one block (0..3, row-major 8x4; 0 for the
+/// interpolated texels) as PVRTexTool unpacks `word`, and the block's mode (0 direct, 1 H+V
+/// interpolated, 2 H only, 3 V only).
+void unpack_2bpp_block(std::uint64_t word, std::uint8_t values[32], int& mode);
+
+/// 2 bpp: the 32 modulation bits of a block with stored `values` (as `unpack_2bpp_block` gives
+/// them) and `mode`; the block's mode bit is mode != 0. The inverse of `unpack_2bpp_block`:
+/// texel (0, 0), and (4, 2) under H / V only, must hold 0 or 3, direct blocks only 0 or 3.
+std::uint32_t pack_2bpp_block(const std::uint8_t values[32], int mode);
+
 /// Upscaled 8-bit RGBA of one endpoint image (ea or eb) for padded rows [y0, y1): writes
 /// (y1 - y0) * pw * 4 bytes to `out`.
 void upscale_rows(const Grid& g, const Rgba5* e, int y0, int y1, std::uint8_t* out);

@@ -228,7 +228,8 @@ void refine(EncoderState& s, int iterations) {
             s.threads);
       }
     }
-    const std::uint64_t err = choose_modulation(s);
+    std::uint64_t err = choose_modulation(s);
+    if (s.modulation_descent > 0) err = refine_modulation_2bpp(s, s.modulation_descent);
     if (err >= best_err) {
       s.ca = save_a;
       s.cb = save_b;
