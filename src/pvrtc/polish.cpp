@@ -10,13 +10,15 @@
 // The least-squares model is linear and ignores the decoder's truncations, so it stalls where
 // quantisation matters most (edges, saturated colours). Here each block's endpoint codes are
 // perturbed (one channel +-1, one channel of A and B together, or all colour channels of A, of
-// B or of both together; optionally a neighbour's A, B or both copied in) and a move is kept only when the exact decoded error over the 7x7
-// texels the block influences drops, with every texel's modulation re-chosen within its
-// block's mode. Blocks are visited in the same 2x2 colouring as the refinement, so the passes
-// are parallel and deterministic; after the first round only blocks with a changed neighbour
-// are searched again (exact: nothing else in their window moved). A candidate's window error
-// is summed with the texels that erred most under the current endpoints first and stops once
-// it reaches the best so far (integer sums: every kept move is the same).
+// B or of both together; optionally a neighbour's A, B or both copied in) and a move is kept only
+// when the exact decoded error over the 7x7 texels the block influences drops, with every texel's
+// modulation re-chosen within its block's mode. Blocks are visited in the same 2x2 colouring as the
+// refinement, so the passes are parallel and deterministic; after the first round only blocks with
+// a changed neighbour are searched again (exact: nothing else in their window moved). A candidate's
+// window error is summed with the texels that erred most under the current endpoints first and
+// stops once it reaches the best so far (integer sums: every kept move is the same). A candidate
+// that changes one colour channel only is scored channel-planar from the other channels' per-blend
+// errors (polish_kernel.h), and a pair already met in the visit is not scored again.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -172,22 +174,18 @@ int reseed_candidates(const EncoderState& s, int bx, int by, std::uint16_t out[8
 }
 
 // Reorders the window's texels in the SIMD layout: slot i takes texel order[i] (slots 0-48;
-// slot 49, the zero pad, stays). The error is an integer sum, so the order changes only where
+// the zero pads stay). The error is an integer sum, so the order changes only where
 // the bounded evaluation stops, never a result below the bound.
 void permute_local(LocalWindow& lw, const std::uint8_t* order) {
-  auto permute = [&](void* rows) {  // rows of 8 bytes; the first 49 permuted
-    std::uint64_t tmp[49], out[49];
-    std::memcpy(tmp, rows, sizeof(tmp));
-    for (int i = 0; i < 49; ++i) out[i] = tmp[order[i]];
-    std::memcpy(rows, out, sizeof(out));
-  };
-  permute(lw.rest16_a);
-  permute(lw.rest16_b);
-  permute(lw.own16);
-  permute(lw.t16);
-  permute(lw.bias35);
-  permute(lw.bias4);
-  permute(lw.bias4p);
+  // Seven arrays of 8-byte rows (one per texel), the first 49 rows permuted, in one pass.
+  void* const rows[7] = {lw.rest16_a, lw.rest16_b, lw.own16, lw.t16,
+                         lw.bias35,   lw.bias4,    lw.bias4p};
+  std::uint64_t tmp[7][49];
+  for (int r = 0; r < 7; ++r) std::memcpy(tmp[r], rows[r], sizeof(tmp[r]));
+  for (int i = 0; i < 49; ++i) {
+    const int o = order[i];
+    for (int r = 0; r < 7; ++r) std::memcpy(static_cast<char*>(rows[r]) + 8 * i, &tmp[r][o], 8);
+  }
 }
 
 void build_local(const Window& w, int bx, int by, LocalWindow& lw) {

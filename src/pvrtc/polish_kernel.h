@@ -37,7 +37,7 @@ struct LocalWindow {
 // kStore: no bound; each texel's error goes to texel_err[slot] (slots in layout order).
 template <bool kAlpha, bool kStore = false>
 inline std::uint32_t local_error_simd_t(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
-                                 std::uint32_t bound, std::uint32_t* texel_err = nullptr) {
+                                        std::uint32_t bound, std::uint32_t* texel_err = nullptr) {
   using simd::vint4;
   using simd::vu16x8;
   alignas(16) const std::uint16_t a16[8] = {
@@ -103,7 +103,7 @@ inline std::uint32_t local_error_simd_t(const LocalWindow& lw, const Rgba5& a, c
 }
 
 inline std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
-                               std::uint32_t bound) {
+                                      std::uint32_t bound) {
   return lw.nch == 4 ? local_error_simd_t<true>(lw, a, b, bound)
                      : local_error_simd_t<false>(lw, a, b, bound);
 }
@@ -114,6 +114,8 @@ inline std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, con
 // through where that is less) over all channels (`total`), and each colour channel's part of it
 // (`e`). A candidate changing only colour channel c then scores, per texel, the minimum over
 // the slots of total - e[c] (`rest[c]`, precomputed) plus the candidate's squared error in c.
+// (The planar functions are kept out of line: inlined into the search loop they cost more
+// instructions, ldr-rgb-07 high 4.77G -> 4.84G.)
 struct PlanarWindow {
   static constexpr int kGroups = 7;
   static constexpr int kSlots = 5;
@@ -130,7 +132,7 @@ struct PlanarWindow {
 };
 
 /// Channel-planar copy of `lw` (after any reordering of its texels).
-inline void build_planar(const LocalWindow& lw, PlanarWindow& pw) {
+[[gnu::noinline]] inline void build_planar(const LocalWindow& lw, PlanarWindow& pw) {
   using simd::vu16x8;
   pw.nch = lw.nch;
   pw.alpha_weight = lw.weight16[3];
@@ -145,13 +147,26 @@ inline void build_planar(const LocalWindow& lw, PlanarWindow& pw) {
     simd::transpose_8x4(&lw.own16[8 * g][0], v);
     simd::store_u16x8(v[0], &pw.own[8 * g]);
   }
-  for (int k = 0; k < 56; ++k) {
-    const bool pad = k >= 49;
-    const int i = (k & 1) * 2;
-    pw.excl35[k] = !pad && lw.bias35[k / 2][i] != 0 ? PlanarWindow::kExclude : 0;
-    pw.excl4[k] = !pad && lw.bias4[k / 2][i] != 0 ? PlanarWindow::kExclude : 0;
-    pw.excl4p[k] = !pad && lw.bias4p[k / 2][i] != 0 ? PlanarWindow::kExclude : 0;
+  // The LocalWindow's biases are 0 or 2^24 (texel k at element 2k of each flat array).
+  static_assert(PlanarWindow::kExclude == (1 << 24) >> 2);
+  const std::int32_t* b35 = &lw.bias35[0][0];
+  const std::int32_t* b4 = &lw.bias4[0][0];
+  const std::int32_t* b4p = &lw.bias4p[0][0];
+  for (int k = 0; k < 48; k += 4) {
+    simd::store4(
+        simd::srl<2>(simd::even_lanes(simd::load4(b35 + 2 * k), simd::load4(b35 + 2 * k + 4))),
+        &pw.excl35[k]);
+    simd::store4(
+        simd::srl<2>(simd::even_lanes(simd::load4(b4 + 2 * k), simd::load4(b4 + 2 * k + 4))),
+        &pw.excl4[k]);
+    simd::store4(
+        simd::srl<2>(simd::even_lanes(simd::load4(b4p + 2 * k), simd::load4(b4p + 2 * k + 4))),
+        &pw.excl4p[k]);
   }
+  pw.excl35[48] = b35[96] >> 2;
+  pw.excl4[48] = b4[96] >> 2;
+  pw.excl4p[48] = b4p[96] >> 2;
+  for (int k = 49; k < 56; ++k) pw.excl35[k] = pw.excl4[k] = pw.excl4p[k] = 0;
 }
 
 namespace planar_detail {
@@ -182,69 +197,71 @@ inline std::int32_t channel_value(const Rgba5& x, int c) {
 }
 }  // namespace planar_detail
 
-/// Per-texel slot errors of the pair (a, b) (the block's current pair): `total` and `e`.
-inline void planar_refresh(PlanarWindow& pw, const Rgba5& a, const Rgba5& b) {
+/// Per-texel slot errors of the pair (a, b) (the block's current pair): `e`, then `total`.
+[[gnu::noinline]] inline void planar_refresh(PlanarWindow& pw, const Rgba5& a, const Rgba5& b) {
   using simd::vf4;
   using simd::vint4;
   using simd::vu16x8;
+  const std::int32_t av[4] = {a.r, a.g, a.b, a.a}, bv[4] = {b.r, b.g, b.b, b.a};
+  const vint4 w(pw.alpha_weight);
   for (int g = 0; g < PlanarWindow::kGroups; ++g) {
     const int o = 8 * g;
-    vint4 tot[6][2];
-    for (int h = 0; h < 2; ++h) {
-      tot[2][h] = tot[3][h] = simd::load4(&pw.excl35[o + 4 * h]);
-      tot[4][h] = simd::load4(&pw.excl4[o + 4 * h]);
-      tot[5][h] = simd::load4(&pw.excl4p[o + 4 * h]);
-    }
     const vu16x8 own = simd::load_u16x8(&pw.own[o]);
-    for (int c = 0; c < pw.nch; ++c) {
-      const vu16x8 av(std::uint16_t(planar_detail::channel_value(a, c)));
-      const vu16x8 bv(std::uint16_t(planar_detail::channel_value(b, c)));
-      vu16x8 bl[5];
-      if (c == 3) {
-        planar_detail::blends<true>(own, simd::load_u16x8(&pw.ra[c][o]),
-                                    simd::load_u16x8(&pw.rb[c][o]), av, bv, bl);
-      } else {
-        planar_detail::blends<false>(own, simd::load_u16x8(&pw.ra[c][o]),
-                                     simd::load_u16x8(&pw.rb[c][o]), av, bv, bl);
-      }
+    vu16x8 bl[5];
+    for (int c = 0; c < 3; ++c) {
+      planar_detail::blends<false>(own, simd::load_u16x8(&pw.ra[c][o]),
+                                   simd::load_u16x8(&pw.rb[c][o]), vu16x8{std::uint16_t(av[c])},
+                                   vu16x8{std::uint16_t(bv[c])}, bl);
       const vu16x8 t = simd::load_u16x8(&pw.t[c][o]);
-      const vint4 w(c == 3 ? pw.alpha_weight : 1);
       for (int sl = 0; sl < PlanarWindow::kSlots; ++sl) {
         const vu16x8 d = bl[sl] - t;
-        const vu16x8 sq = simd::mullo(d, d);  // d^2 <= 255^2: exact in the u16 lane
-        if (c < 3) simd::store_u16x8(sq, &pw.e[c][sl][o]);
-        vint4 lo = simd::widen32_lo(sq), hi = simd::widen32_hi(sq);
-        if (c == 3) {
-          lo = lo * w;
-          hi = hi * w;
-        }
-        tot[sl][0] += lo;
-        tot[sl][1] += hi;
-      }
-      // Punch-through: the colour of weight 4, alpha 0.
-      if (c < 3) {
-        const vu16x8 sq = simd::load_u16x8(&pw.e[c][4][o]);
-        tot[5][0] += simd::widen32_lo(sq);
-        tot[5][1] += simd::widen32_hi(sq);
-      } else {
-        const vu16x8 sq = simd::mullo(t, t);
-        tot[5][0] += simd::widen32_lo(sq) * w;
-        tot[5][1] += simd::widen32_hi(sq) * w;
+        simd::store_u16x8(simd::mullo(d, d), &pw.e[c][sl][o]);  // d^2 <= 255^2: exact in u16
       }
     }
-    for (int h = 0; h < 2; ++h) {
-      for (int sl = 0; sl < 4; ++sl) {
-        simd::storef4(simd::to_float(tot[sl][h]), &pw.total[sl][o + 4 * h]);
+    vu16x8 ealpha[5], tt;  // alpha: squared errors per slot, and of alpha 0 (punch-through)
+    if (pw.nch == 4) {
+      planar_detail::blends<true>(own, simd::load_u16x8(&pw.ra[3][o]),
+                                  simd::load_u16x8(&pw.rb[3][o]), vu16x8{std::uint16_t(av[3])},
+                                  vu16x8{std::uint16_t(bv[3])}, bl);
+      const vu16x8 t = simd::load_u16x8(&pw.t[3][o]);
+      for (int sl = 0; sl < PlanarWindow::kSlots; ++sl) {
+        const vu16x8 d = bl[sl] - t;
+        ealpha[sl] = simd::mullo(d, d);
       }
-      vf4 t4 = simd::to_float(tot[4][h]);
-      if (pw.nch == 4) t4 = simd::min(t4, simd::to_float(tot[5][h]));
-      simd::storef4(t4, &pw.total[4][o + 4 * h]);
+      tt = simd::mullo(t, t);
+    }
+    for (int sl = 0; sl < PlanarWindow::kSlots; ++sl) {
+      const vu16x8 e0 = simd::load_u16x8(&pw.e[0][sl][o]), e1 = simd::load_u16x8(&pw.e[1][sl][o]),
+                   e2 = simd::load_u16x8(&pw.e[2][sl][o]);
+      vint4 lo = simd::widen32_lo(e0) + simd::widen32_lo(e1) + simd::widen32_lo(e2);
+      vint4 hi = simd::widen32_hi(e0) + simd::widen32_hi(e1) + simd::widen32_hi(e2);
+      vint4 plo, phi;  // punch-through (slot 4, RGBA): the colour of weight 4, alpha 0
+      if (sl == 4 && pw.nch == 4) {
+        plo = lo + simd::widen32_lo(tt) * w + simd::load4(&pw.excl4p[o]);
+        phi = hi + simd::widen32_hi(tt) * w + simd::load4(&pw.excl4p[o + 4]);
+      }
+      if (pw.nch == 4) {
+        lo += simd::widen32_lo(ealpha[sl]) * w;
+        hi += simd::widen32_hi(ealpha[sl]) * w;
+      }
+      if (sl >= 2) {
+        const std::int32_t* ex = sl == 4 ? pw.excl4 : pw.excl35;
+        lo += simd::load4(&ex[o]);
+        hi += simd::load4(&ex[o + 4]);
+      }
+      vf4 flo = simd::to_float(lo), fhi = simd::to_float(hi);
+      if (sl == 4 && pw.nch == 4) {
+        flo = simd::min(flo, simd::to_float(plo));
+        fhi = simd::min(fhi, simd::to_float(phi));
+      }
+      simd::storef4(flo, &pw.total[sl][o]);
+      simd::storef4(fhi, &pw.total[sl][o + 4]);
     }
   }
 }
 
 /// rest[c] from total and e[c] (after planar_refresh); c < 3.
-inline void planar_rest(PlanarWindow& pw, int c) {
+[[gnu::noinline]] inline void planar_rest(PlanarWindow& pw, int c) {
   for (int sl = 0; sl < PlanarWindow::kSlots; ++sl) {
     for (int g = 0; g < PlanarWindow::kGroups; ++g) {
       const int o = 8 * g;
@@ -259,8 +276,8 @@ inline void planar_rest(PlanarWindow& pw, int c) {
 /// Exact window error of the current pair with colour channel c (< 3) of A and B set to av, bv
 /// (5-bit values), given planar_refresh and planar_rest(c) for the current pair; stops once it
 /// reaches `bound` (the result is then >= bound).
-inline std::uint32_t planar_error(const PlanarWindow& pw, int c, std::int32_t av,
-                                  std::int32_t bv, std::uint32_t bound) {
+[[gnu::noinline]] inline std::uint32_t planar_error(const PlanarWindow& pw, int c, std::int32_t av,
+                                                    std::int32_t bv, std::uint32_t bound) {
   using simd::vf4;
   using simd::vint4;
   using simd::vu16x8;
@@ -290,8 +307,8 @@ inline std::uint32_t planar_error(const PlanarWindow& pw, int c, std::int32_t av
 
 /// The one colour channel (0-2) in which (a, b) differs from (ca, cb), or -1 (none, or another
 /// channel too; alpha counts only when nch is 4).
-inline int single_colour_channel(const Rgba5& a, const Rgba5& b, const Rgba5& ca,
-                                 const Rgba5& cb, int nch) {
+inline int single_colour_channel(const Rgba5& a, const Rgba5& b, const Rgba5& ca, const Rgba5& cb,
+                                 int nch) {
   if (nch == 4 && (a.a != ca.a || b.a != cb.a)) return -1;
   const bool dr = a.r != ca.r || b.r != cb.r, dg = a.g != ca.g || b.g != cb.g,
              db = a.b != ca.b || b.b != cb.b;

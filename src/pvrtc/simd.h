@@ -232,6 +232,11 @@ inline vf4 hmin(vf4 a) {
 /// Bit i set when lane i of a mask (all ones / zero lanes) is set.
 inline int movemask(vint4 mask) { return _mm_movemask_ps(_mm_castsi128_ps(mask.v)); }
 
+/// Lanes (a0, a2, b0, b2).
+inline vint4 even_lanes(vint4 a, vint4 b) {
+  return vint4(_mm_castps_si128(
+      _mm_shuffle_ps(_mm_castsi128_ps(a.v), _mm_castsi128_ps(b.v), _MM_SHUFFLE(2, 0, 2, 0))));
+}
 /// 2^23 + lane i of `a` (lanes 0-3: _lo, 4-7: _hi) as floats, exact: the 16-bit value placed in
 /// the mantissa of 2^23.
 inline vf4 f2p23_plus_lo(vu16x8 a) {
@@ -568,6 +573,7 @@ inline vf4 operator-(vf4 a, vf4 b) {
   for (int i = 0; i < 4; ++i) r.l[i] = a.l[i] - b.l[i];
   return r;
 }
+inline vint4 even_lanes(vint4 a, vint4 b) { return {a.l[0], a.l[2], b.l[0], b.l[2]}; }
 inline vint4 widen32_lo(vu16x8 a) { return {a.l[0], a.l[1], a.l[2], a.l[3]}; }
 inline vint4 widen32_hi(vu16x8 a) { return {a.l[4], a.l[5], a.l[6], a.l[7]}; }
 inline std::int32_t sum_lanes(vint4 a) { return a.l[0] + a.l[1] + a.l[2] + a.l[3]; }
