@@ -272,6 +272,9 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
     lw.bias4[24][c] = 0;
     lw.bias4p[24][c] = kExclude;
   }
+  for (int p = 25; p < 28; ++p) {  // pads
+    for (int c = 0; c < 4; ++c) lw.bias35[p][c] = lw.bias4[p][c] = lw.bias4p[p][c] = 0;
+  }
 }
 
 // Reorders the window (built by build_local) by decreasing texel error (bit length) under
@@ -280,7 +283,7 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
 // `min_error` will not be searched and is left as it is.
 std::uint32_t order_local(LocalWindow& lw, const Rgba5& a, const Rgba5& b,
                           std::uint32_t min_error) {
-  std::uint32_t err[50];
+  std::uint32_t err[52];
   const std::uint32_t total = lw.nch == 4 ? local_error_simd_t<true, true>(lw, a, b, 0, err)
                                           : local_error_simd_t<false, true>(lw, a, b, 0, err);
   if (total <= min_error) return total;

@@ -24,7 +24,7 @@ struct LocalWindow {
   // if RGB), `bias35` / `bias4` / `bias4p` exclude the blends a texel's block mode lacks (4p:
   // weight 4 with alpha punched through, mode 1 with punch-through allowed only).
   alignas(16) std::uint16_t rest16_a[56][4], rest16_b[56][4], own16[56][4], t16[56][4];
-  alignas(16) std::int32_t bias35[25][4], bias4[25][4], bias4p[25][4];
+  alignas(16) std::int32_t bias35[28][4], bias4[28][4], bias4p[28][4];
   int nch;
   bool punch;
   alignas(16) std::uint16_t weight16[8];  ///< Per-lane error weights (RGBA RGBA).
@@ -52,8 +52,11 @@ inline std::uint32_t local_error_simd_t(const LocalWindow& lw, const Rgba5& a, c
                                                              0xffff, 0xffff, 0xffff, 0};
   const vu16x8 alpha = simd::load_u16x8(kAlphaLanes), rgb = simd::load_u16x8(kRgbLanes);
   const vu16x8 aw = simd::load_u16x8(lw.weight16);
-  vint4 acc;
-  for (int p = 0; p < 25; ++p) {
+  // Squared errors of pair p's blends, lanes (texel 0 RG, texel 0 BA, texel 1 RG, texel 1 BA).
+  struct PairSq {
+    vint4 e0, e8, e3, e5, e4, e4p;
+  };
+  auto pair_sq = [&](int p, PairSq& o) {
     const vu16x8 own = simd::load_u16x8(&lw.own16[2 * p][0]);
     // Bilinear sums S (weights sum to 16); 8-bit colour (2S >> 7) + (2S >> 2), alpha
     // (2S >> 5) + (2S >> 1). (Alpha lanes are all zero for RGB input.)
@@ -66,40 +69,54 @@ inline std::uint32_t local_error_simd_t(const LocalWindow& lw, const Rgba5& a, c
     }
     const vu16x8 t = simd::load_u16x8(&lw.t16[2 * p][0]);
     auto err = [&](vu16x8 d) {
-      const vint4 sq = kAlpha ? simd::madd(d, simd::mullo(d, aw)) : simd::madd(d, d);
-      return sq + simd::swap_pairs(sq);
+      return kAlpha ? simd::madd(d, simd::mullo(d, aw)) : simd::madd(d, d);
     };
     // Blends (A (8 - m) + B m) >> 3 from the sum: 4 (A + B) +- (A - B) for m = 3, 5 (the u16
     // lanes wrap in between, the results are exact), (A + B) >> 1 for m = 4.
     const vu16x8 sum = ua + ub, sum2 = sum + sum, sum4 = sum2 + sum2, diff = ua - ub;
-    const vint4 e0 = err(ua - t), e8 = err(ub - t);
-    const vint4 e3 = err(simd::srl<3>(sum4 + diff) - t);
-    const vint4 e5 = err(simd::srl<3>(sum4 - diff) - t);
+    o.e0 = err(ua - t);
+    o.e8 = err(ub - t);
+    o.e3 = err(simd::srl<3>(sum4 + diff) - t);
+    o.e5 = err(simd::srl<3>(sum4 - diff) - t);
     const vu16x8 v4 = simd::srl<1>(sum);
-    const vint4 e4 = err(v4 - t);
-    const vint4 b35 = simd::load4(lw.bias35[p]);
-    // The minimum in float lanes (SSE2 has no 32-bit integer min; RGB 256^2 high -9%
-    // instructions): errors are far below 2^24 (exact in float), excluded blends (2^24 and
-    // up) stay at least 2^24 once rounded, and e0 / e8 are never excluded, so the minimum is
-    // the exact integer minimum.
+    o.e4 = err(v4 - t);
+    if constexpr (kAlpha) o.e4p = err((v4 & rgb) - t);
+  };
+  // Four texels (two pairs) per step: the per-texel sums of the two pairs' lanes, then the
+  // minimum over the blends in float lanes (SSE2 has no 32-bit integer min; RGB 256^2 high -9%
+  // instructions): errors are far below 2^24 (exact in float), excluded blends (2^24 and up)
+  // stay at least 2^24 once rounded, and e0 / e8 are never excluded, so the minimum is the
+  // exact integer minimum.
+  vint4 acc;
+  for (int q = 0; q < 13; ++q) {
+    PairSq x, y;
+    pair_sq(2 * q, x);
+    pair_sq(2 * q + 1, y);
+    using simd::pair_sums;
     using simd::to_float;
-    simd::vf4 m4 = to_float(e4 + simd::load4(lw.bias4[p]));
+    auto bias = [&](const std::int32_t(*rows)[4]) {
+      return simd::even_lanes(simd::load4(rows[2 * q]), simd::load4(rows[2 * q + 1]));
+    };
+    const vint4 b35 = bias(lw.bias35);
+    simd::vf4 m4 = to_float(pair_sums(x.e4, y.e4) + bias(lw.bias4));
     if constexpr (kAlpha) {
-      m4 = simd::min(m4, to_float(err((v4 & rgb) - t) + simd::load4(lw.bias4p[p])));
+      m4 = simd::min(m4, to_float(pair_sums(x.e4p, y.e4p) + bias(lw.bias4p)));
     }
-    const vint4 m =
-        simd::to_int_trunc(simd::min(simd::min(simd::min(to_float(e0), to_float(e8)),
-                                               simd::min(to_float(e3 + b35), to_float(e5 + b35))),
-                                     m4));
+    const vint4 m = simd::to_int_trunc(simd::min(
+        simd::min(simd::min(to_float(pair_sums(x.e0, y.e0)), to_float(pair_sums(x.e8, y.e8))),
+                  simd::min(to_float(pair_sums(x.e3, y.e3) + b35),
+                            to_float(pair_sums(x.e5, y.e5) + b35))),
+        m4));
     acc += m;
     if constexpr (kStore) {
-      texel_err[2 * p] = std::uint32_t(m.lane(0));
-      texel_err[2 * p + 1] = std::uint32_t(m.lane(2));
+      alignas(16) std::int32_t m32[4];
+      simd::store4(m, m32);
+      for (int i = 0; i < 4; ++i) texel_err[4 * q + i] = std::uint32_t(m32[i]);
     } else {
-      if (std::uint32_t(simd::sum_lanes02(acc)) >= bound) break;
+      if (std::uint32_t(simd::sum_lanes(acc)) >= bound) break;
     }
   }
-  return std::uint32_t(simd::sum_lanes02(acc));
+  return std::uint32_t(simd::sum_lanes(acc));
 }
 
 inline std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,

@@ -232,6 +232,12 @@ inline vf4 hmin(vf4 a) {
 /// Bit i set when lane i of a mask (all ones / zero lanes) is set.
 inline int movemask(vint4 mask) { return _mm_movemask_ps(_mm_castsi128_ps(mask.v)); }
 
+/// Lanes (a0 + a1, a2 + a3, b0 + b1, b2 + b3).
+inline vint4 pair_sums(vint4 a, vint4 b) {
+  const __m128 x = _mm_castsi128_ps(a.v), y = _mm_castsi128_ps(b.v);
+  return vint4(_mm_add_epi32(_mm_castps_si128(_mm_shuffle_ps(x, y, _MM_SHUFFLE(2, 0, 2, 0))),
+                             _mm_castps_si128(_mm_shuffle_ps(x, y, _MM_SHUFFLE(3, 1, 3, 1)))));
+}
 /// Lanes (a0, a2, b0, b2).
 inline vint4 even_lanes(vint4 a, vint4 b) {
   return vint4(_mm_castps_si128(
@@ -574,6 +580,9 @@ inline vf4 operator-(vf4 a, vf4 b) {
   return r;
 }
 inline vint4 even_lanes(vint4 a, vint4 b) { return {a.l[0], a.l[2], b.l[0], b.l[2]}; }
+inline vint4 pair_sums(vint4 a, vint4 b) {
+  return {a.l[0] + a.l[1], a.l[2] + a.l[3], b.l[0] + b.l[1], b.l[2] + b.l[3]};
+}
 inline vint4 widen32_lo(vu16x8 a) { return {a.l[0], a.l[1], a.l[2], a.l[3]}; }
 inline vint4 widen32_hi(vu16x8 a) { return {a.l[4], a.l[5], a.l[6], a.l[7]}; }
 inline std::int32_t sum_lanes(vint4 a) { return a.l[0] + a.l[1] + a.l[2] + a.l[3]; }
