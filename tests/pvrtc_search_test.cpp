@@ -16,15 +16,19 @@ using namespace tessera::pvrtc::detail;
 
 namespace {
 
-// An encoder state for `img` holding the blocks of `data` (an encoding of it), 4 bpp, opaque.
-// `mode1`: whether the modulation choice may use mode 1.
-EncoderState state_from(const ImageRGBA8& img, const std::vector<std::uint8_t>& data, bool mode1) {
+// An encoder state for `img` holding the blocks of `data` (an encoding of it in `format`).
+// `mode1`: whether the 4 bpp modulation choice may use mode 1.
+EncoderState state_from(const ImageRGBA8& img, const std::vector<std::uint8_t>& data, bool mode1,
+                        Format format = Format::pvrtc1_4bpp) {
   EncoderState s;
-  s.g = make_grid(Format::pvrtc1_4bpp, img.width, img.height);
+  s.g = make_grid(format, img.width, img.height);
+  s.alpha_mode = img.has_alpha;
   s.mode1 = mode1;
   s.threads = 1;
   s.target = img.pixels;
-  for (std::size_t i = 0; i < s.g.texels(); ++i) s.target[i * 4 + 3] = 255;
+  if (!img.has_alpha) {
+    for (std::size_t i = 0; i < s.g.texels(); ++i) s.target[i * 4 + 3] = 255;
+  }
   std::vector<std::uint64_t> w(s.g.blocks());
   load_words(s.g, data.data(), w.data());
   s.ca.resize(w.size());
@@ -41,8 +45,10 @@ EncoderState state_from(const ImageRGBA8& img, const std::vector<std::uint8_t>& 
   return s;
 }
 
-std::vector<std::uint8_t> encode_or_die(const ImageRGBA8& img, Quality q) {
+std::vector<std::uint8_t> encode_or_die(const ImageRGBA8& img, Quality q,
+                                        Format format = Format::pvrtc1_4bpp) {
   EncodeOptions o;
+  o.format = format;
   o.quality = q;
   o.threads = 1;
   auto r = encode(img, o);
@@ -183,46 +189,6 @@ TEST(PvrtcSearch, CrossoverTakesTheBetterBlocks) {
   }
 }
 
-namespace {
-
-// A 2 bpp encoder state for `img` holding the blocks of `data`.
-EncoderState state_2bpp(const ImageRGBA8& img, const std::vector<std::uint8_t>& data) {
-  EncoderState s;
-  s.g = make_grid(Format::pvrtc1_2bpp, img.width, img.height);
-  s.alpha_mode = img.has_alpha;
-  s.threads = 1;
-  s.target = img.pixels;
-  if (!img.has_alpha) {
-    for (std::size_t i = 0; i < s.g.texels(); ++i) s.target[i * 4 + 3] = 255;
-  }
-  std::vector<std::uint64_t> w(s.g.blocks());
-  load_words(s.g, data.data(), w.data());
-  s.ca.resize(w.size());
-  s.cb.resize(w.size());
-  s.mode.resize(w.size());
-  s.mod.resize(w.size());
-  for (std::size_t i = 0; i < w.size(); ++i) {
-    s.mod[i] = std::uint32_t(w[i]);
-    const auto a = std::uint16_t(w[i] >> 32);
-    s.mode[i] = a & 1;
-    s.ca[i] = a & 0xfffe;
-    s.cb[i] = std::uint16_t(w[i] >> 48);
-  }
-  return s;
-}
-
-std::vector<std::uint8_t> encode_2bpp(const ImageRGBA8& img, Quality q) {
-  EncodeOptions o;
-  o.format = Format::pvrtc1_2bpp;
-  o.quality = q;
-  o.threads = 1;
-  auto r = encode(img, o);
-  EXPECT_TRUE(r.ok());
-  return r.ok() ? *r : std::vector<std::uint8_t>{};
-}
-
-}  // namespace
-
 // Packing the unpacked stored values and mode gives back the same 32 modulation bits, for
 // every mode and variant (the block's mode bit rides along in bit 32 of the word).
 TEST(PvrtcSearch, Pack2bppInvertsUnpack) {
@@ -250,7 +216,9 @@ TEST(PvrtcSearch, Pack2bppInvertsUnpack) {
 TEST(PvrtcSearch, ModulationDescent2bppReachesALocalMinimum) {
   for (Procedural kind : {Procedural::noise, Procedural::foliage}) {
     const ImageRGBA8 img = make_procedural(kind, 32, 16);
-    EncoderState s = state_2bpp(img, encode_2bpp(img, Quality::fast));
+    EncoderState s =
+        state_from(img, encode_or_die(img, Quality::fast, Format::pvrtc1_2bpp), false,
+                   Format::pvrtc1_2bpp);
     const std::uint64_t before = total_error(s);
     const std::uint64_t after = refine_modulation_2bpp(s, 16);
     EXPECT_EQ(after, total_error(s));

@@ -38,6 +38,25 @@ struct EncoderState {
   }
 };
 
+/// Calls fn(bx, by) for every block in the 2x2 colouring of the refinement and the searches:
+/// the four classes (bx & 1, by & 1) one after the other, the blocks of one class in parallel
+/// (two rows of a class apart by at least one row, so blocks of one class share no texel
+/// window); deterministic for any thread count when fn touches only its block's window.
+template <class Fn>
+void for_each_block_2x2(const Grid& g, int threads, Fn&& fn) {
+  for (int cls = 0; cls < 4; ++cls) {
+    const int ox = cls & 1, oy = cls >> 1;
+    parallel_for(
+        0, g.nby / 2, 4,
+        [&](std::int64_t r0, std::int64_t r1) {
+          for (int r = int(r0); r < int(r1); ++r) {
+            for (int bx = ox; bx < g.nbx; bx += 2) fn(bx, 2 * r + oy);
+          }
+        },
+        threads);
+  }
+}
+
 /// Quantises a float RGBA endpoint (8-bit scale) to a packed endpoint field, choosing opaque or
 /// translucent (when `allow_translucent`) by the smaller quantisation error.
 std::uint16_t quantise_endpoint(const float c[4], bool is_b, bool allow_translucent);

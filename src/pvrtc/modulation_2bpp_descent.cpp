@@ -181,17 +181,7 @@ std::uint64_t refine_modulation_2bpp(EncoderState& s, int sweeps) {
   }
   Descent d(s, md);
   for (int sweep = 0; sweep < sweeps; ++sweep) {
-    for (int cls = 0; cls < 4; ++cls) {
-      const int ox = cls & 1, oy = cls >> 1;
-      parallel_for(
-          0, g.nby / 2, 4,
-          [&](std::int64_t r0, std::int64_t r1) {
-            for (int r = int(r0); r < int(r1); ++r) {
-              for (int bx = ox; bx < g.nbx; bx += 2) d.block(bx, 2 * r + oy);
-            }
-          },
-          s.threads);
-    }
+    for_each_block_2x2(g, s.threads, [&](int bx, int by) { d.block(bx, by); });
   }
   for (int by = 0; by < g.nby; ++by) {
     for (int bx = 0; bx < g.nbx; ++bx) {

@@ -214,19 +214,8 @@ void refine(EncoderState& s, int iterations) {
     }
     for (int sweep = 0; sweep <= kContinuousSweeps; ++sweep) {
       const bool continuous = sweep < kContinuousSweeps;
-      for (int cls = 0; cls < 4; ++cls) {
-        const int ox = cls & 1, oy = cls >> 1;
-        const int rows = g.nby / 2;
-        parallel_for(
-            0, rows, 4,
-            [&](std::int64_t r0, std::int64_t r1) {
-              for (int r = int(r0); r < int(r1); ++r) {
-                for (int bx = ox; bx < g.nbx; bx += 2)
-                  solve_block(s, lv, bx, 2 * r + oy, continuous);
-              }
-            },
-            s.threads);
-      }
+      for_each_block_2x2(g, s.threads,
+                         [&](int bx, int by) { solve_block(s, lv, bx, by, continuous); });
     }
     std::uint64_t err = choose_modulation(s);
     if (s.modulation_descent > 0) err = refine_modulation_2bpp(s, s.modulation_descent);
