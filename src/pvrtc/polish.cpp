@@ -188,6 +188,23 @@ void permute_local(LocalWindow& lw, const std::uint8_t* order) {
   }
 }
 
+// Block j's bilinear weight on the window's texels where no neighbour wraps onto j itself:
+// (1 2 3 4 3 2 1) across times down, in the channel lanes (alpha lane too when [1]).
+struct OwnTable {
+  std::uint16_t v[2][49][4];
+  constexpr OwnTable() : v{} {
+    constexpr int kW[7] = {1, 2, 3, 4, 3, 2, 1};
+    for (int al = 0; al < 2; ++al) {
+      for (int k = 0; k < 49; ++k) {
+        for (int c = 0; c < 4; ++c) {
+          v[al][k][c] = std::uint16_t(c < 3 || al ? kW[k / 7] * kW[k % 7] : 0);
+        }
+      }
+    }
+  }
+};
+constexpr OwnTable kOwnTable;
+
 void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
   using simd::vu16x8;
   const EncoderState& s = *w.s;
@@ -216,11 +233,14 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
       }
     }
   }
+  bool own_centre_only = true;  // usual: only the centre block is j (then kOwnTable)
+  for (int q = 0; q < 9; ++q) own_centre_only &= q == 4 || !is_own[q / 3][q % 3];
   // Window row / column r (texel by*4 - 1 + r) interpolates neighbour rows (r < 3 ? 0 : 1) and
   // the next with weights 4 - d and d, d = (r + 1) & 3 (the decoder's axis_tap); separably:
   // each row's three vertical mixes first (16-bit lanes, all sums below 2^9).
   constexpr std::int32_t kExclude = 1 << 24;
   const std::uint16_t amask = lw.nch == 4 ? 0xffff : 0;
+  const std::uint64_t amask64 = lw.nch == 4 ? ~0ull : 0x0000ffffffffffffull;
   const std::int32_t punch_bias = lw.punch ? 0 : kExclude;
   int k = 0;
   for (int r = 0; r < 7; ++r) {
@@ -241,16 +261,29 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
       const int n0x = q < 3 ? 0 : 1, dx = (q + 1) & 3;
       const vu16x8 rest = simd::mullo(v[n0x], vu16x8(std::uint16_t(4 - dx))) +
                           simd::mullo(v[n0x + 1], vu16x8(std::uint16_t(dx)));
-      const std::uint16_t own = std::uint16_t((4 - dx) * own_v[n0x] + dx * own_v[n0x + 1]);
       alignas(16) std::uint16_t r8[8];
       simd::store_u16x8(rest, r8);
       std::memcpy(lw.rest16_a[k], r8, 8);
       std::memcpy(lw.rest16_b[k], r8 + 4, 8);
+      if (!own_centre_only) {
+        const std::uint16_t own = std::uint16_t((4 - dx) * own_v[n0x] + dx * own_v[n0x + 1]);
+        const std::uint16_t own4[4] = {own, own, own, std::uint16_t(own & amask)};
+        std::memcpy(lw.own16[k], own4, 8);
+      }
       const std::uint8_t* t = trow + std::size_t(x) * 4;
-      const std::uint16_t own4[4] = {own, own, own, std::uint16_t(own & amask)};
-      const std::uint16_t t4[4] = {t[0], t[1], t[2], std::uint16_t(t[3] & amask)};
-      std::memcpy(lw.own16[k], own4, 8);
-      std::memcpy(lw.t16[k], t4, 8);
+      if constexpr (std::endian::native == std::endian::little) {
+        // The four bytes spread to 16-bit lanes (alpha lane masked for RGB).
+        std::uint32_t t32;
+        std::memcpy(&t32, t, 4);
+        std::uint64_t v64 = t32;
+        v64 = (v64 | (v64 << 16)) & 0x0000ffff0000ffffull;
+        v64 = (v64 | (v64 << 8)) & 0x00ff00ff00ff00ffull;
+        v64 &= amask64;
+        std::memcpy(lw.t16[k], &v64, 8);
+      } else {
+        const std::uint16_t t4[4] = {t[0], t[1], t[2], std::uint16_t(t[3] & amask)};
+        std::memcpy(lw.t16[k], t4, 8);
+      }
       const bool m1 = mrow[x >> 2] != 0;
       const std::int32_t b35 = m1 ? kExclude : 0, b4 = m1 ? 0 : kExclude,
                          b4p = m1 ? punch_bias : kExclude;
@@ -262,6 +295,8 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
       p4p[0] = p4p[1] = b4p;
     }
   }
+  if (own_centre_only)
+    std::memcpy(lw.own16, kOwnTable.v[lw.nch == 4 ? 1 : 0], sizeof(kOwnTable.v[0]));
   for (int q = 49; q < 56; ++q) {  // texels 49-55: the zero pad (error 0)
     for (int c = 0; c < 4; ++c) {
       lw.rest16_a[q][c] = lw.rest16_b[q][c] = lw.own16[q][c] = lw.t16[q][c] = 0;
