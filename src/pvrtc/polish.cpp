@@ -399,44 +399,33 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
     }
   }
   changed.assign(g.blocks(), 0);
-  for (int cls = 0; cls < 4; ++cls) {
-    const int ox = cls & 1, oy = cls >> 1;
-    parallel_for(
-        0, g.nby / 2, 4,
-        [&](std::int64_t r0, std::int64_t r1) {
-          for (int r = int(r0); r < int(r1); ++r) {
-            const int by = 2 * r + oy;
-            for (int bx = ox; bx < g.nbx; bx += 2) {
-              const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-              if (!active[j]) continue;
-              LocalWindow lw;
-              build_local(w, bx, by, lw);
-              auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
-                return local_error_simd(lw, a, b, bound);
-              };
-              std::uint32_t best = order_local(lw, ea[j], eb[j], min_error);
-              if (best <= min_error) continue;
-              std::uint16_t cand[8][2];
-              const int n = reseed_candidates(s, bx, by, cand);
-              int pick = -1;
-              for (int k = 0; k < n; ++k) {
-                const std::uint32_t e = eval(expand_a(cand[k][0]), expand_b(cand[k][1]), best);
-                if (e < best) {
-                  best = e;
-                  pick = k;
-                }
-              }
-              if (pick < 0) continue;
-              s.ca[j] = cand[pick][0];
-              s.cb[j] = cand[pick][1];
-              ea[j] = expand_a(s.ca[j]);
-              eb[j] = expand_b(s.cb[j]);
-              changed[j] = 1;
-            }
-          }
-        },
-        s.threads);
-  }
+  for_each_block_2x2(g, s.threads, [&](int bx, int by) {
+    const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+    if (!active[j]) return;
+    LocalWindow lw;
+    build_local(w, bx, by, lw);
+    auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
+      return local_error_simd(lw, a, b, bound);
+    };
+    std::uint32_t best = order_local(lw, ea[j], eb[j], min_error);
+    if (best <= min_error) return;
+    std::uint16_t cand[8][2];
+    const int n = reseed_candidates(s, bx, by, cand);
+    int pick = -1;
+    for (int k = 0; k < n; ++k) {
+      const std::uint32_t e = eval(expand_a(cand[k][0]), expand_b(cand[k][1]), best);
+      if (e < best) {
+        best = e;
+        pick = k;
+      }
+    }
+    if (pick < 0) return;
+    s.ca[j] = cand[pick][0];
+    s.cb[j] = cand[pick][1];
+    ea[j] = expand_a(s.ca[j]);
+    eb[j] = expand_b(s.cb[j]);
+    changed[j] = 1;
+  });
   int count = 0;
   for (std::uint8_t c : changed) count += c;
   return count;
@@ -470,120 +459,109 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
   }
   for (int round = 0; round < rounds; ++round) {
     std::vector<std::uint8_t> any_change(std::size_t(g.nby / 2), 0);
-    for (int cls = 0; cls < 4; ++cls) {
-      const int ox = cls & 1, oy = cls >> 1;
-      const int step = 4 * round + cls;
-      parallel_for(
-          0, g.nby / 2, 4,
-          [&](std::int64_t r0, std::int64_t r1) {
-            for (int r = int(r0); r < int(r1); ++r) {
-              const int by = 2 * r + oy;
-              for (int bx = ox; bx < g.nbx; bx += 2) {
-                const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-                int latest = -1;
-                for (int dy = -1; dy <= 1; ++dy) {
-                  for (int dx = -1; dx <= 1; ++dx) {
-                    latest = std::max(
-                        latest,
-                        changed_at[std::size_t((by + dy) & (g.nby - 1)) * std::size_t(g.nbx) +
-                                   std::size_t((bx + dx) & (g.nbx - 1))]);
-                  }
-                }
-                if (latest < searched_at[j]) continue;
-                searched_at[j] = step;
-                LocalWindow lw;
-                build_local(w, bx, by, lw);
-                std::uint16_t cur_a = s.ca[j], cur_b = s.cb[j];
-                std::uint32_t best = order_local(lw, ea[j], eb[j], min_error);
-                if (best <= min_error) continue;
-                // Candidates differing from the current pair in one colour channel only (most
-                // of the +-1 moves) go to the channel-planar evaluator; its per-pair tables are
-                // built when first needed after each change of the current pair.
-                PlanarWindow pw;
-                bool planar_built = false;
-                unsigned planar_valid = 0;  // bit 0: planar_refresh; bit 1 + c: planar_rest(c)
-                Rgba5 cur5a = ea[j], cur5b = eb[j];
-                auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
-                  const int c = single_colour_channel(a, b, cur5a, cur5b, lw.nch);
-                  if (c < 0) return local_error_simd(lw, a, b, bound);
-                  if (!planar_built) {
-                    build_planar(lw, pw);
-                    planar_built = true;
-                  }
-                  if (!(planar_valid & 1u)) {
-                    planar_refresh(pw, cur5a, cur5b);
-                    planar_valid = 1;
-                  }
-                  if (!(planar_valid & (2u << c))) {
-                    planar_rest(pw, c);
-                    planar_valid |= 2u << c;
-                  }
-                  const std::int32_t va[3] = {a.r, a.g, a.b}, vb[3] = {b.r, b.g, b.b};
-                  return planar_error(pw, c, va[c], vb[c], bound);
-                };
-                auto take = [&](std::uint16_t na, std::uint16_t nb) {
-                  cur_a = na;
-                  cur_b = nb;
-                  cur5a = expand_a(na);
-                  cur5b = expand_b(nb);
-                  planar_valid = 0;
-                };
-                SeenPairs seen;
-                seen.check_insert((std::uint32_t(cur_a) << 16) | cur_b);
-                bool improved = true;
-                for (int pass = 0; pass < passes && improved; ++pass) {
-                  improved = false;
-                  for (int mv = 0; mv < kMoves; ++mv) {
-                    EndpointCodes a = unpack_endpoint(false, cur_a),
-                                  b = unpack_endpoint(true, cur_b);
-                    if (!apply_move(mv, a, b)) continue;
-                    const std::uint16_t na = std::uint16_t(pack_endpoint(false, a));
-                    const std::uint16_t nb = std::uint16_t(pack_endpoint(true, b));
-                    const std::uint32_t key = (std::uint32_t(na) << 16) | nb;
-                    if (seen.check_insert(key)) continue;
-                    const std::uint32_t e = eval(expand_a(na), expand_b(nb), best);
-                    if (e < best) {
-                      best = e;
-                      take(na, nb);
-                      improved = true;
-                    }
-                  }
-                  if (!options.neighbour_moves) continue;  // next pass
-                  // Copy moves: a neighbour's A, its B, or both (edges that cross several
-                  // blocks want the same pair on both sides; the 2x2 colouring keeps the
-                  // neighbours fixed while this class is searched, so this is deterministic).
-                  for (int dy = -1; dy <= 1; ++dy) {
-                    for (int dx = -1; dx <= 1; ++dx) {
-                      if (dx == 0 && dy == 0) continue;
-                      const std::size_t k =
-                          std::size_t((by + dy) & (g.nby - 1)) * std::size_t(g.nbx) +
-                          std::size_t((bx + dx) & (g.nbx - 1));
-                      const std::uint16_t cand[3][2] = {
-                          {s.ca[k], cur_b}, {cur_a, s.cb[k]}, {s.ca[k], s.cb[k]}};
-                      for (const auto& c : cand) {
-                        if (seen.check_insert((std::uint32_t(c[0]) << 16) | c[1])) continue;
-                        const std::uint32_t e = eval(expand_a(c[0]), expand_b(c[1]), best);
-                        if (e < best) {
-                          best = e;
-                          take(c[0], c[1]);
-                          improved = true;
-                        }
-                      }
-                    }
-                  }
-                }
-                if (cur_a == s.ca[j] && cur_b == s.cb[j]) continue;
-                s.ca[j] = cur_a;
-                s.cb[j] = cur_b;
-                ea[j] = expand_a(cur_a);
-                eb[j] = expand_b(cur_b);
-                changed_at[j] = step;
-                any_change[std::size_t(r)] = 1;
+    for_each_block_2x2(g, s.threads, [&](int bx, int by) {
+      const int step = 4 * round + (bx & 1) + 2 * (by & 1);  // the colour class's phase
+      const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+      int latest = -1;
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          latest = std::max(
+              latest,
+              changed_at[std::size_t((by + dy) & (g.nby - 1)) * std::size_t(g.nbx) +
+                         std::size_t((bx + dx) & (g.nbx - 1))]);
+        }
+      }
+      if (latest < searched_at[j]) return;
+      searched_at[j] = step;
+      LocalWindow lw;
+      build_local(w, bx, by, lw);
+      std::uint16_t cur_a = s.ca[j], cur_b = s.cb[j];
+      std::uint32_t best = order_local(lw, ea[j], eb[j], min_error);
+      if (best <= min_error) return;
+      // Candidates differing from the current pair in one colour channel only (most
+      // of the +-1 moves) go to the channel-planar evaluator; its per-pair tables are
+      // built when first needed after each change of the current pair.
+      PlanarWindow pw;
+      bool planar_built = false;
+      unsigned planar_valid = 0;  // bit 0: planar_refresh; bit 1 + c: planar_rest(c)
+      Rgba5 cur5a = ea[j], cur5b = eb[j];
+      auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
+        const int c = single_colour_channel(a, b, cur5a, cur5b, lw.nch);
+        if (c < 0) return local_error_simd(lw, a, b, bound);
+        if (!planar_built) {
+          build_planar(lw, pw);
+          planar_built = true;
+        }
+        if (!(planar_valid & 1u)) {
+          planar_refresh(pw, cur5a, cur5b);
+          planar_valid = 1;
+        }
+        if (!(planar_valid & (2u << c))) {
+          planar_rest(pw, c);
+          planar_valid |= 2u << c;
+        }
+        const std::int32_t va[3] = {a.r, a.g, a.b}, vb[3] = {b.r, b.g, b.b};
+        return planar_error(pw, c, va[c], vb[c], bound);
+      };
+      auto take = [&](std::uint16_t na, std::uint16_t nb) {
+        cur_a = na;
+        cur_b = nb;
+        cur5a = expand_a(na);
+        cur5b = expand_b(nb);
+        planar_valid = 0;
+      };
+      SeenPairs seen;
+      seen.check_insert((std::uint32_t(cur_a) << 16) | cur_b);
+      bool improved = true;
+      for (int pass = 0; pass < passes && improved; ++pass) {
+        improved = false;
+        for (int mv = 0; mv < kMoves; ++mv) {
+          EndpointCodes a = unpack_endpoint(false, cur_a),
+                        b = unpack_endpoint(true, cur_b);
+          if (!apply_move(mv, a, b)) continue;
+          const std::uint16_t na = std::uint16_t(pack_endpoint(false, a));
+          const std::uint16_t nb = std::uint16_t(pack_endpoint(true, b));
+          const std::uint32_t key = (std::uint32_t(na) << 16) | nb;
+          if (seen.check_insert(key)) continue;
+          const std::uint32_t e = eval(expand_a(na), expand_b(nb), best);
+          if (e < best) {
+            best = e;
+            take(na, nb);
+            improved = true;
+          }
+        }
+        if (!options.neighbour_moves) continue;  // next pass
+        // Copy moves: a neighbour's A, its B, or both (edges that cross several
+        // blocks want the same pair on both sides; the 2x2 colouring keeps the
+        // neighbours fixed while this class is searched, so this is deterministic).
+        for (int dy = -1; dy <= 1; ++dy) {
+          for (int dx = -1; dx <= 1; ++dx) {
+            if (dx == 0 && dy == 0) continue;
+            const std::size_t k =
+                std::size_t((by + dy) & (g.nby - 1)) * std::size_t(g.nbx) +
+                std::size_t((bx + dx) & (g.nbx - 1));
+            const std::uint16_t cand[3][2] = {
+                {s.ca[k], cur_b}, {cur_a, s.cb[k]}, {s.ca[k], s.cb[k]}};
+            for (const auto& c : cand) {
+              if (seen.check_insert((std::uint32_t(c[0]) << 16) | c[1])) continue;
+              const std::uint32_t e = eval(expand_a(c[0]), expand_b(c[1]), best);
+              if (e < best) {
+                best = e;
+                take(c[0], c[1]);
+                improved = true;
               }
             }
-          },
-          s.threads);
-    }
+          }
+        }
+      }
+      if (cur_a == s.ca[j] && cur_b == s.cb[j]) return;
+      s.ca[j] = cur_a;
+      s.cb[j] = cur_b;
+      ea[j] = expand_a(cur_a);
+      eb[j] = expand_b(cur_b);
+      changed_at[j] = step;
+      any_change[std::size_t(by / 2)] = 1;
+    });
     if (std::find(any_change.begin(), any_change.end(), 1) == any_change.end()) break;
   }
   // The windows were scored with every texel's best code within its block's mode: re-choosing
