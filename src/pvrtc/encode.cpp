@@ -1,6 +1,8 @@
-// PVRTC1 encoder driver: intensity-dilation endpoints (dilation.cpp), the homogeneous-block
-// shortcut, brute-force modulation against the exactly upscaled endpoint images
-// (modulation.cpp), and the least-squares refinement (refine.cpp) for Quality::normal / high.
+// PVRTC1 encoder driver: intensity-dilation (dilation.cpp) or principal-axis (principal.cpp)
+// endpoints, the homogeneous-block shortcut, brute-force modulation against the exactly
+// upscaled endpoint images (modulation.cpp), then for Quality::normal / high the passes of
+// optimise.cpp (refinement, exact searches, and for 4 bpp high the crossover with a second
+// encoding from the dilation start).
 #include <algorithm>
 #include <array>
 #include <atomic>
