@@ -138,6 +138,21 @@ class ColumnSums {
   std::vector<std::uint16_t> vp_;
 };
 
+/// Calls fn(by, cs, r) for every block row, rows in parallel; each worker has its own column-sum
+/// buffer `cs` and row view `r` (which fn fills with `cs.fill(s, by, r)` when it needs them).
+template <class Fn>
+void for_each_block_row(const EncoderState& s, const std::vector<std::uint16_t>& ep, bool alpha,
+                        Fn&& fn) {
+  parallel_for(
+      0, s.g.nby, 4,
+      [&](std::int64_t by0, std::int64_t by1) {
+        ColumnSums cs(s.g, ep, alpha);
+        Row2 r;
+        for (int by = int(by0); by < int(by1); ++by) fn(by, cs, r);
+      },
+      s.threads);
+}
+
 /// Upscaled A (a) and B (b) and the target (t) of texel row j of block bx, per channel.
 template <bool kAlpha>
 inline void load_row(const Consts& k, const Row2& r, int bx, int j, vu16x8 a[4], vu16x8 b[4],
@@ -227,199 +242,178 @@ std::uint64_t choose_2bpp_impl(EncoderState& s) {
   const int hm = g.ph - 1;
 
   // Pass 1: greedy codes, A/B choice, mode 0.
-  parallel_for(
-      0, g.nby, 4,
-      [&](std::int64_t by0, std::int64_t by1) {
-        ColumnSums cs(g, ep, kAlpha);
-        Row2 r;
-        for (int by = int(by0); by < int(by1); ++by) {
-          cs.fill(s, by, r);
-          for (int bx = 0; bx < g.nbx; ++bx) {
-            vint4 acc_err, acc_bits;
-            for (int j = 0; j < 4; ++j) {
-              vu16x8 a[4], b[4], t[4], v3[4], v5[4];
-              load_row<kAlpha>(k, r, bx, j, a, b, t);
-              for (int c = 0; c < (kAlpha ? 4 : 3); ++c) {
-                v3[c] = simd::srl<3>(simd::mullo(a[c], k.k5) + simd::mullo(b[c], k.k3));
-                v5[c] = simd::srl<3>(simd::mullo(a[c], k.k3) + simd::mullo(b[c], k.k5));
-              }
-              vint4 e0[2], e3[2], e5[2], e8[2];
-              sq_err<kAlpha>(a, t, e0[0], e0[1]);
-              sq_err<kAlpha>(v3, t, e3[0], e3[1]);
-              sq_err<kAlpha>(v5, t, e5[0], e5[1]);
-              sq_err<kAlpha>(b, t, e8[0], e8[1]);
-              vint4 code[2], bit[2];
-              for (int h = 0; h < 2; ++h) {
-                // First minimum via (error * 4 + rank), as the scalar scan.
-                vint4 q = simd::sll<2>(e0[h]);
-                q = simd::min(q, simd::sll<2>(e3[h]) | vint4(1));
-                q = simd::min(q, simd::sll<2>(e5[h]) | vint4(2));
-                q = simd::min(q, simd::sll<2>(e8[h]) | vint4(3));
-                code[h] = q & vint4(3);
-                const vint4 q0 = simd::min(simd::sll<1>(e0[h]), simd::sll<1>(e8[h]) | vint4(1));
-                bit[h] = q0 & vint4(1);
-                acc_err += simd::srl<1>(q0);
-              }
-              const std::size_t x0 = std::size_t(bx) * 8;
-              simd::store_u8x8(simd::narrow16(code[0] | simd::sll<2>(bit[0]),
-                                              code[1] | simd::sll<2>(bit[1])),
-                               maps.row(maps.greedy, by * 4 + j) + x0);
-              acc_bits += simd::sll_bytes(simd::madd(simd::narrow16(bit[0], bit[1]), k.lanebit), j);
-            }
-            const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-            err0[bi] = hsum(acc_err);
-            s.mod[bi] = hsum(acc_bits);
-          }
-          for (int j = 0; j < 4; ++j) fill_guards(maps.row(maps.greedy, by * 4 + j), g.pw);
+  for_each_block_row(s, ep, kAlpha, [&](int by, ColumnSums& cs, Row2& r) {
+    cs.fill(s, by, r);
+    for (int bx = 0; bx < g.nbx; ++bx) {
+      vint4 acc_err, acc_bits;
+      for (int j = 0; j < 4; ++j) {
+        vu16x8 a[4], b[4], t[4], v3[4], v5[4];
+        load_row<kAlpha>(k, r, bx, j, a, b, t);
+        for (int c = 0; c < (kAlpha ? 4 : 3); ++c) {
+          v3[c] = simd::srl<3>(simd::mullo(a[c], k.k5) + simd::mullo(b[c], k.k3));
+          v5[c] = simd::srl<3>(simd::mullo(a[c], k.k3) + simd::mullo(b[c], k.k5));
         }
-      },
-      s.threads);
+        vint4 e0[2], e3[2], e5[2], e8[2];
+        sq_err<kAlpha>(a, t, e0[0], e0[1]);
+        sq_err<kAlpha>(v3, t, e3[0], e3[1]);
+        sq_err<kAlpha>(v5, t, e5[0], e5[1]);
+        sq_err<kAlpha>(b, t, e8[0], e8[1]);
+        vint4 code[2], bit[2];
+        for (int h = 0; h < 2; ++h) {
+          // First minimum via (error * 4 + rank), as the scalar scan.
+          vint4 q = simd::sll<2>(e0[h]);
+          q = simd::min(q, simd::sll<2>(e3[h]) | vint4(1));
+          q = simd::min(q, simd::sll<2>(e5[h]) | vint4(2));
+          q = simd::min(q, simd::sll<2>(e8[h]) | vint4(3));
+          code[h] = q & vint4(3);
+          const vint4 q0 = simd::min(simd::sll<1>(e0[h]), simd::sll<1>(e8[h]) | vint4(1));
+          bit[h] = q0 & vint4(1);
+          acc_err += simd::srl<1>(q0);
+        }
+        const std::size_t x0 = std::size_t(bx) * 8;
+        simd::store_u8x8(simd::narrow16(code[0] | simd::sll<2>(bit[0]),
+                                        code[1] | simd::sll<2>(bit[1])),
+                         maps.row(maps.greedy, by * 4 + j) + x0);
+        acc_bits += simd::sll_bytes(simd::madd(simd::narrow16(bit[0], bit[1]), k.lanebit), j);
+      }
+      const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+      err0[bi] = hsum(acc_err);
+      s.mod[bi] = hsum(acc_bits);
+    }
+    for (int j = 0; j < 4; ++j) fill_guards(maps.row(maps.greedy, by * 4 + j), g.pw);
+  });
 
   // Pass 2: the interpolated variants against the greedy map; the choice.
-  parallel_for(
-      0, g.nby, 4,
-      [&](std::int64_t by0, std::int64_t by1) {
-        ColumnSums cs(g, ep, kAlpha);
-        Row2 r;
-        for (int by = int(by0); by < int(by1); ++by) {
-          cs.fill(s, by, r);
-          const std::uint8_t* rows[6];
-          for (int j = -1; j <= 4; ++j) rows[j + 1] = maps.row(maps.greedy, (by * 4 + j) & hm);
-          for (int bx = 0; bx < g.nbx; ++bx) {
-            const std::size_t x0 = std::size_t(bx) * 8;
-            vint4 acc[3];
-            vu16x8 c0[4], c12[4], cab[4];
-            for (int j = 0; j < 4; ++j) {
-              const std::uint8_t* cur = rows[j + 1] + x0;
-              const vu16x8 bc = simd::load_u8x8(cur), bl = simd::load_u8x8(cur - 1),
-                           br = simd::load_u8x8(cur + 1), bu = simd::load_u8x8(rows[j] + x0),
-                           bd = simd::load_u8x8(rows[j + 2] + x0);
-              const vu16x8 cg = greedy_weight(k, bc), lg = greedy_weight(k, bl),
-                           rg = greedy_weight(k, br), ug = greedy_weight(k, bu),
-                           dg = greedy_weight(k, bd);
-              const vu16x8 ca = ab_weight(k, bc), la = ab_weight(k, bl), ra = ab_weight(k, br),
-                           ua = ab_weight(k, bu), da = ab_weight(k, bd);
-              cab[j] = ca;
-              c0[j] = simd::select(k.c0[j], ca, cg);
-              c12[j] = simd::select(k.c12[j], ca, cg);
-              const vu16x8 l0 = simd::select(k.l0[j], la, lg), u0 = simd::select(k.u0[j], ua, ug);
-              const vu16x8 l12 = simd::select(k.l12[j], la, lg),
-                           r12 = simd::select(k.r12[j], ra, rg),
-                           u12 = simd::select(k.u12[j], ua, ug),
-                           d12 = simd::select(k.d12[j], da, dg);
-              const vu16x8 ev = k.even[j & 1];
-              const vu16x8 m0 = simd::select(ev, c0[j], simd::srl<2>(u0 + dg + l0 + rg + k.k2));
-              const vu16x8 m1 = simd::select(ev, c12[j], simd::srl<1>(l12 + r12 + k.k1));
-              const vu16x8 m2 = simd::select(ev, c12[j], simd::srl<1>(u12 + d12 + k.k1));
-              vu16x8 a[4], b[4], t[4];
-              load_row<kAlpha>(k, r, bx, j, a, b, t);
-              acc[0] += blend_err<kAlpha>(k, a, b, t, m0);
-              acc[1] += blend_err<kAlpha>(k, a, b, t, m1);
-              acc[2] += blend_err<kAlpha>(k, a, b, t, m2);
-            }
-            const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-            std::uint32_t best = err0[bi];
-            int variant = -1;
-            for (int v = 0; v < 3; ++v) {
-              const std::uint32_t e = hsum(acc[v]);
-              if (e < best) {
-                best = e;
-                variant = v;
-              }
-            }
-            if (variant < 0) {
-              s.mode[bi] = 0;  // s.mod[bi]: the mode-0 bits from pass 1
-              for (int j = 0; j < 4; ++j) {
-                simd::store_u8x8(cab[j], maps.row(maps.decoded, by * 4 + j) + x0);
-              }
-              continue;
-            }
-            // Stored values in raster order of the checkerboard, 2 bits each: greedy codes,
-            // texel (0,0) restricted to 0/3 (only its high bit is stored; bit 0 flags the H/V-only
-            // variants), and (4,2) too for H/V only (bit 20, its low bit, tells V from H).
-            std::uint32_t bits = 0;
-            for (int j = 0; j < 4; ++j) {
-              const std::uint8_t* cur = rows[j + 1] + x0;
-              for (int i = 0; i < 4; ++i) {
-                bits |= std::uint32_t(cur[(j & 1) + 2 * i] & 3) << (8 * j + 2 * i);
-              }
-            }
-            const std::uint8_t* row0 = rows[1] + x0;
-            const std::uint8_t* row2 = rows[3] + x0;
-            bits = (bits & ~3u) | ((row0[0] & 4) ? 2u : 0u);
-            if (variant > 0) {
-              bits = (bits & ~(3u << 20)) | ((row2[4] & 4) ? (2u << 20) : 0u) | 1u;
-              if (variant == 2) bits |= 1u << 20;
-            } else {
-              bits &= ~(1u << 20);
-            }
-            s.mode[bi] = 1;
-            s.mod[bi] = bits;
-            for (int j = 0; j < 4; ++j) {
-              simd::store_u8x8(variant == 0 ? c0[j] : c12[j],
-                               maps.row(maps.decoded, by * 4 + j) + x0);
-            }
-            // H+V: the low bit of (4,2) is not stored (bit 20 was cleared): it decodes as
-            // greedy code & 2.
-            if (variant == 0) {
-              maps.row(maps.decoded, by * 4 + 2)[x0 + 4] = (row2[4] & 2) ? 5 : 0;
-            }
-          }
-          for (int j = 0; j < 4; ++j) fill_guards(maps.row(maps.decoded, by * 4 + j), g.pw);
+  for_each_block_row(s, ep, kAlpha, [&](int by, ColumnSums& cs, Row2& r) {
+    cs.fill(s, by, r);
+    const std::uint8_t* rows[6];
+    for (int j = -1; j <= 4; ++j) rows[j + 1] = maps.row(maps.greedy, (by * 4 + j) & hm);
+    for (int bx = 0; bx < g.nbx; ++bx) {
+      const std::size_t x0 = std::size_t(bx) * 8;
+      vint4 acc[3];
+      vu16x8 c0[4], c12[4], cab[4];
+      for (int j = 0; j < 4; ++j) {
+        const std::uint8_t* cur = rows[j + 1] + x0;
+        const vu16x8 bc = simd::load_u8x8(cur), bl = simd::load_u8x8(cur - 1),
+                     br = simd::load_u8x8(cur + 1), bu = simd::load_u8x8(rows[j] + x0),
+                     bd = simd::load_u8x8(rows[j + 2] + x0);
+        const vu16x8 cg = greedy_weight(k, bc), lg = greedy_weight(k, bl),
+                     rg = greedy_weight(k, br), ug = greedy_weight(k, bu),
+                     dg = greedy_weight(k, bd);
+        const vu16x8 ca = ab_weight(k, bc), la = ab_weight(k, bl), ra = ab_weight(k, br),
+                     ua = ab_weight(k, bu), da = ab_weight(k, bd);
+        cab[j] = ca;
+        c0[j] = simd::select(k.c0[j], ca, cg);
+        c12[j] = simd::select(k.c12[j], ca, cg);
+        const vu16x8 l0 = simd::select(k.l0[j], la, lg), u0 = simd::select(k.u0[j], ua, ug);
+        const vu16x8 l12 = simd::select(k.l12[j], la, lg),
+                     r12 = simd::select(k.r12[j], ra, rg),
+                     u12 = simd::select(k.u12[j], ua, ug),
+                     d12 = simd::select(k.d12[j], da, dg);
+        const vu16x8 ev = k.even[j & 1];
+        const vu16x8 m0 = simd::select(ev, c0[j], simd::srl<2>(u0 + dg + l0 + rg + k.k2));
+        const vu16x8 m1 = simd::select(ev, c12[j], simd::srl<1>(l12 + r12 + k.k1));
+        const vu16x8 m2 = simd::select(ev, c12[j], simd::srl<1>(u12 + d12 + k.k1));
+        vu16x8 a[4], b[4], t[4];
+        load_row<kAlpha>(k, r, bx, j, a, b, t);
+        acc[0] += blend_err<kAlpha>(k, a, b, t, m0);
+        acc[1] += blend_err<kAlpha>(k, a, b, t, m1);
+        acc[2] += blend_err<kAlpha>(k, a, b, t, m2);
+      }
+      const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+      std::uint32_t best = err0[bi];
+      int variant = -1;
+      for (int v = 0; v < 3; ++v) {
+        const std::uint32_t e = hsum(acc[v]);
+        if (e < best) {
+          best = e;
+          variant = v;
         }
-      },
-      s.threads);
+      }
+      if (variant < 0) {
+        s.mode[bi] = 0;  // s.mod[bi]: the mode-0 bits from pass 1
+        for (int j = 0; j < 4; ++j) {
+          simd::store_u8x8(cab[j], maps.row(maps.decoded, by * 4 + j) + x0);
+        }
+        continue;
+      }
+      // Stored values in raster order of the checkerboard, 2 bits each: greedy codes,
+      // texel (0,0) restricted to 0/3 (only its high bit is stored; bit 0 flags the H/V-only
+      // variants), and (4,2) too for H/V only (bit 20, its low bit, tells V from H).
+      std::uint32_t bits = 0;
+      for (int j = 0; j < 4; ++j) {
+        const std::uint8_t* cur = rows[j + 1] + x0;
+        for (int i = 0; i < 4; ++i) {
+          bits |= std::uint32_t(cur[(j & 1) + 2 * i] & 3) << (8 * j + 2 * i);
+        }
+      }
+      const std::uint8_t* row0 = rows[1] + x0;
+      const std::uint8_t* row2 = rows[3] + x0;
+      bits = (bits & ~3u) | ((row0[0] & 4) ? 2u : 0u);
+      if (variant > 0) {
+        bits = (bits & ~(3u << 20)) | ((row2[4] & 4) ? (2u << 20) : 0u) | 1u;
+        if (variant == 2) bits |= 1u << 20;
+      } else {
+        bits &= ~(1u << 20);
+      }
+      s.mode[bi] = 1;
+      s.mod[bi] = bits;
+      for (int j = 0; j < 4; ++j) {
+        simd::store_u8x8(variant == 0 ? c0[j] : c12[j],
+                         maps.row(maps.decoded, by * 4 + j) + x0);
+      }
+      // H+V: the low bit of (4,2) is not stored (bit 20 was cleared): it decodes as
+      // greedy code & 2.
+      if (variant == 0) {
+        maps.row(maps.decoded, by * 4 + 2)[x0 + 4] = (row2[4] & 2) ? 5 : 0;
+      }
+    }
+    for (int j = 0; j < 4; ++j) fill_guards(maps.row(maps.decoded, by * 4 + j), g.pw);
+  });
 
   // Pass 3: exact error of the decode.
   std::vector<std::uint64_t> row_err(std::size_t(g.nby), 0);
-  parallel_for(
-      0, g.nby, 4,
-      [&](std::int64_t by0, std::int64_t by1) {
-        ColumnSums cs(g, ep, kAlpha);
-        Row2 r;
-        for (int by = int(by0); by < int(by1); ++by) {
-          const std::size_t b0 = std::size_t(by) * std::size_t(g.nbx);
-          std::uint64_t total = 0;
-          bool any1 = false;
-          for (int bx = 0; bx < g.nbx; ++bx) any1 |= s.mode[b0 + std::size_t(bx)] != 0;
-          if (any1) cs.fill(s, by, r);
-          const std::uint8_t* rows[6];
-          for (int j = -1; j <= 4; ++j) rows[j + 1] = maps.row(maps.decoded, (by * 4 + j) & hm);
-          for (int bx = 0; bx < g.nbx; ++bx) {
-            const std::size_t bi = b0 + std::size_t(bx);
-            if (s.mode[bi] == 0) {
-              total += err0[bi];
-              continue;
-            }
-            const std::uint32_t bits = s.mod[bi];
-            const int variant = (bits & 1) ? ((bits & (1u << 20)) ? 2 : 1) : 0;
-            const std::size_t x0 = std::size_t(bx) * 8;
-            vint4 acc;
-            for (int j = 0; j < 4; ++j) {
-              const std::uint8_t* cur = rows[j + 1] + x0;
-              const vu16x8 wc = simd::load_u8x8(cur);
-              vu16x8 interp;
-              if (variant == 0) {
-                interp = simd::srl<2>(simd::load_u8x8(cur - 1) + simd::load_u8x8(cur + 1) +
-                                      simd::load_u8x8(rows[j] + x0) +
-                                      simd::load_u8x8(rows[j + 2] + x0) + k.k2);
-              } else if (variant == 1) {
-                interp = simd::srl<1>(simd::load_u8x8(cur - 1) + simd::load_u8x8(cur + 1) + k.k1);
-              } else {
-                interp = simd::srl<1>(simd::load_u8x8(rows[j] + x0) +
-                                      simd::load_u8x8(rows[j + 2] + x0) + k.k1);
-              }
-              const vu16x8 m = simd::select(k.even[j & 1], wc, interp);
-              vu16x8 a[4], b[4], t[4];
-              load_row<kAlpha>(k, r, bx, j, a, b, t);
-              acc += blend_err<kAlpha>(k, a, b, t, m);
-            }
-            total += hsum(acc);
-          }
-          row_err[std::size_t(by)] = total;
+  for_each_block_row(s, ep, kAlpha, [&](int by, ColumnSums& cs, Row2& r) {
+    const std::size_t b0 = std::size_t(by) * std::size_t(g.nbx);
+    std::uint64_t total = 0;
+    bool any1 = false;
+    for (int bx = 0; bx < g.nbx; ++bx) any1 |= s.mode[b0 + std::size_t(bx)] != 0;
+    if (any1) cs.fill(s, by, r);
+    const std::uint8_t* rows[6];
+    for (int j = -1; j <= 4; ++j) rows[j + 1] = maps.row(maps.decoded, (by * 4 + j) & hm);
+    for (int bx = 0; bx < g.nbx; ++bx) {
+      const std::size_t bi = b0 + std::size_t(bx);
+      if (s.mode[bi] == 0) {
+        total += err0[bi];
+        continue;
+      }
+      const std::uint32_t bits = s.mod[bi];
+      const int variant = (bits & 1) ? ((bits & (1u << 20)) ? 2 : 1) : 0;
+      const std::size_t x0 = std::size_t(bx) * 8;
+      vint4 acc;
+      for (int j = 0; j < 4; ++j) {
+        const std::uint8_t* cur = rows[j + 1] + x0;
+        const vu16x8 wc = simd::load_u8x8(cur);
+        vu16x8 interp;
+        if (variant == 0) {
+          interp = simd::srl<2>(simd::load_u8x8(cur - 1) + simd::load_u8x8(cur + 1) +
+                                simd::load_u8x8(rows[j] + x0) +
+                                simd::load_u8x8(rows[j + 2] + x0) + k.k2);
+        } else if (variant == 1) {
+          interp = simd::srl<1>(simd::load_u8x8(cur - 1) + simd::load_u8x8(cur + 1) + k.k1);
+        } else {
+          interp = simd::srl<1>(simd::load_u8x8(rows[j] + x0) +
+                                simd::load_u8x8(rows[j + 2] + x0) + k.k1);
         }
-      },
-      s.threads);
+        const vu16x8 m = simd::select(k.even[j & 1], wc, interp);
+        vu16x8 a[4], b[4], t[4];
+        load_row<kAlpha>(k, r, bx, j, a, b, t);
+        acc += blend_err<kAlpha>(k, a, b, t, m);
+      }
+      total += hsum(acc);
+    }
+    row_err[std::size_t(by)] = total;
+  });
   std::uint64_t total = 0;
   for (std::uint64_t e : row_err) total += e;
   return total;
