@@ -301,6 +301,26 @@ TEST(PvrtcEncode, RgbInputStaysOpaque) {
   EXPECT_FALSE(dec->has_alpha);
 }
 
+// An RGB image's alpha bytes are ignored whatever they hold: the encoder then works on a copy
+// with alpha 255 (and on the caller's pixels in place when they already are 255).
+TEST(PvrtcEncode, IgnoredAlphaBytesDoNotMatter) {
+  ImageRGBA8 img = make_procedural(Procedural::foliage, 64, 32);
+  img.has_alpha = false;
+  ImageRGBA8 opaque = img;
+  for (std::size_t i = 3; i < opaque.pixels.size(); i += 4) opaque.pixels[i] = 255;
+  for (Quality q : {Quality::fast, Quality::normal}) {
+    for (Format f : {Format::pvrtc1_4bpp, Format::pvrtc1_2bpp}) {
+      EncodeOptions opt;
+      opt.quality = q;
+      opt.format = f;
+      auto a = encode(img, opt);
+      auto b = encode(opaque, opt);
+      ASSERT_TRUE(a.ok() && b.ok());
+      EXPECT_EQ(*a, *b);
+    }
+  }
+}
+
 TEST(PvrtcEncode, AlphaQualityOnFoliage) {
   const ImageRGBA8 img = make_procedural(Procedural::foliage, 256, 256);
   EncodeOptions opt;

@@ -25,10 +25,11 @@ EncoderState state_from(const ImageRGBA8& img, const std::vector<std::uint8_t>& 
   s.alpha_mode = img.has_alpha;
   s.mode1 = mode1;
   s.threads = 1;
-  s.target = img.pixels;
+  std::vector<std::uint8_t> target = img.pixels;
   if (!img.has_alpha) {
-    for (std::size_t i = 0; i < s.g.texels(); ++i) s.target[i * 4 + 3] = 255;
+    for (std::size_t i = 0; i < s.g.texels(); ++i) target[i * 4 + 3] = 255;
   }
+  s.own_target(std::move(target));
   std::vector<std::uint64_t> w(s.g.blocks());
   load_words(s.g, data.data(), w.data());
   s.ca.resize(w.size());

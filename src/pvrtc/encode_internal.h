@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include "pvrtc/pvrtc_internal.h"
@@ -18,8 +20,17 @@ struct EncoderState {
   /// 2 bpp: coordinate-descent sweeps after every modulation choice of the refinement
   /// (`refine_modulation_2bpp`); 0: none.
   int modulation_descent = 0;
-  /// Padded target texels (pw * ph RGBA; the source tiled; alpha 255 unless alpha_mode).
-  std::vector<std::uint8_t> target;
+  /// Padded target texels (pw * ph RGBA; the source tiled; alpha 255 unless alpha_mode): the
+  /// caller's pixels themselves when they already are exactly that, else `target_storage`.
+  std::span<const std::uint8_t> target;
+  /// Owns the target when it had to be built (shared: copies of the state share it).
+  std::shared_ptr<const std::vector<std::uint8_t>> target_storage;
+  /// Makes `pixels` the target, owned by the state.
+  void own_target(std::vector<std::uint8_t> pixels) {
+    auto p = std::make_shared<const std::vector<std::uint8_t>>(std::move(pixels));
+    target = std::span<const std::uint8_t>(*p);
+    target_storage = std::move(p);
+  }
   /// Packed endpoint fields per block, linear order (A: bits 1-15 of its 16-bit field).
   std::vector<std::uint16_t> ca, cb;
   std::vector<std::uint8_t> mode;  ///< Modulation mode bit per block.
