@@ -7,6 +7,10 @@
 
 #include "cli.h"
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 namespace tessera::cli {
 
 int fail(const Status& status) {
@@ -37,12 +41,26 @@ std::string_view subcommand_name(int argc, char** argv) {
   return {};
 }
 
+/// A tessera run is one short job over a few image-sized buffers, freed and allocated again
+/// stage after stage (PNG bytes, inflated rows, pixels, encoder planes, output). glibc would
+/// map each buffer of 128 KiB or more afresh and unmap it when freed, so every stage pays a page
+/// fault per 4 KiB touched; keeping such buffers in the heap (up to glibc's 32 MiB cap) and not
+/// trimming it lets later stages reuse pages already mapped. 1024^2 `compress --quality fast`:
+/// 3530 -> 2617 page faults, about 8 ms less CPU time (perf stat -r 15, see docs/benchmarks).
+void tune_allocator() {
+#if defined(__GLIBC__)
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
+}
+
 }  // namespace
 
 }  // namespace tessera::cli
 
 int main(int argc, char** argv) {
   using namespace tessera::cli;
+  tune_allocator();
   CLI::App app{
       "tessera — real-time texturing and anti-aliasing: PVRTC compression by intensity "
       "dilation, seamless per-face texturing, adaptive supersampling for deferred shading.",
