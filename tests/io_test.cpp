@@ -4,11 +4,15 @@
 #include <spng.h>
 #include <stb_image_write.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "io/png_fast.h"
 #include "tessera/io.h"
@@ -520,6 +524,139 @@ TEST(PngFastPath, CorruptFilesGiveTheSameResultAsLibspng) {
     const std::string what = std::to_string(lie.w) + "x" + std::to_string(lie.h);
     EXPECT_FALSE(detail::decode_png_fast(bad).has_value()) << what;
     expect_same_as_spng(bad, "IHDR says " + what);
+  }
+}
+
+/// Applies PNG filter `filter` (0-4) to one row of samples (`prev`: the row above, or zeros).
+void filter_row(int filter, const std::uint8_t* row, const std::uint8_t* prev, std::size_t n,
+                std::size_t bpp, std::uint8_t* out) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const int a = i >= bpp ? row[i - bpp] : 0, b = prev[i], c = i >= bpp ? prev[i - bpp] : 0;
+    int pred = 0;
+    if (filter == 1) pred = a;
+    if (filter == 2) pred = b;
+    if (filter == 3) pred = (a + b) / 2;
+    if (filter == 4) {
+      const int pa = std::abs(b - c), pb = std::abs(a - c), pc = std::abs(a + b - 2 * c);
+      pred = pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
+    }
+    out[i] = std::uint8_t(row[i] - pred);
+  }
+}
+
+/// An 8-bit PNG of `samples` whose row y uses filter filters[y] exactly (encoders choose their
+/// own), stored in uncompressed DEFLATE blocks: IHDR, one IDAT, IEND.
+std::vector<std::uint8_t> png_with_filters(const std::vector<std::uint8_t>& samples,
+                                           std::uint32_t w, std::uint8_t color_type,
+                                           std::size_t channels, const std::vector<int>& filters) {
+  const std::size_t row_bytes = w * channels, h = filters.size();
+  std::vector<std::uint8_t> raw(h * (1 + row_bytes));
+  const std::vector<std::uint8_t> zeros(row_bytes, 0);
+  for (std::size_t y = 0; y < h; ++y) {
+    raw[y * (1 + row_bytes)] = std::uint8_t(filters[y]);
+    filter_row(filters[y], &samples[y * row_bytes], y ? &samples[(y - 1) * row_bytes] : zeros.data(),
+               row_bytes, channels, &raw[y * (1 + row_bytes) + 1]);
+  }
+  std::vector<std::uint8_t> z = {0x78, 0x01};  // zlib header, then stored blocks
+  for (std::size_t at = 0; at == 0 || at < raw.size();) {
+    const std::size_t n = std::min<std::size_t>(raw.size() - at, 65535);
+    const bool last = at + n == raw.size();
+    z.insert(z.end(), {std::uint8_t(last), std::uint8_t(n), std::uint8_t(n >> 8),
+                       std::uint8_t(~n), std::uint8_t(~n >> 8)});
+    z.insert(z.end(), raw.begin() + std::ptrdiff_t(at), raw.begin() + std::ptrdiff_t(at + n));
+    at += n;
+  }
+  std::uint32_t s1 = 1, s2 = 0;
+  for (std::uint8_t v : raw) {
+    s1 = (s1 + v) % 65521;
+    s2 = (s2 + s1) % 65521;
+  }
+  z.resize(z.size() + 4);
+  put_be32(z, z.size() - 4, (s2 << 16) | s1);
+  std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+  std::vector<std::uint8_t> ihdr(13, 0);
+  put_be32(ihdr, 0, w);
+  put_be32(ihdr, 4, std::uint32_t(h));
+  ihdr[8] = 8;
+  ihdr[9] = color_type;
+  const std::size_t end = png.size();
+  insert_chunk(png, end, "IEND", {});
+  insert_chunk(png, end, "IDAT", z);
+  insert_chunk(png, end, "IHDR", ihdr);
+  return png;
+}
+
+/// The fast path takes `png` and gives exactly libspng's pixels.
+void expect_fast_matches_spng(const std::vector<std::uint8_t>& png, const std::string& what) {
+  std::optional<ImageRGBA8> fast = detail::decode_png_fast(png);
+  ASSERT_TRUE(fast.has_value()) << what << ": the fast path should take this file";
+  Result<ImageRGBA8> ref = detail::decode_png_spng(png, "ref");
+  ASSERT_TRUE(ref.ok()) << what << ": " << ref.status().message;
+  EXPECT_EQ(fast->width, ref->width) << what;
+  EXPECT_EQ(fast->height, ref->height) << what;
+  EXPECT_EQ(fast->has_alpha, ref->has_alpha) << what;
+  EXPECT_EQ(fast->pixels.size(), std::size_t(ref->width) * std::size_t(ref->height) * 4) << what;
+  EXPECT_TRUE(fast->pixels == ref->pixels) << what;
+}
+
+TEST(PngFastPath, MatchesLibspngForEverySequenceOfRowFilters) {
+  // Rows are unfiltered in pairs (y, y + 1), y even, plus a single last row when the height is
+  // odd: heights 1-3 take every sequence of filters; height 51 has all 25 ordered pairs at
+  // even rows and then each filter alone as the last row.
+  std::vector<std::vector<int>> sequences;
+  for (int n = 1; n <= 3; ++n) {
+    for (int code = 0; code < (n == 1 ? 5 : n == 2 ? 25 : 125); ++code) {
+      std::vector<int> f;
+      for (int k = 0, c = code; k < n; ++k, c /= 5) f.push_back(c % 5);
+      sequences.push_back(f);
+    }
+  }
+  for (int last = 0; last < 5; ++last) {
+    std::vector<int> f;
+    for (int pair = 0; pair < 25; ++pair) f.insert(f.end(), {pair / 5, pair % 5});
+    f.push_back(last);
+    sequences.push_back(f);
+  }
+  const std::pair<std::uint8_t, std::size_t> types[] = {{0, 1}, {2, 3}, {4, 2}, {6, 4}};
+  for (auto [color_type, channels] : types) {
+    for (std::uint32_t w : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 9u, 31u, 33u}) {
+      for (const std::vector<int>& filters : sequences) {
+        const std::uint32_t h = std::uint32_t(filters.size());
+        const std::vector<std::uint8_t> samples = test_samples(w, h, int(channels));
+        std::string what = "type " + std::to_string(color_type) + " width " + std::to_string(w) +
+                           " filters";
+        for (int f : filters) what.append(1, ' ').append(std::to_string(f));
+        expect_fast_matches_spng(png_with_filters(samples, w, color_type, channels, filters),
+                                 what);
+        if (HasFailure()) return;  // one report is enough
+      }
+    }
+  }
+}
+
+TEST(PngFastPath, ExtremeSamplesWrapAroundLikeLibspng) {
+  // All-0 and all-255 runs next to each other: every prediction and sum wraps modulo 256.
+  for (auto [color_type, channels] : {std::pair<std::uint8_t, std::size_t>{2, 3}, {6, 4}}) {
+    const std::uint32_t w = 19, h = 10;
+    std::vector<std::uint8_t> samples(w * h * channels);
+    for (std::size_t i = 0; i < samples.size(); ++i) samples[i] = ((i / 5) % 3 == 1) ? 0 : 255;
+    for (int f = 0; f < 5; ++f) {
+      const std::vector<int> filters = {f, 4, f, 3, 1, f, 2, f, f, 4};
+      expect_fast_matches_spng(png_with_filters(samples, w, color_type, channels, filters),
+                               "extremes type " + std::to_string(color_type) + " filter " +
+                                   std::to_string(f));
+    }
+  }
+}
+
+TEST(PngFastPath, BadFilterByteInAnyRowIsDeclined) {
+  const std::vector<std::uint8_t> samples = test_samples(5, 3, 3);
+  for (std::size_t bad_row = 0; bad_row < 3; ++bad_row) {
+    std::vector<int> filters = {4, 3, 1};
+    filters[bad_row] = 5;  // filter_row treats it as None; the decoders must reject it
+    const std::vector<std::uint8_t> png = png_with_filters(samples, 5, 2, 3, filters);
+    EXPECT_FALSE(detail::decode_png_fast(png).has_value()) << "row " << bad_row;
+    expect_same_as_spng(png, "filter 5 in row " + std::to_string(bad_row));
   }
 }
 

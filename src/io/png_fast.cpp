@@ -6,10 +6,12 @@
 #include <libdeflate.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #if defined(__SSE2__)
@@ -41,13 +43,23 @@ constexpr int kMaxCachedChunks = 16;
 // DEFLATE cannot expand data by more than 1032:1 (258 bytes from a 2-bit length/distance pair).
 constexpr std::uint64_t kMaxDeflateRatio = 1032;
 
-// Bytes readable after the inflated rows and the zero row, so that 3-byte pixels can be read
-// with 4-byte loads.
+// Bytes readable after the inflated rows, so that 3-byte pixels can be read with 4-byte loads.
 constexpr std::size_t kSlack = 4;
 
-// ---- unfiltering -------------------------------------------------------------------------
-// `row` holds the filtered bytes of one scanline (no filter byte), `prev` the unfiltered
-// previous scanline (zeros for the first). bpp: bytes per pixel (1 to 4).
+// ---- unfiltering, fused with the expansion to RGBA8 ----------------------------------------
+// Every scanline is unfiltered straight into its RGBA8 output row; the previous scanline's
+// samples (Up, Average, Paeth) are read back from the previous output row, or from a row of
+// zeros for the first. Sub, Average and Paeth are a serial dependency chain along a row, so
+// rows are unfiltered in pairs: the second row's prediction only needs the first row's pixels
+// x and x - 1, which the same loop iteration has just made, so the two chains run side by side
+// (instruction-level parallelism) and the second row takes its "above" pixels from registers.
+// `src`: the filtered samples of one scanline (no filter byte); `prev`, `out`: RGBA8 rows.
+
+/// Where sample `j` of a kBpp-byte pixel goes in an RGBA8 pixel (grey+alpha: 0 and 3).
+template <std::size_t kBpp>
+constexpr std::size_t out_offset(std::size_t j) {
+  return kBpp == 2 && j == 1 ? 3 : j;
+}
 
 std::uint8_t paeth(int a, int b, int c) {
   const int pa = std::abs(b - c), pb = std::abs(a - c), pc = std::abs(a + b - 2 * c);
@@ -55,134 +67,225 @@ std::uint8_t paeth(int a, int b, int c) {
   return std::uint8_t(pa <= pb && pa <= pc ? a : bc);
 }
 
-void unfilter_scalar(int filter, std::uint8_t* row, const std::uint8_t* prev, std::size_t n,
-                     std::size_t bpp) {
-  switch (filter) {
-    case 1:
-      for (std::size_t i = bpp; i < n; ++i) row[i] = std::uint8_t(row[i] + row[i - bpp]);
-      break;
-    case 3:
-      for (std::size_t i = 0; i < std::min(bpp, n); ++i) {
-        row[i] = std::uint8_t(row[i] + prev[i] / 2);
-      }
-      for (std::size_t i = bpp; i < n; ++i) {
-        row[i] = std::uint8_t(row[i] + ((unsigned(row[i - bpp]) + prev[i]) >> 1));
-      }
-      break;
-    case 4:
-      for (std::size_t i = 0; i < std::min(bpp, n); ++i) row[i] = std::uint8_t(row[i] + prev[i]);
-      for (std::size_t i = bpp; i < n; ++i) {
-        row[i] = std::uint8_t(row[i] + paeth(row[i - bpp], prev[i], prev[i - bpp]));
-      }
-      break;
-    default:
-      break;
+/// One unfiltered sample: filtered byte x plus the prediction of `kFilter` from the sample to
+/// the left (a), above (b) and above-left (c).
+template <int kFilter>
+int unfilter_sample(int x, int a, int b, int c) {
+  if constexpr (kFilter == 0) {
+    return x;
+  } else if constexpr (kFilter == 1) {
+    return (x + a) & 0xff;
+  } else if constexpr (kFilter == 2) {
+    return (x + b) & 0xff;
+  } else if constexpr (kFilter == 3) {
+    return (x + ((a + b) >> 1)) & 0xff;
+  } else {
+    return (x + paeth(a, b, c)) & 0xff;
   }
 }
 
-#if defined(__SSE2__)
-// One pixel (3 or 4 bytes) at a time in 16-bit lanes, the way libpng's SSE2 filters work.
-// Loads always read 4 bytes (the buffers have kSlack bytes after their last row); for 3-byte
-// pixels the fourth lane is ignored and never stored.
+/// Writes one RGBA8 pixel from the kBpp unfiltered samples `v` (grey is replicated to RGB,
+/// missing alpha is 255).
+template <std::size_t kBpp>
+void put_rgba(std::uint8_t* o, const int* v) {
+  if constexpr (kBpp <= 2) {
+    o[0] = o[1] = o[2] = std::uint8_t(v[0]);
+    o[3] = kBpp == 2 ? std::uint8_t(v[1]) : 255;
+  } else {
+    o[0] = std::uint8_t(v[0]);
+    o[1] = std::uint8_t(v[1]);
+    o[2] = std::uint8_t(v[2]);
+    o[3] = kBpp == 4 ? std::uint8_t(v[3]) : 255;
+  }
+}
+
+/// Scalar unfiltering of one row (kTwo = false: `src1`, `out1` unused) or of two consecutive
+/// rows with filters kF0 and kF1, `width` pixels of kBpp bytes each.
+template <std::size_t kBpp, int kF0, int kF1, bool kTwo>
+void unfilter_rows_scalar(const std::uint8_t* src0, const std::uint8_t* src1,
+                          const std::uint8_t* prev, std::uint8_t* out0, std::uint8_t* out1,
+                          std::size_t width) {
+  int a0[kBpp] = {}, c0[kBpp] = {}, a1[kBpp] = {}, c1[kBpp] = {};
+  for (std::size_t x = 0; x < width; ++x) {
+    for (std::size_t j = 0; j < kBpp; ++j) {
+      const int b0 = prev[4 * x + out_offset<kBpp>(j)];
+      a0[j] = unfilter_sample<kF0>(src0[kBpp * x + j], a0[j], b0, c0[j]);
+      c0[j] = b0;
+      if constexpr (kTwo) {
+        a1[j] = unfilter_sample<kF1>(src1[kBpp * x + j], a1[j], a0[j], c1[j]);
+        c1[j] = a0[j];
+      }
+    }
+    put_rgba<kBpp>(out0 + 4 * x, a0);
+    if constexpr (kTwo) put_rgba<kBpp>(out1 + 4 * x, a1);
+  }
+}
+
+#if defined(__SSE2__) && !defined(TESSERA_NO_SIMD)
+#define TESSERA_PNG_SSE2 1
+// RGB and RGBA: one pixel at a time in 16-bit lanes, the way libpng's SSE2 filters work.
+// Loads always read 4 bytes (the inflated buffer has kSlack bytes after its last row); for
+// 3-byte pixels the fourth lane holds the next pixel's first byte, which never reaches the
+// other lanes, and is replaced by alpha 255 when stored.
 __m128i load_px(const std::uint8_t* p) {
   std::uint32_t v;
   std::memcpy(&v, p, 4);
   return _mm_unpacklo_epi8(_mm_cvtsi32_si128(int(v)), _mm_setzero_si128());
 }
-template <std::size_t kBpp>
-void store_px(std::uint8_t* p, __m128i x) {
-  const std::uint32_t v = std::uint32_t(_mm_cvtsi128_si32(_mm_packus_epi16(x, x)));
-  if constexpr (kBpp == 4) {
-    std::memcpy(p, &v, 4);
-  } else {
-    const std::uint16_t lo = std::uint16_t(v);
-    std::memcpy(p, &lo, 2);
-    p[2] = std::uint8_t(v >> 16);
-  }
+
+/// Stores the 16-bit lanes of `x` (each 0-255) as one RGBA8 pixel, OR-ing in `alpha`.
+void store_px(std::uint8_t* p, __m128i x, std::uint32_t alpha) {
+  const std::uint32_t v = std::uint32_t(_mm_cvtsi128_si32(_mm_packus_epi16(x, x))) | alpha;
+  std::memcpy(p, &v, 4);
 }
 
-template <std::size_t kBpp>
-void unfilter_simd(int filter, std::uint8_t* row, const std::uint8_t* prev, std::size_t n) {
+/// unfilter_sample for the four 16-bit lanes of one pixel at once.
+template <int kFilter>
+__m128i unfilter_px(__m128i x, __m128i a, __m128i b, __m128i c) {
   const __m128i low = _mm_set1_epi16(0xff);
-  const __m128i zero = _mm_setzero_si128();
-  __m128i a = zero, c = zero;
-  if (filter == 1) {
-    for (std::size_t i = 0; i + kBpp <= n; i += kBpp) {
-      a = _mm_and_si128(_mm_add_epi16(load_px(row + i), a), low);
-      store_px<kBpp>(row + i, a);
+  if constexpr (kFilter == 0) {
+    return x;
+  } else if constexpr (kFilter == 1) {
+    return _mm_and_si128(_mm_add_epi16(x, a), low);
+  } else if constexpr (kFilter == 2) {
+    return _mm_and_si128(_mm_add_epi16(x, b), low);
+  } else if constexpr (kFilter == 3) {
+    return _mm_and_si128(_mm_add_epi16(x, _mm_srli_epi16(_mm_add_epi16(a, b), 1)), low);
+  } else {
+    // p - a = b - c, p - b = a - c, p - c = (b - c) + (a - c); a wins ties, then b.
+    const __m128i zero = _mm_setzero_si128();
+    const __m128i pa0 = _mm_sub_epi16(b, c), pb0 = _mm_sub_epi16(a, c);
+    const __m128i pc0 = _mm_add_epi16(pa0, pb0);
+    const __m128i pa = _mm_max_epi16(pa0, _mm_sub_epi16(zero, pa0));
+    const __m128i pb = _mm_max_epi16(pb0, _mm_sub_epi16(zero, pb0));
+    const __m128i pc = _mm_max_epi16(pc0, _mm_sub_epi16(zero, pc0));
+    const __m128i use_c = _mm_cmpgt_epi16(pb, pc);  // b or c: pb <= pc ? b : c
+    const __m128i bc = _mm_or_si128(_mm_and_si128(use_c, c), _mm_andnot_si128(use_c, b));
+    const __m128i not_a = _mm_cmpgt_epi16(pa, _mm_min_epi16(pb, pc));
+    const __m128i pred = _mm_or_si128(_mm_and_si128(not_a, bc), _mm_andnot_si128(not_a, a));
+    return _mm_and_si128(_mm_add_epi16(x, pred), low);
+  }
+}
+
+/// unfilter_rows_scalar for 3- and 4-byte pixels with SSE2.
+template <std::size_t kBpp, int kF0, int kF1, bool kTwo>
+void unfilter_rows_simd(const std::uint8_t* src0, const std::uint8_t* src1,
+                        const std::uint8_t* prev, std::uint8_t* out0, std::uint8_t* out1,
+                        std::size_t width) {
+  const std::uint32_t alpha =
+      kBpp == 4 ? 0 : std::endian::native == std::endian::little ? 0xff000000u : 0xffu;
+  __m128i a0 = _mm_setzero_si128(), c0 = a0, a1 = a0, c1 = a0;
+  for (std::size_t x = 0; x < width; ++x) {
+    const __m128i b0 = load_px(prev + 4 * x);
+    a0 = unfilter_px<kF0>(load_px(src0 + kBpp * x), a0, b0, c0);
+    c0 = b0;
+    store_px(out0 + 4 * x, a0, alpha);
+    if constexpr (kTwo) {
+      a1 = unfilter_px<kF1>(load_px(src1 + kBpp * x), a1, a0, c1);
+      c1 = a0;
+      store_px(out1 + 4 * x, a1, alpha);
     }
-  } else if (filter == 3) {
-    for (std::size_t i = 0; i + kBpp <= n; i += kBpp) {
-      const __m128i b = load_px(prev + i);
-      const __m128i avg = _mm_srli_epi16(_mm_add_epi16(a, b), 1);
-      a = _mm_and_si128(_mm_add_epi16(load_px(row + i), avg), low);
-      store_px<kBpp>(row + i, a);
+  }
+}
+
+/// The first bytes (grey samples) of 16 RGBA8 pixels.
+__m128i load_grey16(const std::uint8_t* p) {
+  const __m128i low = _mm_set1_epi32(0xff);
+  __m128i q[4];
+  for (int k = 0; k < 4; ++k) {
+    q[k] = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 16 * k)), low);
+  }
+  return _mm_packus_epi16(_mm_packs_epi32(q[0], q[1]), _mm_packs_epi32(q[2], q[3]));
+}
+
+/// Stores 16 grey samples as 16 opaque grey RGBA8 pixels.
+void store_grey16(std::uint8_t* p, __m128i g) {
+  const __m128i alpha = _mm_set1_epi32(std::endian::native == std::endian::little
+                                           ? int(0xff000000u)
+                                           : 0xff);
+  const __m128i g2[2] = {_mm_unpacklo_epi8(g, g), _mm_unpackhi_epi8(g, g)};
+  for (int k = 0; k < 4; ++k) {
+    const __m128i px = (k & 1) ? _mm_unpackhi_epi16(g2[k / 2], g2[k / 2])
+                               : _mm_unpacklo_epi16(g2[k / 2], g2[k / 2]);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p + 16 * k), _mm_or_si128(px, alpha));
+  }
+}
+
+/// unfilter_rows_scalar for grey rows filtered with None or Up only: no serial chain, so 16
+/// pixels at a time, and the scalar kernel for the last width % 16.
+template <int kF0, int kF1, bool kTwo>
+void unfilter_grey_rows_simd(const std::uint8_t* src0, const std::uint8_t* src1,
+                             const std::uint8_t* prev, std::uint8_t* out0, std::uint8_t* out1,
+                             std::size_t width) {
+  std::size_t x = 0;
+  for (; x + 16 <= width; x += 16) {
+    __m128i a0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src0 + x));
+    if constexpr (kF0 == 2) a0 = _mm_add_epi8(a0, load_grey16(prev + 4 * x));
+    store_grey16(out0 + 4 * x, a0);
+    if constexpr (kTwo) {
+      __m128i a1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src1 + x));
+      if constexpr (kF1 == 2) a1 = _mm_add_epi8(a1, a0);
+      store_grey16(out1 + 4 * x, a1);
     }
-  } else if (filter == 4) {
-    for (std::size_t i = 0; i + kBpp <= n; i += kBpp) {
-      const __m128i b = load_px(prev + i);
-      // p - a = b - c, p - b = a - c, p - c = (b - c) + (a - c).
-      const __m128i pa0 = _mm_sub_epi16(b, c), pb0 = _mm_sub_epi16(a, c);
-      const __m128i pc0 = _mm_add_epi16(pa0, pb0);
-      const __m128i pa = _mm_max_epi16(pa0, _mm_sub_epi16(zero, pa0));
-      const __m128i pb = _mm_max_epi16(pb0, _mm_sub_epi16(zero, pb0));
-      const __m128i pc = _mm_max_epi16(pc0, _mm_sub_epi16(zero, pc0));
-      const __m128i smallest = _mm_min_epi16(pc, _mm_min_epi16(pa, pb));
-      const __m128i use_a = _mm_cmpeq_epi16(smallest, pa);
-      const __m128i use_b = _mm_andnot_si128(use_a, _mm_cmpeq_epi16(smallest, pb));
-      const __m128i use_c = _mm_andnot_si128(_mm_or_si128(use_a, use_b), _mm_set1_epi16(-1));
-      const __m128i pred = _mm_or_si128(
-          _mm_or_si128(_mm_and_si128(use_a, a), _mm_and_si128(use_b, b)), _mm_and_si128(use_c, c));
-      a = _mm_and_si128(_mm_add_epi16(load_px(row + i), pred), low);
-      store_px<kBpp>(row + i, a);
-      c = b;
-    }
+  }
+  if (x < width) {
+    unfilter_rows_scalar<1, kF0, kF1, kTwo>(src0 + x, kTwo ? src1 + x : nullptr, prev + 4 * x,
+                                            out0 + 4 * x, kTwo ? out1 + 4 * x : nullptr,
+                                            width - x);
   }
 }
 #endif
 
-void unfilter_row(int filter, std::uint8_t* row, const std::uint8_t* prev, std::size_t n,
-                  std::size_t bpp) {
-  if (filter == 0) return;
-  if (filter == 2) {
-    for (std::size_t i = 0; i < n; ++i) row[i] = std::uint8_t(row[i] + prev[i]);
-    return;
+using UnfilterRowsFn = void (*)(const std::uint8_t*, const std::uint8_t*, const std::uint8_t*,
+                                std::uint8_t*, std::uint8_t*, std::size_t);
+
+#if defined(TESSERA_PNG_SSE2)
+/// The grey row kernel for filters kF0 and kF1 (kF1 unused when !kTwo).
+template <int kF0, int kF1, bool kTwo>
+constexpr UnfilterRowsFn rows_kernel_grey() {
+  if constexpr ((kF0 == 0 || kF0 == 2) && (!kTwo || kF1 == 0 || kF1 == 2)) {
+    return &unfilter_grey_rows_simd<kF0, kF1, kTwo>;
+  } else {
+    return &unfilter_rows_scalar<1, kF0, kF1, kTwo>;
   }
-#if defined(__SSE2__)
-  if (bpp == 4) return unfilter_simd<4>(filter, row, prev, n);
-  if (bpp == 3) return unfilter_simd<3>(filter, row, prev, n);
+}
 #endif
-  unfilter_scalar(filter, row, prev, n, bpp);
+
+/// The row kernel for kBpp-byte pixels and the filters (i / 5, i % 5), one row or two.
+template <std::size_t kBpp, bool kTwo, std::size_t... I>
+constexpr std::array<UnfilterRowsFn, sizeof...(I)> rows_kernels(std::index_sequence<I...>) {
+#if defined(TESSERA_PNG_SSE2)
+  if constexpr (kBpp >= 3) return {&unfilter_rows_simd<kBpp, int(I / 5), int(I % 5), kTwo>...};
+  if constexpr (kBpp == 1) return {rows_kernel_grey<int(I / 5), int(I % 5), kTwo>()...};
+#endif
+  return {&unfilter_rows_scalar<kBpp, int(I / 5), int(I % 5), kTwo>...};
 }
 
-// ---- expansion to RGBA8 -------------------------------------------------------------------
-
-void expand_row(const std::uint8_t* src, std::uint8_t* dst, std::size_t width, int color_type) {
-  switch (color_type) {
-    case 6:
-      std::memcpy(dst, src, width * 4);
-      break;
-    case 2:  // reads one byte past the row's last pixel (kSlack)
-      for (std::size_t x = 0; x < width; ++x) {
-        std::uint32_t v;
-        std::memcpy(&v, src + 3 * x, 4);
-        v |= std::endian::native == std::endian::little ? 0xff000000u : 0xffu;  // alpha
-        std::memcpy(dst + 4 * x, &v, 4);
-      }
-      break;
-    case 4:
-      for (std::size_t x = 0; x < width; ++x) {
-        dst[4 * x] = dst[4 * x + 1] = dst[4 * x + 2] = src[2 * x];
-        dst[4 * x + 3] = src[2 * x + 1];
-      }
-      break;
-    default:  // 0
-      for (std::size_t x = 0; x < width; ++x) {
-        dst[4 * x] = dst[4 * x + 1] = dst[4 * x + 2] = src[x];
-        dst[4 * x + 3] = 255;
-      }
-      break;
+/// Unfilters `height` rows of the inflated stream `raw` (each a filter byte, then `width`
+/// pixels of kBpp bytes) into the RGBA8 `out`. `zeros`: 4 * width zero bytes. False when a
+/// filter byte is not 0-4.
+template <std::size_t kBpp>
+bool unfilter_image(const std::uint8_t* raw, std::size_t width, std::size_t height,
+                    const std::uint8_t* zeros, std::uint8_t* out) {
+  static constexpr auto kPairs = rows_kernels<kBpp, true>(std::make_index_sequence<25>());
+  static constexpr auto kSingles = rows_kernels<kBpp, false>(std::make_index_sequence<25>());
+  const std::size_t stride = 1 + kBpp * width, out_stride = 4 * width;
+  const std::uint8_t* prev = zeros;
+  std::size_t y = 0;
+  for (; y + 1 < height; y += 2) {
+    const std::uint8_t* line = raw + y * stride;
+    std::uint8_t* dst = out + y * out_stride;
+    if (line[0] > 4 || line[stride] > 4) return false;
+    kPairs[line[0] * 5u + line[stride]](line + 1, line + stride + 1, prev, dst, dst + out_stride,
+                                        width);
+    prev = dst + out_stride;
   }
+  if (y < height) {
+    const std::uint8_t* line = raw + y * stride;
+    if (line[0] > 4) return false;
+    kSingles[line[0] * 5u](line + 1, nullptr, prev, out + y * out_stride, nullptr, width);
+  }
+  return true;
 }
 
 }  // namespace
@@ -280,12 +383,24 @@ std::optional<ImageRGBA8> decode_png_fast(std::span<const std::uint8_t> bytes) {
   std::unique_ptr<libdeflate_decompressor, DecompressorDeleter> inflater(
       libdeflate_alloc_decompressor());
   if (!inflater) return std::nullopt;
-  // Not value-initialised: every byte is written by the decompressor or the size check fails.
-  std::unique_ptr<std::uint8_t[]> raw(new std::uint8_t[std::size_t(raw_size) + kSlack]);
-  std::memset(raw.get() + raw_size, 0, kSlack);
+  // The rows are inflated into the end of the pixel buffer and unfiltered forward into its
+  // start, so no second image-sized buffer (and its fresh pages) is needed. The rows start
+  // late enough that unfiltering a pair of rows never overwrites inflated bytes not yet read:
+  // pair (y, y + 1) writes below 4 * width * (y + 2) <= raw_at + y * stride, where its rows
+  // start. The buffer is value-initialised, so the kSlack bytes after the rows are zeros.
+  const std::size_t stride = 1 + row_bytes, out_row = 4 * std::size_t(width);
+  const std::size_t out_bytes = out_row * height;
+  const std::size_t raw_at =
+      2 * out_row + (height - 1) * (out_row > stride ? out_row - stride : 0);
+  ImageRGBA8 img;
+  img.width = int(width);
+  img.height = int(height);
+  img.has_alpha = color_type == 4 || color_type == 6;
+  img.pixels.resize(std::max(out_bytes, raw_at + std::size_t(raw_size) + kSlack));
+  std::uint8_t* const raw = img.pixels.data() + raw_at;
   std::size_t in_used = 0, out_made = 0;
   const libdeflate_result r =
-      libdeflate_zlib_decompress_ex(inflater.get(), stream.data(), stream.size(), raw.get(),
+      libdeflate_zlib_decompress_ex(inflater.get(), stream.data(), stream.size(), raw,
                                     std::size_t(raw_size), &in_used, &out_made);
   if (r != LIBDEFLATE_SUCCESS || in_used != stream.size() || out_made != raw_size) {
     return std::nullopt;
@@ -293,21 +408,24 @@ std::optional<ImageRGBA8> decode_png_fast(std::span<const std::uint8_t> bytes) {
   inflater.reset();
   joined = {};
 
-  ImageRGBA8 img;  // no zero fill: every row is written below
-  img.width = int(width);
-  img.height = int(height);
-  img.has_alpha = color_type == 4 || color_type == 6;
-  img.pixels.resize(img.pixel_count() * 4);
-  const std::vector<std::uint8_t> zeros(row_bytes + kSlack, 0);
-  const std::uint8_t* prev = zeros.data();
-  for (std::size_t y = 0; y < height; ++y) {
-    std::uint8_t* line = raw.get() + y * (1 + row_bytes);
-    const int filter = line[0];
-    if (filter > 4) return std::nullopt;
-    unfilter_row(filter, line + 1, prev, row_bytes, channels);
-    expand_row(line + 1, img.pixels.data() + y * std::size_t(width) * 4, width, color_type);
-    prev = line + 1;
+  const std::vector<std::uint8_t> zeros(std::size_t(width) * 4, 0);
+  bool ok = false;
+  switch (channels) {
+    case 1:
+      ok = unfilter_image<1>(raw, width, height, zeros.data(), img.pixels.data());
+      break;
+    case 2:
+      ok = unfilter_image<2>(raw, width, height, zeros.data(), img.pixels.data());
+      break;
+    case 3:
+      ok = unfilter_image<3>(raw, width, height, zeros.data(), img.pixels.data());
+      break;
+    default:
+      ok = unfilter_image<4>(raw, width, height, zeros.data(), img.pixels.data());
+      break;
   }
+  if (!ok) return std::nullopt;
+  img.pixels.resize(out_bytes);  // drops the tail; keeps the allocation
   return img;
 }
 
