@@ -17,6 +17,9 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 namespace tessera::detail {
 
@@ -45,6 +48,19 @@ constexpr std::uint64_t kMaxDeflateRatio = 1032;
 
 // Bytes readable after the inflated rows, so that 3-byte pixels can be read with 4-byte loads.
 constexpr std::size_t kSlack = 4;
+
+/// Asks Linux to back the whole 2 MiB pages inside [p, p + n) with transparent huge pages
+/// where it only does so on request (/sys/kernel/mm/transparent_hugepage/enabled = madvise):
+/// the first touch of a 4 MiB pixel buffer then takes 2 page faults instead of about 1000.
+/// Only a hint: nothing changes where it is refused or unsupported.
+void advise_huge_pages([[maybe_unused]] std::uint8_t* p, [[maybe_unused]] std::size_t n) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
+  const std::uintptr_t begin = (std::uintptr_t(p) + kHuge - 1) & ~(kHuge - 1);
+  const std::uintptr_t end = (std::uintptr_t(p) + n) & ~(kHuge - 1);
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+#endif
+}
 
 // ---- unfiltering, fused with the expansion to RGBA8 ----------------------------------------
 // Every scanline is unfiltered straight into its RGBA8 output row; the previous scanline's
@@ -396,7 +412,10 @@ std::optional<ImageRGBA8> decode_png_fast(std::span<const std::uint8_t> bytes) {
   img.width = int(width);
   img.height = int(height);
   img.has_alpha = color_type == 4 || color_type == 6;
-  img.pixels.resize(std::max(out_bytes, raw_at + std::size_t(raw_size) + kSlack));
+  const std::size_t total = std::max(out_bytes, raw_at + std::size_t(raw_size) + kSlack);
+  img.pixels.reserve(total);  // not touched yet: the hint can still take effect
+  advise_huge_pages(img.pixels.data(), total);
+  img.pixels.resize(total);
   std::uint8_t* const raw = img.pixels.data() + raw_at;
   std::size_t in_used = 0, out_made = 0;
   const libdeflate_result r =
