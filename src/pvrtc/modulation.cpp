@@ -1,16 +1,53 @@
 // Modulation choice for fixed endpoints (exact decoder arithmetic) and the total error of a
 // state: the 4 bpp brute force over the blends of both modes (planar SIMD, 8 texels at a time;
-// see modulation_kernel.h); the 2 bpp direct / interpolated choice is in modulation_2bpp.cpp.
+// see modulation_kernel.h, or 16 with AVX2 where the CPU has it: modulation_avx2.cpp); the
+// 2 bpp direct / interpolated choice is in modulation_2bpp.cpp.
 #include <algorithm>
+#include <atomic>
 #include <limits>
 
 #include "pvrtc/encode_internal.h"
 #include "pvrtc/modulation_2bpp.h"
+#include "pvrtc/modulation_avx2.h"
 #include "pvrtc/modulation_kernel.h"
 
 namespace tessera::pvrtc::detail {
 
 namespace {
+
+std::atomic<bool> g_baseline_only{false};
+
+/// The AVX2 block-row kernel runs here (checked once): built with it (src/CMakeLists.txt gives
+/// *_avx2.cpp -mavx2 on x86-64) and the CPU has AVX2. Not with TESSERA_NO_SIMD (scalar build).
+bool use_avx2() {
+#if defined(TESSERA_NO_SIMD)
+  return false;
+#else
+  return modulation_avx2_supported() && !g_baseline_only.load(std::memory_order_relaxed);
+#endif
+}
+
+/// The mode, bits and error of a block from its scores (BlockMod or BlockModAvx2).
+template <bool kExtra, class M>
+std::uint32_t pick(EncoderState& s, const M& m, std::size_t bi) {
+  std::uint8_t mode = 0;
+  std::uint32_t bits = m.bits0, err = m.err0;
+  if constexpr (kExtra) {
+    if (s.mode1 && m.err1 < err) {
+      mode = 1;
+      bits = m.bits1;
+      err = m.err1;
+    }
+    if (s.punch && m.any_clear && m.err1p < err) {
+      mode = 1;
+      bits = m.bits1p;
+      err = m.err1p;
+    }
+  }
+  s.mode[bi] = mode;
+  s.mod[bi] = bits;
+  return err;
+}
 
 template <bool kAlpha, bool kExtra>
 std::uint64_t choose_modulation_4bpp_impl(EncoderState& s) {
@@ -24,12 +61,14 @@ std::uint64_t choose_modulation_4bpp_impl(EncoderState& s) {
     for (int k = 0; k < 8; ++k) ep[std::size_t(k) * nb + i] = std::uint16_t(v[k]);
   }
   std::vector<std::uint64_t> row_err(std::size_t(g.nby), 0);
-  const std::size_t vstride = std::size_t(g.nbx) + 8;
+  const std::size_t vstride = std::size_t(g.nbx) + 8;  // block_row_errors_avx2 reads 8 from bx
+  const bool avx2 = use_avx2();
   parallel_for(
       0, g.nby, 4,
       [&](std::int64_t by0, std::int64_t by1) {
         // Column sums of the 4 rows of a block row: [row][image * 4 + channel][block + 1].
         std::vector<std::uint16_t> vp(4 * 8 * vstride, 0);
+        std::vector<BlockModAvx2> row_mods(avx2 ? std::size_t(g.nbx) : 0);
         ModRow4 r;
         for (int by = int(by0); by < int(by1); ++by) {
           for (int j = 0; j < 4; ++j) {
@@ -51,28 +90,19 @@ std::uint64_t choose_modulation_4bpp_impl(EncoderState& s) {
           }
           r.vstride = vstride;
           std::uint64_t err_row = 0;
-          for (int bx = 0; bx < g.nbx; bx += 2) {
-            BlockMod m[2];
-            block_pair_errors<kAlpha, kExtra>(r, bx, m);
-            for (int h = 0; h < 2; ++h) {
-              const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx + h);
-              std::uint8_t mode = 0;
-              std::uint32_t bits = m[h].bits0, err = m[h].err0;
-              if constexpr (kExtra) {
-                if (s.mode1 && m[h].err1 < err) {
-                  mode = 1;
-                  bits = m[h].bits1;
-                  err = m[h].err1;
-                }
-                if (s.punch && m[h].any_clear && m[h].err1p < err) {
-                  mode = 1;
-                  bits = m[h].bits1p;
-                  err = m[h].err1p;
-                }
+          const std::size_t row0 = std::size_t(by) * std::size_t(g.nbx);
+          if (avx2) {
+            block_row_errors_avx2(r.v, r.t, vstride, g.nbx, kAlpha, kExtra, row_mods.data());
+            for (int bx = 0; bx < g.nbx; ++bx) {
+              err_row += pick<kExtra>(s, row_mods[std::size_t(bx)], row0 + std::size_t(bx));
+            }
+          } else {
+            for (int bx = 0; bx < g.nbx; bx += 2) {
+              BlockMod m[2];
+              block_pair_errors<kAlpha, kExtra>(r, bx, m);
+              for (int h = 0; h < 2; ++h) {
+                err_row += pick<kExtra>(s, m[h], row0 + std::size_t(bx + h));
               }
-              s.mode[bi] = mode;
-              s.mod[bi] = bits;
-              err_row += err;
             }
           }
           row_err[std::size_t(by)] = err_row;
@@ -96,6 +126,17 @@ std::uint64_t choose_modulation_4bpp(EncoderState& s) {
 }
 
 }  // namespace
+
+bool modulation_avx2_supported() {
+#if defined(TESSERA_HAVE_AVX2_KERNELS)
+  static const bool cpu = __builtin_cpu_supports("avx2");
+  return cpu;
+#else
+  return false;
+#endif
+}
+
+bool set_modulation_baseline_only(bool on) { return g_baseline_only.exchange(on); }
 
 std::uint64_t choose_modulation(EncoderState& s) {
   if (s.g.format == Format::pvrtc1_4bpp) return choose_modulation_4bpp(s);
