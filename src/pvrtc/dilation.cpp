@@ -15,10 +15,16 @@
 // Bands write only their own blocks and the halo makes each band exact, so the output does not
 // depend on the band size or the thread count. Rows are stored with a wrap-around pad on both
 // sides, so the 3x3 kernels need no edge cases.
+//
+// The row kernels (dilation_kernels.h) come from a table chosen once at run time: the baseline
+// ones below (SSE2 through simd.h, or scalar), or the AVX2 ones of dilation_avx2.cpp where the
+// CPU has AVX2; the driver (dilate_band) is the same for both.
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cstring>
 
+#include "pvrtc/dilation_kernels.h"
 #include "pvrtc/encode_internal.h"
 #include "pvrtc/simd.h"
 
@@ -28,7 +34,7 @@ namespace {
 
 constexpr int kDilations = 3;
 constexpr int kHalo = kDilations + 1;  // rows of intensity needed above/below a band
-constexpr int kPad = 16;               // elements of padding on each side of a stored row
+constexpr int kPad = kDilationPad;     // elements of padding on each side of a stored row
 
 // Rounded mean of n filled neighbours: floor(x / n) for x < 2400 and 2 <= n <= 9 equals
 // mulhi(x, ceil(65536 / n)) (the error term stays below 1 / 9); n == 1 is passed through.
@@ -60,7 +66,6 @@ inline void wrap_pad(T* row, int w) {
 
 // Plane layout of one extremum image: colour planes 0..nplanes-1, then the filled flag (0/1).
 struct Band {
-  int w = 0, nplanes = 3;
   Ring<float> inten;              // intensity
   Ring<std::uint8_t> lab;         // 1 = local maximum, 2 = local minimum
   Ring<std::uint8_t> img[2][3];   // [max/min][initial, pass 1, pass 2]
@@ -93,11 +98,9 @@ void intensity_row(const std::uint8_t* src, int w, bool alpha, float* out) {
 }
 
 // Labels of the row whose intensity is `i1` (neighbours i0 above, i2 below).
-void label_row(Band& b, const float* i0, const float* i1, const float* i2, std::uint8_t* out) {
+void label_row(const float* i0, const float* i1, const float* i2, int w, float* mx, float* mn,
+               std::uint8_t* out) {
   using namespace simd;
-  const int w = b.w;
-  float* mx = b.tmax.data() + kPad;
-  float* mn = b.tmin.data() + kPad;
   for (int x = 0; x < w; x += 4) {
     const vf4 a = loadf4(i0 + x), c = loadf4(i1 + x), d = loadf4(i2 + x);
     storef4(max(max(a, c), d), mx + x);
@@ -116,9 +119,8 @@ void label_row(Band& b, const float* i0, const float* i1, const float* i2, std::
 
 // Initial planes of both extremum images for one row: the texel's colour where labelled.
 template <int np>
-void init_rows(Band& b, const std::uint8_t* lab, const std::uint8_t* src, std::uint8_t* const* p0,
+void init_rows(const std::uint8_t* lab, const std::uint8_t* src, int w, std::uint8_t* const* p0,
                std::uint8_t* const* p1) {
-  const int w = b.w;
   int x = 0;
   if (w >= 16) {
     using namespace simd;
@@ -158,12 +160,10 @@ void init_rows(Band& b, const std::uint8_t* lab, const std::uint8_t* src, std::u
 // One 3x3 dilation pass for one row: `in[k][c]` is plane c of rows r-1, r, r+1 (k = 0, 1, 2);
 // empty texels next to filled ones take the rounded mean of the filled neighbours.
 template <int np>
-void dilate_row(Band& b, const std::uint8_t* const in[3][5], std::uint8_t* const* out) {
+void dilate_row(int w, const std::uint8_t* const (*in)[5], std::uint8_t* const* out,
+                std::uint8_t* vf, std::uint16_t* vs, std::size_t vstride) {
   using namespace simd;
-  const int w = b.w;
-  const std::size_t vstride = std::size_t(w) + 2 * kPad;
-  std::uint8_t* vf = b.vf.data() + kPad;
-  auto vsrow = [&](int c) { return b.vs.data() + std::size_t(c) * vstride + kPad; };
+  auto vsrow = [&](int c) { return vs + std::size_t(c) * vstride; };
   // Vertical sums (16 texels at a time; with w == 8 the extra lanes land in the pads).
   for (int x = 0; x < w; x += 16) {
     store_u8x16(load_u8x16(in[0][np] + x) + load_u8x16(in[1][np] + x) + load_u8x16(in[2][np] + x),
@@ -212,13 +212,12 @@ void dilate_row(Band& b, const std::uint8_t* const in[3][5], std::uint8_t* const
 
 // Adds the final (pass 3) row of one image to the per-column block-row sums (`first`: the
 // block row's top row, which starts the sums).
-template <int planes>
-void accumulate_row(int w, const std::uint8_t* row, std::size_t stride,
-                    std::uint16_t* acc, bool first) {
+void accumulate_row(int planes, int w, const std::uint8_t* row, std::size_t stride,
+                    std::uint16_t* acc, std::size_t astride, bool first) {
   using namespace simd;
   for (int k = 0; k < planes; ++k) {
     const std::uint8_t* p = row + std::size_t(k) * stride;
-    std::uint16_t* a = acc + std::size_t(k) * std::size_t(w + 16);
+    std::uint16_t* a = acc + std::size_t(k) * astride;
     for (int x = 0; x < w; x += 16) {
       const vu8x16 v = load_u8x16(p + x);
       if (first) {
@@ -232,9 +231,25 @@ void accumulate_row(int w, const std::uint8_t* row, std::size_t stride,
   }
 }
 
-struct Extremes {
-  int xmax = 0, ymax = 0, xmin = 0, ymin = 0;
-};
+void init_rows_base(int np, const std::uint8_t* lab, const std::uint8_t* src, int w,
+                    std::uint8_t* const* p0, std::uint8_t* const* p1) {
+  if (np == 4) {
+    init_rows<4>(lab, src, w, p0, p1);
+  } else {
+    init_rows<3>(lab, src, w, p0, p1);
+  }
+}
+
+void dilate_row_base(int np, int w, const std::uint8_t* const (*in)[5], std::uint8_t* const* out,
+                     std::uint8_t* vf, std::uint16_t* vs, std::size_t vstride) {
+  if (np == 4) {
+    dilate_row<4>(w, in, out, vf, vs, vstride);
+  } else {
+    dilate_row<3>(w, in, out, vf, vs, vstride);
+  }
+}
+
+using Extremes = DilationExtremes;
 
 // The brightest and darkest texel of each block of a block row (the first in raster order on
 // ties, as a scalar scan with strict comparisons): `rows` holds the block row's 4 intensity
@@ -276,6 +291,15 @@ void block_extremes(const float* rows, std::size_t W, int nbx, int y0, Extremes*
   }
 }
 
+void block_extremes_base(const float* rows, std::size_t W, int nbx, int bw, int y0,
+                         Extremes* ext) {
+  if (bw == 4) {
+    block_extremes<1>(rows, W, nbx, y0, ext);
+  } else {
+    block_extremes<2>(rows, W, nbx, y0, ext);
+  }
+}
+
 // Per-block sums of one block row's column sums (`acc`, planes `astride` apart), per plane.
 void block_sums(const std::uint16_t* acc, std::size_t astride, int planes, int w, int bw,
                 std::uint32_t* out, std::size_t ostride) {
@@ -297,10 +321,29 @@ void block_sums(const std::uint16_t* acc, std::size_t astride, int planes, int w
   }
 }
 
+constexpr DilationKernels kBaseline = {intensity_row,  label_row,      init_rows_base,
+                                       dilate_row_base, accumulate_row, block_extremes_base,
+                                       block_sums};
+
+std::atomic<bool> g_force_baseline{false};
+
+// The kernels of this CPU, chosen once.
+const DilationKernels* native_kernels() {
+  static const DilationKernels* const k = [] {
+#if defined(TESSERA_NO_SIMD)
+    return &kBaseline;  // the scalar backend everywhere (the AVX2 kernels stay testable)
+#else
+    const DilationKernels* avx2 = dilation_kernels_avx2();
+    return avx2 ? avx2 : &kBaseline;
+#endif
+  }();
+  return k;
+}
+
 // Block rows [by0, by1) with `nplanes` colour planes (3, or 4 in alpha mode).
 template <int nplanes>
-void dilate_band(const EncoderState& s, int by0, int by1, std::vector<float>& low,
-                 std::vector<float>& high) {
+void dilate_band(const DilationKernels& kern, const EncoderState& s, int by0, int by1,
+                 std::vector<float>& low, std::vector<float>& high) {
         const Grid& g = s.g;
         const std::uint8_t* t = s.target.data();
         const int w = g.pw, hm = g.ph - 1, bw = g.bw;
@@ -309,8 +352,6 @@ void dilate_band(const EncoderState& s, int by0, int by1, std::vector<float>& lo
         // Band-local row numbering: texel row y is local row y - Y0 + 8 (>= 0).
         auto local = [&](int y) { return y - Y0 + 8; };
         Band b;
-        b.w = w;
-        b.nplanes = nplanes;
         constexpr int np1 = nplanes + 1;
         b.inten.init(1, w);
         b.lab.init(1, w);
@@ -323,7 +364,8 @@ void dilate_band(const EncoderState& s, int by0, int by1, std::vector<float>& lo
         b.tmin.assign(rstride, 0.0f);
         b.vf.assign(rstride, 0);
         b.vs.assign(std::size_t(nplanes) * rstride, 0);
-        for (auto& a : b.acc) a.assign(std::size_t(np1) * (W + 16), 0);
+        const std::size_t astride = W + kPad;
+        for (auto& a : b.acc) a.assign(std::size_t(np1) * astride, 0);
         // Block extremes of two block rows: the pipeline finishes a block row 4 rows after its
         // intensity, while the next block row's extremes are being found.
         std::vector<Extremes> ext_rows[2];
@@ -339,28 +381,25 @@ void dilate_band(const EncoderState& s, int by0, int by1, std::vector<float>& lo
           // Intensity row L, and the block extremes of the band's own rows.
           const std::uint8_t* srcL = t + std::size_t(L & hm) * W * 4;
           float* il = b.inten.row(0, local(L));
-          intensity_row(srcL, w, s.alpha_mode, il);
+          kern.intensity_row(srcL, w, s.alpha_mode, il);
           if (L >= Y0 && L < Y1) {
             std::memcpy(&brow[std::size_t(L & 3) * W], il, W * sizeof(float));
             if ((L & 3) == 3) {
               Extremes* ext = ext_rows[(L >> 2) & 1].data();
-              if (bw == 4) {
-                block_extremes<1>(brow.data(), W, g.nbx, L - 3, ext);
-              } else {
-                block_extremes<2>(brow.data(), W, g.nbx, L - 3, ext);
-              }
+              kern.block_extremes(brow.data(), W, g.nbx, bw, L - 3, ext);
             }
           }
           // Labels and initial planes of row L - 1.
           const int yl = L - 1;
           if (yl < Y0 - kDilations) continue;
           std::uint8_t* lab = b.lab.row(0, local(yl));
-          label_row(b, b.inten.row(0, local(yl - 1)), b.inten.row(0, local(yl)), il, lab);
+          kern.label_row(b.inten.row(0, local(yl - 1)), b.inten.row(0, local(yl)), il, w,
+                         b.tmax.data() + kPad, b.tmin.data() + kPad, lab);
           {
             std::uint8_t *p0[5], *p1[5];
             planes_of(b.img[0][0], yl, p0);
             planes_of(b.img[1][0], yl, p1);
-            init_rows<nplanes>(b, lab, t + std::size_t(yl & hm) * W * 4, p0, p1);
+            kern.init_rows(nplanes, lab, t + std::size_t(yl & hm) * W * 4, w, p0, p1);
           }
           // Dilation passes: pass p produces row L - 1 - p from rows L - 2 - p .. L - p.
           for (int pass = 1; pass <= kDilations; ++pass) {
@@ -377,9 +416,11 @@ void dilate_band(const EncoderState& s, int by0, int by1, std::vector<float>& lo
               } else {
                 for (int c = 0; c < np1; ++c) out[c] = b.last[k].data() + std::size_t(c) * rstride + kPad;
               }
-              dilate_row<nplanes>(b, in, out);
+              kern.dilate_row(nplanes, w, in, out, b.vf.data() + kPad, b.vs.data() + kPad,
+                              rstride);
               if (pass == kDilations) {
-                accumulate_row<np1>(w, out[0], rstride, b.acc[k].data(), (y & 3) == 0);
+                kern.accumulate_row(np1, w, out[0], rstride, b.acc[k].data(), astride,
+                                    (y & 3) == 0);
               }
             }
           }
@@ -390,7 +431,8 @@ void dilate_band(const EncoderState& s, int by0, int by1, std::vector<float>& lo
           const std::uint32_t n = std::uint32_t(4 * bw);
           const float inv = 1.0f / float(n);
           for (int k = 0; k < 2; ++k) {
-            block_sums(b.acc[k].data(), W + 16, np1, w, bw, bsum[k].data(), std::size_t(g.nbx));
+            kern.block_sums(b.acc[k].data(), astride, np1, w, bw, bsum[k].data(),
+                            std::size_t(g.nbx));
           }
           for (int bx = 0; bx < g.nbx; ++bx) {
             const Extremes& e = ext_rows[by & 1][std::size_t(bx)];
@@ -423,17 +465,40 @@ void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vec
   // Bands of block rows: long enough that the 8-row halo is cheap (at most 1/8 of the work),
   // at least 4 per image for threads.
   const int band = std::clamp(g.nby / 4, 1, 32);
+  const DilationKernels& kern =
+      g_force_baseline.load(std::memory_order_relaxed) ? kBaseline : *native_kernels();
   parallel_for(
       0, g.nby, band,
       [&](std::int64_t by0, std::int64_t by1) {
         // Alpha is 255 everywhere unless alpha_mode: three colour planes.
         if (s.alpha_mode) {
-          dilate_band<4>(s, int(by0), int(by1), low, high);
+          dilate_band<4>(kern, s, int(by0), int(by1), low, high);
         } else {
-          dilate_band<3>(s, int(by0), int(by1), low, high);
+          dilate_band<3>(kern, s, int(by0), int(by1), low, high);
         }
       },
       s.threads);
+}
+
+const DilationKernels* dilation_kernels_baseline() { return &kBaseline; }
+
+const DilationKernels* dilation_kernels_avx2() {
+#if defined(TESSERA_HAVE_AVX2_KERNELS)
+  static const DilationKernels* const k = []() -> const DilationKernels* {
+    __builtin_cpu_init();
+    if (!__builtin_cpu_supports("avx2")) return nullptr;
+    static DilationKernels table;
+    fill_dilation_kernels_avx2(&table);
+    return &table;
+  }();
+  return k;
+#else
+  return nullptr;
+#endif
+}
+
+void dilation_force_baseline(bool force) {
+  g_force_baseline.store(force, std::memory_order_relaxed);
 }
 
 }  // namespace tessera::pvrtc::detail
