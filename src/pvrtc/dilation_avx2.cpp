@@ -50,7 +50,7 @@ void intensity_row(const u8* src, int w, bool alpha, float* out) {
   const __m256i m8 = _mm256_set1_epi32(0xff);
   const __m256 kr = _mm256_set1_ps(13933.0f), kg = _mm256_set1_ps(46871.0f),
                kb = _mm256_set1_ps(4732.0f);
-  const __m256d k255 = _mm256_set1_pd(255.0);
+  const __m256i kDiv255 = _mm256_set1_epi32(std::int32_t(0x80808081u));  // ceil(2^39 / 255)
   for (int x = 0; x < w; x += 8) {
     const __m256i t = load(src + std::size_t(x) * 4);
     const __m256 r = _mm256_cvtepi32_ps(_mm256_and_si256(t, m8));
@@ -59,18 +59,13 @@ void intensity_row(const u8* src, int w, bool alpha, float* out) {
     __m256 y = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(r, kr), _mm256_mul_ps(g, kg)),
                              _mm256_mul_ps(b, kb));
     if (alpha) {
-      // floor(y * a / 255): y * a < 2^32 is exact in double, and a correctly rounded quotient
-      // below 2^24 never crosses an integer (a fraction is at least 1/255), so the floor is
-      // the integer division's.
-      const __m256 a = _mm256_cvtepi32_ps(_mm256_srli_epi32(t, 24));
-      __m128 q[2];
-      for (int h = 0; h < 2; ++h) {
-        const __m128 yh = h ? _mm256_extractf128_ps(y, 1) : _mm256_castps256_ps128(y);
-        const __m128 ah = h ? _mm256_extractf128_ps(a, 1) : _mm256_castps256_ps128(a);
-        const __m256d p = _mm256_mul_pd(_mm256_cvtps_pd(yh), _mm256_cvtps_pd(ah));
-        q[h] = _mm256_cvtpd_ps(_mm256_floor_pd(_mm256_div_pd(p, k255)));
-      }
-      y = _mm256_insertf128_ps(_mm256_castps128_ps256(q[0]), q[1], 1);
+      // floor(y * a / 255) with y * a < 2^32 (exact in u32): x / 255 == (x * 0x80808081) >> 39
+      // for every u32 x (the compilers' own division by 255), on the even and odd lanes.
+      const __m256i ya = _mm256_mullo_epi32(_mm256_cvttps_epi32(y), _mm256_srli_epi32(t, 24));
+      const __m256i even = _mm256_srli_epi64(_mm256_mul_epu32(ya, kDiv255), 39);
+      const __m256i odd =
+          _mm256_srli_epi64(_mm256_mul_epu32(_mm256_srli_epi64(ya, 32), kDiv255), 7);
+      y = _mm256_cvtepi32_ps(_mm256_blend_epi32(even, odd, 0xaa));
     }
     _mm256_storeu_ps(out + x, y);
   }
