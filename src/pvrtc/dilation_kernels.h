@@ -22,9 +22,10 @@ namespace tessera::pvrtc::detail {
 /// Elements of padding on each side of every row the kernels read or write.
 constexpr int kDilationPad = 32;
 
-/// The brightest and darkest texel of one block (texel coordinates).
+/// The brightest and darkest texel of one block (texel coordinates). Trivial on purpose (no
+/// member initialisers): an implicit constructor is an inline function, see above.
 struct DilationExtremes {
-  int xmax = 0, ymax = 0, xmin = 0, ymin = 0;
+  int xmax, ymax, xmin, ymin;
 };
 
 /// Row kernels of the dilation pipeline. `np` is the number of colour planes (3, or 4 in alpha
