@@ -482,11 +482,22 @@ void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vec
 
 const DilationKernels* dilation_kernels_baseline() { return &kBaseline; }
 
+bool avx2_kernels_usable() {
+#if defined(TESSERA_HAVE_AVX2_KERNELS)
+  static const bool usable = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") != 0;
+  }();
+  return usable;
+#else
+  return false;
+#endif
+}
+
 const DilationKernels* dilation_kernels_avx2() {
 #if defined(TESSERA_HAVE_AVX2_KERNELS)
   static const DilationKernels* const k = []() -> const DilationKernels* {
-    __builtin_cpu_init();
-    if (!__builtin_cpu_supports("avx2")) return nullptr;
+    if (!avx2_kernels_usable()) return nullptr;
     static DilationKernels table;
     fill_dilation_kernels_avx2(&table);
     return &table;

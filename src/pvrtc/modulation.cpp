@@ -127,14 +127,7 @@ std::uint64_t choose_modulation_4bpp(EncoderState& s) {
 
 }  // namespace
 
-bool modulation_avx2_supported() {
-#if defined(TESSERA_HAVE_AVX2_KERNELS)
-  static const bool cpu = __builtin_cpu_supports("avx2");
-  return cpu;
-#else
-  return false;
-#endif
-}
+bool modulation_avx2_supported() { return avx2_kernels_usable(); }
 
 bool set_modulation_baseline_only(bool on) { return g_baseline_only.exchange(on); }
 

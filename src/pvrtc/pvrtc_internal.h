@@ -48,6 +48,10 @@ void upscale_rows(const Grid& g, const Rgba5* e, int y0, int y1, std::uint8_t* o
 /// Decodes linear-order words to the padded level (pw * ph RGBA texels).
 void decode_padded(const Grid& g, const std::uint64_t* words, std::uint8_t* out, int threads);
 
+/// Whether this build has the AVX2 kernels (*_avx2.cpp) and the CPU (and OS) can run them;
+/// checked once. The one CPU check behind every AVX2 dispatch (dilation, 4 bpp modulation).
+bool avx2_kernels_usable();
+
 /// Morton-ordered little-endian bytes <-> linear-order words.
 void load_words(const Grid& g, const std::uint8_t* data, std::uint64_t* words);
 void store_words(const Grid& g, const std::uint64_t* words, std::uint8_t* data);
