@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <random>
 #include <vector>
 
 #include "pvrtc/encode_internal.h"
+#include "pvrtc/pvrtc_kernel.h"
 #include "tessera/procedural.h"
 #include "tessera/pvrtc.h"
 
@@ -265,5 +268,42 @@ TEST(PvrtcSearch, ModulationDescent2bppReachesALocalMinimum) {
       }
     }
     EXPECT_GT(tried, 100);
+  }
+}
+
+// The endpoint quantiser's table lookup gives code_nearest's code for every level: all
+// multiples of 1/64 over and beyond 0..255 (block means are multiples of 1/32), the floats
+// next to every midpoint between codes, and random levels.
+TEST(PvrtcSearch, NearestCodeTableMatchesTheSearch) {
+  struct Kind {
+    const NearestCodeTable* table;
+    int bits, channel;
+  };
+  const Kind kinds[] = {{&kNearest5, 5, 0}, {&kNearest4, 4, 0}, {&kNearest3, 3, 0},
+                        {&kNearestAlpha3, 3, 3}};
+  std::vector<float> levels;
+  for (int k = -64 * 20; k <= 64 * 280; ++k) levels.push_back(float(k) / 64.0f);
+  for (int h = -4; h <= 2 * 260; ++h) {
+    const float m = float(h) / 2.0f;
+    levels.push_back(std::nextafter(m, -1e9f));
+    levels.push_back(std::nextafter(m, 1e9f));
+  }
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> dist(-400.0f, 700.0f);
+  for (int i = 0; i < 200000; ++i) levels.push_back(dist(rng));
+  levels.push_back(1000.0f);
+  levels.push_back(-1000.0f);
+  for (const Kind& k : kinds) {
+    int mismatches = 0;
+    for (float level : levels) {
+      if (code_nearest_fast(*k.table, level) != code_nearest(level, k.bits, k.channel) &&
+          ++mismatches < 5) {
+        ADD_FAILURE() << "bits " << k.bits << " channel " << k.channel << " level " << level;
+      }
+    }
+    EXPECT_EQ(mismatches, 0);
+    // Both ends are reached.
+    EXPECT_EQ(code_nearest_fast(*k.table, 0.0f), 0u);
+    EXPECT_EQ(code_nearest_fast(*k.table, 255.0f), (1u << k.bits) - 1);
   }
 }

@@ -21,49 +21,11 @@ namespace detail {
 
 namespace {
 
-// `code_nearest` memoised for the levels k / 32, k = 0..8160: every block mean of 16 or 32
-// 8-bit texels (the dilation start) and every 8-bit texel is one. Other levels are computed.
-// Entries (code + 1; 0 = not yet known) are filled on first use (relaxed atomics: racing
-// threads store the same value).
-constexpr int kMemoLevels = 8161;
-
-template <int kBits, int kChannel>
-std::uint32_t nearest_memo(float level, int k) {
-  static std::atomic<std::uint8_t> memo[kMemoLevels] = {};
-  std::uint8_t c = memo[k].load(std::memory_order_relaxed);
-  if (c == 0) {
-    c = std::uint8_t(code_nearest(level, kBits, kChannel) + 1);
-    memo[k].store(c, std::memory_order_relaxed);
-  }
-  return c - 1u;
-}
-
-/// `code_nearest` of an RGB channel of `kBits` bits (memoised when the level allows).
+/// `code_nearest` of an RGB channel of `kBits` bits (by table, see pvrtc_kernel.h).
 template <int kBits>
 inline std::uint32_t nearest_rgb(float level) {
-  const float k = level * 32.0f;  // exact: a power of two
-  if (k >= 0.0f && k < float(kMemoLevels) && k == float(int(k))) {
-    return nearest_memo<kBits, 0>(level, int(k));
-  }
-  return code_nearest(level, kBits, 0);
-}
-
-std::uint32_t nearest_code(float level, int bits, int channel) {
-  const float k = level * 32.0f;  // exact: a power of two
-  if (k >= 0.0f && k < float(kMemoLevels) && k == float(int(k))) {
-    if (channel == 3) return nearest_memo<3, 3>(level, int(k));
-    switch (bits) {
-      case 5:
-        return nearest_memo<5, 0>(level, int(k));
-      case 4:
-        return nearest_memo<4, 0>(level, int(k));
-      case 3:
-        return nearest_memo<3, 0>(level, int(k));
-      default:
-        break;
-    }
-  }
-  return code_nearest(level, bits, channel);
+  static_assert(kBits >= 3 && kBits <= 5);
+  return code_nearest_fast(kBits == 5 ? kNearest5 : kBits == 4 ? kNearest4 : kNearest3, level);
 }
 
 }  // namespace
@@ -91,7 +53,7 @@ std::uint16_t quantise_either(const float c[4]) {
   eo += code_err<kB ? 5 : 4>(o.b, c[2]);
   EndpointCodes t;
   t.opaque = false;
-  t.a = nearest_code(c[3], 3, 3);
+  t.a = code_nearest_fast(kNearestAlpha3, c[3]);
   float et = (float(code_level_alpha(t.a)) - c[3]) * (float(code_level_alpha(t.a)) - c[3]);
   t.r = nearest_rgb<4>(c[0]);
   t.g = nearest_rgb<4>(c[1]);

@@ -141,6 +141,46 @@ inline std::uint32_t code_nearest(float level, int bits, int channel) {
   return c;
 }
 
+/// `code_nearest` by table: the nearest code is the number of codes c < max whose midpoint
+/// (L(c) + L(c + 1)) / 2 lies strictly below the level (levels rise with the code; a level on
+/// a midpoint keeps the lower code, as `code_nearest` does). With the midpoint sums integers,
+/// that count depends only on ceil(2 level), clamped to 0..511, which indexes the table. Same
+/// result as `code_nearest` for every finite level (tests/pvrtc_search_test.cpp checks).
+struct NearestCodeTable {
+  std::uint8_t code[512];
+};
+constexpr NearestCodeTable make_nearest_code_table(int bits, bool alpha) {
+  NearestCodeTable t{};
+  const int maxc = (1 << bits) - 1;
+  auto level = [&](int c) {
+    if (alpha) return 34 * c;
+    const int e = bits == 5 ? c : bits == 4 ? ((c << 1) | (c >> 3)) : ((c << 2) | (c >> 1));
+    return (e << 3) | (e >> 2);
+  };
+  for (int i = 0; i < 512; ++i) {
+    int n = 0;
+    for (int c = 0; c < maxc; ++c) n += level(c) + level(c + 1) < i ? 1 : 0;
+    t.code[i] = std::uint8_t(n);
+  }
+  return t;
+}
+inline constexpr NearestCodeTable kNearest5 = make_nearest_code_table(5, false);
+inline constexpr NearestCodeTable kNearest4 = make_nearest_code_table(4, false);
+inline constexpr NearestCodeTable kNearest3 = make_nearest_code_table(3, false);
+inline constexpr NearestCodeTable kNearestAlpha3 = make_nearest_code_table(3, true);
+
+/// Table index of a level: ceil(2 level) clamped to 0..511.
+inline int nearest_code_index(float level) {
+  const float t = std::clamp(2.0f * level, -1.0f, 511.0f);
+  const int i = int(t);                  // truncation: the ceiling for t <= 0
+  return std::max(i + (float(i) < t ? 1 : 0), 0);
+}
+
+/// The code nearest to `level` from `table` (one of the kNearest* tables).
+inline std::uint32_t code_nearest_fast(const NearestCodeTable& table, float level) {
+  return table.code[nearest_code_index(level)];
+}
+
 /// Bilinear weights of texel coordinate `x` along one axis with blocks `bw` texels wide in a
 /// padded extent of `extent` texels (a power of two): the left block index `b0`, the right
 /// block index `b1` (wrapping) and the right weight `d` in [0, bw) (left weight bw - d).
