@@ -463,8 +463,10 @@ void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vec
   low.assign(g.blocks() * 4, 0.0f);
   high.assign(g.blocks() * 4, 0.0f);
   // Bands of block rows: long enough that the 8-row halo is cheap (at most 1/8 of the work),
-  // at least 4 per image for threads.
-  const int band = std::clamp(g.nby / 4, 1, 32);
+  // at least 4 per image for threads; one band (no inner halos) on one thread. Every band
+  // computes its rows exactly, so the banding never changes the result.
+  const bool serial = s.threads == 1 || default_thread_count() == 1;
+  const int band = serial ? g.nby : std::clamp(g.nby / 4, 1, 32);
   const DilationKernels& kern =
       g_force_baseline.load(std::memory_order_relaxed) ? kBaseline : *native_kernels();
   parallel_for(
