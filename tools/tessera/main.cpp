@@ -9,10 +9,6 @@
 
 #if defined(__GLIBC__)
 #include <malloc.h>
-#include <sys/mman.h>
-#include <unistd.h>
-#include <cstdint>
-#include <cstdlib>
 #endif
 
 namespace tessera::cli {
@@ -51,31 +47,10 @@ std::string_view subcommand_name(int argc, char** argv) {
 /// fault per 4 KiB touched; keeping such buffers in the heap (up to glibc's 32 MiB cap) and not
 /// trimming it lets later stages reuse pages already mapped. 1024^2 `compress --quality fast`
 /// (ldr-rgb-metalrough): 3530 -> 2616 page faults (`perf stat -r 15`).
-///
-/// The heap is then grown once by 64 MiB (address space only) and its whole 2 MiB pages are
-/// marked for transparent huge pages, which Linux by default gives only to memory that asks
-/// (/sys/kernel/mm/transparent_hugepage/enabled = madvise): the first touch of an image-sized
-/// buffer costs one fault per 2 MiB instead of one per 4 KiB. Same run: 1845 -> about 700 page
-/// faults and 0.89-0.92x the whole-process time on 1024^2 and 2048^2 images (neutral at 256^2;
-/// medians of 40 interleaved runs, 2026-11-21). A hint only: nothing else changes where huge
-/// pages are off or refused.
 void tune_allocator() {
 #if defined(__GLIBC__)
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  mallopt(M_TOP_PAD, 64 << 20);
-  void* p = std::malloc(1 << 20);  // grows the heap by the pad
-  const std::uintptr_t heap = reinterpret_cast<std::uintptr_t>(p);
-  std::free(p);
-  mallopt(M_TOP_PAD, 128 << 10);  // glibc's default again
-  constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
-  const std::uintptr_t begin = (heap + kHuge - 1) & ~(kHuge - 1);
-  const std::uintptr_t end = reinterpret_cast<std::uintptr_t>(sbrk(0)) & ~(kHuge - 1);
-  if (heap != 0 && end > begin) {
-    madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-  }
-#endif
 #endif
 }
 
