@@ -1,7 +1,7 @@
 // PVRTC intensity-dilation kernels (src/pvrtc/dilation_kernels.h): the AVX2 row kernels against
 // the baseline ones, lane for lane, on random and structured rows of widths 8 to 1024 (skipped
 // where the CPU lacks AVX2), and whole fast encodes with the baseline kernels forced against the
-// dispatched ones: the same bytes.
+// dispatched ones: the same bytes; the dilation's flat-block flags.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pvrtc/dilation_kernels.h"
+#include "pvrtc/encode_internal.h"
 #include "tessera/procedural.h"
 #include "tessera/pvrtc.h"
 
@@ -323,6 +324,68 @@ TEST(PvrtcDilationEncode, ForcedBaselineGivesTheSameBytes) {
           }
         }
       }
+    }
+  }
+}
+
+
+// The dilation's per-block flat flags (which gate the homogeneous-block shortcut) mark exactly
+// the blocks whose texels all have one intensity: the uniform blocks, not the one with a single
+// texel changed (nor any noise block).
+TEST(PvrtcDilationEncode, FlatFlagsMarkBlocksOfOneIntensity) {
+  for (Format format : {Format::pvrtc1_4bpp, Format::pvrtc1_2bpp}) {
+    ImageRGBA8 img = make_procedural(Procedural::noise, 64, 32, 3);
+    const int bw = format == Format::pvrtc1_4bpp ? 4 : 8;
+    auto fill_block = [&](int bx, int by, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+      for (int y = by * 4; y < by * 4 + 4; ++y) {
+        for (int x = bx * bw; x < bx * bw + bw; ++x) {
+          std::uint8_t* p = &img.pixels[(std::size_t(y) * 64 + std::size_t(x)) * 4];
+          p[0] = r;
+          p[1] = g;
+          p[2] = b;
+          p[3] = 255;
+        }
+      }
+    };
+    fill_block(0, 0, 10, 200, 30);
+    fill_block(1, 0, 0, 0, 0);
+    fill_block(2, 1, 255, 255, 255);
+    fill_block(1, 2, 90, 90, 90);
+    img.pixels[(std::size_t(9) * 64 + std::size_t(bw + 1)) * 4] = 91;  // block (1, 2): one texel off
+    for (bool rgba : {false, true}) {
+      EncoderState s;
+      s.g = make_grid(format, 64, 32);
+      s.alpha_mode = rgba;
+      s.threads = 1;
+      s.own_target(img.pixels);
+      std::vector<float> low, high;
+      std::vector<std::uint8_t> flat;
+      dilation_endpoints(s, low, high, &flat);
+      ASSERT_EQ(flat.size(), s.g.blocks());
+      // Reference: the baseline intensity of every texel, compared within each block.
+      std::vector<float> inten(64 + 2 * kPad);
+      std::vector<float> all(64 * 32);
+      for (int y = 0; y < 32; ++y) {
+        dilation_kernels_baseline()->intensity_row(&img.pixels[std::size_t(y) * 64 * 4], 64, rgba,
+                                                   inten.data() + kPad);
+        std::memcpy(&all[std::size_t(y) * 64], inten.data() + kPad, 64 * sizeof(float));
+      }
+      int flagged = 0;
+      for (int by = 0; by < s.g.nby; ++by) {
+        for (int bx = 0; bx < s.g.nbx; ++bx) {
+          bool same = true;
+          const float first = all[std::size_t(by * 4) * 64 + std::size_t(bx * bw)];
+          for (int y = by * 4; y < by * 4 + 4; ++y) {
+            for (int x = bx * bw; x < bx * bw + bw; ++x) {
+              same &= all[std::size_t(y) * 64 + std::size_t(x)] == first;
+            }
+          }
+          const std::uint8_t f = flat[std::size_t(by) * std::size_t(s.g.nbx) + std::size_t(bx)];
+          EXPECT_EQ(f != 0, same) << "block " << bx << "," << by << (rgba ? " RGBA" : " RGB");
+          flagged += f;
+        }
+      }
+      EXPECT_EQ(flagged, 3);  // the three uniform blocks; not the one with a texel off
     }
   }
 }

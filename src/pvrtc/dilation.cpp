@@ -343,7 +343,7 @@ const DilationKernels* native_kernels() {
 // Block rows [by0, by1) with `nplanes` colour planes (3, or 4 in alpha mode).
 template <int nplanes>
 void dilate_band(const DilationKernels& kern, const EncoderState& s, int by0, int by1,
-                 std::vector<float>& low, std::vector<float>& high) {
+                 std::vector<float>& low, std::vector<float>& high, std::uint8_t* flat) {
         const Grid& g = s.g;
         const std::uint8_t* t = s.target.data();
         const int w = g.pw, hm = g.ph - 1, bw = g.bw;
@@ -439,6 +439,9 @@ void dilate_band(const DilationKernels& kern, const EncoderState& s, int by0, in
             const std::uint8_t* fill_c[2] = {t + (std::size_t(e.ymax) * W + std::size_t(e.xmax)) * 4,
                                              t + (std::size_t(e.ymin) * W + std::size_t(e.xmin)) * 4};
             const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+            // Ties go to the first texel in raster order for both, so the brightest and the
+            // darkest texel are the same one exactly when all intensities are equal.
+            if (flat != nullptr) flat[bi] = e.xmax == e.xmin && e.ymax == e.ymin;
             float* dst[2] = {&high[bi * 4], &low[bi * 4]};
             for (int k = 0; k < 2; ++k) {
               std::uint32_t sum[5] = {};
@@ -458,10 +461,13 @@ void dilate_band(const DilationKernels& kern, const EncoderState& s, int by0, in
 
 }  // namespace
 
-void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vector<float>& high) {
+void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vector<float>& high,
+                        std::vector<std::uint8_t>* flat) {
   const Grid& g = s.g;
   low.assign(g.blocks() * 4, 0.0f);
   high.assign(g.blocks() * 4, 0.0f);
+  if (flat != nullptr) flat->assign(g.blocks(), 0);
+  std::uint8_t* const flat_out = flat != nullptr ? flat->data() : nullptr;
   // Bands of block rows: long enough that the 8-row halo is cheap (at most 1/8 of the work),
   // at least 4 per image for threads; one band (no inner halos) on one thread. Every band
   // computes its rows exactly, so the banding never changes the result.
@@ -474,9 +480,9 @@ void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vec
       [&](std::int64_t by0, std::int64_t by1) {
         // Alpha is 255 everywhere unless alpha_mode: three colour planes.
         if (s.alpha_mode) {
-          dilate_band<4>(kern, s, int(by0), int(by1), low, high);
+          dilate_band<4>(kern, s, int(by0), int(by1), low, high, flat_out);
         } else {
-          dilate_band<3>(kern, s, int(by0), int(by1), low, high);
+          dilate_band<3>(kern, s, int(by0), int(by1), low, high, flat_out);
         }
       },
       s.threads);

@@ -73,8 +73,11 @@ void for_each_block_2x2(const Grid& g, int threads, Fn&& fn) {
 std::uint16_t quantise_endpoint(const float c[4], bool is_b, bool allow_translucent);
 
 /// The paper's initial endpoints: intensity labelling, 3x dilation of extrema, block averages.
-/// Writes low (A) and high (B) float RGBA per block (4 floats each, linear block order).
-void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vector<float>& high);
+/// Writes low (A) and high (B) float RGBA per block (4 floats each, linear block order). With
+/// `flat`, also one byte per block: 1 where all the block's texels have the same intensity
+/// (its brightest and darkest texel are the same one), which every uniform block is.
+void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vector<float>& high,
+                        std::vector<std::uint8_t>* flat = nullptr);
 
 /// Principal-axis endpoints over each block's bilinear footprint (see principal.cpp); same
 /// output layout as `dilation_endpoints`.
