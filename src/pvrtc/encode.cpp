@@ -287,6 +287,10 @@ void start_endpoints(EncoderState& s, bool dilation) {
         }
       },
       s.threads);
+  // The float endpoints are done with: their pages go back to the heap for the modulation
+  // search's buffers (a lower peak: 1024^2 fast, 1845 -> 1590 page faults).
+  std::vector<float>().swap(low);
+  std::vector<float>().swap(high);
   homogeneous_shortcut(s, dilation ? flat.data() : nullptr);
   choose_modulation(s);
 }
