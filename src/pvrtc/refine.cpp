@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "pvrtc/encode_internal.h"
+#include "pvrtc/simd.h"
 
 namespace tessera::pvrtc::detail {
 
@@ -48,11 +49,19 @@ float code_value(std::uint32_t code, int bits, int ch) {
   return float(e) * kRgbScale;
 }
 
-// Two candidate codes bracketing `level`.
+// Two candidate codes bracketing `level`: the largest code whose value is at most `level` (0
+// when there is none, or for NaN) and the next. Values rise with the code, so a proportional
+// estimate corrected by the same comparisons finds it in a step or two instead of a scan up
+// from 0 (normal: the scan was ~10% of solve_block).
 void bracket(float level, int bits, int ch, std::uint32_t out[2]) {
   const std::uint32_t maxc = (1u << bits) - 1;
   std::uint32_t c = 0;
-  while (c < maxc && code_value(c + 1, bits, ch) <= level) ++c;
+  if (level > 0.0f) {  // false for NaN
+    const float top = code_value(maxc, bits, ch);
+    c = std::uint32_t(std::min(level, top) / top * float(maxc));
+    while (c > 0 && code_value(c, bits, ch) > level) --c;
+    while (c < maxc && code_value(c + 1, bits, ch) <= level) ++c;
+  }
   out[0] = c;
   out[1] = std::min(c + 1, maxc);
 }
@@ -78,8 +87,11 @@ void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by, bool c
   }
   // Texel (u, v) of the window lies between blocks (u >= bw) and (u >= bw) + 1 of the
   // neighbourhood horizontally (weight of the right one u % bw), likewise vertically.
+  // The four channels go through the SIMD wrapper's float lanes side by side (lane c: the
+  // same operations, in the same order, as a scalar loop over c: the same sums; normal
+  // 1024^2: solve_block 2.x faster).
   float rgb_aa = 0, rgb_ab = 0, rgb_bb = 0;
-  float ra[4] = {0, 0, 0, 0}, rb[4] = {0, 0, 0, 0};
+  simd::vf4 ra_v, rb_v;
   Sums alpha;
   const float inv_total = 1.0f / float(4 * bw);
   for (int v = 1; v < 8; ++v) {
@@ -95,13 +107,14 @@ void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by, bool c
       const float fb = float(me & 0x0f) * 0.125f, fa = 1.0f - fb;
       const float wts[2][2] = {{float((bw - dx) * (4 - dy)), float(dx * (4 - dy))},
                                {float((bw - dx) * dy), float(dx * dy)}};
-      float other[4] = {0, 0, 0, 0};
+      const simd::vf4 fa_v(fa), fb_v(fb);
+      simd::vf4 other_v;
       for (int cy = 0; cy < 2; ++cy) {
         for (int cx = 0; cx < 2; ++cx) {
           if (top + cy == 1 && left + cx == 1) continue;  // this block
           const float* l = nb[top + cy][left + cx];
-          const float wt = wts[cy][cx] * inv_total;
-          for (int c = 0; c < 4; ++c) other[c] += wt * (fa * l[c] + fb * l[4 + c]);
+          const simd::vf4 wt(wts[cy][cx] * inv_total);
+          other_v = other_v + wt * (fa_v * simd::loadf4(l) + fb_v * simd::loadf4(l + 4));
         }
       }
       const float wj = float(own_x * own_y) * inv_total;
@@ -113,12 +126,14 @@ void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by, bool c
       rgb_aa += ca * ca;
       rgb_ab += ca * cbv;
       rgb_bb += cbv * cbv;
-      for (int c = 0; c < 3; ++c) {
-        const float r = float(t[c]) + bias - other[c];
-        ra[c] += ca * r;
-        rb[c] += cbv * r;
-      }
+      // Lane 3 (alpha) of the residual is computed but not used.
+      const simd::vf4 r_v = (simd::to_float(simd::vint4(t[0], t[1], t[2], t[3])) +
+                             simd::vf4(bias)) - other_v;
+      ra_v = ra_v + simd::vf4(ca) * r_v;
+      rb_v = rb_v + simd::vf4(cbv) * r_v;
       if (s.alpha_mode && !(me & kPunchFlag)) {
+        alignas(16) float other[4];
+        simd::storef4(other_v, other);
         const double r = double(t[3]) - other[3];
         alpha.aa += ca * ca;
         alpha.ab += ca * cbv;
@@ -128,6 +143,9 @@ void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by, bool c
       }
     }
   }
+  alignas(16) float ra[4], rb[4];
+  simd::storef4(ra_v, ra);
+  simd::storef4(rb_v, rb);
   Sums rgb[3];
   for (int c = 0; c < 3; ++c) {
     rgb[c].aa = rgb_aa;
