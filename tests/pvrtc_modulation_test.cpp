@@ -1,13 +1,18 @@
 // Tests of the 4 bpp modulation kernels: the AVX2 block-row kernel (modulation_avx2.cpp)
 // against the baseline pair kernel (modulation_kernel.h: SSE2, or scalar with TESSERA_NO_SIMD)
-// on random and structured block rows, and whole encodes through either path. Skipped where
-// the build or the CPU has no AVX2 kernel.
+// on random and structured block rows, and whole encodes through either path; and of the 2 bpp
+// modulation choice: its AVX2 passes (modulation_2bpp_avx2.cpp) against the baseline ones on
+// whole states and whole 2 bpp encodes. Skipped where the build or the CPU has no AVX2 kernel.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 #include <vector>
 
+#include "pvrtc/encode_internal.h"
+#include "pvrtc/modulation_2bpp.h"
+#include "pvrtc/modulation_2bpp_avx2.h"
 #include "pvrtc/modulation_avx2.h"
 #include "pvrtc/modulation_kernel.h"
 #include "tessera/procedural.h"
@@ -197,6 +202,157 @@ TEST(PvrtcModulationAvx2, EncodeMatchesBaseline) {
         o.threads = 2;
         auto encode_with = [&](bool baseline_only) {
           BaselineOnly only(baseline_only);
+          return encode(img, o);
+        };
+        const auto base = encode_with(true), fast = encode_with(false);
+        ASSERT_TRUE(base.ok());
+        ASSERT_TRUE(fast.ok());
+        EXPECT_TRUE(*base == *fast);
+      }
+    }
+  }
+}
+
+namespace {
+
+// Sets `set_modulation_2bpp_baseline_only` for a scope.
+class Baseline2bppOnly {
+ public:
+  explicit Baseline2bppOnly(bool on) : previous_(set_modulation_2bpp_baseline_only(on)) {}
+  ~Baseline2bppOnly() { set_modulation_2bpp_baseline_only(previous_); }
+  Baseline2bppOnly(const Baseline2bppOnly&) = delete;
+  Baseline2bppOnly& operator=(const Baseline2bppOnly&) = delete;
+
+ private:
+  bool previous_;
+};
+
+enum class Content {
+  random,      ///< random targets and endpoint fields
+  flat,        ///< one target colour, A == B everywhere: every candidate ties
+  extremes,    ///< targets 0 / 255, endpoints all-zero or all-ones fields
+  structured,  ///< procedural targets (bricks / text), endpoints near the block's colours
+};
+
+// A 2 bpp state of w x h texels with endpoints and targets as `content` says.
+EncoderState make_state_2bpp(int w, int h, bool alpha, Content content, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  EncoderState s;
+  s.g = make_grid(Format::pvrtc1_2bpp, w, h);
+  s.alpha_mode = alpha;
+  s.threads = 2;
+  const std::size_t nb = s.g.blocks();
+  std::vector<std::uint8_t> t(s.g.texels() * 4);
+  ImageRGBA8 img;
+  if (content == Content::structured) {
+    img = make_procedural(seed % 2 ? Procedural::bricks : Procedural::text, s.g.pw, s.g.ph, seed);
+  }
+  const int flat_value = uni(0, 255);
+  for (std::size_t i = 0; i < s.g.texels(); ++i) {
+    for (int c = 0; c < 4; ++c) {
+      int x = 0;
+      switch (content) {
+        case Content::random:
+          x = uni(0, 255);
+          break;
+        case Content::flat:
+          x = flat_value;
+          break;
+        case Content::extremes:
+          x = uni(0, 1) ? 255 : 0;
+          break;
+        case Content::structured:
+          x = img.pixels[i * 4 + std::size_t(c)];
+          if (c == 3) x = int((i * 7) % 256);  // some texels below 128
+          break;
+      }
+      if (c == 3 && !alpha) x = 255;
+      t[i * 4 + std::size_t(c)] = std::uint8_t(x);
+    }
+  }
+  s.own_target(std::move(t));
+  s.ca.resize(nb);
+  s.cb.resize(nb);
+  for (std::size_t i = 0; i < nb; ++i) {
+    int a = uni(0, 0xffff), b = uni(0, 0xffff);
+    if (content == Content::flat) a = b = 0x7bde | (alpha ? 0 : 0x8000);
+    if (content == Content::extremes) {
+      a = uni(0, 1) ? 0xffff : 0;
+      b = uni(0, 1) ? 0xffff : 0;
+    }
+    if (content == Content::structured) {
+      // Opaque (bit 15) fields near the block's first texel, A darker than B.
+      const std::size_t bx = i % std::size_t(s.g.nbx), by = i / std::size_t(s.g.nbx);
+      const std::uint8_t* p = &s.target[(by * 4 * std::size_t(s.g.pw) + bx * 8) * 4];
+      const int r5 = p[0] >> 3, g5 = p[1] >> 3, b4 = p[2] >> 4, b5 = p[2] >> 3;
+      a = 0x8000 | (std::max(r5 - 3, 0) << 10) | (std::max(g5 - 3, 0) << 5) |
+          (std::max(b4 - 2, 0) << 1);
+      b = 0x8000 | (std::min(r5 + 3, 31) << 10) | (std::min(g5 + 3, 31) << 5) |
+          std::min(b5 + 3, 31);
+      if (alpha && uni(0, 3) == 0) a &= 0x7fff;
+    }
+    s.ca[i] = std::uint16_t(a & 0xfffe);  // bit 0 holds the mode
+    s.cb[i] = std::uint16_t(b);
+  }
+  s.mode.assign(nb, 0xaa);
+  s.mod.assign(nb, 0xdeadbeefu);
+  return s;
+}
+
+}  // namespace
+
+TEST(PvrtcModulation2bppAvx2, StateMatchesBaseline) {
+  if (!modulation_avx2_supported()) GTEST_SKIP() << "no AVX2 kernel in this build or CPU";
+  const int sizes[][2] = {{8, 8},  {16, 8},   {8, 32},   {32, 8},  {128, 16},
+                          {16, 64}, {64, 64}, {256, 32}, {512, 16}};
+  int mode1_blocks = 0;
+  for (const auto& wh : sizes) {
+    for (bool alpha : {false, true}) {
+      for (Content content :
+           {Content::random, Content::flat, Content::extremes, Content::structured}) {
+        for (std::uint32_t seed = 1; seed <= 3; ++seed) {
+          SCOPED_TRACE(testing::Message() << wh[0] << "x" << wh[1] << " alpha " << alpha
+                                          << " content " << int(content) << " seed " << seed);
+          EncoderState base = make_state_2bpp(wh[0], wh[1], alpha, content, seed);
+          EncoderState avx = base;
+          std::uint64_t e_base = 0, e_avx = 0;
+          {
+            Baseline2bppOnly only(true);
+            e_base = choose_modulation_2bpp(base);
+          }
+          {
+            Baseline2bppOnly only(false);
+            e_avx = choose_modulation_2bpp(avx);
+          }
+          EXPECT_EQ(e_avx, e_base);
+          EXPECT_EQ(avx.mode, base.mode);
+          EXPECT_EQ(avx.mod, base.mod);
+          for (std::uint8_t m : base.mode) mode1_blocks += m;
+        }
+      }
+    }
+  }
+  EXPECT_GT(mode1_blocks, 0);  // the interpolated modes were exercised
+}
+
+TEST(PvrtcModulation2bppAvx2, EncodeMatchesBaseline) {
+  if (!modulation_avx2_supported()) GTEST_SKIP() << "no AVX2 kernel in this build or CPU";
+  const int sizes[][2] = {{8, 8}, {16, 8}, {8, 32}, {32, 8}, {128, 16}, {64, 64}, {256, 128}};
+  for (const auto& wh : sizes) {
+    for (bool alpha : {false, true}) {
+      ImageRGBA8 img = make_procedural(alpha ? Procedural::foliage : Procedural::noise, wh[0],
+                                       wh[1], 3);
+      for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
+        if (q == Quality::high && wh[0] * wh[1] > 64 * 64) continue;  // slow; normal covers it
+        SCOPED_TRACE(testing::Message()
+                     << wh[0] << "x" << wh[1] << " alpha " << alpha << " quality " << int(q));
+        EncodeOptions o;
+        o.format = Format::pvrtc1_2bpp;
+        o.quality = q;
+        o.threads = 2;
+        auto encode_with = [&](bool baseline_only) {
+          Baseline2bppOnly only(baseline_only);
           return encode(img, o);
         };
         const auto base = encode_with(true), fast = encode_with(false);
