@@ -1,13 +1,20 @@
 // Tests of the exact search's window evaluators (src/pvrtc/polish_kernel.h): the channel-planar
 // evaluator of one-colour-channel candidates against the general `local_error_simd` on random
-// windows, including the bound (early exit) semantics of both.
+// windows, including the bound (early exit) semantics of both; the AVX2 evaluators
+// (polish_avx2.cpp) against the baseline ones, and whole encodes with and without them.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <random>
+#include <vector>
 
 #include "pvrtc/polish_kernel.h"
+#include "pvrtc/pvrtc_internal.h"
+#include "tessera/procedural.h"
+#include "tessera/pvrtc.h"
 
+using namespace tessera;
+using namespace tessera::pvrtc;
 using namespace tessera::pvrtc::detail;
 
 namespace {
@@ -17,8 +24,16 @@ constexpr std::int32_t kExclude = 1 << 24;  // as build_local
 // A random window as build_local lays one out: per texel the other blocks' share of the A and B
 // sums (bounded so that the whole sum stays within 16 times the channel maximum), block j's
 // weight, the target and the blends its block mode lacks; texels 49-55 zero pads.
-void random_window(std::mt19937& rng, int nch, bool punch, int alpha_weight, LocalWindow& lw) {
-  auto uni = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+// `extremes`: the values at the ends of their ranges (targets 0 / 255, shares 0 / maximal, block
+// j's weight 1 or 16, one block mode for the whole window or the other), where the 16-bit
+// lanes come closest to wrapping and the blends to their limits.
+void random_window(std::mt19937& rng, int nch, bool punch, int alpha_weight, LocalWindow& lw,
+                   bool extremes = false) {
+  auto uni0 = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  const int one_mode = extremes ? uni0(0, 2) : 2;  // 0 / 1: every texel in that mode
+  auto uni = [&](int lo, int hi) {
+    return extremes ? (uni0(0, 1) != 0 ? hi : lo) : uni0(lo, hi);
+  };
   lw = LocalWindow{};
   lw.nch = nch;
   lw.punch = punch;
@@ -34,7 +49,7 @@ void random_window(std::mt19937& rng, int nch, bool punch, int alpha_weight, Loc
       lw.rest16_b[k][c] = std::uint16_t(used ? uni(0, (16 - own) * top) : 0);
       lw.t16[k][c] = std::uint16_t(used ? uni(0, 255) : 0);
     }
-    const bool m1 = uni(0, 1) != 0;
+    const bool m1 = one_mode < 2 ? one_mode == 1 : uni0(0, 1) != 0;
     const std::int32_t b35 = pad ? 0 : m1 ? kExclude : 0;
     const std::int32_t b4 = pad ? 0 : m1 ? 0 : kExclude;
     const std::int32_t b4p = pad ? 0 : m1 && punch ? 0 : kExclude;
@@ -124,6 +139,144 @@ TEST(PvrtcPolishKernel, SingleColourChannel) {
   EXPECT_EQ(single_colour_channel(x, y, a, b, 3), 1);   // but not with nch 3
   x.r = 0;
   EXPECT_EQ(single_colour_channel(x, y, a, b, 3), -1);
+}
+
+// The AVX2 evaluators against the baseline ones: the same error below the bound, >= the bound
+// (and no more than the error) otherwise; the same per-texel errors.
+void expect_bounded(std::uint32_t got, std::uint32_t exact, std::uint32_t bound) {
+  if (exact < bound) {
+    EXPECT_EQ(got, exact) << "bound " << bound;
+  } else {
+    EXPECT_GE(got, bound) << "exact " << exact;
+    EXPECT_LE(got, exact) << "bound " << bound;
+  }
+}
+
+std::vector<std::uint32_t> bounds_for(std::uint32_t exact) {
+  return {0u,        1u,        exact / 3, exact / 2, exact > 0 ? exact - 1 : 0u,
+          exact,     exact + 1, exact + 1000, ~0u};
+}
+
+void check_avx2_windows(int nch, bool punch, int alpha_weight, unsigned seed, bool extremes) {
+  std::mt19937 rng(seed);
+  for (int w = 0; w < 60; ++w) {
+    SCOPED_TRACE(testing::Message() << "window " << w);
+    LocalWindow lw;
+    random_window(rng, nch, punch, alpha_weight, lw, extremes);
+    const Rgba5 a = random_pair_end(rng, nch), b = random_pair_end(rng, nch);
+    const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
+    // Per-texel errors (what order_local sorts by).
+    std::uint32_t base[52], avx2[52];
+    for (int i = 0; i < 52; ++i) base[i] = avx2[i] = 0xdeadbeefu;
+    const std::uint32_t total = nch == 4 ? local_error_simd_t<true, true>(lw, a, b, 0, base)
+                                         : local_error_simd_t<false, true>(lw, a, b, 0, base);
+    EXPECT_EQ(local_error_store_avx2(lw, va, vb, avx2), total);
+    for (int i = 0; i < 52; ++i) EXPECT_EQ(avx2[i], base[i]) << "texel " << i;
+    // General candidates (any channels), bounded.
+    for (int k = 0; k < 40; ++k) {
+      Rgba5 ca = random_pair_end(rng, nch), cb = random_pair_end(rng, nch);
+      if (k == 0) ca = a, cb = b;
+      const std::int32_t ka[4] = {ca.r, ca.g, ca.b, ca.a}, kb[4] = {cb.r, cb.g, cb.b, cb.a};
+      const std::uint32_t exact = local_error_simd(lw, ca, cb, ~0u);
+      ASSERT_EQ(local_error_avx2(lw, ka, kb, ~0u), exact) << "candidate " << k;
+      for (const std::uint32_t bound : bounds_for(exact)) {
+        expect_bounded(local_error_simd(lw, ca, cb, bound), exact, bound);
+        expect_bounded(local_error_avx2(lw, ka, kb, bound), exact, bound);
+      }
+    }
+    // One-colour-channel candidates through the planar tables of (a, b).
+    PlanarWindow pw;
+    build_planar(lw, pw);
+    planar_refresh(pw, a, b);
+    for (int c = 0; c < 3; ++c) planar_rest(pw, c);
+    for (int k = 0; k < 40; ++k) {
+      const int c = int(rng() % 3);
+      const std::int32_t pa = k == 0 ? va[c] : int(rng() % 32);
+      const std::int32_t pb = k == 0 ? vb[c] : int(rng() % 32);
+      const std::uint32_t exact = planar_error(pw, c, pa, pb, ~0u);
+      ASSERT_EQ(planar_error_avx2(pw, c, pa, pb, ~0u), exact) << "candidate " << k;
+      for (const std::uint32_t bound : bounds_for(exact)) {
+        expect_bounded(planar_error(pw, c, pa, pb, bound), exact, bound);
+        expect_bounded(planar_error_avx2(pw, c, pa, pb, bound), exact, bound);
+      }
+    }
+  }
+}
+
+#define SKIP_WITHOUT_AVX2() \
+  if (!avx2_kernels_usable()) GTEST_SKIP() << "no AVX2 kernels in this build or CPU"
+
+TEST(PvrtcPolishAvx2, MatchesBaselineRgb) {
+  SKIP_WITHOUT_AVX2();
+  check_avx2_windows(3, false, 1, 11, false);
+  check_avx2_windows(3, false, 1, 12, true);
+}
+TEST(PvrtcPolishAvx2, MatchesBaselineRgba) {
+  SKIP_WITHOUT_AVX2();
+  check_avx2_windows(4, false, 2, 13, false);
+  check_avx2_windows(4, false, 2, 14, true);
+}
+TEST(PvrtcPolishAvx2, MatchesBaselineRgbaPunchThrough) {
+  SKIP_WITHOUT_AVX2();
+  check_avx2_windows(4, true, 2, 15, false);
+  check_avx2_windows(4, true, 2, 16, true);
+  check_avx2_windows(4, true, 1, 17, false);
+  check_avx2_windows(4, true, 1, 18, true);
+}
+
+// Sets `set_polish_baseline_only` for a scope.
+class PolishBaselineOnly {
+ public:
+  explicit PolishBaselineOnly(bool on) : previous_(set_polish_baseline_only(on)) {}
+  ~PolishBaselineOnly() { set_polish_baseline_only(previous_); }
+  PolishBaselineOnly(const PolishBaselineOnly&) = delete;
+  PolishBaselineOnly& operator=(const PolishBaselineOnly&) = delete;
+
+ private:
+  bool previous_;
+};
+
+TEST(PvrtcPolishAvx2, EncodeMatchesBaseline) {
+  SKIP_WITHOUT_AVX2();
+  {
+    PolishBaselineOnly only(true);
+    EXPECT_FALSE(polish_avx2_active());
+  }
+#if !defined(TESSERA_NO_SIMD)
+  EXPECT_TRUE(polish_avx2_active());
+#endif
+  const int sizes[][2] = {{64, 16}, {16, 64}, {8, 8}, {128, 64}};
+  for (const auto& wh : sizes) {
+    for (int variant = 0; variant < 4; ++variant) {  // RGB, RGBA, RGBA no punch-through, foliage
+      ImageRGBA8 img = make_procedural(variant == 3   ? Procedural::foliage
+                                       : variant == 0 ? Procedural::text
+                                                      : Procedural::noise,
+                                       wh[0], wh[1], 3);
+      if (variant == 1 || variant == 2) {
+        img.has_alpha = true;
+        const ImageRGBA8 al = make_procedural(Procedural::bricks, wh[0], wh[1], 5);
+        for (std::size_t i = 0; i < img.pixel_count(); ++i) {
+          img.pixels[i * 4 + 3] = al.pixels[i * 4 + (i % 3)];  // some texels below 128
+        }
+      }
+      for (Quality q : {Quality::normal, Quality::high}) {
+        SCOPED_TRACE(testing::Message()
+                     << wh[0] << "x" << wh[1] << " variant " << variant << " quality " << int(q));
+        EncodeOptions o;
+        o.format = Format::pvrtc1_4bpp;
+        o.quality = q;
+        o.threads = 2;
+        o.punch_through = variant != 2;
+        auto encode_with = [&](bool baseline_only) {
+          PolishBaselineOnly only(baseline_only);
+          return encode(img, o);
+        };
+        const auto base = encode_with(true), fast = encode_with(false);
+        ASSERT_TRUE(base.ok() && fast.ok());
+        EXPECT_EQ(*base, *fast);
+      }
+    }
+  }
 }
 
 }  // namespace

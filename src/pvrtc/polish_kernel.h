@@ -9,26 +9,14 @@
 #include <cstdint>
 #include <cstring>
 
+#include "pvrtc/polish_window.h"
 #include "pvrtc/pvrtc_kernel.h"
 #include "pvrtc/simd.h"
 
 namespace tessera::pvrtc::detail {
 
-// The 7x7 texels block j influences (its bilinear weight is 0 elsewhere), with the other three
-// blocks' share of each texel's A and B sums precomputed, so a candidate pair for block j costs
-// one multiply-add per channel and endpoint per texel. Exact: same arithmetic as the decoder.
-struct LocalWindow {
-  // Per texel, 16-bit, padded to 56 texels (texels 49-55 all zero: error 0) for the SIMD paths:
-  // `rest16_a` / `rest16_b` the other blocks' share of the A / B bilinear sums (channels past
-  // nch zero), `own16` block j's weight in the channel lanes, `t16` the target (alpha lane 0
-  // if RGB), `bias35` / `bias4` / `bias4p` exclude the blends a texel's block mode lacks (4p:
-  // weight 4 with alpha punched through, mode 1 with punch-through allowed only).
-  alignas(16) std::uint16_t rest16_a[56][4], rest16_b[56][4], own16[56][4], t16[56][4];
-  alignas(16) std::int32_t bias35[28][4], bias4[28][4], bias4p[28][4];
-  int nch;
-  bool punch;
-  alignas(16) std::uint16_t weight16[8];  ///< Per-lane error weights (RGBA RGBA).
-};
+// LocalWindow and PlanarWindow (the layouts) are in polish_window.h, with the AVX2 versions of
+// the evaluators below (polish_avx2.cpp).
 
 // Exact error of the local window with (a, b) as block j's endpoints, two texels at a time;
 // stops once it reaches `bound` (the result is then >= bound). kAlpha: RGBA input (alpha
@@ -125,28 +113,8 @@ inline std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, con
                      : local_error_simd_t<false>(lw, a, b, bound);
 }
 
-// A block's window in channel-planar form (texels in the LocalWindow's order, 8 per vector,
-// 49-55 zero pads), with, for the block's current pair, each texel's error per blend slot
-// (0: weight 0, 1: weight 8, 2: weight 3, 3: weight 5, 4: weight 4, or with alpha punched
-// through where that is less) over all channels (`total`), and each colour channel's part of it
-// (`e`). A candidate changing only colour channel c then scores, per texel, the minimum over
-// the slots of total - e[c] (`rest[c]`, precomputed) plus the candidate's squared error in c.
-// (The planar functions are kept out of line: inlined into the search loop they cost more
-// instructions, ldr-rgb-07 high 4.77G -> 4.84G.)
-struct PlanarWindow {
-  static constexpr int kGroups = 7;
-  static constexpr int kSlots = 5;
-  // Excluded blends (not in the texel's block mode): 2^22 added to the slot's error keeps every
-  // float below 2^24 (exact) and far above any real texel error (at most 5 * 255^2).
-  static constexpr std::int32_t kExclude = 1 << 22;
-  alignas(16) std::uint16_t ra[4][56], rb[4][56], t[4][56], own[56];
-  alignas(16) std::int32_t excl35[56], excl4[56], excl4p[56];
-  alignas(16) std::uint16_t e[3][kSlots][56];
-  alignas(16) float total[kSlots][56];
-  alignas(16) float rest[3][kSlots][56];  ///< total - e[c] - 2^23.
-  int nch;
-  std::int32_t alpha_weight;
-};
+// The planar functions (PlanarWindow: polish_window.h) are kept out of line: inlined into the
+// search loop they cost more instructions, ldr-rgb-07 high 4.77G -> 4.84G.
 
 /// Channel-planar copy of `lw` (after any reordering of its texels).
 [[gnu::noinline]] inline void build_planar(const LocalWindow& lw, PlanarWindow& pw) {
