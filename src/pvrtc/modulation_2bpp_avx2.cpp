@@ -5,7 +5,8 @@
 //
 // Compiled with -mavx2 (src/CMakeLists.txt) and called only after the run-time CPU check in
 // modulation_2bpp.cpp. So that no AVX2 code can stand in for baseline code elsewhere, this file
-// includes no header with inline functions or templates of external linkage (not simd.h,
+// includes no header with inline functions or templates of external linkage (avx2_common.h's
+// helpers have internal linkage; not simd.h,
 // encode_internal.h or the standard containers) and keeps its helpers in an anonymous
 // namespace; it exports the three `mod2_pass*_row_avx2` functions only.
 #include "pvrtc/modulation_2bpp_avx2.h"
@@ -19,6 +20,8 @@
 #include <immintrin.h>
 
 #include <cstring>
+
+#include "pvrtc/avx2_common.h"
 
 namespace tessera::pvrtc::detail {
 
@@ -106,25 +109,6 @@ inline void store_u8x16(__m256i a, std::uint8_t* p) {
 inline void store_half(__m256i a, int h, std::uint8_t* p) {
   const __m128i x = h ? _mm256_extracti128_si256(a, 1) : _mm256_castsi256_si128(a);
   _mm_storel_epi64(reinterpret_cast<__m128i*>(p), _mm_packus_epi16(x, x));
-}
-
-/// The 16 texels of one row (64 bytes at p) as one vector of 16-bit lanes per channel: texels
-/// 0-7 in the low half, 8-15 in the high (as modulation_avx2.cpp).
-inline void load_channels(const std::uint8_t* p, __m256i ch[4]) {
-  const __m128i* q = reinterpret_cast<const __m128i*>(p);
-  const __m256i a = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128(q)),
-                                            _mm_loadu_si128(q + 2), 1);
-  const __m256i b = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128(q + 1)),
-                                            _mm_loadu_si128(q + 3), 1);
-  const __m256i planar = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15,  //
-                                          0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
-  const __m256i pa = _mm256_shuffle_epi8(a, planar), pb = _mm256_shuffle_epi8(b, planar);
-  const __m256i rg = _mm256_unpacklo_epi32(pa, pb), ba = _mm256_unpackhi_epi32(pa, pb);
-  const __m256i zero = _mm256_setzero_si256();
-  ch[0] = _mm256_unpacklo_epi8(rg, zero);
-  ch[1] = _mm256_unpackhi_epi8(rg, zero);
-  ch[2] = _mm256_unpacklo_epi8(ba, zero);
-  ch[3] = _mm256_unpackhi_epi8(ba, zero);
 }
 
 /// Upscaled A (a) and B (b) and the target (t) of texel row j of blocks bx and bx + 1.

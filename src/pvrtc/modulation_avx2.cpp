@@ -4,7 +4,8 @@
 //
 // Compiled with -mavx2 (src/CMakeLists.txt) and called only after the run-time CPU check in
 // modulation.cpp. So that no AVX2 code can stand in for baseline code elsewhere, this file
-// includes no header with inline functions or templates of external linkage (not simd.h,
+// includes no header with inline functions or templates of external linkage (avx2_common.h's
+// helpers have internal linkage; not simd.h,
 // modulation_kernel.h or the standard containers) and keeps its helpers in an anonymous
 // namespace; it exports `block_row_errors_avx2` only.
 #include "pvrtc/modulation_avx2.h"
@@ -18,6 +19,8 @@
 #include <immintrin.h>
 
 #include <cstring>
+
+#include "pvrtc/avx2_common.h"
 
 namespace tessera::pvrtc::detail {
 
@@ -44,25 +47,6 @@ inline __m256i blend8(__m256i a, __m256i b, __m256i ka, __m256i kb, __m256i t) {
 /// The candidate's key: error * 4 + rank (the minimum keeps the earliest of equal errors).
 inline __m256i key(__m256i e, int rank) {
   return _mm256_or_si256(_mm256_slli_epi32(e, 2), _mm256_set1_epi32(rank));
-}
-
-/// The 16 texels of one row (64 bytes at p) as one vector of 16-bit lanes per channel.
-inline void load_channels(const std::uint8_t* p, __m256i ch[4]) {
-  const __m128i* q = reinterpret_cast<const __m128i*>(p);
-  // a: texels 0-3 | 8-11, b: texels 4-7 | 12-15; then bytes RRRR GGGG BBBB AAAA per half.
-  const __m256i a = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128(q)),
-                                            _mm_loadu_si128(q + 2), 1);
-  const __m256i b = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128(q + 1)),
-                                            _mm_loadu_si128(q + 3), 1);
-  const __m256i planar = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15,  //
-                                          0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
-  const __m256i pa = _mm256_shuffle_epi8(a, planar), pb = _mm256_shuffle_epi8(b, planar);
-  const __m256i rg = _mm256_unpacklo_epi32(pa, pb), ba = _mm256_unpackhi_epi32(pa, pb);
-  const __m256i zero = _mm256_setzero_si256();
-  ch[0] = _mm256_unpacklo_epi8(rg, zero);
-  ch[1] = _mm256_unpackhi_epi8(rg, zero);
-  ch[2] = _mm256_unpacklo_epi8(ba, zero);
-  ch[3] = _mm256_unpackhi_epi8(ba, zero);
 }
 
 /// Scores blocks bx .. bx + 3 (texel rows from `t`, 64 bytes each) into out[0..3].
