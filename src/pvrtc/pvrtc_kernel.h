@@ -129,7 +129,8 @@ inline std::uint32_t code_floor(float level, int bits, int channel) {
   return std::uint32_t(c);
 }
 
-/// Nearest code to an 8-bit level.
+/// Nearest code to an 8-bit level (ties: the lower code), by search: the definition that the
+/// encoder's table lookup `code_nearest_fast` below is tested against.
 inline std::uint32_t code_nearest(float level, int bits, int channel) {
   const std::uint32_t maxc = (1u << bits) - 1;
   std::uint32_t c = code_floor(level, bits, channel);
