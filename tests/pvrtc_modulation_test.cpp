@@ -149,6 +149,20 @@ class BaselineOnly {
   bool previous_;
 };
 
+/// Encodes `img` with the baseline kernels forced by `Guard` (BaselineOnly or
+/// Baseline2bppOnly) and with the dispatched ones: the same bytes.
+template <class Guard>
+void expect_same_bytes_as_baseline(const ImageRGBA8& img, const EncodeOptions& o) {
+  auto encode_with = [&](bool baseline_only) {
+    Guard only(baseline_only);
+    return encode(img, o);
+  };
+  const auto base = encode_with(true), fast = encode_with(false);
+  ASSERT_TRUE(base.ok());
+  ASSERT_TRUE(fast.ok());
+  EXPECT_TRUE(*base == *fast);
+}
+
 }  // namespace
 
 TEST(PvrtcModulationAvx2, RowMatchesBaselineKernel) {
@@ -200,14 +214,7 @@ TEST(PvrtcModulationAvx2, EncodeMatchesBaseline) {
         o.format = Format::pvrtc1_4bpp;
         o.quality = q;
         o.threads = 2;
-        auto encode_with = [&](bool baseline_only) {
-          BaselineOnly only(baseline_only);
-          return encode(img, o);
-        };
-        const auto base = encode_with(true), fast = encode_with(false);
-        ASSERT_TRUE(base.ok());
-        ASSERT_TRUE(fast.ok());
-        EXPECT_TRUE(*base == *fast);
+        expect_same_bytes_as_baseline<BaselineOnly>(img, o);
       }
     }
   }
@@ -351,14 +358,7 @@ TEST(PvrtcModulation2bppAvx2, EncodeMatchesBaseline) {
         o.format = Format::pvrtc1_2bpp;
         o.quality = q;
         o.threads = 2;
-        auto encode_with = [&](bool baseline_only) {
-          Baseline2bppOnly only(baseline_only);
-          return encode(img, o);
-        };
-        const auto base = encode_with(true), fast = encode_with(false);
-        ASSERT_TRUE(base.ok());
-        ASSERT_TRUE(fast.ok());
-        EXPECT_TRUE(*base == *fast);
+        expect_same_bytes_as_baseline<Baseline2bppOnly>(img, o);
       }
     }
   }

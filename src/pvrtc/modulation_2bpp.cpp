@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "pvrtc/modulation_2bpp_avx2.h"
+#include "pvrtc/modulation_2bpp_bits.h"
 #include "pvrtc/simd.h"
 
 namespace tessera::pvrtc::detail {
@@ -383,25 +384,10 @@ std::uint64_t choose_2bpp_impl(EncoderState& s) {
         }
         continue;
       }
-      // Stored values in raster order of the checkerboard, 2 bits each: greedy codes,
-      // texel (0,0) restricted to 0/3 (only its high bit is stored; bit 0 flags the H/V-only
-      // variants), and (4,2) too for H/V only (bit 20, its low bit, tells V from H).
-      std::uint32_t bits = 0;
-      for (int j = 0; j < 4; ++j) {
-        const std::uint8_t* cur = rows[j + 1] + x0;
-        for (int i = 0; i < 4; ++i) {
-          bits |= std::uint32_t(cur[(j & 1) + 2 * i] & 3) << (8 * j + 2 * i);
-        }
-      }
-      const std::uint8_t* row0 = rows[1] + x0;
+      // Stored values: the greedy codes, with (0,0) and for H/V only (4,2) restricted
+      // (modulation_2bpp_bits.h).
+      const std::uint32_t bits = interpolated_bits(rows, x0, variant);
       const std::uint8_t* row2 = rows[3] + x0;
-      bits = (bits & ~3u) | ((row0[0] & 4) ? 2u : 0u);
-      if (variant > 0) {
-        bits = (bits & ~(3u << 20)) | ((row2[4] & 4) ? (2u << 20) : 0u) | 1u;
-        if (variant == 2) bits |= 1u << 20;
-      } else {
-        bits &= ~(1u << 20);
-      }
       s.mode[bi] = 1;
       s.mod[bi] = bits;
       for (int j = 0; j < 4; ++j) {

@@ -6,7 +6,7 @@
 // Compiled with -mavx2 (src/CMakeLists.txt) and called only after the run-time CPU check in
 // modulation_2bpp.cpp. So that no AVX2 code can stand in for baseline code elsewhere, this file
 // includes no header with inline functions or templates of external linkage (avx2_common.h's
-// helpers have internal linkage; not simd.h,
+// and modulation_2bpp_bits.h's helpers have internal linkage; not simd.h,
 // encode_internal.h or the standard containers) and keeps its helpers in an anonymous
 // namespace; it exports the three `mod2_pass*_row_avx2` functions only.
 #include "pvrtc/modulation_2bpp_avx2.h"
@@ -22,6 +22,7 @@
 #include <cstring>
 
 #include "pvrtc/avx2_common.h"
+#include "pvrtc/modulation_2bpp_bits.h"
 
 namespace tessera::pvrtc::detail {
 
@@ -268,23 +269,9 @@ void pass2(const Mod2RowAvx2& r) {
         for (int j = 0; j < 4; ++j) store_half(cab[j], h, r.out[j] + xh);
         continue;
       }
-      // Stored values as modulation_2bpp.cpp's pass 2 (see there).
-      std::uint32_t bits = 0;
-      for (int j = 0; j < 4; ++j) {
-        const std::uint8_t* cur = r.in[j + 1] + xh;
-        for (int i = 0; i < 4; ++i) {
-          bits |= std::uint32_t(cur[(j & 1) + 2 * i] & 3) << (8 * j + 2 * i);
-        }
-      }
-      const std::uint8_t* row0 = r.in[1] + xh;
+      // Stored values as modulation_2bpp.cpp's pass 2 (modulation_2bpp_bits.h).
+      const std::uint32_t bits = interpolated_bits(r.in, xh, variant);
       const std::uint8_t* row2 = r.in[3] + xh;
-      bits = (bits & ~3u) | ((row0[0] & 4) ? 2u : 0u);
-      if (variant > 0) {
-        bits = (bits & ~(3u << 20)) | ((row2[4] & 4) ? (2u << 20) : 0u) | 1u;
-        if (variant == 2) bits |= 1u << 20;
-      } else {
-        bits &= ~(1u << 20);
-      }
       r.mode[bi] = 1;
       r.mod[bi] = bits;
       for (int j = 0; j < 4; ++j) store_half(variant == 0 ? c0[j] : c12[j], h, r.out[j] + xh);
