@@ -1,6 +1,5 @@
 // Image decoding (libspng for PNG, stb_image for JPEG/TGA/BMP) and PNG encoding.
 #include <spng.h>
-#include <stb_image.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -10,6 +9,7 @@
 #include <memory>
 
 #include "io/png_fast.h"
+#include "io/stb_decoder.h"
 #include "tessera/io.h"
 
 namespace tessera {
@@ -140,19 +140,19 @@ Result<ImageRGBA8> decode_stb(std::span<const std::uint8_t> bytes, const std::st
     return Status::error(ErrorCode::too_large, name + ": file too large");
   }
   int w = 0, h = 0, comp = 0;
-  if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp)) {
+  if (!detail::stb_info(bytes.data(), int(bytes.size()), &w, &h, &comp)) {
     return Status::error(ErrorCode::corrupt_data,
-                         name + ": cannot read image header: " + stbi_failure_reason());
+                         name + ": cannot read image header: " + detail::stb_failure_reason());
   }
   if (Status s = check_image_size(w, h, name); !s.ok()) return s;
   if (Status s = check_payload(bytes, format, std::uint64_t(w), std::uint64_t(h), name); !s.ok()) {
     return s;
   }
-  std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> data(
-      stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &comp, 4), &stbi_image_free);
+  std::unique_ptr<unsigned char, decltype(&detail::stb_free)> data(
+      detail::stb_load_rgba(bytes.data(), int(bytes.size()), &w, &h, &comp), &detail::stb_free);
   if (!data) {
     return Status::error(ErrorCode::corrupt_data,
-                         name + ": corrupt or truncated image: " + stbi_failure_reason());
+                         name + ": corrupt or truncated image: " + detail::stb_failure_reason());
   }
   ImageRGBA8 img(w, h);
   std::memcpy(img.pixels.data(), data.get(), img.pixels.size());
