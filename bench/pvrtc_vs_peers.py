@@ -11,7 +11,9 @@ For every power-of-two image (ldr-rgb-10.png, 127x128, is skipped; nothing is re
   * tessera compress --quality fast|normal|high, with -j 1 and with all hardware threads;
   * PVRTexToolCLI -f PVRTC1_4[_RGB],UBN,lRGB (PVRTC1_2 with --bpp 2) -q pvrtcfastest|pvrtcfast|pvrtcnormal|pvrtchigh|
     pvrtcbest (it picks its own thread count: one core for fastest/fast, more for the others).
-Timing is whole-process wall time (PNG read + encode + file write), median of N runs.
+Timing is whole-process wall time (PNG read + encode + file write), median of N runs; the runs
+of an image's configurations are interleaved round-robin, so a burst of load on a shared machine
+spoils one run of several configurations rather than every run of one.
 Quality: tessera's file decoded by `tessera decompress`, PVRTexTool's by PVRTexTool itself
 (-d), both compared against the original with `tessera compare --json`: PSNR over RGB, alpha
 PSNR when the image has alpha, SSIM on Rec.709 grey. The RGB/RGBA variant follows the image
@@ -135,6 +137,8 @@ def main():
             saved = json.load(f)
         for key in ("runs", "images", "max_size", "bpp", "tessera", "bench_binary"):
             setattr(args, key, saved["args"][key])
+        # Results saved before the runs were interleaved say nothing about it.
+        args.interleaved = saved["args"].get("interleaved", False)
         write_report(args, saved["results"], [tuple(i) for i in saved["images"]],
                      saved["nthreads"], saved["gbench"], saved["generated"], saved["command"])
         print(f"wrote {args.out}")
@@ -159,42 +163,62 @@ def main():
             continue
         images.append((name, path, size))
 
+    args.interleaved = True
     results = []  # dicts: image, size, encoder, setting, ms1, msn, psnr_rgb, ssim, psnr_alpha
     with tempfile.TemporaryDirectory(prefix="pvrtc-bench-") as tmp:
         for name, path, (w, h) in images:
             print(f"{name} ({w}x{h})", flush=True)
-            has_alpha = False
+            # An untimed first encode: whether tessera writes alpha (the PVRTexTool format
+            # follows it), and the PNG in the page cache for every timed run alike.
+            probe = os.path.join(tmp, "probe.pvr")
+            run([args.tessera, "-j", "1", "compress", path, "-o", probe, "--quality", "fast",
+                 "--format", f"pvrtc1-{args.bpp}"])
+            has_alpha = json.loads(run([args.tessera, "info", probe, "--json"]))["has_alpha"]
+            fmt_arg = f"PVRTC1_{args.bpp}{'' if has_alpha else '_RGB'},UBN,lRGB"
+            # Every timed configuration of this image, run round-robin: run r of each before
+            # run r + 1 of any, so a burst of load on the shared machine lands on one run of
+            # several configurations (and the median drops it) instead of on every run of one.
+            configs = {}  # key -> (command, output file)
             for q in TESSERA_QUALITIES:
-                out = os.path.join(tmp, f"t-{q}.pvr")
-                base = ["compress", path, "-o", out, "--quality", q, "--format", f"pvrtc1-{args.bpp}"]
-                ms1 = timed([args.tessera, "-j", "1", *base], args.runs)
-                with open(out, "rb") as f:
-                    bytes1 = f.read()
-                msn = timed([args.tessera, "-j", str(nthreads), *base], args.runs)
-                with open(out, "rb") as f:
-                    if f.read() != bytes1:
+                for j in (1, nthreads):
+                    out = os.path.join(tmp, f"t-{q}-j{j}.pvr")
+                    configs[("tessera", q, j)] = (
+                        [args.tessera, "-j", str(j), "compress", path, "-o", out, "--quality", q,
+                         "--format", f"pvrtc1-{args.bpp}"], out)
+            for q in PVR_QUALITIES:
+                out = os.path.join(tmp, f"p-{q}.pvr")
+                configs[("PVRTexTool", q, 0)] = (
+                    [args.pvrtextool, "-i", path, "-o", out, "-f", fmt_arg, "-q", q, "-shh"], out)
+            times = {key: [] for key in configs}
+            for _ in range(args.runs):
+                for key, (cmd, _out) in configs.items():
+                    times[key].append(timed(cmd, 1))
+            ms = {key: statistics.median(t) for key, t in times.items()}
+            for q in TESSERA_QUALITIES:
+                out1, outn = configs[("tessera", q, 1)][1], configs[("tessera", q, nthreads)][1]
+                with open(out1, "rb") as f1, open(outn, "rb") as fn:
+                    if f1.read() != fn.read():
                         raise RuntimeError(f"{name} {q}: output differs between -j 1 and -j {nthreads}")
-                info = json.loads(run([args.tessera, "info", out, "--json"]))
-                has_alpha = info["has_alpha"]
+                if json.loads(run([args.tessera, "info", out1, "--json"]))["has_alpha"] != has_alpha:
+                    raise RuntimeError(f"{name} {q}: the .pvr and the PNG disagree on alpha")
                 dec = os.path.join(tmp, f"t-{q}.png")
-                run([args.tessera, "decompress", out, "-o", dec])
+                run([args.tessera, "decompress", out1, "-o", dec])
                 m = compare(args.tessera, path, dec)
+                ms1, msn = ms[("tessera", q, 1)], ms[("tessera", q, nthreads)]
                 results.append(dict(image=name, size=f"{w}x{h}", encoder="tessera", setting=q,
                                     ms1=ms1, msn=msn, alpha=has_alpha, **m))
                 print(f"  tessera {q:7s} {ms1:9.1f} ms (-j1) {msn:9.1f} ms (-j{nthreads}) "
                       f"PSNR {fmt(m['psnr_rgb'])} SSIM {fmt(m['ssim'], '.4f')}", flush=True)
-            fmt_arg = f"PVRTC1_{args.bpp}{'' if has_alpha else '_RGB'},UBN,lRGB"
             for q in PVR_QUALITIES:
-                out = os.path.join(tmp, f"p-{q}.pvr")
-                ms = timed([args.pvrtextool, "-i", path, "-o", out, "-f", fmt_arg, "-q", q, "-shh"],
-                           args.runs)
+                out = configs[("PVRTexTool", q, 0)][1]
                 dec = os.path.join(tmp, f"p-{q}.png")
                 run([args.pvrtextool, "-i", out, "-o", os.path.join(tmp, "scratch.pvr"), "-f",
                      "r8g8b8a8", "-d", dec, "-shh"])
                 m = compare(args.tessera, path, dec)
+                t = ms[("PVRTexTool", q, 0)]
                 results.append(dict(image=name, size=f"{w}x{h}", encoder="PVRTexTool", setting=q,
-                                    ms1=None, msn=ms, alpha=has_alpha, **m))
-                print(f"  PVRTexTool {q:12s} {ms:9.1f} ms PSNR {fmt(m['psnr_rgb'])} "
+                                    ms1=None, msn=t, alpha=has_alpha, **m))
+                print(f"  PVRTexTool {q:12s} {t:9.1f} ms PSNR {fmt(m['psnr_rgb'])} "
                       f"SSIM {fmt(m['ssim'], '.4f')}", flush=True)
 
     gbench = google_benchmark(args.bench_binary)
@@ -205,7 +229,8 @@ def main():
             json.dump(dict(results=results, images=images, nthreads=nthreads, gbench=gbench,
                            generated=generated, command=command,
                            args={k: getattr(args, k) for k in ("runs", "images", "max_size", "bpp",
-                                                              "tessera", "bench_binary")}),
+                                                              "tessera", "bench_binary",
+                                                              "interleaved")}),
                       f, indent=1)
     write_report(args, results, images, nthreads, gbench, generated, command)
     print(f"wrote {args.out}")
@@ -261,7 +286,9 @@ def write_report(args, results, images, nthreads, gbench, generated, cmd):
         + (f", built from commit {source_commit(args.tessera)}" if source_commit(args.tessera) else "")
         + " (Release)",
         f"- Runs per configuration: {args.runs} (median whole-process wall time: PNG read, "
-        "encode, file write)",
+        "encode, file write)"
+        + ("; an image's configurations run round-robin (run r of each before run r + 1 of any), "
+           "after one untimed encode of the image" if args.interleaved else ""),
         f"- Images: {len(images)} power-of-two PNGs from `{os.path.relpath(args.images, ROOT)}` "
         "(ldr-rgb-10.png, 127x128, is skipped; nothing is resized)"
         + (f", at most {args.max_size} pixels" if args.max_size else ""),
