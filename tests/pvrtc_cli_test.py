@@ -112,6 +112,24 @@ try:
     check("normal not worse than fast", psnr["normal"] >= psnr["fast"] - 0.05, str(psnr))
     check("high not worse than normal", psnr["high"] >= psnr["normal"] - 0.05, str(psnr))
 
+    # --iterations / --exact-search-rounds replace the preset's schedule: fast plus least-squares
+    # sweeps refines the dilation result (not worse than fast alone, since a sweep is kept only
+    # when the exact error drops); both are echoed in --json.
+    sched_pvr = os.path.join(tmp, "rgb-sched.pvr")
+    rc, out, err = run("compress", rgb, "-o", sched_pvr, "--quality", "fast", "--iterations", "2",
+                       "--json")
+    check("compress fast --iterations 2 rc", rc == 0, err)
+    j = json.loads(out) if rc == 0 else {}
+    check("--iterations echoed", j.get("iterations") == 2 and j.get("exact_search_rounds") == 0,
+          out)
+    check("fast + 2 sweeps not worse than fast", (j.get("psnr_rgb") or 0) >= psnr["fast"], out)
+    rc, out, err = run("compress", rgb, "-o", sched_pvr, "--quality", "normal",
+                       "--exact-search-rounds", "2", "--json")
+    check("compress normal --exact-search-rounds 2 rc", rc == 0, err)
+    j = json.loads(out) if rc == 0 else {}
+    check("--exact-search-rounds echoed", j.get("exact_search_rounds") == 2, out)
+    check("normal + 2 search rounds psnr", (j.get("psnr_rgb") or 0) > 30.0, out)
+
     # decompress agrees with compress --json.
     dec = os.path.join(tmp, "rgb-normal.png")
     rc, out, err = run("decompress", os.path.join(tmp, "rgb-normal.pvr"), "-o", dec)
@@ -270,6 +288,11 @@ try:
     expect_error("bad --quality", ["compress", rgb, "-o", out_pvr, "--quality", "best"], 2,
                  no_output=out_pvr)
     expect_error("missing -o", ["compress", rgb], 2)
+    expect_error("--iterations below -1", ["compress", rgb, "-o", out_pvr, "--iterations", "-2"],
+                 2, no_output=out_pvr)
+    expect_error("negative --exact-search-rounds",
+                 ["compress", rgb, "-o", out_pvr, "--exact-search-rounds", "-1"], 2,
+                 no_output=out_pvr)
     expect_error("unknown extension", ["compress", rgb, "-o", os.path.join(err_dir, "x.dds")], 2,
                  no_output=os.path.join(err_dir, "x.dds"))
     expect_error("non-numeric --level", ["decompress", ktx, "-o", out_png, "--level", "abc"], 2,

@@ -34,6 +34,8 @@ struct CompressArgs {
   bool srgb = false;
   bool resize_pot = false;
   bool json = false;
+  int iterations = -1;          // -1: the quality preset's schedule
+  int exact_search_rounds = 0;  // 0: the quality preset's schedule
 };
 
 int run_compress(const CompressArgs& args, const GlobalOptions& global) {
@@ -87,6 +89,8 @@ int run_compress(const CompressArgs& args, const GlobalOptions& global) {
   eo.quality = args.quality == "fast"   ? pvrtc::Quality::fast
                : args.quality == "high" ? pvrtc::Quality::high
                                         : pvrtc::Quality::normal;
+  eo.iterations = args.iterations;
+  eo.exact_search_rounds = args.exact_search_rounds;
   eo.threads = global.threads;
 
   // Level 0 is `image` itself (no copy); the smaller levels come from generate_mipmaps.
@@ -152,6 +156,8 @@ int run_compress(const CompressArgs& args, const GlobalOptions& global) {
       {"resized", !pot},
       {"format", args.format},
       {"quality", args.quality},
+      {"iterations", args.iterations},
+      {"exact_search_rounds", args.exact_search_rounds},
       {"srgb", args.srgb},
       {"has_alpha", tex.has_alpha},
       {"levels", tex.level_count()},
@@ -265,6 +271,20 @@ Command add_compress_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--quality", args->quality,
                   "fast = intensity dilation only; normal/high add refinement")
       ->check(CLI::IsMember({"fast", "normal", "high"}))
+      ->capture_default_str();
+  sub->add_option("--iterations", args->iterations,
+                  "Least-squares refinement sweeps instead of the quality's own (-1 = the "
+                  "quality's: fast 0, normal 3, high 3 at 4 bpp / up to 16 at 2 bpp; with "
+                  "--quality fast, N > 0 refines the dilation result). A value other than -1, "
+                  "or a non-zero --exact-search-rounds, leaves out high's crossover with a "
+                  "second encoding")
+      ->check(CLI::Range(-1, 1000))
+      ->capture_default_str();
+  sub->add_option("--exact-search-rounds", args->exact_search_rounds,
+                  "4 bpp: rounds of the exact endpoint search after the refinement, on blocks "
+                  "above ~4.5 RMS per channel, instead of the quality's own schedule (0 = the "
+                  "quality's)")
+      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   sub->add_flag("--mipmaps", args->mipmaps,
                 "Build and encode the full mip chain (2x2 box, alpha-weighted; in linear light "
