@@ -28,7 +28,7 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchlib import cpu_model  # noqa: E402
+from benchlib import cpu_model, write_report  # noqa: E402
 from pvrtc_vs_peers import is_pow2, png_size, source_commit  # noqa: E402
 
 DEFAULT_SCHEDULES = [
@@ -152,17 +152,7 @@ def main():
             f"{fmt(mean([r['alpha'] for r in rs if r['alpha'] is not None]))} | "
             f"{fmt(mean([r['ssim'] for r in rs]), '.4f')} |")
     lines.append("")
-    notes_marker = "<!-- notes: kept by bench/pvrtc_schedules.py -->"
-    if os.path.isfile(args.out):
-        with open(args.out) as f:
-            old = f.read()
-        if notes_marker in old:
-            lines.append(old[old.index(notes_marker):].rstrip("\n"))
-            lines.append("")
-    tmp_out = args.out + ".tmp"
-    with open(tmp_out, "w") as f:
-        f.write("\n".join(lines))
-    os.replace(tmp_out, args.out)
+    write_report(args.out, lines, "<!-- notes: kept by bench/pvrtc_schedules.py -->")
     print(f"wrote {args.out}")
 
 

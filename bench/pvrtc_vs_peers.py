@@ -35,7 +35,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchlib import cpu_model  # noqa: E402
+from benchlib import cpu_model, write_report as write_report_file  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TESSERA_QUALITIES = ["fast", "normal", "high"]
@@ -413,18 +413,7 @@ def write_report(args, results, images, nthreads, gbench, generated, cmd):
                   "| benchmark | MPixel/s | time per iteration |", "|---|---:|---:|", *gbench]
     lines.append("")
     # Hand-written notes after the marker survive regeneration.
-    notes = ""
-    if os.path.isfile(args.out):
-        with open(args.out) as f:
-            old = f.read()
-        if NOTES_MARKER in old:
-            notes = old[old.index(NOTES_MARKER):]
-    lines.append(notes or NOTES_MARKER + "\n")
-    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
-    tmp = args.out + ".tmp"
-    with open(tmp, "w") as f:
-        f.write("\n".join(lines))
-    os.replace(tmp, args.out)
+    write_report_file(args.out, lines, NOTES_MARKER)
 
 
 if __name__ == "__main__":
