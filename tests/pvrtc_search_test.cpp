@@ -80,6 +80,26 @@ std::vector<std::uint64_t> own_errors(const EncoderState& s) {
 
 }  // namespace
 
+// The encoder hands the error `choose_modulation` returns to the refinement in place of a
+// decode (optimise.cpp, refine.cpp), so it must be exactly `total_error` of the result: 4 bpp
+// with and without mode 1 (punch-through on RGBA), 2 bpp direct and interpolated blocks.
+TEST(PvrtcSearch, ChooseModulationReturnsTheTotalError) {
+  for (Procedural kind : all_procedurals()) {
+    const ImageRGBA8 img = make_procedural(kind, 32, 32);
+    for (Format format : {Format::pvrtc1_4bpp, Format::pvrtc1_2bpp}) {
+      for (Quality q : {Quality::fast, Quality::normal}) {
+        for (bool mode1 : {false, true}) {
+          EncoderState s = state_from(img, encode_or_die(img, q, format), mode1, format);
+          const std::uint64_t returned = choose_modulation(s);
+          EXPECT_EQ(returned, total_error(s))
+              << procedural_name(kind) << (format == Format::pvrtc1_2bpp ? " 2bpp" : " 4bpp")
+              << (q == Quality::fast ? " fast" : " normal") << (mode1 ? " mode1" : "");
+        }
+      }
+    }
+  }
+}
+
 // After the exact search with neighbour moves has converged, no block can lower the exact
 // error of the whole image by taking a neighbour's A, B or both. With mode 1 off every block
 // stays in mode 0, so the search's window error is exactly the block's share of the total.

@@ -265,8 +265,8 @@ void orient_endpoints(const Grid& g, int nch, std::vector<float>& low, std::vect
 }
 
 // Initial endpoints of every block (the dilation start or the principal-axis start, then the
-// homogeneous-block shortcut) and their modulation.
-void start_endpoints(EncoderState& s, bool dilation) {
+// homogeneous-block shortcut) and their modulation; returns the total error (as total_error).
+std::uint64_t start_endpoints(EncoderState& s, bool dilation) {
   const Grid& g = s.g;
   std::vector<float> low, high;
   // Dilation start: only blocks of one intensity can be uniform, and the dilation knows them
@@ -292,7 +292,7 @@ void start_endpoints(EncoderState& s, bool dilation) {
   std::vector<float>().swap(low);
   std::vector<float>().swap(high);
   homogeneous_shortcut(s, dilation ? flat.data() : nullptr);
-  choose_modulation(s);
+  return choose_modulation(s);
 }
 
 }  // namespace
@@ -363,11 +363,11 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   if (cross) alt = s;
   // fast: the paper's intensity dilation; normal / high start the refinement from
   // principal-axis endpoints, which separate equally bright colours (see principal.cpp).
-  start_endpoints(s, options.quality == Quality::fast);
+  const std::uint64_t start_error = start_endpoints(s, options.quality == Quality::fast);
   // normal / high: reseed, least-squares refinement and the exact search (optimise.cpp).
   if (options.quality != Quality::fast || options.iterations > 0 ||
       options.exact_search_rounds > 0) {
-    optimise(s, options.quality, options.iterations, options.exact_search_rounds);
+    optimise(s, options.quality, options.iterations, options.exact_search_rounds, start_error);
   }
   if (cross) {
     start_endpoints(alt, true);

@@ -93,8 +93,9 @@ std::uint64_t total_error(const EncoderState& s);
 
 /// Least-squares refinement of endpoints with modulation fixed, alternating with
 /// `choose_modulation`; keeps the best state. Runs at most `iterations` sweeps and stops early
-/// when a sweep does not improve the error.
-void refine(EncoderState& s, int iterations);
+/// when a sweep does not improve the error. `error` is the state's current total error (what
+/// the `choose_modulation` that made its modulation returned), so no decode is spent on it.
+void refine(EncoderState& s, int iterations, std::uint64_t error);
 
 /// 4 bpp only: exact greedy search over +-1 perturbations of each block's endpoint codes,
 /// keeping moves that lower the exact error of the block's texel window (see polish.cpp);
@@ -124,7 +125,9 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
 /// The passes after the first modulation choice (see optimise.cpp): normal / high, 4 bpp:
 /// reseed; then the least-squares refinement (`iterations` sweeps, -1: the quality's default)
 /// and, for high or `exact_search_rounds` > 0, the exact search (polish).
-void optimise(EncoderState& s, Quality quality, int iterations, int exact_search_rounds);
+/// `error`: the state's current total error, as `choose_modulation` returned it.
+void optimise(EncoderState& s, Quality quality, int iterations, int exact_search_rounds,
+              std::uint64_t error);
 
 /// 2 bpp only: with the endpoints fixed, re-chooses every stored modulation value by the exact
 /// error of its texel and of the interpolated texels that read it, and the interpolation

@@ -32,7 +32,8 @@ int default_iterations(Quality q, Format f) {
 
 }  // namespace
 
-void optimise(EncoderState& s, Quality quality, int iterations, int exact_search_rounds) {
+void optimise(EncoderState& s, Quality quality, int iterations, int exact_search_rounds,
+              std::uint64_t error) {
   const Grid& g = s.g;
   // normal / high, 4 bpp: blocks whose footprint-wide start misses their own texels (thin
   // features, stripes) get endpoints from those texels where the exact error drops (photos:
@@ -45,11 +46,11 @@ void optimise(EncoderState& s, Quality quality, int iterations, int exact_search
     for (int pass = 0; pass < passes; ++pass) {
       if (reseed(s, kReseedMinError, changed, quality == Quality::high ? kHighAlphaWeight : 1) == 0)
         break;
-      choose_modulation(s);
+      error = choose_modulation(s);
     }
   }
   const int sweeps = iterations >= 0 ? iterations : default_iterations(quality, g.format);
-  if (sweeps > 0) refine(s, sweeps);
+  if (sweeps > 0) refine(s, sweeps, error);
   if (exact_search_rounds > 0) {
     polish(s, exact_search_rounds, 4, 3000);
   } else if (quality == Quality::high && g.format == Format::pvrtc1_4bpp) {

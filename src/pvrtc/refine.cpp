@@ -216,9 +216,9 @@ void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by, bool c
 
 }  // namespace
 
-void refine(EncoderState& s, int iterations) {
+void refine(EncoderState& s, int iterations, std::uint64_t error) {
   const Grid& g = s.g;
-  std::uint64_t best_err = total_error(s);
+  std::uint64_t best_err = error;
   std::vector<float> lv(g.blocks() * 8);
   for (int it = 0; it < iterations; ++it) {
     const std::vector<std::uint16_t> save_a = s.ca, save_b = s.cb;
