@@ -112,6 +112,16 @@ try:
     check("normal not worse than fast", psnr["normal"] >= psnr["fast"] - 0.05, str(psnr))
     check("high not worse than normal", psnr["high"] >= psnr["normal"] - 0.05, str(psnr))
 
+    # -j works after the subcommand too (the issue's `compress ... [-j N]`), with the same bytes
+    # as before it and as one thread.
+    j_after = os.path.join(tmp, "rgb-j-after.pvr")
+    rc, out, err = run("compress", rgb, "-o", j_after, "--quality", "normal", "-j", "2")
+    check("compress ... -j 2 rc", rc == 0, err)
+    check("compress ... -j 2 same bytes as -j 1 before the subcommand",
+          rc == 0 and open(j_after, "rb").read() ==
+          open(os.path.join(tmp, "rgb-normal.pvr"), "rb").read())
+    expect_error("compress ... -j -1", ["compress", rgb, "-o", j_after + "x", "-j", "-1"], 2)
+
     # --iterations / --exact-search-rounds replace the preset's schedule: fast plus least-squares
     # sweeps refines the dilation result (not worse than fast alone, since a sweep is kept only
     # when the exact error drops); both are echoed in --json.

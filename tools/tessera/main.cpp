@@ -70,6 +70,10 @@ int main(int argc, char** argv) {
   app.add_option("-j,--threads", global.threads, "Worker threads (0 = all hardware threads)")
       ->check(CLI::Range(0, 1024));
   app.set_version_flag("--version", "tessera 0.1.0");
+  // -j may also follow the subcommand (`tessera compress IN -o OUT -j 4`): options a
+  // subcommand does not know fall through to this parser. Set before the subcommands are
+  // added, which inherit it.
+  app.fallthrough();
 
   // Registering a subcommand builds all of its CLI11 options: for all eight that is about a
   // fifth of the start-up instructions of a short run. When the command line names one, only
@@ -92,6 +96,10 @@ int main(int argc, char** argv) {
   }
   if (commands.empty()) {
     for (const auto& [name, add] : kCommands) commands.push_back(add(app, global));
+  }
+  for (const Command& c : commands) {
+    c.app->footer("Global option, accepted before or after the subcommand: -j,--threads N "
+                  "(worker threads, 0 = all hardware threads; output is the same for any N)");
   }
 
   try {
