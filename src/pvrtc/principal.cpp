@@ -8,84 +8,116 @@
 // on the principal axis of their colours and each half's weighted mean becomes one endpoint;
 // the brighter half is B (high), as in the paper, so neighbouring blocks blend consistently.
 #include <cmath>
+#include <cstdint>
 
 #include "pvrtc/encode_internal.h"
 
 namespace tessera::pvrtc::detail {
 
+namespace {
+
+// One block's endpoints (see the file comment): NCH channels (3, or 4 with alpha) span the
+// covariance; writes 4 floats each to low and high.
+template <int NCH>
+void principal_block(const EncoderState& s, int bx, int by, float* low, float* high) {
+  const Grid& g = s.g;
+  const int bw = g.bw, wm = g.pw - 1, hm = g.ph - 1;
+  // Texel (u, v) of the window (u in 1..2bw-1, v in 1..7) has weight
+  // wy(v) wx(u) = (v < 4 ? v : 8 - v) (u < bw ? u : 2bw - u).
+  const int x0 = bx * bw - bw / 2;
+  auto row_of = [&](int v, int& wy) {
+    wy = v < 4 ? v : 8 - v;
+    const int y = (by * 4 - 2 + v) & hm;
+    return &s.target[std::size_t(y) * std::size_t(g.pw) * 4];
+  };
+  // Weighted first and second moments in integers: exact, so the mean is the same
+  // double as summing in doubles (the sums stay below 2^31: at most 7 x 15 texels
+  // of weight <= 32 times 255^2), and one pass instead of two.
+  std::int32_t wsum_i = 0, sum[4] = {0, 0, 0, 0};
+  std::int32_t m2[4][4] = {};
+  for (int v = 1; v < 8; ++v) {
+    int wy;
+    const std::uint8_t* row = row_of(v, wy);
+    for (int u = 1; u < 2 * bw; ++u) {
+      const std::uint8_t* t = row + std::size_t((x0 + u) & wm) * 4;
+      const std::int32_t wt = wy * (u < bw ? u : 2 * bw - u);
+      wsum_i += wt;
+      std::int32_t wtc[4];
+      for (int c = 0; c < 4; ++c) {
+        wtc[c] = wt * t[c];
+        sum[c] += wtc[c];
+      }
+      for (int a = 0; a < NCH; ++a) {
+        for (int b = a; b < NCH; ++b) m2[a][b] += wtc[a] * t[b];
+      }
+    }
+  }
+  const double wsum = double(wsum_i);
+  double mean[4];
+  for (int c = 0; c < 4; ++c) mean[c] = double(sum[c]) / wsum;
+  double cov[4][4] = {};
+  for (int a = 0; a < NCH; ++a) {
+    for (int b = a; b < NCH; ++b) {
+      cov[a][b] = cov[b][a] = double(m2[a][b]) - double(sum[a]) * double(sum[b]) / wsum;
+    }
+  }
+  // Power iteration for the principal axis.
+  double axis[4] = {0.2126, 0.7152, 0.0722, 0.5};
+  for (int it = 0; it < 8; ++it) {
+    double n[4] = {0, 0, 0, 0}, len = 0;
+    for (int a = 0; a < NCH; ++a) {
+      for (int b = 0; b < NCH; ++b) n[a] += cov[a][b] * axis[b];
+      len += n[a] * n[a];
+    }
+    if (len < 1e-12) break;
+    len = std::sqrt(len);
+    for (int a = 0; a < NCH; ++a) axis[a] = n[a] / len;
+  }
+  // Split by the side of the mean along the axis; the halves' sums are exact integers.
+  std::int32_t half[2][5] = {};  // [p >= 0]: weighted rgba sums, weight sum
+  for (int v = 1; v < 8; ++v) {
+    int wy;
+    const std::uint8_t* row = row_of(v, wy);
+    for (int u = 1; u < 2 * bw; ++u) {
+      const std::uint8_t* t = row + std::size_t((x0 + u) & wm) * 4;
+      const std::int32_t wt = wy * (u < bw ? u : 2 * bw - u);
+      double p = 0;
+      for (int a = 0; a < NCH; ++a) p += (t[a] - mean[a]) * axis[a];
+      std::int32_t* acc = half[p < 0 ? 0 : 1];
+      for (int c = 0; c < 4; ++c) acc[c] += wt * t[c];
+      acc[4] += wt;
+    }
+  }
+  double lo[4], hi[4];
+  for (int c = 0; c < 4; ++c) {
+    lo[c] = half[0][4] > 0 ? double(half[0][c]) / double(half[0][4]) : mean[c];
+    hi[c] = half[1][4] > 0 ? double(half[1][c]) / double(half[1][4]) : mean[c];
+  }
+  const double ylo = 0.2126 * lo[0] + 0.7152 * lo[1] + 0.0722 * lo[2];
+  const double yhi = 0.2126 * hi[0] + 0.7152 * hi[1] + 0.0722 * hi[2];
+  const bool swap = ylo > yhi;
+  for (int c = 0; c < 4; ++c) {
+    low[c] = float(swap ? hi[c] : lo[c]);
+    high[c] = float(swap ? lo[c] : hi[c]);
+  }
+}
+
+}  // namespace
+
 void principal_endpoints(const EncoderState& s, std::vector<float>& low, std::vector<float>& high) {
   const Grid& g = s.g;
   low.assign(g.blocks() * 4, 0.0f);
   high.assign(g.blocks() * 4, 0.0f);
-  const int bw = g.bw, wm = g.pw - 1, hm = g.ph - 1;
-  const int nch = s.alpha_mode ? 4 : 3;
   parallel_for(
       0, g.nby, 4,
       [&](std::int64_t by0, std::int64_t by1) {
         for (int by = int(by0); by < int(by1); ++by) {
           for (int bx = 0; bx < g.nbx; ++bx) {
-            double mean[4] = {0, 0, 0, 0}, wsum = 0;
-            double cov[4][4] = {};
-            auto texel = [&](int u, int v, double& wt) {
-              const int y = (by * 4 - 2 + v) & hm, x = (bx * bw - bw / 2 + u) & wm;
-              wt = double(v < 4 ? v : 8 - v) * double(u < bw ? u : 2 * bw - u);
-              return &s.target[(std::size_t(y) * std::size_t(g.pw) + std::size_t(x)) * 4];
-            };
-            for (int v = 1; v < 8; ++v) {
-              for (int u = 1; u < 2 * bw; ++u) {
-                double wt;
-                const std::uint8_t* t = texel(u, v, wt);
-                wsum += wt;
-                for (int c = 0; c < 4; ++c) mean[c] += wt * t[c];
-              }
-            }
-            for (double& m : mean) m /= wsum;
-            for (int v = 1; v < 8; ++v) {
-              for (int u = 1; u < 2 * bw; ++u) {
-                double wt;
-                const std::uint8_t* t = texel(u, v, wt);
-                double d[4];
-                for (int c = 0; c < 4; ++c) d[c] = t[c] - mean[c];
-                for (int a = 0; a < nch; ++a) {
-                  for (int b = 0; b < nch; ++b) cov[a][b] += wt * d[a] * d[b];
-                }
-              }
-            }
-            // Power iteration for the principal axis.
-            double axis[4] = {0.2126, 0.7152, 0.0722, 0.5};
-            for (int it = 0; it < 8; ++it) {
-              double n[4] = {0, 0, 0, 0}, len = 0;
-              for (int a = 0; a < nch; ++a) {
-                for (int b = 0; b < nch; ++b) n[a] += cov[a][b] * axis[b];
-                len += n[a] * n[a];
-              }
-              if (len < 1e-12) break;
-              len = std::sqrt(len);
-              for (int a = 0; a < nch; ++a) axis[a] = n[a] / len;
-            }
-            double lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0}, wlo = 0, whi = 0;
-            for (int v = 1; v < 8; ++v) {
-              for (int u = 1; u < 2 * bw; ++u) {
-                double wt;
-                const std::uint8_t* t = texel(u, v, wt);
-                double p = 0;
-                for (int a = 0; a < nch; ++a) p += (t[a] - mean[a]) * axis[a];
-                double* acc = p < 0 ? lo : hi;
-                (p < 0 ? wlo : whi) += wt;
-                for (int c = 0; c < 4; ++c) acc[c] += wt * t[c];
-              }
-            }
-            for (int c = 0; c < 4; ++c) {
-              lo[c] = wlo > 0 ? lo[c] / wlo : mean[c];
-              hi[c] = whi > 0 ? hi[c] / whi : mean[c];
-            }
-            const double ylo = 0.2126 * lo[0] + 0.7152 * lo[1] + 0.0722 * lo[2];
-            const double yhi = 0.2126 * hi[0] + 0.7152 * hi[1] + 0.0722 * hi[2];
-            const bool swap = ylo > yhi;
-            const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-            for (int c = 0; c < 4; ++c) {
-              low[bi * 4 + std::size_t(c)] = float(swap ? hi[c] : lo[c]);
-              high[bi * 4 + std::size_t(c)] = float(swap ? lo[c] : hi[c]);
+            const std::size_t bi = (std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx)) * 4;
+            if (s.alpha_mode) {
+              principal_block<4>(s, bx, by, &low[bi], &high[bi]);
+            } else {
+              principal_block<3>(s, bx, by, &low[bi], &high[bi]);
             }
           }
         }

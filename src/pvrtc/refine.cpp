@@ -71,11 +71,68 @@ struct Sums {
   double ra = 0, rb = 0;
 };
 
-void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by, bool continuous) {
+// Per effective-modulation byte (weight 0..8 | kPunchFlag): the blend weight of B, the bias of
+// the decoder's truncations (see kTruncBias, kModBias) and 1 where the texel's alpha counts
+// (not punched through).
+struct ModulationTables {
+  float fb[256], bias[256], alpha[256];
+};
+constexpr ModulationTables make_modulation_tables() {
+  ModulationTables t{};
+  for (int me = 0; me < 256; ++me) {
+    t.fb[me] = float(me & 0x0f) * 0.125f;
+    t.bias[me] = float(kTruncBias) + ((me & 0x0f) % 8 != 0 ? float(kModBias) : 0.0f);
+    t.alpha[me] = (me & kPunchFlag) ? 0.0f : 1.0f;
+  }
+  return t;
+}
+constexpr ModulationTables kModTables = make_modulation_tables();
+
+// Weight of a block in texel (u, v) of its window (the 2bw x 8 texels around it, u and v
+// from the window's top-left), over the bilinear total 4 bw: [bw == 8][v][u].
+struct OwnWeights {
+  float w[2][8][16];
+};
+constexpr OwnWeights make_own_weights() {
+  OwnWeights t{};
+  for (int wide = 0; wide < 2; ++wide) {
+    const int bw = wide ? 8 : 4;
+    for (int v = 0; v < 8; ++v) {
+      const int dy = v & 3, own_y = v < 4 ? dy : 4 - dy;
+      for (int u = 0; u < 2 * bw; ++u) {
+        const int dx = u % bw, own_x = u < bw ? dx : bw - dx;
+        t.w[wide][v][u] = float(own_x * own_y) / float(4 * bw);
+      }
+    }
+  }
+  return t;
+}
+constexpr OwnWeights kOwnWeights = make_own_weights();
+
+// The sums of one block's least-squares system over its window, with the other three blocks
+// of every texel fixed: the residual of texel t is target + bias - (fa OA + fb OB), where OA
+// and OB are the other blocks' bilinear share of A and B, and the unknowns' coefficients are
+// ca = w fa, cb = w fb (w: the block's own bilinear weight). Four texels of a window row go
+// through the SIMD wrapper's float lanes side by side (lane i: the same operations in the same
+// order on every backend), the lanes summed in a fixed order at the end.
+struct WindowSums {
+  float aa = 0, ab = 0, bb = 0;  // RGB texels (all)
+  float ra[4] = {}, rb[4] = {};  // [3]: alpha, over the texels not punched through
+  float alpha_aa = 0, alpha_ab = 0, alpha_bb = 0;
+};
+
+float lane_sum(simd::vf4 a) {
+  alignas(16) float l[4];
+  simd::storef4(a, l);
+  return (l[0] + l[1]) + (l[2] + l[3]);
+}
+
+void window_sums(const EncoderState& s, const std::vector<float>& lv, int bx, int by,
+                 WindowSums& out) {
+  using simd::vf4;
   const Grid& g = s.g;
-  const int bw = g.bw;
-  const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-  const std::vector<std::uint8_t>& m_eff = s.scratch_m;
+  const int bw = g.bw, width = 2 * bw, groups = width / 4;
+  const int channels = s.alpha_mode ? 4 : 3;
   // Levels of the 3x3 block neighbourhood (wrapping); [1][1] is this block.
   const float* nb[3][3];
   for (int dy = 0; dy < 3; ++dy) {
@@ -85,75 +142,138 @@ void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by, bool c
       nb[dy][dx] = &lv[(std::size_t(yb) * std::size_t(g.nbx) + std::size_t(xb)) * 8];
     }
   }
-  // Texel (u, v) of the window lies between blocks (u >= bw) and (u >= bw) + 1 of the
-  // neighbourhood horizontally (weight of the right one u % bw), likewise vertically.
-  // The four channels go through the SIMD wrapper's float lanes side by side (lane c: the
-  // same operations, in the same order, as a scalar loop over c: the same sums; normal
-  // 1024^2: solve_block 2.x faster).
-  float rgb_aa = 0, rgb_ab = 0, rgb_bb = 0;
-  simd::vf4 ra_v, rb_v;
-  Sums alpha;
-  const float inv_total = 1.0f / float(4 * bw);
-  for (int v = 1; v < 8; ++v) {
-    const int y = (by * 4 - 2 + v) & (g.ph - 1);
-    const int top = v >= 4 ? 1 : 0, dy = v & 3;
-    const int own_y = top == 0 ? dy : 4 - dy;
-    for (int u = 1; u < 2 * bw; ++u) {
-      const int x = (bx * bw - bw / 2 + u) & (g.pw - 1);
-      const int left = u >= bw ? 1 : 0, dx = u % bw;
-      const int own_x = left == 0 ? dx : bw - dx;
-      const std::size_t ti = std::size_t(y) * std::size_t(g.pw) + std::size_t(x);
-      const std::uint8_t me = m_eff[ti];
-      const float fb = float(me & 0x0f) * 0.125f, fa = 1.0f - fb;
-      const float wts[2][2] = {{float((bw - dx) * (4 - dy)), float(dx * (4 - dy))},
-                               {float((bw - dx) * dy), float(dx * dy)}};
-      const simd::vf4 fa_v(fa), fb_v(fb);
-      simd::vf4 other_v;
-      for (int cy = 0; cy < 2; ++cy) {
-        for (int cx = 0; cx < 2; ++cx) {
-          if (top + cy == 1 && left + cx == 1) continue;  // this block
-          const float* l = nb[top + cy][left + cx];
-          const simd::vf4 wt(wts[cy][cx] * inv_total);
-          other_v = other_v + wt * (fa_v * simd::loadf4(l) + fb_v * simd::loadf4(l + 4));
+  // Texel (u, v) of the window lies between neighbourhood columns (u >= bw) and (u >= bw) + 1
+  // (weights bw - u % bw and u % bw) and rows (v >= 4) and (v >= 4) + 1 (4 - v % 4, v % 4).
+  // h[r][k][u]: the horizontal interpolation in neighbourhood row r of level k (A rgba, B rgba)
+  // at column u, leaving out this block.
+  alignas(16) float h[3][8][16];
+  for (int q = 0; q < groups; ++q) {
+    const int left = 4 * q >= bw ? 1 : 0;
+    alignas(16) float wl[4], wr[4];
+    for (int i = 0; i < 4; ++i) {
+      const int dx = (4 * q + i) % bw;
+      wl[i] = float(bw - dx);
+      wr[i] = float(dx);
+    }
+    const vf4 wl_v = simd::loadf4(wl), wr_v = simd::loadf4(wr);
+    for (int r = 0; r < 3; ++r) {
+      const float* lo = r == 1 && left == 1 ? nullptr : nb[r][left];
+      const float* hi = r == 1 && left == 0 ? nullptr : nb[r][left + 1];
+      for (int k = 0; k < 8; ++k) {
+        vf4 acc;
+        if (lo != nullptr && hi != nullptr) {
+          acc = wl_v * vf4(lo[k]) + wr_v * vf4(hi[k]);
+        } else if (lo != nullptr) {
+          acc = wl_v * vf4(lo[k]);
+        } else {
+          acc = wr_v * vf4(hi[k]);
         }
-      }
-      const float wj = float(own_x * own_y) * inv_total;
-      const std::uint8_t* t = &s.target[ti * 4];
-      const float ca = wj * fa, cbv = wj * fb;
-      // The decoder truncates twice (8-bit conversion, modulation): aim above the target by
-      // the mean truncation loss so the linear model is unbiased.
-      const float bias = float(kTruncBias) + ((me & 0x0f) % 8 != 0 ? float(kModBias) : 0.0f);
-      rgb_aa += ca * ca;
-      rgb_ab += ca * cbv;
-      rgb_bb += cbv * cbv;
-      // Lane 3 (alpha) of the residual is computed but not used.
-      const simd::vf4 r_v = (simd::to_float(simd::vint4(t[0], t[1], t[2], t[3])) +
-                             simd::vf4(bias)) - other_v;
-      ra_v = ra_v + simd::vf4(ca) * r_v;
-      rb_v = rb_v + simd::vf4(cbv) * r_v;
-      if (s.alpha_mode && !(me & kPunchFlag)) {
-        alignas(16) float other[4];
-        simd::storef4(other_v, other);
-        const double r = double(t[3]) - other[3];
-        alpha.aa += ca * ca;
-        alpha.ab += ca * cbv;
-        alpha.bb += cbv * cbv;
-        alpha.ra += ca * r;
-        alpha.rb += cbv * r;
+        simd::storef4(acc, &h[r][k][4 * q]);
       }
     }
   }
-  alignas(16) float ra[4], rb[4];
-  simd::storef4(ra_v, ra);
-  simd::storef4(rb_v, rb);
-  Sums rgb[3];
-  for (int c = 0; c < 3; ++c) {
-    rgb[c].aa = rgb_aa;
-    rgb[c].ab = rgb_ab;
-    rgb[c].bb = rgb_bb;
-    rgb[c].ra = ra[c];
-    rgb[c].rb = rb[c];
+  const std::vector<std::uint8_t>& m_eff = s.scratch_m;
+  const float inv_total = 1.0f / float(4 * bw);
+  const auto& own = kOwnWeights.w[bw == 8 ? 1 : 0];
+  vf4 aa, ab, bb, ra[4], rb[4], alpha_aa, alpha_ab, alpha_bb;
+  alignas(16) std::uint8_t tex_wrap[16 * 4];
+  std::uint8_t me_wrap[16];
+  const int x0 = bx * bw - bw / 2;
+  const bool wraps = x0 < 0 || x0 + width > g.pw;
+  // Row v = 0 is left out: the block's own weight is 0 there (likewise column 0, whose lanes
+  // add exact zeros).
+  for (int v = 1; v < 8; ++v) {
+    const int y = (by * 4 - 2 + v) & (g.ph - 1);
+    const int top = v >= 4 ? 1 : 0, dy = v & 3;
+    const vf4 wy0(float(4 - dy) * inv_total), wy1(float(dy) * inv_total);
+    const std::size_t row = std::size_t(y) * std::size_t(g.pw);
+    const std::uint8_t* tex = &s.target[(row + std::size_t(x0 < 0 ? 0 : x0)) * 4];
+    const std::uint8_t* me = &m_eff[row + std::size_t(x0 < 0 ? 0 : x0)];
+    if (wraps) {
+      for (int u = 0; u < width; ++u) {
+        const std::size_t x = std::size_t((x0 + u) & (g.pw - 1));
+        for (int c = 0; c < 4; ++c) tex_wrap[u * 4 + c] = s.target[(row + x) * 4 + std::size_t(c)];
+        me_wrap[u] = m_eff[row + x];
+      }
+      tex = tex_wrap;
+      me = me_wrap;
+    }
+    for (int q = 0; q < groups; ++q) {
+      alignas(16) float fb_l[4], bias_l[4], alpha_l[4];
+      for (int i = 0; i < 4; ++i) {
+        const std::uint8_t m = me[4 * q + i];
+        fb_l[i] = kModTables.fb[m];
+        bias_l[i] = kModTables.bias[m];
+        alpha_l[i] = kModTables.alpha[m];
+      }
+      const vf4 fb = simd::loadf4(fb_l), fa = vf4(1.0f) - fb;
+      const vf4 wj = simd::loadf4(&own[v][4 * q]);
+      const vf4 ca = wj * fa, cb = wj * fb;
+      aa = aa + ca * ca;
+      ab = ab + ca * cb;
+      bb = bb + cb * cb;
+      const simd::vint4 t = simd::load_texels4(tex + 16 * q);
+      const vf4 bias = simd::loadf4(bias_l);
+      for (int c = 0; c < channels; ++c) {
+        const simd::vint4 tc_i =
+            c == 0   ? t & simd::vint4(0xff)
+            : c == 1 ? simd::srl<8>(t) & simd::vint4(0xff)
+            : c == 2 ? simd::srl<16>(t) & simd::vint4(0xff)
+                     : simd::srl<24>(t);
+        const vf4 oa = wy0 * simd::loadf4(&h[top][c][4 * q]) +
+                       wy1 * simd::loadf4(&h[top + 1][c][4 * q]);
+        const vf4 ob = wy0 * simd::loadf4(&h[top][4 + c][4 * q]) +
+                       wy1 * simd::loadf4(&h[top + 1][4 + c][4 * q]);
+        const vf4 other = fa * oa + fb * ob;
+        if (c < 3) {
+          // The decoder truncates twice (8-bit conversion, modulation): aim above the target
+          // by the mean truncation loss so the linear model is unbiased.
+          const vf4 res = (simd::to_float(tc_i) + bias) - other;
+          ra[c] = ra[c] + ca * res;
+          rb[c] = rb[c] + cb * res;
+        } else {
+          const vf4 am = simd::loadf4(alpha_l);
+          const vf4 ca_a = ca * am, cb_a = cb * am;
+          const vf4 res = simd::to_float(tc_i) - other;
+          alpha_aa = alpha_aa + ca_a * ca_a;
+          alpha_ab = alpha_ab + ca_a * cb_a;
+          alpha_bb = alpha_bb + cb_a * cb_a;
+          ra[3] = ra[3] + ca_a * res;
+          rb[3] = rb[3] + cb_a * res;
+        }
+      }
+    }
   }
+  out.aa = lane_sum(aa);
+  out.ab = lane_sum(ab);
+  out.bb = lane_sum(bb);
+  for (int c = 0; c < 4; ++c) {
+    out.ra[c] = lane_sum(ra[c]);
+    out.rb[c] = lane_sum(rb[c]);
+  }
+  out.alpha_aa = lane_sum(alpha_aa);
+  out.alpha_ab = lane_sum(alpha_ab);
+  out.alpha_bb = lane_sum(alpha_bb);
+}
+
+void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by, bool continuous) {
+  const Grid& g = s.g;
+  const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+  WindowSums ws;
+  window_sums(s, lv, bx, by, ws);
+  Sums rgb[3], alpha;
+  for (int c = 0; c < 3; ++c) {
+    rgb[c].aa = ws.aa;
+    rgb[c].ab = ws.ab;
+    rgb[c].bb = ws.bb;
+    rgb[c].ra = ws.ra[c];
+    rgb[c].rb = ws.rb[c];
+  }
+  alpha.aa = ws.alpha_aa;
+  alpha.ab = ws.alpha_ab;
+  alpha.bb = ws.alpha_bb;
+  alpha.ra = ws.ra[3];
+  alpha.rb = ws.rb[3];
   float* cur = &lv[j * 8];
   EndpointCodes ea = unpack_endpoint(false, s.ca[j]);
   EndpointCodes eb = unpack_endpoint(true, s.cb[j]);
