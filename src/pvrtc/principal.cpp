@@ -25,33 +25,33 @@ void principal_block(const EncoderState& s, int bx, int by, float* low, float* h
   // Texel (u, v) of the window (u in 1..2bw-1, v in 1..7) has weight
   // wy(v) wx(u) = (v < 4 ? v : 8 - v) (u < bw ? u : 2bw - u).
   const int x0 = bx * bw - bw / 2;
-  auto row_of = [&](int v, int& wy) {
-    wy = v < 4 ? v : 8 - v;
-    const int y = (by * 4 - 2 + v) & hm;
-    return &s.target[std::size_t(y) * std::size_t(g.pw) * 4];
+  // Calls fn(texel, weight) for every texel of the window, in the same order each time.
+  auto for_each_texel = [&](auto&& fn) {
+    for (int v = 1; v < 8; ++v) {
+      const int wy = v < 4 ? v : 8 - v;
+      const std::uint8_t* row =
+          &s.target[std::size_t((by * 4 - 2 + v) & hm) * std::size_t(g.pw) * 4];
+      for (int u = 1; u < 2 * bw; ++u) {
+        fn(row + std::size_t((x0 + u) & wm) * 4, std::int32_t(wy * (u < bw ? u : 2 * bw - u)));
+      }
+    }
   };
   // Weighted first and second moments in integers: exact, so the mean is the same
   // double as summing in doubles (the sums stay below 2^31: at most 7 x 15 texels
   // of weight <= 32 times 255^2), and one pass instead of two.
   std::int32_t wsum_i = 0, sum[4] = {0, 0, 0, 0};
   std::int32_t m2[4][4] = {};
-  for (int v = 1; v < 8; ++v) {
-    int wy;
-    const std::uint8_t* row = row_of(v, wy);
-    for (int u = 1; u < 2 * bw; ++u) {
-      const std::uint8_t* t = row + std::size_t((x0 + u) & wm) * 4;
-      const std::int32_t wt = wy * (u < bw ? u : 2 * bw - u);
-      wsum_i += wt;
-      std::int32_t wtc[4];
-      for (int c = 0; c < 4; ++c) {
-        wtc[c] = wt * t[c];
-        sum[c] += wtc[c];
-      }
-      for (int a = 0; a < NCH; ++a) {
-        for (int b = a; b < NCH; ++b) m2[a][b] += wtc[a] * t[b];
-      }
+  for_each_texel([&](const std::uint8_t* t, std::int32_t wt) {
+    wsum_i += wt;
+    std::int32_t wtc[4];
+    for (int c = 0; c < 4; ++c) {
+      wtc[c] = wt * t[c];
+      sum[c] += wtc[c];
     }
-  }
+    for (int a = 0; a < NCH; ++a) {
+      for (int b = a; b < NCH; ++b) m2[a][b] += wtc[a] * t[b];
+    }
+  });
   const double wsum = double(wsum_i);
   double mean[4];
   for (int c = 0; c < 4; ++c) mean[c] = double(sum[c]) / wsum;
@@ -75,19 +75,13 @@ void principal_block(const EncoderState& s, int bx, int by, float* low, float* h
   }
   // Split by the side of the mean along the axis; the halves' sums are exact integers.
   std::int32_t half[2][5] = {};  // [p >= 0]: weighted rgba sums, weight sum
-  for (int v = 1; v < 8; ++v) {
-    int wy;
-    const std::uint8_t* row = row_of(v, wy);
-    for (int u = 1; u < 2 * bw; ++u) {
-      const std::uint8_t* t = row + std::size_t((x0 + u) & wm) * 4;
-      const std::int32_t wt = wy * (u < bw ? u : 2 * bw - u);
-      double p = 0;
-      for (int a = 0; a < NCH; ++a) p += (t[a] - mean[a]) * axis[a];
-      std::int32_t* acc = half[p < 0 ? 0 : 1];
-      for (int c = 0; c < 4; ++c) acc[c] += wt * t[c];
-      acc[4] += wt;
-    }
-  }
+  for_each_texel([&](const std::uint8_t* t, std::int32_t wt) {
+    double p = 0;
+    for (int a = 0; a < NCH; ++a) p += (t[a] - mean[a]) * axis[a];
+    std::int32_t* acc = half[p < 0 ? 0 : 1];
+    for (int c = 0; c < 4; ++c) acc[c] += wt * t[c];
+    acc[4] += wt;
+  });
   double lo[4], hi[4];
   for (int c = 0; c < 4; ++c) {
     lo[c] = half[0][4] > 0 ? double(half[0][c]) / double(half[0][4]) : mean[c];
