@@ -2,6 +2,7 @@
 // refinement). One `EncoderState` is owned by one `encode` call.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -66,6 +67,25 @@ void for_each_block_2x2(const Grid& g, int threads, Fn&& fn) {
         },
         threads);
   }
+}
+
+/// Eight steps of power iteration for the principal axis of the `nch` x `nch` covariance `cov`,
+/// from the start in `axis` (unit length on return). Stops early and returns false when the
+/// next vector's squared length falls below `eps` (no dominant direction: `axis` keeps the last
+/// good value); true otherwise. Float for the block-local searches, double for the footprint.
+template <class T>
+bool principal_axis(const T (&cov)[4][4], int nch, T (&axis)[4], T eps) {
+  for (int it = 0; it < 8; ++it) {
+    T n[4] = {0, 0, 0, 0}, len = 0;
+    for (int a = 0; a < nch; ++a) {
+      for (int b = 0; b < nch; ++b) n[a] += cov[a][b] * axis[b];
+      len += n[a] * n[a];
+    }
+    if (len < eps) return false;
+    len = std::sqrt(len);
+    for (int a = 0; a < nch; ++a) axis[a] = n[a] / len;
+  }
+  return true;
 }
 
 /// Quantises a float RGBA endpoint (8-bit scale) to a packed endpoint field, choosing opaque or

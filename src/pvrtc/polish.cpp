@@ -150,16 +150,7 @@ int reseed_candidates(const EncoderState& s, int bx, int by, std::uint16_t out[8
     }
   }
   float axis[4] = {0.2126f, 0.7152f, 0.0722f, 0.5f};
-  for (int it = 0; it < 8; ++it) {
-    float n[4] = {0, 0, 0, 0}, len = 0;
-    for (int a = 0; a < nch; ++a) {
-      for (int b = 0; b < nch; ++b) n[a] += cov[a][b] * axis[b];
-      len += n[a] * n[a];
-    }
-    if (len < 1e-6f) return 0;
-    len = std::sqrt(len);
-    for (int a = 0; a < nch; ++a) axis[a] = n[a] / len;
-  }
+  if (!principal_axis(cov, nch, axis, 1e-6f)) return 0;
   float lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0}, nlo = 0, nhi = 0;
   float pmin = 1e30f, pmax = -1e30f;
   int imin = 0, imax = 0;

@@ -7,7 +7,6 @@
 // colours reach, tent-weighted, wrapping): the texels are split by the sign of their projection
 // on the principal axis of their colours and each half's weighted mean becomes one endpoint;
 // the brighter half is B (high), as in the paper, so neighbouring blocks blend consistently.
-#include <cmath>
 #include <cstdint>
 
 #include "pvrtc/encode_internal.h"
@@ -63,16 +62,7 @@ void principal_block(const EncoderState& s, int bx, int by, float* low, float* h
   }
   // Power iteration for the principal axis.
   double axis[4] = {0.2126, 0.7152, 0.0722, 0.5};
-  for (int it = 0; it < 8; ++it) {
-    double n[4] = {0, 0, 0, 0}, len = 0;
-    for (int a = 0; a < NCH; ++a) {
-      for (int b = 0; b < NCH; ++b) n[a] += cov[a][b] * axis[b];
-      len += n[a] * n[a];
-    }
-    if (len < 1e-12) break;
-    len = std::sqrt(len);
-    for (int a = 0; a < NCH; ++a) axis[a] = n[a] / len;
-  }
+  principal_axis(cov, NCH, axis, 1e-12);  // degenerate: the last good axis stays
   // Split by the side of the mean along the axis; the halves' sums are exact integers.
   std::int32_t half[2][5] = {};  // [p >= 0]: weighted rgba sums, weight sum
   for_each_texel([&](const std::uint8_t* t, std::int32_t wt) {
