@@ -215,55 +215,6 @@ void homogeneous_shortcut(EncoderState& s, const std::uint8_t* flat) {
       s.threads);
 }
 
-// Consistent endpoint orientation. Neighbouring blocks blend their A images and their B images
-// separately, so a texel between two blocks can only reach a colour both blocks store on the
-// same side. The principal-axis start orders each pair by luma, which is arbitrary when the two
-// colours are about equally bright (hue edges, the wrap-around seam): there a block is swapped
-// when that brings its pair closer to those of its four (wrapping) neighbours, in a few serial
-// raster passes. Deterministic and cheap (a few flops a block). Image 03 of the photo set
-// (wrap seam): +0.3 dB high; metalrough 1024^2: +0.22 dB.
-void orient_endpoints(const Grid& g, int nch, std::vector<float>& low, std::vector<float>& high) {
-  // A pair counts as ambiguous when its luma difference is under 0.3 of its colour distance.
-  constexpr double kAmbiguous = 0.3;
-  constexpr int kPasses = 4;  // Gauss-Seidel passes over all four (wrapping) neighbours
-  auto d2 = [&](const float* p, const float* q) {
-    double d = 0;
-    for (int c = 0; c < nch; ++c) d += double(p[c] - q[c]) * double(p[c] - q[c]);
-    return d;
-  };
-  for (int pass = 0; pass < kPasses; ++pass) {
-    for (int by = 0; by < g.nby; ++by) {
-      for (int bx = 0; bx < g.nbx; ++bx) {
-        const std::size_t i = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-        float* lo = &low[i * 4];
-        float* hi = &high[i * 4];
-        const double dy =
-            0.2126 * (hi[0] - lo[0]) + 0.7152 * (hi[1] - lo[1]) + 0.0722 * (hi[2] - lo[2]);
-        const double span2 = d2(lo, hi);
-        if (dy * dy >= kAmbiguous * kAmbiguous * span2) continue;
-        std::size_t nbrs[4];
-        int n = 0;
-        const std::size_t row = std::size_t(by) * std::size_t(g.nbx);
-        nbrs[n++] = row + std::size_t((bx + g.nbx - 1) & (g.nbx - 1));
-        nbrs[n++] = row + std::size_t((bx + 1) & (g.nbx - 1));
-        nbrs[n++] =
-            std::size_t((by + g.nby - 1) & (g.nby - 1)) * std::size_t(g.nbx) + std::size_t(bx);
-        nbrs[n++] = std::size_t((by + 1) & (g.nby - 1)) * std::size_t(g.nbx) + std::size_t(bx);
-        double keep = 0, swap = 0;
-        for (int k = 0; k < n; ++k) {
-          const float* nl = &low[nbrs[k] * 4];
-          const float* nh = &high[nbrs[k] * 4];
-          keep += d2(lo, nl) + d2(hi, nh);
-          swap += d2(hi, nl) + d2(lo, nh);
-        }
-        if (swap < keep) {
-          for (int c = 0; c < 4; ++c) std::swap(lo[c], hi[c]);
-        }
-      }
-    }
-  }
-}
-
 // Initial endpoints of every block (the dilation start or the principal-axis start, then the
 // homogeneous-block shortcut) and their modulation; returns the total error (as total_error).
 std::uint64_t start_endpoints(EncoderState& s, bool dilation) {

@@ -103,6 +103,11 @@ void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vec
 /// output layout as `dilation_endpoints`.
 void principal_endpoints(const EncoderState& s, std::vector<float>& low, std::vector<float>& high);
 
+/// Swaps the endpoints of blocks whose pair is about equally bright (luma difference under 0.3
+/// of the colour distance) so that neighbouring blocks store their colours on the same side (see
+/// principal.cpp); `nch` channels (3, or 4 with alpha) count in the distances.
+void orient_endpoints(const Grid& g, int nch, std::vector<float>& low, std::vector<float>& high);
+
 /// Brute-force modulation for the current endpoints (exact decoder arithmetic); chooses the
 /// per-block mode (punch-through for 4 bpp, direct vs interpolated for 2 bpp).
 /// Returns the total error of the result (as `total_error`).
