@@ -201,17 +201,18 @@ TEST_P(PvrtcRoundTrip, PsnrAboveThresholdAndMonotoneInQuality) {
 
 INSTANTIATE_TEST_SUITE_P(
     Procedural, PvrtcRoundTrip,
-    // Thresholds: values measured at 128x128 when this test was written, minus 0.1 dB.
+    // Thresholds: values measured at 128x128 when this test was written, minus 0.1 dB (2 bpp
+    // high: re-measured with the 2 bpp endpoint search, polish_2bpp.cpp).
     ::testing::Values(QualityCase{Procedural::gradient, Format::pvrtc1_4bpp, {30.70, 41.51, 41.54}},
                       QualityCase{Procedural::bricks, Format::pvrtc1_4bpp, {21.69, 29.50, 29.99}},
                       QualityCase{Procedural::noise, Format::pvrtc1_4bpp, {36.80, 41.15, 41.32}},
                       QualityCase{Procedural::foliage, Format::pvrtc1_4bpp, {29.84, 32.84, 32.87}},
                       QualityCase{Procedural::text, Format::pvrtc1_4bpp, {16.80, 42.04, 43.05}},
-                      QualityCase{Procedural::gradient, Format::pvrtc1_2bpp, {28.64, 39.71, 39.85}},
-                      QualityCase{Procedural::bricks, Format::pvrtc1_2bpp, {20.95, 27.01, 27.22}},
-                      QualityCase{Procedural::noise, Format::pvrtc1_2bpp, {34.55, 37.66, 37.87}},
-                      QualityCase{Procedural::foliage, Format::pvrtc1_2bpp, {29.23, 31.03, 31.03}},
-                      QualityCase{Procedural::text, Format::pvrtc1_2bpp, {16.36, 42.80, 42.89}}));
+                      QualityCase{Procedural::gradient, Format::pvrtc1_2bpp, {28.64, 39.71, 40.33}},
+                      QualityCase{Procedural::bricks, Format::pvrtc1_2bpp, {20.95, 27.01, 27.76}},
+                      QualityCase{Procedural::noise, Format::pvrtc1_2bpp, {34.55, 37.66, 38.67}},
+                      QualityCase{Procedural::foliage, Format::pvrtc1_2bpp, {29.23, 31.03, 31.09}},
+                      QualityCase{Procedural::text, Format::pvrtc1_2bpp, {16.36, 42.80, 43.18}}));
 
 TEST(PvrtcEncode, IdenticalForAnyThreadCount) {
   const ImageRGBA8 img = make_procedural(Procedural::foliage, 256, 128);
@@ -356,7 +357,7 @@ TEST(PvrtcEncode, FrozenBitstreams) {
   const std::uint64_t expected[2][3] = {
       {0x1e5fa49357527200ull, 0x79045ae81b60bf35ull,
        0x8d39f71ad5580802ull},  // 4 bpp: fast, normal, high
-      {0x8166b2980efe00d2ull, 0x9f5a34a6504a6dc5ull, 0x8ab79271adc00c90ull},  // 2 bpp
+      {0x8166b2980efe00d2ull, 0x9f5a34a6504a6dc5ull, 0x3c849cdd25d46504ull},  // 2 bpp
   };
   for (int f = 0; f < 2; ++f) {
     for (int q = 0; q < 3; ++q) {

@@ -396,3 +396,104 @@ TEST(PvrtcSearch, HueSeamAtTheWrapIsReproduced) {
         << (f == Format::pvrtc1_4bpp ? "4 bpp" : "2 bpp");
   }
 }
+
+// The 2 bpp endpoint search's window score (polish_2bpp.cpp) against a scalar reference built
+// from the decoder's own upscaling: block (bx, by)'s candidate pair over the 15x7 texels it
+// reaches, every texel at its best weight among those its block's mode allows ({0, 8} direct;
+// interpolated blocks {0, 3, 5, 8} on stored texels, {0, 8} at (0, 0), {0, 3, 4, 5, 8} on the
+// interpolated ones), alpha error counted twice. Mixed modes, RGB and RGBA, a 2x2-block level
+// (the window's neighbours wrap onto the block itself) and a 4x4-block one; bounded and
+// reordered evaluations give the same sum below the bound and at least the bound otherwise.
+TEST(PvrtcSearch, Window2bppScoreMatchesTheDecoder) {
+  std::mt19937 rng(7);
+  for (const auto& [w, h] : {std::pair{16, 8}, std::pair{32, 16}}) {
+    for (Procedural kind : {Procedural::foliage, Procedural::noise}) {
+      const ImageRGBA8 img = make_procedural(kind, w, h);
+      EncoderState s = state_from(img, encode_or_die(img, Quality::normal, Format::pvrtc1_2bpp),
+                                  false, Format::pvrtc1_2bpp);
+      const Grid& g = s.g;
+      for (std::size_t i = 0; i < g.blocks(); ++i) s.mode[i] = rng() & 1;
+      const int aw = s.alpha_mode ? 2 : 0;
+      int compared = 0;
+      for (int by = 0; by < g.nby; ++by) {
+        for (int bx = 0; bx < g.nbx; ++bx) {
+          const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+          for (int trial = 0; trial < 6; ++trial) {
+            // The block's own pair, then random opaque / translucent fields.
+            const std::uint16_t ca = trial == 0 ? s.ca[j] : std::uint16_t(rng() & 0xfffe);
+            const std::uint16_t cb = trial == 0 ? s.cb[j] : std::uint16_t(rng() & 0xffff);
+            std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
+            for (std::size_t i = 0; i < g.blocks(); ++i) {
+              ea[i] = expand_a(i == j ? ca : s.ca[i]);
+              eb[i] = expand_b(i == j ? cb : s.cb[i]);
+            }
+            std::uint64_t expected = 0;
+            for (int wy = 0; wy < 7; ++wy) {
+              for (int wx = 0; wx < 15; ++wx) {
+                const int x = (bx * 8 - 3 + wx) & (g.pw - 1), y = (by * 4 - 1 + wy) & (g.ph - 1);
+                const AxisTap tx = axis_tap(x, 8, g.pw), ty = axis_tap(y, 4, g.ph);
+                auto at = [&](const std::vector<Rgba5>& e, int cy, int cx) -> const Rgba5& {
+                  return e[std::size_t(cy) * std::size_t(g.nbx) + std::size_t(cx)];
+                };
+                std::uint8_t ua[4], ub[4];
+                upscale_texel(at(ea, ty.b0, tx.b0), at(ea, ty.b0, tx.b1), at(ea, ty.b1, tx.b0),
+                              at(ea, ty.b1, tx.b1), tx.d, ty.d, 8, ua);
+                upscale_texel(at(eb, ty.b0, tx.b0), at(eb, ty.b0, tx.b1), at(eb, ty.b1, tx.b0),
+                              at(eb, ty.b1, tx.b1), tx.d, ty.d, 8, ub);
+                const std::uint8_t* t =
+                    &s.target[(std::size_t(y) * std::size_t(g.pw) + std::size_t(x)) * 4];
+                const bool interp = s.mode[std::size_t(y / 4) * std::size_t(g.nbx) +
+                                           std::size_t(x / 8)] != 0;
+                std::vector<int> weights = {0, 8};
+                if (interp && ((x ^ y) & 1) != 0) {
+                  weights = {0, 3, 4, 5, 8};
+                } else if (interp && (x % 8 != 0 || y % 4 != 0)) {
+                  weights = {0, 3, 5, 8};
+                }
+                std::uint64_t best = ~0ull;
+                for (int m : weights) {
+                  std::uint64_t e = 0;
+                  for (int c = 0; c < 4; ++c) {
+                    const int v = (int(ua[c]) * (8 - m) + int(ub[c]) * m) / 8 - int(t[c]);
+                    e += std::uint64_t(v * v) * std::uint64_t(c == 3 ? aw : 1);
+                  }
+                  best = std::min(best, e);
+                }
+                expected += best;
+              }
+            }
+            const std::uint32_t got = window_error_2bpp(s, bx, by, ca, cb, ~0u, false);
+            ASSERT_EQ(got, expected) << procedural_name(kind) << " " << w << "x" << h
+                                     << " block " << bx << "," << by << " trial " << trial;
+            EXPECT_EQ(window_error_2bpp(s, bx, by, ca, cb, ~0u, true), expected);
+            const auto bound = std::uint32_t(expected / 2 + 1);
+            EXPECT_GE(window_error_2bpp(s, bx, by, ca, cb, bound, true), bound);
+            EXPECT_EQ(window_error_2bpp(s, bx, by, ca, cb, std::uint32_t(expected + 1), true),
+                      expected);
+            ++compared;
+          }
+        }
+      }
+      EXPECT_EQ(compared, int(g.blocks()) * 6);
+    }
+  }
+}
+
+// The 2 bpp endpoint search never raises the exact total error (it keeps the state it started
+// from otherwise), returns the error of the state it leaves, and lowers it on textures whose
+// least-squares start is not a local minimum of the exact error.
+TEST(PvrtcSearch, EndpointSearch2bppLowersTheError) {
+  for (Procedural kind : all_procedurals()) {
+    const ImageRGBA8 img = make_procedural(kind, 64, 32);
+    EncoderState s = state_from(img, encode_or_die(img, Quality::normal, Format::pvrtc1_2bpp),
+                                false, Format::pvrtc1_2bpp);
+    s.modulation_descent = 1;
+    const std::uint64_t before = choose_modulation(s);
+    const std::uint64_t after = search_endpoints_2bpp(s, before);
+    EXPECT_EQ(after, total_error(s)) << procedural_name(kind);
+    EXPECT_LE(after, before) << procedural_name(kind);
+    if (kind == Procedural::bricks || kind == Procedural::noise || kind == Procedural::foliage) {
+      EXPECT_LT(after, before) << procedural_name(kind);
+    }
+  }
+}

@@ -92,6 +92,20 @@ bool principal_axis(const T (&cov)[4][4], int nch, T (&axis)[4], T eps) {
 /// translucent (when `allow_translucent`) by the smaller quantisation error.
 std::uint16_t quantise_endpoint(const float c[4], bool is_b, bool allow_translucent);
 
+/// Candidate endpoint pairs from a set of texels (block-local searches): the texels are split
+/// by the sign of their projection on the principal axis of their `nch` colour channels.
+struct SplitPairs {
+  /// (A, B) fields: the half means (dark A, bright B) and the reverse, then the two extreme
+  /// texels (darkest A, brightest B) and the reverse.
+  std::uint16_t pairs[4][2];
+  /// Single endpoints for pairing with a block's current A or B.
+  std::uint16_t low_mean_a, high_mean_b, low_extreme_a, high_extreme_b;
+};
+/// Fills `out` from `n` texels `px` (RGBA floats, 8-bit scale); `translucent` allows the
+/// translucent endpoint formats. False when the texels have no dominant axis or one side of the
+/// split is empty (then `out` is not written).
+bool split_pairs(const float (*px)[4], int n, int nch, bool translucent, SplitPairs& out);
+
 /// The paper's initial endpoints: intensity labelling, 3x dilation of extrema, block averages.
 /// Writes low (A) and high (B) float RGBA per block (4 floats each, linear block order). With
 /// `flat`, also one byte per block: 1 where all the block's texels have the same intensity
@@ -159,6 +173,20 @@ void optimise(EncoderState& s, Quality quality, int iterations, int exact_search
 /// variant of every interpolated block, in `sweeps` coordinate-descent sweeps (see
 /// modulation_2bpp_descent.cpp). Returns the total error (as `total_error`).
 std::uint64_t refine_modulation_2bpp(EncoderState& s, int sweeps);
+
+/// 2 bpp only: exact greedy search over each block's endpoints (seeds from its texels,
+/// neighbours' endpoints, +-1 code moves) scored over the 15x7 texels it influences, then the
+/// modulation choice, its descent and the least-squares refinement again (see polish_2bpp.cpp).
+/// The state changes only where the exact total error drops below `error` (the state's current
+/// total error); returns the total error of the state left.
+std::uint64_t search_endpoints_2bpp(EncoderState& s, std::uint64_t error);
+
+/// 2 bpp, for tests: the window score `search_endpoints_2bpp` gives block (bx, by) with the
+/// endpoint fields (ca, cb) and every other block as in `s` (see polish_2bpp.cpp); stops once it
+/// reaches `bound` (the result is then >= bound). `ordered`: texels summed in the search's order
+/// (decreasing error under the block's current pair) instead of raster order.
+std::uint32_t window_error_2bpp(const EncoderState& s, int bx, int by, std::uint16_t ca,
+                                std::uint16_t cb, std::uint32_t bound, bool ordered);
 
 /// 4 bpp: gives each block of `s` the endpoints of `other` (an encoding of the same target)
 /// where those decode its 4x4 texels with less error (alpha error counted `alpha_weight`

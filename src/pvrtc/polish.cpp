@@ -30,6 +30,7 @@
 #include <limits>
 
 #include "pvrtc/encode_internal.h"
+#include "pvrtc/endpoint_search.h"
 #include "pvrtc/polish_kernel.h"
 #include "pvrtc/simd.h"
 
@@ -74,123 +75,39 @@ struct Window {
   int alpha_weight;  ///< The squared alpha error counts this many times (1 or 2).
 };
 
-// Candidate moves on the codes of one endpoint pair. Returns false when the move is invalid.
-bool apply_move(int move, EndpointCodes& a, EndpointCodes& b) {
-  int ba[4], bb[4];
-  channel_bits(false, a.opaque, ba);
-  channel_bits(true, b.opaque, bb);
-  std::uint32_t* ca[4] = {&a.r, &a.g, &a.b, &a.a};
-  std::uint32_t* cb[4] = {&b.r, &b.g, &b.b, &b.a};
-  auto step = [](std::uint32_t* c, int bits, int d) {
-    if (bits == 0) return false;
-    const int v = int(*c) + d;
-    if (v < 0 || v >= (1 << bits)) return false;
-    *c = std::uint32_t(v);
-    return true;
-  };
-  if (move < 16) {  // single channel: endpoint (move / 8), channel ((move / 2) % 4), sign
-    const bool on_b = move >= 8;
-    const int ch = (move / 2) % 4;
-    const int d = (move & 1) ? 1 : -1;
-    return on_b ? step(cb[ch], bb[ch], d) : step(ca[ch], ba[ch], d);
-  }
-  if (move >= 24) {  // one channel of A and B together: same / opposite sign
-    const int k = move - 24, ch = (k / 4) % 3, d = (k & 1) ? 1 : -1;
-    const int db = (k & 2) ? -d : d;
-    return step(ca[ch], ba[ch], d) && step(cb[ch], bb[ch], db);
-  }
-  // Joint colour moves: 16/17 A, 18/19 B, 20/21 both, 22 spread, 23 contract.
-  const int m = move - 16;
-  bool ok = true;
-  for (int ch = 0; ch < 3 && ok; ++ch) {
-    if (m < 2) {
-      ok = step(ca[ch], ba[ch], m ? 1 : -1);
-    } else if (m < 4) {
-      ok = step(cb[ch], bb[ch], m == 3 ? 1 : -1);
-    } else if (m < 6) {
-      ok = step(ca[ch], ba[ch], m == 5 ? 1 : -1) && step(cb[ch], bb[ch], m == 5 ? 1 : -1);
-    } else {
-      ok = step(ca[ch], ba[ch], m == 6 ? -1 : 1) && step(cb[ch], bb[ch], m == 6 ? 1 : -1);
-    }
-  }
-  return ok;
-}
-
-// Moves 0-23 as above; 24-35 (one channel of A and B stepped together) buy +0.03 dB RGB on
-// high for about +25% of its time.
-constexpr int kMoves = 36;
-
 // The exact search counts the squared alpha error twice. Alpha PSNR is over one channel and
 // RGB PSNR over three, so alpha error costs more dB per unit; weight 2 (the final modulation
 // choice stays unweighted) moved high on the six RGBA images by +0.50 dB alpha for -0.06 dB
 // mean RGB over the 21 images; weight 3 gave +1.0 / -0.15.
 constexpr int kPolishAlphaWeight = 2;
 
-// Candidate endpoint pairs for block (bx, by) from its own 4x4 texels: their principal axis
-// splits them into two halves; the half means and the two extreme texels each give a pair, in
-// both orientations. Writes up to 4 (A, B) field pairs; returns the count.
+// Candidate endpoint pairs for block (bx, by) from its own 4x4 texels: their principal-axis
+// split (`split_pairs`: the half means and the two extreme texels, both orientations), then
+// the block's current A or B with the brighter / darker extreme or half mean. Writes up to 8
+// (A, B) field pairs; returns the count.
 int reseed_candidates(const EncoderState& s, int bx, int by, std::uint16_t out[8][2]) {
   const Grid& g = s.g;
-  const int nch = s.alpha_mode ? 4 : 3;
   float px[16][4];
-  float mean[4] = {0, 0, 0, 0};
   for (int i = 0; i < 16; ++i) {
     const std::uint8_t* t =
         &s.target[(std::size_t(by * 4 + i / 4) * std::size_t(g.pw) + std::size_t(bx * 4 + i % 4)) *
                   4];
-    for (int c = 0; c < 4; ++c) {
-      px[i][c] = float(t[c]);
-      mean[c] += float(t[c]) / 16.0f;
-    }
+    for (int c = 0; c < 4; ++c) px[i][c] = float(t[c]);
   }
-  float cov[4][4] = {};
-  for (int i = 0; i < 16; ++i) {
-    for (int a = 0; a < nch; ++a) {
-      for (int b = 0; b < nch; ++b) cov[a][b] += (px[i][a] - mean[a]) * (px[i][b] - mean[b]);
-    }
+  SplitPairs sp;
+  if (!split_pairs(px, 16, s.alpha_mode ? 4 : 3, s.alpha_mode, sp)) return 0;
+  for (int k = 0; k < 4; ++k) {
+    out[k][0] = sp.pairs[k][0];
+    out[k][1] = sp.pairs[k][1];
   }
-  float axis[4] = {0.2126f, 0.7152f, 0.0722f, 0.5f};
-  if (!principal_axis(cov, nch, axis, 1e-6f)) return 0;
-  float lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0}, nlo = 0, nhi = 0;
-  float pmin = 1e30f, pmax = -1e30f;
-  int imin = 0, imax = 0;
-  for (int i = 0; i < 16; ++i) {
-    float p = 0;
-    for (int a = 0; a < nch; ++a) p += (px[i][a] - mean[a]) * axis[a];
-    float* acc = p < 0 ? lo : hi;
-    (p < 0 ? nlo : nhi) += 1;
-    for (int c = 0; c < 4; ++c) acc[c] += px[i][c];
-    if (p < pmin) {
-      pmin = p;
-      imin = i;
-    }
-    if (p > pmax) {
-      pmax = p;
-      imax = i;
-    }
-  }
-  if (nlo == 0 || nhi == 0) return 0;
-  for (int c = 0; c < 4; ++c) {
-    lo[c] /= nlo;
-    hi[c] /= nhi;
-  }
-  const bool ta = s.alpha_mode;
-  out[0][0] = quantise_endpoint(lo, false, ta);
-  out[0][1] = quantise_endpoint(hi, true, ta);
-  out[1][0] = quantise_endpoint(hi, false, ta);
-  out[1][1] = quantise_endpoint(lo, true, ta);
-  out[2][0] = quantise_endpoint(px[imin], false, ta);
-  out[2][1] = quantise_endpoint(px[imax], true, ta);
-  out[3][0] = quantise_endpoint(px[imax], false, ta);
-  out[3][1] = quantise_endpoint(px[imin], true, ta);
   const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
   out[4][0] = s.ca[j];
-  out[4][1] = quantise_endpoint(px[imax], true, ta);
-  out[5][0] = quantise_endpoint(px[imin], false, ta);
+  out[4][1] = sp.high_extreme_b;
+  out[5][0] = sp.low_extreme_a;
   out[5][1] = s.cb[j];
   out[6][0] = s.ca[j];
-  out[6][1] = quantise_endpoint(hi, true, ta);
-  out[7][0] = quantise_endpoint(lo, false, ta);
+  out[6][1] = sp.high_mean_b;
+  out[7][0] = sp.low_mean_a;
   out[7][1] = s.cb[j];
   return 8;
 }
@@ -355,36 +272,6 @@ std::uint32_t order_local(const Evaluators& ev, LocalWindow& lw, const Rgba5& a,
   permute_local(lw, order);
   return total;
 }
-
-// The endpoint pairs one block visit has met (candidates scored and pairs that were current):
-// each one's window error is at least the current best (a rejected candidate scored at least
-// the best of its time, a pair left by a kept move scored more than its successor), so meeting
-// one again it need not be scored (exact). Open addressing on the packed (A, B) fields.
-class SeenPairs {
- public:
-  SeenPairs() { std::memset(slot_, 0xff, sizeof(slot_)); }
-  /// True when `key` was inserted before; inserts it otherwise.
-  bool check_insert(std::uint32_t key) {
-    if (key == kEmpty) return false;  // not representable: always scored
-    std::uint32_t h = (key * 0x9e3779b1u) >> (32 - kBits);
-    for (;;) {
-      if (slot_[h] == key) return true;
-      if (slot_[h] == kEmpty) {
-        if (count_ == kMaxCount) return false;  // full: score it (exact either way)
-        slot_[h] = key;
-        ++count_;
-        return false;
-      }
-      h = (h + 1) & (kSize - 1);
-    }
-  }
-
- private:
-  static constexpr int kBits = 9, kSize = 1 << kBits, kMaxCount = kSize / 2;
-  static constexpr std::uint32_t kEmpty = ~0u;
-  std::uint32_t slot_[kSize];
-  int count_ = 0;
-};
 
 }  // namespace
 

@@ -235,4 +235,56 @@ void orient_endpoints(const Grid& g, int nch, std::vector<float>& low, std::vect
   }
 }
 
+bool split_pairs(const float (*px)[4], int n, int nch, bool translucent, SplitPairs& out) {
+  float mean[4] = {0, 0, 0, 0};
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < 4; ++c) mean[c] += px[i][c] / float(n);
+  }
+  float cov[4][4] = {};
+  for (int i = 0; i < n; ++i) {
+    for (int a = 0; a < nch; ++a) {
+      for (int b = 0; b < nch; ++b) cov[a][b] += (px[i][a] - mean[a]) * (px[i][b] - mean[b]);
+    }
+  }
+  float axis[4] = {0.2126f, 0.7152f, 0.0722f, 0.5f};
+  if (!principal_axis(cov, nch, axis, 1e-6f)) return false;
+  float lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0}, nlo = 0, nhi = 0;
+  float pmin = 1e30f, pmax = -1e30f;
+  int imin = 0, imax = 0;
+  for (int i = 0; i < n; ++i) {
+    float p = 0;
+    for (int a = 0; a < nch; ++a) p += (px[i][a] - mean[a]) * axis[a];
+    float* acc = p < 0 ? lo : hi;
+    (p < 0 ? nlo : nhi) += 1;
+    for (int c = 0; c < 4; ++c) acc[c] += px[i][c];
+    if (p < pmin) {
+      pmin = p;
+      imin = i;
+    }
+    if (p > pmax) {
+      pmax = p;
+      imax = i;
+    }
+  }
+  if (nlo == 0 || nhi == 0) return false;
+  for (int c = 0; c < 4; ++c) {
+    lo[c] /= nlo;
+    hi[c] /= nhi;
+  }
+  const bool ta = translucent;
+  out.pairs[0][0] = quantise_endpoint(lo, false, ta);
+  out.pairs[0][1] = quantise_endpoint(hi, true, ta);
+  out.pairs[1][0] = quantise_endpoint(hi, false, ta);
+  out.pairs[1][1] = quantise_endpoint(lo, true, ta);
+  out.pairs[2][0] = quantise_endpoint(px[imin], false, ta);
+  out.pairs[2][1] = quantise_endpoint(px[imax], true, ta);
+  out.pairs[3][0] = quantise_endpoint(px[imax], false, ta);
+  out.pairs[3][1] = quantise_endpoint(px[imin], true, ta);
+  out.low_mean_a = out.pairs[0][0];
+  out.high_mean_b = out.pairs[0][1];
+  out.low_extreme_a = out.pairs[2][0];
+  out.high_extreme_b = out.pairs[2][1];
+  return true;
+}
+
 }  // namespace tessera::pvrtc::detail
