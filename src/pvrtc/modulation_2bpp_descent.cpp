@@ -28,7 +28,6 @@ namespace {
 
 // The unpacked modulation of a level: stored values per texel and the mode of every block.
 struct Mod2 {
-  const Grid* g = nullptr;
   std::vector<std::uint8_t> value;  ///< 0..3 per texel (pw * ph); unused on interpolated texels
   std::vector<std::uint8_t> mode;   ///< 0 direct, 1 H+V, 2 H only, 3 V only, per block
 };
@@ -230,7 +229,6 @@ std::uint64_t refine_modulation_2bpp(EncoderState& s, int sweeps) {
   const Grid& g = s.g;
   if (g.format != Format::pvrtc1_2bpp || sweeps <= 0) return total_error(s);
   Mod2 md;
-  md.g = &g;
   md.value.assign(g.texels(), 0);
   md.mode.assign(g.blocks(), 0);
   for (int by = 0; by < g.nby; ++by) {
