@@ -1,6 +1,6 @@
 // Tests of the PVRTC encoder's internal search passes (src/pvrtc/encode_internal.h): the exact
-// search's neighbour-copy moves and seeded rounds, the crossover of two encodings and the
-// orientation of the principal-axis start.
+// search's neighbour-copy moves and seeded rounds (4 bpp and 2 bpp), the crossover of two
+// encodings (4 bpp and 2 bpp) and the orientation of the principal-axis start.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -64,7 +64,7 @@ std::vector<std::uint8_t> encode_or_die(const ImageRGBA8& img, Quality q,
 }
 
 // Own-texel squared error (RGB) of every block of `s` as decoded with its current words.
-std::vector<std::uint64_t> own_errors(const EncoderState& s) {
+std::vector<std::uint64_t> own_errors(const EncoderState& s, int alpha_weight = 0) {
   const std::vector<std::uint64_t> w = s.words();
   std::vector<std::uint8_t> dec(s.g.texels() * 4);
   decode_padded(s.g, w.data(), dec.data(), 1);
@@ -72,9 +72,10 @@ std::vector<std::uint64_t> own_errors(const EncoderState& s) {
   for (int y = 0; y < s.g.ph; ++y) {
     for (int x = 0; x < s.g.pw; ++x) {
       const std::size_t i = std::size_t(y) * std::size_t(s.g.pw) + std::size_t(x);
-      for (int c = 0; c < 3; ++c) {
+      for (int c = 0; c < 4; ++c) {
         const int d = int(dec[i * 4 + std::size_t(c)]) - int(s.target[i * 4 + std::size_t(c)]);
-        e[std::size_t(y / 4) * std::size_t(s.g.nbx) + std::size_t(x / 4)] += std::uint64_t(d * d);
+        e[std::size_t(y / 4) * std::size_t(s.g.nbx) + std::size_t(x / s.g.bw)] +=
+            std::uint64_t(d * d) * std::uint64_t(c == 3 ? alpha_weight : 1);
       }
     }
   }
@@ -212,6 +213,74 @@ TEST(PvrtcSearch, CrossoverTakesTheBetterBlocks) {
         }
       }
       EXPECT_EQ(seeds[j] != 0, mixed) << "block " << bx << "," << by;
+    }
+  }
+}
+
+// 2 bpp: the crossover compares the blocks' own 8x4 texels (alpha counted twice on RGBA)
+// and takes the other encoding's pair only where that errs less.
+TEST(PvrtcSearch, Crossover2bppComparesWholeBlocks) {
+  for (Procedural kind : {Procedural::bricks, Procedural::foliage}) {
+    const ImageRGBA8 img = make_procedural(kind, 64, 32);
+    const EncoderState fast = state_from(img, encode_or_die(img, Quality::fast, Format::pvrtc1_2bpp),
+                                         false, Format::pvrtc1_2bpp);
+    const EncoderState normal = state_from(
+        img, encode_or_die(img, Quality::normal, Format::pvrtc1_2bpp), false, Format::pvrtc1_2bpp);
+    const int aw = img.has_alpha ? 2 : 0;
+    const std::vector<std::uint64_t> mine = own_errors(normal, aw), theirs = own_errors(fast, aw);
+    EncoderState s = normal;
+    std::vector<std::uint8_t> seeds;
+    const int taken = crossover(s, fast, 2, seeds);
+    EXPECT_GT(taken, 0) << procedural_name(kind);
+    int count = 0;
+    for (std::size_t j = 0; j < s.g.blocks(); ++j) {
+      if (s.ca[j] != normal.ca[j] || s.cb[j] != normal.cb[j]) {
+        EXPECT_EQ(s.ca[j], fast.ca[j]);
+        EXPECT_EQ(s.cb[j], fast.cb[j]);
+        EXPECT_LT(theirs[j], mine[j]) << procedural_name(kind) << " block " << j;
+        ++count;
+      }
+    }
+    EXPECT_EQ(count, taken);
+    EXPECT_EQ(seeds.size(), s.g.blocks());
+  }
+}
+
+// 2 bpp: seeding every block is the unseeded endpoint search; seeding none leaves the state.
+TEST(PvrtcSearch, SeededEndpointSearch2bpp) {
+  const ImageRGBA8 img = make_procedural(Procedural::noise, 64, 32);
+  EncoderState start = state_from(img, encode_or_die(img, Quality::fast, Format::pvrtc1_2bpp),
+                                  false, Format::pvrtc1_2bpp);
+  start.modulation_descent = 1;
+  const std::uint64_t e0 = choose_modulation(start);
+  const std::vector<std::uint8_t> none(start.g.blocks(), 0), all(start.g.blocks(), 1);
+  EncoderState a = start, b = start, c = start;
+  EXPECT_EQ(search_endpoints_2bpp(a, e0, &none), e0);
+  EXPECT_EQ(a.words(), start.words());
+  const std::uint64_t eb = search_endpoints_2bpp(b, e0, &all);
+  EXPECT_LT(eb, e0);
+  EXPECT_EQ(search_endpoints_2bpp(c, e0), eb);
+  EXPECT_EQ(b.words(), c.words());
+}
+
+// The crossover step of high (both formats) never leaves an error above the first encoding's
+// and, at 2 bpp, lowers it on textures where the two starts end in different minima.
+TEST(PvrtcSearch, OptimiseCrossoverNeverRaisesTheError) {
+  for (Format format : {Format::pvrtc1_4bpp, Format::pvrtc1_2bpp}) {
+    for (Procedural kind : {Procedural::bricks, Procedural::foliage, Procedural::noise}) {
+      const ImageRGBA8 img = make_procedural(kind, 64, 32);
+      EncoderState s =
+          state_from(img, encode_or_die(img, Quality::normal, format), true, format);
+      EncoderState alt = state_from(img, encode_or_die(img, Quality::fast, format), true, format);
+      s.modulation_descent = alt.modulation_descent = format == Format::pvrtc1_2bpp ? 1 : 0;
+      const std::uint64_t before = choose_modulation(s);
+      const std::uint64_t alt_error = choose_modulation(alt);
+      optimise_crossover(s, alt, alt_error);
+      const std::uint64_t after = total_error(s);
+      EXPECT_LE(after, before) << procedural_name(kind) << " format " << int(format);
+      if (format == Format::pvrtc1_2bpp) {
+        EXPECT_LT(after, before) << procedural_name(kind);
+      }
     }
   }
 }

@@ -11,10 +11,12 @@
 // (endpoints from the block's own texels, kept where the exactly decoded error drops), then
 // alternating least-squares optimisation of the block colours (modulation fixed) and
 // brute-force modulation (colours fixed), then (4 bpp) an exact greedy search over +-1 moves of
-// each block's endpoint codes scored by the exactly decoded error of its 7x7 texel window.
-// `high` at 4 bpp also encodes from the dilation start and keeps, block by block, the endpoints
-// of whichever encoding errs less (a crossover: the two starts stop in different local minima,
-// the dilation one wins along sharp edges), then resumes the exact search.
+// each block's endpoint codes scored by the exactly decoded error of its 7x7 texel window
+// (2 bpp: exact modulation descent, and at `high` an exact endpoint search over the 15x7
+// texels a block reaches). `high` also encodes from the dilation start and keeps, block by
+// block, the endpoints of whichever encoding errs less (a crossover: the two starts stop in
+// different local minima, the dilation one wins along sharp edges), then resumes the exact
+// search (2 bpp: the result is kept where its exact total error is lower).
 //
 // Modulation is always chosen against the exact decoder arithmetic, so the bytes an encode
 // returns decode (in tessera or PVRTexTool) to exactly the image the encoder scored.

@@ -1,13 +1,14 @@
-// Crossover of two 4 bpp encodings of the same image (high quality).
+// Crossover of two encodings of the same image (high quality, 4 bpp and 2 bpp).
 //
-// The greedy exact search (polish.cpp) ends in a local minimum that depends on where it
-// started. The principal-axis start (narrow pairs along each block's main colour axis) wins in
-// smooth areas; the paper's intensity-dilation start (the local darkest and brightest colours)
-// wins along sharp edges, where several blocks must hold the same dark / bright pair for the
-// bilinear A and B images to stay apart across the edge. Each block takes the endpoints of the
-// encoding whose exactly decoded 4x4 texels err less there; the exact search then resumes on the
-// blocks whose 3x3 neighbourhood mixes the two (elsewhere both encodings were already at their
-// own minimum), with modulation re-chosen for the mixed result.
+// The greedy exact search (polish.cpp; polish_2bpp.cpp at 2 bpp) ends in a local minimum that
+// depends on where it started. The principal-axis start (narrow pairs along each block's main
+// colour axis) wins in smooth areas; the paper's intensity-dilation start (the local darkest and
+// brightest colours) wins along sharp edges, where several blocks must hold the same dark /
+// bright pair for the bilinear A and B images to stay apart across the edge. Each block takes the
+// endpoints of the encoding whose exactly decoded texels (its own 4x4, or 8x4 at 2 bpp) err less
+// there; the exact search then resumes on the blocks whose 3x3 neighbourhood mixes the two
+// (elsewhere both encodings were already at their own minimum), with modulation re-chosen for
+// the mixed result.
 #include <cstdint>
 #include <vector>
 

@@ -306,10 +306,10 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   s.cb.assign(g.blocks(), 0);
   s.mode.assign(g.blocks(), 0);
   s.mod.assign(g.blocks(), 0);
-  // high, 4 bpp, preset schedule: a second encoding from the dilation start, crossed with the
-  // first at the end (crossover.cpp).
-  const bool cross = options.quality == Quality::high && options.format == Format::pvrtc1_4bpp &&
-                     options.iterations < 0 && options.exact_search_rounds == 0;
+  // high, preset schedule: a second encoding from the dilation start, crossed with the first
+  // at the end (crossover.cpp).
+  const bool cross = options.quality == Quality::high && options.iterations < 0 &&
+                     options.exact_search_rounds == 0;
   EncoderState alt;
   if (cross) alt = s;
   // fast: the paper's intensity dilation; normal / high start the refinement from
@@ -321,8 +321,8 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
     optimise(s, options.quality, options.iterations, options.exact_search_rounds, start_error);
   }
   if (cross) {
-    start_endpoints(alt, true);
-    optimise_crossover(s, alt);
+    const std::uint64_t alt_error = start_endpoints(alt, true);
+    optimise_crossover(s, alt, alt_error);
   }
   std::vector<std::uint8_t> out(level_size(options.format, image.width, image.height));
   const std::vector<std::uint64_t> w = s.words();

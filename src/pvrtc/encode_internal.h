@@ -181,6 +181,11 @@ std::uint64_t refine_modulation_2bpp(EncoderState& s, int sweeps);
 /// total error); returns the total error of the state left.
 std::uint64_t search_endpoints_2bpp(EncoderState& s, std::uint64_t error);
 
+/// `search_endpoints_2bpp` whose first round searches only the blocks flagged in `seeds` (one
+/// flag per block; null: every block); the others are searched once a neighbour changes.
+std::uint64_t search_endpoints_2bpp(EncoderState& s, std::uint64_t error,
+                                    const std::vector<std::uint8_t>* seeds);
+
 /// 2 bpp, for tests: the window score `search_endpoints_2bpp` gives block (bx, by) with the
 /// endpoint fields (ca, cb) and every other block as in `s` (see polish_2bpp.cpp); stops once it
 /// reaches `bound` (the result is then >= bound). `ordered`: texels summed in the search's order
@@ -188,17 +193,18 @@ std::uint64_t search_endpoints_2bpp(EncoderState& s, std::uint64_t error);
 std::uint32_t window_error_2bpp(const EncoderState& s, int bx, int by, std::uint16_t ca,
                                 std::uint16_t cb, std::uint32_t bound, bool ordered);
 
-/// 4 bpp: gives each block of `s` the endpoints of `other` (an encoding of the same target)
-/// where those decode its 4x4 texels with less error (alpha error counted `alpha_weight`
-/// times); modulation is left stale. `seeds` gets one flag per block whose 3x3 neighbourhood
-/// mixes the two encodings (see crossover.cpp). Returns the count of blocks taken.
+/// Gives each block of `s` the endpoints of `other` (an encoding of the same target) where
+/// those decode its own texels (4x4, or 8x4 at 2 bpp) with less error (alpha error counted
+/// `alpha_weight` times); modulation is left stale. `seeds` gets one flag per block whose 3x3
+/// neighbourhood mixes the two encodings (see crossover.cpp). Returns the count of blocks taken.
 int crossover(EncoderState& s, const EncoderState& other, int alpha_weight,
               std::vector<std::uint8_t>& seeds);
 
-/// high, 4 bpp: runs the dilation-started encoding `alt` (endpoints and modulation set) through
-/// the refinement and the exact search, crosses it into `s` (see crossover.cpp) and resumes the
-/// exact search on `s` where the two were mixed.
-void optimise_crossover(EncoderState& s, EncoderState& alt);
+/// high: runs the dilation-started encoding `alt` (endpoints and modulation set, total error
+/// `alt_error`) through the passes of its format (4 bpp: the exact search; 2 bpp: `optimise`),
+/// crosses it into `s` (see crossover.cpp) and resumes the exact search on `s` where the two
+/// were mixed. 2 bpp: `s` changes only where its exact total error drops.
+void optimise_crossover(EncoderState& s, EncoderState& alt, std::uint64_t alt_error);
 
 /// `reseed` with the squared alpha error counted `alpha_weight` times (the one above: 1).
 int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& changed,

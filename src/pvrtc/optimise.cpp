@@ -1,6 +1,6 @@
 // PVRTC encoder passes after the first modulation choice, per quality: reseed (polish.cpp),
 // least-squares refinement (refine.cpp), the exact search (polish.cpp; polish_2bpp.cpp at
-// 2 bpp) and, for 4 bpp high, the crossover with a second encoding (crossover.cpp). Gains
+// 2 bpp) and, for high, the crossover with a second encoding (crossover.cpp). Gains
 // quoted are means over the 21 power-of-two images of the benchmark set
 // (docs/benchmarks/pvrtc.md), 4 bpp unless said otherwise.
 #include "pvrtc/encode_internal.h"
@@ -81,16 +81,36 @@ void optimise(EncoderState& s, Quality quality, int iterations, int exact_search
   }
 }
 
-// The crossover with a second encoding from the dilation start (crossover.cpp): +0.16 dB RGB
-// on the 15 opaque images (ldr-l-occlusion +0.8 dB), +0.05 dB RGB and +0.17 dB alpha on the
-// 6 RGBA ones, for 2.7x the time of the single encoding.
-void optimise_crossover(EncoderState& s, EncoderState& alt) {
+// The crossover with a second encoding from the dilation start (crossover.cpp).
+// 4 bpp: +0.16 dB RGB on the 15 opaque images (ldr-l-occlusion +0.8 dB), +0.05 dB RGB and
+// +0.17 dB alpha on the 6 RGBA ones, for 2.7x the time of the single encoding.
+// 2 bpp: +0.09 dB RGB (the 15 opaque images +0.10, ldr-rgb-02 and -06 +0.16-0.18), +0.17 dB
+// alpha on the 6 RGBA ones, SSIM +0.0014, for about 2.8x the time of the single encoding.
+void optimise_crossover(EncoderState& s, EncoderState& alt, std::uint64_t alt_error) {
+  std::vector<std::uint8_t> seeds;
+  if (s.g.format == Format::pvrtc1_2bpp) {
+    // The dilation start runs the same passes as the first encoding (a cheaper second one, the
+    // endpoint search straight from the dilation, lost most of the gain on the images tried).
+    optimise(alt, Quality::high, -1, 0, alt_error);
+    const std::uint64_t error = total_error(s);
+    const std::vector<std::uint16_t> ca = s.ca, cb = s.cb;
+    const std::vector<std::uint8_t> mode = s.mode;
+    const std::vector<std::uint32_t> mod = s.mod;
+    if (crossover(s, alt, kHighAlphaWeight, seeds) == 0) return;
+    choose_modulation(s);
+    const std::uint64_t e = search_endpoints_2bpp(s, refine_modulation_2bpp(s, 3), &seeds);
+    if (e < error) return;
+    s.ca = ca;  // the first encoding alone was better
+    s.cb = cb;
+    s.mode = mode;
+    s.mod = mod;
+    return;
+  }
   PolishOptions po;
   po.neighbour_moves = true;
   // The dilation start goes straight to the exact search: three least-squares sweeps first
   // cost 0.03-0.13 dB RGB after the crossover on three of four images tried.
   polish(alt, kPolishUntilConverged, 1, 0, po);
-  std::vector<std::uint8_t> seeds;
   crossover(s, alt, kHighAlphaWeight, seeds);
   choose_modulation(s);
   po.seeds = &seeds;

@@ -255,8 +255,9 @@ int seed_candidates(const EncoderState& s, int bx, int by, std::uint16_t out[8][
   return n;
 }
 
-// The search rounds (see the file comment); returns the number of block changes.
-int search(EncoderState& s) {
+// The search rounds (see the file comment); returns the number of block changes. `seeds`
+// (optional): the first round searches only the flagged blocks.
+int search(EncoderState& s, const std::vector<std::uint8_t>* seeds) {
   const Grid& g = s.g;
   std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
   for (std::size_t i = 0; i < g.blocks(); ++i) {
@@ -267,6 +268,11 @@ int search(EncoderState& s) {
   // its 3x3 neighbourhood changed since its last search.
   std::vector<int> changed_at(g.blocks(), -1), searched_at(g.blocks(), -2);
   std::vector<int> changes_per_row(std::size_t(g.nby), 0);
+  if (seeds != nullptr) {
+    for (std::size_t j = 0; j < g.blocks(); ++j) {
+      if (!(*seeds)[j]) searched_at[j] = 0;  // waits for a changed neighbour
+    }
+  }
   for (int round = 0; round < kMaxRounds; ++round) {
     std::vector<std::uint8_t> any_change(std::size_t(g.nby / 2), 0);
     for_each_block_2x2(g, s.threads, [&](int bx, int by) {
@@ -358,11 +364,16 @@ std::uint32_t window_error_2bpp(const EncoderState& s, int bx, int by, std::uint
 }
 
 std::uint64_t search_endpoints_2bpp(EncoderState& s, std::uint64_t error) {
+  return search_endpoints_2bpp(s, error, nullptr);
+}
+
+std::uint64_t search_endpoints_2bpp(EncoderState& s, std::uint64_t error,
+                                    const std::vector<std::uint8_t>* seeds) {
   if (s.g.format != Format::pvrtc1_2bpp) return error;
   const std::vector<std::uint16_t> ca = s.ca, cb = s.cb;
   const std::vector<std::uint8_t> mode = s.mode;
   const std::vector<std::uint32_t> mod = s.mod;
-  if (search(s) == 0) return error;
+  if (search(s, seeds) == 0) return error;
   choose_modulation(s);
   std::uint64_t e = refine_modulation_2bpp(s, 3);
   refine(s, 16, e);
