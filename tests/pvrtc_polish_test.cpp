@@ -1,7 +1,8 @@
 // Tests of the exact search's window evaluators (src/pvrtc/polish_kernel.h): the channel-planar
 // evaluator of one-colour-channel candidates against the general `local_error_simd` on random
 // windows, including the bound (early exit) semantics of both; the AVX2 evaluators
-// (polish_avx2.cpp) against the baseline ones, and whole encodes with and without them.
+// (polish_avx2.cpp) against the baseline ones, and whole encodes (4 bpp normal and high, 2 bpp
+// high) with and without them.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -259,11 +260,13 @@ TEST(PvrtcPolishAvx2, EncodeMatchesBaseline) {
           img.pixels[i * 4 + 3] = al.pixels[i * 4 + (i % 3)];  // some texels below 128
         }
       }
-      for (Quality q : {Quality::normal, Quality::high}) {
-        SCOPED_TRACE(testing::Message()
-                     << wh[0] << "x" << wh[1] << " variant " << variant << " quality " << int(q));
+      for (int fq = 0; fq < 3; ++fq) {  // 4 bpp normal, high; 2 bpp high (its endpoint search)
+        const Quality q = fq == 0 ? Quality::normal : Quality::high;
+        const Format f = fq == 2 ? Format::pvrtc1_2bpp : Format::pvrtc1_4bpp;
+        SCOPED_TRACE(testing::Message() << wh[0] << "x" << wh[1] << " variant " << variant
+                                        << " quality " << int(q) << " format " << int(f));
         EncodeOptions o;
-        o.format = Format::pvrtc1_4bpp;
+        o.format = f;
         o.quality = q;
         o.threads = 2;
         o.punch_through = variant != 2;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pvrtc/encode_internal.h"
+#include "pvrtc/polish_window.h"
 #include "pvrtc/pvrtc_kernel.h"
 #include "test_support.h"
 #include "tessera/io.h"
@@ -473,7 +474,8 @@ TEST(PvrtcSearch, HueSeamAtTheWrapIsReproduced) {
 // interpolated ones), alpha error counted twice. Mixed modes, RGB and RGBA, a 2x2-block level
 // (the window's neighbours wrap onto the block itself) and a 4x4-block one; bounded and
 // reordered evaluations give the same sum below the bound and at least the bound otherwise.
-TEST(PvrtcSearch, Window2bppScoreMatchesTheDecoder) {
+// Run with the baseline evaluator and with the AVX2 one (where the build and CPU have it).
+static void check_window2_scores() {
   std::mt19937 rng(7);
   for (const auto& [w, h] : {std::pair{16, 8}, std::pair{32, 16}}) {
     for (Procedural kind : {Procedural::foliage, Procedural::noise}) {
@@ -545,6 +547,15 @@ TEST(PvrtcSearch, Window2bppScoreMatchesTheDecoder) {
       }
       EXPECT_EQ(compared, int(g.blocks()) * 6);
     }
+  }
+}
+
+TEST(PvrtcSearch, Window2bppScoreMatchesTheDecoder) {
+  for (bool baseline_only : {true, false}) {
+    SCOPED_TRACE(baseline_only ? "baseline evaluator" : "evaluator in use (AVX2 where usable)");
+    const bool previous = set_polish_baseline_only(baseline_only);
+    check_window2_scores();
+    set_polish_baseline_only(previous);
   }
 }
 

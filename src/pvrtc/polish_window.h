@@ -1,6 +1,7 @@
-// polish_window.h — the window layouts of the PVRTC 4 bpp exact search (polish.cpp) and the
-// AVX2 versions of its two window evaluators (polish_avx2.cpp, compiled with -mavx2): the
-// baseline evaluators are in polish_kernel.h, which includes this header.
+// polish_window.h — the window layouts of the PVRTC exact searches (4 bpp: polish.cpp, 2 bpp:
+// polish_2bpp.cpp) and the AVX2 versions of their window evaluators (polish_avx2.cpp and
+// polish_2bpp_avx2.cpp, compiled with -mavx2): the baseline evaluators are in polish_kernel.h,
+// which includes this header, and polish_2bpp.cpp.
 //
 // Included by the -mavx2 translation unit, so it holds plain declarations and trivial structs
 // only: nothing here may be an inline function, a template or a member initialiser, nor may it
@@ -67,7 +68,32 @@ std::uint32_t local_error_store_avx2(const LocalWindow& lw, const std::int32_t a
 std::uint32_t planar_error_avx2(const PlanarWindow& pw, int c, std::int32_t av, std::int32_t bv,
                                 std::uint32_t bound);
 
-/// True when polish() uses the AVX2 evaluators: the build has them, the CPU (and OS) can run
+// 2 bpp: one block's window, the 15x7 texels its A and B reach (polish_2bpp.cpp). Per texel
+// (slots 105-111 zero: error 0) the other blocks' share of the bilinear A and B sums in the
+// channel lanes (weights summing to 32), the block's own bilinear weight, the target (alpha lane
+// 0 for RGB input) and the blends its mode excludes.
+struct Window2 {
+  static constexpr int kWidth = 15, kHeight = 7;
+  static constexpr int kTexels = kWidth * kHeight;  // 105
+  static constexpr int kSlots = 112;                // padded to whole steps of eight texels
+  // Added to the error of a blend the texel cannot take: far above any real error, and still
+  // exact once converted to float.
+  static constexpr std::int32_t kExclude = 1 << 24;
+  alignas(32) std::uint16_t rest_a[kSlots][4], rest_b[kSlots][4], own[kSlots][4], t[kSlots][4];
+  alignas(32) std::int32_t bias35[kSlots], bias4[kSlots];  ///< weights 3 / 5, and 4
+  alignas(16) std::uint16_t weight16[8];                   ///< per-lane error weights
+  int nch;
+};
+
+/// 2 bpp: the window error of the block's endpoints (a, b) as polish_2bpp.cpp's baseline, eight
+/// texels a step instead of four; stops once it reaches `bound` (checked every 8 texels).
+std::uint32_t window2_error_avx2(const Window2& w, const std::int32_t a[4],
+                                 const std::int32_t b[4], std::uint32_t bound);
+/// 2 bpp: the window error of (a, b), no bound, with each slot's error in texel_err[0 .. 112).
+std::uint32_t window2_error_store_avx2(const Window2& w, const std::int32_t a[4],
+                                       const std::int32_t b[4], std::uint32_t* texel_err);
+
+/// True when polish() (and the 2 bpp search) use the AVX2 evaluators: the build has them, the CPU (and OS) can run
 /// them, it is not the scalar build (TESSERA_NO_SIMD) and the tests have not switched them off.
 bool polish_avx2_active();
 
