@@ -15,6 +15,28 @@
 namespace tessera::pvrtc::detail {
 namespace {
 
+/// Unaligned 256-bit load.
+inline __m256i load256(const void* p) {
+  return _mm256_loadu_si256(static_cast<const __m256i*>(p));
+}
+
+/// The four values (16-bit) in every texel's four lanes.
+inline __m256i broadcast4(const std::int32_t v[4]) {
+  const std::uint64_t x = std::uint64_t(std::uint16_t(v[0])) |
+                          std::uint64_t(std::uint16_t(v[1])) << 16 |
+                          std::uint64_t(std::uint16_t(v[2])) << 32 |
+                          std::uint64_t(std::uint16_t(v[3])) << 48;
+  return _mm256_set1_epi64x(static_cast<long long>(x));
+}
+
+/// Sum of the eight 32-bit lanes.
+inline std::uint32_t sum8(__m256i a) {
+  __m128i s = _mm_add_epi32(_mm256_castsi256_si128(a), _mm256_extracti128_si256(a, 1));
+  s = _mm_add_epi32(s, _mm_shuffle_epi32(s, _MM_SHUFFLE(1, 0, 3, 2)));
+  s = _mm_add_epi32(s, _mm_shuffle_epi32(s, _MM_SHUFFLE(2, 3, 0, 1)));
+  return std::uint32_t(_mm_cvtsi128_si32(s));
+}
+
 /// The 16 RGBA8 texels of one row (64 bytes at p) as one vector of 16-bit lanes per channel
 /// (ch[0] R ... ch[3] A): texels 0-7 in the low 128 bits, 8-15 in the high.
 inline void load_channels(const std::uint8_t* p, __m256i ch[4]) {
