@@ -202,17 +202,20 @@ TEST_P(PvrtcRoundTrip, PsnrAboveThresholdAndMonotoneInQuality) {
 INSTANTIATE_TEST_SUITE_P(
     Procedural, PvrtcRoundTrip,
     // Thresholds: values measured at 128x128 when this test was written, minus 0.1 dB (2 bpp
-    // high: re-measured with the 2 bpp endpoint search, polish_2bpp.cpp).
+    // high: re-measured with the 2 bpp endpoint search, polish_2bpp.cpp; fast on foliage and
+    // text: re-measured when uniform areas stopped being extrema, dilation.cpp: text +2.7 /
+    // +2.4 dB, foliage alpha +11.6 / +6.9 dB but RGB -0.49 / -0.42 dB, the colour under its
+    // zero alpha now taken per block instead of averaged in by the dilation).
     ::testing::Values(QualityCase{Procedural::gradient, Format::pvrtc1_4bpp, {30.70, 41.51, 41.54}},
                       QualityCase{Procedural::bricks, Format::pvrtc1_4bpp, {21.69, 29.50, 29.99}},
                       QualityCase{Procedural::noise, Format::pvrtc1_4bpp, {36.80, 41.15, 41.32}},
-                      QualityCase{Procedural::foliage, Format::pvrtc1_4bpp, {29.84, 32.84, 32.87}},
-                      QualityCase{Procedural::text, Format::pvrtc1_4bpp, {16.80, 42.04, 43.05}},
+                      QualityCase{Procedural::foliage, Format::pvrtc1_4bpp, {29.34, 32.84, 32.87}},
+                      QualityCase{Procedural::text, Format::pvrtc1_4bpp, {19.46, 42.04, 43.05}},
                       QualityCase{Procedural::gradient, Format::pvrtc1_2bpp, {28.64, 39.71, 40.33}},
                       QualityCase{Procedural::bricks, Format::pvrtc1_2bpp, {20.95, 27.01, 27.76}},
                       QualityCase{Procedural::noise, Format::pvrtc1_2bpp, {34.55, 37.66, 38.67}},
-                      QualityCase{Procedural::foliage, Format::pvrtc1_2bpp, {29.23, 31.03, 31.09}},
-                      QualityCase{Procedural::text, Format::pvrtc1_2bpp, {16.36, 42.80, 43.18}}));
+                      QualityCase{Procedural::foliage, Format::pvrtc1_2bpp, {28.81, 31.03, 31.09}},
+                      QualityCase{Procedural::text, Format::pvrtc1_2bpp, {18.73, 42.80, 43.18}}));
 
 TEST(PvrtcEncode, IdenticalForAnyThreadCount) {
   const ImageRGBA8 img = make_procedural(Procedural::foliage, 256, 128);

@@ -93,6 +93,53 @@ TEST(PvrtcDilationKernels, LabelRowMatchesBaseline) {
   }
 }
 
+// The labelling against its definition (paper §3, as its authors' FasTC code decides ties): a
+// texel is a local maximum (minimum) when none of its 8 neighbours (wrapping) is brighter
+// (darker) and not all of them are level with it; a texel of a uniform 3x3 area is neither.
+// Both the baseline and (where it runs) the AVX2 kernel, on rows with many ties.
+TEST(PvrtcDilationKernels, LabelRowFollowsTheDefinition) {
+  std::vector<const DilationKernels*> kernels = {dilation_kernels_baseline()};
+  if (dilation_kernels_avx2() != nullptr) kernels.push_back(dilation_kernels_avx2());
+  std::mt19937 rng(3);
+  int counts[4] = {};
+  for (const DilationKernels* k : kernels) {
+    for (int w : kWidths) {
+      for (int rep = 0; rep < 8; ++rep) {
+        const std::uint32_t levels = rep % 2 ? 2u : 5u;  // plateaus and uniform areas
+        Row<float> i[3] = {Row<float>(w), Row<float>(w), Row<float>(w)};
+        for (auto& r : i) {
+          for (int x = 0; x < w; ++x) r.p()[x] = float(rng() % levels);
+          r.p()[-1] = r.p()[w - 1];
+          r.p()[w] = r.p()[0];
+        }
+        Row<float> mx(w), mn(w);
+        Row<std::uint8_t> out(w, 7);
+        k->label_row(i[0].p(), i[1].p(), i[2].p(), w, mx.p(), mn.p(), out.p());
+        for (int x = 0; x < w; ++x) {
+          const float v = i[1].p()[x];
+          int brighter = 0, darker = 0;
+          for (int dy = 0; dy < 3; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+              const float n = i[dy].p()[(x + dx + w) % w];
+              brighter += n > v;
+              darker += n < v;
+            }
+          }
+          const bool uniform = brighter == 0 && darker == 0;
+          const int expect = uniform ? 0 : (brighter == 0 ? 1 : 0) | (darker == 0 ? 2 : 0);
+          ASSERT_EQ(int(out.p()[x]), expect) << "w " << w << " x " << x;
+          ++counts[expect];
+        }
+      }
+    }
+  }
+  // Every case occurred: maxima, minima, neither (uniform areas among them); never both.
+  EXPECT_GT(counts[0], 0);
+  EXPECT_GT(counts[1], 0);
+  EXPECT_GT(counts[2], 0);
+  EXPECT_EQ(counts[3], 0);
+}
+
 /// np + 1 padded planes of one row.
 struct Planes {
   std::vector<Row<std::uint8_t>> rows;

@@ -93,8 +93,9 @@ void label_row(const float* i0, const float* i1, const float* i2, int w, float* 
         _mm256_loadu_ps(mn + x + 1));
     const __m256i is_max = _mm256_castps_si256(_mm256_cmp_ps(m, v, _CMP_EQ_OQ));
     const __m256i is_min = _mm256_castps_si256(_mm256_cmp_ps(n, v, _CMP_EQ_OQ));
-    const __m256i l =
-        _mm256_or_si256(_mm256_and_si256(is_max, one), _mm256_and_si256(is_min, two));
+    const __m256i flat = _mm256_castps_si256(_mm256_cmp_ps(m, n, _CMP_EQ_OQ));
+    const __m256i l = _mm256_andnot_si256(
+        flat, _mm256_or_si256(_mm256_and_si256(is_max, one), _mm256_and_si256(is_min, two)));
     const __m128i p16 =
         _mm_packs_epi32(_mm256_castsi256_si128(l), _mm256_extracti128_si256(l, 1));
     _mm_storel_epi64(reinterpret_cast<__m128i*>(out + x), _mm_packus_epi16(p16, p16));

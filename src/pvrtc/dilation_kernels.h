@@ -34,7 +34,8 @@ struct DilationKernels {
   /// Intensity (Rec.709 luma, weights summing to 65536; times alpha / 255 floored when
   /// `alpha`) of the w texels at `src` into `out`, wrap-padded.
   void (*intensity_row)(const std::uint8_t* src, int w, bool alpha, float* out);
-  /// Labels (1: local maximum, 2: local minimum, 3: both) of the row whose intensity is `i1`
+  /// Labels (1: local maximum, 2: local minimum, 0: neither; a texel whose 3x3 neighbourhood
+  /// has one intensity is neither, so never both) of the row whose intensity is `i1`
   /// (i0 the row above, i2 below; all wrap-padded) into `out`. `tmax` / `tmin` are padded
   /// scratch rows.
   void (*label_row)(const float* i0, const float* i1, const float* i2, int w, float* tmax,
