@@ -379,6 +379,58 @@ TEST(PvrtcDilationEncode, ForcedBaselineGivesTheSameBytes) {
 // The dilation's per-block flat flags (which gate the homogeneous-block shortcut) mark exactly
 // the blocks whose texels all have one intensity: the uniform blocks, not the one with a single
 // texel changed (nor any noise block).
+// A fully transparent image has one (premultiplied) intensity everywhere: no texel is an
+// extremum, every texel stays empty, and each block's high / low colour is the colour of its
+// brightest / darkest texel by the colours' own Rec.709 luma (first in raster order on ties),
+// not one texel's colour for both.
+TEST(PvrtcDilationEncode, OneIntensityBlockTakesItsBrightestAndDarkestColours) {
+  for (Format format : {Format::pvrtc1_4bpp, Format::pvrtc1_2bpp}) {
+    const int w = format == Format::pvrtc1_4bpp ? 32 : 64, h = 32;
+    const int bw = format == Format::pvrtc1_4bpp ? 4 : 8;
+    ImageRGBA8 img(w, h);
+    img.has_alpha = true;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        std::uint8_t* p = &img.pixels[(std::size_t(y) * std::size_t(w) + std::size_t(x)) * 4];
+        p[0] = std::uint8_t((x * 7 + y * 3) & 255);
+        p[1] = std::uint8_t((x * 5 + y * 11) & 255);
+        p[2] = std::uint8_t((x * 13 + y) & 255);
+        p[3] = 0;
+      }
+    }
+    EncoderState s;
+    s.g = make_grid(format, w, h);
+    s.alpha_mode = true;
+    s.threads = 1;
+    s.own_target(img.pixels);
+    std::vector<float> low, high;
+    std::vector<std::uint8_t> flat;
+    dilation_endpoints(s, low, high, &flat);
+    for (int by = 0; by < s.g.nby; ++by) {
+      for (int bx = 0; bx < s.g.nbx; ++bx) {
+        const std::size_t bi = std::size_t(by) * std::size_t(s.g.nbx) + std::size_t(bx);
+        EXPECT_EQ(flat[bi], 1);
+        const std::uint8_t *hi = nullptr, *lo = nullptr;
+        int lmax = -1, lmin = 1 << 30;
+        for (int y = by * 4; y < by * 4 + 4; ++y) {
+          for (int x = bx * bw; x < bx * bw + bw; ++x) {
+            const std::uint8_t* p =
+                &img.pixels[(std::size_t(y) * std::size_t(w) + std::size_t(x)) * 4];
+            const int l = 2126 * p[0] + 7152 * p[1] + 722 * p[2];
+            if (l > lmax) lmax = l, hi = p;
+            if (l < lmin) lmin = l, lo = p;
+          }
+        }
+        ASSERT_NE(hi, lo);
+        for (int c = 0; c < 4; ++c) {
+          EXPECT_EQ(high[bi * 4 + std::size_t(c)], float(hi[c])) << "block " << bx << "," << by;
+          EXPECT_EQ(low[bi * 4 + std::size_t(c)], float(lo[c])) << "block " << bx << "," << by;
+        }
+      }
+    }
+  }
+}
+
 TEST(PvrtcDilationEncode, FlatFlagsMarkBlocksOfOneIntensity) {
   for (Format format : {Format::pvrtc1_4bpp, Format::pvrtc1_2bpp}) {
     ImageRGBA8 img = make_procedural(Procedural::noise, 64, 32, 3);

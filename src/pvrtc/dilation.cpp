@@ -450,7 +450,33 @@ void dilate_band(const DilationKernels& kern, const EncoderState& s, int by0, in
             const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
             // Ties go to the first texel in raster order for both, so the brightest and the
             // darkest texel are the same one exactly when all intensities are equal.
-            if (flat != nullptr) flat[bi] = e.xmax == e.xmin && e.ymax == e.ymin;
+            const bool one_intensity = e.xmax == e.xmin && e.ymax == e.ymin;
+            if (flat != nullptr) flat[bi] = one_intensity;
+            // A block of one intensity (uniform, or fully transparent with alpha premultiplied
+            // into the intensity, or equally bright hues) has every texel as its brightest and
+            // darkest: there the colours' own Rec.709 luma breaks the tie, so the texels the
+            // dilation left empty take the block's brightest and darkest colour (first in
+            // raster order on ties) instead of its first texel for both. Over the 21 images,
+            // fast: ldr-rgba-base +0.34 dB RGB, ldr-rgba-diffuse +0.46, the rest unchanged.
+            if (one_intensity) {
+              int lmax = -1, lmin = 1 << 30;
+              for (int yy = 0; yy < 4; ++yy) {
+                const std::uint8_t* row =
+                    t + (std::size_t(by * 4 + yy) * W + std::size_t(bx * bw)) * 4;
+                for (int xx = 0; xx < bw; ++xx) {
+                  const std::uint8_t* p = row + std::size_t(xx) * 4;
+                  const int l = 2126 * p[0] + 7152 * p[1] + 722 * p[2];
+                  if (l > lmax) {
+                    lmax = l;
+                    fill_c[0] = p;
+                  }
+                  if (l < lmin) {
+                    lmin = l;
+                    fill_c[1] = p;
+                  }
+                }
+              }
+            }
             float* dst[2] = {&high[bi * 4], &low[bi * 4]};
             for (int k = 0; k < 2; ++k) {
               std::uint32_t sum[5] = {};
