@@ -13,7 +13,8 @@
 // 3. Dilation: each extremum image is dilated three times with a 3x3 kernel; an empty texel
 //    next to several filled ones takes their average (rounded).
 // 4. Block colours: the mean over the block's texels of the dilated image, where texels still
-//    empty take the block's own extreme (brightest / darkest) texel colour.
+//    empty take the block's own extreme (brightest / darkest) texel colour; in a block of one
+//    intensity, the brightest / darkest by the colours' own luma.
 //
 // The stages run as a row pipeline over a band of block rows: each new intensity row lets the
 // labelling produce the row above it, which lets dilation pass 1 produce the row above that, and
