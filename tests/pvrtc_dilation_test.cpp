@@ -71,6 +71,15 @@ TEST(PvrtcDilationKernels, IntensityRowMatchesBaseline) {
   }
 }
 
+/// Three wrap-padded rows of integer intensities below `levels` (as intensity_row makes them).
+void random_intensity_rows(std::mt19937& rng, int w, std::uint32_t levels, Row<float> (&i)[3]) {
+  for (auto& r : i) {
+    for (int x = 0; x < w; ++x) r.p()[x] = float(rng() % levels);
+    r.p()[-1] = r.p()[w - 1];
+    r.p()[w] = r.p()[0];
+  }
+}
+
 TEST(PvrtcDilationKernels, LabelRowMatchesBaseline) {
   REQUIRE_AVX2();
   std::mt19937 rng(2);
@@ -79,11 +88,7 @@ TEST(PvrtcDilationKernels, LabelRowMatchesBaseline) {
       // Integer intensities (as intensity_row makes), few levels half the time: many ties.
       const std::uint32_t levels = rep % 2 ? 3u : 1u << 24;
       Row<float> i[3] = {Row<float>(w), Row<float>(w), Row<float>(w)};
-      for (auto& r : i) {
-        for (int x = 0; x < w; ++x) r.p()[x] = float(rng() % levels);
-        r.p()[-1] = r.p()[w - 1];
-        r.p()[w] = r.p()[0];
-      }
+      random_intensity_rows(rng, w, levels, i);
       Row<float> mx(w), mn(w);
       Row<std::uint8_t> a(w, 7), b(w, 9);
       base->label_row(i[0].p(), i[1].p(), i[2].p(), w, mx.p(), mn.p(), a.p());
@@ -107,11 +112,7 @@ TEST(PvrtcDilationKernels, LabelRowFollowsTheDefinition) {
       for (int rep = 0; rep < 8; ++rep) {
         const std::uint32_t levels = rep % 2 ? 2u : 5u;  // plateaus and uniform areas
         Row<float> i[3] = {Row<float>(w), Row<float>(w), Row<float>(w)};
-        for (auto& r : i) {
-          for (int x = 0; x < w; ++x) r.p()[x] = float(rng() % levels);
-          r.p()[-1] = r.p()[w - 1];
-          r.p()[w] = r.p()[0];
-        }
+        random_intensity_rows(rng, w, levels, i);
         Row<float> mx(w), mn(w);
         Row<std::uint8_t> out(w, 7);
         k->label_row(i[0].p(), i[1].p(), i[2].p(), w, mx.p(), mn.p(), out.p());
