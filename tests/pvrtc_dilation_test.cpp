@@ -380,6 +380,18 @@ TEST(PvrtcDilationEncode, ForcedBaselineGivesTheSameBytes) {
 // The dilation's per-block flat flags (which gate the homogeneous-block shortcut) mark exactly
 // the blocks whose texels all have one intensity: the uniform blocks, not the one with a single
 // texel changed (nor any noise block).
+/// Runs the dilation stage on `img` (one thread); returns the encoder state it ran on.
+EncoderState dilate(const ImageRGBA8& img, Format format, bool rgba, std::vector<float>& low,
+                    std::vector<float>& high, std::vector<std::uint8_t>& flat) {
+  EncoderState s;
+  s.g = make_grid(format, img.width, img.height);
+  s.alpha_mode = rgba;
+  s.threads = 1;
+  s.own_target(img.pixels);
+  dilation_endpoints(s, low, high, &flat);
+  return s;
+}
+
 // A fully transparent image has one (premultiplied) intensity everywhere: no texel is an
 // extremum, every texel stays empty, and each block's high / low colour is the colour of its
 // brightest / darkest texel by the colours' own Rec.709 luma (first in raster order on ties),
@@ -399,14 +411,9 @@ TEST(PvrtcDilationEncode, OneIntensityBlockTakesItsBrightestAndDarkestColours) {
         p[3] = 0;
       }
     }
-    EncoderState s;
-    s.g = make_grid(format, w, h);
-    s.alpha_mode = true;
-    s.threads = 1;
-    s.own_target(img.pixels);
     std::vector<float> low, high;
     std::vector<std::uint8_t> flat;
-    dilation_endpoints(s, low, high, &flat);
+    const EncoderState s = dilate(img, format, true, low, high, flat);
     for (int by = 0; by < s.g.nby; ++by) {
       for (int bx = 0; bx < s.g.nbx; ++bx) {
         const std::size_t bi = std::size_t(by) * std::size_t(s.g.nbx) + std::size_t(bx);
@@ -453,14 +460,9 @@ TEST(PvrtcDilationEncode, FlatFlagsMarkBlocksOfOneIntensity) {
     fill_block(1, 2, 90, 90, 90);
     img.pixels[(std::size_t(9) * 64 + std::size_t(bw + 1)) * 4] = 91;  // block (1, 2): one texel off
     for (bool rgba : {false, true}) {
-      EncoderState s;
-      s.g = make_grid(format, 64, 32);
-      s.alpha_mode = rgba;
-      s.threads = 1;
-      s.own_target(img.pixels);
       std::vector<float> low, high;
       std::vector<std::uint8_t> flat;
-      dilation_endpoints(s, low, high, &flat);
+      const EncoderState s = dilate(img, format, rgba, low, high, flat);
       ASSERT_EQ(flat.size(), s.g.blocks());
       // Reference: the baseline intensity of every texel, compared within each block.
       std::vector<float> inten(64 + 2 * kPad);
