@@ -268,6 +268,32 @@ TEST(Errors, LyingHeadersAreRefusedBeforeStbAllocates) {
   EXPECT_NE(j.status().message.find("truncated image"), std::string::npos) << j.status().message;
 }
 
+TEST(Errors, LyingPngHeadersAreRefusedBeforeTheImageIsAllocated) {
+  // The fuzzer's finding: 30 bytes (signature, an IHDR claiming 4101 x 64218 16-bit grey +
+  // alpha, one byte of its CRC). libspng reads the header, and the decode allocated the whole
+  // 2 GiB RGBA16 image before finding no data.
+  const std::vector<std::uint8_t> png = {
+      0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44,
+      0x52, 0x00, 0x00, 0x10, 0x05, 0x00, 0x00, 0xfa, 0xda, 0x10, 0x04, 0x00, 0x00, 0x00, 0x08};
+  Result<ImageRGBA8> r = decode_image(png, "lying.png");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code, ErrorCode::corrupt_data);
+  EXPECT_EQ(r.status().message,
+            "lying.png: truncated PNG: 30 bytes cannot hold the 4101x64218 image its header "
+            "announces");
+  // The bound is DEFLATE's largest expansion, so it never refuses a real file: a uniform
+  // 1024 x 1024 RGBA image (4 MiB of pixels in a few KiB) still decodes through libspng.
+  ImageRGBA8 flat;
+  flat.width = flat.height = 1024;
+  flat.has_alpha = true;
+  flat.pixels.assign(flat.pixel_count() * 4, 0);
+  const std::vector<std::uint8_t> small = *encode_png(flat);
+  ASSERT_LT(small.size() * 100, flat.pixels.size());
+  Result<ImageRGBA8> back = detail::decode_png_spng(small, "flat.png");
+  ASSERT_TRUE(back.ok()) << back.status().message;
+  EXPECT_EQ(back->pixels, flat.pixels);
+}
+
 TEST(AtomicWrite, ReplacesOnlyOnSuccess) {
   const fs::path dir = test::temp_dir("atomic");
   const std::string path = (dir / "out.png").string();

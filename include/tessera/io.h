@@ -1,10 +1,12 @@
 // tessera/io.h — reading and writing files and images.
 //
 // Readers never trust sizes found in a file: dimensions are checked against
-// `kMaxImageDimension` / `kMaxImagePixels` before any allocation, and every error message names
-// the file and the problem in one line. Writers are atomic: data goes to a temporary file in the
-// destination folder, which is renamed over the target only when everything was written, so a
-// failure never leaves a partial or overwritten output.
+// `kMaxImageDimension` / `kMaxImagePixels` before any allocation, a header announcing more
+// pixels than the file's bytes can hold (uncompressed, or inflated at DEFLATE's or the
+// format's largest ratio) is refused as truncated before the image is allocated, and every
+// error message names the file and the problem in one line. Writers are atomic: data goes to a
+// temporary file in the destination folder, which is renamed over the target only when
+// everything was written, so a failure never leaves a partial or overwritten output.
 #pragma once
 
 #include <cstdint>

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <string>
 
 #include "io/png_fast.h"
 #include "io/stb_decoder.h"
@@ -49,6 +50,22 @@ Result<PngRaw> decode_png_raw(std::span<const std::uint8_t> bytes, const std::st
   spng_ihdr ihdr{};
   if (int e = spng_get_ihdr(ctx.get(), &ihdr)) return spng_status(name, "bad PNG header", e);
   if (Status s = check_image_size(ihdr.width, ihdr.height, name); !s.ok()) return s;
+  // The image data is at least width * height * channels * depth bits once inflated, and
+  // DEFLATE expands at most 1032:1, so a header announcing more than the file's bytes can
+  // hold is a truncated or corrupt file: refuse it before allocating the image (a 30-byte file
+  // claiming 4101 x 64218 16-bit grey made the decode below allocate 2 GiB).
+  const std::uint64_t channels = ihdr.color_type == SPNG_COLOR_TYPE_TRUECOLOR_ALPHA ? 4
+                                 : ihdr.color_type == SPNG_COLOR_TYPE_TRUECOLOR      ? 3
+                                 : ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE_ALPHA ? 2
+                                                                                      : 1;
+  const std::uint64_t min_inflated =
+      std::uint64_t(ihdr.width) * ihdr.height * channels * ihdr.bit_depth / 8;
+  if (min_inflated > std::uint64_t(bytes.size()) * detail::kMaxDeflateRatio + 4096) {
+    return Status::error(ErrorCode::corrupt_data,
+                         name + ": truncated PNG: " + std::to_string(bytes.size()) +
+                             " bytes cannot hold the " + std::to_string(ihdr.width) + "x" +
+                             std::to_string(ihdr.height) + " image its header announces");
+  }
 
   PngRaw raw;
   raw.width = int(ihdr.width);

@@ -43,8 +43,6 @@ struct DecompressorDeleter {
 // (64 MiB / 256 MiB / 1000 chunks, at most 1032:1 expansion), which would be fatal errors.
 constexpr std::uint64_t kMaxCachedChunkBytes = 32u << 10;
 constexpr int kMaxCachedChunks = 16;
-// DEFLATE cannot expand data by more than 1032:1 (258 bytes from a 2-bit length/distance pair).
-constexpr std::uint64_t kMaxDeflateRatio = 1032;
 
 // Bytes readable after the inflated rows, so that 3-byte pixels can be read with 4-byte loads.
 constexpr std::size_t kSlack = 4;

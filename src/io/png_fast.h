@@ -14,6 +14,10 @@
 
 namespace tessera::detail {
 
+/// DEFLATE cannot expand data by more than 1032:1 (258 bytes from a 2-bit length/distance
+/// pair): both PNG decoders refuse a header whose image the compressed bytes cannot fill.
+inline constexpr std::uint64_t kMaxDeflateRatio = 1032;
+
 /// The common case only, with libdeflate instead of zlib: 8-bit, non-interlaced grey (0),
 /// RGB (2), grey+alpha (4) or RGBA (6) without tRNS or PLTE, whose chunks are all
 /// well-formed (every CRC checked, IHDR first, consecutive IDATs, IEND last) and whose
