@@ -4,8 +4,9 @@
 Usage: make_corpus.py PATH/TO/tessera [OUT_DIR (default: fuzz/corpus next to this script)]
 PVR v3 / KTX 1.1 seeds are made with `tessera compress` from small generated PNGs; the
 pvrtc::decode seeds are the fuzzer's input layout (format byte, int32 width, int32 height,
-block data); image seeds are PNGs (written here with the standard library) plus JPEG, BMP and
-TGA when Pillow is available. Every file stays under 8 KiB (the fuzzers' -max_len).
+block data), the pvrtc::encode seeds that fuzzer's layout (sizes, options, texels); image
+seeds are PNGs (written here with the standard library) plus JPEG, BMP and TGA when Pillow is
+available. Every file stays under 8 KiB (the fuzzers' -max_len).
 """
 import math
 import os
@@ -84,6 +85,27 @@ def pattern(x, y):
             0 if (x + y) % 5 == 0 else 255 - 8 * x)
 
 
+def encode_seeds():
+    """pvrtc::encode seeds in fuzz_pvrtc_encode.cpp's layout: log2 width, log2 height, flags
+    (bit 0 2 bpp, bits 1-2 quality, bit 3 alpha, bit 4 no punch-through, bit 5 force alpha,
+    bits 6-7 fill), exact-search rounds, then the texel source."""
+    texels = bytes(v for x in range(64) for v in pattern(x % 8, x // 8))
+    seeds = [  # (name, log2 w, log2 h, flags, rounds, source)
+        ("8x8-4bpp-fast-rgba", 3, 3, 0b00001000, 0, texels),
+        ("16x16-4bpp-normal-rgb", 4, 4, 0b00000010, 0, texels),
+        ("16x8-4bpp-high-rgba", 4, 3, 0b00001100, 0, texels),
+        ("32x16-2bpp-high-rgb", 5, 4, 0b00000101, 0, texels),
+        ("1x1-4bpp-fast-rgba", 0, 0, 0b00001000, 0, texels[:4]),
+        ("2x32-2bpp-normal-rgba", 1, 5, 0b00001011, 2, texels),
+        ("64x4-4bpp-fast-sweep-palette", 6, 2, 0b01000110, 0, texels[:40]),
+        ("8x64-4bpp-normal-ramp-nopunch", 3, 6, 0b10011010, 3, texels[:12]),
+        ("32x32-4bpp-high-uniform", 5, 5, 0b11000100, 0, bytes([200, 40, 90, 255])),
+        ("16x16-2bpp-fast-force-alpha", 4, 4, 0b00100001, 0, texels),
+    ]
+    for name, lw, lh, flags, rounds, src in seeds:
+        write("fuzz_pvrtc_encode", name + ".bin", bytes([lw, lh, flags, rounds]) + src)
+
+
 def write(target, name, data):
     folder = os.path.join(OUT, target)
     os.makedirs(folder, exist_ok=True)
@@ -121,6 +143,7 @@ def main():
             write("fuzz_pvrtc_decode", name + ".bin", header + pvr[67:67 + level0])
 
     png_diff_seeds()
+    encode_seeds()
     write("fuzz_decode_image", "rgb.png", png_bytes(7, 5, 3, pattern))
     write("fuzz_decode_image", "rgba.png", png_bytes(9, 4, 4, pattern))
     write("fuzz_decode_image", "grey.png", png_bytes(6, 6, 1, pattern))
