@@ -2,6 +2,7 @@
 // oracle's decode byte for byte, both on files PVRTexTool encoded and on files tessera encoded.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -22,8 +23,9 @@ namespace fs = std::filesystem;
 
 // Minimal PVR v3 writer/reader (one surface, one level, no metadata) for these tests only.
 std::vector<std::uint8_t> make_pvr(Format format, bool alpha, int w, int h,
-                                   const std::vector<std::uint8_t>& level) {
-  std::vector<std::uint8_t> out(52);
+                                   const std::vector<std::uint8_t>& level, bool srgb = false) {
+  std::vector<std::uint8_t> out(52 + level.size());
+  std::copy(level.begin(), level.end(), out.begin() + 52);
   auto put32 = [&](std::size_t off, std::uint32_t v) {
     for (int i = 0; i < 4; ++i) out[off + std::size_t(i)] = std::uint8_t(v >> (8 * i));
   };
@@ -32,7 +34,7 @@ std::vector<std::uint8_t> make_pvr(Format format, bool alpha, int w, int h,
   const std::uint32_t pf = format == Format::pvrtc1_4bpp ? (alpha ? 3 : 2) : (alpha ? 1 : 0);
   put32(8, pf);
   put32(12, 0);
-  put32(16, 0);  // linear colour space
+  put32(16, srgb ? 1 : 0);  // colour space: 0 linear, 1 sRGB
   put32(20, 0);
   put32(24, std::uint32_t(h));
   put32(28, std::uint32_t(w));
@@ -41,7 +43,6 @@ std::vector<std::uint8_t> make_pvr(Format format, bool alpha, int w, int h,
   put32(40, 1);
   put32(44, 1);
   put32(48, 0);
-  out.insert(out.end(), level.begin(), level.end());
   return out;
 }
 
@@ -213,6 +214,49 @@ INSTANTIATE_TEST_SUITE_P(All, OracleEncode,
                                             ::testing::Values(Format::pvrtc1_4bpp,
                                                               Format::pvrtc1_2bpp),
                                             ::testing::Values(Quality::fast, Quality::high)));
+
+// PVRTexTool's -d converts an sRGB-flagged file to linear values; the same blocks flagged
+// linear decode exactly as tessera decodes them (tessera writes the stored values either way).
+TEST(OracleDecode, SrgbFlagMakesTheOracleWriteLinearValues) {
+  auto tool = test::pvrtextool();
+  if (!tool) GTEST_SKIP() << "PVRTexToolCLI not available";
+  for (Format format : {Format::pvrtc1_4bpp, Format::pvrtc1_2bpp}) {
+    const ImageRGBA8 img = make_procedural(Procedural::foliage, 64, 32);
+    EncodeOptions opt;
+    opt.format = format;
+    opt.quality = Quality::fast;
+    auto enc = encode(img, opt);
+    ASSERT_TRUE(enc.ok()) << enc.status().message;
+    auto ours = decode(*enc, format, 64, 32, 1);
+    ASSERT_TRUE(ours.ok());
+    const fs::path dir = test::temp_dir(format == Format::pvrtc1_4bpp ? "srgb4" : "srgb2");
+    for (bool srgb : {false, true}) {
+      const fs::path file = dir / (srgb ? "srgb.pvr" : "linear.pvr");
+      ASSERT_TRUE(
+          write_file_atomic(file.string(), make_pvr(format, true, 64, 32, *enc, srgb)).ok());
+      auto oracle = oracle_decode(*tool, file, dir);
+      ASSERT_TRUE(oracle.ok()) << oracle.status().message;
+      if (!srgb) {
+        expect_same(*ours, *oracle, "linear-flagged copy");
+        continue;
+      }
+      ASSERT_EQ(oracle->pixels.size(), ours->pixels.size());
+      std::size_t changed = 0, off = 0;
+      for (std::size_t i = 0; i < ours->pixels.size(); ++i) {
+        const int o = oracle->pixels[i], v = ours->pixels[i];
+        if (i % 4 == 3) {  // alpha is not converted
+          off += o != v;
+          continue;
+        }
+        const int lin = int(255.0f * srgb8_to_linear(std::uint8_t(v)) + 0.5f);
+        off += std::abs(o - lin) > 1;
+        changed += o != v;
+      }
+      EXPECT_EQ(off, 0u) << "the oracle's decode of the sRGB file is not the linearised decode";
+      EXPECT_GT(changed, ours->pixels.size() / 8) << "the sRGB flag changed nothing";
+    }
+  }
+}
 
 // The smallest and most lopsided sizes, padded to 2x2 blocks or wrapping onto themselves (a
 // block's neighbours are the block itself): every quality, both formats, RGBA and RGB.
