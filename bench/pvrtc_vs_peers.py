@@ -184,7 +184,7 @@ def main():
                     out = os.path.join(tmp, f"t-{q}-j{j}.pvr")
                     configs[("tessera", q, j)] = (
                         [args.tessera, "-j", str(j), "compress", path, "-o", out, "--quality", q,
-                         "--format", f"pvrtc1-{args.bpp}"], out)
+                         "--format", f"pvrtc1-{args.bpp}", "--quiet"], out)
             for q in PVR_QUALITIES:
                 out = os.path.join(tmp, f"p-{q}.pvr")
                 configs[("PVRTexTool", q, 0)] = (

@@ -22,7 +22,10 @@ packages=(
   libtbb-dev                                   # parallel_for
   libcli11-dev nlohmann-json3-dev              # CLI, --json
   libtinyobjloader-dev libtinygltf-dev         # OBJ and glTF scenes
-  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri  # OpenGL peer (Mesa llvmpipe, EGL surfaceless)
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri  # GL runtime: EGL + OpenGL 4.5 (Mesa llvmpipe)
+  libepoxy-dev glslang-tools                   # GL entry points; GLSL validation in the tests
+  pybind11-dev python3-dev python3-pytest      # the Python module and its tests
+  python3-distributed                          # tessera.batch on a Dask cluster
   libgtest-dev libgmock-dev libbenchmark-dev   # tests, benchmarks
   python3 python3-numpy python3-skimage python3-pil  # independent SSIM/PSNR, image checks
 )

@@ -95,7 +95,7 @@ try:
     blocker = os.path.join(tmp, "blocker")
     open(blocker, "w").close()
     expect_error("demo into a file", ["demo", "-o", os.path.join(blocker, "sub")], 1, "blocker")
-    leftovers = [n for n in os.listdir(tmp) if ".tmp." in n]
+    leftovers = [n for n in os.listdir(tmp) if ".tmp" in n]
     check("no temp files left", not leftovers, str(leftovers))
 finally:
     shutil.rmtree(tmp, ignore_errors=True)

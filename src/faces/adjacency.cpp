@@ -1,6 +1,8 @@
 // Driver: quad meshes, OBJ polygons, directed-edge adjacency and valence-4 corner links.
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <unordered_map>
@@ -21,7 +23,9 @@ Vec3 QuadMesh::point(int face, Uv uv) const {
 
 Result<PolygonMesh> load_obj_polygons(const std::string& path) {
   std::ifstream in(path);
-  if (!in) return Status::error(ErrorCode::io_error, path + ": cannot open");
+  if (!in) {
+    return Status::error(ErrorCode::io_error, path + ": cannot open: " + std::strerror(errno));
+  }
   PolygonMesh mesh;
   std::string line;
   int line_no = 0;

@@ -252,13 +252,13 @@ Result<ImageRGBAF> decode_image_float(std::span<const std::uint8_t> bytes,
 Result<ImageRGBA8> read_image(const std::string& path) {
   Result<std::vector<std::uint8_t>> bytes = read_file(path);
   if (!bytes) return bytes.status();
-  return decode_image(*bytes, path);
+  return decode_image(*bytes, io_name(path));
 }
 
 Result<ImageRGBAF> read_image_float(const std::string& path) {
   Result<std::vector<std::uint8_t>> bytes = read_file(path);
   if (!bytes) return bytes.status();
-  return decode_image_float(*bytes, path);
+  return decode_image_float(*bytes, io_name(path));
 }
 
 Result<std::vector<std::uint8_t>> encode_png(const ImageRGBA8& image) {
@@ -302,7 +302,9 @@ Result<std::vector<std::uint8_t>> encode_png(const ImageRGBA8& image) {
 
 Status write_png(const std::string& path, const ImageRGBA8& image) {
   Result<std::vector<std::uint8_t>> png = encode_png(image);
-  if (!png) return Status::error(png.status().code, path + ": " + png.status().message);
+  if (!png) {
+    return Status::error(png.status().code, io_name(path, true) + ": " + png.status().message);
+  }
   return write_file_atomic(path, *png);
 }
 

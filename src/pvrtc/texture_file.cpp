@@ -126,7 +126,7 @@ Result<CompressedTexture> parse_texture(std::span<const std::uint8_t> bytes,
 Result<CompressedTexture> read_texture_file(const std::string& path) {
   Result<std::vector<std::uint8_t>> bytes = read_file(path);
   if (!bytes) return bytes.status();
-  return parse_texture(*bytes, path);
+  return parse_texture(*bytes, io_name(path));
 }
 
 Status write_texture_file(const std::string& path, const CompressedTexture& texture) {

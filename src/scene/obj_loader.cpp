@@ -1,6 +1,9 @@
 // Wavefront OBJ (+ MTL) loading through tinyobjloader.
 #include <tiny_obj_loader.h>
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <map>
 #include <tuple>
 #include <unordered_map>
@@ -30,6 +33,11 @@ Result<Scene> load_obj(const std::string& path, const LoadOptions& options) {
   config.vertex_color = false;
   config.mtl_search_path = detail::folder_of(path);
   tinyobj::ObjReader reader;
+  if (std::FILE* probe = std::fopen(path.c_str(), "rb")) {
+    std::fclose(probe);
+  } else {
+    return Status::error(ErrorCode::io_error, path + ": cannot open: " + std::strerror(errno));
+  }
   if (!reader.ParseFromFile(path, config)) {
     std::string why = reader.Error();
     while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();

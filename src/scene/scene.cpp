@@ -56,12 +56,12 @@ Result<Camera> parse_camera(const std::string& text) {
       v.push_back(f);
     } catch (const std::exception&) {
       return Status::error(ErrorCode::invalid_argument,
-                           "camera: '" + item + "' is not a number in '" + text + "'");
+                           "--camera: '" + item + "' is not a number in '" + text + "'");
     }
   }
   if (v.size() != 10) {
     return Status::error(ErrorCode::invalid_argument,
-                         "camera: expected 10 numbers eye(3),target(3),up(3),fov, got " +
+                         "--camera: expected 10 numbers eye(3),target(3),up(3),fov, got " +
                              std::to_string(v.size()));
   }
   Camera c;
@@ -70,11 +70,11 @@ Result<Camera> parse_camera(const std::string& text) {
   c.up = {v[6], v[7], v[8]};
   c.fov_y_degrees = v[9];
   if (!(c.fov_y_degrees > 0.5f && c.fov_y_degrees < 179.5f)) {
-    return Status::error(ErrorCode::invalid_argument, "camera: field of view must be in (0.5, 179.5) degrees");
+    return Status::error(ErrorCode::invalid_argument, "--camera: field of view must be in (0.5, 179.5) degrees");
   }
   if (length(c.target - c.eye) == 0.0f || length(cross(c.target - c.eye, c.up)) == 0.0f) {
     return Status::error(ErrorCode::invalid_argument,
-                         "camera: eye equals target, or up is parallel to the view direction");
+                         "--camera: eye equals target, or up is parallel to the view direction");
   }
   return c;
 }
@@ -107,9 +107,10 @@ Result<Camera> camera_from_text(const Scene& scene, const std::string& camera,
   if (!orbit.empty()) {
     int f = -1, n = 0;
     char tail = 0;
-    if (std::sscanf(orbit.c_str(), "%d/%d%c", &f, &n, &tail) != 2 || n <= 0 || f < 0) {
+    if (std::sscanf(orbit.c_str(), "%d/%d%c", &f, &n, &tail) != 2 || n <= 0 || f < 0 ||
+        f >= n) {
       return Status::error(ErrorCode::invalid_argument,
-                           "orbit: expected FRAME/N with 0 <= FRAME and N > 0, got '" + orbit + "'");
+                           "--orbit: expected FRAME/N with 0 <= FRAME < N, got '" + orbit + "'");
     }
     return orbit_camera(scene, f, n);
   }

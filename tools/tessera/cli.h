@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <string>
@@ -27,6 +28,14 @@ struct GlobalOptions {
 int fail(const Status& status);
 /// Prints "tessera: <message>" on one line to stderr and returns kExitUsage.
 int usage_error(const std::string& message);
+
+/// Refuses binary output to a terminal, as zstd does: when `path` is "-" and standard output is
+/// a terminal, prints a one-line hint naming `what` and returns kExitUsage; else returns 0.
+int refuse_binary_to_terminal(const std::string& path, const char* what);
+
+/// Where human-readable text goes: stderr when stdout carries data (`data_on_stdout`) or JSON,
+/// else stdout.
+std::FILE* text_stream(bool data_on_stdout);
 
 /// A registered subcommand: the CLI11 sub-app and the action run when it was selected.
 struct Command {

@@ -468,7 +468,8 @@ Command add_aa_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   sub->add_option("--t-edge", args->adaptive.t_edge, "Shading metric: relative edge threshold")
       ->capture_default_str();
-  sub->add_option("-o,--out", args->out, "Output folder (aa.json, aa.md, PNGs)")->required();
+  sub->add_option("-o,--output,--out", args->out, "Output folder (aa.json, aa.md, PNGs)")
+      ->required();
   return {sub, [args, &global] { return run_aa(*args, global); }};
 }
 

@@ -21,6 +21,15 @@ nlohmann::json db_or_null(double v) {
 }
 
 int run_compare(const CompareArgs& args, const GlobalOptions& global) {
+  if (args.b == "-") {
+    return usage_error("compare: only the first image can be '-' (standard input)");
+  }
+  if (int rc = refuse_binary_to_terminal(args.heatmap, "a PNG heatmap")) return rc;
+  if (!args.heatmap.empty()) {
+    if (Result<ImageFormat> f = image_format_for_output(args.heatmap); !f) {
+      return usage_error("--heatmap: " + f.status().message);
+    }
+  }
   Result<ImageRGBA8> a = read_image(args.a);
   if (!a) return fail(a.status());
   Result<ImageRGBA8> b = read_image(args.b);
@@ -28,7 +37,8 @@ int run_compare(const CompareArgs& args, const GlobalOptions& global) {
   if (a->width != b->width || a->height != b->height) {
     return fail(Status::error(ErrorCode::size_mismatch,
                               args.b + ": size " + std::to_string(b->width) + "x" +
-                                  std::to_string(b->height) + " differs from " + args.a + " (" +
+                                  std::to_string(b->height) + " differs from " +
+                                  io_name(args.a) + " (" +
                                   std::to_string(a->width) + "x" + std::to_string(a->height) +
                                   ")"));
   }
@@ -39,11 +49,13 @@ int run_compare(const CompareArgs& args, const GlobalOptions& global) {
   if (!args.heatmap.empty()) {
     Result<ImageRGBA8> map = difference_heatmap(*a, *b);
     if (!map) return fail(map.status());
-    if (Status s = write_png(args.heatmap, *map); !s.ok()) return fail(s);
+    if (Status s = write_image(args.heatmap, *map); !s.ok()) return fail(s);
   }
+  // With the heatmap on stdout, the results go to stderr.
+  std::FILE* out = text_stream(args.heatmap == "-");
   if (args.json) {
     nlohmann::json j = {
-        {"a", args.a},
+        {"a", io_name(args.a)},
         {"b", args.b},
         {"width", a->width},
         {"height", a->height},
@@ -58,25 +70,26 @@ int run_compare(const CompareArgs& args, const GlobalOptions& global) {
       j["psnr_alpha"] = db_or_null(r->psnr_alpha);
       j["mse_alpha"] = r->mse_alpha;
     }
-    std::printf("%s\n", j.dump(2).c_str());
+    std::fprintf(out, "%s\n", j.dump(2).c_str());
     return kExitOk;
   }
-  std::printf("%s vs %s (%dx%d)\n", args.a.c_str(), args.b.c_str(), a->width, a->height);
+  std::fprintf(out, "%s vs %s (%dx%d)\n", io_name(args.a).c_str(), args.b.c_str(), a->width,
+               a->height);
   if (std::isfinite(r->psnr_rgb)) {
-    std::printf("PSNR RGB   : %.4f dB\n", r->psnr_rgb);
+    std::fprintf(out, "PSNR RGB   : %.4f dB\n", r->psnr_rgb);
   } else {
-    std::printf("PSNR RGB   : inf (identical RGB)\n");
+    std::fprintf(out, "PSNR RGB   : inf (identical RGB)\n");
   }
   if (r->has_alpha) {
     if (std::isfinite(r->psnr_alpha)) {
-      std::printf("PSNR alpha : %.4f dB\n", r->psnr_alpha);
+      std::fprintf(out, "PSNR alpha : %.4f dB\n", r->psnr_alpha);
     } else {
-      std::printf("PSNR alpha : inf (identical alpha)\n");
+      std::fprintf(out, "PSNR alpha : inf (identical alpha)\n");
     }
   }
-  std::printf("SSIM grey  : %.6f\n", r->ssim_gray);
-  std::printf("MSE RGB    : %.6f\n", r->mse_rgb);
-  std::printf("max abs    : %d\n", r->max_abs);
+  std::fprintf(out, "SSIM grey  : %.6f\n", r->ssim_gray);
+  std::fprintf(out, "MSE RGB    : %.6f\n", r->mse_rgb);
+  std::fprintf(out, "max abs    : %d\n", r->max_abs);
   return kExitOk;
 }
 }  // namespace
@@ -86,12 +99,15 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
   CLI::App* sub = app.add_subcommand(
       "compare",
       "Compare two images: PSNR over RGB (and alpha), SSIM on Rec.709 grey, MSE, max error");
-  sub->add_option("A", args->a, "Reference image (PNG, JPEG, TGA, BMP)")->required();
+  sub->add_option("A", args->a, "Reference image (PNG, JPEG, TGA, BMP; '-' = stdin)")
+      ->required();
   sub->add_option("B", args->b, "Test image of the same size")->required();
   sub->add_flag("--json", args->json,
                 "Print one JSON object (keys psnr_rgb, ssim_gray, mse, max_abs, ...; "
                 "psnr_rgb is null for identical images)");
-  sub->add_option("--heatmap", args->heatmap, "Also write a difference heatmap PNG here");
+  sub->add_option("--heatmap", args->heatmap,
+                  "Also write a difference heatmap here (.png, .bmp, .tga or .jpg by extension; "
+                  "'-' = PNG on stdout, the results then go to stderr)");
   return {sub, [args, &global] { return run_compare(*args, global); }};
 }
 

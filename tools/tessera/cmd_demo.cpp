@@ -46,7 +46,7 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<DemoArgs>();
   CLI::App* sub = app.add_subcommand(
       "demo", "Run every system on built-in procedural content and write an HTML report");
-  sub->add_option("-o,--out", args->out, "Output folder (report.html and img/)")
+  sub->add_option("-o,--output,--out", args->out, "Output folder (report.html and img/)")
       ->capture_default_str();
   sub->add_option("--size", args->size, "Edge length of the procedural images")
       ->check(CLI::Range(16, 4096))

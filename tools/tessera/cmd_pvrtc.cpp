@@ -33,15 +33,26 @@ struct CompressArgs {
   bool mipmaps = false;
   bool srgb = false;
   bool resize_pot = false;
+  std::string container;  // "pvr" or "ktx"; "" = from the output's extension
   bool json = false;
+  bool quiet = false;
   int iterations = -1;          // -1: the quality preset's schedule
   int exact_search_rounds = 0;  // 0: the quality preset's schedule
 };
 
 int run_compress(const CompressArgs& args, const GlobalOptions& global) {
-  if (container_from_extension(args.output) == ContainerFormat::unknown) {
-    return usage_error(args.output + ": unknown output extension (use .pvr or .ktx)");
+  ContainerFormat container = container_from_extension(args.output);
+  if (!args.container.empty()) {
+    container = args.container == "ktx" ? ContainerFormat::ktx1 : ContainerFormat::pvr3;
+  } else if (args.output == "-") {
+    container = ContainerFormat::pvr3;
   }
+  if (container == ContainerFormat::unknown) {
+    return usage_error(args.output +
+                       ": unknown output extension (use .pvr or .ktx, or --container pvr|ktx)");
+  }
+  if (int rc = refuse_binary_to_terminal(args.output, "a compressed texture")) return rc;
+  const std::string input_name = io_name(args.input);
   Result<ImageRGBA8> loaded = read_image(args.input);
   if (!loaded) return fail(loaded.status());
   ImageRGBA8 image = std::move(loaded).value();
@@ -66,13 +77,13 @@ int run_compress(const CompressArgs& args, const GlobalOptions& global) {
   MipmapOptions filter;
   filter.srgb = args.srgb;
   filter.threads = global.threads;
-  const bool pot = pvrtc::check_dimensions(image.width, image.height, args.input).ok();
+  const bool pot = pvrtc::check_dimensions(image.width, image.height, input_name).ok();
   if (!pot) {
     const int pw = nearest_power_of_two(image.width), ph = nearest_power_of_two(image.height);
     if (!args.resize_pot) {
       return fail(Status::error(
           ErrorCode::invalid_argument,
-          args.input + ": size " + size_text(image.width, image.height) +
+          input_name + ": size " + size_text(image.width, image.height) +
               " is not a power of two (PVRTC needs power-of-two sides); use --resize-pot to "
               "resample to " + size_text(pw, ph)));
     }
@@ -80,7 +91,7 @@ int run_compress(const CompressArgs& args, const GlobalOptions& global) {
     if (!resized) return fail(resized.status());
     image = std::move(resized).value();
   }
-  if (Status s = pvrtc::check_dimensions(image.width, image.height, args.input); !s.ok()) {
+  if (Status s = pvrtc::check_dimensions(image.width, image.height, input_name); !s.ok()) {
     return fail(s);
   }
 
@@ -115,7 +126,7 @@ int run_compress(const CompressArgs& args, const GlobalOptions& global) {
     Result<std::vector<std::uint8_t>> enc = pvrtc::encode(*level, eo);
     if (!enc) {
       Status s = enc.status();
-      s.message = args.input + ": " + s.message;
+      s.message = input_name + ": " + s.message;
       return fail(s);
     }
     tex.levels.push_back(std::move(enc).value());
@@ -126,31 +137,40 @@ int run_compress(const CompressArgs& args, const GlobalOptions& global) {
   std::size_t bytes = 0;
   {
     Result<std::vector<std::uint8_t>> file =
-        container_from_extension(args.output) == ContainerFormat::ktx1 ? serialize_ktx1(tex)
-                                                                       : serialize_pvr3(tex);
+        container == ContainerFormat::ktx1 ? serialize_ktx1(tex) : serialize_pvr3(tex);
     if (!file) return fail(file.status());
     bytes = file->size();
     if (Status s = write_file_atomic(args.output, *file); !s.ok()) return fail(s);
   }
+  if (args.quiet && !args.json) return kExitOk;
 
-  if (!args.json) {
-    std::printf("wrote %s: %s %s, %s%s, %d level(s), %zu bytes, encoded in %.1f ms (%s)\n",
-                args.output.c_str(), size_text(tex.width, tex.height).c_str(),
-                texture_format_name(tex).c_str(), args.srgb ? "sRGB" : "linear",
-                pot ? "" : " (resized with Lanczos-3)", tex.level_count(), bytes, ms,
-                args.quality.c_str());
-    return kExitOk;
-  }
+  // Quality of level 0 against the (possibly resized) input, as astcenc's -tl mode reports it.
   Result<ImageRGBA8> decoded = decode_texture_level(tex, 0, global.threads);
   if (!decoded) return fail(decoded.status());
   CompareOptions co;
   co.threads = global.threads;
   Result<ImageComparison> cmp = compare_images(image, *decoded, co);
   if (!cmp) return fail(cmp.status());
+  std::FILE* out = text_stream(args.output == "-");
+  const std::string output_name = io_name(args.output, true);
+  if (!args.json) {
+    char alpha[48] = "";
+    if (tex.has_alpha) {
+      std::snprintf(alpha, sizeof alpha, ", alpha %.2f dB", cmp->psnr_alpha);
+    }
+    std::fprintf(out,
+                 "wrote %s: %s %s, %s%s, %d level(s), %zu bytes, encoded in %.1f ms (%s); "
+                 "PSNR %.2f dB%s, SSIM %.4f\n",
+                 output_name.c_str(), size_text(tex.width, tex.height).c_str(),
+                 texture_format_name(tex).c_str(), args.srgb ? "sRGB" : "linear",
+                 pot ? "" : " (resized with Lanczos-3)", tex.level_count(), bytes, ms,
+                 args.quality.c_str(), cmp->psnr_rgb, alpha, cmp->ssim_gray);
+    return kExitOk;
+  }
   nlohmann::json j = {
-      {"input", args.input},
-      {"output", args.output},
-      {"container", container_name(container_from_extension(args.output))},
+      {"input", input_name},
+      {"output", output_name},
+      {"container", container_name(container)},
       {"width", tex.width},
       {"height", tex.height},
       {"resized", !pot},
@@ -168,7 +188,7 @@ int run_compress(const CompressArgs& args, const GlobalOptions& global) {
       {"ssim_gray", cmp->ssim_gray},
   };
   if (tex.has_alpha) j["psnr_alpha"] = db_or_null(cmp->psnr_alpha);
-  std::printf("%s\n", j.dump(2).c_str());
+  std::fprintf(out, "%s\n", j.dump(2).c_str());
   return kExitOk;
 }
 
@@ -179,14 +199,21 @@ int run_compress(const CompressArgs& args, const GlobalOptions& global) {
 struct DecompressArgs {
   std::string input, output;
   int level = 0;
+  bool quiet = false;
+  bool json = false;
 };
 
 int run_decompress(const DecompressArgs& args, const GlobalOptions& global) {
+  if (Result<ImageFormat> f = image_format_for_output(args.output); !f) {
+    return usage_error("-o: " + f.status().message);
+  }
+  if (int rc = refuse_binary_to_terminal(args.output, "an image")) return rc;
+  const std::string input_name = io_name(args.input);
   Result<CompressedTexture> tex = read_texture_file(args.input);
   if (!tex) return fail(tex.status());
   if (args.level < 0 || args.level >= tex->level_count()) {
     return fail(Status::error(ErrorCode::invalid_argument,
-                              args.input + ": --level " + std::to_string(args.level) +
+                              input_name + ": --level " + std::to_string(args.level) +
                                   " is out of range (the file has " +
                                   std::to_string(tex->level_count()) + " level(s), 0 to " +
                                   std::to_string(tex->level_count() - 1) + ")"));
@@ -194,12 +221,23 @@ int run_decompress(const DecompressArgs& args, const GlobalOptions& global) {
   Result<ImageRGBA8> img = decode_texture_level(*tex, args.level, global.threads);
   if (!img) {
     Status s = img.status();
-    s.message = args.input + ": " + s.message;
+    s.message = input_name + ": " + s.message;
     return fail(s);
   }
-  if (Status s = write_png(args.output, *img); !s.ok()) return fail(s);
-  std::printf("wrote %s: level %d, %s\n", args.output.c_str(), args.level,
-              size_text(img->width, img->height).c_str());
+  if (Status s = write_image(args.output, *img); !s.ok()) return fail(s);
+  std::FILE* out = text_stream(args.output == "-");
+  if (args.json) {
+    const nlohmann::json j = {{"input", input_name},
+                              {"output", io_name(args.output, true)},
+                              {"level", args.level},
+                              {"width", img->width},
+                              {"height", img->height},
+                              {"has_alpha", img->has_alpha}};
+    std::fprintf(out, "%s\n", j.dump(2).c_str());
+  } else if (!args.quiet) {
+    std::fprintf(out, "wrote %s: level %d, %s\n", io_name(args.output, true).c_str(), args.level,
+                 size_text(img->width, img->height).c_str());
+  }
   return kExitOk;
 }
 
@@ -215,7 +253,8 @@ struct InfoArgs {
 int run_info(const InfoArgs& args) {
   Result<std::vector<std::uint8_t>> bytes = read_file(args.input);
   if (!bytes) return fail(bytes.status());
-  Result<CompressedTexture> tex = parse_texture(*bytes, args.input);
+  const std::string name = io_name(args.input);
+  Result<CompressedTexture> tex = parse_texture(*bytes, name);
   if (!tex) return fail(tex.status());
   const ContainerFormat container = detect_container(*bytes);
   if (args.json) {
@@ -227,7 +266,7 @@ int run_info(const InfoArgs& args) {
                         {"bytes", tex->levels[std::size_t(i)].size()}});
     }
     nlohmann::json j = {
-        {"file", args.input},
+        {"file", name},
         {"container", container_name(container)},
         {"format", texture_format_name(*tex)},
         {"bpp", tex->format == pvrtc::Format::pvrtc1_4bpp ? 4 : 2},
@@ -242,7 +281,7 @@ int run_info(const InfoArgs& args) {
     std::printf("%s\n", j.dump(2).c_str());
     return kExitOk;
   }
-  std::printf("%s\n", args.input.c_str());
+  std::printf("%s\n", name.c_str());
   std::printf("  container     : %s\n", container_name(container));
   std::printf("  format        : %s\n", texture_format_name(*tex).c_str());
   std::printf("  size          : %s\n", size_text(tex->width, tex->height).c_str());
@@ -263,8 +302,15 @@ Command add_compress_command(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<CompressArgs>();
   CLI::App* sub = app.add_subcommand(
       "compress", "Compress an image to PVRTC1 (PVR v3 or KTX 1.1 by output extension)");
-  sub->add_option("INPUT", args->input, "Input image (PNG, JPEG, TGA, BMP)")->required();
-  sub->add_option("-o,--output", args->output, "Output texture: .pvr or .ktx")->required();
+  sub->add_option("INPUT", args->input,
+                  "Input image (PNG, JPEG, TGA, BMP; recognised by its bytes; '-' = stdin)")
+      ->required();
+  sub->add_option("-o,--output,--out", args->output,
+                  "Output texture: .pvr or .ktx ('-' = stdout, PVR unless --container ktx)")
+      ->required();
+  sub->add_option("--container", args->container,
+                  "Container, instead of the output's extension: pvr (PVR v3) or ktx (KTX 1.1)")
+      ->check(CLI::IsMember({"pvr", "ktx"}));
   sub->add_option("--format", args->format, "PVRTC1 variant")
       ->check(CLI::IsMember({"pvrtc1-4", "pvrtc1-2"}))
       ->capture_default_str();
@@ -298,17 +344,25 @@ Command add_compress_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_flag("--json", args->json,
                 "Print one JSON object: time_ms (encode), width, height, format, quality, levels, "
                 "bytes, psnr_rgb, ssim_gray (and psnr_alpha) of level 0 vs the input");
+  sub->add_flag("-q,--quiet", args->quiet,
+                "Print nothing on success (and skip measuring the result's PSNR and SSIM)");
   return {sub, [args, &global] { return run_compress(*args, global); }};
 }
 
 Command add_decompress_command(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<DecompressArgs>();
   CLI::App* sub =
-      app.add_subcommand("decompress", "Decode one level of a PVRTC .pvr/.ktx file to PNG");
-  sub->add_option("INPUT", args->input, "Input texture (.pvr or .ktx)")->required();
-  sub->add_option("-o,--output", args->output, "Output PNG")->required();
+      app.add_subcommand("decompress", "Decode one level of a PVRTC .pvr/.ktx file to an image");
+  sub->add_option("INPUT", args->input,
+                  "Input texture (PVR v3 or KTX 1.1, recognised by its bytes; '-' = stdin)")
+      ->required();
+  sub->add_option("-o,--output,--out", args->output,
+                  "Output image: .png, .bmp, .tga or .jpg by extension ('-' = PNG on stdout)")
+      ->required();
   sub->add_option("--level", args->level, "Mip level to decode (0 = largest)")
       ->capture_default_str();
+  sub->add_flag("--json", args->json, "Print one JSON object (input, output, level, size)");
+  sub->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
   return {sub, [args, &global] { return run_decompress(*args, global); }};
 }
 
@@ -316,7 +370,8 @@ Command add_info_command(CLI::App& app, const GlobalOptions& /*global*/) {
   auto args = std::make_shared<InfoArgs>();
   CLI::App* sub = app.add_subcommand(
       "info", "Describe a .pvr/.ktx texture: container, format, size, colour space, levels");
-  sub->add_option("FILE", args->input, "Texture file")->required();
+  sub->add_option("FILE", args->input, "Texture file (PVR v3 or KTX 1.1; '-' = stdin)")
+      ->required();
   sub->add_flag("--json", args->json, "Print one JSON object");
   return {sub, [args] { return run_info(*args); }};
 }

@@ -15,9 +15,14 @@ struct RenderArgs {
   std::string scene, out, camera, orbit, filter = "trilinear", shading = "textured";
   int width = 1024, height = 768, msaa = 1, ssaa = 1, frames = 1;
   bool json = false;
+  bool quiet = false;
 };
 
 int run_render(const RenderArgs& args, const GlobalOptions& global) {
+  if (Result<ImageFormat> f = image_format_for_output(args.out); !f) {
+    return usage_error("-o: " + f.status().message);
+  }
+  if (int rc = refuse_binary_to_terminal(args.out, "an image")) return rc;
   Result<scene::Scene> sc = args.scene == "builtin" ? Result<scene::Scene>(scene::builtin_scene())
                                                     : scene::load_scene(args.scene);
   if (!sc) return fail(sc.status());
@@ -42,10 +47,12 @@ int run_render(const RenderArgs& args, const GlobalOptions& global) {
     times.push_back(frame->ms_total());
     last = std::move(*frame);
   }
-  if (Status s = write_png(args.out, last.image); !s.ok()) return fail(s);
+  if (Status s = write_image(args.out, last.image); !s.ok()) return fail(s);
   std::vector<double> sorted = times;
   std::sort(sorted.begin(), sorted.end());
-  const double median = sorted[sorted.size() / 2];
+  const std::size_t mid = sorted.size() / 2;
+  const double median = sorted.size() % 2 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
+  std::FILE* out = text_stream(args.out == "-");
   const std::uint64_t samples = std::uint64_t(args.width) * std::uint64_t(args.height) *
                                 std::uint64_t(args.msaa) * std::uint64_t(args.ssaa * args.ssaa);
   if (args.json) {
@@ -66,12 +73,13 @@ int run_render(const RenderArgs& args, const GlobalOptions& global) {
                         {"ms_transform", last.ms_transform},
                         {"ms_raster", last.ms_raster},
                         {"ms_resolve", last.ms_resolve},
-                        {"output", args.out}};
-    std::printf("%s\n", j.dump(2).c_str());
-  } else {
-    std::printf("%s: %zu triangles, %dx%d, msaa %d, ssaa %d, %.2f ms/frame (median of %d) -> %s\n",
-                args.scene.c_str(), sc->triangle_count(), args.width, args.height, args.msaa,
-                args.ssaa, median, args.frames, args.out.c_str());
+                        {"output", io_name(args.out, true)}};
+    std::fprintf(out, "%s\n", j.dump(2).c_str());
+  } else if (!args.quiet) {
+    std::fprintf(out,
+                 "%s: %zu triangles, %dx%d, msaa %d, ssaa %d, %.2f ms/frame (median of %d) -> %s\n",
+                 args.scene.c_str(), sc->triangle_count(), args.width, args.height, args.msaa,
+                 args.ssaa, median, args.frames, io_name(args.out, true).c_str());
   }
   return kExitOk;
 }
@@ -101,8 +109,11 @@ Command add_render_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   sub->add_option("--frames", args->frames, "Frames to render and time (median reported)")
       ->check(CLI::Range(1, 100000));
-  sub->add_option("-o,--out", args->out, "Output PNG")->required();
+  sub->add_option("-o,--output,--out", args->out,
+                  "Output image: .png, .bmp, .tga or .jpg by extension ('-' = PNG on stdout)")
+      ->required();
   sub->add_flag("--json", args->json, "Print timings, triangles and samples as JSON");
+  sub->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
   return {sub, [args, &global] { return run_render(*args, global); }};
 }
 

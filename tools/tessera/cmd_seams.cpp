@@ -759,7 +759,7 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
   sub->add_flag("--quiet", args->quiet, "No progress on stderr");
-  sub->add_option("-o,--out", c.out, "Output folder")->required();
+  sub->add_option("-o,--output,--out", c.out, "Output folder")->required();
   return {sub, [args, &global] {
             SeamsConfig cfg = args->config;
             if (!cfg.ptex.empty() && cfg.scene == "figure1") {
