@@ -282,7 +282,12 @@ try:
     # Unwritable outputs: a folder in the way, a missing parent folder.
     folder_pvr = os.path.join(err_dir, "folder.pvr")
     os.makedirs(folder_pvr)
-    expect_error("output is a directory", ["compress", rgb, "-o", folder_pvr], 1, folder_pvr)
+    # An existing folder as the output takes the texture inside it, named after the input.
+    rc, _, err = run("compress", rgb, "-o", folder_pvr, "-q")
+    check("output is a directory: written inside it",
+          rc == 0 and os.path.isfile(os.path.join(folder_pvr,
+                                                  os.path.splitext(os.path.basename(rgb))[0]
+                                                  + ".pvr")), err)
     folder_png = os.path.join(err_dir, "folder.png")
     os.makedirs(folder_png)
     expect_error("decompress output is a directory",

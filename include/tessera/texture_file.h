@@ -56,6 +56,31 @@ Result<ImageRGBA8> decode_texture_level(const CompressedTexture& texture, int le
 /// Human-readable name of a PVRTC format ("PVRTC1 4bpp RGBA", ...).
 std::string texture_format_name(const CompressedTexture& texture);
 
+/// Options of the whole image-to-texture pipeline that `tessera compress`, its batch mode, the
+/// Python module and `tessera.batch` share, so all of them write the same bytes.
+struct CompressOptions {
+  pvrtc::EncodeOptions encode;  ///< Format, quality, schedule overrides, threads.
+  bool mipmaps = false;     ///< Encode the full chain (2x2 box, alpha-weighted).
+  bool srgb = false;        ///< Mark the texture sRGB and filter (mips, resize) in linear light.
+  bool resize_pot = false;  ///< Resample non-power-of-two input (Lanczos-3); else it is an error.
+};
+
+/// What `compress_image` made.
+struct CompressedImage {
+  CompressedTexture texture;
+  ImageRGBA8 source;      ///< Level 0 as encoded: the input after alpha detection and resizing.
+  bool resized = false;   ///< The input was not a power of two and was resampled.
+  double encode_ms = 0;   ///< Wall time of the encodes (all levels), milliseconds.
+};
+
+/// Compresses one decoded image: an alpha channel that is 255 everywhere gives an RGB texture;
+/// a non-power-of-two size is an `invalid_argument` error naming `name` and the size to
+/// resample to (or is resampled with `resize_pot`); then the mip chain (when asked) and every
+/// level's encode. Deterministic: the same image and options give the same texture for any
+/// `encode.threads`.
+Result<CompressedImage> compress_image(ImageRGBA8 image, const CompressOptions& options,
+                                       const std::string& name);
+
 /// Container formats.
 enum class ContainerFormat { unknown, pvr3, ktx1 };
 

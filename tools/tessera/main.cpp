@@ -243,7 +243,7 @@ int main(int argc, char** argv) {
   GlobalOptions global;
   app.add_option("-j,--threads", global.threads, "Worker threads (0 = all hardware threads)")
       ->check(CLI::Range(0, 1024));
-  app.set_version_flag("--version", "tessera 0.1.0");
+  app.set_version_flag("--version", "tessera " TESSERA_VERSION_STRING);
   // -j may also follow the subcommand (`tessera compress IN -o OUT -j 4`): options a
   // subcommand does not know fall through to this parser. Set before the subcommands are
   // added, which inherit it.
