@@ -11,6 +11,7 @@ namespace {
 struct DemoArgs {
   std::string out = "out";
   int size = 256;
+  bool quiet = false;
 };
 
 int run_demo(const DemoArgs& args, const GlobalOptions& global) {
@@ -37,7 +38,7 @@ int run_demo(const DemoArgs& args, const GlobalOptions& global) {
                 global.threads > 0 ? global.threads : default_thread_count());
   report.paragraph(buf);
   if (Status s = report.write(); !s.ok()) return fail(s);
-  std::printf("wrote %s/report.html\n", args.out.c_str());
+  if (!args.quiet) std::printf("wrote %s/report.html\n", args.out.c_str());
   return kExitOk;
 }
 }  // namespace
@@ -48,9 +49,12 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
       "demo", "Run every system on built-in procedural content and write an HTML report");
   sub->add_option("-o,--output,--out", args->out, "Output folder (report.html and img/)")
       ->capture_default_str();
-  sub->add_option("--size", args->size, "Edge length of the procedural images")
+  sub->add_option("--size", args->size,
+                  "Edge length of the procedural images (the PVRTC section rounds it to the "
+                  "nearest power of two, and says so)")
       ->check(CLI::Range(16, 4096))
       ->capture_default_str();
+  sub->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
   return {sub, [args, &global] { return run_demo(*args, global); }};
 }
 

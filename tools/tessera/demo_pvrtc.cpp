@@ -70,8 +70,15 @@ Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
       "difference, saturating at 64). Crops are a 32x32 window from the centre at 4x zoom. "
       "Encode times are in-process wall times of this run.");
   std::vector<std::vector<std::string>> rows;
-  // PVRTC needs power-of-two sides: a non-power-of-two --size is rounded to the nearest one.
+  // PVRTC needs power-of-two sides: a non-power-of-two --size is rounded to the nearest one,
+  // and the report says so.
   const int n = nearest_power_of_two(options.size);
+  if (n != options.size) {
+    report.paragraph("The images of this section are " + std::to_string(n) + "x" +
+                     std::to_string(n) + ", not " + std::to_string(options.size) + "x" +
+                     std::to_string(options.size) + " as --size asked: PVRTC needs power-of-two "
+                     "sides, and " + std::to_string(n) + " is the nearest power of two.");
+  }
   for (Procedural kind : all_procedurals()) {
     const std::string name = procedural_name(kind);
     const ImageRGBA8 img = make_procedural(kind, n, n);
