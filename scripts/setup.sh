@@ -23,7 +23,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev              # CLI, --json
   libtinyobjloader-dev libtinygltf-dev         # OBJ and glTF scenes
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri  # GL runtime: EGL + OpenGL 4.5 (Mesa llvmpipe)
-  libepoxy-dev glslang-tools                   # GL entry points; GLSL validation in the tests
+  glslang-tools                                # glslangValidator checks the shipped GLSL
   pybind11-dev python3-dev python3-pytest      # the Python module and its tests
   python3-distributed                          # tessera.batch on a Dask cluster
   libgtest-dev libgmock-dev libbenchmark-dev   # tests, benchmarks

@@ -1,0 +1,434 @@
+// tessera/gl.h — a small headless OpenGL 4.5 core runtime (EGL) and per-face textures packed
+// for the GPU. Optional: the `tessera::gl` library is built only where the EGL and OpenGL
+// development files are found; the main `tessera` library never depends on OpenGL.
+//
+// What it gives:
+//  * `Context`: an OpenGL 4.5 core context without any window (EGL, surfaceless contexts that
+//    render to framebuffer objects). The EGL device is chosen by `ContextOptions::device` or
+//    the environment variable TESSERA_EGL_DEVICE: a device index, `hardware` (a GPU: a device
+//    whose extension string lacks EGL_MESA_device_software), `software` (Mesa llvmpipe),
+//    `surfaceless` (EGL_PLATFORM_SURFACELESS_MESA) or `auto` (default: hardware, else software,
+//    else surfaceless). A `GL_KHR_debug` callback collects driver messages; `check_errors`
+//    turns GL errors and debug errors into a `Status`.
+//  * RAII GL objects (`Object`), shader programs compiled from strings or files with
+//    `#include "x.glsl"` resolution (compile errors name the file and line), GPU timer queries
+//    per named pass (`GpuTimer`), render targets and read-back into tessera's images.
+//  * Per-face textures for the GPU (`pack_faces`, `FaceTextures`): one GL_TEXTURE_2D_ARRAY per
+//    face-resolution class and one std430 face-record buffer (neighbours, edge mappings,
+//    valence-4 corners) — the layout share/tessera/glsl/seams.glsl reads.
+//
+// Every fallible call returns `Status` / `Result` with one line ("no EGL device 7: 1 device
+// (0 software)"); nothing throws or aborts, including when there is no EGL or no GPU at all.
+//
+// Threads: a `Context` is current on at most one thread at a time; `Context::create` makes it
+// current on the calling thread. Every function below that touches GL (everything except
+// `pack_faces`, `format_shader_log` and `parse_device_selection`) must be called on a thread
+// where a tessera context is current, and GL objects should be destroyed while the context
+// that made them is current and alive (destroy them before the context). Distinct contexts may
+// be used on distinct threads concurrently.
+//
+// Row order: textures keep tessera's convention (image row y = texel row y = GL row y, i.e.
+// v = 0 first), so uploading an image and reading it back is the identity. Framebuffer
+// read-back flips GL's bottom-up rows so the image is top-down, as displayed.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "tessera/core.h"
+
+namespace tessera::faces {
+class FaceTextureSet;
+}
+
+namespace tessera::gl {
+
+// ---------------------------------------------------------------------------------------------
+// Context and device selection
+// ---------------------------------------------------------------------------------------------
+
+/// How the EGL device is chosen.
+enum class DeviceChoice {
+  automatic,    ///< A hardware device, else a software one, else the surfaceless platform.
+  hardware,     ///< The first device whose extensions lack EGL_MESA_device_software.
+  software,     ///< The first device with EGL_MESA_device_software (llvmpipe).
+  surfaceless,  ///< EGL_PLATFORM_SURFACELESS_MESA (no device enumeration).
+  index,        ///< The device with a given index in eglQueryDevicesEXT order.
+};
+
+/// A parsed device selection.
+struct DeviceSelection {
+  DeviceChoice choice = DeviceChoice::automatic;
+  int index = -1;  ///< For DeviceChoice::index.
+};
+
+/// Parses "auto" (or ""), "hardware", "software", "surfaceless" or a decimal index. Fails with
+/// invalid_argument naming the text. Pure.
+Result<DeviceSelection> parse_device_selection(std::string_view text);
+
+struct ContextOptions {
+  /// Device selection text as for `parse_device_selection`; "" defers to TESSERA_EGL_DEVICE
+  /// (when `use_environment`) and then to "auto".
+  std::string device;
+  /// Read TESSERA_EGL_DEVICE when `device` is empty.
+  bool use_environment = true;
+  /// Ask for a debug context and install the GL_KHR_debug callback (synchronous output).
+  bool debug = true;
+  /// Debug messages kept at most (older ones are dropped first; errors are always counted).
+  int max_debug_messages = 256;
+};
+
+/// One EGL device as enumerated.
+struct DeviceInfo {
+  int index = 0;
+  bool software = false;   ///< Its extension string has EGL_MESA_device_software.
+  std::string drm_file;    ///< EGL_DRM_DEVICE_FILE_EXT, "" when not reported.
+  std::string extensions;  ///< The device extension string.
+};
+
+/// The EGL devices (empty when EGL lacks EGL_EXT_device_enumeration). Fails with unsupported
+/// when EGL itself is unusable.
+Result<std::vector<DeviceInfo>> list_devices();
+
+/// Implementation limits of the current context.
+struct Limits {
+  int max_samples = 0;             ///< GL_MAX_SAMPLES (colour and depth renderbuffers).
+  int max_array_layers = 0;        ///< GL_MAX_ARRAY_TEXTURE_LAYERS.
+  int max_texture_size = 0;        ///< GL_MAX_TEXTURE_SIZE (texels per side).
+  int max_texture_units = 0;       ///< GL_MAX_TEXTURE_IMAGE_UNITS (fragment stage).
+  std::int64_t max_ssbo_bytes = 0;  ///< GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
+  float max_anisotropy = 1.0f;     ///< GL_MAX_TEXTURE_MAX_ANISOTROPY (1 when unsupported).
+  bool bindless_textures = false;  ///< GL_ARB_bindless_texture is exposed.
+};
+
+/// A message from the GL_KHR_debug callback.
+struct DebugMessage {
+  std::uint32_t source = 0;    ///< GL_DEBUG_SOURCE_*.
+  std::uint32_t type = 0;      ///< GL_DEBUG_TYPE_*.
+  std::uint32_t id = 0;
+  std::uint32_t severity = 0;  ///< GL_DEBUG_SEVERITY_*.
+  std::string text;
+  bool is_error() const;       ///< type == GL_DEBUG_TYPE_ERROR.
+};
+
+/// A headless OpenGL 4.5 core context. Owns its EGL context (and a reference on its display).
+class Context {
+ public:
+  /// Creates the context and makes it current on the calling thread. Errors (unsupported: no
+  /// EGL, no such device, GL below 4.5, missing entry points) are one line naming the device.
+  static Result<std::unique_ptr<Context>> create(const ContextOptions& options = {});
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  /// Makes this context current on the calling thread (it must not be current elsewhere).
+  Status make_current();
+
+  const std::string& renderer() const { return renderer_; }  ///< GL_RENDERER.
+  const std::string& version() const { return version_; }    ///< GL_VERSION.
+  int version_major() const { return major_; }
+  int version_minor() const { return minor_; }
+  /// "EGL device 0 (software)", "EGL device 1 (/dev/dri/card0)" or "EGL surfaceless platform".
+  const std::string& device_description() const { return device_; }
+  const Limits& limits() const { return limits_; }
+  /// True when the context exposes `extension` (e.g. "GL_ARB_bindless_texture").
+  bool has_extension(std::string_view extension) const;
+
+  /// Debug messages received since the last `take_debug_messages` (oldest first).
+  std::vector<DebugMessage> take_debug_messages();
+  /// Error-type debug messages received since creation.
+  int debug_error_count() const;
+
+  struct State;  ///< Internal (EGL handles, message store).
+
+ private:
+  Context() = default;
+  std::unique_ptr<State> state_;
+  std::string renderer_, version_, device_;
+  int major_ = 0, minor_ = 0;
+  Limits limits_;
+  std::vector<std::string> extensions_;
+};
+
+/// Drains glGetError and the current context's error-type debug messages received since the
+/// last check; fails (invalid_argument) with "WHAT: GL_INVALID_OPERATION: <debug text>" when
+/// there was any. Also fails when no tessera context is current.
+Status check_errors(std::string_view what);
+
+// ---------------------------------------------------------------------------------------------
+// Objects
+// ---------------------------------------------------------------------------------------------
+
+enum class ObjectType {
+  buffer, texture, framebuffer, renderbuffer, vertex_array, query, sampler, program, shader
+};
+
+/// Owns one GL object name; deletes it on destruction (move-only). Name 0 = none.
+class Object {
+ public:
+  Object() = default;
+  Object(ObjectType type, std::uint32_t name) : type_(type), name_(name) {}
+  ~Object() { reset(); }
+  Object(Object&& o) noexcept : type_(o.type_), name_(o.name_) { o.name_ = 0; }
+  Object& operator=(Object&& o) noexcept;
+  Object(const Object&) = delete;
+  Object& operator=(const Object&) = delete;
+
+  std::uint32_t get() const { return name_; }
+  explicit operator bool() const { return name_ != 0; }
+  ObjectType type() const { return type_; }
+  /// Deletes the object now.
+  void reset();
+
+ private:
+  ObjectType type_ = ObjectType::buffer;
+  std::uint32_t name_ = 0;
+};
+
+/// Creates (glCreate*) an object of `type`; for `texture` and `query` the target is required
+/// (GL_TEXTURE_2D_ARRAY, GL_TIME_ELAPSED, ...), for `shader` the shader type.
+Object create_object(ObjectType type, std::uint32_t target = 0);
+
+// ---------------------------------------------------------------------------------------------
+// Shaders
+// ---------------------------------------------------------------------------------------------
+
+enum class ShaderStage { vertex, fragment, compute, geometry, tess_control, tess_evaluation };
+
+/// One stage's source. `name` is used in error messages (a file path, or e.g. "quad.frag").
+struct ShaderSource {
+  ShaderStage stage = ShaderStage::fragment;
+  std::string text;
+  std::string name = "<string>";
+};
+
+struct ShaderOptions {
+  /// Folders searched, in order, for `#include "x.glsl"` (after the including file's folder).
+  std::vector<std::filesystem::path> include_paths;
+  /// Lines inserted after `#version`, e.g. "#define TESSERA_SEAMS_CLASSES 4".
+  std::vector<std::string> preamble;
+};
+
+/// Lines of included file N (N >= 1) are numbered from N * kIncludeLineStride + 1 by the
+/// `#line` directives `expand_includes` writes, so an info log line number alone identifies the
+/// file (Mesa 22 reports source-string 0 for some errors inside included files).
+inline constexpr int kIncludeLineStride = 100000;
+
+/// A source after `#include` expansion: `text` carries `#line L N` directives (see
+/// kIncludeLineStride), and `files[N]` is the name of source-string number N (0 = the
+/// top-level source).
+struct ExpandedSource {
+  std::string text;
+  std::vector<std::string> files;
+};
+
+/// Expands `#include "x"` lines (nested, each file once: a repeated include expands to
+/// nothing; at most 32 deep) and inserts the preamble after `#version`. Fails (io_error) naming
+/// the including file and line when a file is not found. Reads files; no GL.
+Result<ExpandedSource> expand_includes(const ShaderSource& source, const ShaderOptions& options);
+
+/// The first error of a driver info log as "FILE:LINE: message" for Mesa ("0:12(5): error:
+/// ..."), NVIDIA ("0(12) : error C1008: ...") and glslang ("ERROR: 0:12: ...") logs. With more
+/// than one file the file is the line number / kIncludeLineStride (the source-string number
+/// is not trusted); with one it is the source-string number. Falls back to the first
+/// non-empty line of the log. Pure.
+std::string format_shader_log(std::string_view log, const std::vector<std::string>& files);
+
+/// A linked program (owns the GL program object).
+class Program {
+ public:
+  Program() = default;
+  explicit Program(Object program) : object_(std::move(program)) {}
+  std::uint32_t get() const { return object_.get(); }
+  /// glGetUniformLocation (-1 when absent or optimised away).
+  int uniform(const char* name) const;
+
+ private:
+  Object object_;
+};
+
+/// Compiles every stage (after `expand_includes`) and links them. A compile error is
+/// invalid_argument with `format_shader_log`'s one line ("seams.glsl:41: error: ..."); a link
+/// error names the stages.
+Result<Program> link_program(const std::vector<ShaderSource>& stages,
+                             const ShaderOptions& options = {});
+
+/// Reads a shader file (io_error naming the path) into a `ShaderSource`.
+Result<ShaderSource> load_shader(ShaderStage stage, const std::filesystem::path& path);
+
+// ---------------------------------------------------------------------------------------------
+// Timers, render targets, read-back
+// ---------------------------------------------------------------------------------------------
+
+/// GPU time of one named pass.
+struct PassTime {
+  std::string pass;
+  double ms = 0.0;  ///< GL_TIME_ELAPSED, milliseconds.
+};
+
+/// GL_TIME_ELAPSED queries around named passes. Passes must not nest (GL allows one elapsed
+/// query at a time); each begin/end pair is one query, read back by `collect`.
+class GpuTimer {
+ public:
+  /// Starts timing `pass`. Fails if another pass is open.
+  Status begin(std::string pass);
+  /// Ends the open pass. Fails if none is open.
+  Status end();
+  /// Waits for every ended pass and returns them in begin order (clears them). Fails if a pass
+  /// is still open, or (unsupported) if the driver reports a pass longer than the wall time
+  /// from its `begin` to its result (a driver bug; Mesa 22.3 llvmpipe's first query in a
+  /// context does this, which `Context::create` works around with one discarded query).
+  Result<std::vector<PassTime>> collect();
+
+ private:
+  struct Pending {
+    std::string pass;
+    Object query;
+    std::chrono::steady_clock::time_point begun;
+  };
+  std::vector<Pending> pending_;
+  bool open_ = false;
+};
+
+enum class ColorFormat { rgba8, rgba32f };
+
+struct RenderTargetOptions {
+  int width = 256, height = 256;  ///< Pixels, 1..GL_MAX_RENDERBUFFER_SIZE.
+  int samples = 1;                ///< 1 = single-sampled; else <= GL_MAX_SAMPLES.
+  ColorFormat color = ColorFormat::rgba32f;
+  bool depth = true;              ///< A GL_DEPTH_COMPONENT32F renderbuffer.
+};
+
+/// A framebuffer with one colour renderbuffer and optionally depth.
+struct RenderTarget {
+  Object framebuffer, color, depth;
+  int width = 0, height = 0, samples = 1;
+};
+
+/// Creates a complete render target; fails with one line naming the size, format and samples
+/// when the framebuffer is incomplete (e.g. 8 samples where GL_MAX_SAMPLES is 4).
+Result<RenderTarget> create_render_target(const RenderTargetOptions& options);
+
+/// Reads colour attachment `attachment` (0..7) of `framebuffer` (0 = none is invalid), the
+/// rectangle [0, width) x [0, height), into a top-down image (rows flipped). Single-sampled
+/// framebuffers only (resolve with glBlitFramebuffer first).
+Result<ImageRGBAF> read_framebuffer_rgbaf(std::uint32_t framebuffer, int attachment, int width,
+                                          int height);
+/// As `read_framebuffer_rgbaf`, 8 bits per channel (GL's float->unorm conversion).
+Result<ImageRGBA8> read_framebuffer_rgba8(std::uint32_t framebuffer, int attachment, int width,
+                                          int height);
+
+/// Reads `level` of a GL_TEXTURE_2D (layer 0) or one `layer` of a GL_TEXTURE_2D_ARRAY, rows in
+/// texel order (row 0 = GL row 0 = v = 0, tessera's texture convention).
+Result<ImageRGBAF> read_texture_rgbaf(std::uint32_t texture, int level = 0, int layer = 0);
+Result<ImageRGBA8> read_texture_rgba8(std::uint32_t texture, int level = 0, int layer = 0);
+
+// ---------------------------------------------------------------------------------------------
+// Per-face textures for the GPU (Toth 2013 / McDonald 2013 layout)
+// ---------------------------------------------------------------------------------------------
+
+/// One face's record in the face-record buffer: std430, 80 bytes, five ivec4:
+///
+///   struct FaceRecord {          // GLSL, std430 (share/tessera/glsl/seams.glsl)
+///     ivec4 info;                // x: class (the texture array), y: layer in it,
+///                                // z, w: level-0 width and height in texels
+///     ivec4 neighbour;           // face across edge e (0..3), -1 on a border
+///     ivec4 mapping;             // e * 4 + the neighbour's shared edge: the index of the
+///                                // transform my UV -> neighbour UV in the 16-entry table
+///                                // (faces::edge_transform_table); -1 on a border
+///     ivec4 corner;              // diagonal face at corner c (valence-4 vertex), -1 none
+///     ivec4 corner_mapping;      // m1 * 16 + m2: corner transform = table[m2] after
+///                                // table[m1] (across edge c, then across the next edge)
+///   };
+///   layout(std430) readonly buffer Faces { FaceRecord faces[]; };
+///
+/// Exactly the CPU `FaceTextureSet`'s adjacency (`adjacency(f)`) and corner links
+/// (`corner(f, c)`), so GL and CPU traverse the same faces through the same transforms.
+struct FaceRecord {
+  std::array<std::int32_t, 4> info{0, 0, 0, 0};
+  std::array<std::int32_t, 4> neighbour{-1, -1, -1, -1};
+  std::array<std::int32_t, 4> mapping{-1, -1, -1, -1};
+  std::array<std::int32_t, 4> corner{-1, -1, -1, -1};
+  std::array<std::int32_t, 4> corner_mapping{-1, -1, -1, -1};
+};
+static_assert(sizeof(FaceRecord) == 80, "FaceRecord must match the std430 layout");
+
+/// One texture array: the faces of one level-0 resolution.
+struct FaceClass {
+  int width = 0, height = 0;  ///< Level-0 texels.
+  int levels = 0;             ///< The full chain (as the CPU textures have).
+  std::vector<int> faces;     ///< Layer l holds face faces[l].
+};
+
+/// The GPU layout of a face set: classes ordered by (height, width), faces in index order
+/// within a class.
+struct PackedFaces {
+  std::vector<FaceClass> classes;
+  std::vector<FaceRecord> records;  ///< One per face, index = face id.
+};
+
+/// Limits the packing must respect (from `Context::limits()`; 0 = unchecked).
+struct PackLimits {
+  int max_texture_size = 0;
+  int max_array_layers = 0;
+  int max_classes = 0;  ///< E.g. the texture units a shader can bind.
+  std::int64_t max_ssbo_bytes = 0;
+};
+
+/// The layout of `set` for the GPU. Fails with too_large naming the limit ("97 faces of 64x64
+/// exceed GL_MAX_ARRAY_TEXTURE_LAYERS = 64") or invalid_argument on an empty set. Pure (no GL).
+Result<PackedFaces> pack_faces(const faces::FaceTextureSet& set, const PackLimits& limits = {});
+
+enum class TexelFormat {
+  rgba32f,  ///< Exactly the CPU texels (default): GL samples the same values as tessera.
+  rgba16f,  ///< Half the memory; texels rounded to binary16 by the driver on upload.
+};
+
+struct FaceTexturesOptions {
+  TexelFormat format = TexelFormat::rgba32f;
+  /// Upper bound of the GL_TEXTURE_MAX_ANISOTROPY of the samplers (1..16; clamped to the
+  /// implementation's maximum).
+  float max_anisotropy = 16.0f;
+};
+
+/// The GL objects of a packed face set: one GL_TEXTURE_2D_ARRAY per class with every mip
+/// level uploaded from the CPU chains (no glGenerateMipmap: GL and CPU filter the same
+/// texels), a GL_SHADER_STORAGE_BUFFER of `FaceRecord`s, and two sampler objects: clamp-to-
+/// border (0,0,0,0) and clamp-to-edge, both trilinear with anisotropy.
+class FaceTextures {
+ public:
+  /// Packs and uploads `set` (checking the current context's limits). Needs a current context.
+  static Result<FaceTextures> upload(const faces::FaceTextureSet& set,
+                                     const FaceTexturesOptions& options = {});
+
+  const PackedFaces& layout() const { return layout_; }
+  int class_count() const { return int(arrays_.size()); }
+  std::uint32_t array_texture(int cls) const { return arrays_[std::size_t(cls)].get(); }
+  std::uint32_t record_buffer() const { return records_.get(); }
+  std::uint32_t border_sampler() const { return border_sampler_.get(); }
+  std::uint32_t clamp_sampler() const { return clamp_sampler_.get(); }
+  /// Bytes of texture storage (all levels of all arrays).
+  std::uint64_t texture_bytes() const { return texture_bytes_; }
+
+  /// Binds class c's array to texture units first_unit + c (border sampler) and, when
+  /// `clamp_units` is true, also to first_unit + classes + c (clamp sampler, for the Clamp
+  /// method and Discard's zero-coverage fallback); binds the record buffer to
+  /// GL_SHADER_STORAGE_BUFFER binding `ssbo_binding`.
+  /// Fails (invalid_argument) when the units needed exceed GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS.
+  Status bind(int first_unit, int ssbo_binding, bool clamp_units = true) const;
+
+ private:
+  PackedFaces layout_;
+  std::vector<Object> arrays_;
+  Object records_, border_sampler_, clamp_sampler_;
+  std::uint64_t texture_bytes_ = 0;
+};
+
+}  // namespace tessera::gl
