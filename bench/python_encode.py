@@ -1,0 +1,162 @@
+#!/usr/bin/env python3
+"""The Python module's cost over the C++ encoder, and tessera.batch on 1 vs 2 Dask workers.
+
+    PYTHONPATH=build/python /usr/bin/python3 bench/python_encode.py [--cli build/bin/tessera]
+
+1. `tessera.encode` on a 512x512 image (a crop of ../shared/data/images/ldr-rgb-diffuse.png
+   when present, else generated content) against the same library call timed inside the CLI
+   (`tessera compress --json` reports `time_ms`, the steady-clock time of the encode loop
+   alone), and the CLI's whole process; median of --repeats runs each, interleaved.
+2. `tessera.batch.compress_tree` over a generated tree of --files images (--file-size square,
+   RGB and RGBA, 10 folders) on a LocalCluster of 1 and of 2 single-threaded workers, and the
+   same files through one `tessera compress -j 1` process each, one after another.
+
+Prints Markdown tables. Reports, asserts nothing but byte equality of the outputs.
+"""
+
+import argparse
+import json
+import os
+import platform
+import shutil
+import statistics
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+import tessera
+import tessera.batch
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def test_image(size, seed=0, channels=3):
+    rng = np.random.default_rng(seed)
+    y, x = np.mgrid[0:size, 0:size].astype(np.float64)
+    r = 128 + 100 * np.sin(x / size * 12.0 + seed)
+    g = 128 + 100 * np.cos(y / size * 9.0)
+    b = np.where((x // 16 + y // 16) % 2 == 0, 50.0, 200.0)
+    img = np.stack([r, g, b], -1) + rng.normal(0, 8, (size, size, 3))
+    img = np.clip(np.rint(img), 0, 255).astype(np.uint8)
+    if channels == 4:
+        a = np.clip(255 * (x + y) / (2 * size - 2), 0, 255).astype(np.uint8)
+        img = np.concatenate([img, a[..., None]], -1)
+    return img
+
+
+def bench_image(size):
+    shared = ROOT.parent / "shared" / "data" / "images" / "ldr-rgb-diffuse.png"
+    if shared.is_file():
+        return tessera.read_image(shared)[:size, :size].copy(), f"{shared.name} crop"
+    return test_image(size), "generated"
+
+
+def run_cli(cli, *args):
+    t0 = time.perf_counter()
+    r = subprocess.run([cli, *map(str, args)], capture_output=True, text=True, check=True)
+    return r.stdout, (time.perf_counter() - t0) * 1e3
+
+
+def encode_table(cli, size, repeats, tmp):
+    img, source = bench_image(size)
+    png = tmp / "bench.png"
+    tessera.write_image(png, img)
+    rows = []
+    for fmt in ("pvrtc1-4", "pvrtc1-2"):
+        for quality in ("fast", "normal"):
+            for threads in (1, 0):
+                py_ms, cpp_ms, proc_ms = [], [], []
+                out = tmp / "bench.pvr"
+                for _ in range(repeats):
+                    t0 = time.perf_counter()
+                    tex = tessera.encode(img, format=fmt, quality=quality, threads=threads)
+                    py_ms.append((time.perf_counter() - t0) * 1e3)
+                    stdout, ms = run_cli(cli, "compress", png, "-o", out, "--format", fmt,
+                                         "--quality", quality, "-j", threads, "--json")
+                    cpp_ms.append(json.loads(stdout)["time_ms"])
+                    proc_ms.append(ms)
+                same = tex.to_bytes() == out.read_bytes()
+                py, cpp = statistics.median(py_ms), statistics.median(cpp_ms)
+                rows.append(f"| {fmt} | {quality} | {threads or os.cpu_count()} | {py:.1f} | "
+                            f"{cpp:.1f} | {py / cpp:.3f} | {statistics.median(proc_ms):.1f} | "
+                            f"{'yes' if same else 'NO'} |")
+    head = [f"`tessera.encode` vs the C++ encode on a {size}x{size} RGB image ({source}), "
+            f"median of {repeats}:", "",
+            "| format | quality | threads | Python `encode` ms | C++ encode ms (CLI `time_ms`) "
+            "| ratio | CLI process ms | same bytes |",
+            "|---|---|---:|---:|---:|---:|---:|---|"]
+    return "\n".join(head + rows)
+
+
+def make_tree(root, files, size):
+    for i in range(files):
+        folder = root / f"set{(i // 2) % 10:02d}" / ("alpha" if i % 2 else "opaque")
+        folder.mkdir(parents=True, exist_ok=True)
+        tessera.write_image(folder / f"img{i:03d}.png", test_image(size, seed=i,
+                                                                 channels=4 if i % 2 else 3))
+
+
+def batch_table(cli, files, size, quality, tmp):
+    src = tmp / "tree"
+    make_tree(src, files, size)
+    rows, outputs = [], {}
+    for workers in (1, 2):
+        dst = tmp / f"out{workers}"
+        s = tessera.batch.compress_tree(src, dst, workers=workers, quality=quality)
+        assert s["done"] == files and s["failed"] == 0, s
+        outputs[workers] = dst
+        rows.append(f"| tessera.batch, LocalCluster {workers} worker(s) x 1 thread | "
+                    f"{s['setup_seconds']:.2f} | {s['seconds']:.2f} | {s['mpixels_per_s']:.2f} |")
+    # The same files through the CLI, one process each, sequentially.
+    dst = tmp / "outcli"
+    jobs, _ = tessera.batch.plan(src, dst, "pvr")
+    t0 = time.perf_counter()
+    for s_path, o_path in jobs:
+        os.makedirs(os.path.dirname(o_path), exist_ok=True)
+        run_cli(cli, "-j", 1, "compress", s_path, "-o", o_path, "--quality", quality)
+    seconds = time.perf_counter() - t0
+    mpx = files * size * size / 1e6
+    rows.append(f"| `tessera -j 1 compress`, one process per file, sequential | 0 | "
+                f"{seconds:.2f} | {mpx / seconds:.2f} |")
+    same = all(Path(o).read_bytes() == (outputs[w] / Path(o).relative_to(dst)).read_bytes()
+               for _, o in jobs for w in (1, 2))
+    head = [f"{files} files of {size}x{size} (half RGB, half RGBA) in 20 folders, quality "
+            f"{quality}, pvrtc1-4; outputs byte-identical across the three: "
+            f"{'yes' if same else 'NO'}:", "",
+            "| run | cluster start s | compress s | MPixel/s |", "|---|---:|---:|---:|"]
+    return "\n".join(head + rows)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--cli", default=str(ROOT / "build" / "bin" / "tessera"))
+    p.add_argument("--size", type=int, default=512)
+    p.add_argument("--repeats", type=int, default=7)
+    p.add_argument("--files", type=int, default=200)
+    p.add_argument("--file-size", type=int, default=128)
+    p.add_argument("--quality", default="normal")
+    args = p.parse_args()
+    cpu = "unknown CPU"
+    try:
+        with open("/proc/cpuinfo") as f:
+            cpu = next(line.split(":", 1)[1].strip() for line in f if line.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    print(f"Machine: {cpu}, {os.cpu_count()} logical CPUs, {platform.system()} "
+          f"{platform.release()}, Python {platform.python_version()}, tessera "
+          f"{tessera.__version__}; {time.strftime('%Y-%m-%d')}; load average at start "
+          f"{os.getloadavg()[0]:.2f}\n")
+    tmp = Path(tempfile.mkdtemp(prefix="tessera-bench-"))
+    try:
+        print(encode_table(args.cli, args.size, args.repeats, tmp))
+        print()
+        print(batch_table(args.cli, args.files, args.file_size, args.quality, tmp))
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()

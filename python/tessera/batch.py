@@ -1,0 +1,266 @@
+"""Compress a directory tree of images to PVRTC1 over a Dask cluster.
+
+    python3 -m tessera.batch SRC DST [--scheduler ADDRESS] [--workers N] [--format pvrtc1-4]
+                             [--quality normal] [--container pvr|ktx] [--mipmaps] [--srgb] ...
+
+Every image under SRC (recursively: .png, .jpg, .jpeg, .tga, .bmp, any case) becomes
+DST/<same relative folder>/<stem>.pvr (or .ktx), byte-identical to ``tessera compress IN -o OUT``
+with the same options: each task runs ``tessera.encode_file`` and ``Texture.write``, the library
+calls the CLI makes. One Dask task per file.
+
+Cluster: ``--scheduler ADDRESS`` (e.g. tcp://host:8786, a running ``dask-scheduler`` with
+``dask-worker ADDRESS`` processes that can import ``tessera`` and see SRC and DST at the same
+absolute paths, e.g. on a shared filesystem) or, without it, a LocalCluster of
+``--workers`` processes (default: one per CPU), one thread each. ``--threads`` sets the encoder
+threads per task (default 1: the parallelism is across files).
+
+Resuming: next to each output, ``OUT.pvr.json`` (the "sidecar") records the options, the tessera
+version and the input's size and modification time. A file is skipped when its output exists,
+is newer than the input, and its sidecar matches the current options and input; otherwise it is
+compressed again (``--force`` always recompresses). The sidecar is written after the output, so
+an interrupted run never leaves an output that looks complete without being so.
+
+A file that fails (not a power of two without --resize-pot, corrupt, unreadable, unwritable
+output) fails alone: it is reported and the other files go on. The run prints a summary (files
+done / skipped / failed, MPixel/s) and exits with 1 when any file failed, else 0; bad usage
+exits with 2.
+"""
+
+import argparse
+import json
+import logging
+import os
+import sys
+import time
+from pathlib import Path
+
+import tessera
+
+SIDECAR_SUFFIX = ".json"
+_FORMATS = ("pvrtc1-4", "pvrtc1-2")
+_QUALITIES = ("fast", "normal", "high")
+_CONTAINERS = ("pvr", "ktx")
+
+
+def _check_options(options, container, threads):
+    unknown = set(options) - set(tessera.ENCODE_DEFAULTS)
+    if unknown:
+        raise ValueError("unknown encode option(s): " + ", ".join(sorted(unknown)))
+    o = dict(tessera.ENCODE_DEFAULTS, **options)
+    if o["format"] not in _FORMATS:
+        raise ValueError(f"format: {o['format']!r} is not one of {', '.join(_FORMATS)}")
+    if o["quality"] not in _QUALITIES:
+        raise ValueError(f"quality: {o['quality']!r} is not one of {', '.join(_QUALITIES)}")
+    if not -1 <= int(o["iterations"]) <= 1000:
+        raise ValueError(f"iterations: {o['iterations']} is not in [-1, 1000]")
+    if not 0 <= int(o["exact_search_rounds"]) <= 1000:
+        raise ValueError(f"exact_search_rounds: {o['exact_search_rounds']} is not in [0, 1000]")
+    if container not in _CONTAINERS:
+        raise ValueError(f"container: {container!r} is not one of {', '.join(_CONTAINERS)}")
+    if threads < 0:
+        raise ValueError(f"threads: {threads} is negative")
+    return o
+
+
+def plan(src, dst, container="pvr"):
+    """Lists the work: [(input path, output path)] for every image under `src`, sorted, and
+    [(input path, message)] for inputs whose output name another input already took (a.png and
+    a.jpg both give a.pvr; the first in sorted order wins)."""
+    src, dst = Path(src), Path(dst)
+    jobs, clashes, taken = [], [], {}
+    for folder, dirs, files in os.walk(src):
+        dirs.sort()
+        for name in sorted(files):
+            path = Path(folder) / name
+            if path.suffix.lower() not in tessera.IMAGE_EXTENSIONS:
+                continue
+            out = dst / path.relative_to(src).with_suffix("." + container)
+            if out in taken:
+                clashes.append((str(path), f"{path}: output {out} is also made from {taken[out]}"))
+                continue
+            taken[out] = path
+            jobs.append((str(path), str(out)))
+    return jobs, clashes
+
+
+def _sidecar_record(src, options, container):
+    st = os.stat(src)
+    return {
+        "tessera": tessera.__version__,
+        "container": container,
+        "options": {k: options[k] for k in sorted(tessera.ENCODE_DEFAULTS)},
+        "input_size": st.st_size,
+        "input_mtime_ns": st.st_mtime_ns,
+    }
+
+
+def is_up_to_date(src, out, options, container):
+    """True when `out` exists, is newer than `src`, and its sidecar records these options and
+    this input (size and modification time)."""
+    try:
+        if os.stat(out).st_mtime_ns <= os.stat(src).st_mtime_ns:
+            return False
+        with open(out + SIDECAR_SUFFIX, encoding="utf-8") as f:
+            return json.load(f) == _sidecar_record(src, options, container)
+    except (OSError, ValueError):
+        return False
+
+
+def compress_one(src, out, options, container, threads):
+    """The task: compress one file like ``tessera compress SRC -o OUT``, then write the sidecar.
+    Returns a result dict; errors are returned (status 'failed'), never raised."""
+    t0 = time.perf_counter()
+    try:
+        record = _sidecar_record(src, options, container)
+        texture = tessera.encode_file(src, threads=threads, **options)
+        os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
+        texture.write(out)
+        tmp = f"{out}{SIDECAR_SUFFIX}.tmp{os.getpid()}"
+        with open(tmp, "w", encoding="utf-8") as f:
+            json.dump(record, f, indent=1, sort_keys=True)
+        os.replace(tmp, out + SIDECAR_SUFFIX)
+        return {"src": src, "out": out, "status": "done",
+                "pixels": texture.width * texture.height,
+                "seconds": time.perf_counter() - t0}
+    except (tessera.Error, OSError, ValueError) as e:
+        return {"src": src, "out": out, "status": "failed", "error": str(e),
+                "seconds": time.perf_counter() - t0}
+
+
+def _open_client(scheduler, workers):
+    from dask.distributed import Client, LocalCluster
+
+    if scheduler:
+        return Client(scheduler), None
+    cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
+                           processes=True, dashboard_address=None,
+                           silence_logs=logging.ERROR)
+    return Client(cluster), cluster
+
+
+def compress_tree(src, dst, *, scheduler=None, workers=None, client=None, container="pvr",
+                  threads=1, force=False, on_result=None, **options):
+    """Compresses every image under `src` into the mirrored tree `dst` (see the module doc).
+
+    Cluster: `client` (a dask.distributed.Client to use as is), else `scheduler` (an address),
+    else a LocalCluster of `workers` single-threaded processes, closed at the end. `options` are
+    encode's keywords (format, quality, mipmaps, srgb, iterations, exact_search_rounds,
+    resize_pot); `threads` is the encoder's thread count per task. `on_result(result)` is called
+    for each finished file. Returns the summary dict: files, done, skipped, failed, failures
+    ([{src, error}]), pixels (level-0 texels encoded), seconds (from the first task submitted to
+    the last result), mpixels_per_s, workers, setup_seconds (starting / connecting the cluster).
+    Raises ValueError for bad options; a failing file is reported, never raised.
+    """
+    options = _check_options(options, container, threads)
+    if scheduler or client is not None:
+        # Workers elsewhere: send absolute paths (SRC and DST must be mounted at the same place
+        # on the workers). A LocalCluster's workers share this process's working directory, so
+        # paths stay as given and messages name files as the CLI would.
+        src, dst = os.path.abspath(src), os.path.abspath(dst)
+    if not Path(src).is_dir():
+        raise ValueError(f"{src}: not a directory")
+    jobs, clashes = plan(src, dst, container)
+    todo = [(s, o) for s, o in jobs if force or not is_up_to_date(s, o, options, container)]
+    summary = {"files": len(jobs) + len(clashes), "done": 0, "skipped": len(jobs) - len(todo),
+               "failed": len(clashes), "failures": [{"src": s, "error": e} for s, e in clashes],
+               "pixels": 0, "seconds": 0.0, "mpixels_per_s": 0.0, "workers": 0,
+               "setup_seconds": 0.0}
+    if not todo:
+        return summary
+
+    from dask.distributed import as_completed
+
+    t_setup = time.perf_counter()
+    cluster = None
+    own = client is None
+    if own:
+        client, cluster = _open_client(scheduler, workers)
+    try:
+        summary["workers"] = len(client.scheduler_info().get("workers", {}))
+        t0 = time.perf_counter()
+        summary["setup_seconds"] = t0 - t_setup
+        futures = [client.submit(compress_one, s, o, options, container, threads, pure=False,
+                                 retries=0) for s, o in todo]
+        src_of = {f.key: s for f, (s, _) in zip(futures, todo)}
+        for future in as_completed(futures):
+            try:
+                result = future.result()
+            except Exception as e:  # the worker died (e.g. killed): this file fails alone
+                result = {"src": src_of[future.key], "status": "failed",
+                          "error": f"{src_of[future.key]}: task failed: {e!r}"}
+            if result["status"] == "done":
+                summary["done"] += 1
+                summary["pixels"] += result["pixels"]
+            else:
+                summary["failed"] += 1
+                summary["failures"].append({"src": result["src"], "error": result["error"]})
+            if on_result is not None:
+                on_result(result)
+        summary["seconds"] = time.perf_counter() - t0
+    finally:
+        if own:
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    summary["failures"].sort(key=lambda f: f["src"])
+    if summary["seconds"] > 0:
+        summary["mpixels_per_s"] = summary["pixels"] / 1e6 / summary["seconds"]
+    return summary
+
+
+def format_summary(summary):
+    lines = [f"tessera.batch: {summary['files']} file(s): {summary['done']} done, "
+             f"{summary['skipped']} skipped, {summary['failed']} failed; "
+             f"{summary['pixels'] / 1e6:.2f} MPixel in {summary['seconds']:.2f} s "
+             f"({summary['mpixels_per_s']:.2f} MPixel/s) on {summary['workers']} worker(s)"]
+    lines += [f"  failed: {f['error']}" for f in summary["failures"]]
+    return "\n".join(lines)
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(
+        prog="python3 -m tessera.batch",
+        description="Compress every image under SRC (recursively) to PVRTC1 in the mirrored "
+                    "tree DST, one Dask task per file; outputs equal `tessera compress`'s.")
+    p.add_argument("src", metavar="SRC")
+    p.add_argument("dst", metavar="DST")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="Dask scheduler address (default: start a LocalCluster)")
+    p.add_argument("--workers", type=int, default=None,
+                   help="LocalCluster worker processes (default: one per CPU)")
+    p.add_argument("--threads", type=int, default=1, help="encoder threads per task (0 = all)")
+    p.add_argument("--format", choices=_FORMATS, default="pvrtc1-4")
+    p.add_argument("--quality", choices=_QUALITIES, default="normal")
+    p.add_argument("--container", choices=_CONTAINERS, default="pvr")
+    p.add_argument("--iterations", type=int, default=-1)
+    p.add_argument("--exact-search-rounds", type=int, default=0)
+    p.add_argument("--mipmaps", action="store_true")
+    p.add_argument("--srgb", action="store_true")
+    p.add_argument("--resize-pot", action="store_true")
+    p.add_argument("--force", action="store_true", help="recompress up-to-date outputs too")
+    p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
+    p.add_argument("-v", "--verbose", action="store_true", help="print one line per file")
+    args = p.parse_args(argv)
+
+    def report(result):
+        if result["status"] != "done":
+            print(f"tessera.batch: {result['error']}", file=sys.stderr, flush=True)
+        elif args.verbose:
+            print(f"wrote {result['out']} ({result['seconds'] * 1e3:.1f} ms)", flush=True)
+
+    try:
+        summary = compress_tree(
+            args.src, args.dst, scheduler=args.scheduler, workers=args.workers,
+            container=args.container, threads=args.threads, force=args.force, on_result=report,
+            format=args.format, quality=args.quality, iterations=args.iterations,
+            exact_search_rounds=args.exact_search_rounds, mipmaps=args.mipmaps, srgb=args.srgb,
+            resize_pot=args.resize_pot)
+    except ValueError as e:
+        print(f"tessera.batch: {e}", file=sys.stderr)
+        return 2
+    print(json.dumps(summary, indent=2) if args.json else format_summary(summary))
+    return 1 if summary["failed"] else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

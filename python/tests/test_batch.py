@@ -1,0 +1,169 @@
+"""tessera.batch: a directory tree over a 2-worker Dask LocalCluster, against the CLI."""
+
+import json
+import logging
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import tessera
+import tessera.batch
+from conftest import cli_error, make_image, run_cli
+
+GOOD = {  # relative path: (height, width, channels, alpha)
+    "top.png": (64, 64, 3, "ramp"),
+    "a/rgba.png": (32, 64, 4, "ramp"),
+    "a/b/deep.png": (128, 32, 3, "ramp"),
+    "a/b/opaque.PNG": (32, 32, 4, "opaque"),
+}
+BAD = ["a/npot.png", "a/b/corrupt.png"]
+
+
+def make_tree(root):
+    for i, (rel, (h, w, c, alpha)) in enumerate(GOOD.items()):
+        (root / rel).parent.mkdir(parents=True, exist_ok=True)
+        tessera.write_image(root / rel, make_image(h, w, c, seed=i, alpha=alpha))
+    tessera.write_image(root / BAD[0], make_image(40, 48, 3))
+    (root / BAD[1]).write_bytes(b"\x89PNG\r\n\x1a\n" + b"\x00" * 40)
+    (root / "a" / "notes.txt").write_text("not an image")
+    return root
+
+
+def output_of(dst, rel, container):
+    return dst / Path(rel).with_suffix("." + container)
+
+
+def check_outputs_equal_cli(src, dst, tmp_path, container, cli_opts):
+    for rel in GOOD:
+        ref = tmp_path / ("ref." + container)
+        run_cli("compress", src / rel, "-o", ref, *cli_opts)
+        out = output_of(dst, rel, container)
+        assert out.read_bytes() == ref.read_bytes(), rel
+        assert Path(str(out) + ".json").is_file()
+    for rel in BAD:
+        assert not output_of(dst, rel, container).exists()
+
+
+def expected_failures(src, tmp_path):
+    return sorted(cli_error("compress", src / rel, "-o", tmp_path / "x.pvr") for rel in BAD)
+
+
+@pytest.fixture(scope="module")
+def client():
+    from dask.distributed import Client, LocalCluster
+
+    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                           dashboard_address=None, silence_logs=logging.ERROR)
+    c = Client(cluster)
+    yield c
+    c.close()
+    cluster.close()
+
+
+def test_plan_mirrors_tree_and_reports_clashes(tmp_path):
+    src = make_tree(tmp_path / "src")
+    (src / "a" / "rgba.tga").write_bytes(b"\0" * 18)  # a/rgba.pvr again, after a/rgba.png
+    jobs, clashes = tessera.batch.plan(src, tmp_path / "dst", "ktx")
+    rels = [Path(s).relative_to(src).as_posix() for s, _ in jobs]
+    assert sorted(rels) == sorted(set(GOOD) | set(BAD))
+    for s, o in jobs:
+        assert Path(o) == output_of(tmp_path / "dst", Path(s).relative_to(src), "ktx")
+    assert [(Path(s).name, e) for s, e in clashes] == [
+        ("rgba.tga", f"{src}/a/rgba.tga: output {tmp_path}/dst/a/rgba.ktx is also made from "
+                     f"{src}/a/rgba.png")]
+
+
+def test_compress_tree_resumes_and_fails_alone(tmp_path, client):
+    src, dst = make_tree(tmp_path / "src"), tmp_path / "dst"
+    results = []
+    s1 = tessera.batch.compress_tree(src, dst, client=client, quality="fast", mipmaps=True,
+                                     on_result=results.append)
+    assert (s1["files"], s1["done"], s1["skipped"], s1["failed"]) == (6, 4, 0, 2)
+    assert s1["workers"] == 2 and len(results) == 6
+    assert sorted(f["error"] for f in s1["failures"]) == expected_failures(src, tmp_path)
+    assert s1["pixels"] == sum(h * w for h, w, _, _ in GOOD.values())
+    assert s1["mpixels_per_s"] > 0
+    check_outputs_equal_cli(src, dst, tmp_path, "pvr", ["--quality", "fast", "--mipmaps"])
+    sidecar = json.loads(Path(str(dst / "top.pvr") + ".json").read_text())
+    assert sidecar["options"]["quality"] == "fast" and sidecar["options"]["mipmaps"] is True
+
+    s2 = tessera.batch.compress_tree(src, dst, client=client, quality="fast", mipmaps=True)
+    assert (s2["done"], s2["skipped"], s2["failed"]) == (0, 4, 2)
+
+    # Other options: everything is compressed again.
+    s3 = tessera.batch.compress_tree(src, dst, client=client, quality="normal")
+    assert (s3["done"], s3["skipped"], s3["failed"]) == (4, 0, 2)
+    check_outputs_equal_cli(src, dst, tmp_path, "pvr", ["--quality", "normal"])
+
+    # An output older than its input is compressed again, alone.
+    out = dst / "a" / "rgba.pvr"
+    st = os.stat(src / "a" / "rgba.png")
+    os.utime(out, ns=(st.st_atime_ns, st.st_mtime_ns - 1_000_000_000))
+    s4 = tessera.batch.compress_tree(src, dst, client=client, quality="normal")
+    assert (s4["done"], s4["skipped"], s4["failed"]) == (1, 3, 2)
+    # So is one whose sidecar is missing.
+    os.remove(str(dst / "top.pvr") + ".json")
+    s5 = tessera.batch.compress_tree(src, dst, client=client, quality="normal")
+    assert (s5["done"], s5["skipped"]) == (1, 3)
+    check_outputs_equal_cli(src, dst, tmp_path, "pvr", ["--quality", "normal"])
+
+
+def test_compress_tree_rejects_bad_options(tmp_path):
+    src = make_tree(tmp_path / "src")
+    with pytest.raises(ValueError, match="quality: 'best'"):
+        tessera.batch.compress_tree(src, tmp_path / "dst", quality="best")
+    with pytest.raises(ValueError, match="container: 'dds'"):
+        tessera.batch.compress_tree(src, tmp_path / "dst", container="dds")
+    with pytest.raises(ValueError, match="unknown encode option"):
+        tessera.batch.compress_tree(src, tmp_path / "dst", qualty="fast")
+    with pytest.raises(ValueError, match="not a directory"):
+        tessera.batch.compress_tree(tmp_path / "nothing", tmp_path / "dst")
+    assert not (tmp_path / "dst").exists()
+
+
+def run_batch(*args):
+    return subprocess.run([sys.executable, "-m", "tessera.batch", *map(str, args)],
+                          capture_output=True, text=True)
+
+
+def test_batch_command_line(tmp_path):
+    src, dst = make_tree(tmp_path / "src"), tmp_path / "dst"
+    opts = ["--format", "pvrtc1-2", "--container", "ktx", "--srgb"]
+    r = run_batch(src, dst, "--workers", "2", *opts)
+    assert r.returncode == 1, r.stderr
+    assert "6 file(s): 4 done, 0 skipped, 2 failed" in r.stdout
+    for message in expected_failures(src, tmp_path):
+        assert f"tessera.batch: {message}\n" in r.stderr
+        assert f"  failed: {message}\n" in r.stdout + "\n"
+    check_outputs_equal_cli(src, dst, tmp_path, "ktx", ["--format", "pvrtc1-2", "--srgb"])
+
+    r = run_batch(src, dst, "--workers", "2", "--json", *opts)
+    assert r.returncode == 1
+    summary = json.loads(r.stdout)
+    assert (summary["done"], summary["skipped"], summary["failed"]) == (0, 4, 2)
+
+    for rel in BAD:
+        os.remove(src / rel)
+    r = run_batch(src, dst, *opts)
+    assert r.returncode == 0, r.stderr
+    assert "4 file(s): 0 done, 4 skipped, 0 failed" in r.stdout
+
+    r = run_batch(src, dst, "--quality", "best")
+    assert r.returncode == 2 and "invalid choice" in r.stderr
+
+
+def test_sidecars_shared_with_cli_skip_up_to_date(tmp_path, client):
+    # `tessera compress --skip-up-to-date` keeps the same sidecar record: each side skips what
+    # the other made with the same options, and redoes what it made with others.
+    src, dst = make_tree(tmp_path / "src"), tmp_path / "dst"
+    tessera.batch.compress_tree(src, dst, client=client, quality="fast")
+    r = run_cli("compress", src / "top.png", "-o", dst / "top.pvr", "--quality", "fast",
+                "--skip-up-to-date")
+    assert r.stdout.startswith("skipped ")
+    run_cli("compress", src / "a/rgba.png", "-o", dst / "a/rgba.pvr", "--quality", "normal",
+            "--skip-up-to-date")
+    s = tessera.batch.compress_tree(src, dst, client=client, quality="normal")
+    assert (s["done"], s["skipped"]) == (3, 1)
