@@ -26,6 +26,7 @@ packages=(
   glslang-tools                                # glslangValidator checks the shipped GLSL
   pybind11-dev python3-dev python3-pytest      # the Python module and its tests
   python3-distributed                          # tessera.batch on a Dask cluster
+  chromium                                     # the report test loads report.html headless
   libgtest-dev libgmock-dev libbenchmark-dev   # tests, benchmarks
   python3 python3-numpy python3-skimage python3-pil  # independent SSIM/PSNR, image checks
 )

@@ -37,6 +37,10 @@ int refuse_binary_to_terminal(const std::string& path, const char* what);
 /// else stdout.
 std::FILE* text_stream(bool data_on_stdout);
 
+/// The command line this process was started with, words joined by spaces (quoted where they
+/// hold a space), for reports.
+const std::string& command_line();
+
 /// A registered subcommand: the CLI11 sub-app and the action run when it was selected.
 struct Command {
   CLI::App* app = nullptr;

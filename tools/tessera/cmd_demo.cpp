@@ -37,6 +37,7 @@ int run_demo(const DemoArgs& args, const GlobalOptions& global) {
   std::snprintf(buf, sizeof buf, "Generated in %.0f ms with %d worker thread(s).", ms,
                 global.threads > 0 ? global.threads : default_thread_count());
   report.paragraph(buf);
+  report.footer(report_footer());
   if (Status s = report.write(); !s.ok()) return fail(s);
   if (!args.quiet) std::printf("wrote %s/report.html\n", args.out.c_str());
   return kExitOk;

@@ -1,6 +1,9 @@
 // Sections of the `tessera demo` report. Each system adds one function here.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "report.h"
 
 namespace tessera::cli {
@@ -15,6 +18,19 @@ Status demo_images_section(Report& report, const DemoOptions& options);
 
 /// PVRTC1: every quality and 2 bpp on the procedural images, heatmaps, crops, a mip chain.
 Status demo_pvrtc_section(Report& report, const DemoOptions& options);
+
+/// One procedural image of the PVRTC section, as saved in the report.
+struct PvrtcDemoImage {
+  std::string name;
+  std::string png_path;  ///< Absolute or relative to the working folder.
+  ImageRGBA8 image;
+  bool has_alpha = false;
+};
+
+/// PVRTC quality against time: tessera's levels and PVRTexTool's (when found) as whole
+/// processes on the same PNG files, one SVG plot and a table.
+Status demo_pvrtc_quality_time(Report& report, const DemoOptions& options,
+                               const std::vector<PvrtcDemoImage>& images);
 
 /// Rendering core: the built-in scene at 1x, 4x MSAA and a 4x4 SSAA reference, with zooms.
 Status demo_render_section(Report& report, const DemoOptions& options);

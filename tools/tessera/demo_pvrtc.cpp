@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "demo.h"
+#include "plot.h"
 #include "tessera/metrics.h"
 #include "tessera/mipmap.h"
 #include "tessera/procedural.h"
@@ -15,9 +16,7 @@ namespace tessera::cli {
 
 namespace {
 
-
 std::string db(double v) { return std::isfinite(v) ? fmt("%.2f", v) : "inf"; }
-
 
 struct Variant {
   const char* label;
@@ -79,6 +78,7 @@ Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
                      std::to_string(options.size) + " as --size asked: PVRTC needs power-of-two "
                      "sides, and " + std::to_string(n) + " is the nearest power of two.");
   }
+  std::vector<PvrtcDemoImage> saved;
   for (Procedural kind : all_procedurals()) {
     const std::string name = procedural_name(kind);
     const ImageRGBA8 img = make_procedural(kind, n, n);
@@ -100,6 +100,7 @@ Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
     std::string p_orig, p_norm, p_heat, p_2bpp;
     const std::string stem = "pvrtc-" + name;
     if (Status s = report.save_image(stem, img, p_orig); !s.ok()) return s;
+    saved.push_back({name, report.dir() + "/" + p_orig, img, img.has_alpha});
     if (Status s = report.save_image(stem + "-4-normal", normal, p_norm); !s.ok()) return s;
     if (Status s = report.save_image(stem + "-4-normal-diff", *heat, p_heat); !s.ok()) return s;
     if (Status s = report.save_image(stem + "-2-normal", results[3].decoded, p_2bpp); !s.ok()) {
@@ -107,7 +108,7 @@ Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
     }
     report.figures({{p_orig, name + (img.has_alpha ? " (RGBA)" : " (RGB)")},
                     {p_norm, "PVRTC1 4bpp normal"},
-                    {p_heat, "difference (4bpp normal)"},
+                    {p_heat, "difference (4bpp normal): colour bar below"},
                     {p_2bpp, "PVRTC1 2bpp normal"}});
     const int c = std::min(32, n), x0 = (n - c) / 2, y0 = (n - c) / 2;
     std::vector<Figure> crops;
@@ -123,9 +124,22 @@ Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
     }
     report.figures(crops, 4);
   }
+  {
+    std::string bar;
+    if (Status s = report.save_svg("pvrtc-diff-colourbar",
+                                   colour_bar_svg(ColorMap::inferno, 0, 64, 5,
+                                                  "max abs channel difference (8-bit levels; "
+                                                  "64 and above saturate)"),
+                                   bar);
+        !s.ok()) {
+      return s;
+    }
+    report.figures({{bar, "Colour bar of the difference heatmaps"}});
+  }
   report.table({"image", "variant", "PSNR RGB (dB)", "PSNR alpha (dB)", "SSIM grey",
                 "encode (ms)"},
                rows);
+  if (Status s = demo_pvrtc_quality_time(report, options, saved); !s.ok()) return s;
 
   // A gamma-correct, alpha-weighted mip chain of the RGBA image, each level PVRTC-compressed.
   const ImageRGBA8 foliage = make_procedural(Procedural::foliage, n, n);

@@ -46,6 +46,12 @@ int refuse_binary_to_terminal(const std::string& path, const char* what) {
 std::FILE* text_stream(bool data_on_stdout) { return data_on_stdout ? stderr : stdout; }
 
 namespace {
+std::string g_command_line;
+}  // namespace
+
+const std::string& command_line() { return g_command_line; }
+
+namespace {
 
 /// The first argument that is not a global option (-j N, --threads N, -jN, --threads=N), or
 /// "" when there is none or a help/version flag comes first (those need every subcommand).
@@ -235,6 +241,11 @@ void tune_allocator() {
 int main(int argc, char** argv) {
   using namespace tessera::cli;
   tune_allocator();
+  for (int i = 0; i < argc; ++i) {
+    std::string word = i == 0 ? std::string("tessera") : std::string(argv[i]);
+    if (word.find_first_of(" \t'\"") != std::string::npos) word = "'" + word + "'";
+    g_command_line += (i ? " " : "") + word;
+  }
   CLI::App app{
       "tessera — real-time texturing and anti-aliasing: PVRTC compression by intensity "
       "dilation, seamless per-face texturing, adaptive supersampling for deferred shading.",

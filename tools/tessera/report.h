@@ -27,15 +27,21 @@ class Report {
 
   /// Writes `image` to DIR/img/NAME.png; on success sets `rel` to its relative path.
   Status save_image(const std::string& name, const ImageRGBA8& image, std::string& rel);
+  /// Writes an SVG document to DIR/img/NAME.svg; on success sets `rel` to its relative path.
+  Status save_svg(const std::string& name, const std::string& svg, std::string& rel);
 
   void heading(const std::string& text);
   /// Raw HTML (callers escape what they insert; see `escape`).
   void html(const std::string& text);
+  /// A paragraph of plain text; `code` spans (between backticks) become <code>.
   void paragraph(const std::string& text);
   void table(const std::vector<std::string>& header,
              const std::vector<std::vector<std::string>>& rows);
   /// A row of images shown at `zoom` times their size without smoothing.
   void figures(const std::vector<Figure>& figures, int zoom = 1);
+
+  /// The page's footer line (plain text): version, date, command line, machine.
+  void footer(const std::string& text) { footer_ = text; }
 
   /// Writes DIR/report.html (folder created if needed).
   Status write() const;
@@ -47,6 +53,10 @@ class Report {
   std::string dir_;
   std::string title_;
   std::string body_;
+  std::string footer_;
 };
+
+/// The footer every report carries: "tessera VERSION · DATE UTC · `COMMAND` · MACHINE".
+std::string report_footer();
 
 }  // namespace tessera::cli

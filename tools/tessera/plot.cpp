@@ -1,0 +1,245 @@
+#include "plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "report.h"
+
+namespace tessera::cli {
+
+namespace {
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.1f", v);
+  return b;
+}
+
+/// A short label for a tick value.
+std::string tick_text(double v) {
+  char b[32];
+  const double a = std::fabs(v);
+  if (a != 0 && (a >= 1e5 || a < 1e-3)) {
+    std::snprintf(b, sizeof b, "%.0e", v);
+  } else if (a >= 100 || std::fabs(v - std::round(v)) < 1e-9) {
+    std::snprintf(b, sizeof b, "%.0f", v);
+  } else if (a >= 1) {
+    std::snprintf(b, sizeof b, "%.1f", v);
+  } else {
+    std::snprintf(b, sizeof b, "%.3g", v);
+  }
+  return b;
+}
+
+/// "Nice" tick values covering [lo, hi] on a linear axis.
+std::vector<double> linear_ticks(double lo, double hi, int target = 6) {
+  const double span = hi - lo;
+  if (!(span > 0)) return {lo};
+  const double raw = span / target;
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  const double norm = raw / mag;
+  const double step = (norm < 1.5 ? 1 : norm < 3 ? 2 : norm < 7 ? 5 : 10) * mag;
+  std::vector<double> t;
+  for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + step * 1e-6; v += step) {
+    t.push_back(std::fabs(v) < step * 1e-9 ? 0.0 : v);
+  }
+  return t;
+}
+
+/// Ticks at 1, 2, 5 x powers of ten inside [lo, hi] (lo > 0).
+std::vector<double> log_ticks(double lo, double hi) {
+  std::vector<double> t;
+  for (double p = std::pow(10.0, std::floor(std::log10(lo))); p <= hi * 1.0001; p *= 10) {
+    for (double m : {1.0, 2.0, 5.0}) {
+      const double v = p * m;
+      if (v >= lo * 0.9999 && v <= hi * 1.0001) t.push_back(v);
+    }
+  }
+  return t;
+}
+
+}  // namespace
+
+const char* series_colour(std::size_t i) {
+  static const char* kTab10[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                 "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  return kTab10[i % 10];
+}
+
+std::string plot_svg(const Plot& plot) {
+  // Data range.
+  double x0 = plot.x_min, x1 = plot.x_max, y0 = plot.y_min, y1 = plot.y_max;
+  if (x0 == x1 || y0 == y1) {
+    double dx0 = 1e300, dx1 = -1e300, dy0 = 1e300, dy1 = -1e300;
+    for (const PlotSeries& s : plot.series) {
+      for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+        if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+        if (plot.log_x && s.x[i] <= 0) continue;
+        dx0 = std::min(dx0, s.x[i]);
+        dx1 = std::max(dx1, s.x[i]);
+        dy0 = std::min(dy0, s.y[i]);
+        dy1 = std::max(dy1, s.y[i]);
+      }
+    }
+    if (dx0 > dx1) dx0 = 0, dx1 = 1, dy0 = 0, dy1 = 1;
+    if (x0 == x1) {
+      if (plot.log_x) {
+        x0 = std::pow(10.0, std::floor(std::log10(dx0)));
+        x1 = std::pow(10.0, std::ceil(std::log10(dx1)));
+        if (x0 == x1) x1 = x0 * 10;
+      } else {
+        const double pad = (dx1 - dx0) * 0.05 + (dx1 == dx0 ? 1 : 0);
+        x0 = dx0 - pad, x1 = dx1 + pad;
+      }
+    }
+    if (y0 == y1) {
+      const double pad = (dy1 - dy0) * 0.08 + (dy1 == dy0 ? 1 : 0);
+      y0 = dy0 - pad, y1 = dy1 + pad;
+    }
+  }
+  const int W = plot.width, H = plot.height;
+  const int left = 64, right = 16, top = plot.title.empty() ? 16 : 36;
+  const int legend_rows = int(plot.series.size());
+  const int bottom = 52 + 18 * ((legend_rows + 1) / 2);
+  const double pw = W - left - right, ph = H - top - bottom;
+  auto px = [&](double x) {
+    const double t = plot.log_x ? (std::log10(x) - std::log10(x0)) / (std::log10(x1) - std::log10(x0))
+                                : (x - x0) / (x1 - x0);
+    return left + t * pw;
+  };
+  auto py = [&](double y) { return top + (1 - (y - y0) / (y1 - y0)) * ph; };
+
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << W << ' ' << H
+    << "\" width=\"" << W << "\" height=\"" << H
+    << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" "
+       "fill=\"white\"/>\n";
+  if (!plot.title.empty()) {
+    s << "<text x=\"" << W / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"14\">"
+      << Report::escape(plot.title) << "</text>\n";
+  }
+  // Grid and ticks.
+  const std::vector<double> xt = plot.log_x ? log_ticks(x0, x1) : linear_ticks(x0, x1);
+  for (double v : xt) {
+    if (v < x0 || v > x1) continue;
+    const double x = px(v);
+    s << "<line x1=\"" << num(x) << "\" y1=\"" << top << "\" x2=\"" << num(x) << "\" y2=\""
+      << num(top + ph) << "\" stroke=\"#e4e4e4\"/>\n<text x=\"" << num(x) << "\" y=\""
+      << num(top + ph + 16) << "\" text-anchor=\"middle\">" << tick_text(v) << "</text>\n";
+  }
+  for (double v : linear_ticks(y0, y1)) {
+    if (v < y0 || v > y1) continue;
+    const double y = py(v);
+    s << "<line x1=\"" << left << "\" y1=\"" << num(y) << "\" x2=\"" << num(left + pw)
+      << "\" y2=\"" << num(y) << "\" stroke=\"#e4e4e4\"/>\n<text x=\"" << left - 6 << "\" y=\""
+      << num(y + 4) << "\" text-anchor=\"end\">" << tick_text(v) << "</text>\n";
+  }
+  s << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << num(pw) << "\" height=\""
+    << num(ph) << "\" fill=\"none\" stroke=\"#444\"/>\n";
+  s << "<text x=\"" << num(left + pw / 2) << "\" y=\"" << num(top + ph + 34)
+    << "\" text-anchor=\"middle\">" << Report::escape(plot.x_title) << "</text>\n";
+  s << "<text transform=\"translate(16 " << num(top + ph / 2)
+    << ") rotate(-90)\" text-anchor=\"middle\">" << Report::escape(plot.y_title) << "</text>\n";
+  // Series, clipped to the plot area.
+  s << "<clipPath id=\"area\"><rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << num(pw)
+    << "\" height=\"" << num(ph) << "\"/></clipPath>\n<g clip-path=\"url(#area)\">\n";
+  for (const PlotSeries& ser : plot.series) {
+    std::string pts;
+    for (std::size_t i = 0; i < ser.x.size() && i < ser.y.size(); ++i) {
+      if (!std::isfinite(ser.x[i]) || !std::isfinite(ser.y[i]) || (plot.log_x && ser.x[i] <= 0)) {
+        continue;
+      }
+      pts += num(px(ser.x[i])) + "," + num(py(ser.y[i])) + " ";
+    }
+    if (ser.line && !pts.empty()) {
+      s << "<polyline fill=\"none\" stroke=\"" << ser.colour << "\" stroke-width=\"2\""
+        << (ser.dashed ? " stroke-dasharray=\"6 4\"" : "") << " points=\"" << pts << "\"/>\n";
+    }
+    for (std::size_t i = 0; i < ser.x.size() && i < ser.y.size(); ++i) {
+      if (!std::isfinite(ser.x[i]) || !std::isfinite(ser.y[i]) || (plot.log_x && ser.x[i] <= 0)) {
+        continue;
+      }
+      if (ser.markers) {
+        s << "<circle cx=\"" << num(px(ser.x[i])) << "\" cy=\"" << num(py(ser.y[i]))
+          << "\" r=\"4\" fill=\"" << ser.colour << "\"/>\n";
+      }
+      if (i < ser.point_labels.size() && !ser.point_labels[i].empty()) {
+        s << "<text x=\"" << num(px(ser.x[i]) + 6) << "\" y=\"" << num(py(ser.y[i]) - 6)
+          << "\" font-size=\"11\" fill=\"" << ser.colour << "\">"
+          << Report::escape(ser.point_labels[i]) << "</text>\n";
+      }
+    }
+  }
+  s << "</g>\n";
+  // Legend, two columns under the axis title.
+  for (std::size_t i = 0; i < plot.series.size(); ++i) {
+    const PlotSeries& ser = plot.series[i];
+    const double lx = left + (i % 2) * pw / 2, ly = top + ph + 52 + 18 * double(i / 2);
+    s << "<line x1=\"" << num(lx) << "\" y1=\"" << num(ly - 4) << "\" x2=\"" << num(lx + 24)
+      << "\" y2=\"" << num(ly - 4) << "\" stroke=\"" << ser.colour << "\" stroke-width=\"2\""
+      << (ser.dashed ? " stroke-dasharray=\"6 4\"" : "") << (ser.line ? "" : " opacity=\"0\"")
+      << "/>\n";
+    if (ser.markers) {
+      s << "<circle cx=\"" << num(lx + 12) << "\" cy=\"" << num(ly - 4) << "\" r=\"4\" fill=\""
+        << ser.colour << "\"/>\n";
+    }
+    s << "<text x=\"" << num(lx + 30) << "\" y=\"" << num(ly) << "\">"
+      << Report::escape(ser.label) << "</text>\n";
+  }
+  s << "</svg>\n";
+  return s.str();
+}
+
+std::string colour_bar_svg(ColorMap map, double min, double max, int ticks,
+                           const std::string& title, int width) {
+  // Room for the title (about 6.2 px a character at 11 px sans-serif).
+  width = std::max(width, int(6.2 * double(title.size())) + 24);
+  const int H = 58, bar_h = 14, pad = 12, top = 6;
+  const double bw = width - 2 * pad;
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << width << ' ' << H
+    << "\" width=\"" << width << "\" height=\"" << H
+    << "\" font-family=\"sans-serif\" font-size=\"11\">\n<defs><linearGradient id=\"cb\">";
+  for (int i = 0; i <= 16; ++i) {
+    std::uint8_t rgb[3];
+    colormap_rgb(map, float(i) / 16.0f, rgb);
+    char c[8];
+    std::snprintf(c, sizeof c, "#%02x%02x%02x", rgb[0], rgb[1], rgb[2]);
+    s << "<stop offset=\"" << num(i * 6.25) << "%\" stop-color=\"" << c << "\"/>";
+  }
+  s << "</linearGradient></defs>\n<rect x=\"" << pad << "\" y=\"" << top << "\" width=\""
+    << num(bw) << "\" height=\"" << bar_h << "\" fill=\"url(#cb)\" stroke=\"#444\"/>\n";
+  for (int i = 0; i < ticks; ++i) {
+    const double t = ticks > 1 ? double(i) / (ticks - 1) : 0;
+    const double x = pad + t * bw;
+    s << "<line x1=\"" << num(x) << "\" y1=\"" << top + bar_h << "\" x2=\"" << num(x)
+      << "\" y2=\"" << top + bar_h + 4 << "\" stroke=\"#444\"/><text x=\"" << num(x) << "\" y=\""
+      << top + bar_h + 16 << "\" text-anchor=\"middle\">" << tick_text(min + t * (max - min))
+      << "</text>\n";
+  }
+  s << "<text x=\"" << width / 2 << "\" y=\"" << H - 4 << "\" text-anchor=\"middle\">"
+    << Report::escape(title) << "</text>\n</svg>\n";
+  return s.str();
+}
+
+std::string category_legend_svg(const std::vector<std::pair<std::string, std::string>>& entries,
+                                const std::string& title) {
+  const int cell = 64, H = 50;
+  const int W = std::max(200, int(entries.size()) * cell + 16);
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << W << ' ' << H
+    << "\" width=\"" << W << "\" height=\"" << H
+    << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const int x = 8 + int(i) * cell;
+    s << "<rect x=\"" << x << "\" y=\"4\" width=\"18\" height=\"14\" fill=\"" << entries[i].second
+      << "\" stroke=\"#444\"/><text x=\"" << x + 22 << "\" y=\"15\">"
+      << Report::escape(entries[i].first) << "</text>\n";
+  }
+  s << "<text x=\"8\" y=\"40\">" << Report::escape(title) << "</text>\n</svg>\n";
+  return s.str();
+}
+
+}  // namespace tessera::cli
