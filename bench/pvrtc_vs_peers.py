@@ -340,7 +340,7 @@ def write_report(args, results, images, nthreads, gbench, generated, cmd):
     # mean times above, every image counts the same (the 2048^2 image does not dominate).
     lines += [
         "",
-        "## Time per 512² image (the issue's target metric)",
+        "## Time per 512² image",
         "",
         "Each image's whole-process time scaled to a 512² image (× 512² / its pixels), then "
         "averaged over the images: every image counts equally. tessera -j 1; PVRTexTool as it "
