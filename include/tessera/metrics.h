@@ -72,8 +72,38 @@ Result<std::vector<double>> error_cdf(const ImageRGBAF& a, const ImageRGBAF& b,
                                       std::span<const double> thresholds,
                                       std::span<const std::uint8_t> mask = {});
 
-/// Per-pixel 2-norm of the linear-RGB difference (the quantity `error_cdf` counts).
+/// Per-pixel 2-norm of the linear-RGB difference (the quantity `error_cdf` counts), computed in
+/// single precision as a shader would: sqrtf(dr*dr + dg*dg + db*db) with float differences.
 Result<std::vector<float>> error_norms(const ImageRGBAF& a, const ImageRGBAF& b);
+
+/// The error CDF of `error_cdf` accumulated over several image pairs (Toth 2013, Figure 5 counts
+/// the pixels of every frame of an orbit): `fractions()` equals `error_cdf` over the counted
+/// pixels of all added pairs taken together, without keeping them (memory is one counter per
+/// threshold). Also keeps the mean error and the number of counted pixels. Not thread-safe;
+/// results do not depend on the thread count of anything that produced the images.
+class ErrorCdfAccumulator {
+ public:
+  /// `thresholds` must be ascending (checked by `add`).
+  explicit ErrorCdfAccumulator(std::vector<double> thresholds = {});
+
+  /// Counts the pixels of one pair (`mask` as in `error_cdf`: empty = every pixel). Fails on a
+  /// size mismatch or unsorted thresholds, leaving the accumulator unchanged.
+  Status add(const ImageRGBAF& a, const ImageRGBAF& b, std::span<const std::uint8_t> mask = {});
+
+  const std::vector<double>& thresholds() const { return thresholds_; }
+  /// For each threshold x: counted pixels with error >= x, divided by `counted()` (all zeros
+  /// when nothing was counted).
+  std::vector<double> fractions() const;
+  /// Mean error over the counted pixels (0 when none), summed in pixel order.
+  double mean() const { return counted_ ? sum_ / double(counted_) : 0.0; }
+  std::uint64_t counted() const { return counted_; }
+
+ private:
+  std::vector<double> thresholds_;
+  std::vector<std::uint64_t> bins_;  ///< bins_[t]: errors in [thresholds[t], thresholds[t+1]).
+  std::uint64_t counted_ = 0;
+  double sum_ = 0.0;
+};
 
 /// Colour maps for heatmaps.
 enum class ColorMap { inferno, viridis, grey };

@@ -83,8 +83,8 @@ Result<std::vector<float>> error_norms(const ImageRGBAF& a, const ImageRGBAF& b)
   for (std::size_t i = 0; i < e.size(); ++i) {
     const float* pa = &a.pixels[i * 4];
     const float* pb = &b.pixels[i * 4];
-    const double dr = pa[0] - pb[0], dg = pa[1] - pb[1], db = pa[2] - pb[2];
-    e[i] = float(std::sqrt(dr * dr + dg * dg + db * db));
+    const float dr = pa[0] - pb[0], dg = pa[1] - pb[1], db = pa[2] - pb[2];
+    e[i] = std::sqrt(dr * dr + dg * dg + db * db);
   }
   return e;
 }
@@ -112,6 +112,43 @@ Result<std::vector<double>> error_cdf(const ImageRGBAF& a, const ImageRGBAF& b,
     cdf[t] = double(counted.end() - first) / double(counted.size());
   }
   return cdf;
+}
+
+ErrorCdfAccumulator::ErrorCdfAccumulator(std::vector<double> thresholds)
+    : thresholds_(std::move(thresholds)), bins_(thresholds_.size(), 0) {}
+
+Status ErrorCdfAccumulator::add(const ImageRGBAF& a, const ImageRGBAF& b,
+                                std::span<const std::uint8_t> mask) {
+  if (!std::is_sorted(thresholds_.begin(), thresholds_.end())) {
+    return Status::error(ErrorCode::invalid_argument, "error CDF: thresholds not ascending");
+  }
+  Result<std::vector<float>> norms = error_norms(a, b);
+  if (!norms) return norms.status();
+  if (!mask.empty() && mask.size() != norms->size()) {
+    return Status::error(ErrorCode::size_mismatch, "error CDF: mask size differs from image");
+  }
+  for (std::size_t i = 0; i < norms->size(); ++i) {
+    if (!mask.empty() && !mask[i]) continue;
+    const float v = (*norms)[i];
+    ++counted_;
+    sum_ += double(v);
+    // The last threshold not above v: v counts towards it and every smaller one (a NaN error
+    // towards none, as in `error_cdf`).
+    const auto above = std::upper_bound(thresholds_.begin(), thresholds_.end(), v,
+                                        [](float e, double x) { return !(double(e) >= x); });
+    if (above != thresholds_.begin()) ++bins_[std::size_t(above - thresholds_.begin()) - 1];
+  }
+  return Status::success();
+}
+
+std::vector<double> ErrorCdfAccumulator::fractions() const {
+  std::vector<double> f(bins_.size(), 0.0);
+  std::uint64_t at_or_above = 0;
+  for (std::size_t t = bins_.size(); t-- > 0;) {
+    at_or_above += bins_[t];
+    f[t] = counted_ ? double(at_or_above) / double(counted_) : 0.0;
+  }
+  return f;
 }
 
 }  // namespace tessera

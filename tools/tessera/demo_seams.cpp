@@ -1,5 +1,7 @@
 // Demo section: seamless per-face texturing (Toth 2013) — the seam experiment run small on the
 // built-in Figure-1 scene: Table 1 and Figure 5 analogues, zooms on a seam.
+#include <filesystem>
+
 #include "demo.h"
 #include "seams.h"
 
@@ -19,7 +21,7 @@ Status demo_seams_section(Report& report, const DemoOptions& options) {
       "reference is Traverse at 8x8 the resolution downsampled with the Mitchell-Netravali "
       "filter. Errors are linear-RGB 2-norms over geometry pixels. docs/benchmarks/seams.md has "
       "the full-size run.");
-  SeamsConfig c;
+  experiments::SeamsConfig c;
   c.figure1.ground = 16;
   c.figure1.character = 8;
   c.figure1.texels_per_unit = 80.0f;
@@ -28,16 +30,29 @@ Status demo_seams_section(Report& report, const DemoOptions& options) {
   c.frames = 2;
   c.msaa = {1, 4, 8};
   c.threads = options.threads;
-  c.out = report.dir() + "/seams";
+  const std::string dir = report.dir() + "/seams";
+  c.on_ready = [&dir] {
+    std::error_code ec;
+    std::filesystem::create_directories(std::filesystem::path(dir) / "images", ec);
+    if (ec) return Status::error(ErrorCode::io_error, dir + ": cannot create: " + ec.message());
+    return Status::success();
+  };
+  Result<experiments::SeamsResult> res = experiments::run_seams(c);
+  if (!res) return res.status();
   nlohmann::json j;
-  if (Status s = run_seams(c, j, false); !s.ok()) return s;
+  if (Status s = write_seams_report(c, *res, dir, true, j); !s.ok()) return s;
   std::vector<std::vector<std::string>> rows;
-  const char* names[] = {"clamp", "discard", "traverse", "traverse_corners", "shading_only"};
-  for (const char* n : names) {
-    std::vector<std::string> row = {n};
-    for (int r : c.msaa) {
-      row.push_back(
-          fmt("%.1f", j["timing"][std::to_string(r) + "x"][n]["median_ms"].get<double>()));
+  for (const faces::Method m : faces::all_methods()) {
+    std::vector<std::string> row = {faces::method_name(m)};
+    for (const experiments::SeamsRateResult& rate : res->rates) {
+      row.push_back(fmt("%.1f", rate.method(m).timing.median_ms()));
+    }
+    rows.push_back(row);
+  }
+  {
+    std::vector<std::string> row = {"shading_only"};
+    for (const experiments::SeamsRateResult& rate : res->rates) {
+      row.push_back(fmt("%.1f", rate.shading_only.median_ms()));
     }
     rows.push_back(row);
   }
@@ -45,20 +60,17 @@ Status demo_seams_section(Report& report, const DemoOptions& options) {
   for (int r : c.msaa) header.push_back(std::to_string(r) + "x MSAA");
   report.table(header, rows);
   rows.clear();
-  for (const char* n : {"clamp", "discard", "traverse", "traverse_corners"}) {
-    std::vector<std::string> row = {std::string(n) + " vs reference"};
-    for (int r : c.msaa) {
-      row.push_back(fmt(
-          "%.5f", j["quality"]["vs_reference"][n][std::to_string(r) + "x"]["mean"].get<double>()));
+  for (const faces::Method m : faces::all_methods()) {
+    std::vector<std::string> row = {std::string(faces::method_name(m)) + " vs reference"};
+    for (const experiments::SeamsRateResult& rate : res->rates) {
+      row.push_back(fmt("%.5f", rate.method(m).vs_reference.mean));
     }
     rows.push_back(row);
   }
   {
     std::vector<std::string> row = {"traverse vs discard"};
-    for (int r : c.msaa) {
-      row.push_back(
-          fmt("%.5f",
-              j["quality"]["traverse_vs_discard"][std::to_string(r) + "x"]["mean"].get<double>()));
+    for (const experiments::SeamsRateResult& rate : res->rates) {
+      row.push_back(fmt("%.5f", rate.traverse_vs_discard.mean));
     }
     rows.push_back(row);
   }

@@ -1,0 +1,50 @@
+// Shared pieces of the experiments: medians, names, error statistics.
+#include <algorithm>
+#include <cmath>
+
+#include "tessera/experiments.h"
+
+namespace tessera::experiments {
+
+const char* backend_name(Backend backend) {
+  switch (backend) {
+    case Backend::cpu:
+      return "cpu";
+    case Backend::gl:
+      return "gl";
+  }
+  return "?";
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+double FrameTimes::median_ms() const { return median(frame_ms); }
+
+double ErrorStats::at(double x) const {
+  if (cdf.empty()) return 0.0;
+  const long i = std::lround(x / kSeamsCdfStep);
+  return cdf[std::size_t(std::clamp<long>(i, 0, long(cdf.size()) - 1))];
+}
+
+const char* aa_method_name(AaMethod method) {
+  switch (method) {
+    case AaMethod::default_1spp:
+      return "default";
+    case AaMethod::fxaa:
+      return "fxaa";
+    case AaMethod::reference:
+      return "reference";
+    case AaMethod::adaptive:
+      return "adaptive";
+  }
+  return "?";
+}
+
+bool AaQuality::identical() const { return !std::isfinite(psnr_db); }
+
+}  // namespace tessera::experiments

@@ -1,0 +1,346 @@
+// The experiments module (tessera/experiments.h) called directly: the seam experiment of Toth
+// 2013 and the adaptive-supersampling experiment of Hollander et al. 2013 on tiny frames, and
+// the multi-frame error CDF of metrics.h they use.
+#include "tessera/experiments.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "tessera/metrics.h"
+
+namespace tessera::experiments {
+namespace {
+
+using faces::Method;
+
+SeamsConfig tiny_seams() {
+  SeamsConfig c;
+  c.figure1.ground = 6;
+  c.figure1.character = 4;
+  c.figure1.texels_per_unit = 24.0f;
+  c.width = 64;
+  c.height = 56;
+  c.frames = 2;
+  c.msaa = {1, 4};
+  c.reference_factor = 3;
+  c.threads = 2;
+  return c;
+}
+
+/// Runs the tiny seam experiment once for the whole suite (each run renders ~20 frames).
+const SeamsResult& seams_result() {
+  static const SeamsResult r = [] {
+    Result<SeamsResult> res = run_seams(tiny_seams());
+    EXPECT_TRUE(res.ok()) << res.status().message;
+    return res.ok() ? *res : SeamsResult{};
+  }();
+  return r;
+}
+
+void expect_valid_cdf(const ErrorStats& s, const std::string& what) {
+  ASSERT_EQ(s.cdf.size(), std::size_t(kSeamsCdfBins)) << what;
+  ASSERT_GT(s.counted, 0u) << what;
+  EXPECT_DOUBLE_EQ(s.cdf[0], 1.0) << what;  // every error is >= 0
+  for (std::size_t i = 0; i < s.cdf.size(); ++i) {
+    EXPECT_GE(s.cdf[i], 0.0) << what << " bin " << i;
+    EXPECT_LE(s.cdf[i], 1.0) << what << " bin " << i;
+    if (i > 0) {
+      EXPECT_LE(s.cdf[i], s.cdf[i - 1]) << what << " bin " << i;
+    }
+  }
+  EXPECT_GE(s.mean, 0.0) << what;
+  EXPECT_TRUE(std::isfinite(s.mean)) << what;
+}
+
+TEST(ErrorCdfAccumulator, EqualsErrorCdfOverAllPairsTogether) {
+  // Two pairs of 3x1 images; errors 0, 0.1, 0.5 and 0.2, 0.3, 0.05 (masked: the 0.3 pixel).
+  ImageRGBAF a1(3, 1), b1(3, 1), a2(3, 1), b2(3, 1);
+  b1.at(1, 0)[0] = 0.1f;
+  b1.at(2, 0)[1] = 0.5f;
+  b2.at(0, 0)[2] = 0.2f;
+  b2.at(1, 0)[0] = 0.3f;
+  b2.at(2, 0)[1] = 0.05f;
+  const std::vector<std::uint8_t> mask2 = {1, 0, 1};
+  const std::vector<double> xs = {0.0, 0.05, 0.1, 0.2, 0.4, 0.6};
+  ErrorCdfAccumulator acc(xs);
+  ASSERT_TRUE(acc.add(a1, b1).ok());
+  ASSERT_TRUE(acc.add(a2, b2, mask2).ok());
+  EXPECT_EQ(acc.counted(), 5u);
+  // Together: 0, 0.1, 0.5, 0.2, 0.05 as one 5x1 pair.
+  ImageRGBAF a(5, 1), b(5, 1);
+  b.at(1, 0)[0] = 0.1f;
+  b.at(2, 0)[1] = 0.5f;
+  b.at(3, 0)[2] = 0.2f;
+  b.at(4, 0)[1] = 0.05f;
+  Result<std::vector<double>> whole = error_cdf(a, b, xs);
+  ASSERT_TRUE(whole.ok());
+  EXPECT_EQ(acc.fractions(), *whole);
+  EXPECT_DOUBLE_EQ(acc.fractions()[1], 0.8);  // >= 0.05 includes the pixel at exactly 0.05f
+  EXPECT_DOUBLE_EQ(acc.fractions()[4], 0.2);
+  EXPECT_NEAR(acc.mean(), (0.1 + 0.5 + 0.2 + 0.05) / 5.0, 1e-7);
+  // A size mismatch is an error and leaves the accumulator unchanged.
+  EXPECT_FALSE(acc.add(a, b1).ok());
+  EXPECT_EQ(acc.counted(), 5u);
+}
+
+TEST(ErrorCdfAccumulator, ReferenceAgainstItselfHasZeroError) {
+  const SeamsResult& r = seams_result();
+  ASSERT_FALSE(r.reference_frame0.pixels.empty());
+  ErrorCdfAccumulator acc(r.thresholds);
+  ASSERT_TRUE(acc.add(r.reference_frame0, r.reference_frame0).ok());
+  EXPECT_EQ(acc.counted(), r.reference_frame0.pixel_count());
+  EXPECT_EQ(acc.mean(), 0.0);
+  const std::vector<double> f = acc.fractions();
+  EXPECT_EQ(f[0], 1.0);
+  for (std::size_t i = 1; i < f.size(); ++i) EXPECT_EQ(f[i], 0.0) << i;
+}
+
+TEST(Seams, EveryMethodAtEveryRate) {
+  const SeamsConfig c = tiny_seams();
+  const SeamsResult& r = seams_result();
+  ASSERT_EQ(r.rates.size(), c.msaa.size());
+  EXPECT_EQ(r.quality_frames, c.frames);
+  EXPECT_EQ(r.threads, 2);
+  EXPECT_TRUE(r.has_character);
+  EXPECT_GT(r.ground_faces, 0);
+  EXPECT_EQ(r.faces, 6 * 6 + 6 * 4 * 4);
+  ASSERT_EQ(r.thresholds.size(), std::size_t(kSeamsCdfBins));
+  EXPECT_DOUBLE_EQ(r.thresholds[10], 0.01);
+  for (std::size_t ri = 0; ri < r.rates.size(); ++ri) {
+    const SeamsRateResult& rate = r.rates[ri];
+    EXPECT_EQ(rate.msaa, c.msaa[ri]);
+    EXPECT_EQ(rate.shading_only.frame_ms.size(), std::size_t(c.frames));
+    for (Method m : faces::all_methods()) {
+      const SeamsMethodResult& mr = rate.method(m);
+      const std::string what =
+          std::string(faces::method_name(m)) + " " + std::to_string(rate.msaa) + "x";
+      EXPECT_EQ(mr.method, m) << what;
+      EXPECT_EQ(mr.timing.frame_ms.size(), std::size_t(c.frames)) << what;
+      EXPECT_EQ(mr.frame0.width, c.width) << what;
+      expect_valid_cdf(mr.vs_reference, what);
+      expect_valid_cdf(mr.vs_reference_character, what + " character");
+      EXPECT_LT(mr.vs_reference_character.counted, mr.vs_reference.counted) << what;
+    }
+    expect_valid_cdf(rate.traverse_vs_discard, "traverse vs discard");
+    // The same geometry pixels are counted for every comparison of a rate.
+    EXPECT_EQ(rate.traverse_vs_discard.counted, rate.method(Method::clamp).vs_reference.counted);
+    // Traverse and Discard differ somewhere (near seams), so the CDF leaves 1 after bin 0.
+    EXPECT_LT(rate.traverse_vs_discard.cdf[1], 1.0);
+    EXPECT_GT(rate.traverse_vs_discard.mean, 0.0);
+  }
+}
+
+TEST(Seams, TraverseBeatsClampNearSeams) {
+  const SeamsResult& r = seams_result();
+  for (const SeamsRateResult& rate : r.rates) {
+    const ImageRGBAF& clamp = rate.method(Method::clamp).frame0;
+    const ImageRGBAF& trav = rate.method(Method::traverse).frame0;
+    // Near seams: geometry pixels where Clamp and Traverse disagree visibly.
+    Result<std::vector<float>> d = error_norms(clamp, trav);
+    ASSERT_TRUE(d.ok());
+    std::vector<std::uint8_t> seam(d->size(), 0);
+    for (std::size_t i = 0; i < seam.size(); ++i) {
+      seam[i] = (*d)[i] > 0.02f && r.reference_frame0.pixels[i * 4 + 3] > 0.01f ? 1 : 0;
+    }
+    ErrorCdfAccumulator ec(r.thresholds), et(r.thresholds);
+    ASSERT_TRUE(ec.add(clamp, r.reference_frame0, seam).ok());
+    ASSERT_TRUE(et.add(trav, r.reference_frame0, seam).ok());
+    ASSERT_GT(ec.counted(), 20u) << rate.msaa << "x";
+    EXPECT_LT(et.mean(), ec.mean()) << rate.msaa << "x";
+    // Over all geometry pixels and quality frames too.
+    EXPECT_LE(rate.method(Method::traverse).vs_reference.mean,
+              rate.method(Method::clamp).vs_reference.mean)
+        << rate.msaa << "x";
+  }
+}
+
+TEST(Seams, ThreadCountDoesNotChangeTheNumbers) {
+  SeamsConfig c = tiny_seams();
+  c.threads = 1;
+  c.frames = 1;
+  c.msaa = {1};
+  Result<SeamsResult> one = run_seams(c);
+  c.threads = 3;
+  Result<SeamsResult> three = run_seams(c);
+  ASSERT_TRUE(one.ok() && three.ok());
+  for (Method m : faces::all_methods()) {
+    EXPECT_EQ(one->rates[0].method(m).vs_reference.cdf, three->rates[0].method(m).vs_reference.cdf);
+    EXPECT_EQ(one->rates[0].method(m).vs_reference.mean,
+              three->rates[0].method(m).vs_reference.mean);
+    EXPECT_EQ(one->rates[0].method(m).frame0.pixels, three->rates[0].method(m).frame0.pixels);
+  }
+}
+
+TEST(Seams, ProgressAndReadyCallbacks) {
+  SeamsConfig c = tiny_seams();
+  c.frames = 1;
+  c.msaa = {1};
+  c.keep_images = false;
+  std::vector<std::string> lines;
+  int ready = 0;
+  c.progress = [&](const std::string& s) { lines.push_back(s); };
+  c.on_ready = [&] {
+    ++ready;
+    return Status::success();
+  };
+  Result<SeamsResult> r = run_seams(c);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  EXPECT_EQ(ready, 1);
+  ASSERT_EQ(lines.size(), 2u);  // the scene, then one line per frame
+  EXPECT_EQ(lines[1], "frame 1/1 done");
+  EXPECT_TRUE(r->reference_frame0.pixels.empty());
+  EXPECT_TRUE(r->rates[0].method(Method::discard).frame0.pixels.empty());
+  // An error from on_ready stops the run and comes back unchanged.
+  c.on_ready = [] { return Status::error(ErrorCode::io_error, "no folder"); };
+  Result<SeamsResult> stopped = run_seams(c);
+  ASSERT_FALSE(stopped.ok());
+  EXPECT_EQ(stopped.status().code, ErrorCode::io_error);
+  EXPECT_EQ(stopped.status().message, "no folder");
+}
+
+TEST(Seams, BadConfigurationAndBackendAreErrors) {
+  bool ready = false;
+  SeamsConfig c = tiny_seams();
+  c.on_ready = [&] {
+    ready = true;
+    return Status::success();
+  };
+  c.msaa = {3};
+  EXPECT_EQ(run_seams(c).status().code, ErrorCode::invalid_argument);
+  c.msaa = {1};
+  c.width = 4;
+  EXPECT_EQ(run_seams(c).status().code, ErrorCode::invalid_argument);
+  c.width = 64;
+  c.backend = Backend::gl;
+  Result<SeamsResult> gl = run_seams(c);
+  ASSERT_FALSE(gl.ok());
+  EXPECT_EQ(gl.status().code, ErrorCode::unsupported);
+  EXPECT_NE(gl.status().message.find("not yet implemented"), std::string::npos);
+  c.backend = Backend::cpu;
+  c.scene = "/nonexistent/mesh.obj";
+  EXPECT_FALSE(run_seams(c).ok());
+  EXPECT_FALSE(ready);  // no input was good enough to get there
+}
+
+AaConfig tiny_aa() {
+  AaConfig c;
+  c.width = 48;
+  c.height = 36;
+  c.ssaa = {2, 3};
+  c.frames = 2;
+  c.lights = 4;
+  c.threads = 2;
+  return c;
+}
+
+TEST(Aa, EveryMethodAtEveryRateAndAdaptiveBeatsDefault) {
+  const AaConfig c = tiny_aa();
+  Result<AaResult> r = run_aa(c);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  EXPECT_EQ(r->threads, 2);
+  EXPECT_EQ(r->gbuffer_1x1.frame_ms.size(), 2u);
+  EXPECT_EQ(r->fxaa_1x1.normal.frame_ms.size(), 2u);
+  EXPECT_TRUE(r->fxaa_1x1.heavy.frame_ms.empty());
+  ASSERT_EQ(r->rates.size(), 2u);
+  for (std::size_t i = 0; i < r->rates.size(); ++i) {
+    const AaRateResult& rate = r->rates[i];
+    const int n = c.ssaa[i] * c.ssaa[i];
+    EXPECT_EQ(rate.m, c.ssaa[i]);
+    EXPECT_EQ(rate.gbuffer.frame_ms.size(), 2u);
+    for (AaMethod k : kAaMethods) {
+      const AaMethodResult& mr = rate.method(k);
+      EXPECT_EQ(mr.method, k);
+      EXPECT_EQ(mr.timing.normal.frame_ms.size(), 2u) << aa_method_name(k);
+      EXPECT_EQ(mr.image.width, c.width) << aa_method_name(k);
+      EXPECT_GE(mr.quality.ssim, -1.0);
+      EXPECT_LE(mr.quality.ssim, 1.0);
+    }
+    // The reference against itself: identical.
+    const AaMethodResult& ref = rate.method(AaMethod::reference);
+    EXPECT_TRUE(ref.quality.identical());
+    EXPECT_EQ(ref.quality.mse, 0.0);
+    EXPECT_EQ(ref.samples_pct, 100.0);
+    EXPECT_DOUBLE_EQ(rate.method(AaMethod::default_1spp).samples_pct, 100.0 / n);
+    const AaMethodResult& ad = rate.method(AaMethod::adaptive);
+    EXPECT_GT(ad.samples_pct, 100.0 / n);  // some pixels got extra samples
+    EXPECT_LT(ad.samples_pct, 100.0);      // and not all of them
+    EXPECT_EQ(rate.adaptive_samples.size(), std::size_t(c.width * c.height));
+    const AaQuality& qd = rate.method(AaMethod::default_1spp).quality;
+    EXPECT_FALSE(qd.identical());
+    EXPECT_GE(ad.quality.psnr_db, qd.psnr_db);
+    EXPECT_LE(ad.quality.mse, qd.mse);
+    EXPECT_GT(rate.ablation_geometry.samples_pct, 100.0 / n);
+    EXPECT_LT(rate.ablation_geometry.samples_pct, ad.samples_pct + 1e-9);
+    EXPECT_LT(rate.ablation_shading.samples_pct, ad.samples_pct + 1e-9);
+    EXPECT_EQ(rate.adaptive_first.frame_ms.size(), 2u);
+  }
+}
+
+TEST(Aa, AllExtraSamplesEqualsTheReference) {
+  AaConfig c = tiny_aa();
+  c.ssaa = {3};
+  c.frames = 1;
+  c.adaptive.force_k = 8;
+  Result<AaResult> r = run_aa(c);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  const AaRateResult& rate = r->rates[0];
+  EXPECT_EQ(rate.method(AaMethod::adaptive).image.pixels,
+            rate.method(AaMethod::reference).image.pixels);
+  EXPECT_TRUE(rate.method(AaMethod::adaptive).quality.identical());
+  EXPECT_DOUBLE_EQ(rate.method(AaMethod::adaptive).samples_pct, 100.0);
+  EXPECT_NE(rate.method(AaMethod::default_1spp).image.pixels,
+            rate.method(AaMethod::reference).image.pixels);
+}
+
+TEST(Aa, HeavyModeIsMeasured) {
+  AaConfig c = tiny_aa();
+  c.ssaa = {2};
+  c.frames = 1;
+  c.heavy = true;
+  c.heavy_terms = 4;
+  Result<AaResult> r = run_aa(c);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  EXPECT_EQ(r->heavy_terms, 4);
+  const AaRateResult& rate = r->rates[0];
+  EXPECT_EQ(rate.method(AaMethod::reference).timing.heavy.frame_ms.size(), 1u);
+  EXPECT_NE(rate.method(AaMethod::reference).image_heavy.pixels,
+            rate.method(AaMethod::reference).image.pixels);
+  EXPECT_GT(rate.adaptive_heavy_samples_pct, 25.0);
+  EXPECT_FALSE(r->fxaa_1x1.heavy.frame_ms.empty());
+}
+
+TEST(Aa, BadConfigurationAndBackendAreErrors) {
+  AaConfig c = tiny_aa();
+  c.ssaa = {9};
+  EXPECT_EQ(run_aa(c).status().code, ErrorCode::invalid_argument);
+  c.ssaa = {2};
+  c.fxaa_preset = 7;
+  EXPECT_EQ(run_aa(c).status().code, ErrorCode::invalid_argument);
+  c.fxaa_preset = 39;
+  c.backend = Backend::gl;
+  int progress = 0;
+  c.progress = [&](const std::string&) { ++progress; };
+  Result<AaResult> gl = run_aa(c);
+  ASSERT_FALSE(gl.ok());
+  EXPECT_EQ(gl.status().code, ErrorCode::unsupported);
+  EXPECT_NE(gl.status().message.find("not yet implemented"), std::string::npos);
+  EXPECT_EQ(progress, 0);
+  EXPECT_STREQ(backend_name(Backend::gl), "gl");
+}
+
+TEST(Experiments, MedianAndNames) {
+  EXPECT_EQ(median({}), 0.0);
+  EXPECT_EQ(median({3.0, 1.0, 2.0}), 2.0);
+  EXPECT_EQ(median({4.0, 1.0, 2.0, 3.0}), 2.5);
+  EXPECT_STREQ(aa_method_name(AaMethod::default_1spp), "default");
+  EXPECT_STREQ(aa_method_name(AaMethod::adaptive), "adaptive");
+  ErrorStats s;
+  s.cdf = {1.0, 0.5, 0.25};
+  EXPECT_EQ(s.at(0.001), 0.5);
+  EXPECT_EQ(s.at(1.0), 0.25);  // clamped to the last bin
+}
+
+}  // namespace
+}  // namespace tessera::experiments
