@@ -202,7 +202,7 @@ TEST_P(PvrtcRoundTrip, PsnrAboveThresholdAndMonotoneInQuality) {
 INSTANTIATE_TEST_SUITE_P(
     Procedural, PvrtcRoundTrip,
     // Thresholds: values measured at 128x128 when this test was written, minus 0.1 dB (2 bpp
-    // high: re-measured with the 2 bpp endpoint search, polish_2bpp.cpp; fast on foliage and
+    // high: re-measured with the 2 bpp endpoint search, exact_search_2bpp.cpp; fast on foliage and
     // text: re-measured when uniform areas stopped being extrema, dilation.cpp: text +2.7 /
     // +2.4 dB, foliage alpha +11.6 / +6.9 dB but RGB -0.49 / -0.42 dB, the colour under its
     // zero alpha now taken per block instead of averaged in by the dilation).

@@ -1,7 +1,7 @@
-// PVRTC intensity-dilation kernels (src/pvrtc/dilation_kernels.h): the AVX2 row kernels against
-// the baseline ones, lane for lane, on random and structured rows of widths 8 to 1024 (skipped
-// where the CPU lacks AVX2), and whole fast encodes with the baseline kernels forced against the
-// dispatched ones: the same bytes; the dilation's flat-block flags.
+// PVRTC intensity-dilation kernels (src/pvrtc/encode/start/dilation_kernels.h): the AVX2 row
+// kernels against the baseline ones, lane for lane, on random and structured rows of widths 8 to
+// 1024 (skipped where the CPU lacks AVX2), and whole fast encodes with the baseline kernels forced
+// against the dispatched ones: the same bytes; the dilation's flat-block flags.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -9,8 +9,8 @@
 #include <random>
 #include <vector>
 
-#include "pvrtc/dilation_kernels.h"
-#include "pvrtc/encode_internal.h"
+#include "pvrtc/encode/encode_internal.h"
+#include "pvrtc/encode/start/dilation_kernels.h"
 #include "tessera/procedural.h"
 #include "tessera/pvrtc.h"
 

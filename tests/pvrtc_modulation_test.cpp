@@ -10,11 +10,11 @@
 #include <random>
 #include <vector>
 
-#include "pvrtc/encode_internal.h"
-#include "pvrtc/modulation_2bpp.h"
-#include "pvrtc/modulation_2bpp_avx2.h"
-#include "pvrtc/modulation_avx2.h"
-#include "pvrtc/modulation_kernel.h"
+#include "pvrtc/encode/encode_internal.h"
+#include "pvrtc/encode/modulation/modulation_2bpp.h"
+#include "pvrtc/encode/modulation/modulation_2bpp_avx2.h"
+#include "pvrtc/encode/modulation/modulation_avx2.h"
+#include "pvrtc/encode/modulation/modulation_kernel.h"
 #include "tessera/procedural.h"
 #include "tessera/pvrtc.h"
 

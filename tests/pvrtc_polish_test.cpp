@@ -1,16 +1,16 @@
-// Tests of the exact search's window evaluators (src/pvrtc/polish_kernel.h): the channel-planar
-// evaluator of one-colour-channel candidates against the general `local_error_simd` on random
-// windows, including the bound (early exit) semantics of both; the AVX2 evaluators
-// (polish_avx2.cpp) against the baseline ones, and whole encodes (4 bpp normal and high, 2 bpp
-// high) with and without them.
+// Tests of the exact search's window evaluators (src/pvrtc/encode/search/exact_search_kernel.h):
+// the channel-planar evaluator of one-colour-channel candidates against the general
+// `local_error_simd` on random windows, including the bound (early exit) semantics of both; the
+// AVX2 evaluators (exact_search_avx2.cpp) against the baseline ones, and whole encodes (4 bpp
+// normal and high, 2 bpp high) with and without them.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <random>
 #include <vector>
 
-#include "pvrtc/polish_kernel.h"
-#include "pvrtc/pvrtc_internal.h"
+#include "pvrtc/encode/search/exact_search_kernel.h"
+#include "pvrtc/format/pvrtc_internal.h"
 #include "tessera/procedural.h"
 #include "tessera/pvrtc.h"
 

@@ -1,5 +1,5 @@
-// Tests of the PVRTC encoder's internal search passes (src/pvrtc/encode_internal.h): the exact
-// search's neighbour-copy moves and seeded rounds (4 bpp and 2 bpp), the crossover of two
+// Tests of the PVRTC encoder's internal search passes (src/pvrtc/encode/encode_internal.h): the
+// exact search's neighbour-copy moves and seeded rounds (4 bpp and 2 bpp), the crossover of two
 // encodings (4 bpp and 2 bpp) and the orientation of the principal-axis start.
 #include <gtest/gtest.h>
 
@@ -9,13 +9,13 @@
 #include <random>
 #include <vector>
 
-#include "pvrtc/encode_internal.h"
-#include "pvrtc/polish_window.h"
-#include "pvrtc/pvrtc_kernel.h"
-#include "test_support.h"
+#include "pvrtc/encode/encode_internal.h"
+#include "pvrtc/encode/search/exact_search_window.h"
+#include "pvrtc/format/pvrtc_kernel.h"
 #include "tessera/io.h"
 #include "tessera/procedural.h"
 #include "tessera/pvrtc.h"
+#include "test_support.h"
 
 using namespace tessera;
 using namespace tessera::pvrtc;
@@ -86,8 +86,9 @@ std::vector<std::uint64_t> own_errors(const EncoderState& s, int alpha_weight = 
 }  // namespace
 
 // The encoder hands the error `choose_modulation` returns to the refinement in place of a
-// decode (optimise.cpp, refine.cpp), so it must be exactly `total_error` of the result: 4 bpp
-// with and without mode 1 (punch-through on RGBA), 2 bpp direct and interpolated blocks.
+// decode (passes.cpp, least_squares_refinement.cpp), so it must be exactly `total_error` of the
+// result: 4 bpp with and without mode 1 (punch-through on RGBA), 2 bpp direct and interpolated
+// blocks.
 TEST(PvrtcSearch, ChooseModulationReturnsTheTotalError) {
   for (Procedural kind : all_procedurals()) {
     const ImageRGBA8 img = make_procedural(kind, 32, 32);
@@ -276,7 +277,7 @@ TEST(PvrtcSearch, OptimiseCrossoverNeverRaisesTheError) {
       s.modulation_descent = alt.modulation_descent = format == Format::pvrtc1_2bpp ? 1 : 0;
       const std::uint64_t before = choose_modulation(s);
       const std::uint64_t alt_error = choose_modulation(alt);
-      optimise_crossover(s, alt, alt_error);
+      optimise_crossover(s, alt, alt_error, resolve_schedule(Quality::high, format, -1, 0));
       const std::uint64_t after = total_error(s);
       EXPECT_LE(after, before) << procedural_name(kind) << " format " << int(format);
       if (format == Format::pvrtc1_2bpp) {
@@ -467,7 +468,7 @@ TEST(PvrtcSearch, HueSeamAtTheWrapIsReproduced) {
   }
 }
 
-// The 2 bpp endpoint search's window score (polish_2bpp.cpp) against a scalar reference built
+// The 2 bpp endpoint search's window score (exact_search_2bpp.cpp) against a scalar reference built
 // from the decoder's own upscaling: block (bx, by)'s candidate pair over the 15x7 texels it
 // reaches, every texel at its best weight among those its block's mode allows ({0, 8} direct;
 // interpolated blocks {0, 3, 5, 8} on stored texels, {0, 8} at (0, 0), {0, 3, 4, 5, 8} on the

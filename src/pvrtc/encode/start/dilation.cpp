@@ -1,0 +1,558 @@
+// Initial PVRTC endpoints by intensity dilation (Krajcevski & Manocha 2014, §2-3).
+//
+// 1. Intensity: Rec.709 luma (CIE Y) with alpha premultiplied when alpha is meaningful.
+// 2. Labelling: a texel is a local maximum (minimum) when no 8-neighbour (wrapping) is brighter
+//    (darker) and not all of them have its intensity. The paper (§4.3) names both ways a
+//    uniform area can go: no extremum at all, or every texel both. Its authors' code (FasTC)
+//    takes the first: a texel is an extremum only where its neighbours are not all level with
+//    it, which measured better than marking uniform areas as both
+//    (docs/benchmarks/pvrtc_history.md): a uniform area next to a brighter one no longer
+//    spreads its colour into the
+//    bright side's high image (or a dark side's low image), and a uniform block falls back to
+//    its own extremes, which are its colour.
+// 3. Dilation: each extremum image is dilated three times with a 3x3 kernel; an empty texel
+//    next to several filled ones takes their average (rounded).
+// 4. Block colours: the mean over the block's texels of the dilated image, where texels still
+//    empty take the block's own extreme (brightest / darkest) texel colour; in a block of one
+//    intensity, the brightest / darkest by the colours' own luma.
+//
+// The stages run as a row pipeline over a band of block rows: each new intensity row lets the
+// labelling produce the row above it, which lets dilation pass 1 produce the row above that, and
+// so on; every stage keeps only its last three rows (a ring), so the working set is a few rows
+// whatever the image size and each row is computed once per stage (plus a 4-row halo per band).
+// Bands write only their own blocks and the halo makes each band exact, so the output does not
+// depend on the band size or the thread count. Rows are stored with a wrap-around pad on both
+// sides, so the 3x3 kernels need no edge cases.
+//
+// The row kernels (dilation_kernels.h) come from a table chosen once at run time: the baseline
+// ones below (SSE2 through simd.h, or scalar), or the AVX2 ones of dilation_avx2.cpp where the
+// CPU has AVX2; the driver (dilate_band) is the same for both.
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cstring>
+
+#include "core/simd.h"
+#include "pvrtc/encode/encode_internal.h"
+#include "pvrtc/encode/start/dilation_kernels.h"
+
+namespace tessera::pvrtc::detail {
+
+namespace {
+
+constexpr int kDilations = 3;
+constexpr int kHalo = kDilations + 1;  // rows of intensity needed above/below a band
+constexpr int kPad = kDilationPad;     // elements of padding on each side of a stored row
+
+// Rounded mean of n filled neighbours: floor(x / n) for x < 2400 and 2 <= n <= 9 equals
+// mulhi(x, ceil(65536 / n)) (the error term stays below 1 / 9); n == 1 is passed through.
+constexpr std::uint16_t kRecip16[10] = {0, 0, 32768, 21846, 16384, 13108, 10923, 9363, 8192, 7282};
+
+/// Ring of the last three rows of `planes` planes of element type T, rows padded by kPad.
+template <typename T>
+struct Ring {
+  int planes = 0;
+  std::size_t stride = 0;
+  std::vector<T> buf;
+  void init(int nplanes, int w) {
+    planes = nplanes;
+    stride = std::size_t(w) + 2 * kPad;
+    buf.assign(3 * std::size_t(planes) * stride, T(0));
+  }
+  /// Row `r` (any integer >= 0 in band-local numbering) of plane `k`, pointing at texel 0.
+  T* row(int k, int r) {
+    return &buf[(std::size_t(r % 3) * std::size_t(planes) + std::size_t(k)) * stride + kPad];
+  }
+};
+
+/// Sets the wrap-around pad elements next to a row of w elements (x = -1 and x = w).
+template <typename T>
+inline void wrap_pad(T* row, int w) {
+  row[-1] = row[w - 1];
+  row[w] = row[0];
+}
+
+// Plane layout of one extremum image: colour planes 0..nplanes-1, then the filled flag (0/1).
+struct Band {
+  Ring<float> inten;              // intensity
+  Ring<std::uint8_t> lab;         // 1 = local maximum, 2 = local minimum
+  Ring<std::uint8_t> img[2][3];   // [max/min][initial, pass 1, pass 2]
+  std::vector<std::uint8_t> last[2];  // pass 3 rows (consumed at once), nplanes + 1 planes
+  std::vector<float> tmax, tmin;      // vertical 3-max / 3-min of one row (padded)
+  std::vector<std::uint8_t> vf;       // vertical flag sums of one row (padded)
+  std::vector<std::uint16_t> vs;      // vertical colour sums of one row, per plane (padded)
+  std::vector<std::uint16_t> acc[2];  // per column, per plane: sums over the block row so far
+};
+
+// Intensity of texel row `src` (w texels) into `out`: Rec.709 luma with weights summing to
+// 65536, times alpha / 255 in alpha mode (floored). Below 2^24, so exact as float.
+void intensity_row(const std::uint8_t* src, int w, bool alpha, float* out) {
+  using namespace simd;
+  const vint4 m8(0xff);
+  const vf4 kr(13933.0f), kg(46871.0f), kb(4732.0f);
+  for (int x = 0; x < w; x += 4) {
+    const vint4 t = load_texels4(src + std::size_t(x) * 4);
+    const vf4 y = to_float(t & m8) * kr + to_float(srl<8>(t) & m8) * kg +
+                  to_float(srl<16>(t) & m8) * kb;
+    storef4(y, out + x);
+  }
+  if (alpha) {
+    for (int x = 0; x < w; ++x) {
+      const std::uint32_t y = std::uint32_t(out[x]);  // <= 255 * 65536: y * a fits 32 bits
+      out[x] = float(y * src[std::size_t(x) * 4 + 3] / 255u);
+    }
+  }
+  wrap_pad(out, w);
+}
+
+// Labels of the row whose intensity is `i1` (neighbours i0 above, i2 below).
+void label_row(const float* i0, const float* i1, const float* i2, int w, float* mx, float* mn,
+               std::uint8_t* out) {
+  using namespace simd;
+  for (int x = 0; x < w; x += 4) {
+    const vf4 a = loadf4(i0 + x), c = loadf4(i1 + x), d = loadf4(i2 + x);
+    storef4(max(max(a, c), d), mx + x);
+    storef4(min(min(a, c), d), mn + x);
+  }
+  wrap_pad(mx, w);
+  wrap_pad(mn, w);
+  const vint4 one(1), two(2), ones(-1);
+  for (int x = 0; x < w; x += 4) {
+    const vf4 v = loadf4(i1 + x);
+    const vf4 m = max(max(loadf4(mx + x - 1), loadf4(mx + x)), loadf4(mx + x + 1));
+    const vf4 n = min(min(loadf4(mn + x - 1), loadf4(mn + x)), loadf4(mn + x + 1));
+    // A texel whose 3x3 neighbourhood has one intensity (m == n) is neither.
+    const vint4 l = (cmpeq(m, v) & one) | (cmpeq(n, v) & two);
+    store_u8x4(l & (cmpeq(m, n) ^ ones), out + x);
+  }
+}
+
+// Initial planes of both extremum images for one row: the texel's colour where labelled.
+template <int np>
+void init_rows(const std::uint8_t* lab, const std::uint8_t* src, int w, std::uint8_t* const* p0,
+               std::uint8_t* const* p1) {
+  int x = 0;
+  if (w >= 16) {
+    using namespace simd;
+    const vint4 m8(0xff);
+    const vu8x16 bit1(1), bit2(2), zero(0);
+    for (; x < w; x += 16) {
+      const std::uint8_t* s = src + std::size_t(x) * 4;
+      const vint4 t0 = load_texels4(s), t1 = load_texels4(s + 16), t2 = load_texels4(s + 32),
+                  t3 = load_texels4(s + 48);
+      const vu8x16 l = load_u8x16(lab + x);
+      const vu8x16 k0 = andnot(cmpeq(l & bit1, zero), vu8x16(0xff));
+      const vu8x16 k1 = andnot(cmpeq(l & bit2, zero), vu8x16(0xff));
+      vu8x16 ch[4];
+      ch[0] = narrow(t0 & m8, t1 & m8, t2 & m8, t3 & m8);
+      ch[1] = narrow(srl<8>(t0) & m8, srl<8>(t1) & m8, srl<8>(t2) & m8, srl<8>(t3) & m8);
+      ch[2] = narrow(srl<16>(t0) & m8, srl<16>(t1) & m8, srl<16>(t2) & m8, srl<16>(t3) & m8);
+      ch[3] = narrow(srl<24>(t0), srl<24>(t1), srl<24>(t2), srl<24>(t3));
+      for (int c = 0; c < np; ++c) {
+        store_u8x16(ch[c] & k0, p0[c] + x);
+        store_u8x16(ch[c] & k1, p1[c] + x);
+      }
+      store_u8x16(k0 & bit1, p0[np] + x);
+      store_u8x16(k1 & bit1, p1[np] + x);
+    }
+  }
+  for (; x < w; ++x) {
+    const bool f0 = lab[x] & 1, f1 = lab[x] & 2;
+    for (int c = 0; c < np; ++c) {
+      p0[c][x] = f0 ? src[std::size_t(x) * 4 + std::size_t(c)] : 0;
+      p1[c][x] = f1 ? src[std::size_t(x) * 4 + std::size_t(c)] : 0;
+    }
+    p0[np][x] = f0;
+    p1[np][x] = f1;
+  }
+}
+
+// One 3x3 dilation pass for one row: `in[k][c]` is plane c of rows r-1, r, r+1 (k = 0, 1, 2);
+// empty texels next to filled ones take the rounded mean of the filled neighbours.
+template <int np>
+void dilate_row(int w, const std::uint8_t* const (*in)[5], std::uint8_t* const* out,
+                std::uint8_t* vf, std::uint16_t* vs, std::size_t vstride) {
+  using namespace simd;
+  auto vsrow = [&](int c) { return vs + std::size_t(c) * vstride; };
+  // Vertical sums (16 texels at a time; with w == 8 the extra lanes land in the pads).
+  for (int x = 0; x < w; x += 16) {
+    store_u8x16(load_u8x16(in[0][np] + x) + load_u8x16(in[1][np] + x) + load_u8x16(in[2][np] + x),
+                vf + x);
+    for (int c = 0; c < np; ++c) {
+      const vu8x16 a = load_u8x16(in[0][c] + x), m = load_u8x16(in[1][c] + x),
+                   z = load_u8x16(in[2][c] + x);
+      store_u16x8(widen_lo(a) + widen_lo(m) + widen_lo(z), vsrow(c) + x);
+      store_u16x8(widen_hi(a) + widen_hi(m) + widen_hi(z), vsrow(c) + x + 8);
+    }
+  }
+  wrap_pad(vf, w);
+  for (int c = 0; c < np; ++c) wrap_pad(vsrow(c), w);
+  const vu8x16 zero8(0), one8(1);
+  const vu16x8 zero(0), one(1);
+  for (int x = 0; x < w; x += 16) {
+    const vu8x16 n = load_u8x16(vf + x - 1) + load_u8x16(vf + x) + load_u8x16(vf + x + 1);
+    const vu8x16 f = load_u8x16(in[1][np] + x);
+    const vu8x16 need = andnot(cmpeq(n, zero8), cmpeq(f, zero8));
+    store_u8x16(f | (need & one8), out[np] + x);
+    if (!any(need)) {
+      for (int c = 0; c < np; ++c) store_u8x16(load_u8x16(in[1][c] + x), out[c] + x);
+      continue;
+    }
+    vu16x8 nn[2] = {widen_lo(n), widen_hi(n)}, rcv[2], hv[2], single[2];
+    for (int h = 0; h < 2; ++h) {
+      rcv[h] = zero;
+      for (std::uint16_t k = 2; k < 10; ++k) {
+        rcv[h] = rcv[h] | (cmpeq(nn[h], vu16x8(k)) & vu16x8(kRecip16[k]));
+      }
+      hv[h] = srl<1>(nn[h]);
+      single[h] = cmpeq(nn[h], one);
+    }
+    for (int c = 0; c < np; ++c) {
+      const std::uint16_t* v = vsrow(c) + x;
+      vu16x8 avg[2];
+      for (int h = 0; h < 2; ++h) {
+        const vu16x8 sum = load_u16x8(v + 8 * h - 1) + load_u16x8(v + 8 * h) +
+                           load_u16x8(v + 8 * h + 1);
+        avg[h] = select(single[h], sum, mulhi(sum + hv[h], rcv[h]));
+      }
+      store_u8x16(select(need, narrow(avg[0], avg[1]), load_u8x16(in[1][c] + x)), out[c] + x);
+    }
+  }
+}
+
+// Adds the final (pass 3) row of one image to the per-column block-row sums (`first`: the
+// block row's top row, which starts the sums).
+void accumulate_row(int planes, int w, const std::uint8_t* row, std::size_t stride,
+                    std::uint16_t* acc, std::size_t astride, bool first) {
+  using namespace simd;
+  for (int k = 0; k < planes; ++k) {
+    const std::uint8_t* p = row + std::size_t(k) * stride;
+    std::uint16_t* a = acc + std::size_t(k) * astride;
+    for (int x = 0; x < w; x += 16) {
+      const vu8x16 v = load_u8x16(p + x);
+      if (first) {
+        store_u16x8(widen_lo(v), a + x);
+        store_u16x8(widen_hi(v), a + x + 8);
+      } else {
+        store_u16x8(load_u16x8(a + x) + widen_lo(v), a + x);
+        store_u16x8(load_u16x8(a + x + 8) + widen_hi(v), a + x + 8);
+      }
+    }
+  }
+}
+
+void init_rows_base(int np, const std::uint8_t* lab, const std::uint8_t* src, int w,
+                    std::uint8_t* const* p0, std::uint8_t* const* p1) {
+  if (np == 4) {
+    init_rows<4>(lab, src, w, p0, p1);
+  } else {
+    init_rows<3>(lab, src, w, p0, p1);
+  }
+}
+
+void dilate_row_base(int np, int w, const std::uint8_t* const (*in)[5], std::uint8_t* const* out,
+                     std::uint8_t* vf, std::uint16_t* vs, std::size_t vstride) {
+  if (np == 4) {
+    dilate_row<4>(w, in, out, vf, vs, vstride);
+  } else {
+    dilate_row<3>(w, in, out, vf, vs, vstride);
+  }
+}
+
+using Extremes = DilationExtremes;
+
+// The brightest and darkest texel of each block of a block row (the first in raster order on
+// ties, as a scalar scan with strict comparisons): `rows` holds the block row's 4 intensity
+// rows, W apart; y0 is its first texel row.
+template <int nq>  // vectors of 4 texels per block row (block width / 4)
+void block_extremes(const float* rows, std::size_t W, int nbx, int y0, Extremes* ext) {
+  using namespace simd;
+  constexpr int bw = nq * 4;
+  for (int bx = 0; bx < nbx; ++bx) {
+    const float* base = rows + bx * bw;
+    vf4 mx = loadf4(base), mn = mx;
+    for (int j = 0; j < 4; ++j) {
+      for (int q = 0; q < nq; ++q) {
+        const vf4 v = loadf4(base + std::size_t(j) * W + std::size_t(q) * 4);
+        mx = max(mx, v);
+        mn = min(mn, v);
+      }
+    }
+    mx = hmax(mx);
+    mn = hmin(mn);
+    Extremes& e = ext[bx];
+    bool found_max = false, found_min = false;
+    for (int j = 0; j < 4 && !(found_max && found_min); ++j) {
+      for (int q = 0; q < nq; ++q) {
+        const vf4 v = loadf4(base + std::size_t(j) * W + std::size_t(q) * 4);
+        const int fmax = movemask(cmpeq(v, mx)), fmin = movemask(cmpeq(v, mn));
+        if (!found_max && fmax) {
+          found_max = true;
+          e.xmax = bx * bw + q * 4 + std::countr_zero(unsigned(fmax));
+          e.ymax = y0 + j;
+        }
+        if (!found_min && fmin) {
+          found_min = true;
+          e.xmin = bx * bw + q * 4 + std::countr_zero(unsigned(fmin));
+          e.ymin = y0 + j;
+        }
+      }
+    }
+  }
+}
+
+void block_extremes_base(const float* rows, std::size_t W, int nbx, int bw, int y0,
+                         Extremes* ext) {
+  if (bw == 4) {
+    block_extremes<1>(rows, W, nbx, y0, ext);
+  } else {
+    block_extremes<2>(rows, W, nbx, y0, ext);
+  }
+}
+
+// Per-block sums of one block row's column sums (`acc`, planes `astride` apart), per plane.
+void block_sums(const std::uint16_t* acc, std::size_t astride, int planes, int w, int bw,
+                std::uint32_t* out, std::size_t ostride) {
+  using namespace simd;
+  const vu16x8 ones(1);
+  for (int c = 0; c < planes; ++c) {
+    const std::uint16_t* a = acc + std::size_t(c) * astride;
+    std::uint32_t* o = out + std::size_t(c) * ostride;
+    for (int x = 0; x < w; x += 8) {
+      std::int32_t p[4];
+      store4(madd(load_u16x8(a + x), ones), p);  // column pairs
+      if (bw == 4) {
+        o[x / 4] = std::uint32_t(p[0] + p[1]);
+        o[x / 4 + 1] = std::uint32_t(p[2] + p[3]);
+      } else {
+        o[x / 8] = std::uint32_t(p[0] + p[1] + p[2] + p[3]);
+      }
+    }
+  }
+}
+
+constexpr DilationKernels kBaseline = {intensity_row,  label_row,      init_rows_base,
+                                       dilate_row_base, accumulate_row, block_extremes_base,
+                                       block_sums};
+
+std::atomic<bool> g_force_baseline{false};
+
+// The kernels of this CPU, chosen once.
+const DilationKernels* native_kernels() {
+  static const DilationKernels* const k = [] {
+#if defined(TESSERA_NO_SIMD)
+    return &kBaseline;  // the scalar backend everywhere (the AVX2 kernels stay testable)
+#else
+    const DilationKernels* avx2 = dilation_kernels_avx2();
+    return avx2 ? avx2 : &kBaseline;
+#endif
+  }();
+  return k;
+}
+
+// Block rows [by0, by1) with `nplanes` colour planes (3, or 4 in alpha mode).
+template <int nplanes>
+void dilate_band(const DilationKernels& kern, const EncoderState& s, int by0, int by1,
+                 std::vector<float>& low, std::vector<float>& high, std::uint8_t* flat) {
+        const Grid& g = s.g;
+        const std::uint8_t* t = s.target.data();
+        const int w = g.pw, hm = g.ph - 1, bw = g.bw;
+        const std::size_t W = std::size_t(w);
+        const int Y0 = int(by0) * 4, Y1 = int(by1) * 4;
+        // Band-local row numbering: texel row y is local row y - Y0 + 8 (>= 0).
+        auto local = [&](int y) { return y - Y0 + 8; };
+        Band b;
+        constexpr int np1 = nplanes + 1;
+        b.inten.init(1, w);
+        b.lab.init(1, w);
+        for (auto& img : b.img) {
+          for (auto& r : img) r.init(np1, w);
+        }
+        const std::size_t rstride = W + 2 * kPad;
+        for (auto& l : b.last) l.assign(std::size_t(np1) * rstride, 0);
+        b.tmax.assign(rstride, 0.0f);
+        b.tmin.assign(rstride, 0.0f);
+        b.vf.assign(rstride, 0);
+        b.vs.assign(std::size_t(nplanes) * rstride, 0);
+        const std::size_t astride = W + kPad;
+        for (auto& a : b.acc) a.assign(std::size_t(np1) * astride, 0);
+        // Block extremes of two block rows: the pipeline finishes a block row 4 rows after its
+        // intensity, while the next block row's extremes are being found.
+        std::vector<Extremes> ext_rows[2];
+        for (auto& e : ext_rows) e.resize(std::size_t(g.nbx));
+        std::vector<float> brow(4 * W);  // intensity of the current block row
+        std::vector<std::uint32_t> bsum[2];  // per image: block sums of each plane
+        for (auto& v : bsum) v.resize(std::size_t(np1) * std::size_t(g.nbx));
+
+        auto planes_of = [&](Ring<std::uint8_t>& r, int y, std::uint8_t** p) {
+          for (int k = 0; k < np1; ++k) p[k] = r.row(k, local(y));
+        };
+        for (int L = Y0 - kHalo; L < Y1 + kHalo; ++L) {
+          // Intensity row L, and the block extremes of the band's own rows.
+          const std::uint8_t* srcL = t + std::size_t(L & hm) * W * 4;
+          float* il = b.inten.row(0, local(L));
+          kern.intensity_row(srcL, w, s.alpha_mode, il);
+          if (L >= Y0 && L < Y1) {
+            std::memcpy(&brow[std::size_t(L & 3) * W], il, W * sizeof(float));
+            if ((L & 3) == 3) {
+              Extremes* ext = ext_rows[(L >> 2) & 1].data();
+              kern.block_extremes(brow.data(), W, g.nbx, bw, L - 3, ext);
+            }
+          }
+          // Labels and initial planes of row L - 1.
+          const int yl = L - 1;
+          if (yl < Y0 - kDilations) continue;
+          std::uint8_t* lab = b.lab.row(0, local(yl));
+          kern.label_row(b.inten.row(0, local(yl - 1)), b.inten.row(0, local(yl)), il, w,
+                         b.tmax.data() + kPad, b.tmin.data() + kPad, lab);
+          {
+            std::uint8_t *p0[5], *p1[5];
+            planes_of(b.img[0][0], yl, p0);
+            planes_of(b.img[1][0], yl, p1);
+            kern.init_rows(nplanes, lab, t + std::size_t(yl & hm) * W * 4, w, p0, p1);
+          }
+          // Dilation passes: pass p produces row L - 1 - p from rows L - 2 - p .. L - p.
+          for (int pass = 1; pass <= kDilations; ++pass) {
+            const int y = L - 1 - pass;
+            if (y < Y0 - kDilations + pass) break;
+            for (int k = 0; k < 2; ++k) {
+              const std::uint8_t* in[3][5];
+              for (int d = 0; d < 3; ++d) {
+                for (int c = 0; c < np1; ++c) in[d][c] = b.img[k][pass - 1].row(c, local(y - 1 + d));
+              }
+              std::uint8_t* out[5];
+              if (pass < kDilations) {
+                planes_of(b.img[k][pass], y, out);
+              } else {
+                for (int c = 0; c < np1; ++c) out[c] = b.last[k].data() + std::size_t(c) * rstride + kPad;
+              }
+              kern.dilate_row(nplanes, w, in, out, b.vf.data() + kPad, b.vs.data() + kPad,
+                              rstride);
+              if (pass == kDilations) {
+                kern.accumulate_row(np1, w, out[0], rstride, b.acc[k].data(), astride,
+                                    (y & 3) == 0);
+              }
+            }
+          }
+          // A finished block row: block means, empty texels taking the block's extreme colour.
+          const int yf = L - 1 - kDilations;
+          if (yf < Y0 || (yf & 3) != 3) continue;
+          const int by = yf >> 2;
+          const std::uint32_t n = std::uint32_t(4 * bw);
+          const float inv = 1.0f / float(n);
+          for (int k = 0; k < 2; ++k) {
+            kern.block_sums(b.acc[k].data(), astride, np1, w, bw, bsum[k].data(),
+                            std::size_t(g.nbx));
+          }
+          for (int bx = 0; bx < g.nbx; ++bx) {
+            const Extremes& e = ext_rows[by & 1][std::size_t(bx)];
+            const std::uint8_t* fill_c[2] = {t + (std::size_t(e.ymax) * W + std::size_t(e.xmax)) * 4,
+                                             t + (std::size_t(e.ymin) * W + std::size_t(e.xmin)) * 4};
+            const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+            // Ties go to the first texel in raster order for both, so the brightest and the
+            // darkest texel are the same one exactly when all intensities are equal.
+            const bool one_intensity = e.xmax == e.xmin && e.ymax == e.ymin;
+            if (flat != nullptr) flat[bi] = one_intensity;
+            // A block of one intensity (uniform, or fully transparent with alpha premultiplied
+            // into the intensity, or equally bright hues) has every texel as its brightest and
+            // darkest: there the colours' own Rec.709 luma breaks the tie, so the texels the
+            // dilation left empty take the block's brightest and darkest colour (first in
+            // raster order on ties) instead of its first texel for both.
+            if (one_intensity) {
+              int lmax = -1, lmin = 1 << 30;
+              for (int yy = 0; yy < 4; ++yy) {
+                const std::uint8_t* row =
+                    t + (std::size_t(by * 4 + yy) * W + std::size_t(bx * bw)) * 4;
+                for (int xx = 0; xx < bw; ++xx) {
+                  const std::uint8_t* p = row + std::size_t(xx) * 4;
+                  const int l = 2126 * p[0] + 7152 * p[1] + 722 * p[2];
+                  if (l > lmax) {
+                    lmax = l;
+                    fill_c[0] = p;
+                  }
+                  if (l < lmin) {
+                    lmin = l;
+                    fill_c[1] = p;
+                  }
+                }
+              }
+            }
+            float* dst[2] = {&high[bi * 4], &low[bi * 4]};
+            for (int k = 0; k < 2; ++k) {
+              std::uint32_t sum[5] = {};
+              for (int c = 0; c < np1; ++c) {
+                sum[c] = bsum[k][std::size_t(c) * std::size_t(g.nbx) + std::size_t(bx)];
+              }
+              const std::uint32_t empty = n - sum[nplanes];
+              for (int c = 0; c < 4; ++c) {
+                const std::uint32_t v =
+                    c < nplanes ? sum[c] + empty * fill_c[k][c] : 255u * n;
+                dst[k][c] = float(v) * inv;
+              }
+            }
+          }
+        }
+}
+
+}  // namespace
+
+void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vector<float>& high,
+                        std::vector<std::uint8_t>* flat) {
+  const Grid& g = s.g;
+  low.assign(g.blocks() * 4, 0.0f);
+  high.assign(g.blocks() * 4, 0.0f);
+  if (flat != nullptr) flat->assign(g.blocks(), 0);
+  std::uint8_t* const flat_out = flat != nullptr ? flat->data() : nullptr;
+  // Bands of block rows: long enough that the 8-row halo is cheap (at most 1/8 of the work),
+  // at least 4 per image for threads; one band (no inner halos) on one thread. Every band
+  // computes its rows exactly, so the banding never changes the result.
+  const bool serial = s.threads == 1 || default_thread_count() == 1;
+  const int band = serial ? g.nby : std::clamp(g.nby / 4, 1, 32);
+  const DilationKernels& kern =
+      g_force_baseline.load(std::memory_order_relaxed) ? kBaseline : *native_kernels();
+  parallel_for(
+      0, g.nby, band,
+      [&](std::int64_t by0, std::int64_t by1) {
+        // Alpha is 255 everywhere unless alpha_mode: three colour planes.
+        if (s.alpha_mode) {
+          dilate_band<4>(kern, s, int(by0), int(by1), low, high, flat_out);
+        } else {
+          dilate_band<3>(kern, s, int(by0), int(by1), low, high, flat_out);
+        }
+      },
+      s.threads);
+}
+
+const DilationKernels* dilation_kernels_baseline() { return &kBaseline; }
+
+bool avx2_kernels_usable() {
+#if defined(TESSERA_HAVE_AVX2_KERNELS)
+  static const bool usable = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") != 0;
+  }();
+  return usable;
+#else
+  return false;
+#endif
+}
+
+const DilationKernels* dilation_kernels_avx2() {
+#if defined(TESSERA_HAVE_AVX2_KERNELS)
+  static const DilationKernels* const k = []() -> const DilationKernels* {
+    if (!avx2_kernels_usable()) return nullptr;
+    static DilationKernels table;
+    fill_dilation_kernels_avx2(&table);
+    return &table;
+  }();
+  return k;
+#else
+  return nullptr;
+#endif
+}
+
+void dilation_force_baseline(bool force) {
+  g_force_baseline.store(force, std::memory_order_relaxed);
+}
+
+}  // namespace tessera::pvrtc::detail

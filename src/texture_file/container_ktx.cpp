@@ -1,0 +1,239 @@
+// KTX 1.1 container: reader (either byte order) and writer (little-endian) for PVRTC1.
+//
+// Layout: 12-byte identifier, 13 u32 header fields (endianness, glType, glTypeSize, glFormat,
+// glInternalFormat, glBaseInternalFormat, pixelWidth, pixelHeight, pixelDepth,
+// numberOfArrayElements, numberOfFaces, numberOfMipmapLevels, bytesOfKeyValueData), the
+// key/value block, then per level a u32 imageSize, the data and padding to 4 bytes.
+#include <array>
+#include <cstring>
+#include <string>
+
+#include "tessera/mipmap.h"
+#include "tessera/texture_file.h"
+#include "texture_file/container_bytes.h"
+
+namespace tessera {
+
+namespace {
+
+using container::hex32;
+using container::load_u32;
+using container::plural_bytes;
+
+constexpr std::array<std::uint8_t, 12> kKtxIdentifier = {0xAB, 'K',  'T',  'X', ' ',  '1',
+                                                         '1',  0xBB, '\r', '\n', 0x1A, '\n'};
+constexpr std::size_t kHeaderSize = 64;
+constexpr std::uint32_t kEndianLittle = 0x04030201u;
+constexpr std::uint32_t kEndianBig = 0x01020304u;
+
+constexpr std::uint32_t kGlRgb = 0x1907;
+constexpr std::uint32_t kGlRgba = 0x1908;
+
+// GL_IMG_texture_compression_pvrtc and GL_EXT_pvrtc_sRGB.
+constexpr std::uint32_t kRgbPvrtc4 = 0x8C00;
+constexpr std::uint32_t kRgbPvrtc2 = 0x8C01;
+constexpr std::uint32_t kRgbaPvrtc4 = 0x8C02;
+constexpr std::uint32_t kRgbaPvrtc2 = 0x8C03;
+constexpr std::uint32_t kSrgbPvrtc2 = 0x8A54;
+constexpr std::uint32_t kSrgbPvrtc4 = 0x8A55;
+constexpr std::uint32_t kSrgbAlphaPvrtc2 = 0x8A56;
+constexpr std::uint32_t kSrgbAlphaPvrtc4 = 0x8A57;
+
+struct GlFormat {
+  std::uint32_t internal;
+  pvrtc::Format format;
+  bool alpha;
+  bool srgb;
+};
+constexpr GlFormat kFormats[] = {
+    {kRgbPvrtc4, pvrtc::Format::pvrtc1_4bpp, false, false},
+    {kRgbPvrtc2, pvrtc::Format::pvrtc1_2bpp, false, false},
+    {kRgbaPvrtc4, pvrtc::Format::pvrtc1_4bpp, true, false},
+    {kRgbaPvrtc2, pvrtc::Format::pvrtc1_2bpp, true, false},
+    {kSrgbPvrtc2, pvrtc::Format::pvrtc1_2bpp, false, true},
+    {kSrgbPvrtc4, pvrtc::Format::pvrtc1_4bpp, false, true},
+    {kSrgbAlphaPvrtc2, pvrtc::Format::pvrtc1_2bpp, true, true},
+    {kSrgbAlphaPvrtc4, pvrtc::Format::pvrtc1_4bpp, true, true},
+};
+
+Status corrupt(const std::string& name, const std::string& what) {
+  return Status::error(ErrorCode::corrupt_data, name + ": " + what);
+}
+Status unsupported(const std::string& name, const std::string& what) {
+  return Status::error(ErrorCode::unsupported, name + ": " + what);
+}
+
+std::size_t pad4(std::size_t n) { return (4 - n % 4) % 4; }
+
+}  // namespace
+
+Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const std::string& name) {
+  if (bytes.size() < kKtxIdentifier.size() ||
+      std::memcmp(bytes.data(), kKtxIdentifier.data(), kKtxIdentifier.size()) != 0) {
+    if (bytes.size() >= 12 && std::memcmp(bytes.data(), "\xABKTX 20\xBB", 8) == 0) {
+      return unsupported(name, "KTX 2.0 files are not supported (only KTX 1.1)");
+    }
+    return corrupt(name, "not a KTX 1.1 file (bad identifier)");
+  }
+  if (bytes.size() < kHeaderSize) {
+    return corrupt(name, "truncated KTX header: " + plural_bytes(bytes.size()) + " of " +
+                             std::to_string(kHeaderSize));
+  }
+  const std::uint32_t endianness = load_u32(bytes, 12);
+  if (endianness != kEndianLittle && endianness != kEndianBig) {
+    return corrupt(name, "bad KTX endianness field " + hex32(endianness));
+  }
+  const bool swap = endianness == kEndianBig;
+  auto field = [&](int i) { return load_u32(bytes, 12 + 4 * std::size_t(i), swap); };
+  const std::uint32_t gl_type = field(1);
+  const std::uint32_t gl_format = field(3);
+  const std::uint32_t internal = field(4);
+  const std::uint32_t width = field(6);
+  const std::uint32_t height = field(7);
+  const std::uint32_t depth = field(8);
+  const std::uint32_t array_elements = field(9);
+  const std::uint32_t faces = field(10);
+  const std::uint32_t mip_levels_field = field(11);
+  const std::uint32_t kv_bytes = field(12);
+
+  if (gl_type != 0 || gl_format != 0) {
+    return unsupported(name, "uncompressed KTX data (glType " + hex32(gl_type) + ", glFormat " +
+                                 hex32(gl_format) + ") is not supported (only PVRTC1)");
+  }
+  const GlFormat* fmt = nullptr;
+  for (const GlFormat& f : kFormats) {
+    if (f.internal == internal) fmt = &f;
+  }
+  if (!fmt) {
+    return unsupported(name, "glInternalFormat " + hex32(internal) +
+                                 " is not supported (only PVRTC1: 0x8C00-0x8C03, "
+                                 "0x8A54-0x8A57)");
+  }
+  if (height == 0) return unsupported(name, "1D textures (pixelHeight 0) are not supported");
+  if (depth != 0) {
+    return unsupported(name, "3D textures (pixelDepth " + std::to_string(depth) +
+                                 ") are not supported");
+  }
+  if (array_elements != 0) {
+    return unsupported(name, "texture arrays (" + std::to_string(array_elements) +
+                                 " elements) are not supported");
+  }
+  if (faces != 1) {
+    return unsupported(name,
+                       std::to_string(faces) + " faces (cube maps) are not supported (only 1)");
+  }
+  if (width == 0) return corrupt(name, "zero width");
+  if (Status s = check_image_size(width, height, name); !s.ok()) return s;
+  if (Status s = pvrtc::check_dimensions(int(width), int(height), name); !s.ok()) return s;
+  const int possible = mip_level_count(int(width), int(height));
+  // numberOfMipmapLevels 0 means "one level; the loader generates the rest".
+  const std::uint32_t mip_levels = mip_levels_field == 0 ? 1 : mip_levels_field;
+  if (mip_levels > std::uint32_t(possible)) {
+    return corrupt(name, "mip count " + std::to_string(mip_levels) + " is impossible for " +
+                             std::to_string(width) + "x" + std::to_string(height) + " (1 to " +
+                             std::to_string(possible) + ")");
+  }
+  if (kv_bytes > bytes.size() - kHeaderSize) {
+    return corrupt(name, "truncated: key/value data size " + std::to_string(kv_bytes) +
+                             " exceeds the " + plural_bytes(bytes.size() - kHeaderSize) +
+                             " after the header");
+  }
+  // Walk the key/value entries: each is a u32 size, the bytes, padding to 4.
+  {
+    std::size_t at = kHeaderSize;
+    const std::size_t end = kHeaderSize + kv_bytes;
+    while (at < end) {
+      if (end - at < 4) return corrupt(name, "malformed key/value data (partial entry size)");
+      const std::uint32_t n = load_u32(bytes, at, swap);
+      at += 4;
+      if (n > end - at) {
+        return corrupt(name, "malformed key/value data (entry of " + plural_bytes(n) +
+                                 " overruns the block)");
+      }
+      at += n;
+      at += std::min(pad4(n), end - at);
+    }
+  }
+
+  CompressedTexture tex;
+  tex.format = fmt->format;
+  tex.has_alpha = fmt->alpha;
+  tex.srgb = fmt->srgb;
+  tex.width = int(width);
+  tex.height = int(height);
+  std::size_t at = kHeaderSize + kv_bytes;
+  tex.levels.reserve(mip_levels);
+  for (int i = 0; i < int(mip_levels); ++i) {
+    const std::size_t expected =
+        pvrtc::level_size(tex.format, tex.level_width(i), tex.level_height(i));
+    if (bytes.size() - at < 4) {
+      return corrupt(name, "truncated: level " + std::to_string(i) + " of " +
+                               std::to_string(mip_levels) + " is missing (file ends at byte " +
+                               std::to_string(bytes.size()) + ")");
+    }
+    const std::uint32_t image_size = load_u32(bytes, at, swap);
+    at += 4;
+    if (image_size != expected) {
+      return corrupt(name, "level " + std::to_string(i) + " imageSize " +
+                               std::to_string(image_size) + " does not match " +
+                               std::to_string(tex.level_width(i)) + "x" +
+                               std::to_string(tex.level_height(i)) + " PVRTC (" +
+                               plural_bytes(expected) + ")");
+    }
+    if (bytes.size() - at < expected) {
+      return corrupt(name, "truncated: level " + std::to_string(i) + " needs " +
+                               plural_bytes(expected) + ", file has " +
+                               plural_bytes(bytes.size() - at));
+    }
+    tex.levels.emplace_back(bytes.begin() + std::ptrdiff_t(at),
+                            bytes.begin() + std::ptrdiff_t(at + expected));
+    at += expected;
+    at += std::min(pad4(expected), bytes.size() - at);
+  }
+  if (at != bytes.size()) {
+    return corrupt(name, plural_bytes(bytes.size() - at) + " of unexpected data after the " +
+                             std::to_string(mip_levels) + " level(s)");
+  }
+  return tex;
+}
+
+Result<std::vector<std::uint8_t>> serialize_ktx1(const CompressedTexture& texture) {
+  if (Status s = validate_texture(texture, "KTX output"); !s.ok()) return s;
+  std::uint32_t internal = 0;
+  for (const GlFormat& f : kFormats) {
+    if (f.format == texture.format && f.alpha == texture.has_alpha && f.srgb == texture.srgb) {
+      internal = f.internal;
+    }
+  }
+  static const char kKey[] = "KTXorientation";
+  static const char kValue[] = "S=r,T=d";
+  const std::uint32_t kv_size = std::uint32_t(sizeof kKey + sizeof kValue);  // both with NUL
+  const std::uint32_t kv_bytes = 4 + kv_size + std::uint32_t(pad4(kv_size));
+
+  std::vector<std::uint8_t> out(kKtxIdentifier.begin(), kKtxIdentifier.end());
+  container::store_u32(out, kEndianLittle);
+  container::store_u32(out, 0);  // glType: compressed
+  container::store_u32(out, 1);  // glTypeSize
+  container::store_u32(out, 0);  // glFormat: compressed
+  container::store_u32(out, internal);
+  container::store_u32(out, texture.has_alpha ? kGlRgba : kGlRgb);
+  container::store_u32(out, std::uint32_t(texture.width));
+  container::store_u32(out, std::uint32_t(texture.height));
+  container::store_u32(out, 0);  // pixelDepth
+  container::store_u32(out, 0);  // numberOfArrayElements
+  container::store_u32(out, 1);  // numberOfFaces
+  container::store_u32(out, std::uint32_t(texture.levels.size()));
+  container::store_u32(out, kv_bytes);
+  container::store_u32(out, kv_size);
+  out.insert(out.end(), kKey, kKey + sizeof kKey);
+  out.insert(out.end(), kValue, kValue + sizeof kValue);
+  out.insert(out.end(), pad4(kv_size), 0);
+  for (const auto& l : texture.levels) {
+    container::store_u32(out, std::uint32_t(l.size()));
+    out.insert(out.end(), l.begin(), l.end());
+    out.insert(out.end(), pad4(l.size()), 0);
+  }
+  return out;
+}
+
+}  // namespace tessera
