@@ -156,6 +156,41 @@ TEST(Seams, TraverseBeatsClampNearSeams) {
   }
 }
 
+TEST(Seams, NearSeamStatisticsCountPixelsByFaceEdges) {
+  const SeamsResult& r = seams_result();
+  ASSERT_EQ(r.near_seam_pixels, 2);
+  for (const SeamsRateResult& rate : r.rates) {
+    for (const auto& mr : rate.methods) {
+      const ErrorStats& near = mr.vs_reference_near_seams;
+      expect_valid_cdf(near, std::string("near seams ") + faces::method_name(mr.method));
+      // A subset of the geometry pixels, the same set for every method.
+      EXPECT_LT(near.counted, mr.vs_reference.counted);
+      EXPECT_EQ(near.counted, rate.method(Method::clamp).vs_reference_near_seams.counted);
+    }
+    // Where the faces meet, Traverse is closer to the reference than Clamp.
+    EXPECT_LT(rate.method(Method::traverse).vs_reference_near_seams.mean,
+              rate.method(Method::clamp).vs_reference_near_seams.mean)
+        << rate.msaa << "x";
+  }
+  // A wider band counts more pixels; 0 turns the statistics off.
+  SeamsConfig c = tiny_seams();
+  c.frames = 1;
+  c.msaa = {1};
+  c.near_seam_pixels = 4;
+  Result<SeamsResult> wide = run_seams(c);
+  ASSERT_TRUE(wide.ok()) << wide.status().message;
+  c.near_seam_pixels = 1;
+  Result<SeamsResult> narrow = run_seams(c);
+  ASSERT_TRUE(narrow.ok()) << narrow.status().message;
+  EXPECT_GT(wide->rates[0].method(Method::clamp).vs_reference_near_seams.counted,
+            narrow->rates[0].method(Method::clamp).vs_reference_near_seams.counted);
+  c.near_seam_pixels = 0;
+  Result<SeamsResult> off = run_seams(c);
+  ASSERT_TRUE(off.ok());
+  EXPECT_EQ(off->near_seam_pixels, 0);
+  EXPECT_EQ(off->rates[0].method(Method::clamp).vs_reference_near_seams.counted, 0u);
+}
+
 TEST(Seams, ThreadCountDoesNotChangeTheNumbers) {
   SeamsConfig c = tiny_seams();
   c.threads = 1;

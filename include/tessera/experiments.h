@@ -91,6 +91,9 @@ struct SeamsConfig {
   int threads = 0;                ///< Worker threads (0 = all); results do not depend on it.
   Backend backend = Backend::cpu;
   bool keep_images = true;  ///< Fill the frame-0 images of the result (else left empty).
+  /// Near-seam errors count the geometry pixels within this many pixels (Chebyshev distance)
+  /// of a pixel showing another face: where the seam methods differ. 0 = off.
+  int near_seam_pixels = 2;
   ProgressFn progress;      ///< Optional.
   ReadyFn on_ready;         ///< Optional.
 };
@@ -103,6 +106,8 @@ struct SeamsMethodResult {
   /// The same counting only character pixels (Figure-1 scenes with a character; else empty):
   /// pixels with at least half of 8 MSAA samples on a character face.
   ErrorStats vs_reference_character;
+  /// The same counting only pixels near a face edge (`SeamsConfig::near_seam_pixels`).
+  ErrorStats vs_reference_near_seams;
   ImageRGBAF frame0;  ///< Frame 0, linear RGB with coverage alpha (when keep_images).
 };
 
@@ -128,6 +133,7 @@ struct SeamsResult {
   std::array<int, 16> edge_pairings{};  ///< `faces::edge_pairing_histogram`.
   int linked_corners = 0;               ///< Corners with a valence-4 diagonal face.
   bool has_character = false;           ///< Whether `vs_reference_character` is filled.
+  int near_seam_pixels = 0;             ///< The distance used (0: near-seam stats not filled).
   // The run.
   int quality_frames = 0;              ///< Frames compared (quality_frames resolved).
   int threads = 0;                     ///< Worker threads used (0 resolved).

@@ -279,6 +279,10 @@ struct FaceRenderOptions {
   /// With `shading_only`: output unlit white for faces >= this index and black below (a
   /// coverage mask of e.g. the character); -1 = off.
   int mask_faces_from = -1;
+  /// Output the covering face's index + 1 in R, G and B (exact in float up to 2^24 faces) and
+  /// coverage in alpha, instead of a shaded colour: with `msaa` 1, a face-id image (where the
+  /// seams are on screen; `experiments::run_seams` counts errors near them).
+  bool face_ids = false;
   int threads = 0;
   /// Sub-rectangle [x0, x0 + w) x [y0, y0 + h) of a virtual full_width x full_height image
   /// that this frame shows (used to render the reference in tiles); 0 = the whole image.

@@ -36,9 +36,39 @@ std::uint64_t nan_pixels(const ImageRGBAF& img) {
   return n;
 }
 
+/// Geometry pixels (`geometry`) within `k` pixels (Chebyshev) of a covered pixel of another
+/// face, from a face-id frame (R = face + 1, alpha = coverage; FaceRenderOptions::face_ids).
+std::vector<std::uint8_t> near_seam_mask(const ImageRGBAF& ids,
+                                         const std::vector<std::uint8_t>& geometry, int k) {
+  const int w = ids.width, h = ids.height;
+  auto id = [&](int x, int y) -> float {
+    const float* p = ids.at(x, y);
+    return p[3] > 0.5f ? p[0] : 0.0f;
+  };
+  std::vector<std::uint8_t> m(geometry.size(), 0);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
+      const float own = id(x, y);
+      if (!geometry[i] || own == 0.0f) continue;
+      bool near = false;
+      for (int dy = -k; dy <= k && !near; ++dy) {
+        for (int dx = -k; dx <= k && !near; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
+          const float other = id(xx, yy);
+          near = other != 0.0f && other != own;
+        }
+      }
+      m[i] = near ? 1 : 0;
+    }
+  }
+  return m;
+}
+
 /// Error accumulators of one rate, named as the result's fields.
 struct RateAccumulators {
-  std::array<ErrorCdfAccumulator, 4> vs_ref, vs_ref_char;
+  std::array<ErrorCdfAccumulator, 4> vs_ref, vs_ref_char, vs_ref_near;
   ErrorCdfAccumulator traverse_vs_discard;
 };
 
@@ -49,7 +79,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
     if (c.progress) c.progress(s);
   };
   if (c.msaa.empty() || c.frames < 1 || c.width < 8 || c.height < 8 || c.reference_factor < 1 ||
-      c.quality_frames < 0) {
+      c.quality_frames < 0 || c.near_seam_pixels < 0) {
     return Status::error(ErrorCode::invalid_argument, "seams: bad configuration");
   }
   for (int r : c.msaa) {
@@ -91,6 +121,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
   // extrapolation is approximate.
   res.has_character = scene.ground_faces > 0 && scene.ground_faces < set.face_count();
   res.quality_frames = c.quality_frames > 0 ? std::min(c.quality_frames, c.frames) : c.frames;
+  res.near_seam_pixels = c.near_seam_pixels;
   res.threads = c.threads > 0 ? c.threads : default_thread_count();
   for (int i = 0; i < kSeamsCdfBins; ++i) res.thresholds.push_back(double(i) * kSeamsCdfStep);
 
@@ -104,6 +135,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
       res.rates[ri].method(methods[m]).method = methods[m];
       acc[ri].vs_ref[m] = ErrorCdfAccumulator(res.thresholds);
       acc[ri].vs_ref_char[m] = ErrorCdfAccumulator(res.thresholds);
+      acc[ri].vs_ref_near[m] = ErrorCdfAccumulator(res.thresholds);
     }
     acc[ri].traverse_vs_discard = ErrorCdfAccumulator(res.thresholds);
   }
@@ -127,7 +159,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
     const int q = res.quality_frames;
     const bool quality = f == 0 || (f * q) / c.frames != ((f - 1) * q) / c.frames;
     ImageRGBAF ref;
-    std::vector<std::uint8_t> mask, char_mask;
+    std::vector<std::uint8_t> mask, char_mask, near_mask;
     if (quality) {
       const auto t0 = std::chrono::steady_clock::now();
       Result<ImageRGBAF> r =
@@ -137,6 +169,14 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
       ref = std::move(*r);
       mask = geometry_mask(ref);
       if (f == 0 && c.keep_images) res.reference_frame0 = ref;
+      if (c.near_seam_pixels > 0) {
+        faces::FaceRenderOptions io = o;
+        io.msaa = 1;
+        io.face_ids = true;
+        Result<faces::FaceFrame> ids = (*renderer)->render(cam, io);
+        if (!ids) return ids.status();
+        near_mask = near_seam_mask(ids->image, mask, c.near_seam_pixels);
+      }
       if (res.has_character) {
         faces::FaceRenderOptions mo = o;
         mo.msaa = 8;
@@ -172,6 +212,9 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
           if (res.has_character) {
             if (Status s = acc[ri].vs_ref_char[m].add(imgs[m], ref, char_mask); !s.ok()) return s;
           }
+          if (!near_mask.empty()) {
+            if (Status s = acc[ri].vs_ref_near[m].add(imgs[m], ref, near_mask); !s.ok()) return s;
+          }
         }
         if (Status s = acc[ri].traverse_vs_discard.add(imgs[traverse], imgs[discard], mask);
             !s.ok()) {
@@ -200,6 +243,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
       if (res.has_character) {
         mr.vs_reference_character = stats(acc[ri].vs_ref_char[m]);
       }
+      if (c.near_seam_pixels > 0) mr.vs_reference_near_seams = stats(acc[ri].vs_ref_near[m]);
     }
     res.rates[ri].traverse_vs_discard = stats(acc[ri].traverse_vs_discard);
   }

@@ -118,8 +118,15 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceRe
   const SampleOptions so = o.sampling;
   const bool shading_only = o.shading_only;
   const int mask_from = o.mask_faces_from;
-  d.shader = [set, so, shading_only, mask_from](const raster::ShadeInput& in, float* out) {
+  const bool face_ids = o.face_ids;
+  d.shader = [set, so, shading_only, mask_from, face_ids](const raster::ShadeInput& in,
+                                                          float* out) {
     const float* v = in.varyings;
+    if (face_ids) {
+      out[0] = out[1] = out[2] = float((in.primitive_id >> 1) + 1);
+      out[3] = 1.0f;
+      return;
+    }
     if (shading_only && mask_from >= 0) {
       const float flag = int(in.primitive_id >> 1) >= mask_from ? 1.0f : 0.0f;
       out[0] = out[1] = out[2] = flag;

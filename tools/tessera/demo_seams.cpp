@@ -76,8 +76,34 @@ Status demo_seams_section(Report& report, const DemoOptions& options) {
   }
   header[0] = "mean linear-RGB error";
   report.table(header, rows);
-  report.figures({{"seams/fig5_left.svg", "Figure 5 left: Traverse vs Discard"},
-                  {"seams/fig5_right.svg", "Figure 5 right: vs the reference"}});
+  {
+    std::vector<Figure> panels;
+    for (int r : c.msaa) {
+      panels.push_back({"seams/fig5_" + std::to_string(r) + "x.svg",
+                        "Figure 5 at " + std::to_string(r) +
+                            "x MSAA: fraction of pixels with error >= x against the reference; "
+                            "dashed: pixels within 2 of a face edge"});
+    }
+    report.figures(panels);
+  }
+  {
+    std::vector<std::vector<std::string>> near;
+    for (const faces::Method m : faces::all_methods()) {
+      std::vector<std::string> row = {std::string(faces::method_name(m)) + " near seams"};
+      for (const experiments::SeamsRateResult& rate : res->rates) {
+        row.push_back(fmt("%.5f", rate.method(m).vs_reference_near_seams.mean));
+      }
+      near.push_back(row);
+    }
+    std::vector<std::string> h = {"mean error within 2 px of a face edge"};
+    for (int r : c.msaa) h.push_back(std::to_string(r) + "x MSAA");
+    report.table(h, near);
+  }
+  report.figures({{"seams/fig5_left.svg", "Figure 5 left: Traverse vs Discard"}});
+  report.figures(
+      {{"seams/images/clamp_minus_traverse_1x.png", "|Clamp - Traverse| at 1x: the seams"},
+       {"seams/images/clamp_minus_traverse_8x.png", "the same at 8x MSAA"},
+       {"seams/images/clamp_minus_traverse_colourbar.svg", "colour bar (linear-RGB 2-norm)"}});
   std::vector<Figure> zooms;
   for (const char* n : {"clamp", "discard", "traverse"}) {
     for (int r : {1, 8}) {

@@ -51,8 +51,10 @@ std::vector<double> linear_ticks(double lo, double hi, int target = 6) {
 /// Ticks at 1, 2, 5 x powers of ten inside [lo, hi] (lo > 0).
 std::vector<double> log_ticks(double lo, double hi) {
   std::vector<double> t;
+  const bool decades = std::log10(hi / lo) > 2.5;  // many decades: label powers of ten only
   for (double p = std::pow(10.0, std::floor(std::log10(lo))); p <= hi * 1.0001; p *= 10) {
     for (double m : {1.0, 2.0, 5.0}) {
+      if (decades && m != 1.0) continue;
       const double v = p * m;
       if (v >= lo * 0.9999 && v <= hi * 1.0001) t.push_back(v);
     }
@@ -109,7 +111,12 @@ std::string plot_svg(const Plot& plot) {
                                 : (x - x0) / (x1 - x0);
     return left + t * pw;
   };
-  auto py = [&](double y) { return top + (1 - (y - y0) / (y1 - y0)) * ph; };
+  auto py = [&](double y) {
+    const double t = plot.log_y ? (std::log10(std::max(y, y0)) - std::log10(y0)) /
+                                      (std::log10(y1) - std::log10(y0))
+                                : (y - y0) / (y1 - y0);
+    return top + (1 - t) * ph;
+  };
 
   std::ostringstream s;
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << W << ' ' << H
@@ -129,7 +136,7 @@ std::string plot_svg(const Plot& plot) {
       << num(top + ph) << "\" stroke=\"#e4e4e4\"/>\n<text x=\"" << num(x) << "\" y=\""
       << num(top + ph + 16) << "\" text-anchor=\"middle\">" << tick_text(v) << "</text>\n";
   }
-  for (double v : linear_ticks(y0, y1)) {
+  for (double v : plot.log_y ? log_ticks(y0, y1) : linear_ticks(y0, y1)) {
     if (v < y0 || v > y1) continue;
     const double y = py(v);
     s << "<line x1=\"" << left << "\" y1=\"" << num(y) << "\" x2=\"" << num(left + pw)
@@ -151,6 +158,7 @@ std::string plot_svg(const Plot& plot) {
       if (!std::isfinite(ser.x[i]) || !std::isfinite(ser.y[i]) || (plot.log_x && ser.x[i] <= 0)) {
         continue;
       }
+      if (plot.log_y && ser.y[i] <= 0) continue;
       pts += num(px(ser.x[i])) + "," + num(py(ser.y[i])) + " ";
     }
     if (ser.line && !pts.empty()) {

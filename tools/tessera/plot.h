@@ -26,6 +26,7 @@ struct Plot {
   std::string title;
   std::string x_title, y_title;  ///< With units, e.g. "time per image (ms)".
   bool log_x = false;
+  bool log_y = false;  ///< Logarithmic y (set y_min > 0 and y_max, e.g. 1e-4 and 1).
   double x_min = 0, x_max = 0, y_min = 0, y_max = 0;  ///< Equal min and max: from the data.
   int width = 640, height = 400;
   std::vector<PlotSeries> series;

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <sstream>
 
+#include "plot.h"
 #include "report.h"
 #include "report_plot.h"
 #include "seams.h"
 #include "tessera/io.h"
+#include "tessera/metrics.h"
 
 namespace tessera::cli {
 
@@ -20,6 +22,7 @@ using faces::Method;
 
 constexpr double kStep = experiments::kSeamsCdfStep;
 constexpr int kBins = experiments::kSeamsCdfBins;
+constexpr float kDiffScale = 0.05f;  // heatmap saturation of the clamp-minus-traverse images
 
 float norm_rgb(const float* a, const float* b) {
   const float d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
@@ -115,7 +118,37 @@ Status write_images(const experiments::SeamsConfig& c, const experiments::SeamsR
     }
   }
   summary["zoom_window"] = {{"x", bx}, {"y", by}, {"w", zw}, {"h", zh}, {"scale", zs}};
-  return Status::success();
+  // Clamp minus Traverse (frame 0): the seam artefact, per-pixel linear-RGB 2-norm.
+  for (const SeamsRateResult* rate : {&res.rates.front(), &res.rates.back()}) {
+    const ImageRGBAF& ca = rate->method(Method::clamp).frame0;
+    const ImageRGBAF& tr = rate->method(Method::traverse).frame0;
+    std::vector<float> d(ca.pixel_count());
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      d[i] = norm_rgb(&ca.pixels[i * 4], &tr.pixels[i * 4]);
+    }
+    const std::string name = "clamp_minus_traverse_" + rate_key(rate->msaa);
+    if (Status s = write_png(dir + "/images/" + name + ".png",
+                             heatmap(d, ca.width, ca.height, kDiffScale));
+        !s.ok()) {
+      return s;
+    }
+  }
+  return write_text(dir + "/images/clamp_minus_traverse_colourbar.svg",
+                    colour_bar_svg(ColorMap::inferno, 0, kDiffScale, 6,
+                                   "|Clamp - Traverse|: linear-RGB 2-norm (0.05 and above "
+                                   "saturate)"));
+}
+
+/// The first MSAA rate at which Discard's mean near-seam error is no larger than Traverse's at
+/// the same rate, or null when it never is.
+nlohmann::json discard_catches_traverse(const experiments::SeamsResult& res) {
+  for (const SeamsRateResult& rate : res.rates) {
+    if (rate.method(Method::discard).vs_reference_near_seams.mean <=
+        rate.method(Method::traverse).vs_reference_near_seams.mean) {
+      return rate.msaa;
+    }
+  }
+  return nullptr;
 }
 
 nlohmann::json summary_json(const ErrorStats& q) {
@@ -166,11 +199,24 @@ void fill_json(const experiments::SeamsConfig& c, const experiments::SeamsResult
             {"counted_pixels", q.counted}};
       }
     }
+    if (res.near_seam_pixels > 0) {
+      for (const experiments::SeamsMethodResult& mr : rate.methods) {
+        nlohmann::json j = summary_json(mr.vs_reference_near_seams);
+        j["counted_pixels"] = mr.vs_reference_near_seams.counted;
+        quality_j["vs_reference_near_seams"][faces::method_name(mr.method)][rk] = j;
+      }
+    }
     quality_j["traverse_vs_discard"][rk] = summary_json(rate.traverse_vs_discard);
     quality_j["counted_pixels"][rk] = rate.traverse_vs_discard.counted;
     nan_j[rk] = rate.nan_pixels_without_fallback;
   }
   quality_j["thresholds"] = {{"start", 0.0}, {"step", kStep}, {"count", kBins}};
+  if (res.near_seam_pixels > 0) {
+    quality_j["near_seams"] = {
+        {"pixels", res.near_seam_pixels},
+        {"counted", "geometry pixels within this many pixels of a pixel showing another face"},
+        {"discard_catches_traverse_at", discard_catches_traverse(res)}};
+  }
   quality_j["counted"] =
       "geometry only: pixels whose reference coverage (Mitchell-filtered alpha) exceeds 0.01, "
       "summed over the quality frames";
@@ -215,6 +261,43 @@ Status write_plots(const experiments::SeamsResult& res, const std::string& dir) 
     for (std::size_t ri = 0; ri < res.rates.size(); ++ri) {
       right.push_back({std::string(faces::method_name(m)) + " " + rate_key(res.rates[ri].msaa),
                        rate_color(ri), method_dash(m), res.rates[ri].method(m).vs_reference.cdf});
+    }
+  }
+  // One readable panel per rate: Clamp, Discard and Traverse against the reference over all
+  // geometry pixels (solid) and near the seams (dashed).
+  for (std::size_t ri = 0; ri < res.rates.size(); ++ri) {
+    const SeamsRateResult& rate = res.rates[ri];
+    Plot plot;
+    plot.title = "Figure 5, " + rate_key(rate.msaa) + " MSAA: error against the reference";
+    plot.x_title = "x: per-pixel linear-RGB error (2-norm)";
+    plot.y_title = "fraction of pixels with error >= x";
+    plot.log_y = true;
+    plot.x_min = 0;
+    plot.x_max = 0.15;
+    plot.y_min = 1e-4;
+    plot.y_max = 1;
+    std::size_t colour = 0;
+    for (Method m : {Method::clamp, Method::discard, Method::traverse}) {
+      for (bool near : {false, true}) {
+        if (near && res.near_seam_pixels == 0) continue;
+        const ErrorStats& q =
+            near ? rate.method(m).vs_reference_near_seams : rate.method(m).vs_reference;
+        PlotSeries ser;
+        ser.label = std::string(faces::method_name(m)) +
+                    (near ? ", near seams" : ", all pixels") + fmt(" (mean %.4f)", q.mean);
+        ser.colour = series_colour(colour);
+        ser.dashed = near;
+        for (int i = 0; i < kBins && i < int(q.cdf.size()); ++i) {
+          ser.x.push_back(double(i) * kStep);
+          ser.y.push_back(q.cdf[std::size_t(i)]);
+        }
+        plot.series.push_back(std::move(ser));
+      }
+      ++colour;
+    }
+    if (Status s = write_text(dir + "/fig5_" + rate_key(rate.msaa) + ".svg", plot_svg(plot));
+        !s.ok()) {
+      return s;
     }
   }
   if (Status s = write_text(dir + "/fig5_left.svg", cdf_svg("Traverse vs Discard", left, 0.15));
@@ -292,6 +375,26 @@ std::string markdown(const experiments::SeamsConfig& c, const experiments::Seams
                       rate.method(m).vs_reference);
     }
   }
+  if (res.near_seam_pixels > 0) {
+    md << "\nNear the seams: the same comparison counting only the geometry pixels within "
+       << res.near_seam_pixels
+       << " pixels of a pixel that shows another face, where the methods differ (most of the "
+          "error elsewhere is texture filtering, the same for every method). Per-rate plots: "
+          "`fig5_<rate>.svg` (solid: all pixels, dashed: near seams).\n\n"
+          "| method vs reference, near seams | rate | mean error | fraction >= 0.01 | "
+          "fraction >= 0.05 |\n|---|---|---:|---:|---:|\n";
+    for (Method m : methods) {
+      for (const SeamsRateResult& rate : res.rates) {
+        md << error_row(faces::method_name(m), rate.msaa, rate.method(m).vs_reference_near_seams);
+      }
+    }
+    const nlohmann::json catches = discard_catches_traverse(res);
+    md << "\nNear the seams, Discard "
+       << (catches.is_null() ? std::string("does not catch Traverse at any rate measured")
+                             : "catches Traverse (mean error no larger) from " +
+                                   rate_key(catches.get<int>()) + " MSAA")
+       << ".\n";
+  }
   if (res.has_character) {
     md << "\nBreakdown (not the Figure-5 pixel set): the same comparison counting only the "
           "character's pixels (at least half of 8 MSAA samples on a character face), where the "
@@ -322,8 +425,11 @@ std::string markdown(const experiments::SeamsConfig& c, const experiments::Seams
   }
   md << " with the fallback: 0.\n";
   if (images) {
-    md << "\n## Images\n\n`images/<method>_<rate>.png` (frame 0), `images/reference.png`, and "
-          "`images/zoom_*.png`: a 40x40 window at 4x where Clamp and Traverse differ most.\n";
+    md << "\n## Images\n\n`images/<method>_<rate>.png` (frame 0), `images/reference.png`, "
+          "`images/zoom_*.png`: a 40x40 window at 4x where Clamp and Traverse differ most, and "
+          "`images/clamp_minus_traverse_<rate>.png`: where the seams are, the per-pixel "
+          "linear-RGB difference of Clamp and Traverse (inferno, saturating at 0.05; colour bar "
+          "`images/clamp_minus_traverse_colourbar.svg`).\n";
   }
   return md.str();
 }
