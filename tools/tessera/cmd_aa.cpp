@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "report_aa.h"
+#include "tessera/io.h"
 #include "tessera/experiments.h"
 
 namespace tessera::cli {
@@ -20,8 +21,26 @@ struct AaArgs {
   std::string scene = "builtin", out, camera, orbit, ssaa = "2,3,4";
   int width = 1024, height = 768, frames = 3, lights = 8, heavy_terms = -1, fxaa_preset = 39;
   bool heavy = false;
+  bool quiet = false, json = false, markdown = false;
   deferred::AdaptiveOptions adaptive;
 };
+
+/// One line per rate: what a reader wants from a run (the tables are in aa.md).
+void print_summary(std::FILE* out, const experiments::AaResult& res) {
+  using experiments::AaMethod;
+  for (const experiments::AaRateResult& rate : res.rates) {
+    const auto frame_ms = [&](AaMethod m) {
+      return rate.gbuffer.median_ms() + rate.method(m).timing.normal.median_ms();
+    };
+    const auto psnr = [&](AaMethod m) { return rate.method(m).quality.psnr_db; };
+    std::fprintf(out,
+                 "aa %dx%d: adaptive shades %.1f%% of the samples, %.2f dB against the "
+                 "reference (1 spp %.2f dB, FXAA %.2f dB), %.1f ms/frame (reference %.1f ms)\n",
+                 rate.m, rate.m, rate.method(AaMethod::adaptive).samples_pct,
+                 psnr(AaMethod::adaptive), psnr(AaMethod::default_1spp), psnr(AaMethod::fxaa),
+                 frame_ms(AaMethod::adaptive), frame_ms(AaMethod::reference));
+  }
+}
 
 /// Parses "2,3,4" into window sizes in [1, 8]; empty on error.
 std::vector<int> parse_rates(const std::string& text) {
@@ -63,7 +82,9 @@ int run_aa(const AaArgs& args, const GlobalOptions& global) {
   c.fxaa_preset = args.fxaa_preset;
   c.adaptive = args.adaptive;
   c.threads = global.threads;
-  c.progress = [](const std::string& line) { std::fprintf(stderr, "aa: %s\n", line.c_str()); };
+  if (!args.quiet) {
+    c.progress = [](const std::string& line) { std::fprintf(stderr, "aa: %s\n", line.c_str()); };
+  }
   // Output folder before the expensive part (after the inputs: no folder for a bad scene).
   const std::string out = args.out;
   c.on_ready = [out] {
@@ -83,8 +104,20 @@ int run_aa(const AaArgs& args, const GlobalOptions& global) {
   if (!res) return fail(res.status());
   std::string md;
   if (Status s = write_aa_report(c, *res, args.scene, out, &md); !s.ok()) return fail(s);
-  std::printf("%s", md.substr(0, md.find("\n### ")).c_str());
-  std::printf("\nwrote %s/aa.json, aa.md and PNGs\n", out.c_str());
+  if (args.json) {
+    Result<std::vector<std::uint8_t>> text =
+        read_file((std::filesystem::path(out) / "aa.json").string());
+    if (!text) return fail(text.status());
+    std::fwrite(text->data(), 1, text->size(), stdout);
+    std::printf("\n");
+  } else if (args.markdown) {
+    std::printf("%s", md.c_str());
+  }
+  if (!args.quiet) {
+    std::FILE* text = text_stream(args.json || args.markdown);
+    print_summary(text, *res);
+    std::fprintf(text, "wrote %s/aa.json, aa.md and images\n", out.c_str());
+  }
   return kExitOk;
 }
 
@@ -141,6 +174,10 @@ Command add_aa_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   sub->add_option("-o,--output,--out", args->out, "Output folder (aa.json, aa.md, PNGs)")
       ->required();
+  sub->add_flag("-q,--quiet", args->quiet, "No progress and no summary");
+  sub->add_flag("--json", args->json, "Print aa.json on stdout (the summary goes to stderr)");
+  sub->add_flag("--markdown", args->markdown,
+                "Print aa.md's tables on stdout (the summary goes to stderr)");
   return {sub, [args, &global] { return run_aa(*args, global); }};
 }
 

@@ -2,11 +2,13 @@
 // at every MSAA rate along a camera orbit; Table 1 (median ms per frame, side by side) and
 // Figure 5 (CDFs of per-pixel linear-RGB 2-norm errors) as JSON, Markdown, CSV and SVG. The
 // experiment is `experiments::run_seams`; the files are written by `write_seams_report`.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
 #include "cli.h"
 #include "seams.h"
+#include "tessera/io.h"
 
 namespace tessera::cli {
 
@@ -14,8 +16,29 @@ namespace {
 struct SeamsArgs {
   experiments::SeamsConfig config;
   std::string out;
-  bool quiet = false;
+  bool quiet = false, json = false, markdown = false;
 };
+
+/// One line per rate: the Table-1 ratio and the Figure-5 means (the tables are in seams.md).
+void print_summary(std::FILE* out, const experiments::SeamsResult& res) {
+  using faces::Method;
+  for (const experiments::SeamsRateResult& rate : res.rates) {
+    const auto& t = rate.method(Method::traverse);
+    const auto& d = rate.method(Method::discard);
+    const auto& c = rate.method(Method::clamp);
+    std::fprintf(out,
+                 "seams %dx: traverse %.1f ms, discard %.1f ms (%.2fx); mean error vs reference "
+                 "clamp %.5f, discard %.5f, traverse %.5f",
+                 rate.msaa, t.timing.median_ms(), d.timing.median_ms(),
+                 t.timing.median_ms() / std::max(d.timing.median_ms(), 1e-9), c.vs_reference.mean,
+                 d.vs_reference.mean, t.vs_reference.mean);
+    if (res.near_seam_pixels > 0) {
+      std::fprintf(out, "; near seams %.5f, %.5f, %.5f", c.vs_reference_near_seams.mean,
+                   d.vs_reference_near_seams.mean, t.vs_reference_near_seams.mean);
+    }
+    std::fprintf(out, "\n");
+  }
+}
 }  // namespace
 
 Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
@@ -48,7 +71,15 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--reference-factor", c.reference_factor, "Reference supersampling per axis")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
-  sub->add_flag("--quiet", args->quiet, "No progress on stderr");
+  sub->add_flag("-q,--quiet", args->quiet, "No progress and no summary");
+  sub->add_flag("--json", args->json, "Print seams.json on stdout (the summary goes to stderr)");
+  sub->add_flag("--markdown", args->markdown,
+                "Print seams.md on stdout (the summary goes to stderr)");
+  sub->add_option("--near-seam-pixels", c.near_seam_pixels,
+                  "Near-seam errors count pixels within this many pixels of another face (0 = "
+                  "off)")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
   sub->add_option("-o,--output,--out", args->out, "Output folder")->required();
   return {sub, [args, &global] {
             experiments::SeamsConfig cfg = args->config;
@@ -77,7 +108,18 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
             if (Status s = write_seams_report(cfg, *result, out, true, summary); !s.ok()) {
               return fail(s);
             }
-            std::printf("wrote %s/seams.md\n", out.c_str());
+            if (args->json) {
+              std::printf("%s\n", summary.dump(1).c_str());
+            } else if (args->markdown) {
+              Result<std::vector<std::uint8_t>> md = read_file(out + "/seams.md");
+              if (!md) return fail(md.status());
+              std::fwrite(md->data(), 1, md->size(), stdout);
+            }
+            if (!args->quiet) {
+              std::FILE* text = text_stream(args->json || args->markdown);
+              print_summary(text, *result);
+              std::fprintf(text, "wrote %s/seams.md, seams.json, plots and images\n", out.c_str());
+            }
             return int(kExitOk);
           }};
 }

@@ -2,6 +2,7 @@
 // 2013) on the built-in scene — the 4x4 reference, the adaptive result, 1 sample per pixel and
 // FXAA, with the sample-count heatmap and difference heatmaps (Figures 6a and 7).
 #include "demo.h"
+#include "plot.h"
 #include "tessera/experiments.h"
 #include "tessera/metrics.h"
 
@@ -47,10 +48,10 @@ Status demo_aa_section(Report& report, const DemoOptions& options) {
   const Item items[] = {{"aa-reference", "4x4 reference (16 samples/pixel)", &ref},
                         {"aa-adaptive", "adaptive", &adi},
                         {"aa-samples", "samples per pixel (1..16, Fig. 6a)", &heat},
-                        {"aa-diff-ref", "|adaptive - reference| (x8)", &*d_ref},
+                        {"aa-diff-ref", "|adaptive - reference| (max abs channel difference)", &*d_ref},
                         {"aa-default", "1 sample/pixel", &one},
                         {"aa-fxaa", "1 sample/pixel + FXAA", &fx},
-                        {"aa-diff-1x", "|adaptive - 1 sample| (x8)", &*d_one}};
+                        {"aa-diff-1x", "|adaptive - 1 sample| (max abs channel difference)", &*d_one}};
   std::vector<Figure> row1, row2, zoom;
   for (std::size_t i = 0; i < std::size(items); ++i) {
     std::string p;
@@ -68,6 +69,28 @@ Status demo_aa_section(Report& report, const DemoOptions& options) {
   }
   report.figures(row1, 1);
   report.figures(row2, 1);
+  {
+    std::string kbar, dbar;
+    if (Status s = report.save_svg(
+            "aa-samples-colourbar",
+            colour_bar_svg(ColorMap::inferno, 0, m * m, m * m / 4 + 1,
+                           "samples shaded per pixel (1 + k; " + std::to_string(m * m) +
+                               " = every sample of the " + std::to_string(m) + "x" +
+                               std::to_string(m) + " window)"),
+            kbar);
+        !s.ok()) {
+      return s;
+    }
+    if (Status s = report.save_svg("aa-diff-colourbar",
+                                   colour_bar_svg(ColorMap::inferno, 0, 32, 5,
+                                                  "max abs channel difference (8-bit levels; "
+                                                  "32 and above saturate)"),
+                                   dbar);
+        !s.ok()) {
+      return s;
+    }
+    report.figures({{kbar, "colour bar of the samples map"}, {dbar, "colour bar of the diffs"}});
+  }
   report.figures(zoom, 4);
   std::vector<std::vector<std::string>> rows;
   for (AaMethod k :

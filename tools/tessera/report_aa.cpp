@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "plot.h"
 #include "tessera/io.h"
 #include "tessera/metrics.h"
 
@@ -80,6 +81,24 @@ Status write_rate_images(const experiments::AaConfig& c, const AaRateResult& rat
   outs.push_back({"ablation-shading-" + r, shd});
   outs.push_back({"ablation-shading-samples-" + r, samples_map(rate.ablation_shading.samples)});
   outs.push_back({"ablation-shading-diff-" + r, difference_heatmap(ref, shd, 32.0f)});
+  // Colour bars: the samples maps (1 + k of m*m) and the difference heatmaps.
+  const std::string kbar = "samples-colourbar-" + r + ".svg";
+  if (Status s = write_text(fs::path(dir) / kbar,
+                            colour_bar_svg(ColorMap::inferno, 0, n, n / 4 + 1,
+                                           "samples shaded per pixel (1 + k of " +
+                                               std::to_string(n) + ")"));
+      !s.ok()) {
+    return s;
+  }
+  jimages["samples-colourbar-" + r] = kbar;
+  if (Status s = write_text(fs::path(dir) / "diff-colourbar.svg",
+                            colour_bar_svg(ColorMap::inferno, 0, 32, 5,
+                                           "max abs channel difference (8-bit levels; 32 and "
+                                           "above saturate)"));
+      !s.ok()) {
+    return s;
+  }
+  jimages["diff-colourbar"] = "diff-colourbar.svg";
   for (const Out& o : outs) {
     if (!o.image) return o.image.status();
     if (Status s = write_png((fs::path(dir) / (o.name + ".png")).string(), *o.image); !s.ok()) {
@@ -185,6 +204,8 @@ std::string figure_md(const experiments::AaConfig& c, const AaRateResult& rate,
       "|---|---|---|---|---|\n";
   md += "| ![](reference-" + r + ".png) | ![](adaptive-" + r + ".png) | ![](samples-" + r +
         ".png) | ![](diff-ref-" + r + ".png) | ![](diff-1x-" + r + ".png) |\n\n";
+  md += "Samples map: ![](samples-colourbar-" + r + ".svg) Differences: ![](diff-colourbar.svg)"
+        "\n\n";
   md +=
       "Figure 8 analogue: | 1 spp | FXAA | geometry only: samples, diff | shading only: "
       "samples, diff |\n\n";
