@@ -1,10 +1,11 @@
 // Driver: quad meshes, OBJ polygons, directed-edge adjacency and valence-4 corner links.
+#include <tiny_obj_loader.h>
+
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <unordered_map>
 
 #include "tessera/faces.h"
@@ -22,41 +23,56 @@ Vec3 QuadMesh::point(int face, Uv uv) const {
 }
 
 Result<PolygonMesh> load_obj_polygons(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) {
+  // The same OBJ reader as the scene loader (tinyobjloader), without triangulation: Ptex face
+  // ids follow the file's faces, of any vertex count.
+  if (std::FILE* probe = std::fopen(path.c_str(), "rb")) {
+    std::fclose(probe);
+  } else {
     return Status::error(ErrorCode::io_error, path + ": cannot open: " + std::strerror(errno));
   }
-  PolygonMesh mesh;
-  std::string line;
-  int line_no = 0;
-  auto bad = [&](const std::string& what) {
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, config)) {
+    std::string why = reader.Error();
+    while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
+    for (char& c : why) {
+      if (c == '\n') c = ' ';
+    }
     return Status::error(ErrorCode::corrupt_data,
-                         path + ":" + std::to_string(line_no) + ": " + what);
-  };
-  while (std::getline(in, line)) {
-    ++line_no;
-    std::istringstream ls(line);
-    std::string tag;
-    ls >> tag;
-    if (tag == "v") {
-      Vec3 p;
-      if (!(ls >> p.x >> p.y >> p.z)) return bad("malformed vertex");
-      mesh.positions.push_back(p);
-    } else if (tag == "f") {
-      std::vector<int> face;
-      std::string tok;
-      while (ls >> tok) {
-        char* end = nullptr;
-        const long idx = std::strtol(tok.c_str(), &end, 10);
-        if (end == tok.c_str()) return bad("malformed face index '" + tok + "'");
-        const long n = long(mesh.positions.size());
-        const long resolved = idx < 0 ? n + idx : idx - 1;
-        if (idx == 0 || resolved < 0 || resolved >= n) {
-          return bad("face index " + std::to_string(idx) + " out of range");
-        }
-        face.push_back(int(resolved));
+                         path + ": cannot read OBJ: " + (why.empty() ? "parse error" : why));
+  }
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  PolygonMesh mesh;
+  mesh.positions.reserve(attrib.vertices.size() / 3);
+  for (std::size_t i = 0; i + 2 < attrib.vertices.size(); i += 3) {
+    mesh.positions.push_back({attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]});
+  }
+  const long n = long(mesh.positions.size());
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    std::size_t at = 0;
+    for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+      const std::size_t count = shape.mesh.num_face_vertices[f];
+      if (at + count > shape.mesh.indices.size()) {
+        return Status::error(ErrorCode::corrupt_data, path + ": malformed face records");
       }
-      if (face.size() < 3) return bad("face with fewer than 3 vertices");
+      std::vector<int> face;
+      for (std::size_t k = 0; k < count; ++k) {
+        const long idx = shape.mesh.indices[at + k].vertex_index;
+        if (idx < 0 || idx >= n) {
+          return Status::error(ErrorCode::corrupt_data,
+                               path + ": face " + std::to_string(mesh.faces.size()) +
+                                   " has a vertex index out of range");
+        }
+        face.push_back(int(idx));
+      }
+      at += count;
+      if (face.size() < 3) {
+        return Status::error(ErrorCode::corrupt_data,
+                             path + ": face " + std::to_string(mesh.faces.size()) +
+                                 " has fewer than 3 vertices");
+      }
       mesh.faces.push_back(std::move(face));
     }
   }
