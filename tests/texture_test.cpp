@@ -77,7 +77,7 @@ UvGradients texel_grad(const TextureShape& s, float dxu, float dxv, float dyu, f
 
 TEST(TextureLod, KnownQuadOnNonSquareTexture) {
   // 256x64 texture; a screen quad where one pixel step advances 4 texels in u and 4 in v.
-  const TextureShape shape{256, 64, TextureShape::full_level_count(256, 64), 1};
+  const TextureShape shape{256, 64, mip_level_count(256, 64), 1};
   ASSERT_EQ(shape.levels, 9);
   const float du = 4.0f / 256.0f;
   const float dv = 4.0f / 64.0f;
@@ -525,7 +525,7 @@ TEST(TextureMips, ConstantTextureStaysConstantIncludingNpot) {
   for (auto [w, h] : {std::pair{5, 3}, std::pair{7, 7}, std::pair{6, 5}, std::pair{1, 9},
                       std::pair{64, 16}, std::pair{33, 1}}) {
     const Texture tex = make_texture(constant_image(w, h, 0.3f, 0.6f, 0.9f, 0.7f));
-    ASSERT_EQ(tex.level_count(), TextureShape::full_level_count(w, h));
+    ASSERT_EQ(tex.level_count(), mip_level_count(w, h));
     for (int l = 0; l < tex.level_count(); ++l) {
       const TextureLevelView v = tex.level(0, l);
       EXPECT_EQ(v.width, std::max(1, w >> l));

@@ -143,6 +143,17 @@ ImageRGBA8 to_srgb8(const ImageRGBAF& linear, int threads = 0);
 // ---------------------------------------------------------------------------------------------
 
 /// Number of worker threads `threads == 0` stands for (the hardware concurrency).
+/// Size of mip level `level` of a side of `size` texels (the GL rule): max(size >> level, 1),
+/// for level >= 0. The one copy of this rule: textures, mip chains and PVRTC files use it.
+inline int mip_dimension(int size, int level) {
+  const int s = level >= 31 ? 0 : size >> level;
+  return s > 0 ? s : 1;
+}
+
+/// Levels of the full mip chain of a width x height image, level 0 included:
+/// floor(log2(max(width, height))) + 1, and 0 when max(width, height) <= 0.
+int mip_level_count(int width, int height);
+
 int default_thread_count();
 
 /// Runs `body(begin_i, end_i)` over disjoint sub-ranges covering [begin, end), each at most

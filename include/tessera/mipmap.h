@@ -31,14 +31,7 @@ struct MipmapOptions {
   int threads = 0;          ///< Worker threads (0 = all).
 };
 
-/// Number of levels in a full chain for `width` x `height`: floor(log2(max(w, h))) + 1.
-int mip_level_count(int width, int height);
-
-/// Width (or height) of level `level` of a chain whose level 0 is `size`: max(size >> level, 1).
-inline int mip_dimension(int size, int level) {
-  const int s = level >= 31 ? 0 : size >> level;
-  return s > 0 ? s : 1;
-}
+// Level sizes and counts: `mip_dimension` and `mip_level_count` (tessera/core.h).
 
 /// Builds the mip chain, level 0 (a copy of `image`) first. Level i is
 /// mip_dimension(width, i) x mip_dimension(height, i). Fails on an empty image.

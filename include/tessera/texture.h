@@ -123,17 +123,10 @@ struct TextureShape {
   int levels = 1;  ///< Mip levels, 1..kMaxMipLevels (and at most the full chain).
   int layers = 1;  ///< Array layers, >= 1.
 
-  /// Width of level `level` (GL rule): max(1, width >> level).
-  int level_width(int level) const { return level_size(width, level); }
+  /// Width of level `level` (GL rule): max(1, width >> level) (`mip_dimension`).
+  int level_width(int level) const { return mip_dimension(width, level); }
   /// Height of level `level`: max(1, height >> level).
-  int level_height(int level) const { return level_size(height, level); }
-  /// max(1, size >> level) for level >= 0.
-  static int level_size(int size, int level) {
-    const int s = level >= 31 ? 0 : size >> level;
-    return s > 0 ? s : 1;
-  }
-  /// Levels of the full chain of a w x h texture: floor(log2(max(w, h))) + 1 (0 when empty).
-  static int full_level_count(int w, int h);
+  int level_height(int level) const { return mip_dimension(height, level); }
 };
 
 /// Isotropic LOD before bias and clamping (GL): log2 of the longer of the two gradient

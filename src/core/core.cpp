@@ -110,4 +110,15 @@ ImageRGBA8 to_srgb8(const ImageRGBAF& linear, int threads) {
   return out;
 }
 
+int mip_level_count(int width, int height) {
+  int size = width > height ? width : height;
+  if (size <= 0) return 0;
+  int levels = 1;
+  while (size > 1) {
+    size >>= 1;
+    ++levels;
+  }
+  return levels;
+}
+
 }  // namespace tessera

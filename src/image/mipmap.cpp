@@ -152,15 +152,6 @@ struct Wide {
 
 }  // namespace
 
-int mip_level_count(int width, int height) {
-  int m = std::max(width, height);
-  int n = 1;
-  while (m > 1) {
-    m >>= 1;
-    ++n;
-  }
-  return n;
-}
 
 int nearest_power_of_two(int size) {
   if (size <= 1) return 1;

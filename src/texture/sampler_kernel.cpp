@@ -17,16 +17,6 @@ int clamp_aniso(int max_aniso) {
 
 }  // namespace
 
-int TextureShape::full_level_count(int w, int h) {
-  int size = w > h ? w : h;
-  if (size <= 0) return 0;
-  int levels = 1;
-  while (size > 1) {
-    size >>= 1;
-    ++levels;
-  }
-  return levels;
-}
 
 UvGradients quad_gradients(const std::array<Uv, 4>& quad) {
   UvGradients g;

@@ -61,7 +61,7 @@ inline __m128 clamp_lod4(const SamplerState& sampler, const TextureShape& shape,
   return select4(_mm_cmpgt_ps(lod, last), last, lod);
 }
 
-/// Lane-wise `TextureShape::level_size(size, level)` for 0 <= level < 31 and size < 2^24:
+/// Lane-wise `mip_dimension(size, level)` for 0 <= level < 31 and size < 2^24:
 /// size * 2^-level is exact in float, its truncation is size >> level, then max(1, .).
 inline __m128i level_size4(int size, __m128i level) {
   const __m128 scale =

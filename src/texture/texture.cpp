@@ -64,8 +64,8 @@ struct AxisFilter {
 
 ImageRGBAF downsample_box(const ImageRGBAF& image, bool alpha_weighted, int threads) {
   if (image.empty()) return {};
-  const int dw = TextureShape::level_size(image.width, 1);
-  const int dh = TextureShape::level_size(image.height, 1);
+  const int dw = mip_dimension(image.width, 1);
+  const int dh = mip_dimension(image.height, 1);
   const AxisFilter fx(image.width, dw);
   const AxisFilter fy(image.height, dh);
   ImageRGBAF out(dw, dh);
@@ -106,7 +106,7 @@ std::vector<ImageRGBAF> build_mip_chain(const ImageRGBAF& image, bool alpha_weig
                                         int max_levels, int threads) {
   std::vector<ImageRGBAF> chain;
   if (image.empty()) return chain;
-  int levels = TextureShape::full_level_count(image.width, image.height);
+  int levels = mip_level_count(image.width, image.height);
   if (max_levels > 0 && max_levels < levels) levels = max_levels;
   chain.reserve(std::size_t(levels));
   chain.push_back(image);
@@ -415,7 +415,7 @@ Result<Texture> Texture::from_float_levels(std::vector<ImageRGBAF> levels) {
   const int w = levels.front().width;
   const int h = levels.front().height;
   if (Status s = check_layers(w, h, 1, "texture"); !s.ok()) return s;
-  const int full = TextureShape::full_level_count(w, h);
+  const int full = mip_level_count(w, h);
   if (int(levels.size()) > full) {
     return Status::error(ErrorCode::invalid_argument, "texture: " + std::to_string(levels.size()) +
                                                           " levels given, a " + std::to_string(w) +
@@ -423,8 +423,8 @@ Result<Texture> Texture::from_float_levels(std::vector<ImageRGBAF> levels) {
                                                           std::to_string(full));
   }
   for (std::size_t l = 0; l < levels.size(); ++l) {
-    const int ew = TextureShape::level_size(w, int(l));
-    const int eh = TextureShape::level_size(h, int(l));
+    const int ew = mip_dimension(w, int(l));
+    const int eh = mip_dimension(h, int(l));
     if (levels[l].width != ew || levels[l].height != eh ||
         levels[l].pixels.size() != levels[l].pixel_count() * 4) {
       return Status::error(ErrorCode::size_mismatch, "texture: level " + std::to_string(l) +

@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
   std::vector<gl::Object> textures;
   for (const scene::Texture& t : sc.textures) {
     gl::Object tex = gl::create_object(gl::ObjectType::texture, GL_TEXTURE_2D);
-    const int levels = TextureShape::full_level_count(t.image.width, t.image.height);
+    const int levels = mip_level_count(t.image.width, t.image.height);
     glTextureStorage2D(tex.get(), levels, t.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, t.image.width,
                        t.image.height);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
