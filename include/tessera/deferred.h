@@ -267,3 +267,39 @@ class DeferredRenderer {
 };
 
 }  // namespace tessera::deferred
+
+// ---------------------------------------------------------------------------------------------
+// Engine baseline: per-sample shading on edges only (Lauritzen 2010)
+// ---------------------------------------------------------------------------------------------
+
+namespace tessera::deferred {
+
+/// Deferred MSAA-style shading as engines do it (Lauritzen 2010, "Deferred Rendering for
+/// Current and Future Rendering Pipelines"): a pixel whose samples may come from different
+/// surfaces is shaded at every sample, any other pixel once. Here the m x m window of the
+/// enlarged G-buffer is the pixel's sample set. A pixel is "complex" when its window mixes
+/// background and geometry, or some sample's linear depth differs from sample 0's (the first in
+/// index order) by more than one output pixel's depth change along sample 0's plane (its
+/// position and normal; Lauritzen's maxZDelta = |ddx| + |ddy|):
+/// |d_i - d_0| > depth_slack * m * (|dd/dx| + |dd/dy|) + 1e-4 d_0 with dd/dx, dd/dy per grid
+/// pixel, or a normal deviates, dot(n_i, n_0) < min_normal_dot (both normalised).
+/// share/tessera/glsl/edge_classify.glsl is the GPU twin.
+struct EdgePerSampleOptions {
+  float min_normal_dot = 0.99f;  ///< Lauritzen's value (about 8 degrees).
+  float depth_slack = 1.0f;      ///< Multiplies the depth tolerance (0: 1e-4 relative only).
+  int threads = 0;
+};
+
+/// 1 for complex pixels, 0 otherwise, row-major (w x h of the G-buffer's output).
+std::vector<std::uint8_t> classify_edge_per_sample(const GBuffer& gb,
+                                                   const EdgePerSampleOptions& options = {});
+
+/// The baseline's image: simple pixels are the 1x pixel (`shade_default`'s value), complex
+/// pixels the mean of all m^2 samples at footprint scale 1 (`shade_reference`'s value).
+/// `samples` holds 1 or m^2 per pixel; the timings are `ms_metric` (classification) and
+/// `ms_rest` (shading); `ms_first` stays 0.
+AdaptiveResult shade_edge_per_sample(const DeferredRenderer& renderer, const GBuffer& gb,
+                                     const ShadingOptions& shading,
+                                     const EdgePerSampleOptions& options = {});
+
+}  // namespace tessera::deferred

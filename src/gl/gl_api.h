@@ -96,6 +96,7 @@
   X(glMemoryBarrier, PFNGLMEMORYBARRIERPROC)                                 \
   X(glNamedBufferData, PFNGLNAMEDBUFFERDATAPROC)                             \
   X(glNamedBufferStorage, PFNGLNAMEDBUFFERSTORAGEPROC)                       \
+  X(glNamedFramebufferDrawBuffers, PFNGLNAMEDFRAMEBUFFERDRAWBUFFERSPROC)     \
   X(glNamedFramebufferReadBuffer, PFNGLNAMEDFRAMEBUFFERREADBUFFERPROC)       \
   X(glNamedFramebufferRenderbuffer, PFNGLNAMEDFRAMEBUFFERRENDERBUFFERPROC)   \
   X(glNamedFramebufferTexture, PFNGLNAMEDFRAMEBUFFERTEXTUREPROC)             \

@@ -1,0 +1,153 @@
+// tessera/gl_seams.h — the seams experiment (Toth 2013) drawn on the GPU: a per-face-textured
+// quad mesh rendered with OpenGL 4.5 through share/tessera/glsl/seams_render.{vert,frag}, which
+// `#include "seams.glsl"` (Clamp / Discard / Traverse / Traverse+corners), into a multisampled
+// RGBA32F target, box-resolved in linear light and read back. Part of `tessera::gl` (built only
+// where EGL/GL are found); every call needs the tessera GL context current on the calling
+// thread (gl.h).
+//
+// The GL twin of `faces::FaceRenderer` (faces.h): the same frame, pixel for pixel where the
+// drivers agree —
+//  * the same clip-space vertices (computed on the CPU with the CPU renderer's arithmetic,
+//    including its sub-rectangle remapping for tiled references), four unshared vertices per
+//    face, triangles (0,1,2) and (0,2,3), back faces culled, depth test `less`;
+//  * the same per-face UVs ((0,0), (1,0), (1,1), (0,1) at the face's vertices, interpolated
+//    perspective-correctly per triangle) and smooth area-weighted vertex normals;
+//  * shading once per pixel at the pixel centre (no centroid: a partially covered pixel may
+//    look up a UV outside its face, which is what Discard's coverage channel is for), UV
+//    gradients from fine 2x2-quad derivatives (dFdxFine/dFdyFine) including helper pixels,
+//    the sampled colour times 0.35 + 0.65 max(N·L, 0) with L = (0.42, 0.82, 0.39), alpha 1,
+//    background `faces::kFaceBackground` with alpha 0;
+//  * image rows top-down with the CPU rasterizer's orientation: clip y is negated so GL's
+//    framebuffer row 0 is the image's top row, which makes the driver's sample positions (Mesa
+//    uses the Direct3D standard patterns in memory order) the CPU rasterizer's.
+// Draw calls are grouped by face class (one GL_TEXTURE_2D_ARRAY per face resolution): the own
+// face's lookup indexes the sampler array with a per-draw uniform (dynamically uniform, so it
+// works without bindless or non-uniform indexing, e.g. on llvmpipe); neighbour lookups of
+// Traverse go through seams.glsl's switch over the classes. Each (method, fallback, output)
+// combination is its own compiled program, so a software rasterizer that executes both sides
+// of every branch (llvmpipe) runs only the chosen method's code.
+//
+// Agreement with the CPU frame (tests/gl_seams_test.cpp, Mesa 22.3 llvmpipe, 96x108): under
+// trilinear filtering 54-55 dB PSNR on the 8-bit sRGB output with at most 0.5 % of the pixels
+// 0.01 or more apart (linear-RGB 2-norm); rasterization ties and the draw order (class-grouped
+// here, face order on the CPU) are left. Hardware anisotropic filtering is implementation-
+// defined (llvmpipe's is much blurrier than tessera's exact filter): 25-37 dB there.
+//
+// Timing: `gpu_ms_*` are GL_TIME_ELAPSED queries. On llvmpipe they do not cover the frame (the
+// query commands are executed per screen tile by the rasterizer threads; measured: 16x the
+// pixels gave 4x the timer but 6.7x the wall time), so use `wall_ms` (ended by glFinish)
+// there; on hardware GPUs the timer is the pass time.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include "tessera/core.h"
+#include "tessera/faces.h"
+#include "tessera/gl.h"
+#include "tessera/scene.h"
+
+namespace tessera::gl {
+
+/// What the fragment shader writes.
+enum class SeamsOutput {
+  color,          ///< Shaded linear RGB, alpha 1 (the frame).
+  zero_coverage,  ///< 1 where the method's coverage Σw was 0 (Discard's fallback or NaN
+                  ///< pixels), else 0; alpha 1; background (0,0,0,0). Resolved: the
+                  ///< fraction of the pixel's samples that such fragments cover.
+};
+
+/// One frame's settings (the GL counterpart of faces::FaceRenderOptions).
+struct SeamsRenderOptions {
+  int width = 480;   ///< The paper's frame size.
+  int height = 540;
+  int msaa = 1;      ///< 1, 2, 4 or 8 samples (8 is refused where GL_MAX_SAMPLES < 8).
+  faces::Method method = faces::Method::discard;
+  /// trilinear, or anisotropic (GL_TEXTURE_MAX_ANISOTROPY = max_aniso on both samplers).
+  TextureFilter filter = TextureFilter::anisotropic;
+  int max_aniso = 16;  ///< 1..16, clamped to the implementation's maximum.
+  /// Discard's zero-coverage fallback (Listing 1, lines 13-15). Off: NaN where Σw = 0.
+  bool clamp_fallback = true;
+  SeamsOutput output = SeamsOutput::color;
+  /// Read the resolved frame back into `SeamsFrame::image` (off: timing only).
+  bool read_back = true;
+  /// Sub-rectangle [x0, x0 + width) x [y0, y0 + height) of a virtual full_width x full_height
+  /// image (as FaceRenderOptions: tiled references); 0 = the whole image.
+  int full_width = 0, full_height = 0, x0 = 0, y0 = 0;
+};
+
+/// A rendered frame.
+struct SeamsFrame {
+  /// Resolved linear RGB, alpha = geometry coverage (0 background .. 1 covered); top-down.
+  /// Empty when `read_back` was off.
+  ImageRGBAF image;
+  double gpu_ms_draw = 0;     ///< GL_TIME_ELAPSED of the clear + class-grouped draws.
+  double gpu_ms_resolve = 0;  ///< GL_TIME_ELAPSED of the MSAA box resolve (0 at 1x).
+  double gpu_ms() const { return gpu_ms_draw + gpu_ms_resolve; }
+  /// Wall time from the first GL call of the frame to glFinish after the resolve (vertex
+  /// upload included, read-back excluded).
+  double wall_ms = 0;
+  int draw_calls = 0;  ///< One per face class with faces.
+};
+
+struct SeamsRendererOptions {
+  /// Folder holding seams_render.vert/.frag and seams.glsl. Empty: $TESSERA_GLSL_DIR, else
+  /// <executable>/../share/tessera/glsl, else <executable>/../../share/tessera/glsl (a build
+  /// folder inside the source tree).
+  std::filesystem::path glsl_dir;
+  TexelFormat texels = TexelFormat::rgba32f;
+};
+
+/// Draws a per-face-textured quad mesh with OpenGL. Owns the uploaded textures, the vertex
+/// buffers, render targets (re-created when size or samples change) and one program per
+/// shader variant (compiled on first use). Not thread-safe; one context.
+class SeamsRenderer {
+ public:
+  /// Uploads `textures` (FaceTextures::upload) and the mesh. `scene` and `textures` must
+  /// outlive the renderer; face counts must match (size_mismatch). Fails (unsupported) when the
+  /// face classes need more texture units than the fragment stage has (2 per class).
+  static Result<std::unique_ptr<SeamsRenderer>> create(const faces::FaceScene& scene,
+                                                       const faces::FaceTextureSet& textures,
+                                                       const SeamsRendererOptions& options = {});
+  ~SeamsRenderer();
+  SeamsRenderer(const SeamsRenderer&) = delete;
+  SeamsRenderer& operator=(const SeamsRenderer&) = delete;
+
+  /// Renders one frame. An MSAA rate the driver refuses fails with unsupported (see
+  /// `msaa_supported`); a bad size or rate with invalid_argument.
+  Result<SeamsFrame> render(const scene::Camera& camera, const SeamsRenderOptions& options);
+
+  /// Whether an RGBA32F + depth framebuffer with `samples` samples is complete here (cached).
+  bool msaa_supported(int samples);
+  /// The rates of `rates` that the driver refuses (llvmpipe: 8 and above), in order.
+  std::vector<int> refused_msaa(const std::vector<int>& rates);
+
+  /// The paper's reference on the GPU: Traverse at factor x factor the resolution with
+  /// `filter`, single-sampled, rendered in tiles of `tile` output pixels (plus a 2-pixel
+  /// margin) and down-sampled on the CPU by `downsample_mitchell` (B = C = 1/3, radius 2
+  /// output pixels) — the filter of faces::FaceRenderer::render_reference.
+  Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
+                                      int factor = 8,
+                                      TextureFilter filter = TextureFilter::anisotropic,
+                                      int tile = 96);
+
+  const FaceTextures& textures() const;
+  const std::string& glsl_dir() const;
+
+  struct State;  ///< Internal.
+
+ private:
+  SeamsRenderer() = default;
+  std::unique_ptr<State> state_;
+};
+
+/// Separable Mitchell-Netravali down-sampling (faces::mitchell_netravali, B = C = 1/3) of a
+/// supersampled grid by `factor`, the arithmetic of FaceRenderer::render_reference: output
+/// pixel x reads grid columns [(x - margin) * factor, (x + margin) * factor) of a grid that
+/// starts `margin` output pixels before the output's first pixel, with normalised weights.
+/// `grid` must be ((width + 2 margin) factor) x ((height + 2 margin) factor); margin = 2.
+Result<ImageRGBAF> downsample_mitchell(const ImageRGBAF& grid, int factor, int width,
+                                       int height);
+
+}  // namespace tessera::gl

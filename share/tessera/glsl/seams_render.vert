@@ -1,0 +1,35 @@
+// seams_render.vert — vertex stage of the GL seams renderer (tessera::gl::SeamsRenderer,
+// include/tessera/gl_seams.h); public GLSL API, installed with seams.glsl.
+//
+// Input layout: every face of the quad mesh has four unshared vertices, face f owning vertices
+// 4f .. 4f+3 in the face's vertex order 0..3, so the face id and the per-face UV corner follow
+// from gl_VertexID (glDrawElements: the index value) and the index buffer may list the faces
+// in any order (the renderer groups them by face class, one draw per class).
+//   location 0: vec4 clip-space position, computed on the CPU exactly as
+//               tessera::faces::FaceRenderer does (OpenGL clip space, y up)
+//   location 1: vec3 unit vertex normal (smooth, area-weighted)
+// Output: perspective-correct UV (Ptex corners (0,0), (1,0), (1,1), (0,1)) and normal, and the
+// face id (flat).
+//
+// Orientation: clip y is negated, so framebuffer row 0 holds the image's top row (tessera's
+// top-down images read back without a flip) and the driver's memory-order sample positions are
+// those of tessera's rasterizer (Direct3D patterns, y down). The negation mirrors the winding:
+// the host lists each triangle in reversed order so that front faces stay counter-clockwise.
+#version 450 core
+
+layout(location = 0) in vec4 tessera_clip;
+layout(location = 1) in vec3 tessera_normal;
+
+out vec2 tessera_uv;
+out vec3 tessera_vnormal;
+flat out int tessera_face;
+
+const vec2 tessera_corner_uv[4] = vec2[4](vec2(0.0, 0.0), vec2(1.0, 0.0), vec2(1.0, 1.0),
+                                          vec2(0.0, 1.0));
+
+void main() {
+  tessera_face = gl_VertexID >> 2;
+  tessera_uv = tessera_corner_uv[gl_VertexID & 3];
+  tessera_vnormal = tessera_normal;
+  gl_Position = vec4(tessera_clip.x, -tessera_clip.y, tessera_clip.z, tessera_clip.w);
+}

@@ -1,0 +1,426 @@
+// DeferredGlRenderer: the compute passes (share/tessera/glsl/deferred_passes.comp) — S, the
+// metrics, the extra samples, the reference, the edge-per-sample baseline, sRGB8 and FXAA —
+// with their parameters, buffers, GL_TIME_ELAPSED timing and read-back.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+#include "deferred/deferred_internal.h"
+#include "gl/deferred_gl_internal.h"
+#include "gl/gl_api.h"
+
+namespace tessera::gl {
+
+using namespace api;
+
+namespace {
+
+// FXAA_QUALITY__P0..P11 per preset (as src/deferred/fxaa.cpp).
+struct FxaaPreset {
+  int id, steps;
+  float p[12];
+};
+constexpr FxaaPreset kFxaaPresets[] = {
+    {10, 3, {1.5f, 3.0f, 12.0f}},
+    {11, 4, {1.0f, 1.5f, 3.0f, 12.0f}},
+    {12, 5, {1.0f, 1.5f, 2.0f, 4.0f, 12.0f}},
+    {13, 6, {1.0f, 1.5f, 2.0f, 2.0f, 4.0f, 12.0f}},
+    {14, 7, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 4.0f, 12.0f}},
+    {15, 8, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 12.0f}},
+    {20, 3, {1.5f, 2.0f, 8.0f}},
+    {21, 4, {1.0f, 1.5f, 2.0f, 8.0f}},
+    {22, 5, {1.0f, 1.5f, 2.0f, 2.0f, 8.0f}},
+    {23, 6, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 8.0f}},
+    {24, 7, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 3.0f, 8.0f}},
+    {25, 8, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
+    {26, 9, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
+    {27, 10, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
+    {28, 11, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
+    {29, 12, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
+    {39, 12, {1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
+};
+
+std::string float_literal(float v) {
+  std::ostringstream o;
+  o.precision(9);
+  o << std::showpoint << v;
+  return o.str();
+}
+
+double sum_ms(const std::vector<PassTime>& passes) {
+  double t = 0;
+  for (const PassTime& p : passes) t += p.ms;
+  return t;
+}
+
+Object make_buffer(std::size_t bytes) {
+  Object b = create_object(ObjectType::buffer);
+  glNamedBufferData(b.get(), GLsizeiptr(std::max<std::size_t>(bytes, 16)), nullptr,
+                    GL_DYNAMIC_COPY);
+  return b;
+}
+
+}  // namespace
+
+double GlShadeResult::total_ms() const { return sum_ms(passes); }
+double GlShadeResult::total_wall_ms() const { return sum_ms(wall_passes); }
+double GlFxaaResult::total_ms() const { return sum_ms(passes); }
+double GlFxaaResult::total_wall_ms() const { return sum_ms(wall_passes); }
+
+namespace {
+
+using State = DeferredGlRenderer::State;
+
+Result<const Program*> program(State& st, const std::vector<std::string>& defines) {
+  std::vector<std::string> pre = {
+      "#define TESSERA_DEFERRED_CLASSES " + std::to_string(st.class_arrays.size()),
+      "#define TESSERA_WINDOW_N " + std::to_string(st.m * st.m),
+      "#define TESSERA_ADAPTIVE_MAX_N " + std::to_string(std::max(1, st.m * st.m))};
+  for (const std::string& d : defines) pre.push_back("#define " + d);
+  std::string key;
+  for (const std::string& p : pre) key += p + "\n";
+  auto it = st.programs.find(key);
+  if (it != st.programs.end()) return &it->second;
+  const std::filesystem::path dir(st.glsl_dir);
+  Result<ShaderSource> cs = load_shader(ShaderStage::compute, dir / "deferred_passes.comp");
+  if (!cs) return cs.status();
+  ShaderOptions so;
+  so.include_paths = {dir};
+  so.preamble = pre;
+  Result<Program> p = link_program({*cs}, so);
+  if (!p) return p.status();
+  return &st.programs.emplace(key, std::move(*p)).first->second;
+}
+
+/// Uploads the parameters, lights and waves and binds everything the passes read.
+Status bind_inputs(State& st, const deferred::ShadingOptions& o,
+                   const deferred::AdaptiveOptions* a, const deferred::EdgePerSampleOptions* e) {
+  if (!st.fbo) return Status::error(ErrorCode::invalid_argument, "deferred GL: no G-buffer yet");
+  if (o.filter != TextureFilter::anisotropic) {
+    return Status::error(ErrorCode::unsupported,
+                         "deferred GL: only TextureFilter::anisotropic shading is implemented");
+  }
+  const int n = st.m * st.m;
+  DeferredParams p{};
+  p.size[0] = st.w;
+  p.size[1] = st.h;
+  p.size[2] = st.m;
+  p.size[3] = n;
+  p.counts[0] = int(o.lights.size());
+  p.counts[1] = o.heavy ? std::max(o.heavy_terms, 0) : 0;
+  p.counts[2] = a ? a->force_k : -1;
+  p.counts[3] = a ? (a->use_geometry ? 1 : 0) | (a->use_shading ? 2 : 0) : 3;
+  std::copy(st.camera_eye, st.camera_eye + 3, p.eye);
+  p.eye[3] = st.tan_half_fov;
+  p.view[0] = st.aspect;
+  p.view[1] = o.exposure;
+  p.view[2] = o.specular;
+  p.view[3] = o.shininess;
+  p.ambient[0] = o.ambient[0];
+  p.ambient[1] = o.ambient[1];
+  p.ambient[2] = o.ambient[2];
+  p.ambient[3] = float(std::clamp(o.max_aniso, 1, kMaxAnisotropy));
+  const deferred::AdaptiveOptions def_a;
+  const deferred::EdgePerSampleOptions def_e;
+  const deferred::AdaptiveOptions& aa = a ? *a : def_a;
+  const deferred::EdgePerSampleOptions& ee = e ? *e : def_e;
+  p.metric[0] = aa.c_depth;
+  p.metric[1] = aa.c_normal;
+  p.metric[2] = aa.c_shade;
+  p.metric[3] = aa.t_min;
+  p.metric2[0] = aa.t_edge;
+  p.metric2[1] = aa.seam_factor;
+  p.metric2[2] = ee.min_normal_dot;
+  p.metric2[3] = ee.depth_slack;
+  p.background[0] = deferred::kBackground[0];
+  p.background[1] = deferred::kBackground[1];
+  p.background[2] = deferred::kBackground[2];
+  std::copy(st.inv_view, st.inv_view + 16, p.inv_view);
+  const std::span<const std::uint8_t> order = deferred::sample_order(st.m);
+  for (int i = 0; i < n; ++i) p.order[i] = order[std::size_t(i)];
+
+  if (!st.params_ubo) st.params_ubo = create_object(ObjectType::buffer);
+  glNamedBufferData(st.params_ubo.get(), sizeof p, &p, GL_DYNAMIC_DRAW);
+  std::vector<float> lights;
+  for (const deferred::Light& l : o.lights) {
+    lights.insert(lights.end(), {l.position.x, l.position.y, l.position.z, l.range, l.color[0],
+                                 l.color[1], l.color[2], l.intensity});
+  }
+  lights.resize(std::max<std::size_t>(lights.size(), 8), 0.0f);
+  if (!st.lights_ssbo) st.lights_ssbo = create_object(ObjectType::buffer);
+  glNamedBufferData(st.lights_ssbo.get(), GLsizeiptr(lights.size() * 4), lights.data(),
+                    GL_DYNAMIC_DRAW);
+  std::vector<float> waves =
+      o.heavy ? deferred::make_heavy_waves(o.heavy_terms, o.heavy_wavelength) : std::vector<float>{};
+  waves.resize(std::max<std::size_t>(waves.size(), 4), 0.0f);
+  if (!st.waves_ssbo) st.waves_ssbo = create_object(ObjectType::buffer);
+  glNamedBufferData(st.waves_ssbo.get(), GLsizeiptr(waves.size() * 4), waves.data(),
+                    GL_DYNAMIC_DRAW);
+
+  const std::size_t pixels = std::size_t(st.w) * std::size_t(st.h);
+  if (st.buffers_w != st.w || st.buffers_h != st.h) {
+    st.s_buf = make_buffer(pixels * 16);
+    st.terms_buf = make_buffer(pixels * 32);
+    st.k_buf = make_buffer(pixels * 4);
+    st.out_buf = make_buffer(pixels * 16);
+    st.rgba8_buf = make_buffer(pixels * 4);
+    st.rgba8_out_buf = make_buffer(pixels * 4);
+    st.buffers_w = st.w;
+    st.buffers_h = st.h;
+  }
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, st.params_ubo.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, st.lights_ssbo.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, st.materials_ssbo.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, st.waves_ssbo.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, st.s_buf.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, st.terms_buf.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, st.k_buf.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, st.out_buf.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, st.rgba8_buf.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, st.rgba8_out_buf.get());
+  glBindTextureUnit(0, st.g0.get());
+  glBindTextureUnit(1, st.g1.get());
+  glBindTextureUnit(2, st.g2.get());
+  for (std::size_t c = 0; c < st.class_arrays.size(); ++c) {
+    glBindTextureUnit(GLuint(3 + c), st.class_arrays[c].get());
+  }
+  for (GLuint u = 0; u < GLuint(3 + st.class_arrays.size()); ++u) glBindSampler(u, 0);
+  return check_errors("deferred GL: binding the shading inputs");
+}
+
+/// GpuTimer plus the pass names (kept when the driver's times are rejected).
+struct PassTimer {
+  GpuTimer timer;
+  std::vector<std::string> names;
+  std::vector<PassTime> wall;
+  Status begin(const std::string& name) {
+    names.push_back(name);
+    return timer.begin(name);
+  }
+  Status end() { return timer.end(); }
+};
+
+/// Runs one compute pass over the w x h output pixels, timed as `name`.
+Status run_pass(State& st, PassTimer& timer, const std::string& name,
+                const std::vector<std::string>& defines) {
+  Result<const Program*> p = program(st, defines);
+  if (!p) return p.status();
+  glFinish();
+  const auto wall0 = std::chrono::steady_clock::now();
+  if (Status s = timer.begin(name); !s.ok()) return s;
+  glUseProgram((*p)->get());
+  glDispatchCompute(GLuint((st.w + 7) / 8), GLuint((st.h + 7) / 8), 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  // llvmpipe runs a dispatch when the batch is flushed, after the query has ended: glFinish
+  // inside the query makes GL_TIME_ELAPSED cover the work (a no-op cost on a GPU's timeline).
+  glFinish();
+  timer.wall.push_back(
+      {name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0)
+                 .count()});
+  if (Status s = timer.end(); !s.ok()) return s;
+  return check_errors("deferred GL: pass " + name);
+}
+
+Result<ImageRGBAF> read_rgba(const State& st, const Object& buf) {
+  ImageRGBAF img(st.w, st.h);
+  glGetNamedBufferSubData(buf.get(), 0, GLsizeiptr(std::size_t(st.w) * std::size_t(st.h) * 16),
+                          img.pixels.data());
+  for (std::size_t i = 0; i < img.pixel_count(); ++i) img.pixels[i * 4 + 3] = 1.0f;
+  if (Status s = check_errors("deferred GL: read-back"); !s.ok()) return s;
+  return img;
+}
+
+Result<ImageRGBA8> read_rgba8(const State& st, const Object& buf) {
+  ImageRGBA8 img(st.w, st.h);
+  glGetNamedBufferSubData(buf.get(), 0, GLsizeiptr(std::size_t(st.w) * std::size_t(st.h) * 4),
+                          img.pixels.data());
+  if (Status s = check_errors("deferred GL: read-back"); !s.ok()) return s;
+  return img;
+}
+
+std::vector<std::string> extra_defines(const State& st, bool edge) {
+  std::vector<std::string> d = {"TESSERA_PASS_EXTRA"};
+  if (edge) d.push_back("TESSERA_EDGE");
+  if (st.options.schedule == ExtraSchedule::loop || st.m > 4) d.push_back("TESSERA_SCHEDULE_LOOP");
+  return d;
+}
+
+Status finish(PassTimer& timer, std::vector<PassTime>& passes, std::vector<PassTime>& wall) {
+  wall = timer.wall;
+  Result<std::vector<PassTime>> t = timer.timer.collect();
+  if (!t) {
+    // Mesa 22.3 llvmpipe's occasional impossible GL_TIME_ELAPSED (GpuTimer::collect checks
+    // each pass against the wall time): the results stand, the times are unknown (NaN).
+    if (t.status().code != ErrorCode::unsupported) return t.status();
+    passes.clear();
+    for (const std::string& n : timer.names) passes.push_back({n, std::nan("")});
+    return Status::success();
+  }
+  passes = std::move(*t);
+  return Status::success();
+}
+
+Status read_samples(const State& st, GlShadeResult& r) {
+  const std::size_t pixels = std::size_t(st.w) * std::size_t(st.h);
+  std::vector<std::uint32_t> k(pixels);
+  glGetNamedBufferSubData(st.k_buf.get(), 0, GLsizeiptr(pixels * 4), k.data());
+  r.samples.resize(pixels);
+  r.samples_shaded = 0;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    r.samples[i] = std::uint8_t(k[i] + 1);
+    r.samples_shaded += k[i] + 1;
+  }
+  return check_errors("deferred GL: k map read-back");
+}
+
+}  // namespace
+
+Result<GlShadeResult> DeferredGlRenderer::shade_reference(const deferred::ShadingOptions& o) {
+  State& st = *state_;
+  if (Status s = bind_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
+  GlShadeResult r;
+  PassTimer timer;
+  if (Status s = run_pass(st, timer, "reference", {"TESSERA_PASS_REFERENCE"}); !s.ok()) return s;
+  if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
+  Result<ImageRGBAF> img = read_rgba(st, st.out_buf);
+  if (!img) return img.status();
+  r.image = std::move(*img);
+  r.samples_shaded = std::uint64_t(st.w) * std::uint64_t(st.h) * std::uint64_t(st.m * st.m);
+  return r;
+}
+
+Result<GlShadeResult> DeferredGlRenderer::shade_default(const deferred::ShadingOptions& o) {
+  State& st = *state_;
+  if (Status s = bind_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
+  GlShadeResult r;
+  PassTimer timer;
+  if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
+  if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
+  Result<ImageRGBAF> img = read_rgba(st, st.s_buf);
+  if (!img) return img.status();
+  r.image = std::move(*img);
+  r.samples_shaded = std::uint64_t(st.w) * std::uint64_t(st.h);
+  return r;
+}
+
+Result<GlShadeResult> DeferredGlRenderer::shade_adaptive(const deferred::ShadingOptions& o,
+                                                         const deferred::AdaptiveOptions& a) {
+  State& st = *state_;
+  if (Status s = bind_inputs(st, o, &a, nullptr); !s.ok()) return s;
+  GlShadeResult r;
+  PassTimer timer;
+  if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
+  if (Status s = run_pass(st, timer, "metrics", {"TESSERA_PASS_METRICS"}); !s.ok()) return s;
+  if (Status s = run_pass(st, timer, "extra", extra_defines(st, false)); !s.ok()) return s;
+  if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
+  Result<ImageRGBAF> img = read_rgba(st, st.out_buf);
+  if (!img) return img.status();
+  r.image = std::move(*img);
+  if (Status s = read_samples(st, r); !s.ok()) return s;
+  return r;
+}
+
+Result<GlShadeResult> DeferredGlRenderer::shade_edge_per_sample(
+    const deferred::ShadingOptions& o, const deferred::EdgePerSampleOptions& e) {
+  State& st = *state_;
+  if (Status s = bind_inputs(st, o, nullptr, &e); !s.ok()) return s;
+  GlShadeResult r;
+  PassTimer timer;
+  if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
+  if (Status s = run_pass(st, timer, "edge_extra", extra_defines(st, true)); !s.ok()) return s;
+  if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
+  Result<ImageRGBAF> img = read_rgba(st, st.out_buf);
+  if (!img) return img.status();
+  r.image = std::move(*img);
+  if (Status s = read_samples(st, r); !s.ok()) return s;
+  return r;
+}
+
+namespace {
+
+Result<std::vector<std::string>> fxaa_defines(const deferred::FxaaOptions& f) {
+  const FxaaPreset* preset = nullptr;
+  for (const FxaaPreset& p : kFxaaPresets) {
+    if (p.id == f.preset) preset = &p;
+  }
+  if (!preset) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "fxaa: unknown quality preset " + std::to_string(f.preset) +
+                             " (10..15, 20..29 or 39)");
+  }
+  std::string table = "float[12](";
+  for (int i = 0; i < 12; ++i) table += (i ? ", " : "") + float_literal(preset->p[i]);
+  table += ")";
+  return std::vector<std::string>{"TESSERA_PASS_FXAA",
+                                  "TESSERA_FXAA_STEPS " + std::to_string(preset->steps),
+                                  "TESSERA_FXAA_P " + table,
+                                  "TESSERA_FXAA_SUBPIX " + float_literal(f.subpix),
+                                  "TESSERA_FXAA_EDGE " + float_literal(f.edge_threshold),
+                                  "TESSERA_FXAA_EDGE_MIN " + float_literal(f.edge_threshold_min)};
+}
+
+}  // namespace
+
+Result<GlFxaaResult> DeferredGlRenderer::shade_default_fxaa(const deferred::ShadingOptions& o,
+                                                            const deferred::FxaaOptions& f) {
+  State& st = *state_;
+  Result<std::vector<std::string>> fd = fxaa_defines(f);
+  if (!fd) return fd.status();
+  if (Status s = bind_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
+  GlFxaaResult r;
+  PassTimer timer;
+  if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
+  if (Status s = run_pass(st, timer, "srgb8", {"TESSERA_PASS_SRGB8", "TESSERA_SRGB_FROM_S"});
+      !s.ok())
+    return s;
+  if (Status s = run_pass(st, timer, "fxaa", *fd); !s.ok()) return s;
+  if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
+  Result<ImageRGBA8> img = read_rgba8(st, st.rgba8_out_buf);
+  if (!img) return img.status();
+  r.image = std::move(*img);
+  return r;
+}
+
+Result<GlFxaaResult> DeferredGlRenderer::fxaa(const ImageRGBA8& image,
+                                              const deferred::FxaaOptions& f) {
+  State& st = *state_;
+  if (image.empty()) return Status::error(ErrorCode::invalid_argument, "fxaa: empty image");
+  Result<std::vector<std::string>> fd = fxaa_defines(f);
+  if (!fd) return fd.status();
+  // The pass runs over w x h = the image's size: temporarily use its size for the buffers.
+  if (!st.fbo) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "deferred GL: fxaa needs a G-buffer first (it sets the programs' m)");
+  }
+  const int saved_w = st.w, saved_h = st.h;
+  st.w = image.width;
+  st.h = image.height;
+  Status bound = bind_inputs(st, deferred::ShadingOptions{}, nullptr, nullptr);
+  GlFxaaResult r;
+  Status s = bound;
+  if (s.ok()) {
+    std::vector<std::uint8_t> in(image.pixels.begin(), image.pixels.end());
+    glNamedBufferData(st.rgba8_buf.get(), GLsizeiptr(in.size()), in.data(), GL_DYNAMIC_COPY);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, st.rgba8_buf.get());
+    PassTimer timer;
+    s = run_pass(st, timer, "fxaa", *fd);
+    if (s.ok()) s = finish(timer, r.passes, r.wall_passes);
+    if (s.ok()) {
+      Result<ImageRGBA8> img = read_rgba8(st, st.rgba8_out_buf);
+      if (img) {
+        r.image = std::move(*img);
+        r.image.has_alpha = image.has_alpha;
+      } else {
+        s = img.status();
+      }
+    }
+  }
+  st.w = saved_w;
+  st.h = saved_h;
+  if (!s.ok()) return s;
+  return r;
+}
+
+}  // namespace tessera::gl

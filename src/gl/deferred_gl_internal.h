@@ -1,0 +1,67 @@
+// Internal to src/gl: the state of tessera::gl::DeferredGlRenderer, shared by
+// deferred_gl_scene.cpp (textures, meshes, geometry pass) and deferred_gl.cpp (compute passes).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tessera/gl.h"
+#include "tessera/gl_deferred.h"
+#include "tessera/texture.h"
+
+namespace tessera::gl {
+
+/// std140 layout of TesseraDeferredParams (deferred_shading.glsl).
+struct DeferredParams {
+  std::int32_t size[4];
+  std::int32_t counts[4];
+  float eye[4];
+  float view[4];
+  float ambient[4];
+  float metric[4];
+  float metric2[4];
+  float background[4];
+  float inv_view[16];
+  std::int32_t order[64];
+};
+static_assert(sizeof(DeferredParams) == 8 * 16 + 64 + 256, "std140 layout");
+
+struct GlMesh {
+  Object vao, dynamic_vbo, static_vbo, ebo;
+  std::size_t vertices = 0, indices = 0;
+  int material = 0;
+};
+
+struct DeferredGlRenderer::State {
+  const scene::Scene* scene = nullptr;
+  DeferredGlOptions options;
+  std::string glsl_dir;
+  std::vector<Texture> cpu_textures;  // the CPU chains (render::build_scene_textures)
+  std::vector<Object> class_arrays;   // one GL_TEXTURE_2D_ARRAY per texture size
+  Object materials_ssbo;
+  std::vector<GlMesh> meshes;
+  std::vector<float> scratch;  // per-frame vertex data
+  Program gbuffer_program;
+  int material_location = -1;
+
+  // The G-buffer of the last render_gbuffer.
+  int w = 0, h = 0, m = 0;
+  Object fbo, g0, g1, g2, depth;
+  double gbuffer_ms = 0.0, gbuffer_wall_ms = 0.0;
+  float camera_eye[3] = {0, 0, 0};
+  float tan_half_fov = 0.5f, aspect = 1.0f, far_z = 1000.0f;
+  float inv_view[16] = {};
+
+  // Compute resources, reallocated with the output size.
+  int buffers_w = 0, buffers_h = 0;
+  Object s_buf, terms_buf, k_buf, out_buf, rgba8_buf, rgba8_out_buf;
+  Object params_ubo, lights_ssbo, waves_ssbo;
+  std::map<std::string, Program> programs;  // by preamble
+};
+
+/// Finds the GLSL folder (given, $TESSERA_GLSL_DIR, or beside the executable).
+Result<std::string> find_deferred_glsl_dir(const std::filesystem::path& given);
+
+}  // namespace tessera::gl

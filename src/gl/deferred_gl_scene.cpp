@@ -1,0 +1,396 @@
+// DeferredGlRenderer: scene upload (the CPU's texture chains as RGBA32F arrays, meshes), the
+// size check against the framebuffer limits, the geometry pass into the enlarged G-buffer, and
+// its read-back into the CPU layout.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <numbers>
+#include <tuple>
+
+#include "gl/deferred_gl_internal.h"
+#include "gl/gl_api.h"
+#include "tessera/render.h"
+
+namespace tessera::gl {
+
+using namespace api;
+
+namespace {
+
+bool has_deferred_shaders(const std::filesystem::path& dir) {
+  std::error_code ec;
+  for (const char* f : {"deferred_gbuffer.vert", "deferred_gbuffer.frag", "deferred_passes.comp",
+                        "deferred_shading.glsl", "adaptive_metrics.glsl", "adaptive_samples.glsl",
+                        "edge_classify.glsl", "fxaa.glsl"}) {
+    if (!std::filesystem::is_regular_file(dir / f, ec)) return false;
+  }
+  return true;
+}
+
+constexpr int kMaxClasses = 8;
+
+}  // namespace
+
+Result<std::string> find_deferred_glsl_dir(const std::filesystem::path& given) {
+  if (!given.empty()) {
+    if (has_deferred_shaders(given)) return given.string();
+    return Status::error(ErrorCode::io_error,
+                         given.string() + ": the deferred GLSL files (deferred_passes.comp, "
+                                          "deferred_shading.glsl, ...) are not all there");
+  }
+  std::vector<std::filesystem::path> tried;
+  if (const char* env = std::getenv("TESSERA_GLSL_DIR"); env && *env) tried.emplace_back(env);
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    tried.push_back(exe.parent_path() / ".." / "share" / "tessera" / "glsl");
+    tried.push_back(exe.parent_path() / ".." / ".." / "share" / "tessera" / "glsl");
+  }
+  for (const auto& d : tried) {
+    if (has_deferred_shaders(d)) return d.lexically_normal().string();
+  }
+  return Status::error(ErrorCode::io_error,
+                       "deferred GL: share/tessera/glsl not found (set TESSERA_GLSL_DIR or "
+                       "DeferredGlOptions::glsl_dir)");
+}
+
+DeferredGlRenderer::~DeferredGlRenderer() = default;
+
+const std::string& DeferredGlRenderer::glsl_dir() const { return state_->glsl_dir; }
+double DeferredGlRenderer::last_gbuffer_ms() const { return state_->gbuffer_ms; }
+double DeferredGlRenderer::last_gbuffer_wall_ms() const { return state_->gbuffer_wall_ms; }
+int DeferredGlRenderer::width() const { return state_->w; }
+int DeferredGlRenderer::height() const { return state_->h; }
+int DeferredGlRenderer::m() const { return state_->m; }
+
+Result<std::unique_ptr<DeferredGlRenderer>> DeferredGlRenderer::create(
+    const scene::Scene& scene, const DeferredGlOptions& options) {
+  std::unique_ptr<DeferredGlRenderer> r(new DeferredGlRenderer());
+  r->state_ = std::make_unique<State>();
+  State& st = *r->state_;
+  st.scene = &scene;
+  st.options = options;
+  Result<std::string> dir = find_deferred_glsl_dir(options.glsl_dir);
+  if (!dir) return dir.status();
+  st.glsl_dir = *dir;
+
+  Result<std::vector<Texture>> textures = render::build_scene_textures(scene, options.threads);
+  if (!textures) return textures.status();
+  st.cpu_textures = std::move(*textures);
+
+  // Base-colour textures grouped by size: one RGBA32F array per (width, height, levels).
+  std::map<std::tuple<int, int, int>, std::vector<int>> classes;
+  std::vector<int> used(st.cpu_textures.size(), 0);
+  for (const scene::Material& mat : scene.materials) {
+    const int t = mat.base_color_texture;
+    if (t >= 0 && std::size_t(t) < st.cpu_textures.size() && !used[std::size_t(t)]) {
+      used[std::size_t(t)] = 1;
+      const Texture& tex = st.cpu_textures[std::size_t(t)];
+      classes[{tex.width(), tex.height(), tex.level_count()}].push_back(t);
+    }
+  }
+  if (int(classes.size()) > kMaxClasses) {
+    return Status::error(ErrorCode::too_large,
+                         "deferred GL: the scene's base-colour textures come in " +
+                             std::to_string(classes.size()) + " sizes; at most " +
+                             std::to_string(kMaxClasses) + " texture arrays are supported");
+  }
+  std::vector<std::array<int, 2>> where(st.cpu_textures.size(), {-1, -1});  // class, layer
+  int cls = 0;
+  for (const auto& [key, members] : classes) {
+    const auto [tw, th, levels] = key;
+    Object arr = create_object(ObjectType::texture, GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(arr.get(), levels, GL_RGBA32F, tw, th, GLsizei(members.size()));
+    for (std::size_t layer = 0; layer < members.size(); ++layer) {
+      const Texture& tex = st.cpu_textures[std::size_t(members[layer])];
+      for (int l = 0; l < levels; ++l) {
+        const TextureLevelView v = tex.level(0, l);
+        glTextureSubImage3D(arr.get(), l, 0, 0, GLint(layer), v.width, v.height, 1, GL_RGBA,
+                            GL_FLOAT, v.texels);
+      }
+      where[std::size_t(members[layer])] = {cls, int(layer)};
+    }
+    glTextureParameteri(arr.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(arr.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(arr.get(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(arr.get(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+    st.class_arrays.push_back(std::move(arr));
+    ++cls;
+  }
+  if (st.class_arrays.empty()) {  // a 1x1 dummy so that unit 3 holds a complete array
+    Object arr = create_object(ObjectType::texture, GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(arr.get(), 1, GL_RGBA32F, 1, 1, 1);
+    const float one[4] = {1, 1, 1, 1};
+    glTextureSubImage3D(arr.get(), 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, one);
+    st.class_arrays.push_back(std::move(arr));
+  }
+
+  // Materials: vec4 base, ivec4 (class, layer, width, height).
+  struct MaterialRecord {
+    float base[4];
+    std::int32_t tex[4];
+  };
+  std::vector<MaterialRecord> mats;
+  for (const scene::Material& mat : scene.materials) {
+    MaterialRecord rec{{mat.base_color[0], mat.base_color[1], mat.base_color[2], 1.0f},
+                       {-1, 0, 1, 1}};
+    const int t = mat.base_color_texture;
+    if (t >= 0 && std::size_t(t) < st.cpu_textures.size()) {
+      const Texture& tex = st.cpu_textures[std::size_t(t)];
+      rec.tex[0] = where[std::size_t(t)][0];
+      rec.tex[1] = where[std::size_t(t)][1];
+      rec.tex[2] = tex.width();
+      rec.tex[3] = tex.height();
+    }
+    mats.push_back(rec);
+  }
+  if (mats.empty()) mats.push_back({{1, 1, 1, 1}, {-1, 0, 1, 1}});
+  st.materials_ssbo = create_object(ObjectType::buffer);
+  glNamedBufferStorage(st.materials_ssbo.get(), GLsizeiptr(mats.size() * sizeof(MaterialRecord)),
+                       mats.data(), 0);
+
+  // Meshes: a dynamic buffer (clip xyzw, linear depth) per frame, a static one (normal, uv).
+  for (const scene::Mesh& mesh : scene.meshes) {
+    GlMesh g;
+    g.vertices = mesh.positions.size();
+    g.indices = mesh.indices.size();
+    g.material = mesh.material;
+    g.vao = create_object(ObjectType::vertex_array);
+    g.dynamic_vbo = create_object(ObjectType::buffer);
+    g.static_vbo = create_object(ObjectType::buffer);
+    g.ebo = create_object(ObjectType::buffer);
+    std::vector<float> st_data(g.vertices * 5);
+    for (std::size_t i = 0; i < g.vertices; ++i) {
+      st_data[i * 5 + 0] = mesh.normals[i].x;
+      st_data[i * 5 + 1] = mesh.normals[i].y;
+      st_data[i * 5 + 2] = mesh.normals[i].z;
+      st_data[i * 5 + 3] = mesh.uvs[i].x;
+      st_data[i * 5 + 4] = mesh.uvs[i].y;
+    }
+    glNamedBufferStorage(g.static_vbo.get(), GLsizeiptr(std::max<std::size_t>(1, st_data.size()) *
+                                                        sizeof(float)),
+                         st_data.empty() ? nullptr : st_data.data(), 0);
+    glNamedBufferStorage(g.ebo.get(),
+                         GLsizeiptr(std::max<std::size_t>(1, g.indices) * sizeof(std::uint32_t)),
+                         mesh.indices.empty() ? nullptr : mesh.indices.data(), 0);
+    glBindVertexArray(g.vao.get());
+    glBindBuffer(GL_ARRAY_BUFFER, g.dynamic_vbo.get());
+    glNamedBufferData(g.dynamic_vbo.get(), GLsizeiptr(std::max<std::size_t>(1, g.vertices) * 20),
+                      nullptr, GL_STREAM_DRAW);
+    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 20, reinterpret_cast<const void*>(0));
+    glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, 20, reinterpret_cast<const void*>(16));
+    glBindBuffer(GL_ARRAY_BUFFER, g.static_vbo.get());
+    glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, 20, reinterpret_cast<const void*>(0));
+    glVertexAttribPointer(3, 2, GL_FLOAT, GL_FALSE, 20, reinterpret_cast<const void*>(12));
+    for (GLuint a = 0; a < 4; ++a) glEnableVertexAttribArray(a);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.ebo.get());
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    st.meshes.push_back(std::move(g));
+  }
+
+  const std::filesystem::path d(st.glsl_dir);
+  Result<ShaderSource> vs = load_shader(ShaderStage::vertex, d / "deferred_gbuffer.vert");
+  if (!vs) return vs.status();
+  Result<ShaderSource> fs = load_shader(ShaderStage::fragment, d / "deferred_gbuffer.frag");
+  if (!fs) return fs.status();
+  Result<Program> prog = link_program({*vs, *fs});
+  if (!prog) return prog.status();
+  st.gbuffer_program = std::move(*prog);
+  st.material_location = st.gbuffer_program.uniform("tessera_material");
+  if (Status s = check_errors("deferred GL: scene upload"); !s.ok()) return s;
+  return r;
+}
+
+Status DeferredGlRenderer::check_size(int width, int height, int m) const {
+  if (m < 1 || m > 8) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "deferred GL: window size m must be in [1, 8], got " + std::to_string(m));
+  }
+  if (width < 1 || height < 1) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "deferred GL: bad output size " + std::to_string(width) + "x" +
+                             std::to_string(height));
+  }
+  GLint fw = 0, fh = 0, tex = 0, rb = 0;
+  glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &fw);
+  glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &fh);
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &tex);
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &rb);
+  const std::int64_t gw = std::int64_t(width) * m, gh = std::int64_t(height) * m;
+  const std::string what = "deferred GL: G-buffer " + std::to_string(gw) + "x" +
+                           std::to_string(gh) + " (" + std::to_string(width) + "x" +
+                           std::to_string(height) + ", m = " + std::to_string(m) + ") exceeds ";
+  const std::pair<std::int64_t, std::pair<GLint, const char*>> checks[] = {
+      {gw, {fw, "GL_MAX_FRAMEBUFFER_WIDTH"}}, {gh, {fh, "GL_MAX_FRAMEBUFFER_HEIGHT"}},
+      {std::max(gw, gh), {tex, "GL_MAX_TEXTURE_SIZE"}},
+      {std::max(gw, gh), {rb, "GL_MAX_RENDERBUFFER_SIZE"}}};
+  for (const auto& [value, limit] : checks) {
+    if (value > limit.first) {
+      return Status::error(ErrorCode::too_large,
+                           what + limit.second + " = " + std::to_string(limit.first));
+    }
+  }
+  return Status::success();
+}
+
+Status DeferredGlRenderer::render_gbuffer(const scene::Camera& camera, int width, int height,
+                                          int m) {
+  if (Status s = check_size(width, height, m); !s.ok()) return s;
+  State& st = *state_;
+  const int gw = width * m, gh = height * m;
+  if (st.w != width || st.h != height || st.m != m || !st.fbo) {
+    st.fbo = create_object(ObjectType::framebuffer);
+    Object* targets[3] = {&st.g0, &st.g1, &st.g2};
+    GLenum bufs[3];
+    for (int i = 0; i < 3; ++i) {
+      *targets[i] = create_object(ObjectType::texture, GL_TEXTURE_2D);
+      glTextureStorage2D(targets[i]->get(), 1, GL_RGBA32F, gw, gh);
+      glTextureParameteri(targets[i]->get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTextureParameteri(targets[i]->get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glNamedFramebufferTexture(st.fbo.get(), GLenum(GL_COLOR_ATTACHMENT0 + i), targets[i]->get(),
+                                0);
+      bufs[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
+    }
+    st.depth = create_object(ObjectType::renderbuffer);
+    glNamedRenderbufferStorage(st.depth.get(), GL_DEPTH_COMPONENT32F, gw, gh);
+    glNamedFramebufferRenderbuffer(st.fbo.get(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                   st.depth.get());
+    glNamedFramebufferDrawBuffers(st.fbo.get(), 3, bufs);
+    const GLenum status = glCheckNamedFramebufferStatus(st.fbo.get(), GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+      st.fbo.reset();
+      return Status::error(ErrorCode::unsupported,
+                           "deferred GL: G-buffer framebuffer " + std::to_string(gw) + "x" +
+                               std::to_string(gh) + " (3 x RGBA32F + D32F) is incomplete (0x" +
+                               [&] {
+                                 char b[16];
+                                 std::snprintf(b, sizeof b, "%04X", status);
+                                 return std::string(b);
+                               }() + ")");
+    }
+    st.w = width;
+    st.h = height;
+    st.m = m;
+  }
+  // Camera data, exactly as DeferredRenderer::render_gbuffer.
+  st.aspect = float(width) / float(height);
+  st.tan_half_fov = std::tan(camera.fov_y_degrees * std::numbers::pi_v<float> / 360.0f);
+  st.far_z = camera.far_z;
+  const Mat4 view = camera.view();
+  const Mat4 inv = inverse(view);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) st.inv_view[c * 4 + r] = inv.m[c][r];
+  st.camera_eye[0] = camera.eye.x;
+  st.camera_eye[1] = camera.eye.y;
+  st.camera_eye[2] = camera.eye.z;
+  const Mat4 vp = camera.projection(st.aspect) * view;
+  const scene::Scene& sc = *st.scene;
+  for (std::size_t mi = 0; mi < sc.meshes.size(); ++mi) {
+    const scene::Mesh& mesh = sc.meshes[mi];
+    st.scratch.resize(mesh.positions.size() * 5);
+    float* out = st.scratch.data();
+    parallel_for(
+        0, std::int64_t(mesh.positions.size()), 4096,
+        [&](std::int64_t b, std::int64_t e) {
+          for (std::int64_t i = b; i < e; ++i) {
+            const Vec3& p = mesh.positions[std::size_t(i)];
+            const Vec4 c = vp * Vec4{p.x, p.y, p.z, 1.0f};
+            const Vec4 v = view * Vec4{p.x, p.y, p.z, 1.0f};
+            float* o = out + i * 5;
+            o[0] = c.x;
+            o[1] = c.y;
+            o[2] = c.z;
+            o[3] = c.w;
+            o[4] = -v.z;
+          }
+        },
+        st.options.threads);
+    if (!st.scratch.empty()) {
+      glNamedBufferData(st.meshes[mi].dynamic_vbo.get(), GLsizeiptr(st.scratch.size() * 4),
+                        st.scratch.data(), GL_STREAM_DRAW);
+    }
+  }
+  GpuTimer timer;
+  glFinish();
+  const auto wall0 = std::chrono::steady_clock::now();
+  if (Status s = timer.begin("gbuffer"); !s.ok()) return s;
+  const float clear0[4] = {camera.far_z, 0, 0, 0}, clear1[4] = {-1, 0, 0, 0},
+              clear2[4] = {0, 0, 0, 0};
+  glClearNamedFramebufferfv(st.fbo.get(), GL_COLOR, 0, clear0);
+  glClearNamedFramebufferfv(st.fbo.get(), GL_COLOR, 1, clear1);
+  glClearNamedFramebufferfv(st.fbo.get(), GL_COLOR, 2, clear2);
+  const float one = 1.0f;
+  glClearNamedFramebufferfv(st.fbo.get(), GL_DEPTH, 0, &one);
+  glBindFramebuffer(GL_FRAMEBUFFER, st.fbo.get());
+  glViewport(0, 0, gw, gh);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  glUseProgram(st.gbuffer_program.get());
+  for (const GlMesh& g : st.meshes) {
+    if (g.indices == 0) continue;
+    glUniform1i(st.material_location, g.material);
+    glBindVertexArray(g.vao.get());
+    glDrawElements(GL_TRIANGLES, GLsizei(g.indices), GL_UNSIGNED_INT, nullptr);
+  }
+  glBindVertexArray(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glFinish();  // see deferred_gl.cpp run_pass: the query must cover the deferred work
+  st.gbuffer_wall_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0).count();
+  if (Status s = timer.end(); !s.ok()) return s;
+  // Mesa 22.3 llvmpipe sometimes reports an impossible GL_TIME_ELAPSED for the first pass
+  // after a framebuffer is (re)allocated (GpuTimer::collect detects it): the frame is fine,
+  // only its time is unknown (NaN).
+  Result<std::vector<PassTime>> times = timer.collect();
+  st.gbuffer_ms = times && !times->empty() ? times->front().ms : std::nan("");
+  return check_errors("deferred GL: geometry pass");
+}
+
+Result<deferred::GBuffer> DeferredGlRenderer::read_gbuffer() const {
+  const State& st = *state_;
+  if (!st.fbo) return Status::error(ErrorCode::invalid_argument, "deferred GL: no G-buffer yet");
+  deferred::GBuffer gb;
+  raster::FrameBufferDesc desc;
+  desc.width = st.w;
+  desc.height = st.h;
+  desc.ssaa = st.m;
+  desc.msaa = 1;
+  desc.channels = deferred::kGBufferChannels;
+  Result<raster::FrameBuffer> fb = raster::FrameBuffer::create(desc);
+  if (!fb) return fb.status();
+  gb.fb = std::move(*fb);
+  gb.m = st.m;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) gb.inv_view.m[c][r] = st.inv_view[c * 4 + r];
+  gb.eye = {st.camera_eye[0], st.camera_eye[1], st.camera_eye[2]};
+  gb.tan_half_fov_y = st.tan_half_fov;
+  gb.aspect = st.aspect;
+  const Object* tex[3] = {&st.g0, &st.g1, &st.g2};
+  // Channel of each texture component (-1 = not stored).
+  const int map[3][4] = {{deferred::kChDepth, deferred::kChNormal, deferred::kChNormal + 1,
+                          deferred::kChNormal + 2},
+                         {deferred::kChMaterial, deferred::kChUv, deferred::kChUv + 1, -1},
+                         {deferred::kChDuvDx, deferred::kChDuvDx + 1, deferred::kChDuvDy,
+                          deferred::kChDuvDy + 1}};
+  for (int t = 0; t < 3; ++t) {
+    Result<ImageRGBAF> img = read_texture_rgbaf(tex[t]->get(), 0, 0);
+    if (!img) return img.status();
+    for (int gy = 0; gy < img->height; ++gy) {
+      for (int gx = 0; gx < img->width; ++gx) {
+        const float* s = img->at(gx, gy);
+        float* o = gb.fb.data(gx, gy, 0);
+        for (int c = 0; c < 4; ++c)
+          if (map[t][c] >= 0) o[map[t][c]] = s[c];
+      }
+    }
+  }
+  return gb;
+}
+
+}  // namespace tessera::gl

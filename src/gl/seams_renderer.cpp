@@ -1,0 +1,450 @@
+// The seams experiment on the GPU (tessera/gl_seams.h): class-grouped draws of a per-face-
+// textured quad mesh through seams_render.{vert,frag}, a multisampled RGBA32F target, the box
+// resolve (glBlitFramebuffer, linear light), GL_TIME_ELAPSED per pass and read-back.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <system_error>
+
+#include "gl/gl_api.h"
+#include "tessera/gl_seams.h"
+
+namespace tessera::gl {
+
+using namespace api;  // NOLINT(google-build-using-namespace)
+
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+bool has_shaders(const std::filesystem::path& dir) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(dir / "seams_render.frag", ec) &&
+         std::filesystem::is_regular_file(dir / "seams_render.vert", ec) &&
+         std::filesystem::is_regular_file(dir / "seams.glsl", ec);
+}
+
+Result<std::filesystem::path> find_glsl_dir(const std::filesystem::path& given) {
+  if (!given.empty()) {
+    if (has_shaders(given)) return given;
+    return Status::error(ErrorCode::io_error,
+                         given.string() + ": no seams_render.vert/.frag and seams.glsl there");
+  }
+  std::vector<std::filesystem::path> tried;
+  if (const char* env = std::getenv("TESSERA_GLSL_DIR"); env && *env) tried.emplace_back(env);
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    tried.push_back(exe.parent_path() / ".." / "share" / "tessera" / "glsl");
+    tried.push_back(exe.parent_path() / ".." / ".." / "share" / "tessera" / "glsl");
+  }
+  for (const auto& d : tried) {
+    if (has_shaders(d)) return d.lexically_normal();
+  }
+  return Status::error(ErrorCode::io_error,
+                       "seams renderer: share/tessera/glsl not found (set TESSERA_GLSL_DIR or "
+                       "SeamsRendererOptions::glsl_dir)");
+}
+
+}  // namespace
+
+struct SeamsRenderer::State {
+  const faces::FaceScene* scene = nullptr;
+  const faces::FaceTextureSet* set = nullptr;
+  FaceTextures textures;
+  std::string glsl_dir;
+  Object vao, clip_buffer, normal_buffer, index_buffer;
+  std::vector<float> clip;  // 4 floats per vertex, 4 vertices per face
+  struct Range {
+    int cls = 0;
+    std::size_t first = 0, count = 0;  // in indices
+  };
+  std::vector<Range> ranges;
+  std::map<int, Program> programs;
+  std::map<int, bool> msaa_ok;
+  RenderTarget target, resolved;  // target: drawn (multisampled or not); resolved: MSAA only
+  float max_anisotropy = 1.0f;
+
+  Result<const Program*> program(const SeamsRenderOptions& o);
+  Status ensure_targets(int width, int height, int samples);
+};
+
+Result<const Program*> SeamsRenderer::State::program(const SeamsRenderOptions& o) {
+  const int method = int(o.method);
+  const int fallback = o.method == faces::Method::discard ? int(o.clamp_fallback) : 1;
+  const int output = int(o.output);
+  const int key = method * 4 + fallback * 2 + output;
+  if (auto it = programs.find(key); it != programs.end()) return &it->second;
+  const std::filesystem::path dir(glsl_dir);
+  Result<ShaderSource> vs = load_shader(ShaderStage::vertex, dir / "seams_render.vert");
+  if (!vs) return vs.status();
+  Result<ShaderSource> fs = load_shader(ShaderStage::fragment, dir / "seams_render.frag");
+  if (!fs) return fs.status();
+  ShaderOptions so;
+  so.include_paths = {dir};
+  so.preamble = {"#define TESSERA_SEAMS_CLASSES " + std::to_string(textures.class_count()),
+                 "#define TESSERA_RENDER_METHOD " + std::to_string(method),
+                 "#define TESSERA_RENDER_FALLBACK " + std::to_string(fallback),
+                 "#define TESSERA_RENDER_OUTPUT " + std::to_string(output)};
+  Result<Program> p = link_program({*vs, *fs}, so);
+  if (!p) return p.status();
+  return &programs.emplace(key, std::move(*p)).first->second;
+}
+
+Status SeamsRenderer::State::ensure_targets(int width, int height, int samples) {
+  if (target.framebuffer && target.width == width && target.height == height &&
+      target.samples == samples) {
+    return Status::success();
+  }
+  target = {};
+  resolved = {};
+  RenderTargetOptions to;
+  to.width = width;
+  to.height = height;
+  to.samples = samples;
+  to.color = ColorFormat::rgba32f;
+  to.depth = true;
+  Result<RenderTarget> t = create_render_target(to);
+  if (!t) return t.status();
+  target = std::move(*t);
+  if (samples > 1) {
+    to.samples = 1;
+    to.depth = false;
+    Result<RenderTarget> r = create_render_target(to);
+    if (!r) return r.status();
+    resolved = std::move(*r);
+  }
+  return Status::success();
+}
+
+SeamsRenderer::~SeamsRenderer() = default;
+
+const FaceTextures& SeamsRenderer::textures() const { return state_->textures; }
+const std::string& SeamsRenderer::glsl_dir() const { return state_->glsl_dir; }
+
+Result<std::unique_ptr<SeamsRenderer>> SeamsRenderer::create(const faces::FaceScene& scene,
+                                                             const faces::FaceTextureSet& set,
+                                                             const SeamsRendererOptions& options) {
+  const faces::QuadMesh& m = scene.mesh;
+  if (m.face_count() != set.face_count()) {
+    return Status::error(ErrorCode::size_mismatch,
+                         scene.name + ": " + std::to_string(m.face_count()) + " faces but " +
+                             std::to_string(set.face_count()) + " face textures");
+  }
+  Result<std::filesystem::path> dir = find_glsl_dir(options.glsl_dir);
+  if (!dir) return dir.status();
+  std::unique_ptr<SeamsRenderer> r(new SeamsRenderer());
+  r->state_ = std::make_unique<State>();
+  State& s = *r->state_;
+  s.scene = &scene;
+  s.set = &set;
+  s.glsl_dir = dir->string();
+  FaceTexturesOptions fo;
+  fo.format = options.texels;
+  fo.max_anisotropy = 16.0f;
+  Result<FaceTextures> tex = FaceTextures::upload(set, fo);
+  if (!tex) return tex.status();
+  s.textures = std::move(*tex);
+  GLint units = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
+  const int classes = s.textures.class_count();
+  if (classes > 16 || 2 * classes > units) {
+    return Status::error(ErrorCode::unsupported,
+                         scene.name + ": " + std::to_string(classes) +
+                             " face classes need " + std::to_string(2 * classes) +
+                             " fragment texture units (seams.glsl: at most 16 classes; "
+                             "GL_MAX_TEXTURE_IMAGE_UNITS = " + std::to_string(units) + ")");
+  }
+  glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &s.max_anisotropy);
+  s.max_anisotropy = std::max(1.0f, s.max_anisotropy);
+
+  // Smooth normals exactly as faces::FaceRenderer: area-weighted face normals (cross product
+  // of the diagonals) summed per position, normalised per vertex.
+  std::vector<Vec3> normals(m.positions.size());
+  for (int f = 0; f < m.face_count(); ++f) {
+    const auto& q = m.quads[std::size_t(f)];
+    const Vec3 n = cross(m.positions[std::size_t(q[2])] - m.positions[std::size_t(q[0])],
+                         m.positions[std::size_t(q[3])] - m.positions[std::size_t(q[1])]);
+    for (int k = 0; k < 4; ++k)
+      normals[std::size_t(q[std::size_t(k)])] = normals[std::size_t(q[std::size_t(k)])] + n;
+  }
+  std::vector<float> vertex_normals(std::size_t(m.face_count()) * 4 * 3);
+  for (int f = 0; f < m.face_count(); ++f) {
+    for (int k = 0; k < 4; ++k) {
+      const Vec3 n = normalize(normals[std::size_t(m.quads[std::size_t(f)][std::size_t(k)])]);
+      float* v = &vertex_normals[(std::size_t(f) * 4 + std::size_t(k)) * 3];
+      v[0] = n.x;
+      v[1] = n.y;
+      v[2] = n.z;
+    }
+  }
+  // Indices grouped by class; each triangle reversed (the vertex shader's y flip mirrors the
+  // winding), same diagonal as the CPU: (0, 2, 1) and (0, 3, 2) for the CPU's (0,1,2), (0,2,3).
+  std::vector<std::uint32_t> indices;
+  indices.reserve(std::size_t(m.face_count()) * 6);
+  const PackedFaces& layout = s.textures.layout();
+  for (std::size_t c = 0; c < layout.classes.size(); ++c) {
+    State::Range range;
+    range.cls = int(c);
+    range.first = indices.size();
+    for (int f : layout.classes[c].faces) {
+      const std::uint32_t b = std::uint32_t(f) * 4;
+      for (std::uint32_t i : {b, b + 2, b + 1, b, b + 3, b + 2}) indices.push_back(i);
+    }
+    range.count = indices.size() - range.first;
+    if (range.count > 0) s.ranges.push_back(range);
+  }
+  s.clip.assign(std::size_t(m.face_count()) * 4 * 4, 0.0f);
+  s.vao = create_object(ObjectType::vertex_array);
+  s.clip_buffer = create_object(ObjectType::buffer);
+  s.normal_buffer = create_object(ObjectType::buffer);
+  s.index_buffer = create_object(ObjectType::buffer);
+  glNamedBufferData(s.clip_buffer.get(), GLsizeiptr(s.clip.size() * 4), nullptr, GL_STREAM_DRAW);
+  glNamedBufferData(s.normal_buffer.get(), GLsizeiptr(vertex_normals.size() * 4),
+                    vertex_normals.data(), GL_STATIC_DRAW);
+  glNamedBufferData(s.index_buffer.get(), GLsizeiptr(indices.size() * 4), indices.data(),
+                    GL_STATIC_DRAW);
+  glBindVertexArray(s.vao.get());
+  glBindBuffer(GL_ARRAY_BUFFER, s.clip_buffer.get());
+  glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 16, nullptr);
+  glEnableVertexAttribArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, s.normal_buffer.get());
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
+  glEnableVertexAttribArray(1);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.index_buffer.get());
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  if (Status st = check_errors("seams renderer: mesh upload"); !st.ok()) return st;
+  return r;
+}
+
+bool SeamsRenderer::msaa_supported(int samples) {
+  if (samples < 1) return false;
+  if (samples == 1) return true;
+  if (auto it = state_->msaa_ok.find(samples); it != state_->msaa_ok.end()) return it->second;
+  RenderTargetOptions to;
+  to.width = to.height = 8;
+  to.samples = samples;
+  const bool ok = create_render_target(to).ok();
+  (void)check_errors("msaa probe");  // a refused rate may leave a GL error behind
+  state_->msaa_ok[samples] = ok;
+  return ok;
+}
+
+std::vector<int> SeamsRenderer::refused_msaa(const std::vector<int>& rates) {
+  std::vector<int> out;
+  for (int r : rates) {
+    if (!msaa_supported(r)) out.push_back(r);
+  }
+  return out;
+}
+
+Result<SeamsFrame> SeamsRenderer::render(const scene::Camera& camera,
+                                         const SeamsRenderOptions& o) {
+  State& s = *state_;
+  if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384) {
+    return Status::error(ErrorCode::invalid_argument, "seams renderer: bad frame size");
+  }
+  if (o.msaa != 1 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8 && o.msaa != 16) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "seams renderer: MSAA " + std::to_string(o.msaa) + " not in 1,2,4,8,16");
+  }
+  if (o.filter != TextureFilter::trilinear && o.filter != TextureFilter::anisotropic) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "seams renderer: the filter must be trilinear or anisotropic");
+  }
+  if (!msaa_supported(o.msaa)) {
+    return Status::error(ErrorCode::unsupported,
+                         "seams renderer: the driver refuses " + std::to_string(o.msaa) +
+                             "x MSAA for RGBA32F + depth");
+  }
+  Result<const Program*> prog = s.program(o);
+  if (!prog) return prog.status();
+  if (Status st = s.ensure_targets(o.width, o.height, o.msaa); !st.ok()) return st;
+
+  SeamsFrame frame;
+  const auto t0 = std::chrono::steady_clock::now();
+  // Clip-space positions with the CPU renderer's arithmetic (faces::FaceRenderer::render).
+  const int fw = o.full_width > 0 ? o.full_width : o.width;
+  const int fh = o.full_height > 0 ? o.full_height : o.height;
+  const Mat4 vp = camera.view_projection(float(fw) / float(fh));
+  const float sx = float(fw) / float(o.width), sy = float(fh) / float(o.height);
+  const float left = 2.0f * float(o.x0) / float(fw) - 1.0f;
+  const float bottom = 1.0f - 2.0f * float(o.y0 + o.height) / float(fh);
+  const float ox = -sx * left - 1.0f, oy = -sy * bottom - 1.0f;
+  const faces::QuadMesh& m = s.scene->mesh;
+  for (int f = 0; f < m.face_count(); ++f) {
+    for (int k = 0; k < 4; ++k) {
+      const Vec3& p = m.positions[std::size_t(m.quads[std::size_t(f)][std::size_t(k)])];
+      const Vec4 c = vp * Vec4{p.x, p.y, p.z, 1.0f};
+      float* out = &s.clip[(std::size_t(f) * 4 + std::size_t(k)) * 4];
+      out[0] = sx * c.x + ox * c.w;
+      out[1] = sy * c.y + oy * c.w;
+      out[2] = c.z;
+      out[3] = c.w;
+    }
+  }
+  glNamedBufferData(s.clip_buffer.get(), GLsizeiptr(s.clip.size() * 4), s.clip.data(),
+                    GL_STREAM_DRAW);
+
+  const float aniso = o.filter == TextureFilter::anisotropic
+                          ? std::clamp(float(o.max_aniso), 1.0f, s.max_anisotropy)
+                          : 1.0f;
+  glSamplerParameterf(s.textures.border_sampler(), GL_TEXTURE_MAX_ANISOTROPY, aniso);
+  glSamplerParameterf(s.textures.clamp_sampler(), GL_TEXTURE_MAX_ANISOTROPY, aniso);
+  if (Status st = s.textures.bind(0, 0, true); !st.ok()) return st;
+
+  const Program& p = **prog;
+  const int class_loc = p.uniform("tessera_render_class");
+  glUseProgram(p.get());
+  glBindVertexArray(s.vao.get());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, s.target.framebuffer.get());
+  glViewport(0, 0, o.width, o.height);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  glEnable(GL_MULTISAMPLE);
+  if (Status st = check_errors("seams renderer: state"); !st.ok()) return st;
+
+  const bool flags = o.output == SeamsOutput::zero_coverage;  // background 0: nothing flagged
+  const float background[4] = {flags ? 0.0f : faces::kFaceBackground[0],
+                               flags ? 0.0f : faces::kFaceBackground[1],
+                               flags ? 0.0f : faces::kFaceBackground[2], 0.0f};
+  const float far_depth = 1.0f;
+  glClearNamedFramebufferfv(s.target.framebuffer.get(), GL_COLOR, 0, background);
+  glClearNamedFramebufferfv(s.target.framebuffer.get(), GL_DEPTH, 0, &far_depth);
+  // The draw pass begins after the clears: Mesa 22.3 llvmpipe loses the start of a
+  // GL_TIME_ELAPSED query begun before a clear that opens a frame (it then reports an
+  // absolute timestamp); llvmpipe defers full clears into the first binned command anyway.
+  GpuTimer timer;
+  if (Status st = timer.begin("draw"); !st.ok()) return st;
+  for (const State::Range& r : s.ranges) {
+    glProgramUniform1i(p.get(), class_loc, r.cls);
+    glDrawElements(GL_TRIANGLES, GLsizei(r.count), GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(r.first * sizeof(std::uint32_t)));
+    ++frame.draw_calls;
+  }
+  if (Status st = timer.end(); !st.ok()) return st;
+  std::uint32_t read_fb = s.target.framebuffer.get();
+  if (o.msaa > 1) {
+    if (Status st = timer.begin("resolve"); !st.ok()) return st;
+    glBlitNamedFramebuffer(s.target.framebuffer.get(), s.resolved.framebuffer.get(), 0, 0,
+                           o.width, o.height, 0, 0, o.width, o.height, GL_COLOR_BUFFER_BIT,
+                           GL_NEAREST);
+    if (Status st = timer.end(); !st.ok()) return st;
+    read_fb = s.resolved.framebuffer.get();
+  }
+  glFinish();
+  frame.wall_ms = ms_since(t0);
+  glBindVertexArray(0);
+  glUseProgram(0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  if (Status st = check_errors("seams renderer: draw"); !st.ok()) return st;
+  Result<std::vector<PassTime>> times = timer.collect();
+  if (!times) return times.status();
+  for (const PassTime& t : *times) {
+    (t.pass == "draw" ? frame.gpu_ms_draw : frame.gpu_ms_resolve) += t.ms;
+  }
+
+  if (o.read_back) {
+    // Row 0 of the framebuffer is the image's top row (the vertex shader's y flip).
+    frame.image = ImageRGBAF(o.width, o.height);
+    GLint previous = 0;
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous);
+    glNamedFramebufferReadBuffer(read_fb, GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, read_fb);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, o.width, o.height, GL_RGBA, GL_FLOAT, frame.image.pixels.data());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(previous));
+    if (Status st = check_errors("seams renderer: read-back"); !st.ok()) return st;
+  }
+  return frame;
+}
+
+Result<ImageRGBAF> downsample_mitchell(const ImageRGBAF& g, int factor, int width, int height) {
+  constexpr int kMargin = 2;  // Mitchell-Netravali support, in output pixels
+  if (factor < 1 || width < 1 || height < 1 || g.width != (width + 2 * kMargin) * factor ||
+      g.height != (height + 2 * kMargin) * factor) {
+    return Status::error(ErrorCode::size_mismatch,
+                         "downsample_mitchell: the grid must be (size + 4) x factor per side");
+  }
+  const int taps = 2 * kMargin * factor;
+  std::vector<float> w(static_cast<std::size_t>(taps));
+  float wsum = 0;
+  for (int i = 0; i < taps; ++i) {
+    const float x = (float(i) + 0.5f) / float(factor) - float(kMargin);
+    w[std::size_t(i)] = faces::mitchell_netravali(x);
+    wsum += w[std::size_t(i)];
+  }
+  for (float& x : w) x /= wsum;
+  // Horizontal pass (grid rows -> output columns), then vertical; the CPU reference's order.
+  ImageRGBAF hpass(width, g.height);
+  for (int y = 0; y < g.height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      float acc[4] = {0, 0, 0, 0};
+      const int g0 = x * factor;
+      for (int i = 0; i < taps; ++i) {
+        const float* p = g.at(g0 + i, y);
+        for (int k = 0; k < 4; ++k) acc[k] += w[std::size_t(i)] * p[k];
+      }
+      float* q = hpass.at(x, y);
+      for (int k = 0; k < 4; ++k) q[k] = acc[k];
+    }
+  }
+  ImageRGBAF out(width, height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      float acc[4] = {0, 0, 0, 0};
+      const int g0 = y * factor;
+      for (int i = 0; i < taps; ++i) {
+        const float* p = hpass.at(x, g0 + i);
+        for (int k = 0; k < 4; ++k) acc[k] += w[std::size_t(i)] * p[k];
+      }
+      float* q = out.at(x, y);
+      for (int k = 0; k < 4; ++k) q[k] = acc[k];
+    }
+  }
+  return out;
+}
+
+Result<ImageRGBAF> SeamsRenderer::render_reference(const scene::Camera& camera, int width,
+                                                   int height, int factor, TextureFilter filter,
+                                                   int tile) {
+  if (width < 1 || height < 1 || factor < 1 || factor > 16 || tile < 1) {
+    return Status::error(ErrorCode::invalid_argument, "reference: bad size or factor");
+  }
+  constexpr int kMargin = 2;
+  ImageRGBAF out(width, height);
+  SeamsRenderOptions o;
+  o.method = faces::Method::traverse;
+  o.filter = filter;
+  o.max_aniso = 16;
+  o.msaa = 1;
+  o.full_width = width * factor;
+  o.full_height = height * factor;
+  for (int ty = 0; ty < height; ty += tile) {
+    for (int tx = 0; tx < width; tx += tile) {
+      const int tw = std::min(tile, width - tx), th = std::min(tile, height - ty);
+      o.width = (tw + 2 * kMargin) * factor;
+      o.height = (th + 2 * kMargin) * factor;
+      o.x0 = (tx - kMargin) * factor;
+      o.y0 = (ty - kMargin) * factor;
+      Result<SeamsFrame> f = render(camera, o);
+      if (!f) return f.status();
+      Result<ImageRGBAF> d = downsample_mitchell(f->image, factor, tw, th);
+      if (!d) return d.status();
+      for (int y = 0; y < th; ++y) {
+        std::copy(d->at(0, y), d->at(0, y) + std::size_t(tw) * 4, out.at(tx, ty + y));
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace tessera::gl
