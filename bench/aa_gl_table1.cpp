@@ -26,14 +26,6 @@ using namespace tessera;
 
 namespace {
 
-double median(std::vector<double> v) {
-  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return std::isnan(x); }), v.end());
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 double psnr(const ImageRGBA8& a, const ImageRGBA8& b) {
   CompareOptions o;
   o.compute_ssim = false;

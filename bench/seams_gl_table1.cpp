@@ -28,13 +28,6 @@ using namespace tessera;
 
 namespace {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return std::nan("");
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 struct Args {
   int width = 480, height = 540, frames = 8, reps = 5, agreement_frames = 1, cpu_threads = 2;
   std::vector<int> msaa = {1, 2, 4, 8};

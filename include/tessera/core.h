@@ -9,6 +9,7 @@
 //    output element from exactly one iteration, so results are identical for any thread count.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -155,6 +156,13 @@ inline int mip_dimension(int size, int level) {
 int mip_level_count(int width, int height);
 
 int default_thread_count();
+
+/// Milliseconds elapsed on the steady clock since `t0`.
+double ms_since(std::chrono::steady_clock::time_point t0);
+
+/// Median of `values`, NaN values left out: the middle value, or the mean of the middle two for
+/// an even count; 0 when no value is left. The one median of the timings and benchmarks.
+double median(std::vector<double> values);
 
 /// Runs `body(begin_i, end_i)` over disjoint sub-ranges covering [begin, end), each at most
 /// `grain` long, on up to `threads` threads (0 = all hardware threads, 1 = the calling thread

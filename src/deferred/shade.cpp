@@ -11,10 +11,6 @@ namespace tessera::deferred {
 
 namespace {
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 void store(ImageRGBAF& img, int x, int y, const std::array<float, 3>& c) {
   float* o = img.at(x, y);
   o[0] = c[0];

@@ -9,9 +9,6 @@
 namespace tessera::faces {
 
 namespace {
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 constexpr int kVaryings = 5;  // u, v, normal
 }  // namespace
 

@@ -5,12 +5,6 @@
 
 namespace tessera::render {
 
-namespace {
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-}  // namespace
-
 raster::DrawCall mesh_draw(const scene::Mesh& mesh, const float* clip, const float* varyings,
                            int varying_count, std::uint32_t primitive_id_base) {
   raster::DrawCall d;

@@ -48,10 +48,7 @@ int run_render(const RenderArgs& args, const GlobalOptions& global) {
     last = std::move(*frame);
   }
   if (Status s = write_image(args.out, last.image); !s.ok()) return fail(s);
-  std::vector<double> sorted = times;
-  std::sort(sorted.begin(), sorted.end());
-  const std::size_t mid = sorted.size() / 2;
-  const double median = sorted.size() % 2 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
+  const double median_ms = median(times);
   std::FILE* out = text_stream(args.out == "-");
   const std::uint64_t samples = std::uint64_t(args.width) * std::uint64_t(args.height) *
                                 std::uint64_t(args.msaa) * std::uint64_t(args.ssaa * args.ssaa);
@@ -69,7 +66,7 @@ int run_render(const RenderArgs& args, const GlobalOptions& global) {
                         {"shader_invocations", last.stats.lanes_shaded},
                         {"frames", args.frames},
                         {"frame_ms", times},
-                        {"median_ms", median},
+                        {"median_ms", median_ms},
                         {"ms_transform", last.ms_transform},
                         {"ms_raster", last.ms_raster},
                         {"ms_resolve", last.ms_resolve},
@@ -79,7 +76,7 @@ int run_render(const RenderArgs& args, const GlobalOptions& global) {
     std::fprintf(out,
                  "%s: %zu triangles, %dx%d, msaa %d, ssaa %d, %.2f ms/frame (median of %d) -> %s\n",
                  args.scene.c_str(), sc->triangle_count(), args.width, args.height, args.msaa,
-                 args.ssaa, median, args.frames, io_name(args.out, true).c_str());
+                 args.ssaa, median_ms, args.frames, io_name(args.out, true).c_str());
   }
   return kExitOk;
 }
