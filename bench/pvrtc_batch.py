@@ -60,7 +60,10 @@ def main():
     ap.add_argument("--pvrtextool", default=os.path.join(cache, "peers", "PVRTexToolCLI"))
     ap.add_argument("--images", default=os.path.join(ROOT, "..", "shared", "data", "images"))
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "benchmarks", "pvrtc_batch.md"))
+    ap.add_argument("--pairs", default="fast,normal,high",
+                    help="tessera levels to run, each against its PVRTexTool pair")
     args = ap.parse_args()
+    pairs = [p for p in PAIRS if p[0] in args.pairs.split(",")]
 
     images = sorted(os.path.join(args.images, n) for n in os.listdir(args.images)
                     if n.endswith(".png"))
@@ -78,7 +81,7 @@ def main():
                 ok.append(j["input"])
                 mpix += j["width"] * j["height"] / 1e6
         rows = []
-        for tq, pq in PAIRS:
+        for tq, pq in pairs:
             t_dir, p_dir = os.path.join(tmp, "t-" + tq), os.path.join(tmp, "p-" + pq)
             t_cmd = [args.tessera, "-j", "2", "compress", *images, "-o", t_dir, "--quality", tq,
                      "--quiet"]
@@ -131,9 +134,10 @@ def main():
         f"Machine: {cpu_model()}, {os.cpu_count()} logical CPUs, {platform.system()} "
         f"{platform.release()}. Date: {date}. Both sides on 2 cores.",
         "",
-        f"Command: `/usr/bin/python3 bench/pvrtc_batch.py --runs {args.runs}`",
+        f"Command: `/usr/bin/python3 bench/pvrtc_batch.py --runs {args.runs}`"
+        + (f" `--pairs {args.pairs}`" if args.pairs != "fast,normal,high" else ""),
         "",
-        f"Input: the {len(images)} PNGs of `../shared/data/images` ({mpix:.2f} MPixel in the "
+        f"Input: the {len(images)} PNGs of `{os.path.relpath(args.images, ROOT)}` ({mpix:.2f} MPixel in the "
         f"{len(ok)} power-of-two ones; ldr-rgb-10.png, 127x128, fails alone on both sides).",
         "",
         "- tessera: `tessera -j 2 compress IMAGES... -o DIR --quality Q --quiet` (one process, "
