@@ -36,19 +36,33 @@ try:
     check("json rates", [r["m"] for r in j["rates"]] == [2, 3], j.get("rates"))
     for r in j["rates"]:
         m = r["m"]
-        for key in ("default", "fxaa", "reference", "adaptive"):
+        for key in ("default", "fxaa", "reference", "adaptive", "edge_per_sample"):
             check(f"{m}: {key} timed", r[key]["shade_ms"] > 0 and "shade_ms_heavy" in r[key], r[key])
         ad = r["adaptive"]
         check(f"{m}: samples pct", 100.0 / (m * m) <= ad["samples_pct"] <= 100.0, ad)
         check(f"{m}: adaptive beats 1x",
               ad["quality"]["mse_8bit"] < r["default"]["quality"]["mse_8bit"], r)
         check(f"{m}: reference 100%", r["reference"]["samples_pct"] == 100.0, r)
+        # The engine baseline (Lauritzen 2010) on the CPU backend: adaptive's fields.
+        eps = r["edge_per_sample"]
+        for field in ("frame_ms", "shade_ms", "shade_ms_frames", "samples_pct", "quality"):
+            check(f"{m}: edge_per_sample {field}", field in eps, eps)
+        check(f"{m}: edge_per_sample samples", 100.0 / (m * m) < eps["samples_pct"] < 100.0, eps)
+        check(f"{m}: edge_per_sample beats 1x",
+              eps["quality"]["mse_8bit"] < r["default"]["quality"]["mse_8bit"], eps)
+        for name in eps["images"].values():
+            check(f"{m}: {name} written", os.path.isfile(os.path.join(out, name)), name)
+        check(f"{m}: no GL keys on the CPU", "gl" not in r and "gl_vs_cpu" not in r
+              and "passes" not in ad, sorted(r))
         for name in r["images"].values():
             check(f"{m}: {name} written", os.path.isfile(os.path.join(out, name)), name)
         for ab in ("ablation_geometry", "ablation_shading"):
             check(f"{m}: {ab}", ab in r and r[ab]["samples_pct"] <= ad["samples_pct"] + 1e-9, r.get(ab))
     md = open(os.path.join(out, "aa.md")).read()
     check("markdown table", "| 2×2 | Adaptive |" in md and "| 1×1 | FXAA |" in md, md[:400])
+    check("markdown edge_per_sample row", "| 3×3 | Edge per sample (Lauritzen 2010) |" in md,
+          md[:1600])
+    check("no backend key on the CPU", "backend" not in j and "gl_renderer" not in j, sorted(j))
     check("no probe left", not os.path.exists(os.path.join(out, ".tessera-aa-probe")))
 
     # Usage errors.

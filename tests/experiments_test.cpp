@@ -248,15 +248,154 @@ TEST(Seams, BadConfigurationAndBackendAreErrors) {
   c.width = 4;
   EXPECT_EQ(run_seams(c).status().code, ErrorCode::invalid_argument);
   c.width = 64;
+  // GL (or GL beside the CPU) without a renderer factory: the main library has no OpenGL.
   c.backend = Backend::gl;
   Result<SeamsResult> gl = run_seams(c);
   ASSERT_FALSE(gl.ok());
   EXPECT_EQ(gl.status().code, ErrorCode::unsupported);
-  EXPECT_NE(gl.status().message.find("not yet implemented"), std::string::npos);
+  EXPECT_NE(gl.status().message.find("not built with the OpenGL runtime"), std::string::npos)
+      << gl.status().message;
+  c.backend = Backend::cpu;
+  c.compare_gl = true;
+  EXPECT_EQ(run_seams(c).status().code, ErrorCode::unsupported);
+  // A factory's error (e.g. no EGL device) comes back unchanged.
+  c.gl_renderer_factory =
+      [](const faces::FaceScene&,
+         const faces::FaceTextureSet&) -> Result<std::unique_ptr<SeamsFrameRenderer>> {
+    return Status::error(ErrorCode::unsupported, "no EGL device 7");
+  };
+  EXPECT_EQ(run_seams(c).status().message, "no EGL device 7");
+  c.backend = Backend::gl;  // GL beside GL: nothing to compare with
+  EXPECT_EQ(run_seams(c).status().code, ErrorCode::invalid_argument);
+  c.compare_gl = false;
+  EXPECT_EQ(run_seams(c).status().message, "no EGL device 7");
+  c.gl_renderer_factory = nullptr;
   c.backend = Backend::cpu;
   c.scene = "/nonexistent/mesh.obj";
   EXPECT_FALSE(run_seams(c).ok());
   EXPECT_FALSE(ready);  // no input was good enough to get there
+}
+
+/// A stand-in for the GL backend: the CPU renderer under another name that refuses some MSAA
+/// rates and has no shading-only pass, as a GL driver may.
+class FakeGlRenderer final : public SeamsFrameRenderer {
+ public:
+  /// `perturb`: add 0.02 to the red channel of pixel (0, 0) of every frame.
+  FakeGlRenderer(std::unique_ptr<SeamsFrameRenderer> cpu, std::vector<int> refused, bool perturb)
+      : cpu_(std::move(cpu)), refused_(std::move(refused)), perturb_(perturb) {}
+  Backend backend() const override { return Backend::gl; }
+  std::string device_name() const override { return "fake renderer"; }
+  std::string device_version() const override { return "9.9"; }
+  bool msaa_supported(int samples) override {
+    return std::find(refused_.begin(), refused_.end(), samples) == refused_.end();
+  }
+  bool has_shading_only() const override { return false; }
+  Result<SeamsBackendFrame> render(const scene::Camera& camera,
+                                   const SeamsFrameOptions& options) override {
+    EXPECT_FALSE(options.shading_only);
+    EXPECT_TRUE(msaa_supported(options.msaa));
+    Result<SeamsBackendFrame> f = cpu_->render(camera, options);
+    if (!f) return f;
+    f->wall_ms = f->ms + 1.0;
+    if (perturb_ && !f->image.pixels.empty()) f->image.pixels[0] += 0.02f;
+    return f;
+  }
+  Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
+                                      int factor, int threads) override {
+    return cpu_->render_reference(camera, width, height, factor, threads);
+  }
+
+ private:
+  std::unique_ptr<SeamsFrameRenderer> cpu_;
+  std::vector<int> refused_;
+  bool perturb_ = false;
+};
+
+SeamsRendererFactory fake_gl_factory(std::vector<int> refused, bool perturb = false) {
+  return [refused, perturb](
+             const faces::FaceScene& scene,
+             const faces::FaceTextureSet& set) -> Result<std::unique_ptr<SeamsFrameRenderer>> {
+    Result<std::unique_ptr<SeamsFrameRenderer>> cpu = create_cpu_seams_renderer(scene, set);
+    if (!cpu) return cpu.status();
+    return std::unique_ptr<SeamsFrameRenderer>(
+        std::make_unique<FakeGlRenderer>(std::move(*cpu), refused, perturb));
+  };
+}
+
+TEST(Seams, GlBackendThroughTheFactorySkipsRefusedRates) {
+  SeamsConfig c = tiny_seams();
+  c.backend = Backend::gl;
+  c.gl_renderer_factory = fake_gl_factory({4});
+  Result<SeamsResult> r = run_seams(c);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  EXPECT_EQ(r->backend, Backend::gl);
+  EXPECT_EQ(r->gl_renderer, "fake renderer");
+  EXPECT_EQ(r->gl_version, "9.9");
+  EXPECT_EQ(r->msaa_unsupported, std::vector<int>{4});
+  ASSERT_EQ(r->rates.size(), 1u);  // 4x skipped, not failed
+  const SeamsResult& cpu = seams_result();
+  ASSERT_EQ(cpu.rates.size(), 2u);
+  const SeamsRateResult& g = r->rates[0];
+  EXPECT_EQ(g.msaa, 1);
+  EXPECT_TRUE(g.shading_only.frame_ms.empty());  // no shading-only pass there
+  for (Method m : faces::all_methods()) {
+    const SeamsMethodResult& mr = g.method(m);
+    ASSERT_EQ(mr.timing.frame_ms.size(), std::size_t(c.frames));
+    ASSERT_EQ(mr.wall.frame_ms.size(), std::size_t(c.frames));
+    EXPECT_DOUBLE_EQ(mr.wall.frame_ms[0], mr.timing.frame_ms[0] + 1.0);
+    // The same frames and reference as the CPU run: the same statistics.
+    EXPECT_EQ(mr.vs_reference.cdf, cpu.rates[0].method(m).vs_reference.cdf);
+    EXPECT_EQ(mr.vs_reference_near_seams.cdf, cpu.rates[0].method(m).vs_reference_near_seams.cdf);
+    EXPECT_EQ(mr.vs_reference_character.cdf, cpu.rates[0].method(m).vs_reference_character.cdf);
+  }
+  EXPECT_EQ(g.nan_pixels_without_fallback, cpu.rates[0].nan_pixels_without_fallback);
+  EXPECT_TRUE(r->gl_rates.empty());
+
+  // Every rate refused: an error before anything is written.
+  bool ready = false;
+  c.on_ready = [&] {
+    ready = true;
+    return Status::success();
+  };
+  c.gl_renderer_factory = fake_gl_factory({1, 4});
+  Result<SeamsResult> none = run_seams(c);
+  ASSERT_FALSE(none.ok());
+  EXPECT_EQ(none.status().code, ErrorCode::unsupported);
+  EXPECT_NE(none.status().message.find("refuses every MSAA rate"), std::string::npos);
+  EXPECT_FALSE(ready);
+}
+
+TEST(Seams, CompareGlKeepsTheCpuResultAndMeasuresAgreement) {
+  SeamsConfig c = tiny_seams();
+  c.compare_gl = true;
+  c.gl_renderer_factory = fake_gl_factory({4}, true);
+  Result<SeamsResult> r = run_seams(c);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  EXPECT_EQ(r->backend, Backend::cpu);
+  EXPECT_TRUE(r->compared_gl);
+  EXPECT_EQ(r->msaa_unsupported, std::vector<int>{4});
+  const SeamsResult& cpu = seams_result();
+  ASSERT_EQ(r->rates.size(), cpu.rates.size());  // the CPU renders every rate
+  for (std::size_t ri = 0; ri < cpu.rates.size(); ++ri) {
+    for (Method m : faces::all_methods()) {
+      EXPECT_EQ(r->rates[ri].method(m).vs_reference.cdf, cpu.rates[ri].method(m).vs_reference.cdf);
+      EXPECT_TRUE(r->rates[ri].method(m).wall.frame_ms.empty());
+    }
+    EXPECT_EQ(r->rates[ri].shading_only.frame_ms.size(), std::size_t(c.frames));
+  }
+  ASSERT_EQ(r->gl_rates.size(), 1u);  // GL skips the refused 4x
+  EXPECT_EQ(r->gl_rates[0].msaa, 1);
+  for (Method m : faces::all_methods()) {
+    const SeamsGlMethodResult& g = r->gl_rates[0].method(m);
+    EXPECT_EQ(g.method, m);
+    EXPECT_EQ(g.gpu.frame_ms.size(), std::size_t(c.frames));
+    EXPECT_EQ(g.wall.frame_ms.size(), std::size_t(c.frames));
+    // The stand-in renders the CPU's frames with one pixel 0.02 brighter in red: that pixel,
+    // of every quality frame, is >= 0.01 apart; the 8-bit PSNR is finite and high.
+    EXPECT_DOUBLE_EQ(g.fraction_ge_001, 1.0 / double(c.width * c.height));
+    EXPECT_TRUE(std::isfinite(g.psnr_db));
+    EXPECT_GT(g.psnr_db, 40.0);
+  }
 }
 
 AaConfig tiny_aa() {
@@ -310,7 +449,52 @@ TEST(Aa, EveryMethodAtEveryRateAndAdaptiveBeatsDefault) {
     EXPECT_LT(rate.ablation_geometry.samples_pct, ad.samples_pct + 1e-9);
     EXPECT_LT(rate.ablation_shading.samples_pct, ad.samples_pct + 1e-9);
     EXPECT_EQ(rate.adaptive_first.frame_ms.size(), 2u);
+    // The engine baseline: 1 or n samples per pixel, some edge pixels, better than 1 spp.
+    const AaMethodResult& edge = rate.method(AaMethod::edge_per_sample);
+    ASSERT_EQ(rate.edge_samples.size(), std::size_t(c.width * c.height));
+    std::uint64_t shaded = 0;
+    for (std::uint8_t k : rate.edge_samples) {
+      EXPECT_TRUE(k == 1 || k == n) << int(k);
+      shaded += k;
+    }
+    EXPECT_GT(shaded, std::uint64_t(c.width * c.height));
+    EXPECT_DOUBLE_EQ(edge.samples_pct, 100.0 * double(shaded) / (c.width * c.height * n));
+    EXPECT_LT(edge.samples_pct, 100.0);
+    EXPECT_LT(edge.quality.mse, qd.mse);
+    EXPECT_TRUE(rate.method(AaMethod::default_1spp).passes.empty());
+    ASSERT_EQ(ad.passes.size(), 3u);
+    EXPECT_EQ(ad.passes[1].pass, "metrics");
+    EXPECT_FALSE(rate.gl_vs_cpu.has_value());
+    EXPECT_TRUE(rate.gbuffer_gpu.frame_ms.empty());  // the CPU has no GPU timer
   }
+  EXPECT_EQ(r->backend, Backend::cpu);
+  EXPECT_EQ(r->gl, nullptr);
+}
+
+// The baseline's image is, pixel for pixel, the reference's where a pixel is shaded at every
+// sample and 1 spp's elsewhere (deferred::shade_edge_per_sample, here through run_aa).
+TEST(Aa, EdgePerSampleMixesReferenceAndDefault) {
+  AaConfig c = tiny_aa();
+  c.ssaa = {3};
+  c.frames = 1;
+  Result<AaResult> r = run_aa(c);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  const AaRateResult& rate = r->rates[0];
+  const ImageRGBA8& edge = rate.method(AaMethod::edge_per_sample).image;
+  const ImageRGBA8& ref = rate.method(AaMethod::reference).image;
+  const ImageRGBA8& def = rate.method(AaMethod::default_1spp).image;
+  int complex = 0;
+  for (int y = 0; y < c.height; ++y) {
+    for (int x = 0; x < c.width; ++x) {
+      const bool all = rate.edge_samples[std::size_t(y * c.width + x)] == 9;
+      complex += all;
+      const ImageRGBA8& want = all ? ref : def;
+      for (int ch = 0; ch < 3; ++ch) {
+        ASSERT_EQ(edge.at(x, y)[ch], want.at(x, y)[ch]) << x << "," << y;
+      }
+    }
+  }
+  EXPECT_GT(complex, 0);
 }
 
 TEST(Aa, AllExtraSamplesEqualsTheReference) {
@@ -356,13 +540,81 @@ TEST(Aa, BadConfigurationAndBackendAreErrors) {
   c.fxaa_preset = 39;
   c.backend = Backend::gl;
   int progress = 0;
+  bool ready = false;
   c.progress = [&](const std::string&) { ++progress; };
+  c.on_ready = [&] {
+    ready = true;
+    return Status::success();
+  };
+  // No GL factory (the main library never links OpenGL): a clean error before on_ready.
   Result<AaResult> gl = run_aa(c);
   ASSERT_FALSE(gl.ok());
   EXPECT_EQ(gl.status().code, ErrorCode::unsupported);
-  EXPECT_NE(gl.status().message.find("not yet implemented"), std::string::npos);
+  EXPECT_NE(gl.status().message.find("not built with the OpenGL runtime"), std::string::npos);
+  c.backend = Backend::cpu;
+  c.compare_gl = true;
+  EXPECT_EQ(run_aa(c).status().code, ErrorCode::unsupported);
+  // A factory's error comes back as it is, still before on_ready.
+  c.gl_backend_factory = [](const scene::Scene&) -> Result<std::unique_ptr<AaBackend>> {
+    return Status::error(ErrorCode::unsupported, "no EGL device 7");
+  };
+  Result<AaResult> f = run_aa(c);
+  ASSERT_FALSE(f.ok());
+  EXPECT_EQ(f.status().message, "no EGL device 7");
+  c.backend = Backend::gl;  // gl with compare_gl: nothing to compare with
+  EXPECT_EQ(run_aa(c).status().code, ErrorCode::invalid_argument);
   EXPECT_EQ(progress, 0);
+  EXPECT_FALSE(ready);
   EXPECT_STREQ(backend_name(Backend::gl), "gl");
+  EXPECT_STREQ(aa_method_name(AaMethod::edge_per_sample), "edge_per_sample");
+}
+
+// A backend whose size check fails stops the run before on_ready (the GL backend's
+// framebuffer limits); the CPU backend is used through the same interface.
+TEST(Aa, BackendSizeCheckComesBeforeReady) {
+  struct Limited final : AaBackend {
+    std::unique_ptr<AaBackend> cpu;
+    Backend backend() const override { return Backend::gl; }
+    std::string device_name() const override { return "limited"; }
+    std::string device_version() const override { return "1"; }
+    Status check_size(int w, int h, int m) const override {
+      return w * m > 64 || h * m > 64 ? Status::error(ErrorCode::too_large, "over 64")
+                                      : Status::success();
+    }
+    Result<AaPassTime> render_gbuffer(const scene::Camera& cam, int w, int h, int m) override {
+      return cpu->render_gbuffer(cam, w, h, m);
+    }
+    Result<AaShadeOutput> shade(AaMethod k, const deferred::ShadingOptions& s,
+                                const AaShadeOptions& o) override {
+      return cpu->shade(k, s, o);
+    }
+  };
+  AaConfig c = tiny_aa();
+  c.frames = 1;
+  c.backend = Backend::gl;
+  c.gl_backend_factory = [](const scene::Scene& sc) -> Result<std::unique_ptr<AaBackend>> {
+    auto b = std::make_unique<Limited>();
+    Result<std::unique_ptr<AaBackend>> cpu = create_cpu_aa_backend(sc, 2);
+    if (!cpu) return cpu.status();
+    b->cpu = std::move(*cpu);
+    return std::unique_ptr<AaBackend>(std::move(b));
+  };
+  bool ready = false;
+  c.on_ready = [&] {
+    ready = true;
+    return Status::success();
+  };
+  c.ssaa = {2};  // 96 x 72 grid pixels: over 64
+  EXPECT_EQ(run_aa(c).status().code, ErrorCode::too_large);
+  EXPECT_FALSE(ready);
+  c.width = c.height = 32;  // 64 x 64: fits; the "GL" result carries the device's name
+  Result<AaResult> r = run_aa(c);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  EXPECT_TRUE(ready);
+  EXPECT_EQ(r->backend, Backend::gl);
+  EXPECT_EQ(r->gl_renderer, "limited");
+  EXPECT_EQ(r->rates[0].gbuffer_gpu.frame_ms.size(), 1u);  // GL records the GPU timer
+  EXPECT_FALSE(r->rates[0].method(AaMethod::adaptive).passes.empty());
 }
 
 TEST(Experiments, MedianAndNames) {

@@ -1,9 +1,12 @@
 // The experiment of Holländer, Boubekeur & Eisemann 2013 (Table 1, Figures 6a, 7 and 8):
 // adaptive supersampling of an enlarged G-buffer against full supersampling, plain 1x deferred
-// shading and FXAA 3.11, measured side by side in one run.
-#include <chrono>
+// shading, FXAA 3.11 and the engine baseline (per-sample shading of edge pixels, Lauritzen
+// 2010), measured side by side in one run on an `AaBackend` (the CPU, or OpenGL through
+// `AaConfig::gl_backend_factory`).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 
 #include "tessera/experiments.h"
 #include "tessera/metrics.h"
@@ -11,10 +14,6 @@
 namespace tessera::experiments {
 
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 Result<AaQuality> quality(const ImageRGBA8& ref, const ImageRGBA8& img, int threads) {
   CompareOptions co;
@@ -47,6 +46,209 @@ std::string rate_line(const AaRateResult& r, double pct_adaptive) {
   return b;
 }
 
+/// Everything one backend renders, shared by its calls.
+struct Run {
+  const AaConfig& c;
+  AaBackend& be;
+  const scene::Camera& camera;
+  const deferred::ShadingOptions& normal;
+  const deferred::ShadingOptions& heavy;
+  const AaShadeOptions& options;
+  bool gl() const { return be.backend() == Backend::gl; }
+};
+
+/// Appends one call's times: wall (and, on GL, GPU) to `t`'s normal or heavy frames.
+void record(const Run& run, AaTiming& t, int mode, const AaShadeOutput& o) {
+  (mode ? t.heavy : t.normal).frame_ms.push_back(o.wall_ms);
+  if (run.gl()) (mode ? t.gpu_heavy : t.gpu).frame_ms.push_back(o.gpu_ms);
+}
+
+void record_passes(const Run& run, std::vector<AaPassFrames>& passes, const AaShadeOutput& o) {
+  for (const AaPassTime& p : o.passes) {
+    auto it = std::find_if(passes.begin(), passes.end(),
+                           [&](const AaPassFrames& f) { return f.pass == p.pass; });
+    if (it == passes.end()) it = passes.insert(passes.end(), AaPassFrames{p.pass, {}, {}});
+    it->wall.frame_ms.push_back(p.wall_ms);
+    if (run.gl()) it->gpu.frame_ms.push_back(p.gpu_ms);
+  }
+}
+
+Status record_gbuffer(const Run& run, const Result<AaPassTime>& t, FrameTimes& wall,
+                      FrameTimes& gpu) {
+  if (!t) return t.status();
+  wall.frame_ms.push_back(t->wall_ms);
+  if (run.gl()) gpu.frame_ms.push_back(t->gpu_ms);
+  return Status::success();
+}
+
+/// GL: one untimed call of each method (both shading modes) on a G-buffer of window m, so
+/// that compiling the pass variants of m is not timed. Nothing on the CPU.
+Status warm_up(const Run& run, int m, std::initializer_list<AaMethod> methods) {
+  if (!run.gl()) return Status::success();
+  if (Result<AaPassTime> t = run.be.render_gbuffer(run.camera, run.c.width, run.c.height, m); !t) {
+    return t.status();
+  }
+  for (int mode = 0; mode < (run.c.heavy ? 2 : 1); ++mode) {
+    for (AaMethod k : methods) {
+      if (Result<AaShadeOutput> o = run.be.shade(k, mode ? run.heavy : run.normal, run.options);
+          !o) {
+        return o.status();
+      }
+    }
+  }
+  return Status::success();
+}
+
+/// The paper's 1x1 rows: a w x h G-buffer, one sample per pixel, and FXAA on it.
+Status run_1x1(const Run& run, AaResult& res) {
+  const AaConfig& c = run.c;
+  if (Status s = warm_up(run, 1, {AaMethod::default_1spp, AaMethod::fxaa}); !s.ok()) return s;
+  for (int f = 0; f < c.frames; ++f) {
+    if (Status s = record_gbuffer(run, run.be.render_gbuffer(run.camera, c.width, c.height, 1),
+                                  res.gbuffer_1x1, res.gbuffer_1x1_gpu);
+        !s.ok()) {
+      return s;
+    }
+    for (int mode = 0; mode < (c.heavy ? 2 : 1); ++mode) {
+      for (int k = 0; k < 2; ++k) {
+        const int method = (k + f) % 2;
+        Result<AaShadeOutput> o = run.be.shade(method ? AaMethod::fxaa : AaMethod::default_1spp,
+                                               mode ? run.heavy : run.normal, run.options);
+        if (!o) return o.status();
+        record(run, method ? res.fxaa_1x1 : res.default_1x1, mode, *o);
+      }
+    }
+  }
+  return Status::success();
+}
+
+/// One rate: every method per frame (rotated), qualities, ablations.
+Result<AaRateResult> run_rate(const Run& run, int m, int threads) {
+  const AaConfig& c = run.c;
+  AaRateResult rate;
+  rate.m = m;
+  for (AaMethod k : kAaMethods) rate.method(k).method = k;
+  AaShadeOutput ad, ad_heavy, edge;
+  constexpr int kCount = int(kAaMethods.size());
+  if (Status s = warm_up(run, m,
+                         {AaMethod::default_1spp, AaMethod::fxaa, AaMethod::reference,
+                          AaMethod::adaptive, AaMethod::edge_per_sample});
+      !s.ok()) {
+    return s;
+  }
+  for (int f = 0; f < c.frames; ++f) {
+    if (Status s = record_gbuffer(run, run.be.render_gbuffer(run.camera, c.width, c.height, m),
+                                  rate.gbuffer, rate.gbuffer_gpu);
+        !s.ok()) {
+      return s;
+    }
+    for (int mode = 0; mode < (c.heavy ? 2 : 1); ++mode) {
+      // Methods alternated per frame, in the order of `AaMethod` rotated by the frame.
+      for (int k = 0; k < kCount; ++k) {
+        const AaMethod method = kAaMethods[std::size_t((k + f) % kCount)];
+        AaMethodResult& mr = rate.method(method);
+        Result<AaShadeOutput> o = run.be.shade(method, mode ? run.heavy : run.normal, run.options);
+        if (!o) return o.status();
+        record(run, mr.timing, mode, *o);
+        if (mode == 0) record_passes(run, mr.passes, *o);
+        if (method == AaMethod::adaptive && mode == 0 && o->passes.size() == 3) {
+          rate.adaptive_first.frame_ms.push_back(o->passes[0].wall_ms);
+          rate.adaptive_metric.frame_ms.push_back(o->passes[1].wall_ms);
+          rate.adaptive_rest.frame_ms.push_back(o->passes[2].wall_ms);
+        }
+        (mode ? mr.image_heavy : mr.image) = std::move(o->image);
+        if (method == AaMethod::adaptive) (mode ? ad_heavy : ad) = std::move(*o);
+        if (method == AaMethod::edge_per_sample && mode == 0) edge = std::move(*o);
+      }
+    }
+  }
+  const std::uint64_t pixels = std::uint64_t(c.width) * std::uint64_t(c.height);
+  const double total = double(pixels) * double(m * m);
+  auto pct = [&](std::uint64_t s) { return 100.0 * double(s) / total; };
+  const ImageRGBA8& ref = rate.method(AaMethod::reference).image;
+  for (AaMethod k : kAaMethods) {
+    AaMethodResult& mr = rate.method(k);
+    Result<AaQuality> q = quality(ref, mr.image, threads);
+    if (!q) return q.status();
+    mr.quality = *q;
+  }
+  rate.method(AaMethod::default_1spp).samples_pct = 100.0 / (m * m);
+  rate.method(AaMethod::fxaa).samples_pct = 100.0 / (m * m);
+  rate.method(AaMethod::reference).samples_pct = 100.0;
+  rate.method(AaMethod::adaptive).samples_pct = pct(ad.samples_shaded);
+  rate.method(AaMethod::edge_per_sample).samples_pct = pct(edge.samples_shaded);
+  rate.adaptive_samples = std::move(ad.samples);
+  rate.edge_samples = std::move(edge.samples);
+  rate.adaptive_extra_albedo_lookups_pct = 100.0 * double(ad.extra_lookups) / double(pixels);
+  if (c.heavy) {
+    Result<AaQuality> q = quality(rate.method(AaMethod::reference).image_heavy,
+                                  rate.method(AaMethod::adaptive).image_heavy, threads);
+    if (!q) return q.status();
+    rate.adaptive_heavy_quality = *q;
+    rate.adaptive_heavy_samples_pct = pct(ad_heavy.samples_shaded);
+  }
+
+  // Ablations (Figure 8): one metric at a time, on the last frame's G-buffer.
+  for (int which = 0; which < 2; ++which) {
+    AaShadeOptions ao = run.options;
+    (which == 0 ? ao.adaptive.use_shading : ao.adaptive.use_geometry) = false;
+    Result<AaShadeOutput> r = run.be.shade(AaMethod::adaptive, run.normal, ao);
+    if (!r) return r.status();
+    AaAblation& ab = which == 0 ? rate.ablation_geometry : rate.ablation_shading;
+    ab.image = std::move(r->image);
+    ab.samples = std::move(r->samples);
+    ab.samples_pct = pct(r->samples_shaded);
+    Result<AaQuality> q = quality(ref, ab.image, threads);
+    if (!q) return q.status();
+    ab.quality = *q;
+  }
+  return rate;
+}
+
+/// The whole experiment on one backend into `res`.
+Status run_backend(const Run& run, AaResult& res) {
+  res.backend = run.be.backend();
+  res.gl_renderer = run.be.device_name();
+  res.gl_version = run.be.device_version();
+  if (Status s = run_1x1(run, res); !s.ok()) return s;
+  for (int m : run.c.ssaa) {
+    Result<AaRateResult> rate = run_rate(run, m, res.threads);
+    if (!rate) return rate.status();
+    if (run.c.progress) {
+      run.c.progress((run.gl() ? "GL " : "") +
+                     rate_line(*rate, rate->method(AaMethod::adaptive).samples_pct));
+    }
+    res.rates.push_back(std::move(*rate));
+  }
+  return Status::success();
+}
+
+/// `compare_gl`: GL's adaptive image and k map against the CPU's, per rate.
+Status compare_backends(AaResult& cpu, const AaResult& gl) {
+  for (std::size_t i = 0; i < cpu.rates.size() && i < gl.rates.size(); ++i) {
+    AaRateResult& a = cpu.rates[i];
+    const AaRateResult& b = gl.rates[i];
+    CompareOptions co;
+    co.threads = cpu.threads;
+    co.compute_ssim = false;
+    Result<ImageComparison> q = compare_images(a.method(AaMethod::adaptive).image,
+                                               b.method(AaMethod::adaptive).image, co);
+    if (!q) return q.status();
+    if (a.adaptive_samples.size() != b.adaptive_samples.size()) {
+      return Status::error(ErrorCode::size_mismatch, "aa: GL and CPU k maps differ in size");
+    }
+    std::size_t differ = 0;
+    for (std::size_t p = 0; p < a.adaptive_samples.size(); ++p) {
+      differ += a.adaptive_samples[p] != b.adaptive_samples[p];
+    }
+    a.gl_vs_cpu = AaGlVsCpu{
+        q->psnr_rgb, a.adaptive_samples.empty()
+                         ? 0.0
+                         : double(differ) / double(a.adaptive_samples.size())};
+  }
+  return Status::success();
+}
+
 }  // namespace
 
 Result<AaResult> run_aa(const AaConfig& c) {
@@ -60,22 +262,42 @@ Result<AaResult> run_aa(const AaConfig& c) {
                            "aa: window size " + std::to_string(m) + " not in [1, 8]");
     }
   }
-  if (c.backend != Backend::cpu) {
-    return Status::error(ErrorCode::unsupported, std::string("aa: backend '") +
-                                                     backend_name(c.backend) +
-                                                     "' is not yet implemented for this "
-                                                     "experiment (only 'cpu')");
+  if (c.backend == Backend::gl && c.compare_gl) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "aa: compare_gl needs the cpu backend (it compares GL with it)");
+  }
+  const bool use_gl = c.backend == Backend::gl || c.compare_gl;
+  if (use_gl && !c.gl_backend_factory) {
+    return Status::error(ErrorCode::unsupported,
+                         "aa: backend 'gl': not built with the OpenGL runtime");
   }
   const std::shared_ptr<const scene::Scene> sc =
       c.scene ? c.scene : std::make_shared<const scene::Scene>(scene::builtin_scene());
   const scene::Camera camera = c.camera ? *c.camera : scene::orbit_camera(*sc, 1, 8);
+
+  // Backends and every G-buffer size before `on_ready` (no output folder when they fail).
+  std::unique_ptr<AaBackend> cpu, gl;
+  if (c.backend == Backend::cpu) {
+    Result<std::unique_ptr<AaBackend>> r = create_cpu_aa_backend(*sc, c.threads);
+    if (!r) return r.status();
+    cpu = std::move(*r);
+  }
+  if (use_gl) {
+    Result<std::unique_ptr<AaBackend>> r = c.gl_backend_factory(*sc);
+    if (!r) return r.status();
+    if (!*r) return Status::error(ErrorCode::unsupported, "aa: the GL factory returned nothing");
+    gl = std::move(*r);
+  }
+  for (AaBackend* be : {cpu.get(), gl.get()}) {
+    if (!be) continue;
+    if (Status s = be->check_size(c.width, c.height, 1); !s.ok()) return s;
+    for (int m : c.ssaa) {
+      if (Status s = be->check_size(c.width, c.height, m); !s.ok()) return s;
+    }
+  }
   if (c.on_ready) {
     if (Status s = c.on_ready(); !s.ok()) return s;
   }
-  Result<std::unique_ptr<deferred::DeferredRenderer>> rr =
-      deferred::DeferredRenderer::create(*sc, c.threads);
-  if (!rr) return rr.status();
-  deferred::DeferredRenderer& renderer = **rr;
 
   AaResult res;
   res.threads = c.threads > 0 ? c.threads : default_thread_count();
@@ -86,116 +308,27 @@ Result<AaResult> run_aa(const AaConfig& c) {
   if (c.heavy_terms >= 0) heavy.heavy_terms = c.heavy_terms;
   res.heavy_terms = heavy.heavy_terms;
   res.lights = normal.lights.size();
-  deferred::FxaaOptions fxo;
-  fxo.preset = c.fxaa_preset;
-  fxo.threads = c.threads;
-  const int modes = c.heavy ? 2 : 1;
-  const std::uint64_t pixels = std::uint64_t(c.width) * std::uint64_t(c.height);
+  AaShadeOptions options;
+  options.adaptive = c.adaptive;
+  options.fxaa.preset = c.fxaa_preset;
+  options.fxaa.threads = c.threads;
+  options.edge = c.edge;
+  options.edge.threads = c.threads;
 
-  // The paper's 1x1 rows: a w x h G-buffer, one sample per pixel, and FXAA on it.
-  {
-    deferred::GBuffer gb;
-    for (int f = 0; f < c.frames; ++f) {
-      auto t0 = std::chrono::steady_clock::now();
-      if (Status s = renderer.render_gbuffer(camera, c.width, c.height, 1, gb); !s.ok()) return s;
-      res.gbuffer_1x1.frame_ms.push_back(ms_since(t0));
-      for (int mode = 0; mode < modes; ++mode) {
-        const deferred::ShadingOptions& so = mode ? heavy : normal;
-        for (int k = 0; k < 2; ++k) {
-          const int method = (k + f) % 2;
-          t0 = std::chrono::steady_clock::now();
-          ImageRGBA8 img = to_srgb8(renderer.shade_default(gb, so), c.threads);
-          if (method == 1) {
-            Result<ImageRGBA8> fx = deferred::fxaa(img, fxo);
-            if (!fx) return fx.status();
-            img = std::move(*fx);
-          }
-          AaTiming& tt = method ? res.fxaa_1x1 : res.default_1x1;
-          (mode ? tt.heavy : tt.normal).frame_ms.push_back(ms_since(t0));
-        }
-      }
-    }
+  AaBackend& primary = cpu ? *cpu : *gl;
+  if (Status s = run_backend(Run{c, primary, camera, normal, heavy, options}, res); !s.ok()) {
+    return s;
   }
-
-  for (int m : c.ssaa) {
-    AaRateResult rate;
-    rate.m = m;
-    for (AaMethod k : kAaMethods) rate.method(k).method = k;
-    deferred::GBuffer gb;
-    deferred::AdaptiveResult ad, ad_heavy;
-    for (int f = 0; f < c.frames; ++f) {
-      auto t0 = std::chrono::steady_clock::now();
-      if (Status s = renderer.render_gbuffer(camera, c.width, c.height, m, gb); !s.ok()) return s;
-      rate.gbuffer.frame_ms.push_back(ms_since(t0));
-      for (int mode = 0; mode < modes; ++mode) {
-        const deferred::ShadingOptions& so = mode ? heavy : normal;
-        // Methods alternated per frame, in the order of `AaMethod` rotated by the frame.
-        for (int k = 0; k < 4; ++k) {
-          const AaMethod method = kAaMethods[std::size_t((k + f) % 4)];
-          AaMethodResult& mr = rate.method(method);
-          ImageRGBA8& out = mode ? mr.image_heavy : mr.image;
-          t0 = std::chrono::steady_clock::now();
-          if (method == AaMethod::default_1spp || method == AaMethod::fxaa) {
-            out = to_srgb8(renderer.shade_default(gb, so), c.threads);
-            if (method == AaMethod::fxaa) {
-              Result<ImageRGBA8> fx = deferred::fxaa(out, fxo);
-              if (!fx) return fx.status();
-              out = std::move(*fx);
-            }
-          } else if (method == AaMethod::reference) {
-            out = to_srgb8(renderer.shade_reference(gb, so), c.threads);
-          } else {
-            deferred::AdaptiveResult r = renderer.shade_adaptive(gb, so, c.adaptive);
-            out = to_srgb8(r.image, c.threads);
-            if (mode == 0) {
-              rate.adaptive_first.frame_ms.push_back(r.ms_first);
-              rate.adaptive_metric.frame_ms.push_back(r.ms_metric);
-              rate.adaptive_rest.frame_ms.push_back(r.ms_rest);
-            }
-            (mode ? ad_heavy : ad) = std::move(r);
-          }
-          (mode ? mr.timing.heavy : mr.timing.normal).frame_ms.push_back(ms_since(t0));
-        }
-      }
-    }
-    const double total = double(pixels) * double(m * m);
-    auto pct = [&](std::uint64_t s) { return 100.0 * double(s) / total; };
-    const ImageRGBA8& ref = rate.method(AaMethod::reference).image;
-    for (AaMethod k : kAaMethods) {
-      AaMethodResult& mr = rate.method(k);
-      Result<AaQuality> q = quality(ref, mr.image, res.threads);
-      if (!q) return q.status();
-      mr.quality = *q;
-    }
-    rate.method(AaMethod::default_1spp).samples_pct = 100.0 / (m * m);
-    rate.method(AaMethod::fxaa).samples_pct = 100.0 / (m * m);
-    rate.method(AaMethod::reference).samples_pct = 100.0;
-    rate.method(AaMethod::adaptive).samples_pct = pct(ad.samples_shaded);
-    rate.adaptive_samples = std::move(ad.samples);
-    rate.adaptive_extra_albedo_lookups_pct = 100.0 * double(ad.extra_lookups) / double(pixels);
-    if (c.heavy) {
-      Result<AaQuality> q = quality(rate.method(AaMethod::reference).image_heavy,
-                                    rate.method(AaMethod::adaptive).image_heavy, res.threads);
-      if (!q) return q.status();
-      rate.adaptive_heavy_quality = *q;
-      rate.adaptive_heavy_samples_pct = pct(ad_heavy.samples_shaded);
-    }
-
-    // Ablations (Figure 8): one metric at a time, on the last frame's G-buffer.
-    for (int which = 0; which < 2; ++which) {
-      deferred::AdaptiveOptions ao = c.adaptive;
-      (which == 0 ? ao.use_shading : ao.use_geometry) = false;
-      deferred::AdaptiveResult r = renderer.shade_adaptive(gb, normal, ao);
-      AaAblation& ab = which == 0 ? rate.ablation_geometry : rate.ablation_shading;
-      ab.image = to_srgb8(r.image, c.threads);
-      ab.samples = std::move(r.samples);
-      ab.samples_pct = pct(r.samples_shaded);
-      Result<AaQuality> q = quality(ref, ab.image, res.threads);
-      if (!q) return q.status();
-      ab.quality = *q;
-    }
-    if (c.progress) c.progress(rate_line(rate, rate.method(AaMethod::adaptive).samples_pct));
-    res.rates.push_back(std::move(rate));
+  if (c.compare_gl) {
+    AaResult g;
+    g.threads = res.threads;
+    g.heavy_terms = res.heavy_terms;
+    g.lights = res.lights;
+    if (Status s = run_backend(Run{c, *gl, camera, normal, heavy, options}, g); !s.ok()) return s;
+    if (Status s = compare_backends(res, g); !s.ok()) return s;
+    res.gl_renderer = g.gl_renderer;
+    res.gl_version = g.gl_version;
+    res.gl = std::make_shared<const AaResult>(std::move(g));
   }
   return res;
 }

@@ -41,6 +41,8 @@ const char* aa_method_name(AaMethod method) {
       return "reference";
     case AaMethod::adaptive:
       return "adaptive";
+    case AaMethod::edge_per_sample:
+      return "edge_per_sample";
   }
   return "?";
 }

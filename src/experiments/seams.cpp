@@ -72,6 +72,31 @@ struct RateAccumulators {
   ErrorCdfAccumulator traverse_vs_discard;
 };
 
+/// GL against CPU, pooled over the quality frames (SeamsGlMethodResult).
+struct Agreement {
+  double sse = 0;  ///< Sum over frames of the 8-bit RGB MSE times the pixel count.
+  std::uint64_t pixels = 0, over = 0;
+  Status add(const ImageRGBAF& gl, const ImageRGBAF& cpu, int threads) {
+    Result<ImageComparison> c = compare_images(to_srgb8(gl, threads), to_srgb8(cpu, threads),
+                                               CompareOptions{false, threads});
+    if (!c) return c.status();
+    Result<std::vector<float>> n = error_norms(gl, cpu);
+    if (!n) return n.status();
+    for (float e : *n) over += !(e < 0.01f);  // NaN counts as different
+    sse += c->mse_rgb * double(n->size());
+    pixels += n->size();
+    return Status::success();
+  }
+  double psnr() const { return psnr_from_mse(pixels ? sse / double(pixels) : 0.0); }
+  double fraction() const { return pixels ? double(over) / double(pixels) : 0.0; }
+};
+
+std::string rates_text(const std::vector<int>& rates) {
+  std::string t;
+  for (int r : rates) t += (t.empty() ? "" : ", ") + std::to_string(r) + "x";
+  return t;
+}
+
 }  // namespace
 
 Result<SeamsResult> run_seams(const SeamsConfig& c) {
@@ -88,29 +113,76 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
                            "seams: MSAA rate " + std::to_string(r) + " not in 1,2,4,8,16");
     }
   }
-  if (c.backend != Backend::cpu) {
-    return Status::error(ErrorCode::unsupported, std::string("seams: backend '") +
-                                                     backend_name(c.backend) +
-                                                     "' is not yet implemented for this "
-                                                     "experiment (only 'cpu')");
+  const bool use_gl = c.backend == Backend::gl || c.compare_gl;
+  if (c.backend == Backend::gl && c.compare_gl) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "seams: compare_gl needs the cpu backend (it compares GL with it)");
+  }
+  if (use_gl && !c.gl_renderer_factory) {
+    return Status::error(ErrorCode::unsupported,
+                         "seams: backend 'gl': not built with the OpenGL runtime");
   }
   const auto t_load = std::chrono::steady_clock::now();
   Result<detail::SeamsContent> loaded = detail::load_seams_content(c);
   if (!loaded) return loaded.status();
   const faces::FaceScene& scene = loaded->scene;
   const faces::FaceTextureSet& set = loaded->set;
-  {
-    char ms[32];
-    std::snprintf(ms, sizeof ms, "%.0f", ms_since(t_load));
-    log(loaded->description + ", built in " + ms + " ms");
-  }
+  char load_ms[32];
+  std::snprintf(load_ms, sizeof load_ms, "%.0f", ms_since(t_load));
+  // The CPU renderer draws the face ids and the character mask whatever the backend (the
+  // geometry is the same on GL); `primary` renders `rates`, `gl_side` the compare_gl frames.
   Result<std::unique_ptr<faces::FaceRenderer>> renderer = faces::FaceRenderer::create(scene, set);
   if (!renderer) return renderer.status();
+  std::unique_ptr<SeamsFrameRenderer> gl;
+  if (use_gl) {
+    Result<std::unique_ptr<SeamsFrameRenderer>> made = c.gl_renderer_factory(scene, set);
+    if (!made) return made.status();
+    if (!*made) {
+      return Status::error(ErrorCode::unsupported, "seams: the GL renderer factory made nothing");
+    }
+    gl = std::move(*made);
+  }
+  std::unique_ptr<SeamsFrameRenderer> cpu;
+  if (c.backend == Backend::cpu) {
+    Result<std::unique_ptr<SeamsFrameRenderer>> made = create_cpu_seams_renderer(scene, set);
+    if (!made) return made.status();
+    cpu = std::move(*made);
+  }
+  SeamsFrameRenderer& primary = c.backend == Backend::cpu ? *cpu : *gl;
+  SeamsFrameRenderer* gl_side = c.compare_gl ? gl.get() : nullptr;
+
+  SeamsResult res;
+  res.backend = c.backend;
+  res.compared_gl = c.compare_gl;
+  std::vector<int> rates = c.msaa;  // those `primary` renders
+  std::vector<bool> gl_rate(c.msaa.size(), false);
+  if (gl) {
+    res.gl_renderer = gl->device_name();
+    res.gl_version = gl->device_version();
+    if (c.backend == Backend::gl) rates.clear();
+    for (std::size_t i = 0; i < c.msaa.size(); ++i) {
+      const int r = c.msaa[i];
+      gl_rate[i] = gl->msaa_supported(r);
+      if (!gl_rate[i]) {
+        if (std::find(res.msaa_unsupported.begin(), res.msaa_unsupported.end(), r) ==
+            res.msaa_unsupported.end()) {
+          res.msaa_unsupported.push_back(r);
+        }
+      } else if (c.backend == Backend::gl) {
+        rates.push_back(r);
+      }
+    }
+    if (rates.empty() || (c.compare_gl && std::count(gl_rate.begin(), gl_rate.end(), true) == 0)) {
+      return Status::error(ErrorCode::unsupported, "seams: the OpenGL driver (" + res.gl_renderer +
+                                                       ") refuses every MSAA rate asked for (" +
+                                                       rates_text(res.msaa_unsupported) + ")");
+    }
+  }
+  // Logged once every renderer exists, so that a failing GL start is the only line.
+  log(loaded->description + ", built in " + load_ms + " ms");
   if (c.on_ready) {
     if (Status s = c.on_ready(); !s.ok()) return s;
   }
-
-  SeamsResult res;
   res.scene_description = loaded->description;
   res.faces = set.face_count();
   res.ground_faces = scene.ground_faces;
@@ -126,11 +198,25 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
   for (int i = 0; i < kSeamsCdfBins; ++i) res.thresholds.push_back(double(i) * kSeamsCdfStep);
 
   const std::vector<faces::Method>& methods = faces::all_methods();
-  const std::size_t nm = methods.size(), nr = c.msaa.size();
+  const std::size_t nm = methods.size(), nr = rates.size();
   res.rates.resize(nr);
   std::vector<RateAccumulators> acc(nr);
+  // compare_gl: gl_index[ri] = the rate's entry in res.gl_rates, or -1 where GL refuses it.
+  std::vector<int> gl_index(nr, -1);
+  std::vector<std::array<Agreement, 4>> agree;
+  if (gl_side) {
+    for (std::size_t ri = 0; ri < nr; ++ri) {
+      if (!gl_rate[ri]) continue;
+      gl_index[ri] = int(res.gl_rates.size());
+      SeamsGlRateResult g;
+      g.msaa = rates[ri];
+      for (std::size_t m = 0; m < nm; ++m) g.methods[std::size_t(methods[m])].method = methods[m];
+      res.gl_rates.push_back(g);
+    }
+    agree.resize(res.gl_rates.size());
+  }
   for (std::size_t ri = 0; ri < nr; ++ri) {
-    res.rates[ri].msaa = c.msaa[ri];
+    res.rates[ri].msaa = rates[ri];
     for (std::size_t m = 0; m < nm; ++m) {
       res.rates[ri].method(methods[m]).method = methods[m];
       acc[ri].vs_ref[m] = ErrorCdfAccumulator(res.thresholds);
@@ -146,12 +232,39 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
   const std::size_t traverse = index_of(faces::Method::traverse);
   const std::size_t discard = index_of(faces::Method::discard);
 
-  faces::FaceRenderOptions o;
+  faces::FaceRenderOptions o;  // the CPU's face-id and mask frames
   o.width = c.width;
   o.height = c.height;
   o.threads = c.threads;
   o.sampling.filter = TextureFilter::anisotropic;
   o.sampling.max_aniso = 16;
+  SeamsFrameOptions fo;  // the frames of the experiment
+  fo.width = c.width;
+  fo.height = c.height;
+  fo.threads = c.threads;
+  fo.filter = TextureFilter::anisotropic;
+  fo.max_aniso = 16;
+  // Variants timed side by side: the methods, then shading only where the backend has it.
+  const std::size_t nv = nm + (primary.has_shading_only() ? 1 : 0);
+  // GL compiles a program per variant on first use and sizes its targets per rate: draw every
+  // variant once (untimed) so that no timed frame pays for it. The CPU needs no warm-up.
+  if (gl) {
+    const scene::Camera cam = faces::face_orbit_camera(scene, 0, c.frames);
+    SeamsFrameOptions wo = fo;
+    wo.keep_image = false;
+    for (std::size_t ri = 0; ri < nr; ++ri) {
+      if (c.compare_gl && gl_index[ri] < 0) continue;
+      wo.msaa = rates[ri];
+      for (faces::Method m : methods) {
+        for (bool fallback : {true, false}) {
+          if (!fallback && (m != faces::Method::discard || c.compare_gl)) continue;
+          wo.method = m;
+          wo.clamp_fallback = fallback;
+          if (Result<SeamsBackendFrame> fr = gl->render(cam, wo); !fr) return fr.status();
+        }
+      }
+    }
+  }
 
   for (int f = 0; f < c.frames; ++f) {
     const scene::Camera cam = faces::face_orbit_camera(scene, f, c.frames);
@@ -163,7 +276,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
     if (quality) {
       const auto t0 = std::chrono::steady_clock::now();
       Result<ImageRGBAF> r =
-          (*renderer)->render_reference(cam, c.width, c.height, c.reference_factor, c.threads);
+          primary.render_reference(cam, c.width, c.height, c.reference_factor, c.threads);
       if (!r) return r.status();
       res.reference_ms_total += ms_since(t0);
       ref = std::move(*r);
@@ -192,19 +305,47 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
     }
     for (std::size_t ri = 0; ri < nr; ++ri) {
       SeamsRateResult& rate = res.rates[ri];
-      o.msaa = c.msaa[ri];
+      fo.msaa = rates[ri];
+      fo.keep_image = quality;  // frame 0 is always a quality frame
       std::vector<ImageRGBAF> imgs(nm);
       // Alternate: the order of the variants (the methods, then shading only) rotates with the
       // frame.
-      for (std::size_t k = 0; k <= nm; ++k) {
-        const std::size_t v = (k + std::size_t(f)) % (nm + 1);
-        o.shading_only = v == nm;
-        o.sampling.method = v == nm ? faces::Method::clamp : methods[v];
-        o.sampling.clamp_fallback = true;
-        Result<faces::FaceFrame> fr = (*renderer)->render(cam, o);
+      for (std::size_t k = 0; k < nv; ++k) {
+        const std::size_t v = (k + std::size_t(f)) % nv;
+        fo.shading_only = v == nm;
+        fo.method = v == nm ? faces::Method::clamp : methods[v];
+        fo.clamp_fallback = true;
+        Result<SeamsBackendFrame> fr = primary.render(cam, fo);
         if (!fr) return fr.status();
-        (v == nm ? rate.shading_only : rate.method(methods[v]).timing).frame_ms.push_back(fr->ms());
-        if (v < nm) imgs[v] = std::move(fr->image);
+        if (v == nm) {
+          rate.shading_only.frame_ms.push_back(fr->ms);
+        } else {
+          rate.method(methods[v]).timing.frame_ms.push_back(fr->ms);
+          if (primary.backend() != Backend::cpu) {
+            rate.method(methods[v]).wall.frame_ms.push_back(fr->wall_ms);
+          }
+          imgs[v] = std::move(fr->image);
+        }
+      }
+      if (gl_side && gl_index[ri] >= 0) {
+        // The same frame by GL, methods rotating likewise; read back on quality frames only.
+        SeamsGlRateResult& g = res.gl_rates[std::size_t(gl_index[ri])];
+        SeamsFrameOptions go = fo;
+        go.shading_only = false;
+        go.keep_image = quality;
+        for (std::size_t k = 0; k < nm; ++k) {
+          const std::size_t v = (k + std::size_t(f)) % nm;
+          go.method = methods[v];
+          Result<SeamsBackendFrame> fr = gl_side->render(cam, go);
+          if (!fr) return fr.status();
+          SeamsGlMethodResult& gm = g.methods[std::size_t(methods[v])];
+          gm.gpu.frame_ms.push_back(fr->ms);
+          gm.wall.frame_ms.push_back(fr->wall_ms);
+          if (quality) {
+            Agreement& a = agree[std::size_t(gl_index[ri])][std::size_t(methods[v])];
+            if (Status s = a.add(fr->image, imgs[v], c.threads); !s.ok()) return s;
+          }
+        }
       }
       if (quality) {
         for (std::size_t m = 0; m < nm; ++m) {
@@ -223,10 +364,10 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
       }
       if (f == 0) {
         // Discard without the zero-coverage fallback: count the NaN pixels it produces.
-        o.shading_only = false;
-        o.sampling.method = faces::Method::discard;
-        o.sampling.clamp_fallback = false;
-        Result<faces::FaceFrame> fr = (*renderer)->render(cam, o);
+        fo.shading_only = false;
+        fo.method = faces::Method::discard;
+        fo.clamp_fallback = false;
+        Result<SeamsBackendFrame> fr = primary.render(cam, fo);
         if (!fr) return fr.status();
         rate.nan_pixels_without_fallback = nan_pixels(fr->image);
         if (c.keep_images) {
@@ -246,6 +387,13 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
       if (c.near_seam_pixels > 0) mr.vs_reference_near_seams = stats(acc[ri].vs_ref_near[m]);
     }
     res.rates[ri].traverse_vs_discard = stats(acc[ri].traverse_vs_discard);
+  }
+  for (std::size_t gi = 0; gi < agree.size(); ++gi) {
+    for (faces::Method m : methods) {
+      SeamsGlMethodResult& gm = res.gl_rates[gi].methods[std::size_t(m)];
+      gm.psnr_db = agree[gi][std::size_t(m)].psnr();
+      gm.fraction_ge_001 = agree[gi][std::size_t(m)].fraction();
+    }
   }
   return res;
 }

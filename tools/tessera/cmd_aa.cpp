@@ -4,6 +4,7 @@
 // `experiments::run_aa`; the files are written by `write_aa_report`.
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -18,28 +19,49 @@ namespace tessera::cli {
 namespace {
 
 struct AaArgs {
-  std::string scene = "builtin", out, camera, orbit, ssaa = "2,3,4";
+  std::string scene = "builtin", out, camera, orbit, ssaa = "2,3,4", backend = "cpu";
   int width = 1024, height = 768, frames = 3, lights = 8, heavy_terms = -1, fxaa_preset = 39;
   bool heavy = false;
   bool quiet = false, json = false, markdown = false;
   deferred::AdaptiveOptions adaptive;
 };
 
+#ifdef TESSERA_HAVE_GL
+/// The GLSL folder: $TESSERA_GLSL_DIR, else the source tree's (a build tree), else the installed
+/// one.
+std::string glsl_dir() {
+  if (const char* env = std::getenv("TESSERA_GLSL_DIR"); env && *env) return env;
+  std::error_code ec;
+  if (std::filesystem::is_directory(TESSERA_SOURCE_GLSL_DIR, ec)) return TESSERA_SOURCE_GLSL_DIR;
+  return TESSERA_INSTALLED_GLSL_DIR;
+}
+#endif
+
 /// One line per rate: what a reader wants from a run (the tables are in aa.md).
-void print_summary(std::FILE* out, const experiments::AaResult& res) {
+void print_summary(std::FILE* out, const experiments::AaResult& res, const char* label = "") {
   using experiments::AaMethod;
+  if (res.backend == experiments::Backend::gl) label = " (GL, wall ms)";
   for (const experiments::AaRateResult& rate : res.rates) {
     const auto frame_ms = [&](AaMethod m) {
       return rate.gbuffer.median_ms() + rate.method(m).timing.normal.median_ms();
     };
     const auto psnr = [&](AaMethod m) { return rate.method(m).quality.psnr_db; };
     std::fprintf(out,
-                 "aa %dx%d: adaptive shades %.1f%% of the samples, %.2f dB against the "
-                 "reference (1 spp %.2f dB, FXAA %.2f dB), %.1f ms/frame (reference %.1f ms)\n",
-                 rate.m, rate.m, rate.method(AaMethod::adaptive).samples_pct,
+                 "aa %dx%d%s: adaptive shades %.1f%% of the samples, %.2f dB against the "
+                 "reference (1 spp %.2f dB, FXAA %.2f dB, edge per sample %.1f%% %.2f dB), "
+                 "%.1f ms/frame (reference %.1f ms, edge per sample %.1f ms)",
+                 rate.m, rate.m, label, rate.method(AaMethod::adaptive).samples_pct,
                  psnr(AaMethod::adaptive), psnr(AaMethod::default_1spp), psnr(AaMethod::fxaa),
-                 frame_ms(AaMethod::adaptive), frame_ms(AaMethod::reference));
+                 rate.method(AaMethod::edge_per_sample).samples_pct,
+                 psnr(AaMethod::edge_per_sample), frame_ms(AaMethod::adaptive),
+                 frame_ms(AaMethod::reference), frame_ms(AaMethod::edge_per_sample));
+    if (rate.gl_vs_cpu) {
+      std::fprintf(out, "; GL vs CPU adaptive %.2f dB, k differs at %.3f%% of the pixels",
+                   rate.gl_vs_cpu->psnr_db, 100.0 * rate.gl_vs_cpu->k_mismatch_fraction);
+    }
+    std::fprintf(out, "\n");
   }
+  if (res.gl) print_summary(out, *res.gl, " (GL, wall ms)");
 }
 
 /// Parses "2,3,4" into window sizes in [1, 8]; empty on error.
@@ -82,6 +104,13 @@ int run_aa(const AaArgs& args, const GlobalOptions& global) {
   c.fxaa_preset = args.fxaa_preset;
   c.adaptive = args.adaptive;
   c.threads = global.threads;
+  c.backend = args.backend == "gl" ? experiments::Backend::gl : experiments::Backend::cpu;
+  c.compare_gl = args.backend == "both";
+#ifdef TESSERA_HAVE_GL
+  c.gl_backend_factory = [](const scene::Scene& scene) {
+    return experiments::create_gl_aa_backend(scene, glsl_dir());
+  };
+#endif
   if (!args.quiet) {
     c.progress = [](const std::string& line) { std::fprintf(stderr, "aa: %s\n", line.c_str()); };
   }
@@ -171,6 +200,11 @@ Command add_aa_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--t-min", args->adaptive.t_min, "Shading metric: minimum threshold")
       ->capture_default_str();
   sub->add_option("--t-edge", args->adaptive.t_edge, "Shading metric: relative edge threshold")
+      ->capture_default_str();
+  sub->add_option("--backend", args->backend,
+                  "Who renders: cpu, gl (OpenGL; wall and GPU-timer times, GL reference) or "
+                  "both (the CPU report plus GL's under 'gl' and GL-vs-CPU agreement)")
+      ->check(CLI::IsMember({"cpu", "gl", "both"}))
       ->capture_default_str();
   sub->add_option("-o,--output,--out", args->out, "Output folder (aa.json, aa.md, PNGs)")
       ->required();

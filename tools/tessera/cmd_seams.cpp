@@ -4,6 +4,7 @@
 // experiment is `experiments::run_seams`; the files are written by `write_seams_report`.
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "cli.h"
@@ -16,27 +17,57 @@ namespace {
 struct SeamsArgs {
   experiments::SeamsConfig config;
   std::string out;
+  std::string backend = "cpu";
   bool quiet = false, json = false, markdown = false;
 };
+
+#ifdef TESSERA_HAVE_GL
+/// The GLSL folder: $TESSERA_GLSL_DIR, else the source tree's (a build tree), else the installed
+/// one.
+std::string glsl_dir() {
+  if (const char* env = std::getenv("TESSERA_GLSL_DIR"); env && *env) return env;
+  std::error_code ec;
+  if (std::filesystem::is_directory(TESSERA_SOURCE_GLSL_DIR, ec)) return TESSERA_SOURCE_GLSL_DIR;
+  return TESSERA_INSTALLED_GLSL_DIR;
+}
+#endif
 
 /// One line per rate: the Table-1 ratio and the Figure-5 means (the tables are in seams.md).
 void print_summary(std::FILE* out, const experiments::SeamsResult& res) {
   using faces::Method;
+  const bool gl = res.backend == experiments::Backend::gl;
   for (const experiments::SeamsRateResult& rate : res.rates) {
     const auto& t = rate.method(Method::traverse);
     const auto& d = rate.method(Method::discard);
     const auto& c = rate.method(Method::clamp);
-    std::fprintf(out,
-                 "seams %dx: traverse %.1f ms, discard %.1f ms (%.2fx); mean error vs reference "
-                 "clamp %.5f, discard %.5f, traverse %.5f",
-                 rate.msaa, t.timing.median_ms(), d.timing.median_ms(),
-                 t.timing.median_ms() / std::max(d.timing.median_ms(), 1e-9), c.vs_reference.mean,
-                 d.vs_reference.mean, t.vs_reference.mean);
+    // GL: wall time to glFinish first (the GPU timer is partial on llvmpipe), then the timer.
+    const experiments::FrameTimes& tt = gl ? t.wall : t.timing;
+    const experiments::FrameTimes& dt = gl ? d.wall : d.timing;
+    std::fprintf(out, "seams %dx%s: traverse %.1f ms, discard %.1f ms (%.2fx)", rate.msaa,
+                 gl ? " (GL, wall)" : "", tt.median_ms(), dt.median_ms(),
+                 tt.median_ms() / std::max(dt.median_ms(), 1e-9));
+    if (gl) {
+      std::fprintf(out, ", GPU timer %.2f / %.2f ms", t.timing.median_ms(), d.timing.median_ms());
+    }
+    std::fprintf(out, "; mean error vs reference clamp %.5f, discard %.5f, traverse %.5f",
+                 c.vs_reference.mean, d.vs_reference.mean, t.vs_reference.mean);
     if (res.near_seam_pixels > 0) {
       std::fprintf(out, "; near seams %.5f, %.5f, %.5f", c.vs_reference_near_seams.mean,
                    d.vs_reference_near_seams.mean, t.vs_reference_near_seams.mean);
     }
     std::fprintf(out, "\n");
+  }
+  for (const experiments::SeamsGlRateResult& g : res.gl_rates) {
+    const auto& t = g.method(Method::traverse);
+    const auto& d = g.method(Method::discard);
+    std::fprintf(out,
+                 "seams %dx GL: traverse %.1f ms, discard %.1f ms wall (GPU timer %.2f / %.2f "
+                 "ms); GL vs CPU PSNR discard %.1f dB, traverse %.1f dB\n",
+                 g.msaa, t.wall.median_ms(), d.wall.median_ms(), t.gpu.median_ms(),
+                 d.gpu.median_ms(), d.psnr_db, t.psnr_db);
+  }
+  for (int r : res.msaa_unsupported) {
+    std::fprintf(out, "seams %dx: refused by the OpenGL driver, skipped on GL\n", r);
   }
 }
 }  // namespace
@@ -80,6 +111,11 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
                   "off)")
       ->check(CLI::Range(0, 64))
       ->capture_default_str();
+  sub->add_option("--backend", args->backend,
+                  "Who renders: cpu, gl (OpenGL; GPU-timer and wall times) or both (CPU report "
+                  "plus GL times and GL-vs-CPU agreement)")
+      ->check(CLI::IsMember({"cpu", "gl", "both"}))
+      ->capture_default_str();
   sub->add_option("-o,--output,--out", args->out, "Output folder")->required();
   return {sub, [args, &global] {
             experiments::SeamsConfig cfg = args->config;
@@ -87,6 +123,15 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
               return usage_error("--ptex needs --scene MESH.obj (the mesh of the Ptex file)");
             }
             cfg.threads = global.threads;
+            cfg.backend =
+                args->backend == "gl" ? experiments::Backend::gl : experiments::Backend::cpu;
+            cfg.compare_gl = args->backend == "both";
+#ifdef TESSERA_HAVE_GL
+            cfg.gl_renderer_factory = [](const faces::FaceScene& scene,
+                                         const faces::FaceTextureSet& set) {
+              return experiments::create_gl_seams_renderer(scene, set, glsl_dir());
+            };
+#endif
             const std::string out = args->out;
             if (!args->quiet) {
               cfg.progress = [](const std::string& line) {

@@ -48,7 +48,8 @@ Status write_text(const fs::path& path, const std::string& text) {
 /// The images of one rate (reference, adaptive, 1 spp, FXAA, sample counts, difference
 /// heatmaps, ablations) as DIR/NAME-mxm.png; `jimages` maps each name to its file.
 Status write_rate_images(const experiments::AaConfig& c, const AaRateResult& rate,
-                         const std::string& dir, nlohmann::json& jimages) {
+                         const std::string& dir, const std::string& prefix,
+                         nlohmann::json& jimages, nlohmann::json& jedge_images) {
   const std::string r = std::to_string(rate.m) + "x" + std::to_string(rate.m);
   const int n = rate.m * rate.m;
   auto samples_map = [&](const std::vector<std::uint8_t>& s) {
@@ -65,7 +66,7 @@ Status write_rate_images(const experiments::AaConfig& c, const AaRateResult& rat
     std::string name;
     Result<ImageRGBA8> image;
   };
-  std::vector<Out> outs;
+  std::vector<Out> outs, edge_outs;
   outs.push_back({"reference-" + r, ref});
   outs.push_back({"adaptive-" + r, ad});
   outs.push_back({"default-" + r, def});
@@ -81,8 +82,12 @@ Status write_rate_images(const experiments::AaConfig& c, const AaRateResult& rat
   outs.push_back({"ablation-shading-" + r, shd});
   outs.push_back({"ablation-shading-samples-" + r, samples_map(rate.ablation_shading.samples)});
   outs.push_back({"ablation-shading-diff-" + r, difference_heatmap(ref, shd, 32.0f)});
+  const ImageRGBA8& edge = rate.method(AaMethod::edge_per_sample).image;
+  edge_outs.push_back({"edge_per_sample-" + r, edge});
+  edge_outs.push_back({"edge_per_sample-samples-" + r, samples_map(rate.edge_samples)});
+  edge_outs.push_back({"diff-ref-edge_per_sample-" + r, difference_heatmap(ref, edge, 32.0f)});
   // Colour bars: the samples maps (1 + k of m*m) and the difference heatmaps.
-  const std::string kbar = "samples-colourbar-" + r + ".svg";
+  const std::string kbar = prefix + "samples-colourbar-" + r + ".svg";
   if (Status s = write_text(fs::path(dir) / kbar,
                             colour_bar_svg(ColorMap::inferno, 0, n, n / 4 + 1,
                                            "samples shaded per pixel (1 + k of " +
@@ -90,7 +95,7 @@ Status write_rate_images(const experiments::AaConfig& c, const AaRateResult& rat
       !s.ok()) {
     return s;
   }
-  jimages["samples-colourbar-" + r] = kbar;
+  jimages[prefix + "samples-colourbar-" + r] = kbar;
   if (Status s = write_text(fs::path(dir) / "diff-colourbar.svg",
                             colour_bar_svg(ColorMap::inferno, 0, 32, 5,
                                            "max abs channel difference (8-bit levels; 32 and "
@@ -99,12 +104,15 @@ Status write_rate_images(const experiments::AaConfig& c, const AaRateResult& rat
     return s;
   }
   jimages["diff-colourbar"] = "diff-colourbar.svg";
-  for (const Out& o : outs) {
-    if (!o.image) return o.image.status();
-    if (Status s = write_png((fs::path(dir) / (o.name + ".png")).string(), *o.image); !s.ok()) {
-      return s;
+  for (const auto* list : {&outs, &edge_outs}) {
+    for (const Out& o : *list) {
+      if (!o.image) return o.image.status();
+      const std::string name = prefix + o.name;
+      if (Status s = write_png((fs::path(dir) / (name + ".png")).string(), *o.image); !s.ok()) {
+        return s;
+      }
+      (list == &outs ? jimages : jedge_images)[name] = name + ".png";
     }
-    jimages[o.name] = o.name + ".png";
   }
   return Status::success();
 }
@@ -133,8 +141,21 @@ class Tables {
   bool heavy_;
 };
 
-nlohmann::json rate_json(const experiments::AaConfig& c, const AaRateResult& rate,
-                         nlohmann::json jimages) {
+/// GL only: the GPU-timer times and every pass's wall and GPU-timer medians of a method.
+void add_gl_times(const experiments::AaConfig& c, const experiments::AaMethodResult& mr,
+                  nlohmann::json& j) {
+  j["gpu_shade_ms"] = mr.timing.gpu.median_ms();
+  j["gpu_shade_ms_frames"] = mr.timing.gpu.frame_ms;
+  if (c.heavy) j["gpu_shade_ms_heavy"] = mr.timing.gpu_heavy.median_ms();
+  nlohmann::json jp = nlohmann::json::object();
+  for (const experiments::AaPassFrames& p : mr.passes) {
+    jp[p.pass] = {{"wall_ms", p.wall.median_ms()}, {"gpu_ms", p.gpu.median_ms()}};
+  }
+  j["passes"] = jp;
+}
+
+nlohmann::json rate_json(const experiments::AaConfig& c, const AaRateResult& rate, bool gl,
+                         nlohmann::json jimages, nlohmann::json jedge_images) {
   const double gms = rate.gbuffer.median_ms();
   auto method_json = [&](AaMethod k, bool with_quality) {
     const experiments::AaMethodResult& mr = rate.method(k);
@@ -148,6 +169,7 @@ nlohmann::json rate_json(const experiments::AaConfig& c, const AaRateResult& rat
       j["shade_ms_heavy_frames"] = mr.timing.heavy.frame_ms;
     }
     if (with_quality) j["quality"] = quality_json(mr.quality);
+    if (gl) add_gl_times(c, mr, j);
     return j;
   };
   const AaTiming& tr = rate.method(AaMethod::reference).timing;
@@ -160,6 +182,7 @@ nlohmann::json rate_json(const experiments::AaConfig& c, const AaRateResult& rat
       {"fxaa", method_json(AaMethod::fxaa, true)},
       {"reference", method_json(AaMethod::reference, false)},
       {"adaptive", method_json(AaMethod::adaptive, true)},
+      {"edge_per_sample", method_json(AaMethod::edge_per_sample, true)},
       {"adaptive_passes_ms",
        {{"first", rate.adaptive_first.median_ms()},
         {"metric", rate.adaptive_metric.median_ms()},
@@ -179,6 +202,11 @@ nlohmann::json rate_json(const experiments::AaConfig& c, const AaRateResult& rat
     jr["speedup_shading_heavy"] = tr.heavy.median_ms() / ta.heavy.median_ms();
     jr["adaptive_heavy_quality"] = quality_json(rate.adaptive_heavy_quality);
     jr["adaptive_heavy_samples_pct"] = rate.adaptive_heavy_samples_pct;
+  }
+  jr["edge_per_sample"]["images"] = std::move(jedge_images);
+  if (gl) {
+    jr["gbuffer_gpu_ms"] = rate.gbuffer_gpu.median_ms();
+    jr["gbuffer_gpu_ms_frames"] = rate.gbuffer_gpu.frame_ms;
   }
   return jr;
 }
@@ -216,35 +244,49 @@ std::string figure_md(const experiments::AaConfig& c, const AaRateResult& rate,
   return md;
 }
 
-}  // namespace
+/// A time for the pass tables: "–" where the GPU timer gave no result.
+std::string ms_cell(double ms) { return std::isnan(ms) ? std::string("–") : jnum(ms, "%.2f"); }
 
-Status write_aa_report(const experiments::AaConfig& c, const experiments::AaResult& res,
-                       const std::string& scene_label, const std::string& dir,
-                       std::string* markdown) {
-  Tables tables(c.heavy);
+/// One backend's part of the reports: the table rows, the 1x1 and per-rate JSON, the figure
+/// blocks (`figures`) and the rate images (file names prefixed with `prefix`).
+struct BackendReport {
+  Tables tables;
+  nlohmann::json j1, jrates = nlohmann::json::array();
+  std::string md_fig, md_passes;
+};
+
+Status backend_report(const experiments::AaConfig& c, const experiments::AaResult& res,
+                      const std::string& dir, const std::string& prefix, bool figures,
+                      BackendReport& out) {
+  const bool gl = res.backend == experiments::Backend::gl;
+  Tables& tables = out.tables;
   const double g1 = res.gbuffer_1x1.median_ms();
   tables.row("1×1", "Default", g1, res.default_1x1, "–", "–", "–", "–");
   tables.row("1×1", "FXAA", g1, res.fxaa_1x1, "–", "–", "–", "–");
-  const nlohmann::json j1 = {{"gbuffer_ms", g1},
-                             {"default",
-                              {{"shade_ms", res.default_1x1.normal.median_ms()},
-                               {"shade_ms_heavy", res.default_1x1.heavy.median_ms()}}},
-                             {"fxaa",
-                              {{"shade_ms", res.fxaa_1x1.normal.median_ms()},
-                               {"shade_ms_heavy", res.fxaa_1x1.heavy.median_ms()}}}};
-  nlohmann::json jrates = nlohmann::json::array();
-  std::string md_fig;
+  out.j1 = {{"gbuffer_ms", g1},
+            {"default",
+             {{"shade_ms", res.default_1x1.normal.median_ms()},
+              {"shade_ms_heavy", res.default_1x1.heavy.median_ms()}}},
+            {"fxaa",
+             {{"shade_ms", res.fxaa_1x1.normal.median_ms()},
+              {"shade_ms_heavy", res.fxaa_1x1.heavy.median_ms()}}}};
+  if (gl) {
+    out.j1["gbuffer_gpu_ms"] = res.gbuffer_1x1_gpu.median_ms();
+    out.j1["default"]["gpu_shade_ms"] = res.default_1x1.gpu.median_ms();
+    out.j1["fxaa"]["gpu_shade_ms"] = res.fxaa_1x1.gpu.median_ms();
+  }
   for (const AaRateResult& rate : res.rates) {
-    nlohmann::json jimages = nlohmann::json::object();
-    if (Status s = write_rate_images(c, rate, dir, jimages); !s.ok()) return s;
-    const nlohmann::json jr = rate_json(c, rate, std::move(jimages));
-    jrates.push_back(jr);
+    nlohmann::json jimages = nlohmann::json::object(), jedge = nlohmann::json::object();
+    if (Status s = write_rate_images(c, rate, dir, prefix, jimages, jedge); !s.ok()) return s;
+    const nlohmann::json jr = rate_json(c, rate, gl, std::move(jimages), std::move(jedge));
+    out.jrates.push_back(jr);
     const std::string rl = std::to_string(rate.m) + "×" + std::to_string(rate.m);
     const double gms = rate.gbuffer.median_ms();
     const std::string one = jnum(100.0 / (rate.m * rate.m), "%.1f");
     const AaQuality& q_def = rate.method(AaMethod::default_1spp).quality;
     const AaQuality& q_fx = rate.method(AaMethod::fxaa).quality;
     const AaQuality& q_ad = rate.method(AaMethod::adaptive).quality;
+    const AaQuality& q_edge = rate.method(AaMethod::edge_per_sample).quality;
     const AaQuality& q_geo = rate.ablation_geometry.quality;
     const AaQuality& q_shd = rate.ablation_shading.quality;
     tables.row(rl, "Default (1 spp)", gms, rate.method(AaMethod::default_1spp).timing, qs(q_def, 0),
@@ -258,7 +300,64 @@ Status write_aa_report(const experiments::AaConfig& c, const experiments::AaResu
                jnum(rate.ablation_geometry.samples_pct, "%.1f"));
     tables.row(rl, "Adaptive, shading only", gms, {}, qs(q_shd, 0), qs(q_shd, 1), qs(q_shd, 2),
                jnum(rate.ablation_shading.samples_pct, "%.1f"));
-    md_fig += figure_md(c, rate, jr);
+    tables.row(rl, "Edge per sample (Lauritzen 2010)", gms,
+               rate.method(AaMethod::edge_per_sample).timing, qs(q_edge, 0), qs(q_edge, 1),
+               qs(q_edge, 2), jnum(rate.method(AaMethod::edge_per_sample).samples_pct, "%.1f"));
+    if (figures) out.md_fig += figure_md(c, rate, jr);
+    if (gl) {
+      out.md_passes += "| " + rl + " | G-buffer | geometry | " +
+                       ms_cell(rate.gbuffer.median_ms()) + " | " +
+                       ms_cell(rate.gbuffer_gpu.median_ms()) + " |\n";
+      for (experiments::AaMethod k : experiments::kAaMethods) {
+        for (const experiments::AaPassFrames& p : rate.method(k).passes) {
+          out.md_passes += "| " + rl + " | " + experiments::aa_method_name(k) + " | " + p.pass +
+                           " | " + ms_cell(p.wall.median_ms()) + " | " +
+                           ms_cell(p.gpu.median_ms()) + " |\n";
+        }
+      }
+    }
+  }
+  return Status::success();
+}
+
+/// The GL paragraph of aa.md: the device and which times to read.
+std::string gl_note(const experiments::AaResult& res) {
+  std::string md = "OpenGL: `" + res.gl_renderer + "`, `" + res.gl_version +
+                   "`. GL ms are host wall times from each pass's dispatch to the end of its "
+                   "closing glFinish (read-back excluded); GL_TIME_ELAPSED per pass is beside "
+                   "them in the pass table and in aa.json (`gpu_shade_ms`, `passes`).";
+  if (res.gl_renderer.find("llvmpipe") != std::string::npos) {
+    md += " On llvmpipe the GPU timer reads 0 for compute dispatches: the wall times are the "
+          "ones to read.";
+  }
+  return md + "\n\n";
+}
+
+std::string pass_table(const std::string& rows) {
+  return "| rate | method | pass | wall ms | GL_TIME_ELAPSED ms |\n|---|---|---|---|---|\n" + rows;
+}
+
+}  // namespace
+
+Status write_aa_report(const experiments::AaConfig& c, const experiments::AaResult& res,
+                       const std::string& scene_label, const std::string& dir,
+                       std::string* markdown) {
+  const bool gl = res.backend == experiments::Backend::gl;
+  BackendReport main{Tables(c.heavy), {}, nlohmann::json::array(), {}, {}};
+  if (Status s = backend_report(c, res, dir, "", true, main); !s.ok()) return s;
+  nlohmann::json j1 = main.j1, jrates = main.jrates;
+  BackendReport side{Tables(c.heavy), {}, nlohmann::json::array(), {}, {}};
+  if (res.gl) {
+    if (Status s = backend_report(c, *res.gl, dir, "gl-", false, side); !s.ok()) return s;
+    j1["gl"] = side.j1;
+    for (std::size_t i = 0; i < jrates.size() && i < side.jrates.size(); ++i) {
+      jrates[i]["gl"] = side.jrates[i];
+      if (const auto& v = res.rates[i].gl_vs_cpu) {
+        jrates[i]["gl_vs_cpu"] = {
+            {"psnr_db", std::isfinite(v->psnr_db) ? nlohmann::json(v->psnr_db) : nlohmann::json()},
+            {"k_mismatch_fraction", v->k_mismatch_fraction}};
+      }
+    }
   }
 
   const deferred::AdaptiveOptions& a = c.adaptive;
@@ -283,6 +382,12 @@ Status write_aa_report(const experiments::AaConfig& c, const experiments::AaResu
       {"one_sample_per_pixel", "first sample of the window in index-matrix order"},
       {"rate_1x1", j1},
       {"rates", jrates}};
+  nlohmann::json jout = j;
+  if (gl || res.gl) {
+    jout["backend"] = gl ? "gl" : "both";
+    jout["gl_renderer"] = res.gl_renderer;
+    jout["gl_version"] = res.gl_version;
+  }
   std::string md;
   md += "# Adaptive supersampling for deferred shading — `tessera aa`\n\n";
   md += "Scene `" + scene_label + "`, " + std::to_string(c.width) + "×" + std::to_string(c.height) +
@@ -298,12 +403,31 @@ Status write_aa_report(const experiments::AaConfig& c, const experiments::AaResu
       "methods of a rate and timed once per frame. MSE on 8-bit RGB and, like the paper, "
       "×10⁻⁵ on [0, 1]; PSNR against the reference at the same rate. Samples % of the "
       "reference's shaded samples.\n\n";
+  if (gl) md += gl_note(res);
   md +=
       "| rate | method | ms/frame | heavy ms/frame | shading ms | heavy shading ms | MSE (8-bit) | "
       "MSE (×10⁻⁵) | PSNR dB | samples % |\n|---|---|---|---|---|---|---|---|---|---|\n";
-  md += tables.rows;
-  md += md_fig;
-  if (Status s = write_text(fs::path(dir) / "aa.json", j.dump(2) + "\n"); !s.ok()) return s;
+  md += main.tables.rows;
+  if (gl) md += "\nPer pass (median ms):\n\n" + pass_table(main.md_passes);
+  md += main.md_fig;
+  if (res.gl) {
+    md += "\n## OpenGL beside the CPU (`--backend both`)\n\n" + gl_note(*res.gl) +
+          "The same experiment on GL, against GL's own reference (columns as above):\n\n"
+          "| rate | method | ms/frame | heavy ms/frame | shading ms | heavy shading ms | MSE "
+          "(8-bit) | MSE (×10⁻⁵) | PSNR dB | samples % |\n|---|---|---|---|---|---|---|---|---|"
+          "---|\n" +
+          side.tables.rows +
+          "\nGL adaptive against CPU adaptive (8-bit sRGB PSNR; pixels whose shaded-sample count "
+          "differs):\n\n| rate | PSNR dB | k mismatch |\n|---|---|---|\n";
+    for (const AaRateResult& rate : res.rates) {
+      if (!rate.gl_vs_cpu) continue;
+      const AaQuality q{0.0, rate.gl_vs_cpu->psnr_db, 1.0};
+      md += "| " + std::to_string(rate.m) + "×" + std::to_string(rate.m) + " | " + qs(q, 2) +
+            " | " + jnum(100.0 * rate.gl_vs_cpu->k_mismatch_fraction, "%.3f") + " % |\n";
+    }
+    md += "\nGL per pass (median ms):\n\n" + pass_table(side.md_passes);
+  }
+  if (Status s = write_text(fs::path(dir) / "aa.json", jout.dump(2) + "\n"); !s.ok()) return s;
   if (Status s = write_text(fs::path(dir) / "aa.md", md); !s.ok()) return s;
   if (markdown) *markdown = std::move(md);
   return Status::success();

@@ -151,6 +151,19 @@ nlohmann::json discard_catches_traverse(const experiments::SeamsResult& res) {
   return nullptr;
 }
 
+/// Whether GL ran on a software rasterizer (llvmpipe, softpipe): its GPU timer is partial.
+bool software_gl(const experiments::SeamsResult& res) {
+  return res.gl_renderer.find("llvmpipe") != std::string::npos ||
+         res.gl_renderer.find("softpipe") != std::string::npos;
+}
+
+/// {median_ms, frame_ms} (+ wall_median_ms, wall_frame_ms with `wall`).
+nlohmann::json times_json(const experiments::FrameTimes& t, const experiments::FrameTimes* wall) {
+  nlohmann::json j = {{"median_ms", t.median_ms()}, {"frame_ms", t.frame_ms}};
+  if (wall) j.update({{"wall_median_ms", wall->median_ms()}, {"wall_frame_ms", wall->frame_ms}});
+  return j;
+}
+
 nlohmann::json summary_json(const ErrorStats& q) {
   return {{"mean", q.mean},
           {"fraction_ge_0.01", q.at(0.01)},
@@ -177,15 +190,31 @@ void fill_json(const experiments::SeamsConfig& c, const experiments::SeamsResult
                       {"edge_pairings", res.edge_pairings},
                       {"valence4_corner_links", res.linked_corners},
                       {"corners", 4 * res.faces}};
+  const bool gl = res.backend == experiments::Backend::gl;
+  summary["backend"] = res.compared_gl ? "both" : experiments::backend_name(res.backend);
+  if (gl || res.compared_gl) {
+    summary["gl_renderer"] = res.gl_renderer;
+    summary["gl_version"] = res.gl_version;
+    summary["msaa_unsupported"] = res.msaa_unsupported;
+    const std::string read = software_gl(res) ? "the wall times (llvmpipe: the timer is partial)"
+                                              : "the GPU timer (a hardware GPU)";
+    summary["timing_note"] =
+        "GL: median_ms/frame_ms are GL_TIME_ELAPSED (draws + resolve), "
+        "wall_median_ms/wall_frame_ms the wall time to glFinish; read " +
+        read;
+  }
   nlohmann::json timing_j, quality_j, nan_j;
   for (const SeamsRateResult& rate : res.rates) {
     const std::string rk = rate_key(rate.msaa);
     for (const experiments::SeamsMethodResult& mr : rate.methods) {
-      timing_j[rk][faces::method_name(mr.method)] = {{"median_ms", mr.timing.median_ms()},
-                                                     {"frame_ms", mr.timing.frame_ms}};
+      timing_j[rk][faces::method_name(mr.method)] = times_json(mr.timing, gl ? &mr.wall : nullptr);
     }
-    timing_j[rk]["shading_only"] = {{"median_ms", rate.shading_only.median_ms()},
-                                    {"frame_ms", rate.shading_only.frame_ms}};
+    nlohmann::json& so = timing_j[rk]["shading_only"] = times_json(rate.shading_only, nullptr);
+    if (rate.shading_only.frame_ms.empty()) {
+      so = {{"median_ms", nullptr},
+            {"frame_ms", nlohmann::json::array()},
+            {"note", "not on this backend"}};
+    }
     for (const experiments::SeamsMethodResult& mr : rate.methods) {
       quality_j["vs_reference"][faces::method_name(mr.method)][rk] = summary_json(mr.vs_reference);
     }
@@ -224,6 +253,25 @@ void fill_json(const experiments::SeamsConfig& c, const experiments::SeamsResult
   summary["quality"] = quality_j;
   summary["nan_pixels_discard_without_fallback_frame0"] = nan_j;
   summary["reference_ms_total"] = res.reference_ms_total;
+  if (res.compared_gl) {
+    nlohmann::json tg = nlohmann::json::object(), agree = nlohmann::json::object();
+    for (const experiments::SeamsGlRateResult& g : res.gl_rates) {
+      const std::string rk = rate_key(g.msaa);
+      for (const experiments::SeamsGlMethodResult& m : g.methods) {
+        const char* name = faces::method_name(m.method);
+        tg[rk][name] = times_json(m.gpu, &m.wall);
+        agree[rk][name] = {{"psnr_db", m.psnr_db}, {"fraction_ge_0.01", m.fraction_ge_001}};
+      }
+    }
+    summary["timing_gl"] = tg;
+    summary["gl_vs_cpu"] = agree;
+    summary["gl_vs_cpu_note"] =
+        "GL frame against the CPU frame of the same camera, rate and method, pooled over the " +
+        std::to_string(res.quality_frames) +
+        " quality frame(s), all pixels: psnr_db from the mean MSE of the 8-bit sRGB outputs "
+        "(null = identical), fraction_ge_0.01 = pixels whose linear-RGB 2-norm difference is >= "
+        "0.01 (NaN counts)";
+  }
 }
 
 /// cdf.csv and the Figure-5 plots.
@@ -317,6 +365,112 @@ std::string error_row(const std::string& label, int msaa, const ErrorStats& q) {
          fmt(" | %.4f", q.at(0.01)) + fmt(" | %.4f |\n", q.at(0.05));
 }
 
+/// Median ms of one variant per rate (`label` in the first column).
+struct TimeRow {
+  std::string label;
+  std::vector<double> ms;
+};
+
+/// A Table-1 block: one column per rate, the rows, then Traverse / Discard. Returns whether
+/// Discard is at least 2x faster at every rate.
+bool time_table(std::ostringstream& md, const std::vector<int>& rates,
+                const std::vector<TimeRow>& rows, const char* cell) {
+  const auto row = [&](Method m) {
+    return std::find_if(rows.begin(), rows.end(),
+                        [&](const TimeRow& r) { return r.label == faces::method_name(m); });
+  };
+  const auto t = row(Method::traverse), d = row(Method::discard);
+  md << "| method |";
+  for (int r : rates) md << " " << r << "x |";
+  md << "\n|---|";
+  for (std::size_t ri = 0; ri < rates.size(); ++ri) md << "---:|";
+  md << "\n";
+  for (const TimeRow& r : rows) {
+    md << "| " << r.label << " |";
+    for (double v : r.ms) md << fmt(cell, v);
+    md << "\n";
+  }
+  md << "| **traverse / discard** |";
+  bool speed_ok = true;
+  for (std::size_t ri = 0; ri < rates.size(); ++ri) {
+    const double ratio = t->ms[ri] / std::max(d->ms[ri], 1e-9);
+    speed_ok = speed_ok && ratio >= 2.0;
+    md << fmt(" %.2fx |", ratio);
+  }
+  md << "\n\n";
+  return speed_ok;
+}
+
+/// The wall-time and GPU-timer blocks of GL frames; returns the 2x target of the one to read.
+template <typename Rate, typename Pick>
+bool gl_time_tables(std::ostringstream& md, const experiments::SeamsResult& res,
+                    const std::vector<Rate>& rates, Pick pick) {
+  const std::vector<Method>& methods = faces::all_methods();
+  std::vector<int> keys;
+  for (const Rate& r : rates) keys.push_back(r.msaa);
+  bool ok[2] = {true, true};
+  for (int gpu = 0; gpu < 2; ++gpu) {
+    std::vector<TimeRow> rows;
+    for (Method m : methods) {
+      TimeRow row{faces::method_name(m), {}};
+      for (const Rate& r : rates) row.ms.push_back(pick(r, m, gpu == 1)->median_ms());
+      rows.push_back(std::move(row));
+    }
+    md << (gpu ? "GPU timer (GL_TIME_ELAPSED of the draws and the resolve), median ms:\n\n"
+               : "Wall time (first GL call of the frame to glFinish after the resolve, "
+                 "read-back excluded), median ms:\n\n");
+    ok[gpu] = time_table(md, keys, rows, gpu ? " %.3f |" : " %.2f |");
+  }
+  md << "**Which to read:** "
+     << (software_gl(res)
+             ? "the wall times. This is llvmpipe, a software rasterizer: its GL_TIME_ELAPSED "
+               "queries are executed per screen tile by the rasterizer threads and cover only "
+               "part of the frame (gl_seams.h)."
+             : "the GPU timer (a hardware GPU: the timer is the pass time; wall time adds the "
+               "driver's submission and the glFinish round trip).")
+     << "\n\n";
+  return software_gl(res) ? ok[0] : ok[1];
+}
+
+/// `--backend both`: the GL times and the GL-vs-CPU agreement.
+std::string gl_beside_cpu(const experiments::SeamsResult& res) {
+  std::ostringstream md;
+  md << "\n## OpenGL beside the CPU\n\nThe same frames rendered by GL (" << res.gl_renderer
+     << "), methods alternating per frame";
+  if (!res.msaa_unsupported.empty()) {
+    md << "; refused by the driver and skipped on GL:";
+    for (int r : res.msaa_unsupported) md << " " << rate_key(r);
+  }
+  md << ".\n\n";
+  gl_time_tables(md, res, res.gl_rates,
+                 [](const experiments::SeamsGlRateResult& r, Method m, bool gpu) {
+                   return gpu ? &r.method(m).gpu : &r.method(m).wall;
+                 });
+  md << "GL against the CPU, the same camera, rate and method, pooled over the "
+     << res.quality_frames
+     << " quality frame(s), all pixels: PSNR of the 8-bit sRGB outputs (from the mean MSE) / "
+        "fraction of pixels whose linear-RGB 2-norm difference is >= 0.01. Under 16x "
+        "anisotropic filtering the drivers' hardware filter is implementation-defined "
+        "(llvmpipe's is much blurrier than tessera's exact filter), so the agreement is lower "
+        "than under trilinear filtering.\n\n| method |";
+  std::string rule = "\n|---|";
+  for (const experiments::SeamsGlRateResult& g : res.gl_rates) {
+    md << " " << rate_key(g.msaa) << " |";
+    rule += "---:|";
+  }
+  md << rule << "\n";
+  for (Method m : faces::all_methods()) {
+    md << "| " << faces::method_name(m) << " |";
+    for (const experiments::SeamsGlRateResult& g : res.gl_rates) {
+      const experiments::SeamsGlMethodResult& r = g.method(m);
+      md << (std::isfinite(r.psnr_db) ? fmt(" %.2f dB", r.psnr_db) : std::string(" identical"))
+         << fmt(" / %.4f |", r.fraction_ge_001);
+    }
+    md << "\n";
+  }
+  return md.str();
+}
+
 std::string markdown(const experiments::SeamsConfig& c, const experiments::SeamsResult& res,
                      bool images) {
   const std::vector<Method>& methods = faces::all_methods();
@@ -327,33 +481,47 @@ std::string markdown(const experiments::SeamsConfig& c, const experiments::Seams
      << " corners with a valence-4 diagonal face. " << c.width << "x" << c.height << ", "
      << c.frames << " orbit frames (" << res.quality_frames
      << " with a reference), 16x anisotropic filtering, " << res.threads << " thread(s).\n\n";
-  md << "## Table 1 analogue: median ms per frame\n\n";
-  md << "Raster + shading + MSAA box resolve, all variants rendered side by side in one run, "
-        "alternating per frame; `shading only` is the same pass without the texture lookup.\n\n";
-  md << "| method |";
-  for (int r : c.msaa) md << " " << r << "x |";
-  md << "\n|---|";
-  for (std::size_t ri = 0; ri < res.rates.size(); ++ri) md << "---:|";
-  md << "\n";
-  for (std::size_t v = 0; v <= methods.size(); ++v) {
-    const bool shading = v == methods.size();
-    md << "| " << (shading ? std::string("shading only") : faces::method_name(methods[v])) << " |";
-    for (const SeamsRateResult& rate : res.rates) {
-      const experiments::FrameTimes& t =
-          shading ? rate.shading_only : rate.method(methods[v]).timing;
-      md << fmt(" %.1f |", t.median_ms());
+  const bool gl = res.backend == experiments::Backend::gl;
+  if (gl || res.compared_gl) {
+    md << "Backend: **" << (gl ? "OpenGL" : "CPU, and OpenGL beside it (`--backend both`)")
+       << "**: " << res.gl_renderer << ", " << res.gl_version << ".";
+    if (!res.msaa_unsupported.empty()) {
+      md << " MSAA rates the driver refuses, skipped" << (gl ? "" : " on GL") << ":";
+      for (int r : res.msaa_unsupported) md << " " << rate_key(r);
+      md << ".";
     }
-    md << "\n";
+    md << (gl ? " The reference is rendered by GL too (Traverse, 16x anisotropic, tiled); face "
+                "ids (near-seam pixels) and the character mask come from the CPU renderer, "
+                "whose geometry is the same."
+              : "")
+       << "\n\n";
   }
-  md << "| **traverse / discard** |";
+  md << "## Table 1 analogue: median ms per frame\n\n";
   bool speed_ok = true;
-  for (const SeamsRateResult& rate : res.rates) {
-    const double ratio = rate.method(Method::traverse).timing.median_ms() /
-                         std::max(rate.method(Method::discard).timing.median_ms(), 1e-9);
-    speed_ok = speed_ok && ratio >= 2.0;
-    md << fmt(" %.2fx |", ratio);
+  if (gl) {
+    md << "Draws + MSAA box resolve on the GPU, all methods rendered side by side in one run, "
+          "alternating per frame (no shading-only pass on GL).\n\n";
+    speed_ok = gl_time_tables(md, res, res.rates, [](const SeamsRateResult& r, Method m, bool gpu) {
+      return gpu ? &r.method(m).timing : &r.method(m).wall;
+    });
+  } else {
+    md << "Raster + shading + MSAA box resolve, all variants rendered side by side in one run, "
+          "alternating per frame; `shading only` is the same pass without the texture "
+          "lookup.\n\n";
+    std::vector<int> keys;
+    std::vector<TimeRow> rows;
+    for (const SeamsRateResult& rate : res.rates) keys.push_back(rate.msaa);
+    for (std::size_t v = 0; v <= methods.size(); ++v) {
+      const bool shading = v == methods.size();
+      TimeRow row{shading ? std::string("shading only") : faces::method_name(methods[v]), {}};
+      for (const SeamsRateResult& rate : res.rates) {
+        row.ms.push_back(
+            (shading ? rate.shading_only : rate.method(methods[v]).timing).median_ms());
+      }
+      rows.push_back(std::move(row));
+    }
+    speed_ok = time_table(md, keys, rows, " %.1f |");
   }
-  md << "\n\n";
   md << "## Figure 5 analogue\n\n";
   md << "Pixels counted: **geometry only** — pixels whose reference coverage (the alpha of the "
         "Mitchell-filtered supersampled reference) exceeds 0.01, over the quality frames, the "
@@ -424,6 +592,7 @@ std::string markdown(const experiments::SeamsConfig& c, const experiments::Seams
     md << " " << rate_key(rate.msaa) << ": " << rate.nan_pixels_without_fallback << ";";
   }
   md << " with the fallback: 0.\n";
+  if (res.compared_gl) md << gl_beside_cpu(res);
   if (images) {
     md << "\n## Images\n\n`images/<method>_<rate>.png` (frame 0), `images/reference.png`, "
           "`images/zoom_*.png`: a 40x40 window at 4x where Clamp and Traverse differ most, and "

@@ -1,0 +1,58 @@
+// The CPU backend of the seam experiment: faces::FaceRenderer behind the SeamsFrameRenderer
+// interface (tessera/experiments.h). Its frames are the ones `tessera seams` has always rendered.
+#include "tessera/experiments.h"
+
+namespace tessera::experiments {
+
+namespace {
+
+class CpuSeamsRenderer final : public SeamsFrameRenderer {
+ public:
+  explicit CpuSeamsRenderer(std::unique_ptr<faces::FaceRenderer> r) : r_(std::move(r)) {}
+
+  Backend backend() const override { return Backend::cpu; }
+  std::string device_name() const override { return {}; }
+  std::string device_version() const override { return {}; }
+  bool msaa_supported(int samples) override { return raster::valid_msaa(samples); }
+  bool has_shading_only() const override { return true; }
+
+  Result<SeamsBackendFrame> render(const scene::Camera& camera,
+                                   const SeamsFrameOptions& options) override {
+    faces::FaceRenderOptions o;
+    o.width = options.width;
+    o.height = options.height;
+    o.threads = options.threads;
+    o.msaa = options.msaa;
+    o.sampling.filter = options.filter;
+    o.sampling.max_aniso = options.max_aniso;
+    o.shading_only = options.shading_only;
+    o.sampling.method = options.shading_only ? faces::Method::clamp : options.method;
+    o.sampling.clamp_fallback = options.clamp_fallback;
+    Result<faces::FaceFrame> f = r_->render(camera, o);
+    if (!f) return f.status();
+    SeamsBackendFrame out;
+    out.ms = f->ms();
+    out.wall_ms = out.ms;
+    out.image = std::move(f->image);
+    return out;
+  }
+
+  Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
+                                      int factor, int threads) override {
+    return r_->render_reference(camera, width, height, factor, threads);
+  }
+
+ private:
+  std::unique_ptr<faces::FaceRenderer> r_;
+};
+
+}  // namespace
+
+Result<std::unique_ptr<SeamsFrameRenderer>> create_cpu_seams_renderer(
+    const faces::FaceScene& scene, const faces::FaceTextureSet& textures) {
+  Result<std::unique_ptr<faces::FaceRenderer>> r = faces::FaceRenderer::create(scene, textures);
+  if (!r) return r.status();
+  return std::unique_ptr<SeamsFrameRenderer>(std::make_unique<CpuSeamsRenderer>(std::move(*r)));
+}
+
+}  // namespace tessera::experiments
