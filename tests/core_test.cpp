@@ -124,5 +124,15 @@ TEST(Procedural, DeterministicAndDistinct) {
             make_procedural(Procedural::noise, 32, 32, 2).pixels);
 }
 
+TEST(Timing, MedianLeavesNanOutAndAveragesTheMiddleTwo) {
+  EXPECT_EQ(median({}), 0.0);
+  EXPECT_EQ(median({3.0, 1.0, 2.0}), 2.0);
+  EXPECT_EQ(median({4.0, 1.0, 2.0, 3.0}), 2.5);
+  EXPECT_EQ(median({std::nan(""), 5.0, 1.0}), 3.0);
+  EXPECT_EQ(median({std::nan("")}), 0.0);
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_GE(ms_since(t0), 0.0);
+}
+
 }  // namespace
 }  // namespace tessera

@@ -617,10 +617,7 @@ TEST(Aa, BackendSizeCheckComesBeforeReady) {
   EXPECT_FALSE(r->rates[0].method(AaMethod::adaptive).passes.empty());
 }
 
-TEST(Experiments, MedianAndNames) {
-  EXPECT_EQ(median({}), 0.0);
-  EXPECT_EQ(median({3.0, 1.0, 2.0}), 2.0);
-  EXPECT_EQ(median({4.0, 1.0, 2.0, 3.0}), 2.5);
+TEST(Experiments, Names) {
   EXPECT_STREQ(aa_method_name(AaMethod::default_1spp), "default");
   EXPECT_STREQ(aa_method_name(AaMethod::adaptive), "adaptive");
   ErrorStats s;

@@ -58,8 +58,6 @@ struct FrameTimes {
   double median_ms() const;
 };
 
-/// Median of `values` (mean of the middle two for an even count; 0 when empty).
-double median(std::vector<double> values);
 
 // ---------------------------------------------------------------------------------------------
 // Seams (Toth 2013)

@@ -16,14 +16,7 @@ const char* backend_name(Backend backend) {
   return "?";
 }
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-double FrameTimes::median_ms() const { return median(frame_ms); }
+double FrameTimes::median_ms() const { return tessera::median(frame_ms); }
 
 double ErrorStats::at(double x) const {
   if (cdf.empty()) return 0.0;

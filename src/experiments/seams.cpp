@@ -14,10 +14,6 @@ namespace tessera::experiments {
 
 namespace {
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 /// Counted pixels: the reference's (Mitchell-filtered) coverage exceeds 1 %: geometry only.
 std::vector<std::uint8_t> geometry_mask(const ImageRGBAF& ref) {
   std::vector<std::uint8_t> m(ref.pixel_count());

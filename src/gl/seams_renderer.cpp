@@ -18,10 +18,6 @@ using namespace api;  // NOLINT(google-build-using-namespace)
 
 namespace {
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
 bool has_shaders(const std::filesystem::path& dir) {
   std::error_code ec;
   return std::filesystem::is_regular_file(dir / "seams_render.frag", ec) &&
