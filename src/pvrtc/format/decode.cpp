@@ -184,7 +184,7 @@ void unpack_2bpp_block(std::uint64_t word, std::uint8_t values[32], int& mode) {
 }
 
 std::uint32_t pack_2bpp_block(const std::uint8_t v[32], int mode) {
-  TESSERA_DCHECK(mode == 0 || mode == 1);
+  TESSERA_DCHECK(mode >= 0 && mode <= 3);  // direct, interpolated, H only, V only
   for (int i = 0; i < 32; ++i) TESSERA_DCHECK(v[i] <= 3);  // 2-bit stored modulation values
   if (mode == 0) {
     std::uint32_t bits = 0;
