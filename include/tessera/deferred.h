@@ -219,6 +219,16 @@ struct FxaaOptions {
 /// True for a preset number FXAA 3.11 defines.
 bool valid_fxaa_preset(int preset);
 
+/// A preset's edge-search steps: FXAA_QUALITY__PS and FXAA_QUALITY__P0..P11 of Fxaa3_11.h
+/// (the CPU filter and share/tessera/glsl/fxaa.glsl use the same table).
+struct FxaaPresetSteps {
+  int steps = 0;
+  std::array<float, 12> p{};
+};
+
+/// The steps of `preset`, or nullptr for an unknown preset.
+const FxaaPresetSteps* fxaa_preset_steps(int preset);
+
 /// FXAA 3.11 on an 8-bit sRGB image (the LDR back buffer FXAA is designed for): luma =
 /// Rec.601 weights on the sRGB values, local contrast early exit, edge orientation, end-of-edge
 /// search with the preset's steps, sub-pixel blend, then one bilinear fetch at the offset

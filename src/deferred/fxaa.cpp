@@ -15,29 +15,28 @@ namespace {
 
 struct Preset {
   int id;
-  int steps;
-  std::array<float, 12> p;
+  FxaaPresetSteps steps;
 };
 
 // FXAA_QUALITY__P0..P11 of every preset in Fxaa3_11.h.
 constexpr Preset kPresets[] = {
-    {10, 3, {1.5f, 3.0f, 12.0f}},
-    {11, 4, {1.0f, 1.5f, 3.0f, 12.0f}},
-    {12, 5, {1.0f, 1.5f, 2.0f, 4.0f, 12.0f}},
-    {13, 6, {1.0f, 1.5f, 2.0f, 2.0f, 4.0f, 12.0f}},
-    {14, 7, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 4.0f, 12.0f}},
-    {15, 8, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 12.0f}},
-    {20, 3, {1.5f, 2.0f, 8.0f}},
-    {21, 4, {1.0f, 1.5f, 2.0f, 8.0f}},
-    {22, 5, {1.0f, 1.5f, 2.0f, 2.0f, 8.0f}},
-    {23, 6, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 8.0f}},
-    {24, 7, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 3.0f, 8.0f}},
-    {25, 8, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
-    {26, 9, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
-    {27, 10, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
-    {28, 11, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
-    {29, 12, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
-    {39, 12, {1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
+    {10, {3, {1.5f, 3.0f, 12.0f}}},
+    {11, {4, {1.0f, 1.5f, 3.0f, 12.0f}}},
+    {12, {5, {1.0f, 1.5f, 2.0f, 4.0f, 12.0f}}},
+    {13, {6, {1.0f, 1.5f, 2.0f, 2.0f, 4.0f, 12.0f}}},
+    {14, {7, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 4.0f, 12.0f}}},
+    {15, {8, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 12.0f}}},
+    {20, {3, {1.5f, 2.0f, 8.0f}}},
+    {21, {4, {1.0f, 1.5f, 2.0f, 8.0f}}},
+    {22, {5, {1.0f, 1.5f, 2.0f, 2.0f, 8.0f}}},
+    {23, {6, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 8.0f}}},
+    {24, {7, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 3.0f, 8.0f}}},
+    {25, {8, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}}},
+    {26, {9, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}}},
+    {27, {10, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}}},
+    {28, {11, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}}},
+    {29, {12, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}}},
+    {39, {12, {1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}}},
 };
 
 const Preset* find_preset(int id) {
@@ -70,7 +69,8 @@ struct Plane {
 };
 
 /// FxaaPixelShader for pixel (x, y): returns the sampling position (posM after the offset).
-void fxaa_pixel(const Plane& luma, int x, int y, const Preset& preset, const FxaaOptions& o,
+void fxaa_pixel(const Plane& luma, int x, int y, const FxaaPresetSteps& preset,
+                const FxaaOptions& o,
                 float& out_x, float& out_y, bool& early_exit) {
   float posMx = float(x) + 0.5f, posMy = float(y) + 0.5f;
   out_x = posMx;
@@ -192,6 +192,11 @@ void fxaa_pixel(const Plane& luma, int x, int y, const Preset& preset, const Fxa
 
 bool valid_fxaa_preset(int preset) { return find_preset(preset) != nullptr; }
 
+const FxaaPresetSteps* fxaa_preset_steps(int preset) {
+  const Preset* p = find_preset(preset);
+  return p ? &p->steps : nullptr;
+}
+
 Result<ImageRGBA8> fxaa(const ImageRGBA8& image, const FxaaOptions& options) {
   const Preset* preset = find_preset(options.preset);
   if (!preset) {
@@ -222,7 +227,7 @@ Result<ImageRGBA8> fxaa(const ImageRGBA8& image, const FxaaOptions& options) {
           for (int x = 0; x < w; ++x) {
             float px = 0, py = 0;
             bool early = false;
-            fxaa_pixel(luma, x, y, *preset, options, px, py, early);
+            fxaa_pixel(luma, x, y, preset->steps, options, px, py, early);
             std::uint8_t* o = out.at(x, y);
             const std::uint8_t* in = image.at(x, y);
             o[3] = in[3];

@@ -17,31 +17,6 @@ using namespace api;
 
 namespace {
 
-// FXAA_QUALITY__P0..P11 per preset (as src/deferred/fxaa.cpp).
-struct FxaaPreset {
-  int id, steps;
-  float p[12];
-};
-constexpr FxaaPreset kFxaaPresets[] = {
-    {10, 3, {1.5f, 3.0f, 12.0f}},
-    {11, 4, {1.0f, 1.5f, 3.0f, 12.0f}},
-    {12, 5, {1.0f, 1.5f, 2.0f, 4.0f, 12.0f}},
-    {13, 6, {1.0f, 1.5f, 2.0f, 2.0f, 4.0f, 12.0f}},
-    {14, 7, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 4.0f, 12.0f}},
-    {15, 8, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 12.0f}},
-    {20, 3, {1.5f, 2.0f, 8.0f}},
-    {21, 4, {1.0f, 1.5f, 2.0f, 8.0f}},
-    {22, 5, {1.0f, 1.5f, 2.0f, 2.0f, 8.0f}},
-    {23, 6, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 8.0f}},
-    {24, 7, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 3.0f, 8.0f}},
-    {25, 8, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
-    {26, 9, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
-    {27, 10, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
-    {28, 11, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
-    {29, 12, {1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
-    {39, 12, {1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.5f, 2.0f, 2.0f, 2.0f, 2.0f, 4.0f, 8.0f}},
-};
-
 std::string float_literal(float v) {
   std::ostringstream o;
   o.precision(9);
@@ -341,10 +316,7 @@ Result<GlShadeResult> DeferredGlRenderer::shade_edge_per_sample(
 namespace {
 
 Result<std::vector<std::string>> fxaa_defines(const deferred::FxaaOptions& f) {
-  const FxaaPreset* preset = nullptr;
-  for (const FxaaPreset& p : kFxaaPresets) {
-    if (p.id == f.preset) preset = &p;
-  }
+  const deferred::FxaaPresetSteps* preset = deferred::fxaa_preset_steps(f.preset);
   if (!preset) {
     return Status::error(ErrorCode::invalid_argument,
                          "fxaa: unknown quality preset " + std::to_string(f.preset) +

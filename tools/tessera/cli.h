@@ -41,6 +41,10 @@ std::FILE* text_stream(bool data_on_stdout);
 /// hold a space), for reports.
 const std::string& command_line();
 
+/// The shipped GLSL folder: $TESSERA_GLSL_DIR, else the source tree's share/tessera/glsl (a
+/// build tree), else the installed one; "" when tessera is built without the GL runtime.
+std::string glsl_dir();
+
 /// A registered subcommand: the CLI11 sub-app and the action run when it was selected.
 struct Command {
   CLI::App* app = nullptr;

@@ -26,17 +26,6 @@ struct AaArgs {
   deferred::AdaptiveOptions adaptive;
 };
 
-#ifdef TESSERA_HAVE_GL
-/// The GLSL folder: $TESSERA_GLSL_DIR, else the source tree's (a build tree), else the installed
-/// one.
-std::string glsl_dir() {
-  if (const char* env = std::getenv("TESSERA_GLSL_DIR"); env && *env) return env;
-  std::error_code ec;
-  if (std::filesystem::is_directory(TESSERA_SOURCE_GLSL_DIR, ec)) return TESSERA_SOURCE_GLSL_DIR;
-  return TESSERA_INSTALLED_GLSL_DIR;
-}
-#endif
-
 /// One line per rate: what a reader wants from a run (the tables are in aa.md).
 void print_summary(std::FILE* out, const experiments::AaResult& res, const char* label = "") {
   using experiments::AaMethod;

@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <span>
 #include <string>
 #include <iostream>
@@ -50,6 +51,17 @@ std::string g_command_line;
 }  // namespace
 
 const std::string& command_line() { return g_command_line; }
+
+std::string glsl_dir() {
+#ifdef TESSERA_HAVE_GL
+  if (const char* env = std::getenv("TESSERA_GLSL_DIR"); env && *env) return env;
+  std::error_code ec;
+  if (std::filesystem::is_directory(TESSERA_SOURCE_GLSL_DIR, ec)) return TESSERA_SOURCE_GLSL_DIR;
+  return TESSERA_INSTALLED_GLSL_DIR;
+#else
+  return "";
+#endif
+}
 
 namespace {
 
