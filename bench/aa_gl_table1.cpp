@@ -27,9 +27,9 @@ using namespace tessera;
 namespace {
 
 double psnr(const ImageRGBA8& a, const ImageRGBA8& b) {
-  CompareOptions o;
+  metrics::CompareOptions o;
   o.compute_ssim = false;
-  Result<ImageComparison> c = compare_images(a, b, o);
+  Result<metrics::ImageComparison> c = metrics::compare_images(a, b, o);
   return c ? c->psnr_rgb : std::nan("");
 }
 

@@ -1,4 +1,4 @@
-// Google Benchmark of PNG decoding (tessera::decode_image: the fast path, libspng as fallback),
+// Google Benchmark of PNG decoding (tessera::io::decode_image: the fast path, libspng as fallback),
 // in memory: generated images, plus the shared test images when ../shared/data is present.
 #include <benchmark/benchmark.h>
 
@@ -16,7 +16,7 @@ namespace {
 void decode_loop(benchmark::State& state, const std::vector<std::uint8_t>& png) {
   std::int64_t pixels = 0;
   for (auto _ : state) {
-    tessera::Result<tessera::ImageRGBA8> img = tessera::decode_image(png, "bench.png");
+    tessera::Result<tessera::ImageRGBA8> img = tessera::io::decode_image(png, "bench.png");
     if (!img.ok()) {
       state.SkipWithError(img.status().message.c_str());
       return;
@@ -34,7 +34,7 @@ void BM_DecodePngGenerated(benchmark::State& state) {
   const bool alpha = state.range(1) != 0;
   const tessera::ImageRGBA8 img = tessera::make_procedural(
       alpha ? tessera::Procedural::foliage : tessera::Procedural::noise, size, size, 1);
-  const std::vector<std::uint8_t> png = *tessera::encode_png(img);
+  const std::vector<std::uint8_t> png = *tessera::io::encode_png(img);
   decode_loop(state, png);
 }
 
@@ -53,7 +53,7 @@ void register_shared_images() {
     const std::filesystem::path path = shared_images() / name;
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) continue;
-    tessera::Result<std::vector<std::uint8_t>> bytes = tessera::read_file(path.string());
+    tessera::Result<std::vector<std::uint8_t>> bytes = tessera::io::read_file(path.string());
     if (!bytes.ok()) continue;
     benchmark::RegisterBenchmark(
         (std::string("BM_DecodePngShared/") + name).c_str(),

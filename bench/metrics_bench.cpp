@@ -10,10 +10,10 @@ void BM_CompareNoSsim(benchmark::State& state) {
   const int size = int(state.range(0));
   const auto a = tessera::make_procedural(tessera::Procedural::noise, size, size, 1);
   const auto b = tessera::make_procedural(tessera::Procedural::noise, size, size, 2);
-  tessera::CompareOptions options;
+  tessera::metrics::CompareOptions options;
   options.compute_ssim = false;
   options.threads = 1;
-  for (auto _ : state) benchmark::DoNotOptimize(tessera::compare_images(a, b, options));
+  for (auto _ : state) benchmark::DoNotOptimize(tessera::metrics::compare_images(a, b, options));
   state.SetItemsProcessed(state.iterations() * std::int64_t(size) * size);
 }
 
@@ -22,7 +22,7 @@ void BM_SsimGray(benchmark::State& state) {
   const int threads = int(state.range(1));
   const auto a = tessera::make_procedural(tessera::Procedural::noise, size, size, 1);
   const auto b = tessera::make_procedural(tessera::Procedural::noise, size, size, 2);
-  for (auto _ : state) benchmark::DoNotOptimize(tessera::ssim_gray(a, b, threads));
+  for (auto _ : state) benchmark::DoNotOptimize(tessera::metrics::ssim_gray(a, b, {threads}));
   state.SetItemsProcessed(state.iterations() * std::int64_t(size) * size);
 }
 

@@ -19,7 +19,7 @@ using namespace tessera;
 const ImageRGBA8& bench_image() {
   static const ImageRGBA8 img = [] {
     if (const char* p = std::getenv("TESSERA_BENCH_IMAGE")) {
-      auto r = read_image(p);
+      auto r = io::read_image(p);
       if (r.ok()) return std::move(r).value();
     }
     return make_procedural(Procedural::noise, 512, 512);
@@ -41,9 +41,9 @@ void BM_Encode(benchmark::State& state) {
     return;
   }
   auto dec = pvrtc::decode(*enc, opt.format, img.width, img.height);
-  CompareOptions co;
+  metrics::CompareOptions co;
   co.compute_ssim = false;
-  auto cmp = compare_images(img, *dec, co);
+  auto cmp = metrics::compare_images(img, *dec, co);
   state.counters["psnr_rgb"] = cmp->psnr_rgb;
 }
 
@@ -59,7 +59,7 @@ void BM_Decode(benchmark::State& state) {
   }
   const int threads = int(state.range(1));
   for (auto _ : state) {
-    benchmark::DoNotOptimize(pvrtc::decode(*enc, opt.format, img.width, img.height, threads));
+    benchmark::DoNotOptimize(pvrtc::decode(*enc, opt.format, img.width, img.height, {threads}));
   }
   state.SetItemsProcessed(state.iterations() * std::int64_t(img.pixel_count()));
 }

@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
   double sum_psnr[3] = {0, 0, 0};
   int n = 0;
   for (const std::string& f : files) {
-    auto img = read_image(f);
+    auto img = io::read_image(f);
     if (!img.ok() || !pvrtc::check_dimensions(img->width, img->height, f).ok()) {
       std::fprintf(stderr, "skipping %s\n", f.c_str());
       continue;
@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
       }
       if (!enc.ok()) return 1;
       auto dec = pvrtc::decode(*enc, format, img->width, img->height);
-      auto cmp = compare_images(*img, *dec);
+      auto cmp = metrics::compare_images(*img, *dec);
       sum_psnr[q] += cmp->psnr_rgb;
       const std::string base = f.substr(f.find_last_of('/') + 1);
       std::printf("| %s | %s | %.2f | %s | %.4f | %.1f |\n", base.c_str(), names[q], cmp->psnr_rgb,

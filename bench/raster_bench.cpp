@@ -1,4 +1,4 @@
-// Rasterizer throughput on a procedural scene: a 128 x 128-cell wavy terrain (32,768 small
+// Rasteriser throughput on a procedural scene: a 128 x 128-cell wavy terrain (32,768 small
 // triangles) seen in perspective at 1024 x 768 and filling the screen, with 5 varyings (uv,
 // normal), a bilinear, wrapping 256 x 256 texture fetch and a Lambert term.
 // Frame = per-tile clear + geometry + raster + shading; MSAA 1x and 4x, 1 and 2 threads.
@@ -129,7 +129,7 @@ void BM_RasterFrame(benchmark::State& state) {
   desc.height = kHeight;
   desc.msaa = msaa;
   FrameBuffer fb = std::move(FrameBuffer::create(desc)).value();
-  Rasterizer r({.threads = threads});
+  Rasteriser r({.threads = threads});
   const DrawCall d = make_draw();
   ClearValues clear;
   RasterStats st;
@@ -159,11 +159,14 @@ void BM_Resolve(benchmark::State& state) {
   desc.height = kHeight;
   desc.msaa = msaa;
   FrameBuffer fb = std::move(FrameBuffer::create(desc)).value();
-  Rasterizer r({.threads = threads});
+  Rasteriser r({.threads = threads});
   ClearValues clear;
-  (void)r.render(fb, make_draw(), &clear);
+  if (tessera::Result<RasterStats> st = r.render(fb, make_draw(), &clear); !st) {
+    state.SkipWithError(st.status().message.c_str());
+    return;
+  }
   for (auto _ : state) {
-    tessera::ImageRGBA8 img = resolve_srgb8(fb, threads);
+    tessera::ImageRGBA8 img = resolve_srgb8(fb, {threads});
     benchmark::DoNotOptimize(img.pixels.data());
   }
   state.SetItemsProcessed(std::int64_t(state.iterations()) * kWidth * kHeight);

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Side-by-side frame times: tessera's software rasterizer vs Mesa llvmpipe (OpenGL 4.5).
+"""Side-by-side frame times: tessera's software rasteriser vs Mesa llvmpipe (OpenGL 4.5).
 
 Usage: bench/raster_vs_llvmpipe.py [--scene FILE] [--frames N] [--threads T] [--out docs/benchmarks/raster.md]
 
 Both render the same scene, orbit cameras, resolution (1024x768) and MSAA rate with unlit
-trilinear texturing; each frame's time covers clear, transform, rasterization, shading and
+trilinear texturing; each frame's time covers clear, transform, rasterisation, shading and
 resolve (llvmpipe: draw + resolve blit + glFinish; read-back excluded on both sides). Both run
 with the same thread count: tessera -j T, llvmpipe LP_NUM_THREADS=T. Runs alternate between the
 two renderers (and the two MSAA rates) per camera position, optionally for several rounds; the
@@ -80,7 +80,7 @@ def main():
         f"--{k} {v}" for k, v in [("frames", args.frames), ("positions", args.positions),
                                   ("threads", args.threads), ("rounds", args.rounds)])
     lines = [
-        "# Rasterizer vs Mesa llvmpipe",
+        "# Rasteriser vs Mesa llvmpipe",
         "",
         f"Machine: {cpu_model()}, {os.cpu_count()} logical CPUs; date "
         f"{datetime.date.today().isoformat()}; peer: {renderer}.",

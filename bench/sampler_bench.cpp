@@ -2,7 +2,7 @@
 // mipmapped texture (linear float RGBA, 16 MiB at level 0).
 //
 // Coherent runs (the headline numbers) walk a 64x64-pixel screen tile row by row, as a
-// rasterizer's fragment shader does: uv = origin + x * ddx + y * ddy, with the same explicit
+// rasteriser's fragment shader does: uv = origin + x * ddx + y * ddy, with the same explicit
 // gradients for every pixel. The minor axis of the footprint is 3 texels (LOD ~1.58, so
 // trilinear reads two levels); anisotropic runs stretch the major axis N times, so 16x aniso
 // takes 16 trilinear probes = 128 taps per lookup. The scattered run draws positions from a
@@ -20,18 +20,22 @@
 
 namespace {
 
-using tessera::SamplerState;
-using tessera::TextureFilter;
+using tessera::texture::SamplerState;
+using tessera::texture::TapList;
+using tessera::texture::Texture;
+using tessera::texture::TextureFilter;
+using tessera::texture::Uv;
+using tessera::texture::UvGradients;
 
 struct Lookup {
-  tessera::Uv uv;
-  tessera::UvGradients grad;
+  Uv uv;
+  UvGradients grad;
 };
 
-const tessera::Texture& bench_texture() {
-  static const tessera::Texture tex = [] {
+const Texture& bench_texture() {
+  static const Texture tex = [] {
     const auto img = tessera::make_procedural(tessera::Procedural::noise, 1024, 1024, 7);
-    return std::move(tessera::Texture::from_rgba8(img)).value();
+    return std::move(Texture::from_rgba8(img)).value();
   }();
   return tex;
 }
@@ -44,7 +48,7 @@ std::vector<Lookup> coherent_lookups(float ratio) {
   const float minor = 3.0f / 1024.0f;
   const float c = std::cos(0.5235988f);
   const float s = std::sin(0.5235988f);
-  const tessera::UvGradients g{c * minor * ratio, s * minor * ratio, -s * minor, c * minor};
+  const UvGradients g{c * minor * ratio, s * minor * ratio, -s * minor, c * minor};
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x)
       out.push_back({{0.3f + float(x) * g.dudx + float(y) * g.dudy,
@@ -74,7 +78,7 @@ std::vector<Lookup> scattered_lookups(float ratio) {
 
 void run_sample(benchmark::State& state, TextureFilter filter, int max_aniso, float ratio,
                 bool scattered = false) {
-  const tessera::Texture& tex = bench_texture();
+  const Texture& tex = bench_texture();
   const std::vector<Lookup> lookups =
       scattered ? scattered_lookups(ratio) : coherent_lookups(ratio);
   SamplerState sampler;
@@ -108,12 +112,12 @@ void BM_SampleAniso(benchmark::State& state) {
 
 /// `Texture::sample4`: four consecutive coherent lookups per call (items count lookups).
 void BM_Sample4Trilinear(benchmark::State& state) {
-  const tessera::Texture& tex = bench_texture();
+  const Texture& tex = bench_texture();
   const std::vector<Lookup> lookups = coherent_lookups(1.0f);
   SamplerState sampler;
   sampler.filter = TextureFilter::trilinear;
-  std::array<tessera::Uv, 4> uv;
-  std::array<tessera::UvGradients, 4> grad;
+  std::array<Uv, 4> uv;
+  std::array<UvGradients, 4> grad;
   std::array<std::array<float, 4>, 4> out;
   std::size_t i = 0;
   for (auto _ : state) {
@@ -129,11 +133,11 @@ void BM_Sample4Trilinear(benchmark::State& state) {
 }
 
 void BM_TapsAniso16(benchmark::State& state) {
-  const tessera::Texture& tex = bench_texture();
+  const Texture& tex = bench_texture();
   const std::vector<Lookup> lookups = coherent_lookups(16.0f);
   SamplerState sampler;
   sampler.filter = TextureFilter::anisotropic;
-  tessera::TapList taps;
+  TapList taps;
   std::size_t i = 0;
   for (auto _ : state) {
     const Lookup& l = lookups[i];

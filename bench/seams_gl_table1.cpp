@@ -4,6 +4,8 @@
 // 2.06, 1.68, 1.61, 1.38), and whether Discard at 4x beats Traverse at 1x. Then the GL frames
 // against the CPU renderer (faces::FaceRenderer) at the same size, per method and rate: PSNR of
 // the 8-bit sRGB outputs and the fraction of pixels with linear-RGB 2-norm difference >= 0.01.
+// The CPU frame has the GL frame's sample positions (SeamsRenderer::sample_pattern, printed per
+// rate): llvmpipe draws 2x with its 4x samples, so its 2x is compared with the CPU's 4x.
 //
 //   seams_gl_table1 [--width 480] [--height 540] [--frames 8] [--reps 5] [--msaa 1,2,4,8]
 //                   [--filter aniso16|trilinear] [--agreement-frames 1] [--cpu-threads 2]
@@ -31,7 +33,7 @@ namespace {
 struct Args {
   int width = 480, height = 540, frames = 8, reps = 5, agreement_frames = 1, cpu_threads = 2;
   std::vector<int> msaa = {1, 2, 4, 8};
-  TextureFilter filter = TextureFilter::anisotropic;
+  tessera::texture::TextureFilter filter = tessera::texture::TextureFilter::anisotropic;
   bool reference = false;
 };
 
@@ -54,7 +56,7 @@ bool parse(int argc, char** argv, Args& a) {
     else if (k == "--filter" && i + 1 < argc) {
       const std::string f = argv[++i];
       if (f != "aniso16" && f != "trilinear") return false;
-      a.filter = f == "trilinear" ? TextureFilter::trilinear : TextureFilter::anisotropic;
+      a.filter = f == "trilinear" ? tessera::texture::TextureFilter::trilinear : tessera::texture::TextureFilter::anisotropic;
     } else if (k == "--msaa" && i + 1 < argc) {
       a.msaa.clear();
       for (const char* p = argv[++i]; *p;) {
@@ -76,9 +78,10 @@ struct Agreement {
 
 Agreement agree(const ImageRGBAF& a, const ImageRGBAF& b) {
   Agreement r;
-  Result<ImageComparison> c = compare_images(to_srgb8(a), to_srgb8(b), CompareOptions{false, 1});
+  Result<metrics::ImageComparison> c =
+      metrics::compare_images(to_srgb8(a), to_srgb8(b), metrics::CompareOptions{false, 1});
   if (c) r.psnr = c->psnr_rgb;
-  Result<std::vector<float>> n = error_norms(a, b);
+  Result<std::vector<float>> n = metrics::error_norms(a, b);
   if (n) {
     std::size_t over = 0;
     for (float e : *n) over += !(e < 0.01f);  // NaN counts as different
@@ -108,7 +111,7 @@ int main(int argc, char** argv) {
   Result<std::vector<faces::FaceAdjacency>> adj = faces::build_adjacency(scene.mesh);
   if (!adj) return fail(adj.status().message);
   Result<faces::FaceTextureSet> set =
-      faces::FaceTextureSet::create(faces::bake_faces(scene, 1.0f), std::move(*adj));
+      faces::FaceTextureSet::create(faces::bake_faces(scene, {.scale = 1.0f}), std::move(*adj));
   if (!set) return fail(set.status().message);
 
   Result<std::unique_ptr<gl::Context>> ctx = gl::Context::create();
@@ -123,7 +126,7 @@ int main(int argc, char** argv) {
               (*ctx)->version().c_str(), lp ? lp : "(unset)");
   std::printf("# Figure-1 scene: %d faces in %d classes, %dx%d, %s, %d orbit frames x %d reps\n",
               set->face_count(), r.textures().class_count(), a.width, a.height,
-              a.filter == TextureFilter::trilinear ? "trilinear" : "16x anisotropic", a.frames,
+              a.filter == tessera::texture::TextureFilter::trilinear ? "trilinear" : "16x anisotropic", a.frames,
               a.reps);
   std::vector<int> rates;
   const std::vector<int> refused = r.refused_msaa(a.msaa);
@@ -134,6 +137,21 @@ int main(int argc, char** argv) {
   for (int m : refused) refused_text += (refused_text.empty() ? "" : ", ") + std::to_string(m) + "x";
   std::printf("# MSAA rates refused by the driver: %s\n",
               refused_text.empty() ? "none" : refused_text.c_str());
+  // What the driver draws each rate with (it may round a rate up: llvmpipe draws 2x with its 4x
+  // samples); the GL-vs-CPU comparison renders the CPU with the same positions.
+  std::vector<int> cpu_rate(rates.size());
+  for (std::size_t ri = 0; ri < rates.size(); ++ri) {
+    Result<gl::SamplePattern> p = r.sample_pattern(rates[ri]);
+    if (!p) return fail(p.status().message);
+    cpu_rate[ri] = p->cpu_msaa > 0 ? p->cpu_msaa : rates[ri];
+    std::printf("# %dx: %d sample(s) at", rates[ri], p->samples);
+    for (const gl::SamplePosition& q : p->positions) {
+      std::printf(" (%+g, %+g)", double(q.x) * 16.0, double(q.y) * 16.0);
+    }
+    std::printf(" /16 px from the centre, y down: %s\n",
+                p->cpu_msaa > 0 ? ("the CPU's " + std::to_string(p->cpu_msaa) + "x").c_str()
+                                : "no CPU pattern (compared with the CPU's own rate)");
+  }
 
   const faces::Method methods[2] = {faces::Method::traverse, faces::Method::discard};
   // gpu[m][ri], wall[m][ri]
@@ -216,16 +234,23 @@ int main(int argc, char** argv) {
   if (!cpu) return fail(cpu.status().message);
   std::printf("\nGL vs CPU (%s, %d orbit frame(s)): PSNR dB (8-bit sRGB) / fraction of pixels "
               "with ||GL - CPU||_2 >= 0.01 (linear RGB), worst frame\n\n| method |",
-              a.filter == TextureFilter::trilinear ? "trilinear" : "16x anisotropic",
+              a.filter == tessera::texture::TextureFilter::trilinear ? "trilinear" : "16x anisotropic",
               a.agreement_frames);
-  for (int m : rates) std::printf(" %dx |", m);
+  for (std::size_t ri = 0; ri < rates.size(); ++ri) {
+    if (cpu_rate[ri] == rates[ri]) {
+      std::printf(" %dx |", rates[ri]);
+    } else {
+      std::printf(" %dx (GL) vs %dx (CPU) |", rates[ri], cpu_rate[ri]);
+    }
+  }
   std::printf("\n|---|");
   for (std::size_t i = 0; i < rates.size(); ++i) std::printf("---|");
   std::printf("\n");
   o.read_back = true;
   for (faces::Method m : faces::all_methods()) {
     std::printf("| %s |", faces::method_name(m));
-    for (int rate : rates) {
+    for (std::size_t ri = 0; ri < rates.size(); ++ri) {
+      const int rate = rates[ri];
       double psnr = 1e9, frac = 0;
       for (int f = 0; f < a.agreement_frames; ++f) {
         const scene::Camera cam = faces::face_orbit_camera(scene, f * a.frames / a.agreement_frames, a.frames);
@@ -236,7 +261,7 @@ int main(int argc, char** argv) {
         faces::FaceRenderOptions co;
         co.width = a.width;
         co.height = a.height;
-        co.msaa = rate;
+        co.msaa = cpu_rate[ri];  // the driver's sample positions
         co.sampling.method = m;
         co.sampling.filter = a.filter;
         co.sampling.max_aniso = 16;
@@ -253,14 +278,17 @@ int main(int argc, char** argv) {
   }
   if (a.reference) {
     const scene::Camera cam = faces::face_orbit_camera(scene, 0, a.frames);
-    Result<ImageRGBAF> gref = r.render_reference(cam, a.width, a.height, 8, a.filter);
+    Result<ImageRGBAF> gref =
+        r.render_reference(cam, a.width, a.height, {.factor = 8, .filter = a.filter});
     if (!gref) return fail(gref.status().message);
-    Result<ImageRGBAF> cref = (*cpu)->render_reference(cam, a.width, a.height, 8, a.cpu_threads);
+    Result<ImageRGBAF> cref = (*cpu)->render_reference(
+        cam, a.width, a.height,
+        {.factor = 8, .filter = tessera::texture::TextureFilter::anisotropic, .threads = a.cpu_threads});
     if (!cref) return fail(cref.status().message);
     const Agreement ag = agree(*gref, *cref);
     std::printf("\nreference (Traverse 8x8, Mitchell-Netravali; GL %s vs CPU 16x anisotropic), "
                 "frame 0: %.2f dB, %.4f of pixels >= 0.01\n",
-                a.filter == TextureFilter::trilinear ? "trilinear" : "16x anisotropic", ag.psnr,
+                a.filter == tessera::texture::TextureFilter::trilinear ? "trilinear" : "16x anisotropic", ag.psnr,
                 ag.frac);
   }
   return 0;

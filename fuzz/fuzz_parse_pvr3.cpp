@@ -9,17 +9,19 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::span<const std::uint8_t> bytes(data, size);
-  tessera::Result<tessera::CompressedTexture> tex = tessera::parse_pvr3(bytes, "fuzz.pvr");
+  tessera::Result<tessera::texture_file::CompressedTexture> tex =
+      tessera::texture_file::parse_pvr3(bytes, "fuzz.pvr");
   if (!tex) {
     if (tex.status().message.empty()) std::abort();
     return 0;
   }
   for (int i = 0; i < tex->level_count(); ++i) {
-    if (!tessera::decode_texture_level(*tex, i, 1).ok()) std::abort();
+    if (!tessera::texture_file::decode_texture_level(*tex, i, {1}).ok()) std::abort();
   }
-  tessera::Result<std::vector<std::uint8_t>> again = tessera::serialize_pvr3(*tex);
+  tessera::Result<std::vector<std::uint8_t>> again = tessera::texture_file::serialise_pvr3(*tex);
   if (!again) std::abort();
-  tessera::Result<tessera::CompressedTexture> back = tessera::parse_pvr3(*again, "again.pvr");
+  tessera::Result<tessera::texture_file::CompressedTexture> back =
+      tessera::texture_file::parse_pvr3(*again, "again.pvr");
   if (!back || back->levels != tex->levels || back->width != tex->width ||
       back->height != tex->height || back->format != tex->format) {
     std::abort();

@@ -1,4 +1,4 @@
-// libFuzzer target, differential: tessera::decode_image (libdeflate fast path, falling back to
+// libFuzzer target, differential: tessera::io::decode_image (libdeflate fast path, falling back to
 // libspng) against the libspng path alone, on arbitrary bytes. Both must fail with the same
 // message or succeed with the same size, alpha flag and pixels; and whenever the fast path
 // accepts a file, libspng must accept it with the same pixels. Each input is checked twice:
@@ -41,10 +41,10 @@ std::vector<std::uint8_t> with_fixed_crcs(std::span<const std::uint8_t> in) {
 }
 
 void check(std::span<const std::uint8_t> bytes) {
-  const std::optional<tessera::ImageRGBA8> fast = tessera::detail::decode_png_fast(bytes);
-  const tessera::Result<tessera::ImageRGBA8> ref = tessera::detail::decode_png_spng(bytes, "f");
+  const std::optional<tessera::ImageRGBA8> fast = tessera::io::detail::decode_png_fast(bytes);
+  const tessera::Result<tessera::ImageRGBA8> ref = tessera::io::detail::decode_png_spng(bytes, "f");
   if (fast && (!ref || !same(*fast, *ref))) std::abort();
-  const tessera::Result<tessera::ImageRGBA8> got = tessera::decode_image(bytes, "f");
+  const tessera::Result<tessera::ImageRGBA8> got = tessera::io::decode_image(bytes, "f");
   if (got.ok() != ref.ok()) std::abort();
   if (got.ok() ? !same(*got, *ref) : got.status().message != ref.status().message) std::abort();
 }
@@ -53,7 +53,7 @@ void check(std::span<const std::uint8_t> bytes) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::span<const std::uint8_t> bytes(data, size);
-  if (tessera::detect_image_format(bytes) != tessera::ImageFormat::png) return 0;
+  if (tessera::io::detect_image_format(bytes) != tessera::io::ImageFormat::png) return 0;
   check(bytes);
   check(with_fixed_crcs(bytes));
   return 0;

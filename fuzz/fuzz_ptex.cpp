@@ -33,7 +33,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // Adjacency from the file may be inconsistent; building and sampling must stay safe.
   if (file->face_count() <= 64) {
     tessera::Result<tessera::faces::FaceTextureSet> set =
-        tessera::faces::FaceTextureSet::from_ptex(*file, "fuzz.ptx", 1);
+        tessera::faces::FaceTextureSet::from_ptex(*file, "fuzz.ptx", {1});
     if (set) {
       tessera::faces::SampleOptions o;
       o.method = tessera::faces::Method::traverse_corners;

@@ -20,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::span<const std::uint8_t> blocks(data + 9, size - 9);
   const int threads = (data[0] & 2) ? 2 : 1;
   tessera::Result<tessera::ImageRGBA8> img =
-      tessera::pvrtc::decode(blocks, format, width, height, threads);
+      tessera::pvrtc::decode(blocks, format, width, height, {threads});
   if (img) {
     if (img->width != width || img->height != height ||
         img->pixels.size() != std::size_t(width) * std::size_t(height) * 4) {

@@ -96,7 +96,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   Result<std::vector<std::uint8_t>> two = pvrtc::encode(img, opt);
   if (!two || *two != *one) std::abort();  // output must not depend on the thread count
 
-  Result<ImageRGBA8> dec = pvrtc::decode(*one, opt.format, width, height, 1);
+  Result<ImageRGBA8> dec = pvrtc::decode(*one, opt.format, width, height, {1});
   if (!dec || dec->width != width || dec->height != height) std::abort();
   if (!img.has_alpha && !opt.force_alpha) {
     for (std::size_t t = 0; t < dec->pixel_count(); ++t) {

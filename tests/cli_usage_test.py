@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
 """The bad-command-line table: each wrong command line gives one line on stderr that says what is
 wrong (the words below), and exit code 2 for bad usage or 1 for bad input. README's
-"Command-line errors" section shows the same table.
+"Command-line errors" section shows the same table. Then -q and --json where commands print
+results: `demo --json` (one object on stdout, human text on stderr), `compare -q` (silence, exit
+status only, --heatmap still written) and `info -q` (validation only).
 
 Usage: cli_usage_test.py PATH/TO/tessera
 """
+import json
 import os
 import shutil
 import sys
@@ -82,8 +85,29 @@ TABLE = [
 ]
 
 try:
-    rc, _, err = run_command([TESSERA, "demo", "-o", os.path.join(tmp, "d"), "--size", "32"])
+    # The inputs come from the demo, run with --json: one object on stdout (the report's path and
+    # the numbers of its tables), the human line on stderr.
+    rc, out, err = run_command([TESSERA, "demo", "-o", os.path.join(tmp, "d"), "--size", "32",
+                                "--json"])
     check("demo for inputs", rc == 0, err)
+    try:
+        summary = json.loads(out)
+    except ValueError:
+        summary = {}
+    check("demo --json: one JSON object on stdout", isinstance(summary, dict) and summary, out)
+    check("demo --json: the report's path",
+          summary.get("report") == os.path.join(tmp, "d", "report.html"), str(summary)[:300])
+    check("demo --json: every section",
+          all(k in summary for k in ("images", "pvrtc", "render", "seams", "aa")),
+          str(list(summary)))
+    images = summary.get("images", [])
+    check("demo --json: the images table, one row per image", len(images) == 5 and all(
+        0 < r["ssim_gray"] <= 1 and r["psnr_rgb"] > 5 for r in images), str(images)[:300])
+    variants = summary.get("pvrtc", {}).get("variants", [])
+    check("demo --json: PVRTC variants with PSNR, SSIM and time", len(variants) == 20 and all(
+        r["psnr_rgb"] > 15 and r["encode_ms"] >= 0 for r in variants), str(variants)[:300])
+    check("demo --json: the human line goes to stderr",
+          "wrote " in err and "wrote " not in out, err)
     shutil.copy(os.path.join(tmp, "d", "img", "images-noise.png"), png)
     rc, _, err = run_command([TESSERA, "compress", png, "-o", pvr, "-q"])
     check("compress for inputs", rc == 0, err)
@@ -96,6 +120,35 @@ try:
         check(name + ": one line", len(lines) == 1, f"stderr={err!r}")
         check(name + ": says", words in err, f"want {words!r} in {err!r}")
         check(name + ": prefix", err.startswith("tessera"), f"stderr={err!r}")
+
+    # -q and --json on the commands that print results.
+    half = os.path.join(tmp, "d", "img", "images-noise-half.png")
+    other = os.path.join(tmp, "d", "img", "render-1x.png")  # 512x384: another size
+    heat = os.path.join(tmp, "heat.png")
+    rc, out, err = run_command([TESSERA, "compare", png, half, "-q", "--heatmap", heat])
+    check("compare -q: exit 0, prints nothing", rc == 0 and out == "" and err == "",
+          f"rc={rc} out={out!r} err={err!r}")
+    check("compare -q: still writes --heatmap", os.path.getsize(heat) > 0)
+    rc, out, err = run_command([TESSERA, "compare", png, other, "-q"])
+    check("compare -q: a size mismatch is exit 1 with one line",
+          rc == 1 and out == "" and len(err.splitlines()) == 1 and "differs" in err, err)
+    rc, out, err = run_command([TESSERA, "compare", png, half, "--json"])
+    check("compare --json: one object", rc == 0 and "ssim_gray" in json.loads(out) and err == "",
+          out + err)
+    rc, out, err = run_command([TESSERA, "info", pvr, "-q"])
+    check("info -q: a valid texture is exit 0 and silence", rc == 0 and out == "" and err == "",
+          f"rc={rc} out={out!r} err={err!r}")
+    bad = os.path.join(tmp, "bad.pvr")
+    with open(pvr, "rb") as f, open(bad, "wb") as g:
+        g.write(f.read()[:60])
+    rc, out, err = run_command([TESSERA, "info", bad, "-q"])
+    check("info -q: a truncated texture is exit 1 with one line",
+          rc == 1 and out == "" and len(err.splitlines()) == 1 and "truncated" in err, err)
+    rc, out, err = run_command([TESSERA, "info", png, "-q"])
+    check("info -q: an image is not a texture (exit 1)", rc == 1 and out == "", err)
+    rc, out, err = run_command([TESSERA, "info", pvr, "--json"])
+    check("info --json: one object", rc == 0 and json.loads(out)["width"] == 32, out + err)
+
     rc, out, err = run_command([TESSERA, "--version"])
     check("--version", rc == 0 and out.startswith("tessera "), out + err)
 finally:

@@ -59,9 +59,9 @@ TEST(Srgb, EightBitRoundTripIsExact) {
 
 TEST(Srgb, ImageConversionRoundTrips) {
   const ImageRGBA8 img = make_procedural(Procedural::foliage, 64, 48);
-  const ImageRGBAF lin = to_linear(img, 2);
+  const ImageRGBAF lin = to_linear(img, {2});
   EXPECT_NEAR(lin.at(3, 5)[3], img.at(3, 5)[3] / 255.0f, 1e-7);
-  const ImageRGBA8 back = to_srgb8(lin, 1);
+  const ImageRGBA8 back = to_srgb8(lin, {1});
   EXPECT_EQ(back.pixels, img.pixels);
 }
 
@@ -79,7 +79,7 @@ TEST(Parallel, CoversRangeOnceWithFixedChunks) {
             starts[i] = b;
           }
         },
-        threads);
+        {threads});
     for (int i = 0; i < 1000; ++i) {
       EXPECT_EQ(hits[i], 1);
       EXPECT_EQ(starts[i], (i / 64) * 64);
@@ -96,9 +96,9 @@ TEST(Parallel, SumIsBitIdenticalForAnyThreadCount) {
     for (std::int64_t i = b; i < e; ++i) s += 1.0 / double(i + 1) * std::sin(double(i));
     return s;
   };
-  const double one = parallel_sum(0, 200000, 1000, chunk, 1);
+  const double one = parallel_sum(0, 200000, 1000, chunk, {1});
   for (int threads : {2, 4, 0}) {
-    EXPECT_EQ(parallel_sum(0, 200000, 1000, chunk, threads), one);
+    EXPECT_EQ(parallel_sum(0, 200000, 1000, chunk, {threads}), one);
   }
 }
 
@@ -107,9 +107,9 @@ TEST(Parallel, NestedLoopsComplete) {
   parallel_for(
       0, 8, 1,
       [&](std::int64_t, std::int64_t) {
-        parallel_for(0, 100, 10, [&](std::int64_t b, std::int64_t e) { total += int(e - b); }, 2);
+        parallel_for(0, 100, 10, [&](std::int64_t b, std::int64_t e) { total += int(e - b); }, {2});
       },
-      2);
+      {2});
   EXPECT_EQ(total.load(), 800);
 }
 

@@ -114,7 +114,7 @@ struct Fixture {
   ShadingOptions shading;
 
   Fixture() {
-    auto r = DeferredRenderer::create(sc, 2);
+    auto r = DeferredRenderer::create(sc, {2});
     EXPECT_TRUE(r.ok());
     renderer = std::move(*r);
     camera = scene::orbit_camera(sc, 1, 8);
@@ -190,10 +190,10 @@ TEST(Deferred, AdaptiveIsBetweenDefaultAndReferenceAndThreadIndependent) {
   const ImageRGBA8 one = to_srgb8(f.renderer->shade_default(gb, f.shading));
   const AdaptiveResult ad = f.renderer->shade_adaptive(gb, f.shading, {});
   const ImageRGBA8 img = to_srgb8(ad.image);
-  CompareOptions co;
+  metrics::CompareOptions co;
   co.compute_ssim = false;
-  const double p_one = compare_images(ref, one, co)->psnr_rgb;
-  const double p_ad = compare_images(ref, img, co)->psnr_rgb;
+  const double p_one = metrics::compare_images(ref, one, co)->psnr_rgb;
+  const double p_ad = metrics::compare_images(ref, img, co)->psnr_rgb;
   EXPECT_GT(p_ad, p_one + 6.0);
   const double frac = double(ad.samples_shaded) / double(128 * 96 * m * m);
   EXPECT_GT(frac, 1.0 / 16.0);
@@ -279,10 +279,10 @@ TEST(Fxaa, SoftensAHardEdge) {
     intermediate += out->pixels[i * 4] > 8 && out->pixels[i * 4] < 247;
   }
   EXPECT_GT(intermediate, w / 2);
-  CompareOptions co;
+  metrics::CompareOptions co;
   co.compute_ssim = false;
-  EXPECT_LT(compare_images(exact, *out, co)->mse_rgb,
-            0.7 * compare_images(exact, hard, co)->mse_rgb);
+  EXPECT_LT(metrics::compare_images(exact, *out, co)->mse_rgb,
+            0.7 * metrics::compare_images(exact, hard, co)->mse_rgb);
   // Far from the edge nothing changes.
   EXPECT_EQ(out->at(5, 40)[0], 255);
   EXPECT_EQ(out->at(60, 2)[0], 0);

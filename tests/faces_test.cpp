@@ -16,6 +16,9 @@ namespace {
 using faces::FaceAdjacency;
 using faces::Method;
 using faces::QuadMesh;
+using texture::TextureFilter;
+using texture::Uv;
+using texture::UvGradients;
 
 /// Two unit squares side by side in the xz plane (x in [0,2]), with vertex orders rotated by
 /// r0 and r1, so the shared edge has pairing (e0, e1) for some e0, e1.
@@ -116,7 +119,7 @@ TwoFaces make_two_faces(int r0, int r1, int size, bool constant_per_face) {
   }
   Result<std::vector<FaceAdjacency>> adj = faces::build_adjacency(t.mesh);
   EXPECT_TRUE(adj.ok());
-  Result<faces::FaceTextureSet> set = faces::FaceTextureSet::create(images, *adj, 1);
+  Result<faces::FaceTextureSet> set = faces::FaceTextureSet::create(images, *adj, {1});
   EXPECT_TRUE(set.ok());
   t.set = std::move(*set);
   return t;
@@ -162,13 +165,13 @@ TEST(Faces, DiscardRenormalisesWeightsToOne) {
   EXPECT_GT(d[3], 0.0f);
   EXPECT_LT(d[3], 1.0f);  // some taps were outside
   // Σw over in-face taps from the tap list equals the coverage the method divided by.
-  SamplerState s;
+  texture::SamplerState s;
   s.filter = TextureFilter::anisotropic;
-  s.address_u = s.address_v = AddressMode::border;
-  TapList taps;
+  s.address_u = s.address_v = texture::AddressMode::border;
+  texture::TapList taps;
   t.set.texture(0).taps(s, near_edge, g, 0, taps);
   float in_w = 0;
-  for (const TexelTap& tap : taps) in_w += tap.outside ? 0.0f : tap.weight;
+  for (const texture::TexelTap& tap : taps) in_w += tap.outside ? 0.0f : tap.weight;
   EXPECT_NEAR(in_w, d[3], 1e-5f);
   const std::array<float, 4> tr =
       faces::sample_face(t.set, 0, near_edge, g, opts(Method::traverse));
@@ -305,7 +308,7 @@ TEST(Faces, RendersEveryMethod) {
   Result<std::vector<FaceAdjacency>> adj = faces::build_adjacency(s.mesh);
   ASSERT_TRUE(adj.ok());
   Result<faces::FaceTextureSet> set =
-      faces::FaceTextureSet::create(faces::bake_faces(s, 1.0f, 2), *adj, 2);
+      faces::FaceTextureSet::create(faces::bake_faces(s, {.scale = 1.0f, .threads = 2}), *adj, {2});
   ASSERT_TRUE(set.ok());
   Result<std::unique_ptr<faces::FaceRenderer>> r = faces::FaceRenderer::create(s, *set);
   ASSERT_TRUE(r.ok());
@@ -329,7 +332,8 @@ TEST(Faces, RendersEveryMethod) {
     EXPECT_GT(covered, 0.3 * double(f->image.pixel_count()));
     images.push_back(f->image);
   }
-  Result<ImageRGBAF> ref = (*r)->render_reference(cam, 64, 48, 4, 2, 40);
+  Result<ImageRGBAF> ref =
+      (*r)->render_reference(cam, 64, 48, {.factor = 4, .threads = 2, .tile = 40});
   ASSERT_TRUE(ref.ok());
   // The reference is close to Traverse at 4x MSAA (mean linear-RGB error small).
   double err = 0;

@@ -22,6 +22,7 @@
 
 namespace fs = std::filesystem;
 using namespace tessera;
+using namespace tessera::io;  // NOLINT(google-build-using-namespace): the tests of io's file writes
 
 namespace {
 

@@ -21,9 +21,9 @@ namespace {
 namespace d = deferred;
 
 double psnr(const ImageRGBAF& a, const ImageRGBAF& b) {
-  CompareOptions o;
+  metrics::CompareOptions o;
   o.compute_ssim = false;
-  Result<ImageComparison> c = compare_images(to_srgb8(a), to_srgb8(b), o);
+  Result<metrics::ImageComparison> c = metrics::compare_images(to_srgb8(a), to_srgb8(b), o);
   EXPECT_TRUE(c.ok());
   return c ? c->psnr_rgb : 0.0;
 }

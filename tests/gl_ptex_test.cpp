@@ -182,11 +182,11 @@ TEST_F(GlPtex, DisneySamplesUploadAndReadBackExactly) {
     for (int c = 0; c < gpu->class_count(); ++c) {
       const FaceClass& cls = p.classes[std::size_t(c)];
       for (std::size_t layer = 0; layer < cls.faces.size(); layer += 1 + cls.faces.size() / 3) {
-        const Texture& t = set.texture(cls.faces[layer]);
+        const texture::Texture& t = set.texture(cls.faces[layer]);
         for (int level = 0; level < cls.levels; ++level) {
           Result<ImageRGBAF> img = read_texture_rgbaf(gpu->array_texture(c), level, int(layer));
           ASSERT_TRUE(img.ok()) << img.status().message;
-          const TextureLevelView v = t.level(0, level);
+          const tessera::texture::TextureLevelView v = t.level(0, level);
           ASSERT_EQ(img->width, v.width);
           ASSERT_EQ(img->height, v.height);
           EXPECT_EQ(std::memcmp(img->pixels.data(), v.texels, img->pixels.size() * 4), 0)
@@ -224,9 +224,9 @@ void main() {
   r[i] = textureGrad(faces, a.xyz, g.xy, g.zw);
 })", "border_lookup.comp"}});
   ASSERT_TRUE(prog.ok()) << prog.status().message;
-  SamplerState border;
-  border.filter = TextureFilter::trilinear;
-  border.address_u = border.address_v = AddressMode::border;
+  tessera::texture::SamplerState border;
+  border.filter = tessera::texture::TextureFilter::trilinear;
+  border.address_u = border.address_v = tessera::texture::AddressMode::border;
   double max_diff = 0.0;
   int lookups = 0;
   for (int c = 0; c < gpu->class_count(); ++c) {
@@ -234,13 +234,13 @@ void main() {
     std::vector<float> queries;
     std::vector<std::array<float, 4>> expected;
     for (std::size_t layer = 0; layer < cls.faces.size(); ++layer) {
-      const Texture& t = set.texture(cls.faces[layer]);
+      const texture::Texture& t = set.texture(cls.faces[layer]);
       for (int k = 0; k < 24; ++k) {
         // Positions inside, on and beyond the borders; footprints from magnified to 8 texels.
         const float u = -0.2f + 1.4f * float((k * 7 + int(layer)) % 24) / 23.0f;
         const float v = -0.2f + 1.4f * float((k * 5 + 3 * int(layer)) % 24) / 23.0f;
         const float s = std::ldexp(1.0f, k % 5 - 1) / float(t.width());
-        const UvGradients g{s, 0.0f, 0.0f, s * float(t.width()) / float(t.height())};
+        const tessera::texture::UvGradients g{s, 0.0f, 0.0f, s * float(t.width()) / float(t.height())};
         queries.insert(queries.end(), {u, v, float(layer), 0.0f, g.dudx, g.dvdx, g.dudy, g.dvdy});
         expected.push_back(t.sample(border, {u, v}, g));
       }
@@ -311,16 +311,16 @@ void main() {
   std::vector<float> queries;
   std::vector<std::array<float, 4>> expected;
   for (int face = 0; face < set.face_count(); face += 3) {
-    const Texture& t = set.texture(face);
+    const texture::Texture& t = set.texture(face);
     for (int k = 0; k < 12; ++k) {
       const float u = -0.15f + 1.3f * float((k * 5 + face) % 12) / 11.0f;
       const float v = -0.15f + 1.3f * float((k * 7 + 2 * face) % 12) / 11.0f;
       const float s = std::ldexp(1.0f, k % 5 - 1) / float(t.width());
-      const UvGradients g{s, 0.0f, 0.0f, s * float(t.width()) / float(t.height())};
+      const tessera::texture::UvGradients g{s, 0.0f, 0.0f, s * float(t.width()) / float(t.height())};
       for (faces::Method m : faces::all_methods()) {
         faces::SampleOptions so_cpu;
         so_cpu.method = m;
-        so_cpu.filter = TextureFilter::trilinear;
+        so_cpu.filter = tessera::texture::TextureFilter::trilinear;
         queries.insert(queries.end(),
                        {u, v, float(face), float(int(m)), g.dudx, g.dvdx, g.dudy, g.dvdy});
         expected.push_back(faces::sample_face(set, face, {u, v}, g, so_cpu));

@@ -225,7 +225,7 @@ TEST_F(Gl, ClearAndReadBackAreExact) {
   RenderTargetOptions o;
   o.width = 7;
   o.height = 5;
-  o.color = ColorFormat::rgba32f;
+  o.colour = ColourFormat::rgba32f;
   Result<RenderTarget> t = create_render_target(o);
   ASSERT_TRUE(t.ok()) << t.status().message;
   const float value[4] = {0.25f, -1.5f, 1.0f / 3.0f, 1e-7f};
@@ -236,7 +236,7 @@ TEST_F(Gl, ClearAndReadBackAreExact) {
   ASSERT_EQ(f->height, 5);
   for (std::size_t i = 0; i < f->pixels.size(); ++i) EXPECT_EQ(f->pixels[i], value[i % 4]);
 
-  o.color = ColorFormat::rgba8;
+  o.colour = ColourFormat::rgba8;
   Result<RenderTarget> t8 = create_render_target(o);
   ASSERT_TRUE(t8.ok()) << t8.status().message;
   const float v8[4] = {1.0f, 0.0f, 128.0f / 255.0f, 64.0f / 255.0f};

@@ -7,7 +7,7 @@
 #include "tessera/metrics.h"
 #include "tessera/procedural.h"
 
-namespace tessera {
+namespace tessera::metrics {
 namespace {
 
 ImageRGBA8 flat(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b,
@@ -122,9 +122,9 @@ TEST(Ssim, MapCoversTheValidRegionOnly) {
 TEST(Ssim, ThreadCountDoesNotChangeTheResult) {
   const ImageRGBA8 a = make_procedural(Procedural::bricks, 200, 130);
   const ImageRGBA8 b = make_procedural(Procedural::bricks, 200, 130, 9);
-  const double one = *ssim_gray(a, b, 1);
-  EXPECT_EQ(*ssim_gray(a, b, 2), one);
-  EXPECT_EQ(*ssim_gray(a, b, 0), one);
+  const double one = *ssim_gray(a, b, {1});
+  EXPECT_EQ(*ssim_gray(a, b, {2}), one);
+  EXPECT_EQ(*ssim_gray(a, b, {0}), one);
 }
 
 TEST(ErrorCdf, CountsFractionAtOrAboveEachThreshold) {
@@ -152,17 +152,17 @@ TEST(ErrorCdf, CountsFractionAtOrAboveEachThreshold) {
 
 TEST(Heatmap, ColourMapEndsAndScale) {
   std::uint8_t rgb[3];
-  colormap_rgb(ColorMap::inferno, 0.0f, rgb);
+  colour_map_rgb(ColourMap::inferno, 0.0f, rgb);
   EXPECT_EQ(rgb[0], 0);
   EXPECT_EQ(rgb[2], 4);
-  colormap_rgb(ColorMap::inferno, 1.0f, rgb);
+  colour_map_rgb(ColourMap::inferno, 1.0f, rgb);
   EXPECT_EQ(rgb[0], 252);
-  colormap_rgb(ColorMap::grey, 0.5f, rgb);
+  colour_map_rgb(ColourMap::grey, 0.5f, rgb);
   EXPECT_EQ(rgb[1], 128);
   const ImageRGBA8 a = flat(2, 1, 0, 0, 0);
   ImageRGBA8 b = a;
   b.at(1, 0)[1] = 64;
-  Result<ImageRGBA8> h = difference_heatmap(a, b, 64.0f, ColorMap::grey);
+  Result<ImageRGBA8> h = difference_heatmap(a, b, 64.0f, ColourMap::grey);
   ASSERT_TRUE(h.ok());
   EXPECT_EQ(h->at(0, 0)[0], 0);
   EXPECT_EQ(h->at(1, 0)[0], 255);
@@ -170,4 +170,4 @@ TEST(Heatmap, ColourMapEndsAndScale) {
 }
 
 }  // namespace
-}  // namespace tessera
+}  // namespace tessera::metrics

@@ -306,7 +306,7 @@ TEST(PtexShared, AdjacencyMatchesObj) {
       EXPECT_GT(boundary, 0);
     }
     // The face set builds (all quads, u8/u16/half/float data).
-    Result<faces::FaceTextureSet> set = faces::FaceTextureSet::from_ptex(*f, s.ptx, 2);
+    Result<faces::FaceTextureSet> set = faces::FaceTextureSet::from_ptex(*f, s.ptx, {2});
     ASSERT_TRUE(set.ok()) << set.status().message;
     EXPECT_EQ(set->face_count(), f->face_count());
   }
@@ -316,7 +316,7 @@ TEST(PtexShared, TeapotValences) {
   TESSERA_REQUIRE_SHARED_DATA(data);
   Result<ptex::PtexFile> f = ptex::read_ptex((data / "ptex/teapot/teapot.ptx").string());
   ASSERT_TRUE(f.ok());
-  Result<faces::FaceTextureSet> set = faces::FaceTextureSet::from_ptex(*f, "teapot", 2);
+  Result<faces::FaceTextureSet> set = faces::FaceTextureSet::from_ptex(*f, "teapot", {2});
   ASSERT_TRUE(set.ok());
   // Valence-3 and -5 vertices and boundaries leave some corners unlinked.
   EXPECT_GT(set->linked_corner_count(), 0);
@@ -333,7 +333,7 @@ TEST(PtexShared, SubfacesAndTrianglesAreHandled) {
     for (const ptex::FaceInfo& fi : f->faces) sub += fi.subface ? 1 : 0;
     EXPECT_GT(sub, 0) << name;
     // The subfaces form a quad texture set; the polygon .obj is refused with a clear message.
-    EXPECT_TRUE(faces::FaceTextureSet::from_ptex(*f, name, 2).ok());
+    EXPECT_TRUE(faces::FaceTextureSet::from_ptex(*f, name, {2}).ok());
     Result<faces::PolygonMesh> poly = faces::load_obj_polygons(dir + "/" + name + ".obj");
     ASSERT_TRUE(poly.ok());
     Result<faces::QuadMesh> q = faces::to_quad_mesh(*poly, name);

@@ -28,8 +28,8 @@ void put_block(std::vector<std::uint8_t>& data, std::size_t index, std::uint64_t
   for (int i = 0; i < 8; ++i) data[index * 8 + std::size_t(i)] = std::uint8_t(word >> (8 * i));
 }
 
-ImageComparison compare(const ImageRGBA8& a, const ImageRGBA8& b) {
-  auto r = compare_images(a, b);
+metrics::ImageComparison compare(const ImageRGBA8& a, const ImageRGBA8& b) {
+  auto r = metrics::compare_images(a, b);
   EXPECT_TRUE(r.ok());
   return *r;
 }
@@ -191,7 +191,7 @@ TEST_P(PvrtcRoundTrip, PsnrAboveThresholdAndMonotoneInQuality) {
     EncodeOptions opt;
     opt.format = c.format;
     opt.quality = Quality(q);
-    const ImageComparison cmp = compare(img, round_trip(img, opt));
+    const metrics::ImageComparison cmp = compare(img, round_trip(img, opt));
     psnr[q] = cmp.psnr_rgb;
     EXPECT_GE(cmp.psnr_rgb, c.min_psnr[q]) << procedural_name(c.kind) << " quality " << q;
   }
@@ -251,7 +251,7 @@ TEST(PvrtcEncode, HomogeneousImageIsNearExact) {
       opt.format = f;
       opt.quality = q;
       const ImageRGBA8 dec = round_trip(img, opt);
-      const ImageComparison cmp = compare(img, dec);
+      const metrics::ImageComparison cmp = compare(img, dec);
       // 4 bpp reproduces it (nearly) exactly; 2 bpp pays for texels restricted to weight 0/8.
       EXPECT_LE(cmp.max_abs, f == Format::pvrtc1_4bpp ? 2 : 8) << int(f) << " " << int(q);
     }
@@ -281,9 +281,9 @@ TEST(PvrtcEncode, PunchThroughOnCutOutAlpha) {
   EXPECT_GT(punch_blocks, 0);
   auto dec = decode(*enc, opt.format, 64, 64);
   ASSERT_TRUE(dec.ok());
-  const ImageComparison with = compare(img, *dec);
+  const metrics::ImageComparison with = compare(img, *dec);
   opt.punch_through = false;
-  const ImageComparison without = compare(img, round_trip(img, opt));
+  const metrics::ImageComparison without = compare(img, round_trip(img, opt));
   EXPECT_GT(with.psnr_alpha, without.psnr_alpha);
   EXPECT_GT(with.psnr_alpha, 20.0);
 }
@@ -329,7 +329,7 @@ TEST(PvrtcEncode, AlphaQualityOnFoliage) {
   const ImageRGBA8 img = make_procedural(Procedural::foliage, 256, 256);
   EncodeOptions opt;
   opt.quality = Quality::high;
-  const ImageComparison cmp = compare(img, round_trip(img, opt));
+  const metrics::ImageComparison cmp = compare(img, round_trip(img, opt));
   // Measured 36.64 dB RGB / 29.97 dB alpha (PVRTexTool pvrtcbest: 35.58 / 30.60).
   EXPECT_GE(cmp.psnr_rgb, 36.5);
   EXPECT_GE(cmp.psnr_alpha, 29.8);

@@ -77,7 +77,7 @@ Result<ImageRGBA8> oracle_decode(const fs::path& tool, const fs::path& pvr, cons
     msg += cmd;
     return Status::error(ErrorCode::io_error, msg);
   }
-  return read_image(png.string());
+  return io::read_image(png.string());
 }
 
 void expect_same(const ImageRGBA8& ours, const ImageRGBA8& oracle, const std::string& what) {
@@ -119,7 +119,7 @@ void check_oracle_encoded(const ImageRGBA8& img, Format format, const std::strin
   auto tool = test::pvrtextool();
   if (!tool) GTEST_SKIP() << "PVRTexToolCLI not available";
   const fs::path dir = test::temp_dir(name);
-  ASSERT_TRUE(write_png((dir / "in.png").string(), img).ok());
+  ASSERT_TRUE(io::write_png((dir / "in.png").string(), img).ok());
   const bool alpha = img.has_alpha;
   std::string fmt = format == Format::pvrtc1_4bpp ? "PVRTC1_4" : "PVRTC1_2";
   if (!alpha) fmt += "_RGB";
@@ -128,12 +128,12 @@ void check_oracle_encoded(const ImageRGBA8& img, Format format, const std::strin
       shell({tool->string(), "-i", (dir / "in.png").string(), "-o", pvr.string(), "-f",
              fmt + ",UBN,lRGB", "-q", "pvrtcfastest", "-d", png.string()});
   ASSERT_EQ(run(cmd), 0) << cmd;
-  auto file = read_file(pvr.string());
+  auto file = io::read_file(pvr.string());
   ASSERT_TRUE(file.ok());
   const auto level = pvr_level(*file);
-  auto ours = decode(level, format, img.width, img.height, 2);
+  auto ours = decode(level, format, img.width, img.height, {2});
   ASSERT_TRUE(ours.ok()) << ours.status().message;
-  auto oracle = read_image(png.string());
+  auto oracle = io::read_image(png.string());
   ASSERT_TRUE(oracle.ok()) << oracle.status().message;
   expect_same(*ours, *oracle, name);
 }
@@ -165,7 +165,7 @@ TEST(OracleDecode, SharedImages) {
   int n = 0;
   for (const char* name : {"ldr-rgb-00.png", "ldr-rgb-05.png", "ldr-rgba-00.png", "ldr-rgba-01.png",
                            "ldr-rgb-emissive.png"}) {
-    auto img = read_image((data / "images" / name).string());
+    auto img = io::read_image((data / "images" / name).string());
     if (!img.ok()) continue;
     ++n;
     check_oracle_encoded(*img, Format::pvrtc1_4bpp, std::string(name) + "_4");
@@ -193,10 +193,10 @@ TEST_P(OracleEncode, OracleDecodesOurFilesLikeWeDo) {
                            (format == Format::pvrtc1_4bpp ? "_4" : "_2");
   const fs::path dir = test::temp_dir(name);
   const auto file = make_pvr(format, img.has_alpha, c.w, c.h, *enc);
-  ASSERT_TRUE(write_file_atomic((dir / "ours.pvr").string(), file).ok());
+  ASSERT_TRUE(io::write_file_atomic((dir / "ours.pvr").string(), file).ok());
   auto oracle = oracle_decode(*tool, dir / "ours.pvr", dir);
   ASSERT_TRUE(oracle.ok()) << oracle.status().message;
-  auto ours = decode(*enc, format, c.w, c.h, 1);
+  auto ours = decode(*enc, format, c.w, c.h, {1});
   ASSERT_TRUE(ours.ok());
   expect_same(*ours, *oracle, name);
 }
@@ -227,13 +227,13 @@ TEST(OracleDecode, SrgbFlagMakesTheOracleWriteLinearValues) {
     opt.quality = Quality::fast;
     auto enc = encode(img, opt);
     ASSERT_TRUE(enc.ok()) << enc.status().message;
-    auto ours = decode(*enc, format, 64, 32, 1);
+    auto ours = decode(*enc, format, 64, 32, {1});
     ASSERT_TRUE(ours.ok());
     const fs::path dir = test::temp_dir(format == Format::pvrtc1_4bpp ? "srgb4" : "srgb2");
     for (bool srgb : {false, true}) {
       const fs::path file = dir / (srgb ? "srgb.pvr" : "linear.pvr");
       ASSERT_TRUE(
-          write_file_atomic(file.string(), make_pvr(format, true, 64, 32, *enc, srgb)).ok());
+          io::write_file_atomic(file.string(), make_pvr(format, true, 64, 32, *enc, srgb)).ok());
       auto oracle = oracle_decode(*tool, file, dir);
       ASSERT_TRUE(oracle.ok()) << oracle.status().message;
       if (!srgb) {

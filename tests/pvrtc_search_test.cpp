@@ -446,12 +446,12 @@ TEST(PvrtcSearch, OrientationRemovesDomainWalls) {
 // regions), 2 bpp 10.2 (12.1 before).
 TEST(PvrtcSearch, HueSeamAtTheWrapIsReproduced) {
   TESSERA_REQUIRE_SHARED_DATA(data);
-  auto img = read_image((data / "images" / "ldr-rgb-03.png").string());
+  auto img = io::read_image((data / "images" / "ldr-rgb-03.png").string());
   ASSERT_TRUE(img.ok()) << img.status().message;
   ASSERT_EQ(img->width, 256);
   for (Format f : {Format::pvrtc1_4bpp, Format::pvrtc1_2bpp}) {
     const std::vector<std::uint8_t> data_bytes = encode_or_die(*img, Quality::normal, f);
-    auto dec = decode(data_bytes, f, img->width, img->height, 1);
+    auto dec = decode(data_bytes, f, img->width, img->height, {1});
     ASSERT_TRUE(dec.ok());
     double e = 0;
     for (int y = 0; y < img->height; ++y) {

@@ -1,4 +1,4 @@
-// Rasterizer output tests: determinism across thread counts, quad shaders, supersampling
+// Rasteriser output tests: determinism across thread counts, quad shaders, supersampling
 // equivalence, resolve, culling, argument errors and many-channel G-buffers.
 #include <gtest/gtest.h>
 
@@ -52,7 +52,7 @@ TEST(RasterDeterminism, IdenticalForAnyThreadCount) {
     std::vector<RasterStats> stats;
     for (int threads : {1, 2, 0}) {
       FrameBuffer fb = make_fb(kW, kH, n, 1, 4, true);
-      Rasterizer r({.threads = threads});
+      Rasteriser r({.threads = threads});
       stats.push_back(render_ok(r, fb, d));
       fbs.push_back(std::move(fb));
     }
@@ -92,7 +92,7 @@ TEST(RasterShading, QuadShaderMatchesPixelShader) {
       };
       FrameBuffer a = make_fb(kW, kH, n, 1, 4, true);
       FrameBuffer b = make_fb(kW, kH, n, 1, 4, true);
-      Rasterizer r({.threads = 2});
+      Rasteriser r({.threads = 2});
       const RasterStats sa = render_ok(r, a, pixel);
       const RasterStats sb = render_ok(r, b, quad);
       ASSERT_EQ(0, std::memcmp(a.data().data(), b.data().data(), a.data().size_bytes()))
@@ -111,7 +111,7 @@ TEST(RasterSupersampling, EqualsLargeRenderBoxDownsampled) {
   constexpr int kW = 70, kH = 50;
   const Mesh m = random_scene(400, kW, kH, 5);
   DrawCall d = m.draw(shade_rgb);
-  Rasterizer r({.threads = 0});
+  Rasteriser r({.threads = 0});
   for (int msaa : {1, 4}) {
     FrameBuffer ss = make_fb(kW, kH, msaa, 2);
     FrameBuffer big = make_fb(2 * kW, 2 * kH, msaa, 1);
@@ -150,7 +150,7 @@ TEST(RasterResolve, BoxFilterAndSrgb) {
     out[3] = 1.0f;
   });
   FrameBuffer fb = make_fb(kSize, kSize, 4);
-  Rasterizer r({.threads = 1});
+  Rasteriser r({.threads = 1});
   render_ok(r, fb, d);
   const ImageRGBAF img = resolve(fb);
   EXPECT_FLOAT_EQ(img.at(1, 1)[0], 1.0f);
@@ -205,7 +205,7 @@ TEST(RasterCulling, BackFacesAndFacingFlag) {
   DrawCall d = m.draw([](const ShadeInput& in, float* out) {
     out[0] = in.front_facing ? 1.0f : 2.0f;
   });
-  Rasterizer r({.threads = 1});
+  Rasteriser r({.threads = 1});
   const std::pair<CullMode, float> cases[] = {{CullMode::back, 1.0f}, {CullMode::front, 2.0f}};
   for (const auto& [cull, expect] : cases) {
     d.cull = cull;
@@ -240,7 +240,7 @@ TEST(RasterErrors, InvalidArguments) {
   m.add(9, 1, 16, 16);
   m.add(1, 9, 16, 16);
   m.tri(0, 1, 3);  // index 3 is out of range
-  Rasterizer r;
+  Rasteriser r;
   auto res = r.render(fb, m.draw());
   EXPECT_EQ(res.status().code, ErrorCode::invalid_argument);
   DrawCall d = m.draw();
@@ -265,7 +265,7 @@ TEST(RasterGBuffer, ManyChannelsAndDegenerateInput) {
     for (int k = 0; k < 12; ++k) out[k] = float(k) + in.depth;
   });
   FrameBuffer fb = make_fb(kSize, kSize, 2, 1, 12);
-  Rasterizer r({.threads = 1});
+  Rasteriser r({.threads = 1});
   const RasterStats st = render_ok(r, fb, d);
   EXPECT_EQ(st.triangles_in, 3u);
   EXPECT_EQ(st.triangles_culled, 2u);

@@ -1,4 +1,4 @@
-// Rasterizer tests: sample patterns, half-plane coverage, watertightness (top-left rule),
+// Rasteriser tests: sample patterns, half-plane coverage, watertightness (top-left rule),
 // perspective-correct interpolation, near/far and guard-band clipping, depth ordering, quad
 // derivatives with helper pixels and centroid. Output-side tests are in raster_output_test.cpp.
 #include <gtest/gtest.h>
@@ -48,7 +48,7 @@ TEST(RasterCoverage, HalfPlaneThroughPixelCentre) {
   std::mt19937 rng(1234);
   std::uniform_int_distribution<int> dir(-64, 64);
   std::uniform_int_distribution<int> pix(8, kSize - 9);
-  Rasterizer r({.threads = 1});
+  Rasteriser r({.threads = 1});
   for (int n : kRates) {
     const auto pos = sample_positions(n);
     int tested = 0;
@@ -135,7 +135,7 @@ TEST(RasterCoverage, WatertightSharedEdges) {
         }
       }
       FrameBuffer fb = make_fb(kW, kH, n, 1, 1, false, true);
-      Rasterizer r({.threads = 2});
+      Rasteriser r({.threads = 2});
       render_ok(r, fb, m.draw());
       for (std::size_t i = 0; i < fb.sample_count(); ++i) {
         ASSERT_EQ(fb.coverage_count_data()[i], 1u)
@@ -158,7 +158,7 @@ TEST(RasterClipping, GuardBandClippedQuadIsWatertight) {
     m.tri(a, b, c);
     m.tri(a, c, d);
     FrameBuffer fb = make_fb(kW, kH, n, 1, 1, true, true);
-    Rasterizer r({.threads = 1});
+    Rasteriser r({.threads = 1});
     const RasterStats st = render_ok(r, fb, m.draw());
     EXPECT_EQ(fb.primitive_id(0, kH - 1, 0), 1u);  // below the diagonal
     EXPECT_EQ(fb.primitive_id(kW - 1, 0, 0), 0u);  // above it
@@ -175,7 +175,7 @@ TEST(RasterClipping, GuardBandClippedQuadIsWatertight) {
 // to the triangle below it (top edge).
 TEST(RasterCoverage, TopLeftRuleOnSamplePositions) {
   constexpr int kSize = 32;
-  Rasterizer r({.threads = 1});
+  Rasteriser r({.threads = 1});
   for (int n : kRates) {
     const auto pos = sample_positions(n);
     for (int s = 0; s < n; ++s) {
@@ -243,7 +243,7 @@ TEST(RasterInterpolation, PerspectiveCorrectOnTiltedQuad) {
     out[2] = 1.0f;
   };
   FrameBuffer fb = make_fb(kSize, kSize);
-  Rasterizer r({.threads = 1});
+  Rasteriser r({.threads = 1});
   render_ok(r, fb, d);
   int checked = 0;
   double max_err = 0.0;
@@ -289,7 +289,7 @@ TEST(RasterClipping, NearPlaneTriangleCrossingCamera) {
     out[2] = 1.0f;
   };
   FrameBuffer fb = make_fb(kSize, kSize);
-  Rasterizer r({.threads = 1});
+  Rasteriser r({.threads = 1});
   const RasterStats st = render_ok(r, fb, d);
   EXPECT_EQ(st.triangles_clipped, 1u);
   int mismatches = 0, covered = 0;
@@ -349,11 +349,11 @@ TEST(RasterClipping, ZeroToOneDepthConvention) {
   d.indices = idx;
   d.index_count = 12;
   FrameBuffer fb = make_fb(kSize, kSize, 1, 1, 1, true);
-  Rasterizer gl({.threads = 1});
+  Rasteriser gl({.threads = 1});
   render_ok(gl, fb, d);
   EXPECT_EQ(fb.primitive_id(5, 5, 0) / 2, 0u);  // GL: z = -0.25 w is visible and nearer
   EXPECT_NEAR(fb.depth(5, 5, 0), 0.375f, 1e-6f);
-  Rasterizer dx({.threads = 1, .clip_depth = ClipDepth::zero_to_one});
+  Rasteriser dx({.threads = 1, .clip_depth = ClipDepth::zero_to_one});
   render_ok(dx, fb, d);
   EXPECT_EQ(fb.primitive_id(5, 5, 0) / 2, 1u);  // D3D: z < 0 is clipped away
   EXPECT_NEAR(fb.depth(5, 5, 0), 0.5f, 1e-6f);
@@ -371,7 +371,7 @@ TEST(RasterDepth, OrderingAndTests) {
     }
     return m;
   };
-  Rasterizer r({.threads = 1});
+  Rasteriser r({.threads = 1});
   const std::pair<double, double> orders[] = {{0.3, 0.6}, {0.6, 0.3}};
   for (const auto& [z0, z1] : orders) {
     Mesh m = scene(z0, z1);
@@ -439,7 +439,7 @@ TEST(RasterDerivatives, LinearVaryingsIncludingEdges) {
         if (in.helper) ++helpers;
       });
       FrameBuffer fb = make_fb(kSize, kSize, n);
-      Rasterizer r({.threads = 1, .derivatives = mode, .shade_helpers = true});
+      Rasteriser r({.threads = 1, .derivatives = mode, .shade_helpers = true});
       const RasterStats st = render_ok(r, fb, d);
       EXPECT_GT(st.helper_lanes, 0u);
       EXPECT_EQ(std::uint64_t(helpers.load()), st.helper_lanes);
@@ -481,7 +481,7 @@ TEST(RasterInterpolation, CentroidShadesInsideTheTriangle) {
     });
     d.centroid = centroid;
     FrameBuffer fb = make_fb(kSize, kSize, 4);
-    Rasterizer r({.threads = 1});
+    Rasteriser r({.threads = 1});
     render_ok(r, fb, d);
     int partial = 0, moved = 0;
     for (int y = 0; y < kSize; ++y) {

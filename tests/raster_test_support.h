@@ -1,4 +1,4 @@
-// Helpers shared by the rasterizer test programs (raster_test.cpp, raster_output_test.cpp):
+// Helpers shared by the rasteriser test programs (raster_test.cpp, raster_output_test.cpp):
 // meshes given in grid pixels, frame-buffer creation and checked rendering.
 #pragma once
 
@@ -64,14 +64,14 @@ inline FrameBuffer make_fb(int w, int h, int msaa = 1, int ssaa = 1, int channel
   return std::move(fb).value();
 }
 
-inline RasterStats render_ok(Rasterizer& r, FrameBuffer& fb, std::span<const DrawCall> draws) {
+inline RasterStats render_ok(Rasteriser& r, FrameBuffer& fb, std::span<const DrawCall> draws) {
   ClearValues clear;
   auto res = r.render(fb, draws, &clear);
   EXPECT_TRUE(res.ok()) << res.status().message;
   return res.ok() ? *res : RasterStats{};
 }
 
-inline RasterStats render_ok(Rasterizer& r, FrameBuffer& fb, const DrawCall& draw) {
+inline RasterStats render_ok(Rasteriser& r, FrameBuffer& fb, const DrawCall& draw) {
   return render_ok(r, fb, std::span<const DrawCall>(&draw, 1));
 }
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Compares tessera's software rasterizer with Mesa llvmpipe (a real OpenGL driver on the CPU).
+"""Compares tessera's software rasteriser with Mesa llvmpipe (a real OpenGL driver on the CPU).
 
 Usage: raster_vs_llvmpipe.py PATH/TO/tessera PATH/TO/tessera-glpeer
 Same scene, camera, sample count and unlit trilinear shading on both sides:

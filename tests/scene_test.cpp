@@ -42,7 +42,8 @@ TEST(Math, InverseAndProjection) {
 
 TEST(Obj, LoadsQuadsWithMaterialAndTexture) {
   const fs::path dir = test::temp_dir("obj");
-  ASSERT_TRUE(write_png((dir / "tex.png").string(), make_procedural(Procedural::bricks, 16, 8)).ok());
+  ASSERT_TRUE(
+      io::write_png((dir / "tex.png").string(), make_procedural(Procedural::bricks, 16, 8)).ok());
   write_text(dir / "m.mtl", "newmtl red\nKd 1 0 0\nmap_Kd tex.png\n");
   write_text(dir / "q.obj",
              "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"

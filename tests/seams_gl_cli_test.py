@@ -4,8 +4,9 @@
 Usage: seams_gl_cli_test.py PATH/TO/tessera
 Tiny frames (96x108, 2 orbit frames, MSAA 1,4,8) of the built-in Figure-1 scene:
   * `--backend gl` writes the usual report (the same JSON keys as the CPU's, plus `backend`,
-    `gl_renderer`, `gl_version`, `msaa_unsupported`, GPU-timer and wall times per frame); rates
-    the driver refuses (8x on llvmpipe) are skipped and named in seams.md;
+    `gl_renderer`, `gl_version`, `msaa_unsupported`, `gl_samples`, GPU-timer and wall times per
+    frame); rates the driver refuses (8x on llvmpipe) are skipped and named in seams.md;
+    `gl_samples` gives each GL rate's drawn sample count and the CPU rate with its positions;
   * `--backend both` writes the CPU report byte for byte as `--backend cpu` does (plots, CSV,
     images) plus `timing_gl` and `gl_vs_cpu`, whose PSNR must stay above bounds measured on
     Mesa 22.3 llvmpipe (see below);
@@ -89,9 +90,19 @@ try:
     if "llvmpipe" in j.get("gl_renderer", ""):
         check("llvmpipe refuses 8x", unsupported == [8], str(unsupported))
     check("same top-level keys as cpu, plus the GL ones",
-          set(j) == set(cpu) | {"gl_renderer", "gl_version", "msaa_unsupported", "timing_note"},
+          set(j) == set(cpu) | {"gl_renderer", "gl_version", "msaa_unsupported", "gl_samples",
+                                "timing_note"},
           f"gl={sorted(j)} cpu={sorted(cpu)}")
     rates = [f"{r}x" for r in (1, 4, 8) if r not in unsupported]
+    samples = j.get("gl_samples", {})
+    check("gl_samples per GL rate", sorted(samples) == sorted(rates), str(samples))
+    for rate, p in samples.items():
+        check(f"gl_samples {rate}", p["samples"] >= int(rate[:-1]) and
+              p["cpu_msaa"] in (0, p["samples"]), str(p))
+    if "llvmpipe" in j.get("gl_renderer", ""):
+        check("llvmpipe draws the CPU's patterns",
+              all(p["cpu_msaa"] == p["samples"] == int(r[:-1]) for r, p in samples.items()),
+              str(samples))
     check("timed rates", sorted(j["timing"]) == sorted(rates), str(sorted(j["timing"])))
     for rate in rates:
         for m in METHODS:

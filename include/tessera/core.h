@@ -7,6 +7,18 @@
 //  * sRGB <-> linear conversion with the exact IEC 61966-2-1 piecewise curve.
 //  * `parallel_for`: the one parallel loop, with an explicit thread count. Callers write each
 //    output element from exactly one iteration, so results are identical for any thread count.
+//
+// API conventions every public header follows:
+//  * `Status` and `Result<T>` are `[[nodiscard]]`: a fallible call's outcome must be handled
+//    (propagated, reported or checked). Where ignoring one is genuinely right, the call site
+//    says so with `(void)` and a comment.
+//  * Thread counts are never a bare trailing `int threads` argument. A function that has an
+//    options struct carries `int threads = 0` as a member of it; a function whose only knob is
+//    the thread count takes the shared vocabulary type `const Parallel& parallel = {}` (call it
+//    as `f(x)`, `f(x, {4})` or `f(x, Parallel{threads})`). In both forms 0 means all hardware
+//    threads, 1 the calling thread only, and results never depend on the value.
+//  * No runs of defaulted scalar parameters: a function with several defaulted knobs takes a
+//    small documented options struct instead (e.g. `SsimOptions`, `faces::ReferenceOptions`).
 #pragma once
 
 #include <chrono>
@@ -40,7 +52,7 @@ const char* error_code_name(ErrorCode code);
 
 /// Outcome of a fallible operation: a code and, on error, a one-line message that names the
 /// file (when there is one) and the problem.
-struct Status {
+struct [[nodiscard]] Status {
   ErrorCode code = ErrorCode::ok;
   std::string message;
 
@@ -51,7 +63,7 @@ struct Status {
 
 /// A value or an error status (a minimal `std::expected`).
 template <class T>
-class Result {
+class [[nodiscard]] Result {
  public:
   Result(T value) : value_(std::move(value)) {}  // NOLINT(google-explicit-constructor)
   Result(Status status) : status_(std::move(status)) {}  // NOLINT(google-explicit-constructor)
@@ -70,6 +82,17 @@ class Result {
  private:
   std::optional<T> value_;
   Status status_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Threads
+// ---------------------------------------------------------------------------------------------
+
+/// The thread count of an operation whose only knob it is (see the conventions above); options
+/// structs carry the same `int threads` member instead.
+struct Parallel {
+  int threads = 0;  ///< 0 = all hardware threads, 1 = the calling thread only; results never
+                    ///< depend on it.
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -135,9 +158,9 @@ float srgb8_to_linear(std::uint8_t v);
 std::uint8_t linear_to_srgb8(float linear);
 
 /// Converts 8-bit sRGB colour to linear float; alpha is mapped linearly to [0, 1].
-ImageRGBAF to_linear(const ImageRGBA8& srgb, int threads = 0);
+ImageRGBAF to_linear(const ImageRGBA8& srgb, const Parallel& parallel = {});
 /// Converts linear float colour to 8-bit sRGB (rounded); alpha is mapped linearly.
-ImageRGBA8 to_srgb8(const ImageRGBAF& linear, int threads = 0);
+ImageRGBA8 to_srgb8(const ImageRGBAF& linear, const Parallel& parallel = {});
 
 // ---------------------------------------------------------------------------------------------
 // Parallelism
@@ -165,18 +188,20 @@ double ms_since(std::chrono::steady_clock::time_point t0);
 double median(std::vector<double> values);
 
 /// Runs `body(begin_i, end_i)` over disjoint sub-ranges covering [begin, end), each at most
-/// `grain` long, on up to `threads` threads (0 = all hardware threads, 1 = the calling thread
-/// only). Sub-range boundaries are multiples of `grain` from `begin`, independent of the thread
-/// count, so a body that writes only its own outputs gives identical results for any `threads`.
+/// `grain` long, on up to `parallel.threads` threads (0 = all hardware threads, 1 = the calling
+/// thread only). Sub-range boundaries are multiples of `grain` from `begin`, independent of the
+/// thread count, so a body that writes only its own outputs gives identical results for any
+/// thread count.
 /// Blocks until all iterations finished. Thread-safe; may be nested.
 void parallel_for(std::int64_t begin, std::int64_t end, std::int64_t grain,
-                  const std::function<void(std::int64_t, std::int64_t)>& body, int threads = 0);
+                  const std::function<void(std::int64_t, std::int64_t)>& body,
+                  const Parallel& parallel = {});
 
 /// Deterministic parallel sum: evaluates `chunk(begin_i, end_i)` on the same fixed sub-ranges
 /// as `parallel_for` and adds the partial sums in index order, so the result is bit-identical
 /// for any thread count.
 double parallel_sum(std::int64_t begin, std::int64_t end, std::int64_t grain,
                     const std::function<double(std::int64_t, std::int64_t)>& chunk,
-                    int threads = 0);
+                    const Parallel& parallel = {});
 
 }  // namespace tessera

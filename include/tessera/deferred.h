@@ -2,8 +2,8 @@
 // Eisemann 2013, "Adaptive Supersampling for Deferred Anti-Aliasing", JCGT 2(1)), and FXAA 3.11.
 //
 // The method, as in the paper's Listing 1:
-//  1. `DeferredRenderer::render_gbuffer` rasterizes the scene into an enlarged G-buffer of
-//     (m*w) x (m*h) samples (tessera's rasterizer with ssaa = m, msaa = 1); output pixel (x, y)
+//  1. `DeferredRenderer::render_gbuffer` rasterises the scene into an enlarged G-buffer of
+//     (m*w) x (m*h) samples (tessera's rasteriser with ssaa = m, msaa = 1); output pixel (x, y)
 //     owns the m x m "window" of grid pixels (m*x + i, m*y + j). The G-buffer stores geometry and
 //     the *inputs* of the albedo lookup (material id, UV, UV derivatives), not the albedo (§4).
 //  2. The first sample of every window (position 0 of the index matrix, `sample_order`) is
@@ -21,7 +21,7 @@
 //
 // Texture filtering (§4.1): every sample's albedo is an anisotropic `textureGrad` lookup with
 // the UV derivatives stored in the G-buffer (derivatives per grid pixel, computed by the
-// rasterizer from the geometry pass's 2x2 quads, so they never difference two triangles),
+// rasteriser from the geometry pass's 2x2 quads, so they never difference two triangles),
 // scaled by sqrt(area / samples) — the number of grid pixels each shaded sample stands for:
 //  * reference: scale 1 (each sample is one grid pixel);
 //  * one sample per pixel (S, default, adaptive k = 0): scale m (the sample stands for the pixel);
@@ -41,7 +41,7 @@
 //
 // Threads and determinism: every driver runs `parallel_for` over rows and writes each output
 // pixel from one iteration; results are bit-identical for any thread count. A `DeferredRenderer`
-// is not thread-safe (it owns the rasterizer); its const shading methods may run concurrently.
+// is not thread-safe (it owns the rasteriser); its const shading methods may run concurrently.
 #pragma once
 
 #include <array>
@@ -114,7 +114,7 @@ std::span<const std::uint8_t> sample_order(int m);
 /// range window clamp(1 - (d / range)^4, 0, 1)^2 when range > 0.
 struct Light {
   Vec3 position;
-  std::array<float, 3> color = {1, 1, 1};
+  std::array<float, 3> color = {1, 1, 1};  ///< Linear RGB (KHR_lights_punctual's name, kept).
   float intensity = 1.0f;
   float range = 0.0f;
 };
@@ -127,7 +127,7 @@ struct ShadingOptions {
   float shininess = 48.0f;  ///< Blinn-Phong exponent.
   float exposure = 1.0f;    ///< Multiplies all light (D and P).
   /// Texture filtering of the albedo lookup. Anisotropic with `max_aniso` probes by default.
-  TextureFilter filter = TextureFilter::anisotropic;
+  texture::TextureFilter filter = texture::TextureFilter::anisotropic;
   int max_aniso = 16;
   /// The paper's "stalled" column: adds a genuinely expensive per-sample computation whose
   /// result modulates the diffuse light — a sum of `heavy_terms` smooth sinusoids of the world
@@ -239,15 +239,17 @@ Result<ImageRGBA8> fxaa(const ImageRGBA8& image, const FxaaOptions& options = {}
 // The renderer
 // ---------------------------------------------------------------------------------------------
 
-/// Deferred renderer of one scene: owns the textures (mipmapped, linear) and the rasterizer.
+/// Deferred renderer of one scene: owns the textures (mipmapped, linear) and the rasteriser.
 class DeferredRenderer {
  public:
   /// Builds textures; fails if one cannot be built. `scene` must outlive the renderer.
+  /// `parallel.threads` also drives the geometry pass (the shading passes take
+  /// `ShadingOptions::threads`).
   static Result<std::unique_ptr<DeferredRenderer>> create(const scene::Scene& scene,
-                                                          int threads = 0);
+                                                          const Parallel& parallel = {});
   ~DeferredRenderer();
 
-  /// Rasterizes the G-buffer of `width` x `height` pixels with window m in [1, 8] into `out`
+  /// Rasterises the G-buffer of `width` x `height` pixels with window m in [1, 8] into `out`
   /// (reallocated only when the size changes). Optional raster counters in `stats`.
   Status render_gbuffer(const scene::Camera& camera, int width, int height, int m, GBuffer& out,
                         raster::RasterStats* stats = nullptr);
@@ -264,14 +266,14 @@ class DeferredRenderer {
   DeferredRenderer() = default;
   struct MaterialInfo {
     std::array<float, 3> base{1, 1, 1};
-    const Texture* texture = nullptr;
+    const texture::Texture* texture = nullptr;
   };
   const scene::Scene* scene_ = nullptr;
-  std::vector<Texture> textures_;
+  std::vector<texture::Texture> textures_;
   std::vector<MaterialInfo> materials_;
   std::vector<std::vector<float>> clip_;      // per mesh: 4 floats per vertex
   std::vector<std::vector<float>> varyings_;  // per mesh: depth, normal, uv per vertex
-  raster::Rasterizer rasterizer_;
+  raster::Rasteriser rasteriser_;
   int threads_ = 0;
   friend struct ShadeContext;
 };

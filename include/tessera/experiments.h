@@ -81,7 +81,7 @@ struct SeamsFrameOptions {
   int width = 480, height = 540;
   int msaa = 1;
   faces::Method method = faces::Method::discard;
-  TextureFilter filter = TextureFilter::anisotropic;
+  texture::TextureFilter filter = texture::TextureFilter::anisotropic;
   int max_aniso = 16;
   bool clamp_fallback = true;  ///< Discard's zero-coverage fallback (off: NaN where Σw = 0).
   /// The same pass without the texture lookup (only where `has_shading_only()`).
@@ -102,6 +102,15 @@ struct SeamsBackendFrame {
   double wall_ms = 0;
 };
 
+/// The samples a backend draws for an MSAA rate.
+struct SeamsSamplePattern {
+  int msaa = 1;      ///< The rate asked for.
+  int samples = 1;   ///< Samples per pixel drawn (GL: GL_SAMPLES; a driver may round up).
+  /// The CPU rasteriser's rate with the same sample positions (raster::sample_positions), 0
+  /// when none has them. Like-for-like GL-vs-CPU comparisons render the CPU at this rate.
+  int cpu_msaa = 1;
+};
+
 /// A renderer of the seam experiment's frames: the CPU (`create_cpu_seams_renderer`, wrapping
 /// faces::FaceRenderer) or OpenGL (`create_gl_seams_renderer`, wrapping gl::SeamsRenderer).
 /// Used on the calling thread only.
@@ -116,12 +125,16 @@ class SeamsFrameRenderer {
   virtual bool msaa_supported(int samples) = 0;
   /// Whether `SeamsFrameOptions::shading_only` is implemented.
   virtual bool has_shading_only() const = 0;
+  /// What frames at `msaa` are drawn with (the CPU: exactly `msaa`; GL: what the driver
+  /// allocates, e.g. Mesa llvmpipe draws 2x with its 4x samples). Only for supported rates.
+  virtual SeamsSamplePattern sample_pattern(int msaa) { return {msaa, msaa, msaa}; }
   virtual Result<SeamsBackendFrame> render(const scene::Camera& camera,
                                            const SeamsFrameOptions& options) = 0;
-  /// The paper's reference: Traverse (16x anisotropic) at factor x factor the resolution,
-  /// Mitchell-Netravali downsampled (faces::FaceRenderer::render_reference and its GL twin).
+  /// The paper's reference: Traverse (16x anisotropic by default) at factor x factor the
+  /// resolution, Mitchell-Netravali downsampled (faces::FaceRenderer::render_reference and its
+  /// GL twin, which take the same options).
   virtual Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
-                                              int factor, int threads) = 0;
+                                              const faces::ReferenceOptions& options) = 0;
 };
 
 /// The CPU backend (faces::FaceRenderer). `scene` and `textures` must outlive it.
@@ -228,6 +241,11 @@ struct SeamsResult {
   /// in `gl_rates` with compare_gl).
   std::vector<int> msaa_unsupported;
   std::vector<SeamsGlRateResult> gl_rates;  ///< compare_gl: the GL side, per rate GL renders.
+  /// Where GL was used: per rate GL renders (in `SeamsConfig::msaa` order), the samples it
+  /// draws. With compare_gl, a GL frame is compared with the CPU frame at `cpu_msaa` (another
+  /// CPU render, untimed, where that is not the rate itself; the CPU frame of the rate itself
+  /// where `cpu_msaa` is 0: no CPU pattern has the driver's positions).
+  std::vector<SeamsSamplePattern> gl_sample_patterns;
   // The scene.
   std::string scene_description;
   int faces = 0;
@@ -320,9 +338,10 @@ class AaBackend {
                                       const AaShadeOptions& options) = 0;
 };
 
-/// The CPU backend (deferred::DeferredRenderer with `threads` workers, 0 = all). `scene` must
-/// outlive it.
-Result<std::unique_ptr<AaBackend>> create_cpu_aa_backend(const scene::Scene& scene, int threads);
+/// The CPU backend (deferred::DeferredRenderer with `parallel.threads` workers, 0 = all).
+/// `scene` must outlive it.
+Result<std::unique_ptr<AaBackend>> create_cpu_aa_backend(const scene::Scene& scene,
+                                                         const Parallel& parallel = {});
 
 /// The OpenGL backend (gl::DeferredGlRenderer on a headless context of its own, created on the
 /// calling thread with the device TESSERA_EGL_DEVICE names). Defined in the `tessera_gl` library

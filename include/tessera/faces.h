@@ -9,7 +9,7 @@
 //    quad mesh by a directed-edge map (`build_adjacency`) or read from a .ptx file; the
 //    valence-4 diagonal neighbours (`CornerLink`); `FaceTextureSet` (one mipmapped `Texture` per
 //    face, own resolution, non-square allowed, alpha = the constant-one coverage channel).
-//  * Drivers: `sample_face` walks the neighbours for Traverse; `FaceRenderer` rasterizes a quad
+//  * Drivers: `sample_face` walks the neighbours for Traverse; `FaceRenderer` rasterises a quad
 //    mesh with a texture lookup plus a light Lambert term; `render_reference` is the paper's
 //    high-quality reference (Traverse at f x f the resolution, Mitchell-Netravali downsampling).
 //
@@ -39,7 +39,7 @@
 //    there is no surface there, at valence 5 no single face.
 //
 // Thread safety: all types are immutable after construction; sampling and rendering functions
-// are const and may run concurrently (a `FaceRenderer` owns a rasterizer: one per thread).
+// are const and may run concurrently (a `FaceRenderer` owns a rasteriser: one per thread).
 #pragma once
 
 #include <array>
@@ -69,9 +69,9 @@ struct UvTransform {
   float a = 1, b = 0, c = 0;
   float d = 0, e = 1, f = 0;
 
-  Uv apply(Uv p) const { return {a * p.u + b * p.v + c, d * p.u + e * p.v + f}; }
+  texture::Uv apply(texture::Uv p) const { return {a * p.u + b * p.v + c, d * p.u + e * p.v + f}; }
   /// The linear part applied to both gradient vectors (d/dx and d/dy).
-  UvGradients apply(const UvGradients& g) const {
+  texture::UvGradients apply(const texture::UvGradients& g) const {
     return {a * g.dudx + b * g.dvdx, d * g.dudx + e * g.dvdx, a * g.dudy + b * g.dvdy,
             d * g.dudy + e * g.dvdy};
   }
@@ -118,7 +118,7 @@ struct QuadMesh {
 
   int face_count() const { return int(quads.size()); }
   /// Surface point of the bilinear patch of `face` at (u, v).
-  Vec3 point(int face, Uv uv) const;
+  Vec3 point(int face, texture::Uv uv) const;
 };
 
 /// Reads the `v` and `f` records of an OBJ file (other records ignored; negative indices
@@ -157,7 +157,7 @@ QuadMesh subdivide(const QuadMesh& mesh);
 
 /// Rotates the vertex order of every quad by a pseudo-random 0..3 steps (winding unchanged),
 /// so that all 16 edge pairings occur. Deterministic for a given seed.
-void randomize_orientation(QuadMesh& mesh, std::uint32_t seed);
+void randomise_orientation(QuadMesh& mesh, std::uint32_t seed);
 
 // ---------------------------------------------------------------------------------------------
 // Data: per-face textures
@@ -170,9 +170,10 @@ class FaceTextureSet {
 
   /// Builds the set from linear RGB face images (alpha is replaced by the coverage channel 1)
   /// and the adjacency (sizes must match; neighbour indices in range). Mip chains are built
-  /// on `threads` threads; the result does not depend on it.
+  /// on `parallel.threads` threads; the result does not depend on it.
   static Result<FaceTextureSet> create(const std::vector<ImageRGBAF>& images,
-                                       std::vector<FaceAdjacency> adjacency, int threads = 0);
+                                       std::vector<FaceAdjacency> adjacency,
+                                       const Parallel& parallel = {});
   /// Builds the set from a decoded .ptx file: level-0 texels (1 channel -> grey, 2 -> grey
   /// and alpha ignored, 3+ -> RGB; u8/u16 data decoded from sRGB, half/float taken as linear)
   /// and the file's adjacency. Triangle meshes are refused (unsupported); subfaces of split
@@ -180,10 +181,10 @@ class FaceTextureSet {
   /// a regular quad (a T-junction: one quad edge against two subface half-edges) becomes a
   /// border, since the full-edge transforms do not apply there.
   static Result<FaceTextureSet> from_ptex(const ptex::PtexFile& file, const std::string& name,
-                                          int threads = 0);
+                                          const Parallel& parallel = {});
 
   int face_count() const { return int(textures_.size()); }
-  const Texture& texture(int face) const { return textures_[std::size_t(face)]; }
+  const texture::Texture& texture(int face) const { return textures_[std::size_t(face)]; }
   const FaceAdjacency& adjacency(int face) const { return adjacency_[std::size_t(face)]; }
   const std::vector<FaceAdjacency>& adjacency() const { return adjacency_; }
   const CornerLink& corner(int face, int c) const {
@@ -195,7 +196,7 @@ class FaceTextureSet {
   std::uint64_t texel_count() const;
 
  private:
-  std::vector<Texture> textures_;
+  std::vector<texture::Texture> textures_;
   std::vector<FaceAdjacency> adjacency_;
   std::vector<std::array<CornerLink, 4>> corners_;
 };
@@ -215,7 +216,7 @@ bool parse_method(const std::string& text, Method& out);
 
 struct SampleOptions {
   Method method = Method::discard;
-  TextureFilter filter = TextureFilter::anisotropic;  ///< trilinear or anisotropic.
+  texture::TextureFilter filter = texture::TextureFilter::anisotropic;  ///< trilinear or anisotropic.
   int max_aniso = 16;                                 ///< 1..16.
   /// The paper's zero-coverage fallback (clamp lookup). Off: 0/0 gives NaN.
   bool clamp_fallback = true;
@@ -224,8 +225,8 @@ struct SampleOptions {
 /// Filtered colour of face `face` at `uv` with UV gradients per pixel (normalised units of
 /// that face). Returns linear RGB and, in [3], the coverage Σw that was divided out (1 for
 /// clamp; after a fallback, 0).
-std::array<float, 4> sample_face(const FaceTextureSet& set, int face, Uv uv,
-                                 const UvGradients& gradients, const SampleOptions& options);
+std::array<float, 4> sample_face(const FaceTextureSet& set, int face, texture::Uv uv,
+                                 const texture::UvGradients& gradients, const SampleOptions& options);
 
 // ---------------------------------------------------------------------------------------------
 // Scenes
@@ -233,7 +234,7 @@ std::array<float, 4> sample_face(const FaceTextureSet& set, int face, Uv uv,
 
 /// The continuous procedural 3D colour function the Figure-1 textures are baked from (linear
 /// RGB in [0, 1]): coloured value noise with stripes, band-limited at about `1 / scale`.
-std::array<float, 3> procedural_color(const Vec3& p, float scale = 1.0f);
+std::array<float, 3> procedural_colour(const Vec3& p, float scale = 1.0f);
 
 /// A quad mesh with per-face texture resolutions (log2 per side).
 struct FaceScene {
@@ -262,9 +263,15 @@ FaceScene figure1_scene(const Figure1Options& options = {});
 /// clamped, so neighbouring faces may differ and faces may be non-square.
 void assign_resolutions(FaceScene& scene, float texels_per_unit, int min_log2, int max_log2);
 
-/// Bakes each face's texture: texel (x, y) = procedural_color of the surface point at the texel
-/// centre (so the seamless truth is known). Linear RGBA, alpha 1.
-std::vector<ImageRGBAF> bake_faces(const FaceScene& scene, float scale = 1.0f, int threads = 0);
+/// Options of `bake_faces`.
+struct BakeOptions {
+  float scale = 1.0f;  ///< `procedural_colour`'s scale (detail at about 1 / scale world units).
+  int threads = 0;     ///< 0 = all hardware threads; results do not depend on it.
+};
+
+/// Bakes each face's texture: texel (x, y) = procedural_colour(p, options.scale) of the surface
+/// point p at the texel centre (so the seamless truth is known). Linear RGBA, alpha 1.
+std::vector<ImageRGBAF> bake_faces(const FaceScene& scene, const BakeOptions& options = {});
 
 // ---------------------------------------------------------------------------------------------
 // Rendering
@@ -293,7 +300,7 @@ struct FaceRenderOptions {
 struct FaceFrame {
   ImageRGBAF image;
   raster::RasterStats stats;
-  double ms_raster = 0;   ///< Rasterization and shading.
+  double ms_raster = 0;   ///< Rasterisation and shading.
   double ms_resolve = 0;  ///< MSAA box resolve.
   double ms() const { return ms_raster + ms_resolve; }
 };
@@ -301,7 +308,19 @@ struct FaceFrame {
 /// Linear RGB background of face renders.
 inline constexpr std::array<float, 3> kFaceBackground = {0.45f, 0.55f, 0.7f};
 
-/// Draws a textured quad mesh. Not thread-safe (owns a rasterizer and frame buffer).
+/// Settings of the paper's reference frame: `FaceRenderer::render_reference`, its GL twin
+/// `gl::SeamsRenderer::render_reference` and `experiments::SeamsFrameRenderer::render_reference`.
+struct ReferenceOptions {
+  int factor = 8;  ///< Supersampling factor per axis, 1..16 (factor x factor the resolution).
+  /// Texture filter of the Traverse lookups: anisotropic (16x, the paper's reference) or
+  /// trilinear.
+  texture::TextureFilter filter = texture::TextureFilter::anisotropic;
+  int threads = 0;  ///< CPU worker threads (0 = all; the GL version does not use it); results
+                    ///< do not depend on it.
+  int tile = 96;    ///< Tile side in output pixels (>= 1): bounds the supersampled grid's memory.
+};
+
+/// Draws a textured quad mesh. Not thread-safe (owns a rasteriser and frame buffer).
 class FaceRenderer {
  public:
   /// `scene` and `textures` must outlive the renderer; face counts must match.
@@ -311,11 +330,13 @@ class FaceRenderer {
 
   Result<FaceFrame> render(const scene::Camera& camera, const FaceRenderOptions& options);
 
-  /// The paper's reference: Traverse (16x anisotropic) at factor x factor the resolution,
-  /// downsampled with the Mitchell-Netravali filter (B = C = 1/3, radius 2 output pixels),
-  /// rendered in tiles of `tile` output pixels so memory stays bounded.
+  /// The paper's reference: Traverse (16x anisotropic by default, `options.filter`) at
+  /// `options.factor` x `options.factor` the resolution, downsampled with the
+  /// Mitchell-Netravali filter (B = C = 1/3, radius 2 output pixels), rendered in tiles of
+  /// `options.tile` output pixels so memory stays bounded. Fails with invalid_argument on a
+  /// bad size, factor or tile.
   Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
-                                      int factor = 8, int threads = 0, int tile = 96);
+                                      const ReferenceOptions& options = {});
 
  private:
   FaceRenderer() = default;
@@ -324,7 +345,7 @@ class FaceRenderer {
   std::vector<float> clip_;      // 4 floats per face-vertex (4 vertices per face)
   std::vector<float> varyings_;  // u, v, nx, ny, nz per face-vertex
   std::vector<std::uint32_t> indices_;
-  raster::Rasterizer rasterizer_;
+  raster::Rasteriser rasteriser_;
   raster::FrameBuffer fb_;
 };
 

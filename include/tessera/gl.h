@@ -297,18 +297,18 @@ class GpuTimer {
   bool open_ = false;
 };
 
-enum class ColorFormat { rgba8, rgba32f };
+enum class ColourFormat { rgba8, rgba32f };
 
 struct RenderTargetOptions {
   int width = 256, height = 256;  ///< Pixels, 1..GL_MAX_RENDERBUFFER_SIZE.
   int samples = 1;                ///< 1 = single-sampled; else <= GL_MAX_SAMPLES.
-  ColorFormat color = ColorFormat::rgba32f;
+  ColourFormat colour = ColourFormat::rgba32f;
   bool depth = true;              ///< A GL_DEPTH_COMPONENT32F renderbuffer.
 };
 
 /// A framebuffer with one colour renderbuffer and optionally depth.
 struct RenderTarget {
-  Object framebuffer, color, depth;
+  Object framebuffer, colour, depth;
   int width = 0, height = 0, samples = 1;
 };
 

@@ -17,24 +17,30 @@
 //    gradients from fine 2x2-quad derivatives (dFdxFine/dFdyFine) including helper pixels,
 //    the sampled colour times 0.35 + 0.65 max(N·L, 0) with L = (0.42, 0.82, 0.39), alpha 1,
 //    background `faces::kFaceBackground` with alpha 0;
-//  * image rows top-down with the CPU rasterizer's orientation: clip y is negated so GL's
+//  * image rows top-down with the CPU rasteriser's orientation: clip y is negated so GL's
 //    framebuffer row 0 is the image's top row, which makes the driver's sample positions (Mesa
-//    uses the Direct3D standard patterns in memory order) the CPU rasterizer's.
+//    uses the Direct3D standard patterns in memory order) the CPU rasteriser's.
+// Sample counts: GL allocates at least the samples asked for, and a driver may round a rate up
+// to one it has (glRenderbufferStorageMultisample): Mesa 22.3 llvmpipe has only 4x, so a 2x
+// frame is drawn with 4 samples at the 4x positions. `sample_pattern` reports what the driver
+// gives (GL_SAMPLES, GL_SAMPLE_POSITION) and which CPU rate has the same positions; a
+// like-for-like comparison renders the CPU frame at that rate (`SamplePattern::cpu_msaa`).
 // Draw calls are grouped by face class (one GL_TEXTURE_2D_ARRAY per face resolution): the own
 // face's lookup indexes the sampler array with a per-draw uniform (dynamically uniform, so it
 // works without bindless or non-uniform indexing, e.g. on llvmpipe); neighbour lookups of
 // Traverse go through seams.glsl's switch over the classes. Each (method, fallback, output)
-// combination is its own compiled program, so a software rasterizer that executes both sides
+// combination is its own compiled program, so a software rasteriser that executes both sides
 // of every branch (llvmpipe) runs only the chosen method's code.
 //
-// Agreement with the CPU frame (tests/gl_seams_test.cpp, Mesa 22.3 llvmpipe, 96x108): under
-// trilinear filtering 54-55 dB PSNR on the 8-bit sRGB output with at most 0.5 % of the pixels
-// 0.01 or more apart (linear-RGB 2-norm); rasterization ties and the draw order (class-grouped
+// Agreement with the CPU frame of the same sample positions (tests/gl_seams_test.cpp, Mesa 22.3
+// llvmpipe, 96x108, 1x, 2x = 4 samples against the CPU's 4x, and 4x): under trilinear
+// filtering 54-55 dB PSNR on the 8-bit sRGB output with at most 0.5 % of the pixels 0.01 or
+// more apart (linear-RGB 2-norm); rasterisation ties and the draw order (class-grouped
 // here, face order on the CPU) are left. Hardware anisotropic filtering is implementation-
 // defined (llvmpipe's is much blurrier than tessera's exact filter): 25-37 dB there.
 //
 // Timing: `gpu_ms_*` are GL_TIME_ELAPSED queries. On llvmpipe they do not cover the frame (the
-// query commands are executed per screen tile by the rasterizer threads; measured: 16x the
+// query commands are executed per screen tile by the rasteriser threads; measured: 16x the
 // pixels gave 4x the timer but 6.7x the wall time), so use `wall_ms` (ended by glFinish)
 // there; on hardware GPUs the timer is the pass time.
 #pragma once
@@ -50,9 +56,33 @@
 
 namespace tessera::gl {
 
+/// One sample position of a GL framebuffer: the offset from the pixel centre in pixels, x right,
+/// y down in the image (GL_SAMPLE_POSITION minus 0.5; the renderer's y flip makes GL's window y
+/// the image's row order) — raster::SampleOffset / 16.
+struct SamplePosition {
+  float x = 0;
+  float y = 0;
+};
+
+/// The samples a driver allocates for a requested MSAA rate.
+struct SamplePattern {
+  int requested = 1;  ///< The rate asked for.
+  int samples = 1;    ///< GL_SAMPLES of the framebuffer, >= requested (llvmpipe: 4 for 2).
+  /// GL_SAMPLE_POSITION of every sample in sample-index order; one {0, 0} single-sampled.
+  std::vector<SamplePosition> positions;
+  /// The CPU rasteriser's rate whose standard pattern (raster::sample_positions) is this set
+  /// of positions (`matching_cpu_msaa`); 0 when none is.
+  int cpu_msaa = 0;
+};
+
+/// The rate n in 1, 2, 4, 8, 16 whose raster::sample_positions(n), divided by 16, equals
+/// `positions` as a set (order aside: the box resolve does not depend on it; within 1e-4
+/// pixel); 0 when there is none. An empty list matches nothing.
+int matching_cpu_msaa(const std::vector<SamplePosition>& positions);
+
 /// What the fragment shader writes.
 enum class SeamsOutput {
-  color,          ///< Shaded linear RGB, alpha 1 (the frame).
+  colour,         ///< Shaded linear RGB, alpha 1 (the frame).
   zero_coverage,  ///< 1 where the method's coverage Σw was 0 (Discard's fallback or NaN
                   ///< pixels), else 0; alpha 1; background (0,0,0,0). Resolved: the
                   ///< fraction of the pixel's samples that such fragments cover.
@@ -62,14 +92,15 @@ enum class SeamsOutput {
 struct SeamsRenderOptions {
   int width = 480;   ///< The paper's frame size.
   int height = 540;
-  int msaa = 1;      ///< 1, 2, 4 or 8 samples (8 is refused where GL_MAX_SAMPLES < 8).
+  int msaa = 1;      ///< 1, 2, 4 or 8 samples (8 is refused where GL_MAX_SAMPLES < 8); the
+                     ///< driver may draw with more (SeamsFrame::samples, sample_pattern).
   faces::Method method = faces::Method::discard;
   /// trilinear, or anisotropic (GL_TEXTURE_MAX_ANISOTROPY = max_aniso on both samplers).
-  TextureFilter filter = TextureFilter::anisotropic;
+  texture::TextureFilter filter = texture::TextureFilter::anisotropic;
   int max_aniso = 16;  ///< 1..16, clamped to the implementation's maximum.
   /// Discard's zero-coverage fallback (Listing 1, lines 13-15). Off: NaN where Σw = 0.
   bool clamp_fallback = true;
-  SeamsOutput output = SeamsOutput::color;
+  SeamsOutput output = SeamsOutput::colour;
   /// Read the resolved frame back into `SeamsFrame::image` (off: timing only).
   bool read_back = true;
   /// Sub-rectangle [x0, x0 + width) x [y0, y0 + height) of a virtual full_width x full_height
@@ -89,6 +120,9 @@ struct SeamsFrame {
   /// upload included, read-back excluded).
   double wall_ms = 0;
   int draw_calls = 0;  ///< One per face class with faces.
+  /// Samples per pixel the frame was drawn with (`SamplePattern::samples` of the rate: more
+  /// than `SeamsRenderOptions::msaa` where the driver rounds the rate up).
+  int samples = 1;
 };
 
 struct SeamsRendererOptions {
@@ -122,15 +156,18 @@ class SeamsRenderer {
   bool msaa_supported(int samples);
   /// The rates of `rates` that the driver refuses (llvmpipe: 8 and above), in order.
   std::vector<int> refused_msaa(const std::vector<int>& rates);
+  /// The sample count and positions the driver gives a target of `msaa` samples (RGBA32F +
+  /// depth, as `render` draws into), queried once per rate on a small probe framebuffer.
+  /// Fails with unsupported where the rate is refused, invalid_argument below 1.
+  Result<SamplePattern> sample_pattern(int msaa);
 
-  /// The paper's reference on the GPU: Traverse at factor x factor the resolution with
-  /// `filter`, single-sampled, rendered in tiles of `tile` output pixels (plus a 2-pixel
-  /// margin) and down-sampled on the CPU by `downsample_mitchell` (B = C = 1/3, radius 2
-  /// output pixels) — the filter of faces::FaceRenderer::render_reference.
+  /// The paper's reference on the GPU: Traverse at `options.factor` x `options.factor` the
+  /// resolution with `options.filter`, single-sampled, rendered in tiles of `options.tile`
+  /// output pixels (plus a 2-pixel margin) and down-sampled on the CPU by `downsample_mitchell`
+  /// (B = C = 1/3, radius 2 output pixels) — the filter of
+  /// faces::FaceRenderer::render_reference, with the same options (`options.threads` unused).
   Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
-                                      int factor = 8,
-                                      TextureFilter filter = TextureFilter::anisotropic,
-                                      int tile = 96);
+                                      const faces::ReferenceOptions& options = {});
 
   const FaceTextures& textures() const;
   const std::string& glsl_dir() const;

@@ -16,7 +16,7 @@
 
 #include "tessera/core.h"
 
-namespace tessera {
+namespace tessera::io {
 
 /// Largest file `read_file` loads by default (2 GiB).
 inline constexpr std::uint64_t kMaxFileBytes = std::uint64_t{1} << 31;
@@ -85,4 +85,4 @@ Result<std::vector<std::uint8_t>> encode_image(const ImageRGBA8& image, ImageFor
 /// `write_file_atomic`.
 Status write_image(const std::string& path, const ImageRGBA8& image);
 
-}  // namespace tessera
+}  // namespace tessera::io

@@ -2,7 +2,8 @@
 //
 // Conventions: right-handed world space, column vectors, matrices stored column-major
 // (m[column][row]) like OpenGL/glTF. `perspective` maps view-space depth to OpenGL clip space
-// (z in [-w, w] after projection, camera looking down -z).
+// (z in [-w, w] after projection, camera looking down -z). The vector functions keep GLSL's
+// names (`dot`, `cross`, `length`, `normalize`): the CPU kernels mirror the shaders.
 #pragma once
 
 #include <cmath>

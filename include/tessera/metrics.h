@@ -22,7 +22,7 @@
 
 #include "tessera/core.h"
 
-namespace tessera {
+namespace tessera::metrics {
 
 /// Full-reference comparison of two equally sized 8-bit images.
 struct ImageComparison {
@@ -31,7 +31,8 @@ struct ImageComparison {
   bool has_alpha = false;   ///< Whether either input has alpha (then the alpha fields are set).
   double mse_alpha = 0.0;   ///< Mean squared error of alpha.
   double psnr_alpha = 0.0;  ///< dB, peak 255; +infinity for identical alpha.
-  double ssim_gray = 1.0;   ///< Mean SSIM on Rec.709 luma (see header comment).
+  double ssim_gray = 1.0;   ///< Mean SSIM on Rec.709 luma (see header comment). Spelt like
+                            ///< the documented JSON / Python key `ssim_gray`, which it fills.
   int max_abs = 0;          ///< Largest absolute difference over all compared channels.
 };
 
@@ -51,18 +52,24 @@ double psnr_from_mse(double mse, double peak = 255.0);
 /// Rec.709 luma of an 8-bit image as floats on the 0..255 scale, row-major.
 std::vector<float> luma709(const ImageRGBA8& image);
 
-/// Mean SSIM of two luma planes of `width` x `height` (values on a 0..`data_range` scale),
-/// with the window and constants of the header comment. Images smaller than 11x11 have no
-/// valid window: their SSIM is the global SSIM of the whole image (uniform weights).
+/// Options of `ssim_plane` and `ssim_map`.
+struct SsimOptions {
+  double data_range = 255.0;  ///< L: the planes' values lie on a 0..data_range scale.
+  int threads = 0;            ///< 0 = all hardware threads; results do not depend on it.
+};
+
+/// Mean SSIM of two luma planes of `width` x `height` (values on a 0..`options.data_range`
+/// scale), with the window and constants of the header comment. Images smaller than 11x11 have
+/// no valid window: their SSIM is the global SSIM of the whole image (uniform weights).
 double ssim_plane(std::span<const float> a, std::span<const float> b, int width, int height,
-                  double data_range = 255.0, int threads = 0);
+                  const SsimOptions& options = {});
 
 /// SSIM map over the valid region ((width-10) x (height-10) values), for heatmaps.
 std::vector<float> ssim_map(std::span<const float> a, std::span<const float> b, int width,
-                            int height, double data_range = 255.0, int threads = 0);
+                            int height, const SsimOptions& options = {});
 
 /// Mean SSIM on Rec.709 luma of two 8-bit images (sizes must match, else an error).
-Result<double> ssim_gray(const ImageRGBA8& a, const ImageRGBA8& b, int threads = 0);
+Result<double> ssim_gray(const ImageRGBA8& a, const ImageRGBA8& b, const Parallel& parallel = {});
 
 /// Error CDF of Toth 2013, Figure 5. `a` and `b` are linear RGB (alpha ignored). For each
 /// threshold x in `thresholds`, returns the fraction of counted pixels with
@@ -106,19 +113,19 @@ class ErrorCdfAccumulator {
 };
 
 /// Colour maps for heatmaps.
-enum class ColorMap { inferno, viridis, grey };
+enum class ColourMap { inferno, viridis, grey };
 
 /// Maps t in [0, 1] (clamped) to an 8-bit RGB colour of `map`.
-void colormap_rgb(ColorMap map, float t, std::uint8_t rgb[3]);
+void colour_map_rgb(ColourMap map, float t, std::uint8_t rgb[3]);
 
 /// Colours a scalar field of `width` x `height` values: value / scale in [0, 1] through `map`.
 ImageRGBA8 heatmap(std::span<const float> values, int width, int height, float scale,
-                   ColorMap map = ColorMap::inferno);
+                   ColourMap map = ColourMap::inferno);
 
 /// Difference heatmap of two 8-bit images: the per-pixel maximum absolute channel difference
 /// (over RGB, and alpha when either image has alpha) divided by `scale` (8-bit units; e.g. 32
 /// saturates at a difference of 32) through `map`. Fails on a size mismatch.
 Result<ImageRGBA8> difference_heatmap(const ImageRGBA8& a, const ImageRGBA8& b,
-                                      float scale = 64.0f, ColorMap map = ColorMap::inferno);
+                                      float scale = 64.0f, ColourMap map = ColourMap::inferno);
 
-}  // namespace tessera
+}  // namespace tessera::metrics

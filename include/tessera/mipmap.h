@@ -21,7 +21,7 @@
 
 #include "tessera/core.h"
 
-namespace tessera {
+namespace tessera::image {
 
 /// How colour is filtered.
 struct MipmapOptions {
@@ -49,4 +49,4 @@ Result<ImageRGBA8> resize_image(const ImageRGBA8& image, int width, int height,
 /// The power of two nearest to `size` (ties go up), at least 1.
 int nearest_power_of_two(int size);
 
-}  // namespace tessera
+}  // namespace tessera::image

@@ -28,12 +28,13 @@
 // `block_count(format, width, height)` blocks; dimensions must be powers of two (not
 // necessarily equal); anything smaller than 2x2 blocks is padded to 2x2 blocks.
 //
-// Threading: every function is thread-safe; `threads` in the options is the number of worker
-// threads (0 = all). Output bytes are identical for any thread count.
+// Threading: every function is thread-safe; `EncodeOptions::threads` and `decode`'s `parallel`
+// are the number of worker threads (0 = all). Output bytes are identical for any thread count.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -101,6 +102,12 @@ struct EncodeOptions {
   /// only opaque colours are written).
   bool force_alpha = false;
   int threads = 0;
+  /// Optional progress hook: called with the fraction of this encode done, from the thread
+  /// that called `encode` only (never from a worker), between the encoder's passes, sweeps and
+  /// search rounds. Fractions never decrease (the first may be 0); a successful encode's last
+  /// call is exactly 1.0. They estimate elapsed time (each pass weighted by its measured cost),
+  /// so they advance unevenly. The hook never changes the output bytes; empty = no calls.
+  std::function<void(double fraction)> progress;
 };
 
 /// Encodes one level. `image` dimensions must pass `check_dimensions`. Output size is
@@ -110,6 +117,6 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
 /// Decodes one level of `width` x `height` from `data` (at least `level_size` bytes) to RGBA8.
 /// Output `has_alpha` is true when any decoded alpha differs from 255.
 Result<ImageRGBA8> decode(std::span<const std::uint8_t> data, Format format, int width, int height,
-                          int threads = 0);
+                          const Parallel& parallel = {});
 
 }  // namespace tessera::pvrtc

@@ -1,6 +1,6 @@
-// tessera/raster.h — the software rasterizer of the rendering core.
+// tessera/raster.h — the software rasteriser of the rendering core.
 //
-// A tile-binned, multithreaded triangle rasterizer that behaves like a GPU where it matters for
+// A tile-binned, multithreaded triangle rasteriser that behaves like a GPU where it matters for
 // anti-aliasing and texture-filtering studies:
 //  * clip-space triangles, homogeneous near/far clipping, guard-band clipping for x/y;
 //  * 8 sub-pixel bits of fixed-point vertex snapping and exact integer edge functions with the
@@ -28,15 +28,15 @@
 //    Direct3D convention), see `sample_positions`.
 //  * Front faces are counter-clockwise in NDC (y up) unless `DrawCall::front_ccw` is false.
 //
-// Pipeline: `Rasterizer::render` runs a geometry stage (fetch, clip, snap, cull, set up, bin;
+// Pipeline: `Rasteriser::render` runs a geometry stage (fetch, clip, snap, cull, set up, bin;
 // parallel over fixed chunks of 1024 input triangles) and then a raster stage (parallel over
 // tiles: optional clear, 8x8 block trivial accept/reject, 2x2 quads, early depth test, shading,
-// per-sample writes). Memory: the rasterizer keeps its per-chunk buffers between calls.
+// per-sample writes). Memory: the rasteriser keeps its per-chunk buffers between calls.
 //
 // Determinism and threads: triangles are binned into 64x64 grid-pixel tiles; every tile is
-// rasterized by exactly one task, visiting its triangles in submission order (draw order, then
+// rasterised by exactly one task, visiting its triangles in submission order (draw order, then
 // index order). Frame buffers are therefore bit-identical for any `RasterOptions::threads`.
-// A `Rasterizer` is not thread-safe (it owns scratch memory); use one per thread. Shaders are
+// A `Rasteriser` is not thread-safe (it owns scratch memory); use one per thread. Shaders are
 // called concurrently from several threads and must be thread-safe (pure functions of their
 // input plus read-only state).
 #pragma once
@@ -83,7 +83,14 @@ bool valid_msaa(int count);
 // Frame buffer
 // ---------------------------------------------------------------------------------------------
 
-/// Shape of a frame buffer. Output size `width` x `height`; the rasterized grid is
+/// What a clear writes: `FrameBuffer::clear`, and the optional clear done by each tile task of
+/// `Rasteriser::render` before it rasterises (cache-friendly, parallel).
+struct ClearValues {
+  std::array<float, kMaxChannels> value{};  ///< First `channels` entries are used.
+  float depth = 1.0f;
+};
+
+/// Shape of a frame buffer. Output size `width` x `height`; the rasterised grid is
 /// (`ssaa`*width) x (`ssaa`*height) grid pixels with `msaa` samples each.
 struct FrameBufferDesc {
   int width = 0;       ///< Output (resolved) width in pixels, >= 1.
@@ -147,10 +154,10 @@ class FrameBuffer {
   std::span<std::uint32_t> coverage_count_data() { return counts_; }
   std::span<const std::uint32_t> coverage_count_data() const { return counts_; }
 
-  /// Sets every sample to `value` (`channels` floats; null = zeros), depth to `depth`, ids to
-  /// `kNoPrimitive` and coverage counts to 0.
-  void clear(const float* value = nullptr, float depth = 1.0f, int threads = 0);
-  /// Clears the grid rectangle [x0, x1) x [y0, y1) (used per tile by the rasterizer).
+  /// Sets every sample to `values.value` (its first `channels` floats), depth to
+  /// `values.depth`, ids to `kNoPrimitive` and coverage counts to 0.
+  void clear(const ClearValues& values = {}, const Parallel& parallel = {});
+  /// Clears the grid rectangle [x0, x1) x [y0, y1) (used per tile by the rasteriser).
   void clear_rect(int x0, int y0, int x1, int y1, const float* value, float depth);
 
   /// A deep copy (copying is explicit because frame buffers are large).
@@ -172,13 +179,13 @@ class FrameBuffer {
 
 /// Box resolve: every output pixel is the mean of its ssaa x ssaa grid pixels' msaa samples.
 /// Channels 0..3 become RGBA; with fewer than 4 channels the missing colour channels are 0 and
-/// alpha is 1. Deterministic for any `threads`.
-ImageRGBAF resolve(const FrameBuffer& fb, int threads = 0);
+/// alpha is 1. Deterministic for any `parallel.threads`.
+ImageRGBAF resolve(const FrameBuffer& fb, const Parallel& parallel = {});
 /// Box resolve to 8-bit sRGB: bit-identical to `to_srgb8(resolve(fb))` (a table-driven exact
 /// encoder avoids the per-channel pow). Channels 0..2 are linear RGB, channel 3 linear alpha.
-ImageRGBA8 resolve_srgb8(const FrameBuffer& fb, int threads = 0);
+ImageRGBA8 resolve_srgb8(const FrameBuffer& fb, const Parallel& parallel = {});
 /// Box resolve of all channels: `channels` floats per output pixel, row-major.
-std::vector<float> resolve_channels(const FrameBuffer& fb, int threads = 0);
+std::vector<float> resolve_channels(const FrameBuffer& fb, const Parallel& parallel = {});
 
 // ---------------------------------------------------------------------------------------------
 // Shading
@@ -220,7 +227,7 @@ using ShadeFn = std::function<void(const ShadeInput& in, float* out)>;
 /// `lanes[i]` is exactly what a `ShadeFn` would see for lane i; the shader must write the
 /// `channels` floats of every lane whose bit is set in `active`, at `out + i * kMaxChannels`
 /// (pre-filled with zeros); other lanes' inputs are unspecified and their outputs are ignored.
-/// Results must be the same as shading each active lane alone (the rasterizer may call either
+/// Results must be the same as shading each active lane alone (the rasteriser may call either
 /// form). Called concurrently from worker threads; must be thread-safe.
 using QuadShadeFn = std::function<void(const ShadeInput* lanes, std::uint32_t active, float* out)>;
 
@@ -235,7 +242,7 @@ enum class DepthTest { less, less_equal, equal, always };
 enum class ClipDepth { negative_one_to_one, zero_to_one };
 
 /// One draw: triangles from vertex arrays, rendered with one shader and pipeline state.
-/// Arrays are borrowed: they must stay valid until `Rasterizer::render` returns.
+/// Arrays are borrowed: they must stay valid until `Rasteriser::render` returns.
 struct DrawCall {
   const float* positions = nullptr;  ///< Clip-space x, y, z, w per vertex (4 floats each).
   const float* varyings = nullptr;   ///< `varying_count` floats per vertex (may be null if 0).
@@ -264,7 +271,7 @@ enum class Derivatives {
   coarse,  ///< ddx from the top row, ddy from the left column, shared by the whole quad.
 };
 
-/// Rasterizer behaviour that is not per draw.
+/// Rasteriser behaviour that is not per draw.
 struct RasterOptions {
   int threads = 0;  ///< Worker threads (0 = all hardware threads). Output is identical for any.
   ClipDepth clip_depth = ClipDepth::negative_one_to_one;
@@ -275,32 +282,26 @@ struct RasterOptions {
   bool shade_helpers = false;
 };
 
-/// Optional clear done by each tile task before it rasterizes (cache-friendly, parallel).
-struct ClearValues {
-  std::array<float, kMaxChannels> value{};  ///< First `channels` entries are used.
-  float depth = 1.0f;
-};
-
 /// Counters of one `render` call (independent of the thread count).
 struct RasterStats {
   std::uint64_t triangles_in = 0;       ///< Triangles submitted.
   std::uint64_t triangles_culled = 0;   ///< Rejected: outside, back-facing or degenerate.
   std::uint64_t triangles_clipped = 0;  ///< Input triangles that needed polygon clipping.
-  std::uint64_t triangles_setup = 0;    ///< Triangles after clipping that were rasterized.
+  std::uint64_t triangles_setup = 0;    ///< Triangles after clipping that were rasterised.
   std::uint64_t quads = 0;              ///< 2x2 quads with at least one visible sample.
   std::uint64_t lanes_shaded = 0;       ///< Shader invocations (helpers included if shaded).
   std::uint64_t helper_lanes = 0;       ///< Lanes of those quads with no visible sample.
   std::uint64_t samples_written = 0;
 };
 
-/// A reusable rasterizer. It owns the scratch memory (transformed triangles, tile bins), which
+/// A reusable rasteriser. It owns the scratch memory (transformed triangles, tile bins), which
 /// is kept between calls, so steady-state rendering does not allocate.
-class Rasterizer {
+class Rasteriser {
  public:
-  explicit Rasterizer(const RasterOptions& options = {});
-  ~Rasterizer();
-  Rasterizer(Rasterizer&&) noexcept;
-  Rasterizer& operator=(Rasterizer&&) noexcept;
+  explicit Rasteriser(const RasterOptions& options = {});
+  ~Rasteriser();
+  Rasteriser(Rasteriser&&) noexcept;
+  Rasteriser& operator=(Rasteriser&&) noexcept;
 
   const RasterOptions& options() const { return options_; }
   void set_options(const RasterOptions& options) { options_ = options; }

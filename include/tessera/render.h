@@ -1,8 +1,8 @@
-// tessera/render.h — drawing scenes with the software rasterizer.
+// tessera/render.h — drawing scenes with the software rasteriser.
 //
 // `SceneRenderer` is the forward-rendering driver of the rendering core: it owns the scene's
 // textures as mipmapped linear-light `Texture`s (built once), transforms every mesh to clip
-// space per frame, and rasterizes it with an unlit material — the base-colour factor times the
+// space per frame, and rasterises it with an unlit material — the base-colour factor times the
 // base-colour texture, sampled trilinear or anisotropically with the UV derivatives of the
 // 2x2 quad (`textureGrad`), wrap addressing. It is the reference workload of the llvmpipe
 // comparison: tools/glpeer renders the same frame with the same conventions through OpenGL.
@@ -34,7 +34,8 @@ raster::DrawCall mesh_draw(const scene::Mesh& mesh, const float* clip, const flo
 
 /// Builds the mipmapped linear-light textures of every scene texture (sRGB ones decoded before
 /// filtering), in scene order. Fails on the first texture that cannot be built.
-Result<std::vector<Texture>> build_scene_textures(const scene::Scene& scene, int threads = 0);
+Result<std::vector<texture::Texture>> build_scene_textures(const scene::Scene& scene,
+                                                  const Parallel& parallel = {});
 
 /// Texture filtering of the unlit material.
 enum class Filter { trilinear, aniso16 };
@@ -42,7 +43,7 @@ enum class Filter { trilinear, aniso16 };
 /// What the unlit material outputs.
 enum class Shading {
   textured,  ///< base colour factor x base-colour texture.
-  flat,      ///< constant white: isolates coverage (for rasterizer comparisons).
+  flat,      ///< constant white: isolates coverage (for rasteriser comparisons).
 };
 
 /// Per-frame settings.
@@ -61,18 +62,20 @@ struct Frame {
   ImageRGBA8 image;        ///< Resolved, sRGB-encoded.
   raster::RasterStats stats;
   double ms_transform = 0;  ///< Vertex transform time.
-  double ms_raster = 0;     ///< Rasterization + shading time.
+  double ms_raster = 0;     ///< Rasterisation + shading time.
   double ms_resolve = 0;    ///< Box resolve + sRGB encode time.
   double ms_total() const { return ms_transform + ms_raster + ms_resolve; }
 };
 
 /// Renders frames of one scene. Construction builds textures (the expensive part); `render`
-/// reuses them and the rasterizer's scratch memory. Not thread-safe: one renderer per thread
+/// reuses them and the rasteriser's scratch memory. Not thread-safe: one renderer per thread
 /// (each frame is itself parallel).
 class SceneRenderer {
  public:
-  /// Builds the renderer; fails if a texture cannot be built. `scene` must outlive it.
-  static Result<std::unique_ptr<SceneRenderer>> create(const scene::Scene& scene, int threads = 0);
+  /// Builds the renderer (its textures on `parallel.threads` threads); fails if a texture
+  /// cannot be built. `scene` must outlive it.
+  static Result<std::unique_ptr<SceneRenderer>> create(const scene::Scene& scene,
+                                                       const Parallel& parallel = {});
   ~SceneRenderer();
 
   /// Renders one frame from `camera`.
@@ -81,10 +84,10 @@ class SceneRenderer {
  private:
   SceneRenderer() = default;
   const scene::Scene* scene_ = nullptr;
-  std::vector<Texture> textures_;
+  std::vector<texture::Texture> textures_;
   std::vector<std::vector<float>> clip_;      // per mesh: 4 floats per vertex
   std::vector<std::vector<float>> varyings_;  // per mesh: u, v per vertex
-  raster::Rasterizer rasterizer_;
+  raster::Rasteriser rasteriser_;
   raster::FrameBuffer fb_;
 };
 

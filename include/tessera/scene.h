@@ -27,8 +27,9 @@ namespace tessera::scene {
 /// Surface description (unlit base colour plus what shading models need).
 struct Material {
   std::string name;
-  float base_color[4] = {1, 1, 1, 1};  ///< Linear RGBA factor.
-  int base_color_texture = -1;         ///< Index into Scene::textures, -1 for none.
+  float base_color[4] = {1, 1, 1, 1};  ///< Linear RGBA factor (glTF's name: baseColorFactor).
+  int base_color_texture = -1;         ///< Index into Scene::textures, -1 for none (glTF's
+                                       ///< baseColorTexture).
   int normal_texture = -1;             ///< Index into Scene::textures, -1 for none.
   bool double_sided = true;
   bool alpha_mask = false;     ///< glTF alphaMode MASK.
@@ -51,7 +52,7 @@ struct Mesh {
 /// A punctual point light (KHR_lights_punctual), world space.
 struct PointLight {
   Vec3 position;
-  float color[3] = {1, 1, 1};
+  float color[3] = {1, 1, 1};  ///< Linear RGB (KHR_lights_punctual's name, kept).
   float intensity = 1.0f;
   float range = 0.0f;  ///< 0 = infinite.
 };

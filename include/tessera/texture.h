@@ -43,7 +43,7 @@
 
 #include "tessera/core.h"
 
-namespace tessera {
+namespace tessera::texture {
 
 // ---------------------------------------------------------------------------------------------
 // Sampler state
@@ -72,7 +72,8 @@ struct SamplerState {
   TextureFilter filter = TextureFilter::trilinear;
   AddressMode address_u = AddressMode::wrap;
   AddressMode address_v = AddressMode::wrap;
-  /// Linear RGBA returned by border taps (transparent black by default, as Discard needs).
+  /// Linear RGBA returned by border taps (transparent black by default, as Discard needs);
+  /// GL TEXTURE_BORDER_COLOR, named after it.
   std::array<float, 4> border_color = {0.0f, 0.0f, 0.0f, 0.0f};
   /// Largest probe count of anisotropic filtering, clamped to [1, 16].
   int max_aniso = 16;
@@ -150,9 +151,9 @@ AnisoFootprint anisotropic_footprint(const UvGradients& texel_gradients, int max
 
 /// Everything the tap generator needs for one lookup, with LOD already biased and clamped.
 struct Footprint {
-  Uv center;            ///< Lookup position, normalised.
+  Uv centre;            ///< Lookup position, normalised.
   float axis_u = 0.0f;  ///< Major axis of the footprint (normalised units, full pixel extent);
-  float axis_v = 0.0f;  ///< probes lie at center + ((i + 0.5) / N - 0.5) * axis.
+  float axis_v = 0.0f;  ///< probes lie at centre + ((i + 0.5) / N - 0.5) * axis.
   int probes = 1;       ///< N (1 unless anisotropic).
   float lod = 0.0f;     ///< Final LOD in [0, levels - 1].
 };
@@ -324,13 +325,15 @@ class Texture {
 
 /// One box-downsampling step to max(1, w/2) x max(1, h/2): each output texel is the exact
 /// area average of the source region it covers (fractional weights at odd sizes), so the mean
-/// is preserved. Linear float input; alpha-weighted when `alpha_weighted`. Deterministic for
-/// any `threads`.
-ImageRGBAF downsample_box(const ImageRGBAF& image, bool alpha_weighted = false, int threads = 0);
+/// is preserved. Linear float input; alpha-weighted when `options.alpha_weighted`, on
+/// `options.threads` threads (deterministic for any); the other options do not apply.
+ImageRGBAF downsample_box(const ImageRGBAF& image, const TextureOptions& options = {});
 
-/// Full chain (level 0 = a copy of `image`) by repeated `downsample_box`, `max_levels` levels
-/// at most (0 = down to 1x1). Empty input gives an empty vector.
-std::vector<ImageRGBAF> build_mip_chain(const ImageRGBAF& image, bool alpha_weighted = false,
-                                        int max_levels = 0, int threads = 0);
+/// Full chain (level 0 = a copy of `image`) by repeated `downsample_box`: exactly the levels
+/// `Texture::from_float(image, options)` holds. `options.max_levels` levels at most (0 = down
+/// to 1x1), alpha-weighted per `options.alpha_weighted`, on `options.threads` threads;
+/// `options.srgb` does not apply (float input is linear). Empty input gives an empty vector.
+std::vector<ImageRGBAF> build_mip_chain(const ImageRGBAF& image,
+                                        const TextureOptions& options = {});
 
-}  // namespace tessera
+}  // namespace tessera::texture

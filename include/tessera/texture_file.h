@@ -27,7 +27,7 @@
 #include "tessera/core.h"
 #include "tessera/pvrtc.h"
 
-namespace tessera {
+namespace tessera::texture_file {
 
 /// A PVRTC texture with its mip chain (level 0 first).
 struct CompressedTexture {
@@ -51,7 +51,7 @@ Status validate_texture(const CompressedTexture& texture, const std::string& wha
 /// Decodes level `level` to RGBA8. RGB formats (has_alpha false) decode with alpha forced to
 /// 255 and `has_alpha` false. Fails with invalid_argument when `level` is out of range.
 Result<ImageRGBA8> decode_texture_level(const CompressedTexture& texture, int level,
-                                        int threads = 0);
+                                        const Parallel& parallel = {});
 
 /// Human-readable name of a PVRTC format ("PVRTC1 4bpp RGBA", ...).
 std::string texture_format_name(const CompressedTexture& texture);
@@ -59,7 +59,9 @@ std::string texture_format_name(const CompressedTexture& texture);
 /// Options of the whole image-to-texture pipeline that `tessera compress`, its batch mode, the
 /// Python module and `tessera.batch` share, so all of them write the same bytes.
 struct CompressOptions {
-  pvrtc::EncodeOptions encode;  ///< Format, quality, schedule overrides, threads.
+  /// Format, quality, schedule overrides, threads. Its `progress` hook, if set, follows the
+  /// whole chain (each level weighted by its pixels), on the calling thread, ending at 1.0.
+  pvrtc::EncodeOptions encode;
   bool mipmaps = false;     ///< Encode the full chain (2x2 box, alpha-weighted).
   bool srgb = false;        ///< Mark the texture sRGB and filter (mips, resize) in linear light.
   bool resize_pot = false;  ///< Resample non-power-of-two input (Lanczos-3); else it is an error.
@@ -100,12 +102,12 @@ Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const 
 Result<CompressedTexture> parse_texture(std::span<const std::uint8_t> bytes,
                                         const std::string& name);
 /// Serialises a texture (validated with `validate_texture` first).
-Result<std::vector<std::uint8_t>> serialize_pvr3(const CompressedTexture& texture);
-Result<std::vector<std::uint8_t>> serialize_ktx1(const CompressedTexture& texture);
+Result<std::vector<std::uint8_t>> serialise_pvr3(const CompressedTexture& texture);
+Result<std::vector<std::uint8_t>> serialise_ktx1(const CompressedTexture& texture);
 
 /// Reads a .pvr or .ktx file (format by magic).
 Result<CompressedTexture> read_texture_file(const std::string& path);
 /// Writes by extension (.pvr or .ktx), atomically.
 Status write_texture_file(const std::string& path, const CompressedTexture& texture);
 
-}  // namespace tessera
+}  // namespace tessera::texture_file

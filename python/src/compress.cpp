@@ -11,7 +11,7 @@ Status bad(const std::string& message) {
 
 }  // namespace
 
-Result<CompressOptions> compress_options(const CompressKeywords& k) {
+Result<texture_file::CompressOptions> compress_options(const CompressKeywords& k) {
   if (k.format != "pvrtc1-4" && k.format != "pvrtc1-2") {
     return bad("format: '" + k.format + "' is not one of 'pvrtc1-4', 'pvrtc1-2'");
   }
@@ -26,7 +26,7 @@ Result<CompressOptions> compress_options(const CompressKeywords& k) {
                " is not in [0, 1000]");
   }
   if (k.threads < 0) return bad("threads: " + std::to_string(k.threads) + " is negative");
-  CompressOptions o;
+  texture_file::CompressOptions o;
   o.encode.format =
       k.format == "pvrtc1-2" ? pvrtc::Format::pvrtc1_2bpp : pvrtc::Format::pvrtc1_4bpp;
   o.encode.quality = k.quality == "fast"   ? pvrtc::Quality::fast

@@ -23,6 +23,6 @@ struct CompressKeywords {
 
 /// The library options for `keywords`, or an invalid_argument status naming the keyword and
 /// the values it takes.
-Result<CompressOptions> compress_options(const CompressKeywords& keywords);
+Result<texture_file::CompressOptions> compress_options(const CompressKeywords& keywords);
 
 }  // namespace tessera::python

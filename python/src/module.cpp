@@ -30,6 +30,7 @@ namespace {
 
 using namespace pybind11::literals;
 using Path = std::filesystem::path;
+using texture_file::CompressedTexture;
 
 const char* format_key(pvrtc::Format format) {
   return format == pvrtc::Format::pvrtc1_2bpp ? "pvrtc1-2" : "pvrtc1-4";
@@ -39,9 +40,9 @@ void check_threads(int threads) {
   if (threads < 0) throw py::value_error("threads: " + std::to_string(threads) + " is negative");
 }
 
-CompressOptions make_options(const std::string& format, const std::string& quality, bool mipmaps,
-                             bool srgb, int threads, int iterations, int exact_search_rounds,
-                             bool resize_pot) {
+texture_file::CompressOptions make_options(const std::string& format, const std::string& quality,
+                                           bool mipmaps, bool srgb, int threads, int iterations,
+                                           int exact_search_rounds, bool resize_pot) {
   CompressKeywords k;
   k.format = format;
   k.quality = quality;
@@ -60,21 +61,21 @@ CompressedTexture encode_array(const py::handle& array, const std::string& forma
                                const std::string& quality, bool mipmaps, bool srgb, int threads,
                                int iterations, int exact_search_rounds, bool resize_pot,
                                const std::string& name) {
-  const CompressOptions o = make_options(format, quality, mipmaps, srgb, threads, iterations,
-                                         exact_search_rounds, resize_pot);
+  const texture_file::CompressOptions o = make_options(format, quality, mipmaps, srgb, threads,
+                                                       iterations, exact_search_rounds, resize_pot);
   ImageRGBA8 image = image_from_array(array, name);
   py::gil_scoped_release release;
-  return unwrap(tessera::compress_image(std::move(image), o, name)).texture;
+  return unwrap(texture_file::compress_image(std::move(image), o, name)).texture;
 }
 
 CompressedTexture encode_file(const Path& path, const std::string& format,
                               const std::string& quality, bool mipmaps, bool srgb, int threads,
                               int iterations, int exact_search_rounds, bool resize_pot) {
-  const CompressOptions o = make_options(format, quality, mipmaps, srgb, threads, iterations,
-                                         exact_search_rounds, resize_pot);
+  const texture_file::CompressOptions o = make_options(format, quality, mipmaps, srgb, threads,
+                                                       iterations, exact_search_rounds, resize_pot);
   py::gil_scoped_release release;
-  ImageRGBA8 image = unwrap(read_image(path.string()));
-  return unwrap(tessera::compress_image(std::move(image), o, path.string())).texture;
+  ImageRGBA8 image = unwrap(io::read_image(path.string()));
+  return unwrap(texture_file::compress_image(std::move(image), o, path.string())).texture;
 }
 
 py::array decode_level(const CompressedTexture& texture, int level, int threads) {
@@ -82,7 +83,7 @@ py::array decode_level(const CompressedTexture& texture, int level, int threads)
   ImageRGBA8 image;
   {
     py::gil_scoped_release release;
-    image = unwrap(decode_texture_level(texture, level, threads));
+    image = unwrap(texture_file::decode_texture_level(texture, level, {threads}));
   }
   return image_to_array(std::move(image), texture.has_alpha ? 4 : 3);
 }
@@ -94,20 +95,21 @@ py::bytes to_bytes(const CompressedTexture& texture, const std::string& containe
   std::vector<std::uint8_t> bytes;
   {
     py::gil_scoped_release release;
-    bytes = unwrap(container == "ktx" ? serialize_ktx1(texture) : serialize_pvr3(texture));
+    bytes = unwrap(container == "ktx" ? texture_file::serialise_ktx1(texture)
+                                      : texture_file::serialise_pvr3(texture));
   }
   return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
 }
 
 void write_texture_py(const Path& path, const CompressedTexture& texture) {
   py::gil_scoped_release release;
-  check(write_texture_file(path.string(), texture));
+  check(texture_file::write_texture_file(path.string(), texture));
 }
 
 CompressedTexture from_bytes(const py::bytes& data, const std::string& name) {
   const std::string_view view = data;  // the bytes object outlives the call
   py::gil_scoped_release release;
-  return unwrap(parse_texture(
+  return unwrap(texture_file::parse_texture(
       std::span(reinterpret_cast<const std::uint8_t*>(view.data()), view.size()), name));
 }
 
@@ -124,7 +126,7 @@ Operand load_operand(const py::handle& object, const std::string& default_name) 
     op.name = object.cast<Path>().string();
     op.is_path = true;
     py::gil_scoped_release release;
-    op.image = unwrap(read_image(op.name));
+    op.image = unwrap(io::read_image(op.name));
   } else {
     op.name = default_name;
     op.image = image_from_array(object, default_name);
@@ -148,12 +150,12 @@ py::dict compare_py(const py::handle& a_object, const py::handle& b_object, int 
                                       std::to_string(ia.width) + "x" + std::to_string(ia.height) +
                                       ")"));
   }
-  ImageComparison r;
+  metrics::ImageComparison r;
   {
     py::gil_scoped_release release;
-    CompareOptions options;
+    metrics::CompareOptions options;
     options.threads = threads;
-    r = unwrap(compare_images(ia, ib, options));
+    r = unwrap(metrics::compare_images(ia, ib, options));
   }
   py::dict d;
   if (a.is_path) d["a"] = a.name;
@@ -217,7 +219,7 @@ PYBIND11_MODULE(_tessera, m) {
       .def_property_readonly(
           "format", [](const CompressedTexture& t) { return format_key(t.format); },
           "'pvrtc1-4' or 'pvrtc1-2' (the CLI's --format values).")
-      .def_property_readonly("format_name", &texture_format_name,
+      .def_property_readonly("format_name", &texture_file::texture_format_name,
                              "Human-readable format, e.g. 'PVRTC1 4bpp RGBA'.")
       .def_property_readonly("level_count", &CompressedTexture::level_count)
       .def_property_readonly(
@@ -276,7 +278,7 @@ PYBIND11_MODULE(_tessera, m) {
       "read",
       [](const Path& path) {
         py::gil_scoped_release release;
-        return unwrap(read_texture_file(path.string()));
+        return unwrap(texture_file::read_texture_file(path.string()));
       },
       "path"_a, "Read a .pvr / .ktx file (container detected by magic).");
   m.def("write", &write_texture_py, "path"_a, "texture"_a,
@@ -289,7 +291,7 @@ PYBIND11_MODULE(_tessera, m) {
         ImageRGBA8 image;
         {
           py::gil_scoped_release release;
-          image = unwrap(read_image(path.string()));
+          image = unwrap(io::read_image(path.string()));
         }
         const int channels = image.has_alpha ? 4 : 3;
         return image_to_array(std::move(image), channels);
@@ -307,7 +309,7 @@ PYBIND11_MODULE(_tessera, m) {
         }
         ImageRGBA8 image = image_from_array(array, path.string());
         py::gil_scoped_release release;
-        check(write_png(path.string(), image));
+        check(io::write_png(path.string(), image));
       },
       "path"_a, "array"_a,
       "Write a uint8 (H, W, 3) or (H, W, 4) array as a PNG (RGB or RGBA), atomically.");

@@ -68,7 +68,7 @@ std::uint8_t linear_to_srgb8(float linear) {
   return std::uint8_t(std::lround(linear_to_srgb(linear) * 255.0f));
 }
 
-ImageRGBAF to_linear(const ImageRGBA8& srgb, int threads) {
+ImageRGBAF to_linear(const ImageRGBA8& srgb, const Parallel& parallel) {
   ImageRGBAF out(srgb.width, srgb.height);
   const auto& table = srgb8_table();
   parallel_for(
@@ -85,11 +85,11 @@ ImageRGBAF to_linear(const ImageRGBA8& srgb, int threads) {
           }
         }
       },
-      threads);
+      parallel);
   return out;
 }
 
-ImageRGBA8 to_srgb8(const ImageRGBAF& linear, int threads) {
+ImageRGBA8 to_srgb8(const ImageRGBAF& linear, const Parallel& parallel) {
   ImageRGBA8 out(linear.width, linear.height);
   parallel_for(
       0, linear.height, 16,
@@ -106,7 +106,7 @@ ImageRGBA8 to_srgb8(const ImageRGBAF& linear, int threads) {
           }
         }
       },
-      threads);
+      parallel);
   return out;
 }
 

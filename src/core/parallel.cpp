@@ -15,8 +15,10 @@ namespace tessera {
 int default_thread_count() { return std::max(1, tbb::info::default_concurrency()); }
 
 void parallel_for(std::int64_t begin, std::int64_t end, std::int64_t grain,
-                  const std::function<void(std::int64_t, std::int64_t)>& body, int threads) {
+                  const std::function<void(std::int64_t, std::int64_t)>& body,
+                  const Parallel& parallel) {
   if (end <= begin) return;
+  int threads = parallel.threads;
   grain = std::max<std::int64_t>(1, grain);
   const std::int64_t chunks = (end - begin + grain - 1) / grain;
   auto run_chunk = [&](std::int64_t c) {
@@ -49,7 +51,8 @@ void parallel_for(std::int64_t begin, std::int64_t end, std::int64_t grain,
 }
 
 double parallel_sum(std::int64_t begin, std::int64_t end, std::int64_t grain,
-                    const std::function<double(std::int64_t, std::int64_t)>& chunk, int threads) {
+                    const std::function<double(std::int64_t, std::int64_t)>& chunk,
+                    const Parallel& parallel) {
   if (end <= begin) return 0.0;
   grain = std::max<std::int64_t>(1, grain);
   const std::int64_t chunks = (end - begin + grain - 1) / grain;
@@ -62,7 +65,7 @@ double parallel_sum(std::int64_t begin, std::int64_t end, std::int64_t grain,
           partial[std::size_t(c)] = chunk(b, std::min(end, b + grain));
         }
       },
-      threads);
+      parallel);
   double sum = 0.0;
   for (double p : partial) sum += p;
   return sum;

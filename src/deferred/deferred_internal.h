@@ -37,7 +37,7 @@ struct ShadeContext {
   const GBuffer& gb;
   const ShadingOptions& o;
   const std::vector<DeferredRenderer::MaterialInfo>& materials;
-  SamplerState sampler;
+  texture::SamplerState sampler;
   std::vector<float> waves;
 
   ShadeContext(const DeferredRenderer& r, const GBuffer& g, const ShadingOptions& opt)
@@ -69,7 +69,7 @@ struct ShadeContext {
     const DeferredRenderer::MaterialInfo& mi = materials[std::size_t(material(s))];
     std::array<float, 3> a = mi.base;
     if (mi.texture) {
-      const UvGradients g{s[kChDuvDx] * scale, s[kChDuvDx + 1] * scale, s[kChDuvDy] * scale,
+      const texture::UvGradients g{s[kChDuvDx] * scale, s[kChDuvDx + 1] * scale, s[kChDuvDy] * scale,
                           s[kChDuvDy + 1] * scale};
       const std::array<float, 4> t = mi.texture->sample(sampler, {s[kChUv], s[kChUv + 1]}, g);
       a[0] *= t[0];

@@ -75,7 +75,7 @@ std::vector<std::uint8_t> classify_edge_per_sample(const GBuffer& gb,
           }
         }
       },
-      options.threads);
+      {options.threads});
   return out;
 }
 
@@ -122,7 +122,7 @@ AdaptiveResult shade_edge_per_sample(const DeferredRenderer& renderer, const GBu
           }
         }
       },
-      shading.threads);
+      {shading.threads});
   res.ms_rest = std::chrono::duration<double, std::milli>(clock::now() - t0).count();
   for (std::uint8_t s : res.samples) res.samples_shaded += s;
   return res;

@@ -244,7 +244,7 @@ Result<ImageRGBA8> fxaa(const ImageRGBA8& image, const FxaaOptions& options) {
           }
         }
       },
-      options.threads);
+      {options.threads});
   return out;
 }
 

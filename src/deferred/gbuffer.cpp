@@ -10,11 +10,11 @@ namespace tessera::deferred {
 DeferredRenderer::~DeferredRenderer() = default;
 
 Result<std::unique_ptr<DeferredRenderer>> DeferredRenderer::create(const scene::Scene& scene,
-                                                                   int threads) {
+                                                                   const Parallel& parallel) {
   std::unique_ptr<DeferredRenderer> r(new DeferredRenderer());
   r->scene_ = &scene;
-  r->threads_ = threads;
-  Result<std::vector<Texture>> textures = render::build_scene_textures(scene, threads);
+  r->threads_ = parallel.threads;
+  Result<std::vector<texture::Texture>> textures = render::build_scene_textures(scene, parallel);
   if (!textures) return textures.status();
   r->textures_ = std::move(*textures);
   for (const scene::Material& m : scene.materials) {
@@ -87,7 +87,7 @@ Status DeferredRenderer::render_gbuffer(const scene::Camera& camera, int width, 
             var[i * 6] = -v.z;  // linear view depth
           }
         },
-        threads_);
+        {threads_});
   }
 
   std::vector<raster::DrawCall> draws;
@@ -120,8 +120,8 @@ Status DeferredRenderer::render_gbuffer(const scene::Camera& camera, int width, 
   clear.value[kChMaterial] = -1.0f;
   raster::RasterOptions ro;
   ro.threads = threads_;
-  rasterizer_.set_options(ro);
-  Result<raster::RasterStats> st = rasterizer_.render(out.fb, draws, &clear);
+  rasteriser_.set_options(ro);
+  Result<raster::RasterStats> st = rasteriser_.render(out.fb, draws, &clear);
   if (!st) return st.status();
   if (stats) *stats = *st;
   return Status::success();

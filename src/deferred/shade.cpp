@@ -51,7 +51,7 @@ ImageRGBAF DeferredRenderer::shade_reference(const GBuffer& gb,
           }
         }
       },
-      shading.threads);
+      {shading.threads});
   return img;
 }
 
@@ -69,7 +69,7 @@ ImageRGBAF DeferredRenderer::shade_default(const GBuffer& gb, const ShadingOptio
           }
         }
       },
-      shading.threads);
+      {shading.threads});
   return img;
 }
 
@@ -106,7 +106,7 @@ AdaptiveResult DeferredRenderer::shade_adaptive(const GBuffer& gb, const Shading
           }
         }
       },
-      shading.threads);
+      {shading.threads});
   res.ms_first = ms_since(t0);
 
   // Pass 2: the number of extra samples per pixel.
@@ -159,7 +159,7 @@ AdaptiveResult DeferredRenderer::shade_adaptive(const GBuffer& gb, const Shading
           }
         }
       },
-      shading.threads);
+      {shading.threads});
   res.ms_metric = ms_since(t0);
 
   // Pass 3: shade k more samples in index order and average them with the first.
@@ -242,7 +242,7 @@ AdaptiveResult DeferredRenderer::shade_adaptive(const GBuffer& gb, const Shading
           }
         }
       },
-      shading.threads);
+      {shading.threads});
   res.ms_rest = ms_since(t0);
   for (std::size_t i = 0; i < npix; ++i) {
     res.samples_shaded += res.samples[i];

@@ -16,9 +16,9 @@ namespace tessera::experiments {
 namespace {
 
 Result<AaQuality> quality(const ImageRGBA8& ref, const ImageRGBA8& img, int threads) {
-  CompareOptions co;
+  metrics::CompareOptions co;
   co.threads = threads;
-  const Result<ImageComparison> c = compare_images(ref, img, co);
+  const Result<metrics::ImageComparison> c = metrics::compare_images(ref, img, co);
   if (!c) return c.status();
   return AaQuality{c->mse_rgb, c->psnr_rgb, c->ssim_gray};
 }
@@ -228,11 +228,11 @@ Status compare_backends(AaResult& cpu, const AaResult& gl) {
   for (std::size_t i = 0; i < cpu.rates.size() && i < gl.rates.size(); ++i) {
     AaRateResult& a = cpu.rates[i];
     const AaRateResult& b = gl.rates[i];
-    CompareOptions co;
+    metrics::CompareOptions co;
     co.threads = cpu.threads;
     co.compute_ssim = false;
-    Result<ImageComparison> q = compare_images(a.method(AaMethod::adaptive).image,
-                                               b.method(AaMethod::adaptive).image, co);
+    Result<metrics::ImageComparison> q = metrics::compare_images(
+        a.method(AaMethod::adaptive).image, b.method(AaMethod::adaptive).image, co);
     if (!q) return q.status();
     if (a.adaptive_samples.size() != b.adaptive_samples.size()) {
       return Status::error(ErrorCode::size_mismatch, "aa: GL and CPU k maps differ in size");
@@ -278,7 +278,7 @@ Result<AaResult> run_aa(const AaConfig& c) {
   // Backends and every G-buffer size before `on_ready` (no output folder when they fail).
   std::unique_ptr<AaBackend> cpu, gl;
   if (c.backend == Backend::cpu) {
-    Result<std::unique_ptr<AaBackend>> r = create_cpu_aa_backend(*sc, c.threads);
+    Result<std::unique_ptr<AaBackend>> r = create_cpu_aa_backend(*sc, {c.threads});
     if (!r) return r.status();
     cpu = std::move(*r);
   }

@@ -18,8 +18,8 @@ constexpr double kNoGpu = std::numeric_limits<double>::quiet_NaN();
 
 class CpuAaBackend final : public AaBackend {
  public:
-  CpuAaBackend(std::unique_ptr<deferred::DeferredRenderer> r, int threads)
-      : r_(std::move(r)), threads_(threads) {}
+  CpuAaBackend(std::unique_ptr<deferred::DeferredRenderer> r, const Parallel& parallel)
+      : r_(std::move(r)), parallel_(parallel) {}
 
   Backend backend() const override { return Backend::cpu; }
   std::string device_name() const override { return {}; }
@@ -46,7 +46,7 @@ class CpuAaBackend final : public AaBackend {
     switch (method) {
       case AaMethod::default_1spp:
       case AaMethod::fxaa: {
-        out.image = to_srgb8(r_->shade_default(gb_, so), threads_);
+        out.image = to_srgb8(r_->shade_default(gb_, so), parallel_);
         if (method == AaMethod::fxaa) {
           Result<ImageRGBA8> fx = deferred::fxaa(out.image, o.fxaa);
           if (!fx) return fx.status();
@@ -55,14 +55,14 @@ class CpuAaBackend final : public AaBackend {
         break;
       }
       case AaMethod::reference:
-        out.image = to_srgb8(r_->shade_reference(gb_, so), threads_);
+        out.image = to_srgb8(r_->shade_reference(gb_, so), parallel_);
         break;
       case AaMethod::adaptive:
       case AaMethod::edge_per_sample: {
         deferred::AdaptiveResult r = method == AaMethod::adaptive
                                          ? r_->shade_adaptive(gb_, so, o.adaptive)
                                          : deferred::shade_edge_per_sample(*r_, gb_, so, o.edge);
-        out.image = to_srgb8(r.image, threads_);
+        out.image = to_srgb8(r.image, parallel_);
         out.samples = std::move(r.samples);
         out.samples_shaded = r.samples_shaded;
         out.extra_lookups = r.extra_lookups;
@@ -82,17 +82,18 @@ class CpuAaBackend final : public AaBackend {
 
  private:
   std::unique_ptr<deferred::DeferredRenderer> r_;
-  int threads_ = 0;
+  Parallel parallel_;
   deferred::GBuffer gb_;
 };
 
 }  // namespace
 
-Result<std::unique_ptr<AaBackend>> create_cpu_aa_backend(const scene::Scene& scene, int threads) {
+Result<std::unique_ptr<AaBackend>> create_cpu_aa_backend(const scene::Scene& scene,
+                                                         const Parallel& parallel) {
   Result<std::unique_ptr<deferred::DeferredRenderer>> r =
-      deferred::DeferredRenderer::create(scene, threads);
+      deferred::DeferredRenderer::create(scene, parallel);
   if (!r) return r.status();
-  return std::unique_ptr<AaBackend>(std::make_unique<CpuAaBackend>(std::move(*r), threads));
+  return std::unique_ptr<AaBackend>(std::make_unique<CpuAaBackend>(std::move(*r), parallel));
 }
 
 }  // namespace tessera::experiments

@@ -21,7 +21,9 @@ std::vector<std::uint8_t> geometry_mask(const ImageRGBAF& ref) {
   return m;
 }
 
-ErrorStats stats(const ErrorCdfAccumulator& a) { return {a.fractions(), a.mean(), a.counted()}; }
+ErrorStats stats(const metrics::ErrorCdfAccumulator& a) {
+  return {a.fractions(), a.mean(), a.counted()};
+}
 
 std::uint64_t nan_pixels(const ImageRGBAF& img) {
   std::uint64_t n = 0;
@@ -64,8 +66,8 @@ std::vector<std::uint8_t> near_seam_mask(const ImageRGBAF& ids,
 
 /// Error accumulators of one rate, named as the result's fields.
 struct RateAccumulators {
-  std::array<ErrorCdfAccumulator, 4> vs_ref, vs_ref_char, vs_ref_near;
-  ErrorCdfAccumulator traverse_vs_discard;
+  std::array<metrics::ErrorCdfAccumulator, 4> vs_ref, vs_ref_char, vs_ref_near;
+  metrics::ErrorCdfAccumulator traverse_vs_discard;
 };
 
 /// GL against CPU, pooled over the quality frames (SeamsGlMethodResult).
@@ -73,17 +75,17 @@ struct Agreement {
   double sse = 0;  ///< Sum over frames of the 8-bit RGB MSE times the pixel count.
   std::uint64_t pixels = 0, over = 0;
   Status add(const ImageRGBAF& gl, const ImageRGBAF& cpu, int threads) {
-    Result<ImageComparison> c = compare_images(to_srgb8(gl, threads), to_srgb8(cpu, threads),
-                                               CompareOptions{false, threads});
+    Result<metrics::ImageComparison> c = metrics::compare_images(
+        to_srgb8(gl, {threads}), to_srgb8(cpu, {threads}), metrics::CompareOptions{false, threads});
     if (!c) return c.status();
-    Result<std::vector<float>> n = error_norms(gl, cpu);
+    Result<std::vector<float>> n = metrics::error_norms(gl, cpu);
     if (!n) return n.status();
     for (float e : *n) over += !(e < 0.01f);  // NaN counts as different
     sse += c->mse_rgb * double(n->size());
     pixels += n->size();
     return Status::success();
   }
-  double psnr() const { return psnr_from_mse(pixels ? sse / double(pixels) : 0.0); }
+  double psnr() const { return metrics::psnr_from_mse(pixels ? sse / double(pixels) : 0.0); }
   double fraction() const { return pixels ? double(over) / double(pixels) : 0.0; }
 };
 
@@ -164,8 +166,9 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
             res.msaa_unsupported.end()) {
           res.msaa_unsupported.push_back(r);
         }
-      } else if (c.backend == Backend::gl) {
-        rates.push_back(r);
+      } else {
+        res.gl_sample_patterns.push_back(gl->sample_pattern(r));
+        if (c.backend == Backend::gl) rates.push_back(r);
       }
     }
     if (rates.empty() || (c.compare_gl && std::count(gl_rate.begin(), gl_rate.end(), true) == 0)) {
@@ -215,11 +218,11 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
     res.rates[ri].msaa = rates[ri];
     for (std::size_t m = 0; m < nm; ++m) {
       res.rates[ri].method(methods[m]).method = methods[m];
-      acc[ri].vs_ref[m] = ErrorCdfAccumulator(res.thresholds);
-      acc[ri].vs_ref_char[m] = ErrorCdfAccumulator(res.thresholds);
-      acc[ri].vs_ref_near[m] = ErrorCdfAccumulator(res.thresholds);
+      acc[ri].vs_ref[m] = metrics::ErrorCdfAccumulator(res.thresholds);
+      acc[ri].vs_ref_char[m] = metrics::ErrorCdfAccumulator(res.thresholds);
+      acc[ri].vs_ref_near[m] = metrics::ErrorCdfAccumulator(res.thresholds);
     }
-    acc[ri].traverse_vs_discard = ErrorCdfAccumulator(res.thresholds);
+    acc[ri].traverse_vs_discard = metrics::ErrorCdfAccumulator(res.thresholds);
   }
   // imgs[] and the accumulators follow the order of `methods`.
   const auto index_of = [&](faces::Method m) {
@@ -232,13 +235,13 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
   o.width = c.width;
   o.height = c.height;
   o.threads = c.threads;
-  o.sampling.filter = TextureFilter::anisotropic;
+  o.sampling.filter = texture::TextureFilter::anisotropic;
   o.sampling.max_aniso = 16;
   SeamsFrameOptions fo;  // the frames of the experiment
   fo.width = c.width;
   fo.height = c.height;
   fo.threads = c.threads;
-  fo.filter = TextureFilter::anisotropic;
+  fo.filter = texture::TextureFilter::anisotropic;
   fo.max_aniso = 16;
   // Variants timed side by side: the methods, then shading only where the backend has it.
   const std::size_t nv = nm + (primary.has_shading_only() ? 1 : 0);
@@ -272,7 +275,8 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
     if (quality) {
       const auto t0 = std::chrono::steady_clock::now();
       Result<ImageRGBAF> r =
-          primary.render_reference(cam, c.width, c.height, c.reference_factor, c.threads);
+          primary.render_reference(cam, c.width, c.height,
+                                   {.factor = c.reference_factor, .threads = c.threads});
       if (!r) return r.status();
       res.reference_ms_total += ms_since(t0);
       ref = std::move(*r);
@@ -339,7 +343,19 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
           gm.wall.frame_ms.push_back(fr->wall_ms);
           if (quality) {
             Agreement& a = agree[std::size_t(gl_index[ri])][std::size_t(methods[v])];
-            if (Status s = a.add(fr->image, imgs[v], c.threads); !s.ok()) return s;
+            const int cpu_msaa = gl_side->sample_pattern(rates[ri]).cpu_msaa;
+            if (cpu_msaa > 0 && cpu_msaa != rates[ri]) {
+              // The driver draws this rate with the samples of another CPU rate (llvmpipe: 2x
+              // with its 4x samples): compare like for like, with the CPU frame at that rate.
+              SeamsFrameOptions co = go;
+              co.msaa = cpu_msaa;
+              co.keep_image = true;
+              Result<SeamsBackendFrame> cf = primary.render(cam, co);
+              if (!cf) return cf.status();
+              if (Status s = a.add(fr->image, cf->image, c.threads); !s.ok()) return s;
+            } else if (Status s = a.add(fr->image, imgs[v], c.threads); !s.ok()) {
+              return s;
+            }
           }
         }
       }

@@ -38,8 +38,8 @@ class CpuSeamsRenderer final : public SeamsFrameRenderer {
   }
 
   Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
-                                      int factor, int threads) override {
-    return r_->render_reference(camera, width, height, factor, threads);
+                                      const faces::ReferenceOptions& options) override {
+    return r_->render_reference(camera, width, height, options);
   }
 
  private:

@@ -25,8 +25,8 @@ Result<SeamsContent> load_seams_content(const SeamsConfig& c) {
     l.scene = faces::figure1_scene(fo);
     Result<std::vector<faces::FaceAdjacency>> adj = faces::build_adjacency(l.scene.mesh);
     if (!adj) return adj.status();
-    Result<faces::FaceTextureSet> set =
-        faces::FaceTextureSet::create(faces::bake_faces(l.scene, 1.0f, c.threads), *adj, c.threads);
+    Result<faces::FaceTextureSet> set = faces::FaceTextureSet::create(
+        faces::bake_faces(l.scene, {.scale = 1.0f, .threads = c.threads}), *adj, {c.threads});
     if (!set) return set.status();
     l.set = std::move(*set);
     l.description = "built-in Figure-1 scene: ground plane of " +
@@ -51,7 +51,8 @@ Result<SeamsContent> load_seams_content(const SeamsConfig& c) {
     Result<ptex::PtexFile> file = ptex::read_ptex(c.ptex);
     if (!file) return file.status();
     // Refuses triangle-mesh files before any comparison with the mesh.
-    Result<faces::FaceTextureSet> set = faces::FaceTextureSet::from_ptex(*file, c.ptex, c.threads);
+    Result<faces::FaceTextureSet> set =
+        faces::FaceTextureSet::from_ptex(*file, c.ptex, {c.threads});
     if (!set) return set.status();
     if (file->face_count() != l.scene.mesh.face_count()) {
       return Status::error(ErrorCode::size_mismatch,
@@ -76,7 +77,7 @@ Result<SeamsContent> load_seams_content(const SeamsConfig& c) {
   const float diag = std::max(length(hi - lo), 1e-6f);
   faces::assign_resolutions(l.scene, 400.0f / diag, 2, 7);
   Result<faces::FaceTextureSet> set = faces::FaceTextureSet::create(
-      faces::bake_faces(l.scene, 4.0f / diag, c.threads), *adj, c.threads);
+      faces::bake_faces(l.scene, {.scale = 4.0f / diag, .threads = c.threads}), *adj, {c.threads});
   if (!set) return set.status();
   l.set = std::move(*set);
   l.description = c.scene + (split ? " (non-quad faces split into quads)" : "") +

@@ -12,7 +12,7 @@
 
 namespace tessera::faces {
 
-Vec3 QuadMesh::point(int face, Uv uv) const {
+Vec3 QuadMesh::point(int face, texture::Uv uv) const {
   const std::array<int, 4>& q = quads[std::size_t(face)];
   const Vec3& p0 = positions[std::size_t(q[0])];
   const Vec3& p1 = positions[std::size_t(q[1])];
@@ -248,7 +248,7 @@ QuadMesh subdivide(const QuadMesh& mesh) {
   return out;
 }
 
-void randomize_orientation(QuadMesh& mesh, std::uint32_t seed) {
+void randomise_orientation(QuadMesh& mesh, std::uint32_t seed) {
   std::uint32_t s = seed * 2654435761u + 12345u;
   for (std::array<int, 4>& q : mesh.quads) {
     s ^= s << 13;

@@ -1,4 +1,4 @@
-// Driver: rasterizing a per-face-textured quad mesh (texture lookup + a light Lambert term),
+// Driver: rasterising a per-face-textured quad mesh (texture lookup + a light Lambert term),
 // and the Mitchell-Netravali-downsampled supersampled reference, rendered in tiles.
 #include <algorithm>
 #include <chrono>
@@ -80,7 +80,7 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceRe
   }
   raster::RasterOptions ro;
   ro.threads = o.threads;
-  rasterizer_.set_options(ro);
+  rasteriser_.set_options(ro);
 
   // Clip-space positions, optionally remapped to a sub-rectangle of a larger virtual image.
   const int fw = o.full_width > 0 ? o.full_width : o.width;
@@ -133,7 +133,7 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceRe
     std::array<float, 4> c = {0.8f, 0.8f, 0.8f, 1.0f};
     if (!shading_only) {
       const int face = int(in.primitive_id >> 1);
-      const UvGradients g{in.ddx[0], in.ddx[1], in.ddy[0], in.ddy[1]};
+      const texture::UvGradients g{in.ddx[0], in.ddx[1], in.ddy[0], in.ddy[1]};
       c = sample_face(*set, face, {v[0], v[1]}, g, so);
     }
     // Very light lighting: ambient + Lambert with one directional light.
@@ -149,18 +149,19 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceRe
   clear.value = {kFaceBackground[0], kFaceBackground[1], kFaceBackground[2], 0.0f};
   FaceFrame frame;
   auto t0 = std::chrono::steady_clock::now();
-  Result<raster::RasterStats> stats = rasterizer_.render(fb_, d, &clear);
+  Result<raster::RasterStats> stats = rasteriser_.render(fb_, d, &clear);
   if (!stats) return stats.status();
   frame.ms_raster = ms_since(t0);
   frame.stats = *stats;
   t0 = std::chrono::steady_clock::now();
-  frame.image = raster::resolve(fb_, o.threads);
+  frame.image = raster::resolve(fb_, {o.threads});
   frame.ms_resolve = ms_since(t0);
   return frame;
 }
 
 Result<ImageRGBAF> FaceRenderer::render_reference(const scene::Camera& camera, int width,
-                                                  int height, int factor, int threads, int tile) {
+                                                  int height, const ReferenceOptions& options) {
+  const int factor = options.factor, threads = options.threads, tile = options.tile;
   if (width < 1 || height < 1 || factor < 1 || factor > 16 || tile < 1) {
     return Status::error(ErrorCode::invalid_argument, "reference: bad size or factor");
   }
@@ -178,7 +179,7 @@ Result<ImageRGBAF> FaceRenderer::render_reference(const scene::Camera& camera, i
   for (float& x : w) x /= wsum;
   FaceRenderOptions o;
   o.sampling.method = Method::traverse;
-  o.sampling.filter = TextureFilter::anisotropic;
+  o.sampling.filter = options.filter;
   o.sampling.max_aniso = 16;
   o.msaa = 1;
   o.threads = threads;
@@ -212,7 +213,7 @@ Result<ImageRGBAF> FaceRenderer::render_reference(const scene::Camera& camera, i
               }
             }
           },
-          threads);
+          {threads});
       parallel_for(
           0, th, 16,
           [&](std::int64_t b, std::int64_t e) {
@@ -229,7 +230,7 @@ Result<ImageRGBAF> FaceRenderer::render_reference(const scene::Camera& camera, i
               }
             }
           },
-          threads);
+          {threads});
     }
   }
   return out;

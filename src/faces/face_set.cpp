@@ -8,7 +8,8 @@
 namespace tessera::faces {
 
 Result<FaceTextureSet> FaceTextureSet::create(const std::vector<ImageRGBAF>& images,
-                                              std::vector<FaceAdjacency> adjacency, int threads) {
+                                              std::vector<FaceAdjacency> adjacency,
+                                              const Parallel& parallel) {
   if (images.size() != adjacency.size()) {
     return Status::error(ErrorCode::size_mismatch, std::to_string(images.size()) +
                                                        " face images for " +
@@ -38,9 +39,9 @@ Result<FaceTextureSet> FaceTextureSet::create(const std::vector<ImageRGBAF>& ima
         for (std::int64_t f = b; f < e; ++f) {
           ImageRGBAF img = images[std::size_t(f)];
           for (std::size_t i = 0; i < img.pixel_count(); ++i) img.pixels[i * 4 + 3] = 1.0f;
-          TextureOptions o;
+          texture::TextureOptions o;
           o.threads = 1;
-          Result<Texture> t = Texture::from_float(img, o);
+          Result<texture::Texture> t = texture::Texture::from_float(img, o);
           if (!t) {
             errors[std::size_t(f)] = t.status();
             continue;
@@ -48,7 +49,7 @@ Result<FaceTextureSet> FaceTextureSet::create(const std::vector<ImageRGBAF>& ima
           set.textures_[std::size_t(f)] = std::move(*t);
         }
       },
-      threads);
+      parallel);
   for (const Status& s : errors) {
     if (!s.ok()) return s;
   }
@@ -58,7 +59,8 @@ Result<FaceTextureSet> FaceTextureSet::create(const std::vector<ImageRGBAF>& ima
 }
 
 Result<FaceTextureSet> FaceTextureSet::from_ptex(const ptex::PtexFile& file,
-                                                 const std::string& name, int threads) {
+                                                 const std::string& name,
+                                                 const Parallel& parallel) {
   if (file.mesh_type != ptex::MeshType::quad) {
     return Status::error(ErrorCode::unsupported,
                          name +
@@ -95,7 +97,7 @@ Result<FaceTextureSet> FaceTextureSet::from_ptex(const ptex::PtexFile& file,
       }
     }
   }
-  return create(images, std::move(adj), threads);
+  return create(images, std::move(adj), parallel);
 }
 
 int FaceTextureSet::linked_corner_count() const {
@@ -108,7 +110,7 @@ int FaceTextureSet::linked_corner_count() const {
 
 std::uint64_t FaceTextureSet::texel_count() const {
   std::uint64_t n = 0;
-  for (const Texture& t : textures_) n += std::uint64_t(t.width()) * std::uint64_t(t.height());
+  for (const texture::Texture& t : textures_) n += std::uint64_t(t.width()) * std::uint64_t(t.height());
   return n;
 }
 

@@ -54,7 +54,7 @@ void orient(QuadMesh& m, int first, F outward) {
 }
 }  // namespace
 
-std::array<float, 3> procedural_color(const Vec3& p, float scale) {
+std::array<float, 3> procedural_colour(const Vec3& p, float scale) {
   const float s = 3.0f * scale;
   const float n1 = value_noise(p.x * s, p.y * s, p.z * s);
   const float n2 = value_noise(p.x * s * 2.7f + 17, p.y * s * 2.7f, p.z * s * 2.7f);
@@ -133,7 +133,7 @@ FaceScene figure1_scene(const Figure1Options& o) {
     for (const std::array<int, 4>& q : cm.quads) {
       m.quads.push_back({q[0] + base, q[1] + base, q[2] + base, q[3] + base});
     }
-    randomize_orientation(m, o.seed);
+    randomise_orientation(m, o.seed);
     assign_resolutions(s, o.texels_per_unit, o.min_log2, o.max_log2);
     return s;
   }
@@ -157,7 +157,7 @@ FaceScene figure1_scene(const Figure1Options& o) {
   }
   const Vec3 centre{0, 1.0f, 0};
   orient(m, first_char, [&](const Vec3& c) { return c - centre; });
-  randomize_orientation(m, o.seed);
+  randomise_orientation(m, o.seed);
   assign_resolutions(s, o.texels_per_unit, o.min_log2, o.max_log2);
   return s;
 }
@@ -181,7 +181,7 @@ void assign_resolutions(FaceScene& s, float texels_per_unit, int min_log2, int m
   }
 }
 
-std::vector<ImageRGBAF> bake_faces(const FaceScene& s, float scale, int threads) {
+std::vector<ImageRGBAF> bake_faces(const FaceScene& s, const BakeOptions& options) {
   std::vector<ImageRGBAF> images(std::size_t(s.mesh.face_count()));
   parallel_for(
       0, s.mesh.face_count(), 16,
@@ -193,7 +193,7 @@ std::vector<ImageRGBAF> bake_faces(const FaceScene& s, float scale, int threads)
             for (int x = 0; x < w; ++x) {
               const Vec3 p = s.mesh.point(
                   int(f), {(float(x) + 0.5f) / float(w), (float(y) + 0.5f) / float(h)});
-              const std::array<float, 3> c = procedural_color(p, scale);
+              const std::array<float, 3> c = procedural_colour(p, options.scale);
               float* px = img.at(x, y);
               px[0] = c[0];
               px[1] = c[1];
@@ -204,7 +204,7 @@ std::vector<ImageRGBAF> bake_faces(const FaceScene& s, float scale, int threads)
           images[std::size_t(f)] = std::move(img);
         }
       },
-      threads);
+      {options.threads});
   return images;
 }
 

@@ -9,8 +9,8 @@
 namespace tessera::faces {
 
 namespace {
-SamplerState make_sampler(const SampleOptions& o, AddressMode mode) {
-  SamplerState s;
+texture::SamplerState make_sampler(const SampleOptions& o, texture::AddressMode mode) {
+  texture::SamplerState s;
   s.filter = o.filter;
   s.max_aniso = o.max_aniso;
   s.address_u = mode;
@@ -54,15 +54,15 @@ bool parse_method(const std::string& text, Method& out) {
   return false;
 }
 
-std::array<float, 4> sample_face(const FaceTextureSet& set, int face, Uv uv, const UvGradients& g,
+std::array<float, 4> sample_face(const FaceTextureSet& set, int face, texture::Uv uv, const texture::UvGradients& g,
                                  const SampleOptions& options) {
-  const Texture& tex = set.texture(face);
+  const texture::Texture& tex = set.texture(face);
   if (options.method == Method::clamp) {
-    std::array<float, 4> c = tex.sample(make_sampler(options, AddressMode::clamp), uv, g);
+    std::array<float, 4> c = tex.sample(make_sampler(options, texture::AddressMode::clamp), uv, g);
     c[3] = 1.0f;
     return c;
   }
-  const SamplerState border = make_sampler(options, AddressMode::border);
+  const texture::SamplerState border = make_sampler(options, texture::AddressMode::border);
   // Listing 1, line 2: the own face with border colour 0; alpha accumulates Σw.
   std::array<float, 4> c = tex.sample(border, uv, g);
   if (options.method == Method::traverse || options.method == Method::traverse_corners) {
@@ -89,7 +89,7 @@ std::array<float, 4> sample_face(const FaceTextureSet& set, int face, Uv uv, con
       return {nan, nan, nan, 0.0f};
     }
     // Lines 13-15: no tap inside the face; clamp the lookup (bi/trilinear as configured).
-    std::array<float, 4> f = tex.sample(make_sampler(options, AddressMode::clamp), uv, g);
+    std::array<float, 4> f = tex.sample(make_sampler(options, texture::AddressMode::clamp), uv, g);
     f[3] = 0.0f;
     return f;
   }

@@ -64,7 +64,7 @@ class GlAaBackend final : public AaBackend {
                                       ? r_->shade_adaptive(so, o.adaptive)
                                       : r_->shade_edge_per_sample(so, o.edge);
     if (!x) return x.status();
-    out.image = to_srgb8(x->image, so.threads);
+    out.image = to_srgb8(x->image, {so.threads});
     if (method == AaMethod::adaptive || method == AaMethod::edge_per_sample) {
       out.samples = std::move(x->samples);
       out.samples_shaded = x->samples_shaded;

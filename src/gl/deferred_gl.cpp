@@ -73,7 +73,7 @@ Result<const Program*> program(State& st, const std::vector<std::string>& define
 Status bind_inputs(State& st, const deferred::ShadingOptions& o,
                    const deferred::AdaptiveOptions* a, const deferred::EdgePerSampleOptions* e) {
   if (!st.fbo) return Status::error(ErrorCode::invalid_argument, "deferred GL: no G-buffer yet");
-  if (o.filter != TextureFilter::anisotropic) {
+  if (o.filter != texture::TextureFilter::anisotropic) {
     return Status::error(ErrorCode::unsupported,
                          "deferred GL: only TextureFilter::anisotropic shading is implemented");
   }
@@ -96,7 +96,7 @@ Status bind_inputs(State& st, const deferred::ShadingOptions& o,
   p.ambient[0] = o.ambient[0];
   p.ambient[1] = o.ambient[1];
   p.ambient[2] = o.ambient[2];
-  p.ambient[3] = float(std::clamp(o.max_aniso, 1, kMaxAnisotropy));
+  p.ambient[3] = float(std::clamp(o.max_aniso, 1, texture::kMaxAnisotropy));
   const deferred::AdaptiveOptions def_a;
   const deferred::EdgePerSampleOptions def_e;
   const deferred::AdaptiveOptions& aa = a ? *a : def_a;

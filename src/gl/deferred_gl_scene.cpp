@@ -77,7 +77,7 @@ Result<std::unique_ptr<DeferredGlRenderer>> DeferredGlRenderer::create(
   if (!dir) return dir.status();
   st.glsl_dir = *dir;
 
-  Result<std::vector<Texture>> textures = render::build_scene_textures(scene, options.threads);
+  Result<std::vector<texture::Texture>> textures = render::build_scene_textures(scene, {options.threads});
   if (!textures) return textures.status();
   st.cpu_textures = std::move(*textures);
 
@@ -88,7 +88,7 @@ Result<std::unique_ptr<DeferredGlRenderer>> DeferredGlRenderer::create(
     const int t = mat.base_color_texture;
     if (t >= 0 && std::size_t(t) < st.cpu_textures.size() && !used[std::size_t(t)]) {
       used[std::size_t(t)] = 1;
-      const Texture& tex = st.cpu_textures[std::size_t(t)];
+      const texture::Texture& tex = st.cpu_textures[std::size_t(t)];
       classes[{tex.width(), tex.height(), tex.level_count()}].push_back(t);
     }
   }
@@ -105,9 +105,9 @@ Result<std::unique_ptr<DeferredGlRenderer>> DeferredGlRenderer::create(
     Object arr = create_object(ObjectType::texture, GL_TEXTURE_2D_ARRAY);
     glTextureStorage3D(arr.get(), levels, GL_RGBA32F, tw, th, GLsizei(members.size()));
     for (std::size_t layer = 0; layer < members.size(); ++layer) {
-      const Texture& tex = st.cpu_textures[std::size_t(members[layer])];
+      const texture::Texture& tex = st.cpu_textures[std::size_t(members[layer])];
       for (int l = 0; l < levels; ++l) {
-        const TextureLevelView v = tex.level(0, l);
+        const texture::TextureLevelView v = tex.level(0, l);
         glTextureSubImage3D(arr.get(), l, 0, 0, GLint(layer), v.width, v.height, 1, GL_RGBA,
                             GL_FLOAT, v.texels);
       }
@@ -139,7 +139,7 @@ Result<std::unique_ptr<DeferredGlRenderer>> DeferredGlRenderer::create(
                        {-1, 0, 1, 1}};
     const int t = mat.base_color_texture;
     if (t >= 0 && std::size_t(t) < st.cpu_textures.size()) {
-      const Texture& tex = st.cpu_textures[std::size_t(t)];
+      const texture::Texture& tex = st.cpu_textures[std::size_t(t)];
       rec.tex[0] = where[std::size_t(t)][0];
       rec.tex[1] = where[std::size_t(t)][1];
       rec.tex[2] = tex.width();
@@ -308,7 +308,7 @@ Status DeferredGlRenderer::render_gbuffer(const scene::Camera& camera, int width
             o[4] = -v.z;
           }
         },
-        st.options.threads);
+        {st.options.threads});
     if (!st.scratch.empty()) {
       glNamedBufferData(st.meshes[mi].dynamic_vbo.get(), GLsizeiptr(st.scratch.size() * 4),
                         st.scratch.data(), GL_STREAM_DRAW);

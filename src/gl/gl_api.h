@@ -80,6 +80,7 @@
   X(glGetFloatv, PFNGLGETFLOATVPROC)                                         \
   X(glGetInteger64v, PFNGLGETINTEGER64VPROC)                                 \
   X(glGetIntegerv, PFNGLGETINTEGERVPROC)                                     \
+  X(glGetMultisamplefv, PFNGLGETMULTISAMPLEFVPROC)                           \
   X(glGetNamedBufferSubData, PFNGLGETNAMEDBUFFERSUBDATAPROC)                 \
   X(glGetProgramInfoLog, PFNGLGETPROGRAMINFOLOGPROC)                         \
   X(glGetProgramiv, PFNGLGETPROGRAMIVPROC)                                   \

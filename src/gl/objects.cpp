@@ -114,7 +114,7 @@ Result<std::vector<PassTime>> GpuTimer::collect() {
 Result<RenderTarget> create_render_target(const RenderTargetOptions& o) {
   const std::string what = "render target " + std::to_string(o.width) + "x" +
                            std::to_string(o.height) + " " +
-                           (o.color == ColorFormat::rgba8 ? "RGBA8" : "RGBA32F") + " with " +
+                           (o.colour == ColourFormat::rgba8 ? "RGBA8" : "RGBA32F") + " with " +
                            std::to_string(o.samples) + " sample" + (o.samples == 1 ? "" : "s");
   GLint max_size = 0, max_samples = 0;
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
@@ -134,12 +134,12 @@ Result<RenderTarget> create_render_target(const RenderTargetOptions& o) {
   t.samples = o.samples;
   const GLsizei samples = o.samples > 1 ? o.samples : 0;
   t.framebuffer = create_object(ObjectType::framebuffer);
-  t.color = create_object(ObjectType::renderbuffer);
-  glNamedRenderbufferStorageMultisample(t.color.get(), samples,
-                                        o.color == ColorFormat::rgba8 ? GL_RGBA8 : GL_RGBA32F,
+  t.colour = create_object(ObjectType::renderbuffer);
+  glNamedRenderbufferStorageMultisample(t.colour.get(), samples,
+                                        o.colour == ColourFormat::rgba8 ? GL_RGBA8 : GL_RGBA32F,
                                         o.width, o.height);
   glNamedFramebufferRenderbuffer(t.framebuffer.get(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
-                                 t.color.get());
+                                 t.colour.get());
   if (o.depth) {
     t.depth = create_object(ObjectType::renderbuffer);
     glNamedRenderbufferStorageMultisample(t.depth.get(), samples, GL_DEPTH_COMPONENT32F,

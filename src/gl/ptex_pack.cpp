@@ -41,7 +41,7 @@ Result<PackedFaces> pack_faces(const faces::FaceTextureSet& set, const PackLimit
   // Classes ordered by (height, width).
   std::map<std::pair<int, int>, int> class_of;
   for (int f = 0; f < n; ++f) {
-    const Texture& t = set.texture(f);
+    const texture::Texture& t = set.texture(f);
     if (limits.max_texture_size > 0 &&
         (t.width() > limits.max_texture_size || t.height() > limits.max_texture_size)) {
       return Status::error(ErrorCode::too_large,
@@ -75,7 +75,7 @@ Result<PackedFaces> pack_faces(const faces::FaceTextureSet& set, const PackLimit
   }
   p.records.resize(std::size_t(n));
   for (int f = 0; f < n; ++f) {
-    const Texture& t = set.texture(f);
+    const texture::Texture& t = set.texture(f);
     const int cls = class_of.at({t.height(), t.width()});
     FaceClass& c = p.classes[std::size_t(cls)];
     if (c.faces.empty()) {
@@ -152,9 +152,9 @@ Result<FaceTextures> FaceTextures::upload(const faces::FaceTextureSet& set,
                              std::to_string(c.width) + "x" + std::to_string(c.height);
     if (Status s = check_errors(what); !s.ok()) return s;
     for (int layer = 0; layer < layers; ++layer) {
-      const Texture& t = set.texture(c.faces[std::size_t(layer)]);
+      const texture::Texture& t = set.texture(c.faces[std::size_t(layer)]);
       for (int level = 0; level < c.levels; ++level) {
-        const TextureLevelView view = t.level(0, level);
+        const texture::TextureLevelView view = t.level(0, level);
         glTextureSubImage3D(tex.get(), level, 0, 0, layer, view.width, view.height, 1, GL_RGBA,
                             GL_FLOAT, view.texels);
         if (layer == 0) {

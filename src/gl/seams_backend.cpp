@@ -26,6 +26,11 @@ class GlSeamsRenderer final : public SeamsFrameRenderer {
   std::string device_version() const override { return ctx_->version(); }
   bool msaa_supported(int samples) override { return r_->msaa_supported(samples); }
   bool has_shading_only() const override { return false; }
+  SeamsSamplePattern sample_pattern(int msaa) override {
+    Result<gl::SamplePattern> p = r_->sample_pattern(msaa);
+    if (!p) return {msaa, msaa, 0};  // a refused rate: nothing to compare with
+    return {msaa, p->samples, p->cpu_msaa};
+  }
 
   Result<SeamsBackendFrame> render(const scene::Camera& camera,
                                    const SeamsFrameOptions& options) override {
@@ -52,8 +57,8 @@ class GlSeamsRenderer final : public SeamsFrameRenderer {
   }
 
   Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
-                                      int factor, int /*threads*/) override {
-    return r_->render_reference(camera, width, height, factor, TextureFilter::anisotropic);
+                                      const faces::ReferenceOptions& options) override {
+    return r_->render_reference(camera, width, height, options);
   }
 
  private:

@@ -6,11 +6,14 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <span>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "gl/gl_api.h"
 #include "tessera/gl_seams.h"
+#include "tessera/raster.h"
 
 namespace tessera::gl {
 
@@ -63,6 +66,7 @@ struct SeamsRenderer::State {
   std::vector<Range> ranges;
   std::map<int, Program> programs;
   std::map<int, bool> msaa_ok;
+  std::map<int, SamplePattern> patterns;  // by requested rate
   RenderTarget target, resolved;  // target: drawn (multisampled or not); resolved: MSAA only
   float max_anisotropy = 1.0f;
 
@@ -103,7 +107,7 @@ Status SeamsRenderer::State::ensure_targets(int width, int height, int samples) 
   to.width = width;
   to.height = height;
   to.samples = samples;
-  to.color = ColorFormat::rgba32f;
+  to.colour = ColourFormat::rgba32f;
   to.depth = true;
   Result<RenderTarget> t = create_render_target(to);
   if (!t) return t.status();
@@ -232,6 +236,74 @@ bool SeamsRenderer::msaa_supported(int samples) {
   return ok;
 }
 
+Result<SamplePattern> SeamsRenderer::sample_pattern(int msaa) {
+  if (msaa < 1) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "seams renderer: MSAA " + std::to_string(msaa) + " is below 1");
+  }
+  if (auto it = state_->patterns.find(msaa); it != state_->patterns.end()) return it->second;
+  if (!msaa_supported(msaa)) {
+    return Status::error(ErrorCode::unsupported,
+                         "seams renderer: the driver refuses " + std::to_string(msaa) +
+                             "x MSAA for RGBA32F + depth");
+  }
+  SamplePattern p;
+  p.requested = msaa;
+  if (msaa == 1) {
+    p.positions = {SamplePosition{}};  // the pixel centre (no sample buffers to query)
+  } else {
+    // A target like `render`'s: what the driver allocates depends on the formats.
+    RenderTargetOptions to;
+    to.width = to.height = 8;
+    to.samples = msaa;
+    to.colour = ColourFormat::rgba32f;
+    to.depth = true;
+    Result<RenderTarget> t = create_render_target(to);
+    if (!t) return t.status();
+    GLint previous = 0, samples = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, t->framebuffer.get());
+    glGetIntegerv(GL_SAMPLES, &samples);
+    for (GLint i = 0; i < samples; ++i) {
+      GLfloat xy[2] = {0.5f, 0.5f};
+      glGetMultisamplefv(GL_SAMPLE_POSITION, GLuint(i), xy);
+      // Window y runs with the image rows (the vertex shader's flip): y down in the image.
+      p.positions.push_back(SamplePosition{xy[0] - 0.5f, xy[1] - 0.5f});
+    }
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(previous));
+    if (Status st = check_errors("seams renderer: sample positions"); !st.ok()) return st;
+    if (samples < msaa) {
+      return Status::error(ErrorCode::unsupported,
+                           "seams renderer: the driver gave " + std::to_string(samples) +
+                               " samples for " + std::to_string(msaa) + "x MSAA");
+    }
+    p.samples = int(samples);
+  }
+  p.cpu_msaa = matching_cpu_msaa(p.positions);
+  return state_->patterns.emplace(msaa, std::move(p)).first->second;
+}
+
+int matching_cpu_msaa(const std::vector<SamplePosition>& positions) {
+  for (int n : {1, 2, 4, 8, 16}) {
+    const std::span<const raster::SampleOffset> table = raster::sample_positions(n);
+    if (table.size() != positions.size()) continue;
+    std::vector<bool> used(positions.size(), false);
+    bool all = true;
+    for (const raster::SampleOffset& t : table) {
+      bool found = false;
+      for (std::size_t i = 0; i < positions.size() && !found; ++i) {
+        if (!used[i] && std::abs(positions[i].x - float(t.x) / 16.0f) < 1e-4f &&
+            std::abs(positions[i].y - float(t.y) / 16.0f) < 1e-4f) {
+          used[i] = found = true;
+        }
+      }
+      all = all && found;
+    }
+    if (all) return n;
+  }
+  return 0;
+}
+
 std::vector<int> SeamsRenderer::refused_msaa(const std::vector<int>& rates) {
   std::vector<int> out;
   for (int r : rates) {
@@ -250,7 +322,7 @@ Result<SeamsFrame> SeamsRenderer::render(const scene::Camera& camera,
     return Status::error(ErrorCode::invalid_argument,
                          "seams renderer: MSAA " + std::to_string(o.msaa) + " not in 1,2,4,8,16");
   }
-  if (o.filter != TextureFilter::trilinear && o.filter != TextureFilter::anisotropic) {
+  if (o.filter != texture::TextureFilter::trilinear && o.filter != texture::TextureFilter::anisotropic) {
     return Status::error(ErrorCode::invalid_argument,
                          "seams renderer: the filter must be trilinear or anisotropic");
   }
@@ -259,11 +331,14 @@ Result<SeamsFrame> SeamsRenderer::render(const scene::Camera& camera,
                          "seams renderer: the driver refuses " + std::to_string(o.msaa) +
                              "x MSAA for RGBA32F + depth");
   }
+  Result<SamplePattern> pattern = sample_pattern(o.msaa);
+  if (!pattern) return pattern.status();
   Result<const Program*> prog = s.program(o);
   if (!prog) return prog.status();
   if (Status st = s.ensure_targets(o.width, o.height, o.msaa); !st.ok()) return st;
 
   SeamsFrame frame;
+  frame.samples = pattern->samples;
   const auto t0 = std::chrono::steady_clock::now();
   // Clip-space positions with the CPU renderer's arithmetic (faces::FaceRenderer::render).
   const int fw = o.full_width > 0 ? o.full_width : o.width;
@@ -288,7 +363,7 @@ Result<SeamsFrame> SeamsRenderer::render(const scene::Camera& camera,
   glNamedBufferData(s.clip_buffer.get(), GLsizeiptr(s.clip.size() * 4), s.clip.data(),
                     GL_STREAM_DRAW);
 
-  const float aniso = o.filter == TextureFilter::anisotropic
+  const float aniso = o.filter == texture::TextureFilter::anisotropic
                           ? std::clamp(float(o.max_aniso), 1.0f, s.max_anisotropy)
                           : 1.0f;
   glSamplerParameterf(s.textures.border_sampler(), GL_TEXTURE_MAX_ANISOTROPY, aniso);
@@ -410,8 +485,9 @@ Result<ImageRGBAF> downsample_mitchell(const ImageRGBAF& g, int factor, int widt
 }
 
 Result<ImageRGBAF> SeamsRenderer::render_reference(const scene::Camera& camera, int width,
-                                                   int height, int factor, TextureFilter filter,
-                                                   int tile) {
+                                                   int height,
+                                                   const faces::ReferenceOptions& options) {
+  const int factor = options.factor, tile = options.tile;
   if (width < 1 || height < 1 || factor < 1 || factor > 16 || tile < 1) {
     return Status::error(ErrorCode::invalid_argument, "reference: bad size or factor");
   }
@@ -419,7 +495,7 @@ Result<ImageRGBAF> SeamsRenderer::render_reference(const scene::Camera& camera, 
   ImageRGBAF out(width, height);
   SeamsRenderOptions o;
   o.method = faces::Method::traverse;
-  o.filter = filter;
+  o.filter = options.filter;
   o.max_aniso = 16;
   o.msaa = 1;
   o.full_width = width * factor;

@@ -102,7 +102,7 @@ struct Expander {
         out.text += "\n";  // already included: expands to nothing (keeps the line count)
         continue;
       }
-      Result<std::vector<std::uint8_t>> bytes = read_file(found.string());
+      Result<std::vector<std::uint8_t>> bytes = io::read_file(found.string());
       if (!bytes) return bytes.status();
       const int child = int(out.files.size());
       if (child > kMaxFiles) {
@@ -258,7 +258,7 @@ Result<Program> link_program(const std::vector<ShaderSource>& stages,
 }
 
 Result<ShaderSource> load_shader(ShaderStage stage, const std::filesystem::path& path) {
-  Result<std::vector<std::uint8_t>> bytes = read_file(path.string());
+  Result<std::vector<std::uint8_t>> bytes = io::read_file(path.string());
   if (!bytes) return bytes.status();
   ShaderSource s;
   s.stage = stage;

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace tessera {
+namespace tessera::image {
 
 namespace {
 
@@ -27,7 +27,7 @@ Work to_work(const ImageRGBA8& img, const MipmapOptions& o) {
           }
         }
       },
-      o.threads);
+      {o.threads});
   return w;
 }
 
@@ -50,7 +50,7 @@ ImageRGBA8 from_work(const Work& w, bool has_alpha, const MipmapOptions& o) {
           }
         }
       },
-      o.threads);
+      {o.threads});
   return img;
 }
 
@@ -100,7 +100,7 @@ Work box_half(const Work& src, bool premultiply, int threads) {
           }
         }
       },
-      threads);
+      {threads});
   return dst;
 }
 
@@ -216,7 +216,7 @@ Result<ImageRGBA8> resize_image(const ImageRGBA8& image, int width, int height,
           }
         }
       },
-      options.threads);
+      {options.threads});
 
   // Vertical pass and normalisation.
   Work dst(width, height);
@@ -239,8 +239,8 @@ Result<ImageRGBA8> resize_image(const ImageRGBA8& image, int width, int height,
           }
         }
       },
-      options.threads);
+      {options.threads});
   return from_work(dst, image.has_alpha, options);
 }
 
-}  // namespace tessera
+}  // namespace tessera::image

@@ -23,7 +23,7 @@
 
 #include "tessera/io.h"
 
-namespace tessera {
+namespace tessera::io {
 
 namespace {
 
@@ -263,4 +263,4 @@ Status write_file_atomic(const std::string& path, std::span<const std::uint8_t> 
   return Status::success();
 }
 
-}  // namespace tessera
+}  // namespace tessera::io

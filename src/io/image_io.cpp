@@ -13,7 +13,7 @@
 #include "io/stb_decoder.h"
 #include "tessera/io.h"
 
-namespace tessera {
+namespace tessera::io {
 
 namespace {
 
@@ -308,4 +308,4 @@ Status write_png(const std::string& path, const ImageRGBA8& image) {
   return write_file_atomic(path, *png);
 }
 
-}  // namespace tessera
+}  // namespace tessera::io

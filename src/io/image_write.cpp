@@ -7,7 +7,7 @@
 #include "io/stb_encoder.h"
 #include "tessera/io.h"
 
-namespace tessera {
+namespace tessera::io {
 
 Result<ImageFormat> image_format_for_output(const std::string& path) {
   if (path == "-") return ImageFormat::png;
@@ -71,4 +71,4 @@ Status write_image(const std::string& path, const ImageRGBA8& image) {
   return write_file_atomic(path, *bytes);
 }
 
-}  // namespace tessera
+}  // namespace tessera::io

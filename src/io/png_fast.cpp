@@ -21,7 +21,7 @@
 #include <sys/mman.h>
 #endif
 
-namespace tessera::detail {
+namespace tessera::io::detail {
 
 namespace {
 
@@ -446,4 +446,4 @@ std::optional<ImageRGBA8> decode_png_fast(std::span<const std::uint8_t> bytes) {
   return img;
 }
 
-}  // namespace tessera::detail
+}  // namespace tessera::io::detail

@@ -1,8 +1,9 @@
-// Internal to src/io: the two PNG decoders behind tessera::decode_image (8-bit output).
+// Internal to src/io: the two PNG decoders behind tessera::io::decode_image (8-bit output).
 //
 // decode_image tries `decode_png_fast` first and falls back to `decode_png_spng` whenever the
 // fast path declines, so the result (pixels, has_alpha, or the error message) is always the
-// one libspng would give. Exposed here only for tests/io_test.cpp and fuzz/fuzz_png_diff.cpp.
+// one libspng would give. Exposed here only for tests/io_test.cpp, tests/io_png_fast_test.cpp
+// and fuzz/fuzz_png_diff.cpp.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +13,7 @@
 
 #include "tessera/core.h"
 
-namespace tessera::detail {
+namespace tessera::io::detail {
 
 /// DEFLATE cannot expand data by more than 1032:1 (258 bytes from a 2-bit length/distance
 /// pair): both PNG decoders refuse a header whose image the compressed bytes cannot fill.
@@ -37,4 +38,4 @@ std::optional<ImageRGBA8> decode_png_fast(std::span<const std::uint8_t> bytes);
 /// `name` prefixes every error message.
 Result<ImageRGBA8> decode_png_spng(std::span<const std::uint8_t> bytes, const std::string& name);
 
-}  // namespace tessera::detail
+}  // namespace tessera::io::detail

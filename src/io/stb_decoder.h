@@ -6,7 +6,7 @@
 // These wrappers are the only way in; they behave exactly as the stbi_* calls they name.
 #pragma once
 
-namespace tessera::detail {
+namespace tessera::io::detail {
 
 /// stbi_info_from_memory: true when the header is readable; fills width, height, components.
 bool stb_info(const unsigned char* data, int size, int* width, int* height, int* components);
@@ -19,4 +19,4 @@ void stb_free(unsigned char* pixels);
 /// stbi_failure_reason: the last error of the calling thread.
 const char* stb_failure_reason();
 
-}  // namespace tessera::detail
+}  // namespace tessera::io::detail

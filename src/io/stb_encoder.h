@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace tessera::detail {
+namespace tessera::io::detail {
 
 /// Output formats of `stb_encode`.
 enum class StbFormat { bmp, tga, jpeg };
@@ -18,4 +18,4 @@ enum class StbFormat { bmp, tga, jpeg };
 bool stb_encode(StbFormat format, int width, int height, int components,
                 const std::uint8_t* pixels, std::vector<std::uint8_t>& out);
 
-}  // namespace tessera::detail
+}  // namespace tessera::io::detail

@@ -12,7 +12,7 @@
 
 #include "io/stb_decoder.h"
 
-namespace tessera::detail {
+namespace tessera::io::detail {
 
 bool stb_info(const unsigned char* data, int size, int* width, int* height, int* components) {
   return stbi_info_from_memory(data, size, width, height, components) != 0;
@@ -27,4 +27,4 @@ void stb_free(unsigned char* pixels) { stbi_image_free(pixels); }
 
 const char* stb_failure_reason() { return stbi_failure_reason(); }
 
-}  // namespace tessera::detail
+}  // namespace tessera::io::detail

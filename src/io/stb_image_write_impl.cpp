@@ -9,7 +9,7 @@
 
 #include "io/stb_encoder.h"
 
-namespace tessera::detail {
+namespace tessera::io::detail {
 
 namespace {
 void append(void* context, void* data, int size) {
@@ -33,4 +33,4 @@ bool stb_encode(StbFormat format, int width, int height, int components,
   return false;
 }
 
-}  // namespace tessera::detail
+}  // namespace tessera::io::detail

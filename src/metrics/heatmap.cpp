@@ -6,7 +6,7 @@
 
 #include "tessera/metrics.h"
 
-namespace tessera {
+namespace tessera::metrics {
 
 namespace {
 // Nine samples of matplotlib's perceptually uniform maps at t = 0, 1/8, ..., 1.
@@ -30,14 +30,14 @@ constexpr std::array<std::array<std::uint8_t, 3>, 9> kViridis = {{{68, 1, 84},
                                                                   {253, 231, 37}}};
 }  // namespace
 
-void colormap_rgb(ColorMap map, float t, std::uint8_t rgb[3]) {
+void colour_map_rgb(ColourMap map, float t, std::uint8_t rgb[3]) {
   if (!(t == t)) t = 0.0f;
   t = std::clamp(t, 0.0f, 1.0f);
-  if (map == ColorMap::grey) {
+  if (map == ColourMap::grey) {
     rgb[0] = rgb[1] = rgb[2] = std::uint8_t(std::lround(t * 255.0f));
     return;
   }
-  const auto& table = map == ColorMap::inferno ? kInferno : kViridis;
+  const auto& table = map == ColourMap::inferno ? kInferno : kViridis;
   const float f = t * 8.0f;
   const int i = std::min(7, int(f));
   const float w = f - float(i);
@@ -47,18 +47,18 @@ void colormap_rgb(ColorMap map, float t, std::uint8_t rgb[3]) {
 }
 
 ImageRGBA8 heatmap(std::span<const float> values, int width, int height, float scale,
-                   ColorMap map) {
+                   ColourMap map) {
   ImageRGBA8 img(width, height);
   const float inv = scale > 0.0f ? 1.0f / scale : 0.0f;
   for (std::size_t i = 0; i < img.pixel_count() && i < values.size(); ++i) {
-    colormap_rgb(map, values[i] * inv, &img.pixels[i * 4]);
+    colour_map_rgb(map, values[i] * inv, &img.pixels[i * 4]);
     img.pixels[i * 4 + 3] = 255;
   }
   return img;
 }
 
 Result<ImageRGBA8> difference_heatmap(const ImageRGBA8& a, const ImageRGBA8& b, float scale,
-                                      ColorMap map) {
+                                      ColourMap map) {
   if (a.width != b.width || a.height != b.height) {
     return Status::error(ErrorCode::size_mismatch, "difference heatmap: image sizes differ");
   }
@@ -74,4 +74,4 @@ Result<ImageRGBA8> difference_heatmap(const ImageRGBA8& a, const ImageRGBA8& b, 
   return heatmap(diff, a.width, a.height, scale, map);
 }
 
-}  // namespace tessera
+}  // namespace tessera::metrics

@@ -6,7 +6,7 @@
 
 #include "tessera/metrics.h"
 
-namespace tessera {
+namespace tessera::metrics {
 
 namespace {
 Status size_mismatch(const char* what, int aw, int ah, int bw, int bh) {
@@ -45,7 +45,7 @@ Result<ImageComparison> compare_images(const ImageRGBA8& a, const ImageRGBA8& b,
         }
         return double(s);
       },
-      options.threads);
+      {options.threads});
   const double sse_alpha = parallel_sum(
       0, n, kGrain,
       [&](std::int64_t i0, std::int64_t i1) {
@@ -56,7 +56,7 @@ Result<ImageComparison> compare_images(const ImageRGBA8& a, const ImageRGBA8& b,
         }
         return double(s);
       },
-      options.threads);
+      {options.threads});
   const int channels = r.has_alpha ? 4 : 3;
   int max_abs = 0;
   for (std::int64_t i = 0; i < n; ++i) {
@@ -71,7 +71,7 @@ Result<ImageComparison> compare_images(const ImageRGBA8& a, const ImageRGBA8& b,
     r.mse_alpha = sse_alpha / double(n);
     r.psnr_alpha = psnr_from_mse(r.mse_alpha);
   }
-  if (options.compute_ssim) r.ssim_gray = *ssim_gray(a, b, options.threads);
+  if (options.compute_ssim) r.ssim_gray = *ssim_gray(a, b, {options.threads});
   return r;
 }
 
@@ -151,4 +151,4 @@ std::vector<double> ErrorCdfAccumulator::fractions() const {
   return f;
 }
 
-}  // namespace tessera
+}  // namespace tessera::metrics

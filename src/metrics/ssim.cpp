@@ -6,7 +6,7 @@
 
 #include "tessera/metrics.h"
 
-namespace tessera {
+namespace tessera::metrics {
 
 namespace {
 
@@ -100,7 +100,8 @@ double ssim_rows(std::span<const float> a, std::span<const float> b, int width, 
 }  // namespace
 
 double ssim_plane(std::span<const float> a, std::span<const float> b, int width, int height,
-                  double data_range, int threads) {
+                  const SsimOptions& options) {
+  const double data_range = options.data_range;
   const double c1 = (kK1 * data_range) * (kK1 * data_range);
   const double c2 = (kK2 * data_range) * (kK2 * data_range);
   if (width < kWindow || height < kWindow) return ssim_global(a, b, c1, c2);
@@ -111,13 +112,14 @@ double ssim_plane(std::span<const float> a, std::span<const float> b, int width,
       [&](std::int64_t y0, std::int64_t y1) {
         return ssim_rows(a, b, width, int(y0), int(y1), c1, c2, nullptr);
       },
-      threads);
+      {options.threads});
   return sum / (double(oh) * double(ow));
 }
 
 std::vector<float> ssim_map(std::span<const float> a, std::span<const float> b, int width,
-                            int height, double data_range, int threads) {
+                            int height, const SsimOptions& options) {
   if (width < kWindow || height < kWindow) return {};
+  const double data_range = options.data_range;
   const double c1 = (kK1 * data_range) * (kK1 * data_range);
   const double c2 = (kK2 * data_range) * (kK2 * data_range);
   const int oh = height - 2 * kRadius;
@@ -128,7 +130,7 @@ std::vector<float> ssim_map(std::span<const float> a, std::span<const float> b, 
       [&](std::int64_t y0, std::int64_t y1) {
         ssim_rows(a, b, width, int(y0), int(y1), c1, c2, &map[std::size_t(y0) * ow]);
       },
-      threads);
+      {options.threads});
   return map;
 }
 
@@ -141,12 +143,13 @@ std::vector<float> luma709(const ImageRGBA8& image) {
   return y;
 }
 
-Result<double> ssim_gray(const ImageRGBA8& a, const ImageRGBA8& b, int threads) {
+Result<double> ssim_gray(const ImageRGBA8& a, const ImageRGBA8& b, const Parallel& parallel) {
   if (a.width != b.width || a.height != b.height) {
     return Status::error(ErrorCode::size_mismatch, "SSIM: images differ in size");
   }
   const std::vector<float> ya = luma709(a), yb = luma709(b);
-  return ssim_plane(ya, yb, a.width, a.height, 255.0, threads);
+  return ssim_plane(ya, yb, a.width, a.height,
+                    {.data_range = 255.0, .threads = parallel.threads});
 }
 
-}  // namespace tessera
+}  // namespace tessera::metrics

@@ -434,7 +434,7 @@ Result<PtexFile> parse_ptex(std::span<const std::uint8_t> bytes, const std::stri
 }
 
 Result<PtexFile> read_ptex(const std::string& path, const ParseOptions& options) {
-  Result<std::vector<std::uint8_t>> bytes = read_file(path);
+  Result<std::vector<std::uint8_t>> bytes = io::read_file(path);
   if (!bytes) return bytes.status();
   return parse_ptex(*bytes, path, options);
 }

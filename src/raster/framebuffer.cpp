@@ -80,14 +80,14 @@ void FrameBuffer::clear_rect(int x0, int y0, int x1, int y1, const float* value,
   }
 }
 
-void FrameBuffer::clear(const float* value, float depth, int threads) {
+void FrameBuffer::clear(const ClearValues& values, const Parallel& parallel) {
   const int gh = grid_height();
   parallel_for(
       0, gh, 16,
       [&](std::int64_t y0, std::int64_t y1) {
-        clear_rect(0, int(y0), grid_width(), int(y1), value, depth);
+        clear_rect(0, int(y0), grid_width(), int(y1), values.value.data(), values.depth);
       },
-      threads);
+      parallel);
 }
 
 namespace {
@@ -216,7 +216,7 @@ inline void resolve_row_rgba(const float* src, int w, int ns, float scale, const
 
 }  // namespace
 
-std::vector<float> resolve_channels(const FrameBuffer& fb, int threads) {
+std::vector<float> resolve_channels(const FrameBuffer& fb, const Parallel& parallel) {
   const int w = fb.width(), h = fb.height(), nc = fb.channels();
   std::vector<float> out(std::size_t(w) * std::size_t(h) * std::size_t(nc));
   const float scale = 1.0f / float(fb.ssaa() * fb.ssaa() * fb.msaa());
@@ -232,11 +232,11 @@ std::vector<float> resolve_channels(const FrameBuffer& fb, int threads) {
           }
         }
       },
-      threads);
+      parallel);
   return out;
 }
 
-ImageRGBAF resolve(const FrameBuffer& fb, int threads) {
+ImageRGBAF resolve(const FrameBuffer& fb, const Parallel& parallel) {
   const int w = fb.width(), h = fb.height(), nc = fb.channels();
   ImageRGBAF img(w, h);
   const float scale = 1.0f / float(fb.ssaa() * fb.ssaa() * fb.msaa());
@@ -253,11 +253,11 @@ ImageRGBAF resolve(const FrameBuffer& fb, int threads) {
           }
         }
       },
-      threads);
+      parallel);
   return img;
 }
 
-ImageRGBA8 resolve_srgb8(const FrameBuffer& fb, int threads) {
+ImageRGBA8 resolve_srgb8(const FrameBuffer& fb, const Parallel& parallel) {
   const int w = fb.width(), h = fb.height(), nc = fb.channels();
   ImageRGBA8 img(w, h);
   const float scale = 1.0f / float(fb.ssaa() * fb.ssaa() * fb.msaa());
@@ -283,7 +283,7 @@ ImageRGBA8 resolve_srgb8(const FrameBuffer& fb, int threads) {
           }
         }
       },
-      threads);
+      parallel);
   return img;
 }
 

@@ -1,4 +1,4 @@
-// Internal data shared by the rasterizer's drivers: the set-up triangle record, the per-chunk
+// Internal data shared by the rasteriser's drivers: the set-up triangle record, the per-chunk
 // geometry output with its tile bins, and the per-frame context handed to tile tasks.
 #pragma once
 
@@ -70,7 +70,7 @@ void process_chunk(std::int64_t index, std::span<const DrawCall> draws,
                    std::span<const std::uint64_t> first_triangle, const FrameBuffer& fb,
                    const RasterOptions& options, int tiles_x, int tiles_y, Chunk& chunk);
 
-/// Raster stage for one tile: clears it if asked, then rasterizes and shades its triangles in
+/// Raster stage for one tile: clears it if asked, then rasterises and shades its triangles in
 /// submission order. Adds its counters to `stats`.
 void render_tile(const FrameContext& ctx, int tile, RasterStats& stats);
 

@@ -1,4 +1,4 @@
-// Rasterization kernels: pure functions for fixed-point edge functions with the top-left rule,
+// Rasterisation kernels: pure functions for fixed-point edge functions with the top-left rule,
 // bounding boxes, sample offsets, interpolation planes, perspective-correct interpolation,
 // quad derivatives and centroid selection. Drivers (setup.cpp, tile.cpp) call these; nothing
 // here touches a frame buffer or a thread.
@@ -9,10 +9,7 @@
 #include <cstdint>
 #include <cstring>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
+#include "core/simd.h"
 #include "raster/raster_internal.h"
 
 namespace tessera::raster::detail {
@@ -82,23 +79,23 @@ inline std::uint32_t coverage_mask(const std::int64_t e[3], const std::int64_t* 
 
 /// Coverage masks of the four pixels of a quad: `e0` holds the edge values at the top-left
 /// pixel's corner, `sx` / `sy` the steps to the next pixel right / down, `off[k][s]` the
-/// per-sample increments. Same results as `coverage_mask` per lane; with SSE2 two 64-bit edge
-/// values are tested per instruction (sign bits gathered with movmskpd).
+/// per-sample increments. Same results as `coverage_mask` per lane; with a SIMD backend two
+/// 64-bit edge values are tested per instruction (sign bits gathered with simd::movemask).
 inline void quad_coverage(const std::int64_t e0[3], const std::int64_t sx[3],
                           const std::int64_t sy[3], const std::int64_t* const off[3], int samples,
                           std::uint32_t mask[4]) {
-#if defined(__SSE2__)
+#if TESSERA_SIMD_VECTOR
+  using simd::vi64x2;
   if (samples == 1) {
     // Lanes (0, 1) and (2, 3) in one register each.
-    __m128i top = _mm_setzero_si128(), bottom = _mm_setzero_si128();
+    vi64x2 top, bottom;
     for (int k = 0; k < 3; ++k) {
-      const __m128i l01 =
-          _mm_add_epi64(_mm_set_epi64x(e0[k] + sx[k], e0[k]), _mm_set1_epi64x(off[k][0]));
-      top = _mm_or_si128(top, l01);
-      bottom = _mm_or_si128(bottom, _mm_add_epi64(l01, _mm_set1_epi64x(sy[k])));
+      const vi64x2 l01 = vi64x2(e0[k], e0[k] + sx[k]) + vi64x2(off[k][0]);
+      top = top | l01;
+      bottom = bottom | (l01 + vi64x2(sy[k]));
     }
-    const int t = _mm_movemask_pd(_mm_castsi128_pd(top));
-    const int b = _mm_movemask_pd(_mm_castsi128_pd(bottom));
+    const int t = simd::movemask(top);
+    const int b = simd::movemask(bottom);
     mask[0] = ~t & 1u;
     mask[1] = ~t >> 1 & 1u;
     mask[2] = ~b & 1u;
@@ -107,19 +104,16 @@ inline void quad_coverage(const std::int64_t e0[3], const std::int64_t sx[3],
   }
   if (samples % 2 == 0) {
     for (int lane = 0; lane < 4; ++lane) {
-      __m128i e[3];
+      vi64x2 e[3];
       for (int k = 0; k < 3; ++k) {
-        e[k] = _mm_set1_epi64x(e0[k] + (lane & 1 ? sx[k] : 0) + (lane >> 1 ? sy[k] : 0));
+        e[k] = vi64x2(e0[k] + (lane & 1 ? sx[k] : 0) + (lane >> 1 ? sy[k] : 0));
       }
       std::uint32_t m = 0;
       for (int s = 0; s < samples; s += 2) {
-        __m128i v =
-            _mm_add_epi64(e[0], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off[0] + s)));
-        v = _mm_or_si128(
-            v, _mm_add_epi64(e[1], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off[1] + s))));
-        v = _mm_or_si128(
-            v, _mm_add_epi64(e[2], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off[2] + s))));
-        m |= std::uint32_t(~_mm_movemask_pd(_mm_castsi128_pd(v)) & 3) << s;
+        vi64x2 v = e[0] + simd::load_i64x2(off[0] + s);
+        v = v | (e[1] + simd::load_i64x2(off[1] + s));
+        v = v | (e[2] + simd::load_i64x2(off[2] + s));
+        m |= std::uint32_t(~simd::movemask(v) & 3) << s;
       }
       mask[lane] = m;
     }
@@ -151,14 +145,15 @@ inline void quad_coverage32(const std::int64_t e0[3], const std::int32_t sx32[3]
   for (int k = 0; k < 3; ++k) {
     c[k] = std::int32_t(std::clamp(e0[k], -kNarrowClamp, kNarrowClamp));
   }
-#if defined(__SSE2__)
+#if TESSERA_SIMD_VECTOR
+  using simd::vint4;
   if (samples == 1) {
-    __m128i v = _mm_setzero_si128();
+    vint4 v;
     for (int k = 0; k < 3; ++k) {
-      const __m128i lanes = _mm_set_epi32(sx32[k] + sy32[k], sy32[k], sx32[k], 0);
-      v = _mm_or_si128(v, _mm_add_epi32(_mm_set1_epi32(c[k] + off32[k][0]), lanes));
+      const vint4 lanes(0, sx32[k], sy32[k], sx32[k] + sy32[k]);
+      v = v | (vint4(c[k] + off32[k][0]) + lanes);
     }
-    const std::uint32_t in = ~std::uint32_t(_mm_movemask_ps(_mm_castsi128_ps(v)));
+    const std::uint32_t in = ~std::uint32_t(simd::movemask(v));
     for (int lane = 0; lane < 4; ++lane) mask[lane] = in >> lane & 1u;
     return;
   }
@@ -170,17 +165,13 @@ inline void quad_coverage32(const std::int64_t e0[3], const std::int32_t sx32[3]
     lanes[k][3] = lanes[k][2] + sx32[k];
   }
   for (int lane = 0; lane < 4; ++lane) {
-    const __m128i e[3] = {_mm_set1_epi32(lanes[0][lane]), _mm_set1_epi32(lanes[1][lane]),
-                          _mm_set1_epi32(lanes[2][lane])};
+    const vint4 e[3] = {vint4(lanes[0][lane]), vint4(lanes[1][lane]), vint4(lanes[2][lane])};
     std::uint32_t m = 0;
     for (int s = 0; s < samples; s += 4) {
-      __m128i v =
-          _mm_add_epi32(e[0], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off32[0] + s)));
-      v = _mm_or_si128(
-          v, _mm_add_epi32(e[1], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off32[1] + s))));
-      v = _mm_or_si128(
-          v, _mm_add_epi32(e[2], _mm_loadu_si128(reinterpret_cast<const __m128i*>(off32[2] + s))));
-      m |= (~std::uint32_t(_mm_movemask_ps(_mm_castsi128_ps(v))) & 15u) << s;
+      vint4 v = e[0] + simd::load4(off32[0] + s);
+      v = v | (e[1] + simd::load4(off32[1] + s));
+      v = v | (e[2] + simd::load4(off32[2] + s));
+      m |= (~std::uint32_t(simd::movemask(v)) & 15u) << s;
     }
     mask[lane] = m;
   }
@@ -239,12 +230,13 @@ inline float eval_plane(const float p[3], float dx, float dy) {
 }
 
 /// Varying count rounded up to a multiple of 4: the stored and interpolated width, so the
-/// fixed-size loops below vectorize; the padding holds zeros.
+/// fixed-size loops below vectorise; the padding holds zeros.
 inline constexpr int padded_varyings(int n) { return (n + 3) & ~3; }
 
-/// Four floats in one SSE/NEON register (GCC/Clang vector extension); the loops below run on
-/// N4 / 4 of them. Loads and stores go through memcpy, so no alignment is assumed.
-using f32x4 = float __attribute__((vector_size(16)));
+/// Four floats in one SSE/NEON register (simd::f32x4, the GCC/Clang vector extension); the
+/// loops below run on N4 / 4 of them. Loads and stores go through memcpy, so no alignment is
+/// assumed.
+using simd::f32x4;
 inline f32x4 load4(const float* p) {
   f32x4 v;
   std::memcpy(&v, p, sizeof v);
@@ -283,15 +275,9 @@ inline f32x4 eval_plane4(const float p[3], f32x4 dx, f32x4 dy) {
 
 /// Lane-wise std::clamp(v, 0, 1) (NaN stays NaN, -0 stays -0).
 inline f32x4 clamp01(f32x4 v) {
-#if defined(__SSE2__)
-  // maxps / minps return their second operand when the comparison fails (NaN included), which
-  // is exactly std::clamp's `v < 0 ? 0 : (1 < v ? 1 : v)`.
-  return _mm_min_ps(_mm_set1_ps(1.0f), _mm_max_ps(_mm_setzero_ps(), v));
-#else
-  f32x4 r;
-  for (int i = 0; i < 4; ++i) r[i] = std::clamp(v[i], 0.0f, 1.0f);
-  return r;
-#endif
+  // simd::max / min return their second operand when the comparison fails (NaN included),
+  // which is exactly std::clamp's `v < 0 ? 0 : (1 < v ? 1 : v)`.
+  return simd::to_f32x4(simd::min(simd::vf4(1.0f), simd::max(simd::vf4(), simd::from_f32x4(v))));
 }
 
 /// Centroid sample of a partially covered pixel: the covered sample nearest the pixel centre,
@@ -323,23 +309,18 @@ inline bool depth_passes(DepthTest test, float z, float stored) {
 
 /// `depth_passes` for four samples: bit i set when lane i passes.
 inline std::uint32_t depth_mask4(DepthTest test, f32x4 z, f32x4 stored) {
-#if defined(__SSE2__)
+  const simd::vf4 a = simd::from_f32x4(z), b = simd::from_f32x4(stored);
   switch (test) {
     case DepthTest::less:
-      return std::uint32_t(_mm_movemask_ps(_mm_cmplt_ps(z, stored)));
+      return std::uint32_t(simd::movemask(simd::cmplt(a, b)));
     case DepthTest::less_equal:
-      return std::uint32_t(_mm_movemask_ps(_mm_cmple_ps(z, stored)));
+      return std::uint32_t(simd::movemask(simd::cmple(a, b)));
     case DepthTest::equal:
-      return std::uint32_t(_mm_movemask_ps(_mm_cmpeq_ps(z, stored)));
+      return std::uint32_t(simd::movemask(simd::cmpeq(a, b)));
     case DepthTest::always:
       return 15u;
   }
   return 0u;
-#else
-  std::uint32_t m = 0;
-  for (int i = 0; i < 4; ++i) m |= std::uint32_t(depth_passes(test, z[i], stored[i])) << i;
-  return m;
-#endif
 }
 
 }  // namespace tessera::raster::detail

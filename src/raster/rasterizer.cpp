@@ -1,4 +1,4 @@
-// Rasterizer driver: validates the draws, runs the geometry stage over fixed chunks of
+// Rasteriser driver: validates the draws, runs the geometry stage over fixed chunks of
 // triangles in parallel, then the raster stage over tiles in parallel, and sums the counters.
 #include <string>
 
@@ -6,17 +6,17 @@
 
 namespace tessera::raster {
 
-struct Rasterizer::Impl {
+struct Rasteriser::Impl {
   std::vector<detail::Chunk> chunks;  ///< Reused between frames (keeps their capacity).
   std::vector<RasterStats> tile_stats;
   std::vector<std::uint64_t> first_triangle;
 };
 
-Rasterizer::Rasterizer(const RasterOptions& options)
+Rasteriser::Rasteriser(const RasterOptions& options)
     : options_(options), impl_(std::make_unique<Impl>()) {}
-Rasterizer::~Rasterizer() = default;
-Rasterizer::Rasterizer(Rasterizer&&) noexcept = default;
-Rasterizer& Rasterizer::operator=(Rasterizer&&) noexcept = default;
+Rasteriser::~Rasteriser() = default;
+Rasteriser::Rasteriser(Rasteriser&&) noexcept = default;
+Rasteriser& Rasteriser::operator=(Rasteriser&&) noexcept = default;
 
 namespace {
 
@@ -52,7 +52,7 @@ Status validate(const FrameBuffer& fb, std::span<const DrawCall> draws) {
 
 }  // namespace
 
-Result<RasterStats> Rasterizer::render(FrameBuffer& fb, std::span<const DrawCall> draws,
+Result<RasterStats> Rasteriser::render(FrameBuffer& fb, std::span<const DrawCall> draws,
                                        const ClearValues* clear) {
   if (Status s = validate(fb, draws); !s.ok()) return s;
   Impl& im = *impl_;
@@ -81,7 +81,7 @@ Result<RasterStats> Rasterizer::render(FrameBuffer& fb, std::span<const DrawCall
                                 im.chunks[std::size_t(c)]);
         }
       },
-      threads);
+      {threads});
 
   RasterStats stats;
   const std::span<const detail::Chunk> chunks(im.chunks.data(), std::size_t(nchunks));
@@ -113,7 +113,7 @@ Result<RasterStats> Rasterizer::render(FrameBuffer& fb, std::span<const DrawCall
           detail::render_tile(ctx, int(t), im.tile_stats[std::size_t(t)]);
         }
       },
-      threads);
+      {threads});
   for (const RasterStats& t : im.tile_stats) {
     stats.quads += t.quads;
     stats.lanes_shaded += t.lanes_shaded;

@@ -3,7 +3,7 @@
 // Offsets from the pixel centre in 1/16 pixel, x right, y down, in sample-index order, as
 // defined by the Direct3D 10.1/11 functional specification (the same tables are the Vulkan
 // "standard sample locations" for 1/2/4/8/16 samples). The 16x pattern reaches -8/16, i.e. the
-// left and top pixel edges, which the rasterizer's conservative block bounds account for.
+// left and top pixel edges, which the rasteriser's conservative block bounds account for.
 #include "tessera/raster.h"
 
 namespace tessera::raster {

@@ -39,9 +39,9 @@ struct SampleTable {
   float oy[kMaxSamples];
 };
 
-class TileRasterizer {
+class TileRasteriser {
  public:
-  TileRasterizer(const FrameContext& ctx, int x0, int y0, int x1, int y1, RasterStats& stats)
+  TileRasteriser(const FrameContext& ctx, int x0, int y0, int x1, int y1, RasterStats& stats)
       : ctx_(ctx), fb_(*ctx.fb), opt_(*ctx.options), rx0_(x0), ry0_(y0), rx1_(x1), ry1_(y1),
         stats_(stats) {
     const auto pos = sample_positions(fb_.msaa());
@@ -66,7 +66,7 @@ class TileRasterizer {
   void triangle(const TriSetup& t, const float* varyings);
 
  private:
-  using QuadFn = void (TileRasterizer::*)(int, int, std::uint32_t*);
+  using QuadFn = void (TileRasteriser::*)(int, int, std::uint32_t*);
   /// One 2x2 quad; `kSingle`: the frame buffer has one sample per pixel (st_.count == 1).
   template <int N4, bool kSingle>
   void quad(int qx, int qy, std::uint32_t* mask);
@@ -107,7 +107,7 @@ class TileRasterizer {
   alignas(16) float out_[4][kMaxChannels];
 };
 
-void TileRasterizer::triangle(const TriSetup& t, const float* varyings) {
+void TileRasteriser::triangle(const TriSetup& t, const float* varyings) {
   const int x0 = std::max(t.x0, rx0_) & ~1;
   const int y0 = std::max(t.y0, ry0_) & ~1;
   const int x1 = std::min(t.x1, rx1_ - 1);
@@ -119,19 +119,19 @@ void TileRasterizer::triangle(const TriSetup& t, const float* varyings) {
   const bool single = st_.count == 1;
   switch (padded_varyings(draw_->varying_count)) {
     case 0:
-      quad_fn_ = single ? &TileRasterizer::quad<0, true> : &TileRasterizer::quad<0, false>;
+      quad_fn_ = single ? &TileRasteriser::quad<0, true> : &TileRasteriser::quad<0, false>;
       break;
     case 4:
-      quad_fn_ = single ? &TileRasterizer::quad<4, true> : &TileRasterizer::quad<4, false>;
+      quad_fn_ = single ? &TileRasteriser::quad<4, true> : &TileRasteriser::quad<4, false>;
       break;
     case 8:
-      quad_fn_ = single ? &TileRasterizer::quad<8, true> : &TileRasterizer::quad<8, false>;
+      quad_fn_ = single ? &TileRasteriser::quad<8, true> : &TileRasteriser::quad<8, false>;
       break;
     case 12:
-      quad_fn_ = single ? &TileRasterizer::quad<12, true> : &TileRasterizer::quad<12, false>;
+      quad_fn_ = single ? &TileRasteriser::quad<12, true> : &TileRasteriser::quad<12, false>;
       break;
     default:
-      quad_fn_ = single ? &TileRasterizer::quad<16, true> : &TileRasterizer::quad<16, false>;
+      quad_fn_ = single ? &TileRasteriser::quad<16, true> : &TileRasteriser::quad<16, false>;
       break;
   }
   in_ = ShadeInput{};
@@ -223,7 +223,7 @@ void TileRasterizer::triangle(const TriSetup& t, const float* varyings) {
 }
 
 template <int N4, bool kSingle>
-void TileRasterizer::quad(int qx, int qy, std::uint32_t* mask) {
+void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
   // Lanes beyond the grid (odd sizes) are helpers with no coverage.
   if (qx + 1 >= gw_) mask[1] = mask[3] = 0;
   if (qy + 1 >= gh_) mask[2] = mask[3] = 0;
@@ -431,7 +431,7 @@ void render_tile(const FrameContext& ctx, int tile, RasterStats& stats) {
   const int x1 = std::min(x0 + kTileSize, fb.grid_width());
   const int y1 = std::min(y0 + kTileSize, fb.grid_height());
   if (ctx.clear) fb.clear_rect(x0, y0, x1, y1, ctx.clear->value.data(), ctx.clear->depth);
-  TileRasterizer r(ctx, x0, y0, x1, y1, stats);
+  TileRasteriser r(ctx, x0, y0, x1, y1, stats);
   for (const Chunk& chunk : ctx.chunks) {
     const std::uint32_t b = chunk.tile_offsets[std::size_t(tile)];
     const std::uint32_t e = chunk.tile_offsets[std::size_t(tile) + 1];

@@ -1,4 +1,4 @@
-// SceneRenderer: transform, rasterize with an unlit textured material, resolve.
+// SceneRenderer: transform, rasterise with an unlit textured material, resolve.
 #include <chrono>
 
 #include "tessera/render.h"
@@ -19,14 +19,15 @@ raster::DrawCall mesh_draw(const scene::Mesh& mesh, const float* clip, const flo
   return d;
 }
 
-Result<std::vector<Texture>> build_scene_textures(const scene::Scene& scene, int threads) {
-  std::vector<Texture> textures;
+Result<std::vector<texture::Texture>> build_scene_textures(const scene::Scene& scene,
+                                                  const Parallel& parallel) {
+  std::vector<texture::Texture> textures;
   textures.reserve(scene.textures.size());
   for (const scene::Texture& t : scene.textures) {
-    TextureOptions o;
+    texture::TextureOptions o;
     o.srgb = t.srgb;
-    o.threads = threads;
-    Result<Texture> tex = Texture::from_rgba8(t.image, o);
+    o.threads = parallel.threads;
+    Result<texture::Texture> tex = texture::Texture::from_rgba8(t.image, o);
     if (!tex) return tex.status();
     textures.push_back(std::move(*tex));
   }
@@ -36,10 +37,10 @@ Result<std::vector<Texture>> build_scene_textures(const scene::Scene& scene, int
 SceneRenderer::~SceneRenderer() = default;
 
 Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const scene::Scene& scene,
-                                                             int threads) {
+                                                             const Parallel& parallel) {
   std::unique_ptr<SceneRenderer> r(new SceneRenderer());
   r->scene_ = &scene;
-  Result<std::vector<Texture>> textures = build_scene_textures(scene, threads);
+  Result<std::vector<texture::Texture>> textures = build_scene_textures(scene, parallel);
   if (!textures) return textures.status();
   r->textures_ = std::move(*textures);
   // UVs do not change between frames.
@@ -71,7 +72,7 @@ Result<Frame> SceneRenderer::render(const scene::Camera& camera, const FrameOpti
   }
   raster::RasterOptions ro;
   ro.threads = options.threads;
-  rasterizer_.set_options(ro);
+  rasteriser_.set_options(ro);
 
   Frame frame;
   auto t0 = std::chrono::steady_clock::now();
@@ -92,13 +93,13 @@ Result<Frame> SceneRenderer::render(const scene::Camera& camera, const FrameOpti
             o[3] = c.w;
           }
         },
-        options.threads);
+        {options.threads});
   }
   frame.ms_transform = ms_since(t0);
 
-  SamplerState sampler;
-  sampler.filter = options.filter == Filter::aniso16 ? TextureFilter::anisotropic
-                                                     : TextureFilter::trilinear;
+  texture::SamplerState sampler;
+  sampler.filter = options.filter == Filter::aniso16 ? texture::TextureFilter::anisotropic
+                                                     : texture::TextureFilter::trilinear;
   sampler.max_aniso = 16;
   std::vector<raster::DrawCall> draws;
   draws.reserve(sc.meshes.size());
@@ -108,7 +109,7 @@ Result<Frame> SceneRenderer::render(const scene::Camera& camera, const FrameOpti
     const scene::Material& mat = sc.materials[std::size_t(m.material)];
     raster::DrawCall d = mesh_draw(m, clip_[mi].data(), varyings_[mi].data(), 2, prim_base);
     prim_base += std::uint32_t(m.triangle_count());
-    const Texture* tex = (options.shading == Shading::textured && mat.base_color_texture >= 0)
+    const texture::Texture* tex = (options.shading == Shading::textured && mat.base_color_texture >= 0)
                              ? &textures_[std::size_t(mat.base_color_texture)]
                              : nullptr;
     const std::array<float, 4> base =
@@ -121,8 +122,8 @@ Result<Frame> SceneRenderer::render(const scene::Camera& camera, const FrameOpti
                                          float* out) {
       std::array<std::array<float, 4>, 4> texel;
       if (tex) {
-        std::array<Uv, 4> uv{};
-        std::array<UvGradients, 4> g{};
+        std::array<texture::Uv, 4> uv{};
+        std::array<texture::UvGradients, 4> g{};
         for (int lane = 0; lane < 4; ++lane) {
           if (!(active >> lane & 1u)) continue;
           const raster::ShadeInput& in = lanes[lane];
@@ -149,12 +150,12 @@ Result<Frame> SceneRenderer::render(const scene::Camera& camera, const FrameOpti
   raster::ClearValues clear;
   for (int k = 0; k < 4; ++k) clear.value[std::size_t(k)] = kBackground[std::size_t(k)];
   t0 = std::chrono::steady_clock::now();
-  Result<raster::RasterStats> stats = rasterizer_.render(fb_, draws, &clear);
+  Result<raster::RasterStats> stats = rasteriser_.render(fb_, draws, &clear);
   if (!stats) return stats.status();
   frame.ms_raster = ms_since(t0);
   frame.stats = *stats;
   t0 = std::chrono::steady_clock::now();
-  frame.image = raster::resolve_srgb8(fb_, options.threads);
+  frame.image = raster::resolve_srgb8(fb_, {options.threads});
   frame.ms_resolve = ms_since(t0);
   return frame;
 }

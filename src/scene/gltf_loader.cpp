@@ -32,7 +32,7 @@ bool load_image(tinygltf::Image* image, const int index, std::string* err, std::
   if (!ctx->load) return true;
   const std::string name = ctx->path + ": image " + std::to_string(index) +
                            (image->uri.empty() ? "" : " (" + image->uri + ")");
-  Result<ImageRGBA8> img = decode_image({bytes, std::size_t(std::max(size, 0))}, name);
+  Result<ImageRGBA8> img = io::decode_image({bytes, std::size_t(std::max(size, 0))}, name);
   if (!img) {
     if (err) *err = img.status().message;
     ctx->errors->push_back(img.status().message);
@@ -176,7 +176,7 @@ Result<Scene> load_gltf(const std::string& path, const LoadOptions& options) {
                                         path.compare(path.size() - 4, 4, ".GLB") == 0);
   {
     // tinygltf reads whole files itself; refuse a missing one with our usual wording first.
-    Result<std::vector<std::uint8_t>> probe = read_file(path, 1);
+    Result<std::vector<std::uint8_t>> probe = io::read_file(path, 1);
     if (!probe && probe.status().code == ErrorCode::io_error) return probe.status();
   }
   const bool ok = glb ? loader.LoadBinaryFromFile(&model, &err, &warn, path)

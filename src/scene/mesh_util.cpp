@@ -49,7 +49,7 @@ std::string folder_of(const std::string& path) {
 
 Result<ImageRGBA8> load_texture_image(const std::string& scene_path,
                                       const std::string& image_path) {
-  Result<ImageRGBA8> img = read_image(image_path);
+  Result<ImageRGBA8> img = io::read_image(image_path);
   if (!img) {
     return Status::error(img.status().code,
                          scene_path + ": texture: " + img.status().message);

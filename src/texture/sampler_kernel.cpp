@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-namespace tessera {
+namespace tessera::texture {
 
 namespace {
 
@@ -27,7 +27,7 @@ UvGradients quad_gradients(const std::array<Uv, 4>& quad) {
   return g;
 }
 
-float isotropic_lod(const UvGradients& g) { return texture_detail::isotropic_lod_inline(g); }
+float isotropic_lod(const UvGradients& g) { return detail::isotropic_lod_inline(g); }
 
 AnisoFootprint anisotropic_footprint(const UvGradients& g, int max_aniso) {
   const float px = length2d(g.dudx, g.dvdx);
@@ -63,7 +63,7 @@ Footprint compute_footprint(const SamplerState& sampler, const TextureShape& sha
   const UvGradients texel{gradients.dudx * w, gradients.dvdx * h, gradients.dudy * w,
                           gradients.dvdy * h};
   Footprint fp;
-  fp.center = uv;
+  fp.centre = uv;
   float lod = 0.0f;
   if (sampler.filter == TextureFilter::anisotropic) {
     const AnisoFootprint aniso = anisotropic_footprint(texel, sampler.max_aniso);
@@ -76,23 +76,23 @@ Footprint compute_footprint(const SamplerState& sampler, const TextureShape& sha
       fp.probes = 1;
     }
   } else {
-    lod = texture_detail::isotropic_lod_inline(texel);
+    lod = detail::isotropic_lod_inline(texel);
   }
-  fp.lod = texture_detail::clamp_lod(sampler, shape, lod);
+  fp.lod = detail::clamp_lod(sampler, shape, lod);
   return fp;
 }
 
 Footprint footprint_at_lod(const SamplerState& sampler, const TextureShape& shape, Uv uv,
                            float lod) {
   Footprint fp;
-  fp.center = uv;
-  fp.lod = texture_detail::clamp_lod(sampler, shape, lod);
+  fp.centre = uv;
+  fp.lod = detail::clamp_lod(sampler, shape, lod);
   return fp;
 }
 
 int resolve_address(int x, int size, AddressMode mode) {
   if (size <= 0) return -1;
-  return texture_detail::resolve_axis(x, size, mode);
+  return detail::resolve_axis(x, size, mode);
 }
 
 int array_layer(float r, int layers) {
@@ -122,7 +122,7 @@ void generate_taps(const SamplerState& sampler, const TextureShape& shape,
   const float last = float(shape.levels - 1);
   if (!(fp.lod >= 0.0f)) fp.lod = 0.0f;
   if (fp.lod > last) fp.lod = last;
-  texture_detail::for_each_tap(sampler, shape, fp, layer, texture_detail::TapListSink{out});
+  detail::for_each_tap(sampler, shape, fp, layer, detail::TapListSink{out});
 }
 
-}  // namespace tessera
+}  // namespace tessera::texture

@@ -9,7 +9,7 @@
 
 #include "tessera/texture.h"
 
-namespace tessera::texture_detail {
+namespace tessera::texture::detail {
 
 /// Float texel coordinates are clamped to +-2^24 before conversion to int: beyond that a float
 /// has no fractional bits left, and the clamp keeps NaN / infinity out of the integer domain.
@@ -113,7 +113,7 @@ inline LevelPlan plan_levels(TextureFilter filter, float lod, int levels) {
 
 /// floor() for |x| <= kCoordLimit, without the libm call baseline x86-64 would make.
 inline int floor_to_int(float x) {
-  const int i = int(x);  // truncates toward zero
+  const int i = int(x);  // truncates towards zero
   return x < float(i) ? i - 1 : i;
 }
 
@@ -195,8 +195,8 @@ inline void for_each_tap(const SamplerState& sampler, const TextureShape& shape,
     tap.level = plan.level[0];
     const int w = shape.level_width(tap.level);
     const int h = shape.level_height(tap.level);
-    tap.x = floor_to_int(clamp_coord(footprint.center.u * float(w)));
-    tap.y = floor_to_int(clamp_coord(footprint.center.v * float(h)));
+    tap.x = floor_to_int(clamp_coord(footprint.centre.u * float(w)));
+    tap.y = floor_to_int(clamp_coord(footprint.centre.v * float(h)));
     tap.resolved_x = resolve_axis(tap.x, w, mode_u);
     tap.resolved_y = resolve_axis(tap.y, h, mode_v);
     tap.outside = outside_axis(tap.x, w) || outside_axis(tap.y, h);
@@ -216,8 +216,8 @@ inline void for_each_tap(const SamplerState& sampler, const TextureShape& shape,
     const float level_weight = plan.weight[li] * inv_probes;
     for (int i = 0; i < probes; ++i) {
       const float t = (float(i) + 0.5f) * inv_probes - 0.5f;
-      const float u = footprint.center.u + t * footprint.axis_u;
-      const float v = footprint.center.v + t * footprint.axis_v;
+      const float u = footprint.centre.u + t * footprint.axis_u;
+      const float v = footprint.centre.v + t * footprint.axis_v;
       const float px = clamp_coord(u * fw - 0.5f);
       const float py = clamp_coord(v * fh - 0.5f);
       const int x0 = floor_to_int(px);
@@ -253,4 +253,4 @@ struct TapListSink {
   }
 };
 
-}  // namespace tessera::texture_detail
+}  // namespace tessera::texture::detail

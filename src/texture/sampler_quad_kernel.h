@@ -1,43 +1,39 @@
 // Private: the four-lane form of the isotropic one-probe lookup plan (bilinear / trilinear
 // `Texture::sample`): footprint lengths, LOD clamping, level choice, texel coordinates and
-// bilinear weights of four lookups at once, one lookup per SSE lane. Pure functions.
+// bilinear weights of four lookups at once, one lookup per SIMD lane (core/simd.h's vf4 and
+// vint4). Pure functions.
 //
 // Every lane performs the same IEEE single-precision operations in the same order as the scalar
 // path (`isotropic_lod_inline`, `clamp_lod`, `plan_levels`, `sample_one_probe`), so a lane's
 // results are bit-identical to one scalar lookup: add, sub, mul, sqrt, min/max and compares are
-// lane-wise exact on SSE, and the selects below reproduce the scalar branches (NaN included).
+// lane-wise exact, and the selects below reproduce the scalar branches (NaN included).
 // Only the log2 of the LOD stays scalar (the caller calls std::log2 per lane, the same libm
-// function as the scalar path).
+// function as the scalar path). Compiled only with a vector backend (TESSERA_SIMD_VECTOR, i.e.
+// SSE2); elsewhere the texture keeps its scalar per-lookup path.
 #pragma once
 
-#if defined(__SSE2__)
+#include "core/simd.h"
 
-#include <emmintrin.h>
+#if TESSERA_SIMD_VECTOR
 
 #include "texture/sampler_kernel.h"
 
-namespace tessera::texture_detail {
+namespace tessera::texture::detail {
 
-/// Lane-wise `c ? a : b` for a comparison mask `c`.
-inline __m128 select4(__m128 c, __m128 a, __m128 b) {
-  return _mm_or_ps(_mm_and_ps(c, a), _mm_andnot_ps(c, b));
-}
-inline __m128i select4i(__m128i c, __m128i a, __m128i b) {
-  return _mm_or_si128(_mm_and_si128(c, a), _mm_andnot_si128(c, b));
-}
+using simd::vf4;
+using simd::vint4;
 
 /// `max(|d/dx|, |d/dy|)` of four lookups, the argument of the log2 in `isotropic_lod_inline`:
 /// lane i from gradients (dudx[i], dvdx[i], dudy[i], dvdy[i]) in normalised units, scaled by
 /// the level-0 size (w, h) first exactly as `Texture::sample` does.
-inline __m128 footprint_length4(__m128 dudx, __m128 dvdx, __m128 dudy, __m128 dvdy, float w,
-                                float h) {
-  const __m128 vw = _mm_set1_ps(w), vh = _mm_set1_ps(h);
-  const __m128 tux = _mm_mul_ps(dudx, vw), tvx = _mm_mul_ps(dvdx, vh);
-  const __m128 tuy = _mm_mul_ps(dudy, vw), tvy = _mm_mul_ps(dvdy, vh);
-  const __m128 px = _mm_sqrt_ps(_mm_add_ps(_mm_mul_ps(tux, tux), _mm_mul_ps(tvx, tvx)));
-  const __m128 py = _mm_sqrt_ps(_mm_add_ps(_mm_mul_ps(tuy, tuy), _mm_mul_ps(tvy, tvy)));
-  // px > py ? px : py (maxps returns its second operand when the compare fails, NaN included).
-  return _mm_max_ps(px, py);
+inline vf4 footprint_length4(vf4 dudx, vf4 dvdx, vf4 dudy, vf4 dvdy, float w, float h) {
+  const vf4 vw(w), vh(h);
+  const vf4 tux = dudx * vw, tvx = dvdx * vh;
+  const vf4 tuy = dudy * vw, tvy = dvdy * vh;
+  const vf4 px = simd::sqrt(tux * tux + tvx * tvx);
+  const vf4 py = simd::sqrt(tuy * tuy + tvy * tvy);
+  // px > py ? px : py (max returns its second operand when the compare fails, NaN included).
+  return simd::max(px, py);
 }
 
 /// True when `clamp_lod` maps every LOD <= 0 (that is, log2 of a length in [0, 1]) to a value
@@ -48,34 +44,25 @@ inline bool magnification_shortcut(const SamplerState& sampler) {
 }
 
 /// `clamp_lod` of four raw LODs.
-inline __m128 clamp_lod4(const SamplerState& sampler, const TextureShape& shape, __m128 lod) {
-  const __m128 zero = _mm_setzero_ps();
-  lod = _mm_and_ps(_mm_cmpord_ps(lod, lod), lod);  // NaN -> 0
-  lod = _mm_add_ps(lod, _mm_set1_ps(sampler.lod_bias));
-  const __m128 max_lod = _mm_set1_ps(sampler.max_lod);
-  lod = select4(_mm_cmpgt_ps(lod, max_lod), max_lod, lod);
-  const __m128 min_lod = _mm_set1_ps(sampler.min_lod);
-  lod = select4(_mm_cmplt_ps(lod, min_lod), min_lod, lod);
-  const __m128 last = _mm_set1_ps(float(shape.levels > 1 ? shape.levels - 1 : 0));
-  lod = _mm_andnot_ps(_mm_cmpnge_ps(lod, zero), lod);  // !(lod >= 0) -> 0
-  return select4(_mm_cmpgt_ps(lod, last), last, lod);
+inline vf4 clamp_lod4(const SamplerState& sampler, const TextureShape& shape, vf4 lod) {
+  const vf4 zero;
+  lod = simd::keep_where(simd::cmpord(lod, lod), lod);  // NaN -> 0
+  lod = lod + vf4(sampler.lod_bias);
+  const vf4 max_lod(sampler.max_lod);
+  lod = simd::select(simd::cmpgt(lod, max_lod), max_lod, lod);
+  const vf4 min_lod(sampler.min_lod);
+  lod = simd::select(simd::cmplt(lod, min_lod), min_lod, lod);
+  const vf4 last(float(shape.levels > 1 ? shape.levels - 1 : 0));
+  lod = simd::zero_where(simd::cmpnge(lod, zero), lod);  // !(lod >= 0) -> 0
+  return simd::select(simd::cmpgt(lod, last), last, lod);
 }
 
 /// Lane-wise `mip_dimension(size, level)` for 0 <= level < 31 and size < 2^24:
 /// size * 2^-level is exact in float, its truncation is size >> level, then max(1, .).
-inline __m128i level_size4(int size, __m128i level) {
-  const __m128 scale =
-      _mm_castsi128_ps(_mm_slli_epi32(_mm_sub_epi32(_mm_set1_epi32(127), level), 23));
-  const __m128i s = _mm_cvttps_epi32(_mm_mul_ps(_mm_set1_ps(float(size)), scale));
-  return _mm_sub_epi32(s, _mm_cmpeq_epi32(s, _mm_setzero_si128()));  // 0 -> 1
-}
-
-/// Lane-wise 32-bit a * b for non-negative products below 2^31 (SSE2 has no pmulld).
-inline __m128i mul32(__m128i a, __m128i b) {
-  const __m128i even = _mm_mul_epu32(a, b);
-  const __m128i odd = _mm_mul_epu32(_mm_srli_si128(a, 4), _mm_srli_si128(b, 4));
-  return _mm_unpacklo_epi32(_mm_shuffle_epi32(even, _MM_SHUFFLE(0, 0, 2, 0)),
-                            _mm_shuffle_epi32(odd, _MM_SHUFFLE(0, 0, 2, 0)));
+inline vint4 level_size4(int size, vint4 level) {
+  const vf4 scale = simd::as_float(simd::sll<23>(vint4(127) - level));
+  const vint4 s = simd::to_int_trunc(vf4(float(size)) * scale);
+  return s - simd::cmpeq(s, vint4());  // 0 -> 1
 }
 
 /// Whether `resolve_pair4` handles `mode` for an axis whose level-0 size is `size`: wrap of a
@@ -87,19 +74,19 @@ inline bool vector_address(AddressMode mode, int size) {
 
 /// `resolve_pair(x0, size, mode)` of four lanes for a mode accepted by `vector_address`:
 /// wrap by mask (two's complement x & (size - 1) is x mod size), clamp to [0, size - 1].
-inline void resolve_pair4(__m128i x0, __m128i size, AddressMode mode, __m128i& r0, __m128i& r1) {
-  const __m128i one = _mm_set1_epi32(1);
-  const __m128i top = _mm_sub_epi32(size, one);
-  const __m128i x1 = _mm_add_epi32(x0, one);
+inline void resolve_pair4(vint4 x0, vint4 size, AddressMode mode, vint4& r0, vint4& r1) {
+  const vint4 one(1);
+  const vint4 top = size - one;
+  const vint4 x1 = x0 + one;
   if (mode == AddressMode::wrap) {
-    r0 = _mm_and_si128(x0, top);
-    r1 = _mm_and_si128(x1, top);
+    r0 = x0 & top;
+    r1 = x1 & top;
     return;
   }
   // clamp: x < 0 -> 0, x > size - 1 -> size - 1.
-  const __m128i zero = _mm_setzero_si128();
-  r0 = select4i(_mm_cmpgt_epi32(x0, top), top, _mm_andnot_si128(_mm_cmplt_epi32(x0, zero), x0));
-  r1 = select4i(_mm_cmpgt_epi32(x1, top), top, _mm_andnot_si128(_mm_cmplt_epi32(x1, zero), x1));
+  const vint4 zero;
+  r0 = simd::select(simd::cmpgt(x0, top), top, simd::andnot(simd::cmplt(x0, zero), x0));
+  r1 = simd::select(simd::cmpgt(x1, top), top, simd::andnot(simd::cmplt(x1, zero), x1));
 }
 
 /// The one-probe plan of four lookups (lane i = lookup i): what `sample_one_probe` computes per
@@ -122,98 +109,94 @@ struct OneProbe4 {
 /// Plans four lookups at (u, v) with LODs already clamped by `clamp_lod4`, for a bilinear or
 /// trilinear `sampler.filter`, as `plan_levels` + `sample_one_probe` do per lookup. Level sizes
 /// must be below 2^24 and hold fewer than 2^29 texels (as `check_image_size` guarantees).
-inline void plan_one_probe4(const SamplerState& sampler, const TextureShape& shape, __m128 lod,
-                            __m128 u, __m128 v, OneProbe4& out) {
-  const __m128i one_i = _mm_set1_epi32(1);
-  const __m128 one = _mm_set1_ps(1.0f);
+inline void plan_one_probe4(const SamplerState& sampler, const TextureShape& shape, vf4 lod, vf4 u,
+                            vf4 v, OneProbe4& out) {
+  const vint4 one_i(1);
+  const vf4 one(1.0f);
   out.has_offsets = vector_address(sampler.address_u, shape.width) &&
                     vector_address(sampler.address_v, shape.height);
   const int last = shape.levels - 1;
-  __m128i lev0, lev1;
-  __m128 lw0, lw1;
-  __m128i single;
+  vint4 lev0, lev1;
+  vf4 lw0, lw1;
+  vint4 single;
   if (sampler.filter == TextureFilter::trilinear) {
     // l0 = int(lod) (lod >= 0), frac = lod - l0; one level when l0 >= last or frac <= 0.
-    const __m128i l0 = _mm_cvttps_epi32(lod);
-    const __m128 frac = _mm_sub_ps(lod, _mm_cvtepi32_ps(l0));
-    single = _mm_or_si128(_mm_cmpgt_epi32(l0, _mm_set1_epi32(last - 1)),
-                          _mm_castps_si128(_mm_cmple_ps(frac, _mm_setzero_ps())));
+    const vint4 l0 = simd::to_int_trunc(lod);
+    const vf4 frac = lod - simd::to_float(l0);
+    single = simd::cmpgt(l0, vint4(last - 1)) | simd::cmple(frac, vf4());
     // lod <= last, so min(l0, last) = l0 on the single-level branch too.
     lev0 = l0;
-    lev1 = select4i(single, l0, _mm_add_epi32(l0, one_i));
-    lw0 = select4(_mm_castsi128_ps(single), one, _mm_sub_ps(one, frac));
-    lw1 = _mm_andnot_ps(_mm_castsi128_ps(single), frac);
+    lev1 = simd::select(single, l0, l0 + one_i);
+    lw0 = simd::select(single, one, one - frac);
+    lw1 = simd::zero_where(single, frac);
   } else {
     // GL's nearest-level rule: 0 up to lod 0.5, then ceil(lod + 0.5) - 1, at most last.
-    const __m128 x = _mm_add_ps(lod, _mm_set1_ps(0.5f));
-    const __m128i t = _mm_cvttps_epi32(x);  // x >= 0.5: truncation is floor
+    const vf4 x = lod + vf4(0.5f);
+    const vint4 t = simd::to_int_trunc(x);  // x >= 0.5: truncation is floor
     // ceil(x) - 1 = t - 1 + (x > t)
-    __m128i l = _mm_sub_epi32(_mm_sub_epi32(t, one_i),
-                              _mm_castps_si128(_mm_cmpgt_ps(x, _mm_cvtepi32_ps(t))));
-    l = _mm_andnot_si128(_mm_castps_si128(_mm_cmple_ps(lod, _mm_set1_ps(0.5f))), l);
-    const __m128i vlast = _mm_set1_epi32(last);
-    l = select4i(_mm_cmpgt_epi32(l, vlast), vlast, l);
-    single = _mm_set1_epi32(-1);
+    vint4 l = (t - one_i) - simd::cmpgt(x, simd::to_float(t));
+    l = simd::andnot(simd::cmple(lod, vf4(0.5f)), l);
+    const vint4 vlast(last);
+    l = simd::select(simd::cmpgt(l, vlast), vlast, l);
+    single = vint4(-1);
     lev0 = lev1 = l;
     lw0 = one;
-    lw1 = _mm_setzero_ps();
+    lw1 = vf4();
   }
-  _mm_store_si128(reinterpret_cast<__m128i*>(out.count),
-                  _mm_sub_epi32(_mm_set1_epi32(2), _mm_and_si128(single, one_i)));
-  const __m128i lev[2] = {lev0, lev1};
-  const __m128 lw[2] = {lw0, lw1};
-  const __m128 half = _mm_set1_ps(0.5f);
-  const __m128 lim = _mm_set1_ps(kCoordLimit);
-  const __m128 nlim = _mm_set1_ps(-kCoordLimit);
+  simd::store4_aligned(vint4(2) - (single & one_i), out.count);
+  const vint4 lev[2] = {lev0, lev1};
+  const vf4 lw[2] = {lw0, lw1};
+  const vf4 half(0.5f);
+  const vf4 lim(kCoordLimit);
+  const vf4 nlim(-kCoordLimit);
   for (int li = 0; li < 2; ++li) {
-    const __m128i w = level_size4(shape.width, lev[li]);
-    const __m128i h = level_size4(shape.height, lev[li]);
-    _mm_store_si128(reinterpret_cast<__m128i*>(out.level[li]), lev[li]);
-    _mm_store_si128(reinterpret_cast<__m128i*>(out.w[li]), w);
-    _mm_store_si128(reinterpret_cast<__m128i*>(out.h[li]), h);
-    __m128 frac[2];
+    const vint4 w = level_size4(shape.width, lev[li]);
+    const vint4 h = level_size4(shape.height, lev[li]);
+    simd::store4_aligned(lev[li], out.level[li]);
+    simd::store4_aligned(w, out.w[li]);
+    simd::store4_aligned(h, out.h[li]);
+    vf4 frac[2];
     for (int axis = 0; axis < 2; ++axis) {
-      const __m128 size = _mm_cvtepi32_ps(axis == 0 ? w : h);
-      const __m128 p = _mm_sub_ps(_mm_mul_ps(axis == 0 ? u : v, size), half);
+      const vf4 size = simd::to_float(axis == 0 ? w : h);
+      const vf4 p = (axis == 0 ? u : v) * size - half;
       // clamp_coord, then floor_to_int.
-      const __m128 pc = select4(_mm_cmpgt_ps(p, nlim), _mm_min_ps(p, lim), nlim);
-      const __m128i tr = _mm_cvttps_epi32(pc);
-      const __m128i fl = _mm_add_epi32(tr, _mm_castps_si128(_mm_cmplt_ps(pc, _mm_cvtepi32_ps(tr))));
-      frac[axis] = _mm_sub_ps(pc, _mm_cvtepi32_ps(fl));
-      _mm_store_si128(reinterpret_cast<__m128i*>(axis == 0 ? out.x0[li] : out.y0[li]), fl);
+      const vf4 pc = simd::select(simd::cmpgt(p, nlim), simd::min(p, lim), nlim);
+      const vint4 tr = simd::to_int_trunc(pc);
+      const vint4 fl = tr + simd::cmplt(pc, simd::to_float(tr));
+      frac[axis] = pc - simd::to_float(fl);
+      simd::store4_aligned(fl, axis == 0 ? out.x0[li] : out.y0[li]);
     }
     // wx = (1 - ax, ax), wy = ((1 - ay) * lw, ay * lw); tap (k, j) weighs wx[k] * wy[j].
-    const __m128 wx0 = _mm_sub_ps(one, frac[0]);
-    const __m128 wx1 = frac[0];
-    const __m128 wy0 = _mm_mul_ps(_mm_sub_ps(one, frac[1]), lw[li]);
-    const __m128 wy1 = _mm_mul_ps(frac[1], lw[li]);
-    __m128 t00 = _mm_mul_ps(wx0, wy0), t10 = _mm_mul_ps(wx1, wy0);
-    __m128 t01 = _mm_mul_ps(wx0, wy1), t11 = _mm_mul_ps(wx1, wy1);
-    _MM_TRANSPOSE4_PS(t00, t10, t01, t11);  // now one vector per lane
-    _mm_store_ps(out.weight[li][0], t00);
-    _mm_store_ps(out.weight[li][1], t10);
-    _mm_store_ps(out.weight[li][2], t01);
-    _mm_store_ps(out.weight[li][3], t11);
+    const vf4 wx0 = one - frac[0];
+    const vf4 wx1 = frac[0];
+    const vf4 wy0 = (one - frac[1]) * lw[li];
+    const vf4 wy1 = frac[1] * lw[li];
+    vf4 t00 = wx0 * wy0, t10 = wx1 * wy0;
+    vf4 t01 = wx0 * wy1, t11 = wx1 * wy1;
+    simd::transpose(t00, t10, t01, t11);  // now one vector per lane
+    simd::storef4_aligned(t00, out.weight[li][0]);
+    simd::storef4_aligned(t10, out.weight[li][1]);
+    simd::storef4_aligned(t01, out.weight[li][2]);
+    simd::storef4_aligned(t11, out.weight[li][3]);
     if (out.has_offsets) {
-      __m128i rx0, rx1, ry0, ry1;
-      resolve_pair4(_mm_load_si128(reinterpret_cast<const __m128i*>(out.x0[li])), w,
-                    sampler.address_u, rx0, rx1);
-      resolve_pair4(_mm_load_si128(reinterpret_cast<const __m128i*>(out.y0[li])), h,
-                    sampler.address_v, ry0, ry1);
-      const __m128i row0 = mul32(ry0, w), row1 = mul32(ry1, w);
-      __m128 o00 = _mm_castsi128_ps(_mm_slli_epi32(_mm_add_epi32(row0, rx0), 2));
-      __m128 o10 = _mm_castsi128_ps(_mm_slli_epi32(_mm_add_epi32(row0, rx1), 2));
-      __m128 o01 = _mm_castsi128_ps(_mm_slli_epi32(_mm_add_epi32(row1, rx0), 2));
-      __m128 o11 = _mm_castsi128_ps(_mm_slli_epi32(_mm_add_epi32(row1, rx1), 2));
-      _MM_TRANSPOSE4_PS(o00, o10, o01, o11);
-      _mm_store_ps(reinterpret_cast<float*>(out.offset[li][0]), o00);
-      _mm_store_ps(reinterpret_cast<float*>(out.offset[li][1]), o10);
-      _mm_store_ps(reinterpret_cast<float*>(out.offset[li][2]), o01);
-      _mm_store_ps(reinterpret_cast<float*>(out.offset[li][3]), o11);
+      vint4 rx0, rx1, ry0, ry1;
+      resolve_pair4(simd::load4_aligned(out.x0[li]), w, sampler.address_u, rx0, rx1);
+      resolve_pair4(simd::load4_aligned(out.y0[li]), h, sampler.address_v, ry0, ry1);
+      // Products below 2^31 (fewer than 2^29 texels per level).
+      const vint4 row0 = ry0 * w, row1 = ry1 * w;
+      vint4 o00 = simd::sll<2>(row0 + rx0);
+      vint4 o10 = simd::sll<2>(row0 + rx1);
+      vint4 o01 = simd::sll<2>(row1 + rx0);
+      vint4 o11 = simd::sll<2>(row1 + rx1);
+      simd::transpose(o00, o10, o01, o11);
+      simd::store4_aligned(o00, out.offset[li][0]);
+      simd::store4_aligned(o10, out.offset[li][1]);
+      simd::store4_aligned(o01, out.offset[li][2]);
+      simd::store4_aligned(o11, out.offset[li][3]);
     }
   }
 }
 
-}  // namespace tessera::texture_detail
+}  // namespace tessera::texture::detail
 
-#endif  // __SSE2__
+#endif  // TESSERA_SIMD_VECTOR

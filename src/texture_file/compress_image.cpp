@@ -1,13 +1,15 @@
 // The image-to-texture pipeline shared by `tessera compress` (single file and batch), the
 // Python module and tessera.batch: alpha detection, the power-of-two rule, the mip chain and
 // the per-level encodes.
+#include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <functional>
 
 #include "tessera/mipmap.h"
 #include "tessera/texture_file.h"
 
-namespace tessera {
+namespace tessera::texture_file {
 
 namespace {
 
@@ -39,18 +41,19 @@ Result<CompressedImage> compress_image(ImageRGBA8 image, const CompressOptions& 
   // An alpha channel that is opaque everywhere (common in RGBA PNGs) gives an RGB texture.
   if (image.has_alpha) image.has_alpha = any_translucent(image);
 
-  MipmapOptions filter;
+  image::MipmapOptions filter;
   filter.srgb = options.srgb;
   filter.threads = options.encode.threads;
   if (!pvrtc::check_dimensions(image.width, image.height, name).ok()) {
-    const int pw = nearest_power_of_two(image.width), ph = nearest_power_of_two(image.height);
+    const int pw = image::nearest_power_of_two(image.width),
+              ph = image::nearest_power_of_two(image.height);
     if (!options.resize_pot) {
       return Status::error(ErrorCode::invalid_argument,
                            name + ": size " + size_text(image.width, image.height) +
                                " is not a power of two (PVRTC needs power-of-two sides); use "
                                "--resize-pot to resample to " + size_text(pw, ph));
     }
-    Result<ImageRGBA8> resized = resize_image(image, pw, ph, filter);
+    Result<ImageRGBA8> resized = image::resize_image(image, pw, ph, filter);
     if (!resized) return resized.status();
     image = std::move(resized).value();
     out.resized = true;
@@ -61,7 +64,7 @@ Result<CompressedImage> compress_image(ImageRGBA8 image, const CompressOptions& 
   std::vector<ImageRGBA8> mips;
   std::vector<const ImageRGBA8*> chain = {&image};
   if (options.mipmaps) {
-    Result<std::vector<ImageRGBA8>> c = generate_mipmaps(image, filter);
+    Result<std::vector<ImageRGBA8>> c = image::generate_mipmaps(image, filter);
     if (!c) return c.status();
     mips = std::move(c).value();
     chain.clear();
@@ -75,8 +78,27 @@ Result<CompressedImage> compress_image(ImageRGBA8 image, const CompressOptions& 
   tex.has_alpha = image.has_alpha;
   tex.srgb = options.srgb;
   const auto t0 = std::chrono::steady_clock::now();
+  // Progress over the whole chain: each level's fraction weighted by its pixels (the encoders'
+  // costs are about linear in them); never backwards, and 1.0 once, at the end.
+  const std::function<void(double)>& hook = options.encode.progress;
+  double total_pixels = 0, pixels_before = 0, last = -1;
+  for (const ImageRGBA8* level : chain) total_pixels += double(level->pixel_count());
+  auto report = [&](double f) {
+    f = std::min(f, 1.0);
+    if (f <= last) return;
+    last = f;
+    hook(f);
+  };
+  pvrtc::EncodeOptions level_options = options.encode;
   for (const ImageRGBA8* level : chain) {
-    Result<std::vector<std::uint8_t>> enc = pvrtc::encode(*level, options.encode);
+    if (hook) {
+      const double pixels = double(level->pixel_count());
+      level_options.progress = [&, pixels](double f) {
+        report((pixels_before + f * pixels) / total_pixels);
+      };
+    }
+    Result<std::vector<std::uint8_t>> enc = pvrtc::encode(*level, level_options);
+    pixels_before += double(level->pixel_count());
     if (!enc) {
       Status s = enc.status();
       s.message = name + ": " + s.message;
@@ -84,6 +106,7 @@ Result<CompressedImage> compress_image(ImageRGBA8 image, const CompressOptions& 
     }
     tex.levels.push_back(std::move(enc).value());
   }
+  if (hook) report(1.0);
   out.encode_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (options.mipmaps) {
@@ -94,4 +117,4 @@ Result<CompressedImage> compress_image(ImageRGBA8 image, const CompressOptions& 
   return out;
 }
 
-}  // namespace tessera
+}  // namespace tessera::texture_file

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace tessera::container {
+namespace tessera::texture_file::container {
 
 inline std::uint32_t load_u32(std::span<const std::uint8_t> b, std::size_t at, bool swap = false) {
   std::uint32_t v = std::uint32_t(b[at]) | std::uint32_t(b[at + 1]) << 8 |
@@ -41,4 +41,4 @@ inline std::string plural_bytes(std::uint64_t n) {
   return std::to_string(n) + (n == 1 ? " byte" : " bytes");
 }
 
-}  // namespace tessera::container
+}  // namespace tessera::texture_file::container

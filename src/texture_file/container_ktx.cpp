@@ -12,7 +12,7 @@
 #include "tessera/texture_file.h"
 #include "texture_file/container_bytes.h"
 
-namespace tessera {
+namespace tessera::texture_file {
 
 namespace {
 
@@ -197,7 +197,7 @@ Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const 
   return tex;
 }
 
-Result<std::vector<std::uint8_t>> serialize_ktx1(const CompressedTexture& texture) {
+Result<std::vector<std::uint8_t>> serialise_ktx1(const CompressedTexture& texture) {
   if (Status s = validate_texture(texture, "KTX output"); !s.ok()) return s;
   std::uint32_t internal = 0;
   for (const GlFormat& f : kFormats) {
@@ -236,4 +236,4 @@ Result<std::vector<std::uint8_t>> serialize_ktx1(const CompressedTexture& textur
   return out;
 }
 
-}  // namespace tessera
+}  // namespace tessera::texture_file

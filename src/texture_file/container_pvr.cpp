@@ -10,7 +10,7 @@
 #include "tessera/texture_file.h"
 #include "texture_file/container_bytes.h"
 
-namespace tessera {
+namespace tessera::texture_file {
 
 namespace {
 
@@ -166,7 +166,7 @@ Result<CompressedTexture> parse_pvr3(std::span<const std::uint8_t> bytes, const 
   return tex;
 }
 
-Result<std::vector<std::uint8_t>> serialize_pvr3(const CompressedTexture& texture) {
+Result<std::vector<std::uint8_t>> serialise_pvr3(const CompressedTexture& texture) {
   if (Status s = validate_texture(texture, "PVR v3 output"); !s.ok()) return s;
   std::size_t total = kHeaderSize + 15;
   for (const auto& l : texture.levels) total += l.size();
@@ -196,4 +196,4 @@ Result<std::vector<std::uint8_t>> serialize_pvr3(const CompressedTexture& textur
   return out;
 }
 
-}  // namespace tessera
+}  // namespace tessera::texture_file

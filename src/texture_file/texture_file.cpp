@@ -9,7 +9,7 @@
 #include "tessera/mipmap.h"
 #include "texture_file/container_bytes.h"
 
-namespace tessera {
+namespace tessera::texture_file {
 
 int CompressedTexture::level_width(int level) const { return mip_dimension(width, level); }
 int CompressedTexture::level_height(int level) const { return mip_dimension(height, level); }
@@ -88,7 +88,7 @@ Status validate_texture(const CompressedTexture& texture, const std::string& wha
 }
 
 Result<ImageRGBA8> decode_texture_level(const CompressedTexture& texture, int level,
-                                        int threads) {
+                                        const Parallel& parallel) {
   if (level < 0 || level >= texture.level_count()) {
     return Status::error(ErrorCode::invalid_argument,
                          "level " + std::to_string(level) + " is out of range (the texture has " +
@@ -97,7 +97,7 @@ Result<ImageRGBA8> decode_texture_level(const CompressedTexture& texture, int le
   }
   Result<ImageRGBA8> img =
       pvrtc::decode(texture.levels[std::size_t(level)], texture.format,
-                    texture.level_width(level), texture.level_height(level), threads);
+                    texture.level_width(level), texture.level_height(level), parallel);
   if (!img) return img;
   if (!texture.has_alpha) {
     for (std::size_t i = 3; i < img->pixels.size(); i += 4) img->pixels[i] = 255;
@@ -124,9 +124,9 @@ Result<CompressedTexture> parse_texture(std::span<const std::uint8_t> bytes,
 }
 
 Result<CompressedTexture> read_texture_file(const std::string& path) {
-  Result<std::vector<std::uint8_t>> bytes = read_file(path);
+  Result<std::vector<std::uint8_t>> bytes = io::read_file(path);
   if (!bytes) return bytes.status();
-  return parse_texture(*bytes, io_name(path));
+  return parse_texture(*bytes, io::io_name(path));
 }
 
 Status write_texture_file(const std::string& path, const CompressedTexture& texture) {
@@ -134,17 +134,17 @@ Status write_texture_file(const std::string& path, const CompressedTexture& text
   Result<std::vector<std::uint8_t>> bytes = std::vector<std::uint8_t>{};
   switch (container_from_extension(path)) {
     case ContainerFormat::pvr3:
-      bytes = serialize_pvr3(texture);
+      bytes = serialise_pvr3(texture);
       break;
     case ContainerFormat::ktx1:
-      bytes = serialize_ktx1(texture);
+      bytes = serialise_ktx1(texture);
       break;
     case ContainerFormat::unknown:
       return Status::error(ErrorCode::invalid_argument,
                            path + ": unknown texture extension (use .pvr or .ktx)");
   }
   if (!bytes) return bytes.status();
-  return write_file_atomic(path, *bytes);
+  return io::write_file_atomic(path, *bytes);
 }
 
-}  // namespace tessera
+}  // namespace tessera::texture_file

@@ -1,7 +1,7 @@
 // tessera-glpeer — renders a scene with OpenGL 4.5 core through tessera's EGL runtime
 // (tessera/gl.h: an EGL device or the surfaceless platform, Mesa llvmpipe on a machine without
 // a GPU; --egl-device / TESSERA_EGL_DEVICE choose), as the peer of tessera's software
-// rasterizer.
+// rasteriser.
 //
 // Same inputs and conventions as `tessera render`: the scene loaders of tessera/scene.h, the
 // camera of --camera / --orbit, an unlit shader (base colour factor x base-colour texture,
@@ -175,7 +175,7 @@ int main(int argc, char** argv) {
   target_options.width = width;
   target_options.height = height;
   target_options.samples = msaa;
-  target_options.color = gl::ColorFormat::rgba32f;
+  target_options.colour = gl::ColourFormat::rgba32f;
   Result<gl::RenderTarget> ms_target = gl::create_render_target(target_options);
   if (!ms_target) return fail(ms_target.status().message);
   target_options.samples = 1;
@@ -190,7 +190,7 @@ int main(int argc, char** argv) {
   const Mat4 vp = camera.view_projection(float(width) / float(height));
   glUniformMatrix4fv(program->uniform("view_projection"), 1, GL_FALSE, &vp.m[0][0]);
   glUniform1i(program->uniform("base_texture"), 0);
-  const GLint loc_color = program->uniform("base_color");
+  const GLint loc_base_color = program->uniform("base_color");
   const GLint loc_has = program->uniform("has_texture");
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -213,7 +213,7 @@ int main(int argc, char** argv) {
       const scene::Material& m = sc.materials[std::size_t(g.material)];
       const float white[4] = {1, 1, 1, 1};
       const bool flat = shading == "flat";
-      glUniform4fv(loc_color, 1, flat ? white : m.base_color);
+      glUniform4fv(loc_base_color, 1, flat ? white : m.base_color);
       const bool has = !flat && m.base_color_texture >= 0;
       glUniform1i(loc_has, has ? 1 : 0);
       if (has) glBindTexture(GL_TEXTURE_2D, textures[std::size_t(m.base_color_texture)].get());
@@ -235,7 +235,7 @@ int main(int argc, char** argv) {
   Result<ImageRGBAF> lin = gl::read_framebuffer_rgbaf(fbo, 0, width, height);
   if (!lin) return fail(lin.status().message);
   if (Status s = gl::check_errors("render"); !s.ok()) return fail(s.message);
-  if (Status s = write_png(out_path, to_srgb8(*lin)); !s.ok()) return fail(s.message);
+  if (Status s = io::write_png(out_path, to_srgb8(*lin)); !s.ok()) return fail(s.message);
 
   std::vector<double> sorted = times, gpu_sorted = gpu_times;
   std::sort(sorted.begin(), sorted.end());
@@ -257,7 +257,7 @@ int main(int argc, char** argv) {
     std::printf("%s\n", j.dump(2).c_str());
   } else if (!json_path.empty()) {
     const std::string text = j.dump(2) + "\n";
-    if (Status s = write_file_atomic(
+    if (Status s = io::write_file_atomic(
             json_path, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
         !s.ok()) {
       return fail(s.message);

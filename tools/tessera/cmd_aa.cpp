@@ -124,7 +124,7 @@ int run_aa(const AaArgs& args, const GlobalOptions& global) {
   if (Status s = write_aa_report(c, *res, args.scene, out, &md); !s.ok()) return fail(s);
   if (args.json) {
     Result<std::vector<std::uint8_t>> text =
-        read_file((std::filesystem::path(out) / "aa.json").string());
+        io::read_file((std::filesystem::path(out) / "aa.json").string());
     if (!text) return fail(text.status());
     std::fwrite(text->data(), 1, text->size(), stdout);
     std::printf("\n");

@@ -13,6 +13,7 @@ namespace {
 struct CompareArgs {
   std::string a, b;
   bool json = false;
+  bool quiet = false;
   std::string heatmap;
 };
 
@@ -26,36 +27,42 @@ int run_compare(const CompareArgs& args, const GlobalOptions& global) {
   }
   if (int rc = refuse_binary_to_terminal(args.heatmap, "a PNG heatmap")) return rc;
   if (!args.heatmap.empty()) {
-    if (Result<ImageFormat> f = image_format_for_output(args.heatmap); !f) {
+    if (Result<io::ImageFormat> f = io::image_format_for_output(args.heatmap); !f) {
       return usage_error("--heatmap: " + f.status().message);
     }
   }
-  Result<ImageRGBA8> a = read_image(args.a);
+  Result<ImageRGBA8> a = io::read_image(args.a);
   if (!a) return fail(a.status());
-  Result<ImageRGBA8> b = read_image(args.b);
+  Result<ImageRGBA8> b = io::read_image(args.b);
   if (!b) return fail(b.status());
   if (a->width != b->width || a->height != b->height) {
     return fail(Status::error(ErrorCode::size_mismatch,
                               args.b + ": size " + std::to_string(b->width) + "x" +
                                   std::to_string(b->height) + " differs from " +
-                                  io_name(args.a) + " (" +
-                                  std::to_string(a->width) + "x" + std::to_string(a->height) +
-                                  ")"));
+                                  io::io_name(args.a) + " (" + std::to_string(a->width) + "x" +
+                                  std::to_string(a->height) + ")"));
   }
-  CompareOptions options;
-  options.threads = global.threads;
-  Result<ImageComparison> r = compare_images(*a, *b, options);
-  if (!r) return fail(r.status());
+  // -q: both images read and have one size (the exit status says so); no metrics to print,
+  // so none are computed, but the heatmap is still written.
+  const bool print = args.json || !args.quiet;
+  Result<metrics::ImageComparison> r = metrics::ImageComparison{};
+  if (print) {
+    metrics::CompareOptions options;
+    options.threads = global.threads;
+    r = metrics::compare_images(*a, *b, options);
+    if (!r) return fail(r.status());
+  }
   if (!args.heatmap.empty()) {
-    Result<ImageRGBA8> map = difference_heatmap(*a, *b);
+    Result<ImageRGBA8> map = metrics::difference_heatmap(*a, *b);
     if (!map) return fail(map.status());
-    if (Status s = write_image(args.heatmap, *map); !s.ok()) return fail(s);
+    if (Status s = io::write_image(args.heatmap, *map); !s.ok()) return fail(s);
   }
+  if (!print) return kExitOk;
   // With the heatmap on stdout, the results go to stderr.
   std::FILE* out = text_stream(args.heatmap == "-");
   if (args.json) {
     nlohmann::json j = {
-        {"a", io_name(args.a)},
+        {"a", io::io_name(args.a)},
         {"b", args.b},
         {"width", a->width},
         {"height", a->height},
@@ -73,7 +80,7 @@ int run_compare(const CompareArgs& args, const GlobalOptions& global) {
     std::fprintf(out, "%s\n", j.dump(2).c_str());
     return kExitOk;
   }
-  std::fprintf(out, "%s vs %s (%dx%d)\n", io_name(args.a).c_str(), args.b.c_str(), a->width,
+  std::fprintf(out, "%s vs %s (%dx%d)\n", io::io_name(args.a).c_str(), args.b.c_str(), a->width,
                a->height);
   if (std::isfinite(r->psnr_rgb)) {
     std::fprintf(out, "PSNR RGB   : %.4f dB\n", r->psnr_rgb);
@@ -105,6 +112,9 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_flag("--json", args->json,
                 "Print one JSON object (keys psnr_rgb, ssim_gray, mse, max_abs, ...; "
                 "psnr_rgb is null for identical images)");
+  sub->add_flag("-q,--quiet", args->quiet,
+                "Print nothing: exit status 0 when both images read and have the same size (1 "
+                "otherwise); --heatmap is still written");
   sub->add_option("--heatmap", args->heatmap,
                   "Also write a difference heatmap here (.png, .bmp, .tga or .jpg by extension; "
                   "'-' = PNG on stdout, the results then go to stderr)");

@@ -1,13 +1,16 @@
 // tessera compress: one image to one texture (or stdout), or many into a folder (batch mode,
 // compress_batch.cpp).
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "compress.h"
+#include "progress.h"
 #include "tessera/io.h"
 #include "tessera/metrics.h"
 
@@ -52,40 +55,57 @@ nlohmann::json sidecar_json(const CompressArgs& args, const std::string& contain
 
 int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
   const std::string& input = args.inputs.front();
-  ContainerFormat container = container_from_extension(args.output);
+  texture_file::ContainerFormat container = texture_file::container_from_extension(args.output);
   if (!args.container.empty()) {
-    container = args.container == "ktx" ? ContainerFormat::ktx1 : ContainerFormat::pvr3;
+    container = args.container == "ktx" ? texture_file::ContainerFormat::ktx1
+                                        : texture_file::ContainerFormat::pvr3;
   } else if (args.output == "-") {
-    container = ContainerFormat::pvr3;
+    container = texture_file::ContainerFormat::pvr3;
   }
-  if (container == ContainerFormat::unknown) {
+  if (container == texture_file::ContainerFormat::unknown) {
     return usage_error(args.output +
                        ": unknown output extension (use .pvr or .ktx, or --container pvr|ktx)");
   }
   if (int rc = refuse_binary_to_terminal(args.output, "a compressed texture")) return rc;
-  const std::string container_word = container == ContainerFormat::ktx1 ? "ktx" : "pvr";
+  const std::string container_word =
+      container == texture_file::ContainerFormat::ktx1 ? "ktx" : "pvr";
   if (args.skip_up_to_date && up_to_date(args, container_word, input, args.output)) {
     if (!args.quiet) {
       std::fprintf(text_stream(args.json), "skipped %s: up to date\n", args.output.c_str());
     }
     return kExitOk;
   }
-  const std::string input_name = io_name(input);
-  Result<ImageRGBA8> loaded = read_image(input);
+  const std::string input_name = io::io_name(input);
+  Result<ImageRGBA8> loaded = io::read_image(input);
   if (!loaded) return fail(loaded.status());
-  Result<CompressedImage> made =
-      compress_image(std::move(loaded).value(), compress_options(args, global.threads),
-                     input_name);
+  texture_file::CompressOptions options = compress_options(args, global.threads);
+  // A progress bar on a terminal for an encode that takes a while (from 0.5 s on; never with
+  // -q or --json): the encoder's progress over the whole mip chain.
+  const bool show_progress = !args.quiet && !args.json && ::isatty(STDERR_FILENO);
+  ProgressBar bar(show_progress, 0.5);
+  if (show_progress) {
+    double mpixels = 0;  // of the whole chain, for the rate
+    for (int w = loaded->width, h = loaded->height;; w = std::max(1, w / 2),
+             h = std::max(1, h / 2)) {
+      mpixels += double(w) * double(h) / 1e6;
+      if (!args.mipmaps || (w == 1 && h == 1)) break;
+    }
+    options.encode.progress = [&bar, mpixels](double f) { bar.update(f, "", f * mpixels); };
+  }
+  Result<texture_file::CompressedImage> made =
+      texture_file::compress_image(std::move(loaded).value(), options, input_name);
+  bar.clear();
   if (!made) return fail(made.status());
-  const CompressedTexture& tex = made->texture;
+  const texture_file::CompressedTexture& tex = made->texture;
 
   std::size_t bytes = 0;
   {
-    Result<std::vector<std::uint8_t>> file =
-        container == ContainerFormat::ktx1 ? serialize_ktx1(tex) : serialize_pvr3(tex);
+    Result<std::vector<std::uint8_t>> file = container == texture_file::ContainerFormat::ktx1
+                                                 ? texture_file::serialise_ktx1(tex)
+                                                 : texture_file::serialise_pvr3(tex);
     if (!file) return fail(file.status());
     bytes = file->size();
-    if (Status s = write_file_atomic(args.output, *file); !s.ok()) return fail(s);
+    if (Status s = io::write_file_atomic(args.output, *file); !s.ok()) return fail(s);
   }
   if (args.skip_up_to_date && args.output != "-") {
     if (Status s = write_sidecar(args, container_word, input, args.output); !s.ok()) {
@@ -95,14 +115,14 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
   if (args.quiet && !args.json) return kExitOk;
 
   // Quality of level 0 against the (possibly resized) input, as astcenc's -tl mode reports it.
-  Result<ImageRGBA8> decoded = decode_texture_level(tex, 0, global.threads);
+  Result<ImageRGBA8> decoded = texture_file::decode_texture_level(tex, 0, {global.threads});
   if (!decoded) return fail(decoded.status());
-  CompareOptions co;
+  metrics::CompareOptions co;
   co.threads = global.threads;
-  Result<ImageComparison> cmp = compare_images(made->source, *decoded, co);
+  Result<metrics::ImageComparison> cmp = metrics::compare_images(made->source, *decoded, co);
   if (!cmp) return fail(cmp.status());
   std::FILE* out = text_stream(args.output == "-");
-  const std::string output_name = io_name(args.output, true);
+  const std::string output_name = io::io_name(args.output, true);
   if (!args.json) {
     char alpha[48] = "";
     if (tex.has_alpha) std::snprintf(alpha, sizeof alpha, ", alpha %.2f dB", cmp->psnr_alpha);
@@ -110,7 +130,7 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
                  "wrote %s: %s %s, %s%s, %d level(s), %zu bytes, encoded in %.1f ms (%s); "
                  "PSNR %.2f dB%s, SSIM %.4f\n",
                  output_name.c_str(), size_text(tex.width, tex.height).c_str(),
-                 texture_format_name(tex).c_str(), args.srgb ? "sRGB" : "linear",
+                 texture_file::texture_format_name(tex).c_str(), args.srgb ? "sRGB" : "linear",
                  made->resized ? " (resized with Lanczos-3)" : "", tex.level_count(), bytes,
                  made->encode_ms, args.quality.c_str(), cmp->psnr_rgb, alpha, cmp->ssim_gray);
     return kExitOk;
@@ -118,7 +138,7 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
   nlohmann::json j = {
       {"input", input_name},
       {"output", output_name},
-      {"container", container_name(container)},
+      {"container", texture_file::container_name(container)},
       {"width", tex.width},
       {"height", tex.height},
       {"resized", made->resized},
@@ -142,8 +162,8 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
 
 }  // namespace
 
-CompressOptions compress_options(const CompressArgs& args, int threads) {
-  CompressOptions o;
+texture_file::CompressOptions compress_options(const CompressArgs& args, int threads) {
+  texture_file::CompressOptions o;
   o.encode.format =
       args.format == "pvrtc1-2" ? pvrtc::Format::pvrtc1_2bpp : pvrtc::Format::pvrtc1_4bpp;
   o.encode.quality = args.quality == "fast"   ? pvrtc::Quality::fast
@@ -173,7 +193,7 @@ bool up_to_date(const CompressArgs& args, const std::string& container, const st
     return std::int64_t(s.st_mtim.tv_sec) * 1000000000 + s.st_mtim.tv_nsec;
   };
   if (ns(out) <= ns(in)) return false;
-  Result<std::vector<std::uint8_t>> text = read_file(output + ".json", 1 << 20);
+  Result<std::vector<std::uint8_t>> text = io::read_file(output + ".json", 1 << 20);
   if (!text) return false;
   const nlohmann::json stored = nlohmann::json::parse(text->begin(), text->end(), nullptr, false);
   return !stored.is_discarded() && stored == sidecar_json(args, container, input);
@@ -182,8 +202,8 @@ bool up_to_date(const CompressArgs& args, const std::string& container, const st
 Status write_sidecar(const CompressArgs& args, const std::string& container,
                      const std::string& input, const std::string& output) {
   const std::string text = sidecar_record(args, container, input);
-  return write_file_atomic(output + ".json",
-                           {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
+  return io::write_file_atomic(output + ".json",
+                               {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
 }
 
 Command add_compress_command(CLI::App& app, const GlobalOptions& global) {

@@ -1,6 +1,7 @@
 // tessera demo [-o DIR]: runs every system on built-in content and writes DIR/report.html.
 #include <chrono>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "cli.h"
 #include "demo.h"
@@ -12,6 +13,7 @@ struct DemoArgs {
   std::string out = "out";
   int size = 256;
   bool quiet = false;
+  bool json = false;
 };
 
 int run_demo(const DemoArgs& args, const GlobalOptions& global) {
@@ -25,6 +27,8 @@ int run_demo(const DemoArgs& args, const GlobalOptions& global) {
   DemoOptions options;
   options.threads = global.threads;
   options.size = args.size;
+  nlohmann::json summary = nlohmann::json::object();
+  if (args.json) options.summary = &summary;
   const auto t0 = std::chrono::steady_clock::now();
   if (Status s = demo_images_section(report, options); !s.ok()) return fail(s);
   if (Status s = demo_pvrtc_section(report, options); !s.ok()) return fail(s);
@@ -39,7 +43,17 @@ int run_demo(const DemoArgs& args, const GlobalOptions& global) {
   report.paragraph(buf);
   report.footer(report_footer());
   if (Status s = report.write(); !s.ok()) return fail(s);
-  if (!args.quiet) std::printf("wrote %s/report.html\n", args.out.c_str());
+  const std::string path = args.out + "/report.html";
+  if (!args.quiet) std::fprintf(text_stream(args.json), "wrote %s\n", path.c_str());
+  if (args.json) {
+    // The report's headline numbers (its tables), then where it is.
+    nlohmann::json j = {{"report", path},
+                        {"size", args.size},
+                        {"threads", global.threads > 0 ? global.threads : default_thread_count()},
+                        {"ms", ms}};
+    j.update(summary);
+    std::printf("%s\n", j.dump(2).c_str());
+  }
   return kExitOk;
 }
 }  // namespace
@@ -55,7 +69,10 @@ Command add_demo_command(CLI::App& app, const GlobalOptions& global) {
                   "nearest power of two, and says so)")
       ->check(CLI::Range(16, 4096))
       ->capture_default_str();
-  sub->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
+  sub->add_flag("-q,--quiet", args->quiet, "Print nothing on success (with --json: the JSON only)");
+  sub->add_flag("--json", args->json,
+                "Print one JSON object: the report's path and the numbers of its tables (keys "
+                "images, pvrtc, render, seams, aa); other text goes to stderr");
   return {sub, [args, &global] { return run_demo(*args, global); }};
 }
 

@@ -25,12 +25,12 @@ struct DecompressArgs {
 };
 
 int run_decompress(const DecompressArgs& args, const GlobalOptions& global) {
-  if (Result<ImageFormat> f = image_format_for_output(args.output); !f) {
+  if (Result<io::ImageFormat> f = io::image_format_for_output(args.output); !f) {
     return usage_error("-o: " + f.status().message);
   }
   if (int rc = refuse_binary_to_terminal(args.output, "an image")) return rc;
-  const std::string input_name = io_name(args.input);
-  Result<CompressedTexture> tex = read_texture_file(args.input);
+  const std::string input_name = io::io_name(args.input);
+  Result<texture_file::CompressedTexture> tex = texture_file::read_texture_file(args.input);
   if (!tex) return fail(tex.status());
   if (args.level < 0 || args.level >= tex->level_count()) {
     return fail(Status::error(ErrorCode::invalid_argument,
@@ -39,25 +39,22 @@ int run_decompress(const DecompressArgs& args, const GlobalOptions& global) {
                                   std::to_string(tex->level_count()) + " level(s), 0 to " +
                                   std::to_string(tex->level_count() - 1) + ")"));
   }
-  Result<ImageRGBA8> img = decode_texture_level(*tex, args.level, global.threads);
+  Result<ImageRGBA8> img = texture_file::decode_texture_level(*tex, args.level, {global.threads});
   if (!img) {
     Status s = img.status();
     s.message = input_name + ": " + s.message;
     return fail(s);
   }
-  if (Status s = write_image(args.output, *img); !s.ok()) return fail(s);
+  if (Status s = io::write_image(args.output, *img); !s.ok()) return fail(s);
   std::FILE* out = text_stream(args.output == "-");
   if (args.json) {
-    const nlohmann::json j = {{"input", input_name},
-                              {"output", io_name(args.output, true)},
-                              {"level", args.level},
-                              {"width", img->width},
-                              {"height", img->height},
-                              {"has_alpha", img->has_alpha}};
+    const nlohmann::json j = {{"input", input_name},   {"output", io::io_name(args.output, true)},
+                              {"level", args.level},   {"width", img->width},
+                              {"height", img->height}, {"has_alpha", img->has_alpha}};
     std::fprintf(out, "%s\n", j.dump(2).c_str());
   } else if (!args.quiet) {
-    std::fprintf(out, "wrote %s: level %d, %s\n", io_name(args.output, true).c_str(), args.level,
-                 size_text(img->width, img->height).c_str());
+    std::fprintf(out, "wrote %s: level %d, %s\n", io::io_name(args.output, true).c_str(),
+                 args.level, size_text(img->width, img->height).c_str());
   }
   return kExitOk;
 }
@@ -69,15 +66,17 @@ int run_decompress(const DecompressArgs& args, const GlobalOptions& global) {
 struct InfoArgs {
   std::string input;
   bool json = false;
+  bool quiet = false;
 };
 
 int run_info(const InfoArgs& args) {
-  Result<std::vector<std::uint8_t>> bytes = read_file(args.input);
+  Result<std::vector<std::uint8_t>> bytes = io::read_file(args.input);
   if (!bytes) return fail(bytes.status());
-  const std::string name = io_name(args.input);
-  Result<CompressedTexture> tex = parse_texture(*bytes, name);
+  const std::string name = io::io_name(args.input);
+  Result<texture_file::CompressedTexture> tex = texture_file::parse_texture(*bytes, name);
   if (!tex) return fail(tex.status());
-  const ContainerFormat container = detect_container(*bytes);
+  if (args.quiet && !args.json) return kExitOk;  // -q: the file parsed and validated
+  const texture_file::ContainerFormat container = texture_file::detect_container(*bytes);
   if (args.json) {
     nlohmann::json levels = nlohmann::json::array();
     for (int i = 0; i < tex->level_count(); ++i) {
@@ -88,8 +87,8 @@ int run_info(const InfoArgs& args) {
     }
     nlohmann::json j = {
         {"file", name},
-        {"container", container_name(container)},
-        {"format", texture_format_name(*tex)},
+        {"container", texture_file::container_name(container)},
+        {"format", texture_file::texture_format_name(*tex)},
         {"bpp", tex->format == pvrtc::Format::pvrtc1_4bpp ? 4 : 2},
         {"has_alpha", tex->has_alpha},
         {"width", tex->width},
@@ -103,8 +102,8 @@ int run_info(const InfoArgs& args) {
     return kExitOk;
   }
   std::printf("%s\n", name.c_str());
-  std::printf("  container     : %s\n", container_name(container));
-  std::printf("  format        : %s\n", texture_format_name(*tex).c_str());
+  std::printf("  container     : %s\n", texture_file::container_name(container));
+  std::printf("  format        : %s\n", texture_file::texture_format_name(*tex).c_str());
   std::printf("  size          : %s\n", size_text(tex->width, tex->height).c_str());
   std::printf("  colour space  : %s\n", tex->srgb ? "sRGB" : "linear");
   std::printf("  premultiplied : %s\n", tex->premultiplied ? "yes" : "no");
@@ -143,6 +142,9 @@ Command add_info_command(CLI::App& app, const GlobalOptions& /*global*/) {
   sub->add_option("FILE", args->input, "Texture file (PVR v3 or KTX 1.1; '-' = stdin)")
       ->required();
   sub->add_flag("--json", args->json, "Print one JSON object");
+  sub->add_flag("-q,--quiet", args->quiet,
+                "Print nothing: only validate the file (exit status 0 = a valid texture, 1 = "
+                "not)");
   return {sub, [args] { return run_info(*args); }};
 }
 

@@ -1,5 +1,5 @@
 // tessera render SCENE ...: one frame (or a timed sequence) of a scene with the software
-// rasterizer, unlit textured shading.
+// rasteriser, unlit textured shading.
 #include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -19,7 +19,7 @@ struct RenderArgs {
 };
 
 int run_render(const RenderArgs& args, const GlobalOptions& global) {
-  if (Result<ImageFormat> f = image_format_for_output(args.out); !f) {
+  if (Result<io::ImageFormat> f = io::image_format_for_output(args.out); !f) {
     return usage_error("-o: " + f.status().message);
   }
   if (int rc = refuse_binary_to_terminal(args.out, "an image")) return rc;
@@ -29,7 +29,7 @@ int run_render(const RenderArgs& args, const GlobalOptions& global) {
   Result<scene::Camera> camera = scene::camera_from_text(*sc, args.camera, args.orbit);
   if (!camera) return usage_error(camera.status().message);
   Result<std::unique_ptr<render::SceneRenderer>> renderer =
-      render::SceneRenderer::create(*sc, global.threads);
+      render::SceneRenderer::create(*sc, {global.threads});
   if (!renderer) return fail(renderer.status());
   render::FrameOptions fo;
   fo.width = args.width;
@@ -47,7 +47,7 @@ int run_render(const RenderArgs& args, const GlobalOptions& global) {
     times.push_back(frame->ms_total());
     last = std::move(*frame);
   }
-  if (Status s = write_image(args.out, last.image); !s.ok()) return fail(s);
+  if (Status s = io::write_image(args.out, last.image); !s.ok()) return fail(s);
   const double median_ms = median(times);
   std::FILE* out = text_stream(args.out == "-");
   const std::uint64_t samples = std::uint64_t(args.width) * std::uint64_t(args.height) *
@@ -61,7 +61,7 @@ int run_render(const RenderArgs& args, const GlobalOptions& global) {
                         {"filter", args.filter},
                         {"threads", global.threads > 0 ? global.threads : default_thread_count()},
                         {"triangles", sc->triangle_count()},
-                        {"triangles_rasterized", last.stats.triangles_setup},
+                        {"triangles_rasterised", last.stats.triangles_setup},
                         {"samples", samples},
                         {"shader_invocations", last.stats.lanes_shaded},
                         {"frames", args.frames},
@@ -70,13 +70,13 @@ int run_render(const RenderArgs& args, const GlobalOptions& global) {
                         {"ms_transform", last.ms_transform},
                         {"ms_raster", last.ms_raster},
                         {"ms_resolve", last.ms_resolve},
-                        {"output", io_name(args.out, true)}};
+                        {"output", io::io_name(args.out, true)}};
     std::fprintf(out, "%s\n", j.dump(2).c_str());
   } else if (!args.quiet) {
     std::fprintf(out,
                  "%s: %zu triangles, %dx%d, msaa %d, ssaa %d, %.2f ms/frame (median of %d) -> %s\n",
                  args.scene.c_str(), sc->triangle_count(), args.width, args.height, args.msaa,
-                 args.ssaa, median_ms, args.frames, io_name(args.out, true).c_str());
+                 args.ssaa, median_ms, args.frames, io::io_name(args.out, true).c_str());
   }
   return kExitOk;
 }
@@ -85,7 +85,7 @@ int run_render(const RenderArgs& args, const GlobalOptions& global) {
 Command add_render_command(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* sub = app.add_subcommand(
-      "render", "Render a scene (OBJ, glTF or 'builtin') with the software rasterizer");
+      "render", "Render a scene (OBJ, glTF or 'builtin') with the software rasteriser");
   sub->add_option("SCENE", args->scene, "Scene file (.obj, .gltf, .glb) or 'builtin'")
       ->required();
   sub->add_option("--width", args->width)->check(CLI::Range(1, 16384))->capture_default_str();

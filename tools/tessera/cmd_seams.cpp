@@ -145,7 +145,7 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
             if (args->json) {
               std::printf("%s\n", summary.dump(1).c_str());
             } else if (args->markdown) {
-              Result<std::vector<std::uint8_t>> md = read_file(out + "/seams.md");
+              Result<std::vector<std::uint8_t>> md = io::read_file(out + "/seams.md");
               if (!md) return fail(md.status());
               std::fwrite(md->data(), 1, md->size(), stdout);
             }

@@ -27,7 +27,7 @@ struct CompressArgs {
 };
 
 /// The library options of these arguments, with `threads` encoder threads.
-CompressOptions compress_options(const CompressArgs& args, int threads);
+texture_file::CompressOptions compress_options(const CompressArgs& args, int threads);
 
 /// The record `--skip-up-to-date` keeps beside each output (OUTPUT.json, the sidecar): tessera's
 /// version, the container, the encode options and the input's size and modification time. The

@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "compress.h"
+#include "progress.h"
 #include "tessera/io.h"
 #include "tessera/metrics.h"
 
@@ -62,7 +63,7 @@ std::vector<Job> plan_jobs(const CompressArgs& args, const std::string& ext,
       continue;
     }
     const std::string list = in.substr(1);
-    Result<std::vector<std::uint8_t>> text = read_file(list, 64u << 20);
+    Result<std::vector<std::uint8_t>> text = io::read_file(list, 64u << 20);
     if (!text) {
       usage_problems.push_back(text.status().message);
       continue;
@@ -141,20 +142,20 @@ Outcome run_job(const Job& job, const CompressArgs& args, const std::string& con
     o.kind = Outcome::Kind::skipped;
     return o;
   }
-  Result<ImageRGBA8> loaded = read_image(job.input);
+  Result<ImageRGBA8> loaded = io::read_image(job.input);
   if (!loaded) {
     o.error = loaded.status().message;
     return o;
   }
-  Result<CompressedImage> made =
-      compress_image(std::move(loaded).value(), compress_options(args, threads), job.input);
+  Result<texture_file::CompressedImage> made = texture_file::compress_image(
+      std::move(loaded).value(), compress_options(args, threads), job.input);
   if (!made) {
     o.error = made.status().message;
     return o;
   }
-  const CompressedTexture& tex = made->texture;
+  const texture_file::CompressedTexture& tex = made->texture;
   Result<std::vector<std::uint8_t>> file =
-      container == "ktx" ? serialize_ktx1(tex) : serialize_pvr3(tex);
+      container == "ktx" ? texture_file::serialise_ktx1(tex) : texture_file::serialise_pvr3(tex);
   if (!file) {
     o.error = file.status().message;
     return o;
@@ -165,7 +166,7 @@ Outcome run_job(const Job& job, const CompressArgs& args, const std::string& con
     o.error = job.output + ": cannot create its folder: " + ec.message();
     return o;
   }
-  if (Status s = write_file_atomic(job.output, *file); !s.ok()) {
+  if (Status s = io::write_file_atomic(job.output, *file); !s.ok()) {
     o.error = s.message;
     return o;
   }
@@ -184,11 +185,12 @@ Outcome run_job(const Job& job, const CompressArgs& args, const std::string& con
   o.has_alpha = tex.has_alpha;
   o.resized = made->resized;
   if (measure) {
-    Result<ImageRGBA8> decoded = decode_texture_level(tex, 0, threads);
-    CompareOptions co;
+    Result<ImageRGBA8> decoded = texture_file::decode_texture_level(tex, 0, {threads});
+    metrics::CompareOptions co;
     co.threads = threads;
     if (decoded) {
-      if (Result<ImageComparison> cmp = compare_images(made->source, *decoded, co)) {
+      if (Result<metrics::ImageComparison> cmp =
+              metrics::compare_images(made->source, *decoded, co)) {
         o.psnr_rgb = cmp->psnr_rgb;
         o.ssim_gray = cmp->ssim_gray;
         o.psnr_alpha = cmp->psnr_alpha;
@@ -206,26 +208,14 @@ const char* kind_name(Outcome::Kind k) {
   return k == Outcome::Kind::done ? "done" : k == Outcome::Kind::skipped ? "skipped" : "failed";
 }
 
-/// The TTY progress line: files done/total, MPixel/s, ETA.
-void draw_progress(std::size_t finished, std::size_t total, double mpixels, double seconds) {
-  constexpr int kWidth = 28;
-  const int filled = total ? int(kWidth * finished / total) : kWidth;
-  std::string bar(std::size_t(filled), '=');
-  bar.resize(kWidth, ' ');
-  const double rate = seconds > 0 ? mpixels / seconds : 0;
-  const double eta = finished ? seconds * double(total - finished) / double(finished) : 0;
-  std::fprintf(stderr, "\r[%s] %zu/%zu files  %.1f MPixel/s  ETA %d:%02d ", bar.c_str(),
-               finished, total, rate, int(eta) / 60, int(eta) % 60);
-  std::fflush(stderr);
-}
-
 }  // namespace
 
 int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
   if (args.output == "-") return usage_error("several inputs need a folder for -o, not '-'");
   std::error_code dir_ec;
   if (!fs::is_directory(args.output, dir_ec) &&
-      container_from_extension(args.output) != ContainerFormat::unknown) {
+      texture_file::container_from_extension(args.output) !=
+          texture_file::ContainerFormat::unknown) {
     return usage_error("-o " + args.output +
                        ": several inputs (or a folder) need an output folder, not a file name");
   }
@@ -247,7 +237,8 @@ int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
   // Fewer files than workers: the spare threads go into each file's encode (same bytes).
   const int per_file = std::max(1, (global.threads > 0 ? global.threads : default_thread_count()) /
                                        int(std::max<std::size_t>(jobs.size(), 1)));
-  const bool progress = !args.quiet && ::isatty(STDERR_FILENO);
+  // The TTY progress line (progress.h): files done/total, MPixel/s, ETA.
+  ProgressBar bar(!args.quiet && ::isatty(STDERR_FILENO));
 
   std::vector<std::optional<Outcome>> outcomes(jobs.size());
   std::mutex mutex;
@@ -285,7 +276,7 @@ int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
       }
     }
     for (const auto& [i, o] : ready) {
-      if (progress) std::fprintf(stderr, "\r\033[K");
+      bar.clear();
       switch (o.kind) {
         case Outcome::Kind::done:
           ++done;
@@ -320,11 +311,12 @@ int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
         std::fflush(stdout);
       }
     }
-    if (progress) draw_progress(finished, jobs.size(), mpixels, seconds());
+    bar.update(jobs.empty() ? 1.0 : double(finished) / double(jobs.size()),
+               std::to_string(finished) + "/" + std::to_string(jobs.size()) + " files", mpixels);
   }
   for (std::thread& t : pool) t.join();
   const double total_s = seconds();
-  if (progress) std::fprintf(stderr, "\r\033[K");
+  bar.clear();
   if (args.json) {
     const nlohmann::json j = {{"summary", true},
                               {"files", jobs.size()},

@@ -1,6 +1,8 @@
 // Sections of the `tessera demo` report. Each system adds one function here.
 #pragma once
 
+#include <cmath>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -11,7 +13,15 @@ namespace tessera::cli {
 struct DemoOptions {
   int threads = 0;
   int size = 256;  ///< Edge length of the procedural images.
+  /// `tessera demo --json`: when set, each section adds the numbers of its tables here, under
+  /// its own key ("images", "pvrtc", "render", "seams", "aa").
+  nlohmann::json* summary = nullptr;
 };
+
+/// A number for the summary: null where it is not finite (the PSNR of identical images).
+inline nlohmann::json json_number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
 
 /// Images and metrics: the procedural content, sRGB round trip, metric examples.
 Status demo_images_section(Report& report, const DemoOptions& options);

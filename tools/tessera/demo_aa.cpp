@@ -35,8 +35,8 @@ Status demo_aa_section(Report& report, const DemoOptions& options) {
   const ImageRGBA8& one = rate.method(AaMethod::default_1spp).image;
   const ImageRGBA8& fx = rate.method(AaMethod::fxaa).image;
   std::vector<float> counts(rate.adaptive_samples.begin(), rate.adaptive_samples.end());
-  Result<ImageRGBA8> d_ref = difference_heatmap(ref, adi, 32.0f);
-  Result<ImageRGBA8> d_one = difference_heatmap(one, adi, 32.0f);
+  Result<ImageRGBA8> d_ref = metrics::difference_heatmap(ref, adi, 32.0f);
+  Result<ImageRGBA8> d_one = metrics::difference_heatmap(one, adi, 32.0f);
   if (!d_ref) return d_ref.status();
   if (!d_one) return d_one.status();
   struct Item {
@@ -44,7 +44,7 @@ Status demo_aa_section(Report& report, const DemoOptions& options) {
     const char* caption;
     const ImageRGBA8* image;
   };
-  const ImageRGBA8 heat = heatmap(counts, w, h, float(m * m));
+  const ImageRGBA8 heat = metrics::heatmap(counts, w, h, float(m * m));
   const Item items[] = {{"aa-reference", "4x4 reference (16 samples/pixel)", &ref},
                         {"aa-adaptive", "adaptive", &adi},
                         {"aa-samples", "samples per pixel (1..16, Fig. 6a)", &heat},
@@ -73,7 +73,7 @@ Status demo_aa_section(Report& report, const DemoOptions& options) {
     std::string kbar, dbar;
     if (Status s = report.save_svg(
             "aa-samples-colourbar",
-            colour_bar_svg(ColorMap::inferno, 0, m * m, m * m / 4 + 1,
+            colour_bar_svg(metrics::ColourMap::inferno, 0, m * m, m * m / 4 + 1,
                            "samples shaded per pixel (1 + k; " + std::to_string(m * m) +
                                " = every sample of the " + std::to_string(m) + "x" +
                                std::to_string(m) + " window)"),
@@ -82,7 +82,7 @@ Status demo_aa_section(Report& report, const DemoOptions& options) {
       return s;
     }
     if (Status s = report.save_svg("aa-diff-colourbar",
-                                   colour_bar_svg(ColorMap::inferno, 0, 32, 5,
+                                   colour_bar_svg(metrics::ColourMap::inferno, 0, 32, 5,
                                                   "max abs channel difference (8-bit levels; "
                                                   "32 and above saturate)"),
                                    dbar);
@@ -98,6 +98,15 @@ Status demo_aa_section(Report& report, const DemoOptions& options) {
     static const char* const labels[] = {"1 sample/pixel", "1 sample/pixel + FXAA", "reference",
                                          "adaptive"};
     const experiments::AaMethodResult& r = rate.method(k);
+    if (options.summary) {
+      (*options.summary)["aa"]["methods"].push_back(
+          {{"method", labels[std::size_t(k)]},
+           {"shading_ms", r.timing.normal.median_ms()},
+           {"samples_pct", r.samples_pct},
+           {"psnr_vs_reference",
+            r.quality.identical() ? nlohmann::json(nullptr) : json_number(r.quality.psnr_db)},
+           {"ssim_vs_reference", r.quality.ssim}});
+    }
     rows.push_back({labels[std::size_t(k)], fmt("%.1f", r.timing.normal.median_ms()),
                     fmt("%.1f", r.samples_pct),
                     r.quality.identical() ? "(reference)" : fmt("%.2f", r.quality.psnr_db),
@@ -105,6 +114,11 @@ Status demo_aa_section(Report& report, const DemoOptions& options) {
   }
   report.table({"method", "shading ms", "samples shaded %", "PSNR vs ref (dB)", "SSIM vs ref"},
                rows);
+  if (options.summary) {
+    (*options.summary)["aa"]["width"] = w;
+    (*options.summary)["aa"]["height"] = h;
+    (*options.summary)["aa"]["gbuffer_ms"] = rate.gbuffer.median_ms();
+  }
   report.paragraph("G-buffer pass (" + std::to_string(w * m) + "x" + std::to_string(h * m) +
                    ", 11 floats per sample): " + fmt("%.1f", rate.gbuffer.median_ms()) + " ms.");
   return Status::success();

@@ -47,7 +47,7 @@ Result<Encoded> encode_decode(const ImageRGBA8& img, const Variant& v, int threa
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (!data) return data.status();
-  Result<ImageRGBA8> dec = pvrtc::decode(*data, v.format, img.width, img.height, threads);
+  Result<ImageRGBA8> dec = pvrtc::decode(*data, v.format, img.width, img.height, {threads});
   if (!dec) return dec.status();
   if (!img.has_alpha) {
     for (std::size_t i = 3; i < dec->pixels.size(); i += 4) dec->pixels[i] = 255;
@@ -71,7 +71,7 @@ Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
   std::vector<std::vector<std::string>> rows;
   // PVRTC needs power-of-two sides: a non-power-of-two --size is rounded to the nearest one,
   // and the report says so.
-  const int n = nearest_power_of_two(options.size);
+  const int n = image::nearest_power_of_two(options.size);
   if (n != options.size) {
     report.paragraph("The images of this section are " + std::to_string(n) + "x" +
                      std::to_string(n) + ", not " + std::to_string(options.size) + "x" +
@@ -86,16 +86,26 @@ Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
     for (const Variant& v : kVariants) {
       Result<Encoded> e = encode_decode(img, v, options.threads);
       if (!e) return e.status();
-      CompareOptions co;
+      metrics::CompareOptions co;
       co.threads = options.threads;
-      Result<ImageComparison> cmp = compare_images(img, e->decoded, co);
+      Result<metrics::ImageComparison> cmp = metrics::compare_images(img, e->decoded, co);
       if (!cmp) return cmp.status();
+      if (options.summary) {
+        nlohmann::json j = {{"image", name},
+                            {"variant", v.label},
+                            {"size", n},
+                            {"psnr_rgb", json_number(cmp->psnr_rgb)},
+                            {"ssim_gray", cmp->ssim_gray},
+                            {"encode_ms", e->ms}};
+        if (cmp->has_alpha) j["psnr_alpha"] = json_number(cmp->psnr_alpha);
+        (*options.summary)["pvrtc"]["variants"].push_back(j);
+      }
       rows.push_back({name, v.label, db(cmp->psnr_rgb), cmp->has_alpha ? db(cmp->psnr_alpha) : "-",
                       fmt("%.4f", cmp->ssim_gray), fmt("%.1f", e->ms)});
       results.push_back(std::move(e).value());
     }
     const ImageRGBA8& normal = results[1].decoded;
-    Result<ImageRGBA8> heat = difference_heatmap(img, normal);
+    Result<ImageRGBA8> heat = metrics::difference_heatmap(img, normal);
     if (!heat) return heat.status();
     std::string p_orig, p_norm, p_heat, p_2bpp;
     const std::string stem = "pvrtc-" + name;
@@ -127,7 +137,7 @@ Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
   {
     std::string bar;
     if (Status s = report.save_svg("pvrtc-diff-colourbar",
-                                   colour_bar_svg(ColorMap::inferno, 0, 64, 5,
+                                   colour_bar_svg(metrics::ColourMap::inferno, 0, 64, 5,
                                                   "max abs channel difference (8-bit levels; "
                                                   "64 and above saturate)"),
                                    bar);
@@ -143,11 +153,11 @@ Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
 
   // A gamma-correct, alpha-weighted mip chain of the RGBA image, each level PVRTC-compressed.
   const ImageRGBA8 foliage = make_procedural(Procedural::foliage, n, n);
-  MipmapOptions mo;
+  image::MipmapOptions mo;
   mo.srgb = true;
   mo.max_levels = 5;
   mo.threads = options.threads;
-  Result<std::vector<ImageRGBA8>> chain = generate_mipmaps(foliage, mo);
+  Result<std::vector<ImageRGBA8>> chain = image::generate_mipmaps(foliage, mo);
   if (!chain) return chain.status();
   std::vector<Figure> levels;
   for (std::size_t i = 1; i < chain->size(); ++i) {

@@ -64,13 +64,13 @@ std::string find_pvrtextool() {
 /// PSNR (RGB) and SSIM of a texture file's level 0 against `original`.
 bool measure(const std::string& texture_path, const ImageRGBA8& original, int threads,
              double& psnr, double& ssim) {
-  Result<CompressedTexture> tex = read_texture_file(texture_path);
+  Result<texture_file::CompressedTexture> tex = texture_file::read_texture_file(texture_path);
   if (!tex) return false;
-  Result<ImageRGBA8> dec = decode_texture_level(*tex, 0, threads);
+  Result<ImageRGBA8> dec = texture_file::decode_texture_level(*tex, 0, {threads});
   if (!dec) return false;
-  CompareOptions co;
+  metrics::CompareOptions co;
   co.threads = threads;
-  Result<ImageComparison> cmp = compare_images(original, *dec, co);
+  Result<metrics::ImageComparison> cmp = metrics::compare_images(original, *dec, co);
   if (!cmp) return false;
   psnr = std::isfinite(cmp->psnr_rgb) ? cmp->psnr_rgb : 99.0;
   ssim = cmp->ssim_gray;
@@ -128,6 +128,14 @@ Status demo_pvrtc_quality_time(Report& report, const DemoOptions& options,
       s.x.push_back(ms / counted);
       s.y.push_back(psnr / counted);
       s.point_labels.push_back(levels[l].label);
+      if (options.summary) {
+        (*options.summary)["pvrtc"]["quality_time"].push_back(
+            {{"tool", is_peer ? "PVRTexTool 4.17" : "tessera"},
+             {"level", levels[l].quality},
+             {"ms_per_image", ms / counted},
+             {"psnr_rgb", psnr / counted},
+             {"ssim_gray", ssim / counted}});
+      }
       rows.push_back({is_peer ? "PVRTexTool 4.17" : "tessera", levels[l].quality,
                       fmt("%.1f", ms / counted), fmt("%.2f", psnr / counted),
                       fmt("%.4f", ssim / counted)});
@@ -149,7 +157,7 @@ Status demo_pvrtc_quality_time(Report& report, const DemoOptions& options,
   plot.series.push_back(t);
   if (!peer.empty()) {
     PlotSeries p;
-    p.label = "PVRTexTool 4.17 (its own threads): fastest .. best";
+    p.label = "PVRTexTool 4.17 (its own threads): fastest to best";
     p.colour = series_colour(1);
     p.markers = true;
     p.dashed = true;

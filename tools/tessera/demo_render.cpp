@@ -1,4 +1,4 @@
-// Demo section: the rendering core — the built-in scene through the software rasterizer at 1x,
+// Demo section: the rendering core — the built-in scene through the software rasteriser at 1x,
 // 4x MSAA and a 4x4 supersampled reference, with zooms and errors against the reference.
 #include <cmath>
 
@@ -9,17 +9,17 @@
 namespace tessera::cli {
 
 Status demo_render_section(Report& report, const DemoOptions& options) {
-  report.heading("Rendering core: software rasterizer");
+  report.heading("Rendering core: software rasteriser");
   report.paragraph(
       "The built-in procedural scene (textured ground, boxes, a sphere and thin poles) rendered "
-      "by tessera's tile-binned rasterizer with unlit trilinear texturing: 1 sample per pixel, "
+      "by tessera's tile-binned rasteriser with unlit trilinear texturing: 1 sample per pixel, "
       "4x MSAA (Direct3D standard sample positions, one shading per pixel per triangle) and a "
       "4x4 supersampled reference (16 shaded samples per pixel), all box-resolved in linear "
       "light. PSNR and SSIM are against the reference. `tests/raster_vs_llvmpipe.py` checks the "
       "same renderer against Mesa's llvmpipe OpenGL driver.");
   const scene::Scene sc = scene::builtin_scene();
   Result<std::unique_ptr<render::SceneRenderer>> renderer =
-      render::SceneRenderer::create(sc, options.threads);
+      render::SceneRenderer::create(sc, {options.threads});
   if (!renderer) return renderer.status();
   const scene::Camera camera = scene::orbit_camera(sc, 1, 8);
   struct Variant {
@@ -44,7 +44,7 @@ Status demo_render_section(Report& report, const DemoOptions& options) {
   }
   std::vector<Figure> full, zoom;
   std::vector<std::vector<std::string>> rows;
-  CompareOptions co;
+  metrics::CompareOptions co;
   co.threads = options.threads;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     std::string p;
@@ -57,8 +57,19 @@ Status demo_render_section(Report& report, const DemoOptions& options) {
       return s;
     }
     zoom.push_back({p, std::string(variants[i].label) + " (zoom)"});
-    Result<ImageComparison> c = compare_images(frames.back().image, frames[i].image, co);
+    Result<metrics::ImageComparison> c =
+        metrics::compare_images(frames.back().image, frames[i].image, co);
     if (!c) return c.status();
+    if (options.summary) {
+      const bool reference = i + 1 == frames.size();
+      (*options.summary)["render"].push_back(
+          {{"variant", variants[i].label},
+           {"triangles", frames[i].stats.triangles_setup},
+           {"shader_invocations", frames[i].stats.lanes_shaded},
+           {"ms", frames[i].ms_total()},
+           {"psnr_vs_reference", reference ? nlohmann::json(nullptr) : json_number(c->psnr_rgb)},
+           {"ssim_vs_reference", c->ssim_gray}});
+    }
     rows.push_back({variants[i].label, std::to_string(frames[i].stats.triangles_setup),
                     std::to_string(frames[i].stats.lanes_shaded),
                     fmt("%.1f", frames[i].ms_total()),
@@ -67,7 +78,7 @@ Status demo_render_section(Report& report, const DemoOptions& options) {
   }
   report.figures(full, 1);
   report.figures(zoom, 4);
-  report.table({"variant", "triangles rasterized", "shader invocations", "ms", "PSNR vs ref (dB)",
+  report.table({"variant", "triangles rasterised", "shader invocations", "ms", "PSNR vs ref (dB)",
                 "SSIM vs ref"},
                rows);
   return Status::success();

@@ -41,6 +41,23 @@ Status demo_seams_section(Report& report, const DemoOptions& options) {
   if (!res) return res.status();
   nlohmann::json j;
   if (Status s = write_seams_report(c, *res, dir, true, j); !s.ok()) return s;
+  if (options.summary) {
+    // Per MSAA rate (the order of "msaa"): median ms per frame and the mean linear-RGB errors.
+    nlohmann::json& seams = (*options.summary)["seams"];
+    seams["msaa"] = c.msaa;
+    for (const faces::Method m : faces::all_methods()) {
+      nlohmann::json& method = seams["methods"][faces::method_name(m)];
+      for (const experiments::SeamsRateResult& rate : res->rates) {
+        method["median_ms"].push_back(rate.method(m).timing.median_ms());
+        method["error_vs_reference"].push_back(rate.method(m).vs_reference.mean);
+        method["error_near_seams"].push_back(rate.method(m).vs_reference_near_seams.mean);
+      }
+    }
+    for (const experiments::SeamsRateResult& rate : res->rates) {
+      seams["shading_only_ms"].push_back(rate.shading_only.median_ms());
+      seams["traverse_vs_discard"].push_back(rate.traverse_vs_discard.mean);
+    }
+  }
   std::vector<std::vector<std::string>> rows;
   for (const faces::Method m : faces::all_methods()) {
     std::vector<std::string> row = {faces::method_name(m)};

@@ -174,8 +174,12 @@ std::string plot_svg(const Plot& plot) {
           << "\" r=\"4\" fill=\"" << ser.colour << "\"/>\n";
       }
       if (i < ser.point_labels.size() && !ser.point_labels[i].empty()) {
-        s << "<text x=\"" << num(px(ser.x[i]) + 6) << "\" y=\"" << num(py(ser.y[i]) - 6)
-          << "\" font-size=\"11\" fill=\"" << ser.colour << "\">"
+        // Near the right edge the label goes to the left of its point, so it is not clipped.
+        const double lx = px(ser.x[i]);
+        const bool at_right = lx > left + pw - 8.0 * double(ser.point_labels[i].size()) - 8;
+        s << "<text x=\"" << num(at_right ? lx - 6 : lx + 6) << "\" y=\"" << num(py(ser.y[i]) - 6)
+          << "\" font-size=\"11\"" << (at_right ? " text-anchor=\"end\"" : "") << " fill=\""
+          << ser.colour << "\">"
           << Report::escape(ser.point_labels[i]) << "</text>\n";
       }
     }
@@ -200,7 +204,7 @@ std::string plot_svg(const Plot& plot) {
   return s.str();
 }
 
-std::string colour_bar_svg(ColorMap map, double min, double max, int ticks,
+std::string colour_bar_svg(metrics::ColourMap map, double min, double max, int ticks,
                            const std::string& title, int width) {
   // Room for the title (about 6.2 px a character at 11 px sans-serif).
   width = std::max(width, int(6.2 * double(title.size())) + 24);
@@ -212,7 +216,7 @@ std::string colour_bar_svg(ColorMap map, double min, double max, int ticks,
     << "\" font-family=\"sans-serif\" font-size=\"11\">\n<defs><linearGradient id=\"cb\">";
   for (int i = 0; i <= 16; ++i) {
     std::uint8_t rgb[3];
-    colormap_rgb(map, float(i) / 16.0f, rgb);
+    metrics::colour_map_rgb(map, float(i) / 16.0f, rgb);
     char c[8];
     std::snprintf(c, sizeof c, "#%02x%02x%02x", rgb[0], rgb[1], rgb[2]);
     s << "<stop offset=\"" << num(i * 6.25) << "%\" stop-color=\"" << c << "\"/>";

@@ -37,7 +37,7 @@ std::string plot_svg(const Plot& plot);
 
 /// A horizontal colour bar for `map` from `min` to `max` with `ticks` labelled values and the
 /// title (with units) below, e.g. "max abs channel difference (8-bit levels; saturates at 64)".
-std::string colour_bar_svg(ColorMap map, double min, double max, int ticks,
+std::string colour_bar_svg(metrics::ColourMap map, double min, double max, int ticks,
                            const std::string& title, int width = 320);
 
 /// A legend for a categorical map: one swatch per entry (colour as "#rrggbb"), in a row.

@@ -51,7 +51,7 @@ Status Report::save_image(const std::string& name, const ImageRGBA8& image, std:
   fs::create_directories(fs::path(dir_) / "img", ec);
   if (ec) return Status::error(ErrorCode::io_error, dir_ + "/img: cannot create: " + ec.message());
   rel = "img/" + name + ".png";
-  return write_png((fs::path(dir_) / rel).string(), image);
+  return io::write_png((fs::path(dir_) / rel).string(), image);
 }
 
 void Report::heading(const std::string& text) { body_ += "<h2>" + escape(text) + "</h2>\n"; }
@@ -85,8 +85,8 @@ Status Report::save_svg(const std::string& name, const std::string& svg, std::st
   fs::create_directories(fs::path(dir_) / "img", ec);
   if (ec) return Status::error(ErrorCode::io_error, dir_ + "/img: cannot create: " + ec.message());
   rel = "img/" + name + ".svg";
-  return write_file_atomic((fs::path(dir_) / rel).string(),
-                           {reinterpret_cast<const std::uint8_t*>(svg.data()), svg.size()});
+  return io::write_file_atomic((fs::path(dir_) / rel).string(),
+                               {reinterpret_cast<const std::uint8_t*>(svg.data()), svg.size()});
 }
 
 void Report::table(const std::vector<std::string>& header,
@@ -138,8 +138,8 @@ Status Report::write() const {
       (footer_.empty() ? std::string() : "<footer>" + inline_markup(footer_) + "</footer>\n") +
       "</body></html>\n";
   const std::string path = (fs::path(dir_) / "report.html").string();
-  return write_file_atomic(
-      path, {reinterpret_cast<const std::uint8_t*>(page.data()), page.size()});
+  return io::write_file_atomic(path,
+                               {reinterpret_cast<const std::uint8_t*>(page.data()), page.size()});
 }
 
 std::string report_footer() {

@@ -41,8 +41,8 @@ std::string qs(const AaQuality& q, int what) {
 }
 
 Status write_text(const fs::path& path, const std::string& text) {
-  return write_file_atomic(path.string(),
-                           {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
+  return io::write_file_atomic(path.string(),
+                               {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
 }
 
 /// The images of one rate (reference, adaptive, 1 spp, FXAA, sample counts, difference
@@ -54,7 +54,7 @@ Status write_rate_images(const experiments::AaConfig& c, const AaRateResult& rat
   const int n = rate.m * rate.m;
   auto samples_map = [&](const std::vector<std::uint8_t>& s) {
     std::vector<float> v(s.begin(), s.end());
-    return heatmap(v, c.width, c.height, float(n));
+    return metrics::heatmap(v, c.width, c.height, float(n));
   };
   const ImageRGBA8& ref = rate.method(AaMethod::reference).image;
   const ImageRGBA8& ad = rate.method(AaMethod::adaptive).image;
@@ -72,32 +72,33 @@ Status write_rate_images(const experiments::AaConfig& c, const AaRateResult& rat
   outs.push_back({"default-" + r, def});
   outs.push_back({"fxaa-" + r, fx});
   outs.push_back({"samples-" + r, samples_map(rate.adaptive_samples)});
-  outs.push_back({"diff-ref-" + r, difference_heatmap(ref, ad, 32.0f)});
-  outs.push_back({"diff-1x-" + r, difference_heatmap(def, ad, 32.0f)});
-  outs.push_back({"diff-ref-default-" + r, difference_heatmap(ref, def, 32.0f)});
-  outs.push_back({"diff-ref-fxaa-" + r, difference_heatmap(ref, fx, 32.0f)});
+  outs.push_back({"diff-ref-" + r, metrics::difference_heatmap(ref, ad, 32.0f)});
+  outs.push_back({"diff-1x-" + r, metrics::difference_heatmap(def, ad, 32.0f)});
+  outs.push_back({"diff-ref-default-" + r, metrics::difference_heatmap(ref, def, 32.0f)});
+  outs.push_back({"diff-ref-fxaa-" + r, metrics::difference_heatmap(ref, fx, 32.0f)});
   outs.push_back({"ablation-geometry-" + r, geo});
   outs.push_back({"ablation-geometry-samples-" + r, samples_map(rate.ablation_geometry.samples)});
-  outs.push_back({"ablation-geometry-diff-" + r, difference_heatmap(ref, geo, 32.0f)});
+  outs.push_back({"ablation-geometry-diff-" + r, metrics::difference_heatmap(ref, geo, 32.0f)});
   outs.push_back({"ablation-shading-" + r, shd});
   outs.push_back({"ablation-shading-samples-" + r, samples_map(rate.ablation_shading.samples)});
-  outs.push_back({"ablation-shading-diff-" + r, difference_heatmap(ref, shd, 32.0f)});
+  outs.push_back({"ablation-shading-diff-" + r, metrics::difference_heatmap(ref, shd, 32.0f)});
   const ImageRGBA8& edge = rate.method(AaMethod::edge_per_sample).image;
   edge_outs.push_back({"edge_per_sample-" + r, edge});
   edge_outs.push_back({"edge_per_sample-samples-" + r, samples_map(rate.edge_samples)});
-  edge_outs.push_back({"diff-ref-edge_per_sample-" + r, difference_heatmap(ref, edge, 32.0f)});
+  edge_outs.push_back(
+      {"diff-ref-edge_per_sample-" + r, metrics::difference_heatmap(ref, edge, 32.0f)});
   // Colour bars: the samples maps (1 + k of m*m) and the difference heatmaps.
   const std::string kbar = prefix + "samples-colourbar-" + r + ".svg";
-  if (Status s = write_text(fs::path(dir) / kbar,
-                            colour_bar_svg(ColorMap::inferno, 0, n, n / 4 + 1,
-                                           "samples shaded per pixel (1 + k of " +
-                                               std::to_string(n) + ")"));
+  if (Status s = write_text(
+          fs::path(dir) / kbar,
+          colour_bar_svg(metrics::ColourMap::inferno, 0, n, n / 4 + 1,
+                         "samples shaded per pixel (1 + k of " + std::to_string(n) + ")"));
       !s.ok()) {
     return s;
   }
   jimages[prefix + "samples-colourbar-" + r] = kbar;
   if (Status s = write_text(fs::path(dir) / "diff-colourbar.svg",
-                            colour_bar_svg(ColorMap::inferno, 0, 32, 5,
+                            colour_bar_svg(metrics::ColourMap::inferno, 0, 32, 5,
                                            "max abs channel difference (8-bit levels; 32 and "
                                            "above saturate)"));
       !s.ok()) {
@@ -108,7 +109,7 @@ Status write_rate_images(const experiments::AaConfig& c, const AaRateResult& rat
     for (const Out& o : *list) {
       if (!o.image) return o.image.status();
       const std::string name = prefix + o.name;
-      if (Status s = write_png((fs::path(dir) / (name + ".png")).string(), *o.image); !s.ok()) {
+      if (Status s = io::write_png((fs::path(dir) / (name + ".png")).string(), *o.image); !s.ok()) {
         return s;
       }
       (list == &outs ? jimages : jedge_images)[name] = name + ".png";

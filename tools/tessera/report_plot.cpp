@@ -48,7 +48,7 @@ std::string cdf_svg(const std::string& title, const std::vector<Curve>& curves, 
   s << "<text transform=\"translate(16," << T + ph / 2
     << ") rotate(-90)\" text-anchor=\"middle\">fraction of pixels with error &#8805; x</text>\n";
   for (std::size_t c = 0; c < curves.size(); ++c) {
-    s << "<polyline fill=\"none\" stroke=\"" << curves[c].color << "\" stroke-width=\"1.6\"";
+    s << "<polyline fill=\"none\" stroke=\"" << curves[c].colour << "\" stroke-width=\"1.6\"";
     if (!curves[c].dash.empty()) s << " stroke-dasharray=\"" << curves[c].dash << "\"";
     s << " points=\"";
     for (std::size_t i = 0; i < curves[c].y.size(); ++i) {
@@ -59,7 +59,7 @@ std::string cdf_svg(const std::string& title, const std::vector<Curve>& curves, 
     s << "\"/>\n";
     const int ly = T + 10 + int(c) * 16;
     s << "<line x1=\"" << L + pw + 10 << "\" x2=\"" << L + pw + 40 << "\" y1=\"" << ly << "\" y2=\""
-      << ly << "\" stroke=\"" << curves[c].color << "\" stroke-width=\"2\"";
+      << ly << "\" stroke=\"" << curves[c].colour << "\" stroke-width=\"2\"";
     if (!curves[c].dash.empty()) s << " stroke-dasharray=\"" << curves[c].dash << "\"";
     s << "/><text x=\"" << L + pw + 46 << "\" y=\"" << ly + 4 << "\">" << curves[c].label
       << "</text>\n";
@@ -143,7 +143,7 @@ ImageRGBA8 cdf_png(const std::vector<Curve>& curves, double xmax) {
   line(L + pw, T, L + pw, T + ph, black, {}, phase, 1);
   for (std::size_t c = 0; c < curves.size(); ++c) {
     std::uint8_t rgb[3];
-    parse_rgb(curves[c].color, rgb);
+    parse_rgb(curves[c].colour, rgb);
     const std::vector<double> dash = parse_dash(curves[c].dash);
     phase = 0;
     for (std::size_t i = 1; i < curves[c].y.size(); ++i) {

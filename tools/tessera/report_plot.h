@@ -12,8 +12,8 @@ namespace tessera::cli {
 /// One curve: y[i] is the fraction at threshold i * experiments::kSeamsCdfStep.
 struct Curve {
   std::string label;
-  std::string color;  ///< "#rrggbb".
-  std::string dash;   ///< SVG stroke-dasharray ("" = solid).
+  std::string colour;  ///< "#rrggbb".
+  std::string dash;    ///< SVG stroke-dasharray ("" = solid).
   std::vector<double> y;
 };
 

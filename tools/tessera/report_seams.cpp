@@ -1,18 +1,30 @@
 // The reports of `tessera seams`: Table 1 (median ms per frame, side by side) and Figure 5
-// (CDFs of per-pixel linear-RGB 2-norm errors) as JSON, Markdown, CSV and SVG/PNG, plus the
-// frame-0 images and zooms on the worst seam.
+// (CDFs of per-pixel linear-RGB 2-norm errors) as JSON and Markdown. The CSV, the SVG/PNG plots,
+// the frame-0 images and zooms on the worst seam: report_seams_plots.cpp.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <span>
 #include <sstream>
+#include <string>
+#include <vector>
 
-#include "plot.h"
 #include "report.h"
-#include "report_plot.h"
+#include "report_seams.h"
 #include "seams.h"
 #include "tessera/io.h"
-#include "tessera/metrics.h"
 
 namespace tessera::cli {
+
+namespace seams_report {
+
+Status write_text(const std::string& path, const std::string& text) {
+  return io::write_file_atomic(
+      path, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()),
+                                          text.size()));
+}
+
+}  // namespace seams_report
 
 namespace {
 
@@ -20,124 +32,12 @@ using experiments::ErrorStats;
 using experiments::SeamsRateResult;
 using faces::Method;
 
-constexpr double kStep = experiments::kSeamsCdfStep;
-constexpr int kBins = experiments::kSeamsCdfBins;
-constexpr float kDiffScale = 0.05f;  // heatmap saturation of the clamp-minus-traverse images
-
-float norm_rgb(const float* a, const float* b) {
-  const float d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
-  return std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-}
-
-ImageRGBA8 to_png_image(const ImageRGBAF& img, int threads) {
-  ImageRGBAF c = img;
-  for (std::size_t i = 0; i < c.pixel_count(); ++i) c.pixels[i * 4 + 3] = 1.0f;
-  ImageRGBA8 out = to_srgb8(c, threads);
-  out.has_alpha = false;
-  return out;
-}
-
-ImageRGBA8 zoom(const ImageRGBA8& img, int x0, int y0, int w, int h, int s) {
-  ImageRGBA8 out(w * s, h * s);
-  for (int y = 0; y < h * s; ++y) {
-    for (int x = 0; x < w * s; ++x) {
-      const std::uint8_t* p = img.at(x0 + x / s, y0 + y / s);
-      std::copy(p, p + 4, out.at(x, y));
-    }
-  }
-  return out;
-}
-
-Status write_text(const std::string& path, const std::string& text) {
-  return write_file_atomic(
-      path, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()),
-                                          text.size()));
-}
-
-const char* rate_color(std::size_t i) {
-  static const char* c[] = {"#d62728", "#ff7f0e", "#2ca02c", "#1f77b4", "#9467bd"};
-  return c[std::min<std::size_t>(i, 4)];
-}
-
-const char* method_dash(Method m) {
-  switch (m) {
-    case Method::clamp:
-      return "2,3";
-    case Method::discard:
-      return "";
-    case Method::traverse:
-      return "8,4";
-    case Method::traverse_corners:
-      return "12,3,2,3";
-  }
-  return "";
-}
-
-std::string rate_key(int r) { return std::to_string(r) + "x"; }
-
-/// Frame 0 of every method and rate, the reference, and a zoom on the worst seam: the window
-/// where Clamp and Traverse differ most at the first rate.
-Status write_images(const experiments::SeamsConfig& c, const experiments::SeamsResult& res,
-                    const std::string& dir, nlohmann::json& summary) {
-  const ImageRGBA8 ref8 = to_png_image(res.reference_frame0, c.threads);
-  if (Status s = write_png(dir + "/images/reference.png", ref8); !s.ok()) return s;
-  const int zw = std::min(40, c.width), zh = std::min(40, c.height);
-  int bx = 0, by = 0;
-  double best = -1;
-  const ImageRGBAF& a = res.rates[0].method(Method::clamp).frame0;
-  const ImageRGBAF& b = res.rates[0].method(Method::traverse).frame0;
-  for (int y = 0; y + zh <= c.height; y += 4) {
-    for (int x = 0; x + zw <= c.width; x += 4) {
-      double s = 0;
-      for (int yy = y; yy < y + zh; yy += 2) {
-        for (int xx = x; xx < x + zw; xx += 2) s += norm_rgb(a.at(xx, yy), b.at(xx, yy));
-      }
-      if (s > best) {
-        best = s;
-        bx = x;
-        by = y;
-      }
-    }
-  }
-  const int zs = 4;
-  if (Status s = write_png(dir + "/images/zoom_reference.png", zoom(ref8, bx, by, zw, zh, zs));
-      !s.ok()) {
-    return s;
-  }
-  for (const SeamsRateResult& rate : res.rates) {
-    for (const experiments::SeamsMethodResult& mr : rate.methods) {
-      const std::string stem =
-          std::string(faces::method_name(mr.method)) + "_" + rate_key(rate.msaa);
-      const ImageRGBA8 img = to_png_image(mr.frame0, c.threads);
-      if (Status s = write_png(dir + "/images/" + stem + ".png", img); !s.ok()) return s;
-      if (Status s =
-              write_png(dir + "/images/zoom_" + stem + ".png", zoom(img, bx, by, zw, zh, zs));
-          !s.ok()) {
-        return s;
-      }
-    }
-  }
-  summary["zoom_window"] = {{"x", bx}, {"y", by}, {"w", zw}, {"h", zh}, {"scale", zs}};
-  // Clamp minus Traverse (frame 0): the seam artefact, per-pixel linear-RGB 2-norm.
-  for (const SeamsRateResult* rate : {&res.rates.front(), &res.rates.back()}) {
-    const ImageRGBAF& ca = rate->method(Method::clamp).frame0;
-    const ImageRGBAF& tr = rate->method(Method::traverse).frame0;
-    std::vector<float> d(ca.pixel_count());
-    for (std::size_t i = 0; i < d.size(); ++i) {
-      d[i] = norm_rgb(&ca.pixels[i * 4], &tr.pixels[i * 4]);
-    }
-    const std::string name = "clamp_minus_traverse_" + rate_key(rate->msaa);
-    if (Status s = write_png(dir + "/images/" + name + ".png",
-                             heatmap(d, ca.width, ca.height, kDiffScale));
-        !s.ok()) {
-      return s;
-    }
-  }
-  return write_text(dir + "/images/clamp_minus_traverse_colourbar.svg",
-                    colour_bar_svg(ColorMap::inferno, 0, kDiffScale, 6,
-                                   "|Clamp - Traverse|: linear-RGB 2-norm (0.05 and above "
-                                   "saturate)"));
-}
+using seams_report::kBins;
+using seams_report::kStep;
+using seams_report::rate_key;
+using seams_report::write_images;
+using seams_report::write_plots;
+using seams_report::write_text;
 
 /// The first MSAA rate at which Discard's mean near-seam error is no larger than Traverse's at
 /// the same rate, or null when it never is.
@@ -151,7 +51,7 @@ nlohmann::json discard_catches_traverse(const experiments::SeamsResult& res) {
   return nullptr;
 }
 
-/// Whether GL ran on a software rasterizer (llvmpipe, softpipe): its GPU timer is partial.
+/// Whether GL ran on a software rasteriser (llvmpipe, softpipe): its GPU timer is partial.
 bool software_gl(const experiments::SeamsResult& res) {
   return res.gl_renderer.find("llvmpipe") != std::string::npos ||
          res.gl_renderer.find("softpipe") != std::string::npos;
@@ -196,6 +96,11 @@ void fill_json(const experiments::SeamsConfig& c, const experiments::SeamsResult
     summary["gl_renderer"] = res.gl_renderer;
     summary["gl_version"] = res.gl_version;
     summary["msaa_unsupported"] = res.msaa_unsupported;
+    nlohmann::json samples = nlohmann::json::object();
+    for (const experiments::SeamsSamplePattern& p : res.gl_sample_patterns) {
+      samples[rate_key(p.msaa)] = {{"samples", p.samples}, {"cpu_msaa", p.cpu_msaa}};
+    }
+    summary["gl_samples"] = samples;
     const std::string read = software_gl(res) ? "the wall times (llvmpipe: the timer is partial)"
                                               : "the GPU timer (a hardware GPU)";
     summary["timing_note"] =
@@ -266,7 +171,9 @@ void fill_json(const experiments::SeamsConfig& c, const experiments::SeamsResult
     summary["timing_gl"] = tg;
     summary["gl_vs_cpu"] = agree;
     summary["gl_vs_cpu_note"] =
-        "GL frame against the CPU frame of the same camera, rate and method, pooled over the " +
+        "GL frame against the CPU frame of the same camera, method and sample positions (the "
+        "CPU rate gl_samples[rate].cpu_msaa: the rate itself unless the driver draws it with "
+        "more samples), pooled over the " +
         std::to_string(res.quality_frames) +
         " quality frame(s), all pixels: psnr_db from the mean MSE of the 8-bit sRGB outputs "
         "(null = identical), fraction_ge_0.01 = pixels whose linear-RGB 2-norm difference is >= "
@@ -274,91 +181,6 @@ void fill_json(const experiments::SeamsConfig& c, const experiments::SeamsResult
   }
 }
 
-/// cdf.csv and the Figure-5 plots.
-Status write_plots(const experiments::SeamsResult& res, const std::string& dir) {
-  std::ostringstream csv;
-  csv << "threshold";
-  for (const SeamsRateResult& rate : res.rates) {
-    csv << ",traverse_vs_discard_" << rate_key(rate.msaa);
-  }
-  const std::vector<Method>& methods = faces::all_methods();
-  for (Method m : methods) {
-    for (const SeamsRateResult& rate : res.rates) {
-      csv << "," << faces::method_name(m) << "_vs_ref_" << rate_key(rate.msaa);
-    }
-  }
-  csv << "\n";
-  std::vector<const std::vector<double>*> cols;
-  for (const SeamsRateResult& rate : res.rates) cols.push_back(&rate.traverse_vs_discard.cdf);
-  for (Method m : methods) {
-    for (const SeamsRateResult& rate : res.rates) cols.push_back(&rate.method(m).vs_reference.cdf);
-  }
-  for (int i = 0; i < kBins; ++i) {
-    csv << double(i) * kStep;
-    for (const std::vector<double>* col : cols) csv << "," << (*col)[std::size_t(i)];
-    csv << "\n";
-  }
-  if (Status s = write_text(dir + "/cdf.csv", csv.str()); !s.ok()) return s;
-  std::vector<Curve> left, right;
-  for (std::size_t ri = 0; ri < res.rates.size(); ++ri) {
-    left.push_back(
-        {rate_key(res.rates[ri].msaa), rate_color(ri), "", res.rates[ri].traverse_vs_discard.cdf});
-  }
-  for (Method m : methods) {
-    if (m == Method::traverse_corners) continue;  // in the CSV/JSON
-    for (std::size_t ri = 0; ri < res.rates.size(); ++ri) {
-      right.push_back({std::string(faces::method_name(m)) + " " + rate_key(res.rates[ri].msaa),
-                       rate_color(ri), method_dash(m), res.rates[ri].method(m).vs_reference.cdf});
-    }
-  }
-  // One readable panel per rate: Clamp, Discard and Traverse against the reference over all
-  // geometry pixels (solid) and near the seams (dashed).
-  for (std::size_t ri = 0; ri < res.rates.size(); ++ri) {
-    const SeamsRateResult& rate = res.rates[ri];
-    Plot plot;
-    plot.title = "Figure 5, " + rate_key(rate.msaa) + " MSAA: error against the reference";
-    plot.x_title = "x: per-pixel linear-RGB error (2-norm)";
-    plot.y_title = "fraction of pixels with error >= x";
-    plot.log_y = true;
-    plot.x_min = 0;
-    plot.x_max = 0.15;
-    plot.y_min = 1e-4;
-    plot.y_max = 1;
-    std::size_t colour = 0;
-    for (Method m : {Method::clamp, Method::discard, Method::traverse}) {
-      for (bool near : {false, true}) {
-        if (near && res.near_seam_pixels == 0) continue;
-        const ErrorStats& q =
-            near ? rate.method(m).vs_reference_near_seams : rate.method(m).vs_reference;
-        PlotSeries ser;
-        ser.label = std::string(faces::method_name(m)) +
-                    (near ? ", near seams" : ", all pixels") + fmt(" (mean %.4f)", q.mean);
-        ser.colour = series_colour(colour);
-        ser.dashed = near;
-        for (int i = 0; i < kBins && i < int(q.cdf.size()); ++i) {
-          ser.x.push_back(double(i) * kStep);
-          ser.y.push_back(q.cdf[std::size_t(i)]);
-        }
-        plot.series.push_back(std::move(ser));
-      }
-      ++colour;
-    }
-    if (Status s = write_text(dir + "/fig5_" + rate_key(rate.msaa) + ".svg", plot_svg(plot));
-        !s.ok()) {
-      return s;
-    }
-  }
-  if (Status s = write_text(dir + "/fig5_left.svg", cdf_svg("Traverse vs Discard", left, 0.15));
-      !s.ok()) {
-    return s;
-  }
-  if (Status s = write_png(dir + "/fig5_left.png", cdf_png(left, 0.15)); !s.ok()) return s;
-  if (Status s = write_png(dir + "/fig5_right.png", cdf_png(right, 0.15)); !s.ok()) return s;
-  return write_text(dir + "/fig5_right.svg",
-                    cdf_svg("Deviation from the reference (solid Discard, dashed "
-                            "Traverse, dotted Clamp)",
-                            right, 0.15));
-}
 
 std::string error_row(const std::string& label, int msaa, const ErrorStats& q) {
   return "| " + label + " | " + rate_key(msaa) + fmt(" | %.5f", q.mean) +
@@ -423,8 +245,8 @@ bool gl_time_tables(std::ostringstream& md, const experiments::SeamsResult& res,
   }
   md << "**Which to read:** "
      << (software_gl(res)
-             ? "the wall times. This is llvmpipe, a software rasterizer: its GL_TIME_ELAPSED "
-               "queries are executed per screen tile by the rasterizer threads and cover only "
+             ? "the wall times. This is llvmpipe, a software rasteriser: its GL_TIME_ELAPSED "
+               "queries are executed per screen tile by the rasteriser threads and cover only "
                "part of the frame (gl_seams.h)."
              : "the GPU timer (a hardware GPU: the timer is the pass time; wall time adds the "
                "driver's submission and the glFinish round trip).")
@@ -446,7 +268,8 @@ std::string gl_beside_cpu(const experiments::SeamsResult& res) {
                  [](const experiments::SeamsGlRateResult& r, Method m, bool gpu) {
                    return gpu ? &r.method(m).gpu : &r.method(m).wall;
                  });
-  md << "GL against the CPU, the same camera, rate and method, pooled over the "
+  md << "GL against the CPU, the same camera, method and sample positions (the rate's, unless "
+        "the driver draws it with more samples, see above), pooled over the "
      << res.quality_frames
      << " quality frame(s), all pixels: PSNR of the 8-bit sRGB outputs (from the mean MSE) / "
         "fraction of pixels whose linear-RGB 2-norm difference is >= 0.01. Under 16x "
@@ -488,6 +311,16 @@ std::string markdown(const experiments::SeamsConfig& c, const experiments::Seams
     if (!res.msaa_unsupported.empty()) {
       md << " MSAA rates the driver refuses, skipped" << (gl ? "" : " on GL") << ":";
       for (int r : res.msaa_unsupported) md << " " << rate_key(r);
+      md << ".";
+    }
+    for (const experiments::SeamsSamplePattern& p : res.gl_sample_patterns) {
+      if (p.samples == p.msaa) continue;
+      md << " The driver draws " << rate_key(p.msaa) << " with " << p.samples << " samples";
+      if (p.cpu_msaa > 0) md << " (the CPU's " << rate_key(p.cpu_msaa) << " positions)";
+      md << ": its GL " << rate_key(p.msaa) << " frames are " << p.samples << "-sample frames";
+      if (res.compared_gl && p.cpu_msaa > 0) {
+        md << ", compared with the CPU's " << rate_key(p.cpu_msaa) << " frames";
+      }
       md << ".";
     }
     md << (gl ? " The reference is rendered by GL too (Traverse, 16x anisotropic, tiled); face "

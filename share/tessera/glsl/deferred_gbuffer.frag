@@ -1,7 +1,7 @@
 // deferred_gbuffer.frag — writes one G-buffer sample per grid pixel (see deferred_shading.glsl
 // for the layout): perspective-correct linear depth, normal and UV, the draw's material id, and
 // the fine screen-space derivatives of the UV (per grid pixel, from the 2x2 quad, as the CPU
-// rasterizer's default).
+// rasteriser's default).
 #version 450 core
 
 in float tessera_v_depth;

@@ -1,4 +1,4 @@
-// deferred_gbuffer.vert — geometry pass of tessera's GPU adaptive supersampling: rasterizes the
+// deferred_gbuffer.vert — geometry pass of tessera's GPU adaptive supersampling: rasterises the
 // scene into the enlarged G-buffer (m*w x m*h) with the CPU's conventions
 // (tessera::deferred::DeferredRenderer::render_gbuffer).
 //   location 0: vec4 clip-space position, computed on the CPU as the CPU path does

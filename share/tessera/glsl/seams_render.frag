@@ -6,7 +6,7 @@
 //   #define TESSERA_RENDER_METHOD M       // 0 clamp, 1 discard, 2 traverse, 3 traverse_corners
 //   #define TESSERA_RENDER_FALLBACK B     // discard: 1 = clamp lookup where coverage is 0
 //   #define TESSERA_RENDER_OUTPUT O       // 0 shaded colour, 1 zero-coverage flag
-// Compile-time variants rather than uniforms: a SIMD software rasterizer (llvmpipe) executes
+// Compile-time variants rather than uniforms: a SIMD software rasteriser (llvmpipe) executes
 // both sides of every branch under a mask, so a run-time method switch would cost all methods.
 //
 // Uniform: tessera_render_class, the face class of every face in the current draw (the host
@@ -21,6 +21,12 @@
 // interpolated normal normalised and L = (0.42, 0.82, 0.39); alpha 1 (the clear has alpha 0, so
 // the resolved alpha is the geometry coverage).
 #version 450 core
+// Offline checks (glslangValidator -l -DTESSERA_GLSLANG -I<this folder>, tests/CMakeLists.txt)
+// resolve the include with glslang's extension; tessera::gl::link_program resolves it for the
+// driver.
+#if defined(TESSERA_GLSLANG)
+#extension GL_GOOGLE_include_directive : require
+#endif
 
 #ifndef TESSERA_RENDER_METHOD
 #define TESSERA_RENDER_METHOD 1
@@ -40,7 +46,7 @@ in vec2 tessera_uv;
 in vec3 tessera_vnormal;
 flat in int tessera_face;
 
-layout(location = 0) out vec4 tessera_color;
+layout(location = 0) out vec4 tessera_colour;
 
 /// Border (0,0,0,0) lookup of the own face (Listing 1, line 2).
 vec4 tessera_render_own_border(int layer, vec2 uv, vec2 dx, vec2 dy) {
@@ -92,11 +98,11 @@ void main() {
   vec2 dx = dFdxFine(tessera_uv), dy = dFdyFine(tessera_uv);
   vec4 s = tessera_render_sample(tessera_face, tessera_uv, dx, dy);
 #if TESSERA_RENDER_OUTPUT == 1
-  tessera_color = vec4(vec3(s.a > 0.0 ? 0.0 : 1.0), 1.0);
+  tessera_colour = vec4(vec3(s.a > 0.0 ? 0.0 : 1.0), 1.0);
 #else
   vec3 n = tessera_vnormal;
   float nl = (n.x * 0.42 + n.y * 0.82 + n.z * 0.39) / sqrt(dot(n, n) + 1e-20);
   float shade = 0.35 + 0.65 * max(nl, 0.0);
-  tessera_color = vec4(s.rgb * shade, 1.0);
+  tessera_colour = vec4(s.rgb * shade, 1.0);
 #endif
 }

@@ -13,7 +13,7 @@
 //
 // Orientation: clip y is negated, so framebuffer row 0 holds the image's top row (tessera's
 // top-down images read back without a flip) and the driver's memory-order sample positions are
-// those of tessera's rasterizer (Direct3D patterns, y down). The negation mirrors the winding:
+// those of tessera's rasteriser (Direct3D patterns, y down). The negation mirrors the winding:
 // the host lists each triangle in reversed order so that front faces stay counter-clockwise.
 #version 450 core
 

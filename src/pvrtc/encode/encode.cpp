@@ -145,6 +145,11 @@ SingleColour single_colour(int abits, int mi, bool two_bpp, int v) {
 
 namespace {
 
+// Estimated costs of the starts (endpoints and the first modulation choice), in the units of
+// passes.cpp's: seconds per megapixel on one thread.
+constexpr double kDilationStartCost = 0.04;
+constexpr double kPrincipalStartCost = 0.19;
+
 /// Whether every alpha byte of RGBA8 `pixels` is 255 (two texels a step).
 bool all_opaque(const std::vector<std::uint8_t>& pixels) {
   static constexpr std::uint8_t kMaskBytes[8] = {0, 0, 0, 255, 0, 0, 0, 255};
@@ -213,7 +218,7 @@ void homogeneous_shortcut(EncoderState& s, const std::uint8_t* flat) {
           }
         }
       },
-      s.threads);
+      {s.threads});
 }
 
 // Initial endpoints of every block (the dilation start or the principal-axis start, then the
@@ -238,7 +243,7 @@ std::uint64_t start_endpoints(EncoderState& s, bool dilation) {
           s.cb[std::size_t(i)] = quantise_endpoint(&high[std::size_t(i) * 4], true, s.alpha_mode);
         }
       },
-      s.threads);
+      {s.threads});
   // The float endpoints are done with: their pages go back to the heap for the modulation
   // search's buffers (a lower peak).
   std::vector<float>().swap(low);
@@ -269,6 +274,14 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   s.threads = options.threads;
   s.modulation_descent = schedule.modulation_descent;
   const Grid& g = s.g;
+  // Progress (progress.h): the start, the passes and the crossover by their estimated costs.
+  ProgressSink sink(options.progress);
+  const Progress whole(&sink, 0.0, 1.0);
+  whole.at(0.0);
+  const double start_cost = schedule.dilation_start ? kDilationStartCost : kPrincipalStartCost;
+  ProgressSteps steps(whole, start_cost + optimise_cost(schedule, options.format) +
+                                 (schedule.crossover ? kDilationStartCost : 0.0) +
+                                 crossover_cost(schedule, options.format));
   // Target: the source tiled over the padded level (only textures under 2x2 blocks differ),
   // alpha forced to 255 unless alpha_mode. The caller's pixels are used in place when they
   // already are exactly that (no copy, no page faults for one).
@@ -311,16 +324,21 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
   if (schedule.crossover) alt = s;
   // fast: the paper's intensity dilation; normal / high start the refinement from
   // principal-axis endpoints, which separate equally bright colours (see principal_axis.cpp).
+  steps.next(start_cost);
   const std::uint64_t start_error = start_endpoints(s, schedule.dilation_start);
   // Reseed, least-squares refinement and the exact search, as scheduled (passes.cpp).
+  s.progress = steps.next(optimise_cost(schedule, options.format));
   optimise(s, schedule, start_error);
   if (schedule.crossover) {
+    steps.next(kDilationStartCost);
     const std::uint64_t alt_error = start_endpoints(alt, true);
+    s.progress = steps.next(crossover_cost(schedule, options.format));
     optimise_crossover(s, alt, alt_error, schedule);
   }
   std::vector<std::uint8_t> out(level_size(options.format, image.width, image.height));
   const std::vector<std::uint64_t> w = s.words();
   store_words(g, w.data(), out.data());
+  sink.report(1.0);
   return out;
 }
 

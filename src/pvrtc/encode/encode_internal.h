@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/check.h"
+#include "pvrtc/encode/progress.h"
 #include "pvrtc/encode/schedule.h"
 #include "pvrtc/format/pvrtc_internal.h"
 
@@ -23,6 +24,9 @@ struct EncoderState {
   /// 2 bpp: coordinate-descent sweeps after every modulation choice of the refinement
   /// (`refine_modulation_2bpp`); 0: none.
   int modulation_descent = 0;
+  /// Where the pass running now reports its progress (progress.h): callers set the range of
+  /// the pass they call; inactive without a hook.
+  Progress progress;
   /// Padded target texels (pw * ph RGBA; the source tiled; alpha 255 unless alpha_mode): the
   /// caller's pixels themselves when they already are exactly that, else `target_storage`.
   std::span<const std::uint8_t> target;
@@ -70,7 +74,7 @@ void for_each_block_2x2(const Grid& g, int threads, Fn&& fn) {
             for (int bx = ox; bx < g.nbx; bx += 2) fn(bx, 2 * r + oy);
           }
         },
-        threads);
+        {threads});
   }
 }
 
@@ -171,6 +175,11 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
 /// endpoint search (2 bpp). `error`: the state's current total error, as `choose_modulation`
 /// returned it.
 void optimise(EncoderState& s, const EncodeSchedule& schedule, std::uint64_t error);
+
+/// Estimated costs of `optimise` and `optimise_crossover` with `schedule` at `format` (seconds
+/// per megapixel on one thread, for the progress reports; see passes.cpp).
+double optimise_cost(const EncodeSchedule& schedule, Format format);
+double crossover_cost(const EncodeSchedule& schedule, Format format);
 
 /// 2 bpp only: with the endpoints fixed, re-chooses every stored modulation value by the exact
 /// error of its texel and of the interpolated texels that read it, and the interpolation

@@ -148,7 +148,7 @@ void expand_endpoints(const Grid& g, const std::uint64_t* words, Rgba5* ea, Rgba
           eb[i] = expand_b(std::uint32_t(words[i] >> 48));
         }
       },
-      threads);
+      {threads});
 }
 
 void unpack_2bpp_block(std::uint64_t word, std::uint8_t values[32], int& mode) {
@@ -236,7 +236,7 @@ void modulation_map(const Grid& g, const std::uint64_t* words, std::uint8_t* m_e
             }
           }
         },
-        threads);
+        {threads});
     return;
   }
   // 2 bpp: unpack stored values and modes, then resolve interpolated texels.
@@ -260,7 +260,7 @@ void modulation_map(const Grid& g, const std::uint64_t* words, std::uint8_t* m_e
           }
         }
       },
-      threads);
+      {threads});
   const int wmask = g.pw - 1, hmask = g.ph - 1;
   parallel_for(
       0, g.ph, 32,
@@ -293,7 +293,7 @@ void modulation_map(const Grid& g, const std::uint64_t* words, std::uint8_t* m_e
           }
         }
       },
-      threads);
+      {threads});
 }
 
 void upscale_rows(const Grid& g, const Rgba5* e, int y0, int y1, std::uint8_t* out) {
@@ -342,13 +342,13 @@ void decode_padded(const Grid& g, const std::uint64_t* words, std::uint8_t* out,
         modulate_run(ua.data(), ub.data(), &m[first], std::size_t(y1 - y0) * std::size_t(g.pw),
                      out + first * 4);
       },
-      threads);
+      {threads});
 }
 
 }  // namespace detail
 
 Result<ImageRGBA8> decode(std::span<const std::uint8_t> data, Format format, int width, int height,
-                          int threads) {
+                          const Parallel& parallel) {
   if (Status s = check_dimensions(width, height, "pvrtc::decode"); !s.ok()) return s;
   const std::size_t need = level_size(format, width, height);
   if (data.size() < need) {
@@ -360,7 +360,7 @@ Result<ImageRGBA8> decode(std::span<const std::uint8_t> data, Format format, int
   std::vector<std::uint64_t> words(g.blocks());
   load_words(g, data.data(), words.data());
   std::vector<std::uint8_t> padded(g.texels() * 4);
-  decode_padded(g, words.data(), padded.data(), threads);
+  decode_padded(g, words.data(), padded.data(), parallel.threads);
   ImageRGBA8 img(width, height);
   bool alpha = false;
   for (int y = 0; y < height; ++y) {

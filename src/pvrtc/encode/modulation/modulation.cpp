@@ -108,7 +108,7 @@ std::uint64_t choose_modulation_4bpp_impl(EncoderState& s) {
           row_err[std::size_t(by)] = err_row;
         }
       },
-      s.threads);
+      {s.threads});
   // The per-texel errors are those of the exact decode, so their sum is the total error.
   std::uint64_t total = 0;
   for (std::uint64_t e : row_err) total += e;
@@ -155,7 +155,7 @@ std::uint64_t total_error(const EncoderState& s) {
         }
         return double(e);
       },
-      s.threads);
+      {s.threads});
   return std::uint64_t(sum);
 }
 

@@ -173,7 +173,7 @@ void for_each_block_row(const EncoderState& s, const std::vector<std::uint16_t>&
         Row2 r;
         for (int by = int(by0); by < int(by1); ++by) fn(by, cs, r);
       },
-      s.threads);
+      {s.threads});
 }
 
 /// Upscaled A (a) and B (b) and the target (t) of texel row j of block bx, per channel.

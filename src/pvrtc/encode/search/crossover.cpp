@@ -45,7 +45,7 @@ std::vector<std::uint64_t> block_errors(const EncoderState& s, int alpha_weight)
           }
         }
       },
-      s.threads);
+      {s.threads});
   return err;
 }
 

@@ -378,6 +378,7 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
     }
   }
   const Evaluators ev;
+  double searched_total = 0, searched_before = 0;  // for the progress reports
   for (int round = 0; round < rounds; ++round) {
     std::vector<std::uint8_t> any_change(std::size_t(g.nby / 2), 0);
     for_each_block_2x2(g, s.threads, [&](int bx, int by) {
@@ -483,6 +484,16 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
       changed_at[j] = step;
       any_change[std::size_t(by / 2)] = 1;
     });
+    if (s.progress.active()) {
+      // Blocks searched this round (stamped with one of its steps): the round's share of work.
+      const double searched = double(std::count_if(searched_at.begin(), searched_at.end(),
+                                                   [&](int t) { return t >= 4 * round; }));
+      searched_total += searched;
+      s.progress.at(round + 1 == rounds ? 1.0
+                                        : convergence_fraction(searched_total, searched,
+                                                               searched_before));
+      searched_before = searched;
+    }
     if (std::find(any_change.begin(), any_change.end(), 1) == any_change.end()) break;
   }
   // The windows were scored with every texel's best code within its block's mode: re-choosing

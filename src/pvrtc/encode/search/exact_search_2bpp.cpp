@@ -48,6 +48,12 @@ constexpr int kAlphaWeight = 2;
 constexpr int kMaxRounds = 16;
 // Sweeps of the move list per block visit (each sweep after one that improved).
 constexpr int kMovePasses = 4;
+// Shares of `search_endpoints_2bpp`'s time, for the progress reports (seconds per megapixel on
+// one thread, as passes.cpp's costs): the search rounds (every block, or seeded after the
+// crossover), the modulation choice and its 3 descent sweeps, the refinement, the last 2
+// descent sweeps.
+constexpr double kSearchShare = 4.0, kSeededSearchShare = 1.9, kDescentShare = 0.6,
+                 kRefineShare = 0.33, kFinalShare = 0.45;
 
 // The window error of block j's endpoints (a, b), four texels a step; stops once it reaches
 // `bound` (the result is then >= bound). kStore: no bound; each texel's error to texel_err.
@@ -277,6 +283,7 @@ int search(EncoderState& s, const std::vector<std::uint8_t>* seeds) {
       if (!(*seeds)[j]) searched_at[j] = 0;  // waits for a changed neighbour
     }
   }
+  double searched_total = 0, searched_before = 0;  // for the progress reports
   for (int round = 0; round < kMaxRounds; ++round) {
     std::vector<std::uint8_t> any_change(std::size_t(g.nby / 2), 0);
     for_each_block_2x2(g, s.threads, [&](int bx, int by) {
@@ -343,6 +350,14 @@ int search(EncoderState& s, const std::vector<std::uint8_t>* seeds) {
       any_change[std::size_t(by / 2)] = 1;
       ++changes_per_row[std::size_t(by)];
     });
+    if (s.progress.active()) {
+      // Blocks searched this round (stamped with one of its steps): the round's share of work.
+      const double searched = double(std::count_if(searched_at.begin(), searched_at.end(),
+                                                   [&](int t) { return t >= 4 * round; }));
+      searched_total += searched;
+      s.progress.at(convergence_fraction(searched_total, searched, searched_before));
+      searched_before = searched;
+    }
     if (std::find(any_change.begin(), any_change.end(), 1) == any_change.end()) break;
   }
   int total = 0;
@@ -378,10 +393,21 @@ std::uint64_t search_endpoints_2bpp(EncoderState& s, std::uint64_t error,
   const std::vector<std::uint16_t> ca = s.ca, cb = s.cb;
   const std::vector<std::uint8_t> mode = s.mode;
   const std::vector<std::uint32_t> mod = s.mod;
-  if (search(s, seeds) == 0) return error;
+  // Progress: the search rounds, the modulation and its descent, the refinement, the descent.
+  const Progress whole = s.progress;
+  const double search_share = seeds != nullptr ? kSeededSearchShare : kSearchShare;
+  ProgressSteps steps(whole, search_share + kDescentShare + kRefineShare + kFinalShare);
+  s.progress = steps.next(search_share);
+  const int changes = search(s, seeds);
+  s.progress = whole;
+  if (changes == 0) return error;
+  steps.next(kDescentShare);
   choose_modulation(s);
   std::uint64_t e = refine_modulation_2bpp(s, 3);
+  s.progress = steps.next(kRefineShare);
   refine(s, 16, e);
+  s.progress = whole;
+  steps.next(kFinalShare);
   e = refine_modulation_2bpp(s, 2);
   if (e < error) return e;
   s.ca = ca;

@@ -367,6 +367,7 @@ void refine(EncoderState& s, int iterations, std::uint64_t error) {
     // Converged: the sweep gained less than kMinGain of the error (~0.01 dB).
     const bool small_gain = double(best_err - err) < kMinGain * double(best_err);
     best_err = err;
+    s.progress.at(double(it + 1) / iterations);
     if (small_gain) break;
   }
 }

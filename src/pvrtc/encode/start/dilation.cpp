@@ -520,7 +520,7 @@ void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vec
           dilate_band<3>(kern, s, int(by0), int(by1), low, high, flat_out);
         }
       },
-      s.threads);
+      {s.threads});
 }
 
 const DilationKernels* dilation_kernels_baseline() { return &kBaseline; }

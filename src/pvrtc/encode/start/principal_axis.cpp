@@ -111,7 +111,7 @@ void principal_endpoints(const EncoderState& s, std::vector<float>& low, std::ve
           }
         }
       },
-      s.threads);
+      {s.threads});
 }
 
 // Consistent endpoint orientation (see encode_internal.h). Neighbouring blocks blend their A

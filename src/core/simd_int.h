@@ -1,0 +1,269 @@
+// simd_int.h — part of the SIMD wrapper (include "core/simd.h", which documents the whole set):
+// the backend selection shared by every simd_*.h header, and the 32- and 64-bit integer lanes:
+//   vint4   four int32 lanes: RGBA texels in the PVRTC decoder's working precision, texel
+//           coordinates / offsets / level sizes of four texture lookups, comparison masks
+//           (all ones / zero per lane) of vint4 and vf4 compares.
+//   vi64x2  two int64 lanes: the rasteriser's fixed-point edge values.
+// Integer lanes wrap on overflow in every backend except where a comment says otherwise.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+// Backend: SSE2 on x86-64 (part of the ABI, so always there), SSE4.1 instructions where the
+// compiler targets them, otherwise (AArch64, other CPUs, or TESSERA_NO_SIMD defined for every
+// translation unit of the build) a portable scalar backend with bit-identical results.
+// TESSERA_SIMD_VECTOR is 1 when the types map to vector registers; kernels that have their
+// own per-lane fallback (texture `sample4`, raster quad coverage) use the vector path only then.
+#if !defined(TESSERA_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64))
+#define TESSERA_SIMD_SSE2 1
+#include <emmintrin.h>
+#if defined(__SSE4_1__)
+#define TESSERA_SIMD_SSE41 1
+#include <smmintrin.h>
+#endif
+#endif
+
+#if defined(TESSERA_SIMD_SSE2)
+#define TESSERA_SIMD_VECTOR 1
+#else
+#define TESSERA_SIMD_VECTOR 0
+#endif
+
+namespace tessera::simd {
+
+#if defined(TESSERA_SIMD_SSE2)
+
+struct vint4 {
+  __m128i v;
+  vint4() : v(_mm_setzero_si128()) {}
+  explicit vint4(__m128i x) : v(x) {}
+  vint4(std::int32_t a, std::int32_t b, std::int32_t c, std::int32_t d)
+      : v(_mm_setr_epi32(a, b, c, d)) {}
+  explicit vint4(std::int32_t a) : v(_mm_set1_epi32(a)) {}
+  std::int32_t lane(int i) const {
+    alignas(16) std::int32_t t[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(t), v);
+    return t[i];
+  }
+};
+inline vint4 load4(const std::int32_t* p) {
+  return vint4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+/// `p` 16-byte aligned.
+inline vint4 load4_aligned(const std::int32_t* p) {
+  return vint4(_mm_load_si128(reinterpret_cast<const __m128i*>(p)));
+}
+inline void store4(vint4 a, std::int32_t* p) {
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(p), a.v);
+}
+/// `p` 16-byte aligned.
+inline void store4_aligned(vint4 a, std::int32_t* p) {
+  _mm_store_si128(reinterpret_cast<__m128i*>(p), a.v);
+}
+/// Loads four 4-byte texels as four 32-bit lanes.
+inline vint4 load_texels4(const std::uint8_t* p) {
+  return vint4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+inline vint4 operator+(vint4 a, vint4 b) { return vint4(_mm_add_epi32(a.v, b.v)); }
+inline vint4 operator-(vint4 a, vint4 b) { return vint4(_mm_sub_epi32(a.v, b.v)); }
+inline vint4& operator+=(vint4& a, vint4 b) { return a = a + b; }
+/// Lane-wise product, the low 32 bits (exact for |a*b| < 2^31).
+inline vint4 operator*(vint4 a, vint4 b) {
+#if defined(TESSERA_SIMD_SSE41)
+  return vint4(_mm_mullo_epi32(a.v, b.v));
+#else
+  const __m128i even = _mm_mul_epu32(a.v, b.v);
+  const __m128i odd = _mm_mul_epu32(_mm_srli_epi64(a.v, 32), _mm_srli_epi64(b.v, 32));
+  return vint4(_mm_unpacklo_epi32(_mm_shuffle_epi32(even, _MM_SHUFFLE(0, 0, 2, 0)),
+                                  _mm_shuffle_epi32(odd, _MM_SHUFFLE(0, 0, 2, 0))));
+#endif
+}
+inline vint4 operator&(vint4 a, vint4 b) { return vint4(_mm_and_si128(a.v, b.v)); }
+inline vint4 operator|(vint4 a, vint4 b) { return vint4(_mm_or_si128(a.v, b.v)); }
+inline vint4 operator^(vint4 a, vint4 b) { return vint4(_mm_xor_si128(a.v, b.v)); }
+/// ~a & b.
+inline vint4 andnot(vint4 a, vint4 b) { return vint4(_mm_andnot_si128(a.v, b.v)); }
+/// Arithmetic (sra), logical (srl) right and left (sll) shifts of the 32-bit lanes.
+template <int N>
+inline vint4 sra(vint4 a) {
+  return vint4(_mm_srai_epi32(a.v, N));
+}
+template <int N>
+inline vint4 srl(vint4 a) {
+  return vint4(_mm_srli_epi32(a.v, N));
+}
+template <int N>
+inline vint4 sll(vint4 a) {
+  return vint4(_mm_slli_epi32(a.v, N));
+}
+/// Signed compares: all-ones lanes where true, zero lanes where false.
+inline vint4 cmpeq(vint4 a, vint4 b) { return vint4(_mm_cmpeq_epi32(a.v, b.v)); }
+inline vint4 cmpgt(vint4 a, vint4 b) { return vint4(_mm_cmpgt_epi32(a.v, b.v)); }
+inline vint4 cmplt(vint4 a, vint4 b) { return vint4(_mm_cmplt_epi32(a.v, b.v)); }
+/// Lanes of `a` where `mask` is all ones, else lanes of `b`.
+inline vint4 select(vint4 mask, vint4 a, vint4 b) {
+  return vint4(_mm_or_si128(_mm_and_si128(mask.v, a.v), _mm_andnot_si128(mask.v, b.v)));
+}
+/// Lane-wise signed minimum.
+inline vint4 min(vint4 a, vint4 b) {
+#if defined(TESSERA_SIMD_SSE41)
+  return vint4(_mm_min_epi32(a.v, b.v));
+#else
+  const __m128i lt = _mm_cmplt_epi32(a.v, b.v);
+  return vint4(_mm_or_si128(_mm_and_si128(lt, a.v), _mm_andnot_si128(lt, b.v)));
+#endif
+}
+/// Lanes (1, 0, 3, 2): swaps adjacent lanes.
+inline vint4 swap_pairs(vint4 a) { return vint4(_mm_shuffle_epi32(a.v, _MM_SHUFFLE(2, 3, 0, 1))); }
+/// Lanes 0-2 from `rgb`, lane 3 from `a`.
+inline vint4 select_alpha(vint4 rgb, vint4 a) {
+  const __m128i m = _mm_setr_epi32(0, 0, 0, -1);
+  return vint4(_mm_or_si128(_mm_andnot_si128(m, rgb.v), _mm_and_si128(m, a.v)));
+}
+/// Bit i set when lane i is negative (the sign bits; for masks: lane i set).
+inline int movemask(vint4 mask) { return _mm_movemask_ps(_mm_castsi128_ps(mask.v)); }
+/// Lanes (a0 + a1, a2 + a3, b0 + b1, b2 + b3).
+inline vint4 pair_sums(vint4 a, vint4 b) {
+  const __m128 x = _mm_castsi128_ps(a.v), y = _mm_castsi128_ps(b.v);
+  return vint4(_mm_add_epi32(_mm_castps_si128(_mm_shuffle_ps(x, y, _MM_SHUFFLE(2, 0, 2, 0))),
+                             _mm_castps_si128(_mm_shuffle_ps(x, y, _MM_SHUFFLE(3, 1, 3, 1)))));
+}
+/// Lanes (a0, a2, b0, b2).
+inline vint4 even_lanes(vint4 a, vint4 b) {
+  return vint4(_mm_castps_si128(
+      _mm_shuffle_ps(_mm_castsi128_ps(a.v), _mm_castsi128_ps(b.v), _MM_SHUFFLE(2, 0, 2, 0))));
+}
+/// Sum of the four lanes.
+inline std::int32_t sum_lanes(vint4 a) {
+  const __m128i s = _mm_add_epi32(a.v, _mm_shuffle_epi32(a.v, _MM_SHUFFLE(1, 0, 3, 2)));
+  return _mm_cvtsi128_si32(_mm_add_epi32(s, _mm_shuffle_epi32(s, _MM_SHUFFLE(2, 3, 0, 1))));
+}
+/// Lane 0 + lane 2 (the PVRTC exact search keeps two texel sums there), without a round trip
+/// through memory.
+inline std::int32_t sum_lanes02(vint4 a) {
+  return _mm_cvtsi128_si32(_mm_add_epi32(a.v, _mm_shuffle_epi32(a.v, _MM_SHUFFLE(1, 0, 3, 2))));
+}
+/// Stores the four lanes (each 0..255) as bytes.
+inline void store_u8x4(vint4 a, std::uint8_t* out) {
+  const __m128i p16 = _mm_packs_epi32(a.v, a.v);
+  const __m128i p8 = _mm_packus_epi16(p16, p16);
+  const std::int32_t w = _mm_cvtsi128_si32(p8);
+  std::memcpy(out, &w, 4);
+}
+
+/// Two signed 64-bit lanes.
+struct vi64x2 {
+  __m128i v;
+  vi64x2() : v(_mm_setzero_si128()) {}
+  explicit vi64x2(__m128i x) : v(x) {}
+  explicit vi64x2(std::int64_t a) : v(_mm_set1_epi64x(a)) {}
+  /// Lane 0 = `lo`, lane 1 = `hi`.
+  vi64x2(std::int64_t lo, std::int64_t hi) : v(_mm_set_epi64x(hi, lo)) {}
+};
+/// Loads p[0], p[1] (no alignment assumed).
+inline vi64x2 load_i64x2(const std::int64_t* p) {
+  return vi64x2(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
+}
+inline vi64x2 operator+(vi64x2 a, vi64x2 b) { return vi64x2(_mm_add_epi64(a.v, b.v)); }
+inline vi64x2 operator|(vi64x2 a, vi64x2 b) { return vi64x2(_mm_or_si128(a.v, b.v)); }
+/// Bit i set when lane i is negative.
+inline int movemask(vi64x2 a) { return _mm_movemask_pd(_mm_castsi128_pd(a.v)); }
+
+#else  // scalar backend
+
+struct vint4 {
+  std::int32_t l[4] = {0, 0, 0, 0};
+  vint4() = default;
+  vint4(std::int32_t a, std::int32_t b, std::int32_t c, std::int32_t d) : l{a, b, c, d} {}
+  explicit vint4(std::int32_t a) : l{a, a, a, a} {}
+  std::int32_t lane(int i) const { return l[i]; }
+};
+inline vint4 load4(const std::int32_t* p) { return {p[0], p[1], p[2], p[3]}; }
+inline vint4 load4_aligned(const std::int32_t* p) { return load4(p); }
+inline void store4(vint4 a, std::int32_t* p) {
+  for (int i = 0; i < 4; ++i) p[i] = a.l[i];
+}
+inline void store4_aligned(vint4 a, std::int32_t* p) { store4(a, p); }
+inline vint4 load_texels4(const std::uint8_t* p) {
+  vint4 r;
+  for (int i = 0; i < 4; ++i) {
+    std::uint32_t x;
+    std::memcpy(&x, p + 4 * i, 4);
+    r.l[i] = std::int32_t(x);
+  }
+  return r;
+}
+#define TESSERA_SIMD_I32_BINOP(op, expr)                                        \
+  inline vint4 op(vint4 a, vint4 b) {                                           \
+    vint4 r;                                                                    \
+    for (int i = 0; i < 4; ++i) {                                               \
+      const std::uint32_t x = std::uint32_t(a.l[i]), y = std::uint32_t(b.l[i]); \
+      r.l[i] = std::int32_t(expr);                                              \
+    }                                                                           \
+    return r;                                                                   \
+  }
+TESSERA_SIMD_I32_BINOP(operator+, x + y)
+TESSERA_SIMD_I32_BINOP(operator-, x - y)
+TESSERA_SIMD_I32_BINOP(operator*, x* y)
+TESSERA_SIMD_I32_BINOP(operator&, x& y)
+TESSERA_SIMD_I32_BINOP(operator|, x | y)
+TESSERA_SIMD_I32_BINOP(operator^, x ^ y)
+TESSERA_SIMD_I32_BINOP(andnot, ~x& y)
+TESSERA_SIMD_I32_BINOP(cmpeq, x == y ? ~0u : 0u)
+TESSERA_SIMD_I32_BINOP(cmpgt, std::int32_t(x) > std::int32_t(y) ? ~0u : 0u)
+TESSERA_SIMD_I32_BINOP(cmplt, std::int32_t(x) < std::int32_t(y) ? ~0u : 0u)
+TESSERA_SIMD_I32_BINOP(min, std::int32_t(x) < std::int32_t(y) ? x : y)
+#undef TESSERA_SIMD_I32_BINOP
+inline vint4& operator+=(vint4& a, vint4 b) { return a = a + b; }
+template <int N>
+inline vint4 sra(vint4 a) {
+  return {a.l[0] >> N, a.l[1] >> N, a.l[2] >> N, a.l[3] >> N};
+}
+template <int N>
+inline vint4 srl(vint4 a) {
+  vint4 r;
+  for (int i = 0; i < 4; ++i) r.l[i] = std::int32_t(std::uint32_t(a.l[i]) >> N);
+  return r;
+}
+template <int N>
+inline vint4 sll(vint4 a) {
+  vint4 r;
+  for (int i = 0; i < 4; ++i) r.l[i] = std::int32_t(std::uint32_t(a.l[i]) << N);
+  return r;
+}
+inline vint4 select(vint4 mask, vint4 a, vint4 b) { return (mask & a) | andnot(mask, b); }
+inline vint4 swap_pairs(vint4 a) { return {a.l[1], a.l[0], a.l[3], a.l[2]}; }
+inline vint4 select_alpha(vint4 rgb, vint4 a) { return {rgb.l[0], rgb.l[1], rgb.l[2], a.l[3]}; }
+inline int movemask(vint4 mask) {
+  int m = 0;
+  for (int i = 0; i < 4; ++i) m |= (mask.l[i] < 0 ? 1 : 0) << i;
+  return m;
+}
+inline vint4 pair_sums(vint4 a, vint4 b) {
+  return {a.l[0] + a.l[1], a.l[2] + a.l[3], b.l[0] + b.l[1], b.l[2] + b.l[3]};
+}
+inline vint4 even_lanes(vint4 a, vint4 b) { return {a.l[0], a.l[2], b.l[0], b.l[2]}; }
+inline std::int32_t sum_lanes(vint4 a) { return a.l[0] + a.l[1] + a.l[2] + a.l[3]; }
+inline std::int32_t sum_lanes02(vint4 a) { return a.l[0] + a.l[2]; }
+inline void store_u8x4(vint4 a, std::uint8_t* out) {
+  for (int i = 0; i < 4; ++i) out[i] = std::uint8_t(a.l[i]);
+}
+
+struct vi64x2 {
+  std::int64_t l[2] = {0, 0};
+  vi64x2() = default;
+  explicit vi64x2(std::int64_t a) : l{a, a} {}
+  vi64x2(std::int64_t lo, std::int64_t hi) : l{lo, hi} {}
+};
+inline vi64x2 load_i64x2(const std::int64_t* p) { return {p[0], p[1]}; }
+inline vi64x2 operator+(vi64x2 a, vi64x2 b) {
+  return {std::int64_t(std::uint64_t(a.l[0]) + std::uint64_t(b.l[0])),
+          std::int64_t(std::uint64_t(a.l[1]) + std::uint64_t(b.l[1]))};
+}
+inline vi64x2 operator|(vi64x2 a, vi64x2 b) { return {a.l[0] | b.l[0], a.l[1] | b.l[1]}; }
+inline int movemask(vi64x2 a) { return (a.l[0] < 0 ? 1 : 0) | (a.l[1] < 0 ? 2 : 0); }
+
+#endif
+
+}  // namespace tessera::simd

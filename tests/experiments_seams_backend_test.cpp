@@ -1,0 +1,218 @@
+// The seam experiment of tessera/experiments.h through the SeamsFrameRenderer interface: fake
+// GL backends that refuse some MSAA rates, perturb or round their frames, and compare_gl's
+// agreement measures against the CPU renderer. (The CPU backend: experiments_test.cpp.)
+#include "tessera/experiments.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "experiments_test_util.h"
+#include "tessera/metrics.h"
+
+namespace tessera::experiments {
+namespace {
+
+using faces::Method;
+using test::seams_result;
+using test::tiny_seams;
+
+/// A stand-in for the GL backend: the CPU renderer under another name that refuses some MSAA
+/// rates and has no shading-only pass, as a GL driver may.
+class FakeGlRenderer final : public SeamsFrameRenderer {
+ public:
+  /// `perturb`: add 0.02 to the red channel of pixel (0, 0) of every frame.
+  FakeGlRenderer(std::unique_ptr<SeamsFrameRenderer> cpu, std::vector<int> refused, bool perturb)
+      : cpu_(std::move(cpu)), refused_(std::move(refused)), perturb_(perturb) {}
+  Backend backend() const override { return Backend::gl; }
+  std::string device_name() const override { return "fake renderer"; }
+  std::string device_version() const override { return "9.9"; }
+  bool msaa_supported(int samples) override {
+    return std::find(refused_.begin(), refused_.end(), samples) == refused_.end();
+  }
+  bool has_shading_only() const override { return false; }
+  Result<SeamsBackendFrame> render(const scene::Camera& camera,
+                                   const SeamsFrameOptions& options) override {
+    EXPECT_FALSE(options.shading_only);
+    EXPECT_TRUE(msaa_supported(options.msaa));
+    Result<SeamsBackendFrame> f = cpu_->render(camera, options);
+    if (!f) return f;
+    f->wall_ms = f->ms + 1.0;
+    if (perturb_ && !f->image.pixels.empty()) f->image.pixels[0] += 0.02f;
+    return f;
+  }
+  Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
+                                      const faces::ReferenceOptions& options) override {
+    return cpu_->render_reference(camera, width, height, options);
+  }
+
+ private:
+  std::unique_ptr<SeamsFrameRenderer> cpu_;
+  std::vector<int> refused_;
+  bool perturb_ = false;
+};
+
+SeamsRendererFactory fake_gl_factory(std::vector<int> refused, bool perturb = false) {
+  return [refused, perturb](
+             const faces::FaceScene& scene,
+             const faces::FaceTextureSet& set) -> Result<std::unique_ptr<SeamsFrameRenderer>> {
+    Result<std::unique_ptr<SeamsFrameRenderer>> cpu = create_cpu_seams_renderer(scene, set);
+    if (!cpu) return cpu.status();
+    return std::unique_ptr<SeamsFrameRenderer>(
+        std::make_unique<FakeGlRenderer>(std::move(*cpu), refused, perturb));
+  };
+}
+
+TEST(Seams, GlBackendThroughTheFactorySkipsRefusedRates) {
+  SeamsConfig c = tiny_seams();
+  c.backend = Backend::gl;
+  c.gl_renderer_factory = fake_gl_factory({4});
+  Result<SeamsResult> r = run_seams(c);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  EXPECT_EQ(r->backend, Backend::gl);
+  EXPECT_EQ(r->gl_renderer, "fake renderer");
+  EXPECT_EQ(r->gl_version, "9.9");
+  EXPECT_EQ(r->msaa_unsupported, std::vector<int>{4});
+  ASSERT_EQ(r->rates.size(), 1u);  // 4x skipped, not failed
+  const SeamsResult& cpu = seams_result();
+  ASSERT_EQ(cpu.rates.size(), 2u);
+  const SeamsRateResult& g = r->rates[0];
+  EXPECT_EQ(g.msaa, 1);
+  EXPECT_TRUE(g.shading_only.frame_ms.empty());  // no shading-only pass there
+  for (Method m : faces::all_methods()) {
+    const SeamsMethodResult& mr = g.method(m);
+    ASSERT_EQ(mr.timing.frame_ms.size(), std::size_t(c.frames));
+    ASSERT_EQ(mr.wall.frame_ms.size(), std::size_t(c.frames));
+    EXPECT_DOUBLE_EQ(mr.wall.frame_ms[0], mr.timing.frame_ms[0] + 1.0);
+    // The same frames and reference as the CPU run: the same statistics.
+    EXPECT_EQ(mr.vs_reference.cdf, cpu.rates[0].method(m).vs_reference.cdf);
+    EXPECT_EQ(mr.vs_reference_near_seams.cdf, cpu.rates[0].method(m).vs_reference_near_seams.cdf);
+    EXPECT_EQ(mr.vs_reference_character.cdf, cpu.rates[0].method(m).vs_reference_character.cdf);
+  }
+  EXPECT_EQ(g.nan_pixels_without_fallback, cpu.rates[0].nan_pixels_without_fallback);
+  EXPECT_TRUE(r->gl_rates.empty());
+
+  // Every rate refused: an error before anything is written.
+  bool ready = false;
+  c.on_ready = [&] {
+    ready = true;
+    return Status::success();
+  };
+  c.gl_renderer_factory = fake_gl_factory({1, 4});
+  Result<SeamsResult> none = run_seams(c);
+  ASSERT_FALSE(none.ok());
+  EXPECT_EQ(none.status().code, ErrorCode::unsupported);
+  EXPECT_NE(none.status().message.find("refuses every MSAA rate"), std::string::npos);
+  EXPECT_FALSE(ready);
+}
+
+TEST(Seams, CompareGlKeepsTheCpuResultAndMeasuresAgreement) {
+  SeamsConfig c = tiny_seams();
+  c.compare_gl = true;
+  c.gl_renderer_factory = fake_gl_factory({4}, true);
+  Result<SeamsResult> r = run_seams(c);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  EXPECT_EQ(r->backend, Backend::cpu);
+  EXPECT_TRUE(r->compared_gl);
+  EXPECT_EQ(r->msaa_unsupported, std::vector<int>{4});
+  const SeamsResult& cpu = seams_result();
+  ASSERT_EQ(r->rates.size(), cpu.rates.size());  // the CPU renders every rate
+  for (std::size_t ri = 0; ri < cpu.rates.size(); ++ri) {
+    for (Method m : faces::all_methods()) {
+      EXPECT_EQ(r->rates[ri].method(m).vs_reference.cdf, cpu.rates[ri].method(m).vs_reference.cdf);
+      EXPECT_TRUE(r->rates[ri].method(m).wall.frame_ms.empty());
+    }
+    EXPECT_EQ(r->rates[ri].shading_only.frame_ms.size(), std::size_t(c.frames));
+  }
+  ASSERT_EQ(r->gl_rates.size(), 1u);  // GL skips the refused 4x
+  EXPECT_EQ(r->gl_rates[0].msaa, 1);
+  for (Method m : faces::all_methods()) {
+    const SeamsGlMethodResult& g = r->gl_rates[0].method(m);
+    EXPECT_EQ(g.method, m);
+    EXPECT_EQ(g.gpu.frame_ms.size(), std::size_t(c.frames));
+    EXPECT_EQ(g.wall.frame_ms.size(), std::size_t(c.frames));
+    // The stand-in renders the CPU's frames with one pixel 0.02 brighter in red: that pixel,
+    // of every quality frame, is >= 0.01 apart; the 8-bit PSNR is finite and high.
+    EXPECT_DOUBLE_EQ(g.fraction_ge_001, 1.0 / double(c.width * c.height));
+    EXPECT_TRUE(std::isfinite(g.psnr_db));
+    EXPECT_GT(g.psnr_db, 40.0);
+  }
+}
+
+/// A stand-in for a driver that draws 2x with its 4x samples, as Mesa llvmpipe does: the CPU
+/// renderer at 4x for 2x. `report`: say so in `sample_pattern` (as the GL backend does).
+class RoundingFakeGlRenderer final : public SeamsFrameRenderer {
+ public:
+  RoundingFakeGlRenderer(std::unique_ptr<SeamsFrameRenderer> cpu, bool report)
+      : cpu_(std::move(cpu)), report_(report) {}
+  Backend backend() const override { return Backend::gl; }
+  std::string device_name() const override { return "rounding renderer"; }
+  std::string device_version() const override { return "9.9"; }
+  bool msaa_supported(int samples) override { return samples == 2 || samples == 4; }
+  bool has_shading_only() const override { return false; }
+  SeamsSamplePattern sample_pattern(int msaa) override {
+    return report_ ? SeamsSamplePattern{msaa, 4, 4} : SeamsSamplePattern{msaa, msaa, msaa};
+  }
+  Result<SeamsBackendFrame> render(const scene::Camera& camera,
+                                   const SeamsFrameOptions& options) override {
+    SeamsFrameOptions o = options;
+    o.msaa = 4;
+    return cpu_->render(camera, o);
+  }
+  Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
+                                      const faces::ReferenceOptions& options) override {
+    return cpu_->render_reference(camera, width, height, options);
+  }
+
+ private:
+  std::unique_ptr<SeamsFrameRenderer> cpu_;
+  bool report_ = true;
+};
+
+// compare_gl compares a GL frame with the CPU frame of the driver's sample positions: a 2x
+// frame drawn with 4x samples against the CPU's 4x frame (here the very same frame: identical),
+// not the CPU's 2x one (which differs at every edge).
+TEST(Seams, CompareGlUsesTheDriversSamplePositions) {
+  for (bool report : {true, false}) {
+    SeamsConfig c = tiny_seams();
+    c.msaa = {2, 4};
+    c.frames = 1;
+    c.compare_gl = true;
+    c.gl_renderer_factory =
+        [report](const faces::FaceScene& scene,
+                 const faces::FaceTextureSet& set) -> Result<std::unique_ptr<SeamsFrameRenderer>> {
+      Result<std::unique_ptr<SeamsFrameRenderer>> cpu = create_cpu_seams_renderer(scene, set);
+      if (!cpu) return cpu.status();
+      return std::unique_ptr<SeamsFrameRenderer>(
+          std::make_unique<RoundingFakeGlRenderer>(std::move(*cpu), report));
+    };
+    Result<SeamsResult> r = run_seams(c);
+    ASSERT_TRUE(r.ok()) << r.status().message;
+    ASSERT_EQ(r->gl_sample_patterns.size(), 2u);
+    EXPECT_EQ(r->gl_sample_patterns[0].msaa, 2);
+    EXPECT_EQ(r->gl_sample_patterns[0].samples, report ? 4 : 2);
+    EXPECT_EQ(r->gl_sample_patterns[0].cpu_msaa, report ? 4 : 2);
+    EXPECT_EQ(r->gl_sample_patterns[1].msaa, 4);
+    ASSERT_EQ(r->gl_rates.size(), 2u);
+    for (Method m : faces::all_methods()) {
+      const SeamsGlMethodResult& g2 = r->gl_rates[0].method(m);
+      const SeamsGlMethodResult& g4 = r->gl_rates[1].method(m);
+      EXPECT_FALSE(std::isfinite(g4.psnr_db)) << faces::method_name(m);  // identical
+      if (report) {
+        EXPECT_FALSE(std::isfinite(g2.psnr_db)) << faces::method_name(m);
+        EXPECT_EQ(g2.fraction_ge_001, 0.0);
+      } else {
+        EXPECT_TRUE(std::isfinite(g2.psnr_db)) << faces::method_name(m);
+        EXPECT_GT(g2.fraction_ge_001, 0.0);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tessera::experiments

@@ -1,0 +1,218 @@
+// src/core/simd*.h: every float / 32-bit / 64-bit lane operation the texture and raster kernels
+// use, checked lane by lane (bit for bit) against the scalar expression its comment documents,
+// on special values (signed zeros, NaN, infinities, denormals, halves). Built twice: simd_test
+// with the target's backend (SSE2 on x86-64) and simd_scalar_test with TESSERA_NO_SIMD (the
+// portable backend, what AArch64 gets), so both backends are held to the same expressions.
+#include "core/simd.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace {
+
+using tessera::simd::vf4;
+using tessera::simd::vi64x2;
+using tessera::simd::vint4;
+namespace simd = tessera::simd;
+
+std::uint32_t bits(float x) { return std::bit_cast<std::uint32_t>(x); }
+
+/// Same bits, or both NaN (which NaN an operation on two NaNs returns is not specified by C++).
+void expect_same(float got, float want) {
+  if (std::isnan(want)) {
+    EXPECT_TRUE(std::isnan(got));
+  } else {
+    EXPECT_EQ(bits(got), bits(want)) << want;
+  }
+}
+
+std::vector<float> special_values() {
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  return {0.0f,  -0.0f,  1.0f, -1.0f, 0.5f, -0.5f, 1.5f,   -2.5f,   3.75f, 8388608.0f,
+          1e30f, -1e30f, inf,  -inf,  nan,  -nan,  1e-40f, -1e-40f, 0.1f,  255.5f};
+}
+
+struct Lanes {
+  float f[4];
+};
+Lanes lanes(vf4 a) {
+  Lanes r;
+  simd::storef4(a, r.f);
+  return r;
+}
+struct ILanes {
+  std::int32_t i[4];
+};
+ILanes lanes(vint4 a) {
+  ILanes r;
+  simd::store4(a, r.i);
+  return r;
+}
+
+/// Runs `check(x[k], y[k], lane)` for all pairs of special values, four pairs per vector.
+template <class F>
+void for_pairs(F check) {
+  const std::vector<float> v = special_values();
+  std::vector<float> xs, ys;
+  for (float x : v) {
+    for (float y : v) {
+      xs.push_back(x);
+      ys.push_back(y);
+    }
+  }
+  while (xs.size() % 4) {
+    xs.push_back(0.0f);
+    ys.push_back(0.0f);
+  }
+  for (std::size_t k = 0; k < xs.size(); k += 4) check(&xs[k], &ys[k]);
+}
+
+TEST(Simd, FloatArithmeticIsOneIeeeOperationPerLane) {
+  for_pairs([](const float* x, const float* y) {
+    const vf4 a = simd::loadf4(x), b = simd::loadf4(y);
+    const Lanes add = lanes(a + b), sub = lanes(a - b), mul = lanes(a * b);
+    const Lanes mx = lanes(simd::max(a, b)), mn = lanes(simd::min(a, b));
+    const Lanes sq = lanes(simd::sqrt(a));
+    for (int i = 0; i < 4; ++i) {
+      const float p = x[i], q = y[i];
+      expect_same(add.f[i], p + q);
+      expect_same(sub.f[i], p - q);
+      expect_same(mul.f[i], p * q);
+      expect_same(sq.f[i], std::sqrt(p));
+      // min / max pass their second operand through when the compare fails: exact bits.
+      EXPECT_EQ(bits(mx.f[i]), bits(p > q ? p : q)) << p << " " << q;
+      EXPECT_EQ(bits(mn.f[i]), bits(p < q ? p : q)) << p << " " << q;
+    }
+  });
+}
+
+TEST(Simd, FloatComparesSelectsAndMasks) {
+  for_pairs([](const float* x, const float* y) {
+    const vf4 a = simd::loadf4(x), b = simd::loadf4(y);
+    const ILanes eq = lanes(simd::cmpeq(a, b)), lt = lanes(simd::cmplt(a, b));
+    const ILanes le = lanes(simd::cmple(a, b)), gt = lanes(simd::cmpgt(a, b));
+    const ILanes nge = lanes(simd::cmpnge(a, b)), ord = lanes(simd::cmpord(a, b));
+    const vint4 m = simd::cmplt(a, b);
+    const Lanes sel = lanes(simd::select(m, a, b));
+    const Lanes keep = lanes(simd::keep_where(m, a)), zero = lanes(simd::zero_where(m, a));
+    const int mm = simd::movemask(m);
+    for (int i = 0; i < 4; ++i) {
+      const float p = x[i], q = y[i];
+      EXPECT_EQ(eq.i[i], p == q ? -1 : 0);
+      EXPECT_EQ(lt.i[i], p < q ? -1 : 0);
+      EXPECT_EQ(le.i[i], p <= q ? -1 : 0);
+      EXPECT_EQ(gt.i[i], p > q ? -1 : 0);
+      EXPECT_EQ(nge.i[i], !(p >= q) ? -1 : 0);
+      EXPECT_EQ(ord.i[i], !std::isnan(p) && !std::isnan(q) ? -1 : 0);
+      EXPECT_EQ(bits(sel.f[i]), bits(p < q ? p : q));
+      EXPECT_EQ(bits(keep.f[i]), p < q ? bits(p) : 0u);
+      EXPECT_EQ(bits(zero.f[i]), p < q ? 0u : bits(p));
+      EXPECT_EQ(mm >> i & 1, p < q ? 1 : 0);
+    }
+  });
+}
+
+TEST(Simd, FloatConversionsAndShuffles) {
+  const float in[8] = {-2.5f, -0.5f, 0.75f, 3.5f, -1e9f, 16777217.0f, 1e9f, -0.0f};
+  for (int k = 0; k < 8; k += 4) {
+    const ILanes t = lanes(simd::to_int_trunc(simd::loadf4(in + k)));
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(t.i[i], std::int32_t(in[k + i]));
+  }
+  const std::int32_t iv[4] = {-16777217, -3, 16777217, 2147483647};
+  const Lanes f = lanes(simd::to_float(simd::load4(iv)));
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(bits(f.f[i]), bits(float(iv[i])));
+  const std::int32_t sign = std::numeric_limits<std::int32_t>::min();
+  const Lanes c = lanes(simd::as_float(vint4(0x3f800000, sign, 0x7fc00000, 1)));
+  EXPECT_EQ(bits(c.f[0]), 0x3f800000u);
+  EXPECT_EQ(bits(c.f[1]), 0x80000000u);
+  EXPECT_EQ(bits(c.f[2]), 0x7fc00000u);
+  EXPECT_EQ(bits(c.f[3]), 1u);
+  EXPECT_EQ(lanes(simd::as_int(vf4(1.0f, -0.0f, 2.0f, 0.5f))).i[1], sign);
+
+  const vf4 a(0.0f, 1.0f, 2.0f, 3.0f), b(4.0f, 5.0f, 6.0f, 7.0f);
+  const Lanes ev = lanes(simd::even_lanes(a, b)), od = lanes(simd::odd_lanes(a, b));
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(ev.f[i], float(2 * i));
+    EXPECT_EQ(od.f[i], float(2 * i + 1));
+  }
+  vf4 r0(0, 1, 2, 3), r1(4, 5, 6, 7), r2(8, 9, 10, 11), r3(12, 13, 14, 15);
+  simd::transpose(r0, r1, r2, r3);
+  const Lanes t[4] = {lanes(r0), lanes(r1), lanes(r2), lanes(r3)};
+  vint4 i0(0, 1, 2, 3), i1(4, 5, 6, 7), i2(8, 9, 10, 11), i3(12, 13, 14, 15);
+  simd::transpose(i0, i1, i2, i3);
+  const ILanes ti[4] = {lanes(i0), lanes(i1), lanes(i2), lanes(i3)};
+  for (int row = 0; row < 4; ++row) {
+    for (int col = 0; col < 4; ++col) {
+      EXPECT_EQ(t[row].f[col], float(4 * col + row));
+      EXPECT_EQ(ti[row].i[col], 4 * col + row);
+    }
+  }
+  alignas(16) float store[4];
+  simd::storef4_aligned(simd::loadf4_aligned(in), store);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(store[i], in[i]);
+}
+
+TEST(Simd, Int32LanesCompareSelectAndMultiply) {
+  const std::int32_t xs[8] = {-7, 0, 5, 2147483647, -2147483647 - 1, 46340, -3, 1 << 20};
+  const std::int32_t ys[8] = {3, 0, -5, -1, 1, 46341, -3, 1 << 10};
+  for (int k = 0; k < 8; k += 4) {
+    const vint4 a = simd::load4(xs + k), b = simd::load4(ys + k);
+    const ILanes eq = lanes(simd::cmpeq(a, b)), gt = lanes(simd::cmpgt(a, b));
+    const ILanes lt = lanes(simd::cmplt(a, b)), an = lanes(simd::andnot(a, b));
+    const ILanes sel = lanes(simd::select(simd::cmpgt(a, b), a, b));
+    const ILanes mul = lanes(a * b), mn = lanes(simd::min(a, b));
+    for (int i = 0; i < 4; ++i) {
+      const std::int32_t p = xs[k + i], q = ys[k + i];
+      EXPECT_EQ(eq.i[i], p == q ? -1 : 0);
+      EXPECT_EQ(gt.i[i], p > q ? -1 : 0);
+      EXPECT_EQ(lt.i[i], p < q ? -1 : 0);
+      EXPECT_EQ(an.i[i], ~p & q);
+      EXPECT_EQ(sel.i[i], p > q ? p : q);
+      EXPECT_EQ(mn.i[i], p < q ? p : q);
+      EXPECT_EQ(mul.i[i], std::int32_t(std::uint32_t(p) * std::uint32_t(q)));
+    }
+  }
+  alignas(16) std::int32_t out[4] = {9, 9, 9, 9};
+  simd::store4_aligned((simd::load4_aligned(out) & vint4(1)) | vint4(0, 2, 4, 6), out);
+  EXPECT_EQ(out[0], 1);
+  EXPECT_EQ(out[3], 7);
+}
+
+TEST(Simd, Int64LanesAddOrAndSigns) {
+  const std::int64_t big = std::int64_t{1} << 40;
+  const std::int64_t p[2] = {-big, big};
+  const vi64x2 a = simd::load_i64x2(p);
+  EXPECT_EQ(simd::movemask(a), 1);
+  EXPECT_EQ(simd::movemask(vi64x2(big, -1)), 2);
+  EXPECT_EQ(simd::movemask(a + vi64x2(big)), 0);
+  EXPECT_EQ(simd::movemask(a + vi64x2(-big - 1, -2 * big)), 3);
+  EXPECT_EQ(simd::movemask(vi64x2(1, 2) | vi64x2(-big, 0)), 1);
+  EXPECT_EQ(simd::movemask(vi64x2(std::numeric_limits<std::int64_t>::max()) + vi64x2(1)), 3);
+}
+
+#if defined(__GNUC__)
+TEST(Simd, F32x4RoundTrips) {
+  const simd::f32x4 v = {1.0f, -0.0f, 2.5f, -3.0f};
+  const simd::f32x4 w = simd::to_f32x4(simd::from_f32x4(v) + vf4(1.0f));
+  EXPECT_EQ(w[0], 2.0f);
+  EXPECT_EQ(w[1], 1.0f);
+  EXPECT_EQ(w[2], 3.5f);
+  EXPECT_EQ(w[3], -2.0f);
+}
+#endif
+
+TEST(Simd, BackendMacroMatchesTarget) {
+#if defined(TESSERA_NO_SIMD)
+  EXPECT_EQ(TESSERA_SIMD_VECTOR, 0);
+#elif defined(__SSE2__)
+  EXPECT_EQ(TESSERA_SIMD_VECTOR, 1);
+#endif
+}
+
+}  // namespace

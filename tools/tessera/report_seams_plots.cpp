@@ -1,0 +1,222 @@
+// The plots and images of `tessera seams`: cdf.csv and Figure 5 (CDFs of per-pixel linear-RGB
+// 2-norm errors) as SVG and PNG, the frame-0 images of every method and rate, zooms on the
+// worst seam and the Clamp-minus-Traverse heatmaps. (JSON and Markdown: report_seams.cpp.)
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "plot.h"
+#include "report.h"
+#include "report_plot.h"
+#include "report_seams.h"
+#include "tessera/io.h"
+#include "tessera/metrics.h"
+
+namespace tessera::cli::seams_report {
+
+namespace {
+
+using experiments::ErrorStats;
+using experiments::SeamsRateResult;
+using faces::Method;
+
+constexpr float kDiffScale = 0.05f;  // heatmap saturation of the clamp-minus-traverse images
+
+float norm_rgb(const float* a, const float* b) {
+  const float d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
+  return std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+}
+
+ImageRGBA8 to_png_image(const ImageRGBAF& img, int threads) {
+  ImageRGBAF c = img;
+  for (std::size_t i = 0; i < c.pixel_count(); ++i) c.pixels[i * 4 + 3] = 1.0f;
+  ImageRGBA8 out = to_srgb8(c, {threads});
+  out.has_alpha = false;
+  return out;
+}
+
+ImageRGBA8 zoom(const ImageRGBA8& img, int x0, int y0, int w, int h, int s) {
+  ImageRGBA8 out(w * s, h * s);
+  for (int y = 0; y < h * s; ++y) {
+    for (int x = 0; x < w * s; ++x) {
+      const std::uint8_t* p = img.at(x0 + x / s, y0 + y / s);
+      std::copy(p, p + 4, out.at(x, y));
+    }
+  }
+  return out;
+}
+
+const char* rate_colour(std::size_t i) {
+  static const char* c[] = {"#d62728", "#ff7f0e", "#2ca02c", "#1f77b4", "#9467bd"};
+  return c[std::min<std::size_t>(i, 4)];
+}
+
+const char* method_dash(Method m) {
+  switch (m) {
+    case Method::clamp:
+      return "2,3";
+    case Method::discard:
+      return "";
+    case Method::traverse:
+      return "8,4";
+    case Method::traverse_corners:
+      return "12,3,2,3";
+  }
+  return "";
+}
+
+}  // namespace
+
+/// Frame 0 of every method and rate, the reference, and a zoom on the worst seam: the window
+/// where Clamp and Traverse differ most at the first rate.
+Status write_images(const experiments::SeamsConfig& c, const experiments::SeamsResult& res,
+                    const std::string& dir, nlohmann::json& summary) {
+  const ImageRGBA8 ref8 = to_png_image(res.reference_frame0, c.threads);
+  if (Status s = io::write_png(dir + "/images/reference.png", ref8); !s.ok()) return s;
+  const int zw = std::min(40, c.width), zh = std::min(40, c.height);
+  int bx = 0, by = 0;
+  double best = -1;
+  const ImageRGBAF& a = res.rates[0].method(Method::clamp).frame0;
+  const ImageRGBAF& b = res.rates[0].method(Method::traverse).frame0;
+  for (int y = 0; y + zh <= c.height; y += 4) {
+    for (int x = 0; x + zw <= c.width; x += 4) {
+      double s = 0;
+      for (int yy = y; yy < y + zh; yy += 2) {
+        for (int xx = x; xx < x + zw; xx += 2) s += norm_rgb(a.at(xx, yy), b.at(xx, yy));
+      }
+      if (s > best) {
+        best = s;
+        bx = x;
+        by = y;
+      }
+    }
+  }
+  const int zs = 4;
+  if (Status s = io::write_png(dir + "/images/zoom_reference.png", zoom(ref8, bx, by, zw, zh, zs));
+      !s.ok()) {
+    return s;
+  }
+  for (const SeamsRateResult& rate : res.rates) {
+    for (const experiments::SeamsMethodResult& mr : rate.methods) {
+      const std::string stem =
+          std::string(faces::method_name(mr.method)) + "_" + rate_key(rate.msaa);
+      const ImageRGBA8 img = to_png_image(mr.frame0, c.threads);
+      if (Status s = io::write_png(dir + "/images/" + stem + ".png", img); !s.ok()) return s;
+      if (Status s =
+              io::write_png(dir + "/images/zoom_" + stem + ".png", zoom(img, bx, by, zw, zh, zs));
+          !s.ok()) {
+        return s;
+      }
+    }
+  }
+  summary["zoom_window"] = {{"x", bx}, {"y", by}, {"w", zw}, {"h", zh}, {"scale", zs}};
+  // Clamp minus Traverse (frame 0): the seam artefact, per-pixel linear-RGB 2-norm.
+  for (const SeamsRateResult* rate : {&res.rates.front(), &res.rates.back()}) {
+    const ImageRGBAF& ca = rate->method(Method::clamp).frame0;
+    const ImageRGBAF& tr = rate->method(Method::traverse).frame0;
+    std::vector<float> d(ca.pixel_count());
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      d[i] = norm_rgb(&ca.pixels[i * 4], &tr.pixels[i * 4]);
+    }
+    const std::string name = "clamp_minus_traverse_" + rate_key(rate->msaa);
+    if (Status s = io::write_png(dir + "/images/" + name + ".png",
+                                 metrics::heatmap(d, ca.width, ca.height, kDiffScale));
+        !s.ok()) {
+      return s;
+    }
+  }
+  return write_text(dir + "/images/clamp_minus_traverse_colourbar.svg",
+                    colour_bar_svg(metrics::ColourMap::inferno, 0, kDiffScale, 6,
+                                   "|Clamp - Traverse|: linear-RGB 2-norm (0.05 and above "
+                                   "saturate)"));
+}
+
+/// cdf.csv and the Figure-5 plots.
+Status write_plots(const experiments::SeamsResult& res, const std::string& dir) {
+  std::ostringstream csv;
+  csv << "threshold";
+  for (const SeamsRateResult& rate : res.rates) {
+    csv << ",traverse_vs_discard_" << rate_key(rate.msaa);
+  }
+  const std::vector<Method>& methods = faces::all_methods();
+  for (Method m : methods) {
+    for (const SeamsRateResult& rate : res.rates) {
+      csv << "," << faces::method_name(m) << "_vs_ref_" << rate_key(rate.msaa);
+    }
+  }
+  csv << "\n";
+  std::vector<const std::vector<double>*> cols;
+  for (const SeamsRateResult& rate : res.rates) cols.push_back(&rate.traverse_vs_discard.cdf);
+  for (Method m : methods) {
+    for (const SeamsRateResult& rate : res.rates) cols.push_back(&rate.method(m).vs_reference.cdf);
+  }
+  for (int i = 0; i < kBins; ++i) {
+    csv << double(i) * kStep;
+    for (const std::vector<double>* col : cols) csv << "," << (*col)[std::size_t(i)];
+    csv << "\n";
+  }
+  if (Status s = write_text(dir + "/cdf.csv", csv.str()); !s.ok()) return s;
+  std::vector<Curve> left, right;
+  for (std::size_t ri = 0; ri < res.rates.size(); ++ri) {
+    left.push_back(
+        {rate_key(res.rates[ri].msaa), rate_colour(ri), "", res.rates[ri].traverse_vs_discard.cdf});
+  }
+  for (Method m : methods) {
+    if (m == Method::traverse_corners) continue;  // in the CSV/JSON
+    for (std::size_t ri = 0; ri < res.rates.size(); ++ri) {
+      right.push_back({std::string(faces::method_name(m)) + " " + rate_key(res.rates[ri].msaa),
+                       rate_colour(ri), method_dash(m), res.rates[ri].method(m).vs_reference.cdf});
+    }
+  }
+  // One readable panel per rate: Clamp, Discard and Traverse against the reference over all
+  // geometry pixels (solid) and near the seams (dashed).
+  for (std::size_t ri = 0; ri < res.rates.size(); ++ri) {
+    const SeamsRateResult& rate = res.rates[ri];
+    Plot plot;
+    plot.title = "Figure 5, " + rate_key(rate.msaa) + " MSAA: error against the reference";
+    plot.x_title = "x: per-pixel linear-RGB error (2-norm)";
+    plot.y_title = "fraction of pixels with error >= x";
+    plot.log_y = true;
+    plot.x_min = 0;
+    plot.x_max = 0.15;
+    plot.y_min = 1e-4;
+    plot.y_max = 1;
+    std::size_t colour = 0;
+    for (Method m : {Method::clamp, Method::discard, Method::traverse}) {
+      for (bool near : {false, true}) {
+        if (near && res.near_seam_pixels == 0) continue;
+        const ErrorStats& q =
+            near ? rate.method(m).vs_reference_near_seams : rate.method(m).vs_reference;
+        PlotSeries ser;
+        ser.label = std::string(faces::method_name(m)) +
+                    (near ? ", near seams" : ", all pixels") + fmt(" (mean %.4f)", q.mean);
+        ser.colour = series_colour(colour);
+        ser.dashed = near;
+        for (int i = 0; i < kBins && i < int(q.cdf.size()); ++i) {
+          ser.x.push_back(double(i) * kStep);
+          ser.y.push_back(q.cdf[std::size_t(i)]);
+        }
+        plot.series.push_back(std::move(ser));
+      }
+      ++colour;
+    }
+    if (Status s = write_text(dir + "/fig5_" + rate_key(rate.msaa) + ".svg", plot_svg(plot));
+        !s.ok()) {
+      return s;
+    }
+  }
+  if (Status s = write_text(dir + "/fig5_left.svg", cdf_svg("Traverse vs Discard", left, 0.15));
+      !s.ok()) {
+    return s;
+  }
+  if (Status s = io::write_png(dir + "/fig5_left.png", cdf_png(left, 0.15)); !s.ok()) return s;
+  if (Status s = io::write_png(dir + "/fig5_right.png", cdf_png(right, 0.15)); !s.ok()) return s;
+  return write_text(dir + "/fig5_right.svg",
+                    cdf_svg("Deviation from the reference (solid Discard, dashed "
+                            "Traverse, dotted Clamp)",
+                            right, 0.15));
+}
+
+}  // namespace tessera::cli::seams_report
