@@ -56,7 +56,8 @@ bool parse(int argc, char** argv, Args& a) {
     else if (k == "--filter" && i + 1 < argc) {
       const std::string f = argv[++i];
       if (f != "aniso16" && f != "trilinear") return false;
-      a.filter = f == "trilinear" ? tessera::texture::TextureFilter::trilinear : tessera::texture::TextureFilter::anisotropic;
+      a.filter = f == "trilinear" ? tessera::texture::TextureFilter::trilinear
+                                  : tessera::texture::TextureFilter::anisotropic;
     } else if (k == "--msaa" && i + 1 < argc) {
       a.msaa.clear();
       for (const char* p = argv[++i]; *p;) {
@@ -124,10 +125,11 @@ int main(int argc, char** argv) {
   const char* lp = std::getenv("LP_NUM_THREADS");
   std::printf("# %s, %s; LP_NUM_THREADS=%s\n", (*ctx)->renderer().c_str(),
               (*ctx)->version().c_str(), lp ? lp : "(unset)");
-  std::printf("# Figure-1 scene: %d faces in %d classes, %dx%d, %s, %d orbit frames x %d reps\n",
-              set->face_count(), r.textures().class_count(), a.width, a.height,
-              a.filter == tessera::texture::TextureFilter::trilinear ? "trilinear" : "16x anisotropic", a.frames,
-              a.reps);
+  std::printf(
+      "# Figure-1 scene: %d faces in %d classes, %dx%d, %s, %d orbit frames x %d reps\n",
+      set->face_count(), r.textures().class_count(), a.width, a.height,
+      a.filter == tessera::texture::TextureFilter::trilinear ? "trilinear" : "16x anisotropic",
+      a.frames, a.reps);
   std::vector<int> rates;
   const std::vector<int> refused = r.refused_msaa(a.msaa);
   for (int m : a.msaa) {
@@ -232,10 +234,11 @@ int main(int argc, char** argv) {
   // ---- GL vs CPU at the benchmark size.
   Result<std::unique_ptr<faces::FaceRenderer>> cpu = faces::FaceRenderer::create(scene, *set);
   if (!cpu) return fail(cpu.status().message);
-  std::printf("\nGL vs CPU (%s, %d orbit frame(s)): PSNR dB (8-bit sRGB) / fraction of pixels "
-              "with ||GL - CPU||_2 >= 0.01 (linear RGB), worst frame\n\n| method |",
-              a.filter == tessera::texture::TextureFilter::trilinear ? "trilinear" : "16x anisotropic",
-              a.agreement_frames);
+  std::printf(
+      "\nGL vs CPU (%s, %d orbit frame(s)): PSNR dB (8-bit sRGB) / fraction of pixels "
+      "with ||GL - CPU||_2 >= 0.01 (linear RGB), worst frame\n\n| method |",
+      a.filter == tessera::texture::TextureFilter::trilinear ? "trilinear" : "16x anisotropic",
+      a.agreement_frames);
   for (std::size_t ri = 0; ri < rates.size(); ++ri) {
     if (cpu_rate[ri] == rates[ri]) {
       std::printf(" %dx |", rates[ri]);
@@ -281,15 +284,18 @@ int main(int argc, char** argv) {
     Result<ImageRGBAF> gref =
         r.render_reference(cam, a.width, a.height, {.factor = 8, .filter = a.filter});
     if (!gref) return fail(gref.status().message);
-    Result<ImageRGBAF> cref = (*cpu)->render_reference(
-        cam, a.width, a.height,
-        {.factor = 8, .filter = tessera::texture::TextureFilter::anisotropic, .threads = a.cpu_threads});
+    Result<ImageRGBAF> cref =
+        (*cpu)->render_reference(cam, a.width, a.height,
+                                 {.factor = 8,
+                                  .filter = tessera::texture::TextureFilter::anisotropic,
+                                  .threads = a.cpu_threads});
     if (!cref) return fail(cref.status().message);
     const Agreement ag = agree(*gref, *cref);
-    std::printf("\nreference (Traverse 8x8, Mitchell-Netravali; GL %s vs CPU 16x anisotropic), "
-                "frame 0: %.2f dB, %.4f of pixels >= 0.01\n",
-                a.filter == tessera::texture::TextureFilter::trilinear ? "trilinear" : "16x anisotropic", ag.psnr,
-                ag.frac);
+    std::printf(
+        "\nreference (Traverse 8x8, Mitchell-Netravali; GL %s vs CPU 16x anisotropic), "
+        "frame 0: %.2f dB, %.4f of pixels >= 0.01\n",
+        a.filter == tessera::texture::TextureFilter::trilinear ? "trilinear" : "16x anisotropic",
+        ag.psnr, ag.frac);
   }
   return 0;
 }

@@ -240,7 +240,8 @@ void main() {
         const float u = -0.2f + 1.4f * float((k * 7 + int(layer)) % 24) / 23.0f;
         const float v = -0.2f + 1.4f * float((k * 5 + 3 * int(layer)) % 24) / 23.0f;
         const float s = std::ldexp(1.0f, k % 5 - 1) / float(t.width());
-        const tessera::texture::UvGradients g{s, 0.0f, 0.0f, s * float(t.width()) / float(t.height())};
+        const tessera::texture::UvGradients g{s, 0.0f, 0.0f,
+                                              s * float(t.width()) / float(t.height())};
         queries.insert(queries.end(), {u, v, float(layer), 0.0f, g.dudx, g.dvdx, g.dudy, g.dvdy});
         expected.push_back(t.sample(border, {u, v}, g));
       }
@@ -316,7 +317,8 @@ void main() {
       const float u = -0.15f + 1.3f * float((k * 5 + face) % 12) / 11.0f;
       const float v = -0.15f + 1.3f * float((k * 7 + 2 * face) % 12) / 11.0f;
       const float s = std::ldexp(1.0f, k % 5 - 1) / float(t.width());
-      const tessera::texture::UvGradients g{s, 0.0f, 0.0f, s * float(t.width()) / float(t.height())};
+      const tessera::texture::UvGradients g{s, 0.0f, 0.0f,
+                                            s * float(t.width()) / float(t.height())};
       for (faces::Method m : faces::all_methods()) {
         faces::SampleOptions so_cpu;
         so_cpu.method = m;

@@ -75,5 +75,4 @@ inline RasterStats render_ok(Rasteriser& r, FrameBuffer& fb, const DrawCall& dra
   return render_ok(r, fb, std::span<const DrawCall>(&draw, 1));
 }
 
-
 }  // namespace tessera::raster::test_util

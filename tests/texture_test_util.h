@@ -13,11 +13,12 @@
 
 namespace tessera::test {
 
-inline constexpr texture::TextureFilter kAllFilters[] = {texture::TextureFilter::nearest, texture::TextureFilter::bilinear,
-                                                texture::TextureFilter::trilinear,
-                                                texture::TextureFilter::anisotropic};
-inline constexpr texture::AddressMode kAllModes[] = {texture::AddressMode::wrap, texture::AddressMode::clamp,
-                                            texture::AddressMode::mirror, texture::AddressMode::border};
+inline constexpr texture::TextureFilter kAllFilters[] = {
+    texture::TextureFilter::nearest, texture::TextureFilter::bilinear,
+    texture::TextureFilter::trilinear, texture::TextureFilter::anisotropic};
+inline constexpr texture::AddressMode kAllModes[] = {
+    texture::AddressMode::wrap, texture::AddressMode::clamp, texture::AddressMode::mirror,
+    texture::AddressMode::border};
 
 inline ImageRGBAF constant_image(int w, int h, float r, float g, float b, float a) {
   ImageRGBAF img(w, h);
@@ -51,14 +52,16 @@ inline ImageRGBAF random_image(int w, int h, std::uint32_t seed) {
   return img;
 }
 
-inline texture::Texture make_texture(const ImageRGBAF& img, const texture::TextureOptions& options = {}) {
+inline texture::Texture make_texture(const ImageRGBAF& img,
+                                     const texture::TextureOptions& options = {}) {
   Result<texture::Texture> r = texture::Texture::from_float(img, options);
   EXPECT_TRUE(r.ok()) << r.status().message;
   return std::move(r).value();
 }
 
 /// Gradients (normalised units) of a footprint given in texels of level 0.
-inline texture::UvGradients texel_grad(const texture::TextureShape& s, float dxu, float dxv, float dyu, float dyv) {
+inline texture::UvGradients texel_grad(const texture::TextureShape& s, float dxu, float dxv,
+                                       float dyu, float dyv) {
   return {dxu / float(s.width), dxv / float(s.height), dyu / float(s.width), dyv / float(s.height)};
 }
 

@@ -18,7 +18,12 @@
 //    as `f(x)`, `f(x, {4})` or `f(x, Parallel{threads})`). In both forms 0 means all hardware
 //    threads, 1 the calling thread only, and results never depend on the value.
 //  * No runs of defaulted scalar parameters: a function with several defaulted knobs takes a
-//    small documented options struct instead (e.g. `SsimOptions`, `faces::ReferenceOptions`).
+//    small documented options struct instead (e.g. `metrics::SsimOptions`,
+//    `faces::ReferenceOptions`).
+//  * One namespace per system (`tessera::io`, `tessera::image`, `tessera::metrics`,
+//    `tessera::texture`, `tessera::texture_file`, `tessera::pvrtc`, ...; docs/architecture.md
+//    lists them all). This header, math.h and procedural.h are the shared vocabulary and stay in
+//    `tessera` itself. Headers name other systems' types qualified (`texture::Texture`).
 #pragma once
 
 #include <chrono>

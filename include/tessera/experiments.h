@@ -355,7 +355,7 @@ Result<std::unique_ptr<AaBackend>> create_gl_aa_backend(const scene::Scene& scen
 using AaBackendFactory =
     std::function<Result<std::unique_ptr<AaBackend>>(const scene::Scene& scene)>;
 
-/// 8-bit sRGB quality against the same rate's reference (`compare_images`).
+/// 8-bit sRGB quality against the same rate's reference (`metrics::compare_images`).
 struct AaQuality {
   double mse = 0.0;      ///< Over RGB, 8-bit units squared.
   double psnr_db = 0.0;  ///< +infinity when identical.

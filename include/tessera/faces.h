@@ -7,17 +7,18 @@
 //    summed coverage weight, Equation 6 of the paper).
 //  * Data: `FaceAdjacency` (neighbour face and edge per edge, -1 on a boundary) built from any
 //    quad mesh by a directed-edge map (`build_adjacency`) or read from a .ptx file; the
-//    valence-4 diagonal neighbours (`CornerLink`); `FaceTextureSet` (one mipmapped `Texture` per
-//    face, own resolution, non-square allowed, alpha = the constant-one coverage channel).
+//    valence-4 diagonal neighbours (`CornerLink`); `FaceTextureSet` (one mipmapped
+//    `texture::Texture` per face, own resolution, non-square allowed, alpha = the constant-one
+//    coverage channel).
 //  * Drivers: `sample_face` walks the neighbours for Traverse; `FaceRenderer` rasterises a quad
 //    mesh with a texture lookup plus a light Lambert term; `render_reference` is the paper's
 //    high-quality reference (Traverse at f x f the resolution, Mitchell-Netravali downsampling).
 //
 // Face conventions (those of Ptex): a quad's vertices 0..3 sit at (u, v) = (0,0), (1,0), (1,1),
 // (0,1); edge e joins vertex e to vertex e+1 (0: v = 0, 1: u = 1, 2: v = 1, 3: u = 0); texel
-// row 0 is v = 0 (the `Texture` convention). Neighbouring faces share an edge in opposite
-// directions (consistently oriented meshes), so my edge e from vertex A to B is the neighbour's
-// edge e' from B to A.
+// row 0 is v = 0 (the `texture::Texture` convention). Neighbouring faces share an edge in
+// opposite directions (consistently oriented meshes), so my edge e from vertex A to B is the
+// neighbour's edge e' from B to A.
 //
 // Methods (`Method`), each with trilinear or up to 16x anisotropic filtering:
 //  * clamp: the face texture with clamp-to-edge addressing (the artefact baseline).
@@ -216,7 +217,8 @@ bool parse_method(const std::string& text, Method& out);
 
 struct SampleOptions {
   Method method = Method::discard;
-  texture::TextureFilter filter = texture::TextureFilter::anisotropic;  ///< trilinear or anisotropic.
+  texture::TextureFilter filter =
+      texture::TextureFilter::anisotropic;            ///< trilinear or anisotropic.
   int max_aniso = 16;                                 ///< 1..16.
   /// The paper's zero-coverage fallback (clamp lookup). Off: 0/0 gives NaN.
   bool clamp_fallback = true;
@@ -226,7 +228,8 @@ struct SampleOptions {
 /// that face). Returns linear RGB and, in [3], the coverage Σw that was divided out (1 for
 /// clamp; after a fallback, 0).
 std::array<float, 4> sample_face(const FaceTextureSet& set, int face, texture::Uv uv,
-                                 const texture::UvGradients& gradients, const SampleOptions& options);
+                                 const texture::UvGradients& gradients,
+                                 const SampleOptions& options);
 
 // ---------------------------------------------------------------------------------------------
 // Scenes

@@ -125,7 +125,7 @@ ImageRGBA8 heatmap(std::span<const float> values, int width, int height, float s
 /// Difference heatmap of two 8-bit images: the per-pixel maximum absolute channel difference
 /// (over RGB, and alpha when either image has alpha) divided by `scale` (8-bit units; e.g. 32
 /// saturates at a difference of 32) through `map`. Fails on a size mismatch.
-Result<ImageRGBA8> difference_heatmap(const ImageRGBA8& a, const ImageRGBA8& b,
-                                      float scale = 64.0f, ColourMap map = ColourMap::inferno);
+Result<ImageRGBA8> difference_heatmap(const ImageRGBA8& a, const ImageRGBA8& b, float scale = 64.0f,
+                                      ColourMap map = ColourMap::inferno);
 
 }  // namespace tessera::metrics

@@ -1,9 +1,9 @@
 // tessera/render.h — drawing scenes with the software rasteriser.
 //
 // `SceneRenderer` is the forward-rendering driver of the rendering core: it owns the scene's
-// textures as mipmapped linear-light `Texture`s (built once), transforms every mesh to clip
-// space per frame, and rasterises it with an unlit material — the base-colour factor times the
-// base-colour texture, sampled trilinear or anisotropically with the UV derivatives of the
+// textures as mipmapped linear-light `texture::Texture`s (built once), transforms every mesh to
+// clip space per frame, and rasterises it with an unlit material — the base-colour factor times
+// the base-colour texture, sampled trilinear or anisotropically with the UV derivatives of the
 // 2x2 quad (`textureGrad`), wrap addressing. It is the reference workload of the llvmpipe
 // comparison: tools/glpeer renders the same frame with the same conventions through OpenGL.
 //
@@ -35,7 +35,7 @@ raster::DrawCall mesh_draw(const scene::Mesh& mesh, const float* clip, const flo
 /// Builds the mipmapped linear-light textures of every scene texture (sRGB ones decoded before
 /// filtering), in scene order. Fails on the first texture that cannot be built.
 Result<std::vector<texture::Texture>> build_scene_textures(const scene::Scene& scene,
-                                                  const Parallel& parallel = {});
+                                                           const Parallel& parallel = {});
 
 /// Texture filtering of the unlit material.
 enum class Filter { trilinear, aniso16 };

@@ -1,5 +1,5 @@
 // The Python keywords of `encode` / `encode_file` (the CLI's option names and values) as the
-// library's `CompressOptions`, checked the way the CLI's parser checks them.
+// library's `texture_file::CompressOptions`, checked the way the CLI's parser checks them.
 #pragma once
 
 #include <string>

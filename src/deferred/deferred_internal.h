@@ -69,8 +69,8 @@ struct ShadeContext {
     const DeferredRenderer::MaterialInfo& mi = materials[std::size_t(material(s))];
     std::array<float, 3> a = mi.base;
     if (mi.texture) {
-      const texture::UvGradients g{s[kChDuvDx] * scale, s[kChDuvDx + 1] * scale, s[kChDuvDy] * scale,
-                          s[kChDuvDy + 1] * scale};
+      const texture::UvGradients g{s[kChDuvDx] * scale, s[kChDuvDx + 1] * scale,
+                                   s[kChDuvDy] * scale, s[kChDuvDy + 1] * scale};
       const std::array<float, 4> t = mi.texture->sample(sampler, {s[kChUv], s[kChUv + 1]}, g);
       a[0] *= t[0];
       a[1] *= t[1];

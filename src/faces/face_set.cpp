@@ -110,7 +110,8 @@ int FaceTextureSet::linked_corner_count() const {
 
 std::uint64_t FaceTextureSet::texel_count() const {
   std::uint64_t n = 0;
-  for (const texture::Texture& t : textures_) n += std::uint64_t(t.width()) * std::uint64_t(t.height());
+  for (const texture::Texture& t : textures_)
+    n += std::uint64_t(t.width()) * std::uint64_t(t.height());
   return n;
 }
 

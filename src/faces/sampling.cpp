@@ -54,8 +54,8 @@ bool parse_method(const std::string& text, Method& out) {
   return false;
 }
 
-std::array<float, 4> sample_face(const FaceTextureSet& set, int face, texture::Uv uv, const texture::UvGradients& g,
-                                 const SampleOptions& options) {
+std::array<float, 4> sample_face(const FaceTextureSet& set, int face, texture::Uv uv,
+                                 const texture::UvGradients& g, const SampleOptions& options) {
   const texture::Texture& tex = set.texture(face);
   if (options.method == Method::clamp) {
     std::array<float, 4> c = tex.sample(make_sampler(options, texture::AddressMode::clamp), uv, g);

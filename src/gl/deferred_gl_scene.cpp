@@ -77,7 +77,8 @@ Result<std::unique_ptr<DeferredGlRenderer>> DeferredGlRenderer::create(
   if (!dir) return dir.status();
   st.glsl_dir = *dir;
 
-  Result<std::vector<texture::Texture>> textures = render::build_scene_textures(scene, {options.threads});
+  Result<std::vector<texture::Texture>> textures =
+      render::build_scene_textures(scene, {options.threads});
   if (!textures) return textures.status();
   st.cpu_textures = std::move(*textures);
 

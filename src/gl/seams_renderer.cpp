@@ -322,7 +322,8 @@ Result<SeamsFrame> SeamsRenderer::render(const scene::Camera& camera,
     return Status::error(ErrorCode::invalid_argument,
                          "seams renderer: MSAA " + std::to_string(o.msaa) + " not in 1,2,4,8,16");
   }
-  if (o.filter != texture::TextureFilter::trilinear && o.filter != texture::TextureFilter::anisotropic) {
+  if (o.filter != texture::TextureFilter::trilinear &&
+      o.filter != texture::TextureFilter::anisotropic) {
     return Status::error(ErrorCode::invalid_argument,
                          "seams renderer: the filter must be trilinear or anisotropic");
   }

@@ -42,7 +42,13 @@ struct SampleTable {
 class TileRasteriser {
  public:
   TileRasteriser(const FrameContext& ctx, int x0, int y0, int x1, int y1, RasterStats& stats)
-      : ctx_(ctx), fb_(*ctx.fb), opt_(*ctx.options), rx0_(x0), ry0_(y0), rx1_(x1), ry1_(y1),
+      : ctx_(ctx),
+        fb_(*ctx.fb),
+        opt_(*ctx.options),
+        rx0_(x0),
+        ry0_(y0),
+        rx1_(x1),
+        ry1_(y1),
         stats_(stats) {
     const auto pos = sample_positions(fb_.msaa());
     st_.count = int(pos.size());

@@ -20,7 +20,7 @@ raster::DrawCall mesh_draw(const scene::Mesh& mesh, const float* clip, const flo
 }
 
 Result<std::vector<texture::Texture>> build_scene_textures(const scene::Scene& scene,
-                                                  const Parallel& parallel) {
+                                                           const Parallel& parallel) {
   std::vector<texture::Texture> textures;
   textures.reserve(scene.textures.size());
   for (const scene::Texture& t : scene.textures) {
@@ -109,9 +109,10 @@ Result<Frame> SceneRenderer::render(const scene::Camera& camera, const FrameOpti
     const scene::Material& mat = sc.materials[std::size_t(m.material)];
     raster::DrawCall d = mesh_draw(m, clip_[mi].data(), varyings_[mi].data(), 2, prim_base);
     prim_base += std::uint32_t(m.triangle_count());
-    const texture::Texture* tex = (options.shading == Shading::textured && mat.base_color_texture >= 0)
-                             ? &textures_[std::size_t(mat.base_color_texture)]
-                             : nullptr;
+    const texture::Texture* tex =
+        (options.shading == Shading::textured && mat.base_color_texture >= 0)
+            ? &textures_[std::size_t(mat.base_color_texture)]
+            : nullptr;
     const std::array<float, 4> base =
         options.shading == Shading::flat
             ? std::array<float, 4>{1, 1, 1, 1}

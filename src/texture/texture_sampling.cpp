@@ -226,8 +226,7 @@ std::array<float, 4> Texture::sample(const SamplerState& sampler, Uv uv,
                             gradients.dvdy * h};
     Footprint fp;
     fp.centre = uv;
-    fp.lod =
-        detail::clamp_lod(sampler, shape_, detail::isotropic_lod_inline(texel));
+    fp.lod = detail::clamp_lod(sampler, shape_, detail::isotropic_lod_inline(texel));
     layer = std::clamp(layer, 0, shape_.layers - 1);
     const AccumulateSink sink{texels_.data(),
                               offsets_.data() + std::size_t(layer) * shape_.levels,

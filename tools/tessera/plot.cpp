@@ -179,8 +179,7 @@ std::string plot_svg(const Plot& plot) {
         const bool at_right = lx > left + pw - 8.0 * double(ser.point_labels[i].size()) - 8;
         s << "<text x=\"" << num(at_right ? lx - 6 : lx + 6) << "\" y=\"" << num(py(ser.y[i]) - 6)
           << "\" font-size=\"11\"" << (at_right ? " text-anchor=\"end\"" : "") << " fill=\""
-          << ser.colour << "\">"
-          << Report::escape(ser.point_labels[i]) << "</text>\n";
+          << ser.colour << "\">" << Report::escape(ser.point_labels[i]) << "</text>\n";
       }
     }
   }
