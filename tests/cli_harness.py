@@ -3,6 +3,8 @@
 Each script keeps its own `expect_error` (the error contracts differ per command) and calls
 `check` from here; `finish()` prints the closing 'N passed, M failed' line CTest logs show.
 """
+import os
+import pty
 import subprocess
 
 _passed = 0
@@ -13,6 +15,26 @@ def run_command(cmd, timeout=300):
     """Runs `cmd` (a list) and returns (exit code, stdout, stderr) as text."""
     p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
     return p.returncode, p.stdout, p.stderr
+
+
+def run_on_pty(program, args):
+    """Runs `program` with stdin, stdout and stderr on a new terminal; returns (exit code,
+    everything it wrote, as bytes)."""
+    pid, fd = pty.fork()
+    if pid == 0:
+        os.execv(program, [program, *args])
+    text = b""
+    while True:
+        try:
+            chunk = os.read(fd, 65536)
+        except OSError:  # EIO: the child closed the terminal
+            break
+        if not chunk:
+            break
+        text += chunk
+    _, status = os.waitpid(pid, 0)
+    os.close(fd)
+    return os.WEXITSTATUS(status), text
 
 
 def check(name, cond, detail=""):

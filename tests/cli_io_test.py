@@ -6,7 +6,6 @@ terminals. Writes must never replace what is not the user's file.
 Usage: cli_io_test.py PATH/TO/tessera
 """
 import os
-import pty
 import shutil
 import stat
 import subprocess
@@ -15,7 +14,7 @@ import tempfile
 import threading
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cli_harness import check, finish  # noqa: E402
+from cli_harness import check, finish, run_on_pty  # noqa: E402
 
 TESSERA = os.path.abspath(sys.argv[1])
 
@@ -165,21 +164,9 @@ try:
 
     # Binary output to a terminal is refused (as zstd does); text commands still print there.
     for args in (["compress", png, "-o", "-"], ["decompress", ref_pvr, "-o", "-"]):
-        pid, fd = pty.fork()
-        if pid == 0:
-            os.execv(TESSERA, [TESSERA, *args])
-        text = b""
-        while True:
-            try:
-                chunk = os.read(fd, 4096)
-            except OSError:
-                break
-            if not chunk:
-                break
-            text += chunk
-        _, status = os.waitpid(pid, 0)
+        rc, text = run_on_pty(TESSERA, args)
         check(args[0] + " -o - on a terminal is refused",
-              os.WEXITSTATUS(status) == 2 and b"refusing to write" in text and b"PVR" not in text
+              rc == 2 and b"refusing to write" in text and b"PVR" not in text
               and b"PNG" not in text, repr(text[:200]))
 
     leftovers = [n for r, _, fs in os.walk(tmp) for n in fs if ".tmp" in n]

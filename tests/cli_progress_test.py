@@ -7,7 +7,6 @@ either way.
 Usage: cli_progress_test.py PATH/TO/tessera
 """
 import os
-import pty
 import struct
 import subprocess
 import shutil
@@ -16,6 +15,7 @@ import tempfile
 import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cli_harness  # noqa: E402
 from cli_harness import check, finish  # noqa: E402
 
 TESSERA = os.path.abspath(sys.argv[1])
@@ -46,22 +46,8 @@ def write_png(path, width, height):
 
 
 def run_on_pty(args):
-    """Runs tessera with stdin, stdout and stderr on a new terminal; returns (exit code, bytes)."""
-    pid, fd = pty.fork()
-    if pid == 0:
-        os.execv(TESSERA, [TESSERA, *args])
-    text = b""
-    while True:
-        try:
-            chunk = os.read(fd, 65536)
-        except OSError:
-            break
-        if not chunk:
-            break
-        text += chunk
-    _, status = os.waitpid(pid, 0)
-    os.close(fd)
-    return os.WEXITSTATUS(status), text
+    """Runs tessera on a new terminal; returns (exit code, bytes)."""
+    return cli_harness.run_on_pty(TESSERA, args)
 
 
 tmp = tempfile.mkdtemp(prefix="tessera-progress-")

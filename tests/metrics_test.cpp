@@ -6,21 +6,10 @@
 
 #include "tessera/metrics.h"
 #include "tessera/procedural.h"
+#include "test_support.h"
 
 namespace tessera::metrics {
 namespace {
-
-ImageRGBA8 flat(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b,
-                std::uint8_t a = 255) {
-  ImageRGBA8 img(w, h);
-  for (std::size_t i = 0; i < img.pixel_count(); ++i) {
-    img.pixels[i * 4 + 0] = r;
-    img.pixels[i * 4 + 1] = g;
-    img.pixels[i * 4 + 2] = b;
-    img.pixels[i * 4 + 3] = a;
-  }
-  return img;
-}
 
 TEST(Psnr, IdenticalImagesAreInfiniteAndSsimOne) {
   const ImageRGBA8 img = make_procedural(Procedural::noise, 64, 48);
@@ -34,8 +23,8 @@ TEST(Psnr, IdenticalImagesAreInfiniteAndSsimOne) {
 
 TEST(Psnr, KnownOffsetsGiveKnownMse) {
   // Offsets (+3, -6, +9) on every pixel: MSE = (9 + 36 + 81) / 3 = 42.
-  const ImageRGBA8 a = flat(17, 9, 100, 100, 100);
-  const ImageRGBA8 b = flat(17, 9, 103, 94, 109);
+  const ImageRGBA8 a = test::solid_rgba8(17, 9, 100, 100, 100);
+  const ImageRGBA8 b = test::solid_rgba8(17, 9, 103, 94, 109);
   Result<ImageComparison> r = compare_images(a, b);
   ASSERT_TRUE(r.ok());
   EXPECT_DOUBLE_EQ(r->mse_rgb, 42.0);
@@ -54,8 +43,8 @@ TEST(Psnr, KnownOffsetsGiveKnownMse) {
 }
 
 TEST(Psnr, AlphaReportedSeparately) {
-  ImageRGBA8 a = flat(8, 8, 10, 20, 30, 200);
-  ImageRGBA8 b = flat(8, 8, 10, 20, 30, 190);
+  ImageRGBA8 a = test::solid_rgba8(8, 8, 10, 20, 30, 200);
+  ImageRGBA8 b = test::solid_rgba8(8, 8, 10, 20, 30, 190);
   a.has_alpha = true;
   Result<ImageComparison> r = compare_images(a, b);
   ASSERT_TRUE(r.ok());
@@ -70,7 +59,8 @@ TEST(Psnr, AlphaReportedSeparately) {
 }
 
 TEST(Psnr, SizeMismatchIsAnError) {
-  Result<ImageComparison> r = compare_images(flat(4, 4, 0, 0, 0), flat(4, 5, 0, 0, 0));
+  Result<ImageComparison> r =
+      compare_images(test::solid_rgba8(4, 4, 0, 0, 0), test::solid_rgba8(4, 5, 0, 0, 0));
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code, ErrorCode::size_mismatch);
 }
@@ -78,15 +68,15 @@ TEST(Psnr, SizeMismatchIsAnError) {
 TEST(Ssim, ConstantImagesFollowTheLuminanceTerm) {
   // Two flat images: sigma terms vanish, SSIM = (2 mu_x mu_y + C1) / (mu_x^2 + mu_y^2 + C1).
   const double c1 = (0.01 * 255) * (0.01 * 255);
-  const ImageRGBA8 a = flat(32, 24, 100, 100, 100);
-  const ImageRGBA8 b = flat(32, 24, 120, 120, 120);
+  const ImageRGBA8 a = test::solid_rgba8(32, 24, 100, 100, 100);
+  const ImageRGBA8 b = test::solid_rgba8(32, 24, 120, 120, 120);
   const double mx = 100.0, my = 120.0;
   const double expect = (2 * mx * my + c1) / (mx * mx + my * my + c1);
   EXPECT_NEAR(*ssim_gray(a, b), expect, 1e-5);  // luma is float: 0.2126+0.7152+0.0722 = 1
 }
 
 TEST(Ssim, LumaWeightsAreRec709) {
-  ImageRGBA8 img = flat(1, 1, 10, 20, 30);
+  ImageRGBA8 img = test::solid_rgba8(1, 1, 10, 20, 30);
   const std::vector<float> y = luma709(img);
   EXPECT_NEAR(y[0], 0.2126 * 10 + 0.7152 * 20 + 0.0722 * 30, 1e-4);
 }
@@ -159,7 +149,7 @@ TEST(Heatmap, ColourMapEndsAndScale) {
   EXPECT_EQ(rgb[0], 252);
   colour_map_rgb(ColourMap::grey, 0.5f, rgb);
   EXPECT_EQ(rgb[1], 128);
-  const ImageRGBA8 a = flat(2, 1, 0, 0, 0);
+  const ImageRGBA8 a = test::solid_rgba8(2, 1, 0, 0, 0);
   ImageRGBA8 b = a;
   b.at(1, 0)[1] = 64;
   Result<ImageRGBA8> h = difference_heatmap(a, b, 64.0f, ColourMap::grey);

@@ -8,6 +8,7 @@
 #include "tessera/metrics.h"
 #include "tessera/mipmap.h"
 #include "tessera/procedural.h"
+#include "test_support.h"
 
 namespace tessera::image {
 namespace {
@@ -15,17 +16,6 @@ namespace {
 // ---------------------------------------------------------------------------------------------
 // Mipmaps and resizing
 // ---------------------------------------------------------------------------------------------
-
-ImageRGBA8 filled(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b, std::uint8_t a) {
-  ImageRGBA8 img(w, h);
-  for (std::size_t i = 0; i < img.pixel_count(); ++i) {
-    img.pixels[i * 4 + 0] = r;
-    img.pixels[i * 4 + 1] = g;
-    img.pixels[i * 4 + 2] = b;
-    img.pixels[i * 4 + 3] = a;
-  }
-  return img;
-}
 
 TEST(Mipmap, ChainSizesGoDownToOneByOneForNonSquare) {
   const ImageRGBA8 img = make_procedural(Procedural::noise, 32, 4);
@@ -64,7 +54,7 @@ TEST(Mipmap, SrgbAveragesInLinearLight) {
 
 TEST(Mipmap, AlphaWeightsColour) {
   // Left half transparent red, right half opaque green: the average must be pure green.
-  ImageRGBA8 img = filled(2, 1, 255, 0, 0, 0);
+  ImageRGBA8 img = test::solid_rgba8(2, 1, 255, 0, 0, 0);
   img.has_alpha = true;
   img.at(1, 0)[0] = 0;
   img.at(1, 0)[1] = 255;
@@ -74,13 +64,13 @@ TEST(Mipmap, AlphaWeightsColour) {
   EXPECT_EQ(m.at(0, 0)[1], 255);
   EXPECT_EQ(m.at(0, 0)[3], 128);
   // Fully transparent: the plain colour average survives (no black fringe).
-  ImageRGBA8 clear = filled(4, 4, 200, 100, 50, 0);
+  ImageRGBA8 clear = test::solid_rgba8(4, 4, 200, 100, 50, 0);
   clear.has_alpha = true;
   const ImageRGBA8 c = (*generate_mipmaps(clear))[2];
   EXPECT_EQ(c.at(0, 0)[0], 200);
   EXPECT_EQ(c.at(0, 0)[3], 0);
   // Opaque input stays opaque.
-  const ImageRGBA8 solid = filled(8, 8, 10, 20, 30, 255);
+  const ImageRGBA8 solid = test::solid_rgba8(8, 8, 10, 20, 30, 255);
   const std::vector<ImageRGBA8> solid_chain = *generate_mipmaps(solid);
   for (const ImageRGBA8& l : solid_chain) {
     EXPECT_EQ(l.at(0, 0)[0], 10);
@@ -100,7 +90,7 @@ TEST(Mipmap, IdenticalForAnyThreadCount) {
 }
 
 TEST(Resize, ConstantStaysConstantAndSizesAreRight) {
-  const ImageRGBA8 img = filled(127, 128, 90, 160, 220, 255);
+  const ImageRGBA8 img = test::solid_rgba8(127, 128, 90, 160, 220, 255);
   Result<ImageRGBA8> r = resize_image(img, 128, 128);
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r->width, 128);

@@ -2,6 +2,7 @@
 // folders, and writing diff images on failure.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -18,6 +19,19 @@ std::optional<std::filesystem::path> pvrtextool();
 std::filesystem::path temp_dir(const std::string& name);
 /// Folder in the build tree where tests write diff images when they fail.
 std::filesystem::path artifacts_dir();
+
+/// A w x h 8-bit image of one colour.
+inline ImageRGBA8 solid_rgba8(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b,
+                              std::uint8_t a = 255) {
+  ImageRGBA8 img(w, h);
+  for (std::size_t i = 0; i < img.pixel_count(); ++i) {
+    img.pixels[i * 4 + 0] = r;
+    img.pixels[i * 4 + 1] = g;
+    img.pixels[i * 4 + 2] = b;
+    img.pixels[i * 4 + 3] = a;
+  }
+  return img;
+}
 
 }  // namespace tessera::test
 
