@@ -167,3 +167,28 @@ def test_sidecars_shared_with_cli_skip_up_to_date(tmp_path, client):
             "--skip-up-to-date")
     s = tessera.batch.compress_tree(src, dst, client=client, quality="normal")
     assert (s["done"], s["skipped"]) == (3, 1)
+
+
+def test_group_jobs_sizes_and_order():
+    jobs = [(f"s{i}", f"o{i}") for i in range(203)]
+    groups = tessera.batch.group_jobs(jobs, None, 2)
+    assert [j for g in groups for j in g] == jobs           # every job once, in order
+    assert {len(g) for g in groups[:-1]} == {4} and len(groups[-1]) == 3
+    assert [len(g) for g in tessera.batch.group_jobs(jobs[:30], None, 2)] == [1] * 30
+    assert max(len(g) for g in tessera.batch.group_jobs(jobs * 100, None, 2)) == 16
+    assert [len(g) for g in tessera.batch.group_jobs(jobs[:7], 3, 2)] == [3, 3, 1]
+    with pytest.raises(ValueError, match="files_per_task: 0"):
+        tessera.batch.group_jobs(jobs, 0, 2)
+
+
+def test_grouped_tasks_write_the_same_bytes_and_fail_alone(tmp_path, client):
+    # Three files per task: the two bad files share tasks with good ones and still fail alone.
+    src = make_tree(tmp_path / "src")
+    results = []
+    s = tessera.batch.compress_tree(src, tmp_path / "dst", client=client, quality="fast",
+                                    files_per_task=3, on_result=results.append)
+    assert (s["files"], s["done"], s["failed"]) == (6, 4, 2) and len(results) == 6
+    assert sorted(f["error"] for f in s["failures"]) == expected_failures(src, tmp_path)
+    check_outputs_equal_cli(src, tmp_path / "dst", tmp_path, "pvr", ["--quality", "fast"])
+    with pytest.raises(ValueError, match="files_per_task: 0"):
+        tessera.batch.compress_tree(src, tmp_path / "dst2", files_per_task=0)
