@@ -8,7 +8,8 @@
    timed in a warm C++ process (build/bin/encode_call, bench/encode_call.cpp), in --rounds
    alternating blocks of --repeats calls per side, and the CLI's whole process.
 2. `tessera.batch.compress_tree` over a generated tree of --files images (--file-size square,
-   RGB and RGBA, 10 folders) on a LocalCluster of 1 and of 2 single-threaded workers, and the
+   RGB and RGBA, 20 folders) on a LocalCluster of 1 and of 2 single-threaded workers, with the
+   default task grouping and with one task per file, --batch-rounds times alternating, and the
    same files through one `tessera compress -j 1` process each, one after another.
 
 Prints Markdown tables. Reports, asserts nothing but byte equality of the outputs.
@@ -107,17 +108,37 @@ def make_tree(root, files, size):
                                                                  channels=4 if i % 2 else 3))
 
 
-def batch_table(cli, files, size, quality, tmp):
+def batch_table(cli, files, size, quality, rounds, tmp):
     src = tmp / "tree"
     make_tree(src, files, size)
-    rows, outputs = [], {}
-    for workers in (1, 2):
-        dst = tmp / f"out{workers}"
-        s = tessera.batch.compress_tree(src, dst, workers=workers, quality=quality)
-        assert s["done"] == files and s["failed"] == 0, s
-        outputs[workers] = dst
-        rows.append(f"| tessera.batch, LocalCluster {workers} worker(s) x 1 thread | "
-                    f"{s['setup_seconds']:.2f} | {s['seconds']:.2f} | {s['mpixels_per_s']:.2f} |")
+    # Four configurations, alternating in each round (1 and 2 workers, default task grouping
+    # and one task per file); the median over the rounds per configuration.
+    configs = [(1, None), (2, None), (2, 1), (1, 1)]
+    times = {c: [] for c in configs}
+    setup = {c: [] for c in configs}
+    outputs = {}
+    for r in range(rounds):
+        for workers, per_task in (configs if r % 2 == 0 else configs[::-1]):
+            dst = tmp / f"out{workers}-{per_task}"
+            shutil.rmtree(dst, ignore_errors=True)
+            s = tessera.batch.compress_tree(src, dst, workers=workers, quality=quality,
+                                            files_per_task=per_task)
+            assert s["done"] == files and s["failed"] == 0, s
+            outputs[(workers, per_task)] = dst
+            times[(workers, per_task)].append(s["seconds"])
+            setup[(workers, per_task)].append(s["setup_seconds"])
+    mpx = files * size * size / 1e6
+    med = {c: statistics.median(t) for c, t in times.items()}
+    rows = []
+    for workers, per_task in [(1, None), (2, None), (1, 1), (2, 1)]:
+        c = (workers, per_task)
+        n = len(tessera.batch.group_jobs(list(range(files)), None, workers)[0])
+        grouping = "one task per file" if per_task == 1 else \
+            f"default grouping ({n} file{'s' if n > 1 else ''} per task)"
+        speed = f"**{med[(1, per_task)] / med[c]:.2f}x**" if workers == 2 else "1"
+        rows.append(f"| tessera.batch, LocalCluster {workers} worker(s) x 1 thread, {grouping} | "
+                    f"{statistics.median(setup[c]):.2f} | {med[c]:.2f} | "
+                    f"{' / '.join(f'{t:.2f}' for t in times[c])} | {mpx / med[c]:.2f} | {speed} |")
     # The same files through the CLI, one process each, sequentially.
     dst = tmp / "outcli"
     jobs, _ = tessera.batch.plan(src, dst, "pvr")
@@ -126,15 +147,16 @@ def batch_table(cli, files, size, quality, tmp):
         os.makedirs(os.path.dirname(o_path), exist_ok=True)
         run_cli(cli, "-j", 1, "compress", s_path, "-o", o_path, "--quality", quality)
     seconds = time.perf_counter() - t0
-    mpx = files * size * size / 1e6
     rows.append(f"| `tessera -j 1 compress`, one process per file, sequential | 0 | "
-                f"{seconds:.2f} | {mpx / seconds:.2f} |")
-    same = all(Path(o).read_bytes() == (outputs[w] / Path(o).relative_to(dst)).read_bytes()
-               for _, o in jobs for w in (1, 2))
+                f"{seconds:.2f} | {seconds:.2f} | {mpx / seconds:.2f} | |")
+    same = all(Path(o).read_bytes() == (out / Path(o).relative_to(dst)).read_bytes()
+               for _, o in jobs for out in outputs.values())
     head = [f"{files} files of {size}x{size} (half RGB, half RGBA) in 20 folders, quality "
-            f"{quality}, pvrtc1-4; outputs byte-identical across the three: "
+            f"{quality}, pvrtc1-4, each file on one thread; {rounds} rounds, configurations "
+            f"alternating; outputs byte-identical across all runs and the CLI: "
             f"{'yes' if same else 'NO'}:", "",
-            "| run | cluster start s | compress s | MPixel/s |", "|---|---:|---:|---:|"]
+            "| run | cluster start s | compress s (median) | each round s | MPixel/s | "
+            "vs 1 worker |", "|---|---:|---:|---:|---:|---:|"]
     return "\n".join(head + rows)
 
 
@@ -147,6 +169,8 @@ def main():
     p.add_argument("--files", type=int, default=200)
     p.add_argument("--file-size", type=int, default=256)
     p.add_argument("--quality", default="normal")
+    p.add_argument("--batch-rounds", type=int, default=3)
+    p.add_argument("--skip-encode", action="store_true", help="only the Dask table")
     args = p.parse_args()
     cpu = "unknown CPU"
     try:
@@ -160,9 +184,11 @@ def main():
           f"{os.getloadavg()[0]:.2f}\n")
     tmp = Path(tempfile.mkdtemp(prefix="tessera-bench-"))
     try:
-        print(encode_table(args.cli, args.size, args.repeats, args.rounds, tmp))
-        print()
-        print(batch_table(args.cli, args.files, args.file_size, args.quality, tmp))
+        if not args.skip_encode:
+            print(encode_table(args.cli, args.size, args.repeats, args.rounds, tmp))
+            print()
+        print(batch_table(args.cli, args.files, args.file_size, args.quality, args.batch_rounds,
+                          tmp))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
