@@ -5,7 +5,9 @@
 // against the CPU renderer (faces::FaceRenderer) at the same size, per method and rate: PSNR of
 // the 8-bit sRGB outputs and the fraction of pixels with linear-RGB 2-norm difference >= 0.01.
 // The CPU frame has the GL frame's sample positions (SeamsRenderer::sample_pattern, printed per
-// rate): llvmpipe draws 2x with its 4x samples, so its 2x is compared with the CPU's 4x.
+// rate): llvmpipe draws 2x with its 4x samples, so its 2x is compared with the CPU's 4x; a
+// pattern that is no standard one is drawn by the CPU at the driver's own positions
+// (gl::cpu_sample_offsets), or, off the CPU's 1/16-pixel grid, not compared ("-").
 //
 //   seams_gl_table1 [--width 480] [--height 540] [--frames 8] [--reps 5] [--msaa 1,2,4,8]
 //                   [--filter aniso16|trilinear] [--agreement-frames 1] [--cpu-threads 2]
@@ -140,19 +142,25 @@ int main(int argc, char** argv) {
   std::printf("# MSAA rates refused by the driver: %s\n",
               refused_text.empty() ? "none" : refused_text.c_str());
   // What the driver draws each rate with (it may round a rate up: llvmpipe draws 2x with its 4x
-  // samples); the GL-vs-CPU comparison renders the CPU with the same positions.
+  // samples); the GL-vs-CPU comparison renders the CPU with the same positions: the CPU rate
+  // with that standard pattern, else the driver's own positions on the CPU's 1/16-pixel grid
+  // (cpu_pattern), else none (cpu_rate 0: the rate is not compared).
   std::vector<int> cpu_rate(rates.size());
+  std::vector<std::vector<raster::SampleOffset>> cpu_pattern(rates.size());
   for (std::size_t ri = 0; ri < rates.size(); ++ri) {
     Result<gl::SamplePattern> p = r.sample_pattern(rates[ri]);
     if (!p) return fail(p.status().message);
-    cpu_rate[ri] = p->cpu_msaa > 0 ? p->cpu_msaa : rates[ri];
+    if (p->cpu_msaa == 0) cpu_pattern[ri] = gl::cpu_sample_offsets(p->positions);
+    cpu_rate[ri] = p->cpu_msaa > 0 ? p->cpu_msaa : int(cpu_pattern[ri].size());
     std::printf("# %dx: %d sample(s) at", rates[ri], p->samples);
     for (const gl::SamplePosition& q : p->positions) {
       std::printf(" (%+g, %+g)", double(q.x) * 16.0, double(q.y) * 16.0);
     }
     std::printf(" /16 px from the centre, y down: %s\n",
                 p->cpu_msaa > 0 ? ("the CPU's " + std::to_string(p->cpu_msaa) + "x").c_str()
-                                : "no CPU pattern (compared with the CPU's own rate)");
+                : cpu_rate[ri] > 0
+                    ? "no CPU pattern (compared with the CPU drawn at these positions)"
+                    : "no CPU pattern, off the CPU's 1/16-pixel grid (not compared)");
   }
 
   const faces::Method methods[2] = {faces::Method::traverse, faces::Method::discard};
@@ -240,7 +248,11 @@ int main(int argc, char** argv) {
       a.filter == tessera::texture::TextureFilter::trilinear ? "trilinear" : "16x anisotropic",
       a.agreement_frames);
   for (std::size_t ri = 0; ri < rates.size(); ++ri) {
-    if (cpu_rate[ri] == rates[ri]) {
+    if (cpu_rate[ri] == 0) {
+      std::printf(" %dx (GL; not compared) |", rates[ri]);
+    } else if (!cpu_pattern[ri].empty()) {
+      std::printf(" %dx (GL) vs the CPU at its positions |", rates[ri]);
+    } else if (cpu_rate[ri] == rates[ri]) {
       std::printf(" %dx |", rates[ri]);
     } else {
       std::printf(" %dx (GL) vs %dx (CPU) |", rates[ri], cpu_rate[ri]);
@@ -254,6 +266,10 @@ int main(int argc, char** argv) {
     std::printf("| %s |", faces::method_name(m));
     for (std::size_t ri = 0; ri < rates.size(); ++ri) {
       const int rate = rates[ri];
+      if (cpu_rate[ri] == 0) {
+        std::printf(" - |");  // no CPU frame has the driver's positions
+        continue;
+      }
       double psnr = 1e9, frac = 0;
       for (int f = 0; f < a.agreement_frames; ++f) {
         const scene::Camera cam = faces::face_orbit_camera(scene, f * a.frames / a.agreement_frames, a.frames);
@@ -265,6 +281,7 @@ int main(int argc, char** argv) {
         co.width = a.width;
         co.height = a.height;
         co.msaa = cpu_rate[ri];  // the driver's sample positions
+        co.sample_pattern = cpu_pattern[ri];  // empty: the standard pattern of cpu_rate
         co.sampling.method = m;
         co.sampling.filter = a.filter;
         co.sampling.max_aniso = 16;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,8 +20,14 @@ namespace tessera::experiments {
 namespace {
 
 using faces::Method;
+using raster::SampleOffset;
 using test::seams_result;
 using test::tiny_seams;
+
+std::vector<SampleOffset> standard_positions(int n) {
+  const std::span<const SampleOffset> p = raster::sample_positions(n);
+  return {p.begin(), p.end()};
+}
 
 /// A stand-in for the GL backend: the CPU renderer under another name that refuses some MSAA
 /// rates and has no shading-only pass, as a GL driver may.
@@ -131,6 +138,11 @@ TEST(Seams, CompareGlKeepsTheCpuResultAndMeasuresAgreement) {
   }
   ASSERT_EQ(r->gl_rates.size(), 1u);  // GL skips the refused 4x
   EXPECT_EQ(r->gl_rates[0].msaa, 1);
+  // A backend that does not say otherwise draws the standard pattern of the rate.
+  EXPECT_EQ(r->gl_rates[0].compared_with, SeamsGlComparison::cpu_rate);
+  ASSERT_EQ(r->gl_sample_patterns.size(), 1u);
+  EXPECT_EQ(r->gl_sample_patterns[0].positions,
+            std::vector<raster::SampleOffset>{raster::SampleOffset{}});
   for (Method m : faces::all_methods()) {
     const SeamsGlMethodResult& g = r->gl_rates[0].method(m);
     EXPECT_EQ(g.method, m);
@@ -156,7 +168,8 @@ class RoundingFakeGlRenderer final : public SeamsFrameRenderer {
   bool msaa_supported(int samples) override { return samples == 2 || samples == 4; }
   bool has_shading_only() const override { return false; }
   SeamsSamplePattern sample_pattern(int msaa) override {
-    return report_ ? SeamsSamplePattern{msaa, 4, 4} : SeamsSamplePattern{msaa, msaa, msaa};
+    return report_ ? SeamsSamplePattern{msaa, 4, 4, standard_positions(4)}
+                   : SeamsSamplePattern{msaa, msaa, msaa, standard_positions(msaa)};
   }
   Result<SeamsBackendFrame> render(const scene::Camera& camera,
                                    const SeamsFrameOptions& options) override {
@@ -212,6 +225,135 @@ TEST(Seams, CompareGlUsesTheDriversSamplePositions) {
       }
     }
   }
+}
+
+/// A stand-in for a driver whose 2x pattern is none of the standard ones: the CPU renderer
+/// drawing at `draws` (empty: the standard 2x), reporting `reported` as its positions and
+/// `cpu_msaa` as the CPU rate with them.
+class PatternFakeGlRenderer final : public SeamsFrameRenderer {
+ public:
+  PatternFakeGlRenderer(std::unique_ptr<SeamsFrameRenderer> cpu, std::vector<SampleOffset> draws,
+                        std::vector<SampleOffset> reported, int cpu_msaa)
+      : cpu_(std::move(cpu)),
+        draws_(std::move(draws)),
+        reported_(std::move(reported)),
+        cpu_msaa_(cpu_msaa) {}
+  Backend backend() const override { return Backend::gl; }
+  std::string device_name() const override { return "pattern renderer"; }
+  std::string device_version() const override { return "9.9"; }
+  bool msaa_supported(int samples) override { return samples == 2; }
+  bool has_shading_only() const override { return false; }
+  SeamsSamplePattern sample_pattern(int msaa) override {
+    return {msaa, 2, cpu_msaa_, reported_};
+  }
+  Result<SeamsBackendFrame> render(const scene::Camera& camera,
+                                   const SeamsFrameOptions& options) override {
+    EXPECT_TRUE(options.sample_pattern.empty());  // GL frames are drawn at the driver's
+    SeamsFrameOptions o = options;
+    o.sample_pattern = draws_;
+    return cpu_->render(camera, o);
+  }
+  Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
+                                      const faces::ReferenceOptions& options) override {
+    return cpu_->render_reference(camera, width, height, options);
+  }
+
+ private:
+  std::unique_ptr<SeamsFrameRenderer> cpu_;
+  std::vector<SampleOffset> draws_, reported_;
+  int cpu_msaa_ = 0;
+};
+
+/// compare_gl at 2x with a PatternFakeGlRenderer.
+Result<SeamsResult> run_pattern_fake(const std::vector<SampleOffset>& draws,
+                                     const std::vector<SampleOffset>& reported, int cpu_msaa) {
+  SeamsConfig c = tiny_seams();
+  c.msaa = {2};
+  c.frames = 1;
+  c.compare_gl = true;
+  c.gl_renderer_factory =
+      [=](const faces::FaceScene& scene,
+          const faces::FaceTextureSet& set) -> Result<std::unique_ptr<SeamsFrameRenderer>> {
+    Result<std::unique_ptr<SeamsFrameRenderer>> cpu = create_cpu_seams_renderer(scene, set);
+    if (!cpu) return cpu.status();
+    return std::unique_ptr<SeamsFrameRenderer>(
+        std::make_unique<PatternFakeGlRenderer>(std::move(*cpu), draws, reported, cpu_msaa));
+  };
+  return run_seams(c);
+}
+
+// The standard 2x mirrored: no CPU rate has these positions.
+const std::vector<SampleOffset> kMirrored2x = {{-4, 4}, {4, -4}};
+
+// A driver pattern that is no standard one: the GL frame is compared with a CPU frame drawn at
+// the driver's own positions. The stand-in draws its "GL" frames with the CPU renderer at those
+// positions, so the agreement is exact only if the comparison frame has them too; the CPU's
+// standard 2x frame (what was compared before) differs at the edges.
+TEST(Seams, CompareGlDrawsTheCpuAtTheDriversPositionsWhenNoRateHasThem) {
+  Result<SeamsResult> r = run_pattern_fake(kMirrored2x, kMirrored2x, 0);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  ASSERT_EQ(r->gl_sample_patterns.size(), 1u);
+  EXPECT_EQ(r->gl_sample_patterns[0].cpu_msaa, 0);
+  EXPECT_EQ(r->gl_sample_patterns[0].positions, kMirrored2x);
+  ASSERT_EQ(r->gl_rates.size(), 1u);
+  EXPECT_EQ(r->gl_rates[0].compared_with, SeamsGlComparison::driver_positions);
+  for (Method m : faces::all_methods()) {
+    const SeamsGlMethodResult& g = r->gl_rates[0].method(m);
+    EXPECT_TRUE(std::isinf(g.psnr_db)) << faces::method_name(m) << " " << g.psnr_db;  // identical
+    EXPECT_EQ(g.fraction_ge_001, 0.0) << faces::method_name(m);
+  }
+  // The control: the same frames said to be the CPU's standard 2x are compared with the CPU's
+  // 2x frame, which is not at those positions.
+  Result<SeamsResult> lied = run_pattern_fake(kMirrored2x, kMirrored2x, 2);
+  ASSERT_TRUE(lied.ok()) << lied.status().message;
+  EXPECT_EQ(lied->gl_rates[0].compared_with, SeamsGlComparison::cpu_rate);
+  for (Method m : faces::all_methods()) {
+    const SeamsGlMethodResult& g = lied->gl_rates[0].method(m);
+    EXPECT_TRUE(std::isfinite(g.psnr_db)) << faces::method_name(m);
+    EXPECT_GT(g.fraction_ge_001, 0.0) << faces::method_name(m);
+  }
+}
+
+// A driver pattern that is no standard one and whose positions are not known on the CPU's
+// 1/16-pixel grid: GL is still drawn and timed, but not compared with any CPU frame.
+TEST(Seams, CompareGlLeavesARateUncomparedWithoutReproduciblePositions) {
+  Result<SeamsResult> r = run_pattern_fake({}, {}, 0);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  ASSERT_EQ(r->gl_sample_patterns.size(), 1u);
+  EXPECT_TRUE(r->gl_sample_patterns[0].positions.empty());
+  ASSERT_EQ(r->gl_rates.size(), 1u);
+  EXPECT_EQ(r->gl_rates[0].msaa, 2);
+  EXPECT_EQ(r->gl_rates[0].compared_with, SeamsGlComparison::none);
+  for (Method m : faces::all_methods()) {
+    const SeamsGlMethodResult& g = r->gl_rates[0].method(m);
+    EXPECT_EQ(g.gpu.frame_ms.size(), 1u) << faces::method_name(m);
+    // Not measured, rather than the "identical" of an empty pool: the stand-in draws the
+    // CPU's own 2x frame, which the old rule compared with and found identical.
+    EXPECT_TRUE(std::isnan(g.psnr_db)) << faces::method_name(m);
+    EXPECT_TRUE(std::isnan(g.fraction_ge_001)) << faces::method_name(m);
+  }
+  // The CPU side is the plain CPU run at 2x.
+  ASSERT_EQ(r->rates.size(), 1u);
+  EXPECT_EQ(r->rates[0].msaa, 2);
+}
+
+TEST(Seams, GlComparisonRule) {
+  SeamsSamplePattern p{4, 4, 4, standard_positions(4)};
+  EXPECT_EQ(seams_gl_comparison(p), SeamsGlComparison::cpu_rate);
+  p.positions.clear();  // the CPU rate decides, positions or not
+  EXPECT_EQ(seams_gl_comparison(p), SeamsGlComparison::cpu_rate);
+  p = {2, 2, 0, kMirrored2x};
+  EXPECT_EQ(seams_gl_comparison(p), SeamsGlComparison::driver_positions);
+  p.samples = 4;  // positions for fewer samples than drawn: not like for like
+  EXPECT_EQ(seams_gl_comparison(p), SeamsGlComparison::none);
+  p = {2, 2, 0, {{-4, 4}, {8, -4}}};  // outside the pixel
+  EXPECT_EQ(seams_gl_comparison(p), SeamsGlComparison::none);
+  p = {2, 2, 0, {}};
+  EXPECT_EQ(seams_gl_comparison(p), SeamsGlComparison::none);
+  p = {16, 17, 0, std::vector<SampleOffset>(17)};  // more samples than a coverage mask holds
+  EXPECT_EQ(seams_gl_comparison(p), SeamsGlComparison::none);
+  p = {4, 6, 0, std::vector<SampleOffset>(6, SampleOffset{3, -1})};  // no standard count
+  EXPECT_EQ(seams_gl_comparison(p), SeamsGlComparison::driver_positions);
 }
 
 }  // namespace

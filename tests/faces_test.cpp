@@ -346,6 +346,46 @@ TEST(Faces, RendersEveryMethod) {
   EXPECT_LT(err / double(ref->pixel_count() * 3), 0.05);
 }
 
+// An explicit sample pattern reaches the frame buffer, which the renderer keeps between frames:
+// the same size and rate with another pattern must not reuse the previous frame's buffer, in
+// either direction (standard -> explicit -> standard -> the explicit standard pattern).
+TEST(Faces, RendersAtAnExplicitSamplePattern) {
+  faces::Figure1Options fo;
+  fo.ground = 6;
+  fo.character = 4;
+  const faces::FaceScene s = faces::figure1_scene(fo);
+  Result<std::vector<FaceAdjacency>> adj = faces::build_adjacency(s.mesh);
+  ASSERT_TRUE(adj.ok());
+  Result<faces::FaceTextureSet> set =
+      faces::FaceTextureSet::create(faces::bake_faces(s, {.scale = 1.0f, .threads = 2}), *adj, {2});
+  ASSERT_TRUE(set.ok());
+  Result<std::unique_ptr<faces::FaceRenderer>> r = faces::FaceRenderer::create(s, *set);
+  ASSERT_TRUE(r.ok());
+  const scene::Camera cam = faces::face_orbit_camera(s, 1, 8);
+  faces::FaceRenderOptions o;
+  o.width = 64;
+  o.height = 48;
+  o.msaa = 2;
+  o.threads = 2;
+  const auto frame = [&](std::vector<raster::SampleOffset> pattern) {
+    o.sample_pattern = std::move(pattern);
+    Result<faces::FaceFrame> f = (*r)->render(cam, o);
+    EXPECT_TRUE(f.ok()) << f.status().message;
+    return f ? f->image.pixels : std::vector<float>();
+  };
+  const std::vector<float> standard = frame({});
+  const std::vector<float> mirrored = frame({{-4, 4}, {4, -4}});
+  EXPECT_NE(mirrored, standard);  // the edges are sampled elsewhere
+  EXPECT_EQ(frame({}), standard);
+  EXPECT_EQ(frame({{4, 4}, {-4, -4}}), standard);  // the standard 2x, given explicitly
+  EXPECT_EQ(frame({{-4, 4}, {4, -4}}), mirrored);
+  // A bad pattern is the frame buffer's error.
+  o.sample_pattern = {{-4, 4}};
+  Result<faces::FaceFrame> bad = (*r)->render(cam, o);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().code, ErrorCode::invalid_argument);
+}
+
 TEST(Faces, MitchellNetravali) {
   EXPECT_NEAR(faces::mitchell_netravali(0), 8.0f / 9.0f, 1e-6f);
   EXPECT_NEAR(faces::mitchell_netravali(1), 1.0f / 18.0f, 1e-6f);

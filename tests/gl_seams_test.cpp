@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "tessera/experiments.h"
 #include "tessera/faces.h"
 #include "tessera/gl.h"
 #include "tessera/gl_seams.h"
@@ -359,6 +360,88 @@ TEST(GlSeamsPatterns, MatchingCpuMsaa) {
   // The 2x pattern is not the first two 4x samples (nor any subset).
   EXPECT_EQ(matching_cpu_msaa({{-2 / 16.0f, -6 / 16.0f}, {6 / 16.0f, -2 / 16.0f}}), 0);
   EXPECT_EQ(matching_cpu_msaa({}), 0);
+}
+
+// cpu_sample_offsets: GL positions (pixels from the centre) onto the CPU's 1/16 grid, in order,
+// or nothing when the CPU could not draw them.
+TEST(GlSeamsPatterns, CpuSampleOffsets) {
+  const auto grid = [](const std::vector<raster::SampleOffset>& offsets) {
+    std::vector<SamplePosition> p;
+    for (const raster::SampleOffset& o : offsets) {
+      p.push_back({float(o.x) / 16.0f, float(o.y) / 16.0f});
+    }
+    return p;
+  };
+  for (int n : {1, 2, 4, 8, 16}) {
+    const std::span<const raster::SampleOffset> table = raster::sample_positions(n);
+    std::vector<raster::SampleOffset> offsets(table.begin(), table.end());
+    std::reverse(offsets.begin(), offsets.end());  // the order is kept, not matched
+    EXPECT_EQ(cpu_sample_offsets(grid(offsets)), offsets) << n;
+  }
+  // A pattern no standard one has, corners of the pixel included.
+  const std::vector<raster::SampleOffset> custom = {{-8, -8}, {7, 7}, {-3, 5}};
+  EXPECT_EQ(cpu_sample_offsets(grid(custom)), custom);
+  // Within 1e-3 pixel of the grid: rounded onto it; farther: not reproducible.
+  std::vector<SamplePosition> p = grid(custom);
+  p[2].x += 0.0009f;
+  p[2].y -= 0.0009f;
+  EXPECT_EQ(cpu_sample_offsets(p), custom);
+  p[2].x += 0.002f;
+  EXPECT_TRUE(cpu_sample_offsets(p).empty());
+  EXPECT_TRUE(cpu_sample_offsets({{1.0f / 32.0f, 0.0f}}).empty());  // a 1/32 grid
+  EXPECT_TRUE(cpu_sample_offsets({{0.5f, 0.0f}}).empty());          // 8/16: the next pixel
+  EXPECT_TRUE(cpu_sample_offsets({}).empty());
+  EXPECT_TRUE(cpu_sample_offsets(std::vector<SamplePosition>(17)).empty());  // over 16
+  EXPECT_EQ(cpu_sample_offsets(std::vector<SamplePosition>(16)).size(), 16u);
+}
+
+// The GL backend of the seam experiment (experiments::create_gl_seams_renderer) reports the
+// driver's positions on the CPU's grid: on llvmpipe the standard patterns, 4x in the order of
+// raster::sample_positions(4). It refuses to draw at an explicit pattern.
+TEST_F(GlSeams, BackendReportsTheDriversPositions) {
+  gl_.reset();  // the backend makes a context of its own
+  ctx_.reset();
+  Result<std::unique_ptr<experiments::SeamsFrameRenderer>> made =
+      experiments::create_gl_seams_renderer(*scene_, *set_, TESSERA_GLSL_DIR);
+  ASSERT_TRUE(made.ok()) << made.status().message;
+  experiments::SeamsFrameRenderer& backend = **made;
+  const bool llvmpipe = backend.device_name().find("llvmpipe") != std::string::npos;
+  for (int msaa : {1, 2, 4, 8}) {
+    if (!backend.msaa_supported(msaa)) continue;
+    const experiments::SeamsSamplePattern p = backend.sample_pattern(msaa);
+    EXPECT_EQ(p.msaa, msaa);
+    if (p.cpu_msaa > 0) {
+      // A standard pattern: its positions, as a set (the order is the driver's).
+      ASSERT_EQ(p.positions.size(), std::size_t(p.samples)) << msaa << "x";
+      for (const raster::SampleOffset& t : raster::sample_positions(p.cpu_msaa)) {
+        EXPECT_NE(std::find(p.positions.begin(), p.positions.end(), t), p.positions.end())
+            << msaa << "x: (" << t.x << ", " << t.y << ")";
+      }
+    }
+    if (llvmpipe) {
+      const std::span<const raster::SampleOffset> table =
+          raster::sample_positions(msaa == 1 ? 1 : 4);
+      EXPECT_TRUE(std::ranges::equal(p.positions, table)) << msaa << "x";
+      EXPECT_EQ(experiments::seams_gl_comparison(p), experiments::SeamsGlComparison::cpu_rate);
+    }
+  }
+  if (llvmpipe) {
+    const std::vector<raster::SampleOffset> four = backend.sample_pattern(4).positions;
+    const std::span<const raster::SampleOffset> table = raster::sample_positions(4);
+    EXPECT_EQ(four, std::vector<raster::SampleOffset>(table.begin(), table.end()));
+  }
+  experiments::SeamsFrameOptions o;
+  o.width = 16;
+  o.height = 16;
+  o.msaa = 2;
+  o.sample_pattern = {{-4, 4}, {4, -4}};
+  const scene::Camera cam = faces::face_orbit_camera(*scene_, 0, 8);
+  Result<experiments::SeamsBackendFrame> f = backend.render(cam, o);
+  ASSERT_FALSE(f.ok());
+  EXPECT_EQ(f.status().code, ErrorCode::unsupported);
+  o.sample_pattern.clear();
+  o.msaa = 1;
+  EXPECT_TRUE(backend.render(cam, o).ok());
 }
 
 }  // namespace

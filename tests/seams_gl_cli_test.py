@@ -6,7 +6,8 @@ Tiny frames (96x108, 2 orbit frames, MSAA 1,4,8) of the built-in Figure-1 scene:
   * `--backend gl` writes the usual report (the same JSON keys as the CPU's, plus `backend`,
     `gl_renderer`, `gl_version`, `msaa_unsupported`, `gl_samples`, GPU-timer and wall times per
     frame); rates the driver refuses (8x on llvmpipe) are skipped and named in seams.md;
-    `gl_samples` gives each GL rate's drawn sample count and the CPU rate with its positions;
+    `gl_samples` gives each GL rate's drawn sample count and the CPU rate with its positions,
+    the driver's positions on the CPU's 1/16 grid and (with `both`) what it was compared with;
   * `--backend both` writes the CPU report byte for byte as `--backend cpu` does (plots, CSV,
     images) plus `timing_gl` and `gl_vs_cpu`, whose PSNR must stay above bounds measured on
     Mesa 22.3 llvmpipe (see below);
@@ -99,6 +100,12 @@ try:
     for rate, p in samples.items():
         check(f"gl_samples {rate}", p["samples"] >= int(rate[:-1]) and
               p["cpu_msaa"] in (0, p["samples"]), str(p))
+        # The driver's positions on the CPU's 1/16 grid (null off it); no comparison here.
+        check(f"gl_samples {rate} positions", p.get("positions") is None or
+              (len(p["positions"]) == p["samples"] and
+               all(-8 <= v <= 7 for xy in p["positions"] for v in xy)), str(p))
+        check(f"gl_samples {rate} compared_with", "compared_with" in p and
+              p["compared_with"] is None, str(p))
     if "llvmpipe" in j.get("gl_renderer", ""):
         check("llvmpipe draws the CPU's patterns",
               all(p["cpu_msaa"] == p["samples"] == int(r[:-1]) for r, p in samples.items()),
@@ -140,13 +147,24 @@ try:
           str(sorted(b["timing"])))
     check("both gl rates", sorted(b["gl_vs_cpu"]) == sorted(rates) and
           sorted(b["timing_gl"]) == sorted(rates), str(sorted(b.get("gl_vs_cpu", {}))))
+    for rate, p in b.get("gl_samples", {}).items():
+        # What each GL rate was compared with: the CPU rate with its positions, else the CPU
+        # drawn at the driver's own, else nothing (null, and gl_vs_cpu says why).
+        expected = (f"cpu {p['cpu_msaa']}x" if p["cpu_msaa"] > 0 else
+                    "cpu, the driver's positions" if p.get("positions") else None)
+        check(f"both gl_samples {rate} compared_with", p.get("compared_with") == expected,
+              str(p))
     for rate in rates:
         for m in METHODS:
             a = b["gl_vs_cpu"][rate][m]
-            check(f"gl_vs_cpu psnr {m} {rate}",
-                  a["psnr_db"] is not None and a["psnr_db"] >= MIN_PSNR[m], str(a))
-            check(f"gl_vs_cpu fraction {m} {rate}",
-                  0 <= a["fraction_ge_0.01"] <= MAX_FRACTION, str(a))
+            if "not_compared" in a:  # positions no CPU frame can have (not on llvmpipe)
+                check(f"gl_vs_cpu not compared {m} {rate}", a["psnr_db"] is None and
+                      b["gl_samples"][rate]["compared_with"] is None, str(a))
+            else:
+                check(f"gl_vs_cpu psnr {m} {rate}",
+                      a["psnr_db"] is not None and a["psnr_db"] >= MIN_PSNR[m], str(a))
+                check(f"gl_vs_cpu fraction {m} {rate}",
+                      0 <= a["fraction_ge_0.01"] <= MAX_FRACTION, str(a))
             t = b["timing_gl"][rate][m]
             check(f"timing_gl {m} {rate}", len(t["frame_ms"]) == 2 and
                   len(t["wall_frame_ms"]) == 2 and t["wall_median_ms"] > 0, str(t))

@@ -25,6 +25,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -90,6 +91,12 @@ struct SeamsFrameOptions {
   /// an empty image).
   bool keep_image = true;
   int threads = 0;  ///< CPU worker threads (0 = all).
+  /// Explicit sample positions (faces::FaceRenderOptions::sample_pattern: `msaa` offsets in
+  /// 1/16 pixel, each in [-8, 7]); empty = the standard pattern of `msaa`. Only the CPU draws
+  /// them: `run_seams` asks for them for the CPU frame that a GL frame is compared with when the
+  /// driver's positions are no standard pattern. A GL backend refuses them (unsupported): its
+  /// positions are the driver's.
+  std::vector<raster::SampleOffset> sample_pattern;
 };
 
 /// A rendered frame of a seam-experiment backend.
@@ -109,7 +116,31 @@ struct SeamsSamplePattern {
   /// The CPU rasteriser's rate with the same sample positions (raster::sample_positions), 0
   /// when none has them. Like-for-like GL-vs-CPU comparisons render the CPU at this rate.
   int cpu_msaa = 1;
+  /// Where the `samples` samples are, in sample-index order: offsets from the pixel centre in
+  /// 1/16 pixel, x right, y down in the image (raster::SampleOffset). Empty when not known or
+  /// not on that grid (a GL driver's positions more than 1e-3 pixel off it, or more than 16
+  /// samples: gl::cpu_sample_offsets): then no CPU frame can be drawn at them. Where
+  /// `cpu_msaa` is 0, a comparison draws the CPU frame at these positions
+  /// (`seams_gl_comparison`).
+  std::vector<raster::SampleOffset> positions;
 };
+
+/// What `run_seams` compares a GL rate's frames with (`SeamsConfig::compare_gl`).
+enum class SeamsGlComparison {
+  /// The CPU frame at `SeamsSamplePattern::cpu_msaa`, whose standard pattern has the driver's
+  /// positions (another, untimed CPU render where that is not the rate itself).
+  cpu_rate,
+  /// A CPU frame (untimed) drawn at the driver's own positions (`SeamsSamplePattern::
+  /// positions`, as many samples as it has): no standard pattern has them.
+  driver_positions,
+  /// Not compared: no standard pattern has the driver's positions and they are not known on
+  /// the CPU's 1/16-pixel grid, so no CPU frame would be like for like.
+  none,
+};
+
+/// The rule of `run_seams` (and bench/seams_gl_table1): `cpu_rate` where `cpu_msaa` > 0, else
+/// `driver_positions` where `positions` holds `samples` (1..16) offsets in [-8, 7], else `none`.
+SeamsGlComparison seams_gl_comparison(const SeamsSamplePattern& pattern);
 
 /// A renderer of the seam experiment's frames: the CPU (`create_cpu_seams_renderer`, wrapping
 /// faces::FaceRenderer) or OpenGL (`create_gl_seams_renderer`, wrapping gl::SeamsRenderer).
@@ -125,9 +156,13 @@ class SeamsFrameRenderer {
   virtual bool msaa_supported(int samples) = 0;
   /// Whether `SeamsFrameOptions::shading_only` is implemented.
   virtual bool has_shading_only() const = 0;
-  /// What frames at `msaa` are drawn with (the CPU: exactly `msaa`; GL: what the driver
-  /// allocates, e.g. Mesa llvmpipe draws 2x with its 4x samples). Only for supported rates.
-  virtual SeamsSamplePattern sample_pattern(int msaa) { return {msaa, msaa, msaa}; }
+  /// What frames at `msaa` are drawn with (the CPU: exactly `msaa`, at the standard positions;
+  /// GL: what the driver allocates, e.g. Mesa llvmpipe draws 2x with its 4x samples). Only for
+  /// supported rates.
+  virtual SeamsSamplePattern sample_pattern(int msaa) {
+    const std::span<const raster::SampleOffset> standard = raster::sample_positions(msaa);
+    return {msaa, msaa, msaa, {standard.begin(), standard.end()}};
+  }
   virtual Result<SeamsBackendFrame> render(const scene::Camera& camera,
                                            const SeamsFrameOptions& options) = 0;
   /// The paper's reference: Traverse (16x anisotropic by default) at factor x factor the
@@ -227,6 +262,10 @@ struct SeamsGlMethodResult {
 
 struct SeamsGlRateResult {
   int msaa = 1;
+  /// What the GL frames were compared with (`seams_gl_comparison` of the rate's pattern). With
+  /// `none` the GL frames are still drawn and timed, and every method's `psnr_db` and
+  /// `fraction_ge_001` are NaN (not measured).
+  SeamsGlComparison compared_with = SeamsGlComparison::cpu_rate;
   std::array<SeamsGlMethodResult, 4> methods;  ///< Indexed by `faces::Method`.
   const SeamsGlMethodResult& method(faces::Method m) const { return methods[std::size_t(m)]; }
 };
@@ -243,8 +282,9 @@ struct SeamsResult {
   std::vector<SeamsGlRateResult> gl_rates;  ///< compare_gl: the GL side, per rate GL renders.
   /// Where GL was used: per rate GL renders (in `SeamsConfig::msaa` order), the samples it
   /// draws. With compare_gl, a GL frame is compared with the CPU frame at `cpu_msaa` (another
-  /// CPU render, untimed, where that is not the rate itself; the CPU frame of the rate itself
-  /// where `cpu_msaa` is 0: no CPU pattern has the driver's positions).
+  /// CPU render, untimed, where that is not the rate itself); where `cpu_msaa` is 0 (no CPU
+  /// pattern has the driver's positions), with a CPU frame drawn at the driver's `positions`,
+  /// or not at all when those are unknown (`SeamsGlRateResult::compared_with`).
   std::vector<SeamsSamplePattern> gl_sample_patterns;
   // The scene.
   std::string scene_description;

@@ -283,7 +283,11 @@ std::vector<ImageRGBAF> bake_faces(const FaceScene& scene, const BakeOptions& op
 struct FaceRenderOptions {
   int width = 480;
   int height = 540;
-  int msaa = 1;  ///< 1, 2, 4, 8, 16.
+  int msaa = 1;  ///< 1, 2, 4, 8, 16 (with `sample_pattern`: its size, 1..16).
+  /// Explicit sample positions (raster::FrameBufferDesc::sample_pattern: `msaa` offsets in
+  /// 1/16 pixel, each in [-8, 7]); empty = the standard pattern of `msaa`. Used to draw at a
+  /// GPU driver's own positions when they are none of the standard patterns.
+  std::vector<raster::SampleOffset> sample_pattern;
   SampleOptions sampling;
   bool shading_only = false;  ///< Lighting without the texture lookup (the shading cost).
   /// With `shading_only`: output unlit white for faces >= this index and black below (a

@@ -24,7 +24,10 @@
 // to one it has (glRenderbufferStorageMultisample): Mesa 22.3 llvmpipe has only 4x, so a 2x
 // frame is drawn with 4 samples at the 4x positions. `sample_pattern` reports what the driver
 // gives (GL_SAMPLES, GL_SAMPLE_POSITION) and which CPU rate has the same positions; a
-// like-for-like comparison renders the CPU frame at that rate (`SamplePattern::cpu_msaa`).
+// like-for-like comparison renders the CPU frame at that rate (`SamplePattern::cpu_msaa`), or,
+// where no standard pattern has them (possible on hardware GPUs), at the driver's own positions
+// (`cpu_sample_offsets`, raster::FrameBufferDesc::sample_pattern); positions off the CPU's
+// 1/16-pixel grid cannot be reproduced, and such a rate is not compared.
 // Draw calls are grouped by face class (one GL_TEXTURE_2D_ARRAY per face resolution): the own
 // face's lookup indexes the sampler array with a per-draw uniform (dynamically uniform, so it
 // works without bindless or non-uniform indexing, e.g. on llvmpipe); neighbour lookups of
@@ -79,6 +82,13 @@ struct SamplePattern {
 /// `positions` as a set (order aside: the box resolve does not depend on it; within 1e-4
 /// pixel); 0 when there is none. An empty list matches nothing.
 int matching_cpu_msaa(const std::vector<SamplePosition>& positions);
+
+/// `positions` on the CPU rasteriser's grid, in the same order: each offset times 16 rounded
+/// to a raster::SampleOffset, so that the CPU can draw a frame at a driver's own positions
+/// (raster::FrameBufferDesc::sample_pattern) when no standard pattern has them. Empty when the
+/// pattern cannot be reproduced: no positions, more than raster::kMaxSamples (16), a coordinate
+/// more than 1e-3 pixel from a multiple of 1/16 pixel, or one outside [-8, 7] sixteenths.
+std::vector<raster::SampleOffset> cpu_sample_offsets(const std::vector<SamplePosition>& positions);
 
 /// What the fragment shader writes.
 enum class SeamsOutput {

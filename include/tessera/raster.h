@@ -6,7 +6,9 @@
 //  * 8 sub-pixel bits of fixed-point vertex snapping and exact integer edge functions with the
 //    Direct3D top-left fill rule (watertight: adjacent triangles never crack or double-cover);
 //  * MSAA 1/2/4/8/16 with the Direct3D 11 standard sample positions and a per-sample coverage
-//    mask; shading once per pixel per triangle (at the pixel centre, or the centroid);
+//    mask; shading once per pixel per triangle (at the pixel centre, or the centroid); or any
+//    explicit pattern of 1..16 positions on the 1/16-pixel grid (`FrameBufferDesc::
+//    sample_pattern`: a GPU driver's own positions, to compare with its frames like for like);
 //  * supersampling m x m: the frame buffer is a (m*w) x (m*h) grid ("G-buffer view") in which
 //    every grid pixel is shaded, box-resolved to w x h; MSAA and supersampling may combine;
 //  * shading in 2x2 quads: every varying is interpolated (perspective-correct) at all four quad
@@ -25,7 +27,7 @@
 //    top-left grid pixel, x right, y down, one unit per grid pixel; pixel (x, y) has its centre at
 //    (x + 0.5, y + 0.5). The stored depth is the window depth in [0, 1] (0 = near plane).
 //  * Sample positions are offsets from the pixel centre in 1/16 pixel, x right, y down (the
-//    Direct3D convention), see `sample_positions`.
+//    Direct3D convention), see `sample_positions` and `FrameBuffer::sample_offsets`.
 //  * Front faces are counter-clockwise in NDC (y up) unless `DrawCall::front_ccw` is false.
 //
 // Pipeline: `Rasteriser::render` runs a geometry stage (fetch, clip, snap, cull, set up, bin;
@@ -69,6 +71,7 @@ inline constexpr std::uint32_t kNoPrimitive = 0xFFFFFFFFu;
 struct SampleOffset {
   int x = 0;
   int y = 0;
+  bool operator==(const SampleOffset&) const = default;
 };
 
 /// The Direct3D 11 standard multisample pattern (D3D11_STANDARD_MULTISAMPLE_PATTERN) for
@@ -76,8 +79,11 @@ struct SampleOffset {
 /// Sample `s` of a pixel is bit `s` of every coverage mask.
 std::span<const SampleOffset> sample_positions(int count);
 
-/// True for the supported MSAA rates 1, 2, 4, 8 and 16.
+/// True for the supported MSAA rates 1, 2, 4, 8 and 16 (the rates with a standard pattern).
 bool valid_msaa(int count);
+
+/// Most samples per pixel (coverage masks have 16 bits); an explicit pattern has 1..16.
+inline constexpr int kMaxSamples = 16;
 
 // ---------------------------------------------------------------------------------------------
 // Frame buffer
@@ -95,12 +101,22 @@ struct ClearValues {
 struct FrameBufferDesc {
   int width = 0;       ///< Output (resolved) width in pixels, >= 1.
   int height = 0;      ///< Output (resolved) height in pixels, >= 1.
-  int msaa = 1;        ///< Samples per grid pixel: 1, 2, 4, 8 or 16 (D3D standard positions).
+  /// Samples per grid pixel: 1, 2, 4, 8 or 16 at the D3D standard positions; with an explicit
+  /// `sample_pattern`, 1..kMaxSamples at those positions.
+  int msaa = 1;
   int ssaa = 1;        ///< Supersampling factor m in [1, 8]: m x m grid pixels per output pixel.
   int channels = 4;    ///< Float channels per sample, 1..kMaxChannels (4 = linear RGBA colour).
   bool primitive_ids = false;    ///< Keep a per-sample primitive id (`kNoPrimitive` if none).
   bool coverage_counts = false;  ///< Count, per sample, every triangle that covered it (any
                                  ///< depth): a watertightness diagnostic.
+  /// Explicit sample positions, in sample-index order (sample s is bit s of the coverage
+  /// masks). Empty (the default): the standard pattern `sample_positions(msaa)`, bit-identical
+  /// to a buffer without this field. Otherwise exactly `msaa` offsets, each coordinate in
+  /// [-8, 7] (inside the pixel: the rasteriser's conservative 8x8-block bounds rely on it);
+  /// duplicates are allowed. For drawing at another renderer's positions, e.g. a GPU driver's
+  /// that match no standard pattern. Coverage, per-sample depth and centroid shading use these
+  /// positions; the resolve is the plain mean of the samples, whatever their positions.
+  std::vector<SampleOffset> sample_pattern;
 };
 
 /// Per-sample render target: `channels` floats, a depth and optionally a primitive id and a
@@ -110,7 +126,9 @@ struct FrameBufferDesc {
 class FrameBuffer {
  public:
   FrameBuffer() = default;
-  /// Validates `desc` (sizes against the image limits, including the grid) and allocates.
+  /// Validates `desc` (sizes against the image limits, including the grid; the rate, or the
+  /// explicit pattern's size and offsets) and allocates. Fails with invalid_argument naming the
+  /// problem.
   static Result<FrameBuffer> create(const FrameBufferDesc& desc);
 
   const FrameBufferDesc& desc() const { return desc_; }
@@ -121,6 +139,13 @@ class FrameBuffer {
   int msaa() const { return desc_.msaa; }
   int ssaa() const { return desc_.ssaa; }
   int channels() const { return desc_.channels; }
+  /// The sample positions in effect, `msaa` of them in sample-index order: the description's
+  /// explicit `sample_pattern`, or the standard pattern for `msaa` when that is empty. Valid
+  /// while the frame buffer lives (it moves with the buffer).
+  std::span<const SampleOffset> sample_offsets() const {
+    return desc_.sample_pattern.empty() ? sample_positions(desc_.msaa)
+                                        : std::span<const SampleOffset>(desc_.sample_pattern);
+  }
   /// Total samples: grid_width * grid_height * msaa.
   std::size_t sample_count() const { return depth_.size(); }
   std::size_t sample_index(int gx, int gy, int s) const {

@@ -97,6 +97,20 @@ std::string rates_text(const std::vector<int>& rates) {
 
 }  // namespace
 
+SeamsGlComparison seams_gl_comparison(const SeamsSamplePattern& pattern) {
+  if (pattern.cpu_msaa > 0) return SeamsGlComparison::cpu_rate;
+  // The CPU can draw at the positions only when every sample has one inside the pixel on the
+  // 1/16 grid (raster::FrameBufferDesc::sample_pattern); anything less would not be like for
+  // like, so such a rate is better left uncompared than compared with the wrong frame.
+  const std::vector<raster::SampleOffset>& p = pattern.positions;
+  bool ok = !p.empty() && p.size() == std::size_t(pattern.samples) &&
+            p.size() <= std::size_t(raster::kMaxSamples);
+  for (const raster::SampleOffset& s : p) {
+    ok = ok && s.x >= -8 && s.x <= 7 && s.y >= -8 && s.y <= 7;
+  }
+  return ok ? SeamsGlComparison::driver_positions : SeamsGlComparison::none;
+}
+
 Result<SeamsResult> run_seams(const SeamsConfig& c) {
   auto log = [&](const std::string& s) {
     if (c.progress) c.progress(s);
@@ -203,12 +217,15 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
   // compare_gl: gl_index[ri] = the rate's entry in res.gl_rates, or -1 where GL refuses it.
   std::vector<int> gl_index(nr, -1);
   std::vector<std::array<Agreement, 4>> agree;
+  std::vector<SeamsSamplePattern> gl_patterns;  // per entry of res.gl_rates
   if (gl_side) {
     for (std::size_t ri = 0; ri < nr; ++ri) {
       if (!gl_rate[ri]) continue;
       gl_index[ri] = int(res.gl_rates.size());
       SeamsGlRateResult g;
       g.msaa = rates[ri];
+      gl_patterns.push_back(gl_side->sample_pattern(rates[ri]));
+      g.compared_with = seams_gl_comparison(gl_patterns.back());
       for (std::size_t m = 0; m < nm; ++m) g.methods[std::size_t(methods[m])].method = methods[m];
       res.gl_rates.push_back(g);
     }
@@ -341,14 +358,17 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
           SeamsGlMethodResult& gm = g.methods[std::size_t(methods[v])];
           gm.gpu.frame_ms.push_back(fr->ms);
           gm.wall.frame_ms.push_back(fr->wall_ms);
-          if (quality) {
+          const SeamsSamplePattern& pattern = gl_patterns[std::size_t(gl_index[ri])];
+          if (quality && g.compared_with != SeamsGlComparison::none) {
             Agreement& a = agree[std::size_t(gl_index[ri])][std::size_t(methods[v])];
-            const int cpu_msaa = gl_side->sample_pattern(rates[ri]).cpu_msaa;
-            if (cpu_msaa > 0 && cpu_msaa != rates[ri]) {
+            const bool driver = g.compared_with == SeamsGlComparison::driver_positions;
+            if (driver || pattern.cpu_msaa != rates[ri]) {
               // The driver draws this rate with the samples of another CPU rate (llvmpipe: 2x
-              // with its 4x samples): compare like for like, with the CPU frame at that rate.
+              // with its 4x samples), or at positions no CPU rate has: compare like for like,
+              // with the CPU frame at that rate, or drawn at the driver's own positions.
               SeamsFrameOptions co = go;
-              co.msaa = cpu_msaa;
+              co.msaa = driver ? int(pattern.positions.size()) : pattern.cpu_msaa;
+              if (driver) co.sample_pattern = pattern.positions;
               co.keep_image = true;
               Result<SeamsBackendFrame> cf = primary.render(cam, co);
               if (!cf) return cf.status();
@@ -401,10 +421,12 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
     res.rates[ri].traverse_vs_discard = stats(acc[ri].traverse_vs_discard);
   }
   for (std::size_t gi = 0; gi < agree.size(); ++gi) {
+    // An uncompared rate has no agreement: NaN, not the "identical" of an empty pool.
+    const bool compared = res.gl_rates[gi].compared_with != SeamsGlComparison::none;
     for (faces::Method m : methods) {
       SeamsGlMethodResult& gm = res.gl_rates[gi].methods[std::size_t(m)];
-      gm.psnr_db = agree[gi][std::size_t(m)].psnr();
-      gm.fraction_ge_001 = agree[gi][std::size_t(m)].fraction();
+      gm.psnr_db = compared ? agree[gi][std::size_t(m)].psnr() : std::nan("");
+      gm.fraction_ge_001 = compared ? agree[gi][std::size_t(m)].fraction() : std::nan("");
     }
   }
   return res;

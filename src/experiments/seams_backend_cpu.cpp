@@ -23,6 +23,7 @@ class CpuSeamsRenderer final : public SeamsFrameRenderer {
     o.height = options.height;
     o.threads = options.threads;
     o.msaa = options.msaa;
+    o.sample_pattern = options.sample_pattern;
     o.sampling.filter = options.filter;
     o.sampling.max_aniso = options.max_aniso;
     o.shading_only = options.shading_only;

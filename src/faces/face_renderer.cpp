@@ -68,12 +68,16 @@ Result<std::unique_ptr<FaceRenderer>> FaceRenderer::create(const FaceScene& scen
 }
 
 Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceRenderOptions& o) {
-  if (fb_.width() != o.width || fb_.height() != o.height || fb_.msaa() != o.msaa) {
+  // The buffer is kept between frames; a new pattern (or a return to the standard one) needs a
+  // new buffer as much as a new size or rate does.
+  if (fb_.width() != o.width || fb_.height() != o.height || fb_.msaa() != o.msaa ||
+      fb_.desc().sample_pattern != o.sample_pattern) {
     raster::FrameBufferDesc desc;
     desc.width = o.width;
     desc.height = o.height;
     desc.msaa = o.msaa;
     desc.channels = 4;
+    desc.sample_pattern = o.sample_pattern;
     Result<raster::FrameBuffer> fb = raster::FrameBuffer::create(desc);
     if (!fb) return fb.status();
     fb_ = std::move(*fb);

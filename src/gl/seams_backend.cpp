@@ -28,8 +28,10 @@ class GlSeamsRenderer final : public SeamsFrameRenderer {
   bool has_shading_only() const override { return false; }
   SeamsSamplePattern sample_pattern(int msaa) override {
     Result<gl::SamplePattern> p = r_->sample_pattern(msaa);
-    if (!p) return {msaa, msaa, 0};  // a refused rate: nothing to compare with
-    return {msaa, p->samples, p->cpu_msaa};
+    if (!p) return {msaa, msaa, 0, {}};  // a refused rate: nothing to compare with
+    // The positions on the CPU's 1/16-pixel grid (empty where they are off it), so that a
+    // driver pattern that is no standard one can still be drawn by the CPU like for like.
+    return {msaa, p->samples, p->cpu_msaa, gl::cpu_sample_offsets(p->positions)};
   }
 
   Result<SeamsBackendFrame> render(const scene::Camera& camera,
@@ -37,6 +39,11 @@ class GlSeamsRenderer final : public SeamsFrameRenderer {
     if (options.shading_only) {
       return Status::error(ErrorCode::unsupported,
                            "seams: the GL backend has no shading-only pass");
+    }
+    if (!options.sample_pattern.empty()) {
+      return Status::error(ErrorCode::unsupported,
+                           "seams: the GL backend draws at the driver's sample positions, not "
+                           "at an explicit pattern");
     }
     gl::SeamsRenderOptions o;
     o.width = options.width;

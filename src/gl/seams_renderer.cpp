@@ -304,6 +304,27 @@ int matching_cpu_msaa(const std::vector<SamplePosition>& positions) {
   return 0;
 }
 
+std::vector<raster::SampleOffset> cpu_sample_offsets(const std::vector<SamplePosition>& positions) {
+  if (positions.empty() || positions.size() > std::size_t(raster::kMaxSamples)) return {};
+  std::vector<raster::SampleOffset> out;
+  out.reserve(positions.size());
+  // Within 1e-3 pixel of the 1/16 grid: a driver's float positions of grid points are exact
+  // or nearly so, while a finer pattern (e.g. 1/256) is not on the grid and cannot be drawn.
+  const auto to_grid = [](float v, int& out_v) {
+    const double sixteenths = double(v) * 16.0;
+    const double k = std::round(sixteenths);
+    if (!(std::abs(sixteenths - k) <= 16.0 * 1e-3) || k < -8.0 || k > 7.0) return false;
+    out_v = int(k);
+    return true;
+  };
+  for (const SamplePosition& p : positions) {
+    raster::SampleOffset o;
+    if (!to_grid(p.x, o.x) || !to_grid(p.y, o.y)) return {};
+    out.push_back(o);
+  }
+  return out;
+}
+
 std::vector<int> SeamsRenderer::refused_msaa(const std::vector<int>& rates) {
   std::vector<int> out;
   for (int r : rates) {

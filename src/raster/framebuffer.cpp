@@ -13,17 +13,47 @@ namespace {
 /// Largest float count of a frame buffer's payload (4 GiB).
 constexpr std::uint64_t kMaxPayloadFloats = std::uint64_t{1} << 30;
 
+/// An explicit sample pattern must have one offset per sample (1..kMaxSamples: the coverage
+/// masks' bits), each inside the pixel: the rasteriser's conservative block and bounding-box
+/// tests assume a pixel's samples lie in [-8, 7] sixteenths of its centre.
+Status check_sample_pattern(const FrameBufferDesc& desc) {
+  const std::vector<SampleOffset>& p = desc.sample_pattern;
+  if (p.empty()) return Status::success();
+  if (desc.msaa < 1 || desc.msaa > kMaxSamples) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "frame buffer: with a sample pattern, msaa must be in [1, " +
+                             std::to_string(kMaxSamples) + "] (got " + std::to_string(desc.msaa) +
+                             ")");
+  }
+  if (p.size() != std::size_t(desc.msaa)) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "frame buffer: the sample pattern has " + std::to_string(p.size()) +
+                             (p.size() == 1 ? " offset" : " offsets") + " but msaa is " +
+                             std::to_string(desc.msaa));
+  }
+  for (std::size_t s = 0; s < p.size(); ++s) {
+    if (p[s].x < -8 || p[s].x > 7 || p[s].y < -8 || p[s].y > 7) {
+      return Status::error(ErrorCode::invalid_argument,
+                           "frame buffer: sample pattern offset " + std::to_string(s) + " (" +
+                               std::to_string(p[s].x) + ", " + std::to_string(p[s].y) +
+                               ") is outside [-8, 7] sixteenths of the pixel centre");
+    }
+  }
+  return Status::success();
+}
+
 }  // namespace
 
 Result<FrameBuffer> FrameBuffer::create(const FrameBufferDesc& desc) {
   if (Status s = check_image_size(desc.width, desc.height, "frame buffer"); !s.ok()) {
     return Status::error(ErrorCode::invalid_argument, s.message);
   }
-  if (!valid_msaa(desc.msaa)) {
+  if (desc.sample_pattern.empty() && !valid_msaa(desc.msaa)) {
     return Status::error(ErrorCode::invalid_argument,
                          "frame buffer: msaa must be 1, 2, 4, 8 or 16 (got " +
                              std::to_string(desc.msaa) + ")");
   }
+  if (Status s = check_sample_pattern(desc); !s.ok()) return s;
   if (desc.ssaa < 1 || desc.ssaa > 8) {
     return Status::error(ErrorCode::invalid_argument,
                          "frame buffer: ssaa must be in [1, 8] (got " +

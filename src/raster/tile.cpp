@@ -14,8 +14,6 @@ namespace tessera::raster::detail {
 
 namespace {
 
-constexpr int kMaxSamples = 16;
-
 /// Bits set in a 16-bit mask (std::popcount is a libgcc call without POPCNT, which baseline
 /// x86-64 lacks).
 inline std::uint32_t popcount16(std::uint32_t v) {
@@ -28,9 +26,13 @@ inline std::uint32_t popcount16(std::uint32_t v) {
 /// Bits set in a 4-bit mask.
 inline std::uint32_t popcount4(std::uint32_t v) { return (0x4332322132212110ull >> (4 * v)) & 15u; }
 
-/// Per-frame sample tables derived from the MSAA pattern.
+/// Per-frame sample tables derived from the frame buffer's sample positions.
 struct SampleTable {
   int count = 1;
+  /// One sample at the pixel centre (the standard 1x pattern): the single-sample fast path,
+  /// which tests depth at the centre. An explicit one-sample pattern elsewhere takes the
+  /// general path, which tests it at the sample.
+  bool single = true;
   std::uint32_t full = 1;
   const SampleOffset* pos = nullptr;
   std::int64_t fx[kMaxSamples];  ///< Fixed-point position inside the pixel (from its corner).
@@ -50,8 +52,10 @@ class TileRasteriser {
         rx1_(x1),
         ry1_(y1),
         stats_(stats) {
-    const auto pos = sample_positions(fb_.msaa());
+    // The positions in effect: the standard pattern, or the description's explicit one.
+    const auto pos = fb_.sample_offsets();
     st_.count = int(pos.size());
+    st_.single = st_.count == 1 && pos[0] == SampleOffset{};
     st_.full = (1u << st_.count) - 1u;
     st_.pos = pos.data();
     for (int s = 0; s < st_.count; ++s) {
@@ -73,7 +77,7 @@ class TileRasteriser {
 
  private:
   using QuadFn = void (TileRasteriser::*)(int, int, std::uint32_t*);
-  /// One 2x2 quad; `kSingle`: the frame buffer has one sample per pixel (st_.count == 1).
+  /// One 2x2 quad; `kSingle`: one sample per pixel, at the centre (st_.single).
   template <int N4, bool kSingle>
   void quad(int qx, int qy, std::uint32_t* mask);
 
@@ -122,7 +126,7 @@ void TileRasteriser::triangle(const TriSetup& t, const float* varyings) {
   t_ = &t;
   draw_ = &ctx_.draws[t.draw];
   tv_ = varyings;
-  const bool single = st_.count == 1;
+  const bool single = st_.single;
   switch (padded_varyings(draw_->varying_count)) {
     case 0:
       quad_fn_ = single ? &TileRasteriser::quad<0, true> : &TileRasteriser::quad<0, false>;

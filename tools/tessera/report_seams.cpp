@@ -71,6 +71,44 @@ nlohmann::json summary_json(const ErrorStats& q) {
           {"cdf", q.cdf}};
 }
 
+/// The GL-vs-CPU result of a GL rate (`--backend both`), or null.
+const experiments::SeamsGlRateResult* gl_rate_result(const experiments::SeamsResult& res,
+                                                     int msaa) {
+  if (!res.compared_gl) return nullptr;
+  for (const experiments::SeamsGlRateResult& g : res.gl_rates) {
+    if (g.msaa == msaa) return &g;
+  }
+  return nullptr;
+}
+
+/// gl_samples[rate].positions: [x, y] per sample in 1/16 pixel from the centre, y down; null
+/// where the driver's positions are not on that grid.
+nlohmann::json positions_json(const experiments::SeamsSamplePattern& p) {
+  if (p.positions.empty()) return nullptr;
+  nlohmann::json a = nlohmann::json::array();
+  for (const raster::SampleOffset& o : p.positions) a.push_back(nlohmann::json::array({o.x, o.y}));
+  return a;
+}
+
+/// gl_samples[rate].compared_with: the CPU frame the rate's GL frames were compared with; null
+/// where they were not (`--backend gl`, or positions no CPU frame can have).
+nlohmann::json compared_with_json(const experiments::SeamsResult& res,
+                                  const experiments::SeamsSamplePattern& p) {
+  const experiments::SeamsGlRateResult* g = gl_rate_result(res, p.msaa);
+  if (!g) return nullptr;
+  switch (g->compared_with) {
+    case experiments::SeamsGlComparison::cpu_rate: return "cpu " + rate_key(p.cpu_msaa);
+    case experiments::SeamsGlComparison::driver_positions: return "cpu, the driver's positions";
+    case experiments::SeamsGlComparison::none: return nullptr;
+  }
+  return nullptr;
+}
+
+/// Why a rate is not compared (SeamsGlComparison::none): gl_vs_cpu[rate][method].not_compared.
+constexpr const char* kNotComparedReason =
+    "not compared: no CPU pattern has the driver's sample positions, and the CPU cannot draw "
+    "at them (not known on its 1/16-pixel grid)";
+
 void fill_json(const experiments::SeamsConfig& c, const experiments::SeamsResult& res,
                nlohmann::json& summary) {
   summary["command_config"] = {{"scene", c.scene},
@@ -98,7 +136,10 @@ void fill_json(const experiments::SeamsConfig& c, const experiments::SeamsResult
     summary["msaa_unsupported"] = res.msaa_unsupported;
     nlohmann::json samples = nlohmann::json::object();
     for (const experiments::SeamsSamplePattern& p : res.gl_sample_patterns) {
-      samples[rate_key(p.msaa)] = {{"samples", p.samples}, {"cpu_msaa", p.cpu_msaa}};
+      samples[rate_key(p.msaa)] = {{"samples", p.samples},
+                                   {"cpu_msaa", p.cpu_msaa},
+                                   {"positions", positions_json(p)},
+                                   {"compared_with", compared_with_json(res, p)}};
     }
     summary["gl_samples"] = samples;
     const std::string read = software_gl(res) ? "the wall times (llvmpipe: the timer is partial)"
@@ -160,12 +201,21 @@ void fill_json(const experiments::SeamsConfig& c, const experiments::SeamsResult
   summary["reference_ms_total"] = res.reference_ms_total;
   if (res.compared_gl) {
     nlohmann::json tg = nlohmann::json::object(), agree = nlohmann::json::object();
+    bool standard = true;  // every rate compared with a CPU rate's standard pattern
     for (const experiments::SeamsGlRateResult& g : res.gl_rates) {
       const std::string rk = rate_key(g.msaa);
+      const bool compared = g.compared_with != experiments::SeamsGlComparison::none;
+      standard = standard && g.compared_with == experiments::SeamsGlComparison::cpu_rate;
       for (const experiments::SeamsGlMethodResult& m : g.methods) {
         const char* name = faces::method_name(m.method);
         tg[rk][name] = times_json(m.gpu, &m.wall);
         agree[rk][name] = {{"psnr_db", m.psnr_db}, {"fraction_ge_0.01", m.fraction_ge_001}};
+        if (!compared) {
+          // Explicit nulls, whatever the result holds: no agreement was measured.
+          agree[rk][name] = {{"psnr_db", nullptr},
+                             {"fraction_ge_0.01", nullptr},
+                             {"not_compared", kNotComparedReason}};
+        }
       }
     }
     summary["timing_gl"] = tg;
@@ -178,6 +228,17 @@ void fill_json(const experiments::SeamsConfig& c, const experiments::SeamsResult
         " quality frame(s), all pixels: psnr_db from the mean MSE of the 8-bit sRGB outputs "
         "(null = identical), fraction_ge_0.01 = pixels whose linear-RGB 2-norm difference is >= "
         "0.01 (NaN counts)";
+    if (!standard) {
+      // Only where a driver's positions are no standard pattern, so that the usual report
+      // (every rate matched, as on llvmpipe) keeps its exact text.
+      summary["gl_vs_cpu_note"] =
+          summary["gl_vs_cpu_note"].get<std::string>() +
+          ". Where cpu_msaa is 0 (no CPU pattern has the driver's positions), the CPU frame is "
+          "drawn at the driver's own positions (gl_samples[rate].compared_with \"cpu, the "
+          "driver's positions\"), or, where those are not on the CPU's 1/16-pixel grid "
+          "(positions null), the rate is not compared (compared_with null, psnr_db and "
+          "fraction_ge_0.01 null, not_compared says why)";
+    }
   }
 }
 
@@ -286,12 +347,40 @@ std::string gl_beside_cpu(const experiments::SeamsResult& res) {
     md << "| " << faces::method_name(m) << " |";
     for (const experiments::SeamsGlRateResult& g : res.gl_rates) {
       const experiments::SeamsGlMethodResult& r = g.method(m);
+      if (g.compared_with == experiments::SeamsGlComparison::none) {
+        md << " not compared |";  // see the sample-position note at the top
+        continue;
+      }
       md << (std::isfinite(r.psnr_db) ? fmt(" %.2f dB", r.psnr_db) : std::string(" identical"))
          << fmt(" / %.4f |", r.fraction_ge_001);
     }
     md << "\n";
   }
   return md.str();
+}
+
+/// The note on a GL rate whose sample positions are no CPU pattern (cpu_msaa 0): where they
+/// are, and what its GL frames were compared with (`--backend both`).
+std::string driver_positions_sentence(const experiments::SeamsResult& res,
+                                      const experiments::SeamsSamplePattern& p) {
+  std::string s = " The driver draws " + rate_key(p.msaa) + " with " +
+                  std::to_string(p.samples) + " sample(s) at positions no CPU pattern has (";
+  if (p.positions.empty()) {
+    s += "not on the CPU's 1/16-pixel grid)";
+  } else {
+    for (std::size_t i = 0; i < p.positions.size(); ++i) {
+      s += (i ? ", (" : "(") + std::to_string(p.positions[i].x) + ", " +
+           std::to_string(p.positions[i].y) + ")";
+    }
+    s += " /16 px from the pixel centre, y down)";
+  }
+  if (const experiments::SeamsGlRateResult* g = gl_rate_result(res, p.msaa)) {
+    s += ": its GL " + rate_key(p.msaa) + " frames are " +
+         (g->compared_with == experiments::SeamsGlComparison::driver_positions
+              ? std::string("compared with CPU frames drawn at those positions")
+              : std::string("not compared with the CPU (no CPU frame has those positions)"));
+  }
+  return s + ".";
 }
 
 std::string markdown(const experiments::SeamsConfig& c, const experiments::SeamsResult& res,
@@ -314,11 +403,15 @@ std::string markdown(const experiments::SeamsConfig& c, const experiments::Seams
       md << ".";
     }
     for (const experiments::SeamsSamplePattern& p : res.gl_sample_patterns) {
+      if (p.cpu_msaa == 0) {
+        md << driver_positions_sentence(res, p);
+        continue;
+      }
       if (p.samples == p.msaa) continue;
       md << " The driver draws " << rate_key(p.msaa) << " with " << p.samples << " samples";
-      if (p.cpu_msaa > 0) md << " (the CPU's " << rate_key(p.cpu_msaa) << " positions)";
+      md << " (the CPU's " << rate_key(p.cpu_msaa) << " positions)";
       md << ": its GL " << rate_key(p.msaa) << " frames are " << p.samples << "-sample frames";
-      if (res.compared_gl && p.cpu_msaa > 0) {
+      if (res.compared_gl) {
         md << ", compared with the CPU's " << rate_key(p.cpu_msaa) << " frames";
       }
       md << ".";
