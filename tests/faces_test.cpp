@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <set>
 
 #include "test_support.h"
@@ -300,19 +301,42 @@ TEST(Faces, TriangleMeshSplitsIntoClosedQuadMesh) {
   EXPECT_EQ(linked, 2 * 12);  // each quad's two edge-midpoint corners
 }
 
-TEST(Faces, RendersEveryMethod) {
+/// A small Figure-1 scene (ground x ground faces, a 4x4x4 character) baked and ready to render,
+/// and the orbit camera of frame 1 of 8.
+struct SmallScene {
+  faces::FaceScene scene;
+  std::optional<faces::FaceTextureSet> set;
+  std::unique_ptr<faces::FaceRenderer> renderer;
+  scene::Camera camera;
+};
+
+SmallScene small_scene(int ground) {
   faces::Figure1Options fo;
-  fo.ground = 8;
+  fo.ground = ground;
   fo.character = 4;
-  const faces::FaceScene s = faces::figure1_scene(fo);
-  Result<std::vector<FaceAdjacency>> adj = faces::build_adjacency(s.mesh);
-  ASSERT_TRUE(adj.ok());
-  Result<faces::FaceTextureSet> set =
-      faces::FaceTextureSet::create(faces::bake_faces(s, {.scale = 1.0f, .threads = 2}), *adj, {2});
-  ASSERT_TRUE(set.ok());
-  Result<std::unique_ptr<faces::FaceRenderer>> r = faces::FaceRenderer::create(s, *set);
-  ASSERT_TRUE(r.ok());
-  const scene::Camera cam = faces::face_orbit_camera(s, 1, 8);
+  SmallScene out;
+  out.scene = faces::figure1_scene(fo);
+  Result<std::vector<FaceAdjacency>> adj = faces::build_adjacency(out.scene.mesh);
+  EXPECT_TRUE(adj.ok());
+  if (!adj) return out;
+  Result<faces::FaceTextureSet> set = faces::FaceTextureSet::create(
+      faces::bake_faces(out.scene, {.scale = 1.0f, .threads = 2}), *adj, {2});
+  EXPECT_TRUE(set.ok());
+  if (!set) return out;
+  out.set = std::move(*set);
+  Result<std::unique_ptr<faces::FaceRenderer>> r =
+      faces::FaceRenderer::create(out.scene, *out.set);
+  EXPECT_TRUE(r.ok());
+  if (r) out.renderer = std::move(*r);
+  out.camera = faces::face_orbit_camera(out.scene, 1, 8);
+  return out;
+}
+
+TEST(Faces, RendersEveryMethod) {
+  const SmallScene sc = small_scene(8);
+  ASSERT_TRUE(sc.renderer);
+  faces::FaceRenderer& renderer = *sc.renderer;
+  const scene::Camera& cam = sc.camera;
   faces::FaceRenderOptions o;
   o.width = 64;
   o.height = 48;
@@ -321,7 +345,7 @@ TEST(Faces, RendersEveryMethod) {
   std::vector<ImageRGBAF> images;
   for (Method m : faces::all_methods()) {
     o.sampling.method = m;
-    Result<faces::FaceFrame> f = (*r)->render(cam, o);
+    Result<faces::FaceFrame> f = renderer.render(cam, o);
     ASSERT_TRUE(f.ok());
     double covered = 0;
     for (std::size_t i = 0; i < f->image.pixel_count(); ++i) {
@@ -333,7 +357,7 @@ TEST(Faces, RendersEveryMethod) {
     images.push_back(f->image);
   }
   Result<ImageRGBAF> ref =
-      (*r)->render_reference(cam, 64, 48, {.factor = 4, .threads = 2, .tile = 40});
+      renderer.render_reference(cam, 64, 48, {.factor = 4, .threads = 2, .tile = 40});
   ASSERT_TRUE(ref.ok());
   // The reference is close to Traverse at 4x MSAA (mean linear-RGB error small).
   double err = 0;
@@ -350,18 +374,10 @@ TEST(Faces, RendersEveryMethod) {
 // the same size and rate with another pattern must not reuse the previous frame's buffer, in
 // either direction (standard -> explicit -> standard -> the explicit standard pattern).
 TEST(Faces, RendersAtAnExplicitSamplePattern) {
-  faces::Figure1Options fo;
-  fo.ground = 6;
-  fo.character = 4;
-  const faces::FaceScene s = faces::figure1_scene(fo);
-  Result<std::vector<FaceAdjacency>> adj = faces::build_adjacency(s.mesh);
-  ASSERT_TRUE(adj.ok());
-  Result<faces::FaceTextureSet> set =
-      faces::FaceTextureSet::create(faces::bake_faces(s, {.scale = 1.0f, .threads = 2}), *adj, {2});
-  ASSERT_TRUE(set.ok());
-  Result<std::unique_ptr<faces::FaceRenderer>> r = faces::FaceRenderer::create(s, *set);
-  ASSERT_TRUE(r.ok());
-  const scene::Camera cam = faces::face_orbit_camera(s, 1, 8);
+  const SmallScene sc = small_scene(6);
+  ASSERT_TRUE(sc.renderer);
+  faces::FaceRenderer& renderer = *sc.renderer;
+  const scene::Camera& cam = sc.camera;
   faces::FaceRenderOptions o;
   o.width = 64;
   o.height = 48;
@@ -369,7 +385,7 @@ TEST(Faces, RendersAtAnExplicitSamplePattern) {
   o.threads = 2;
   const auto frame = [&](std::vector<raster::SampleOffset> pattern) {
     o.sample_pattern = std::move(pattern);
-    Result<faces::FaceFrame> f = (*r)->render(cam, o);
+    Result<faces::FaceFrame> f = renderer.render(cam, o);
     EXPECT_TRUE(f.ok()) << f.status().message;
     return f ? f->image.pixels : std::vector<float>();
   };
@@ -381,7 +397,7 @@ TEST(Faces, RendersAtAnExplicitSamplePattern) {
   EXPECT_EQ(frame({{-4, 4}, {4, -4}}), mirrored);
   // A bad pattern is the frame buffer's error.
   o.sample_pattern = {{-4, 4}};
-  Result<faces::FaceFrame> bad = (*r)->render(cam, o);
+  Result<faces::FaceFrame> bad = renderer.render(cam, o);
   ASSERT_FALSE(bad.ok());
   EXPECT_EQ(bad.status().code, ErrorCode::invalid_argument);
 }
