@@ -29,20 +29,40 @@ std::vector<SampleOffset> standard_positions(int n) {
   return {p.begin(), p.end()};
 }
 
+/// What every stand-in for the GL backend below shares: the CPU renderer under another name,
+/// with GL's version string, no shading-only pass and the CPU's reference.
+class CpuBackedFakeGl : public SeamsFrameRenderer {
+ public:
+  CpuBackedFakeGl(std::unique_ptr<SeamsFrameRenderer> cpu, std::string name)
+      : cpu_(std::move(cpu)), name_(std::move(name)) {}
+  Backend backend() const override { return Backend::gl; }
+  std::string device_name() const override { return name_; }
+  std::string device_version() const override { return "9.9"; }
+  bool has_shading_only() const override { return false; }
+  Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
+                                      const faces::ReferenceOptions& options) override {
+    return cpu_->render_reference(camera, width, height, options);
+  }
+
+ protected:
+  std::unique_ptr<SeamsFrameRenderer> cpu_;
+
+ private:
+  std::string name_;
+};
+
 /// A stand-in for the GL backend: the CPU renderer under another name that refuses some MSAA
 /// rates and has no shading-only pass, as a GL driver may.
-class FakeGlRenderer final : public SeamsFrameRenderer {
+class FakeGlRenderer final : public CpuBackedFakeGl {
  public:
   /// `perturb`: add 0.02 to the red channel of pixel (0, 0) of every frame.
   FakeGlRenderer(std::unique_ptr<SeamsFrameRenderer> cpu, std::vector<int> refused, bool perturb)
-      : cpu_(std::move(cpu)), refused_(std::move(refused)), perturb_(perturb) {}
-  Backend backend() const override { return Backend::gl; }
-  std::string device_name() const override { return "fake renderer"; }
-  std::string device_version() const override { return "9.9"; }
+      : CpuBackedFakeGl(std::move(cpu), "fake renderer"),
+        refused_(std::move(refused)),
+        perturb_(perturb) {}
   bool msaa_supported(int samples) override {
     return std::find(refused_.begin(), refused_.end(), samples) == refused_.end();
   }
-  bool has_shading_only() const override { return false; }
   Result<SeamsBackendFrame> render(const scene::Camera& camera,
                                    const SeamsFrameOptions& options) override {
     EXPECT_FALSE(options.shading_only);
@@ -53,13 +73,8 @@ class FakeGlRenderer final : public SeamsFrameRenderer {
     if (perturb_ && !f->image.pixels.empty()) f->image.pixels[0] += 0.02f;
     return f;
   }
-  Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
-                                      const faces::ReferenceOptions& options) override {
-    return cpu_->render_reference(camera, width, height, options);
-  }
 
  private:
-  std::unique_ptr<SeamsFrameRenderer> cpu_;
   std::vector<int> refused_;
   bool perturb_ = false;
 };
@@ -158,15 +173,11 @@ TEST(Seams, CompareGlKeepsTheCpuResultAndMeasuresAgreement) {
 
 /// A stand-in for a driver that draws 2x with its 4x samples, as Mesa llvmpipe does: the CPU
 /// renderer at 4x for 2x. `report`: say so in `sample_pattern` (as the GL backend does).
-class RoundingFakeGlRenderer final : public SeamsFrameRenderer {
+class RoundingFakeGlRenderer final : public CpuBackedFakeGl {
  public:
   RoundingFakeGlRenderer(std::unique_ptr<SeamsFrameRenderer> cpu, bool report)
-      : cpu_(std::move(cpu)), report_(report) {}
-  Backend backend() const override { return Backend::gl; }
-  std::string device_name() const override { return "rounding renderer"; }
-  std::string device_version() const override { return "9.9"; }
+      : CpuBackedFakeGl(std::move(cpu), "rounding renderer"), report_(report) {}
   bool msaa_supported(int samples) override { return samples == 2 || samples == 4; }
-  bool has_shading_only() const override { return false; }
   SeamsSamplePattern sample_pattern(int msaa) override {
     return report_ ? SeamsSamplePattern{msaa, 4, 4, standard_positions(4)}
                    : SeamsSamplePattern{msaa, msaa, msaa, standard_positions(msaa)};
@@ -177,13 +188,8 @@ class RoundingFakeGlRenderer final : public SeamsFrameRenderer {
     o.msaa = 4;
     return cpu_->render(camera, o);
   }
-  Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
-                                      const faces::ReferenceOptions& options) override {
-    return cpu_->render_reference(camera, width, height, options);
-  }
 
  private:
-  std::unique_ptr<SeamsFrameRenderer> cpu_;
   bool report_ = true;
 };
 
@@ -230,19 +236,15 @@ TEST(Seams, CompareGlUsesTheDriversSamplePositions) {
 /// A stand-in for a driver whose 2x pattern is none of the standard ones: the CPU renderer
 /// drawing at `draws` (empty: the standard 2x), reporting `reported` as its positions and
 /// `cpu_msaa` as the CPU rate with them.
-class PatternFakeGlRenderer final : public SeamsFrameRenderer {
+class PatternFakeGlRenderer final : public CpuBackedFakeGl {
  public:
   PatternFakeGlRenderer(std::unique_ptr<SeamsFrameRenderer> cpu, std::vector<SampleOffset> draws,
                         std::vector<SampleOffset> reported, int cpu_msaa)
-      : cpu_(std::move(cpu)),
+      : CpuBackedFakeGl(std::move(cpu), "pattern renderer"),
         draws_(std::move(draws)),
         reported_(std::move(reported)),
         cpu_msaa_(cpu_msaa) {}
-  Backend backend() const override { return Backend::gl; }
-  std::string device_name() const override { return "pattern renderer"; }
-  std::string device_version() const override { return "9.9"; }
   bool msaa_supported(int samples) override { return samples == 2; }
-  bool has_shading_only() const override { return false; }
   SeamsSamplePattern sample_pattern(int msaa) override {
     return {msaa, 2, cpu_msaa_, reported_};
   }
@@ -253,13 +255,8 @@ class PatternFakeGlRenderer final : public SeamsFrameRenderer {
     o.sample_pattern = draws_;
     return cpu_->render(camera, o);
   }
-  Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
-                                      const faces::ReferenceOptions& options) override {
-    return cpu_->render_reference(camera, width, height, options);
-  }
 
  private:
-  std::unique_ptr<SeamsFrameRenderer> cpu_;
   std::vector<SampleOffset> draws_, reported_;
   int cpu_msaa_ = 0;
 };
