@@ -6,6 +6,10 @@
 //
 // Usage: aa_gl_table1 [--scene FILE.gltf] [--width 1024 --height 768] [--m 4] [--frames 5]
 //                     [--light-terms 256] [--normal]   (--normal: no heavy term)
+//                     [--schedule tile|loop] [--force-k K] [--glsl DIR]
+// --schedule: how the adaptive and edge-per-sample extra samples are scheduled
+// (gl::ExtraSchedule); --force-k: every adaptive pixel shades K extra samples (the pass's cost
+// at a known load); --glsl: the shader folder (default: the source tree's share/tessera/glsl).
 // Sets LP_NUM_THREADS=2 unless already set (llvmpipe's worker threads).
 #include <algorithm>
 #include <cmath>
@@ -47,6 +51,9 @@ int main(int argc, char** argv) {
     scene_path = std::string(s) + "/data/scenes/dungeon/level-dungeon.gltf";
   int width = 1024, height = 768, m = 4, frames = 5, terms = 256;
   bool heavy = true;
+  gl::DeferredGlOptions go;
+  go.glsl_dir = TESSERA_GLSL_DIR;
+  deferred::AdaptiveOptions adaptive;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> const char* { return i + 1 < argc ? argv[++i] : ""; };
@@ -57,6 +64,16 @@ int main(int argc, char** argv) {
     else if (a == "--frames") frames = std::max(1, std::atoi(next()));
     else if (a == "--light-terms") terms = std::atoi(next());
     else if (a == "--normal") heavy = false;
+    else if (a == "--force-k") adaptive.force_k = std::atoi(next());
+    else if (a == "--glsl") go.glsl_dir = next();
+    else if (a == "--schedule") {
+      const std::string v = next();
+      if (v != "tile" && v != "loop") {
+        std::fprintf(stderr, "aa_gl_table1: --schedule takes tile or loop, not '%s'\n", v.c_str());
+        return 2;
+      }
+      go.schedule = v == "loop" ? gl::ExtraSchedule::loop : gl::ExtraSchedule::tile_list;
+    }
     else {
       std::fprintf(stderr, "aa_gl_table1: unknown option '%s'\n", a.c_str());
       return 2;
@@ -68,8 +85,6 @@ int main(int argc, char** argv) {
   if (!cam) return fail(cam.status());
   Result<std::unique_ptr<gl::Context>> ctx = gl::Context::create();
   if (!ctx) return fail(ctx.status());
-  gl::DeferredGlOptions go;
-  go.glsl_dir = TESSERA_GLSL_DIR;
   Result<std::unique_ptr<gl::DeferredGlRenderer>> rr = gl::DeferredGlRenderer::create(*sc, go);
   if (!rr) return fail(rr.status());
   gl::DeferredGlRenderer& r = **rr;
@@ -103,7 +118,7 @@ int main(int argc, char** argv) {
         img[method] = std::move(x->image);
       } else {
         Result<gl::GlShadeResult> x = method == 0   ? r.shade_default(so)
-                                      : method == 2 ? r.shade_adaptive(so, {})
+                                      : method == 2 ? r.shade_adaptive(so, adaptive)
                                       : method == 3 ? r.shade_edge_per_sample(so)
                                                     : r.shade_reference(so);
         if (!x) return fail(x.status());
@@ -125,6 +140,10 @@ int main(int argc, char** argv) {
               "(medians; 1 warm-up frame dropped)\n",
               scene_path.c_str(), width, height, m, heavy ? "heavy" : "normal", terms,
               so.lights.size(), (*ctx)->renderer().c_str(), frames);
+  std::printf("# extra samples: %s schedule%s\n",
+              go.schedule == gl::ExtraSchedule::loop ? "loop (paper 4.2)" : "tile list",
+              adaptive.force_k >= 0 ? (", adaptive k forced to " + std::to_string(adaptive.force_k)).c_str()
+                                    : "");
   std::printf("# ms = host time per pass, dispatch to the end of glFinish (llvmpipe's GL_TIME_ELAPSED "
               "reads 0 for compute; its median is the last column)\n");
   std::printf("# G-buffer pass: %.2f ms (median)\n\n", median(gbuffer_ms));

@@ -47,10 +47,6 @@ ivec2 tessera_pixel() { return ivec2(gl_GlobalInvocationID.xy); }
 bool tessera_inside(ivec2 p) { return p.x < tessera_size.x && p.y < tessera_size.y; }
 int tessera_index(ivec2 p) { return p.y * tessera_size.x + p.x; }
 
-void tessera_load_order(out int order[TESSERA_ADAPTIVE_MAX_N]) {
-  for (int p = 0; p < TESSERA_ADAPTIVE_MAX_N; ++p) order[p] = p < N ? tessera_order[p >> 2][p & 3] : 0;
-}
-
 #if defined(TESSERA_PASS_EXTRA) && defined(TESSERA_EDGE)
 /// Lauritzen's test on the window of `pixel`: true = shade every sample.
 bool tessera_edge_complex(ivec2 pixel) {
@@ -87,28 +83,60 @@ bool tessera_edge_complex(ivec2 pixel) {
 #endif
 
 #if defined(TESSERA_PASS_EXTRA)
+/// G-buffer texel of window cell `cell` (row-major) of `pixel`.
+ivec2 tessera_cell(ivec2 pixel, int m, int cell) {
+  return ivec2(m * pixel.x + cell % m, m * pixel.y + cell / m);
+}
+/// Window cell of sample p (sample_order(m), from the parameter block).
+int tessera_order_cell(int p) { return tessera_order[p >> 2][p & 3]; }
+
+/// True when the window of `pixel` has a UV seam (adaptive_samples.glsl's rule), read straight
+/// from the G-buffer: no per-window arrays (see adaptive_samples.glsl).
+bool tessera_window_seam_gbuffer(ivec2 pixel, int m, float seam_factor) {
+  for (int q = 0; q < m * m; ++q) {
+    int cx = q % m, cy = q / m;
+    ivec2 gq = tessera_cell(pixel, m, q);
+    vec4 bq = texelFetch(tessera_gbuffer1, gq, 0);
+    int mq = tessera_material_id(bq.x);
+    if (mq < 0) continue;
+    vec4 dq = texelFetch(tessera_gbuffer2, gq, 0);
+    for (int dir = 0; dir < 2; ++dir) {
+      int nx = cx + (dir == 0 ? 1 : 0), ny = cy + (dir == 1 ? 1 : 0);
+      if (nx >= m || ny >= m) continue;
+      ivec2 g2 = tessera_cell(pixel, m, ny * m + nx);
+      vec4 b2 = texelFetch(tessera_gbuffer1, g2, 0);
+      if (tessera_material_id(b2.x) != mq) continue;
+      if (tessera_seam_between(bq.yz, dq, b2.yz, texelFetch(tessera_gbuffer2, g2, 0), dir,
+                               seam_factor))
+        return true;
+    }
+  }
+  return false;
+}
+
 /// Footprint scales of samples 0..k of the window of `pixel` into `scales`.
 void tessera_window_scales(ivec2 pixel, int k, out float scales[TESSERA_ADAPTIVE_MAX_N]) {
   int m = tessera_size.z;
   int mats[TESSERA_ADAPTIVE_MAX_N];
-  vec2 uvs[TESSERA_ADAPTIVE_MAX_N];
-  vec4 duvs[TESSERA_ADAPTIVE_MAX_N];
-  int order[TESSERA_ADAPTIVE_MAX_N];
-  tessera_load_order(order);
   for (int q = 0; q < TESSERA_ADAPTIVE_MAX_N; ++q) {
-    mats[q] = -1;
-    uvs[q] = vec2(0.0);
-    duvs[q] = vec4(0.0);
+    mats[q] = q < N ? tessera_fetch_material(tessera_cell(pixel, m, q)) : -1;
     scales[q] = 1.0;
   }
-  for (int q = 0; q < N; ++q) {
-    TesseraSample s = tessera_fetch(ivec2(m * pixel.x + q % m, m * pixel.y + q / m));
-    mats[q] = s.material;
-    uvs[q] = s.uv;
-    duvs[q] = s.duv;
+  if (tessera_window_seam_gbuffer(pixel, m, tessera_metric2.y)) return;
+  bool uniform_mat = true;
+  for (int q = 1; q < N; ++q) uniform_mat = uniform_mat && mats[q] == mats[0];
+  if (uniform_mat) {
+    float s = tessera_scale_uniform(N, k);
+    for (int p = 0; p <= k; ++p) scales[p] = s;
+    return;
   }
-  bool seam = tessera_window_seam(m, mats, uvs, duvs, tessera_metric2.y);
-  for (int p = 0; p <= k; ++p) scales[p] = tessera_sample_scale(p, k, m, order, mats, seam);
+  for (int p = 0; p <= k; ++p) {
+    int mine = mats[tessera_order_cell(p)];
+    int area = 0, shaded = 0;
+    for (int q = 0; q < N; ++q) area += mats[q] == mine ? 1 : 0;
+    for (int r = 0; r <= k; ++r) shaded += mats[tessera_order_cell(r)] == mine ? 1 : 0;
+    scales[p] = tessera_scale_material(area, shaded);
+  }
 }
 
 /// Sample 0 again with a new footprint: only its albedo lookup is repeated (S's light terms).
