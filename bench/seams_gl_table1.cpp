@@ -48,13 +48,20 @@ bool parse(int argc, char** argv, Args& a) {
       return true;
     };
     bool ok = true;
-    if (k == "--width") ok = next(a.width);
-    else if (k == "--height") ok = next(a.height);
-    else if (k == "--frames") ok = next(a.frames);
-    else if (k == "--reps") ok = next(a.reps);
-    else if (k == "--agreement-frames") ok = next(a.agreement_frames);
-    else if (k == "--cpu-threads") ok = next(a.cpu_threads);
-    else if (k == "--reference") a.reference = true;
+    if (k == "--width")
+      ok = next(a.width);
+    else if (k == "--height")
+      ok = next(a.height);
+    else if (k == "--frames")
+      ok = next(a.frames);
+    else if (k == "--reps")
+      ok = next(a.reps);
+    else if (k == "--agreement-frames")
+      ok = next(a.agreement_frames);
+    else if (k == "--cpu-threads")
+      ok = next(a.cpu_threads);
+    else if (k == "--reference")
+      a.reference = true;
     else if (k == "--filter" && i + 1 < argc) {
       const std::string f = argv[++i];
       if (f != "aniso16" && f != "trilinear") return false;
@@ -104,9 +111,10 @@ int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   Args a;
   if (!parse(argc, argv, a)) {
-    std::fprintf(stderr, "usage: seams_gl_table1 [--width W] [--height H] [--frames N] [--reps R] "
-                         "[--msaa 1,2,4,8] [--filter aniso16|trilinear] [--agreement-frames K] "
-                         "[--cpu-threads T] [--reference]\n");
+    std::fprintf(stderr,
+                 "usage: seams_gl_table1 [--width W] [--height H] [--frames N] [--reps R] "
+                 "[--msaa 1,2,4,8] [--filter aniso16|trilinear] [--agreement-frames K] "
+                 "[--cpu-threads T] [--reference]\n");
     return 2;
   }
   // The Figure-1 scene exactly as `tessera seams` builds it (default options, pattern scale 1).
@@ -138,7 +146,8 @@ int main(int argc, char** argv) {
     if (std::find(refused.begin(), refused.end(), m) == refused.end()) rates.push_back(m);
   }
   std::string refused_text;
-  for (int m : refused) refused_text += (refused_text.empty() ? "" : ", ") + std::to_string(m) + "x";
+  for (int m : refused)
+    refused_text += (refused_text.empty() ? "" : ", ") + std::to_string(m) + "x";
   std::printf("# MSAA rates refused by the driver: %s\n",
               refused_text.empty() ? "none" : refused_text.c_str());
   // What the driver draws each rate with (it may round a rate up: llvmpipe draws 2x with its 4x
@@ -165,7 +174,8 @@ int main(int argc, char** argv) {
 
   const faces::Method methods[2] = {faces::Method::traverse, faces::Method::discard};
   // gpu[m][ri], wall[m][ri]
-  std::vector<std::vector<std::vector<double>>> gpu(2, std::vector<std::vector<double>>(rates.size()));
+  std::vector<std::vector<std::vector<double>>> gpu(2,
+                                                    std::vector<std::vector<double>>(rates.size()));
   auto wall = gpu;
   gl::SeamsRenderOptions o;
   o.width = a.width;
@@ -210,91 +220,103 @@ int main(int argc, char** argv) {
   const char* names[2] = {"*Traverse*", "*Discard*"};
   for (int m = 0; m < 2; ++m) {
     std::printf("| GPU timer (draw + resolve) | %s |", names[m]);
-    for (std::size_t ri = 0; ri < rates.size(); ++ri) std::printf(" %.3f |", median(gpu[std::size_t(m)][ri]));
+    for (std::size_t ri = 0; ri < rates.size(); ++ri)
+      std::printf(" %.3f |", median(gpu[std::size_t(m)][ri]));
     std::printf("\n");
   }
   for (int m = 0; m < 2; ++m) {
     std::printf("| wall (to glFinish) | %s |", names[m]);
-    for (std::size_t ri = 0; ri < rates.size(); ++ri) std::printf(" %.3f |", median(wall[std::size_t(m)][ri]));
+    for (std::size_t ri = 0; ri < rates.size(); ++ri)
+      std::printf(" %.3f |", median(wall[std::size_t(m)][ri]));
     std::printf("\n");
   }
   std::printf("| ratio Traverse/Discard (GPU timer) | |");
-  for (std::size_t ri = 0; ri < rates.size(); ++ri) std::printf(" %.2f |", median(gpu[0][ri]) / median(gpu[1][ri]));
+  for (std::size_t ri = 0; ri < rates.size(); ++ri)
+    std::printf(" %.2f |", median(gpu[0][ri]) / median(gpu[1][ri]));
   std::printf("\n| ratio Traverse/Discard (wall) | |");
-  for (std::size_t ri = 0; ri < rates.size(); ++ri) std::printf(" %.2f |", median(wall[0][ri]) / median(wall[1][ri]));
+  for (std::size_t ri = 0; ri < rates.size(); ++ri)
+    std::printf(" %.2f |", median(wall[0][ri]) / median(wall[1][ri]));
   std::printf("\n| paper: GTX 680 / Iris Pro 5200 | |");
   for (int m : rates) {
     const int i = rate_index(m);
-    if (i < 0) std::printf(" - |");
-    else std::printf(" %.2f / %.2f |", paper_gtx[i], paper_iris[i]);
+    if (i < 0)
+      std::printf(" - |");
+    else
+      std::printf(" %.2f / %.2f |", paper_gtx[i], paper_iris[i]);
   }
   std::printf("\n\n");
-  const auto i1 = std::find(rates.begin(), rates.end(), 1), i4 = std::find(rates.begin(), rates.end(), 4);
+  const auto i1 = std::find(rates.begin(), rates.end(), 1),
+             i4 = std::find(rates.begin(), rates.end(), 4);
   if (i1 != rates.end() && i4 != rates.end()) {
     const double t1 = median(gpu[0][std::size_t(i1 - rates.begin())]);
     const double d4 = median(gpu[1][std::size_t(i4 - rates.begin())]);
-    std::printf("Discard 4x (%.3f ms) %s Traverse 1x (%.3f ms) on the GPU timer (paper: beats on "
-                "both devices)\n",
-                d4, d4 < t1 ? "beats" : "does not beat", t1);
+    std::printf(
+        "Discard 4x (%.3f ms) %s Traverse 1x (%.3f ms) on the GPU timer (paper: beats on "
+        "both devices)\n",
+        d4, d4 < t1 ? "beats" : "does not beat", t1);
   }
   std::printf("samples per cell: %zu\n", gpu[0].empty() ? std::size_t(0) : gpu[0][0].size());
 
   // ---- GL vs CPU at the benchmark size.
   Result<std::unique_ptr<faces::FaceRenderer>> cpu = faces::FaceRenderer::create(scene, *set);
   if (!cpu) return fail(cpu.status().message);
-  std::printf(
-      "\nGL vs CPU (%s, %d orbit frame(s)): PSNR dB (8-bit sRGB) / fraction of pixels "
-      "with ||GL - CPU||_2 >= 0.01 (linear RGB), worst frame\n\n| method |",
-      a.filter == tessera::texture::TextureFilter::trilinear ? "trilinear" : "16x anisotropic",
-      a.agreement_frames);
-  for (std::size_t ri = 0; ri < rates.size(); ++ri) {
-    if (cpu_rate[ri] == 0) {
-      std::printf(" %dx (GL; not compared) |", rates[ri]);
-    } else if (!cpu_pattern[ri].empty()) {
-      std::printf(" %dx (GL) vs the CPU at its positions |", rates[ri]);
-    } else if (cpu_rate[ri] == rates[ri]) {
-      std::printf(" %dx |", rates[ri]);
-    } else {
-      std::printf(" %dx (GL) vs %dx (CPU) |", rates[ri], cpu_rate[ri]);
-    }
-  }
-  std::printf("\n|---|");
-  for (std::size_t i = 0; i < rates.size(); ++i) std::printf("---|");
-  std::printf("\n");
-  o.read_back = true;
-  for (faces::Method m : faces::all_methods()) {
-    std::printf("| %s |", faces::method_name(m));
+  if (a.agreement_frames <= 0) std::printf("\nGL vs CPU: skipped (--agreement-frames 0)\n");
+  if (a.agreement_frames > 0) {
+    std::printf(
+        "\nGL vs CPU (%s, %d orbit frame(s)): PSNR dB (8-bit sRGB) / fraction of pixels "
+        "with ||GL - CPU||_2 >= 0.01 (linear RGB), worst frame\n\n| method |",
+        a.filter == tessera::texture::TextureFilter::trilinear ? "trilinear" : "16x anisotropic",
+        a.agreement_frames);
     for (std::size_t ri = 0; ri < rates.size(); ++ri) {
-      const int rate = rates[ri];
       if (cpu_rate[ri] == 0) {
-        std::printf(" - |");  // no CPU frame has the driver's positions
-        continue;
+        std::printf(" %dx (GL; not compared) |", rates[ri]);
+      } else if (!cpu_pattern[ri].empty()) {
+        std::printf(" %dx (GL) vs the CPU at its positions |", rates[ri]);
+      } else if (cpu_rate[ri] == rates[ri]) {
+        std::printf(" %dx |", rates[ri]);
+      } else {
+        std::printf(" %dx (GL) vs %dx (CPU) |", rates[ri], cpu_rate[ri]);
       }
-      double psnr = 1e9, frac = 0;
-      for (int f = 0; f < a.agreement_frames; ++f) {
-        const scene::Camera cam = faces::face_orbit_camera(scene, f * a.frames / a.agreement_frames, a.frames);
-        o.msaa = rate;
-        o.method = m;
-        Result<gl::SeamsFrame> g = r.render(cam, o);
-        if (!g) return fail(g.status().message);
-        faces::FaceRenderOptions co;
-        co.width = a.width;
-        co.height = a.height;
-        co.msaa = cpu_rate[ri];  // the driver's sample positions
-        co.sample_pattern = cpu_pattern[ri];  // empty: the standard pattern of cpu_rate
-        co.sampling.method = m;
-        co.sampling.filter = a.filter;
-        co.sampling.max_aniso = 16;
-        co.threads = a.cpu_threads;
-        Result<faces::FaceFrame> c = (*cpu)->render(cam, co);
-        if (!c) return fail(c.status().message);
-        const Agreement ag = agree(g->image, c->image);
-        psnr = std::min(psnr, ag.psnr);
-        frac = std::max(frac, ag.frac);
-      }
-      std::printf(" %.2f / %.4f |", psnr, frac);
     }
+    std::printf("\n|---|");
+    for (std::size_t i = 0; i < rates.size(); ++i) std::printf("---|");
     std::printf("\n");
+    o.read_back = true;
+    for (faces::Method m : faces::all_methods()) {
+      std::printf("| %s |", faces::method_name(m));
+      for (std::size_t ri = 0; ri < rates.size(); ++ri) {
+        const int rate = rates[ri];
+        if (cpu_rate[ri] == 0) {
+          std::printf(" - |");  // no CPU frame has the driver's positions
+          continue;
+        }
+        double psnr = 1e9, frac = 0;
+        for (int f = 0; f < a.agreement_frames; ++f) {
+          const scene::Camera cam =
+              faces::face_orbit_camera(scene, f * a.frames / a.agreement_frames, a.frames);
+          o.msaa = rate;
+          o.method = m;
+          Result<gl::SeamsFrame> g = r.render(cam, o);
+          if (!g) return fail(g.status().message);
+          faces::FaceRenderOptions co;
+          co.width = a.width;
+          co.height = a.height;
+          co.msaa = cpu_rate[ri];               // the driver's sample positions
+          co.sample_pattern = cpu_pattern[ri];  // empty: the standard pattern of cpu_rate
+          co.sampling.method = m;
+          co.sampling.filter = a.filter;
+          co.sampling.max_aniso = 16;
+          co.threads = a.cpu_threads;
+          Result<faces::FaceFrame> c = (*cpu)->render(cam, co);
+          if (!c) return fail(c.status().message);
+          const Agreement ag = agree(g->image, c->image);
+          psnr = std::min(psnr, ag.psnr);
+          frac = std::max(frac, ag.frac);
+        }
+        std::printf(" %.2f / %.4f |", psnr, frac);
+      }
+      std::printf("\n");
+    }
   }
   if (a.reference) {
     const scene::Camera cam = faces::face_orbit_camera(scene, 0, a.frames);
