@@ -6,7 +6,7 @@
 //
 // Usage: aa_gl_table1 [--scene FILE.gltf] [--width 1024 --height 768] [--m 4] [--frames 5]
 //                     [--light-terms 256] [--normal]   (--normal: no heavy term)
-//                     [--schedule tile|loop] [--force-k K] [--glsl DIR]
+//                     [--schedule tile|loop|frame] [--force-k K] [--glsl DIR]
 // --schedule: how the adaptive and edge-per-sample extra samples are scheduled
 // (gl::ExtraSchedule); --force-k: every adaptive pixel shades K extra samples (the pass's cost
 // at a known load); --glsl: the shader folder (default: the source tree's share/tessera/glsl).
@@ -68,11 +68,14 @@ int main(int argc, char** argv) {
     else if (a == "--glsl") go.glsl_dir = next();
     else if (a == "--schedule") {
       const std::string v = next();
-      if (v != "tile" && v != "loop") {
-        std::fprintf(stderr, "aa_gl_table1: --schedule takes tile or loop, not '%s'\n", v.c_str());
+      if (v != "tile" && v != "loop" && v != "frame") {
+        std::fprintf(stderr, "aa_gl_table1: --schedule takes tile, loop or frame, not '%s'\n",
+                     v.c_str());
         return 2;
       }
-      go.schedule = v == "loop" ? gl::ExtraSchedule::loop : gl::ExtraSchedule::tile_list;
+      go.schedule = v == "loop"    ? gl::ExtraSchedule::loop
+                    : v == "frame" ? gl::ExtraSchedule::frame_list
+                                   : gl::ExtraSchedule::tile_list;
     }
     else {
       std::fprintf(stderr, "aa_gl_table1: unknown option '%s'\n", a.c_str());
@@ -141,7 +144,9 @@ int main(int argc, char** argv) {
               scene_path.c_str(), width, height, m, heavy ? "heavy" : "normal", terms,
               so.lights.size(), (*ctx)->renderer().c_str(), frames);
   std::printf("# extra samples: %s schedule%s\n",
-              go.schedule == gl::ExtraSchedule::loop ? "loop (paper 4.2)" : "tile list",
+              go.schedule == gl::ExtraSchedule::loop         ? "loop (paper 4.2)"
+              : go.schedule == gl::ExtraSchedule::frame_list ? "frame list"
+                                                             : "tile list",
               adaptive.force_k >= 0 ? (", adaptive k forced to " + std::to_string(adaptive.force_k)).c_str()
                                     : "");
   std::printf("# ms = host time per pass, dispatch to the end of glFinish (llvmpipe's GL_TIME_ELAPSED "

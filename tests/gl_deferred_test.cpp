@@ -1,16 +1,19 @@
 // GPU adaptive supersampling (tessera/gl_deferred.h) against the CPU path (tessera/deferred.h):
 // G-buffer, k maps, forced-k identities, images, the edge-per-sample baseline, FXAA and the
 // framebuffer-size check. Skips when no OpenGL 4.5 context can be made.
+#include "tessera/gl_deferred.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "tessera/deferred.h"
 #include "tessera/gl.h"
-#include "tessera/gl_deferred.h"
 #include "tessera/metrics.h"
 #include "tessera/scene.h"
 #include "test_support.h"
@@ -30,7 +33,8 @@ double psnr(const ImageRGBAF& a, const ImageRGBAF& b) {
 
 float max_abs_diff(const ImageRGBAF& a, const ImageRGBAF& b) {
   float m = 0;
-  for (std::size_t i = 0; i < a.pixels.size(); ++i) m = std::max(m, std::fabs(a.pixels[i] - b.pixels[i]));
+  for (std::size_t i = 0; i < a.pixels.size(); ++i)
+    m = std::max(m, std::fabs(a.pixels[i] - b.pixels[i]));
   return m;
 }
 
@@ -93,11 +97,14 @@ class GlDeferred : public ::testing::Test {
     const double k_own = agreement(g->samples, own.samples);
     const double k_same = agreement(g->samples, same.samples);
     const double p_own = psnr(g->image, own.image), p_same = psnr(g->image, same.image);
-    std::printf("%s: k agreement %.4f (CPU G-buffer), %.4f (GL G-buffer); PSNR %.2f / %.2f dB; "
-                "samples GL %.1f %% CPU %.1f %%\n",
-                what, k_own, k_same, p_own, p_same,
-                100.0 * double(g->samples_shaded) / double(g->samples.size() * std::size_t(gl_->m() * gl_->m())),
-                100.0 * double(own.samples_shaded) / double(own.samples.size() * std::size_t(gl_->m() * gl_->m())));
+    std::printf(
+        "%s: k agreement %.4f (CPU G-buffer), %.4f (GL G-buffer); PSNR %.2f / %.2f dB; "
+        "samples GL %.1f %% CPU %.1f %%\n",
+        what, k_own, k_same, p_own, p_same,
+        100.0 * double(g->samples_shaded) /
+            double(g->samples.size() * std::size_t(gl_->m() * gl_->m())),
+        100.0 * double(own.samples_shaded) /
+            double(own.samples.size() * std::size_t(gl_->m() * gl_->m())));
     EXPECT_GE(k_own, min_k_own);
     EXPECT_GE(k_same, min_k_same);
     EXPECT_GE(p_own, min_psnr);
@@ -128,14 +135,16 @@ TEST_F(GlDeferred, GBufferMatchesCpu) {
         close_depth += std::fabs(a[d::kChDepth] - b[d::kChDepth]) <= 1e-4f * b[d::kChDepth];
         if (b[d::kChMaterial] >= 0) {
           ++both;
-          close_uv += std::fabs(a[d::kChUv] - b[d::kChUv]) + std::fabs(a[d::kChUv + 1] - b[d::kChUv + 1]) <
-                      1e-3f * (1.0f + std::fabs(b[d::kChUv]) + std::fabs(b[d::kChUv + 1]));
+          close_uv +=
+              std::fabs(a[d::kChUv] - b[d::kChUv]) + std::fabs(a[d::kChUv + 1] - b[d::kChUv + 1]) <
+              1e-3f * (1.0f + std::fabs(b[d::kChUv]) + std::fabs(b[d::kChUv + 1]));
         }
       }
     }
     const double n = double(gw) * gh;
     std::printf("m=%d: material %.5f, depth(1e-4 rel) %.5f, uv(1e-3 rel) %.5f\n", m,
-                double(same_material) / n, double(close_depth) / n, double(close_uv) / double(both));
+                double(same_material) / n, double(close_depth) / n,
+                double(close_uv) / double(both));
     EXPECT_GE(double(same_material) / n, 0.995);
     EXPECT_GE(double(close_depth) / n, 0.995);
     EXPECT_GE(double(close_uv) / double(both), 0.99);
@@ -186,21 +195,61 @@ TEST_F(GlDeferred, ForcedKIdentities) {
   }
 }
 
-TEST_F(GlDeferred, LoopScheduleEqualsTileSchedule) {
+// The loop and the frame list (the default) give the tile list's images and k maps, bit for
+// bit: adaptive, adaptive with every pixel at k = m^2 - 1 (the frame list's buffers must grow:
+// m^2 - 1 items per pixel against a first capacity of one), and edge-per-sample, at m = 2, 4.
+TEST_F(GlDeferred, EveryScheduleGivesTheTileScheduleImage) {
   use_builtin();
-  render(64, 48, 4);
-  Result<gl::GlShadeResult> tile = gl_->shade_adaptive(shading_, {});
-  ASSERT_TRUE(tile.ok()) << tile.status().message;
-  gl::DeferredGlOptions o;
-  o.glsl_dir = TESSERA_GLSL_DIR;
-  o.schedule = gl::ExtraSchedule::loop;
-  Result<std::unique_ptr<gl::DeferredGlRenderer>> g = gl::DeferredGlRenderer::create(*scene_, o);
-  ASSERT_TRUE(g.ok());
-  ASSERT_TRUE((*g)->render_gbuffer(camera_, 64, 48, 4).ok());
-  Result<gl::GlShadeResult> loop = (*g)->shade_adaptive(shading_, {});
-  ASSERT_TRUE(loop.ok()) << loop.status().message;
-  EXPECT_EQ(loop->samples, tile->samples);
-  EXPECT_EQ(max_abs_diff(loop->image, tile->image), 0.0f);
+  for (int m : {2, 4}) {
+    render(64, 48, m);
+    d::AdaptiveOptions all;
+    all.force_k = 15;
+    gl::DeferredGlOptions to;
+    to.glsl_dir = TESSERA_GLSL_DIR;
+    to.schedule = gl::ExtraSchedule::tile_list;
+    Result<std::unique_ptr<gl::DeferredGlRenderer>> tr =
+        gl::DeferredGlRenderer::create(*scene_, to);
+    ASSERT_TRUE(tr.ok());
+    ASSERT_TRUE((*tr)->render_gbuffer(camera_, 64, 48, m).ok());
+    Result<gl::GlShadeResult> tile = (*tr)->shade_adaptive(shading_, {});
+    Result<gl::GlShadeResult> tile_all = (*tr)->shade_adaptive(shading_, all);
+    Result<gl::GlShadeResult> tile_edge = (*tr)->shade_edge_per_sample(shading_);
+    ASSERT_TRUE(tile.ok() && tile_all.ok() && tile_edge.ok());
+    ASSERT_EQ(tile->passes.back().pass, "extra");
+    for (gl::ExtraSchedule schedule : {gl::ExtraSchedule::loop, gl::ExtraSchedule::frame_list}) {
+      SCOPED_TRACE("m=" + std::to_string(m) +
+                   (schedule == gl::ExtraSchedule::loop ? " loop" : " frame_list"));
+      gl::DeferredGlOptions o;
+      o.glsl_dir = TESSERA_GLSL_DIR;
+      o.schedule = schedule;
+      Result<std::unique_ptr<gl::DeferredGlRenderer>> g =
+          gl::DeferredGlRenderer::create(*scene_, o);
+      ASSERT_TRUE(g.ok());
+      ASSERT_TRUE((*g)->render_gbuffer(camera_, 64, 48, m).ok());
+      Result<gl::GlShadeResult> r = (*g)->shade_adaptive(shading_, {});
+      Result<gl::GlShadeResult> r_all = (*g)->shade_adaptive(shading_, all);
+      Result<gl::GlShadeResult> r_edge = (*g)->shade_edge_per_sample(shading_);
+      ASSERT_TRUE(r.ok()) << r.status().message;
+      ASSERT_TRUE(r_all.ok()) << r_all.status().message;
+      ASSERT_TRUE(r_edge.ok()) << r_edge.status().message;
+      EXPECT_EQ(r->samples, tile->samples);
+      EXPECT_EQ(max_abs_diff(r->image, tile->image), 0.0f);
+      EXPECT_EQ(r_all->samples, tile_all->samples);
+      EXPECT_EQ(max_abs_diff(r_all->image, tile_all->image), 0.0f);
+      EXPECT_EQ(r_edge->samples, tile_edge->samples);
+      EXPECT_EQ(max_abs_diff(r_edge->image, tile_edge->image), 0.0f);
+      if (schedule == gl::ExtraSchedule::frame_list) {
+        // Once grown (by r_all), a frame runs each pass once, named after its part of the work.
+        Result<gl::GlShadeResult> again = (*g)->shade_adaptive(shading_, {});
+        ASSERT_TRUE(again.ok());
+        EXPECT_EQ(max_abs_diff(again->image, tile->image), 0.0f);
+        std::vector<std::string> names;
+        for (const gl::PassTime& t : again->passes) names.push_back(t.pass);
+        EXPECT_EQ(names, (std::vector<std::string>{"first", "metrics", "extra_list", "extra_shade",
+                                                   "extra_resolve"}));
+      }
+    }
+  }
 }
 
 TEST_F(GlDeferred, EdgePerSampleMatchesCpu) {
@@ -214,11 +263,12 @@ TEST_F(GlDeferred, EdgePerSampleMatchesCpu) {
     const double a_same = agreement(g->samples, same.samples);
     const double a_own = agreement(g->samples, own.samples);
     const double p_same = psnr(g->image, same.image), p_own = psnr(g->image, own.image);
-    std::printf("edge m=%d: classification agreement %.4f (GL G-buffer) %.4f (CPU G-buffer); "
-                "PSNR %.2f / %.2f dB; complex pixels %.1f %%\n",
-                m, a_same, a_own, p_same, p_own,
-                100.0 * double(std::count(g->samples.begin(), g->samples.end(), m * m)) /
-                    double(g->samples.size()));
+    std::printf(
+        "edge m=%d: classification agreement %.4f (GL G-buffer) %.4f (CPU G-buffer); "
+        "PSNR %.2f / %.2f dB; complex pixels %.1f %%\n",
+        m, a_same, a_own, p_same, p_own,
+        100.0 * double(std::count(g->samples.begin(), g->samples.end(), m * m)) /
+            double(g->samples.size()));
     EXPECT_GE(a_same, 0.995);
     EXPECT_GE(a_own, 0.99);
     EXPECT_GE(p_same, 45.0);
@@ -259,7 +309,8 @@ TEST_F(GlDeferred, FxaaMatchesCpu) {
   ASSERT_TRUE(pipe.ok()) << pipe.status().message;
   ASSERT_EQ(pipe->passes.size(), 3u);
   std::size_t pipe_same = 0;
-  for (std::size_t i = 0; i < in.pixels.size(); ++i) pipe_same += pipe->image.pixels[i] == g->image.pixels[i];
+  for (std::size_t i = 0; i < in.pixels.size(); ++i)
+    pipe_same += pipe->image.pixels[i] == g->image.pixels[i];
   EXPECT_GE(double(pipe_same) / double(in.pixels.size()), 0.999);
 }
 
@@ -280,7 +331,8 @@ TEST_F(GlDeferred, SizeBeyondTheFramebufferLimitIsAClearError) {
 
 TEST_F(GlDeferred, DungeonMatchesCpu) {
   TESSERA_REQUIRE_SHARED_DATA(data);
-  Result<scene::Scene> sc = scene::load_scene((data / "scenes/dungeon/level-dungeon.gltf").string());
+  Result<scene::Scene> sc =
+      scene::load_scene((data / "scenes/dungeon/level-dungeon.gltf").string());
   ASSERT_TRUE(sc.ok()) << sc.status().message;
   const scene::Camera cam = scene::orbit_camera(*sc, 1, 8);
   use_scene(std::move(*sc), cam, false);

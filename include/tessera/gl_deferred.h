@@ -17,10 +17,14 @@
 //    FXAA 3.11 (fxaa.glsl) on the sRGB8-encoded 1 spp image; and the engine baseline, deferred
 //    per-sample shading of edge pixels only (Lauritzen 2010; edge_classify.glsl), classified
 //    per 8x8 tile in the compute pass that also shades.
-//    Compute rather than fragment passes: the extra samples are scheduled per 8x8 tile (all
-//    extra samples of the tile's 64 pixels go into one shared-memory list shaded round-robin
-//    by the 64 invocations — Lauritzen's redistribution), which a fragment shader cannot do;
-//    `ExtraSchedule::loop` is the paper's §4.2 per-pixel loop (same image, bit for bit).
+//    Compute rather than fragment passes, so that the extra samples can be regrouped: by default
+//    (`ExtraSchedule::frame_list`) every pixel's extra samples go into one dense list over the
+//    whole frame, shaded one invocation per sample and summed per pixel in index order, so busy
+//    edge pixels do not leave their neighbours' lanes idle (docs/benchmarks/aa_gl.md: on an
+//    NVIDIA H200 1.5x faster than the per-pixel loop and 1.8x than the tile list, on llvmpipe
+//    1.3x faster than the tile list). `tile_list` does the
+//    same within 8x8 tiles in shared memory (Lauritzen's redistribution) and `loop` is the
+//    paper's §4.2 per-pixel loop; all three give the same image, bit for bit, on llvmpipe.
 //  * Shading: Blinn-Phong over point lights and the `heavy` term with the CPU's waves; albedo
 //    lookups use the CPU's anisotropic filter built from textureLod probes on the CPU's own mip
 //    chains (uploaded as RGBA32F texture arrays, one per texture size), so GL and CPU filter the
@@ -52,6 +56,11 @@ enum class ExtraSchedule {
   tile_list,  ///< Per 8x8 tile, a shared list of (pixel, sample) shaded round-robin (m <= 4;
               ///< larger m falls back to `loop`).
   loop,       ///< The paper's §4.2: each invocation loops over its pixel's k samples.
+  /// One dense list of (pixel, sample) over the whole frame, one invocation per extra sample,
+  /// then a per-pixel resolve (three passes; any m). The list lives in GPU buffers of 24 bytes
+  /// per extra sample that grow with the frame's count (read back once per frame); past the
+  /// driver's GL_MAX_SHADER_STORAGE_BLOCK_SIZE the pass falls back to `loop`.
+  frame_list,
 };
 
 struct DeferredGlOptions {
@@ -59,7 +68,7 @@ struct DeferredGlOptions {
   /// edge_classify.glsl and fxaa.glsl. Empty: $TESSERA_GLSL_DIR, else share/tessera/glsl
   /// beside the executable (../share or ../../share).
   std::filesystem::path glsl_dir;
-  ExtraSchedule schedule = ExtraSchedule::tile_list;
+  ExtraSchedule schedule = ExtraSchedule::frame_list;
   int threads = 0;  ///< CPU threads for the texture chains and vertex transforms.
 };
 

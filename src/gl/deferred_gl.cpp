@@ -70,8 +70,8 @@ Result<const Program*> program(State& st, const std::vector<std::string>& define
 }
 
 /// Uploads the parameters, lights and waves and binds everything the passes read.
-Status bind_inputs(State& st, const deferred::ShadingOptions& o,
-                   const deferred::AdaptiveOptions* a, const deferred::EdgePerSampleOptions* e) {
+Status bind_inputs(State& st, const deferred::ShadingOptions& o, const deferred::AdaptiveOptions* a,
+                   const deferred::EdgePerSampleOptions* e) {
   if (!st.fbo) return Status::error(ErrorCode::invalid_argument, "deferred GL: no G-buffer yet");
   if (o.filter != texture::TextureFilter::anisotropic) {
     return Status::error(ErrorCode::unsupported,
@@ -127,8 +127,8 @@ Status bind_inputs(State& st, const deferred::ShadingOptions& o,
   if (!st.lights_ssbo) st.lights_ssbo = create_object(ObjectType::buffer);
   glNamedBufferData(st.lights_ssbo.get(), GLsizeiptr(lights.size() * 4), lights.data(),
                     GL_DYNAMIC_DRAW);
-  std::vector<float> waves =
-      o.heavy ? deferred::make_heavy_waves(o.heavy_terms, o.heavy_wavelength) : std::vector<float>{};
+  std::vector<float> waves = o.heavy ? deferred::make_heavy_waves(o.heavy_terms, o.heavy_wavelength)
+                                     : std::vector<float>{};
   waves.resize(std::max<std::size_t>(waves.size(), 4), 0.0f);
   if (!st.waves_ssbo) st.waves_ssbo = create_object(ObjectType::buffer);
   glNamedBufferData(st.waves_ssbo.get(), GLsizeiptr(waves.size() * 4), waves.data(),
@@ -178,15 +178,20 @@ struct PassTimer {
 };
 
 /// Runs one compute pass over the w x h output pixels, timed as `name`.
+/// `groups_x` > 0: that many groups (x groups_y) instead of one per 8x8 pixels.
 Status run_pass(State& st, PassTimer& timer, const std::string& name,
-                const std::vector<std::string>& defines) {
+                const std::vector<std::string>& defines, GLuint groups_x = 0, GLuint groups_y = 1) {
   Result<const Program*> p = program(st, defines);
   if (!p) return p.status();
   glFinish();
   const auto wall0 = std::chrono::steady_clock::now();
   if (Status s = timer.begin(name); !s.ok()) return s;
   glUseProgram((*p)->get());
-  glDispatchCompute(GLuint((st.w + 7) / 8), GLuint((st.h + 7) / 8), 1);
+  if (groups_x > 0) {
+    glDispatchCompute(groups_x, groups_y, 1);
+  } else {
+    glDispatchCompute(GLuint((st.w + 7) / 8), GLuint((st.h + 7) / 8), 1);
+  }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   // llvmpipe runs a dispatch when the batch is flushed, after the query has ended: glFinish
   // inside the query makes GL_TIME_ELAPSED cover the work (a no-op cost on a GPU's timeline).
@@ -215,11 +220,88 @@ Result<ImageRGBA8> read_rgba8(const State& st, const Object& buf) {
   return img;
 }
 
-std::vector<std::string> extra_defines(const State& st, bool edge) {
+/// The extra pass's defines for `schedule` (tile_list falls back to loop for m > 4).
+std::vector<std::string> extra_defines(const State& st, bool edge, ExtraSchedule schedule) {
   std::vector<std::string> d = {"TESSERA_PASS_EXTRA"};
   if (edge) d.push_back("TESSERA_EDGE");
-  if (st.options.schedule == ExtraSchedule::loop || st.m > 4) d.push_back("TESSERA_SCHEDULE_LOOP");
+  if (schedule == ExtraSchedule::frame_list) {
+    d.push_back("TESSERA_SCHEDULE_FRAME");
+  } else if (schedule == ExtraSchedule::loop || st.m > 4) {
+    d.push_back("TESSERA_SCHEDULE_LOOP");
+  }
   return d;
+}
+
+/// Sizes the frame list's buffers for `capacity` items; false when a colour-slot buffer that
+/// large exceeds the driver's GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
+bool size_frame_list(State& st, std::size_t capacity) {
+  GLint64 max_block = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  if (capacity * 16 > std::size_t(std::max<GLint64>(max_block, 0))) return false;
+  st.list_items_buf = make_buffer(capacity * 8);
+  st.list_colours_buf = make_buffer(capacity * 16);
+  st.list_capacity = capacity;
+  return true;
+}
+
+/// The extra samples (`name`: "extra" or "edge_extra"): one pass, or with
+/// ExtraSchedule::frame_list the list, shade and resolve passes ("<name>_list", ...).
+Status run_extra(State& st, PassTimer& timer, const std::string& name, bool edge) {
+  if (st.options.schedule != ExtraSchedule::frame_list) {
+    return run_pass(st, timer, name, extra_defines(st, edge, st.options.schedule));
+  }
+  const std::size_t pixels = std::size_t(st.w) * std::size_t(st.h);
+  if (!st.list_count_buf) st.list_count_buf = make_buffer(16);
+  if (st.list_base_pixels != pixels) {
+    st.list_base_buf = make_buffer(pixels * 4);
+    st.list_base_pixels = pixels;
+  }
+  // First size: one item per pixel (or what the driver allows); grown below when a frame needs
+  // more.
+  if (st.list_capacity == 0 && !size_frame_list(st, pixels) &&
+      !size_frame_list(st, std::size_t(1) << 16)) {
+    return run_pass(st, timer, name, extra_defines(st, edge, ExtraSchedule::loop));
+  }
+  auto bind = [&] {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, st.list_count_buf.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, st.list_base_buf.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, st.list_items_buf.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, st.list_colours_buf.get());
+  };
+  const std::vector<std::string> base = extra_defines(st, edge, ExtraSchedule::frame_list);
+  auto with = [&](const char* pass) {
+    std::vector<std::string> d = base;
+    d.push_back(pass);
+    return d;
+  };
+  std::uint32_t total = 0;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    bind();
+    const std::uint32_t header[2] = {0, std::uint32_t(st.list_capacity)};
+    glNamedBufferSubData(st.list_count_buf.get(), 0, sizeof header, header);
+    // A rerun after growing the list is timed as its own pass.
+    if (Status s = run_pass(st, timer, name + (attempt == 0 ? "_list" : "_list_retry"),
+                            with("TESSERA_FRAME_LIST"));
+        !s.ok()) {
+      return s;
+    }
+    glGetNamedBufferSubData(st.list_count_buf.get(), 0, 4, &total);
+    if (total <= st.list_capacity) break;
+    // The same k map gives the same count, so one regrowth suffices; a list beyond the
+    // driver's block size is shaded by the per-pixel loop instead (same image).
+    if (attempt > 0 || !size_frame_list(st, std::size_t(total) + total / 4)) {
+      return run_pass(st, timer, name, extra_defines(st, edge, ExtraSchedule::loop));
+    }
+  }
+  if (total > 0) {
+    const GLuint groups = GLuint((std::size_t(total) + 63) / 64);
+    const GLuint gx = std::min<GLuint>(groups, 65535), gy = (groups + gx - 1) / gx;
+    if (Status s = run_pass(st, timer, name + "_shade", with("TESSERA_FRAME_SHADE"), gx, gy);
+        !s.ok()) {
+      return s;
+    }
+  }
+  return run_pass(st, timer, name + "_resolve", with("TESSERA_FRAME_RESOLVE"));
 }
 
 Status finish(PassTimer& timer, std::vector<PassTime>& passes, std::vector<PassTime>& wall) {
@@ -288,7 +370,7 @@ Result<GlShadeResult> DeferredGlRenderer::shade_adaptive(const deferred::Shading
   PassTimer timer;
   if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
   if (Status s = run_pass(st, timer, "metrics", {"TESSERA_PASS_METRICS"}); !s.ok()) return s;
-  if (Status s = run_pass(st, timer, "extra", extra_defines(st, false)); !s.ok()) return s;
+  if (Status s = run_extra(st, timer, "extra", false); !s.ok()) return s;
   if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
   Result<ImageRGBAF> img = read_rgba(st, st.out_buf);
   if (!img) return img.status();
@@ -304,7 +386,7 @@ Result<GlShadeResult> DeferredGlRenderer::shade_edge_per_sample(
   GlShadeResult r;
   PassTimer timer;
   if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
-  if (Status s = run_pass(st, timer, "edge_extra", extra_defines(st, true)); !s.ok()) return s;
+  if (Status s = run_extra(st, timer, "edge_extra", true); !s.ok()) return s;
   if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
   Result<ImageRGBAF> img = read_rgba(st, st.out_buf);
   if (!img) return img.status();
@@ -318,9 +400,9 @@ namespace {
 Result<std::vector<std::string>> fxaa_defines(const deferred::FxaaOptions& f) {
   const deferred::FxaaPresetSteps* preset = deferred::fxaa_preset_steps(f.preset);
   if (!preset) {
-    return Status::error(ErrorCode::invalid_argument,
-                         "fxaa: unknown quality preset " + std::to_string(f.preset) +
-                             " (10..15, 20..29 or 39)");
+    return Status::error(
+        ErrorCode::invalid_argument,
+        "fxaa: unknown quality preset " + std::to_string(f.preset) + " (10..15, 20..29 or 39)");
   }
   std::string table = "float[12](";
   for (int i = 0; i < 12; ++i) table += (i ? ", " : "") + float_literal(preset->p[i]);

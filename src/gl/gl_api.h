@@ -96,6 +96,7 @@
   X(glLinkProgram, PFNGLLINKPROGRAMPROC)                                     \
   X(glMemoryBarrier, PFNGLMEMORYBARRIERPROC)                                 \
   X(glNamedBufferData, PFNGLNAMEDBUFFERDATAPROC)                             \
+  X(glNamedBufferSubData, PFNGLNAMEDBUFFERSUBDATAPROC)                       \
   X(glNamedBufferStorage, PFNGLNAMEDBUFFERSTORAGEPROC)                       \
   X(glNamedFramebufferDrawBuffers, PFNGLNAMEDFRAMEBUFFERDRAWBUFFERSPROC)     \
   X(glNamedFramebufferReadBuffer, PFNGLNAMEDFRAMEBUFFERREADBUFFERPROC)       \

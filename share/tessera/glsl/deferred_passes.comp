@@ -15,6 +15,14 @@
 //                           per-sample slots and each pixel sums its own in index order, so the
 //                           result is deterministic. TESSERA_SCHEDULE_LOOP: the paper's §4.2
 //                           loop (each invocation shades its pixel's k samples); same result.
+//                           TESSERA_SCHEDULE_FRAME: one dense list over the whole frame, in
+//                           three passes (same result, bit for bit):
+//     TESSERA_FRAME_LIST    per pixel: k, the footprint scales and sample 0 again -> SSBO 6;
+//                           the pixel's k items (pixel, p) at a base from one atomic counter
+//                           (SSBO 9: count, capacity; SSBO 10: base per pixel; SSBO 11: items;
+//                           SSBO 12: colour slots, .w = the item's footprint scale)
+//     TESSERA_FRAME_SHADE   one invocation per item (1-D over the list, 64 per group)
+//     TESSERA_FRAME_RESOLVE per pixel: sample 0 + the pixel's slots in p order, / (k + 1)
 //   TESSERA_PASS_REFERENCE  all n samples, footprint scale 1, mean in index order -> SSBO 6
 //   TESSERA_PASS_SRGB8      SSBO 3's rgb (TESSERA_SRGB_FROM_S) or SSBO 6 -> sRGB8 packed in
 //                           SSBO 7 (r | g << 8 | b << 16 | 255 << 24, as tessera::to_srgb8)
@@ -40,6 +48,12 @@ layout(std430, binding = 5) buffer TesseraK { uint tessera_k[]; };
 layout(std430, binding = 6) buffer TesseraOut { vec4 tessera_out[]; };
 layout(std430, binding = 7) buffer TesseraRgba8 { uint tessera_rgba8[]; };
 layout(std430, binding = 8) buffer TesseraRgba8Out { uint tessera_rgba8_out[]; };
+#if defined(TESSERA_SCHEDULE_FRAME)
+layout(std430, binding = 9) buffer TesseraListCount { uint tessera_list_total; uint tessera_list_capacity; };
+layout(std430, binding = 10) buffer TesseraListBase { uint tessera_list_base[]; };
+layout(std430, binding = 11) buffer TesseraListItems { uvec2 tessera_list_items[]; };
+layout(std430, binding = 12) buffer TesseraListColours { vec4 tessera_list_colours[]; };
+#endif
 
 const int N = TESSERA_WINDOW_N;
 
@@ -146,7 +160,7 @@ vec3 tessera_first_again(ivec2 pixel, int i, float scale) {
   return tessera_albedo(s, scale) * tessera_terms[2 * i].rgb + tessera_terms[2 * i + 1].rgb;
 }
 
-#if !defined(TESSERA_SCHEDULE_LOOP)
+#if !defined(TESSERA_SCHEDULE_LOOP) && !defined(TESSERA_SCHEDULE_FRAME)
 shared uint tessera_list_count;
 shared uint tessera_list[64 * (N > 1 ? N - 1 : 1)];
 shared float tessera_scale_slots[64 * N];
@@ -233,17 +247,53 @@ void main() {
   }
   tessera_k[i] = uint(tessera_round_k(k, k_max));
 
+#elif defined(TESSERA_PASS_EXTRA) && defined(TESSERA_FRAME_SHADE)
+  // One invocation per list item; groups are laid out 2-D so that long lists stay within the
+  // guaranteed 65535 groups per dimension.
+  uint e = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u +
+           gl_LocalInvocationIndex;
+  if (e >= tessera_list_total) return;
+  uvec2 item = tessera_list_items[e];
+  int owner_index = int(item.x);
+  ivec2 owner = ivec2(owner_index % tessera_size.x, owner_index / tessera_size.x);
+  float scale = tessera_list_colours[e].w;
+  tessera_list_colours[e] = vec4(tessera_shade(tessera_window_sample(owner, int(item.y)), scale),
+                                 scale);
+
 #elif defined(TESSERA_PASS_EXTRA)
   int k = 0;
   if (inside) {
-#if defined(TESSERA_EDGE)
+#if defined(TESSERA_EDGE) && !defined(TESSERA_FRAME_RESOLVE)
     k = tessera_edge_complex(pixel) ? N - 1 : 0;
     tessera_k[i] = uint(k);
 #else
     k = int(tessera_k[i]);
 #endif
   }
-#if defined(TESSERA_SCHEDULE_LOOP)
+#if defined(TESSERA_SCHEDULE_FRAME) && defined(TESSERA_FRAME_LIST)
+  if (!inside) return;
+  if (k == 0) {
+    tessera_out[i] = vec4(tessera_s[i].rgb, 1.0);
+    return;
+  }
+  float scales[TESSERA_ADAPTIVE_MAX_N];
+  tessera_window_scales(pixel, k, scales);
+  tessera_out[i] = vec4(tessera_first_again(pixel, i, scales[0]), 1.0);
+  uint base = atomicAdd(tessera_list_total, uint(k));
+  tessera_list_base[i] = base;
+  if (base + uint(k) > tessera_list_capacity) return;  // the host grows the list and reruns
+  for (int p = 1; p <= k; ++p) {
+    tessera_list_items[base + uint(p - 1)] = uvec2(uint(i), uint(p));
+    tessera_list_colours[base + uint(p - 1)] = vec4(0.0, 0.0, 0.0, scales[p]);
+  }
+#elif defined(TESSERA_SCHEDULE_FRAME)
+  // TESSERA_FRAME_RESOLVE (the shading of the items has its own branch of main()).
+  if (!inside || k == 0) return;
+  vec3 sum = tessera_out[i].rgb;
+  uint base = tessera_list_base[i];
+  for (int p = 1; p <= k; ++p) sum += tessera_list_colours[base + uint(p - 1)].rgb;
+  tessera_out[i] = vec4(sum / float(k + 1), 1.0);
+#elif defined(TESSERA_SCHEDULE_LOOP)
   if (!inside) return;
   if (k == 0) {
     tessera_out[i] = vec4(tessera_s[i].rgb, 1.0);
