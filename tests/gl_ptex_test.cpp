@@ -272,8 +272,11 @@ void main() {
   }
   std::printf("%d trilinear border lookups, GL (%s) vs tessera: max |diff| %.3g\n", lookups,
               ctx_->renderer().c_str(), max_diff);
-  // Exact bilinear arithmetic up to float rounding (measured 1.2e-7 on llvmpipe).
-  EXPECT_LT(max_diff, 1e-5);
+  // Exact bilinear arithmetic up to float rounding (measured 1.2e-7 on llvmpipe). A hardware
+  // texture unit quantises the bilinear weights to 1/256 (error <= 1/512 per axis on texel
+  // values in [0, 1]) and the mip blend likewise: <= 3/512 per trilinear lookup, bounded at
+  // 1/128 (measured 0.0038 on an NVIDIA H200).
+  EXPECT_LT(max_diff, test::float_texture_filtering(ctx_->renderer()) ? 1e-5 : 1.0 / 128);
 }
 
 }  // namespace
@@ -354,7 +357,11 @@ void main() {
   for (faces::Method m : faces::all_methods()) {
     std::printf("seams.glsl %-16s vs faces::sample_face: %d lookups, max |diff| %.3g\n",
                 faces::method_name(m), count / 4, max_diff[std::size_t(int(m))]);
-    EXPECT_LT(max_diff[std::size_t(int(m))], 1e-5) << faces::method_name(m);
+    // As BorderLookupsMatchTheCpuSampler: float rounding on llvmpipe, the fixed-point filter
+    // weights of a hardware texture unit elsewhere (measured 0.0010-0.0039 on an NVIDIA H200).
+    EXPECT_LT(max_diff[std::size_t(int(m))],
+              test::float_texture_filtering(ctx_->renderer()) ? 1e-5 : 1.0 / 128)
+        << faces::method_name(m);
   }
 }
 

@@ -20,6 +20,7 @@
 #include "tessera/gl_seams.h"
 #include "tessera/metrics.h"
 #include "tessera/raster.h"
+#include "test_support.h"
 
 namespace {
 
@@ -203,9 +204,13 @@ faces::FaceTextureSet* GlSeams::set_ = nullptr;
 // lookups themselves agree to 3e-7 (gl_ptex_test); what is left are pixels where GL and the
 // CPU rasteriser resolve a tie differently or draw order differs (classes vs face order) and
 // the LOD of a quad (GALLIVM_PERF=no_quad_lod changes nothing). Bounds: 48 dB (4x the MSE
-// measured) and 1.5 % of the pixels.
+// measured) and 1.5 % of the pixels. A hardware texture unit filters with fixed-point weights
+// (gl_ptex_test: lookups up to 0.004 apart), so more pixels cross 0.01: measured on an NVIDIA
+// H200 48.2-50.5 dB and 2.8-6.8 % of the pixels; bounds there 45 dB and 10 % (the mirrored
+// control, 11 dB and 99 %, still fails both).
 TEST_F(GlSeams, TrilinearMatchesTheCpuRenderer) {
-  compare_methods(TextureFilter::trilinear, 48.0, 0.015);
+  const bool exact = test::float_texture_filtering(ctx_->renderer());
+  compare_methods(TextureFilter::trilinear, exact ? 48.0 : 45.0, exact ? 0.015 : 0.10);
 }
 
 // Measured on Mesa 22.3 llvmpipe (96x108, frames 0 and 3, 1x, 2x and 4x; 2x as in the

@@ -33,6 +33,15 @@ inline ImageRGBA8 solid_rgba8(int w, int h, std::uint8_t r, std::uint8_t g, std:
   return img;
 }
 
+/// True for an OpenGL renderer that filters textures in float (Mesa's software rasterisers),
+/// where GL lookups match tessera's sampler to float rounding. Hardware texture units weight
+/// texels in fixed point (Direct3D requires 8 bits of sub-texel precision), so the GL tests use
+/// looser, stated bounds there.
+inline bool float_texture_filtering(const std::string& gl_renderer) {
+  return gl_renderer.find("llvmpipe") != std::string::npos ||
+         gl_renderer.find("softpipe") != std::string::npos;
+}
+
 }  // namespace tessera::test
 
 /// Skips the current test with a message when the shared data folder is absent.
