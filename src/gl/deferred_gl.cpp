@@ -251,9 +251,8 @@ Status run_extra(State& st, PassTimer& timer, const std::string& name, bool edge
     return run_pass(st, timer, name, extra_defines(st, edge, st.options.schedule));
   }
   const std::size_t pixels = std::size_t(st.w) * std::size_t(st.h);
-  if (!st.list_count_buf) st.list_count_buf = make_buffer(16);
   if (st.list_base_pixels != pixels) {
-    st.list_base_buf = make_buffer(pixels * 4);
+    st.list_base_buf = make_buffer(8 + pixels * 4);  // count, capacity, base per pixel
     st.list_base_pixels = pixels;
   }
   // First size: one item per pixel (or what the driver allows); grown below when a frame needs
@@ -263,10 +262,9 @@ Status run_extra(State& st, PassTimer& timer, const std::string& name, bool edge
     return run_pass(st, timer, name, extra_defines(st, edge, ExtraSchedule::loop));
   }
   auto bind = [&] {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, st.list_count_buf.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, st.list_base_buf.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, st.list_items_buf.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, st.list_colours_buf.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, st.list_base_buf.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, st.list_items_buf.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, st.list_colours_buf.get());
   };
   const std::vector<std::string> base = extra_defines(st, edge, ExtraSchedule::frame_list);
   auto with = [&](const char* pass) {
@@ -278,14 +276,14 @@ Status run_extra(State& st, PassTimer& timer, const std::string& name, bool edge
   for (int attempt = 0; attempt < 2; ++attempt) {
     bind();
     const std::uint32_t header[2] = {0, std::uint32_t(st.list_capacity)};
-    glNamedBufferSubData(st.list_count_buf.get(), 0, sizeof header, header);
+    glNamedBufferSubData(st.list_base_buf.get(), 0, sizeof header, header);
     // A rerun after growing the list is timed as its own pass.
     if (Status s = run_pass(st, timer, name + (attempt == 0 ? "_list" : "_list_retry"),
                             with("TESSERA_FRAME_LIST"));
         !s.ok()) {
       return s;
     }
-    glGetNamedBufferSubData(st.list_count_buf.get(), 0, 4, &total);
+    glGetNamedBufferSubData(st.list_base_buf.get(), 0, 4, &total);
     if (total <= st.list_capacity) break;
     // The same k map gives the same count, so one regrowth suffices; a list beyond the
     // driver's block size is shaded by the per-pixel loop instead (same image).

@@ -58,8 +58,8 @@ struct DeferredGlRenderer::State {
   int buffers_w = 0, buffers_h = 0;
   Object s_buf, terms_buf, k_buf, out_buf, rgba8_buf, rgba8_out_buf;
   Object params_ubo, lights_ssbo, waves_ssbo;
-  // ExtraSchedule::frame_list: count + capacity, base per pixel, items, colour slots.
-  Object list_count_buf, list_base_buf, list_items_buf, list_colours_buf;
+  // ExtraSchedule::frame_list: count, capacity and base per pixel; items; colour slots.
+  Object list_base_buf, list_items_buf, list_colours_buf;
   std::size_t list_base_pixels = 0, list_capacity = 0;
   std::map<std::string, Program> programs;  // by preamble
 };

@@ -19,8 +19,8 @@
 //                           three passes (same result, bit for bit):
 //     TESSERA_FRAME_LIST    per pixel: k, the footprint scales and sample 0 again -> SSBO 6;
 //                           the pixel's k items (pixel, p) at a base from one atomic counter
-//                           (SSBO 9: count, capacity; SSBO 10: base per pixel; SSBO 11: items;
-//                           SSBO 12: colour slots, .w = the item's footprint scale)
+//                           (SSBO 9: count, capacity, then the base per pixel; SSBO 10: items;
+//                           SSBO 11: colour slots, .w = the item's footprint scale)
 //     TESSERA_FRAME_SHADE   one invocation per item (1-D over the list, 64 per group)
 //     TESSERA_FRAME_RESOLVE per pixel: sample 0 + the pixel's slots in p order, / (k + 1)
 //   TESSERA_PASS_REFERENCE  all n samples, footprint scale 1, mean in index order -> SSBO 6
@@ -49,10 +49,15 @@ layout(std430, binding = 6) buffer TesseraOut { vec4 tessera_out[]; };
 layout(std430, binding = 7) buffer TesseraRgba8 { uint tessera_rgba8[]; };
 layout(std430, binding = 8) buffer TesseraRgba8Out { uint tessera_rgba8_out[]; };
 #if defined(TESSERA_SCHEDULE_FRAME)
-layout(std430, binding = 9) buffer TesseraListCount { uint tessera_list_total; uint tessera_list_capacity; };
-layout(std430, binding = 10) buffer TesseraListBase { uint tessera_list_base[]; };
-layout(std430, binding = 11) buffer TesseraListItems { uvec2 tessera_list_items[]; };
-layout(std430, binding = 12) buffer TesseraListColours { vec4 tessera_list_colours[]; };
+// One block for the counter and the bases keeps the list pass at 8 storage blocks, the least a
+// GL 4.5 driver must allow per compute shader.
+layout(std430, binding = 9) buffer TesseraListBase {
+  uint tessera_list_total;
+  uint tessera_list_capacity;
+  uint tessera_list_base[];
+};
+layout(std430, binding = 10) buffer TesseraListItems { uvec2 tessera_list_items[]; };
+layout(std430, binding = 11) buffer TesseraListColours { vec4 tessera_list_colours[]; };
 #endif
 
 const int N = TESSERA_WINDOW_N;
