@@ -204,45 +204,53 @@ TEST_F(GlDeferred, EveryScheduleGivesTheTileScheduleImage) {
     render(64, 48, m);
     d::AdaptiveOptions all;
     all.force_k = 15;
-    gl::DeferredGlOptions to;
-    to.glsl_dir = TESSERA_GLSL_DIR;
-    to.schedule = gl::ExtraSchedule::tile_list;
-    Result<std::unique_ptr<gl::DeferredGlRenderer>> tr =
-        gl::DeferredGlRenderer::create(*scene_, to);
-    ASSERT_TRUE(tr.ok());
-    ASSERT_TRUE((*tr)->render_gbuffer(camera_, 64, 48, m).ok());
-    Result<gl::GlShadeResult> tile = (*tr)->shade_adaptive(shading_, {});
-    Result<gl::GlShadeResult> tile_all = (*tr)->shade_adaptive(shading_, all);
-    Result<gl::GlShadeResult> tile_edge = (*tr)->shade_edge_per_sample(shading_);
-    ASSERT_TRUE(tile.ok() && tile_all.ok() && tile_edge.ok());
-    ASSERT_EQ(tile->passes.back().pass, "extra");
-    for (gl::ExtraSchedule schedule : {gl::ExtraSchedule::loop, gl::ExtraSchedule::frame_list}) {
-      SCOPED_TRACE("m=" + std::to_string(m) +
-                   (schedule == gl::ExtraSchedule::loop ? " loop" : " frame_list"));
+    // A renderer with `schedule` on this G-buffer, and its adaptive, forced-k and edge results.
+    struct Results {
+      std::unique_ptr<gl::DeferredGlRenderer> renderer;
+      Result<gl::GlShadeResult> adaptive, all, edge;
+    };
+    auto shade_with = [&](gl::ExtraSchedule schedule) -> Result<Results> {
       gl::DeferredGlOptions o;
       o.glsl_dir = TESSERA_GLSL_DIR;
       o.schedule = schedule;
       Result<std::unique_ptr<gl::DeferredGlRenderer>> g =
           gl::DeferredGlRenderer::create(*scene_, o);
-      ASSERT_TRUE(g.ok());
-      ASSERT_TRUE((*g)->render_gbuffer(camera_, 64, 48, m).ok());
-      Result<gl::GlShadeResult> r = (*g)->shade_adaptive(shading_, {});
-      Result<gl::GlShadeResult> r_all = (*g)->shade_adaptive(shading_, all);
-      Result<gl::GlShadeResult> r_edge = (*g)->shade_edge_per_sample(shading_);
+      if (!g) return g.status();
+      if (Status s = (*g)->render_gbuffer(camera_, 64, 48, m); !s.ok()) return s;
+      Result<gl::GlShadeResult> adaptive = (*g)->shade_adaptive(shading_, {});
+      Result<gl::GlShadeResult> forced = (*g)->shade_adaptive(shading_, all);
+      Result<gl::GlShadeResult> edge = (*g)->shade_edge_per_sample(shading_);
+      return Results{std::move(*g), std::move(adaptive), std::move(forced), std::move(edge)};
+    };
+    Result<Results> tiles = shade_with(gl::ExtraSchedule::tile_list);
+    ASSERT_TRUE(tiles.ok()) << tiles.status().message;
+    ASSERT_TRUE(tiles->adaptive.ok() && tiles->all.ok() && tiles->edge.ok());
+    const gl::GlShadeResult& tile = *tiles->adaptive;
+    const gl::GlShadeResult& tile_all = *tiles->all;
+    const gl::GlShadeResult& tile_edge = *tiles->edge;
+    ASSERT_EQ(tile.passes.back().pass, "extra");
+    for (gl::ExtraSchedule schedule : {gl::ExtraSchedule::loop, gl::ExtraSchedule::frame_list}) {
+      SCOPED_TRACE("m=" + std::to_string(m) +
+                   (schedule == gl::ExtraSchedule::loop ? " loop" : " frame_list"));
+      Result<Results> g = shade_with(schedule);
+      ASSERT_TRUE(g.ok()) << g.status().message;
+      Result<gl::GlShadeResult>& r = g->adaptive;
+      Result<gl::GlShadeResult>& r_all = g->all;
+      Result<gl::GlShadeResult>& r_edge = g->edge;
       ASSERT_TRUE(r.ok()) << r.status().message;
       ASSERT_TRUE(r_all.ok()) << r_all.status().message;
       ASSERT_TRUE(r_edge.ok()) << r_edge.status().message;
-      EXPECT_EQ(r->samples, tile->samples);
-      EXPECT_EQ(max_abs_diff(r->image, tile->image), 0.0f);
-      EXPECT_EQ(r_all->samples, tile_all->samples);
-      EXPECT_EQ(max_abs_diff(r_all->image, tile_all->image), 0.0f);
-      EXPECT_EQ(r_edge->samples, tile_edge->samples);
-      EXPECT_EQ(max_abs_diff(r_edge->image, tile_edge->image), 0.0f);
+      EXPECT_EQ(r->samples, tile.samples);
+      EXPECT_EQ(max_abs_diff(r->image, tile.image), 0.0f);
+      EXPECT_EQ(r_all->samples, tile_all.samples);
+      EXPECT_EQ(max_abs_diff(r_all->image, tile_all.image), 0.0f);
+      EXPECT_EQ(r_edge->samples, tile_edge.samples);
+      EXPECT_EQ(max_abs_diff(r_edge->image, tile_edge.image), 0.0f);
       if (schedule == gl::ExtraSchedule::frame_list) {
         // Once grown (by r_all), a frame runs each pass once, named after its part of the work.
-        Result<gl::GlShadeResult> again = (*g)->shade_adaptive(shading_, {});
+        Result<gl::GlShadeResult> again = g->renderer->shade_adaptive(shading_, {});
         ASSERT_TRUE(again.ok());
-        EXPECT_EQ(max_abs_diff(again->image, tile->image), 0.0f);
+        EXPECT_EQ(max_abs_diff(again->image, tile.image), 0.0f);
         std::vector<std::string> names;
         for (const gl::PassTime& t : again->passes) names.push_back(t.pass);
         EXPECT_EQ(names, (std::vector<std::string>{"first", "metrics", "extra_list", "extra_shade",
