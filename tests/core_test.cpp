@@ -1,9 +1,14 @@
-// Tests of tessera/core.h: status plumbing, size limits, sRGB curves, parallel loops.
+// Tests of tessera/core.h: status plumbing, size limits, image views, sRGB curves, parallel
+// loops.
+#include "tessera/core.h"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
+#include <vector>
 
 #include "tessera/core.h"
 #include "tessera/procedural.h"
@@ -32,6 +37,89 @@ TEST(ImageSize, LimitsCheckedBeforeAllocation) {
   EXPECT_EQ(s.code, ErrorCode::too_large);
   EXPECT_NE(s.message.find("big.png"), std::string::npos);
   EXPECT_EQ(s.message.find('\n'), std::string::npos);
+}
+
+// Bytes 0, 1, 2, ... (mod 251) from `seed`, so that every texel and channel differs.
+std::vector<std::uint8_t> counting_bytes(std::size_t n, int seed) {
+  std::vector<std::uint8_t> v(n);
+  for (std::size_t i = 0; i < n; ++i) v[i] = std::uint8_t((i + std::size_t(seed)) % 251);
+  return v;
+}
+
+// The packing every layout must give: texel (x, y) read through the view's own formula.
+std::vector<std::uint8_t> reference_rgba(const ImageView8& v, bool opaque) {
+  std::vector<std::uint8_t> out;
+  for (int y = 0; y < v.height; ++y) {
+    for (int x = 0; x < v.width; ++x) {
+      const std::uint8_t* p =
+          v.data + std::ptrdiff_t(y) * v.row_stride + std::ptrdiff_t(x) * v.pixel_stride;
+      out.insert(out.end(),
+                 {p[0], p[1], p[2], v.channels == 4 && !opaque ? p[3] : std::uint8_t{255}});
+    }
+  }
+  return out;
+}
+
+// Widths 1-37 cover the 16-texel SIMD steps of packed RGB and every tail length; the layouts
+// are packed RGB and RGBA, padded texels and rows, a vertical flip (negative row stride) and a
+// broadcast texel (pixel stride 0).
+TEST(ImageView, CopyToRgba8MatchesTheViewFormulaForEveryLayout) {
+  for (int w = 1; w <= 37; ++w) {
+    const int h = 3;
+    struct Layout {
+      int channels;
+      std::ptrdiff_t pixel_stride, row_pad;
+      bool flip;
+    };
+    const Layout layouts[] = {{3, 3, 0, false}, {4, 4, 0, false}, {3, 4, 0, false},
+                              {3, 3, 5, false}, {4, 4, 8, false}, {3, 3, 0, true},
+                              {4, 4, 0, true},  {4, 6, 3, false}, {3, 0, 7, false}};
+    for (const Layout& l : layouts) {
+      const std::ptrdiff_t row = std::ptrdiff_t(w - 1) * l.pixel_stride + l.channels + l.row_pad;
+      const std::vector<std::uint8_t> bytes = counting_bytes(std::size_t(row * h), w);
+      ImageView8 v{bytes.data(), w, h, l.channels, l.pixel_stride, row, l.channels == 4};
+      if (l.flip) {
+        v.data = bytes.data() + row * (h - 1);
+        v.row_stride = -row;
+      }
+      ASSERT_TRUE(check_view(v, "view").ok());
+      for (bool opaque : {false, true}) {
+        std::vector<std::uint8_t> out(std::size_t(w) * h * 4, 0xcd);
+        copy_to_rgba8(v, out.data(), opaque);
+        EXPECT_EQ(out, reference_rgba(v, opaque))
+            << "width " << w << ", " << l.channels << " channels, stride " << l.pixel_stride
+            << ", row pad " << l.row_pad << (l.flip ? ", flipped" : "")
+            << (opaque ? ", opaque" : "");
+      }
+      const ImageRGBA8 image = to_image(v);
+      EXPECT_EQ(image.pixels, reference_rgba(v, false));
+      EXPECT_EQ(image.has_alpha, l.channels == 4);
+    }
+  }
+}
+
+TEST(ImageView, OfAnImageIsPackedAndChecked) {
+  ImageRGBA8 image(5, 3);
+  image.has_alpha = true;
+  const ImageView8 v = ImageView8::of(image);
+  EXPECT_TRUE(v.packed_rgba());
+  EXPECT_EQ(v.at(2, 1), image.at(2, 1));
+  EXPECT_TRUE(v.has_alpha);
+  EXPECT_TRUE(check_view(v, "v").ok());
+  ImageView8 bad = v;
+  bad.channels = 2;
+  EXPECT_EQ(check_view(bad, "v").code, ErrorCode::invalid_argument);
+  bad = v;
+  bad.channels = 3;  // alpha without an alpha channel
+  EXPECT_EQ(check_view(bad, "v").code, ErrorCode::invalid_argument);
+  bad = v;
+  bad.data = nullptr;
+  EXPECT_EQ(check_view(bad, "v").code, ErrorCode::invalid_argument);
+  bad = v;
+  bad.width = kMaxImageDimension + 1;
+  const Status s = check_view(bad, "huge");
+  EXPECT_EQ(s.code, ErrorCode::too_large);
+  EXPECT_NE(s.message.find("huge"), std::string::npos);
 }
 
 TEST(Srgb, ExactCurveAtKnownPoints) {

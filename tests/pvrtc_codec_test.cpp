@@ -325,6 +325,59 @@ TEST(PvrtcEncode, IgnoredAlphaBytesDoNotMatter) {
   }
 }
 
+// Encoding a view of someone else's pixels gives the bytes of encoding its packed copy: packed
+// RGBA read in place (translucent, and opaque-flagged with stray alpha bytes), packed RGB,
+// padded and flipped rows, and textures under the 2x2-block minimum (tiled).
+TEST(PvrtcEncode, ViewsEncodeLikeTheirPackedCopy) {
+  const int sizes[][2] = {{64, 32}, {4, 4}, {8, 2}, {32, 64}};
+  for (const auto& size : sizes) {
+    const int w = size[0], h = size[1];
+    const ImageRGBA8 foliage = make_procedural(Procedural::foliage, w, h);
+    // Source buffers: RGBA rows padded by 12 bytes, and the same texels as RGB rows padded by 5.
+    const std::ptrdiff_t rgba_row = std::ptrdiff_t(w) * 4 + 12, rgb_row = std::ptrdiff_t(w) * 3 + 5;
+    std::vector<std::uint8_t> rgba(std::size_t(rgba_row * h)), rgb(std::size_t(rgb_row * h));
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        for (int c = 0; c < 4; ++c)
+          rgba[std::size_t(y * rgba_row + x * 4 + c)] = foliage.at(x, y)[c];
+        for (int c = 0; c < 3; ++c) rgb[std::size_t(y * rgb_row + x * 3 + c)] = foliage.at(x, y)[c];
+      }
+    }
+    std::vector<ImageView8> views = {
+        ImageView8::of(foliage),                                        // packed, translucent
+        {rgba.data(), w, h, 4, 4, rgba_row, true},                      // padded rows
+        {rgba.data(), w, h, 4, 4, rgba_row, false},                     // alpha bytes ignored
+        {rgb.data(), w, h, 3, 3, rgb_row, false},                       // RGB
+        {rgb.data() + rgb_row * (h - 1), w, h, 3, 3, -rgb_row, false},  // RGB, flipped
+    };
+    ImageRGBA8 opaque_flagged = foliage;
+    opaque_flagged.has_alpha = false;  // packed, but its alpha bytes are not 255: copied
+    views.push_back(ImageView8::of(opaque_flagged));
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      const ImageRGBA8 packed = to_image(views[i]);
+      for (Format f : {Format::pvrtc1_4bpp, Format::pvrtc1_2bpp}) {
+        for (Quality q : {Quality::fast, Quality::normal}) {
+          EncodeOptions opt;
+          opt.format = f;
+          opt.quality = q;
+          opt.threads = 2;
+          const auto from_view = encode(views[i], opt);
+          const auto from_copy = encode(packed, opt);
+          ASSERT_TRUE(from_view.ok()) << from_view.status().message;
+          ASSERT_TRUE(from_copy.ok()) << from_copy.status().message;
+          EXPECT_EQ(*from_view, *from_copy)
+              << w << "x" << h << ", view " << i << ", format " << int(f) << ", quality " << int(q);
+        }
+      }
+    }
+  }
+  ImageView8 rgb_with_alpha{nullptr, 4, 4, 3, 3, 12, false};
+  EXPECT_EQ(encode(rgb_with_alpha, {}).status().code, ErrorCode::invalid_argument);
+  std::vector<std::uint8_t> six(6 * 4 * 3);
+  EXPECT_EQ(encode(ImageView8{six.data(), 6, 4, 3, 3, 18, false}, {}).status().code,
+            ErrorCode::invalid_argument);  // not a power of two
+}
+
 TEST(PvrtcEncode, AlphaQualityOnFoliage) {
   const ImageRGBA8 img = make_procedural(Procedural::foliage, 256, 256);
   EncodeOptions opt;

@@ -1,6 +1,7 @@
 // The encoder's progress hook (EncodeOptions::progress) and compress_image's mapping of it
 // over a mip chain: reports never go backwards, the last is exactly 1.0, every report comes
-// from the calling thread, and the output bytes are the same with and without a hook.
+// from the calling thread, and the output bytes are the same with and without a hook; and
+// compress_view, the same pipeline on pixels the caller owns.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -131,6 +132,62 @@ TEST(PvrtcProgress, CompressImageCoversTheMipChainByPixels) {
   for (double f : r.fractions) near_three_quarters |= f > 0.70 && f < 0.80;
   EXPECT_TRUE(near_three_quarters);
   EXPECT_EQ(std::count(r.fractions.begin(), r.fractions.end(), 1.0), 1);
+}
+
+// compress_view (what tessera.encode calls on a numpy array) is compress_image on the view's
+// packed copy: the same texture, alpha detection and errors, for the in-place path (RGB and
+// RGBA, power of two, one level) and the copying one (mip chain, resample); its progress is as
+// well formed.
+TEST(PvrtcProgress, CompressViewIsCompressImageOfItsCopy) {
+  const ImageRGBA8 foliage = make_procedural(Procedural::foliage, 64, 32);
+  ImageRGBA8 opaque = foliage;
+  for (std::size_t i = 3; i < opaque.pixels.size(); i += 4) opaque.pixels[i] = 255;
+  std::vector<std::uint8_t> rgb;
+  for (std::size_t i = 0; i < foliage.pixels.size(); i += 4) {
+    rgb.insert(rgb.end(), foliage.pixels.begin() + std::ptrdiff_t(i),
+               foliage.pixels.begin() + std::ptrdiff_t(i) + 3);
+  }
+  const ImageRGBA8 odd = make_procedural(Procedural::bricks, 40, 24);
+  const ImageView8 views[] = {ImageView8::of(foliage), ImageView8::of(opaque),
+                              ImageView8{rgb.data(), 64, 32, 3, 3, 64 * 3, false},
+                              ImageView8::of(odd)};
+  for (const ImageView8& view : views) {
+    for (int variant = 0; variant < 3; ++variant) {
+      texture_file::CompressOptions o;
+      o.encode.quality = Quality::fast;
+      o.mipmaps = variant == 1;
+      o.resize_pot = variant == 2;
+      o.encode.format = variant == 2 ? Format::pvrtc1_2bpp : Format::pvrtc1_4bpp;
+      const std::string what = std::to_string(view.width) + "x" + std::to_string(view.height) +
+                               " " + std::to_string(view.channels) + "ch, variant " +
+                               std::to_string(variant);
+      Result<texture_file::CompressedImage> owned =
+          texture_file::compress_image(to_image(view), o, "img");
+      Recorder r;
+      o.encode.progress = r.hook();
+      Result<texture_file::CompressedTexture> viewed = texture_file::compress_view(view, o, "img");
+      ASSERT_EQ(owned.ok(), viewed.ok()) << what;
+      if (!owned.ok()) {
+        EXPECT_EQ(owned.status().message, viewed.status().message) << what;
+        EXPECT_TRUE(r.fractions.empty()) << what;
+        continue;
+      }
+      EXPECT_EQ(owned->texture.levels, viewed->levels) << what;
+      EXPECT_EQ(owned->texture.has_alpha, viewed->has_alpha) << what;
+      EXPECT_EQ(owned->texture.width, viewed->width) << what;
+      EXPECT_EQ(owned->texture.format, viewed->format) << what;
+      expect_well_formed(r, what);
+    }
+  }
+  // The opaque RGBA view gives an RGB texture, the translucent one keeps its alpha.
+  texture_file::CompressOptions o;
+  o.encode.quality = Quality::fast;
+  EXPECT_FALSE(texture_file::compress_view(views[1], o, "o")->has_alpha);
+  EXPECT_TRUE(texture_file::compress_view(views[0], o, "t")->has_alpha);
+  Result<texture_file::CompressedTexture> bad = texture_file::compress_view(views[3], o, "odd");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message.rfind("odd: size 40x24 is not a power of two", 0), 0u)
+      << bad.status().message;
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 // Everything else in tessera is built on the types in this header:
 //  * `Status` / `Result<T>`: the library never throws across its boundary; every fallible call
 //    returns a status with an error code and a one-line human-readable message.
-//  * `ImageRGBA8` / `ImageRGBAF`: tightly packed, row-major, top-down RGBA images.
+//  * `ImageRGBA8` / `ImageRGBAF`: tightly packed, row-major, top-down RGBA images;
+//    `ImageView8`: 8-bit RGB or RGBA pixels someone else owns, any strides (what the PVRTC
+//    encoder reads in place, e.g. a numpy array).
 //  * sRGB <-> linear conversion with the exact IEC 61966-2-1 piecewise curve.
 //  * `parallel_for`: the one parallel loop, with an explicit thread count. Callers write each
 //    output element from exactly one iteration, so results are identical for any thread count.
@@ -131,6 +133,50 @@ struct ImageRGBA8 {
   const std::uint8_t* at(int x, int y) const { return &pixels[(std::size_t(y) * width + x) * 4]; }
   bool empty() const { return width == 0 || height == 0; }
 };
+
+/// A read-only view of 8-bit RGB or RGBA pixels that someone else owns (a numpy array, a mapped
+/// file, an engine's staging buffer), so that an encoder can read them where they are. Each
+/// texel is `channels` consecutive bytes, R, G, B (, A); texel (x, y) starts at
+/// `data + y * row_stride + x * pixel_stride` (strides in bytes, either may be negative, e.g. a
+/// vertically flipped view). The owner keeps the bytes alive and unchanged while a call reads
+/// them.
+struct ImageView8 {
+  const std::uint8_t* data = nullptr;
+  int width = 0;
+  int height = 0;
+  int channels = 4;                 ///< 3 (RGB: alpha is 255) or 4 (RGBA).
+  std::ptrdiff_t pixel_stride = 4;  ///< Bytes from one texel to the next along x.
+  std::ptrdiff_t row_stride = 0;    ///< Bytes from one row to the next.
+  /// As `ImageRGBA8::has_alpha`: whether the alpha channel is meaningful (false for RGB).
+  bool has_alpha = false;
+
+  /// A view of all of `image` (RGBA, packed).
+  static ImageView8 of(const ImageRGBA8& image) {
+    return {image.pixels.data(), image.width, image.height, 4, 4, std::ptrdiff_t(image.width) * 4,
+            image.has_alpha};
+  }
+  const std::uint8_t* at(int x, int y) const {
+    return data + std::ptrdiff_t(y) * row_stride + std::ptrdiff_t(x) * pixel_stride;
+  }
+  /// True when the texels are packed RGBA rows with no gaps (the layout of `ImageRGBA8`).
+  bool packed_rgba() const {
+    return channels == 4 && pixel_stride == 4 && row_stride == std::ptrdiff_t(width) * 4;
+  }
+  std::size_t pixel_count() const { return std::size_t(width) * std::size_t(height); }
+};
+
+/// Checks a view: pixels present, 3 or 4 channels, `has_alpha` only with 4, and the size within
+/// the limits above (strides are the owner's: any value, 0 for a broadcast, is read as given).
+/// `what` names the source.
+Status check_view(const ImageView8& view, const std::string& what);
+
+/// Writes the view's texels as packed RGBA rows (width * height * 4 bytes) to `out`: alpha 255
+/// for RGB views, and for every texel when `opaque`. The view must pass `check_view`.
+void copy_to_rgba8(const ImageView8& view, std::uint8_t* out, bool opaque = false);
+
+/// Copies a view into an owned RGBA image (alpha 255 for RGB), keeping `has_alpha`. The view
+/// must pass `check_view`.
+ImageRGBA8 to_image(const ImageView8& view);
 
 /// Floating-point RGBA image, 4 floats per pixel, rows top to bottom. The colour space is the
 /// caller's convention (tessera uses linear RGB unless a function says otherwise).

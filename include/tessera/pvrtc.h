@@ -114,6 +114,12 @@ struct EncodeOptions {
 /// `level_size(options.format, image.width, image.height)`.
 Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOptions& options);
 
+/// Encodes one level straight from pixels the caller owns (RGB or RGBA, any strides: see
+/// `ImageView8`), with the same bytes as encoding `to_image(image)`. Packed RGBA whose alpha is
+/// used (or is 255 everywhere) is read in place, without a copy; other layouts are packed in
+/// one pass. Alpha is used when `image.has_alpha` or `options.force_alpha`.
+Result<std::vector<std::uint8_t>> encode(const ImageView8& image, const EncodeOptions& options);
+
 /// Decodes one level of `width` x `height` from `data` (at least `level_size` bytes) to RGBA8.
 /// Output `has_alpha` is true when any decoded alpha differs from 255.
 Result<ImageRGBA8> decode(std::span<const std::uint8_t> data, Format format, int width, int height,

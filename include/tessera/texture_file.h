@@ -83,6 +83,14 @@ struct CompressedImage {
 Result<CompressedImage> compress_image(ImageRGBA8 image, const CompressOptions& options,
                                        const std::string& name);
 
+/// The same texture as `compress_image(to_image(image), options, name).texture`, from pixels
+/// the caller owns: a power-of-two view without a mip chain is encoded where it lies (packed
+/// RGBA read in place, other layouts packed in one pass; see `pvrtc::encode`), so no copy of
+/// the image precedes the encode; otherwise the view is copied once into the owning pipeline.
+/// This is the call `tessera.encode` makes on a numpy array.
+Result<CompressedTexture> compress_view(const ImageView8& image, const CompressOptions& options,
+                                        const std::string& name);
+
 /// Container formats.
 enum class ContainerFormat { unknown, pvr3, ktx1 };
 

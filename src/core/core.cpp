@@ -1,7 +1,14 @@
-// Status names, image size limits and sRGB conversion.
+// Status names, image size limits, image views and sRGB conversion.
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
+
+#if (defined(__x86_64__) || defined(__i386__)) && !defined(TESSERA_NO_SIMD)
+#include <tmmintrin.h>
+#endif
+
+#include "tessera/core.h"
 
 #include "tessera/core.h"
 
@@ -35,6 +42,118 @@ Status check_image_size(std::int64_t width, std::int64_t height, const std::stri
                              std::to_string(kMaxImagePixels >> 20) + " Mpx)");
   }
   return Status::success();
+}
+
+Status check_view(const ImageView8& view, const std::string& what) {
+  if (view.data == nullptr) {
+    return Status::error(ErrorCode::invalid_argument, what + ": image view has no pixels");
+  }
+  if (view.channels != 3 && view.channels != 4) {
+    return Status::error(
+        ErrorCode::invalid_argument,
+        what + ": image view has " + std::to_string(view.channels) + " channels (3 or 4 needed)");
+  }
+  if (view.has_alpha && view.channels != 4) {
+    return Status::error(ErrorCode::invalid_argument,
+                         what + ": image view has alpha but 3 channels");
+  }
+  return check_image_size(view.width, view.height, what);
+}
+
+namespace {
+
+/// One row of `n` texels `stride` bytes apart, `C` channels each, to packed RGBA. A constant
+/// stride lets the compiler vectorise the common packed layouts.
+template <int C, std::ptrdiff_t kStride>
+void row_to_rgba8(const std::uint8_t* in, std::ptrdiff_t stride, int n, std::uint8_t* out,
+                  bool opaque) {
+  if constexpr (kStride != 0) stride = kStride;
+  for (int x = 0; x < n; ++x, in += stride, out += 4) {
+    out[0] = in[0];
+    out[1] = in[1];
+    out[2] = in[2];
+    out[3] = C == 4 && !opaque ? in[3] : std::uint8_t{255};
+  }
+}
+
+#if (defined(__x86_64__) || defined(__i386__)) && !defined(TESSERA_NO_SIMD)
+#define TESSERA_RGB_SSSE3 1
+/// The first `n / 16 * 16` texels of a packed RGB row to packed RGBA with alpha 255, sixteen
+/// a step (three 16-byte loads, four byte shuffles); returns how many it did. SSSE3 (every
+/// x86-64 CPU since 2006) is checked at run time by the caller, so the baseline build keeps
+/// running anywhere.
+__attribute__((target("ssse3"))) int rgb_to_rgba8_ssse3(const std::uint8_t* in, int n,
+                                                        std::uint8_t* out) {
+  const __m128i spread = _mm_setr_epi8(0, 1, 2, -1, 3, 4, 5, -1, 6, 7, 8, -1, 9, 10, 11, -1);
+  const __m128i alpha = _mm_set1_epi32(static_cast<int>(0xff000000u));
+  int x = 0;
+  for (; x + 16 <= n; x += 16, in += 48, out += 64) {
+    const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(in));
+    const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(in + 16));
+    const __m128i c = _mm_loadu_si128(reinterpret_cast<const __m128i*>(in + 32));
+    const __m128i t[4] = {a, _mm_alignr_epi8(b, a, 12), _mm_alignr_epi8(c, b, 8),
+                          _mm_srli_si128(c, 4)};
+    for (int k = 0; k < 4; ++k) {
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 16 * k),
+                       _mm_or_si128(_mm_shuffle_epi8(t[k], spread), alpha));
+    }
+  }
+  return x;
+}
+#endif
+
+/// A packed RGB row to packed RGBA with alpha 255: sixteen texels a step with SSSE3, else four
+/// (three little-endian words in, four out: a third of the byte loop's loads and stores).
+void rgb_row_to_rgba8(const std::uint8_t* in, int n, std::uint8_t* out) {
+  constexpr std::uint32_t kRgb = 0x00ffffffu, kAlpha = 0xff000000u;
+  int x = 0;
+#ifdef TESSERA_RGB_SSSE3
+  static const bool ssse3 = __builtin_cpu_supports("ssse3") != 0;
+  if (ssse3) {
+    x = rgb_to_rgba8_ssse3(in, n, out);
+    in += std::ptrdiff_t(x) * 3;
+    out += std::ptrdiff_t(x) * 4;
+  }
+#endif
+  for (; x + 4 <= n; x += 4, in += 12, out += 16) {
+    std::uint32_t w[3];
+    std::memcpy(w, in, 12);
+    const std::uint32_t o[4] = {(w[0] & kRgb) | kAlpha, ((w[0] >> 24) | (w[1] << 8)) | kAlpha,
+                                ((w[1] >> 16) | (w[2] << 16)) | kAlpha, (w[2] >> 8) | kAlpha};
+    std::memcpy(out, o, 16);
+  }
+  row_to_rgba8<3, 3>(in, 3, n - x, out, true);
+}
+
+}  // namespace
+
+void copy_to_rgba8(const ImageView8& view, std::uint8_t* out, bool opaque) {
+  const std::size_t row_bytes = std::size_t(view.width) * 4;
+  if (view.packed_rgba() && !opaque) {
+    std::memcpy(out, view.data, row_bytes * std::size_t(view.height));
+    return;
+  }
+  for (int y = 0; y < view.height; ++y, out += row_bytes) {
+    const std::uint8_t* in = view.at(0, y);
+    if (view.channels == 4 && view.pixel_stride == 4 && !opaque) {
+      std::memcpy(out, in, row_bytes);
+    } else if (view.channels == 4 && view.pixel_stride == 4) {
+      row_to_rgba8<4, 4>(in, 4, view.width, out, true);
+    } else if (view.channels == 3 && view.pixel_stride == 3) {
+      rgb_row_to_rgba8(in, view.width, out);
+    } else if (view.channels == 4) {
+      row_to_rgba8<4, 0>(in, view.pixel_stride, view.width, out, opaque);
+    } else {
+      row_to_rgba8<3, 0>(in, view.pixel_stride, view.width, out, true);
+    }
+  }
+}
+
+ImageRGBA8 to_image(const ImageView8& view) {
+  ImageRGBA8 image(view.width, view.height);
+  image.has_alpha = view.has_alpha;
+  copy_to_rgba8(view, image.pixels.data());
+  return image;
 }
 
 float srgb_to_linear(float s) {

@@ -151,7 +151,7 @@ constexpr double kDilationStartCost = 0.04;
 constexpr double kPrincipalStartCost = 0.19;
 
 /// Whether every alpha byte of RGBA8 `pixels` is 255 (two texels a step).
-bool all_opaque(const std::vector<std::uint8_t>& pixels) {
+bool all_opaque(std::span<const std::uint8_t> pixels) {
   static constexpr std::uint8_t kMaskBytes[8] = {0, 0, 0, 255, 0, 0, 0, 255};
   std::uint64_t kAlpha2;
   std::memcpy(&kAlpha2, kMaskBytes, 8);
@@ -255,11 +255,16 @@ std::uint64_t start_endpoints(EncoderState& s, bool dilation) {
 }  // namespace
 
 Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOptions& options) {
-  if (Status st = check_dimensions(image.width, image.height, "pvrtc::encode"); !st.ok()) return st;
   if (image.pixels.size() != image.pixel_count() * 4) {
     return Status::error(ErrorCode::invalid_argument,
                          "pvrtc::encode: pixel buffer size does not match the image size");
   }
+  return encode(ImageView8::of(image), options);
+}
+
+Result<std::vector<std::uint8_t>> encode(const ImageView8& image, const EncodeOptions& options) {
+  if (Status st = check_dimensions(image.width, image.height, "pvrtc::encode"); !st.ok()) return st;
+  if (Status st = check_view(image, "pvrtc::encode"); !st.ok()) return st;
   if (options.iterations < -1 || options.exact_search_rounds < 0) {
     return Status::error(ErrorCode::invalid_argument,
                          "pvrtc::encode: iterations must be >= -1 and exact_search_rounds >= 0");
@@ -284,35 +289,27 @@ Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOp
                                  crossover_cost(schedule, options.format));
   // Target: the source tiled over the padded level (only textures under 2x2 blocks differ),
   // alpha forced to 255 unless alpha_mode. The caller's pixels are used in place when they
-  // already are exactly that (no copy, no page faults for one).
+  // already are exactly that (no copy, no page faults for one); otherwise one pass writes them
+  // packed (RGB views get their alpha there).
   const bool padded = g.pw != image.width || g.ph != image.height;
-  if (!padded && (s.alpha_mode || all_opaque(image.pixels))) {
-    s.target = image.pixels;
+  const std::size_t bytes = image.pixel_count() * 4;
+  if (!padded && image.packed_rgba() &&
+      (s.alpha_mode || all_opaque(std::span<const std::uint8_t>(image.data, bytes)))) {
+    s.target = std::span<const std::uint8_t>(image.data, bytes);
+  } else if (!padded) {
+    copy_to_rgba8(image, s.new_target(bytes), !s.alpha_mode);
   } else {
-    std::vector<std::uint8_t> t;
-    if (!padded) {
-      t = image.pixels;  // no zero-filled buffer first
-    } else {
-      t.resize(g.texels() * 4);
-      for (int y = 0; y < g.ph; ++y) {
-        std::uint8_t* d = &t[std::size_t(y) * std::size_t(g.pw) * 4];
-        for (int x0 = 0; x0 < g.pw; x0 += image.width) {
-          std::memcpy(d + std::size_t(x0) * 4, image.at(0, y % image.height),
-                      std::size_t(std::min(image.width, g.pw - x0)) * 4);
-        }
+    std::vector<std::uint8_t> packed(bytes);
+    copy_to_rgba8(image, packed.data(), !s.alpha_mode);
+    std::uint8_t* t = s.new_target(g.texels() * 4);
+    const std::size_t row = std::size_t(image.width) * 4;
+    for (int y = 0; y < g.ph; ++y) {
+      std::uint8_t* d = t + std::size_t(y) * std::size_t(g.pw) * 4;
+      for (int x0 = 0; x0 < g.pw; x0 += image.width) {
+        std::memcpy(d + std::size_t(x0) * 4, &packed[std::size_t(y % image.height) * row],
+                    std::size_t(std::min(image.width, g.pw - x0)) * 4);
       }
     }
-    if (!s.alpha_mode) {
-      // Alpha 255: or-ing whole texels (little-endian words) vectorises.
-      std::uint8_t* d = t.data();
-      for (std::size_t i = 0; i < g.texels(); ++i) {
-        std::uint32_t v;
-        std::memcpy(&v, d + i * 4, 4);
-        v |= 0xff000000u;
-        std::memcpy(d + i * 4, &v, 4);
-      }
-    }
-    s.own_target(std::move(t));
   }
   s.ca.assign(g.blocks(), 0);
   s.cb.assign(g.blocks(), 0);

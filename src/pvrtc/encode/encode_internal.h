@@ -31,12 +31,21 @@ struct EncoderState {
   /// caller's pixels themselves when they already are exactly that, else `target_storage`.
   std::span<const std::uint8_t> target;
   /// Owns the target when it had to be built (shared: copies of the state share it).
-  std::shared_ptr<const std::vector<std::uint8_t>> target_storage;
-  /// Makes `pixels` the target, owned by the state.
-  void own_target(std::vector<std::uint8_t> pixels) {
-    auto p = std::make_shared<const std::vector<std::uint8_t>>(std::move(pixels));
-    target = std::span<const std::uint8_t>(*p);
+  std::shared_ptr<const std::uint8_t[]> target_storage;
+  /// Makes a new buffer of `bytes` the target, owned by the state, and returns it for the
+  /// caller to fill (it is not zeroed first: the caller writes every byte).
+  std::uint8_t* new_target(std::size_t bytes) {
+    std::shared_ptr<std::uint8_t[]> p(new std::uint8_t[bytes]);
+    std::uint8_t* d = p.get();
+    target = std::span<const std::uint8_t>(d, bytes);
     target_storage = std::move(p);
+    return d;
+  }
+  /// Makes `pixels` the target, owned by the state (no copy).
+  void own_target(std::vector<std::uint8_t> pixels) {
+    auto v = std::make_shared<const std::vector<std::uint8_t>>(std::move(pixels));
+    target = std::span<const std::uint8_t>(*v);
+    target_storage = std::shared_ptr<const std::uint8_t[]>(v, v->data());
   }
   /// Packed endpoint fields per block, linear order (A: bits 1-15 of its 16-bit field).
   std::vector<std::uint16_t> ca, cb;
