@@ -59,46 +59,44 @@ void register_errors(py::module_& module) {
   });
 }
 
-ImageRGBA8 image_from_array(const py::handle& object, const std::string& what) {
+ImageView8 view_of_array(const py::handle& object, const std::string& what, py::array& keep) {
   if (!py::isinstance<py::array>(object)) {
     throw py::value_error(what +
                           ": expected a numpy uint8 array of shape (H, W, 3) or (H, W, 4), " +
                           "got " + std::string(py::str(py::type::of(object).attr("__name__"))));
   }
-  const auto array = py::reinterpret_borrow<py::array>(object);
-  if (array.dtype().kind() != 'u' || array.itemsize() != 1) {
-    throw py::value_error(what + ": dtype " + std::string(py::str(array.dtype())) +
-                          " is not uint8");
+  keep = py::reinterpret_borrow<py::array>(object);
+  if (keep.dtype().kind() != 'u' || keep.itemsize() != 1) {
+    throw py::value_error(what + ": dtype " + std::string(py::str(keep.dtype())) + " is not uint8");
   }
-  if (array.ndim() != 3 || (array.shape(2) != 3 && array.shape(2) != 4)) {
-    throw py::value_error(what + ": shape " + shape_text(array) + " is not (H, W, 3) or (H, W, 4)");
+  if (keep.ndim() != 3 || (keep.shape(2) != 3 && keep.shape(2) != 4)) {
+    throw py::value_error(what + ": shape " + shape_text(keep) + " is not (H, W, 3) or (H, W, 4)");
   }
-  const py::ssize_t h = array.shape(0), w = array.shape(1), c = array.shape(2);
+  const py::ssize_t h = keep.shape(0), w = keep.shape(1), c = keep.shape(2);
   if (h == 0 || w == 0) {
-    throw py::value_error(what + ": shape " + shape_text(array) + " is empty");
+    throw py::value_error(what + ": shape " + shape_text(keep) + " is empty");
   }
   check(check_image_size(w, h, what));
+  // A view needs each texel's channels side by side (any row and texel strides, broadcasts
+  // included); anything else (transposed channels, every other channel) is first copied
+  // C-contiguous by numpy.
+  if (keep.strides(2) != 1) keep = py::array_t<std::uint8_t, py::array::c_style>::ensure(keep);
+  if (!keep) throw py::error_already_set();
+  ImageView8 view;
+  view.data = static_cast<const std::uint8_t*>(keep.data());
+  view.width = static_cast<int>(w);
+  view.height = static_cast<int>(h);
+  view.channels = static_cast<int>(c);
+  view.pixel_stride = keep.strides(1);
+  view.row_stride = keep.strides(0);
+  view.has_alpha = c == 4;
+  check(check_view(view, what));
+  return view;
+}
 
-  ImageRGBA8 image(static_cast<int>(w), static_cast<int>(h));
-  image.has_alpha = c == 4;
-  const auto* base = static_cast<const std::uint8_t*>(array.data());
-  const py::ssize_t sy = array.strides(0), sx = array.strides(1), sc = array.strides(2);
-  std::uint8_t* out = image.pixels.data();
-  if (c == 4 && sc == 1 && sx == 4 && sy == 4 * w) {
-    std::memcpy(out, base, image.pixels.size());
-    return image;
-  }
-  for (py::ssize_t y = 0; y < h; ++y) {
-    const std::uint8_t* row = base + y * sy;
-    for (py::ssize_t x = 0; x < w; ++x, out += 4) {
-      const std::uint8_t* px = row + x * sx;
-      out[0] = px[0];
-      out[1] = px[sc];
-      out[2] = px[2 * sc];
-      out[3] = c == 4 ? px[3 * sc] : 255;
-    }
-  }
-  return image;
+ImageRGBA8 image_from_array(const py::handle& object, const std::string& what) {
+  py::array keep;
+  return to_image(view_of_array(object, what, keep));
 }
 
 py::array image_to_array(ImageRGBA8&& image, int channels) {

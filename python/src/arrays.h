@@ -45,6 +45,13 @@ T unwrap(Result<T> result) {
 /// translator for `StatusError`.
 void register_errors(py::module_& module);
 
+/// A view of a numpy uint8 array of shape (H, W, 3) or (H, W, 4) (`has_alpha` = 4 channels),
+/// read where it lies when each texel's channels are adjacent; other layouts are first copied
+/// by numpy. `keep` receives the array the view points into: hold it (and the GIL-free call
+/// that reads the view must not outlive it). Raises ValueError for another type, dtype or
+/// shape, naming `what`.
+ImageView8 view_of_array(const py::handle& object, const std::string& what, py::array& keep);
+
 /// Copies a numpy uint8 array of shape (H, W, 3) or (H, W, 4), any strides, into an image
 /// (`has_alpha` = 4 channels; alpha 255 for 3). Raises ValueError for another type, dtype or
 /// shape, naming `what`.

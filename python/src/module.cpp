@@ -55,17 +55,21 @@ texture_file::CompressOptions make_options(const std::string& format, const std:
   return unwrap(compress_options(k));
 }
 
-// The library's compress_image is the pipeline of `tessera compress` (alpha detection, the
-// power-of-two rule, --resize-pot, mips, per-level encodes): the same texture, the same bytes.
+// The library's compress_view is compress_image, the pipeline of `tessera compress` (alpha
+// detection, the power-of-two rule, --resize-pot, mips, per-level encodes), on pixels it does not
+// own: the same texture, the same bytes.
 CompressedTexture encode_array(const py::handle& array, const std::string& format,
                                const std::string& quality, bool mipmaps, bool srgb, int threads,
                                int iterations, int exact_search_rounds, bool resize_pot,
                                const std::string& name) {
   const texture_file::CompressOptions o = make_options(format, quality, mipmaps, srgb, threads,
                                                        iterations, exact_search_rounds, resize_pot);
-  ImageRGBA8 image = image_from_array(array, name);
+  // The encoder reads the array in place (no copy before a few-millisecond encode); `keep`
+  // holds it for the call, and an array with a live reference cannot be resized meanwhile.
+  py::array keep;
+  const ImageView8 view = view_of_array(array, name, keep);
   py::gil_scoped_release release;
-  return unwrap(texture_file::compress_image(std::move(image), o, name)).texture;
+  return unwrap(texture_file::compress_view(view, o, name));
 }
 
 CompressedTexture encode_file(const Path& path, const std::string& format,
@@ -190,7 +194,9 @@ Keywords are the CLI's options: format 'pvrtc1-4' | 'pvrtc1-2', quality 'fast' |
 'high', mipmaps (full chain), srgb (sRGB flag, mips filtered in linear light), threads (-j; 0 =
 all; output is the same for any value), iterations (-1..1000), exact_search_rounds (0..1000),
 resize_pot (resample non-power-of-two sides with Lanczos-3). `name` prefixes error messages.
-Serialising the result gives the CLI's bytes. The GIL is released while encoding.
+Serialising the result gives the CLI's bytes. The GIL is released while encoding, and the
+encoder reads the array where it lies (no copy first, unless its channels are not adjacent or a
+mip chain or resample is asked): do not write to it from another thread during the call.
 Raises ValueError (bad argument, dtype or shape), tessera.InvalidArgumentError (e.g. a side
 that is not a power of two) or tessera.Error.
 )doc";

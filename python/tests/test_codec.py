@@ -47,6 +47,31 @@ def test_strided_arrays_equal_contiguous_copies():
             np.ascontiguousarray(view), quality="fast")
 
 
+def test_arrays_are_read_in_place_unchanged_whatever_their_layout():
+    # The encoder reads the caller's array where it lies (no copy first): read-only, broadcast,
+    # flipped and padded layouts give the texture of their contiguous copy, tiny and
+    # non-power-of-two arrays (resampled) and mip chains too, and no array is written to.
+    base = make_image(64, 64, 4, seed=5)
+    readonly = np.frombuffer(base.tobytes(), np.uint8).reshape(base.shape)
+    assert not readonly.flags["WRITEABLE"]
+    padded = np.zeros((64, 80, 4), np.uint8)
+    padded[:, :64] = base
+    cases = [readonly, readonly[..., :3], np.broadcast_to(base[:1], base.shape),
+             np.broadcast_to(base[:1, :1, :3], (32, 16, 3)), base[::-1, :, :3], padded[:, :64],
+             base[:2, :4], base[:48, :40]]
+    for array in cases:
+        before = array.copy()
+        for opts in ({"quality": "fast"}, {"quality": "fast", "format": "pvrtc1-2"},
+                     {"mipmaps": True, "quality": "fast"}, {"resize_pot": True}):
+            if array.shape[:2] == (48, 40) and not opts.get("resize_pot"):
+                with pytest.raises(tessera.InvalidArgumentError, match="power of two"):
+                    tessera.encode(array, **opts)
+                continue
+            assert tessera.encode(array, **opts) == tessera.encode(
+                np.ascontiguousarray(array), **opts), (array.shape, array.strides, opts)
+        assert np.array_equal(array, before)
+
+
 def test_mipmaps_levels_and_shapes():
     tex = tessera.encode(make_image(32, 128, 4), mipmaps=True, format="pvrtc1-2")
     assert tex.level_count == 8  # 128x32 down to 1x1
