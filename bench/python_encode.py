@@ -5,8 +5,9 @@
 
 1. `tessera.encode` on a 512x512 image (a crop of ../shared/data/images/ldr-rgb-diffuse.png
    when present, else generated content) against the same library call (`compress_image`)
-   timed in a warm C++ process (build/bin/encode_call, bench/encode_call.cpp), in --rounds
-   alternating blocks of --repeats calls per side, and the CLI's whole process.
+   timed in a warm C++ process (build/bin/encode_call --serve, bench/encode_call.cpp), from an
+   RGB and an RGBA array, in --pairs single calls per side alternating between the two
+   processes, and the CLI's whole process.
 2. `tessera.batch.compress_tree` over a generated tree of --files images (--file-size square,
    RGB and RGBA, 20 folders) on a LocalCluster of 1 and of 2 single-threaded workers, with the
    default task grouping and with one task per file, --batch-rounds times alternating, and the
@@ -61,8 +62,9 @@ def run_cli(cli, *args):
     return r.stdout, (time.perf_counter() - t0) * 1e3
 
 
-def encode_table(cli, size, repeats, rounds, tmp):
+def encode_table(cli, size, pairs, tmp):
     img, source = bench_image(size)
+    rgba = np.concatenate([img, np.full(img.shape[:2] + (1,), 255, np.uint8)], -1)
     png = tmp / "bench.png"
     tessera.write_image(png, img)
     encode_call = Path(cli).parent / "encode_call"
@@ -70,38 +72,63 @@ def encode_table(cli, size, repeats, rounds, tmp):
     for fmt in ("pvrtc1-4", "pvrtc1-2"):
         for quality in ("fast", "normal"):
             for threads in (1, 0):
-                py_ms, cpp_ms, proc_ms = [], [], []
+                kw = dict(format=fmt, quality=quality, threads=threads)
+                server = subprocess.Popen(
+                    [str(encode_call), str(png), "--format", fmt, "--quality", quality,
+                     "--threads", str(threads), "--serve"],
+                    stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+                json.loads(server.stdout.readline())  # its warm-up call
+
+                def cpp_call():
+                    server.stdin.write("1\n")
+                    server.stdin.flush()
+                    return json.loads(server.stdout.readline())["ms"][0]
+
+                def py_call(array):
+                    # A freshly made input, as encode_call's copy just before its timer (and
+                    # as a read-then-encode pipeline has it): not the array the previous
+                    # encode pushed out of the cache.
+                    fresh = array.copy()
+                    t0 = time.perf_counter()
+                    tex = tessera.encode(fresh, **kw)
+                    return (time.perf_counter() - t0) * 1e3, tex
+
+                inputs = {"RGB": img, "RGBA": rgba}
+                textures = {name: tessera.encode(a, **kw) for name, a in inputs.items()}
+                py_ms = {name: [] for name in inputs}
+                cpp_ms = []
+                # Single calls alternate between the two processes (the order flips every
+                # pair), so that the machine's load hits both sides alike.
+                for i in range(pairs):
+                    if i % 2:
+                        cpp_ms.append(cpp_call())
+                    for name, array in inputs.items():
+                        ms, textures[name] = py_call(array)
+                        py_ms[name].append(ms)
+                    if not i % 2:
+                        cpp_ms.append(cpp_call())
+                server.stdin.close()
+                server.wait()
                 out = tmp / "bench.pvr"
-                # Alternate blocks of calls so that the machine's load hits both sides alike.
-                for _ in range(rounds):
-                    r = subprocess.run([str(encode_call), str(png), "--format", fmt, "--quality",
-                                        quality, "--threads", str(threads), "--repeats",
-                                        str(repeats)], capture_output=True, text=True, check=True)
-                    cpp_ms += json.loads(r.stdout)["ms"]
-                    tessera.encode(img, format=fmt, quality=quality, threads=threads)  # warm-up
-                    for _ in range(repeats):
-                        # A freshly made input, as encode_call's copy just before its timer
-                        # (and as a read-then-encode pipeline has it): not the array the
-                        # previous encode pushed out of the cache.
-                        fresh = img.copy()
-                        t0 = time.perf_counter()
-                        tex = tessera.encode(fresh, format=fmt, quality=quality, threads=threads)
-                        py_ms.append((time.perf_counter() - t0) * 1e3)
-                    _, ms = run_cli(cli, "compress", png, "-o", out, "--format", fmt,
-                                    "--quality", quality, "-j", threads)
-                    proc_ms.append(ms)
-                same = tex.to_bytes() == out.read_bytes()
-                py, cpp = statistics.median(py_ms), statistics.median(cpp_ms)
-                rows.append(f"| {fmt} | {quality} | {threads or os.cpu_count()} | {py:.2f} | "
-                            f"{cpp:.2f} | **{py / cpp:.3f}** | {statistics.median(proc_ms):.1f} | "
-                            f"{'yes' if same else 'NO'} |")
+                proc_ms = [run_cli(cli, "compress", png, "-o", out, "--format", fmt,
+                                   "--quality", quality, "-j", threads)[1] for _ in range(3)]
+                cpp = statistics.median(cpp_ms)
+                for name in inputs:
+                    same = textures[name].to_bytes() == out.read_bytes()
+                    py = statistics.median(py_ms[name])
+                    paired = statistics.median(p / c for p, c in zip(py_ms[name], cpp_ms))
+                    rows.append(f"| {fmt} | {quality} | {threads or os.cpu_count()} | {name} | "
+                                f"{py:.2f} | {cpp:.2f} | **{py / cpp:.3f}** | {paired:.3f} | "
+                                f"{statistics.median(proc_ms):.1f} | "
+                                f"{'yes' if same else 'NO'} |")
     head = [f"`tessera.encode` vs the same C++ call (`compress_image`, timed in a warm process "
-            f"by `bench/encode_call.cpp`) on a {size}x{size} RGB image ({source}); medians of "
-            f"{rounds} alternating blocks of {repeats} calls per side, each call on a freshly "
-            f"copied input (untimed) on both sides:", "",
-            "| format | quality | threads | Python `encode` ms | C++ `compress_image` ms "
-            "| ratio | CLI process ms | same bytes |",
-            "|---|---|---:|---:|---:|---:|---:|---|"]
+            f"by `bench/encode_call.cpp --serve`) on a {size}x{size} image ({source}; the RGBA "
+            f"array is the same image with alpha 255); {pairs} single calls per side and input, "
+            f"alternating between the processes, each call on a freshly copied input "
+            f"(untimed) on both sides; medians:", "",
+            "| format | quality | threads | array | Python `encode` ms | C++ `compress_image` ms "
+            "| ratio of medians | median of paired ratios | CLI process ms | same bytes |",
+            "|---|---|---:|---|---:|---:|---:|---:|---:|---|"]
     return "\n".join(head + rows)
 
 
@@ -169,13 +196,14 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--cli", default=str(ROOT / "build" / "bin" / "tessera"))
     p.add_argument("--size", type=int, default=512)
-    p.add_argument("--repeats", type=int, default=9)
-    p.add_argument("--rounds", type=int, default=5)
+    p.add_argument("--pairs", type=int, default=101,
+                   help="single calls per side (and per input array) in each encode row")
     p.add_argument("--files", type=int, default=200)
     p.add_argument("--file-size", type=int, default=256)
     p.add_argument("--quality", default="normal")
     p.add_argument("--batch-rounds", type=int, default=3)
     p.add_argument("--skip-encode", action="store_true", help="only the Dask table")
+    p.add_argument("--skip-batch", action="store_true", help="only the encode table")
     args = p.parse_args()
     cpu = "unknown CPU"
     try:
@@ -190,10 +218,11 @@ def main():
     tmp = Path(tempfile.mkdtemp(prefix="tessera-bench-"))
     try:
         if not args.skip_encode:
-            print(encode_table(args.cli, args.size, args.repeats, args.rounds, tmp))
+            print(encode_table(args.cli, args.size, args.pairs, tmp))
             print()
-        print(batch_table(args.cli, args.files, args.file_size, args.quality, args.batch_rounds,
-                          tmp))
+        if not args.skip_batch:
+            print(batch_table(args.cli, args.files, args.file_size, args.quality,
+                              args.batch_rounds, tmp))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
