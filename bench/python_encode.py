@@ -62,9 +62,55 @@ def run_cli(cli, *args):
     return r.stdout, (time.perf_counter() - t0) * 1e3
 
 
+def paired_calls(encode_call, png, inputs, kw, pairs):
+    """Times `tessera.encode(array, **kw)` for each array in `inputs` against the C++ call
+    served by `encode_call --serve` on `png`, in `pairs` single calls per side and input.
+    Returns ({input: [ms]}, [C++ ms], {input: texture})."""
+    server = subprocess.Popen(
+        [str(encode_call), str(png), "--format", kw["format"], "--quality", kw["quality"],
+         "--threads", str(kw["threads"]), "--serve"],
+        stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    json.loads(server.stdout.readline())  # its warm-up call
+
+    def cpp_call():
+        server.stdin.write("1\n")
+        server.stdin.flush()
+        return json.loads(server.stdout.readline())["ms"][0]
+
+    def py_call(array):
+        # A freshly made input, as encode_call's copy just before its timer (and as a
+        # read-then-encode pipeline has it): not the array the previous encode pushed out of
+        # the cache.
+        fresh = array.copy()
+        t0 = time.perf_counter()
+        tex = tessera.encode(fresh, **kw)
+        return (time.perf_counter() - t0) * 1e3, tex
+
+    textures = {name: tessera.encode(a, **kw) for name, a in inputs.items()}  # warm-up
+    py_ms = {name: [] for name in inputs}
+    cpp_ms = []
+    # Single calls alternate between the two processes (the order flips every pair), so that
+    # the machine's load hits both sides alike.
+    for i in range(pairs):
+        if i % 2:
+            cpp_ms.append(cpp_call())
+        for name, array in inputs.items():
+            ms, textures[name] = py_call(array)
+            py_ms[name].append(ms)
+        if not i % 2:
+            cpp_ms.append(cpp_call())
+    server.stdin.close()
+    server.wait()
+    return py_ms, cpp_ms, textures
+
+
+def with_alpha(img):
+    return np.concatenate([img, np.full(img.shape[:2] + (1,), 255, np.uint8)], -1)
+
+
 def encode_table(cli, size, pairs, tmp):
     img, source = bench_image(size)
-    rgba = np.concatenate([img, np.full(img.shape[:2] + (1,), 255, np.uint8)], -1)
+    inputs = {"RGB": img, "RGBA": with_alpha(img)}
     png = tmp / "bench.png"
     tessera.write_image(png, img)
     encode_call = Path(cli).parent / "encode_call"
@@ -73,42 +119,7 @@ def encode_table(cli, size, pairs, tmp):
         for quality in ("fast", "normal"):
             for threads in (1, 0):
                 kw = dict(format=fmt, quality=quality, threads=threads)
-                server = subprocess.Popen(
-                    [str(encode_call), str(png), "--format", fmt, "--quality", quality,
-                     "--threads", str(threads), "--serve"],
-                    stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
-                json.loads(server.stdout.readline())  # its warm-up call
-
-                def cpp_call():
-                    server.stdin.write("1\n")
-                    server.stdin.flush()
-                    return json.loads(server.stdout.readline())["ms"][0]
-
-                def py_call(array):
-                    # A freshly made input, as encode_call's copy just before its timer (and
-                    # as a read-then-encode pipeline has it): not the array the previous
-                    # encode pushed out of the cache.
-                    fresh = array.copy()
-                    t0 = time.perf_counter()
-                    tex = tessera.encode(fresh, **kw)
-                    return (time.perf_counter() - t0) * 1e3, tex
-
-                inputs = {"RGB": img, "RGBA": rgba}
-                textures = {name: tessera.encode(a, **kw) for name, a in inputs.items()}
-                py_ms = {name: [] for name in inputs}
-                cpp_ms = []
-                # Single calls alternate between the two processes (the order flips every
-                # pair), so that the machine's load hits both sides alike.
-                for i in range(pairs):
-                    if i % 2:
-                        cpp_ms.append(cpp_call())
-                    for name, array in inputs.items():
-                        ms, textures[name] = py_call(array)
-                        py_ms[name].append(ms)
-                    if not i % 2:
-                        cpp_ms.append(cpp_call())
-                server.stdin.close()
-                server.wait()
+                py_ms, cpp_ms, textures = paired_calls(encode_call, png, inputs, kw, pairs)
                 out = tmp / "bench.pvr"
                 proc_ms = [run_cli(cli, "compress", png, "-o", out, "--format", fmt,
                                    "--quality", quality, "-j", threads)[1] for _ in range(3)]
@@ -129,7 +140,20 @@ def encode_table(cli, size, pairs, tmp):
             "| format | quality | threads | array | Python `encode` ms | C++ `compress_image` ms "
             "| ratio of medians | median of paired ratios | CLI process ms | same bytes |",
             "|---|---|---:|---|---:|---:|---:|---:|---:|---|"]
-    return "\n".join(head + rows)
+    # What the binding itself costs: the same comparison on an 8x8 image, where the encode is
+    # a few microseconds and the rest is the call.
+    small = img[:8, :8].copy()
+    tessera.write_image(tmp / "small.png", small)
+    kw = dict(format="pvrtc1-4", quality="fast", threads=1)
+    py_ms, cpp_ms, _ = paired_calls(encode_call, tmp / "small.png",
+                                    {"RGB": small, "RGBA": with_alpha(small)}, kw, pairs)
+    cpp = statistics.median(cpp_ms) * 1e3
+    tail = ["", f"The binding's own cost, the same comparison on an 8x8 crop (pvrtc1-4, fast, 1 "
+            f"thread, {pairs} pairs): C++ call {cpp:.1f} µs; Python "
+            + ", ".join(f"{name} {statistics.median(v) * 1e3:.1f} µs "
+                        f"(+{statistics.median(v) * 1e3 - cpp:.1f} µs)"
+                        for name, v in py_ms.items()) + "."]
+    return "\n".join(head + rows + tail)
 
 
 def make_tree(root, files, size):
