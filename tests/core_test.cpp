@@ -98,6 +98,28 @@ TEST(ImageView, CopyToRgba8MatchesTheViewFormulaForEveryLayout) {
   }
 }
 
+// all_opaque reads every alpha byte, packed (two texels a step, odd counts too) or strided, and
+// is true for RGB views whatever follows their texels.
+TEST(ImageView, AllOpaqueFindsAnyTranslucentTexel) {
+  for (int w : {1, 2, 3, 7, 8}) {
+    ImageRGBA8 image(w, 3);
+    for (std::size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255;
+    EXPECT_TRUE(all_opaque(ImageView8::of(image))) << w;
+    const ImageView8 rgb{image.pixels.data(), w, 3, 3, 4, std::ptrdiff_t(w) * 4, false};
+    for (int k = 0; k < w * 3; ++k) {
+      image.pixels[std::size_t(k) * 4 + 3] = 254;
+      EXPECT_FALSE(all_opaque(ImageView8::of(image))) << w << " texel " << k;
+      ImageView8 strided = ImageView8::of(image);
+      strided.row_stride = -strided.row_stride;
+      strided.data += std::ptrdiff_t(w) * 4 * 2;  // flipped: not packed, read texel by texel
+      EXPECT_FALSE(all_opaque(strided)) << w << " texel " << k;
+      image.pixels[std::size_t(k) * 4 + 2] = 7;  // RGB views never look at byte 3
+      EXPECT_TRUE(all_opaque(rgb));
+      image.pixels[std::size_t(k) * 4 + 3] = 255;
+    }
+  }
+}
+
 TEST(ImageView, OfAnImageIsPackedAndChecked) {
   ImageRGBA8 image(5, 3);
   image.has_alpha = true;

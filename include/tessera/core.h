@@ -174,6 +174,10 @@ Status check_view(const ImageView8& view, const std::string& what);
 /// for RGB views, and for every texel when `opaque`. The view must pass `check_view`.
 void copy_to_rgba8(const ImageView8& view, std::uint8_t* out, bool opaque = false);
 
+/// True when every texel's alpha is 255: always for RGB views; for RGBA ones every alpha byte is
+/// read (packed rows two texels a step), whatever `has_alpha` says.
+bool all_opaque(const ImageView8& view);
+
 /// Copies a view into an owned RGBA image (alpha 255 for RGB), keeping `has_alpha`. The view
 /// must pass `check_view`.
 ImageRGBA8 to_image(const ImageView8& view);

@@ -125,7 +125,45 @@ void rgb_row_to_rgba8(const std::uint8_t* in, int n, std::uint8_t* out) {
   row_to_rgba8<3, 3>(in, 3, n - x, out, true);
 }
 
+/// A packed RGBA row with alpha forced to 255: whole texels or-ed as little-endian words
+/// (vectorises).
+void rgba_row_opaque(const std::uint8_t* in, int n, std::uint8_t* out) {
+  for (int x = 0; x < n; ++x, in += 4, out += 4) {
+    std::uint32_t v;
+    std::memcpy(&v, in, 4);
+    v |= 0xff000000u;
+    std::memcpy(out, &v, 4);
+  }
+}
+
 }  // namespace
+
+bool all_opaque(const ImageView8& view) {
+  if (view.channels != 4) return true;
+  if (!view.packed_rgba()) {
+    for (int y = 0; y < view.height; ++y) {
+      const std::uint8_t* p = view.at(0, y) + 3;
+      for (int x = 0; x < view.width; ++x, p += view.pixel_stride) {
+        if (*p != 255) return false;
+      }
+    }
+    return true;
+  }
+  // Two texels a step: their alpha bytes are the top bytes of each little-endian half.
+  constexpr std::uint64_t kAlpha2 = 0xff000000ff000000ull;
+  const std::uint8_t* p = view.data;
+  const std::size_t n = view.pixel_count() * 4;
+  std::uint64_t all = kAlpha2;
+  std::size_t i = 0;
+  for (; i + 8 <= n && all == kAlpha2; i += 8) {
+    std::uint64_t v;
+    std::memcpy(&v, p + i, 8);
+    all &= v | ~kAlpha2;
+  }
+  bool opaque = all == kAlpha2;
+  for (i += 3; i < n && opaque; i += 4) opaque = p[i] == 255;
+  return opaque;
+}
 
 void copy_to_rgba8(const ImageView8& view, std::uint8_t* out, bool opaque) {
   const std::size_t row_bytes = std::size_t(view.width) * 4;
@@ -138,7 +176,7 @@ void copy_to_rgba8(const ImageView8& view, std::uint8_t* out, bool opaque) {
     if (view.channels == 4 && view.pixel_stride == 4 && !opaque) {
       std::memcpy(out, in, row_bytes);
     } else if (view.channels == 4 && view.pixel_stride == 4) {
-      row_to_rgba8<4, 4>(in, 4, view.width, out, true);
+      rgba_row_opaque(in, view.width, out);
     } else if (view.channels == 3 && view.pixel_stride == 3) {
       rgb_row_to_rgba8(in, view.width, out);
     } else if (view.channels == 4) {

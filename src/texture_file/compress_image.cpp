@@ -3,7 +3,6 @@
 // the per-level encodes.
 #include <algorithm>
 #include <chrono>
-#include <cstring>
 #include <functional>
 #include <span>
 
@@ -15,34 +14,6 @@ namespace tessera::texture_file {
 namespace {
 
 std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
-
-/// True when some alpha byte differs from 255 (RGBA8, alpha in byte 3 of each texel).
-bool any_translucent(const ImageView8& image) {
-  if (image.channels != 4) return false;
-  if (!image.packed_rgba()) {
-    for (int y = 0; y < image.height; ++y) {
-      const std::uint8_t* p = image.at(0, y) + 3;
-      for (int x = 0; x < image.width; ++x, p += image.pixel_stride) {
-        if (*p != 255) return true;
-      }
-    }
-    return false;
-  }
-  // Two texels a step: their alpha bytes are the top bytes of each little-endian half.
-  constexpr std::uint64_t kAlpha2 = 0xff000000ff000000ull;
-  const std::uint8_t* p = image.data;
-  const std::size_t n = image.pixel_count() * 4;
-  std::uint64_t all = kAlpha2;
-  std::size_t i = 0;
-  for (; i + 8 <= n && all == kAlpha2; i += 8) {
-    std::uint64_t v;
-    std::memcpy(&v, p + i, 8);
-    all &= v | ~kAlpha2;
-  }
-  bool translucent = all != kAlpha2;
-  for (i += 3; i < n && !translucent; i += 4) translucent = p[i] != 255;
-  return translucent;
-}
 
 /// Encodes every level of `chain` (level 0 first) into `tex.levels`, with the progress of
 /// `options.encode.progress` over the whole chain: each level's fraction weighted by its pixels
@@ -100,7 +71,7 @@ Result<CompressedImage> compress_image(ImageRGBA8 image, const CompressOptions& 
   }
   CompressedImage out;
   // An alpha channel that is opaque everywhere (common in RGBA PNGs) gives an RGB texture.
-  if (image.has_alpha) image.has_alpha = any_translucent(ImageView8::of(image));
+  if (image.has_alpha) image.has_alpha = !all_opaque(ImageView8::of(image));
 
   image::MipmapOptions filter;
   filter.srgb = options.srgb;
@@ -155,7 +126,7 @@ Result<CompressedTexture> compress_view(const ImageView8& image, const CompressO
     return std::move(r->texture);
   }
   ImageView8 level = image;
-  if (level.has_alpha) level.has_alpha = any_translucent(level);
+  if (level.has_alpha) level.has_alpha = !all_opaque(level);
   CompressedTexture tex = texture_header(options, image.width, image.height, level.has_alpha);
   if (Status s = encode_chain(std::span<const ImageView8>(&level, 1), options, name, tex);
       !s.ok()) {

@@ -150,24 +150,6 @@ namespace {
 constexpr double kDilationStartCost = 0.04;
 constexpr double kPrincipalStartCost = 0.19;
 
-/// Whether every alpha byte of RGBA8 `pixels` is 255 (two texels a step).
-bool all_opaque(std::span<const std::uint8_t> pixels) {
-  static constexpr std::uint8_t kMaskBytes[8] = {0, 0, 0, 255, 0, 0, 0, 255};
-  std::uint64_t kAlpha2;
-  std::memcpy(&kAlpha2, kMaskBytes, 8);
-  const std::uint8_t* p = pixels.data();
-  const std::size_t n = pixels.size() / 8 * 8;
-  std::uint64_t all = kAlpha2;
-  for (std::size_t i = 0; i < n; i += 8) {
-    std::uint64_t v;
-    std::memcpy(&v, p + i, 8);
-    all &= v | ~kAlpha2;
-  }
-  bool opaque = all == kAlpha2;
-  for (std::size_t i = n + 3; i < pixels.size(); i += 4) opaque = opaque && p[i] == 255;
-  return opaque;
-}
-
 // Homogeneous blocks (all texels equal and opaque): optimal single-colour endpoints from the
 // lookup tables, replacing the dilation result. `flat` (may be null): only blocks marked 1 there
 // can be uniform (see dilation_endpoints).
@@ -293,8 +275,7 @@ Result<std::vector<std::uint8_t>> encode(const ImageView8& image, const EncodeOp
   // packed (RGB views get their alpha there).
   const bool padded = g.pw != image.width || g.ph != image.height;
   const std::size_t bytes = image.pixel_count() * 4;
-  if (!padded && image.packed_rgba() &&
-      (s.alpha_mode || all_opaque(std::span<const std::uint8_t>(image.data, bytes)))) {
+  if (!padded && image.packed_rgba() && (s.alpha_mode || all_opaque(image))) {
     s.target = std::span<const std::uint8_t>(image.data, bytes);
   } else if (!padded) {
     copy_to_rgba8(image, s.new_target(bytes), !s.alpha_mode);
