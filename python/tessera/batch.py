@@ -8,14 +8,16 @@ DST/<same relative folder>/<stem>.pvr (or .ktx), byte-identical to ``tessera com
 with the same options: each task runs ``tessera.encode_file`` and ``Texture.write``, the library
 calls the CLI makes.
 
-Tasks: each Dask task compresses a group of consecutive files (``--files-per-task N``; by default
-files / (25 x workers), between 1 and 16: a tree of up to 50 files per worker gets one task per
-file, 200 files on 2 workers 4 files per task).
-Dask spends milliseconds of scheduler and worker CPU on every task (measured on a 2-core machine:
-about 15 ms per task, more than a quarter of a 256x256 normal-quality encode), so a task of one
-small file spends a good part of the machine on bookkeeping; ``--files-per-task 1`` gives one
-task per file. Grouping changes nothing else: every file still has its own result, its own
-failure and its own sidecar, and the bytes are the same.
+Tasks: each Dask task compresses a group of files. Dask spends milliseconds of scheduler and
+worker CPU on every task (measured on a 2-core machine: about 15 ms per task, more than a quarter
+of a 256x256 normal-quality encode), so a task of one small file spends a good part of the
+machine on bookkeeping, while large tasks at the end leave workers idle. By default the groups
+are guided (`group_jobs`): the largest files (by input bytes) first, each task about the
+remaining work / (2 x workers), at most 16 files, down to single files at the end (200 equal
+files on 2 workers: 21 tasks, the first nine of 16 files, the last four of one).
+``--files-per-task N`` gives groups of N files in tree order instead (1: one task per file).
+Grouping changes nothing else: every file still has its own result, its own failure and its own
+sidecar, and the bytes are the same.
 
 Cluster: ``--scheduler ADDRESS`` (e.g. tcp://host:8786, a running ``dask-scheduler`` with
 ``dask-worker ADDRESS`` processes that can import ``tessera`` and see SRC and DST at the same
@@ -145,14 +147,38 @@ def compress_group(group, options, container, threads):
     return [compress_one(s, o, options, container, threads) for s, o in group]
 
 
-def group_jobs(jobs, files_per_task=None, workers=1):
-    """Splits `jobs` into consecutive groups of `files_per_task` (None: len(jobs) / (25 x
-    workers), between 1 and 16: enough tasks per worker for the last ones to even out)."""
-    if files_per_task is None:
-        files_per_task = min(16, max(1, len(jobs) // (25 * max(1, workers))))
-    if files_per_task < 1:
-        raise ValueError(f"files_per_task: {files_per_task} is not at least 1")
-    return [jobs[i:i + files_per_task] for i in range(0, len(jobs), files_per_task)]
+MAX_FILES_PER_TASK = 16
+
+
+def group_jobs(jobs, files_per_task=None, workers=1, weights=None):
+    """Splits `jobs` into the groups of files that one Dask task each compresses.
+
+    `files_per_task` N: consecutive groups of N files, in the order of `jobs`.
+    None: guided self-scheduling. The jobs, heaviest first (`weights`, e.g. input bytes; all
+    equal when None; ties keep their order), are cut into groups that each take about the
+    remaining weight / (2 x `workers`), at most MAX_FILES_PER_TASK files and at least one: few
+    large tasks while there is much work left (each task costs Dask milliseconds), single files
+    at the end, so that the workers finish together."""
+    if files_per_task is not None:
+        if files_per_task < 1:
+            raise ValueError(f"files_per_task: {files_per_task} is not at least 1")
+        return [jobs[i:i + files_per_task] for i in range(0, len(jobs), files_per_task)]
+    if weights is None:
+        weights = [1] * len(jobs)
+    order = sorted(range(len(jobs)), key=lambda i: -weights[i])
+    remaining = sum(weights[i] for i in order)
+    groups, i = [], 0
+    while i < len(order):
+        target = remaining / (2 * max(1, workers))
+        group, weight = [], 0
+        while i < len(order) and len(group) < MAX_FILES_PER_TASK and (not group or
+                                                                      weight < target):
+            group.append(jobs[order[i]])
+            weight += weights[order[i]]
+            i += 1
+        remaining -= weight
+        groups.append(group)
+    return groups
 
 
 # Dask's periodic work, slowed down for the LocalCluster that compress_tree starts: the worker's
@@ -166,6 +192,15 @@ LOCAL_CLUSTER_CONFIG = {
     "distributed.admin.system-monitor.interval": "5s",
     "distributed.worker.memory.monitor-interval": "1s",
 }
+
+
+def _input_bytes(path):
+    """The weight `group_jobs` gives a file: its size in bytes (0 when it cannot be read; its
+    task then reports why)."""
+    try:
+        return os.stat(path).st_size
+    except OSError:
+        return 0
 
 
 def _import_tessera():
@@ -194,10 +229,11 @@ def compress_tree(src, dst, *, scheduler=None, workers=None, client=None, contai
     else a LocalCluster of `workers` single-threaded processes, closed at the end. `options` are
     encode's keywords (format, quality, mipmaps, srgb, iterations, exact_search_rounds,
     resize_pot); `threads` is the encoder's thread count per task; `files_per_task` the files of
-    one Dask task (None: `group_jobs`'s default). `on_result(result)` is called for each
-    finished file. Returns the summary dict: files, done, skipped, failed, failures
-    ([{src, error}]), pixels (level-0 texels encoded), seconds (from the first task submitted to
-    the last result), mpixels_per_s, workers, setup_seconds (starting / connecting the cluster).
+    one Dask task (None: `group_jobs`'s guided groups, weighted by input bytes).
+    `on_result(result)` is called for each finished file. Returns the summary dict: files,
+    done, skipped, failed, failures ([{src, error}]), pixels (level-0 texels encoded), seconds
+    (from the first task submitted to the last result), mpixels_per_s, workers, setup_seconds
+    (starting / connecting the cluster).
     Raises ValueError for bad options; a failing file is reported, never raised.
     """
     options = _check_options(options, container, threads)
@@ -231,7 +267,8 @@ def compress_tree(src, dst, *, scheduler=None, workers=None, client=None, contai
         client.run(_import_tessera)
         t0 = time.perf_counter()
         summary["setup_seconds"] = t0 - t_setup
-        groups = group_jobs(todo, files_per_task, summary["workers"])
+        groups = group_jobs(todo, files_per_task, summary["workers"],
+                            [_input_bytes(s) for s, _ in todo])
         futures = [client.submit(compress_group, g, options, container, threads, pure=False,
                                  retries=0) for g in groups]
         group_of = {f.key: g for f, g in zip(futures, groups)}
@@ -284,8 +321,8 @@ def main(argv=None):
                    help="LocalCluster worker processes (default: one per CPU)")
     p.add_argument("--threads", type=int, default=1, help="encoder threads per task (0 = all)")
     p.add_argument("--files-per-task", type=int, default=None, metavar="N",
-                   help="files compressed by one Dask task (default: files / (25 x workers), "
-                        "between 1 and 16)")
+                   help="files compressed by one Dask task (default: guided, largest files "
+                        "first, 16 files per task down to 1 at the end)")
     p.add_argument("--format", choices=_FORMATS, default="pvrtc1-4")
     p.add_argument("--quality", choices=_QUALITIES, default="normal")
     p.add_argument("--container", choices=_CONTAINERS, default="pvr")

@@ -170,12 +170,20 @@ def test_sidecars_shared_with_cli_skip_up_to_date(tmp_path, client):
 
 
 def test_group_jobs_sizes_and_order():
-    jobs = [(f"s{i}", f"o{i}") for i in range(203)]
+    jobs = [(f"s{i}", f"o{i}") for i in range(200)]
+    # Guided: equal files keep their order, 16 per task while there is much work left, each
+    # task about the remaining work / (2 x workers), single files at the end.
     groups = tessera.batch.group_jobs(jobs, None, 2)
-    assert [j for g in groups for j in g] == jobs           # every job once, in order
-    assert {len(g) for g in groups[:-1]} == {4} and len(groups[-1]) == 3
-    assert [len(g) for g in tessera.batch.group_jobs(jobs[:30], None, 2)] == [1] * 30
+    assert [j for g in groups for j in g] == jobs
+    assert [len(g) for g in groups] == [16] * 9 + [14, 11, 8, 6, 5, 3, 3, 2, 1, 1, 1, 1]
+    assert [len(g) for g in tessera.batch.group_jobs(jobs, None, 100)] == [1] * 200
     assert max(len(g) for g in tessera.batch.group_jobs(jobs * 100, None, 2)) == 16
+    # Weighted: heaviest first (ties in order), a heavy file alone, light ones grouped.
+    weights = [1, 50, 1, 1, 30, 1, 1, 1]
+    groups = tessera.batch.group_jobs(jobs[:8], None, 2, weights)
+    assert groups == [[jobs[1]], [jobs[4]], [jobs[0], jobs[2]], [jobs[3]], [jobs[5]], [jobs[6]],
+                      [jobs[7]]]
+    # Fixed: consecutive groups in tree order.
     assert [len(g) for g in tessera.batch.group_jobs(jobs[:7], 3, 2)] == [3, 3, 1]
     with pytest.raises(ValueError, match="files_per_task: 0"):
         tessera.batch.group_jobs(jobs, 0, 2)
