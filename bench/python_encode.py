@@ -3,26 +3,37 @@
 
     PYTHONPATH=build/python /usr/bin/python3 bench/python_encode.py [--cli build/bin/tessera]
 
-1. `tessera.encode` on a 512x512 image (a crop of ../shared/data/images/ldr-rgb-diffuse.png
-   when present, else generated content) against the same library call (`compress_image`)
-   timed in a warm C++ process (build/bin/encode_call --serve, bench/encode_call.cpp), from an
-   RGB and an RGBA array, in --pairs single calls per side alternating between the two
-   processes, and the CLI's whole process.
+1. `encode` on a 512x512 image (a crop of ../shared/data/images/ldr-rgb-diffuse.png when
+   present, else generated content), from an RGB and an RGBA array, against the same C++ call,
+   in --pairs single calls per side alternating: in one process of one binary (the bench module
+   `_tessera_bench`, the module's sources plus bench/python_native_calls.cpp, whose
+   `native_encode_ms` times `compress_view` in C++: the binding's cost and nothing else), and
+   across two processes (the installed module's `tessera.encode` against `compress_image` in a
+   warm `build/bin/encode_call --serve`, bench/encode_call.cpp: what two binaries on this
+   machine differ by); the CLI's whole process for scale; and the binding's cost on an 8x8
+   crop.
 2. `tessera.batch.compress_tree` over a generated tree of --files images (--file-size square,
    RGB and RGBA, 20 folders) on a LocalCluster of 1 and of 2 single-threaded workers, with the
-   default task grouping and with one task per file, --batch-rounds times alternating, and the
-   same files through one `tessera compress -j 1` process each, one after another.
+   default (guided) task grouping and with one task per file; without Dask, the same task
+   function in 1 and in 2 warm Python processes (the machine's own scaling, Dask's ceiling);
+   all --batch-rounds times alternating; and the same files through one `tessera compress -j 1`
+   process each, one after another. "Workers busy" is the files' own time (each file's seconds
+   inside its task: read, encode, write, sidecar) over workers x wall time, i.e. what Dask
+   leaves to the work; "paired" the median of the per-round ratios (the 1- and 2-worker runs of
+   a round are adjacent in time).
 
 Prints Markdown tables. Reports, asserts nothing but byte equality of the outputs.
 """
 
 import argparse
+import hashlib
 import json
 import os
 import platform
 import shutil
 import statistics
 import subprocess
+import sys
 import tempfile
 import time
 from pathlib import Path
@@ -104,13 +115,60 @@ def paired_calls(encode_call, png, inputs, kw, pairs):
     return py_ms, cpp_ms, textures
 
 
+# The in-process comparison, in an interpreter of its own: `_tessera_bench` (the module's sources
+# plus bench/python_native_calls.cpp, built in python/CMakeLists.txt) registers the same C++
+# types as tessera._tessera, so the two cannot be imported into one process.
+_IN_PROCESS = """
+import hashlib, json, sys, time
+import numpy as np
+import _tessera_bench as b
+inputs = {name: np.load(path) for name, path in json.loads(sys.argv[1]).items()}
+kw, pairs = json.loads(sys.argv[2]), int(sys.argv[3])
+py, native, sha = {n: [] for n in inputs}, {n: [] for n in inputs}, {}
+for n, a in inputs.items():  # warm-up
+    sha[n] = hashlib.sha256(b.encode(a, **kw).to_bytes()).hexdigest()
+    b.native_encode_ms(a, 1, **kw)
+for n, a in inputs.items():  # one input after the other (see in_process_calls)
+    for i in range(pairs):
+        for side in (("py", "native") if i % 2 == 0 else ("native", "py")):
+            fresh = a.copy()  # a freshly made input on both sides, the copy untimed
+            if side == "py":
+                t0 = time.perf_counter()
+                b.encode(fresh, **kw)
+                py[n].append((time.perf_counter() - t0) * 1e3)
+            else:
+                native[n].append(b.native_encode_ms(fresh, 1, **kw)[0])
+print(json.dumps({"py": py, "native": native, "sha256": sha}))
+"""
+
+
+def in_process_calls(module_dir, npy, kw, pairs):
+    """Times `_tessera_bench.encode(array, **kw)` against `native_encode_ms`, the same C++ call
+    timed in C++, in one process of the same binary: `pairs` single calls per side and input
+    ({name: .npy path}), alternating, the order flipping every pair. Returns {"py": {name:
+    [ms]}, "native": {name: [ms]}, "sha256": {name: hex digest of the texture file}}.
+
+    The inputs take turns by input, not call by call: with RGB and RGBA calls interleaved, glibc
+    handed the RGB encode's 1 MiB RGBA buffer back to the kernel between calls on one side only
+    (192 page faults, +0.9 ms per 512x512 call), an effect of the call order on the heap that
+    the two sides share, not of the binding."""
+    env = dict(os.environ, PYTHONPATH=str(module_dir))
+    r = subprocess.run([sys.executable, "-c", _IN_PROCESS, json.dumps(npy), json.dumps(kw),
+                        str(pairs)], env=env, capture_output=True, text=True, check=True)
+    return json.loads(r.stdout)
+
+
 def with_alpha(img):
     return np.concatenate([img, np.full(img.shape[:2] + (1,), 255, np.uint8)], -1)
 
 
-def encode_table(cli, size, pairs, tmp):
+def encode_table(cli, bench_module, size, pairs, tmp):
     img, source = bench_image(size)
     inputs = {"RGB": img, "RGBA": with_alpha(img)}
+    npy = {}
+    for name, array in inputs.items():
+        npy[name] = str(tmp / f"{name}.npy")
+        np.save(npy[name], array)
     png = tmp / "bench.png"
     tessera.write_image(png, img)
     encode_call = Path(cli).parent / "encode_call"
@@ -119,40 +177,55 @@ def encode_table(cli, size, pairs, tmp):
         for quality in ("fast", "normal"):
             for threads in (1, 0):
                 kw = dict(format=fmt, quality=quality, threads=threads)
+                same_process = in_process_calls(bench_module, npy, kw, pairs)
                 py_ms, cpp_ms, textures = paired_calls(encode_call, png, inputs, kw, pairs)
                 out = tmp / "bench.pvr"
                 proc_ms = [run_cli(cli, "compress", png, "-o", out, "--format", fmt,
                                    "--quality", quality, "-j", threads)[1] for _ in range(3)]
+                cli_bytes = out.read_bytes()
+                cli_sha = hashlib.sha256(cli_bytes).hexdigest()
                 cpp = statistics.median(cpp_ms)
                 for name in inputs:
-                    same = textures[name].to_bytes() == out.read_bytes()
+                    same = textures[name].to_bytes() == cli_bytes and \
+                        same_process["sha256"][name] == cli_sha
+                    bp, bn = same_process["py"][name], same_process["native"][name]
+                    ratio = statistics.median(bp) / statistics.median(bn)
+                    paired = statistics.median(p / c for p, c in zip(bp, bn))
                     py = statistics.median(py_ms[name])
-                    paired = statistics.median(p / c for p, c in zip(py_ms[name], cpp_ms))
                     rows.append(f"| {fmt} | {quality} | {threads or os.cpu_count()} | {name} | "
-                                f"{py:.2f} | {cpp:.2f} | **{py / cpp:.3f}** | {paired:.3f} | "
-                                f"{statistics.median(proc_ms):.1f} | "
+                                f"{statistics.median(bp):.2f} | {statistics.median(bn):.2f} | "
+                                f"**{ratio:.3f}** | {paired:.3f} | {py:.2f} | {cpp:.2f} | "
+                                f"{py / cpp:.3f} | {statistics.median(proc_ms):.1f} | "
                                 f"{'yes' if same else 'NO'} |")
-    head = [f"`tessera.encode` vs the same C++ call (`compress_image`, timed in a warm process "
-            f"by `bench/encode_call.cpp --serve`) on a {size}x{size} image ({source}; the RGBA "
-            f"array is the same image with alpha 255); {pairs} single calls per side and input, "
-            f"alternating between the processes, each call on a freshly copied input "
-            f"(untimed) on both sides; medians:", "",
-            "| format | quality | threads | array | Python `encode` ms | C++ `compress_image` ms "
-            "| ratio of medians | median of paired ratios | CLI process ms | same bytes |",
-            "|---|---|---:|---|---:|---:|---:|---:|---:|---|"]
-    # What the binding itself costs: the same comparison on an 8x8 image, where the encode is
-    # a few microseconds and the rest is the call.
-    small = img[:8, :8].copy()
-    tessera.write_image(tmp / "small.png", small)
+    head = [f"{size}x{size} image ({source}; the RGBA array is the same image with alpha 255); "
+            f"{pairs} single calls per side and input, alternating, each call on a freshly "
+            f"copied input (untimed) on both sides; medians. Same process: "
+            f"`_tessera_bench.encode` against the same C++ call (`compress_view`) timed in C++ "
+            f"by `native_encode_ms`, one process, one binary. Two processes: the installed "
+            f"module's `tessera.encode` against `compress_image` timed in `bench/encode_call.cpp "
+            f"--serve`.", "",
+            "| format | quality | threads | array | Python `encode` ms | same C++ call ms | "
+            "ratio | paired | `tessera.encode` ms | `encode_call` ms | ratio | CLI process ms | "
+            "same bytes |",
+            "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
+    # What the binding itself costs: the same-process comparison on an 8x8 image, where the
+    # encode is a few microseconds and the rest is the call.
+    small = {"RGB": img[:8, :8].copy()}
+    small["RGBA"] = with_alpha(small["RGB"])
+    small_npy = {}
+    for name, array in small.items():
+        small_npy[name] = str(tmp / f"small-{name}.npy")
+        np.save(small_npy[name], array)
     kw = dict(format="pvrtc1-4", quality="fast", threads=1)
-    py_ms, cpp_ms, _ = paired_calls(encode_call, tmp / "small.png",
-                                    {"RGB": small, "RGBA": with_alpha(small)}, kw, pairs)
-    cpp = statistics.median(cpp_ms) * 1e3
-    tail = ["", f"The binding's own cost, the same comparison on an 8x8 crop (pvrtc1-4, fast, 1 "
-            f"thread, {pairs} pairs): C++ call {cpp:.1f} µs; Python "
-            + ", ".join(f"{name} {statistics.median(v) * 1e3:.1f} µs "
-                        f"(+{statistics.median(v) * 1e3 - cpp:.1f} µs)"
-                        for name, v in py_ms.items()) + "."]
+    r = in_process_calls(bench_module, small_npy, kw, pairs)
+    parts = []
+    for name in small:
+        py_us = statistics.median(r["py"][name]) * 1e3
+        native_us = statistics.median(r["native"][name]) * 1e3
+        parts.append(f"{name} array: C++ {native_us:.1f} µs, Python {py_us:.1f} µs "
+                     f"(+{py_us - native_us:.1f} µs)")
+    tail = ["", f"The binding's own cost, the same-process comparison on an 8x8 crop (pvrtc1-4, "
+            f"fast, 1 thread, {pairs} pairs): " + "; ".join(parts) + "."]
     return "\n".join(head + rows + tail)
 
 
@@ -164,37 +237,90 @@ def make_tree(root, files, size):
                                                                  channels=4 if i % 2 else 3))
 
 
+# One process of the "no Dask" control: imports tessera, says so, then compresses the (src, out)
+# pairs it reads from stdin with tessera.batch's own task function and prints its times.
+_PLAIN_PROCESS = """
+import json, sys, time
+import tessera.batch as b
+print("ready", flush=True)
+jobs, quality = json.loads(sys.stdin.readline())
+options = b._check_options({"quality": quality}, "pvr", 1)
+t0 = time.time()
+results = [b.compress_one(s, o, options, "pvr", 1) for s, o in jobs]
+print(json.dumps({"start": t0, "end": time.time(), "own": sum(r["seconds"] for r in results),
+                  "done": sum(r["status"] == "done" for r in results)}), flush=True)
+"""
+
+
+def plain_processes(src, dst, processes, quality):
+    """The ceiling for Dask on this machine: `processes` Python processes, started and warm
+    before the clock starts, each compressing every `processes`-th file with
+    tessera.batch.compress_one. Returns the summary fields batch_table reads."""
+    jobs, _ = tessera.batch.plan(src, dst, "pvr")
+    procs = [subprocess.Popen([sys.executable, "-c", _PLAIN_PROCESS], stdin=subprocess.PIPE,
+                              stdout=subprocess.PIPE, text=True) for _ in range(processes)]
+    for proc in procs:
+        assert proc.stdout.readline().strip() == "ready"
+    for k, proc in enumerate(procs):
+        proc.stdin.write(json.dumps([jobs[k::processes], quality]) + "\n")
+        proc.stdin.flush()
+    out = [json.loads(proc.stdout.readline()) for proc in procs]
+    for proc in procs:
+        proc.stdin.close()
+        proc.wait()
+    return {"done": sum(o["done"] for o in out), "failed": len(jobs) - sum(o["done"] for o in out),
+            "seconds": max(o["end"] for o in out) - min(o["start"] for o in out),
+            "setup_seconds": 0.0, "own": sum(o["own"] for o in out)}
+
+
 def batch_table(cli, files, size, quality, rounds, tmp):
     src = tmp / "tree"
     make_tree(src, files, size)
-    # Four configurations, alternating in each round (1 and 2 workers, default task grouping
-    # and one task per file); the median over the rounds per configuration.
-    configs = [(1, None), (2, None), (2, 1), (1, 1)]
+    # Six configurations, alternating in each round (1 and 2 workers; guided task grouping, one
+    # task per file, and plain processes without Dask); the median over the rounds of each.
+    configs = [(1, None), (2, None), (1, "plain"), (2, "plain"), (2, 1), (1, 1)]
     times = {c: [] for c in configs}
     setup = {c: [] for c in configs}
+    busy = {c: [] for c in configs}  # the files' own seconds / (workers x wall seconds)
     outputs = {}
     for r in range(rounds):
         for workers, per_task in (configs if r % 2 == 0 else configs[::-1]):
             dst = tmp / f"out{workers}-{per_task}"
             shutil.rmtree(dst, ignore_errors=True)
-            s = tessera.batch.compress_tree(src, dst, workers=workers, quality=quality,
-                                            files_per_task=per_task)
+            own = []  # each file's seconds inside its task: read, encode, write, sidecar
+            if per_task == "plain":
+                s = plain_processes(src, dst, workers, quality)
+                own.append(s["own"])
+            else:
+                s = tessera.batch.compress_tree(src, dst, workers=workers, quality=quality,
+                                                files_per_task=per_task,
+                                                on_result=lambda res: own.append(res["seconds"]))
             assert s["done"] == files and s["failed"] == 0, s
             outputs[(workers, per_task)] = dst
             times[(workers, per_task)].append(s["seconds"])
             setup[(workers, per_task)].append(s["setup_seconds"])
+            busy[(workers, per_task)].append(sum(own) / (workers * s["seconds"]))
     mpx = files * size * size / 1e6
     med = {c: statistics.median(t) for c, t in times.items()}
     rows = []
-    for workers, per_task in [(1, None), (2, None), (1, 1), (2, 1)]:
+    for workers, per_task in [(1, None), (2, None), (1, 1), (2, 1), (1, "plain"), (2, "plain")]:
         c = (workers, per_task)
-        n = len(tessera.batch.group_jobs(list(range(files)), None, workers)[0])
-        grouping = "one task per file" if per_task == 1 else \
-            f"default grouping ({n} file{'s' if n > 1 else ''} per task)"
-        speed = f"**{med[(1, per_task)] / med[c]:.2f}x**" if workers == 2 else "1"
-        rows.append(f"| tessera.batch, LocalCluster {workers} worker(s) x 1 thread, {grouping} | "
+        n = len(tessera.batch.group_jobs(list(range(files)), None, workers))
+        if per_task == "plain":
+            what = (f"no Dask: {workers} warm Python process(es), `compress_one` over every "
+                    f"{'second ' if workers == 2 else ''}file")
+        else:
+            what = (f"tessera.batch, LocalCluster {workers} worker(s) x 1 thread, " +
+                    (f"guided grouping ({n} tasks)" if per_task is None else "one task per file"))
+        speed, paired = "1", ""
+        if workers == 2:
+            speed = f"**{med[(1, per_task)] / med[c]:.2f}x**"
+            by_round = [a / b for a, b in zip(times[(1, per_task)], times[c])]
+            paired = f"{statistics.median(by_round):.2f}x"
+        rows.append(f"| {what} | "
                     f"{statistics.median(setup[c]):.2f} | {med[c]:.2f} | "
-                    f"{' / '.join(f'{t:.2f}' for t in times[c])} | {mpx / med[c]:.2f} | {speed} |")
+                    f"{' / '.join(f'{t:.2f}' for t in times[c])} | {mpx / med[c]:.2f} | "
+                    f"{100 * statistics.median(busy[c]):.1f} % | {speed} | {paired} |")
     # The same files through the CLI, one process each, sequentially.
     dst = tmp / "outcli"
     jobs, _ = tessera.batch.plan(src, dst, "pvr")
@@ -204,7 +330,7 @@ def batch_table(cli, files, size, quality, rounds, tmp):
         run_cli(cli, "-j", 1, "compress", s_path, "-o", o_path, "--quality", quality)
     seconds = time.perf_counter() - t0
     rows.append(f"| `tessera -j 1 compress`, one process per file, sequential | 0 | "
-                f"{seconds:.2f} | {seconds:.2f} | {mpx / seconds:.2f} | |")
+                f"{seconds:.2f} | {seconds:.2f} | {mpx / seconds:.2f} | | | |")
     same = all(Path(o).read_bytes() == (out / Path(o).relative_to(dst)).read_bytes()
                for _, o in jobs for out in outputs.values())
     head = [f"{files} files of {size}x{size} (half RGB, half RGBA) in 20 folders, quality "
@@ -212,13 +338,15 @@ def batch_table(cli, files, size, quality, rounds, tmp):
             f"alternating; outputs byte-identical across all runs and the CLI: "
             f"{'yes' if same else 'NO'}:", "",
             "| run | cluster start s | compress s (median) | each round s | MPixel/s | "
-            "vs 1 worker |", "|---|---:|---:|---:|---:|---:|"]
+            "workers busy | vs 1 worker | paired |", "|---|---:|---:|---:|---:|---:|---:|---:|"]
     return "\n".join(head + rows)
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--cli", default=str(ROOT / "build" / "bin" / "tessera"))
+    p.add_argument("--bench-module", default=str(ROOT / "build" / "bench" / "python"),
+                   help="folder of the _tessera_bench module (TESSERA_BUILD_BENCH)")
     p.add_argument("--size", type=int, default=512)
     p.add_argument("--pairs", type=int, default=101,
                    help="single calls per side (and per input array) in each encode row")
@@ -242,7 +370,7 @@ def main():
     tmp = Path(tempfile.mkdtemp(prefix="tessera-bench-"))
     try:
         if not args.skip_encode:
-            print(encode_table(args.cli, args.size, args.pairs, tmp))
+            print(encode_table(args.cli, args.bench_module, args.size, args.pairs, tmp))
             print()
         if not args.skip_batch:
             print(batch_table(args.cli, args.files, args.file_size, args.quality,

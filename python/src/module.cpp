@@ -203,9 +203,20 @@ that is not a power of two) or tessera.Error.
 
 }  // namespace
 
+#ifdef TESSERA_PYTHON_BENCH_FUNCTIONS
+// bench/ builds these sources a second time, as `_tessera_bench` with the timing functions of
+// bench/python_native_calls.cpp added, so that a benchmark compares a Python call with the
+// same C++ call in one process and one binary (bench/CMakeLists.txt).
+void add_bench_functions(py::module_& m);
+#endif
+
 }  // namespace tessera::python
 
-PYBIND11_MODULE(_tessera, m) {
+#ifndef TESSERA_PYTHON_MODULE_NAME
+#define TESSERA_PYTHON_MODULE_NAME _tessera
+#endif
+
+PYBIND11_MODULE(TESSERA_PYTHON_MODULE_NAME, m) {
   using namespace tessera;
   using namespace tessera::python;
   using namespace pybind11::literals;
@@ -325,4 +336,7 @@ PYBIND11_MODULE(_tessera, m) {
         "psnr_rgb (None when identical), identical_rgb, mse, ssim_gray, max_abs, has_alpha, and "
         "psnr_alpha / mse_alpha when either has alpha; 'a' / 'b' hold the paths given as paths.",
         "a"_a, "b"_a, py::kw_only(), "threads"_a = 0);
+#ifdef TESSERA_PYTHON_BENCH_FUNCTIONS
+  add_bench_functions(m);
+#endif
 }
