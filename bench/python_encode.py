@@ -129,9 +129,10 @@ for n, a in inputs.items():  # warm-up
     sha[n] = hashlib.sha256(b.encode(a, **kw).to_bytes()).hexdigest()
     b.native_encode_ms(a, 1, **kw)
 for n, a in inputs.items():  # one input after the other (see in_process_calls)
+    fresh = np.empty_like(a)
     for i in range(pairs):
         for side in (("py", "native") if i % 2 == 0 else ("native", "py")):
-            fresh = a.copy()  # a freshly made input on both sides, the copy untimed
+            np.copyto(fresh, a)  # freshly written input on both sides, untimed, no allocation
             if side == "py":
                 t0 = time.perf_counter()
                 b.encode(fresh, **kw)
@@ -148,10 +149,11 @@ def in_process_calls(module_dir, npy, kw, pairs):
     ({name: .npy path}), alternating, the order flipping every pair. Returns {"py": {name:
     [ms]}, "native": {name: [ms]}, "sha256": {name: hex digest of the texture file}}.
 
-    The inputs take turns by input, not call by call: with RGB and RGBA calls interleaved, glibc
-    handed the RGB encode's 1 MiB RGBA buffer back to the kernel between calls on one side only
-    (192 page faults, +0.9 ms per 512x512 call), an effect of the call order on the heap that
-    the two sides share, not of the binding."""
+    Each call's input is rewritten into one buffer per input (not a new copy), and the inputs
+    take turns by input, not call by call: with a new array per call and RGB and RGBA calls
+    interleaved, glibc handed the RGB encode's 1 MiB RGBA buffer back to the kernel between
+    calls on one side only (192-438 page faults, +0.7-1.5 ms per 512x512 fast call), an effect
+    of the harness's allocations on the heap, not of the binding."""
     env = dict(os.environ, PYTHONPATH=str(module_dir))
     r = subprocess.run([sys.executable, "-c", _IN_PROCESS, json.dumps(npy), json.dumps(kw),
                         str(pairs)], env=env, capture_output=True, text=True, check=True)
