@@ -1,5 +1,5 @@
 // The C++ side of bench/python_encode.py's in-process comparison: built only into the bench
-// module `_tessera_bench` (the module's own sources plus this file, bench/CMakeLists.txt), so
+// module `_tessera_bench` (the module's own sources plus this file, python/CMakeLists.txt), so
 // that `_tessera_bench.encode(array, ...)` and the C++ call timed here run the same machine code
 // in the same process on the same heap, and differ only by what the binding does.
 #include <pybind11/pybind11.h>

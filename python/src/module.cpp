@@ -204,9 +204,9 @@ that is not a power of two) or tessera.Error.
 }  // namespace
 
 #ifdef TESSERA_PYTHON_BENCH_FUNCTIONS
-// bench/ builds these sources a second time, as `_tessera_bench` with the timing functions of
+// The build makes these sources a second time, as `_tessera_bench` with the timing functions of
 // bench/python_native_calls.cpp added, so that a benchmark compares a Python call with the
-// same C++ call in one process and one binary (bench/CMakeLists.txt).
+// same C++ call in one process and one binary (python/CMakeLists.txt).
 void add_bench_functions(py::module_& m);
 #endif
 
