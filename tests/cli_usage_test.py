@@ -72,7 +72,7 @@ TABLE = [
     (["decompress", pvr, "-o", os.path.join(tmp, "d.png"), "--level", "x"], 2,
      "--level: 'x' is not an integer"),
     (["decompress", png, "-o", os.path.join(tmp, "d.png")], 1,
-     "not a PVR v3 or KTX 1.1 texture"),
+     "not a PVR v3, KTX 1.1 or KTX 2.0 texture"),
     (["info"], 2, "tessera info: missing FILE"),
     (["info", missing], 1, "nonexist.png: cannot open: No such file or directory"),
     (["compare", png], 2, "tessera compare: missing B"),

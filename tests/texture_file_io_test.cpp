@@ -42,7 +42,7 @@ TEST(TextureFile, DetectsContainers) {
   EXPECT_EQ(container_from_extension("dir.pvr/x"), ContainerFormat::unknown);
   Result<CompressedTexture> r = parse_texture(Bytes{1, 2, 3, 4, 5}, "junk.bin");
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.status().message, "junk.bin: not a PVR v3 or KTX 1.1 texture (unrecognised magic)");
+  EXPECT_EQ(r.status().message, "junk.bin: not a PVR v3, KTX 1.1 or KTX 2.0 texture (unrecognised magic)");
 }
 
 TEST(TextureFile, ValidateRejectsInconsistentTextures) {

@@ -34,12 +34,28 @@ struct ImageComparison {
   double ssim_gray = 1.0;   ///< Mean SSIM on Rec.709 luma (see header comment). Spelt like
                             ///< the documented JSON / Python key `ssim_gray`, which it fills.
   int max_abs = 0;          ///< Largest absolute difference over all compared channels.
+
+  /// With `CompareOptions::premultiplied`: the error of colour x alpha, what a renderer that
+  /// blends shows. Each channel is c * a / 255 (not rounded) for both images; MSE and PSNR
+  /// (peak 255) over R, G, B as above.
+  bool has_premultiplied = false;
+  double mse_premultiplied = 0.0;
+  double psnr_premultiplied = 0.0;  ///< dB; +infinity when colour x alpha is identical.
+
+  /// With `CompareOptions::normal`: both images' RGB read as vectors (2 c / 255 - 1) and
+  /// normalised (a zero vector counts as +Z), the angle between them per texel, in degrees.
+  bool has_normal = false;
+  double angular_error_mean_deg = 0.0;
+  double angular_error_p99_deg = 0.0;  ///< 99th percentile (nearest rank).
+  double angular_error_max_deg = 0.0;
 };
 
 /// Options for `compare_images`.
 struct CompareOptions {
-  bool compute_ssim = true;  ///< SSIM is the expensive part; skip it when not needed.
-  int threads = 0;           ///< 0 = all hardware threads.
+  bool compute_ssim = true;    ///< SSIM is the expensive part; skip it when not needed.
+  int threads = 0;             ///< 0 = all hardware threads.
+  bool premultiplied = false;  ///< Also the error of colour x alpha (`psnr_premultiplied`).
+  bool normal = false;         ///< Also the angular error of normal maps (`angular_error_*`).
 };
 
 /// Compares `a` against `b`. Fails with `size_mismatch` when their sizes differ.

@@ -23,11 +23,30 @@
 
 namespace tessera::image {
 
+/// The kernel that makes each mip level from the one above (every one in linear light when
+/// `srgb`, alpha-weighted when `premultiply`).
+enum class MipFilter {
+  box,      ///< 2x2 box (2x1 / 1x2 once a side is 1): the default, and what GPUs' own
+            ///< glGenerateMipmap does.
+  lanczos,  ///< Separable Lanczos-3 windowed sinc, halving (support 6 texels of the level above
+            ///< each way), edges wrapped; sharper than box, may ring (clamped to [0, 255]).
+  kaiser,   ///< Separable Kaiser-windowed sinc (alpha 4, half-width 3 texels of the level above,
+            ///< as NVIDIA Texture Tools' kaiser), edges wrapped; less ringing than Lanczos.
+};
+
+/// "box", "lanczos", "kaiser".
+const char* mip_filter_name(MipFilter filter);
+
 /// How colour is filtered.
 struct MipmapOptions {
   bool srgb = true;         ///< Colour channels hold sRGB-encoded values: filter in linear light.
   bool premultiply = true;  ///< Weight colour by alpha when the image has alpha.
   int max_levels = 0;       ///< Levels to produce including level 0; 0 = down to 1x1.
+  MipFilter filter = MipFilter::box;  ///< The kernel of each level.
+  /// RGB holds unit vectors (x, y, z from [-1, 1] mapped to [0, 255]): levels are filtered as
+  /// vectors and renormalised (a vector that averages to zero becomes +Z); `srgb` and
+  /// `premultiply` do not apply to RGB then.
+  bool normal_map = false;
   int threads = 0;          ///< Worker threads (0 = all).
 };
 

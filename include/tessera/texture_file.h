@@ -1,22 +1,35 @@
-// tessera/texture_file.h — compressed texture containers: PVR v3 and KTX 1.1.
+// tessera/texture_file.h — compressed texture containers (PVR v3, KTX 1.1, KTX 2.0) and the
+// image-to-texture pipeline.
+//
+// A texture is a 2D texture, a cube map (6 faces), an array of either, with an optional mip
+// chain: every image of it shares one size, PVRTC format and colour space.
 //
 // Readers validate every size against the actual byte count before allocating (a lying header
 // gives `corrupt_data`, never a huge allocation) and return one-line errors naming the file.
-// Writers produce files PVRTexTool and OpenGL ES loaders accept; write them with
+// Writers produce files PVRTexTool and OpenGL ES / Vulkan loaders accept; write them with
 // `write_texture_file`, which is atomic.
 //
 // PVR v3 (what PVRTexTool writes): 52-byte little-endian header, a metadata block (tessera
-// writes PVRTexTool's 15-byte orientation entry and skips any metadata when reading), then the
-// levels, largest first, each `pvrtc::level_size` bytes. Pixel formats 0..3 (PVRTC1 2bpp RGB,
-// 2bpp RGBA, 4bpp RGB, 4bpp RGBA) are supported; depth, surfaces and faces must be 1.
-// Big-endian PVR files are rejected.
+// writes PVRTexTool's 15-byte orientation entry and skips any metadata when reading), then per
+// level, largest first, per surface (array layer), per face, one image of `pvrtc::level_size`
+// bytes. Pixel formats 0..3 (PVRTC1 2bpp RGB, 2bpp RGBA, 4bpp RGB, 4bpp RGBA) are supported;
+// depth must be 1, faces 1 or 6. Big-endian PVR files are rejected.
 //
 // KTX 1.1: 64-byte header, glType 0 / glFormat 0, glInternalFormat one of the
 // GL_IMG_texture_compression_pvrtc (0x8C00..0x8C03) or GL_EXT_pvrtc_sRGB (0x8A54..0x8A57)
 // formats, key/value data (tessera writes "KTXorientation" = "S=r,T=d"), then per level a
-// u32 imageSize and the data padded to 4 bytes. Both byte orders are read; files are written
-// little-endian. 2D textures only (no arrays, cube maps or 3D). Note: PVRTexTool 4.17 reads
-// the 0x8C0x formats but rejects the sRGB EXT ones, and itself writes sRGB data as 0x8C0x.
+// u32 imageSize and the level's images (array elements, then faces) padded to 4 bytes; for a
+// cube map that is not an array, imageSize is the size of one face, as the specification says
+// (and PVRTexTool writes). Both byte orders are read; files are written little-endian. No 3D
+// textures. Note: PVRTexTool 4.17 reads the 0x8C0x formats but rejects the sRGB EXT ones, and
+// itself writes sRGB data as 0x8C0x.
+//
+// KTX 2.0 (the Khronos container Vulkan, three.js and glTF pipelines read): vkFormat
+// VK_FORMAT_PVRTC1_{2,4}BPP_{UNORM,SRGB}_BLOCK_IMG, a Data Format Descriptor (colour model
+// PVRTC, transfer function, premultiplied flag), a level index (levels stored smallest first),
+// the key "KTXwriter", and optional Zstandard supercompression (`Ktx2Options`). KTX 2.0 has no
+// RGB/RGBA distinction for PVRTC: a file read back has alpha when any block can decode a
+// texel with alpha below 255 (a translucent endpoint or a 4 bpp punch-through texel).
 #pragma once
 
 #include <cstdint>
@@ -25,97 +38,189 @@
 #include <vector>
 
 #include "tessera/core.h"
+#include "tessera/mipmap.h"
 #include "tessera/pvrtc.h"
 
 namespace tessera::texture_file {
 
-/// A PVRTC texture with its mip chain (level 0 first).
+/// A PVRTC texture: a 2D texture, a cube map, or an array of either, with its mip chain.
 struct CompressedTexture {
   pvrtc::Format format = pvrtc::Format::pvrtc1_4bpp;
   int width = 0;
   int height = 0;
   bool has_alpha = true;       ///< RGBA (true) or RGB pixel format code in the container.
   bool srgb = false;           ///< Colour space flag (PVR v3 colour space / KTX sRGB format).
-  bool premultiplied = false;  ///< PVR v3 flag 0x02.
-  std::vector<std::vector<std::uint8_t>> levels;  ///< Level i is (width>>i) x (height>>i), min 1.
+  bool premultiplied = false;  ///< Colour is premultiplied by alpha (PVR v3 flag 0x02, KTX 2.0
+                               ///< DFD flag ALPHA_PREMULTIPLIED; KTX 1.1 cannot say it).
+  int faces = 1;               ///< 1, or 6 for a cube map: +X, -X, +Y, -Y, +Z, -Z.
+  int layers = 1;              ///< Array layers (PVR v3 surfaces); 1 unless `array`.
+  bool array = false;          ///< An array texture (KTX numberOfArrayElements = layers), even
+                               ///< with one layer; PVR v3 cannot tell an array of one from a
+                               ///< plain texture and reads back `array` = layers > 1.
+  /// Level i (level 0 first) holds `image_count()` images of level_width(i) x level_height(i),
+  /// each `pvrtc::level_size` bytes, layer-major then face (the order of PVR v3 and KTX):
+  /// image (layer, face) starts at byte (layer * faces + face) * image_size(i).
+  std::vector<std::vector<std::uint8_t>> levels;
 
   int level_count() const { return int(levels.size()); }
   int level_width(int level) const;
   int level_height(int level) const;
+  bool is_cube() const { return faces == 6; }
+  /// Images per level: faces x layers.
+  int image_count() const { return faces * layers; }
+  /// Bytes of one image of `level`.
+  std::size_t image_size(int level) const;
+  /// The bytes of image (layer, face) of `level`; all three must be in range (unchecked
+  /// beyond a debug check: see `check_image_index`).
+  std::span<const std::uint8_t> image(int level, int layer = 0, int face = 0) const;
 };
 
-/// Checks a texture before it is written: power-of-two size, 1..mip_level_count levels, every
-/// level exactly `pvrtc::level_size` bytes. `what` names it in the message.
+/// Checks that (level, layer, face) names an image of `texture`; the message names the
+/// out-of-range one and the valid range ("face 6 is out of range (the cube map has faces 0 to
+/// 5)").
+Status check_image_index(const CompressedTexture& texture, int level, int layer, int face);
+
+/// Checks a texture before it is written: power-of-two size (square for a cube map), 1 or 6
+/// faces, 1..kMaxTextureImages images, 1..mip_level_count levels, every level exactly
+/// `image_count() * pvrtc::level_size` bytes. `what` names it in the message.
 Status validate_texture(const CompressedTexture& texture, const std::string& what);
 
-/// Decodes level `level` to RGBA8. RGB formats (has_alpha false) decode with alpha forced to
-/// 255 and `has_alpha` false. Fails with invalid_argument when `level` is out of range.
+/// Most images (faces x layers) a texture may hold: PVRTexTool's and Vulkan's usual array
+/// limit, and a bound readers check before they allocate.
+inline constexpr int kMaxTextureImages = 2048 * 6;
+
+/// Decodes image (layer, face) of `level` to RGBA8. RGB formats (has_alpha false) decode with
+/// alpha forced to 255 and `has_alpha` false. Fails with invalid_argument (see
+/// `check_image_index`) when an index is out of range.
+Result<ImageRGBA8> decode_texture_image(const CompressedTexture& texture, int level, int layer,
+                                        int face, const Parallel& parallel = {});
+/// `decode_texture_image(texture, level, 0, 0)`: level `level` of a 2D texture.
 Result<ImageRGBA8> decode_texture_level(const CompressedTexture& texture, int level,
                                         const Parallel& parallel = {});
+
+/// "2D texture", "cube map", "array of 3 layers", "cube map array of 2 layers".
+std::string texture_shape_name(const CompressedTexture& texture);
 
 /// Human-readable name of a PVRTC format ("PVRTC1 4bpp RGBA", ...).
 std::string texture_format_name(const CompressedTexture& texture);
 
 /// Options of the whole image-to-texture pipeline that `tessera compress`, its batch mode, the
-/// Python module and `tessera.batch` share, so all of them write the same bytes.
+/// Python module and `tessera.batch` share, so all of them write the same bytes. The steps, in
+/// order, for every image: `flip_y`, alpha detection, resampling (`resize_pot`), `normal_map`
+/// renormalisation, `premultiply`, the mip chain (`mipmaps`, `mip_levels`, `mip_filter`),
+/// `alpha_bleed` of every level, and the encodes.
 struct CompressOptions {
   /// Format, quality, schedule overrides, threads. Its `progress` hook, if set, follows the
-  /// whole chain (each level weighted by its pixels), on the calling thread, ending at 1.0.
+  /// whole texture (each image and level weighted by its pixels), on the calling thread,
+  /// ending at 1.0.
   pvrtc::EncodeOptions encode;
-  bool mipmaps = false;     ///< Encode the full chain (2x2 box, alpha-weighted).
-  bool srgb = false;        ///< Mark the texture sRGB and filter (mips, resize) in linear light.
+  bool mipmaps = false;     ///< Encode a mip chain (see `mip_levels`, `mip_filter`).
+  int mip_levels = 0;       ///< With `mipmaps`: at most this many levels, level 0 included
+                            ///< (0 = down to 1x1).
+  image::MipFilter mip_filter = image::MipFilter::box;  ///< How each level is made (mipmap.h).
+  bool srgb = false;        ///< Mark the texture sRGB and filter (mips, resize, premultiply) in
+                            ///< linear light.
   bool resize_pot = false;  ///< Resample non-power-of-two input (Lanczos-3); else it is an error.
+  bool flip_y = false;      ///< Flip every image upside down first (row 0 becomes the last), for
+                            ///< pipelines whose texture origin is bottom-left.
+  /// Multiply colour by alpha (in linear light with `srgb`) and mark the texture premultiplied.
+  /// Images without alpha are left as they are (the CLI warns).
+  bool premultiply = false;
+  /// Give every fully transparent texel (alpha 0) the colour of the nearest visible one
+  /// (`image::bleed_alpha`), so that PVRTC's block interpolation and texture filtering do not
+  /// pull invisible colours into visible edges. Straight alpha only: with `premultiply` it is
+  /// an invalid_argument error (transparent texels are black there already).
+  bool alpha_bleed = false;
+  /// The input's RGB is a unit vector, x, y, z mapped from [-1, 1] to [0, 255]: each texel is
+  /// renormalised, mip levels are averaged as vectors and renormalised, and the texture is never
+  /// sRGB (with `srgb` it is an invalid_argument error).
+  bool normal_map = false;
 };
 
-/// What `compress_image` made.
+/// How the images given to `compress_images` form one texture.
+struct TextureShape {
+  int faces = 1;       ///< 1, or 6 for a cube map (faces +X, -X, +Y, -Y, +Z, -Z).
+  bool array = false;  ///< The images (groups of `faces`) are the layers of an array texture.
+};
+
+/// What `compress_image` / `compress_images` made.
 struct CompressedImage {
   CompressedTexture texture;
-  ImageRGBA8 source;      ///< Level 0 as encoded: the input after alpha detection and resizing.
+  /// Level 0 of every image as encoded (after flipping, resizing, premultiplication and
+  /// bleeding), layer-major then face: what the texture's level 0 approximates.
+  std::vector<ImageRGBA8> sources;
   bool resized = false;   ///< The input was not a power of two and was resampled.
-  double encode_ms = 0;   ///< Wall time of the encodes (all levels), milliseconds.
+  double encode_ms = 0;   ///< Wall time of the encodes (all images and levels), milliseconds.
 };
 
 /// Compresses one decoded image: an alpha channel that is 255 everywhere gives an RGB texture;
 /// a non-power-of-two size is an `invalid_argument` error naming `name` and the size to
-/// resample to (or is resampled with `resize_pot`); then the mip chain (when asked) and every
-/// level's encode. Deterministic: the same image and options give the same texture for any
-/// `encode.threads`.
+/// resample to (or is resampled with `resize_pot`); then the steps of `CompressOptions`.
+/// Deterministic: the same image and options give the same texture for any `encode.threads`.
 Result<CompressedImage> compress_image(ImageRGBA8 image, const CompressOptions& options,
                                        const std::string& name);
 
+/// Compresses a cube map, an array or a cube map array: `images` are the faces and layers,
+/// layer-major then face (`shape.faces` per layer; without `shape.array` exactly `shape.faces`
+/// images). All must have one size (square for a cube map); each is encoded as
+/// `compress_image` would encode it alone, and the texture has alpha when any image does.
+/// `names[i]` names image i in messages ("b.png: 128x64, but a.png is 256x256 (every face and
+/// layer needs one size)").
+Result<CompressedImage> compress_images(std::vector<ImageRGBA8> images, const TextureShape& shape,
+                                        const CompressOptions& options,
+                                        std::span<const std::string> names);
+
 /// The same texture as `compress_image(to_image(image), options, name).texture`, from pixels
-/// the caller owns: a power-of-two view without a mip chain is encoded where it lies (packed
-/// RGBA read in place, other layouts packed in one pass; see `pvrtc::encode`), so no copy of
-/// the image precedes the encode; otherwise the view is copied once into the owning pipeline.
-/// This is the call `tessera.encode` makes on a numpy array.
+/// the caller owns: a power-of-two view without a mip chain and without preprocessing (flip,
+/// premultiply, bleed, normal map) is encoded where it lies (packed RGBA read in place, other
+/// layouts packed in one pass; see `pvrtc::encode`), so no copy of the image precedes the
+/// encode; otherwise the view is copied once into the owning pipeline. This is the call
+/// `tessera.encode` makes on a numpy array.
 Result<CompressedTexture> compress_view(const ImageView8& image, const CompressOptions& options,
                                         const std::string& name);
 
 /// Container formats.
-enum class ContainerFormat { unknown, pvr3, ktx1 };
+enum class ContainerFormat { unknown, pvr3, ktx1, ktx2 };
 
-/// "PVR v3", "KTX 1.1" or "unknown".
+/// "PVR v3", "KTX 1.1", "KTX 2.0" or "unknown".
 const char* container_name(ContainerFormat format);
 
-/// Detects PVR v3 / KTX 1.1 by magic.
+/// Detects PVR v3 / KTX 1.1 / KTX 2.0 by magic.
 ContainerFormat detect_container(std::span<const std::uint8_t> bytes);
-/// Chooses by file extension (.pvr, .ktx; case-insensitive); unknown otherwise.
+/// Chooses by file extension (.pvr, .ktx, .ktx2; case-insensitive); unknown otherwise.
 ContainerFormat container_from_extension(const std::string& path);
 
-/// Parses a PVR v3 / KTX 1.1 file held in memory. Safe on arbitrary input: every size is
-/// checked against `bytes.size()` before anything is allocated. `name` prefixes messages.
+/// How a KTX 2.0 file is written.
+struct Ktx2Options {
+  /// Zstandard supercompression of every level (supercompressionScheme 2) at this zstd level,
+  /// 1 to 22; 0 = none.
+  int zstd_level = 0;
+};
+
+/// Parses a PVR v3 / KTX 1.1 / KTX 2.0 file held in memory. Safe on arbitrary input: every
+/// size is checked against `bytes.size()` before anything is allocated (and, for KTX 2.0 with
+/// zstd, every level's decompressed size against what its header promises). `name` prefixes
+/// messages.
 Result<CompressedTexture> parse_pvr3(std::span<const std::uint8_t> bytes, const std::string& name);
 Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const std::string& name);
-/// Parses either container (chosen by magic); unknown magic gives corrupt_data.
+Result<CompressedTexture> parse_ktx2(std::span<const std::uint8_t> bytes, const std::string& name);
+/// Parses any of the three (chosen by magic); unknown magic gives corrupt_data.
 Result<CompressedTexture> parse_texture(std::span<const std::uint8_t> bytes,
                                         const std::string& name);
 /// Serialises a texture (validated with `validate_texture` first).
 Result<std::vector<std::uint8_t>> serialise_pvr3(const CompressedTexture& texture);
 Result<std::vector<std::uint8_t>> serialise_ktx1(const CompressedTexture& texture);
+Result<std::vector<std::uint8_t>> serialise_ktx2(const CompressedTexture& texture,
+                                                 const Ktx2Options& options = {});
+/// Serialises in `container` (pvr3, ktx1 or ktx2; `ktx2` options apply to KTX 2.0 only).
+Result<std::vector<std::uint8_t>> serialise_texture(const CompressedTexture& texture,
+                                                    ContainerFormat container,
+                                                    const Ktx2Options& ktx2 = {});
 
-/// Reads a .pvr or .ktx file (format by magic).
+/// Reads a .pvr, .ktx or .ktx2 file (format by magic).
 Result<CompressedTexture> read_texture_file(const std::string& path);
-/// Writes by extension (.pvr or .ktx), atomically.
-Status write_texture_file(const std::string& path, const CompressedTexture& texture);
+/// Writes by extension (.pvr, .ktx or .ktx2), atomically.
+Status write_texture_file(const std::string& path, const CompressedTexture& texture,
+                          const Ktx2Options& ktx2 = {});
 
 }  // namespace tessera::texture_file

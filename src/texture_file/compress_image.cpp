@@ -109,9 +109,9 @@ Result<CompressedImage> compress_image(ImageRGBA8 image, const CompressOptions& 
   out.encode_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (options.mipmaps) {
-    out.source = std::move(mips.front());
+    out.sources.push_back(std::move(mips.front()));
   } else {
-    out.source = std::move(image);
+    out.sources.push_back(std::move(image));
   }
   return out;
 }

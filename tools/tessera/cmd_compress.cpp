@@ -119,7 +119,7 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
   if (!decoded) return fail(decoded.status());
   metrics::CompareOptions co;
   co.threads = global.threads;
-  Result<metrics::ImageComparison> cmp = metrics::compare_images(made->source, *decoded, co);
+  Result<metrics::ImageComparison> cmp = metrics::compare_images(made->sources.front(), *decoded, co);
   if (!cmp) return fail(cmp.status());
   std::FILE* out = text_stream(args.output == "-");
   const std::string output_name = io::io_name(args.output, true);

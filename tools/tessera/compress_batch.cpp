@@ -190,7 +190,7 @@ Outcome run_job(const Job& job, const CompressArgs& args, const std::string& con
     co.threads = threads;
     if (decoded) {
       if (Result<metrics::ImageComparison> cmp =
-              metrics::compare_images(made->source, *decoded, co)) {
+              metrics::compare_images(made->sources.front(), *decoded, co)) {
         o.psnr_rgb = cmp->psnr_rgb;
         o.ssim_gray = cmp->ssim_gray;
         o.psnr_alpha = cmp->psnr_alpha;
