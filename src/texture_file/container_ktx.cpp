@@ -114,13 +114,18 @@ Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const 
     return unsupported(name, "3D textures (pixelDepth " + std::to_string(depth) +
                                  ") are not supported");
   }
-  if (array_elements != 0) {
-    return unsupported(name, "texture arrays (" + std::to_string(array_elements) +
-                                 " elements) are not supported");
+  if (faces != 1 && faces != 6) {
+    return unsupported(name, std::to_string(faces) +
+                                 " faces are not supported (1, or 6 for a cube map)");
   }
-  if (faces != 1) {
-    return unsupported(name,
-                       std::to_string(faces) + " faces (cube maps) are not supported (only 1)");
+  if (array_elements > std::uint32_t(kMaxTextureImages) / faces) {
+    return corrupt(name, std::to_string(array_elements) + " array elements: at most " +
+                             std::to_string(std::uint32_t(kMaxTextureImages) / faces) +
+                             " supported");
+  }
+  if (faces == 6 && width != height) {
+    return corrupt(name, "cube map faces of " + std::to_string(width) + "x" +
+                             std::to_string(height) + " are not square");
   }
   if (width == 0) return corrupt(name, "zero width");
   if (Status s = check_image_size(width, height, name); !s.ok()) return s;
@@ -161,11 +166,17 @@ Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const 
   tex.srgb = fmt->srgb;
   tex.width = int(width);
   tex.height = int(height);
+  tex.faces = int(faces);
+  tex.array = array_elements != 0;
+  tex.layers = tex.array ? int(array_elements) : 1;
+  // A cube map that is not an array stores each face with its own padding, and imageSize is
+  // the size of one face; otherwise imageSize is the whole level.
+  const bool face_by_face = faces == 6 && !tex.array;
+  const std::size_t images = std::size_t(tex.image_count());
   std::size_t at = kHeaderSize + kv_bytes;
   tex.levels.reserve(mip_levels);
   for (int i = 0; i < int(mip_levels); ++i) {
-    const std::size_t expected =
-        pvrtc::level_size(tex.format, tex.level_width(i), tex.level_height(i));
+    const std::size_t expected = tex.image_size(i) * (face_by_face ? 1 : images);
     if (bytes.size() - at < 4) {
       return corrupt(name, "truncated: level " + std::to_string(i) + " of " +
                                std::to_string(mip_levels) + " is missing (file ends at byte " +
@@ -178,17 +189,23 @@ Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const 
                                std::to_string(image_size) + " does not match " +
                                std::to_string(tex.level_width(i)) + "x" +
                                std::to_string(tex.level_height(i)) + " PVRTC (" +
-                               plural_bytes(expected) + ")");
+                               plural_bytes(expected) +
+                               (face_by_face ? " per face)" : images > 1 ? " per level)" : ")"));
     }
-    if (bytes.size() - at < expected) {
-      return corrupt(name, "truncated: level " + std::to_string(i) + " needs " +
-                               plural_bytes(expected) + ", file has " +
-                               plural_bytes(bytes.size() - at));
+    std::vector<std::uint8_t> level;
+    for (std::size_t part = 0; part < (face_by_face ? images : 1); ++part) {
+      if (bytes.size() - at < expected) {
+        return corrupt(name, "truncated: level " + std::to_string(i) +
+                                 (face_by_face ? " face " + std::to_string(part) : "") +
+                                 " needs " + plural_bytes(expected) + ", file has " +
+                                 plural_bytes(bytes.size() - at));
+      }
+      level.insert(level.end(), bytes.begin() + std::ptrdiff_t(at),
+                   bytes.begin() + std::ptrdiff_t(at + expected));
+      at += expected;
+      at += std::min(pad4(expected), bytes.size() - at);  // cube padding, or mip padding
     }
-    tex.levels.emplace_back(bytes.begin() + std::ptrdiff_t(at),
-                            bytes.begin() + std::ptrdiff_t(at + expected));
-    at += expected;
-    at += std::min(pad4(expected), bytes.size() - at);
+    tex.levels.push_back(std::move(level));
   }
   if (at != bytes.size()) {
     return corrupt(name, plural_bytes(bytes.size() - at) + " of unexpected data after the " +
@@ -220,15 +237,26 @@ Result<std::vector<std::uint8_t>> serialise_ktx1(const CompressedTexture& textur
   container::store_u32(out, std::uint32_t(texture.width));
   container::store_u32(out, std::uint32_t(texture.height));
   container::store_u32(out, 0);  // pixelDepth
-  container::store_u32(out, 0);  // numberOfArrayElements
-  container::store_u32(out, 1);  // numberOfFaces
+  container::store_u32(out, texture.array ? std::uint32_t(texture.layers) : 0u);
+  container::store_u32(out, std::uint32_t(texture.faces));
   container::store_u32(out, std::uint32_t(texture.levels.size()));
   container::store_u32(out, kv_bytes);
   container::store_u32(out, kv_size);
   out.insert(out.end(), kKey, kKey + sizeof kKey);
   out.insert(out.end(), kValue, kValue + sizeof kValue);
   out.insert(out.end(), pad4(kv_size), 0);
-  for (const auto& l : texture.levels) {
+  const bool face_by_face = texture.is_cube() && !texture.array;
+  for (int i = 0; i < texture.level_count(); ++i) {
+    const std::vector<std::uint8_t>& l = texture.levels[std::size_t(i)];
+    if (face_by_face) {  // imageSize of one face; each face padded (PVRTC sizes need none)
+      container::store_u32(out, std::uint32_t(texture.image_size(i)));
+      for (int f = 0; f < texture.faces; ++f) {
+        const std::span<const std::uint8_t> face = texture.image(i, 0, f);
+        out.insert(out.end(), face.begin(), face.end());
+        out.insert(out.end(), pad4(face.size()), 0);
+      }
+      continue;
+    }
     container::store_u32(out, std::uint32_t(l.size()));
     out.insert(out.end(), l.begin(), l.end());
     out.insert(out.end(), pad4(l.size()), 0);

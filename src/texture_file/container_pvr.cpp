@@ -2,7 +2,8 @@
 //
 // Header, 52 bytes little-endian: version, flags, pixel format (u64), colour space, channel
 // type, height, width, depth, surfaces, faces, mip count, metadata size; then the metadata
-// block and the levels, largest first. Every field is checked before it is used to size
+// block and the levels, largest first, each holding its surfaces (array layers), each of
+// those its faces. PVR v3 has no array flag: more than one surface reads back as an array. Every field is checked before it is used to size
 // anything, and the level data must match the header exactly (no missing or trailing bytes).
 #include <string>
 
@@ -104,13 +105,18 @@ Result<CompressedTexture> parse_pvr3(std::span<const std::uint8_t> bytes, const 
     return unsupported(name, "depth " + std::to_string(depth) +
                                  " is not supported (3D textures; only depth 1)");
   }
-  if (surfaces != 1) {
-    return unsupported(name, std::to_string(surfaces) +
-                                 " surfaces (texture arrays) are not supported (only 1)");
+  if (faces != 1 && faces != 6) {
+    return unsupported(name, std::to_string(faces) +
+                                 " faces are not supported (1, or 6 for a cube map)");
   }
-  if (faces != 1) {
-    return unsupported(name,
-                       std::to_string(faces) + " faces (cube maps) are not supported (only 1)");
+  if (surfaces == 0 || surfaces > std::uint32_t(kMaxTextureImages) / faces) {
+    return corrupt(name, std::to_string(surfaces) + " surfaces (array layers): 1 to " +
+                             std::to_string(std::uint32_t(kMaxTextureImages) / faces) +
+                             " supported");
+  }
+  if (faces == 6 && width != height) {
+    return corrupt(name, "cube map faces of " + std::to_string(width) + "x" +
+                             std::to_string(height) + " are not square");
   }
   if (width == 0 || height == 0) {
     return corrupt(name, "zero size " + std::to_string(width) + "x" + std::to_string(height));
@@ -137,12 +143,13 @@ Result<CompressedTexture> parse_pvr3(std::span<const std::uint8_t> bytes, const 
   tex.premultiplied = (flags & kFlagPremultiplied) != 0;
   tex.width = int(width);
   tex.height = int(height);
+  tex.faces = int(faces);
+  tex.layers = int(surfaces);
+  tex.array = surfaces > 1;
+  const std::uint64_t images = std::uint64_t(tex.image_count());
 
   std::uint64_t needed = 0;
-  for (int i = 0; i < int(mip_count); ++i) {
-    needed += pvrtc::level_size(tex.format, mip_dimension(tex.width, i),
-                                mip_dimension(tex.height, i));
-  }
+  for (int i = 0; i < int(mip_count); ++i) needed += images * tex.image_size(i);
   const std::size_t data_start = kHeaderSize + metadata_size;
   const std::size_t available = bytes.size() - data_start;
   if (available < needed) {
@@ -158,7 +165,7 @@ Result<CompressedTexture> parse_pvr3(std::span<const std::uint8_t> bytes, const 
   std::size_t at = data_start;
   tex.levels.reserve(mip_count);
   for (int i = 0; i < int(mip_count); ++i) {
-    const std::size_t n = pvrtc::level_size(tex.format, tex.level_width(i), tex.level_height(i));
+    const std::size_t n = std::size_t(images) * tex.image_size(i);
     tex.levels.emplace_back(bytes.begin() + std::ptrdiff_t(at),
                             bytes.begin() + std::ptrdiff_t(at + n));
     at += n;
@@ -182,8 +189,8 @@ Result<std::vector<std::uint8_t>> serialise_pvr3(const CompressedTexture& textur
   container::store_u32(out, std::uint32_t(texture.height));
   container::store_u32(out, std::uint32_t(texture.width));
   container::store_u32(out, 1);  // depth
-  container::store_u32(out, 1);  // surfaces
-  container::store_u32(out, 1);  // faces
+  container::store_u32(out, std::uint32_t(texture.layers));  // surfaces
+  container::store_u32(out, std::uint32_t(texture.faces));
   container::store_u32(out, std::uint32_t(texture.levels.size()));
   container::store_u32(out, 15);  // metadata size
   // PVRTexTool's orientation metadata: FourCC "PVR\3", key 3, 3 bytes (x, y, z) = 0:

@@ -26,117 +26,204 @@ nlohmann::json db_or_null(double v) {
 
 std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
+bool is_folder(const std::string& output) {
+  std::error_code ec;
+  return output != "-" && (output.ends_with('/') || fs::is_directory(output, ec));
+}
+
 bool is_batch(const CompressArgs& args) {
+  // --cube / --array: the inputs are one texture unless -o names a folder.
+  if (args.cube || args.array) return is_folder(args.output);
   if (args.inputs.size() != 1) return true;
   const std::string& in = args.inputs.front();
   std::error_code ec;
   if (in.starts_with('@') || (in != "-" && fs::is_directory(in, ec))) return true;
-  if (args.output.ends_with('/')) return true;
-  return args.output != "-" && fs::is_directory(args.output, ec);
+  return is_folder(args.output);
+}
+
+std::int64_t mtime_ns(const struct stat& st) {
+  return std::int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
 }
 
 nlohmann::json sidecar_json(const CompressArgs& args, const std::string& container,
-                            const std::string& input) {
-  struct stat st {};
-  if (::stat(input.c_str(), &st) != 0) return nullptr;
-  return {{"tessera", TESSERA_VERSION_STRING},
-          {"container", container},
-          {"options",
-           {{"exact_search_rounds", args.exact_search_rounds},
-            {"format", args.format},
-            {"iterations", args.iterations},
-            {"mipmaps", args.mipmaps},
-            {"quality", args.quality},
-            {"resize_pot", args.resize_pot},
-            {"srgb", args.srgb}}},
-          {"input_size", std::int64_t(st.st_size)},
-          {"input_mtime_ns", std::int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec}};
+                            const std::vector<std::string>& inputs) {
+  nlohmann::json j = {
+      {"tessera", TESSERA_VERSION_STRING},
+      {"container", container},
+      {"options",
+       {{"exact_search_rounds", args.exact_search_rounds},
+        {"format", args.format},
+        {"iterations", args.iterations},
+        {"mipmaps", args.mipmaps},
+        {"quality", args.quality},
+        {"resize_pot", args.resize_pot},
+        {"srgb", args.srgb}}}};
+  // Options added later are recorded only when they are not their defaults, so the records of
+  // plain runs (and the Python batch's, which writes the same keys) stay as they were.
+  nlohmann::json& o = j["options"];
+  if (args.mip_levels) o["mip_levels"] = args.mip_levels;
+  if (args.mip_filter != "box") o["mip_filter"] = args.mip_filter;
+  if (args.flip_y) o["flip_y"] = true;
+  if (args.premultiply) o["premultiply"] = true;
+  if (args.alpha_bleed) o["alpha_bleed"] = true;
+  if (args.normal_map) o["normal_map"] = true;
+  if (args.zstd) o["zstd"] = args.zstd;
+  if (args.cube) o["cube"] = true;
+  if (args.array) o["array"] = true;
+  if (inputs.size() == 1) {
+    struct stat st {};
+    if (::stat(inputs.front().c_str(), &st) != 0) return nullptr;
+    j["input_size"] = std::int64_t(st.st_size);
+    j["input_mtime_ns"] = mtime_ns(st);
+    return j;
+  }
+  nlohmann::json list = nlohmann::json::array();
+  for (const std::string& in : inputs) {
+    struct stat st {};
+    if (::stat(in.c_str(), &st) != 0) return nullptr;
+    list.push_back({{"path", in}, {"size", std::int64_t(st.st_size)}, {"mtime_ns", mtime_ns(st)}});
+  }
+  j["inputs"] = list;
+  return j;
 }
 
+}  // namespace
+
+Result<metrics::ImageComparison> measure_level0(const texture_file::CompressedImage& made,
+                                                int threads) {
+  const texture_file::CompressedTexture& tex = made.texture;
+  metrics::ImageComparison total;
+  metrics::CompareOptions co;
+  co.threads = threads;
+  int n = 0;
+  for (int layer = 0; layer < tex.layers; ++layer) {
+    for (int face = 0; face < tex.faces; ++face, ++n) {
+      Result<ImageRGBA8> decoded =
+          texture_file::decode_texture_image(tex, 0, layer, face, {threads});
+      if (!decoded) return decoded.status();
+      Result<metrics::ImageComparison> c =
+          metrics::compare_images(made.sources[std::size_t(n)], *decoded, co);
+      if (!c) return c.status();
+      total.mse_rgb += c->mse_rgb;
+      total.mse_alpha += c->mse_alpha;
+      total.has_alpha = total.has_alpha || c->has_alpha;
+      total.ssim_gray = n == 0 ? c->ssim_gray : total.ssim_gray + c->ssim_gray;
+      total.max_abs = std::max(total.max_abs, c->max_abs);
+    }
+  }
+  total.mse_rgb /= n;
+  total.mse_alpha /= n;
+  total.ssim_gray /= n;
+  total.psnr_rgb = metrics::psnr_from_mse(total.mse_rgb);
+  total.psnr_alpha = metrics::psnr_from_mse(total.mse_alpha);
+  return total;
+}
+
+namespace {
+
 int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
-  const std::string& input = args.inputs.front();
   texture_file::ContainerFormat container = texture_file::container_from_extension(args.output);
   if (!args.container.empty()) {
-    container = args.container == "ktx" ? texture_file::ContainerFormat::ktx1
-                                        : texture_file::ContainerFormat::pvr3;
+    container = container_of(args.container);
   } else if (args.output == "-") {
     container = texture_file::ContainerFormat::pvr3;
   }
   if (container == texture_file::ContainerFormat::unknown) {
     return usage_error(args.output +
-                       ": unknown output extension (use .pvr or .ktx, or --container pvr|ktx)");
+                       ": unknown output extension (use .pvr, .ktx or .ktx2, or --container "
+                       "pvr|ktx|ktx2)");
+  }
+  const std::string container_word = container == texture_file::ContainerFormat::ktx1   ? "ktx"
+                                     : container == texture_file::ContainerFormat::ktx2 ? "ktx2"
+                                                                                        : "pvr";
+  if (std::string problem = compress_usage_problem(args, container_word); !problem.empty()) {
+    return usage_error(problem);
+  }
+  if (std::count(args.inputs.begin(), args.inputs.end(), "-") > 1) {
+    return usage_error("'-' (stdin) can be only one of the inputs");
   }
   if (int rc = refuse_binary_to_terminal(args.output, "a compressed texture")) return rc;
-  const std::string container_word =
-      container == texture_file::ContainerFormat::ktx1 ? "ktx" : "pvr";
-  if (args.skip_up_to_date && up_to_date(args, container_word, input, args.output)) {
+  if (args.skip_up_to_date && up_to_date(args, container_word, args.inputs, args.output)) {
     if (!args.quiet) {
       std::fprintf(text_stream(args.json), "skipped %s: up to date\n", args.output.c_str());
     }
     return kExitOk;
   }
-  const std::string input_name = io::io_name(input);
-  Result<ImageRGBA8> loaded = io::read_image(input);
-  if (!loaded) return fail(loaded.status());
+  std::vector<std::string> names;
+  std::vector<ImageRGBA8> images;
+  for (const std::string& input : args.inputs) {
+    names.push_back(io::io_name(input));
+    Result<ImageRGBA8> loaded = io::read_image(input);
+    if (!loaded) return fail(loaded.status());
+    if (args.premultiply && !args.quiet && !loaded->has_alpha) {
+      std::fprintf(stderr, "tessera: warning: %s has no alpha channel: --premultiply leaves it "
+                   "as it is\n", names.back().c_str());
+    }
+    images.push_back(std::move(loaded).value());
+  }
   texture_file::CompressOptions options = compress_options(args, global.threads);
   // A progress bar on a terminal for an encode that takes a while (from 0.5 s on; never with
-  // -q or --json): the encoder's progress over the whole mip chain.
+  // -q or --json): the encoder's progress over every image and level.
   const bool show_progress = !args.quiet && !args.json && ::isatty(STDERR_FILENO);
   ProgressBar bar(show_progress, 0.5);
   if (show_progress) {
-    double mpixels = 0;  // of the whole chain, for the rate
-    for (int w = loaded->width, h = loaded->height;; w = std::max(1, w / 2),
-             h = std::max(1, h / 2)) {
-      mpixels += double(w) * double(h) / 1e6;
-      if (!args.mipmaps || (w == 1 && h == 1)) break;
+    double mpixels = 0;  // of every chain, for the rate
+    const int cap = args.mip_levels > 0 ? args.mip_levels : 1 << 30;
+    for (const ImageRGBA8& im : images) {
+      int level = 0;
+      for (int w = im.width, h = im.height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
+        mpixels += double(w) * double(h) / 1e6;
+        if (!args.mipmaps || (w == 1 && h == 1) || ++level >= cap) break;
+      }
     }
     options.encode.progress = [&bar, mpixels](double f) { bar.update(f, "", f * mpixels); };
   }
-  Result<texture_file::CompressedImage> made =
-      texture_file::compress_image(std::move(loaded).value(), options, input_name);
+  Result<texture_file::CompressedImage> made = texture_file::compress_images(
+      std::move(images), texture_shape(args), options, names);
   bar.clear();
   if (!made) return fail(made.status());
   const texture_file::CompressedTexture& tex = made->texture;
 
   std::size_t bytes = 0;
   {
-    Result<std::vector<std::uint8_t>> file = container == texture_file::ContainerFormat::ktx1
-                                                 ? texture_file::serialise_ktx1(tex)
-                                                 : texture_file::serialise_pvr3(tex);
+    texture_file::Ktx2Options ktx2;
+    ktx2.zstd_level = args.zstd;
+    Result<std::vector<std::uint8_t>> file = texture_file::serialise_texture(tex, container, ktx2);
     if (!file) return fail(file.status());
     bytes = file->size();
     if (Status s = io::write_file_atomic(args.output, *file); !s.ok()) return fail(s);
   }
   if (args.skip_up_to_date && args.output != "-") {
-    if (Status s = write_sidecar(args, container_word, input, args.output); !s.ok()) {
+    if (Status s = write_sidecar(args, container_word, args.inputs, args.output); !s.ok()) {
       return fail(s);
     }
   }
   if (args.quiet && !args.json) return kExitOk;
 
-  // Quality of level 0 against the (possibly resized) input, as astcenc's -tl mode reports it.
-  Result<ImageRGBA8> decoded = texture_file::decode_texture_level(tex, 0, {global.threads});
-  if (!decoded) return fail(decoded.status());
-  metrics::CompareOptions co;
-  co.threads = global.threads;
-  Result<metrics::ImageComparison> cmp = metrics::compare_images(made->sources.front(), *decoded, co);
+  // Quality of level 0 against the (possibly resized and prepared) input, as astcenc's -tl
+  // mode reports it.
+  Result<metrics::ImageComparison> cmp = measure_level0(*made, global.threads);
   if (!cmp) return fail(cmp.status());
   std::FILE* out = text_stream(args.output == "-");
   const std::string output_name = io::io_name(args.output, true);
+  const std::string shape = tex.image_count() > 1 || tex.array
+                                ? " " + texture_file::texture_shape_name(tex) + ","
+                                : std::string();
   if (!args.json) {
     char alpha[48] = "";
     if (tex.has_alpha) std::snprintf(alpha, sizeof alpha, ", alpha %.2f dB", cmp->psnr_alpha);
     std::fprintf(out,
-                 "wrote %s: %s %s, %s%s, %d level(s), %zu bytes, encoded in %.1f ms (%s); "
+                 "wrote %s: %s%s %s, %s%s%s, %d level(s), %zu bytes, encoded in %.1f ms (%s); "
                  "PSNR %.2f dB%s, SSIM %.4f\n",
-                 output_name.c_str(), size_text(tex.width, tex.height).c_str(),
+                 output_name.c_str(), size_text(tex.width, tex.height).c_str(), shape.c_str(),
                  texture_file::texture_format_name(tex).c_str(), args.srgb ? "sRGB" : "linear",
+                 tex.premultiplied ? ", premultiplied" : "",
                  made->resized ? " (resized with Lanczos-3)" : "", tex.level_count(), bytes,
                  made->encode_ms, args.quality.c_str(), cmp->psnr_rgb, alpha, cmp->ssim_gray);
     return kExitOk;
   }
   nlohmann::json j = {
-      {"input", input_name},
+      {"input", names.size() == 1 ? nlohmann::json(names.front()) : nlohmann::json(names)},
       {"output", output_name},
       {"container", texture_file::container_name(container)},
       {"width", tex.width},
@@ -148,6 +235,10 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
       {"exact_search_rounds", args.exact_search_rounds},
       {"srgb", args.srgb},
       {"has_alpha", tex.has_alpha},
+      {"premultiplied", tex.premultiplied},
+      {"shape", texture_file::texture_shape_name(tex)},
+      {"faces", tex.faces},
+      {"layers", tex.layers},
       {"levels", tex.level_count()},
       {"bytes", bytes},
       {"time_ms", made->encode_ms},
@@ -172,36 +263,72 @@ texture_file::CompressOptions compress_options(const CompressArgs& args, int thr
   o.encode.iterations = args.iterations;
   o.encode.exact_search_rounds = args.exact_search_rounds;
   o.encode.threads = threads;
-  o.mipmaps = args.mipmaps;
+  o.mipmaps = args.mipmaps || args.mip_levels > 0;
+  o.mip_levels = args.mip_levels;
+  o.mip_filter = args.mip_filter == "lanczos"  ? image::MipFilter::lanczos
+                 : args.mip_filter == "kaiser" ? image::MipFilter::kaiser
+                                               : image::MipFilter::box;
   o.srgb = args.srgb;
   o.resize_pot = args.resize_pot;
+  o.flip_y = args.flip_y;
+  o.premultiply = args.premultiply;
+  o.alpha_bleed = args.alpha_bleed;
+  o.normal_map = args.normal_map;
   return o;
 }
 
-std::string sidecar_record(const CompressArgs& args, const std::string& container,
-                           const std::string& input) {
-  return sidecar_json(args, container, input).dump(1) + "\n";
+texture_file::TextureShape texture_shape(const CompressArgs& args) {
+  return {args.cube ? 6 : 1, args.array};
 }
 
-bool up_to_date(const CompressArgs& args, const std::string& container, const std::string& input,
-                const std::string& output) {
-  struct stat in {}, out {};
-  if (input == "-" || ::stat(input.c_str(), &in) != 0 || ::stat(output.c_str(), &out) != 0) {
-    return false;
+texture_file::ContainerFormat container_of(const std::string& word) {
+  if (word == "ktx") return texture_file::ContainerFormat::ktx1;
+  if (word == "ktx2") return texture_file::ContainerFormat::ktx2;
+  if (word == "pvr") return texture_file::ContainerFormat::pvr3;
+  return texture_file::ContainerFormat::unknown;
+}
+
+std::string compress_usage_problem(const CompressArgs& args, const std::string& container) {
+  if (args.normal_map && args.srgb) {
+    return "--normal-map and --srgb: a normal map holds vectors, never sRGB colour";
   }
-  const auto ns = [](const struct stat& s) {
-    return std::int64_t(s.st_mtim.tv_sec) * 1000000000 + s.st_mtim.tv_nsec;
-  };
-  if (ns(out) <= ns(in)) return false;
+  if (args.premultiply && args.alpha_bleed) {
+    return "--alpha-bleed and --premultiply: bleeding is for straight alpha (premultiplied "
+           "transparent texels are black already)";
+  }
+  if (args.mip_filter != "box" && !args.mipmaps && args.mip_levels == 0) {
+    return "--mip-filter " + args.mip_filter + " needs --mipmaps or --mip-levels N";
+  }
+  if (args.zstd && !container.empty() && container != "ktx2") {
+    return "--zstd needs a KTX 2.0 output (.ktx2 or --container ktx2)";
+  }
+  return "";
+}
+
+std::string sidecar_record(const CompressArgs& args, const std::string& container,
+                           const std::vector<std::string>& inputs) {
+  return sidecar_json(args, container, inputs).dump(1) + "\n";
+}
+
+bool up_to_date(const CompressArgs& args, const std::string& container,
+                const std::vector<std::string>& inputs, const std::string& output) {
+  struct stat out {};
+  if (::stat(output.c_str(), &out) != 0) return false;
+  for (const std::string& input : inputs) {
+    struct stat in {};
+    if (input == "-" || ::stat(input.c_str(), &in) != 0 || mtime_ns(out) <= mtime_ns(in)) {
+      return false;
+    }
+  }
   Result<std::vector<std::uint8_t>> text = io::read_file(output + ".json", 1 << 20);
   if (!text) return false;
   const nlohmann::json stored = nlohmann::json::parse(text->begin(), text->end(), nullptr, false);
-  return !stored.is_discarded() && stored == sidecar_json(args, container, input);
+  return !stored.is_discarded() && stored == sidecar_json(args, container, inputs);
 }
 
 Status write_sidecar(const CompressArgs& args, const std::string& container,
-                     const std::string& input, const std::string& output) {
-  const std::string text = sidecar_record(args, container, input);
+                     const std::vector<std::string>& inputs, const std::string& output) {
+  const std::string text = sidecar_record(args, container, inputs);
   return io::write_file_atomic(output + ".json",
                                {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
 }
@@ -210,20 +337,28 @@ Command add_compress_command(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<CompressArgs>();
   CLI::App* sub = app.add_subcommand(
       "compress",
-      "Compress images to PVRTC1: one file to one texture (PVR v3 or KTX 1.1 by the output's "
-      "extension), or many (files, folders, @lists) into a folder");
+      "Compress images to PVRTC1: one file to one texture (PVR v3, KTX 1.1 or KTX 2.0 by the "
+      "output's extension), the faces of a cube map or the layers of an array to one texture, or "
+      "many (files, folders, @lists) into a folder");
   sub->add_option("INPUT", args->inputs,
                   "Input images (PNG, JPEG, TGA, BMP, recognised by their bytes; '-' = stdin), "
                   "folders of them, or @LIST files naming one path a line")
       ->required();
   sub->add_option("-o,--output,--out", args->output,
-                  "Output texture (.pvr or .ktx; '-' = stdout, PVR unless --container ktx), or "
-                  "with several inputs a folder (created; names follow the inputs')")
+                  "Output texture (.pvr, .ktx or .ktx2; '-' = stdout, PVR unless --container), "
+                  "or with several inputs a folder (created; names follow the inputs')")
       ->required();
   sub->add_option("--container", args->container,
-                  "Container, instead of the output's extension: pvr (PVR v3) or ktx (KTX 1.1); "
-                  "the batch default is pvr")
-      ->check(CLI::IsMember({"pvr", "ktx"}));
+                  "Container, instead of the output's extension: pvr (PVR v3), ktx (KTX 1.1) or "
+                  "ktx2 (KTX 2.0); the batch default is pvr")
+      ->check(CLI::IsMember({"pvr", "ktx", "ktx2"}));
+  sub->add_flag("--cube", args->cube,
+                "The inputs are the 6 faces of a cube map, in the order +X, -X, +Y, -Y, +Z, -Z "
+                "(square, one size); with --array, 6 per layer. In a batch (-o DIR/), each input "
+                "folder is one cube map");
+  sub->add_flag("--array", args->array,
+                "The inputs are the layers of an array texture (one size). In a batch (-o DIR/), "
+                "each input folder is one array, its images in name order");
   sub->add_option("--format", args->format, "PVRTC1 variant")
       ->check(CLI::IsMember({"pvrtc1-4", "pvrtc1-2"}))
       ->capture_default_str();
@@ -246,8 +381,32 @@ Command add_compress_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   sub->add_flag("--mipmaps", args->mipmaps,
-                "Build and encode the full mip chain (2x2 box, alpha-weighted; in linear light "
-                "with --srgb)");
+                "Build and encode the mip chain (alpha-weighted; in linear light with --srgb; "
+                "as vectors with --normal-map)");
+  sub->add_option("--mip-levels", args->mip_levels,
+                  "Encode at most N levels, level 0 included (implies --mipmaps)")
+      ->check(CLI::Range(1, 17));
+  sub->add_option("--mip-filter", args->mip_filter,
+                  "How each mip level is made: box (2x2), lanczos (Lanczos-3) or kaiser "
+                  "(Kaiser-windowed sinc)")
+      ->check(CLI::IsMember({"box", "lanczos", "kaiser"}))
+      ->capture_default_str();
+  sub->add_flag("--flip-y", args->flip_y,
+                "Flip the images upside down first (for pipelines whose origin is bottom-left)");
+  sub->add_flag("--premultiply", args->premultiply,
+                "Multiply colour by alpha (in linear light with --srgb) and mark the texture "
+                "premultiplied (PVR v3 flag, KTX 2.0 DFD flag)");
+  sub->add_flag("--alpha-bleed", args->alpha_bleed,
+                "Give fully transparent texels the colour of the nearest visible texel, so that "
+                "filtering and PVRTC's block interpolation pull no invisible colour into edges");
+  sub->add_flag("--normal-map", args->normal_map,
+                "The input is a normal map (RGB = x, y, z in [-1, 1]): renormalised, mips "
+                "averaged as vectors; never sRGB");
+  sub->add_option("--zstd", args->zstd,
+                  "KTX 2.0: Zstandard supercompression at LEVEL (1-22; 3 when no level is given)")
+      ->expected(0, 1)
+      ->default_str("3")
+      ->check(CLI::Range(1, 22));
   sub->add_flag("--srgb", args->srgb,
                 "Mark the texture sRGB (colour space flag / sRGB KTX format) and filter in "
                 "linear light");

@@ -1,5 +1,7 @@
-// tessera decompress / info: PVRTC1 textures in PVR v3 and KTX 1.1 files.
+// tessera decompress / info: PVRTC1 textures in PVR v3, KTX 1.1 and KTX 2.0 files: 2D textures,
+// cube maps and arrays with their mip chains.
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
@@ -19,42 +21,148 @@ std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_s
 
 struct DecompressArgs {
   std::string input, output;
-  int level = 0;
+  int level = -1;  ///< -1: not given (level 0 for a single output, every level for a folder).
+  int layer = -1;  ///< -1: not given.
+  int face = -1;   ///< -1: not given.
   bool quiet = false;
   bool json = false;
 };
 
+/// Short names of the cube faces, in KTX / PVRTexTool order, for output file names.
+constexpr const char* kFaceNames[6] = {"px", "nx", "py", "ny", "pz", "nz"};
+
+/// One image of the texture to write.
+struct Selected {
+  int level, layer, face;
+  std::string path;
+};
+
+bool is_folder_output(const std::string& output) {
+  std::error_code ec;
+  return output != "-" && (output.ends_with('/') || std::filesystem::is_directory(output, ec));
+}
+
+/// "sky_layer2_face0-px_level1.png": the layer only for arrays, the face only for cube maps.
+std::string image_file_name(const std::string& stem, const texture_file::CompressedTexture& tex,
+                            int level, int layer, int face) {
+  std::string n = stem;
+  if (tex.array) n += "_layer" + std::to_string(layer);
+  if (tex.is_cube()) n += "_face" + std::to_string(face) + "-" + kFaceNames[face];
+  return n + "_level" + std::to_string(level) + ".png";
+}
+
 int run_decompress(const DecompressArgs& args, const GlobalOptions& global) {
-  if (Result<io::ImageFormat> f = io::image_format_for_output(args.output); !f) {
-    return usage_error("-o: " + f.status().message);
+  const bool to_folder = is_folder_output(args.output);
+  if (!to_folder) {
+    if (Result<io::ImageFormat> f = io::image_format_for_output(args.output); !f) {
+      return usage_error("-o: " + f.status().message);
+    }
+    if (int rc = refuse_binary_to_terminal(args.output, "an image")) return rc;
   }
-  if (int rc = refuse_binary_to_terminal(args.output, "an image")) return rc;
   const std::string input_name = io::io_name(args.input);
   Result<texture_file::CompressedTexture> tex = texture_file::read_texture_file(args.input);
   if (!tex) return fail(tex.status());
-  if (args.level < 0 || args.level >= tex->level_count()) {
-    return fail(Status::error(ErrorCode::invalid_argument,
-                              input_name + ": --level " + std::to_string(args.level) +
-                                  " is out of range (the file has " +
-                                  std::to_string(tex->level_count()) + " level(s), 0 to " +
-                                  std::to_string(tex->level_count() - 1) + ")"));
+  // Range checks name the option and the file's own range.
+  auto out_of_range = [&](const char* option, int value, int count, const char* what) {
+    return fail(Status::error(
+        ErrorCode::invalid_argument,
+        input_name + ": " + option + " " + std::to_string(value) + " is out of range (the file has " +
+            std::to_string(count) + " " + what + "(s), 0 to " + std::to_string(count - 1) + ")"));
+  };
+  if (args.level >= tex->level_count()) {
+    return out_of_range("--level", args.level, tex->level_count(), "level");
   }
-  Result<ImageRGBA8> img = texture_file::decode_texture_level(*tex, args.level, {global.threads});
-  if (!img) {
-    Status s = img.status();
-    s.message = input_name + ": " + s.message;
-    return fail(s);
+  if (args.layer >= tex->layers) {
+    if (!tex->array) {
+      return fail(Status::error(ErrorCode::invalid_argument,
+                                input_name + ": --layer " + std::to_string(args.layer) +
+                                    " is out of range (the texture is not an array: layer 0)"));
+    }
+    return out_of_range("--layer", args.layer, tex->layers, "layer");
   }
-  if (Status s = io::write_image(args.output, *img); !s.ok()) return fail(s);
+  if (args.face >= tex->faces) {
+    if (!tex->is_cube()) {
+      return fail(Status::error(ErrorCode::invalid_argument,
+                                input_name + ": --face " + std::to_string(args.face) +
+                                    " is out of range (the texture is not a cube map: face 0)"));
+    }
+    return out_of_range("--face", args.face, tex->faces, "face");
+  }
+  if (!to_folder) {
+    std::string missing;
+    if (tex->array && args.layer < 0) missing += " --layer N";
+    if (tex->is_cube() && args.face < 0) missing += " --face N";
+    if (!missing.empty()) {
+      return usage_error(input_name + " is a " + texture_file::texture_shape_name(*tex) +
+                         ": choose one image with" + missing +
+                         " (and --level N), or write every image into a folder with -o DIR/");
+    }
+  }
+
+  std::vector<Selected> selected;
+  const std::string stem = args.input == "-" ? std::string("stdin")
+                                             : std::filesystem::path(args.input).stem().string();
+  for (int level = 0; level < tex->level_count(); ++level) {
+    if (args.level >= 0 ? level != args.level : (!to_folder && level != 0)) continue;
+    for (int layer = 0; layer < tex->layers; ++layer) {
+      if (args.layer >= 0 && layer != args.layer) continue;
+      for (int face = 0; face < tex->faces; ++face) {
+        if (args.face >= 0 && face != args.face) continue;
+        selected.push_back(
+            {level, layer, face,
+             to_folder ? (std::filesystem::path(args.output) /
+                          image_file_name(stem, *tex, level, layer, face))
+                             .string()
+                       : args.output});
+      }
+    }
+  }
+  if (to_folder) {
+    std::error_code ec;
+    std::filesystem::create_directories(args.output, ec);
+    if (ec || !std::filesystem::is_directory(args.output)) {
+      return fail(Status::error(ErrorCode::io_error,
+                                args.output + ": cannot create the output folder: " +
+                                    (ec ? ec.message() : "not a directory")));
+    }
+  }
+  nlohmann::json outputs = nlohmann::json::array();
   std::FILE* out = text_stream(args.output == "-");
+  for (const Selected& sel : selected) {
+    Result<ImageRGBA8> img = texture_file::decode_texture_image(*tex, sel.level, sel.layer,
+                                                                sel.face, {global.threads});
+    if (!img) {
+      Status s = img.status();
+      s.message = input_name + ": " + s.message;
+      return fail(s);
+    }
+    if (Status s = io::write_image(sel.path, *img); !s.ok()) return fail(s);
+    const std::string shown = io::io_name(sel.path, true);
+    nlohmann::json j = {{"output", shown},       {"level", sel.level},
+                        {"width", img->width},   {"height", img->height},
+                        {"has_alpha", img->has_alpha}};
+    if (tex->array) j["layer"] = sel.layer;
+    if (tex->is_cube()) j["face"] = sel.face;
+    outputs.push_back(j);
+    if (!args.json && !args.quiet) {
+      std::string where = "level " + std::to_string(sel.level);
+      if (tex->array) where += ", layer " + std::to_string(sel.layer);
+      if (tex->is_cube()) {
+        where += ", face " + std::to_string(sel.face) + " (" + kFaceNames[sel.face] + ")";
+      }
+      std::fprintf(out, "wrote %s: %s, %s\n", shown.c_str(), where.c_str(),
+                   size_text(img->width, img->height).c_str());
+    }
+  }
   if (args.json) {
-    const nlohmann::json j = {{"input", input_name},   {"output", io::io_name(args.output, true)},
-                              {"level", args.level},   {"width", img->width},
-                              {"height", img->height}, {"has_alpha", img->has_alpha}};
+    nlohmann::json j;
+    if (to_folder) {
+      j = {{"input", input_name}, {"output", args.output}, {"images", outputs}};
+    } else {
+      j = outputs.front();
+      j["input"] = input_name;
+    }
     std::fprintf(out, "%s\n", j.dump(2).c_str());
-  } else if (!args.quiet) {
-    std::fprintf(out, "wrote %s: level %d, %s\n", io::io_name(args.output, true).c_str(),
-                 args.level, size_text(img->width, img->height).c_str());
   }
   return kExitOk;
 }
@@ -83,7 +191,8 @@ int run_info(const InfoArgs& args) {
       levels.push_back({{"level", i},
                         {"width", tex->level_width(i)},
                         {"height", tex->level_height(i)},
-                        {"bytes", tex->levels[std::size_t(i)].size()}});
+                        {"bytes", tex->levels[std::size_t(i)].size()},
+                        {"image_bytes", tex->image_size(i)}});
     }
     nlohmann::json j = {
         {"file", name},
@@ -93,6 +202,10 @@ int run_info(const InfoArgs& args) {
         {"has_alpha", tex->has_alpha},
         {"width", tex->width},
         {"height", tex->height},
+        {"shape", texture_file::texture_shape_name(*tex)},
+        {"faces", tex->faces},
+        {"layers", tex->layers},
+        {"array", tex->array},
         {"colour_space", tex->srgb ? "sRGB" : "linear"},
         {"premultiplied", tex->premultiplied},
         {"file_bytes", bytes->size()},
@@ -105,13 +218,22 @@ int run_info(const InfoArgs& args) {
   std::printf("  container     : %s\n", texture_file::container_name(container));
   std::printf("  format        : %s\n", texture_file::texture_format_name(*tex).c_str());
   std::printf("  size          : %s\n", size_text(tex->width, tex->height).c_str());
+  std::printf("  shape         : %s\n", texture_file::texture_shape_name(*tex).c_str());
+  std::printf("  faces         : %d\n", tex->faces);
+  std::printf("  layers        : %d\n", tex->layers);
   std::printf("  colour space  : %s\n", tex->srgb ? "sRGB" : "linear");
   std::printf("  premultiplied : %s\n", tex->premultiplied ? "yes" : "no");
   std::printf("  file size     : %zu bytes\n", bytes->size());
   std::printf("  levels        : %d\n", tex->level_count());
   for (int i = 0; i < tex->level_count(); ++i) {
-    std::printf("    %2d  %5d x %-5d %9zu bytes\n", i, tex->level_width(i), tex->level_height(i),
-                tex->levels[std::size_t(i)].size());
+    if (tex->image_count() == 1) {
+      std::printf("    %2d  %5d x %-5d %9zu bytes\n", i, tex->level_width(i),
+                  tex->level_height(i), tex->levels[std::size_t(i)].size());
+    } else {
+      std::printf("    %2d  %5d x %-5d %9zu bytes (%d images of %zu)\n", i, tex->level_width(i),
+                  tex->level_height(i), tex->levels[std::size_t(i)].size(), tex->image_count(),
+                  tex->image_size(i));
+    }
   }
   return kExitOk;
 }
@@ -120,17 +242,31 @@ int run_info(const InfoArgs& args) {
 
 Command add_decompress_command(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<DecompressArgs>();
-  CLI::App* sub =
-      app.add_subcommand("decompress", "Decode one level of a PVRTC .pvr/.ktx file to an image");
+  CLI::App* sub = app.add_subcommand(
+      "decompress",
+      "Decode a PVRTC .pvr/.ktx/.ktx2 texture to images: one image (a level, layer and face) to a "
+      "file, or every image into a folder");
   sub->add_option("INPUT", args->input,
-                  "Input texture (PVR v3 or KTX 1.1, recognised by its bytes; '-' = stdin)")
+                  "Input texture (PVR v3, KTX 1.1 or KTX 2.0, recognised by its bytes; '-' = "
+                  "stdin)")
       ->required();
   sub->add_option("-o,--output,--out", args->output,
-                  "Output image: .png, .bmp, .tga or .jpg by extension ('-' = PNG on stdout)")
+                  "Output image: .png, .bmp, .tga or .jpg by extension ('-' = PNG on stdout); or "
+                  "a folder (DIR/, created) that gets every image as NAME[_layerL][_faceF-px]"
+                  "_levelN.png")
       ->required();
-  sub->add_option("--level", args->level, "Mip level to decode (0 = largest)")
-      ->capture_default_str();
-  sub->add_flag("--json", args->json, "Print one JSON object (input, output, level, size)");
+  sub->add_option("--level", args->level,
+                  "Mip level to decode (0 = largest; default 0, or every level into a folder)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--layer", args->layer, "Array layer to decode (needed for an array unless -o DIR/)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--face", args->face,
+                  "Cube map face to decode: 0..5 = +X, -X, +Y, -Y, +Z, -Z (needed for a cube map "
+                  "unless -o DIR/)")
+      ->check(CLI::NonNegativeNumber);
+  sub->add_flag("--json", args->json,
+                "Print one JSON object (input, output, level, size; for a folder, the list of "
+                "images)");
   sub->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
   return {sub, [args, &global] { return run_decompress(*args, global); }};
 }
@@ -138,8 +274,10 @@ Command add_decompress_command(CLI::App& app, const GlobalOptions& global) {
 Command add_info_command(CLI::App& app, const GlobalOptions& /*global*/) {
   auto args = std::make_shared<InfoArgs>();
   CLI::App* sub = app.add_subcommand(
-      "info", "Describe a .pvr/.ktx texture: container, format, size, colour space, levels");
-  sub->add_option("FILE", args->input, "Texture file (PVR v3 or KTX 1.1; '-' = stdin)")
+      "info",
+      "Describe a .pvr/.ktx/.ktx2 texture: container, format, size, shape (cube map, array), "
+      "colour space, premultiplied alpha, levels");
+  sub->add_option("FILE", args->input, "Texture file (PVR v3, KTX 1.1 or KTX 2.0; '-' = stdin)")
       ->required();
   sub->add_flag("--json", args->json, "Print one JSON object");
   sub->add_flag("-q,--quiet", args->quiet,

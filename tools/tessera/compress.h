@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cli.h"
+#include "tessera/metrics.h"
 #include "tessera/texture_file.h"
 
 namespace tessera::cli {
@@ -12,12 +13,21 @@ namespace tessera::cli {
 struct CompressArgs {
   std::vector<std::string> inputs;  ///< Files, folders, @lists; "-" = stdin (single mode).
   std::string output;               ///< A file, "-", or (batch) a folder.
-  std::string container;            ///< "pvr" or "ktx"; "" = from the output's extension.
+  std::string container;            ///< "pvr", "ktx" or "ktx2"; "" = from the output's extension.
   std::string format = "pvrtc1-4";
   std::string quality = "normal";
   bool mipmaps = false;
+  int mip_levels = 0;               ///< --mip-levels N (implies --mipmaps); 0 = the full chain.
+  std::string mip_filter = "box";
   bool srgb = false;
   bool resize_pot = false;
+  bool cube = false;                ///< --cube: the inputs are faces (6 per layer).
+  bool array = false;               ///< --array: the inputs are layers.
+  bool flip_y = false;
+  bool premultiply = false;
+  bool alpha_bleed = false;
+  bool normal_map = false;
+  int zstd = 0;                     ///< --zstd [LEVEL] (KTX 2.0); 0 = none.
   bool json = false;
   bool quiet = false;
   bool recursive = false;
@@ -29,21 +39,38 @@ struct CompressArgs {
 /// The library options of these arguments, with `threads` encoder threads.
 texture_file::CompressOptions compress_options(const CompressArgs& args, int threads);
 
-/// The record `--skip-up-to-date` keeps beside each output (OUTPUT.json, the sidecar): tessera's
-/// version, the container, the encode options and the input's size and modification time. The
-/// Python `tessera.batch` writes and reads the same record.
-std::string sidecar_record(const CompressArgs& args, const std::string& container,
-                           const std::string& input);
+/// The texture shape of --cube / --array.
+texture_file::TextureShape texture_shape(const CompressArgs& args);
 
-/// True when `output` exists, is newer than `input`, and its sidecar holds the record of these
-/// options and this input.
-bool up_to_date(const CompressArgs& args, const std::string& container, const std::string& input,
-                const std::string& output);
+/// The container the word names ("pvr", "ktx", "ktx2").
+texture_file::ContainerFormat container_of(const std::string& word);
+
+/// The one usage problem of these arguments that no single option's check sees (conflicting
+/// options, --zstd without KTX 2.0 once the container is known: `container` "" when not yet),
+/// or "".
+std::string compress_usage_problem(const CompressArgs& args, const std::string& container);
+
+/// The record `--skip-up-to-date` keeps beside each output (OUTPUT.json, the sidecar): tessera's
+/// version, the container, the encode options and the input's size and modification time (for
+/// a cube map or array, every input's path, size and time). The Python `tessera.batch` writes
+/// and reads the same record.
+std::string sidecar_record(const CompressArgs& args, const std::string& container,
+                           const std::vector<std::string>& inputs);
+
+/// True when `output` exists, is newer than every input, and its sidecar holds the record of
+/// these options and these inputs.
+bool up_to_date(const CompressArgs& args, const std::string& container,
+                const std::vector<std::string>& inputs, const std::string& output);
 
 /// Writes the sidecar of `output` (after the output itself, so an interrupted run never leaves
 /// an output that looks complete without being so).
 Status write_sidecar(const CompressArgs& args, const std::string& container,
-                     const std::string& input, const std::string& output);
+                     const std::vector<std::string>& inputs, const std::string& output);
+
+/// PSNR/SSIM of level 0 of every image of `made` against what was encoded, pooled over the
+/// images (MSE averaged, then PSNR; SSIM averaged), as astcenc's -tl mode reports one image.
+Result<metrics::ImageComparison> measure_level0(const texture_file::CompressedImage& made,
+                                                int threads);
 
 /// Batch mode: many inputs into the folder `args.output`.
 int run_compress_batch(const CompressArgs& args, const GlobalOptions& global);

@@ -27,17 +27,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// One input and the output it makes; `error` set when it fails before any work.
+/// The inputs of one output (one image, or with --cube / --array a folder's images) and the
+/// output; `error` set when it fails before any work.
 struct Job {
-  std::string input, output;
+  std::vector<std::string> inputs;
+  std::string output;
   std::string error;
+  const std::string& input() const { return inputs.front(); }
 };
 
 /// What happened to one job.
 struct Outcome {
   enum class Kind { done, skipped, failed } kind = Kind::failed;
   std::string error;
-  int width = 0, height = 0, levels = 0;
+  int width = 0, height = 0, levels = 0, images = 1;
   std::size_t bytes = 0;
   double encode_ms = 0;
   double psnr_rgb = 0, ssim_gray = 0, psnr_alpha = 0;
@@ -49,6 +52,101 @@ bool is_image_name(const fs::path& p) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
   return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".tga" || ext == ".bmp";
+}
+
+/// The cube face (0..5 = +X, -X, +Y, -Y, +Z, -Z) a file name's stem ends with ("sky_px",
+/// "posx", "+X", "right", ...), and the stem without it; -1 when none.
+std::pair<int, std::string> face_of(const fs::path& p) {
+  static const std::vector<std::string> kTokens[6] = {
+      {"px", "posx", "+x", "right"}, {"nx", "negx", "-x", "left"},
+      {"py", "posy", "+y", "top", "up"}, {"ny", "negy", "-y", "bottom", "down"},
+      {"pz", "posz", "+z", "front"}, {"nz", "negz", "-z", "back"}};
+  std::string stem = p.stem().string();
+  std::transform(stem.begin(), stem.end(), stem.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  for (int f = 0; f < 6; ++f) {
+    for (const std::string& t : kTokens[f]) {
+      if (!stem.ends_with(t)) continue;
+      const std::size_t at = stem.size() - t.size();
+      const bool signed_token = t[0] == '+' || t[0] == '-';
+      if (at == 0 || signed_token || std::string("_.- ").find(stem[at - 1]) != std::string::npos) {
+        return {f, stem.substr(0, at)};
+      }
+    }
+  }
+  return {-1, stem};
+}
+
+/// A folder's images as the faces/layers of one texture: name order, or for a cube map whose
+/// every image names its face, by layer (the name without the face) then face.
+std::vector<fs::path> texture_order(std::vector<fs::path> files, bool cube) {
+  std::sort(files.begin(), files.end());
+  if (!cube) return files;
+  for (const fs::path& f : files) {
+    if (face_of(f).first < 0) return files;
+  }
+  std::stable_sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
+    const auto fa = face_of(a), fb = face_of(b);
+    return std::tie(fa.second, fa.first) < std::tie(fb.second, fb.first);
+  });
+  return files;
+}
+
+/// The images directly inside `dir`, sorted.
+std::vector<fs::path> images_in(const fs::path& dir, std::error_code& ec) {
+  std::vector<fs::path> found;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    std::error_code fec;
+    if (e.is_regular_file(fec) && is_image_name(e.path())) found.push_back(e.path());
+  }
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+/// --cube / --array in a batch: every folder (with -r, every folder below it that holds
+/// images) is one texture, named after the folder.
+void plan_texture_jobs(const CompressArgs& args, const std::string& ext,
+                       const std::vector<std::string>& words, std::vector<Job>& jobs,
+                       std::vector<std::string>& usage_problems) {
+  const fs::path out_dir = args.output;
+  for (const std::string& w : words) {
+    std::error_code ec;
+    if (!fs::is_directory(w, ec)) {
+      usage_problems.push_back(w + ": with --cube or --array, a batch takes folders (each one "
+                               "texture); for one texture from files, give -o FILE");
+      continue;
+    }
+    std::vector<fs::path> dirs = {fs::path(w)};
+    if (args.recursive) {
+      for (const auto& e : fs::recursive_directory_iterator(
+               w, fs::directory_options::skip_permission_denied, ec)) {
+        std::error_code dec;
+        if (e.is_directory(dec)) dirs.push_back(e.path());
+      }
+      std::sort(dirs.begin() + 1, dirs.end());
+    }
+    const fs::path base = fs::path(w).lexically_normal();
+    for (const fs::path& d : dirs) {
+      std::error_code lec;
+      std::vector<fs::path> files = images_in(d, lec);
+      if (lec) {
+        jobs.push_back({{d.string()}, "", d.string() + ": cannot list: " + lec.message()});
+        continue;
+      }
+      if (files.empty() && (d != dirs.front() || args.recursive)) continue;
+      fs::path name = base.filename().empty() ? base.parent_path().filename() : base.filename();
+      const fs::path rel = d.lexically_normal().lexically_relative(base);
+      if (!rel.empty() && rel != ".") name /= rel;
+      Job job;
+      for (const fs::path& f : texture_order(files, args.cube)) job.inputs.push_back(f.string());
+      job.output = (out_dir / name).string() + ext;
+      if (job.inputs.empty()) {
+        job.inputs.push_back(d.string());
+        job.error = d.string() + ": no images in the folder";
+      }
+      jobs.push_back(std::move(job));
+    }
+  }
 }
 
 /// Expands the command line's inputs (files, folders, @lists) into jobs, in order: a folder's
@@ -81,6 +179,10 @@ std::vector<Job> plan_jobs(const CompressArgs& args, const std::string& ext,
     }
   }
   const fs::path out_dir = args.output;
+  if (args.cube || args.array) {
+    plan_texture_jobs(args, ext, words, jobs, usage_problems);
+    words.clear();
+  }
   for (const std::string& w : words) {
     if (w == "-") {
       usage_problems.push_back("'-' (stdin) takes one input, not a batch");
@@ -102,16 +204,17 @@ std::vector<Job> plan_jobs(const CompressArgs& args, const std::string& ext,
         for (const auto& e : fs::directory_iterator(w, ec)) add(e);
       }
       if (ec) {
-        jobs.push_back({w, "", w + ": cannot list: " + ec.message()});
+        jobs.push_back({{w}, "", w + ": cannot list: " + ec.message()});
         continue;
       }
       std::sort(found.begin(), found.end());
       for (const fs::path& p : found) {
         fs::path rel = p.lexically_relative(w);
-        jobs.push_back({p.string(), (out_dir / rel.replace_extension(ext)).string(), ""});
+        jobs.push_back({{p.string()}, (out_dir / rel.replace_extension(ext)).string(), ""});
       }
     } else {
-      jobs.push_back({w, (out_dir / fs::path(w).filename().replace_extension(ext)).string(), ""});
+      jobs.push_back(
+          {{w}, (out_dir / fs::path(w).filename().replace_extension(ext)).string(), ""});
     }
   }
   // Two inputs naming one output: the first keeps it.
@@ -125,7 +228,8 @@ std::vector<Job> plan_jobs(const CompressArgs& args, const std::string& ext,
     if (by_output[k].first == by_output[k - 1].first) {
       Job& later = jobs[std::max(by_output[k].second, by_output[k - 1].second)];
       const Job& first = jobs[std::min(by_output[k].second, by_output[k - 1].second)];
-      later.error = later.input + ": output " + later.output + " is also made from " + first.input;
+      later.error =
+          later.input() + ": output " + later.output + " is also made from " + first.input();
     }
   }
   return jobs;
@@ -138,24 +242,30 @@ Outcome run_job(const Job& job, const CompressArgs& args, const std::string& con
     o.error = job.error;
     return o;
   }
-  if (args.skip_up_to_date && up_to_date(args, container, job.input, job.output)) {
+  if (args.skip_up_to_date && up_to_date(args, container, job.inputs, job.output)) {
     o.kind = Outcome::Kind::skipped;
     return o;
   }
-  Result<ImageRGBA8> loaded = io::read_image(job.input);
-  if (!loaded) {
-    o.error = loaded.status().message;
-    return o;
+  std::vector<ImageRGBA8> images;
+  for (const std::string& input : job.inputs) {
+    Result<ImageRGBA8> loaded = io::read_image(input);
+    if (!loaded) {
+      o.error = loaded.status().message;
+      return o;
+    }
+    images.push_back(std::move(loaded).value());
   }
-  Result<texture_file::CompressedImage> made = texture_file::compress_image(
-      std::move(loaded).value(), compress_options(args, threads), job.input);
+  Result<texture_file::CompressedImage> made = texture_file::compress_images(
+      std::move(images), texture_shape(args), compress_options(args, threads), job.inputs);
   if (!made) {
     o.error = made.status().message;
     return o;
   }
   const texture_file::CompressedTexture& tex = made->texture;
+  texture_file::Ktx2Options ktx2;
+  ktx2.zstd_level = args.zstd;
   Result<std::vector<std::uint8_t>> file =
-      container == "ktx" ? texture_file::serialise_ktx1(tex) : texture_file::serialise_pvr3(tex);
+      texture_file::serialise_texture(tex, container_of(container), ktx2);
   if (!file) {
     o.error = file.status().message;
     return o;
@@ -171,7 +281,7 @@ Outcome run_job(const Job& job, const CompressArgs& args, const std::string& con
     return o;
   }
   if (args.skip_up_to_date) {
-    if (Status s = write_sidecar(args, container, job.input, job.output); !s.ok()) {
+    if (Status s = write_sidecar(args, container, job.inputs, job.output); !s.ok()) {
       o.error = s.message;
       return o;
     }
@@ -179,22 +289,17 @@ Outcome run_job(const Job& job, const CompressArgs& args, const std::string& con
   o.kind = Outcome::Kind::done;
   o.width = tex.width;
   o.height = tex.height;
+  o.images = tex.image_count();
   o.levels = tex.level_count();
   o.bytes = file->size();
   o.encode_ms = made->encode_ms;
   o.has_alpha = tex.has_alpha;
   o.resized = made->resized;
   if (measure) {
-    Result<ImageRGBA8> decoded = texture_file::decode_texture_level(tex, 0, {threads});
-    metrics::CompareOptions co;
-    co.threads = threads;
-    if (decoded) {
-      if (Result<metrics::ImageComparison> cmp =
-              metrics::compare_images(made->sources.front(), *decoded, co)) {
-        o.psnr_rgb = cmp->psnr_rgb;
-        o.ssim_gray = cmp->ssim_gray;
-        o.psnr_alpha = cmp->psnr_alpha;
-      }
+    if (Result<metrics::ImageComparison> cmp = measure_level0(*made, threads)) {
+      o.psnr_rgb = cmp->psnr_rgb;
+      o.ssim_gray = cmp->ssim_gray;
+      o.psnr_alpha = cmp->psnr_alpha;
     }
   }
   return o;
@@ -220,6 +325,9 @@ int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
                        ": several inputs (or a folder) need an output folder, not a file name");
   }
   const std::string container = args.container.empty() ? "pvr" : args.container;
+  if (std::string problem = compress_usage_problem(args, container); !problem.empty()) {
+    return usage_error(problem);
+  }
   std::vector<std::string> problems;
   const std::vector<Job> jobs = plan_jobs(args, "." + container, problems);
   if (!problems.empty()) return usage_error(problems.front());
@@ -280,7 +388,7 @@ int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
       switch (o.kind) {
         case Outcome::Kind::done:
           ++done;
-          mpixels += double(o.width) * o.height / 1e6;
+          mpixels += double(o.width) * o.height * o.images / 1e6;
           break;
         case Outcome::Kind::skipped:
           ++skipped;
@@ -291,7 +399,9 @@ int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
           break;
       }
       if (args.json) {
-        nlohmann::json j = {{"input", jobs[i].input},
+        nlohmann::json j = {{"input", jobs[i].inputs.size() == 1
+                                          ? nlohmann::json(jobs[i].input())
+                                          : nlohmann::json(jobs[i].inputs)},
                             {"output", jobs[i].output},
                             {"status", kind_name(o.kind)}};
         if (o.kind == Outcome::Kind::failed) j["error"] = o.error;
