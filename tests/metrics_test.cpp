@@ -1,10 +1,12 @@
 // Tests of tessera/metrics.h on analytic cases.
+#include "tessera/metrics.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
-#include "tessera/metrics.h"
 #include "tessera/procedural.h"
 #include "test_support.h"
 
@@ -63,6 +65,136 @@ TEST(Psnr, SizeMismatchIsAnError) {
       compare_images(test::solid_rgba8(4, 4, 0, 0, 0), test::solid_rgba8(4, 5, 0, 0, 0));
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code, ErrorCode::size_mismatch);
+}
+
+TEST(Premultiplied, ColourTimesAlphaHandComputed) {
+  // Texel 0: red differs by 10 under alpha 128; texel 1: every colour differs, alpha 0 in both.
+  ImageRGBA8 a(2, 1), b(2, 1);
+  a.has_alpha = b.has_alpha = true;
+  const std::uint8_t ta[2][4] = {{200, 100, 50, 128}, {10, 20, 30, 0}};
+  const std::uint8_t tb[2][4] = {{190, 100, 50, 128}, {250, 250, 250, 0}};
+  for (int i = 0; i < 2; ++i) {
+    for (int c = 0; c < 4; ++c) {
+      a.at(i, 0)[c] = ta[i][c];
+      b.at(i, 0)[c] = tb[i][c];
+    }
+  }
+  CompareOptions o;
+  o.premultiplied = true;
+  Result<ImageComparison> r = compare_images(a, b, o);
+  ASSERT_TRUE(r.ok());
+  ASSERT_TRUE(r->has_premultiplied);
+  EXPECT_FALSE(r->has_normal);
+  // (10 * 128 / 255)^2 over 2 texels x 3 channels; the transparent texel adds nothing.
+  const double mse = std::pow(10.0 * 128.0 / 255.0, 2) / 6.0;  // 4.1995
+  EXPECT_NEAR(r->mse_premultiplied, mse, 1e-12);
+  EXPECT_NEAR(r->psnr_premultiplied, 10.0 * std::log10(65025.0 / mse), 1e-9);
+  EXPECT_GT(r->mse_rgb, 10000.0);  // the plain error is dominated by the invisible texel
+  // Colour under alpha 0 on both sides never counts: identical colour x alpha is infinite.
+  b.at(0, 0)[0] = 200;
+  r = compare_images(a, b, o);
+  EXPECT_EQ(r->mse_premultiplied, 0.0);
+  EXPECT_TRUE(std::isinf(r->psnr_premultiplied));
+  EXPECT_GT(r->mse_rgb, 0.0);
+  // Alpha itself matters: 100 under alpha 255 against the same under alpha 0 is 100 of error.
+  a.at(1, 0)[0] = 100;
+  a.at(1, 0)[3] = 255;
+  r = compare_images(a, b, o);
+  EXPECT_NEAR(r->mse_premultiplied, (100.0 * 100 + 20.0 * 20 + 30.0 * 30) / 6.0, 1e-12);
+  // Not asked for: not computed.
+  EXPECT_FALSE(compare_images(a, b)->has_premultiplied);
+}
+
+TEST(Premultiplied, ImagesWithoutAlphaCountAsOpaque) {
+  // Alpha bytes of images without alpha are ignored: premultiplied MSE is the plain MSE.
+  const ImageRGBA8 a = test::solid_rgba8(5, 3, 100, 100, 100, 0);
+  const ImageRGBA8 b = test::solid_rgba8(5, 3, 103, 94, 109, 7);
+  CompareOptions o;
+  o.premultiplied = true;
+  Result<ImageComparison> r = compare_images(a, b, o);
+  EXPECT_DOUBLE_EQ(r->mse_premultiplied, 42.0);
+  EXPECT_DOUBLE_EQ(r->mse_premultiplied, r->mse_rgb);
+  // Deterministic for any thread count, on an image larger than one chunk.
+  const ImageRGBA8 c = make_procedural(Procedural::foliage, 300, 200);
+  const ImageRGBA8 d = make_procedural(Procedural::foliage, 300, 200, 5);
+  o.threads = 1;
+  const double one = compare_images(c, d, o)->mse_premultiplied;
+  o.threads = 4;
+  EXPECT_EQ(compare_images(c, d, o)->mse_premultiplied, one);
+  EXPECT_GT(one, 0.0);
+}
+
+/// A w x h image of one normal (8-bit RGB), alpha 255.
+ImageRGBA8 normal_image(int w, int h, std::uint8_t x, std::uint8_t y, std::uint8_t z) {
+  return test::solid_rgba8(w, h, x, y, z);
+}
+
+TEST(AngularError, HandComputedAngles) {
+  CompareOptions o;
+  o.normal = true;
+  o.compute_ssim = false;
+  // 8-bit normals cannot hold 0: +X is (1, e, e) and +Z (e, e, 1) with e = 1/255, so their
+  // angle is acos((2e + e^2) / (1 + 2e^2)) = 89.5498 degrees, not quite 90.
+  const double e = 1.0 / 255.0;
+  const double x_to_z = std::acos((2 * e + e * e) / (1 + 2 * e * e)) * 180.0 / std::numbers::pi;
+  Result<ImageComparison> r =
+      compare_images(normal_image(1, 1, 255, 128, 128), normal_image(1, 1, 128, 128, 255), o);
+  ASSERT_TRUE(r.ok());
+  ASSERT_TRUE(r->has_normal);
+  EXPECT_FALSE(r->has_premultiplied);
+  EXPECT_NEAR(r->angular_error_mean_deg, x_to_z, 1e-9);
+  EXPECT_NEAR(r->angular_error_mean_deg, 89.5498, 1e-4);
+  EXPECT_EQ(r->angular_error_max_deg, r->angular_error_mean_deg);
+  EXPECT_EQ(r->angular_error_p99_deg, r->angular_error_mean_deg);
+  // (1, e, e) against (-1, -e, -e): exactly opposite.
+  r = compare_images(normal_image(1, 1, 255, 128, 128), normal_image(1, 1, 0, 127, 127), o);
+  EXPECT_DOUBLE_EQ(r->angular_error_mean_deg, 180.0);
+  // Length does not matter: (1, 1, e) is 45 degrees from (1, e, e) up to the e terms.
+  r = compare_images(normal_image(1, 1, 255, 128, 128), normal_image(1, 1, 255, 255, 128), o);
+  EXPECT_NEAR(r->angular_error_mean_deg, 45.0, 0.3);
+  // Identical normals: exactly 0.
+  const ImageRGBA8 n = make_procedural(Procedural::noise, 20, 20);
+  r = compare_images(n, n, o);
+  EXPECT_EQ(r->angular_error_max_deg, 0.0);
+  EXPECT_EQ(r->angular_error_mean_deg, 0.0);
+}
+
+TEST(AngularError, P99IsTheNearestRank) {
+  CompareOptions o;
+  o.normal = true;
+  const double theta =
+      compare_images(normal_image(1, 1, 255, 128, 128), normal_image(1, 1, 128, 128, 255), o)
+          ->angular_error_max_deg;
+  // n texels of +X, `wrong` of them +Z: the p99 is the ceil(0.99 n)-th smallest angle, 0 while
+  // at least that many are right. 200 texels: rank 198, theta from 3 wrong on; 150 texels:
+  // rank ceil(148.5) = 149, theta from 2 wrong on.
+  for (const auto& [w, first_theta] : {std::pair{20, 3}, std::pair{15, 2}}) {
+    const ImageRGBA8 a = normal_image(w, 10, 255, 128, 128);
+    const double n = w * 10.0;
+    for (const int wrong : {1, 2, 3, 4}) {
+      ImageRGBA8 b = a;
+      for (int i = 0; i < wrong; ++i) {
+        b.at(3 * i, 5)[0] = 128;
+        b.at(3 * i, 5)[2] = 255;
+      }
+      Result<ImageComparison> r = compare_images(a, b, o);
+      ASSERT_TRUE(r.ok());
+      EXPECT_EQ(r->angular_error_p99_deg, wrong >= first_theta ? theta : 0.0) << n << " " << wrong;
+      EXPECT_NEAR(r->angular_error_mean_deg, wrong * theta / n, 1e-12) << wrong;
+      EXPECT_EQ(r->angular_error_max_deg, theta);
+    }
+  }
+  // Deterministic for any thread count.
+  const ImageRGBA8 c = make_procedural(Procedural::noise, 300, 200);
+  const ImageRGBA8 d = make_procedural(Procedural::noise, 300, 200, 3);
+  o.threads = 1;
+  const ImageComparison one = *compare_images(c, d, o);
+  o.threads = 4;
+  const ImageComparison four = *compare_images(c, d, o);
+  EXPECT_EQ(one.angular_error_mean_deg, four.angular_error_mean_deg);
+  EXPECT_EQ(one.angular_error_p99_deg, four.angular_error_p99_deg);
+  EXPECT_GT(one.angular_error_mean_deg, 0.0);
+  EXPECT_LE(one.angular_error_p99_deg, one.angular_error_max_deg);
 }
 
 TEST(Ssim, ConstantImagesFollowTheLuminanceTerm) {

@@ -10,6 +10,10 @@
 //    'valid' region only (no padding), and the mean of the SSIM map. Equals
 //    skimage.metrics.structural_similarity(gaussian_weights=True, sigma=1.5,
 //    use_sample_covariance=False, data_range=255).
+//  * Premultiplied MSE/PSNR (optional): the same over R, G, B of c * a / 255 (unrounded).
+//  * Angular error (optional, normal maps): per texel the angle between the two normalised
+//    vectors 2 c / 255 - 1; mean, 99th percentile (nearest rank: the ceil(0.99 n)-th smallest)
+//    and maximum, in degrees.
 //  * Error CDF (Toth 2013, Figure 5): per-pixel 2-norm of the linear-RGB difference; for each
 //    threshold x, the fraction of counted pixels whose error is >= x.
 //
@@ -36,14 +40,16 @@ struct ImageComparison {
   int max_abs = 0;          ///< Largest absolute difference over all compared channels.
 
   /// With `CompareOptions::premultiplied`: the error of colour x alpha, what a renderer that
-  /// blends shows. Each channel is c * a / 255 (not rounded) for both images; MSE and PSNR
-  /// (peak 255) over R, G, B as above.
+  /// blends shows. Each channel is c * a / 255 (not rounded) for both images, an image without
+  /// alpha counting as opaque; MSE and PSNR (peak 255) over R, G, B as above. Colour under
+  /// alpha 0 in both images does not count.
   bool has_premultiplied = false;
   double mse_premultiplied = 0.0;
   double psnr_premultiplied = 0.0;  ///< dB; +infinity when colour x alpha is identical.
 
   /// With `CompareOptions::normal`: both images' RGB read as vectors (2 c / 255 - 1) and
-  /// normalised (a zero vector counts as +Z), the angle between them per texel, in degrees.
+  /// normalised (a zero vector counts as +Z), the angle between them per texel, in degrees
+  /// (alpha is ignored). The mean is over all texels.
   bool has_normal = false;
   double angular_error_mean_deg = 0.0;
   double angular_error_p99_deg = 0.0;  ///< 99th percentile (nearest rank).

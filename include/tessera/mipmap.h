@@ -1,14 +1,27 @@
 // tessera/mipmap.h — mip chains and resampling for texture compression.
 //
-// `generate_mipmaps` builds a full chain by repeated 2x2 box filtering (2x1 / 1x2 once one
-// side reached 1), so non-square power-of-two images go all the way down to 1x1:
+// `generate_mipmaps` builds a full chain, each level from the one above, so non-square images
+// go all the way down to 1x1. The filter (`MipFilter`) is by default the 2x2 box (2x1 / 1x2
+// once one side reached 1); `lanczos` and `kaiser` are separable windowed sincs that halve
+// each side, with the kernel's x in texels of the level being made (output texel i is centred
+// between texels 2 i and 2 i + 1 of the level above), zero from |x| = 3 (12 taps of the level
+// above, 6 each side), edges wrapped as a repeating texture's are, weights normalised to 1:
+//    lanczos(x) = sinc(x) sinc(x / 3),   kaiser(x) = sinc(x) I0(4 sqrt(1 - (x / 3)^2)) / I0(4)
+// with sinc(x) = sin(pi x) / (pi x). A side of 1 is not filtered; an odd side (of a
+// non-power-of-two image) is stretched to the exact ratio of the sizes. Every filter:
 //  * sRGB data is averaged in linear light (gamma-correct) and re-encoded to sRGB;
-//    `srgb = false` averages the stored values directly (linear data, normal maps, masks).
+//    `srgb = false` averages the stored values directly (linear data, masks).
 //  * with alpha, colours are weighted by alpha (premultiplied averaging) and un-premultiplied
 //    afterwards, so transparent texels do not bleed their colour into visible ones. A fully
-//    transparent footprint keeps the plain average of its colours.
+//    transparent footprint keeps the plain average of its colours (for the sincs: wherever the
+//    filtered alpha is at most 1e-4, which quantises to 0).
 //  * each level is computed from the previous level kept in float, so rounding does not
-//    accumulate down the chain.
+//    accumulate down the chain. The sincs' results (which may ring) are clamped to [0, 1], in
+//    the float level too (normal vectors are renormalised instead).
+//  * with `normal_map`, RGB are vectors: level 0's are decoded (2 c / 255 - 1) and normalised,
+//    each level's are filtered as plain vectors (no sRGB, no alpha weighting), renormalised (a
+//    zero vector becomes +Z) and stored as `normalise_normals` stores them (image_ops.h); the
+//    next level is made from the renormalised vectors. Alpha is filtered as usual.
 //
 // `resize_image` resamples to an arbitrary size with a separable Lanczos-3 filter (windowed
 // sinc, support 3 output texels when minifying), in the same light/alpha conventions; used by
@@ -30,8 +43,10 @@ enum class MipFilter {
             ///< glGenerateMipmap does.
   lanczos,  ///< Separable Lanczos-3 windowed sinc, halving (support 6 texels of the level above
             ///< each way), edges wrapped; sharper than box, may ring (clamped to [0, 255]).
-  kaiser,   ///< Separable Kaiser-windowed sinc (alpha 4, half-width 3 texels of the level above,
-            ///< as NVIDIA Texture Tools' kaiser), edges wrapped; less ringing than Lanczos.
+  kaiser,   ///< Separable Kaiser-windowed sinc (alpha 4, half-width 3 texels of the level made,
+            ///< i.e. 6 of the level above, as NVIDIA Texture Tools' KaiserFilter(3) resamples),
+            ///< edges wrapped; a little less ringing than Lanczos (a step overshoots by 7.7% of
+            ///< its height instead of 8.2%).
 };
 
 /// "box", "lanczos", "kaiser".

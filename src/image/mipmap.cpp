@@ -1,9 +1,13 @@
-// Mip chains (2x2 box, gamma-correct, alpha-weighted) and Lanczos-3 resampling.
+// Mip chains (2x2 box or windowed sinc, gamma-correct, alpha-weighted, or as normal vectors)
+// and Lanczos-3 resampling.
 #include "tessera/mipmap.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+
+#include "image/mip_filters.h"
+#include "image/normal_kernel.h"
 
 namespace tessera::image {
 
@@ -51,6 +55,58 @@ ImageRGBA8 from_work(const Work& w, bool has_alpha, const MipmapOptions& o) {
         }
       },
       {o.threads});
+  return img;
+}
+
+/// Normal maps: RGB as unit vectors (decoded, normalised; zero becomes +Z), alpha in [0, 1].
+Work to_normal_work(const ImageRGBA8& img, int threads) {
+  Work w(img.width, img.height);
+  parallel_for(
+      0, img.height, 16,
+      [&](std::int64_t y0, std::int64_t y1) {
+        for (std::int64_t y = y0; y < y1; ++y) {
+          for (int x = 0; x < img.width; ++x) {
+            const std::uint8_t* s = img.at(x, int(y));
+            float* d = w.at(x, int(y));
+            for (int c = 0; c < 3; ++c) d[c] = float(detail::decode_normal(s[c]));
+            detail::normalise_or_z(d);
+            d[3] = s[3] / 255.0f;
+          }
+        }
+      },
+      {threads});
+  return w;
+}
+
+/// Scales every vector of a filtered normal-map level back to unit length (zero becomes +Z).
+void renormalise(Work& w, int threads) {
+  parallel_for(
+      0, w.height, 16,
+      [&](std::int64_t y0, std::int64_t y1) {
+        for (std::int64_t y = y0; y < y1; ++y) {
+          for (int x = 0; x < w.width; ++x) detail::normalise_or_z(w.at(x, int(y)));
+        }
+      },
+      {threads});
+}
+
+/// Normal maps: each vector stored as in `normalise_normals`, alpha as in `from_work`.
+ImageRGBA8 from_normal_work(const Work& w, bool has_alpha, int threads) {
+  ImageRGBA8 img(w.width, w.height);
+  img.has_alpha = has_alpha;
+  parallel_for(
+      0, w.height, 16,
+      [&](std::int64_t y0, std::int64_t y1) {
+        for (std::int64_t y = y0; y < y1; ++y) {
+          for (int x = 0; x < w.width; ++x) {
+            const float* s = w.at(x, int(y));
+            std::uint8_t* d = img.at(x, int(y));
+            for (int c = 0; c < 3; ++c) d[c] = detail::encode_normal(s[c]);
+            d[3] = has_alpha ? quantise_unit(s[3]) : 255;
+          }
+        }
+      },
+      {threads});
   return img;
 }
 
@@ -152,6 +208,17 @@ struct Wide {
 
 }  // namespace
 
+const char* mip_filter_name(MipFilter filter) {
+  switch (filter) {
+    case MipFilter::box:
+      return "box";
+    case MipFilter::lanczos:
+      return "lanczos";
+    case MipFilter::kaiser:
+      return "kaiser";
+  }
+  return "unknown";
+}
 
 int nearest_power_of_two(int size) {
   if (size <= 1) return 1;
@@ -167,17 +234,26 @@ Result<std::vector<ImageRGBA8>> generate_mipmaps(const ImageRGBA8& image,
   if (image.empty()) {
     return Status::error(ErrorCode::invalid_argument, "generate_mipmaps: empty image");
   }
-  const bool premultiply = options.premultiply && image.has_alpha;
+  // Normal maps: RGB are vectors, neither sRGB nor weighted by alpha.
+  const bool normal = options.normal_map;
+  const bool premultiply = !normal && options.premultiply && image.has_alpha;
   int count = mip_level_count(image.width, image.height);
   if (options.max_levels > 0) count = std::min(count, options.max_levels);
   std::vector<ImageRGBA8> chain;
   chain.reserve(std::size_t(count));
   chain.push_back(image);
   if (count == 1) return chain;
-  Work work = to_work(image, options);
+  Work work = normal ? to_normal_work(image, options.threads) : to_work(image, options);
+  const detail::SincHalfOptions sinc{options.filter, premultiply, !normal, options.threads};
   for (int level = 1; level < count; ++level) {
-    work = box_half(work, premultiply, options.threads);
-    chain.push_back(from_work(work, image.has_alpha, options));
+    work = options.filter == MipFilter::box ? box_half(work, premultiply, options.threads)
+                                            : detail::sinc_half(work, sinc);
+    if (normal) {
+      renormalise(work, options.threads);
+      chain.push_back(from_normal_work(work, image.has_alpha, options.threads));
+    } else {
+      chain.push_back(from_work(work, image.has_alpha, options));
+    }
   }
   return chain;
 }

@@ -3,7 +3,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <numbers>
+#include <vector>
 
+#include "image/normal_kernel.h"
 #include "tessera/metrics.h"
 
 namespace tessera::metrics {
@@ -15,6 +18,77 @@ Status size_mismatch(const char* what, int aw, int ah, int bw, int bh) {
                            std::to_string(ah) + " vs " + std::to_string(bw) + "x" +
                            std::to_string(bh) + ")");
 }
+
+constexpr std::int64_t kGrain = 1 << 14;
+
+/// Colour x alpha: sum over texels and R, G, B of (ca * aa - cb * ab)^2, in 8-bit units times
+/// 255 (integers, so exact within each chunk); an image without alpha counts as opaque.
+double premultiplied_sse(const ImageRGBA8& a, const ImageRGBA8& b, int threads) {
+  return parallel_sum(
+      0, std::int64_t(a.pixel_count()), kGrain,
+      [&](std::int64_t i0, std::int64_t i1) {
+        std::int64_t s = 0;
+        for (std::int64_t i = i0; i < i1; ++i) {
+          const int alpha_a = a.has_alpha ? a.pixels[i * 4 + 3] : 255;
+          const int alpha_b = b.has_alpha ? b.pixels[i * 4 + 3] : 255;
+          for (int c = 0; c < 3; ++c) {
+            const std::int64_t d =
+                int(a.pixels[i * 4 + c]) * alpha_a - int(b.pixels[i * 4 + c]) * alpha_b;
+            s += d * d;
+          }
+        }
+        return double(s);
+      },
+      {threads});
+}
+
+/// The angle in degrees between the normals texel `i` of `a` and `b` hold.
+double normal_angle_deg(const ImageRGBA8& a, const ImageRGBA8& b, std::size_t i) {
+  double u[3], v[3];
+  for (int c = 0; c < 3; ++c) {
+    u[c] = image::detail::decode_normal(a.pixels[i * 4 + std::size_t(c)]);
+    v[c] = image::detail::decode_normal(b.pixels[i * 4 + std::size_t(c)]);
+  }
+  image::detail::normalise_or_z(u);
+  image::detail::normalise_or_z(v);
+  const double cross[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                           u[0] * v[1] - u[1] * v[0]};
+  const double sine = std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
+  const double cosine = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+  // atan2 keeps small angles accurate where acos(cosine) would lose them.
+  return std::atan2(sine, cosine) * (180.0 / std::numbers::pi);
+}
+
+/// Fills the angular error fields of `r` (mean summed in texel order, p99 by nearest rank).
+void angular_errors(const ImageRGBA8& a, const ImageRGBA8& b, int threads, ImageComparison& r) {
+  const std::int64_t n = std::int64_t(a.pixel_count());
+  std::vector<double> angles(static_cast<std::size_t>(n));
+  parallel_for(
+      0, n, kGrain,
+      [&](std::int64_t i0, std::int64_t i1) {
+        for (std::int64_t i = i0; i < i1; ++i) {
+          angles[std::size_t(i)] = normal_angle_deg(a, b, std::size_t(i));
+        }
+      },
+      {threads});
+  const double sum = parallel_sum(
+      0, n, kGrain,
+      [&](std::int64_t i0, std::int64_t i1) {
+        double s = 0.0;
+        for (std::int64_t i = i0; i < i1; ++i) s += angles[std::size_t(i)];
+        return s;
+      },
+      {threads});
+  r.has_normal = true;
+  r.angular_error_mean_deg = sum / double(n);
+  r.angular_error_max_deg = *std::max_element(angles.begin(), angles.end());
+  // Nearest rank: the ceil(0.99 n)-th smallest angle.
+  const std::int64_t rank = (99 * n + 99) / 100;
+  const auto at = angles.begin() + (rank - 1);
+  std::nth_element(angles.begin(), at, angles.end());
+  r.angular_error_p99_deg = *at;
+}
+
 }  // namespace
 
 double psnr_from_mse(double mse, double peak) {
@@ -30,8 +104,9 @@ Result<ImageComparison> compare_images(const ImageRGBA8& a, const ImageRGBA8& b,
   ImageComparison r;
   r.has_alpha = a.has_alpha || b.has_alpha;
   const std::int64_t n = std::int64_t(a.pixel_count());
+  r.has_premultiplied = options.premultiplied;
+  r.has_normal = options.normal;
   if (n == 0) return r;
-  constexpr std::int64_t kGrain = 1 << 14;
   // Sums of squared 8-bit differences are integers: exact in double up to 2^53.
   const double sse_rgb = parallel_sum(
       0, n, kGrain,
@@ -71,6 +146,12 @@ Result<ImageComparison> compare_images(const ImageRGBA8& a, const ImageRGBA8& b,
     r.mse_alpha = sse_alpha / double(n);
     r.psnr_alpha = psnr_from_mse(r.mse_alpha);
   }
+  if (options.premultiplied) {
+    r.mse_premultiplied =
+        premultiplied_sse(a, b, options.threads) / (255.0 * 255.0 * 3.0 * double(n));
+    r.psnr_premultiplied = psnr_from_mse(r.mse_premultiplied);
+  }
+  if (options.normal) angular_errors(a, b, options.threads, r);
   if (options.compute_ssim) r.ssim_gray = *ssim_gray(a, b, {options.threads});
   return r;
 }

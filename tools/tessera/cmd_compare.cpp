@@ -1,4 +1,4 @@
-// tessera compare A B [--json]: full-reference image quality.
+// tessera compare A B [--json] [--premultiplied] [--normal]: full-reference image quality.
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -14,6 +14,8 @@ struct CompareArgs {
   std::string a, b;
   bool json = false;
   bool quiet = false;
+  bool premultiplied = false;
+  bool normal = false;
   std::string heatmap;
 };
 
@@ -49,6 +51,8 @@ int run_compare(const CompareArgs& args, const GlobalOptions& global) {
   if (print) {
     metrics::CompareOptions options;
     options.threads = global.threads;
+    options.premultiplied = args.premultiplied;
+    options.normal = args.normal;
     r = metrics::compare_images(*a, *b, options);
     if (!r) return fail(r.status());
   }
@@ -77,6 +81,15 @@ int run_compare(const CompareArgs& args, const GlobalOptions& global) {
       j["psnr_alpha"] = db_or_null(r->psnr_alpha);
       j["mse_alpha"] = r->mse_alpha;
     }
+    if (r->has_premultiplied) {
+      j["psnr_premultiplied"] = db_or_null(r->psnr_premultiplied);
+      j["mse_premultiplied"] = r->mse_premultiplied;
+    }
+    if (r->has_normal) {
+      j["angular_error_mean_deg"] = r->angular_error_mean_deg;
+      j["angular_error_p99_deg"] = r->angular_error_p99_deg;
+      j["angular_error_max_deg"] = r->angular_error_max_deg;
+    }
     std::fprintf(out, "%s\n", j.dump(2).c_str());
     return kExitOk;
   }
@@ -97,6 +110,17 @@ int run_compare(const CompareArgs& args, const GlobalOptions& global) {
   std::fprintf(out, "SSIM grey  : %.6f\n", r->ssim_gray);
   std::fprintf(out, "MSE RGB    : %.6f\n", r->mse_rgb);
   std::fprintf(out, "max abs    : %d\n", r->max_abs);
+  if (r->has_premultiplied) {
+    if (std::isfinite(r->psnr_premultiplied)) {
+      std::fprintf(out, "premultiplied PSNR %.4f dB\n", r->psnr_premultiplied);
+    } else {
+      std::fprintf(out, "premultiplied PSNR inf (identical colour x alpha)\n");
+    }
+  }
+  if (r->has_normal) {
+    std::fprintf(out, "angular error mean %.4f°, p99 %.4f°, max %.4f°\n", r->angular_error_mean_deg,
+                 r->angular_error_p99_deg, r->angular_error_max_deg);
+  }
   return kExitOk;
 }
 }  // namespace
@@ -112,6 +136,12 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_flag("--json", args->json,
                 "Print one JSON object (keys psnr_rgb, ssim_gray, mse, max_abs, ...; "
                 "psnr_rgb is null for identical images)");
+  sub->add_flag("--premultiplied", args->premultiplied,
+                "Also the PSNR of colour x alpha, what blending shows (psnr_premultiplied, "
+                "mse_premultiplied; colour under alpha 0 does not count)");
+  sub->add_flag("--normal", args->normal,
+                "The images are normal maps: also the angle between their normalised vectors "
+                "(angular_error_mean_deg, angular_error_p99_deg, angular_error_max_deg)");
   sub->add_flag("-q,--quiet", args->quiet,
                 "Print nothing: exit status 0 when both images read and have the same size (1 "
                 "otherwise); --heatmap is still written");
