@@ -38,7 +38,8 @@ TEST(TextureFile, DetectsContainers) {
   EXPECT_EQ(detect_container(Bytes{1, 2, 3}), ContainerFormat::unknown);
   EXPECT_EQ(container_from_extension("a/b.PVR"), ContainerFormat::pvr3);
   EXPECT_EQ(container_from_extension("x.ktx"), ContainerFormat::ktx1);
-  EXPECT_EQ(container_from_extension("x.ktx2"), ContainerFormat::unknown);
+  EXPECT_EQ(container_from_extension("x.KTX2"), ContainerFormat::ktx2);
+  EXPECT_EQ(container_from_extension("x.dds"), ContainerFormat::unknown);
   EXPECT_EQ(container_from_extension("dir.pvr/x"), ContainerFormat::unknown);
   Result<CompressedTexture> r = parse_texture(Bytes{1, 2, 3, 4, 5}, "junk.bin");
   ASSERT_FALSE(r.ok());

@@ -142,11 +142,11 @@ TEST(Pvr3, HeaderLiesAreRejected) {
   put_u32(b, 32, 4);
   expect_pvr_error(b, ErrorCode::unsupported, "depth 4");
   b = good;
-  put_u32(b, 36, 6);
-  expect_pvr_error(b, ErrorCode::unsupported, "6 surfaces");
+  put_u32(b, 36, 6);  // six surfaces (an array) promised, one present
+  expect_pvr_error(b, ErrorCode::corrupt_data, "truncated: 1 level(s) need 768 bytes");
   b = good;
-  put_u32(b, 40, 6);
-  expect_pvr_error(b, ErrorCode::unsupported, "cube maps");
+  put_u32(b, 40, 3);
+  expect_pvr_error(b, ErrorCode::unsupported, "3 faces are not supported");
   b = good;
   put_u32(b, 28, 24);  // width 24: not a power of two
   expect_pvr_error(b, ErrorCode::invalid_argument, "power");
@@ -309,11 +309,14 @@ TEST(Ktx1, HeaderLiesAreRejected) {
   put_u32(b, 44, 2);
   expect_ktx_error(b, ErrorCode::unsupported, "3D");
   b = good;
-  put_u32(b, 48, 4);
-  expect_ktx_error(b, ErrorCode::unsupported, "arrays");
+  put_u32(b, 48, 4);  // an array of 4: imageSize must be the whole level
+  expect_ktx_error(b, ErrorCode::corrupt_data, "(512 bytes per level)");
   b = good;
-  put_u32(b, 52, 6);
-  expect_ktx_error(b, ErrorCode::unsupported, "cube maps");
+  put_u32(b, 52, 6);  // a cube map: six faces of 128 bytes, one present
+  expect_ktx_error(b, ErrorCode::corrupt_data, "level 0 face 1 needs 128 bytes");
+  b = good;
+  put_u32(b, 52, 2);
+  expect_ktx_error(b, ErrorCode::unsupported, "2 faces are not supported");
   b = good;
   put_u32(b, 40, 0);
   expect_ktx_error(b, ErrorCode::unsupported, "1D");

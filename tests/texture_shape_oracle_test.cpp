@@ -44,8 +44,8 @@ std::string oracle_image(const std::string& stem, bool cube, int i) {
 
 std::vector<std::string> write_inputs(const fs::path& dir, int n, int size) {
   std::vector<std::string> paths;
-  const Procedural kinds[] = {Procedural::noise, Procedural::foliage, Procedural::bricks,
-                              Procedural::gradient, Procedural::text, Procedural::noise};
+  const Procedural kinds[] = {Procedural::noise,    Procedural::foliage, Procedural::bricks,
+                              Procedural::gradient, Procedural::text,    Procedural::noise};
   for (int i = 0; i < n; ++i) {
     paths.push_back((dir / ("in" + std::to_string(i) + ".png")).string());
     EXPECT_TRUE(
@@ -69,10 +69,12 @@ TEST(ShapeOracle, ReadsPvrTexToolCubeMapsAndArrays) {
     std::string list;
     for (int i = 0; i < shape.count; ++i) list += (i ? "," : "") + inputs[std::size_t(i)];
     for (const char* format : {"PVRTC1_4", "PVRTC1_2"}) {
-      const std::string stem = (dir / (std::string(shape.cube ? "cube" : "array") + format)).string();
+      const std::string stem =
+          (dir / (std::string(shape.cube ? "cube" : "array") + format)).string();
       const std::string common = std::string(" -f ") + format + ",UBN,lRGB -q pvrtcfast -m -shh " +
                                  (shape.cube ? "-cube" : "-array");
-      ASSERT_TRUE(run_tool(*tool, "-i " + list + " -o " + stem + ".pvr -d " + stem + ".png" + common));
+      ASSERT_TRUE(
+          run_tool(*tool, "-i " + list + " -o " + stem + ".pvr -d " + stem + ".png" + common));
       ASSERT_TRUE(run_tool(*tool, "-i " + list + " -o " + stem + ".ktx" + common));
       Result<CompressedTexture> pvr = read_texture_file(stem + ".pvr");
       ASSERT_TRUE(pvr.ok()) << pvr.status().message;
@@ -128,8 +130,8 @@ TEST(ShapeOracle, PvrTexToolReadsOurCubeMapsAndArrays) {
                                          (f == pvrtc::Format::pvrtc1_4bpp ? "4" : "2") + (ext + 1)))
                                      .string();
         ASSERT_TRUE(write_texture_file(stem + ext, t).ok());
-        ASSERT_TRUE(run_tool(*tool, "-i " + stem + ext + " -o " + stem + "-scratch.pvr -f r8g8b8a8 -d " +
-                                        stem + ".png -shh"))
+        ASSERT_TRUE(run_tool(*tool, "-i " + stem + ext + " -o " + stem +
+                                        "-scratch.pvr -f r8g8b8a8 -d " + stem + ".png -shh"))
             << "PVRTexToolCLI rejected " << stem << ext;
         for (int i = 0; i < shape.count; ++i) {
           Result<ImageRGBA8> theirs = io::read_image(oracle_image(stem, shape.cube, i));

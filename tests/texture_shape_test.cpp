@@ -18,8 +18,8 @@ using test::Bytes;
 
 /// A texture of `faces` x `layers` images of real PVRTC data (fast encodes of procedural
 /// images, a different one per image) with `levels` levels.
-CompressedTexture shaped_texture(pvrtc::Format format, int size, int levels, int faces,
-                                 int layers, bool array) {
+CompressedTexture shaped_texture(pvrtc::Format format, int size, int levels, int faces, int layers,
+                                 bool array) {
   CompressedTexture t;
   t.format = format;
   t.width = size;
@@ -244,15 +244,17 @@ TEST(CompressImages, ArraysAndCubeArrays) {
   o.encode.quality = pvrtc::Quality::fast;
   o.encode.format = pvrtc::Format::pvrtc1_2bpp;
   std::vector<ImageRGBA8> imgs;
-  for (int i = 0; i < 12; ++i) imgs.push_back(make_procedural(Procedural::bricks, 16, 16, std::uint32_t(i)));
-  Result<CompressedImage> arr = compress_images(
-      std::vector<ImageRGBA8>(imgs.begin(), imgs.begin() + 3), TextureShape{1, true}, o,
-      names_of(3));
+  for (int i = 0; i < 12; ++i)
+    imgs.push_back(make_procedural(Procedural::bricks, 16, 16, std::uint32_t(i)));
+  Result<CompressedImage> arr =
+      compress_images(std::vector<ImageRGBA8>(imgs.begin(), imgs.begin() + 3),
+                      TextureShape{1, true}, o, names_of(3));
   ASSERT_TRUE(arr.ok()) << arr.status().message;
   EXPECT_EQ(arr->texture.layers, 3);
   EXPECT_TRUE(arr->texture.array);
   EXPECT_FALSE(arr->texture.has_alpha);
-  Result<CompressedImage> cube_array = compress_images(imgs, TextureShape{6, true}, o, names_of(12));
+  Result<CompressedImage> cube_array =
+      compress_images(imgs, TextureShape{6, true}, o, names_of(12));
   ASSERT_TRUE(cube_array.ok()) << cube_array.status().message;
   EXPECT_EQ(cube_array->texture.layers, 2);
   EXPECT_EQ(cube_array->texture.faces, 6);

@@ -27,8 +27,9 @@ Status check_options(const CompressOptions& options) {
     return bad("normal_map and srgb: a normal map holds vectors, never sRGB colour");
   }
   if (options.premultiply && options.alpha_bleed) {
-    return bad("alpha_bleed applies to straight alpha: with premultiply, transparent texels are "
-               "black already");
+    return bad(
+        "alpha_bleed applies to straight alpha: with premultiply, transparent texels are "
+        "black already");
   }
   if (options.mip_levels < 0) {
     return bad("mip_levels " + std::to_string(options.mip_levels) + " is negative");
@@ -64,7 +65,8 @@ Result<Prepared> prepare(ImageRGBA8 image, const CompressOptions& options,
     if (!options.resize_pot) {
       return bad(name + ": size " + size_text(image.width, image.height) +
                  " is not a power of two (PVRTC needs power-of-two sides); use "
-                 "--resize-pot to resample to " + size_text(pw, ph));
+                 "--resize-pot to resample to " +
+                 size_text(pw, ph));
     }
     Result<ImageRGBA8> resized = image::resize_image(image, pw, ph, filter);
     if (!resized) return resized.status();
@@ -184,8 +186,8 @@ Status check_shape(std::span<const ImageRGBA8> images, const TextureShape& shape
                  " is not square (cube map faces must be)");
     }
     if (i > 0 && (im.width != images[0].width || im.height != images[0].height)) {
-      return bad(names[i] + ": " + size_text(im.width, im.height) + ", but " + names[0] +
-                 " is " + size_text(images[0].width, images[0].height) +
+      return bad(names[i] + ": " + size_text(im.width, im.height) + ", but " + names[0] + " is " +
+                 size_text(images[0].width, images[0].height) +
                  " (every face and layer needs one size)");
     }
   }
@@ -244,8 +246,8 @@ Result<CompressedTexture> compress_view(const ImageView8& image, const CompressO
   if (Status s = check_options(options); !s.ok()) return s;
   // A mip chain, a resample or a preparation step makes new pixels anyway: the owning
   // pipeline, from one copy.
-  const bool prepares = options.flip_y || options.premultiply || options.alpha_bleed ||
-                        options.normal_map;
+  const bool prepares =
+      options.flip_y || options.premultiply || options.alpha_bleed || options.normal_map;
   if (options.mipmaps || prepares ||
       !pvrtc::check_dimensions(image.width, image.height, name).ok()) {
     Result<CompressedImage> r = compress_image(to_image(image), options, name);

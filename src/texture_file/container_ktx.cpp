@@ -20,7 +20,7 @@ using container::hex32;
 using container::load_u32;
 using container::plural_bytes;
 
-constexpr std::array<std::uint8_t, 12> kKtxIdentifier = {0xAB, 'K',  'T',  'X', ' ',  '1',
+constexpr std::array<std::uint8_t, 12> kKtxIdentifier = {0xAB, 'K',  'T',  'X',  ' ',  '1',
                                                          '1',  0xBB, '\r', '\n', 0x1A, '\n'};
 constexpr std::size_t kHeaderSize = 64;
 constexpr std::uint32_t kEndianLittle = 0x04030201u;
@@ -111,12 +111,12 @@ Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const 
   }
   if (height == 0) return unsupported(name, "1D textures (pixelHeight 0) are not supported");
   if (depth != 0) {
-    return unsupported(name, "3D textures (pixelDepth " + std::to_string(depth) +
-                                 ") are not supported");
+    return unsupported(name,
+                       "3D textures (pixelDepth " + std::to_string(depth) + ") are not supported");
   }
   if (faces != 1 && faces != 6) {
-    return unsupported(name, std::to_string(faces) +
-                                 " faces are not supported (1, or 6 for a cube map)");
+    return unsupported(name,
+                       std::to_string(faces) + " faces are not supported (1, or 6 for a cube map)");
   }
   if (array_elements > std::uint32_t(kMaxTextureImages) / faces) {
     return corrupt(name, std::to_string(array_elements) + " array elements: at most " +
@@ -152,8 +152,8 @@ Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const 
       const std::uint32_t n = load_u32(bytes, at, swap);
       at += 4;
       if (n > end - at) {
-        return corrupt(name, "malformed key/value data (entry of " + plural_bytes(n) +
-                                 " overruns the block)");
+        return corrupt(
+            name, "malformed key/value data (entry of " + plural_bytes(n) + " overruns the block)");
       }
       at += n;
       at += std::min(pad4(n), end - at);
@@ -185,19 +185,20 @@ Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const 
     const std::uint32_t image_size = load_u32(bytes, at, swap);
     at += 4;
     if (image_size != expected) {
-      return corrupt(name, "level " + std::to_string(i) + " imageSize " +
-                               std::to_string(image_size) + " does not match " +
-                               std::to_string(tex.level_width(i)) + "x" +
-                               std::to_string(tex.level_height(i)) + " PVRTC (" +
-                               plural_bytes(expected) +
-                               (face_by_face ? " per face)" : images > 1 ? " per level)" : ")"));
+      return corrupt(name,
+                     "level " + std::to_string(i) + " imageSize " + std::to_string(image_size) +
+                         " does not match " + std::to_string(tex.level_width(i)) + "x" +
+                         std::to_string(tex.level_height(i)) + " PVRTC (" + plural_bytes(expected) +
+                         (face_by_face ? " per face)"
+                          : images > 1 ? " per level)"
+                                       : ")"));
     }
     std::vector<std::uint8_t> level;
     for (std::size_t part = 0; part < (face_by_face ? images : 1); ++part) {
       if (bytes.size() - at < expected) {
         return corrupt(name, "truncated: level " + std::to_string(i) +
-                                 (face_by_face ? " face " + std::to_string(part) : "") +
-                                 " needs " + plural_bytes(expected) + ", file has " +
+                                 (face_by_face ? " face " + std::to_string(part) : "") + " needs " +
+                                 plural_bytes(expected) + ", file has " +
                                  plural_bytes(bytes.size() - at));
       }
       level.insert(level.end(), bytes.begin() + std::ptrdiff_t(at),

@@ -3,8 +3,9 @@
 // Header, 52 bytes little-endian: version, flags, pixel format (u64), colour space, channel
 // type, height, width, depth, surfaces, faces, mip count, metadata size; then the metadata
 // block and the levels, largest first, each holding its surfaces (array layers), each of
-// those its faces. PVR v3 has no array flag: more than one surface reads back as an array. Every field is checked before it is used to size
-// anything, and the level data must match the header exactly (no missing or trailing bytes).
+// those its faces. PVR v3 has no array flag: more than one surface reads back as an array. Every
+// field is checked before it is used to size anything, and the level data must match the header
+// exactly (no missing or trailing bytes).
 #include <string>
 
 #include "tessera/mipmap.h"
@@ -41,13 +42,33 @@ std::string pixel_format_name(std::uint64_t format) {
     return s;
   }
   static const char* const kNames[] = {
-      "PVRTC1 2bpp RGB", "PVRTC1 2bpp RGBA", "PVRTC1 4bpp RGB", "PVRTC1 4bpp RGBA",
-      "PVRTC2 2bpp",     "PVRTC2 4bpp",      "ETC1",            "BC1 (DXT1)",
-      "DXT2",            "BC2 (DXT3)",       "DXT4",            "BC3 (DXT5)",
-      "BC4",             "BC5",              "BC6",             "BC7",
-      "UYVY",            "YUY2",             "BW 1bpp",         "R9G9B9E5",
-      "RGBG8888",        "GRGB8888",         "ETC2 RGB",        "ETC2 RGBA",
-      "ETC2 RGB A1",     "EAC R11",          "EAC RG11",
+      "PVRTC1 2bpp RGB",
+      "PVRTC1 2bpp RGBA",
+      "PVRTC1 4bpp RGB",
+      "PVRTC1 4bpp RGBA",
+      "PVRTC2 2bpp",
+      "PVRTC2 4bpp",
+      "ETC1",
+      "BC1 (DXT1)",
+      "DXT2",
+      "BC2 (DXT3)",
+      "DXT4",
+      "BC3 (DXT5)",
+      "BC4",
+      "BC5",
+      "BC6",
+      "BC7",
+      "UYVY",
+      "YUY2",
+      "BW 1bpp",
+      "R9G9B9E5",
+      "RGBG8888",
+      "GRGB8888",
+      "ETC2 RGB",
+      "ETC2 RGBA",
+      "ETC2 RGB A1",
+      "EAC R11",
+      "EAC RG11",
   };
   if (format < std::size(kNames)) return kNames[format];
   if (format <= 56) return "ASTC (format " + std::to_string(format) + ")";
@@ -102,12 +123,12 @@ Result<CompressedTexture> parse_pvr3(std::span<const std::uint8_t> bytes, const 
                              " (expected 0 linear or 1 sRGB)");
   }
   if (depth != 1) {
-    return unsupported(name, "depth " + std::to_string(depth) +
-                                 " is not supported (3D textures; only depth 1)");
+    return unsupported(
+        name, "depth " + std::to_string(depth) + " is not supported (3D textures; only depth 1)");
   }
   if (faces != 1 && faces != 6) {
-    return unsupported(name, std::to_string(faces) +
-                                 " faces are not supported (1, or 6 for a cube map)");
+    return unsupported(name,
+                       std::to_string(faces) + " faces are not supported (1, or 6 for a cube map)");
   }
   if (surfaces == 0 || surfaces > std::uint32_t(kMaxTextureImages) / faces) {
     return corrupt(name, std::to_string(surfaces) + " surfaces (array layers): 1 to " +
@@ -132,8 +153,7 @@ Result<CompressedTexture> parse_pvr3(std::span<const std::uint8_t> bytes, const 
   const std::size_t after_header = bytes.size() - kHeaderSize;
   if (metadata_size > after_header) {
     return corrupt(name, "truncated: metadata size " + std::to_string(metadata_size) +
-                             " exceeds the " + plural_bytes(after_header) +
-                             " after the header");
+                             " exceeds the " + plural_bytes(after_header) + " after the header");
   }
 
   CompressedTexture tex;
@@ -188,7 +208,7 @@ Result<std::vector<std::uint8_t>> serialise_pvr3(const CompressedTexture& textur
   container::store_u32(out, 0);                       // channel type: unsigned normalised byte
   container::store_u32(out, std::uint32_t(texture.height));
   container::store_u32(out, std::uint32_t(texture.width));
-  container::store_u32(out, 1);  // depth
+  container::store_u32(out, 1);                              // depth
   container::store_u32(out, std::uint32_t(texture.layers));  // surfaces
   container::store_u32(out, std::uint32_t(texture.faces));
   container::store_u32(out, std::uint32_t(texture.levels.size()));

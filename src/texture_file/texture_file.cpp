@@ -5,9 +5,9 @@
 #include <cctype>
 #include <cstring>
 
+#include "core/check.h"
 #include "tessera/io.h"
 #include "tessera/mipmap.h"
-#include "core/check.h"
 #include "texture_file/container_bytes.h"
 
 namespace tessera::texture_file {
@@ -31,8 +31,8 @@ namespace {
 
 Status index_error(const std::string& what, int value, const std::string& owner, int count) {
   return Status::error(ErrorCode::invalid_argument,
-                       what + " " + std::to_string(value) + " is out of range (" + owner +
-                           " has " + what + "s 0 to " + std::to_string(count - 1) + ")");
+                       what + " " + std::to_string(value) + " is out of range (" + owner + " has " +
+                           what + "s 0 to " + std::to_string(count - 1) + ")");
 }
 
 }  // namespace
@@ -128,15 +128,13 @@ Status validate_texture(const CompressedTexture& texture, const std::string& wha
   if (Status s = check_image_size(texture.width, texture.height, what); !s.ok()) return s;
   if (Status s = pvrtc::check_dimensions(texture.width, texture.height, what); !s.ok()) return s;
   if (texture.faces != 1 && texture.faces != 6) {
-    return Status::error(ErrorCode::invalid_argument,
-                         what + ": " + std::to_string(texture.faces) +
-                             " faces (1, or 6 for a cube map)");
+    return Status::error(ErrorCode::invalid_argument, what + ": " + std::to_string(texture.faces) +
+                                                          " faces (1, or 6 for a cube map)");
   }
   if (texture.is_cube() && texture.width != texture.height) {
     return Status::error(ErrorCode::invalid_argument,
                          what + ": a cube map's faces must be square, not " +
-                             std::to_string(texture.width) + "x" +
-                             std::to_string(texture.height));
+                             std::to_string(texture.width) + "x" + std::to_string(texture.height));
   }
   if (texture.layers < 1 || texture.image_count() > kMaxTextureImages ||
       (!texture.array && texture.layers != 1)) {
@@ -148,10 +146,9 @@ Status validate_texture(const CompressedTexture& texture, const std::string& wha
   const int possible = mip_level_count(texture.width, texture.height);
   if (texture.levels.empty() || texture.level_count() > possible) {
     return Status::error(ErrorCode::invalid_argument,
-                         what + ": " + std::to_string(texture.levels.size()) +
-                             " levels for " + std::to_string(texture.width) + "x" +
-                             std::to_string(texture.height) + " (1 to " +
-                             std::to_string(possible) + " allowed)");
+                         what + ": " + std::to_string(texture.levels.size()) + " levels for " +
+                             std::to_string(texture.width) + "x" + std::to_string(texture.height) +
+                             " (1 to " + std::to_string(possible) + " allowed)");
   }
   for (int i = 0; i < texture.level_count(); ++i) {
     const std::size_t expected = texture.image_size(i) * std::size_t(texture.image_count());
@@ -168,9 +165,9 @@ Status validate_texture(const CompressedTexture& texture, const std::string& wha
 Result<ImageRGBA8> decode_texture_image(const CompressedTexture& texture, int level, int layer,
                                         int face, const Parallel& parallel) {
   if (Status s = check_image_index(texture, level, layer, face); !s.ok()) return s;
-  Result<ImageRGBA8> img = pvrtc::decode(texture.image(level, layer, face), texture.format,
-                                         texture.level_width(level), texture.level_height(level),
-                                         parallel);
+  Result<ImageRGBA8> img =
+      pvrtc::decode(texture.image(level, layer, face), texture.format, texture.level_width(level),
+                    texture.level_height(level), parallel);
   if (!img) return img;
   if (!texture.has_alpha) {
     for (std::size_t i = 3; i < img->pixels.size(); i += 4) img->pixels[i] = 255;

@@ -47,17 +47,16 @@ std::int64_t mtime_ns(const struct stat& st) {
 
 nlohmann::json sidecar_json(const CompressArgs& args, const std::string& container,
                             const std::vector<std::string>& inputs) {
-  nlohmann::json j = {
-      {"tessera", TESSERA_VERSION_STRING},
-      {"container", container},
-      {"options",
-       {{"exact_search_rounds", args.exact_search_rounds},
-        {"format", args.format},
-        {"iterations", args.iterations},
-        {"mipmaps", args.mipmaps},
-        {"quality", args.quality},
-        {"resize_pot", args.resize_pot},
-        {"srgb", args.srgb}}}};
+  nlohmann::json j = {{"tessera", TESSERA_VERSION_STRING},
+                      {"container", container},
+                      {"options",
+                       {{"exact_search_rounds", args.exact_search_rounds},
+                        {"format", args.format},
+                        {"iterations", args.iterations},
+                        {"mipmaps", args.mipmaps},
+                        {"quality", args.quality},
+                        {"resize_pot", args.resize_pot},
+                        {"srgb", args.srgb}}}};
   // Options added later are recorded only when they are not their defaults, so the records of
   // plain runs (and the Python batch's, which writes the same keys) stay as they were.
   nlohmann::json& o = j["options"];
@@ -156,8 +155,10 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
     Result<ImageRGBA8> loaded = io::read_image(input);
     if (!loaded) return fail(loaded.status());
     if (args.premultiply && !args.quiet && !loaded->has_alpha) {
-      std::fprintf(stderr, "tessera: warning: %s has no alpha channel: --premultiply leaves it "
-                   "as it is\n", names.back().c_str());
+      std::fprintf(stderr,
+                   "tessera: warning: %s has no alpha channel: --premultiply leaves it "
+                   "as it is\n",
+                   names.back().c_str());
     }
     images.push_back(std::move(loaded).value());
   }
@@ -178,8 +179,8 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
     }
     options.encode.progress = [&bar, mpixels](double f) { bar.update(f, "", f * mpixels); };
   }
-  Result<texture_file::CompressedImage> made = texture_file::compress_images(
-      std::move(images), texture_shape(args), options, names);
+  Result<texture_file::CompressedImage> made =
+      texture_file::compress_images(std::move(images), texture_shape(args), options, names);
   bar.clear();
   if (!made) return fail(made.status());
   const texture_file::CompressedTexture& tex = made->texture;

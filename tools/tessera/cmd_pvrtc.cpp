@@ -21,9 +21,11 @@ std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_s
 
 struct DecompressArgs {
   std::string input, output;
-  int level = -1;  ///< -1: not given (level 0 for a single output, every level for a folder).
-  int layer = -1;  ///< -1: not given.
-  int face = -1;   ///< -1: not given.
+  int level = 0;  ///< Meaningful when given (`level_given`): else level 0 for a single output,
+                  ///< every level for a folder.
+  int layer = 0;
+  int face = 0;
+  bool level_given = false, layer_given = false, face_given = false;
   bool quiet = false;
   bool json = false;
 };
@@ -64,15 +66,15 @@ int run_decompress(const DecompressArgs& args, const GlobalOptions& global) {
   if (!tex) return fail(tex.status());
   // Range checks name the option and the file's own range.
   auto out_of_range = [&](const char* option, int value, int count, const char* what) {
-    return fail(Status::error(
-        ErrorCode::invalid_argument,
-        input_name + ": " + option + " " + std::to_string(value) + " is out of range (the file has " +
-            std::to_string(count) + " " + what + "(s), 0 to " + std::to_string(count - 1) + ")"));
+    return fail(Status::error(ErrorCode::invalid_argument,
+                              input_name + ": " + option + " " + std::to_string(value) +
+                                  " is out of range (the file has " + std::to_string(count) + " " +
+                                  what + "(s), 0 to " + std::to_string(count - 1) + ")"));
   };
-  if (args.level >= tex->level_count()) {
+  if (args.level_given && (args.level < 0 || args.level >= tex->level_count())) {
     return out_of_range("--level", args.level, tex->level_count(), "level");
   }
-  if (args.layer >= tex->layers) {
+  if (args.layer_given && (args.layer < 0 || args.layer >= tex->layers)) {
     if (!tex->array) {
       return fail(Status::error(ErrorCode::invalid_argument,
                                 input_name + ": --layer " + std::to_string(args.layer) +
@@ -80,7 +82,7 @@ int run_decompress(const DecompressArgs& args, const GlobalOptions& global) {
     }
     return out_of_range("--layer", args.layer, tex->layers, "layer");
   }
-  if (args.face >= tex->faces) {
+  if (args.face_given && (args.face < 0 || args.face >= tex->faces)) {
     if (!tex->is_cube()) {
       return fail(Status::error(ErrorCode::invalid_argument,
                                 input_name + ": --face " + std::to_string(args.face) +
@@ -90,8 +92,8 @@ int run_decompress(const DecompressArgs& args, const GlobalOptions& global) {
   }
   if (!to_folder) {
     std::string missing;
-    if (tex->array && args.layer < 0) missing += " --layer N";
-    if (tex->is_cube() && args.face < 0) missing += " --face N";
+    if (tex->array && !args.layer_given) missing += " --layer N";
+    if (tex->is_cube() && !args.face_given) missing += " --face N";
     if (!missing.empty()) {
       return usage_error(input_name + " is a " + texture_file::texture_shape_name(*tex) +
                          ": choose one image with" + missing +
@@ -100,20 +102,19 @@ int run_decompress(const DecompressArgs& args, const GlobalOptions& global) {
   }
 
   std::vector<Selected> selected;
-  const std::string stem = args.input == "-" ? std::string("stdin")
-                                             : std::filesystem::path(args.input).stem().string();
+  const std::string stem =
+      args.input == "-" ? std::string("stdin") : std::filesystem::path(args.input).stem().string();
   for (int level = 0; level < tex->level_count(); ++level) {
-    if (args.level >= 0 ? level != args.level : (!to_folder && level != 0)) continue;
+    if (args.level_given ? level != args.level : (!to_folder && level != 0)) continue;
     for (int layer = 0; layer < tex->layers; ++layer) {
-      if (args.layer >= 0 && layer != args.layer) continue;
+      if (args.layer_given && layer != args.layer) continue;
       for (int face = 0; face < tex->faces; ++face) {
-        if (args.face >= 0 && face != args.face) continue;
-        selected.push_back(
-            {level, layer, face,
-             to_folder ? (std::filesystem::path(args.output) /
-                          image_file_name(stem, *tex, level, layer, face))
-                             .string()
-                       : args.output});
+        if (args.face_given && face != args.face) continue;
+        selected.push_back({level, layer, face,
+                            to_folder ? (std::filesystem::path(args.output) /
+                                         image_file_name(stem, *tex, level, layer, face))
+                                            .string()
+                                      : args.output});
       }
     }
   }
@@ -121,16 +122,16 @@ int run_decompress(const DecompressArgs& args, const GlobalOptions& global) {
     std::error_code ec;
     std::filesystem::create_directories(args.output, ec);
     if (ec || !std::filesystem::is_directory(args.output)) {
-      return fail(Status::error(ErrorCode::io_error,
-                                args.output + ": cannot create the output folder: " +
-                                    (ec ? ec.message() : "not a directory")));
+      return fail(Status::error(ErrorCode::io_error, args.output +
+                                                         ": cannot create the output folder: " +
+                                                         (ec ? ec.message() : "not a directory")));
     }
   }
   nlohmann::json outputs = nlohmann::json::array();
   std::FILE* out = text_stream(args.output == "-");
   for (const Selected& sel : selected) {
-    Result<ImageRGBA8> img = texture_file::decode_texture_image(*tex, sel.level, sel.layer,
-                                                                sel.face, {global.threads});
+    Result<ImageRGBA8> img =
+        texture_file::decode_texture_image(*tex, sel.level, sel.layer, sel.face, {global.threads});
     if (!img) {
       Status s = img.status();
       s.message = input_name + ": " + s.message;
@@ -138,8 +139,10 @@ int run_decompress(const DecompressArgs& args, const GlobalOptions& global) {
     }
     if (Status s = io::write_image(sel.path, *img); !s.ok()) return fail(s);
     const std::string shown = io::io_name(sel.path, true);
-    nlohmann::json j = {{"output", shown},       {"level", sel.level},
-                        {"width", img->width},   {"height", img->height},
+    nlohmann::json j = {{"output", shown},
+                        {"level", sel.level},
+                        {"width", img->width},
+                        {"height", img->height},
                         {"has_alpha", img->has_alpha}};
     if (tex->array) j["layer"] = sel.layer;
     if (tex->is_cube()) j["face"] = sel.face;
@@ -227,8 +230,8 @@ int run_info(const InfoArgs& args) {
   std::printf("  levels        : %d\n", tex->level_count());
   for (int i = 0; i < tex->level_count(); ++i) {
     if (tex->image_count() == 1) {
-      std::printf("    %2d  %5d x %-5d %9zu bytes\n", i, tex->level_width(i),
-                  tex->level_height(i), tex->levels[std::size_t(i)].size());
+      std::printf("    %2d  %5d x %-5d %9zu bytes\n", i, tex->level_width(i), tex->level_height(i),
+                  tex->levels[std::size_t(i)].size());
     } else {
       std::printf("    %2d  %5d x %-5d %9zu bytes (%d images of %zu)\n", i, tex->level_width(i),
                   tex->level_height(i), tex->levels[std::size_t(i)].size(), tex->image_count(),
@@ -255,20 +258,25 @@ Command add_decompress_command(CLI::App& app, const GlobalOptions& global) {
                   "a folder (DIR/, created) that gets every image as NAME[_layerL][_faceF-px]"
                   "_levelN.png")
       ->required();
-  sub->add_option("--level", args->level,
-                  "Mip level to decode (0 = largest; default 0, or every level into a folder)")
-      ->check(CLI::NonNegativeNumber);
-  sub->add_option("--layer", args->layer, "Array layer to decode (needed for an array unless -o DIR/)")
-      ->check(CLI::NonNegativeNumber);
-  sub->add_option("--face", args->face,
-                  "Cube map face to decode: 0..5 = +X, -X, +Y, -Y, +Z, -Z (needed for a cube map "
-                  "unless -o DIR/)")
-      ->check(CLI::NonNegativeNumber);
+  CLI::Option* level =
+      sub->add_option("--level", args->level,
+                      "Mip level to decode (0 = largest; default 0, or every level into a folder)");
+  CLI::Option* layer = sub->add_option(
+      "--layer", args->layer, "Array layer to decode (needed for an array unless -o DIR/)");
+  CLI::Option* face = sub->add_option(
+      "--face", args->face,
+      "Cube map face to decode: 0..5 = +X, -X, +Y, -Y, +Z, -Z (needed for a cube map unless -o "
+      "DIR/)");
   sub->add_flag("--json", args->json,
                 "Print one JSON object (input, output, level, size; for a folder, the list of "
                 "images)");
   sub->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
-  return {sub, [args, &global] { return run_decompress(*args, global); }};
+  return {sub, [args, &global, level, layer, face] {
+            args->level_given = level->count() > 0;
+            args->layer_given = layer->count() > 0;
+            args->face_given = face->count() > 0;
+            return run_decompress(*args, global);
+          }};
 }
 
 Command add_info_command(CLI::App& app, const GlobalOptions& /*global*/) {

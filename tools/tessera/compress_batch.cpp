@@ -58,9 +58,9 @@ bool is_image_name(const fs::path& p) {
 /// "posx", "+X", "right", ...), and the stem without it; -1 when none.
 std::pair<int, std::string> face_of(const fs::path& p) {
   static const std::vector<std::string> kTokens[6] = {
-      {"px", "posx", "+x", "right"}, {"nx", "negx", "-x", "left"},
+      {"px", "posx", "+x", "right"},     {"nx", "negx", "-x", "left"},
       {"py", "posy", "+y", "top", "up"}, {"ny", "negy", "-y", "bottom", "down"},
-      {"pz", "posz", "+z", "front"}, {"nz", "negz", "-z", "back"}};
+      {"pz", "posz", "+z", "front"},     {"nz", "negz", "-z", "back"}};
   std::string stem = p.stem().string();
   std::transform(stem.begin(), stem.end(), stem.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
@@ -112,14 +112,15 @@ void plan_texture_jobs(const CompressArgs& args, const std::string& ext,
   for (const std::string& w : words) {
     std::error_code ec;
     if (!fs::is_directory(w, ec)) {
-      usage_problems.push_back(w + ": with --cube or --array, a batch takes folders (each one "
+      usage_problems.push_back(w +
+                               ": with --cube or --array, a batch takes folders (each one "
                                "texture); for one texture from files, give -o FILE");
       continue;
     }
     std::vector<fs::path> dirs = {fs::path(w)};
     if (args.recursive) {
-      for (const auto& e : fs::recursive_directory_iterator(
-               w, fs::directory_options::skip_permission_denied, ec)) {
+      for (const auto& e :
+           fs::recursive_directory_iterator(w, fs::directory_options::skip_permission_denied, ec)) {
         std::error_code dec;
         if (e.is_directory(dec)) dirs.push_back(e.path());
       }
@@ -213,8 +214,7 @@ std::vector<Job> plan_jobs(const CompressArgs& args, const std::string& ext,
         jobs.push_back({{p.string()}, (out_dir / rel.replace_extension(ext)).string(), ""});
       }
     } else {
-      jobs.push_back(
-          {{w}, (out_dir / fs::path(w).filename().replace_extension(ext)).string(), ""});
+      jobs.push_back({{w}, (out_dir / fs::path(w).filename().replace_extension(ext)).string(), ""});
     }
   }
   // Two inputs naming one output: the first keeps it.
@@ -235,8 +235,8 @@ std::vector<Job> plan_jobs(const CompressArgs& args, const std::string& ext,
   return jobs;
 }
 
-Outcome run_job(const Job& job, const CompressArgs& args, const std::string& container,
-                int threads, bool measure) {
+Outcome run_job(const Job& job, const CompressArgs& args, const std::string& container, int threads,
+                bool measure) {
   Outcome o;
   if (!job.error.empty()) {
     o.error = job.error;
@@ -334,14 +334,14 @@ int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
   std::error_code ec;
   fs::create_directories(args.output, ec);
   if (ec || !fs::is_directory(args.output)) {
-    return fail(Status::error(ErrorCode::io_error,
-                              args.output + ": cannot create the output folder: " +
-                                  (ec ? ec.message() : "not a directory")));
+    return fail(Status::error(ErrorCode::io_error, args.output +
+                                                       ": cannot create the output folder: " +
+                                                       (ec ? ec.message() : "not a directory")));
   }
 
-  const int workers = std::max(1, std::min<int>(global.threads > 0 ? global.threads
-                                                                   : default_thread_count(),
-                                                int(std::max<std::size_t>(jobs.size(), 1))));
+  const int workers =
+      std::max(1, std::min<int>(global.threads > 0 ? global.threads : default_thread_count(),
+                                int(std::max<std::size_t>(jobs.size(), 1))));
   // Fewer files than workers: the spare threads go into each file's encode (same bytes).
   const int per_file = std::max(1, (global.threads > 0 ? global.threads : default_thread_count()) /
                                        int(std::max<std::size_t>(jobs.size(), 1)));
@@ -399,9 +399,8 @@ int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
           break;
       }
       if (args.json) {
-        nlohmann::json j = {{"input", jobs[i].inputs.size() == 1
-                                          ? nlohmann::json(jobs[i].input())
-                                          : nlohmann::json(jobs[i].inputs)},
+        nlohmann::json j = {{"input", jobs[i].inputs.size() == 1 ? nlohmann::json(jobs[i].input())
+                                                                 : nlohmann::json(jobs[i].inputs)},
                             {"output", jobs[i].output},
                             {"status", kind_name(o.kind)}};
         if (o.kind == Outcome::Kind::failed) j["error"] = o.error;
@@ -439,10 +438,11 @@ int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
                               {"threads", workers * per_file}};
     std::printf("%s\n", j.dump().c_str());
   } else if (!args.quiet) {
-    std::printf("compressed %zu of %zu file(s) into %s (%zu skipped, %zu failed): %.2f MPixel in "
-                "%.2f s, %.1f MPixel/s\n",
-                done, jobs.size(), args.output.c_str(), skipped, failed, mpixels, total_s,
-                total_s > 0 ? mpixels / total_s : 0.0);
+    std::printf(
+        "compressed %zu of %zu file(s) into %s (%zu skipped, %zu failed): %.2f MPixel in "
+        "%.2f s, %.1f MPixel/s\n",
+        done, jobs.size(), args.output.c_str(), skipped, failed, mpixels, total_s,
+        total_s > 0 ? mpixels / total_s : 0.0);
   }
   return failed ? kExitBadInput : kExitOk;
 }
