@@ -19,6 +19,7 @@ packages=(
   clang lld libclang-rt-14-dev                 # second compiler, sanitizers, libFuzzer
   libspng-dev zlib1g-dev libstb-dev            # PNG, zlib, JPEG/TGA/BMP
   libdeflate-dev                               # PNG fast path (inflate)
+  libzstd-dev                                  # KTX 2.0 Zstandard supercompression
   libtbb-dev                                   # parallel_for
   libcli11-dev nlohmann-json3-dev              # CLI, --json
   libtinyobjloader-dev libtinygltf-dev         # OBJ and glTF scenes
