@@ -2,7 +2,9 @@
 """Regenerates the committed seed corpora in fuzz/corpus/<target>/ (tiny valid files).
 
 Usage: make_corpus.py PATH/TO/tessera [OUT_DIR (default: fuzz/corpus next to this script)]
-PVR v3 / KTX 1.1 seeds are made with `tessera compress` from small generated PNGs; the
+PVR v3 / KTX 1.1 seeds are made with `tessera compress` from small generated PNGs; KTX 2.0
+seeds (with and without Zstandard levels) by ktx2_oracle_writer beside the CLI in the build's
+bin folder (tests/ktx2_oracle_writer.cpp: real encodes, written by the library); the
 pvrtc::decode seeds are the fuzzer's input layout (format byte, int32 width, int32 height,
 block data), the pvrtc::encode seeds that fuzzer's layout (sizes, options, texels); image
 seeds are PNGs (written here with the standard library) plus JPEG, BMP and TGA when Pillow is
@@ -106,6 +108,19 @@ def encode_seeds():
         write("fuzz_pvrtc_encode", name + ".bin", bytes([lw, lh, flags, rounds]) + src)
 
 
+def ktx2_seeds():
+    """fuzz_parse_ktx2 seeds: a few of ktx2_oracle_writer's variants (2D, array, cube map array;
+    4 and 2 bpp; none, zstd 3 and zstd 19)."""
+    writer = os.path.join(os.path.dirname(os.path.abspath(TESSERA)), "ktx2_oracle_writer")
+    names = ["4bpp-linear-opaque", "4bpp-array1", "2bpp-cube-array2-srgb-mips",
+             "4bpp-srgb-alpha-mips-zstd3", "2bpp-linear-opaque-zstd19"]
+    with tempfile.TemporaryDirectory() as tmp:
+        subprocess.run([writer, tmp], check=True, capture_output=True)
+        for name in names:
+            with open(os.path.join(tmp, name + ".ktx2"), "rb") as f:
+                write("fuzz_parse_ktx2", name + ".ktx2", f.read())
+
+
 def write(target, name, data):
     folder = os.path.join(OUT, target)
     os.makedirs(folder, exist_ok=True)
@@ -142,6 +157,7 @@ def main():
             header = struct.pack("<Bii", 1 if bpp2 else 0, w, h)
             write("fuzz_pvrtc_decode", name + ".bin", header + pvr[67:67 + level0])
 
+    ktx2_seeds()
     png_diff_seeds()
     encode_seeds()
     write("fuzz_decode_image", "rgb.png", png_bytes(7, 5, 3, pattern))

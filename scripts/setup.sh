@@ -19,6 +19,7 @@ packages=(
   clang lld libclang-rt-14-dev                 # second compiler, sanitizers, libFuzzer
   libspng-dev zlib1g-dev libstb-dev            # PNG, zlib, JPEG/TGA/BMP
   libdeflate-dev                               # PNG fast path (inflate)
+  libzstd-dev                                  # KTX 2.0 Zstandard supercompression
   libtbb-dev                                   # parallel_for
   libcli11-dev nlohmann-json3-dev              # CLI, --json
   libtinyobjloader-dev libtinygltf-dev         # OBJ and glTF scenes
@@ -34,7 +35,7 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
 done
-# npm ships the PVRTexTool oracle; any Node.js install with npm will do.
+# npm ships the PVRTexTool and ktx-parse oracles; any Node.js install with npm will do.
 command -v npm >/dev/null 2>&1 || missing+=(nodejs npm)
 if ((${#missing[@]})); then
   SUDO=""
@@ -57,9 +58,21 @@ if [ ! -x "$pvrtextool" ]; then
   mv "$pvrtextool.tmp" "$pvrtextool"
 fi
 
+# --- ktx-parse 2.0.0 + fzstd 0.1.1 (KTX 2.0 test oracle: tests/ktx2_oracle.mjs) -------------
+# ktx-parse reads the container but leaves Zstandard levels compressed; fzstd, a separate
+# pure-JavaScript decoder, inflates them. Exact versions, installed once into the cache.
+ktx_parse="$cache/peers/ktx-parse"
+if [ ! -f "$ktx_parse/node_modules/ktx-parse/package.json" ] ||
+  [ ! -f "$ktx_parse/node_modules/fzstd/package.json" ]; then
+  log "installing ktx-parse@2.0.0 and fzstd@0.1.1 (npm) into $ktx_parse"
+  mkdir -p "$ktx_parse"
+  (cd "$ktx_parse" && npm install --silent --no-audit --no-fund --save-exact \
+    ktx-parse@2.0.0 fzstd@0.1.1 >/dev/null)
+fi
+
 # --- Configure and build ---------------------------------------------------------------------
 build="${TESSERA_BUILD:-build}"
 log "building in $build/"
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DTESSERA_WERROR=ON \
-  -DTESSERA_PVRTEXTOOL="$pvrtextool" >/dev/null
+  -DTESSERA_PVRTEXTOOL="$pvrtextool" -DTESSERA_KTX_PARSE="$ktx_parse" >/dev/null
 cmake --build "$build"

@@ -146,6 +146,68 @@ TEST(PvrtcDecode, PunchThroughAndTranslucent) {
   EXPECT_EQ(t3[3], 255);
 }
 
+TEST(PvrtcDecode, MayHaveAlphaFindsTranslucentEndpointsAndPunchThrough) {
+  const std::uint64_t opaque = (std::uint64_t{0x8000u | (31u << 10)} << 48) |  // B red
+                               (std::uint64_t{0x8000u} << 32);                 // A black
+  const std::uint64_t mode1 = std::uint64_t{1} << 32;
+  std::vector<std::uint8_t> data(32);
+  auto fill = [&](std::uint64_t word) {
+    for (std::size_t i = 0; i < 4; ++i) put_block(data, i, word);
+  };
+  for (Format f : {Format::pvrtc1_4bpp, Format::pvrtc1_2bpp}) {
+    fill(opaque | 0xAAAAAAAAu);  // every 2-bit value 2, mode 0: a blend, opaque
+    EXPECT_FALSE(may_have_alpha(data, f));
+    fill(opaque | mode1 | 0x5555FFFFu);  // mode 1, values 1 and 3 only
+    EXPECT_FALSE(may_have_alpha(data, f));
+  }
+  // One punch-through texel (value 2 under mode 1) in the last block: alpha 0 at 4 bpp only (at
+  // 2 bpp the mode bit selects interpolation).
+  put_block(data, 3, opaque | mode1 | (2u << 30));
+  EXPECT_TRUE(may_have_alpha(data, Format::pvrtc1_4bpp));
+  EXPECT_FALSE(may_have_alpha(data, Format::pvrtc1_2bpp));
+  for (int bit : {47, 63}) {  // either endpoint translucent
+    fill(opaque);
+    put_block(data, 2, opaque & ~(std::uint64_t{1} << bit));
+    EXPECT_TRUE(may_have_alpha(data, Format::pvrtc1_4bpp)) << bit;
+    EXPECT_TRUE(may_have_alpha(data, Format::pvrtc1_2bpp)) << bit;
+  }
+  fill(opaque);
+  data.resize(36, 0);  // a partial block at the end is ignored
+  EXPECT_FALSE(may_have_alpha(data, Format::pvrtc1_4bpp));
+  EXPECT_FALSE(may_have_alpha({}, Format::pvrtc1_4bpp));
+
+  // Never wrong against the decoder: whenever a decoded texel has alpha below 255, the scan
+  // says so (random blocks; each endpoint opaque with probability 7/8, random modes).
+  std::uint64_t state = 42;
+  auto next = [&] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return state >> 32;  // the LCG's low bits have short periods
+  };
+  int with_alpha = 0, opaque_textures = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const Format f = trial % 2 ? Format::pvrtc1_2bpp : Format::pvrtc1_4bpp;
+    std::vector<std::uint8_t> blocks(level_size(f, 8, 8));
+    for (std::size_t i = 0; i < blocks.size() / 8; ++i) {
+      std::uint64_t w = next() | next() << 32;
+      w |= (std::uint64_t{1} << 47) | (std::uint64_t{1} << 63);
+      if (next() % 8 == 0) w &= ~(std::uint64_t{1} << 47);
+      if (next() % 8 == 0) w &= ~(std::uint64_t{1} << 63);
+      if (next() % 4 != 0) w &= ~(std::uint64_t{1} << 32);  // mostly mode 0
+      put_block(blocks, i, w);
+    }
+    auto img = decode(blocks, f, 8, 8);
+    ASSERT_TRUE(img.ok());
+    if (img->has_alpha) {
+      ++with_alpha;
+      EXPECT_TRUE(may_have_alpha(blocks, f)) << "trial " << trial;
+    } else if (!may_have_alpha(blocks, f)) {
+      ++opaque_textures;
+    }
+  }
+  EXPECT_GT(with_alpha, 50);
+  EXPECT_GT(opaque_textures, 20);
+}
+
 TEST(PvrtcDecode, TwoBppDirectAndInterpolated) {
   const std::uint64_t a = 0x8000u;                                   // black
   const std::uint64_t b = 0x8000u | (31u << 10) | (31u << 5) | 31u;  // white

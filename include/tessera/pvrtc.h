@@ -125,4 +125,12 @@ Result<std::vector<std::uint8_t>> encode(const ImageView8& image, const EncodeOp
 Result<ImageRGBA8> decode(std::span<const std::uint8_t> data, Format format, int width, int height,
                           const Parallel& parallel = {});
 
+/// Whether `data` (64-bit blocks as `decode` takes them; a partial block at the end is ignored)
+/// can decode to any texel with alpha below 255: true when a block has a translucent endpoint
+/// (colour A or B with its opaque bit, bit 47 or 63, clear) or, at 4 bpp, is a punch-through
+/// block (mode bit 32 set) with a texel whose modulation value is 2. Conservative: a translucent
+/// endpoint whose weight is 0 at every texel still counts. Containers without an RGB/RGBA
+/// distinction (KTX 2.0) derive `has_alpha` from it.
+bool may_have_alpha(std::span<const std::uint8_t> data, Format format);
+
 }  // namespace tessera::pvrtc

@@ -1,15 +1,374 @@
-// KTX 2.0 container: not implemented yet (the reader and writer are being written); both
-// entry points say so in one line.
+// KTX 2.0 container: reader and writer for PVRTC1, with optional Zstandard supercompression.
+//
+// Layout: 12-byte identifier, nine u32 fields (vkFormat, typeSize, pixelWidth, pixelHeight,
+// pixelDepth, layerCount, faceCount, levelCount, supercompressionScheme), the index (dfd and
+// kvd offset/length u32, sgd offset/length u64), the level index (per level, level 0 first:
+// byteOffset, byteLength, uncompressedByteLength, u64 each), the Data Format Descriptor, the
+// key/value data, then the levels' data, smallest level first. Every offset and length is
+// checked in 64 bits against the file size, and every level's size against what the header's
+// shape requires, before anything is allocated.
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+#include "tessera/mipmap.h"
 #include "tessera/texture_file.h"
+#include "texture_file/container_bytes.h"
+#include "texture_file/ktx2_format.h"
+
+#ifndef TESSERA_VERSION_STRING
+#error "TESSERA_VERSION_STRING must be defined by the build (src/CMakeLists.txt)"
+#endif
 
 namespace tessera::texture_file {
 
-Result<CompressedTexture> parse_ktx2(std::span<const std::uint8_t>, const std::string& name) {
-  return Status::error(ErrorCode::unsupported, name + ": KTX 2.0 files are not supported yet");
+namespace {
+
+using container::load_u32;
+using container::load_u64;
+using container::plural_bytes;
+
+Status corrupt(const std::string& name, const std::string& what) {
+  return Status::error(ErrorCode::corrupt_data, name + ": " + what);
+}
+Status unsupported(const std::string& name, const std::string& what) {
+  return Status::error(ErrorCode::unsupported, name + ": " + what);
 }
 
-Result<std::vector<std::uint8_t>> serialise_ktx2(const CompressedTexture&, const Ktx2Options&) {
-  return Status::error(ErrorCode::unsupported, "KTX 2.0 output is not supported yet");
+std::string scheme_name(std::uint32_t scheme) {
+  switch (scheme) {
+    case ktx2::kSchemeNone:
+      return "none";
+    case ktx2::kSchemeBasisLz:
+      return "BasisLZ";
+    case ktx2::kSchemeZstd:
+      return "Zstandard";
+    case ktx2::kSchemeZlib:
+      return "ZLIB";
+    default:
+      return "unknown";
+  }
+}
+
+/// Where one level's bytes lie in the file.
+struct LevelEntry {
+  std::uint64_t offset = 0;
+  std::uint64_t length = 0;
+  std::uint64_t uncompressed = 0;
+};
+
+/// Walks the key/value entries: each is a u32 length, the bytes, padding to 4. Only the
+/// structure is checked; tessera needs no key.
+Status check_key_values(std::span<const std::uint8_t> kvd, const std::string& name) {
+  std::size_t at = 0;
+  while (at < kvd.size()) {
+    if (kvd.size() - at < 4) return corrupt(name, "malformed key/value data (partial entry size)");
+    const std::uint32_t n = load_u32(kvd, at);
+    at += 4;
+    if (n > kvd.size() - at) {
+      return corrupt(
+          name, "malformed key/value data (entry of " + plural_bytes(n) + " overruns the block)");
+    }
+    at += n;
+    at += std::min<std::size_t>((4 - n % 4) % 4, kvd.size() - at);
+  }
+  return Status::success();
+}
+
+void append_key_value(std::vector<std::uint8_t>& kvd, const std::string& key,
+                      const std::string& value) {
+  const std::size_t n = key.size() + 1 + value.size() + 1;  // both NUL-terminated
+  container::store_u32(kvd, std::uint32_t(n));
+  kvd.insert(kvd.end(), key.begin(), key.end());
+  kvd.push_back(0);
+  kvd.insert(kvd.end(), value.begin(), value.end());
+  kvd.push_back(0);
+  kvd.insert(kvd.end(), (4 - n % 4) % 4, 0);
+}
+
+std::uint64_t align_up(std::uint64_t v, std::uint64_t a) { return (v + a - 1) / a * a; }
+
+}  // namespace
+
+Result<CompressedTexture> parse_ktx2(std::span<const std::uint8_t> bytes, const std::string& name) {
+  if (bytes.size() < ktx2::kIdentifier.size() ||
+      std::memcmp(bytes.data(), ktx2::kIdentifier.data(), ktx2::kIdentifier.size()) != 0) {
+    return corrupt(name, "not a KTX 2.0 file (bad identifier)");
+  }
+  if (bytes.size() < ktx2::kHeaderSize) {
+    return corrupt(name, "truncated KTX 2.0 header: " + plural_bytes(bytes.size()) + " of " +
+                             std::to_string(ktx2::kHeaderSize));
+  }
+  const std::uint32_t vk_format = load_u32(bytes, 12);
+  const std::uint32_t type_size = load_u32(bytes, 16);
+  const std::uint32_t width = load_u32(bytes, 20);
+  const std::uint32_t height = load_u32(bytes, 24);
+  const std::uint32_t depth = load_u32(bytes, 28);
+  const std::uint32_t layer_count = load_u32(bytes, 32);
+  const std::uint32_t faces = load_u32(bytes, 36);
+  const std::uint32_t level_count = load_u32(bytes, 40);
+  const std::uint32_t scheme = load_u32(bytes, 44);
+  const std::uint64_t dfd_offset = load_u32(bytes, 48);
+  const std::uint64_t dfd_length = load_u32(bytes, 52);
+  const std::uint64_t kvd_offset = load_u32(bytes, 56);
+  const std::uint64_t kvd_length = load_u32(bytes, 60);
+  const std::uint64_t sgd_length = load_u64(bytes, 72);
+  const std::uint64_t size = bytes.size();
+
+  const ktx2::VkPvrtcFormat* vk = ktx2::find_vk_format(vk_format);
+  if (!vk) {
+    const std::string vk_name = ktx2::vk_format_name(vk_format);
+    return unsupported(name, "vkFormat " + std::to_string(vk_format) +
+                                 (vk_name.empty() ? "" : " (" + vk_name + ")") +
+                                 " is not supported (only PVRTC1: "
+                                 "VK_FORMAT_PVRTC1_{2,4}BPP_{UNORM,SRGB}_BLOCK_IMG)");
+  }
+  if (scheme != ktx2::kSchemeNone && scheme != ktx2::kSchemeZstd) {
+    return unsupported(name, "supercompressionScheme " + std::to_string(scheme) + " (" +
+                                 scheme_name(scheme) +
+                                 ") is not supported (only 0, none, and 2, Zstandard)");
+  }
+  if (type_size != 1) {
+    return corrupt(name, "typeSize " + std::to_string(type_size) +
+                             " (block-compressed formats have typeSize 1)");
+  }
+  if (width == 0) return corrupt(name, "pixelWidth 0");
+  if (height == 0) return unsupported(name, "1D textures (pixelHeight 0) are not supported");
+  if (depth != 0) {
+    return unsupported(name,
+                       "3D textures (pixelDepth " + std::to_string(depth) + ") are not supported");
+  }
+  if (faces != 1 && faces != 6) {
+    return corrupt(name, "faceCount " + std::to_string(faces) + " (1, or 6 for a cube map)");
+  }
+  if (faces == 6 && width != height) {
+    return corrupt(name, "a cube map's faces must be square, not " + std::to_string(width) + "x" +
+                             std::to_string(height));
+  }
+  const std::uint32_t max_layers = std::uint32_t(kMaxTextureImages) / faces;
+  if (layer_count > max_layers) {
+    return Status::error(ErrorCode::too_large,
+                         name + ": layerCount " + std::to_string(layer_count) +
+                             " exceeds tessera's limit of " + std::to_string(max_layers) +
+                             (faces == 6 ? " cube map layers" : " layers"));
+  }
+  if (Status s = check_image_size(width, height, name); !s.ok()) return s;
+  if (Status s = pvrtc::check_dimensions(int(width), int(height), name); !s.ok()) return s;
+  const int possible = mip_level_count(int(width), int(height));
+  // levelCount 0 means "one level; the loader generates the rest".
+  const std::uint32_t levels = std::max<std::uint32_t>(level_count, 1);
+  if (levels > std::uint32_t(possible)) {
+    return corrupt(name, "levelCount " + std::to_string(level_count) + " is impossible for " +
+                             std::to_string(width) + "x" + std::to_string(height) + " (1 to " +
+                             std::to_string(possible) + ")");
+  }
+  const std::uint64_t index_end = ktx2::kHeaderSize + ktx2::kLevelEntrySize * levels;
+  if (index_end > size) {
+    return corrupt(name, "truncated: the level index of " + std::to_string(levels) +
+                             " level(s) ends at byte " + std::to_string(index_end) +
+                             ", past the end of the file (" + plural_bytes(size) + ")");
+  }
+
+  // Data Format Descriptor, then key/value data, in that order after the level index.
+  if (dfd_length == 0) return corrupt(name, "no Data Format Descriptor (dfdByteLength 0)");
+  if (dfd_offset < index_end) {
+    return corrupt(name, "dfdByteOffset " + std::to_string(dfd_offset) +
+                             " lies inside the header or level index (which end at byte " +
+                             std::to_string(index_end) + ")");
+  }
+  if (dfd_offset > size || dfd_length > size - dfd_offset) {
+    return corrupt(name, "truncated: the Data Format Descriptor (" + plural_bytes(dfd_length) +
+                             " at byte " + std::to_string(dfd_offset) +
+                             ") extends past the end of the file (" + plural_bytes(size) + ")");
+  }
+  Result<ktx2::DfdInfo> dfd =
+      ktx2::read_dfd(bytes.subspan(std::size_t(dfd_offset), std::size_t(dfd_length)), *vk, name);
+  if (!dfd) return dfd.status();
+  std::uint64_t metadata_end = dfd_offset + dfd_length;
+  if (kvd_length != 0) {
+    if (kvd_offset < metadata_end) {
+      return corrupt(name, "kvdByteOffset " + std::to_string(kvd_offset) +
+                               " lies before the end of the Data Format Descriptor (byte " +
+                               std::to_string(metadata_end) + ")");
+    }
+    if (kvd_offset > size || kvd_length > size - kvd_offset) {
+      return corrupt(name, "truncated: the key/value data (" + plural_bytes(kvd_length) +
+                               " at byte " + std::to_string(kvd_offset) +
+                               ") extends past the end of the file (" + plural_bytes(size) + ")");
+    }
+    if (Status s =
+            check_key_values(bytes.subspan(std::size_t(kvd_offset), std::size_t(kvd_length)), name);
+        !s.ok()) {
+      return s;
+    }
+    metadata_end = kvd_offset + kvd_length;
+  }
+  if (sgd_length != 0) {
+    return corrupt(name, "supercompression global data of " + plural_bytes(sgd_length) +
+                             " (scheme " + scheme_name(scheme) + " has none)");
+  }
+
+  CompressedTexture tex;
+  tex.format = vk->format;
+  tex.width = int(width);
+  tex.height = int(height);
+  tex.srgb = dfd->srgb;
+  tex.premultiplied = dfd->premultiplied;
+  tex.faces = int(faces);
+  tex.array = layer_count > 0;
+  tex.layers = tex.array ? int(layer_count) : 1;
+
+  // The level index: every level's range and sizes, all checked before any level is read.
+  std::vector<LevelEntry> entries(levels);
+  for (std::uint32_t i = 0; i < levels; ++i) {
+    const std::size_t at = ktx2::kHeaderSize + ktx2::kLevelEntrySize * i;
+    LevelEntry& e = entries[i];
+    e.offset = load_u64(bytes, at);
+    e.length = load_u64(bytes, at + 8);
+    e.uncompressed = load_u64(bytes, at + 16);
+    const std::string level = "level " + std::to_string(i);
+    const std::uint64_t expected =
+        std::uint64_t(tex.image_size(int(i))) * std::uint64_t(tex.image_count());
+    if (e.uncompressed != expected) {
+      return corrupt(name, level + " uncompressedByteLength " + std::to_string(e.uncompressed) +
+                               " does not match " + std::to_string(tex.level_width(int(i))) + "x" +
+                               std::to_string(tex.level_height(int(i))) + " PVRTC x " +
+                               std::to_string(tex.image_count()) + " image(s) (" +
+                               plural_bytes(expected) + ")");
+    }
+    if (scheme == ktx2::kSchemeNone) {
+      if (e.length != e.uncompressed) {
+        return corrupt(name, level + " byteLength " + std::to_string(e.length) +
+                                 " differs from its uncompressedByteLength " +
+                                 std::to_string(e.uncompressed) + " (not supercompressed)");
+      }
+      if (e.offset % ktx2::kLevelAlignment != 0) {
+        return corrupt(name, level + " byteOffset " + std::to_string(e.offset) +
+                                 " is not a multiple of " + std::to_string(ktx2::kLevelAlignment));
+      }
+    } else if (!ktx2::zstd_expansion_possible(e.length, e.uncompressed)) {
+      // Also keeps a lying header from making the reader allocate what no data can fill.
+      return corrupt(name, level + ": " + plural_bytes(e.length) +
+                               " of Zstandard data cannot hold " + plural_bytes(e.uncompressed));
+    }
+    if (e.offset < metadata_end) {
+      return corrupt(name, level + " byteOffset " + std::to_string(e.offset) +
+                               " lies inside the header, index or metadata (which end at byte " +
+                               std::to_string(metadata_end) + ")");
+    }
+    if (e.offset > size || e.length > size - e.offset) {
+      return corrupt(name, "truncated: " + level + " (" + plural_bytes(e.length) + " at byte " +
+                               std::to_string(e.offset) + ") extends past the end of the file (" +
+                               plural_bytes(size) + ")");
+    }
+  }
+  std::vector<std::uint32_t> order(levels);
+  for (std::uint32_t i = 0; i < levels; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return entries[a].offset < entries[b].offset;
+  });
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    const LevelEntry& prev = entries[order[k - 1]];
+    if (entries[order[k]].offset < prev.offset + prev.length) {
+      return corrupt(name, "levels " + std::to_string(order[k - 1]) + " and " +
+                               std::to_string(order[k]) + " overlap (bytes " +
+                               std::to_string(prev.offset) + "+" + std::to_string(prev.length) +
+                               " and " + std::to_string(entries[order[k]].offset) + ")");
+    }
+  }
+
+  tex.levels.reserve(levels);
+  for (std::uint32_t i = 0; i < levels; ++i) {
+    const LevelEntry& e = entries[i];
+    const auto data = bytes.subspan(std::size_t(e.offset), std::size_t(e.length));
+    if (scheme == ktx2::kSchemeNone) {
+      tex.levels.emplace_back(data.begin(), data.end());
+      continue;
+    }
+    std::vector<std::uint8_t> raw(std::size_t(e.uncompressed));
+    if (Status s = ktx2::zstd_decompress(data, raw, name + ": level " + std::to_string(i));
+        !s.ok()) {
+      return s;
+    }
+    tex.levels.push_back(std::move(raw));
+  }
+  tex.has_alpha = std::any_of(tex.levels.begin(), tex.levels.end(),
+                              [&](const auto& l) { return pvrtc::may_have_alpha(l, tex.format); });
+  return tex;
+}
+
+Result<std::vector<std::uint8_t>> serialise_ktx2(const CompressedTexture& texture,
+                                                 const Ktx2Options& options) {
+  if (Status s = validate_texture(texture, "KTX 2.0 output"); !s.ok()) return s;
+  if (options.zstd_level < 0 || options.zstd_level > 22) {
+    return Status::error(ErrorCode::invalid_argument, "KTX 2.0 output: zstd level " +
+                                                          std::to_string(options.zstd_level) +
+                                                          " is out of range (0 = none, 1 to 22)");
+  }
+  const bool zstd = options.zstd_level > 0;
+  const std::size_t levels = texture.levels.size();
+
+  // Level payloads: the raw bytes, or one Zstandard frame per level.
+  std::vector<std::vector<std::uint8_t>> packed;
+  if (zstd) {
+    packed.reserve(levels);
+    for (const auto& l : texture.levels) {
+      Result<std::vector<std::uint8_t>> c = ktx2::zstd_compress(l, options.zstd_level);
+      if (!c) return c.status();
+      packed.push_back(std::move(*c));
+    }
+  }
+  auto payload = [&](std::size_t i) -> const std::vector<std::uint8_t>& {
+    return zstd ? packed[i] : texture.levels[i];
+  };
+
+  const std::vector<std::uint8_t> dfd =
+      ktx2::make_dfd(texture.format, texture.srgb, texture.premultiplied);
+  std::vector<std::uint8_t> kvd;  // keys in byte order, as the specification requires
+  append_key_value(kvd, "KTXorientation", "rd");
+  append_key_value(kvd, "KTXwriter", "tessera " TESSERA_VERSION_STRING);
+
+  const std::uint64_t dfd_offset = ktx2::kHeaderSize + ktx2::kLevelEntrySize * levels;
+  const std::uint64_t kvd_offset = dfd_offset + dfd.size();
+  const std::uint64_t alignment = zstd ? 1 : ktx2::kLevelAlignment;
+  // Levels are stored smallest first; each starts aligned (without supercompression).
+  std::vector<std::uint64_t> offsets(levels);
+  std::uint64_t end = kvd_offset + kvd.size();
+  for (std::size_t i = levels; i-- > 0;) {
+    offsets[i] = align_up(end, alignment);
+    end = offsets[i] + payload(i).size();
+  }
+
+  std::vector<std::uint8_t> out(ktx2::kIdentifier.begin(), ktx2::kIdentifier.end());
+  out.reserve(std::size_t(end));
+  const ktx2::VkPvrtcFormat& vk = ktx2::vk_format_for(texture.format, texture.srgb);
+  container::store_u32(out, vk.vk_format);
+  container::store_u32(out, 1);  // typeSize
+  container::store_u32(out, std::uint32_t(texture.width));
+  container::store_u32(out, std::uint32_t(texture.height));
+  container::store_u32(out, 0);  // pixelDepth
+  container::store_u32(out, texture.array ? std::uint32_t(texture.layers) : 0);
+  container::store_u32(out, std::uint32_t(texture.faces));
+  container::store_u32(out, std::uint32_t(levels));
+  container::store_u32(out, zstd ? ktx2::kSchemeZstd : ktx2::kSchemeNone);
+  container::store_u32(out, std::uint32_t(dfd_offset));
+  container::store_u32(out, std::uint32_t(dfd.size()));
+  container::store_u32(out, std::uint32_t(kvd_offset));
+  container::store_u32(out, std::uint32_t(kvd.size()));
+  container::store_u64(out, 0);  // sgdByteOffset: no supercompression global data
+  container::store_u64(out, 0);  // sgdByteLength
+  for (std::size_t i = 0; i < levels; ++i) {
+    container::store_u64(out, offsets[i]);
+    container::store_u64(out, payload(i).size());
+    container::store_u64(out, texture.levels[i].size());
+  }
+  out.insert(out.end(), dfd.begin(), dfd.end());
+  out.insert(out.end(), kvd.begin(), kvd.end());
+  for (std::size_t i = levels; i-- > 0;) {
+    out.resize(std::size_t(offsets[i]), 0);  // alignment padding
+    out.insert(out.end(), payload(i).begin(), payload(i).end());
+  }
+  return out;
 }
 
 }  // namespace tessera::texture_file

@@ -37,6 +37,21 @@ Status check_dimensions(int width, int height, const std::string& what) {
   return check_image_size(width, height, what);
 }
 
+bool may_have_alpha(std::span<const std::uint8_t> data, Format format) {
+  constexpr std::uint64_t kOpaqueBits = (std::uint64_t{1} << 47) | (std::uint64_t{1} << 63);
+  for (std::size_t at = 0; at + 8 <= data.size(); at += 8) {
+    std::uint64_t word = 0;
+    for (int i = 0; i < 8; ++i) word |= std::uint64_t(data[at + std::size_t(i)]) << (8 * i);
+    if ((word & kOpaqueBits) != kOpaqueBits) return true;  // a translucent endpoint
+    if (format == Format::pvrtc1_4bpp && ((word >> 32) & 1) != 0) {
+      // Punch-through block: a 2-bit value 2 (binary 10) has its high bit set, its low bit clear.
+      const std::uint32_t mod = std::uint32_t(word);
+      if ((mod & ~(mod << 1) & 0xAAAAAAAAu) != 0) return true;
+    }
+  }
+  return false;
+}
+
 std::uint32_t morton_index(std::uint32_t bx, std::uint32_t by, std::uint32_t bw, std::uint32_t bh) {
   return morton(bx, by, bw, bh);
 }
