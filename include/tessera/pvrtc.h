@@ -101,6 +101,11 @@ struct EncodeOptions {
   /// Treat the input as RGBA even if `image.has_alpha` is false (otherwise alpha is ignored and
   /// only opaque colours are written).
   bool force_alpha = false;
+  /// The input's RGB is a normal map (unit vectors, x, y, z from [-1, 1] mapped to [0, 255]):
+  /// after the quality's passes, which minimise RGB error, every texel's modulation is chosen
+  /// by the angle between its decoded vector and the input's (what a renderer that
+  /// renormalises sees): 4 bpp, and 2 bpp blocks in direct mode. Never raises a texel's angle.
+  bool normal_map = false;
   int threads = 0;
   /// Optional progress hook: called with the fraction of this encode done, from the thread
   /// that called `encode` only (never from a worker), between the encoder's passes, sweeps and

@@ -114,6 +114,7 @@ Status encode_images(std::span<const std::vector<ImageView8>> images,
   };
   tex.levels.assign(images.front().size(), {});
   pvrtc::EncodeOptions level_options = options.encode;
+  level_options.normal_map = level_options.normal_map || options.normal_map;
   for (std::size_t i = 0; i < images.size(); ++i) {
     for (std::size_t l = 0; l < images[i].size(); ++l) {
       const ImageView8& level = images[i][l];

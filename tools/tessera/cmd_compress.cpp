@@ -404,9 +404,7 @@ Command add_compress_command(CLI::App& app, const GlobalOptions& global) {
                 "The input is a normal map (RGB = x, y, z in [-1, 1]): renormalised, mips "
                 "averaged as vectors; never sRGB");
   sub->add_option("--zstd", args->zstd,
-                  "KTX 2.0: Zstandard supercompression at LEVEL (1-22; 3 when no level is given)")
-      ->expected(0, 1)
-      ->default_str("3")
+                  "KTX 2.0: Zstandard supercompression at LEVEL (1-22; 3 when no level follows)")
       ->check(CLI::Range(1, 22));
   sub->add_flag("--srgb", args->srgb,
                 "Mark the texture sRGB (colour space flag / sRGB KTX format) and filter in "

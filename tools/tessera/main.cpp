@@ -304,8 +304,25 @@ int main(int argc, char** argv) {
                   "(worker threads, 0 = all hardware threads; output is the same for any N)");
   }
 
+  // Options whose value is optional (`--zstd [LEVEL]`): given without a number, they take the
+  // default written as `--opt=DEFAULT`, so that CLI11 never swallows the next word (an input
+  // path) as the value.
+  std::vector<std::string> words(argv, argv + argc);
+  static constexpr std::pair<std::string_view, std::string_view> kOptionalValues[] = {
+      {"--zstd", "3"}};
+  for (std::size_t i = 1; i < words.size(); ++i) {
+    for (const auto& [option, fallback] : kOptionalValues) {
+      if (words[i] != option) continue;
+      const bool number = i + 1 < words.size() && !words[i + 1].empty() &&
+                          words[i + 1].find_first_not_of("0123456789") == std::string::npos;
+      if (!number) words[i] = std::string(option) + "=" + std::string(fallback);
+    }
+  }
+  std::vector<char*> parse_argv;
+  for (std::string& w : words) parse_argv.push_back(w.data());
+
   try {
-    app.parse(argc, argv);
+    app.parse(int(parse_argv.size()), parse_argv.data());
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

@@ -313,6 +313,7 @@ Result<std::vector<std::uint8_t>> encode(const ImageView8& image, const EncodeOp
     s.progress = steps.next(crossover_cost(schedule, options.format));
     optimise_crossover(s, alt, alt_error, schedule);
   }
+  if (options.normal_map) choose_modulation_angular(s);
   std::vector<std::uint8_t> out(level_size(options.format, image.width, image.height));
   const std::vector<std::uint64_t> w = s.words();
   store_words(g, w.data(), out.data());

@@ -230,6 +230,11 @@ int crossover(EncoderState& s, const EncoderState& other, int alpha_weight,
 void optimise_crossover(EncoderState& s, EncoderState& alt, std::uint64_t alt_error,
                         const EncodeSchedule& schedule);
 
+/// Normal maps (see modulation_angular.cpp): with the endpoints fixed, gives every texel the
+/// modulation value whose decode makes the smallest angle with the target's vector (4 bpp; 2 bpp
+/// blocks in direct mode; punch-through texels keep theirs). Deterministic for any thread count.
+void choose_modulation_angular(EncoderState& s);
+
 /// `reseed` with the squared alpha error counted `alpha_weight` times (the one above: 1).
 int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& changed,
            int alpha_weight);
