@@ -114,9 +114,9 @@ std::string texture_format_name(const CompressedTexture& texture);
 
 /// Options of the whole image-to-texture pipeline that `tessera compress`, its batch mode, the
 /// Python module and `tessera.batch` share, so all of them write the same bytes. The steps, in
-/// order, for every image: `flip_y`, alpha detection, resampling (`resize_pot`), `normal_map`
-/// renormalisation, `premultiply`, the mip chain (`mipmaps`, `mip_levels`, `mip_filter`),
-/// `alpha_bleed` of every level, and the encodes.
+/// order, for every image: `flip_y`, alpha detection, resampling (`resize_pot`), `premultiply`,
+/// the mip chain (`mipmaps`, `mip_levels`, `mip_filter`), `alpha_bleed` of every level, and the
+/// encodes.
 struct CompressOptions {
   /// Format, quality, schedule overrides, threads. Its `progress` hook, if set, follows the
   /// whole texture (each image and level weighted by its pixels), on the calling thread,
@@ -139,9 +139,12 @@ struct CompressOptions {
   /// pull invisible colours into visible edges. Straight alpha only: with `premultiply` it is
   /// an invalid_argument error (transparent texels are black there already).
   bool alpha_bleed = false;
-  /// The input's RGB is a unit vector, x, y, z mapped from [-1, 1] to [0, 255]: each texel is
-  /// renormalised, mip levels are averaged as vectors and renormalised, and the texture is never
-  /// sRGB (with `srgb` it is an invalid_argument error).
+  /// The input's RGB is a unit vector, x, y, z mapped from [-1, 1] to [0, 255]: the encoder
+  /// chooses modulation by the angle a renormalising renderer sees (`EncodeOptions::normal_map`),
+  /// mip levels are averaged as vectors and renormalised, and the texture is never sRGB (with
+  /// `srgb` it is an invalid_argument error). Level 0 is encoded as given: renormalising and
+  /// requantising it would move every vector's direction by up to a rounding step
+  /// (`image::normalise_normals` does that for a pipeline that wants it).
   bool normal_map = false;
 };
 

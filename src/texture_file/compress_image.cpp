@@ -1,7 +1,7 @@
 // The image-to-texture pipeline shared by `tessera compress` (single file and batch), the
 // Python module and tessera.batch: the preparation steps of `CompressOptions` (flip, alpha
-// detection, the power-of-two rule, normal maps, premultiplication, the mip chain, alpha
-// bleeding), then every image's and level's encode, for 2D textures, cube maps and arrays.
+// detection, the power-of-two rule, premultiplication, the mip chain, alpha bleeding), then
+// every image's and level's encode, for 2D textures, cube maps and arrays.
 #include <algorithm>
 #include <chrono>
 #include <functional>
@@ -64,9 +64,8 @@ Result<Prepared> prepare(ImageRGBA8 image, const CompressOptions& options,
               ph = image::nearest_power_of_two(image.height);
     if (!options.resize_pot) {
       return bad(name + ": size " + size_text(image.width, image.height) +
-                 " is not a power of two (PVRTC needs power-of-two sides); use "
-                 "--resize-pot to resample to " +
-                 size_text(pw, ph));
+                 " is not a power of two (PVRTC needs power-of-two sides); resample to " +
+                 size_text(pw, ph) + " with resize_pot");
     }
     Result<ImageRGBA8> resized = image::resize_image(image, pw, ph, filter);
     if (!resized) return resized.status();
@@ -74,7 +73,6 @@ Result<Prepared> prepare(ImageRGBA8 image, const CompressOptions& options,
     out.resized = true;
   }
   if (Status s = pvrtc::check_dimensions(image.width, image.height, name); !s.ok()) return s;
-  if (options.normal_map) image::normalise_normals(image, parallel);
   if (options.premultiply && image.has_alpha) {
     image::premultiply_alpha(image, options.srgb, parallel);
     filter.premultiply = false;  // colour already carries alpha: average it as it is

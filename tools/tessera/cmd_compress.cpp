@@ -182,7 +182,11 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
   Result<texture_file::CompressedImage> made =
       texture_file::compress_images(std::move(images), texture_shape(args), options, names);
   bar.clear();
-  if (!made) return fail(made.status());
+  if (!made) {
+    Status s = made.status();
+    s.message = cli_option_names(s.message);
+    return fail(s);
+  }
   const texture_file::CompressedTexture& tex = made->texture;
 
   std::size_t bytes = 0;
@@ -276,6 +280,17 @@ texture_file::CompressOptions compress_options(const CompressArgs& args, int thr
   o.alpha_bleed = args.alpha_bleed;
   o.normal_map = args.normal_map;
   return o;
+}
+
+std::string cli_option_names(std::string message) {
+  static constexpr std::pair<std::string_view, std::string_view> kNames[] = {
+      {"with resize_pot", "with --resize-pot"}};
+  for (const auto& [library, cli] : kNames) {
+    if (const std::size_t at = message.find(library); at != std::string::npos) {
+      message.replace(at, library.size(), cli);
+    }
+  }
+  return message;
 }
 
 texture_file::TextureShape texture_shape(const CompressArgs& args) {

@@ -67,6 +67,10 @@ bool up_to_date(const CompressArgs& args, const std::string& container,
 Status write_sidecar(const CompressArgs& args, const std::string& container,
                      const std::vector<std::string>& inputs, const std::string& output);
 
+/// A library message with the library's option names ("with resize_pot") as this CLI's flags
+/// ("with --resize-pot").
+std::string cli_option_names(std::string message);
+
 /// PSNR/SSIM of level 0 of every image of `made` against what was encoded, pooled over the
 /// images (MSE averaged, then PSNR; SSIM averaged), as astcenc's -tl mode reports one image.
 Result<metrics::ImageComparison> measure_level0(const texture_file::CompressedImage& made,

@@ -258,7 +258,7 @@ Outcome run_job(const Job& job, const CompressArgs& args, const std::string& con
   Result<texture_file::CompressedImage> made = texture_file::compress_images(
       std::move(images), texture_shape(args), compress_options(args, threads), job.inputs);
   if (!made) {
-    o.error = made.status().message;
+    o.error = cli_option_names(made.status().message);
     return o;
   }
   const texture_file::CompressedTexture& tex = made->texture;
