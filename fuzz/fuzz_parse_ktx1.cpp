@@ -1,5 +1,5 @@
-// libFuzzer target: KTX 1.1 parsing on arbitrary bytes. A file that parses must decode at every
-// level, re-serialise and parse back to the same texture.
+// libFuzzer target: KTX 1.1 parsing on arbitrary bytes. A file that parses must decode every
+// image (level, layer, face), re-serialise and parse back to the same texture.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -15,15 +15,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (tex.status().message.empty()) std::abort();
     return 0;
   }
+  // Every image of every level decodes (faces and layers included).
   for (int i = 0; i < tex->level_count(); ++i) {
-    if (!tessera::texture_file::decode_texture_level(*tex, i, {1}).ok()) std::abort();
+    for (int layer = 0; layer < tex->layers; ++layer) {
+      for (int face = 0; face < tex->faces; ++face) {
+        if (!tessera::texture_file::decode_texture_image(*tex, i, layer, face, {1}).ok()) {
+          std::abort();
+        }
+      }
+    }
   }
   tessera::Result<std::vector<std::uint8_t>> again = tessera::texture_file::serialise_ktx1(*tex);
   if (!again) std::abort();
   tessera::Result<tessera::texture_file::CompressedTexture> back =
       tessera::texture_file::parse_ktx1(*again, "again.ktx");
   if (!back || back->levels != tex->levels || back->width != tex->width ||
-      back->height != tex->height || back->format != tex->format) {
+      back->height != tex->height || back->format != tex->format || back->faces != tex->faces ||
+      back->layers != tex->layers) {
     std::abort();
   }
   return 0;

@@ -129,6 +129,29 @@ def write(target, name, data):
         f.write(data)
 
 
+def shape_seeds(tmp):
+    """Cube map, array and cube map array seeds for the PVR v3 and KTX 1.1 readers."""
+    faces = []
+    for i in range(12):
+        path = os.path.join(tmp, "face%d.png" % i)
+        with open(path, "wb") as f:
+            f.write(png_bytes(8, 8, 4 if i % 2 else 3,
+                              lambda x, y, i=i: tuple((v + 37 * i) % 256 for v in pattern(x, y))))
+        faces.append(path)
+    shapes = [  # (name, inputs, args)
+        ("8x8-4bpp-cube-mips", faces[:6], ["--cube", "--mipmaps"]),
+        ("8x8-2bpp-array3", faces[:3], ["--array", "--format", "pvrtc1-2"]),
+        ("8x8-4bpp-cube-array2", faces, ["--cube", "--array"]),
+    ]
+    for name, inputs, args in shapes:
+        for ext, target in ((".pvr", "fuzz_parse_pvr3"), (".ktx", "fuzz_parse_ktx1")):
+            out = os.path.join(tmp, name + ext)
+            subprocess.run([TESSERA, "-j", "1", "compress", *inputs, "-o", out, "--quality", "fast",
+                            *args], check=True, capture_output=True)
+            with open(out, "rb") as f:
+                write(target, name + ext, f.read())
+
+
 def main():
     with tempfile.TemporaryDirectory() as tmp:
         textures = [  # (name, width, height, alpha, args)
@@ -156,6 +179,8 @@ def main():
             level0 = max(w // block_w, 2) * max(h // 4, 2) * 8
             header = struct.pack("<Bii", 1 if bpp2 else 0, w, h)
             write("fuzz_pvrtc_decode", name + ".bin", header + pvr[67:67 + level0])
+
+        shape_seeds(tmp)
 
     ktx2_seeds()
     png_diff_seeds()
