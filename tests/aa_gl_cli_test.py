@@ -4,7 +4,8 @@ where there is no GPU): the GL report's keys, GL against the CPU, the engine bas
 backends, and the error paths (no EGL device, a G-buffer beyond the driver's limits).
 
 Usage: aa_gl_cli_test.py PATH/TO/tessera
-Skips (exit 0, saying so) when no OpenGL 4.5 context can be made on this machine.
+Exits 77 (CTest: skipped) when no OpenGL 4.5 context can be made on this machine, or fails
+when TESSERA_TEST_REQUIRE asks for gl (cli_harness.skip_or_fail).
 
 The GL-vs-CPU bound: GL renders its own G-buffer and shades it with the CPU's formulas in GLSL
 (tests/gl_deferred_test.cpp), so adaptive images differ only by float rounding and the few
@@ -22,7 +23,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cli_harness import check, finish, run_command  # noqa: E402
+from cli_harness import check, finish, run_command, skip_or_fail  # noqa: E402
 from cli_harness import expect_error as harness_expect_error  # noqa: E402
 
 TESSERA = sys.argv[1]
@@ -65,8 +66,7 @@ try:
     out = os.path.join(tmp, "gl")
     rc, so, se = run("-j", "2", "aa", "--backend", "gl", *TINY, "-o", out)
     if rc != 0 and "no OpenGL backend" in se:
-        print(f"SKIP: no OpenGL 4.5 context here: {se.strip()}")
-        sys.exit(0)
+        skip_or_fail("gl", f"no OpenGL 4.5 context here: {se.strip()}")
     check("gl runs", rc == 0, se)
     j = json.load(open(os.path.join(out, "aa.json")))
     check("gl: backend key", j.get("backend") == "gl", j.get("backend"))

@@ -6,6 +6,7 @@ Each script keeps its own `expect_error` (the error contracts differ per command
 import os
 import pty
 import subprocess
+import sys
 
 _passed = 0
 _failures = []
@@ -58,6 +59,36 @@ def expect_error(run, name, args, code, must_name=None):
     if must_name:
         check(name + " names it", must_name in err, f"stderr={err!r}")
     return err
+
+
+SKIP_CODE = 77  # CTest's SKIP_RETURN_CODE for these scripts (tests/CMakeLists.txt)
+
+
+def required(what):
+    """Whether the run must have `what` ("gl", "pvrtextool", "shared", "ktx-parse"): named in the
+    comma-separated TESSERA_TEST_REQUIRE, or that variable is "all" (the README's test command,
+    scripts/test.sh, sets "all")."""
+    wanted = [w.strip() for w in os.environ.get("TESSERA_TEST_REQUIRE", "").split(",")]
+    return "all" in wanted or what in wanted
+
+
+def skip_or_fail(what, message):
+    """A whole script cannot run without `what`: exits SKIP_CODE (CTest reports it skipped) with
+    `message`, or exit 1 when the run requires `what`."""
+    if required(what):
+        print(f"FAIL: {message} (TESSERA_TEST_REQUIRE asks for {what})")
+        sys.exit(1)
+    print(f"SKIP: {message}")
+    sys.exit(SKIP_CODE)
+
+
+def missing_part(what, message):
+    """A part of a script cannot run without `what`: prints `message` and goes on, or counts a
+    failure when the run requires `what`."""
+    if required(what):
+        check(message, False, f"TESSERA_TEST_REQUIRE asks for {what}")
+    else:
+        print(f"note: {message}")
 
 
 def finish():

@@ -49,7 +49,7 @@ class GlDeferred : public ::testing::Test {
  protected:
   void SetUp() override {
     Result<std::unique_ptr<gl::Context>> c = gl::Context::create();
-    if (!c) GTEST_SKIP() << "no OpenGL 4.5 context: " << c.status().message;
+    if (!c) TESSERA_SKIP_OR_FAIL("gl", "no OpenGL 4.5 context: " << c.status().message);
     ctx_ = std::move(*c);
   }
   void TearDown() override {

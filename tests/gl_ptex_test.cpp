@@ -128,7 +128,7 @@ class GlPtex : public ::testing::Test {
  protected:
   void SetUp() override {
     Result<std::unique_ptr<Context>> c = Context::create();
-    if (!c) GTEST_SKIP() << "no OpenGL 4.5 context: " << c.status().message;
+    if (!c) TESSERA_SKIP_OR_FAIL("gl", "no OpenGL 4.5 context: " << c.status().message);
     ctx_ = std::move(*c);
   }
   std::unique_ptr<Context> ctx_;
@@ -165,7 +165,7 @@ std::vector<std::pair<std::string, faces::FaceTextureSet>> disney_sets(
 
 TEST_F(GlPtex, DisneySamplesUploadAndReadBackExactly) {
   TESSERA_REQUIRE_SHARED_DATA(data);
-  if (!std::filesystem::is_directory(data / "ptex")) GTEST_SKIP() << "no ptex samples";
+  if (!std::filesystem::is_directory(data / "ptex")) TESSERA_SKIP_OR_FAIL("shared", "no ptex samples");
   const auto sets = disney_sets(data);
   ASSERT_GE(sets.size(), 5u);
   for (const auto& [name, set] : sets) {

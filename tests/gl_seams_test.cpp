@@ -82,7 +82,7 @@ class GlSeams : public ::testing::Test {
 
   void SetUp() override {
     Result<std::unique_ptr<Context>> c = Context::create();
-    if (!c) GTEST_SKIP() << "no OpenGL 4.5 context: " << c.status().message;
+    if (!c) TESSERA_SKIP_OR_FAIL("gl", "no OpenGL 4.5 context: " << c.status().message);
     ctx_ = std::move(*c);
     SeamsRendererOptions ro;
     ro.glsl_dir = TESSERA_GLSL_DIR;

@@ -23,7 +23,7 @@ class Gl : public ::testing::Test {
     ContextOptions o;
     o.use_environment = true;
     Result<std::unique_ptr<Context>> c = Context::create(o);
-    if (!c) GTEST_SKIP() << "no OpenGL 4.5 context: " << c.status().message;
+    if (!c) TESSERA_SKIP_OR_FAIL("gl", "no OpenGL 4.5 context: " << c.status().message);
     ctx_ = std::move(*c);
   }
   std::unique_ptr<Context> ctx_;

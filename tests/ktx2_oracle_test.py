@@ -27,7 +27,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cli_harness import check, finish, run_command  # noqa: E402
+from cli_harness import check, finish, run_command, skip_or_fail  # noqa: E402
 
 WRITER, ORACLE, KTX_PARSE, VERSION = sys.argv[1:5]
 
@@ -138,12 +138,10 @@ def read_with_oracle(files):
 def main():
     modules = os.path.join(ktx_parse_dir(), "node_modules")
     if shutil.which("node") is None:
-        print("SKIP: node is not installed (scripts/setup.sh installs it)")
-        return 77
+        skip_or_fail("ktx-parse", "node is not installed (scripts/setup.sh installs it)")
     for package in ("ktx-parse", "fzstd"):
         if not os.path.isfile(os.path.join(modules, package, "package.json")):
-            print(f"SKIP: {package} not found in {modules} (scripts/setup.sh installs it)")
-            return 77
+            skip_or_fail("ktx-parse", f"{package} not found in {modules} (scripts/setup.sh installs it)")
     with tempfile.TemporaryDirectory() as tmp:
         rc, _, err = run_command([WRITER, tmp])
         check("tessera writes every variant and reads it back identical", rc == 0, err)

@@ -18,7 +18,7 @@ import numpy as np
 from PIL import Image
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cli_harness import check, expect_error, finish, run_command  # noqa: E402
+from cli_harness import check, expect_error, finish, missing_part, run_command  # noqa: E402
 
 TESSERA = sys.argv[1]
 PVRTEXTOOL = sys.argv[2] if len(sys.argv) > 2 and os.path.isfile(sys.argv[2]) else None
@@ -205,6 +205,8 @@ def main():
             theirs = load(f"{stem}.Face_{k}.png")[..., :3]
             ours = load(os.path.join(tmp, f"ours{k}.png"))[..., :3]
             check(f"oracle face {k}", np.array_equal(theirs, ours))
+    else:
+        missing_part("pvrtextool", "PVRTexToolCLI not given: no oracle checks of the cube map")
     return finish()
 
 

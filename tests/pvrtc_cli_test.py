@@ -18,7 +18,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cli_harness import check, finish, run_command  # noqa: E402
+from cli_harness import check, finish, missing_part, run_command  # noqa: E402
 import zlib
 
 TESSERA = sys.argv[1]
@@ -203,7 +203,7 @@ try:
             check(f"PVRTexTool decodes {name} identically",
                   rc == 0 and json.loads(out)["identical_rgb"], out + err)
     else:
-        print("PVRTexToolCLI not given: skipping the oracle checks")
+        missing_part("pvrtextool", "PVRTexToolCLI not given: no oracle checks")
 
     # --- Errors: bad input (exit 1), nothing left behind -------------------------------------
     err_dir = os.path.join(tmp, "errors")

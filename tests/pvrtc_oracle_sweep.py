@@ -24,6 +24,9 @@ import tempfile
 import numpy as np
 from PIL import Image
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cli_harness import skip_or_fail  # noqa: E402
+
 # KTX 1.1 glInternalFormat: sRGB PVRTC formats and their linear twins.
 KTX_LINEAR = {0x8A54: 0x8C01, 0x8A55: 0x8C00, 0x8A56: 0x8C03, 0x8A57: 0x8C02}
 
@@ -90,8 +93,7 @@ def main():
     ap.add_argument("--cases", type=int, default=40)
     args = ap.parse_args()
     if not args.pvrtextool or not os.path.isfile(args.pvrtextool):
-        print("PVRTexToolCLI not given: skipping the oracle sweep")
-        return 0
+        skip_or_fail("pvrtextool", "PVRTexToolCLI not given: no oracle sweep")
     rng = np.random.default_rng(args.seed)
     failures = 0
     with tempfile.TemporaryDirectory() as tmp:

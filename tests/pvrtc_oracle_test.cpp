@@ -117,7 +117,7 @@ std::vector<Case> decode_cases() {
 // decode.
 void check_oracle_encoded(const ImageRGBA8& img, Format format, const std::string& name) {
   auto tool = test::pvrtextool();
-  if (!tool) GTEST_SKIP() << "PVRTexToolCLI not available";
+  if (!tool) TESSERA_SKIP_OR_FAIL("pvrtextool", "PVRTexToolCLI not available");
   const fs::path dir = test::temp_dir(name);
   ASSERT_TRUE(io::write_png((dir / "in.png").string(), img).ok());
   const bool alpha = img.has_alpha;
@@ -171,7 +171,7 @@ TEST(OracleDecode, SharedImages) {
     check_oracle_encoded(*img, Format::pvrtc1_4bpp, std::string(name) + "_4");
     check_oracle_encoded(*img, Format::pvrtc1_2bpp, std::string(name) + "_2");
   }
-  if (n == 0) GTEST_SKIP() << "no shared images";
+  if (n == 0) TESSERA_SKIP_OR_FAIL("shared", "no shared images");
 }
 
 // tessera-encoded files must decode identically in the oracle.
@@ -179,7 +179,7 @@ class OracleEncode : public ::testing::TestWithParam<std::tuple<Case, Format, Qu
 
 TEST_P(OracleEncode, OracleDecodesOurFilesLikeWeDo) {
   auto tool = test::pvrtextool();
-  if (!tool) GTEST_SKIP() << "PVRTexToolCLI not available";
+  if (!tool) TESSERA_SKIP_OR_FAIL("pvrtextool", "PVRTexToolCLI not available");
   const auto& [c, format, quality] = GetParam();
   const ImageRGBA8 img = make_procedural(c.kind, c.w, c.h);
   EncodeOptions opt;
@@ -219,7 +219,7 @@ INSTANTIATE_TEST_SUITE_P(All, OracleEncode,
 // linear decode exactly as tessera decodes them (tessera writes the stored values either way).
 TEST(OracleDecode, SrgbFlagMakesTheOracleWriteLinearValues) {
   auto tool = test::pvrtextool();
-  if (!tool) GTEST_SKIP() << "PVRTexToolCLI not available";
+  if (!tool) TESSERA_SKIP_OR_FAIL("pvrtextool", "PVRTexToolCLI not available");
   for (Format format : {Format::pvrtc1_4bpp, Format::pvrtc1_2bpp}) {
     const ImageRGBA8 img = make_procedural(Procedural::foliage, 64, 32);
     EncodeOptions opt;

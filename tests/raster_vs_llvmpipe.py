@@ -19,6 +19,9 @@ import tempfile
 import numpy as np
 from PIL import Image
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cli_harness import required  # noqa: E402
+
 TESSERA, GLPEER = sys.argv[1], sys.argv[2]
 HERE = os.path.dirname(os.path.abspath(__file__))
 shared = os.environ.get("TESSERA_SHARED", os.path.join(HERE, "..", "..", "shared"))
@@ -67,7 +70,10 @@ try:
                 check(f"dungeon {msaa}x orbit {orbit}", psnr >= 35,
                       f"PSNR {psnr:.2f} dB ({diff * 100:.2f} % pixels differ)")
     else:
-        print(f"note: {dungeon} absent; dungeon comparison skipped")
+        if required("shared"):
+            check("dungeon present", False, f"{dungeon} absent (TESSERA_TEST_REQUIRE asks for shared)")
+        else:
+            print(f"note: {dungeon} absent; dungeon comparison skipped")
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
 

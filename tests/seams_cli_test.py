@@ -15,7 +15,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cli_harness import check, finish, run_command  # noqa: E402
+from cli_harness import check, finish, missing_part, run_command  # noqa: E402
 
 TESSERA = sys.argv[1]
 SHARED = sys.argv[2] if len(sys.argv) > 2 else ""
@@ -127,7 +127,7 @@ try:
                                              "-o", os.path.join(tmp, "e7")], 1, "teapot.ptx",
                      os.path.join(tmp, "e7"))
     else:
-        print("shared Ptex samples absent: teapot checks skipped")
+        missing_part("shared", "shared Ptex samples absent: no teapot checks")
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
 

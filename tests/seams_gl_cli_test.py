@@ -23,7 +23,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cli_harness import check, finish  # noqa: E402
+from cli_harness import check, finish, skip_or_fail  # noqa: E402
 
 TESSERA = sys.argv[1]
 METHODS = ("clamp", "discard", "traverse", "traverse_corners")
@@ -65,8 +65,7 @@ try:
     gl_out = os.path.join(tmp, "gl")
     rc, so, se = run("seams", "--backend", "gl", "-q", *SIZE, "-o", gl_out)
     if rc != 0 and ("EGL" in se or "OpenGL" in se) and not os.path.exists(gl_out):
-        print(f"SKIP: no OpenGL 4.5 context: {se.strip()}")
-        sys.exit(77)
+        skip_or_fail("gl", f"no OpenGL 4.5 context: {se.strip()}")
     check("gl run rc", rc == 0, se)
 
     cpu_out = os.path.join(tmp, "cpu")

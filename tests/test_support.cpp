@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <string>
 
 namespace tessera::test {
 
@@ -26,6 +27,13 @@ std::optional<fs::path> pvrtextool() {
   std::error_code ec;
   if (!p.empty() && fs::is_regular_file(p, ec)) return p;
   return std::nullopt;
+}
+
+bool required(const std::string& what) {
+  const char* env = std::getenv("TESSERA_TEST_REQUIRE");
+  if (!env) return false;
+  const std::string list = std::string(",") + env + ",";
+  return list == ",all," || list.find("," + what + ",") != std::string::npos;
 }
 
 fs::path temp_dir(const std::string& name) {

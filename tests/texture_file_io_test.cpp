@@ -107,7 +107,7 @@ bool run_tool(const fs::path& tool, const std::string& args) {
 
 TEST(Oracle, ReadsPvrTexToolFilesAndMatchesItsDecode) {
   const auto tool = test::pvrtextool();
-  if (!tool) GTEST_SKIP() << "PVRTexToolCLI not available";
+  if (!tool) TESSERA_SKIP_OR_FAIL("pvrtextool", "PVRTexToolCLI not available");
   const fs::path dir = test::temp_dir("oracle-in");
   struct Case {
     Procedural kind;
@@ -185,7 +185,7 @@ TEST(Oracle, ReadsPvrTexToolFilesAndMatchesItsDecode) {
 
 TEST(Oracle, PvrTexToolReadsOurFiles) {
   const auto tool = test::pvrtextool();
-  if (!tool) GTEST_SKIP() << "PVRTexToolCLI not available";
+  if (!tool) TESSERA_SKIP_OR_FAIL("pvrtextool", "PVRTexToolCLI not available");
   const fs::path dir = test::temp_dir("oracle-out");
   for (pvrtc::Format f : {pvrtc::Format::pvrtc1_4bpp, pvrtc::Format::pvrtc1_2bpp}) {
     for (bool alpha : {false, true}) {

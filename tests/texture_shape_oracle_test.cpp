@@ -62,7 +62,7 @@ struct Shape {
 
 TEST(ShapeOracle, ReadsPvrTexToolCubeMapsAndArrays) {
   const auto tool = test::pvrtextool();
-  if (!tool) GTEST_SKIP() << "PVRTexToolCLI not available";
+  if (!tool) TESSERA_SKIP_OR_FAIL("pvrtextool", "PVRTexToolCLI not available");
   const fs::path dir = test::temp_dir("shape-oracle-in");
   const std::vector<std::string> inputs = write_inputs(dir, 6, 32);
   for (const Shape shape : {Shape{true, 6}, Shape{false, 4}}) {
@@ -106,7 +106,7 @@ TEST(ShapeOracle, ReadsPvrTexToolCubeMapsAndArrays) {
 
 TEST(ShapeOracle, PvrTexToolReadsOurCubeMapsAndArrays) {
   const auto tool = test::pvrtextool();
-  if (!tool) GTEST_SKIP() << "PVRTexToolCLI not available";
+  if (!tool) TESSERA_SKIP_OR_FAIL("pvrtextool", "PVRTexToolCLI not available");
   const fs::path dir = test::temp_dir("shape-oracle-out");
   for (const Shape shape : {Shape{true, 6}, Shape{false, 3}}) {
     for (pvrtc::Format f : {pvrtc::Format::pvrtc1_4bpp, pvrtc::Format::pvrtc1_2bpp}) {
