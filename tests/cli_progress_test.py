@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""The progress bar of a single long `tessera compress`: on a terminal (a pty) a 1024x1024
+"""The progress bar of a single long `tessera compress`: on a terminal (a pty) a 512x512
 --quality high encode draws a bar on stderr (fraction, MPixel/s, ETA) and erases it before the
 summary line; piped, or with -q or --json, there is no bar; and the texture's bytes are the same
-either way.
+either way. The bar's delay is set for each run (TESSERA_PROGRESS_DELAY), so no check depends on
+how long an encode takes.
 
 Usage: cli_progress_test.py PATH/TO/tessera
 """
@@ -19,7 +20,7 @@ import cli_harness  # noqa: E402
 from cli_harness import check, finish  # noqa: E402
 
 TESSERA = os.path.abspath(sys.argv[1])
-SIZE = 1024
+SIZE = 512
 
 
 def write_png(path, width, height):
@@ -45,7 +46,12 @@ def write_png(path, width, height):
         f.write(chunk(b"IEND", b""))
 
 
-def run_on_pty(args):
+def run_on_pty(args, delay=None):
+    """Runs tessera on a terminal; `delay` sets TESSERA_PROGRESS_DELAY (the bar's delay, s)."""
+    if delay is not None:
+        os.environ["TESSERA_PROGRESS_DELAY"] = str(delay)
+    else:
+        os.environ.pop("TESSERA_PROGRESS_DELAY", None)
     """Runs tessera on a new terminal; returns (exit code, bytes)."""
     return cli_harness.run_on_pty(TESSERA, args)
 
@@ -57,7 +63,7 @@ try:
     tty_pvr, piped_pvr = os.path.join(tmp, "tty.pvr"), os.path.join(tmp, "piped.pvr")
     base = ["compress", png, "--quality", "high"]
 
-    rc, text = run_on_pty([*base, "-o", tty_pvr])
+    rc, text = run_on_pty([*base, "-o", tty_pvr], delay=0)
     check("terminal: exit 0", rc == 0, repr(text[-300:]))
     check("terminal: a bar is drawn", text.count(b"\r[") >= 2, repr(text[:300]))
     check("terminal: the bar shows a percentage, MPixel/s and the time left",
@@ -80,12 +86,16 @@ try:
     with open(tty_pvr, "rb") as a, open(piped_pvr, "rb") as b:
         check("the bar does not change the texture", a.read() == b.read())
 
-    # -q and --json: no bar (512x512 high still takes well over the 0.5 s delay).
+    # -q and --json: no bar, even with the delay at 0 (the same command without them draws one:
+    # the negative control).
     mid = os.path.join(tmp, "mid.png")
-    write_png(mid, 512, 512)
+    write_png(mid, 128, 128)
+    rc, text = run_on_pty(["compress", mid, "--quality", "high", "-o",
+                           os.path.join(tmp, "flag.pvr")], delay=0)
+    check("terminal, delay 0: a bar", rc == 0 and b"\r[" in text, repr(text[:300]))
     for flag in ("-q", "--json"):
         rc, text = run_on_pty(["compress", mid, "--quality", "high", "-o",
-                               os.path.join(tmp, "flag.pvr"), flag])
+                               os.path.join(tmp, "flag.pvr"), flag], delay=0)
         check(f"terminal {flag}: exit 0", rc == 0, repr(text[-300:]))
         check(f"terminal {flag}: no bar", b"\r[" not in text and b"ETA" not in text,
               repr(text[:300]))
@@ -95,10 +105,10 @@ try:
             check("terminal --json: the JSON object only", text.startswith(b"{"),
                   repr(text[:300]))
 
-    # A short encode (well under the 0.5 s delay) leaves no bar on a terminal.
+    # An encode shorter than the delay leaves no bar on a terminal (the delay set far beyond it).
     small = os.path.join(tmp, "small.png")
     write_png(small, 64, 64)
-    rc, text = run_on_pty(["compress", small, "-o", os.path.join(tmp, "small.pvr")])
+    rc, text = run_on_pty(["compress", small, "-o", os.path.join(tmp, "small.pvr")], delay=600)
     check("terminal, short encode: no bar", rc == 0 and b"\r[" not in text and
           text.startswith(b"wrote "), repr(text[:300]))
 finally:
