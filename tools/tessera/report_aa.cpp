@@ -356,6 +356,7 @@ Status write_aa_report(const experiments::AaConfig& c, const experiments::AaResu
       if (const auto& v = res.rates[i].gl_vs_cpu) {
         jrates[i]["gl_vs_cpu"] = {
             {"psnr_db", std::isfinite(v->psnr_db) ? nlohmann::json(v->psnr_db) : nlohmann::json()},
+            {"identical", std::isinf(v->psnr_db) && v->psnr_db > 0},
             {"k_mismatch_fraction", v->k_mismatch_fraction}};
       }
     }
