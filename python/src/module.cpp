@@ -11,14 +11,17 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "arrays.h"
 #include "compress.h"
+#include "shapes.h"
 #include "tessera/io.h"
 #include "tessera/metrics.h"
 #include "tessera/pvrtc.h"
 #include "tessera/texture_file.h"
+#include "texture.h"
 
 #ifndef TESSERA_VERSION_STRING
 #error "TESSERA_VERSION_STRING must be defined by the build"
@@ -31,90 +34,141 @@ namespace {
 using namespace pybind11::literals;
 using Path = std::filesystem::path;
 using texture_file::CompressedTexture;
-
-const char* format_key(pvrtc::Format format) {
-  return format == pvrtc::Format::pvrtc1_2bpp ? "pvrtc1-2" : "pvrtc1-4";
-}
+using texture_file::TextureShape;
 
 void check_threads(int threads) {
   if (threads < 0) throw py::value_error("threads: " + std::to_string(threads) + " is negative");
 }
 
-texture_file::CompressOptions make_options(const std::string& format, const std::string& quality,
-                                           bool mipmaps, bool srgb, int threads, int iterations,
-                                           int exact_search_rounds, bool resize_pot) {
-  CompressKeywords k;
-  k.format = format;
-  k.quality = quality;
-  k.mipmaps = mipmaps;
-  k.srgb = srgb;
-  k.threads = threads;
-  k.iterations = iterations;
-  k.exact_search_rounds = exact_search_rounds;
-  k.resize_pot = resize_pot;
-  return unwrap(compress_options(k));
+/// The keywords encode and encode_file share; `cube` / `array` give the texture's shape.
+struct EncodeKeywords {
+  CompressKeywords options;
+  bool cube = false;
+  bool array = false;
+
+  TextureShape shape() const { return {cube ? 6 : 1, array}; }
+  bool several() const { return cube || array; }
+};
+
+/// A function of (x, the keywords of `encode_keyword_args` in order, extra...) that calls
+/// `fn(x, EncodeKeywords, extra...)`.
+template <class First, class... Extra, class Fn>
+auto with_encode_keywords(Fn fn) {
+  return [fn](const First& x, const std::string& format, const std::string& quality, bool mipmaps,
+              bool srgb, int threads, int iterations, int exact_search_rounds, bool resize_pot,
+              int mip_levels, const std::string& mip_filter, bool flip_y, bool premultiply,
+              bool alpha_bleed, bool normal_map, bool cube, bool array, const Extra&... extra) {
+    EncodeKeywords k;
+    k.options.format = format;
+    k.options.quality = quality;
+    k.options.mipmaps = mipmaps;
+    k.options.srgb = srgb;
+    k.options.threads = threads;
+    k.options.iterations = iterations;
+    k.options.exact_search_rounds = exact_search_rounds;
+    k.options.resize_pot = resize_pot;
+    k.options.mip_levels = mip_levels;
+    k.options.mip_filter = mip_filter;
+    k.options.flip_y = flip_y;
+    k.options.premultiply = premultiply;
+    k.options.alpha_bleed = alpha_bleed;
+    k.options.normal_map = normal_map;
+    k.cube = cube;
+    k.array = array;
+    return fn(x, k, extra...);
+  };
 }
 
-// The library's compress_view is compress_image, the pipeline of `tessera compress` (alpha
-// detection, the power-of-two rule, --resize-pot, mips, per-level encodes), on pixels it does not
-// own: the same texture, the same bytes.
-CompressedTexture encode_array(const py::handle& array, const std::string& format,
-                               const std::string& quality, bool mipmaps, bool srgb, int threads,
-                               int iterations, int exact_search_rounds, bool resize_pot,
+/// The keywords of encode and encode_file, with the CLI's defaults (ENCODE_DEFAULTS).
+auto encode_keyword_args() {
+  return std::make_tuple(
+      "format"_a = "pvrtc1-4", "quality"_a = "normal", "mipmaps"_a = false, "srgb"_a = false,
+      "threads"_a = 0, "iterations"_a = -1, "exact_search_rounds"_a = 0, "resize_pot"_a = false,
+      "mip_levels"_a = 0, "mip_filter"_a = "box", "flip_y"_a = false, "premultiply"_a = false,
+      "alpha_bleed"_a = false, "normal_map"_a = false, "cube"_a = false, "array"_a = false);
+}
+
+/// m.def(name, f, doc, first, *, the encode keywords, extra...).
+template <class F, class... Extra>
+void def_encode(py::module_& m, const char* name, F f, const char* doc, py::arg first,
+                Extra... extra) {
+  std::apply(
+      [&](auto... keyword) { m.def(name, f, doc, first, py::kw_only(), keyword..., extra...); },
+      encode_keyword_args());
+}
+
+// One array: the library's compress_view is compress_image, the pipeline of `tessera compress`
+// (flip, alpha detection, the power-of-two rule, resize_pot, premultiply, mips, bleeding,
+// per-level encodes), on pixels it does not own: the same texture, the same bytes.
+// Several (cube / array): each image copied, then compress_images, as `compress --cube`.
+CompressedTexture encode_array(const py::handle& x, const EncodeKeywords& k,
                                const std::string& name) {
-  const texture_file::CompressOptions o = make_options(format, quality, mipmaps, srgb, threads,
-                                                       iterations, exact_search_rounds, resize_pot);
+  const texture_file::CompressOptions o = unwrap(compress_options(k.options));
+  if (k.several()) {
+    ShapedImages in = images_of(x, k.shape(), name);
+    if (k.options.premultiply) {
+      for (std::size_t i = 0; i < in.images.size(); ++i) {
+        if (!in.images[i].has_alpha) warn_premultiply_without_alpha(in.names[i]);
+      }
+    }
+    py::gil_scoped_release release;
+    return unwrap(in_python_words(
+                      texture_file::compress_images(std::move(in.images), k.shape(), o, in.names)))
+        .texture;
+  }
+  check_one_image(x, name);
   // The encoder reads the array in place (no copy before a few-millisecond encode); `keep`
   // holds it for the call, and an array with a live reference cannot be resized meanwhile.
   py::array keep;
-  const ImageView8 view = view_of_array(array, name, keep);
+  const ImageView8 view = view_of_array(x, name, keep);
+  if (k.options.premultiply && !view.has_alpha) warn_premultiply_without_alpha(name);
   py::gil_scoped_release release;
-  return unwrap(texture_file::compress_view(view, o, name));
+  return unwrap(in_python_words(texture_file::compress_view(view, o, name)));
 }
 
-CompressedTexture encode_file(const Path& path, const std::string& format,
-                              const std::string& quality, bool mipmaps, bool srgb, int threads,
-                              int iterations, int exact_search_rounds, bool resize_pot) {
-  const texture_file::CompressOptions o = make_options(format, quality, mipmaps, srgb, threads,
-                                                       iterations, exact_search_rounds, resize_pot);
-  py::gil_scoped_release release;
-  ImageRGBA8 image = unwrap(io::read_image(path.string()));
-  return unwrap(texture_file::compress_image(std::move(image), o, path.string())).texture;
+bool is_path(const py::handle& x) {
+  return py::isinstance<py::str>(x) || py::hasattr(x, "__fspath__");
 }
 
-py::array decode_level(const CompressedTexture& texture, int level, int threads) {
-  check_threads(threads);
-  ImageRGBA8 image;
+CompressedTexture encode_file(const py::object& paths, const EncodeKeywords& k) {
+  const texture_file::CompressOptions o = unwrap(compress_options(k.options));
+  std::vector<std::string> names;
+  if (is_path(paths)) {
+    if (k.several()) {
+      throw py::value_error(paths.cast<Path>().string() + ": " +
+                            std::string(k.cube && k.array ? "cube=True, array=True"
+                                        : k.cube          ? "cube=True"
+                                                          : "array=True") +
+                            " takes a list of paths (" +
+                            (k.cube ? "6 faces per layer, +X, -X, +Y, -Y, +Z, -Z" : "the layers") +
+                            ")");
+    }
+    names.push_back(paths.cast<Path>().string());
+  } else if (py::isinstance<py::list>(paths) || py::isinstance<py::tuple>(paths)) {
+    for (const py::handle item : paths) names.push_back(item.cast<Path>().string());
+    if (!k.several()) {
+      throw py::value_error("encode_file: a list of " + std::to_string(names.size()) +
+                            " paths needs cube=True (a cube map) or array=True (an array "
+                            "texture)");
+    }
+  } else {
+    throw py::type_error("encode_file: expected a path or a list of paths, got " +
+                         std::string(py::str(py::type::of(paths).attr("__name__"))));
+  }
+  std::vector<ImageRGBA8> images;
   {
     py::gil_scoped_release release;
-    image = unwrap(texture_file::decode_texture_level(texture, level, {threads}));
+    for (const std::string& path : names) images.push_back(unwrap(io::read_image(path)));
   }
-  return image_to_array(std::move(image), texture.has_alpha ? 4 : 3);
-}
-
-py::bytes to_bytes(const CompressedTexture& texture, const std::string& container) {
-  if (container != "pvr" && container != "ktx") {
-    throw py::value_error("container: '" + container + "' is not one of 'pvr', 'ktx'");
+  if (k.options.premultiply) {
+    for (std::size_t i = 0; i < images.size(); ++i) {
+      if (!images[i].has_alpha) warn_premultiply_without_alpha(names[i]);
+    }
   }
-  std::vector<std::uint8_t> bytes;
-  {
-    py::gil_scoped_release release;
-    bytes = unwrap(container == "ktx" ? texture_file::serialise_ktx1(texture)
-                                      : texture_file::serialise_pvr3(texture));
-  }
-  return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-}
-
-void write_texture_py(const Path& path, const CompressedTexture& texture) {
   py::gil_scoped_release release;
-  check(texture_file::write_texture_file(path.string(), texture));
-}
-
-CompressedTexture from_bytes(const py::bytes& data, const std::string& name) {
-  const std::string_view view = data;  // the bytes object outlives the call
-  py::gil_scoped_release release;
-  return unwrap(texture_file::parse_texture(
-      std::span(reinterpret_cast<const std::uint8_t*>(view.data()), view.size()), name));
+  return unwrap(
+             in_python_words(texture_file::compress_images(std::move(images), k.shape(), o, names)))
+      .texture;
 }
 
 // A compare operand: a path (read like `tessera compare` reads its files) or an array.
@@ -142,7 +196,8 @@ py::object db_or_none(double v) {
   return std::isfinite(v) ? py::object(py::float_(v)) : py::none();
 }
 
-py::dict compare_py(const py::handle& a_object, const py::handle& b_object, int threads) {
+py::dict compare_py(const py::handle& a_object, const py::handle& b_object, bool premultiplied,
+                    bool normal, int threads) {
   check_threads(threads);
   Operand a = load_operand(a_object, "a");
   Operand b = load_operand(b_object, "b");
@@ -159,6 +214,8 @@ py::dict compare_py(const py::handle& a_object, const py::handle& b_object, int 
     py::gil_scoped_release release;
     metrics::CompareOptions options;
     options.threads = threads;
+    options.premultiplied = premultiplied;
+    options.normal = normal;
     r = unwrap(metrics::compare_images(ia, ib, options));
   }
   py::dict d;
@@ -176,29 +233,76 @@ py::dict compare_py(const py::handle& a_object, const py::handle& b_object, int 
     d["psnr_alpha"] = db_or_none(r.psnr_alpha);
     d["mse_alpha"] = r.mse_alpha;
   }
+  if (r.has_premultiplied) {
+    d["psnr_premultiplied"] = db_or_none(r.psnr_premultiplied);
+    d["mse_premultiplied"] = r.mse_premultiplied;
+  }
+  if (r.has_normal) {
+    d["angular_error_mean_deg"] = r.angular_error_mean_deg;
+    d["angular_error_p99_deg"] = r.angular_error_p99_deg;
+    d["angular_error_max_deg"] = r.angular_error_max_deg;
+  }
   return d;
 }
 
-std::string repr(const CompressedTexture& t) {
-  return "<tessera.Texture " + std::to_string(t.width) + "x" + std::to_string(t.height) + " " +
-         format_key(t.format) + (t.has_alpha ? " RGBA" : " RGB") + (t.srgb ? " sRGB" : "") + ", " +
-         std::to_string(t.level_count()) + " level(s)>";
-}
-
 constexpr const char* kEncodeDoc = R"doc(
-Compress an image to PVRTC1 exactly as `tessera compress` does.
+Compress an image, or the faces and layers of a cube map or array, to PVRTC1 exactly as
+`tessera compress` does.
 
-`array`: numpy uint8 array of shape (H, W, 3) or (H, W, 4), any strides. A 4-channel array whose
-alpha is 255 everywhere gives an RGB texture (as the CLI does with an opaque RGBA PNG).
+    tex = tessera.encode(rgba)                          # (H, W, 3) or (H, W, 4) uint8
+    tex = tessera.encode(rgba, premultiply=True, mipmaps=True, mip_filter="kaiser")
+    sky = tessera.encode(faces, cube=True)              # (6, H, W, C): +X, -X, +Y, -Y, +Z, -Z
+    arr = tessera.encode([a, b, c], array=True)         # or an (L, H, W, C) array
+    cubes = tessera.encode(f, cube=True, array=True)    # (L, 6, H, W, C) or (6L, H, W, C)
+
+`x`: a numpy uint8 array of shape (H, W, 3) or (H, W, 4), any strides, read where it lies; with
+`cube` / `array`, the images with a leading axis as above, or a list of (H, W, C) arrays
+(layer-major then face, one size, square for a cube map), each copied. A 4-channel image whose
+alpha is 255 everywhere is encoded as RGB (as the CLI does with an opaque RGBA PNG); the texture
+has alpha when any image has.
 Keywords are the CLI's options: format 'pvrtc1-4' | 'pvrtc1-2', quality 'fast' | 'normal' |
-'high', mipmaps (full chain), srgb (sRGB flag, mips filtered in linear light), threads (-j; 0 =
-all; output is the same for any value), iterations (-1..1000), exact_search_rounds (0..1000),
-resize_pot (resample non-power-of-two sides with Lanczos-3). `name` prefixes error messages.
-Serialising the result gives the CLI's bytes. The GIL is released while encoding, and the
-encoder reads the array where it lies (no copy first, unless its channels are not adjacent or a
-mip chain or resample is asked): do not write to it from another thread during the call.
-Raises ValueError (bad argument, dtype or shape), tessera.InvalidArgumentError (e.g. a side
-that is not a power of two) or tessera.Error.
+'high', mipmaps (the chain down to 1x1), mip_levels (at most N levels, level 0 included; > 0
+implies mipmaps), mip_filter 'box' | 'lanczos' | 'kaiser' (with mips), srgb (sRGB flag; filter in
+linear light), threads (-j; 0 = all; output is the same for any value), iterations (-1..1000),
+exact_search_rounds (0..1000), resize_pot (resample non-power-of-two sides with Lanczos-3),
+flip_y (flip upside down first), premultiply (colour x alpha, the texture marked premultiplied;
+an image without alpha warns with a UserWarning and is left as it is), alpha_bleed (give fully
+transparent texels the nearest visible colour; not with premultiply), normal_map (RGB holds unit
+vectors: modulation chosen by angle, mips averaged as vectors; not with srgb), cube (6 faces per
+layer), array (layers). `name` names the image(s) in messages ("<array>[2]" for the third).
+Serialising the result gives the CLI's bytes. The GIL is released while encoding: do not write
+to the array from another thread during the call.
+Raises ValueError (bad argument, dtype or shape; keywords that conflict, named),
+tessera.InvalidArgumentError (e.g. a side that is not a power of two: "...; resample to 64x64
+with resize_pot=True") or tessera.Error.
+)doc";
+
+constexpr const char* kEncodeFileDoc = R"doc(
+Read an image file (PNG, JPEG, TGA, BMP) with tessera's reader and encode it like
+`tessera compress PATH` (the keywords of encode; messages name the path). With cube / array,
+`path` is a list of paths, layer-major then face, as `tessera compress A B ... --cube` takes:
+
+    sky = tessera.encode_file([f"sky_{f}.png" for f in ("px", "nx", "py", "ny", "pz", "nz")],
+                              cube=True, mipmaps=True)
+
+The GIL is released for the reads and the encode.
+)doc";
+
+constexpr const char* kDecodeDoc = R"doc(
+Decode one level to a numpy uint8 array with the channels `tessera decompress` writes: 4 for an
+RGBA texture, 3 for an RGB one; values as stored (an sRGB texture gives sRGB-encoded values).
+
+    tessera.decode(tex)                   # 2D texture: (H, W, C)
+    tessera.decode(sky)                   # cube map: (6, H, W, C), faces +X, -X, +Y, -Y, +Z, -Z
+    tessera.decode(sky, face=4)           # (H, W, C): `tessera decompress sky.pvr --face 4`
+    tessera.decode(layers, level=2)       # array: (L, H/4, W/4, C)
+    tessera.decode(cubes)                 # cube map array: (L, 6, H, W, C)
+    tessera.decode(cubes, layer=1)        # (6, H, W, C)
+
+`layer` / `face` select one layer / face (that axis goes); out of range (or a layer of a texture
+that is not an array, a face of one that is not a cube map) raises
+tessera.InvalidArgumentError naming the range, as `level` does. The GIL is released while
+decoding.
 )doc";
 
 }  // namespace
@@ -220,88 +324,37 @@ PYBIND11_MODULE(TESSERA_PYTHON_MODULE_NAME, m) {
   using namespace tessera;
   using namespace tessera::python;
   using namespace pybind11::literals;
-  m.doc() = "tessera: PVRTC1 encoding and decoding, PVR v3 / KTX 1.1 files, image metrics.";
+  m.doc() =
+      "tessera: PVRTC1 encoding and decoding, PVR v3 / KTX 1.1 / KTX 2.0 files, image metrics.";
   m.attr("__version__") = TESSERA_VERSION_STRING;
   register_errors(m);
 
-  py::class_<CompressedTexture>(m, "Texture",
-                                "A PVRTC1 texture and its mip chain (level 0 first). Made by "
-                                "encode(), encode_file(), read() or from_bytes().")
-      .def_readonly("width", &CompressedTexture::width, "Level 0 width in texels.")
-      .def_readonly("height", &CompressedTexture::height, "Level 0 height in texels.")
-      .def_readonly("has_alpha", &CompressedTexture::has_alpha, "RGBA (True) or RGB format.")
-      .def_readonly("srgb", &CompressedTexture::srgb, "sRGB colour space flag.")
-      .def_readonly("premultiplied", &CompressedTexture::premultiplied,
-                    "PVR v3 premultiplied flag.")
-      .def_property_readonly(
-          "format", [](const CompressedTexture& t) { return format_key(t.format); },
-          "'pvrtc1-4' or 'pvrtc1-2' (the CLI's --format values).")
-      .def_property_readonly("format_name", &texture_file::texture_format_name,
-                             "Human-readable format, e.g. 'PVRTC1 4bpp RGBA'.")
-      .def_property_readonly("level_count", &CompressedTexture::level_count)
-      .def_property_readonly(
-          "levels",
-          [](const CompressedTexture& t) {
-            py::list out;
-            for (const auto& level : t.levels) {
-              out.append(py::bytes(reinterpret_cast<const char*>(level.data()), level.size()));
-            }
-            return out;
-          },
-          "Compressed data of each level (list of bytes, Morton-ordered 64-bit blocks).")
-      .def(
-          "level_shape",
-          [](const CompressedTexture& t, int level) {
-            if (level < 0 || level >= t.level_count()) {
-              throw py::index_error("level " + std::to_string(level) + " is out of range");
-            }
-            return py::make_tuple(t.level_height(level), t.level_width(level));
-          },
-          "level"_a, "(height, width) of a level.")
-      .def("decode", &decode_level, "level"_a = 0, "threads"_a = 0,
-           "Same as tessera.decode(self, ...).")
-      .def(
-          "write", [](const CompressedTexture& t, const Path& path) { write_texture_py(path, t); },
-          "path"_a, "Write a .pvr or .ktx file (container by extension), atomically.")
-      .def("to_bytes", &to_bytes, "container"_a = "pvr",
-           "The file bytes of the 'pvr' (PVR v3) or 'ktx' (KTX 1.1) container.")
-      .def("__repr__", &repr)
-      .def("__eq__",
-           [](const CompressedTexture& a, const CompressedTexture& b) {
-             return a.format == b.format && a.width == b.width && a.height == b.height &&
-                    a.has_alpha == b.has_alpha && a.srgb == b.srgb &&
-                    a.premultiplied == b.premultiplied && a.levels == b.levels;
-           })
-      .def(py::pickle([](const CompressedTexture& t) { return to_bytes(t, "pvr"); },
-                      [](const py::bytes& b) { return from_bytes(b, "<pickle>"); }));
+  register_texture(m);
 
-  m.def("encode", &encode_array, kEncodeDoc, "array"_a, py::kw_only(), "format"_a = "pvrtc1-4",
-        "quality"_a = "normal", "mipmaps"_a = false, "srgb"_a = false, "threads"_a = 0,
-        "iterations"_a = -1, "exact_search_rounds"_a = 0, "resize_pot"_a = false,
-        "name"_a = "<array>");
-  m.def("encode_file", &encode_file,
-        "Read an image file (PNG, JPEG, TGA, BMP) with tessera's reader and encode it like "
-        "`tessera compress PATH` (same keywords as encode; messages name the path). The GIL is "
-        "released for the read and the encode.",
-        "path"_a, py::kw_only(), "format"_a = "pvrtc1-4", "quality"_a = "normal",
-        "mipmaps"_a = false, "srgb"_a = false, "threads"_a = 0, "iterations"_a = -1,
-        "exact_search_rounds"_a = 0, "resize_pot"_a = false);
-  m.def("decode", &decode_level,
-        "Decode one level to a numpy uint8 array: (H, W, 4) for an RGBA texture, (H, W, 3) for "
-        "an RGB one - the channels `tessera decompress` writes to its PNG. Values as stored "
-        "(an sRGB texture gives sRGB-encoded values). The GIL is released while decoding.",
-        "texture"_a, "level"_a = 0, "threads"_a = 0);
+  def_encode(m, "encode", with_encode_keywords<py::object, std::string>(&encode_array), kEncodeDoc,
+             "x"_a, "name"_a = "<array>");
+  def_encode(m, "encode_file", with_encode_keywords<py::object>(&encode_file), kEncodeFileDoc,
+             "path"_a);
+  m.def("decode", &decode_images, kDecodeDoc, "texture"_a, "level"_a = 0, "layer"_a = py::none(),
+        "face"_a = py::none(), "threads"_a = 0);
   m.def(
       "read",
       [](const Path& path) {
         py::gil_scoped_release release;
         return unwrap(texture_file::read_texture_file(path.string()));
       },
-      "path"_a, "Read a .pvr / .ktx file (container detected by magic).");
-  m.def("write", &write_texture_py, "path"_a, "texture"_a,
-        "Write a texture to .pvr or .ktx (by extension), atomically.");
-  m.def("from_bytes", &from_bytes, "data"_a, "name"_a = "<bytes>",
-        "Parse PVR v3 / KTX 1.1 file bytes held in memory; `name` prefixes error messages.");
+      "path"_a, "Read a .pvr / .ktx / .ktx2 file (container detected by magic).");
+  m.def(
+      "write",
+      [](const Path& path, const CompressedTexture& texture, int zstd) {
+        write_texture(path, texture, zstd);
+      },
+      "path"_a, "texture"_a, "zstd"_a = 0,
+      "Write a texture to .pvr, .ktx or .ktx2 (by extension), atomically; `zstd` (1-22, .ktx2 "
+      "only) as Texture.write.");
+  m.def("from_bytes", &texture_from_bytes, "data"_a, "name"_a = "<bytes>",
+        "Parse PVR v3 / KTX 1.1 / KTX 2.0 file bytes held in memory; `name` prefixes error "
+        "messages.");
   m.def(
       "read_image",
       [](const Path& path) {
@@ -333,9 +386,14 @@ PYBIND11_MODULE(TESSERA_PYTHON_MODULE_NAME, m) {
   m.def("compare", &compare_py,
         "Compare two images like `tessera compare --json`: each of a, b is a path (read as the "
         "CLI reads it) or a uint8 array. Returns a dict with the CLI's keys: width, height, "
-        "psnr_rgb (None when identical), identical_rgb, mse, ssim_gray, max_abs, has_alpha, and "
-        "psnr_alpha / mse_alpha when either has alpha; 'a' / 'b' hold the paths given as paths.",
-        "a"_a, "b"_a, py::kw_only(), "threads"_a = 0);
+        "psnr_rgb (None when identical), identical_rgb, mse, ssim_gray, max_abs, has_alpha, "
+        "psnr_alpha / mse_alpha when either has alpha; with premultiplied=True (--premultiplied) "
+        "psnr_premultiplied (None when identical) and mse_premultiplied, the error of colour x "
+        "alpha; with normal=True (--normal) angular_error_mean_deg, angular_error_p99_deg and "
+        "angular_error_max_deg between the normalised vectors; 'a' / 'b' hold the paths given "
+        "as paths.",
+        "a"_a, "b"_a, py::kw_only(), "premultiplied"_a = false, "normal"_a = false,
+        "threads"_a = 0);
 #ifdef TESSERA_PYTHON_BENCH_FUNCTIONS
   add_bench_functions(m);
 #endif

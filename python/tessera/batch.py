@@ -1,12 +1,18 @@
 """Compress a directory tree of images to PVRTC1 over a Dask cluster.
 
     python3 -m tessera.batch SRC DST [--scheduler ADDRESS] [--workers N] [--format pvrtc1-4]
-                             [--quality normal] [--container pvr|ktx] [--mipmaps] [--srgb] ...
+                             [--quality normal] [--container pvr|ktx|ktx2] [--zstd LEVEL]
+                             [--mipmaps] [--mip-levels N] [--mip-filter box|lanczos|kaiser]
+                             [--srgb] [--flip-y] [--premultiply] [--alpha-bleed] [--normal-map] ...
 
 Every image under SRC (recursively: .png, .jpg, .jpeg, .tga, .bmp, any case) becomes
-DST/<same relative folder>/<stem>.pvr (or .ktx), byte-identical to ``tessera compress IN -o OUT``
-with the same options: each task runs ``tessera.encode_file`` and ``Texture.write``, the library
-calls the CLI makes.
+DST/<same relative folder>/<stem>.pvr (or .ktx, .ktx2), byte-identical to
+``tessera compress IN -o OUT`` with the same options: each task runs ``tessera.encode_file`` and
+``Texture.write``, the library calls the CLI makes. The options are the CLI's per-image ones
+(``compress_tree``'s keywords are encode's: ``tessera.ENCODE_DEFAULTS``); each image is its own
+2D texture: cube maps and arrays (``tessera compress --cube`` / ``--array``,
+``tessera.encode_file(paths, cube=True)``) are not made here. A --premultiply'd image without
+alpha is left as it is, as by the CLI, and the CLI's warning is reported with its file.
 
 Tasks: each Dask task compresses a group of files. Dask spends milliseconds of scheduler and
 worker CPU on every task (measured on a 2-core machine: about 15 ms per task, more than a quarter
@@ -29,15 +35,20 @@ defaults). ``--threads`` sets the encoder threads per task (default 1: the paral
 files). Before the first task, every worker imports tessera (counted as set-up time).
 
 Resuming: next to each output, ``OUT.pvr.json`` (the "sidecar") records the options, the tessera
-version and the input's size and modification time. A file is skipped when its output exists,
-is newer than the input, and its sidecar matches the current options and input; otherwise it is
-compressed again (``--force`` always recompresses). The sidecar is written after the output, so
-an interrupted run never leaves an output that looks complete without being so.
+version and the input's size and modification time: the record ``tessera compress
+--skip-up-to-date`` writes, byte for byte (options added after the first ones, such as
+``mip_levels`` or ``zstd``, recorded only when they are not their defaults). A file is skipped
+when its output exists, is newer than the input, and its sidecar matches the current options and
+input; otherwise it is compressed again (``--force`` always recompresses). The sidecar is written
+after the output, so an interrupted run never leaves an output that looks complete without being
+so.
 
 A file that fails (not a power of two without --resize-pot, corrupt, unreadable, unwritable
-output) fails alone: it is reported and the other files go on. The run prints a summary (files
-done / skipped / failed, MPixel/s) and exits with 1 when any file failed, else 0; bad usage
-exits with 2.
+output) fails alone: it is reported, with the message ``tessera compress`` prints for it (its
+flags: "--resize-pot"), and the other files go on. Bad options: ``compress_tree`` raises
+ValueError naming the keyword (the words of ``tessera.encode``'s errors); the command line names
+the flag (the words of ``tessera compress``'s usage errors) and exits with 2. The run prints a
+summary (files done / skipped / failed, MPixel/s) and exits with 1 when any file failed, else 0.
 """
 
 import argparse
@@ -46,6 +57,7 @@ import logging
 import os
 import sys
 import time
+import warnings
 from pathlib import Path
 
 import tessera
@@ -53,26 +65,74 @@ import tessera
 SIDECAR_SUFFIX = ".json"
 _FORMATS = ("pvrtc1-4", "pvrtc1-2")
 _QUALITIES = ("fast", "normal", "high")
-_CONTAINERS = ("pvr", "ktx")
+_CONTAINERS = ("pvr", "ktx", "ktx2")
+_MIP_FILTERS = ("box", "lanczos", "kaiser")
+#: The options every sidecar records; the later ones only when they are not their defaults, so
+#: that records of plain runs stay as they were (the CLI's sidecar_json does the same).
+_SIDECAR_OPTIONS = ("exact_search_rounds", "format", "iterations", "mipmaps", "quality",
+                    "resize_pot", "srgb")
+_TYPES = {"format": str, "quality": str, "mipmaps": bool, "srgb": bool, "iterations": int,
+          "exact_search_rounds": int, "resize_pot": bool, "mip_levels": int, "mip_filter": str,
+          "flip_y": bool, "premultiply": bool, "alpha_bleed": bool, "normal_map": bool}
 
 
-def _check_options(options, container, threads):
+def _flag(keyword):
+    return "--" + keyword.replace("_", "-")
+
+
+def _usage_problem(o, container, zstd, flags):
+    """The options that conflict, as the CLI's usage errors: in flags (`flags`, the command
+    line) or keywords (compress_tree, in the words of tessera.encode's errors); None if none."""
+    n = _flag if flags else str
+    if o["normal_map"] and o["srgb"]:
+        return f"{n('normal_map')} and {n('srgb')}: a normal map holds vectors, never sRGB colour"
+    if o["premultiply"] and o["alpha_bleed"]:
+        return (f"{n('alpha_bleed')} and {n('premultiply')}: bleeding is for straight alpha "
+                "(premultiplied transparent texels are black already)")
+    if o["mip_filter"] != "box" and not o["mipmaps"] and not o["mip_levels"]:
+        if flags:
+            return f"--mip-filter {o['mip_filter']} needs --mipmaps or --mip-levels N"
+        return f"mip_filter={o['mip_filter']!r} needs mipmaps=True or mip_levels=N"
+    if zstd and container != "ktx2":
+        if flags:
+            return "--zstd needs a KTX 2.0 output (--container ktx2)"
+        return "zstd needs a KTX 2.0 output (container='ktx2')"
+    return None
+
+
+def _check_options(options, container, threads, zstd=0):
+    shapes = sorted({"cube", "array"} & set(options))
+    if shapes:
+        raise ValueError(f"{', '.join(shapes)}: tessera.batch makes one 2D texture of each image "
+                         "(cube maps and arrays: tessera.encode_file(paths, cube=True) or "
+                         "tessera compress --cube / --array)")
     unknown = set(options) - set(tessera.ENCODE_DEFAULTS)
     if unknown:
         raise ValueError("unknown encode option(s): " + ", ".join(sorted(unknown)))
     o = dict(tessera.ENCODE_DEFAULTS, **options)
+    o = {k: _TYPES[k](v) for k, v in o.items()}  # numpy integers, 1 for True: the CLI's types
     if o["format"] not in _FORMATS:
         raise ValueError(f"format: {o['format']!r} is not one of {', '.join(_FORMATS)}")
     if o["quality"] not in _QUALITIES:
         raise ValueError(f"quality: {o['quality']!r} is not one of {', '.join(_QUALITIES)}")
-    if not -1 <= int(o["iterations"]) <= 1000:
+    if not -1 <= o["iterations"] <= 1000:
         raise ValueError(f"iterations: {o['iterations']} is not in [-1, 1000]")
-    if not 0 <= int(o["exact_search_rounds"]) <= 1000:
+    if not 0 <= o["exact_search_rounds"] <= 1000:
         raise ValueError(f"exact_search_rounds: {o['exact_search_rounds']} is not in [0, 1000]")
+    if not 0 <= o["mip_levels"] <= 17:
+        raise ValueError(f"mip_levels: {o['mip_levels']} is not in [0, 17]")
+    if o["mip_filter"] not in _MIP_FILTERS:
+        raise ValueError(f"mip_filter: {o['mip_filter']!r} is not one of "
+                         f"{', '.join(map(repr, _MIP_FILTERS))}")
     if container not in _CONTAINERS:
         raise ValueError(f"container: {container!r} is not one of {', '.join(_CONTAINERS)}")
+    if not 0 <= zstd <= 22:
+        raise ValueError(f"zstd: {zstd} is not in [0, 22]")
     if threads < 0:
         raise ValueError(f"threads: {threads} is negative")
+    problem = _usage_problem(o, container, zstd, flags=False)
+    if problem:
+        raise ValueError(problem)
     return o
 
 
@@ -97,54 +157,73 @@ def plan(src, dst, container="pvr"):
     return jobs, clashes
 
 
-def _sidecar_record(src, options, container):
+def _sidecar_record(src, options, container, zstd=0):
     st = os.stat(src)
+    recorded = {k: options[k] for k in _SIDECAR_OPTIONS}
+    recorded.update({k: v for k, v in options.items()
+                     if k not in _SIDECAR_OPTIONS and v != tessera.ENCODE_DEFAULTS[k]})
+    if zstd:
+        recorded["zstd"] = zstd
     return {
         "tessera": tessera.__version__,
         "container": container,
-        "options": {k: options[k] for k in sorted(tessera.ENCODE_DEFAULTS)},
+        "options": recorded,
         "input_size": st.st_size,
         "input_mtime_ns": st.st_mtime_ns,
     }
 
 
-def is_up_to_date(src, out, options, container):
+def is_up_to_date(src, out, options, container, zstd=0):
     """True when `out` exists, is newer than `src`, and its sidecar records these options and
     this input (size and modification time)."""
     try:
         if os.stat(out).st_mtime_ns <= os.stat(src).st_mtime_ns:
             return False
         with open(out + SIDECAR_SUFFIX, encoding="utf-8") as f:
-            return json.load(f) == _sidecar_record(src, options, container)
+            return json.load(f) == _sidecar_record(src, options, container, zstd)
     except (OSError, ValueError):
         return False
 
 
-def compress_one(src, out, options, container, threads):
+def _cli_words(message):
+    """A message of tessera.encode_file as `tessera compress` prints it (its flags)."""
+    for keyword, flag in (("with resize_pot=True", "with --resize-pot"),
+                          (": premultiply leaves", ": --premultiply leaves")):
+        message = message.replace(keyword, flag, 1)
+    return message
+
+
+def compress_one(src, out, options, container, threads, zstd=0):
     """The task: compress one file like ``tessera compress SRC -o OUT``, then write the sidecar.
-    Returns a result dict; errors are returned (status 'failed'), never raised."""
+    Returns a result dict; errors are returned (status 'failed', with the CLI's message), never
+    raised; warnings (premultiply on an image without alpha) are returned in 'warnings', as
+    the CLI words them."""
     t0 = time.perf_counter()
     try:
-        record = _sidecar_record(src, options, container)
-        texture = tessera.encode_file(src, threads=threads, **options)
+        record = _sidecar_record(src, options, container, zstd)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            texture = tessera.encode_file(src, threads=threads, **options)
         os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
-        texture.write(out)
+        texture.write(out, zstd=zstd)
         tmp = f"{out}{SIDECAR_SUFFIX}.tmp{os.getpid()}"
         with open(tmp, "w", encoding="utf-8") as f:
-            json.dump(record, f, indent=1, sort_keys=True)
+            json.dump(record, f, indent=1, sort_keys=True)  # the CLI's bytes: nlohmann dump(1)
+            f.write("\n")
         os.replace(tmp, out + SIDECAR_SUFFIX)
         return {"src": src, "out": out, "status": "done",
                 "pixels": texture.width * texture.height,
-                "seconds": time.perf_counter() - t0}
+                "seconds": time.perf_counter() - t0,
+                "warnings": [_cli_words(str(w.message)) for w in caught]}
     except (tessera.Error, OSError, ValueError) as e:
-        return {"src": src, "out": out, "status": "failed", "error": str(e),
+        return {"src": src, "out": out, "status": "failed", "error": _cli_words(str(e)),
                 "seconds": time.perf_counter() - t0}
 
 
-def compress_group(group, options, container, threads):
+def compress_group(group, options, container, threads, zstd=0):
     """One task: `compress_one` for each (src, out) pair of `group`, in order; a list of their
     results (each file succeeds or fails alone)."""
-    return [compress_one(s, o, options, container, threads) for s, o in group]
+    return [compress_one(s, o, options, container, threads, zstd) for s, o in group]
 
 
 MAX_FILES_PER_TASK = 16
@@ -222,21 +301,26 @@ def _open_client(scheduler, workers):
 
 
 def compress_tree(src, dst, *, scheduler=None, workers=None, client=None, container="pvr",
-                  threads=1, force=False, on_result=None, files_per_task=None, **options):
+                  zstd=0, threads=1, force=False, on_result=None, files_per_task=None,
+                  **options):
     """Compresses every image under `src` into the mirrored tree `dst` (see the module doc).
 
     Cluster: `client` (a dask.distributed.Client to use as is), else `scheduler` (an address),
-    else a LocalCluster of `workers` single-threaded processes, closed at the end. `options` are
-    encode's keywords (format, quality, mipmaps, srgb, iterations, exact_search_rounds,
-    resize_pot); `threads` is the encoder's thread count per task; `files_per_task` the files of
-    one Dask task (None: `group_jobs`'s guided groups, weighted by input bytes).
+    else a LocalCluster of `workers` single-threaded processes, closed at the end. `container`
+    'pvr', 'ktx' or 'ktx2' (`zstd`: its Zstandard level, 1-22, 0 = none, as --zstd); `options`
+    are encode's keywords (format, quality, mipmaps, mip_levels, mip_filter, srgb, iterations,
+    exact_search_rounds, resize_pot, flip_y, premultiply, alpha_bleed, normal_map: see
+    tessera.ENCODE_DEFAULTS; not cube / array); `threads` is the encoder's thread count per
+    task; `files_per_task` the files of one Dask task (None: `group_jobs`'s guided groups,
+    weighted by input bytes).
     `on_result(result)` is called for each finished file. Returns the summary dict: files,
-    done, skipped, failed, failures ([{src, error}]), pixels (level-0 texels encoded), seconds
-    (from the first task submitted to the last result), mpixels_per_s, workers, setup_seconds
-    (starting / connecting the cluster).
-    Raises ValueError for bad options; a failing file is reported, never raised.
+    done, skipped, failed, failures ([{src, error}]), warnings ([{src, warning}]), pixels
+    (level-0 texels encoded), seconds (from the first task submitted to the last result),
+    mpixels_per_s, workers, setup_seconds (starting / connecting the cluster).
+    Raises ValueError for bad options (naming the keyword: "normal_map and srgb: ..."); a failing
+    file is reported, never raised.
     """
-    options = _check_options(options, container, threads)
+    options = _check_options(options, container, threads, zstd)
     if files_per_task is not None and files_per_task < 1:
         raise ValueError(f"files_per_task: {files_per_task} is not at least 1")
     if scheduler or client is not None:
@@ -247,9 +331,11 @@ def compress_tree(src, dst, *, scheduler=None, workers=None, client=None, contai
     if not Path(src).is_dir():
         raise ValueError(f"{src}: not a directory")
     jobs, clashes = plan(src, dst, container)
-    todo = [(s, o) for s, o in jobs if force or not is_up_to_date(s, o, options, container)]
+    todo = [(s, o) for s, o in jobs
+            if force or not is_up_to_date(s, o, options, container, zstd)]
     summary = {"files": len(jobs) + len(clashes), "done": 0, "skipped": len(jobs) - len(todo),
                "failed": len(clashes), "failures": [{"src": s, "error": e} for s, e in clashes],
+               "warnings": [],
                "pixels": 0, "seconds": 0.0, "mpixels_per_s": 0.0, "workers": 0,
                "setup_seconds": 0.0}
     if not todo:
@@ -269,8 +355,8 @@ def compress_tree(src, dst, *, scheduler=None, workers=None, client=None, contai
         summary["setup_seconds"] = t0 - t_setup
         groups = group_jobs(todo, files_per_task, summary["workers"],
                             [_input_bytes(s) for s, _ in todo])
-        futures = [client.submit(compress_group, g, options, container, threads, pure=False,
-                                 retries=0) for g in groups]
+        futures = [client.submit(compress_group, g, options, container, threads, zstd,
+                                 pure=False, retries=0) for g in groups]
         group_of = {f.key: g for f, g in zip(futures, groups)}
         for future in as_completed(futures):
             try:
@@ -282,6 +368,8 @@ def compress_tree(src, dst, *, scheduler=None, workers=None, client=None, contai
                 if result["status"] == "done":
                     summary["done"] += 1
                     summary["pixels"] += result["pixels"]
+                    summary["warnings"] += [{"src": result["src"], "warning": w}
+                                            for w in result["warnings"]]
                 else:
                     summary["failed"] += 1
                     summary["failures"].append({"src": result["src"], "error": result["error"]})
@@ -294,6 +382,7 @@ def compress_tree(src, dst, *, scheduler=None, workers=None, client=None, contai
             if cluster is not None:
                 cluster.close()
     summary["failures"].sort(key=lambda f: f["src"])
+    summary["warnings"].sort(key=lambda w: w["src"])
     if summary["seconds"] > 0:
         summary["mpixels_per_s"] = summary["pixels"] / 1e6 / summary["seconds"]
     return summary
@@ -305,7 +394,21 @@ def format_summary(summary):
              f"{summary['pixels'] / 1e6:.2f} MPixel in {summary['seconds']:.2f} s "
              f"({summary['mpixels_per_s']:.2f} MPixel/s) on {summary['workers']} worker(s)"]
     lines += [f"  failed: {f['error']}" for f in summary["failures"]]
+    lines += [f"  warning: {w['warning']}" for w in summary.get("warnings", [])]
     return "\n".join(lines)
+
+
+def _int_in(low, high):
+    """An argparse type: an integer in [low, high] (the CLI's range checks)."""
+    def parse(text):
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"{value} is not in [{low}, {high}]")
+        return value
+    return parse
 
 
 def main(argv=None):
@@ -328,27 +431,46 @@ def main(argv=None):
     p.add_argument("--container", choices=_CONTAINERS, default="pvr")
     p.add_argument("--iterations", type=int, default=-1)
     p.add_argument("--exact-search-rounds", type=int, default=0)
+    p.add_argument("--zstd", type=_int_in(1, 22), default=0, metavar="LEVEL",
+                   help="KTX 2.0: Zstandard supercompression at LEVEL (1-22)")
     p.add_argument("--mipmaps", action="store_true")
+    p.add_argument("--mip-levels", type=_int_in(1, 17), default=0, metavar="N",
+                   help="encode at most N levels, level 0 included (implies --mipmaps)")
+    p.add_argument("--mip-filter", choices=_MIP_FILTERS, default="box")
     p.add_argument("--srgb", action="store_true")
     p.add_argument("--resize-pot", action="store_true")
+    p.add_argument("--flip-y", action="store_true", help="flip the images upside down first")
+    p.add_argument("--premultiply", action="store_true",
+                   help="multiply colour by alpha and mark the textures premultiplied")
+    p.add_argument("--alpha-bleed", action="store_true",
+                   help="give fully transparent texels the colour of the nearest visible one")
+    p.add_argument("--normal-map", action="store_true",
+                   help="the images are normal maps (vectors: renormalised mips; never sRGB)")
     p.add_argument("--force", action="store_true", help="recompress up-to-date outputs too")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.add_argument("-v", "--verbose", action="store_true", help="print one line per file")
     args = p.parse_args(argv)
+    options = {k: getattr(args, k) for k in tessera.ENCODE_DEFAULTS}
+    # Conflicting flags: the CLI's usage errors, in its flags.
+    problem = _usage_problem(options, args.container, args.zstd, flags=True)
+    if problem:
+        print(f"tessera.batch: {problem}", file=sys.stderr)
+        return 2
 
     def report(result):
         if result["status"] != "done":
             print(f"tessera.batch: {result['error']}", file=sys.stderr, flush=True)
-        elif args.verbose:
+            return
+        for warning in result["warnings"]:
+            print(f"tessera.batch: warning: {warning}", file=sys.stderr, flush=True)
+        if args.verbose:
             print(f"wrote {result['out']} ({result['seconds'] * 1e3:.1f} ms)", flush=True)
 
     try:
         summary = compress_tree(
             args.src, args.dst, scheduler=args.scheduler, workers=args.workers,
-            container=args.container, threads=args.threads, force=args.force, on_result=report,
-            format=args.format, quality=args.quality, iterations=args.iterations,
-            exact_search_rounds=args.exact_search_rounds, mipmaps=args.mipmaps, srgb=args.srgb,
-            resize_pot=args.resize_pot, files_per_task=args.files_per_task)
+            container=args.container, zstd=args.zstd, threads=args.threads, force=args.force,
+            on_result=report, files_per_task=args.files_per_task, **options)
     except ValueError as e:
         print(f"tessera.batch: {e}", file=sys.stderr)
         return 2

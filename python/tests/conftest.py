@@ -67,6 +67,15 @@ def make_image(height, width, channels, seed=0, alpha="ramp"):
     return np.concatenate([img, a[..., None]], axis=-1)
 
 
+def make_normal_map(height, width, seed=0):
+    """Unit vectors (a bumpy surface) mapped from [-1, 1] to [0, 255], RGB."""
+    y, x = np.mgrid[0:height, 0:width].astype(np.float64)
+    nx = 0.5 * np.sin(x / width * 12.6 + seed)
+    ny = 0.4 * np.cos(y / height * 9.4)
+    n = np.stack([nx, ny, np.ones_like(nx)], axis=-1)
+    n /= np.linalg.norm(n, axis=-1, keepdims=True)
+    return np.clip(np.rint((n + 1) * 127.5), 0, 255).astype(np.uint8)
+
 
 def pytest_configure(config):
     # distributed 2022.12 on Debian's tornado 6.2 warns on every LocalCluster start.

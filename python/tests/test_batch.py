@@ -200,3 +200,136 @@ def test_grouped_tasks_write_the_same_bytes_and_fail_alone(tmp_path, client):
     check_outputs_equal_cli(src, tmp_path / "dst", tmp_path, "pvr", ["--quality", "fast"])
     with pytest.raises(ValueError, match="files_per_task: 0"):
         tessera.batch.compress_tree(src, tmp_path / "dst2", files_per_task=0)
+
+
+# The per-image options added with the asset features: (compress_tree keywords, the CLI's flags,
+# container, zstd level).
+NEW_OPTIONS = [
+    (dict(mip_levels=3, mip_filter="kaiser", flip_y=True, premultiply=True, quality="fast"),
+     ["--mip-levels", "3", "--mip-filter", "kaiser", "--flip-y", "--premultiply", "--quality",
+      "fast"], "ktx2", 7),
+    (dict(alpha_bleed=True, normal_map=True, mipmaps=True, mip_filter="lanczos", quality="fast"),
+     ["--alpha-bleed", "--normal-map", "--mipmaps", "--mip-filter", "lanczos", "--quality",
+      "fast"], "pvr", 0),
+]
+
+
+def check_outputs_and_sidecars_equal_cli(src, dst, tmp_path, container, cli_opts):
+    for rel in GOOD:
+        out = output_of(dst, rel, container)
+        # The CLI takes the batch's sidecar for its own ...
+        r = run_cli("compress", src / rel, "-o", out, *cli_opts, "--skip-up-to-date")
+        assert r.stdout.startswith(f"skipped {out}: up to date"), (rel, r.stdout)
+        # ... and writes the same bytes, texture and sidecar.
+        ref = tmp_path / f"ref.{container}"
+        for stale in (ref, Path(f"{ref}.json")):
+            stale.unlink(missing_ok=True)
+        run_cli("compress", src / rel, "-o", ref, "-q", *cli_opts, "--skip-up-to-date")
+        assert out.read_bytes() == ref.read_bytes(), rel
+        assert Path(f"{out}.json").read_bytes() == Path(f"{ref}.json").read_bytes(), rel
+
+
+def rgb_inputs(src):
+    return sorted(str(src / rel) for rel, (_, _, c, _) in GOOD.items() if c == 3)
+
+
+def test_new_options_write_the_cli_bytes_and_sidecars(tmp_path, client):
+    src = make_tree(tmp_path / "src")
+    keywords, flags, container, zstd = NEW_OPTIONS[0]
+    dst = tmp_path / "dst"
+    s1 = tessera.batch.compress_tree(src, dst, client=client, container=container, zstd=zstd,
+                                     **keywords)
+    assert (s1["done"], s1["skipped"], s1["failed"]) == (4, 0, 2)
+    cli_flags = [*flags, "--zstd", str(zstd)]
+    check_outputs_and_sidecars_equal_cli(src, dst, tmp_path, container, cli_flags)
+    record = json.loads(Path(f"{dst}/top.ktx2.json").read_text())["options"]
+    assert {k: record[k] for k in ("mip_levels", "mip_filter", "flip_y", "premultiply", "zstd")} \
+        == {"mip_levels": 3, "mip_filter": "kaiser", "flip_y": True, "premultiply": True,
+            "zstd": 7}
+    assert "alpha_bleed" not in record and "normal_map" not in record
+    # --premultiply on the RGB inputs: the CLI's warning, with the file.
+    expected = []
+    for path in rgb_inputs(src):
+        r = run_cli("compress", path, "-o", tmp_path / "w.pvr", "--premultiply")
+        expected += [{"src": path, "warning": line.removeprefix("tessera: warning: ")}
+                     for line in r.stderr.splitlines() if "warning" in line]
+    assert len(expected) == 2 and s1["warnings"] == expected
+
+    s2 = tessera.batch.compress_tree(src, dst, client=client, container=container, zstd=zstd,
+                                     **keywords)
+    assert (s2["done"], s2["skipped"]) == (0, 4)
+    # Another zstd level is another record: everything again, and the level is no default.
+    s3 = tessera.batch.compress_tree(src, dst, client=client, container=container, zstd=0,
+                                     **keywords)
+    assert (s3["done"], s3["skipped"]) == (4, 0)
+    assert "zstd" not in json.loads(Path(f"{dst}/top.ktx2.json").read_text())["options"]
+    check_outputs_and_sidecars_equal_cli(src, dst, tmp_path, container, flags)
+
+
+def test_new_options_on_the_command_line(tmp_path):
+    src, dst = make_tree(tmp_path / "src"), tmp_path / "dst"
+    for rel in BAD:
+        os.remove(src / rel)
+    keywords, flags, container, _ = NEW_OPTIONS[1]
+    r = run_batch(src, dst, "--workers", "2", "--container", container, *flags)
+    assert r.returncode == 0, r.stderr
+    assert "4 file(s): 4 done, 0 skipped, 0 failed" in r.stdout
+    check_outputs_and_sidecars_equal_cli(src, dst, tmp_path, container, flags)
+
+    # --premultiply's warnings, as the CLI prints them.
+    r = run_batch(src, tmp_path / "dst2", "--workers", "1", "--premultiply", "--container",
+                  "ktx2", "--zstd", "5")
+    assert r.returncode == 0, r.stderr
+    for path in rgb_inputs(src):
+        assert (f"tessera.batch: warning: {path} has no alpha channel: --premultiply leaves it "
+                "as it is\n") in r.stderr
+    check_outputs_and_sidecars_equal_cli(src, tmp_path / "dst2", tmp_path, "ktx2",
+                                         ["--premultiply", "--zstd", "5"])
+
+
+@pytest.mark.parametrize("flags", [["--normal-map", "--srgb"], ["--premultiply", "--alpha-bleed"],
+                                   ["--mip-filter", "kaiser"]])
+def test_command_line_conflicts_are_the_cli_usage_errors(tmp_path, flags):
+    src = make_tree(tmp_path / "src")
+    cli = run_cli("compress", src / "top.png", "-o", tmp_path / "x.pvr", *flags, check=False)
+    assert cli.returncode == 2
+    r = run_batch(src, tmp_path / "dst", *flags)
+    assert r.returncode == 2
+    assert r.stderr == cli.stderr.replace("tessera compress: ", "tessera.batch: ")
+    assert not (tmp_path / "dst").exists()
+
+
+def test_command_line_range_and_zstd_errors(tmp_path):
+    src = make_tree(tmp_path / "src")
+    for args, message in [(["--zstd", "3"], "--zstd needs a KTX 2.0 output (--container ktx2)"),
+                          (["--mip-levels", "18"], "--mip-levels: 18 is not in [1, 17]"),
+                          (["--zstd", "0", "--container", "ktx2"], "--zstd: 0 is not in [1, 22]"),
+                          (["--mip-filter", "gauss"], "invalid choice: 'gauss'"),
+                          (["--container", "dds"], "invalid choice: 'dds'")]:
+        r = run_batch(src, tmp_path / "dst", *args)
+        assert r.returncode == 2 and message in r.stderr, (args, r.stderr)
+    assert not (tmp_path / "dst").exists()
+
+
+def test_compress_tree_keyword_errors_are_the_module_s(tmp_path):
+    src = make_tree(tmp_path / "src")
+    img = make_image(16, 16, 4)
+    for keywords in (dict(normal_map=True, srgb=True), dict(premultiply=True, alpha_bleed=True),
+                     dict(mip_filter="lanczos"), dict(mip_filter="gauss", mipmaps=True),
+                     dict(mip_levels=18)):
+        with pytest.raises(ValueError) as module:
+            tessera.encode(img, **keywords)
+        with pytest.raises(ValueError) as batch:
+            tessera.batch.compress_tree(src, tmp_path / "dst", **keywords)
+        assert str(batch.value) == str(module.value)
+        assert "--" not in str(batch.value)
+    with pytest.raises(ValueError) as module:
+        tessera.encode(img).to_bytes("pvr", zstd=3)
+    with pytest.raises(ValueError) as batch:
+        tessera.batch.compress_tree(src, tmp_path / "dst", zstd=3)
+    assert str(batch.value) == str(module.value)
+    with pytest.raises(ValueError, match=r"zstd: 23 is not in \[0, 22\]"):
+        tessera.batch.compress_tree(src, tmp_path / "dst", container="ktx2", zstd=23)
+    with pytest.raises(ValueError, match="^cube: tessera.batch makes one 2D texture of each "):
+        tessera.batch.compress_tree(src, tmp_path / "dst", cube=True)
+    assert not (tmp_path / "dst").exists()

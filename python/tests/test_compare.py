@@ -3,7 +3,7 @@
 import numpy as np
 
 import tessera
-from conftest import cli_json, make_image
+from conftest import cli_json, make_image, make_normal_map
 
 
 def test_compare_equals_cli_json(tmp_path):
@@ -41,3 +41,35 @@ def test_compare_identical_and_decoded(tmp_path):
     assert 25 < got["psnr_rgb"] < 60 and not got["identical_rgb"]
     mse = np.mean((img.astype(np.float64) - decoded) ** 2)
     assert abs(got["mse"] - mse) <= 1e-9 * mse
+
+
+def test_compare_premultiplied_and_normal_equal_cli_json(tmp_path):
+    rgba = make_image(32, 32, 4, seed=1)
+    normal = make_normal_map(32, 32)
+    cases = [  # a, b, premultiplied, normal
+        (rgba, tessera.decode(tessera.encode(rgba, quality="fast")), True, False),
+        (rgba, rgba.copy(), True, False),                                      # identical
+        (normal, tessera.decode(tessera.encode(normal, normal_map=True)), False, True),
+        (rgba, make_image(32, 32, 3, seed=2), True, True),                     # RGBA vs RGB
+    ]
+    for i, (a, b, premultiplied, normal_keys) in enumerate(cases):
+        pa, pb = tmp_path / f"a{i}.png", tmp_path / f"b{i}.png"
+        tessera.write_image(pa, a)
+        tessera.write_image(pb, b)
+        flags = ["--premultiplied"] * premultiplied + ["--normal"] * normal_keys
+        expected = cli_json("compare", pa, pb, "--json", *flags)
+        assert ("psnr_premultiplied" in expected) == premultiplied
+        assert ("angular_error_mean_deg" in expected) == normal_keys
+        got = tessera.compare(pa, pb, premultiplied=premultiplied, normal=normal_keys)
+        assert got == expected, i
+        from_arrays = tessera.compare(a, b, premultiplied=premultiplied, normal=normal_keys,
+                                      threads=1)
+        assert from_arrays == {k: v for k, v in expected.items() if k not in ("a", "b")}, i
+        plain = tessera.compare(a, b)
+        assert plain == {k: v for k, v in from_arrays.items()
+                         if "premultiplied" not in k and "angular" not in k}
+    same = tessera.compare(rgba, rgba, premultiplied=True)
+    assert same["psnr_premultiplied"] is None and same["mse_premultiplied"] == 0.0
+    coded = tessera.compare(normal, cases[2][1], normal=True)
+    assert 0 < coded["angular_error_mean_deg"] <= coded["angular_error_p99_deg"] <= \
+        coded["angular_error_max_deg"] < 20

@@ -14,12 +14,19 @@ def test_exception_hierarchy():
     assert not issubclass(tessera.Error, ValueError)
 
 
+def python_words(cli_message):
+    """The CLI's message as the Python module shows it: its flag as the keyword."""
+    return cli_message.replace("with --resize-pot", "with resize_pot=True")
+
+
 def test_non_power_of_two_matches_cli(tmp_path):
     img = make_image(48, 64, 3)
     png = tmp_path / "npot.png"
     tessera.write_image(png, img)
-    expected = cli_error("compress", png, "-o", tmp_path / "npot.pvr")
-    assert expected.endswith("use --resize-pot to resample to 64x64")
+    cli = cli_error("compress", png, "-o", tmp_path / "npot.pvr")
+    assert cli.endswith("resample to 64x64 with --resize-pot")
+    expected = python_words(cli)
+    assert expected.endswith("resample to 64x64 with resize_pot=True") and "--" not in expected
     with pytest.raises(tessera.InvalidArgumentError) as info:
         tessera.encode_file(png)
     assert str(info.value) == expected and info.value.code == "invalid_argument"
@@ -29,6 +36,20 @@ def test_non_power_of_two_matches_cli(tmp_path):
     with pytest.raises(tessera.Error, match=r"^<array>: size 64x48 is not a power of two"):
         tessera.encode(img)
     assert not (tmp_path / "npot.pvr").exists()
+
+
+def test_non_power_of_two_layers_match_cli(tmp_path):
+    # The cube map / array path (compress_images) words its message the same way.
+    png = tmp_path / "npot.png"
+    tessera.write_image(png, make_image(48, 64, 4))
+    cli = cli_error("compress", png, png, "--array", "-o", tmp_path / "npot.ktx2")
+    assert cli.endswith("with --resize-pot")
+    with pytest.raises(tessera.InvalidArgumentError) as info:
+        tessera.encode_file([png, png], array=True)
+    assert str(info.value) == python_words(cli) and "--" not in str(info.value)
+    with pytest.raises(tessera.InvalidArgumentError) as info:
+        tessera.encode([make_image(48, 64, 4)] * 2, array=True, name=str(png))
+    assert str(info.value) == python_words(cli).replace(str(png), f"{png}[0]", 1)
 
 
 @pytest.mark.parametrize("bad, message", [
@@ -103,7 +124,7 @@ def test_texture_argument_errors(tmp_path):
     tex = tessera.encode(make_image(16, 16, 3), quality="fast")
     with pytest.raises(ValueError, match="level 1 is out of range"):
         tessera.decode(tex, level=1)
-    with pytest.raises(ValueError, match="container: 'dds' is not one of 'pvr', 'ktx'"):
+    with pytest.raises(ValueError, match="container: 'dds' is not one of 'pvr', 'ktx', 'ktx2'$"):
         tex.to_bytes("dds")
     with pytest.raises(ValueError, match="unknown texture extension"):
         tex.write(tmp_path / "t.dds")
