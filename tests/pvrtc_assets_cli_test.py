@@ -142,6 +142,12 @@ def main():
     ok("premultiply", "compress", sprite, "--premultiply", "--quality", "fast", "-o", pm, "-q")
     check("premultiplied flag", info(pm).get("premultiplied") is True)
     check("rgb not flagged", info(os.path.join(tmp, "pm_rgb.pvr")).get("premultiplied") is False)
+    _, err = ok("premultiply to ktx warns", "compress", sprite, "--premultiply", "--quality", "fast",
+                "-o", os.path.join(tmp, "pm.ktx"))
+    check("ktx 1.1 premultiplied warning", "KTX 1.1 has no premultiplied-alpha flag" in err, err)
+    ok("premultiply to ktx2", "compress", sprite, "--premultiply", "--quality", "fast", "-o",
+       os.path.join(tmp, "pm.ktx2"), "-q")
+    check("ktx2 premultiplied flag", info(os.path.join(tmp, "pm.ktx2")).get("premultiplied") is True)
     # The premultiplication itself: the texture of --premultiply holds the blocks of the image
     # premultiplied here (round(c * a / 255)), only the header's flag differs.
     rgba = pattern(32, 5, alpha=True).astype(np.int64)

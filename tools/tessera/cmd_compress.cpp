@@ -142,6 +142,10 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
     return usage_error("'-' (stdin) can be only one of the inputs");
   }
   if (int rc = refuse_binary_to_terminal(args.output, "a compressed texture")) return rc;
+  if (args.premultiply && container == texture_file::ContainerFormat::ktx1 && !args.quiet) {
+    std::fprintf(stderr, "tessera: warning: KTX 1.1 has no premultiplied-alpha flag: loaders of "
+                 "%s cannot tell (.pvr and .ktx2 say it)\n", io::io_name(args.output, true).c_str());
+  }
   if (args.skip_up_to_date && up_to_date(args, container_word, args.inputs, args.output)) {
     if (!args.quiet) {
       std::fprintf(text_stream(args.json), "skipped %s: up to date\n", args.output.c_str());
