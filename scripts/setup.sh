@@ -25,6 +25,7 @@ packages=(
   libtinyobjloader-dev libtinygltf-dev         # OBJ and glTF scenes
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri  # GL runtime: EGL + OpenGL 4.5 (Mesa llvmpipe)
   glslang-tools                                # glslangValidator checks the shipped GLSL
+  spirv-tools                                  # spirv-val/-dis: the GLSL's Vulkan SPIR-V
   pybind11-dev python3-dev python3-pytest      # the Python module and its tests
   python3-distributed                          # tessera.batch on a Dask cluster
   chromium                                     # the report test loads report.html headless

@@ -11,6 +11,9 @@
 //         (l over the pixel of S and its four direct neighbours; luma = Rec.601 on sRGB)
 //   k   = clamp(round(max(k_d, k_n, k_s)), 0, K)
 // A window mixing background and geometry gets k = K; background normals are skipped.
+//
+// Vulkan (glslangValidator -V, glslc): the same source, no bindings; the SPIR-V declares the
+// Float64 capability, so the device needs VkPhysicalDeviceFeatures::shaderFloat64.
 
 #ifndef TESSERA_ADAPTIVE_MAX_N
 #define TESSERA_ADAPTIVE_MAX_N 64  // largest window (m = 8)

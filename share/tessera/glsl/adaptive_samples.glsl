@@ -11,6 +11,7 @@
 //   * one material (background counts as one id): sqrt(n / (k + 1));
 //   * several materials (§4.1 material-boundary rule): sqrt(A / N), A = the window's cells of the
 //     sample's material, N = the shaded samples (p <= k) of that material.
+// Vulkan (glslangValidator -V, glslc): the same source; no bindings, no macros.
 
 // A driver loops over its window reading these from its G-buffer (deferred_passes.comp's
 // tessera_window_seam_gbuffer and tessera_window_scales). Keep per-window arrays of UVs and

@@ -9,6 +9,10 @@
 // Clip y is negated so that framebuffer row 0 is the top grid row (tessera's top-down grid):
 // texelFetch(ivec2(gx, gy)) then reads CPU grid pixel (gx, gy), and dFdy is d/d(grid y, down).
 // Culling is off (the CPU draws both sides), so the mirrored winding does not matter.
+// Vulkan (VULKAN defined by glslangValidator -V or glslc; no tessera runtime yet): outputs at
+// locations 0 (depth), 1 (normal), 2 (uv); the y negation again puts the top grid row in
+// framebuffer row 0; clip z stays OpenGL's [-w, w] (the host remaps it or uses
+// VK_EXT_depth_clip_control). OpenGL compiles exactly what it always did.
 #version 450 core
 
 layout(location = 0) in vec4 tessera_clip;
@@ -16,9 +20,15 @@ layout(location = 1) in float tessera_depth;
 layout(location = 2) in vec3 tessera_normal;
 layout(location = 3) in vec2 tessera_uv;
 
+#if defined(VULKAN)
+layout(location = 0) out float tessera_v_depth;
+layout(location = 1) out vec3 tessera_v_normal;
+layout(location = 2) out vec2 tessera_v_uv;
+#else
 out float tessera_v_depth;
 out vec3 tessera_v_normal;
 out vec2 tessera_v_uv;
+#endif
 
 void main() {
   tessera_v_depth = tessera_depth;

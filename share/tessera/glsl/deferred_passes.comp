@@ -28,6 +28,10 @@
 //                           SSBO 7 (r | g << 8 | b << 16 | 255 << 24, as tessera::to_srgb8)
 //   TESSERA_PASS_FXAA       FXAA 3.11 (fxaa.glsl) of SSBO 7 -> SSBO 8 (packed as SSBO 7)
 // Always defined: TESSERA_DEFERRED_CLASSES, TESSERA_WINDOW_N (= m*m), TESSERA_ADAPTIVE_MAX_N.
+// Vulkan (VULKAN defined by glslangValidator -V or glslc; no tessera runtime yet): set
+// TESSERA_DEFERRED_SET holds deferred_shading.glsl's bindings, then SSBO k (3..11 above) at
+// binding TESSERA_PASSES_FIRST_BINDING + k - 3 (default TESSERA_DEFERRED_FIRST_BINDING + 8,
+// after deferred_shading.glsl's defaults). OpenGL compiles exactly what it always did.
 #version 450 core
 // Offline checks (glslangValidator -l -DTESSERA_GLSLANG -I<this folder>) resolve the includes
 // with glslang's extension; tessera::gl::expand_includes resolves them for the driver.
@@ -42,6 +46,29 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
+#if defined(VULKAN)
+#ifndef TESSERA_PASSES_FIRST_BINDING
+#define TESSERA_PASSES_FIRST_BINDING (TESSERA_DEFERRED_FIRST_BINDING + 8)
+#endif
+// OpenGL's SSBO k as a Vulkan set and binding.
+#define TESSERA_PASSES_BUFFER(k) \
+  std430, set = TESSERA_DEFERRED_SET, binding = TESSERA_PASSES_FIRST_BINDING + (k) - 3
+layout(TESSERA_PASSES_BUFFER(3)) buffer TesseraS { vec4 tessera_s[]; };
+layout(TESSERA_PASSES_BUFFER(4)) buffer TesseraTerms { vec4 tessera_terms[]; };
+layout(TESSERA_PASSES_BUFFER(5)) buffer TesseraK { uint tessera_k[]; };
+layout(TESSERA_PASSES_BUFFER(6)) buffer TesseraOut { vec4 tessera_out[]; };
+layout(TESSERA_PASSES_BUFFER(7)) buffer TesseraRgba8 { uint tessera_rgba8[]; };
+layout(TESSERA_PASSES_BUFFER(8)) buffer TesseraRgba8Out { uint tessera_rgba8_out[]; };
+#if defined(TESSERA_SCHEDULE_FRAME)
+layout(TESSERA_PASSES_BUFFER(9)) buffer TesseraListBase {
+  uint tessera_list_total;
+  uint tessera_list_capacity;
+  uint tessera_list_base[];
+};
+layout(TESSERA_PASSES_BUFFER(10)) buffer TesseraListItems { uvec2 tessera_list_items[]; };
+layout(TESSERA_PASSES_BUFFER(11)) buffer TesseraListColours { vec4 tessera_list_colours[]; };
+#endif
+#else
 layout(std430, binding = 3) buffer TesseraS { vec4 tessera_s[]; };
 layout(std430, binding = 4) buffer TesseraTerms { vec4 tessera_terms[]; };
 layout(std430, binding = 5) buffer TesseraK { uint tessera_k[]; };
@@ -58,6 +85,7 @@ layout(std430, binding = 9) buffer TesseraListBase {
 };
 layout(std430, binding = 10) buffer TesseraListItems { uvec2 tessera_list_items[]; };
 layout(std430, binding = 11) buffer TesseraListColours { vec4 tessera_list_colours[]; };
+#endif
 #endif
 
 const int N = TESSERA_WINDOW_N;

@@ -7,7 +7,7 @@
 // Needs (the including shader defines before #include):
 //   #define TESSERA_DEFERRED_CLASSES C   number of texture-size classes, 1..8 (>= 1 even when the
 //                                        scene has no textures; unit 3 then holds a dummy)
-// Bindings (tessera::gl::DeferredGlRenderer sets them up):
+// OpenGL bindings (tessera::gl::DeferredGlRenderer sets them up):
 //   units 0, 1, 2   sampler2D, the G-buffer grid (m*w x m*h, RGBA32F, texelFetch only, row 0 =
 //                   the top grid row, x right, y down):
 //                     unit 0: (linear view depth, world normal xyz; not renormalised)
@@ -21,10 +21,63 @@
 //   SSBO 1          materials: vec4 base colour, ivec4 (class or -1, layer, width, height)
 //   SSBO 2          heavy-term waves: vec4 (kx, ky, kz, phase) per term
 //
+// Vulkan (SPIR-V through glslangValidator -V or glslc, which define VULKAN; no tessera runtime
+// yet): the same resources in one descriptor set, each at its own binding (samplers and
+// buffers share a set's binding numbers), all movable by the includer:
+//   #define TESSERA_DEFERRED_SET S                 // optional, default 0
+//   #define TESSERA_DEFERRED_FIRST_BINDING F       // optional, default 0; the defaults below:
+//   TESSERA_DEFERRED_PARAMS_BINDING     F      uniform buffer TesseraDeferredParams
+//   TESSERA_DEFERRED_LIGHTS_BINDING     F + 1  storage buffer, lights
+//   TESSERA_DEFERRED_MATERIALS_BINDING  F + 2  storage buffer, materials
+//   TESSERA_DEFERRED_WAVES_BINDING      F + 3  storage buffer, heavy-term waves
+//   TESSERA_DEFERRED_GBUFFER0_BINDING   F + 4  combined image sampler, G-buffer unit 0's
+//   TESSERA_DEFERRED_GBUFFER1_BINDING   F + 5  combined image sampler, unit 1's
+//   TESSERA_DEFERRED_GBUFFER2_BINDING   F + 6  combined image sampler, unit 2's
+//   TESSERA_DEFERRED_TEXTURES_BINDING   F + 7  C combined image samplers (2D arrays), one
+//                                              binding with descriptorCount C
+// tessera_texture_lod indexes that array with its loop counter (dynamically uniform), which
+// needs VkPhysicalDeviceFeatures::shaderSampledImageArrayDynamicIndexing. Without VULKAN
+// defined, OpenGL compiles exactly the declarations it always did.
+//
 // Conventions: a sample is addressed by its grid pixel ivec2(gx, gy); output pixel (x, y) owns
 // the window gx in [m*x, m*x+m), gy in [m*y, m*y+m). Colours are linear RGB.
 
+#if defined(VULKAN)
+#ifndef TESSERA_DEFERRED_SET
+#define TESSERA_DEFERRED_SET 0
+#endif
+#ifndef TESSERA_DEFERRED_FIRST_BINDING
+#define TESSERA_DEFERRED_FIRST_BINDING 0
+#endif
+#ifndef TESSERA_DEFERRED_PARAMS_BINDING
+#define TESSERA_DEFERRED_PARAMS_BINDING (TESSERA_DEFERRED_FIRST_BINDING)
+#endif
+#ifndef TESSERA_DEFERRED_LIGHTS_BINDING
+#define TESSERA_DEFERRED_LIGHTS_BINDING (TESSERA_DEFERRED_FIRST_BINDING + 1)
+#endif
+#ifndef TESSERA_DEFERRED_MATERIALS_BINDING
+#define TESSERA_DEFERRED_MATERIALS_BINDING (TESSERA_DEFERRED_FIRST_BINDING + 2)
+#endif
+#ifndef TESSERA_DEFERRED_WAVES_BINDING
+#define TESSERA_DEFERRED_WAVES_BINDING (TESSERA_DEFERRED_FIRST_BINDING + 3)
+#endif
+#ifndef TESSERA_DEFERRED_GBUFFER0_BINDING
+#define TESSERA_DEFERRED_GBUFFER0_BINDING (TESSERA_DEFERRED_FIRST_BINDING + 4)
+#endif
+#ifndef TESSERA_DEFERRED_GBUFFER1_BINDING
+#define TESSERA_DEFERRED_GBUFFER1_BINDING (TESSERA_DEFERRED_FIRST_BINDING + 5)
+#endif
+#ifndef TESSERA_DEFERRED_GBUFFER2_BINDING
+#define TESSERA_DEFERRED_GBUFFER2_BINDING (TESSERA_DEFERRED_FIRST_BINDING + 6)
+#endif
+#ifndef TESSERA_DEFERRED_TEXTURES_BINDING
+#define TESSERA_DEFERRED_TEXTURES_BINDING (TESSERA_DEFERRED_FIRST_BINDING + 7)
+#endif
+layout(std140, set = TESSERA_DEFERRED_SET, binding = TESSERA_DEFERRED_PARAMS_BINDING)
+uniform TesseraDeferredParams {
+#else
 layout(std140, binding = 0) uniform TesseraDeferredParams {
+#endif
   ivec4 tessera_size;        // w, h (output pixels), m, n = m*m
   ivec4 tessera_counts;      // lights, heavy terms (0 = off), force_k (-1 = off),
                              // flags (1: geometry metric, 2: shading metric)
@@ -46,6 +99,23 @@ struct TesseraMaterial {
   vec4 base;
   ivec4 texture;  // class (-1: untextured), layer, level-0 width, height
 };
+#if defined(VULKAN)
+layout(std430, set = TESSERA_DEFERRED_SET, binding = TESSERA_DEFERRED_LIGHTS_BINDING)
+readonly buffer TesseraLights { TesseraLight tessera_lights[]; };
+layout(std430, set = TESSERA_DEFERRED_SET, binding = TESSERA_DEFERRED_MATERIALS_BINDING)
+readonly buffer TesseraMaterials {
+  TesseraMaterial tessera_materials[];
+};
+layout(std430, set = TESSERA_DEFERRED_SET, binding = TESSERA_DEFERRED_WAVES_BINDING)
+readonly buffer TesseraWaves { vec4 tessera_waves[]; };
+
+layout(set = TESSERA_DEFERRED_SET, binding = TESSERA_DEFERRED_GBUFFER0_BINDING)
+uniform sampler2D tessera_gbuffer0;
+layout(set = TESSERA_DEFERRED_SET, binding = TESSERA_DEFERRED_GBUFFER1_BINDING)
+uniform sampler2D tessera_gbuffer1;
+layout(set = TESSERA_DEFERRED_SET, binding = TESSERA_DEFERRED_GBUFFER2_BINDING)
+uniform sampler2D tessera_gbuffer2;
+#else
 layout(std430, binding = 0) readonly buffer TesseraLights { TesseraLight tessera_lights[]; };
 layout(std430, binding = 1) readonly buffer TesseraMaterials {
   TesseraMaterial tessera_materials[];
@@ -55,6 +125,7 @@ layout(std430, binding = 2) readonly buffer TesseraWaves { vec4 tessera_waves[];
 layout(binding = 0) uniform sampler2D tessera_gbuffer0;
 layout(binding = 1) uniform sampler2D tessera_gbuffer1;
 layout(binding = 2) uniform sampler2D tessera_gbuffer2;
+#endif
 
 #ifndef TESSERA_DEFERRED_CLASSES
 #error "define TESSERA_DEFERRED_CLASSES (1..8) before including deferred_shading.glsl"
@@ -62,7 +133,12 @@ layout(binding = 2) uniform sampler2D tessera_gbuffer2;
 #if TESSERA_DEFERRED_CLASSES < 1 || TESSERA_DEFERRED_CLASSES > 8
 #error "TESSERA_DEFERRED_CLASSES must be in 1..8"
 #endif
+#if defined(VULKAN)
+layout(set = TESSERA_DEFERRED_SET, binding = TESSERA_DEFERRED_TEXTURES_BINDING)
+uniform sampler2DArray tessera_textures[TESSERA_DEFERRED_CLASSES];
+#else
 layout(binding = 3) uniform sampler2DArray tessera_textures[TESSERA_DEFERRED_CLASSES];
+#endif
 
 /// One G-buffer sample.
 struct TesseraSample {

@@ -15,6 +15,7 @@
 //     them), or
 //   * some sample's normal deviates: dot(normalize(n_i), normalize(n_0)) < min_normal_dot
 //     (Lauritzen: 0.99, about 8 degrees).
+// Vulkan (glslangValidator -V, glslc): the same source; no bindings, no macros.
 
 /// Depth derivatives per grid pixel (d/dx, d/dy) of the plane through a point at linear depth
 /// `depth` seen along the world ray `ray` (view-space z component -1, so depth = ray

@@ -12,6 +12,8 @@
 // it returns the position (pixel units) at which to fetch the output colour bilinearly
 // (clamp to edge), or the pixel centre with early = true when the local contrast is below
 // the threshold (copy the input pixel).
+// Vulkan (glslangValidator -V, glslc): the same source and contract; fxaa.glsl declares no
+// resources, so the bindings are those of the includer's tessera_fxaa_luma.
 
 #ifndef TESSERA_FXAA_STEPS
 #error "define TESSERA_FXAA_STEPS and tessera_fxaa_p before including fxaa.glsl"

@@ -4,7 +4,7 @@
 // the GLSL twin of tessera::faces::sample_face (include/tessera/faces.h), with which it agrees
 // to float rounding under trilinear filtering (tests/gl_ptex_test.cpp).
 //
-// Setup (host side: `FaceTextures::upload(set)`, then `bind(first_unit, ssbo_binding)`):
+// OpenGL setup (host side: `FaceTextures::upload(set)`, then `bind(first_unit, ssbo_binding)`):
 //   #define TESSERA_SEAMS_CLASSES N         // face classes = FaceTextures::class_count(), 1..16
 //   #define TESSERA_SEAMS_FIRST_UNIT U      // optional, default 0 (bind's first_unit)
 //   #define TESSERA_SEAMS_FACES_BINDING B   // optional, default 0 (bind's ssbo_binding)
@@ -25,6 +25,22 @@
 // weight of the in-face taps (Equation 6), and that weight in .a (1 for Clamp; 0 after the
 // zero-coverage fallback; NaN rgb when the fallback is off and nothing was covered).
 // Textures must carry alpha = 1 inside every face (FaceTextureSet does).
+//
+// Vulkan (SPIR-V through glslangValidator -V or glslc, which define VULKAN; no tessera runtime
+// yet): the same functions over three bindings of one descriptor set; the includer may move
+// them with these macros:
+//   #define TESSERA_SEAMS_SET S              // optional, default 0
+//   #define TESSERA_SEAMS_FIRST_BINDING F    // optional, default 0
+//   #define TESSERA_SEAMS_FACES_BINDING B    // optional, default F: storage buffer, the faces
+//   #define TESSERA_SEAMS_BORDER_BINDING B   // optional, default F + 1: N combined image
+//                                            // samplers (2D arrays), the clamp-to-border ones
+//   #define TESSERA_SEAMS_CLAMP_BINDING B    // optional, default F + 2: N combined image
+//                                            // samplers, the same images clamp-to-edge
+// A sampler array takes one binding (descriptorCount N), and samplers and buffers share a
+// set's binding numbers, so the defaults are F, F + 1, F + 2; TESSERA_SEAMS_FIRST_UNIT is
+// OpenGL's and is ignored. Border sampler: VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK. glslc
+// resolves the #include itself, glslangValidator with GL_GOOGLE_include_directive. Without
+// VULKAN defined, OpenGL compiles exactly the declarations it always did.
 
 #ifndef TESSERA_SEAMS_GLSL
 #define TESSERA_SEAMS_GLSL
@@ -35,11 +51,29 @@
 #if TESSERA_SEAMS_CLASSES < 1 || TESSERA_SEAMS_CLASSES > 16
 #error "TESSERA_SEAMS_CLASSES must be 1..16 (two texture units per class)"
 #endif
+#if defined(VULKAN)
+#ifndef TESSERA_SEAMS_SET
+#define TESSERA_SEAMS_SET 0
+#endif
+#ifndef TESSERA_SEAMS_FIRST_BINDING
+#define TESSERA_SEAMS_FIRST_BINDING 0
+#endif
+#ifndef TESSERA_SEAMS_FACES_BINDING
+#define TESSERA_SEAMS_FACES_BINDING (TESSERA_SEAMS_FIRST_BINDING)
+#endif
+#ifndef TESSERA_SEAMS_BORDER_BINDING
+#define TESSERA_SEAMS_BORDER_BINDING (TESSERA_SEAMS_FIRST_BINDING + 1)
+#endif
+#ifndef TESSERA_SEAMS_CLAMP_BINDING
+#define TESSERA_SEAMS_CLAMP_BINDING (TESSERA_SEAMS_FIRST_BINDING + 2)
+#endif
+#else
 #ifndef TESSERA_SEAMS_FIRST_UNIT
 #define TESSERA_SEAMS_FIRST_UNIT 0
 #endif
 #ifndef TESSERA_SEAMS_FACES_BINDING
 #define TESSERA_SEAMS_FACES_BINDING 0
+#endif
 #endif
 
 /// One face record (std430, 80 bytes) — tessera::gl::FaceRecord.
@@ -51,6 +85,17 @@ struct TesseraFace {
   ivec4 corner_mapping;  // m1 * 16 + m2: across edge c (m1), then the next edge (m2); -1 none
 };
 
+#if defined(VULKAN)
+layout(std430, set = TESSERA_SEAMS_SET, binding = TESSERA_SEAMS_FACES_BINDING)
+readonly buffer TesseraSeamsFaces {
+  TesseraFace tessera_seams_faces[];
+};
+
+layout(set = TESSERA_SEAMS_SET, binding = TESSERA_SEAMS_BORDER_BINDING)
+uniform sampler2DArray tessera_seams_border[TESSERA_SEAMS_CLASSES];
+layout(set = TESSERA_SEAMS_SET, binding = TESSERA_SEAMS_CLAMP_BINDING)
+uniform sampler2DArray tessera_seams_clamp[TESSERA_SEAMS_CLASSES];
+#else
 layout(std430, binding = TESSERA_SEAMS_FACES_BINDING) readonly buffer TesseraSeamsFaces {
   TesseraFace tessera_seams_faces[];
 };
@@ -59,6 +104,7 @@ layout(binding = TESSERA_SEAMS_FIRST_UNIT)
 uniform sampler2DArray tessera_seams_border[TESSERA_SEAMS_CLASSES];
 layout(binding = TESSERA_SEAMS_FIRST_UNIT + TESSERA_SEAMS_CLASSES)
 uniform sampler2DArray tessera_seams_clamp[TESSERA_SEAMS_CLASSES];
+#endif
 
 /// The 16 edge-to-edge UV transforms (tessera::faces::edge_transform_table): entry
 /// my_edge * 4 + neighbour_edge maps my (u, v, 1) to the neighbour's (u, v).

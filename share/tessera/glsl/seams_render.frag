@@ -15,6 +15,12 @@
 // seams.glsl's switch over the classes; the neighbours of Traverse can be of any class and go
 // through seams.glsl (tessera_seams_edge_sum, tessera_seams_face_lookup).
 //
+// Vulkan (VULKAN defined by glslangValidator -V or glslc; no tessera runtime yet): the class is
+// a push constant (block TesseraRenderPush, int at offset 0), the inputs are at locations 0, 1,
+// 2 (seams_render.vert), seams.glsl's bindings are its Vulkan defaults unless the host defines
+// them; indexing the sampler arrays by the class needs shaderSampledImageArrayDynamicIndexing.
+// OpenGL compiles exactly what it always did.
+//
 // Per pixel (the CPU renderer's shader, faces::FaceRenderer): UV gradients are the fine 2x2
 // quad derivatives (helper pixels included), the method's sample is (linear rgb, coverage)
 // exactly as seams.glsl defines it, and the colour is rgb * (0.35 + 0.65 max(N.L, 0)) with the
@@ -40,11 +46,19 @@
 
 #include "seams.glsl"
 
+#if defined(VULKAN)
+layout(push_constant) uniform TesseraRenderPush { int tessera_render_class; };
+
+layout(location = 0) in vec2 tessera_uv;
+layout(location = 1) in vec3 tessera_vnormal;
+layout(location = 2) flat in int tessera_face;
+#else
 uniform int tessera_render_class;
 
 in vec2 tessera_uv;
 in vec3 tessera_vnormal;
 flat in int tessera_face;
+#endif
 
 layout(location = 0) out vec4 tessera_colour;
 

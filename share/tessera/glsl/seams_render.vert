@@ -15,14 +15,27 @@
 // top-down images read back without a flip) and the driver's memory-order sample positions are
 // those of tessera's rasteriser (Direct3D patterns, y down). The negation mirrors the winding:
 // the host lists each triangle in reversed order so that front faces stay counter-clockwise.
+//
+// Vulkan (VULKAN defined by glslangValidator -V or glslc; no tessera runtime yet): outputs at
+// locations 0 (uv), 1 (normal), 2 (face); the face id from gl_VertexIndex (vkCmdDrawIndexed
+// with vertexOffset 0). The same y negation puts the image's top row in framebuffer row 0
+// (Vulkan's row 0 is at NDC y = -1); clip z stays OpenGL's [-w, w] (the host remaps it or uses
+// VK_EXT_depth_clip_control). OpenGL compiles exactly what it always did.
 #version 450 core
 
 layout(location = 0) in vec4 tessera_clip;
 layout(location = 1) in vec3 tessera_normal;
 
+#if defined(VULKAN)
+layout(location = 0) out vec2 tessera_uv;
+layout(location = 1) out vec3 tessera_vnormal;
+layout(location = 2) flat out int tessera_face;
+#define gl_VertexID gl_VertexIndex
+#else
 out vec2 tessera_uv;
 out vec3 tessera_vnormal;
 flat out int tessera_face;
+#endif
 
 const vec2 tessera_corner_uv[4] = vec2[4](vec2(0.0, 0.0), vec2(1.0, 0.0), vec2(1.0, 1.0),
                                           vec2(0.0, 1.0));
