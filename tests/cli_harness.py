@@ -5,8 +5,10 @@ Each script keeps its own `expect_error` (the error contracts differ per command
 """
 import os
 import pty
+import struct
 import subprocess
 import sys
+import zlib
 
 _passed = 0
 _failures = []
@@ -36,6 +38,27 @@ def run_on_pty(program, args):
     _, status = os.waitpid(pid, 0)
     os.close(fd)
     return os.WEXITSTATUS(status), text
+
+
+def write_png(path, width, height, pixel, alpha):
+    """Writes an 8-bit RGB or RGBA PNG with the standard library; pixel(x, y) returns a tuple of
+    3 or 4 ints. Returns `path`."""
+    channels = 4 if alpha else 3
+    raw = bytearray()
+    for y in range(height):
+        raw.append(0)
+        for x in range(width):
+            raw.extend(pixel(x, y)[:channels])
+
+    def chunk(kind, data):
+        c = kind + data
+        return struct.pack(">I", len(data)) + c + struct.pack(">I", zlib.crc32(c) & 0xFFFFFFFF)
+
+    ihdr = struct.pack(">IIBBBBB", width, height, 8, 6 if alpha else 2, 0, 0, 0)
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(bytes(raw)))
+                + chunk(b"IEND", b""))
+    return path
 
 
 def check(name, cond, detail=""):

@@ -18,8 +18,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cli_harness import check, finish, missing_part, run_command  # noqa: E402
-import zlib
+from cli_harness import check, finish, missing_part, run_command, write_png  # noqa: E402
 
 TESSERA = sys.argv[1]
 PVRTEXTOOL = sys.argv[2] if len(sys.argv) > 2 and os.path.isfile(sys.argv[2]) else None
@@ -27,25 +26,6 @@ PVRTEXTOOL = sys.argv[2] if len(sys.argv) > 2 and os.path.isfile(sys.argv[2]) el
 
 def run(*args, tool=None):
     return run_command([tool or TESSERA, *args], timeout=300)
-
-
-def write_png(path, width, height, pixel, alpha):
-    """Writes an 8-bit RGB or RGBA PNG; pixel(x, y) returns a tuple of 3 or 4 ints."""
-    channels = 4 if alpha else 3
-    raw = bytearray()
-    for y in range(height):
-        raw.append(0)
-        for x in range(width):
-            raw.extend(pixel(x, y)[:channels])
-
-    def chunk(kind, data):
-        c = kind + data
-        return struct.pack(">I", len(data)) + c + struct.pack(">I", zlib.crc32(c) & 0xFFFFFFFF)
-
-    ihdr = struct.pack(">IIBBBBB", width, height, 8, 6 if alpha else 2, 0, 0, 0)
-    with open(path, "wb") as f:
-        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(bytes(raw)))
-                + chunk(b"IEND", b""))
 
 
 def smooth(x, y):

@@ -13,36 +13,15 @@ Usage: pvrtc_frozen_test.py PATH/TO/tessera [--print]
 import hashlib
 import math
 import os
-import struct
 import subprocess
 import sys
 import tempfile
-import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cli_harness import check, finish  # noqa: E402
+from cli_harness import check, finish, write_png  # noqa: E402
 
 TESSERA = sys.argv[1]
 PRINT = "--print" in sys.argv[2:]
-
-
-def write_png(path, width, height, pixel, alpha):
-    channels = 4 if alpha else 3
-    raw = bytearray()
-    for y in range(height):
-        raw.append(0)
-        for x in range(width):
-            raw.extend(pixel(x, y)[:channels])
-
-    def chunk(kind, data):
-        c = kind + data
-        return struct.pack(">I", len(data)) + c + struct.pack(">I", zlib.crc32(c) & 0xFFFFFFFF)
-
-    ihdr = struct.pack(">IIBBBBB", width, height, 8, 6 if alpha else 2, 0, 0, 0)
-    with open(path, "wb") as f:
-        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(bytes(raw)))
-                + chunk(b"IEND", b""))
-    return path
 
 
 def photo(seed):
