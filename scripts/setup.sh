@@ -4,6 +4,9 @@
 # into a cache, and an up-to-date build is a no-op. Run as root (or with sudo available).
 #
 #   bash scripts/setup.sh            # Release build in build/ (CLI at build/bin/tessera)
+#   bash scripts/setup.sh --arm64    # the same, plus what the arm64 stage of scripts/test.sh
+#                                    # needs: the AArch64 cross compiler, qemu-user and the arm64
+#                                    # (multiarch) libraries the library links
 #
 # Environment:
 #   TESSERA_CACHE   where peers are cached (default: ${XDG_CACHE_HOME:-$HOME/.cache}/tessera)
@@ -12,6 +15,14 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 log() { printf '[setup] %s\n' "$*"; }
+
+arm64=0
+for arg in "$@"; do
+  case "$arg" in
+    --arm64) arm64=1 ;;
+    *) echo "usage: bash scripts/setup.sh [--arm64]" >&2; exit 2 ;;
+  esac
+done
 
 # --- Debian packages -------------------------------------------------------------------------
 packages=(
@@ -32,6 +43,17 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev   # tests, benchmarks
   python3 python3-numpy python3-skimage python3-pil  # independent SSIM/PSNR, image checks
 )
+if ((arm64)); then
+  # Cross-compiling and running the library for AArch64 (tests/pvrtc_arch_bytes.sh,
+  # cmake/aarch64-linux-gnu.cmake): Debian's cross g++, qemu-aarch64, and the arm64 builds of
+  # the libraries the library and its tests link (Multi-Arch: same, beside the host's; header-only
+  # ones like nlohmann-json and CLI11 are architecture-independent and already above).
+  packages+=(g++-aarch64-linux-gnu qemu-user)
+  for p in libtbb-dev libspng-dev zlib1g-dev libdeflate-dev libzstd-dev libstb-dev \
+    libtinyobjloader-dev libtinygltf-dev libgtest-dev; do
+    packages+=("$p:arm64")
+  done
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
@@ -41,6 +63,10 @@ command -v npm >/dev/null 2>&1 || missing+=(nodejs npm)
 if ((${#missing[@]})); then
   SUDO=""
   [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  if ((arm64)) && ! dpkg --print-foreign-architectures | grep -qx arm64; then
+    log "adding the arm64 architecture (multiarch)"
+    $SUDO dpkg --add-architecture arm64
+  fi
   log "installing: ${missing[*]}"
   $SUDO apt-get update -q
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -3,11 +3,15 @@
 #   1. GCC Release build (warnings are errors): the whole CTest suite, PVRTexTool oracle included;
 #   2. Clang build with AddressSanitizer + UndefinedBehaviorSanitizer (warnings are errors), with
 #      the libFuzzer targets: the unit tests again, and each fuzzer over its seeds plus a bounded
-#      number of generated inputs.
-# Both stages require the GL device, the oracles and ../shared/data (TESSERA_TEST_REQUIRE=all).
+#      number of generated inputs;
+#   3. arm64: the library cross-compiled for AArch64 (NEON backend) and run under qemu-user: the
+#      SIMD, PVRTC, texture and raster unit tests, and the PVRTC encoder's bytes on a fixed image
+#      set compared with x86-64's (AVX2 dispatch, SSE2, scalar): any differing byte fails
+#      (tests/pvrtc_arch_bytes.sh).
+# Stages 1 and 2 require the GL device, the oracles and ../shared/data (TESSERA_TEST_REQUIRE=all).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh --arm64
 jobs="$(nproc)"
 # What CI has, the tests must find: without a GL device, the PVRTexTool or ktx-parse oracles or
 # ../shared/data, the tests that need them fail here and say why (a plain `ctest` skips them).
@@ -24,3 +28,6 @@ CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWit
 cmake --build build-asan
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-asan --output-on-failure -j "$jobs" -L 'unit|fuzz'
+
+echo "== arm64 (cross-compiled, qemu-user): NEON bytes equal x86-64"
+bash tests/pvrtc_arch_bytes.sh build

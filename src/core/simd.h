@@ -18,14 +18,25 @@
 // Backends and portability. x86-64: SSE2, always (part of the ABI), plus SSE4.1 instructions
 // (pmulld, pminsd) when the compiler targets SSE4.1; AVX2 code is not here but in the
 // `*_avx2.cpp` kernels, compiled separately and dispatched at run time (they do not include
-// this header, which keeps its inline functions free of AVX2 encodings). Anywhere else
-// (AArch64, other CPUs, or -DTESSERA_NO_SIMD for the whole build): a portable scalar backend,
-// four plain lanes per type, bit-identical to SSE2 for every operation within its documented
-// lane ranges (IEEE single precision per lane, the same NaN / signed-zero rules for min, max,
-// compares and selects, wrapping integers); tests/simd_test.cpp holds both backends to that.
-// TESSERA_SIMD_VECTOR (1 with SSE2, else 0) tells kernels that also have a scalar per-lookup
-// path (texture `sample4` / one-probe lookups, raster quad coverage) whether to take the vector
-// path: without SSE2 they take their own scalar code, unchanged by this wrapper. f32x4 is
+// this header, which keeps its inline functions free of AVX2 encodings). Little-endian AArch64:
+// NEON (part of its base ISA). Anywhere else (other CPUs, or -DTESSERA_NO_SIMD for the whole
+// build): a portable scalar backend, four plain lanes per type. Each part header holds its
+// types' three backends one after another (SSE2, NEON, scalar), and all three are
+// bit-identical for every operation, SSE2's semantics being the reference: IEEE single
+// precision per lane, SSE's NaN / signed-zero rules for min, max, compares and selects, wrapping
+// integers, saturating narrowings (packs), shifts by the lane width or more, cvttps2dq's
+// INT32_MIN for unrepresentable floats. Where NEON's instructions differ (vminq / vmaxq with
+// NaN, fcvtzs saturating, immediate shift ranges, no movemask) the NEON code emulates SSE2, as
+// its comments say; the scalar code spells the same rules out. Only which NaN an arithmetic
+// operation returns (one it makes, as 0 * inf, or which of two NaN operands) is not fixed.
+// tests/simd_test.cpp holds every
+// backend to the reference expressions (scripts/test.sh runs it natively, with
+// TESSERA_NO_SIMD, and cross-compiled under qemu-aarch64). The build compiles with
+// -ffp-contract=off (CMakeLists.txt): GCC would otherwise fuse NEON's separate multiply and add
+// into one fused multiply-add, rounding once. TESSERA_SIMD_VECTOR (1 with SSE2 or NEON, else 0)
+// tells kernels that also have a scalar per-lookup path (texture `sample4` / one-probe lookups,
+// raster quad coverage) whether to take the vector path; both paths give the same results, and
+// without a vector backend they take their own scalar code, unchanged by this wrapper. f32x4 is
 // a compiler vector type on every GCC / Clang target (SSE on x86-64, NEON on AArch64).
 // TESSERA_NO_SIMD must be the same for every translation unit (the types differ).
 #pragma once

@@ -73,7 +73,8 @@ inline vf4 as_float(vint4 a) { return vf4(_mm_castsi128_ps(a.v)); }
 inline vint4 as_int(vf4 a) { return vint4(_mm_castps_si128(a.v)); }
 /// int32 -> float, round to nearest even (exact below 2^24).
 inline vf4 to_float(vint4 a) { return vf4(_mm_cvtepi32_ps(a.v)); }
-/// float -> int32 truncating towards zero (lanes within int32).
+/// float -> int32 truncating towards zero; lanes outside int32 and NaN give INT32_MIN (in
+/// every backend).
 inline vint4 to_int_trunc(vf4 a) { return vint4(_mm_cvttps_epi32(a.v)); }
 /// Lanes (a0, a2, b0, b2) and (a1, a3, b1, b3): e.g. u and v of four interleaved (u, v) pairs.
 inline vf4 even_lanes(vf4 a, vf4 b) {
@@ -100,6 +101,112 @@ inline vf4 hmax(vf4 a) {
 inline vf4 hmin(vf4 a) {
   const __m128 m = _mm_min_ps(a.v, _mm_shuffle_ps(a.v, a.v, _MM_SHUFFLE(2, 3, 0, 1)));
   return vf4(_mm_min_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2))));
+}
+
+#elif defined(TESSERA_SIMD_NEON)
+
+// NEON: add, sub, mul, sqrt and int -> float are single correctly rounded IEEE operations as
+// on SSE (AArch64 Linux runs with round-to-nearest and without flush-to-zero, like SSE's
+// default MXCSR; the build turns off GCC's contraction of a * b + c into a fused multiply-add:
+// see CMakeLists.txt). min / max and float -> int differ in their instructions and are
+// emulated; compares are the same predicates.
+struct vf4 {
+  float32x4_t v;
+  vf4() : v(vdupq_n_f32(0.0f)) {}
+  explicit vf4(float32x4_t x) : v(x) {}
+  explicit vf4(float a) : v(vdupq_n_f32(a)) {}
+  vf4(float a, float b, float c, float d) {
+    const float t[4] = {a, b, c, d};
+    v = vld1q_f32(t);
+  }
+};
+inline vf4 loadf4(const float* p) { return vf4(vld1q_f32(p)); }
+inline void storef4(vf4 a, float* p) { vst1q_f32(p, a.v); }
+inline vf4 loadf4_aligned(const float* p) { return vf4(vld1q_f32(p)); }
+inline void storef4_aligned(vf4 a, float* p) { vst1q_f32(p, a.v); }
+#if defined(__GNUC__)
+inline vf4 from_f32x4(f32x4 a) { return vf4(std::bit_cast<float32x4_t>(a)); }
+inline f32x4 to_f32x4(vf4 a) { return std::bit_cast<f32x4>(a.v); }
+#endif
+inline vf4 operator+(vf4 a, vf4 b) { return vf4(vaddq_f32(a.v, b.v)); }
+inline vf4 operator-(vf4 a, vf4 b) { return vf4(vsubq_f32(a.v, b.v)); }
+inline vf4 operator*(vf4 a, vf4 b) { return vf4(vmulq_f32(a.v, b.v)); }
+inline vf4 sqrt(vf4 a) { return vf4(vsqrtq_f32(a.v)); }
+/// Not vmaxq_f32 / vminq_f32 (NaN when either lane is NaN, and +0 > -0): a compare and a
+/// bitwise select, which give SSE's maxps / minps exactly (`b` when the compare fails).
+inline vf4 max(vf4 a, vf4 b) { return vf4(vbslq_f32(vcgtq_f32(a.v, b.v), a.v, b.v)); }
+inline vf4 min(vf4 a, vf4 b) { return vf4(vbslq_f32(vcltq_f32(a.v, b.v), a.v, b.v)); }
+inline vint4 cmpeq(vf4 a, vf4 b) { return vint4(vreinterpretq_s32_u32(vceqq_f32(a.v, b.v))); }
+inline vint4 cmplt(vf4 a, vf4 b) { return vint4(vreinterpretq_s32_u32(vcltq_f32(a.v, b.v))); }
+inline vint4 cmple(vf4 a, vf4 b) { return vint4(vreinterpretq_s32_u32(vcleq_f32(a.v, b.v))); }
+inline vint4 cmpgt(vf4 a, vf4 b) { return vint4(vreinterpretq_s32_u32(vcgtq_f32(a.v, b.v))); }
+inline vint4 cmpnge(vf4 a, vf4 b) {
+  return vint4(vreinterpretq_s32_u32(vmvnq_u32(vcgeq_f32(a.v, b.v))));
+}
+inline vint4 cmpord(vf4 a, vf4 b) {
+  return vint4(vreinterpretq_s32_u32(vandq_u32(vceqq_f32(a.v, a.v), vceqq_f32(b.v, b.v))));
+}
+inline vf4 select(vint4 mask, vf4 a, vf4 b) {
+  return vf4(vbslq_f32(vreinterpretq_u32_s32(mask.v), a.v, b.v));
+}
+inline vf4 keep_where(vint4 mask, vf4 a) {
+  return vf4(vreinterpretq_f32_s32(vandq_s32(mask.v, vreinterpretq_s32_f32(a.v))));
+}
+inline vf4 zero_where(vint4 mask, vf4 a) {
+  return vf4(vreinterpretq_f32_s32(vbicq_s32(vreinterpretq_s32_f32(a.v), mask.v)));
+}
+inline vf4 as_float(vint4 a) { return vf4(vreinterpretq_f32_s32(a.v)); }
+inline vint4 as_int(vf4 a) { return vint4(vreinterpretq_s32_f32(a.v)); }
+inline vf4 to_float(vint4 a) { return vf4(vcvtq_f32_s32(a.v)); }
+/// fcvtzs saturates (>= 2^31 -> INT32_MAX, NaN -> 0) where cvttps2dq gives INT32_MIN for
+/// every lane it cannot represent: those lanes (NaN, >= 2^31; below -2^31 both give INT32_MIN)
+/// are set to INT32_MIN.
+inline vint4 to_int_trunc(vf4 a) {
+  const uint32x4_t in_range = vcltq_f32(a.v, vdupq_n_f32(2147483648.0f));
+  return vint4(vbslq_s32(in_range, vcvtq_s32_f32(a.v), vdupq_n_s32(INT32_MIN)));
+}
+inline vf4 even_lanes(vf4 a, vf4 b) { return vf4(vuzp1q_f32(a.v, b.v)); }
+inline vf4 odd_lanes(vf4 a, vf4 b) { return vf4(vuzp2q_f32(a.v, b.v)); }
+namespace detail {
+/// 4x4 transpose of 32-bit lanes (bits moved, never converted): trn1 / trn2 of the 32-bit
+/// lanes, then of the 64-bit halves.
+inline void transpose_u32x4(uint32x4_t& a, uint32x4_t& b, uint32x4_t& c, uint32x4_t& d) {
+  const uint64x2_t ab0 = vreinterpretq_u64_u32(vtrn1q_u32(a, b));  // a0 b0 a2 b2
+  const uint64x2_t ab1 = vreinterpretq_u64_u32(vtrn2q_u32(a, b));  // a1 b1 a3 b3
+  const uint64x2_t cd0 = vreinterpretq_u64_u32(vtrn1q_u32(c, d));  // c0 d0 c2 d2
+  const uint64x2_t cd1 = vreinterpretq_u64_u32(vtrn2q_u32(c, d));  // c1 d1 c3 d3
+  a = vreinterpretq_u32_u64(vtrn1q_u64(ab0, cd0));
+  b = vreinterpretq_u32_u64(vtrn1q_u64(ab1, cd1));
+  c = vreinterpretq_u32_u64(vtrn2q_u64(ab0, cd0));
+  d = vreinterpretq_u32_u64(vtrn2q_u64(ab1, cd1));
+}
+}  // namespace detail
+inline void transpose(vf4& a, vf4& b, vf4& c, vf4& d) {
+  uint32x4_t w = vreinterpretq_u32_f32(a.v), x = vreinterpretq_u32_f32(b.v);
+  uint32x4_t y = vreinterpretq_u32_f32(c.v), z = vreinterpretq_u32_f32(d.v);
+  detail::transpose_u32x4(w, x, y, z);
+  a = vf4(vreinterpretq_f32_u32(w));
+  b = vf4(vreinterpretq_f32_u32(x));
+  c = vf4(vreinterpretq_f32_u32(y));
+  d = vf4(vreinterpretq_f32_u32(z));
+}
+inline void transpose(vint4& a, vint4& b, vint4& c, vint4& d) {
+  uint32x4_t w = vreinterpretq_u32_s32(a.v), x = vreinterpretq_u32_s32(b.v);
+  uint32x4_t y = vreinterpretq_u32_s32(c.v), z = vreinterpretq_u32_s32(d.v);
+  detail::transpose_u32x4(w, x, y, z);
+  a = vint4(vreinterpretq_s32_u32(w));
+  b = vint4(vreinterpretq_s32_u32(x));
+  c = vint4(vreinterpretq_s32_u32(y));
+  d = vint4(vreinterpretq_s32_u32(z));
+}
+/// SSE2's pairwise order (lanes 1 0 3 2, then 2 3 0 1) with its max / min: the same NaN result.
+inline vf4 hmax(vf4 a) {
+  const vf4 m = max(a, vf4(vrev64q_f32(a.v)));
+  return max(m, vf4(vextq_f32(m.v, m.v, 2)));
+}
+inline vf4 hmin(vf4 a) {
+  const vf4 m = min(a, vf4(vrev64q_f32(a.v)));
+  return min(m, vf4(vextq_f32(m.v, m.v, 2)));
 }
 
 #else  // scalar backend
@@ -172,8 +279,14 @@ inline vf4 zero_where(vint4 mask, vf4 a) { return as_float(andnot(mask, as_int(a
 inline vf4 to_float(vint4 a) {
   return {float(a.l[0]), float(a.l[1]), float(a.l[2]), float(a.l[3])};
 }
+/// Lanes outside int32 (and NaN) give INT32_MIN, as SSE2's cvttps2dq.
 inline vint4 to_int_trunc(vf4 a) {
-  return {std::int32_t(a.l[0]), std::int32_t(a.l[1]), std::int32_t(a.l[2]), std::int32_t(a.l[3])};
+  vint4 r;
+  for (int i = 0; i < 4; ++i) {
+    const float x = a.l[i];
+    r.l[i] = x >= -2147483648.0f && x < 2147483648.0f ? std::int32_t(x) : INT32_MIN;
+  }
+  return r;
 }
 inline vf4 even_lanes(vf4 a, vf4 b) { return {a.l[0], a.l[2], b.l[0], b.l[2]}; }
 inline vf4 odd_lanes(vf4 a, vf4 b) { return {a.l[1], a.l[3], b.l[1], b.l[3]}; }

@@ -11,10 +11,11 @@
 #include <cstring>
 
 // Backend: SSE2 on x86-64 (part of the ABI, so always there), SSE4.1 instructions where the
-// compiler targets them, otherwise (AArch64, other CPUs, or TESSERA_NO_SIMD defined for every
-// translation unit of the build) a portable scalar backend with bit-identical results.
-// TESSERA_SIMD_VECTOR is 1 when the types map to vector registers; kernels that have their
-// own per-lane fallback (texture `sample4`, raster quad coverage) use the vector path only then.
+// compiler targets them; NEON on little-endian AArch64 (part of its base ISA); otherwise (other
+// CPUs, or TESSERA_NO_SIMD defined for every translation unit of the build) a portable scalar
+// backend. All three give bit-identical results. TESSERA_SIMD_VECTOR is 1 when the types map
+// to vector registers (SSE2, NEON); kernels that have their own per-lane fallback (texture
+// `sample4`, raster quad coverage) use the vector path only then.
 #if !defined(TESSERA_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64))
 #define TESSERA_SIMD_SSE2 1
 #include <emmintrin.h>
@@ -22,9 +23,13 @@
 #define TESSERA_SIMD_SSE41 1
 #include <smmintrin.h>
 #endif
+#elif !defined(TESSERA_NO_SIMD) && defined(__aarch64__) && defined(__ARM_NEON) && \
+    !defined(__ARM_BIG_ENDIAN)
+#define TESSERA_SIMD_NEON 1
+#include <arm_neon.h>
 #endif
 
-#if defined(TESSERA_SIMD_SSE2)
+#if defined(TESSERA_SIMD_SSE2) || defined(TESSERA_SIMD_NEON)
 #define TESSERA_SIMD_VECTOR 1
 #else
 #define TESSERA_SIMD_VECTOR 0
@@ -144,7 +149,8 @@ inline std::int32_t sum_lanes(vint4 a) {
 inline std::int32_t sum_lanes02(vint4 a) {
   return _mm_cvtsi128_si32(_mm_add_epi32(a.v, _mm_shuffle_epi32(a.v, _MM_SHUFFLE(1, 0, 3, 2))));
 }
-/// Stores the four lanes (each 0..255) as bytes.
+/// Stores the four lanes as bytes, each clamped to 0..255 (SSE2's saturating packs; every
+/// backend gives those bytes).
 inline void store_u8x4(vint4 a, std::uint8_t* out) {
   const __m128i p16 = _mm_packs_epi32(a.v, a.v);
   const __m128i p8 = _mm_packus_epi16(p16, p16);
@@ -169,6 +175,126 @@ inline vi64x2 operator+(vi64x2 a, vi64x2 b) { return vi64x2(_mm_add_epi64(a.v, b
 inline vi64x2 operator|(vi64x2 a, vi64x2 b) { return vi64x2(_mm_or_si128(a.v, b.v)); }
 /// Bit i set when lane i is negative.
 inline int movemask(vi64x2 a) { return _mm_movemask_pd(_mm_castsi128_pd(a.v)); }
+
+#elif defined(TESSERA_SIMD_NEON)
+
+// NEON: the same operations as the SSE2 backend, lane for lane. Where the instructions differ
+// (SSE's saturating packs, movemask, shifts by the lane width or more) the comments say how
+// SSE2's result is reproduced.
+struct vint4 {
+  int32x4_t v;
+  vint4() : v(vdupq_n_s32(0)) {}
+  explicit vint4(int32x4_t x) : v(x) {}
+  vint4(std::int32_t a, std::int32_t b, std::int32_t c, std::int32_t d) {
+    const std::int32_t t[4] = {a, b, c, d};
+    v = vld1q_s32(t);
+  }
+  explicit vint4(std::int32_t a) : v(vdupq_n_s32(a)) {}
+  std::int32_t lane(int i) const {
+    std::int32_t t[4];
+    vst1q_s32(t, v);
+    return t[i];
+  }
+};
+inline vint4 load4(const std::int32_t* p) { return vint4(vld1q_s32(p)); }
+inline vint4 load4_aligned(const std::int32_t* p) { return vint4(vld1q_s32(p)); }
+inline void store4(vint4 a, std::int32_t* p) { vst1q_s32(p, a.v); }
+inline void store4_aligned(vint4 a, std::int32_t* p) { vst1q_s32(p, a.v); }
+/// Little-endian (the NEON backend is selected only there), as SSE2's 16-byte load.
+inline vint4 load_texels4(const std::uint8_t* p) {
+  return vint4(vreinterpretq_s32_u8(vld1q_u8(p)));
+}
+inline vint4 operator+(vint4 a, vint4 b) { return vint4(vaddq_s32(a.v, b.v)); }
+inline vint4 operator-(vint4 a, vint4 b) { return vint4(vsubq_s32(a.v, b.v)); }
+inline vint4& operator+=(vint4& a, vint4 b) { return a = a + b; }
+inline vint4 operator*(vint4 a, vint4 b) { return vint4(vmulq_s32(a.v, b.v)); }
+inline vint4 operator&(vint4 a, vint4 b) { return vint4(vandq_s32(a.v, b.v)); }
+inline vint4 operator|(vint4 a, vint4 b) { return vint4(vorrq_s32(a.v, b.v)); }
+inline vint4 operator^(vint4 a, vint4 b) { return vint4(veorq_s32(a.v, b.v)); }
+inline vint4 andnot(vint4 a, vint4 b) { return vint4(vbicq_s32(b.v, a.v)); }
+// NEON's immediate shifts take 1..32 (right) or 0..31 (left): N = 0 and N >= 32 are spelled
+// out, with SSE2's results (sra fills with the sign, srl and sll give zero).
+template <int N>
+inline vint4 sra(vint4 a) {
+  static_assert(N >= 0);
+  if constexpr (N == 0) {
+    return a;
+  } else {
+    return vint4(vshrq_n_s32(a.v, N < 32 ? N : 32));
+  }
+}
+template <int N>
+inline vint4 srl(vint4 a) {
+  static_assert(N >= 0);
+  if constexpr (N == 0) {
+    return a;
+  } else if constexpr (N >= 32) {
+    return vint4();
+  } else {
+    return vint4(vreinterpretq_s32_u32(vshrq_n_u32(vreinterpretq_u32_s32(a.v), N)));
+  }
+}
+template <int N>
+inline vint4 sll(vint4 a) {
+  static_assert(N >= 0);
+  if constexpr (N == 0) {
+    return a;
+  } else if constexpr (N >= 32) {
+    return vint4();
+  } else {
+    return vint4(vshlq_n_s32(a.v, N));
+  }
+}
+inline vint4 cmpeq(vint4 a, vint4 b) { return vint4(vreinterpretq_s32_u32(vceqq_s32(a.v, b.v))); }
+inline vint4 cmpgt(vint4 a, vint4 b) { return vint4(vreinterpretq_s32_u32(vcgtq_s32(a.v, b.v))); }
+inline vint4 cmplt(vint4 a, vint4 b) { return vint4(vreinterpretq_s32_u32(vcltq_s32(a.v, b.v))); }
+/// Bitwise, as SSE2's and / andnot / or (any mask, not only all-ones / zero lanes).
+inline vint4 select(vint4 mask, vint4 a, vint4 b) {
+  return vint4(vbslq_s32(vreinterpretq_u32_s32(mask.v), a.v, b.v));
+}
+inline vint4 min(vint4 a, vint4 b) { return vint4(vminq_s32(a.v, b.v)); }
+inline vint4 swap_pairs(vint4 a) { return vint4(vrev64q_s32(a.v)); }
+inline vint4 select_alpha(vint4 rgb, vint4 a) { return vint4(vcopyq_laneq_s32(rgb.v, 3, a.v, 3)); }
+/// The sign bits, shifted to bit i and summed across the lanes.
+inline int movemask(vint4 mask) {
+  const std::int32_t k[4] = {0, 1, 2, 3};
+  const uint32x4_t s = vshrq_n_u32(vreinterpretq_u32_s32(mask.v), 31);
+  return int(vaddvq_u32(vshlq_u32(s, vld1q_s32(k))));
+}
+inline vint4 pair_sums(vint4 a, vint4 b) { return vint4(vpaddq_s32(a.v, b.v)); }
+inline vint4 even_lanes(vint4 a, vint4 b) { return vint4(vuzp1q_s32(a.v, b.v)); }
+/// Wrapping, as SSE2's adds (the order of wrapping additions does not change the sum).
+inline std::int32_t sum_lanes(vint4 a) {
+  return std::int32_t(vaddvq_u32(vreinterpretq_u32_s32(a.v)));
+}
+inline std::int32_t sum_lanes02(vint4 a) {
+  return std::int32_t(std::uint32_t(vgetq_lane_s32(a.v, 0)) +
+                      std::uint32_t(vgetq_lane_s32(a.v, 2)));
+}
+/// SSE2's packs_epi32 + packus_epi16 are two saturating narrowings (int32 -> int16 -> uint8),
+/// as vqmovn_s32 + vqmovun_s16: a lane outside 0..255 gives the same clamped byte.
+inline void store_u8x4(vint4 a, std::uint8_t* out) {
+  const int16x4_t h = vqmovn_s32(a.v);
+  const uint8x8_t b = vqmovun_s16(vcombine_s16(h, h));
+  const std::uint32_t w = vget_lane_u32(vreinterpret_u32_u8(b), 0);
+  std::memcpy(out, &w, 4);
+}
+
+struct vi64x2 {
+  int64x2_t v;
+  vi64x2() : v(vdupq_n_s64(0)) {}
+  explicit vi64x2(int64x2_t x) : v(x) {}
+  explicit vi64x2(std::int64_t a) : v(vdupq_n_s64(a)) {}
+  vi64x2(std::int64_t lo, std::int64_t hi) : v(vcombine_s64(vcreate_s64(std::uint64_t(lo)),
+                                                             vcreate_s64(std::uint64_t(hi)))) {}
+};
+inline vi64x2 load_i64x2(const std::int64_t* p) { return vi64x2(vld1q_s64(p)); }
+inline vi64x2 operator+(vi64x2 a, vi64x2 b) { return vi64x2(vaddq_s64(a.v, b.v)); }
+inline vi64x2 operator|(vi64x2 a, vi64x2 b) { return vi64x2(vorrq_s64(a.v, b.v)); }
+inline int movemask(vi64x2 a) {
+  const uint64x2_t s = vshrq_n_u64(vreinterpretq_u64_s64(a.v), 63);
+  return int(vgetq_lane_u64(s, 0) | vgetq_lane_u64(s, 1) << 1);
+}
 
 #else  // scalar backend
 
@@ -216,20 +342,29 @@ TESSERA_SIMD_I32_BINOP(cmplt, std::int32_t(x) < std::int32_t(y) ? ~0u : 0u)
 TESSERA_SIMD_I32_BINOP(min, std::int32_t(x) < std::int32_t(y) ? x : y)
 #undef TESSERA_SIMD_I32_BINOP
 inline vint4& operator+=(vint4& a, vint4 b) { return a = a + b; }
+// Shifts by 32 or more: SSE2's results (sra fills with the sign, srl and sll give zero).
 template <int N>
 inline vint4 sra(vint4 a) {
-  return {a.l[0] >> N, a.l[1] >> N, a.l[2] >> N, a.l[3] >> N};
+  static_assert(N >= 0);
+  constexpr int n = N < 32 ? N : 31;
+  return {a.l[0] >> n, a.l[1] >> n, a.l[2] >> n, a.l[3] >> n};
 }
 template <int N>
 inline vint4 srl(vint4 a) {
+  static_assert(N >= 0);
   vint4 r;
-  for (int i = 0; i < 4; ++i) r.l[i] = std::int32_t(std::uint32_t(a.l[i]) >> N);
+  if constexpr (N < 32) {
+    for (int i = 0; i < 4; ++i) r.l[i] = std::int32_t(std::uint32_t(a.l[i]) >> N);
+  }
   return r;
 }
 template <int N>
 inline vint4 sll(vint4 a) {
+  static_assert(N >= 0);
   vint4 r;
-  for (int i = 0; i < 4; ++i) r.l[i] = std::int32_t(std::uint32_t(a.l[i]) << N);
+  if constexpr (N < 32) {
+    for (int i = 0; i < 4; ++i) r.l[i] = std::int32_t(std::uint32_t(a.l[i]) << N);
+  }
   return r;
 }
 inline vint4 select(vint4 mask, vint4 a, vint4 b) { return (mask & a) | andnot(mask, b); }
@@ -241,13 +376,22 @@ inline int movemask(vint4 mask) {
   return m;
 }
 inline vint4 pair_sums(vint4 a, vint4 b) {
-  return {a.l[0] + a.l[1], a.l[2] + a.l[3], b.l[0] + b.l[1], b.l[2] + b.l[3]};
+  const auto add = [](std::int32_t x, std::int32_t y) {
+    return std::int32_t(std::uint32_t(x) + std::uint32_t(y));
+  };
+  return {add(a.l[0], a.l[1]), add(a.l[2], a.l[3]), add(b.l[0], b.l[1]), add(b.l[2], b.l[3])};
 }
 inline vint4 even_lanes(vint4 a, vint4 b) { return {a.l[0], a.l[2], b.l[0], b.l[2]}; }
-inline std::int32_t sum_lanes(vint4 a) { return a.l[0] + a.l[1] + a.l[2] + a.l[3]; }
-inline std::int32_t sum_lanes02(vint4 a) { return a.l[0] + a.l[2]; }
+inline std::int32_t sum_lanes(vint4 a) {
+  return std::int32_t(std::uint32_t(a.l[0]) + std::uint32_t(a.l[1]) + std::uint32_t(a.l[2]) +
+                      std::uint32_t(a.l[3]));
+}
+inline std::int32_t sum_lanes02(vint4 a) {
+  return std::int32_t(std::uint32_t(a.l[0]) + std::uint32_t(a.l[2]));
+}
+/// Clamped to 0..255, as SSE2's saturating packs.
 inline void store_u8x4(vint4 a, std::uint8_t* out) {
-  for (int i = 0; i < 4; ++i) out[i] = std::uint8_t(a.l[i]);
+  for (int i = 0; i < 4; ++i) out[i] = std::uint8_t(a.l[i] < 0 ? 0 : a.l[i] > 255 ? 255 : a.l[i]);
 }
 
 struct vi64x2 {

@@ -39,7 +39,8 @@ inline vu16x8 load_u16x8(const std::uint16_t* p) {
 inline void store_u16x8(vu16x8 a, std::uint16_t* p) {
   _mm_storeu_si128(reinterpret_cast<__m128i*>(p), a.v);
 }
-/// Stores the low byte of each lane (lanes must be <= 255).
+/// Stores each lane as a byte: lanes 0..255 as they are (SSE2's packus_epi16, in every backend:
+/// others clamped to 0..255 as signed 16-bit values).
 inline void store_u8x8(vu16x8 a, std::uint8_t* p) {
   _mm_storel_epi64(reinterpret_cast<__m128i*>(p), _mm_packus_epi16(a.v, a.v));
 }
@@ -100,14 +101,15 @@ inline bool any(vu8x16 mask) { return _mm_movemask_epi8(mask.v) != 0; }
 /// Lanes 0-7 / 8-15 zero-extended to 16 bits.
 inline vu16x8 widen_lo(vu8x16 a) { return vu16x8(_mm_unpacklo_epi8(a.v, _mm_setzero_si128())); }
 inline vu16x8 widen_hi(vu8x16 a) { return vu16x8(_mm_unpackhi_epi8(a.v, _mm_setzero_si128())); }
-/// Lanes of lo then hi, each (<= 255) as a byte.
+/// Lanes of lo then hi as bytes (each 0..255; others clamped as by store_u8x8).
 inline vu8x16 narrow(vu16x8 lo, vu16x8 hi) { return vu8x16(_mm_packus_epi16(lo.v, hi.v)); }
-/// Sixteen 32-bit lanes (each 0..255, in order a, b, c, d) as bytes.
+/// Sixteen 32-bit lanes (in order a, b, c, d) as bytes, each clamped to 0..255.
 inline vu8x16 narrow(vint4 a, vint4 b, vint4 c, vint4 d) {
   return vu8x16(_mm_packus_epi16(_mm_packs_epi32(a.v, b.v), _mm_packs_epi32(c.v, d.v)));
 }
 
-/// Lanes 0-3 of a then 0-3 of b (each 0..32767) as 16-bit lanes.
+/// Lanes 0-3 of a then 0-3 of b as 16-bit lanes (each 0..32767; others clamped to
+/// -32768..32767, SSE2's packs_epi32, in every backend).
 inline vu16x8 narrow16(vint4 a, vint4 b) { return vu16x8(_mm_packs_epi32(a.v, b.v)); }
 /// Interleaves lanes 0-3 (zip_lo) or 4-7 (zip_hi) of a and b: a0 b0 a1 b1 ...
 inline vu16x8 zip_lo(vu16x8 a, vu16x8 b) { return vu16x8(_mm_unpacklo_epi16(a.v, b.v)); }
@@ -149,6 +151,128 @@ inline void transpose_8x4(const std::uint16_t* p, vu16x8 out[4]) {
   out[3] = vu16x8(_mm_unpackhi_epi64(b1, b3));
 }
 
+#elif defined(TESSERA_SIMD_NEON)
+
+// NEON. SSE2's packus_epi16 / packs_epi32 read their lanes as signed and saturate: vqmovun_s16
+// / vqmovn_s32 do the same, so narrowings give SSE2's bytes for every lane value.
+struct vu16x8 {
+  uint16x8_t v;
+  vu16x8() : v(vdupq_n_u16(0)) {}
+  explicit vu16x8(uint16x8_t x) : v(x) {}
+  explicit vu16x8(std::uint16_t a) : v(vdupq_n_u16(a)) {}
+  std::int32_t lane_sq(int i) const {
+    std::int16_t t[8];
+    vst1q_s16(t, vreinterpretq_s16_u16(v));
+    return std::int32_t(t[i]) * t[i];
+  }
+};
+inline vu16x8 load_u8x8(const std::uint8_t* p) { return vu16x8(vmovl_u8(vld1_u8(p))); }
+inline vu16x8 load_u16x8(const std::uint16_t* p) { return vu16x8(vld1q_u16(p)); }
+inline void store_u16x8(vu16x8 a, std::uint16_t* p) { vst1q_u16(p, a.v); }
+inline void store_u8x8(vu16x8 a, std::uint8_t* p) {
+  vst1_u8(p, vqmovun_s16(vreinterpretq_s16_u16(a.v)));
+}
+inline vu16x8 operator+(vu16x8 a, vu16x8 b) { return vu16x8(vaddq_u16(a.v, b.v)); }
+inline vu16x8 operator-(vu16x8 a, vu16x8 b) { return vu16x8(vsubq_u16(a.v, b.v)); }
+inline vu16x8 mullo(vu16x8 a, vu16x8 b) { return vu16x8(vmulq_u16(a.v, b.v)); }
+/// pmaddwd: signed 16 x 16 -> 32-bit products, adjacent pairs added (wrapping: only
+/// 2 * (-32768)^2 overflows, to INT32_MIN, as pmaddwd).
+inline vint4 madd(vu16x8 a, vu16x8 b) {
+  const int16x8_t x = vreinterpretq_s16_u16(a.v), y = vreinterpretq_s16_u16(b.v);
+  const int32x4_t lo = vmull_s16(vget_low_s16(x), vget_low_s16(y));
+  return vint4(vpaddq_s32(lo, vmull_high_s16(x, y)));
+}
+inline vu16x8 load_u8x4x2(const std::uint8_t* p0, const std::uint8_t* p1) {
+  std::uint32_t a, b;
+  std::memcpy(&a, p0, 4);
+  std::memcpy(&b, p1, 4);
+  const uint32x2_t w = vset_lane_u32(b, vdup_n_u32(a), 1);
+  return vu16x8(vmovl_u8(vreinterpret_u8_u32(w)));
+}
+inline vu16x8 operator&(vu16x8 a, vu16x8 b) { return vu16x8(vandq_u16(a.v, b.v)); }
+inline vu16x8 operator|(vu16x8 a, vu16x8 b) { return vu16x8(vorrq_u16(a.v, b.v)); }
+/// The odd 16-bit halves (the high ones, little-endian) of the 32-bit products.
+inline vu16x8 mulhi(vu16x8 a, vu16x8 b) {
+  const uint32x4_t lo = vmull_u16(vget_low_u16(a.v), vget_low_u16(b.v));
+  const uint32x4_t hi = vmull_high_u16(a.v, b.v);
+  return vu16x8(vuzp2q_u16(vreinterpretq_u16_u32(lo), vreinterpretq_u16_u32(hi)));
+}
+/// N = 0 and N >= 16 spelled out (NEON's immediate takes 1..16): SSE2 gives zero for N >= 16.
+template <int N>
+inline vu16x8 srl(vu16x8 a) {
+  static_assert(N >= 0);
+  if constexpr (N == 0) {
+    return a;
+  } else if constexpr (N >= 16) {
+    return vu16x8();
+  } else {
+    return vu16x8(vshrq_n_u16(a.v, N));
+  }
+}
+inline vu16x8 cmpeq(vu16x8 a, vu16x8 b) { return vu16x8(vceqq_u16(a.v, b.v)); }
+inline vu16x8 select(vu16x8 mask, vu16x8 a, vu16x8 b) {
+  return vu16x8(vbslq_u16(mask.v, a.v, b.v));
+}
+
+struct vu8x16 {
+  uint8x16_t v;
+  vu8x16() : v(vdupq_n_u8(0)) {}
+  explicit vu8x16(uint8x16_t x) : v(x) {}
+  explicit vu8x16(std::uint8_t a) : v(vdupq_n_u8(a)) {}
+};
+inline vu8x16 load_u8x16(const std::uint8_t* p) { return vu8x16(vld1q_u8(p)); }
+inline void store_u8x16(vu8x16 a, std::uint8_t* p) { vst1q_u8(p, a.v); }
+inline vu8x16 operator+(vu8x16 a, vu8x16 b) { return vu8x16(vaddq_u8(a.v, b.v)); }
+inline vu8x16 operator&(vu8x16 a, vu8x16 b) { return vu8x16(vandq_u8(a.v, b.v)); }
+inline vu8x16 operator|(vu8x16 a, vu8x16 b) { return vu8x16(vorrq_u8(a.v, b.v)); }
+inline vu8x16 cmpeq(vu8x16 a, vu8x16 b) { return vu8x16(vceqq_u8(a.v, b.v)); }
+inline vu8x16 andnot(vu8x16 a, vu8x16 b) { return vu8x16(vbicq_u8(b.v, a.v)); }
+inline vu8x16 select(vu8x16 mask, vu8x16 a, vu8x16 b) {
+  return vu8x16(vbslq_u8(mask.v, a.v, b.v));
+}
+/// A lane has its top bit set exactly when the largest lane does.
+inline bool any(vu8x16 mask) { return vmaxvq_u8(mask.v) >= 0x80; }
+inline vu16x8 widen_lo(vu8x16 a) { return vu16x8(vmovl_u8(vget_low_u8(a.v))); }
+inline vu16x8 widen_hi(vu8x16 a) { return vu16x8(vmovl_high_u8(a.v)); }
+inline vu8x16 narrow(vu16x8 lo, vu16x8 hi) {
+  return vu8x16(vcombine_u8(vqmovun_s16(vreinterpretq_s16_u16(lo.v)),
+                            vqmovun_s16(vreinterpretq_s16_u16(hi.v))));
+}
+inline vu8x16 narrow(vint4 a, vint4 b, vint4 c, vint4 d) {
+  const int16x8_t ab = vcombine_s16(vqmovn_s32(a.v), vqmovn_s32(b.v));
+  const int16x8_t cd = vcombine_s16(vqmovn_s32(c.v), vqmovn_s32(d.v));
+  return vu8x16(vcombine_u8(vqmovun_s16(ab), vqmovun_s16(cd)));
+}
+
+inline vu16x8 narrow16(vint4 a, vint4 b) {
+  return vu16x8(vreinterpretq_u16_s16(vcombine_s16(vqmovn_s32(a.v), vqmovn_s32(b.v))));
+}
+inline vu16x8 zip_lo(vu16x8 a, vu16x8 b) { return vu16x8(vzip1q_u16(a.v, b.v)); }
+inline vu16x8 zip_hi(vu16x8 a, vu16x8 b) { return vu16x8(vzip2q_u16(a.v, b.v)); }
+/// One table lookup each over the bytes of p[0..3] (the 8 bytes SSE2 loads).
+inline void taps8(const std::uint16_t* p, vu16x8& left, vu16x8& right) {
+  static constexpr std::uint8_t kLeft[16] = {0, 1, 0, 1, 2, 3, 2, 3, 2, 3, 2, 3, 4, 5, 4, 5};
+  static constexpr std::uint8_t kRight[16] = {2, 3, 2, 3, 4, 5, 4, 5, 4, 5, 4, 5, 6, 7, 6, 7};
+  const uint8x16_t x = vreinterpretq_u8_u16(vcombine_u16(vld1_u16(p), vdup_n_u16(0)));
+  left = vu16x8(vreinterpretq_u16_u8(vqtbl1q_u8(x, vld1q_u8(kLeft))));
+  right = vu16x8(vreinterpretq_u16_u8(vqtbl1q_u8(x, vld1q_u8(kRight))));
+}
+inline vf4 f2p23_plus_lo(vu16x8 a) {
+  return vf4(vreinterpretq_f32_u16(vzip1q_u16(a.v, vdupq_n_u16(0x4b00))));
+}
+inline vf4 f2p23_plus_hi(vu16x8 a) {
+  return vf4(vreinterpretq_f32_u16(vzip2q_u16(a.v, vdupq_n_u16(0x4b00))));
+}
+inline vint4 widen32_lo(vu16x8 a) {
+  return vint4(vreinterpretq_s32_u32(vmovl_u16(vget_low_u16(a.v))));
+}
+inline vint4 widen32_hi(vu16x8 a) { return vint4(vreinterpretq_s32_u32(vmovl_high_u16(a.v))); }
+/// vld4q_u16 de-interleaves exactly this way.
+inline void transpose_8x4(const std::uint16_t* p, vu16x8 out[4]) {
+  const uint16x8x4_t t = vld4q_u16(p);
+  for (int c = 0; c < 4; ++c) out[c] = vu16x8(t.val[c]);
+}
+
 #else  // scalar backend
 
 struct vu16x8 {
@@ -174,8 +298,15 @@ inline vu16x8 load_u16x8(const std::uint16_t* p) {
 inline void store_u16x8(vu16x8 a, std::uint16_t* p) {
   for (int i = 0; i < 8; ++i) p[i] = a.l[i];
 }
+// SSE2's packus_epi16 (narrowings to bytes): the lane read as signed, clamped to 0..255.
+namespace detail {
+inline std::uint8_t packus16(std::uint16_t x) {
+  const std::int16_t s = std::int16_t(x);
+  return std::uint8_t(s < 0 ? 0 : s > 255 ? 255 : s);
+}
+}  // namespace detail
 inline void store_u8x8(vu16x8 a, std::uint8_t* p) {
-  for (int i = 0; i < 8; ++i) p[i] = std::uint8_t(a.l[i] > 255 ? 255 : a.l[i]);
+  for (int i = 0; i < 8; ++i) p[i] = detail::packus16(a.l[i]);
 }
 #define TESSERA_SIMD_U16_BINOP(op, expr)                      \
   inline vu16x8 op(vu16x8 a, vu16x8 b) {                      \
@@ -209,8 +340,11 @@ inline vu16x8 load_u8x4x2(const std::uint8_t* p0, const std::uint8_t* p1) {
 }
 template <int N>
 inline vu16x8 srl(vu16x8 a) {
+  static_assert(N >= 0);
   vu16x8 r;
-  for (int i = 0; i < 8; ++i) r.l[i] = std::uint16_t(a.l[i] >> N);
+  if constexpr (N < 16) {
+    for (int i = 0; i < 8; ++i) r.l[i] = std::uint16_t(a.l[i] >> N);
+  }
   return r;
 }
 inline vu16x8 select(vu16x8 mask, vu16x8 a, vu16x8 b) {
@@ -268,8 +402,8 @@ inline vu16x8 widen_hi(vu8x16 a) {
 inline vu8x16 narrow(vu16x8 lo, vu16x8 hi) {
   vu8x16 r;
   for (int i = 0; i < 8; ++i) {
-    r.l[i] = std::uint8_t(lo.l[i] > 255 ? 255 : lo.l[i]);
-    r.l[8 + i] = std::uint8_t(hi.l[i] > 255 ? 255 : hi.l[i]);
+    r.l[i] = detail::packus16(lo.l[i]);
+    r.l[8 + i] = detail::packus16(hi.l[i]);
   }
   return r;
 }
@@ -283,11 +417,15 @@ inline vu8x16 narrow(vint4 a, vint4 b, vint4 c, vint4 d) {
   return r;
 }
 
+// SSE2's packs_epi32: clamped to -32768..32767.
 inline vu16x8 narrow16(vint4 a, vint4 b) {
+  const auto packs = [](std::int32_t x) {
+    return std::uint16_t(x < -32768 ? -32768 : x > 32767 ? 32767 : x);
+  };
   vu16x8 r;
   for (int i = 0; i < 4; ++i) {
-    r.l[i] = std::uint16_t(a.l[i]);
-    r.l[4 + i] = std::uint16_t(b.l[i]);
+    r.l[i] = packs(a.l[i]);
+    r.l[4 + i] = packs(b.l[i]);
   }
   return r;
 }
