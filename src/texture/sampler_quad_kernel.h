@@ -9,7 +9,7 @@
 // lane-wise exact, and the selects below reproduce the scalar branches (NaN included).
 // Only the log2 of the LOD stays scalar (the caller calls std::log2 per lane, the same libm
 // function as the scalar path). Compiled only with a vector backend (TESSERA_SIMD_VECTOR, i.e.
-// SSE2); elsewhere the texture keeps its scalar per-lookup path.
+// SSE2 or NEON); elsewhere the texture keeps its scalar per-lookup path.
 #pragma once
 
 #include "core/simd.h"
