@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/check.h"
 #include "deferred_internal.h"
 
 namespace tessera::deferred {
@@ -78,6 +79,7 @@ AdaptiveResult DeferredRenderer::shade_adaptive(const GBuffer& gb, const Shading
   const ShadeContext ctx(*this, gb, shading);
   const int m = gb.m, n = m * m, w = gb.width(), h = gb.height();
   const std::span<const std::uint8_t> order = sample_order(m);
+  TESSERA_DCHECK(order.size() == std::size_t(n));  // every window cell once (Figure 3)
   const int first = order[0];
   const std::size_t npix = std::size_t(w) * std::size_t(h);
   AdaptiveResult res;
@@ -174,6 +176,7 @@ AdaptiveResult DeferredRenderer::shade_adaptive(const GBuffer& gb, const Shading
           for (int x = 0; x < w; ++x) {
             const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
             const int k = extra[i];
+            TESSERA_DCHECK(k >= 0 && k < n);  // k extra samples of the n = m x m window
             res.samples[i] = std::uint8_t(k + 1);
             if (k == 0) continue;  // S already holds the pixel
             // Texture-footprint scales (the material-boundary rule, see deferred.h).
@@ -203,6 +206,7 @@ AdaptiveResult DeferredRenderer::shade_adaptive(const GBuffer& gb, const Shading
             }
             for (int p = 0; p <= k; ++p) {
               const int cell = order[std::size_t(p)];
+              TESSERA_DCHECK(cell >= 0 && cell < n);  // a window index of the order (Figure 3)
               float sc = 1.0f;
               if (seam) {
                 sc = 1.0f;

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <unordered_map>
 
+#include "core/check.h"
 #include "tessera/faces.h"
 
 namespace tessera::faces {
@@ -169,6 +170,16 @@ Result<std::vector<FaceAdjacency>> build_adjacency(const QuadMesh& mesh) {
       if (it == edges.end()) continue;
       adj[f].face[std::size_t(e)] = it->second / 4;
       adj[f].edge[std::size_t(e)] = it->second % 4;
+    }
+  }
+  // Adjacency is mutual: across my edge e lies face n's edge k, and across n's edge k lies me.
+  for (std::size_t f = 0; f < adj.size(); ++f) {
+    for (std::size_t e = 0; e < 4; ++e) {
+      const int n = adj[f].face[e];
+      if (n < 0) continue;
+      TESSERA_DCHECK(std::size_t(n) < adj.size() && adj[f].edge[e] >= 0 && adj[f].edge[e] < 4);
+      TESSERA_DCHECK(adj[std::size_t(n)].face[std::size_t(adj[f].edge[e])] == int(f));
+      TESSERA_DCHECK(adj[std::size_t(n)].edge[std::size_t(adj[f].edge[e])] == int(e));
     }
   }
   return adj;

@@ -6,6 +6,7 @@
 // its inside is my outside, so my (t, s) is the neighbour's (1 - t, -s).
 #include <cmath>
 
+#include "core/check.h"
 #include "tessera/faces.h"
 
 namespace tessera::faces {
@@ -55,6 +56,7 @@ UvTransform UvTransform::then(const UvTransform& n) const {
 }
 
 UvTransform edge_transform(int my_edge, int neighbour_edge) {
+  TESSERA_DCHECK(my_edge >= 0 && my_edge < 4 && neighbour_edge >= 0 && neighbour_edge < 4);
   return edge_transform_table()[std::size_t((my_edge & 3) * 4 + (neighbour_edge & 3))];
 }
 

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <utility>
 
+#include "core/check.h"
 #include "gl/gl_api.h"
 #include "tessera/faces.h"
 #include "tessera/gl.h"
@@ -108,6 +109,13 @@ Result<PackedFaces> pack_faces(const faces::FaceTextureSet& set, const PackLimit
       const int e2 = set.adjacency(f1).edge[std::size_t(out1)];
       r.corner[std::size_t(c4)] = link.face;
       r.corner_mapping[std::size_t(c4)] = (c4 * 4 + e1) * 16 + out1 * 4 + e2;
+    }
+    // The record as seams.glsl reads it: a class and layer that exist, neighbours that are
+    // faces, mappings into the 16 edge transforms (corners: two of them).
+    TESSERA_DCHECK(r.info[0] >= 0 && r.info[0] < int(p.classes.size()) && r.info[1] >= 0);
+    for (std::size_t e = 0; e < 4; ++e) {
+      TESSERA_DCHECK(r.neighbour[e] < n && (r.neighbour[e] < 0) == (r.mapping[e] < 0));
+      TESSERA_DCHECK(r.mapping[e] < 16 && r.corner[e] < n && r.corner_mapping[e] < 256);
     }
   }
   for (const FaceClass& c : p.classes) {

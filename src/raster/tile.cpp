@@ -7,6 +7,7 @@
 #include <bit>
 #include <cstring>
 
+#include "core/check.h"
 #include "raster/raster_internal.h"
 #include "raster/raster_kernel.h"
 
@@ -241,6 +242,8 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
   const TriSetup& t = *t_;
   const DrawCall& draw = *draw_;
   const int ns = kSingle ? 1 : st_.count;
+  // The quad's top-left texel is inside the grid (its other lanes may not be: masked above).
+  TESSERA_DCHECK(qx >= 0 && qy >= 0 && qx < gw_ && qy < gh_ && ns >= 1);
   const std::size_t row = std::size_t(gw_);
   std::size_t base[4];
   base[0] = (std::size_t(qy) * row + std::size_t(qx)) * std::size_t(ns);
@@ -434,12 +437,14 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
 }  // namespace
 
 void render_tile(const FrameContext& ctx, int tile, RasterStats& stats) {
+  TESSERA_DCHECK(tile >= 0 && ctx.tiles_x > 0);
   const int tx = tile % ctx.tiles_x;
   const int ty = tile / ctx.tiles_x;
   FrameBuffer& fb = *ctx.fb;
   const int x0 = tx * kTileSize, y0 = ty * kTileSize;
   const int x1 = std::min(x0 + kTileSize, fb.grid_width());
   const int y1 = std::min(y0 + kTileSize, fb.grid_height());
+  TESSERA_DCHECK(x0 < x1 && y0 < y1);  // every tile holds at least one texel of the grid
   if (ctx.clear) fb.clear_rect(x0, y0, x1, y1, ctx.clear->value.data(), ctx.clear->depth);
   TileRasteriser r(ctx, x0, y0, x1, y1, stats);
   for (const Chunk& chunk : ctx.chunks) {
