@@ -14,7 +14,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cli_harness import check, finish  # noqa: E402
+from cli_harness import check, finish, missing_part  # noqa: E402
 
 TESSERA = sys.argv[1]
 CHROMIUM = sys.argv[2] if len(sys.argv) > 2 else shutil.which("chromium")
@@ -72,6 +72,20 @@ try:
         check("footer: date", re.search(r"\d{4}-\d\d-\d\d \d\d:\d\d UTC", text) is not None, text)
         check("footer: command line", "tessera demo -o" in text, text)
         check("footer: machine", "hardware threads" in text, text)
+    # The first screen: the summary right under the title, one row per paper's headline, each
+    # linking to a section that exists.
+    summary = re.search(r'<h1>[^<]*</h1>\s*<section id="summary">(.*?)</section>', html, re.S)
+    check("summary first", summary is not None, html[:600])
+    if summary:
+        links = re.findall(r'href="#(\w+)"', summary.group(1))
+        check("summary covers the three papers", {"pvrtc", "seams", "aa"} <= set(links), links)
+        for anchor in set(links):
+            check(f"summary link #{anchor} resolves", f'<h2 id="{anchor}">' in html, anchor)
+        if "PVRTexTool not found" in summary.group(1):
+            missing_part("pvrtextool", "PVRTexToolCLI not found: the summary has no peer column")
+        else:
+            check("summary compares with PVRTexTool", "pvrtcbest:" in summary.group(1),
+                  summary.group(1)[:300])
     svgs = re.findall(r'<img src="(img/[^"]+\.svg)"', html)
     check("SVG plots in the page", len(svgs) >= 2, str(svgs))
     check("a colour bar", any("colourbar" in s for s in svgs), str(svgs))

@@ -9,7 +9,7 @@
 namespace tessera::cli {
 
 Status demo_aa_section(Report& report, const DemoOptions& options) {
-  report.heading("Adaptive supersampling for deferred shading");
+  report.heading("Adaptive supersampling for deferred shading", "aa");
   report.paragraph(
       "The built-in scene rendered into a 4x4 enlarged G-buffer (linear depth, normal, material, "
       "UV and UV derivatives per sample; albedo looked up at shading time, anisotropic 16x), "

@@ -59,7 +59,7 @@ Result<Encoded> encode_decode(const ImageRGBA8& img, const Variant& v, int threa
 }  // namespace
 
 Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
-  report.heading("PVRTC1 compression");
+  report.heading("PVRTC1 compression", "pvrtc");
   report.paragraph(
       "Each procedural image is compressed to PVRTC1 at 4 bpp with the three encoder settings "
       "(fast = intensity dilation only, Krajcevski & Manocha 2014; normal and high add "

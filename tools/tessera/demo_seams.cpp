@@ -8,7 +8,7 @@
 namespace tessera::cli {
 
 Status demo_seams_section(Report& report, const DemoOptions& options) {
-  report.heading("Seamless per-face texturing: Discard vs Traverse (Toth 2013)");
+  report.heading("Seamless per-face texturing: Discard vs Traverse (Toth 2013)", "seams");
   report.paragraph(
       "Every face of a quad mesh has its own texture (own resolution and mip chain, no guard "
       "band). Clamp uses the plain clamp-to-edge address mode; Discard drops the filter taps "

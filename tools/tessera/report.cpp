@@ -54,7 +54,10 @@ Status Report::save_image(const std::string& name, const ImageRGBA8& image, std:
   return io::write_png((fs::path(dir_) / rel).string(), image);
 }
 
-void Report::heading(const std::string& text) { body_ += "<h2>" + escape(text) + "</h2>\n"; }
+void Report::heading(const std::string& text, const std::string& id) {
+  body_ += (id.empty() ? std::string("<h2>") : "<h2 id=\"" + escape(id) + "\">") + escape(text) +
+           "</h2>\n";
+}
 void Report::html(const std::string& text) { body_ += text + "\n"; }
 namespace {
 /// Escaped text with `code` spans as <code> elements (an odd backtick stays as it is).
@@ -134,7 +137,7 @@ Status Report::write() const {
       "th{background:#eee}code{background:#f4f4f4;padding:0 2px}"
       "footer{margin-top:3em;padding-top:1em;border-top:1px solid #ccc;font-size:85%;"
       "color:#555}</style></head>\n<body>\n<h1>" +
-      escape(title_) + "</h1>\n" + body_ +
+      escape(title_) + "</h1>\n" + top_ + body_ +
       (footer_.empty() ? std::string() : "<footer>" + inline_markup(footer_) + "</footer>\n") +
       "</body></html>\n";
   const std::string path = (fs::path(dir_) / "report.html").string();

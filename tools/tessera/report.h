@@ -30,7 +30,11 @@ class Report {
   /// Writes an SVG document to DIR/img/NAME.svg; on success sets `rel` to its relative path.
   Status save_svg(const std::string& name, const std::string& svg, std::string& rel);
 
-  void heading(const std::string& text);
+  /// A section heading; `id` (optional) is its anchor for links (`#id`).
+  void heading(const std::string& text, const std::string& id = "");
+  /// Raw HTML shown first, right under the title (a summary written once the sections know
+  /// their numbers).
+  void top(const std::string& html) { top_ = html; }
   /// Raw HTML (callers escape what they insert; see `escape`).
   void html(const std::string& text);
   /// A paragraph of plain text; `code` spans (between backticks) become <code>.
@@ -52,6 +56,7 @@ class Report {
  private:
   std::string dir_;
   std::string title_;
+  std::string top_;
   std::string body_;
   std::string footer_;
 };
