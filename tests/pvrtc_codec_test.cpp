@@ -292,9 +292,12 @@ TEST(PvrtcEncode, IdenticalForAnyThreadCount) {
       auto two = encode(img, opt);
       opt.threads = 0;
       auto all = encode(img, opt);
-      ASSERT_TRUE(one.ok() && two.ok() && all.ok());
+      opt.threads = 3;  // high: the two encodings on 1 and 2 threads
+      auto three = encode(img, opt);
+      ASSERT_TRUE(one.ok() && two.ok() && all.ok() && three.ok());
       EXPECT_EQ(*one, *two) << int(f) << " " << int(q);
       EXPECT_EQ(*one, *all) << int(f) << " " << int(q);
+      EXPECT_EQ(*one, *three) << int(f) << " " << int(q);
     }
   }
 }

@@ -8,7 +8,9 @@
 #include <array>
 #include <atomic>
 #include <cstring>
+#include <exception>
 #include <limits>
+#include <thread>
 
 #include "core/simd.h"
 #include "pvrtc/encode/encode_internal.h"
@@ -268,6 +270,7 @@ Result<std::vector<std::uint8_t>> encode(const ImageView8& image, const EncodeOp
   const double start_cost = schedule.dilation_start ? kDilationStartCost : kPrincipalStartCost;
   ProgressSteps steps(whole, start_cost + optimise_cost(schedule, options.format) +
                                  (schedule.crossover ? kDilationStartCost : 0.0) +
+                                 alt_cost(schedule, options.format) +
                                  crossover_cost(schedule, options.format));
   // Target: the source tiled over the padded level (only textures under 2x2 blocks differ),
   // alpha forced to 255 unless alpha_mode. The caller's pixels are used in place when they
@@ -302,16 +305,52 @@ Result<std::vector<std::uint8_t>> encode(const ImageView8& image, const EncodeOp
   if (schedule.crossover) alt = s;
   // fast: the paper's intensity dilation; normal / high start the refinement from
   // principal-axis endpoints, which separate equally bright colours (see principal_axis.cpp).
-  steps.next(start_cost);
-  const std::uint64_t start_error = start_endpoints(s, schedule.dilation_start);
-  // Reseed, least-squares refinement and the exact search, as scheduled (passes.cpp).
-  s.progress = steps.next(optimise_cost(schedule, options.format));
-  optimise(s, schedule, start_error);
+  // Then reseed, least-squares refinement and the exact search, as scheduled (passes.cpp).
+  auto first = [&] {
+    steps.next(start_cost);
+    const std::uint64_t start_error = start_endpoints(s, schedule.dilation_start);
+    s.progress = steps.next(optimise_cost(schedule, options.format));
+    optimise(s, schedule, start_error);
+  };
+  auto second = [&] { optimise_alt(alt, start_endpoints(alt, true), schedule); };
+  const int threads = options.threads > 0 ? options.threads : default_thread_count();
+  if (schedule.crossover && threads >= 2) {
+    // The two encodings share nothing until the crossover, so each runs on half the threads at
+    // the same time: their passes revisit fewer and fewer blocks towards convergence, and one
+    // encoding alone keeps two threads waiting at its barriers. Every pass's result is the same
+    // for any thread count, so the bytes are too. Progress is reported from the first encoding,
+    // on the calling thread.
+    alt.threads = threads / 2;
+    s.threads = threads - alt.threads;
+    std::exception_ptr failed;
+    std::thread worker([&] {
+      try {
+        second();
+      } catch (...) {
+        failed = std::current_exception();
+      }
+    });
+    try {
+      first();
+    } catch (...) {
+      worker.join();
+      throw;
+    }
+    worker.join();
+    if (failed) std::rethrow_exception(failed);
+    s.threads = alt.threads = options.threads;
+    steps.next(kDilationStartCost + alt_cost(schedule, options.format));
+  } else {
+    first();
+    if (schedule.crossover) {
+      steps.next(kDilationStartCost);
+      alt.progress = steps.next(alt_cost(schedule, options.format));
+      second();
+    }
+  }
   if (schedule.crossover) {
-    steps.next(kDilationStartCost);
-    const std::uint64_t alt_error = start_endpoints(alt, true);
     s.progress = steps.next(crossover_cost(schedule, options.format));
-    optimise_crossover(s, alt, alt_error, schedule);
+    optimise_crossover(s, alt, schedule);
   }
   if (options.normal_map) choose_modulation_angular(s);
   std::vector<std::uint8_t> out(level_size(options.format, image.width, image.height));

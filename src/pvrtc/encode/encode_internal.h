@@ -185,9 +185,10 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
 /// returned it.
 void optimise(EncoderState& s, const EncodeSchedule& schedule, std::uint64_t error);
 
-/// Estimated costs of `optimise` and `optimise_crossover` with `schedule` at `format` (seconds
-/// per megapixel on one thread, for the progress reports; see passes.cpp).
+/// Estimated costs of `optimise`, `optimise_alt` and `optimise_crossover` with `schedule` at
+/// `format` (seconds per megapixel on one thread, for the progress reports; see passes.cpp).
 double optimise_cost(const EncodeSchedule& schedule, Format format);
+double alt_cost(const EncodeSchedule& schedule, Format format);
 double crossover_cost(const EncodeSchedule& schedule, Format format);
 
 /// 2 bpp only: with the endpoints fixed, re-chooses every stored modulation value by the exact
@@ -224,11 +225,13 @@ int crossover(EncoderState& s, const EncoderState& other, int alpha_weight,
 
 /// high: runs the dilation-started encoding `alt` (endpoints and modulation set, total error
 /// `alt_error`) through the passes of its format (4 bpp: `schedule.crossover_search`; 2 bpp:
-/// `optimise` with `schedule`), crosses it into `s` (see crossover.cpp) and resumes the exact
-/// search on `s` where the two were mixed. 2 bpp: `s` changes only where its exact total error
-/// drops.
-void optimise_crossover(EncoderState& s, EncoderState& alt, std::uint64_t alt_error,
-                        const EncodeSchedule& schedule);
+/// `optimise` with `schedule`). It reads nothing of the first encoding, so the two may run at
+/// the same time.
+void optimise_alt(EncoderState& alt, std::uint64_t alt_error, const EncodeSchedule& schedule);
+
+/// high: crosses the finished `alt` into `s` (see crossover.cpp) and resumes the exact search on
+/// `s` where the two were mixed. 2 bpp: `s` changes only where its exact total error drops.
+void optimise_crossover(EncoderState& s, const EncoderState& alt, const EncodeSchedule& schedule);
 
 /// Normal maps (see modulation_angular.cpp): with the endpoints fixed, gives every texel the
 /// modulation value whose decode makes the smallest angle with the target's vector (4 bpp; 2 bpp

@@ -51,13 +51,18 @@ double optimise_cost(const EncodeSchedule& schedule, Format format) {
   return c;
 }
 
+double alt_cost(const EncodeSchedule& schedule, Format format) {
+  if (!schedule.crossover) return 0;
+  return format == Format::pvrtc1_2bpp ? optimise_cost(schedule, format)
+                                       : search_cost(schedule.crossover_search);
+}
+
 double crossover_cost(const EncodeSchedule& schedule, Format format) {
   if (!schedule.crossover) return 0;
   if (format == Format::pvrtc1_2bpp) {
-    return optimise_cost(schedule, format) + kCrossoverCost +
-           schedule.crossover_descent_2bpp * kDescentCost2 + kResumedSearchCost2;
+    return kCrossoverCost + schedule.crossover_descent_2bpp * kDescentCost2 + kResumedSearchCost2;
   }
-  return search_cost(schedule.crossover_search) + kCrossoverCost + kResumedSearchCost4;
+  return kCrossoverCost + kResumedSearchCost4;
 }
 
 void optimise(EncoderState& s, const EncodeSchedule& schedule, std::uint64_t error) {
@@ -96,18 +101,25 @@ void optimise(EncoderState& s, const EncodeSchedule& schedule, std::uint64_t err
   s.progress = whole;
 }
 
-// The crossover with a second encoding from the dilation start (crossover.cpp): the two starts
-// stop in different local minima, the dilation one wins along sharp edges.
-void optimise_crossover(EncoderState& s, EncoderState& alt, std::uint64_t alt_error,
+// The second encoding of the crossover: from the dilation start, 2 bpp through the same passes
+// as the first encoding (a cheaper second one, the endpoint search straight from the dilation,
+// lost most of the gain), 4 bpp straight to the exact search (see schedule.cpp).
+void optimise_alt(EncoderState& alt, std::uint64_t alt_error, const EncodeSchedule& schedule) {
+  if (alt.g.format == Format::pvrtc1_2bpp) {
+    optimise(alt, schedule, alt_error);
+  } else {
+    run_exact_search(alt, schedule.crossover_search);
+  }
+}
+
+// The crossover with the second encoding (crossover.cpp): the two starts stop in different
+// local minima, the dilation one wins along sharp edges.
+void optimise_crossover(EncoderState& s, const EncoderState& alt,
                         const EncodeSchedule& schedule) {
   const Progress whole = s.progress;
   ProgressSteps steps(whole, crossover_cost(schedule, s.g.format));
   std::vector<std::uint8_t> seeds;
   if (s.g.format == Format::pvrtc1_2bpp) {
-    // The dilation start runs the same passes as the first encoding (a cheaper second one, the
-    // endpoint search straight from the dilation, lost most of the gain).
-    alt.progress = steps.next(optimise_cost(schedule, alt.g.format));
-    optimise(alt, schedule, alt_error);
     s.progress = steps.next(kCrossoverCost);
     const std::uint64_t error = total_error(s);
     const std::vector<std::uint16_t> ca = s.ca, cb = s.cb;
@@ -127,9 +139,6 @@ void optimise_crossover(EncoderState& s, EncoderState& alt, std::uint64_t alt_er
     s.mod = mod;
     return;
   }
-  // The dilation start goes straight to the exact search (see schedule.cpp).
-  alt.progress = steps.next(search_cost(schedule.crossover_search));
-  run_exact_search(alt, schedule.crossover_search);
   s.progress = steps.next(kCrossoverCost);
   crossover(s, alt, schedule.crossover_alpha_weight, seeds);
   choose_modulation(s);
