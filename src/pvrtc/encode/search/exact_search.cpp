@@ -43,10 +43,15 @@ std::atomic<bool> g_baseline_only{false};
 
 // The window evaluators, chosen once per reseed() / polish() call: exact_search_kernel.h's (SSE2
 // through simd.h, or scalar) or exact_search_avx2.cpp's where polish_avx2_active(). Same integers.
+// Alpha-weighted colour error (`weighted`) has baseline evaluators only.
 struct Evaluators {
-  bool avx2 = polish_avx2_active();
+  explicit Evaluators(bool weighted_)
+      : avx2(!weighted_ && polish_avx2_active()), weighted(weighted_) {}
+  bool avx2;
+  bool weighted;
   std::uint32_t local(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
                       std::uint32_t bound) const {
+    if (weighted) return local_error_weighted(lw, a, b, bound);
     if (!avx2) return local_error_simd(lw, a, b, bound);
     const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
     return local_error_avx2(lw, va, vb, bound);
@@ -58,12 +63,21 @@ struct Evaluators {
       const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
       return local_error_store_avx2(lw, va, vb, texel_err);
     }
+    if (weighted) return local_error_simd_t<true, true, true>(lw, a, b, 0, texel_err);
     return lw.nch == 4 ? local_error_simd_t<true, true>(lw, a, b, 0, texel_err)
                        : local_error_simd_t<false, true>(lw, a, b, 0, texel_err);
   }
   std::uint32_t planar(const PlanarWindow& pw, int c, std::int32_t av, std::int32_t bv,
                        std::uint32_t bound) const {
+    if (weighted) return planar_error_t<true>(pw, c, av, bv, bound);
     return avx2 ? planar_error_avx2(pw, c, av, bv, bound) : planar_error(pw, c, av, bv, bound);
+  }
+  void refresh(PlanarWindow& pw, const Rgba5& a, const Rgba5& b) const {
+    if (weighted) {
+      planar_refresh_t<true>(pw, a, b);
+    } else {
+      planar_refresh(pw, a, b);
+    }
   }
 };
 
@@ -116,15 +130,17 @@ int reseed_candidates(const EncoderState& s, int bx, int by, std::uint16_t out[8
 // the zero pads stay). The error is an integer sum, so the order changes only where
 // the bounded evaluation stops, never a result below the bound.
 void permute_local(LocalWindow& lw, const std::uint8_t* order) {
-  // Seven arrays of 8-byte rows (one per texel), the first 49 rows permuted, in one pass.
-  void* const rows[7] = {lw.rest16_a, lw.rest16_b, lw.own16, lw.t16,
-                         lw.bias35,   lw.bias4,    lw.bias4p};
-  std::uint64_t tmp[7][49];
-  for (int r = 0; r < 7; ++r) std::memcpy(tmp[r], rows[r], sizeof(tmp[r]));
+  // Seven arrays of 8-byte rows (one per texel; eight with the colour scales), the first 49
+  // rows permuted, in one pass.
+  void* const rows[8] = {lw.rest16_a, lw.rest16_b, lw.own16,  lw.t16,
+                         lw.bias35,   lw.bias4,    lw.bias4p, lw.scale16};
+  const int n = lw.weighted ? 8 : 7;
+  std::uint64_t tmp[8][49];
+  for (int r = 0; r < n; ++r) std::memcpy(tmp[r], rows[r], sizeof(tmp[r]));
   for (int i = 0; i < 49; ++i) {
     const int o = order[i];
     TESSERA_DCHECK(o >= 0 && o < 49);  // a texel of the 7x7 window
-    for (int r = 0; r < 7; ++r) std::memcpy(static_cast<char*>(rows[r]) + 8 * i, &tmp[r][o], 8);
+    for (int r = 0; r < n; ++r) std::memcpy(static_cast<char*>(rows[r]) + 8 * i, &tmp[r][o], 8);
   }
 }
 
@@ -152,6 +168,8 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
   const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
   lw.nch = w.nch;
   lw.punch = s.punch;
+  lw.weighted = s.weighted();
+  TESSERA_DCHECK(!lw.weighted || lw.nch == 4);  // weights only in alpha mode
   for (int c = 0; c < 8; ++c) lw.weight16[c] = std::uint16_t((c & 3) == 3 ? w.alpha_weight : 1);
   // The 3x3 blocks around j (wrapping) that the window's texels read: A in lanes 0-3, B in
   // lanes 4-7 (channels past nch zero); block j itself (also where the wrap lands on it) is
@@ -224,6 +242,12 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
         const std::uint16_t t4[4] = {t[0], t[1], t[2], std::uint16_t(t[3] & amask)};
         std::memcpy(lw.t16[k], t4, 8);
       }
+      if (lw.weighted) {
+        const std::uint16_t sc =
+            s.colour_scale[std::size_t(y) * std::size_t(g.pw) + std::size_t(x)];
+        const std::uint16_t sc4[4] = {sc, sc, sc, 16};
+        std::memcpy(lw.scale16[k], sc4, 8);
+      }
       const bool m1 = mrow[x >> 2] != 0;
       const std::int32_t b35 = m1 ? kExclude : 0, b4 = m1 ? 0 : kExclude,
                          b4p = m1 ? punch_bias : kExclude;
@@ -240,6 +264,7 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
   for (int q = 49; q < 56; ++q) {  // texels 49-55: the zero pad (error 0)
     for (int c = 0; c < 4; ++c) {
       lw.rest16_a[q][c] = lw.rest16_b[q][c] = lw.own16[q][c] = lw.t16[q][c] = 0;
+      if (lw.weighted) lw.scale16[q][c] = 0;
     }
   }
   for (int c = 2; c < 4; ++c) {
@@ -308,7 +333,7 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
     }
   }
   changed.assign(g.blocks(), 0);
-  const Evaluators ev;
+  const Evaluators ev(s.weighted());
   for_each_block_2x2(g, s.threads, [&](int bx, int by) {
     const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
     if (!active[j]) return;
@@ -377,7 +402,7 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
       if (!(*options.seeds)[j]) searched_at[j] = 0;
     }
   }
-  const Evaluators ev;
+  const Evaluators ev(s.weighted());
   double searched_total = 0, searched_before = 0;  // for the progress reports
   for (int round = 0; round < rounds; ++round) {
     std::vector<std::uint8_t> any_change(std::size_t(g.nby / 2), 0);
@@ -415,7 +440,7 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
           planar_built = true;
         }
         if (!(planar_valid & 1u)) {
-          planar_refresh(pw, cur5a, cur5b);
+          ev.refresh(pw, cur5a, cur5b);
           planar_valid = 1;
         }
         if (!(planar_valid & (2u << c))) {
