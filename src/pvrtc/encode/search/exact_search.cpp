@@ -129,18 +129,27 @@ int reseed_candidates(const EncoderState& s, int bx, int by, std::uint16_t out[8
 // Reorders the window's texels in the SIMD layout: slot i takes texel order[i] (slots 0-48;
 // the zero pads stay). The error is an integer sum, so the order changes only where
 // the bounded evaluation stops, never a result below the bound.
-void permute_local(LocalWindow& lw, const std::uint8_t* order) {
-  // Seven arrays of 8-byte rows (one per texel; eight with the colour scales), the first 49
-  // rows permuted, in one pass.
+// kRows 7: seven arrays of 8-byte rows (one per texel), the first 49 rows permuted, in one
+// pass; 8: the colour scales too (alpha-weighted windows).
+template <int kRows>
+void permute_rows(LocalWindow& lw, const std::uint8_t* order) {
   void* const rows[8] = {lw.rest16_a, lw.rest16_b, lw.own16,  lw.t16,
                          lw.bias35,   lw.bias4,    lw.bias4p, lw.scale16};
-  const int n = lw.weighted ? 8 : 7;
-  std::uint64_t tmp[8][49];
-  for (int r = 0; r < n; ++r) std::memcpy(tmp[r], rows[r], sizeof(tmp[r]));
+  std::uint64_t tmp[kRows][49];
+  for (int r = 0; r < kRows; ++r) std::memcpy(tmp[r], rows[r], sizeof(tmp[r]));
   for (int i = 0; i < 49; ++i) {
     const int o = order[i];
     TESSERA_DCHECK(o >= 0 && o < 49);  // a texel of the 7x7 window
-    for (int r = 0; r < n; ++r) std::memcpy(static_cast<char*>(rows[r]) + 8 * i, &tmp[r][o], 8);
+    for (int r = 0; r < kRows; ++r) {
+      std::memcpy(static_cast<char*>(rows[r]) + 8 * i, &tmp[r][o], 8);
+    }
+  }
+}
+void permute_local(LocalWindow& lw, const std::uint8_t* order) {
+  if (lw.weighted) {
+    permute_rows<8>(lw, order);
+  } else {
+    permute_rows<7>(lw, order);
   }
 }
 
