@@ -43,15 +43,14 @@ std::atomic<bool> g_baseline_only{false};
 
 // The window evaluators, chosen once per reseed() / polish() call: exact_search_kernel.h's (SSE2
 // through simd.h, or scalar) or exact_search_avx2.cpp's where polish_avx2_active(). Same integers.
-// Alpha-weighted colour error (`weighted`) has baseline evaluators only.
+// kWeighted: alpha-weighted colour error, which has baseline evaluators only (a template flag, so
+// that the unweighted search runs the code it ran before the option existed).
+template <bool kWeighted>
 struct Evaluators {
-  explicit Evaluators(bool weighted_)
-      : avx2(!weighted_ && polish_avx2_active()), weighted(weighted_) {}
-  bool avx2;
-  bool weighted;
+  bool avx2 = !kWeighted && polish_avx2_active();
   std::uint32_t local(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
                       std::uint32_t bound) const {
-    if (weighted) return local_error_weighted(lw, a, b, bound);
+    if constexpr (kWeighted) return local_error_weighted(lw, a, b, bound);
     if (!avx2) return local_error_simd(lw, a, b, bound);
     const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
     return local_error_avx2(lw, va, vb, bound);
@@ -63,21 +62,17 @@ struct Evaluators {
       const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
       return local_error_store_avx2(lw, va, vb, texel_err);
     }
-    if (weighted) return local_error_simd_t<true, true, true>(lw, a, b, 0, texel_err);
+    if constexpr (kWeighted) return local_error_simd_t<true, true, true>(lw, a, b, 0, texel_err);
     return lw.nch == 4 ? local_error_simd_t<true, true>(lw, a, b, 0, texel_err)
                        : local_error_simd_t<false, true>(lw, a, b, 0, texel_err);
   }
   std::uint32_t planar(const PlanarWindow& pw, int c, std::int32_t av, std::int32_t bv,
                        std::uint32_t bound) const {
-    if (weighted) return planar_error_t<true>(pw, c, av, bv, bound);
+    if constexpr (kWeighted) return planar_error_t<true>(pw, c, av, bv, bound);
     return avx2 ? planar_error_avx2(pw, c, av, bv, bound) : planar_error(pw, c, av, bv, bound);
   }
   void refresh(PlanarWindow& pw, const Rgba5& a, const Rgba5& b) const {
-    if (weighted) {
-      planar_refresh_t<true>(pw, a, b);
-    } else {
-      planar_refresh(pw, a, b);
-    }
+    planar_refresh_t<kWeighted>(pw, a, b);
   }
 };
 
@@ -170,6 +165,7 @@ struct OwnTable {
 };
 constexpr OwnTable kOwnTable;
 
+template <bool kWeighted>
 void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
   using simd::vu16x8;
   const EncoderState& s = *w.s;
@@ -177,8 +173,8 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
   const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
   lw.nch = w.nch;
   lw.punch = s.punch;
-  lw.weighted = s.weighted();
-  TESSERA_DCHECK(!lw.weighted || lw.nch == 4);  // weights only in alpha mode
+  lw.weighted = kWeighted;
+  TESSERA_DCHECK(kWeighted == s.weighted() && (!kWeighted || lw.nch == 4));  // alpha mode only
   for (int c = 0; c < 8; ++c) lw.weight16[c] = std::uint16_t((c & 3) == 3 ? w.alpha_weight : 1);
   // The 3x3 blocks around j (wrapping) that the window's texels read: A in lanes 0-3, B in
   // lanes 4-7 (channels past nch zero); block j itself (also where the wrap lands on it) is
@@ -251,7 +247,7 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
         const std::uint16_t t4[4] = {t[0], t[1], t[2], std::uint16_t(t[3] & amask)};
         std::memcpy(lw.t16[k], t4, 8);
       }
-      if (lw.weighted) {
+      if constexpr (kWeighted) {
         const std::uint16_t sc =
             s.colour_scale[std::size_t(y) * std::size_t(g.pw) + std::size_t(x)];
         const std::uint16_t sc4[4] = {sc, sc, sc, 16};
@@ -273,7 +269,7 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
   for (int q = 49; q < 56; ++q) {  // texels 49-55: the zero pad (error 0)
     for (int c = 0; c < 4; ++c) {
       lw.rest16_a[q][c] = lw.rest16_b[q][c] = lw.own16[q][c] = lw.t16[q][c] = 0;
-      if (lw.weighted) lw.scale16[q][c] = 0;
+      if constexpr (kWeighted) lw.scale16[q][c] = 0;
     }
   }
   for (int c = 2; c < 4; ++c) {
@@ -290,7 +286,8 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
 // (a, b), the block's current endpoints, so that a worse candidate reaches the bound after
 // fewer texels; returns the window's error under (a, b). A window whose error is at most
 // `min_error` will not be searched and is left as it is.
-std::uint32_t order_local(const Evaluators& ev, LocalWindow& lw, const Rgba5& a, const Rgba5& b,
+template <class Ev>
+std::uint32_t order_local(const Ev& ev, LocalWindow& lw, const Rgba5& a, const Rgba5& b,
                           std::uint32_t min_error) {
   std::uint32_t err[52];
   const std::uint32_t total = ev.local_store(lw, a, b, err);
@@ -314,10 +311,12 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
   return reseed(s, min_error, changed, 1);
 }
 
-int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& changed,
-           int alpha_weight) {
+namespace {
+
+template <bool kWeighted>
+int reseed_t(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& changed,
+             int alpha_weight) {
   const Grid& g = s.g;
-  if (g.format != Format::pvrtc1_4bpp) return 0;
   std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
   for (std::size_t i = 0; i < g.blocks(); ++i) {
     ea[i] = expand_a(s.ca[i]);
@@ -342,12 +341,12 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
     }
   }
   changed.assign(g.blocks(), 0);
-  const Evaluators ev(s.weighted());
+  const Evaluators<kWeighted> ev;
   for_each_block_2x2(g, s.threads, [&](int bx, int by) {
     const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
     if (!active[j]) return;
     LocalWindow lw;
-    build_local(w, bx, by, lw);
+    build_local<kWeighted>(w, bx, by, lw);
     auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
       return ev.local(lw, a, b, bound);
     };
@@ -375,6 +374,15 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
   return count;
 }
 
+}  // namespace
+
+int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& changed,
+           int alpha_weight) {
+  if (s.g.format != Format::pvrtc1_4bpp) return 0;
+  return s.weighted() ? reseed_t<true>(s, min_error, changed, alpha_weight)
+                      : reseed_t<false>(s, min_error, changed, alpha_weight);
+}
+
 bool polish_avx2_active() {
 #if defined(TESSERA_NO_SIMD)
   return false;  // the scalar build stays scalar (the AVX2 kernels are still built and tested)
@@ -389,10 +397,12 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
   polish(s, rounds, passes, min_error, PolishOptions{});
 }
 
-void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
-            const PolishOptions& options) {
+namespace {
+
+template <bool kWeighted>
+void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
+              const PolishOptions& options) {
   const Grid& g = s.g;
-  if (g.format != Format::pvrtc1_4bpp || rounds <= 0) return;
   std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
   for (std::size_t i = 0; i < g.blocks(); ++i) {
     ea[i] = expand_a(s.ca[i]);
@@ -411,7 +421,7 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
       if (!(*options.seeds)[j]) searched_at[j] = 0;
     }
   }
-  const Evaluators ev(s.weighted());
+  const Evaluators<kWeighted> ev;
   double searched_total = 0, searched_before = 0;  // for the progress reports
   for (int round = 0; round < rounds; ++round) {
     std::vector<std::uint8_t> any_change(std::size_t(g.nby / 2), 0);
@@ -430,7 +440,7 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
       if (latest < searched_at[j]) return;
       searched_at[j] = step;
       LocalWindow lw;
-      build_local(w, bx, by, lw);
+      build_local<kWeighted>(w, bx, by, lw);
       std::uint16_t cur_a = s.ca[j], cur_b = s.cb[j];
       std::uint32_t best = order_local(ev, lw, ea[j], eb[j], min_error);
       if (best <= min_error) return;
@@ -533,6 +543,18 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
   // The windows were scored with every texel's best code within its block's mode: re-choosing
   // the modulation (and mode) of every block reproduces or improves on that.
   choose_modulation(s);
+}
+
+}  // namespace
+
+void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
+            const PolishOptions& options) {
+  if (s.g.format != Format::pvrtc1_4bpp || rounds <= 0) return;
+  if (s.weighted()) {
+    polish_t<true>(s, rounds, passes, min_error, options);
+  } else {
+    polish_t<false>(s, rounds, passes, min_error, options);
+  }
 }
 
 }  // namespace tessera::pvrtc::detail
