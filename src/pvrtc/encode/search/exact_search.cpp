@@ -20,7 +20,8 @@
 // that changes one colour channel only is scored channel-planar from the other channels' per-blend
 // errors (exact_search_kernel.h), and a pair already met in the visit is not scored again. Where
 // the CPU has AVX2 both evaluators run twice the texels a step (exact_search_avx2.cpp; the same
-// integers).
+// integers). With alpha-weighted colour error (EncodeOptions::alpha_weighted) the windows carry
+// each texel's colour scale and the baseline evaluators scale its colour differences by it.
 #include <algorithm>
 #include <atomic>
 #include <bit>
