@@ -8,12 +8,10 @@ Usage (from the repository root):
 Alpha table: RGBA textures with transparent regions, PVRTC1 4 bpp. The error a blending
 renderer shows is that of colour x alpha, so the table gives `tessera compare --premultiplied`
 (PSNR of colour x alpha, peak 255) and the alpha PSNR, each decode against the original:
-  * tessera --quality normal / high, without and with --alpha-bleed;
-  * a probe of weighting colour error by alpha: `high` re-encoded twice with every fully
-    transparent texel's colour set to what the previous encode decoded it to, so that those
-    texels cost nothing where the encoder starts (an upper bound on what giving them weight 0
-    would gain over --alpha-bleed);
+  * tessera --quality normal / high, each without options, with --alpha-bleed, with
+    --alpha-weighted (colour error weighted by alpha) and with both;
   * PVRTexToolCLI -q pvrtcnormal / pvrtcbest, without and with -l (its alpha bleed).
+The configurations are the table's rows, the images its columns.
 Images: ldr-rgba-00 (foliage, 256x256), ldr-rgba-base (1024x1024, cropped to its 512x512
 top-left quarter), and sprites made here from the shared photographs: `logo` (strokes on
 transparent black, 84 % transparent), `disc` (ldr-rgb-03 under a soft disc, 69 % transparent,
@@ -136,20 +134,6 @@ def pvrtextool_decode(tool, png, quality, extra, tmp):
     return dec
 
 
-def weight_probe(tessera, png, tmp):
-    """`high` re-encoded with transparent texels given their previous decode (see the doc)."""
-    src = np.asarray(Image.open(png).convert("RGBA")).astype(int)
-    invisible = src[..., 3] == 0
-    dec = tessera_decode(tessera, png, ["--quality", "high", "--alpha-bleed"], tmp)
-    for _ in range(2):
-        d = np.asarray(Image.open(dec).convert("RGBA")).astype(int)
-        cur = src.copy()
-        cur[..., :3] = np.where(invisible[..., None], d[..., :3], src[..., :3])
-        probe = save(os.path.join(tmp, "probe.png"), cur)
-        dec = tessera_decode(tessera, probe, ["--quality", "high"], tmp)
-    return dec
-
-
 def fmt(v):
     return "∞" if v is None else f"{v:.2f}"
 
@@ -164,11 +148,12 @@ def main():
     args = ap.parse_args()
     tmp = tempfile.mkdtemp(prefix="tessera-assets-bench-")
 
-    alpha_cols = [("tessera normal", "t", ["--quality", "normal"]),
-                  ("tessera normal --alpha-bleed", "t", ["--quality", "normal", "--alpha-bleed"]),
-                  ("tessera high", "t", ["--quality", "high"]),
-                  ("tessera high --alpha-bleed", "t", ["--quality", "high", "--alpha-bleed"]),
-                  ("probe: high, weight 0", "probe", None),
+    alpha_cols = []
+    for q in ("normal", "high"):
+        for extra in ([], ["--alpha-bleed"], ["--alpha-weighted"],
+                      ["--alpha-bleed", "--alpha-weighted"]):
+            alpha_cols.append((" ".join(["tessera", q, *extra]), "t", ["--quality", q, *extra]))
+    alpha_cols += [
                   ("PVRTexTool pvrtcnormal", "p", ("pvrtcnormal", [])),
                   ("PVRTexTool pvrtcnormal -l", "p", ("pvrtcnormal", ["-l"])),
                   ("PVRTexTool pvrtcbest", "p", ("pvrtcbest", [])),
@@ -182,13 +167,11 @@ def main():
         for label, kind, spec in alpha_cols:
             if kind == "t":
                 dec = tessera_decode(args.tessera, png, spec, tmp)
-            elif kind == "probe":
-                dec = weight_probe(args.tessera, png, tmp)
             else:
                 dec = pvrtextool_decode(args.pvrtextool, png, spec[0], spec[1], tmp)
             c = compare(args.tessera, png, dec, "--premultiplied")
             cells.append((c["psnr_premultiplied"], c.get("psnr_alpha")))
-            print(f"{name:28s} {label:30s} premultiplied {fmt(cells[-1][0])} alpha {fmt(cells[-1][1])}",
+            print(f"{name:28s} {label:45s} premultiplied {fmt(cells[-1][0])} alpha {fmt(cells[-1][1])}",
                   flush=True)
         a = np.asarray(Image.open(png).convert("RGBA"))[..., 3]
         alpha_rows.append((name, float((a == 0).mean()), cells))
@@ -226,21 +209,20 @@ def main():
         "## Alpha: the colour a blending renderer shows",
         "",
         "Cells: PSNR of colour x alpha (`tessera compare --premultiplied`, dB) / alpha PSNR (dB), "
-        "each decode against the original. \"probe\" is not an option of tessera: `high` "
-        "re-encoded twice with the fully transparent texels' colour set to the previous decode, "
-        "an upper bound on weighting them 0 (see the script).",
+        "each decode against the original; the last column is the mean of colour x alpha. "
+        "The header gives each image's share of fully transparent texels.",
         "",
-        "| image | transparent | " + " | ".join(c[0] for c in alpha_cols) + " |",
-        "|---|---:|" + "---:|" * len(alpha_cols),
+        "| encoder, options | " +
+        " | ".join(f"{name} ({100 * transparent:.0f} %)" for name, transparent, _ in alpha_rows) +
+        " | mean |",
+        "|---|" + "---:|" * (len(alpha_rows) + 1),
     ]
-    for name, transparent, cells in alpha_rows:
-        lines.append(f"| {name} | {100 * transparent:.0f} % | " +
-                     " | ".join(f"{fmt(p)} / {fmt(a)}" for p, a in cells) + " |")
-    means = []
-    for k in range(len(alpha_cols)):
+    for k, (label, _, _) in enumerate(alpha_cols):
         vals = [r[2][k][0] for r in alpha_rows if r[2][k][0] is not None]
-        means.append(sum(vals) / len(vals) if vals else None)
-    lines.append("| **mean (colour x alpha)** | | " + " | ".join(f"**{fmt(m)}**" for m in means) + " |")
+        mean = sum(vals) / len(vals) if vals else None
+        lines.append(f"| {label} | " + " | ".join(f"{fmt(r[2][k][0])} / {fmt(r[2][k][1])}"
+                                                 for r in alpha_rows) +
+                     f" | {fmt(mean)} |")
     lines += [
         "",
         "## Normal maps: the angle a renormalising renderer sees",

@@ -23,8 +23,10 @@
 //                      (as RGB: its alpha is 255 throughout);
 //   procedural bricks, text (RGB) and foliage (RGBA): hard edges, thin strokes, alpha edges;
 // plus a 32x128 non-square noise image (the Morton order's surplus bits) and an 8x8 one
-// (smaller than 2x2 blocks: padded). 66 encodings in all: each source at 4 and 2 bpp, fast /
-// normal / high, as RGB and, where it has alpha (ldr-rgba-00, foliage), as RGBA.
+// (smaller than 2x2 blocks: padded). 70 encodings in all: each source at 4 and 2 bpp, fast /
+// normal / high, as RGB and, where it has alpha (ldr-rgba-00, foliage), as RGBA; and those two
+// as RGBA at 4 bpp normal and high with EncodeOptions::alpha_weighted (its kernels run on the
+// baseline path only, so every backend must agree there too).
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -140,10 +142,13 @@ int main(int argc, char** argv) {
     for (const bool alpha : {false, true}) {
       if (alpha && !s.image.has_alpha) continue;
       for (const pvrtc::Format format : kFormats) {
-        for (int q = 0; q < 3; ++q) {
+        // q 3, 4: 4 bpp RGBA normal / high with alpha-weighted colour error.
+        const int qualities = alpha && format == pvrtc::Format::pvrtc1_4bpp ? 5 : 3;
+        for (int q = 0; q < qualities; ++q) {
           pvrtc::EncodeOptions options;
           options.format = format;
-          options.quality = kQualities[q];
+          options.quality = kQualities[q < 3 ? q : q - 2];
+          options.alpha_weighted = q >= 3;
           options.normal_map = s.normal_map;
           ImageRGBA8 input = s.image;
           input.has_alpha = alpha;
@@ -161,7 +166,8 @@ int main(int argc, char** argv) {
           }
           const std::string name = out + "/" + s.name + (alpha ? ".rgba." : ".rgb.") +
                                    (format == pvrtc::Format::pvrtc1_4bpp ? "4bpp." : "2bpp.") +
-                                   kQualityNames[q];
+                                   kQualityNames[q < 3 ? q : q - 2] +
+                                   (q >= 3 ? ".weighted" : "");
           if (!write(name + ".pvrtc", bytes.value()) ||
               !write(name + ".decoded.rgba", decoded.value().pixels)) {
             std::fprintf(stderr, "cannot write %s\n", name.c_str());

@@ -127,6 +127,12 @@ def main():
                                           bad_out], 2, "--normal-map and --srgb")
     expect_error(run, "bleed premultiply", ["compress", faces[0], "--alpha-bleed", "--premultiply",
                                             "-o", bad_out], 2, "--alpha-bleed and --premultiply")
+    expect_error(run, "weighted premultiply", ["compress", faces[0], "--alpha-weighted",
+                                               "--premultiply", "-o", bad_out], 2,
+                 "--alpha-weighted and --premultiply")
+    expect_error(run, "weighted 2 bpp", ["compress", faces[0], "--alpha-weighted", "--format",
+                                         "pvrtc1-2", "-o", bad_out], 2,
+                 "--alpha-weighted and --format pvrtc1-2")
     expect_error(run, "mip filter without mips", ["compress", faces[0], "--mip-filter", "kaiser",
                                                   "-o", bad_out], 2, "--mip-filter kaiser needs")
     expect_error(run, "zstd to pvr", ["compress", faces[0], "--zstd", "5", "-o", bad_out], 2,
@@ -160,6 +166,19 @@ def main():
     b_bytes = open(os.path.join(tmp, "pre.pvr"), "rb").read()
     check("premultiplied blocks", a_bytes[52:] == b_bytes[52:] and a_bytes[4] == 2
           and b_bytes[4] == 0, (a_bytes[:8], b_bytes[:8]))
+    # --alpha-weighted: RGB input has nothing to weigh by (same bytes); on a sprite with
+    # transparent texels it changes the texture, and it is recorded in the sidecar.
+    for src, same in ((faces[0], True), (sprite, False)):
+        plain, weighted = os.path.join(tmp, "aw0.pvr"), os.path.join(tmp, "aw1.pvr")
+        ok("plain " + src, "compress", src, "-o", plain, "-q")
+        ok("alpha-weighted " + src, "compress", src, "--alpha-weighted", "-o", weighted, "-q")
+        check("alpha-weighted " + ("same" if same else "differs") + " " + src,
+              (open(plain, "rb").read() == open(weighted, "rb").read()) == same)
+    ok("alpha-weighted sidecar", "compress", sprite, "--alpha-weighted", "--skip-up-to-date",
+       "-o", os.path.join(tmp, "aw2.pvr"), "-q")
+    with open(os.path.join(tmp, "aw2.pvr.json")) as f:
+        recorded = json.load(f)["options"]
+    check("sidecar records alpha_weighted", recorded.get("alpha_weighted") is True, recorded)
     # Flip: the flipped encode of a flipped image is the plain encode flipped back... texel for
     # texel only up to PVRTC's wrap-around, so compare against compressing the flipped PNG.
     flipped = save(os.path.join(tmp, "flipped.png"), pattern(32, 2)[::-1])

@@ -5,10 +5,13 @@
 // normal and high, 2 bpp high) with and without them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <random>
 #include <vector>
 
+#include "pvrtc/encode/encode_internal.h"
 #include "pvrtc/encode/search/exact_search_kernel.h"
 #include "pvrtc/format/pvrtc_internal.h"
 #include "tessera/procedural.h"
@@ -126,6 +129,122 @@ TEST(PvrtcPolishKernel, PlanarMatchesGeneralRgb) { check_windows(3, false, 1, 1)
 TEST(PvrtcPolishKernel, PlanarMatchesGeneralRgba) { check_windows(4, false, 2, 2); }
 TEST(PvrtcPolishKernel, PlanarMatchesGeneralRgbaPunchThrough) { check_windows(4, true, 2, 3); }
 TEST(PvrtcPolishKernel, PlanarMatchesGeneralRgbaWeight1) { check_windows(4, true, 1, 4); }
+
+// Alpha-weighted colour error (EncodeOptions::alpha_weighted): the vector scaling is the
+// scalar `scale_diff` for every difference and scale; scale 16 everywhere gives the unweighted
+// errors, scale 0 everywhere the alpha error alone; and the planar evaluator agrees with the
+// general one under random scales, bounded or not.
+TEST(PvrtcPolishKernel, ScaleDiffMatchesScalar) {
+  for (int sc = 0; sc <= 16; ++sc) {
+    for (int d0 = -255; d0 <= 255; d0 += 8) {
+      alignas(16) std::uint16_t d[8], out[8];
+      for (int i = 0; i < 8; ++i) d[i] = std::uint16_t(std::min(d0 + i, 255));
+      simd::store_u16x8(scale_diff16(simd::load_u16x8(d), simd::vu16x8(std::uint16_t(sc))), out);
+      for (int i = 0; i < 8; ++i) {
+        const int di = std::min(d0 + i, 255);
+        const int want = scale_diff(di, sc);
+        ASSERT_EQ(std::int16_t(out[i]), want) << "d " << di << " scale " << sc;
+        ASSERT_LE(std::abs(want), std::abs(di));
+        if (sc == 16) {
+          ASSERT_EQ(want, di);
+        }
+      }
+    }
+  }
+}
+
+void set_scales(LocalWindow& lw, std::mt19937& rng, int fixed) {
+  lw.weighted = true;
+  for (int k = 0; k < 56; ++k) {
+    const auto sc = std::uint16_t(k >= 49 ? 0 : fixed >= 0 ? fixed : int(rng() % 17));
+    for (int c = 0; c < 3; ++c) lw.scale16[k][c] = sc;
+    lw.scale16[k][3] = 16;
+  }
+}
+
+TEST(PvrtcPolishKernel, WeightedScalesSixteenAreUnweighted) {
+  std::mt19937 rng(21);
+  for (int w = 0; w < 30; ++w) {
+    LocalWindow lw;
+    random_window(rng, 4, w % 2 == 0, 2, lw, w % 3 == 0);
+    LocalWindow weighted = lw;
+    set_scales(weighted, rng, 16);
+    const Rgba5 a = random_pair_end(rng, 4), b = random_pair_end(rng, 4);
+    EXPECT_EQ(local_error_weighted(weighted, a, b, ~0u), local_error_simd(lw, a, b, ~0u));
+    PlanarWindow p0, p1;
+    build_planar(lw, p0);
+    build_planar(weighted, p1);
+    planar_refresh(p0, a, b);
+    planar_refresh_t<true>(p1, a, b);
+    for (int c = 0; c < 3; ++c) {
+      planar_rest(p0, c);
+      planar_rest(p1, c);
+      const int v = int(rng() % 32);
+      EXPECT_EQ(planar_error_t<true>(p1, c, v, v, ~0u), planar_error(p0, c, v, v, ~0u));
+    }
+  }
+}
+
+TEST(PvrtcPolishKernel, WeightedScaleZeroIsAlphaAlone) {
+  std::mt19937 rng(22);
+  for (int w = 0; w < 30; ++w) {
+    LocalWindow lw;
+    random_window(rng, 4, true, 2, lw);
+    LocalWindow weighted = lw;
+    set_scales(weighted, rng, 0);
+    LocalWindow alpha_only = lw;  // colour lanes zero: every colour difference 0
+    for (int k = 0; k < 56; ++k) {
+      for (int c = 0; c < 3; ++c) {
+        alpha_only.rest16_a[k][c] = alpha_only.rest16_b[k][c] = alpha_only.t16[k][c] = 0;
+      }
+    }
+    const Rgba5 a = random_pair_end(rng, 4), b = random_pair_end(rng, 4);
+    EXPECT_EQ(local_error_weighted(weighted, a, b, ~0u),
+              local_error_simd(alpha_only, Rgba5{0, 0, 0, a.a}, Rgba5{0, 0, 0, b.a}, ~0u));
+  }
+}
+
+TEST(PvrtcPolishKernel, WeightedPlanarMatchesGeneral) {
+  std::mt19937 rng(23);
+  for (int w = 0; w < 40; ++w) {
+    SCOPED_TRACE(testing::Message() << "window " << w);
+    LocalWindow lw;
+    random_window(rng, 4, w % 2 == 0, 2, lw, w % 4 == 0);
+    set_scales(lw, rng, -1);
+    PlanarWindow pw;
+    build_planar(lw, pw);
+    const Rgba5 a = random_pair_end(rng, 4), b = random_pair_end(rng, 4);
+    planar_refresh_t<true>(pw, a, b);
+    for (int c = 0; c < 3; ++c) planar_rest(pw, c);
+    for (int k = 0; k < 30; ++k) {
+      const int c = int(rng() % 3);
+      Rgba5 ca = a, cb = b;
+      if (k > 0) {
+        channel(ca, c) = int(rng() % 32);
+        channel(cb, c) = int(rng() % 32);
+      }
+      const std::uint32_t exact = local_error_weighted(lw, ca, cb, ~0u);
+      ASSERT_EQ(planar_error_t<true>(pw, c, channel(ca, c), channel(cb, c), ~0u), exact);
+      for (const std::uint32_t bound : {exact / 3, exact, exact + 1}) {
+        const std::uint32_t p = planar_error_t<true>(pw, c, channel(ca, c), channel(cb, c), bound);
+        const std::uint32_t g = local_error_weighted(lw, ca, cb, bound);
+        if (exact < bound) {
+          EXPECT_EQ(p, exact);
+          EXPECT_EQ(g, exact);
+        } else {
+          EXPECT_GE(p, bound);
+          EXPECT_GE(g, bound);
+        }
+      }
+    }
+    std::uint32_t texel[52];
+    const std::uint32_t total = local_error_simd_t<true, true, true>(lw, a, b, 0, texel);
+    std::uint32_t sum = 0;
+    for (int i = 0; i < 49; ++i) sum += texel[i];
+    EXPECT_EQ(sum, total);
+    EXPECT_EQ(total, local_error_weighted(lw, a, b, ~0u));
+  }
+}
 
 TEST(PvrtcPolishKernel, SingleColourChannel) {
   const Rgba5 a{10, 11, 12, 13}, b{20, 21, 22, 14};

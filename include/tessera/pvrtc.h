@@ -106,6 +106,15 @@ struct EncodeOptions {
   /// by the angle between its decoded vector and the input's (what a renderer that
   /// renormalises sees): 4 bpp, and 2 bpp blocks in direct mode. Never raises a texel's angle.
   bool normal_map = false;
+  /// 4 bpp, straight alpha: the encoder weights each texel's colour error (R, G, B) by its
+  /// alpha, about what a blending renderer shows (colour x alpha: each colour difference scaled
+  /// by alpha / 255, quantised to sixteenths, at least 3/16; alpha error keeps its weight), so
+  /// few bits go to the colour of invisible texels (best with --alpha-bleed, which gives them
+  /// the nearest visible colour). Opaque texels weigh what they weigh without it, so a fully
+  /// opaque image encodes to the same bytes. Only for RGBA input (`has_alpha` or `force_alpha`;
+  /// otherwise it changes nothing). With `Format::pvrtc1_2bpp` `encode` fails with
+  /// invalid_argument. Meant for straight alpha: premultiplied colour already carries alpha.
+  bool alpha_weighted = false;
   int threads = 0;
   /// Optional progress hook: called with the fraction of this encode done, from the thread
   /// that called `encode` only (never from a worker), between the encoder's passes, sweeps and

@@ -44,6 +44,15 @@ Result<texture_file::CompressOptions> compress_options(const CompressKeywords& k
         "alpha_bleed and premultiply: bleeding is for straight alpha (premultiplied "
         "transparent texels are black already)");
   }
+  if (k.alpha_weighted && k.premultiply) {
+    return bad(
+        "alpha_weighted and premultiply: weighting is for straight alpha (premultiplied "
+        "colour carries alpha already)");
+  }
+  if (k.alpha_weighted && k.format == "pvrtc1-2") {
+    return bad(
+        "alpha_weighted and format='pvrtc1-2': alpha-weighted colour error is for 4 bpp only");
+  }
   if (k.mip_filter != "box" && !k.mipmaps && k.mip_levels == 0) {
     return bad("mip_filter='" + k.mip_filter + "' needs mipmaps=True or mip_levels=N");
   }
@@ -66,6 +75,7 @@ Result<texture_file::CompressOptions> compress_options(const CompressKeywords& k
   o.flip_y = k.flip_y;
   o.premultiply = k.premultiply;
   o.alpha_bleed = k.alpha_bleed;
+  o.encode.alpha_weighted = k.alpha_weighted;
   o.normal_map = k.normal_map;
   return o;
 }

@@ -24,6 +24,7 @@ struct CompressKeywords {
   bool flip_y = false;
   bool premultiply = false;
   bool alpha_bleed = false;
+  bool alpha_weighted = false;  ///< As --alpha-weighted (4 bpp, straight alpha).
   bool normal_map = false;
   int threads = 0;  ///< As -j: 0 = all hardware threads.
 };

@@ -57,7 +57,8 @@ auto with_encode_keywords(Fn fn) {
   return [fn](const First& x, const std::string& format, const std::string& quality, bool mipmaps,
               bool srgb, int threads, int iterations, int exact_search_rounds, bool resize_pot,
               int mip_levels, const std::string& mip_filter, bool flip_y, bool premultiply,
-              bool alpha_bleed, bool normal_map, bool cube, bool array, const Extra&... extra) {
+              bool alpha_bleed, bool alpha_weighted, bool normal_map, bool cube, bool array,
+              const Extra&... extra) {
     EncodeKeywords k;
     k.options.format = format;
     k.options.quality = quality;
@@ -72,6 +73,7 @@ auto with_encode_keywords(Fn fn) {
     k.options.flip_y = flip_y;
     k.options.premultiply = premultiply;
     k.options.alpha_bleed = alpha_bleed;
+    k.options.alpha_weighted = alpha_weighted;
     k.options.normal_map = normal_map;
     k.cube = cube;
     k.array = array;
@@ -85,7 +87,8 @@ auto encode_keyword_args() {
       "format"_a = "pvrtc1-4", "quality"_a = "normal", "mipmaps"_a = false, "srgb"_a = false,
       "threads"_a = 0, "iterations"_a = -1, "exact_search_rounds"_a = 0, "resize_pot"_a = false,
       "mip_levels"_a = 0, "mip_filter"_a = "box", "flip_y"_a = false, "premultiply"_a = false,
-      "alpha_bleed"_a = false, "normal_map"_a = false, "cube"_a = false, "array"_a = false);
+      "alpha_bleed"_a = false, "alpha_weighted"_a = false, "normal_map"_a = false,
+      "cube"_a = false, "array"_a = false);
 }
 
 /// m.def(name, f, doc, first, *, the encode keywords, extra...).
@@ -267,7 +270,9 @@ linear light), threads (-j; 0 = all; output is the same for any value), iteratio
 exact_search_rounds (0..1000), resize_pot (resample non-power-of-two sides with Lanczos-3),
 flip_y (flip upside down first), premultiply (colour x alpha, the texture marked premultiplied;
 an image without alpha warns with a UserWarning and is left as it is), alpha_bleed (give fully
-transparent texels the nearest visible colour; not with premultiply), normal_map (RGB holds unit
+transparent texels the nearest visible colour; not with premultiply), alpha_weighted (4 bpp,
+straight alpha: colour error weighted by alpha, no bits spent on invisible colour; not with
+premultiply or format 'pvrtc1-2'), normal_map (RGB holds unit
 vectors: modulation chosen by angle, mips averaged as vectors; not with srgb), cube (6 faces per
 layer), array (layers). `name` names the image(s) in messages ("<array>[2]" for the third).
 Serialising the result gives the CLI's bytes. The GIL is released while encoding: do not write

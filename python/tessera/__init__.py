@@ -25,11 +25,12 @@ premultiplied or bled alpha, normal maps, KTX 2.0 with Zstandard::
     tessera.compare(nrm, tessera.decode(normals), normal=True)["angular_error_mean_deg"]
 
 * ``encode(x, *, format, quality, mipmaps, srgb, threads, iterations, exact_search_rounds,
-  resize_pot, mip_levels, mip_filter, flip_y, premultiply, alpha_bleed, normal_map, cube, array,
-  name)`` -> ``Texture``: ``x`` is one (H, W, 3|4) uint8 array, or with ``cube`` / ``array`` a
-  (6, H, W, C) / (L, H, W, C) / (L, 6, H, W, C) array (or (6L, H, W, C)), or a list of (H, W, C)
-  arrays, layer-major then face. ``encode_file(path, ...)`` reads the image with tessera's reader
-  first (exactly ``tessera compress PATH``); with ``cube`` / ``array`` it takes a list of paths.
+  resize_pot, mip_levels, mip_filter, flip_y, premultiply, alpha_bleed, alpha_weighted,
+  normal_map, cube, array, name)`` -> ``Texture``: ``x`` is one (H, W, 3|4) uint8 array, or
+  with ``cube`` / ``array`` a (6, H, W, C) / (L, H, W, C) / (L, 6, H, W, C) array (or
+  (6L, H, W, C)), or a list of (H, W, C) arrays, layer-major then face.
+  ``encode_file(path, ...)`` reads the image with tessera's reader first (exactly
+  ``tessera compress PATH``); with ``cube`` / ``array`` it takes a list of paths.
   The keywords are the CLI's options (``ENCODE_DEFAULTS``); ``premultiply`` on an image without
   alpha warns (``UserWarning``) and leaves it as it is, as the CLI does.
 * ``Texture``: ``width``, ``height``, ``format`` ('pvrtc1-4' / 'pvrtc1-2'), ``srgb``,
@@ -88,6 +89,7 @@ ENCODE_DEFAULTS = {
     "flip_y": False,
     "premultiply": False,
     "alpha_bleed": False,
+    "alpha_weighted": False,
     "normal_map": False,
 }
 

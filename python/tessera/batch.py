@@ -3,7 +3,8 @@
     python3 -m tessera.batch SRC DST [--scheduler ADDRESS] [--workers N] [--format pvrtc1-4]
                              [--quality normal] [--container pvr|ktx|ktx2] [--zstd LEVEL]
                              [--mipmaps] [--mip-levels N] [--mip-filter box|lanczos|kaiser]
-                             [--srgb] [--flip-y] [--premultiply] [--alpha-bleed] [--normal-map] ...
+                             [--srgb] [--flip-y] [--premultiply] [--alpha-bleed] [--alpha-weighted]
+                             [--normal-map] ...
 
 Every image under SRC (recursively: .png, .jpg, .jpeg, .tga, .bmp, any case) becomes
 DST/<same relative folder>/<stem>.pvr (or .ktx, .ktx2), byte-identical to
@@ -73,7 +74,8 @@ _SIDECAR_OPTIONS = ("exact_search_rounds", "format", "iterations", "mipmaps", "q
                     "resize_pot", "srgb")
 _TYPES = {"format": str, "quality": str, "mipmaps": bool, "srgb": bool, "iterations": int,
           "exact_search_rounds": int, "resize_pot": bool, "mip_levels": int, "mip_filter": str,
-          "flip_y": bool, "premultiply": bool, "alpha_bleed": bool, "normal_map": bool}
+          "flip_y": bool, "premultiply": bool, "alpha_bleed": bool, "alpha_weighted": bool,
+          "normal_map": bool}
 
 
 def _flag(keyword):
@@ -89,6 +91,13 @@ def _usage_problem(o, container, zstd, flags):
     if o["premultiply"] and o["alpha_bleed"]:
         return (f"{n('alpha_bleed')} and {n('premultiply')}: bleeding is for straight alpha "
                 "(premultiplied transparent texels are black already)")
+    if o["alpha_weighted"] and o["premultiply"]:
+        return (f"{n('alpha_weighted')} and {n('premultiply')}: weighting is for straight alpha "
+                "(premultiplied colour carries alpha already)")
+    if o["alpha_weighted"] and o["format"] == "pvrtc1-2":
+        fmt = "--format pvrtc1-2" if flags else "format='pvrtc1-2'"
+        return (f"{n('alpha_weighted')} and {fmt}: alpha-weighted colour error is for 4 bpp "
+                "only")
     if o["mip_filter"] != "box" and not o["mipmaps"] and not o["mip_levels"]:
         if flags:
             return f"--mip-filter {o['mip_filter']} needs --mipmaps or --mip-levels N"
@@ -309,7 +318,8 @@ def compress_tree(src, dst, *, scheduler=None, workers=None, client=None, contai
     else a LocalCluster of `workers` single-threaded processes, closed at the end. `container`
     'pvr', 'ktx' or 'ktx2' (`zstd`: its Zstandard level, 1-22, 0 = none, as --zstd); `options`
     are encode's keywords (format, quality, mipmaps, mip_levels, mip_filter, srgb, iterations,
-    exact_search_rounds, resize_pot, flip_y, premultiply, alpha_bleed, normal_map: see
+    exact_search_rounds, resize_pot, flip_y, premultiply, alpha_bleed, alpha_weighted,
+    normal_map: see
     tessera.ENCODE_DEFAULTS; not cube / array); `threads` is the encoder's thread count per
     task; `files_per_task` the files of one Dask task (None: `group_jobs`'s guided groups,
     weighted by input bytes).
@@ -444,6 +454,8 @@ def main(argv=None):
                    help="multiply colour by alpha and mark the textures premultiplied")
     p.add_argument("--alpha-bleed", action="store_true",
                    help="give fully transparent texels the colour of the nearest visible one")
+    p.add_argument("--alpha-weighted", action="store_true",
+                   help="4 bpp: weight colour error by alpha (no bits on invisible colour)")
     p.add_argument("--normal-map", action="store_true",
                    help="the images are normal maps (vectors: renormalised mips; never sRGB)")
     p.add_argument("--force", action="store_true", help="recompress up-to-date outputs too")

@@ -36,6 +36,9 @@ KEYWORD_CASES = [
      "rgba"),
     (["--alpha-bleed"], dict(alpha_bleed=True), "rgba"),
     (["--alpha-bleed", "--mip-levels", "3"], dict(alpha_bleed=True, mip_levels=3), "rgba"),
+    (["--alpha-weighted"], dict(alpha_weighted=True), "rgba"),
+    (["--alpha-bleed", "--alpha-weighted", "--mipmaps"],
+     dict(alpha_bleed=True, alpha_weighted=True, mipmaps=True), "rgba"),
     (["--normal-map"], dict(normal_map=True), "normal"),
     (["--normal-map", "--mipmaps", "--format", "pvrtc1-2"],
      dict(normal_map=True, mipmaps=True, format="pvrtc1-2"), "normal"),
@@ -64,7 +67,8 @@ def test_new_keywords_bytes_equal_cli(tmp_path, flags, keywords, kind):
     # The keyword does something: without it the texture differs.
     assert from_array != tessera.encode(img, **{k: v for k, v in keywords.items()
                                                 if k not in ("flip_y", "premultiply",
-                                                             "alpha_bleed", "normal_map",
+                                                             "alpha_bleed", "alpha_weighted",
+                                                             "normal_map",
                                                              "mip_levels", "mip_filter")})
     assert from_array.premultiplied == bool(keywords.get("premultiply"))
     if "mip_levels" in keywords:
@@ -308,6 +312,11 @@ def conflict_cases():
         (img, dict(premultiply=True, alpha_bleed=True),
          r"alpha_bleed and premultiply: bleeding is for straight alpha \(premultiplied "
          r"transparent texels are black already\)"),
+        (img, dict(premultiply=True, alpha_weighted=True),
+         r"alpha_weighted and premultiply: weighting is for straight alpha \(premultiplied "
+         r"colour carries alpha already\)"),
+        (img, dict(alpha_weighted=True, format="pvrtc1-2"),
+         r"alpha_weighted and format='pvrtc1-2': alpha-weighted colour error is for 4 bpp only"),
         (img, dict(mip_filter="lanczos"),
          "mip_filter='lanczos' needs mipmaps=True or mip_levels=N"),
         (img, dict(mip_filter="gauss", mipmaps=True),
@@ -348,6 +357,7 @@ def test_keyword_errors_name_the_keyword(case):
 @pytest.mark.parametrize("flags, keywords", [
     (["--normal-map", "--srgb"], dict(normal_map=True, srgb=True)),
     (["--premultiply", "--alpha-bleed"], dict(premultiply=True, alpha_bleed=True)),
+    (["--premultiply", "--alpha-weighted"], dict(premultiply=True, alpha_weighted=True)),
 ])
 def test_conflicts_are_the_cli_usage_errors(tmp_path, flags, keywords):
     (png,) = write_pngs(tmp_path, [make_image(16, 16, 4)])

@@ -208,9 +208,10 @@ NEW_OPTIONS = [
     (dict(mip_levels=3, mip_filter="kaiser", flip_y=True, premultiply=True, quality="fast"),
      ["--mip-levels", "3", "--mip-filter", "kaiser", "--flip-y", "--premultiply", "--quality",
       "fast"], "ktx2", 7),
-    (dict(alpha_bleed=True, normal_map=True, mipmaps=True, mip_filter="lanczos", quality="fast"),
-     ["--alpha-bleed", "--normal-map", "--mipmaps", "--mip-filter", "lanczos", "--quality",
-      "fast"], "pvr", 0),
+    (dict(alpha_bleed=True, alpha_weighted=True, normal_map=True, mipmaps=True,
+          mip_filter="lanczos", quality="fast"),
+     ["--alpha-bleed", "--alpha-weighted", "--normal-map", "--mipmaps", "--mip-filter", "lanczos",
+      "--quality", "fast"], "pvr", 0),
 ]
 
 
@@ -247,6 +248,7 @@ def test_new_options_write_the_cli_bytes_and_sidecars(tmp_path, client):
         == {"mip_levels": 3, "mip_filter": "kaiser", "flip_y": True, "premultiply": True,
             "zstd": 7}
     assert "alpha_bleed" not in record and "normal_map" not in record
+    assert "alpha_weighted" not in record
     # --premultiply on the RGB inputs: the CLI's warning, with the file.
     expected = []
     for path in rgb_inputs(src):
@@ -288,7 +290,9 @@ def test_new_options_on_the_command_line(tmp_path):
 
 
 @pytest.mark.parametrize("flags", [["--normal-map", "--srgb"], ["--premultiply", "--alpha-bleed"],
-                                   ["--mip-filter", "kaiser"]])
+                                   ["--mip-filter", "kaiser"],
+                                   ["--alpha-weighted", "--premultiply"],
+                                   ["--alpha-weighted", "--format", "pvrtc1-2"]])
 def test_command_line_conflicts_are_the_cli_usage_errors(tmp_path, flags):
     src = make_tree(tmp_path / "src")
     cli = run_cli("compress", src / "top.png", "-o", tmp_path / "x.pvr", *flags, check=False)
@@ -315,7 +319,9 @@ def test_compress_tree_keyword_errors_are_the_module_s(tmp_path):
     src = make_tree(tmp_path / "src")
     img = make_image(16, 16, 4)
     for keywords in (dict(normal_map=True, srgb=True), dict(premultiply=True, alpha_bleed=True),
-                     dict(mip_filter="lanczos"), dict(mip_filter="gauss", mipmaps=True),
+                     dict(premultiply=True, alpha_weighted=True),
+                     dict(alpha_weighted=True, format="pvrtc1-2"), dict(mip_filter="lanczos"),
+                     dict(mip_filter="gauss", mipmaps=True),
                      dict(mip_levels=18)):
         with pytest.raises(ValueError) as module:
             tessera.encode(img, **keywords)

@@ -31,6 +31,15 @@ Status check_options(const CompressOptions& options) {
         "alpha_bleed applies to straight alpha: with premultiply, transparent texels are "
         "black already");
   }
+  if (options.premultiply && options.encode.alpha_weighted) {
+    return bad(
+        "alpha_weighted applies to straight alpha: with premultiply, colour carries alpha "
+        "already");
+  }
+  if (options.encode.alpha_weighted && options.encode.format != pvrtc::Format::pvrtc1_4bpp) {
+    return bad(
+        "alpha_weighted and the 2 bpp format: alpha-weighted colour error is for 4 bpp only");
+  }
   if (options.mip_levels < 0) {
     return bad("mip_levels " + std::to_string(options.mip_levels) + " is negative");
   }

@@ -65,6 +65,7 @@ nlohmann::json sidecar_json(const CompressArgs& args, const std::string& contain
   if (args.flip_y) o["flip_y"] = true;
   if (args.premultiply) o["premultiply"] = true;
   if (args.alpha_bleed) o["alpha_bleed"] = true;
+  if (args.alpha_weighted) o["alpha_weighted"] = true;
   if (args.normal_map) o["normal_map"] = true;
   if (args.zstd) o["zstd"] = args.zstd;
   if (args.cube) o["cube"] = true;
@@ -282,6 +283,7 @@ texture_file::CompressOptions compress_options(const CompressArgs& args, int thr
   o.flip_y = args.flip_y;
   o.premultiply = args.premultiply;
   o.alpha_bleed = args.alpha_bleed;
+  o.encode.alpha_weighted = args.alpha_weighted;
   o.normal_map = args.normal_map;
   return o;
 }
@@ -315,6 +317,14 @@ std::string compress_usage_problem(const CompressArgs& args, const std::string& 
   if (args.premultiply && args.alpha_bleed) {
     return "--alpha-bleed and --premultiply: bleeding is for straight alpha (premultiplied "
            "transparent texels are black already)";
+  }
+  if (args.alpha_weighted && args.premultiply) {
+    return "--alpha-weighted and --premultiply: weighting is for straight alpha (premultiplied "
+           "colour carries alpha already)";
+  }
+  if (args.alpha_weighted && args.format == "pvrtc1-2") {
+    return "--alpha-weighted and --format pvrtc1-2: alpha-weighted colour error is for 4 bpp "
+           "only";
   }
   if (args.mip_filter != "box" && !args.mipmaps && args.mip_levels == 0) {
     return "--mip-filter " + args.mip_filter + " needs --mipmaps or --mip-levels N";
@@ -419,6 +429,9 @@ Command add_compress_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_flag("--alpha-bleed", args->alpha_bleed,
                 "Give fully transparent texels the colour of the nearest visible texel, so that "
                 "filtering and PVRTC's block interpolation pull no invisible colour into edges");
+  sub->add_flag("--alpha-weighted", args->alpha_weighted,
+                "4 bpp, straight alpha: weight each texel's colour error by its alpha (what a "
+                "blending renderer shows), so no bits go to the colour of invisible texels");
   sub->add_flag("--normal-map", args->normal_map,
                 "The input is a normal map (RGB = x, y, z in [-1, 1]): renormalised, mips "
                 "averaged as vectors; never sRGB");

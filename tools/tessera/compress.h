@@ -26,6 +26,7 @@ struct CompressArgs {
   bool flip_y = false;
   bool premultiply = false;
   bool alpha_bleed = false;
+  bool alpha_weighted = false;      ///< --alpha-weighted (4 bpp, straight alpha).
   bool normal_map = false;
   int zstd = 0;                     ///< --zstd [LEVEL] (KTX 2.0); 0 = none.
   bool json = false;

@@ -253,6 +253,10 @@ Result<std::vector<std::uint8_t>> encode(const ImageView8& image, const EncodeOp
     return Status::error(ErrorCode::invalid_argument,
                          "pvrtc::encode: iterations must be >= -1 and exact_search_rounds >= 0");
   }
+  if (options.alpha_weighted && options.format != Format::pvrtc1_4bpp) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "pvrtc::encode: alpha_weighted is for PVRTC1 4 bpp only, not 2 bpp");
+  }
   const EncodeSchedule schedule = resolve_schedule(
       options.quality, options.format, options.iterations, options.exact_search_rounds);
   EncoderState s;
@@ -294,6 +298,19 @@ Result<std::vector<std::uint8_t>> encode(const ImageView8& image, const EncodeOp
                     std::size_t(std::min(image.width, g.pw - x0)) * 4);
       }
     }
+  }
+  if (options.alpha_weighted && s.alpha_mode) {
+    // Colour error weighted by alpha (encode_internal.h: colour_scale_of, scale_diff).
+    s.colour_scale.resize(g.texels());
+    parallel_for(
+        0, std::int64_t(g.texels()), 1 << 16,
+        [&](std::int64_t i0, std::int64_t i1) {
+          for (std::int64_t i = i0; i < i1; ++i) {
+            s.colour_scale[std::size_t(i)] =
+                std::uint8_t(colour_scale_of(s.target[std::size_t(i) * 4 + 3]));
+          }
+        },
+        {s.threads});
   }
   s.ca.assign(g.blocks(), 0);
   s.cb.assign(g.blocks(), 0);

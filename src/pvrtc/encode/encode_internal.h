@@ -53,6 +53,12 @@ struct EncoderState {
   std::vector<std::uint32_t> mod;  ///< Modulation bits per block.
   /// Effective modulation map (pw * ph) used by the refinement passes.
   std::vector<std::uint8_t> scratch_m;
+  /// `EncodeOptions::alpha_weighted` (4 bpp, alpha mode only): per padded texel (pw * ph) the
+  /// scale (3..16) of its colour differences (`colour_scale_of` of its target alpha); every score
+  /// of the 4 bpp encoder then counts (`scale_diff(d, scale)`)^2 for a colour difference d.
+  /// Empty: unweighted.
+  std::vector<std::uint8_t> colour_scale;
+  bool weighted() const { return !colour_scale.empty(); }
 
   std::uint64_t word(std::size_t i) const {
     TESSERA_DCHECK(i < ca.size() && i < cb.size() && i < mode.size() && i < mod.size());
@@ -66,6 +72,33 @@ struct EncoderState {
     return w;
   }
 };
+
+/// The smallest colour scale (`colour_scale_of`): invisible texels keep a weight of 9 / 256.
+/// Weight 0 leaves every move that only they see a tie, so the greedy searches and the
+/// least-squares fits stop wherever they start on them (mostly transparent blocks then hold
+/// endpoints that suit neither their visible texels nor the blocks around them); a small weight
+/// pulls them towards the texels' own (with --alpha-bleed: the nearest visible) colour.
+/// Measured on the sprites of bench/pvrtc_assets.py (docs/benchmarks/pvrtc_assets.md).
+constexpr std::uint16_t kMinColourScale = 3;
+
+/// The colour scale of a texel of alpha `a` with `EncodeOptions::alpha_weighted`: 16 a / 255
+/// rounded, at least kMinColourScale (3..16; exactly 16 for a = 255, so opaque texels weigh
+/// what they weigh unweighted). The colour difference a renderer shows after blending is about
+/// alpha times the stored one.
+constexpr std::uint16_t colour_scale_of(std::uint8_t a) {
+  const auto s = std::uint16_t((std::uint32_t(a) * 16 + 127) / 255);
+  return s < kMinColourScale ? kMinColourScale : s;
+}
+
+/// A colour difference `d` (|d| <= 255) scaled by `scale` / 16 (scale 0..16), rounded half up:
+/// floor((d scale + 8) / 16). Exactly d for scale 16, and |result| <= |d| for every scale
+/// (|d scale / 16| <= |d|, and rounding to the nearest integer cannot pass the integer d), so
+/// every bound that holds for the unweighted squared errors holds for the weighted ones. The
+/// SIMD kernels compute the same value in wrapping u16 lanes: d scale + 4104 lies in
+/// [24, 8184] (|d scale| <= 4080), so a logical shift by 4 and subtracting 256 floors exactly.
+constexpr std::int32_t scale_diff(std::int32_t d, std::int32_t scale) {
+  return (d * scale + 8) >> 4;
+}
 
 /// Calls fn(bx, by) for every block in the 2x2 colouring of the refinement and the searches:
 /// the four classes (bx & 1, by & 1) one after the other, the blocks of one class in parallel
@@ -145,7 +178,8 @@ void orient_endpoints(const Grid& g, int nch, std::vector<float>& low, std::vect
 /// Returns the total error of the result (as `total_error`).
 std::uint64_t choose_modulation(EncoderState& s);
 
-/// Sum of squared errors of the exact decode against the target (RGB, + alpha in alpha mode).
+/// Sum of squared errors of the exact decode against the target (RGB, + alpha in alpha mode;
+/// colour differences scaled by `colour_scale` where the state has one).
 std::uint64_t total_error(const EncoderState& s);
 
 /// Least-squares refinement of endpoints with modulation fixed, alternating with

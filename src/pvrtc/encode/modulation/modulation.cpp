@@ -49,7 +49,7 @@ std::uint32_t pick(EncoderState& s, const M& m, std::size_t bi) {
   return err;
 }
 
-template <bool kAlpha, bool kExtra>
+template <bool kAlpha, bool kExtra, bool kWeighted = false>
 std::uint64_t choose_modulation_4bpp_impl(EncoderState& s) {
   const Grid& g = s.g;
   const std::size_t nb = g.blocks();
@@ -62,7 +62,8 @@ std::uint64_t choose_modulation_4bpp_impl(EncoderState& s) {
   }
   std::vector<std::uint64_t> row_err(std::size_t(g.nby), 0);
   const std::size_t vstride = std::size_t(g.nbx) + 8;  // block_row_errors_avx2 reads 8 from bx
-  const bool avx2 = use_avx2();
+  // The AVX2 kernel has no colour weights: alpha-weighted encodes take the baseline kernel.
+  const bool avx2 = !kWeighted && use_avx2();
   parallel_for(
       0, g.nby, 4,
       [&](std::int64_t by0, std::int64_t by1) {
@@ -87,6 +88,9 @@ std::uint64_t choose_modulation_4bpp_impl(EncoderState& s) {
             }
             r.v[j] = &vp[std::size_t(j) * 8 * vstride];
             r.t[j] = &s.target[std::size_t(by * 4 + j) * std::size_t(g.pw) * 4];
+            if constexpr (kWeighted) {
+              r.w[j] = &s.colour_scale[std::size_t(by * 4 + j) * std::size_t(g.pw)];
+            }
           }
           r.vstride = vstride;
           std::uint64_t err_row = 0;
@@ -99,7 +103,7 @@ std::uint64_t choose_modulation_4bpp_impl(EncoderState& s) {
           } else {
             for (int bx = 0; bx < g.nbx; bx += 2) {
               BlockMod m[2];
-              block_pair_errors<kAlpha, kExtra>(r, bx, m);
+              block_pair_errors<kAlpha, kExtra, kWeighted>(r, bx, m);
               for (int h = 0; h < 2; ++h) {
                 err_row += pick<kExtra>(s, m[h], row0 + std::size_t(bx + h));
               }
@@ -117,6 +121,10 @@ std::uint64_t choose_modulation_4bpp_impl(EncoderState& s) {
 
 std::uint64_t choose_modulation_4bpp(EncoderState& s) {
   const bool extra = s.mode1 || s.punch;
+  if (s.alpha_mode && s.weighted()) {
+    return extra ? choose_modulation_4bpp_impl<true, true, true>(s)
+                 : choose_modulation_4bpp_impl<true, false, true>(s);
+  }
   if (s.alpha_mode) {
     return extra ? choose_modulation_4bpp_impl<true, true>(s)
                  : choose_modulation_4bpp_impl<true, false>(s);
@@ -142,6 +150,7 @@ std::uint64_t total_error(const EncoderState& s) {
   std::vector<std::uint8_t> dec(g.texels() * 4);
   decode_padded(g, w.data(), dec.data(), s.threads);
   const int nch = s.alpha_mode ? 4 : 3;
+  const std::uint8_t* scale = s.weighted() ? s.colour_scale.data() : nullptr;
   const double sum = parallel_sum(
       0, std::int64_t(g.texels()), 1 << 14,
       [&](std::int64_t i0, std::int64_t i1) {
@@ -150,7 +159,9 @@ std::uint64_t total_error(const EncoderState& s) {
           for (int c = 0; c < nch; ++c) {
             const std::int32_t d = std::int32_t(dec[std::size_t(i) * 4 + std::size_t(c)]) -
                                    std::int32_t(s.target[std::size_t(i) * 4 + std::size_t(c)]);
-            e += std::uint64_t(d * d);
+            const std::int32_t dw =
+                scale != nullptr && c < 3 ? scale_diff(d, scale[std::size_t(i)]) : d;
+            e += std::uint64_t(dw * dw);
           }
         }
         return double(e);

@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "core/simd.h"
+#include "pvrtc/encode/colour_scale_kernel.h"
 #include "pvrtc/format/pvrtc_kernel.h"
 
 namespace tessera::pvrtc::detail {
@@ -20,6 +21,9 @@ namespace tessera::pvrtc::detail {
 struct ModRow4 {
   const std::uint16_t* v[4] = {};
   const std::uint8_t* t[4] = {};
+  /// Alpha-weighted colour error only: each texel row's colour scales (one byte a texel, 0..16,
+  /// `EncoderState::colour_scale`).
+  const std::uint8_t* w[4] = {};
   std::size_t vstride = 0;
 };
 
@@ -75,8 +79,10 @@ inline void finish(const Acc& a, bool extra, BlockMod& m) {
 }  // namespace modk
 
 /// Scores blocks bx and bx + 1 of a block row. kAlpha: alpha is a fourth channel (and the
-/// punch-through blend is scored); kExtra: also mode 1 (weights 0, 4, 8) and punch-through.
-template <bool kAlpha, bool kExtra>
+/// punch-through blend is scored); kExtra: also mode 1 (weights 0, 4, 8) and punch-through;
+/// kWeighted (with kAlpha only): every colour difference is scaled by its texel's colour scale
+/// (`scale_diff16`, magnitudes never grow, so the u16 / madd ranges below still hold).
+template <bool kAlpha, bool kExtra, bool kWeighted = false>
 inline void block_pair_errors(const ModRow4& r, int bx, BlockMod out[2]) {
   using namespace modk;
   constexpr int nch = kAlpha ? 4 : 3;
@@ -89,6 +95,9 @@ inline void block_pair_errors(const ModRow4& r, int bx, BlockMod out[2]) {
   for (int j = 0; j < 4; ++j) {
     const std::uint8_t* tp = r.t[j] + std::size_t(bx) * 16;
     const vint4 t0 = simd::load_texels4(tp), t1 = simd::load_texels4(tp + 16);
+    static_assert(kAlpha || !kWeighted);
+    vu16x8 scale;
+    if constexpr (kWeighted) scale = simd::load_u8x8(r.w[j] + std::size_t(bx) * 4);
     vu16x8 d0[4], d3[4], d5[4], d8[4], d4[4], tv[4];
     for (int c = 0; c < nch; ++c) {
       const vu16x8 t = simd::channel16(t0, t1, c);
@@ -106,6 +115,15 @@ inline void block_pair_errors(const ModRow4& r, int bx, BlockMod out[2]) {
       d3[c] = simd::srl<3>(simd::mullo(a, k5) + simd::mullo(b, k3)) - t;
       d5[c] = simd::srl<3>(simd::mullo(a, k3) + simd::mullo(b, k5)) - t;
       if constexpr (kExtra) d4[c] = simd::srl<1>(a + b) - t;
+      if constexpr (kWeighted) {
+        if (c < 3) {
+          d0[c] = scale_diff16(d0[c], scale);
+          d8[c] = scale_diff16(d8[c], scale);
+          d3[c] = scale_diff16(d3[c], scale);
+          d5[c] = scale_diff16(d5[c], scale);
+          if constexpr (kExtra) d4[c] = scale_diff16(d4[c], scale);
+        }
+      }
     }
     if constexpr (!kAlpha) {
       d0[3] = d3[3] = d5[3] = d8[3] = d4[3] = zero;

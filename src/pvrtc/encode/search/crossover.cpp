@@ -18,7 +18,8 @@ namespace tessera::pvrtc::detail {
 
 namespace {
 
-/// Squared error of each block's own texels (RGB, + alpha counted `alpha_weight` times).
+/// Squared error of each block's own texels (RGB, + alpha counted `alpha_weight` times;
+/// colour differences scaled by `colour_scale` where the state has one).
 std::vector<std::uint64_t> block_errors(const EncoderState& s, int alpha_weight) {
   const Grid& g = s.g;
   const std::vector<std::uint64_t> w = s.words();
@@ -26,6 +27,7 @@ std::vector<std::uint64_t> block_errors(const EncoderState& s, int alpha_weight)
   decode_padded(g, w.data(), dec.data(), s.threads);
   std::vector<std::uint64_t> err(g.blocks(), 0);
   const int bw = g.bw;
+  const std::uint8_t* scale = s.weighted() ? s.colour_scale.data() : nullptr;
   parallel_for(
       0, g.nby, 16,
       [&](std::int64_t by0, std::int64_t by1) {
@@ -36,8 +38,9 @@ std::vector<std::uint64_t> block_errors(const EncoderState& s, int alpha_weight)
               const std::size_t i = (row + std::size_t(x)) * 4;
               std::uint64_t e = 0;
               for (int c = 0; c < 4; ++c) {
-                const std::int32_t d = std::int32_t(dec[i + std::size_t(c)]) -
-                                       std::int32_t(s.target[i + std::size_t(c)]);
+                std::int32_t d = std::int32_t(dec[i + std::size_t(c)]) -
+                                 std::int32_t(s.target[i + std::size_t(c)]);
+                if (scale != nullptr && c < 3) d = scale_diff(d, scale[i / 4]);
                 e += std::uint64_t(d * d) * std::uint64_t(c == 3 ? alpha_weight : 1);
               }
               err[std::size_t(by) * std::size_t(g.nbx) + std::size_t(x / bw)] += e;

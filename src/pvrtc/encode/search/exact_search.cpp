@@ -20,7 +20,8 @@
 // that changes one colour channel only is scored channel-planar from the other channels' per-blend
 // errors (exact_search_kernel.h), and a pair already met in the visit is not scored again. Where
 // the CPU has AVX2 both evaluators run twice the texels a step (exact_search_avx2.cpp; the same
-// integers).
+// integers). With alpha-weighted colour error (EncodeOptions::alpha_weighted) the windows carry
+// each texel's colour scale and the baseline evaluators scale its colour differences by it.
 #include <algorithm>
 #include <atomic>
 #include <bit>
@@ -43,10 +44,14 @@ std::atomic<bool> g_baseline_only{false};
 
 // The window evaluators, chosen once per reseed() / polish() call: exact_search_kernel.h's (SSE2
 // through simd.h, or scalar) or exact_search_avx2.cpp's where polish_avx2_active(). Same integers.
+// kWeighted: alpha-weighted colour error, which has baseline evaluators only (a template flag, so
+// that the unweighted search runs the code it ran before the option existed).
+template <bool kWeighted>
 struct Evaluators {
-  bool avx2 = polish_avx2_active();
+  bool avx2 = !kWeighted && polish_avx2_active();
   std::uint32_t local(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
                       std::uint32_t bound) const {
+    if constexpr (kWeighted) return local_error_weighted(lw, a, b, bound);
     if (!avx2) return local_error_simd(lw, a, b, bound);
     const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
     return local_error_avx2(lw, va, vb, bound);
@@ -58,12 +63,17 @@ struct Evaluators {
       const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
       return local_error_store_avx2(lw, va, vb, texel_err);
     }
+    if constexpr (kWeighted) return local_error_simd_t<true, true, true>(lw, a, b, 0, texel_err);
     return lw.nch == 4 ? local_error_simd_t<true, true>(lw, a, b, 0, texel_err)
                        : local_error_simd_t<false, true>(lw, a, b, 0, texel_err);
   }
   std::uint32_t planar(const PlanarWindow& pw, int c, std::int32_t av, std::int32_t bv,
                        std::uint32_t bound) const {
+    if constexpr (kWeighted) return planar_error_t<true>(pw, c, av, bv, bound);
     return avx2 ? planar_error_avx2(pw, c, av, bv, bound) : planar_error(pw, c, av, bv, bound);
+  }
+  void refresh(PlanarWindow& pw, const Rgba5& a, const Rgba5& b) const {
+    planar_refresh_t<kWeighted>(pw, a, b);
   }
 };
 
@@ -115,16 +125,27 @@ int reseed_candidates(const EncoderState& s, int bx, int by, std::uint16_t out[8
 // Reorders the window's texels in the SIMD layout: slot i takes texel order[i] (slots 0-48;
 // the zero pads stay). The error is an integer sum, so the order changes only where
 // the bounded evaluation stops, never a result below the bound.
-void permute_local(LocalWindow& lw, const std::uint8_t* order) {
-  // Seven arrays of 8-byte rows (one per texel), the first 49 rows permuted, in one pass.
-  void* const rows[7] = {lw.rest16_a, lw.rest16_b, lw.own16, lw.t16,
-                         lw.bias35,   lw.bias4,    lw.bias4p};
-  std::uint64_t tmp[7][49];
-  for (int r = 0; r < 7; ++r) std::memcpy(tmp[r], rows[r], sizeof(tmp[r]));
+// kRows 7: seven arrays of 8-byte rows (one per texel), the first 49 rows permuted, in one
+// pass; 8: the colour scales too (alpha-weighted windows).
+template <int kRows>
+void permute_rows(LocalWindow& lw, const std::uint8_t* order) {
+  void* const rows[8] = {lw.rest16_a, lw.rest16_b, lw.own16,  lw.t16,
+                         lw.bias35,   lw.bias4,    lw.bias4p, lw.scale16};
+  std::uint64_t tmp[kRows][49];
+  for (int r = 0; r < kRows; ++r) std::memcpy(tmp[r], rows[r], sizeof(tmp[r]));
   for (int i = 0; i < 49; ++i) {
     const int o = order[i];
     TESSERA_DCHECK(o >= 0 && o < 49);  // a texel of the 7x7 window
-    for (int r = 0; r < 7; ++r) std::memcpy(static_cast<char*>(rows[r]) + 8 * i, &tmp[r][o], 8);
+    for (int r = 0; r < kRows; ++r) {
+      std::memcpy(static_cast<char*>(rows[r]) + 8 * i, &tmp[r][o], 8);
+    }
+  }
+}
+void permute_local(LocalWindow& lw, const std::uint8_t* order) {
+  if (lw.weighted) {
+    permute_rows<8>(lw, order);
+  } else {
+    permute_rows<7>(lw, order);
   }
 }
 
@@ -145,6 +166,7 @@ struct OwnTable {
 };
 constexpr OwnTable kOwnTable;
 
+template <bool kWeighted>
 void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
   using simd::vu16x8;
   const EncoderState& s = *w.s;
@@ -152,6 +174,8 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
   const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
   lw.nch = w.nch;
   lw.punch = s.punch;
+  lw.weighted = kWeighted;
+  TESSERA_DCHECK(kWeighted == s.weighted() && (!kWeighted || lw.nch == 4));  // alpha mode only
   for (int c = 0; c < 8; ++c) lw.weight16[c] = std::uint16_t((c & 3) == 3 ? w.alpha_weight : 1);
   // The 3x3 blocks around j (wrapping) that the window's texels read: A in lanes 0-3, B in
   // lanes 4-7 (channels past nch zero); block j itself (also where the wrap lands on it) is
@@ -224,6 +248,12 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
         const std::uint16_t t4[4] = {t[0], t[1], t[2], std::uint16_t(t[3] & amask)};
         std::memcpy(lw.t16[k], t4, 8);
       }
+      if constexpr (kWeighted) {
+        const std::uint16_t sc =
+            s.colour_scale[std::size_t(y) * std::size_t(g.pw) + std::size_t(x)];
+        const std::uint16_t sc4[4] = {sc, sc, sc, 16};
+        std::memcpy(lw.scale16[k], sc4, 8);
+      }
       const bool m1 = mrow[x >> 2] != 0;
       const std::int32_t b35 = m1 ? kExclude : 0, b4 = m1 ? 0 : kExclude,
                          b4p = m1 ? punch_bias : kExclude;
@@ -240,6 +270,7 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
   for (int q = 49; q < 56; ++q) {  // texels 49-55: the zero pad (error 0)
     for (int c = 0; c < 4; ++c) {
       lw.rest16_a[q][c] = lw.rest16_b[q][c] = lw.own16[q][c] = lw.t16[q][c] = 0;
+      if constexpr (kWeighted) lw.scale16[q][c] = 0;
     }
   }
   for (int c = 2; c < 4; ++c) {
@@ -256,7 +287,8 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
 // (a, b), the block's current endpoints, so that a worse candidate reaches the bound after
 // fewer texels; returns the window's error under (a, b). A window whose error is at most
 // `min_error` will not be searched and is left as it is.
-std::uint32_t order_local(const Evaluators& ev, LocalWindow& lw, const Rgba5& a, const Rgba5& b,
+template <class Ev>
+std::uint32_t order_local(const Ev& ev, LocalWindow& lw, const Rgba5& a, const Rgba5& b,
                           std::uint32_t min_error) {
   std::uint32_t err[52];
   const std::uint32_t total = ev.local_store(lw, a, b, err);
@@ -280,10 +312,12 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
   return reseed(s, min_error, changed, 1);
 }
 
-int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& changed,
-           int alpha_weight) {
+namespace {
+
+template <bool kWeighted>
+int reseed_t(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& changed,
+             int alpha_weight) {
   const Grid& g = s.g;
-  if (g.format != Format::pvrtc1_4bpp) return 0;
   std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
   for (std::size_t i = 0; i < g.blocks(); ++i) {
     ea[i] = expand_a(s.ca[i]);
@@ -308,12 +342,12 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
     }
   }
   changed.assign(g.blocks(), 0);
-  const Evaluators ev;
+  const Evaluators<kWeighted> ev;
   for_each_block_2x2(g, s.threads, [&](int bx, int by) {
     const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
     if (!active[j]) return;
     LocalWindow lw;
-    build_local(w, bx, by, lw);
+    build_local<kWeighted>(w, bx, by, lw);
     auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
       return ev.local(lw, a, b, bound);
     };
@@ -341,6 +375,15 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
   return count;
 }
 
+}  // namespace
+
+int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& changed,
+           int alpha_weight) {
+  if (s.g.format != Format::pvrtc1_4bpp) return 0;
+  return s.weighted() ? reseed_t<true>(s, min_error, changed, alpha_weight)
+                      : reseed_t<false>(s, min_error, changed, alpha_weight);
+}
+
 bool polish_avx2_active() {
 #if defined(TESSERA_NO_SIMD)
   return false;  // the scalar build stays scalar (the AVX2 kernels are still built and tested)
@@ -355,10 +398,12 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
   polish(s, rounds, passes, min_error, PolishOptions{});
 }
 
-void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
-            const PolishOptions& options) {
+namespace {
+
+template <bool kWeighted>
+void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
+              const PolishOptions& options) {
   const Grid& g = s.g;
-  if (g.format != Format::pvrtc1_4bpp || rounds <= 0) return;
   std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
   for (std::size_t i = 0; i < g.blocks(); ++i) {
     ea[i] = expand_a(s.ca[i]);
@@ -377,7 +422,7 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
       if (!(*options.seeds)[j]) searched_at[j] = 0;
     }
   }
-  const Evaluators ev;
+  const Evaluators<kWeighted> ev;
   double searched_total = 0, searched_before = 0;  // for the progress reports
   for (int round = 0; round < rounds; ++round) {
     std::vector<std::uint8_t> any_change(std::size_t(g.nby / 2), 0);
@@ -396,7 +441,7 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
       if (latest < searched_at[j]) return;
       searched_at[j] = step;
       LocalWindow lw;
-      build_local(w, bx, by, lw);
+      build_local<kWeighted>(w, bx, by, lw);
       std::uint16_t cur_a = s.ca[j], cur_b = s.cb[j];
       std::uint32_t best = order_local(ev, lw, ea[j], eb[j], min_error);
       if (best <= min_error) return;
@@ -415,7 +460,7 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
           planar_built = true;
         }
         if (!(planar_valid & 1u)) {
-          planar_refresh(pw, cur5a, cur5b);
+          ev.refresh(pw, cur5a, cur5b);
           planar_valid = 1;
         }
         if (!(planar_valid & (2u << c))) {
@@ -499,6 +544,18 @@ void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
   // The windows were scored with every texel's best code within its block's mode: re-choosing
   // the modulation (and mode) of every block reproduces or improves on that.
   choose_modulation(s);
+}
+
+}  // namespace
+
+void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
+            const PolishOptions& options) {
+  if (s.g.format != Format::pvrtc1_4bpp || rounds <= 0) return;
+  if (s.weighted()) {
+    polish_t<true>(s, rounds, passes, min_error, options);
+  } else {
+    polish_t<false>(s, rounds, passes, min_error, options);
+  }
 }
 
 }  // namespace tessera::pvrtc::detail

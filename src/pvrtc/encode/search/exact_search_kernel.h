@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "core/simd.h"
+#include "pvrtc/encode/colour_scale_kernel.h"
 #include "pvrtc/encode/search/exact_search_window.h"
 #include "pvrtc/format/pvrtc_kernel.h"
 
@@ -23,7 +24,10 @@ namespace tessera::pvrtc::detail {
 // lanes, punch-through blend, weighted alpha error); RGB skips those. With the blends from
 // A + B and A - B (fewer operations per blend, same output).
 // kStore: no bound; each texel's error goes to texel_err[slot] (slots in layout order).
-template <bool kAlpha, bool kStore = false>
+// kWeighted (with kAlpha): each difference scaled by lw.scale16 first (`scale_diff16`: the
+// alpha lanes' scale is 16, so alpha is as it was; magnitudes never grow, so the float-minimum
+// bound below still holds).
+template <bool kAlpha, bool kStore = false, bool kWeighted = false>
 inline std::uint32_t local_error_simd_t(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
                                         std::uint32_t bound, std::uint32_t* texel_err = nullptr) {
   using simd::vint4;
@@ -56,7 +60,11 @@ inline std::uint32_t local_error_simd_t(const LocalWindow& lw, const Rgba5& a, c
       ub = simd::select(alpha, simd::srl<4>(sb) + sb, ub);
     }
     const vu16x8 t = simd::load_u16x8(&lw.t16[2 * p][0]);
+    static_assert(kAlpha || !kWeighted);
+    vu16x8 scale;
+    if constexpr (kWeighted) scale = simd::load_u16x8(&lw.scale16[2 * p][0]);
     auto err = [&](vu16x8 d) {
+      if constexpr (kWeighted) d = scale_diff16(d, scale);
       return kAlpha ? simd::madd(d, simd::mullo(d, aw)) : simd::madd(d, d);
     };
     // Blends (A (8 - m) + B m) >> 3 from the sum: 4 (A + B) +- (A - B) for m = 3, 5 (the u16
@@ -113,6 +121,12 @@ inline std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, con
                      : local_error_simd_t<false>(lw, a, b, bound);
 }
 
+/// `local_error_simd` with alpha-weighted colour error (lw.weighted, so nch 4).
+inline std::uint32_t local_error_weighted(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
+                                          std::uint32_t bound) {
+  return local_error_simd_t<true, false, true>(lw, a, b, bound);
+}
+
 // The planar functions (PlanarWindow: exact_search_window.h) are kept out of line: inlined into
 // the search loop they cost more instructions.
 
@@ -121,6 +135,7 @@ inline std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, con
   using simd::vu16x8;
   pw.nch = lw.nch;
   pw.alpha_weight = lw.weight16[3];
+  pw.weighted = lw.weighted;
   for (int g = 0; g < PlanarWindow::kGroups; ++g) {
     vu16x8 v[4];
     simd::transpose_8x4(&lw.rest16_a[8 * g][0], v);
@@ -131,6 +146,10 @@ inline std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, con
     for (int c = 0; c < 4; ++c) simd::store_u16x8(v[c], &pw.t[c][8 * g]);
     simd::transpose_8x4(&lw.own16[8 * g][0], v);
     simd::store_u16x8(v[0], &pw.own[8 * g]);
+    if (lw.weighted) {
+      simd::transpose_8x4(&lw.scale16[8 * g][0], v);
+      simd::store_u16x8(v[0], &pw.scale[8 * g]);
+    }
   }
   // The LocalWindow's biases are 0 or 2^24 (texel k at element 2k of each flat array).
   static_assert(PlanarWindow::kExclude == (1 << 24) >> 2);
@@ -183,7 +202,9 @@ inline std::int32_t channel_value(const Rgba5& x, int c) {
 }  // namespace planar_detail
 
 /// Per-texel slot errors of the pair (a, b) (the block's current pair): `e`, then `total`.
-[[gnu::noinline]] inline void planar_refresh(PlanarWindow& pw, const Rgba5& a, const Rgba5& b) {
+/// kWeighted: colour differences scaled by pw.scale (pw.weighted).
+template <bool kWeighted>
+[[gnu::noinline]] inline void planar_refresh_t(PlanarWindow& pw, const Rgba5& a, const Rgba5& b) {
   using simd::vf4;
   using simd::vint4;
   using simd::vu16x8;
@@ -192,14 +213,16 @@ inline std::int32_t channel_value(const Rgba5& x, int c) {
   for (int g = 0; g < PlanarWindow::kGroups; ++g) {
     const int o = 8 * g;
     const vu16x8 own = simd::load_u16x8(&pw.own[o]);
-    vu16x8 bl[5];
+    vu16x8 bl[5], scale;
+    if constexpr (kWeighted) scale = simd::load_u16x8(&pw.scale[o]);
     for (int c = 0; c < 3; ++c) {
       planar_detail::blends<false>(own, simd::load_u16x8(&pw.ra[c][o]),
                                    simd::load_u16x8(&pw.rb[c][o]), vu16x8{std::uint16_t(av[c])},
                                    vu16x8{std::uint16_t(bv[c])}, bl);
       const vu16x8 t = simd::load_u16x8(&pw.t[c][o]);
       for (int sl = 0; sl < PlanarWindow::kSlots; ++sl) {
-        const vu16x8 d = bl[sl] - t;
+        vu16x8 d = bl[sl] - t;
+        if constexpr (kWeighted) d = scale_diff16(d, scale);
         simd::store_u16x8(simd::mullo(d, d), &pw.e[c][sl][o]);  // d^2 <= 255^2: exact in u16
       }
     }
@@ -260,9 +283,11 @@ inline std::int32_t channel_value(const Rgba5& x, int c) {
 
 /// Exact window error of the current pair with colour channel c (< 3) of A and B set to av, bv
 /// (5-bit values), given planar_refresh and planar_rest(c) for the current pair; stops once it
-/// reaches `bound` (the result is then >= bound).
-[[gnu::noinline]] inline std::uint32_t planar_error(const PlanarWindow& pw, int c, std::int32_t av,
-                                                    std::int32_t bv, std::uint32_t bound) {
+/// reaches `bound` (the result is then >= bound). kWeighted: as planar_refresh_t.
+template <bool kWeighted>
+[[gnu::noinline]] inline std::uint32_t planar_error_t(const PlanarWindow& pw, int c,
+                                                      std::int32_t av, std::int32_t bv,
+                                                      std::uint32_t bound) {
   using simd::vf4;
   using simd::vint4;
   using simd::vu16x8;
@@ -274,9 +299,12 @@ inline std::int32_t channel_value(const Rgba5& x, int c) {
     planar_detail::blends<false>(simd::load_u16x8(&pw.own[o]), simd::load_u16x8(&pw.ra[c][o]),
                                  simd::load_u16x8(&pw.rb[c][o]), a16, b16, bl);
     const vu16x8 t = simd::load_u16x8(&pw.t[c][o]);
+    vu16x8 scale;
+    if constexpr (kWeighted) scale = simd::load_u16x8(&pw.scale[o]);
     vf4 mlo, mhi;
     for (int sl = 0; sl < PlanarWindow::kSlots; ++sl) {
-      const vu16x8 d = bl[sl] - t;
+      vu16x8 d = bl[sl] - t;
+      if constexpr (kWeighted) d = scale_diff16(d, scale);
       const vu16x8 sq = simd::mullo(d, d);
       // (2^23 + d^2) + (total - e - 2^23): exact integers below 2^24.
       const vf4 lo = simd::f2p23_plus_lo(sq) + simd::loadf4(&pw.rest[c][sl][o]);
@@ -288,6 +316,14 @@ inline std::int32_t channel_value(const Rgba5& x, int c) {
     if (std::uint32_t(simd::sum_lanes(acc)) >= bound) break;
   }
   return std::uint32_t(simd::sum_lanes(acc));
+}
+
+inline void planar_refresh(PlanarWindow& pw, const Rgba5& a, const Rgba5& b) {
+  planar_refresh_t<false>(pw, a, b);
+}
+inline std::uint32_t planar_error(const PlanarWindow& pw, int c, std::int32_t av, std::int32_t bv,
+                                  std::uint32_t bound) {
+  return planar_error_t<false>(pw, c, av, bv, bound);
 }
 
 /// The one colour channel (0-2) in which (a, b) differs from (ca, cb), or -1 (none, or another

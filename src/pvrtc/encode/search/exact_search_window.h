@@ -27,6 +27,11 @@ struct LocalWindow {
   int nch;
   bool punch;
   alignas(16) std::uint16_t weight16[8];  ///< Per-lane error weights (RGBA RGBA).
+  /// Alpha-weighted colour error (`weighted`; the baseline evaluators only): per texel, the
+  /// scale of its colour differences in the colour lanes (0..16) and 16 in the alpha lane
+  /// (alpha differences as they are); pads 0. Not written otherwise.
+  alignas(16) std::uint16_t scale16[56][4];
+  bool weighted;
 };
 
 // A block's window in channel-planar form (texels in the LocalWindow's order, 8 per vector,
@@ -48,6 +53,9 @@ struct PlanarWindow {
   alignas(16) float rest[3][kSlots][56];  ///< total - e[c] - 2^23.
   int nch;
   std::int32_t alpha_weight;
+  /// Alpha-weighted colour error (`weighted`): each texel's colour scale (LocalWindow::scale16).
+  alignas(16) std::uint16_t scale[56];
+  bool weighted;
 };
 
 // The AVX2 evaluators: the same integers as `local_error_simd` / `local_error_simd_t<.., true>`

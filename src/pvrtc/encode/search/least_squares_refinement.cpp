@@ -127,6 +127,10 @@ float lane_sum(simd::vf4 a) {
   return (l[0] + l[1]) + (l[2] + l[3]);
 }
 
+// kWeighted (alpha-weighted colour error): each texel's colour rows of the system are scaled by
+// its colour scale / 16 (a weighted least-squares fit, weight (scale / 16)^2 per texel; 1.0 for
+// opaque texels, where the products are the unweighted ones exactly); alpha is unweighted.
+template <bool kWeighted>
 void window_sums(const EncoderState& s, const std::vector<float>& lv, int bx, int by,
                  WindowSums& out) {
   using simd::vf4;
@@ -177,7 +181,7 @@ void window_sums(const EncoderState& s, const std::vector<float>& lv, int bx, in
   const auto& own = kOwnWeights.w[bw == 8 ? 1 : 0];
   vf4 aa, ab, bb, ra[4], rb[4], alpha_aa, alpha_ab, alpha_bb;
   alignas(16) std::uint8_t tex_wrap[16 * 4];
-  std::uint8_t me_wrap[16];
+  std::uint8_t me_wrap[16], sc_wrap[16];
   const int x0 = bx * bw - bw / 2;
   const bool wraps = x0 < 0 || x0 + width > g.pw;
   // Row v = 0 is left out: the block's own weight is 0 there (likewise column 0, whose lanes
@@ -189,14 +193,18 @@ void window_sums(const EncoderState& s, const std::vector<float>& lv, int bx, in
     const std::size_t row = std::size_t(y) * std::size_t(g.pw);
     const std::uint8_t* tex = &s.target[(row + std::size_t(x0 < 0 ? 0 : x0)) * 4];
     const std::uint8_t* me = &m_eff[row + std::size_t(x0 < 0 ? 0 : x0)];
+    const std::uint8_t* sc =
+        kWeighted ? &s.colour_scale[row + std::size_t(x0 < 0 ? 0 : x0)] : nullptr;
     if (wraps) {
       for (int u = 0; u < width; ++u) {
         const std::size_t x = std::size_t((x0 + u) & (g.pw - 1));
         for (int c = 0; c < 4; ++c) tex_wrap[u * 4 + c] = s.target[(row + x) * 4 + std::size_t(c)];
         me_wrap[u] = m_eff[row + x];
+        if constexpr (kWeighted) sc_wrap[u] = s.colour_scale[row + x];
       }
       tex = tex_wrap;
       me = me_wrap;
+      if constexpr (kWeighted) sc = sc_wrap;
     }
     for (int q = 0; q < groups; ++q) {
       alignas(16) float fb_l[4], bias_l[4], alpha_l[4];
@@ -209,9 +217,17 @@ void window_sums(const EncoderState& s, const std::vector<float>& lv, int bx, in
       const vf4 fb = simd::loadf4(fb_l), fa = vf4(1.0f) - fb;
       const vf4 wj = simd::loadf4(&own[v][4 * q]);
       const vf4 ca = wj * fa, cb = wj * fb;
-      aa = aa + ca * ca;
-      ab = ab + ca * cb;
-      bb = bb + cb * cb;
+      vf4 sw, caw = ca, cbw = cb;  // colour rows: scaled by the texels' colour scales
+      if constexpr (kWeighted) {
+        alignas(16) float sw_l[4];
+        for (int i = 0; i < 4; ++i) sw_l[i] = float(sc[4 * q + i]) * 0.0625f;
+        sw = simd::loadf4(sw_l);
+        caw = ca * sw;
+        cbw = cb * sw;
+      }
+      aa = aa + caw * caw;
+      ab = ab + caw * cbw;
+      bb = bb + cbw * cbw;
       const simd::vint4 t = simd::load_texels4(tex + 16 * q);
       const vf4 bias = simd::loadf4(bias_l);
       for (int c = 0; c < channels; ++c) {
@@ -228,9 +244,10 @@ void window_sums(const EncoderState& s, const std::vector<float>& lv, int bx, in
         if (c < 3) {
           // The decoder truncates twice (8-bit conversion, modulation): aim above the target
           // by the mean truncation loss so the linear model is unbiased.
-          const vf4 res = (simd::to_float(tc_i) + bias) - other;
-          ra[c] = ra[c] + ca * res;
-          rb[c] = rb[c] + cb * res;
+          vf4 res = (simd::to_float(tc_i) + bias) - other;
+          if constexpr (kWeighted) res = res * sw;
+          ra[c] = ra[c] + caw * res;
+          rb[c] = rb[c] + cbw * res;
         } else {
           const vf4 am = simd::loadf4(alpha_l);
           const vf4 ca_a = ca * am, cb_a = cb * am;
@@ -260,7 +277,11 @@ void solve_block(EncoderState& s, std::vector<float>& lv, int bx, int by, bool c
   const Grid& g = s.g;
   const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
   WindowSums ws;
-  window_sums(s, lv, bx, by, ws);
+  if (s.weighted()) {
+    window_sums<true>(s, lv, bx, by, ws);
+  } else {
+    window_sums<false>(s, lv, bx, by, ws);
+  }
   Sums rgb[3], alpha;
   for (int c = 0; c < 3; ++c) {
     rgb[c].aa = ws.aa;
