@@ -66,10 +66,13 @@ from ._tessera import (  # noqa: F401  (re-exported API)
     encode,
     encode_file,
     from_bytes,
+    is_up_to_date,
     read,
     read_image,
+    up_to_date_record,
     write,
     write_image,
+    write_up_to_date_record,
 )
 
 #: The option names and defaults of ``encode`` / ``tessera compress``: the per-image options
@@ -106,8 +109,11 @@ __all__ = [
     "encode",
     "encode_file",
     "from_bytes",
+    "is_up_to_date",
     "read",
     "read_image",
+    "up_to_date_record",
     "write",
     "write_image",
+    "write_up_to_date_record",
 ]

@@ -34,14 +34,13 @@ housekeeping slowed down (`LOCAL_CLUSTER_CONFIG`: no statistical profiler, 1 s e
 defaults). ``--threads`` sets the encoder threads per task (default 1: the parallelism is across
 files). Before the first task, every worker imports tessera (counted as set-up time).
 
-Resuming: next to each output, ``OUT.pvr.json`` (the "sidecar") records the options, the tessera
-version and the input's size and modification time: the record ``tessera compress
---skip-up-to-date`` writes, byte for byte (options added after the first ones, such as
-``mip_levels`` or ``zstd``, recorded only when they are not their defaults). A file is skipped
-when its output exists, is newer than the input, and its sidecar matches the current options and
-input; otherwise it is compressed again (``--force`` always recompresses). The sidecar is written
-after the output, so an interrupted run never leaves an output that looks complete without being
-so.
+Resuming: next to each output, ``OUT.pvr.json`` (the "sidecar", the library's up-to-date
+record: ``tessera.up_to_date_record``) records the options, the tessera version and the input's
+size and modification time: the record ``tessera compress --skip-up-to-date`` writes, byte for
+byte. A file is skipped when its output is up to date (``tessera.is_up_to_date``: it exists, is
+newer than the input, and its sidecar matches the current options and input); otherwise it is
+compressed again (``--force`` always recompresses). The sidecar is written after the output, so
+an interrupted run never leaves an output that looks complete without being so.
 
 A file that fails (not a power of two without --resize-pot, corrupt, unreadable, unwritable
 output) fails alone: it is reported, with the message ``tessera compress`` prints for it (its
@@ -67,10 +66,6 @@ _FORMATS = ("pvrtc1-4", "pvrtc1-2")
 _QUALITIES = ("fast", "normal", "high")
 _CONTAINERS = ("pvr", "ktx", "ktx2")
 _MIP_FILTERS = ("box", "lanczos", "kaiser")
-#: The options every sidecar records; the later ones only when they are not their defaults, so
-#: that records of plain runs stay as they were (the CLI's sidecar_json does the same).
-_SIDECAR_OPTIONS = ("exact_search_rounds", "format", "iterations", "mipmaps", "quality",
-                    "resize_pot", "srgb")
 _TYPES = {"format": str, "quality": str, "mipmaps": bool, "srgb": bool, "iterations": int,
           "exact_search_rounds": int, "resize_pot": bool, "mip_levels": int, "mip_filter": str,
           "flip_y": bool, "premultiply": bool, "alpha_bleed": bool, "normal_map": bool}
@@ -157,32 +152,10 @@ def plan(src, dst, container="pvr"):
     return jobs, clashes
 
 
-def _sidecar_record(src, options, container, zstd=0):
-    st = os.stat(src)
-    recorded = {k: options[k] for k in _SIDECAR_OPTIONS}
-    recorded.update({k: v for k, v in options.items()
-                     if k not in _SIDECAR_OPTIONS and v != tessera.ENCODE_DEFAULTS[k]})
-    if zstd:
-        recorded["zstd"] = zstd
-    return {
-        "tessera": tessera.__version__,
-        "container": container,
-        "options": recorded,
-        "input_size": st.st_size,
-        "input_mtime_ns": st.st_mtime_ns,
-    }
-
-
 def is_up_to_date(src, out, options, container, zstd=0):
     """True when `out` exists, is newer than `src`, and its sidecar records these options and
-    this input (size and modification time)."""
-    try:
-        if os.stat(out).st_mtime_ns <= os.stat(src).st_mtime_ns:
-            return False
-        with open(out + SIDECAR_SUFFIX, encoding="utf-8") as f:
-            return json.load(f) == _sidecar_record(src, options, container, zstd)
-    except (OSError, ValueError):
-        return False
+    this input (size and modification time): ``tessera.is_up_to_date``."""
+    return tessera.is_up_to_date(src, out, container=container, zstd=zstd, **options)
 
 
 def _cli_words(message):
@@ -200,17 +173,14 @@ def compress_one(src, out, options, container, threads, zstd=0):
     the CLI words them."""
     t0 = time.perf_counter()
     try:
-        record = _sidecar_record(src, options, container, zstd)
+        # The input as it was before the encode: if it changes meanwhile, the record says so.
+        record = tessera.up_to_date_record(src, container=container, zstd=zstd, **options)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             texture = tessera.encode_file(src, threads=threads, **options)
         os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
         texture.write(out, zstd=zstd)
-        tmp = f"{out}{SIDECAR_SUFFIX}.tmp{os.getpid()}"
-        with open(tmp, "w", encoding="utf-8") as f:
-            json.dump(record, f, indent=1, sort_keys=True)  # the CLI's bytes: nlohmann dump(1)
-            f.write("\n")
-        os.replace(tmp, out + SIDECAR_SUFFIX)
+        tessera.write_up_to_date_record(out, record)
         return {"src": src, "out": out, "status": "done",
                 "pixels": texture.width * texture.height,
                 "seconds": time.perf_counter() - t0,
