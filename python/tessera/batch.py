@@ -15,9 +15,9 @@ DST/<same relative folder>/<stem>.pvr (or .ktx, .ktx2), byte-identical to
 alpha is left as it is, as by the CLI, and the CLI's warning is reported with its file.
 
 Tasks: each Dask task compresses a group of files. Dask spends milliseconds of scheduler and
-worker CPU on every task (measured on a 2-core machine: about 15 ms per task, more than a quarter
-of a 256x256 normal-quality encode), so a task of one small file spends a good part of the
-machine on bookkeeping, while large tasks at the end leave workers idle. By default the groups
+worker CPU on every task (a sizeable part of a small file's encode: docs/benchmarks/python.md),
+so a task of one small file spends a good part of the machine on bookkeeping, while large tasks
+at the end leave workers idle. By default the groups
 are guided (`group_jobs`): the largest files (by input bytes) first, each task about the
 remaining work / (2 x workers), at most 16 files, down to single files at the end (200 equal
 files on 2 workers: 21 tasks, the first nine of 16 files, the last four of one).
@@ -30,8 +30,8 @@ Cluster: ``--scheduler ADDRESS`` (e.g. tcp://host:8786, a running ``dask-schedul
 absolute paths, e.g. on a shared filesystem) or, without it, a LocalCluster of
 ``--workers`` processes (default: one per CPU), one thread each, with Dask's periodic
 housekeeping slowed down (`LOCAL_CLUSTER_CONFIG`: no statistical profiler, 1 s event-loop ticks,
-1 s memory checks; an idle 2-worker cluster then uses about a seventh of the CPU it uses with the
-defaults). ``--threads`` sets the encoder threads per task (default 1: the parallelism is across
+1 s memory checks, so that an idle cluster leaves the CPU to the encoders; docs/benchmarks/python.md
+has its cost). ``--threads`` sets the encoder threads per task (default 1: the parallelism is across
 files). Before the first task, every worker imports tessera (counted as set-up time).
 
 Resuming: next to each output, ``OUT.pvr.json`` (the "sidecar", the library's up-to-date
@@ -232,9 +232,9 @@ def group_jobs(jobs, files_per_task=None, workers=1, weights=None):
 
 # Dask's periodic work, slowed down for the LocalCluster that compress_tree starts: the worker's
 # statistical profiler samples every thread's stack every 10 ms, the event loops tick every 20
-# ms and the memory and system monitors poll psutil several times a second. Measured on a 2-core
-# machine, an idle LocalCluster of 2 workers used 1.7 s of CPU per 10 s with the defaults and
-# 0.23 s with these values, CPU that the encoders then do not get.
+# ms and the memory and system monitors poll psutil several times a second: CPU that the
+# encoders do not get (an idle LocalCluster's cost with and without these values:
+# docs/benchmarks/python.md).
 LOCAL_CLUSTER_CONFIG = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.tick.interval": "1s",
