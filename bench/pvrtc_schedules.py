@@ -12,7 +12,7 @@ For every power-of-two PNG (ldr-rgb-10.png, 127x128, is skipped) and every sched
 -j 1 compress --json reports the in-process encode time (time_ms: no process start-up, PNG read
 or file write) and the PSNR / SSIM of the result. Times are medians of N runs, the schedules of
 one image run round-robin; each image's time is scaled to a 512² image (x 512² / its pixels) and
-the means give every image the same weight, as the issue's targets do. Whole-process times and
+the means give every image the same weight, as the speed targets do. Whole-process times and
 the PVRTexTool peer are in bench/pvrtc_vs_peers.py. Standard library only.
 """
 import argparse

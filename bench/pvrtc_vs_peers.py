@@ -263,7 +263,7 @@ def pixels(r):
     return int(w) * int(h)
 
 
-# Subsets reported separately: the targets are per 512^2 image, and RGBA images trade
+# Subsets reported separately: the speed targets are per 512^2 image, and RGBA images trade
 # RGB error against alpha error differently in each encoder.
 GROUPS = [
     ("opaque (RGB) images", lambda r: not r["alpha"]),
@@ -335,7 +335,7 @@ def write_report(args, results, images, nthreads, gbench, generated, cmd):
             continue
         lines.append(f"| {t} | {p} | {a['msn'] / b['msn']:.3f} | {a['ms1'] / b['msn']:.3f} | "
                      f"{a['psnr'] - b['psnr']:+.2f} | {a['ssim'] - b['ssim']:+.4f} |")
-    # The target metric: whole-process time per 512^2 image (each image's time scaled by
+    # The target metric: whole-process time per 512^2 image (each image's time scaled by
     # 512^2 / its pixels), averaged over the images, tessera on one thread. Unlike the ratios of
     # mean times above, every image counts the same (the 2048^2 image does not dominate).
     lines += [

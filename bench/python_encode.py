@@ -152,8 +152,8 @@ def in_process_calls(module_dir, npy, kw, pairs):
     Each call's input is rewritten into one buffer per input (not a new copy), and the inputs
     take turns by input, not call by call: with a new array per call and RGB and RGBA calls
     interleaved, glibc handed the RGB encode's 1 MiB RGBA buffer back to the kernel between
-    calls on one side only (192-438 page faults, +0.7-1.5 ms per 512x512 fast call), an effect
-    of the harness's allocations on the heap, not of the binding."""
+    calls on one side only (page faults that lengthened every 512x512 fast call), an effect of
+    the harness's allocations on the heap, not of the binding."""
     env = dict(os.environ, PYTHONPATH=str(module_dir))
     r = subprocess.run([sys.executable, "-c", _IN_PROCESS, json.dumps(npy), json.dumps(kw),
                         str(pairs)], env=env, capture_output=True, text=True, check=True)

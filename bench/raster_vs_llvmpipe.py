@@ -104,7 +104,7 @@ def main():
     for msaa, mt, ml, ratio, bt, bl, n in rows:
         lines.append(f"| {msaa}x | {mt:.1f} | {ml:.1f} | {ratio:.2f} | {bt:.1f} | {bl:.1f} "
                      f"| {bt / bl:.2f} | {n} |")
-    lines += ["", "Target (issue): ratio <= 1.5 at 1x and 4x.", ""]
+    lines += ["", "Target: ratio <= 1.5 at 1x and 4x.", ""]
     # Hand-written notes below the marker (profiles, history) survive a re-run.
     marker = "<!-- notes: kept by bench/raster_vs_llvmpipe.py -->"
     if os.path.isfile(args.out):

@@ -14,7 +14,7 @@
 //                   [--reference]   # also GL-vs-CPU of the 8x8 Mitchell-Netravali reference
 //
 // Timed frames skip the read-back; the order of the two methods alternates per repetition.
-// Set LP_NUM_THREADS for llvmpipe (the paper-comparable setting on a shared 2-core machine: 2).
+// Set LP_NUM_THREADS for llvmpipe to the cores the run may use (docs/benchmarks/seams_gl.md).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -1,7 +1,10 @@
-// Tests of tessera/texture_file.h's detection, validation, file reading and writing, and —
-// when PVRTexToolCLI is available — files exchanged with the oracle in both directions.
+// Tests of tessera/texture_file.h's detection, validation, file reading and writing, the
+// up-to-date record, and — when PVRTexToolCLI is available — files exchanged with the oracle in
+// both directions.
 // (The PVR v3 and KTX 1.1 containers byte by byte: texture_file_test.cpp.)
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -229,6 +232,90 @@ TEST(Oracle, PvrTexToolReadsOurFiles) {
       }
     }
   }
+}
+
+
+// ---------------------------------------------------------------------------------------------
+// The up-to-date record (OUTPUT.json) of `tessera compress --skip-up-to-date` and tessera.batch.
+
+void set_mtime_ns(const std::string& path, std::int64_t ns) {
+  const struct timespec t[2] = {{time_t(ns / 1000000000), long(ns % 1000000000)},
+                                {time_t(ns / 1000000000), long(ns % 1000000000)}};
+  ASSERT_EQ(::utimensat(AT_FDCWD, path.c_str(), t, 0), 0) << path;
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+  ASSERT_TRUE(io::write_file_atomic(path, {reinterpret_cast<const std::uint8_t*>(text.data()),
+                                           text.size()})
+                  .ok());
+}
+
+TEST(UpToDateRecord, HoldsTheOptionsAndTheInputsSizeAndTime) {
+  const fs::path dir = test::temp_dir("up_to_date_record");
+  const std::string in = (dir / "in.png").string(), in2 = (dir / "in2.png").string();
+  write_text_file(in, "abc");
+  write_text_file(in2, "defg");
+  set_mtime_ns(in, 1700000000123456789);
+  set_mtime_ns(in2, 1700000000000000001);
+  RecordedOptions o;
+  o.mip_levels = 3;
+  o.zstd = 5;
+  o.container = "ktx2";
+  Result<std::string> r = up_to_date_record(o, std::vector<std::string>{in});
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  // Keys sorted, one-space indent; the later options only when set; the version last.
+  const std::string expected_head =
+      "{\n \"container\": \"ktx2\",\n \"input_mtime_ns\": 1700000000123456789,\n"
+      " \"input_size\": 3,\n \"options\": {\n  \"exact_search_rounds\": 0,\n"
+      "  \"format\": \"pvrtc1-4\",\n  \"iterations\": -1,\n  \"mip_levels\": 3,\n"
+      "  \"mipmaps\": false,\n  \"quality\": \"normal\",\n  \"resize_pot\": false,\n"
+      "  \"srgb\": false,\n  \"zstd\": 5\n },\n \"tessera\": \"";
+  EXPECT_EQ(r->substr(0, expected_head.size()), expected_head);
+  EXPECT_TRUE(r->ends_with("\"\n}\n")) << *r;
+  // Several inputs (a cube map or array): each one's path, size and time, in order.
+  o.cube = true;
+  Result<std::string> several = up_to_date_record(o, std::vector<std::string>{in, in2});
+  ASSERT_TRUE(several.ok());
+  EXPECT_NE(several->find("\"inputs\": [\n  {\n   \"mtime_ns\": 1700000000123456789,\n   "
+                          "\"path\": \"" + in + "\",\n   \"size\": 3\n  },"),
+            std::string::npos)
+      << *several;
+  EXPECT_NE(several->find("\"cube\": true"), std::string::npos);
+  // Standard input and a missing file cannot be recorded.
+  Result<std::string> stdin_record = up_to_date_record(o, std::vector<std::string>{"-"});
+  EXPECT_EQ(stdin_record.status().code, ErrorCode::invalid_argument);
+  const std::string gone = (dir / "gone.png").string();
+  Result<std::string> missing = up_to_date_record(o, std::vector<std::string>{gone});
+  EXPECT_EQ(missing.status().code, ErrorCode::io_error);
+  EXPECT_NE(missing.status().message.find(gone), std::string::npos);
+}
+
+TEST(UpToDateRecord, AnOutputIsUpToDateUntilItsInputOrOptionsChange) {
+  const fs::path dir = test::temp_dir("up_to_date");
+  const std::string in = (dir / "in.png").string(), out = (dir / "out.pvr").string();
+  const std::vector<std::string> inputs{in};
+  write_text_file(in, "abc");
+  set_mtime_ns(in, 1700000000000000000);
+  RecordedOptions o;
+  EXPECT_FALSE(is_up_to_date(o, inputs, out));  // no output
+  write_text_file(out, "texture");
+  set_mtime_ns(out, 1700000001000000000);
+  EXPECT_FALSE(is_up_to_date(o, inputs, out));  // no record
+  Result<std::string> r = up_to_date_record(o, inputs);
+  ASSERT_TRUE(r.ok());
+  ASSERT_TRUE(write_up_to_date_record(out, *r).ok());
+  EXPECT_TRUE(fs::exists(out + kRecordSuffix));
+  EXPECT_TRUE(is_up_to_date(o, inputs, out));
+  RecordedOptions fast = o;
+  fast.quality = "fast";
+  EXPECT_FALSE(is_up_to_date(fast, inputs, out));  // other options
+  EXPECT_FALSE(is_up_to_date(o, std::vector<std::string>{"-"}, out));
+  set_mtime_ns(in, 1700000002000000000);  // the input is newer than the output
+  EXPECT_FALSE(is_up_to_date(o, inputs, out));
+  set_mtime_ns(out, 1700000003000000000);  // newer again, but the record names the old time
+  EXPECT_FALSE(is_up_to_date(o, inputs, out));
+  write_text_file(out + kRecordSuffix, "{not json");
+  EXPECT_FALSE(is_up_to_date(o, inputs, out));
 }
 
 }  // namespace

@@ -164,9 +164,9 @@ ShadingOptions scene_shading(const scene::Scene& scene, int extra_lights = 0,
 ///   k   = clamp(round(max(k_d, k_n, k_s)), 0, K)
 /// Background samples (no geometry) take part in k_d with the far-plane depth and are skipped
 /// by k_n; a window mixing background and geometry gets k = K.
-/// The defaults were chosen on the built-in scene and the dungeon benchmark scene
-/// (docs/benchmarks/aa.md): at m = 4 they shade about 20-40 % of the samples for 44-50 dB PSNR
-/// against the reference.
+/// The defaults were chosen on the built-in scene and the dungeon benchmark scene: at m = 4 they
+/// shade a fraction of the samples for a PSNR against the reference close to full
+/// supersampling's (docs/benchmarks/aa.md has both).
 struct AdaptiveOptions {
   float c_depth = 200.0f;
   float c_normal = 2.0f;

@@ -20,11 +20,10 @@
 //    Compute rather than fragment passes, so that the extra samples can be regrouped: by default
 //    (`ExtraSchedule::frame_list`) every pixel's extra samples go into one dense list over the
 //    whole frame, shaded one invocation per sample and summed per pixel in index order, so busy
-//    edge pixels do not leave their neighbours' lanes idle (docs/benchmarks/aa_gl.md: on an
-//    NVIDIA H200 1.5x faster than the per-pixel loop and 1.8x than the tile list, on llvmpipe
-//    1.3x faster than the tile list). `tile_list` does the same within 8x8 tiles in shared
-//    memory (Lauritzen's redistribution) and `loop` is the paper's §4.2 per-pixel loop; all
-//    three give the same image, bit for bit, on llvmpipe.
+//    edge pixels do not leave their neighbours' lanes idle (the fastest of the three schedules
+//    wherever docs/benchmarks/aa_gl.md timed them). `tile_list` does the same within 8x8 tiles
+//    in shared memory (Lauritzen's redistribution) and `loop` is the paper's §4.2 per-pixel
+//    loop; all three give the same image, bit for bit.
 //  * Shading: Blinn-Phong over point lights and the `heavy` term with the CPU's waves; albedo
 //    lookups use the CPU's anisotropic filter built from textureLod probes on the CPU's own mip
 //    chains (uploaded as RGBA32F texture arrays, one per texture size), so GL and CPU filter the

@@ -35,17 +35,16 @@
 // combination is its own compiled program, so a software rasteriser that executes both sides
 // of every branch (llvmpipe) runs only the chosen method's code.
 //
-// Agreement with the CPU frame of the same sample positions (tests/gl_seams_test.cpp, Mesa 22.3
-// llvmpipe, 96x108, 1x, 2x = 4 samples against the CPU's 4x, and 4x): under trilinear
-// filtering 54-55 dB PSNR on the 8-bit sRGB output with at most 0.5 % of the pixels 0.01 or
-// more apart (linear-RGB 2-norm); rasterisation ties and the draw order (class-grouped
-// here, face order on the CPU) are left. Hardware anisotropic filtering is implementation-
-// defined (llvmpipe's is much blurrier than tessera's exact filter): 25-37 dB there.
+// Agreement with the CPU frame of the same sample positions: under trilinear filtering only
+// rasterisation ties and the draw order (class-grouped here, face order on the CPU) differ;
+// tests/gl_seams_test.cpp holds the bounds and docs/benchmarks/seams_gl.md the measured
+// agreement. Hardware anisotropic filtering is implementation-defined (llvmpipe's is much
+// blurrier than tessera's exact filter), so under it the frames agree far less.
 //
 // Timing: `gpu_ms_*` are GL_TIME_ELAPSED queries. On llvmpipe they do not cover the frame (the
-// query commands are executed per screen tile by the rasteriser threads; measured: 16x the
-// pixels gave 4x the timer but 6.7x the wall time), so use `wall_ms` (ended by glFinish)
-// there; on hardware GPUs the timer is the pass time.
+// query commands are executed per screen tile by the rasteriser threads, so the timer grows
+// more slowly with the pixel count than the wall time does; docs/benchmarks/seams_gl.md), so
+// use `wall_ms` (ended by glFinish) there; on hardware GPUs the timer is the pass time.
 #pragma once
 
 #include <filesystem>

@@ -30,7 +30,8 @@
 //
 // Cost (bench/sampler_bench.cpp): one `compute_footprint` per lookup (two square roots, one
 // log2), then a few tens of instructions per tap; trilinear reads 8 taps, 16x anisotropic 128.
-// The tap-list path stores 32 bytes per tap and runs about 2x slower than `sample`.
+// The tap-list path stores 32 bytes per tap, so it is slower than `sample` (BM_TapsAniso16
+// against BM_SampleAniso/16 in docs/benchmarks/sampler.md).
 //
 // Thread safety: a `Texture` is immutable after construction; all its const methods (sampling
 // included) may be called concurrently from any number of threads. Kernel functions are pure.

@@ -234,4 +234,60 @@ Result<CompressedTexture> read_texture_file(const std::string& path);
 Status write_texture_file(const std::string& path, const CompressedTexture& texture,
                           const Ktx2Options& ktx2 = {});
 
+/// The options an up-to-date record keeps (see `up_to_date_record`): those of `tessera
+/// compress` and of `tessera.batch`, in their words and as the user gave them (`mip_levels` 3
+/// with `mipmaps` false is recorded so, although it implies a mip chain).
+struct RecordedOptions {
+  std::string container = "pvr";    ///< "pvr", "ktx" or "ktx2".
+  std::string format = "pvrtc1-4";  ///< "pvrtc1-4" or "pvrtc1-2".
+  std::string quality = "normal";   ///< "fast", "normal" or "high".
+  int iterations = -1;              ///< -1: the quality preset's schedule.
+  int exact_search_rounds = 0;      ///< 0: the quality preset's schedule.
+  bool mipmaps = false;
+  int mip_levels = 0;               ///< 0: the full chain (with `mipmaps`).
+  std::string mip_filter = "box";   ///< "box", "lanczos" or "kaiser".
+  bool srgb = false;
+  bool resize_pot = false;
+  bool flip_y = false;
+  bool premultiply = false;
+  bool alpha_bleed = false;
+  bool alpha_weighted = false;
+  bool normal_map = false;
+  int zstd = 0;                     ///< KTX 2.0 Zstandard level, 1..22; 0 = none.
+  bool cube = false;                ///< The inputs are the faces of a cube map.
+  bool array = false;               ///< The inputs are the layers of an array.
+};
+
+/// What is appended to an output's path to name its up-to-date record ("a.pvr.json").
+inline constexpr const char* kRecordSuffix = ".json";
+
+/// The up-to-date record of an output made from `inputs` with `options`: what `tessera compress
+/// --skip-up-to-date` and `tessera.batch` keep beside each output (OUTPUT.json) to skip work
+/// that is already done. A JSON object, keys sorted, one-space indent, ending in a newline:
+/// - "tessera": the library's version (a new version redoes everything);
+/// - "container": `options.container`;
+/// - "options": "exact_search_rounds", "format", "iterations", "mipmaps", "quality",
+///   "resize_pot" and "srgb" always; "mip_levels", "mip_filter", "flip_y", "premultiply",
+///   "alpha_bleed", "alpha_weighted", "normal_map", "zstd", "cube" and "array" only when they
+///   are not their defaults, so that the records of runs without them stay as they were before
+///   those options existed;
+/// - one input: "input_size" (bytes) and "input_mtime_ns" (modification time, nanoseconds
+///   since the epoch); several (a cube map or array): "inputs", a list of {"path", "size",
+///   "mtime_ns"} in the order given.
+/// The same options and inputs give the same bytes. Fails (naming the file) when an input
+/// cannot be examined, e.g. "-" (standard input).
+Result<std::string> up_to_date_record(const RecordedOptions& options,
+                                      std::span<const std::string> inputs);
+
+/// True when `output` is up to date: it exists, its modification time is later than every
+/// input's, and OUTPUT.json holds the record `up_to_date_record` gives now (the same JSON
+/// value). False when any of that cannot be read (no record, an unreadable or malformed one, an
+/// input that is "-" or gone): the output is then made again.
+bool is_up_to_date(const RecordedOptions& options, std::span<const std::string> inputs,
+                   const std::string& output);
+
+/// Writes `record` to OUTPUT.json atomically. Write it after the output itself, so that an
+/// interrupted run never leaves an output that looks complete without being so.
+Status write_up_to_date_record(const std::string& output, const std::string& record);
+
 }  // namespace tessera::texture_file

@@ -16,6 +16,7 @@
 
 #include "arrays.h"
 #include "compress.h"
+#include "records.h"
 #include "shapes.h"
 #include "tessera/io.h"
 #include "tessera/metrics.h"
@@ -335,6 +336,7 @@ PYBIND11_MODULE(TESSERA_PYTHON_MODULE_NAME, m) {
   register_errors(m);
 
   register_texture(m);
+  register_records(m);
 
   def_encode(m, "encode", with_encode_keywords<py::object, std::string>(&encode_array), kEncodeDoc,
              "x"_a, "name"_a = "<array>");

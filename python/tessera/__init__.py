@@ -67,10 +67,13 @@ from ._tessera import (  # noqa: F401  (re-exported API)
     encode,
     encode_file,
     from_bytes,
+    is_up_to_date,
     read,
     read_image,
+    up_to_date_record,
     write,
     write_image,
+    write_up_to_date_record,
 )
 
 #: The option names and defaults of ``encode`` / ``tessera compress``: the per-image options
@@ -108,8 +111,11 @@ __all__ = [
     "encode",
     "encode_file",
     "from_bytes",
+    "is_up_to_date",
     "read",
     "read_image",
+    "up_to_date_record",
     "write",
     "write_image",
+    "write_up_to_date_record",
 ]

@@ -16,9 +16,9 @@ DST/<same relative folder>/<stem>.pvr (or .ktx, .ktx2), byte-identical to
 alpha is left as it is, as by the CLI, and the CLI's warning is reported with its file.
 
 Tasks: each Dask task compresses a group of files. Dask spends milliseconds of scheduler and
-worker CPU on every task (measured on a 2-core machine: about 15 ms per task, more than a quarter
-of a 256x256 normal-quality encode), so a task of one small file spends a good part of the
-machine on bookkeeping, while large tasks at the end leave workers idle. By default the groups
+worker CPU on every task (a sizeable part of a small file's encode: docs/benchmarks/python.md),
+so a task of one small file spends a good part of the machine on bookkeeping, while large tasks
+at the end leave workers idle. By default the groups
 are guided (`group_jobs`): the largest files (by input bytes) first, each task about the
 remaining work / (2 x workers), at most 16 files, down to single files at the end (200 equal
 files on 2 workers: 21 tasks, the first nine of 16 files, the last four of one).
@@ -31,18 +31,17 @@ Cluster: ``--scheduler ADDRESS`` (e.g. tcp://host:8786, a running ``dask-schedul
 absolute paths, e.g. on a shared filesystem) or, without it, a LocalCluster of
 ``--workers`` processes (default: one per CPU), one thread each, with Dask's periodic
 housekeeping slowed down (`LOCAL_CLUSTER_CONFIG`: no statistical profiler, 1 s event-loop ticks,
-1 s memory checks; an idle 2-worker cluster then uses about a seventh of the CPU it uses with the
-defaults). ``--threads`` sets the encoder threads per task (default 1: the parallelism is across
+1 s memory checks, so that an idle cluster leaves the CPU to the encoders; docs/benchmarks/python.md
+has its cost). ``--threads`` sets the encoder threads per task (default 1: the parallelism is across
 files). Before the first task, every worker imports tessera (counted as set-up time).
 
-Resuming: next to each output, ``OUT.pvr.json`` (the "sidecar") records the options, the tessera
-version and the input's size and modification time: the record ``tessera compress
---skip-up-to-date`` writes, byte for byte (options added after the first ones, such as
-``mip_levels`` or ``zstd``, recorded only when they are not their defaults). A file is skipped
-when its output exists, is newer than the input, and its sidecar matches the current options and
-input; otherwise it is compressed again (``--force`` always recompresses). The sidecar is written
-after the output, so an interrupted run never leaves an output that looks complete without being
-so.
+Resuming: next to each output, ``OUT.pvr.json`` (the "sidecar", the library's up-to-date
+record: ``tessera.up_to_date_record``) records the options, the tessera version and the input's
+size and modification time: the record ``tessera compress --skip-up-to-date`` writes, byte for
+byte. A file is skipped when its output is up to date (``tessera.is_up_to_date``: it exists, is
+newer than the input, and its sidecar matches the current options and input); otherwise it is
+compressed again (``--force`` always recompresses). The sidecar is written after the output, so
+an interrupted run never leaves an output that looks complete without being so.
 
 A file that fails (not a power of two without --resize-pot, corrupt, unreadable, unwritable
 output) fails alone: it is reported, with the message ``tessera compress`` prints for it (its
@@ -68,10 +67,6 @@ _FORMATS = ("pvrtc1-4", "pvrtc1-2")
 _QUALITIES = ("fast", "normal", "high")
 _CONTAINERS = ("pvr", "ktx", "ktx2")
 _MIP_FILTERS = ("box", "lanczos", "kaiser")
-#: The options every sidecar records; the later ones only when they are not their defaults, so
-#: that records of plain runs stay as they were (the CLI's sidecar_json does the same).
-_SIDECAR_OPTIONS = ("exact_search_rounds", "format", "iterations", "mipmaps", "quality",
-                    "resize_pot", "srgb")
 _TYPES = {"format": str, "quality": str, "mipmaps": bool, "srgb": bool, "iterations": int,
           "exact_search_rounds": int, "resize_pot": bool, "mip_levels": int, "mip_filter": str,
           "flip_y": bool, "premultiply": bool, "alpha_bleed": bool, "alpha_weighted": bool,
@@ -166,32 +161,10 @@ def plan(src, dst, container="pvr"):
     return jobs, clashes
 
 
-def _sidecar_record(src, options, container, zstd=0):
-    st = os.stat(src)
-    recorded = {k: options[k] for k in _SIDECAR_OPTIONS}
-    recorded.update({k: v for k, v in options.items()
-                     if k not in _SIDECAR_OPTIONS and v != tessera.ENCODE_DEFAULTS[k]})
-    if zstd:
-        recorded["zstd"] = zstd
-    return {
-        "tessera": tessera.__version__,
-        "container": container,
-        "options": recorded,
-        "input_size": st.st_size,
-        "input_mtime_ns": st.st_mtime_ns,
-    }
-
-
 def is_up_to_date(src, out, options, container, zstd=0):
     """True when `out` exists, is newer than `src`, and its sidecar records these options and
-    this input (size and modification time)."""
-    try:
-        if os.stat(out).st_mtime_ns <= os.stat(src).st_mtime_ns:
-            return False
-        with open(out + SIDECAR_SUFFIX, encoding="utf-8") as f:
-            return json.load(f) == _sidecar_record(src, options, container, zstd)
-    except (OSError, ValueError):
-        return False
+    this input (size and modification time): ``tessera.is_up_to_date``."""
+    return tessera.is_up_to_date(src, out, container=container, zstd=zstd, **options)
 
 
 def _cli_words(message):
@@ -209,17 +182,14 @@ def compress_one(src, out, options, container, threads, zstd=0):
     the CLI words them."""
     t0 = time.perf_counter()
     try:
-        record = _sidecar_record(src, options, container, zstd)
+        # The input as it was before the encode: if it changes meanwhile, the record says so.
+        record = tessera.up_to_date_record(src, container=container, zstd=zstd, **options)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             texture = tessera.encode_file(src, threads=threads, **options)
         os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
         texture.write(out, zstd=zstd)
-        tmp = f"{out}{SIDECAR_SUFFIX}.tmp{os.getpid()}"
-        with open(tmp, "w", encoding="utf-8") as f:
-            json.dump(record, f, indent=1, sort_keys=True)  # the CLI's bytes: nlohmann dump(1)
-            f.write("\n")
-        os.replace(tmp, out + SIDECAR_SUFFIX)
+        tessera.write_up_to_date_record(out, record)
         return {"src": src, "out": out, "status": "done",
                 "pixels": texture.width * texture.height,
                 "seconds": time.perf_counter() - t0,
@@ -271,9 +241,9 @@ def group_jobs(jobs, files_per_task=None, workers=1, weights=None):
 
 # Dask's periodic work, slowed down for the LocalCluster that compress_tree starts: the worker's
 # statistical profiler samples every thread's stack every 10 ms, the event loops tick every 20
-# ms and the memory and system monitors poll psutil several times a second. Measured on a 2-core
-# machine, an idle LocalCluster of 2 workers used 1.7 s of CPU per 10 s with the defaults and
-# 0.23 s with these values, CPU that the encoders then do not get.
+# ms and the memory and system monitors poll psutil several times a second: CPU that the
+# encoders do not get (an idle LocalCluster's cost with and without these values:
+# docs/benchmarks/python.md).
 LOCAL_CLUSTER_CONFIG = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.tick.interval": "1s",

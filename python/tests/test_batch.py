@@ -169,6 +169,39 @@ def test_sidecars_shared_with_cli_skip_up_to_date(tmp_path, client):
     assert (s["done"], s["skipped"]) == (3, 1)
 
 
+def test_up_to_date_record_is_the_clis(tmp_path):
+    # tessera.up_to_date_record gives the bytes `tessera compress --skip-up-to-date` writes
+    # (cube maps included), and tessera.is_up_to_date takes the CLI's record for its own.
+    src = make_tree(tmp_path / "src")
+    img = src / "top.png"
+    out = tmp_path / "top.ktx2"
+    run_cli("compress", img, "-o", out, "-q", "--mip-levels", "2", "--zstd", "4", "--flip-y",
+            "--skip-up-to-date")
+    keywords = dict(container="ktx2", zstd=4, mip_levels=2, flip_y=True)
+    record = tessera.up_to_date_record(img, **keywords)
+    assert Path(f"{out}.json").read_text() == record
+    assert json.loads(record)["options"]["mip_levels"] == 2
+    assert tessera.is_up_to_date(img, out, **keywords)
+    assert not tessera.is_up_to_date(img, out, **dict(keywords, quality="fast"))
+    faces = [str(tmp_path / f"f{i}.png") for i in range(6)]
+    for i, face in enumerate(faces):
+        tessera.write_image(face, make_image(16, 16, 4, seed=i))
+    cube = tmp_path / "cube.pvr"
+    run_cli("compress", *faces, "--cube", "-o", cube, "-q", "--skip-up-to-date")
+    assert Path(f"{cube}.json").read_text() == tessera.up_to_date_record(faces, cube=True)
+    # Written atomically beside the output; bad keywords and inputs raise, naming them.
+    other = tmp_path / "other.ktx2"
+    other.write_bytes(out.read_bytes())
+    tessera.write_up_to_date_record(other, record)
+    assert Path(f"{other}.json").read_text() == record
+    with pytest.raises(tessera.InvalidArgumentError, match="container: 'dds'"):
+        tessera.up_to_date_record(img, container="dds")
+    with pytest.raises(tessera.InvalidArgumentError, match="zstd needs a KTX 2.0"):
+        tessera.up_to_date_record(img, zstd=3)
+    with pytest.raises(tessera.Error, match="gone.png"):
+        tessera.up_to_date_record(tmp_path / "gone.png")
+
+
 def test_group_jobs_sizes_and_order():
     jobs = [(f"s{i}", f"o{i}") for i in range(200)]
     # Guided: equal files keep their order, 16 per task while there is much work left, each

@@ -1,6 +1,5 @@
 // tessera compress: one image to one texture (or stdout), or many into a folder (batch mode,
 // compress_batch.cpp).
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -39,52 +38,6 @@ bool is_batch(const CompressArgs& args) {
   std::error_code ec;
   if (in.starts_with('@') || (in != "-" && fs::is_directory(in, ec))) return true;
   return is_folder(args.output);
-}
-
-std::int64_t mtime_ns(const struct stat& st) {
-  return std::int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
-}
-
-nlohmann::json sidecar_json(const CompressArgs& args, const std::string& container,
-                            const std::vector<std::string>& inputs) {
-  nlohmann::json j = {{"tessera", TESSERA_VERSION_STRING},
-                      {"container", container},
-                      {"options",
-                       {{"exact_search_rounds", args.exact_search_rounds},
-                        {"format", args.format},
-                        {"iterations", args.iterations},
-                        {"mipmaps", args.mipmaps},
-                        {"quality", args.quality},
-                        {"resize_pot", args.resize_pot},
-                        {"srgb", args.srgb}}}};
-  // Options added later are recorded only when they are not their defaults, so the records of
-  // plain runs (and the Python batch's, which writes the same keys) stay as they were.
-  nlohmann::json& o = j["options"];
-  if (args.mip_levels) o["mip_levels"] = args.mip_levels;
-  if (args.mip_filter != "box") o["mip_filter"] = args.mip_filter;
-  if (args.flip_y) o["flip_y"] = true;
-  if (args.premultiply) o["premultiply"] = true;
-  if (args.alpha_bleed) o["alpha_bleed"] = true;
-  if (args.alpha_weighted) o["alpha_weighted"] = true;
-  if (args.normal_map) o["normal_map"] = true;
-  if (args.zstd) o["zstd"] = args.zstd;
-  if (args.cube) o["cube"] = true;
-  if (args.array) o["array"] = true;
-  if (inputs.size() == 1) {
-    struct stat st {};
-    if (::stat(inputs.front().c_str(), &st) != 0) return nullptr;
-    j["input_size"] = std::int64_t(st.st_size);
-    j["input_mtime_ns"] = mtime_ns(st);
-    return j;
-  }
-  nlohmann::json list = nlohmann::json::array();
-  for (const std::string& in : inputs) {
-    struct stat st {};
-    if (::stat(in.c_str(), &st) != 0) return nullptr;
-    list.push_back({{"path", in}, {"size", std::int64_t(st.st_size)}, {"mtime_ns", mtime_ns(st)}});
-  }
-  j["inputs"] = list;
-  return j;
 }
 
 }  // namespace
@@ -335,32 +288,43 @@ std::string compress_usage_problem(const CompressArgs& args, const std::string& 
   return "";
 }
 
-std::string sidecar_record(const CompressArgs& args, const std::string& container,
-                           const std::vector<std::string>& inputs) {
-  return sidecar_json(args, container, inputs).dump(1) + "\n";
+texture_file::RecordedOptions recorded_options(const CompressArgs& args,
+                                               const std::string& container) {
+  texture_file::RecordedOptions r;
+  r.container = container;
+  r.format = args.format;
+  r.quality = args.quality;
+  r.iterations = args.iterations;
+  r.exact_search_rounds = args.exact_search_rounds;
+  r.mipmaps = args.mipmaps;
+  r.mip_levels = args.mip_levels;
+  r.mip_filter = args.mip_filter;
+  r.srgb = args.srgb;
+  r.resize_pot = args.resize_pot;
+  r.flip_y = args.flip_y;
+  r.premultiply = args.premultiply;
+  r.alpha_bleed = args.alpha_bleed;
+  r.alpha_weighted = args.alpha_weighted;
+  r.normal_map = args.normal_map;
+  r.zstd = args.zstd;
+  r.cube = args.cube;
+  r.array = args.array;
+  return r;
 }
 
 bool up_to_date(const CompressArgs& args, const std::string& container,
                 const std::vector<std::string>& inputs, const std::string& output) {
-  struct stat out {};
-  if (::stat(output.c_str(), &out) != 0) return false;
-  for (const std::string& input : inputs) {
-    struct stat in {};
-    if (input == "-" || ::stat(input.c_str(), &in) != 0 || mtime_ns(out) <= mtime_ns(in)) {
-      return false;
-    }
-  }
-  Result<std::vector<std::uint8_t>> text = io::read_file(output + ".json", 1 << 20);
-  if (!text) return false;
-  const nlohmann::json stored = nlohmann::json::parse(text->begin(), text->end(), nullptr, false);
-  return !stored.is_discarded() && stored == sidecar_json(args, container, inputs);
+  return texture_file::is_up_to_date(recorded_options(args, container), inputs, output);
 }
 
 Status write_sidecar(const CompressArgs& args, const std::string& container,
                      const std::vector<std::string>& inputs, const std::string& output) {
-  const std::string text = sidecar_record(args, container, inputs);
-  return io::write_file_atomic(output + ".json",
-                               {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
+  // Standard input has no size or time to compare with: its output is never up to date.
+  if (std::count(inputs.begin(), inputs.end(), "-") > 0) return Status::success();
+  Result<std::string> record =
+      texture_file::up_to_date_record(recorded_options(args, container), inputs);
+  if (!record) return record.status();
+  return texture_file::write_up_to_date_record(output, *record);
 }
 
 Command add_compress_command(CLI::App& app, const GlobalOptions& global) {

@@ -51,20 +51,19 @@ texture_file::ContainerFormat container_of(const std::string& word);
 /// or "".
 std::string compress_usage_problem(const CompressArgs& args, const std::string& container);
 
-/// The record `--skip-up-to-date` keeps beside each output (OUTPUT.json, the sidecar): tessera's
-/// version, the container, the encode options and the input's size and modification time (for
-/// a cube map or array, every input's path, size and time). The Python `tessera.batch` writes
-/// and reads the same record.
-std::string sidecar_record(const CompressArgs& args, const std::string& container,
-                           const std::vector<std::string>& inputs);
+/// The options these arguments record in the up-to-date record of `--skip-up-to-date`
+/// (OUTPUT.json: `texture_file::up_to_date_record`, which `tessera.batch` writes too).
+texture_file::RecordedOptions recorded_options(const CompressArgs& args,
+                                               const std::string& container);
 
-/// True when `output` exists, is newer than every input, and its sidecar holds the record of
-/// these options and these inputs.
+/// True when `output` is up to date for these options and inputs
+/// (`texture_file::is_up_to_date`).
 bool up_to_date(const CompressArgs& args, const std::string& container,
                 const std::vector<std::string>& inputs, const std::string& output);
 
-/// Writes the sidecar of `output` (after the output itself, so an interrupted run never leaves
-/// an output that looks complete without being so).
+/// Writes the up-to-date record of `output` (after the output itself, so an interrupted run
+/// never leaves an output that looks complete without being so); none for standard input,
+/// whose output is never up to date.
 Status write_sidecar(const CompressArgs& args, const std::string& container,
                      const std::vector<std::string>& inputs, const std::string& output);
 

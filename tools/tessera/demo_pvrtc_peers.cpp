@@ -160,7 +160,7 @@ Status demo_pvrtc_quality_time(Report& report, const DemoOptions& options,
     p.label = "PVRTexTool 4.17 (its own threads): fastest to best";
     p.colour = series_colour(1);
     p.markers = true;
-    p.dashed = true;
+    p.dash = "6 4";
     series_for(kPeer, std::size(kPeer), true, p, rows);
     plot.series.push_back(p);
   }

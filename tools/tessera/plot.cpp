@@ -1,3 +1,4 @@
+// The plot engine (plot.h): layout, SVG plots and colour bars; plot_png.cpp rasterises.
 #include "plot.h"
 
 #include <algorithm>
@@ -5,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "plot_layout.h"
 #include "report.h"
 
 namespace tessera::cli {
@@ -62,15 +64,38 @@ std::vector<double> log_ticks(double lo, double hi) {
   return t;
 }
 
-}  // namespace
-
-const char* series_colour(std::size_t i) {
-  static const char* kTab10[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
-                                 "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
-  return kTab10[i % 10];
+std::string dash_attribute(const PlotSeries& series) {
+  return series.dash.empty() ? "" : " stroke-dasharray=\"" + series.dash + "\"";
 }
 
-std::string plot_svg(const Plot& plot) {
+}  // namespace
+
+namespace plot_layout {
+
+double Layout::px(double x) const {
+  const double t = log_x ? (std::log10(x) - std::log10(x0)) / (std::log10(x1) - std::log10(x0))
+                         : (x - x0) / (x1 - x0);
+  return left + t * pw;
+}
+
+double Layout::py(double y) const {
+  const double t = log_y ? (std::log10(std::max(y, y0)) - std::log10(y0)) /
+                               (std::log10(y1) - std::log10(y0))
+                         : (y - y0) / (y1 - y0);
+  return top + (1 - t) * ph;
+}
+
+void Layout::legend_entry(std::size_t i, double& lx, double& ly) const {
+  if (legend_column > 0) {
+    lx = left + pw + 12;
+    ly = top + 14 + 18 * double(i);
+  } else {
+    lx = left + double(i % 2) * pw / 2;
+    ly = top + ph + 52 + 18 * double(i / 2);
+  }
+}
+
+Layout layout(const Plot& plot) {
   // Data range.
   double x0 = plot.x_min, x1 = plot.x_max, y0 = plot.y_min, y1 = plot.y_max;
   if (x0 == x1 || y0 == y1) {
@@ -101,22 +126,45 @@ std::string plot_svg(const Plot& plot) {
       y0 = dy0 - pad, y1 = dy1 + pad;
     }
   }
-  const int W = plot.width, H = plot.height;
-  const int left = 64, right = 16, top = plot.title.empty() ? 16 : 36;
-  const int legend_rows = int(plot.series.size());
+  Layout l;
+  l.x0 = x0, l.x1 = x1, l.y0 = y0, l.y1 = y1;
+  l.log_x = plot.log_x, l.log_y = plot.log_y;
+  l.legend_column = plot.legend_column;
+  const int legend_rows = plot.legend_column > 0 ? 0 : int(plot.series.size());
+  const int right = 16 + plot.legend_column;
   const int bottom = 52 + 18 * ((legend_rows + 1) / 2);
-  const double pw = W - left - right, ph = H - top - bottom;
-  auto px = [&](double x) {
-    const double t = plot.log_x ? (std::log10(x) - std::log10(x0)) / (std::log10(x1) - std::log10(x0))
-                                : (x - x0) / (x1 - x0);
-    return left + t * pw;
-  };
-  auto py = [&](double y) {
-    const double t = plot.log_y ? (std::log10(std::max(y, y0)) - std::log10(y0)) /
-                                      (std::log10(y1) - std::log10(y0))
-                                : (y - y0) / (y1 - y0);
-    return top + (1 - t) * ph;
-  };
+  l.left = 64;
+  l.top = plot.title.empty() ? 16 : 36;
+  l.pw = plot.width - l.left - right;
+  l.ph = plot.height - l.top - bottom;
+  for (double v : plot.log_x ? log_ticks(x0, x1) : linear_ticks(x0, x1)) {
+    if (v >= x0 && v <= x1) l.x_ticks.push_back(v);
+  }
+  for (double v : plot.log_y ? log_ticks(y0, y1) : linear_ticks(y0, y1)) {
+    if (v >= y0 && v <= y1) l.y_ticks.push_back(v);
+  }
+  return l;
+}
+
+bool drawable(const Layout& l, const PlotSeries& series, std::size_t i) {
+  return std::isfinite(series.x[i]) && std::isfinite(series.y[i]) && !(l.log_x && series.x[i] <= 0);
+}
+
+}  // namespace plot_layout
+
+const char* series_colour(std::size_t i) {
+  static const char* kTab10[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                 "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  return kTab10[i % 10];
+}
+
+std::string plot_svg(const Plot& plot) {
+  const plot_layout::Layout l = plot_layout::layout(plot);
+  const int W = plot.width, H = plot.height;
+  const int left = l.left, top = l.top;
+  const double pw = l.pw, ph = l.ph;
+  auto px = [&](double x) { return l.px(x); };
+  auto py = [&](double y) { return l.py(y); };
 
   std::ostringstream s;
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << W << ' ' << H
@@ -128,16 +176,13 @@ std::string plot_svg(const Plot& plot) {
       << Report::escape(plot.title) << "</text>\n";
   }
   // Grid and ticks.
-  const std::vector<double> xt = plot.log_x ? log_ticks(x0, x1) : linear_ticks(x0, x1);
-  for (double v : xt) {
-    if (v < x0 || v > x1) continue;
+  for (double v : l.x_ticks) {
     const double x = px(v);
     s << "<line x1=\"" << num(x) << "\" y1=\"" << top << "\" x2=\"" << num(x) << "\" y2=\""
       << num(top + ph) << "\" stroke=\"#e4e4e4\"/>\n<text x=\"" << num(x) << "\" y=\""
       << num(top + ph + 16) << "\" text-anchor=\"middle\">" << tick_text(v) << "</text>\n";
   }
-  for (double v : plot.log_y ? log_ticks(y0, y1) : linear_ticks(y0, y1)) {
-    if (v < y0 || v > y1) continue;
+  for (double v : l.y_ticks) {
     const double y = py(v);
     s << "<line x1=\"" << left << "\" y1=\"" << num(y) << "\" x2=\"" << num(left + pw)
       << "\" y2=\"" << num(y) << "\" stroke=\"#e4e4e4\"/>\n<text x=\"" << left - 6 << "\" y=\""
@@ -155,20 +200,15 @@ std::string plot_svg(const Plot& plot) {
   for (const PlotSeries& ser : plot.series) {
     std::string pts;
     for (std::size_t i = 0; i < ser.x.size() && i < ser.y.size(); ++i) {
-      if (!std::isfinite(ser.x[i]) || !std::isfinite(ser.y[i]) || (plot.log_x && ser.x[i] <= 0)) {
-        continue;
-      }
-      if (plot.log_y && ser.y[i] <= 0) continue;
+      if (!plot_layout::drawable(l, ser, i) || (plot.log_y && ser.y[i] <= 0)) continue;
       pts += num(px(ser.x[i])) + "," + num(py(ser.y[i])) + " ";
     }
     if (ser.line && !pts.empty()) {
       s << "<polyline fill=\"none\" stroke=\"" << ser.colour << "\" stroke-width=\"2\""
-        << (ser.dashed ? " stroke-dasharray=\"6 4\"" : "") << " points=\"" << pts << "\"/>\n";
+        << dash_attribute(ser) << " points=\"" << pts << "\"/>\n";
     }
     for (std::size_t i = 0; i < ser.x.size() && i < ser.y.size(); ++i) {
-      if (!std::isfinite(ser.x[i]) || !std::isfinite(ser.y[i]) || (plot.log_x && ser.x[i] <= 0)) {
-        continue;
-      }
+      if (!plot_layout::drawable(l, ser, i)) continue;
       if (ser.markers) {
         s << "<circle cx=\"" << num(px(ser.x[i])) << "\" cy=\"" << num(py(ser.y[i]))
           << "\" r=\"4\" fill=\"" << ser.colour << "\"/>\n";
@@ -184,13 +224,14 @@ std::string plot_svg(const Plot& plot) {
     }
   }
   s << "</g>\n";
-  // Legend, two columns under the axis title.
+  // Legend: two columns under the axis title, or one column right of the axes.
   for (std::size_t i = 0; i < plot.series.size(); ++i) {
     const PlotSeries& ser = plot.series[i];
-    const double lx = left + (i % 2) * pw / 2, ly = top + ph + 52 + 18 * double(i / 2);
+    double lx = 0, ly = 0;
+    l.legend_entry(i, lx, ly);
     s << "<line x1=\"" << num(lx) << "\" y1=\"" << num(ly - 4) << "\" x2=\"" << num(lx + 24)
       << "\" y2=\"" << num(ly - 4) << "\" stroke=\"" << ser.colour << "\" stroke-width=\"2\""
-      << (ser.dashed ? " stroke-dasharray=\"6 4\"" : "") << (ser.line ? "" : " opacity=\"0\"")
+      << dash_attribute(ser) << (ser.line ? "" : " opacity=\"0\"")
       << "/>\n";
     if (ser.markers) {
       s << "<circle cx=\"" << num(lx + 12) << "\" cy=\"" << num(ly - 4) << "\" r=\"4\" fill=\""

@@ -9,7 +9,6 @@
 
 #include "plot.h"
 #include "report.h"
-#include "report_plot.h"
 #include "report_seams.h"
 #include "tessera/io.h"
 #include "tessera/metrics.h"
@@ -65,6 +64,35 @@ const char* method_dash(Method m) {
       return "12,3,2,3";
   }
   return "";
+}
+
+/// One CDF curve: y[i] is the fraction of pixels with error >= i * kStep.
+PlotSeries cdf_series(std::string label, std::string colour, std::string dash,
+                      const std::vector<double>& cdf) {
+  PlotSeries ser;
+  ser.label = std::move(label);
+  ser.colour = std::move(colour);
+  ser.dash = std::move(dash);
+  for (int i = 0; i < kBins && i < int(cdf.size()); ++i) {
+    ser.x.push_back(double(i) * kStep);
+    ser.y.push_back(cdf[std::size_t(i)]);
+  }
+  return ser;
+}
+
+/// The axes of Figure 5: the error threshold x (0 to 0.15, linear) against the fraction of
+/// pixels with error >= x (1e-4 to 1, logarithmic).
+Plot cdf_axes(std::string title, std::string x_title, std::string y_title) {
+  Plot plot;
+  plot.title = std::move(title);
+  plot.x_title = std::move(x_title);
+  plot.y_title = std::move(y_title);
+  plot.log_y = true;
+  plot.x_min = 0;
+  plot.x_max = 0.15;
+  plot.y_min = 1e-4;
+  plot.y_max = 1;
+  return plot;
 }
 
 }  // namespace
@@ -158,46 +186,44 @@ Status write_plots(const experiments::SeamsResult& res, const std::string& dir) 
     csv << "\n";
   }
   if (Status s = write_text(dir + "/cdf.csv", csv.str()); !s.ok()) return s;
-  std::vector<Curve> left, right;
+  // Left: Traverse against Discard, one curve per rate; right: each method against the
+  // reference (line style: method, colour: rate). The PNGs are the same plots without text.
+  Plot left = cdf_axes("Traverse vs Discard", "linear-RGB 2-norm difference x",
+                       "fraction of pixels with error \u2265 x");
+  Plot right = cdf_axes("Deviation from the reference (solid Discard, dashed Traverse, dotted "
+                        "Clamp)",
+                        left.x_title, left.y_title);
+  left.height = right.height = 420;
+  left.legend_column = right.legend_column = 180;
   for (std::size_t ri = 0; ri < res.rates.size(); ++ri) {
-    left.push_back(
-        {rate_key(res.rates[ri].msaa), rate_colour(ri), "", res.rates[ri].traverse_vs_discard.cdf});
+    left.series.push_back(cdf_series(rate_key(res.rates[ri].msaa), rate_colour(ri), "",
+                                     res.rates[ri].traverse_vs_discard.cdf));
   }
   for (Method m : methods) {
     if (m == Method::traverse_corners) continue;  // in the CSV/JSON
     for (std::size_t ri = 0; ri < res.rates.size(); ++ri) {
-      right.push_back({std::string(faces::method_name(m)) + " " + rate_key(res.rates[ri].msaa),
-                       rate_colour(ri), method_dash(m), res.rates[ri].method(m).vs_reference.cdf});
+      right.series.push_back(
+          cdf_series(std::string(faces::method_name(m)) + " " + rate_key(res.rates[ri].msaa),
+                     rate_colour(ri), method_dash(m), res.rates[ri].method(m).vs_reference.cdf));
     }
   }
   // One readable panel per rate: Clamp, Discard and Traverse against the reference over all
   // geometry pixels (solid) and near the seams (dashed).
   for (std::size_t ri = 0; ri < res.rates.size(); ++ri) {
     const SeamsRateResult& rate = res.rates[ri];
-    Plot plot;
-    plot.title = "Figure 5, " + rate_key(rate.msaa) + " MSAA: error against the reference";
-    plot.x_title = "x: per-pixel linear-RGB error (2-norm)";
-    plot.y_title = "fraction of pixels with error >= x";
-    plot.log_y = true;
-    plot.x_min = 0;
-    plot.x_max = 0.15;
-    plot.y_min = 1e-4;
-    plot.y_max = 1;
+    Plot plot = cdf_axes("Figure 5, " + rate_key(rate.msaa) + " MSAA: error against the reference",
+                         "x: per-pixel linear-RGB error (2-norm)",
+                         "fraction of pixels with error >= x");
     std::size_t colour = 0;
     for (Method m : {Method::clamp, Method::discard, Method::traverse}) {
       for (bool near : {false, true}) {
         if (near && res.near_seam_pixels == 0) continue;
         const ErrorStats& q =
             near ? rate.method(m).vs_reference_near_seams : rate.method(m).vs_reference;
-        PlotSeries ser;
-        ser.label = std::string(faces::method_name(m)) +
-                    (near ? ", near seams" : ", all pixels") + fmt(" (mean %.4f)", q.mean);
-        ser.colour = series_colour(colour);
-        ser.dashed = near;
-        for (int i = 0; i < kBins && i < int(q.cdf.size()); ++i) {
-          ser.x.push_back(double(i) * kStep);
-          ser.y.push_back(q.cdf[std::size_t(i)]);
-        }
+        PlotSeries ser = cdf_series(std::string(faces::method_name(m)) +
+                                        (near ? ", near seams" : ", all pixels") +
+                                        fmt(" (mean %.4f)", q.mean),
+                                    series_colour(colour), near ? "6 4" : "", q.cdf);
         plot.series.push_back(std::move(ser));
       }
       ++colour;
@@ -207,16 +233,10 @@ Status write_plots(const experiments::SeamsResult& res, const std::string& dir) 
       return s;
     }
   }
-  if (Status s = write_text(dir + "/fig5_left.svg", cdf_svg("Traverse vs Discard", left, 0.15));
-      !s.ok()) {
-    return s;
-  }
-  if (Status s = io::write_png(dir + "/fig5_left.png", cdf_png(left, 0.15)); !s.ok()) return s;
-  if (Status s = io::write_png(dir + "/fig5_right.png", cdf_png(right, 0.15)); !s.ok()) return s;
-  return write_text(dir + "/fig5_right.svg",
-                    cdf_svg("Deviation from the reference (solid Discard, dashed "
-                            "Traverse, dotted Clamp)",
-                            right, 0.15));
+  if (Status s = write_text(dir + "/fig5_left.svg", plot_svg(left)); !s.ok()) return s;
+  if (Status s = io::write_png(dir + "/fig5_left.png", plot_png(left)); !s.ok()) return s;
+  if (Status s = io::write_png(dir + "/fig5_right.png", plot_png(right)); !s.ok()) return s;
+  return write_text(dir + "/fig5_right.svg", plot_svg(right));
 }
 
 }  // namespace tessera::cli::seams_report

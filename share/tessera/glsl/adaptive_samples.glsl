@@ -15,8 +15,9 @@
 
 // A driver loops over its window reading these from its G-buffer (deferred_passes.comp's
 // tessera_window_seam_gbuffer and tessera_window_scales). Keep per-window arrays of UVs and
-// derivatives out of the shading pass: on an NVIDIA H200 they cost the whole pass its
-// occupancy, and the extra-sample pass ran 4.4x slower with them (docs/benchmarks/aa_gl.md).
+// derivatives out of the shading pass: on a hardware GPU their registers cost the whole pass
+// its occupancy, and the extra-sample pass is several times slower with them
+// (docs/benchmarks/aa_history.md).
 
 /// True when two horizontally (dir 0) or vertically (dir 1) adjacent window samples of one
 /// material have a UV seam between them: their UV jump exceeds seam_factor x what their
