@@ -172,7 +172,10 @@ struct AdaptiveSupersamplerOptions {
   /// index matrices for m = 2..4, ordered-dither matrices beyond).
   std::vector<std::uint8_t> sample_order;
   AdaptiveSchedule schedule = AdaptiveSchedule::frame_list;
-  std::size_t list_capacity = 0;  ///< frame_list items (samples, S's own counted); 0 = 2*w*h.
+  /// frame_list items (shaded samples of pixels with k > 0, sample 0 counted), 24 bytes each;
+  /// 0 = w*h*max(2, m*m/4) (a quarter of full supersampling). Clamped to what
+  /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE allows.
+  std::size_t list_capacity = 0;
   AdaptiveResolve resolve = AdaptiveResolve::box;
   float hdr_exposure = 1.0f;  ///< e of `tonemap_weighted` (> 0).
   AdaptiveOutputFormat output = AdaptiveOutputFormat::rgba16f;

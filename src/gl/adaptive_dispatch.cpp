@@ -271,8 +271,9 @@ Status run_budget(State& st, Runner& run) {
   for (int d = 0; d < 8; ++d) {
     glProgramUniform1i(st.programs.at("HISTOGRAM").get(), hist_loc, d);
     glProgramUniform1i(st.programs.at("SELECT").get(), select_loc, d);
-    if (Status s = run.pass("budget_histogram", "HISTOGRAM"); !s.ok()) return s;
-    if (Status s = run.pass("budget_select", "SELECT", 1); !s.ok()) return s;
+    const std::string digit = std::to_string(d);
+    if (Status s = run.pass("budget_histogram" + digit, "HISTOGRAM"); !s.ok()) return s;
+    if (Status s = run.pass("budget_select" + digit, "SELECT", 1); !s.ok()) return s;
   }
   return run.pass("budget_apply", "APPLY");
 }
