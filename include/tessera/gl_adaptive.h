@@ -173,8 +173,9 @@ struct AdaptiveSupersamplerOptions {
   std::vector<std::uint8_t> sample_order;
   AdaptiveSchedule schedule = AdaptiveSchedule::frame_list;
   /// frame_list items (shaded samples of pixels with k > 0, sample 0 counted), 24 bytes each;
-  /// 0 = w*h*max(2, m*m/4) (a quarter of full supersampling). Clamped to what
-  /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE allows.
+  /// 0 = w*h*(m*m/2), half of full supersampling (m = 4: 192 bytes per output pixel, 398 MB at
+  /// 1920x1080; with a budget B, B + w*h items always suffice). Clamped to what
+  /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE allows. Pixels beyond it are still shaded (see above).
   std::size_t list_capacity = 0;
   AdaptiveResolve resolve = AdaptiveResolve::box;
   float hdr_exposure = 1.0f;  ///< e of `tonemap_weighted` (> 0).

@@ -213,7 +213,7 @@ Status check_options(AdaptiveSupersampler::State& st) {
                              std::to_string(max_block));
   }
   st.list_capacity =
-      o.list_capacity > 0 ? o.list_capacity : pixels * std::size_t(std::max(2, o.m * o.m / 4));
+      o.list_capacity > 0 ? o.list_capacity : pixels * std::size_t(o.m * o.m / 2);
   st.list_capacity = std::min<std::size_t>(
       {st.list_capacity, std::size_t(max_block) / kAdaptiveListItemBytes, 0x7fffffffu});
   Result<int> tu = binding(o.first_texture_unit, 4, GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS,
