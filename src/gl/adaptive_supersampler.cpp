@@ -216,6 +216,8 @@ Status check_options(AdaptiveSupersampler::State& st) {
       o.list_capacity > 0 ? o.list_capacity : pixels * std::size_t(o.m * o.m / 2);
   st.list_capacity = std::min<std::size_t>(
       {st.list_capacity, std::size_t(max_block) / kAdaptiveListItemBytes, 0x7fffffffu});
+  if (o.schedule != AdaptiveSchedule::frame_list) st.list_capacity = 1;  // no list
+  st.list_capacity = std::max<std::size_t>(st.list_capacity, 1);
   Result<int> tu = binding(o.first_texture_unit, 4, GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS,
                            "first_texture_unit", "GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS");
   if (!tu) return tu.status();
@@ -245,6 +247,7 @@ std::vector<std::string> preamble(const AdaptiveSupersampler::State& st, const s
       "#define TESSERA_ADAPTIVE_MAX_N " + std::to_string(st.n),
       "#define TESSERA_AA_WIDTH " + std::to_string(o.width),
       "#define TESSERA_AA_HEIGHT " + std::to_string(o.height),
+      "#define TESSERA_AA_LIST_CAPACITY " + std::to_string(st.list_capacity),
       "#define TESSERA_AA_UBO_BINDING " + std::to_string(st.uniform_binding),
       "#define TESSERA_AA_WORK_BINDING " + std::to_string(st.storage_binding),
       "#define TESSERA_AA_IMAGE_UNIT " + std::to_string(st.image_unit),
@@ -394,9 +397,8 @@ Result<std::unique_ptr<AdaptiveSupersampler>> AdaptiveSupersampler::create(
 
   const std::size_t pixels = std::size_t(o.width) * std::size_t(o.height);
   st->work_buf = make_buffer((kAdaptiveHeaderUints + kAdaptiveHistogramUints + 4 * pixels) * 4);
-  st->list_buf = make_buffer(o.schedule == AdaptiveSchedule::frame_list
-                                 ? st->list_capacity * kAdaptiveListItemBytes
-                                 : 16);
+  // std430: the items (8 bytes each), the colours from the next multiple of 16 bytes.
+  st->list_buf = make_buffer((st->list_capacity * 8 + 15) / 16 * 16 + st->list_capacity * 16);
   st->colour_tex = make_texture(o.output == AdaptiveOutputFormat::rgba32f ? GL_RGBA32F
                                                                           : GL_RGBA16F,
                                 o.width, o.height);

@@ -11,7 +11,7 @@
 //   <the engine's hook: vec4 tessera_shade_sample(ivec2 grid_texel, float footprint)>
 //   #include "adaptive_component.glsl"
 // Defines from the host: TESSERA_AA_M, TESSERA_AA_N (= m*m), TESSERA_ADAPTIVE_MAX_N (= N),
-// TESSERA_AA_WIDTH/HEIGHT, TESSERA_AA_UBO_BINDING, TESSERA_AA_WORK_BINDING (+ 1: the list),
+// TESSERA_AA_WIDTH/HEIGHT, TESSERA_AA_LIST_CAPACITY, TESSERA_AA_UBO_BINDING, TESSERA_AA_WORK_BINDING (+ 1: the list),
 // TESSERA_AA_IMAGE_UNIT (+ 1: sample counts), TESSERA_AA_OUT_FORMAT (rgba16f | rgba32f),
 // optional TESSERA_AA_HAS_UV, TESSERA_AA_SAMPLE_COUNTS, TESSERA_AA_HDR, and one pass:
 //   TESSERA_AA_PASS_FIRST      S = hook(sample 0, footprint m) -> output image; luma -> work
@@ -54,9 +54,11 @@ layout(std140, binding = TESSERA_AA_UBO_BINDING) uniform TesseraAaParams {
 // pass's group counts, [5] budget still binding, [6] remainder R, [7] key hi, [8] key lo,
 // [16 .. 16 + 8*256) digit histograms, then per pixel (P = w*h): luma, k, strength, list base.
 layout(std430, binding = TESSERA_AA_WORK_BINDING) buffer TesseraAaWork { uint tessera_aa_work[]; };
-// Frame list: per item 2 uints (pixel | sample << 26, footprint bits), then 4 uints of colour.
+// Frame list of TESSERA_AA_LIST_CAPACITY items: (pixel | sample << 26, footprint bits) each,
+// then their colours.
 layout(std430, binding = TESSERA_AA_WORK_BINDING + 1) buffer TesseraAaList {
-  uint tessera_aa_list[];
+  uvec2 tessera_aa_items[TESSERA_AA_LIST_CAPACITY];
+  vec4 tessera_aa_colours[];
 };
 layout(binding = TESSERA_AA_IMAGE_UNIT, TESSERA_AA_OUT_FORMAT) uniform writeonly image2D
     tessera_aa_out;
@@ -316,15 +318,12 @@ void main() {
   uint e = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u +
            gl_LocalInvocationIndex;
   if (e >= min(tessera_aa_work[0], uint(tessera_aa_flags.w))) return;
-  uint item = tessera_aa_list[2u * e];
-  if (item == TESSERA_AA_NONE) return;  // a slot of a pixel that did not fit
-  int owner_index = int(item & 0x3ffffffu);
+  uvec2 item = tessera_aa_items[e];
+  if (item.x == TESSERA_AA_NONE) return;  // a slot of a pixel that did not fit
+  int owner_index = int(item.x & 0x3ffffffu);
   ivec2 owner = ivec2(owner_index % tessera_aa_size.x, owner_index / tessera_aa_size.x);
-  vec4 c = tessera_shade_sample(tessera_aa_sample(owner, int(item >> 26)),
-                                uintBitsToFloat(tessera_aa_list[2u * e + 1u]));
-  uint cap = uint(tessera_aa_flags.w);
-  uvec4 bits = floatBitsToUint(c);
-  for (uint ch = 0u; ch < 4u; ++ch) tessera_aa_list[2u * cap + 4u * e + ch] = bits[ch];
+  tessera_aa_colours[e] =
+      tessera_shade_sample(tessera_aa_sample(owner, int(item.x >> 26)), uintBitsToFloat(item.y));
 
 #elif defined(TESSERA_AA_PASS_LIST)
   if (!inside) return;
@@ -341,8 +340,8 @@ void main() {
   for (int p = 0; p <= k; ++p) {
     uint e = base + uint(p);
     if (e >= cap) break;
-    tessera_aa_list[2u * e] = fits ? (uint(i) | (uint(p) << 26)) : TESSERA_AA_NONE;
-    tessera_aa_list[2u * e + 1u] = floatBitsToUint(scales[p]);
+    tessera_aa_items[e] =
+        uvec2(fits ? (uint(i) | (uint(p) << 26)) : TESSERA_AA_NONE, floatBitsToUint(scales[p]));
   }
 
 #elif defined(TESSERA_AA_PASS_RESOLVE)
@@ -353,14 +352,7 @@ void main() {
   vec4 sum = vec4(0.0);
   float wsum = 0.0;
   if (base != TESSERA_AA_NONE) {
-    uint cap = uint(tessera_aa_flags.w);
-    for (int p = 0; p <= k; ++p) {
-      uint o = 2u * cap + 4u * (base + uint(p));
-      tessera_aa_accumulate(sum, wsum,
-                            uintBitsToFloat(uvec4(tessera_aa_list[o], tessera_aa_list[o + 1u],
-                                                  tessera_aa_list[o + 2u],
-                                                  tessera_aa_list[o + 3u])));
-    }
+    for (int p = 0; p <= k; ++p) tessera_aa_accumulate(sum, wsum, tessera_aa_colours[base + uint(p)]);
   } else {
     // The list was full: this pixel shades its own samples (the same colours).
     float scales[TESSERA_AA_N];
