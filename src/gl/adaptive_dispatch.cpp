@@ -264,13 +264,10 @@ class Runner {
   std::vector<std::string> names_;
 };
 
-/// The budget: eight histogram + select rounds over the rank key's digits, then the apply pass.
-Status run_budget(State& st, Runner& run) {
-  const int hist_loc = st.programs.at("HISTOGRAM").uniform("tessera_aa_digit");
-  const int select_loc = st.programs.at("SELECT").uniform("tessera_aa_digit");
+/// The budget: eight histogram + select rounds over the rank key's digits (the select pass
+/// advances the digit in the work buffer), then the apply pass.
+Status run_budget(Runner& run) {
   for (int d = 0; d < 8; ++d) {
-    glProgramUniform1i(st.programs.at("HISTOGRAM").get(), hist_loc, d);
-    glProgramUniform1i(st.programs.at("SELECT").get(), select_loc, d);
     const std::string digit = std::to_string(d);
     if (Status s = run.pass("budget_histogram" + digit, "HISTOGRAM"); !s.ok()) return s;
     if (Status s = run.pass("budget_select" + digit, "SELECT", 1); !s.ok()) return s;
@@ -307,7 +304,7 @@ Result<AdaptiveFrameResult> run_frame(State& st, const AdaptiveFrame& f, Mode mo
       go("first", "FIRST");
       if (mode == Mode::adaptive) {
         go("metrics", "METRICS");
-        if (f.budget && status.ok()) status = run_budget(st, run);
+        if (f.budget && status.ok()) status = run_budget(run);
         if (st.options.schedule == AdaptiveSchedule::frame_list) {
           go("extra_list", "LIST");
           go("extra_args", "ARGS", 1);

@@ -16,8 +16,9 @@
 // optional TESSERA_AA_HAS_UV, TESSERA_AA_SAMPLE_COUNTS, TESSERA_AA_HDR, and one pass:
 //   TESSERA_AA_PASS_FIRST      S = hook(sample 0, footprint m) -> output image; luma -> work
 //   TESSERA_AA_PASS_METRICS    k and the metric strength per pixel -> work
-//   TESSERA_AA_PASS_HISTOGRAM  budget: histogram of digit `tessera_aa_digit` of the rank key
+//   TESSERA_AA_PASS_HISTOGRAM  budget: histogram of the current digit (work [9]) of the rank key
 //   TESSERA_AA_PASS_SELECT     budget: one invocation narrows the threshold key by that digit
+//                              and moves on to the next (run 8 times, alternating)
 //   TESSERA_AA_PASS_APPLY      budget: k = k (above the threshold), remainder (at), 0 (below)
 //   TESSERA_AA_PASS_EXTRA      with TESSERA_AA_SCHEDULE_LOOP / _TILE: the extra samples and
 //                              the resolve of pixels with k > 0 -> output image
@@ -40,7 +41,18 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(std140, binding = TESSERA_AA_UBO_BINDING) uniform TesseraAaParams {
+// Vulkan (glslangValidator -V / glslc define VULKAN; no tessera runtime yet): every resource in
+// descriptor set TESSERA_AA_SET (default 0) at the same binding numbers.
+#if defined(VULKAN)
+#ifndef TESSERA_AA_SET
+#define TESSERA_AA_SET 0
+#endif
+#define TESSERA_AA_LAYOUT(b) set = TESSERA_AA_SET, binding = (b)
+#else
+#define TESSERA_AA_LAYOUT(b) binding = (b)
+#endif
+
+layout(std140, TESSERA_AA_LAYOUT(TESSERA_AA_UBO_BINDING)) uniform TesseraAaParams {
   ivec4 tessera_aa_size;     // w, h, m, n
   ivec4 tessera_aa_flags;    // force_k (-1 off), metrics (1 geometry, 2 shading), budget on,
                              // list capacity (items)
@@ -52,20 +64,21 @@ layout(std140, binding = TESSERA_AA_UBO_BINDING) uniform TesseraAaParams {
 
 // Work buffer (uints): [0] list items used, [1] extra samples (sum of k), [2..4] the shade
 // pass's group counts, [5] budget still binding, [6] remainder R, [7] key hi, [8] key lo,
+// [9] the budget's current digit (0 = most significant .. 7),
 // [16 .. 16 + 8*256) digit histograms, then per pixel (P = w*h): luma, k, strength, list base.
-layout(std430, binding = TESSERA_AA_WORK_BINDING) buffer TesseraAaWork { uint tessera_aa_work[]; };
+layout(std430, TESSERA_AA_LAYOUT(TESSERA_AA_WORK_BINDING)) buffer TesseraAaWork { uint tessera_aa_work[]; };
 // Frame list of TESSERA_AA_LIST_CAPACITY items: (pixel | sample << 26, footprint bits) each,
 // then their colours.
-layout(std430, binding = TESSERA_AA_WORK_BINDING + 1) buffer TesseraAaList {
+layout(std430, TESSERA_AA_LAYOUT(TESSERA_AA_WORK_BINDING + 1)) buffer TesseraAaList {
   uvec2 tessera_aa_items[TESSERA_AA_LIST_CAPACITY];
   vec4 tessera_aa_colours[];
 };
-layout(binding = TESSERA_AA_IMAGE_UNIT, TESSERA_AA_OUT_FORMAT) uniform writeonly image2D
+layout(TESSERA_AA_LAYOUT(TESSERA_AA_IMAGE_UNIT), TESSERA_AA_OUT_FORMAT) uniform writeonly image2D
     tessera_aa_out;
 #if defined(TESSERA_AA_SAMPLE_COUNTS)
-layout(binding = TESSERA_AA_IMAGE_UNIT + 1, r8ui) uniform writeonly uimage2D tessera_aa_counts;
+layout(TESSERA_AA_LAYOUT(TESSERA_AA_IMAGE_UNIT + 1), r8ui) uniform writeonly uimage2D
+    tessera_aa_counts;
 #endif
-uniform int tessera_aa_digit;  // the budget passes' digit, 0 (most significant) .. 7
 
 const int TESSERA_AA_HIST = 16;
 const uint TESSERA_AA_NONE = 0xffffffffu;
@@ -260,7 +273,7 @@ void main() {
   if (k == 0u) return;
   uvec2 key = tessera_aa_key(i);
   uvec2 prefix = uvec2(tessera_aa_work[7], tessera_aa_work[8]);
-  int d = tessera_aa_digit;
+  int d = int(tessera_aa_work[9]);
   // The digits above d must equal the threshold's (read as a 64-bit number, hi first).
   if (d > 0) {
     if (d <= 4) {
@@ -277,7 +290,8 @@ void main() {
 #elif defined(TESSERA_AA_PASS_SELECT)
   if (gl_GlobalInvocationID.x != 0u || gl_GlobalInvocationID.y != 0u) return;
   if (tessera_aa_work[5] == 0u) return;
-  int d = tessera_aa_digit;
+  int d = int(tessera_aa_work[9]);
+  tessera_aa_work[9] = uint(d + 1);
   uint r = tessera_aa_work[6];
   for (int b = 255; b >= 0; --b) {
     uint h = tessera_aa_work[uint(TESSERA_AA_HIST + 256 * d + b)];
