@@ -70,13 +70,20 @@ int main(int argc, char** argv) {
   double budget_fraction = 0.5;
   for (int i = 1; i < argc; ++i) {
     const std::string k = argv[i];
-    if (i + 1 < argc && k == "--scene") scene_path = argv[++i];
-    else if (i + 1 < argc && k == "--size") std::sscanf(argv[++i], "%dx%d", &w, &h);
-    else if (i + 1 < argc && k == "--m") m = std::atoi(argv[++i]);
-    else if (i + 1 < argc && k == "--frames") frames = std::max(1, std::atoi(argv[++i]));
-    else if (i + 1 < argc && k == "--budget-fraction") budget_fraction = std::atof(argv[++i]);
-    else if (k == "--heavy") heavy = true;
-    else return fail("unknown argument " + k);
+    if (i + 1 < argc && k == "--scene")
+      scene_path = argv[++i];
+    else if (i + 1 < argc && k == "--size")
+      std::sscanf(argv[++i], "%dx%d", &w, &h);
+    else if (i + 1 < argc && k == "--m")
+      m = std::atoi(argv[++i]);
+    else if (i + 1 < argc && k == "--frames")
+      frames = std::max(1, std::atoi(argv[++i]));
+    else if (i + 1 < argc && k == "--budget-fraction")
+      budget_fraction = std::atof(argv[++i]);
+    else if (k == "--heavy")
+      heavy = true;
+    else
+      return fail("unknown argument " + k);
   }
   auto ctx = gl::Context::create();
   if (!ctx) return fail("no OpenGL 4.5 device: " + ctx.status().message);
@@ -115,8 +122,10 @@ int main(int argc, char** argv) {
     glActiveTexture(GLenum(GL_TEXTURE0 + u));
     GLint name = 0;
     glGetIntegerv(u < 3 ? GL_TEXTURE_BINDING_2D : GL_TEXTURE_BINDING_2D_ARRAY, &name);
-    if (u < 3) frame.gbuffer[std::size_t(u)] = GLuint(name);
-    else if (name != 0 && classes == u - 3) ++classes;
+    if (u < 3)
+      frame.gbuffer[std::size_t(u)] = GLuint(name);
+    else if (name != 0 && classes == u - 3)
+      ++classes;
   }
   glActiveTexture(GL_TEXTURE0);
   const std::size_t pixels = std::size_t(w) * std::size_t(h);
@@ -126,12 +135,13 @@ int main(int argc, char** argv) {
                    std::uint64_t extra, long long budget, long long same) {
     double total = 0;
     const std::string passes = passes_json(times, &total);
-    std::printf("{\"method\": \"%s\", \"width\": %d, \"height\": %d, \"m\": %d, \"heavy\": %s, "
-                "\"budget\": %lld, \"samples_percent\": %.2f, \"same_image\": %s, "
-                "\"total_ms\": %.2f, \"passes_ms\": %s}\n",
-                method, w, h, m, heavy ? "true" : "false", budget,
-                100.0 * double(pixels + extra) / double(pixels * std::size_t(m * m)),
-                same < 0 ? "null" : (same ? "true" : "false"), total, passes.c_str());
+    std::printf(
+        "{\"method\": \"%s\", \"width\": %d, \"height\": %d, \"m\": %d, \"heavy\": %s, "
+        "\"budget\": %lld, \"samples_percent\": %.2f, \"same_image\": %s, "
+        "\"total_ms\": %.2f, \"passes_ms\": %s}\n",
+        method, w, h, m, heavy ? "true" : "false", budget,
+        100.0 * double(pixels + extra) / double(pixels * std::size_t(m * m)),
+        same < 0 ? "null" : (same ? "true" : "false"), total, passes.c_str());
   };
   print("DeferredGlRenderer", dgl_frames, asked, -1, -1);
 
@@ -176,8 +186,7 @@ int main(int argc, char** argv) {
       extra = r->extra_samples;
       Result<ImageRGBAF> img = gl::read_texture_rgbaf(r->colour);
       if (!img) return fail(img.status().message);
-      same = std::memcmp(img->pixels.data(), ref->image.pixels.data(),
-                         img->pixels.size() * 4) == 0;
+      same = std::memcmp(img->pixels.data(), ref->image.pixels.data(), img->pixels.size() * 4) == 0;
     }
     print(run.name, times, extra, frame.budget ? *frame.budget : -1, same);
   }

@@ -90,7 +90,8 @@ TEST_F(GlAdaptive, BudgetRanksByMetricStrengthThenPixelIndex) {
   const std::vector<int> got = extra_of(read_counts(r->sample_counts, w, h));
   std::vector<int> rank(std::size_t(w * h));
   std::iota(rank.begin(), rank.end(), 0);
-  std::sort(rank.begin(), rank.end(), [&](int x, int y) { return a[std::size_t(x)] > a[std::size_t(y)]; });
+  std::sort(rank.begin(), rank.end(),
+            [&](int x, int y) { return a[std::size_t(x)] > a[std::size_t(y)]; });
   std::vector<int> want(std::size_t(w * h), 0);
   for (int j = 0; j < 5; ++j) want[std::size_t(rank[std::size_t(j)])] = 3;
   want[std::size_t(rank[5])] = 2;

@@ -70,10 +70,9 @@ TEST_F(GlAdaptive, ForeignLayoutSameImage) {
     for (int x = 0; x < gw; ++x) {
       const float* s = gb->sample(x, y);
       t0.insert(t0.end(), {s[d::kChUv + 1], s[d::kChNormal + 2], s[d::kChNormal], s[d::kChDepth]});
-      t1.insert(t1.end(), {s[d::kChMaterial] / 4.0f, s[d::kChUv], s[d::kChNormal + 1],
-                           s[d::kChUv + 1]});
-      t2.insert(t2.end(),
-                {s[d::kChDuvDy + 1], s[d::kChDuvDy], s[d::kChDuvDx + 1], s[d::kChDuvDx]});
+      t1.insert(t1.end(),
+                {s[d::kChMaterial] / 4.0f, s[d::kChUv], s[d::kChNormal + 1], s[d::kChUv + 1]});
+      t2.insert(t2.end(), {s[d::kChDuvDy + 1], s[d::kChDuvDy], s[d::kChDuvDx + 1], s[d::kChDuvDx]});
       t3.insert(t3.end(), {s[d::kChNormal + 2], s[d::kChNormal + 1], s[d::kChNormal], 0.0f});
     }
   }
@@ -98,14 +97,18 @@ TEST_F(GlAdaptive, ForeignLayoutSameImage) {
 // Distinctive engine state on everything a dispatch touches; every piece read back after.
 TEST_F(GlAdaptive, RestoresEngineGlState) {
   const int w = 8, h = 8, m = 2;
-  Synthetic s = synthetic(w, h, m, [](int gx, int gy) { return 1.0f + 0.3f * float((gx ^ gy) & 1); });
+  Synthetic s =
+      synthetic(w, h, m, [](int gx, int gy) { return 1.0f + 0.3f * float((gx ^ gy) & 1); });
   gl::AdaptiveSupersamplerOptions o = synthetic_options(w, h, m);
   auto get_i = get_integeri_v();
   ASSERT_NE(get_i, nullptr);
-  auto bind_image = reinterpret_cast<PFNGLBINDIMAGETEXTUREPROC>(eglGetProcAddress("glBindImageTexture"));
-  auto bind_range = reinterpret_cast<PFNGLBINDBUFFERRANGEPROC>(eglGetProcAddress("glBindBufferRange"));
+  auto bind_image =
+      reinterpret_cast<PFNGLBINDIMAGETEXTUREPROC>(eglGetProcAddress("glBindImageTexture"));
+  auto bind_range =
+      reinterpret_cast<PFNGLBINDBUFFERRANGEPROC>(eglGetProcAddress("glBindBufferRange"));
   auto get_i64 = reinterpret_cast<PFNGLGETINTEGER64I_VPROC>(eglGetProcAddress("glGetInteger64i_v"));
-  for (gl::AdaptiveSchedule sch : {gl::AdaptiveSchedule::frame_list, gl::AdaptiveSchedule::tile_list}) {
+  for (gl::AdaptiveSchedule sch :
+       {gl::AdaptiveSchedule::frame_list, gl::AdaptiveSchedule::tile_list}) {
     o.schedule = sch;
     Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
     ASSERT_TRUE(c.ok()) << c.status().message;
@@ -113,7 +116,8 @@ TEST_F(GlAdaptive, RestoresEngineGlState) {
     const int sb = (*c)->storage_binding(), iu = (*c)->image_unit();
     // The engine's objects.
     Result<gl::Program> prog = gl::link_program(
-        {{gl::ShaderStage::compute, "#version 450 core\nlayout(local_size_x = 1) in;\nvoid main() {}\n", "engine.comp"}});
+        {{gl::ShaderStage::compute,
+          "#version 450 core\nlayout(local_size_x = 1) in;\nvoid main() {}\n", "engine.comp"}});
     ASSERT_TRUE(prog.ok()) << prog.status().message;
     std::vector<gl::Object> texs;
     for (int i = 0; i < 6; ++i) texs.push_back(make_texture(GL_RGBA8, 4, 4, {}));

@@ -34,7 +34,7 @@ inline PFNGLGETINTEGERI_VPROC get_integeri_v() {
 
 /// A GL_TEXTURE_2D of `format` holding `texels` (RGBA floats per texel, w x h).
 inline gl::Object make_texture(GLenum format, int w, int h, const std::vector<float>& texels,
-                        GLenum upload_format = GL_RGBA) {
+                               GLenum upload_format = GL_RGBA) {
   gl::Object t = gl::create_object(gl::ObjectType::texture, GL_TEXTURE_2D);
   glTextureStorage2D(t.get(), 1, format, w, h);
   if (!texels.empty()) {
@@ -156,7 +156,6 @@ class GlAdaptive : public ::testing::Test {
   int w_ = 0, h_ = 0, m_ = 0;
 };
 
-
 // A synthetic G-buffer: slot 0 = (depth, normal), slot 1 = (id, 0, 0, 0), RGBA32F.
 struct Synthetic {
   gl::Object t0, t1;
@@ -203,6 +202,5 @@ inline std::vector<int> extra_of(const std::vector<std::uint8_t>& counts) {
   for (std::uint8_t c : counts) k.push_back(int(c) - 1);
   return k;
 }
-
 
 }  // namespace tessera::aa_test

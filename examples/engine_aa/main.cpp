@@ -95,8 +95,8 @@ void add_sphere(std::vector<Vertex>& v, const F3& c, float r, const F3& col, flo
   };
   for (int i = 0; i < rings; ++i) {
     for (int j = 0; j < segments; ++j) {
-      for (const auto& [a, b] : {std::pair{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j},
-                                  {i + 1, j + 1}, {i, j + 1}}) {
+      for (const auto& [a, b] :
+           {std::pair{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j}, {i + 1, j + 1}, {i, j + 1}}) {
         v.push_back(vert(a, b));
       }
     }
@@ -445,35 +445,40 @@ int main(int argc, char** argv) {
       k.pixels[i * 4] = k.pixels[i * 4 + 1] = k.pixels[i * 4 + 2] = g;
       k.pixels[i * 4 + 3] = 255;
     }
-    for (const auto& [name, im] : {std::pair{"adaptive.png", &d_img}, {"reference.png", &d_ref},
-                                   {"first.png", &d_one}, {"samples.png", &k}}) {
+    for (const auto& [name, im] : {std::pair{"adaptive.png", &d_img},
+                                   {"reference.png", &d_ref},
+                                   {"first.png", &d_one},
+                                   {"samples.png", &k}}) {
       const std::string path = (std::filesystem::path(a.out) / name).string();
       if (auto s = tessera::io::write_png(path, *im); !s.ok()) return fail(s.message);
     }
   }
   if (a.json) {
-    std::printf("{\"device\": \"%s\", \"width\": %d, \"height\": %d, \"m\": %d, \"schedule\": \"%s\", ",
-                (*ctx)->renderer().c_str(), a.w, a.h, a.m, a.schedule.c_str());
+    std::printf(
+        "{\"device\": \"%s\", \"width\": %d, \"height\": %d, \"m\": %d, \"schedule\": \"%s\", ",
+        (*ctx)->renderer().c_str(), a.w, a.h, a.m, a.schedule.c_str());
     if (a.budget >= 0) {
       std::printf("\"budget\": %lld, ", a.budget);
     } else {
       std::printf("\"budget\": null, ");
     }
-    std::printf("\"extra_samples\": %llu, \"samples_percent\": %.3f, \"psnr_db\": %.3f, "
-                "\"psnr_1spp_db\": %.3f, \"gbuffer_ms\": %.3f, \"passes_ms\": {",
-                (unsigned long long)extra, samples_pct, p_adaptive, p_one, gbuffer_ms);
+    std::printf(
+        "\"extra_samples\": %llu, \"samples_percent\": %.3f, \"psnr_db\": %.3f, "
+        "\"psnr_1spp_db\": %.3f, \"gbuffer_ms\": %.3f, \"passes_ms\": {",
+        (unsigned long long)extra, samples_pct, p_adaptive, p_one, gbuffer_ms);
     double total = 0;
     for (std::size_t i = 0; i < adaptive_passes.size(); ++i) {
       std::printf("%s\"%s\": %.3f", i ? ", " : "", adaptive_passes[i].pass.c_str(),
                   adaptive_passes[i].ms);
       total += adaptive_passes[i].ms;
     }
-    std::printf("}, \"adaptive_ms\": %.3f, \"first_ms\": %.3f, \"reference_ms\": %.3f}\n",
-                total, first_ms, reference_ms);
+    std::printf("}, \"adaptive_ms\": %.3f, \"first_ms\": %.3f, \"reference_ms\": %.3f}\n", total,
+                first_ms, reference_ms);
   } else {
-    std::printf("engine_aa %dx%d m=%d: %.1f %% samples, PSNR %.2f dB (1 spp %.2f dB) against "
-                "full supersampling\n",
-                a.w, a.h, a.m, samples_pct, p_adaptive, p_one);
+    std::printf(
+        "engine_aa %dx%d m=%d: %.1f %% samples, PSNR %.2f dB (1 spp %.2f dB) against "
+        "full supersampling\n",
+        a.w, a.h, a.m, samples_pct, p_adaptive, p_one);
   }
   glDeleteProgram(prog);
   glDeleteBuffers(1, &vbo);

@@ -39,8 +39,9 @@
 //    its inputs and of what it reads (the same texel and footprint give the same colour in
 //    every pass).
 //    Before the hook the component declares, and the hook may call:
-//      float tessera_aa_depth(ivec2 g);  vec3 tessera_aa_normal(ivec2 g);  int tessera_aa_id(ivec2 g);
-//      vec2 tessera_aa_uv(ivec2 g);  vec4 tessera_aa_uv_derivatives(ivec2 g);   (when given)
+//      float tessera_aa_depth(ivec2 g);   vec3 tessera_aa_normal(ivec2 g);
+//      int tessera_aa_id(ivec2 g);        (rounded; < 0 = empty)
+//      vec2 tessera_aa_uv(ivec2 g);       vec4 tessera_aa_uv_derivatives(ivec2 g);  (when given)
 //      TESSERA_AA_M, TESSERA_AA_N (= m*m), TESSERA_AA_WIDTH/HEIGHT (output pixels) as macros
 //    The hook reads anything else the engine binds (its own uniform blocks, storage buffers,
 //    samplers, with explicit `layout(binding = ...)`), but not the binding points the
@@ -118,7 +119,7 @@ struct AdaptiveGBufferLayout {
 
 /// The engine's shading (see the header comment for the contract).
 struct AdaptiveShadingHook {
-  std::string source;  ///< GLSL defining vec4 tessera_shade_sample(ivec2, float).
+  std::string source;                 ///< GLSL defining vec4 tessera_shade_sample(ivec2, float).
   std::string name = "shading hook";  ///< Used in compile errors ("name:line: ...").
   std::vector<std::filesystem::path> include_paths;  ///< Searched before share/tessera/glsl.
 };

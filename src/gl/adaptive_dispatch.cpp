@@ -20,16 +20,36 @@ using State = AdaptiveSupersampler::State;
 /// Channel count of the float/normalised colour formats a sampler2D reads; 0 = refused.
 int format_channels(GLint f) {
   switch (f) {
-    case GL_R8: case GL_R8_SNORM: case GL_R16: case GL_R16_SNORM: case GL_R16F: case GL_R32F:
+    case GL_R8:
+    case GL_R8_SNORM:
+    case GL_R16:
+    case GL_R16_SNORM:
+    case GL_R16F:
+    case GL_R32F:
       return 1;
-    case GL_RG8: case GL_RG8_SNORM: case GL_RG16: case GL_RG16_SNORM: case GL_RG16F:
+    case GL_RG8:
+    case GL_RG8_SNORM:
+    case GL_RG16:
+    case GL_RG16_SNORM:
+    case GL_RG16F:
     case GL_RG32F:
       return 2;
-    case GL_RGB8: case GL_RGB8_SNORM: case GL_RGB16: case GL_RGB16_SNORM: case GL_RGB16F:
-    case GL_RGB32F: case GL_R11F_G11F_B10F: case GL_RGB9_E5:
+    case GL_RGB8:
+    case GL_RGB8_SNORM:
+    case GL_RGB16:
+    case GL_RGB16_SNORM:
+    case GL_RGB16F:
+    case GL_RGB32F:
+    case GL_R11F_G11F_B10F:
+    case GL_RGB9_E5:
       return 3;
-    case GL_RGBA8: case GL_RGBA8_SNORM: case GL_RGBA16: case GL_RGBA16_SNORM: case GL_RGBA16F:
-    case GL_RGBA32F: case GL_RGB10_A2:
+    case GL_RGBA8:
+    case GL_RGBA8_SNORM:
+    case GL_RGBA16:
+    case GL_RGBA16_SNORM:
+    case GL_RGBA16F:
+    case GL_RGBA32F:
+    case GL_RGB10_A2:
       return 4;
     default:
       return 0;
@@ -72,9 +92,8 @@ Status check_frame(const State& st, const AdaptiveFrame& f) {
     if (w != gw || h != gh) {
       return Status::error(ErrorCode::size_mismatch,
                            slot + ": texture " + std::to_string(t) + " is " + std::to_string(w) +
-                               "x" + std::to_string(h) + ", the G-buffer is " +
-                               std::to_string(gw) + "x" + std::to_string(gh) + " (m = " +
-                               std::to_string(o.m) + ")");
+                               "x" + std::to_string(h) + ", the G-buffer is " + std::to_string(gw) +
+                               "x" + std::to_string(gh) + " (m = " + std::to_string(o.m) + ")");
     }
     const int channels = format_channels(fmt);
     if (channels == 0) {
@@ -111,8 +130,8 @@ class StateGuard {
          GL_UNIFORM_BUFFER_SIZE, st.uniform_binding, ubo_);
     for (int i = 0; i < 2; ++i) {
       save(GL_SHADER_STORAGE_BUFFER, GL_SHADER_STORAGE_BUFFER_BINDING,
-           GL_SHADER_STORAGE_BUFFER_START, GL_SHADER_STORAGE_BUFFER_SIZE,
-           st.storage_binding + i, ssbo_[i]);
+           GL_SHADER_STORAGE_BUFFER_START, GL_SHADER_STORAGE_BUFFER_SIZE, st.storage_binding + i,
+           ssbo_[i]);
     }
     glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &generic_ubo_);
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &generic_ssbo_);
@@ -137,7 +156,8 @@ class StateGuard {
     }
     glActiveTexture(GLenum(active_));
     restore(GL_UNIFORM_BUFFER, st_.uniform_binding, ubo_);
-    for (int i = 0; i < 2; ++i) restore(GL_SHADER_STORAGE_BUFFER, st_.storage_binding + i, ssbo_[i]);
+    for (int i = 0; i < 2; ++i)
+      restore(GL_SHADER_STORAGE_BUFFER, st_.storage_binding + i, ssbo_[i]);
     glBindBuffer(GL_UNIFORM_BUFFER, GLuint(generic_ubo_));
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, GLuint(generic_ssbo_));
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, GLuint(indirect_));
@@ -192,8 +212,8 @@ void bind(const State& st, const AdaptiveFrame& f) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(st.storage_binding + 1), st.list_buf.get());
   const GLenum out_format =
       st.options.output == AdaptiveOutputFormat::rgba32f ? GL_RGBA32F : GL_RGBA16F;
-  st.gl.BindImageTexture(GLuint(st.image_unit), st.colour_tex.get(), 0, GL_FALSE, 0,
-                         GL_WRITE_ONLY, out_format);
+  st.gl.BindImageTexture(GLuint(st.image_unit), st.colour_tex.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                         out_format);
   if (st.counts_tex) {
     st.gl.BindImageTexture(GLuint(st.image_unit + 1), st.counts_tex.get(), 0, GL_FALSE, 0,
                            GL_WRITE_ONLY, GL_R8UI);
@@ -234,9 +254,9 @@ class Runner {
     if (st_.options.profile) {
       // llvmpipe runs a dispatch when the batch is flushed: glFinish inside the query.
       glFinish();
-      wall_.push_back({name, std::chrono::duration<double, std::milli>(
-                                 std::chrono::steady_clock::now() - t0)
-                                 .count()});
+      wall_.push_back(
+          {name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                     .count()});
       names_.push_back(name);
       if (Status s = timer_.end(); !s.ok()) return s;
     }
@@ -284,9 +304,8 @@ Result<AdaptiveFrameResult> run_frame(State& st, const AdaptiveFrame& f, Mode mo
   {
     StateGuard guard(st);
     // The work header: counters 0, the budget's state; histograms cleared when budgeted.
-    std::vector<std::uint32_t> header(kAdaptiveHeaderUints +
-                                          (f.budget ? kAdaptiveHistogramUints : 0),
-                                      0u);
+    std::vector<std::uint32_t> header(
+        kAdaptiveHeaderUints + (f.budget ? kAdaptiveHistogramUints : 0), 0u);
     if (f.budget) {
       header[5] = 1;
       header[6] = std::uint32_t(std::min<std::int64_t>(*f.budget, 0xffffffffLL));

@@ -84,16 +84,16 @@ std::string accessor(const char* type, const char* name, const AdaptiveChannel& 
   std::string expr = "texelFetch(tessera_aa_gbuffer" + std::to_string(c.texture) + ", g, 0)." + sw;
   if (c.scale != 1.0f) expr = "(" + expr + " * " + float_literal(c.scale) + ")";
   if (c.bias != 0.0f) {
-    expr = "(" + expr + " + " + (width > 1 ? std::string(type) + "(" : "") +
-           float_literal(c.bias) + (width > 1 ? ")" : "") + ")";
+    expr = "(" + expr + " + " + (width > 1 ? std::string(type) + "(" : "") + float_literal(c.bias) +
+           (width > 1 ? ")" : "") + ")";
   }
   return std::string(type) + " " + name + "(ivec2 g) { return " + expr + "; }";
 }
 
 bool has_component_glsl(const std::filesystem::path& dir) {
   std::error_code ec;
-  for (const char* f : {"adaptive_component.glsl", "adaptive_metrics.glsl",
-                        "adaptive_samples.glsl"}) {
+  for (const char* f :
+       {"adaptive_component.glsl", "adaptive_metrics.glsl", "adaptive_samples.glsl"}) {
     if (!std::filesystem::is_regular_file(dir / f, ec)) return false;
   }
   return true;
@@ -103,8 +103,9 @@ Result<std::string> find_glsl_dir(const std::filesystem::path& given) {
   if (!given.empty()) {
     if (has_component_glsl(given)) return given.string();
     return Status::error(ErrorCode::io_error,
-                         given.string() + ": adaptive_component.glsl, adaptive_metrics.glsl "
-                                          "and adaptive_samples.glsl are not all there");
+                         given.string() +
+                             ": adaptive_component.glsl, adaptive_metrics.glsl "
+                             "and adaptive_samples.glsl are not all there");
   }
   std::vector<std::filesystem::path> tried;
   if (const char* env = std::getenv("TESSERA_GLSL_DIR"); env && *env) tried.emplace_back(env);
@@ -133,8 +134,7 @@ Result<int> binding(int given, int count, GLenum limit_enum, const char* field,
   }
   if (given + count > limit) {
     return invalid(std::string(field) + " = " + std::to_string(given) + ": needs " +
-                   std::to_string(count) + " below " + limit_name + " = " +
-                   std::to_string(limit));
+                   std::to_string(count) + " below " + limit_name + " = " + std::to_string(limit));
   }
   return given;
 }
@@ -148,8 +148,7 @@ Status check_options(AdaptiveSupersampler::State& st) {
   }
   const std::size_t pixels = std::size_t(o.width) * std::size_t(o.height);
   if (pixels > kAdaptiveMaxPixels) {
-    return Status::error(ErrorCode::too_large, "adaptive supersampler: " +
-                                                   std::to_string(pixels) +
+    return Status::error(ErrorCode::too_large, "adaptive supersampler: " + std::to_string(pixels) +
                                                    " pixels exceed 2^26");
   }
   if (!(o.hdr_exposure > 0.0f) || !std::isfinite(o.hdr_exposure)) {
@@ -181,9 +180,8 @@ Status check_options(AdaptiveSupersampler::State& st) {
     int width;
     const char* what;
   };
-  std::vector<Q> qs = {{&o.layout.depth, 1, "depth"},
-                       {&o.layout.normal, 3, "normal"},
-                       {&o.layout.id, 1, "id"}};
+  std::vector<Q> qs = {
+      {&o.layout.depth, 1, "depth"}, {&o.layout.normal, 3, "normal"}, {&o.layout.id, 1, "id"}};
   if (has_uv) {
     qs.push_back({&o.layout.uv, 2, "uv"});
     qs.push_back({&o.layout.uv_derivatives, 4, "uv_derivatives"});
@@ -199,21 +197,20 @@ Status check_options(AdaptiveSupersampler::State& st) {
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_tex);
   if (std::int64_t(o.m) * o.width > max_tex || std::int64_t(o.m) * o.height > max_tex) {
     return Status::error(ErrorCode::too_large,
-                         "adaptive supersampler: G-buffer " + std::to_string(o.m * o.width) +
-                             "x" + std::to_string(o.m * o.height) +
+                         "adaptive supersampler: G-buffer " + std::to_string(o.m * o.width) + "x" +
+                             std::to_string(o.m * o.height) +
                              " exceeds GL_MAX_TEXTURE_SIZE = " + std::to_string(max_tex));
   }
   GLint64 max_block = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
   const std::size_t work_bytes = (kAdaptiveHeaderUints + kAdaptiveHistogramUints + 4 * pixels) * 4;
   if (work_bytes > std::size_t(std::max<GLint64>(max_block, 0))) {
-    return Status::error(ErrorCode::too_large,
-                         "adaptive supersampler: work buffer of " + std::to_string(work_bytes) +
-                             " bytes exceeds GL_MAX_SHADER_STORAGE_BLOCK_SIZE = " +
-                             std::to_string(max_block));
+    return Status::error(
+        ErrorCode::too_large,
+        "adaptive supersampler: work buffer of " + std::to_string(work_bytes) +
+            " bytes exceeds GL_MAX_SHADER_STORAGE_BLOCK_SIZE = " + std::to_string(max_block));
   }
-  st.list_capacity =
-      o.list_capacity > 0 ? o.list_capacity : pixels * std::size_t(o.m * o.m / 2);
+  st.list_capacity = o.list_capacity > 0 ? o.list_capacity : pixels * std::size_t(o.m * o.m / 2);
   st.list_capacity = std::min<std::size_t>(
       {st.list_capacity, std::size_t(max_block) / kAdaptiveListItemBytes, 0x7fffffffu});
   if (o.schedule != AdaptiveSchedule::frame_list) st.list_capacity = 1;  // no list
@@ -221,14 +218,14 @@ Status check_options(AdaptiveSupersampler::State& st) {
   Result<int> tu = binding(o.first_texture_unit, 4, GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS,
                            "first_texture_unit", "GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS");
   if (!tu) return tu.status();
-  Result<int> ub = binding(o.uniform_binding, 1, GL_MAX_UNIFORM_BUFFER_BINDINGS,
-                           "uniform_binding", "GL_MAX_UNIFORM_BUFFER_BINDINGS");
+  Result<int> ub = binding(o.uniform_binding, 1, GL_MAX_UNIFORM_BUFFER_BINDINGS, "uniform_binding",
+                           "GL_MAX_UNIFORM_BUFFER_BINDINGS");
   if (!ub) return ub.status();
   Result<int> sb = binding(o.first_storage_binding, 2, GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS,
                            "first_storage_binding", "GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS");
   if (!sb) return sb.status();
-  Result<int> iu = binding(o.first_image_unit, 2, GL_MAX_IMAGE_UNITS, "first_image_unit",
-                           "GL_MAX_IMAGE_UNITS");
+  Result<int> iu =
+      binding(o.first_image_unit, 2, GL_MAX_IMAGE_UNITS, "first_image_unit", "GL_MAX_IMAGE_UNITS");
   if (!iu) return iu.status();
   st.texture_unit = *tu;
   st.uniform_binding = *ub;
@@ -269,8 +266,7 @@ std::vector<std::string> preamble(const AdaptiveSupersampler::State& st, const s
   const AdaptiveGBufferLayout& l = o.layout;
   // The swizzles were checked by check_options.
   p.push_back(accessor("float", "tessera_aa_depth", l.depth, *swizzle(l.depth, 1, "depth"), 1));
-  p.push_back(
-      accessor("vec3", "tessera_aa_normal", l.normal, *swizzle(l.normal, 3, "normal"), 3));
+  p.push_back(accessor("vec3", "tessera_aa_normal", l.normal, *swizzle(l.normal, 3, "normal"), 3));
   p.push_back(accessor("float", "tessera_aa_id_value", l.id, *swizzle(l.id, 1, "id"), 1));
   // As the CPU's lround: half away from zero.
   p.push_back(
@@ -339,9 +335,7 @@ double AdaptiveFrameResult::total_wall_ms() const {
 
 AdaptiveSupersampler::~AdaptiveSupersampler() = default;
 
-const AdaptiveSupersamplerOptions& AdaptiveSupersampler::options() const {
-  return state_->options;
-}
+const AdaptiveSupersamplerOptions& AdaptiveSupersampler::options() const { return state_->options; }
 int AdaptiveSupersampler::texture_unit() const { return state_->texture_unit; }
 int AdaptiveSupersampler::uniform_binding() const { return state_->uniform_binding; }
 int AdaptiveSupersampler::storage_binding() const { return state_->storage_binding; }
@@ -364,8 +358,8 @@ Result<std::unique_ptr<AdaptiveSupersampler>> AdaptiveSupersampler::create(
   if (!dir) return dir.status();
   st->glsl_dir = *dir;
 
-  std::vector<std::string> passes = {"FIRST", "METRICS", "HISTOGRAM", "SELECT",
-                                     "APPLY", "REFERENCE"};
+  std::vector<std::string> passes = {"FIRST",  "METRICS", "HISTOGRAM",
+                                     "SELECT", "APPLY",   "REFERENCE"};
   if (options.schedule == AdaptiveSchedule::frame_list) {
     passes.insert(passes.end(), {"LIST", "ARGS", "SHADE", "RESOLVE"});
   } else {
@@ -399,8 +393,7 @@ Result<std::unique_ptr<AdaptiveSupersampler>> AdaptiveSupersampler::create(
   st->work_buf = make_buffer((kAdaptiveHeaderUints + kAdaptiveHistogramUints + 4 * pixels) * 4);
   // std430: the items (8 bytes each), the colours from the next multiple of 16 bytes.
   st->list_buf = make_buffer((st->list_capacity * 8 + 15) / 16 * 16 + st->list_capacity * 16);
-  st->colour_tex = make_texture(o.output == AdaptiveOutputFormat::rgba32f ? GL_RGBA32F
-                                                                          : GL_RGBA16F,
+  st->colour_tex = make_texture(o.output == AdaptiveOutputFormat::rgba32f ? GL_RGBA32F : GL_RGBA16F,
                                 o.width, o.height);
   if (o.sample_count_texture) st->counts_tex = make_texture(GL_R8UI, o.width, o.height);
   // Nearest, clamped: texelFetch ignores filtering, but a mipmap filter on a one-level
