@@ -248,6 +248,10 @@ class AdaptiveSupersampler {
   /// S alone: one sample per pixel (sample 0 of the order), footprint m.
   Result<AdaptiveFrameResult> dispatch_first_sample(const AdaptiveFrame& frame);
 
+  /// Replaces the thresholds for the following dispatches (an upload of the parameter block;
+  /// no recompilation), e.g. for tuning per scene.
+  void set_thresholds(const AdaptiveThresholds& thresholds);
+
   const AdaptiveSupersamplerOptions& options() const;
   /// The binding points actually used (the defaults resolved).
   int texture_unit() const;

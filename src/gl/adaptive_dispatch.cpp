@@ -231,8 +231,9 @@ class Runner {
 
   /// One pass: `groups_x` = 0 means one group per 8x8 output pixels; `indirect` = from the
   /// work buffer's group counts.
+  /// `then`: a one-group program dispatched after it within the same timed pass.
   Status pass(const std::string& name, const std::string& program, GLuint groups_x = 0,
-              bool indirect = false) {
+              bool indirect = false, const char* then = nullptr) {
     const Program& p = st_.programs.at(program);
     std::chrono::steady_clock::time_point t0;
     if (st_.options.profile) {
@@ -251,6 +252,11 @@ class Runner {
                         1);
     }
     glMemoryBarrier(kBarriers);
+    if (then != nullptr) {
+      glUseProgram(st_.programs.at(then).get());
+      glDispatchCompute(1, 1, 1);
+      glMemoryBarrier(kBarriers);
+    }
     if (st_.options.profile) {
       // llvmpipe runs a dispatch when the batch is flushed: glFinish inside the query.
       glFinish();
@@ -314,8 +320,8 @@ Result<AdaptiveFrameResult> run_frame(State& st, const AdaptiveFrame& f, Mode mo
     bind(st, f);
     Runner run(st);
     auto go = [&](const std::string& name, const std::string& program, GLuint gx = 0,
-                  bool indirect = false) {
-      if (status.ok()) status = run.pass(name, program, gx, indirect);
+                  bool indirect = false, const char* then = nullptr) {
+      if (status.ok()) status = run.pass(name, program, gx, indirect, then);
     };
     if (mode == Mode::reference) {
       go("reference", "REFERENCE");
@@ -325,8 +331,8 @@ Result<AdaptiveFrameResult> run_frame(State& st, const AdaptiveFrame& f, Mode mo
         go("metrics", "METRICS");
         if (f.budget && status.ok()) status = run_budget(run);
         if (st.options.schedule == AdaptiveSchedule::frame_list) {
-          go("extra_list", "LIST");
-          go("extra_args", "ARGS", 1);
+          // The list, then the shade pass's group counts (one invocation).
+          go("extra_list", "LIST", 0, false, "ARGS");
           go("extra_shade", "SHADE", 0, true);
           go("extra_resolve", "RESOLVE");
         } else {

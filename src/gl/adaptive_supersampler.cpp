@@ -325,6 +325,28 @@ Object make_texture(GLenum format, int w, int h) {
   return t;
 }
 
+/// The parameter block (TesseraAaParams) from the options; (re)uploaded.
+void upload_params(AdaptiveSupersampler::State& st) {
+  const AdaptiveSupersamplerOptions& o = st.options;
+  AdaptiveParams params{};
+  params.size[0] = o.width;
+  params.size[1] = o.height;
+  params.size[2] = o.m;
+  params.size[3] = st.n;
+  params.flags[0] = o.thresholds.force_k >= 0 ? std::min(o.thresholds.force_k, st.n - 1) : -1;
+  params.flags[1] = (o.thresholds.use_geometry ? 1 : 0) | (o.thresholds.use_shading ? 2 : 0);
+  params.flags[3] = int(st.list_capacity);
+  params.metric[0] = o.thresholds.c_depth;
+  params.metric[1] = o.thresholds.c_normal;
+  params.metric[2] = o.thresholds.c_shade;
+  params.metric[3] = o.thresholds.t_min;
+  params.metric2[0] = o.thresholds.t_edge;
+  params.metric2[1] = o.thresholds.seam_factor;
+  params.metric2[2] = o.hdr_exposure;
+  for (int i = 0; i < st.n; ++i) params.order[i] = st.order[std::size_t(i)];
+  glNamedBufferData(st.params_ubo.get(), sizeof params, &params, GL_DYNAMIC_DRAW);
+}
+
 }  // namespace
 
 double AdaptiveFrameResult::total_wall_ms() const {
@@ -340,6 +362,11 @@ int AdaptiveSupersampler::texture_unit() const { return state_->texture_unit; }
 int AdaptiveSupersampler::uniform_binding() const { return state_->uniform_binding; }
 int AdaptiveSupersampler::storage_binding() const { return state_->storage_binding; }
 int AdaptiveSupersampler::image_unit() const { return state_->image_unit; }
+
+void AdaptiveSupersampler::set_thresholds(const AdaptiveThresholds& thresholds) {
+  state_->options.thresholds = thresholds;
+  upload_params(*state_);
+}
 
 Result<std::unique_ptr<AdaptiveSupersampler>> AdaptiveSupersampler::create(
     const AdaptiveSupersamplerOptions& options) {
@@ -370,24 +397,8 @@ Result<std::unique_ptr<AdaptiveSupersampler>> AdaptiveSupersampler::create(
   }
 
   const AdaptiveSupersamplerOptions& o = st->options;
-  AdaptiveParams params{};
-  params.size[0] = o.width;
-  params.size[1] = o.height;
-  params.size[2] = o.m;
-  params.size[3] = st->n;
-  params.flags[0] = o.thresholds.force_k >= 0 ? std::min(o.thresholds.force_k, st->n - 1) : -1;
-  params.flags[1] = (o.thresholds.use_geometry ? 1 : 0) | (o.thresholds.use_shading ? 2 : 0);
-  params.flags[3] = int(st->list_capacity);
-  params.metric[0] = o.thresholds.c_depth;
-  params.metric[1] = o.thresholds.c_normal;
-  params.metric[2] = o.thresholds.c_shade;
-  params.metric[3] = o.thresholds.t_min;
-  params.metric2[0] = o.thresholds.t_edge;
-  params.metric2[1] = o.thresholds.seam_factor;
-  params.metric2[2] = o.hdr_exposure;
-  for (int i = 0; i < st->n; ++i) params.order[i] = st->order[std::size_t(i)];
   st->params_ubo = create_object(ObjectType::buffer);
-  glNamedBufferData(st->params_ubo.get(), sizeof params, &params, GL_DYNAMIC_DRAW);
+  upload_params(*st);
 
   const std::size_t pixels = std::size_t(o.width) * std::size_t(o.height);
   st->work_buf = make_buffer((kAdaptiveHeaderUints + kAdaptiveHistogramUints + 4 * pixels) * 4);
