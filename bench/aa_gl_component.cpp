@@ -1,7 +1,8 @@
 // gl::AdaptiveSupersampler against gl::DeferredGlRenderer on the same frame: DeferredGl renders
-// its G-buffer, shades it adaptively, and the component shades the same G-buffer textures with
-// DeferredGl's Blinn-Phong (deferred_shading.glsl) as its hook. Prints one JSON line per method:
-// samples %, whether the image equals DeferredGl's bit for bit, and the per-pass host times
+// its G-buffer, shades it adaptively (itself through a component whose hook keeps S's light
+// terms for sample 0 again), and a component shades the same G-buffer textures with
+// DeferredGl's Blinn-Phong (deferred_shading.glsl) as a plain hook. Prints one JSON line per
+// method: samples %, whether the image equals DeferredGl's bit for bit, and the per-pass host times
 // (dispatch to the end of a glFinish; medians over the timed frames).
 //
 // Usage: aa_gl_component [--scene FILE.gltf] [--size WxH] [--m M] [--frames N] [--heavy]

@@ -1,7 +1,7 @@
 // gl::AdaptiveSupersampler (tessera/gl_adaptive.h): with tessera's own G-buffer and Blinn-Phong
 // as the hook it gives DeferredGlRenderer's images bit for bit (every schedule, reference, 1 spp,
-// a frame list too small for the frame; DeferredGlRenderer itself runs a component for m >= 2,
-// so this checks a caller's component, its options and bindings, against the renderer's); with
+// a frame list too small for the frame; DeferredGlRenderer itself runs a component for m >= 2
+// whose hook reuses S's light terms for sample 0 again, this hook shades it in full); with
 // a foreign layout the same image; the engine's GL state restored; bad input. The budget and the
 // HDR resolve: gl_adaptive_budget_test.cpp. Skips when no OpenGL 4.5 context can be made.
 #include "gl_adaptive_test_util.h"

@@ -49,6 +49,14 @@
 //    files from `AdaptiveShadingHook::include_paths` and share/tessera/glsl. Names beginning
 //    with `tessera_aa_` / `TESSERA_AA_` are reserved. Compile errors are reported as
 //    "HOOK_NAME:LINE: message" (the hook's own line numbers).
+//    Sample 0 again: a pixel with k > 0 shades its sample 0 again with its adaptive footprint
+//    (S used footprint m). By default that is one more tessera_shade_sample call. A hook that
+//    defines the macro TESSERA_AA_FIRST_AGAIN provides instead
+//      vec4 tessera_shade_first_again(ivec2 grid_texel, float footprint);
+//    which must return what tessera_shade_sample would, but may reuse what the hook kept from
+//    the first pass (the pass macro TESSERA_AA_PASS_FIRST is defined while the hook is compiled
+//    into it, and the first pass of a frame completes before any first-again call), e.g. the
+//    light terms, so that only the texture lookup is repeated. DeferredGlRenderer does this.
 //    Shading metric: the paper's k_s compares the luma of S around each pixel. The luma is
 //    tessera_luma_srgb(c) (adaptive_metrics.glsl: Rec.601 weights on the sRGB encoding of the
 //    colour clamped to [0, 1]); with `AdaptiveResolve::tonemap_weighted`, of the tonemapped

@@ -49,10 +49,35 @@ Result<AdaptiveSupersampler*> component(State& st) {
   o.layout.uv = {1, "gb"};
   o.layout.uv_derivatives = {2, "rgba"};
   o.hook.name = "DeferredGlRenderer's shading hook";
+  // S keeps its light terms (D, P) in the renderer's SSBO 4 (deferred_passes.comp's layout),
+  // and sample 0 again repeats only the albedo lookup, as deferred_passes.comp does.
   o.hook.source = "#define TESSERA_DEFERRED_CLASSES " + std::to_string(classes) +
                   "\n#include \"deferred_shading.glsl\"\n"
+                  "layout(std430, binding = 4) buffer DeferredTerms { vec4 deferred_terms[]; };\n"
+                  "#define TESSERA_AA_FIRST_AGAIN 1\n"
+                  "int deferred_pixel(ivec2 g) {\n"
+                  "  return (g.y / TESSERA_AA_M) * TESSERA_AA_WIDTH + g.x / TESSERA_AA_M;\n"
+                  "}\n"
                   "vec4 tessera_shade_sample(ivec2 g, float footprint) {\n"
-                  "  return vec4(tessera_shade(g, footprint), 1.0);\n"
+                  "  TesseraSample s = tessera_fetch(g);\n"
+                  "  vec3 c = tessera_background.rgb, d = vec3(0.0), p = vec3(0.0);\n"
+                  "  if (s.material >= 0) {\n"
+                  "    tessera_lighting(g, s, d, p);\n"
+                  "    c = tessera_albedo(s, footprint) * d + p;\n"
+                  "  }\n"
+                  "#if defined(TESSERA_AA_PASS_FIRST)\n"
+                  "  int i = deferred_pixel(g);\n"
+                  "  deferred_terms[2 * i] = vec4(d, 0.0);\n"
+                  "  deferred_terms[2 * i + 1] = vec4(p, 0.0);\n"
+                  "#endif\n"
+                  "  return vec4(c, 1.0);\n"
+                  "}\n"
+                  "vec4 tessera_shade_first_again(ivec2 g, float footprint) {\n"
+                  "  TesseraSample s = tessera_fetch(g);\n"
+                  "  if (s.material < 0) return vec4(tessera_background.rgb, 1.0);\n"
+                  "  int i = deferred_pixel(g);\n"
+                  "  return vec4(tessera_albedo(s, footprint) * deferred_terms[2 * i].rgb +\n"
+                  "              deferred_terms[2 * i + 1].rgb, 1.0);\n"
                   "}\n";
   Result<std::unique_ptr<AdaptiveSupersampler>> c = AdaptiveSupersampler::create(o);
   if (!c) return c.status();

@@ -28,7 +28,9 @@
 //   TESSERA_AA_PASS_RESOLVE    frame list: per pixel, its slots in sample order -> output image
 //   TESSERA_AA_PASS_REFERENCE  all N samples, footprint 1 -> output image
 // Sample 0 is shaded again with its adaptive footprint when k > 0 (S used footprint m), so a
-// pixel's average is over k + 1 samples of consistent footprint (§4.1).
+// pixel's average is over k + 1 samples of consistent footprint (§4.1): by the hook, or by its
+// tessera_shade_first_again when it defines TESSERA_AA_FIRST_AGAIN (e.g. the albedo lookup alone,
+// with light terms the hook kept while compiled for TESSERA_AA_PASS_FIRST).
 //
 // Budget (AdaptiveFrame::budget): pixels are ranked by a unique 64-bit key (hi = the float bits
 // of the metric strength, which order like the floats for strengths >= 0; lo = ~pixel index,
@@ -136,6 +138,16 @@ vec4 tessera_aa_average(vec4 sum, float wsum, int count) {
 #else
   return sum / float(count);
 #endif
+}
+
+/// Sample p of `pixel` with `footprint`: sample 0 (already shaded into S with footprint m) goes
+/// to the hook's tessera_shade_first_again when it defines TESSERA_AA_FIRST_AGAIN.
+vec4 tessera_aa_shade(ivec2 pixel, int p, float footprint) {
+  ivec2 g = tessera_aa_sample(pixel, p);
+#if defined(TESSERA_AA_FIRST_AGAIN)
+  if (p == 0) return tessera_shade_first_again(g, footprint);
+#endif
+  return tessera_shade_sample(g, footprint);
 }
 
 void tessera_aa_store(ivec2 pixel, vec4 c) { imageStore(tessera_aa_out, pixel, c); }
@@ -337,7 +349,7 @@ void main() {
   int owner_index = int(item.x & 0x3ffffffu);
   ivec2 owner = ivec2(owner_index % tessera_aa_size.x, owner_index / tessera_aa_size.x);
   tessera_aa_colours[e] =
-      tessera_shade_sample(tessera_aa_sample(owner, int(item.x >> 26)), uintBitsToFloat(item.y));
+      tessera_aa_shade(owner, int(item.x >> 26), uintBitsToFloat(item.y));
 
 #elif defined(TESSERA_AA_PASS_LIST)
   if (!inside) return;
@@ -372,7 +384,7 @@ void main() {
     float scales[TESSERA_AA_N];
     tessera_aa_scales(pixel, k, scales);
     for (int p = 0; p <= k; ++p)
-      tessera_aa_accumulate(sum, wsum, tessera_shade_sample(tessera_aa_sample(pixel, p), scales[p]));
+      tessera_aa_accumulate(sum, wsum, tessera_aa_shade(pixel, p, scales[p]));
   }
   tessera_aa_store(pixel, tessera_aa_average(sum, wsum, k + 1));
 
@@ -400,7 +412,7 @@ void main() {
     ivec2 owner = tile + ivec2(int(pl % 8u), int(pl / 8u));
     uint slot = pl * uint(TESSERA_AA_N) + uint(p);
     tessera_aa_tile_colours[slot] =
-        tessera_shade_sample(tessera_aa_sample(owner, p), tessera_aa_tile_scales[slot]);
+        tessera_aa_shade(owner, p, tessera_aa_tile_scales[slot]);
   }
   barrier();
   if (!inside) return;
@@ -425,7 +437,7 @@ void main() {
   vec4 sum = vec4(0.0);
   float wsum = 0.0;
   for (int p = 0; p <= k; ++p)
-    tessera_aa_accumulate(sum, wsum, tessera_shade_sample(tessera_aa_sample(pixel, p), scales[p]));
+    tessera_aa_accumulate(sum, wsum, tessera_aa_shade(pixel, p, scales[p]));
   tessera_aa_store(pixel, tessera_aa_average(sum, wsum, k + 1));
 
 #elif defined(TESSERA_AA_PASS_REFERENCE)
