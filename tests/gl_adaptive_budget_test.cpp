@@ -1,6 +1,7 @@
 // gl::AdaptiveSupersampler's per-frame budget (0 = the 1 spp image, not binding = the
 // unbudgeted image, binding = exactly the budget, rank by metric strength then pixel index,
-// repeatable) and its tonemap-weighted HDR resolve against the documented formula.
+// repeatable), its tonemap-weighted HDR resolve against the documented formula, a caller's sample
+// order and a hook's own shading-metric luma.
 #include "gl_adaptive_test_util.h"
 
 namespace tessera::aa_test {
@@ -147,6 +148,50 @@ TEST_F(GlAdaptive, TonemapWeightedResolveFormula) {
       }
     }
   }
+}
+
+TEST_F(GlAdaptive, CallersSampleOrder) {
+  const int w = 4, h = 3, m = 3;
+  Synthetic s = synthetic(w, h, m, [](int, int) { return 1.0f; });
+  gl::AdaptiveSupersamplerOptions o = synthetic_options(w, h, m);
+  o.sample_order = {8, 0, 1, 2, 3, 4, 5, 6, 7};  // S = the bottom-right cell
+  Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
+  ASSERT_TRUE(c.ok()) << c.status().message;
+  Result<gl::AdaptiveFrameResult> r = (*c)->dispatch_first_sample(s.frame);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  const std::vector<float> img = read_rgba32f(r->colour);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const int gx = m * x + 2, gy = m * y + 2;
+      EXPECT_EQ(img[std::size_t((y * w + x) * 4)], float(gx) * 4.0f) << x << "," << y;
+      EXPECT_EQ(img[std::size_t((y * w + x) * 4 + 1)], float(gy) * 0.25f + 0.1f) << x << "," << y;
+    }
+  }
+}
+
+TEST_F(GlAdaptive, HookLumaDrivesTheShadingMetric) {
+  const int w = 8, h = 8, m = 2;
+  Synthetic s = synthetic(w, h, m, [](int, int) { return 1.0f; });  // flat: no geometry term
+  gl::AdaptiveSupersamplerOptions o = synthetic_options(w, h, m);
+  o.thresholds.use_geometry = false;
+  // Default luma: the analytic hook's colours vary from pixel to pixel, k_s > 0 somewhere.
+  Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
+  ASSERT_TRUE(c.ok()) << c.status().message;
+  Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(s.frame);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  const std::vector<int> with_default = extra_of(read_counts(r->sample_counts, w, h));
+  EXPECT_GT(std::accumulate(with_default.begin(), with_default.end(), 0), 0);
+  // A hook luma that is constant: no shading contrast, no extra samples.
+  o.hook.source =
+      "#define TESSERA_AA_CUSTOM_LUMA 1\n"
+      "float tessera_shade_luma(vec4 c) { return 0.5; }\n" +
+      o.hook.source;
+  c = gl::AdaptiveSupersampler::create(o);
+  ASSERT_TRUE(c.ok()) << c.status().message;
+  r = (*c)->dispatch(s.frame);
+  ASSERT_TRUE(r.ok()) << r.status().message;
+  const std::vector<int> with_hook = extra_of(read_counts(r->sample_counts, w, h));
+  EXPECT_EQ(std::accumulate(with_hook.begin(), with_hook.end(), 0), 0);
 }
 
 }  // namespace
