@@ -87,7 +87,12 @@
 // all of it). A dispatch ends with glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT |
 // GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
 // GL_TEXTURE_UPDATE_BARRIER_BIT), so the output can be sampled, read or blitted at once.
-// Without `profile` a dispatch neither waits for the GPU nor reads anything back.
+// Without `profile` a dispatch neither waits for the GPU nor reads anything back. The G-buffer
+// textures are read with texelFetch through the component's own sampler object (nearest, so a
+// one-level texture with a mipmap filter is still complete); their own parameters are untouched.
+// A dispatch ends by checking and clearing GL's error state: call it with no error pending.
+// Memory: a work buffer of 16 bytes per output pixel + 8 KiB, the frame list (24 bytes per
+// item, `list_capacity`), the output and sample-count textures.
 //
 // Threads: as tessera/gl.h — all calls on the thread where the GL context is current; destroy
 // the component before the context. Not thread-safe.
