@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the build tree into a scratch prefix and builds examples/consumer against it with
-# find_package(tessera), then runs it.
+# find_package(tessera), then runs it; where tessera::gl was installed, also examples/engine_aa
+# with find_package(tessera COMPONENTS gl), run at a small size (exit 77 from no GL device is
+# not an error here: the build is what is checked, the CTest engine_aa checks the images).
 # Usage: install_test.sh SOURCE_DIR BINARY_DIR
 set -euo pipefail
 src="$1"
@@ -12,3 +14,15 @@ cmake -S "$src/examples/consumer" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=R
   -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/build" >/dev/null
 "$work/build/consumer"
+if [ -f "$work/prefix/lib/cmake/tessera/tesseraGlTargets.cmake" ] ||
+   ls "$work"/prefix/lib*/cmake/tessera/tesseraGlTargets.cmake >/dev/null 2>&1; then
+  cmake -S "$src/examples/engine_aa" -B "$work/build_engine_aa" -G Ninja \
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+  cmake --build "$work/build_engine_aa" >/dev/null
+  set +e
+  out=$("$work/build_engine_aa/engine_aa" --size 64x48 --m 2 2>&1)
+  rc=$?
+  set -e
+  echo "$out"
+  if [ $rc -ne 0 ] && ! grep -q "no OpenGL 4.5 device" <<<"$out"; then exit 1; fi
+fi

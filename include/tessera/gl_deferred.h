@@ -9,6 +9,10 @@
 //    and fine UV derivatives per grid pixel; row 0 = top grid row. The size is checked against
 //    GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT, GL_MAX_TEXTURE_SIZE and GL_MAX_RENDERBUFFER_SIZE before
 //    anything is allocated (an invalid_argument / too_large error naming the limit).
+//  * The adaptive, reference and 1 spp passes (m >= 2) are tessera's engine component,
+//    gl::AdaptiveSupersampler (tessera/gl_adaptive.h, adaptive_component.glsl), run on this
+//    G-buffer with the shading below (deferred_shading.glsl) as its hook: one implementation of
+//    the technique. The engine baseline, sRGB8, FXAA and m = 1 run deferred_passes.comp.
 //  * Compute passes (share/tessera/glsl/deferred_passes.comp): S = the first sample of every
 //    window (footprint scale m), k per pixel from the depth/normal/shading metrics
 //    (adaptive_metrics.glsl, AdaptiveOptions' formulas and constants), the k extra samples
@@ -56,9 +60,10 @@ enum class ExtraSchedule {
               ///< larger m falls back to `loop`).
   loop,       ///< The paper's §4.2: each invocation loops over its pixel's k samples.
   /// One dense list of (pixel, sample) over the whole frame, one invocation per extra sample,
-  /// then a per-pixel resolve (three passes; any m). The list lives in GPU buffers of 24 bytes
-  /// per extra sample that grow with the frame's count (read back once per frame); past the
-  /// driver's GL_MAX_SHADER_STORAGE_BLOCK_SIZE the pass falls back to `loop`.
+  /// then a per-pixel resolve (three passes; any m). Adaptive: gl::AdaptiveSchedule::frame_list
+  /// (a list of fixed capacity; pixels beyond it shade their own samples, same image). Engine
+  /// baseline: GPU buffers of 24 bytes per extra sample that grow with the frame's count (read
+  /// back once per frame); past GL_MAX_SHADER_STORAGE_BLOCK_SIZE it falls back to `loop`.
   frame_list,
 };
 

@@ -336,6 +336,10 @@ Result<GlShadeResult> DeferredGlRenderer::shade_reference(const deferred::Shadin
   State& st = *state_;
   if (Status s = bind_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
   GlShadeResult r;
+  if (st.m >= 2) {
+    if (Status s = shade_with_component(st, 1, nullptr, r); !s.ok()) return s;
+    return r;
+  }
   PassTimer timer;
   if (Status s = run_pass(st, timer, "reference", {"TESSERA_PASS_REFERENCE"}); !s.ok()) return s;
   if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
@@ -350,6 +354,10 @@ Result<GlShadeResult> DeferredGlRenderer::shade_default(const deferred::ShadingO
   State& st = *state_;
   if (Status s = bind_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
   GlShadeResult r;
+  if (st.m >= 2) {
+    if (Status s = shade_with_component(st, 2, nullptr, r); !s.ok()) return s;
+    return r;
+  }
   PassTimer timer;
   if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
   if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
@@ -365,6 +373,12 @@ Result<GlShadeResult> DeferredGlRenderer::shade_adaptive(const deferred::Shading
   State& st = *state_;
   if (Status s = bind_inputs(st, o, &a, nullptr); !s.ok()) return s;
   GlShadeResult r;
+  // One implementation of the technique: gl::AdaptiveSupersampler (deferred_gl_component.cpp)
+  // with deferred_shading.glsl's shading as its hook; m = 1 has no window to adapt.
+  if (st.m >= 2) {
+    if (Status s = shade_with_component(st, 0, &a, r); !s.ok()) return s;
+    return r;
+  }
   PassTimer timer;
   if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
   if (Status s = run_pass(st, timer, "metrics", {"TESSERA_PASS_METRICS"}); !s.ok()) return s;

@@ -2,12 +2,15 @@
 // deferred_gl_scene.cpp (textures, meshes, geometry pass) and deferred_gl.cpp (compute passes).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "tessera/gl.h"
+#include "tessera/gl_adaptive.h"
 #include "tessera/gl_deferred.h"
 #include "tessera/texture.h"
 
@@ -62,7 +65,17 @@ struct DeferredGlRenderer::State {
   Object list_base_buf, list_items_buf, list_colours_buf;
   std::size_t list_base_pixels = 0, list_capacity = 0;
   std::map<std::string, Program> programs;  // by preamble
+  // The adaptive, reference and 1 spp passes for m >= 2: gl::AdaptiveSupersampler with this
+  // G-buffer and deferred_shading.glsl's shading as its hook (deferred_gl_component.cpp), made
+  // again when (w, h, m, schedule, texture classes) change.
+  std::unique_ptr<AdaptiveSupersampler> component;
+  std::array<int, 5> component_key{};
 };
+
+/// The component's image (RGBA32F, alpha 1) and per-pixel sample counts into `r`, after
+/// binding the shading inputs; `mode`: 0 adaptive, 1 reference, 2 first sample.
+Status shade_with_component(DeferredGlRenderer::State& st, int mode,
+                            const deferred::AdaptiveOptions* adaptive, GlShadeResult& r);
 
 /// Finds the GLSL folder (given, $TESSERA_GLSL_DIR, or beside the executable).
 Result<std::string> find_deferred_glsl_dir(const std::filesystem::path& given);

@@ -1,0 +1,282 @@
+// tessera/gl_adaptive.h — adaptive supersampling for deferred shading (Hollander, Boubekeur &
+// Eisemann 2013) as an engine component: the engine's own enlarged G-buffer and its own shading
+// in, the anti-aliased image out, on OpenGL 4.5 (tessera::gl).
+//
+// This header is the integration guide. The model is a GPU upscaler's context API: create one
+// `AdaptiveSupersampler` per (output size, m, options), call `dispatch` once per frame with the
+// engine's G-buffer textures, destroy it before the GL context. The engine keeps its resources,
+// its frame graph and its GL state.
+//
+// 1. The engine rasterises its scene into an ENLARGED G-buffer of (m*w) x (m*h) texels (w x h =
+//    the output image; m = 2..8; row 0 = the top grid row, so output pixel (x, y) owns the
+//    window of grid texels [m*x, m*x+m) x [m*y, m*y+m)). Whatever layout: up to four
+//    GL_TEXTURE_2D textures; `AdaptiveGBufferLayout` says which texture and which channels hold
+//      depth    1 channel   LINEAR view depth, > 0 (any unit: the depth metric uses d / mean d);
+//                           a hardware z-buffer must be linearised first
+//      normal   3 channels  the normal (world or view space, need not be unit length); stored
+//                           as unorm? set scale 2, bias -1
+//      id       1 channel   material or object id, rounded half away from zero; < 0 = empty
+//                           (background) texel. A unorm8 channel holding id / 255: scale 255
+//      uv       2 channels  optional: texture coordinates, for the UV-seam rule of the
+//      uv_derivatives 4     footprint (du/dx, dv/dx, du/dy, dv/dy per grid texel; both or none)
+//    Formats: any float or normalised colour format (R8 .. RGBA32F, RGB10_A2, R11F_G11F_B10F);
+//    integer formats (R32UI, ...) and sRGB formats are refused (ids: store them as floats or
+//    normalised values and scale).
+// 2. The engine's shading is GLSL, given as a source string (`AdaptiveShadingHook`) that
+//    defines exactly this function:
+//
+//      vec4 tessera_shade_sample(ivec2 grid_texel, float footprint);
+//
+//    the linear colour (HDR allowed; alpha is averaged like the colour) of the G-buffer sample
+//    at `grid_texel`. `footprint` is the paper's texture-footprint scale (§4.1): multiply the
+//    sample's UV derivatives by it before filtered texture lookups (textureGrad), so that a
+//    pixel shaded with fewer samples filters its textures more widely. Its values: m for the
+//    1 spp image S; sqrt(n / (k + 1)) in a one-material window with k extra samples;
+//    sqrt(A / N) at a material boundary (A = the window's texels of the sample's id, N = its
+//    shaded samples); 1 where the window has a UV seam and in the reference pass. A hook that
+//    does no texture filtering ignores it. The hook is compiled into every pass that shades:
+//    the first sample (S), the extra samples and the reference; it must be a pure function of
+//    its inputs and of what it reads (the same texel and footprint give the same colour in
+//    every pass).
+//    Before the hook the component declares, and the hook may call:
+//      float tessera_aa_depth(ivec2 g);   vec3 tessera_aa_normal(ivec2 g);
+//      int tessera_aa_id(ivec2 g);        (rounded; < 0 = empty)
+//      vec2 tessera_aa_uv(ivec2 g);       vec4 tessera_aa_uv_derivatives(ivec2 g);  (when given)
+//      TESSERA_AA_M, TESSERA_AA_N (= m*m), TESSERA_AA_WIDTH/HEIGHT (output pixels) as macros
+//    The hook reads anything else the engine binds (its own uniform blocks, storage buffers,
+//    samplers, with explicit `layout(binding = ...)`), but not the binding points the
+//    component uses (below). It must not declare `#version` or main(); it may `#include`
+//    files from `AdaptiveShadingHook::include_paths` and share/tessera/glsl. Names beginning
+//    with `tessera_aa_` / `TESSERA_AA_` are reserved. Compile errors are reported as
+//    "HOOK_NAME:LINE: message" (the hook's own line numbers).
+//    Sample 0 again: a pixel with k > 0 shades its sample 0 again with its adaptive footprint
+//    (S used footprint m). By default that is one more tessera_shade_sample call. A hook that
+//    defines the macro TESSERA_AA_FIRST_AGAIN provides instead
+//      vec4 tessera_shade_first_again(ivec2 grid_texel, float footprint);
+//    which must return what tessera_shade_sample would, but may reuse what the hook kept from
+//    the first pass (the pass macro TESSERA_AA_PASS_FIRST is defined while the hook is compiled
+//    into it, and the first pass of a frame completes before any first-again call), e.g. the
+//    light terms, so that only the texture lookup is repeated. DeferredGlRenderer does this.
+//    Shading metric: the paper's k_s compares the luma of S around each pixel. The luma is
+//    tessera_luma_srgb(c) (adaptive_metrics.glsl: Rec.601 weights on the sRGB encoding of the
+//    colour clamped to [0, 1]); with `AdaptiveResolve::tonemap_weighted`, of the tonemapped
+//    colour T(c) (below). A hook that defines the macro TESSERA_AA_CUSTOM_LUMA provides
+//    `float tessera_shade_luma(vec4 colour)` instead (values in [0, 1] suit the thresholds
+//    t_min and t_edge).
+// 3. Per frame: `dispatch(frame)` runs the passes (S; k per pixel from the depth, normal and
+//    shading metrics of adaptive_metrics.glsl; the optional budget; the extra samples in the
+//    sample order with the footprints of adaptive_samples.glsl; the resolve) and returns the
+//    component's output texture: (w x h), the format of `AdaptiveSupersamplerOptions::output`,
+//    valid until the next dispatch or destruction. On request the per-pixel sample-count
+//    texture (GL_R8UI, k + 1 per pixel). `dispatch_reference` (all n samples, footprint 1:
+//    full supersampling) and `dispatch_first_sample` (S, 1 spp) write the same texture, for
+//    comparisons.
+//
+// Resources and GL state. The component owns one uniform buffer, two storage buffers, the
+// output texture(s) and its programs. During a dispatch it uses: texture units
+// `first_texture_unit` .. + 3 (one per G-buffer texture the layout names), uniform-buffer
+// binding `uniform_binding`, storage-buffer bindings `first_storage_binding` and + 1, image
+// units `first_image_unit` and + 1, the GL_DISPATCH_INDIRECT_BUFFER binding. Defaults: the
+// top of each range (the driver's GL_MAX_* - the count), so that an engine binding its own
+// resources from 0 upwards never collides. Every piece of state a dispatch changes is put back
+// before it returns: the current program, GL_ACTIVE_TEXTURE, the GL_TEXTURE_2D binding and
+// the sampler of each unit used, the indexed (name, offset, size) and generic bindings of
+// GL_UNIFORM_BUFFER and GL_SHADER_STORAGE_BUFFER at the indices used, the image units used
+// (texture, level, layered, layer, access, format), GL_DISPATCH_INDIRECT_BUFFER. Framebuffers,
+// viewport, pixel-store and vertex state are never touched (tests/gl_adaptive_test.cpp checks
+// all of it). A dispatch ends with glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT |
+// GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
+// GL_TEXTURE_UPDATE_BARRIER_BIT), so the output can be sampled, read or blitted at once.
+// Without `profile` a dispatch neither waits for the GPU nor reads anything back. The G-buffer
+// textures are read with texelFetch through the component's own sampler object (nearest, so a
+// one-level texture with a mipmap filter is still complete); their own parameters are untouched.
+// A dispatch ends by checking and clearing GL's error state: call it with no error pending.
+// Memory: a work buffer of 16 bytes per output pixel + 8 KiB, the frame list (24 bytes per
+// item, `list_capacity`), the output and sample-count textures.
+//
+// Threads: as tessera/gl.h — all calls on the thread where the GL context is current; destroy
+// the component before the context. Not thread-safe.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tessera/core.h"
+#include "tessera/gl.h"
+
+namespace tessera::gl {
+
+/// Where one G-buffer quantity lives: texture slot (index into `AdaptiveFrame::gbuffer`) and
+/// channels. Decoded value = stored * scale + bias (per channel).
+struct AdaptiveChannel {
+  int texture = -1;      ///< 0..3; -1 = absent (only uv and uv_derivatives may be absent).
+  std::string channels;  ///< Swizzle of exactly the quantity's width: "r", "xyz", "wzy", ...
+                         ///< (letters of one set: rgba or xyzw).
+  float scale = 1.0f;
+  float bias = 0.0f;
+};
+
+/// Which texture and channels hold each quantity (fixed at creation; see the header comment).
+struct AdaptiveGBufferLayout {
+  AdaptiveChannel depth;           ///< 1 channel, linear view depth (> 0 where not empty).
+  AdaptiveChannel normal;          ///< 3 channels.
+  AdaptiveChannel id;              ///< 1 channel, material/object id; < 0 = empty texel.
+  AdaptiveChannel uv;              ///< 2 channels, optional (with uv_derivatives).
+  AdaptiveChannel uv_derivatives;  ///< 4 channels du/dx, dv/dx, du/dy, dv/dy, optional.
+};
+
+/// The engine's shading (see the header comment for the contract).
+struct AdaptiveShadingHook {
+  std::string source;                 ///< GLSL defining vec4 tessera_shade_sample(ivec2, float).
+  std::string name = "shading hook";  ///< Used in compile errors ("name:line: ...").
+  std::vector<std::filesystem::path> include_paths;  ///< Searched before share/tessera/glsl.
+};
+
+/// The paper's thresholds (§3.1; the same formulas and defaults as deferred::AdaptiveOptions).
+/// With K = m*m - 1: k = clamp(round(max(k_d, k_n, k_s)), 0, K), k_d = c_depth*K*Var(d/mean d),
+/// k_n = c_normal*K*sqrt(1 - min |nbar.n_i|), k_s = c_shade*K*r when the luma range r around
+/// the pixel is >= max(t_min, l_max*t_edge), else 0. A window mixing empty and non-empty texels
+/// gets K. The unrounded max is the pixel's metric strength (what the budget ranks).
+struct AdaptiveThresholds {
+  float c_depth = 200.0f;
+  float c_normal = 2.0f;
+  float c_shade = 8.0f;
+  float t_min = 0.0312f;
+  float t_edge = 0.0625f;
+  bool use_geometry = true;  ///< k_d and k_n.
+  bool use_shading = true;   ///< k_s.
+  float seam_factor = 4.0f;  ///< UV-seam rule of the footprint (adaptive_samples.glsl).
+  int force_k = -1;          ///< >= 0: every pixel asks for min(force_k, K) (strength force_k).
+};
+
+/// How the extra samples are scheduled on the GPU; all give the same image, bit for bit.
+enum class AdaptiveSchedule {
+  /// One dense list of (pixel, sample) over the frame, one invocation per sample, then a
+  /// per-pixel resolve; sized by `list_capacity` (a pixel whose samples do not fit shades them
+  /// itself in the resolve pass: same image). No read-back (indirect dispatch).
+  frame_list,
+  tile_list,  ///< Per 8x8 tile, in shared memory (m <= 4; larger m runs `loop`).
+  loop,       ///< The paper's §4.2: each pixel's invocation shades its own samples.
+};
+
+/// How a pixel's shaded samples are averaged.
+enum class AdaptiveResolve {
+  box,  ///< Plain mean (sum of the samples in sample order, / (k + 1)).
+  /// Tonemap-weighted mean for HDR (bright samples do not dominate the edge): sample c with
+  /// luminance Y = dot(max(c.rgb, 0), (0.2126, 0.7152, 0.0722)) gets weight
+  /// w = 1 / (1 + e*Y), e = `hdr_exposure`; the pixel is sum(w*c) / sum(w) (all four
+  /// channels). The shading metric then uses the luma of T(c) = c * e / (1 + e*Y) (Reinhard
+  /// on luminance). The reference pass resolves the same way.
+  tonemap_weighted,
+};
+
+enum class AdaptiveOutputFormat { rgba16f, rgba32f };
+
+struct AdaptiveSupersamplerOptions {
+  int width = 0, height = 0;  ///< Output pixels (> 0); the G-buffer is (m*width) x (m*height).
+  int m = 4;                  ///< Window side, 2..8.
+  AdaptiveThresholds thresholds;
+  /// Sample order: entry p = the row-major window cell of sample p (p = 0 is S's sample); a
+  /// permutation of 0..m*m-1. Empty = tessera's (deferred::sample_order: the paper's Figure 3
+  /// index matrices for m = 2..4, ordered-dither matrices beyond).
+  std::vector<std::uint8_t> sample_order;
+  AdaptiveSchedule schedule = AdaptiveSchedule::frame_list;
+  /// frame_list items (shaded samples of pixels with k > 0, sample 0 counted), 24 bytes each;
+  /// 0 = w*h*(m*m/2), half of full supersampling (m = 4: 192 bytes per output pixel, 398 MB at
+  /// 1920x1080; with a budget B, B + w*h items always suffice). Clamped to what
+  /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE allows. Pixels beyond it are still shaded (see above).
+  std::size_t list_capacity = 0;
+  AdaptiveResolve resolve = AdaptiveResolve::box;
+  float hdr_exposure = 1.0f;  ///< e of `tonemap_weighted` (> 0).
+  AdaptiveOutputFormat output = AdaptiveOutputFormat::rgba16f;
+  bool sample_count_texture = false;  ///< Also write k + 1 per pixel to a GL_R8UI texture.
+  AdaptiveGBufferLayout layout;
+  AdaptiveShadingHook hook;
+  /// Folder of adaptive_component.glsl, adaptive_metrics.glsl, adaptive_samples.glsl. Empty:
+  /// $TESSERA_GLSL_DIR, else share/tessera/glsl beside the executable (../share, ../../share).
+  std::filesystem::path glsl_dir;
+  /// Binding points the component uses during a dispatch (-1 = the top of the driver's range).
+  int first_texture_unit = -1;     ///< 4 units.
+  int uniform_binding = -1;        ///< 1 uniform-buffer binding.
+  int first_storage_binding = -1;  ///< 2 storage-buffer bindings.
+  int first_image_unit = -1;       ///< 2 image units.
+  /// Measure every pass: GL_TIME_ELAPSED queries plus the host time to a glFinish after each
+  /// pass (llvmpipe's queries read 0 for compute), and read back the extra-sample count. Costs
+  /// a GPU stall per pass: for benchmarks, not for frames.
+  bool profile = false;
+};
+
+/// One frame's inputs.
+struct AdaptiveFrame {
+  /// The G-buffer textures (GL_TEXTURE_2D names, (m*w) x (m*h), owned by the engine) by slot;
+  /// 0 for slots the layout does not use.
+  std::array<std::uint32_t, 4> gbuffer{};
+  /// At most this many extra samples (samples beyond S) in this frame. When the metrics ask
+  /// for more, pixels are ranked by metric strength (the unrounded max(k_d, k_n, k_s)), ties
+  /// by pixel index (row-major y*w + x, lower first); whole pixels keep their k in rank order
+  /// while it fits, the first pixel that does not fit keeps the remainder (its first samples
+  /// in the sample order), all later pixels 0. So exactly min(budget, asked) extra samples
+  /// are shaded, the same for every run. Empty = no budget; negative = an error.
+  std::optional<std::int64_t> budget;
+};
+
+/// What a dispatch returns.
+struct AdaptiveFrameResult {
+  std::uint32_t colour = 0;         ///< The output texture (owned by the component).
+  std::uint32_t sample_counts = 0;  ///< GL_R8UI k + 1 per pixel (0 unless requested).
+  /// With `profile`: the extra samples shaded (sum of k) and, per pass in order, the
+  /// GL_TIME_ELAPSED time (NaN when the driver's is impossible) and the host time.
+  std::uint64_t extra_samples = 0;
+  std::vector<PassTime> passes;
+  std::vector<PassTime> wall_passes;
+  double total_wall_ms() const;
+};
+
+/// The component. Needs a current tessera `Context` (or any current GL 4.5 context on which a
+/// tessera Context was created before, so that the entry points are loaded).
+class AdaptiveSupersampler {
+ public:
+  /// Checks the options (invalid_argument naming the field: m outside 2..8, size <= 0, a
+  /// layout channel of the wrong width or an unknown letter, a bad sample order, bindings
+  /// beyond the driver's range; too_large when the G-buffer exceeds GL_MAX_TEXTURE_SIZE or the
+  /// work buffer GL_MAX_SHADER_STORAGE_BLOCK_SIZE) before creating any GL object, then compiles
+  /// every pass with the hook (a compile error names the hook's file and line).
+  static Result<std::unique_ptr<AdaptiveSupersampler>> create(
+      const AdaptiveSupersamplerOptions& options);
+  ~AdaptiveSupersampler();
+  AdaptiveSupersampler(const AdaptiveSupersampler&) = delete;
+  AdaptiveSupersampler& operator=(const AdaptiveSupersampler&) = delete;
+
+  /// The adaptive image. Fails (invalid_argument, nothing dispatched) when a texture the layout
+  /// needs is 0, not a GL_TEXTURE_2D, not (m*w) x (m*h), of an integer/sRGB/unknown format or
+  /// lacks a channel the layout reads, or the budget is negative. The message names the slot.
+  Result<AdaptiveFrameResult> dispatch(const AdaptiveFrame& frame);
+  /// Full supersampling: all m*m samples, footprint 1 (same checks).
+  Result<AdaptiveFrameResult> dispatch_reference(const AdaptiveFrame& frame);
+  /// S alone: one sample per pixel (sample 0 of the order), footprint m.
+  Result<AdaptiveFrameResult> dispatch_first_sample(const AdaptiveFrame& frame);
+
+  /// Replaces the thresholds for the following dispatches (an upload of the parameter block;
+  /// no recompilation), e.g. for tuning per scene.
+  void set_thresholds(const AdaptiveThresholds& thresholds);
+
+  const AdaptiveSupersamplerOptions& options() const;
+  /// The binding points actually used (the defaults resolved).
+  int texture_unit() const;
+  int uniform_binding() const;
+  int storage_binding() const;
+  int image_unit() const;
+
+  struct State;
+
+ private:
+  AdaptiveSupersampler() = default;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace tessera::gl
