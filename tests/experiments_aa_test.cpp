@@ -1,8 +1,6 @@
 // The adaptive-supersampling experiment of Hollander et al. 2013 (tessera/experiments.h,
 // run_aa) on tiny frames: every method and rate, the edge-per-sample baseline, heavy mode,
 // configuration errors and the backend interface. (The seam experiment: experiments_test.cpp.)
-#include "tessera/experiments.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +10,8 @@
 #include <string>
 #include <utility>
 
+#include "experiments_test_util.h"
+#include "tessera/experiments.h"
 #include "tessera/metrics.h"
 
 namespace tessera::experiments {
@@ -170,21 +170,23 @@ TEST(Aa, BadConfigurationAndBackendAreErrors) {
   ASSERT_FALSE(gl.ok());
   EXPECT_EQ(gl.status().code, ErrorCode::unsupported);
   EXPECT_NE(gl.status().message.find("not built with the OpenGL runtime"), std::string::npos);
-  c.backend = Backend::cpu;
-  c.compare_gl = true;
+  c.backend = Backend::both;
   EXPECT_EQ(run_aa(c).status().code, ErrorCode::unsupported);
   // A factory's error comes back as it is, still before on_ready.
-  c.gl_backend_factory = [](const scene::Scene&) -> Result<std::unique_ptr<AaBackend>> {
+  c.gl_factory = test::aa_factory([](const scene::Scene&) -> Result<std::unique_ptr<AaBackend>> {
     return Status::error(ErrorCode::unsupported, "no EGL device 7");
-  };
+  });
   Result<AaResult> f = run_aa(c);
   ASSERT_FALSE(f.ok());
   EXPECT_EQ(f.status().message, "no EGL device 7");
-  c.backend = Backend::gl;  // gl with compare_gl: nothing to compare with
-  EXPECT_EQ(run_aa(c).status().code, ErrorCode::invalid_argument);
+  c.backend = Backend::gl;
+  EXPECT_EQ(run_aa(c).status().message, "no EGL device 7");
   EXPECT_EQ(progress, 0);
   EXPECT_FALSE(ready);
   EXPECT_STREQ(backend_name(Backend::gl), "gl");
+  EXPECT_STREQ(backend_name(Backend::both), "both");
+  EXPECT_EQ(*parse_backend("both"), Backend::both);
+  EXPECT_EQ(parse_backend("gpu").status().code, ErrorCode::invalid_argument);
   EXPECT_STREQ(aa_method_name(AaMethod::edge_per_sample), "edge_per_sample");
 }
 
@@ -211,13 +213,13 @@ TEST(Aa, BackendSizeCheckComesBeforeReady) {
   AaConfig c = tiny_aa();
   c.frames = 1;
   c.backend = Backend::gl;
-  c.gl_backend_factory = [](const scene::Scene& sc) -> Result<std::unique_ptr<AaBackend>> {
+  c.gl_factory = test::aa_factory([](const scene::Scene& sc) -> Result<std::unique_ptr<AaBackend>> {
     auto b = std::make_unique<Limited>();
     Result<std::unique_ptr<AaBackend>> cpu = create_cpu_aa_backend(sc, {2});
     if (!cpu) return cpu.status();
     b->cpu = std::move(*cpu);
     return std::unique_ptr<AaBackend>(std::move(b));
-  };
+  });
   bool ready = false;
   c.on_ready = [&] {
     ready = true;

@@ -239,21 +239,18 @@ TEST(Seams, BadConfigurationAndBackendAreErrors) {
   EXPECT_EQ(gl.status().code, ErrorCode::unsupported);
   EXPECT_NE(gl.status().message.find("not built with the OpenGL runtime"), std::string::npos)
       << gl.status().message;
-  c.backend = Backend::cpu;
-  c.compare_gl = true;
+  c.backend = Backend::both;
   EXPECT_EQ(run_seams(c).status().code, ErrorCode::unsupported);
-  // A factory's error (e.g. no EGL device) comes back unchanged.
-  c.gl_renderer_factory =
+  // A factory's error (e.g. no EGL device) comes back unchanged, for both and gl.
+  c.gl_factory = test::seams_factory(
       [](const faces::FaceScene&,
-         const faces::FaceTextureSet&) -> Result<std::unique_ptr<SeamsFrameRenderer>> {
-    return Status::error(ErrorCode::unsupported, "no EGL device 7");
-  };
+         const faces::FaceTextureSet&) -> Result<std::unique_ptr<SeamsBackend>> {
+        return Status::error(ErrorCode::unsupported, "no EGL device 7");
+      });
   EXPECT_EQ(run_seams(c).status().message, "no EGL device 7");
-  c.backend = Backend::gl;  // GL beside GL: nothing to compare with
-  EXPECT_EQ(run_seams(c).status().code, ErrorCode::invalid_argument);
-  c.compare_gl = false;
+  c.backend = Backend::gl;
   EXPECT_EQ(run_seams(c).status().message, "no EGL device 7");
-  c.gl_renderer_factory = nullptr;
+  c.gl_factory = nullptr;
   c.backend = Backend::cpu;
   c.scene = "/nonexistent/mesh.obj";
   EXPECT_FALSE(run_seams(c).ok());

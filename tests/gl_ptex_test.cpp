@@ -3,6 +3,8 @@
 // texture arrays read back equal to the CPU data (the Disney Ptex samples, skipped when
 // ../shared/data is absent); hardware border sampling of the packed arrays against tessera's
 // sampler.
+#include "tessera/gl_ptex.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -64,7 +64,4 @@ struct DeferredGlRenderer::State {
   std::map<std::string, Program> programs;  // by preamble
 };
 
-/// Finds the GLSL folder (given, $TESSERA_GLSL_DIR, or beside the executable).
-Result<std::string> find_deferred_glsl_dir(const std::filesystem::path& given);
-
 }  // namespace tessera::gl

@@ -93,13 +93,10 @@ int run_aa(const AaArgs& args, const GlobalOptions& global) {
   c.fxaa_preset = args.fxaa_preset;
   c.adaptive = args.adaptive;
   c.threads = global.threads;
-  c.backend = args.backend == "gl" ? experiments::Backend::gl : experiments::Backend::cpu;
-  c.compare_gl = args.backend == "both";
-#ifdef TESSERA_HAVE_GL
-  c.gl_backend_factory = [](const scene::Scene& scene) {
-    return experiments::create_gl_aa_backend(scene, glsl_dir());
-  };
-#endif
+  Result<experiments::Backend> backend = experiments::parse_backend(args.backend);
+  if (!backend) return usage_error(backend.status().message);
+  c.backend = *backend;
+  c.gl_factory = gl_backends();
   if (!args.quiet) {
     c.progress = [](const std::string& line) { std::fprintf(stderr, "aa: %s\n", line.c_str()); };
   }

@@ -74,7 +74,7 @@ nlohmann::json summary_json(const ErrorStats& q) {
 /// The GL-vs-CPU result of a GL rate (`--backend both`), or null.
 const experiments::SeamsGlRateResult* gl_rate_result(const experiments::SeamsResult& res,
                                                      int msaa) {
-  if (!res.compared_gl) return nullptr;
+  if (res.backend != experiments::Backend::both) return nullptr;
   for (const experiments::SeamsGlRateResult& g : res.gl_rates) {
     if (g.msaa == msaa) return &g;
   }
@@ -129,8 +129,9 @@ void fill_json(const experiments::SeamsConfig& c, const experiments::SeamsResult
                       {"valence4_corner_links", res.linked_corners},
                       {"corners", 4 * res.faces}};
   const bool gl = res.backend == experiments::Backend::gl;
-  summary["backend"] = res.compared_gl ? "both" : experiments::backend_name(res.backend);
-  if (gl || res.compared_gl) {
+  const bool both = res.backend == experiments::Backend::both;
+  summary["backend"] = experiments::backend_name(res.backend);
+  if (gl || both) {
     summary["gl_renderer"] = res.gl_renderer;
     summary["gl_version"] = res.gl_version;
     summary["msaa_unsupported"] = res.msaa_unsupported;
@@ -199,7 +200,7 @@ void fill_json(const experiments::SeamsConfig& c, const experiments::SeamsResult
   summary["quality"] = quality_j;
   summary["nan_pixels_discard_without_fallback_frame0"] = nan_j;
   summary["reference_ms_total"] = res.reference_ms_total;
-  if (res.compared_gl) {
+  if (both) {
     nlohmann::json tg = nlohmann::json::object(), agree = nlohmann::json::object();
     bool standard = true;  // every rate compared with a CPU rate's standard pattern
     for (const experiments::SeamsGlRateResult& g : res.gl_rates) {
@@ -394,7 +395,8 @@ std::string markdown(const experiments::SeamsConfig& c, const experiments::Seams
      << c.frames << " orbit frames (" << res.quality_frames
      << " with a reference), 16x anisotropic filtering, " << res.threads << " thread(s).\n\n";
   const bool gl = res.backend == experiments::Backend::gl;
-  if (gl || res.compared_gl) {
+  const bool both = res.backend == experiments::Backend::both;
+  if (gl || both) {
     md << "Backend: **" << (gl ? "OpenGL" : "CPU, and OpenGL beside it (`--backend both`)")
        << "**: " << res.gl_renderer << ", " << res.gl_version << ".";
     if (!res.msaa_unsupported.empty()) {
@@ -411,7 +413,7 @@ std::string markdown(const experiments::SeamsConfig& c, const experiments::Seams
       md << " The driver draws " << rate_key(p.msaa) << " with " << p.samples << " samples";
       md << " (the CPU's " << rate_key(p.cpu_msaa) << " positions)";
       md << ": its GL " << rate_key(p.msaa) << " frames are " << p.samples << "-sample frames";
-      if (res.compared_gl) {
+      if (both) {
         md << ", compared with the CPU's " << rate_key(p.cpu_msaa) << " frames";
       }
       md << ".";
@@ -518,7 +520,7 @@ std::string markdown(const experiments::SeamsConfig& c, const experiments::Seams
     md << " " << rate_key(rate.msaa) << ": " << rate.nan_pixels_without_fallback << ";";
   }
   md << " with the fallback: 0.\n";
-  if (res.compared_gl) md << gl_beside_cpu(res);
+  if (both) md << gl_beside_cpu(res);
   if (images) {
     md << "\n## Images\n\n`images/<method>_<rate>.png` (frame 0), `images/reference.png`, "
           "`images/zoom_*.png`: a 40x40 window at 4x where Clamp and Traverse differ most, and "
