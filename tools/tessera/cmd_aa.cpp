@@ -117,14 +117,10 @@ int run_aa(const AaArgs& args, const GlobalOptions& global) {
   };
   Result<experiments::AaResult> res = experiments::run_aa(c);
   if (!res) return fail(res.status());
-  std::string md;
-  if (Status s = write_aa_report(c, *res, args.scene, out, &md); !s.ok()) return fail(s);
+  std::string md, json;
+  if (Status s = write_aa_report(c, *res, args.scene, out, &md, &json); !s.ok()) return fail(s);
   if (args.json) {
-    Result<std::vector<std::uint8_t>> text =
-        io::read_file((std::filesystem::path(out) / "aa.json").string());
-    if (!text) return fail(text.status());
-    std::fwrite(text->data(), 1, text->size(), stdout);
-    std::printf("\n");
+    std::printf("%s\n\n", json.c_str());  // aa.json's final newline, then the line's
   } else if (args.markdown) {
     std::printf("%s", md.c_str());
   }

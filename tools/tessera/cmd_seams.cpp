@@ -133,12 +133,12 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
             };
             Result<experiments::SeamsResult> result = experiments::run_seams(cfg);
             if (!result) return fail(result.status());
-            nlohmann::json summary;
-            if (Status s = write_seams_report(cfg, *result, out, true, summary); !s.ok()) {
+            std::string json;
+            if (Status s = write_seams_report(cfg, *result, out, true, json); !s.ok()) {
               return fail(s);
             }
             if (args->json) {
-              std::printf("%s\n", summary.dump(1).c_str());
+              std::printf("%s\n", json.c_str());
             } else if (args->markdown) {
               Result<std::vector<std::uint8_t>> md = io::read_file(out + "/seams.md");
               if (!md) return fail(md.status());

@@ -140,4 +140,38 @@ struct AaResult {
 /// before `on_ready`.
 Result<AaResult> run_aa(const AaConfig& config);
 
+// ---------------------------------------------------------------------------------------------
+// Results as files (aa.json, aa.md and the images beside them)
+// ---------------------------------------------------------------------------------------------
+
+struct AaReportOptions {
+  std::string scene_label = "builtin";  ///< Names the scene in both reports (or its path).
+};
+
+/// One image of a rate's figures as `tessera aa` writes it: `name` is the file stem without
+/// the backend prefix ("gl-" for Backend::both's GL side) and ".png", e.g. "adaptive-2x2".
+struct AaRateImage {
+  std::string name;
+  bool edge_per_sample = false;  ///< Listed under the engine baseline in the JSON.
+  ImageRGBA8 image;              ///< Empty when only the names were asked for.
+};
+
+/// The images of one rate: reference, adaptive, 1 spp, FXAA, samples maps (inferno, 0..m²),
+/// difference heatmaps against the reference and 1 spp (32 levels saturate), the ablations and
+/// the engine baseline. `pixels` false: the names only. Besides these, the reports name two
+/// colour bars, "samples-colourbar-MxM.svg" (prefixed) and "diff-colourbar.svg".
+Result<std::vector<AaRateImage>> aa_rate_images(const AaConfig& config, const AaRateResult& rate,
+                                                bool pixels = true);
+
+/// aa.json of `result`, the outcome of `config` (two-space indentation, no final newline): the
+/// configuration, the 1x1 rows, and per rate every method's times, quality and samples, the
+/// ablations and the images; with Backend::gl the device and GPU-timer and per-pass times, with
+/// both GL's side under "gl" and "gl_vs_cpu". Deterministic except for the times.
+Result<std::string> to_json(const AaConfig& config, const AaResult& result,
+                            const AaReportOptions& options = {});
+/// aa.md of `result`: Table 1 with our columns and the Figure 6a/7/8 blocks, which show the
+/// images of `aa_rate_images` from the same folder.
+Result<std::string> to_markdown(const AaConfig& config, const AaResult& result,
+                                const AaReportOptions& options = {});
+
 }  // namespace tessera::experiments

@@ -157,4 +157,36 @@ struct SeamsResult {
 /// file. All of these come before `on_ready`.
 Result<SeamsResult> run_seams(const SeamsConfig& config);
 
+// ---------------------------------------------------------------------------------------------
+// Results as files (seams.json, seams.md)
+// ---------------------------------------------------------------------------------------------
+
+/// What the report says about the files written beside it.
+struct SeamsReportOptions {
+  /// The frame-0 images are written beside it (images/, `tessera seams`): the JSON gets
+  /// `zoom_window`, the Markdown its Images section.
+  bool images = true;
+};
+
+/// The window of frame 0 where Clamp and Traverse differ most at the first rate: 40 x 40 pixels
+/// (at most the frame) on a 4-pixel grid, shown `scale` times enlarged in the zoom images. At
+/// (0, 0) when the result has no frame-0 images.
+struct SeamsZoomWindow {
+  int x = 0, y = 0, w = 0, h = 0, scale = 4;
+};
+SeamsZoomWindow seams_zoom_window(const SeamsConfig& config, const SeamsResult& result);
+
+/// "4x" for MSAA rate 4: the key of a rate in the JSON (and in `tessera seams`' file names).
+std::string seams_rate_key(int msaa);
+
+/// seams.json of `result`, the outcome of `config` (one-space indentation, no final newline):
+/// the configuration, the scene, Table 1's per-frame times and medians, Figure 5's CDFs and
+/// summaries, and with Backend::gl / both the device, sample patterns, GL times and GL-vs-CPU
+/// agreement. Deterministic except for the times. `result` must have at least one rate.
+std::string to_json(const SeamsConfig& config, const SeamsResult& result,
+                    const SeamsReportOptions& options = {});
+/// seams.md of `result`: the same as Markdown tables with a few lines of reading.
+std::string to_markdown(const SeamsConfig& config, const SeamsResult& result,
+                        const SeamsReportOptions& options = {});
+
 }  // namespace tessera::experiments
