@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "experiments_test_util.h"
 #include "tessera/experiments.h"
@@ -88,6 +89,27 @@ TEST(Aa, EveryMethodAtEveryRateAndAdaptiveBeatsDefault) {
   }
   EXPECT_EQ(r->backend, Backend::cpu);
   EXPECT_EQ(r->gl, nullptr);
+
+  // The library writes the reports: aa.json lists every rate and the images that go beside it
+  // (aa_rate_images, names only or with pixels), aa.md names the scene.
+  Result<std::string> j = to_json(c, *r, {.scene_label = "tiny"});
+  ASSERT_TRUE(j.ok()) << j.status().message;
+  EXPECT_NE(j->find("\"scene\": \"tiny\""), std::string::npos);
+  EXPECT_NE(j->find("\"adaptive-3x3\": \"adaptive-3x3.png\""), std::string::npos);
+  EXPECT_EQ(j->find("\"backend\""), std::string::npos);  // written only for gl and both
+  Result<std::vector<AaRateImage>> names = aa_rate_images(c, r->rates[0], false);
+  Result<std::vector<AaRateImage>> images = aa_rate_images(c, r->rates[0]);
+  ASSERT_TRUE(names.ok() && images.ok());
+  ASSERT_EQ(names->size(), images->size());
+  for (std::size_t i = 0; i < names->size(); ++i) {
+    EXPECT_EQ((*names)[i].name, (*images)[i].name);
+    EXPECT_TRUE((*names)[i].image.pixels.empty());
+    EXPECT_EQ((*images)[i].image.width, c.width) << (*images)[i].name;
+    EXPECT_NE(j->find("\"" + (*names)[i].name + ".png\""), std::string::npos);
+  }
+  Result<std::string> md = to_markdown(c, *r, {.scene_label = "tiny"});
+  ASSERT_TRUE(md.ok());
+  EXPECT_NE(md->find("Scene `tiny`"), std::string::npos);
 }
 
 // The baseline's image is, pixel for pixel, the reference's where a pixel is shaded at every

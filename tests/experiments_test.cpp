@@ -257,6 +257,26 @@ TEST(Seams, BadConfigurationAndBackendAreErrors) {
   EXPECT_FALSE(ready);  // no input was good enough to get there
 }
 
+// The library writes the reports: seams.json names the backend, every rate and, with the
+// images beside it, the zoom window on the worst seam; seams.md opens with its title.
+TEST(Seams, ResultsAsJsonAndMarkdown) {
+  const SeamsConfig c = tiny_seams();
+  const SeamsResult& r = seams_result();
+  const std::string j = to_json(c, r);
+  EXPECT_NE(j.find("\"backend\": \"cpu\""), std::string::npos);
+  EXPECT_NE(j.find("\"4x\""), std::string::npos);
+  EXPECT_NE(j.find("\"zoom_window\""), std::string::npos);
+  EXPECT_EQ(to_json(c, r, {.images = false}).find("zoom_window"), std::string::npos);
+  const SeamsZoomWindow z = seams_zoom_window(c, r);
+  EXPECT_EQ(z.w, 40);
+  EXPECT_LE(z.x + z.w, c.width);
+  EXPECT_LE(z.y + z.h, c.height);
+  const std::string md = to_markdown(c, r);
+  EXPECT_EQ(md.rfind("# Seams experiment", 0), 0u);
+  EXPECT_NE(md.find("## Images"), std::string::npos);
+  EXPECT_EQ(to_markdown(c, r, {.images = false}).find("## Images"), std::string::npos);
+}
+
 TEST(Experiments, Names) {
   EXPECT_STREQ(aa_method_name(AaMethod::default_1spp), "default");
   EXPECT_STREQ(aa_method_name(AaMethod::adaptive), "adaptive");
