@@ -52,6 +52,11 @@ premultiplied or bled alpha, normal maps, KTX 2.0 with Zstandard::
 * The GIL is released while encoding, decoding, reading, writing and comparing, so threads run
   in parallel.
 
+``run_seams(*, msaa, frames, quality_frames, width, height, reference_factor, near_seam_pixels,
+threads, markdown=False)`` and ``run_aa(*, ssaa, width, height, frames, lights, heavy, threads,
+markdown=False)`` run the papers' experiments on the CPU and return the dict of ``tessera seams
+--json`` / ``tessera aa --json`` (the library's result format), or the Markdown report.
+
 ``python3 -m tessera.batch SRC DST`` compresses a directory tree over a Dask cluster (see
 ``tessera.batch``).
 """
@@ -68,6 +73,8 @@ from ._tessera import (  # noqa: F401  (re-exported API)
     from_bytes,
     read,
     read_image,
+    run_aa,
+    run_seams,
     write,
     write_image,
 )
@@ -108,6 +115,8 @@ __all__ = [
     "from_bytes",
     "read",
     "read_image",
+    "run_aa",
+    "run_seams",
     "write",
     "write_image",
 ]
