@@ -194,6 +194,7 @@ TEST(Aa, BadConfigurationAndBackendAreErrors) {
   EXPECT_NE(gl.status().message.find("not built with the OpenGL runtime"), std::string::npos);
   c.backend = Backend::both;
   EXPECT_EQ(run_aa(c).status().code, ErrorCode::unsupported);
+  EXPECT_NE(run_aa(c).status().message.find("backend 'both'"), std::string::npos);
   // A factory's error comes back as it is, still before on_ready.
   c.gl_factory = test::aa_factory([](const scene::Scene&) -> Result<std::unique_ptr<AaBackend>> {
     return Status::error(ErrorCode::unsupported, "no EGL device 7");

@@ -324,8 +324,8 @@ struct ReferenceOptions {
   /// Texture filter of the Traverse lookups: anisotropic (16x, the paper's reference) or
   /// trilinear.
   texture::TextureFilter filter = texture::TextureFilter::anisotropic;
-  int threads = 0;  ///< CPU worker threads (0 = all; the GL version does not use it); results
-                    ///< do not depend on it.
+  int threads = 0;  ///< CPU worker threads (0 = all; GL: for the down-sampling); results do
+                    ///< not depend on it.
   int tile = 96;    ///< Tile side in output pixels (>= 1): bounds the supersampled grid's memory.
 };
 

@@ -265,8 +265,9 @@ Result<AaResult> run_aa(const AaConfig& c) {
   }
   const bool use_gl = uses_gl(c.backend);
   if (use_gl && !c.gl_factory) {
-    return Status::error(ErrorCode::unsupported,
-                         "aa: backend 'gl': not built with the OpenGL runtime");
+    return Status::error(ErrorCode::unsupported, std::string("aa: backend '") +
+                                                     backend_name(c.backend) +
+                                                     "': not built with the OpenGL runtime");
   }
   const std::shared_ptr<const scene::Scene> sc =
       c.scene ? c.scene : std::make_shared<const scene::Scene>(scene::builtin_scene());

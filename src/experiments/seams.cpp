@@ -129,8 +129,9 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
   const bool use_gl = uses_gl(c.backend);
   const bool compare_gl = c.backend == Backend::both;
   if (use_gl && !c.gl_factory) {
-    return Status::error(ErrorCode::unsupported,
-                         "seams: backend 'gl': not built with the OpenGL runtime");
+    return Status::error(ErrorCode::unsupported, std::string("seams: backend '") +
+                                                     backend_name(c.backend) +
+                                                     "': not built with the OpenGL runtime");
   }
   const auto t_load = std::chrono::steady_clock::now();
   Result<detail::SeamsContent> loaded = detail::load_seams_content(c);
