@@ -14,12 +14,23 @@
 #include <memory>
 
 #include "tessera/experiments/common.h"
+#include "tessera/gl_deferred.h"
 
 namespace tessera::gl {
 
-/// The GL backends of both experiments. `glsl_dir`: the folder of share/tessera/glsl (empty:
-/// each renderer's own search, $TESSERA_GLSL_DIR then beside the executable). Creating a backend
-/// fails with one line when there is no usable OpenGL 4.5 device or the shaders are missing.
+struct ExperimentBackendOptions {
+  /// The folder of share/tessera/glsl (empty: each renderer's own search, $TESSERA_GLSL_DIR then
+  /// beside the executable).
+  std::filesystem::path glsl_dir;
+  /// The AA backend's extra-sample schedule (DeferredGlOptions::schedule).
+  ExtraSchedule schedule = ExtraSchedule::frame_list;
+};
+
+/// The GL backends of both experiments. Creating a backend fails with one line when there is no
+/// usable OpenGL 4.5 device or the shaders are missing.
+std::shared_ptr<const experiments::GlBackendFactory> experiment_backends(
+    const ExperimentBackendOptions& options);
+/// The same with the default options and `glsl_dir`.
 std::shared_ptr<const experiments::GlBackendFactory> experiment_backends(
     const std::filesystem::path& glsl_dir = {});
 

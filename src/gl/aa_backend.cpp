@@ -76,7 +76,8 @@ class GlAaBackend final : public GlBackend<AaBackend, DeferredGlRenderer> {
 }  // namespace
 
 Result<std::unique_ptr<AaBackend>> create_aa_backend(const scene::Scene& scene,
-                                                     const std::filesystem::path& glsl_dir) {
+                                                     const std::filesystem::path& glsl_dir,
+                                                     ExtraSchedule schedule) {
   Result<std::unique_ptr<Context>> ctx = Context::create();
   if (!ctx) {
     return Status::error(ctx.status().code,
@@ -84,6 +85,7 @@ Result<std::unique_ptr<AaBackend>> create_aa_backend(const scene::Scene& scene,
   }
   DeferredGlOptions go;
   go.glsl_dir = glsl_dir;
+  go.schedule = schedule;
   Result<std::unique_ptr<DeferredGlRenderer>> r = DeferredGlRenderer::create(scene, go);
   if (!r) return r.status();
   return std::unique_ptr<AaBackend>(

@@ -10,26 +10,33 @@ namespace {
 
 class GlBackends final : public experiments::GlBackendFactory {
  public:
-  explicit GlBackends(std::filesystem::path glsl_dir) : glsl_dir_(std::move(glsl_dir)) {}
+  explicit GlBackends(ExperimentBackendOptions options) : options_(std::move(options)) {}
 
   Result<std::unique_ptr<experiments::SeamsBackend>> create_seams(
       const faces::FaceScene& scene, const faces::FaceTextureSet& textures) const override {
-    return create_seams_backend(scene, textures, glsl_dir_);
+    return create_seams_backend(scene, textures, options_.glsl_dir);
   }
   Result<std::unique_ptr<experiments::AaBackend>> create_aa(
       const scene::Scene& scene) const override {
-    return create_aa_backend(scene, glsl_dir_);
+    return create_aa_backend(scene, options_.glsl_dir, options_.schedule);
   }
 
  private:
-  std::filesystem::path glsl_dir_;
+  ExperimentBackendOptions options_;
 };
 
 }  // namespace
 
 std::shared_ptr<const experiments::GlBackendFactory> experiment_backends(
+    const ExperimentBackendOptions& options) {
+  return std::make_shared<const GlBackends>(options);
+}
+
+std::shared_ptr<const experiments::GlBackendFactory> experiment_backends(
     const std::filesystem::path& glsl_dir) {
-  return std::make_shared<const GlBackends>(glsl_dir);
+  ExperimentBackendOptions options;
+  options.glsl_dir = glsl_dir;
+  return experiment_backends(options);
 }
 
 }  // namespace tessera::gl

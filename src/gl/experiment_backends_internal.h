@@ -8,6 +8,7 @@
 #include "tessera/experiments/aa_backend.h"
 #include "tessera/experiments/seams_backend.h"
 #include "tessera/gl.h"
+#include "tessera/gl_deferred.h"
 
 namespace tessera::gl {
 
@@ -40,6 +41,6 @@ Result<std::unique_ptr<experiments::SeamsBackend>> create_seams_backend(
 
 /// gl::DeferredGlRenderer on a headless context of its own (aa_backend.cpp).
 Result<std::unique_ptr<experiments::AaBackend>> create_aa_backend(
-    const scene::Scene& scene, const std::filesystem::path& glsl_dir);
+    const scene::Scene& scene, const std::filesystem::path& glsl_dir, ExtraSchedule schedule);
 
 }  // namespace tessera::gl
