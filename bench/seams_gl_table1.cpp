@@ -177,7 +177,7 @@ int main(int argc, char** argv) {
   std::vector<std::vector<std::vector<double>>> gpu(2,
                                                     std::vector<std::vector<double>>(rates.size()));
   auto wall = gpu;
-  gl::SeamsRenderOptions o;
+  gl::SeamsFrameOptions o;
   o.width = a.width;
   o.height = a.height;
   o.filter = a.filter;

@@ -1,8 +1,6 @@
 // The adaptive-supersampling experiment of Hollander et al. 2013 (tessera/experiments.h,
 // run_aa) on tiny frames: every method and rate, the edge-per-sample baseline, heavy mode,
 // configuration errors and the backend interface. (The seam experiment: experiments_test.cpp.)
-#include "tessera/experiments.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +9,10 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "experiments_test_util.h"
+#include "tessera/experiments.h"
 #include "tessera/metrics.h"
 
 namespace tessera::experiments {
@@ -88,6 +89,27 @@ TEST(Aa, EveryMethodAtEveryRateAndAdaptiveBeatsDefault) {
   }
   EXPECT_EQ(r->backend, Backend::cpu);
   EXPECT_EQ(r->gl, nullptr);
+
+  // The library writes the reports: aa.json lists every rate and the images that go beside it
+  // (aa_rate_images, names only or with pixels), aa.md names the scene.
+  Result<std::string> j = to_json(c, *r, {.scene_label = "tiny"});
+  ASSERT_TRUE(j.ok()) << j.status().message;
+  EXPECT_NE(j->find("\"scene\": \"tiny\""), std::string::npos);
+  EXPECT_NE(j->find("\"adaptive-3x3\": \"adaptive-3x3.png\""), std::string::npos);
+  EXPECT_EQ(j->find("\"backend\""), std::string::npos);  // written only for gl and both
+  Result<std::vector<AaRateImage>> names = aa_rate_images(c, r->rates[0], false);
+  Result<std::vector<AaRateImage>> images = aa_rate_images(c, r->rates[0]);
+  ASSERT_TRUE(names.ok() && images.ok());
+  ASSERT_EQ(names->size(), images->size());
+  for (std::size_t i = 0; i < names->size(); ++i) {
+    EXPECT_EQ((*names)[i].name, (*images)[i].name);
+    EXPECT_TRUE((*names)[i].image.pixels.empty());
+    EXPECT_EQ((*images)[i].image.width, c.width) << (*images)[i].name;
+    EXPECT_NE(j->find("\"" + (*names)[i].name + ".png\""), std::string::npos);
+  }
+  Result<std::string> md = to_markdown(c, *r, {.scene_label = "tiny"});
+  ASSERT_TRUE(md.ok());
+  EXPECT_NE(md->find("Scene `tiny`"), std::string::npos);
 }
 
 // The baseline's image is, pixel for pixel, the reference's where a pixel is shaded at every
@@ -170,21 +192,24 @@ TEST(Aa, BadConfigurationAndBackendAreErrors) {
   ASSERT_FALSE(gl.ok());
   EXPECT_EQ(gl.status().code, ErrorCode::unsupported);
   EXPECT_NE(gl.status().message.find("not built with the OpenGL runtime"), std::string::npos);
-  c.backend = Backend::cpu;
-  c.compare_gl = true;
+  c.backend = Backend::both;
   EXPECT_EQ(run_aa(c).status().code, ErrorCode::unsupported);
+  EXPECT_NE(run_aa(c).status().message.find("backend 'both'"), std::string::npos);
   // A factory's error comes back as it is, still before on_ready.
-  c.gl_backend_factory = [](const scene::Scene&) -> Result<std::unique_ptr<AaBackend>> {
+  c.gl_factory = test::aa_factory([](const scene::Scene&) -> Result<std::unique_ptr<AaBackend>> {
     return Status::error(ErrorCode::unsupported, "no EGL device 7");
-  };
+  });
   Result<AaResult> f = run_aa(c);
   ASSERT_FALSE(f.ok());
   EXPECT_EQ(f.status().message, "no EGL device 7");
-  c.backend = Backend::gl;  // gl with compare_gl: nothing to compare with
-  EXPECT_EQ(run_aa(c).status().code, ErrorCode::invalid_argument);
+  c.backend = Backend::gl;
+  EXPECT_EQ(run_aa(c).status().message, "no EGL device 7");
   EXPECT_EQ(progress, 0);
   EXPECT_FALSE(ready);
   EXPECT_STREQ(backend_name(Backend::gl), "gl");
+  EXPECT_STREQ(backend_name(Backend::both), "both");
+  EXPECT_EQ(*parse_backend("both"), Backend::both);
+  EXPECT_EQ(parse_backend("gpu").status().code, ErrorCode::invalid_argument);
   EXPECT_STREQ(aa_method_name(AaMethod::edge_per_sample), "edge_per_sample");
 }
 
@@ -211,13 +236,13 @@ TEST(Aa, BackendSizeCheckComesBeforeReady) {
   AaConfig c = tiny_aa();
   c.frames = 1;
   c.backend = Backend::gl;
-  c.gl_backend_factory = [](const scene::Scene& sc) -> Result<std::unique_ptr<AaBackend>> {
+  c.gl_factory = test::aa_factory([](const scene::Scene& sc) -> Result<std::unique_ptr<AaBackend>> {
     auto b = std::make_unique<Limited>();
     Result<std::unique_ptr<AaBackend>> cpu = create_cpu_aa_backend(sc, {2});
     if (!cpu) return cpu.status();
     b->cpu = std::move(*cpu);
     return std::unique_ptr<AaBackend>(std::move(b));
-  };
+  });
   bool ready = false;
   c.on_ready = [&] {
     ready = true;

@@ -1,5 +1,5 @@
-// The seam experiment of tessera/experiments.h through the SeamsFrameRenderer interface: fake
-// GL backends that refuse some MSAA rates, perturb or round their frames, and compare_gl's
+// The seam experiment of tessera/experiments.h through the SeamsBackend interface: fake GL
+// backends that refuse some MSAA rates, perturb or round their frames, and Backend::both's
 // agreement measures against the CPU renderer. (The CPU backend: experiments_test.cpp.)
 #include "tessera/experiments.h"
 
@@ -31,9 +31,9 @@ std::vector<SampleOffset> standard_positions(int n) {
 
 /// What every stand-in for the GL backend below shares: the CPU renderer under another name,
 /// with GL's version string, no shading-only pass and the CPU's reference.
-class CpuBackedFakeGl : public SeamsFrameRenderer {
+class CpuBackedFakeGl : public SeamsBackend {
  public:
-  CpuBackedFakeGl(std::unique_ptr<SeamsFrameRenderer> cpu, std::string name)
+  CpuBackedFakeGl(std::unique_ptr<SeamsBackend> cpu, std::string name)
       : cpu_(std::move(cpu)), name_(std::move(name)) {}
   Backend backend() const override { return Backend::gl; }
   std::string device_name() const override { return name_; }
@@ -45,7 +45,7 @@ class CpuBackedFakeGl : public SeamsFrameRenderer {
   }
 
  protected:
-  std::unique_ptr<SeamsFrameRenderer> cpu_;
+  std::unique_ptr<SeamsBackend> cpu_;
 
  private:
   std::string name_;
@@ -56,7 +56,7 @@ class CpuBackedFakeGl : public SeamsFrameRenderer {
 class FakeGlRenderer final : public CpuBackedFakeGl {
  public:
   /// `perturb`: add 0.02 to the red channel of pixel (0, 0) of every frame.
-  FakeGlRenderer(std::unique_ptr<SeamsFrameRenderer> cpu, std::vector<int> refused, bool perturb)
+  FakeGlRenderer(std::unique_ptr<SeamsBackend> cpu, std::vector<int> refused, bool perturb)
       : CpuBackedFakeGl(std::move(cpu), "fake renderer"),
         refused_(std::move(refused)),
         perturb_(perturb) {}
@@ -79,21 +79,23 @@ class FakeGlRenderer final : public CpuBackedFakeGl {
   bool perturb_ = false;
 };
 
-SeamsRendererFactory fake_gl_factory(std::vector<int> refused, bool perturb = false) {
-  return [refused, perturb](
-             const faces::FaceScene& scene,
-             const faces::FaceTextureSet& set) -> Result<std::unique_ptr<SeamsFrameRenderer>> {
-    Result<std::unique_ptr<SeamsFrameRenderer>> cpu = create_cpu_seams_renderer(scene, set);
-    if (!cpu) return cpu.status();
-    return std::unique_ptr<SeamsFrameRenderer>(
-        std::make_unique<FakeGlRenderer>(std::move(*cpu), refused, perturb));
-  };
+std::shared_ptr<const GlBackendFactory> fake_gl_factory(std::vector<int> refused,
+                                                        bool perturb = false) {
+  return test::seams_factory(
+      [refused, perturb](
+          const faces::FaceScene& scene,
+          const faces::FaceTextureSet& set) -> Result<std::unique_ptr<SeamsBackend>> {
+        Result<std::unique_ptr<SeamsBackend>> cpu = create_cpu_seams_backend(scene, set);
+        if (!cpu) return cpu.status();
+        return std::unique_ptr<SeamsBackend>(
+            std::make_unique<FakeGlRenderer>(std::move(*cpu), refused, perturb));
+      });
 }
 
 TEST(Seams, GlBackendThroughTheFactorySkipsRefusedRates) {
   SeamsConfig c = tiny_seams();
   c.backend = Backend::gl;
-  c.gl_renderer_factory = fake_gl_factory({4});
+  c.gl_factory = fake_gl_factory({4});
   Result<SeamsResult> r = run_seams(c);
   ASSERT_TRUE(r.ok()) << r.status().message;
   EXPECT_EQ(r->backend, Backend::gl);
@@ -125,7 +127,7 @@ TEST(Seams, GlBackendThroughTheFactorySkipsRefusedRates) {
     ready = true;
     return Status::success();
   };
-  c.gl_renderer_factory = fake_gl_factory({1, 4});
+  c.gl_factory = fake_gl_factory({1, 4});
   Result<SeamsResult> none = run_seams(c);
   ASSERT_FALSE(none.ok());
   EXPECT_EQ(none.status().code, ErrorCode::unsupported);
@@ -135,12 +137,11 @@ TEST(Seams, GlBackendThroughTheFactorySkipsRefusedRates) {
 
 TEST(Seams, CompareGlKeepsTheCpuResultAndMeasuresAgreement) {
   SeamsConfig c = tiny_seams();
-  c.compare_gl = true;
-  c.gl_renderer_factory = fake_gl_factory({4}, true);
+  c.backend = Backend::both;
+  c.gl_factory = fake_gl_factory({4}, true);
   Result<SeamsResult> r = run_seams(c);
   ASSERT_TRUE(r.ok()) << r.status().message;
-  EXPECT_EQ(r->backend, Backend::cpu);
-  EXPECT_TRUE(r->compared_gl);
+  EXPECT_EQ(r->backend, Backend::both);
   EXPECT_EQ(r->msaa_unsupported, std::vector<int>{4});
   const SeamsResult& cpu = seams_result();
   ASSERT_EQ(r->rates.size(), cpu.rates.size());  // the CPU renders every rate
@@ -175,7 +176,7 @@ TEST(Seams, CompareGlKeepsTheCpuResultAndMeasuresAgreement) {
 /// renderer at 4x for 2x. `report`: say so in `sample_pattern` (as the GL backend does).
 class RoundingFakeGlRenderer final : public CpuBackedFakeGl {
  public:
-  RoundingFakeGlRenderer(std::unique_ptr<SeamsFrameRenderer> cpu, bool report)
+  RoundingFakeGlRenderer(std::unique_ptr<SeamsBackend> cpu, bool report)
       : CpuBackedFakeGl(std::move(cpu), "rounding renderer"), report_(report) {}
   bool msaa_supported(int samples) override { return samples == 2 || samples == 4; }
   SeamsSamplePattern sample_pattern(int msaa) override {
@@ -193,7 +194,7 @@ class RoundingFakeGlRenderer final : public CpuBackedFakeGl {
   bool report_ = true;
 };
 
-// compare_gl compares a GL frame with the CPU frame of the driver's sample positions: a 2x
+// Backend::both compares a GL frame with the CPU frame of the driver's sample positions: a 2x
 // frame drawn with 4x samples against the CPU's 4x frame (here the very same frame: identical),
 // not the CPU's 2x one (which differs at every edge).
 TEST(Seams, CompareGlUsesTheDriversSamplePositions) {
@@ -201,15 +202,15 @@ TEST(Seams, CompareGlUsesTheDriversSamplePositions) {
     SeamsConfig c = tiny_seams();
     c.msaa = {2, 4};
     c.frames = 1;
-    c.compare_gl = true;
-    c.gl_renderer_factory =
+    c.backend = Backend::both;
+    c.gl_factory = test::seams_factory(
         [report](const faces::FaceScene& scene,
-                 const faces::FaceTextureSet& set) -> Result<std::unique_ptr<SeamsFrameRenderer>> {
-      Result<std::unique_ptr<SeamsFrameRenderer>> cpu = create_cpu_seams_renderer(scene, set);
-      if (!cpu) return cpu.status();
-      return std::unique_ptr<SeamsFrameRenderer>(
-          std::make_unique<RoundingFakeGlRenderer>(std::move(*cpu), report));
-    };
+                 const faces::FaceTextureSet& set) -> Result<std::unique_ptr<SeamsBackend>> {
+          Result<std::unique_ptr<SeamsBackend>> cpu = create_cpu_seams_backend(scene, set);
+          if (!cpu) return cpu.status();
+          return std::unique_ptr<SeamsBackend>(
+              std::make_unique<RoundingFakeGlRenderer>(std::move(*cpu), report));
+        });
     Result<SeamsResult> r = run_seams(c);
     ASSERT_TRUE(r.ok()) << r.status().message;
     ASSERT_EQ(r->gl_sample_patterns.size(), 2u);
@@ -238,7 +239,7 @@ TEST(Seams, CompareGlUsesTheDriversSamplePositions) {
 /// `cpu_msaa` as the CPU rate with them.
 class PatternFakeGlRenderer final : public CpuBackedFakeGl {
  public:
-  PatternFakeGlRenderer(std::unique_ptr<SeamsFrameRenderer> cpu, std::vector<SampleOffset> draws,
+  PatternFakeGlRenderer(std::unique_ptr<SeamsBackend> cpu, std::vector<SampleOffset> draws,
                         std::vector<SampleOffset> reported, int cpu_msaa)
       : CpuBackedFakeGl(std::move(cpu), "pattern renderer"),
         draws_(std::move(draws)),
@@ -261,21 +262,21 @@ class PatternFakeGlRenderer final : public CpuBackedFakeGl {
   int cpu_msaa_ = 0;
 };
 
-/// compare_gl at 2x with a PatternFakeGlRenderer.
+/// Backend::both at 2x with a PatternFakeGlRenderer.
 Result<SeamsResult> run_pattern_fake(const std::vector<SampleOffset>& draws,
                                      const std::vector<SampleOffset>& reported, int cpu_msaa) {
   SeamsConfig c = tiny_seams();
   c.msaa = {2};
   c.frames = 1;
-  c.compare_gl = true;
-  c.gl_renderer_factory =
+  c.backend = Backend::both;
+  c.gl_factory = test::seams_factory(
       [=](const faces::FaceScene& scene,
-          const faces::FaceTextureSet& set) -> Result<std::unique_ptr<SeamsFrameRenderer>> {
-    Result<std::unique_ptr<SeamsFrameRenderer>> cpu = create_cpu_seams_renderer(scene, set);
-    if (!cpu) return cpu.status();
-    return std::unique_ptr<SeamsFrameRenderer>(
-        std::make_unique<PatternFakeGlRenderer>(std::move(*cpu), draws, reported, cpu_msaa));
-  };
+          const faces::FaceTextureSet& set) -> Result<std::unique_ptr<SeamsBackend>> {
+        Result<std::unique_ptr<SeamsBackend>> cpu = create_cpu_seams_backend(scene, set);
+        if (!cpu) return cpu.status();
+        return std::unique_ptr<SeamsBackend>(
+            std::make_unique<PatternFakeGlRenderer>(std::move(*cpu), draws, reported, cpu_msaa));
+      });
   return run_seams(c);
 }
 

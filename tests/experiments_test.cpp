@@ -239,25 +239,42 @@ TEST(Seams, BadConfigurationAndBackendAreErrors) {
   EXPECT_EQ(gl.status().code, ErrorCode::unsupported);
   EXPECT_NE(gl.status().message.find("not built with the OpenGL runtime"), std::string::npos)
       << gl.status().message;
-  c.backend = Backend::cpu;
-  c.compare_gl = true;
+  c.backend = Backend::both;
   EXPECT_EQ(run_seams(c).status().code, ErrorCode::unsupported);
-  // A factory's error (e.g. no EGL device) comes back unchanged.
-  c.gl_renderer_factory =
+  // A factory's error (e.g. no EGL device) comes back unchanged, for both and gl.
+  c.gl_factory = test::seams_factory(
       [](const faces::FaceScene&,
-         const faces::FaceTextureSet&) -> Result<std::unique_ptr<SeamsFrameRenderer>> {
-    return Status::error(ErrorCode::unsupported, "no EGL device 7");
-  };
+         const faces::FaceTextureSet&) -> Result<std::unique_ptr<SeamsBackend>> {
+        return Status::error(ErrorCode::unsupported, "no EGL device 7");
+      });
   EXPECT_EQ(run_seams(c).status().message, "no EGL device 7");
-  c.backend = Backend::gl;  // GL beside GL: nothing to compare with
-  EXPECT_EQ(run_seams(c).status().code, ErrorCode::invalid_argument);
-  c.compare_gl = false;
+  c.backend = Backend::gl;
   EXPECT_EQ(run_seams(c).status().message, "no EGL device 7");
-  c.gl_renderer_factory = nullptr;
+  c.gl_factory = nullptr;
   c.backend = Backend::cpu;
   c.scene = "/nonexistent/mesh.obj";
   EXPECT_FALSE(run_seams(c).ok());
   EXPECT_FALSE(ready);  // no input was good enough to get there
+}
+
+// The library writes the reports: seams.json names the backend, every rate and, with the
+// images beside it, the zoom window on the worst seam; seams.md opens with its title.
+TEST(Seams, ResultsAsJsonAndMarkdown) {
+  const SeamsConfig c = tiny_seams();
+  const SeamsResult& r = seams_result();
+  const std::string j = to_json(c, r);
+  EXPECT_NE(j.find("\"backend\": \"cpu\""), std::string::npos);
+  EXPECT_NE(j.find("\"4x\""), std::string::npos);
+  EXPECT_NE(j.find("\"zoom_window\""), std::string::npos);
+  EXPECT_EQ(to_json(c, r, {.images = false}).find("zoom_window"), std::string::npos);
+  const SeamsZoomWindow z = seams_zoom_window(c, r);
+  EXPECT_EQ(z.w, 40);
+  EXPECT_LE(z.x + z.w, c.width);
+  EXPECT_LE(z.y + z.h, c.height);
+  const std::string md = to_markdown(c, r);
+  EXPECT_EQ(md.rfind("# Seams experiment", 0), 0u);
+  EXPECT_NE(md.find("## Images"), std::string::npos);
+  EXPECT_EQ(to_markdown(c, r, {.images = false}).find("## Images"), std::string::npos);
 }
 
 TEST(Experiments, Names) {

@@ -1,8 +1,12 @@
-// Helpers shared by the experiments tests (experiments_test.cpp,
-// experiments_seams_backend_test.cpp): the tiny seam experiment and its one cached result.
+// Helpers shared by the experiments tests (experiments_test.cpp, experiments_aa_test.cpp,
+// experiments_seams_backend_test.cpp): the tiny seam experiment and its one cached result, and
+// a GL backend factory made of functions (fake GL backends).
 #pragma once
 
 #include <gtest/gtest.h>
+
+#include <functional>
+#include <memory>
 
 #include "tessera/experiments.h"
 
@@ -30,6 +34,37 @@ inline const SeamsResult& seams_result() {
     return res.ok() ? *res : SeamsResult{};
   }();
   return r;
+}
+
+using SeamsFactoryFn = std::function<Result<std::unique_ptr<SeamsBackend>>(
+    const faces::FaceScene&, const faces::FaceTextureSet&)>;
+using AaFactoryFn = std::function<Result<std::unique_ptr<AaBackend>>(const scene::Scene&)>;
+
+/// A GlBackendFactory whose backends come from two functions; an unset one fails (unsupported).
+class FunctionGlFactory final : public GlBackendFactory {
+ public:
+  FunctionGlFactory(SeamsFactoryFn seams, AaFactoryFn aa)
+      : seams_(std::move(seams)), aa_(std::move(aa)) {}
+  Result<std::unique_ptr<SeamsBackend>> create_seams(
+      const faces::FaceScene& scene, const faces::FaceTextureSet& textures) const override {
+    if (!seams_) return Status::error(ErrorCode::unsupported, "no fake seams backend");
+    return seams_(scene, textures);
+  }
+  Result<std::unique_ptr<AaBackend>> create_aa(const scene::Scene& scene) const override {
+    if (!aa_) return Status::error(ErrorCode::unsupported, "no fake aa backend");
+    return aa_(scene);
+  }
+
+ private:
+  SeamsFactoryFn seams_;
+  AaFactoryFn aa_;
+};
+
+inline std::shared_ptr<const GlBackendFactory> seams_factory(SeamsFactoryFn fn) {
+  return std::make_shared<const FunctionGlFactory>(std::move(fn), nullptr);
+}
+inline std::shared_ptr<const GlBackendFactory> aa_factory(AaFactoryFn fn) {
+  return std::make_shared<const FunctionGlFactory>(nullptr, std::move(fn));
 }
 
 }  // namespace tessera::experiments::test

@@ -1,8 +1,10 @@
-// Per-face textures packed for the GPU (tessera/gl.h): the CPU layout mirrors the
+// Per-face textures packed for the GPU (tessera/gl_ptex.h): the CPU layout mirrors the
 // FaceTextureSet's adjacency and corner links exactly; the uploaded face-record buffer and
 // texture arrays read back equal to the CPU data (the Disney Ptex samples, skipped when
 // ../shared/data is absent); hardware border sampling of the packed arrays against tessera's
 // sampler.
+#include "tessera/gl_ptex.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>

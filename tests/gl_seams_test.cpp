@@ -19,6 +19,7 @@
 #include "tessera/experiments.h"
 #include "tessera/faces.h"
 #include "tessera/gl.h"
+#include "tessera/gl_experiments.h"
 #include "tessera/metrics.h"
 #include "tessera/raster.h"
 #include "test_support.h"
@@ -117,7 +118,7 @@ class GlSeams : public ::testing::Test {
 
   SeamsFrame gl_frame(const scene::Camera& cam, faces::Method m, TextureFilter filter, int msaa,
                       bool fallback = true, SeamsOutput output = SeamsOutput::colour) {
-    SeamsRenderOptions o;
+    SeamsFrameOptions o;
     o.width = kW;
     o.height = kH;
     o.msaa = msaa;
@@ -317,7 +318,7 @@ TEST_F(GlSeams, RefusedMsaaRatesAreReported) {
   EXPECT_TRUE(std::find(refused.begin(), refused.end(), 1) == refused.end());
   const scene::Camera cam = faces::face_orbit_camera(*scene_, 0, 8);
   for (int r : rates) {
-    SeamsRenderOptions o;
+    SeamsFrameOptions o;
     o.width = 16;
     o.height = 16;
     o.msaa = r;
@@ -330,7 +331,7 @@ TEST_F(GlSeams, RefusedMsaaRatesAreReported) {
     }
   }
   // And the renderer still works afterwards.
-  SeamsRenderOptions o;
+  SeamsFrameOptions o;
   o.width = 16;
   o.height = 16;
   EXPECT_TRUE(gl_->render(cam, o).ok());
@@ -372,7 +373,7 @@ TEST_F(GlSeams, SamplePatternsAreReported) {
         EXPECT_EQ(p->positions[i].y * 16.0f, float(table[i].y)) << msaa << "x sample " << i;
       }
     }
-    SeamsRenderOptions o;
+    SeamsFrameOptions o;
     o.width = 16;
     o.height = 16;
     o.msaa = msaa;
@@ -434,16 +435,16 @@ TEST(GlSeamsPatterns, CpuSampleOffsets) {
   EXPECT_EQ(cpu_sample_offsets(std::vector<SamplePosition>(16)).size(), 16u);
 }
 
-// The GL backend of the seam experiment (experiments::create_gl_seams_renderer) reports the
+// The GL backend of the seam experiment (gl::experiment_backends()->create_seams) reports the
 // driver's positions on the CPU's grid: on llvmpipe the standard patterns, 4x in the order of
 // raster::sample_positions(4). It refuses to draw at an explicit pattern.
 TEST_F(GlSeams, BackendReportsTheDriversPositions) {
   gl_.reset();  // the backend makes a context of its own
   ctx_.reset();
-  Result<std::unique_ptr<experiments::SeamsFrameRenderer>> made =
-      experiments::create_gl_seams_renderer(*scene_, *set_, TESSERA_GLSL_DIR);
+  Result<std::unique_ptr<experiments::SeamsBackend>> made =
+      experiment_backends(TESSERA_GLSL_DIR)->create_seams(*scene_, *set_);
   ASSERT_TRUE(made.ok()) << made.status().message;
-  experiments::SeamsFrameRenderer& backend = **made;
+  experiments::SeamsBackend& backend = **made;
   const bool llvmpipe = backend.device_name().find("llvmpipe") != std::string::npos;
   for (int msaa : {1, 2, 4, 8}) {
     if (!backend.msaa_supported(msaa)) continue;

@@ -76,6 +76,28 @@ inline constexpr int kGBufferChannels = 11;
 /// Linear RGB of pixels with no geometry.
 inline constexpr std::array<float, 3> kBackground = {0.05f, 0.05f, 0.08f};
 
+/// The camera set-up of a G-buffer pass, shared by `DeferredRenderer` and its GL twin
+/// (gl::DeferredGlRenderer) so that both rasterise the same clip positions and reconstruct
+/// positions with the same constants.
+struct GBufferCamera {
+  Mat4 view;                    ///< World to camera.
+  Mat4 inv_view;                ///< Camera to world.
+  Mat4 view_projection;         ///< projection(aspect) * view.
+  Vec3 eye;                     ///< Camera position (world).
+  float tan_half_fov_y = 0.5f;  ///< tan(fov_y / 2).
+  float aspect = 1.0f;          ///< width / height.
+};
+
+/// The set-up of `camera` for a width x height output (pixels, each >= 1).
+GBufferCamera gbuffer_camera(const scene::Camera& camera, int width, int height);
+
+/// Per vertex i of `positions`: its clip position (x, y, z, w) at clip[i * clip_stride ..] and
+/// its linear view depth at depth[i * depth_stride] (floats; the arrays may interleave).
+/// Identical for any thread count.
+void transform_gbuffer_vertices(const GBufferCamera& camera, std::span<const Vec3> positions,
+                                float* clip, std::size_t clip_stride, float* depth,
+                                std::size_t depth_stride, const Parallel& parallel = {});
+
 /// An enlarged G-buffer and what the shading pass needs to reconstruct positions.
 struct GBuffer {
   raster::FrameBuffer fb;       ///< ssaa = m, msaa = 1, kGBufferChannels channels.

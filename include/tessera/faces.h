@@ -45,7 +45,9 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -316,14 +318,14 @@ struct FaceFrame {
 inline constexpr std::array<float, 3> kFaceBackground = {0.45f, 0.55f, 0.7f};
 
 /// Settings of the paper's reference frame: `FaceRenderer::render_reference`, its GL twin
-/// `gl::SeamsRenderer::render_reference` and `experiments::SeamsFrameRenderer::render_reference`.
+/// `gl::SeamsRenderer::render_reference` and `experiments::SeamsBackend::render_reference`.
 struct ReferenceOptions {
   int factor = 8;  ///< Supersampling factor per axis, 1..16 (factor x factor the resolution).
   /// Texture filter of the Traverse lookups: anisotropic (16x, the paper's reference) or
   /// trilinear.
   texture::TextureFilter filter = texture::TextureFilter::anisotropic;
-  int threads = 0;  ///< CPU worker threads (0 = all; the GL version does not use it); results
-                    ///< do not depend on it.
+  int threads = 0;  ///< CPU worker threads (0 = all; GL: for the down-sampling); results do
+                    ///< not depend on it.
   int tile = 96;    ///< Tile side in output pixels (>= 1): bounds the supersampled grid's memory.
 };
 
@@ -355,6 +357,68 @@ class FaceRenderer {
   raster::Rasteriser rasteriser_;
   raster::FrameBuffer fb_;
 };
+
+// ---------------------------------------------------------------------------------------------
+// Host set-up shared by the CPU renderer and its GL twin (gl::SeamsRenderer)
+// ---------------------------------------------------------------------------------------------
+
+/// Smooth vertex normals of a quad mesh, one per face vertex (4 per face, face-major): the
+/// normalised sum of the area-weighted normals (cross product of the diagonals) of the faces at
+/// the vertex's position.
+std::vector<Vec3> smooth_face_normals(const QuadMesh& mesh);
+
+/// The part of the image a frame shows: the sub-rectangle [x0, x0 + width) x [y0, y0 + height)
+/// of a virtual full_width x full_height image (0 = the whole image); FaceRenderOptions' fields.
+struct FrameWindow {
+  int width = 0, height = 0;
+  int full_width = 0, full_height = 0, x0 = 0, y0 = 0;
+};
+
+/// The window of a frame's options (FaceRenderOptions, gl::SeamsFrameOptions: fields width,
+/// height, full_width, full_height, x0, y0).
+template <typename Options>
+FrameWindow frame_window(const Options& o) {
+  return {o.width, o.height, o.full_width, o.full_height, o.x0, o.y0};
+}
+
+/// Sets the window fields of a frame's options to `w`.
+template <typename Options>
+void set_frame_window(Options& o, const FrameWindow& w) {
+  o.width = w.width;
+  o.height = w.height;
+  o.full_width = w.full_width;
+  o.full_height = w.full_height;
+  o.x0 = w.x0;
+  o.y0 = w.y0;
+}
+
+/// Clip-space positions (x, y, z, w) of every face vertex, 4 vertices per face, for `camera`
+/// and `window`: the full image's projection remapped to the window. `out` holds 16 floats per
+/// face.
+void face_clip_positions(const QuadMesh& mesh, const scene::Camera& camera,
+                         const FrameWindow& window, std::span<float> out);
+
+/// Renders one tile of a reference: the frame `window` (Traverse, single-sampled, the
+/// supersampled grid), returning its image.
+using ReferenceTileFn = std::function<Result<ImageRGBAF>(const FrameWindow& window)>;
+
+/// The reference of `FaceRenderer::render_reference` and its GL twin, given the renderer: the
+/// output in tiles of `options.tile` pixels, each rendered by `render_tile` at `options.factor`
+/// times the resolution with a 2-pixel margin and reduced by `downsample_mitchell`. Fails with
+/// invalid_argument on a bad size, factor or tile, or with `render_tile`'s error.
+Result<ImageRGBAF> render_reference_tiles(int width, int height, const ReferenceOptions& options,
+                                          const ReferenceTileFn& render_tile);
+
+/// Separable Mitchell-Netravali down-sampling (B = C = 1/3) of a supersampled grid by `factor`:
+/// output pixel x reads grid columns [(x - margin) * factor, (x + margin) * factor) of a grid
+/// that starts `margin` output pixels before the output's first pixel, with normalised weights.
+/// `grid` must be ((width + 2 margin) factor) x ((height + 2 margin) factor); margin = 2
+/// (`kReferenceMargin`). Fails with size_mismatch otherwise. Identical for any thread count.
+Result<ImageRGBAF> downsample_mitchell(const ImageRGBAF& grid, int factor, int width, int height,
+                                       const Parallel& parallel = {});
+
+/// The margin of a reference tile, in output pixels: the Mitchell-Netravali support.
+inline constexpr int kReferenceMargin = 2;
 
 /// Mitchell-Netravali kernel with parameters B, C at distance x (support |x| < 2).
 float mitchell_netravali(float x, float b = 1.0f / 3.0f, float c = 1.0f / 3.0f);

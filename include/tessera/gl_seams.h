@@ -54,6 +54,7 @@
 #include "tessera/core.h"
 #include "tessera/faces.h"
 #include "tessera/gl.h"
+#include "tessera/gl_ptex.h"
 #include "tessera/scene.h"
 
 namespace tessera::gl {
@@ -98,7 +99,7 @@ enum class SeamsOutput {
 };
 
 /// One frame's settings (the GL counterpart of faces::FaceRenderOptions).
-struct SeamsRenderOptions {
+struct SeamsFrameOptions {
   int width = 480;   ///< The paper's frame size.
   int height = 540;
   int msaa = 1;      ///< 1, 2, 4 or 8 samples (8 is refused where GL_MAX_SAMPLES < 8); the
@@ -130,7 +131,7 @@ struct SeamsFrame {
   double wall_ms = 0;
   int draw_calls = 0;  ///< One per face class with faces.
   /// Samples per pixel the frame was drawn with (`SamplePattern::samples` of the rate: more
-  /// than `SeamsRenderOptions::msaa` where the driver rounds the rate up).
+  /// than `SeamsFrameOptions::msaa` where the driver rounds the rate up).
   int samples = 1;
 };
 
@@ -159,7 +160,7 @@ class SeamsRenderer {
 
   /// Renders one frame. An MSAA rate the driver refuses fails with unsupported (see
   /// `msaa_supported`); a bad size or rate with invalid_argument.
-  Result<SeamsFrame> render(const scene::Camera& camera, const SeamsRenderOptions& options);
+  Result<SeamsFrame> render(const scene::Camera& camera, const SeamsFrameOptions& options);
 
   /// Whether an RGBA32F + depth framebuffer with `samples` samples is complete here (cached).
   bool msaa_supported(int samples);
@@ -172,9 +173,10 @@ class SeamsRenderer {
 
   /// The paper's reference on the GPU: Traverse at `options.factor` x `options.factor` the
   /// resolution with `options.filter`, single-sampled, rendered in tiles of `options.tile`
-  /// output pixels (plus a 2-pixel margin) and down-sampled on the CPU by `downsample_mitchell`
-  /// (B = C = 1/3, radius 2 output pixels) — the filter of
-  /// faces::FaceRenderer::render_reference, with the same options (`options.threads` unused).
+  /// output pixels (plus a 2-pixel margin) and down-sampled on the CPU by
+  /// faces::downsample_mitchell (B = C = 1/3, radius 2 output pixels, `options.threads`
+  /// workers) — faces::FaceRenderer::render_reference's tiles and filter
+  /// (faces::render_reference_tiles), with the same options.
   Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
                                       const faces::ReferenceOptions& options = {});
 
@@ -187,13 +189,5 @@ class SeamsRenderer {
   SeamsRenderer() = default;
   std::unique_ptr<State> state_;
 };
-
-/// Separable Mitchell-Netravali down-sampling (faces::mitchell_netravali, B = C = 1/3) of a
-/// supersampled grid by `factor`, the arithmetic of FaceRenderer::render_reference: output
-/// pixel x reads grid columns [(x - margin) * factor, (x + margin) * factor) of a grid that
-/// starts `margin` output pixels before the output's first pixel, with normalised weights.
-/// `grid` must be ((width + 2 margin) factor) x ((height + 2 margin) factor); margin = 2.
-Result<ImageRGBAF> downsample_mitchell(const ImageRGBAF& grid, int factor, int width,
-                                       int height);
 
 }  // namespace tessera::gl

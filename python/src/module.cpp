@@ -16,6 +16,7 @@
 
 #include "arrays.h"
 #include "compress.h"
+#include "experiments.h"
 #include "records.h"
 #include "shapes.h"
 #include "tessera/io.h"
@@ -401,6 +402,7 @@ PYBIND11_MODULE(TESSERA_PYTHON_MODULE_NAME, m) {
         "as paths.",
         "a"_a, "b"_a, py::kw_only(), "premultiplied"_a = false, "normal"_a = false,
         "threads"_a = 0);
+  register_experiments(m);
 #ifdef TESSERA_PYTHON_BENCH_FUNCTIONS
   add_bench_functions(m);
 #endif

@@ -53,6 +53,11 @@ premultiplied or bled alpha, normal maps, KTX 2.0 with Zstandard::
 * The GIL is released while encoding, decoding, reading, writing and comparing, so threads run
   in parallel.
 
+``run_seams(*, msaa, frames, quality_frames, width, height, reference_factor, near_seam_pixels,
+threads, markdown=False)`` and ``run_aa(*, ssaa, width, height, frames, lights, heavy, threads,
+markdown=False)`` run the papers' experiments on the CPU and return the dict of ``tessera seams
+--json`` / ``tessera aa --json`` (the library's result format), or the Markdown report.
+
 ``python3 -m tessera.batch SRC DST`` compresses a directory tree over a Dask cluster (see
 ``tessera.batch``).
 """
@@ -70,6 +75,8 @@ from ._tessera import (  # noqa: F401  (re-exported API)
     is_up_to_date,
     read,
     read_image,
+    run_aa,
+    run_seams,
     up_to_date_record,
     write,
     write_image,
@@ -114,6 +121,8 @@ __all__ = [
     "is_up_to_date",
     "read",
     "read_image",
+    "run_aa",
+    "run_seams",
     "up_to_date_record",
     "write",
     "write_image",

@@ -1,6 +1,5 @@
 // DeferredRenderer: textures, and the geometry pass into the enlarged G-buffer.
 #include <cmath>
-#include <numbers>
 
 #include "deferred_internal.h"
 #include "tessera/render.h"
@@ -60,34 +59,16 @@ Status DeferredRenderer::render_gbuffer(const scene::Camera& camera, int width, 
     out.fb = std::move(*fb);
   }
   out.m = m;
-  out.aspect = float(width) / float(height);
-  out.tan_half_fov_y = std::tan(camera.fov_y_degrees * std::numbers::pi_v<float> / 360.0f);
-  const Mat4 view = camera.view();
-  out.inv_view = inverse(view);
-  out.eye = camera.eye;
+  const GBufferCamera cam = gbuffer_camera(camera, width, height);
+  out.aspect = cam.aspect;
+  out.tan_half_fov_y = cam.tan_half_fov_y;
+  out.inv_view = cam.inv_view;
+  out.eye = cam.eye;
 
   const scene::Scene& sc = *scene_;
-  const Mat4 vp = camera.projection(out.aspect) * view;
   for (std::size_t mi = 0; mi < sc.meshes.size(); ++mi) {
-    const scene::Mesh& mesh = sc.meshes[mi];
-    float* clip = clip_[mi].data();
-    float* var = varyings_[mi].data();
-    parallel_for(
-        0, std::int64_t(mesh.positions.size()), 4096,
-        [&](std::int64_t b, std::int64_t e) {
-          for (std::int64_t i = b; i < e; ++i) {
-            const Vec3& p = mesh.positions[std::size_t(i)];
-            const Vec4 c = vp * Vec4{p.x, p.y, p.z, 1.0f};
-            float* o = clip + i * 4;
-            o[0] = c.x;
-            o[1] = c.y;
-            o[2] = c.z;
-            o[3] = c.w;
-            const Vec4 v = view * Vec4{p.x, p.y, p.z, 1.0f};
-            var[i * 6] = -v.z;  // linear view depth
-          }
-        },
-        {threads_});
+    transform_gbuffer_vertices(cam, sc.meshes[mi].positions, clip_[mi].data(), 4,
+                               varyings_[mi].data(), 6, {threads_});
   }
 
   std::vector<raster::DrawCall> draws;

@@ -1,14 +1,15 @@
 // The experiment of Holländer, Boubekeur & Eisemann 2013 (Table 1, Figures 6a, 7 and 8):
 // adaptive supersampling of an enlarged G-buffer against full supersampling, plain 1x deferred
 // shading, FXAA 3.11 and the engine baseline (per-sample shading of edge pixels, Lauritzen
-// 2010), measured side by side in one run on an `AaBackend` (the CPU, or OpenGL through
-// `AaConfig::gl_backend_factory`).
+// 2010), measured side by side in one run on an `AaBackend` (the CPU, OpenGL through
+// `AaConfig::gl_factory`, or both).
+#include "tessera/experiments/aa.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
 
-#include "tessera/experiments.h"
 #include "tessera/metrics.h"
 
 namespace tessera::experiments {
@@ -223,7 +224,7 @@ Status run_backend(const Run& run, AaResult& res) {
   return Status::success();
 }
 
-/// `compare_gl`: GL's adaptive image and k map against the CPU's, per rate.
+/// Backend::both: GL's adaptive image and k map against the CPU's, per rate.
 Status compare_backends(AaResult& cpu, const AaResult& gl) {
   for (std::size_t i = 0; i < cpu.rates.size() && i < gl.rates.size(); ++i) {
     AaRateResult& a = cpu.rates[i];
@@ -262,14 +263,11 @@ Result<AaResult> run_aa(const AaConfig& c) {
                            "aa: window size " + std::to_string(m) + " not in [1, 8]");
     }
   }
-  if (c.backend == Backend::gl && c.compare_gl) {
-    return Status::error(ErrorCode::invalid_argument,
-                         "aa: compare_gl needs the cpu backend (it compares GL with it)");
-  }
-  const bool use_gl = c.backend == Backend::gl || c.compare_gl;
-  if (use_gl && !c.gl_backend_factory) {
-    return Status::error(ErrorCode::unsupported,
-                         "aa: backend 'gl': not built with the OpenGL runtime");
+  const bool use_gl = uses_gl(c.backend);
+  if (use_gl && !c.gl_factory) {
+    return Status::error(ErrorCode::unsupported, std::string("aa: backend '") +
+                                                     backend_name(c.backend) +
+                                                     "': not built with the OpenGL runtime");
   }
   const std::shared_ptr<const scene::Scene> sc =
       c.scene ? c.scene : std::make_shared<const scene::Scene>(scene::builtin_scene());
@@ -277,13 +275,13 @@ Result<AaResult> run_aa(const AaConfig& c) {
 
   // Backends and every G-buffer size before `on_ready` (no output folder when they fail).
   std::unique_ptr<AaBackend> cpu, gl;
-  if (c.backend == Backend::cpu) {
+  if (c.backend != Backend::gl) {
     Result<std::unique_ptr<AaBackend>> r = create_cpu_aa_backend(*sc, {c.threads});
     if (!r) return r.status();
     cpu = std::move(*r);
   }
   if (use_gl) {
-    Result<std::unique_ptr<AaBackend>> r = c.gl_backend_factory(*sc);
+    Result<std::unique_ptr<AaBackend>> r = c.gl_factory->create_aa(*sc);
     if (!r) return r.status();
     if (!*r) return Status::error(ErrorCode::unsupported, "aa: the GL factory returned nothing");
     gl = std::move(*r);
@@ -319,7 +317,7 @@ Result<AaResult> run_aa(const AaConfig& c) {
   if (Status s = run_backend(Run{c, primary, camera, normal, heavy, options}, res); !s.ok()) {
     return s;
   }
-  if (c.compare_gl) {
+  if (c.backend == Backend::both) {
     AaResult g;
     g.threads = res.threads;
     g.heavy_terms = res.heavy_terms;
@@ -329,6 +327,7 @@ Result<AaResult> run_aa(const AaConfig& c) {
     res.gl_renderer = g.gl_renderer;
     res.gl_version = g.gl_version;
     res.gl = std::make_shared<const AaResult>(std::move(g));
+    res.backend = Backend::both;
   }
   return res;
 }

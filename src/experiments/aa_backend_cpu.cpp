@@ -1,10 +1,11 @@
 // The CPU backend of the adaptive-supersampling experiment: deferred::DeferredRenderer behind
-// the AaBackend interface of tessera/experiments.h (the GL twin is src/gl/aa_backend.cpp).
+// the AaBackend interface of tessera/experiments/aa_backend.h (the GL twin is
+// src/gl/aa_backend.cpp).
 #include <chrono>
 #include <cmath>
 #include <limits>
 
-#include "tessera/experiments.h"
+#include "tessera/experiments/aa_backend.h"
 
 namespace tessera::experiments {
 

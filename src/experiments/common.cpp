@@ -12,8 +12,18 @@ const char* backend_name(Backend backend) {
       return "cpu";
     case Backend::gl:
       return "gl";
+    case Backend::both:
+      return "both";
   }
   return "?";
+}
+
+Result<Backend> parse_backend(std::string_view text) {
+  for (Backend b : {Backend::cpu, Backend::gl, Backend::both}) {
+    if (text == backend_name(b)) return b;
+  }
+  return Status::error(ErrorCode::invalid_argument,
+                       "backend '" + std::string(text) + "': expected cpu, gl or both");
 }
 
 double FrameTimes::median_ms() const { return tessera::median(frame_ms); }

@@ -1,13 +1,14 @@
 // The seam experiment of Toth 2013 (Table 1 and Figure 5): every sampling method at every MSAA
 // rate along a camera orbit, timed side by side, compared against the Mitchell-Netravali-
 // downsampled supersampled Traverse reference with the error CDF of metrics.h.
+#include "tessera/experiments/seams.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 
 #include "seams_content.h"
-#include "tessera/experiments.h"
 #include "tessera/metrics.h"
 
 namespace tessera::experiments {
@@ -125,14 +126,12 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
                            "seams: MSAA rate " + std::to_string(r) + " not in 1,2,4,8,16");
     }
   }
-  const bool use_gl = c.backend == Backend::gl || c.compare_gl;
-  if (c.backend == Backend::gl && c.compare_gl) {
-    return Status::error(ErrorCode::invalid_argument,
-                         "seams: compare_gl needs the cpu backend (it compares GL with it)");
-  }
-  if (use_gl && !c.gl_renderer_factory) {
-    return Status::error(ErrorCode::unsupported,
-                         "seams: backend 'gl': not built with the OpenGL runtime");
+  const bool use_gl = uses_gl(c.backend);
+  const bool compare_gl = c.backend == Backend::both;
+  if (use_gl && !c.gl_factory) {
+    return Status::error(ErrorCode::unsupported, std::string("seams: backend '") +
+                                                     backend_name(c.backend) +
+                                                     "': not built with the OpenGL runtime");
   }
   const auto t_load = std::chrono::steady_clock::now();
   Result<detail::SeamsContent> loaded = detail::load_seams_content(c);
@@ -142,30 +141,29 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
   char load_ms[32];
   std::snprintf(load_ms, sizeof load_ms, "%.0f", ms_since(t_load));
   // The CPU renderer draws the face ids and the character mask whatever the backend (the
-  // geometry is the same on GL); `primary` renders `rates`, `gl_side` the compare_gl frames.
+  // geometry is the same on GL); `primary` renders `rates`, `gl_side` the GL frames of both.
   Result<std::unique_ptr<faces::FaceRenderer>> renderer = faces::FaceRenderer::create(scene, set);
   if (!renderer) return renderer.status();
-  std::unique_ptr<SeamsFrameRenderer> gl;
+  std::unique_ptr<SeamsBackend> gl;
   if (use_gl) {
-    Result<std::unique_ptr<SeamsFrameRenderer>> made = c.gl_renderer_factory(scene, set);
+    Result<std::unique_ptr<SeamsBackend>> made = c.gl_factory->create_seams(scene, set);
     if (!made) return made.status();
     if (!*made) {
       return Status::error(ErrorCode::unsupported, "seams: the GL renderer factory made nothing");
     }
     gl = std::move(*made);
   }
-  std::unique_ptr<SeamsFrameRenderer> cpu;
-  if (c.backend == Backend::cpu) {
-    Result<std::unique_ptr<SeamsFrameRenderer>> made = create_cpu_seams_renderer(scene, set);
+  std::unique_ptr<SeamsBackend> cpu;
+  if (c.backend != Backend::gl) {
+    Result<std::unique_ptr<SeamsBackend>> made = create_cpu_seams_backend(scene, set);
     if (!made) return made.status();
     cpu = std::move(*made);
   }
-  SeamsFrameRenderer& primary = c.backend == Backend::cpu ? *cpu : *gl;
-  SeamsFrameRenderer* gl_side = c.compare_gl ? gl.get() : nullptr;
+  SeamsBackend& primary = cpu ? *cpu : *gl;
+  SeamsBackend* gl_side = compare_gl ? gl.get() : nullptr;
 
   SeamsResult res;
   res.backend = c.backend;
-  res.compared_gl = c.compare_gl;
   std::vector<int> rates = c.msaa;  // those `primary` renders
   std::vector<bool> gl_rate(c.msaa.size(), false);
   if (gl) {
@@ -185,7 +183,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
         if (c.backend == Backend::gl) rates.push_back(r);
       }
     }
-    if (rates.empty() || (c.compare_gl && std::count(gl_rate.begin(), gl_rate.end(), true) == 0)) {
+    if (rates.empty() || (compare_gl && std::count(gl_rate.begin(), gl_rate.end(), true) == 0)) {
       return Status::error(ErrorCode::unsupported, "seams: the OpenGL driver (" + res.gl_renderer +
                                                        ") refuses every MSAA rate asked for (" +
                                                        rates_text(res.msaa_unsupported) + ")");
@@ -214,7 +212,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
   const std::size_t nm = methods.size(), nr = rates.size();
   res.rates.resize(nr);
   std::vector<RateAccumulators> acc(nr);
-  // compare_gl: gl_index[ri] = the rate's entry in res.gl_rates, or -1 where GL refuses it.
+  // both: gl_index[ri] = the rate's entry in res.gl_rates, or -1 where GL refuses it.
   std::vector<int> gl_index(nr, -1);
   std::vector<std::array<Agreement, 4>> agree;
   std::vector<SeamsSamplePattern> gl_patterns;  // per entry of res.gl_rates
@@ -269,11 +267,11 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
     SeamsFrameOptions wo = fo;
     wo.keep_image = false;
     for (std::size_t ri = 0; ri < nr; ++ri) {
-      if (c.compare_gl && gl_index[ri] < 0) continue;
+      if (compare_gl && gl_index[ri] < 0) continue;
       wo.msaa = rates[ri];
       for (faces::Method m : methods) {
         for (bool fallback : {true, false}) {
-          if (!fallback && (m != faces::Method::discard || c.compare_gl)) continue;
+          if (!fallback && (m != faces::Method::discard || compare_gl)) continue;
           wo.method = m;
           wo.clamp_fallback = fallback;
           if (Result<SeamsBackendFrame> fr = gl->render(cam, wo); !fr) return fr.status();

@@ -1,14 +1,14 @@
-// The CPU backend of the seam experiment: faces::FaceRenderer behind the SeamsFrameRenderer
-// interface (tessera/experiments.h). Its frames are the ones `tessera seams` has always rendered.
-#include "tessera/experiments.h"
+// The CPU backend of the seam experiment: faces::FaceRenderer behind the SeamsBackend interface
+// (tessera/experiments/seams_backend.h; the GL twin is src/gl/seams_backend.cpp).
+#include "tessera/experiments/seams_backend.h"
 
 namespace tessera::experiments {
 
 namespace {
 
-class CpuSeamsRenderer final : public SeamsFrameRenderer {
+class CpuSeamsBackend final : public SeamsBackend {
  public:
-  explicit CpuSeamsRenderer(std::unique_ptr<faces::FaceRenderer> r) : r_(std::move(r)) {}
+  explicit CpuSeamsBackend(std::unique_ptr<faces::FaceRenderer> r) : r_(std::move(r)) {}
 
   Backend backend() const override { return Backend::cpu; }
   std::string device_name() const override { return {}; }
@@ -31,11 +31,7 @@ class CpuSeamsRenderer final : public SeamsFrameRenderer {
     o.sampling.clamp_fallback = options.clamp_fallback;
     Result<faces::FaceFrame> f = r_->render(camera, o);
     if (!f) return f.status();
-    SeamsBackendFrame out;
-    out.ms = f->ms();
-    out.wall_ms = out.ms;
-    out.image = std::move(f->image);
-    return out;
+    return SeamsBackendFrame{std::move(f->image), f->ms(), f->ms()};
   }
 
   Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
@@ -49,11 +45,11 @@ class CpuSeamsRenderer final : public SeamsFrameRenderer {
 
 }  // namespace
 
-Result<std::unique_ptr<SeamsFrameRenderer>> create_cpu_seams_renderer(
+Result<std::unique_ptr<SeamsBackend>> create_cpu_seams_backend(
     const faces::FaceScene& scene, const faces::FaceTextureSet& textures) {
   Result<std::unique_ptr<faces::FaceRenderer>> r = faces::FaceRenderer::create(scene, textures);
   if (!r) return r.status();
-  return std::unique_ptr<SeamsFrameRenderer>(std::make_unique<CpuSeamsRenderer>(std::move(*r)));
+  return std::unique_ptr<SeamsBackend>(std::make_unique<CpuSeamsBackend>(std::move(*r)));
 }
 
 }  // namespace tessera::experiments

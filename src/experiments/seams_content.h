@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "tessera/experiments.h"
+#include "tessera/experiments/seams.h"
 
 namespace tessera::experiments::detail {
 

@@ -77,7 +77,4 @@ struct DeferredGlRenderer::State {
 Status shade_with_component(DeferredGlRenderer::State& st, int mode,
                             const deferred::AdaptiveOptions* adaptive, GlShadeResult& r);
 
-/// Finds the GLSL folder (given, $TESSERA_GLSL_DIR, or beside the executable).
-Result<std::string> find_deferred_glsl_dir(const std::filesystem::path& given);
-
 }  // namespace tessera::gl

@@ -7,11 +7,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <numbers>
 #include <tuple>
 
 #include "gl/deferred_gl_internal.h"
 #include "gl/gl_api.h"
+#include "gl/glsl_dir.h"
 #include "tessera/render.h"
 
 namespace tessera::gl {
@@ -20,42 +20,9 @@ using namespace api;
 
 namespace {
 
-bool has_deferred_shaders(const std::filesystem::path& dir) {
-  std::error_code ec;
-  for (const char* f : {"deferred_gbuffer.vert", "deferred_gbuffer.frag", "deferred_passes.comp",
-                        "deferred_shading.glsl", "adaptive_metrics.glsl", "adaptive_samples.glsl",
-                        "edge_classify.glsl", "fxaa.glsl"}) {
-    if (!std::filesystem::is_regular_file(dir / f, ec)) return false;
-  }
-  return true;
-}
-
 constexpr int kMaxClasses = 8;
 
 }  // namespace
-
-Result<std::string> find_deferred_glsl_dir(const std::filesystem::path& given) {
-  if (!given.empty()) {
-    if (has_deferred_shaders(given)) return given.string();
-    return Status::error(ErrorCode::io_error,
-                         given.string() + ": the deferred GLSL files (deferred_passes.comp, "
-                                          "deferred_shading.glsl, ...) are not all there");
-  }
-  std::vector<std::filesystem::path> tried;
-  if (const char* env = std::getenv("TESSERA_GLSL_DIR"); env && *env) tried.emplace_back(env);
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    tried.push_back(exe.parent_path() / ".." / "share" / "tessera" / "glsl");
-    tried.push_back(exe.parent_path() / ".." / ".." / "share" / "tessera" / "glsl");
-  }
-  for (const auto& d : tried) {
-    if (has_deferred_shaders(d)) return d.lexically_normal().string();
-  }
-  return Status::error(ErrorCode::io_error,
-                       "deferred GL: share/tessera/glsl not found (set TESSERA_GLSL_DIR or "
-                       "DeferredGlOptions::glsl_dir)");
-}
 
 DeferredGlRenderer::~DeferredGlRenderer() = default;
 
@@ -73,9 +40,14 @@ Result<std::unique_ptr<DeferredGlRenderer>> DeferredGlRenderer::create(
   State& st = *r->state_;
   st.scene = &scene;
   st.options = options;
-  Result<std::string> dir = find_deferred_glsl_dir(options.glsl_dir);
+  Result<std::filesystem::path> dir =
+      find_glsl_dir(options.glsl_dir,
+                    {"deferred_gbuffer.vert", "deferred_gbuffer.frag", "deferred_passes.comp",
+                     "deferred_shading.glsl", "adaptive_metrics.glsl", "adaptive_samples.glsl",
+                     "edge_classify.glsl", "fxaa.glsl"},
+                    "deferred GL", "DeferredGlOptions::glsl_dir");
   if (!dir) return dir.status();
-  st.glsl_dir = *dir;
+  st.glsl_dir = dir->string();
 
   Result<std::vector<texture::Texture>> textures =
       render::build_scene_textures(scene, {options.threads});
@@ -277,39 +249,23 @@ Status DeferredGlRenderer::render_gbuffer(const scene::Camera& camera, int width
     st.h = height;
     st.m = m;
   }
-  // Camera data, exactly as DeferredRenderer::render_gbuffer.
-  st.aspect = float(width) / float(height);
-  st.tan_half_fov = std::tan(camera.fov_y_degrees * std::numbers::pi_v<float> / 360.0f);
+  // Camera data and vertices, exactly as DeferredRenderer::render_gbuffer.
+  const deferred::GBufferCamera cam = deferred::gbuffer_camera(camera, width, height);
+  st.aspect = cam.aspect;
+  st.tan_half_fov = cam.tan_half_fov_y;
   st.far_z = camera.far_z;
-  const Mat4 view = camera.view();
-  const Mat4 inv = inverse(view);
   for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) st.inv_view[c * 4 + r] = inv.m[c][r];
-  st.camera_eye[0] = camera.eye.x;
-  st.camera_eye[1] = camera.eye.y;
-  st.camera_eye[2] = camera.eye.z;
-  const Mat4 vp = camera.projection(st.aspect) * view;
+    for (int r = 0; r < 4; ++r) st.inv_view[c * 4 + r] = cam.inv_view.m[c][r];
+  st.camera_eye[0] = cam.eye.x;
+  st.camera_eye[1] = cam.eye.y;
+  st.camera_eye[2] = cam.eye.z;
   const scene::Scene& sc = *st.scene;
   for (std::size_t mi = 0; mi < sc.meshes.size(); ++mi) {
     const scene::Mesh& mesh = sc.meshes[mi];
     st.scratch.resize(mesh.positions.size() * 5);
-    float* out = st.scratch.data();
-    parallel_for(
-        0, std::int64_t(mesh.positions.size()), 4096,
-        [&](std::int64_t b, std::int64_t e) {
-          for (std::int64_t i = b; i < e; ++i) {
-            const Vec3& p = mesh.positions[std::size_t(i)];
-            const Vec4 c = vp * Vec4{p.x, p.y, p.z, 1.0f};
-            const Vec4 v = view * Vec4{p.x, p.y, p.z, 1.0f};
-            float* o = out + i * 5;
-            o[0] = c.x;
-            o[1] = c.y;
-            o[2] = c.z;
-            o[3] = c.w;
-            o[4] = -v.z;
-          }
-        },
-        {st.options.threads});
+    // Interleaved: clip x, y, z, w and the linear view depth per vertex.
+    deferred::transform_gbuffer_vertices(cam, mesh.positions, st.scratch.data(), 5,
+                                         st.scratch.data() + 4, 5, {st.options.threads});
     if (!st.scratch.empty()) {
       glNamedBufferData(st.meshes[mi].dynamic_vbo.get(), GLsizeiptr(st.scratch.size() * 4),
                         st.scratch.data(), GL_STREAM_DRAW);

@@ -9,7 +9,7 @@
 #include "core/check.h"
 #include "gl/gl_api.h"
 #include "tessera/faces.h"
-#include "tessera/gl.h"
+#include "tessera/gl_ptex.h"
 
 namespace tessera::gl {
 

@@ -1,41 +1,35 @@
 // The OpenGL backend of the seam experiment: gl::SeamsRenderer (tessera/gl_seams.h) on a headless
-// context of its own behind the SeamsFrameRenderer interface of tessera/experiments.h, so that
-// `experiments::run_seams` (in the GL-free main library) renders with OpenGL when a program
-// linking tessera_gl hands it this factory (`tessera seams --backend gl|both`).
-#include "tessera/experiments.h"
+// context of its own behind the SeamsBackend interface of tessera/experiments/seams_backend.h,
+// so that `experiments::run_seams` (in the GL-free main library) renders with OpenGL when a
+// program linking tessera_gl hands it gl::experiment_backends() (`tessera seams --backend
+// gl|both`). The CPU twin is src/experiments/seams_backend_cpu.cpp.
+#include "gl/experiment_backends_internal.h"
 #include "tessera/gl.h"
 #include "tessera/gl_seams.h"
 
-namespace tessera::experiments {
+namespace tessera::gl {
+
+using experiments::SeamsBackendFrame;
+using experiments::SeamsSamplePattern;
 
 namespace {
 
-class GlSeamsRenderer final : public SeamsFrameRenderer {
+class GlSeamsBackend final : public GlBackend<experiments::SeamsBackend, SeamsRenderer> {
  public:
-  GlSeamsRenderer(std::unique_ptr<gl::Context> ctx, std::unique_ptr<gl::SeamsRenderer> r)
-      : ctx_(std::move(ctx)), r_(std::move(r)) {}
-  ~GlSeamsRenderer() override {
-    // GL objects go before their context, with the context current.
-    if (ctx_ && ctx_->make_current().ok()) r_.reset();
-  }
-  GlSeamsRenderer(const GlSeamsRenderer&) = delete;
-  GlSeamsRenderer& operator=(const GlSeamsRenderer&) = delete;
+  using GlBackend::GlBackend;
 
-  Backend backend() const override { return Backend::gl; }
-  std::string device_name() const override { return ctx_->renderer(); }
-  std::string device_version() const override { return ctx_->version(); }
   bool msaa_supported(int samples) override { return r_->msaa_supported(samples); }
   bool has_shading_only() const override { return false; }
   SeamsSamplePattern sample_pattern(int msaa) override {
-    Result<gl::SamplePattern> p = r_->sample_pattern(msaa);
+    Result<SamplePattern> p = r_->sample_pattern(msaa);
     if (!p) return {msaa, msaa, 0, {}};  // a refused rate: nothing to compare with
     // The positions on the CPU's 1/16-pixel grid (empty where they are off it), so that a
     // driver pattern that is no standard one can still be drawn by the CPU like for like.
-    return {msaa, p->samples, p->cpu_msaa, gl::cpu_sample_offsets(p->positions)};
+    return {msaa, p->samples, p->cpu_msaa, cpu_sample_offsets(p->positions)};
   }
 
   Result<SeamsBackendFrame> render(const scene::Camera& camera,
-                                   const SeamsFrameOptions& options) override {
+                                   const experiments::SeamsFrameOptions& options) override {
     if (options.shading_only) {
       return Status::error(ErrorCode::unsupported,
                            "seams: the GL backend has no shading-only pass");
@@ -45,7 +39,7 @@ class GlSeamsRenderer final : public SeamsFrameRenderer {
                            "seams: the GL backend draws at the driver's sample positions, not "
                            "at an explicit pattern");
     }
-    gl::SeamsRenderOptions o;
+    SeamsFrameOptions o;
     o.width = options.width;
     o.height = options.height;
     o.msaa = options.msaa;
@@ -54,38 +48,30 @@ class GlSeamsRenderer final : public SeamsFrameRenderer {
     o.max_aniso = options.max_aniso;
     o.clamp_fallback = options.clamp_fallback;
     o.read_back = options.keep_image;
-    Result<gl::SeamsFrame> f = r_->render(camera, o);
+    Result<SeamsFrame> f = r_->render(camera, o);
     if (!f) return f.status();
-    SeamsBackendFrame out;
-    out.ms = f->gpu_ms();
-    out.wall_ms = f->wall_ms;
-    out.image = std::move(f->image);
-    return out;
+    return SeamsBackendFrame{std::move(f->image), f->gpu_ms(), f->wall_ms};
   }
 
   Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
                                       const faces::ReferenceOptions& options) override {
     return r_->render_reference(camera, width, height, options);
   }
-
- private:
-  std::unique_ptr<gl::Context> ctx_;
-  std::unique_ptr<gl::SeamsRenderer> r_;
 };
 
 }  // namespace
 
-Result<std::unique_ptr<SeamsFrameRenderer>> create_gl_seams_renderer(
+Result<std::unique_ptr<experiments::SeamsBackend>> create_seams_backend(
     const faces::FaceScene& scene, const faces::FaceTextureSet& textures,
-    const std::string& glsl_dir) {
-  Result<std::unique_ptr<gl::Context>> ctx = gl::Context::create();
+    const std::filesystem::path& glsl_dir) {
+  Result<std::unique_ptr<Context>> ctx = Context::create();
   if (!ctx) return ctx.status();
-  gl::SeamsRendererOptions ro;
+  SeamsRendererOptions ro;
   ro.glsl_dir = glsl_dir;
-  Result<std::unique_ptr<gl::SeamsRenderer>> r = gl::SeamsRenderer::create(scene, textures, ro);
+  Result<std::unique_ptr<SeamsRenderer>> r = SeamsRenderer::create(scene, textures, ro);
   if (!r) return r.status();
-  return std::unique_ptr<SeamsFrameRenderer>(
-      std::make_unique<GlSeamsRenderer>(std::move(*ctx), std::move(*r)));
+  return std::unique_ptr<experiments::SeamsBackend>(
+      std::make_unique<GlSeamsBackend>(std::move(*ctx), std::move(*r)));
 }
 
-}  // namespace tessera::experiments
+}  // namespace tessera::gl

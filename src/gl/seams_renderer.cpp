@@ -12,45 +12,13 @@
 #include <vector>
 
 #include "gl/gl_api.h"
+#include "gl/glsl_dir.h"
 #include "tessera/gl_seams.h"
 #include "tessera/raster.h"
 
 namespace tessera::gl {
 
 using namespace api;  // NOLINT(google-build-using-namespace)
-
-namespace {
-
-bool has_shaders(const std::filesystem::path& dir) {
-  std::error_code ec;
-  return std::filesystem::is_regular_file(dir / "seams_render.frag", ec) &&
-         std::filesystem::is_regular_file(dir / "seams_render.vert", ec) &&
-         std::filesystem::is_regular_file(dir / "seams.glsl", ec);
-}
-
-Result<std::filesystem::path> find_glsl_dir(const std::filesystem::path& given) {
-  if (!given.empty()) {
-    if (has_shaders(given)) return given;
-    return Status::error(ErrorCode::io_error,
-                         given.string() + ": no seams_render.vert/.frag and seams.glsl there");
-  }
-  std::vector<std::filesystem::path> tried;
-  if (const char* env = std::getenv("TESSERA_GLSL_DIR"); env && *env) tried.emplace_back(env);
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    tried.push_back(exe.parent_path() / ".." / "share" / "tessera" / "glsl");
-    tried.push_back(exe.parent_path() / ".." / ".." / "share" / "tessera" / "glsl");
-  }
-  for (const auto& d : tried) {
-    if (has_shaders(d)) return d.lexically_normal();
-  }
-  return Status::error(ErrorCode::io_error,
-                       "seams renderer: share/tessera/glsl not found (set TESSERA_GLSL_DIR or "
-                       "SeamsRendererOptions::glsl_dir)");
-}
-
-}  // namespace
 
 struct SeamsRenderer::State {
   const faces::FaceScene* scene = nullptr;
@@ -70,11 +38,11 @@ struct SeamsRenderer::State {
   RenderTarget target, resolved;  // target: drawn (multisampled or not); resolved: MSAA only
   float max_anisotropy = 1.0f;
 
-  Result<const Program*> program(const SeamsRenderOptions& o);
+  Result<const Program*> program(const SeamsFrameOptions& o);
   Status ensure_targets(int width, int height, int samples);
 };
 
-Result<const Program*> SeamsRenderer::State::program(const SeamsRenderOptions& o) {
+Result<const Program*> SeamsRenderer::State::program(const SeamsFrameOptions& o) {
   const int method = int(o.method);
   const int fallback = o.method == faces::Method::discard ? int(o.clamp_fallback) : 1;
   const int output = int(o.output);
@@ -136,7 +104,9 @@ Result<std::unique_ptr<SeamsRenderer>> SeamsRenderer::create(const faces::FaceSc
                          scene.name + ": " + std::to_string(m.face_count()) + " faces but " +
                              std::to_string(set.face_count()) + " face textures");
   }
-  Result<std::filesystem::path> dir = find_glsl_dir(options.glsl_dir);
+  Result<std::filesystem::path> dir =
+      find_glsl_dir(options.glsl_dir, {"seams_render.vert", "seams_render.frag", "seams.glsl"},
+                    "seams renderer", "SeamsRendererOptions::glsl_dir");
   if (!dir) return dir.status();
   std::unique_ptr<SeamsRenderer> r(new SeamsRenderer());
   r->state_ = std::make_unique<State>();
@@ -163,25 +133,11 @@ Result<std::unique_ptr<SeamsRenderer>> SeamsRenderer::create(const faces::FaceSc
   glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &s.max_anisotropy);
   s.max_anisotropy = std::max(1.0f, s.max_anisotropy);
 
-  // Smooth normals exactly as faces::FaceRenderer: area-weighted face normals (cross product
-  // of the diagonals) summed per position, normalised per vertex.
-  std::vector<Vec3> normals(m.positions.size());
-  for (int f = 0; f < m.face_count(); ++f) {
-    const auto& q = m.quads[std::size_t(f)];
-    const Vec3 n = cross(m.positions[std::size_t(q[2])] - m.positions[std::size_t(q[0])],
-                         m.positions[std::size_t(q[3])] - m.positions[std::size_t(q[1])]);
-    for (int k = 0; k < 4; ++k)
-      normals[std::size_t(q[std::size_t(k)])] = normals[std::size_t(q[std::size_t(k)])] + n;
-  }
-  std::vector<float> vertex_normals(std::size_t(m.face_count()) * 4 * 3);
-  for (int f = 0; f < m.face_count(); ++f) {
-    for (int k = 0; k < 4; ++k) {
-      const Vec3 n = normalize(normals[std::size_t(m.quads[std::size_t(f)][std::size_t(k)])]);
-      float* v = &vertex_normals[(std::size_t(f) * 4 + std::size_t(k)) * 3];
-      v[0] = n.x;
-      v[1] = n.y;
-      v[2] = n.z;
-    }
+  // Smooth normals exactly as faces::FaceRenderer (faces::smooth_face_normals).
+  std::vector<float> vertex_normals;
+  vertex_normals.reserve(std::size_t(m.face_count()) * 4 * 3);
+  for (const Vec3& n : faces::smooth_face_normals(m)) {
+    vertex_normals.insert(vertex_normals.end(), {n.x, n.y, n.z});
   }
   // Indices grouped by class; each triangle reversed (the vertex shader's y flip mirrors the
   // winding), same diagonal as the CPU: (0, 2, 1) and (0, 3, 2) for the CPU's (0,1,2), (0,2,3).
@@ -333,8 +289,7 @@ std::vector<int> SeamsRenderer::refused_msaa(const std::vector<int>& rates) {
   return out;
 }
 
-Result<SeamsFrame> SeamsRenderer::render(const scene::Camera& camera,
-                                         const SeamsRenderOptions& o) {
+Result<SeamsFrame> SeamsRenderer::render(const scene::Camera& camera, const SeamsFrameOptions& o) {
   State& s = *state_;
   if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384) {
     return Status::error(ErrorCode::invalid_argument, "seams renderer: bad frame size");
@@ -363,25 +318,7 @@ Result<SeamsFrame> SeamsRenderer::render(const scene::Camera& camera,
   frame.samples = pattern->samples;
   const auto t0 = std::chrono::steady_clock::now();
   // Clip-space positions with the CPU renderer's arithmetic (faces::FaceRenderer::render).
-  const int fw = o.full_width > 0 ? o.full_width : o.width;
-  const int fh = o.full_height > 0 ? o.full_height : o.height;
-  const Mat4 vp = camera.view_projection(float(fw) / float(fh));
-  const float sx = float(fw) / float(o.width), sy = float(fh) / float(o.height);
-  const float left = 2.0f * float(o.x0) / float(fw) - 1.0f;
-  const float bottom = 1.0f - 2.0f * float(o.y0 + o.height) / float(fh);
-  const float ox = -sx * left - 1.0f, oy = -sy * bottom - 1.0f;
-  const faces::QuadMesh& m = s.scene->mesh;
-  for (int f = 0; f < m.face_count(); ++f) {
-    for (int k = 0; k < 4; ++k) {
-      const Vec3& p = m.positions[std::size_t(m.quads[std::size_t(f)][std::size_t(k)])];
-      const Vec4 c = vp * Vec4{p.x, p.y, p.z, 1.0f};
-      float* out = &s.clip[(std::size_t(f) * 4 + std::size_t(k)) * 4];
-      out[0] = sx * c.x + ox * c.w;
-      out[1] = sy * c.y + oy * c.w;
-      out[2] = c.z;
-      out[3] = c.w;
-    }
-  }
+  faces::face_clip_positions(s.scene->mesh, camera, faces::frame_window(o), s.clip);
   glNamedBufferData(s.clip_buffer.get(), GLsizeiptr(s.clip.size() * 4), s.clip.data(),
                     GL_STREAM_DRAW);
 
@@ -460,85 +397,21 @@ Result<SeamsFrame> SeamsRenderer::render(const scene::Camera& camera,
   return frame;
 }
 
-Result<ImageRGBAF> downsample_mitchell(const ImageRGBAF& g, int factor, int width, int height) {
-  constexpr int kMargin = 2;  // Mitchell-Netravali support, in output pixels
-  if (factor < 1 || width < 1 || height < 1 || g.width != (width + 2 * kMargin) * factor ||
-      g.height != (height + 2 * kMargin) * factor) {
-    return Status::error(ErrorCode::size_mismatch,
-                         "downsample_mitchell: the grid must be (size + 4) x factor per side");
-  }
-  const int taps = 2 * kMargin * factor;
-  std::vector<float> w(static_cast<std::size_t>(taps));
-  float wsum = 0;
-  for (int i = 0; i < taps; ++i) {
-    const float x = (float(i) + 0.5f) / float(factor) - float(kMargin);
-    w[std::size_t(i)] = faces::mitchell_netravali(x);
-    wsum += w[std::size_t(i)];
-  }
-  for (float& x : w) x /= wsum;
-  // Horizontal pass (grid rows -> output columns), then vertical; the CPU reference's order.
-  ImageRGBAF hpass(width, g.height);
-  for (int y = 0; y < g.height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      float acc[4] = {0, 0, 0, 0};
-      const int g0 = x * factor;
-      for (int i = 0; i < taps; ++i) {
-        const float* p = g.at(g0 + i, y);
-        for (int k = 0; k < 4; ++k) acc[k] += w[std::size_t(i)] * p[k];
-      }
-      float* q = hpass.at(x, y);
-      for (int k = 0; k < 4; ++k) q[k] = acc[k];
-    }
-  }
-  ImageRGBAF out(width, height);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      float acc[4] = {0, 0, 0, 0};
-      const int g0 = y * factor;
-      for (int i = 0; i < taps; ++i) {
-        const float* p = hpass.at(x, g0 + i);
-        for (int k = 0; k < 4; ++k) acc[k] += w[std::size_t(i)] * p[k];
-      }
-      float* q = out.at(x, y);
-      for (int k = 0; k < 4; ++k) q[k] = acc[k];
-    }
-  }
-  return out;
-}
-
 Result<ImageRGBAF> SeamsRenderer::render_reference(const scene::Camera& camera, int width,
                                                    int height,
                                                    const faces::ReferenceOptions& options) {
-  const int factor = options.factor, tile = options.tile;
-  if (width < 1 || height < 1 || factor < 1 || factor > 16 || tile < 1) {
-    return Status::error(ErrorCode::invalid_argument, "reference: bad size or factor");
-  }
-  constexpr int kMargin = 2;
-  ImageRGBAF out(width, height);
-  SeamsRenderOptions o;
+  SeamsFrameOptions o;
   o.method = faces::Method::traverse;
   o.filter = options.filter;
   o.max_aniso = 16;
   o.msaa = 1;
-  o.full_width = width * factor;
-  o.full_height = height * factor;
-  for (int ty = 0; ty < height; ty += tile) {
-    for (int tx = 0; tx < width; tx += tile) {
-      const int tw = std::min(tile, width - tx), th = std::min(tile, height - ty);
-      o.width = (tw + 2 * kMargin) * factor;
-      o.height = (th + 2 * kMargin) * factor;
-      o.x0 = (tx - kMargin) * factor;
-      o.y0 = (ty - kMargin) * factor;
-      Result<SeamsFrame> f = render(camera, o);
-      if (!f) return f.status();
-      Result<ImageRGBAF> d = downsample_mitchell(f->image, factor, tw, th);
-      if (!d) return d.status();
-      for (int y = 0; y < th; ++y) {
-        std::copy(d->at(0, y), d->at(0, y) + std::size_t(tw) * 4, out.at(tx, ty + y));
-      }
-    }
-  }
-  return out;
+  return faces::render_reference_tiles(width, height, options,
+                                       [&](const faces::FrameWindow& w) -> Result<ImageRGBAF> {
+                                         faces::set_frame_window(o, w);
+                                         Result<SeamsFrame> f = render(camera, o);
+                                         if (!f) return f.status();
+                                         return std::move(f->image);
+                                       });
 }
 
 }  // namespace tessera::gl

@@ -1,10 +1,12 @@
 // Shader programs: `#include` expansion with `#line` bookkeeping, compilation, linking, and
 // info logs turned into one "FILE:LINE: message" line.
 #include <algorithm>
+#include <cstdlib>
 #include <regex>
 #include <set>
 
 #include "gl/gl_api.h"
+#include "gl/glsl_dir.h"
 #include "tessera/gl.h"
 #include "tessera/io.h"
 
@@ -255,6 +257,39 @@ Result<Program> link_program(const std::vector<ShaderSource>& stages,
   }
   if (Status s = check_errors("link_program (" + names + ")"); !s.ok()) return s;
   return Program(std::move(program));
+}
+
+Result<std::filesystem::path> find_glsl_dir(const std::filesystem::path& given,
+                                            std::initializer_list<const char*> files,
+                                            std::string_view what, std::string_view option) {
+  const auto missing = [&](const std::filesystem::path& dir) -> const char* {
+    std::error_code ec;
+    for (const char* f : files) {
+      if (!std::filesystem::is_regular_file(dir / f, ec)) return f;
+    }
+    return nullptr;
+  };
+  if (!given.empty()) {
+    if (const char* f = missing(given)) {
+      return Status::error(ErrorCode::io_error, given.string() + ": no " + f + " there");
+    }
+    return given;
+  }
+  std::vector<std::filesystem::path> tried;
+  if (const char* env = std::getenv("TESSERA_GLSL_DIR"); env && *env) tried.emplace_back(env);
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    tried.push_back(exe.parent_path() / ".." / "share" / "tessera" / "glsl");
+    tried.push_back(exe.parent_path() / ".." / ".." / "share" / "tessera" / "glsl");
+  }
+  for (const auto& d : tried) {
+    if (!missing(d)) return d.lexically_normal();
+  }
+  return Status::error(ErrorCode::io_error, std::string(what) +
+                                                ": share/tessera/glsl not found (set "
+                                                "TESSERA_GLSL_DIR or " +
+                                                std::string(option) + ")");
 }
 
 Result<ShaderSource> load_shader(ShaderStage stage, const std::filesystem::path& path) {

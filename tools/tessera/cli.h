@@ -9,6 +9,7 @@
 #include <string>
 
 #include "tessera/core.h"
+#include "tessera/experiments/common.h"
 
 namespace tessera::cli {
 
@@ -41,9 +42,10 @@ std::FILE* text_stream(bool data_on_stdout);
 /// hold a space), for reports.
 const std::string& command_line();
 
-/// The shipped GLSL folder: $TESSERA_GLSL_DIR, else the source tree's share/tessera/glsl (a
-/// build tree), else the installed one; "" when tessera is built without the GL runtime.
-std::string glsl_dir();
+/// The OpenGL backends of `tessera seams` and `tessera aa` (gl::experiment_backends) with the
+/// shipped GLSL folder: $TESSERA_GLSL_DIR, else the source tree's share/tessera/glsl (a build
+/// tree), else the installed one; null when tessera is built without the GL runtime.
+std::shared_ptr<const experiments::GlBackendFactory> gl_backends();
 
 /// A registered subcommand: the CLI11 sub-app and the action run when it was selected.
 struct Command {

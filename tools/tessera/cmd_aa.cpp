@@ -93,13 +93,10 @@ int run_aa(const AaArgs& args, const GlobalOptions& global) {
   c.fxaa_preset = args.fxaa_preset;
   c.adaptive = args.adaptive;
   c.threads = global.threads;
-  c.backend = args.backend == "gl" ? experiments::Backend::gl : experiments::Backend::cpu;
-  c.compare_gl = args.backend == "both";
-#ifdef TESSERA_HAVE_GL
-  c.gl_backend_factory = [](const scene::Scene& scene) {
-    return experiments::create_gl_aa_backend(scene, glsl_dir());
-  };
-#endif
+  Result<experiments::Backend> backend = experiments::parse_backend(args.backend);
+  if (!backend) return usage_error(backend.status().message);
+  c.backend = *backend;
+  c.gl_factory = gl_backends();
   if (!args.quiet) {
     c.progress = [](const std::string& line) { std::fprintf(stderr, "aa: %s\n", line.c_str()); };
   }
@@ -120,14 +117,10 @@ int run_aa(const AaArgs& args, const GlobalOptions& global) {
   };
   Result<experiments::AaResult> res = experiments::run_aa(c);
   if (!res) return fail(res.status());
-  std::string md;
-  if (Status s = write_aa_report(c, *res, args.scene, out, &md); !s.ok()) return fail(s);
+  std::string md, json;
+  if (Status s = write_aa_report(c, *res, args.scene, out, &md, &json); !s.ok()) return fail(s);
   if (args.json) {
-    Result<std::vector<std::uint8_t>> text =
-        io::read_file((std::filesystem::path(out) / "aa.json").string());
-    if (!text) return fail(text.status());
-    std::fwrite(text->data(), 1, text->size(), stdout);
-    std::printf("\n");
+    std::printf("%s\n\n", json.c_str());  // aa.json's final newline, then the line's
   } else if (args.markdown) {
     std::printf("%s", md.c_str());
   }

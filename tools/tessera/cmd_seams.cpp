@@ -112,15 +112,10 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
               return usage_error("--ptex needs --scene MESH.obj (the mesh of the Ptex file)");
             }
             cfg.threads = global.threads;
-            cfg.backend =
-                args->backend == "gl" ? experiments::Backend::gl : experiments::Backend::cpu;
-            cfg.compare_gl = args->backend == "both";
-#ifdef TESSERA_HAVE_GL
-            cfg.gl_renderer_factory = [](const faces::FaceScene& scene,
-                                         const faces::FaceTextureSet& set) {
-              return experiments::create_gl_seams_renderer(scene, set, glsl_dir());
-            };
-#endif
+            Result<experiments::Backend> backend = experiments::parse_backend(args->backend);
+            if (!backend) return usage_error(backend.status().message);
+            cfg.backend = *backend;
+            cfg.gl_factory = gl_backends();
             const std::string out = args->out;
             if (!args->quiet) {
               cfg.progress = [](const std::string& line) {
@@ -138,12 +133,12 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
             };
             Result<experiments::SeamsResult> result = experiments::run_seams(cfg);
             if (!result) return fail(result.status());
-            nlohmann::json summary;
-            if (Status s = write_seams_report(cfg, *result, out, true, summary); !s.ok()) {
+            std::string json;
+            if (Status s = write_seams_report(cfg, *result, out, true, json); !s.ok()) {
               return fail(s);
             }
             if (args->json) {
-              std::printf("%s\n", summary.dump(1).c_str());
+              std::printf("%s\n", json.c_str());
             } else if (args->markdown) {
               Result<std::vector<std::uint8_t>> md = io::read_file(out + "/seams.md");
               if (!md) return fail(md.status());

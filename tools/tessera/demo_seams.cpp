@@ -39,8 +39,8 @@ Status demo_seams_section(Report& report, const DemoOptions& options) {
   };
   Result<experiments::SeamsResult> res = experiments::run_seams(c);
   if (!res) return res.status();
-  nlohmann::json j;
-  if (Status s = write_seams_report(c, *res, dir, true, j); !s.ok()) return s;
+  std::string json;
+  if (Status s = write_seams_report(c, *res, dir, true, json); !s.ok()) return s;
   if (options.summary) {
     // Per MSAA rate (the order of "msaa"): median ms per frame and the mean linear-RGB errors.
     nlohmann::json& seams = (*options.summary)["seams"];

@@ -14,6 +14,9 @@
 #include <vector>
 
 #include "cli.h"
+#ifdef TESSERA_HAVE_GL
+#include "tessera/gl_experiments.h"
+#endif
 
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -52,14 +55,18 @@ std::string g_command_line;
 
 const std::string& command_line() { return g_command_line; }
 
-std::string glsl_dir() {
+std::shared_ptr<const experiments::GlBackendFactory> gl_backends() {
 #ifdef TESSERA_HAVE_GL
-  if (const char* env = std::getenv("TESSERA_GLSL_DIR"); env && *env) return env;
+  std::string dir = TESSERA_INSTALLED_GLSL_DIR;
   std::error_code ec;
-  if (std::filesystem::is_directory(TESSERA_SOURCE_GLSL_DIR, ec)) return TESSERA_SOURCE_GLSL_DIR;
-  return TESSERA_INSTALLED_GLSL_DIR;
+  if (const char* env = std::getenv("TESSERA_GLSL_DIR"); env && *env) {
+    dir = env;
+  } else if (std::filesystem::is_directory(TESSERA_SOURCE_GLSL_DIR, ec)) {
+    dir = TESSERA_SOURCE_GLSL_DIR;
+  }
+  return gl::experiment_backends(dir);
 #else
-  return "";
+  return nullptr;
 #endif
 }
 

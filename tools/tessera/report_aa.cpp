@@ -1,11 +1,9 @@
-// The reports of `tessera aa`: aa.json, aa.md (the paper's Table 1 with our columns, Figures
-// 6a, 7 and 8 analogues) and every image and heatmap as PNG.
+// The files of `tessera aa`: aa.json and aa.md as the library writes them
+// (experiments::to_json / to_markdown), and every image and heatmap of each rate as PNG
+// (experiments::aa_rate_images) with the colour bars as SVG.
 #include "report_aa.h"
 
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 
 #include "plot.h"
 #include "tessera/io.h"
@@ -16,87 +14,25 @@ namespace tessera::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using experiments::AaMethod;
-using experiments::AaQuality;
-using experiments::AaRateResult;
-using experiments::AaTiming;
-
-std::string jnum(double v, const char* f = "%.3f") {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
-
-nlohmann::json quality_json(const AaQuality& q) {
-  return {{"mse_8bit", q.mse},
-          {"mse_unit_e5", q.mse / (255.0 * 255.0) * 1e5},
-          {"psnr_db", q.identical() ? nlohmann::json(nullptr) : nlohmann::json(q.psnr_db)}};
-}
-
-/// MSE (8-bit), MSE x 1e-5 on [0, 1], PSNR ("∞" when identical).
-std::string qs(const AaQuality& q, int what) {
-  if (what == 0) return jnum(q.mse, "%.3f");
-  if (what == 1) return jnum(q.mse / (255.0 * 255.0) * 1e5, "%.2f");
-  return q.identical() ? std::string("∞") : jnum(q.psnr_db, "%.2f");
-}
 
 Status write_text(const fs::path& path, const std::string& text) {
   return io::write_file_atomic(path.string(),
                                {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
 }
 
-/// The images of one rate (reference, adaptive, 1 spp, FXAA, sample counts, difference
-/// heatmaps, ablations) as DIR/NAME-mxm.png; `jimages` maps each name to its file.
-Status write_rate_images(const experiments::AaConfig& c, const AaRateResult& rate,
-                         const std::string& dir, const std::string& prefix,
-                         nlohmann::json& jimages, nlohmann::json& jedge_images) {
+/// The images of one rate as DIR/PREFIX<name>.png and its colour bars.
+Status write_rate_images(const experiments::AaConfig& c, const experiments::AaRateResult& rate,
+                         const std::string& dir, const std::string& prefix) {
   const std::string r = std::to_string(rate.m) + "x" + std::to_string(rate.m);
   const int n = rate.m * rate.m;
-  auto samples_map = [&](const std::vector<std::uint8_t>& s) {
-    std::vector<float> v(s.begin(), s.end());
-    return metrics::heatmap(v, c.width, c.height, float(n));
-  };
-  const ImageRGBA8& ref = rate.method(AaMethod::reference).image;
-  const ImageRGBA8& ad = rate.method(AaMethod::adaptive).image;
-  const ImageRGBA8& def = rate.method(AaMethod::default_1spp).image;
-  const ImageRGBA8& fx = rate.method(AaMethod::fxaa).image;
-  const ImageRGBA8& geo = rate.ablation_geometry.image;
-  const ImageRGBA8& shd = rate.ablation_shading.image;
-  struct Out {
-    std::string name;
-    Result<ImageRGBA8> image;
-  };
-  std::vector<Out> outs, edge_outs;
-  outs.push_back({"reference-" + r, ref});
-  outs.push_back({"adaptive-" + r, ad});
-  outs.push_back({"default-" + r, def});
-  outs.push_back({"fxaa-" + r, fx});
-  outs.push_back({"samples-" + r, samples_map(rate.adaptive_samples)});
-  outs.push_back({"diff-ref-" + r, metrics::difference_heatmap(ref, ad, 32.0f)});
-  outs.push_back({"diff-1x-" + r, metrics::difference_heatmap(def, ad, 32.0f)});
-  outs.push_back({"diff-ref-default-" + r, metrics::difference_heatmap(ref, def, 32.0f)});
-  outs.push_back({"diff-ref-fxaa-" + r, metrics::difference_heatmap(ref, fx, 32.0f)});
-  outs.push_back({"ablation-geometry-" + r, geo});
-  outs.push_back({"ablation-geometry-samples-" + r, samples_map(rate.ablation_geometry.samples)});
-  outs.push_back({"ablation-geometry-diff-" + r, metrics::difference_heatmap(ref, geo, 32.0f)});
-  outs.push_back({"ablation-shading-" + r, shd});
-  outs.push_back({"ablation-shading-samples-" + r, samples_map(rate.ablation_shading.samples)});
-  outs.push_back({"ablation-shading-diff-" + r, metrics::difference_heatmap(ref, shd, 32.0f)});
-  const ImageRGBA8& edge = rate.method(AaMethod::edge_per_sample).image;
-  edge_outs.push_back({"edge_per_sample-" + r, edge});
-  edge_outs.push_back({"edge_per_sample-samples-" + r, samples_map(rate.edge_samples)});
-  edge_outs.push_back(
-      {"diff-ref-edge_per_sample-" + r, metrics::difference_heatmap(ref, edge, 32.0f)});
   // Colour bars: the samples maps (1 + k of m*m) and the difference heatmaps.
-  const std::string kbar = prefix + "samples-colourbar-" + r + ".svg";
   if (Status s = write_text(
-          fs::path(dir) / kbar,
+          fs::path(dir) / (prefix + "samples-colourbar-" + r + ".svg"),
           colour_bar_svg(metrics::ColourMap::inferno, 0, n, n / 4 + 1,
                          "samples shaded per pixel (1 + k of " + std::to_string(n) + ")"));
       !s.ok()) {
     return s;
   }
-  jimages[prefix + "samples-colourbar-" + r] = kbar;
   if (Status s = write_text(fs::path(dir) / "diff-colourbar.svg",
                             colour_bar_svg(metrics::ColourMap::inferno, 0, 32, 5,
                                            "max abs channel difference (8-bit levels; 32 and "
@@ -104,334 +40,37 @@ Status write_rate_images(const experiments::AaConfig& c, const AaRateResult& rat
       !s.ok()) {
     return s;
   }
-  jimages["diff-colourbar"] = "diff-colourbar.svg";
-  for (const auto* list : {&outs, &edge_outs}) {
-    for (const Out& o : *list) {
-      if (!o.image) return o.image.status();
-      const std::string name = prefix + o.name;
-      if (Status s = io::write_png((fs::path(dir) / (name + ".png")).string(), *o.image); !s.ok()) {
-        return s;
-      }
-      (list == &outs ? jimages : jedge_images)[name] = name + ".png";
-    }
+  Result<std::vector<experiments::AaRateImage>> images = experiments::aa_rate_images(c, rate);
+  if (!images) return images.status();
+  for (const experiments::AaRateImage& i : *images) {
+    const fs::path path = fs::path(dir) / (prefix + i.name + ".png");
+    if (Status s = io::write_png(path.string(), i.image); !s.ok()) return s;
   }
   return Status::success();
-}
-
-/// Markdown table rows and JSON of the rates; `row` formats one table row.
-class Tables {
- public:
-  explicit Tables(bool heavy) : heavy_(heavy) {}
-
-  void row(const std::string& rate, const std::string& method, double gbuf, const AaTiming& t,
-           const std::string& mse, const std::string& mse5, const std::string& psnr,
-           const std::string& pct) {
-    const bool timed = !t.normal.frame_ms.empty();
-    const bool timed_heavy = heavy_ && !t.heavy.frame_ms.empty();
-    const std::string dash = "—";
-    const double sn = t.normal.median_ms(), sh = t.heavy.median_ms();
-    rows += "| " + rate + " | " + method + " | " + (timed ? jnum(gbuf + sn, "%.1f") : dash) +
-            " | " + (timed_heavy ? jnum(gbuf + sh, "%.1f") : dash) + " | " +
-            (timed ? jnum(sn, "%.1f") : dash) + " | " + (timed_heavy ? jnum(sh, "%.1f") : dash) +
-            " | " + mse + " | " + mse5 + " | " + psnr + " | " + pct + " |\n";
-  }
-
-  std::string rows;
-
- private:
-  bool heavy_;
-};
-
-/// GL only: the GPU-timer times and every pass's wall and GPU-timer medians of a method.
-void add_gl_times(const experiments::AaConfig& c, const experiments::AaMethodResult& mr,
-                  nlohmann::json& j) {
-  j["gpu_shade_ms"] = mr.timing.gpu.median_ms();
-  j["gpu_shade_ms_frames"] = mr.timing.gpu.frame_ms;
-  if (c.heavy) j["gpu_shade_ms_heavy"] = mr.timing.gpu_heavy.median_ms();
-  nlohmann::json jp = nlohmann::json::object();
-  for (const experiments::AaPassFrames& p : mr.passes) {
-    jp[p.pass] = {{"wall_ms", p.wall.median_ms()}, {"gpu_ms", p.gpu.median_ms()}};
-  }
-  j["passes"] = jp;
-}
-
-nlohmann::json rate_json(const experiments::AaConfig& c, const AaRateResult& rate, bool gl,
-                         nlohmann::json jimages, nlohmann::json jedge_images) {
-  const double gms = rate.gbuffer.median_ms();
-  auto method_json = [&](AaMethod k, bool with_quality) {
-    const experiments::AaMethodResult& mr = rate.method(k);
-    nlohmann::json j = {{"shade_ms", mr.timing.normal.median_ms()},
-                        {"frame_ms", gms + mr.timing.normal.median_ms()},
-                        {"shade_ms_frames", mr.timing.normal.frame_ms},
-                        {"samples_pct", mr.samples_pct}};
-    if (c.heavy) {
-      j["shade_ms_heavy"] = mr.timing.heavy.median_ms();
-      j["frame_ms_heavy"] = gms + mr.timing.heavy.median_ms();
-      j["shade_ms_heavy_frames"] = mr.timing.heavy.frame_ms;
-    }
-    if (with_quality) j["quality"] = quality_json(mr.quality);
-    if (gl) add_gl_times(c, mr, j);
-    return j;
-  };
-  const AaTiming& tr = rate.method(AaMethod::reference).timing;
-  const AaTiming& ta = rate.method(AaMethod::adaptive).timing;
-  nlohmann::json jr = {
-      {"m", rate.m},
-      {"gbuffer_ms", gms},
-      {"gbuffer_ms_frames", rate.gbuffer.frame_ms},
-      {"default", method_json(AaMethod::default_1spp, true)},
-      {"fxaa", method_json(AaMethod::fxaa, true)},
-      {"reference", method_json(AaMethod::reference, false)},
-      {"adaptive", method_json(AaMethod::adaptive, true)},
-      {"edge_per_sample", method_json(AaMethod::edge_per_sample, true)},
-      {"adaptive_passes_ms",
-       {{"first", rate.adaptive_first.median_ms()},
-        {"metric", rate.adaptive_metric.median_ms()},
-        {"rest", rate.adaptive_rest.median_ms()}}},
-      {"adaptive_extra_albedo_lookups_pct", rate.adaptive_extra_albedo_lookups_pct},
-      {"speedup_frame", (gms + tr.normal.median_ms()) / (gms + ta.normal.median_ms())},
-      {"speedup_shading", tr.normal.median_ms() / ta.normal.median_ms()},
-      {"ablation_geometry",
-       {{"samples_pct", rate.ablation_geometry.samples_pct},
-        {"quality", quality_json(rate.ablation_geometry.quality)}}},
-      {"ablation_shading",
-       {{"samples_pct", rate.ablation_shading.samples_pct},
-        {"quality", quality_json(rate.ablation_shading.quality)}}},
-      {"images", std::move(jimages)}};
-  if (c.heavy) {
-    jr["speedup_frame_heavy"] = (gms + tr.heavy.median_ms()) / (gms + ta.heavy.median_ms());
-    jr["speedup_shading_heavy"] = tr.heavy.median_ms() / ta.heavy.median_ms();
-    jr["adaptive_heavy_quality"] = quality_json(rate.adaptive_heavy_quality);
-    jr["adaptive_heavy_samples_pct"] = rate.adaptive_heavy_samples_pct;
-  }
-  jr["edge_per_sample"]["images"] = std::move(jedge_images);
-  if (gl) {
-    jr["gbuffer_gpu_ms"] = rate.gbuffer_gpu.median_ms();
-    jr["gbuffer_gpu_ms_frames"] = rate.gbuffer_gpu.frame_ms;
-  }
-  return jr;
-}
-
-/// The Figure 6a/7/8 block of one rate.
-std::string figure_md(const experiments::AaConfig& c, const AaRateResult& rate,
-                      const nlohmann::json& jr) {
-  const std::string r = std::to_string(rate.m) + "x" + std::to_string(rate.m);
-  const std::string rl = std::to_string(rate.m) + "×" + std::to_string(rate.m);
-  std::string md = "\n### " + rl + "\n\n";
-  md += "Speed-up of adaptive over the reference: frame " +
-        jnum(jr["speedup_frame"].get<double>(), "%.2f") + "×, shading pass " +
-        jnum(jr["speedup_shading"].get<double>(), "%.2f") + "×";
-  if (c.heavy) {
-    md += "; heavy: frame " + jnum(jr["speedup_frame_heavy"].get<double>(), "%.2f") +
-          "×, shading pass " + jnum(jr["speedup_shading_heavy"].get<double>(), "%.2f") +
-          "× (heavy adaptive vs heavy reference: PSNR " + qs(rate.adaptive_heavy_quality, 2) +
-          " dB)";
-  }
-  md += ".\n\n";
-  md +=
-      "| reference | adaptive | samples (Fig. 6a) | diff vs reference | diff vs 1× |\n"
-      "|---|---|---|---|---|\n";
-  md += "| ![](reference-" + r + ".png) | ![](adaptive-" + r + ".png) | ![](samples-" + r +
-        ".png) | ![](diff-ref-" + r + ".png) | ![](diff-1x-" + r + ".png) |\n\n";
-  md += "Samples map: ![](samples-colourbar-" + r + ".svg) Differences: ![](diff-colourbar.svg)"
-        "\n\n";
-  md +=
-      "Figure 8 analogue: | 1 spp | FXAA | geometry only: samples, diff | shading only: "
-      "samples, diff |\n\n";
-  md += "| ![](default-" + r + ".png) ![](diff-ref-default-" + r + ".png) | ![](fxaa-" + r +
-        ".png) ![](diff-ref-fxaa-" + r + ".png) | ![](ablation-geometry-samples-" + r +
-        ".png) ![](ablation-geometry-diff-" + r + ".png) | ![](ablation-shading-samples-" + r +
-        ".png) ![](ablation-shading-diff-" + r + ".png) |\n|---|---|---|---|\n";
-  return md;
-}
-
-/// A time for the pass tables: "–" where the GPU timer gave no result.
-std::string ms_cell(double ms) { return std::isnan(ms) ? std::string("–") : jnum(ms, "%.2f"); }
-
-/// One backend's part of the reports: the table rows, the 1x1 and per-rate JSON, the figure
-/// blocks (`figures`) and the rate images (file names prefixed with `prefix`).
-struct BackendReport {
-  Tables tables;
-  nlohmann::json j1, jrates = nlohmann::json::array();
-  std::string md_fig, md_passes;
-};
-
-Status backend_report(const experiments::AaConfig& c, const experiments::AaResult& res,
-                      const std::string& dir, const std::string& prefix, bool figures,
-                      BackendReport& out) {
-  const bool gl = res.backend == experiments::Backend::gl;
-  Tables& tables = out.tables;
-  const double g1 = res.gbuffer_1x1.median_ms();
-  tables.row("1×1", "Default", g1, res.default_1x1, "–", "–", "–", "–");
-  tables.row("1×1", "FXAA", g1, res.fxaa_1x1, "–", "–", "–", "–");
-  out.j1 = {{"gbuffer_ms", g1},
-            {"default",
-             {{"shade_ms", res.default_1x1.normal.median_ms()},
-              {"shade_ms_heavy", res.default_1x1.heavy.median_ms()}}},
-            {"fxaa",
-             {{"shade_ms", res.fxaa_1x1.normal.median_ms()},
-              {"shade_ms_heavy", res.fxaa_1x1.heavy.median_ms()}}}};
-  if (gl) {
-    out.j1["gbuffer_gpu_ms"] = res.gbuffer_1x1_gpu.median_ms();
-    out.j1["default"]["gpu_shade_ms"] = res.default_1x1.gpu.median_ms();
-    out.j1["fxaa"]["gpu_shade_ms"] = res.fxaa_1x1.gpu.median_ms();
-  }
-  for (const AaRateResult& rate : res.rates) {
-    nlohmann::json jimages = nlohmann::json::object(), jedge = nlohmann::json::object();
-    if (Status s = write_rate_images(c, rate, dir, prefix, jimages, jedge); !s.ok()) return s;
-    const nlohmann::json jr = rate_json(c, rate, gl, std::move(jimages), std::move(jedge));
-    out.jrates.push_back(jr);
-    const std::string rl = std::to_string(rate.m) + "×" + std::to_string(rate.m);
-    const double gms = rate.gbuffer.median_ms();
-    const std::string one = jnum(100.0 / (rate.m * rate.m), "%.1f");
-    const AaQuality& q_def = rate.method(AaMethod::default_1spp).quality;
-    const AaQuality& q_fx = rate.method(AaMethod::fxaa).quality;
-    const AaQuality& q_ad = rate.method(AaMethod::adaptive).quality;
-    const AaQuality& q_edge = rate.method(AaMethod::edge_per_sample).quality;
-    const AaQuality& q_geo = rate.ablation_geometry.quality;
-    const AaQuality& q_shd = rate.ablation_shading.quality;
-    tables.row(rl, "Default (1 spp)", gms, rate.method(AaMethod::default_1spp).timing, qs(q_def, 0),
-               qs(q_def, 1), qs(q_def, 2), one);
-    tables.row(rl, "FXAA", gms, rate.method(AaMethod::fxaa).timing, qs(q_fx, 0), qs(q_fx, 1),
-               qs(q_fx, 2), one);
-    tables.row(rl, "Reference", gms, rate.method(AaMethod::reference).timing, "–", "–", "–", "100");
-    tables.row(rl, "Adaptive", gms, rate.method(AaMethod::adaptive).timing, qs(q_ad, 0),
-               qs(q_ad, 1), qs(q_ad, 2), jnum(rate.method(AaMethod::adaptive).samples_pct, "%.1f"));
-    tables.row(rl, "Adaptive, geometry only", gms, {}, qs(q_geo, 0), qs(q_geo, 1), qs(q_geo, 2),
-               jnum(rate.ablation_geometry.samples_pct, "%.1f"));
-    tables.row(rl, "Adaptive, shading only", gms, {}, qs(q_shd, 0), qs(q_shd, 1), qs(q_shd, 2),
-               jnum(rate.ablation_shading.samples_pct, "%.1f"));
-    tables.row(rl, "Edge per sample (Lauritzen 2010)", gms,
-               rate.method(AaMethod::edge_per_sample).timing, qs(q_edge, 0), qs(q_edge, 1),
-               qs(q_edge, 2), jnum(rate.method(AaMethod::edge_per_sample).samples_pct, "%.1f"));
-    if (figures) out.md_fig += figure_md(c, rate, jr);
-    if (gl) {
-      out.md_passes += "| " + rl + " | G-buffer | geometry | " +
-                       ms_cell(rate.gbuffer.median_ms()) + " | " +
-                       ms_cell(rate.gbuffer_gpu.median_ms()) + " |\n";
-      for (experiments::AaMethod k : experiments::kAaMethods) {
-        for (const experiments::AaPassFrames& p : rate.method(k).passes) {
-          out.md_passes += "| " + rl + " | " + experiments::aa_method_name(k) + " | " + p.pass +
-                           " | " + ms_cell(p.wall.median_ms()) + " | " +
-                           ms_cell(p.gpu.median_ms()) + " |\n";
-        }
-      }
-    }
-  }
-  return Status::success();
-}
-
-/// The GL paragraph of aa.md: the device and which times to read.
-std::string gl_note(const experiments::AaResult& res) {
-  std::string md = "OpenGL: `" + res.gl_renderer + "`, `" + res.gl_version +
-                   "`. GL ms are host wall times from each pass's dispatch to the end of its "
-                   "closing glFinish (read-back excluded); GL_TIME_ELAPSED per pass is beside "
-                   "them in the pass table and in aa.json (`gpu_shade_ms`, `passes`).";
-  if (res.gl_renderer.find("llvmpipe") != std::string::npos) {
-    md += " On llvmpipe the GPU timer reads 0 for compute dispatches: the wall times are the "
-          "ones to read.";
-  }
-  return md + "\n\n";
-}
-
-std::string pass_table(const std::string& rows) {
-  return "| rate | method | pass | wall ms | GL_TIME_ELAPSED ms |\n|---|---|---|---|---|\n" + rows;
 }
 
 }  // namespace
 
 Status write_aa_report(const experiments::AaConfig& c, const experiments::AaResult& res,
                        const std::string& scene_label, const std::string& dir,
-                       std::string* markdown) {
-  const bool gl = res.backend == experiments::Backend::gl;
-  BackendReport main{Tables(c.heavy), {}, nlohmann::json::array(), {}, {}};
-  if (Status s = backend_report(c, res, dir, "", true, main); !s.ok()) return s;
-  nlohmann::json j1 = main.j1, jrates = main.jrates;
-  BackendReport side{Tables(c.heavy), {}, nlohmann::json::array(), {}, {}};
+                       std::string* markdown, std::string* json) {
+  for (const experiments::AaRateResult& rate : res.rates) {
+    if (Status s = write_rate_images(c, rate, dir, ""); !s.ok()) return s;
+  }
   if (res.gl) {
-    if (Status s = backend_report(c, *res.gl, dir, "gl-", false, side); !s.ok()) return s;
-    j1["gl"] = side.j1;
-    for (std::size_t i = 0; i < jrates.size() && i < side.jrates.size(); ++i) {
-      jrates[i]["gl"] = side.jrates[i];
-      if (const auto& v = res.rates[i].gl_vs_cpu) {
-        jrates[i]["gl_vs_cpu"] = {
-            {"psnr_db", std::isfinite(v->psnr_db) ? nlohmann::json(v->psnr_db) : nlohmann::json()},
-            {"identical", std::isinf(v->psnr_db) && v->psnr_db > 0},
-            {"k_mismatch_fraction", v->k_mismatch_fraction}};
-      }
+    for (const experiments::AaRateResult& rate : res.gl->rates) {
+      if (Status s = write_rate_images(c, rate, dir, "gl-"); !s.ok()) return s;
     }
   }
-
-  const deferred::AdaptiveOptions& a = c.adaptive;
-  const nlohmann::json j = {
-      {"scene", scene_label},
-      {"width", c.width},
-      {"height", c.height},
-      {"threads", res.threads},
-      {"frames", c.frames},
-      {"heavy", c.heavy},
-      {"heavy_terms", res.heavy_terms},
-      {"lights", res.lights},
-      {"fxaa_preset", c.fxaa_preset},
-      {"adaptive_options",
-       {{"c_depth", a.c_depth},
-        {"c_normal", a.c_normal},
-        {"c_shade", a.c_shade},
-        {"t_min", a.t_min},
-        {"t_edge", a.t_edge},
-        {"seam_factor", a.seam_factor}}},
-      {"gbuffer_depth", "linear view depth"},
-      {"one_sample_per_pixel", "first sample of the window in index-matrix order"},
-      {"rate_1x1", j1},
-      {"rates", jrates}};
-  nlohmann::json jout = j;
-  if (gl || res.gl) {
-    jout["backend"] = gl ? "gl" : "both";
-    jout["gl_renderer"] = res.gl_renderer;
-    jout["gl_version"] = res.gl_version;
-  }
-  std::string md;
-  md += "# Adaptive supersampling for deferred shading — `tessera aa`\n\n";
-  md += "Scene `" + scene_label + "`, " + std::to_string(c.width) + "×" + std::to_string(c.height) +
-        ", " + std::to_string(res.lights) + " point lights, " + std::to_string(res.threads) +
-        " thread(s), median of " + std::to_string(c.frames) +
-        " frame(s), methods alternated per frame. FXAA 3.11 preset " +
-        std::to_string(c.fxaa_preset) + ". Heavy mode: " +
-        (c.heavy ? std::to_string(res.heavy_terms) + " sinusoid terms per shaded sample"
-                 : std::string("not run")) +
-        ".\n\n";
-  md +=
-      "ms/frame = G-buffer pass + shading pass (+ FXAA); the G-buffer pass is shared by all "
-      "methods of a rate and timed once per frame. MSE on 8-bit RGB and, like the paper, "
-      "×10⁻⁵ on [0, 1]; PSNR against the reference at the same rate. Samples % of the "
-      "reference's shaded samples.\n\n";
-  if (gl) md += gl_note(res);
-  md +=
-      "| rate | method | ms/frame | heavy ms/frame | shading ms | heavy shading ms | MSE (8-bit) | "
-      "MSE (×10⁻⁵) | PSNR dB | samples % |\n|---|---|---|---|---|---|---|---|---|---|\n";
-  md += main.tables.rows;
-  if (gl) md += "\nPer pass (median ms):\n\n" + pass_table(main.md_passes);
-  md += main.md_fig;
-  if (res.gl) {
-    md += "\n## OpenGL beside the CPU (`--backend both`)\n\n" + gl_note(*res.gl) +
-          "The same experiment on GL, against GL's own reference (columns as above):\n\n"
-          "| rate | method | ms/frame | heavy ms/frame | shading ms | heavy shading ms | MSE "
-          "(8-bit) | MSE (×10⁻⁵) | PSNR dB | samples % |\n|---|---|---|---|---|---|---|---|---|"
-          "---|\n" +
-          side.tables.rows +
-          "\nGL adaptive against CPU adaptive (8-bit sRGB PSNR; pixels whose shaded-sample count "
-          "differs):\n\n| rate | PSNR dB | k mismatch |\n|---|---|---|\n";
-    for (const AaRateResult& rate : res.rates) {
-      if (!rate.gl_vs_cpu) continue;
-      const AaQuality q{0.0, rate.gl_vs_cpu->psnr_db, 1.0};
-      md += "| " + std::to_string(rate.m) + "×" + std::to_string(rate.m) + " | " + qs(q, 2) +
-            " | " + jnum(100.0 * rate.gl_vs_cpu->k_mismatch_fraction, "%.3f") + " % |\n";
-    }
-    md += "\nGL per pass (median ms):\n\n" + pass_table(side.md_passes);
-  }
-  if (Status s = write_text(fs::path(dir) / "aa.json", jout.dump(2) + "\n"); !s.ok()) return s;
-  if (Status s = write_text(fs::path(dir) / "aa.md", md); !s.ok()) return s;
-  if (markdown) *markdown = std::move(md);
+  const experiments::AaReportOptions options{scene_label};
+  Result<std::string> j = experiments::to_json(c, res, options);
+  if (!j) return j.status();
+  Result<std::string> md = experiments::to_markdown(c, res, options);
+  if (!md) return md.status();
+  if (Status s = write_text(fs::path(dir) / "aa.json", *j + "\n"); !s.ok()) return s;
+  if (Status s = write_text(fs::path(dir) / "aa.md", *md); !s.ok()) return s;
+  if (markdown) *markdown = std::move(*md);
+  if (json) *json = std::move(*j);
   return Status::success();
 }
 

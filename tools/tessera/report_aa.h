@@ -9,11 +9,11 @@
 
 namespace tessera::cli {
 
-/// Writes DIR/aa.json, DIR/aa.md and the PNGs of every rate into the existing folder DIR.
-/// `scene_label` names the scene in both reports ("builtin" or the path). On success
-/// `markdown` (when not null) receives the Markdown written.
+/// Writes DIR/aa.json, DIR/aa.md (experiments::to_json / to_markdown) and the PNGs of every
+/// rate into the existing folder DIR. `scene_label` names the scene in both reports ("builtin"
+/// or the path). On success `markdown` and `json` (when not null) receive the text written.
 Status write_aa_report(const experiments::AaConfig& config, const experiments::AaResult& result,
                        const std::string& scene_label, const std::string& dir,
-                       std::string* markdown = nullptr);
+                       std::string* markdown = nullptr, std::string* json = nullptr);
 
 }  // namespace tessera::cli

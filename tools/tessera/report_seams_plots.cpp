@@ -100,28 +100,12 @@ Plot cdf_axes(std::string title, std::string x_title, std::string y_title) {
 /// Frame 0 of every method and rate, the reference, and a zoom on the worst seam: the window
 /// where Clamp and Traverse differ most at the first rate.
 Status write_images(const experiments::SeamsConfig& c, const experiments::SeamsResult& res,
-                    const std::string& dir, nlohmann::json& summary) {
+                    const std::string& dir) {
   const ImageRGBA8 ref8 = to_png_image(res.reference_frame0, c.threads);
   if (Status s = io::write_png(dir + "/images/reference.png", ref8); !s.ok()) return s;
-  const int zw = std::min(40, c.width), zh = std::min(40, c.height);
-  int bx = 0, by = 0;
-  double best = -1;
-  const ImageRGBAF& a = res.rates[0].method(Method::clamp).frame0;
-  const ImageRGBAF& b = res.rates[0].method(Method::traverse).frame0;
-  for (int y = 0; y + zh <= c.height; y += 4) {
-    for (int x = 0; x + zw <= c.width; x += 4) {
-      double s = 0;
-      for (int yy = y; yy < y + zh; yy += 2) {
-        for (int xx = x; xx < x + zw; xx += 2) s += norm_rgb(a.at(xx, yy), b.at(xx, yy));
-      }
-      if (s > best) {
-        best = s;
-        bx = x;
-        by = y;
-      }
-    }
-  }
-  const int zs = 4;
+  const experiments::SeamsZoomWindow z = experiments::seams_zoom_window(c, res);
+  const int bx = z.x, by = z.y, zw = z.w, zh = z.h;
+  const int zs = z.scale;
   if (Status s = io::write_png(dir + "/images/zoom_reference.png", zoom(ref8, bx, by, zw, zh, zs));
       !s.ok()) {
     return s;
@@ -139,7 +123,6 @@ Status write_images(const experiments::SeamsConfig& c, const experiments::SeamsR
       }
     }
   }
-  summary["zoom_window"] = {{"x", bx}, {"y", by}, {"w", zw}, {"h", zh}, {"scale", zs}};
   // Clamp minus Traverse (frame 0): the seam artefact, per-pixel linear-RGB 2-norm.
   for (const SeamsRateResult* rate : {&res.rates.front(), &res.rates.back()}) {
     const ImageRGBAF& ca = rate->method(Method::clamp).frame0;

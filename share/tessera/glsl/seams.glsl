@@ -1,6 +1,6 @@
 // seams.glsl — seamless per-face texturing on the GPU: Clamp, Discard (Toth 2013), Traverse
 // (McDonald 2013, Listing 1 of Toth's paper) and Traverse+corners, over the packed faces of
-// tessera::gl::FaceTextures (include/tessera/gl.h). Pure functions of (face, uv, gradients);
+// tessera::gl::FaceTextures (include/tessera/gl_ptex.h). Pure functions of (face, uv, gradients);
 // the GLSL twin of tessera::faces::sample_face (include/tessera/faces.h), with which it agrees
 // to float rounding under trilinear filtering (tests/gl_ptex_test.cpp).
 //

@@ -1,0 +1,90 @@
+// tessera/experiments/common.h — what the two paper experiments share: the backend switch, the
+// one factory interface of their OpenGL backends, progress callbacks and per-frame timings.
+//
+// The backend model: each experiment renders through an abstract backend of its own
+// (experiments::SeamsBackend in seams_backend.h, experiments::AaBackend in aa_backend.h), with a
+// CPU implementation in this library and an OpenGL one in the optional `tessera_gl` library.
+// `Backend` picks who renders: the CPU, OpenGL, or both (the CPU result, with the same run on GL
+// beside it and compared with it). The main library never links OpenGL: a caller that wants GL
+// hands the config a `GlBackendFactory`, whose one implementation is
+// `gl::experiment_backends()` (tessera/gl_experiments.h, defined in tessera_gl).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tessera/core.h"
+
+namespace tessera::faces {
+struct FaceScene;
+class FaceTextureSet;
+}  // namespace tessera::faces
+
+namespace tessera::scene {
+struct Scene;
+}  // namespace tessera::scene
+
+namespace tessera::experiments {
+
+/// Who renders an experiment's frames.
+enum class Backend {
+  cpu,   ///< The CPU renderers (faces::FaceRenderer, deferred::DeferredRenderer).
+  gl,    ///< OpenGL through the config's `GlBackendFactory` (GL times, GL reference).
+  both,  ///< The CPU result, plus the same frames on GL, timed and compared with the CPU's.
+};
+
+/// "cpu", "gl", "both" (the values of `--backend` and of the JSON key "backend").
+const char* backend_name(Backend backend);
+
+/// Parses "cpu", "gl" or "both"; anything else is invalid_argument naming the text.
+Result<Backend> parse_backend(std::string_view text);
+
+/// Whether `backend` needs the GL factory (gl, both).
+inline bool uses_gl(Backend backend) { return backend != Backend::cpu; }
+
+/// What every experiment backend (SeamsBackend, AaBackend) tells about itself.
+class BackendDevice {
+ public:
+  virtual ~BackendDevice() = default;
+  virtual Backend backend() const = 0;  ///< cpu or gl.
+  /// GL_RENDERER and GL_VERSION of a GL backend; "" for the CPU.
+  virtual std::string device_name() const = 0;
+  virtual std::string device_version() const = 0;
+};
+
+class SeamsBackend;
+class AaBackend;
+
+/// Makes the OpenGL backends of both experiments: the one factory interface. Implemented by
+/// the `tessera_gl` library (`gl::experiment_backends`, tessera/gl_experiments.h); tests may
+/// implement it with fakes. Each call makes a backend on a headless context of its own, created
+/// on the calling thread; errors (no usable OpenGL 4.5 device, missing shaders) are one line.
+class GlBackendFactory {
+ public:
+  virtual ~GlBackendFactory() = default;
+  /// The seam experiment's backend for a face scene; `scene` and `textures` must outlive it.
+  virtual Result<std::unique_ptr<SeamsBackend>> create_seams(
+      const faces::FaceScene& scene, const faces::FaceTextureSet& textures) const = 0;
+  /// The AA experiment's backend for a scene; `scene` must outlive it.
+  virtual Result<std::unique_ptr<AaBackend>> create_aa(const scene::Scene& scene) const = 0;
+};
+
+/// Progress report: one line of text (no trailing newline), e.g. "frame 2/8 done".
+using ProgressFn = std::function<void(const std::string& line)>;
+
+/// Called once the inputs are loaded and validated, before any frame is rendered; an error stops
+/// the run and is returned. `tessera` creates its output folder here, so a bad input leaves no
+/// folder and an unwritable folder fails before the expensive part.
+using ReadyFn = std::function<Status()>;
+
+/// Per-frame timings (milliseconds, in frame order) of one variant.
+struct FrameTimes {
+  std::vector<double> frame_ms;
+  /// Median of `frame_ms` (mean of the middle two for an even count; 0 when empty).
+  double median_ms() const;
+};
+
+}  // namespace tessera::experiments

@@ -1,0 +1,37 @@
+// tessera/gl_experiments.h — the OpenGL backends of the two paper experiments: the one
+// implementation of `experiments::GlBackendFactory` (tessera/experiments/common.h). Part of the
+// optional `tessera_gl` library (src/gl/experiment_backends.cpp, seams_backend.cpp,
+// aa_backend.cpp), which defines what this header declares; the main `tessera` library, where
+// `run_seams` and `run_aa` live, never links OpenGL and reaches GL only through the factory a
+// caller puts in the config (`SeamsConfig::gl_factory`, `AaConfig::gl_factory`).
+//
+// The seam backend is gl::SeamsRenderer (tessera/gl_seams.h), the AA backend
+// gl::DeferredGlRenderer (tessera/gl_deferred.h), each on a headless context of its own created
+// on the calling thread with the device TESSERA_EGL_DEVICE names (gl.h).
+#pragma once
+
+#include <filesystem>
+#include <memory>
+
+#include "tessera/experiments/common.h"
+#include "tessera/gl_deferred.h"
+
+namespace tessera::gl {
+
+struct ExperimentBackendOptions {
+  /// The folder of share/tessera/glsl (empty: each renderer's own search, $TESSERA_GLSL_DIR then
+  /// beside the executable).
+  std::filesystem::path glsl_dir;
+  /// The AA backend's extra-sample schedule (DeferredGlOptions::schedule).
+  ExtraSchedule schedule = ExtraSchedule::frame_list;
+};
+
+/// The GL backends of both experiments. Creating a backend fails with one line when there is no
+/// usable OpenGL 4.5 device or the shaders are missing.
+std::shared_ptr<const experiments::GlBackendFactory> experiment_backends(
+    const ExperimentBackendOptions& options);
+/// The same with the default options and `glsl_dir`.
+std::shared_ptr<const experiments::GlBackendFactory> experiment_backends(
+    const std::filesystem::path& glsl_dir = {});
+
+}  // namespace tessera::gl
