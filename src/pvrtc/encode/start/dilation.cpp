@@ -33,6 +33,7 @@
 #include <cstring>
 
 #include "core/simd.h"
+#include "core/simd_dispatch.h"
 #include "pvrtc/encode/encode_internal.h"
 #include "pvrtc/encode/start/dilation_kernels.h"
 
@@ -527,11 +528,7 @@ const DilationKernels* dilation_kernels_baseline() { return &kBaseline; }
 
 bool avx2_kernels_usable() {
 #if defined(TESSERA_HAVE_AVX2_KERNELS)
-  static const bool usable = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") != 0;
-  }();
-  return usable;
+  return simd::cpu_has_avx2();
 #else
   return false;
 #endif
