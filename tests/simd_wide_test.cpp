@@ -145,6 +145,7 @@ TEST(SimdWide, Int32Lanes) {
              sra = lanes(simd::sra<5>(a)), srl = lanes(simd::srl<7>(a)),
              sll = lanes(simd::sll<9>(a)), sllv = lanes(simd::sllv(a, simd::load8(n.l))),
              sb = lanes(simd::sll_bytes(a, round & 3)), div = lanes(simd::div255_u32(a)),
+             slln = lanes(simd::sll(a, round % 40)),
              swp = lanes(simd::swap_pairs(a)), swp64 = lanes(simd::swap_pairs64(a)),
              swh = lanes(simd::swap_halves(a)), ps = lanes(simd::pair_sums(a, b)),
              ev = lanes(simd::even_lanes(a, b)), p64 = lanes(simd::permute64<0, 2, 1, 3>(a)),
@@ -171,6 +172,7 @@ TEST(SimdWide, Int32Lanes) {
       EXPECT_EQ(sll.l[i], std::int32_t(u << 9));
       EXPECT_EQ(sllv.l[i], n.l[i] < 32 ? std::int32_t(u << n.l[i]) : 0);
       EXPECT_EQ(sb.l[i], std::int32_t((round & 3) ? u << (8 * (round & 3)) : u));
+      EXPECT_EQ(slln.l[i], round % 40 < 32 ? std::int32_t(u << (round % 40)) : 0);
       EXPECT_EQ(div.l[i], std::int32_t(u / 255u));
       EXPECT_EQ(swp.l[i], x.l[i ^ 1]);
       EXPECT_EQ(swp64.l[i], x.l[i ^ 2]);

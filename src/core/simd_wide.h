@@ -134,6 +134,8 @@ inline vint8 sll(vint8 a) {
 }
 /// Lane i shifted left by lane i of `n` (as unsigned; 32 or more gives 0).
 inline vint8 sllv(vint8 a, vint8 n) { return vint8(_mm256_sllv_epi32(a.v, n.v)); }
+/// Every lane shifted left by the run-time count `n` (0 .. 31; 32 or more gives 0).
+inline vint8 sll(vint8 a, int n) { return vint8(_mm256_sll_epi32(a.v, _mm_cvtsi32_si128(n))); }
 inline vint8 cmpeq(vint8 a, vint8 b) { return vint8(_mm256_cmpeq_epi32(a.v, b.v)); }
 inline vint8 cmpgt(vint8 a, vint8 b) { return vint8(_mm256_cmpgt_epi32(a.v, b.v)); }
 inline vint8 cmplt(vint8 a, vint8 b) { return vint8(_mm256_cmpgt_epi32(b.v, a.v)); }
@@ -435,6 +437,11 @@ inline vint8 sllv(vint8 a, vint8 n) {
   }
   return detail::from_lanes(x);
 }
+inline vint8 sll(vint8 a, int n) {
+  detail::I32x8 x = detail::lanes(a);
+  for (auto& v : x.l) v = n >= 0 && n < 32 ? std::int32_t(std::uint32_t(v) << n) : 0;
+  return detail::from_lanes(x);
+}
 inline vint8 select(vint8 mask, vint8 a, vint8 b) {
   return vint8(select(mask.lo, a.lo, b.lo), select(mask.hi, a.hi, b.hi));
 }
@@ -575,18 +582,7 @@ inline void load_planes(const std::uint8_t* p, vu16x16 out[4]) {
 #endif
 
 /// Each lane shifted left by 8 * `k` bits (k = 0..3), as sll_bytes(vint4).
-inline vint8 sll_bytes(vint8 v, int k) {
-  switch (k) {
-    case 0:
-      return v;
-    case 1:
-      return sll<8>(v);
-    case 2:
-      return sll<16>(v);
-    default:
-      return sll<24>(v);
-  }
-}
+inline vint8 sll_bytes(vint8 v, int k) { return sll(v, 8 * k); }
 
 }  // namespace TESSERA_SIMD_ISA
 }  // namespace tessera::simd
