@@ -412,7 +412,7 @@ TEST(Simd, PackedLanesEveryOperation) {
       EXPECT_EQ(a.lane_sq(i), std::int32_t(std::int16_t(x[i])) * std::int16_t(x[i]));
     }
     const U16Lanes mxs = lanes(simd::max_s16(a, b)), mns = lanes(simd::min_s16(a, b));
-    const U16Lanes gts = lanes(simd::cmpgt_s16(a, b));
+    const U16Lanes gts = lanes(simd::cmpgt_s16(a, b)), sal = lanes(simd::select_alpha(a, b));
     std::uint8_t four[4], b4[6] = {0, 0, 0, 0, 0xee, 0xee};
     std::memcpy(four, x, 4);
     const U16Lanes l4 = lanes(simd::load_u8x4_lo(four));
@@ -422,6 +422,7 @@ TEST(Simd, PackedLanesEveryOperation) {
       EXPECT_EQ(mxs.u[i], std::uint16_t(std::max(p, q)));
       EXPECT_EQ(mns.u[i], std::uint16_t(std::min(p, q)));
       EXPECT_EQ(gts.u[i], p > q ? 0xffff : 0);
+      EXPECT_EQ(sal.u[i], (i & 3) == 3 ? y[i] : x[i]);
       EXPECT_EQ(l4.u[i], i < 4 ? four[i] : 0);
       if (i < 4) {
         EXPECT_EQ(b4[i], clamp_u8(p));

@@ -79,6 +79,11 @@ inline vu16x8 select(vu16x8 mask, vu16x8 a, vu16x8 b) {
 inline vu16x8 max_s16(vu16x8 a, vu16x8 b) { return vu16x8(_mm_max_epi16(a.v, b.v)); }
 inline vu16x8 min_s16(vu16x8 a, vu16x8 b) { return vu16x8(_mm_min_epi16(a.v, b.v)); }
 inline vu16x8 cmpgt_s16(vu16x8 a, vu16x8 b) { return vu16x8(_mm_cmpgt_epi16(a.v, b.v)); }
+/// Lanes 3 and 7 (the alpha lanes of two RGBA texels) from `a`, the rest from `rgb`.
+inline vu16x8 select_alpha(vu16x8 rgb, vu16x8 a) {
+  const __m128i m = _mm_setr_epi16(0, 0, 0, -1, 0, 0, 0, -1);
+  return vu16x8(_mm_or_si128(_mm_andnot_si128(m, rgb.v), _mm_and_si128(m, a.v)));
+}
 /// Four bytes zero-extended into lanes 0-3; lanes 4-7 zero.
 inline vu16x8 load_u8x4_lo(const std::uint8_t* p) {
   std::int32_t w;
@@ -239,6 +244,10 @@ inline vu16x8 min_s16(vu16x8 a, vu16x8 b) {
 }
 inline vu16x8 cmpgt_s16(vu16x8 a, vu16x8 b) {
   return vu16x8(vcgtq_s16(vreinterpretq_s16_u16(a.v), vreinterpretq_s16_u16(b.v)));
+}
+inline vu16x8 select_alpha(vu16x8 rgb, vu16x8 a) {
+  const uint16x8_t m = vreinterpretq_u16_u64(vdupq_n_u64(0xffff000000000000ull));
+  return vu16x8(vbslq_u16(m, a.v, rgb.v));
 }
 inline vu16x8 load_u8x4_lo(const std::uint8_t* p) {
   std::uint32_t w;
@@ -403,6 +412,11 @@ inline vu16x8 cmpgt_s16(vu16x8 a, vu16x8 b) {
   vu16x8 r;
   for (int i = 0; i < 8; ++i) r.l[i] = std::int16_t(a.l[i]) > std::int16_t(b.l[i]) ? 0xffff : 0;
   return r;
+}
+inline vu16x8 select_alpha(vu16x8 rgb, vu16x8 a) {
+  rgb.l[3] = a.l[3];
+  rgb.l[7] = a.l[7];
+  return rgb;
 }
 inline vu16x8 load_u8x4_lo(const std::uint8_t* p) {
   vu16x8 r;

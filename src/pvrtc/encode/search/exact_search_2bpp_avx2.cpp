@@ -1,8 +1,9 @@
 // exact_search_2bpp_avx2.cpp — the window evaluator of the 2 bpp exact endpoint search
 // (exact_search_2bpp.cpp) over the SIMD wrapper's 8-lane types (core/simd_wide.h): four texels
-// (16 lanes) a vector and eight a step instead of two and four. The same operations lane for
-// lane, so the same per-texel errors; only the bound is checked less often (every 8 texels),
-// which changes nothing below the bound.
+// (16 lanes) a vector and eight a step instead of two and four. The per-texel blend errors are
+// the baseline's own code (exact_search_2bpp_blends.h, compiled here with vu16x16), so the same
+// per-texel errors; only the bound is checked less often (every 8 texels), which changes
+// nothing below the bound.
 //
 // Compiled with -mavx2 (src/CMakeLists.txt), which gives the wrapper its AVX2 backend, and
 // called only where polish_avx2_active(). So that no AVX2 code can stand in for baseline code
@@ -19,6 +20,7 @@
 #if defined(__AVX2__)
 
 #include "core/simd.h"
+#include "pvrtc/encode/search/exact_search_2bpp_blends.h"
 #include "pvrtc/encode/search/exact_search_wide.h"
 
 namespace tessera::pvrtc::detail {
@@ -27,36 +29,12 @@ namespace {
 
 using namespace simd;
 
-/// Squared errors of texels k .. k + 3's five blends, lanes (texel RG, texel BA) x 4.
-struct QuadSq {
-  vint8 e0, e8, e3, e5, e4;
-};
-
-// The decoder's arithmetic, as the baseline: 8-bit colour (S >> 7) + (S >> 2) and alpha
-// (S >> 5) + (S >> 1) of the bilinear sum S (the alpha lanes: select_alpha), blends 0 (A),
-// 8 (B), 3 and 5 from 4 (A + B) +- (A - B) (wrapping lanes, exact results) and 4 from A + B.
+/// Squared errors of texels k .. k + 3's five blends, lanes (texel RG, texel BA) x 4: the
+/// baseline's own blend_sq2 (exact_search_2bpp_blends.h), four texels a vector.
+using QuadSq = BlendSq2<vu16x16>;
 template <bool kAlpha>
 inline void quad_sq(const Window2& w, int k, vu16x16 av, vu16x16 bv, vu16x16 aw, QuadSq& o) {
-  const vu16x16 own = load_u16x16(&w.own[k][0]);
-  const vu16x16 sa = load_u16x16(&w.rest_a[k][0]) + mullo(own, av);
-  const vu16x16 sb = load_u16x16(&w.rest_b[k][0]) + mullo(own, bv);
-  vu16x16 ua = srl<7>(sa) + srl<2>(sa);
-  vu16x16 ub = srl<7>(sb) + srl<2>(sb);
-  if constexpr (kAlpha) {
-    ua = select_alpha(ua, srl<5>(sa) + srl<1>(sa));
-    ub = select_alpha(ub, srl<5>(sb) + srl<1>(sb));
-  }
-  const vu16x16 t = load_u16x16(&w.t[k][0]);
-  auto err = [&](vu16x16 v) {
-    const vu16x16 d = v - t;
-    return kAlpha ? madd(d, mullo(d, aw)) : madd(d, d);
-  };
-  const vu16x16 sum = ua + ub, sum2 = sum + sum, sum4 = sum2 + sum2, diff = ua - ub;
-  o.e0 = err(ua);
-  o.e8 = err(ub);
-  o.e3 = err(srl<3>(sum4 + diff));
-  o.e5 = err(srl<3>(sum4 - diff));
-  o.e4 = err(srl<1>(sum));
+  blend_sq2<kAlpha>(w, k, av, bv, aw, o);
 }
 
 // Eight texels a step: the per-texel sums of two quads' lanes (pair_sums works per half:
