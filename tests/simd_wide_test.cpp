@@ -367,6 +367,34 @@ TEST(SimdWide, TexelPlanes) {
   }
 }
 
+TEST(SimdWide, WidthGenericNames) {
+  if (skip_here()) GTEST_SKIP() << "no AVX2 on this CPU";
+  static_assert(simd::kLanes<simd::vf4> == 4 && simd::kLanes<vf8> == 8);
+  static_assert(simd::kLanes<simd::vint4> == 4 && simd::kLanes<vint8> == 8);
+  static_assert(simd::kLanes<simd::vu16x8> == 8 && simd::kLanes<vu16x16> == 16);
+  static_assert(simd::kLanes<simd::vu8x16> == 16 && simd::kLanes<vu8x32> == 32);
+  float f[8], g[8];
+  std::uint16_t h[16], k[16];
+  std::uint8_t b[32], c[32];
+  for (int i = 0; i < 32; ++i) {
+    if (i < 8) f[i] = float(i) - 2.5f;
+    if (i < 16) h[i] = std::uint16_t(1000 * i + 7);
+    b[i] = std::uint8_t(7 * i + 1);
+  }
+  simd::store(simd::load_as<vf8>(f), g);
+  simd::store(simd::load_as<vu16x16>(h), k);
+  simd::store(simd::load_as<vu8x32>(b), c);
+  EXPECT_EQ(std::memcmp(f, g, sizeof f), 0);
+  EXPECT_EQ(std::memcmp(h, k, sizeof h), 0);
+  EXPECT_EQ(std::memcmp(b, c, sizeof b), 0);
+  simd::store(simd::load_as<simd::vf4>(f + 4), g);
+  EXPECT_EQ(std::memcmp(f + 4, g, 4 * sizeof(float)), 0);
+  const std::int32_t v[8] = {-5, 0, 17, 255, 256, 1000, -1, 128};
+  std::uint8_t o[8];
+  simd::store_bytes(simd::load8(v), o);
+  for (int i = 0; i < 8; ++i) EXPECT_EQ(o[i], clamp_u8(v[i]));
+}
+
 TEST(SimdWide, BackendMatchesBuild) {
 #if defined(__AVX2__) && !defined(TESSERA_NO_SIMD)
   EXPECT_EQ(TESSERA_SIMD_AVX2, 1);

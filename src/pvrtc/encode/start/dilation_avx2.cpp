@@ -9,8 +9,9 @@
 // ODR safety: an inline function or template with external linkage compiled here could be the
 // copy the linker keeps for the whole program, and then run on a CPU without AVX2. The wrapper's
 // functions compiled here live in their own inline namespace (simd_int.h); otherwise this file
-// includes only C headers and dilation_kernels.h (plain declarations), keeps every helper in an
-// anonymous namespace, and exports one function that fills the kernel table.
+// includes only C headers, dilation_kernels.h (plain declarations) and dilation_rows.h (templates
+// with internal linkage), keeps every helper in an anonymous namespace, and exports one function
+// that fills the kernel table.
 //
 // Rows narrower than a vector (w = 8, 16) are processed a whole vector at a time: the extra
 // lanes read and write the rows' padding (kDilationPad = 32 elements), except in the texel rows,
@@ -27,6 +28,7 @@
 #include <cstdint>
 
 #include "core/simd.h"
+#include "pvrtc/encode/start/dilation_rows.h"
 
 namespace tessera::pvrtc::detail {
 
@@ -36,11 +38,6 @@ using u8 = std::uint8_t;
 using u16 = std::uint16_t;
 using namespace simd;
 
-template <typename T>
-void wrap_pad(T* row, int w) {
-  row[-1] = row[w - 1];
-  row[w] = row[0];
-}
 
 void intensity_row(const u8* src, int w, bool alpha, float* out) {
   const vint8 m8(0xff);
@@ -56,23 +53,10 @@ void intensity_row(const u8* src, int w, bool alpha, float* out) {
   wrap_pad(out, w);
 }
 
+// Written once for both widths (dilation_rows.h).
 void label_row(const float* i0, const float* i1, const float* i2, int w, float* mx, float* mn,
                u8* out) {
-  for (int x = 0; x < w; x += 8) {
-    const vf8 a = loadf8(i0 + x), c = loadf8(i1 + x), d = loadf8(i2 + x);
-    storef8(max(max(a, c), d), mx + x);
-    storef8(min(min(a, c), d), mn + x);
-  }
-  wrap_pad(mx, w);
-  wrap_pad(mn, w);
-  const vint8 one(1), two(2);
-  for (int x = 0; x < w; x += 8) {
-    const vf8 v = loadf8(i1 + x);
-    const vf8 m = max(max(loadf8(mx + x - 1), loadf8(mx + x)), loadf8(mx + x + 1));
-    const vf8 n = min(min(loadf8(mn + x - 1), loadf8(mn + x)), loadf8(mn + x + 1));
-    const vint8 l = andnot(cmpeq(m, n), (cmpeq(m, v) & one) | (cmpeq(n, v) & two));
-    store_u8x8(l, out + x);
-  }
+  label_row_t<vf8>(i0, i1, i2, w, mx, mn, out);
 }
 
 template <int np>
@@ -183,20 +167,7 @@ void dilate_row_any(int np, int w, const u8* const (*in)[5], u8* const* out, u8*
 
 void accumulate_row(int planes, int w, const u8* row, std::size_t stride, u16* acc,
                     std::size_t astride, bool first) {
-  for (int k = 0; k < planes; ++k) {
-    const u8* p = row + std::size_t(k) * stride;
-    u16* a = acc + std::size_t(k) * astride;
-    for (int x = 0; x < w; x += 32) {
-      const vu16x16 lo = load_u8x16_u16(p + x), hi = load_u8x16_u16(p + x + 16);
-      if (first) {
-        store_u16x16(lo, a + x);
-        store_u16x16(hi, a + x + 16);
-      } else {
-        store_u16x16(load_u16x16(a + x) + lo, a + x);
-        store_u16x16(load_u16x16(a + x + 16) + hi, a + x + 16);
-      }
-    }
-  }
+  accumulate_row_t<vu8x32>(planes, w, row, stride, acc, astride, first);
 }
 
 // Extremes by keys: intensity * 32 plus the texel's raster index in the block (31 minus it for
