@@ -1,15 +1,16 @@
 // modulation_2bpp_avx2.cpp — the three 2 bpp modulation passes of modulation_2bpp.cpp over the
 // SIMD wrapper's 8-lane types (core/simd_wide.h): two blocks a step (block bx in the low half,
 // bx + 1 in the high), the same operations lane for lane as the baseline's one block row per
-// 4-lane vector (the 8-lane operations that work per half are those 4-lane ones), so the same
-// maps, bits, modes and errors (ties included). The halves never mix until the per-block sums.
+// 4-lane vector (the 8-lane operations that work per half are those 4-lane ones; the per-texel
+// errors and weights are the baseline's own code, modulation_2bpp_blends.h), so the same maps,
+// bits, modes and errors (ties included). The halves never mix until the per-block sums.
 //
 // Compiled with -mavx2 (src/CMakeLists.txt), which gives the wrapper its AVX2 backend, and
 // called only after the run-time CPU check in modulation_2bpp.cpp. So that no AVX2 code can
 // stand in for baseline code elsewhere, the wrapper's functions compiled here live in their own
 // inline namespace (simd_int.h); otherwise this file includes no header with inline functions
-// or templates of external linkage (modulation_2bpp_bits.h's helpers have internal linkage; not
-// encode_internal.h or the standard containers) and keeps its helpers in an anonymous
+// or templates of external linkage (modulation_2bpp_bits.h's and modulation_2bpp_blends.h's
+// helpers have internal linkage; not encode_internal.h or the standard containers) and keeps its helpers in an anonymous
 // namespace; it exports the three `mod2_pass*_row_avx2` functions only.
 #include "pvrtc/encode/modulation/modulation_2bpp_avx2.h"
 
@@ -23,6 +24,7 @@
 
 #include "core/simd.h"
 #include "pvrtc/encode/modulation/modulation_2bpp_bits.h"
+#include "pvrtc/encode/modulation/modulation_2bpp_blends.h"
 
 namespace tessera::pvrtc::detail {
 
@@ -112,41 +114,7 @@ inline void load_row(const Consts& k, const Mod2RowAvx2& r, int bx, int j, vu16x
   }
 }
 
-/// Squared error of (v[c] - t[c]) summed over the channels: texels 0-3 (lo) and 4-7 (hi) of
-/// each block.
-template <bool kAlpha>
-inline void sq_err(const vu16x16 v[4], const vu16x16 t[4], vint8& lo, vint8& hi) {
-  const vu16x16 dr = v[0] - t[0], dg = v[1] - t[1], db = v[2] - t[2];
-  vu16x16 da;
-  if constexpr (kAlpha) da = v[3] - t[3];
-  const vu16x16 rg0 = zip_lo(dr, dg), rg1 = zip_hi(dr, dg);
-  const vu16x16 ba0 = zip_lo(db, da), ba1 = zip_hi(db, da);
-  lo = madd(rg0, rg0) + madd(ba0, ba0);
-  hi = madd(rg1, rg1) + madd(ba1, ba1);
-}
-
-/// Error of blend (a (8 - m) + b m) / 8 with per-lane weights m, lanes 0-3 and 4-7 summed.
-template <bool kAlpha>
-inline vint8 blend_err(const Consts& k, const vu16x16 a[4], const vu16x16 b[4],
-                       const vu16x16 t[4], vu16x16 m) {
-  constexpr int nch = kAlpha ? 4 : 3;
-  const vu16x16 im = k.k8 - m;
-  vu16x16 v[4];
-  for (int c = 0; c < nch; ++c) v[c] = srl<3>(mullo(a[c], im) + mullo(b[c], m));
-  vint8 lo, hi;
-  sq_err<kAlpha>(v, t, lo, hi);
-  return lo + hi;
-}
-
-/// Map byte -> weight of its greedy code (0, 3, 5, 8) and of its A/B choice (0 or 8).
-inline vu16x16 greedy_weight(const Consts& k, vu16x16 bytes) {
-  const vu16x16 c = bytes & k.k3;
-  return mullo(c, k.k3) - srl<1>(c);
-}
-inline vu16x16 ab_weight(const Consts& k, vu16x16 bytes) {
-  const vu16x16 f = bytes & k.k4;
-  return f + f;
-}
+// sq_err, blend_err, greedy_weight, ab_weight: modulation_2bpp_blends.h.
 
 inline vint8 key(vint8 e, int rank) { return sll<2>(e) | vint8(rank); }
 
