@@ -14,6 +14,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -410,6 +411,24 @@ TEST(Simd, PackedLanesEveryOperation) {
       EXPECT_EQ(b8[i], clamp_u8(std::int16_t(x[i]))) << x[i];  // packus: signed 16-bit lanes
       EXPECT_EQ(a.lane_sq(i), std::int32_t(std::int16_t(x[i])) * std::int16_t(x[i]));
     }
+    const U16Lanes mxs = lanes(simd::max_s16(a, b)), mns = lanes(simd::min_s16(a, b));
+    const U16Lanes gts = lanes(simd::cmpgt_s16(a, b)), sal = lanes(simd::select_alpha(a, b));
+    std::uint8_t four[4], b4[6] = {0, 0, 0, 0, 0xee, 0xee};
+    std::memcpy(four, x, 4);
+    const U16Lanes l4 = lanes(simd::load_u8x4_lo(four));
+    simd::store_u8x4(a, b4);
+    for (int i = 0; i < 8; ++i) {
+      const std::int16_t p = std::int16_t(x[i]), q = std::int16_t(y[i]);
+      EXPECT_EQ(mxs.u[i], std::uint16_t(std::max(p, q)));
+      EXPECT_EQ(mns.u[i], std::uint16_t(std::min(p, q)));
+      EXPECT_EQ(gts.u[i], p > q ? 0xffff : 0);
+      EXPECT_EQ(sal.u[i], (i & 3) == 3 ? y[i] : x[i]);
+      EXPECT_EQ(l4.u[i], i < 4 ? four[i] : 0);
+      if (i < 4) {
+        EXPECT_EQ(b4[i], clamp_u8(p));
+      }
+    }
+    EXPECT_EQ(b4[4], 0xee);  // four bytes written, no more
     for (int i = 0; i < 4; ++i) {
       const std::int64_t s = std::int64_t(std::int16_t(x[2 * i])) * std::int16_t(y[2 * i]) +
                              std::int64_t(std::int16_t(x[2 * i + 1])) * std::int16_t(y[2 * i + 1]);

@@ -4,11 +4,7 @@
 #include <cmath>
 #include <cstring>
 
-#if (defined(__x86_64__) || defined(__i386__)) && !defined(TESSERA_NO_SIMD)
-#include <tmmintrin.h>
-#endif
-
-#include "tessera/core.h"
+#include "core/simd_dispatch.h"
 
 #include "tessera/core.h"
 
@@ -76,41 +72,14 @@ void row_to_rgba8(const std::uint8_t* in, std::ptrdiff_t stride, int n, std::uin
   }
 }
 
-#if (defined(__x86_64__) || defined(__i386__)) && !defined(TESSERA_NO_SIMD)
-#define TESSERA_RGB_SSSE3 1
-/// The first `n / 16 * 16` texels of a packed RGB row to packed RGBA with alpha 255, sixteen
-/// a step (three 16-byte loads, four byte shuffles); returns how many it did. SSSE3 (every
-/// x86-64 CPU since 2006) is checked at run time by the caller, so the baseline build keeps
-/// running anywhere.
-__attribute__((target("ssse3"))) int rgb_to_rgba8_ssse3(const std::uint8_t* in, int n,
-                                                        std::uint8_t* out) {
-  const __m128i spread = _mm_setr_epi8(0, 1, 2, -1, 3, 4, 5, -1, 6, 7, 8, -1, 9, 10, 11, -1);
-  const __m128i alpha = _mm_set1_epi32(static_cast<int>(0xff000000u));
-  int x = 0;
-  for (; x + 16 <= n; x += 16, in += 48, out += 64) {
-    const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(in));
-    const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(in + 16));
-    const __m128i c = _mm_loadu_si128(reinterpret_cast<const __m128i*>(in + 32));
-    const __m128i t[4] = {a, _mm_alignr_epi8(b, a, 12), _mm_alignr_epi8(c, b, 8),
-                          _mm_srli_si128(c, 4)};
-    for (int k = 0; k < 4; ++k) {
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 16 * k),
-                       _mm_or_si128(_mm_shuffle_epi8(t[k], spread), alpha));
-    }
-  }
-  return x;
-}
-#endif
-
 /// A packed RGB row to packed RGBA with alpha 255: sixteen texels a step with SSSE3, else four
 /// (three little-endian words in, four out: a third of the byte loop's loads and stores).
 void rgb_row_to_rgba8(const std::uint8_t* in, int n, std::uint8_t* out) {
   constexpr std::uint32_t kRgb = 0x00ffffffu, kAlpha = 0xff000000u;
   int x = 0;
-#ifdef TESSERA_RGB_SSSE3
-  static const bool ssse3 = __builtin_cpu_supports("ssse3") != 0;
-  if (ssse3) {
-    x = rgb_to_rgba8_ssse3(in, n, out);
+#if defined(TESSERA_SIMD_X86_DISPATCH)
+  if (simd::cpu_has_ssse3()) {
+    x = simd::rgb_to_rgba8_ssse3(in, n, out);
     in += std::ptrdiff_t(x) * 3;
     out += std::ptrdiff_t(x) * 4;
   }

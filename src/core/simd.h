@@ -1,7 +1,6 @@
 // simd.h — the library's one small SIMD wrapper, shared by the kernels of PVRTC, texture
-// sampling and rasterisation, which use it instead of raw intrinsics (the exceptions: the
-// run-time dispatched *_avx2.cpp kernels, and io/png_fast.cpp's SSE2 PNG filters). Include this
-// header; it pulls in the parts:
+// sampling and rasterisation, which use it instead of raw intrinsics (no intrinsic appears
+// outside src/core/simd*.h). Include this header; it pulls in the parts:
 //
 //   simd_int.h     backend selection; vint4 (4 x int32: texels, texel coordinates, offsets,
 //                  level sizes, comparison masks) and vi64x2 (2 x int64: fixed-point edges).
@@ -10,15 +9,19 @@
 //                  vector-extension type, with from_f32x4 / to_f32x4).
 //   simd_packed.h  vu16x8 (8 x uint16) and vu8x16 (16 x uint8): the PVRTC texel planes, with
 //                  their widening / narrowing to and from vint4 and vf4.
+//   simd_wide.h    the 8-lane types vint8, vf8, vu16x16 and vu8x32: two 4-lane halves, with an
+//                  AVX2 backend where the translation unit is compiled with -mavx2.
 //   this file      backend-independent compositions (sll_bytes, channel16).
+// Not pulled in: simd_dispatch.h, the run-time CPU checks and the one SSSE3 routine.
 //
 // Every type is a value type with free functions (operators, min, max, select, cmp*, ...) in
 // tessera::simd, found by argument-dependent lookup.
 //
 // Backends and portability. x86-64: SSE2, always (part of the ABI), plus SSE4.1 instructions
-// (pmulld, pminsd) when the compiler targets SSE4.1; AVX2 code is not here but in the
-// `*_avx2.cpp` kernels, compiled separately and dispatched at run time (they do not include
-// this header, which keeps its inline functions free of AVX2 encodings). Little-endian AArch64:
+// (pmulld, pminsd) when the compiler targets SSE4.1; AVX2 for the 8-lane types in the
+// `*_avx2.cpp` kernels, which are compiled with -mavx2 and dispatched at run time (their copies
+// of the wrapper live in an inline namespace of their own, see simd_int.h, so no AVX2 encoding
+// can stand in for a baseline function). Little-endian AArch64:
 // NEON (part of its base ISA). Anywhere else (other CPUs, or -DTESSERA_NO_SIMD for the whole
 // build): a portable scalar backend, four plain lanes per type. Each part header holds its
 // types' three backends one after another (SSE2, NEON, scalar), and all three are
@@ -29,8 +32,8 @@
 // NaN, fcvtzs saturating, immediate shift ranges, no movemask) the NEON code emulates SSE2, as
 // its comments say; the scalar code spells the same rules out. Only which NaN an arithmetic
 // operation returns (one it makes, as 0 * inf, or which of two NaN operands) is not fixed.
-// tests/simd_test.cpp holds every
-// backend to the reference expressions (scripts/test.sh runs it natively, with
+// tests/simd_test.cpp (4 lanes) and tests/simd_wide_test.cpp (8 lanes, also built with -mavx2)
+// hold every backend to the reference expressions (scripts/test.sh runs them natively, with
 // TESSERA_NO_SIMD, and cross-compiled under qemu-aarch64). The build compiles with
 // -ffp-contract=off (CMakeLists.txt): GCC would otherwise fuse NEON's separate multiply and add
 // into one fused multiply-add, rounding once. TESSERA_SIMD_VECTOR (1 with SSE2 or NEON, else 0)
@@ -38,7 +41,8 @@
 // raster quad coverage) whether to take the vector path; both paths give the same results, and
 // without a vector backend they take their own scalar code, unchanged by this wrapper. f32x4 is
 // a compiler vector type on every GCC / Clang target (SSE on x86-64, NEON on AArch64).
-// TESSERA_NO_SIMD must be the same for every translation unit (the types differ).
+// TESSERA_NO_SIMD must be the same for every translation unit of the library (the types
+// differ).
 #pragma once
 
 #include <cstdint>
@@ -46,8 +50,10 @@
 #include "core/simd_float.h"
 #include "core/simd_int.h"
 #include "core/simd_packed.h"
+#include "core/simd_wide.h"
 
 namespace tessera::simd {
+inline namespace TESSERA_SIMD_ISA {
 
 /// sll_bytes: each 32-bit lane shifted left by 8 * `k` bits (k = 0..3), e.g. to put row k's
 /// 8-bit code into byte k of a packed word.
@@ -80,4 +86,5 @@ inline vu16x8 channel16(vint4 t0, vint4 t1, int c) {
   }
 }
 
+}  // namespace TESSERA_SIMD_ISA
 }  // namespace tessera::simd

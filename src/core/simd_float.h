@@ -17,6 +17,7 @@
 #include "core/simd_int.h"
 
 namespace tessera::simd {
+inline namespace TESSERA_SIMD_ISA {
 
 #if defined(__GNUC__)
 using f32x4 = float __attribute__((vector_size(16)));
@@ -316,4 +317,5 @@ inline vf4 hmin(vf4 a) {
 
 #endif
 
+}  // namespace TESSERA_SIMD_ISA
 }  // namespace tessera::simd

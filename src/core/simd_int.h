@@ -35,7 +35,27 @@
 #define TESSERA_SIMD_VECTOR 0
 #endif
 
+// The inline namespace that holds every type and function of the wrapper, one name per backend
+// and per instruction set the translation unit is compiled for. The run-time dispatched AVX2
+// kernels (*_avx2.cpp, built with -mavx2) include this wrapper too: there its inline functions
+// are compiled with VEX encodings, so they must not share a mangled name with the baseline's
+// copies (the linker keeps one copy of an inline function for the whole program, and an AVX2
+// one must never run on a CPU without AVX2). The namespace keeps them apart; it also lets a
+// TESSERA_NO_SIMD test link beside the vector backend.
+#if defined(TESSERA_SIMD_SSE2) && defined(__AVX2__)
+#define TESSERA_SIMD_ISA avx2
+#elif defined(TESSERA_SIMD_SSE2)
+#define TESSERA_SIMD_ISA sse2
+#elif defined(TESSERA_SIMD_NEON)
+#define TESSERA_SIMD_ISA neon
+#elif defined(__AVX2__)
+#define TESSERA_SIMD_ISA scalar_avx2
+#else
+#define TESSERA_SIMD_ISA scalar
+#endif
+
 namespace tessera::simd {
+inline namespace TESSERA_SIMD_ISA {
 
 #if defined(TESSERA_SIMD_SSE2)
 
@@ -410,4 +430,5 @@ inline int movemask(vi64x2 a) { return (a.l[0] < 0 ? 1 : 0) | (a.l[1] < 0 ? 2 : 
 
 #endif
 
+}  // namespace TESSERA_SIMD_ISA
 }  // namespace tessera::simd

@@ -12,6 +12,7 @@
 #include "core/simd_int.h"
 
 namespace tessera::simd {
+inline namespace TESSERA_SIMD_ISA {
 
 #if defined(TESSERA_SIMD_SSE2)
 
@@ -74,6 +75,27 @@ inline vu16x8 select(vu16x8 mask, vu16x8 a, vu16x8 b) {
 }
 
 /// Sixteen unsigned 8-bit lanes.
+/// Lanes read as int16: the signed maximum, minimum and greater-than mask.
+inline vu16x8 max_s16(vu16x8 a, vu16x8 b) { return vu16x8(_mm_max_epi16(a.v, b.v)); }
+inline vu16x8 min_s16(vu16x8 a, vu16x8 b) { return vu16x8(_mm_min_epi16(a.v, b.v)); }
+inline vu16x8 cmpgt_s16(vu16x8 a, vu16x8 b) { return vu16x8(_mm_cmpgt_epi16(a.v, b.v)); }
+/// Lanes 3 and 7 (the alpha lanes of two RGBA texels) from `a`, the rest from `rgb`.
+inline vu16x8 select_alpha(vu16x8 rgb, vu16x8 a) {
+  const __m128i m = _mm_setr_epi16(0, 0, 0, -1, 0, 0, 0, -1);
+  return vu16x8(_mm_or_si128(_mm_andnot_si128(m, rgb.v), _mm_and_si128(m, a.v)));
+}
+/// Four bytes zero-extended into lanes 0-3; lanes 4-7 zero.
+inline vu16x8 load_u8x4_lo(const std::uint8_t* p) {
+  std::int32_t w;
+  std::memcpy(&w, p, 4);
+  return vu16x8(_mm_unpacklo_epi8(_mm_cvtsi32_si128(w), _mm_setzero_si128()));
+}
+/// Lanes 0-3 as four bytes, clamped as store_u8x8.
+inline void store_u8x4(vu16x8 a, std::uint8_t* p) {
+  const std::int32_t w = _mm_cvtsi128_si32(_mm_packus_epi16(a.v, a.v));
+  std::memcpy(p, &w, 4);
+}
+
 struct vu8x16 {
   __m128i v;
   vu8x16() : v(_mm_setzero_si128()) {}
@@ -212,6 +234,29 @@ inline vu16x8 srl(vu16x8 a) {
 inline vu16x8 cmpeq(vu16x8 a, vu16x8 b) { return vu16x8(vceqq_u16(a.v, b.v)); }
 inline vu16x8 select(vu16x8 mask, vu16x8 a, vu16x8 b) {
   return vu16x8(vbslq_u16(mask.v, a.v, b.v));
+}
+
+inline vu16x8 max_s16(vu16x8 a, vu16x8 b) {
+  return vu16x8(vreinterpretq_u16_s16(vmaxq_s16(vreinterpretq_s16_u16(a.v), vreinterpretq_s16_u16(b.v))));
+}
+inline vu16x8 min_s16(vu16x8 a, vu16x8 b) {
+  return vu16x8(vreinterpretq_u16_s16(vminq_s16(vreinterpretq_s16_u16(a.v), vreinterpretq_s16_u16(b.v))));
+}
+inline vu16x8 cmpgt_s16(vu16x8 a, vu16x8 b) {
+  return vu16x8(vcgtq_s16(vreinterpretq_s16_u16(a.v), vreinterpretq_s16_u16(b.v)));
+}
+inline vu16x8 select_alpha(vu16x8 rgb, vu16x8 a) {
+  const uint16x8_t m = vreinterpretq_u16_u64(vdupq_n_u64(0xffff000000000000ull));
+  return vu16x8(vbslq_u16(m, a.v, rgb.v));
+}
+inline vu16x8 load_u8x4_lo(const std::uint8_t* p) {
+  std::uint32_t w;
+  std::memcpy(&w, p, 4);
+  return vu16x8(vmovl_u8(vreinterpret_u8_u32(vset_lane_u32(w, vdup_n_u32(0), 0))));
+}
+inline void store_u8x4(vu16x8 a, std::uint8_t* p) {
+  const std::uint32_t w = vget_lane_u32(vreinterpret_u32_u8(vqmovun_s16(vreinterpretq_s16_u16(a.v))), 0);
+  std::memcpy(p, &w, 4);
 }
 
 struct vu8x16 {
@@ -353,6 +398,35 @@ inline vu16x8 select(vu16x8 mask, vu16x8 a, vu16x8 b) {
   return r;
 }
 
+inline vu16x8 max_s16(vu16x8 a, vu16x8 b) {
+  vu16x8 r;
+  for (int i = 0; i < 8; ++i) r.l[i] = std::int16_t(a.l[i]) > std::int16_t(b.l[i]) ? a.l[i] : b.l[i];
+  return r;
+}
+inline vu16x8 min_s16(vu16x8 a, vu16x8 b) {
+  vu16x8 r;
+  for (int i = 0; i < 8; ++i) r.l[i] = std::int16_t(a.l[i]) < std::int16_t(b.l[i]) ? a.l[i] : b.l[i];
+  return r;
+}
+inline vu16x8 cmpgt_s16(vu16x8 a, vu16x8 b) {
+  vu16x8 r;
+  for (int i = 0; i < 8; ++i) r.l[i] = std::int16_t(a.l[i]) > std::int16_t(b.l[i]) ? 0xffff : 0;
+  return r;
+}
+inline vu16x8 select_alpha(vu16x8 rgb, vu16x8 a) {
+  rgb.l[3] = a.l[3];
+  rgb.l[7] = a.l[7];
+  return rgb;
+}
+inline vu16x8 load_u8x4_lo(const std::uint8_t* p) {
+  vu16x8 r;
+  for (int i = 0; i < 4; ++i) r.l[i] = p[i];
+  return r;
+}
+inline void store_u8x4(vu16x8 a, std::uint8_t* p) {
+  for (int i = 0; i < 4; ++i) p[i] = detail::packus16(a.l[i]);
+}
+
 struct vu8x16 {
   std::uint8_t l[16] = {};
   vu8x16() = default;
@@ -472,4 +546,5 @@ inline void transpose_8x4(const std::uint16_t* p, vu16x8 out[4]) {
 
 #endif
 
+}  // namespace TESSERA_SIMD_ISA
 }  // namespace tessera::simd

@@ -14,9 +14,7 @@
 #include <utility>
 #include <vector>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
+#include "core/simd.h"
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
@@ -135,49 +133,42 @@ void unfilter_rows_scalar(const std::uint8_t* src0, const std::uint8_t* src1,
   }
 }
 
-#if defined(__SSE2__) && !defined(TESSERA_NO_SIMD)
+#if defined(TESSERA_SIMD_SSE2)
 #define TESSERA_PNG_SSE2 1
-// RGB and RGBA: one pixel at a time in 16-bit lanes, the way libpng's SSE2 filters work.
-// Loads always read 4 bytes (the inflated buffer has kSlack bytes after its last row); for
-// 3-byte pixels the fourth lane holds the next pixel's first byte, which never reaches the
-// other lanes, and is replaced by alpha 255 when stored.
-__m128i load_px(const std::uint8_t* p) {
-  std::uint32_t v;
-  std::memcpy(&v, p, 4);
-  return _mm_unpacklo_epi8(_mm_cvtsi32_si128(int(v)), _mm_setzero_si128());
-}
+// RGB and RGBA: one pixel at a time in 16-bit lanes (the SIMD wrapper's vu16x8, lanes 0-3), the
+// way libpng's SSE2 filters work. Loads always read 4 bytes (the inflated buffer has kSlack
+// bytes after its last row); for 3-byte pixels the fourth lane holds the next pixel's first
+// byte, which never reaches the other lanes, and is replaced by alpha 255 when stored.
+using simd::vu16x8;
+using simd::vu8x16;
 
-/// Stores the 16-bit lanes of `x` (each 0-255) as one RGBA8 pixel, OR-ing in `alpha`.
-void store_px(std::uint8_t* p, __m128i x, std::uint32_t alpha) {
-  const std::uint32_t v = std::uint32_t(_mm_cvtsi128_si32(_mm_packus_epi16(x, x))) | alpha;
-  std::memcpy(p, &v, 4);
-}
+/// Stores lanes 0-3 of `x` (each 0-255) as one RGBA8 pixel, OR-ing `alpha` (255 in lane 3 for
+/// RGB rows, else zero) in.
+void store_px(std::uint8_t* p, vu16x8 x, vu16x8 alpha) { simd::store_u8x4(x | alpha, p); }
 
 /// unfilter_sample for the four 16-bit lanes of one pixel at once.
 template <int kFilter>
-__m128i unfilter_px(__m128i x, __m128i a, __m128i b, __m128i c) {
-  const __m128i low = _mm_set1_epi16(0xff);
+vu16x8 unfilter_px(vu16x8 x, vu16x8 a, vu16x8 b, vu16x8 c) {
+  const vu16x8 low(std::uint16_t{0xff});
   if constexpr (kFilter == 0) {
     return x;
   } else if constexpr (kFilter == 1) {
-    return _mm_and_si128(_mm_add_epi16(x, a), low);
+    return (x + a) & low;
   } else if constexpr (kFilter == 2) {
-    return _mm_and_si128(_mm_add_epi16(x, b), low);
+    return (x + b) & low;
   } else if constexpr (kFilter == 3) {
-    return _mm_and_si128(_mm_add_epi16(x, _mm_srli_epi16(_mm_add_epi16(a, b), 1)), low);
+    return (x + simd::srl<1>(a + b)) & low;
   } else {
     // p - a = b - c, p - b = a - c, p - c = (b - c) + (a - c); a wins ties, then b.
-    const __m128i zero = _mm_setzero_si128();
-    const __m128i pa0 = _mm_sub_epi16(b, c), pb0 = _mm_sub_epi16(a, c);
-    const __m128i pc0 = _mm_add_epi16(pa0, pb0);
-    const __m128i pa = _mm_max_epi16(pa0, _mm_sub_epi16(zero, pa0));
-    const __m128i pb = _mm_max_epi16(pb0, _mm_sub_epi16(zero, pb0));
-    const __m128i pc = _mm_max_epi16(pc0, _mm_sub_epi16(zero, pc0));
-    const __m128i use_c = _mm_cmpgt_epi16(pb, pc);  // b or c: pb <= pc ? b : c
-    const __m128i bc = _mm_or_si128(_mm_and_si128(use_c, c), _mm_andnot_si128(use_c, b));
-    const __m128i not_a = _mm_cmpgt_epi16(pa, _mm_min_epi16(pb, pc));
-    const __m128i pred = _mm_or_si128(_mm_and_si128(not_a, bc), _mm_andnot_si128(not_a, a));
-    return _mm_and_si128(_mm_add_epi16(x, pred), low);
+    const vu16x8 zero;
+    const vu16x8 pa0 = b - c, pb0 = a - c;
+    const vu16x8 pc0 = pa0 + pb0;
+    const vu16x8 pa = simd::max_s16(pa0, zero - pa0);
+    const vu16x8 pb = simd::max_s16(pb0, zero - pb0);
+    const vu16x8 pc = simd::max_s16(pc0, zero - pc0);
+    const vu16x8 bc = simd::select(simd::cmpgt_s16(pb, pc), c, b);  // pb <= pc ? b : c
+    const vu16x8 pred = simd::select(simd::cmpgt_s16(pa, simd::min_s16(pb, pc)), bc, a);
+    return (x + pred) & low;
   }
 }
 
@@ -186,16 +177,16 @@ template <std::size_t kBpp, int kF0, int kF1, bool kTwo>
 void unfilter_rows_simd(const std::uint8_t* src0, const std::uint8_t* src1,
                         const std::uint8_t* prev, std::uint8_t* out0, std::uint8_t* out1,
                         std::size_t width) {
-  const std::uint32_t alpha =
-      kBpp == 4 ? 0 : std::endian::native == std::endian::little ? 0xff000000u : 0xffu;
-  __m128i a0 = _mm_setzero_si128(), c0 = a0, a1 = a0, c1 = a0;
+  const std::uint8_t alpha_px[4] = {0, 0, 0, kBpp == 4 ? std::uint8_t{0} : std::uint8_t{255}};
+  const vu16x8 alpha = simd::load_u8x4_lo(alpha_px);
+  vu16x8 a0, c0, a1, c1;
   for (std::size_t x = 0; x < width; ++x) {
-    const __m128i b0 = load_px(prev + 4 * x);
-    a0 = unfilter_px<kF0>(load_px(src0 + kBpp * x), a0, b0, c0);
+    const vu16x8 b0 = simd::load_u8x4_lo(prev + 4 * x);
+    a0 = unfilter_px<kF0>(simd::load_u8x4_lo(src0 + kBpp * x), a0, b0, c0);
     c0 = b0;
     store_px(out0 + 4 * x, a0, alpha);
     if constexpr (kTwo) {
-      a1 = unfilter_px<kF1>(load_px(src1 + kBpp * x), a1, a0, c1);
+      a1 = unfilter_px<kF1>(simd::load_u8x4_lo(src1 + kBpp * x), a1, a0, c1);
       c1 = a0;
       store_px(out1 + 4 * x, a1, alpha);
     }
@@ -203,25 +194,20 @@ void unfilter_rows_simd(const std::uint8_t* src0, const std::uint8_t* src1,
 }
 
 /// The first bytes (grey samples) of 16 RGBA8 pixels.
-__m128i load_grey16(const std::uint8_t* p) {
-  const __m128i low = _mm_set1_epi32(0xff);
-  __m128i q[4];
-  for (int k = 0; k < 4; ++k) {
-    q[k] = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 16 * k)), low);
-  }
-  return _mm_packus_epi16(_mm_packs_epi32(q[0], q[1]), _mm_packs_epi32(q[2], q[3]));
+vu8x16 load_grey16(const std::uint8_t* p) {
+  const simd::vint4 low(0xff);
+  return simd::narrow(simd::load_texels4(p) & low, simd::load_texels4(p + 16) & low,
+                      simd::load_texels4(p + 32) & low, simd::load_texels4(p + 48) & low);
 }
 
 /// Stores 16 grey samples as 16 opaque grey RGBA8 pixels.
-void store_grey16(std::uint8_t* p, __m128i g) {
-  const __m128i alpha = _mm_set1_epi32(std::endian::native == std::endian::little
-                                           ? int(0xff000000u)
-                                           : 0xff);
-  const __m128i g2[2] = {_mm_unpacklo_epi8(g, g), _mm_unpackhi_epi8(g, g)};
+void store_grey16(std::uint8_t* p, vu8x16 g) {
+  const simd::vint4 alpha(std::int32_t(0xff000000u));  // little-endian: byte 3 of each pixel
+  const vu16x8 g16[2] = {simd::widen_lo(g), simd::widen_hi(g)};
   for (int k = 0; k < 4; ++k) {
-    const __m128i px = (k & 1) ? _mm_unpackhi_epi16(g2[k / 2], g2[k / 2])
-                               : _mm_unpacklo_epi16(g2[k / 2], g2[k / 2]);
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(p + 16 * k), _mm_or_si128(px, alpha));
+    const simd::vint4 v = (k & 1) ? simd::widen32_hi(g16[k / 2]) : simd::widen32_lo(g16[k / 2]);
+    const simd::vint4 px = v | simd::sll<8>(v) | simd::sll<16>(v) | alpha;
+    simd::store4(px, reinterpret_cast<std::int32_t*>(p + 16 * k));
   }
 }
 
@@ -233,12 +219,12 @@ void unfilter_grey_rows_simd(const std::uint8_t* src0, const std::uint8_t* src1,
                              std::size_t width) {
   std::size_t x = 0;
   for (; x + 16 <= width; x += 16) {
-    __m128i a0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src0 + x));
-    if constexpr (kF0 == 2) a0 = _mm_add_epi8(a0, load_grey16(prev + 4 * x));
+    vu8x16 a0 = simd::load_u8x16(src0 + x);
+    if constexpr (kF0 == 2) a0 = a0 + load_grey16(prev + 4 * x);
     store_grey16(out0 + 4 * x, a0);
     if constexpr (kTwo) {
-      __m128i a1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src1 + x));
-      if constexpr (kF1 == 2) a1 = _mm_add_epi8(a1, a0);
+      vu8x16 a1 = simd::load_u8x16(src1 + x);
+      if constexpr (kF1 == 2) a1 = a1 + a0;
       store_grey16(out1 + 4 * x, a1);
     }
   }

@@ -30,6 +30,7 @@
 #include "core/simd.h"
 #include "pvrtc/encode/modulation/modulation_2bpp_avx2.h"
 #include "pvrtc/encode/modulation/modulation_2bpp_bits.h"
+#include "pvrtc/encode/modulation/modulation_2bpp_blends.h"
 
 namespace tessera::pvrtc::detail {
 
@@ -196,40 +197,7 @@ inline void load_row(const Consts& k, const Row2& r, int bx, int j, vu16x8 a[4],
   }
 }
 
-/// Squared error of (v[c] - t[c]) summed over the channels: texels 0-3 (lo) and 4-7 (hi).
-template <bool kAlpha>
-inline void sq_err(const vu16x8 v[4], const vu16x8 t[4], vint4& lo, vint4& hi) {
-  const vu16x8 dr = v[0] - t[0], dg = v[1] - t[1], db = v[2] - t[2];
-  vu16x8 da(0);
-  if constexpr (kAlpha) da = v[3] - t[3];
-  const vu16x8 rg0 = simd::zip_lo(dr, dg), rg1 = simd::zip_hi(dr, dg);
-  const vu16x8 ba0 = simd::zip_lo(db, da), ba1 = simd::zip_hi(db, da);
-  lo = simd::madd(rg0, rg0) + simd::madd(ba0, ba0);
-  hi = simd::madd(rg1, rg1) + simd::madd(ba1, ba1);
-}
-
-/// Error of blend (a (8 - m) + b m) / 8 with per-lane weights m, lanes 0-3 and 4-7 summed.
-template <bool kAlpha>
-inline vint4 blend_err(const Consts& k, const vu16x8 a[4], const vu16x8 b[4], const vu16x8 t[4],
-                       vu16x8 m) {
-  constexpr int nch = kAlpha ? 4 : 3;
-  const vu16x8 im = k.k8 - m;
-  vu16x8 v[4];
-  for (int c = 0; c < nch; ++c) v[c] = simd::srl<3>(simd::mullo(a[c], im) + simd::mullo(b[c], m));
-  vint4 lo, hi;
-  sq_err<kAlpha>(v, t, lo, hi);
-  return lo + hi;
-}
-
-/// Map byte -> weight of its greedy code (0, 3, 5, 8) and of its A/B choice (0 or 8).
-inline vu16x8 greedy_weight(const Consts& k, vu16x8 bytes) {
-  const vu16x8 c = bytes & k.k3;
-  return simd::mullo(c, k.k3) - simd::srl<1>(c);
-}
-inline vu16x8 ab_weight(const Consts& k, vu16x8 bytes) {
-  const vu16x8 f = bytes & k.k4;
-  return f + f;
-}
+// sq_err, blend_err, greedy_weight, ab_weight: modulation_2bpp_blends.h.
 
 struct Maps {
   std::size_t stride = 0;

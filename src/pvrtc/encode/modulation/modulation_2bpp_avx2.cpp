@@ -1,13 +1,16 @@
-// modulation_2bpp_avx2.cpp — the three 2 bpp modulation passes of modulation_2bpp.cpp on AVX2:
-// two blocks a step (block bx in the low 128 bits, bx + 1 in the high), the same operations
-// lane for lane as the baseline's one block row per SSE2 vector, so the same maps, bits, modes
-// and errors (ties included). The 128-bit halves never mix until the per-block sums.
+// modulation_2bpp_avx2.cpp — the three 2 bpp modulation passes of modulation_2bpp.cpp over the
+// SIMD wrapper's 8-lane types (core/simd_wide.h): two blocks a step (block bx in the low half,
+// bx + 1 in the high), the same operations lane for lane as the baseline's one block row per
+// 4-lane vector (the 8-lane operations that work per half are those 4-lane ones; the per-texel
+// errors and weights are the baseline's own code, modulation_2bpp_blends.h), so the same maps,
+// bits, modes and errors (ties included). The halves never mix until the per-block sums.
 //
-// Compiled with -mavx2 (src/CMakeLists.txt) and called only after the run-time CPU check in
-// modulation_2bpp.cpp. So that no AVX2 code can stand in for baseline code elsewhere, this file
-// includes no header with inline functions or templates of external linkage (avx2_common.h's
-// and modulation_2bpp_bits.h's helpers have internal linkage; not simd.h,
-// encode_internal.h or the standard containers) and keeps its helpers in an anonymous
+// Compiled with -mavx2 (src/CMakeLists.txt), which gives the wrapper its AVX2 backend, and
+// called only after the run-time CPU check in modulation_2bpp.cpp. So that no AVX2 code can
+// stand in for baseline code elsewhere, the wrapper's functions compiled here live in their own
+// inline namespace (simd_int.h); otherwise this file includes no header with inline functions
+// or templates of external linkage (modulation_2bpp_bits.h's and modulation_2bpp_blends.h's
+// helpers have internal linkage; not encode_internal.h or the standard containers) and keeps its helpers in an anonymous
 // namespace; it exports the three `mod2_pass*_row_avx2` functions only.
 #include "pvrtc/encode/modulation/modulation_2bpp_avx2.h"
 
@@ -17,58 +20,63 @@
 
 #if defined(__AVX2__)
 
-#include <immintrin.h>
-
 #include <cstring>
 
-#include "pvrtc/encode/avx2_common.h"
+#include "core/simd.h"
 #include "pvrtc/encode/modulation/modulation_2bpp_bits.h"
+#include "pvrtc/encode/modulation/modulation_2bpp_blends.h"
 
 namespace tessera::pvrtc::detail {
 
 namespace {
 
+using namespace simd;
+using u16 = std::uint16_t;
+
 /// Sixteen 16-bit lanes, the pattern `l` (8 lanes) in both halves.
-__m256i twice(const short l[8]) {
-  return _mm256_setr_epi16(l[0], l[1], l[2], l[3], l[4], l[5], l[6], l[7],  //
-                           l[0], l[1], l[2], l[3], l[4], l[5], l[6], l[7]);
+vu16x16 twice(const u16 l[8]) {
+  const vu16x8 x = load_u16x8(l);
+  return vu16x16(x, x);
 }
 
 /// Mask of up to two lanes (lane < 0: none) in both halves, as modulation_2bpp.cpp's
 /// lane_mask / lane_mask2.
-__m256i lane_mask2(int lane0, int lane1) {
-  short l[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-  if (lane0 >= 0) l[lane0] = -1;
-  if (lane1 >= 0) l[lane1] = -1;
+vu16x16 lane_mask2(int lane0, int lane1) {
+  u16 l[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  if (lane0 >= 0) l[lane0] = 0xffff;
+  if (lane1 >= 0) l[lane1] = 0xffff;
   return twice(l);
 }
 
 /// Constants shared by the passes (those of modulation_2bpp.cpp, in both halves).
 struct Consts {
-  __m256i wl, wr, even[2], lanebit, k1, k2, k3, k4, k5, k8;
-  __m256i tap_l, tap_r;  // column-sum element shuffles: left / right taps of both blocks
-  __m256i c0[4], l0[4], u0[4], c12[4], l12[4], r12[4], u12[4], d12[4];
+  vu16x16 wl, wr, even[2], lanebit, k1, k2, k3, k4, k5, k8;
+  vu16x16 tap_l, tap_r;  // column-sum element shuffles: left / right taps of both blocks
+  vu16x16 c0[4], l0[4], u0[4], c12[4], l12[4], r12[4], u12[4], d12[4];
   Consts() {
-    const short wl8[8] = {4, 3, 2, 1, 8, 7, 6, 5}, wr8[8] = {4, 5, 6, 7, 0, 1, 2, 3};
-    const short ev0[8] = {-1, 0, -1, 0, -1, 0, -1, 0}, ev1[8] = {0, -1, 0, -1, 0, -1, 0, -1};
-    const short bit8[8] = {1, 2, 4, 8, 16, 32, 64, 128};
+    const u16 wl8[8] = {4, 3, 2, 1, 8, 7, 6, 5}, wr8[8] = {4, 5, 6, 7, 0, 1, 2, 3};
+    const u16 ev0[8] = {0xffff, 0, 0xffff, 0, 0xffff, 0, 0xffff, 0};
+    const u16 ev1[8] = {0, 0xffff, 0, 0xffff, 0, 0xffff, 0, 0xffff};
+    const u16 bit8[8] = {1, 2, 4, 8, 16, 32, 64, 128};
     wl = twice(wl8);
     wr = twice(wr8);
     even[0] = twice(ev0);
     even[1] = twice(ev1);
     lanebit = twice(bit8);
-    k1 = _mm256_set1_epi16(1);
-    k2 = _mm256_set1_epi16(2);
-    k3 = _mm256_set1_epi16(3);
-    k4 = _mm256_set1_epi16(4);
-    k5 = _mm256_set1_epi16(5);
-    k8 = _mm256_set1_epi16(8);
-    // From the 4 elements p[0..3] (in both halves): block 0 takes p0 x4 p1 x4 (left) and
-    // p1 x4 p2 x4 (right), block 1 the same one element on.
-    tap_l = _mm256_setr_epi8(0, 1, 0, 1, 0, 1, 0, 1, 2, 3, 2, 3, 2, 3, 2, 3,  //
-                             2, 3, 2, 3, 2, 3, 2, 3, 4, 5, 4, 5, 4, 5, 4, 5);
-    tap_r = _mm256_setr_epi8(2, 3, 2, 3, 2, 3, 2, 3, 4, 5, 4, 5, 4, 5, 4, 5,  //
-                             4, 5, 4, 5, 4, 5, 4, 5, 6, 7, 6, 7, 6, 7, 6, 7);
+    k1 = vu16x16(u16{1});
+    k2 = vu16x16(u16{2});
+    k3 = vu16x16(u16{3});
+    k4 = vu16x16(u16{4});
+    k5 = vu16x16(u16{5});
+    k8 = vu16x16(u16{8});
+    // From the 4 elements p[0..3] (in both halves; byte pairs 0-1 .. 6-7): block 0 takes
+    // p0 x4 p1 x4 (left) and p1 x4 p2 x4 (right), block 1 the same one element on.
+    const u16 tl[16] = {0x100, 0x100, 0x100, 0x100, 0x302, 0x302, 0x302, 0x302,
+                        0x302, 0x302, 0x302, 0x302, 0x504, 0x504, 0x504, 0x504};
+    const u16 tr[16] = {0x302, 0x302, 0x302, 0x302, 0x504, 0x504, 0x504, 0x504,
+                        0x504, 0x504, 0x504, 0x504, 0x706, 0x706, 0x706, 0x706};
+    tap_l = load_u16x16(tl);
+    tap_r = load_u16x16(tr);
     for (int j = 0; j < 4; ++j) {
       c0[j] = lane_mask2(j == 0 ? 0 : -1, -1);
       l0[j] = lane_mask2(j == 0 ? 1 : -1, -1);
@@ -82,136 +90,68 @@ struct Consts {
   }
 };
 
-inline __m256i add16(__m256i a, __m256i b) { return _mm256_add_epi16(a, b); }
-inline __m256i mul16(__m256i a, __m256i b) { return _mm256_mullo_epi16(a, b); }
-/// Lanes of `a` where `mask` is all ones, else lanes of `b` (simd::select).
-inline __m256i select(__m256i mask, __m256i a, __m256i b) { return _mm256_blendv_epi8(b, a, mask); }
-
-/// Per 128-bit half, the sum of its four 32-bit lanes (wrapping, as the baseline's hsum).
-inline void hsum2(__m256i x, std::uint32_t& h0, std::uint32_t& h1) {
-  x = _mm256_add_epi32(x, _mm256_shuffle_epi32(x, _MM_SHUFFLE(1, 0, 3, 2)));
-  x = _mm256_add_epi32(x, _mm256_shuffle_epi32(x, _MM_SHUFFLE(2, 3, 0, 1)));
-  h0 = std::uint32_t(_mm256_cvtsi256_si32(x));
-  h1 = std::uint32_t(_mm_cvtsi128_si32(_mm256_extracti128_si256(x, 1)));
-}
-
-/// 16 bytes at p, zero-extended: texels 0-7 of block bx | block bx + 1.
-inline __m256i load_u8x16(const std::uint8_t* p) {
-  return _mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
-}
-
-/// Stores the low bytes of both halves' lanes (lanes <= 255): 16 bytes, block bx then bx + 1.
-inline void store_u8x16(__m256i a, std::uint8_t* p) {
-  const __m256i b = _mm256_permute4x64_epi64(_mm256_packus_epi16(a, a), _MM_SHUFFLE(3, 1, 2, 0));
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm256_castsi256_si128(b));
-}
-
-/// Stores the low bytes of half h's lanes (8 bytes: one block).
-inline void store_half(__m256i a, int h, std::uint8_t* p) {
-  const __m128i x = h ? _mm256_extracti128_si256(a, 1) : _mm256_castsi256_si128(a);
-  _mm_storel_epi64(reinterpret_cast<__m128i*>(p), _mm_packus_epi16(x, x));
+/// Per half, the sum of its four 32-bit lanes (wrapping, as the baseline's hsum).
+inline void hsum2(vint8 x, std::uint32_t& h0, std::uint32_t& h1) {
+  h0 = std::uint32_t(sum_lanes(low(x)));
+  h1 = std::uint32_t(sum_lanes(high(x)));
 }
 
 /// Upscaled A (a) and B (b) and the target (t) of texel row j of blocks bx and bx + 1.
 template <bool kAlpha>
-inline void load_row(const Consts& k, const Mod2RowAvx2& r, int bx, int j, __m256i a[4],
-                     __m256i b[4], __m256i t[4]) {
+inline void load_row(const Consts& k, const Mod2RowAvx2& r, int bx, int j, vu16x16 a[4],
+                     vu16x16 b[4], vu16x16 t[4]) {
   constexpr int nch = kAlpha ? 4 : 3;
-  load_channels(r.t[j] + std::size_t(bx) * 32, t);
+  load_planes(r.t[j] + std::size_t(bx) * 32, t);
   for (int c = 0; c < nch; ++c) {
     for (int img = 0; img < 2; ++img) {
-      const std::uint16_t* p = r.v[j] + std::size_t(img * 4 + c) * r.vstride + bx;
-      long long e;
+      const u16* p = r.v[j] + std::size_t(img * 4 + c) * r.vstride + bx;
+      std::uint64_t e;
       std::memcpy(&e, p, 8);
-      const __m256i q = _mm256_set1_epi64x(e);
-      const __m256i L = _mm256_shuffle_epi8(q, k.tap_l), R = _mm256_shuffle_epi8(q, k.tap_r);
-      const __m256i w = add16(mul16(L, k.wl), mul16(R, k.wr));
-      const __m256i u = c < 3 ? add16(_mm256_srli_epi16(w, 7), _mm256_srli_epi16(w, 2))
-                              : add16(_mm256_srli_epi16(w, 5), _mm256_srli_epi16(w, 1));
-      (img == 0 ? a : b)[c] = u;
+      const vu16x16 q = broadcast64(e);
+      const vu16x16 w = mullo(shuffle_bytes(q, k.tap_l), k.wl) + mullo(shuffle_bytes(q, k.tap_r), k.wr);
+      (img == 0 ? a : b)[c] = c < 3 ? srl<7>(w) + srl<2>(w) : srl<5>(w) + srl<1>(w);
     }
   }
 }
 
-/// Squared error of (v[c] - t[c]) summed over the channels: texels 0-3 (lo) and 4-7 (hi) of
-/// each block.
-template <bool kAlpha>
-inline void sq_err(const __m256i v[4], const __m256i t[4], __m256i& lo, __m256i& hi) {
-  const __m256i dr = _mm256_sub_epi16(v[0], t[0]), dg = _mm256_sub_epi16(v[1], t[1]),
-                db = _mm256_sub_epi16(v[2], t[2]);
-  __m256i da = _mm256_setzero_si256();
-  if constexpr (kAlpha) da = _mm256_sub_epi16(v[3], t[3]);
-  const __m256i rg0 = _mm256_unpacklo_epi16(dr, dg), rg1 = _mm256_unpackhi_epi16(dr, dg);
-  const __m256i ba0 = _mm256_unpacklo_epi16(db, da), ba1 = _mm256_unpackhi_epi16(db, da);
-  lo = _mm256_add_epi32(_mm256_madd_epi16(rg0, rg0), _mm256_madd_epi16(ba0, ba0));
-  hi = _mm256_add_epi32(_mm256_madd_epi16(rg1, rg1), _mm256_madd_epi16(ba1, ba1));
-}
+// sq_err, blend_err, greedy_weight, ab_weight: modulation_2bpp_blends.h.
 
-/// Error of blend (a (8 - m) + b m) / 8 with per-lane weights m, lanes 0-3 and 4-7 summed.
-template <bool kAlpha>
-inline __m256i blend_err(const Consts& k, const __m256i a[4], const __m256i b[4],
-                         const __m256i t[4], __m256i m) {
-  constexpr int nch = kAlpha ? 4 : 3;
-  const __m256i im = _mm256_sub_epi16(k.k8, m);
-  __m256i v[4];
-  for (int c = 0; c < nch; ++c) v[c] = _mm256_srli_epi16(add16(mul16(a[c], im), mul16(b[c], m)), 3);
-  __m256i lo, hi;
-  sq_err<kAlpha>(v, t, lo, hi);
-  return _mm256_add_epi32(lo, hi);
-}
-
-/// Map byte -> weight of its greedy code (0, 3, 5, 8) and of its A/B choice (0 or 8).
-inline __m256i greedy_weight(const Consts& k, __m256i bytes) {
-  const __m256i c = _mm256_and_si256(bytes, k.k3);
-  return _mm256_sub_epi16(mul16(c, k.k3), _mm256_srli_epi16(c, 1));
-}
-inline __m256i ab_weight(const Consts& k, __m256i bytes) {
-  const __m256i f = _mm256_and_si256(bytes, k.k4);
-  return add16(f, f);
-}
-
-inline __m256i key(__m256i e, int rank) {
-  return _mm256_or_si256(_mm256_slli_epi32(e, 2), _mm256_set1_epi32(rank));
-}
+inline vint8 key(vint8 e, int rank) { return sll<2>(e) | vint8(rank); }
 
 template <bool kAlpha>
 void pass1(const Mod2RowAvx2& r) {
   const Consts k;
-  const __m256i one = _mm256_set1_epi32(1), three = _mm256_set1_epi32(3);
+  const vint8 one(1), three(3);
   for (int bx = 0; bx < r.nbx; bx += 2) {
-    __m256i acc_err = _mm256_setzero_si256(), acc_bits = _mm256_setzero_si256();
+    vint8 acc_err, acc_bits;
     for (int j = 0; j < 4; ++j) {
-      __m256i a[4], b[4], t[4], v3[4], v5[4];
+      vu16x16 a[4], b[4], t[4], v3[4], v5[4];
       load_row<kAlpha>(k, r, bx, j, a, b, t);
       for (int c = 0; c < (kAlpha ? 4 : 3); ++c) {
-        v3[c] = _mm256_srli_epi16(add16(mul16(a[c], k.k5), mul16(b[c], k.k3)), 3);
-        v5[c] = _mm256_srli_epi16(add16(mul16(a[c], k.k3), mul16(b[c], k.k5)), 3);
+        v3[c] = srl<3>(mullo(a[c], k.k5) + mullo(b[c], k.k3));
+        v5[c] = srl<3>(mullo(a[c], k.k3) + mullo(b[c], k.k5));
       }
-      __m256i e0[2], e3[2], e5[2], e8[2];
+      vint8 e0[2], e3[2], e5[2], e8[2];
       sq_err<kAlpha>(a, t, e0[0], e0[1]);
       sq_err<kAlpha>(v3, t, e3[0], e3[1]);
       sq_err<kAlpha>(v5, t, e5[0], e5[1]);
       sq_err<kAlpha>(b, t, e8[0], e8[1]);
-      __m256i code[2], bit[2];
+      vint8 code[2], bit[2];
       for (int h = 0; h < 2; ++h) {
         // First minimum via (error * 4 + rank), as the scalar scan.
-        __m256i q = _mm256_slli_epi32(e0[h], 2);
-        q = _mm256_min_epi32(q, key(e3[h], 1));
-        q = _mm256_min_epi32(q, key(e5[h], 2));
-        q = _mm256_min_epi32(q, key(e8[h], 3));
-        code[h] = _mm256_and_si256(q, three);
-        const __m256i q0 = _mm256_min_epi32(
-            _mm256_slli_epi32(e0[h], 1), _mm256_or_si256(_mm256_slli_epi32(e8[h], 1), one));
-        bit[h] = _mm256_and_si256(q0, one);
-        acc_err = _mm256_add_epi32(acc_err, _mm256_srli_epi32(q0, 1));
+        vint8 q = sll<2>(e0[h]);
+        q = min(q, key(e3[h], 1));
+        q = min(q, key(e5[h], 2));
+        q = min(q, key(e8[h], 3));
+        code[h] = q & three;
+        const vint8 q0 = min(sll<1>(e0[h]), sll<1>(e8[h]) | one);
+        bit[h] = q0 & one;
+        acc_err += srl<1>(q0);
       }
-      const __m256i bytes =
-          _mm256_packs_epi32(_mm256_or_si256(code[0], _mm256_slli_epi32(bit[0], 2)),
-                             _mm256_or_si256(code[1], _mm256_slli_epi32(bit[1], 2)));
+      const vu16x16 bytes = narrow16(code[0] | sll<2>(bit[0]), code[1] | sll<2>(bit[1]));
       store_u8x16(bytes, r.out[j] + std::size_t(bx) * 8);
       // Row j's 8 bits into byte j (the baseline's byte shift: each sum is below 256).
-      const __m256i bits = _mm256_madd_epi16(_mm256_packs_epi32(bit[0], bit[1]), k.lanebit);
-      acc_bits = _mm256_add_epi32(acc_bits, _mm256_sll_epi32(bits, _mm_cvtsi32_si128(8 * j)));
+      acc_bits += sll_bytes(madd(narrow16(bit[0], bit[1]), k.lanebit), j);
     }
     hsum2(acc_err, r.err0[bx], r.err0[bx + 1]);
     hsum2(acc_bits, r.mod[bx], r.mod[bx + 1]);
@@ -223,33 +163,33 @@ void pass2(const Mod2RowAvx2& r) {
   const Consts k;
   for (int bx = 0; bx < r.nbx; bx += 2) {
     const std::size_t x0 = std::size_t(bx) * 8;
-    __m256i acc[3] = {_mm256_setzero_si256(), _mm256_setzero_si256(), _mm256_setzero_si256()};
-    __m256i c0[4], c12[4], cab[4];
+    vint8 acc[3];
+    vu16x16 c0[4], c12[4], cab[4];
     for (int j = 0; j < 4; ++j) {
       const std::uint8_t* cur = r.in[j + 1] + x0;
-      const __m256i bc = load_u8x16(cur), bl = load_u8x16(cur - 1), br = load_u8x16(cur + 1),
-                    bu = load_u8x16(r.in[j] + x0), bd = load_u8x16(r.in[j + 2] + x0);
-      const __m256i cg = greedy_weight(k, bc), lg = greedy_weight(k, bl),
+      const vu16x16 bc = load_u8x16_u16(cur), bl = load_u8x16_u16(cur - 1),
+                    br = load_u8x16_u16(cur + 1), bu = load_u8x16_u16(r.in[j] + x0),
+                    bd = load_u8x16_u16(r.in[j + 2] + x0);
+      const vu16x16 cg = greedy_weight(k, bc), lg = greedy_weight(k, bl),
                     rg = greedy_weight(k, br), ug = greedy_weight(k, bu),
                     dg = greedy_weight(k, bd);
-      const __m256i ca = ab_weight(k, bc), la = ab_weight(k, bl), ra = ab_weight(k, br),
+      const vu16x16 ca = ab_weight(k, bc), la = ab_weight(k, bl), ra = ab_weight(k, br),
                     ua = ab_weight(k, bu), da = ab_weight(k, bd);
       cab[j] = ca;
       c0[j] = select(k.c0[j], ca, cg);
       c12[j] = select(k.c12[j], ca, cg);
-      const __m256i l0 = select(k.l0[j], la, lg), u0 = select(k.u0[j], ua, ug);
-      const __m256i l12 = select(k.l12[j], la, lg), r12 = select(k.r12[j], ra, rg),
+      const vu16x16 l0 = select(k.l0[j], la, lg), u0 = select(k.u0[j], ua, ug);
+      const vu16x16 l12 = select(k.l12[j], la, lg), r12 = select(k.r12[j], ra, rg),
                     u12 = select(k.u12[j], ua, ug), d12 = select(k.d12[j], da, dg);
-      const __m256i ev = k.even[j & 1];
-      const __m256i m0 =
-          select(ev, c0[j], _mm256_srli_epi16(add16(add16(add16(u0, dg), add16(l0, rg)), k.k2), 2));
-      const __m256i m1 = select(ev, c12[j], _mm256_srli_epi16(add16(add16(l12, r12), k.k1), 1));
-      const __m256i m2 = select(ev, c12[j], _mm256_srli_epi16(add16(add16(u12, d12), k.k1), 1));
-      __m256i a[4], b[4], t[4];
+      const vu16x16 ev = k.even[j & 1];
+      const vu16x16 m0 = select(ev, c0[j], srl<2>(((u0 + dg) + (l0 + rg)) + k.k2));
+      const vu16x16 m1 = select(ev, c12[j], srl<1>((l12 + r12) + k.k1));
+      const vu16x16 m2 = select(ev, c12[j], srl<1>((u12 + d12) + k.k1));
+      vu16x16 a[4], b[4], t[4];
       load_row<kAlpha>(k, r, bx, j, a, b, t);
-      acc[0] = _mm256_add_epi32(acc[0], blend_err<kAlpha>(k, a, b, t, m0));
-      acc[1] = _mm256_add_epi32(acc[1], blend_err<kAlpha>(k, a, b, t, m1));
-      acc[2] = _mm256_add_epi32(acc[2], blend_err<kAlpha>(k, a, b, t, m2));
+      acc[0] += blend_err<kAlpha>(k, a, b, t, m0);
+      acc[1] += blend_err<kAlpha>(k, a, b, t, m1);
+      acc[2] += blend_err<kAlpha>(k, a, b, t, m2);
     }
     std::uint32_t e[3][2];
     for (int v = 0; v < 3; ++v) hsum2(acc[v], e[v][0], e[v][1]);
@@ -266,7 +206,7 @@ void pass2(const Mod2RowAvx2& r) {
       }
       if (variant < 0) {
         r.mode[bi] = 0;  // r.mod[bi]: the mode-0 bits from pass 1
-        for (int j = 0; j < 4; ++j) store_half(cab[j], h, r.out[j] + xh);
+        for (int j = 0; j < 4; ++j) store_u8x8(h ? high(cab[j]) : low(cab[j]), r.out[j] + xh);
         continue;
       }
       // Stored values as modulation_2bpp.cpp's pass 2 (modulation_2bpp_bits.h).
@@ -274,7 +214,10 @@ void pass2(const Mod2RowAvx2& r) {
       const std::uint8_t* row2 = r.in[3] + xh;
       r.mode[bi] = 1;
       r.mod[bi] = bits;
-      for (int j = 0; j < 4; ++j) store_half(variant == 0 ? c0[j] : c12[j], h, r.out[j] + xh);
+      for (int j = 0; j < 4; ++j) {
+        const vu16x16 m = variant == 0 ? c0[j] : c12[j];
+        store_u8x8(h ? high(m) : low(m), r.out[j] + xh);
+      }
       if (variant == 0) r.out[2][xh + 4] = (row2[4] & 2) ? 5 : 0;
     }
   }
@@ -286,7 +229,7 @@ inline int variant_of(std::uint32_t bits) { return (bits & 1) ? ((bits & (1u << 
 template <bool kAlpha>
 std::uint64_t pass3(const Mod2RowAvx2& r) {
   const Consts k;
-  const __m256i lo_half = _mm256_setr_epi64x(-1, -1, 0, 0);
+  const vu16x16 lo_half(vu16x8(u16{0xffff}), vu16x8());
   std::uint64_t total = 0;
   for (int bx = 0; bx < r.nbx; bx += 2) {
     const bool m0 = r.mode[bx] != 0, m1 = r.mode[bx + 1] != 0;
@@ -300,30 +243,27 @@ std::uint64_t pass3(const Mod2RowAvx2& r) {
     if (v0 < 0) v0 = v1;
     if (v1 < 0) v1 = v0;
     const std::size_t x0 = std::size_t(bx) * 8;
-    __m256i acc = _mm256_setzero_si256();
+    vint8 acc;
     for (int j = 0; j < 4; ++j) {
       const std::uint8_t* cur = r.in[j + 1] + x0;
-      const __m256i wc = load_u8x16(cur);
+      const vu16x16 wc = load_u8x16_u16(cur);
       const auto interp_of = [&](int variant) {
         if (variant == 0) {
-          return _mm256_srli_epi16(
-              add16(add16(add16(load_u8x16(cur - 1), load_u8x16(cur + 1)),
-                          add16(load_u8x16(r.in[j] + x0), load_u8x16(r.in[j + 2] + x0))),
-                    k.k2),
-              2);
+          return srl<2>(((load_u8x16_u16(cur - 1) + load_u8x16_u16(cur + 1)) +
+                         (load_u8x16_u16(r.in[j] + x0) + load_u8x16_u16(r.in[j + 2] + x0))) +
+                        k.k2);
         }
         if (variant == 1) {
-          return _mm256_srli_epi16(add16(add16(load_u8x16(cur - 1), load_u8x16(cur + 1)), k.k1), 1);
+          return srl<1>((load_u8x16_u16(cur - 1) + load_u8x16_u16(cur + 1)) + k.k1);
         }
-        return _mm256_srli_epi16(
-            add16(add16(load_u8x16(r.in[j] + x0), load_u8x16(r.in[j + 2] + x0)), k.k1), 1);
+        return srl<1>((load_u8x16_u16(r.in[j] + x0) + load_u8x16_u16(r.in[j + 2] + x0)) + k.k1);
       };
-      const __m256i interp =
+      const vu16x16 interp =
           v0 == v1 ? interp_of(v0) : select(lo_half, interp_of(v0), interp_of(v1));
-      const __m256i m = select(k.even[j & 1], wc, interp);
-      __m256i a[4], b[4], t[4];
+      const vu16x16 m = select(k.even[j & 1], wc, interp);
+      vu16x16 a[4], b[4], t[4];
       load_row<kAlpha>(k, r, bx, j, a, b, t);
-      acc = _mm256_add_epi32(acc, blend_err<kAlpha>(k, a, b, t, m));
+      acc += blend_err<kAlpha>(k, a, b, t, m);
     }
     std::uint32_t e0, e1;
     hsum2(acc, e0, e1);

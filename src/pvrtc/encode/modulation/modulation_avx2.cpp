@@ -1,13 +1,14 @@
-// modulation_avx2.cpp — the 4 bpp brute-force modulation kernel of modulation_kernel.h on
-// AVX2: four blocks (16 texels a row) a step instead of two, the same operations lane for
-// lane, so the same bits and errors (ties to the earlier candidate included).
+// modulation_avx2.cpp — the 4 bpp brute-force modulation kernel of modulation_kernel.h over the
+// SIMD wrapper's 8-lane types (core/simd_wide.h): four blocks (16 texels a row) a step instead
+// of two, the same operations lane for lane, so the same bits and errors (ties to the earlier
+// candidate included).
 //
-// Compiled with -mavx2 (src/CMakeLists.txt) and called only after the run-time CPU check in
-// modulation.cpp. So that no AVX2 code can stand in for baseline code elsewhere, this file
-// includes no header with inline functions or templates of external linkage (avx2_common.h's
-// helpers have internal linkage; not simd.h,
-// modulation_kernel.h or the standard containers) and keeps its helpers in an anonymous
-// namespace; it exports `block_row_errors_avx2` only.
+// Compiled with -mavx2 (src/CMakeLists.txt), which gives the wrapper its AVX2 backend, and
+// called only after the run-time CPU check in modulation.cpp. So that no AVX2 code can stand
+// in for baseline code elsewhere, the wrapper's functions compiled here live in their own
+// inline namespace (simd_int.h); otherwise this file includes no header with inline functions
+// or templates of external linkage (not modulation_kernel.h or the standard containers) and
+// keeps its helpers in an anonymous namespace; it exports `block_row_errors_avx2` only.
 #include "pvrtc/encode/modulation/modulation_avx2.h"
 
 #if defined(TESSERA_HAVE_AVX2_KERNELS) && !defined(__AVX2__)
@@ -16,95 +17,88 @@
 
 #if defined(__AVX2__)
 
-#include <immintrin.h>
-
 #include <cstring>
 
-#include "pvrtc/encode/avx2_common.h"
+#include "core/simd.h"
 
 namespace tessera::pvrtc::detail {
 
 namespace {
 
-/// Lanes: 16-bit values of texels 0-7 (low 128 bits) and 8-15 (high); the 32-bit sums that
-/// come from them hold texels 0-3 and 8-11 (`lo`: blocks 0 and 2) or 4-7 and 12-15 (`hi`:
-/// blocks 1 and 3).
+using namespace simd;
+using u16 = std::uint16_t;
+
+/// Lanes: 16-bit values of texels 0-7 (low half) and 8-15 (high); the 32-bit sums that come
+/// from them hold texels 0-3 and 8-11 (`lo`: blocks 0 and 2) or 4-7 and 12-15 (`hi`: blocks 1
+/// and 3).
 
 /// Sum of squares of (dr, dg, db, da) per texel.
-inline void sq4(__m256i dr, __m256i dg, __m256i db, __m256i da, __m256i& lo, __m256i& hi) {
-  const __m256i rg0 = _mm256_unpacklo_epi16(dr, dg), rg1 = _mm256_unpackhi_epi16(dr, dg);
-  const __m256i ba0 = _mm256_unpacklo_epi16(db, da), ba1 = _mm256_unpackhi_epi16(db, da);
-  lo = _mm256_add_epi32(_mm256_madd_epi16(rg0, rg0), _mm256_madd_epi16(ba0, ba0));
-  hi = _mm256_add_epi32(_mm256_madd_epi16(rg1, rg1), _mm256_madd_epi16(ba1, ba1));
+inline void sq4(vu16x16 dr, vu16x16 dg, vu16x16 db, vu16x16 da, vint8& lo, vint8& hi) {
+  const vu16x16 rg0 = zip_lo(dr, dg), rg1 = zip_hi(dr, dg);
+  const vu16x16 ba0 = zip_lo(db, da), ba1 = zip_hi(db, da);
+  lo = madd(rg0, rg0) + madd(ba0, ba0);
+  hi = madd(rg1, rg1) + madd(ba1, ba1);
 }
 
 /// ((a * ka + b * kb) >> 3) - t, 16-bit lanes: the decoder's blend of weights kb / 8.
-inline __m256i blend8(__m256i a, __m256i b, __m256i ka, __m256i kb, __m256i t) {
-  const __m256i s = _mm256_add_epi16(_mm256_mullo_epi16(a, ka), _mm256_mullo_epi16(b, kb));
-  return _mm256_sub_epi16(_mm256_srli_epi16(s, 3), t);
+inline vu16x16 blend8(vu16x16 a, vu16x16 b, vu16x16 ka, vu16x16 kb, vu16x16 t) {
+  return srl<3>(mullo(a, ka) + mullo(b, kb)) - t;
 }
 
 /// The candidate's key: error * 4 + rank (the minimum keeps the earliest of equal errors).
-inline __m256i key(__m256i e, int rank) {
-  return _mm256_or_si256(_mm256_slli_epi32(e, 2), _mm256_set1_epi32(rank));
-}
+inline vint8 key(vint8 e, int rank) { return sll<2>(e) | vint8(rank); }
 
 /// Scores blocks bx .. bx + 3 (texel rows from `t`, 64 bytes each) into out[0..3].
 template <bool kAlpha, bool kExtra>
 inline void block_quad_errors(const std::uint16_t* const v[4], const std::uint8_t* const t[4],
                               std::size_t vstride, int bx, BlockModAvx2 out[4]) {
   constexpr int nch = kAlpha ? 4 : 3;
-  // Bilinear taps (as simd::taps8, twice): from p[0..5], left = p0 p0 p1 p1 p1 p1 p2 p2 |
-  // p2 p2 p3 p3 p3 p3 p4 p4 and right = the same indices + 1, as byte shuffles.
-  const __m256i tap_left = _mm256_setr_epi8(0, 1, 0, 1, 2, 3, 2, 3, 2, 3, 2, 3, 4, 5, 4, 5,  //
-                                            4, 5, 4, 5, 6, 7, 6, 7, 6, 7, 6, 7, 8, 9, 8, 9);
-  const __m256i tap_right = _mm256_setr_epi8(2, 3, 2, 3, 4, 5, 4, 5, 4, 5, 4, 5, 6, 7, 6, 7,  //
-                                             6, 7, 6, 7, 8, 9, 8, 9, 8, 9, 8, 9, 10, 11, 10, 11);
-  const __m256i w_left = _mm256_setr_epi16(2, 1, 4, 3, 2, 1, 4, 3, 2, 1, 4, 3, 2, 1, 4, 3);
-  const __m256i w_right = _mm256_setr_epi16(2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1);
-  const __m256i k3 = _mm256_set1_epi16(3), k5 = _mm256_set1_epi16(5);
-  const __m256i three = _mm256_set1_epi32(3), zero = _mm256_setzero_si256();
-  __m256i err0[2], bits0[2], err1[2], bits1[2], err1p[2], bits1p[2];
-  for (int h = 0; h < 2; ++h) {
-    err0[h] = bits0[h] = err1[h] = bits1[h] = err1p[h] = bits1p[h] = zero;
-  }
-  __m256i clear = zero;  // 16-bit lanes: all ones where some row's target alpha < 128
+  // Bilinear taps (as simd::taps8, once per half): from p[0..5], left = p0 p0 p1 p1 p1 p1 p2
+  // p2 | p2 p2 p3 p3 p3 p3 p4 p4 and right = the same indices + 1, as byte shuffles (byte
+  // pairs 2k, 2k + 1 of p[0..7] in both halves).
+  static constexpr u16 kTapLeft[16] = {0x100, 0x100, 0x302, 0x302, 0x302, 0x302, 0x504, 0x504,
+                                       0x504, 0x504, 0x706, 0x706, 0x706, 0x706, 0x908, 0x908};
+  static constexpr u16 kTapRight[16] = {0x302, 0x302, 0x504, 0x504, 0x504, 0x504, 0x706, 0x706,
+                                        0x706, 0x706, 0x908, 0x908, 0x908, 0x908, 0xb0a, 0xb0a};
+  static constexpr u16 kWLeft[16] = {2, 1, 4, 3, 2, 1, 4, 3, 2, 1, 4, 3, 2, 1, 4, 3};
+  static constexpr u16 kWRight[16] = {2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1};
+  const vu16x16 tap_left = load_u16x16(kTapLeft), tap_right = load_u16x16(kTapRight);
+  const vu16x16 w_left = load_u16x16(kWLeft), w_right = load_u16x16(kWRight);
+  const vu16x16 k3(u16{3}), k5(u16{5}), k128(u16{128}), zero;
+  const vint8 three(3);
+  vint8 err0[2], bits0[2], err1[2], bits1[2], err1p[2], bits1p[2];
+  vu16x16 clear;  // all ones where some row's target alpha < 128
   for (int j = 0; j < 4; ++j) {
-    __m256i tv[4];
-    load_channels(t[j], tv);
-    __m256i d0[4], d3[4], d5[4], d8[4], d4[4];
+    vu16x16 tv[4];
+    load_planes(t[j], tv);
+    vu16x16 d0[4], d3[4], d5[4], d8[4], d4[4];
     for (int c = 0; c < nch; ++c) {
-      __m256i up[2];
+      vu16x16 up[2];
       for (int img = 0; img < 2; ++img) {
-        const std::uint16_t* p = v[j] + std::size_t(img * 4 + c) * vstride + std::size_t(bx);
-        const __m256i x =
-            _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)));
-        const __m256i L = _mm256_shuffle_epi8(x, tap_left), R = _mm256_shuffle_epi8(x, tap_right);
-        const __m256i w =
-            _mm256_add_epi16(_mm256_mullo_epi16(L, w_left), _mm256_mullo_epi16(R, w_right));
-        up[img] = c < 3 ? _mm256_add_epi16(_mm256_srli_epi16(w, 6), _mm256_srli_epi16(w, 1))
-                        : _mm256_add_epi16(_mm256_srli_epi16(w, 4), w);
+        const vu16x8 p = load_u16x8(v[j] + std::size_t(img * 4 + c) * vstride + std::size_t(bx));
+        const vu16x16 x(p, p);
+        const vu16x16 w = mullo(shuffle_bytes(x, tap_left), w_left) +
+                          mullo(shuffle_bytes(x, tap_right), w_right);
+        up[img] = c < 3 ? srl<6>(w) + srl<1>(w) : srl<4>(w) + w;
       }
-      const __m256i a = up[0], b = up[1], tc = tv[c];
-      d0[c] = _mm256_sub_epi16(a, tc);
-      d8[c] = _mm256_sub_epi16(b, tc);
+      const vu16x16 a = up[0], b = up[1], tc = tv[c];
+      d0[c] = a - tc;
+      d8[c] = b - tc;
       d3[c] = blend8(a, b, k5, k3, tc);
       d5[c] = blend8(a, b, k3, k5, tc);
-      if constexpr (kExtra) {
-        d4[c] = _mm256_sub_epi16(_mm256_srli_epi16(_mm256_add_epi16(a, b), 1), tc);
-      }
+      if constexpr (kExtra) d4[c] = srl<1>(a + b) - tc;
     }
     if constexpr (!kAlpha) {
       d0[3] = d3[3] = d5[3] = d8[3] = d4[3] = zero;
     } else {
-      clear = _mm256_or_si256(clear, _mm256_cmpgt_epi16(_mm256_set1_epi16(128), tv[3]));
+      clear = clear | cmpgt_s16(k128, tv[3]);
     }
-    __m256i e0[2], e3[2], e5[2], e8[2];
+    vint8 e0[2], e3[2], e5[2], e8[2];
     sq4(d0[0], d0[1], d0[2], d0[3], e0[0], e0[1]);
     sq4(d3[0], d3[1], d3[2], d3[3], e3[0], e3[1]);
     sq4(d5[0], d5[1], d5[2], d5[3], e5[0], e5[1]);
     sq4(d8[0], d8[1], d8[2], d8[3], e8[0], e8[1]);
-    __m256i e4[2], e4p[2];
+    vint8 e4[2], e4p[2];
     if constexpr (kExtra) {
       sq4(d4[0], d4[1], d4[2], d4[3], e4[0], e4[1]);
       if constexpr (kAlpha) {
@@ -115,42 +109,37 @@ inline void block_quad_errors(const std::uint16_t* const v[4], const std::uint8_
         e4p[1] = e4[1];
       }
     }
-    const __m128i row_shift = _mm_cvtsi32_si128(8 * j);
     for (int h = 0; h < 2; ++h) {
       // Mode 0: codes 0..3 are weights 0, 3, 5, 8.
-      __m256i k = _mm256_slli_epi32(e0[h], 2);
-      k = _mm256_min_epi32(k, key(e3[h], 1));
-      k = _mm256_min_epi32(k, key(e5[h], 2));
-      k = _mm256_min_epi32(k, key(e8[h], 3));
-      err0[h] = _mm256_add_epi32(err0[h], _mm256_srli_epi32(k, 2));
-      bits0[h] = _mm256_or_si256(bits0[h], _mm256_sll_epi32(_mm256_and_si256(k, three), row_shift));
+      vint8 k = sll<2>(e0[h]);
+      k = min(k, key(e3[h], 1));
+      k = min(k, key(e5[h], 2));
+      k = min(k, key(e8[h], 3));
+      err0[h] += srl<2>(k);
+      bits0[h] = bits0[h] | sll_bytes(k & three, j);
       if constexpr (kExtra) {
         // Mode 1 ranks 0, 1, 2, 3 = codes 0 (weight 0), 1 (4), 3 (8), 2 (4, punch-through):
         // code = rank ^ (rank >> 1).
-        __m256i k1 = _mm256_slli_epi32(e0[h], 2);
-        k1 = _mm256_min_epi32(k1, key(e4[h], 1));
-        k1 = _mm256_min_epi32(k1, key(e8[h], 2));
-        const __m256i k1p = _mm256_min_epi32(k1, key(e4p[h], 3));
-        const __m256i r1 = _mm256_and_si256(k1, three), r1p = _mm256_and_si256(k1p, three);
-        err1[h] = _mm256_add_epi32(err1[h], _mm256_srli_epi32(k1, 2));
-        bits1[h] = _mm256_or_si256(
-            bits1[h], _mm256_sll_epi32(_mm256_xor_si256(r1, _mm256_srli_epi32(r1, 1)), row_shift));
-        err1p[h] = _mm256_add_epi32(err1p[h], _mm256_srli_epi32(k1p, 2));
-        bits1p[h] = _mm256_or_si256(
-            bits1p[h],
-            _mm256_sll_epi32(_mm256_xor_si256(r1p, _mm256_srli_epi32(r1p, 1)), row_shift));
+        vint8 k1 = sll<2>(e0[h]);
+        k1 = min(k1, key(e4[h], 1));
+        k1 = min(k1, key(e8[h], 2));
+        const vint8 k1p = min(k1, key(e4p[h], 3));
+        const vint8 r1 = k1 & three, r1p = k1p & three;
+        err1[h] += srl<2>(k1);
+        bits1[h] = bits1[h] | sll_bytes(r1 ^ srl<1>(r1), j);
+        err1p[h] += srl<2>(k1p);
+        bits1p[h] = bits1p[h] | sll_bytes(r1p ^ srl<1>(r1p), j);
       }
     }
   }
   // Per block: the sum of its 4 column errors and its 4 column codes (byte j: row j) at bit
-  // 2 * column, as `modk::finish`. The column codes do not overlap, so OR = add: two
-  // horizontal adds give lanes (err B0, err B1, bits B0, bits B1 | the same for B2, B3).
-  const __m256i col_shift = _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6);
-  auto fold = [&](const __m256i e[2], const __m256i b[2], std::uint32_t r[8]) {
-    const __m256i es = _mm256_hadd_epi32(e[0], e[1]);
-    const __m256i bs =
-        _mm256_hadd_epi32(_mm256_sllv_epi32(b[0], col_shift), _mm256_sllv_epi32(b[1], col_shift));
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(r), _mm256_hadd_epi32(es, bs));
+  // 2 * column, as `modk::finish`. The column codes do not overlap, so OR = add: two pair sums
+  // (per half) give lanes (err B0, err B1, bits B0, bits B1 | the same for B2, B3).
+  const vint8 col_shift(vint4(0, 2, 4, 6), vint4(0, 2, 4, 6));
+  auto fold = [&](const vint8 e[2], const vint8 b[2], std::uint32_t r[8]) {
+    const vint8 es = pair_sums(e[0], e[1]);
+    const vint8 bs = pair_sums(sllv(b[0], col_shift), sllv(b[1], col_shift));
+    store8(pair_sums(es, bs), reinterpret_cast<std::int32_t*>(r));
   };
   std::uint32_t r0[8], r1[8] = {}, r1p[8] = {};
   fold(err0, bits0, r0);
@@ -158,7 +147,7 @@ inline void block_quad_errors(const std::uint16_t* const v[4], const std::uint8_
     fold(err1, bits1, r1);
     fold(err1p, bits1p, r1p);
   }
-  const std::uint32_t clear_bytes = std::uint32_t(_mm256_movemask_epi8(clear));
+  const std::uint32_t clear_bytes = movemask_bytes(clear);
   for (int q = 0; q < 4; ++q) {
     const int e = (q >> 1) * 4 + (q & 1), b = e + 2;
     out[q].bits0 = r0[b];

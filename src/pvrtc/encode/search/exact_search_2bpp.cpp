@@ -30,6 +30,7 @@
 
 #include "core/simd.h"
 #include "pvrtc/encode/encode_internal.h"
+#include "pvrtc/encode/search/exact_search_2bpp_blends.h"
 #include "pvrtc/encode/search/exact_search_moves.h"
 #include "pvrtc/encode/search/exact_search_window.h"
 
@@ -71,34 +72,10 @@ std::uint32_t window_error(const Window2& w, const Rgba5& a, const Rgba5& b, std
       std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a),
       std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a)};
   const vu16x8 av = simd::load_u16x8(a16), bv = simd::load_u16x8(b16);
-  alignas(16) static constexpr std::uint16_t kAlphaLanes[8] = {0, 0, 0, 0xffff, 0, 0, 0, 0xffff};
-  const vu16x8 alpha = simd::load_u16x8(kAlphaLanes);
   const vu16x8 aw = simd::load_u16x8(w.weight16);
-  struct PairSq {
-    vint4 e0, e8, e3, e5, e4;
-  };
+  using PairSq = BlendSq2<vu16x8>;
   // Squared errors of texels 2p, 2p + 1, lanes (texel 0 RG, texel 0 BA, texel 1 RG, BA).
-  auto pair_sq = [&](int p, PairSq& o) {
-    const vu16x8 own = simd::load_u16x8(&w.own[2 * p][0]);
-    const vu16x8 sa = simd::load_u16x8(&w.rest_a[2 * p][0]) + simd::mullo(own, av);
-    const vu16x8 sb = simd::load_u16x8(&w.rest_b[2 * p][0]) + simd::mullo(own, bv);
-    vu16x8 ua = simd::srl<7>(sa) + simd::srl<2>(sa), ub = simd::srl<7>(sb) + simd::srl<2>(sb);
-    if constexpr (kAlpha) {
-      ua = simd::select(alpha, simd::srl<5>(sa) + simd::srl<1>(sa), ua);
-      ub = simd::select(alpha, simd::srl<5>(sb) + simd::srl<1>(sb), ub);
-    }
-    const vu16x8 t = simd::load_u16x8(&w.t[2 * p][0]);
-    auto err = [&](vu16x8 d) {
-      return kAlpha ? simd::madd(d, simd::mullo(d, aw)) : simd::madd(d, d);
-    };
-    // m = 3, 5 from 4 (A + B) +- (A - B) (the u16 lanes wrap in between; exact), 4 from A + B.
-    const vu16x8 sum = ua + ub, sum2 = sum + sum, sum4 = sum2 + sum2, diff = ua - ub;
-    o.e0 = err(ua - t);
-    o.e8 = err(ub - t);
-    o.e3 = err(simd::srl<3>(sum4 + diff) - t);
-    o.e5 = err(simd::srl<3>(sum4 - diff) - t);
-    o.e4 = err(simd::srl<1>(sum) - t);
-  };
+  auto pair_sq = [&](int p, PairSq& o) { blend_sq2<kAlpha>(w, 2 * p, av, bv, aw, o); };
   // Minimum over the blends in float lanes (errors far below 2^24 are exact; excluded blends
   // stay >= 2^24; e0 and e8 are never excluded), as local_error_simd_t in exact_search_kernel.h.
   vint4 acc;

@@ -33,8 +33,10 @@
 #include <cstring>
 
 #include "core/simd.h"
+#include "core/simd_dispatch.h"
 #include "pvrtc/encode/encode_internal.h"
 #include "pvrtc/encode/start/dilation_kernels.h"
+#include "pvrtc/encode/start/dilation_rows.h"
 
 namespace tessera::pvrtc::detail {
 
@@ -65,12 +67,6 @@ struct Ring {
   }
 };
 
-/// Sets the wrap-around pad elements next to a row of w elements (x = -1 and x = w).
-template <typename T>
-inline void wrap_pad(T* row, int w) {
-  row[-1] = row[w - 1];
-  row[w] = row[0];
-}
 
 // Plane layout of one extremum image: colour planes 0..nplanes-1, then the filled flag (0/1).
 struct Band {
@@ -105,26 +101,10 @@ void intensity_row(const std::uint8_t* src, int w, bool alpha, float* out) {
   wrap_pad(out, w);
 }
 
-// Labels of the row whose intensity is `i1` (neighbours i0 above, i2 below).
+// Labels of the row whose intensity is `i1` (neighbours i0 above, i2 below): dilation_rows.h.
 void label_row(const float* i0, const float* i1, const float* i2, int w, float* mx, float* mn,
                std::uint8_t* out) {
-  using namespace simd;
-  for (int x = 0; x < w; x += 4) {
-    const vf4 a = loadf4(i0 + x), c = loadf4(i1 + x), d = loadf4(i2 + x);
-    storef4(max(max(a, c), d), mx + x);
-    storef4(min(min(a, c), d), mn + x);
-  }
-  wrap_pad(mx, w);
-  wrap_pad(mn, w);
-  const vint4 one(1), two(2), ones(-1);
-  for (int x = 0; x < w; x += 4) {
-    const vf4 v = loadf4(i1 + x);
-    const vf4 m = max(max(loadf4(mx + x - 1), loadf4(mx + x)), loadf4(mx + x + 1));
-    const vf4 n = min(min(loadf4(mn + x - 1), loadf4(mn + x)), loadf4(mn + x + 1));
-    // A texel whose 3x3 neighbourhood has one intensity (m == n) is neither.
-    const vint4 l = (cmpeq(m, v) & one) | (cmpeq(n, v) & two);
-    store_u8x4(l & (cmpeq(m, n) ^ ones), out + x);
-  }
+  label_row_t<simd::vf4>(i0, i1, i2, w, mx, mn, out);
 }
 
 // Initial planes of both extremum images for one row: the texel's colour where labelled.
@@ -224,21 +204,7 @@ void dilate_row(int w, const std::uint8_t* const (*in)[5], std::uint8_t* const* 
 // block row's top row, which starts the sums).
 void accumulate_row(int planes, int w, const std::uint8_t* row, std::size_t stride,
                     std::uint16_t* acc, std::size_t astride, bool first) {
-  using namespace simd;
-  for (int k = 0; k < planes; ++k) {
-    const std::uint8_t* p = row + std::size_t(k) * stride;
-    std::uint16_t* a = acc + std::size_t(k) * astride;
-    for (int x = 0; x < w; x += 16) {
-      const vu8x16 v = load_u8x16(p + x);
-      if (first) {
-        store_u16x8(widen_lo(v), a + x);
-        store_u16x8(widen_hi(v), a + x + 8);
-      } else {
-        store_u16x8(load_u16x8(a + x) + widen_lo(v), a + x);
-        store_u16x8(load_u16x8(a + x + 8) + widen_hi(v), a + x + 8);
-      }
-    }
-  }
+  accumulate_row_t<simd::vu8x16>(planes, w, row, stride, acc, astride, first);
 }
 
 void init_rows_base(int np, const std::uint8_t* lab, const std::uint8_t* src, int w,
@@ -527,11 +493,7 @@ const DilationKernels* dilation_kernels_baseline() { return &kBaseline; }
 
 bool avx2_kernels_usable() {
 #if defined(TESSERA_HAVE_AVX2_KERNELS)
-  static const bool usable = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") != 0;
-  }();
-  return usable;
+  return simd::cpu_has_avx2();
 #else
   return false;
 #endif

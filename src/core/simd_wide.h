@@ -1,0 +1,650 @@
+// simd_wide.h — part of the SIMD wrapper (include "core/simd.h", which documents the whole set):
+// the 8-lane types, twice the width of the 4-lane ones, for the kernels built with -mavx2 and
+// dispatched at run time:
+//   vint8    eight int32 lanes        (vint4 x 2)
+//   vf8      eight float lanes        (vf4 x 2)
+//   vu16x16  sixteen uint16 lanes     (vu16x8 x 2)
+//   vu8x32   thirty-two uint8 lanes   (vu8x16 x 2)
+// Every type is two 128-bit halves, low(x) and high(x), and most operations are the 4-lane
+// operation of the same name applied to each half (AVX2's own rule for its unpacks, packs,
+// horizontal adds and byte shuffles): `pair_sums`, `even_lanes`, `zip_lo`, `madd`, `narrow16`,
+// `f2p23_plus_lo` ... A few cross the halves, and say so: loads and stores (in lane order),
+// `narrow`, `widen_lo/hi`, `permute64`, `swap_halves`, `sum_lanes`, `movemask_bytes`,
+// `load_planes`.
+//
+// Backends: AVX2 (x86-64 translation units compiled with -mavx2; one instruction where AVX2 has
+// one), and everywhere else a portable one made of two 4-lane halves of whatever backend
+// simd_int.h chose (SSE2, NEON or scalar), spelling out lane by lane what has no 4-lane
+// counterpart. Both give the same bits for every operation (tests/simd_wide_test.cpp runs the
+// same reference checks on each), so a kernel written over these types gives the same results
+// whichever it is compiled with. The AVX2 backend is selected only where the compiler targets
+// AVX2, and such translation units get their own inline namespace (simd_int.h).
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+#include "core/simd_float.h"
+#include "core/simd_int.h"
+#include "core/simd_packed.h"
+
+#if defined(TESSERA_SIMD_SSE2) && defined(__AVX2__)
+#define TESSERA_SIMD_AVX2 1
+#include <immintrin.h>
+#endif
+
+namespace tessera::simd {
+inline namespace TESSERA_SIMD_ISA {
+
+#if defined(TESSERA_SIMD_AVX2)
+
+struct vint8 {
+  __m256i v;
+  vint8() : v(_mm256_setzero_si256()) {}
+  explicit vint8(__m256i x) : v(x) {}
+  explicit vint8(std::int32_t a) : v(_mm256_set1_epi32(a)) {}
+  /// Lanes 0-3 from `lo`, 4-7 from `hi`.
+  vint8(vint4 lo, vint4 hi) : v(_mm256_set_m128i(hi.v, lo.v)) {}
+};
+struct vf8 {
+  __m256 v;
+  vf8() : v(_mm256_setzero_ps()) {}
+  explicit vf8(__m256 x) : v(x) {}
+  explicit vf8(float a) : v(_mm256_set1_ps(a)) {}
+  vf8(vf4 lo, vf4 hi) : v(_mm256_set_m128(hi.v, lo.v)) {}
+};
+struct vu16x16 {
+  __m256i v;
+  vu16x16() : v(_mm256_setzero_si256()) {}
+  explicit vu16x16(__m256i x) : v(x) {}
+  explicit vu16x16(std::uint16_t a) : v(_mm256_set1_epi16(static_cast<short>(a))) {}
+  vu16x16(vu16x8 lo, vu16x8 hi) : v(_mm256_set_m128i(hi.v, lo.v)) {}
+};
+struct vu8x32 {
+  __m256i v;
+  vu8x32() : v(_mm256_setzero_si256()) {}
+  explicit vu8x32(__m256i x) : v(x) {}
+  explicit vu8x32(std::uint8_t a) : v(_mm256_set1_epi8(static_cast<char>(a))) {}
+  vu8x32(vu8x16 lo, vu8x16 hi) : v(_mm256_set_m128i(hi.v, lo.v)) {}
+};
+
+// ---- halves, loads, stores ----
+inline vint4 low(vint8 a) { return vint4(_mm256_castsi256_si128(a.v)); }
+inline vint4 high(vint8 a) { return vint4(_mm256_extracti128_si256(a.v, 1)); }
+inline vf4 low(vf8 a) { return vf4(_mm256_castps256_ps128(a.v)); }
+inline vf4 high(vf8 a) { return vf4(_mm256_extractf128_ps(a.v, 1)); }
+inline vu16x8 low(vu16x16 a) { return vu16x8(_mm256_castsi256_si128(a.v)); }
+inline vu16x8 high(vu16x16 a) { return vu16x8(_mm256_extracti128_si256(a.v, 1)); }
+inline vu8x16 low(vu8x32 a) { return vu8x16(_mm256_castsi256_si128(a.v)); }
+inline vu8x16 high(vu8x32 a) { return vu8x16(_mm256_extracti128_si256(a.v, 1)); }
+
+namespace detail {
+inline __m256i load256(const void* p) { return _mm256_loadu_si256(static_cast<const __m256i*>(p)); }
+inline void store256(void* p, __m256i v) { _mm256_storeu_si256(static_cast<__m256i*>(p), v); }
+}  // namespace detail
+inline vint8 load8(const std::int32_t* p) { return vint8(detail::load256(p)); }
+inline void store8(vint8 a, std::int32_t* p) { detail::store256(p, a.v); }
+inline vf8 loadf8(const float* p) { return vf8(_mm256_loadu_ps(p)); }
+inline void storef8(vf8 a, float* p) { _mm256_storeu_ps(p, a.v); }
+inline vu16x16 load_u16x16(const std::uint16_t* p) { return vu16x16(detail::load256(p)); }
+inline void store_u16x16(vu16x16 a, std::uint16_t* p) { detail::store256(p, a.v); }
+inline vu8x32 load_u8x32(const std::uint8_t* p) { return vu8x32(detail::load256(p)); }
+inline void store_u8x32(vu8x32 a, std::uint8_t* p) { detail::store256(p, a.v); }
+/// Eight 4-byte texels as eight 32-bit lanes (little-endian).
+inline vint8 load_texels8(const std::uint8_t* p) { return vint8(detail::load256(p)); }
+/// Sixteen bytes zero-extended to 16-bit lanes, in order.
+inline vu16x16 load_u8x16_u16(const std::uint8_t* p) {
+  return vu16x16(_mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))));
+}
+/// Every 64-bit unit = `x`: lanes 4k .. 4k + 3 = the four 16-bit parts of x, low first.
+inline vu16x16 broadcast64(std::uint64_t x) {
+  return vu16x16(_mm256_set1_epi64x(static_cast<long long>(x)));
+}
+/// The eight lanes as bytes, each clamped to 0..255 (as store_u8x4 twice).
+inline void store_u8x8(vint8 a, std::uint8_t* p) {
+  const __m128i p16 = _mm_packs_epi32(_mm256_castsi256_si128(a.v), _mm256_extracti128_si256(a.v, 1));
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(p), _mm_packus_epi16(p16, p16));
+}
+/// The sixteen lanes as bytes, each read as int16 and clamped to 0..255 (as store_u8x8 twice).
+inline void store_u8x16(vu16x16 a, std::uint8_t* p) {
+  const __m256i b = _mm256_permute4x64_epi64(_mm256_packus_epi16(a.v, a.v), 0xd8);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm256_castsi256_si128(b));
+}
+
+// ---- vint8 ----
+inline vint8 operator+(vint8 a, vint8 b) { return vint8(_mm256_add_epi32(a.v, b.v)); }
+inline vint8 operator-(vint8 a, vint8 b) { return vint8(_mm256_sub_epi32(a.v, b.v)); }
+inline vint8& operator+=(vint8& a, vint8 b) { return a = a + b; }
+inline vint8 operator*(vint8 a, vint8 b) { return vint8(_mm256_mullo_epi32(a.v, b.v)); }
+inline vint8 operator&(vint8 a, vint8 b) { return vint8(_mm256_and_si256(a.v, b.v)); }
+inline vint8 operator|(vint8 a, vint8 b) { return vint8(_mm256_or_si256(a.v, b.v)); }
+inline vint8 operator^(vint8 a, vint8 b) { return vint8(_mm256_xor_si256(a.v, b.v)); }
+inline vint8 andnot(vint8 a, vint8 b) { return vint8(_mm256_andnot_si256(a.v, b.v)); }
+template <int N>
+inline vint8 sra(vint8 a) {
+  return vint8(_mm256_srai_epi32(a.v, N));
+}
+template <int N>
+inline vint8 srl(vint8 a) {
+  return vint8(_mm256_srli_epi32(a.v, N));
+}
+template <int N>
+inline vint8 sll(vint8 a) {
+  return vint8(_mm256_slli_epi32(a.v, N));
+}
+/// Lane i shifted left by lane i of `n` (as unsigned; 32 or more gives 0).
+inline vint8 sllv(vint8 a, vint8 n) { return vint8(_mm256_sllv_epi32(a.v, n.v)); }
+/// Every lane shifted left by the run-time count `n` (0 .. 31; 32 or more gives 0).
+inline vint8 sll(vint8 a, int n) { return vint8(_mm256_sll_epi32(a.v, _mm_cvtsi32_si128(n))); }
+inline vint8 cmpeq(vint8 a, vint8 b) { return vint8(_mm256_cmpeq_epi32(a.v, b.v)); }
+inline vint8 cmpgt(vint8 a, vint8 b) { return vint8(_mm256_cmpgt_epi32(a.v, b.v)); }
+inline vint8 cmplt(vint8 a, vint8 b) { return vint8(_mm256_cmpgt_epi32(b.v, a.v)); }
+/// Bitwise, as vint4's select.
+inline vint8 select(vint8 mask, vint8 a, vint8 b) {
+  return vint8(_mm256_or_si256(_mm256_and_si256(mask.v, a.v), _mm256_andnot_si256(mask.v, b.v)));
+}
+inline vint8 min(vint8 a, vint8 b) { return vint8(_mm256_min_epi32(a.v, b.v)); }
+inline vint8 max(vint8 a, vint8 b) { return vint8(_mm256_max_epi32(a.v, b.v)); }
+/// Per half, as vint4: lanes (1, 0, 3, 2), and (2, 3, 0, 1).
+inline vint8 swap_pairs(vint8 a) { return vint8(_mm256_shuffle_epi32(a.v, 0xb1)); }
+inline vint8 swap_pairs64(vint8 a) { return vint8(_mm256_shuffle_epi32(a.v, 0x4e)); }
+/// The halves exchanged: lanes (4 .. 7, 0 .. 3).
+inline vint8 swap_halves(vint8 a) { return vint8(_mm256_permute2x128_si256(a.v, a.v, 0x01)); }
+/// Per half, as vint4: (a0 + a1, a2 + a3, b0 + b1, b2 + b3) and (a0, a2, b0, b2).
+inline vint8 pair_sums(vint8 a, vint8 b) { return vint8(_mm256_hadd_epi32(a.v, b.v)); }
+inline vint8 even_lanes(vint8 a, vint8 b) {
+  return vint8(_mm256_castps_si256(
+      _mm256_shuffle_ps(_mm256_castsi256_ps(a.v), _mm256_castsi256_ps(b.v), 0x88)));
+}
+/// 64-bit units (lane pairs) picked across the halves: unit k of the result = unit Ik of `a`.
+template <int I0, int I1, int I2, int I3>
+inline vint8 permute64(vint8 a) {
+  return vint8(_mm256_permute4x64_epi64(a.v, I0 | I1 << 2 | I2 << 4 | I3 << 6));
+}
+/// Sum of the eight lanes (wrapping).
+inline std::int32_t sum_lanes(vint8 a) {
+  __m128i s = _mm_add_epi32(_mm256_castsi256_si128(a.v), _mm256_extracti128_si256(a.v, 1));
+  s = _mm_add_epi32(s, _mm_shuffle_epi32(s, 0x4e));
+  s = _mm_add_epi32(s, _mm_shuffle_epi32(s, 0xb1));
+  return _mm_cvtsi128_si32(s);
+}
+/// floor(x / 255) of each lane read as uint32: (x * ceil(2^39 / 255)) >> 39, which is exact for
+/// every uint32 x (the compilers' own division by 255), on the even and the odd lanes.
+inline vint8 div255_u32(vint8 a) {
+  const __m256i k = _mm256_set1_epi32(static_cast<int>(0x80808081u));
+  const __m256i even = _mm256_srli_epi64(_mm256_mul_epu32(a.v, k), 39);
+  const __m256i odd = _mm256_srli_epi64(_mm256_mul_epu32(_mm256_srli_epi64(a.v, 32), k), 7);
+  return vint8(_mm256_blend_epi32(even, odd, 0xaa));
+}
+
+// ---- vf8 (the rules of vf4, lane for lane) ----
+inline vf8 operator+(vf8 a, vf8 b) { return vf8(_mm256_add_ps(a.v, b.v)); }
+inline vf8 operator-(vf8 a, vf8 b) { return vf8(_mm256_sub_ps(a.v, b.v)); }
+inline vf8 operator*(vf8 a, vf8 b) { return vf8(_mm256_mul_ps(a.v, b.v)); }
+inline vf8 max(vf8 a, vf8 b) { return vf8(_mm256_max_ps(a.v, b.v)); }
+inline vf8 min(vf8 a, vf8 b) { return vf8(_mm256_min_ps(a.v, b.v)); }
+inline vint8 cmpeq(vf8 a, vf8 b) { return vint8(_mm256_castps_si256(_mm256_cmp_ps(a.v, b.v, _CMP_EQ_OQ))); }
+inline vint8 cmplt(vf8 a, vf8 b) { return vint8(_mm256_castps_si256(_mm256_cmp_ps(a.v, b.v, _CMP_LT_OS))); }
+inline vf8 to_float(vint8 a) { return vf8(_mm256_cvtepi32_ps(a.v)); }
+inline vint8 to_int_trunc(vf8 a) { return vint8(_mm256_cvttps_epi32(a.v)); }
+
+// ---- vu16x16 ----
+inline vu16x16 operator+(vu16x16 a, vu16x16 b) { return vu16x16(_mm256_add_epi16(a.v, b.v)); }
+inline vu16x16 operator-(vu16x16 a, vu16x16 b) { return vu16x16(_mm256_sub_epi16(a.v, b.v)); }
+inline vu16x16 operator&(vu16x16 a, vu16x16 b) { return vu16x16(_mm256_and_si256(a.v, b.v)); }
+inline vu16x16 operator|(vu16x16 a, vu16x16 b) { return vu16x16(_mm256_or_si256(a.v, b.v)); }
+inline vu16x16 mullo(vu16x16 a, vu16x16 b) { return vu16x16(_mm256_mullo_epi16(a.v, b.v)); }
+inline vu16x16 mulhi(vu16x16 a, vu16x16 b) { return vu16x16(_mm256_mulhi_epu16(a.v, b.v)); }
+template <int N>
+inline vu16x16 srl(vu16x16 a) {
+  return vu16x16(_mm256_srli_epi16(a.v, N));
+}
+inline vu16x16 cmpeq(vu16x16 a, vu16x16 b) { return vu16x16(_mm256_cmpeq_epi16(a.v, b.v)); }
+/// Lanes read as int16.
+inline vu16x16 cmpgt_s16(vu16x16 a, vu16x16 b) { return vu16x16(_mm256_cmpgt_epi16(a.v, b.v)); }
+/// Lanes of `a` where `mask` is all ones, else of `b`; every mask lane all ones or zero.
+inline vu16x16 select(vu16x16 mask, vu16x16 a, vu16x16 b) {
+  return vu16x16(_mm256_blendv_epi8(b.v, a.v, mask.v));
+}
+/// Lanes 3, 7, 11 and 15 (the alpha lanes of four RGBA texels) from `a`, the rest from `rgb`.
+inline vu16x16 select_alpha(vu16x16 rgb, vu16x16 a) {
+  return vu16x16(_mm256_blend_epi16(rgb.v, a.v, 0x88));
+}
+/// Per half, as vu16x8: pmaddwd, the interleavings, and SSE2's packs_epi32 of (a, b).
+inline vint8 madd(vu16x16 a, vu16x16 b) { return vint8(_mm256_madd_epi16(a.v, b.v)); }
+inline vu16x16 zip_lo(vu16x16 a, vu16x16 b) { return vu16x16(_mm256_unpacklo_epi16(a.v, b.v)); }
+inline vu16x16 zip_hi(vu16x16 a, vu16x16 b) { return vu16x16(_mm256_unpackhi_epi16(a.v, b.v)); }
+inline vu16x16 narrow16(vint8 a, vint8 b) { return vu16x16(_mm256_packs_epi32(a.v, b.v)); }
+inline vf8 f2p23_plus_lo(vu16x16 a) {
+  return vf8(_mm256_castsi256_ps(_mm256_unpacklo_epi16(a.v, _mm256_set1_epi16(0x4b00))));
+}
+inline vf8 f2p23_plus_hi(vu16x16 a) {
+  return vf8(_mm256_castsi256_ps(_mm256_unpackhi_epi16(a.v, _mm256_set1_epi16(0x4b00))));
+}
+/// Per half, pshufb over the bytes: result byte i = byte (idx_i & 15) of the same half of
+/// `table`, or 0 where idx_i has its top bit set (bytes in little-endian order of the lanes).
+inline vu16x16 shuffle_bytes(vu16x16 table, vu16x16 idx) {
+  return vu16x16(_mm256_shuffle_epi8(table.v, idx.v));
+}
+template <int I0, int I1, int I2, int I3>
+inline vu16x16 permute64(vu16x16 a) {
+  return vu16x16(_mm256_permute4x64_epi64(a.v, I0 | I1 << 2 | I2 << 4 | I3 << 6));
+}
+/// Bit i = the top bit of byte i (little-endian order of the lanes).
+inline std::uint32_t movemask_bytes(vu16x16 a) {
+  return static_cast<std::uint32_t>(_mm256_movemask_epi8(a.v));
+}
+/// The 32 lanes of (a, b) as bytes in order, each read as int16 and clamped to 0..255.
+inline vu8x32 narrow(vu16x16 a, vu16x16 b) {
+  return vu8x32(_mm256_permute4x64_epi64(_mm256_packus_epi16(a.v, b.v), 0xd8));
+}
+
+// ---- vu8x32 ----
+inline vu8x32 operator+(vu8x32 a, vu8x32 b) { return vu8x32(_mm256_add_epi8(a.v, b.v)); }
+inline vu8x32 operator&(vu8x32 a, vu8x32 b) { return vu8x32(_mm256_and_si256(a.v, b.v)); }
+inline vu8x32 operator|(vu8x32 a, vu8x32 b) { return vu8x32(_mm256_or_si256(a.v, b.v)); }
+inline vu8x32 andnot(vu8x32 a, vu8x32 b) { return vu8x32(_mm256_andnot_si256(a.v, b.v)); }
+inline vu8x32 cmpeq(vu8x32 a, vu8x32 b) { return vu8x32(_mm256_cmpeq_epi8(a.v, b.v)); }
+/// Every mask lane all ones or zero.
+inline vu8x32 select(vu8x32 mask, vu8x32 a, vu8x32 b) {
+  return vu8x32(_mm256_blendv_epi8(b.v, a.v, mask.v));
+}
+/// Whether some lane has its top bit set.
+inline bool any(vu8x32 mask) { return _mm256_movemask_epi8(mask.v) != 0; }
+/// Lanes 0-15 (widen_lo) or 16-31 (widen_hi) zero-extended to 16 bits, in order.
+inline vu16x16 widen_lo(vu8x32 a) { return vu16x16(_mm256_cvtepu8_epi16(_mm256_castsi256_si128(a.v))); }
+inline vu16x16 widen_hi(vu8x32 a) {
+  return vu16x16(_mm256_cvtepu8_epi16(_mm256_extracti128_si256(a.v, 1)));
+}
+
+// ---- RGBA8 texels to planes ----
+/// 32 RGBA8 texels at p (128 bytes) as one byte plane per channel: out[c] lane i = p[4 i + c].
+inline void load_planes(const std::uint8_t* p, vu8x32 out[4]) {
+  // Per half, 4 texels to R0..R3 G0..G3 B0..B3 A0..A3; then a dword transposition.
+  const __m256i shuf = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0,
+                                        4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
+  const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
+  __m256i v[4];
+  for (int i = 0; i < 4; ++i) v[i] = _mm256_shuffle_epi8(detail::load256(p + 32 * i), shuf);
+  const __m256i a = _mm256_unpacklo_epi32(v[0], v[1]), b = _mm256_unpackhi_epi32(v[0], v[1]),
+                c = _mm256_unpacklo_epi32(v[2], v[3]), d = _mm256_unpackhi_epi32(v[2], v[3]);
+  out[0] = vu8x32(_mm256_permutevar8x32_epi32(_mm256_unpacklo_epi64(a, c), order));
+  out[1] = vu8x32(_mm256_permutevar8x32_epi32(_mm256_unpackhi_epi64(a, c), order));
+  out[2] = vu8x32(_mm256_permutevar8x32_epi32(_mm256_unpacklo_epi64(b, d), order));
+  out[3] = vu8x32(_mm256_permutevar8x32_epi32(_mm256_unpackhi_epi64(b, d), order));
+}
+/// 16 RGBA8 texels at p (64 bytes) as one 16-bit plane per channel: out[c] lane i = p[4 i + c].
+inline void load_planes(const std::uint8_t* p, vu16x16 out[4]) {
+  const __m128i* q = reinterpret_cast<const __m128i*>(p);
+  // a: texels 0-3 | 8-11, b: texels 4-7 | 12-15; then bytes RRRR GGGG BBBB AAAA per half.
+  const __m256i a = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128(q)),
+                                            _mm_loadu_si128(q + 2), 1);
+  const __m256i b = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128(q + 1)),
+                                            _mm_loadu_si128(q + 3), 1);
+  const __m256i planar = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15,  //
+                                          0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
+  const __m256i pa = _mm256_shuffle_epi8(a, planar), pb = _mm256_shuffle_epi8(b, planar);
+  const __m256i rg = _mm256_unpacklo_epi32(pa, pb), ba = _mm256_unpackhi_epi32(pa, pb);
+  const __m256i zero = _mm256_setzero_si256();
+  out[0] = vu16x16(_mm256_unpacklo_epi8(rg, zero));
+  out[1] = vu16x16(_mm256_unpackhi_epi8(rg, zero));
+  out[2] = vu16x16(_mm256_unpacklo_epi8(ba, zero));
+  out[3] = vu16x16(_mm256_unpackhi_epi8(ba, zero));
+}
+
+#else  // portable backend: two 4-lane halves
+
+struct vint8 {
+  vint4 lo, hi;
+  vint8() = default;
+  explicit vint8(std::int32_t a) : lo(a), hi(a) {}
+  vint8(vint4 l, vint4 h) : lo(l), hi(h) {}
+};
+struct vf8 {
+  vf4 lo, hi;
+  vf8() = default;
+  explicit vf8(float a) : lo(a), hi(a) {}
+  vf8(vf4 l, vf4 h) : lo(l), hi(h) {}
+};
+struct vu16x16 {
+  vu16x8 lo, hi;
+  vu16x16() = default;
+  explicit vu16x16(std::uint16_t a) : lo(a), hi(a) {}
+  vu16x16(vu16x8 l, vu16x8 h) : lo(l), hi(h) {}
+};
+struct vu8x32 {
+  vu8x16 lo, hi;
+  vu8x32() = default;
+  explicit vu8x32(std::uint8_t a) : lo(a), hi(a) {}
+  vu8x32(vu8x16 l, vu8x16 h) : lo(l), hi(h) {}
+};
+
+inline vint4 low(vint8 a) { return a.lo; }
+inline vint4 high(vint8 a) { return a.hi; }
+inline vf4 low(vf8 a) { return a.lo; }
+inline vf4 high(vf8 a) { return a.hi; }
+inline vu16x8 low(vu16x16 a) { return a.lo; }
+inline vu16x8 high(vu16x16 a) { return a.hi; }
+inline vu8x16 low(vu8x32 a) { return a.lo; }
+inline vu8x16 high(vu8x32 a) { return a.hi; }
+
+// Lane arrays, for what has no 4-lane counterpart (spelled out lane by lane).
+namespace detail {
+struct I32x8 {
+  std::int32_t l[8];
+};
+struct U16x16 {
+  std::uint16_t l[16];
+};
+inline I32x8 lanes(vint8 a) {
+  I32x8 r;
+  store4(a.lo, r.l);
+  store4(a.hi, r.l + 4);
+  return r;
+}
+inline vint8 from_lanes(const I32x8& r) { return vint8(load4(r.l), load4(r.l + 4)); }
+inline U16x16 lanes(vu16x16 a) {
+  U16x16 r;
+  store_u16x8(a.lo, r.l);
+  store_u16x8(a.hi, r.l + 8);
+  return r;
+}
+inline vu16x16 from_lanes(const U16x16& r) {
+  return vu16x16(load_u16x8(r.l), load_u16x8(r.l + 8));
+}
+}  // namespace detail
+
+inline vint8 load8(const std::int32_t* p) { return vint8(load4(p), load4(p + 4)); }
+inline void store8(vint8 a, std::int32_t* p) {
+  store4(a.lo, p);
+  store4(a.hi, p + 4);
+}
+inline vf8 loadf8(const float* p) { return vf8(loadf4(p), loadf4(p + 4)); }
+inline void storef8(vf8 a, float* p) {
+  storef4(a.lo, p);
+  storef4(a.hi, p + 4);
+}
+inline vu16x16 load_u16x16(const std::uint16_t* p) {
+  return vu16x16(load_u16x8(p), load_u16x8(p + 8));
+}
+inline void store_u16x16(vu16x16 a, std::uint16_t* p) {
+  store_u16x8(a.lo, p);
+  store_u16x8(a.hi, p + 8);
+}
+inline vu8x32 load_u8x32(const std::uint8_t* p) { return vu8x32(load_u8x16(p), load_u8x16(p + 16)); }
+inline void store_u8x32(vu8x32 a, std::uint8_t* p) {
+  store_u8x16(a.lo, p);
+  store_u8x16(a.hi, p + 16);
+}
+inline vint8 load_texels8(const std::uint8_t* p) {
+  return vint8(load_texels4(p), load_texels4(p + 16));
+}
+inline vu16x16 load_u8x16_u16(const std::uint8_t* p) {
+  return vu16x16(load_u8x8(p), load_u8x8(p + 8));
+}
+inline vu16x16 broadcast64(std::uint64_t x) {
+  detail::U16x16 r;
+  for (int i = 0; i < 16; ++i) r.l[i] = std::uint16_t(x >> (16 * (i & 3)));
+  return detail::from_lanes(r);
+}
+inline void store_u8x8(vint8 a, std::uint8_t* p) {
+  store_u8x4(a.lo, p);
+  store_u8x4(a.hi, p + 4);
+}
+inline void store_u8x16(vu16x16 a, std::uint8_t* p) {
+  store_u8x8(a.lo, p);
+  store_u8x8(a.hi, p + 8);
+}
+
+#define TESSERA_SIMD_HALVES2(T, op)                                        \
+  inline T op(T a, T b) { return T(op(a.lo, b.lo), op(a.hi, b.hi)); }
+#define TESSERA_SIMD_HALVES2R(R, T, op)                                    \
+  inline R op(T a, T b) { return R(op(a.lo, b.lo), op(a.hi, b.hi)); }
+
+// ---- vint8 ----
+TESSERA_SIMD_HALVES2(vint8, operator+)
+TESSERA_SIMD_HALVES2(vint8, operator-)
+TESSERA_SIMD_HALVES2(vint8, operator*)
+TESSERA_SIMD_HALVES2(vint8, operator&)
+TESSERA_SIMD_HALVES2(vint8, operator|)
+TESSERA_SIMD_HALVES2(vint8, operator^)
+TESSERA_SIMD_HALVES2(vint8, andnot)
+TESSERA_SIMD_HALVES2(vint8, cmpeq)
+TESSERA_SIMD_HALVES2(vint8, cmpgt)
+TESSERA_SIMD_HALVES2(vint8, cmplt)
+TESSERA_SIMD_HALVES2(vint8, min)
+TESSERA_SIMD_HALVES2(vint8, pair_sums)
+TESSERA_SIMD_HALVES2(vint8, even_lanes)
+inline vint8& operator+=(vint8& a, vint8 b) { return a = a + b; }
+template <int N>
+inline vint8 sra(vint8 a) {
+  return vint8(sra<N>(a.lo), sra<N>(a.hi));
+}
+template <int N>
+inline vint8 srl(vint8 a) {
+  return vint8(srl<N>(a.lo), srl<N>(a.hi));
+}
+template <int N>
+inline vint8 sll(vint8 a) {
+  return vint8(sll<N>(a.lo), sll<N>(a.hi));
+}
+inline vint8 sllv(vint8 a, vint8 n) {
+  detail::I32x8 x = detail::lanes(a);
+  const detail::I32x8 s = detail::lanes(n);
+  for (int i = 0; i < 8; ++i) {
+    const std::uint32_t k = std::uint32_t(s.l[i]);
+    x.l[i] = k < 32 ? std::int32_t(std::uint32_t(x.l[i]) << k) : 0;
+  }
+  return detail::from_lanes(x);
+}
+inline vint8 sll(vint8 a, int n) {
+  detail::I32x8 x = detail::lanes(a);
+  for (auto& v : x.l) v = n >= 0 && n < 32 ? std::int32_t(std::uint32_t(v) << n) : 0;
+  return detail::from_lanes(x);
+}
+inline vint8 select(vint8 mask, vint8 a, vint8 b) {
+  return vint8(select(mask.lo, a.lo, b.lo), select(mask.hi, a.hi, b.hi));
+}
+inline vint8 max(vint8 a, vint8 b) { return select(cmpgt(a, b), a, b); }
+inline vint8 swap_pairs(vint8 a) { return vint8(swap_pairs(a.lo), swap_pairs(a.hi)); }
+inline vint8 swap_pairs64(vint8 a) {
+  const detail::I32x8 x = detail::lanes(a);
+  return detail::from_lanes(detail::I32x8{{x.l[2], x.l[3], x.l[0], x.l[1], x.l[6], x.l[7], x.l[4], x.l[5]}});
+}
+inline vint8 swap_halves(vint8 a) { return vint8(a.hi, a.lo); }
+template <int I0, int I1, int I2, int I3>
+inline vint8 permute64(vint8 a) {
+  const detail::I32x8 x = detail::lanes(a);
+  detail::I32x8 r;
+  const int idx[4] = {I0, I1, I2, I3};
+  for (int k = 0; k < 4; ++k) {
+    r.l[2 * k] = x.l[2 * idx[k]];
+    r.l[2 * k + 1] = x.l[2 * idx[k] + 1];
+  }
+  return detail::from_lanes(r);
+}
+inline std::int32_t sum_lanes(vint8 a) {
+  return std::int32_t(std::uint32_t(sum_lanes(a.lo)) + std::uint32_t(sum_lanes(a.hi)));
+}
+inline vint8 div255_u32(vint8 a) {
+  detail::I32x8 x = detail::lanes(a);
+  for (auto& v : x.l) v = std::int32_t(std::uint32_t(v) / 255u);
+  return detail::from_lanes(x);
+}
+
+// ---- vf8 ----
+TESSERA_SIMD_HALVES2(vf8, operator+)
+TESSERA_SIMD_HALVES2(vf8, operator-)
+TESSERA_SIMD_HALVES2(vf8, operator*)
+TESSERA_SIMD_HALVES2(vf8, max)
+TESSERA_SIMD_HALVES2(vf8, min)
+TESSERA_SIMD_HALVES2R(vint8, vf8, cmpeq)
+TESSERA_SIMD_HALVES2R(vint8, vf8, cmplt)
+inline vf8 to_float(vint8 a) { return vf8(to_float(a.lo), to_float(a.hi)); }
+inline vint8 to_int_trunc(vf8 a) { return vint8(to_int_trunc(a.lo), to_int_trunc(a.hi)); }
+
+// ---- vu16x16 ----
+TESSERA_SIMD_HALVES2(vu16x16, operator+)
+TESSERA_SIMD_HALVES2(vu16x16, operator-)
+TESSERA_SIMD_HALVES2(vu16x16, operator&)
+TESSERA_SIMD_HALVES2(vu16x16, operator|)
+TESSERA_SIMD_HALVES2(vu16x16, mullo)
+TESSERA_SIMD_HALVES2(vu16x16, mulhi)
+TESSERA_SIMD_HALVES2(vu16x16, cmpeq)
+TESSERA_SIMD_HALVES2(vu16x16, zip_lo)
+TESSERA_SIMD_HALVES2(vu16x16, zip_hi)
+TESSERA_SIMD_HALVES2R(vint8, vu16x16, madd)
+TESSERA_SIMD_HALVES2R(vu16x16, vint8, narrow16)
+template <int N>
+inline vu16x16 srl(vu16x16 a) {
+  return vu16x16(srl<N>(a.lo), srl<N>(a.hi));
+}
+inline vu16x16 cmpgt_s16(vu16x16 a, vu16x16 b) {
+  const detail::U16x16 x = detail::lanes(a), y = detail::lanes(b);
+  detail::U16x16 r;
+  for (int i = 0; i < 16; ++i) r.l[i] = std::int16_t(x.l[i]) > std::int16_t(y.l[i]) ? 0xffff : 0;
+  return detail::from_lanes(r);
+}
+inline vu16x16 select(vu16x16 mask, vu16x16 a, vu16x16 b) {
+  return vu16x16(select(mask.lo, a.lo, b.lo), select(mask.hi, a.hi, b.hi));
+}
+inline vu16x16 select_alpha(vu16x16 rgb, vu16x16 a) {
+  detail::U16x16 r = detail::lanes(rgb);
+  const detail::U16x16 x = detail::lanes(a);
+  for (int i = 3; i < 16; i += 4) r.l[i] = x.l[i];
+  return detail::from_lanes(r);
+}
+inline vf8 f2p23_plus_lo(vu16x16 a) { return vf8(f2p23_plus_lo(a.lo), f2p23_plus_lo(a.hi)); }
+inline vf8 f2p23_plus_hi(vu16x16 a) { return vf8(f2p23_plus_hi(a.lo), f2p23_plus_hi(a.hi)); }
+inline vu16x16 shuffle_bytes(vu16x16 table, vu16x16 idx) {
+  std::uint8_t t[32], x[32], r[32];
+  const detail::U16x16 tl = detail::lanes(table), il = detail::lanes(idx);
+  std::memcpy(t, tl.l, 32);
+  std::memcpy(x, il.l, 32);
+  for (int i = 0; i < 32; ++i) r[i] = (x[i] & 0x80) ? 0 : t[(i & 16) | (x[i] & 15)];
+  detail::U16x16 out;
+  std::memcpy(out.l, r, 32);
+  return detail::from_lanes(out);
+}
+template <int I0, int I1, int I2, int I3>
+inline vu16x16 permute64(vu16x16 a) {
+  const detail::U16x16 x = detail::lanes(a);
+  detail::U16x16 r;
+  const int idx[4] = {I0, I1, I2, I3};
+  for (int k = 0; k < 4; ++k) {
+    for (int j = 0; j < 4; ++j) r.l[4 * k + j] = x.l[4 * idx[k] + j];
+  }
+  return detail::from_lanes(r);
+}
+inline std::uint32_t movemask_bytes(vu16x16 a) {
+  const detail::U16x16 x = detail::lanes(a);
+  std::uint8_t b[32];
+  std::memcpy(b, x.l, 32);
+  std::uint32_t m = 0;
+  for (int i = 0; i < 32; ++i) m |= std::uint32_t(b[i] >> 7) << i;
+  return m;
+}
+inline vu8x32 narrow(vu16x16 a, vu16x16 b) {
+  return vu8x32(narrow(a.lo, a.hi), narrow(b.lo, b.hi));
+}
+
+// ---- vu8x32 ----
+TESSERA_SIMD_HALVES2(vu8x32, operator+)
+TESSERA_SIMD_HALVES2(vu8x32, operator&)
+TESSERA_SIMD_HALVES2(vu8x32, operator|)
+TESSERA_SIMD_HALVES2(vu8x32, andnot)
+TESSERA_SIMD_HALVES2(vu8x32, cmpeq)
+inline vu8x32 select(vu8x32 mask, vu8x32 a, vu8x32 b) {
+  return vu8x32(select(mask.lo, a.lo, b.lo), select(mask.hi, a.hi, b.hi));
+}
+inline bool any(vu8x32 mask) { return any(mask.lo) || any(mask.hi); }
+inline vu16x16 widen_lo(vu8x32 a) { return vu16x16(widen_lo(a.lo), widen_hi(a.lo)); }
+inline vu16x16 widen_hi(vu8x32 a) { return vu16x16(widen_lo(a.hi), widen_hi(a.hi)); }
+
+#undef TESSERA_SIMD_HALVES2
+#undef TESSERA_SIMD_HALVES2R
+
+inline void load_planes(const std::uint8_t* p, vu8x32 out[4]) {
+  std::uint8_t r[4][32];
+  for (int i = 0; i < 32; ++i) {
+    for (int c = 0; c < 4; ++c) r[c][i] = p[4 * i + c];
+  }
+  for (int c = 0; c < 4; ++c) out[c] = load_u8x32(r[c]);
+}
+inline void load_planes(const std::uint8_t* p, vu16x16 out[4]) {
+  std::uint16_t r[4][16];
+  for (int i = 0; i < 16; ++i) {
+    for (int c = 0; c < 4; ++c) r[c][i] = p[4 * i + c];
+  }
+  for (int c = 0; c < 4; ++c) out[c] = load_u16x16(r[c]);
+}
+
+#endif
+
+/// Each lane shifted left by 8 * `k` bits (k = 0..3), as sll_bytes(vint4).
+inline vint8 sll_bytes(vint8 v, int k) { return sll(v, 8 * k); }
+
+// ---- width-generic names, for kernels written once over the 4- and 8-lane types ----
+/// Lanes of a vector type.
+template <class V>
+inline constexpr int kLanes = -1;  // not a wrapper type
+template <>
+inline constexpr int kLanes<vf4> = 4;
+template <>
+inline constexpr int kLanes<vf8> = 8;
+template <>
+inline constexpr int kLanes<vint4> = 4;
+template <>
+inline constexpr int kLanes<vint8> = 8;
+template <>
+inline constexpr int kLanes<vu16x8> = 8;
+template <>
+inline constexpr int kLanes<vu16x16> = 16;
+template <>
+inline constexpr int kLanes<vu8x16> = 16;
+template <>
+inline constexpr int kLanes<vu8x32> = 32;
+/// load_as<V>(p): kLanes<V> elements at p (no alignment assumed).
+template <class V>
+V load_as(const float* p);
+template <>
+inline vf4 load_as<vf4>(const float* p) {
+  return loadf4(p);
+}
+template <>
+inline vf8 load_as<vf8>(const float* p) {
+  return loadf8(p);
+}
+template <class V>
+V load_as(const std::uint16_t* p);
+template <>
+inline vu16x8 load_as<vu16x8>(const std::uint16_t* p) {
+  return load_u16x8(p);
+}
+template <>
+inline vu16x16 load_as<vu16x16>(const std::uint16_t* p) {
+  return load_u16x16(p);
+}
+template <class V>
+V load_as(const std::uint8_t* p);
+template <>
+inline vu8x16 load_as<vu8x16>(const std::uint8_t* p) {
+  return load_u8x16(p);
+}
+template <>
+inline vu8x32 load_as<vu8x32>(const std::uint8_t* p) {
+  return load_u8x32(p);
+}
+/// store(v, p): the lanes of v to p.
+inline void store(vf4 a, float* p) { storef4(a, p); }
+inline void store(vf8 a, float* p) { storef8(a, p); }
+inline void store(vu16x8 a, std::uint16_t* p) { store_u16x8(a, p); }
+inline void store(vu16x16 a, std::uint16_t* p) { store_u16x16(a, p); }
+inline void store(vu8x16 a, std::uint8_t* p) { store_u8x16(a, p); }
+inline void store(vu8x32 a, std::uint8_t* p) { store_u8x32(a, p); }
+/// The 32-bit lanes as bytes, each clamped to 0..255 (store_u8x4 / store_u8x8).
+inline void store_bytes(vint4 a, std::uint8_t* p) { store_u8x4(a, p); }
+inline void store_bytes(vint8 a, std::uint8_t* p) { store_u8x8(a, p); }
+
+}  // namespace TESSERA_SIMD_ISA
+}  // namespace tessera::simd
