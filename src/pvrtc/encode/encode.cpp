@@ -8,9 +8,7 @@
 #include <array>
 #include <atomic>
 #include <cstring>
-#include <exception>
 #include <limits>
-#include <thread>
 
 #include "core/simd.h"
 #include "pvrtc/encode/encode_internal.h"
@@ -323,49 +321,17 @@ Result<std::vector<std::uint8_t>> encode(const ImageView8& image, const EncodeOp
   // fast: the paper's intensity dilation; normal / high start the refinement from
   // principal-axis endpoints, which separate equally bright colours (see principal_axis.cpp).
   // Then reseed, least-squares refinement and the exact search, as scheduled (passes.cpp).
-  auto first = [&] {
-    steps.next(start_cost);
-    const std::uint64_t start_error = start_endpoints(s, schedule.dilation_start);
-    s.progress = steps.next(optimise_cost(schedule, options.format));
-    optimise(s, schedule, start_error);
-  };
-  auto second = [&] { optimise_alt(alt, start_endpoints(alt, true), schedule); };
-  const int threads = options.threads > 0 ? options.threads : default_thread_count();
-  if (schedule.crossover && threads >= 2) {
-    // The two encodings share nothing until the crossover, so each runs on half the threads at
-    // the same time: their passes revisit fewer and fewer blocks towards convergence, and one
-    // encoding alone keeps two threads waiting at its barriers. Every pass's result is the same
-    // for any thread count, so the bytes are too. Progress is reported from the first encoding,
-    // on the calling thread.
-    alt.threads = threads / 2;
-    s.threads = threads - alt.threads;
-    std::exception_ptr failed;
-    std::thread worker([&] {
-      try {
-        second();
-      } catch (...) {
-        failed = std::current_exception();
-      }
-    });
-    try {
-      first();
-    } catch (...) {
-      worker.join();
-      throw;
-    }
-    worker.join();
-    if (failed) std::rethrow_exception(failed);
-    s.threads = alt.threads = options.threads;
-    steps.next(kDilationStartCost + alt_cost(schedule, options.format));
-  } else {
-    first();
-    if (schedule.crossover) {
-      steps.next(kDilationStartCost);
-      alt.progress = steps.next(alt_cost(schedule, options.format));
-      second();
-    }
-  }
+  steps.next(start_cost);
+  const std::uint64_t start_error = start_endpoints(s, schedule.dilation_start);
+  s.progress = steps.next(optimise_cost(schedule, options.format));
+  optimise(s, schedule, start_error);
   if (schedule.crossover) {
+    // The two encodings share nothing until the crossover, yet one after the other on all the
+    // threads beats both at once on half of them each: every pass keeps the threads busy, and
+    // the first encoding takes longer than the second (docs/benchmarks/pvrtc_history.md).
+    steps.next(kDilationStartCost);
+    alt.progress = steps.next(alt_cost(schedule, options.format));
+    optimise_alt(alt, start_endpoints(alt, true), schedule);
     s.progress = steps.next(crossover_cost(schedule, options.format));
     optimise_crossover(s, alt, schedule);
   }
