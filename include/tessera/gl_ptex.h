@@ -15,10 +15,10 @@
 // non-quad polygons were split into subfaces by the Ptex convention (the Disney samples
 // nonquad.ptx and pentagon.ptx: an n-gon becomes n quads, see faces::ptex_face_layout). Not
 // supported: Ptex triangle-mesh files (mesh type 0, e.g. triangle.ptx: `ptex_quad_mesh` and
-// faces::FaceTextureSet::from_ptex fail with unsupported), and any non-quad polygon of the mesh that the Ptex file did not split
-// (`ptex_quad_mesh` fails naming the polygon). A triangle mesh can be used after splitting each
-// triangle into three quads (corner, edge midpoint, centre, edge midpoint; again
-// faces::ptex_face_layout) and authoring the Ptex file on that quad layout.
+// faces::FaceTextureSet::from_ptex fail with unsupported), and any non-quad polygon of the mesh
+// that the Ptex file did not split (`ptex_quad_mesh` fails naming the polygon). A triangle mesh
+// can be used after splitting each triangle into three quads (corner, edge midpoint, centre,
+// edge midpoint; again faces::ptex_face_layout) and authoring the Ptex file on that layout.
 //
 //   1. Mesh and textures (pure):
 //        faces::PolygonMesh obj = faces::load_obj_polygons("teapot.obj")
@@ -32,15 +32,17 @@
 //        flat int face   = f                      (the Ptex face id = the face-record index)
 //        vec2 uv         = (0,0), (1,0), (1,1), (0,1) at corners 0, 1, 2, 3
 //      interpolated perspective-correctly (the default). Corners must not be shared between
-//      faces (each face has its own UV square), so a mesh of F faces draws 4F vertices. The
-//      triangle split may be either diagonal: the bilinear patch is not flat, but uv is.
+//      faces (each face has its own UV square), so a mesh of F faces draws 4F vertices.
+//      Triangles (0,1,2) and (0,2,3) are the split tessera's renderers use (the other diagonal
+//      works too, but draws a non-planar face differently).
 //   4. Fragment stage (the engine's own): the preamble `tex.glsl_defines(bindings)` (the
 //      class count and the binding points) after #version, `#include "seams.glsl"` (installed
 //      in tessera_GLSL_DIR; gl::link_program resolves it, or paste the file after the
 //      defines), then
 //        vec4 s = tessera_seams_sample_discard(face, uv, dFdx(uv), dFdy(uv), true);
-//      s.rgb is the filtered linear colour without seams (Toth 2013), s.a the coverage; light
-//      it as the engine likes.
+//      with the gradients taken in uniform control flow (the lookups use them explicitly, so
+//      the per-face class switch inside is safe). s.rgb is the filtered linear colour without
+//      seams (Toth 2013), s.a the coverage; light it as the engine likes.
 //   5. Per frame, before the draw: `tex.bind(bindings)` with the binding points the engine
 //      chose (FaceTexturesBindings). It binds exactly the units and the storage-buffer index
 //      named there and nothing else (see `bind`); the engine's own textures go on other

@@ -13,9 +13,9 @@
 // (FaceTextures::glsl_defines(FaceTexturesBindings) writes these lines for the binding points an
 // engine chose; gl_ptex.h has the recipe.) Units U .. U+N-1 hold class c's GL_TEXTURE_2D_ARRAY
 // with the clamp-to-border (0,0,0,0) sampler, units V .. V+N-1 the same arrays with the
-// clamp-to-edge sampler (Clamp and the zero-coverage fallback). Both samplers are trilinear with anisotropy as uploaded
-// (FaceTexturesOptions::max_anisotropy): hardware anisotropic filtering is implementation-
-// defined, so only trilinear is expected to match the CPU sampler.
+// clamp-to-edge sampler (Clamp and the zero-coverage fallback). Both samplers are trilinear
+// with anisotropy as uploaded (FaceTexturesOptions::max_anisotropy): hardware anisotropic
+// filtering is implementation-defined, so only trilinear is expected to match the CPU sampler.
 //
 // Conventions (those of tessera and Ptex): a face's (u, v) is (0,0), (1,0), (1,1), (0,1) at its
 // vertices 0..3; edge e joins vertex e and e+1; texel row 0 is v = 0. `dx`, `dy` are the UV
