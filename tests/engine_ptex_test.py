@@ -102,6 +102,7 @@ with tempfile.TemporaryDirectory() as d:
 expect_error(run, "triangle-mesh file", sample("triangle"), 1, "triangle-mesh")
 expect_error(run, "missing file", [TEAPOT[0], TEAPOT[1] + ".missing"], 1, ".missing")
 expect_error(run, "odd size", [*TEAPOT, "--size", "33x24"], 1, "--size")
+expect_error(run, "bad fov", [*TEAPOT, "--fov", "0"], 1, "--fov")
 expect_error(run, "bad method", [*TEAPOT, "--shader-method", "traverse"], 1, "traverse")
 expect_error(run, "unknown argument", [*TEAPOT, "--bogus"], 1, "--bogus")
 expect_error(run, "no files", [], 1, "usage")

@@ -9,9 +9,11 @@
 // blocks marked "tessera": mesh and textures from the .obj and .ptx, one upload, the binding
 // points the engine chose (FaceTexturesBindings) as shader defines and as one bind per frame.
 //
-// Usage: engine_ptex MESH.obj FILE.ptx [--size WxH] [--orbit K/N] [--shader-method
+// Usage: engine_ptex MESH.obj FILE.ptx [--size WxH] [--orbit K/N] [--fov DEG] [--shader-method
 //                    discard|clamp] [--shift-px X] [--glsl DIR] [--check] [--json] [-o FILE.png]
 //   -o FILE.png       the GL image (8-bit sRGB)
+//   --orbit K/N       the camera: frame K of N of faces::face_orbit_camera (default 1/8)
+//   --fov DEG         its vertical field of view (default the orbit's 60; smaller zooms in)
 //   --check           also renders the same frame with tessera's CPU renderer
 //                     (faces::FaceRenderer: Discard, trilinear, same camera, resolution and
 //                     lighting) and prints the agreement: PSNR of the 8-bit sRGB images and the
@@ -54,7 +56,7 @@ namespace {
 struct Args {
   std::string obj, ptx, out, glsl = ENGINE_PTEX_GLSL_DIR, method = "discard";
   int w = 320, h = 240, orbit_k = 1, orbit_n = 8;
-  float shift_px = 0.0f;
+  float shift_px = 0.0f, fov = 0.0f;  // fov 0: the orbit camera's
   bool check = false, json = false;
 };
 
@@ -181,6 +183,9 @@ int main(int argc, char** argv) {
       a.method = next();
       if (a.method != "discard" && a.method != "clamp")
         return fail("--shader-method " + a.method + ": discard or clamp");
+    } else if (k == "--fov") {
+      a.fov = std::strtof(next().c_str(), nullptr);
+      if (!(a.fov > 0.0f && a.fov < 180.0f)) return fail("--fov: degrees in (0, 180)");
     } else if (k == "--shift-px") {
       a.shift_px = std::strtof(next().c_str(), nullptr);
     } else if (k == "--glsl") {
@@ -220,8 +225,8 @@ int main(int argc, char** argv) {
   tessera::faces::FaceScene scene;
   scene.name = a.obj;
   scene.mesh = *mesh;
-  const tessera::scene::Camera camera =
-      tessera::faces::face_orbit_camera(scene, a.orbit_k, a.orbit_n);
+  tessera::scene::Camera camera = tessera::faces::face_orbit_camera(scene, a.orbit_k, a.orbit_n);
+  if (a.fov > 0.0f) camera.fov_y_degrees = a.fov;
   const std::vector<tessera::Vec3> normals = tessera::faces::smooth_face_normals(scene.mesh);
   std::vector<Vertex> verts;
   std::vector<std::uint32_t> indices;
