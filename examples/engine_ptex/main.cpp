@@ -260,7 +260,7 @@ int main(int argc, char** argv) {
   auto tex = tessera::gl::FaceTextures::upload(*set, to);
   if (!tex) return fail(tex.status().message);
   tessera::gl::FaceTexturesBindings bindings;
-  bindings.border_unit = 1;  // unit 0 is the engine's
+  bindings.border_unit = 1;  // unit 0 stays free for the engine's own textures
   bindings.clamp_unit = 17;  // after at most 16 classes
   bindings.records_binding = 3;
   tessera::gl::ShaderOptions so;
