@@ -71,6 +71,13 @@ for orbit in ("0/8", "3/8"):
     check(f"orbit {orbit}: fraction <= {FRAC_MAX}", f.get("frac_001", 1) <= FRAC_MAX, f)
     check(f"orbit {orbit}: finite", f.get("non_finite") == 0, f)
 
+# The Clamp lookup reads the clamp-to-edge arrays on the engine's own clamp units (17.., not
+# seams.glsl's default right after the border units): on the teapot it is as close as Discard
+# (71.3 dB); a shader left on the default unit 16 reads no texture there and scores 24.1 dB.
+c = report(*TEAPOT, "--orbit", "0/8", "--shader-method", "clamp")
+check("clamp units: PSNR bound", (c.get("psnr_db") or 99) >= PSNR_MIN, c)
+check("clamp units: fraction bound", c.get("frac_001", 1) <= FRAC_MAX, c)
+
 # Negative control: the GL camera one pixel to the right fails both bounds.
 s = report(*TEAPOT, "--orbit", "0/8", "--shift-px", "1")
 print(f"control, shifted one pixel: PSNR {s.get('psnr_db')} dB, {s.get('frac_001')} apart")
