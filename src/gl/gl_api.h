@@ -31,6 +31,8 @@
   X(glBeginQuery, PFNGLBEGINQUERYPROC)                                       \
   X(glBindBuffer, PFNGLBINDBUFFERPROC)                                       \
   X(glBindBufferBase, PFNGLBINDBUFFERBASEPROC)                               \
+  X(glBindBufferRange, PFNGLBINDBUFFERRANGEPROC)                             \
+  X(glBindBuffersBase, PFNGLBINDBUFFERSBASEPROC)                             \
   X(glBindFramebuffer, PFNGLBINDFRAMEBUFFERPROC)                             \
   X(glBindSampler, PFNGLBINDSAMPLERPROC)                                     \
   X(glBindTexture, PFNGLBINDTEXTUREPROC)                                     \
@@ -79,7 +81,9 @@
   X(glGetError, PFNGLGETERRORPROC)                                           \
   X(glGetFloatv, PFNGLGETFLOATVPROC)                                         \
   X(glGetInteger64v, PFNGLGETINTEGER64VPROC)                                 \
+  X(glGetInteger64i_v, PFNGLGETINTEGER64I_VPROC)                             \
   X(glGetIntegerv, PFNGLGETINTEGERVPROC)                                     \
+  X(glGetIntegeri_v, PFNGLGETINTEGERI_VPROC)                                 \
   X(glGetMultisamplefv, PFNGLGETMULTISAMPLEFVPROC)                           \
   X(glGetNamedBufferSubData, PFNGLGETNAMEDBUFFERSUBDATAPROC)                 \
   X(glGetProgramInfoLog, PFNGLGETPROGRAMINFOLOGPROC)                         \

@@ -10,6 +10,7 @@
 #include "gl/gl_api.h"
 #include "tessera/faces.h"
 #include "tessera/gl_ptex.h"
+#include "tessera/ptex.h"
 
 namespace tessera::gl {
 
@@ -198,28 +199,112 @@ Result<FaceTextures> FaceTextures::upload(const faces::FaceTextureSet& set,
   return out;
 }
 
-Status FaceTextures::bind(int first_unit, int ssbo_binding, bool clamp_units) const {
-  GLint units = 0;
+Status FaceTextures::bind(const FaceTexturesBindings& b) const {
+  GLint units = 0, ssbo_bindings = 0;
   glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &units);
+  glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &ssbo_bindings);
   const int classes = class_count();
-  const int needed = first_unit + classes * (clamp_units ? 2 : 1);
-  if (first_unit < 0 || needed > units) {
-    return Status::error(ErrorCode::invalid_argument,
-                         "FaceTextures::bind: " + std::to_string(classes) +
-                             " face classes need texture units " + std::to_string(first_unit) +
-                             ".." + std::to_string(needed - 1) + ", the implementation has " +
-                             std::to_string(units));
+  const int clamp_unit = b.clamp_unit >= 0 ? b.clamp_unit : b.border_unit + classes;
+  auto range = [](int first, int n) {
+    return std::to_string(first) + ".." + std::to_string(first + n - 1);
+  };
+  auto fail = [](const std::string& msg) {
+    return Status::error(ErrorCode::invalid_argument, "FaceTextures::bind: " + msg);
+  };
+  if (b.border_unit < 0 || b.clamp_unit < -1 || b.records_binding < 0) {
+    return fail("negative binding point (border_unit " + std::to_string(b.border_unit) +
+                ", clamp_unit " + std::to_string(b.clamp_unit) + ", records_binding " +
+                std::to_string(b.records_binding) + ")");
+  }
+  const int last = std::max(b.border_unit, b.clamp ? clamp_unit : 0) + classes - 1;
+  if (last >= units) {
+    return fail(std::to_string(classes) + " face classes need texture units " +
+                range(b.border_unit, classes) +
+                (b.clamp ? " and " + range(clamp_unit, classes) : std::string()) +
+                ", the implementation has " + std::to_string(units));
+  }
+  if (b.clamp && clamp_unit < b.border_unit + classes && b.border_unit < clamp_unit + classes) {
+    return fail("border units " + range(b.border_unit, classes) + " overlap clamp units " +
+                range(clamp_unit, classes));
+  }
+  if (b.records_binding >= ssbo_bindings) {
+    return fail("records_binding " + std::to_string(b.records_binding) +
+                " exceeds GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS = " +
+                std::to_string(ssbo_bindings));
   }
   for (int c = 0; c < classes; ++c) {
-    glBindTextureUnit(GLuint(first_unit + c), array_texture(c));
-    glBindSampler(GLuint(first_unit + c), border_sampler());
-    if (clamp_units) {
-      glBindTextureUnit(GLuint(first_unit + classes + c), array_texture(c));
-      glBindSampler(GLuint(first_unit + classes + c), clamp_sampler());
+    glBindTextureUnit(GLuint(b.border_unit + c), array_texture(c));
+    glBindSampler(GLuint(b.border_unit + c), border_sampler());
+    if (b.clamp) {
+      glBindTextureUnit(GLuint(clamp_unit + c), array_texture(c));
+      glBindSampler(GLuint(clamp_unit + c), clamp_sampler());
     }
   }
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(ssbo_binding), record_buffer());
+  // The multi-bind form leaves the generic GL_SHADER_STORAGE_BUFFER binding alone.
+  const GLuint buffer = record_buffer();
+  glBindBuffersBase(GL_SHADER_STORAGE_BUFFER, GLuint(b.records_binding), 1, &buffer);
   return check_errors("FaceTextures::bind");
+}
+
+Status FaceTextures::bind(int first_unit, int ssbo_binding, bool clamp_units) const {
+  FaceTexturesBindings b;
+  b.border_unit = first_unit;
+  b.records_binding = ssbo_binding;
+  b.clamp = clamp_units;
+  return bind(b);
+}
+
+std::vector<std::string> FaceTextures::glsl_defines(const FaceTexturesBindings& b) const {
+  const int clamp_unit = b.clamp_unit >= 0 ? b.clamp_unit : b.border_unit + class_count();
+  return {"#define TESSERA_SEAMS_CLASSES " + std::to_string(class_count()),
+          "#define TESSERA_SEAMS_FIRST_UNIT " + std::to_string(b.border_unit),
+          "#define TESSERA_SEAMS_CLAMP_UNIT " + std::to_string(clamp_unit),
+          "#define TESSERA_SEAMS_FACES_BINDING " + std::to_string(b.records_binding)};
+}
+
+Result<faces::QuadMesh> ptex_quad_mesh(const faces::PolygonMesh& mesh, const ptex::PtexFile& file,
+                                       const std::string& name) {
+  if (file.mesh_type != ptex::MeshType::quad) {
+    return Status::error(ErrorCode::unsupported,
+                         name + ": a triangle-mesh Ptex file: only quad-mesh files are supported");
+  }
+  const int count = file.face_count();
+  int next = 0;  // the Ptex face of the polygon's first quad
+  for (std::size_t p = 0; p < mesh.faces.size(); ++p) {
+    const int n = int(mesh.faces[p].size());
+    const int quads = n == 4 ? 1 : n;
+    const bool split = n != 4;
+    if (next + quads > count) {
+      return Status::error(ErrorCode::size_mismatch,
+                           name + ": the mesh's polygons make more than the Ptex file's " +
+                               std::to_string(count) + " faces (polygon " + std::to_string(p) +
+                               ")");
+    }
+    for (int k = 0; k < quads; ++k) {
+      const bool sub = file.faces[std::size_t(next + k)].subface;
+      if (split && !sub) {
+        return Status::error(
+            ErrorCode::unsupported,
+            name + ": polygon " + std::to_string(p) + " has " + std::to_string(n) +
+                " vertices, but Ptex face " + std::to_string(next + k) +
+                " is not a subface: only quads, and n-gons the Ptex file split into subfaces, "
+                "are supported");
+      }
+      if (!split && sub) {
+        return Status::error(ErrorCode::size_mismatch,
+                             name + ": polygon " + std::to_string(p) +
+                                 " is a quad, but Ptex face " + std::to_string(next) +
+                                 " is a subface of a split polygon");
+      }
+    }
+    next += quads;
+  }
+  if (next != count) {
+    return Status::error(ErrorCode::size_mismatch,
+                         name + ": the mesh's polygons make " + std::to_string(next) +
+                             " Ptex faces, the file has " + std::to_string(count));
+  }
+  return faces::ptex_face_layout(mesh);
 }
 
 }  // namespace tessera::gl

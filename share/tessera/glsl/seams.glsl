@@ -7,13 +7,15 @@
 // OpenGL setup (host side: `FaceTextures::upload(set)`, then `bind(first_unit, ssbo_binding)`):
 //   #define TESSERA_SEAMS_CLASSES N         // face classes = FaceTextures::class_count(), 1..16
 //   #define TESSERA_SEAMS_FIRST_UNIT U      // optional, default 0 (bind's first_unit)
+//   #define TESSERA_SEAMS_CLAMP_UNIT V      // optional, default U + N
 //   #define TESSERA_SEAMS_FACES_BINDING B   // optional, default 0 (bind's ssbo_binding)
 //   #include "seams.glsl"                   // tessera::gl::link_program resolves it
-// Units U .. U+N-1 hold class c's GL_TEXTURE_2D_ARRAY with the clamp-to-border (0,0,0,0)
-// sampler, units U+N .. U+2N-1 the same arrays with the clamp-to-edge sampler (Clamp and the
-// zero-coverage fallback). Both samplers are trilinear with anisotropy as uploaded
-// (FaceTexturesOptions::max_anisotropy): hardware anisotropic filtering is implementation-
-// defined, so only trilinear is expected to match the CPU sampler.
+// (FaceTextures::glsl_defines(FaceTexturesBindings) writes these lines for the binding points an
+// engine chose; gl_ptex.h has the recipe.) Units U .. U+N-1 hold class c's GL_TEXTURE_2D_ARRAY
+// with the clamp-to-border (0,0,0,0) sampler, units V .. V+N-1 the same arrays with the
+// clamp-to-edge sampler (Clamp and the zero-coverage fallback). Both samplers are trilinear
+// with anisotropy as uploaded (FaceTexturesOptions::max_anisotropy): hardware anisotropic
+// filtering is implementation-defined, so only trilinear is expected to match the CPU sampler.
 //
 // Conventions (those of tessera and Ptex): a face's (u, v) is (0,0), (1,0), (1,1), (0,1) at its
 // vertices 0..3; edge e joins vertex e and e+1; texel row 0 is v = 0. `dx`, `dy` are the UV
@@ -71,6 +73,9 @@
 #ifndef TESSERA_SEAMS_FIRST_UNIT
 #define TESSERA_SEAMS_FIRST_UNIT 0
 #endif
+#ifndef TESSERA_SEAMS_CLAMP_UNIT
+#define TESSERA_SEAMS_CLAMP_UNIT (TESSERA_SEAMS_FIRST_UNIT + TESSERA_SEAMS_CLASSES)
+#endif
 #ifndef TESSERA_SEAMS_FACES_BINDING
 #define TESSERA_SEAMS_FACES_BINDING 0
 #endif
@@ -102,7 +107,7 @@ layout(std430, binding = TESSERA_SEAMS_FACES_BINDING) readonly buffer TesseraSea
 
 layout(binding = TESSERA_SEAMS_FIRST_UNIT)
 uniform sampler2DArray tessera_seams_border[TESSERA_SEAMS_CLASSES];
-layout(binding = TESSERA_SEAMS_FIRST_UNIT + TESSERA_SEAMS_CLASSES)
+layout(binding = TESSERA_SEAMS_CLAMP_UNIT)
 uniform sampler2DArray tessera_seams_clamp[TESSERA_SEAMS_CLASSES];
 #endif
 

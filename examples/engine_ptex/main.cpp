@@ -1,0 +1,388 @@
+// engine_ptex — a small forward renderer that draws a Ptex mesh with its own shader and
+// tessera's seamless per-face lookup (seams.glsl, tessera_seams_sample_discard: Toth 2013).
+//
+// The engine side is all here and all its own: an OpenGL 4.5 context (through tessera's headless
+// gl::Context; any current GL 4.5 context works), GL entry points from libOpenGL, an interleaved
+// vertex layout (position, normal, per-face UV, integer face id), a per-frame uniform block at
+// binding 0 (view-projection, light), its own framebuffer, and a vertex and fragment shader
+// written below. The integration with tessera follows the recipe of tessera/gl_ptex.h and is the
+// blocks marked "tessera": mesh and textures from the .obj and .ptx, one upload, the binding
+// points the engine chose (FaceTexturesBindings) as shader defines and as one bind per frame.
+//
+// Usage: engine_ptex MESH.obj FILE.ptx [--size WxH] [--orbit K/N] [--fov DEG] [--shader-method
+//                    discard|clamp] [--shift-px X] [--glsl DIR] [--check] [--json] [-o FILE.png]
+//   -o FILE.png       the GL image (8-bit sRGB)
+//   --orbit K/N       the camera: frame K of N of faces::face_orbit_camera (default 1/8)
+//   --fov DEG         its vertical field of view (default the orbit's 60; smaller zooms in)
+//   --check           also renders the same frame with tessera's CPU renderer
+//                     (faces::FaceRenderer: Discard, trilinear, same camera, resolution and
+//                     lighting) and prints the agreement: PSNR of the 8-bit sRGB images and the
+//                     fraction of pixels whose linear-RGB 2-norm difference is >= 0.01
+//   --json            one JSON object (with the agreement: --json implies --check; psnr_db
+//                     is null when the 8-bit images are identical)
+//   --shader-method   the engine shader's lookup (clamp: the seam-artefact baseline); the CPU
+//                     frame stays Discard, so clamp measures how much the seams matter
+//   --shift-px X      moves the GL camera's image X pixels to the right (the CPU frame stays)
+// The last two are negative controls for the agreement bounds (tests/engine_ptex_test.py).
+// Exit 1 with one line when there is no OpenGL 4.5 device, on bad arguments or input (a mesh
+// polygon the Ptex file did not split into quads is named).
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/glcorearb.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "tessera/core.h"
+#include "tessera/faces.h"
+#include "tessera/gl.h"
+#include "tessera/gl_ptex.h"
+#include "tessera/io.h"
+#include "tessera/metrics.h"
+#include "tessera/ptex.h"
+
+#ifndef ENGINE_PTEX_GLSL_DIR
+#define ENGINE_PTEX_GLSL_DIR ""
+#endif
+
+namespace {
+
+struct Args {
+  std::string obj, ptx, out, glsl = ENGINE_PTEX_GLSL_DIR, method = "discard";
+  int w = 320, h = 240, orbit_k = 1, orbit_n = 8;
+  float shift_px = 0.0f, fov = 0.0f;  // fov 0: the orbit camera's
+  bool check = false, json = false;
+};
+
+int fail(const std::string& msg) {
+  std::fprintf(stderr, "engine_ptex: %s\n", msg.c_str());
+  return 1;
+}
+
+// The engine's vertex: 4 per Ptex face (corners are not shared: each face has its own UVs).
+struct Vertex {
+  float position[3], normal[3], uv[2];
+  std::int32_t face;
+};
+
+// The engine's per-frame block (std140, binding 0).
+struct FrameBlock {
+  float view_proj[16];
+  float light_dir[4];  // xyz, w unused
+  float shade[4];      // ambient, diffuse
+};
+
+const char* kVertexShader = R"(#version 450 core
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+layout(location = 2) in vec2 face_uv;
+layout(location = 3) in int face_id;
+layout(std140, binding = 0) uniform Frame {
+  mat4 view_proj;
+  vec4 light_dir;
+  vec4 shade;
+};
+out vec3 v_normal;
+out vec2 v_uv;
+flat out int v_face;
+void main() {
+  v_normal = normal;
+  v_uv = face_uv;
+  v_face = face_id;
+  gl_Position = view_proj * vec4(position, 1.0);
+}
+)";
+
+// The defines of FaceTextures::glsl_defines go after #version (gl::ShaderOptions::preamble).
+const char* kFragmentShader = R"(#version 450 core
+#include "seams.glsl"
+layout(std140, binding = 0) uniform Frame {
+  mat4 view_proj;
+  vec4 light_dir;
+  vec4 shade;
+};
+in vec3 v_normal;
+in vec2 v_uv;
+flat in int v_face;
+layout(location = 0) out vec4 colour;
+void main() {
+  // Explicit fine gradients: the lookups sit in non-uniform control flow (a class per face).
+  vec2 dx = dFdxFine(v_uv), dy = dFdyFine(v_uv);
+#if ENGINE_CLAMP
+  vec4 tex = tessera_seams_sample_clamp(v_face, v_uv, dx, dy);
+#else
+  vec4 tex = tessera_seams_sample_discard(v_face, v_uv, dx, dy, true);
+#endif
+  float nl = dot(v_normal, light_dir.xyz) / sqrt(dot(v_normal, v_normal) + 1e-20);
+  colour = vec4(tex.rgb * (shade.x + shade.y * max(nl, 0.0)), 1.0);
+}
+)";
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+struct Agreement {
+  double psnr = 0, frac_001 = 0, max_norm = 0;
+  int non_finite = 0;
+};
+
+tessera::Result<Agreement> agreement(const tessera::ImageRGBAF& a, const tessera::ImageRGBAF& b) {
+  tessera::metrics::CompareOptions o;
+  o.compute_ssim = false;
+  auto c = tessera::metrics::compare_images(tessera::to_srgb8(a), tessera::to_srgb8(b), o);
+  if (!c) return c.status();
+  auto norms = tessera::metrics::error_norms(a, b);
+  if (!norms) return norms.status();
+  Agreement r;
+  r.psnr = c->psnr_rgb;
+  int over = 0;
+  for (float e : *norms) {
+    if (!std::isfinite(e)) {
+      ++r.non_finite;
+      continue;
+    }
+    over += e >= 0.01f;
+    r.max_norm = std::max(r.max_norm, double(e));
+  }
+  r.frac_001 = double(over) / double(norms->size());
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args a;
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i) {
+    const std::string k = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "engine_ptex: %s needs a value\n", k.c_str());
+        std::exit(1);
+      }
+      return argv[++i];
+    };
+    if (k == "--size") {
+      const std::string v = next();
+      if (std::sscanf(v.c_str(), "%dx%d", &a.w, &a.h) != 2 || a.w <= 0 || a.h <= 0 || a.w > 8192 ||
+          a.h > 8192 || a.w % 2 || a.h % 2)
+        return fail("--size " + v + ": expected WxH, even, 2..8192 (2x2 derivative quads)");
+    } else if (k == "--orbit") {
+      const std::string v = next();
+      if (std::sscanf(v.c_str(), "%d/%d", &a.orbit_k, &a.orbit_n) != 2 || a.orbit_n <= 0 ||
+          a.orbit_k < 0)
+        return fail("--orbit " + v + ": expected K/N");
+    } else if (k == "--shader-method") {
+      a.method = next();
+      if (a.method != "discard" && a.method != "clamp")
+        return fail("--shader-method " + a.method + ": discard or clamp");
+    } else if (k == "--fov") {
+      a.fov = std::strtof(next().c_str(), nullptr);
+      if (!(a.fov > 0.0f && a.fov < 180.0f)) return fail("--fov: degrees in (0, 180)");
+    } else if (k == "--shift-px") {
+      a.shift_px = std::strtof(next().c_str(), nullptr);
+    } else if (k == "--glsl") {
+      a.glsl = next();
+    } else if (k == "--check") {
+      a.check = true;
+    } else if (k == "--json") {
+      a.json = a.check = true;
+    } else if (k == "-o") {
+      a.out = next();
+    } else if (!k.empty() && k[0] == '-') {
+      return fail("unknown argument " + k);
+    } else {
+      positional.push_back(k);
+    }
+  }
+  if (positional.size() != 2) return fail("usage: engine_ptex MESH.obj FILE.ptx [options]");
+  a.obj = positional[0];
+  a.ptx = positional[1];
+
+  // ---- tessera, step 1 (pure): the quad faces of the Ptex file and their textures ----
+  auto poly = tessera::faces::load_obj_polygons(a.obj);
+  if (!poly) return fail(poly.status().message);
+  auto file = tessera::ptex::read_ptex(a.ptx);
+  if (!file) return fail(file.status().message);
+  auto mesh = tessera::gl::ptex_quad_mesh(*poly, *file, a.ptx);
+  if (!mesh) return fail(mesh.status().message);
+  auto set = tessera::faces::FaceTextureSet::from_ptex(*file, a.ptx);
+  if (!set) return fail(set.status().message);
+  // ---- end of step 1 ----
+
+  auto ctx = tessera::gl::Context::create();
+  if (!ctx) return fail("no OpenGL 4.5 device: " + ctx.status().message);
+
+  // The engine's scene data: a camera on an orbit, smooth normals, 4 vertices and 2 triangles
+  // per face (tessera's helpers for both, so the CPU check sees the same geometry).
+  tessera::faces::FaceScene scene;
+  scene.name = a.obj;
+  scene.mesh = *mesh;
+  tessera::scene::Camera camera = tessera::faces::face_orbit_camera(scene, a.orbit_k, a.orbit_n);
+  if (a.fov > 0.0f) camera.fov_y_degrees = a.fov;
+  const std::vector<tessera::Vec3> normals = tessera::faces::smooth_face_normals(scene.mesh);
+  std::vector<Vertex> verts;
+  std::vector<std::uint32_t> indices;
+  const float corner_uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int f = 0; f < scene.mesh.face_count(); ++f) {
+    for (int c = 0; c < 4; ++c) {
+      const tessera::Vec3& p =
+          scene.mesh.positions[std::size_t(scene.mesh.quads[std::size_t(f)][std::size_t(c)])];
+      const tessera::Vec3& n = normals[std::size_t(f) * 4 + std::size_t(c)];
+      verts.push_back({{p.x, p.y, p.z}, {n.x, n.y, n.z}, {corner_uv[c][0], corner_uv[c][1]}, f});
+    }
+    const auto b = std::uint32_t(f) * 4;
+    for (std::uint32_t i : {b, b + 1, b + 2, b, b + 2, b + 3}) indices.push_back(i);
+  }
+  FrameBlock frame{};
+  const tessera::Mat4 vp = camera.view_projection(float(a.w) / float(a.h));
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) frame.view_proj[c * 4 + r] = vp.m[c][r];
+  // A shift of X pixels to the right: clip x += (2 X / width) w.
+  for (int c = 0; c < 4; ++c) {
+    frame.view_proj[c * 4 + 0] += 2.0f * a.shift_px / float(a.w) * vp.m[c][3];
+  }
+  const float light[3] = {0.42f, 0.82f, 0.39f};
+  std::copy(light, light + 3, frame.light_dir);
+  frame.shade[0] = 0.35f;
+  frame.shade[1] = 0.65f;
+
+  // ---- tessera, step 2: upload once; the binding points are the engine's choice ----
+  tessera::gl::FaceTexturesOptions to;
+  to.max_anisotropy = 1.0f;  // trilinear: the filter the CPU check uses
+  auto tex = tessera::gl::FaceTextures::upload(*set, to);
+  if (!tex) return fail(tex.status().message);
+  tessera::gl::FaceTexturesBindings bindings;
+  bindings.border_unit = 1;  // unit 0 stays free for the engine's own textures
+  bindings.clamp_unit = 17;  // after at most 16 classes
+  bindings.records_binding = 3;
+  tessera::gl::ShaderOptions so;
+  so.include_paths = {a.glsl};
+  so.preamble = tex->glsl_defines(bindings);
+  so.preamble.push_back(std::string("#define ENGINE_CLAMP ") + (a.method == "clamp" ? "1" : "0"));
+  auto program = tessera::gl::link_program(
+      {{tessera::gl::ShaderStage::vertex, kVertexShader, "engine_ptex.vert"},
+       {tessera::gl::ShaderStage::fragment, kFragmentShader, "engine_ptex.frag"}},
+      so);
+  if (!program) return fail(program.status().message);
+  // ---- end of step 2 ----
+
+  GLuint vbo, ibo, ubo, vao, fbo, colour_tex, depth_rb;
+  glCreateBuffers(1, &vbo);
+  glNamedBufferStorage(vbo, GLsizeiptr(verts.size() * sizeof(Vertex)), verts.data(), 0);
+  glCreateBuffers(1, &ibo);
+  glNamedBufferStorage(ibo, GLsizeiptr(indices.size() * 4), indices.data(), 0);
+  glCreateBuffers(1, &ubo);
+  glNamedBufferStorage(ubo, sizeof frame, &frame, 0);
+  glCreateVertexArrays(1, &vao);
+  glVertexArrayVertexBuffer(vao, 0, vbo, 0, sizeof(Vertex));
+  glVertexArrayElementBuffer(vao, ibo);
+  const GLuint sizes[3] = {3, 3, 2}, offsets[3] = {0, 12, 24};
+  for (GLuint i = 0; i < 3; ++i) {
+    glEnableVertexArrayAttrib(vao, i);
+    glVertexArrayAttribFormat(vao, i, GLint(sizes[i]), GL_FLOAT, GL_FALSE, offsets[i]);
+    glVertexArrayAttribBinding(vao, i, 0);
+  }
+  glEnableVertexArrayAttrib(vao, 3);
+  glVertexArrayAttribIFormat(vao, 3, 1, GL_INT, offsetof(Vertex, face));
+  glVertexArrayAttribBinding(vao, 3, 0);
+  glCreateTextures(GL_TEXTURE_2D, 1, &colour_tex);
+  glTextureStorage2D(colour_tex, 1, GL_RGBA32F, a.w, a.h);
+  glCreateRenderbuffers(1, &depth_rb);
+  glNamedRenderbufferStorage(depth_rb, GL_DEPTH_COMPONENT32F, a.w, a.h);
+  glCreateFramebuffers(1, &fbo);
+  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, colour_tex, 0);
+  glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb);
+  if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    return fail("framebuffer " + std::to_string(a.w) + "x" + std::to_string(a.h) + " incomplete");
+
+  // ---- the frame ----
+  const auto t0 = std::chrono::steady_clock::now();
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glViewport(0, 0, a.w, a.h);
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_CULL_FACE);  // counter-clockwise front faces, back faces culled (as the CPU)
+  const float background[4] = {tessera::faces::kFaceBackground[0],
+                               tessera::faces::kFaceBackground[1],
+                               tessera::faces::kFaceBackground[2], 0.0f};
+  const float far_depth = 1.0f;
+  glClearNamedFramebufferfv(fbo, GL_COLOR, 0, background);
+  glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far_depth);
+  glUseProgram(program->get());
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, ubo);
+  if (auto s = tex->bind(bindings); !s.ok()) return fail(s.message);  // tessera, per frame
+  glBindVertexArray(vao);
+  glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
+  glFinish();
+  const double gl_ms = ms_since(t0);
+  if (GLenum e = glGetError(); e != GL_NO_ERROR) return fail("GL error " + std::to_string(e));
+
+  // Read back; GL's row 0 is the bottom, tessera's images are top-down.
+  tessera::ImageRGBAF img(a.w, a.h);
+  std::vector<float> rows(img.pixels.size());
+  glGetTextureImage(colour_tex, 0, GL_RGBA, GL_FLOAT, GLsizei(rows.size() * 4), rows.data());
+  const std::size_t row = std::size_t(a.w) * 4;
+  for (int y = 0; y < a.h; ++y) {
+    std::copy_n(rows.data() + std::size_t(a.h - 1 - y) * row, row,
+                img.pixels.data() + std::size_t(y) * row);
+  }
+  if (!a.out.empty()) {
+    if (auto s = tessera::io::write_png(a.out, tessera::to_srgb8(img)); !s.ok())
+      return fail(s.message);
+  }
+
+  if (a.check) {
+    auto cpu = tessera::faces::FaceRenderer::create(scene, *set);
+    if (!cpu) return fail(cpu.status().message);
+    tessera::faces::FaceRenderOptions o;
+    o.width = a.w;
+    o.height = a.h;
+    o.sampling.method = tessera::faces::Method::discard;
+    o.sampling.filter = tessera::texture::TextureFilter::trilinear;
+    o.sampling.clamp_fallback = true;
+    auto cpu_frame = (*cpu)->render(camera, o);
+    if (!cpu_frame) return fail(cpu_frame.status().message);
+    auto agree = agreement(img, cpu_frame->image);
+    if (!agree) return fail(agree.status().message);
+    if (a.json) {
+      // JSON has no infinity: identical 8-bit images (MSE 0) give null.
+      char psnr_text[32];
+      std::snprintf(psnr_text, sizeof psnr_text, "%.3f", agree->psnr);
+      const std::string psnr_json = std::isfinite(agree->psnr) ? psnr_text : "null";
+      std::printf(
+          "{\"device\": \"%s\", \"mesh\": \"%s\", \"faces\": %d, \"classes\": %d, "
+          "\"width\": %d, \"height\": %d, \"orbit\": \"%d/%d\", \"shader_method\": \"%s\", "
+          "\"shift_px\": %.3f, \"psnr_db\": %s, \"frac_001\": %.6f, \"max_norm\": %.4f, "
+          "\"non_finite\": %d, \"gl_ms\": %.3f, \"cpu_ms\": %.3f}\n",
+          (*ctx)->renderer().c_str(), scene.name.c_str(), scene.mesh.face_count(),
+          tex->class_count(), a.w, a.h, a.orbit_k, a.orbit_n, a.method.c_str(), double(a.shift_px),
+          psnr_json.c_str(), agree->frac_001, agree->max_norm, agree->non_finite, gl_ms,
+          cpu_frame->ms());
+    } else {
+      std::printf(
+          "engine_ptex %dx%d, %d faces in %d classes: GL (%s) vs CPU Discard: PSNR %.2f dB, "
+          "%.3f %% of the pixels >= 0.01 apart\n",
+          a.w, a.h, scene.mesh.face_count(), tex->class_count(), a.method.c_str(), agree->psnr,
+          100.0 * agree->frac_001);
+    }
+  } else {
+    std::printf("engine_ptex %dx%d, %d faces in %d classes: drawn in %.1f ms\n", a.w, a.h,
+                scene.mesh.face_count(), tex->class_count(), gl_ms);
+  }
+
+  glDeleteBuffers(1, &vbo);
+  glDeleteBuffers(1, &ibo);
+  glDeleteBuffers(1, &ubo);
+  glDeleteVertexArrays(1, &vao);
+  glDeleteFramebuffers(1, &fbo);
+  glDeleteRenderbuffers(1, &depth_rb);
+  glDeleteTextures(1, &colour_tex);
+  return 0;
+}
