@@ -1,9 +1,9 @@
 // tessera/experiments/seams.h — the seam experiment of Toth 2013 (Table 1 and Figure 5) as one
 // library call: `run_seams` renders Clamp, Discard, Traverse and Traverse+corners per-face
 // texturing at every MSAA rate along a camera orbit, timed side by side (the order of the
-// variants rotates per frame), each compared against the reference (Traverse at f x f the
-// resolution, Mitchell-Netravali downsampled) with the Figure-5 error CDF of metrics.h over the
-// geometry pixels of the quality frames. The frames come from a `SeamsBackend`
+// variants rotates per frame and repetition), each compared against the reference (Traverse at
+// f x f the resolution, Mitchell-Netravali downsampled) with the Figure-5 error CDF of metrics.h
+// over the geometry pixels of the quality frames. The frames come from a `SeamsBackend`
 // (seams_backend.h): the CPU, OpenGL, or both side by side (`SeamsConfig::backend`).
 //
 // It returns a plain result struct (timings with every per-frame sample, error statistics,
