@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "seams_content.h"
 #include "tessera/metrics.h"
@@ -71,19 +72,25 @@ struct RateAccumulators {
   metrics::ErrorCdfAccumulator traverse_vs_discard;
 };
 
-/// GL against CPU, pooled over the quality frames (SeamsGlMethodResult).
+/// GL against CPU, pooled over the quality frames and of the worst frame (SeamsGlMethodResult).
 struct Agreement {
   double sse = 0;  ///< Sum over frames of the 8-bit RGB MSE times the pixel count.
   std::uint64_t pixels = 0, over = 0;
+  double worst_psnr = std::numeric_limits<double>::infinity(), worst_fraction = 0;
   Status add(const ImageRGBAF& gl, const ImageRGBAF& cpu, int threads) {
     Result<metrics::ImageComparison> c = metrics::compare_images(
         to_srgb8(gl, {threads}), to_srgb8(cpu, {threads}), metrics::CompareOptions{false, threads});
     if (!c) return c.status();
     Result<std::vector<float>> n = metrics::error_norms(gl, cpu);
     if (!n) return n.status();
-    for (float e : *n) over += !(e < 0.01f);  // NaN counts as different
+    std::uint64_t frame_over = 0;
+    for (float e : *n) frame_over += !(e < 0.01f);  // NaN counts as different
+    over += frame_over;
     sse += c->mse_rgb * double(n->size());
     pixels += n->size();
+    worst_psnr = std::min(worst_psnr, metrics::psnr_from_mse(c->mse_rgb));
+    worst_fraction =
+        std::max(worst_fraction, n->empty() ? 0.0 : double(frame_over) / double(n->size()));
     return Status::success();
   }
   double psnr() const { return metrics::psnr_from_mse(pixels ? sse / double(pixels) : 0.0); }
@@ -117,8 +124,12 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
     if (c.progress) c.progress(s);
   };
   if (c.msaa.empty() || c.frames < 1 || c.width < 8 || c.height < 8 || c.reference_factor < 1 ||
-      c.quality_frames < 0 || c.near_seam_pixels < 0) {
+      c.quality_frames < 0 || c.near_seam_pixels < 0 || c.repetitions < 1) {
     return Status::error(ErrorCode::invalid_argument, "seams: bad configuration");
+  }
+  if ((!c.time_cpu || c.compare_references) && c.backend != Backend::both) {
+    return Status::error(ErrorCode::invalid_argument,
+                         "seams: time_cpu = false and compare_references need backend 'both'");
   }
   for (int r : c.msaa) {
     if (!raster::valid_msaa(r)) {
@@ -256,10 +267,12 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
   fo.width = c.width;
   fo.height = c.height;
   fo.threads = c.threads;
-  fo.filter = texture::TextureFilter::anisotropic;
+  fo.filter = c.filter;
   fo.max_aniso = 16;
-  // Variants timed side by side: the methods, then shading only where the backend has it.
-  const std::size_t nv = nm + (primary.has_shading_only() ? 1 : 0);
+  // Variants timed side by side: the methods, then shading only where the backend has it (and
+  // times it: not on an untimed CPU side).
+  const std::size_t nv = nm + (primary.has_shading_only() && c.time_cpu ? 1 : 0);
+  Agreement ref_agree;
   // GL compiles a program per variant on first use and sizes its targets per rate: draw every
   // variant once (untimed) so that no timed frame pays for it. The CPU needs no warm-up.
   if (gl) {
@@ -297,6 +310,12 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
       ref = std::move(*r);
       mask = geometry_mask(ref);
       if (f == 0 && c.keep_images) res.reference_frame0 = ref;
+      if (c.compare_references) {
+        Result<ImageRGBAF> g = gl_side->render_reference(
+            cam, c.width, c.height, {.factor = c.reference_factor, .threads = c.threads});
+        if (!g) return g.status();
+        if (Status s = ref_agree.add(*g, ref, c.threads); !s.ok()) return s;
+      }
       if (c.near_seam_pixels > 0) {
         faces::FaceRenderOptions io = o;
         io.msaa = 1;
@@ -321,25 +340,30 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
     for (std::size_t ri = 0; ri < nr; ++ri) {
       SeamsRateResult& rate = res.rates[ri];
       fo.msaa = rates[ri];
-      fo.keep_image = quality;  // frame 0 is always a quality frame
       std::vector<ImageRGBAF> imgs(nm);
       // Alternate: the order of the variants (the methods, then shading only) rotates with the
-      // frame.
-      for (std::size_t k = 0; k < nv; ++k) {
-        const std::size_t v = (k + std::size_t(f)) % nv;
-        fo.shading_only = v == nm;
-        fo.method = v == nm ? faces::Method::clamp : methods[v];
-        fo.clamp_fallback = true;
-        Result<SeamsBackendFrame> fr = primary.render(cam, fo);
-        if (!fr) return fr.status();
-        if (v == nm) {
-          rate.shading_only.frame_ms.push_back(fr->ms);
-        } else {
-          rate.method(methods[v]).timing.frame_ms.push_back(fr->ms);
-          if (primary.backend() != Backend::cpu) {
-            rate.method(methods[v]).wall.frame_ms.push_back(fr->wall_ms);
+      // frame and the repetition. An untimed CPU side renders the quality frames once.
+      const int primary_reps = c.time_cpu ? c.repetitions : quality ? 1 : 0;
+      for (int rep = 0; rep < primary_reps; ++rep) {
+        fo.keep_image = quality && rep == 0;  // frame 0 is always a quality frame
+        for (std::size_t k = 0; k < nv; ++k) {
+          const std::size_t v = (k + std::size_t(f) + std::size_t(rep)) % nv;
+          fo.shading_only = v == nm;
+          fo.method = v == nm ? faces::Method::clamp : methods[v];
+          fo.clamp_fallback = true;
+          Result<SeamsBackendFrame> fr = primary.render(cam, fo);
+          if (!fr) return fr.status();
+          if (v == nm) {
+            rate.shading_only.frame_ms.push_back(fr->ms);
+            continue;
           }
-          imgs[v] = std::move(fr->image);
+          if (c.time_cpu) {
+            rate.method(methods[v]).timing.frame_ms.push_back(fr->ms);
+            if (primary.backend() != Backend::cpu) {
+              rate.method(methods[v]).wall.frame_ms.push_back(fr->wall_ms);
+            }
+          }
+          if (rep == 0) imgs[v] = std::move(fr->image);
         }
       }
       if (gl_side && gl_index[ri] >= 0) {
@@ -347,17 +371,17 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
         SeamsGlRateResult& g = res.gl_rates[std::size_t(gl_index[ri])];
         SeamsFrameOptions go = fo;
         go.shading_only = false;
-        go.keep_image = quality;
-        for (std::size_t k = 0; k < nm; ++k) {
-          const std::size_t v = (k + std::size_t(f)) % nm;
+        for (std::size_t n = 0; n < nm * std::size_t(c.repetitions); ++n) {
+          const std::size_t rep = n / nm, v = (n % nm + std::size_t(f) + rep) % nm;
           go.method = methods[v];
+          go.keep_image = quality && rep == 0;
           Result<SeamsBackendFrame> fr = gl_side->render(cam, go);
           if (!fr) return fr.status();
           SeamsGlMethodResult& gm = g.methods[std::size_t(methods[v])];
           gm.gpu.frame_ms.push_back(fr->ms);
           gm.wall.frame_ms.push_back(fr->wall_ms);
           const SeamsSamplePattern& pattern = gl_patterns[std::size_t(gl_index[ri])];
-          if (quality && g.compared_with != SeamsGlComparison::none) {
+          if (go.keep_image && g.compared_with != SeamsGlComparison::none) {
             Agreement& a = agree[std::size_t(gl_index[ri])][std::size_t(methods[v])];
             const bool driver = g.compared_with == SeamsGlComparison::driver_positions;
             if (driver || pattern.cpu_msaa != rates[ri]) {
@@ -395,6 +419,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
       if (f == 0) {
         // Discard without the zero-coverage fallback: count the NaN pixels it produces.
         fo.shading_only = false;
+        fo.keep_image = true;
         fo.method = faces::Method::discard;
         fo.clamp_fallback = false;
         Result<SeamsBackendFrame> fr = primary.render(cam, fo);
@@ -425,7 +450,13 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
       SeamsGlMethodResult& gm = res.gl_rates[gi].methods[std::size_t(m)];
       gm.psnr_db = compared ? agree[gi][std::size_t(m)].psnr() : std::nan("");
       gm.fraction_ge_001 = compared ? agree[gi][std::size_t(m)].fraction() : std::nan("");
+      gm.worst_psnr_db = compared ? agree[gi][std::size_t(m)].worst_psnr : std::nan("");
+      gm.worst_fraction_ge_001 = compared ? agree[gi][std::size_t(m)].worst_fraction : std::nan("");
     }
+  }
+  if (c.compare_references) {
+    res.gl_reference_vs_cpu = {true, ref_agree.psnr(), ref_agree.fraction(), ref_agree.worst_psnr,
+                               ref_agree.worst_fraction};
   }
   return res;
 }

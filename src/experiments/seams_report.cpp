@@ -117,6 +117,14 @@ void fill_json(const SeamsConfig& c, const SeamsResult& res, nlohmann::json& sum
                                {"reference_factor", c.reference_factor},
                                {"threads", res.threads},
                                {"filter", "anisotropic 16x (trilinear probes)"}};
+  // Keys of the options beyond `tessera seams`' only where they are not their defaults, so
+  // that the usual report keeps its exact keys.
+  if (c.filter == texture::TextureFilter::trilinear) {
+    summary["command_config"]["filter"] = "trilinear (the reference: anisotropic 16x)";
+  }
+  if (c.repetitions != 1) summary["command_config"]["repetitions"] = c.repetitions;
+  if (!c.time_cpu) summary["command_config"]["time_cpu"] = false;
+  if (c.compare_references) summary["command_config"]["compare_references"] = true;
   summary["scene"] = {{"description", res.scene_description},
                       {"faces", res.faces},
                       {"ground_faces", res.ground_faces},
@@ -217,6 +225,13 @@ void fill_json(const SeamsConfig& c, const SeamsResult& res, nlohmann::json& sum
     }
     summary["timing_gl"] = tg;
     summary["gl_vs_cpu"] = agree;
+    if (res.gl_reference_vs_cpu.measured) {
+      const SeamsReferenceAgreement& r = res.gl_reference_vs_cpu;
+      summary["gl_reference_vs_cpu"] = {{"psnr_db", r.psnr_db},
+                                        {"fraction_ge_0.01", r.fraction_ge_001},
+                                        {"worst_frame_psnr_db", r.worst_psnr_db},
+                                        {"worst_frame_fraction_ge_0.01", r.worst_fraction_ge_001}};
+    }
     summary["gl_vs_cpu_note"] =
         "GL frame against the CPU frame of the same camera, method and sample positions (the "
         "CPU rate gl_samples[rate].cpu_msaa: the rate itself unless the driver draws it with "
@@ -384,8 +399,11 @@ std::string markdown(const SeamsConfig& c, const SeamsResult& res, bool images) 
   md << "Scene: " << res.scene_description << "; " << res.faces << " faces, " << res.texels_level0
      << " level-0 texels, " << res.linked_corners << " of " << 4 * res.faces
      << " corners with a valence-4 diagonal face. " << c.width << "x" << c.height << ", "
-     << c.frames << " orbit frames (" << res.quality_frames
-     << " with a reference), 16x anisotropic filtering, " << res.threads << " thread(s).\n\n";
+     << c.frames << " orbit frames (" << res.quality_frames << " with a reference), "
+     << (c.filter == texture::TextureFilter::trilinear
+             ? "trilinear filtering (the reference: 16x anisotropic)"
+             : "16x anisotropic filtering")
+     << ", " << res.threads << " thread(s).\n\n";
   const bool gl = res.backend == Backend::gl;
   const bool both = res.backend == Backend::both;
   if (gl || both) {

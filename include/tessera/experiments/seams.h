@@ -1,9 +1,9 @@
 // tessera/experiments/seams.h — the seam experiment of Toth 2013 (Table 1 and Figure 5) as one
 // library call: `run_seams` renders Clamp, Discard, Traverse and Traverse+corners per-face
 // texturing at every MSAA rate along a camera orbit, timed side by side (the order of the
-// variants rotates per frame), each compared against the reference (Traverse at f x f the
-// resolution, Mitchell-Netravali downsampled) with the Figure-5 error CDF of metrics.h over the
-// geometry pixels of the quality frames. The frames come from a `SeamsBackend`
+// variants rotates per frame and repetition), each compared against the reference (Traverse at
+// f x f the resolution, Mitchell-Netravali downsampled) with the Figure-5 error CDF of metrics.h
+// over the geometry pixels of the quality frames. The frames come from a `SeamsBackend`
 // (seams_backend.h): the CPU, OpenGL, or both side by side (`SeamsConfig::backend`).
 //
 // It returns a plain result struct (timings with every per-frame sample, error statistics,
@@ -59,6 +59,21 @@ struct SeamsConfig {
   /// Makes the GL backend (gl and both); unset: those fail with unsupported ("not built with
   /// the OpenGL runtime"). Called before `on_ready`.
   std::shared_ptr<const GlBackendFactory> gl_factory;
+  /// The texture filter of the experiment's frames (every method, every backend; 16x
+  /// anisotropic is the paper's). The reference stays the paper's: Traverse, 16x anisotropic.
+  texture::TextureFilter filter = texture::TextureFilter::anisotropic;
+  /// Timed renders of each frame, rate and method (>= 1): every one is a sample of the
+  /// `FrameTimes`, and the order of the methods rotates with the repetition as with the frame.
+  /// Images and statistics come from the first; they do not depend on the count.
+  int repetitions = 1;
+  /// Backend::both only: false = the CPU renders only the quality frames, untimed (its
+  /// `FrameTimes` and `shading_only` stay empty), for what the statistics and the GL-vs-CPU
+  /// agreement need; GL is timed on every frame as always. For GL timings without the cost of
+  /// the CPU's (bench/seams_gl_table1.cpp).
+  bool time_cpu = true;
+  /// Backend::both only: also render the reference on GL on every quality frame and compare it
+  /// with the CPU's (`SeamsResult::gl_reference_vs_cpu`).
+  bool compare_references = false;
   bool keep_images = true;  ///< Fill the frame-0 images of the result (else left empty).
   /// Near-seam errors count the geometry pixels within this many pixels (Chebyshev distance)
   /// of a pixel showing another face: where the seam methods differ. 0 = off.
@@ -105,6 +120,20 @@ struct SeamsGlMethodResult {
   /// 2-norm difference is >= 0.01 (NaN counts as different); all pixels of the frame.
   double psnr_db = 0;
   double fraction_ge_001 = 0;
+  /// The same per quality frame, of the frame that agrees least: the lowest PSNR and the
+  /// highest fraction (each over the frames on its own; NaN where not compared).
+  double worst_psnr_db = 0;
+  double worst_fraction_ge_001 = 0;
+};
+
+/// The GL reference against the CPU reference (`SeamsConfig::compare_references`), with the
+/// measures of `SeamsGlMethodResult`: pooled over the quality frames, and of the worst frame.
+struct SeamsReferenceAgreement {
+  bool measured = false;  ///< Whether the references were compared.
+  double psnr_db = 0;
+  double fraction_ge_001 = 0;
+  double worst_psnr_db = 0;
+  double worst_fraction_ge_001 = 0;
 };
 
 struct SeamsGlRateResult {
@@ -133,6 +162,8 @@ struct SeamsResult {
   /// pattern has the driver's positions), with a CPU frame drawn at the driver's `positions`,
   /// or not at all when those are unknown (`SeamsGlRateResult::compared_with`).
   std::vector<SeamsSamplePattern> gl_sample_patterns;
+  /// both with `compare_references`: the GL reference against the CPU's.
+  SeamsReferenceAgreement gl_reference_vs_cpu;
   // The scene.
   std::string scene_description;
   int faces = 0;
