@@ -4,7 +4,7 @@
 Usage: make_corpus.py PATH/TO/tessera [OUT_DIR (default: fuzz/corpus next to this script)]
 PVR v3 / KTX 1.1 seeds are made with `tessera compress` from small generated PNGs; KTX 2.0
 seeds (with and without Zstandard levels) by ktx2_oracle_writer beside the CLI in the build's
-bin folder (tests/ktx2_oracle_writer.cpp: real encodes, written by the library); the
+bin folder (tests/oracle/ktx2_oracle_writer.cpp: real encodes, written by the library); the
 pvrtc::decode seeds are the fuzzer's input layout (format byte, int32 width, int32 height,
 block data), the pvrtc::encode seeds that fuzzer's layout (sizes, options, texels); image
 seeds are PNGs (written here with the standard library) plus JPEG, BMP and TGA when Pillow is

@@ -44,7 +44,7 @@ packages=(
   python3 python3-numpy python3-skimage python3-pil  # independent SSIM/PSNR, image checks
 )
 if ((arm64)); then
-  # Cross-compiling and running the library for AArch64 (tests/pvrtc_arch_bytes.sh,
+  # Cross-compiling and running the library for AArch64 (tests/arch/pvrtc_arch_bytes.sh,
   # cmake/aarch64-linux-gnu.cmake): Debian's cross g++, qemu-aarch64, and the arm64 builds of
   # the libraries the library and its tests link (Multi-Arch: same, beside the host's; header-only
   # ones like nlohmann-json and CLI11 are architecture-independent and already above).
@@ -85,7 +85,7 @@ if [ ! -x "$pvrtextool" ]; then
   mv "$pvrtextool.tmp" "$pvrtextool"
 fi
 
-# --- ktx-parse 2.0.0 + fzstd 0.1.1 (KTX 2.0 test oracle: tests/ktx2_oracle.mjs) -------------
+# --- ktx-parse 2.0.0 + fzstd 0.1.1 (KTX 2.0 test oracle: tests/oracle/ktx2_oracle.mjs) ------
 # ktx-parse reads the container but leaves Zstandard levels compressed; fzstd, a separate
 # pure-JavaScript decoder, inflates them. Exact versions, installed once into the cache.
 ktx_parse="$cache/peers/ktx-parse"

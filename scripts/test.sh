@@ -7,7 +7,7 @@
 #   3. arm64: the library cross-compiled for AArch64 (NEON backend) and run under qemu-user: the
 #      SIMD, PVRTC, texture and raster unit tests, and the PVRTC encoder's bytes on a fixed image
 #      set compared with x86-64's (AVX2 dispatch, SSE2, scalar): any differing byte fails
-#      (tests/pvrtc_arch_bytes.sh).
+#      (tests/arch/pvrtc_arch_bytes.sh).
 # Stages 1 and 2 require the GL device, the oracles and ../shared/data (TESSERA_TEST_REQUIRE=all).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -30,4 +30,4 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-asan --output-on-failure -j "$jobs" -L 'unit|fuzz'
 
 echo "== arm64 (cross-compiled, qemu-user): NEON bytes equal x86-64"
-bash tests/pvrtc_arch_bytes.sh build
+bash tests/arch/pvrtc_arch_bytes.sh build

@@ -23,7 +23,7 @@
 //   --shader-method   the engine shader's lookup (clamp: the seam-artefact baseline); the CPU
 //                     frame stays Discard, so clamp measures how much the seams matter
 //   --shift-px X      moves the GL camera's image X pixels to the right (the CPU frame stays)
-// The last two are negative controls for the agreement bounds (tests/engine_ptex_test.py).
+// The last two are negative controls for the agreement bounds (tests/gl/engine_ptex_test.py).
 // Exit 1 with one line when there is no OpenGL 4.5 device, on bad arguments or input (a mesh
 // polygon the Ptex file did not split into quads is named).
 #define GL_GLEXT_PROTOTYPES 1

@@ -83,7 +83,7 @@
 // the sampler of each unit used, the indexed (name, offset, size) and generic bindings of
 // GL_UNIFORM_BUFFER and GL_SHADER_STORAGE_BUFFER at the indices used, the image units used
 // (texture, level, layered, layer, access, format), GL_DISPATCH_INDIRECT_BUFFER. Framebuffers,
-// viewport, pixel-store and vertex state are never touched (tests/gl_adaptive_test.cpp checks
+// viewport, pixel-store and vertex state are never touched (tests/gl/gl_adaptive_test.cpp checks
 // all of it). A dispatch ends with glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT |
 // GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
 // GL_TEXTURE_UPDATE_BARRIER_BIT), so the output can be sampled, read or blitted at once.

@@ -1,7 +1,8 @@
 // tessera/gl_deferred.h — adaptive supersampling for deferred shading on the GPU (Hollander,
 // Boubekeur & Eisemann 2013), with its baselines, through OpenGL 4.5 (tessera::gl runtime).
 //
-// The GPU twin of tessera/deferred.h's CPU path, checked against it (tests/gl_deferred_test.cpp):
+// The GPU twin of tessera/deferred.h's CPU path, checked against it
+// (tests/gl/gl_deferred_test.cpp):
 //  * Geometry pass: the scene rasterised by GL into an enlarged G-buffer of (m*w) x (m*h)
 //    RGBA32F texels (three colour attachments + a 32-bit float depth buffer), with the CPU's
 //    conventions: clip positions computed on the CPU exactly as DeferredRenderer does, linear

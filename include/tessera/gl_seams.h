@@ -37,7 +37,7 @@
 //
 // Agreement with the CPU frame of the same sample positions: under trilinear filtering only
 // rasterisation ties and the draw order (class-grouped here, face order on the CPU) differ;
-// tests/gl_seams_test.cpp holds the bounds and docs/benchmarks/seams_gl.md the measured
+// tests/gl/gl_seams_test.cpp holds the bounds and docs/benchmarks/seams_gl.md the measured
 // agreement. Hardware anisotropic filtering is implementation-defined (llvmpipe's is much
 // blurrier than tessera's exact filter), so under it the frames agree far less.
 //

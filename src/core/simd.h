@@ -32,8 +32,8 @@
 // NaN, fcvtzs saturating, immediate shift ranges, no movemask) the NEON code emulates SSE2, as
 // its comments say; the scalar code spells the same rules out. Only which NaN an arithmetic
 // operation returns (one it makes, as 0 * inf, or which of two NaN operands) is not fixed.
-// tests/simd_test.cpp (4 lanes) and tests/simd_wide_test.cpp (8 lanes, also built with -mavx2)
-// hold every backend to the reference expressions (scripts/test.sh runs them natively, with
+// tests/unit/simd_test.cpp (4 lanes) and tests/unit/simd_wide_test.cpp (8 lanes, also built with
+// -mavx2) hold every backend to the reference expressions (scripts/test.sh runs them natively, with
 // TESSERA_NO_SIMD, and cross-compiled under qemu-aarch64). The build compiles with
 // -ffp-contract=off (CMakeLists.txt): GCC would otherwise fuse NEON's separate multiply and add
 // into one fused multiply-add, rounding once. TESSERA_SIMD_VECTOR (1 with SSE2 or NEON, else 0)

@@ -15,7 +15,7 @@
 // Backends: AVX2 (x86-64 translation units compiled with -mavx2; one instruction where AVX2 has
 // one), and everywhere else a portable one made of two 4-lane halves of whatever backend
 // simd_int.h chose (SSE2, NEON or scalar), spelling out lane by lane what has no 4-lane
-// counterpart. Both give the same bits for every operation (tests/simd_wide_test.cpp runs the
+// counterpart. Both give the same bits for every operation (tests/unit/simd_wide_test.cpp runs the
 // same reference checks on each), so a kernel written over these types gives the same results
 // whichever it is compiled with. The AVX2 backend is selected only where the compiler targets
 // AVX2, and such translation units get their own inline namespace (simd_int.h).

@@ -2,8 +2,8 @@
 //
 // decode_image tries `decode_png_fast` first and falls back to `decode_png_spng` whenever the
 // fast path declines, so the result (pixels, has_alpha, or the error message) is always the
-// one libspng would give. Exposed here only for tests/io_test.cpp, tests/io_png_fast_test.cpp
-// and fuzz/fuzz_png_diff.cpp.
+// one libspng would give. Exposed here only for tests/unit/io_test.cpp,
+// tests/unit/io_png_fast_test.cpp and fuzz/fuzz_png_diff.cpp.
 #pragma once
 
 #include <cstdint>

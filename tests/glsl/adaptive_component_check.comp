@@ -1,7 +1,7 @@
 // What gl::AdaptiveSupersampler compiles per pass (src/gl/adaptive_supersampler.cpp: the
 // preamble generated from the layout, then the hook, then adaptive_component.glsl), written out
-// for the offline compilers: glslangValidator for OpenGL 4.5 and for Vulkan (tests/CMakeLists.txt,
-// one CTest per pass). The pass and the options come as -D defines.
+// for the offline compilers: glslangValidator for OpenGL 4.5 and for Vulkan
+// (tests/glsl/CMakeLists.txt, one CTest per pass). The pass and the options come as -D defines.
 #version 450 core
 #extension GL_GOOGLE_include_directive : require
 #define TESSERA_AA_M 4

@@ -15,8 +15,8 @@ Status demo_render_section(Report& report, const DemoOptions& options) {
       "by tessera's tile-binned rasteriser with unlit trilinear texturing: 1 sample per pixel, "
       "4x MSAA (Direct3D standard sample positions, one shading per pixel per triangle) and a "
       "4x4 supersampled reference (16 shaded samples per pixel), all box-resolved in linear "
-      "light. PSNR and SSIM are against the reference. `tests/raster_vs_llvmpipe.py` checks the "
-      "same renderer against Mesa's llvmpipe OpenGL driver.");
+      "light. PSNR and SSIM are against the reference. `tests/oracle/raster_vs_llvmpipe.py` "
+      "checks the same renderer against Mesa's llvmpipe OpenGL driver.");
   const scene::Scene sc = scene::builtin_scene();
   Result<std::unique_ptr<render::SceneRenderer>> renderer =
       render::SceneRenderer::create(sc, {options.threads});

@@ -3,7 +3,7 @@
 // adaptive supersampling (Hollander, Boubekeur & Eisemann 2013) over an engine's own G-buffer
 // with the engine's own shading. Its twin over tessera's own G-buffer and Blinn-Phong is
 // deferred_passes.comp (tessera::gl::DeferredGlRenderer); with that shading as the hook both give
-// the same image (tests/gl_adaptive_test.cpp).
+// the same image (tests/gl/gl_adaptive_test.cpp).
 //
 // Not a stand-alone shader: the host compiles, per pass,
 //   #version 450 core

@@ -2,7 +2,7 @@
 // (McDonald 2013, Listing 1 of Toth's paper) and Traverse+corners, over the packed faces of
 // tessera::gl::FaceTextures (include/tessera/gl_ptex.h). Pure functions of (face, uv, gradients);
 // the GLSL twin of tessera::faces::sample_face (include/tessera/faces.h), with which it agrees
-// to float rounding under trilinear filtering (tests/gl_ptex_test.cpp).
+// to float rounding under trilinear filtering (tests/gl/gl_ptex_test.cpp).
 //
 // OpenGL setup (host side: `FaceTextures::upload(set)`, then `bind(first_unit, ssbo_binding)`):
 //   #define TESSERA_SEAMS_CLASSES N         // face classes = FaceTextures::class_count(), 1..16

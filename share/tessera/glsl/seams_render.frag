@@ -27,7 +27,7 @@
 // interpolated normal normalised and L = (0.42, 0.82, 0.39); alpha 1 (the clear has alpha 0, so
 // the resolved alpha is the geometry coverage).
 #version 450 core
-// Offline checks (glslangValidator -l -DTESSERA_GLSLANG -I<this folder>, tests/CMakeLists.txt)
+// Offline checks (glslangValidator -l -DTESSERA_GLSLANG -I<this folder>, tests/glsl/CMakeLists.txt)
 // resolve the include with glslang's extension; tessera::gl::link_program resolves it for the
 // driver.
 #if defined(TESSERA_GLSLANG)

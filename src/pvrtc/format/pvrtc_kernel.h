@@ -147,7 +147,7 @@ inline std::uint32_t code_nearest(float level, int bits, int channel) {
 /// (L(c) + L(c + 1)) / 2 lies strictly below the level (levels rise with the code; a level on
 /// a midpoint keeps the lower code, as `code_nearest` does). With the midpoint sums integers,
 /// that count depends only on ceil(2 level), clamped to 0..511, which indexes the table. Same
-/// result as `code_nearest` for every finite level (tests/pvrtc_search_test.cpp checks).
+/// result as `code_nearest` for every finite level (tests/unit/pvrtc_search_test.cpp checks).
 struct NearestCodeTable {
   std::uint8_t code[512];
 };
