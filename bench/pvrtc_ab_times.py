@@ -4,9 +4,11 @@
 run by run (ABBA order) after one untimed run of each; prints a Markdown row per case with the
 medians of wall time and of the process's CPU time (user + sys, steadier on a shared machine).
 
-  bench/pvrtc_ab_times.py BEFORE AFTER RUNS "IMG QUALITY FORMAT" ...
+  bench/pvrtc_ab_times.py BEFORE AFTER RUNS "IMG QUALITY FORMAT [FLAG ...]" ...
 
-IMG is a file name under ../shared/data/images (TESSERA_SHARED overrides ../shared/data).
+IMG is a file name under ../shared/data/images (TESSERA_SHARED overrides ../shared/data); any
+further words of a case are passed to `compress` after the others (e.g. --alpha-weighted) and
+shown in the quality column.
 """
 import os
 import resource
@@ -19,11 +21,11 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def run(binary, path, quality, fmt, out):
+def run(binary, path, quality, fmt, out, extra=()):
     r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     subprocess.run([binary, "-j", "1", "compress", path, "-o", out, "--quality", quality,
-                    "--format", fmt], check=True, stdout=subprocess.DEVNULL)
+                    "--format", fmt, *extra], check=True, stdout=subprocess.DEVNULL)
     t1 = time.perf_counter()
     r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
@@ -41,17 +43,18 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "out.pvr")
         for case in sys.argv[4:]:
-            img, quality, fmt = case.split()
+            img, quality, fmt, *extra = case.split()
             path = os.path.join(shared, "images", img)
             times = {before: [], after: []}
             for b in (before, after):
-                run(b, path, quality, fmt, out)
+                run(b, path, quality, fmt, out, extra)
             for i in range(runs):
                 for b in ((before, after) if i % 2 == 0 else (after, before)):
-                    times[b].append(run(b, path, quality, fmt, out))
+                    times[b].append(run(b, path, quality, fmt, out, extra))
             wall = {b: statistics.median(w for w, _ in v) for b, v in times.items()}
             cpu = {b: statistics.median(c for _, c in v) for b, v in times.items()}
-            print(f"| {img} | {quality} | {fmt} | {wall[before]:.1f} | {wall[after]:.1f} | "
+            label = " ".join([quality, *extra])
+            print(f"| {img} | {label} | {fmt} | {wall[before]:.1f} | {wall[after]:.1f} | "
                   f"{cpu[before]:.1f} | {cpu[after]:.1f} | {cpu[after] / cpu[before]:.3f} |",
                   flush=True)
 

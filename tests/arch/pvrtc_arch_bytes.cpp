@@ -25,8 +25,8 @@
 // plus a 32x128 non-square noise image (the Morton order's surplus bits) and an 8x8 one
 // (smaller than 2x2 blocks: padded). 70 encodings in all: each source at 4 and 2 bpp, fast /
 // normal / high, as RGB and, where it has alpha (ldr-rgba-00, foliage), as RGBA; and those two
-// as RGBA at 4 bpp normal and high with EncodeOptions::alpha_weighted (its kernels run on the
-// baseline path only, so every backend must agree there too).
+// as RGBA at 4 bpp normal and high with EncodeOptions::alpha_weighted (its kernels have the
+// same 4- and 8-lane paths as the unweighted ones, so every backend must agree there too).
 #include <chrono>
 #include <cstdint>
 #include <cstdio>

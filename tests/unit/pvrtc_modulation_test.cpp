@@ -1,6 +1,7 @@
 // Tests of the 4 bpp modulation kernels: the AVX2 block-row kernel (modulation_avx2.cpp)
 // against the baseline pair kernel (modulation_kernel.h: SSE2, or scalar with TESSERA_NO_SIMD)
-// on random and structured block rows, and whole encodes through either path; and of the 2 bpp
+// on random and structured block rows, alpha-weighted or not, and whole encodes through either
+// path; and of the 2 bpp
 // modulation choice: its AVX2 passes (modulation_2bpp_avx2.cpp) against the baseline ones on
 // whole states and whole 2 bpp encodes. Skipped where the build or the CPU has no AVX2 kernel.
 #include <gtest/gtest.h>
@@ -37,8 +38,10 @@ struct Row {
   std::size_t vstride = 0;
   std::vector<std::uint16_t> planes;            // [row][image * 4 + channel][vstride]
   std::vector<std::vector<std::uint8_t>> rows;  // 4 target rows, nbx * 16 bytes each
+  std::vector<std::vector<std::uint8_t>> scales;  // 4 colour-scale rows, nbx * 4 bytes each
   const std::uint16_t* v[4] = {};
   const std::uint8_t* t[4] = {};
+  const std::uint8_t* w[4] = {};
 };
 
 Row make_row(int nbx, Fill fill, std::uint32_t seed) {
@@ -96,29 +99,41 @@ Row make_row(int nbx, Fill fill, std::uint32_t seed) {
     }
     r.t[j] = q;
   }
+  // Colour scales (alpha-weighted colour error): 0..16, the ends only for Fill::extremes.
+  r.scales.resize(4);
+  for (int j = 0; j < 4; ++j) {
+    r.scales[std::size_t(j)].resize(std::size_t(nbx) * 4);
+    for (auto& x : r.scales[std::size_t(j)]) {
+      x = std::uint8_t(fill == Fill::extremes ? uni(0, 1) * 16 : uni(0, 16));
+    }
+    r.w[j] = r.scales[std::size_t(j)].data();
+  }
   return r;
 }
 
-template <bool kAlpha, bool kExtra>
+template <bool kAlpha, bool kExtra, bool kWeighted = false>
 void expect_row_identical(const Row& r, const char* what) {
   ModRow4 m;
   for (int j = 0; j < 4; ++j) {
     m.v[j] = r.v[j];
     m.t[j] = r.t[j];
+    m.w[j] = r.w[j];
   }
   m.vstride = r.vstride;
   std::vector<BlockModAvx2> got(std::size_t(r.nbx) + 1);
   got[std::size_t(r.nbx)].err0 = 0xdeadbeef;  // must stay untouched
-  block_row_errors_avx2(r.v, r.t, r.vstride, r.nbx, kAlpha, kExtra, got.data());
+  block_row_errors_avx2(r.v, r.t, kWeighted ? r.w : nullptr, r.vstride, r.nbx, kAlpha, kExtra,
+                        got.data());
   EXPECT_EQ(got[std::size_t(r.nbx)].err0, 0xdeadbeefu);
   for (int bx = 0; bx < r.nbx; bx += 2) {
     BlockMod want[2];
-    block_pair_errors<kAlpha, kExtra>(m, bx, want);
+    block_pair_errors<kAlpha, kExtra, kWeighted>(m, bx, want);
     for (int h = 0; h < 2; ++h) {
       const BlockMod& w = want[h];
       const BlockModAvx2& g = got[std::size_t(bx + h)];
-      SCOPED_TRACE(testing::Message() << what << " alpha " << kAlpha << " extra " << kExtra
-                                      << " nbx " << r.nbx << " block " << bx + h);
+      SCOPED_TRACE(testing::Message()
+                   << what << " alpha " << kAlpha << " extra " << kExtra << " weighted "
+                   << kWeighted << " nbx " << r.nbx << " block " << bx + h);
       EXPECT_EQ(g.bits0, w.bits0);
       EXPECT_EQ(g.err0, w.err0);
       EXPECT_EQ(g.bits1, w.bits1);
@@ -135,6 +150,8 @@ void expect_all_variants(const Row& r, const char* what) {
   expect_row_identical<false, true>(r, what);
   expect_row_identical<true, false>(r, what);
   expect_row_identical<true, true>(r, what);
+  expect_row_identical<true, false, true>(r, what);
+  expect_row_identical<true, true, true>(r, what);
 }
 
 // Sets `set_modulation_baseline_only` for a scope.
@@ -186,7 +203,7 @@ TEST(PvrtcModulationAvx2, RowWithEqualImagesKeepsFirstCandidate) {
   // rank 0 (mode 1).
   Row r = make_row(16, Fill::flat, 7);
   std::vector<BlockModAvx2> got(16);
-  block_row_errors_avx2(r.v, r.t, r.vstride, 16, true, true, got.data());
+  block_row_errors_avx2(r.v, r.t, nullptr, r.vstride, 16, true, true, got.data());
   for (const BlockModAvx2& g : got) {
     EXPECT_EQ(g.bits0, 0u);
     EXPECT_EQ(g.bits1, 0u);
@@ -208,13 +225,17 @@ TEST(PvrtcModulationAvx2, EncodeMatchesBaseline) {
         }
       }
       for (Quality q : {Quality::fast, Quality::normal}) {
-        SCOPED_TRACE(testing::Message()
-                     << wh[0] << "x" << wh[1] << " alpha " << alpha << " quality " << int(q));
-        EncodeOptions o;
-        o.format = Format::pvrtc1_4bpp;
-        o.quality = q;
-        o.threads = 2;
-        expect_same_bytes_as_baseline<BaselineOnly>(img, o);
+        for (bool weighted : {false, true}) {
+          if (weighted && !alpha) continue;
+          SCOPED_TRACE(testing::Message() << wh[0] << "x" << wh[1] << " alpha " << alpha
+                                          << " quality " << int(q) << " weighted " << weighted);
+          EncodeOptions o;
+          o.format = Format::pvrtc1_4bpp;
+          o.quality = q;
+          o.threads = 2;
+          o.alpha_weighted = weighted;
+          expect_same_bytes_as_baseline<BaselineOnly>(img, o);
+        }
       }
     }
   }

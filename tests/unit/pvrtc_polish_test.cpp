@@ -1,8 +1,8 @@
 // Tests of the exact search's window evaluators (src/pvrtc/encode/search/exact_search_kernel.h):
 // the channel-planar evaluator of one-colour-channel candidates against the general
 // `local_error_simd` on random windows, including the bound (early exit) semantics of both; the
-// AVX2 evaluators (exact_search_avx2.cpp) against the baseline ones, and whole encodes (4 bpp
-// normal and high, 2 bpp high) with and without them.
+// AVX2 evaluators (exact_search_avx2.cpp) against the baseline ones, alpha-weighted or not, and
+// whole encodes (4 bpp normal and high, 2 bpp high) with and without them.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -277,19 +277,27 @@ std::vector<std::uint32_t> bounds_for(std::uint32_t exact) {
           exact,     exact + 1, exact + 1000, ~0u};
 }
 
-void check_avx2_windows(int nch, bool punch, int alpha_weight, unsigned seed, bool extremes) {
+// weighted (nch 4): random colour scales, against the baseline's kWeighted evaluators.
+void check_avx2_windows(int nch, bool punch, int alpha_weight, unsigned seed, bool extremes,
+                        bool weighted = false) {
   std::mt19937 rng(seed);
   for (int w = 0; w < 60; ++w) {
     SCOPED_TRACE(testing::Message() << "window " << w);
     LocalWindow lw;
     random_window(rng, nch, punch, alpha_weight, lw, extremes);
+    if (weighted) set_scales(lw, rng, -1);
     const Rgba5 a = random_pair_end(rng, nch), b = random_pair_end(rng, nch);
     const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
+    auto base_local = [&](const Rgba5& ca, const Rgba5& cb, std::uint32_t bound) {
+      return weighted ? local_error_weighted(lw, ca, cb, bound)
+                      : local_error_simd(lw, ca, cb, bound);
+    };
     // Per-texel errors (what order_local sorts by).
     std::uint32_t base[52], avx2[52];
     for (int i = 0; i < 52; ++i) base[i] = avx2[i] = 0xdeadbeefu;
-    const std::uint32_t total = nch == 4 ? local_error_simd_t<true, true>(lw, a, b, 0, base)
-                                         : local_error_simd_t<false, true>(lw, a, b, 0, base);
+    const std::uint32_t total = weighted   ? local_error_simd_t<true, true, true>(lw, a, b, 0, base)
+                                : nch == 4 ? local_error_simd_t<true, true>(lw, a, b, 0, base)
+                                           : local_error_simd_t<false, true>(lw, a, b, 0, base);
     EXPECT_EQ(local_error_store_avx2(lw, va, vb, avx2), total);
     for (int i = 0; i < 52; ++i) EXPECT_EQ(avx2[i], base[i]) << "texel " << i;
     // General candidates (any channels), bounded.
@@ -297,26 +305,30 @@ void check_avx2_windows(int nch, bool punch, int alpha_weight, unsigned seed, bo
       Rgba5 ca = random_pair_end(rng, nch), cb = random_pair_end(rng, nch);
       if (k == 0) ca = a, cb = b;
       const std::int32_t ka[4] = {ca.r, ca.g, ca.b, ca.a}, kb[4] = {cb.r, cb.g, cb.b, cb.a};
-      const std::uint32_t exact = local_error_simd(lw, ca, cb, ~0u);
+      const std::uint32_t exact = base_local(ca, cb, ~0u);
       ASSERT_EQ(local_error_avx2(lw, ka, kb, ~0u), exact) << "candidate " << k;
       for (const std::uint32_t bound : bounds_for(exact)) {
-        expect_bounded(local_error_simd(lw, ca, cb, bound), exact, bound);
+        expect_bounded(base_local(ca, cb, bound), exact, bound);
         expect_bounded(local_error_avx2(lw, ka, kb, bound), exact, bound);
       }
     }
     // One-colour-channel candidates through the planar tables of (a, b).
     PlanarWindow pw;
     build_planar(lw, pw);
-    planar_refresh(pw, a, b);
+    weighted ? planar_refresh_t<true>(pw, a, b) : planar_refresh(pw, a, b);
     for (int c = 0; c < 3; ++c) planar_rest(pw, c);
+    auto base_planar = [&](int c, std::int32_t pa, std::int32_t pb, std::uint32_t bound) {
+      return weighted ? planar_error_t<true>(pw, c, pa, pb, bound)
+                      : planar_error(pw, c, pa, pb, bound);
+    };
     for (int k = 0; k < 40; ++k) {
       const int c = int(rng() % 3);
       const std::int32_t pa = k == 0 ? va[c] : int(rng() % 32);
       const std::int32_t pb = k == 0 ? vb[c] : int(rng() % 32);
-      const std::uint32_t exact = planar_error(pw, c, pa, pb, ~0u);
+      const std::uint32_t exact = base_planar(c, pa, pb, ~0u);
       ASSERT_EQ(planar_error_avx2(pw, c, pa, pb, ~0u), exact) << "candidate " << k;
       for (const std::uint32_t bound : bounds_for(exact)) {
-        expect_bounded(planar_error(pw, c, pa, pb, bound), exact, bound);
+        expect_bounded(base_planar(c, pa, pb, bound), exact, bound);
         expect_bounded(planar_error_avx2(pw, c, pa, pb, bound), exact, bound);
       }
     }
@@ -342,6 +354,12 @@ TEST(PvrtcPolishAvx2, MatchesBaselineRgbaPunchThrough) {
   check_avx2_windows(4, true, 2, 16, true);
   check_avx2_windows(4, true, 1, 17, false);
   check_avx2_windows(4, true, 1, 18, true);
+}
+TEST(PvrtcPolishAvx2, MatchesBaselineWeighted) {
+  SKIP_WITHOUT_AVX2();
+  check_avx2_windows(4, false, 2, 19, false, true);
+  check_avx2_windows(4, true, 2, 20, false, true);
+  check_avx2_windows(4, true, 2, 21, true, true);
 }
 
 // Sets `set_polish_baseline_only` for a scope.
@@ -382,20 +400,25 @@ TEST(PvrtcPolishAvx2, EncodeMatchesBaseline) {
       for (int fq = 0; fq < 3; ++fq) {  // 4 bpp normal, high; 2 bpp high (its endpoint search)
         const Quality q = fq == 0 ? Quality::normal : Quality::high;
         const Format f = fq == 2 ? Format::pvrtc1_2bpp : Format::pvrtc1_4bpp;
-        SCOPED_TRACE(testing::Message() << wh[0] << "x" << wh[1] << " variant " << variant
-                                        << " quality " << int(q) << " format " << int(f));
-        EncodeOptions o;
-        o.format = f;
-        o.quality = q;
-        o.threads = 2;
-        o.punch_through = variant != 2;
-        auto encode_with = [&](bool baseline_only) {
-          PolishBaselineOnly only(baseline_only);
-          return encode(img, o);
-        };
-        const auto base = encode_with(true), fast = encode_with(false);
-        ASSERT_TRUE(base.ok() && fast.ok());
-        EXPECT_EQ(*base, *fast);
+        for (bool weighted : {false, true}) {  // alpha-weighted: 4 bpp RGBA only
+          if (weighted && (variant != 1 || f != Format::pvrtc1_4bpp)) continue;
+          SCOPED_TRACE(testing::Message()
+                       << wh[0] << "x" << wh[1] << " variant " << variant << " quality " << int(q)
+                       << " format " << int(f) << " weighted " << weighted);
+          EncodeOptions o;
+          o.format = f;
+          o.quality = q;
+          o.threads = 2;
+          o.punch_through = variant != 2;
+          o.alpha_weighted = weighted;
+          auto encode_with = [&](bool baseline_only) {
+            PolishBaselineOnly only(baseline_only);
+            return encode(img, o);
+          };
+          const auto base = encode_with(true), fast = encode_with(false);
+          ASSERT_TRUE(base.ok() && fast.ok());
+          EXPECT_EQ(*base, *fast);
+        }
       }
     }
   }

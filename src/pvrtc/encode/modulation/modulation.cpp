@@ -1,7 +1,8 @@
 // Modulation choice for fixed endpoints (exact decoder arithmetic) and the total error of a
-// state: the 4 bpp brute force over the blends of both modes (planar SIMD, 8 texels at a time;
-// see modulation_kernel.h, or 16 with AVX2 where the CPU has it: modulation_avx2.cpp); the
-// 2 bpp direct / interpolated choice is in modulation_2bpp.cpp.
+// state: the 4 bpp brute force over the blends of both modes (planar SIMD, written once in
+// modulation_blends.h: 8 texels at a time through modulation_kernel.h, or 16 with AVX2 where
+// the CPU has it through modulation_avx2.cpp, alpha-weighted or not); the 2 bpp direct /
+// interpolated choice is in modulation_2bpp.cpp.
 #include <algorithm>
 #include <atomic>
 #include <limits>
@@ -62,8 +63,7 @@ std::uint64_t choose_modulation_4bpp_impl(EncoderState& s) {
   }
   std::vector<std::uint64_t> row_err(std::size_t(g.nby), 0);
   const std::size_t vstride = std::size_t(g.nbx) + 8;  // block_row_errors_avx2 reads 8 from bx
-  // The AVX2 kernel has no colour weights: alpha-weighted encodes take the baseline kernel.
-  const bool avx2 = !kWeighted && use_avx2();
+  const bool avx2 = use_avx2();
   parallel_for(
       0, g.nby, 4,
       [&](std::int64_t by0, std::int64_t by1) {
@@ -96,7 +96,8 @@ std::uint64_t choose_modulation_4bpp_impl(EncoderState& s) {
           std::uint64_t err_row = 0;
           const std::size_t row0 = std::size_t(by) * std::size_t(g.nbx);
           if (avx2) {
-            block_row_errors_avx2(r.v, r.t, vstride, g.nbx, kAlpha, kExtra, row_mods.data());
+            block_row_errors_avx2(r.v, r.t, kWeighted ? r.w : nullptr, vstride, g.nbx, kAlpha,
+                                  kExtra, row_mods.data());
             for (int bx = 0; bx < g.nbx; ++bx) {
               err_row += pick<kExtra>(s, row_mods[std::size_t(bx)], row0 + std::size_t(bx));
             }

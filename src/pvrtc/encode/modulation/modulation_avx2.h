@@ -1,6 +1,7 @@
-// modulation_avx2.h — the AVX2 block-row version of the 4 bpp brute-force modulation kernel
-// (modulation_avx2.cpp, compiled with -mavx2) and the switch between it and the baseline
-// kernel (modulation_kernel.h) that `choose_modulation` makes once per call.
+// modulation_avx2.h — the AVX2 block-row driver of the 4 bpp brute-force modulation kernel
+// (modulation_blends.h with the 8-lane types, in modulation_avx2.cpp, compiled with -mavx2)
+// and the switch between it and the baseline driver (modulation_kernel.h) that
+// `choose_modulation` makes once per call.
 //
 // Included by the -mavx2 translation unit, so it holds plain declarations and POD structs
 // only: nothing here may be an inline function or a template (the linker could keep an AVX2
@@ -21,13 +22,15 @@ struct BlockModAvx2 {
 };
 
 /// Scores every block of one block row, 16 texels (4 blocks) a step, with the results of
-/// `block_pair_errors<alpha, extra>` for each block. `v[j]` and `t[j]` are the column-sum
-/// planes and the target row of texel row j, laid out as `ModRow4` (8 planes `vstride` apart,
-/// element bx + 1 holding block bx); requires vstride >= nbx + 8 (a step reads 8 elements
-/// from element bx) and nbx >= 1. Writes out[0 .. nbx). Call only when
+/// `block_pair_errors<alpha, extra, w != nullptr>` for each block. `v[j]`, `t[j]` and `w[j]`
+/// are the column-sum planes, the target row and the colour scales of texel row j, laid out as
+/// `ModRow4` (8 planes `vstride` apart, element bx + 1 holding block bx); `w` null: unweighted
+/// colour error, else alpha-weighted (alpha only). Requires vstride >= nbx + 8 (a step reads 8
+/// elements from element bx) and nbx >= 1. Writes out[0 .. nbx). Call only when
 /// `modulation_avx2_supported()`; elsewhere it does nothing.
 void block_row_errors_avx2(const std::uint16_t* const v[4], const std::uint8_t* const t[4],
-                           std::size_t vstride, int nbx, bool alpha, bool extra, BlockModAvx2* out);
+                           const std::uint8_t* const w[4], std::size_t vstride, int nbx, bool alpha,
+                           bool extra, BlockModAvx2* out);
 
 /// True when this build has the AVX2 kernel and the CPU (and OS) can run it.
 bool modulation_avx2_supported();

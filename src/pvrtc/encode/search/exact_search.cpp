@@ -20,8 +20,9 @@
 // that changes one colour channel only is scored channel-planar from the other channels' per-blend
 // errors (exact_search_kernel.h), and a pair already met in the visit is not scored again. Where
 // the CPU has AVX2 both evaluators run twice the texels a step (exact_search_avx2.cpp; the same
-// integers). With alpha-weighted colour error (EncodeOptions::alpha_weighted) the windows carry
-// each texel's colour scale and the baseline evaluators scale its colour differences by it.
+// integers: the evaluators are written once, exact_search_evaluators.h). With alpha-weighted
+// colour error (EncodeOptions::alpha_weighted) the windows carry each texel's colour scale and
+// the evaluators scale its colour differences by it.
 #include <algorithm>
 #include <atomic>
 #include <bit>
@@ -42,17 +43,20 @@ namespace {
 
 std::atomic<bool> g_baseline_only{false};
 
-// The window evaluators, chosen once per reseed() / polish() call: exact_search_kernel.h's (SSE2
-// through simd.h, or scalar) or exact_search_avx2.cpp's where polish_avx2_active(). Same integers.
-// kWeighted: alpha-weighted colour error, which has baseline evaluators only (a template flag, so
-// that the unweighted search runs the code it ran before the option existed).
+// The window evaluators, chosen once per reseed() / polish() call: exact_search_kernel.h's (the
+// evaluators of exact_search_evaluators.h with 4 lanes: SSE2, NEON or scalar through simd.h) or
+// exact_search_avx2.cpp's (the same with 8 lanes) where polish_avx2_active(). Same integers.
+// kWeighted: alpha-weighted colour error (a template flag, so that the unweighted search runs
+// the code it ran before the option existed; the AVX2 entry points read lw.weighted).
 template <bool kWeighted>
 struct Evaluators {
-  bool avx2 = !kWeighted && polish_avx2_active();
+  bool avx2 = polish_avx2_active();
   std::uint32_t local(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
                       std::uint32_t bound) const {
-    if constexpr (kWeighted) return local_error_weighted(lw, a, b, bound);
-    if (!avx2) return local_error_simd(lw, a, b, bound);
+    if (!avx2) {
+      if constexpr (kWeighted) return local_error_weighted(lw, a, b, bound);
+      return local_error_simd(lw, a, b, bound);
+    }
     const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
     return local_error_avx2(lw, va, vb, bound);
   }
@@ -69,8 +73,8 @@ struct Evaluators {
   }
   std::uint32_t planar(const PlanarWindow& pw, int c, std::int32_t av, std::int32_t bv,
                        std::uint32_t bound) const {
-    if constexpr (kWeighted) return planar_error_t<true>(pw, c, av, bv, bound);
-    return avx2 ? planar_error_avx2(pw, c, av, bv, bound) : planar_error(pw, c, av, bv, bound);
+    if (avx2) return planar_error_avx2(pw, c, av, bv, bound);
+    return planar_error_t<kWeighted>(pw, c, av, bv, bound);
   }
   void refresh(PlanarWindow& pw, const Rgba5& a, const Rgba5& b) const {
     planar_refresh_t<kWeighted>(pw, a, b);

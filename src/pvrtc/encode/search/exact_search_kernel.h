@@ -1,8 +1,10 @@
-// exact_search_kernel.h — the exact window evaluators of the PVRTC 4 bpp exact search
-// (exact_search.cpp): `LocalWindow` / `local_error_simd` score any candidate endpoint pair of one
-// block over the 7x7 texels it influences; `PlanarWindow` / `planar_error` score a candidate that
-// differs from the block's current pair in one colour channel only, eight texels per vector, from
-// each texel's per-blend error of the other channels under the current pair. Both are exact integer
+// exact_search_kernel.h — the baseline window evaluators of the PVRTC 4 bpp exact search
+// (exact_search.cpp): `local_error_simd` scores any candidate endpoint pair of one block over
+// the 7x7 texels it influences (LocalWindow); `planar_error` scores a candidate that differs
+// from the block's current pair in one colour channel only (PlanarWindow), after
+// `build_planar`, `planar_refresh` and `planar_rest`. The evaluators themselves are written once
+// for the 4- and 8-lane types (exact_search_evaluators.h): here they run with vu16x8 (SSE2,
+// NEON or scalar through simd.h), in exact_search_avx2.cpp with vu16x16; both are exact integer
 // sums that stop once they reach a bound (the result is then >= the bound).
 #pragma once
 
@@ -11,108 +13,23 @@
 
 #include "core/simd.h"
 #include "pvrtc/encode/colour_scale_kernel.h"
+#include "pvrtc/encode/search/exact_search_evaluators.h"
 #include "pvrtc/encode/search/exact_search_window.h"
 #include "pvrtc/format/pvrtc_kernel.h"
 
 namespace tessera::pvrtc::detail {
 
-// LocalWindow and PlanarWindow (the layouts) are in exact_search_window.h, with the AVX2 versions
-// of the evaluators below (exact_search_avx2.cpp).
+// LocalWindow and PlanarWindow (the layouts) are in exact_search_window.h, with the AVX2 entry
+// points of the evaluators (exact_search_avx2.cpp).
 
-// Exact error of the local window with (a, b) as block j's endpoints, two texels at a time;
-// stops once it reaches `bound` (the result is then >= bound). kAlpha: RGBA input (alpha
-// lanes, punch-through blend, weighted alpha error); RGB skips those. With the blends from
-// A + B and A - B (fewer operations per blend, same output).
-// kStore: no bound; each texel's error goes to texel_err[slot] (slots in layout order).
-// kWeighted (with kAlpha): each difference scaled by lw.scale16 first (`scale_diff16`: the
-// alpha lanes' scale is 16, so alpha is as it was; magnitudes never grow, so the float-minimum
-// bound below still holds).
+/// `local_error_lanes` (exact_search_evaluators.h) with vu16x8: two texels a vector, four a
+/// step. kStore: no bound, each texel's error to texel_err[0 .. 52); kWeighted (with kAlpha):
+/// alpha-weighted colour error (lw.weighted).
 template <bool kAlpha, bool kStore = false, bool kWeighted = false>
 inline std::uint32_t local_error_simd_t(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
                                         std::uint32_t bound, std::uint32_t* texel_err = nullptr) {
-  using simd::vint4;
-  using simd::vu16x8;
-  alignas(16) const std::uint16_t a16[8] = {
-      std::uint16_t(a.r), std::uint16_t(a.g), std::uint16_t(a.b), std::uint16_t(a.a),
-      std::uint16_t(a.r), std::uint16_t(a.g), std::uint16_t(a.b), std::uint16_t(a.a)};
-  alignas(16) const std::uint16_t b16[8] = {
-      std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a),
-      std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a)};
-  const vu16x8 av = simd::load_u16x8(a16), bv = simd::load_u16x8(b16);
-  alignas(16) static constexpr std::uint16_t kAlphaLanes[8] = {0, 0, 0, 0xffff, 0, 0, 0, 0xffff};
-  alignas(16) static constexpr std::uint16_t kRgbLanes[8] = {0xffff, 0xffff, 0xffff, 0,
-                                                             0xffff, 0xffff, 0xffff, 0};
-  const vu16x8 alpha = simd::load_u16x8(kAlphaLanes), rgb = simd::load_u16x8(kRgbLanes);
-  const vu16x8 aw = simd::load_u16x8(lw.weight16);
-  // Squared errors of pair p's blends, lanes (texel 0 RG, texel 0 BA, texel 1 RG, texel 1 BA).
-  struct PairSq {
-    vint4 e0, e8, e3, e5, e4, e4p;
-  };
-  auto pair_sq = [&](int p, PairSq& o) {
-    const vu16x8 own = simd::load_u16x8(&lw.own16[2 * p][0]);
-    // Bilinear sums S (weights sum to 16); 8-bit colour (2S >> 7) + (2S >> 2), alpha
-    // (2S >> 5) + (2S >> 1). (Alpha lanes are all zero for RGB input.)
-    const vu16x8 sa = simd::load_u16x8(&lw.rest16_a[2 * p][0]) + simd::mullo(own, av);
-    const vu16x8 sb = simd::load_u16x8(&lw.rest16_b[2 * p][0]) + simd::mullo(own, bv);
-    vu16x8 ua = simd::srl<6>(sa) + simd::srl<1>(sa), ub = simd::srl<6>(sb) + simd::srl<1>(sb);
-    if constexpr (kAlpha) {
-      ua = simd::select(alpha, simd::srl<4>(sa) + sa, ua);
-      ub = simd::select(alpha, simd::srl<4>(sb) + sb, ub);
-    }
-    const vu16x8 t = simd::load_u16x8(&lw.t16[2 * p][0]);
-    static_assert(kAlpha || !kWeighted);
-    vu16x8 scale;
-    if constexpr (kWeighted) scale = simd::load_u16x8(&lw.scale16[2 * p][0]);
-    auto err = [&](vu16x8 d) {
-      if constexpr (kWeighted) d = scale_diff16(d, scale);
-      return kAlpha ? simd::madd(d, simd::mullo(d, aw)) : simd::madd(d, d);
-    };
-    // Blends (A (8 - m) + B m) >> 3 from the sum: 4 (A + B) +- (A - B) for m = 3, 5 (the u16
-    // lanes wrap in between, the results are exact), (A + B) >> 1 for m = 4.
-    const vu16x8 sum = ua + ub, sum2 = sum + sum, sum4 = sum2 + sum2, diff = ua - ub;
-    o.e0 = err(ua - t);
-    o.e8 = err(ub - t);
-    o.e3 = err(simd::srl<3>(sum4 + diff) - t);
-    o.e5 = err(simd::srl<3>(sum4 - diff) - t);
-    const vu16x8 v4 = simd::srl<1>(sum);
-    o.e4 = err(v4 - t);
-    if constexpr (kAlpha) o.e4p = err((v4 & rgb) - t);
-  };
-  // Four texels (two pairs) per step: the per-texel sums of the two pairs' lanes, then the
-  // minimum over the blends in float lanes (SSE2 has no 32-bit integer min; fewer
-  // instructions than emulating it): errors are far below 2^24 (exact in float), excluded blends
-  // (2^24 and up) stay at least 2^24 once rounded, and e0 / e8 are never excluded, so the minimum
-  // is the exact integer minimum.
-  vint4 acc;
-  for (int q = 0; q < 13; ++q) {
-    PairSq x, y;
-    pair_sq(2 * q, x);
-    pair_sq(2 * q + 1, y);
-    using simd::pair_sums;
-    using simd::to_float;
-    auto bias = [&](const std::int32_t(*rows)[4]) {
-      return simd::even_lanes(simd::load4(rows[2 * q]), simd::load4(rows[2 * q + 1]));
-    };
-    const vint4 b35 = bias(lw.bias35);
-    simd::vf4 m4 = to_float(pair_sums(x.e4, y.e4) + bias(lw.bias4));
-    if constexpr (kAlpha) {
-      m4 = simd::min(m4, to_float(pair_sums(x.e4p, y.e4p) + bias(lw.bias4p)));
-    }
-    const vint4 m = simd::to_int_trunc(simd::min(
-        simd::min(simd::min(to_float(pair_sums(x.e0, y.e0)), to_float(pair_sums(x.e8, y.e8))),
-                  simd::min(to_float(pair_sums(x.e3, y.e3) + b35),
-                            to_float(pair_sums(x.e5, y.e5) + b35))),
-        m4));
-    acc += m;
-    if constexpr (kStore) {
-      alignas(16) std::int32_t m32[4];
-      simd::store4(m, m32);
-      for (int i = 0; i < 4; ++i) texel_err[4 * q + i] = std::uint32_t(m32[i]);
-    } else {
-      if (std::uint32_t(simd::sum_lanes(acc)) >= bound) break;
-    }
-  }
-  return std::uint32_t(simd::sum_lanes(acc));
+  const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
+  return local_error_lanes<kAlpha, kStore, kWeighted, simd::vu16x8>(lw, va, vb, bound, texel_err);
 }
 
 inline std::uint32_t local_error_simd(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
@@ -173,34 +90,6 @@ inline std::uint32_t local_error_weighted(const LocalWindow& lw, const Rgba5& a,
   for (int k = 49; k < 56; ++k) pw.excl35[k] = pw.excl4[k] = pw.excl4p[k] = 0;
 }
 
-namespace planar_detail {
-// The five blends of 8 texels of one channel (c < 3: colour, 3: alpha) for endpoint values
-// av, bv: slots 0: A, 1: B, 2: (5A + 3B) >> 3, 3: (3A + 5B) >> 3, 4: (A + B) >> 1.
-template <bool kAlphaChannel>
-inline void blends(simd::vu16x8 own, simd::vu16x8 ra, simd::vu16x8 rb, simd::vu16x8 av,
-                   simd::vu16x8 bv, simd::vu16x8 out[5]) {
-  using simd::vu16x8;
-  const vu16x8 sa = ra + simd::mullo(own, av), sb = rb + simd::mullo(own, bv);
-  vu16x8 ua, ub;
-  if constexpr (kAlphaChannel) {
-    ua = simd::srl<4>(sa) + sa;
-    ub = simd::srl<4>(sb) + sb;
-  } else {
-    ua = simd::srl<6>(sa) + simd::srl<1>(sa);
-    ub = simd::srl<6>(sb) + simd::srl<1>(sb);
-  }
-  const vu16x8 sum = ua + ub, sum2 = sum + sum, sum4 = sum2 + sum2, diff = ua - ub;
-  out[0] = ua;
-  out[1] = ub;
-  out[2] = simd::srl<3>(sum4 + diff);
-  out[3] = simd::srl<3>(sum4 - diff);
-  out[4] = simd::srl<1>(sum);
-}
-inline std::int32_t channel_value(const Rgba5& x, int c) {
-  return c == 0 ? x.r : c == 1 ? x.g : c == 2 ? x.b : x.a;
-}
-}  // namespace planar_detail
-
 /// Per-texel slot errors of the pair (a, b) (the block's current pair): `e`, then `total`.
 /// kWeighted: colour differences scaled by pw.scale (pw.weighted).
 template <bool kWeighted>
@@ -216,9 +105,8 @@ template <bool kWeighted>
     vu16x8 bl[5], scale;
     if constexpr (kWeighted) scale = simd::load_u16x8(&pw.scale[o]);
     for (int c = 0; c < 3; ++c) {
-      planar_detail::blends<false>(own, simd::load_u16x8(&pw.ra[c][o]),
-                                   simd::load_u16x8(&pw.rb[c][o]), vu16x8{std::uint16_t(av[c])},
-                                   vu16x8{std::uint16_t(bv[c])}, bl);
+      planar_blends<false>(own, simd::load_u16x8(&pw.ra[c][o]), simd::load_u16x8(&pw.rb[c][o]),
+                           vu16x8{std::uint16_t(av[c])}, vu16x8{std::uint16_t(bv[c])}, bl);
       const vu16x8 t = simd::load_u16x8(&pw.t[c][o]);
       for (int sl = 0; sl < PlanarWindow::kSlots; ++sl) {
         vu16x8 d = bl[sl] - t;
@@ -228,9 +116,8 @@ template <bool kWeighted>
     }
     vu16x8 ealpha[5], tt;  // alpha: squared errors per slot, and of alpha 0 (punch-through)
     if (pw.nch == 4) {
-      planar_detail::blends<true>(own, simd::load_u16x8(&pw.ra[3][o]),
-                                  simd::load_u16x8(&pw.rb[3][o]), vu16x8{std::uint16_t(av[3])},
-                                  vu16x8{std::uint16_t(bv[3])}, bl);
+      planar_blends<true>(own, simd::load_u16x8(&pw.ra[3][o]), simd::load_u16x8(&pw.rb[3][o]),
+                          vu16x8{std::uint16_t(av[3])}, vu16x8{std::uint16_t(bv[3])}, bl);
       const vu16x8 t = simd::load_u16x8(&pw.t[3][o]);
       for (int sl = 0; sl < PlanarWindow::kSlots; ++sl) {
         const vu16x8 d = bl[sl] - t;
@@ -282,40 +169,14 @@ template <bool kWeighted>
 }
 
 /// Exact window error of the current pair with colour channel c (< 3) of A and B set to av, bv
-/// (5-bit values), given planar_refresh and planar_rest(c) for the current pair; stops once it
+/// (5-bit values), given planar_refresh and planar_rest(c) for the current pair:
+/// `planar_error_lanes` (exact_search_evaluators.h) with vu16x8, 8 texels a step; stops once it
 /// reaches `bound` (the result is then >= bound). kWeighted: as planar_refresh_t.
 template <bool kWeighted>
 [[gnu::noinline]] inline std::uint32_t planar_error_t(const PlanarWindow& pw, int c,
                                                       std::int32_t av, std::int32_t bv,
                                                       std::uint32_t bound) {
-  using simd::vf4;
-  using simd::vint4;
-  using simd::vu16x8;
-  const vu16x8 a16{std::uint16_t(av)}, b16{std::uint16_t(bv)};
-  vint4 acc;
-  for (int g = 0; g < PlanarWindow::kGroups; ++g) {
-    const int o = 8 * g;
-    vu16x8 bl[5];
-    planar_detail::blends<false>(simd::load_u16x8(&pw.own[o]), simd::load_u16x8(&pw.ra[c][o]),
-                                 simd::load_u16x8(&pw.rb[c][o]), a16, b16, bl);
-    const vu16x8 t = simd::load_u16x8(&pw.t[c][o]);
-    vu16x8 scale;
-    if constexpr (kWeighted) scale = simd::load_u16x8(&pw.scale[o]);
-    vf4 mlo, mhi;
-    for (int sl = 0; sl < PlanarWindow::kSlots; ++sl) {
-      vu16x8 d = bl[sl] - t;
-      if constexpr (kWeighted) d = scale_diff16(d, scale);
-      const vu16x8 sq = simd::mullo(d, d);
-      // (2^23 + d^2) + (total - e - 2^23): exact integers below 2^24.
-      const vf4 lo = simd::f2p23_plus_lo(sq) + simd::loadf4(&pw.rest[c][sl][o]);
-      const vf4 hi = simd::f2p23_plus_hi(sq) + simd::loadf4(&pw.rest[c][sl][o + 4]);
-      mlo = sl == 0 ? lo : simd::min(mlo, lo);
-      mhi = sl == 0 ? hi : simd::min(mhi, hi);
-    }
-    acc += simd::to_int_trunc(mlo) + simd::to_int_trunc(mhi);
-    if (std::uint32_t(simd::sum_lanes(acc)) >= bound) break;
-  }
-  return std::uint32_t(simd::sum_lanes(acc));
+  return planar_error_lanes<kWeighted, simd::vu16x8>(pw, c, av, bv, bound);
 }
 
 inline void planar_refresh(PlanarWindow& pw, const Rgba5& a, const Rgba5& b) {

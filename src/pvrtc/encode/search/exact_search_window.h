@@ -1,7 +1,7 @@
 // exact_search_window.h — the window layouts of the PVRTC exact searches (4 bpp: exact_search.cpp,
-// 2 bpp: exact_search_2bpp.cpp) and the AVX2 versions of their window evaluators
+// 2 bpp: exact_search_2bpp.cpp) and the AVX2 entry points of their window evaluators
 // (exact_search_avx2.cpp and exact_search_2bpp_avx2.cpp, compiled with -mavx2): the baseline
-// evaluators are in exact_search_kernel.h, which includes this header, and exact_search_2bpp.cpp.
+// ones are in exact_search_kernel.h, which includes this header, and exact_search_2bpp.cpp.
 //
 // Included by the -mavx2 translation unit, so it holds plain declarations and trivial structs
 // only: nothing here may be an inline function, a template or a member initialiser, nor may it
@@ -27,7 +27,7 @@ struct LocalWindow {
   int nch;
   bool punch;
   alignas(16) std::uint16_t weight16[8];  ///< Per-lane error weights (RGBA RGBA).
-  /// Alpha-weighted colour error (`weighted`; the baseline evaluators only): per texel, the
+  /// Alpha-weighted colour error (`weighted`, which the AVX2 evaluators read too): per texel, the
   /// scale of its colour differences in the colour lanes (0..16) and 16 in the alpha lane
   /// (alpha differences as they are); pads 0. Not written otherwise.
   alignas(16) std::uint16_t scale16[56][4];
@@ -58,11 +58,12 @@ struct PlanarWindow {
   bool weighted;
 };
 
-// The AVX2 evaluators: the same integers as `local_error_simd` / `local_error_simd_t<.., true>`
-// / `planar_error` of exact_search_kernel.h (the endpoints as (r, g, b, a) 5-bit values), twice the
-// texels a step; a bounded result below the bound is exact, else it is >= bound (the bound is
-// checked every 8 / 16 texels instead of 4 / 8). Call only where `polish_avx2_active()`; in a
-// build without the AVX2 kernels they return 0.
+// The AVX2 evaluators (exact_search_evaluators.h with the 8-lane types; alpha-weighted where
+// lw.weighted / pw.weighted): the same integers as `local_error_simd` / `local_error_weighted` /
+// `local_error_simd_t<.., true, ..>` / `planar_error_t` of exact_search_kernel.h (the endpoints
+// as (r, g, b, a) 5-bit values), twice the texels a step; a bounded result below the bound is
+// exact, else it is >= bound (the bound is checked every 8 / 16 texels instead of 4 / 8). Call
+// only where `polish_avx2_active()`; in a build without the AVX2 kernels they return 0.
 
 /// The window error of block j's endpoints (a, b); stops once it reaches `bound`.
 std::uint32_t local_error_avx2(const LocalWindow& lw, const std::int32_t a[4],
