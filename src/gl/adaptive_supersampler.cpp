@@ -3,12 +3,11 @@
 #include <EGL/egl.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <mutex>
-#include <sstream>
 
 #include "gl/adaptive_internal.h"
 #include "gl/gl_api.h"
+#include "gl/glsl_dir.h"
 #include "tessera/deferred.h"
 
 namespace tessera::gl {
@@ -36,13 +35,6 @@ std::string load_adaptive_gl_extra(AdaptiveGlExtra& out) {
 }
 
 namespace {
-
-std::string float_literal(float v) {
-  std::ostringstream o;
-  o.precision(9);
-  o << std::showpoint << v;
-  return o.str();
-}
 
 Status invalid(const std::string& what) {
   return Status::error(ErrorCode::invalid_argument, "adaptive supersampler: " + what);
@@ -82,45 +74,12 @@ int max_channel(const std::string& xyzw) {
 std::string accessor(const char* type, const char* name, const AdaptiveChannel& c,
                      const std::string& sw, int width) {
   std::string expr = "texelFetch(tessera_aa_gbuffer" + std::to_string(c.texture) + ", g, 0)." + sw;
-  if (c.scale != 1.0f) expr = "(" + expr + " * " + float_literal(c.scale) + ")";
+  if (c.scale != 1.0f) expr = "(" + expr + " * " + glsl_float(c.scale) + ")";
   if (c.bias != 0.0f) {
-    expr = "(" + expr + " + " + (width > 1 ? std::string(type) + "(" : "") + float_literal(c.bias) +
+    expr = "(" + expr + " + " + (width > 1 ? std::string(type) + "(" : "") + glsl_float(c.bias) +
            (width > 1 ? ")" : "") + ")";
   }
   return std::string(type) + " " + name + "(ivec2 g) { return " + expr + "; }";
-}
-
-bool has_component_glsl(const std::filesystem::path& dir) {
-  std::error_code ec;
-  for (const char* f :
-       {"adaptive_component.glsl", "adaptive_metrics.glsl", "adaptive_samples.glsl"}) {
-    if (!std::filesystem::is_regular_file(dir / f, ec)) return false;
-  }
-  return true;
-}
-
-Result<std::string> find_glsl_dir(const std::filesystem::path& given) {
-  if (!given.empty()) {
-    if (has_component_glsl(given)) return given.string();
-    return Status::error(ErrorCode::io_error,
-                         given.string() +
-                             ": adaptive_component.glsl, adaptive_metrics.glsl "
-                             "and adaptive_samples.glsl are not all there");
-  }
-  std::vector<std::filesystem::path> tried;
-  if (const char* env = std::getenv("TESSERA_GLSL_DIR"); env && *env) tried.emplace_back(env);
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    tried.push_back(exe.parent_path() / ".." / "share" / "tessera" / "glsl");
-    tried.push_back(exe.parent_path() / ".." / ".." / "share" / "tessera" / "glsl");
-  }
-  for (const auto& d : tried) {
-    if (has_component_glsl(d)) return d.lexically_normal().string();
-  }
-  return Status::error(ErrorCode::io_error,
-                       "adaptive supersampler: share/tessera/glsl not found (set "
-                       "TESSERA_GLSL_DIR or AdaptiveSupersamplerOptions::glsl_dir)");
 }
 
 /// A binding point: `given` checked against [0, limit - count], or the top of the range.
@@ -152,7 +111,7 @@ Status check_options(AdaptiveSupersampler::State& st) {
                                                    " pixels exceed 2^26");
   }
   if (!(o.hdr_exposure > 0.0f) || !std::isfinite(o.hdr_exposure)) {
-    return invalid("hdr_exposure = " + float_literal(o.hdr_exposure) + " (> 0)");
+    return invalid("hdr_exposure = " + glsl_float(o.hdr_exposure) + " (> 0)");
   }
   if (o.hook.source.find("tessera_shade_sample") == std::string::npos) {
     return invalid("hook '" + o.hook.name +
@@ -381,9 +340,12 @@ Result<std::unique_ptr<AdaptiveSupersampler>> AdaptiveSupersampler::create(
     return Status::error(ErrorCode::unsupported, "adaptive supersampler: no " + missing);
   }
   if (Status s = check_options(*st); !s.ok()) return s;
-  Result<std::string> dir = find_glsl_dir(options.glsl_dir);
+  Result<std::filesystem::path> dir =
+      find_glsl_dir(options.glsl_dir,
+                    {"adaptive_component.glsl", "adaptive_metrics.glsl", "adaptive_samples.glsl"},
+                    "adaptive supersampler", "AdaptiveSupersamplerOptions::glsl_dir");
   if (!dir) return dir.status();
-  st->glsl_dir = *dir;
+  st->glsl_dir = dir->string();
 
   std::vector<std::string> passes = {"FIRST",  "METRICS", "HISTOGRAM",
                                      "SELECT", "APPLY",   "REFERENCE"};

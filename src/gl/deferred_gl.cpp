@@ -5,24 +5,17 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <sstream>
 
 #include "deferred/deferred_internal.h"
 #include "gl/deferred_gl_internal.h"
 #include "gl/gl_api.h"
+#include "gl/glsl_dir.h"
 
 namespace tessera::gl {
 
 using namespace api;
 
 namespace {
-
-std::string float_literal(float v) {
-  std::ostringstream o;
-  o.precision(9);
-  o << std::showpoint << v;
-  return o.str();
-}
 
 double sum_ms(const std::vector<PassTime>& passes) {
   double t = 0;
@@ -417,14 +410,14 @@ Result<std::vector<std::string>> fxaa_defines(const deferred::FxaaOptions& f) {
         "fxaa: unknown quality preset " + std::to_string(f.preset) + " (10..15, 20..29 or 39)");
   }
   std::string table = "float[12](";
-  for (int i = 0; i < 12; ++i) table += (i ? ", " : "") + float_literal(preset->p[i]);
+  for (int i = 0; i < 12; ++i) table += (i ? ", " : "") + glsl_float(preset->p[i]);
   table += ")";
   return std::vector<std::string>{"TESSERA_PASS_FXAA",
                                   "TESSERA_FXAA_STEPS " + std::to_string(preset->steps),
                                   "TESSERA_FXAA_P " + table,
-                                  "TESSERA_FXAA_SUBPIX " + float_literal(f.subpix),
-                                  "TESSERA_FXAA_EDGE " + float_literal(f.edge_threshold),
-                                  "TESSERA_FXAA_EDGE_MIN " + float_literal(f.edge_threshold_min)};
+                                  "TESSERA_FXAA_SUBPIX " + glsl_float(f.subpix),
+                                  "TESSERA_FXAA_EDGE " + glsl_float(f.edge_threshold),
+                                  "TESSERA_FXAA_EDGE_MIN " + glsl_float(f.edge_threshold_min)};
 }
 
 }  // namespace

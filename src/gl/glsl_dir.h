@@ -1,9 +1,11 @@
 // Internal to tessera_gl: where a renderer's GLSL files are (share/tessera/glsl), found the same
-// way by every GL renderer (shader.cpp).
+// way by every GL renderer and the engine component, and how a float is written into generated
+// GLSL (shader.cpp).
 #pragma once
 
 #include <filesystem>
 #include <initializer_list>
+#include <string>
 #include <string_view>
 
 #include "tessera/core.h"
@@ -17,5 +19,9 @@ namespace tessera::gl {
 Result<std::filesystem::path> find_glsl_dir(const std::filesystem::path& given,
                                             std::initializer_list<const char*> files,
                                             std::string_view what, std::string_view option);
+
+/// `v` as a GLSL float literal that reads back to the same float (9 significant digits, always
+/// with a decimal point).
+std::string glsl_float(float v);
 
 }  // namespace tessera::gl

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <regex>
 #include <set>
+#include <sstream>
 
 #include "gl/gl_api.h"
 #include "gl/glsl_dir.h"
@@ -257,6 +258,13 @@ Result<Program> link_program(const std::vector<ShaderSource>& stages,
   }
   if (Status s = check_errors("link_program (" + names + ")"); !s.ok()) return s;
   return Program(std::move(program));
+}
+
+std::string glsl_float(float v) {
+  std::ostringstream o;
+  o.precision(9);
+  o << std::showpoint << v;
+  return o.str();
 }
 
 Result<std::filesystem::path> find_glsl_dir(const std::filesystem::path& given,
