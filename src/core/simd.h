@@ -11,6 +11,8 @@
 //                  their widening / narrowing to and from vint4 and vf4.
 //   simd_wide.h    the 8-lane types vint8, vf8, vu16x16 and vu8x32: two 4-lane halves, with an
 //                  AVX2 backend where the translation unit is compiled with -mavx2.
+//   simd_generic.h width-generic names over both widths (kLanes, load_as, store,
+//                  store_bytes), for kernels written once and compiled per width.
 //   this file      backend-independent compositions (sll_bytes, channel16).
 // Not pulled in: simd_dispatch.h, the run-time CPU checks and the one SSSE3 routine.
 //
@@ -50,6 +52,7 @@
 #include "core/simd_float.h"
 #include "core/simd_int.h"
 #include "core/simd_packed.h"
+#include "core/simd_generic.h"
 #include "core/simd_wide.h"
 
 namespace tessera::simd {
