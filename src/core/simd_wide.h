@@ -445,7 +445,7 @@ inline vint8 sll(vint8 a, int n) {
 inline vint8 select(vint8 mask, vint8 a, vint8 b) {
   return vint8(select(mask.lo, a.lo, b.lo), select(mask.hi, a.hi, b.hi));
 }
-inline vint8 max(vint8 a, vint8 b) { return select(cmpgt(a, b), a, b); }
+inline vint8 max(vint8 a, vint8 b) { return vint8(max(a.lo, b.lo), max(a.hi, b.hi)); }
 inline vint8 swap_pairs(vint8 a) { return vint8(swap_pairs(a.lo), swap_pairs(a.hi)); }
 inline vint8 swap_pairs64(vint8 a) {
   const detail::I32x8 x = detail::lanes(a);

@@ -92,6 +92,7 @@ TEST(Simd, Int32LanesEveryOperation) {
     const ILanes sel = lanes(simd::select(mask, a, b)), mn = lanes(simd::min(a, b));
     const ILanes sw = lanes(simd::swap_pairs(a)), sa = lanes(simd::select_alpha(a, b));
     const ILanes ps = lanes(simd::pair_sums(a, b)), ev = lanes(simd::even_lanes(a, b));
+    const ILanes mx = lanes(simd::max(a, b)), sw64 = lanes(simd::swap_pairs64(a));
     vint4 acc = a;
     acc += b;
     for (int i = 0; i < 4; ++i) {
@@ -106,6 +107,8 @@ TEST(Simd, Int32LanesEveryOperation) {
       EXPECT_EQ(sel.i[i], (m[i] & x[i]) | (~m[i] & y[i]));
       EXPECT_EQ(mn.i[i], std::min(x[i], y[i]));
       EXPECT_EQ(sw.i[i], x[i ^ 1]);
+      EXPECT_EQ(mx.i[i], std::max(x[i], y[i]));
+      EXPECT_EQ(sw64.i[i], x[i ^ 2]);
       EXPECT_EQ(sa.i[i], i == 3 ? y[3] : x[i]);
       EXPECT_EQ(a.lane(i), x[i]);
     }
