@@ -11,6 +11,9 @@
 //                  their widening / narrowing to and from vint4 and vf4.
 //   simd_wide.h    the 8-lane types vint8, vf8, vu16x16 and vu8x32: two 4-lane halves, with an
 //                  AVX2 backend where the translation unit is compiled with -mavx2.
+//   simd_generic.h width-generic names over both widths (kLanes, load_as, store, ...) for
+//                  kernels written once and compiled per width, and the operations such
+//                  kernels need that the 4-lane backends compose (div255_u32, lookup8, ...).
 //   this file      backend-independent compositions (sll_bytes, channel16).
 // Not pulled in: simd_dispatch.h, the run-time CPU checks and the one SSSE3 routine.
 //
@@ -32,9 +35,10 @@
 // NaN, fcvtzs saturating, immediate shift ranges, no movemask) the NEON code emulates SSE2, as
 // its comments say; the scalar code spells the same rules out. Only which NaN an arithmetic
 // operation returns (one it makes, as 0 * inf, or which of two NaN operands) is not fixed.
-// tests/unit/simd_test.cpp (4 lanes) and tests/unit/simd_wide_test.cpp (8 lanes, also built with
-// -mavx2) hold every backend to the reference expressions (scripts/test.sh runs them natively, with
-// TESSERA_NO_SIMD, and cross-compiled under qemu-aarch64). The build compiles with
+// tests/unit/simd_test.cpp and simd_int_test.cpp (4 lanes) and tests/unit/simd_wide_test.cpp (8
+// lanes, also built with -mavx2) hold every backend to the reference expressions
+// (scripts/test.sh runs them natively, with TESSERA_NO_SIMD, and cross-compiled under
+// qemu-aarch64). The build compiles with
 // -ffp-contract=off (CMakeLists.txt): GCC would otherwise fuse NEON's separate multiply and add
 // into one fused multiply-add, rounding once. TESSERA_SIMD_VECTOR (1 with SSE2 or NEON, else 0)
 // tells kernels that also have a scalar per-lookup path (texture `sample4` / one-probe lookups,
@@ -50,6 +54,7 @@
 #include "core/simd_float.h"
 #include "core/simd_int.h"
 #include "core/simd_packed.h"
+#include "core/simd_generic.h"
 #include "core/simd_wide.h"
 
 namespace tessera::simd {

@@ -139,8 +139,19 @@ inline vint4 min(vint4 a, vint4 b) {
   return vint4(_mm_or_si128(_mm_and_si128(lt, a.v), _mm_andnot_si128(lt, b.v)));
 #endif
 }
+/// Lane-wise signed maximum.
+inline vint4 max(vint4 a, vint4 b) {
+#if defined(TESSERA_SIMD_SSE41)
+  return vint4(_mm_max_epi32(a.v, b.v));
+#else
+  const __m128i gt = _mm_cmpgt_epi32(a.v, b.v);
+  return vint4(_mm_or_si128(_mm_and_si128(gt, a.v), _mm_andnot_si128(gt, b.v)));
+#endif
+}
 /// Lanes (1, 0, 3, 2): swaps adjacent lanes.
 inline vint4 swap_pairs(vint4 a) { return vint4(_mm_shuffle_epi32(a.v, _MM_SHUFFLE(2, 3, 0, 1))); }
+/// Lanes (2, 3, 0, 1): swaps the two lane pairs.
+inline vint4 swap_pairs64(vint4 a) { return vint4(_mm_shuffle_epi32(a.v, _MM_SHUFFLE(1, 0, 3, 2))); }
 /// Lanes 0-2 from `rgb`, lane 3 from `a`.
 inline vint4 select_alpha(vint4 rgb, vint4 a) {
   const __m128i m = _mm_setr_epi32(0, 0, 0, -1);
@@ -273,7 +284,9 @@ inline vint4 select(vint4 mask, vint4 a, vint4 b) {
   return vint4(vbslq_s32(vreinterpretq_u32_s32(mask.v), a.v, b.v));
 }
 inline vint4 min(vint4 a, vint4 b) { return vint4(vminq_s32(a.v, b.v)); }
+inline vint4 max(vint4 a, vint4 b) { return vint4(vmaxq_s32(a.v, b.v)); }
 inline vint4 swap_pairs(vint4 a) { return vint4(vrev64q_s32(a.v)); }
+inline vint4 swap_pairs64(vint4 a) { return vint4(vextq_s32(a.v, a.v, 2)); }
 inline vint4 select_alpha(vint4 rgb, vint4 a) { return vint4(vcopyq_laneq_s32(rgb.v, 3, a.v, 3)); }
 /// The sign bits, shifted to bit i and summed across the lanes.
 inline int movemask(vint4 mask) {
@@ -360,6 +373,7 @@ TESSERA_SIMD_I32_BINOP(cmpeq, x == y ? ~0u : 0u)
 TESSERA_SIMD_I32_BINOP(cmpgt, std::int32_t(x) > std::int32_t(y) ? ~0u : 0u)
 TESSERA_SIMD_I32_BINOP(cmplt, std::int32_t(x) < std::int32_t(y) ? ~0u : 0u)
 TESSERA_SIMD_I32_BINOP(min, std::int32_t(x) < std::int32_t(y) ? x : y)
+TESSERA_SIMD_I32_BINOP(max, std::int32_t(x) > std::int32_t(y) ? x : y)
 #undef TESSERA_SIMD_I32_BINOP
 inline vint4& operator+=(vint4& a, vint4 b) { return a = a + b; }
 // Shifts by 32 or more: SSE2's results (sra fills with the sign, srl and sll give zero).
@@ -389,6 +403,7 @@ inline vint4 sll(vint4 a) {
 }
 inline vint4 select(vint4 mask, vint4 a, vint4 b) { return (mask & a) | andnot(mask, b); }
 inline vint4 swap_pairs(vint4 a) { return {a.l[1], a.l[0], a.l[3], a.l[2]}; }
+inline vint4 swap_pairs64(vint4 a) { return {a.l[2], a.l[3], a.l[0], a.l[1]}; }
 inline vint4 select_alpha(vint4 rgb, vint4 a) { return {rgb.l[0], rgb.l[1], rgb.l[2], a.l[3]}; }
 inline int movemask(vint4 mask) {
   int m = 0;

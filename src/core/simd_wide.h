@@ -445,7 +445,7 @@ inline vint8 sll(vint8 a, int n) {
 inline vint8 select(vint8 mask, vint8 a, vint8 b) {
   return vint8(select(mask.lo, a.lo, b.lo), select(mask.hi, a.hi, b.hi));
 }
-inline vint8 max(vint8 a, vint8 b) { return select(cmpgt(a, b), a, b); }
+inline vint8 max(vint8 a, vint8 b) { return vint8(max(a.lo, b.lo), max(a.hi, b.hi)); }
 inline vint8 swap_pairs(vint8 a) { return vint8(swap_pairs(a.lo), swap_pairs(a.hi)); }
 inline vint8 swap_pairs64(vint8 a) {
   const detail::I32x8 x = detail::lanes(a);
@@ -583,68 +583,6 @@ inline void load_planes(const std::uint8_t* p, vu16x16 out[4]) {
 
 /// Each lane shifted left by 8 * `k` bits (k = 0..3), as sll_bytes(vint4).
 inline vint8 sll_bytes(vint8 v, int k) { return sll(v, 8 * k); }
-
-// ---- width-generic names, for kernels written once over the 4- and 8-lane types ----
-/// Lanes of a vector type.
-template <class V>
-inline constexpr int kLanes = -1;  // not a wrapper type
-template <>
-inline constexpr int kLanes<vf4> = 4;
-template <>
-inline constexpr int kLanes<vf8> = 8;
-template <>
-inline constexpr int kLanes<vint4> = 4;
-template <>
-inline constexpr int kLanes<vint8> = 8;
-template <>
-inline constexpr int kLanes<vu16x8> = 8;
-template <>
-inline constexpr int kLanes<vu16x16> = 16;
-template <>
-inline constexpr int kLanes<vu8x16> = 16;
-template <>
-inline constexpr int kLanes<vu8x32> = 32;
-/// load_as<V>(p): kLanes<V> elements at p (no alignment assumed).
-template <class V>
-V load_as(const float* p);
-template <>
-inline vf4 load_as<vf4>(const float* p) {
-  return loadf4(p);
-}
-template <>
-inline vf8 load_as<vf8>(const float* p) {
-  return loadf8(p);
-}
-template <class V>
-V load_as(const std::uint16_t* p);
-template <>
-inline vu16x8 load_as<vu16x8>(const std::uint16_t* p) {
-  return load_u16x8(p);
-}
-template <>
-inline vu16x16 load_as<vu16x16>(const std::uint16_t* p) {
-  return load_u16x16(p);
-}
-template <class V>
-V load_as(const std::uint8_t* p);
-template <>
-inline vu8x16 load_as<vu8x16>(const std::uint8_t* p) {
-  return load_u8x16(p);
-}
-template <>
-inline vu8x32 load_as<vu8x32>(const std::uint8_t* p) {
-  return load_u8x32(p);
-}
-/// store(v, p): the lanes of v to p.
-inline void store(vf4 a, float* p) { storef4(a, p); }
-inline void store(vf8 a, float* p) { storef8(a, p); }
-inline void store(vu16x8 a, std::uint16_t* p) { store_u16x8(a, p); }
-inline void store(vu16x16 a, std::uint16_t* p) { store_u16x16(a, p); }
-inline void store(vu8x16 a, std::uint8_t* p) { store_u8x16(a, p); }
-inline void store(vu8x32 a, std::uint8_t* p) { store_u8x32(a, p); }
-/// The 32-bit lanes as bytes, each clamped to 0..255 (store_u8x4 / store_u8x8).
-inline void store_bytes(vint4 a, std::uint8_t* p) { store_u8x4(a, p); }
-inline void store_bytes(vint8 a, std::uint8_t* p) { store_u8x8(a, p); }
 
 }  // namespace TESSERA_SIMD_ISA
 }  // namespace tessera::simd

@@ -92,8 +92,8 @@ try:
     check("normal not worse than fast", psnr["normal"] >= psnr["fast"] - 0.05, str(psnr))
     check("high not worse than normal", psnr["high"] >= psnr["normal"] - 0.05, str(psnr))
 
-    # -j works after the subcommand too (the issue's `compress ... [-j N]`), with the same bytes
-    # as before it and as one thread.
+    # -j works after the subcommand too (`compress IN -o OUT -j N`, where scripts append it after
+    # the other options), with the same bytes as before it and as one thread.
     j_after = os.path.join(tmp, "rgb-j-after.pvr")
     rc, out, err = run("compress", rgb, "-o", j_after, "--quality", "normal", "-j", "2")
     check("compress ... -j 2 rc", rc == 0, err)

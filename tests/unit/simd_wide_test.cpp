@@ -395,6 +395,62 @@ TEST(SimdWide, WidthGenericNames) {
   for (int i = 0; i < 8; ++i) EXPECT_EQ(o[i], clamp_u8(v[i]));
 }
 
+// The operations of simd_generic.h that kernels written once use on both widths, including the
+// compositions the 4-lane backends spell out (div255_u32, load_planes, lookup8).
+TEST(SimdWide, KernelCompositionsOnBothWidths) {
+  if (skip_here()) GTEST_SKIP() << "no AVX2 on this CPU";
+  Rng rng{23};
+  for (int round = 0; round < 200; ++round) {
+    std::int32_t x[8], r4[4], r8[8];
+    for (auto& v : x) v = rng.i32();
+    simd::store(simd::div255_u32(simd::load_as<simd::vint4>(x)), r4);
+    simd::store(simd::div255_u32(simd::load_as<vint8>(x)), r8);
+    for (int i = 0; i < 8; ++i) {
+      const auto want = std::int32_t(std::uint32_t(x[i]) / 255u);
+      if (i < 4) {
+        EXPECT_EQ(r4[i], want) << x[i];
+      }
+      EXPECT_EQ(r8[i], want) << x[i];
+    }
+    std::uint8_t tex[64];
+    for (auto& t : tex) t = std::uint8_t(rng.next());
+    simd::store(simd::load_texels_as<simd::vint4>(tex), r4);
+    simd::store(simd::load_texels_as<vint8>(tex), r8);
+    EXPECT_EQ(std::memcmp(r4, tex, 16), 0);
+    EXPECT_EQ(std::memcmp(r8, tex, 32), 0);
+    std::uint16_t w8[8], w16[16];
+    simd::store(simd::load_widen_as<simd::vu16x8>(tex + 3), w8);
+    simd::store(simd::load_widen_as<vu16x16>(tex + 5), w16);
+    for (int i = 0; i < 16; ++i) {
+      if (i < 8) {
+        EXPECT_EQ(w8[i], tex[3 + i]);
+      }
+      EXPECT_EQ(w16[i], tex[5 + i]);
+    }
+    simd::vu8x16 planes[4];
+    simd::load_planes(tex, planes);
+    for (int c = 0; c < 4; ++c) {
+      std::uint8_t b[16];
+      simd::store(planes[c], b);
+      for (int i = 0; i < 16; ++i) EXPECT_EQ(b[i], tex[4 * i + c]) << c << " " << i;
+    }
+    // lookup8: indices -8..7 (as int16) in any lane.
+    std::uint16_t table[8], idx[16], l8[8], l16[16];
+    for (auto& t : table) t = rng.u16();
+    for (auto& i : idx) i = std::uint16_t(int(rng.next() % 16) - 8);
+    simd::store(simd::lookup8(table, simd::load_as<simd::vu16x8>(idx)), l8);
+    simd::store(simd::lookup8(table, simd::load_as<vu16x16>(idx)), l16);
+    for (int i = 0; i < 16; ++i) {
+      const std::int16_t k = std::int16_t(idx[i]);
+      const std::uint16_t want = k >= 0 ? table[k] : 0;
+      if (i < 8) {
+        EXPECT_EQ(l8[i], want) << k;
+      }
+      EXPECT_EQ(l16[i], want) << k;
+    }
+  }
+}
+
 TEST(SimdWide, BackendMatchesBuild) {
 #if defined(__AVX2__) && !defined(TESSERA_NO_SIMD)
   EXPECT_EQ(TESSERA_SIMD_AVX2, 1);

@@ -24,12 +24,12 @@
 // depend on the band size or the thread count. Rows are stored with a wrap-around pad on both
 // sides, so the 3x3 kernels need no edge cases.
 //
-// The row kernels (dilation_kernels.h) come from a table chosen once at run time: the baseline
-// ones below (SSE2 through simd.h, or scalar), or the AVX2 ones of dilation_avx2.cpp where the
-// CPU has AVX2; the driver (dilate_band) is the same for both.
+// The row kernels (dilation_kernels.h) are written once (dilation_rows.h) and come from a table
+// chosen once at run time: compiled here over the 4-lane types (SSE2, NEON or scalar through
+// simd.h), or in dilation_avx2.cpp over the 8-lane ones where the CPU has AVX2; the driver
+// (dilate_band) is the same for both.
 #include <algorithm>
 #include <atomic>
-#include <bit>
 #include <cstring>
 
 #include "core/simd.h"
@@ -45,10 +45,6 @@ namespace {
 constexpr int kDilations = 3;
 constexpr int kHalo = kDilations + 1;  // rows of intensity needed above/below a band
 constexpr int kPad = kDilationPad;     // elements of padding on each side of a stored row
-
-// Rounded mean of n filled neighbours: floor(x / n) for x < 2400 and 2 <= n <= 9 equals
-// mulhi(x, ceil(65536 / n)) (the error term stays below 1 / 9); n == 1 is passed through.
-constexpr std::uint16_t kRecip16[10] = {0, 0, 32768, 21846, 16384, 13108, 10923, 9363, 8192, 7282};
 
 /// Ring of the last three rows of `planes` planes of element type T, rows padded by kPad.
 template <typename T>
@@ -80,226 +76,10 @@ struct Band {
   std::vector<std::uint16_t> acc[2];  // per column, per plane: sums over the block row so far
 };
 
-// Intensity of texel row `src` (w texels) into `out`: Rec.709 luma with weights summing to
-// 65536, times alpha / 255 in alpha mode (floored). Below 2^24, so exact as float.
-void intensity_row(const std::uint8_t* src, int w, bool alpha, float* out) {
-  using namespace simd;
-  const vint4 m8(0xff);
-  const vf4 kr(13933.0f), kg(46871.0f), kb(4732.0f);
-  for (int x = 0; x < w; x += 4) {
-    const vint4 t = load_texels4(src + std::size_t(x) * 4);
-    const vf4 y = to_float(t & m8) * kr + to_float(srl<8>(t) & m8) * kg +
-                  to_float(srl<16>(t) & m8) * kb;
-    storef4(y, out + x);
-  }
-  if (alpha) {
-    for (int x = 0; x < w; ++x) {
-      const std::uint32_t y = std::uint32_t(out[x]);  // <= 255 * 65536: y * a fits 32 bits
-      out[x] = float(y * src[std::size_t(x) * 4 + 3] / 255u);
-    }
-  }
-  wrap_pad(out, w);
-}
-
-// Labels of the row whose intensity is `i1` (neighbours i0 above, i2 below): dilation_rows.h.
-void label_row(const float* i0, const float* i1, const float* i2, int w, float* mx, float* mn,
-               std::uint8_t* out) {
-  label_row_t<simd::vf4>(i0, i1, i2, w, mx, mn, out);
-}
-
-// Initial planes of both extremum images for one row: the texel's colour where labelled.
-template <int np>
-void init_rows(const std::uint8_t* lab, const std::uint8_t* src, int w, std::uint8_t* const* p0,
-               std::uint8_t* const* p1) {
-  int x = 0;
-  if (w >= 16) {
-    using namespace simd;
-    const vint4 m8(0xff);
-    const vu8x16 bit1(1), bit2(2), zero(0);
-    for (; x < w; x += 16) {
-      const std::uint8_t* s = src + std::size_t(x) * 4;
-      const vint4 t0 = load_texels4(s), t1 = load_texels4(s + 16), t2 = load_texels4(s + 32),
-                  t3 = load_texels4(s + 48);
-      const vu8x16 l = load_u8x16(lab + x);
-      const vu8x16 k0 = andnot(cmpeq(l & bit1, zero), vu8x16(0xff));
-      const vu8x16 k1 = andnot(cmpeq(l & bit2, zero), vu8x16(0xff));
-      vu8x16 ch[4];
-      ch[0] = narrow(t0 & m8, t1 & m8, t2 & m8, t3 & m8);
-      ch[1] = narrow(srl<8>(t0) & m8, srl<8>(t1) & m8, srl<8>(t2) & m8, srl<8>(t3) & m8);
-      ch[2] = narrow(srl<16>(t0) & m8, srl<16>(t1) & m8, srl<16>(t2) & m8, srl<16>(t3) & m8);
-      ch[3] = narrow(srl<24>(t0), srl<24>(t1), srl<24>(t2), srl<24>(t3));
-      for (int c = 0; c < np; ++c) {
-        store_u8x16(ch[c] & k0, p0[c] + x);
-        store_u8x16(ch[c] & k1, p1[c] + x);
-      }
-      store_u8x16(k0 & bit1, p0[np] + x);
-      store_u8x16(k1 & bit1, p1[np] + x);
-    }
-  }
-  for (; x < w; ++x) {
-    const bool f0 = lab[x] & 1, f1 = lab[x] & 2;
-    for (int c = 0; c < np; ++c) {
-      p0[c][x] = f0 ? src[std::size_t(x) * 4 + std::size_t(c)] : 0;
-      p1[c][x] = f1 ? src[std::size_t(x) * 4 + std::size_t(c)] : 0;
-    }
-    p0[np][x] = f0;
-    p1[np][x] = f1;
-  }
-}
-
-// One 3x3 dilation pass for one row: `in[k][c]` is plane c of rows r-1, r, r+1 (k = 0, 1, 2);
-// empty texels next to filled ones take the rounded mean of the filled neighbours.
-template <int np>
-void dilate_row(int w, const std::uint8_t* const (*in)[5], std::uint8_t* const* out,
-                std::uint8_t* vf, std::uint16_t* vs, std::size_t vstride) {
-  using namespace simd;
-  auto vsrow = [&](int c) { return vs + std::size_t(c) * vstride; };
-  // Vertical sums (16 texels at a time; with w == 8 the extra lanes land in the pads).
-  for (int x = 0; x < w; x += 16) {
-    store_u8x16(load_u8x16(in[0][np] + x) + load_u8x16(in[1][np] + x) + load_u8x16(in[2][np] + x),
-                vf + x);
-    for (int c = 0; c < np; ++c) {
-      const vu8x16 a = load_u8x16(in[0][c] + x), m = load_u8x16(in[1][c] + x),
-                   z = load_u8x16(in[2][c] + x);
-      store_u16x8(widen_lo(a) + widen_lo(m) + widen_lo(z), vsrow(c) + x);
-      store_u16x8(widen_hi(a) + widen_hi(m) + widen_hi(z), vsrow(c) + x + 8);
-    }
-  }
-  wrap_pad(vf, w);
-  for (int c = 0; c < np; ++c) wrap_pad(vsrow(c), w);
-  const vu8x16 zero8(0), one8(1);
-  const vu16x8 zero(0), one(1);
-  for (int x = 0; x < w; x += 16) {
-    const vu8x16 n = load_u8x16(vf + x - 1) + load_u8x16(vf + x) + load_u8x16(vf + x + 1);
-    const vu8x16 f = load_u8x16(in[1][np] + x);
-    const vu8x16 need = andnot(cmpeq(n, zero8), cmpeq(f, zero8));
-    store_u8x16(f | (need & one8), out[np] + x);
-    if (!any(need)) {
-      for (int c = 0; c < np; ++c) store_u8x16(load_u8x16(in[1][c] + x), out[c] + x);
-      continue;
-    }
-    vu16x8 nn[2] = {widen_lo(n), widen_hi(n)}, rcv[2], hv[2], single[2];
-    for (int h = 0; h < 2; ++h) {
-      rcv[h] = zero;
-      for (std::uint16_t k = 2; k < 10; ++k) {
-        rcv[h] = rcv[h] | (cmpeq(nn[h], vu16x8(k)) & vu16x8(kRecip16[k]));
-      }
-      hv[h] = srl<1>(nn[h]);
-      single[h] = cmpeq(nn[h], one);
-    }
-    for (int c = 0; c < np; ++c) {
-      const std::uint16_t* v = vsrow(c) + x;
-      vu16x8 avg[2];
-      for (int h = 0; h < 2; ++h) {
-        const vu16x8 sum = load_u16x8(v + 8 * h - 1) + load_u16x8(v + 8 * h) +
-                           load_u16x8(v + 8 * h + 1);
-        avg[h] = select(single[h], sum, mulhi(sum + hv[h], rcv[h]));
-      }
-      store_u8x16(select(need, narrow(avg[0], avg[1]), load_u8x16(in[1][c] + x)), out[c] + x);
-    }
-  }
-}
-
-// Adds the final (pass 3) row of one image to the per-column block-row sums (`first`: the
-// block row's top row, which starts the sums).
-void accumulate_row(int planes, int w, const std::uint8_t* row, std::size_t stride,
-                    std::uint16_t* acc, std::size_t astride, bool first) {
-  accumulate_row_t<simd::vu8x16>(planes, w, row, stride, acc, astride, first);
-}
-
-void init_rows_base(int np, const std::uint8_t* lab, const std::uint8_t* src, int w,
-                    std::uint8_t* const* p0, std::uint8_t* const* p1) {
-  if (np == 4) {
-    init_rows<4>(lab, src, w, p0, p1);
-  } else {
-    init_rows<3>(lab, src, w, p0, p1);
-  }
-}
-
-void dilate_row_base(int np, int w, const std::uint8_t* const (*in)[5], std::uint8_t* const* out,
-                     std::uint8_t* vf, std::uint16_t* vs, std::size_t vstride) {
-  if (np == 4) {
-    dilate_row<4>(w, in, out, vf, vs, vstride);
-  } else {
-    dilate_row<3>(w, in, out, vf, vs, vstride);
-  }
-}
-
 using Extremes = DilationExtremes;
 
-// The brightest and darkest texel of each block of a block row (the first in raster order on
-// ties, as a scalar scan with strict comparisons): `rows` holds the block row's 4 intensity
-// rows, W apart; y0 is its first texel row.
-template <int nq>  // vectors of 4 texels per block row (block width / 4)
-void block_extremes(const float* rows, std::size_t W, int nbx, int y0, Extremes* ext) {
-  using namespace simd;
-  constexpr int bw = nq * 4;
-  for (int bx = 0; bx < nbx; ++bx) {
-    const float* base = rows + bx * bw;
-    vf4 mx = loadf4(base), mn = mx;
-    for (int j = 0; j < 4; ++j) {
-      for (int q = 0; q < nq; ++q) {
-        const vf4 v = loadf4(base + std::size_t(j) * W + std::size_t(q) * 4);
-        mx = max(mx, v);
-        mn = min(mn, v);
-      }
-    }
-    mx = hmax(mx);
-    mn = hmin(mn);
-    Extremes& e = ext[bx];
-    bool found_max = false, found_min = false;
-    for (int j = 0; j < 4 && !(found_max && found_min); ++j) {
-      for (int q = 0; q < nq; ++q) {
-        const vf4 v = loadf4(base + std::size_t(j) * W + std::size_t(q) * 4);
-        const int fmax = movemask(cmpeq(v, mx)), fmin = movemask(cmpeq(v, mn));
-        if (!found_max && fmax) {
-          found_max = true;
-          e.xmax = bx * bw + q * 4 + std::countr_zero(unsigned(fmax));
-          e.ymax = y0 + j;
-        }
-        if (!found_min && fmin) {
-          found_min = true;
-          e.xmin = bx * bw + q * 4 + std::countr_zero(unsigned(fmin));
-          e.ymin = y0 + j;
-        }
-      }
-    }
-  }
-}
-
-void block_extremes_base(const float* rows, std::size_t W, int nbx, int bw, int y0,
-                         Extremes* ext) {
-  if (bw == 4) {
-    block_extremes<1>(rows, W, nbx, y0, ext);
-  } else {
-    block_extremes<2>(rows, W, nbx, y0, ext);
-  }
-}
-
-// Per-block sums of one block row's column sums (`acc`, planes `astride` apart), per plane.
-void block_sums(const std::uint16_t* acc, std::size_t astride, int planes, int w, int bw,
-                std::uint32_t* out, std::size_t ostride) {
-  using namespace simd;
-  const vu16x8 ones(1);
-  for (int c = 0; c < planes; ++c) {
-    const std::uint16_t* a = acc + std::size_t(c) * astride;
-    std::uint32_t* o = out + std::size_t(c) * ostride;
-    for (int x = 0; x < w; x += 8) {
-      std::int32_t p[4];
-      store4(madd(load_u16x8(a + x), ones), p);  // column pairs
-      if (bw == 4) {
-        o[x / 4] = std::uint32_t(p[0] + p[1]);
-        o[x / 4 + 1] = std::uint32_t(p[2] + p[3]);
-      } else {
-        o[x / 8] = std::uint32_t(p[0] + p[1] + p[2] + p[3]);
-      }
-    }
-  }
-}
-
-constexpr DilationKernels kBaseline = {intensity_row,  label_row,      init_rows_base,
-                                       dilate_row_base, accumulate_row, block_extremes_base,
-                                       block_sums};
+// The baseline kernels: dilation_rows.h over the 4-lane types.
+constexpr DilationKernels kBaseline = RowKernels<simd::vf4, simd::vu8x16>::kTable;
 
 std::atomic<bool> g_force_baseline{false};
 
