@@ -456,8 +456,8 @@ void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
       bool planar_built = false;
       unsigned planar_valid = 0;  // bit 0: planar_refresh; bit 1 + c: planar_rest(c)
       Rgba5 cur5a = ea[j], cur5b = eb[j];
-      auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
-        const int c = single_colour_channel(a, b, cur5a, cur5b, lw.nch);
+      // c: the one colour channel the candidate changes, else -1 (then the general evaluator).
+      auto eval = [&](const Rgba5& a, const Rgba5& b, int c, std::uint32_t bound) {
         if (c < 0) return ev.local(lw, a, b, bound);
         if (!planar_built) {
           build_planar(lw, pw);
@@ -474,11 +474,13 @@ void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
         const std::int32_t va[3] = {a.r, a.g, a.b}, vb[3] = {b.r, b.g, b.b};
         return ev.planar(pw, c, va[c], vb[c], bound);
       };
+      PairCodes codes(cur_a, cur_b);
       auto take = [&](std::uint16_t na, std::uint16_t nb) {
         cur_a = na;
         cur_b = nb;
         cur5a = expand_a(na);
         cur5b = expand_b(nb);
+        codes = PairCodes(na, nb);
         planar_valid = 0;
       };
       SeenPairs seen;
@@ -487,14 +489,11 @@ void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
       for (int pass = 0; pass < passes && improved; ++pass) {
         improved = false;
         for (int mv = 0; mv < kMoves; ++mv) {
-          EndpointCodes a = unpack_endpoint(false, cur_a),
-                        b = unpack_endpoint(true, cur_b);
-          if (!apply_move(mv, a, b)) continue;
-          const std::uint16_t na = std::uint16_t(pack_endpoint(false, a));
-          const std::uint16_t nb = std::uint16_t(pack_endpoint(true, b));
+          std::uint16_t na, nb;
+          if (!codes.moved(mv, na, nb)) continue;
           const std::uint32_t key = (std::uint32_t(na) << 16) | nb;
           if (seen.check_insert(key)) continue;
-          const std::uint32_t e = eval(expand_a(na), expand_b(nb), best);
+          const std::uint32_t e = eval(expand_a(na), expand_b(nb), kMoveTable.planar[mv], best);
           if (e < best) {
             best = e;
             take(na, nb);
@@ -515,7 +514,9 @@ void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
                 {s.ca[k], cur_b}, {cur_a, s.cb[k]}, {s.ca[k], s.cb[k]}};
             for (const auto& c : cand) {
               if (seen.check_insert((std::uint32_t(c[0]) << 16) | c[1])) continue;
-              const std::uint32_t e = eval(expand_a(c[0]), expand_b(c[1]), best);
+              const Rgba5 a = expand_a(c[0]), b = expand_b(c[1]);
+              const std::uint32_t e =
+                  eval(a, b, single_colour_channel(a, b, cur5a, cur5b, lw.nch), best);
               if (e < best) {
                 best = e;
                 take(c[0], c[1]);

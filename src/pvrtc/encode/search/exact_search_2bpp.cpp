@@ -312,9 +312,9 @@ int search(EncoderState& s, const std::vector<std::uint8_t>* seeds) {
       for (int pass = 0; pass < kMovePasses; ++pass) {
         improved = false;
         for (int mv = 0; mv < kMoves; ++mv) {
-          EndpointCodes a = unpack_endpoint(false, cur_a), b = unpack_endpoint(true, cur_b);
-          if (!apply_move(mv, a, b)) continue;
-          consider(std::uint16_t(pack_endpoint(false, a)), std::uint16_t(pack_endpoint(true, b)));
+          std::uint16_t na, nb;
+          if (!PairCodes(cur_a, cur_b).moved(mv, na, nb)) continue;
+          consider(na, nb);
         }
         if (!improved) break;
       }

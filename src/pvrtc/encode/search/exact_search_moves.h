@@ -10,51 +10,77 @@
 
 namespace tessera::pvrtc::detail {
 
-// Candidate moves on the codes of one endpoint pair. Returns false when the move is invalid.
-inline bool apply_move(int move, EndpointCodes& a, EndpointCodes& b) {
-  int ba[4], bb[4];
-  channel_bits(false, a.opaque, ba);
-  channel_bits(true, b.opaque, bb);
-  std::uint32_t* ca[4] = {&a.r, &a.g, &a.b, &a.a};
-  std::uint32_t* cb[4] = {&b.r, &b.g, &b.b, &b.a};
-  auto step = [](std::uint32_t* c, int bits, int d) {
-    if (bits == 0) return false;
-    const int v = int(*c) + d;
-    if (v < 0 || v >= (1 << bits)) return false;
-    *c = std::uint32_t(v);
-    return true;
-  };
-  if (move < 16) {  // single channel: endpoint (move / 8), channel ((move / 2) % 4), sign
-    const bool on_b = move >= 8;
-    const int ch = (move / 2) % 4;
-    const int d = (move & 1) ? 1 : -1;
-    return on_b ? step(cb[ch], bb[ch], d) : step(ca[ch], ba[ch], d);
-  }
-  if (move >= 24) {  // one channel of A and B together: same / opposite sign
-    const int k = move - 24, ch = (k / 4) % 3, d = (k & 1) ? 1 : -1;
-    const int db = (k & 2) ? -d : d;
-    return step(ca[ch], ba[ch], d) && step(cb[ch], bb[ch], db);
-  }
-  // Joint colour moves: 16/17 A, 18/19 B, 20/21 both, 22 spread, 23 contract.
-  const int m = move - 16;
-  bool ok = true;
-  for (int ch = 0; ch < 3 && ok; ++ch) {
-    if (m < 2) {
-      ok = step(ca[ch], ba[ch], m ? 1 : -1);
-    } else if (m < 4) {
-      ok = step(cb[ch], bb[ch], m == 3 ? 1 : -1);
-    } else if (m < 6) {
-      ok = step(ca[ch], ba[ch], m == 5 ? 1 : -1) && step(cb[ch], bb[ch], m == 5 ? 1 : -1);
-    } else {
-      ok = step(ca[ch], ba[ch], m == 6 ? -1 : 1) && step(cb[ch], bb[ch], m == 6 ? 1 : -1);
+// Candidate moves on the codes of one endpoint pair, as steps of -1, 0 or +1 on its eight codes
+// (A r g b a, B r g b a): 0-15 one channel of one endpoint (endpoint move / 8, channel
+// (move / 2) % 4, sign move & 1 ? +1 : -1); 16/17 all colour channels of A -1/+1, 18/19 of B,
+// 20/21 of both, 22 spread (A -1, B +1), 23 contract (A +1, B -1); 24-35 one colour channel
+// ((move - 24) / 4) of A and B together (A's sign as above, B's the same where bit 1 of
+// move - 24 is clear, else opposite: the pair's midpoint moves while its spread stays).
+constexpr int kMoves = 36;
+
+struct MoveTable {
+  std::int8_t step[kMoves][8];
+  /// The colour channel (0-2) the move changes where it changes exactly one, else -1.
+  std::int8_t planar[kMoves];
+  constexpr MoveTable() : step{}, planar{} {
+    for (int mv = 0; mv < kMoves; ++mv) {
+      planar[mv] = -1;
+      if (mv < 16) {
+        const int ch = (mv / 2) % 4;
+        step[mv][(mv >= 8 ? 4 : 0) + ch] = std::int8_t(mv & 1 ? 1 : -1);
+        if (ch < 3) planar[mv] = std::int8_t(ch);
+      } else if (mv < 24) {
+        const int m = mv - 16;
+        const int da = m < 2 ? (m ? 1 : -1) : m < 4 ? 0 : m < 6 ? (m == 5 ? 1 : -1) : (m == 6 ? -1 : 1);
+        const int db = m < 2 ? 0 : m < 4 ? (m == 3 ? 1 : -1) : m < 6 ? (m == 5 ? 1 : -1) : (m == 6 ? 1 : -1);
+        for (int ch = 0; ch < 3; ++ch) {
+          step[mv][ch] = std::int8_t(da);
+          step[mv][4 + ch] = std::int8_t(db);
+        }
+      } else {
+        const int k = mv - 24, ch = k / 4, d = (k & 1) ? 1 : -1;
+        step[mv][ch] = std::int8_t(d);
+        step[mv][4 + ch] = std::int8_t((k & 2) ? -d : d);
+        planar[mv] = std::int8_t(ch);
+      }
     }
   }
-  return ok;
-}
+};
+inline constexpr MoveTable kMoveTable;
 
-// Moves 0-23 as above; 24-35 step one channel of A and B together (the pair's midpoint moves
-// while its spread stays).
-constexpr int kMoves = 36;
+/// One endpoint pair's codes unpacked once for all its moves: the eight codes and their limits
+/// (1 << bits; 0 for a channel the mode lacks, so that any step on it is invalid).
+struct PairCodes {
+  bool opaque[2];
+  std::int32_t v[8], lim[8];
+  PairCodes(std::uint16_t a, std::uint16_t b) {
+    const EndpointCodes e[2] = {unpack_endpoint(false, a), unpack_endpoint(true, b)};
+    for (int k = 0; k < 2; ++k) {
+      opaque[k] = e[k].opaque;
+      int bits[4];
+      channel_bits(k == 1, e[k].opaque, bits);
+      const std::uint32_t c[4] = {e[k].r, e[k].g, e[k].b, e[k].a};
+      for (int ch = 0; ch < 4; ++ch) {
+        v[4 * k + ch] = std::int32_t(c[ch]);
+        lim[4 * k + ch] = bits[ch] == 0 ? 0 : 1 << bits[ch];
+      }
+    }
+  }
+  /// The packed pair after `move`; false when it steps a code out of its range.
+  bool moved(int move, std::uint16_t& na, std::uint16_t& nb) const {
+    const std::int8_t* st = kMoveTable.step[move];
+    std::int32_t n[8];
+    for (int i = 0; i < 8; ++i) {
+      n[i] = v[i] + st[i];
+      if (st[i] != 0 && std::uint32_t(n[i]) >= std::uint32_t(lim[i])) return false;
+    }
+    na = std::uint16_t(pack_endpoint(false, {opaque[0], std::uint32_t(n[0]), std::uint32_t(n[1]),
+                                             std::uint32_t(n[2]), std::uint32_t(n[3])}));
+    nb = std::uint16_t(pack_endpoint(true, {opaque[1], std::uint32_t(n[4]), std::uint32_t(n[5]),
+                                            std::uint32_t(n[6]), std::uint32_t(n[7])}));
+    return true;
+  }
+};
 
 // The endpoint pairs one block visit has met (candidates scored and pairs that were current):
 // each one's window error is at least the current best (a rejected candidate scored at least
