@@ -355,7 +355,8 @@ int reseed_t(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>
     auto eval = [&](const Rgba5& a, const Rgba5& b, std::uint32_t bound) {
       return ev.local(lw, a, b, bound);
     };
-    std::uint32_t best = order_local(ev, lw, ea[j], eb[j], min_error);
+    // Eight candidates only: reordering the texels would cost more than it saves.
+    std::uint32_t best = ev.local(lw, ea[j], eb[j], std::numeric_limits<std::uint32_t>::max());
     if (best <= min_error) return;
     std::uint16_t cand[8][2];
     const int n = reseed_candidates(s, bx, by, cand);
