@@ -15,8 +15,9 @@
 // modulation re-chosen within its block's mode. Blocks are visited in the same 2x2 colouring as the
 // refinement, so the passes are parallel and deterministic; after the first round only blocks with
 // a changed neighbour are searched again (exact: nothing else in their window moved). A candidate's
-// window error is summed with the texels that erred most under the current endpoints first and
-// stops once it reaches the best so far (integer sums: every kept move is the same). A candidate
+// window error is summed with the texels that erred most first (the order of the block's previous
+// visit; sorted on the first) and stops once it reaches the best so far (integer sums: every kept
+// move is the same). Candidate moves step the pair's codes, unpacked once (exact_search_moves.h). A candidate
 // that changes one colour channel only is scored channel-planar from the other channels' per-blend
 // errors (exact_search_kernel.h), and a pair already met in the visit is not scored again. Where
 // the CPU has AVX2 both evaluators run twice the texels a step (exact_search_avx2.cpp; the same
@@ -170,8 +171,12 @@ struct OwnTable {
 };
 constexpr OwnTable kOwnTable;
 
+// slot_of: the slot of each window texel (raster order, 0-48) where the window is to be laid
+// out in another order (the evaluators' sums are integers: any order gives the same results
+// below the bound); nullptr: raster order.
 template <bool kWeighted>
-void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
+void build_local(const Window& w, int bx, int by, LocalWindow& lw,
+                 const std::uint8_t* slot_of = nullptr) {
   using simd::vu16x8;
   const EncoderState& s = *w.s;
   const Grid& g = s.g;
@@ -226,17 +231,18 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
     const std::uint8_t* mrow = &(*w.modes)[std::size_t(y >> 2) * std::size_t(g.nbx)];
     for (int q = 0; q < 7; ++q, ++k) {
       const int x = (bx * 4 - 1 + q) & (g.pw - 1);
+      const int sl = slot_of != nullptr ? slot_of[k] : k;  // where texel k goes
       const int n0x = q < 3 ? 0 : 1, dx = (q + 1) & 3;
       const vu16x8 rest = simd::mullo(v[n0x], vu16x8(std::uint16_t(4 - dx))) +
                           simd::mullo(v[n0x + 1], vu16x8(std::uint16_t(dx)));
       alignas(16) std::uint16_t r8[8];
       simd::store_u16x8(rest, r8);
-      std::memcpy(lw.rest16_a[k], r8, 8);
-      std::memcpy(lw.rest16_b[k], r8 + 4, 8);
+      std::memcpy(lw.rest16_a[sl], r8, 8);
+      std::memcpy(lw.rest16_b[sl], r8 + 4, 8);
       if (!own_centre_only) {
         const std::uint16_t own = std::uint16_t((4 - dx) * own_v[n0x] + dx * own_v[n0x + 1]);
         const std::uint16_t own4[4] = {own, own, own, std::uint16_t(own & amask)};
-        std::memcpy(lw.own16[k], own4, 8);
+        std::memcpy(lw.own16[sl], own4, 8);
       }
       const std::uint8_t* t = trow + std::size_t(x) * 4;
       if constexpr (std::endian::native == std::endian::little) {
@@ -247,30 +253,35 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
         v64 = (v64 | (v64 << 16)) & 0x0000ffff0000ffffull;
         v64 = (v64 | (v64 << 8)) & 0x00ff00ff00ff00ffull;
         v64 &= amask64;
-        std::memcpy(lw.t16[k], &v64, 8);
+        std::memcpy(lw.t16[sl], &v64, 8);
       } else {
         const std::uint16_t t4[4] = {t[0], t[1], t[2], std::uint16_t(t[3] & amask)};
-        std::memcpy(lw.t16[k], t4, 8);
+        std::memcpy(lw.t16[sl], t4, 8);
       }
       if constexpr (kWeighted) {
         const std::uint16_t sc =
             s.colour_scale[std::size_t(y) * std::size_t(g.pw) + std::size_t(x)];
         const std::uint16_t sc4[4] = {sc, sc, sc, 16};
-        std::memcpy(lw.scale16[k], sc4, 8);
+        std::memcpy(lw.scale16[sl], sc4, 8);
       }
       const bool m1 = mrow[x >> 2] != 0;
       const std::int32_t b35 = m1 ? kExclude : 0, b4 = m1 ? 0 : kExclude,
                          b4p = m1 ? punch_bias : kExclude;
-      std::int32_t* p35 = &lw.bias35[k / 2][(k & 1) * 2];
-      std::int32_t* p4 = &lw.bias4[k / 2][(k & 1) * 2];
-      std::int32_t* p4p = &lw.bias4p[k / 2][(k & 1) * 2];
+      std::int32_t* p35 = &lw.bias35[sl / 2][(sl & 1) * 2];
+      std::int32_t* p4 = &lw.bias4[sl / 2][(sl & 1) * 2];
+      std::int32_t* p4p = &lw.bias4p[sl / 2][(sl & 1) * 2];
       p35[0] = p35[1] = b35;
       p4[0] = p4[1] = b4;
       p4p[0] = p4p[1] = b4p;
     }
   }
-  if (own_centre_only)
+  if (own_centre_only && slot_of == nullptr) {
     std::memcpy(lw.own16, kOwnTable.v[lw.nch == 4 ? 1 : 0], sizeof(kOwnTable.v[0]));
+  } else if (own_centre_only) {
+    for (int t = 0; t < 49; ++t) {
+      std::memcpy(lw.own16[slot_of[t]], kOwnTable.v[lw.nch == 4 ? 1 : 0][t], 8);
+    }
+  }
   for (int q = 49; q < 56; ++q) {  // texels 49-55: the zero pad (error 0)
     for (int c = 0; c < 4; ++c) {
       lw.rest16_a[q][c] = lw.rest16_b[q][c] = lw.own16[q][c] = lw.t16[q][c] = 0;
@@ -287,28 +298,20 @@ void build_local(const Window& w, int bx, int by, LocalWindow& lw) {
   }
 }
 
-// Reorders the window (built by build_local) by decreasing texel error (bit length) under
-// (a, b), the block's current endpoints, so that a worse candidate reaches the bound after
-// fewer texels; returns the window's error under (a, b). A window whose error is at most
-// `min_error` will not be searched and is left as it is.
-template <class Ev>
-std::uint32_t order_local(const Ev& ev, LocalWindow& lw, const Rgba5& a, const Rgba5& b,
-                          std::uint32_t min_error) {
-  std::uint32_t err[52];
-  const std::uint32_t total = ev.local_store(lw, a, b, err);
-  if (total <= min_error) return total;
-  // Counting sort on the error's bit length (33 classes, largest first, raster order within).
+// The slots 0-48 by decreasing texel error (bit length; slot order within a class): a
+// counting sort on the error's bit length (33 classes, largest first). A window laid out in
+// this order for the block's current pair lets a worse candidate reach the bound after fewer
+// texels.
+void order_by_error(const std::uint32_t* err, std::uint8_t* order) {
   int key[49], start[34] = {};
   for (int i = 0; i < 49; ++i) {
     key[i] = 32 - std::countl_zero(err[i]);
     ++start[32 - key[i] + 1];
   }
   for (int c = 1; c < 34; ++c) start[c] += start[c - 1];
-  std::uint8_t order[49];
   for (int i = 0; i < 49; ++i) order[start[32 - key[i]]++] = std::uint8_t(i);
-  permute_local(lw, order);
-  return total;
 }
+
 
 }  // namespace
 
@@ -427,6 +430,10 @@ void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
       if (!(*options.seeds)[j]) searched_at[j] = 0;
     }
   }
+  // Each block's texels by decreasing error under its pair at its last visit (texel indices,
+  // raster 0-48): the next visit builds its window in that order, which is close to its own
+  // (only the texels a changed neighbour reaches moved), without sorting it first.
+  std::vector<std::uint8_t> orders(g.blocks() * 49), has_order(g.blocks(), 0);
   const Evaluators<kWeighted> ev;
   double searched_total = 0, searched_before = 0;  // for the progress reports
   for (int round = 0; round < rounds; ++round) {
@@ -446,10 +453,30 @@ void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
       if (latest < searched_at[j]) return;
       searched_at[j] = step;
       LocalWindow lw;
-      build_local<kWeighted>(w, bx, by, lw);
+      std::uint8_t* order = &orders[j * 49];
+      std::uint32_t best;
+      if (has_order[j]) {
+        std::uint8_t slot_of[49];
+        for (int i = 0; i < 49; ++i) slot_of[order[i]] = std::uint8_t(i);
+        build_local<kWeighted>(w, bx, by, lw, slot_of);
+        std::uint32_t err[52];
+        best = ev.local_store(lw, ea[j], eb[j], err);
+        if (best <= min_error) return;
+        std::uint8_t by_slot[49];
+        order_by_error(err, by_slot);
+        std::uint8_t next[49];
+        for (int i = 0; i < 49; ++i) next[i] = order[by_slot[i]];
+        std::memcpy(order, next, 49);
+      } else {
+        build_local<kWeighted>(w, bx, by, lw);
+        std::uint32_t err[52];
+        best = ev.local_store(lw, ea[j], eb[j], err);
+        if (best <= min_error) return;
+        order_by_error(err, order);
+        permute_local(lw, order);
+        has_order[j] = 1;
+      }
       std::uint16_t cur_a = s.ca[j], cur_b = s.cb[j];
-      std::uint32_t best = order_local(ev, lw, ea[j], eb[j], min_error);
-      if (best <= min_error) return;
       // Candidates differing from the current pair in one colour channel only (most
       // of the +-1 moves) go to the channel-planar evaluator; its per-pair tables are
       // built when first needed after each change of the current pair.
