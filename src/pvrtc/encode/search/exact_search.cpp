@@ -15,8 +15,8 @@
 // modulation re-chosen within its block's mode. Blocks are visited in the same 2x2 colouring as the
 // refinement, so the passes are parallel and deterministic; after the first round only blocks with
 // a changed neighbour are searched again (exact: nothing else in their window moved). A candidate's
-// window error is summed with the texels that erred most first (the order of the block's previous
-// visit; sorted on the first) and stops once it reaches the best so far (integer sums: every kept
+// window error is summed with the texels that erred most first (in the order sorted at the block's
+// first visit) and stops once it reaches the best so far (integer sums: every kept
 // move is the same). Candidate moves step the pair's codes, unpacked once (exact_search_moves.h). A candidate
 // that changes one colour channel only is scored channel-planar from the other channels' per-blend
 // errors (exact_search_kernel.h), and a pair already met in the visit is not scored again. Where
@@ -430,9 +430,10 @@ void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
       if (!(*options.seeds)[j]) searched_at[j] = 0;
     }
   }
-  // Each block's texels by decreasing error under its pair at its last visit (texel indices,
-  // raster 0-48): the next visit builds its window in that order, which is close to its own
-  // (only the texels a changed neighbour reaches moved), without sorting it first.
+  // Each block's texels by decreasing error under its pair at its first visit (texel indices,
+  // raster 0-48): later visits build their window in that order without sorting again (the
+  // texels that err most change little while the search converges; re-sorting each visit cost
+  // more than it saved).
   std::vector<std::uint8_t> orders(g.blocks() * 49), has_order(g.blocks(), 0);
   const Evaluators<kWeighted> ev;
   double searched_total = 0, searched_before = 0;  // for the progress reports
@@ -459,14 +460,8 @@ void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
         std::uint8_t slot_of[49];
         for (int i = 0; i < 49; ++i) slot_of[order[i]] = std::uint8_t(i);
         build_local<kWeighted>(w, bx, by, lw, slot_of);
-        std::uint32_t err[52];
-        best = ev.local_store(lw, ea[j], eb[j], err);
+        best = ev.local(lw, ea[j], eb[j], std::numeric_limits<std::uint32_t>::max());
         if (best <= min_error) return;
-        std::uint8_t by_slot[49];
-        order_by_error(err, by_slot);
-        std::uint8_t next[49];
-        for (int i = 0; i < 49; ++i) next[i] = order[by_slot[i]];
-        std::memcpy(order, next, 49);
       } else {
         build_local<kWeighted>(w, bx, by, lw);
         std::uint32_t err[52];
