@@ -111,9 +111,9 @@ template <int nch>
 /// Constants shared by the passes, the same in every block's 8 lanes.
 template <class V>
 struct Mod2Consts {
-  V wl, wr;    // horizontal bilinear weights of the 8 texels (left / right taps)
-  V even[2];   // lanes x with (x ^ row) even, by row parity
-  V lanebit;   // 1, 2, 4, ..., 128
+  V wl, wr;   // horizontal bilinear weights of the 8 texels (left / right taps)
+  V even[2];  // lanes x with (x ^ row) even, by row parity
+  V lanebit;  // 1, 2, 4, ..., 128
   V k1, k2, k3, k4, k5, k8;
   // Lanes of the neighbour vectors that refer to a restricted texel of the block itself, per
   // row: (0,0) for every variant, (4,2) too for H/V only. C: the row itself, L: the left
@@ -174,8 +174,7 @@ inline void mod2_sq_err(const V v[4], const V t[4], VI& lo, VI& hi) {
 /// Error of the blend (a (8 - m) + b m) / 8 with per-lane weights m, texels 0-3 and 4-7 of each
 /// block summed.
 template <bool kAlpha, class V>
-inline auto mod2_blend_err(const Mod2Consts<V>& k, const V a[4], const V b[4], const V t[4],
-                           V m) {
+inline auto mod2_blend_err(const Mod2Consts<V>& k, const V a[4], const V b[4], const V t[4], V m) {
   constexpr int nch = kAlpha ? 4 : 3;
   const V im = k.k8 - m;
   V v[4];
@@ -249,8 +248,9 @@ void mod2_pass1(const Mod2Row& r) {
         bit[h] = q0 & one;
         acc_err += simd::srl<1>(q0);
       }
-      mod2_store_bytes(simd::narrow16(code[0] | simd::sll<2>(bit[0]), code[1] | simd::sll<2>(bit[1])),
-                       r.out[j] + std::size_t(bx) * 8);
+      mod2_store_bytes(
+          simd::narrow16(code[0] | simd::sll<2>(bit[0]), code[1] | simd::sll<2>(bit[1])),
+          r.out[j] + std::size_t(bx) * 8);
       // Row j's 8 bits into byte j (each sum is below 256).
       acc_bits += simd::sll_bytes(simd::madd(simd::narrow16(bit[0], bit[1]), k.lanebit), j);
     }
