@@ -18,10 +18,11 @@
 // The upscaled endpoint images are formed on the fly from per-row column sums, as the decoder's
 // `upscale_rows` (weights of a 2 bpp texel sum to 32).
 //
-// Where the CPU has AVX2 (checked once per call), the per-block-row arithmetic of the three
-// passes runs in modulation_2bpp_avx2.cpp instead, two blocks a step (rows of an even number of
-// blocks: every 2 bpp grid, nbx being a power of two >= 2); allocation, threading and the rest
-// stay here. Same output.
+// The per-block-row arithmetic of the passes is written once (modulation_2bpp_rows.h) and runs
+// here over the 4-lane types (one block a step), or where the CPU has AVX2 (checked once per
+// call) in modulation_2bpp_avx2.cpp over the 8-lane ones (two blocks a step; rows of an even
+// number of blocks: every 2 bpp grid, nbx being a power of two >= 2). Allocation, the maps,
+// threading and the choice of width stay here. Same output.
 #include "pvrtc/encode/modulation/modulation_2bpp.h"
 
 #include <atomic>
@@ -29,15 +30,11 @@
 
 #include "core/simd.h"
 #include "pvrtc/encode/modulation/modulation_2bpp_avx2.h"
-#include "pvrtc/encode/modulation/modulation_2bpp_bits.h"
-#include "pvrtc/encode/modulation/modulation_2bpp_blends.h"
+#include "pvrtc/encode/modulation/modulation_2bpp_rows.h"
 
 namespace tessera::pvrtc::detail {
 
 namespace {
-
-using simd::vint4;
-using simd::vu16x8;
 
 constexpr int kGuard = 8;  // bytes before and after each map row (one is used each side)
 
@@ -56,75 +53,6 @@ bool use_avx2(const Grid& g) {
 #endif
 }
 
-inline vu16x8 lanes8(int a, int b, int c, int d, int e, int f, int g, int h) {
-  return simd::narrow16(vint4(a, b, c, d), vint4(e, f, g, h));
-}
-
-/// Single-lane mask (lane < 0: none).
-inline vu16x8 lane_mask(int lane) {
-  int l[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-  if (lane >= 0) l[lane] = -1;
-  return lanes8(l[0], l[1], l[2], l[3], l[4], l[5], l[6], l[7]);
-}
-
-inline vu16x8 lane_mask2(int lane0, int lane1) {
-  int l[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-  if (lane0 >= 0) l[lane0] = -1;
-  if (lane1 >= 0) l[lane1] = -1;
-  return lanes8(l[0], l[1], l[2], l[3], l[4], l[5], l[6], l[7]);
-}
-
-inline std::uint32_t hsum(vint4 v) {
-  std::int32_t l[4];
-  simd::store4(v, l);
-  return std::uint32_t(l[0]) + std::uint32_t(l[1]) + std::uint32_t(l[2]) + std::uint32_t(l[3]);
-}
-
-/// Constants shared by the passes.
-struct Consts {
-  vu16x8 wl, wr;       // horizontal bilinear weights of the 8 texels (left / right sums)
-  vu16x8 even[2];      // lanes x with (x ^ row) even, by row parity
-  vu16x8 lanebit;      // 1, 2, 4, ..., 128
-  vu16x8 k1, k2, k3, k4, k5, k8, kff;
-  // Lanes of the neighbour vectors that refer to a restricted texel of the block itself, per
-  // row: (0,0) for every variant, (4,2) too for H/V only. C: the row itself, L: the left
-  // neighbours (x - 1), R: right, U: up (row - 1), D: down (row + 1).
-  vu16x8 c0[4], l0[4], u0[4], c12[4], l12[4], r12[4], u12[4], d12[4];
-  Consts() {
-    wl = lanes8(4, 3, 2, 1, 8, 7, 6, 5);
-    wr = lanes8(4, 5, 6, 7, 0, 1, 2, 3);
-    even[0] = lanes8(-1, 0, -1, 0, -1, 0, -1, 0);
-    even[1] = lanes8(0, -1, 0, -1, 0, -1, 0, -1);
-    lanebit = lanes8(1, 2, 4, 8, 16, 32, 64, 128);
-    k1 = vu16x8(1);
-    k2 = vu16x8(2);
-    k3 = vu16x8(3);
-    k4 = vu16x8(4);
-    k5 = vu16x8(5);
-    k8 = vu16x8(8);
-    kff = vu16x8(0xff);
-    for (int j = 0; j < 4; ++j) {
-      c0[j] = lane_mask(j == 0 ? 0 : -1);
-      l0[j] = lane_mask(j == 0 ? 1 : -1);
-      u0[j] = lane_mask(j == 1 ? 0 : -1);
-      c12[j] = lane_mask(j == 0 ? 0 : j == 2 ? 4 : -1);
-      l12[j] = lane_mask(j == 0 ? 1 : j == 2 ? 5 : -1);
-      r12[j] = lane_mask(j == 2 ? 3 : -1);
-      u12[j] = lane_mask2(j == 1 ? 0 : -1, j == 3 ? 4 : -1);
-      d12[j] = lane_mask(j == 1 ? 4 : -1);
-    }
-  }
-};
-
-/// One block row: per texel row the column sums of the endpoint images (8 planes, image * 4 +
-/// channel, `vstride` apart; element bx + 1 holds block bx, element 0 the last block and
-/// element nbx + 1 the first) and the target row.
-struct Row2 {
-  const std::uint16_t* v[4] = {};
-  const std::uint8_t* t[4] = {};
-  std::size_t vstride = 0;
-};
-
 /// Per-thread column-sum buffer for one block row.
 class ColumnSums {
  public:
@@ -132,7 +60,8 @@ class ColumnSums {
       : g_(g), ep_(ep), alpha_(alpha), vstride_(std::size_t(g.nbx) + 8),
         vp_(4 * 8 * vstride_, 0) {}
 
-  void fill(const EncoderState& s, int by, Row2& r) {
+  /// The column sums and target rows of block row `by` into r.v, r.t and r.vstride.
+  void fill(const EncoderState& s, int by, Mod2Row& r) {
     const std::size_t nb = g_.blocks();
     for (int j = 0; j < 4; ++j) {
       const AxisTap ty = axis_tap(by * 4 + j, 4, g_.ph);
@@ -162,8 +91,8 @@ class ColumnSums {
   std::vector<std::uint16_t> vp_;
 };
 
-/// Calls fn(by, cs, r) for every block row, rows in parallel; each worker has its own column-sum
-/// buffer `cs` and row view `r` (which fn fills with `cs.fill(s, by, r)` when it needs them).
+/// Calls fn(by, cs) for every block row, rows in parallel; each worker has its own column-sum
+/// buffer `cs` (which fn fills with `cs.fill` when it needs the sums).
 template <class Fn>
 void for_each_block_row(const EncoderState& s, const std::vector<std::uint16_t>& ep, bool alpha,
                         Fn&& fn) {
@@ -171,33 +100,10 @@ void for_each_block_row(const EncoderState& s, const std::vector<std::uint16_t>&
       0, s.g.nby, 4,
       [&](std::int64_t by0, std::int64_t by1) {
         ColumnSums cs(s.g, ep, alpha);
-        Row2 r;
-        for (int by = int(by0); by < int(by1); ++by) fn(by, cs, r);
+        for (int by = int(by0); by < int(by1); ++by) fn(by, cs);
       },
       {s.threads});
 }
-
-/// Upscaled A (a) and B (b) and the target (t) of texel row j of block bx, per channel.
-template <bool kAlpha>
-inline void load_row(const Consts& k, const Row2& r, int bx, int j, vu16x8 a[4], vu16x8 b[4],
-                     vu16x8 t[4]) {
-  constexpr int nch = kAlpha ? 4 : 3;
-  const std::uint8_t* tp = r.t[j] + std::size_t(bx) * 32;
-  const vint4 t0 = simd::load_texels4(tp), t1 = simd::load_texels4(tp + 16);
-  for (int c = 0; c < nch; ++c) {
-    t[c] = simd::channel16(t0, t1, c);
-    for (int img = 0; img < 2; ++img) {
-      const std::uint16_t* p = r.v[j] + std::size_t(img * 4 + c) * r.vstride + bx;
-      const vint4 p1(p[1]);
-      const vu16x8 L = simd::narrow16(vint4(p[0]), p1), R = simd::narrow16(p1, vint4(p[2]));
-      const vu16x8 w = simd::mullo(L, k.wl) + simd::mullo(R, k.wr);
-      const vu16x8 u = c < 3 ? simd::srl<7>(w) + simd::srl<2>(w) : simd::srl<5>(w) + simd::srl<1>(w);
-      (img == 0 ? a : b)[c] = u;
-    }
-  }
-}
-
-// sq_err, blend_err, greedy_weight, ab_weight: modulation_2bpp_blends.h.
 
 struct Maps {
   std::size_t stride = 0;
@@ -217,7 +123,6 @@ template <bool kAlpha>
 std::uint64_t choose_2bpp_impl(EncoderState& s) {
   const Grid& g = s.g;
   const std::size_t nb = g.blocks();
-  const Consts k;
   // Expanded endpoints, planar: plane (image * 4 + channel), one u16 per block.
   std::vector<std::uint16_t> ep(8 * nb);
   for (std::size_t i = 0; i < nb; ++i) {
@@ -232,19 +137,13 @@ std::uint64_t choose_2bpp_impl(EncoderState& s) {
   std::vector<std::uint32_t> err0(nb);
   const int hm = g.ph - 1;
   const bool avx2 = use_avx2(g);
-  // Block row `by` for the AVX2 passes: map rows by * 4 - 1 .. by * 4 + 4 of `in`, by * 4 ..
-  // by * 4 + 3 of `out`.
-  const auto avx2_row = [&](int by, const Row2& r, std::vector<std::uint8_t>* in,
-                            std::vector<std::uint8_t>* out) {
-    Mod2RowAvx2 m{};
+  // Block row `by` of the passes: map rows by * 4 - 1 .. by * 4 + 4 of `in`, by * 4 .. by * 4 + 3
+  // of `out` (the column sums and target rows: `ColumnSums::fill`).
+  const auto row_of = [&](int by, std::vector<std::uint8_t>* in, std::vector<std::uint8_t>* out) {
+    Mod2Row m{};
     const std::size_t b0 = std::size_t(by) * std::size_t(g.nbx);
-    for (int j = 0; j < 4; ++j) {
-      m.v[j] = r.v[j];
-      m.t[j] = r.t[j];
-      m.out[j] = out ? maps.row(*out, by * 4 + j) : nullptr;
-    }
+    for (int j = 0; j < 4; ++j) m.out[j] = out ? maps.row(*out, by * 4 + j) : nullptr;
     for (int j = -1; j <= 4; ++j) m.in[j + 1] = in ? maps.row(*in, (by * 4 + j) & hm) : nullptr;
-    m.vstride = r.vstride;
     m.nbx = g.nbx;
     m.err0 = &err0[b0];
     m.mod = &s.mod[b0];
@@ -253,169 +152,38 @@ std::uint64_t choose_2bpp_impl(EncoderState& s) {
   };
 
   // Pass 1: greedy codes, A/B choice, mode 0.
-  for_each_block_row(s, ep, kAlpha, [&](int by, ColumnSums& cs, Row2& r) {
-    cs.fill(s, by, r);
-    if (avx2) mod2_pass1_row_avx2(avx2_row(by, r, nullptr, &maps.greedy), kAlpha);
-    for (int bx = 0; bx < (avx2 ? 0 : g.nbx); ++bx) {
-      vint4 acc_err, acc_bits;
-      for (int j = 0; j < 4; ++j) {
-        vu16x8 a[4], b[4], t[4], v3[4], v5[4];
-        load_row<kAlpha>(k, r, bx, j, a, b, t);
-        for (int c = 0; c < (kAlpha ? 4 : 3); ++c) {
-          v3[c] = simd::srl<3>(simd::mullo(a[c], k.k5) + simd::mullo(b[c], k.k3));
-          v5[c] = simd::srl<3>(simd::mullo(a[c], k.k3) + simd::mullo(b[c], k.k5));
-        }
-        vint4 e0[2], e3[2], e5[2], e8[2];
-        sq_err<kAlpha>(a, t, e0[0], e0[1]);
-        sq_err<kAlpha>(v3, t, e3[0], e3[1]);
-        sq_err<kAlpha>(v5, t, e5[0], e5[1]);
-        sq_err<kAlpha>(b, t, e8[0], e8[1]);
-        vint4 code[2], bit[2];
-        for (int h = 0; h < 2; ++h) {
-          // First minimum via (error * 4 + rank), as the scalar scan.
-          vint4 q = simd::sll<2>(e0[h]);
-          q = simd::min(q, simd::sll<2>(e3[h]) | vint4(1));
-          q = simd::min(q, simd::sll<2>(e5[h]) | vint4(2));
-          q = simd::min(q, simd::sll<2>(e8[h]) | vint4(3));
-          code[h] = q & vint4(3);
-          const vint4 q0 = simd::min(simd::sll<1>(e0[h]), simd::sll<1>(e8[h]) | vint4(1));
-          bit[h] = q0 & vint4(1);
-          acc_err += simd::srl<1>(q0);
-        }
-        const std::size_t x0 = std::size_t(bx) * 8;
-        simd::store_u8x8(simd::narrow16(code[0] | simd::sll<2>(bit[0]),
-                                        code[1] | simd::sll<2>(bit[1])),
-                         maps.row(maps.greedy, by * 4 + j) + x0);
-        acc_bits += simd::sll_bytes(simd::madd(simd::narrow16(bit[0], bit[1]), k.lanebit), j);
-      }
-      const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-      err0[bi] = hsum(acc_err);
-      s.mod[bi] = hsum(acc_bits);
+  for_each_block_row(s, ep, kAlpha, [&](int by, ColumnSums& cs) {
+    Mod2Row m = row_of(by, nullptr, &maps.greedy);
+    cs.fill(s, by, m);
+    if (avx2) {
+      mod2_pass1_row_avx2(m, kAlpha);
+    } else {
+      mod2_pass1<kAlpha, simd::vu16x8>(m);
     }
     for (int j = 0; j < 4; ++j) fill_guards(maps.row(maps.greedy, by * 4 + j), g.pw);
   });
 
   // Pass 2: the interpolated variants against the greedy map; the choice.
-  for_each_block_row(s, ep, kAlpha, [&](int by, ColumnSums& cs, Row2& r) {
-    cs.fill(s, by, r);
-    const std::uint8_t* rows[6];
-    for (int j = -1; j <= 4; ++j) rows[j + 1] = maps.row(maps.greedy, (by * 4 + j) & hm);
-    if (avx2) mod2_pass2_row_avx2(avx2_row(by, r, &maps.greedy, &maps.decoded), kAlpha);
-    for (int bx = 0; bx < (avx2 ? 0 : g.nbx); ++bx) {
-      const std::size_t x0 = std::size_t(bx) * 8;
-      vint4 acc[3];
-      vu16x8 c0[4], c12[4], cab[4];
-      for (int j = 0; j < 4; ++j) {
-        const std::uint8_t* cur = rows[j + 1] + x0;
-        const vu16x8 bc = simd::load_u8x8(cur), bl = simd::load_u8x8(cur - 1),
-                     br = simd::load_u8x8(cur + 1), bu = simd::load_u8x8(rows[j] + x0),
-                     bd = simd::load_u8x8(rows[j + 2] + x0);
-        const vu16x8 cg = greedy_weight(k, bc), lg = greedy_weight(k, bl),
-                     rg = greedy_weight(k, br), ug = greedy_weight(k, bu),
-                     dg = greedy_weight(k, bd);
-        const vu16x8 ca = ab_weight(k, bc), la = ab_weight(k, bl), ra = ab_weight(k, br),
-                     ua = ab_weight(k, bu), da = ab_weight(k, bd);
-        cab[j] = ca;
-        c0[j] = simd::select(k.c0[j], ca, cg);
-        c12[j] = simd::select(k.c12[j], ca, cg);
-        const vu16x8 l0 = simd::select(k.l0[j], la, lg), u0 = simd::select(k.u0[j], ua, ug);
-        const vu16x8 l12 = simd::select(k.l12[j], la, lg),
-                     r12 = simd::select(k.r12[j], ra, rg),
-                     u12 = simd::select(k.u12[j], ua, ug),
-                     d12 = simd::select(k.d12[j], da, dg);
-        const vu16x8 ev = k.even[j & 1];
-        const vu16x8 m0 = simd::select(ev, c0[j], simd::srl<2>(u0 + dg + l0 + rg + k.k2));
-        const vu16x8 m1 = simd::select(ev, c12[j], simd::srl<1>(l12 + r12 + k.k1));
-        const vu16x8 m2 = simd::select(ev, c12[j], simd::srl<1>(u12 + d12 + k.k1));
-        vu16x8 a[4], b[4], t[4];
-        load_row<kAlpha>(k, r, bx, j, a, b, t);
-        acc[0] += blend_err<kAlpha>(k, a, b, t, m0);
-        acc[1] += blend_err<kAlpha>(k, a, b, t, m1);
-        acc[2] += blend_err<kAlpha>(k, a, b, t, m2);
-      }
-      const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-      std::uint32_t best = err0[bi];
-      int variant = -1;
-      for (int v = 0; v < 3; ++v) {
-        const std::uint32_t e = hsum(acc[v]);
-        if (e < best) {
-          best = e;
-          variant = v;
-        }
-      }
-      if (variant < 0) {
-        s.mode[bi] = 0;  // s.mod[bi]: the mode-0 bits from pass 1
-        for (int j = 0; j < 4; ++j) {
-          simd::store_u8x8(cab[j], maps.row(maps.decoded, by * 4 + j) + x0);
-        }
-        continue;
-      }
-      // Stored values: the greedy codes, with (0,0) and for H/V only (4,2) restricted
-      // (modulation_2bpp_bits.h).
-      const std::uint32_t bits = interpolated_bits(rows, x0, variant);
-      const std::uint8_t* row2 = rows[3] + x0;
-      s.mode[bi] = 1;
-      s.mod[bi] = bits;
-      for (int j = 0; j < 4; ++j) {
-        simd::store_u8x8(variant == 0 ? c0[j] : c12[j],
-                         maps.row(maps.decoded, by * 4 + j) + x0);
-      }
-      // H+V: the low bit of (4,2) is not stored (bit 20 was cleared): it decodes as
-      // greedy code & 2.
-      if (variant == 0) {
-        maps.row(maps.decoded, by * 4 + 2)[x0 + 4] = (row2[4] & 2) ? 5 : 0;
-      }
+  for_each_block_row(s, ep, kAlpha, [&](int by, ColumnSums& cs) {
+    Mod2Row m = row_of(by, &maps.greedy, &maps.decoded);
+    cs.fill(s, by, m);
+    if (avx2) {
+      mod2_pass2_row_avx2(m, kAlpha);
+    } else {
+      mod2_pass2<kAlpha, simd::vu16x8>(m);
     }
     for (int j = 0; j < 4; ++j) fill_guards(maps.row(maps.decoded, by * 4 + j), g.pw);
   });
 
-  // Pass 3: exact error of the decode.
+  // Pass 3: exact error of the decode (the column sums only for rows with a mode-1 block).
   std::vector<std::uint64_t> row_err(std::size_t(g.nby), 0);
-  for_each_block_row(s, ep, kAlpha, [&](int by, ColumnSums& cs, Row2& r) {
-    const std::size_t b0 = std::size_t(by) * std::size_t(g.nbx);
-    std::uint64_t total = 0;
+  for_each_block_row(s, ep, kAlpha, [&](int by, ColumnSums& cs) {
+    Mod2Row m = row_of(by, &maps.decoded, nullptr);
     bool any1 = false;
-    for (int bx = 0; bx < g.nbx; ++bx) any1 |= s.mode[b0 + std::size_t(bx)] != 0;
-    if (any1) cs.fill(s, by, r);
-    if (avx2) {
-      row_err[std::size_t(by)] =
-          mod2_pass3_row_avx2(avx2_row(by, r, &maps.decoded, nullptr), kAlpha);
-      return;
-    }
-    const std::uint8_t* rows[6];
-    for (int j = -1; j <= 4; ++j) rows[j + 1] = maps.row(maps.decoded, (by * 4 + j) & hm);
-    for (int bx = 0; bx < g.nbx; ++bx) {
-      const std::size_t bi = b0 + std::size_t(bx);
-      if (s.mode[bi] == 0) {
-        total += err0[bi];
-        continue;
-      }
-      const std::uint32_t bits = s.mod[bi];
-      const int variant = (bits & 1) ? ((bits & (1u << 20)) ? 2 : 1) : 0;
-      const std::size_t x0 = std::size_t(bx) * 8;
-      vint4 acc;
-      for (int j = 0; j < 4; ++j) {
-        const std::uint8_t* cur = rows[j + 1] + x0;
-        const vu16x8 wc = simd::load_u8x8(cur);
-        vu16x8 interp;
-        if (variant == 0) {
-          interp = simd::srl<2>(simd::load_u8x8(cur - 1) + simd::load_u8x8(cur + 1) +
-                                simd::load_u8x8(rows[j] + x0) +
-                                simd::load_u8x8(rows[j + 2] + x0) + k.k2);
-        } else if (variant == 1) {
-          interp = simd::srl<1>(simd::load_u8x8(cur - 1) + simd::load_u8x8(cur + 1) + k.k1);
-        } else {
-          interp = simd::srl<1>(simd::load_u8x8(rows[j] + x0) +
-                                simd::load_u8x8(rows[j + 2] + x0) + k.k1);
-        }
-        const vu16x8 m = simd::select(k.even[j & 1], wc, interp);
-        vu16x8 a[4], b[4], t[4];
-        load_row<kAlpha>(k, r, bx, j, a, b, t);
-        acc += blend_err<kAlpha>(k, a, b, t, m);
-      }
-      total += hsum(acc);
-    }
-    row_err[std::size_t(by)] = total;
+    for (int bx = 0; bx < g.nbx; ++bx) any1 |= m.mode[bx] != 0;
+    if (any1) cs.fill(s, by, m);
+    row_err[std::size_t(by)] =
+        avx2 ? mod2_pass3_row_avx2(m, kAlpha) : mod2_pass3<kAlpha, simd::vu16x8>(m);
   });
   std::uint64_t total = 0;
   for (std::uint64_t e : row_err) total += e;
