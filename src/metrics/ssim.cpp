@@ -3,14 +3,14 @@
 //
 // Layout and order. The Gaussian window is separable: a horizontal 11-tap pass turns each input
 // row into five moment rows (mean of a, of b, of a*a, b*b, a*b), and a vertical 11-tap pass over
-// 11 such rows gives the window moments of one output row. Each moment is a contiguous row of
-// doubles (structure of arrays), so every loop over x is a plain loop the compiler vectorises
-// (2 doubles per SSE2 / NEON vector) without intrinsics. Vectorising across x keeps each element's
-// arithmetic untouched: every moment starts at 0 and adds its 11 terms with k ascending, a
-// product being formed as (w[k] * a) * b, and ssim_value is one expression; with -ffp-contract=off
-// (the build's) nothing is fused. So every map value and every sum is the same double as the
-// scalar, array-of-structs form this replaced — tests/unit/ssim_exact_test.cpp keeps that form as
-// its reference and compares with EXPECT_EQ.
+// 11 such rows gives the window moments of one output row. The moments are kept as structure of
+// arrays (per tile of kTile columns, each moment's values contiguous), so every loop over x is a
+// plain loop the compiler vectorises (2 doubles per SSE2 / NEON vector) without intrinsics.
+// Vectorising across x leaves each element's arithmetic untouched: every moment starts at 0 and
+// adds its 11 terms with k ascending, a product being formed as (w[k] * a) * b, ssim_value is one
+// expression, and the build's -ffp-contract=off fuses nothing. So every map value and every sum
+// is the same double as in the scalar, array-of-structs form this replaced, whose order
+// tests/unit/ssim_exact_test.cpp keeps as its reference (compared with EXPECT_EQ).
 //
 // Work split. The mean is the sum of per-band sums over bands of kBand output rows, added in band
 // order (as parallel_sum does), each band summing its values row by row, x ascending: the double
@@ -35,10 +35,14 @@ constexpr int kWindow = 2 * kRadius + 1;
 constexpr double kSigma = 1.5;
 constexpr double kK1 = 0.01;
 constexpr double kK2 = 0.03;
-constexpr int kMoments = 5;        // mean a, mean b, mean a*a, mean b*b, mean a*b
-constexpr int kBand = 32;          // output rows per partial sum; fixes the summation order
-constexpr int kBandsPerTask = 4;   // bands one task runs with one ring (any value: same result)
-constexpr int kTile = 128;         // output columns per vertical step, kept on the stack
+constexpr int kMoments = 5;       // mean a, mean b, mean a*a, mean b*b, mean a*b
+constexpr int kBand = 32;         // output rows per partial sum; fixes the summation order
+constexpr int kBandsPerTask = 4;  // bands one task runs with one ring (any value: same result)
+constexpr int kTile = 128;        // output columns per tile of a ring row
+// Pitch of a tile's moment rows and padding per ring row, in doubles: one cache line more than a
+// power of two, so the 55 rows the vertical pass reads at once do not share a few L1 sets.
+constexpr int kPitch = kTile + 8;
+constexpr int kRowPad = 8;
 
 using Weights = std::array<double, kWindow>;
 
@@ -81,70 +85,87 @@ double ssim_global(std::span<const float> a, std::span<const float> b, double c1
   return ssim_value(sx / n, sy / n, sxx / n, syy / n, sxy / n, c1, c2);
 }
 
-/// Horizontal pass of one input row (`da`, `db`: `ow + 10` values) into the moment rows of a
-/// (`hx`, `hxx`) and the cross moment `hxy`. The fold over K unrolls the 11 taps in ascending
-/// order, so the loop over x is the one the compiler vectorises.
+/// Horizontal pass of columns [x0, x0 + n) of one input row (`da`, `db`: the row as doubles,
+/// from x0) into the moments of a (`h` + 0, + 2 kPitch) and the cross moment (`h` + 4 kPitch),
+/// `h` being the row's tile. The fold over K unrolls the 11 taps in ascending order, so the
+/// loop over t is the one the compiler vectorises.
 template <std::size_t... K>
-void filter_row_a(const double* __restrict da, const double* __restrict db, int ow,
-                  double* __restrict hx, double* __restrict hxx, double* __restrict hxy,
-                  const Weights& weights, std::index_sequence<K...>) {
+void filter_row_a(const double* __restrict da, const double* __restrict db, int n,
+                  double* __restrict h, const Weights& weights, std::index_sequence<K...>) {
   const Weights w = weights;  // a local copy: no store can alias it
-  for (int x = 0; x < ow; ++x) {
+  for (int t = 0; t < n; ++t) {
     double mx = 0, mxx = 0, mxy = 0;
     (
         [&] {
-          const double va = da[x + int(K)], vb = db[x + int(K)], wk = w[K];
+          const double va = da[t + int(K)], vb = db[t + int(K)], wk = w[K];
           mx += wk * va;
           mxx += wk * va * va;
           mxy += wk * va * vb;
         }(),
         ...);
-    hx[x] = mx;
-    hxx[x] = mxx;
-    hxy[x] = mxy;
+    h[t] = mx;
+    h[2 * kPitch + t] = mxx;
+    h[4 * kPitch + t] = mxy;
   }
 }
 
-/// The moment rows of b (`hy`, `hyy`) of one input row, as filter_row_a.
+/// The moments of b (`h` + kPitch, + 3 kPitch), as filter_row_a. Two passes rather than one keep
+/// every value in a register (the single pass spills on SSE2's 16 registers).
 template <std::size_t... K>
-void filter_row_b(const double* __restrict db, int ow, double* __restrict hy,
-                  double* __restrict hyy, const Weights& weights, std::index_sequence<K...>) {
+void filter_row_b(const double* __restrict db, int n, double* __restrict h, const Weights& weights,
+                  std::index_sequence<K...>) {
   const Weights w = weights;
-  for (int x = 0; x < ow; ++x) {
+  for (int t = 0; t < n; ++t) {
     double my = 0, myy = 0;
     (
         [&] {
-          const double vb = db[x + int(K)], wk = w[K];
+          const double vb = db[t + int(K)], wk = w[K];
           my += wk * vb;
           myy += wk * vb * vb;
         }(),
         ...);
-    hy[x] = my;
-    hyy[x] = myy;
+    h[kPitch + t] = my;
+    h[3 * kPitch + t] = myy;
   }
 }
 
-/// Vertical pass of one moment over `n` columns: out[t] = sum over k ascending of
-/// w[k] * rows[k][t], from 0.
-template <std::size_t... K>
-void filter_column(const std::array<const double*, kWindow>& rows, int n, const Weights& weights,
-                   double* __restrict out, std::index_sequence<K...>) {
+/// Vertical pass of one tile: the five window moments of columns t < n from the tiles of the
+/// 11 horizontal rows `rows` (k ascending, each moment from 0: w[k] * h), their SSIM added to
+/// `sum` in column order and, with kMap, stored in map[t]. The five moment sums are
+/// independent, so they keep the pipeline busy, and the serial `sum` overlaps with them.
+template <bool kMap, std::size_t... K>
+double window_tile(const std::array<const double*, kWindow>& rows, int n, const Weights& weights,
+                   double c1, double c2, double sum, double* __restrict map,
+                   std::index_sequence<K...>) {
   const Weights w = weights;  // local copies: no store can alias them
   const std::array<const double*, kWindow> r = rows;
   for (int t = 0; t < n; ++t) {
-    double m = 0;
-    ((m += w[K] * r[K][t]), ...);
-    out[t] = m;
+    double m0 = 0, m1 = 0, m2 = 0, m3 = 0, m4 = 0;
+    ((m0 += w[K] * r[K][t]), ...);
+    ((m1 += w[K] * r[K][kPitch + t]), ...);
+    ((m2 += w[K] * r[K][2 * kPitch + t]), ...);
+    ((m3 += w[K] * r[K][3 * kPitch + t]), ...);
+    ((m4 += w[K] * r[K][4 * kPitch + t]), ...);
+    const double s = ssim_value(m0, m1, m2, m3, m4, c1, c2);
+    if constexpr (kMap) map[t] = s;
+    sum += s;
   }
+  return sum;
 }
 
-/// One task's rolling state: the converted input rows and a ring of kWindow horizontal rows,
-/// each kMoments contiguous moment rows of `ow` doubles.
+/// One task's rolling state: the converted input rows and a ring of kWindow horizontal rows.
+/// A ring row is split in tiles of kTile columns, each tile holding its kMoments moment rows
+/// kPitch doubles apart (mean a, mean b, mean a*a, mean b*b, mean a*b), so window_tile
+/// reads all five moments at constant offsets from one pointer per row.
 class Ring {
  public:
   Ring(int width, int ow)
-      : ow_(ow), da_(std::size_t(width)), db_(std::size_t(width)),
-        h_(std::size_t(kWindow) * kMoments * std::size_t(ow)) {}
+      : ow_(ow),
+        tiles_((ow + kTile - 1) / kTile),
+        row_(std::size_t(tiles_) * std::size_t(kMoments * kPitch) + std::size_t(kRowPad)),
+        da_(std::size_t(width)),
+        db_(std::size_t(width)),
+        h_(std::size_t(kWindow) * row_) {}
 
   /// Filters input row `y` of the planes (row-major, `width` floats per row) into its slot.
   void filter(const float* a, const float* b, int width, int y) {
@@ -154,20 +175,27 @@ class Ring {
       da_[std::size_t(x)] = ra[x];
       db_[std::size_t(x)] = rb[x];
     }
-    double* h = moment(y, 0);
-    const std::size_t n = std::size_t(ow_);
-    filter_row_a(da_.data(), db_.data(), ow_, h, h + 2 * n, h + 4 * n, weights(),
-                 std::make_index_sequence<kWindow>{});
-    filter_row_b(db_.data(), ow_, h + n, h + 3 * n, weights(), std::make_index_sequence<kWindow>{});
+    for (int j = 0; j < tiles_; ++j) {
+      const int x0 = j * kTile, n = std::min(kTile, ow_ - x0);
+      double* h = tile(y, j);
+      filter_row_a(&da_[std::size_t(x0)], &db_[std::size_t(x0)], n, h, weights(),
+                   std::make_index_sequence<kWindow>{});
+      filter_row_b(&db_[std::size_t(x0)], n, h, weights(), std::make_index_sequence<kWindow>{});
+    }
   }
 
-  /// Moment row `c` of input row `y` (valid while y is among the last kWindow rows filtered).
-  double* moment(int y, int c) {
-    return &h_[(std::size_t(y % kWindow) * kMoments + std::size_t(c)) * std::size_t(ow_)];
+  /// Tile `j` of input row `y` (valid while y is among the last kWindow rows filtered).
+  const double* tile(int y, int j) const {
+    return &h_[std::size_t(y % kWindow) * row_ + std::size_t(j) * std::size_t(kMoments * kPitch)];
   }
+  double* tile(int y, int j) {
+    return const_cast<double*>(static_cast<const Ring&>(*this).tile(y, j));
+  }
+  int tiles() const { return tiles_; }
 
  private:
-  int ow_;
+  int ow_, tiles_;
+  std::size_t row_;  // doubles per ring row
   std::vector<double> da_, db_, h_;
 };
 
@@ -180,47 +208,44 @@ void ssim_rows(const float* a, const float* b, int width, int y0, int y1, double
   const int ow = width - 2 * kRadius;
   Ring ring(width, ow);
   for (int y = y0; y < y0 + 2 * kRadius; ++y) ring.filter(a, b, width, y);
-  alignas(16) double m[kMoments][kTile];
   alignas(16) double s[kTile];
   for (int y = y0; y < y1; ++y) {
     ring.filter(a, b, width, y + 2 * kRadius);
     double& sum = band_sums[y / kBand - y0 / kBand];
-    for (int x0 = 0; x0 < ow; x0 += kTile) {
-      const int n = std::min(kTile, ow - x0);
-      for (int c = 0; c < kMoments; ++c) {
-        std::array<const double*, kWindow> rows{};
-        for (int k = 0; k < kWindow; ++k) rows[std::size_t(k)] = ring.moment(y + k, c) + x0;
-        filter_column(rows, n, w, m[c], std::make_index_sequence<kWindow>{});
-      }
-      for (int t = 0; t < n; ++t) s[t] = ssim_value(m[0][t], m[1][t], m[2][t], m[3][t], m[4][t], c1, c2);
+    for (int j = 0; j < ring.tiles(); ++j) {
+      const int x0 = j * kTile, n = std::min(kTile, ow - x0);
+      std::array<const double*, kWindow> rows{};
+      for (int k = 0; k < kWindow; ++k) rows[std::size_t(k)] = ring.tile(y + k, j);
       if (out) {
+        sum = window_tile<true>(rows, n, w, c1, c2, sum, s, std::make_index_sequence<kWindow>{});
         float* o = out + std::size_t(y - y0) * std::size_t(ow) + std::size_t(x0);
         for (int t = 0; t < n; ++t) o[t] = float(s[t]);
+      } else {
+        sum = window_tile<false>(rows, n, w, c1, c2, sum, nullptr,
+                                 std::make_index_sequence<kWindow>{});
       }
-      for (int t = 0; t < n; ++t) sum += s[t];
     }
   }
 }
 
-double constants_c(double k, double data_range) { return (k * data_range) * (k * data_range); }
+double ssim_constant(double k, double data_range) { return (k * data_range) * (k * data_range); }
 
 }  // namespace
 
 double ssim_plane(std::span<const float> a, std::span<const float> b, int width, int height,
                   const SsimOptions& options) {
-  const double c1 = constants_c(kK1, options.data_range);
-  const double c2 = constants_c(kK2, options.data_range);
+  const double c1 = ssim_constant(kK1, options.data_range);
+  const double c2 = ssim_constant(kK2, options.data_range);
   if (width < kWindow || height < kWindow) return ssim_global(a, b, c1, c2);
   const int oh = height - 2 * kRadius;
   const int ow = width - 2 * kRadius;
   std::vector<double> band_sums(std::size_t((oh + kBand - 1) / kBand), 0.0);
-  parallel_for(
-      0, oh, std::int64_t(kBand) * kBandsPerTask,
-      [&](std::int64_t y0, std::int64_t y1) {
-        ssim_rows(a.data(), b.data(), width, int(y0), int(y1), c1, c2, nullptr,
-                  &band_sums[std::size_t(y0 / kBand)]);
-      },
-      {options.threads});
+  parallel_for(0, oh, std::int64_t(kBand) * kBandsPerTask,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 ssim_rows(a.data(), b.data(), width, int(y0), int(y1), c1, c2, nullptr,
+                           &band_sums[std::size_t(y0 / kBand)]);
+               },
+               {options.threads});
   double sum = 0.0;
   for (double v : band_sums) sum += v;
   return sum / (double(oh) * double(ow));
@@ -229,19 +254,19 @@ double ssim_plane(std::span<const float> a, std::span<const float> b, int width,
 std::vector<float> ssim_map(std::span<const float> a, std::span<const float> b, int width,
                             int height, const SsimOptions& options) {
   if (width < kWindow || height < kWindow) return {};
-  const double c1 = constants_c(kK1, options.data_range);
-  const double c2 = constants_c(kK2, options.data_range);
+  const double c1 = ssim_constant(kK1, options.data_range);
+  const double c2 = ssim_constant(kK2, options.data_range);
   const int oh = height - 2 * kRadius;
   const int ow = width - 2 * kRadius;
   std::vector<float> map(std::size_t(oh) * std::size_t(ow));
   std::vector<double> band_sums(std::size_t((oh + kBand - 1) / kBand), 0.0);
-  parallel_for(
-      0, oh, std::int64_t(kBand) * kBandsPerTask,
-      [&](std::int64_t y0, std::int64_t y1) {
-        ssim_rows(a.data(), b.data(), width, int(y0), int(y1), c1, c2,
-                  &map[std::size_t(y0) * std::size_t(ow)], &band_sums[std::size_t(y0 / kBand)]);
-      },
-      {options.threads});
+  parallel_for(0, oh, std::int64_t(kBand) * kBandsPerTask,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 ssim_rows(a.data(), b.data(), width, int(y0), int(y1), c1, c2,
+                           &map[std::size_t(y0) * std::size_t(ow)],
+                           &band_sums[std::size_t(y0 / kBand)]);
+               },
+               {options.threads});
   return map;
 }
 std::vector<float> luma709(const ImageRGBA8& image) {
