@@ -21,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -153,6 +154,41 @@ double window_tile(const std::array<const double*, kWindow>& rows, int n, const 
   return sum;
 }
 
+/// Luma of one RGBA8 pixel, as luma709 computes it (float, on the 0..255 scale).
+float luma709_pixel(const std::uint8_t* p) {
+  return 0.2126f * float(p[0]) + 0.7152f * float(p[1]) + 0.0722f * float(p[2]);
+}
+
+/// The input rows of two float planes of `width` values per row.
+struct PlaneRows {
+  const float* a;
+  const float* b;
+  int width;
+  void load(int y, double* da, double* db) const {
+    const float* ra = a + std::size_t(y) * std::size_t(width);
+    const float* rb = b + std::size_t(y) * std::size_t(width);
+    for (int x = 0; x < width; ++x) {
+      da[x] = ra[x];
+      db[x] = rb[x];
+    }
+  }
+};
+
+/// The input rows of the luma709 planes of two RGBA8 images of `width` pixels per row, made row
+/// by row rather than as whole planes first (two plane-sized allocations fewer).
+struct LumaRows {
+  const std::uint8_t* a;
+  const std::uint8_t* b;
+  int width;
+  void load(int y, double* da, double* db) const {
+    const std::size_t row = std::size_t(y) * std::size_t(width) * 4;
+    for (int x = 0; x < width; ++x) {
+      da[x] = luma709_pixel(a + row + std::size_t(x) * 4);
+      db[x] = luma709_pixel(b + row + std::size_t(x) * 4);
+    }
+  }
+};
+
 /// One task's rolling state: the converted input rows and a ring of kWindow horizontal rows.
 /// A ring row is split in tiles of kTile columns, each tile holding its kMoments moment rows
 /// kPitch doubles apart (mean a, mean b, mean a*a, mean b*b, mean a*b), so window_tile
@@ -167,14 +203,10 @@ class Ring {
         db_(std::size_t(width)),
         h_(std::size_t(kWindow) * row_) {}
 
-  /// Filters input row `y` of the planes (row-major, `width` floats per row) into its slot.
-  void filter(const float* a, const float* b, int width, int y) {
-    const float* ra = a + std::size_t(y) * std::size_t(width);
-    const float* rb = b + std::size_t(y) * std::size_t(width);
-    for (int x = 0; x < width; ++x) {
-      da_[std::size_t(x)] = ra[x];
-      db_[std::size_t(x)] = rb[x];
-    }
+  /// Filters input row `y` of `rows` (PlaneRows or LumaRows) into its slot.
+  template <class Rows>
+  void filter(const Rows& rows, int y) {
+    rows.load(y, da_.data(), db_.data());
     for (int j = 0; j < tiles_; ++j) {
       const int x0 = j * kTile, n = std::min(kTile, ow_ - x0);
       double* h = tile(y, j);
@@ -199,29 +231,30 @@ class Ring {
   std::vector<double> da_, db_, h_;
 };
 
-/// Output rows [y0, y1) of the valid region (y0 a multiple of kBand): adds each value to
-/// band_sums[y / kBand - y0 / kBand] (row by row, x ascending) and, when `out` is not null,
+/// Output rows [y0, y1) of the valid region of `rows` (y0 a multiple of kBand): adds each value
+/// to band_sums[y / kBand - y0 / kBand] (row by row, x ascending) and, when `out` is not null,
 /// stores it as float at out[(y - y0) * (width - 10) + x].
-void ssim_rows(const float* a, const float* b, int width, int y0, int y1, double c1, double c2,
-               float* out, double* band_sums) {
+template <class Rows>
+void ssim_rows(const Rows& rows, int y0, int y1, double c1, double c2, float* out,
+               double* band_sums) {
   const Weights& w = weights();
-  const int ow = width - 2 * kRadius;
-  Ring ring(width, ow);
-  for (int y = y0; y < y0 + 2 * kRadius; ++y) ring.filter(a, b, width, y);
+  const int ow = rows.width - 2 * kRadius;
+  Ring ring(rows.width, ow);
+  for (int y = y0; y < y0 + 2 * kRadius; ++y) ring.filter(rows, y);
   alignas(16) double s[kTile];
   for (int y = y0; y < y1; ++y) {
-    ring.filter(a, b, width, y + 2 * kRadius);
+    ring.filter(rows, y + 2 * kRadius);
     double& sum = band_sums[y / kBand - y0 / kBand];
     for (int j = 0; j < ring.tiles(); ++j) {
       const int x0 = j * kTile, n = std::min(kTile, ow - x0);
-      std::array<const double*, kWindow> rows{};
-      for (int k = 0; k < kWindow; ++k) rows[std::size_t(k)] = ring.tile(y + k, j);
+      std::array<const double*, kWindow> tiles{};
+      for (int k = 0; k < kWindow; ++k) tiles[std::size_t(k)] = ring.tile(y + k, j);
       if (out) {
-        sum = window_tile<true>(rows, n, w, c1, c2, sum, s, std::make_index_sequence<kWindow>{});
+        sum = window_tile<true>(tiles, n, w, c1, c2, sum, s, std::make_index_sequence<kWindow>{});
         float* o = out + std::size_t(y - y0) * std::size_t(ow) + std::size_t(x0);
         for (int t = 0; t < n; ++t) o[t] = float(s[t]);
       } else {
-        sum = window_tile<false>(rows, n, w, c1, c2, sum, nullptr,
+        sum = window_tile<false>(tiles, n, w, c1, c2, sum, nullptr,
                                  std::make_index_sequence<kWindow>{});
       }
     }
@@ -230,6 +263,24 @@ void ssim_rows(const float* a, const float* b, int width, int y0, int y1, double
 
 double ssim_constant(double k, double data_range) { return (k * data_range) * (k * data_range); }
 
+/// Mean SSIM over the valid region of `rows` (at least kWindow x kWindow): the band sums added
+/// in band order, divided by the value count.
+template <class Rows>
+double ssim_mean(const Rows& rows, int height, double c1, double c2, int threads) {
+  const int oh = height - 2 * kRadius;
+  const int ow = rows.width - 2 * kRadius;
+  std::vector<double> band_sums(std::size_t((oh + kBand - 1) / kBand), 0.0);
+  parallel_for(0, oh, std::int64_t(kBand) * kBandsPerTask,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 ssim_rows(rows, int(y0), int(y1), c1, c2, nullptr,
+                           &band_sums[std::size_t(y0 / kBand)]);
+               },
+               {threads});
+  double sum = 0.0;
+  for (double v : band_sums) sum += v;
+  return sum / (double(oh) * double(ow));
+}
+
 }  // namespace
 
 double ssim_plane(std::span<const float> a, std::span<const float> b, int width, int height,
@@ -237,18 +288,7 @@ double ssim_plane(std::span<const float> a, std::span<const float> b, int width,
   const double c1 = ssim_constant(kK1, options.data_range);
   const double c2 = ssim_constant(kK2, options.data_range);
   if (width < kWindow || height < kWindow) return ssim_global(a, b, c1, c2);
-  const int oh = height - 2 * kRadius;
-  const int ow = width - 2 * kRadius;
-  std::vector<double> band_sums(std::size_t((oh + kBand - 1) / kBand), 0.0);
-  parallel_for(0, oh, std::int64_t(kBand) * kBandsPerTask,
-               [&](std::int64_t y0, std::int64_t y1) {
-                 ssim_rows(a.data(), b.data(), width, int(y0), int(y1), c1, c2, nullptr,
-                           &band_sums[std::size_t(y0 / kBand)]);
-               },
-               {options.threads});
-  double sum = 0.0;
-  for (double v : band_sums) sum += v;
-  return sum / (double(oh) * double(ow));
+  return ssim_mean(PlaneRows{a.data(), b.data(), width}, height, c1, c2, options.threads);
 }
 
 std::vector<float> ssim_map(std::span<const float> a, std::span<const float> b, int width,
@@ -262,19 +302,17 @@ std::vector<float> ssim_map(std::span<const float> a, std::span<const float> b, 
   std::vector<double> band_sums(std::size_t((oh + kBand - 1) / kBand), 0.0);
   parallel_for(0, oh, std::int64_t(kBand) * kBandsPerTask,
                [&](std::int64_t y0, std::int64_t y1) {
-                 ssim_rows(a.data(), b.data(), width, int(y0), int(y1), c1, c2,
+                 ssim_rows(PlaneRows{a.data(), b.data(), width}, int(y0), int(y1), c1, c2,
                            &map[std::size_t(y0) * std::size_t(ow)],
                            &band_sums[std::size_t(y0 / kBand)]);
                },
                {options.threads});
   return map;
 }
+
 std::vector<float> luma709(const ImageRGBA8& image) {
   std::vector<float> y(image.pixel_count());
-  for (std::size_t i = 0; i < y.size(); ++i) {
-    const std::uint8_t* p = &image.pixels[i * 4];
-    y[i] = 0.2126f * float(p[0]) + 0.7152f * float(p[1]) + 0.0722f * float(p[2]);
-  }
+  for (std::size_t i = 0; i < y.size(); ++i) y[i] = luma709_pixel(&image.pixels[i * 4]);
   return y;
 }
 
@@ -282,9 +320,13 @@ Result<double> ssim_gray(const ImageRGBA8& a, const ImageRGBA8& b, const Paralle
   if (a.width != b.width || a.height != b.height) {
     return Status::error(ErrorCode::size_mismatch, "SSIM: images differ in size");
   }
-  const std::vector<float> ya = luma709(a), yb = luma709(b);
-  return ssim_plane(ya, yb, a.width, a.height,
-                    {.data_range = 255.0, .threads = parallel.threads});
+  if (a.width < kWindow || a.height < kWindow) {
+    const std::vector<float> ya = luma709(a), yb = luma709(b);
+    return ssim_plane(ya, yb, a.width, a.height,
+                      {.data_range = 255.0, .threads = parallel.threads});
+  }
+  return ssim_mean(LumaRows{a.pixels.data(), b.pixels.data(), a.width}, a.height,
+                   ssim_constant(kK1, 255.0), ssim_constant(kK2, 255.0), parallel.threads);
 }
 
 }  // namespace tessera::metrics
