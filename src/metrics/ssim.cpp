@@ -14,9 +14,11 @@
 //
 // Work split. The mean is the sum of per-band sums over bands of kBand output rows, added in band
 // order (as parallel_sum does), each band summing its values row by row, x ascending: the double
-// result is independent of the thread count. A task runs kBandsPerTask consecutive bands with one
-// ring of 11 horizontal rows, so an input row is filtered once per task rather than once per band
-// (a band needs 10 rows past its own), and its buffers are allocated once per task.
+// result is independent of the thread count and of how bands are grouped into tasks. A task runs
+// up to kMaxBandsPerTask consecutive bands with one ring of 11 horizontal rows, so an input row is
+// filtered once per task rather than once per band (a band needs 10 rows past its own) and the
+// buffers are allocated once per task; fewer bands per task where there would otherwise be fewer
+// than two tasks per thread.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -38,7 +40,7 @@ constexpr double kK1 = 0.01;
 constexpr double kK2 = 0.03;
 constexpr int kMoments = 5;       // mean a, mean b, mean a*a, mean b*b, mean a*b
 constexpr int kBand = 32;         // output rows per partial sum; fixes the summation order
-constexpr int kBandsPerTask = 4;  // bands one task runs with one ring (any value: same result)
+constexpr int kMaxBandsPerTask = 4;  // bands one task runs with one ring (any value: same result)
 constexpr int kTile = 128;        // output columns per tile of a ring row
 // Pitch of a tile's moment rows and padding per ring row, in doubles: one cache line more than a
 // power of two, so the 55 rows the vertical pass reads at once do not share a few L1 sets.
@@ -263,6 +265,15 @@ void ssim_rows(const Rows& rows, int y0, int y1, double c1, double c2, float* ou
 
 double ssim_constant(double k, double data_range) { return (k * data_range) * (k * data_range); }
 
+/// Output rows per task for `oh` output rows on `threads` threads (0 = all hardware threads): a
+/// multiple of kBand, so that tasks hold whole bands.
+std::int64_t task_rows(int oh, int threads) {
+  const int hardware = default_thread_count();
+  const int t = threads > 0 ? std::min(threads, hardware) : hardware;
+  const int bands = (oh + kBand - 1) / kBand;
+  return std::int64_t(kBand) * std::clamp(bands / (2 * t), 1, kMaxBandsPerTask);
+}
+
 /// Mean SSIM over the valid region of `rows` (at least kWindow x kWindow): the band sums added
 /// in band order, divided by the value count.
 template <class Rows>
@@ -270,7 +281,7 @@ double ssim_mean(const Rows& rows, int height, double c1, double c2, int threads
   const int oh = height - 2 * kRadius;
   const int ow = rows.width - 2 * kRadius;
   std::vector<double> band_sums(std::size_t((oh + kBand - 1) / kBand), 0.0);
-  parallel_for(0, oh, std::int64_t(kBand) * kBandsPerTask,
+  parallel_for(0, oh, task_rows(oh, threads),
                [&](std::int64_t y0, std::int64_t y1) {
                  ssim_rows(rows, int(y0), int(y1), c1, c2, nullptr,
                            &band_sums[std::size_t(y0 / kBand)]);
@@ -300,7 +311,7 @@ std::vector<float> ssim_map(std::span<const float> a, std::span<const float> b, 
   const int ow = width - 2 * kRadius;
   std::vector<float> map(std::size_t(oh) * std::size_t(ow));
   std::vector<double> band_sums(std::size_t((oh + kBand - 1) / kBand), 0.0);
-  parallel_for(0, oh, std::int64_t(kBand) * kBandsPerTask,
+  parallel_for(0, oh, task_rows(oh, options.threads),
                [&](std::int64_t y0, std::int64_t y1) {
                  ssim_rows(PlaneRows{a.data(), b.data(), width}, int(y0), int(y1), c1, c2,
                            &map[std::size_t(y0) * std::size_t(ow)],
