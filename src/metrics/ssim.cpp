@@ -38,10 +38,11 @@ constexpr int kWindow = 2 * kRadius + 1;
 constexpr double kSigma = 1.5;
 constexpr double kK1 = 0.01;
 constexpr double kK2 = 0.03;
-constexpr int kMoments = 5;       // mean a, mean b, mean a*a, mean b*b, mean a*b
-constexpr int kBand = 32;         // output rows per partial sum; fixes the summation order
-constexpr int kMaxBandsPerTask = 4;  // bands one task runs with one ring (any value: same result)
-constexpr int kTile = 128;        // output columns per tile of a ring row
+constexpr int kMoments = 5;  // mean a, mean b, mean a*a, mean b*b, mean a*b
+constexpr int kBand = 32;    // output rows per partial sum; fixes the summation order
+// Most bands one task runs with one ring (any value gives the same result).
+constexpr int kMaxBandsPerTask = 4;
+constexpr int kTile = 128;  // output columns per tile of a ring row
 // Pitch of a tile's moment rows and padding per ring row, in doubles: one cache line more than a
 // power of two, so the 55 rows the vertical pass reads at once do not share a few L1 sets.
 constexpr int kPitch = kTile + 8;
