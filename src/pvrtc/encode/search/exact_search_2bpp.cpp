@@ -56,11 +56,14 @@ constexpr int kMovePasses = 4;
 constexpr double kSearchShare = 4.0, kSeededSearchShare = 1.9, kDescentShare = 0.6,
                  kRefineShare = 0.33, kFinalShare = 0.45;
 
-// The bounded window error (exact_search_2bpp_evaluator.h: the decoder's arithmetic, four
-// texels a step); `avx2` (polish_avx2_active(), read once per search): the same evaluator with
-// the 8-lane types (exact_search_2bpp_avx2.cpp), the same integers.
-std::uint32_t eval(const Window2& w, const Rgba5& a, const Rgba5& b, std::uint32_t bound,
+// The bounded window error of the endpoint codes (ca, cb) (exact_search_2bpp_evaluator.h: the
+// decoder's arithmetic, four texels a step); `avx2` (polish_avx2_active(), read once per
+// search): the same evaluator with the 8-lane types (exact_search_2bpp_avx2.cpp), the same
+// integers. Takes the codes, not the expanded endpoints: passed by reference, those would be
+// split into eight scalar arguments for this one hot call.
+std::uint32_t eval(const Window2& w, std::uint16_t ca, std::uint16_t cb, std::uint32_t bound,
                    bool avx2) {
+  const Rgba5 a = expand_a(ca), b = expand_b(cb);
   const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
   if (avx2) return window2_error_avx2(w, va, vb, bound);
   return window2_error_bounded<simd::vu16x8>(w, va, vb, bound);
@@ -231,7 +234,7 @@ int search(EncoderState& s, const std::vector<std::uint8_t>* seeds) {
       bool improved = false;
       auto consider = [&](std::uint16_t na, std::uint16_t nb) {
         if (seen.check_insert((std::uint32_t(na) << 16) | nb)) return;
-        const std::uint32_t e = eval(w, expand_a(na), expand_b(nb), best, avx2);
+        const std::uint32_t e = eval(w, na, nb, best, avx2);
         if (e < best) {
           best = e;
           cur_a = na;
@@ -302,7 +305,7 @@ std::uint32_t window_error_2bpp(const EncoderState& s, int bx, int by, std::uint
   const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
   const bool avx2 = polish_avx2_active();
   if (ordered) order_window(w, ea[j], eb[j], avx2);
-  return eval(w, expand_a(ca), expand_b(cb), bound, avx2);
+  return eval(w, ca, cb, bound, avx2);
 }
 
 std::uint64_t search_endpoints_2bpp(EncoderState& s, std::uint64_t error) {
