@@ -16,15 +16,17 @@
 namespace tessera::pvrtc::detail {
 namespace {
 
-/// The four values `v` (r, g, b, a; 5-bit) in every texel's four 16-bit lanes. (One vector
-/// load on 4 lanes: read lane by lane instead, the endpoints of a caller that passes them by
-/// reference get split into scalar arguments.)
+/// The four values `v` (r, g, b, a; 16-bit) in every texel's four lanes. (Read one by one on 4
+/// lanes: callers have just stored v as four scalars, and one 16-byte load of those cannot be
+/// store-forwarded.)
 template <class V>
 V endpoint_lanes(const std::int32_t v[4]);
 template <>
 [[maybe_unused]] inline simd::vu16x8 endpoint_lanes<simd::vu16x8>(const std::int32_t v[4]) {
-  const simd::vint4 x = simd::load4(v);
-  return simd::narrow16(x, x);
+  alignas(16) const std::uint16_t l[8] = {
+      std::uint16_t(v[0]), std::uint16_t(v[1]), std::uint16_t(v[2]), std::uint16_t(v[3]),
+      std::uint16_t(v[0]), std::uint16_t(v[1]), std::uint16_t(v[2]), std::uint16_t(v[3])};
+  return simd::load_u16x8(l);
 }
 template <>
 [[maybe_unused]] inline simd::vu16x16 endpoint_lanes<simd::vu16x16>(const std::int32_t v[4]) {
