@@ -40,30 +40,9 @@ inline void block_quad_errors(const std::uint16_t* const v[4], const std::uint8_
   ModAcc<vint8> acc[2];
   vu16x16 clear;  // all ones where some row's target alpha < 128
   mod_step<kAlpha, kExtra, kWeighted>(v, t, w, vstride, bx, acc, clear);
-  // Per block: the sum of its 4 column errors and its 4 column codes (byte j: row j) at bit
-  // 2 * column, as `modk::finish`. The column codes do not overlap, so OR = add: two pair sums
-  // (per half) give lanes (err B0, err B1, bits B0, bits B1 | the same for B2, B3).
-  const vint8 col_shift(vint4(0, 2, 4, 6), vint4(0, 2, 4, 6));
-  auto fold = [&](vint8 e0, vint8 e1, vint8 b0, vint8 b1, std::uint32_t r[8]) {
-    const vint8 es = pair_sums(e0, e1);
-    const vint8 bs = pair_sums(sllv(b0, col_shift), sllv(b1, col_shift));
-    store8(pair_sums(es, bs), reinterpret_cast<std::int32_t*>(r));
-  };
-  std::uint32_t r0[8], r1[8] = {}, r1p[8] = {};
-  fold(acc[0].err0, acc[1].err0, acc[0].bits0, acc[1].bits0, r0);
-  if constexpr (kExtra) {
-    fold(acc[0].err1, acc[1].err1, acc[0].bits1, acc[1].bits1, r1);
-    fold(acc[0].err1p, acc[1].err1p, acc[0].bits1p, acc[1].bits1p, r1p);
-  }
+  mod_block_results<kExtra>(acc, out);
   const std::uint32_t clear_bytes = kAlpha ? movemask_bytes(clear) : 0u;
   for (int q = 0; q < 4; ++q) {
-    const int e = (q >> 1) * 4 + (q & 1), b = e + 2;
-    out[q].bits0 = r0[b];
-    out[q].err0 = r0[e];
-    out[q].bits1 = r1[b];
-    out[q].err1 = r1[e];
-    out[q].bits1p = r1p[b];
-    out[q].err1p = r1p[e];
     out[q].any_clear = (clear_bytes >> (8 * q)) & 0xffu ? 1u : 0u;  // texels 4q .. 4q + 3
   }
 }

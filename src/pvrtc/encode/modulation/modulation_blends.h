@@ -1,8 +1,9 @@
 // modulation_blends.h — the 4 bpp brute-force modulation kernel, written once over the SIMD
 // wrapper's 16-bit lane types: one step scores the 4 texel rows of kLanes<V> / 4 horizontally
 // adjacent blocks, compiled with vu16x8 (two blocks, 8 texels a row) in the baseline kernel
-// (modulation_kernel.h) and with vu16x16 (four blocks, 16 texels) in modulation_avx2.cpp. The
-// two only gather the per-block sums their own way around it.
+// (modulation_kernel.h) and with vu16x16 (four blocks, 16 texels) in modulation_avx2.cpp, as is
+// the fold of a step's accumulators into per-block results (`mod_block_results`); the drivers
+// only find each block's "some alpha below 128" their own way.
 //
 // The upscaled endpoint images are formed on the fly from per-row column sums (the bilinear sum
 // of a texel is linear between block centres, exactly as `upscale_rows`), every blend of both
@@ -186,6 +187,49 @@ inline void mod_step(const std::uint16_t* const v[4], const std::uint8_t* const 
         acc[h].bits1p = acc[h].bits1p | simd::sll_bytes(r1p ^ simd::srl<1>(r1p), j);
       }
     }
+  }
+}
+
+/// The column codes of a step's blocks (32-bit lanes, one a column: the code of row j in byte j)
+/// moved to bit 2 * column within each block's 4 lanes: a multiply on 4 lanes (SSE2 has no
+/// per-lane shift; the lanes wrap, as the sums after), a per-lane shift on 8.
+[[maybe_unused]] inline simd::vint4 mod_column_bits(simd::vint4 b) {
+  return b * simd::vint4(1, 4, 16, 64);
+}
+[[maybe_unused]] inline simd::vint8 mod_column_bits(simd::vint8 b) {
+  const simd::vint4 s(0, 2, 4, 6);
+  return simd::sllv(b, simd::vint8(s, s));
+}
+
+/// The step's per-block results from its accumulators into out[0 .. kLanes<VI> / 2) (the
+/// blocks from left to right; BlockMod or BlockModAvx2, any_clear not set): per block the sum
+/// of its 4 column errors and its 4 column codes at bit 2 * column (the codes do not overlap,
+/// so the sum is their OR). Two pair sums per 128-bit half give lanes (err P, err Q, bits P,
+/// bits Q) for that half's blocks P (acc[0]) and Q (acc[1]): blocks 0, 1 in the low half, and
+/// on 8 lanes 2, 3 in the high one, so block q's error is in lane 4 (q / 2) + q % 2 and its
+/// bits two lanes on.
+template <bool kExtra, class VI, class M>
+inline void mod_block_results(const ModAcc<VI> acc[2], M* out) {
+  constexpr int kN = simd::kLanes<VI>;
+  auto fold = [](VI e0, VI e1, VI b0, VI b1, std::uint32_t r[kN]) {
+    const VI es = simd::pair_sums(e0, e1);
+    const VI bs = simd::pair_sums(mod_column_bits(b0), mod_column_bits(b1));
+    simd::store(simd::pair_sums(es, bs), reinterpret_cast<std::int32_t*>(r));
+  };
+  alignas(32) std::uint32_t r0[kN], r1[kN] = {}, r1p[kN] = {};
+  fold(acc[0].err0, acc[1].err0, acc[0].bits0, acc[1].bits0, r0);
+  if constexpr (kExtra) {
+    fold(acc[0].err1, acc[1].err1, acc[0].bits1, acc[1].bits1, r1);
+    fold(acc[0].err1p, acc[1].err1p, acc[0].bits1p, acc[1].bits1p, r1p);
+  }
+  for (int q = 0; q < kN / 2; ++q) {
+    const int e = (q >> 1) * 4 + (q & 1), b = e + 2;
+    out[q].bits0 = r0[b];
+    out[q].err0 = r0[e];
+    out[q].bits1 = r1[b];
+    out[q].err1 = r1[e];
+    out[q].bits1p = r1p[b];
+    out[q].err1p = r1p[e];
   }
 }
 

@@ -1,7 +1,7 @@
 // modulation_kernel.h — the baseline driver of the 4 bpp brute-force modulation kernel for two
 // horizontally adjacent blocks (8 texels a row, 4 rows): the kernel itself is written once for
-// the 4- and 8-lane types (modulation_blends.h); here it runs with vu16x8, and the per-block
-// sums are taken from its 4-lane accumulators. modulation_avx2.cpp runs it with vu16x16.
+// the 4- and 8-lane types (modulation_blends.h), with the fold into per-block results; here it
+// runs with vu16x8. modulation_avx2.cpp runs it with vu16x16.
 #pragma once
 
 #include <cstdint>
@@ -30,37 +30,6 @@ struct BlockMod {
   bool any_clear = false;  ///< Some target alpha < 128 (alpha mode only).
 };
 
-namespace modk {
-
-/// Per block, the sums of its 4 column errors and its 4 column codes (byte j: row j) at bit
-/// 2 * column.
-inline void finish(const ModAcc<simd::vint4>& a, bool extra, BlockMod& m) {
-  std::int32_t l[6][4];
-  simd::store4(a.err0, l[0]);
-  simd::store4(a.bits0, l[1]);
-  if (extra) {
-    simd::store4(a.err1, l[2]);
-    simd::store4(a.bits1, l[3]);
-    simd::store4(a.err1p, l[4]);
-    simd::store4(a.bits1p, l[5]);
-  }
-  auto bits = [](const std::int32_t* b) {
-    return std::uint32_t(b[0]) | (std::uint32_t(b[1]) << 2) | (std::uint32_t(b[2]) << 4) |
-           (std::uint32_t(b[3]) << 6);
-  };
-  auto sum = [](const std::int32_t* e) { return std::uint32_t(e[0] + e[1] + e[2] + e[3]); };
-  m.err0 = sum(l[0]);
-  m.bits0 = bits(l[1]);
-  if (extra) {
-    m.err1 = sum(l[2]);
-    m.bits1 = bits(l[3]);
-    m.err1p = sum(l[4]);
-    m.bits1p = bits(l[5]);
-  }
-}
-
-}  // namespace modk
-
 /// Scores blocks bx and bx + 1 of a block row: `mod_step` (modulation_blends.h) with vu16x8.
 /// kAlpha: alpha is a fourth channel (and the punch-through blend is scored); kExtra: also
 /// mode 1 (weights 0, 4, 8) and punch-through; kWeighted (with kAlpha only): alpha-weighted
@@ -76,8 +45,8 @@ inline void block_pair_errors(const ModRow4& r, int bx, BlockMod out[2]) {
   ModAcc<simd::vint4> acc[2];
   simd::vu16x8 clear_lanes;  // unused: the bytes below say it as cheaply
   mod_step<kAlpha, kExtra, kWeighted>(r.v, t, w, r.vstride, bx, acc, clear_lanes);
+  mod_block_results<kExtra>(acc, out);
   for (int h = 0; h < 2; ++h) {
-    modk::finish(acc[h], kExtra, out[h]);
     bool clear = false;
     if constexpr (kAlpha) {
       for (int j = 0; j < 4; ++j) {

@@ -20,8 +20,9 @@
 // (deterministic for any thread count); after the first round a block is searched again only
 // when an endpoint in its 3x3 neighbourhood changed (its score depends on nothing else).
 // Window errors are integer sums over the texels in decreasing order of their error under the
-// current pair, stopping at the best so far, as in exact_search.cpp. Where the CPU has AVX2 they
-// run eight texels a step (exact_search_2bpp_avx2.cpp; the same integers).
+// current pair, stopping at the best so far, as in exact_search.cpp; the evaluator is written
+// once over the lane types (exact_search_2bpp_evaluator.h): four texels a step, or eight where
+// the CPU has AVX2 (exact_search_2bpp_avx2.cpp; the same integers).
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -30,7 +31,7 @@
 
 #include "core/simd.h"
 #include "pvrtc/encode/encode_internal.h"
-#include "pvrtc/encode/search/exact_search_2bpp_blends.h"
+#include "pvrtc/encode/search/exact_search_2bpp_evaluator.h"
 #include "pvrtc/encode/search/exact_search_moves.h"
 #include "pvrtc/encode/search/exact_search_window.h"
 
@@ -41,7 +42,6 @@ namespace {
 constexpr int kWindowW = Window2::kWidth, kWindowH = Window2::kHeight;
 constexpr int kTexels = Window2::kTexels;  // 105
 constexpr int kSlots = Window2::kSlots;    // 112
-constexpr int kSteps = kSlots / 4;         // of the baseline evaluator
 constexpr std::int32_t kExclude = Window2::kExclude;
 // The squared alpha error counts twice in the window score, as in the 4 bpp search.
 constexpr int kAlphaWeight = 2;
@@ -56,64 +56,17 @@ constexpr int kMovePasses = 4;
 constexpr double kSearchShare = 4.0, kSeededSearchShare = 1.9, kDescentShare = 0.6,
                  kRefineShare = 0.33, kFinalShare = 0.45;
 
-// The window error of block j's endpoints (a, b), four texels a step; stops once it reaches
-// `bound` (the result is then >= bound). kStore: no bound; each texel's error to texel_err.
-// The decoder's arithmetic: 8-bit colour (S >> 7) + (S >> 2) and alpha (S >> 5) + (S >> 1) of
-// the bilinear sum S, blend (A (8 - m) + B m) >> 3.
-template <bool kAlpha, bool kStore>
-std::uint32_t window_error(const Window2& w, const Rgba5& a, const Rgba5& b, std::uint32_t bound,
-                           std::uint32_t* texel_err) {
-  using simd::vint4;
-  using simd::vu16x8;
-  alignas(16) const std::uint16_t a16[8] = {
-      std::uint16_t(a.r), std::uint16_t(a.g), std::uint16_t(a.b), std::uint16_t(a.a),
-      std::uint16_t(a.r), std::uint16_t(a.g), std::uint16_t(a.b), std::uint16_t(a.a)};
-  alignas(16) const std::uint16_t b16[8] = {
-      std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a),
-      std::uint16_t(b.r), std::uint16_t(b.g), std::uint16_t(b.b), std::uint16_t(b.a)};
-  const vu16x8 av = simd::load_u16x8(a16), bv = simd::load_u16x8(b16);
-  const vu16x8 aw = simd::load_u16x8(w.weight16);
-  using PairSq = BlendSq2<vu16x8>;
-  // Squared errors of texels 2p, 2p + 1, lanes (texel 0 RG, texel 0 BA, texel 1 RG, BA).
-  auto pair_sq = [&](int p, PairSq& o) { blend_sq2<kAlpha>(w, 2 * p, av, bv, aw, o); };
-  // Minimum over the blends in float lanes (errors far below 2^24 are exact; excluded blends
-  // stay >= 2^24; e0 and e8 are never excluded), as local_error_simd_t in exact_search_kernel.h.
-  vint4 acc;
-  for (int q = 0; q < kSteps; ++q) {
-    PairSq x, y;
-    pair_sq(2 * q, x);
-    pair_sq(2 * q + 1, y);
-    using simd::pair_sums;
-    using simd::to_float;
-    const vint4 b35 = simd::load4(&w.bias35[4 * q]);
-    const vint4 b4 = simd::load4(&w.bias4[4 * q]);
-    const vint4 m = simd::to_int_trunc(simd::min(
-        simd::min(simd::min(to_float(pair_sums(x.e0, y.e0)), to_float(pair_sums(x.e8, y.e8))),
-                  simd::min(to_float(pair_sums(x.e3, y.e3) + b35),
-                            to_float(pair_sums(x.e5, y.e5) + b35))),
-        to_float(pair_sums(x.e4, y.e4) + b4)));
-    acc += m;
-    if constexpr (kStore) {
-      alignas(16) std::int32_t m32[4];
-      simd::store4(m, m32);
-      for (int i = 0; i < 4; ++i) texel_err[4 * q + i] = std::uint32_t(m32[i]);
-    } else {
-      if (std::uint32_t(simd::sum_lanes(acc)) >= bound) break;
-    }
-  }
-  return std::uint32_t(simd::sum_lanes(acc));
-}
-
-// The bounded window error; `avx2` (polish_avx2_active(), read once per search): the AVX2
-// evaluator of exact_search_2bpp_avx2.cpp, the same integers.
-std::uint32_t eval(const Window2& w, const Rgba5& a, const Rgba5& b, std::uint32_t bound,
+// The bounded window error of the endpoint codes (ca, cb) (exact_search_2bpp_evaluator.h: the
+// decoder's arithmetic, four texels a step); `avx2` (polish_avx2_active(), read once per
+// search): the same evaluator with the 8-lane types (exact_search_2bpp_avx2.cpp), the same
+// integers. Takes the codes, not the expanded endpoints: passed by reference, those would be
+// split into eight scalar arguments for this one hot call.
+std::uint32_t eval(const Window2& w, std::uint16_t ca, std::uint16_t cb, std::uint32_t bound,
                    bool avx2) {
-  if (avx2) {
-    const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
-    return window2_error_avx2(w, va, vb, bound);
-  }
-  return w.nch == 4 ? window_error<true, false>(w, a, b, bound, nullptr)
-                    : window_error<false, false>(w, a, b, bound, nullptr);
+  const Rgba5 a = expand_a(ca), b = expand_b(cb);
+  const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
+  if (avx2) return window2_error_avx2(w, va, vb, bound);
+  return window2_error_bounded<simd::vu16x8>(w, va, vb, bound);
 }
 
 // Fills the window of block (bx, by) from the expanded endpoints of every block.
@@ -187,14 +140,9 @@ void build_window(const EncoderState& s, const std::vector<Rgba5>& ea,
 // stops, never a result below the bound.
 std::uint32_t order_window(Window2& w, const Rgba5& a, const Rgba5& b, bool avx2) {
   alignas(32) std::uint32_t err[kSlots];
-  std::uint32_t total;
-  if (avx2) {
-    const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
-    total = window2_error_store_avx2(w, va, vb, err);
-  } else {
-    total = w.nch == 4 ? window_error<true, true>(w, a, b, 0, err)
-                       : window_error<false, true>(w, a, b, 0, err);
-  }
+  const std::int32_t va[4] = {a.r, a.g, a.b, a.a}, vb[4] = {b.r, b.g, b.b, b.a};
+  const std::uint32_t total = avx2 ? window2_error_store_avx2(w, va, vb, err)
+                                   : window2_error_stored<simd::vu16x8>(w, va, vb, err);
   int key[kTexels], start[34] = {};
   for (int i = 0; i < kTexels; ++i) {
     key[i] = 32 - std::countl_zero(err[i]);
@@ -286,7 +234,7 @@ int search(EncoderState& s, const std::vector<std::uint8_t>* seeds) {
       bool improved = false;
       auto consider = [&](std::uint16_t na, std::uint16_t nb) {
         if (seen.check_insert((std::uint32_t(na) << 16) | nb)) return;
-        const std::uint32_t e = eval(w, expand_a(na), expand_b(nb), best, avx2);
+        const std::uint32_t e = eval(w, na, nb, best, avx2);
         if (e < best) {
           best = e;
           cur_a = na;
@@ -357,7 +305,7 @@ std::uint32_t window_error_2bpp(const EncoderState& s, int bx, int by, std::uint
   const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
   const bool avx2 = polish_avx2_active();
   if (ordered) order_window(w, ea[j], eb[j], avx2);
-  return eval(w, expand_a(ca), expand_b(cb), bound, avx2);
+  return eval(w, ca, cb, bound, avx2);
 }
 
 std::uint64_t search_endpoints_2bpp(EncoderState& s, std::uint64_t error) {

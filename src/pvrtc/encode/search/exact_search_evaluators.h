@@ -2,13 +2,13 @@
 // the SIMD wrapper's 16-bit lane types: compiled with vu16x8 in the baseline
 // (exact_search_kernel.h: `local_error_simd_t`, `planar_error_t`) and with vu16x16 in
 // exact_search_avx2.cpp (twice the texels a vector), alpha-weighted colour error (kWeighted)
-// included. `local_error_lanes` scores any candidate endpoint pair of one block over the 7x7
-// texels it influences (LocalWindow); `planar_error_lanes` scores a candidate that differs from
-// the block's current pair in one colour channel only, kLanes<V> texels a vector, from each
-// texel's per-blend error of the other channels under the current pair (PlanarWindow). Both are
-// exact integer sums that stop once they reach a bound (the result is then >= the bound; the
-// bound is checked once a step, so the 8-lane evaluators check it half as often, which changes
-// nothing below it).
+// included; the per-width pieces are the overloads of exact_search_lanes.h. `local_error_lanes`
+// scores any candidate endpoint pair of one block over the 7x7 texels it influences
+// (LocalWindow); `planar_error_lanes` scores a candidate that differs from the block's current
+// pair in one colour channel only, kLanes<V> texels a vector, from each texel's per-blend error
+// of the other channels under the current pair (PlanarWindow). Both are exact integer sums that
+// stop once they reach a bound (the result is then >= the bound; the bound is checked once a
+// step, so the 8-lane evaluators check it half as often, which changes nothing below it).
 //
 // Included by the -mavx2 translation unit: everything here is a template or inline function in
 // an anonymous namespace (internal linkage), so no AVX2-compiled copy can stand in for a
@@ -19,77 +19,11 @@
 
 #include "core/simd.h"
 #include "pvrtc/encode/colour_scale_kernel.h"
+#include "pvrtc/encode/search/exact_search_lanes.h"
 #include "pvrtc/encode/search/exact_search_window.h"
 
 namespace tessera::pvrtc::detail {
 namespace {
-
-/// The four values `v` (r, g, b, a; 16-bit) in every texel's four lanes.
-template <class V>
-V endpoint_lanes(const std::int32_t v[4]);
-template <>
-[[maybe_unused]] inline simd::vu16x8 endpoint_lanes<simd::vu16x8>(const std::int32_t v[4]) {
-  alignas(16) const std::uint16_t l[8] = {
-      std::uint16_t(v[0]), std::uint16_t(v[1]), std::uint16_t(v[2]), std::uint16_t(v[3]),
-      std::uint16_t(v[0]), std::uint16_t(v[1]), std::uint16_t(v[2]), std::uint16_t(v[3])};
-  return simd::load_u16x8(l);
-}
-template <>
-[[maybe_unused]] inline simd::vu16x16 endpoint_lanes<simd::vu16x16>(const std::int32_t v[4]) {
-  return simd::broadcast64(
-      std::uint64_t(std::uint16_t(v[0])) | std::uint64_t(std::uint16_t(v[1])) << 16 |
-      std::uint64_t(std::uint16_t(v[2])) << 32 | std::uint64_t(std::uint16_t(v[3])) << 48);
-}
-
-/// The eight lanes at p (two texels' RGBA) repeated over V.
-template <class V>
-V twice_lanes(const std::uint16_t* p);
-template <>
-[[maybe_unused]] inline simd::vu16x8 twice_lanes<simd::vu16x8>(const std::uint16_t* p) {
-  return simd::load_u16x8(p);
-}
-template <>
-[[maybe_unused]] inline simd::vu16x16 twice_lanes<simd::vu16x16>(const std::uint16_t* p) {
-  const simd::vu16x8 x = simd::load_u16x8(p);
-  return simd::vu16x16(x, x);
-}
-
-/// 32-bit lanes at p.
-template <class VI>
-VI load_i32(const std::int32_t* p);
-template <>
-[[maybe_unused]] inline simd::vint4 load_i32<simd::vint4>(const std::int32_t* p) {
-  return simd::load4(p);
-}
-template <>
-[[maybe_unused]] inline simd::vint8 load_i32<simd::vint8>(const std::int32_t* p) {
-  return simd::load8(p);
-}
-
-// The minimum over the blends: the 4-lane evaluator takes it in float lanes (SSE2 has no 32-bit
-// integer min; fewer instructions than emulating it): errors are far below 2^24 (exact in
-// float), excluded blends (2^24 and up) stay at least 2^24 once rounded, and e0 / e8 are never
-// excluded, so the minimum is the exact integer minimum. The 8-lane one (AVX2 has pminsd) takes
-// the integer minimum directly: the same number.
-[[maybe_unused]] inline simd::vf4 min_lanes(simd::vint4 x) { return simd::to_float(x); }
-[[maybe_unused]] inline simd::vint4 int_lanes(simd::vf4 x) { return simd::to_int_trunc(x); }
-[[maybe_unused]] inline simd::vint8 min_lanes(simd::vint8 x) { return x; }
-[[maybe_unused]] inline simd::vint8 int_lanes(simd::vint8 x) { return x; }
-
-/// A step's per-texel errors (lanes from pair_sums of its two vectors) stored in texel order,
-/// the first n of them (4-lane: 4 texels, lanes in order; 8-lane: 8 or the last step's 4,
-/// lanes in the order 0 1 4 5 | 2 3 6 7).
-[[maybe_unused]] inline void store_texel_errors(simd::vint4 m, std::int32_t* p, int) {
-  simd::store4(m, p);
-}
-[[maybe_unused]] inline void store_texel_errors(simd::vint8 m, std::int32_t* p, int n) {
-  const simd::vint8 ordered = simd::permute64<0, 2, 1, 3>(m);
-  if (n == 8) {
-    simd::store8(ordered, p);
-  } else {
-    simd::store4(simd::low(ordered), p);
-  }
-}
 
 /// Squared errors of the texels of one vector (kLanes<V> / 4 of them, from slot k on), per
 /// blend: weight 0 (A), 8 (B), 3, 5, 4 and 4 with alpha punched through (kAlpha only). Lanes
@@ -160,8 +94,8 @@ template <bool kAlpha, bool kStore, bool kWeighted, class V>
     using simd::pair_sums;
     // The biases of the step's texels (texel k at element 2k), in the lane order of pair_sums.
     auto bias = [&](const std::int32_t(*rows)[4]) {
-      return simd::even_lanes(load_i32<VI>(rows[kStep / 2 * s]),
-                              load_i32<VI>(rows[kStep / 2 * s + kStep / 4]));
+      return simd::even_lanes(simd::load_as<VI>(rows[kStep / 2 * s]),
+                              simd::load_as<VI>(rows[kStep / 2 * s + kStep / 4]));
     };
     const VI b35 = bias(lw.bias35);
     auto m4 = min_lanes(pair_sums(x.e4, y.e4) + bias(lw.bias4));

@@ -1,7 +1,8 @@
 // exact_search_window.h — the window layouts of the PVRTC exact searches (4 bpp: exact_search.cpp,
 // 2 bpp: exact_search_2bpp.cpp) and the AVX2 entry points of their window evaluators
 // (exact_search_avx2.cpp and exact_search_2bpp_avx2.cpp, compiled with -mavx2): the baseline
-// ones are in exact_search_kernel.h, which includes this header, and exact_search_2bpp.cpp.
+// ones are in exact_search_kernel.h, which includes this header, and exact_search_2bpp.cpp (the
+// evaluators themselves: exact_search_evaluators.h and exact_search_2bpp_evaluator.h).
 //
 // Included by the -mavx2 translation unit, so it holds plain declarations and trivial structs
 // only: nothing here may be an inline function, a template or a member initialiser, nor may it
