@@ -14,7 +14,7 @@
 //   simd_generic.h width-generic names over both widths (kLanes, load_as, store, ...) for
 //                  kernels written once and compiled per width, and the operations such
 //                  kernels need that the 4-lane backends compose (div255_u32, lookup8, ...).
-//   this file      backend-independent compositions (sll_bytes, channel16).
+//   this file      backend-independent compositions (sll_bytes, channel16, load_texel_planes).
 // Not pulled in: simd_dispatch.h, the run-time CPU checks and the one SSSE3 routine.
 //
 // Every type is a value type with free functions (operators, min, max, select, cmp*, ...) in
@@ -89,6 +89,18 @@ inline vu16x8 channel16(vint4 t0, vint4 t1, int c) {
     default:
       return narrow16(t0 & m8, t1 & m8);
   }
+}
+
+/// kLanes<V> RGBA8 texels at p as one 16-bit plane per channel: out[c] lane i = p[4 i + c]. The
+/// 4-lane form makes the first nch planes only; the 8-lane form is load_planes (all four).
+template <int nch>
+inline void load_texel_planes(const std::uint8_t* p, vu16x8 out[4]) {
+  const vint4 t0 = load_texels4(p), t1 = load_texels4(p + 16);
+  for (int c = 0; c < nch; ++c) out[c] = channel16(t0, t1, c);
+}
+template <int nch>
+inline void load_texel_planes(const std::uint8_t* p, vu16x16 out[4]) {
+  load_planes(p, out);
 }
 
 }  // namespace TESSERA_SIMD_ISA

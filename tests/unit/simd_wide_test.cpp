@@ -393,6 +393,22 @@ TEST(SimdWide, KernelCompositionsOnBothWidths) {
       simd::store(planes[c], b);
       for (int i = 0; i < 16; ++i) EXPECT_EQ(b[i], tex[4 * i + c]) << c << " " << i;
     }
+    // load_texel_planes: the 4-lane form fills the first nch planes, the 8-lane form all four.
+    simd::vu16x8 p8[4];
+    vu16x16 p16[4];
+    simd::load_texel_planes<3>(tex, p8);
+    simd::load_texel_planes<3>(tex, p16);
+    for (int c = 0; c < 3; ++c) {
+      std::uint16_t q8[8], q16[16];
+      simd::store(p8[c], q8);
+      simd::store(p16[c], q16);
+      for (int i = 0; i < 16; ++i) {
+        if (i < 8) {
+          EXPECT_EQ(q8[i], tex[4 * i + c]);
+        }
+        EXPECT_EQ(q16[i], tex[4 * i + c]);
+      }
+    }
     // lookup8: indices -8..7 (as int16) in any lane.
     std::uint16_t table[8], idx[16], l8[8], l16[16];
     for (auto& t : table) t = rng.u16();

@@ -63,18 +63,6 @@ template <>
   right = simd::shuffle_bytes(q, simd::load_u16x16(kRight));
 }
 
-/// The step's target texels (4 bytes each, kLanes<V> of them) as one plane per channel;
-/// channels past nch are not read.
-template <int nch>
-[[maybe_unused]] inline void mod2_target_planes(const std::uint8_t* p, simd::vu16x8 out[4]) {
-  const simd::vint4 t0 = simd::load_texels4(p), t1 = simd::load_texels4(p + 16);
-  for (int c = 0; c < nch; ++c) out[c] = simd::channel16(t0, t1, c);
-}
-template <int nch>
-[[maybe_unused]] inline void mod2_target_planes(const std::uint8_t* p, simd::vu16x16 out[4]) {
-  simd::load_planes(p, out);
-}
-
 /// The lanes (each 0..255) as bytes, in order.
 [[maybe_unused]] inline void mod2_store_bytes(simd::vu16x8 v, std::uint8_t* p) {
   simd::store_u8x8(v, p);
@@ -203,7 +191,7 @@ template <bool kAlpha, class V>
 inline void mod2_load_row(const Mod2Consts<V>& k, const Mod2Row& r, int bx, int j, V a[4], V b[4],
                           V t[4]) {
   constexpr int nch = kAlpha ? 4 : 3;
-  mod2_target_planes<nch>(r.t[j] + std::size_t(bx) * 32, t);
+  simd::load_texel_planes<nch>(r.t[j] + std::size_t(bx) * 32, t);
   for (int c = 0; c < nch; ++c) {
     for (int img = 0; img < 2; ++img) {
       V L, R;

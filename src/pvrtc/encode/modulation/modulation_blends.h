@@ -57,18 +57,6 @@ struct ModAcc {
   right = simd::shuffle_bytes(x, simd::load_u16x16(kRight));
 }
 
-/// The step's target texels (4 bytes each, kLanes<V> of them) as one plane per channel;
-/// channels past nch are not read.
-template <int nch>
-[[maybe_unused]] inline void mod_target_planes(const std::uint8_t* p, simd::vu16x8 out[4]) {
-  const simd::vint4 t0 = simd::load_texels4(p), t1 = simd::load_texels4(p + 16);
-  for (int c = 0; c < nch; ++c) out[c] = simd::channel16(t0, t1, c);
-}
-template <int nch>
-[[maybe_unused]] inline void mod_target_planes(const std::uint8_t* p, simd::vu16x16 out[4]) {
-  simd::load_planes(p, out);
-}
-
 /// The step's colour scales (one byte a texel) as 16-bit lanes.
 [[maybe_unused]] inline void mod_load_scales(const std::uint8_t* p, simd::vu16x8& out) {
   out = simd::load_u8x8(p);
@@ -116,7 +104,7 @@ inline void mod_step(const std::uint16_t* const v[4], const std::uint8_t* const 
   clear = V();
   for (int j = 0; j < 4; ++j) {
     V tv[4];
-    mod_target_planes<nch>(t[j], tv);
+    simd::load_texel_planes<nch>(t[j], tv);
     V scale;
     if constexpr (kWeighted) mod_load_scales(w[j], scale);
     V d0[4], d3[4], d5[4], d8[4], d4[4];

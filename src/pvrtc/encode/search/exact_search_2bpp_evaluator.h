@@ -46,12 +46,13 @@ inline void blend_sq2(const Window2& w, int k, V av, V bv, V aw, BlendSq2<V>& o)
     const V d = v - t;
     return kAlpha ? simd::madd(d, simd::mullo(d, aw)) : simd::madd(d, d);
   };
-  const V sum = ua + ub, sum2 = sum + sum, sum4 = sum2 + sum2, diff = ua - ub;
-  o.e0 = err(ua);
-  o.e8 = err(ub);
-  o.e3 = err(simd::srl<3>(sum4 + diff));
-  o.e5 = err(simd::srl<3>(sum4 - diff));
-  o.e4 = err(simd::srl<1>(sum));
+  V bl[5];
+  decoder_blends(ua, ub, bl);
+  o.e0 = err(bl[0]);
+  o.e8 = err(bl[1]);
+  o.e3 = err(bl[2]);
+  o.e5 = err(bl[3]);
+  o.e4 = err(bl[4]);
 }
 
 /// The window error of block j's endpoints (a, b) ((r, g, b, a) 5-bit values), kLanes<V> / 2

@@ -35,8 +35,7 @@ struct BlendSq4 {
 
 /// The decoder's arithmetic from the window's bilinear sums S (weights sum to 16): 8-bit colour
 /// (2S >> 7) + (2S >> 2), alpha (2S >> 5) + (2S >> 1) (alpha lanes are all zero for RGB input);
-/// the blends (A (8 - m) + B m) >> 3 from the sum: 4 (A + B) +- (A - B) for m = 3, 5 (the u16
-/// lanes wrap in between, the results are exact), (A + B) >> 1 for m = 4. kWeighted (with
+/// the blends (A (8 - m) + B m) >> 3 (decoder_blends). kWeighted (with
 /// kAlpha): each difference scaled by lw.scale16 first (`scale_diff16`: the alpha lanes' scale
 /// is 16, so alpha is as it was; magnitudes never grow, so the float-minimum bound still holds).
 template <bool kAlpha, bool kWeighted, class V>
@@ -58,14 +57,14 @@ inline void blend_sq4(const LocalWindow& lw, int k, V av, V bv, V aw, BlendSq4<V
     if constexpr (kWeighted) d = scale_diff16(d, scale);
     return kAlpha ? simd::madd(d, simd::mullo(d, aw)) : simd::madd(d, d);
   };
-  const V sum = ua + ub, sum2 = sum + sum, sum4 = sum2 + sum2, diff = ua - ub;
-  o.e0 = err(ua);
-  o.e8 = err(ub);
-  o.e3 = err(simd::srl<3>(sum4 + diff));
-  o.e5 = err(simd::srl<3>(sum4 - diff));
-  const V v4 = simd::srl<1>(sum);
-  o.e4 = err(v4);
-  if constexpr (kAlpha) o.e4p = err(simd::select_alpha(v4, V()));
+  V bl[5];
+  decoder_blends(ua, ub, bl);
+  o.e0 = err(bl[0]);
+  o.e8 = err(bl[1]);
+  o.e3 = err(bl[2]);
+  o.e5 = err(bl[3]);
+  o.e4 = err(bl[4]);
+  if constexpr (kAlpha) o.e4p = err(simd::select_alpha(bl[4], V()));
 }
 
 /// Exact error of the local window with (a, b) ((r, g, b, a) 5-bit values) as block j's
@@ -129,12 +128,7 @@ inline void planar_blends(V own, V ra, V rb, V av, V bv, V out[5]) {
     ua = simd::srl<6>(sa) + simd::srl<1>(sa);
     ub = simd::srl<6>(sb) + simd::srl<1>(sb);
   }
-  const V sum = ua + ub, sum2 = sum + sum, sum4 = sum2 + sum2, diff = ua - ub;
-  out[0] = ua;
-  out[1] = ub;
-  out[2] = simd::srl<3>(sum4 + diff);
-  out[3] = simd::srl<3>(sum4 - diff);
-  out[4] = simd::srl<1>(sum);
+  decoder_blends(ua, ub, out);
 }
 
 /// A PlanarWindow plane's texels o .. o + kLanes<V> - 1 (kTail: o .. o + 7, the rest zero), in

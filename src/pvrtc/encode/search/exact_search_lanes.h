@@ -2,7 +2,8 @@
 // exact_search_evaluators.h, 2 bpp: exact_search_2bpp_evaluator.h), overloaded on the SIMD
 // wrapper's 4- and 8-lane types so that each evaluator's loop is written once: the endpoint and
 // weight lanes, the minimum over the blends (float lanes on 4, integers on 8), and the texel
-// order of a step's 32-bit lanes (pair_sums works per 128-bit half).
+// order of a step's 32-bit lanes (pair_sums works per 128-bit half); and the decoder's blends,
+// which every evaluator forms the same way.
 //
 // Included by the -mavx2 translation units: everything here is a template or inline function in
 // an anonymous namespace (internal linkage), so no AVX2-compiled copy can stand in for a
@@ -85,6 +86,19 @@ template <>
   } else {
     simd::store4(simd::low(ordered), p);
   }
+}
+
+/// The decoder's blends of unpacked A and B values (16-bit lanes): out = A (modulation weight
+/// 0), B (8), (5A + 3B) >> 3 (3), (3A + 5B) >> 3 (5) and (A + B) >> 1 (4), the 3 and 5 from
+/// 4 (A + B) +- (A - B) (the u16 lanes wrap in between; the results are exact).
+template <class V>
+inline void decoder_blends(V ua, V ub, V out[5]) {
+  const V sum = ua + ub, sum2 = sum + sum, sum4 = sum2 + sum2, diff = ua - ub;
+  out[0] = ua;
+  out[1] = ub;
+  out[2] = simd::srl<3>(sum4 + diff);
+  out[3] = simd::srl<3>(sum4 - diff);
+  out[4] = simd::srl<1>(sum);
 }
 
 }  // namespace
