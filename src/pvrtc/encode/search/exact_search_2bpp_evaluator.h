@@ -46,13 +46,7 @@ inline void blend_sq2(const Window2& w, int k, V av, V bv, V aw, BlendSq2<V>& o)
     const V d = v - t;
     return kAlpha ? simd::madd(d, simd::mullo(d, aw)) : simd::madd(d, d);
   };
-  V bl[5];
-  decoder_blends(ua, ub, bl);
-  o.e0 = err(bl[0]);
-  o.e8 = err(bl[1]);
-  o.e3 = err(bl[2]);
-  o.e5 = err(bl[3]);
-  o.e4 = err(bl[4]);
+  decoder_blend_errors(ua, ub, err, o);
 }
 
 /// The window error of block j's endpoints (a, b) ((r, g, b, a) 5-bit values), kLanes<V> / 2

@@ -57,14 +57,8 @@ inline void blend_sq4(const LocalWindow& lw, int k, V av, V bv, V aw, BlendSq4<V
     if constexpr (kWeighted) d = scale_diff16(d, scale);
     return kAlpha ? simd::madd(d, simd::mullo(d, aw)) : simd::madd(d, d);
   };
-  V bl[5];
-  decoder_blends(ua, ub, bl);
-  o.e0 = err(bl[0]);
-  o.e8 = err(bl[1]);
-  o.e3 = err(bl[2]);
-  o.e5 = err(bl[3]);
-  o.e4 = err(bl[4]);
-  if constexpr (kAlpha) o.e4p = err(simd::select_alpha(bl[4], V()));
+  const V v4 = decoder_blend_errors(ua, ub, err, o);
+  if constexpr (kAlpha) o.e4p = err(simd::select_alpha(v4, V()));
 }
 
 /// Exact error of the local window with (a, b) ((r, g, b, a) 5-bit values) as block j's

@@ -101,5 +101,19 @@ inline void decoder_blends(V ua, V ub, V out[5]) {
   out[4] = simd::srl<1>(sum);
 }
 
+/// decoder_blends' five blends scored by `err` (a V -> squared-error lanes function) into
+/// o.e0, o.e8, o.e3, o.e5 and o.e4 (the modulation weights); returns the weight-4 blend.
+template <class V, class Err, class Out>
+inline V decoder_blend_errors(V ua, V ub, const Err& err, Out& o) {
+  V bl[5];
+  decoder_blends(ua, ub, bl);
+  o.e0 = err(bl[0]);
+  o.e8 = err(bl[1]);
+  o.e3 = err(bl[2]);
+  o.e5 = err(bl[3]);
+  o.e4 = err(bl[4]);
+  return bl[4];
+}
+
 }  // namespace
 }  // namespace tessera::pvrtc::detail
