@@ -16,8 +16,8 @@
 // refinement, so the passes are parallel and deterministic; after the first round only blocks with
 // a changed neighbour are searched again (exact: nothing else in their window moved). A candidate's
 // window error is summed with the texels that erred most first (in the order sorted at the block's
-// first visit) and stops once it reaches the best so far (integer sums: every kept
-// move is the same). Candidate moves step the pair's codes, unpacked once (exact_search_moves.h). A candidate
+// first visit) and stops once it reaches the best so far (integer sums: every kept move is the
+// same). Candidate moves step the pair's codes, unpacked once (exact_search_moves.h). A candidate
 // that changes one colour channel only is scored channel-planar from the other channels' per-blend
 // errors (exact_search_kernel.h), and a pair already met in the visit is not scored again. Where
 // the CPU has AVX2 both evaluators run twice the texels a step (exact_search_avx2.cpp; the same
@@ -311,7 +311,6 @@ void order_by_error(const std::uint32_t* err, std::uint8_t* order) {
   for (int c = 1; c < 34; ++c) start[c] += start[c - 1];
   for (int i = 0; i < 49; ++i) order[start[32 - key[i]]++] = std::uint8_t(i);
 }
-
 
 }  // namespace
 

@@ -31,8 +31,10 @@ struct MoveTable {
         if (ch < 3) planar[mv] = std::int8_t(ch);
       } else if (mv < 24) {
         const int m = mv - 16;
-        const int da = m < 2 ? (m ? 1 : -1) : m < 4 ? 0 : m < 6 ? (m == 5 ? 1 : -1) : (m == 6 ? -1 : 1);
-        const int db = m < 2 ? 0 : m < 4 ? (m == 3 ? 1 : -1) : m < 6 ? (m == 5 ? 1 : -1) : (m == 6 ? 1 : -1);
+        // Steps of A and B: 16/17 A, 18/19 B, 20/21 both, 22 spread, 23 contract.
+        constexpr int kA[8] = {-1, 1, 0, 0, -1, 1, -1, 1};
+        constexpr int kB[8] = {0, 0, -1, 1, -1, 1, 1, -1};
+        const int da = kA[m], db = kB[m];
         for (int ch = 0; ch < 3; ++ch) {
           step[mv][ch] = std::int8_t(da);
           step[mv][4 + ch] = std::int8_t(db);
