@@ -30,18 +30,71 @@
 // read-back flips GL's bottom-up rows so the image is top-down, as displayed.
 #pragma once
 
+#include <bit>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "tessera/core.h"
 
 namespace tessera::gl {
+
+// ---------------------------------------------------------------------------------------------
+// Entry points and the current context
+// ---------------------------------------------------------------------------------------------
+
+/// A GL function pointer of unknown type (what GetProcAddress functions return).
+using ProcAddress = void (*)();
+
+namespace detail {
+using ErasedLoader = ProcAddress (*)(const void* context, const char* name);
+Status load_entry_points(ErasedLoader loader, const void* context);
+}  // namespace detail
+
+/// Loads tessera's OpenGL entry points with the host's GetProcAddress: glfwGetProcAddress,
+/// SDL_GL_GetProcAddress (returns void*), eglGetProcAddress, glXGetProcAddressARB (takes
+/// const GLubyte*), or any `R (*)(NAME)` with R a pointer and NAME const char* or const
+/// unsigned char*; no cast needed. Call it once, with the engine's context current (some
+/// loaders need one), before tessera's first GL call and never while tessera GL calls run on
+/// other threads. All or nothing: fails (unsupported) naming the first function the loader
+/// does not know, leaving the previous table. A later call replaces the table.
+template <class R, class Name>
+Status load_entry_points(R (*get_proc_address)(Name)) {
+  static_assert(std::is_pointer_v<R>, "GetProcAddress must return a pointer");
+  using Get = R (*)(Name);
+  return detail::load_entry_points(
+      [](const void* context, const char* name) -> ProcAddress {
+        const R r = (*static_cast<const Get*>(context))(reinterpret_cast<Name>(name));
+        if constexpr (std::is_function_v<std::remove_pointer_t<R>>) {
+          return reinterpret_cast<ProcAddress>(r);
+        } else {
+          static_assert(sizeof(R) == sizeof(ProcAddress), "object and function pointers differ");
+          return std::bit_cast<ProcAddress>(r);
+        }
+      },
+      &get_proc_address);
+}
+
+/// As above with a loader that needs state (e.g. a wrapper around
+/// QOpenGLContext::getProcAddress): `loader(user, name)` for every name.
+Status load_entry_points(ProcAddress (*loader)(void* user, const char* name), void* user);
+
+/// True when tessera's entry points are loaded (by `load_entry_points`, `Context::create` or
+/// the first GL-touching call; see the header comment).
+bool entry_points_loaded();
+
+/// Succeeds when tessera's entry points are loaded (loading them first if needed) and an
+/// OpenGL 4.5 or later context is current on the calling thread; else fails with one line
+/// "WHAT: no OpenGL context is current on this thread" (invalid_argument), "WHAT: OpenGL 3.3
+/// is below 4.5" or "WHAT: no OpenGL entry points: ..." (unsupported). Every GL-touching call of
+/// tessera starts with this check.
+Status check_current_context(std::string_view what);
 
 // ---------------------------------------------------------------------------------------------
 // Context and device selection
@@ -143,6 +196,8 @@ class Context {
 
  private:
   Context() = default;
+  Status init_gl(bool debug);  // strings, extensions, limits, debug output, timer work-around
+  void discard_first_timer_query();
   std::unique_ptr<State> state_;
   std::string renderer_, version_, device_;
   int major_ = 0, minor_ = 0;

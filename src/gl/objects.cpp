@@ -45,6 +45,7 @@ void Object::reset() {
 
 Object create_object(ObjectType type, std::uint32_t target) {
   GLuint n = 0;
+  if (!ensure_loaded()) return Object();  // name 0: the caller's check_errors says why
   switch (type) {
     case ObjectType::buffer: glCreateBuffers(1, &n); break;
     case ObjectType::texture: glCreateTextures(target, 1, &n); break;
