@@ -1,23 +1,26 @@
 // engine_aa — a minimal deferred renderer that anti-aliases with tessera::gl::AdaptiveSupersampler.
 //
-// The engine side is all here and all its own: an OpenGL 4.5 context (through tessera's headless
-// gl::Context; any current GL 4.5 context on which one was created works), GL entry points from
-// libOpenGL, a scene of boxes and spheres generated in code, a G-buffer of
+// The engine side is all here and all its own: an OpenGL 4.5 core context it makes itself (a GLFW
+// window through GLX, or with --headless a surfaceless EGL context: examples/common/
+// engine_context.h, which also hands the context's GetProcAddress to tessera), GL entry points
+// from libOpenGL, a scene of boxes and spheres generated in code, a G-buffer of
 //   RT0 RGBA16F  (world normal xyz, linear view depth)
 //   RT1 RGBA8    (albedo rgb, (material id + 1) / 255; 0 = sky)
 // rasterised m x m enlarged, six point lights in the engine's own uniform block, and a
 // Blinn-Phong shader with a sharp specular lobe and a procedural checker floor (both alias at
 // one sample per pixel). The integration with tessera is the block marked "tessera" below.
 //
-// Usage: engine_aa [--size WxH] [--m M] [--budget B] [--schedule frame_list|tile_list|loop]
-//                  [--glsl DIR] [--json] [-o DIR]
+// Usage: engine_aa [--headless] [--size WxH] [--m M] [--budget B]
+//                  [--schedule frame_list|tile_list|loop] [--glsl DIR] [--json] [-o DIR]
+//   --headless  a surfaceless EGL context instead of the window (the image is the same)
 //   --json  one JSON object: samples %, PSNR of the adaptive and the 1 spp image against the
 //           component's own full supersampling (tonemapped, sRGB8), pass times (host time to a
 //           glFinish after each pass: llvmpipe's GL_TIME_ELAPSED reads 0 for compute)
 //   -o DIR  writes adaptive.png, reference.png, first.png, samples.png (k + 1, grey)
-// Exit 1 with one line when there is no OpenGL 4.5 device or on bad arguments.
-#define GL_GLEXT_PROTOTYPES 1
-#include <GL/glcorearb.h>
+// In the window the adaptive image is drawn to the default framebuffer and shown; --json then
+// also reports "window_max_diff", the largest byte difference between the back buffer read back
+// and adaptive.png. Exit 1 with one line when there is no OpenGL 4.5 device or on bad arguments.
+#include "engine_context.h"  // first: the engine's GL and window headers
 
 #include <array>
 #include <chrono>
@@ -44,7 +47,7 @@ struct Args {
   int w = 320, h = 240, m = 4;
   long long budget = -1;  // -1: none
   std::string schedule = "frame_list", glsl = ENGINE_AA_GLSL_DIR, out;
-  bool json = false;
+  bool json = false, headless = false;
 };
 
 int fail(const std::string& msg) {
@@ -287,14 +290,18 @@ int main(int argc, char** argv) {
       a.glsl = next();
     } else if (k == "--json") {
       a.json = true;
+    } else if (k == "--headless") {
+      a.headless = true;
     } else if (k == "-o") {
       a.out = next();
     } else {
       return fail("unknown argument " + k);
     }
   }
-  auto ctx = tessera::gl::Context::create();
-  if (!ctx) return fail("no OpenGL 4.5 device: " + ctx.status().message);
+  // The engine's context, current from here on; tessera's entry points loaded from it.
+  engine::Platform platform;
+  if (std::string why = platform.open(a.headless, a.w, a.h, "engine_aa"); !why.empty())
+    return fail("no OpenGL 4.5 device: " + why);
   const int gw = a.w * a.m, gh = a.h * a.m;
 
   // ---- the engine's G-buffer and geometry pass ----
@@ -416,6 +423,9 @@ int main(int argc, char** argv) {
   adaptive = (*aa)->dispatch(frame);
   if (!adaptive) return fail(adaptive.status().message);
   const tessera::ImageRGBAF img = read_rgba(adaptive->colour, a.w, a.h);
+  // The frame on screen: the output texture drawn to the window (Reinhard, then sRGB).
+  std::vector<std::uint8_t> shown;
+  if (platform.windowed()) platform.present(adaptive->colour, a.w, a.h, true, true, shown);
   std::vector<std::uint8_t> counts(std::size_t(a.w) * std::size_t(a.h));
   glGetTextureImage(adaptive->sample_counts, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
                     GLsizei(counts.size()), counts.data());
@@ -433,6 +443,8 @@ int main(int argc, char** argv) {
   const double first_ms = first->total_wall_ms();
 
   const tessera::ImageRGBA8 d_img = display(img), d_ref = display(ref), d_one = display(one);
+  const int window_diff =
+      platform.windowed() ? engine::max_rgb_difference(shown, d_img.pixels.data()) : -1;
   const double pixels = double(a.w) * a.h;
   const double samples_pct = 100.0 * (pixels + double(extra)) / (pixels * a.m * a.m);
   const double p_adaptive = psnr(d_img, d_ref), p_one = psnr(d_one, d_ref);
@@ -456,7 +468,9 @@ int main(int argc, char** argv) {
   if (a.json) {
     std::printf(
         "{\"device\": \"%s\", \"width\": %d, \"height\": %d, \"m\": %d, \"schedule\": \"%s\", ",
-        (*ctx)->renderer().c_str(), a.w, a.h, a.m, a.schedule.c_str());
+        platform.renderer().c_str(), a.w, a.h, a.m, a.schedule.c_str());
+    std::printf("\"context\": \"%s\", ", platform.kind());
+    if (window_diff >= 0) std::printf("\"window_max_diff\": %d, ", window_diff);
     if (a.budget >= 0) {
       std::printf("\"budget\": %lld, ", a.budget);
     } else {

@@ -1,16 +1,21 @@
 // engine_ptex — a small forward renderer that draws a Ptex mesh with its own shader and
 // tessera's seamless per-face lookup (seams.glsl, tessera_seams_sample_discard: Toth 2013).
 //
-// The engine side is all here and all its own: an OpenGL 4.5 context (through tessera's headless
-// gl::Context; any current GL 4.5 context works), GL entry points from libOpenGL, an interleaved
+// The engine side is all here and all its own: an OpenGL 4.5 core context it makes itself (a GLFW
+// window through GLX, or with --headless a surfaceless EGL context: examples/common/
+// engine_context.h, which also hands the context's GetProcAddress to tessera), GL entry points
+// from libOpenGL, an interleaved
 // vertex layout (position, normal, per-face UV, integer face id), a per-frame uniform block at
 // binding 0 (view-projection, light), its own framebuffer, and a vertex and fragment shader
 // written below. The integration with tessera follows the recipe of tessera/gl_ptex.h and is the
 // blocks marked "tessera": mesh and textures from the .obj and .ptx, one upload, the binding
 // points the engine chose (FaceTexturesBindings) as shader defines and as one bind per frame.
 //
-// Usage: engine_ptex MESH.obj FILE.ptx [--size WxH] [--orbit K/N] [--fov DEG] [--shader-method
+// Usage: engine_ptex MESH.obj FILE.ptx [--headless] [--size WxH] [--orbit K/N] [--fov DEG] [--shader-method
 //                    discard|clamp] [--shift-px X] [--glsl DIR] [--check] [--json] [-o FILE.png]
+//   --headless        a surfaceless EGL context instead of the window (the image is the same;
+//                     in the window the frame is shown, and --json reports "window_max_diff",
+//                     the largest byte difference between the back buffer and the -o image)
 //   -o FILE.png       the GL image (8-bit sRGB)
 //   --orbit K/N       the camera: frame K of N of faces::face_orbit_camera (default 1/8)
 //   --fov DEG         its vertical field of view (default the orbit's 60; smaller zooms in)
@@ -26,8 +31,7 @@
 // The last two are negative controls for the agreement bounds (tests/gl/engine_ptex_test.py).
 // Exit 1 with one line when there is no OpenGL 4.5 device, on bad arguments or input (a mesh
 // polygon the Ptex file did not split into quads is named).
-#define GL_GLEXT_PROTOTYPES 1
-#include <GL/glcorearb.h>
+#include "engine_context.h"  // first: the engine's GL and window headers
 
 #include <algorithm>
 #include <chrono>
@@ -57,7 +61,7 @@ struct Args {
   std::string obj, ptx, out, glsl = ENGINE_PTEX_GLSL_DIR, method = "discard";
   int w = 320, h = 240, orbit_k = 1, orbit_n = 8;
   float shift_px = 0.0f, fov = 0.0f;  // fov 0: the orbit camera's
-  bool check = false, json = false;
+  bool check = false, json = false, headless = false;
 };
 
 int fail(const std::string& msg) {
@@ -190,6 +194,8 @@ int main(int argc, char** argv) {
       a.shift_px = std::strtof(next().c_str(), nullptr);
     } else if (k == "--glsl") {
       a.glsl = next();
+    } else if (k == "--headless") {
+      a.headless = true;
     } else if (k == "--check") {
       a.check = true;
     } else if (k == "--json") {
@@ -217,8 +223,10 @@ int main(int argc, char** argv) {
   if (!set) return fail(set.status().message);
   // ---- end of step 1 ----
 
-  auto ctx = tessera::gl::Context::create();
-  if (!ctx) return fail("no OpenGL 4.5 device: " + ctx.status().message);
+  // The engine's context, current from here on; tessera's entry points loaded from it.
+  engine::Platform platform;
+  if (std::string why = platform.open(a.headless, a.w, a.h, "engine_ptex"); !why.empty())
+    return fail("no OpenGL 4.5 device: " + why);
 
   // The engine's scene data: a camera on an orbit, smooth normals, 4 vertices and 2 triangles
   // per face (tessera's helpers for both, so the CPU check sees the same geometry).
@@ -333,9 +341,15 @@ int main(int argc, char** argv) {
     std::copy_n(rows.data() + std::size_t(a.h - 1 - y) * row, row,
                 img.pixels.data() + std::size_t(y) * row);
   }
+  const tessera::ImageRGBA8 srgb = tessera::to_srgb8(img);
+  int window_diff = -1;  // the frame in the window (sRGB encoded by the engine's present pass)
+  if (platform.windowed()) {
+    std::vector<std::uint8_t> shown;
+    platform.present(colour_tex, a.w, a.h, false, false, shown);
+    window_diff = engine::max_rgb_difference(shown, srgb.pixels.data());
+  }
   if (!a.out.empty()) {
-    if (auto s = tessera::io::write_png(a.out, tessera::to_srgb8(img)); !s.ok())
-      return fail(s.message);
+    if (auto s = tessera::io::write_png(a.out, srgb); !s.ok()) return fail(s.message);
   }
 
   if (a.check) {
@@ -360,11 +374,13 @@ int main(int argc, char** argv) {
           "{\"device\": \"%s\", \"mesh\": \"%s\", \"faces\": %d, \"classes\": %d, "
           "\"width\": %d, \"height\": %d, \"orbit\": \"%d/%d\", \"shader_method\": \"%s\", "
           "\"shift_px\": %.3f, \"psnr_db\": %s, \"frac_001\": %.6f, \"max_norm\": %.4f, "
-          "\"non_finite\": %d, \"gl_ms\": %.3f, \"cpu_ms\": %.3f}\n",
-          (*ctx)->renderer().c_str(), scene.name.c_str(), scene.mesh.face_count(),
+          "\"non_finite\": %d, \"gl_ms\": %.3f, \"cpu_ms\": %.3f, \"context\": \"%s\"%s}\n",
+          platform.renderer().c_str(), scene.name.c_str(), scene.mesh.face_count(),
           tex->class_count(), a.w, a.h, a.orbit_k, a.orbit_n, a.method.c_str(), double(a.shift_px),
           psnr_json.c_str(), agree->frac_001, agree->max_norm, agree->non_finite, gl_ms,
-          cpu_frame->ms());
+          cpu_frame->ms(), platform.kind(),
+          window_diff >= 0 ? (", \"window_max_diff\": " + std::to_string(window_diff)).c_str()
+                           : "");
     } else {
       std::printf(
           "engine_ptex %dx%d, %d faces in %d classes: GL (%s) vs CPU Discard: PSNR %.2f dB, "
