@@ -37,16 +37,13 @@
 #include "tessera/io.h"
 #include "tessera/metrics.h"
 
-#ifndef ENGINE_AA_GLSL_DIR
-#define ENGINE_AA_GLSL_DIR ""
-#endif
 
 namespace {
 
 struct Args {
   int w = 320, h = 240, m = 4;
   long long budget = -1;  // -1: none
-  std::string schedule = "frame_list", glsl = ENGINE_AA_GLSL_DIR, out;
+  std::string schedule = "frame_list", glsl, out;
   bool json = false, headless = false;
 };
 

@@ -47,18 +47,16 @@
 #include "tessera/faces.h"
 #include "tessera/gl.h"
 #include "tessera/gl_ptex.h"
+#include "tessera/glsl.h"
 #include "tessera/io.h"
 #include "tessera/metrics.h"
 #include "tessera/ptex.h"
 
-#ifndef ENGINE_PTEX_GLSL_DIR
-#define ENGINE_PTEX_GLSL_DIR ""
-#endif
 
 namespace {
 
 struct Args {
-  std::string obj, ptx, out, glsl = ENGINE_PTEX_GLSL_DIR, method = "discard";
+  std::string obj, ptx, out, glsl, method = "discard";
   int w = 320, h = 240, orbit_k = 1, orbit_n = 8;
   float shift_px = 0.0f, fov = 0.0f;  // fov 0: the orbit camera's
   bool check = false, json = false, headless = false;
@@ -127,6 +125,37 @@ void main() {
   colour = vec4(tex.rgb * (shade.x + shade.y * max(nl, 0.0)), 1.0);
 }
 )";
+
+// The engine's own shader compilation; 0 with the driver's log in `log` on failure.
+GLuint compile_program(const char* vs, const char* fs, std::string& log) {
+  const GLuint p = glCreateProgram();
+  for (const auto& [stage, src] : {std::pair{GL_VERTEX_SHADER, vs}, {GL_FRAGMENT_SHADER, fs}}) {
+    const GLuint s = glCreateShader(stage);
+    glShaderSource(s, 1, &src, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      char text[4096] = {};
+      glGetShaderInfoLog(s, sizeof text, nullptr, text);
+      log = text;
+      glDeleteShader(s);
+      glDeleteProgram(p);
+      return 0;
+    }
+    glAttachShader(p, s);
+    glDeleteShader(s);
+  }
+  glLinkProgram(p);
+  GLint ok = 0;
+  glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    log = "the program does not link";
+    glDeleteProgram(p);
+    return 0;
+  }
+  return p;
+}
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -271,15 +300,19 @@ int main(int argc, char** argv) {
   bindings.border_unit = 1;  // unit 0 stays free for the engine's own textures
   bindings.clamp_unit = 17;  // after at most 16 classes
   bindings.records_binding = 3;
+  // The engine compiles its own program; tessera gives the full fragment source: the defines
+  // after #version and seams.glsl in place of the #include (from the copy embedded in the
+  // library; --glsl DIR reads a development folder instead).
   tessera::glsl::ExpandOptions so;
-  so.include_paths = {a.glsl};
+  if (!a.glsl.empty()) so.shipped_dir = a.glsl;
   so.preamble = tex->glsl_defines(bindings);
   so.preamble.push_back(std::string("#define ENGINE_CLAMP ") + (a.method == "clamp" ? "1" : "0"));
-  auto program = tessera::gl::link_program(
-      {{tessera::glsl::Stage::vertex, kVertexShader, "engine_ptex.vert"},
-       {tessera::glsl::Stage::fragment, kFragmentShader, "engine_ptex.frag"}},
-      so);
-  if (!program) return fail(program.status().message);
+  auto fragment = tessera::glsl::expand_includes(
+      {tessera::glsl::Stage::fragment, kFragmentShader, "engine_ptex.frag"}, so);
+  if (!fragment) return fail(fragment.status().message);
+  std::string log;
+  const GLuint program = compile_program(kVertexShader, fragment->text.c_str(), log);
+  if (program == 0) return fail(tessera::glsl::format_log(log, fragment->files));
   // ---- end of step 2 ----
 
   GLuint vbo, ibo, ubo, vao, fbo, colour_tex, depth_rb;
@@ -323,7 +356,7 @@ int main(int argc, char** argv) {
   const float far_depth = 1.0f;
   glClearNamedFramebufferfv(fbo, GL_COLOR, 0, background);
   glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far_depth);
-  glUseProgram(program->get());
+  glUseProgram(program);
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, ubo);
   if (auto s = tex->bind(bindings); !s.ok()) return fail(s.message);  // tessera, per frame
   glBindVertexArray(vao);
@@ -393,6 +426,7 @@ int main(int argc, char** argv) {
                 scene.mesh.face_count(), tex->class_count(), gl_ms);
   }
 
+  glDeleteProgram(program);
   glDeleteBuffers(1, &vbo);
   glDeleteBuffers(1, &ibo);
   glDeleteBuffers(1, &ubo);

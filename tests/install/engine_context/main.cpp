@@ -43,12 +43,10 @@
 #include "tessera/gl.h"
 #include "tessera/gl_adaptive.h"
 #include "tessera/gl_ptex.h"
+#include "tessera/glsl.h"
 
 #ifndef EGL_PLATFORM_SURFACELESS_MESA
 #define EGL_PLATFORM_SURFACELESS_MESA 0x31DD
-#endif
-#ifndef ENGINE_GLSL_DIR
-#define ENGINE_GLSL_DIR ""
 #endif
 
 namespace {
@@ -268,7 +266,6 @@ void run_adaptive(Images& out, EngineState& engine, bool shift) {
   o.layout.id = {1, "r"};
   o.hook = {kHook, "engine_hook.glsl", {}};
   o.output = tessera::gl::AdaptiveOutputFormat::rgba32f;
-  o.glsl_dir = ENGINE_GLSL_DIR;
   auto aa = tessera::gl::AdaptiveSupersampler::create(o);
   if (!aa) die(1, aa.status().message);
   tessera::gl::AdaptiveFrame frame;
@@ -333,6 +330,29 @@ void main() {
   gl_Position = vec4(p, 0.0, 1.0);
 })";
 
+GLuint compile_program(const char* vs, const char* fs) {
+  const GLuint p = glCreateProgram();
+  for (const auto& [stage, src] : {std::pair{GL_VERTEX_SHADER, vs}, {GL_FRAGMENT_SHADER, fs}}) {
+    const GLuint sh = glCreateShader(stage);
+    glShaderSource(sh, 1, &src, nullptr);
+    glCompileShader(sh);
+    GLint ok = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      char log[2048] = {};
+      glGetShaderInfoLog(sh, sizeof log, nullptr, log);
+      die(1, std::string("engine shader: ") + log);
+    }
+    glAttachShader(p, sh);
+    glDeleteShader(sh);
+  }
+  glLinkProgram(p);
+  GLint ok = 0;
+  glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) die(1, "engine program does not link");
+  return p;
+}
+
 void run_faces(Images& out, EngineState& engine, bool shift) {
   const tessera::faces::FaceTextureSet set = make_faces();
   const Snapshot before = snapshot();
@@ -345,14 +365,14 @@ void run_faces(Images& out, EngineState& engine, bool shift) {
   b.border_unit = 8;
   b.clamp_unit = 12;
   b.records_binding = 5;
-  tessera::gl::ShaderOptions so;
-  so.include_paths = {ENGINE_GLSL_DIR};
-  so.preamble = tex->glsl_defines(b);
-  auto program = tessera::gl::link_program(
-      {{tessera::gl::ShaderStage::vertex, kFacesVs, "faces.vert"},
-       {tessera::gl::ShaderStage::fragment, kFacesFs, "faces.frag"}},
-      so);
-  if (!program) die(1, program.status().message);
+  // The engine compiles its own shader: tessera gives the full source (seams.glsl from the
+  // copy embedded in the library, no file read).
+  tessera::glsl::ExpandOptions eo;
+  eo.preamble = tex->glsl_defines(b);
+  auto fs = tessera::glsl::expand_includes({tessera::glsl::Stage::fragment, kFacesFs, "faces.frag"},
+                                           eo);
+  if (!fs) die(1, fs.status().message);
+  const GLuint program = compile_program(kFacesVs, fs->text.c_str());
   if (tessera::Status s = tex->bind(b); !s.ok()) die(1, s.message);
   if (!(snapshot() == before) && out.state_error.empty()) {
     out.state_error = "FaceTextures::bind changed state beyond its binding points";
@@ -366,8 +386,8 @@ void run_faces(Images& out, EngineState& engine, bool shift) {
   glCreateVertexArrays(1, &vao);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo);
   glViewport(0, 0, 64, 64);
-  glUseProgram(program->get());
-  glUniform1f(glGetUniformLocation(program->get(), "shift"), shift ? 1.0f : 0.0f);
+  glUseProgram(program);
+  glUniform1f(glGetUniformLocation(program, "shift"), shift ? 1.0f : 0.0f);
   glBindVertexArray(vao);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   out.faces = hash_floats(target, 64, 64);
@@ -384,6 +404,7 @@ void run_faces(Images& out, EngineState& engine, bool shift) {
   glDeleteTextures(1, &target);
   glDeleteFramebuffers(1, &fbo);
   glDeleteVertexArrays(1, &vao);
+  glDeleteProgram(program);
 }
 
 // Both components on the current context, with the engine's state set first (and its debug
@@ -433,7 +454,6 @@ std::string no_context_errors() {
   o.layout.depth = {0, "a"};
   o.layout.id = {1, "r"};
   o.hook = {kHook, "engine_hook.glsl", {}};
-  o.glsl_dir = ENGINE_GLSL_DIR;
   auto aa = tessera::gl::AdaptiveSupersampler::create(o);
   all += aa ? std::string("created without a context") : aa.status().message;
   auto tex = tessera::gl::FaceTextures::upload(make_faces());
