@@ -163,6 +163,7 @@ class UnpackStateGuard {
 
 Result<FaceTextures> FaceTextures::upload(const faces::FaceTextureSet& set,
                                           const FaceTexturesOptions& options) {
+  if (Status s = check_current_context("FaceTextures::upload"); !s.ok()) return s;
   if (Status s = check_errors("FaceTextures::upload (errors before it)"); !s.ok()) return s;
   const UnpackStateGuard unpack;
   PackLimits limits;
