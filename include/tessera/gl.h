@@ -1,33 +1,23 @@
-// tessera/gl.h — a small headless OpenGL 4.5 core runtime (EGL). Optional: the `tessera::gl`
-// library is built only where the EGL and OpenGL development files are found; the main
-// `tessera` library never depends on OpenGL.
+// tessera/gl.h — tessera's OpenGL 4.5 runtime (optional `tessera::gl` library). Contract: every
+// GL-touching call works on the OpenGL 4.5 core context CURRENT ON THE CALLING THREAD, whoever
+// made it (GLFW, SDL, Qt, EGL, GLX; or tessera's headless `Context`), and reads errors from it
+// with glGetError. Entry points: pass the host's GetProcAddress once to `load_entry_points`
+// (glfwGetProcAddress, SDL_GL_GetProcAddress, eglGetProcAddress, no cast); without it they are
+// resolved at the first call from libOpenGL.so.0 (Linux/GLVND), or by `Context::create`. The
+// table is process-wide: on GLVND and Mesa (EGL, GLX) its pointers serve every context; on WGL
+// (untested) they are only guaranteed for the context current when loaded. No current context:
+// a one-line error, not a crash. tessera never installs, replaces or leaves changed an engine's
+// glDebugMessageCallback; only its own `Context` collects debug output. EGL is used by
+// `Context` alone. Guide: docs/engine_integration.md; tests: tests/gl (gl_entry_points_test,
+// gl_engine_context*).
 //
-// What it gives:
-//  * `Context`: an OpenGL 4.5 core context without any window (EGL, surfaceless contexts that
-//    render to framebuffer objects). The EGL device is chosen by `ContextOptions::device` or
-//    the environment variable TESSERA_EGL_DEVICE: a device index, `hardware` (a GPU: a device
-//    whose extension string lacks EGL_MESA_device_software), `software` (Mesa llvmpipe),
-//    `surfaceless` (EGL_PLATFORM_SURFACELESS_MESA) or `auto` (default: hardware, else software,
-//    else surfaceless). A `GL_KHR_debug` callback collects driver messages; `check_errors`
-//    turns GL errors and debug errors into a `Status`.
-//  * RAII GL objects (`Object`), shader programs compiled from tessera/glsl.h sources with
-//    `#include "x.glsl"` resolution (compile errors name the file and line), GPU timer queries
-//    per named pass (`GpuTimer`), render targets and read-back into tessera's images.
-//  * Per-face (Ptex) textures packed for the GPU are in tessera/gl_ptex.h.
-//
-// Every fallible call returns `Status` / `Result` with one line ("no EGL device 7: 1 device
-// (0 software)"); nothing throws or aborts, including when there is no EGL or no GPU at all.
-//
-// Threads: a `Context` is current on at most one thread at a time; `Context::create` makes it
-// current on the calling thread. Every function below that touches GL (everything except
-// `parse_device_selection`) must be called on a thread
-// where a tessera context is current, and GL objects should be destroyed while the context
-// that made them is current and alive (destroy them before the context). Distinct contexts may
-// be used on distinct threads concurrently.
-//
-// Row order: textures keep tessera's convention (image row y = texel row y = GL row y, i.e.
-// v = 0 first), so uploading an image and reading it back is the identity. Framebuffer
-// read-back flips GL's bottom-up rows so the image is top-down, as displayed.
+// Also here: `Context` (headless EGL: device by `ContextOptions::device` / TESSERA_EGL_DEVICE:
+// an index, `hardware`, `software` (llvmpipe), `surfaceless` or `auto`), RAII objects
+// (`Object`), programs from tessera/glsl.h sources (`link_program`), GPU timers (`GpuTimer`),
+// render targets and read-back. Every fallible call returns `Status` / `Result` with one line;
+// nothing throws or aborts. Threads: a context is current on one thread at a time; destroy GL
+// objects while the context that made them is current. Row order: textures keep tessera's
+// (image row y = texel row y); framebuffer read-back flips GL's bottom-up rows to top-down.
 #pragma once
 
 #include <bit>
