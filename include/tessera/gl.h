@@ -196,9 +196,10 @@ class Context {
   std::vector<std::string> extensions_;
 };
 
-/// Drains glGetError and the current context's error-type debug messages received since the
-/// last check; fails (invalid_argument) with "WHAT: GL_INVALID_OPERATION: <debug text>" when
-/// there was any. Also fails when no tessera context is current.
+/// Drains glGetError of the current context (any context) and, when that is a tessera `Context`,
+/// its error-type debug messages received since the last check; fails (invalid_argument) with
+/// "WHAT: GL_INVALID_OPERATION: <debug text>" when there was any. Also fails as
+/// `check_current_context` does when no OpenGL 4.5 context is current.
 Status check_errors(std::string_view what);
 
 // ---------------------------------------------------------------------------------------------
