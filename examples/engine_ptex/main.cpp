@@ -188,10 +188,141 @@ tessera::Result<Agreement> agreement(const tessera::ImageRGBAF& a, const tessera
   return r;
 }
 
-}  // namespace
+// Four vertices and two triangles per face (corners not shared: each face has its own UVs).
+void face_vertices(const tessera::faces::QuadMesh& mesh, const std::vector<tessera::Vec3>& normals,
+                   std::vector<Vertex>& verts, std::vector<std::uint32_t>& indices) {
+  const float corner_uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int f = 0; f < mesh.face_count(); ++f) {
+    for (int c = 0; c < 4; ++c) {
+      const tessera::Vec3& p =
+          mesh.positions[std::size_t(mesh.quads[std::size_t(f)][std::size_t(c)])];
+      const tessera::Vec3& n = normals[std::size_t(f) * 4 + std::size_t(c)];
+      verts.push_back({{p.x, p.y, p.z}, {n.x, n.y, n.z}, {corner_uv[c][0], corner_uv[c][1]}, f});
+    }
+    const auto b = std::uint32_t(f) * 4;
+    for (std::uint32_t i : {b, b + 1, b + 2, b, b + 2, b + 3}) indices.push_back(i);
+  }
+}
 
-int main(int argc, char** argv) {
-  Args a;
+// The engine's per-frame block: the camera (moved `shift_px` pixels right), the light.
+FrameBlock make_frame_block(const tessera::scene::Camera& camera, const Args& a) {
+  FrameBlock frame{};
+  const tessera::Mat4 vp = camera.view_projection(float(a.w) / float(a.h));
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) frame.view_proj[c * 4 + r] = vp.m[c][r];
+  // A shift of X pixels to the right: clip x += (2 X / width) w.
+  for (int c = 0; c < 4; ++c) {
+    frame.view_proj[c * 4 + 0] += 2.0f * a.shift_px / float(a.w) * vp.m[c][3];
+  }
+  const float light[3] = {0.42f, 0.82f, 0.39f};
+  std::copy(light, light + 3, frame.light_dir);
+  frame.shade[0] = 0.35f;
+  frame.shade[1] = 0.65f;
+
+  return frame;
+}
+
+// The engine's GPU objects: vertex, index and frame buffers, vertex array, an RGBA32F colour
+// target with depth.
+struct EngineObjects {
+  GLuint vbo = 0, ibo = 0, ubo = 0, vao = 0, fbo = 0, colour_tex = 0, depth_rb = 0;
+  ~EngineObjects() {
+    glDeleteBuffers(1, &vbo);
+    glDeleteBuffers(1, &ibo);
+    glDeleteBuffers(1, &ubo);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &depth_rb);
+    glDeleteTextures(1, &colour_tex);
+  }
+};
+
+// Creates them for a w x h frame; "" or the problem.
+std::string create_objects(EngineObjects& o, const std::vector<Vertex>& verts,
+                           const std::vector<std::uint32_t>& indices, const FrameBlock& frame,
+                           int w, int h) {
+  glCreateBuffers(1, &o.vbo);
+  glNamedBufferStorage(o.vbo, GLsizeiptr(verts.size() * sizeof(Vertex)), verts.data(), 0);
+  glCreateBuffers(1, &o.ibo);
+  glNamedBufferStorage(o.ibo, GLsizeiptr(indices.size() * 4), indices.data(), 0);
+  glCreateBuffers(1, &o.ubo);
+  glNamedBufferStorage(o.ubo, sizeof frame, &frame, 0);
+  glCreateVertexArrays(1, &o.vao);
+  glVertexArrayVertexBuffer(o.vao, 0, o.vbo, 0, sizeof(Vertex));
+  glVertexArrayElementBuffer(o.vao, o.ibo);
+  const GLuint sizes[3] = {3, 3, 2}, offsets[3] = {0, 12, 24};
+  for (GLuint i = 0; i < 3; ++i) {
+    glEnableVertexArrayAttrib(o.vao, i);
+    glVertexArrayAttribFormat(o.vao, i, GLint(sizes[i]), GL_FLOAT, GL_FALSE, offsets[i]);
+    glVertexArrayAttribBinding(o.vao, i, 0);
+  }
+  glEnableVertexArrayAttrib(o.vao, 3);
+  glVertexArrayAttribIFormat(o.vao, 3, 1, GL_INT, offsetof(Vertex, face));
+  glVertexArrayAttribBinding(o.vao, 3, 0);
+  glCreateTextures(GL_TEXTURE_2D, 1, &o.colour_tex);
+  glTextureStorage2D(o.colour_tex, 1, GL_RGBA32F, w, h);
+  glCreateRenderbuffers(1, &o.depth_rb);
+  glNamedRenderbufferStorage(o.depth_rb, GL_DEPTH_COMPONENT32F, w, h);
+  glCreateFramebuffers(1, &o.fbo);
+  glNamedFramebufferTexture(o.fbo, GL_COLOR_ATTACHMENT0, o.colour_tex, 0);
+  glNamedFramebufferRenderbuffer(o.fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, o.depth_rb);
+  if (glCheckNamedFramebufferStatus(o.fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    return "framebuffer " + std::to_string(w) + "x" + std::to_string(h) + " incomplete";
+
+  return "";
+}
+
+// The report; with --check the same frame through tessera's CPU renderer (Discard, trilinear)
+// and the agreement of the two. 0, or 1 with the problem on stderr.
+int report(const Args& a, const engine::Platform& platform, const tessera::faces::FaceScene& scene,
+           const tessera::faces::FaceTextureSet& set, const tessera::scene::Camera& camera,
+           const tessera::ImageRGBAF& img, int classes, double gl_ms, int window_diff) {
+  if (a.check) {
+    auto cpu = tessera::faces::FaceRenderer::create(scene, set);
+    if (!cpu) return fail(cpu.status().message);
+    tessera::faces::FaceRenderOptions o;
+    o.width = a.w;
+    o.height = a.h;
+    o.sampling.method = tessera::faces::Method::discard;
+    o.sampling.filter = tessera::texture::TextureFilter::trilinear;
+    o.sampling.clamp_fallback = true;
+    auto cpu_frame = (*cpu)->render(camera, o);
+    if (!cpu_frame) return fail(cpu_frame.status().message);
+    auto agree = agreement(img, cpu_frame->image);
+    if (!agree) return fail(agree.status().message);
+    if (a.json) {
+      // JSON has no infinity: identical 8-bit images (MSE 0) give null.
+      char psnr_text[32];
+      std::snprintf(psnr_text, sizeof psnr_text, "%.3f", agree->psnr);
+      const std::string psnr_json = std::isfinite(agree->psnr) ? psnr_text : "null";
+      std::printf(
+          "{\"device\": \"%s\", \"mesh\": \"%s\", \"faces\": %d, \"classes\": %d, "
+          "\"width\": %d, \"height\": %d, \"orbit\": \"%d/%d\", \"shader_method\": \"%s\", "
+          "\"shift_px\": %.3f, \"psnr_db\": %s, \"frac_001\": %.6f, \"max_norm\": %.4f, "
+          "\"non_finite\": %d, \"gl_ms\": %.3f, \"cpu_ms\": %.3f, \"context\": \"%s\"%s}\n",
+          platform.renderer().c_str(), scene.name.c_str(), scene.mesh.face_count(),
+          classes, a.w, a.h, a.orbit_k, a.orbit_n, a.method.c_str(), double(a.shift_px),
+          psnr_json.c_str(), agree->frac_001, agree->max_norm, agree->non_finite, gl_ms,
+          cpu_frame->ms(), platform.kind(),
+          window_diff >= 0 ? (", \"window_max_diff\": " + std::to_string(window_diff)).c_str()
+                           : "");
+    } else {
+      std::printf(
+          "engine_ptex %dx%d, %d faces in %d classes: GL (%s) vs CPU Discard: PSNR %.2f dB, "
+          "%.3f %% of the pixels >= 0.01 apart\n",
+          a.w, a.h, scene.mesh.face_count(), classes, a.method.c_str(), agree->psnr,
+          100.0 * agree->frac_001);
+    }
+  } else {
+    std::printf("engine_ptex %dx%d, %d faces in %d classes: drawn in %.1f ms\n", a.w, a.h,
+                scene.mesh.face_count(), classes, gl_ms);
+  }
+
+  return 0;
+}
+
+// The command line; "" or the problem.
+std::string parse_args(int argc, char** argv, Args& a) {
   std::vector<std::string> positional;
   for (int i = 1; i < argc; ++i) {
     const std::string k = argv[i];
@@ -206,19 +337,19 @@ int main(int argc, char** argv) {
       const std::string v = next();
       if (std::sscanf(v.c_str(), "%dx%d", &a.w, &a.h) != 2 || a.w <= 0 || a.h <= 0 || a.w > 8192 ||
           a.h > 8192 || a.w % 2 || a.h % 2)
-        return fail("--size " + v + ": expected WxH, even, 2..8192 (2x2 derivative quads)");
+        return "--size " + v + ": expected WxH, even, 2..8192 (2x2 derivative quads)";
     } else if (k == "--orbit") {
       const std::string v = next();
       if (std::sscanf(v.c_str(), "%d/%d", &a.orbit_k, &a.orbit_n) != 2 || a.orbit_n <= 0 ||
           a.orbit_k < 0)
-        return fail("--orbit " + v + ": expected K/N");
+        return "--orbit " + v + ": expected K/N";
     } else if (k == "--shader-method") {
       a.method = next();
       if (a.method != "discard" && a.method != "clamp")
-        return fail("--shader-method " + a.method + ": discard or clamp");
+        return "--shader-method " + a.method + ": discard or clamp";
     } else if (k == "--fov") {
       a.fov = std::strtof(next().c_str(), nullptr);
-      if (!(a.fov > 0.0f && a.fov < 180.0f)) return fail("--fov: degrees in (0, 180)");
+      if (!(a.fov > 0.0f && a.fov < 180.0f)) return "--fov: degrees in (0, 180)";
     } else if (k == "--shift-px") {
       a.shift_px = std::strtof(next().c_str(), nullptr);
     } else if (k == "--glsl") {
@@ -232,14 +363,22 @@ int main(int argc, char** argv) {
     } else if (k == "-o") {
       a.out = next();
     } else if (!k.empty() && k[0] == '-') {
-      return fail("unknown argument " + k);
+      return "unknown argument " + k;
     } else {
       positional.push_back(k);
     }
   }
-  if (positional.size() != 2) return fail("usage: engine_ptex MESH.obj FILE.ptx [options]");
+  if (positional.size() != 2) return "usage: engine_ptex MESH.obj FILE.ptx [options]";
   a.obj = positional[0];
   a.ptx = positional[1];
+  return "";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args a;
+  if (std::string why = parse_args(argc, argv, a); !why.empty()) return fail(why);
 
   // ---- tessera, step 1 (pure): the quad faces of the Ptex file and their textures ----
   auto poly = tessera::faces::load_obj_polygons(a.obj);
@@ -267,29 +406,8 @@ int main(int argc, char** argv) {
   const std::vector<tessera::Vec3> normals = tessera::faces::smooth_face_normals(scene.mesh);
   std::vector<Vertex> verts;
   std::vector<std::uint32_t> indices;
-  const float corner_uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  for (int f = 0; f < scene.mesh.face_count(); ++f) {
-    for (int c = 0; c < 4; ++c) {
-      const tessera::Vec3& p =
-          scene.mesh.positions[std::size_t(scene.mesh.quads[std::size_t(f)][std::size_t(c)])];
-      const tessera::Vec3& n = normals[std::size_t(f) * 4 + std::size_t(c)];
-      verts.push_back({{p.x, p.y, p.z}, {n.x, n.y, n.z}, {corner_uv[c][0], corner_uv[c][1]}, f});
-    }
-    const auto b = std::uint32_t(f) * 4;
-    for (std::uint32_t i : {b, b + 1, b + 2, b, b + 2, b + 3}) indices.push_back(i);
-  }
-  FrameBlock frame{};
-  const tessera::Mat4 vp = camera.view_projection(float(a.w) / float(a.h));
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) frame.view_proj[c * 4 + r] = vp.m[c][r];
-  // A shift of X pixels to the right: clip x += (2 X / width) w.
-  for (int c = 0; c < 4; ++c) {
-    frame.view_proj[c * 4 + 0] += 2.0f * a.shift_px / float(a.w) * vp.m[c][3];
-  }
-  const float light[3] = {0.42f, 0.82f, 0.39f};
-  std::copy(light, light + 3, frame.light_dir);
-  frame.shade[0] = 0.35f;
-  frame.shade[1] = 0.65f;
+  face_vertices(scene.mesh, normals, verts, indices);
+  const FrameBlock frame = make_frame_block(camera, a);
 
   // ---- tessera, step 2: upload once; the binding points are the engine's choice ----
   tessera::gl::FaceTexturesOptions to;
@@ -315,34 +433,10 @@ int main(int argc, char** argv) {
   if (program == 0) return fail(tessera::glsl::format_log(log, fragment->files));
   // ---- end of step 2 ----
 
-  GLuint vbo, ibo, ubo, vao, fbo, colour_tex, depth_rb;
-  glCreateBuffers(1, &vbo);
-  glNamedBufferStorage(vbo, GLsizeiptr(verts.size() * sizeof(Vertex)), verts.data(), 0);
-  glCreateBuffers(1, &ibo);
-  glNamedBufferStorage(ibo, GLsizeiptr(indices.size() * 4), indices.data(), 0);
-  glCreateBuffers(1, &ubo);
-  glNamedBufferStorage(ubo, sizeof frame, &frame, 0);
-  glCreateVertexArrays(1, &vao);
-  glVertexArrayVertexBuffer(vao, 0, vbo, 0, sizeof(Vertex));
-  glVertexArrayElementBuffer(vao, ibo);
-  const GLuint sizes[3] = {3, 3, 2}, offsets[3] = {0, 12, 24};
-  for (GLuint i = 0; i < 3; ++i) {
-    glEnableVertexArrayAttrib(vao, i);
-    glVertexArrayAttribFormat(vao, i, GLint(sizes[i]), GL_FLOAT, GL_FALSE, offsets[i]);
-    glVertexArrayAttribBinding(vao, i, 0);
-  }
-  glEnableVertexArrayAttrib(vao, 3);
-  glVertexArrayAttribIFormat(vao, 3, 1, GL_INT, offsetof(Vertex, face));
-  glVertexArrayAttribBinding(vao, 3, 0);
-  glCreateTextures(GL_TEXTURE_2D, 1, &colour_tex);
-  glTextureStorage2D(colour_tex, 1, GL_RGBA32F, a.w, a.h);
-  glCreateRenderbuffers(1, &depth_rb);
-  glNamedRenderbufferStorage(depth_rb, GL_DEPTH_COMPONENT32F, a.w, a.h);
-  glCreateFramebuffers(1, &fbo);
-  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, colour_tex, 0);
-  glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb);
-  if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    return fail("framebuffer " + std::to_string(a.w) + "x" + std::to_string(a.h) + " incomplete");
+  EngineObjects obj;
+  if (std::string why = create_objects(obj, verts, indices, frame, a.w, a.h); !why.empty())
+    return fail(why);
+  const GLuint fbo = obj.fbo, ubo = obj.ubo, vao = obj.vao, colour_tex = obj.colour_tex;
 
   // ---- the frame ----
   const auto t0 = std::chrono::steady_clock::now();
@@ -385,54 +479,9 @@ int main(int argc, char** argv) {
     if (auto s = tessera::io::write_png(a.out, srgb); !s.ok()) return fail(s.message);
   }
 
-  if (a.check) {
-    auto cpu = tessera::faces::FaceRenderer::create(scene, *set);
-    if (!cpu) return fail(cpu.status().message);
-    tessera::faces::FaceRenderOptions o;
-    o.width = a.w;
-    o.height = a.h;
-    o.sampling.method = tessera::faces::Method::discard;
-    o.sampling.filter = tessera::texture::TextureFilter::trilinear;
-    o.sampling.clamp_fallback = true;
-    auto cpu_frame = (*cpu)->render(camera, o);
-    if (!cpu_frame) return fail(cpu_frame.status().message);
-    auto agree = agreement(img, cpu_frame->image);
-    if (!agree) return fail(agree.status().message);
-    if (a.json) {
-      // JSON has no infinity: identical 8-bit images (MSE 0) give null.
-      char psnr_text[32];
-      std::snprintf(psnr_text, sizeof psnr_text, "%.3f", agree->psnr);
-      const std::string psnr_json = std::isfinite(agree->psnr) ? psnr_text : "null";
-      std::printf(
-          "{\"device\": \"%s\", \"mesh\": \"%s\", \"faces\": %d, \"classes\": %d, "
-          "\"width\": %d, \"height\": %d, \"orbit\": \"%d/%d\", \"shader_method\": \"%s\", "
-          "\"shift_px\": %.3f, \"psnr_db\": %s, \"frac_001\": %.6f, \"max_norm\": %.4f, "
-          "\"non_finite\": %d, \"gl_ms\": %.3f, \"cpu_ms\": %.3f, \"context\": \"%s\"%s}\n",
-          platform.renderer().c_str(), scene.name.c_str(), scene.mesh.face_count(),
-          tex->class_count(), a.w, a.h, a.orbit_k, a.orbit_n, a.method.c_str(), double(a.shift_px),
-          psnr_json.c_str(), agree->frac_001, agree->max_norm, agree->non_finite, gl_ms,
-          cpu_frame->ms(), platform.kind(),
-          window_diff >= 0 ? (", \"window_max_diff\": " + std::to_string(window_diff)).c_str()
-                           : "");
-    } else {
-      std::printf(
-          "engine_ptex %dx%d, %d faces in %d classes: GL (%s) vs CPU Discard: PSNR %.2f dB, "
-          "%.3f %% of the pixels >= 0.01 apart\n",
-          a.w, a.h, scene.mesh.face_count(), tex->class_count(), a.method.c_str(), agree->psnr,
-          100.0 * agree->frac_001);
-    }
-  } else {
-    std::printf("engine_ptex %dx%d, %d faces in %d classes: drawn in %.1f ms\n", a.w, a.h,
-                scene.mesh.face_count(), tex->class_count(), gl_ms);
-  }
-
+  if (int rc = report(a, platform, scene, *set, camera, img, tex->class_count(), gl_ms, window_diff);
+      rc != 0)
+    return rc;
   glDeleteProgram(program);
-  glDeleteBuffers(1, &vbo);
-  glDeleteBuffers(1, &ibo);
-  glDeleteBuffers(1, &ubo);
-  glDeleteVertexArrays(1, &vao);
-  glDeleteFramebuffers(1, &fbo);
-  glDeleteRenderbuffers(1, &depth_rb);
-  glDeleteTextures(1, &colour_tex);
   return 0;
 }
