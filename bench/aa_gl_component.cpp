@@ -1,4 +1,4 @@
-// gl::AdaptiveSupersampler against gl::DeferredGlRenderer on the same frame: DeferredGl renders
+// gl::AdaptiveSupersampler against gl::DeferredRenderer on the same frame: DeferredGl renders
 // its G-buffer, shades it adaptively (itself through a component whose hook keeps S's light
 // terms for sample 0 again), and a component shades the same G-buffer textures with
 // DeferredGl's Blinn-Phong (deferred_shading.glsl) as a plain hook. Prints one JSON line per
@@ -97,9 +97,9 @@ int main(int argc, char** argv) {
     sc = std::move(*l);
   }
   const scene::Camera cam = scene::orbit_camera(sc, 1, 8);
-  gl::DeferredGlOptions go;
+  gl::DeferredRendererOptions go;
   go.glsl_dir = TESSERA_GLSL_DIR;
-  auto dgl = gl::DeferredGlRenderer::create(sc, go);
+  auto dgl = gl::DeferredRenderer::create(sc, go);
   if (!dgl) return fail(dgl.status().message);
   if (Status s = (*dgl)->render_gbuffer(cam, w, h, m); !s.ok()) return fail(s.message);
   deferred::ShadingOptions shading = deferred::scene_shading(sc, 8, &cam);
@@ -108,14 +108,14 @@ int main(int argc, char** argv) {
 
   // DeferredGl: warm-up, then timed frames.
   std::vector<std::vector<gl::PassTime>> dgl_frames;
-  gl::GlShadeResult dgl_result;
+  gl::ShadeResult dgl_result;
   for (int f = 0; f <= frames; ++f) {
-    Result<gl::GlShadeResult> r = (*dgl)->shade_adaptive(shading, deferred::AdaptiveOptions{});
+    Result<gl::ShadeResult> r = (*dgl)->shade_adaptive(shading, deferred::AdaptiveOptions{});
     if (!r) return fail(r.status().message);
     if (f > 0) dgl_frames.push_back(r->wall_passes);
     dgl_result = std::move(*r);
   }
-  const gl::GlShadeResult* ref = &dgl_result;
+  const gl::ShadeResult* ref = &dgl_result;
   // Its G-buffer textures are on units 0..2, its texture arrays on 3.. (left bound).
   gl::AdaptiveFrame frame;
   int classes = 0;
@@ -144,7 +144,7 @@ int main(int argc, char** argv) {
         100.0 * double(pixels + extra) / double(pixels * std::size_t(m * m)),
         same < 0 ? "null" : (same ? "true" : "false"), total, passes.c_str());
   };
-  print("DeferredGlRenderer", dgl_frames, asked, -1, -1);
+  print("DeferredRenderer", dgl_frames, asked, -1, -1);
 
   const struct {
     const char* name;

@@ -161,7 +161,7 @@ int main(int argc, char** argv) {
                     ? "no CPU pattern (compared with the CPU drawn at these positions)"
                     : "no CPU pattern, off the CPU's 1/16-pixel grid (not compared)");
   }
-  const auto times = [&](std::size_t ri, faces::Method m) -> GlTimes {
+  const auto times = [&](std::size_t ri, faces::SeamMethod m) -> GlTimes {
     if (both) {
       const experiments::SeamsGlMethodResult& g = res.gl_rates[ri].method(m);
       return {&g.gpu, &g.wall};
@@ -170,7 +170,7 @@ int main(int argc, char** argv) {
     return {&g.timing, &g.wall};
   };
 
-  const faces::Method methods[2] = {faces::Method::traverse, faces::Method::discard};
+  const faces::SeamMethod methods[2] = {faces::SeamMethod::traverse, faces::SeamMethod::discard};
   const double paper_gtx[4] = {0.344 / 0.167, 0.446 / 0.265, 0.485 / 0.301, 0.568 / 0.412};
   const double paper_iris[4] = {2.36 / 0.815, 2.94 / 1.34, 3.25 / 1.48, 4.02 / 2.43};
   auto rate_index = [](int m) { return m == 1 ? 0 : m == 2 ? 1 : m == 4 ? 2 : m == 8 ? 3 : -1; };
@@ -245,7 +245,7 @@ int main(int argc, char** argv) {
     std::printf("\n|---|");
     for (std::size_t i = 0; i < rates.size(); ++i) std::printf("---|");
     std::printf("\n");
-    for (faces::Method m : faces::all_methods()) {
+    for (faces::SeamMethod m : faces::all_methods()) {
       std::printf("| %s |", faces::method_name(m));
       for (std::size_t ri = 0; ri < rates.size(); ++ri) {
         const experiments::SeamsGlMethodResult& g = res.gl_rates[ri].method(m);

@@ -36,7 +36,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         tessera::faces::FaceTextureSet::from_ptex(*file, "fuzz.ptx", {1});
     if (set) {
       tessera::faces::SampleOptions o;
-      o.method = tessera::faces::Method::traverse_corners;
+      o.method = tessera::faces::SeamMethod::traverse_corners;
       for (int f = 0; f < set->face_count(); ++f) {
         (void)tessera::faces::sample_face(*set, f, {-0.1f, 0.5f}, {0.3f, 0.0f, 0.0f, 0.05f}, o);
       }

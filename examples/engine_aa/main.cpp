@@ -179,10 +179,10 @@ vec3 engine_position(ivec2 g, float depth) {
 }
 
 vec4 tessera_shade_sample(ivec2 g, float footprint) {
-  int id = tessera_aa_id(g);  // the component's accessor of the layout's id channel
+  int id = tessera_adaptive_id(g);  // the component's accessor of the layout's id channel
   if (id < 0) return vec4(0.25, 0.35, 0.55, 1.0) * (1.0 - float(g.y) / grid_aspect.y * 0.6);
-  vec3 n = normalize(tessera_aa_normal(g));
-  vec3 p = engine_position(g, tessera_aa_depth(g));
+  vec3 n = normalize(tessera_adaptive_normal(g));
+  vec3 p = engine_position(g, tessera_adaptive_depth(g));
   vec3 albedo = texelFetch(engine_albedo, g, 0).rgb;
   float shininess = id == 2 ? 600.0 : (id == 1 ? 24.0 : 120.0);
   float spec = id == 2 ? 6.0 : (id == 1 ? 0.3 : 1.5);

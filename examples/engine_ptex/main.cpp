@@ -7,9 +7,9 @@
 // from libOpenGL, an interleaved
 // vertex layout (position, normal, per-face UV, integer face id), a per-frame uniform block at
 // binding 0 (view-projection, light), its own framebuffer, and a vertex and fragment shader
-// written below. The integration with tessera follows the recipe of tessera/gl_ptex.h and is the
+// written below. The integration with tessera follows the recipe of tessera/gl_faces.h and is the
 // blocks marked "tessera": mesh and textures from the .obj and .ptx, one upload, the binding
-// points the engine chose (FaceTexturesBindings) as shader defines and as one bind per frame.
+// points the engine chose (FaceTextureSetBindings) as shader defines and as one bind per frame.
 //
 // Usage: engine_ptex MESH.obj FILE.ptx [--headless] [--size WxH] [--orbit K/N] [--fov DEG] [--shader-method
 //                    discard|clamp] [--shift-px X] [--glsl DIR] [--check] [--json] [-o FILE.png]
@@ -46,7 +46,7 @@
 #include "tessera/core.h"
 #include "tessera/faces.h"
 #include "tessera/gl.h"
-#include "tessera/gl_ptex.h"
+#include "tessera/gl_faces.h"
 #include "tessera/glsl.h"
 #include "tessera/io.h"
 #include "tessera/metrics.h"
@@ -101,7 +101,7 @@ void main() {
 }
 )";
 
-// The defines of FaceTextures::glsl_defines go after #version (glsl::ExpandOptions::preamble).
+// The defines of FaceTextureSet::glsl_defines go after #version (glsl::ExpandOptions::preamble).
 const char* kFragmentShader = R"(#version 450 core
 #include "seams.glsl"
 layout(std140, binding = 0) uniform Frame {
@@ -283,7 +283,7 @@ int report(const Args& a, const engine::Platform& platform, const tessera::faces
     tessera::faces::FaceRenderOptions o;
     o.width = a.w;
     o.height = a.h;
-    o.sampling.method = tessera::faces::Method::discard;
+    o.sampling.method = tessera::faces::SeamMethod::discard;
     o.sampling.filter = tessera::texture::TextureFilter::trilinear;
     o.sampling.clamp_fallback = true;
     auto cpu_frame = (*cpu)->render(camera, o);
@@ -410,11 +410,11 @@ int main(int argc, char** argv) {
   const FrameBlock frame = make_frame_block(camera, a);
 
   // ---- tessera, step 2: upload once; the binding points are the engine's choice ----
-  tessera::gl::FaceTexturesOptions to;
+  tessera::gl::FaceTextureSetOptions to;
   to.max_anisotropy = 1.0f;  // trilinear: the filter the CPU check uses
-  auto tex = tessera::gl::FaceTextures::upload(*set, to);
+  auto tex = tessera::gl::FaceTextureSet::upload(*set, to);
   if (!tex) return fail(tex.status().message);
-  tessera::gl::FaceTexturesBindings bindings;
+  tessera::gl::FaceTextureSetBindings bindings;
   bindings.border_unit = 1;  // unit 0 stays free for the engine's own textures
   bindings.clamp_unit = 17;  // after at most 16 classes
   bindings.records_binding = 3;

@@ -77,7 +77,7 @@ inline constexpr int kGBufferChannels = 11;
 inline constexpr std::array<float, 3> kBackground = {0.05f, 0.05f, 0.08f};
 
 /// The camera set-up of a G-buffer pass, shared by `DeferredRenderer` and its GL twin
-/// (gl::DeferredGlRenderer) so that both rasterise the same clip positions and reconstruct
+/// (gl::DeferredRenderer) so that both rasterise the same clip positions and reconstruct
 /// positions with the same constants.
 struct GBufferCamera {
   Mat4 view;                    ///< World to camera.

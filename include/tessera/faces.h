@@ -20,7 +20,7 @@
 // opposite directions (consistently oriented meshes), so my edge e from vertex A to B is the
 // neighbour's edge e' from B to A.
 //
-// Methods (`Method`), each with trilinear or up to 16x anisotropic filtering:
+// Methods (`SeamMethod`), each with trilinear or up to 16x anisotropic filtering:
 //  * clamp: the face texture with clamp-to-edge addressing (the artefact baseline).
 //  * discard: border colour 0 and the coverage channel (alpha = 1 inside): the lookup sums
 //    w*T and w over the in-face taps only and returns Σ(w·T)/Σw. When no tap is inside
@@ -208,17 +208,17 @@ class FaceTextureSet {
 // Sampling methods
 // ---------------------------------------------------------------------------------------------
 
-enum class Method { clamp, discard, traverse, traverse_corners };
+enum class SeamMethod { clamp, discard, traverse, traverse_corners };
 
 /// All methods in a fixed order.
-const std::vector<Method>& all_methods();
+const std::vector<SeamMethod>& all_methods();
 /// "clamp", "discard", "traverse", "traverse_corners".
-const char* method_name(Method m);
+const char* method_name(SeamMethod m);
 /// Parses a method name; false if unknown.
-bool parse_method(const std::string& text, Method& out);
+bool parse_method(const std::string& text, SeamMethod& out);
 
 struct SampleOptions {
-  Method method = Method::discard;
+  SeamMethod method = SeamMethod::discard;
   texture::TextureFilter filter =
       texture::TextureFilter::anisotropic;            ///< trilinear or anisotropic.
   int max_aniso = 16;                                 ///< 1..16.
@@ -318,7 +318,7 @@ struct FaceFrame {
 inline constexpr std::array<float, 3> kFaceBackground = {0.45f, 0.55f, 0.7f};
 
 /// Settings of the paper's reference frame: `FaceRenderer::render_reference`, its GL twin
-/// `gl::SeamsRenderer::render_reference` and `experiments::SeamsBackend::render_reference`.
+/// `gl::FaceRenderer::render_reference` and `experiments::SeamsBackend::render_reference`.
 struct ReferenceOptions {
   int factor = 8;  ///< Supersampling factor per axis, 1..16 (factor x factor the resolution).
   /// Texture filter of the Traverse lookups: anisotropic (16x, the paper's reference) or
@@ -359,7 +359,7 @@ class FaceRenderer {
 };
 
 // ---------------------------------------------------------------------------------------------
-// Host set-up shared by the CPU renderer and its GL twin (gl::SeamsRenderer)
+// Host set-up shared by the CPU renderer and its GL twin (gl::FaceRenderer)
 // ---------------------------------------------------------------------------------------------
 
 /// Smooth vertex normals of a quad mesh, one per face vertex (4 per face, face-major): the
@@ -374,7 +374,7 @@ struct FrameWindow {
   int full_width = 0, full_height = 0, x0 = 0, y0 = 0;
 };
 
-/// The window of a frame's options (FaceRenderOptions, gl::SeamsFrameOptions: fields width,
+/// The window of a frame's options (FaceRenderOptions, gl::FaceFrameOptions: fields width,
 /// height, full_width, full_height, x0, y0).
 template <typename Options>
 FrameWindow frame_window(const Options& o) {

@@ -2,7 +2,7 @@
 // Boubekeur & Eisemann 2013), with its baselines, through OpenGL 4.5 (tessera::gl runtime).
 //
 // The GPU twin of tessera/deferred.h's CPU path, checked against it
-// (tests/gl/gl_deferred_test.cpp):
+// (tests/gl/gl_deferred_renderer_test.cpp):
 //  * Geometry pass: the scene rasterised by GL into an enlarged G-buffer of (m*w) x (m*h)
 //    RGBA32F texels (three colour attachments + a 32-bit float depth buffer), with the CPU's
 //    conventions: clip positions computed on the CPU exactly as DeferredRenderer does, linear
@@ -68,7 +68,7 @@ enum class ExtraSchedule {
   frame_list,
 };
 
-struct DeferredGlOptions {
+struct DeferredRendererOptions {
   /// Development override: a folder read instead of the GLSL embedded in the library (see
   /// tessera/glsl.h). Empty (the default): $TESSERA_GLSL_DIR when set, else the embedded copy;
   /// no file is read.
@@ -79,7 +79,7 @@ struct DeferredGlOptions {
 
 /// One GPU result: the image, the pass times and, for adaptive and edge-per-sample, the
 /// per-pixel sample counts.
-struct GlShadeResult {
+struct ShadeResult {
   ImageRGBAF image;                   ///< Linear RGB, alpha 1 (w x h).
   std::vector<std::uint8_t> samples;  ///< Shaded samples per pixel (k + 1); empty for others.
   std::uint64_t samples_shaded = 0;   ///< Sum of `samples` (or w*h*n for the reference, w*h
@@ -95,25 +95,25 @@ struct GlShadeResult {
 };
 
 /// FXAA's 8-bit result.
-struct GlFxaaResult {
+struct FxaaResult {
   ImageRGBA8 image;
   std::vector<PassTime> passes;
-  std::vector<PassTime> wall_passes;  ///< As GlShadeResult::wall_passes.
+  std::vector<PassTime> wall_passes;  ///< As ShadeResult::wall_passes.
   double total_ms() const;
   double total_wall_ms() const;
 };
 
 /// The GPU deferred renderer of one scene. Needs a current `Context` for every call.
-class DeferredGlRenderer {
+class DeferredRenderer {
  public:
   /// Builds the CPU texture chains (as DeferredRenderer does), uploads them and the meshes,
   /// and compiles the geometry pass. Fails (io_error) when the GLSL folder is missing,
   /// (too_large) when the textures need more than 8 size classes, or on GL errors.
-  static Result<std::unique_ptr<DeferredGlRenderer>> create(const scene::Scene& scene,
-                                                            const DeferredGlOptions& options = {});
-  ~DeferredGlRenderer();
-  DeferredGlRenderer(const DeferredGlRenderer&) = delete;
-  DeferredGlRenderer& operator=(const DeferredGlRenderer&) = delete;
+  static Result<std::unique_ptr<DeferredRenderer>> create(const scene::Scene& scene,
+                                                            const DeferredRendererOptions& options = {});
+  ~DeferredRenderer();
+  DeferredRenderer(const DeferredRenderer&) = delete;
+  DeferredRenderer& operator=(const DeferredRenderer&) = delete;
 
   /// Checks a G-buffer of (m*width) x (m*height) against the context's limits
   /// (GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT, GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE) without
@@ -136,28 +136,28 @@ class DeferredGlRenderer {
   Result<deferred::GBuffer> read_gbuffer() const;
 
   /// Full SSAA: all m^2 samples, footprint scale 1 (passes: "reference").
-  Result<GlShadeResult> shade_reference(const deferred::ShadingOptions& shading);
+  Result<ShadeResult> shade_reference(const deferred::ShadingOptions& shading);
   /// 1 spp: the first sample, footprint scale m (passes: "first").
-  Result<GlShadeResult> shade_default(const deferred::ShadingOptions& shading);
+  Result<ShadeResult> shade_default(const deferred::ShadingOptions& shading);
   /// Adaptive (passes: "first", "metrics", "extra").
-  Result<GlShadeResult> shade_adaptive(const deferred::ShadingOptions& shading,
+  Result<ShadeResult> shade_adaptive(const deferred::ShadingOptions& shading,
                                        const deferred::AdaptiveOptions& adaptive);
   /// Engine baseline (passes: "first", "edge_extra": classification + shading per tile).
-  Result<GlShadeResult> shade_edge_per_sample(const deferred::ShadingOptions& shading,
+  Result<ShadeResult> shade_edge_per_sample(const deferred::ShadingOptions& shading,
                                               const deferred::EdgePerSampleOptions& edge = {});
   /// 1 spp, sRGB8 encoding and FXAA 3.11, all on the GPU (passes: "first", "srgb8", "fxaa").
-  Result<GlFxaaResult> shade_default_fxaa(const deferred::ShadingOptions& shading,
+  Result<FxaaResult> shade_default_fxaa(const deferred::ShadingOptions& shading,
                                           const deferred::FxaaOptions& fxaa = {});
   /// FXAA 3.11 of an 8-bit image on the GPU (passes: "fxaa"); the CPU `deferred::fxaa`'s
   /// arithmetic. Independent of the G-buffer.
-  Result<GlFxaaResult> fxaa(const ImageRGBA8& image, const deferred::FxaaOptions& fxaa = {});
+  Result<FxaaResult> fxaa(const ImageRGBA8& image, const deferred::FxaaOptions& fxaa = {});
 
   const std::filesystem::path& glsl_dir() const;
 
   struct State;
 
  private:
-  DeferredGlRenderer() = default;
+  DeferredRenderer() = default;
   std::unique_ptr<State> state_;
 };
 

@@ -5,8 +5,8 @@
 // `run_seams` and `run_aa` live, never links OpenGL and reaches GL only through the factory a
 // caller puts in the config (`SeamsConfig::gl_factory`, `AaConfig::gl_factory`).
 //
-// The seam backend is gl::SeamsRenderer (tessera/gl_seams.h), the AA backend
-// gl::DeferredGlRenderer (tessera/gl_deferred.h), each on a headless context of its own created
+// The seam backend is gl::FaceRenderer (tessera/gl_face_renderer.h), the AA backend
+// gl::DeferredRenderer (tessera/gl_deferred.h), each on a headless context of its own created
 // on the calling thread with the device TESSERA_EGL_DEVICE names (gl.h).
 #pragma once
 
@@ -21,7 +21,7 @@ namespace tessera::gl {
 struct ExperimentBackendOptions {
   /// Development override of the embedded GLSL (see tessera/glsl.h); empty: embedded.
   std::filesystem::path glsl_dir;
-  /// The AA backend's extra-sample schedule (DeferredGlOptions::schedule).
+  /// The AA backend's extra-sample schedule (DeferredRendererOptions::schedule).
   ExtraSchedule schedule = ExtraSchedule::frame_list;
 };
 

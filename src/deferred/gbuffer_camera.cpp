@@ -1,5 +1,5 @@
 // The camera set-up of a G-buffer pass, shared by the CPU renderer (gbuffer.cpp) and its GL
-// twin (src/gl/deferred_gl_scene.cpp): matrices, reconstruction constants, vertex transforms.
+// twin (src/gl/deferred_renderer_scene.cpp): matrices, reconstruction constants, vertex transforms.
 #include <cmath>
 #include <numbers>
 

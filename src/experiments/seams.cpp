@@ -219,7 +219,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
   res.threads = c.threads > 0 ? c.threads : default_thread_count();
   for (int i = 0; i < kSeamsCdfBins; ++i) res.thresholds.push_back(double(i) * kSeamsCdfStep);
 
-  const std::vector<faces::Method>& methods = faces::all_methods();
+  const std::vector<faces::SeamMethod>& methods = faces::all_methods();
   const std::size_t nm = methods.size(), nr = rates.size();
   res.rates.resize(nr);
   std::vector<RateAccumulators> acc(nr);
@@ -251,11 +251,11 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
     acc[ri].traverse_vs_discard = metrics::ErrorCdfAccumulator(res.thresholds);
   }
   // imgs[] and the accumulators follow the order of `methods`.
-  const auto index_of = [&](faces::Method m) {
+  const auto index_of = [&](faces::SeamMethod m) {
     return std::size_t(std::find(methods.begin(), methods.end(), m) - methods.begin());
   };
-  const std::size_t traverse = index_of(faces::Method::traverse);
-  const std::size_t discard = index_of(faces::Method::discard);
+  const std::size_t traverse = index_of(faces::SeamMethod::traverse);
+  const std::size_t discard = index_of(faces::SeamMethod::discard);
 
   faces::FaceRenderOptions o;  // the CPU's face-id and mask frames
   o.width = c.width;
@@ -263,7 +263,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
   o.threads = c.threads;
   o.sampling.filter = texture::TextureFilter::anisotropic;
   o.sampling.max_aniso = 16;
-  SeamsFrameOptions fo;  // the frames of the experiment
+  FaceFrameOptions fo;  // the frames of the experiment
   fo.width = c.width;
   fo.height = c.height;
   fo.threads = c.threads;
@@ -277,14 +277,14 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
   // variant once (untimed) so that no timed frame pays for it. The CPU needs no warm-up.
   if (gl) {
     const scene::Camera cam = faces::face_orbit_camera(scene, 0, c.frames);
-    SeamsFrameOptions wo = fo;
+    FaceFrameOptions wo = fo;
     wo.keep_image = false;
     for (std::size_t ri = 0; ri < nr; ++ri) {
       if (compare_gl && gl_index[ri] < 0) continue;
       wo.msaa = rates[ri];
-      for (faces::Method m : methods) {
+      for (faces::SeamMethod m : methods) {
         for (bool fallback : {true, false}) {
-          if (!fallback && (m != faces::Method::discard || compare_gl)) continue;
+          if (!fallback && (m != faces::SeamMethod::discard || compare_gl)) continue;
           wo.method = m;
           wo.clamp_fallback = fallback;
           if (Result<SeamsBackendFrame> fr = gl->render(cam, wo); !fr) return fr.status();
@@ -349,7 +349,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
         for (std::size_t k = 0; k < nv; ++k) {
           const std::size_t v = (k + std::size_t(f) + std::size_t(rep)) % nv;
           fo.shading_only = v == nm;
-          fo.method = v == nm ? faces::Method::clamp : methods[v];
+          fo.method = v == nm ? faces::SeamMethod::clamp : methods[v];
           fo.clamp_fallback = true;
           Result<SeamsBackendFrame> fr = primary.render(cam, fo);
           if (!fr) return fr.status();
@@ -369,7 +369,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
       if (gl_side && gl_index[ri] >= 0) {
         // The same frame by GL, methods rotating likewise; read back on quality frames only.
         SeamsGlRateResult& g = res.gl_rates[std::size_t(gl_index[ri])];
-        SeamsFrameOptions go = fo;
+        FaceFrameOptions go = fo;
         go.shading_only = false;
         for (std::size_t n = 0; n < nm * std::size_t(c.repetitions); ++n) {
           const std::size_t rep = n / nm, v = (n % nm + std::size_t(f) + rep) % nm;
@@ -388,7 +388,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
               // The driver draws this rate with the samples of another CPU rate (llvmpipe: 2x
               // with its 4x samples), or at positions no CPU rate has: compare like for like,
               // with the CPU frame at that rate, or drawn at the driver's own positions.
-              SeamsFrameOptions co = go;
+              FaceFrameOptions co = go;
               co.msaa = driver ? int(pattern.positions.size()) : pattern.cpu_msaa;
               if (driver) co.sample_pattern = pattern.positions;
               co.keep_image = true;
@@ -420,7 +420,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
         // Discard without the zero-coverage fallback: count the NaN pixels it produces.
         fo.shading_only = false;
         fo.keep_image = true;
-        fo.method = faces::Method::discard;
+        fo.method = faces::SeamMethod::discard;
         fo.clamp_fallback = false;
         Result<SeamsBackendFrame> fr = primary.render(cam, fo);
         if (!fr) return fr.status();
@@ -446,7 +446,7 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
   for (std::size_t gi = 0; gi < agree.size(); ++gi) {
     // An uncompared rate has no agreement: NaN, not the "identical" of an empty pool.
     const bool compared = res.gl_rates[gi].compared_with != SeamsGlComparison::none;
-    for (faces::Method m : methods) {
+    for (faces::SeamMethod m : methods) {
       SeamsGlMethodResult& gm = res.gl_rates[gi].methods[std::size_t(m)];
       gm.psnr_db = compared ? agree[gi][std::size_t(m)].psnr() : std::nan("");
       gm.fraction_ge_001 = compared ? agree[gi][std::size_t(m)].fraction() : std::nan("");

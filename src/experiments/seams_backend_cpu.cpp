@@ -17,7 +17,7 @@ class CpuSeamsBackend final : public SeamsBackend {
   bool has_shading_only() const override { return true; }
 
   Result<SeamsBackendFrame> render(const scene::Camera& camera,
-                                   const SeamsFrameOptions& options) override {
+                                   const FaceFrameOptions& options) override {
     faces::FaceRenderOptions o;
     o.width = options.width;
     o.height = options.height;
@@ -27,7 +27,7 @@ class CpuSeamsBackend final : public SeamsBackend {
     o.sampling.filter = options.filter;
     o.sampling.max_aniso = options.max_aniso;
     o.shading_only = options.shading_only;
-    o.sampling.method = options.shading_only ? faces::Method::clamp : options.method;
+    o.sampling.method = options.shading_only ? faces::SeamMethod::clamp : options.method;
     o.sampling.clamp_fallback = options.clamp_fallback;
     Result<faces::FaceFrame> f = r_->render(camera, o);
     if (!f) return f.status();

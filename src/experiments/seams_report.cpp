@@ -17,7 +17,7 @@ namespace tessera::experiments {
 
 namespace {
 
-using faces::Method;
+using faces::SeamMethod;
 
 constexpr double kStep = kSeamsCdfStep;
 constexpr int kBins = kSeamsCdfBins;
@@ -39,8 +39,8 @@ float norm_rgb(const float* a, const float* b) {
 /// the same rate, or null when it never is.
 nlohmann::json discard_catches_traverse(const SeamsResult& res) {
   for (const SeamsRateResult& rate : res.rates) {
-    if (rate.method(Method::discard).vs_reference_near_seams.mean <=
-        rate.method(Method::traverse).vs_reference_near_seams.mean) {
+    if (rate.method(SeamMethod::discard).vs_reference_near_seams.mean <=
+        rate.method(SeamMethod::traverse).vs_reference_near_seams.mean) {
       return rate.msaa;
     }
   }
@@ -269,11 +269,11 @@ struct TimeRow {
 /// Discard is at least 2x faster at every rate.
 bool time_table(std::ostringstream& md, const std::vector<int>& rates,
                 const std::vector<TimeRow>& rows, const char* cell) {
-  const auto row = [&](Method m) {
+  const auto row = [&](SeamMethod m) {
     return std::find_if(rows.begin(), rows.end(),
                         [&](const TimeRow& r) { return r.label == faces::method_name(m); });
   };
-  const auto t = row(Method::traverse), d = row(Method::discard);
+  const auto t = row(SeamMethod::traverse), d = row(SeamMethod::discard);
   md << "| method |";
   for (int r : rates) md << " " << r << "x |";
   md << "\n|---|";
@@ -299,13 +299,13 @@ bool time_table(std::ostringstream& md, const std::vector<int>& rates,
 template <typename Rate, typename Pick>
 bool gl_time_tables(std::ostringstream& md, const SeamsResult& res, const std::vector<Rate>& rates,
                     Pick pick) {
-  const std::vector<Method>& methods = faces::all_methods();
+  const std::vector<SeamMethod>& methods = faces::all_methods();
   std::vector<int> keys;
   for (const Rate& r : rates) keys.push_back(r.msaa);
   bool ok[2] = {true, true};
   for (int gpu = 0; gpu < 2; ++gpu) {
     std::vector<TimeRow> rows;
-    for (Method m : methods) {
+    for (SeamMethod m : methods) {
       TimeRow row{faces::method_name(m), {}};
       for (const Rate& r : rates) row.ms.push_back(pick(r, m, gpu == 1)->median_ms());
       rows.push_back(std::move(row));
@@ -319,7 +319,7 @@ bool gl_time_tables(std::ostringstream& md, const SeamsResult& res, const std::v
      << (software_gl(res)
              ? "the wall times. This is llvmpipe, a software rasteriser: its GL_TIME_ELAPSED "
                "queries are executed per screen tile by the rasteriser threads and cover only "
-               "part of the frame (gl_seams.h)."
+               "part of the frame (gl_face_renderer.h)."
              : "the GPU timer (a hardware GPU: the timer is the pass time; wall time adds the "
                "driver's submission and the glFinish round trip).")
      << "\n\n";
@@ -336,7 +336,7 @@ std::string gl_beside_cpu(const SeamsResult& res) {
     for (int r : res.msaa_unsupported) md << " " << rate_key(r);
   }
   md << ".\n\n";
-  gl_time_tables(md, res, res.gl_rates, [](const SeamsGlRateResult& r, Method m, bool gpu) {
+  gl_time_tables(md, res, res.gl_rates, [](const SeamsGlRateResult& r, SeamMethod m, bool gpu) {
     return gpu ? &r.method(m).gpu : &r.method(m).wall;
   });
   md << "GL against the CPU, the same camera, method and sample positions (the rate's, unless "
@@ -353,7 +353,7 @@ std::string gl_beside_cpu(const SeamsResult& res) {
     rule += "---:|";
   }
   md << rule << "\n";
-  for (Method m : faces::all_methods()) {
+  for (SeamMethod m : faces::all_methods()) {
     md << "| " << faces::method_name(m) << " |";
     for (const SeamsGlRateResult& g : res.gl_rates) {
       const SeamsGlMethodResult& r = g.method(m);
@@ -393,7 +393,7 @@ std::string driver_positions_sentence(const SeamsResult& res, const SeamsSampleP
 }
 
 std::string markdown(const SeamsConfig& c, const SeamsResult& res, bool images) {
-  const std::vector<Method>& methods = faces::all_methods();
+  const std::vector<SeamMethod>& methods = faces::all_methods();
   std::ostringstream md;
   md << "# Seams experiment (Toth 2013, Table 1 and Figure 5)\n\n";
   md << "Scene: " << res.scene_description << "; " << res.faces << " faces, " << res.texels_level0
@@ -439,7 +439,7 @@ std::string markdown(const SeamsConfig& c, const SeamsResult& res, bool images) 
   if (gl) {
     md << "Draws + MSAA box resolve on the GPU, all methods rendered side by side in one run, "
           "alternating per frame (no shading-only pass on GL).\n\n";
-    speed_ok = gl_time_tables(md, res, res.rates, [](const SeamsRateResult& r, Method m, bool gpu) {
+    speed_ok = gl_time_tables(md, res, res.rates, [](const SeamsRateResult& r, SeamMethod m, bool gpu) {
       return gpu ? &r.method(m).timing : &r.method(m).wall;
     });
   } else {
@@ -475,7 +475,7 @@ std::string markdown(const SeamsConfig& c, const SeamsResult& res, bool images) 
   for (const SeamsRateResult& rate : res.rates) {
     md << error_row("traverse vs discard", rate.msaa, rate.traverse_vs_discard);
   }
-  for (Method m : methods) {
+  for (SeamMethod m : methods) {
     for (const SeamsRateResult& rate : res.rates) {
       md << error_row(std::string(faces::method_name(m)) + " vs reference", rate.msaa,
                       rate.method(m).vs_reference);
@@ -489,7 +489,7 @@ std::string markdown(const SeamsConfig& c, const SeamsResult& res, bool images) 
           "`fig5_<rate>.svg` (solid: all pixels, dashed: near seams).\n\n"
           "| method vs reference, near seams | rate | mean error | fraction >= 0.01 | "
           "fraction >= 0.05 |\n|---|---|---:|---:|---:|\n";
-    for (Method m : methods) {
+    for (SeamMethod m : methods) {
       for (const SeamsRateResult& rate : res.rates) {
         md << error_row(faces::method_name(m), rate.msaa, rate.method(m).vs_reference_near_seams);
       }
@@ -507,7 +507,7 @@ std::string markdown(const SeamsConfig& c, const SeamsResult& res, bool images) 
           "surface is curved and Traverse's extrapolation across edges is approximate.\n\n"
           "| method vs reference, character only | rate | mean error | fraction >= 0.01 | "
           "fraction >= 0.05 |\n|---|---|---:|---:|---:|\n";
-    for (Method m : methods) {
+    for (SeamMethod m : methods) {
       for (const SeamsRateResult& rate : res.rates) {
         md << error_row(faces::method_name(m), rate.msaa, rate.method(m).vs_reference_character);
       }
@@ -517,8 +517,8 @@ std::string markdown(const SeamsConfig& c, const SeamsResult& res, bool images) 
   md << "- Discard at least 2x faster than Traverse at every rate: **"
      << (speed_ok ? "met" : "not met") << "** (ratios in the table).\n";
   for (const SeamsRateResult& rate : res.rates) {
-    const double d = rate.method(Method::discard).vs_reference.mean;
-    const double t = rate.method(Method::traverse).vs_reference.mean;
+    const double d = rate.method(SeamMethod::discard).vs_reference.mean;
+    const double t = rate.method(SeamMethod::traverse).vs_reference.mean;
     md << "- " << rate_key(rate.msaa) << ": mean error vs reference Discard " << fmt("%.5f", d)
        << ", Traverse " << fmt("%.5f", t) << " -> "
        << (d <= t ? "Discard no worse" : "Traverse better") << ".\n";
@@ -550,8 +550,8 @@ SeamsZoomWindow seams_zoom_window(const SeamsConfig& c, const SeamsResult& res) 
   z.w = std::min(40, c.width);
   z.h = std::min(40, c.height);
   if (res.rates.empty()) return z;
-  const ImageRGBAF& a = res.rates[0].method(Method::clamp).frame0;
-  const ImageRGBAF& b = res.rates[0].method(Method::traverse).frame0;
+  const ImageRGBAF& a = res.rates[0].method(SeamMethod::clamp).frame0;
+  const ImageRGBAF& b = res.rates[0].method(SeamMethod::traverse).frame0;
   if (a.width != c.width || a.height != c.height || b.width != c.width || b.height != c.height) {
     return z;  // no frame-0 images (keep_images off)
   }

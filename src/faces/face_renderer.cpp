@@ -127,7 +127,7 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceRe
 Result<ImageRGBAF> FaceRenderer::render_reference(const scene::Camera& camera, int width,
                                                   int height, const ReferenceOptions& options) {
   FaceRenderOptions o;
-  o.sampling.method = Method::traverse;
+  o.sampling.method = SeamMethod::traverse;
   o.sampling.filter = options.filter;
   o.sampling.max_aniso = 16;
   o.msaa = 1;

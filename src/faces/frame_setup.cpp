@@ -1,4 +1,4 @@
-// Host set-up shared by the face renderer and its GL twin (gl::SeamsRenderer): smooth vertex
+// Host set-up shared by the face renderer and its GL twin (gl::FaceRenderer): smooth vertex
 // normals, clip-space positions of a frame window, and the tiled, Mitchell-Netravali-downsampled
 // reference. Both renderers call these, so their frames start from the same numbers.
 #include <algorithm>

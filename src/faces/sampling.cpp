@@ -24,28 +24,28 @@ inline void add(std::array<float, 4>& acc, const std::array<float, 4>& c) {
 }
 }  // namespace
 
-const std::vector<Method>& all_methods() {
-  static const std::vector<Method> m = {Method::clamp, Method::discard, Method::traverse,
-                                        Method::traverse_corners};
+const std::vector<SeamMethod>& all_methods() {
+  static const std::vector<SeamMethod> m = {SeamMethod::clamp, SeamMethod::discard, SeamMethod::traverse,
+                                        SeamMethod::traverse_corners};
   return m;
 }
 
-const char* method_name(Method m) {
+const char* method_name(SeamMethod m) {
   switch (m) {
-    case Method::clamp:
+    case SeamMethod::clamp:
       return "clamp";
-    case Method::discard:
+    case SeamMethod::discard:
       return "discard";
-    case Method::traverse:
+    case SeamMethod::traverse:
       return "traverse";
-    case Method::traverse_corners:
+    case SeamMethod::traverse_corners:
       return "traverse_corners";
   }
   return "?";
 }
 
-bool parse_method(const std::string& text, Method& out) {
-  for (Method m : all_methods()) {
+bool parse_method(const std::string& text, SeamMethod& out) {
+  for (SeamMethod m : all_methods()) {
     if (text == method_name(m)) {
       out = m;
       return true;
@@ -57,7 +57,7 @@ bool parse_method(const std::string& text, Method& out) {
 std::array<float, 4> sample_face(const FaceTextureSet& set, int face, texture::Uv uv,
                                  const texture::UvGradients& g, const SampleOptions& options) {
   const texture::Texture& tex = set.texture(face);
-  if (options.method == Method::clamp) {
+  if (options.method == SeamMethod::clamp) {
     std::array<float, 4> c = tex.sample(make_sampler(options, texture::AddressMode::clamp), uv, g);
     c[3] = 1.0f;
     return c;
@@ -65,7 +65,7 @@ std::array<float, 4> sample_face(const FaceTextureSet& set, int face, texture::U
   const texture::SamplerState border = make_sampler(options, texture::AddressMode::border);
   // Listing 1, line 2: the own face with border colour 0; alpha accumulates Σw.
   std::array<float, 4> c = tex.sample(border, uv, g);
-  if (options.method == Method::traverse || options.method == Method::traverse_corners) {
+  if (options.method == SeamMethod::traverse || options.method == SeamMethod::traverse_corners) {
     // Lines 4-12: the four edge neighbours in their own UV spaces.
     const FaceAdjacency& adj = set.adjacency(face);
     for (int e = 0; e < 4; ++e) {
@@ -74,7 +74,7 @@ std::array<float, 4> sample_face(const FaceTextureSet& set, int face, texture::U
       const UvTransform& t = edge_transform(e, adj.edge[std::size_t(e)]);
       add(c, set.texture(nb).sample(border, t.apply(uv), t.apply(g)));
     }
-    if (options.method == Method::traverse_corners) {
+    if (options.method == SeamMethod::traverse_corners) {
       for (int k = 0; k < 4; ++k) {
         const CornerLink& l = set.corner(face, k);
         if (l.face < 0) continue;

@@ -1,4 +1,4 @@
-// The OpenGL backend of the adaptive-supersampling experiment: gl::DeferredGlRenderer
+// The OpenGL backend of the adaptive-supersampling experiment: gl::DeferredRenderer
 // (tessera/gl_deferred.h) on a headless context of its own behind the AaBackend interface of
 // tessera/experiments/aa_backend.h, so that `experiments::run_aa` (in the GL-free main library)
 // renders with OpenGL when a program linking tessera_gl hands it gl::experiment_backends()
@@ -29,7 +29,7 @@ std::vector<AaPassTime> pair_passes(const std::vector<PassTime>& gpu,
   return out;
 }
 
-class GlAaBackend final : public GlBackend<AaBackend, DeferredGlRenderer> {
+class GlAaBackend final : public GlBackend<AaBackend, DeferredRenderer> {
  public:
   using GlBackend::GlBackend;
 
@@ -47,7 +47,7 @@ class GlAaBackend final : public GlBackend<AaBackend, DeferredGlRenderer> {
                               const AaShadeOptions& o) override {
     AaShadeOutput out;
     if (method == AaMethod::fxaa) {
-      Result<GlFxaaResult> x = r_->shade_default_fxaa(so, o.fxaa);
+      Result<FxaaResult> x = r_->shade_default_fxaa(so, o.fxaa);
       if (!x) return x.status();
       out.image = std::move(x->image);
       out.wall_ms = x->total_wall_ms();
@@ -55,7 +55,7 @@ class GlAaBackend final : public GlBackend<AaBackend, DeferredGlRenderer> {
       out.passes = pair_passes(x->passes, x->wall_passes);
       return out;
     }
-    Result<GlShadeResult> x = method == AaMethod::default_1spp ? r_->shade_default(so)
+    Result<ShadeResult> x = method == AaMethod::default_1spp ? r_->shade_default(so)
                               : method == AaMethod::reference  ? r_->shade_reference(so)
                               : method == AaMethod::adaptive
                                   ? r_->shade_adaptive(so, o.adaptive)
@@ -83,10 +83,10 @@ Result<std::unique_ptr<AaBackend>> create_aa_backend(const scene::Scene& scene,
     return Status::error(ctx.status().code,
                          "aa: no OpenGL backend: " + ctx.status().message);
   }
-  DeferredGlOptions go;
+  DeferredRendererOptions go;
   go.glsl_dir = glsl_dir;
   go.schedule = schedule;
-  Result<std::unique_ptr<DeferredGlRenderer>> r = DeferredGlRenderer::create(scene, go);
+  Result<std::unique_ptr<DeferredRenderer>> r = DeferredRenderer::create(scene, go);
   if (!r) return r.status();
   return std::unique_ptr<AaBackend>(
       std::make_unique<GlAaBackend>(std::move(*ctx), std::move(*r)));

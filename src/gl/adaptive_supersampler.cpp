@@ -62,7 +62,7 @@ int max_channel(const std::string& xyzw) {
 /// One accessor: `type name(ivec2 g)` reading `c` with its swizzle, scale and bias.
 std::string accessor(const char* type, const char* name, const AdaptiveChannel& c,
                      const std::string& sw, int width) {
-  std::string expr = "texelFetch(tessera_aa_gbuffer" + std::to_string(c.texture) + ", g, 0)." + sw;
+  std::string expr = "texelFetch(tessera_adaptive_gbuffer" + std::to_string(c.texture) + ", g, 0)." + sw;
   if (c.scale != 1.0f) expr = "(" + expr + " * " + glsl::float_literal(c.scale) + ")";
   if (c.bias != 0.0f) {
     expr = "(" + expr + " + " + (width > 1 ? std::string(type) + "(" : "") + glsl::float_literal(c.bias) +
@@ -187,42 +187,42 @@ std::vector<std::string> preamble(const AdaptiveSupersampler::State& st, const s
   const AdaptiveSupersamplerOptions& o = st.options;
   std::vector<std::string> p = {
       "#version 450 core",
-      "#define TESSERA_AA_M " + std::to_string(o.m),
-      "#define TESSERA_AA_N " + std::to_string(st.n),
+      "#define TESSERA_ADAPTIVE_M " + std::to_string(o.m),
+      "#define TESSERA_ADAPTIVE_N " + std::to_string(st.n),
       "#define TESSERA_ADAPTIVE_MAX_N " + std::to_string(st.n),
-      "#define TESSERA_AA_WIDTH " + std::to_string(o.width),
-      "#define TESSERA_AA_HEIGHT " + std::to_string(o.height),
-      "#define TESSERA_AA_LIST_CAPACITY " + std::to_string(st.list_capacity),
-      "#define TESSERA_AA_UBO_BINDING " + std::to_string(st.uniform_binding),
-      "#define TESSERA_AA_WORK_BINDING " + std::to_string(st.storage_binding),
-      "#define TESSERA_AA_IMAGE_UNIT " + std::to_string(st.image_unit),
-      std::string("#define TESSERA_AA_OUT_FORMAT ") +
+      "#define TESSERA_ADAPTIVE_WIDTH " + std::to_string(o.width),
+      "#define TESSERA_ADAPTIVE_HEIGHT " + std::to_string(o.height),
+      "#define TESSERA_ADAPTIVE_LIST_CAPACITY " + std::to_string(st.list_capacity),
+      "#define TESSERA_ADAPTIVE_UBO_BINDING " + std::to_string(st.uniform_binding),
+      "#define TESSERA_ADAPTIVE_WORK_BINDING " + std::to_string(st.storage_binding),
+      "#define TESSERA_ADAPTIVE_IMAGE_UNIT " + std::to_string(st.image_unit),
+      std::string("#define TESSERA_ADAPTIVE_OUT_FORMAT ") +
           (o.output == AdaptiveOutputFormat::rgba32f ? "rgba32f" : "rgba16f"),
-      "#define TESSERA_AA_PASS_" + pass};
-  if (o.layout.uv.texture >= 0) p.push_back("#define TESSERA_AA_HAS_UV 1");
-  if (o.sample_count_texture) p.push_back("#define TESSERA_AA_SAMPLE_COUNTS 1");
-  if (o.resolve == AdaptiveResolve::tonemap_weighted) p.push_back("#define TESSERA_AA_HDR 1");
+      "#define TESSERA_ADAPTIVE_PASS_" + pass};
+  if (o.layout.uv.texture >= 0) p.push_back("#define TESSERA_ADAPTIVE_HAS_UV 1");
+  if (o.sample_count_texture) p.push_back("#define TESSERA_ADAPTIVE_SAMPLE_COUNTS 1");
+  if (o.resolve == AdaptiveResolve::tonemap_weighted) p.push_back("#define TESSERA_ADAPTIVE_HDR 1");
   if (pass == "EXTRA") {
     const bool tile = o.schedule == AdaptiveSchedule::tile_list && o.m <= 4;
-    p.push_back(tile ? "#define TESSERA_AA_SCHEDULE_TILE 1" : "#define TESSERA_AA_SCHEDULE_LOOP 1");
+    p.push_back(tile ? "#define TESSERA_ADAPTIVE_SCHEDULE_TILE 1" : "#define TESSERA_ADAPTIVE_SCHEDULE_LOOP 1");
   }
   for (int s = 0; s < 4; ++s) {
     if (!st.slot_used[s]) continue;
     p.push_back("layout(binding = " + std::to_string(st.texture_unit + s) +
-                ") uniform sampler2D tessera_aa_gbuffer" + std::to_string(s) + ";");
+                ") uniform sampler2D tessera_adaptive_gbuffer" + std::to_string(s) + ";");
   }
   const AdaptiveGBufferLayout& l = o.layout;
   // The swizzles were checked by check_options.
-  p.push_back(accessor("float", "tessera_aa_depth", l.depth, *swizzle(l.depth, 1, "depth"), 1));
-  p.push_back(accessor("vec3", "tessera_aa_normal", l.normal, *swizzle(l.normal, 3, "normal"), 3));
-  p.push_back(accessor("float", "tessera_aa_id_value", l.id, *swizzle(l.id, 1, "id"), 1));
+  p.push_back(accessor("float", "tessera_adaptive_depth", l.depth, *swizzle(l.depth, 1, "depth"), 1));
+  p.push_back(accessor("vec3", "tessera_adaptive_normal", l.normal, *swizzle(l.normal, 3, "normal"), 3));
+  p.push_back(accessor("float", "tessera_adaptive_id_value", l.id, *swizzle(l.id, 1, "id"), 1));
   // As the CPU's lround: half away from zero.
   p.push_back(
-      "int tessera_aa_id(ivec2 g) { float v = tessera_aa_id_value(g); "
+      "int tessera_adaptive_id(ivec2 g) { float v = tessera_adaptive_id_value(g); "
       "return int(floor(abs(v) + 0.5)) * (v < 0.0 ? -1 : 1); }");
   if (l.uv.texture >= 0) {
-    p.push_back(accessor("vec2", "tessera_aa_uv", l.uv, *swizzle(l.uv, 2, "uv"), 2));
-    p.push_back(accessor("vec4", "tessera_aa_uv_derivatives", l.uv_derivatives,
+    p.push_back(accessor("vec2", "tessera_adaptive_uv", l.uv, *swizzle(l.uv, 2, "uv"), 2));
+    p.push_back(accessor("vec4", "tessera_adaptive_uv_derivatives", l.uv_derivatives,
                          *swizzle(l.uv_derivatives, 4, "uv_derivatives"), 4));
   }
   return p;

@@ -34,12 +34,12 @@ class GlBackend : public Interface {
   std::unique_ptr<Renderer> r_;
 };
 
-/// gl::SeamsRenderer on a headless context of its own (seams_backend.cpp).
+/// gl::FaceRenderer on a headless context of its own (seams_backend.cpp).
 Result<std::unique_ptr<experiments::SeamsBackend>> create_seams_backend(
     const faces::FaceScene& scene, const faces::FaceTextureSet& textures,
     const std::filesystem::path& glsl_dir);
 
-/// gl::DeferredGlRenderer on a headless context of its own (aa_backend.cpp).
+/// gl::DeferredRenderer on a headless context of its own (aa_backend.cpp).
 Result<std::unique_ptr<experiments::AaBackend>> create_aa_backend(
     const scene::Scene& scene, const std::filesystem::path& glsl_dir, ExtraSchedule schedule);
 

@@ -1,11 +1,11 @@
-// The OpenGL backend of the seam experiment: gl::SeamsRenderer (tessera/gl_seams.h) on a headless
+// The OpenGL backend of the seam experiment: gl::FaceRenderer (tessera/gl_face_renderer.h) on a headless
 // context of its own behind the SeamsBackend interface of tessera/experiments/seams_backend.h,
 // so that `experiments::run_seams` (in the GL-free main library) renders with OpenGL when a
 // program linking tessera_gl hands it gl::experiment_backends() (`tessera seams --backend
 // gl|both`). The CPU twin is src/experiments/seams_backend_cpu.cpp.
 #include "gl/experiment_backends_internal.h"
 #include "tessera/gl.h"
-#include "tessera/gl_seams.h"
+#include "tessera/gl_face_renderer.h"
 
 namespace tessera::gl {
 
@@ -14,7 +14,7 @@ using experiments::SeamsSamplePattern;
 
 namespace {
 
-class GlSeamsBackend final : public GlBackend<experiments::SeamsBackend, SeamsRenderer> {
+class GlSeamsBackend final : public GlBackend<experiments::SeamsBackend, FaceRenderer> {
  public:
   using GlBackend::GlBackend;
 
@@ -29,7 +29,7 @@ class GlSeamsBackend final : public GlBackend<experiments::SeamsBackend, SeamsRe
   }
 
   Result<SeamsBackendFrame> render(const scene::Camera& camera,
-                                   const experiments::SeamsFrameOptions& options) override {
+                                   const experiments::FaceFrameOptions& options) override {
     if (options.shading_only) {
       return Status::error(ErrorCode::unsupported,
                            "seams: the GL backend has no shading-only pass");
@@ -39,7 +39,7 @@ class GlSeamsBackend final : public GlBackend<experiments::SeamsBackend, SeamsRe
                            "seams: the GL backend draws at the driver's sample positions, not "
                            "at an explicit pattern");
     }
-    SeamsFrameOptions o;
+    FaceFrameOptions o;
     o.width = options.width;
     o.height = options.height;
     o.msaa = options.msaa;
@@ -48,7 +48,7 @@ class GlSeamsBackend final : public GlBackend<experiments::SeamsBackend, SeamsRe
     o.max_aniso = options.max_aniso;
     o.clamp_fallback = options.clamp_fallback;
     o.read_back = options.keep_image;
-    Result<SeamsFrame> f = r_->render(camera, o);
+    Result<FaceFrame> f = r_->render(camera, o);
     if (!f) return f.status();
     return SeamsBackendFrame{std::move(f->image), f->gpu_ms(), f->wall_ms};
   }
@@ -66,9 +66,9 @@ Result<std::unique_ptr<experiments::SeamsBackend>> create_seams_backend(
     const std::filesystem::path& glsl_dir) {
   Result<std::unique_ptr<Context>> ctx = Context::create();
   if (!ctx) return ctx.status();
-  SeamsRendererOptions ro;
+  FaceRendererOptions ro;
   ro.glsl_dir = glsl_dir;
-  Result<std::unique_ptr<SeamsRenderer>> r = SeamsRenderer::create(scene, textures, ro);
+  Result<std::unique_ptr<FaceRenderer>> r = FaceRenderer::create(scene, textures, ro);
   if (!r) return r.status();
   return std::unique_ptr<experiments::SeamsBackend>(
       std::make_unique<GlSeamsBackend>(std::move(*ctx), std::move(*r)));

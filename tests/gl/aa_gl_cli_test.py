@@ -8,7 +8,7 @@ Exits 77 (CTest: skipped) when no OpenGL 4.5 context can be made on this machine
 when TESSERA_TEST_REQUIRE asks for gl (cli_harness.skip_or_fail).
 
 The GL-vs-CPU bound: GL renders its own G-buffer and shades it with the CPU's formulas in GLSL
-(tests/gl/gl_deferred_test.cpp), so adaptive images differ only by float rounding and the few
+(tests/gl/gl_deferred_renderer_test.cpp), so adaptive images differ only by float rounding and the few
 pixels whose k lands on the other side of a rounding edge: measured 70.8 dB (2x2) and 60.7 dB
 (4x4) here at 96x72 on llvmpipe, 57-72 dB in the GL library's tests, k differing at 0.01-0.06 %
 of the pixels. A real divergence (another sample order, footprint or metric) costs far more:

@@ -17,7 +17,7 @@ The same frames with the GL camera moved a quarter pixel score 40.7 dB (3.9 % of
 apart), one pixel 34.1-34.4 dB (12-14 %). PSNR_MIN = 60 dB (10x the measured MSE) and
 FRAC_MAX = 0.1 % sit between, so a misplaced camera, a wrong face id or UV, a y flip or a broken
 lookup fails them; the one-pixel shift is the negative control run here. On a hardware texture
-unit (fixed-point filter weights; tests/gl_seams_test.cpp measured 48-50 dB against the CPU on
+unit (fixed-point filter weights; tests/gl_face_renderer_test.cpp measured 48-50 dB against the CPU on
 an H200) the bounds are 45 dB and 10 %, which the shifted frame still fails.
 The Clamp lookup is no control on these meshes: its faces are minified, the taps outside a face
 carry little weight, and Clamp scores within 1 dB of Discard (measured 71.1-71.3 dB).

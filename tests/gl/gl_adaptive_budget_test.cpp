@@ -9,9 +9,9 @@ namespace {
 
 TEST_F(GlAdaptive, BudgetOnDeferredFrame) {
   use_deferred(40, 32, 4);
-  Result<gl::GlShadeResult> one = deferred_->shade_default(shading_);
+  Result<gl::ShadeResult> one = deferred_->shade_default(shading_);
   ASSERT_TRUE(one.ok()) << one.status().message;
-  Result<gl::GlShadeResult> ad = deferred_->shade_adaptive(shading_, d::AdaptiveOptions{});
+  Result<gl::ShadeResult> ad = deferred_->shade_adaptive(shading_, d::AdaptiveOptions{});
   ASSERT_TRUE(ad.ok()) << ad.status().message;
   int classes = 0;
   gl::AdaptiveFrame frame;
@@ -183,7 +183,7 @@ TEST_F(GlAdaptive, HookLumaDrivesTheShadingMetric) {
   EXPECT_GT(std::accumulate(with_default.begin(), with_default.end(), 0), 0);
   // A hook luma that is constant: no shading contrast, no extra samples.
   o.hook.source =
-      "#define TESSERA_AA_CUSTOM_LUMA 1\n"
+      "#define TESSERA_ADAPTIVE_CUSTOM_LUMA 1\n"
       "float tessera_shade_luma(vec4 c) { return 0.5; }\n" +
       o.hook.source;
   c = gl::AdaptiveSupersampler::create(o);

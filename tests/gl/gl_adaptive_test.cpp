@@ -1,6 +1,6 @@
 // gl::AdaptiveSupersampler (tessera/gl_adaptive.h): with tessera's own G-buffer and Blinn-Phong
-// as the hook it gives DeferredGlRenderer's images bit for bit (every schedule, reference, 1 spp,
-// a frame list too small for the frame; DeferredGlRenderer itself runs a component for m >= 2
+// as the hook it gives DeferredRenderer's images bit for bit (every schedule, reference, 1 spp,
+// a frame list too small for the frame; DeferredRenderer itself runs a component for m >= 2
 // whose hook reuses S's light terms for sample 0 again, this hook shades it in full); with
 // a foreign layout the same image; the engine's GL state restored; bad input. The budget and the
 // HDR resolve: gl_adaptive_budget_test.cpp. Skips when no OpenGL 4.5 context can be made.
@@ -9,14 +9,14 @@
 namespace tessera::aa_test {
 namespace {
 
-TEST_F(GlAdaptive, SameImagesAsDeferredGlRenderer) {
+TEST_F(GlAdaptive, SameImagesAsDeferredRenderer) {
   for (int m : {2, 4}) {
     use_deferred(40, 32, m);
-    Result<gl::GlShadeResult> ref = deferred_->shade_reference(shading_);
+    Result<gl::ShadeResult> ref = deferred_->shade_reference(shading_);
     ASSERT_TRUE(ref.ok()) << ref.status().message;
-    Result<gl::GlShadeResult> one = deferred_->shade_default(shading_);
+    Result<gl::ShadeResult> one = deferred_->shade_default(shading_);
     ASSERT_TRUE(one.ok()) << one.status().message;
-    Result<gl::GlShadeResult> ad = deferred_->shade_adaptive(shading_, d::AdaptiveOptions{});
+    Result<gl::ShadeResult> ad = deferred_->shade_adaptive(shading_, d::AdaptiveOptions{});
     ASSERT_TRUE(ad.ok()) << ad.status().message;
     int classes = 0;
     gl::AdaptiveFrame frame;
@@ -54,7 +54,7 @@ TEST_F(GlAdaptive, SameImagesAsDeferredGlRenderer) {
 
 TEST_F(GlAdaptive, ForeignLayoutSameImage) {
   use_deferred(40, 32, 4);
-  Result<gl::GlShadeResult> ad = deferred_->shade_adaptive(shading_, d::AdaptiveOptions{});
+  Result<gl::ShadeResult> ad = deferred_->shade_adaptive(shading_, d::AdaptiveOptions{});
   ASSERT_TRUE(ad.ok()) << ad.status().message;
   int classes = 0;
   deferred_textures(&classes);

@@ -1,5 +1,5 @@
 // Shared by gl_adaptive_test.cpp and gl_adaptive_budget_test.cpp: textures in and out, the
-// DeferredGlRenderer fixture whose G-buffer and Blinn-Phong feed the component, a synthetic
+// DeferredRenderer fixture whose G-buffer and Blinn-Phong feed the component, a synthetic
 // G-buffer with an analytic hook.
 #pragma once
 
@@ -92,13 +92,13 @@ class GlAdaptive : public ::testing::Test {
     ctx_.reset();
   }
 
-  // DeferredGlRenderer on the built-in scene, its G-buffer at w x h x m, its adaptive image.
+  // DeferredRenderer on the built-in scene, its G-buffer at w x h x m, its adaptive image.
   void use_deferred(int w, int h, int m) {
     scene_ = std::make_unique<scene::Scene>(scene::builtin_scene());
     camera_ = scene::orbit_camera(*scene_, 1, 8);
-    gl::DeferredGlOptions o;
+    gl::DeferredRendererOptions o;
     o.glsl_dir = TESSERA_GLSL_DIR;
-    Result<std::unique_ptr<gl::DeferredGlRenderer>> g = gl::DeferredGlRenderer::create(*scene_, o);
+    Result<std::unique_ptr<gl::DeferredRenderer>> g = gl::DeferredRenderer::create(*scene_, o);
     ASSERT_TRUE(g.ok()) << g.status().message;
     deferred_ = std::move(*g);
     shading_ = d::scene_shading(*scene_, 8, &camera_);
@@ -151,7 +151,7 @@ class GlAdaptive : public ::testing::Test {
   std::unique_ptr<gl::Context> ctx_;
   std::unique_ptr<scene::Scene> scene_;
   scene::Camera camera_;
-  std::unique_ptr<gl::DeferredGlRenderer> deferred_;
+  std::unique_ptr<gl::DeferredRenderer> deferred_;
   d::ShadingOptions shading_;
   int w_ = 0, h_ = 0, m_ = 0;
 };

@@ -371,7 +371,7 @@ for classes in (1, 8):
     res, _, _ = vulkan_case(name, text, "comp")
     expect_resources(name + " (defaults)", res,
                      {n: (0, b) for b, n in enumerate(SHADING_NAMES)})
-    # OpenGL: UBO 0, SSBOs 0-2, units 0-2 and 3 .. 3+C-1 (DeferredGlRenderer).
+    # OpenGL: UBO 0, SSBOs 0-2, units 0-2 and 3 .. 3+C-1 (DeferredRenderer).
     gl_case(name, text, "comp", {"TesseraDeferredParams": 0, "TesseraLights": 0,
                                  "TesseraMaterials": 1, "TesseraWaves": 2,
                                  "tessera_gbuffer0": 0, "tessera_gbuffer1": 1,

@@ -3,7 +3,7 @@
 # find_package(tessera), then runs it. Where tessera::gl was installed, also builds, with
 # find_package(tessera COMPONENTS gl) and outside the repository's build:
 #  * tests/install/engine_context (engine_context_check): AdaptiveSupersampler (create, dispatch,
-#    dispatch_reference) and FaceTextures (upload, bind, the program's own draw with
+#    dispatch_reference) and FaceTextureSet (upload, bind, the program's own draw with
 #    tessera_seams_sample_discard) on its own EGL context (with eglGetProcAddress and with no
 #    loader), beside a live gl::Context, and on a GLFW window context under Xvfb; every image
 #    hash must equal the gl::Context run's (bit for bit on llvmpipe), the engine's debug

@@ -19,7 +19,7 @@
 namespace tessera::experiments {
 namespace {
 
-using faces::Method;
+using faces::SeamMethod;
 using raster::SampleOffset;
 using test::seams_result;
 using test::tiny_seams;
@@ -64,7 +64,7 @@ class FakeGlRenderer final : public CpuBackedFakeGl {
     return std::find(refused_.begin(), refused_.end(), samples) == refused_.end();
   }
   Result<SeamsBackendFrame> render(const scene::Camera& camera,
-                                   const SeamsFrameOptions& options) override {
+                                   const FaceFrameOptions& options) override {
     EXPECT_FALSE(options.shading_only);
     EXPECT_TRUE(msaa_supported(options.msaa));
     Result<SeamsBackendFrame> f = cpu_->render(camera, options);
@@ -108,7 +108,7 @@ TEST(Seams, GlBackendThroughTheFactorySkipsRefusedRates) {
   const SeamsRateResult& g = r->rates[0];
   EXPECT_EQ(g.msaa, 1);
   EXPECT_TRUE(g.shading_only.frame_ms.empty());  // no shading-only pass there
-  for (Method m : faces::all_methods()) {
+  for (SeamMethod m : faces::all_methods()) {
     const SeamsMethodResult& mr = g.method(m);
     ASSERT_EQ(mr.timing.frame_ms.size(), std::size_t(c.frames));
     ASSERT_EQ(mr.wall.frame_ms.size(), std::size_t(c.frames));
@@ -146,7 +146,7 @@ TEST(Seams, CompareGlKeepsTheCpuResultAndMeasuresAgreement) {
   const SeamsResult& cpu = seams_result();
   ASSERT_EQ(r->rates.size(), cpu.rates.size());  // the CPU renders every rate
   for (std::size_t ri = 0; ri < cpu.rates.size(); ++ri) {
-    for (Method m : faces::all_methods()) {
+    for (SeamMethod m : faces::all_methods()) {
       EXPECT_EQ(r->rates[ri].method(m).vs_reference.cdf, cpu.rates[ri].method(m).vs_reference.cdf);
       EXPECT_TRUE(r->rates[ri].method(m).wall.frame_ms.empty());
     }
@@ -159,7 +159,7 @@ TEST(Seams, CompareGlKeepsTheCpuResultAndMeasuresAgreement) {
   ASSERT_EQ(r->gl_sample_patterns.size(), 1u);
   EXPECT_EQ(r->gl_sample_patterns[0].positions,
             std::vector<raster::SampleOffset>{raster::SampleOffset{}});
-  for (Method m : faces::all_methods()) {
+  for (SeamMethod m : faces::all_methods()) {
     const SeamsGlMethodResult& g = r->gl_rates[0].method(m);
     EXPECT_EQ(g.method, m);
     EXPECT_EQ(g.gpu.frame_ms.size(), std::size_t(c.frames));
@@ -184,8 +184,8 @@ class RoundingFakeGlRenderer final : public CpuBackedFakeGl {
                    : SeamsSamplePattern{msaa, msaa, msaa, standard_positions(msaa)};
   }
   Result<SeamsBackendFrame> render(const scene::Camera& camera,
-                                   const SeamsFrameOptions& options) override {
-    SeamsFrameOptions o = options;
+                                   const FaceFrameOptions& options) override {
+    FaceFrameOptions o = options;
     o.msaa = 4;
     return cpu_->render(camera, o);
   }
@@ -219,7 +219,7 @@ TEST(Seams, CompareGlUsesTheDriversSamplePositions) {
     EXPECT_EQ(r->gl_sample_patterns[0].cpu_msaa, report ? 4 : 2);
     EXPECT_EQ(r->gl_sample_patterns[1].msaa, 4);
     ASSERT_EQ(r->gl_rates.size(), 2u);
-    for (Method m : faces::all_methods()) {
+    for (SeamMethod m : faces::all_methods()) {
       const SeamsGlMethodResult& g2 = r->gl_rates[0].method(m);
       const SeamsGlMethodResult& g4 = r->gl_rates[1].method(m);
       EXPECT_FALSE(std::isfinite(g4.psnr_db)) << faces::method_name(m);  // identical
@@ -250,9 +250,9 @@ class PatternFakeGlRenderer final : public CpuBackedFakeGl {
     return {msaa, 2, cpu_msaa_, reported_};
   }
   Result<SeamsBackendFrame> render(const scene::Camera& camera,
-                                   const SeamsFrameOptions& options) override {
+                                   const FaceFrameOptions& options) override {
     EXPECT_TRUE(options.sample_pattern.empty());  // GL frames are drawn at the driver's
-    SeamsFrameOptions o = options;
+    FaceFrameOptions o = options;
     o.sample_pattern = draws_;
     return cpu_->render(camera, o);
   }
@@ -295,7 +295,7 @@ TEST(Seams, CompareGlDrawsTheCpuAtTheDriversPositionsWhenNoRateHasThem) {
   EXPECT_EQ(r->gl_sample_patterns[0].positions, kMirrored2x);
   ASSERT_EQ(r->gl_rates.size(), 1u);
   EXPECT_EQ(r->gl_rates[0].compared_with, SeamsGlComparison::driver_positions);
-  for (Method m : faces::all_methods()) {
+  for (SeamMethod m : faces::all_methods()) {
     const SeamsGlMethodResult& g = r->gl_rates[0].method(m);
     EXPECT_TRUE(std::isinf(g.psnr_db)) << faces::method_name(m) << " " << g.psnr_db;  // identical
     EXPECT_EQ(g.fraction_ge_001, 0.0) << faces::method_name(m);
@@ -305,7 +305,7 @@ TEST(Seams, CompareGlDrawsTheCpuAtTheDriversPositionsWhenNoRateHasThem) {
   Result<SeamsResult> lied = run_pattern_fake(kMirrored2x, kMirrored2x, 2);
   ASSERT_TRUE(lied.ok()) << lied.status().message;
   EXPECT_EQ(lied->gl_rates[0].compared_with, SeamsGlComparison::cpu_rate);
-  for (Method m : faces::all_methods()) {
+  for (SeamMethod m : faces::all_methods()) {
     const SeamsGlMethodResult& g = lied->gl_rates[0].method(m);
     EXPECT_TRUE(std::isfinite(g.psnr_db)) << faces::method_name(m);
     EXPECT_GT(g.fraction_ge_001, 0.0) << faces::method_name(m);
@@ -322,7 +322,7 @@ TEST(Seams, CompareGlLeavesARateUncomparedWithoutReproduciblePositions) {
   ASSERT_EQ(r->gl_rates.size(), 1u);
   EXPECT_EQ(r->gl_rates[0].msaa, 2);
   EXPECT_EQ(r->gl_rates[0].compared_with, SeamsGlComparison::none);
-  for (Method m : faces::all_methods()) {
+  for (SeamMethod m : faces::all_methods()) {
     const SeamsGlMethodResult& g = r->gl_rates[0].method(m);
     EXPECT_EQ(g.gpu.frame_ms.size(), 1u) << faces::method_name(m);
     // Not measured, rather than the "identical" of an empty pool: the stand-in draws the

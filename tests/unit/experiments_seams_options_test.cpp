@@ -16,7 +16,7 @@
 namespace tessera::experiments {
 namespace {
 
-using faces::Method;
+using faces::SeamMethod;
 
 SeamsConfig tiny() {
   SeamsConfig c;
@@ -44,7 +44,7 @@ class FakeGl final : public SeamsBackend {
   bool msaa_supported(int) override { return true; }
   bool has_shading_only() const override { return false; }
   Result<SeamsBackendFrame> render(const scene::Camera& camera,
-                                   const SeamsFrameOptions& options) override {
+                                   const FaceFrameOptions& options) override {
     Result<SeamsBackendFrame> f = cpu_->render(camera, options);
     if (!f || f->image.pixels.empty()) return f;
     ++read_backs_;
@@ -100,7 +100,7 @@ TEST(SeamsOptions, FilterChangesTheFramesNotTheReference) {
   ASSERT_EQ(b.rates.size(), 2u);
   EXPECT_EQ(a.reference_frame0.pixels, b.reference_frame0.pixels);
   for (std::size_t ri = 0; ri < 2; ++ri) {
-    for (Method m : faces::all_methods()) {
+    for (SeamMethod m : faces::all_methods()) {
       EXPECT_NE(a.rates[ri].method(m).frame0.pixels, b.rates[ri].method(m).frame0.pixels)
           << faces::method_name(m) << " at rate " << a.rates[ri].msaa;
     }
@@ -120,7 +120,7 @@ TEST(SeamsOptions, RepetitionsAddTimesNotChanges) {
   EXPECT_EQ(a.reference_frame0.pixels, b.reference_frame0.pixels);
   for (std::size_t ri = 0; ri < 2; ++ri) {
     EXPECT_EQ(b.rates[ri].shading_only.frame_ms.size(), std::size_t(3 * c.frames));
-    for (Method m : faces::all_methods()) {
+    for (SeamMethod m : faces::all_methods()) {
       const SeamsMethodResult& x = a.rates[ri].method(m);
       const SeamsMethodResult& y = b.rates[ri].method(m);
       EXPECT_EQ(x.timing.frame_ms.size(), std::size_t(c.frames));
@@ -149,7 +149,7 @@ TEST(SeamsOptions, WorstFrameAgreesLeastAndEqualsThePoolWithOneFrame) {
   const SeamsResult one = run(c);
   ASSERT_EQ(two.gl_rates.size(), 1u);
   ASSERT_EQ(one.gl_rates.size(), 1u);
-  for (Method m : faces::all_methods()) {
+  for (SeamMethod m : faces::all_methods()) {
     const SeamsGlMethodResult& g = two.gl_rates[0].method(m);
     ASSERT_TRUE(std::isfinite(g.psnr_db)) << faces::method_name(m);
     // The frames differ (a later frame has more perturbed pixels): the worst is strictly worse.
@@ -180,8 +180,8 @@ TEST(SeamsOptions, ReferencesComparedOnlyWhenAsked) {
   EXPECT_GT(a.psnr_db, 40.0);
   EXPECT_NE(to_json(c, r).find("gl_reference_vs_cpu"), std::string::npos);
   // The frames and their statistics are those of the plain run.
-  EXPECT_EQ(r.rates[0].method(Method::traverse).vs_reference.cdf,
-            plain.rates[0].method(Method::traverse).vs_reference.cdf);
+  EXPECT_EQ(r.rates[0].method(SeamMethod::traverse).vs_reference.cdf,
+            plain.rates[0].method(SeamMethod::traverse).vs_reference.cdf);
 }
 
 TEST(SeamsOptions, UntimedCpuSideKeepsTheStatistics) {
@@ -196,7 +196,7 @@ TEST(SeamsOptions, UntimedCpuSideKeepsTheStatistics) {
     EXPECT_TRUE(untimed.rates[ri].shading_only.frame_ms.empty());
     EXPECT_EQ(untimed.rates[ri].nan_pixels_without_fallback,
               timed.rates[ri].nan_pixels_without_fallback);
-    for (Method m : faces::all_methods()) {
+    for (SeamMethod m : faces::all_methods()) {
       const SeamsMethodResult& u = untimed.rates[ri].method(m);
       EXPECT_TRUE(u.timing.frame_ms.empty());
       EXPECT_EQ(u.vs_reference.cdf, timed.rates[ri].method(m).vs_reference.cdf);

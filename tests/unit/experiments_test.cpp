@@ -19,7 +19,7 @@
 namespace tessera::experiments {
 namespace {
 
-using faces::Method;
+using faces::SeamMethod;
 using test::seams_result;
 using test::tiny_seams;
 
@@ -96,7 +96,7 @@ TEST(Seams, EveryMethodAtEveryRate) {
     const SeamsRateResult& rate = r.rates[ri];
     EXPECT_EQ(rate.msaa, c.msaa[ri]);
     EXPECT_EQ(rate.shading_only.frame_ms.size(), std::size_t(c.frames));
-    for (Method m : faces::all_methods()) {
+    for (SeamMethod m : faces::all_methods()) {
       const SeamsMethodResult& mr = rate.method(m);
       const std::string what =
           std::string(faces::method_name(m)) + " " + std::to_string(rate.msaa) + "x";
@@ -109,7 +109,7 @@ TEST(Seams, EveryMethodAtEveryRate) {
     }
     expect_valid_cdf(rate.traverse_vs_discard, "traverse vs discard");
     // The same geometry pixels are counted for every comparison of a rate.
-    EXPECT_EQ(rate.traverse_vs_discard.counted, rate.method(Method::clamp).vs_reference.counted);
+    EXPECT_EQ(rate.traverse_vs_discard.counted, rate.method(SeamMethod::clamp).vs_reference.counted);
     // Traverse and Discard differ somewhere (near seams), so the CDF leaves 1 after bin 0.
     EXPECT_LT(rate.traverse_vs_discard.cdf[1], 1.0);
     EXPECT_GT(rate.traverse_vs_discard.mean, 0.0);
@@ -119,8 +119,8 @@ TEST(Seams, EveryMethodAtEveryRate) {
 TEST(Seams, TraverseBeatsClampNearSeams) {
   const SeamsResult& r = seams_result();
   for (const SeamsRateResult& rate : r.rates) {
-    const ImageRGBAF& clamp = rate.method(Method::clamp).frame0;
-    const ImageRGBAF& trav = rate.method(Method::traverse).frame0;
+    const ImageRGBAF& clamp = rate.method(SeamMethod::clamp).frame0;
+    const ImageRGBAF& trav = rate.method(SeamMethod::traverse).frame0;
     // Near seams: geometry pixels where Clamp and Traverse disagree visibly.
     Result<std::vector<float>> d = metrics::error_norms(clamp, trav);
     ASSERT_TRUE(d.ok());
@@ -134,8 +134,8 @@ TEST(Seams, TraverseBeatsClampNearSeams) {
     ASSERT_GT(ec.counted(), 20u) << rate.msaa << "x";
     EXPECT_LT(et.mean(), ec.mean()) << rate.msaa << "x";
     // Over all geometry pixels and quality frames too.
-    EXPECT_LE(rate.method(Method::traverse).vs_reference.mean,
-              rate.method(Method::clamp).vs_reference.mean)
+    EXPECT_LE(rate.method(SeamMethod::traverse).vs_reference.mean,
+              rate.method(SeamMethod::clamp).vs_reference.mean)
         << rate.msaa << "x";
   }
 }
@@ -149,11 +149,11 @@ TEST(Seams, NearSeamStatisticsCountPixelsByFaceEdges) {
       expect_valid_cdf(near, std::string("near seams ") + faces::method_name(mr.method));
       // A subset of the geometry pixels, the same set for every method.
       EXPECT_LT(near.counted, mr.vs_reference.counted);
-      EXPECT_EQ(near.counted, rate.method(Method::clamp).vs_reference_near_seams.counted);
+      EXPECT_EQ(near.counted, rate.method(SeamMethod::clamp).vs_reference_near_seams.counted);
     }
     // Where the faces meet, Traverse is closer to the reference than Clamp.
-    EXPECT_LT(rate.method(Method::traverse).vs_reference_near_seams.mean,
-              rate.method(Method::clamp).vs_reference_near_seams.mean)
+    EXPECT_LT(rate.method(SeamMethod::traverse).vs_reference_near_seams.mean,
+              rate.method(SeamMethod::clamp).vs_reference_near_seams.mean)
         << rate.msaa << "x";
   }
   // A wider band counts more pixels; 0 turns the statistics off.
@@ -166,13 +166,13 @@ TEST(Seams, NearSeamStatisticsCountPixelsByFaceEdges) {
   c.near_seam_pixels = 1;
   Result<SeamsResult> narrow = run_seams(c);
   ASSERT_TRUE(narrow.ok()) << narrow.status().message;
-  EXPECT_GT(wide->rates[0].method(Method::clamp).vs_reference_near_seams.counted,
-            narrow->rates[0].method(Method::clamp).vs_reference_near_seams.counted);
+  EXPECT_GT(wide->rates[0].method(SeamMethod::clamp).vs_reference_near_seams.counted,
+            narrow->rates[0].method(SeamMethod::clamp).vs_reference_near_seams.counted);
   c.near_seam_pixels = 0;
   Result<SeamsResult> off = run_seams(c);
   ASSERT_TRUE(off.ok());
   EXPECT_EQ(off->near_seam_pixels, 0);
-  EXPECT_EQ(off->rates[0].method(Method::clamp).vs_reference_near_seams.counted, 0u);
+  EXPECT_EQ(off->rates[0].method(SeamMethod::clamp).vs_reference_near_seams.counted, 0u);
 }
 
 TEST(Seams, ThreadCountDoesNotChangeTheNumbers) {
@@ -184,7 +184,7 @@ TEST(Seams, ThreadCountDoesNotChangeTheNumbers) {
   c.threads = 3;
   Result<SeamsResult> three = run_seams(c);
   ASSERT_TRUE(one.ok() && three.ok());
-  for (Method m : faces::all_methods()) {
+  for (SeamMethod m : faces::all_methods()) {
     EXPECT_EQ(one->rates[0].method(m).vs_reference.cdf, three->rates[0].method(m).vs_reference.cdf);
     EXPECT_EQ(one->rates[0].method(m).vs_reference.mean,
               three->rates[0].method(m).vs_reference.mean);
@@ -210,7 +210,7 @@ TEST(Seams, ProgressAndReadyCallbacks) {
   ASSERT_EQ(lines.size(), 2u);  // the scene, then one line per frame
   EXPECT_EQ(lines[1], "frame 1/1 done");
   EXPECT_TRUE(r->reference_frame0.pixels.empty());
-  EXPECT_TRUE(r->rates[0].method(Method::discard).frame0.pixels.empty());
+  EXPECT_TRUE(r->rates[0].method(SeamMethod::discard).frame0.pixels.empty());
   // An error from on_ready stops the run and comes back unchanged.
   c.on_ready = [] { return Status::error(ErrorCode::io_error, "no folder"); };
   Result<SeamsResult> stopped = run_seams(c);

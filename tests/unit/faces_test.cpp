@@ -15,7 +15,7 @@ namespace tessera {
 namespace {
 
 using faces::FaceAdjacency;
-using faces::Method;
+using faces::SeamMethod;
 using faces::QuadMesh;
 using texture::TextureFilter;
 using texture::Uv;
@@ -126,7 +126,7 @@ TwoFaces make_two_faces(int r0, int r1, int size, bool constant_per_face) {
   return t;
 }
 
-faces::SampleOptions opts(Method m, TextureFilter f = TextureFilter::anisotropic) {
+faces::SampleOptions opts(SeamMethod m, TextureFilter f = TextureFilter::anisotropic) {
   faces::SampleOptions o;
   o.method = m;
   o.filter = f;
@@ -138,14 +138,14 @@ TEST(Faces, InFaceSamplesAreIdenticalForAllMethods) {
   const UvGradients g{0.01f, 0.002f, -0.003f, 0.02f};  // anisotropic, well inside the face
   for (float u : {0.3f, 0.5f, 0.7f}) {
     const std::array<float, 4> ref =
-        faces::sample_face(t.set, 0, {u, 0.4f}, g, opts(Method::clamp));
-    for (Method m : faces::all_methods()) {
+        faces::sample_face(t.set, 0, {u, 0.4f}, g, opts(SeamMethod::clamp));
+    for (SeamMethod m : faces::all_methods()) {
       const std::array<float, 4> c = faces::sample_face(t.set, 0, {u, 0.4f}, g, opts(m));
       for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[std::size_t(k)], ref[std::size_t(k)], 1e-6f);
     }
     // Traverse adds exact zeros: it equals Discard bit for bit.
-    EXPECT_EQ(faces::sample_face(t.set, 0, {u, 0.4f}, g, opts(Method::traverse)),
-              faces::sample_face(t.set, 0, {u, 0.4f}, g, opts(Method::discard)));
+    EXPECT_EQ(faces::sample_face(t.set, 0, {u, 0.4f}, g, opts(SeamMethod::traverse)),
+              faces::sample_face(t.set, 0, {u, 0.4f}, g, opts(SeamMethod::discard)));
   }
 }
 
@@ -161,7 +161,7 @@ TEST(Faces, DiscardRenormalisesWeightsToOne) {
   const float corners[4][2] = {{0.5f, 0.02f}, {0.98f, 0.5f}, {0.5f, 0.98f}, {0.02f, 0.5f}};
   const Uv near_edge{corners[e0][0], corners[e0][1]};
   const UvGradients g{0.15f, 0.0f, 0.0f, 0.15f};  // footprint much wider than the distance
-  const std::array<float, 4> d = faces::sample_face(t.set, 0, near_edge, g, opts(Method::discard));
+  const std::array<float, 4> d = faces::sample_face(t.set, 0, near_edge, g, opts(SeamMethod::discard));
   EXPECT_NEAR(d[0], 0.2f, 1e-6f);
   EXPECT_GT(d[3], 0.0f);
   EXPECT_LT(d[3], 1.0f);  // some taps were outside
@@ -175,7 +175,7 @@ TEST(Faces, DiscardRenormalisesWeightsToOne) {
   for (const texture::TexelTap& tap : taps) in_w += tap.outside ? 0.0f : tap.weight;
   EXPECT_NEAR(in_w, d[3], 1e-5f);
   const std::array<float, 4> tr =
-      faces::sample_face(t.set, 0, near_edge, g, opts(Method::traverse));
+      faces::sample_face(t.set, 0, near_edge, g, opts(SeamMethod::traverse));
   EXPECT_GT(tr[0], 0.25f);          // blended towards the neighbour's 0.9
   EXPECT_NEAR(tr[3], 1.0f, 1e-4f);  // both faces together cover the footprint
 }
@@ -194,9 +194,9 @@ TEST(Faces, TraverseIsContinuousAcrossAnEdgeAtMagnification) {
       const float pts[4][2] = {{0.37f, 0}, {1, 0.37f}, {0.37f, 1}, {0, 0.37f}};
       const Uv on{pts[e0][0], pts[e0][1]};
       const std::array<float, 4> a =
-          faces::sample_face(t.set, 0, on, g, opts(Method::traverse, TextureFilter::trilinear));
+          faces::sample_face(t.set, 0, on, g, opts(SeamMethod::traverse, TextureFilter::trilinear));
       const std::array<float, 4> b = faces::sample_face(
-          t.set, 1, tr.apply(on), tr.apply(g), opts(Method::traverse, TextureFilter::trilinear));
+          t.set, 1, tr.apply(on), tr.apply(g), opts(SeamMethod::traverse, TextureFilter::trilinear));
       for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[std::size_t(k)], b[std::size_t(k)], 1e-5f);
       // The texture is linear in 3D, so bilinear reconstruction across the seam is exact
       // (the value at the edge is the function there); Discard and Clamp are not.
@@ -210,7 +210,7 @@ TEST(Faces, TraverseIsContinuousAcrossAnEdgeAtMagnification) {
 TEST(Faces, ZeroCoverageFallback) {
   const TwoFaces t = make_two_faces(0, 0, 16, false);
   const UvGradients g{0.001f, 0, 0, 0.001f};
-  faces::SampleOptions o = opts(Method::discard, TextureFilter::trilinear);
+  faces::SampleOptions o = opts(SeamMethod::discard, TextureFilter::trilinear);
   const Uv outside{-0.3f, 0.5f};  // far outside, tiny footprint: no tap inside
   const std::array<float, 4> with = faces::sample_face(t.set, 0, outside, g, o);
   EXPECT_TRUE(std::isfinite(with[0]));
@@ -343,7 +343,7 @@ TEST(Faces, RendersEveryMethod) {
   o.msaa = 4;
   o.threads = 2;
   std::vector<ImageRGBAF> images;
-  for (Method m : faces::all_methods()) {
+  for (SeamMethod m : faces::all_methods()) {
     o.sampling.method = m;
     Result<faces::FaceFrame> f = renderer.render(cam, o);
     ASSERT_TRUE(f.ok());

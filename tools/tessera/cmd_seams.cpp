@@ -23,12 +23,12 @@ struct SeamsArgs {
 
 /// One line per rate: the Table-1 ratio and the Figure-5 means (the tables are in seams.md).
 void print_summary(std::FILE* out, const experiments::SeamsResult& res) {
-  using faces::Method;
+  using faces::SeamMethod;
   const bool gl = res.backend == experiments::Backend::gl;
   for (const experiments::SeamsRateResult& rate : res.rates) {
-    const auto& t = rate.method(Method::traverse);
-    const auto& d = rate.method(Method::discard);
-    const auto& c = rate.method(Method::clamp);
+    const auto& t = rate.method(SeamMethod::traverse);
+    const auto& d = rate.method(SeamMethod::discard);
+    const auto& c = rate.method(SeamMethod::clamp);
     // GL: wall time to glFinish first (the GPU timer is partial on llvmpipe), then the timer.
     const experiments::FrameTimes& tt = gl ? t.wall : t.timing;
     const experiments::FrameTimes& dt = gl ? d.wall : d.timing;
@@ -47,8 +47,8 @@ void print_summary(std::FILE* out, const experiments::SeamsResult& res) {
     std::fprintf(out, "\n");
   }
   for (const experiments::SeamsGlRateResult& g : res.gl_rates) {
-    const auto& t = g.method(Method::traverse);
-    const auto& d = g.method(Method::discard);
+    const auto& t = g.method(SeamMethod::traverse);
+    const auto& d = g.method(SeamMethod::discard);
     std::fprintf(out,
                  "seams %dx GL: traverse %.1f ms, discard %.1f ms wall (GPU timer %.2f / %.2f "
                  "ms); GL vs CPU PSNR discard %.1f dB, traverse %.1f dB\n",

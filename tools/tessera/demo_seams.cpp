@@ -45,7 +45,7 @@ Status demo_seams_section(Report& report, const DemoOptions& options) {
     // Per MSAA rate (the order of "msaa"): median ms per frame and the mean linear-RGB errors.
     nlohmann::json& seams = (*options.summary)["seams"];
     seams["msaa"] = c.msaa;
-    for (const faces::Method m : faces::all_methods()) {
+    for (const faces::SeamMethod m : faces::all_methods()) {
       nlohmann::json& method = seams["methods"][faces::method_name(m)];
       for (const experiments::SeamsRateResult& rate : res->rates) {
         method["median_ms"].push_back(rate.method(m).timing.median_ms());
@@ -59,7 +59,7 @@ Status demo_seams_section(Report& report, const DemoOptions& options) {
     }
   }
   std::vector<std::vector<std::string>> rows;
-  for (const faces::Method m : faces::all_methods()) {
+  for (const faces::SeamMethod m : faces::all_methods()) {
     std::vector<std::string> row = {faces::method_name(m)};
     for (const experiments::SeamsRateResult& rate : res->rates) {
       row.push_back(fmt("%.1f", rate.method(m).timing.median_ms()));
@@ -77,7 +77,7 @@ Status demo_seams_section(Report& report, const DemoOptions& options) {
   for (int r : c.msaa) header.push_back(std::to_string(r) + "x MSAA");
   report.table(header, rows);
   rows.clear();
-  for (const faces::Method m : faces::all_methods()) {
+  for (const faces::SeamMethod m : faces::all_methods()) {
     std::vector<std::string> row = {std::string(faces::method_name(m)) + " vs reference"};
     for (const experiments::SeamsRateResult& rate : res->rates) {
       row.push_back(fmt("%.5f", rate.method(m).vs_reference.mean));
@@ -105,7 +105,7 @@ Status demo_seams_section(Report& report, const DemoOptions& options) {
   }
   {
     std::vector<std::vector<std::string>> near;
-    for (const faces::Method m : faces::all_methods()) {
+    for (const faces::SeamMethod m : faces::all_methods()) {
       std::vector<std::string> row = {std::string(faces::method_name(m)) + " near seams"};
       for (const experiments::SeamsRateResult& rate : res->rates) {
         row.push_back(fmt("%.5f", rate.method(m).vs_reference_near_seams.mean));

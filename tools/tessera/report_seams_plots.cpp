@@ -19,7 +19,7 @@ namespace {
 
 using experiments::ErrorStats;
 using experiments::SeamsRateResult;
-using faces::Method;
+using faces::SeamMethod;
 
 constexpr float kDiffScale = 0.05f;  // heatmap saturation of the clamp-minus-traverse images
 
@@ -52,15 +52,15 @@ const char* rate_colour(std::size_t i) {
   return c[std::min<std::size_t>(i, 4)];
 }
 
-const char* method_dash(Method m) {
+const char* method_dash(SeamMethod m) {
   switch (m) {
-    case Method::clamp:
+    case SeamMethod::clamp:
       return "2,3";
-    case Method::discard:
+    case SeamMethod::discard:
       return "";
-    case Method::traverse:
+    case SeamMethod::traverse:
       return "8,4";
-    case Method::traverse_corners:
+    case SeamMethod::traverse_corners:
       return "12,3,2,3";
   }
   return "";
@@ -125,8 +125,8 @@ Status write_images(const experiments::SeamsConfig& c, const experiments::SeamsR
   }
   // Clamp minus Traverse (frame 0): the seam artefact, per-pixel linear-RGB 2-norm.
   for (const SeamsRateResult* rate : {&res.rates.front(), &res.rates.back()}) {
-    const ImageRGBAF& ca = rate->method(Method::clamp).frame0;
-    const ImageRGBAF& tr = rate->method(Method::traverse).frame0;
+    const ImageRGBAF& ca = rate->method(SeamMethod::clamp).frame0;
+    const ImageRGBAF& tr = rate->method(SeamMethod::traverse).frame0;
     std::vector<float> d(ca.pixel_count());
     for (std::size_t i = 0; i < d.size(); ++i) {
       d[i] = norm_rgb(&ca.pixels[i * 4], &tr.pixels[i * 4]);
@@ -151,8 +151,8 @@ Status write_plots(const experiments::SeamsResult& res, const std::string& dir) 
   for (const SeamsRateResult& rate : res.rates) {
     csv << ",traverse_vs_discard_" << rate_key(rate.msaa);
   }
-  const std::vector<Method>& methods = faces::all_methods();
-  for (Method m : methods) {
+  const std::vector<SeamMethod>& methods = faces::all_methods();
+  for (SeamMethod m : methods) {
     for (const SeamsRateResult& rate : res.rates) {
       csv << "," << faces::method_name(m) << "_vs_ref_" << rate_key(rate.msaa);
     }
@@ -160,7 +160,7 @@ Status write_plots(const experiments::SeamsResult& res, const std::string& dir) 
   csv << "\n";
   std::vector<const std::vector<double>*> cols;
   for (const SeamsRateResult& rate : res.rates) cols.push_back(&rate.traverse_vs_discard.cdf);
-  for (Method m : methods) {
+  for (SeamMethod m : methods) {
     for (const SeamsRateResult& rate : res.rates) cols.push_back(&rate.method(m).vs_reference.cdf);
   }
   for (int i = 0; i < kBins; ++i) {
@@ -182,8 +182,8 @@ Status write_plots(const experiments::SeamsResult& res, const std::string& dir) 
     left.series.push_back(cdf_series(rate_key(res.rates[ri].msaa), rate_colour(ri), "",
                                      res.rates[ri].traverse_vs_discard.cdf));
   }
-  for (Method m : methods) {
-    if (m == Method::traverse_corners) continue;  // in the CSV/JSON
+  for (SeamMethod m : methods) {
+    if (m == SeamMethod::traverse_corners) continue;  // in the CSV/JSON
     for (std::size_t ri = 0; ri < res.rates.size(); ++ri) {
       right.series.push_back(
           cdf_series(std::string(faces::method_name(m)) + " " + rate_key(res.rates[ri].msaa),
@@ -198,7 +198,7 @@ Status write_plots(const experiments::SeamsResult& res, const std::string& dir) 
                          "x: per-pixel linear-RGB error (2-norm)",
                          "fraction of pixels with error >= x");
     std::size_t colour = 0;
-    for (Method m : {Method::clamp, Method::discard, Method::traverse}) {
+    for (SeamMethod m : {SeamMethod::clamp, SeamMethod::discard, SeamMethod::traverse}) {
       for (bool near : {false, true}) {
         if (near && res.near_seam_pixels == 0) continue;
         const ErrorStats& q =

@@ -84,7 +84,7 @@ struct SeamsConfig {
 
 /// One method at one rate.
 struct SeamsMethodResult {
-  faces::Method method = faces::Method::clamp;
+  faces::SeamMethod method = faces::SeamMethod::clamp;
   FrameTimes timing;  ///< Raster + shading + resolve per frame (GL: the GPU timer).
   FrameTimes wall;    ///< GL: wall time per frame to glFinish (empty on the CPU: = timing).
   ErrorStats vs_reference;
@@ -99,20 +99,20 @@ struct SeamsMethodResult {
 /// Everything measured at one MSAA rate.
 struct SeamsRateResult {
   int msaa = 1;
-  std::array<SeamsMethodResult, 4> methods;  ///< Indexed by `faces::Method`; use `method()`.
+  std::array<SeamsMethodResult, 4> methods;  ///< Indexed by `faces::SeamMethod`; use `method()`.
   /// The same pass without the texture lookup (empty where the backend has none: GL).
   FrameTimes shading_only;
   ErrorStats traverse_vs_discard;  ///< Figure 5 left.
   /// Discard without the zero-coverage clamp fallback, frame 0: pixels with a NaN colour.
   std::uint64_t nan_pixels_without_fallback = 0;
 
-  SeamsMethodResult& method(faces::Method m) { return methods[std::size_t(m)]; }
-  const SeamsMethodResult& method(faces::Method m) const { return methods[std::size_t(m)]; }
+  SeamsMethodResult& method(faces::SeamMethod m) { return methods[std::size_t(m)]; }
+  const SeamsMethodResult& method(faces::SeamMethod m) const { return methods[std::size_t(m)]; }
 };
 
 /// One method at one rate rendered by GL beside the CPU (`Backend::both`).
 struct SeamsGlMethodResult {
-  faces::Method method = faces::Method::clamp;
+  faces::SeamMethod method = faces::SeamMethod::clamp;
   FrameTimes gpu;   ///< GL_TIME_ELAPSED per frame (draws + resolve).
   FrameTimes wall;  ///< Wall time per frame to glFinish.
   /// GL against the CPU frame, pooled over the quality frames: PSNR of the 8-bit sRGB outputs
@@ -142,8 +142,8 @@ struct SeamsGlRateResult {
   /// `none` the GL frames are still drawn and timed, and every method's `psnr_db` and
   /// `fraction_ge_001` are NaN (not measured).
   SeamsGlComparison compared_with = SeamsGlComparison::cpu_rate;
-  std::array<SeamsGlMethodResult, 4> methods;  ///< Indexed by `faces::Method`.
-  const SeamsGlMethodResult& method(faces::Method m) const { return methods[std::size_t(m)]; }
+  std::array<SeamsGlMethodResult, 4> methods;  ///< Indexed by `faces::SeamMethod`.
+  const SeamsGlMethodResult& method(faces::SeamMethod m) const { return methods[std::size_t(m)]; }
 };
 
 struct SeamsResult {

@@ -1,6 +1,6 @@
 // tessera/experiments/seams_backend.h — the backend interface of the seam experiment (Toth
 // 2013): one frame, the reference and the sample positions of an MSAA rate, rendered by the CPU
-// (`create_cpu_seams_backend`, faces::FaceRenderer) or by OpenGL (gl::SeamsRenderer, made by a
+// (`create_cpu_seams_backend`, faces::FaceRenderer) or by OpenGL (gl::FaceRenderer, made by a
 // `GlBackendFactory`, experiments/common.h), and the rule by which `run_seams` compares a GL
 // frame with a CPU frame.
 #pragma once
@@ -18,10 +18,10 @@
 namespace tessera::experiments {
 
 /// One frame as a seam-experiment backend renders it (the options `run_seams` varies).
-struct SeamsFrameOptions {
+struct FaceFrameOptions {
   int width = 480, height = 540;
   int msaa = 1;
-  faces::Method method = faces::Method::discard;
+  faces::SeamMethod method = faces::SeamMethod::discard;
   texture::TextureFilter filter = texture::TextureFilter::anisotropic;
   int max_aniso = 16;
   bool clamp_fallback = true;  ///< Discard's zero-coverage fallback (off: NaN where Σw = 0).
@@ -84,12 +84,12 @@ SeamsGlComparison seams_gl_comparison(const SeamsSamplePattern& pattern);
 
 /// A renderer of the seam experiment's frames: the CPU (`create_cpu_seams_backend`, wrapping
 /// faces::FaceRenderer) or OpenGL (`GlBackendFactory::create_seams`, wrapping
-/// gl::SeamsRenderer). Used on the calling thread only.
+/// gl::FaceRenderer). Used on the calling thread only.
 class SeamsBackend : public BackendDevice {
  public:
   /// Whether frames with `samples` MSAA samples can be rendered (a GL driver may refuse some).
   virtual bool msaa_supported(int samples) = 0;
-  /// Whether `SeamsFrameOptions::shading_only` is implemented.
+  /// Whether `FaceFrameOptions::shading_only` is implemented.
   virtual bool has_shading_only() const = 0;
   /// What frames at `msaa` are drawn with (the CPU: exactly `msaa`, at the standard positions;
   /// GL: what the driver allocates, e.g. Mesa llvmpipe draws 2x with its 4x samples). Only for
@@ -99,7 +99,7 @@ class SeamsBackend : public BackendDevice {
     return {msaa, msaa, msaa, {standard.begin(), standard.end()}};
   }
   virtual Result<SeamsBackendFrame> render(const scene::Camera& camera,
-                                           const SeamsFrameOptions& options) = 0;
+                                           const FaceFrameOptions& options) = 0;
   /// The paper's reference: Traverse (16x anisotropic by default) at factor x factor the
   /// resolution, Mitchell-Netravali downsampled (faces::FaceRenderer::render_reference and its
   /// GL twin, which take the same options).

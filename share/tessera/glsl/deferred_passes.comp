@@ -1,5 +1,5 @@
 // deferred_passes.comp — the compute passes of tessera's GPU adaptive supersampling
-// (tessera::gl::DeferredGlRenderer, include/tessera/gl_deferred.h). One source, one pass per
+// (tessera::gl::DeferredRenderer, include/tessera/gl_deferred.h). One source, one pass per
 // program, chosen by a define in the preamble:
 //   TESSERA_PASS_FIRST      S: shade the first sample (index order) of every window with
 //                           footprint scale m -> SSBO 3 (rgb, luma), SSBO 4 (light terms D, P)

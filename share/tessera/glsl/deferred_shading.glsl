@@ -7,7 +7,7 @@
 // Needs (the including shader defines before #include):
 //   #define TESSERA_DEFERRED_CLASSES C   number of texture-size classes, 1..8 (>= 1 even when the
 //                                        scene has no textures; unit 3 then holds a dummy)
-// OpenGL bindings (tessera::gl::DeferredGlRenderer sets them up):
+// OpenGL bindings (tessera::gl::DeferredRenderer sets them up):
 //   units 0, 1, 2   sampler2D, the G-buffer grid (m*w x m*h, RGBA32F, texelFetch only, row 0 =
 //                   the top grid row, x right, y down):
 //                     unit 0: (linear view depth, world normal xyz; not renormalised)

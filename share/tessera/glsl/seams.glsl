@@ -1,20 +1,20 @@
 // seams.glsl — seamless per-face texturing on the GPU: Clamp, Discard (Toth 2013), Traverse
 // (McDonald 2013, Listing 1 of Toth's paper) and Traverse+corners, over the packed faces of
-// tessera::gl::FaceTextures (include/tessera/gl_ptex.h). Pure functions of (face, uv, gradients);
+// tessera::gl::FaceTextureSet (include/tessera/gl_faces.h). Pure functions of (face, uv, gradients);
 // the GLSL twin of tessera::faces::sample_face (include/tessera/faces.h), with which it agrees
-// to float rounding under trilinear filtering (tests/gl/gl_ptex_test.cpp).
+// to float rounding under trilinear filtering (tests/gl/gl_faces_test.cpp).
 //
-// OpenGL setup (host side: `FaceTextures::upload(set)`, then `bind(first_unit, ssbo_binding)`):
-//   #define TESSERA_SEAMS_CLASSES N         // face classes = FaceTextures::class_count(), 1..16
+// OpenGL setup (host side: `FaceTextureSet::upload(set)`, then `bind(first_unit, ssbo_binding)`):
+//   #define TESSERA_SEAMS_CLASSES N         // face classes = FaceTextureSet::class_count(), 1..16
 //   #define TESSERA_SEAMS_FIRST_UNIT U      // optional, default 0 (bind's first_unit)
 //   #define TESSERA_SEAMS_CLAMP_UNIT V      // optional, default U + N
 //   #define TESSERA_SEAMS_FACES_BINDING B   // optional, default 0 (bind's ssbo_binding)
 //   #include "seams.glsl"                   // tessera::gl::link_program resolves it
-// (FaceTextures::glsl_defines(FaceTexturesBindings) writes these lines for the binding points an
-// engine chose; gl_ptex.h has the recipe.) Units U .. U+N-1 hold class c's GL_TEXTURE_2D_ARRAY
+// (FaceTextureSet::glsl_defines(FaceTextureSetBindings) writes these lines for the binding points an
+// engine chose; gl_faces.h has the recipe.) Units U .. U+N-1 hold class c's GL_TEXTURE_2D_ARRAY
 // with the clamp-to-border (0,0,0,0) sampler, units V .. V+N-1 the same arrays with the
 // clamp-to-edge sampler (Clamp and the zero-coverage fallback). Both samplers are trilinear
-// with anisotropy as uploaded (FaceTexturesOptions::max_anisotropy): hardware anisotropic
+// with anisotropy as uploaded (FaceTextureSetOptions::max_anisotropy): hardware anisotropic
 // filtering is implementation-defined, so only trilinear is expected to match the CPU sampler.
 //
 // Conventions (those of tessera and Ptex): a face's (u, v) is (0,0), (1,0), (1,1), (0,1) at its
@@ -48,7 +48,7 @@
 #define TESSERA_SEAMS_GLSL
 
 #ifndef TESSERA_SEAMS_CLASSES
-#error "define TESSERA_SEAMS_CLASSES (FaceTextures::class_count(), 1..16) before seams.glsl"
+#error "define TESSERA_SEAMS_CLASSES (FaceTextureSet::class_count(), 1..16) before seams.glsl"
 #endif
 #if TESSERA_SEAMS_CLASSES < 1 || TESSERA_SEAMS_CLASSES > 16
 #error "TESSERA_SEAMS_CLASSES must be 1..16 (two texture units per class)"
@@ -319,7 +319,7 @@ vec4 tessera_seams_sample_traverse_corners(int face, vec2 uv, vec2 dx, vec2 dy) 
   return tessera_seams_resolve(c, face, uv, dx, dy, true);
 }
 
-/// Method by number (0 clamp, 1 discard, 2 traverse, 3 traverse_corners: faces::Method order).
+/// Method by number (0 clamp, 1 discard, 2 traverse, 3 traverse_corners: faces::SeamMethod order).
 vec4 tessera_seams_sample(int method, int face, vec2 uv, vec2 dx, vec2 dy) {
   if (method == 0) return tessera_seams_sample_clamp(face, uv, dx, dy);
   if (method == 1) return tessera_seams_sample_discard(face, uv, dx, dy, true);

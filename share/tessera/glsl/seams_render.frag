@@ -1,8 +1,8 @@
-// seams_render.frag — fragment stage of the GL seams renderer (tessera::gl::SeamsRenderer,
-// include/tessera/gl_seams.h); public GLSL API, installed with seams.glsl.
+// seams_render.frag — fragment stage of the GL face renderer (tessera::gl::FaceRenderer,
+// include/tessera/gl_face_renderer.h); public GLSL API, installed with seams.glsl.
 //
 // One compiled variant per configuration (the host inserts these after #version):
-//   #define TESSERA_SEAMS_CLASSES N       // FaceTextures::class_count() (seams.glsl)
+//   #define TESSERA_SEAMS_CLASSES N       // FaceTextureSet::class_count() (seams.glsl)
 //   #define TESSERA_RENDER_METHOD M       // 0 clamp, 1 discard, 2 traverse, 3 traverse_corners
 //   #define TESSERA_RENDER_FALLBACK B     // discard: 1 = clamp lookup where coverage is 0
 //   #define TESSERA_RENDER_OUTPUT O       // 0 shaded colour, 1 zero-coverage flag

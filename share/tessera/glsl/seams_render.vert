@@ -1,5 +1,5 @@
-// seams_render.vert — vertex stage of the GL seams renderer (tessera::gl::SeamsRenderer,
-// include/tessera/gl_seams.h); public GLSL API, installed with seams.glsl.
+// seams_render.vert — vertex stage of the GL face renderer (tessera::gl::FaceRenderer,
+// include/tessera/gl_face_renderer.h); public GLSL API, installed with seams.glsl.
 //
 // Input layout: every face of the quad mesh has four unshared vertices, face f owning vertices
 // 4f .. 4f+3 in the face's vertex order 0..3, so the face id and the per-face UV corner follow

@@ -2,7 +2,7 @@
 //
 // What an engine does: makes its own OpenGL 4.5 core context (a surfaceless EGL context, or a
 // GLFW window through GLX), installs its own GL_KHR_debug callback and sets its own GL state,
-// then runs gl::AdaptiveSupersampler (create, dispatch, dispatch_reference) and gl::FaceTextures
+// then runs gl::AdaptiveSupersampler (create, dispatch, dispatch_reference) and gl::FaceTextureSet
 // (upload, bind, and its own draw calling tessera_seams_sample_discard). This program does that
 // and prints one JSON object: FNV-1a hashes of the images (read back by the engine itself),
 // whether the engine's debug callback, its user pointer and the GL state listed in tessera's
@@ -42,7 +42,7 @@
 #include "tessera/faces.h"
 #include "tessera/gl.h"
 #include "tessera/gl_adaptive.h"
-#include "tessera/gl_ptex.h"
+#include "tessera/gl_faces.h"
 #include "tessera/glsl.h"
 
 #ifndef EGL_PLATFORM_SURFACELESS_MESA
@@ -125,7 +125,7 @@ struct Snapshot {
 };
 
 // The state tessera's headers promise to leave alone (gl_adaptive.h: everything it touches is
-// put back; gl_ptex.h: upload changes nothing, bind only its units and storage binding).
+// put back; gl_faces.h: upload changes nothing, bind only its units and storage binding).
 Snapshot snapshot() {
   Snapshot s;
   for (GLenum e : {GL_CURRENT_PROGRAM, GL_ACTIVE_TEXTURE, GL_DRAW_FRAMEBUFFER_BINDING,
@@ -210,9 +210,9 @@ struct EngineState {
 
 const char* kHook = R"(
 vec4 tessera_shade_sample(ivec2 g, float footprint) {
-  int id = tessera_aa_id(g);
+  int id = tessera_adaptive_id(g);
   if (id < 0) return vec4(0.1, 0.2, 0.3, 1.0);
-  vec3 n = normalize(tessera_aa_normal(g));
+  vec3 n = normalize(tessera_adaptive_normal(g));
   float checker = mod(floor(float(g.x) / 3.0) + floor(float(g.y) / 3.0), 2.0);
   return vec4((0.5 + 0.5 * n) * (0.4 + 0.6 * checker) * float(id), 1.0);
 }
@@ -356,12 +356,12 @@ GLuint compile_program(const char* vs, const char* fs) {
 void run_faces(Images& out, EngineState& engine, bool shift) {
   const tessera::faces::FaceTextureSet set = make_faces();
   const Snapshot before = snapshot();
-  auto tex = tessera::gl::FaceTextures::upload(set);
+  auto tex = tessera::gl::FaceTextureSet::upload(set);
   if (!tex) die(1, tex.status().message);
   if (!(snapshot() == before) && out.state_error.empty()) {
-    out.state_error = "FaceTextures::upload changed the engine's GL state";
+    out.state_error = "FaceTextureSet::upload changed the engine's GL state";
   }
-  tessera::gl::FaceTexturesBindings b;
+  tessera::gl::FaceTextureSetBindings b;
   b.border_unit = 8;
   b.clamp_unit = 12;
   b.records_binding = 5;
@@ -375,7 +375,7 @@ void run_faces(Images& out, EngineState& engine, bool shift) {
   const GLuint program = compile_program(kFacesVs, fs->text.c_str());
   if (tessera::Status s = tex->bind(b); !s.ok()) die(1, s.message);
   if (!(snapshot() == before) && out.state_error.empty()) {
-    out.state_error = "FaceTextures::bind changed state beyond its binding points";
+    out.state_error = "FaceTextureSet::bind changed state beyond its binding points";
   }
   // The engine's draw: its own target and vertex array, tessera's lookup in its shader.
   GLuint target = 0, fbo = 0, vao = 0;
@@ -456,7 +456,7 @@ std::string no_context_errors() {
   o.hook = {kHook, "engine_hook.glsl", {}};
   auto aa = tessera::gl::AdaptiveSupersampler::create(o);
   all += aa ? std::string("created without a context") : aa.status().message;
-  auto tex = tessera::gl::FaceTextures::upload(make_faces());
+  auto tex = tessera::gl::FaceTextureSet::upload(make_faces());
   all += '|';
   all += tex ? std::string("uploaded without a context") : tex.status().message;
   all += '|';

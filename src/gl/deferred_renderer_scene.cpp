@@ -1,4 +1,4 @@
-// DeferredGlRenderer: scene upload (the CPU's texture chains as RGBA32F arrays, meshes), the
+// DeferredRenderer: scene upload (the CPU's texture chains as RGBA32F arrays, meshes), the
 // size check against the framebuffer limits, the geometry pass into the enlarged G-buffer, and
 // its read-back into the CPU layout.
 #include <algorithm>
@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <tuple>
 
-#include "gl/deferred_gl_internal.h"
+#include "gl/deferred_renderer_internal.h"
 #include "gl/gl_api.h"
 #include "tessera/glsl.h"
 #include "tessera/render.h"
@@ -24,20 +24,20 @@ constexpr int kMaxClasses = 8;
 
 }  // namespace
 
-DeferredGlRenderer::~DeferredGlRenderer() = default;
+DeferredRenderer::~DeferredRenderer() = default;
 
-const std::filesystem::path& DeferredGlRenderer::glsl_dir() const {
+const std::filesystem::path& DeferredRenderer::glsl_dir() const {
   return state_->options.glsl_dir;
 }
-double DeferredGlRenderer::last_gbuffer_ms() const { return state_->gbuffer_ms; }
-double DeferredGlRenderer::last_gbuffer_wall_ms() const { return state_->gbuffer_wall_ms; }
-int DeferredGlRenderer::width() const { return state_->w; }
-int DeferredGlRenderer::height() const { return state_->h; }
-int DeferredGlRenderer::m() const { return state_->m; }
+double DeferredRenderer::last_gbuffer_ms() const { return state_->gbuffer_ms; }
+double DeferredRenderer::last_gbuffer_wall_ms() const { return state_->gbuffer_wall_ms; }
+int DeferredRenderer::width() const { return state_->w; }
+int DeferredRenderer::height() const { return state_->h; }
+int DeferredRenderer::m() const { return state_->m; }
 
-Result<std::unique_ptr<DeferredGlRenderer>> DeferredGlRenderer::create(
-    const scene::Scene& scene, const DeferredGlOptions& options) {
-  std::unique_ptr<DeferredGlRenderer> r(new DeferredGlRenderer());
+Result<std::unique_ptr<DeferredRenderer>> DeferredRenderer::create(
+    const scene::Scene& scene, const DeferredRendererOptions& options) {
+  std::unique_ptr<DeferredRenderer> r(new DeferredRenderer());
   r->state_ = std::make_unique<State>();
   State& st = *r->state_;
   st.scene = &scene;
@@ -175,7 +175,7 @@ Result<std::unique_ptr<DeferredGlRenderer>> DeferredGlRenderer::create(
   return r;
 }
 
-Status DeferredGlRenderer::check_size(int width, int height, int m) const {
+Status DeferredRenderer::check_size(int width, int height, int m) const {
   if (m < 1 || m > 8) {
     return Status::error(ErrorCode::invalid_argument,
                          "deferred GL: window size m must be in [1, 8], got " + std::to_string(m));
@@ -207,7 +207,7 @@ Status DeferredGlRenderer::check_size(int width, int height, int m) const {
   return Status::success();
 }
 
-Status DeferredGlRenderer::render_gbuffer(const scene::Camera& camera, int width, int height,
+Status DeferredRenderer::render_gbuffer(const scene::Camera& camera, int width, int height,
                                           int m) {
   if (Status s = check_size(width, height, m); !s.ok()) return s;
   State& st = *state_;
@@ -294,7 +294,7 @@ Status DeferredGlRenderer::render_gbuffer(const scene::Camera& camera, int width
   }
   glBindVertexArray(0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glFinish();  // see deferred_gl.cpp run_pass: the query must cover the deferred work
+  glFinish();  // see deferred_renderer.cpp run_pass: the query must cover the deferred work
   st.gbuffer_wall_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0).count();
   if (Status s = timer.end(); !s.ok()) return s;
@@ -306,7 +306,7 @@ Status DeferredGlRenderer::render_gbuffer(const scene::Camera& camera, int width
   return check_errors("deferred GL: geometry pass");
 }
 
-Result<deferred::GBuffer> DeferredGlRenderer::read_gbuffer() const {
+Result<deferred::GBuffer> DeferredRenderer::read_gbuffer() const {
   const State& st = *state_;
   if (!st.fbo) return Status::error(ErrorCode::invalid_argument, "deferred GL: no G-buffer yet");
   deferred::GBuffer gb;

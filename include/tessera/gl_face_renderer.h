@@ -1,4 +1,4 @@
-// tessera/gl_seams.h — the seams experiment (Toth 2013) drawn on the GPU: a per-face-textured
+// tessera/gl_face_renderer.h — the seams experiment (Toth 2013) drawn on the GPU: a per-face-textured
 // quad mesh rendered with OpenGL 4.5 through share/tessera/glsl/seams_render.{vert,frag}, which
 // `#include "seams.glsl"` (Clamp / Discard / Traverse / Traverse+corners), into a multisampled
 // RGBA32F target, box-resolved in linear light and read back. Part of `tessera::gl` (built only
@@ -37,7 +37,7 @@
 //
 // Agreement with the CPU frame of the same sample positions: under trilinear filtering only
 // rasterisation ties and the draw order (class-grouped here, face order on the CPU) differ;
-// tests/gl/gl_seams_test.cpp holds the bounds and docs/benchmarks/seams_gl.md the measured
+// tests/gl/gl_face_renderer_test.cpp holds the bounds and docs/benchmarks/seams_gl.md the measured
 // agreement. Hardware anisotropic filtering is implementation-defined (llvmpipe's is much
 // blurrier than tessera's exact filter), so under it the frames agree far less.
 //
@@ -54,7 +54,7 @@
 #include "tessera/core.h"
 #include "tessera/faces.h"
 #include "tessera/gl.h"
-#include "tessera/gl_ptex.h"
+#include "tessera/gl_faces.h"
 #include "tessera/scene.h"
 
 namespace tessera::gl {
@@ -99,19 +99,19 @@ enum class SeamsOutput {
 };
 
 /// One frame's settings (the GL counterpart of faces::FaceRenderOptions).
-struct SeamsFrameOptions {
+struct FaceFrameOptions {
   int width = 480;   ///< The paper's frame size.
   int height = 540;
   int msaa = 1;      ///< 1, 2, 4 or 8 samples (8 is refused where GL_MAX_SAMPLES < 8); the
-                     ///< driver may draw with more (SeamsFrame::samples, sample_pattern).
-  faces::Method method = faces::Method::discard;
+                     ///< driver may draw with more (FaceFrame::samples, sample_pattern).
+  faces::SeamMethod method = faces::SeamMethod::discard;
   /// trilinear, or anisotropic (GL_TEXTURE_MAX_ANISOTROPY = max_aniso on both samplers).
   texture::TextureFilter filter = texture::TextureFilter::anisotropic;
   int max_aniso = 16;  ///< 1..16, clamped to the implementation's maximum.
   /// Discard's zero-coverage fallback (Listing 1, lines 13-15). Off: NaN where Σw = 0.
   bool clamp_fallback = true;
   SeamsOutput output = SeamsOutput::colour;
-  /// Read the resolved frame back into `SeamsFrame::image` (off: timing only).
+  /// Read the resolved frame back into `FaceFrame::image` (off: timing only).
   bool read_back = true;
   /// Sub-rectangle [x0, x0 + width) x [y0, y0 + height) of a virtual full_width x full_height
   /// image (as FaceRenderOptions: tiled references); 0 = the whole image.
@@ -119,7 +119,7 @@ struct SeamsFrameOptions {
 };
 
 /// A rendered frame.
-struct SeamsFrame {
+struct FaceFrame {
   /// Resolved linear RGB, alpha = geometry coverage (0 background .. 1 covered); top-down.
   /// Empty when `read_back` was off.
   ImageRGBAF image;
@@ -131,11 +131,11 @@ struct SeamsFrame {
   double wall_ms = 0;
   int draw_calls = 0;  ///< One per face class with faces.
   /// Samples per pixel the frame was drawn with (`SamplePattern::samples` of the rate: more
-  /// than `SeamsFrameOptions::msaa` where the driver rounds the rate up).
+  /// than `FaceFrameOptions::msaa` where the driver rounds the rate up).
   int samples = 1;
 };
 
-struct SeamsRendererOptions {
+struct FaceRendererOptions {
   /// Development override: a folder read instead of the GLSL embedded in the library (see
   /// tessera/glsl.h). Empty (the default): $TESSERA_GLSL_DIR when set, else the embedded copy;
   /// no file is read.
@@ -146,21 +146,21 @@ struct SeamsRendererOptions {
 /// Draws a per-face-textured quad mesh with OpenGL. Owns the uploaded textures, the vertex
 /// buffers, render targets (re-created when size or samples change) and one program per
 /// shader variant (compiled on first use). Not thread-safe; one context.
-class SeamsRenderer {
+class FaceRenderer {
  public:
-  /// Uploads `textures` (FaceTextures::upload) and the mesh. `scene` and `textures` must
+  /// Uploads `textures` (FaceTextureSet::upload) and the mesh. `scene` and `textures` must
   /// outlive the renderer; face counts must match (size_mismatch). Fails (unsupported) when the
   /// face classes need more texture units than the fragment stage has (2 per class).
-  static Result<std::unique_ptr<SeamsRenderer>> create(const faces::FaceScene& scene,
+  static Result<std::unique_ptr<FaceRenderer>> create(const faces::FaceScene& scene,
                                                        const faces::FaceTextureSet& textures,
-                                                       const SeamsRendererOptions& options = {});
-  ~SeamsRenderer();
-  SeamsRenderer(const SeamsRenderer&) = delete;
-  SeamsRenderer& operator=(const SeamsRenderer&) = delete;
+                                                       const FaceRendererOptions& options = {});
+  ~FaceRenderer();
+  FaceRenderer(const FaceRenderer&) = delete;
+  FaceRenderer& operator=(const FaceRenderer&) = delete;
 
   /// Renders one frame. An MSAA rate the driver refuses fails with unsupported (see
   /// `msaa_supported`); a bad size or rate with invalid_argument.
-  Result<SeamsFrame> render(const scene::Camera& camera, const SeamsFrameOptions& options);
+  Result<FaceFrame> render(const scene::Camera& camera, const FaceFrameOptions& options);
 
   /// Whether an RGBA32F + depth framebuffer with `samples` samples is complete here (cached).
   bool msaa_supported(int samples);
@@ -180,13 +180,13 @@ class SeamsRenderer {
   Result<ImageRGBAF> render_reference(const scene::Camera& camera, int width, int height,
                                       const faces::ReferenceOptions& options = {});
 
-  const FaceTextures& textures() const;
+  const FaceTextureSet& textures() const;
   const std::filesystem::path& glsl_dir() const;
 
   struct State;  ///< Internal.
 
  private:
-  SeamsRenderer() = default;
+  FaceRenderer() = default;
   std::unique_ptr<State> state_;
 };
 

@@ -1,4 +1,4 @@
-// DeferredGlRenderer: the compute passes (share/tessera/glsl/deferred_passes.comp) — S, the
+// DeferredRenderer: the compute passes (share/tessera/glsl/deferred_passes.comp) — S, the
 // metrics, the extra samples, the reference, the edge-per-sample baseline, sRGB8 and FXAA —
 // with their parameters, buffers, GL_TIME_ELAPSED timing and read-back.
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include <cstring>
 
 #include "deferred/deferred_internal.h"
-#include "gl/deferred_gl_internal.h"
+#include "gl/deferred_renderer_internal.h"
 #include "gl/gl_api.h"
 #include "tessera/glsl.h"
 
@@ -32,14 +32,14 @@ Object make_buffer(std::size_t bytes) {
 
 }  // namespace
 
-double GlShadeResult::total_ms() const { return sum_ms(passes); }
-double GlShadeResult::total_wall_ms() const { return sum_ms(wall_passes); }
-double GlFxaaResult::total_ms() const { return sum_ms(passes); }
-double GlFxaaResult::total_wall_ms() const { return sum_ms(wall_passes); }
+double ShadeResult::total_ms() const { return sum_ms(passes); }
+double ShadeResult::total_wall_ms() const { return sum_ms(wall_passes); }
+double FxaaResult::total_ms() const { return sum_ms(passes); }
+double FxaaResult::total_wall_ms() const { return sum_ms(wall_passes); }
 
 namespace {
 
-using State = DeferredGlRenderer::State;
+using State = DeferredRenderer::State;
 
 Result<const Program*> program(State& st, const std::vector<std::string>& defines) {
   std::vector<std::string> pre = {
@@ -310,7 +310,7 @@ Status finish(PassTimer& timer, std::vector<PassTime>& passes, std::vector<PassT
   return Status::success();
 }
 
-Status read_samples(const State& st, GlShadeResult& r) {
+Status read_samples(const State& st, ShadeResult& r) {
   const std::size_t pixels = std::size_t(st.w) * std::size_t(st.h);
   std::vector<std::uint32_t> k(pixels);
   glGetNamedBufferSubData(st.k_buf.get(), 0, GLsizeiptr(pixels * 4), k.data());
@@ -325,10 +325,10 @@ Status read_samples(const State& st, GlShadeResult& r) {
 
 }  // namespace
 
-Result<GlShadeResult> DeferredGlRenderer::shade_reference(const deferred::ShadingOptions& o) {
+Result<ShadeResult> DeferredRenderer::shade_reference(const deferred::ShadingOptions& o) {
   State& st = *state_;
   if (Status s = bind_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
-  GlShadeResult r;
+  ShadeResult r;
   if (st.m >= 2) {
     if (Status s = shade_with_component(st, 1, nullptr, r); !s.ok()) return s;
     return r;
@@ -343,10 +343,10 @@ Result<GlShadeResult> DeferredGlRenderer::shade_reference(const deferred::Shadin
   return r;
 }
 
-Result<GlShadeResult> DeferredGlRenderer::shade_default(const deferred::ShadingOptions& o) {
+Result<ShadeResult> DeferredRenderer::shade_default(const deferred::ShadingOptions& o) {
   State& st = *state_;
   if (Status s = bind_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
-  GlShadeResult r;
+  ShadeResult r;
   if (st.m >= 2) {
     if (Status s = shade_with_component(st, 2, nullptr, r); !s.ok()) return s;
     return r;
@@ -361,12 +361,12 @@ Result<GlShadeResult> DeferredGlRenderer::shade_default(const deferred::ShadingO
   return r;
 }
 
-Result<GlShadeResult> DeferredGlRenderer::shade_adaptive(const deferred::ShadingOptions& o,
+Result<ShadeResult> DeferredRenderer::shade_adaptive(const deferred::ShadingOptions& o,
                                                          const deferred::AdaptiveOptions& a) {
   State& st = *state_;
   if (Status s = bind_inputs(st, o, &a, nullptr); !s.ok()) return s;
-  GlShadeResult r;
-  // One implementation of the technique: gl::AdaptiveSupersampler (deferred_gl_component.cpp)
+  ShadeResult r;
+  // One implementation of the technique: gl::AdaptiveSupersampler (deferred_renderer_component.cpp)
   // with deferred_shading.glsl's shading as its hook; m = 1 has no window to adapt.
   if (st.m >= 2) {
     if (Status s = shade_with_component(st, 0, &a, r); !s.ok()) return s;
@@ -384,11 +384,11 @@ Result<GlShadeResult> DeferredGlRenderer::shade_adaptive(const deferred::Shading
   return r;
 }
 
-Result<GlShadeResult> DeferredGlRenderer::shade_edge_per_sample(
+Result<ShadeResult> DeferredRenderer::shade_edge_per_sample(
     const deferred::ShadingOptions& o, const deferred::EdgePerSampleOptions& e) {
   State& st = *state_;
   if (Status s = bind_inputs(st, o, nullptr, &e); !s.ok()) return s;
-  GlShadeResult r;
+  ShadeResult r;
   PassTimer timer;
   if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
   if (Status s = run_extra(st, timer, "edge_extra", true); !s.ok()) return s;
@@ -422,13 +422,13 @@ Result<std::vector<std::string>> fxaa_defines(const deferred::FxaaOptions& f) {
 
 }  // namespace
 
-Result<GlFxaaResult> DeferredGlRenderer::shade_default_fxaa(const deferred::ShadingOptions& o,
+Result<FxaaResult> DeferredRenderer::shade_default_fxaa(const deferred::ShadingOptions& o,
                                                             const deferred::FxaaOptions& f) {
   State& st = *state_;
   Result<std::vector<std::string>> fd = fxaa_defines(f);
   if (!fd) return fd.status();
   if (Status s = bind_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
-  GlFxaaResult r;
+  FxaaResult r;
   PassTimer timer;
   if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
   if (Status s = run_pass(st, timer, "srgb8", {"TESSERA_PASS_SRGB8", "TESSERA_SRGB_FROM_S"});
@@ -442,7 +442,7 @@ Result<GlFxaaResult> DeferredGlRenderer::shade_default_fxaa(const deferred::Shad
   return r;
 }
 
-Result<GlFxaaResult> DeferredGlRenderer::fxaa(const ImageRGBA8& image,
+Result<FxaaResult> DeferredRenderer::fxaa(const ImageRGBA8& image,
                                               const deferred::FxaaOptions& f) {
   State& st = *state_;
   if (image.empty()) return Status::error(ErrorCode::invalid_argument, "fxaa: empty image");
@@ -457,7 +457,7 @@ Result<GlFxaaResult> DeferredGlRenderer::fxaa(const ImageRGBA8& image,
   st.w = image.width;
   st.h = image.height;
   Status bound = bind_inputs(st, deferred::ShadingOptions{}, nullptr, nullptr);
-  GlFxaaResult r;
+  FxaaResult r;
   Status s = bound;
   if (s.ok()) {
     std::vector<std::uint8_t> in(image.pixels.begin(), image.pixels.end());

@@ -1,4 +1,4 @@
-// The seams experiment on the GPU (tessera/gl_seams.h): class-grouped draws of a per-face-
+// The seams experiment on the GPU (tessera/gl_face_renderer.h): class-grouped draws of a per-face-
 // textured quad mesh through seams_render.{vert,frag}, a multisampled RGBA32F target, the box
 // resolve (glBlitFramebuffer, linear light), GL_TIME_ELAPSED per pass and read-back.
 #include <algorithm>
@@ -13,17 +13,17 @@
 
 #include "gl/gl_api.h"
 #include "tessera/glsl.h"
-#include "tessera/gl_seams.h"
+#include "tessera/gl_face_renderer.h"
 #include "tessera/raster.h"
 
 namespace tessera::gl {
 
 using namespace api;  // NOLINT(google-build-using-namespace)
 
-struct SeamsRenderer::State {
+struct FaceRenderer::State {
   const faces::FaceScene* scene = nullptr;
   const faces::FaceTextureSet* set = nullptr;
-  FaceTextures textures;
+  FaceTextureSet textures;
   std::filesystem::path glsl_dir;
   Object vao, clip_buffer, normal_buffer, index_buffer;
   std::vector<float> clip;  // 4 floats per vertex, 4 vertices per face
@@ -38,13 +38,13 @@ struct SeamsRenderer::State {
   RenderTarget target, resolved;  // target: drawn (multisampled or not); resolved: MSAA only
   float max_anisotropy = 1.0f;
 
-  Result<const Program*> program(const SeamsFrameOptions& o);
+  Result<const Program*> program(const FaceFrameOptions& o);
   Status ensure_targets(int width, int height, int samples);
 };
 
-Result<const Program*> SeamsRenderer::State::program(const SeamsFrameOptions& o) {
+Result<const Program*> FaceRenderer::State::program(const FaceFrameOptions& o) {
   const int method = int(o.method);
-  const int fallback = o.method == faces::Method::discard ? int(o.clamp_fallback) : 1;
+  const int fallback = o.method == faces::SeamMethod::discard ? int(o.clamp_fallback) : 1;
   const int output = int(o.output);
   const int key = method * 4 + fallback * 2 + output;
   if (auto it = programs.find(key); it != programs.end()) return &it->second;
@@ -64,7 +64,7 @@ Result<const Program*> SeamsRenderer::State::program(const SeamsFrameOptions& o)
   return &programs.emplace(key, std::move(*p)).first->second;
 }
 
-Status SeamsRenderer::State::ensure_targets(int width, int height, int samples) {
+Status FaceRenderer::State::ensure_targets(int width, int height, int samples) {
   if (target.framebuffer && target.width == width && target.height == height &&
       target.samples == samples) {
     return Status::success();
@@ -90,30 +90,30 @@ Status SeamsRenderer::State::ensure_targets(int width, int height, int samples) 
   return Status::success();
 }
 
-SeamsRenderer::~SeamsRenderer() = default;
+FaceRenderer::~FaceRenderer() = default;
 
-const FaceTextures& SeamsRenderer::textures() const { return state_->textures; }
-const std::filesystem::path& SeamsRenderer::glsl_dir() const { return state_->glsl_dir; }
+const FaceTextureSet& FaceRenderer::textures() const { return state_->textures; }
+const std::filesystem::path& FaceRenderer::glsl_dir() const { return state_->glsl_dir; }
 
-Result<std::unique_ptr<SeamsRenderer>> SeamsRenderer::create(const faces::FaceScene& scene,
+Result<std::unique_ptr<FaceRenderer>> FaceRenderer::create(const faces::FaceScene& scene,
                                                              const faces::FaceTextureSet& set,
-                                                             const SeamsRendererOptions& options) {
+                                                             const FaceRendererOptions& options) {
   const faces::QuadMesh& m = scene.mesh;
   if (m.face_count() != set.face_count()) {
     return Status::error(ErrorCode::size_mismatch,
                          scene.name + ": " + std::to_string(m.face_count()) + " faces but " +
                              std::to_string(set.face_count()) + " face textures");
   }
-  std::unique_ptr<SeamsRenderer> r(new SeamsRenderer());
+  std::unique_ptr<FaceRenderer> r(new FaceRenderer());
   r->state_ = std::make_unique<State>();
   State& s = *r->state_;
   s.scene = &scene;
   s.set = &set;
   s.glsl_dir = options.glsl_dir;
-  FaceTexturesOptions fo;
+  FaceTextureSetOptions fo;
   fo.format = options.texels;
   fo.max_anisotropy = 16.0f;
-  Result<FaceTextures> tex = FaceTextures::upload(set, fo);
+  Result<FaceTextureSet> tex = FaceTextureSet::upload(set, fo);
   if (!tex) return tex.status();
   s.textures = std::move(*tex);
   GLint units = 0;
@@ -171,11 +171,11 @@ Result<std::unique_ptr<SeamsRenderer>> SeamsRenderer::create(const faces::FaceSc
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.index_buffer.get());
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
-  if (Status st = check_errors("seams renderer: mesh upload"); !st.ok()) return st;
+  if (Status st = check_errors("face renderer: mesh upload"); !st.ok()) return st;
   return r;
 }
 
-bool SeamsRenderer::msaa_supported(int samples) {
+bool FaceRenderer::msaa_supported(int samples) {
   if (samples < 1) return false;
   if (samples == 1) return true;
   if (auto it = state_->msaa_ok.find(samples); it != state_->msaa_ok.end()) return it->second;
@@ -188,15 +188,15 @@ bool SeamsRenderer::msaa_supported(int samples) {
   return ok;
 }
 
-Result<SamplePattern> SeamsRenderer::sample_pattern(int msaa) {
+Result<SamplePattern> FaceRenderer::sample_pattern(int msaa) {
   if (msaa < 1) {
     return Status::error(ErrorCode::invalid_argument,
-                         "seams renderer: MSAA " + std::to_string(msaa) + " is below 1");
+                         "face renderer: MSAA " + std::to_string(msaa) + " is below 1");
   }
   if (auto it = state_->patterns.find(msaa); it != state_->patterns.end()) return it->second;
   if (!msaa_supported(msaa)) {
     return Status::error(ErrorCode::unsupported,
-                         "seams renderer: the driver refuses " + std::to_string(msaa) +
+                         "face renderer: the driver refuses " + std::to_string(msaa) +
                              "x MSAA for RGBA32F + depth");
   }
   SamplePattern p;
@@ -223,10 +223,10 @@ Result<SamplePattern> SeamsRenderer::sample_pattern(int msaa) {
       p.positions.push_back(SamplePosition{xy[0] - 0.5f, xy[1] - 0.5f});
     }
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(previous));
-    if (Status st = check_errors("seams renderer: sample positions"); !st.ok()) return st;
+    if (Status st = check_errors("face renderer: sample positions"); !st.ok()) return st;
     if (samples < msaa) {
       return Status::error(ErrorCode::unsupported,
-                           "seams renderer: the driver gave " + std::to_string(samples) +
+                           "face renderer: the driver gave " + std::to_string(samples) +
                                " samples for " + std::to_string(msaa) + "x MSAA");
     }
     p.samples = int(samples);
@@ -277,7 +277,7 @@ std::vector<raster::SampleOffset> cpu_sample_offsets(const std::vector<SamplePos
   return out;
 }
 
-std::vector<int> SeamsRenderer::refused_msaa(const std::vector<int>& rates) {
+std::vector<int> FaceRenderer::refused_msaa(const std::vector<int>& rates) {
   std::vector<int> out;
   for (int r : rates) {
     if (!msaa_supported(r)) out.push_back(r);
@@ -285,23 +285,23 @@ std::vector<int> SeamsRenderer::refused_msaa(const std::vector<int>& rates) {
   return out;
 }
 
-Result<SeamsFrame> SeamsRenderer::render(const scene::Camera& camera, const SeamsFrameOptions& o) {
+Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceFrameOptions& o) {
   State& s = *state_;
   if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384) {
-    return Status::error(ErrorCode::invalid_argument, "seams renderer: bad frame size");
+    return Status::error(ErrorCode::invalid_argument, "face renderer: bad frame size");
   }
   if (o.msaa != 1 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8 && o.msaa != 16) {
     return Status::error(ErrorCode::invalid_argument,
-                         "seams renderer: MSAA " + std::to_string(o.msaa) + " not in 1,2,4,8,16");
+                         "face renderer: MSAA " + std::to_string(o.msaa) + " not in 1,2,4,8,16");
   }
   if (o.filter != texture::TextureFilter::trilinear &&
       o.filter != texture::TextureFilter::anisotropic) {
     return Status::error(ErrorCode::invalid_argument,
-                         "seams renderer: the filter must be trilinear or anisotropic");
+                         "face renderer: the filter must be trilinear or anisotropic");
   }
   if (!msaa_supported(o.msaa)) {
     return Status::error(ErrorCode::unsupported,
-                         "seams renderer: the driver refuses " + std::to_string(o.msaa) +
+                         "face renderer: the driver refuses " + std::to_string(o.msaa) +
                              "x MSAA for RGBA32F + depth");
   }
   Result<SamplePattern> pattern = sample_pattern(o.msaa);
@@ -310,7 +310,7 @@ Result<SeamsFrame> SeamsRenderer::render(const scene::Camera& camera, const Seam
   if (!prog) return prog.status();
   if (Status st = s.ensure_targets(o.width, o.height, o.msaa); !st.ok()) return st;
 
-  SeamsFrame frame;
+  FaceFrame frame;
   frame.samples = pattern->samples;
   const auto t0 = std::chrono::steady_clock::now();
   // Clip-space positions with the CPU renderer's arithmetic (faces::FaceRenderer::render).
@@ -336,7 +336,7 @@ Result<SeamsFrame> SeamsRenderer::render(const scene::Camera& camera, const Seam
   glEnable(GL_CULL_FACE);
   glDisable(GL_BLEND);
   glEnable(GL_MULTISAMPLE);
-  if (Status st = check_errors("seams renderer: state"); !st.ok()) return st;
+  if (Status st = check_errors("face renderer: state"); !st.ok()) return st;
 
   const bool flags = o.output == SeamsOutput::zero_coverage;  // background 0: nothing flagged
   const float background[4] = {flags ? 0.0f : faces::kFaceBackground[0],
@@ -371,7 +371,7 @@ Result<SeamsFrame> SeamsRenderer::render(const scene::Camera& camera, const Seam
   glBindVertexArray(0);
   glUseProgram(0);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  if (Status st = check_errors("seams renderer: draw"); !st.ok()) return st;
+  if (Status st = check_errors("face renderer: draw"); !st.ok()) return st;
   Result<std::vector<PassTime>> times = timer.collect();
   if (!times) return times.status();
   for (const PassTime& t : *times) {
@@ -388,23 +388,23 @@ Result<SeamsFrame> SeamsRenderer::render(const scene::Camera& camera, const Seam
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glReadPixels(0, 0, o.width, o.height, GL_RGBA, GL_FLOAT, frame.image.pixels.data());
     glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(previous));
-    if (Status st = check_errors("seams renderer: read-back"); !st.ok()) return st;
+    if (Status st = check_errors("face renderer: read-back"); !st.ok()) return st;
   }
   return frame;
 }
 
-Result<ImageRGBAF> SeamsRenderer::render_reference(const scene::Camera& camera, int width,
+Result<ImageRGBAF> FaceRenderer::render_reference(const scene::Camera& camera, int width,
                                                    int height,
                                                    const faces::ReferenceOptions& options) {
-  SeamsFrameOptions o;
-  o.method = faces::Method::traverse;
+  FaceFrameOptions o;
+  o.method = faces::SeamMethod::traverse;
   o.filter = options.filter;
   o.max_aniso = 16;
   o.msaa = 1;
   return faces::render_reference_tiles(width, height, options,
                                        [&](const faces::FrameWindow& w) -> Result<ImageRGBAF> {
                                          faces::set_frame_window(o, w);
-                                         Result<SeamsFrame> f = render(camera, o);
+                                         Result<FaceFrame> f = render(camera, o);
                                          if (!f) return f.status();
                                          return std::move(f->image);
                                        });

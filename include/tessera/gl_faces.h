@@ -1,14 +1,14 @@
-// tessera/gl_ptex.h — per-face (Ptex-style) textures for the GPU: a faces::FaceTextureSet packed
+// tessera/gl_faces.h — per-face (Ptex-style) textures for the GPU: a faces::FaceTextureSet packed
 // as one GL_TEXTURE_2D_ARRAY per face-resolution class plus a std430 face-record buffer, which
 // the shipped seams.glsl reads in the engine's own shaders (tessera_seams_sample_discard, ...).
-// Contract: `pack_faces` and `ptex_quad_mesh` are pure; `FaceTextures::upload` and `bind` work
+// Contract: `pack_faces` and `ptex_quad_mesh` are pure; `FaceTextureSet::upload` and `bind` work
 // on the OpenGL 4.5 core context current on the calling thread, whoever made it (entry points as
 // tessera/gl.h says: `load_entry_points` or first-use resolution; no tessera `Context` needed),
 // and fail with one line without one. `upload` leaves the engine's GL state as it found it (it
 // sets and restores the pixel-unpack state); `bind` changes exactly the binding points it is
 // given. Destroy the objects while their context is current. The recipe (mesh, upload, vertex
 // and fragment stages, per-frame bind) is docs/engine_integration.md; examples/engine_ptex does
-// it in one file; tests: tests/gl/gl_ptex_bind_test.cpp, gl_engine_context*.
+// it in one file; tests: tests/gl/gl_faces_bind_test.cpp, gl_engine_context*.
 #pragma once
 
 #include <array>
@@ -90,17 +90,17 @@ enum class TexelFormat {
   rgba16f,  ///< Half the memory; texels rounded to binary16 by the driver on upload.
 };
 
-struct FaceTexturesOptions {
+struct FaceTextureSetOptions {
   TexelFormat format = TexelFormat::rgba32f;
   /// Upper bound of the GL_TEXTURE_MAX_ANISOTROPY of the samplers (1..16; clamped to the
   /// implementation's maximum).
   float max_anisotropy = 16.0f;
 };
 
-/// The binding points `FaceTextures::bind` uses, chosen by the caller (seams.glsl's macros of
+/// The binding points `FaceTextureSet::bind` uses, chosen by the caller (seams.glsl's macros of
 /// the same meaning: TESSERA_SEAMS_FIRST_UNIT, TESSERA_SEAMS_CLAMP_UNIT,
-/// TESSERA_SEAMS_FACES_BINDING; `FaceTextures::glsl_defines` writes them).
-struct FaceTexturesBindings {
+/// TESSERA_SEAMS_FACES_BINDING; `FaceTextureSet::glsl_defines` writes them).
+struct FaceTextureSetBindings {
   int border_unit = 0;      ///< First texture unit of the clamp-to-border arrays (one per class).
   int clamp_unit = -1;      ///< First unit of the clamp-to-edge arrays; -1 = right after the
                             ///< border units (border_unit + class_count()).
@@ -115,12 +115,12 @@ struct FaceTexturesBindings {
 /// level uploaded from the CPU chains (no glGenerateMipmap: GL and CPU filter the same
 /// texels), a GL_SHADER_STORAGE_BUFFER of `FaceRecord`s, and two sampler objects: clamp-to-
 /// border (0,0,0,0) and clamp-to-edge, both trilinear with anisotropy.
-class FaceTextures {
+class FaceTextureSet {
  public:
   /// Packs and uploads `set` (checking the current context's limits); the pixel-unpack state
   /// (alignment, row length, skips, GL_PIXEL_UNPACK_BUFFER) is set for the upload and restored.
-  static Result<FaceTextures> upload(const faces::FaceTextureSet& set,
-                                     const FaceTexturesOptions& options = {});
+  static Result<FaceTextureSet> upload(const faces::FaceTextureSet& set,
+                                     const FaceTextureSetOptions& options = {});
 
   const PackedFaces& layout() const { return layout_; }
   int class_count() const { return int(arrays_.size()); }
@@ -147,7 +147,7 @@ class FaceTextures {
   /// Fails (invalid_argument, before any GL call that binds) when a unit or binding is
   /// negative, the border and clamp unit ranges overlap, or a unit exceeds
   /// GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS or the binding GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS.
-  Status bind(const FaceTexturesBindings& b) const;
+  Status bind(const FaceTextureSetBindings& b) const;
 
   /// `bind({first_unit, -1, ssbo_binding, clamp_units})`: border units first_unit + c, clamp
   /// units first_unit + class_count() + c (the defaults of seams.glsl).
@@ -157,7 +157,7 @@ class FaceTextures {
   /// "#define TESSERA_SEAMS_CLASSES N", "#define TESSERA_SEAMS_FIRST_UNIT U",
   /// "#define TESSERA_SEAMS_CLAMP_UNIT V" and "#define TESSERA_SEAMS_FACES_BINDING B" (for
   /// glsl::ExpandOptions::preamble, or pasted after #version).
-  std::vector<std::string> glsl_defines(const FaceTexturesBindings& b) const;
+  std::vector<std::string> glsl_defines(const FaceTextureSetBindings& b) const;
 
  private:
   PackedFaces layout_;

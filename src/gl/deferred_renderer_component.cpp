@@ -1,11 +1,11 @@
-// DeferredGlRenderer as a user of gl::AdaptiveSupersampler: its adaptive, reference and 1 spp
+// DeferredRenderer as a user of gl::AdaptiveSupersampler: its adaptive, reference and 1 spp
 // passes (m >= 2) run the engine component with tessera's own G-buffer layout and the
 // Blinn-Phong / heavy shading of deferred_shading.glsl as the hook, so the technique has one
 // implementation (share/tessera/glsl/adaptive_component.glsl). deferred_passes.comp keeps the
 // engine baseline (edge-per-sample), sRGB8 and FXAA, and m = 1.
 #include <algorithm>
 
-#include "gl/deferred_gl_internal.h"
+#include "gl/deferred_renderer_internal.h"
 #include "gl/gl_api.h"
 
 namespace tessera::gl {
@@ -14,7 +14,7 @@ using namespace api;
 
 namespace {
 
-using State = DeferredGlRenderer::State;
+using State = DeferredRenderer::State;
 
 AdaptiveSchedule schedule_of(ExtraSchedule s) {
   switch (s) {
@@ -40,7 +40,7 @@ Result<AdaptiveSupersampler*> component(State& st) {
   o.schedule = schedule_of(st.options.schedule);
   o.output = AdaptiveOutputFormat::rgba32f;
   o.sample_count_texture = true;
-  o.profile = true;  // GlShadeResult's pass times
+  o.profile = true;  // ShadeResult's pass times
   o.glsl_dir = st.options.glsl_dir;
   // The G-buffer of deferred_shading.glsl (units 0..2 of the renderer's own bindings).
   o.layout.depth = {0, "r"};
@@ -48,15 +48,15 @@ Result<AdaptiveSupersampler*> component(State& st) {
   o.layout.id = {1, "r"};
   o.layout.uv = {1, "gb"};
   o.layout.uv_derivatives = {2, "rgba"};
-  o.hook.name = "DeferredGlRenderer's shading hook";
+  o.hook.name = "DeferredRenderer's shading hook";
   // S keeps its light terms (D, P) in the renderer's SSBO 4 (deferred_passes.comp's layout),
   // and sample 0 again repeats only the albedo lookup, as deferred_passes.comp does.
   o.hook.source = "#define TESSERA_DEFERRED_CLASSES " + std::to_string(classes) +
                   "\n#include \"deferred_shading.glsl\"\n"
                   "layout(std430, binding = 4) buffer DeferredTerms { vec4 deferred_terms[]; };\n"
-                  "#define TESSERA_AA_FIRST_AGAIN 1\n"
+                  "#define TESSERA_ADAPTIVE_FIRST_AGAIN 1\n"
                   "int deferred_pixel(ivec2 g) {\n"
-                  "  return (g.y / TESSERA_AA_M) * TESSERA_AA_WIDTH + g.x / TESSERA_AA_M;\n"
+                  "  return (g.y / TESSERA_ADAPTIVE_M) * TESSERA_ADAPTIVE_WIDTH + g.x / TESSERA_ADAPTIVE_M;\n"
                   "}\n"
                   "vec4 tessera_shade_sample(ivec2 g, float footprint) {\n"
                   "  TesseraSample s = tessera_fetch(g);\n"
@@ -65,7 +65,7 @@ Result<AdaptiveSupersampler*> component(State& st) {
                   "    tessera_lighting(g, s, d, p);\n"
                   "    c = tessera_albedo(s, footprint) * d + p;\n"
                   "  }\n"
-                  "#if defined(TESSERA_AA_PASS_FIRST)\n"
+                  "#if defined(TESSERA_ADAPTIVE_PASS_FIRST)\n"
                   "  int i = deferred_pixel(g);\n"
                   "  deferred_terms[2 * i] = vec4(d, 0.0);\n"
                   "  deferred_terms[2 * i + 1] = vec4(p, 0.0);\n"
@@ -89,7 +89,7 @@ Result<AdaptiveSupersampler*> component(State& st) {
 }  // namespace
 
 Status shade_with_component(State& st, int mode, const deferred::AdaptiveOptions* a,
-                            GlShadeResult& r) {
+                            ShadeResult& r) {
   Result<AdaptiveSupersampler*> c = component(st);
   if (!c) return c.status();
   if (a) {

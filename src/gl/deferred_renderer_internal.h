@@ -1,5 +1,5 @@
-// Internal to src/gl: the state of tessera::gl::DeferredGlRenderer, shared by
-// deferred_gl_scene.cpp (textures, meshes, geometry pass) and deferred_gl.cpp (compute passes).
+// Internal to src/gl: the state of tessera::gl::DeferredRenderer, shared by
+// deferred_renderer_scene.cpp (textures, meshes, geometry pass) and deferred_renderer.cpp (compute passes).
 #pragma once
 
 #include <array>
@@ -37,9 +37,9 @@ struct GlMesh {
   int material = 0;
 };
 
-struct DeferredGlRenderer::State {
+struct DeferredRenderer::State {
   const scene::Scene* scene = nullptr;
-  DeferredGlOptions options;
+  DeferredRendererOptions options;
   std::vector<texture::Texture> cpu_textures;  // the CPU chains (render::build_scene_textures)
   std::vector<Object> class_arrays;   // one GL_TEXTURE_2D_ARRAY per texture size
   Object materials_ssbo;
@@ -65,7 +65,7 @@ struct DeferredGlRenderer::State {
   std::size_t list_base_pixels = 0, list_capacity = 0;
   std::map<std::string, Program> programs;  // by preamble
   // The adaptive, reference and 1 spp passes for m >= 2: gl::AdaptiveSupersampler with this
-  // G-buffer and deferred_shading.glsl's shading as its hook (deferred_gl_component.cpp), made
+  // G-buffer and deferred_shading.glsl's shading as its hook (deferred_renderer_component.cpp), made
   // again when (w, h, m, schedule, texture classes) change.
   std::unique_ptr<AdaptiveSupersampler> component;
   std::array<int, 5> component_key{};
@@ -73,7 +73,7 @@ struct DeferredGlRenderer::State {
 
 /// The component's image (RGBA32F, alpha 1) and per-pixel sample counts into `r`, after
 /// binding the shading inputs; `mode`: 0 adaptive, 1 reference, 2 first sample.
-Status shade_with_component(DeferredGlRenderer::State& st, int mode,
-                            const deferred::AdaptiveOptions* adaptive, GlShadeResult& r);
+Status shade_with_component(DeferredRenderer::State& st, int mode,
+                            const deferred::AdaptiveOptions* adaptive, ShadeResult& r);
 
 }  // namespace tessera::gl

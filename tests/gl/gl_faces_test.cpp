@@ -1,9 +1,9 @@
-// Per-face textures packed for the GPU (tessera/gl_ptex.h): the CPU layout mirrors the
+// Per-face textures packed for the GPU (tessera/gl_faces.h): the CPU layout mirrors the
 // FaceTextureSet's adjacency and corner links exactly; the uploaded face-record buffer and
 // texture arrays read back equal to the CPU data (the Disney Ptex samples, skipped when
 // ../shared/data is absent); hardware border sampling of the packed arrays against tessera's
 // sampler.
-#include "tessera/gl_ptex.h"
+#include "tessera/gl_faces.h"
 
 #include <gtest/gtest.h>
 
@@ -172,7 +172,7 @@ TEST_F(GlPtex, DisneySamplesUploadAndReadBackExactly) {
   ASSERT_GE(sets.size(), 5u);
   for (const auto& [name, set] : sets) {
     SCOPED_TRACE(name);
-    Result<FaceTextures> gpu = FaceTextures::upload(set);
+    Result<FaceTextureSet> gpu = FaceTextureSet::upload(set);
     ASSERT_TRUE(gpu.ok()) << gpu.status().message;
     const PackedFaces& p = gpu->layout();
     std::vector<FaceRecord> records(std::size_t(set.face_count()));
@@ -209,9 +209,9 @@ TEST_F(GlPtex, DisneySamplesUploadAndReadBackExactly) {
 // Discard's numerator and denominator) against tessera's sampler on the same texels.
 TEST_F(GlPtex, BorderLookupsMatchTheCpuSampler) {
   const faces::FaceTextureSet set = figure1_set();
-  FaceTexturesOptions options;
+  FaceTextureSetOptions options;
   options.max_anisotropy = 1.0f;  // trilinear (anisotropic filtering is implementation-defined)
-  Result<FaceTextures> gpu = FaceTextures::upload(set, options);
+  Result<FaceTextureSet> gpu = FaceTextureSet::upload(set, options);
   ASSERT_TRUE(gpu.ok()) << gpu.status().message;
   Result<Program> prog = link_program({{glsl::Stage::compute, R"(#version 450 core
 layout(local_size_x = 64) in;
@@ -290,9 +290,9 @@ namespace {
 // footprints from magnified to several texels.
 TEST_F(GlPtex, SeamsGlslMatchesTheCpuMethods) {
   const faces::FaceTextureSet set = figure1_set();
-  FaceTexturesOptions options;
+  FaceTextureSetOptions options;
   options.max_anisotropy = 1.0f;
-  Result<FaceTextures> gpu = FaceTextures::upload(set, options);
+  Result<FaceTextureSet> gpu = FaceTextureSet::upload(set, options);
   ASSERT_TRUE(gpu.ok()) << gpu.status().message;
   ASSERT_LE(gpu->class_count(), 16);
   glsl::ExpandOptions so;
@@ -324,7 +324,7 @@ void main() {
       const float s = std::ldexp(1.0f, k % 5 - 1) / float(t.width());
       const tessera::texture::UvGradients g{s, 0.0f, 0.0f,
                                             s * float(t.width()) / float(t.height())};
-      for (faces::Method m : faces::all_methods()) {
+      for (faces::SeamMethod m : faces::all_methods()) {
         faces::SampleOptions so_cpu;
         so_cpu.method = m;
         so_cpu.filter = tessera::texture::TextureFilter::trilinear;
@@ -356,7 +356,7 @@ void main() {
       max_diff[std::size_t(m)] = std::max(max_diff[std::size_t(m)], std::isnan(d) ? 1e9 : d);
     }
   }
-  for (faces::Method m : faces::all_methods()) {
+  for (faces::SeamMethod m : faces::all_methods()) {
     std::printf("seams.glsl %-16s vs faces::sample_face: %d lookups, max |diff| %.3g\n",
                 faces::method_name(m), count / 4, max_diff[std::size_t(int(m))]);
     // As BorderLookupsMatchTheCpuSampler: float rounding on llvmpipe, the fixed-point filter

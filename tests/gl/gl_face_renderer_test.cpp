@@ -1,11 +1,11 @@
-// The seams experiment on the GPU (tessera/gl_seams.h) against the CPU renderer
+// The seams experiment on the GPU (tessera/gl_face_renderer.h) against the CPU renderer
 // (faces::FaceRenderer) on the Figure-1 scene, small frames: per method and MSAA rate the PSNR
 // of the 8-bit sRGB outputs and the fraction of pixels whose linear-RGB 2-norm difference is
 // >= 0.01 (Toth's Figure-5 metric); Discard's helper-pixel NaNs with and without the
 // zero-coverage fallback; refused MSAA rates; the driver's sample counts and positions (the CPU
 // frame of a comparison has the GL frame's positions); the tiled Mitchell-Netravali reference.
 // Skips when no OpenGL 4.5 context can be made.
-#include "tessera/gl_seams.h"
+#include "tessera/gl_face_renderer.h"
 
 #include <gtest/gtest.h>
 
@@ -86,9 +86,9 @@ class GlSeams : public ::testing::Test {
     Result<std::unique_ptr<Context>> c = Context::create();
     if (!c) TESSERA_SKIP_OR_FAIL("gl", "no OpenGL 4.5 context: " << c.status().message);
     ctx_ = std::move(*c);
-    SeamsRendererOptions ro;
+    FaceRendererOptions ro;
     ro.glsl_dir = TESSERA_GLSL_DIR;
-    Result<std::unique_ptr<SeamsRenderer>> r = SeamsRenderer::create(*scene_, *set_, ro);
+    Result<std::unique_ptr<FaceRenderer>> r = FaceRenderer::create(*scene_, *set_, ro);
     ASSERT_TRUE(r.ok()) << r.status().message;
     gl_ = std::move(*r);
     Result<std::unique_ptr<faces::FaceRenderer>> cpu = faces::FaceRenderer::create(*scene_, *set_);
@@ -100,7 +100,7 @@ class GlSeams : public ::testing::Test {
     ctx_.reset();
   }
 
-  ImageRGBAF cpu_frame(const scene::Camera& cam, faces::Method m, TextureFilter filter, int msaa,
+  ImageRGBAF cpu_frame(const scene::Camera& cam, faces::SeamMethod m, TextureFilter filter, int msaa,
                        bool fallback = true) {
     faces::FaceRenderOptions o;
     o.width = kW;
@@ -116,9 +116,9 @@ class GlSeams : public ::testing::Test {
     return f ? std::move(f->image) : ImageRGBAF();
   }
 
-  SeamsFrame gl_frame(const scene::Camera& cam, faces::Method m, TextureFilter filter, int msaa,
+  FaceFrame gl_frame(const scene::Camera& cam, faces::SeamMethod m, TextureFilter filter, int msaa,
                       bool fallback = true, SeamsOutput output = SeamsOutput::colour) {
-    SeamsFrameOptions o;
+    FaceFrameOptions o;
     o.width = kW;
     o.height = kH;
     o.msaa = msaa;
@@ -126,9 +126,9 @@ class GlSeams : public ::testing::Test {
     o.filter = filter;
     o.clamp_fallback = fallback;
     o.output = output;
-    Result<SeamsFrame> f = gl_->render(cam, o);
+    Result<FaceFrame> f = gl_->render(cam, o);
     EXPECT_TRUE(f.ok()) << f.status().message;
-    return f ? std::move(*f) : SeamsFrame();
+    return f ? std::move(*f) : FaceFrame();
   }
 
   // Worst PSNR and fraction over methods x {1x, 2x, 4x} x two orbit frames. The CPU frame has
@@ -153,8 +153,8 @@ class GlSeams : public ::testing::Test {
                       msaa, pattern->samples);
           continue;
         }
-        for (faces::Method m : faces::all_methods()) {
-          const SeamsFrame g = gl_frame(cam, m, filter, msaa);
+        for (faces::SeamMethod m : faces::all_methods()) {
+          const FaceFrame g = gl_frame(cam, m, filter, msaa);
           const ImageRGBAF c = cpu_frame(cam, m, filter, pattern->cpu_msaa);
           ASSERT_EQ(g.image.width, kW);
           EXPECT_EQ(g.samples, pattern->samples);
@@ -171,7 +171,7 @@ class GlSeams : public ::testing::Test {
                         own.psnr, own.frac_001);
             EXPECT_LT(own.psnr, a.psnr) << faces::method_name(m) << " " << msaa << "x";
           }
-          if (frame == 0 && msaa == 1 && m == faces::Method::clamp) {
+          if (frame == 0 && msaa == 1 && m == faces::SeamMethod::clamp) {
             // Negative control: the CPU frame mirrored vertically (the GL orientation bug this
             // renderer avoids) must fail both bounds.
             ImageRGBAF flipped = c;
@@ -217,7 +217,7 @@ class GlSeams : public ::testing::Test {
   static faces::FaceScene* scene_;
   static faces::FaceTextureSet* set_;
   std::unique_ptr<Context> ctx_;
-  std::unique_ptr<SeamsRenderer> gl_;
+  std::unique_ptr<FaceRenderer> gl_;
   std::unique_ptr<faces::FaceRenderer> cpu_;
 };
 
@@ -229,11 +229,11 @@ faces::FaceTextureSet* GlSeams::set_ = nullptr;
 // drawn with llvmpipe's 4x samples and compared with the CPU's 4x frame, so it measures the
 // same as 4x (the GL frames are identical); against the CPU's own 2x pattern it would be
 // 34.2-39.8 dB with up to 16 % of the pixels apart, which the bounds below reject. The
-// lookups themselves agree to 3e-7 (gl_ptex_test); what is left are pixels where GL and the
+// lookups themselves agree to 3e-7 (gl_faces_test); what is left are pixels where GL and the
 // CPU rasteriser resolve a tie differently or draw order differs (classes vs face order) and
 // the LOD of a quad (GALLIVM_PERF=no_quad_lod changes nothing). Bounds: 48 dB (4x the MSE
 // measured) and 1.5 % of the pixels. A hardware texture unit filters with fixed-point weights
-// (gl_ptex_test: lookups up to 0.004 apart), so more pixels cross 0.01: measured on an NVIDIA
+// (gl_faces_test: lookups up to 0.004 apart), so more pixels cross 0.01: measured on an NVIDIA
 // H200 48.2-50.5 dB and 2.8-6.8 % of the pixels; bounds there 45 dB and 10 % (the mirrored
 // control, 11 dB and 99 %, still fails both).
 TEST_F(GlSeams, TrilinearMatchesTheCpuRenderer) {
@@ -267,16 +267,16 @@ TEST_F(GlSeams, DiscardNanOnlyWhereCoverageIsZero) {
     std::size_t nan_total = 0, flagged_total = 0, cpu_nan_total = 0, both = 0;
     for (int frame = 0; frame < 8; ++frame) {
       const scene::Camera cam = faces::face_orbit_camera(*scene_, frame, 8);
-      const SeamsFrame no_fb =
-          gl_frame(cam, faces::Method::discard, TextureFilter::trilinear, msaa, false);
-      const SeamsFrame with_fb =
-          gl_frame(cam, faces::Method::discard, TextureFilter::trilinear, msaa, true);
-      const SeamsFrame flag = gl_frame(cam, faces::Method::discard, TextureFilter::trilinear, msaa,
+      const FaceFrame no_fb =
+          gl_frame(cam, faces::SeamMethod::discard, TextureFilter::trilinear, msaa, false);
+      const FaceFrame with_fb =
+          gl_frame(cam, faces::SeamMethod::discard, TextureFilter::trilinear, msaa, true);
+      const FaceFrame flag = gl_frame(cam, faces::SeamMethod::discard, TextureFilter::trilinear, msaa,
                                        false, SeamsOutput::zero_coverage);
-      const SeamsFrame flag_fb = gl_frame(cam, faces::Method::discard, TextureFilter::trilinear,
+      const FaceFrame flag_fb = gl_frame(cam, faces::SeamMethod::discard, TextureFilter::trilinear,
                                           msaa, true, SeamsOutput::zero_coverage);
       const ImageRGBAF cpu =
-          cpu_frame(cam, faces::Method::discard, TextureFilter::trilinear, msaa, false);
+          cpu_frame(cam, faces::SeamMethod::discard, TextureFilter::trilinear, msaa, false);
       ASSERT_EQ(no_fb.image.pixel_count(), flag.image.pixel_count());
       for (std::size_t i = 0; i < no_fb.image.pixel_count(); ++i) {
         const bool is_nan = !pixel_finite(no_fb.image, i);
@@ -318,11 +318,11 @@ TEST_F(GlSeams, RefusedMsaaRatesAreReported) {
   EXPECT_TRUE(std::find(refused.begin(), refused.end(), 1) == refused.end());
   const scene::Camera cam = faces::face_orbit_camera(*scene_, 0, 8);
   for (int r : rates) {
-    SeamsFrameOptions o;
+    FaceFrameOptions o;
     o.width = 16;
     o.height = 16;
     o.msaa = r;
-    Result<SeamsFrame> f = gl_->render(cam, o);
+    Result<FaceFrame> f = gl_->render(cam, o);
     const bool is_refused = std::find(refused.begin(), refused.end(), r) != refused.end();
     EXPECT_EQ(f.ok(), !is_refused) << r << "x: " << f.status().message;
     EXPECT_EQ(is_refused, r > ctx_->limits().max_samples) << r << "x";
@@ -331,7 +331,7 @@ TEST_F(GlSeams, RefusedMsaaRatesAreReported) {
     }
   }
   // And the renderer still works afterwards.
-  SeamsFrameOptions o;
+  FaceFrameOptions o;
   o.width = 16;
   o.height = 16;
   EXPECT_TRUE(gl_->render(cam, o).ok());
@@ -373,11 +373,11 @@ TEST_F(GlSeams, SamplePatternsAreReported) {
         EXPECT_EQ(p->positions[i].y * 16.0f, float(table[i].y)) << msaa << "x sample " << i;
       }
     }
-    SeamsFrameOptions o;
+    FaceFrameOptions o;
     o.width = 16;
     o.height = 16;
     o.msaa = msaa;
-    Result<SeamsFrame> f = gl_->render(cam, o);
+    Result<FaceFrame> f = gl_->render(cam, o);
     ASSERT_TRUE(f.ok()) << f.status().message;
     EXPECT_EQ(f->samples, p->samples);
   }
@@ -470,7 +470,7 @@ TEST_F(GlSeams, BackendReportsTheDriversPositions) {
     const std::span<const raster::SampleOffset> table = raster::sample_positions(4);
     EXPECT_EQ(four, std::vector<raster::SampleOffset>(table.begin(), table.end()));
   }
-  experiments::SeamsFrameOptions o;
+  experiments::FaceFrameOptions o;
   o.width = 16;
   o.height = 16;
   o.msaa = 2;

@@ -60,9 +60,9 @@ class GlDeferred : public ::testing::Test {
   void use_scene(scene::Scene sc, const scene::Camera& cam, bool heavy) {
     scene_ = std::make_unique<scene::Scene>(std::move(sc));
     camera_ = cam;
-    gl::DeferredGlOptions o;
+    gl::DeferredRendererOptions o;
     o.glsl_dir = TESSERA_GLSL_DIR;
-    Result<std::unique_ptr<gl::DeferredGlRenderer>> g = gl::DeferredGlRenderer::create(*scene_, o);
+    Result<std::unique_ptr<gl::DeferredRenderer>> g = gl::DeferredRenderer::create(*scene_, o);
     ASSERT_TRUE(g.ok()) << g.status().message;
     gl_ = std::move(*g);
     Result<std::unique_ptr<d::DeferredRenderer>> r = d::DeferredRenderer::create(*scene_);
@@ -90,7 +90,7 @@ class GlDeferred : public ::testing::Test {
   // pipeline) and on the GL G-buffer read back (the shading passes alone).
   void compare_adaptive(const char* what, double min_k_own, double min_k_same, double min_psnr) {
     const d::AdaptiveOptions a;
-    Result<gl::GlShadeResult> g = gl_->shade_adaptive(shading_, a);
+    Result<gl::ShadeResult> g = gl_->shade_adaptive(shading_, a);
     ASSERT_TRUE(g.ok()) << g.status().message;
     const d::AdaptiveResult own = cpu_->shade_adaptive(cpu_gb_, shading_, a);
     const d::AdaptiveResult same = cpu_->shade_adaptive(gl_gb_, shading_, a);
@@ -114,7 +114,7 @@ class GlDeferred : public ::testing::Test {
   std::unique_ptr<gl::Context> ctx_;
   std::unique_ptr<scene::Scene> scene_;
   scene::Camera camera_;
-  std::unique_ptr<gl::DeferredGlRenderer> gl_;
+  std::unique_ptr<gl::DeferredRenderer> gl_;
   std::unique_ptr<d::DeferredRenderer> cpu_;
   d::ShadingOptions shading_;
   d::GBuffer cpu_gb_, gl_gb_;
@@ -169,16 +169,16 @@ TEST_F(GlDeferred, ForcedKIdentities) {
   use_builtin();
   for (int m : {2, 4}) {
     render(64, 48, m);
-    Result<gl::GlShadeResult> ref = gl_->shade_reference(shading_);
+    Result<gl::ShadeResult> ref = gl_->shade_reference(shading_);
     ASSERT_TRUE(ref.ok()) << ref.status().message;
-    Result<gl::GlShadeResult> one = gl_->shade_default(shading_);
+    Result<gl::ShadeResult> one = gl_->shade_default(shading_);
     ASSERT_TRUE(one.ok()) << one.status().message;
     d::AdaptiveOptions a;
     a.force_k = m * m - 1;
-    Result<gl::GlShadeResult> all = gl_->shade_adaptive(shading_, a);
+    Result<gl::ShadeResult> all = gl_->shade_adaptive(shading_, a);
     ASSERT_TRUE(all.ok()) << all.status().message;
     a.force_k = 0;
-    Result<gl::GlShadeResult> none = gl_->shade_adaptive(shading_, a);
+    Result<gl::ShadeResult> none = gl_->shade_adaptive(shading_, a);
     ASSERT_TRUE(none.ok()) << none.status().message;
     // k = m^2 - 1 runs the same shading of the same samples as the reference (the first sample's
     // light terms come from S, computed by the same function), summed in the same order.
@@ -206,37 +206,37 @@ TEST_F(GlDeferred, EveryScheduleGivesTheTileScheduleImage) {
     all.force_k = 15;
     // A renderer with `schedule` on this G-buffer, and its adaptive, forced-k and edge results.
     struct Results {
-      std::unique_ptr<gl::DeferredGlRenderer> renderer;
-      Result<gl::GlShadeResult> adaptive, all, edge;
+      std::unique_ptr<gl::DeferredRenderer> renderer;
+      Result<gl::ShadeResult> adaptive, all, edge;
     };
     auto shade_with = [&](gl::ExtraSchedule schedule) -> Result<Results> {
-      gl::DeferredGlOptions o;
+      gl::DeferredRendererOptions o;
       o.glsl_dir = TESSERA_GLSL_DIR;
       o.schedule = schedule;
-      Result<std::unique_ptr<gl::DeferredGlRenderer>> g =
-          gl::DeferredGlRenderer::create(*scene_, o);
+      Result<std::unique_ptr<gl::DeferredRenderer>> g =
+          gl::DeferredRenderer::create(*scene_, o);
       if (!g) return g.status();
       if (Status s = (*g)->render_gbuffer(camera_, 64, 48, m); !s.ok()) return s;
-      Result<gl::GlShadeResult> adaptive = (*g)->shade_adaptive(shading_, {});
-      Result<gl::GlShadeResult> forced = (*g)->shade_adaptive(shading_, all);
-      Result<gl::GlShadeResult> edge = (*g)->shade_edge_per_sample(shading_);
+      Result<gl::ShadeResult> adaptive = (*g)->shade_adaptive(shading_, {});
+      Result<gl::ShadeResult> forced = (*g)->shade_adaptive(shading_, all);
+      Result<gl::ShadeResult> edge = (*g)->shade_edge_per_sample(shading_);
       return Results{std::move(*g), std::move(adaptive), std::move(forced), std::move(edge)};
     };
     Result<Results> tiles = shade_with(gl::ExtraSchedule::tile_list);
     ASSERT_TRUE(tiles.ok()) << tiles.status().message;
     ASSERT_TRUE(tiles->adaptive.ok() && tiles->all.ok() && tiles->edge.ok());
-    const gl::GlShadeResult& tile = *tiles->adaptive;
-    const gl::GlShadeResult& tile_all = *tiles->all;
-    const gl::GlShadeResult& tile_edge = *tiles->edge;
+    const gl::ShadeResult& tile = *tiles->adaptive;
+    const gl::ShadeResult& tile_all = *tiles->all;
+    const gl::ShadeResult& tile_edge = *tiles->edge;
     ASSERT_EQ(tile.passes.back().pass, "extra");
     for (gl::ExtraSchedule schedule : {gl::ExtraSchedule::loop, gl::ExtraSchedule::frame_list}) {
       SCOPED_TRACE("m=" + std::to_string(m) +
                    (schedule == gl::ExtraSchedule::loop ? " loop" : " frame_list"));
       Result<Results> g = shade_with(schedule);
       ASSERT_TRUE(g.ok()) << g.status().message;
-      Result<gl::GlShadeResult>& r = g->adaptive;
-      Result<gl::GlShadeResult>& r_all = g->all;
-      Result<gl::GlShadeResult>& r_edge = g->edge;
+      Result<gl::ShadeResult>& r = g->adaptive;
+      Result<gl::ShadeResult>& r_all = g->all;
+      Result<gl::ShadeResult>& r_edge = g->edge;
       ASSERT_TRUE(r.ok()) << r.status().message;
       ASSERT_TRUE(r_all.ok()) << r_all.status().message;
       ASSERT_TRUE(r_edge.ok()) << r_edge.status().message;
@@ -248,7 +248,7 @@ TEST_F(GlDeferred, EveryScheduleGivesTheTileScheduleImage) {
       EXPECT_EQ(max_abs_diff(r_edge->image, tile_edge.image), 0.0f);
       if (schedule == gl::ExtraSchedule::frame_list) {
         // Once grown (by r_all), a frame runs each pass once, named after its part of the work.
-        Result<gl::GlShadeResult> again = g->renderer->shade_adaptive(shading_, {});
+        Result<gl::ShadeResult> again = g->renderer->shade_adaptive(shading_, {});
         ASSERT_TRUE(again.ok());
         EXPECT_EQ(max_abs_diff(again->image, tile.image), 0.0f);
         std::vector<std::string> names;
@@ -264,7 +264,7 @@ TEST_F(GlDeferred, EdgePerSampleMatchesCpu) {
   use_builtin();
   for (int m : {2, 4}) {
     render(64, 48, m);
-    Result<gl::GlShadeResult> g = gl_->shade_edge_per_sample(shading_);
+    Result<gl::ShadeResult> g = gl_->shade_edge_per_sample(shading_);
     ASSERT_TRUE(g.ok()) << g.status().message;
     const d::AdaptiveResult same = d::shade_edge_per_sample(*cpu_, gl_gb_, shading_);
     const d::AdaptiveResult own = d::shade_edge_per_sample(*cpu_, cpu_gb_, shading_);
@@ -287,10 +287,10 @@ TEST_F(GlDeferred, EdgePerSampleMatchesCpu) {
 TEST_F(GlDeferred, FxaaMatchesCpu) {
   use_builtin();
   render(64, 48, 2);
-  Result<gl::GlShadeResult> one = gl_->shade_default(shading_);
+  Result<gl::ShadeResult> one = gl_->shade_default(shading_);
   ASSERT_TRUE(one.ok());
   const ImageRGBA8 in = to_srgb8(one->image);
-  Result<gl::GlFxaaResult> g = gl_->fxaa(in);
+  Result<gl::FxaaResult> g = gl_->fxaa(in);
   ASSERT_TRUE(g.ok()) << g.status().message;
   Result<ImageRGBA8> c = d::fxaa(in);
   ASSERT_TRUE(c.ok());
@@ -313,7 +313,7 @@ TEST_F(GlDeferred, FxaaMatchesCpu) {
   EXPECT_GE(frac, 0.995);
   EXPECT_LE(worst, 2);
   // The all-GPU pipeline (1x, sRGB8, FXAA) gives the same bytes as FXAA of the read-back.
-  Result<gl::GlFxaaResult> pipe = gl_->shade_default_fxaa(shading_);
+  Result<gl::FxaaResult> pipe = gl_->shade_default_fxaa(shading_);
   ASSERT_TRUE(pipe.ok()) << pipe.status().message;
   ASSERT_EQ(pipe->passes.size(), 3u);
   std::size_t pipe_same = 0;

@@ -1,5 +1,5 @@
-// Per-face textures in an engine's own program (tessera/gl_ptex.h, the recipe there):
-// `FaceTextures::bind(FaceTexturesBindings)` binds exactly the documented points and nothing
+// Per-face textures in an engine's own program (tessera/gl_faces.h, the recipe there):
+// `FaceTextureSet::bind(FaceTextureSetBindings)` binds exactly the documented points and nothing
 // else (distinctive engine state set on every unit and buffer binding beforehand, read back
 // after), refuses bad binding points before touching any state, and `glsl_defines` names the
 // same points; `ptex_quad_mesh` maps the Disney samples' OBJ polygons to their Ptex faces and
@@ -13,7 +13,7 @@
 #include "gl/gl_api.h"
 #include "tessera/faces.h"
 #include "tessera/gl.h"
-#include "tessera/gl_ptex.h"
+#include "tessera/gl_faces.h"
 #include "tessera/ptex.h"
 #include "test_support.h"
 
@@ -90,7 +90,7 @@ class GlPtexBind : public ::testing::Test {
 // units 3.., clamp units 20.., records at 5); exactly those points change.
 TEST_F(GlPtexBind, BindsExactlyTheDocumentedPoints) {
   const faces::FaceTextureSet set = small_set();
-  Result<FaceTextures> tex = FaceTextures::upload(set);
+  Result<FaceTextureSet> tex = FaceTextureSet::upload(set);
   ASSERT_TRUE(tex.ok()) << tex.status().message;
   const int classes = tex->class_count();
   ASSERT_GE(classes, 2);
@@ -98,7 +98,7 @@ TEST_F(GlPtexBind, BindsExactlyTheDocumentedPoints) {
   glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &max_units);
   glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &max_bindings);
   const int units = std::min(max_units, 48), bindings = std::min(max_bindings, 8);
-  const FaceTexturesBindings b{3, 20, 5, true};
+  const FaceTextureSetBindings b{3, 20, 5, true};
   ASSERT_LE(b.clamp_unit + classes, units);
 
   // The engine's state: its own 2D and 2D-array textures and samplers on every unit, a buffer
@@ -186,17 +186,17 @@ TEST_F(GlPtexBind, BindsExactlyTheDocumentedPoints) {
             "#define TESSERA_SEAMS_CLAMP_UNIT " + std::to_string(3 + classes));
 
   // Bad points: one-line invalid_argument, and no binding changed.
-  const FaceTexturesBindings bad[] = {
+  const FaceTextureSetBindings bad[] = {
       {-1, 20, 5, true},                        // negative unit
       {3, 3 + classes - 1, 5, true},            // clamp range overlaps the border range
       {max_units - classes + 1, -1, 5, false},  // past the last unit
       {3, 20, max_bindings, true},              // past the last storage binding
       {3, 20, -2, true},                        // negative binding
   };
-  for (const FaceTexturesBindings& x : bad) {
+  for (const FaceTextureSetBindings& x : bad) {
     const Status s = tex->bind(x);
     EXPECT_EQ(s.code, ErrorCode::invalid_argument) << s.message;
-    EXPECT_NE(s.message.find("FaceTextures::bind: "), std::string::npos) << s.message;
+    EXPECT_NE(s.message.find("FaceTextureSet::bind: "), std::string::npos) << s.message;
     EXPECT_EQ(s.message.find('\n'), std::string::npos) << s.message;
     const Snapshot again = snapshot(units, bindings);
     EXPECT_EQ(again.array, after.array);

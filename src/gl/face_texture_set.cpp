@@ -9,7 +9,7 @@
 #include "core/check.h"
 #include "gl/gl_api.h"
 #include "tessera/faces.h"
-#include "tessera/gl_ptex.h"
+#include "tessera/gl_faces.h"
 #include "tessera/ptex.h"
 
 namespace tessera::gl {
@@ -161,10 +161,10 @@ class UnpackStateGuard {
 
 }  // namespace
 
-Result<FaceTextures> FaceTextures::upload(const faces::FaceTextureSet& set,
-                                          const FaceTexturesOptions& options) {
-  if (Status s = check_current_context("FaceTextures::upload"); !s.ok()) return s;
-  if (Status s = check_errors("FaceTextures::upload (errors before it)"); !s.ok()) return s;
+Result<FaceTextureSet> FaceTextureSet::upload(const faces::FaceTextureSet& set,
+                                          const FaceTextureSetOptions& options) {
+  if (Status s = check_current_context("FaceTextureSet::upload"); !s.ok()) return s;
+  if (Status s = check_errors("FaceTextureSet::upload (errors before it)"); !s.ok()) return s;
   const UnpackStateGuard unpack;
   PackLimits limits;
   GLint v = 0;
@@ -178,7 +178,7 @@ Result<FaceTextures> FaceTextures::upload(const faces::FaceTextureSet& set,
   Result<PackedFaces> packed = pack_faces(set, limits);
   if (!packed) return packed.status();
 
-  FaceTextures out;
+  FaceTextureSet out;
   out.layout_ = std::move(*packed);
   const bool half = options.format == TexelFormat::rgba16f;
   const std::uint64_t texel_bytes = half ? 8 : 16;
@@ -187,7 +187,7 @@ Result<FaceTextures> FaceTextures::upload(const faces::FaceTextureSet& set,
     const int layers = int(c.faces.size());
     glTextureStorage3D(tex.get(), c.levels, half ? GL_RGBA16F : GL_RGBA32F, c.width, c.height,
                        layers);
-    const std::string what = "FaceTextures::upload: " + std::to_string(layers) + " faces of " +
+    const std::string what = "FaceTextureSet::upload: " + std::to_string(layers) + " faces of " +
                              std::to_string(c.width) + "x" + std::to_string(c.height);
     if (Status s = check_errors(what); !s.ok()) return s;
     for (int layer = 0; layer < layers; ++layer) {
@@ -223,14 +223,14 @@ Result<FaceTextures> FaceTextures::upload(const faces::FaceTextureSet& set,
   glNamedBufferStorage(out.records_.get(),
                        GLsizeiptr(out.layout_.records.size() * sizeof(FaceRecord)),
                        out.layout_.records.data(), 0);
-  if (Status s = check_errors("FaceTextures::upload: samplers and face records"); !s.ok()) {
+  if (Status s = check_errors("FaceTextureSet::upload: samplers and face records"); !s.ok()) {
     return s;
   }
   return out;
 }
 
-Status FaceTextures::bind(const FaceTexturesBindings& b) const {
-  if (Status s = check_current_context("FaceTextures::bind"); !s.ok()) return s;
+Status FaceTextureSet::bind(const FaceTextureSetBindings& b) const {
+  if (Status s = check_current_context("FaceTextureSet::bind"); !s.ok()) return s;
   GLint units = 0, ssbo_bindings = 0;
   glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &units);
   glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &ssbo_bindings);
@@ -240,7 +240,7 @@ Status FaceTextures::bind(const FaceTexturesBindings& b) const {
     return std::to_string(first) + ".." + std::to_string(first + n - 1);
   };
   auto fail = [](const std::string& msg) {
-    return Status::error(ErrorCode::invalid_argument, "FaceTextures::bind: " + msg);
+    return Status::error(ErrorCode::invalid_argument, "FaceTextureSet::bind: " + msg);
   };
   if (b.border_unit < 0 || b.clamp_unit < -1 || b.records_binding < 0) {
     return fail("negative binding point (border_unit " + std::to_string(b.border_unit) +
@@ -274,18 +274,18 @@ Status FaceTextures::bind(const FaceTexturesBindings& b) const {
   // The multi-bind form leaves the generic GL_SHADER_STORAGE_BUFFER binding alone.
   const GLuint buffer = record_buffer();
   glBindBuffersBase(GL_SHADER_STORAGE_BUFFER, GLuint(b.records_binding), 1, &buffer);
-  return check_errors("FaceTextures::bind");
+  return check_errors("FaceTextureSet::bind");
 }
 
-Status FaceTextures::bind(int first_unit, int ssbo_binding, bool clamp_units) const {
-  FaceTexturesBindings b;
+Status FaceTextureSet::bind(int first_unit, int ssbo_binding, bool clamp_units) const {
+  FaceTextureSetBindings b;
   b.border_unit = first_unit;
   b.records_binding = ssbo_binding;
   b.clamp = clamp_units;
   return bind(b);
 }
 
-std::vector<std::string> FaceTextures::glsl_defines(const FaceTexturesBindings& b) const {
+std::vector<std::string> FaceTextureSet::glsl_defines(const FaceTextureSetBindings& b) const {
   const int clamp_unit = b.clamp_unit >= 0 ? b.clamp_unit : b.border_unit + class_count();
   return {"#define TESSERA_SEAMS_CLASSES " + std::to_string(class_count()),
           "#define TESSERA_SEAMS_FIRST_UNIT " + std::to_string(b.border_unit),
