@@ -145,7 +145,11 @@ function setupControls() {
   for (const id of ["level", "face", "layer"]) {
     $(id).onchange = () => { S[id] = Number($(id).value); refresh(); };
   }
-  $("zoom").onchange = () => { S.zoom = $("zoom").value === "fit" ? "fit" : Number($("zoom").value); draw(); };
+  $("zoom").onchange = () => {
+    if (S.zoom === "fit") fixZoom($("canvas-a"));  // from fit: keep the centre
+    S.zoom = $("zoom").value === "fit" ? "fit" : Number($("zoom").value);
+    draw();
+  };
   $("wipe").oninput = () => draw();
   $("options").onchange = () => {
     if (D.mode === "server") encode(formSettings());

@@ -1,0 +1,305 @@
+#!/usr/bin/env python3
+"""`tessera view` in a real browser (headless Chromium driven by puppeteer-core, view_browser.mjs)
+and over plain HTTP: the server's guards (token, Host, Origin, paths, body size), the page's
+encodes against `tessera compress` + `compare` (same bytes, PSNR to 0.01 dB), texel values
+against `tessera decompress`, a cube map's faces and levels, a bad input, clean shutdown on
+SIGINT and SIGTERM, and the static export. Screenshots go to OUT (the build tree).
+
+Usage: view_browser_test.py PATH/TO/tessera PUPPETEER_DIR OUT [CHROMIUM]
+"""
+import base64
+import http.client
+import json
+import os
+import select
+import shlex
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from cli_harness import check, finish, skip_or_fail, write_png  # noqa: E402
+
+TESSERA = os.path.abspath(sys.argv[1])
+PUPPETEER = sys.argv[2] if len(sys.argv) > 2 else ""
+OUT = os.path.abspath(sys.argv[3] if len(sys.argv) > 3 else "view_browser_out")
+CHROMIUM = sys.argv[4] if len(sys.argv) > 4 else shutil.which("chromium")
+SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "view_browser.mjs")
+
+if not CHROMIUM or not os.path.exists(CHROMIUM):
+    skip_or_fail("chromium", "chromium not found (scripts/setup.sh installs it)")
+if not shutil.which("node"):
+    skip_or_fail("puppeteer", "node not found (scripts/setup.sh installs nodejs)")
+if not PUPPETEER or not os.path.isfile(os.path.join(PUPPETEER, "node_modules", "puppeteer-core",
+                                                    "package.json")):
+    skip_or_fail("puppeteer", f"puppeteer-core not found in '{PUPPETEER}' (scripts/setup.sh "
+                 "installs it; configure with -DTESSERA_PUPPETEER=DIR)")
+
+from PIL import Image  # noqa: E402  (python3-pil, after the skips)
+
+
+def run(*args, cwd=None):
+    p = subprocess.run([TESSERA, *args], capture_output=True, text=True, timeout=600, cwd=cwd)
+    return p.returncode, p.stdout, p.stderr
+
+
+def sprite(x, y):
+    d = (x - 31.5) ** 2 + (y - 31.5) ** 2
+    a = 255 if d < 300 else 0 if d > 700 else int(255 * (700 - d) / 400)
+    return ((x * 37 + y * 11) % 256, (x * 4) % 256, (255 - y * 4) % 256, a)
+
+
+def start_server(args, cwd):
+    """Starts `tessera view ARGS --no-open`; returns (process, URL, port). The URL is the first
+    line of stdout, read with a bounded wait."""
+    p = subprocess.Popen([TESSERA, "view", *args, "--no-open"], cwd=cwd, stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)
+    ready, _, _ = select.select([p.stdout], [], [], 120)
+    line = p.stdout.readline().strip() if ready else ""
+    check("server prints its URL", line.startswith("http://127.0.0.1:") and "token=" in line, line)
+    port = int(line.split(":")[2].split("/")[0]) if line.startswith("http://127.0.0.1:") else 0
+    return p, line, port
+
+
+def request(port, method, path, host=None, origin=None, body=None):
+    """(status, body) of one request to 127.0.0.1:port with the given Host / Origin."""
+    c = http.client.HTTPConnection("127.0.0.1", port, timeout=30)
+    headers = {"Host": host or f"127.0.0.1:{port}"}
+    if origin:
+        headers["Origin"] = origin
+    if body is not None:
+        headers["Content-Type"] = "application/json"
+    c.request(method, path, body=body, headers=headers)
+    r = c.getresponse()
+    data = r.read()
+    c.close()
+    return r.status, data
+
+
+def stop(p, sig, name):
+    p.send_signal(sig)
+    try:
+        rc = p.wait(timeout=60)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        rc = "hung"
+    check(f"{name}: exits 0", rc == 0, f"rc={rc}")
+
+
+def port_closed(port):
+    s = socket.socket()
+    s.settimeout(5)
+    try:
+        return s.connect_ex(("127.0.0.1", port)) != 0
+    finally:
+        s.close()
+
+
+def browse(url, mode):
+    p = subprocess.run(["node", SCRIPT, PUPPETEER, CHROMIUM, url, OUT, mode], capture_output=True,
+                       text=True, timeout=900, env={**os.environ, "PUPPETEER_SKIP_DOWNLOAD": "1"})
+    try:
+        r = json.loads(p.stdout.strip().splitlines()[-1])
+    except (ValueError, IndexError):
+        check(f"{mode}: browser script output", False, (p.stdout + p.stderr)[-1500:])
+        return None
+    check(f"{mode}: no page errors", r["errors"] == [], r["errors"])
+    check(f"{mode}: nothing fetched from elsewhere", r["external"] == [], r["external"])
+    return r["steps"]
+
+
+def check_against_cli(name, step, tmp):
+    """The page's texture is what its command line writes, and its PSNR what `compare` says."""
+    words = shlex.split(step["command"])
+    check(name + ": command is tessera compress", words[:2] == ["tessera", "compress"], words)
+    out = os.path.join(tmp, step["file_name"])
+    rc, _, err = run(*words[1:], "-q", cwd=tmp)
+    check(name + ": command runs", rc == 0, err)
+    with open(out, "rb") as f:
+        check(name + ": same bytes as tessera compress", f.read() == base64.b64decode(step["file"]))
+    dec = os.path.join(tmp, "dec.png")
+    run("decompress", out, "-o", dec, "-q")
+    rc, so, err = run("compare", os.path.join(tmp, "sprite.png"), dec, "--json", "--premultiplied")
+    j = json.loads(so) if rc == 0 else {}
+    page = float(step["metrics"].get("psnr_rgb", "nan"))
+    check(name + ": PSNR RGB as tessera compare (0.01 dB)", abs(page - j.get("psnr_rgb", 1e9)) < 0.01,
+          f"page {page} compare {j.get('psnr_rgb')}")
+    pa = float(step["metrics"].get("psnr_alpha", "nan"))
+    check(name + ": PSNR alpha as tessera compare", abs(pa - j.get("psnr_alpha", 1e9)) < 0.01,
+          f"page {pa} compare {j.get('psnr_alpha')}")
+    pp = float(step["metrics"].get("psnr_premultiplied", "nan"))
+    check(name + ": PSNR colour x alpha as tessera compare",
+          abs(pp - j.get("psnr_premultiplied", 1e9)) < 0.01, f"{pp} vs {j.get('psnr_premultiplied')}")
+    return dec
+
+
+def texel_of(png, x, y):
+    return list(Image.open(png).convert("RGBA").getpixel((x, y)))
+
+
+def check_guards(port, token):
+    """Requests without the token, with a foreign Host or Origin, outside the inputs, or too
+    big are refused and create nothing (no job appears); the right request passes."""
+    t = "?token=" + token
+    cases = [
+        ("no token", "GET", "/", None, None, None, 403),
+        ("wrong token", "GET", "/?token=" + "0" * len(token), None, None, None, 403),
+        ("foreign Host", "GET", "/" + t, "evil.example:%d" % port, None, None, 403),
+        ("foreign Origin", "GET", "/" + t, None, "http://evil.example", None, 403),
+        ("encode without token", "POST", "/api/encode", None, None, '{"input":0,"settings":{}}', 403),
+        ("encode from a foreign Origin", "POST", "/api/encode" + t, None, "http://evil.example",
+         '{"input":0,"settings":{}}', 403),
+        ("encode with a foreign Host", "POST", "/api/encode" + t, "rebound.example:%d" % port, None,
+         '{"input":0,"settings":{}}', 403),
+        ("oversized body", "POST", "/api/encode" + t, None, None,
+         '{"input":0,"settings":{},"pad":"' + "x" * 200000 + '"}', 413),
+        ("a path outside the inputs", "GET", "/etc/passwd" + t, None, None, None, 404),
+        ("a dot-dot path", "GET", "/blob/../../etc/passwd" + t, None, None, None, 404),
+        ("an unknown blob", "GET", "/blob/0123456789abcdef" + t, None, None, None, 404),
+        ("a file parameter", "GET", "/api/file" + t + "&path=/etc/passwd", None, None, None, 404),
+        ("a texture input is not encoded", "POST", "/api/encode" + t, None, None,
+         '{"input":1,"settings":{}}', 404),
+        ("bad settings", "POST", "/api/encode" + t, None, None,
+         '{"input":0,"settings":{"quality":"ultra"}}', 400),
+        ("conflicting settings", "POST", "/api/encode" + t, None, None,
+         '{"input":0,"settings":{"premultiply":true,"alpha_bleed":true}}', 400),
+    ]
+    for name, method, path, host, origin, body, want in cases:
+        status, data = request(port, method, path, host, origin, body)
+        check("guard: " + name, status == want, f"{status} {data[:200]!r}")
+    status, _ = request(port, "GET", "/api/job" + t + "&id=j0")
+    check("guards: refused requests started no encode", status == 404, status)
+    # Positive controls: the same requests pass with the token and this server's names.
+    status, data = request(port, "GET", "/" + t, origin=f"http://127.0.0.1:{port}")
+    check("guard: the page with the token", status == 200 and b"tessera view" in data, status)
+    status, _ = request(port, "GET", "/" + t, host=f"localhost:{port}")
+    check("guard: Host localhost passes", status == 200, status)
+
+
+def main():
+    os.makedirs(OUT, exist_ok=True)
+    tmp = tempfile.mkdtemp(prefix="tessera-view-")
+    try:
+        write_png(os.path.join(tmp, "sprite.png"), 64, 64, sprite, True)
+        faces = []
+        for f in range(6):
+            faces.append(write_png(os.path.join(tmp, f"face{f}.png"), 32, 32,
+                                   lambda x, y, f=f: ((x * 8) % 256, (y * 8) % 256, 40 * f, 255),
+                                   False))
+        rc, _, err = run("compress", *faces, "--cube", "--mipmaps", "-o",
+                         os.path.join(tmp, "cube.pvr"), "-q")
+        check("cube map made", rc == 0, err)
+        with open(os.path.join(tmp, "bad.png"), "wb") as f:
+            f.write(b"\x89PNG\r\n\x1a\nnot really")
+
+        p, url, port = start_server(["sprite.png", "cube.pvr", "bad.png"], tmp)
+        if not port:
+            p.kill()
+            return
+        token = url.split("token=")[1]
+        check_guards(port, token)
+        steps = browse(url, "server")
+        stop(p, signal.SIGINT, "SIGINT")
+        check("SIGINT: port closed", port_closed(port))
+        err = p.stderr.read()
+        bad_lines = [line for line in err.splitlines() if "bad.png" in line]
+        check("bad input: one line in the terminal", len(bad_lines) == 1, err)
+        if steps:
+            check_steps(steps, tmp)
+
+        p, url, port = start_server(["sprite.png", "--quality", "fast"], tmp)
+        if port:
+            status, _ = request(port, "GET", "/?token=" + url.split("token=")[1])
+            check("second server answers", status == 200, status)
+            stop(p, signal.SIGTERM, "SIGTERM")
+            check("SIGTERM: port closed", port_closed(port))
+
+        check_static(tmp)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def check_steps(s, tmp):
+    first, high, weighted = s.get("first"), s.get("high"), s.get("weighted")
+    if not (first and high and weighted):
+        check("server scenario ran to its end", False, list(s))
+        return
+    check("first encode: the default command",
+          first["command"] == "tessera compress sprite.png -o sprite.pvr", first["command"])
+    check("quality: the command changed", high["command"].endswith("--quality high"), high["command"])
+    check("quality: the image changed", high["drawn"] != first["drawn"] and high["file"] != first["file"],
+          (first["drawn"], high["drawn"], first["file"] == high["file"]))
+    check("alpha-weighted: the command changed",
+          weighted["command"].endswith("--quality high --alpha-weighted"), weighted["command"])
+    check("alpha-weighted: the metrics changed", weighted["metrics"] != high["metrics"])
+    for name, step in (("normal", first), ("high", high), ("weighted", weighted)):
+        dec = check_against_cli(name, step, tmp)
+    # The last one decoded is --alpha-weighted: the one shown when the texel was read.
+    t = s.get("sprite_texel", {})
+    if t:
+        x, y = int(t["x"]), int(t["y"])
+        check("zoom 32: the texel under the middle is the centre one", (x, y) in ((31, 31), (32, 32), (31, 32), (32, 31)), (x, y))
+        check("zoom 32: decoded value as tessera decompress",
+              [int(v) for v in t["decoded"].split(",")] == texel_of(dec, x, y), t)
+        check("zoom 32: original value as the PNG",
+              [int(v) for v in t["original"].split(",")] == list(sprite(x, y)), t)
+    check("pin: one pinned row", s.get("pinned_rows") == 1, s.get("pinned_rows"))
+    check("heatmap: colour bar shown", s.get("colourbar") is True)
+    check("phone: no sideways scrolling", s.get("phone_overflow") is False)
+    cube = s.get("cube", {})
+    check("cube: 6 faces with mips in the metrics",
+          "cube map" in cube.get("metrics", {}).get("shape", ""), cube.get("metrics"))
+    ct = s.get("cube_texel", {})
+    if ct:
+        dec = os.path.join(tmp, "face3-level1.png")
+        run("decompress", os.path.join(tmp, "cube.pvr"), "--level", "1", "--face", "3", "-o", dec, "-q")
+        x, y = int(ct["x"]), int(ct["y"])
+        check("cube: level 1 face 3 texel as tessera decompress",
+              [int(v) for v in ct["decoded"].split(",")] == texel_of(dec, x, y), ct)
+        other = os.path.join(tmp, "face0-level1.png")
+        run("decompress", os.path.join(tmp, "cube.pvr"), "--level", "1", "--face", "0", "-o", other, "-q")
+        check("cube: (negative control) face 0 differs there", texel_of(other, x, y) != texel_of(dec, x, y))
+    check("bad input: a one-line error on the page naming it",
+          "bad.png" in s.get("bad_error", "") and "\n" not in s.get("bad_error", ""), s.get("bad_error"))
+    check("server keeps running after the bad input", s.get("back", {}).get("drawn", "").startswith("r"))
+    for shot in ("view-1366x768.png", "view-390x844.png", "view-heatmap-1366x768.png",
+                 "view-cube-cross-1366x768.png", "view-zoom32-1366x768.png"):
+        path = os.path.join(OUT, shot)
+        ok = os.path.exists(path) and Image.open(path).size in ((1366, 768), (390, 844))
+        check("screenshot " + shot, ok)
+
+
+def check_static(tmp):
+    html = os.path.join(tmp, "v.html")
+    rc, _, err = run("view", os.path.join(tmp, "sprite.png"), "--html", "-o", html, "-q")
+    check("static export written", rc == 0 and os.path.exists(html), err)
+    rc, _, err = run("view", os.path.join(tmp, "bad.png"), "--html", "-o", os.path.join(tmp, "w.html"))
+    check("static export of a bad input: exit 1, one line naming it, no file",
+          rc == 1 and len(err.strip().splitlines()) == 1 and "bad.png" in err
+          and not os.path.exists(os.path.join(tmp, "w.html")), (rc, err))
+    if rc == 0 or not os.path.exists(html):
+        return
+    with open(html, encoding="utf-8") as f:
+        text = f.read()
+    check("static export: no external references", "http://" not in text.replace("http://www.w3.org", ""))
+    s = browse("file://" + html, "static")
+    if not s:
+        return
+    commands = [r["command"] for r in s.get("results", [])]
+    check("static export: fast, normal, high, bleed, weighted", commands == [
+        "tessera compress sprite.png -o sprite.pvr --quality fast",
+        "tessera compress sprite.png -o sprite.pvr",
+        "tessera compress sprite.png -o sprite.pvr --quality high",
+        "tessera compress sprite.png -o sprite.pvr --alpha-bleed",
+        "tessera compress sprite.png -o sprite.pvr --alpha-weighted"], commands)
+    for r in s.get("results", [])[:3] + s.get("results", [])[4:]:
+        check_against_cli("static " + r["command"][38:], r, tmp)
+    t = s.get("texel")
+    check("static export: texel readout", bool(t and t.get("decoded")), t)
+
+
+main()
+sys.exit(finish())
