@@ -218,6 +218,7 @@ def main():
             check("SIGTERM: port closed", port_closed(port))
 
         check_static(tmp)
+        check_normal_map_and_demo(tmp)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
@@ -270,6 +271,51 @@ def check_steps(s, tmp):
         path = os.path.join(OUT, shot)
         ok = os.path.exists(path) and Image.open(path).size in ((1366, 768), (390, 844))
         check("screenshot " + shot, ok)
+
+
+def page_data(path):
+    """The start-up JSON of a static view."""
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    start = text.index('<script id="tessera-data" type="application/json">')
+    start = text.index(">", start) + 1
+    return json.loads(text[start:text.index("</script>", start)])
+
+
+def check_normal_map_and_demo(tmp):
+    """--normal-map: the angular error map and the angles of `tessera compare --normal`; the
+    demo report links a static view of its PVRTC images."""
+    def normal(x, y):
+        nx, ny = (x - 15.5) / 20, (y - 15.5) / 20
+        nz = max(0.0, 1 - nx * nx - ny * ny) ** 0.5
+        return (int(127.5 + 127.5 * nx), int(127.5 + 127.5 * ny), int(127.5 + 127.5 * nz), 255)
+    n = write_png(os.path.join(tmp, "normal.png"), 32, 32, normal, False)
+    html = os.path.join(tmp, "n.html")
+    rc, _, err = run("view", n, "--normal-map", "--quality", "fast", "--html", "-o", html, "-q")
+    check("normal map export", rc == 0, err)
+    if rc != 0:
+        return
+    d = page_data(html)
+    im = d["results"][0]["images"][0]
+    check("normal map: one result, with an angular error map",
+          len(d["results"]) == 1 and "angle_map" in im and "angle_map" in d["results"][0]["colour_bars"])
+    run("compress", n, "--normal-map", "--quality", "fast", "-o", os.path.join(tmp, "n.pvr"), "-q")
+    run("decompress", os.path.join(tmp, "n.pvr"), "-o", os.path.join(tmp, "n-dec.png"), "-q")
+    rc, so, _ = run("compare", n, os.path.join(tmp, "n-dec.png"), "--normal", "--json")
+    j = json.loads(so) if rc == 0 else {}
+    for key in ("angular_error_mean_deg", "angular_error_max_deg"):
+        check("normal map: " + key + " as tessera compare --normal",
+              abs(im["metrics"].get(key, -1) - j.get(key, -2)) < 1e-6, (im["metrics"].get(key), j.get(key)))
+    demo = os.path.join(tmp, "demo")
+    rc, _, err = run("demo", "-o", demo, "--size", "32", "-q")
+    check("demo runs", rc == 0, err)
+    if rc == 0:
+        with open(os.path.join(demo, "report.html"), encoding="utf-8") as f:
+            check("demo report links its static view", 'href="pvrtc-view.html"' in f.read())
+        d = page_data(os.path.join(demo, "pvrtc-view.html"))
+        check("demo view: every PVRTC image with results",
+              len(d["inputs"]) >= 3 and {r["input_index"] for r in d["results"]} == set(range(len(d["inputs"]))),
+              [i["name"] for i in d["inputs"]])
 
 
 def check_static(tmp):

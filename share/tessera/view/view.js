@@ -196,6 +196,7 @@ function selectInput(index) {
       ? "A texture file, shown as decoded: open its source image to try options."
       : D.mode === "static" ? "A static view: these results were encoded by tessera view --html."
       : "";
+  if (inp.kind === "texture") setForm({ format: "pvrtc1-4", quality: "normal", mip_filter: "box" });
   const mine = resultsOf(index);
   const id = S.current.get(index) || (mine.length ? mine[0].id : null);
   S.level = S.face = S.layer = 0;
