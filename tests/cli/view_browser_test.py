@@ -212,13 +212,16 @@ def main():
 
         p, url, port = start_server(["sprite.png", "--quality", "fast"], tmp)
         if port:
-            status, _ = request(port, "GET", "/?token=" + url.split("token=")[1])
+            token = url.split("token=")[1]
+            status, _ = request(port, "GET", "/?token=" + token)
             check("second server answers", status == 200, status)
+            check_progress(port, token)
             stop(p, signal.SIGTERM, "SIGTERM")
             check("SIGTERM: port closed", port_closed(port))
 
         check_static(tmp)
         check_normal_map_and_demo(tmp)
+        check_usage(tmp)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
@@ -271,6 +274,45 @@ def check_steps(s, tmp):
         path = os.path.join(OUT, shot)
         ok = os.path.exists(path) and Image.open(path).size in ((1366, 768), (390, 844))
         check("screenshot " + shot, ok)
+
+
+def check_progress(port, token):
+    """An encode through the API: its job's fraction never goes back and is 1.0 when done
+    (EncodeOptions::progress, what the page's progress bar shows); the same settings again
+    give the same job (no second encode)."""
+    body = '{"input":0,"settings":{"quality":"high","alpha_bleed":true}}'
+    status, data = request(port, "POST", "/api/encode?token=" + token, body=body)
+    check("progress: encode accepted", status == 200, data[:200])
+    if status != 200:
+        return
+    job = json.loads(data)
+    fractions = [job["fraction"]]
+    for _ in range(6000):  # bounded: 10 minutes at most
+        if job["state"] in ("done", "error"):
+            break
+        select.select([], [], [], 0.1)
+        job = json.loads(request(port, "GET", f"/api/job?token={token}&id={job['id']}")[1])
+        fractions.append(job["fraction"])
+    check("progress: the encode finished", job["state"] == "done", job.get("error"))
+    check("progress: fractions never go back", fractions == sorted(fractions), fractions)
+    check("progress: 1.0 when done", fractions[-1] == 1.0, fractions[-5:])
+    status, data = request(port, "POST", "/api/encode?token=" + token, body=body)
+    again = json.loads(data) if status == 200 else {}
+    check("progress: the same settings are the same job", again.get("id") == job["id"], again)
+    check("progress: the result is the command's", job.get("result", {}).get("command") ==
+          "tessera compress sprite.png -o sprite.pvr --quality high --alpha-bleed")
+
+
+def check_usage(tmp):
+    for args, word in ((["view"], "INPUT"), (["view", "a.png", "--html"], "-o"),
+                       (["view", "a.png", "-o", "v.html"], "--html"),
+                       (["view", "a.png", "--quality", "best"], "--quality"),
+                       (["view", "a.png", "--mip-filter", "kaiser"], "--mip-levels"),
+                       (["view", "a.png", "--premultiply", "--alpha-bleed"], "--alpha-bleed"),
+                       (["view", "a.png", "--port", "0"], "--port")):
+        rc, _, err = run(*args, cwd=tmp)
+        check(f"usage: {' '.join(args)}: exit 2 naming {word}", rc == 2 and word in err
+              and len(err.strip().splitlines()) == 1, (rc, err))
 
 
 def page_data(path):
