@@ -21,7 +21,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
-from cli_harness import check, finish, skip_or_fail, write_png  # noqa: E402
+from cli_harness import check, finish, missing_part, write_png  # noqa: E402
 
 TESSERA = os.path.abspath(sys.argv[1])
 PUPPETEER = sys.argv[2] if len(sys.argv) > 2 else ""
@@ -29,14 +29,26 @@ OUT = os.path.abspath(sys.argv[3] if len(sys.argv) > 3 else "view_browser_out")
 CHROMIUM = sys.argv[4] if len(sys.argv) > 4 else shutil.which("chromium")
 SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "view_browser.mjs")
 
-if not CHROMIUM or not os.path.exists(CHROMIUM):
-    skip_or_fail("chromium", "chromium not found (scripts/setup.sh installs it)")
-if not shutil.which("node"):
-    skip_or_fail("puppeteer", "node not found (scripts/setup.sh installs nodejs)")
-if not PUPPETEER or not os.path.isfile(os.path.join(PUPPETEER, "node_modules", "puppeteer-core",
-                                                    "package.json")):
-    skip_or_fail("puppeteer", f"puppeteer-core not found in '{PUPPETEER}' (scripts/setup.sh "
-                 "installs it; configure with -DTESSERA_PUPPETEER=DIR)")
+
+
+def browser_missing():
+    """Why the browser parts cannot run ("" when they can): the HTTP, CLI and export checks
+    run without a browser; the browser parts are skipped with a note, or fail under
+    TESSERA_TEST_REQUIRE (chromium, puppeteer or all)."""
+    if not CHROMIUM or not os.path.exists(CHROMIUM):
+        return "chromium", "chromium not found (scripts/setup.sh installs it)"
+    if not shutil.which("node"):
+        return "puppeteer", "node not found (scripts/setup.sh installs nodejs)"
+    if not PUPPETEER or not os.path.isfile(os.path.join(PUPPETEER, "node_modules",
+                                                        "puppeteer-core", "package.json")):
+        return "puppeteer", (f"puppeteer-core not found in '{PUPPETEER}' (scripts/setup.sh "
+                             "installs it; configure with -DTESSERA_PUPPETEER=DIR)")
+    return None
+
+
+MISSING = browser_missing()
+if MISSING:
+    missing_part(MISSING[0], MISSING[1] + ": the browser parts are skipped")
 
 from PIL import Image  # noqa: E402  (python3-pil, after the skips)
 
@@ -99,6 +111,8 @@ def port_closed(port):
 
 
 def browse(url, mode):
+    if MISSING:
+        return None
     p = subprocess.run(["node", SCRIPT, PUPPETEER, CHROMIUM, url, OUT, mode], capture_output=True,
                        text=True, timeout=900, env={**os.environ, "PUPPETEER_SKIP_DOWNLOAD": "1"})
     try:
