@@ -235,6 +235,7 @@ def main():
 
         check_static(tmp)
         check_normal_map_and_demo(tmp)
+        check_texture_and_folder_export(tmp)
         check_usage(tmp)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
@@ -315,6 +316,28 @@ def check_progress(port, token):
     check("progress: the same settings are the same job", again.get("id") == job["id"], again)
     check("progress: the result is the command's", job.get("result", {}).get("command") ==
           "tessera compress sprite.png -o sprite.pvr --quality high --alpha-bleed")
+
+
+def check_texture_and_folder_export(tmp):
+    """A cube map with mips exports every face of every level; a folder gives its images and
+    textures (not other files), in name order."""
+    html = os.path.join(tmp, "cube.html")
+    rc, _, err = run("view", os.path.join(tmp, "cube.pvr"), "--html", "-o", html, "-q")
+    check("cube export", rc == 0, err)
+    if rc == 0:
+        images = page_data(html)["results"][0]["images"]
+        check("cube export: 6 faces x 6 levels", sorted((i["level"], i["face"]) for i in images)
+              == [(lv, f) for lv in range(6) for f in range(6)], len(images))
+    folder = os.path.join(tmp, "folder")
+    os.makedirs(folder, exist_ok=True)
+    shutil.copy(os.path.join(tmp, "sprite.png"), os.path.join(folder, "b.png"))
+    shutil.copy(os.path.join(tmp, "cube.pvr"), os.path.join(folder, "a.pvr"))
+    with open(os.path.join(folder, "notes.txt"), "w") as f:
+        f.write("not an image")
+    rc, _, err = run("view", folder, "--quality", "fast", "--html", "-o", html, "-q")
+    d = page_data(html) if rc == 0 else {"inputs": []}
+    check("folder: its image and texture, in name order",
+          [i["name"] for i in d["inputs"]] == ["a.pvr", "b.png"], (rc, err, d["inputs"]))
 
 
 def check_usage(tmp):
