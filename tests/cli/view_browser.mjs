@@ -102,6 +102,10 @@ async function serverScenario(page) {
   await page.waitForFunction(() => document.getElementById("colourbar").naturalWidth > 0, WAIT);
   s.colourbar = await page.$eval("#colourbar", (i) => !i.hidden && i.naturalWidth > 0);
   await shot(page, "view-heatmap-1366x768.png", 1366, 768);
+  await page.select("#right", "heatmap_premultiplied");
+  await page.waitForFunction(() => document.getElementById("caption-b").textContent.includes("colour x alpha"), WAIT);
+  s.premultiplied_heatmap = await page.$eval("#caption-b", (c) => c.textContent);
+  await shot(page, "view-heatmap-premultiplied-1366x768.png", 1366, 768);
   await page.select("#right", "result");
   s.sprite_texel = await texelAtCentre(page, "#canvas-b", "32");
   await shot(page, "view-zoom32-1366x768.png", 1366, 768);

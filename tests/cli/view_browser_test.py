@@ -267,6 +267,7 @@ def check_steps(s, tmp):
               [int(v) for v in t["original"].split(",")] == list(sprite(x, y)), t)
     check("pin: one pinned row", s.get("pinned_rows") == 1, s.get("pinned_rows"))
     check("heatmap: colour bar shown", s.get("colourbar") is True)
+    check("heatmap of colour x alpha shown", "colour x alpha" in s.get("premultiplied_heatmap", ""))
     check("phone: no sideways scrolling", s.get("phone_overflow") is False)
     cube = s.get("cube", {})
     check("cube: 6 faces with mips in the metrics",

@@ -107,8 +107,8 @@ Result<std::vector<ImageRGBA8>> reference_chain(const ImageRGBA8& input,
 
 /// One image of a result: texels, decoded texels, heatmaps and metrics.
 Result<nlohmann::json> image_json(const ImageRGBA8* reference, const ImageRGBA8& decoded,
-                                  int level, int layer, int face, bool normal_map, int threads,
-                                  BlobStore& blobs) {
+                                  int level, int layer, int face, bool normal_map,
+                                  bool premultiplied, int threads, BlobStore& blobs) {
   nlohmann::json j = {{"level", level},          {"layer", layer},
                       {"face", face},            {"width", decoded.width},
                       {"height", decoded.height}, {"decoded", put_rgba(blobs, decoded)}};
@@ -124,6 +124,16 @@ Result<nlohmann::json> image_json(const ImageRGBA8* reference, const ImageRGBA8&
   Result<ImageRGBA8> heat = metrics::difference_heatmap(*reference, decoded, kDiffScale);
   if (!heat) return heat.status();
   j["heatmap"] = put_png(blobs, *heat);
+  if (co.premultiplied && !premultiplied) {
+    // What blending shows: the same heatmap over colour x alpha (colour under alpha 0 counts
+    // for nothing), where --alpha-weighted's gains are seen.
+    ImageRGBA8 a = *reference, b = decoded;
+    image::premultiply_alpha(a, false, {threads});
+    image::premultiply_alpha(b, false, {threads});
+    Result<ImageRGBA8> pm = metrics::difference_heatmap(a, b, kDiffScale);
+    if (!pm) return pm.status();
+    j["heatmap_premultiplied"] = put_png(blobs, *pm);
+  }
   if (normal_map) {
     j["angle_map"] = put_png(blobs, metrics::heatmap(angle_map(*reference, decoded),
                                                      decoded.width, decoded.height, kAngleScale));
@@ -148,9 +158,11 @@ nlohmann::json colour_bars(BlobStore& blobs) {
   auto svg = [&](const std::string& text) {
     return blobs.put("image/svg+xml", std::vector<std::uint8_t>(text.begin(), text.end()));
   };
-  return {{"heatmap", svg(colour_bar_svg(metrics::ColourMap::inferno, 0, kDiffScale, 5,
-                                         "max abs channel difference (8-bit levels; 64 and "
-                                         "above saturate)"))},
+  const std::string diff = svg(colour_bar_svg(metrics::ColourMap::inferno, 0, kDiffScale, 5,
+                                               "max abs channel difference (8-bit levels; 64 "
+                                               "and above saturate)"));
+  return {{"heatmap", diff},
+          {"heatmap_premultiplied", diff},
           {"angle_map", svg(colour_bar_svg(metrics::ColourMap::inferno, 0, kAngleScale, 6,
                                            "angle between normals (degrees; 10 and above "
                                            "saturate)"))}};
@@ -205,7 +217,7 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
     Result<ImageRGBA8> dec = texture_file::decode_texture_image(tex, level, 0, 0, {threads});
     if (!dec) return dec.status();
     Result<nlohmann::json> im = image_json(&(*refs)[std::size_t(level)], *dec, level, 0, 0,
-                                           settings.normal_map, threads, blobs);
+                                           settings.normal_map, tex.premultiplied, threads, blobs);
     if (!im) return im.status();
     j["images"].push_back(std::move(im).value());
   }
@@ -234,7 +246,7 @@ Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, 
                                                                     {threads});
         if (!dec) return dec.status();
         Result<nlohmann::json> im =
-            image_json(nullptr, *dec, level, layer, face, false, threads, blobs);
+            image_json(nullptr, *dec, level, layer, face, false, false, threads, blobs);
         if (!im) return im.status();
         j["images"].push_back(std::move(im).value());
       }

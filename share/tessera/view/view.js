@@ -375,8 +375,10 @@ async function paneSource(side, im, r) {
   const t = await texels(im.decoded, im.width, im.height);
   const right = $("right").value;
   if (right !== "result" && im[right]) {
-    return { src: await image(im[right]), texels: t, caption: right === "heatmap"
-        ? "error heatmap (as tessera compare --heatmap)" : "angular error" };
+    const captions = { heatmap: "error heatmap (as tessera compare --heatmap)",
+                       heatmap_premultiplied: "error heatmap of colour x alpha (what blending shows)",
+                       angle_map: "angular error" };
+    return { src: await image(im[right]), texels: t, caption: captions[right] };
   }
   return { src: channelCanvas(im.decoded, t, channel, premult), texels: t, caption: label(r) };
 }
@@ -420,7 +422,7 @@ async function draw() {
   const ca = $("canvas-a"), cb = $("canvas-b");
   if (!r) { prepare(ca); prepare(cb); return; }
   const im = currentImage(r);
-  const bar = r.colour_bars && ($("right").value === "heatmap" || $("right").value === "angle_map")
+  const bar = r.colour_bars && $("right").value !== "result" && im[$("right").value]
       ? r.colour_bars[$("right").value] : null;
   $("colourbar").hidden = !bar;
   if (bar) $("colourbar").src = blobUrl(bar);
