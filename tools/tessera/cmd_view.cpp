@@ -18,14 +18,15 @@ struct ViewArgs {
   ViewSettings settings;
 };
 
-constexpr const char* kSettingOptions[] = {"--format",       "--quality",    "--alpha-bleed",
+constexpr const char* kSettingOptions[] = {"--format",         "--quality",     "--alpha-bleed",
                                            "--alpha-weighted", "--premultiply", "--normal-map",
-                                           "--srgb",         "--mip-levels", "--mip-filter"};
+                                           "--srgb",           "--mip-levels",  "--mip-filter"};
 
 int run_view(const ViewArgs& args, const CLI::App& sub, const GlobalOptions& global) {
   if (args.html && args.output.empty()) return usage_error("--html needs -o FILE ('-' = stdout)");
   if (!args.html && !args.output.empty()) return usage_error("-o is for --html (the export)");
-  if (args.html && sub.count("--port")) return usage_error("--port and --html cannot be used together");
+  if (args.html && sub.count("--port"))
+    return usage_error("--port and --html cannot be used together");
   if (sub.count("--mip-filter") && args.settings.mip_levels == 0) {
     return usage_error("--mip-filter " + args.settings.mip_filter + " needs --mip-levels N");
   }

@@ -23,9 +23,9 @@ struct ViewInput {
   std::string path;  ///< As given (or found in a folder).
   std::string name;  ///< File name shown on the page.
   bool is_texture = false;
-  ImageRGBA8 image;                        ///< An image input, as read.
+  ImageRGBA8 image;                         ///< An image input, as read.
   texture_file::CompressedTexture texture;  ///< A texture input, as read.
-  std::string error;                       ///< One line when it could not be read; else "".
+  std::string error;                        ///< One line when it could not be read; else "".
 };
 
 /// The encoder settings a view result is made with: the subset of `tessera compress`'s options
@@ -40,7 +40,7 @@ struct ViewSettings {
   bool srgb = false;
   int mip_levels = 0;  ///< 0: no mip chain; N: N levels (`--mip-levels N`).
   std::string mip_filter = "box";
-  std::string label;   ///< Shown on the page ("normal", "high + weighted"); "" = derived.
+  std::string label;  ///< Shown on the page ("normal", "high + weighted"); "" = derived.
 };
 
 /// The settings in `j` (the page's JSON), checked: an unknown value or a combination `tessera
@@ -113,8 +113,8 @@ Status write_view_export(const std::vector<ViewInput>& inputs,
 
 /// How `tessera view` serves.
 struct ViewServeOptions {
-  int port = 0;          ///< 0 = a random free port.
-  bool open = true;      ///< Open the URL in a browser (xdg-open) when a display is there.
+  int port = 0;      ///< 0 = a random free port.
+  bool open = true;  ///< Open the URL in a browser (xdg-open) when a display is there.
   bool quiet = false;
   int threads = 0;
   std::vector<ViewSettings> initial;  ///< Settings of the first encode of each image.

@@ -16,8 +16,8 @@ std::string base64(const std::vector<std::uint8_t>& bytes) {
   out.reserve((bytes.size() + 2) / 3 * 4);
   std::size_t i = 0;
   for (; i + 2 < bytes.size(); i += 3) {
-    const std::uint32_t v = (std::uint32_t(bytes[i]) << 16) | (std::uint32_t(bytes[i + 1]) << 8) |
-                            bytes[i + 2];
+    const std::uint32_t v =
+        (std::uint32_t(bytes[i]) << 16) | (std::uint32_t(bytes[i + 1]) << 8) | bytes[i + 2];
     for (int s = 18; s >= 0; s -= 6) out += kAlphabet[(v >> s) & 63];
   }
   if (i < bytes.size()) {
@@ -93,8 +93,8 @@ Status write_view_export(const std::vector<ViewInput>& inputs,
   }
   data["blobs"] = std::move(uris);
   const std::string page = view_page(data);
-  return io::write_file_atomic(output, std::span(reinterpret_cast<const std::uint8_t*>(page.data()),
-                                                 page.size()));
+  return io::write_file_atomic(
+      output, std::span(reinterpret_cast<const std::uint8_t*>(page.data()), page.size()));
 }
 
 }  // namespace tessera::cli

@@ -82,8 +82,9 @@ httplib::Server::HandlerResponse guard(const httplib::Request& req, httplib::Res
     }
   }
   if (!same_secret(req.get_param_value("token"), token)) {
-    reply(res, 403, error_json("forbidden: a missing or wrong token (use the URL tessera view "
-                               "printed)"));
+    reply(res, 403,
+          error_json("forbidden: a missing or wrong token (use the URL tessera view "
+                     "printed)"));
     return httplib::Server::HandlerResponse::Handled;
   }
   return httplib::Server::HandlerResponse::Unhandled;
@@ -96,12 +97,13 @@ void add_routes(httplib::Server& svr, ViewBackend& backend, const std::string& t
                    "img-src 'self' data: blob:; connect-src 'self' data:");
     res.set_content(backend.page(token), "text/html; charset=utf-8");
   });
-  svr.Get(R"(/blob/([0-9a-f]{16}))", [&backend](const httplib::Request& req,
-                                                httplib::Response& res) {
-    std::string mime, bytes;
-    if (!backend.blob(req.matches[1], mime, bytes)) return reply(res, 404, error_json("no such blob"));
-    res.set_content(bytes, mime.c_str());
-  });
+  svr.Get(R"(/blob/([0-9a-f]{16}))",
+          [&backend](const httplib::Request& req, httplib::Response& res) {
+            std::string mime, bytes;
+            if (!backend.blob(req.matches[1], mime, bytes))
+              return reply(res, 404, error_json("no such blob"));
+            res.set_content(bytes, mime.c_str());
+          });
   svr.Get("/api/job", [&backend](const httplib::Request& req, httplib::Response& res) {
     std::string json;
     const int status = backend.job(req.get_param_value("id"), json);

@@ -29,9 +29,9 @@ class ViewBackend {
 
 /// How the module serves.
 struct ViewHttpOptions {
-  int port = 0;          ///< 0 = a random free port.
-  bool open = true;      ///< Start the desktop's browser (xdg-open) when there is a display.
-  bool quiet = false;    ///< Print only the URL.
+  int port = 0;        ///< 0 = a random free port.
+  bool open = true;    ///< Start the desktop's browser (xdg-open) when there is a display.
+  bool quiet = false;  ///< Print only the URL.
   std::size_t max_body = 64 * 1024;  ///< Larger request bodies get 413.
 };
 

@@ -2,6 +2,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 
@@ -16,7 +17,8 @@ namespace fs = std::filesystem;
 
 bool has_extension(const fs::path& p, std::initializer_list<const char*> exts) {
   std::string e = p.extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  std::transform(e.begin(), e.end(), e.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
   return std::any_of(exts.begin(), exts.end(), [&](const char* x) { return e == x; });
 }
 
@@ -100,11 +102,16 @@ Result<ViewSettings> settings_from_json(const nlohmann::json& j) {
 }
 
 nlohmann::json settings_to_json(const ViewSettings& s) {
-  return {{"format", s.format},           {"quality", s.quality},
-          {"alpha_bleed", s.alpha_bleed}, {"alpha_weighted", s.alpha_weighted},
-          {"premultiply", s.premultiply}, {"normal_map", s.normal_map},
-          {"srgb", s.srgb},               {"mip_levels", s.mip_levels},
-          {"mip_filter", s.mip_filter},   {"label", s.label}};
+  return {{"format", s.format},
+          {"quality", s.quality},
+          {"alpha_bleed", s.alpha_bleed},
+          {"alpha_weighted", s.alpha_weighted},
+          {"premultiply", s.premultiply},
+          {"normal_map", s.normal_map},
+          {"srgb", s.srgb},
+          {"mip_levels", s.mip_levels},
+          {"mip_filter", s.mip_filter},
+          {"label", s.label}};
 }
 
 CompressArgs compress_args(const ViewSettings& s, const std::string& input,

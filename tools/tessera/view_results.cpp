@@ -1,5 +1,6 @@
 // tessera view: one result = one texture (encoded here, or opened), every image of it decoded,
 // measured against what was encoded, with its heatmaps; the page's JSON and blobs.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -19,7 +20,9 @@ constexpr float kDiffScale = 64.0f;
 /// Saturation of the angular error heatmap, degrees.
 constexpr float kAngleScale = 10.0f;
 
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json num(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
 
 std::string put_png(BlobStore& blobs, const ImageRGBA8& image) {
   Result<std::vector<std::uint8_t>> png = io::encode_png(image);
@@ -59,8 +62,10 @@ std::vector<float> angle_map(const ImageRGBA8& a, const ImageRGBA8& b) {
 }
 
 nlohmann::json metrics_json(const metrics::ImageComparison& c) {
-  nlohmann::json m = {{"psnr_rgb", num(c.psnr_rgb)}, {"ssim_gray", c.ssim_gray},
-                      {"mse_rgb", c.mse_rgb},        {"max_abs", c.max_abs}};
+  nlohmann::json m = {{"psnr_rgb", num(c.psnr_rgb)},
+                      {"ssim_gray", c.ssim_gray},
+                      {"mse_rgb", c.mse_rgb},
+                      {"max_abs", c.max_abs}};
   if (c.has_alpha) m["psnr_alpha"] = num(c.psnr_alpha);
   if (c.has_premultiplied) m["psnr_premultiplied"] = num(c.psnr_premultiplied);
   if (c.has_normal) {
@@ -85,8 +90,8 @@ Result<std::vector<ImageRGBA8>> reference_chain(const ImageRGBA8& input,
   filter.normal_map = o.normal_map;
   filter.threads = o.encode.threads;
   if (made.resized) {
-    Result<ImageRGBA8> r = image::resize_image(image, made.texture.width, made.texture.height,
-                                               filter);
+    Result<ImageRGBA8> r =
+        image::resize_image(image, made.texture.width, made.texture.height, filter);
     if (!r) return r.status();
     image = std::move(r).value();
   }
@@ -106,12 +111,12 @@ Result<std::vector<ImageRGBA8>> reference_chain(const ImageRGBA8& input,
 }
 
 /// One image of a result: texels, decoded texels, heatmaps and metrics.
-Result<nlohmann::json> image_json(const ImageRGBA8* reference, const ImageRGBA8& decoded,
-                                  int level, int layer, int face, bool normal_map,
-                                  bool premultiplied, int threads, BlobStore& blobs) {
-  nlohmann::json j = {{"level", level},          {"layer", layer},
-                      {"face", face},            {"width", decoded.width},
-                      {"height", decoded.height}, {"decoded", put_rgba(blobs, decoded)}};
+Result<nlohmann::json> image_json(const ImageRGBA8* reference, const ImageRGBA8& decoded, int level,
+                                  int layer, int face, bool normal_map, bool premultiplied,
+                                  int threads, BlobStore& blobs) {
+  nlohmann::json j = {
+      {"level", level},         {"layer", layer},           {"face", face},
+      {"width", decoded.width}, {"height", decoded.height}, {"decoded", put_rgba(blobs, decoded)}};
   if (!reference) return j;
   j["original"] = put_rgba(blobs, *reference);
   metrics::CompareOptions co;
@@ -135,8 +140,8 @@ Result<nlohmann::json> image_json(const ImageRGBA8* reference, const ImageRGBA8&
     j["heatmap_premultiplied"] = put_png(blobs, *pm);
   }
   if (normal_map) {
-    j["angle_map"] = put_png(blobs, metrics::heatmap(angle_map(*reference, decoded),
-                                                     decoded.width, decoded.height, kAngleScale));
+    j["angle_map"] = put_png(blobs, metrics::heatmap(angle_map(*reference, decoded), decoded.width,
+                                                     decoded.height, kAngleScale));
   }
   return j;
 }
@@ -159,8 +164,8 @@ nlohmann::json colour_bars(BlobStore& blobs) {
     return blobs.put("image/svg+xml", std::vector<std::uint8_t>(text.begin(), text.end()));
   };
   const std::string diff = svg(colour_bar_svg(metrics::ColourMap::inferno, 0, kDiffScale, 5,
-                                               "max abs channel difference (8-bit levels; 64 "
-                                               "and above saturate)"));
+                                              "max abs channel difference (8-bit levels; 64 "
+                                              "and above saturate)"));
   return {{"heatmap", diff},
           {"heatmap_premultiplied", diff},
           {"angle_map", svg(colour_bar_svg(metrics::ColourMap::inferno, 0, kAngleScale, 6,
@@ -168,9 +173,7 @@ nlohmann::json colour_bars(BlobStore& blobs) {
                                            "saturate)"))}};
 }
 
-std::string stem_of(const std::string& name) {
-  return std::filesystem::path(name).stem().string();
-}
+std::string stem_of(const std::string& name) { return std::filesystem::path(name).stem().string(); }
 
 }  // namespace
 
@@ -242,8 +245,8 @@ Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, 
   for (int level = 0; level < tex.level_count(); ++level) {
     for (int layer = 0; layer < tex.layers; ++layer) {
       for (int face = 0; face < tex.faces; ++face) {
-        Result<ImageRGBA8> dec = texture_file::decode_texture_image(tex, level, layer, face,
-                                                                    {threads});
+        Result<ImageRGBA8> dec =
+            texture_file::decode_texture_image(tex, level, layer, face, {threads});
         if (!dec) return dec.status();
         Result<nlohmann::json> im =
             image_json(nullptr, *dec, level, layer, face, false, false, threads, blobs);

@@ -206,8 +206,9 @@ ViewHttpServe load_http_module(std::string& why) {
 #ifdef TESSERA_HAVE_VIEW_HTTP
   why = "tessera-view-http.so not found beside " + exe.string() + " (set TESSERA_VIEW_HTTP)";
 #else
-  why = "this tessera was built without libcpp-httplib-dev (install it and rebuild); "
-        "`tessera view INPUT --html -o VIEW.html` works";
+  why =
+      "this tessera was built without libcpp-httplib-dev (install it and rebuild); "
+      "`tessera view INPUT --html -o VIEW.html` works";
 #endif
   return nullptr;
 }
