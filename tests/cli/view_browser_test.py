@@ -224,7 +224,11 @@ def main():
         if steps:
             check_steps(steps, tmp)
 
-        p, url, port = start_server(["sprite.png", "--quality", "fast"], tmp)
+        with socket.socket() as s:  # a free port for --port
+            s.bind(("127.0.0.1", 0))
+            fixed = s.getsockname()[1]
+        p, url, port = start_server(["sprite.png", "--quality", "fast", "--port", str(fixed)], tmp)
+        check("--port: the URL has that port", port == fixed, url)
         if port:
             token = url.split("token=")[1]
             status, _ = request(port, "GET", "/?token=" + token)

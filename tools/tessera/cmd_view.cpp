@@ -25,8 +25,9 @@ constexpr const char* kSettingOptions[] = {"--format",         "--quality",     
 int run_view(const ViewArgs& args, const CLI::App& sub, const GlobalOptions& global) {
   if (args.html && args.output.empty()) return usage_error("--html needs -o FILE ('-' = stdout)");
   if (!args.html && !args.output.empty()) return usage_error("-o is for --html (the export)");
-  if (args.html && sub.count("--port"))
+  if (args.html && sub.count("--port")) {
     return usage_error("--port and --html cannot be used together");
+  }
   if (sub.count("--mip-filter") && args.settings.mip_levels == 0) {
     return usage_error("--mip-filter " + args.settings.mip_filter + " needs --mip-levels N");
   }
