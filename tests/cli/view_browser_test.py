@@ -333,6 +333,27 @@ def check_texture_and_folder_export(tmp):
         images = page_data(html)["results"][0]["images"]
         check("cube export: 6 faces x 6 levels", sorted((i["level"], i["face"]) for i in images)
               == [(lv, f) for lv in range(6) for f in range(6)], len(images))
+    # An image and a texture of the same stem: the texture is a result of the image, measured
+    # against it as tessera compare measures its decode.
+    pair = os.path.join(tmp, "pair")
+    os.makedirs(pair, exist_ok=True)
+    shutil.copy(os.path.join(tmp, "sprite.png"), os.path.join(pair, "sprite.png"))
+    run("compress", os.path.join(pair, "sprite.png"), "--quality", "fast", "-o",
+        os.path.join(pair, "sprite.ktx"), "-q")
+    run("decompress", os.path.join(pair, "sprite.ktx"), "-o", os.path.join(pair, "d.png"), "-q")
+    rc, so, _ = run("compare", os.path.join(pair, "sprite.png"), os.path.join(pair, "d.png"), "--json")
+    want = json.loads(so)["psnr_rgb"] if rc == 0 else None
+    rc, _, err = run("view", os.path.join(pair, "sprite.png"), os.path.join(pair, "sprite.ktx"),
+                     "--quality", "high", "--html", "-o", html, "-q")
+    d = page_data(html) if rc == 0 else {"results": []}
+    files = [r for r in d["results"] if r.get("label") == "file sprite.ktx" and r["input_index"] == 0]
+    check("pair: the texture is a result of the image", len(files) == 1, (rc, err))
+    if files:
+        got = files[0]["images"][0]["metrics"]["psnr_rgb"]
+        check("pair: PSNR as tessera compare", abs(got - want) < 1e-9, (got, want))
+        with open(os.path.join(pair, "sprite.ktx"), "rb") as f:
+            check("pair: the download is the file", base64.b64decode(
+                d["blobs"][files[0]["file"]].split(",", 1)[1]) == f.read())
     folder = os.path.join(tmp, "folder")
     os.makedirs(folder, exist_ok=True)
     shutil.copy(os.path.join(tmp, "sprite.png"), os.path.join(folder, "b.png"))

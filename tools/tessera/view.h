@@ -25,6 +25,7 @@ struct ViewInput {
   bool is_texture = false;
   ImageRGBA8 image;                         ///< An image input, as read.
   texture_file::CompressedTexture texture;  ///< A texture input, as read.
+  std::vector<std::uint8_t> file;           ///< A texture input's file (its download).
   std::string error;                        ///< One line when it could not be read; else "".
 };
 
@@ -94,8 +95,14 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
                                           int threads, BlobStore& blobs,
                                           const std::function<void(double)>& progress);
 
-/// The result of a texture input: its decoded images (no reference to measure against).
-Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, BlobStore& blobs);
+/// The result of a texture input: its decoded images, level 0 measured against `reference`
+/// when given (the image it was made from: see `texture_pairs`), else against nothing.
+Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, BlobStore& blobs,
+                                           const ImageRGBA8* reference = nullptr);
+
+/// (texture, image) input indices of a 2D texture and an image with the same file stem and
+/// size ("sprite.pvr", "sprite.png"): the texture is shown as a result of the image too.
+std::vector<std::pair<int, int>> texture_pairs(const std::vector<ViewInput>& inputs);
 
 /// The settings the static export encodes by default: fast, normal, high and, for an input with
 /// alpha, normal with --alpha-bleed and with --alpha-weighted.

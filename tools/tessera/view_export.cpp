@@ -59,6 +59,7 @@ Status write_view_export(const std::vector<ViewInput>& inputs,
                          {"version", TESSERA_VERSION_STRING},
                          {"inputs", nlohmann::json::array()},
                          {"results", nlohmann::json::array()}};
+  const std::vector<std::pair<int, int>> pairs = texture_pairs(inputs);
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const ViewInput& in = inputs[i];
     if (!in.error.empty()) return Status::error(ErrorCode::io_error, in.error);
@@ -70,6 +71,11 @@ Status write_view_export(const std::vector<ViewInput>& inputs,
       const bool alpha = data["inputs"].back().value("has_alpha", false);
       for (const ViewSettings& s : settings.empty() ? default_export_settings(alpha) : settings) {
         made.push_back(encode_view_result(in, s, threads, blobs, {}));
+      }
+      for (const auto& [t, im] : pairs) {
+        if (im == int(i)) {
+          made.push_back(texture_view_result(inputs[std::size_t(t)], threads, blobs, &in.image));
+        }
       }
     }
     for (Result<nlohmann::json>& r : made) {

@@ -42,6 +42,7 @@ ViewInput load_one(const std::string& path) {
       in.error = t.status().message;
     } else {
       in.texture = std::move(t).value();
+      in.file = std::move(bytes).value();
     }
     return in;
   }
@@ -196,6 +197,25 @@ std::vector<ViewInput> load_view_inputs(const std::vector<std::string>& paths) {
     }
   }
   return out;
+}
+
+std::vector<std::pair<int, int>> texture_pairs(const std::vector<ViewInput>& inputs) {
+  std::vector<std::pair<int, int>> pairs;
+  for (std::size_t t = 0; t < inputs.size(); ++t) {
+    const ViewInput& tex = inputs[t];
+    if (!tex.is_texture || !tex.error.empty() || tex.texture.image_count() != 1) continue;
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+      const ViewInput& im = inputs[i];
+      if (im.is_texture || !im.error.empty() ||
+          fs::path(im.name).stem() != fs::path(tex.name).stem() ||
+          im.image.width != tex.texture.width || im.image.height != tex.texture.height) {
+        continue;
+      }
+      pairs.emplace_back(int(t), int(i));
+      break;
+    }
+  }
+  return pairs;
 }
 
 nlohmann::json input_json(const ViewInput& input, int index) {

@@ -227,19 +227,18 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
   return j;
 }
 
-Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, BlobStore& blobs) {
+Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, BlobStore& blobs,
+                                           const ImageRGBA8* reference) {
   if (!input.is_texture || !input.error.empty()) {
     return Status::error(ErrorCode::invalid_argument, input.name + ": not a texture");
   }
   const texture_file::CompressedTexture& tex = input.texture;
-  Result<std::vector<std::uint8_t>> file =
-      texture_file::serialise_texture(tex, texture_file::ContainerFormat::pvr3);
-  if (!file) return file.status();
   nlohmann::json j = {{"input", input.name},
+                      {"label", reference ? "file " + input.name : std::string()},
                       {"texture", texture_json(tex)},
-                      {"file_name", stem_of(input.name) + ".pvr"},
-                      {"file", blobs.put("application/octet-stream", *file)},
-                      {"bytes", file->size()},
+                      {"file_name", input.name},
+                      {"file", blobs.put("application/octet-stream", input.file)},
+                      {"bytes", input.file.size()},
                       {"colour_bars", colour_bars(blobs)},
                       {"images", nlohmann::json::array()}};
   for (int level = 0; level < tex.level_count(); ++level) {
@@ -248,8 +247,8 @@ Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, 
         Result<ImageRGBA8> dec =
             texture_file::decode_texture_image(tex, level, layer, face, {threads});
         if (!dec) return dec.status();
-        Result<nlohmann::json> im =
-            image_json(nullptr, *dec, level, layer, face, false, false, threads, blobs);
+        Result<nlohmann::json> im = image_json(level == 0 ? reference : nullptr, *dec, level, layer,
+                                               face, false, tex.premultiplied, threads, blobs);
         if (!im) return im.status();
         j["images"].push_back(std::move(im).value());
       }

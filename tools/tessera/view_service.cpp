@@ -249,6 +249,15 @@ int serve_view(std::vector<ViewInput> inputs, const ViewServeOptions& options) {
     j["input_index"] = int(i);
     service.add_result(std::move(j));
   }
+  for (const auto& [t, im] : texture_pairs(service.inputs())) {
+    const ViewInput& image = service.inputs()[std::size_t(im)];
+    Result<nlohmann::json> r = texture_view_result(service.inputs()[std::size_t(t)],
+                                                   options.threads, service.blobs(), &image.image);
+    if (!r) continue;  // reported above, as the texture's own result
+    nlohmann::json j = std::move(r).value();
+    j["input_index"] = im;
+    service.add_result(std::move(j));
+  }
   service.set_page(std::move(page));
 
   std::thread worker([&service] { service.work(); });

@@ -107,7 +107,7 @@ function resultsOf(input) {
   return [...S.results.values()].filter((r) => r.input_index === input);
 }
 function label(r) {
-  if (!r.settings) return "texture";
+  if (!r.settings) return r.label || "texture";
   if (r.settings.label) return r.settings.label;
   const s = r.settings, parts = [s.format === "pvrtc1-2" ? "2bpp" : "4bpp", s.quality];
   for (const k of ["alpha_bleed", "alpha_weighted", "premultiply", "normal_map", "srgb"]) {
@@ -227,8 +227,8 @@ function refresh() {
   const r = S.results.get(S.result);
   const tabs = $("tabs");
   tabs.innerHTML = "";
-  const shown = resultsOf(S.input).filter((x) => D.mode === "static" || S.pinned.includes(x.id)
-      || x.id === S.result);
+  const shown = resultsOf(S.input).filter((x) => D.mode === "static" || !x.settings
+      || S.pinned.includes(x.id) || x.id === S.result);
   for (const x of shown) {
     const b = document.createElement("button");
     b.type = "button";
