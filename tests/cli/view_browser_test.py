@@ -354,6 +354,15 @@ def check_texture_and_folder_export(tmp):
         with open(os.path.join(pair, "sprite.ktx"), "rb") as f:
             check("pair: the download is the file", base64.b64decode(
                 d["blobs"][files[0]["file"]].split(",", 1)[1]) == f.read())
+    # A hostile file name cannot break out of the page's data.
+    odd = os.path.join(tmp, "x<!--<script>alert(1).png")
+    shutil.copy(os.path.join(tmp, "sprite.png"), odd)
+    rc, _, err = run("view", odd, "--quality", "fast", "--html", "-o", html, "-q")
+    with open(html, encoding="utf-8") as f:
+        text = f.read()
+    check("odd name: no markup from it in the page", rc == 0 and "<!--<script" not in text, err)
+    check("odd name: the page's data names it",
+          page_data(html)["inputs"][0]["name"] == os.path.basename(odd))
     folder = os.path.join(tmp, "folder")
     os.makedirs(folder, exist_ok=True)
     shutil.copy(os.path.join(tmp, "sprite.png"), os.path.join(folder, "b.png"))

@@ -40,10 +40,15 @@ void replace_once(std::string& text, const std::string& marker, std::string_view
 
 std::string view_page(const nlohmann::json& data) {
   std::string page(view_asset("view.html"));
-  std::string json = data.dump();
-  // Inside <script>: "</" would end it; "<\/" is the same JSON string.
-  for (std::size_t at = 0; (at = json.find("</", at)) != std::string::npos; at += 3) {
-    json.replace(at, 2, "<\\/");
+  // Inside <script>, "</script" would end the element and "<!--" change how it is parsed: every
+  // "<" (only ever inside a JSON string) is written as the same string's "\u003c".
+  std::string json;
+  for (char c : data.dump()) {
+    if (c == '<') {
+      json += "\\u003c";
+    } else {
+      json += c;
+    }
   }
   replace_once(page, "/*TESSERA_VIEW_CSS*/", view_asset("view.css"));
   replace_once(page, "/*TESSERA_VIEW_DATA*/", json);
