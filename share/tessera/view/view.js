@@ -146,8 +146,10 @@ function setupControls() {
     $(id).onchange = () => { S[id] = Number($(id).value); refresh(); };
   }
   $("zoom").onchange = () => {
+    const chosen = $("zoom").value;
     if (S.zoom === "fit") fixZoom($("canvas-a"));  // from fit: keep the centre
-    S.zoom = $("zoom").value === "fit" ? "fit" : Number($("zoom").value);
+    S.zoom = chosen === "fit" ? "fit" : Number(chosen);
+    $("zoom").value = chosen;
     draw();
   };
   $("wipe").oninput = () => draw();
@@ -534,6 +536,7 @@ function fixZoom(canvas) {
   const z = zoomOf(canvas, w, h);
   S.cx = w / 2; S.cy = h / 2;
   S.zoom = ZOOMS.slice(1).reduce((best, v) => Math.abs(v - z) < Math.abs(best - z) ? v : best, 1);
+  $("zoom").value = String(S.zoom);
 }
 function setZoom(z) {
   S.zoom = z;
