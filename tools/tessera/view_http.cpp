@@ -154,6 +154,10 @@ extern "C" __attribute__((visibility("default"))) int tessera_view_http_serve(
 
   httplib::Server svr;
   svr.set_payload_max_length(options->max_body);
+  // A browser holds idle keep-alive connections: short timeouts let Ctrl-C end the server at
+  // once rather than after httplib's default 5 s.
+  svr.set_keep_alive_timeout(1);
+  svr.set_read_timeout(10, 0);
   const int port = options->port
                        ? (svr.bind_to_port("127.0.0.1", options->port) ? options->port : -1)
                        : svr.bind_to_any_port("127.0.0.1");
