@@ -102,9 +102,20 @@ if [ ! -f "$ktx_parse/node_modules/ktx-parse/package.json" ] ||
     ktx-parse@2.0.0 fzstd@0.1.1 >/dev/null)
 fi
 
+# --- puppeteer-core 24.43.1 (drives Debian's chromium in tests/cli/view_browser_test.py) ------
+# Node 18 or later (Debian 12 has 18); no browser download: the test uses /usr/bin/chromium.
+puppeteer="$cache/peers/puppeteer"
+if [ ! -f "$puppeteer/node_modules/puppeteer-core/package.json" ]; then
+  log "installing puppeteer-core@24.43.1 (npm) into $puppeteer"
+  mkdir -p "$puppeteer"
+  (cd "$puppeteer" && PUPPETEER_SKIP_DOWNLOAD=1 npm install --silent --no-audit --no-fund \
+    --save-exact puppeteer-core@24.43.1 >/dev/null)
+fi
+
 # --- Configure and build ---------------------------------------------------------------------
 build="${TESSERA_BUILD:-build}"
 log "building in $build/"
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DTESSERA_WERROR=ON \
-  -DTESSERA_PVRTEXTOOL="$pvrtextool" -DTESSERA_KTX_PARSE="$ktx_parse" >/dev/null
+  -DTESSERA_PVRTEXTOOL="$pvrtextool" -DTESSERA_KTX_PARSE="$ktx_parse" \
+  -DTESSERA_PUPPETEER="$puppeteer" >/dev/null
 cmake --build "$build"

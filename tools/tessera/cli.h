@@ -61,5 +61,6 @@ Command add_decompress_command(CLI::App& app, const GlobalOptions& global);
 Command add_info_command(CLI::App& app, const GlobalOptions& global);
 Command add_render_command(CLI::App& app, const GlobalOptions& global);
 Command add_seams_command(CLI::App& app, const GlobalOptions& global);
+Command add_view_command(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace tessera::cli

@@ -42,6 +42,11 @@ struct PvrtcDemoImage {
 Status demo_pvrtc_quality_time(Report& report, const DemoOptions& options,
                                const std::vector<PvrtcDemoImage>& images);
 
+/// The PVRTC section's images as a static `tessera view` (DIR/pvrtc-view.html), linked from
+/// the report.
+Status demo_pvrtc_view(Report& report, const DemoOptions& options,
+                       const std::vector<PvrtcDemoImage>& images);
+
 /// Rendering core: the built-in scene at 1x, 4x MSAA and a 4x4 SSAA reference, with zooms.
 Status demo_render_section(Report& report, const DemoOptions& options);
 

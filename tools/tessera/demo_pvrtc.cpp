@@ -150,6 +150,7 @@ Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
                 "encode (ms)"},
                rows);
   if (Status s = demo_pvrtc_quality_time(report, options, saved); !s.ok()) return s;
+  if (Status s = demo_pvrtc_view(report, options, saved); !s.ok()) return s;
 
   // A gamma-correct, alpha-weighted mip chain of the RGBA image, each level PVRTC-compressed.
   const ImageRGBA8 foliage = make_procedural(Procedural::foliage, n, n);

@@ -88,7 +88,7 @@ std::string_view subcommand_name(int argc, char** argv) {
   return {};
 }
 
-constexpr std::string_view kCommandList = "aa, compare, compress, decompress, demo, info, render, seams";
+constexpr std::string_view kCommandList = "aa, compare, compress, decompress, demo, info, render, seams, view";
 
 bool is_global_option(std::string_view a) {
   return a == "-j" || a == "--threads" || a.rfind("--threads=", 0) == 0 ||
@@ -292,6 +292,7 @@ int main(int argc, char** argv) {
       {"info", add_info_command},
       {"render", add_render_command},
       {"seams", add_seams_command},
+      {"view", add_view_command},
   };
   const std::string_view named = subcommand_name(argc, argv);
   std::vector<std::string_view> known;

@@ -1,0 +1,137 @@
+// tessera view: the model behind the page (inputs, encodes, the images and metrics the page
+// shows), the static export and the local server. The page itself (share/tessera/view/) is
+// embedded into the binary at build time (view_assets.cpp, generated).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "compress.h"
+#include "tessera/texture_file.h"
+
+namespace tessera::cli {
+
+/// One opened input: an image (encoded by the view) or a texture file (decoded as it is).
+struct ViewInput {
+  std::string path;  ///< As given (or found in a folder).
+  std::string name;  ///< File name shown on the page.
+  bool is_texture = false;
+  ImageRGBA8 image;                         ///< An image input, as read.
+  texture_file::CompressedTexture texture;  ///< A texture input, as read.
+  std::vector<std::uint8_t> file;           ///< A texture input's file (its download).
+  std::string error;                        ///< One line when it could not be read; else "".
+};
+
+/// The encoder settings a view result is made with: the subset of `tessera compress`'s options
+/// the page offers.
+struct ViewSettings {
+  std::string format = "pvrtc1-4";
+  std::string quality = "normal";
+  bool alpha_bleed = false;
+  bool alpha_weighted = false;
+  bool premultiply = false;
+  bool normal_map = false;
+  bool srgb = false;
+  int mip_levels = 0;  ///< 0: no mip chain; N: N levels (`--mip-levels N`).
+  std::string mip_filter = "box";
+  std::string label;  ///< Shown on the page ("normal", "high + weighted"); "" = derived.
+};
+
+/// The settings in `j` (the page's JSON), checked: an unknown value or a combination `tessera
+/// compress` refuses is an error whose message names it.
+Result<ViewSettings> settings_from_json(const nlohmann::json& j);
+nlohmann::json settings_to_json(const ViewSettings& s);
+/// The `tessera compress` arguments of these settings for `input`, writing `output`.
+CompressArgs compress_args(const ViewSettings& s, const std::string& input,
+                           const std::string& output);
+/// The exact `tessera compress` command line that writes the same texture.
+std::string compress_command(const ViewSettings& s, const std::string& input,
+                             const std::string& output);
+
+/// Content-addressed bytes the page loads (PNG images, SVG colour bars, texture files): the
+/// key is a hash of the bytes, so an image shared by several results is kept once.
+class BlobStore {
+ public:
+  struct Blob {
+    std::string mime;
+    std::vector<std::uint8_t> bytes;
+  };
+  /// Stores `bytes` and returns its key (16 hex digits).
+  std::string put(std::string mime, std::vector<std::uint8_t> bytes);
+  /// The blob of `key`, or null.
+  std::shared_ptr<const Blob> get(const std::string& key) const;
+  /// Every key, for the static export.
+  std::vector<std::string> keys() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<std::string, std::shared_ptr<const Blob>> blobs_;
+};
+
+/// zlib-compressed RGBA8 texels (`width * height * 4` bytes inflated): the page reads them
+/// exactly, where a canvas would premultiply a PNG's translucent texels.
+std::vector<std::uint8_t> deflate_rgba(const ImageRGBA8& image);
+
+/// Reads the inputs: files by their bytes (images, .pvr/.ktx/.ktx2), folders as the images
+/// and textures in them (not recursive, in name order). A file that cannot be read becomes an
+/// input with `error` set (the view shows it and goes on); a missing folder too.
+std::vector<ViewInput> load_view_inputs(const std::vector<std::string>& paths);
+
+/// The page's description of an input (without results).
+nlohmann::json input_json(const ViewInput& input, int index);
+
+/// Encodes an image input with `settings` as `tessera compress` would (same library calls,
+/// same bytes), decodes every level, face and layer and measures each against what was
+/// encoded; images, heatmaps and the texture go into `blobs`. `progress` (may be empty) gets
+/// the encode's fraction. Returns the result's JSON (see view.js for its fields).
+Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSettings& settings,
+                                          int threads, BlobStore& blobs,
+                                          const std::function<void(double)>& progress);
+
+/// The result of a texture input: its decoded images, level 0 measured against `reference`
+/// when given (the image it was made from: see `texture_pairs`), else against nothing.
+Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, BlobStore& blobs,
+                                           const ImageRGBA8* reference = nullptr);
+
+/// (texture, image) input indices of a 2D texture and an image with the same file stem and
+/// size ("sprite.pvr", "sprite.png"): the texture is shown as a result of the image too.
+std::vector<std::pair<int, int>> texture_pairs(const std::vector<ViewInput>& inputs);
+
+/// The settings the static export encodes by default: fast, normal, high and, for an input with
+/// alpha, normal with --alpha-bleed and with --alpha-weighted.
+std::vector<ViewSettings> default_export_settings(bool has_alpha);
+
+/// The page (HTML with its script and style inline) with `data` as its start-up JSON.
+std::string view_page(const nlohmann::json& data);
+
+/// Writes the self-contained static view of `inputs` (every image through every setting of
+/// `settings`, or `default_export_settings` when empty) to `output` (atomically; "-" =
+/// stdout): blobs inlined as data: URIs, no server needed.
+Status write_view_export(const std::vector<ViewInput>& inputs,
+                         const std::vector<ViewSettings>& settings, int threads,
+                         const std::string& output);
+
+/// How `tessera view` serves.
+struct ViewServeOptions {
+  int port = 0;      ///< 0 = a random free port.
+  bool open = true;  ///< Open the URL in a browser (xdg-open) when a display is there.
+  bool quiet = false;
+  int threads = 0;
+  std::vector<ViewSettings> initial;  ///< Settings of the first encode of each image.
+};
+
+/// Serves the view on 127.0.0.1 until SIGINT or SIGTERM; prints the URL (with its token) on
+/// stdout. Returns the exit code.
+int serve_view(std::vector<ViewInput> inputs, const ViewServeOptions& options);
+
+/// The embedded page assets (share/tessera/view/*), by file name; "" when unknown.
+std::string_view view_asset(std::string_view name);
+
+}  // namespace tessera::cli

@@ -1,0 +1,43 @@
+// tessera view: the interface between the CLI and its HTTP server module. The server (cpp-httplib,
+// which pulls in OpenSSL and Brotli) lives in a separate shared module, tessera-view-http.so,
+// that `tessera view` loads with dlopen when it serves: linked into the CLI, those libraries
+// would double the start-up time of every other command. The CLI implements ViewBackend (the
+// inputs, the encodes, the blobs); the module does HTTP, the guards and the signals.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace tessera::cli {
+
+/// What the server asks of the view; called from the server's threads (thread-safe).
+class ViewBackend {
+ public:
+  virtual ~ViewBackend() = default;
+  /// The page (HTML) for a browser holding `token`.
+  virtual std::string page(const std::string& token) = 0;
+  /// The blob `key` (its MIME type and bytes); false when there is none.
+  virtual bool blob(const std::string& key, std::string& mime, std::string& bytes) = 0;
+  /// Starts (or finds) the encode a request body asks for; returns the HTTP status, `json` the
+  /// reply (the job, or {"error": ...}).
+  virtual int encode(const std::string& body, std::string& json) = 0;
+  /// The state of job `id`; returns the HTTP status, `json` the reply.
+  virtual int job(const std::string& id, std::string& json) = 0;
+  /// Opened inputs (for the start-up line).
+  virtual std::size_t input_count() const = 0;
+};
+
+/// How the module serves.
+struct ViewHttpOptions {
+  int port = 0;        ///< 0 = a random free port.
+  bool open = true;    ///< Start the desktop's browser (xdg-open) when there is a display.
+  bool quiet = false;  ///< Print only the URL.
+  std::size_t max_body = 64 * 1024;  ///< Larger request bodies get 413.
+};
+
+/// The module's entry point (C linkage, found with dlsym): serves on 127.0.0.1 until SIGINT or
+/// SIGTERM, printing the URL with its token on stdout; returns the exit code.
+using ViewHttpServe = int (*)(ViewBackend* backend, const ViewHttpOptions* options);
+inline constexpr const char* kViewHttpServeSymbol = "tessera_view_http_serve";
+
+}  // namespace tessera::cli

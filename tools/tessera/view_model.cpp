@@ -1,0 +1,269 @@
+// tessera view: inputs, settings, blobs, and the `tessera compress` command line of a result.
+#include <zlib.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+
+#include "tessera/io.h"
+#include "view.h"
+
+namespace tessera::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+bool has_extension(const fs::path& p, std::initializer_list<const char*> exts) {
+  std::string e = p.extension().string();
+  std::transform(e.begin(), e.end(), e.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return std::any_of(exts.begin(), exts.end(), [&](const char* x) { return e == x; });
+}
+
+bool viewable_name(const fs::path& p) {
+  return has_extension(p, {".png", ".jpg", ".jpeg", ".tga", ".bmp", ".pvr", ".ktx", ".ktx2"});
+}
+
+ViewInput load_one(const std::string& path) {
+  ViewInput in;
+  in.path = path;
+  in.name = fs::path(path).filename().string();
+  Result<std::vector<std::uint8_t>> bytes = io::read_file(path, std::uint64_t{1} << 30);
+  if (!bytes) {
+    in.error = bytes.status().message;
+    return in;
+  }
+  if (texture_file::detect_container(*bytes) != texture_file::ContainerFormat::unknown) {
+    in.is_texture = true;
+    Result<texture_file::CompressedTexture> t = texture_file::parse_texture(*bytes, path);
+    if (!t) {
+      in.error = t.status().message;
+    } else {
+      in.texture = std::move(t).value();
+      in.file = std::move(bytes).value();
+    }
+    return in;
+  }
+  Result<ImageRGBA8> im = io::decode_image(*bytes, path);
+  if (!im) {
+    in.error = im.status().message;
+  } else {
+    in.image = std::move(im).value();
+  }
+  return in;
+}
+
+bool word_in(const std::string& w, std::initializer_list<const char*> words) {
+  return std::any_of(words.begin(), words.end(), [&](const char* x) { return w == x; });
+}
+
+std::string quoted(const std::string& word) {
+  if (word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
+                             "._-/+=:,@") == std::string::npos &&
+      !word.empty()) {
+    return word;
+  }
+  std::string q = "'";
+  for (char c : word) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+}  // namespace
+
+Result<ViewSettings> settings_from_json(const nlohmann::json& j) {
+  if (!j.is_object()) return Status::error(ErrorCode::invalid_argument, "settings: not an object");
+  ViewSettings s;
+  auto bad = [](const std::string& m) { return Status::error(ErrorCode::invalid_argument, m); };
+  try {
+    s.format = j.value("format", s.format);
+    s.quality = j.value("quality", s.quality);
+    s.alpha_bleed = j.value("alpha_bleed", false);
+    s.alpha_weighted = j.value("alpha_weighted", false);
+    s.premultiply = j.value("premultiply", false);
+    s.normal_map = j.value("normal_map", false);
+    s.srgb = j.value("srgb", false);
+    s.mip_levels = j.value("mip_levels", 0);
+    s.mip_filter = j.value("mip_filter", s.mip_filter);
+    s.label = j.value("label", std::string());
+  } catch (const nlohmann::json::exception&) {
+    return bad("settings: a value has the wrong type");
+  }
+  if (!word_in(s.format, {"pvrtc1-4", "pvrtc1-2"})) return bad("format: '" + s.format + "'");
+  if (!word_in(s.quality, {"fast", "normal", "high"})) return bad("quality: '" + s.quality + "'");
+  if (!word_in(s.mip_filter, {"box", "lanczos", "kaiser"})) {
+    return bad("mip_filter: '" + s.mip_filter + "'");
+  }
+  if (s.mip_levels < 0 || s.mip_levels > 17) return bad("mip_levels: out of range (0 to 17)");
+  if (s.label.size() > 80) return bad("label: longer than 80 characters");
+  CompressArgs args = compress_args(s, "in", "out.pvr");
+  if (std::string p = compress_usage_problem(args, "pvr"); !p.empty()) return bad(p);
+  return s;
+}
+
+nlohmann::json settings_to_json(const ViewSettings& s) {
+  return {{"format", s.format},
+          {"quality", s.quality},
+          {"alpha_bleed", s.alpha_bleed},
+          {"alpha_weighted", s.alpha_weighted},
+          {"premultiply", s.premultiply},
+          {"normal_map", s.normal_map},
+          {"srgb", s.srgb},
+          {"mip_levels", s.mip_levels},
+          {"mip_filter", s.mip_filter},
+          {"label", s.label}};
+}
+
+CompressArgs compress_args(const ViewSettings& s, const std::string& input,
+                           const std::string& output) {
+  CompressArgs a;
+  a.inputs = {input};
+  a.output = output;
+  a.format = s.format;
+  a.quality = s.quality;
+  a.alpha_bleed = s.alpha_bleed;
+  a.alpha_weighted = s.alpha_weighted;
+  a.premultiply = s.premultiply;
+  a.normal_map = s.normal_map;
+  a.srgb = s.srgb;
+  a.mip_levels = s.mip_levels;
+  a.mipmaps = s.mip_levels > 0;
+  // --mip-filter only means something with a chain (compress refuses it otherwise).
+  a.mip_filter = s.mip_levels > 0 ? s.mip_filter : "box";
+  return a;
+}
+
+std::string compress_command(const ViewSettings& s, const std::string& input,
+                             const std::string& output) {
+  std::string c = "tessera compress " + quoted(input) + " -o " + quoted(output);
+  if (s.format != "pvrtc1-4") c += " --format " + s.format;
+  if (s.quality != "normal") c += " --quality " + s.quality;
+  if (s.mip_levels > 0) c += " --mip-levels " + std::to_string(s.mip_levels);
+  if (s.mip_levels > 0 && s.mip_filter != "box") c += " --mip-filter " + s.mip_filter;
+  if (s.srgb) c += " --srgb";
+  if (s.premultiply) c += " --premultiply";
+  if (s.alpha_bleed) c += " --alpha-bleed";
+  if (s.alpha_weighted) c += " --alpha-weighted";
+  if (s.normal_map) c += " --normal-map";
+  return c;
+}
+
+std::string BlobStore::put(std::string mime, std::vector<std::uint8_t> bytes) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the MIME type and the bytes
+  for (char c : mime) h = (h ^ std::uint8_t(c)) * 1099511628211ull;
+  for (std::uint8_t b : bytes) h = (h ^ b) * 1099511628211ull;
+  char key[17];
+  std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(h));
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto& slot = blobs_[key];
+  if (!slot) slot = std::make_shared<const Blob>(Blob{std::move(mime), std::move(bytes)});
+  return key;
+}
+
+std::shared_ptr<const BlobStore::Blob> BlobStore::get(const std::string& key) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto it = blobs_.find(key);
+  return it == blobs_.end() ? nullptr : it->second;
+}
+
+std::vector<std::string> BlobStore::keys() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<std::string> k;
+  for (const auto& [key, blob] : blobs_) k.push_back(key);
+  return k;
+}
+
+std::vector<ViewInput> load_view_inputs(const std::vector<std::string>& paths) {
+  std::vector<ViewInput> out;
+  for (const std::string& p : paths) {
+    std::error_code ec;
+    if (fs::is_directory(p, ec)) {
+      std::vector<std::string> files;
+      for (const fs::directory_entry& e : fs::directory_iterator(p, ec)) {
+        if (e.is_regular_file(ec) && viewable_name(e.path())) files.push_back(e.path().string());
+      }
+      std::sort(files.begin(), files.end());
+      if (files.empty()) {
+        ViewInput none;
+        none.path = p;
+        none.name = p;
+        none.error = p + ": no images or textures in this folder";
+        out.push_back(std::move(none));
+      }
+      for (const std::string& f : files) out.push_back(load_one(f));
+    } else {
+      out.push_back(load_one(p));
+    }
+  }
+  return out;
+}
+
+std::vector<std::pair<int, int>> texture_pairs(const std::vector<ViewInput>& inputs) {
+  std::vector<std::pair<int, int>> pairs;
+  for (std::size_t t = 0; t < inputs.size(); ++t) {
+    const ViewInput& tex = inputs[t];
+    if (!tex.is_texture || !tex.error.empty() || tex.texture.image_count() != 1) continue;
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+      const ViewInput& im = inputs[i];
+      if (im.is_texture || !im.error.empty() ||
+          fs::path(im.name).stem() != fs::path(tex.name).stem() ||
+          im.image.width != tex.texture.width || im.image.height != tex.texture.height) {
+        continue;
+      }
+      pairs.emplace_back(int(t), int(i));
+      break;
+    }
+  }
+  return pairs;
+}
+
+nlohmann::json input_json(const ViewInput& input, int index) {
+  nlohmann::json j = {{"index", index},
+                      {"name", input.name},
+                      {"path", input.path},
+                      {"kind", input.is_texture ? "texture" : "image"}};
+  if (!input.error.empty()) {
+    j["error"] = input.error;
+  } else if (input.is_texture) {
+    j["width"] = input.texture.width;
+    j["height"] = input.texture.height;
+    j["has_alpha"] = input.texture.has_alpha;
+  } else {
+    j["width"] = input.image.width;
+    j["height"] = input.image.height;
+    j["has_alpha"] = input.image.has_alpha && !all_opaque(ImageView8::of(input.image));
+  }
+  return j;
+}
+
+std::vector<ViewSettings> default_export_settings(bool has_alpha) {
+  std::vector<ViewSettings> v;
+  for (const char* q : {"fast", "normal", "high"}) {
+    ViewSettings s;
+    s.quality = q;
+    v.push_back(s);
+  }
+  if (has_alpha) {
+    ViewSettings bleed;
+    bleed.alpha_bleed = true;
+    v.push_back(bleed);
+    ViewSettings weighted;
+    weighted.alpha_weighted = true;
+    v.push_back(weighted);
+  }
+  return v;
+}
+
+/// zlib-compressed RGBA8 texels: the page reads them exactly (a canvas would premultiply).
+std::vector<std::uint8_t> deflate_rgba(const ImageRGBA8& image) {
+  uLongf n = compressBound(uLong(image.pixels.size()));
+  std::vector<std::uint8_t> out(n);
+  if (compress2(out.data(), &n, image.pixels.data(), uLong(image.pixels.size()), 6) != Z_OK) {
+    return {};
+  }
+  out.resize(n);
+  return out;
+}
+
+}  // namespace tessera::cli

@@ -1,0 +1,275 @@
+// tessera view, serving: the inputs, results and encode jobs behind the HTTP module
+// (view_http.h), which this file loads with dlopen. Encodes run one at a time on a worker
+// thread; their progress (EncodeOptions::progress) is what the page polls.
+#include <dlfcn.h>
+#include <pthread.h>
+
+#include <condition_variable>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <filesystem>
+#include <thread>
+
+#include "view.h"
+#include "view_http.h"
+
+namespace tessera::cli {
+
+namespace {
+
+constexpr std::size_t kMaxQueued = 8;  ///< Encodes waiting at once: 503 above.
+
+struct Job {
+  int input = 0;
+  ViewSettings settings;
+  std::string key;
+  std::atomic<double> fraction{0.0};
+  std::string state = "queued";  ///< queued, running, done, error (under Service::mutex_)
+  std::string result;            ///< Result id when done.
+  std::string error;
+};
+
+nlohmann::json error(const std::string& message) { return {{"error", message}}; }
+
+class Service final : public ViewBackend {
+ public:
+  Service(std::vector<ViewInput> inputs, int threads)
+      : inputs_(std::move(inputs)), threads_(threads) {}
+
+  /// The page's start-up data (inputs, initial settings), set once before serving.
+  void set_page(nlohmann::json page) { page_ = std::move(page); }
+
+  std::size_t input_count() const override { return inputs_.size(); }
+  const std::vector<ViewInput>& inputs() const { return inputs_; }
+  BlobStore& blobs() { return blobs_; }
+
+  std::string page(const std::string& token) override {
+    nlohmann::json data = page_;
+    data["token"] = token;
+    std::lock_guard<std::mutex> lock(mutex_);
+    data["results"] = nlohmann::json::array();
+    for (const auto& [id, r] : results_) data["results"].push_back(r);
+    return view_page(data);
+  }
+
+  bool blob(const std::string& key, std::string& mime, std::string& bytes) override {
+    std::shared_ptr<const BlobStore::Blob> b = blobs_.get(key);
+    if (!b) return false;
+    mime = b->mime;
+    bytes.assign(b->bytes.begin(), b->bytes.end());
+    return true;
+  }
+
+  int encode(const std::string& body_text, std::string& out) override {
+    nlohmann::json body = nlohmann::json::parse(body_text, nullptr, false);
+    if (body.is_discarded() || !body.is_object() || !body.contains("input") ||
+        !body["input"].is_number_integer() || !body.contains("settings")) {
+      out = error("bad request: want {\"input\": N, \"settings\": {...}}").dump();
+      return 400;
+    }
+    const long long input = body["input"].get<long long>();
+    if (input < 0 || input >= static_cast<long long>(inputs_.size()) ||
+        inputs_[std::size_t(input)].is_texture || !inputs_[std::size_t(input)].error.empty()) {
+      out = error("no such image input").dump();
+      return 404;
+    }
+    Result<ViewSettings> s = settings_from_json(body["settings"]);
+    if (!s) {
+      out = error(s.status().message).dump();
+      return 400;
+    }
+    const std::string id = submit(int(input), *s);
+    if (id.empty()) {
+      out = error("busy: too many encodes queued").dump();
+      return 503;
+    }
+    return job(id, out);
+  }
+
+  int job(const std::string& id, std::string& out) override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = jobs_.find(id);
+    if (it == jobs_.end()) {
+      out = error("no such job").dump();
+      return 404;
+    }
+    const Job& j = *it->second;
+    nlohmann::json r = {{"id", id}, {"state", j.state}, {"fraction", j.fraction.load()}};
+    if (j.state == "done") r["result"] = results_.at(j.result);
+    if (j.state == "error") r["error"] = j.error;
+    out = r.dump();
+    return 200;
+  }
+
+  std::string add_result(nlohmann::json result) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const std::string id = "r" + std::to_string(results_.size());
+    result["id"] = id;
+    results_[id] = std::move(result);
+    return id;
+  }
+
+  /// Runs queued encodes until `stop`.
+  void work() {
+    for (;;) {
+      std::shared_ptr<Job> job;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+        if (stopping_) return;
+        job = queue_.front();
+        queue_.pop_front();
+        job->state = "running";
+      }
+      Result<nlohmann::json> r =
+          encode_view_result(inputs_[std::size_t(job->input)], job->settings, threads_, blobs_,
+                             [&job](double f) { job->fraction.store(f); });
+      std::string id;
+      if (r) {
+        nlohmann::json j = std::move(r).value();
+        j["input_index"] = job->input;
+        id = add_result(std::move(j));
+      } else {
+        std::fprintf(stderr, "tessera: %s\n", r.status().message.c_str());
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      job->state = r ? "done" : "error";
+      job->result = id;
+      if (!r) job->error = r.status().message;
+    }
+  }
+
+  void stop() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+    wake_.notify_all();
+  }
+
+ private:
+  /// The id of the job of (input, settings): an existing one with the same key (unless it
+  /// failed), or a new queued one; "" when the queue is full.
+  std::string submit(int input, const ViewSettings& settings) {
+    const std::string key = std::to_string(input) + settings_to_json(settings).dump();
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [jid, job] : jobs_) {
+      if (job->key == key && job->state != "error") return jid;
+    }
+    if (queue_.size() >= kMaxQueued) return "";
+    auto job = std::make_shared<Job>();
+    job->input = input;
+    job->settings = settings;
+    job->key = key;
+    const std::string id = "j" + std::to_string(jobs_.size());
+    jobs_[id] = job;
+    queue_.push_back(job);
+    wake_.notify_one();
+    return id;
+  }
+
+  std::vector<ViewInput> inputs_;
+  nlohmann::json page_;
+  int threads_;
+  BlobStore blobs_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stopping_ = false;
+  std::map<std::string, nlohmann::json> results_;
+  std::map<std::string, std::shared_ptr<Job>> jobs_;
+  std::deque<std::shared_ptr<Job>> queue_;
+};
+
+/// The HTTP module's entry point: $TESSERA_VIEW_HTTP, else beside the build tree's binary
+/// (bin/../lib/), else where it is installed; null with `why` set when none loads.
+ViewHttpServe load_http_module(std::string& why) {
+  std::vector<std::string> candidates;
+  if (const char* env = std::getenv("TESSERA_VIEW_HTTP"); env && *env) candidates.push_back(env);
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const std::filesystem::path bin = exe.parent_path();
+    candidates.push_back((bin / ".." / "lib" / "tessera-view-http.so").string());
+    candidates.push_back((bin / TESSERA_VIEW_HTTP_INSTALLED).string());
+  }
+  for (const std::string& path : candidates) {
+    if (!std::filesystem::exists(path, ec)) continue;
+    void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!module) {
+      why = dlerror();
+      return nullptr;
+    }
+    if (void* f = dlsym(module, kViewHttpServeSymbol)) return reinterpret_cast<ViewHttpServe>(f);
+    why = path + ": no " + kViewHttpServeSymbol;
+    return nullptr;
+  }
+#ifdef TESSERA_HAVE_VIEW_HTTP
+  why = "tessera-view-http.so not found beside " + exe.string() + " (set TESSERA_VIEW_HTTP)";
+#else
+  why =
+      "this tessera was built without libcpp-httplib-dev (install it and rebuild); "
+      "`tessera view INPUT --html -o VIEW.html` works";
+#endif
+  return nullptr;
+}
+
+}  // namespace
+
+int serve_view(std::vector<ViewInput> inputs, const ViewServeOptions& options) {
+  std::string why;
+  const ViewHttpServe serve = load_http_module(why);
+  if (!serve) {
+    std::fprintf(stderr, "tessera: view: cannot serve: %s\n", why.c_str());
+    return kExitBadInput;
+  }
+  // SIGINT and SIGTERM are the server's to wait for: blocked before any thread starts.
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+
+  Service service(std::move(inputs), options.threads);
+  nlohmann::json page = {{"mode", "server"},
+                         {"version", TESSERA_VERSION_STRING},
+                         {"inputs", nlohmann::json::array()},
+                         {"initial", nlohmann::json::array()}};
+  for (const ViewSettings& s : options.initial) page["initial"].push_back(settings_to_json(s));
+  for (std::size_t i = 0; i < service.inputs().size(); ++i) {
+    const ViewInput& in = service.inputs()[i];
+    page["inputs"].push_back(input_json(in, int(i)));
+    if (!in.is_texture || !in.error.empty()) continue;
+    Result<nlohmann::json> r = texture_view_result(in, options.threads, service.blobs());
+    if (!r) {
+      std::fprintf(stderr, "tessera: %s\n", r.status().message.c_str());
+      page["inputs"][i]["error"] = r.status().message;
+      continue;
+    }
+    nlohmann::json j = std::move(r).value();
+    j["input_index"] = int(i);
+    service.add_result(std::move(j));
+  }
+  for (const auto& [t, im] : texture_pairs(service.inputs())) {
+    const ViewInput& image = service.inputs()[std::size_t(im)];
+    Result<nlohmann::json> r = texture_view_result(service.inputs()[std::size_t(t)],
+                                                   options.threads, service.blobs(), &image.image);
+    if (!r) continue;  // reported above, as the texture's own result
+    nlohmann::json j = std::move(r).value();
+    j["input_index"] = im;
+    service.add_result(std::move(j));
+  }
+  service.set_page(std::move(page));
+
+  std::thread worker([&service] { service.work(); });
+  ViewHttpOptions http;
+  http.port = options.port;
+  http.open = options.open;
+  http.quiet = options.quiet;
+  const int rc = serve(&service, &http);
+  service.stop();
+  worker.join();
+  if (!options.quiet && rc == 0) std::fprintf(stderr, "tessera view: stopped\n");
+  return rc;
+}
+
+}  // namespace tessera::cli
