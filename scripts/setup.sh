@@ -39,7 +39,12 @@ packages=(
   spirv-tools                                  # spirv-val/-dis: the GLSL's Vulkan SPIR-V
   pybind11-dev python3-dev python3-pytest      # the Python module and its tests
   python3-distributed                          # tessera.batch on a Dask cluster
-  chromium                                     # the report test loads report.html headless
+  chromium                                     # the report and view tests drive it headless
+  libglfw3-dev xvfb xauth                      # engine examples/tests on a real GLX window
+  libvulkan-dev mesa-vulkan-drivers            # Vulkan loader + headers, lavapipe (CPU Vulkan)
+  vulkan-validationlayers vulkan-tools         # validation layer (a message fails a test)
+  glslc libshaderc-dev                         # GLSL to SPIR-V: offline (glslc) and at create
+  libcpp-httplib-dev                           # `tessera view`'s local HTTP server
   libgtest-dev libgmock-dev libbenchmark-dev   # tests, benchmarks
   python3 python3-numpy python3-skimage python3-pil  # independent SSIM/PSNR, image checks
 )

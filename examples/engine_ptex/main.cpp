@@ -99,7 +99,7 @@ void main() {
 }
 )";
 
-// The defines of FaceTextures::glsl_defines go after #version (gl::ShaderOptions::preamble).
+// The defines of FaceTextures::glsl_defines go after #version (glsl::ExpandOptions::preamble).
 const char* kFragmentShader = R"(#version 450 core
 #include "seams.glsl"
 layout(std140, binding = 0) uniform Frame {
@@ -263,13 +263,13 @@ int main(int argc, char** argv) {
   bindings.border_unit = 1;  // unit 0 stays free for the engine's own textures
   bindings.clamp_unit = 17;  // after at most 16 classes
   bindings.records_binding = 3;
-  tessera::gl::ShaderOptions so;
+  tessera::glsl::ExpandOptions so;
   so.include_paths = {a.glsl};
   so.preamble = tex->glsl_defines(bindings);
   so.preamble.push_back(std::string("#define ENGINE_CLAMP ") + (a.method == "clamp" ? "1" : "0"));
   auto program = tessera::gl::link_program(
-      {{tessera::gl::ShaderStage::vertex, kVertexShader, "engine_ptex.vert"},
-       {tessera::gl::ShaderStage::fragment, kFragmentShader, "engine_ptex.frag"}},
+      {{tessera::glsl::Stage::vertex, kVertexShader, "engine_ptex.vert"},
+       {tessera::glsl::Stage::fragment, kFragmentShader, "engine_ptex.frag"}},
       so);
   if (!program) return fail(program.status().message);
   // ---- end of step 2 ----

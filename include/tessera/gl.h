@@ -10,7 +10,7 @@
 //    `surfaceless` (EGL_PLATFORM_SURFACELESS_MESA) or `auto` (default: hardware, else software,
 //    else surfaceless). A `GL_KHR_debug` callback collects driver messages; `check_errors`
 //    turns GL errors and debug errors into a `Status`.
-//  * RAII GL objects (`Object`), shader programs compiled from strings or files with
+//  * RAII GL objects (`Object`), shader programs compiled from tessera/glsl.h sources with
 //    `#include "x.glsl"` resolution (compile errors name the file and line), GPU timer queries
 //    per named pass (`GpuTimer`), render targets and read-back into tessera's images.
 //  * Per-face (Ptex) textures packed for the GPU are in tessera/gl_ptex.h.
@@ -20,7 +20,7 @@
 //
 // Threads: a `Context` is current on at most one thread at a time; `Context::create` makes it
 // current on the calling thread. Every function below that touches GL (everything except
-// `format_shader_log` and `parse_device_selection`) must be called on a thread
+// `parse_device_selection`) must be called on a thread
 // where a tessera context is current, and GL objects should be destroyed while the context
 // that made them is current and alive (destroy them before the context). Distinct contexts may
 // be used on distinct threads concurrently.
@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "tessera/core.h"
+#include "tessera/glsl.h"
 
 namespace tessera::gl {
 
@@ -193,46 +194,7 @@ Object create_object(ObjectType type, std::uint32_t target = 0);
 // Shaders
 // ---------------------------------------------------------------------------------------------
 
-enum class ShaderStage { vertex, fragment, compute, geometry, tess_control, tess_evaluation };
-
-/// One stage's source. `name` is used in error messages (a file path, or e.g. "quad.frag").
-struct ShaderSource {
-  ShaderStage stage = ShaderStage::fragment;
-  std::string text;
-  std::string name = "<string>";
-};
-
-struct ShaderOptions {
-  /// Folders searched, in order, for `#include "x.glsl"` (after the including file's folder).
-  std::vector<std::filesystem::path> include_paths;
-  /// Lines inserted after `#version`, e.g. "#define TESSERA_SEAMS_CLASSES 4".
-  std::vector<std::string> preamble;
-};
-
-/// Lines of included file N (N >= 1) are numbered from N * kIncludeLineStride + 1 by the
-/// `#line` directives `expand_includes` writes, so an info log line number alone identifies the
-/// file (Mesa 22 reports source-string 0 for some errors inside included files).
-inline constexpr int kIncludeLineStride = 100000;
-
-/// A source after `#include` expansion: `text` carries `#line L N` directives (see
-/// kIncludeLineStride), and `files[N]` is the name of source-string number N (0 = the
-/// top-level source).
-struct ExpandedSource {
-  std::string text;
-  std::vector<std::string> files;
-};
-
-/// Expands `#include "x"` lines (nested, each file once: a repeated include expands to
-/// nothing; at most 32 deep) and inserts the preamble after `#version`. Fails (io_error) naming
-/// the including file and line when a file is not found. Reads files; no GL.
-Result<ExpandedSource> expand_includes(const ShaderSource& source, const ShaderOptions& options);
-
-/// The first error of a driver info log as "FILE:LINE: message" for Mesa ("0:12(5): error:
-/// ..."), NVIDIA ("0(12) : error C1008: ...") and glslang ("ERROR: 0:12: ...") logs. With more
-/// than one file the file is the line number / kIncludeLineStride (the source-string number
-/// is not trusted); with one it is the source-string number. Falls back to the first
-/// non-empty line of the log. Pure.
-std::string format_shader_log(std::string_view log, const std::vector<std::string>& files);
+// Sources, `#include` expansion and the shipped GLSL are GL-free: tessera/glsl.h.
 
 /// A linked program (owns the GL program object).
 class Program {
@@ -247,14 +209,11 @@ class Program {
   Object object_;
 };
 
-/// Compiles every stage (after `expand_includes`) and links them. A compile error is
-/// invalid_argument with `format_shader_log`'s one line ("seams.glsl:41: error: ..."); a link
-/// error names the stages.
-Result<Program> link_program(const std::vector<ShaderSource>& stages,
-                             const ShaderOptions& options = {});
-
-/// Reads a shader file (io_error naming the path) into a `ShaderSource`.
-Result<ShaderSource> load_shader(ShaderStage stage, const std::filesystem::path& path);
+/// Compiles every stage (after `glsl::expand_includes`, so `#include "seams.glsl"` resolves to
+/// the shipped GLSL) and links them. A compile error is invalid_argument with
+/// `glsl::format_log`'s one line ("seams.glsl:41: error: ..."); a link error names the stages.
+Result<Program> link_program(const std::vector<glsl::Source>& stages,
+                             const glsl::ExpandOptions& options = {});
 
 // ---------------------------------------------------------------------------------------------
 // Timers, render targets, read-back

@@ -46,7 +46,7 @@
 //    The hook reads anything else the engine binds (its own uniform blocks, storage buffers,
 //    samplers, with explicit `layout(binding = ...)`), but not the binding points the
 //    component uses (below). It must not declare `#version` or main(); it may `#include`
-//    files from `AdaptiveShadingHook::include_paths` and share/tessera/glsl. Names beginning
+//    files from `AdaptiveShadingHook::include_paths` and the shipped GLSL (tessera/glsl.h). Names beginning
 //    with `tessera_aa_` / `TESSERA_AA_` are reserved. Compile errors are reported as
 //    "HOOK_NAME:LINE: message" (the hook's own line numbers).
 //    Sample 0 again: a pixel with k > 0 shades its sample 0 again with its adaptive footprint
@@ -134,7 +134,7 @@ struct AdaptiveGBufferLayout {
 struct AdaptiveShadingHook {
   std::string source;                 ///< GLSL defining vec4 tessera_shade_sample(ivec2, float).
   std::string name = "shading hook";  ///< Used in compile errors ("name:line: ...").
-  std::vector<std::filesystem::path> include_paths;  ///< Searched before share/tessera/glsl.
+  std::vector<std::filesystem::path> include_paths;  ///< Searched before the shipped GLSL.
 };
 
 /// The paper's thresholds (§3.1; the same formulas and defaults as deferred::AdaptiveOptions).
@@ -197,8 +197,9 @@ struct AdaptiveSupersamplerOptions {
   bool sample_count_texture = false;  ///< Also write k + 1 per pixel to a GL_R8UI texture.
   AdaptiveGBufferLayout layout;
   AdaptiveShadingHook hook;
-  /// Folder of adaptive_component.glsl, adaptive_metrics.glsl, adaptive_samples.glsl. Empty:
-  /// $TESSERA_GLSL_DIR, else share/tessera/glsl beside the executable (../share, ../../share).
+  /// Development override: a folder read instead of the GLSL embedded in the library (see
+  /// tessera/glsl.h). Empty (the default): $TESSERA_GLSL_DIR when set, else the embedded copy;
+  /// no file is read.
   std::filesystem::path glsl_dir;
   /// Binding points the component uses during a dispatch (-1 = the top of the driver's range).
   int first_texture_unit = -1;     ///< 4 units.

@@ -69,9 +69,9 @@ enum class ExtraSchedule {
 };
 
 struct DeferredGlOptions {
-  /// Folder with share/tessera/glsl's deferred_*.{vert,frag,comp,glsl}, adaptive_*.glsl,
-  /// edge_classify.glsl and fxaa.glsl. Empty: $TESSERA_GLSL_DIR, else share/tessera/glsl
-  /// beside the executable (../share or ../../share).
+  /// Development override: a folder read instead of the GLSL embedded in the library (see
+  /// tessera/glsl.h). Empty (the default): $TESSERA_GLSL_DIR when set, else the embedded copy;
+  /// no file is read.
   std::filesystem::path glsl_dir;
   ExtraSchedule schedule = ExtraSchedule::frame_list;
   int threads = 0;  ///< CPU threads for the texture chains and vertex transforms.
@@ -152,7 +152,7 @@ class DeferredGlRenderer {
   /// arithmetic. Independent of the G-buffer.
   Result<GlFxaaResult> fxaa(const ImageRGBA8& image, const deferred::FxaaOptions& fxaa = {});
 
-  const std::string& glsl_dir() const;
+  const std::filesystem::path& glsl_dir() const;
 
   struct State;
 

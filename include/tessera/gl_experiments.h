@@ -19,8 +19,7 @@
 namespace tessera::gl {
 
 struct ExperimentBackendOptions {
-  /// The folder of share/tessera/glsl (empty: each renderer's own search, $TESSERA_GLSL_DIR then
-  /// beside the executable).
+  /// Development override of the embedded GLSL (see tessera/glsl.h); empty: embedded.
   std::filesystem::path glsl_dir;
   /// The AA backend's extra-sample schedule (DeferredGlOptions::schedule).
   ExtraSchedule schedule = ExtraSchedule::frame_list;

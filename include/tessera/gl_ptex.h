@@ -193,7 +193,7 @@ class FaceTextures {
   /// The lines a shader that includes seams.glsl needs before the include for `b`:
   /// "#define TESSERA_SEAMS_CLASSES N", "#define TESSERA_SEAMS_FIRST_UNIT U",
   /// "#define TESSERA_SEAMS_CLAMP_UNIT V" and "#define TESSERA_SEAMS_FACES_BINDING B" (for
-  /// gl::ShaderOptions::preamble, or pasted after #version).
+  /// glsl::ExpandOptions::preamble, or pasted after #version).
   std::vector<std::string> glsl_defines(const FaceTexturesBindings& b) const;
 
  private:

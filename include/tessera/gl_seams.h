@@ -136,9 +136,9 @@ struct SeamsFrame {
 };
 
 struct SeamsRendererOptions {
-  /// Folder holding seams_render.vert/.frag and seams.glsl. Empty: $TESSERA_GLSL_DIR, else
-  /// <executable>/../share/tessera/glsl, else <executable>/../../share/tessera/glsl (a build
-  /// folder inside the source tree).
+  /// Development override: a folder read instead of the GLSL embedded in the library (see
+  /// tessera/glsl.h). Empty (the default): $TESSERA_GLSL_DIR when set, else the embedded copy;
+  /// no file is read.
   std::filesystem::path glsl_dir;
   TexelFormat texels = TexelFormat::rgba32f;
 };
@@ -181,7 +181,7 @@ class SeamsRenderer {
                                       const faces::ReferenceOptions& options = {});
 
   const FaceTextures& textures() const;
-  const std::string& glsl_dir() const;
+  const std::filesystem::path& glsl_dir() const;
 
   struct State;  ///< Internal.
 

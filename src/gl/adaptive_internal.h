@@ -48,7 +48,6 @@ std::string load_adaptive_gl_extra(AdaptiveGlExtra& out);
 struct AdaptiveSupersampler::State {
   AdaptiveSupersamplerOptions options;
   AdaptiveGlExtra gl;
-  std::string glsl_dir;
   int n = 0;
   std::vector<std::uint8_t> order;
   int texture_unit = 0, uniform_binding = 0, storage_binding = 0, image_unit = 0;

@@ -7,7 +7,7 @@
 
 #include "gl/adaptive_internal.h"
 #include "gl/gl_api.h"
-#include "gl/glsl_dir.h"
+#include "tessera/glsl.h"
 #include "tessera/deferred.h"
 
 namespace tessera::gl {
@@ -74,9 +74,9 @@ int max_channel(const std::string& xyzw) {
 std::string accessor(const char* type, const char* name, const AdaptiveChannel& c,
                      const std::string& sw, int width) {
   std::string expr = "texelFetch(tessera_aa_gbuffer" + std::to_string(c.texture) + ", g, 0)." + sw;
-  if (c.scale != 1.0f) expr = "(" + expr + " * " + glsl_float(c.scale) + ")";
+  if (c.scale != 1.0f) expr = "(" + expr + " * " + glsl::float_literal(c.scale) + ")";
   if (c.bias != 0.0f) {
-    expr = "(" + expr + " + " + (width > 1 ? std::string(type) + "(" : "") + glsl_float(c.bias) +
+    expr = "(" + expr + " + " + (width > 1 ? std::string(type) + "(" : "") + glsl::float_literal(c.bias) +
            (width > 1 ? ")" : "") + ")";
   }
   return std::string(type) + " " + name + "(ivec2 g) { return " + expr + "; }";
@@ -111,7 +111,7 @@ Status check_options(AdaptiveSupersampler::State& st) {
                                                    " pixels exceed 2^26");
   }
   if (!(o.hdr_exposure > 0.0f) || !std::isfinite(o.hdr_exposure)) {
-    return invalid("hdr_exposure = " + glsl_float(o.hdr_exposure) + " (> 0)");
+    return invalid("hdr_exposure = " + glsl::float_literal(o.hdr_exposure) + " (> 0)");
   }
   if (o.hook.source.find("tessera_shade_sample") == std::string::npos) {
     return invalid("hook '" + o.hook.name +
@@ -247,8 +247,8 @@ bool shades(const std::string& pass) {
 
 Status compile(AdaptiveSupersampler::State& st, const std::string& pass) {
   const AdaptiveSupersamplerOptions& o = st.options;
-  ShaderSource src;
-  src.stage = ShaderStage::compute;
+  glsl::Source src;
+  src.stage = glsl::Stage::compute;
   if (shades(pass)) {
     src.name = o.hook.name;
     src.text = o.hook.source;
@@ -257,9 +257,9 @@ Status compile(AdaptiveSupersampler::State& st, const std::string& pass) {
     src.text = "vec4 tessera_shade_sample(ivec2 g, float f) { return vec4(0.0); }";
   }
   src.text += "\n#include \"adaptive_component.glsl\"\n";
-  ShaderOptions so;
+  glsl::ExpandOptions so;
   so.include_paths = o.hook.include_paths;
-  so.include_paths.emplace_back(st.glsl_dir);
+  so.shipped_dir = o.glsl_dir;
   so.preamble = preamble(st, pass);
   Result<Program> p = link_program({src}, so);
   if (!p) {
@@ -340,12 +340,6 @@ Result<std::unique_ptr<AdaptiveSupersampler>> AdaptiveSupersampler::create(
     return Status::error(ErrorCode::unsupported, "adaptive supersampler: no " + missing);
   }
   if (Status s = check_options(*st); !s.ok()) return s;
-  Result<std::filesystem::path> dir =
-      find_glsl_dir(options.glsl_dir,
-                    {"adaptive_component.glsl", "adaptive_metrics.glsl", "adaptive_samples.glsl"},
-                    "adaptive supersampler", "AdaptiveSupersamplerOptions::glsl_dir");
-  if (!dir) return dir.status();
-  st->glsl_dir = dir->string();
 
   std::vector<std::string> passes = {"FIRST",  "METRICS", "HISTOGRAM",
                                      "SELECT", "APPLY",   "REFERENCE"};

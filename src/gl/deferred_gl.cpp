@@ -9,7 +9,7 @@
 #include "deferred/deferred_internal.h"
 #include "gl/deferred_gl_internal.h"
 #include "gl/gl_api.h"
-#include "gl/glsl_dir.h"
+#include "tessera/glsl.h"
 
 namespace tessera::gl {
 
@@ -51,11 +51,11 @@ Result<const Program*> program(State& st, const std::vector<std::string>& define
   for (const std::string& p : pre) key += p + "\n";
   auto it = st.programs.find(key);
   if (it != st.programs.end()) return &it->second;
-  const std::filesystem::path dir(st.glsl_dir);
-  Result<ShaderSource> cs = load_shader(ShaderStage::compute, dir / "deferred_passes.comp");
+  Result<glsl::Source> cs =
+      glsl::shipped_shader(glsl::Stage::compute, "deferred_passes.comp", st.options.glsl_dir);
   if (!cs) return cs.status();
-  ShaderOptions so;
-  so.include_paths = {dir};
+  glsl::ExpandOptions so;
+  so.shipped_dir = st.options.glsl_dir;
   so.preamble = pre;
   Result<Program> p = link_program({*cs}, so);
   if (!p) return p.status();
@@ -410,14 +410,14 @@ Result<std::vector<std::string>> fxaa_defines(const deferred::FxaaOptions& f) {
         "fxaa: unknown quality preset " + std::to_string(f.preset) + " (10..15, 20..29 or 39)");
   }
   std::string table = "float[12](";
-  for (int i = 0; i < 12; ++i) table += (i ? ", " : "") + glsl_float(preset->p[i]);
+  for (int i = 0; i < 12; ++i) table += (i ? ", " : "") + glsl::float_literal(preset->p[i]);
   table += ")";
   return std::vector<std::string>{"TESSERA_PASS_FXAA",
                                   "TESSERA_FXAA_STEPS " + std::to_string(preset->steps),
                                   "TESSERA_FXAA_P " + table,
-                                  "TESSERA_FXAA_SUBPIX " + glsl_float(f.subpix),
-                                  "TESSERA_FXAA_EDGE " + glsl_float(f.edge_threshold),
-                                  "TESSERA_FXAA_EDGE_MIN " + glsl_float(f.edge_threshold_min)};
+                                  "TESSERA_FXAA_SUBPIX " + glsl::float_literal(f.subpix),
+                                  "TESSERA_FXAA_EDGE " + glsl::float_literal(f.edge_threshold),
+                                  "TESSERA_FXAA_EDGE_MIN " + glsl::float_literal(f.edge_threshold_min)};
 }
 
 }  // namespace

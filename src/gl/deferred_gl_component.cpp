@@ -41,7 +41,7 @@ Result<AdaptiveSupersampler*> component(State& st) {
   o.output = AdaptiveOutputFormat::rgba32f;
   o.sample_count_texture = true;
   o.profile = true;  // GlShadeResult's pass times
-  o.glsl_dir = st.glsl_dir;
+  o.glsl_dir = st.options.glsl_dir;
   // The G-buffer of deferred_shading.glsl (units 0..2 of the renderer's own bindings).
   o.layout.depth = {0, "r"};
   o.layout.normal = {0, "gba"};

@@ -40,7 +40,6 @@ struct GlMesh {
 struct DeferredGlRenderer::State {
   const scene::Scene* scene = nullptr;
   DeferredGlOptions options;
-  std::string glsl_dir;
   std::vector<texture::Texture> cpu_textures;  // the CPU chains (render::build_scene_textures)
   std::vector<Object> class_arrays;   // one GL_TEXTURE_2D_ARRAY per texture size
   Object materials_ssbo;

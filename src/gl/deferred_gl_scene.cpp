@@ -11,7 +11,7 @@
 
 #include "gl/deferred_gl_internal.h"
 #include "gl/gl_api.h"
-#include "gl/glsl_dir.h"
+#include "tessera/glsl.h"
 #include "tessera/render.h"
 
 namespace tessera::gl {
@@ -26,7 +26,9 @@ constexpr int kMaxClasses = 8;
 
 DeferredGlRenderer::~DeferredGlRenderer() = default;
 
-const std::string& DeferredGlRenderer::glsl_dir() const { return state_->glsl_dir; }
+const std::filesystem::path& DeferredGlRenderer::glsl_dir() const {
+  return state_->options.glsl_dir;
+}
 double DeferredGlRenderer::last_gbuffer_ms() const { return state_->gbuffer_ms; }
 double DeferredGlRenderer::last_gbuffer_wall_ms() const { return state_->gbuffer_wall_ms; }
 int DeferredGlRenderer::width() const { return state_->w; }
@@ -40,14 +42,6 @@ Result<std::unique_ptr<DeferredGlRenderer>> DeferredGlRenderer::create(
   State& st = *r->state_;
   st.scene = &scene;
   st.options = options;
-  Result<std::filesystem::path> dir =
-      find_glsl_dir(options.glsl_dir,
-                    {"deferred_gbuffer.vert", "deferred_gbuffer.frag", "deferred_passes.comp",
-                     "deferred_shading.glsl", "adaptive_metrics.glsl", "adaptive_samples.glsl",
-                     "edge_classify.glsl", "fxaa.glsl"},
-                    "deferred GL", "DeferredGlOptions::glsl_dir");
-  if (!dir) return dir.status();
-  st.glsl_dir = dir->string();
 
   Result<std::vector<texture::Texture>> textures =
       render::build_scene_textures(scene, {options.threads});
@@ -165,12 +159,15 @@ Result<std::unique_ptr<DeferredGlRenderer>> DeferredGlRenderer::create(
     st.meshes.push_back(std::move(g));
   }
 
-  const std::filesystem::path d(st.glsl_dir);
-  Result<ShaderSource> vs = load_shader(ShaderStage::vertex, d / "deferred_gbuffer.vert");
+  const std::filesystem::path& d = st.options.glsl_dir;
+  Result<glsl::Source> vs = glsl::shipped_shader(glsl::Stage::vertex, "deferred_gbuffer.vert", d);
   if (!vs) return vs.status();
-  Result<ShaderSource> fs = load_shader(ShaderStage::fragment, d / "deferred_gbuffer.frag");
+  Result<glsl::Source> fs =
+      glsl::shipped_shader(glsl::Stage::fragment, "deferred_gbuffer.frag", d);
   if (!fs) return fs.status();
-  Result<Program> prog = link_program({*vs, *fs});
+  glsl::ExpandOptions so;
+  so.shipped_dir = d;
+  Result<Program> prog = link_program({*vs, *fs}, so);
   if (!prog) return prog.status();
   st.gbuffer_program = std::move(*prog);
   st.material_location = st.gbuffer_program.uniform("tessera_material");

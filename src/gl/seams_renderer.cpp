@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "gl/gl_api.h"
-#include "gl/glsl_dir.h"
+#include "tessera/glsl.h"
 #include "tessera/gl_seams.h"
 #include "tessera/raster.h"
 
@@ -24,7 +24,7 @@ struct SeamsRenderer::State {
   const faces::FaceScene* scene = nullptr;
   const faces::FaceTextureSet* set = nullptr;
   FaceTextures textures;
-  std::string glsl_dir;
+  std::filesystem::path glsl_dir;
   Object vao, clip_buffer, normal_buffer, index_buffer;
   std::vector<float> clip;  // 4 floats per vertex, 4 vertices per face
   struct Range {
@@ -48,13 +48,13 @@ Result<const Program*> SeamsRenderer::State::program(const SeamsFrameOptions& o)
   const int output = int(o.output);
   const int key = method * 4 + fallback * 2 + output;
   if (auto it = programs.find(key); it != programs.end()) return &it->second;
-  const std::filesystem::path dir(glsl_dir);
-  Result<ShaderSource> vs = load_shader(ShaderStage::vertex, dir / "seams_render.vert");
+  Result<glsl::Source> vs = glsl::shipped_shader(glsl::Stage::vertex, "seams_render.vert", glsl_dir);
   if (!vs) return vs.status();
-  Result<ShaderSource> fs = load_shader(ShaderStage::fragment, dir / "seams_render.frag");
+  Result<glsl::Source> fs =
+      glsl::shipped_shader(glsl::Stage::fragment, "seams_render.frag", glsl_dir);
   if (!fs) return fs.status();
-  ShaderOptions so;
-  so.include_paths = {dir};
+  glsl::ExpandOptions so;
+  so.shipped_dir = glsl_dir;
   so.preamble = {"#define TESSERA_SEAMS_CLASSES " + std::to_string(textures.class_count()),
                  "#define TESSERA_RENDER_METHOD " + std::to_string(method),
                  "#define TESSERA_RENDER_FALLBACK " + std::to_string(fallback),
@@ -93,7 +93,7 @@ Status SeamsRenderer::State::ensure_targets(int width, int height, int samples) 
 SeamsRenderer::~SeamsRenderer() = default;
 
 const FaceTextures& SeamsRenderer::textures() const { return state_->textures; }
-const std::string& SeamsRenderer::glsl_dir() const { return state_->glsl_dir; }
+const std::filesystem::path& SeamsRenderer::glsl_dir() const { return state_->glsl_dir; }
 
 Result<std::unique_ptr<SeamsRenderer>> SeamsRenderer::create(const faces::FaceScene& scene,
                                                              const faces::FaceTextureSet& set,
@@ -104,16 +104,12 @@ Result<std::unique_ptr<SeamsRenderer>> SeamsRenderer::create(const faces::FaceSc
                          scene.name + ": " + std::to_string(m.face_count()) + " faces but " +
                              std::to_string(set.face_count()) + " face textures");
   }
-  Result<std::filesystem::path> dir =
-      find_glsl_dir(options.glsl_dir, {"seams_render.vert", "seams_render.frag", "seams.glsl"},
-                    "seams renderer", "SeamsRendererOptions::glsl_dir");
-  if (!dir) return dir.status();
   std::unique_ptr<SeamsRenderer> r(new SeamsRenderer());
   r->state_ = std::make_unique<State>();
   State& s = *r->state_;
   s.scene = &scene;
   s.set = &set;
-  s.glsl_dir = dir->string();
+  s.glsl_dir = options.glsl_dir;
   FaceTexturesOptions fo;
   fo.format = options.texels;
   fo.max_anisotropy = 16.0f;

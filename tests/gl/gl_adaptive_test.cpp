@@ -117,7 +117,7 @@ TEST_F(GlAdaptive, RestoresEngineGlState) {
     const int sb = (*c)->storage_binding(), iu = (*c)->image_unit();
     // The engine's objects.
     Result<gl::Program> prog = gl::link_program(
-        {{gl::ShaderStage::compute,
+        {{glsl::Stage::compute,
           "#version 450 core\nlayout(local_size_x = 1) in;\nvoid main() {}\n", "engine.comp"}});
     ASSERT_TRUE(prog.ok()) << prog.status().message;
     std::vector<gl::Object> texs;

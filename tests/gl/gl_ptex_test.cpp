@@ -213,7 +213,7 @@ TEST_F(GlPtex, BorderLookupsMatchTheCpuSampler) {
   options.max_anisotropy = 1.0f;  // trilinear (anisotropic filtering is implementation-defined)
   Result<FaceTextures> gpu = FaceTextures::upload(set, options);
   ASSERT_TRUE(gpu.ok()) << gpu.status().message;
-  Result<Program> prog = link_program({{ShaderStage::compute, R"(#version 450 core
+  Result<Program> prog = link_program({{glsl::Stage::compute, R"(#version 450 core
 layout(local_size_x = 64) in;
 layout(binding = 0) uniform sampler2DArray faces;
 layout(std430, binding = 1) readonly buffer Queries { vec4 q[]; };  // (u, v, layer, unused) + grads
@@ -295,10 +295,10 @@ TEST_F(GlPtex, SeamsGlslMatchesTheCpuMethods) {
   Result<FaceTextures> gpu = FaceTextures::upload(set, options);
   ASSERT_TRUE(gpu.ok()) << gpu.status().message;
   ASSERT_LE(gpu->class_count(), 16);
-  ShaderOptions so;
+  glsl::ExpandOptions so;
   so.include_paths = {TESSERA_GLSL_DIR};
   so.preamble = {"#define TESSERA_SEAMS_CLASSES " + std::to_string(gpu->class_count())};
-  Result<Program> prog = link_program({{ShaderStage::compute, R"(#version 450 core
+  Result<Program> prog = link_program({{glsl::Stage::compute, R"(#version 450 core
 #include "seams.glsl"
 layout(local_size_x = 64) in;
 struct Query { vec4 a; vec4 g; };  // a: u, v, face, method; g: dudx, dvdx, dudy, dvdy

@@ -53,60 +53,6 @@ TEST(GlPure, ParsesDeviceSelections) {
   EXPECT_FALSE(parse_device_selection("1x").ok());
 }
 
-TEST(GlPure, FormatsDriverLogsAsFileAndLine) {
-  // With includes, the line number tells the file (kIncludeLineStride per file).
-  const std::vector<std::string> files = {"main.frag", "lib/seams.glsl"};
-  EXPECT_EQ(format_shader_log("0:12(5): error: `x' undeclared\n", files),
-            "main.frag:12: error: `x' undeclared");
-  EXPECT_EQ(format_shader_log("0:3(1): warning: w\n0:100007(10): error: syntax error\n", files),
-            "lib/seams.glsl:7: error: syntax error");
-  EXPECT_EQ(format_shader_log("1:100007(10): error: e\n", files), "lib/seams.glsl:7: error: e");
-  EXPECT_EQ(format_shader_log("1(100041) : error C1008: undefined variable \"y\"", files),
-            "lib/seams.glsl:41: error C1008: undefined variable \"y\"");
-  EXPECT_EQ(format_shader_log("ERROR: 0:9: 'z' : undeclared identifier", files),
-            "main.frag:9: 'z' : undeclared identifier");
-  EXPECT_EQ(format_shader_log("0:400002(1): error: e", files), "source 4:2: error: e");
-  // One file: the source-string number as reported.
-  EXPECT_EQ(format_shader_log("0:5(1): error: e", {"one.frag"}), "one.frag:5: error: e");
-  EXPECT_EQ(format_shader_log("3:5(1): error: e", {"one.frag"}), "source 3:5: error: e");
-  EXPECT_EQ(format_shader_log("something odd\n", files), "something odd");
-  EXPECT_EQ(format_shader_log("", files), "unknown shader error (empty info log)");
-}
-
-TEST(GlPure, ExpandsIncludesWithLineDirectives) {
-  const auto dir = test::temp_dir("includes");
-  write_text(dir / "a.glsl", "float a() { return 1.0; }\n#include \"b.glsl\"\n");
-  write_text(dir / "b.glsl", "float b() { return 2.0; }\n");
-  ShaderSource src{ShaderStage::fragment,
-                   "#version 450 core\n#include \"a.glsl\"\n#include \"b.glsl\"\nvoid main() {}\n",
-                   "main.frag"};
-  ShaderOptions o;
-  o.include_paths = {dir};
-  o.preamble = {"#define N 4"};
-  Result<ExpandedSource> e = expand_includes(src, o);
-  ASSERT_TRUE(e.ok()) << e.status().message;
-  ASSERT_EQ(e->files.size(), 3u);
-  EXPECT_EQ(e->files[0], "main.frag");
-  EXPECT_NE(e->text.find("#version 450 core\n#define N 4\n#line 2 0\n#line 100001 1\n"),
-            std::string::npos)
-      << e->text;
-  EXPECT_NE(e->text.find("#line 200001 2\nfloat b() { return 2.0; }\n"
-                         "#line 100003 1\n#line 3 0\n\n"),
-            std::string::npos)
-      << e->text;
-  EXPECT_EQ(format_shader_log("0:200001(3): error: x", e->files),
-            (dir / "b.glsl").string() + ":1: error: x");
-  src.text = "#version 450 core\n\n#include \"missing.glsl\"\n";
-  Result<ExpandedSource> bad = expand_includes(src, o);
-  ASSERT_FALSE(bad.ok());
-  EXPECT_EQ(bad.status().code, ErrorCode::io_error);
-  EXPECT_TRUE(one_line(bad.status().message));
-  EXPECT_EQ(bad.status().message.rfind("main.frag:3: cannot find include file \"missing.glsl\"",
-                                       0),
-            0u)
-      << bad.status().message;
-}
-
 TEST(GlPure, NonexistentDeviceIndexFailsWithOneLine) {
   ASSERT_EQ(setenv("TESSERA_EGL_DEVICE", "99", 1), 0);
   Result<std::unique_ptr<Context>> c = Context::create();
@@ -175,7 +121,7 @@ TEST_F(Gl, ShaderErrorsNameFileAndLine) {
              "  colour = vec4(1.0);\n"
              "  colour.x = undefined_name;\n"
              "}\n");
-  Result<ShaderSource> src = load_shader(ShaderStage::fragment, frag);
+  Result<glsl::Source> src = glsl::load_shader(glsl::Stage::fragment, frag);
   ASSERT_TRUE(src.ok());
   Result<Program> p = link_program({*src});
   ASSERT_FALSE(p.ok());
@@ -186,10 +132,10 @@ TEST_F(Gl, ShaderErrorsNameFileAndLine) {
   // An error inside an included file names that file; one after the include names the main
   // file with its own line number; a preamble does not shift either.
   write_text(dir / "lib.glsl", "float f() {\n  return 1.0;\n}\nfloat g() { return h(); }\n");
-  ShaderOptions o;
+  glsl::ExpandOptions o;
   o.include_paths = {dir};
   o.preamble = {"#define A 1", "#define B 2"};
-  ShaderSource inc{ShaderStage::fragment,
+  glsl::Source inc{glsl::Stage::fragment,
                    "#version 450 core\n#include \"lib.glsl\"\nout vec4 c;\n"
                    "void main() { c = vec4(f()); }\n",
                    "inc.frag"};
@@ -206,12 +152,12 @@ TEST_F(Gl, ShaderErrorsNameFileAndLine) {
   // A correct program links; a link error names the stages.
   inc.text =
       "#version 450 core\n#include \"lib.glsl\"\nout vec4 c;\nvoid main() { c = vec4(f()); }\n";
-  ShaderSource vs{ShaderStage::vertex,
+  glsl::Source vs{glsl::Stage::vertex,
                   "#version 450 core\nvoid main() { gl_Position = vec4(0.0); }\n", "v.vert"};
   p = link_program({vs, inc}, o);
   ASSERT_TRUE(p.ok()) << p.status().message;
   EXPECT_NE(p->get(), 0u);
-  ShaderSource vs2 = vs;
+  glsl::Source vs2 = vs;
   vs2.name = "w.vert";
   Result<Program> twice = link_program({vs, vs2});
   ASSERT_FALSE(twice.ok());

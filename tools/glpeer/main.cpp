@@ -117,8 +117,8 @@ int main(int argc, char** argv) {
   const std::string renderer = (*context)->renderer();
 
   Result<gl::Program> program = gl::link_program(
-      {{gl::ShaderStage::vertex, kVertex, "glpeer.vert"},
-       {gl::ShaderStage::fragment, kFragment, "glpeer.frag"}});
+      {{glsl::Stage::vertex, kVertex, "glpeer.vert"},
+       {glsl::Stage::fragment, kFragment, "glpeer.frag"}});
   if (!program) return fail("shader: " + program.status().message);
   const GLuint prog = program->get();
   glUseProgram(prog);
