@@ -49,8 +49,10 @@
 //    colour`, and `sample_counts`) is in GENERAL, last written at COMPUTE_SHADER /
 //    SHADER_STORAGE_WRITE: the engine's next use records its own barrier from that scope. It
 //    may leave the output in any layout: the next record starts from UNDEFINED.
-// 4. Creation checks the device (the queue family's compute support; the features named when
-//    missing: shaderStorageImageExtendedFormats for the r8ui sample counts) and the options,
+// 4. Creation checks the device (the queue family's compute support; the features, named when
+//    missing from DeviceContext::enabled_features: shaderFloat64 always (the depth metric's
+//    variance is accumulated in double, as on the CPU), shaderStorageImageExtendedFormats for
+//    the r8ui sample counts; the storage formats of the outputs) and the options,
 //    then compiles; `record` checks the frame (null handles, extent, format, usage without
 //    VK_IMAGE_USAGE_SAMPLED_BIT, a layout that cannot be sampled, a negative budget, the hook's
 //    set count) before recording anything: one-line errors, nothing recorded on failure.

@@ -59,11 +59,13 @@ struct AdaptiveSupersampler::State {
   struct Set {
     VkDescriptorSet set = VK_NULL_HANDLE;
     std::array<VkImageView, 4> views{};
+    std::array<VkImageLayout, 4> layouts{};  // the layout each view is read in
     std::uint64_t used = 0;  // record counter when last used; 0 = never
   };
   std::vector<Set> sets;
   std::uint64_t records = 0;
   QueryPool queries;
+  bool timestamps = false;  // profile and the queue family has timestamps
   std::uint32_t query_capacity = 0;
   // What the last record measures (profile).
   std::vector<std::string> last_passes;
@@ -76,6 +78,8 @@ AdaptiveParams adaptive_params(const AdaptiveSupersampler::State& st);
 /// Checks the frame (nothing recorded); see vk_adaptive.h, 4.
 Status check_adaptive_frame(const AdaptiveSupersampler::State& st, VkCommandBuffer cmd,
                             const AdaptiveFrame& f);
+/// The layout a G-buffer image given in `layout` is read in.
+VkImageLayout adaptive_read_layout(VkImageLayout layout);
 /// The component descriptor set for the frame's G-buffer views (written when new).
 VkDescriptorSet acquire_adaptive_set(AdaptiveSupersampler::State& st, const AdaptiveFrame& f);
 /// Records one frame (checked first).

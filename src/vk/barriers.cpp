@@ -25,7 +25,8 @@ VkAccessFlags legacy_access(VkAccessFlags2 access) {
 
 void Barrier::memory(VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
                      VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
-  VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  VkMemoryBarrier2 b{};
+  b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
   b.srcStageMask = src_stage;
   b.srcAccessMask = src_access;
   b.dstStageMask = dst_stage;
@@ -36,7 +37,8 @@ void Barrier::memory(VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
 void Barrier::image(VkImage image, VkImageLayout from, VkImageLayout to,
                     VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
                     VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
-  VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  VkImageMemoryBarrier2 b{};
+  b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2;
   b.srcStageMask = src_stage;
   b.srcAccessMask = src_access;
   b.dstStageMask = dst_stage;
@@ -53,7 +55,8 @@ void Barrier::image(VkImage image, VkImageLayout from, VkImageLayout to,
 void Barrier::record(const Api& api, VkCommandBuffer cmd) const {
   if (empty()) return;
   if (api.CmdPipelineBarrier2 != nullptr) {
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    VkDependencyInfo dep{};
+    dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
     dep.memoryBarrierCount = std::uint32_t(memory_.size());
     dep.pMemoryBarriers = memory_.data();
     dep.imageMemoryBarrierCount = std::uint32_t(images_.size());
@@ -66,7 +69,8 @@ void Barrier::record(const Api& api, VkCommandBuffer cmd) const {
   for (const VkMemoryBarrier2& b : memory_) {
     src |= b.srcStageMask;
     dst |= b.dstStageMask;
-    VkMemoryBarrier m{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    VkMemoryBarrier m{};
+    m.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
     m.srcAccessMask = legacy_access(b.srcAccessMask);
     m.dstAccessMask = legacy_access(b.dstAccessMask);
     mem.push_back(m);
@@ -75,7 +79,8 @@ void Barrier::record(const Api& api, VkCommandBuffer cmd) const {
   for (const VkImageMemoryBarrier2& b : images_) {
     src |= b.srcStageMask;
     dst |= b.dstStageMask;
-    VkImageMemoryBarrier m{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    VkImageMemoryBarrier m{};
+    m.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
     m.srcAccessMask = legacy_access(b.srcAccessMask);
     m.dstAccessMask = legacy_access(b.dstAccessMask);
     m.oldLayout = b.oldLayout;

@@ -41,7 +41,8 @@ Result<std::vector<std::uint32_t>> compile_compute_spirv(const std::string& text
 
 Result<Pipeline> create_compute_pipeline(const Api& api, const std::vector<std::uint32_t>& spirv,
                                          VkPipelineLayout layout, const std::string& what) {
-  VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  VkShaderModuleCreateInfo mi{};
+  mi.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
   mi.codeSize = spirv.size() * 4;
   mi.pCode = spirv.data();
   VkShaderModule raw_module = VK_NULL_HANDLE;
@@ -50,8 +51,9 @@ Result<Pipeline> create_compute_pipeline(const Api& api, const std::vector<std::
     return vk_error(what + ": vkCreateShaderModule", r);
   }
   ShaderModule module(api, raw_module);
-  VkComputePipelineCreateInfo pi{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  pi.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  VkComputePipelineCreateInfo pi{};
+  pi.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
+  pi.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   pi.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   pi.stage.module = module.get();
   pi.stage.pName = "main";

@@ -122,7 +122,8 @@ Result<VkDeviceMemory> allocate(const Api& api, const VkMemoryRequirements& req,
   if (type < 0) {
     return Status::error(ErrorCode::unsupported, what + ": no suitable memory type");
   }
-  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  VkMemoryAllocateInfo ai{};
+  ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
   ai.allocationSize = req.size;
   ai.memoryTypeIndex = std::uint32_t(type);
   VkDeviceMemory mem = VK_NULL_HANDLE;
@@ -160,7 +161,8 @@ void Buffer::reset() {
 
 void Buffer::invalidate() const {
   if (coherent_ || mapped_ == nullptr) return;
-  VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
+  VkMappedMemoryRange range{};
+  range.sType = VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE;
   range.memory = memory_;
   range.size = VK_WHOLE_SIZE;
   (void)api_->InvalidateMappedMemoryRanges(api_->device(), 1, &range);  // only OOM can fail
@@ -171,7 +173,8 @@ Result<Buffer> Buffer::create(const Api& api, VkDeviceSize bytes, VkBufferUsageF
   Buffer b;
   b.api_ = &api;
   b.size_ = bytes;
-  VkBufferCreateInfo ci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  VkBufferCreateInfo ci{};
+  ci.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
   ci.size = bytes;
   ci.usage = usage;
   ci.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
@@ -232,7 +235,8 @@ Result<Image> Image::create(const Api& api, VkFormat format, VkExtent2D extent,
   img.format_ = format;
   img.extent_ = extent;
   img.usage_ = usage;
-  VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  VkImageCreateInfo ci{};
+  ci.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
   ci.imageType = VK_IMAGE_TYPE_2D;
   ci.format = format;
   ci.extent = {extent.width, extent.height, 1};
@@ -256,7 +260,8 @@ Result<Image> Image::create(const Api& api, VkFormat format, VkExtent2D extent,
   if (VkResult r = api.BindImageMemory(api.device(), img.image_, img.memory_, 0); r != VK_SUCCESS) {
     return vk_error(what + ": vkBindImageMemory", r);
   }
-  VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  VkImageViewCreateInfo vi{};
+  vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
   vi.image = img.image_;
   vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
   vi.format = format;
