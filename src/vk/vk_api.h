@@ -86,8 +86,7 @@ struct Api {
 /// Checks `ctx` (as check_device) and loads the table.
 Result<Api> load_api(const DeviceContext& ctx);
 
-/// "what: vkCall failed: VK_ERROR_..." as an error status (unsupported for missing features /
-/// formats is the caller's; device errors map to io_error-free `unsupported`).
+/// A failed Vulkan call as an error status: unsupported, "what: VK_ERROR_...".
 Status vk_error(const std::string& what, VkResult r);
 
 /// A buffer and its memory, destroyed together.

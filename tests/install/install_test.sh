@@ -3,7 +3,8 @@
 # find_package(tessera), then runs it; where tessera::gl was installed, also examples/engine_aa
 # and examples/engine_ptex with find_package(tessera COMPONENTS gl), run at a small size (no GL
 # device is not an error here: the build is what is checked, the CTests engine_aa and
-# engine_ptex check the images).
+# engine_ptex check the images); where tessera::vk was installed, examples/engine_aa_vk with
+# find_package(tessera COMPONENTS vk) the same way (its CTest engine_aa_vk checks the image).
 # Usage: install_test.sh SOURCE_DIR BINARY_DIR
 set -euo pipefail
 src="$1"
@@ -41,4 +42,15 @@ if [ -f "$work/prefix/lib/cmake/tessera/tesseraGlTargets.cmake" ] ||
     echo "$out"
     if [ $rc -ne 0 ] && ! grep -q "no OpenGL 4.5 device" <<<"$out"; then exit 1; fi
   fi
+fi
+if ls "$work"/prefix/lib*/cmake/tessera/tesseraVkTargets.cmake >/dev/null 2>&1; then
+  cmake -S "$src/examples/engine_aa_vk" -B "$work/build_engine_aa_vk" -G Ninja \
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+  cmake --build "$work/build_engine_aa_vk" >/dev/null
+  set +e
+  out=$("$work/build_engine_aa_vk/engine_aa_vk" --size 64x48 --m 2 2>&1)
+  rc=$?
+  set -e
+  echo "$out"
+  if [ $rc -ne 0 ] && ! grep -q "no Vulkan device" <<<"$out"; then exit 1; fi
 fi

@@ -251,6 +251,14 @@ TEST_F(VkAdaptiveErrors, NoDevice) {
   auto c = vk::AdaptiveSupersampler::create(vk::DeviceContext{}, options_);
   ASSERT_FALSE(c.ok());
   EXPECT_NE(c.status().message.find("no VkInstance"), std::string::npos) << c.status().message;
+  EXPECT_TRUE(vk::check_device(ctx_).ok());
+  vk::DeviceContext no_gdpa = ctx_;
+  no_gdpa.get_device_proc_addr = nullptr;
+  EXPECT_NE(vk::check_device(no_gdpa).message.find("no vkGetDeviceProcAddr"), std::string::npos);
+  vk::DeviceContext bad_family = ctx_;
+  bad_family.queue_family = 99;
+  const Status s = vk::check_device(bad_family);
+  EXPECT_NE(s.message.find("queue_family = 99"), std::string::npos) << s.message;
 }
 
 TEST_F(VkAdaptiveErrors, MissingFeatureIsNamed) {
