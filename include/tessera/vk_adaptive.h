@@ -30,7 +30,8 @@
 //      * one barrier first: each G-buffer image from (its `layout`, `stage`, `access`) to
 //        SHADER_READ_ONLY_OPTIMAL (GENERAL stays GENERAL) for COMPUTE_SHADER /
 //        SHADER_SAMPLED_READ; the output images from UNDEFINED (their contents are rewritten)
-//        after ALL_COMMANDS to GENERAL for COMPUTE_SHADER / SHADER_STORAGE_WRITE; the
+//        after ALL_COMMANDS / MEMORY_WRITE to GENERAL for COMPUTE_SHADER /
+//        SHADER_STORAGE_WRITE; the
 //        component's buffers from its previous record (COMPUTE_SHADER, DRAW_INDIRECT, TRANSFER)
 //        to TRANSFER writes;
 //      * vkCmdUpdateBuffer / vkCmdFillBuffer of the parameter block and the work header, a

@@ -216,8 +216,10 @@ void record_prologue(State& st, VkCommandBuffer cmd, const AdaptiveFrame& f) {
   const VkImage outputs[2] = {st.colour.get(), st.counts.get()};
   for (VkImage out : outputs) {
     if (out == VK_NULL_HANDLE) continue;
+    // The transition writes the image: after every earlier write (the previous record's
+    // passes, or whatever the engine did with it), not only after earlier reads.
     in.image(out, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-             VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, kCompute,
+             VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, kCompute,
              VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
   in.memory(kCompute | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT,

@@ -87,6 +87,10 @@ TEST_F(VkAgainstGl, SameImagesAsTheGlComponent) {
   const auto vo = scene_options<vk::AdaptiveSupersamplerOptions>(g_);
   const auto go = scene_options<gl::AdaptiveSupersamplerOptions>(g_);
   compare(vo, go, Which::adaptive, std::nullopt, "adaptive, frame list");
+  auto vt = vo;
+  auto gt = go;
+  vt.schedule = gt.schedule = gl::AdaptiveSchedule::tile_list;
+  compare(vt, gt, Which::adaptive, std::nullopt, "adaptive, tile list");
   compare(vo, go, Which::reference, std::nullopt, "full supersampling");
   compare(vo, go, Which::first, std::nullopt, "1 spp");
   // The image is not trivially uniform: adaptive differs from 1 spp, and shades some pixels.
