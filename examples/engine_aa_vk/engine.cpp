@@ -39,8 +39,13 @@ bool has_layer() {
 
 std::string Device::create(bool want_validation) {
   validation = want_validation && has_layer();
-  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO, nullptr, "engine_aa_vk", 1, nullptr,
-                        0, VK_API_VERSION_1_3};
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO,
+                        nullptr,
+                        "engine_aa_vk",
+                        1,
+                        nullptr,
+                        0,
+                        VK_API_VERSION_1_3};
   VkDebugUtilsMessengerCreateInfoEXT mi{};
   mi.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
   mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
@@ -50,7 +55,8 @@ std::string Device::create(bool want_validation) {
                    VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
   mi.pfnUserCallback = &on_message;
   mi.pUserData = this;
-  const VkValidationFeatureEnableEXT sync = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+  const VkValidationFeatureEnableEXT sync =
+      VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
   VkValidationFeaturesEXT vf{};
   vf.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT;
   vf.pNext = &mi;
@@ -105,8 +111,8 @@ std::string Device::create(bool want_validation) {
   f13.synchronization2 = VK_TRUE;
   f13.dynamicRendering = VK_TRUE;
   const float prio = 1.0f;
-  VkDeviceQueueCreateInfo qi{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, nullptr, 0, family, 1,
-                             &prio};
+  VkDeviceQueueCreateInfo qi{
+      VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, nullptr, 0, family, 1, &prio};
   VkDeviceCreateInfo di{};
   di.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
   di.pNext = &f13;

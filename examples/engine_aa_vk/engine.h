@@ -40,7 +40,7 @@ class Device {
   VkPhysicalDeviceFeatures features{};  // what was enabled
   std::string name;
   bool validation = false;
-  int messages = 0;               // validation warnings + errors
+  int messages = 0;  // validation warnings + errors
   std::string first_message;
 
   Buffer buffer(VkDeviceSize bytes, VkBufferUsageFlags usage, bool host);

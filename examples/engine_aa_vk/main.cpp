@@ -50,7 +50,6 @@ int fail(const std::string& msg) {
   return 1;
 }
 
-
 // The engine's shading, handed to tessera as the hook: its own frame block and albedo (RT1) in
 // its own descriptor set 0; tessera's resources are in set 1 (TESSERA_AA_SET).
 const char* kShadingHook = R"(
@@ -180,7 +179,8 @@ struct Frame {
   VkDescriptorSet set = VK_NULL_HANDLE;
   VkSampler sampler = VK_NULL_HANDLE;
   std::size_t vertex_count = 0;
-  float view[16], inv_view[16], proj[16] = {}, eye[3] = {3.2f, 2.2f, 4.2f}, tan_half = 0, aspect = 1;
+  float view[16], inv_view[16], proj[16] = {}, eye[3] = {3.2f, 2.2f, 4.2f}, tan_half = 0,
+                                aspect = 1;
 };
 
 void setup(engine::Device& d, const Args& a, Frame& f) {
@@ -192,7 +192,8 @@ void setup(engine::Device& d, const Args& a, Frame& f) {
                     VK_IMAGE_ASPECT_DEPTH_BIT);
   const std::vector<engine::Vertex> verts = engine::make_scene();
   f.vertex_count = verts.size();
-  f.vertices = d.buffer(verts.size() * sizeof(engine::Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
+  f.vertices =
+      d.buffer(verts.size() * sizeof(engine::Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
   std::memcpy(f.vertices.data, verts.data(), verts.size() * sizeof(engine::Vertex));
   const float at[3] = {0.0f, 0.4f, 0.0f};
   f.tan_half = std::tan(0.8f / 2);
@@ -236,11 +237,11 @@ void setup(engine::Device& d, const Args& a, Frame& f) {
   vkCreateDescriptorSetLayout(d.device, &li, nullptr, &f.set_layout);
   const VkDescriptorPoolSize ps[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
-  VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, nullptr, 0, 1, 2,
-                                ps};
+  VkDescriptorPoolCreateInfo pi{
+      VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, nullptr, 0, 1, 2, ps};
   vkCreateDescriptorPool(d.device, &pi, nullptr, &f.pool);
-  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, nullptr, f.pool,
-                                 1, &f.set_layout};
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, nullptr, f.pool, 1,
+                                 &f.set_layout};
   vkAllocateDescriptorSets(d.device, &ai, &f.set);
   const VkDescriptorBufferInfo bi{f.ubo.buffer, 0, VK_WHOLE_SIZE};
   // tessera leaves the G-buffer in SHADER_READ_ONLY_OPTIMAL while its passes run.
@@ -263,12 +264,12 @@ void setup(engine::Device& d, const Args& a, Frame& f) {
 void record_gbuffer(VkCommandBuffer cmd, const engine::GeometryPipeline& gp, const Frame& f) {
   const VkPipelineStageFlags2 out = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
   for (const engine::Image* rt : {&f.rt0, &f.rt1}) {
-    engine::barrier(cmd, rt->image, VK_IMAGE_LAYOUT_UNDEFINED,
-                    VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                    0, out, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    engine::barrier(
+        cmd, rt->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0, out, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
   }
-  const VkPipelineStageFlags2 tests = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
-                                      VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+  const VkPipelineStageFlags2 tests =
+      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
   engine::barrier(cmd, f.depth.image, VK_IMAGE_LAYOUT_UNDEFINED,
                   VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, tests,
                   VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, tests,
@@ -363,8 +364,9 @@ tessera::Result<Shot> frame(engine::Device& d, const engine::GeometryPipeline& g
   auto p = aa.read_profile();
   if (!p) return p.status();
   s.profile = *p;
-  engine::Image colour{r->colour.image, VK_NULL_HANDLE, VK_NULL_HANDLE, r->colour.format, 0,
-                       r->colour.extent.width, r->colour.extent.height};
+  engine::Image colour{
+      r->colour.image,        VK_NULL_HANDLE,         VK_NULL_HANDLE, r->colour.format, 0,
+      r->colour.extent.width, r->colour.extent.height};
   const std::vector<std::uint8_t> half =
       d.read(colour, 8, r->colour.layout, r->colour.stage, r->colour.access);
   s.image = tessera::ImageRGBAF(a.w, a.h);
@@ -373,11 +375,15 @@ tessera::Result<Shot> frame(engine::Device& d, const engine::GeometryPipeline& g
     std::memcpy(&h, &half[i * 2], 2);
     s.image.pixels[i] = half_to_float(h);
   }
-  engine::Image counts{r->sample_counts.image, VK_NULL_HANDLE, VK_NULL_HANDLE,
-                       r->sample_counts.format, 0, r->sample_counts.extent.width,
+  engine::Image counts{r->sample_counts.image,
+                       VK_NULL_HANDLE,
+                       VK_NULL_HANDLE,
+                       r->sample_counts.format,
+                       0,
+                       r->sample_counts.extent.width,
                        r->sample_counts.extent.height};
-  s.counts = d.read(counts, 1, r->sample_counts.layout, r->sample_counts.stage,
-                    r->sample_counts.access);
+  s.counts =
+      d.read(counts, 1, r->sample_counts.layout, r->sample_counts.stage, r->sample_counts.access);
   return s;
 }
 
@@ -493,8 +499,8 @@ int run(engine::Device& d, const Args& a) {
       const tessera::ImageRGBA8 d_img = display(shots[0].image), d_ref = display(shots[1].image),
                                 d_one = display(shots[2].image);
       const double pixels = double(a.w) * a.h;
-      const double samples_pct = 100.0 * (pixels + double(shots[0].profile.extra_samples)) /
-                                 (pixels * a.m * a.m);
+      const double samples_pct =
+          100.0 * (pixels + double(shots[0].profile.extra_samples)) / (pixels * a.m * a.m);
       const double p_adaptive = psnr(d_img, d_ref), p_one = psnr(d_one, d_ref);
       if (!a.out.empty()) write_outputs(a, d_img, d_ref, d_one, shots[0].counts, err);
       if (!err.empty()) {
@@ -537,8 +543,8 @@ int main(int argc, char** argv) {
   int rc = run(d, a);
   d.destroy();  // leak reports of the validation layer arrive here
   if (d.messages > 0) {
-    return fail(std::to_string(d.messages) + " validation message(s), the first: " +
-                d.first_message);
+    return fail(std::to_string(d.messages) +
+                " validation message(s), the first: " + d.first_message);
   }
   return rc;
 }

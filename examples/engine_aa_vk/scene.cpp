@@ -71,7 +71,6 @@ std::vector<Vertex> make_scene() {
   return v;
 }
 
-
 void look_at(const float eye[3], const float at[3], float view[16], float inv[16]) {
   float f[3] = {at[0] - eye[0], at[1] - eye[1], at[2] - eye[2]};
   float fl = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);

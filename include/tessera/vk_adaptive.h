@@ -105,7 +105,8 @@ struct AdaptiveSupersamplerOptions {
   std::size_t list_capacity = 0;
   AdaptiveResolve resolve = AdaptiveResolve::box;
   float hdr_exposure = 1.0f;  ///< e of `tonemap_weighted` (> 0).
-  AdaptiveOutputFormat output = AdaptiveOutputFormat::rgba16f;  ///< R16G16B16A16/R32G32B32A32_SFLOAT
+  AdaptiveOutputFormat output =
+      AdaptiveOutputFormat::rgba16f;  ///< R16G16B16A16/R32G32B32A32_SFLOAT
   bool sample_count_texture = false;  ///< Also write k + 1 per pixel to an R8_UINT image.
   AdaptiveGBufferLayout layout;
   AdaptiveShadingHook hook;

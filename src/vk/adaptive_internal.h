@@ -60,7 +60,7 @@ struct AdaptiveSupersampler::State {
     VkDescriptorSet set = VK_NULL_HANDLE;
     std::array<VkImageView, 4> views{};
     std::array<VkImageLayout, 4> layouts{};  // the layout each view is read in
-    std::uint64_t used = 0;  // record counter when last used; 0 = never
+    std::uint64_t used = 0;                  // record counter when last used; 0 = never
   };
   std::vector<Set> sets;
   std::uint64_t records = 0;

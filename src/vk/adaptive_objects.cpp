@@ -81,17 +81,17 @@ Status create_resources(State& st) {
   const Api& api = st.api;
   const AdaptiveSupersamplerOptions& o = st.options;
   const std::size_t pixels = std::size_t(o.width) * std::size_t(o.height);
-  Result<Buffer> params = Buffer::create(
-      api, sizeof(AdaptiveParams),
-      VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
-      kWhat + ": parameter block");
+  Result<Buffer> params =
+      Buffer::create(api, sizeof(AdaptiveParams),
+                     VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
+                     kWhat + ": parameter block");
   if (!params) return params.status();
   st.params = std::move(*params);
-  Result<Buffer> work = Buffer::create(
-      api, (kAdaptiveHeaderUints + kAdaptiveHistogramUints + 4 * pixels) * 4,
-      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-          VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-      false, kWhat + ": work buffer");
+  Result<Buffer> work =
+      Buffer::create(api, (kAdaptiveHeaderUints + kAdaptiveHistogramUints + 4 * pixels) * 4,
+                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                         VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                     false, kWhat + ": work buffer");
   if (!work) return work.status();
   st.work = std::move(*work);
   // std430: the items (8 bytes each), the colours from the next multiple of 16 bytes.
@@ -101,13 +101,13 @@ Status create_resources(State& st) {
   if (!list) return list.status();
   st.list = std::move(*list);
   const VkExtent2D extent{std::uint32_t(o.width), std::uint32_t(o.height)};
-  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                  VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  Result<Image> colour = Image::create(api,
-                                       o.output == AdaptiveOutputFormat::rgba32f
-                                           ? VK_FORMAT_R32G32B32A32_SFLOAT
-                                           : VK_FORMAT_R16G16B16A16_SFLOAT,
-                                       extent, usage, kWhat + ": output image");
+  const VkImageUsageFlags usage =
+      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+  Result<Image> colour =
+      Image::create(api,
+                    o.output == AdaptiveOutputFormat::rgba32f ? VK_FORMAT_R32G32B32A32_SFLOAT
+                                                              : VK_FORMAT_R16G16B16A16_SFLOAT,
+                    extent, usage, kWhat + ": output image");
   if (!colour) return colour.status();
   st.colour = std::move(*colour);
   if (o.sample_count_texture) {
@@ -139,11 +139,10 @@ Status create_resources(State& st) {
 Status create_sets(State& st) {
   const Api& api = st.api;
   const std::uint32_t count = std::uint32_t(st.options.descriptor_sets);
-  const VkDescriptorPoolSize sizes[] = {
-      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, count},
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * count},
-      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2 * count},
-      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 * count}};
+  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, count},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * count},
+                                        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2 * count},
+                                        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 * count}};
   VkDescriptorPoolCreateInfo pi{};
   pi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
   pi.maxSets = count;
@@ -173,8 +172,8 @@ Status create_sets(State& st) {
   const VkDescriptorImageInfo counts{VK_NULL_HANDLE, st.counts.view(), VK_IMAGE_LAYOUT_GENERAL};
   for (VkDescriptorSet set : sets) {
     std::vector<VkWriteDescriptorSet> w;
-    auto write = [&](std::uint32_t binding, VkDescriptorType type,
-                     const VkDescriptorBufferInfo* bi, const VkDescriptorImageInfo* ii) {
+    auto write = [&](std::uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* bi,
+                     const VkDescriptorImageInfo* ii) {
       VkWriteDescriptorSet x{};
       x.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
       x.dstSet = set;
@@ -229,10 +228,9 @@ VkDescriptorSet acquire_adaptive_set(State& st, const AdaptiveFrame& f) {
     }
   }
   // The least recently used set takes the new views (see descriptor_sets in vk_adaptive.h).
-  State::Set& set = *std::min_element(st.sets.begin(), st.sets.end(),
-                                      [](const State::Set& a, const State::Set& b) {
-                                        return a.used < b.used;
-                                      });
+  State::Set& set =
+      *std::min_element(st.sets.begin(), st.sets.end(),
+                        [](const State::Set& a, const State::Set& b) { return a.used < b.used; });
   std::vector<VkDescriptorImageInfo> infos;
   infos.reserve(4);
   std::vector<VkWriteDescriptorSet> w;

@@ -114,8 +114,8 @@ Status check_adaptive_frame(const State& st, VkCommandBuffer cmd, const Adaptive
     return frame_error(ErrorCode::invalid_argument, "no VkCommandBuffer");
   }
   if (f.budget && *f.budget < 0) {
-    return frame_error(ErrorCode::invalid_argument, "budget = " + std::to_string(*f.budget) +
-                                                        " (>= 0 extra samples, or none)");
+    return frame_error(ErrorCode::invalid_argument,
+                       "budget = " + std::to_string(*f.budget) + " (>= 0 extra samples, or none)");
   }
   if (f.hook_sets.size() != st.options.hook.set_layouts.size()) {
     return frame_error(ErrorCode::invalid_argument,
@@ -166,7 +166,8 @@ class Recorder {
     }
     if (st_.options.profile) {
       st_.last_passes.push_back(name);
-      if (st_.timestamps) write_timestamp(st_.api, cmd_, st_.queries.get(), std::uint32_t(st_.last_passes.size()));
+      if (st_.timestamps)
+        write_timestamp(st_.api, cmd_, st_.queries.get(), std::uint32_t(st_.last_passes.size()));
     }
   }
 
@@ -183,8 +184,7 @@ class Recorder {
     first_ = false;
   }
   void dispatch(const std::string& program, std::uint32_t groups_x, bool indirect) {
-    st_.api.CmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE,
-                            st_.pipelines.at(program).get());
+    st_.api.CmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, st_.pipelines.at(program).get());
     if (indirect) {
       st_.api.CmdDispatchIndirect(cmd_, st_.work.get(), 2 * 4);
     } else if (groups_x > 0) {
@@ -243,10 +243,10 @@ void record_prologue(State& st, VkCommandBuffer cmd, const AdaptiveFrame& f) {
     api.CmdFillBuffer(cmd, st.work.get(), sizeof header, kAdaptiveHistogramUints * 4, 0u);
   }
   Barrier up;
-  up.memory(VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-            kCompute | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
-            kPassReads | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
-                VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+  up.memory(
+      VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+      kCompute | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT,
+      kPassReads | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
   up.record(api, cmd);
 }
 
@@ -324,8 +324,8 @@ Result<AdaptiveRecord> record_adaptive(State& st, VkCommandBuffer cmd, const Ada
   r.colour = output(st.colour);
   if (st.counts.get() != VK_NULL_HANDLE) r.sample_counts = output(st.counts);
   for (std::size_t s = 0; s < 4; ++s) {
-    r.gbuffer_layout[s] = st.slot_used[s] ? adaptive_read_layout(f.gbuffer[s].layout)
-                                          : f.gbuffer[s].layout;
+    r.gbuffer_layout[s] =
+        st.slot_used[s] ? adaptive_read_layout(f.gbuffer[s].layout) : f.gbuffer[s].layout;
   }
   return r;
 }
@@ -362,9 +362,8 @@ Result<AdaptiveProfile> AdaptiveSupersampler::read_profile() const {
     for (const std::string& name : st.last_passes) p.passes.push_back({name, std::nan("")});
     return p;
   }
-  const VkResult r = st.api.GetQueryPoolResults(
-      st.api.device(), st.queries.get(), 0, count, count * 8, ticks.data(), 8,
-      VK_QUERY_RESULT_64_BIT);
+  const VkResult r = st.api.GetQueryPoolResults(st.api.device(), st.queries.get(), 0, count,
+                                                count * 8, ticks.data(), 8, VK_QUERY_RESULT_64_BIT);
   if (r == VK_NOT_READY) {
     return frame_error(ErrorCode::invalid_argument,
                        "read_profile: the last recorded command buffer has not completed");

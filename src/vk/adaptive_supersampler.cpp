@@ -147,14 +147,15 @@ Status check_options(State& st) {
   if (Status s = check_layout(st); !s.ok()) return s;
   const VkPhysicalDeviceLimits& lim = st.api.properties.limits;
   if (st.set_index + 1 > lim.maxBoundDescriptorSets) {
-    return unsupported(std::to_string(st.set_index) + " hook sets + 1 exceed maxBoundDescriptorSets = " +
+    return unsupported(std::to_string(st.set_index) +
+                       " hook sets + 1 exceed maxBoundDescriptorSets = " +
                        std::to_string(lim.maxBoundDescriptorSets));
   }
   if (std::uint64_t(o.m) * std::uint64_t(o.width) > lim.maxImageDimension2D ||
       std::uint64_t(o.m) * std::uint64_t(o.height) > lim.maxImageDimension2D) {
     return too_large("G-buffer " + std::to_string(o.m * o.width) + "x" +
-                     std::to_string(o.m * o.height) + " exceeds maxImageDimension2D = " +
-                     std::to_string(lim.maxImageDimension2D));
+                     std::to_string(o.m * o.height) +
+                     " exceeds maxImageDimension2D = " + std::to_string(lim.maxImageDimension2D));
   }
   const std::uint32_t gx = std::uint32_t((o.width + 7) / 8), gy = std::uint32_t((o.height + 7) / 8);
   if (gx > lim.maxComputeWorkGroupCount[0] || gy > lim.maxComputeWorkGroupCount[1]) {
@@ -163,9 +164,9 @@ Status check_options(State& st) {
   }
   const std::size_t work_bytes = (kAdaptiveHeaderUints + kAdaptiveHistogramUints + 4 * pixels) * 4;
   if (work_bytes > lim.maxStorageBufferRange) {
-    return too_large("work buffer of " + std::to_string(work_bytes) +
-                     " bytes exceeds maxStorageBufferRange = " +
-                     std::to_string(lim.maxStorageBufferRange));
+    return too_large(
+        "work buffer of " + std::to_string(work_bytes) +
+        " bytes exceeds maxStorageBufferRange = " + std::to_string(lim.maxStorageBufferRange));
   }
   st.list_capacity = o.list_capacity > 0 ? o.list_capacity : pixels * std::size_t(st.n / 2);
   st.list_capacity = std::min<std::size_t>(
@@ -187,8 +188,8 @@ Status check_options(State& st) {
     if (Status s = check_storage_format(st, VK_FORMAT_R8_UINT, "R8_UINT"); !s.ok()) return s;
   }
   const bool f32 = o.output == AdaptiveOutputFormat::rgba32f;
-  return check_storage_format(st, f32 ? VK_FORMAT_R32G32B32A32_SFLOAT
-                                      : VK_FORMAT_R16G16B16A16_SFLOAT,
+  return check_storage_format(st,
+                              f32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT,
                               f32 ? "R32G32B32A32_SFLOAT" : "R16G16B16A16_SFLOAT");
 }
 
@@ -267,9 +268,9 @@ Status compile(State& st, const std::string& pass) {
   if (!e) return Status::error(e.status().code, "vk adaptive supersampler: " + e.status().message);
   Result<std::vector<std::uint32_t>> spirv = compile_compute_spirv(e->text);
   if (!spirv) {
-    return Status::error(spirv.status().code,
-                         "vk adaptive supersampler: " +
-                             glsl::format_log(spirv.status().message, e->files));
+    return Status::error(
+        spirv.status().code,
+        "vk adaptive supersampler: " + glsl::format_log(spirv.status().message, e->files));
   }
   st.spirv.emplace(pass, std::move(*spirv));
   return Status::success();
@@ -320,11 +321,12 @@ Result<std::unique_ptr<AdaptiveSupersampler>> AdaptiveSupersampler::create(
   auto st = std::make_unique<State>();
   st->options = options;
   Result<Api> api = load_api(device);
-  if (!api) return Status::error(api.status().code, "vk adaptive supersampler: " + api.status().message);
+  if (!api)
+    return Status::error(api.status().code, "vk adaptive supersampler: " + api.status().message);
   st->api = std::move(*api);
   if (Status s = check_options(*st); !s.ok()) return s;
-  std::vector<std::string> passes = {"FIRST", "METRICS", "HISTOGRAM", "SELECT", "APPLY",
-                                     "REFERENCE"};
+  std::vector<std::string> passes = {"FIRST",  "METRICS", "HISTOGRAM",
+                                     "SELECT", "APPLY",   "REFERENCE"};
   if (options.schedule == AdaptiveSchedule::frame_list) {
     passes.insert(passes.end(), {"LIST", "ARGS", "SHADE", "RESOLVE"});
   } else {

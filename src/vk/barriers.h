@@ -22,8 +22,7 @@ class Barrier {
               VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
   /// An image dependency with a layout transition (colour aspect, level 0, layer 0).
   void image(VkImage image, VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 src_stage,
-             VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage,
-             VkAccessFlags2 dst_access);
+             VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
   bool empty() const { return memory_.empty() && images_.empty(); }
   /// Records it into `cmd` (nothing when empty).
   void record(const Api& api, VkCommandBuffer cmd) const;

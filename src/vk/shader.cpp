@@ -9,8 +9,8 @@
 namespace tessera::vk {
 
 Result<std::vector<std::uint32_t>> compile_compute_spirv(const std::string& text) {
-  std::unique_ptr<std::remove_pointer_t<shaderc_compiler_t>, void (*)(shaderc_compiler_t)>
-      compiler(shaderc_compiler_initialize(), shaderc_compiler_release);
+  std::unique_ptr<std::remove_pointer_t<shaderc_compiler_t>, void (*)(shaderc_compiler_t)> compiler(
+      shaderc_compiler_initialize(), shaderc_compiler_release);
   std::unique_ptr<std::remove_pointer_t<shaderc_compile_options_t>,
                   void (*)(shaderc_compile_options_t)>
       options(shaderc_compile_options_initialize(), shaderc_compile_options_release);
@@ -27,8 +27,7 @@ Result<std::vector<std::uint32_t>> compile_compute_spirv(const std::string& text
                                       shaderc_compute_shader, "tessera", "main", options.get()),
              shaderc_result_release);
   if (!result) return Status::error(ErrorCode::unsupported, "shaderc: no result");
-  if (shaderc_result_get_compilation_status(result.get()) !=
-      shaderc_compilation_status_success) {
+  if (shaderc_result_get_compilation_status(result.get()) != shaderc_compilation_status_success) {
     return Status::error(ErrorCode::invalid_argument,
                          shaderc_result_get_error_message(result.get()));
   }

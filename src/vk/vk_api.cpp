@@ -54,10 +54,10 @@ Result<Api> load_api(const DeviceContext& ctx) {
   Api api;
   api.ctx = ctx;
   std::string missing;
-#define TESSERA_VK_LOAD_INSTANCE(name)                                                        \
+#define TESSERA_VK_LOAD_INSTANCE(name)                                                             \
   api.name = reinterpret_cast<PFN_vk##name>(ctx.get_instance_proc_addr(ctx.instance, "vk" #name)); \
   if (api.name == nullptr && missing.empty()) missing = "vk" #name;
-#define TESSERA_VK_LOAD_DEVICE(name)                                                       \
+#define TESSERA_VK_LOAD_DEVICE(name)                                                           \
   api.name = reinterpret_cast<PFN_vk##name>(ctx.get_device_proc_addr(ctx.device, "vk" #name)); \
   if (api.name == nullptr && missing.empty()) missing = "vk" #name;
   TESSERA_VK_INSTANCE_FUNCTIONS(TESSERA_VK_LOAD_INSTANCE)
@@ -92,9 +92,9 @@ Result<Api> load_api(const DeviceContext& ctx) {
   }
   api.queue_family = props[ctx.queue_family];
   if ((api.queue_family.queueFlags & VK_QUEUE_COMPUTE_BIT) == 0) {
-    return Status::error(ErrorCode::unsupported,
-                         "vulkan device: queue family " + std::to_string(ctx.queue_family) +
-                             " has no VK_QUEUE_COMPUTE_BIT");
+    return Status::error(ErrorCode::unsupported, "vulkan device: queue family " +
+                                                     std::to_string(ctx.queue_family) +
+                                                     " has no VK_QUEUE_COMPUTE_BIT");
   }
   return api;
 }
@@ -186,9 +186,9 @@ Result<Buffer> Buffer::create(const Api& api, VkDeviceSize bytes, VkBufferUsageF
   bool coherent = false;
   const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT;
   Result<VkDeviceMemory> mem =
-      host_visible ? allocate(api, req, host | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, host, what,
-                              &coherent)
-                   : allocate(api, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, what, &coherent);
+      host_visible
+          ? allocate(api, req, host | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, host, what, &coherent)
+          : allocate(api, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, what, &coherent);
   if (!mem) return mem.status();
   b.memory_ = *mem;
   b.coherent_ = coherent || !host_visible;

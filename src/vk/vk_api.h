@@ -14,9 +14,9 @@
 namespace tessera::vk {
 
 // Instance-level entry points (vkGetInstanceProcAddr).
-#define TESSERA_VK_INSTANCE_FUNCTIONS(X)   \
-  X(GetPhysicalDeviceProperties)           \
-  X(GetPhysicalDeviceMemoryProperties)     \
+#define TESSERA_VK_INSTANCE_FUNCTIONS(X)    \
+  X(GetPhysicalDeviceProperties)            \
+  X(GetPhysicalDeviceMemoryProperties)      \
   X(GetPhysicalDeviceQueueFamilyProperties) \
   X(GetPhysicalDeviceFormatProperties)
 

@@ -1,7 +1,8 @@
 // vk::AdaptiveSupersampler against gl::AdaptiveSupersampler on the same G-buffer and hook: the
 // k maps (sample counts) >= 99.9 % identical and the images >= 60 dB apart or closer, for the
-// adaptive image (frame list; loop schedule with the HDR resolve and a budget), full
-// supersampling and 1 spp. Negative control: other thresholds give a k map far from GL's.
+// adaptive image (frame list, tile list, m = 2 and 8; loop schedule with the HDR resolve and a
+// budget), full supersampling and 1 spp. Negative control: other thresholds give a k map far
+// from GL's.
 // Needs a Vulkan device with the validation layer and an OpenGL 4.5 context (llvmpipe).
 #include <cstdio>
 
@@ -46,8 +47,8 @@ GlFrameOut run_gl(gl::AdaptiveSupersamplerOptions o, const SceneGBuffer& g, Whic
   EXPECT_TRUE(img.ok()) << img.status().message;
   if (img) out.colour = img->pixels;
   std::vector<std::uint8_t> k(std::size_t(g.w) * std::size_t(g.h));
-  glGetTextureSubImage(r->sample_counts, 0, 0, 0, 0, g.w, g.h, 1, GL_RED_INTEGER,
-                       GL_UNSIGNED_BYTE, GLsizei(k.size()), k.data());
+  glGetTextureSubImage(r->sample_counts, 0, 0, 0, 0, g.w, g.h, 1, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
+                       GLsizei(k.size()), k.data());
   out.counts.assign(k.begin(), k.end());
   return out;
 }
@@ -113,6 +114,15 @@ TEST_F(VkAgainstGl, LoopScheduleHdrAndBudget) {
   compare(vo, go, Which::adaptive, budget, "loop, HDR, budget");
   const VkFrameOut b = run_vk(*engine_, vo, g_, Which::adaptive, budget);
   EXPECT_EQ(b.extra, std::uint64_t(budget));  // exactly the budget
+}
+
+TEST_F(VkAgainstGl, WindowSizes2And8) {
+  for (int m : {2, 8}) {
+    g_ = scene_gbuffer(20, 16, m);
+    const auto vo = scene_options<vk::AdaptiveSupersamplerOptions>(g_);
+    const auto go = scene_options<gl::AdaptiveSupersamplerOptions>(g_);
+    compare(vo, go, Which::adaptive, std::nullopt, m == 2 ? "m = 2" : "m = 8");
+  }
 }
 
 TEST_F(VkAgainstGl, NegativeControlOtherThresholdsDiffer) {

@@ -5,6 +5,7 @@
 // layer's object tracking when the harness destroys its device). Negative controls: the
 // messenger does count a leaked object; a valid record does reach the counted entry points.
 #include <atomic>
+#include <cstdio>
 #include <cstring>
 
 #include "vk_adaptive_test_util.h"
@@ -37,7 +38,8 @@ TEST_F(VkAdaptive, BudgetIsExactAndCountsAgree) {
   double sum = 0;
   for (float c : all.counts) sum += c - 1;
   EXPECT_EQ(std::uint64_t(sum), all.extra);
-  for (std::int64_t b : {std::int64_t(0), std::int64_t(all.extra / 2), std::int64_t(all.extra * 2)}) {
+  for (std::int64_t b :
+       {std::int64_t(0), std::int64_t(all.extra / 2), std::int64_t(all.extra * 2)}) {
     const VkFrameOut r = run_vk(*engine_, o, g, Which::adaptive, b);
     EXPECT_EQ(r.extra, std::min<std::uint64_t>(std::uint64_t(b), all.extra)) << "budget " << b;
   }
@@ -66,7 +68,7 @@ TEST_F(VkAdaptive, WithoutSynchronization2SameBytes) {
 TEST_F(VkAdaptive, RecordsInOneCommandBufferAndViewChanges) {
   const SceneGBuffer a = scene_gbuffer(16, 12, 2);
   SceneGBuffer b = a;
-  for (std::size_t i = 0; i < b.slots[0].size(); i += 4) b.slots[0][i] *= 1.5f;  // other depths
+  for (std::size_t i = 0; i < b.slots[0].size(); i += 4) b.slots[0][i] *= 1.5f;   // other depths
   for (std::size_t i = 1; i < b.slots[1].size(); i += 4) b.slots[1][i] += 0.37f;  // other uvs
   auto o = scene_options<vk::AdaptiveSupersamplerOptions>(a);
   const VkFrameOut alone = run_vk(*engine_, o, b, Which::adaptive);
@@ -328,6 +330,7 @@ TEST_F(VkAdaptiveErrors, HookCompileErrorHasTheHooksLine) {
       "}\n";
   auto c = vk::AdaptiveSupersampler::create(ctx_, options_);
   ASSERT_FALSE(c.ok());
+  std::printf("%s\n", c.status().message.c_str());
   EXPECT_NE(c.status().message.find("bad_hook:3:"), std::string::npos) << c.status().message;
   EXPECT_NE(c.status().message.find("undeclared_thing"), std::string::npos) << c.status().message;
   EXPECT_EQ(c.status().message.find('\n'), std::string::npos) << c.status().message;
@@ -359,17 +362,16 @@ TEST_F(VkAdaptiveErrors, WrongFormat) {
                                            VK_IMAGE_USAGE_SAMPLED_BIT);
   f.gbuffer[0] = wrong.resource;
   const std::string m = record_error(f);
-  EXPECT_NE(m.find("G-buffer slot 0: VkFormat 41 is not a float or normalised"),
-            std::string::npos)
+  EXPECT_NE(m.find("G-buffer slot 0: VkFormat 41 is not a float or normalised"), std::string::npos)
       << m;
   engine_->destroy(wrong);
 }
 
 TEST_F(VkAdaptiveErrors, WrongUsage) {
   vk::AdaptiveFrame f = frame();
-  EngineImage no_sampled = engine_->upload_rgba(VK_FORMAT_R32G32B32A32_SFLOAT, g_.w * g_.m,
-                                                g_.h * g_.m, g_.slots[2],
-                                                VK_IMAGE_USAGE_STORAGE_BIT);
+  EngineImage no_sampled =
+      engine_->upload_rgba(VK_FORMAT_R32G32B32A32_SFLOAT, g_.w * g_.m, g_.h * g_.m, g_.slots[2],
+                           VK_IMAGE_USAGE_STORAGE_BIT);
   f.gbuffer[2] = no_sampled.resource;
   const std::string m = record_error(f);
   EXPECT_NE(m.find("G-buffer slot 2: usage 0xA lacks VK_IMAGE_USAGE_SAMPLED_BIT"),

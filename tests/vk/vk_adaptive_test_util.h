@@ -126,9 +126,10 @@ inline VkFrameOut run_vk(Engine& engine, vk::AdaptiveSupersamplerOptions o, cons
   }
   frame.budget = budget;
   VkCommandBuffer cmd = engine.begin();
-  Result<vk::AdaptiveRecord> r = which == Which::adaptive  ? (*c)->record(cmd, frame)
-                                 : which == Which::reference ? (*c)->record_reference(cmd, frame)
-                                                             : (*c)->record_first_sample(cmd, frame);
+  Result<vk::AdaptiveRecord> r = which == Which::adaptive ? (*c)->record(cmd, frame)
+                                 : which == Which::reference
+                                     ? (*c)->record_reference(cmd, frame)
+                                     : (*c)->record_first_sample(cmd, frame);
   EXPECT_TRUE(r.ok()) << r.status().message;
   engine.submit_and_wait(cmd);
   if (r) {

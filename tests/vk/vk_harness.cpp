@@ -49,9 +49,10 @@ VkAccessFlags access1(VkAccessFlags2 a) {
 
 }  // namespace
 
-VKAPI_ATTR VkBool32 VKAPI_CALL Engine::on_message(
-    VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
-    const VkDebugUtilsMessengerCallbackDataEXT* data, void* self) {
+VKAPI_ATTR VkBool32 VKAPI_CALL Engine::on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                  VkDebugUtilsMessageTypeFlagsEXT,
+                                                  const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                  void* self) {
   auto* e = static_cast<Engine*>(self);
   if (severity & (VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
                   VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT)) {
@@ -161,8 +162,8 @@ Result<std::unique_ptr<Engine>> Engine::create(const EngineOptions& options, std
   di.pEnabledFeatures = &e->ctx_.enabled_features;
   if (VkResult r = vkCreateDevice(e->ctx_.physical_device, &di, nullptr, &e->ctx_.device);
       r != VK_SUCCESS) {
-    return Status::error(ErrorCode::unsupported, std::string("vkCreateDevice: ") +
-                                                     vk::result_name(r));
+    return Status::error(ErrorCode::unsupported,
+                         std::string("vkCreateDevice: ") + vk::result_name(r));
   }
   vkGetDeviceQueue(e->ctx_.device, e->ctx_.queue_family, 0, &e->ctx_.queue);
   e->ctx_.get_instance_proc_addr = vkGetInstanceProcAddr;
@@ -299,8 +300,8 @@ EngineImage Engine::upload_rgba(VkFormat format, int w, int h, const std::vector
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = img.image;
   b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-                       0, nullptr, 0, nullptr, 1, &b);
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
+                       nullptr, 0, nullptr, 1, &b);
   if (format == VK_FORMAT_R32G32B32A32_SFLOAT) {
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
@@ -363,7 +364,7 @@ std::vector<float> Engine::read_back(const vk::ImageResource& from) {
   const std::size_t texels = std::size_t(from.extent.width) * from.extent.height;
   const std::size_t texel_bytes = from.format == VK_FORMAT_R32G32B32A32_SFLOAT   ? 16
                                   : from.format == VK_FORMAT_R16G16B16A16_SFLOAT ? 8
-                                                                                  : 1;
+                                                                                 : 1;
   HostBuffer hb;
   VkBufferCreateInfo bi{};
   bi.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
@@ -400,8 +401,8 @@ std::vector<float> Engine::read_back(const vk::ImageResource& from) {
   host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
   host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
   host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
-                       &host, 0, nullptr, 0, nullptr);
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &host,
+                       0, nullptr, 0, nullptr);
   submit_and_wait(cmd);
   vkMapMemory(ctx_.device, hb.memory, 0, VK_WHOLE_SIZE, 0, &hb.data);
   std::vector<float> out;

@@ -20,9 +20,9 @@ namespace tessera::vk_test {
 
 struct EngineOptions {
   bool validation = true;
-  bool synchronization2 = true;   ///< Enable the feature (and tell tessera).
-  bool extended_formats = true;   ///< Enable shaderStorageImageExtendedFormats.
-  bool float64 = true;            ///< Enable shaderFloat64.
+  bool synchronization2 = true;  ///< Enable the feature (and tell tessera).
+  bool extended_formats = true;  ///< Enable shaderStorageImageExtendedFormats.
+  bool float64 = true;           ///< Enable shaderFloat64.
 };
 
 /// A device-local image the engine owns, with its memory and view.
@@ -79,9 +79,10 @@ class Engine {
 
  private:
   Engine() = default;
-  static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(
-      VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
-      const VkDebugUtilsMessengerCallbackDataEXT* data, void* self);
+  static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                   VkDebugUtilsMessageTypeFlagsEXT types,
+                                                   const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                   void* self);
   std::uint32_t memory_type(std::uint32_t bits, VkMemoryPropertyFlags want) const;
 
   vk::DeviceContext ctx_;
@@ -90,16 +91,5 @@ class Engine {
   std::atomic<int> messages_{0};
   std::vector<std::string> texts_;
 };
-
-/// The engine for a test, or a skip / failure (TESSERA_TEST_REQUIRE) with the reason; use as
-///   auto engine = TESSERA_VK_ENGINE(options);
-#define TESSERA_VK_ENGINE(engine, options)                                                   \
-  std::unique_ptr<::tessera::vk_test::Engine> engine;                                        \
-  {                                                                                          \
-    std::string missing_;                                                                    \
-    auto made_ = ::tessera::vk_test::Engine::create(options, &missing_);                     \
-    if (!made_) TESSERA_SKIP_OR_FAIL(missing_, made_.status().message);                      \
-    engine = std::move(*made_);                                                              \
-  }
 
 }  // namespace tessera::vk_test
