@@ -1,23 +1,26 @@
 // engine_aa — a minimal deferred renderer that anti-aliases with tessera::gl::AdaptiveSupersampler.
 //
-// The engine side is all here and all its own: an OpenGL 4.5 context (through tessera's headless
-// gl::Context; any current GL 4.5 context on which one was created works), GL entry points from
-// libOpenGL, a scene of boxes and spheres generated in code, a G-buffer of
+// The engine side is all here and all its own: an OpenGL 4.5 core context it makes itself (a GLFW
+// window through GLX, or with --headless a surfaceless EGL context: examples/common/
+// engine_context.h, which also hands the context's GetProcAddress to tessera), GL entry points
+// from libOpenGL, a scene of boxes and spheres generated in code, a G-buffer of
 //   RT0 RGBA16F  (world normal xyz, linear view depth)
 //   RT1 RGBA8    (albedo rgb, (material id + 1) / 255; 0 = sky)
 // rasterised m x m enlarged, six point lights in the engine's own uniform block, and a
 // Blinn-Phong shader with a sharp specular lobe and a procedural checker floor (both alias at
 // one sample per pixel). The integration with tessera is the block marked "tessera" below.
 //
-// Usage: engine_aa [--size WxH] [--m M] [--budget B] [--schedule frame_list|tile_list|loop]
-//                  [--glsl DIR] [--json] [-o DIR]
+// Usage: engine_aa [--headless] [--size WxH] [--m M] [--budget B]
+//                  [--schedule frame_list|tile_list|loop] [--glsl DIR] [--json] [-o DIR]
+//   --headless  a surfaceless EGL context instead of the window (the image is the same)
 //   --json  one JSON object: samples %, PSNR of the adaptive and the 1 spp image against the
 //           component's own full supersampling (tonemapped, sRGB8), pass times (host time to a
 //           glFinish after each pass: llvmpipe's GL_TIME_ELAPSED reads 0 for compute)
 //   -o DIR  writes adaptive.png, reference.png, first.png, samples.png (k + 1, grey)
-// Exit 1 with one line when there is no OpenGL 4.5 device or on bad arguments.
-#define GL_GLEXT_PROTOTYPES 1
-#include <GL/glcorearb.h>
+// In the window the adaptive image is drawn to the default framebuffer and shown; --json then
+// also reports "window_max_diff", the largest byte difference between the back buffer read back
+// and adaptive.png. Exit 1 with one line when there is no OpenGL 4.5 device or on bad arguments.
+#include "engine_context.h"  // first: the engine's GL and window headers
 
 #include <array>
 #include <chrono>
@@ -34,17 +37,14 @@
 #include "tessera/io.h"
 #include "tessera/metrics.h"
 
-#ifndef ENGINE_AA_GLSL_DIR
-#define ENGINE_AA_GLSL_DIR ""
-#endif
 
 namespace {
 
 struct Args {
   int w = 320, h = 240, m = 4;
   long long budget = -1;  // -1: none
-  std::string schedule = "frame_list", glsl = ENGINE_AA_GLSL_DIR, out;
-  bool json = false;
+  std::string schedule = "frame_list", glsl, out;
+  bool json = false, headless = false;
 };
 
 int fail(const std::string& msg) {
@@ -259,111 +259,40 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  Args a;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "engine_aa: %s needs a value\n", k.c_str());
-        std::exit(1);
-      }
-      return argv[++i];
-    };
-    if (k == "--size") {
-      const std::string v = next();
-      if (std::sscanf(v.c_str(), "%dx%d", &a.w, &a.h) != 2 || a.w <= 0 || a.h <= 0)
-        return fail("--size " + v + ": expected WxH");
-    } else if (k == "--m") {
-      a.m = std::atoi(next().c_str());
-    } else if (k == "--budget") {
-      a.budget = std::atoll(next().c_str());
-      if (a.budget < 0) return fail("--budget must be >= 0");
-    } else if (k == "--schedule") {
-      a.schedule = next();
-    } else if (k == "--glsl") {
-      a.glsl = next();
-    } else if (k == "--json") {
-      a.json = true;
-    } else if (k == "-o") {
-      a.out = next();
-    } else {
-      return fail("unknown argument " + k);
-    }
-  }
-  auto ctx = tessera::gl::Context::create();
-  if (!ctx) return fail("no OpenGL 4.5 device: " + ctx.status().message);
-  const int gw = a.w * a.m, gh = a.h * a.m;
-
-  // ---- the engine's G-buffer and geometry pass ----
-  GLuint rt[2], depth_rb, fbo, vao, vbo;
-  glCreateTextures(GL_TEXTURE_2D, 2, rt);
-  glTextureStorage2D(rt[0], 1, GL_RGBA16F, gw, gh);
-  glTextureStorage2D(rt[1], 1, GL_RGBA8, gw, gh);
-  glCreateRenderbuffers(1, &depth_rb);
-  glNamedRenderbufferStorage(depth_rb, GL_DEPTH_COMPONENT32F, gw, gh);
-  glCreateFramebuffers(1, &fbo);
-  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, rt[0], 0);
-  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, rt[1], 0);
-  glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb);
-  const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  glNamedFramebufferDrawBuffers(fbo, 2, bufs);
-  if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    return fail("G-buffer " + std::to_string(gw) + "x" + std::to_string(gh) + " incomplete");
-  const std::vector<Vertex> verts = make_scene();
-  glCreateBuffers(1, &vbo);
-  glNamedBufferStorage(vbo, GLsizeiptr(verts.size() * sizeof(Vertex)), verts.data(), 0);
-  glCreateVertexArrays(1, &vao);
-  glVertexArrayVertexBuffer(vao, 0, vbo, 0, sizeof(Vertex));
-  const GLuint sizes[4] = {3, 3, 3, 1}, offsets[4] = {0, 12, 24, 36};
-  for (GLuint i = 0; i < 4; ++i) {
-    glEnableVertexArrayAttrib(vao, i);
-    glVertexArrayAttribFormat(vao, i, GLint(sizes[i]), GL_FLOAT, GL_FALSE, offsets[i]);
-    glVertexArrayAttribBinding(vao, i, 0);
-  }
-  const GLuint prog = glCreateProgram();
-  glAttachShader(prog, compile(GL_VERTEX_SHADER, kGeometryVs));
-  glAttachShader(prog, compile(GL_FRAGMENT_SHADER, kGeometryFs));
-  glLinkProgram(prog);
-  const float eye[3] = {3.2f, 2.2f, 4.2f}, at[3] = {0.0f, 0.4f, 0.0f};
-  const float fov = 0.8f, tan_half = std::tan(fov / 2), aspect = float(a.w) / float(a.h);
+// The engine's camera: look-at view (and its inverse) and a perspective projection.
+struct Camera {
+  float eye[3] = {3.2f, 2.2f, 4.2f};
+  float tan_half = 0, aspect = 1;
   float view[16], inv_view[16], proj[16] = {};
-  look_at(eye, at, view, inv_view);
+};
+
+Camera make_camera(const Args& a) {
+  Camera cam;
+  const float at[3] = {0.0f, 0.4f, 0.0f};
+  const float fov = 0.8f;
+  cam.tan_half = std::tan(fov / 2);
+  cam.aspect = float(a.w) / float(a.h);
+  look_at(cam.eye, at, cam.view, cam.inv_view);
   const float zn = 0.1f, zf = 50.0f;
-  proj[0] = 1.0f / (tan_half * aspect);
-  proj[5] = 1.0f / tan_half;
-  proj[10] = -(zf + zn) / (zf - zn);
-  proj[11] = -1.0f;
-  proj[14] = -2.0f * zf * zn / (zf - zn);
+  cam.proj[0] = 1.0f / (cam.tan_half * cam.aspect);
+  cam.proj[5] = 1.0f / cam.tan_half;
+  cam.proj[10] = -(zf + zn) / (zf - zn);
+  cam.proj[11] = -1.0f;
+  cam.proj[14] = -2.0f * zf * zn / (zf - zn);
+  return cam;
+}
 
-  glFinish();
-  auto t0 = std::chrono::steady_clock::now();
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-  glViewport(0, 0, gw, gh);
-  glEnable(GL_DEPTH_TEST);
-  const float zero[4] = {0, 0, 0, 0}, far_depth = 1.0f;
-  glClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero);
-  glClearNamedFramebufferfv(fbo, GL_COLOR, 1, zero);
-  glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far_depth);
-  glUseProgram(prog);
-  glUniformMatrix4fv(glGetUniformLocation(prog, "view"), 1, GL_FALSE, view);
-  glUniformMatrix4fv(glGetUniformLocation(prog, "proj"), 1, GL_FALSE, proj);
-  glBindVertexArray(vao);
-  glDrawArrays(GL_TRIANGLES, 0, GLsizei(verts.size()));
-  glFinish();
-  const double gbuffer_ms = ms_since(t0);
-
-  // The engine's per-frame shading data (bound where its hook declares it).
+// The engine's per-frame shading data (bound where its hook declares it): camera, grid size,
+// six point lights.
+GLuint make_frame_ubo(const Camera& cam, int gw, int gh) {
   struct {
     float inv_view[16], eye_tan[4], grid_aspect[4], light_pos[6][4], light_col[6][4];
   } frame_ubo{};
-  std::copy(inv_view, inv_view + 16, frame_ubo.inv_view);
-  frame_ubo.eye_tan[0] = eye[0], frame_ubo.eye_tan[1] = eye[1], frame_ubo.eye_tan[2] = eye[2];
-  frame_ubo.eye_tan[3] = tan_half;
+  std::copy(cam.inv_view, cam.inv_view + 16, frame_ubo.inv_view);
+  std::copy(cam.eye, cam.eye + 3, frame_ubo.eye_tan);
+  frame_ubo.eye_tan[3] = cam.tan_half;
   frame_ubo.grid_aspect[0] = float(gw), frame_ubo.grid_aspect[1] = float(gh);
-  frame_ubo.grid_aspect[2] = aspect;
+  frame_ubo.grid_aspect[2] = cam.aspect;
   const float lights[6][8] = {{2.5f, 3.0f, 2.0f, 0, 1.0f, 0.9f, 0.8f, 14.0f},
                               {-3.0f, 2.5f, 1.5f, 0, 0.5f, 0.6f, 1.0f, 10.0f},
                               {0.5f, 1.2f, 2.5f, 0, 1.0f, 0.5f, 0.3f, 4.0f},
@@ -378,6 +307,170 @@ int main(int argc, char** argv) {
   GLuint ubo;
   glCreateBuffers(1, &ubo);
   glNamedBufferStorage(ubo, sizeof frame_ubo, &frame_ubo, 0);
+  return ubo;
+}
+
+// What one run measured, for the report.
+struct Report {
+  double samples_pct = 0, psnr_adaptive = 0, psnr_one = 0;
+  double gbuffer_ms = 0, first_ms = 0, reference_ms = 0;
+  unsigned long long extra = 0;
+  int window_diff = -1;  // -1: headless
+  std::vector<tessera::gl::PassTime> passes;
+};
+
+void print_report(const Args& a, const engine::Platform& platform, const Report& r) {
+  if (a.json) {
+    std::printf(
+        "{\"device\": \"%s\", \"width\": %d, \"height\": %d, \"m\": %d, \"schedule\": \"%s\", ",
+        platform.renderer().c_str(), a.w, a.h, a.m, a.schedule.c_str());
+    std::printf("\"context\": \"%s\", ", platform.kind());
+    if (r.window_diff >= 0) std::printf("\"window_max_diff\": %d, ", r.window_diff);
+    if (a.budget >= 0) {
+      std::printf("\"budget\": %lld, ", a.budget);
+    } else {
+      std::printf("\"budget\": null, ");
+    }
+    std::printf(
+        "\"extra_samples\": %llu, \"samples_percent\": %.3f, \"psnr_db\": %.3f, "
+        "\"psnr_1spp_db\": %.3f, \"gbuffer_ms\": %.3f, \"passes_ms\": {",
+        r.extra, r.samples_pct, r.psnr_adaptive, r.psnr_one, r.gbuffer_ms);
+    double total = 0;
+    for (std::size_t i = 0; i < r.passes.size(); ++i) {
+      std::printf("%s\"%s\": %.3f", i ? ", " : "", r.passes[i].pass.c_str(),
+                  r.passes[i].ms);
+      total += r.passes[i].ms;
+    }
+    std::printf("}, \"adaptive_ms\": %.3f, \"first_ms\": %.3f, \"reference_ms\": %.3f}\n", total,
+                r.first_ms, r.reference_ms);
+  } else {
+    std::printf(
+        "engine_aa %dx%d m=%d: %.1f %% samples, PSNR %.2f dB (1 spp %.2f dB) against "
+        "full supersampling\n",
+        a.w, a.h, a.m, r.samples_pct, r.psnr_adaptive, r.psnr_one);
+  }
+}
+
+// The engine's G-buffer (RT0 RGBA16F normal + linear depth, RT1 RGBA8 albedo + (id + 1) / 255,
+// a depth buffer), its geometry and program.
+struct GBuffer {
+  GLuint rt[2] = {0, 0}, depth_rb = 0, fbo = 0, vao = 0, vbo = 0, prog = 0;
+  double ms = 0;  // the geometry pass, to a glFinish
+  ~GBuffer() {
+    glDeleteProgram(prog);
+    glDeleteBuffers(1, &vbo);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &depth_rb);
+    glDeleteTextures(2, rt);
+  }
+};
+
+// Creates the G-buffer of gw x gh texels and rasterises the scene into it; "" or the problem.
+std::string geometry_pass(GBuffer& g, const Camera& cam, int gw, int gh) {
+  glCreateTextures(GL_TEXTURE_2D, 2, g.rt);
+  glTextureStorage2D(g.rt[0], 1, GL_RGBA16F, gw, gh);
+  glTextureStorage2D(g.rt[1], 1, GL_RGBA8, gw, gh);
+  glCreateRenderbuffers(1, &g.depth_rb);
+  glNamedRenderbufferStorage(g.depth_rb, GL_DEPTH_COMPONENT32F, gw, gh);
+  glCreateFramebuffers(1, &g.fbo);
+  glNamedFramebufferTexture(g.fbo, GL_COLOR_ATTACHMENT0, g.rt[0], 0);
+  glNamedFramebufferTexture(g.fbo, GL_COLOR_ATTACHMENT1, g.rt[1], 0);
+  glNamedFramebufferRenderbuffer(g.fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, g.depth_rb);
+  const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(g.fbo, 2, bufs);
+  if (glCheckNamedFramebufferStatus(g.fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    return "G-buffer " + std::to_string(gw) + "x" + std::to_string(gh) + " incomplete";
+  const std::vector<Vertex> verts = make_scene();
+  glCreateBuffers(1, &g.vbo);
+  glNamedBufferStorage(g.vbo, GLsizeiptr(verts.size() * sizeof(Vertex)), verts.data(), 0);
+  glCreateVertexArrays(1, &g.vao);
+  glVertexArrayVertexBuffer(g.vao, 0, g.vbo, 0, sizeof(Vertex));
+  const GLuint sizes[4] = {3, 3, 3, 1}, offsets[4] = {0, 12, 24, 36};
+  for (GLuint i = 0; i < 4; ++i) {
+    glEnableVertexArrayAttrib(g.vao, i);
+    glVertexArrayAttribFormat(g.vao, i, GLint(sizes[i]), GL_FLOAT, GL_FALSE, offsets[i]);
+    glVertexArrayAttribBinding(g.vao, i, 0);
+  }
+  g.prog = glCreateProgram();
+  glAttachShader(g.prog, compile(GL_VERTEX_SHADER, kGeometryVs));
+  glAttachShader(g.prog, compile(GL_FRAGMENT_SHADER, kGeometryFs));
+  glLinkProgram(g.prog);
+  glFinish();
+  auto t0 = std::chrono::steady_clock::now();
+  glBindFramebuffer(GL_FRAMEBUFFER, g.fbo);
+  glViewport(0, 0, gw, gh);
+  glEnable(GL_DEPTH_TEST);
+  const float zero[4] = {0, 0, 0, 0}, far_depth = 1.0f;
+  glClearNamedFramebufferfv(g.fbo, GL_COLOR, 0, zero);
+  glClearNamedFramebufferfv(g.fbo, GL_COLOR, 1, zero);
+  glClearNamedFramebufferfv(g.fbo, GL_DEPTH, 0, &far_depth);
+  glUseProgram(g.prog);
+  glUniformMatrix4fv(glGetUniformLocation(g.prog, "view"), 1, GL_FALSE, cam.view);
+  glUniformMatrix4fv(glGetUniformLocation(g.prog, "proj"), 1, GL_FALSE, cam.proj);
+  glBindVertexArray(g.vao);
+  glDrawArrays(GL_TRIANGLES, 0, GLsizei(verts.size()));
+  glFinish();
+  g.ms = ms_since(t0);
+  return "";
+}
+
+// The command line; "" or the problem.
+std::string parse_args(int argc, char** argv, Args& a) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string k = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "engine_aa: %s needs a value\n", k.c_str());
+        std::exit(1);
+      }
+      return argv[++i];
+    };
+    if (k == "--size") {
+      const std::string v = next();
+      if (std::sscanf(v.c_str(), "%dx%d", &a.w, &a.h) != 2 || a.w <= 0 || a.h <= 0)
+        return "--size " + v + ": expected WxH";
+    } else if (k == "--m") {
+      a.m = std::atoi(next().c_str());
+    } else if (k == "--budget") {
+      a.budget = std::atoll(next().c_str());
+      if (a.budget < 0) return "--budget must be >= 0";
+    } else if (k == "--schedule") {
+      a.schedule = next();
+    } else if (k == "--glsl") {
+      a.glsl = next();
+    } else if (k == "--json") {
+      a.json = true;
+    } else if (k == "--headless") {
+      a.headless = true;
+    } else if (k == "-o") {
+      a.out = next();
+    } else {
+      return "unknown argument " + k;
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args a;
+  if (std::string why = parse_args(argc, argv, a); !why.empty()) return fail(why);
+  // The engine's context, current from here on; tessera's entry points loaded from it.
+  engine::Platform platform;
+  if (std::string why = platform.open(a.headless, a.w, a.h, "engine_aa"); !why.empty())
+    return fail("no OpenGL 4.5 device: " + why);
+  const int gw = a.w * a.m, gh = a.h * a.m;
+
+  // ---- the engine's G-buffer and geometry pass ----
+  const Camera cam = make_camera(a);
+  GBuffer gbuf;
+  if (std::string why = geometry_pass(gbuf, cam, gw, gh); !why.empty()) return fail(why);
+  const GLuint* rt = gbuf.rt;
+  const double gbuffer_ms = gbuf.ms;
+
+  const GLuint ubo = make_frame_ubo(cam, gw, gh);
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, ubo);
   glBindTextureUnit(0, rt[1]);
 
@@ -416,6 +509,9 @@ int main(int argc, char** argv) {
   adaptive = (*aa)->dispatch(frame);
   if (!adaptive) return fail(adaptive.status().message);
   const tessera::ImageRGBAF img = read_rgba(adaptive->colour, a.w, a.h);
+  // The frame on screen: the output texture drawn to the window (Reinhard, then sRGB).
+  std::vector<std::uint8_t> shown;
+  if (platform.windowed()) platform.present(adaptive->colour, a.w, a.h, true, true, shown);
   std::vector<std::uint8_t> counts(std::size_t(a.w) * std::size_t(a.h));
   glGetTextureImage(adaptive->sample_counts, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
                     GLsizei(counts.size()), counts.data());
@@ -433,6 +529,8 @@ int main(int argc, char** argv) {
   const double first_ms = first->total_wall_ms();
 
   const tessera::ImageRGBA8 d_img = display(img), d_ref = display(ref), d_one = display(one);
+  const int window_diff =
+      platform.windowed() ? engine::max_rgb_difference(shown, d_img.pixels.data()) : -1;
   const double pixels = double(a.w) * a.h;
   const double samples_pct = 100.0 * (pixels + double(extra)) / (pixels * a.m * a.m);
   const double p_adaptive = psnr(d_img, d_ref), p_one = psnr(d_one, d_ref);
@@ -453,40 +551,18 @@ int main(int argc, char** argv) {
       if (auto s = tessera::io::write_png(path, *im); !s.ok()) return fail(s.message);
     }
   }
-  if (a.json) {
-    std::printf(
-        "{\"device\": \"%s\", \"width\": %d, \"height\": %d, \"m\": %d, \"schedule\": \"%s\", ",
-        (*ctx)->renderer().c_str(), a.w, a.h, a.m, a.schedule.c_str());
-    if (a.budget >= 0) {
-      std::printf("\"budget\": %lld, ", a.budget);
-    } else {
-      std::printf("\"budget\": null, ");
-    }
-    std::printf(
-        "\"extra_samples\": %llu, \"samples_percent\": %.3f, \"psnr_db\": %.3f, "
-        "\"psnr_1spp_db\": %.3f, \"gbuffer_ms\": %.3f, \"passes_ms\": {",
-        (unsigned long long)extra, samples_pct, p_adaptive, p_one, gbuffer_ms);
-    double total = 0;
-    for (std::size_t i = 0; i < adaptive_passes.size(); ++i) {
-      std::printf("%s\"%s\": %.3f", i ? ", " : "", adaptive_passes[i].pass.c_str(),
-                  adaptive_passes[i].ms);
-      total += adaptive_passes[i].ms;
-    }
-    std::printf("}, \"adaptive_ms\": %.3f, \"first_ms\": %.3f, \"reference_ms\": %.3f}\n", total,
-                first_ms, reference_ms);
-  } else {
-    std::printf(
-        "engine_aa %dx%d m=%d: %.1f %% samples, PSNR %.2f dB (1 spp %.2f dB) against "
-        "full supersampling\n",
-        a.w, a.h, a.m, samples_pct, p_adaptive, p_one);
-  }
-  glDeleteProgram(prog);
-  glDeleteBuffers(1, &vbo);
+  Report rep;
+  rep.samples_pct = samples_pct;
+  rep.psnr_adaptive = p_adaptive;
+  rep.psnr_one = p_one;
+  rep.gbuffer_ms = gbuffer_ms;
+  rep.first_ms = first_ms;
+  rep.reference_ms = reference_ms;
+  rep.extra = static_cast<unsigned long long>(extra);
+  rep.window_diff = window_diff;
+  rep.passes = adaptive_passes;
+  print_report(a, platform, rep);
   glDeleteBuffers(1, &ubo);
-  glDeleteVertexArrays(1, &vao);
-  glDeleteFramebuffers(1, &fbo);
-  glDeleteRenderbuffers(1, &depth_rb);
-  glDeleteTextures(2, rt);
   aa->reset();
   return 0;
 }

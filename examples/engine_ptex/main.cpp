@@ -1,16 +1,21 @@
 // engine_ptex — a small forward renderer that draws a Ptex mesh with its own shader and
 // tessera's seamless per-face lookup (seams.glsl, tessera_seams_sample_discard: Toth 2013).
 //
-// The engine side is all here and all its own: an OpenGL 4.5 context (through tessera's headless
-// gl::Context; any current GL 4.5 context works), GL entry points from libOpenGL, an interleaved
+// The engine side is all here and all its own: an OpenGL 4.5 core context it makes itself (a GLFW
+// window through GLX, or with --headless a surfaceless EGL context: examples/common/
+// engine_context.h, which also hands the context's GetProcAddress to tessera), GL entry points
+// from libOpenGL, an interleaved
 // vertex layout (position, normal, per-face UV, integer face id), a per-frame uniform block at
 // binding 0 (view-projection, light), its own framebuffer, and a vertex and fragment shader
 // written below. The integration with tessera follows the recipe of tessera/gl_ptex.h and is the
 // blocks marked "tessera": mesh and textures from the .obj and .ptx, one upload, the binding
 // points the engine chose (FaceTexturesBindings) as shader defines and as one bind per frame.
 //
-// Usage: engine_ptex MESH.obj FILE.ptx [--size WxH] [--orbit K/N] [--fov DEG] [--shader-method
+// Usage: engine_ptex MESH.obj FILE.ptx [--headless] [--size WxH] [--orbit K/N] [--fov DEG] [--shader-method
 //                    discard|clamp] [--shift-px X] [--glsl DIR] [--check] [--json] [-o FILE.png]
+//   --headless        a surfaceless EGL context instead of the window (the image is the same;
+//                     in the window the frame is shown, and --json reports "window_max_diff",
+//                     the largest byte difference between the back buffer and the -o image)
 //   -o FILE.png       the GL image (8-bit sRGB)
 //   --orbit K/N       the camera: frame K of N of faces::face_orbit_camera (default 1/8)
 //   --fov DEG         its vertical field of view (default the orbit's 60; smaller zooms in)
@@ -26,8 +31,7 @@
 // The last two are negative controls for the agreement bounds (tests/gl/engine_ptex_test.py).
 // Exit 1 with one line when there is no OpenGL 4.5 device, on bad arguments or input (a mesh
 // polygon the Ptex file did not split into quads is named).
-#define GL_GLEXT_PROTOTYPES 1
-#include <GL/glcorearb.h>
+#include "engine_context.h"  // first: the engine's GL and window headers
 
 #include <algorithm>
 #include <chrono>
@@ -43,21 +47,19 @@
 #include "tessera/faces.h"
 #include "tessera/gl.h"
 #include "tessera/gl_ptex.h"
+#include "tessera/glsl.h"
 #include "tessera/io.h"
 #include "tessera/metrics.h"
 #include "tessera/ptex.h"
 
-#ifndef ENGINE_PTEX_GLSL_DIR
-#define ENGINE_PTEX_GLSL_DIR ""
-#endif
 
 namespace {
 
 struct Args {
-  std::string obj, ptx, out, glsl = ENGINE_PTEX_GLSL_DIR, method = "discard";
+  std::string obj, ptx, out, glsl, method = "discard";
   int w = 320, h = 240, orbit_k = 1, orbit_n = 8;
   float shift_px = 0.0f, fov = 0.0f;  // fov 0: the orbit camera's
-  bool check = false, json = false;
+  bool check = false, json = false, headless = false;
 };
 
 int fail(const std::string& msg) {
@@ -124,6 +126,37 @@ void main() {
 }
 )";
 
+// The engine's own shader compilation; 0 with the driver's log in `log` on failure.
+GLuint compile_program(const char* vs, const char* fs, std::string& log) {
+  const GLuint p = glCreateProgram();
+  for (const auto& [stage, src] : {std::pair{GL_VERTEX_SHADER, vs}, {GL_FRAGMENT_SHADER, fs}}) {
+    const GLuint s = glCreateShader(stage);
+    glShaderSource(s, 1, &src, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      char text[4096] = {};
+      glGetShaderInfoLog(s, sizeof text, nullptr, text);
+      log = text;
+      glDeleteShader(s);
+      glDeleteProgram(p);
+      return 0;
+    }
+    glAttachShader(p, s);
+    glDeleteShader(s);
+  }
+  glLinkProgram(p);
+  GLint ok = 0;
+  glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    log = "the program does not link";
+    glDeleteProgram(p);
+    return 0;
+  }
+  return p;
+}
+
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -155,92 +188,24 @@ tessera::Result<Agreement> agreement(const tessera::ImageRGBAF& a, const tessera
   return r;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  Args a;
-  std::vector<std::string> positional;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "engine_ptex: %s needs a value\n", k.c_str());
-        std::exit(1);
-      }
-      return argv[++i];
-    };
-    if (k == "--size") {
-      const std::string v = next();
-      if (std::sscanf(v.c_str(), "%dx%d", &a.w, &a.h) != 2 || a.w <= 0 || a.h <= 0 || a.w > 8192 ||
-          a.h > 8192 || a.w % 2 || a.h % 2)
-        return fail("--size " + v + ": expected WxH, even, 2..8192 (2x2 derivative quads)");
-    } else if (k == "--orbit") {
-      const std::string v = next();
-      if (std::sscanf(v.c_str(), "%d/%d", &a.orbit_k, &a.orbit_n) != 2 || a.orbit_n <= 0 ||
-          a.orbit_k < 0)
-        return fail("--orbit " + v + ": expected K/N");
-    } else if (k == "--shader-method") {
-      a.method = next();
-      if (a.method != "discard" && a.method != "clamp")
-        return fail("--shader-method " + a.method + ": discard or clamp");
-    } else if (k == "--fov") {
-      a.fov = std::strtof(next().c_str(), nullptr);
-      if (!(a.fov > 0.0f && a.fov < 180.0f)) return fail("--fov: degrees in (0, 180)");
-    } else if (k == "--shift-px") {
-      a.shift_px = std::strtof(next().c_str(), nullptr);
-    } else if (k == "--glsl") {
-      a.glsl = next();
-    } else if (k == "--check") {
-      a.check = true;
-    } else if (k == "--json") {
-      a.json = a.check = true;
-    } else if (k == "-o") {
-      a.out = next();
-    } else if (!k.empty() && k[0] == '-') {
-      return fail("unknown argument " + k);
-    } else {
-      positional.push_back(k);
-    }
-  }
-  if (positional.size() != 2) return fail("usage: engine_ptex MESH.obj FILE.ptx [options]");
-  a.obj = positional[0];
-  a.ptx = positional[1];
-
-  // ---- tessera, step 1 (pure): the quad faces of the Ptex file and their textures ----
-  auto poly = tessera::faces::load_obj_polygons(a.obj);
-  if (!poly) return fail(poly.status().message);
-  auto file = tessera::ptex::read_ptex(a.ptx);
-  if (!file) return fail(file.status().message);
-  auto mesh = tessera::gl::ptex_quad_mesh(*poly, *file, a.ptx);
-  if (!mesh) return fail(mesh.status().message);
-  auto set = tessera::faces::FaceTextureSet::from_ptex(*file, a.ptx);
-  if (!set) return fail(set.status().message);
-  // ---- end of step 1 ----
-
-  auto ctx = tessera::gl::Context::create();
-  if (!ctx) return fail("no OpenGL 4.5 device: " + ctx.status().message);
-
-  // The engine's scene data: a camera on an orbit, smooth normals, 4 vertices and 2 triangles
-  // per face (tessera's helpers for both, so the CPU check sees the same geometry).
-  tessera::faces::FaceScene scene;
-  scene.name = a.obj;
-  scene.mesh = *mesh;
-  tessera::scene::Camera camera = tessera::faces::face_orbit_camera(scene, a.orbit_k, a.orbit_n);
-  if (a.fov > 0.0f) camera.fov_y_degrees = a.fov;
-  const std::vector<tessera::Vec3> normals = tessera::faces::smooth_face_normals(scene.mesh);
-  std::vector<Vertex> verts;
-  std::vector<std::uint32_t> indices;
+// Four vertices and two triangles per face (corners not shared: each face has its own UVs).
+void face_vertices(const tessera::faces::QuadMesh& mesh, const std::vector<tessera::Vec3>& normals,
+                   std::vector<Vertex>& verts, std::vector<std::uint32_t>& indices) {
   const float corner_uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  for (int f = 0; f < scene.mesh.face_count(); ++f) {
+  for (int f = 0; f < mesh.face_count(); ++f) {
     for (int c = 0; c < 4; ++c) {
       const tessera::Vec3& p =
-          scene.mesh.positions[std::size_t(scene.mesh.quads[std::size_t(f)][std::size_t(c)])];
+          mesh.positions[std::size_t(mesh.quads[std::size_t(f)][std::size_t(c)])];
       const tessera::Vec3& n = normals[std::size_t(f) * 4 + std::size_t(c)];
       verts.push_back({{p.x, p.y, p.z}, {n.x, n.y, n.z}, {corner_uv[c][0], corner_uv[c][1]}, f});
     }
     const auto b = std::uint32_t(f) * 4;
     for (std::uint32_t i : {b, b + 1, b + 2, b, b + 2, b + 3}) indices.push_back(i);
   }
+}
+
+// The engine's per-frame block: the camera (moved `shift_px` pixels right), the light.
+FrameBlock make_frame_block(const tessera::scene::Camera& camera, const Args& a) {
   FrameBlock frame{};
   const tessera::Mat4 vp = camera.view_projection(float(a.w) / float(a.h));
   for (int c = 0; c < 4; ++c)
@@ -254,92 +219,66 @@ int main(int argc, char** argv) {
   frame.shade[0] = 0.35f;
   frame.shade[1] = 0.65f;
 
-  // ---- tessera, step 2: upload once; the binding points are the engine's choice ----
-  tessera::gl::FaceTexturesOptions to;
-  to.max_anisotropy = 1.0f;  // trilinear: the filter the CPU check uses
-  auto tex = tessera::gl::FaceTextures::upload(*set, to);
-  if (!tex) return fail(tex.status().message);
-  tessera::gl::FaceTexturesBindings bindings;
-  bindings.border_unit = 1;  // unit 0 stays free for the engine's own textures
-  bindings.clamp_unit = 17;  // after at most 16 classes
-  bindings.records_binding = 3;
-  tessera::glsl::ExpandOptions so;
-  so.include_paths = {a.glsl};
-  so.preamble = tex->glsl_defines(bindings);
-  so.preamble.push_back(std::string("#define ENGINE_CLAMP ") + (a.method == "clamp" ? "1" : "0"));
-  auto program = tessera::gl::link_program(
-      {{tessera::glsl::Stage::vertex, kVertexShader, "engine_ptex.vert"},
-       {tessera::glsl::Stage::fragment, kFragmentShader, "engine_ptex.frag"}},
-      so);
-  if (!program) return fail(program.status().message);
-  // ---- end of step 2 ----
+  return frame;
+}
 
-  GLuint vbo, ibo, ubo, vao, fbo, colour_tex, depth_rb;
-  glCreateBuffers(1, &vbo);
-  glNamedBufferStorage(vbo, GLsizeiptr(verts.size() * sizeof(Vertex)), verts.data(), 0);
-  glCreateBuffers(1, &ibo);
-  glNamedBufferStorage(ibo, GLsizeiptr(indices.size() * 4), indices.data(), 0);
-  glCreateBuffers(1, &ubo);
-  glNamedBufferStorage(ubo, sizeof frame, &frame, 0);
-  glCreateVertexArrays(1, &vao);
-  glVertexArrayVertexBuffer(vao, 0, vbo, 0, sizeof(Vertex));
-  glVertexArrayElementBuffer(vao, ibo);
+// The engine's GPU objects: vertex, index and frame buffers, vertex array, an RGBA32F colour
+// target with depth.
+struct EngineObjects {
+  GLuint vbo = 0, ibo = 0, ubo = 0, vao = 0, fbo = 0, colour_tex = 0, depth_rb = 0;
+  ~EngineObjects() {
+    glDeleteBuffers(1, &vbo);
+    glDeleteBuffers(1, &ibo);
+    glDeleteBuffers(1, &ubo);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &depth_rb);
+    glDeleteTextures(1, &colour_tex);
+  }
+};
+
+// Creates them for a w x h frame; "" or the problem.
+std::string create_objects(EngineObjects& o, const std::vector<Vertex>& verts,
+                           const std::vector<std::uint32_t>& indices, const FrameBlock& frame,
+                           int w, int h) {
+  glCreateBuffers(1, &o.vbo);
+  glNamedBufferStorage(o.vbo, GLsizeiptr(verts.size() * sizeof(Vertex)), verts.data(), 0);
+  glCreateBuffers(1, &o.ibo);
+  glNamedBufferStorage(o.ibo, GLsizeiptr(indices.size() * 4), indices.data(), 0);
+  glCreateBuffers(1, &o.ubo);
+  glNamedBufferStorage(o.ubo, sizeof frame, &frame, 0);
+  glCreateVertexArrays(1, &o.vao);
+  glVertexArrayVertexBuffer(o.vao, 0, o.vbo, 0, sizeof(Vertex));
+  glVertexArrayElementBuffer(o.vao, o.ibo);
   const GLuint sizes[3] = {3, 3, 2}, offsets[3] = {0, 12, 24};
   for (GLuint i = 0; i < 3; ++i) {
-    glEnableVertexArrayAttrib(vao, i);
-    glVertexArrayAttribFormat(vao, i, GLint(sizes[i]), GL_FLOAT, GL_FALSE, offsets[i]);
-    glVertexArrayAttribBinding(vao, i, 0);
+    glEnableVertexArrayAttrib(o.vao, i);
+    glVertexArrayAttribFormat(o.vao, i, GLint(sizes[i]), GL_FLOAT, GL_FALSE, offsets[i]);
+    glVertexArrayAttribBinding(o.vao, i, 0);
   }
-  glEnableVertexArrayAttrib(vao, 3);
-  glVertexArrayAttribIFormat(vao, 3, 1, GL_INT, offsetof(Vertex, face));
-  glVertexArrayAttribBinding(vao, 3, 0);
-  glCreateTextures(GL_TEXTURE_2D, 1, &colour_tex);
-  glTextureStorage2D(colour_tex, 1, GL_RGBA32F, a.w, a.h);
-  glCreateRenderbuffers(1, &depth_rb);
-  glNamedRenderbufferStorage(depth_rb, GL_DEPTH_COMPONENT32F, a.w, a.h);
-  glCreateFramebuffers(1, &fbo);
-  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, colour_tex, 0);
-  glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb);
-  if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    return fail("framebuffer " + std::to_string(a.w) + "x" + std::to_string(a.h) + " incomplete");
+  glEnableVertexArrayAttrib(o.vao, 3);
+  glVertexArrayAttribIFormat(o.vao, 3, 1, GL_INT, offsetof(Vertex, face));
+  glVertexArrayAttribBinding(o.vao, 3, 0);
+  glCreateTextures(GL_TEXTURE_2D, 1, &o.colour_tex);
+  glTextureStorage2D(o.colour_tex, 1, GL_RGBA32F, w, h);
+  glCreateRenderbuffers(1, &o.depth_rb);
+  glNamedRenderbufferStorage(o.depth_rb, GL_DEPTH_COMPONENT32F, w, h);
+  glCreateFramebuffers(1, &o.fbo);
+  glNamedFramebufferTexture(o.fbo, GL_COLOR_ATTACHMENT0, o.colour_tex, 0);
+  glNamedFramebufferRenderbuffer(o.fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, o.depth_rb);
+  if (glCheckNamedFramebufferStatus(o.fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    return "framebuffer " + std::to_string(w) + "x" + std::to_string(h) + " incomplete";
 
-  // ---- the frame ----
-  const auto t0 = std::chrono::steady_clock::now();
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-  glViewport(0, 0, a.w, a.h);
-  glEnable(GL_DEPTH_TEST);
-  glEnable(GL_CULL_FACE);  // counter-clockwise front faces, back faces culled (as the CPU)
-  const float background[4] = {tessera::faces::kFaceBackground[0],
-                               tessera::faces::kFaceBackground[1],
-                               tessera::faces::kFaceBackground[2], 0.0f};
-  const float far_depth = 1.0f;
-  glClearNamedFramebufferfv(fbo, GL_COLOR, 0, background);
-  glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far_depth);
-  glUseProgram(program->get());
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, ubo);
-  if (auto s = tex->bind(bindings); !s.ok()) return fail(s.message);  // tessera, per frame
-  glBindVertexArray(vao);
-  glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
-  glFinish();
-  const double gl_ms = ms_since(t0);
-  if (GLenum e = glGetError(); e != GL_NO_ERROR) return fail("GL error " + std::to_string(e));
+  return "";
+}
 
-  // Read back; GL's row 0 is the bottom, tessera's images are top-down.
-  tessera::ImageRGBAF img(a.w, a.h);
-  std::vector<float> rows(img.pixels.size());
-  glGetTextureImage(colour_tex, 0, GL_RGBA, GL_FLOAT, GLsizei(rows.size() * 4), rows.data());
-  const std::size_t row = std::size_t(a.w) * 4;
-  for (int y = 0; y < a.h; ++y) {
-    std::copy_n(rows.data() + std::size_t(a.h - 1 - y) * row, row,
-                img.pixels.data() + std::size_t(y) * row);
-  }
-  if (!a.out.empty()) {
-    if (auto s = tessera::io::write_png(a.out, tessera::to_srgb8(img)); !s.ok())
-      return fail(s.message);
-  }
-
+// The report; with --check the same frame through tessera's CPU renderer (Discard, trilinear)
+// and the agreement of the two. 0, or 1 with the problem on stderr.
+int report(const Args& a, const engine::Platform& platform, const tessera::faces::FaceScene& scene,
+           const tessera::faces::FaceTextureSet& set, const tessera::scene::Camera& camera,
+           const tessera::ImageRGBAF& img, int classes, double gl_ms, int window_diff) {
   if (a.check) {
-    auto cpu = tessera::faces::FaceRenderer::create(scene, *set);
+    auto cpu = tessera::faces::FaceRenderer::create(scene, set);
     if (!cpu) return fail(cpu.status().message);
     tessera::faces::FaceRenderOptions o;
     o.width = a.w;
@@ -360,29 +299,189 @@ int main(int argc, char** argv) {
           "{\"device\": \"%s\", \"mesh\": \"%s\", \"faces\": %d, \"classes\": %d, "
           "\"width\": %d, \"height\": %d, \"orbit\": \"%d/%d\", \"shader_method\": \"%s\", "
           "\"shift_px\": %.3f, \"psnr_db\": %s, \"frac_001\": %.6f, \"max_norm\": %.4f, "
-          "\"non_finite\": %d, \"gl_ms\": %.3f, \"cpu_ms\": %.3f}\n",
-          (*ctx)->renderer().c_str(), scene.name.c_str(), scene.mesh.face_count(),
-          tex->class_count(), a.w, a.h, a.orbit_k, a.orbit_n, a.method.c_str(), double(a.shift_px),
+          "\"non_finite\": %d, \"gl_ms\": %.3f, \"cpu_ms\": %.3f, \"context\": \"%s\"%s}\n",
+          platform.renderer().c_str(), scene.name.c_str(), scene.mesh.face_count(),
+          classes, a.w, a.h, a.orbit_k, a.orbit_n, a.method.c_str(), double(a.shift_px),
           psnr_json.c_str(), agree->frac_001, agree->max_norm, agree->non_finite, gl_ms,
-          cpu_frame->ms());
+          cpu_frame->ms(), platform.kind(),
+          window_diff >= 0 ? (", \"window_max_diff\": " + std::to_string(window_diff)).c_str()
+                           : "");
     } else {
       std::printf(
           "engine_ptex %dx%d, %d faces in %d classes: GL (%s) vs CPU Discard: PSNR %.2f dB, "
           "%.3f %% of the pixels >= 0.01 apart\n",
-          a.w, a.h, scene.mesh.face_count(), tex->class_count(), a.method.c_str(), agree->psnr,
+          a.w, a.h, scene.mesh.face_count(), classes, a.method.c_str(), agree->psnr,
           100.0 * agree->frac_001);
     }
   } else {
     std::printf("engine_ptex %dx%d, %d faces in %d classes: drawn in %.1f ms\n", a.w, a.h,
-                scene.mesh.face_count(), tex->class_count(), gl_ms);
+                scene.mesh.face_count(), classes, gl_ms);
   }
 
-  glDeleteBuffers(1, &vbo);
-  glDeleteBuffers(1, &ibo);
-  glDeleteBuffers(1, &ubo);
-  glDeleteVertexArrays(1, &vao);
-  glDeleteFramebuffers(1, &fbo);
-  glDeleteRenderbuffers(1, &depth_rb);
-  glDeleteTextures(1, &colour_tex);
+  return 0;
+}
+
+// The command line; "" or the problem.
+std::string parse_args(int argc, char** argv, Args& a) {
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i) {
+    const std::string k = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "engine_ptex: %s needs a value\n", k.c_str());
+        std::exit(1);
+      }
+      return argv[++i];
+    };
+    if (k == "--size") {
+      const std::string v = next();
+      if (std::sscanf(v.c_str(), "%dx%d", &a.w, &a.h) != 2 || a.w <= 0 || a.h <= 0 || a.w > 8192 ||
+          a.h > 8192 || a.w % 2 || a.h % 2)
+        return "--size " + v + ": expected WxH, even, 2..8192 (2x2 derivative quads)";
+    } else if (k == "--orbit") {
+      const std::string v = next();
+      if (std::sscanf(v.c_str(), "%d/%d", &a.orbit_k, &a.orbit_n) != 2 || a.orbit_n <= 0 ||
+          a.orbit_k < 0)
+        return "--orbit " + v + ": expected K/N";
+    } else if (k == "--shader-method") {
+      a.method = next();
+      if (a.method != "discard" && a.method != "clamp")
+        return "--shader-method " + a.method + ": discard or clamp";
+    } else if (k == "--fov") {
+      a.fov = std::strtof(next().c_str(), nullptr);
+      if (!(a.fov > 0.0f && a.fov < 180.0f)) return "--fov: degrees in (0, 180)";
+    } else if (k == "--shift-px") {
+      a.shift_px = std::strtof(next().c_str(), nullptr);
+    } else if (k == "--glsl") {
+      a.glsl = next();
+    } else if (k == "--headless") {
+      a.headless = true;
+    } else if (k == "--check") {
+      a.check = true;
+    } else if (k == "--json") {
+      a.json = a.check = true;
+    } else if (k == "-o") {
+      a.out = next();
+    } else if (!k.empty() && k[0] == '-') {
+      return "unknown argument " + k;
+    } else {
+      positional.push_back(k);
+    }
+  }
+  if (positional.size() != 2) return "usage: engine_ptex MESH.obj FILE.ptx [options]";
+  a.obj = positional[0];
+  a.ptx = positional[1];
+  return "";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args a;
+  if (std::string why = parse_args(argc, argv, a); !why.empty()) return fail(why);
+
+  // ---- tessera, step 1 (pure): the quad faces of the Ptex file and their textures ----
+  auto poly = tessera::faces::load_obj_polygons(a.obj);
+  if (!poly) return fail(poly.status().message);
+  auto file = tessera::ptex::read_ptex(a.ptx);
+  if (!file) return fail(file.status().message);
+  auto mesh = tessera::gl::ptex_quad_mesh(*poly, *file, a.ptx);
+  if (!mesh) return fail(mesh.status().message);
+  auto set = tessera::faces::FaceTextureSet::from_ptex(*file, a.ptx);
+  if (!set) return fail(set.status().message);
+  // ---- end of step 1 ----
+
+  // The engine's context, current from here on; tessera's entry points loaded from it.
+  engine::Platform platform;
+  if (std::string why = platform.open(a.headless, a.w, a.h, "engine_ptex"); !why.empty())
+    return fail("no OpenGL 4.5 device: " + why);
+
+  // The engine's scene data: a camera on an orbit, smooth normals, 4 vertices and 2 triangles
+  // per face (tessera's helpers for both, so the CPU check sees the same geometry).
+  tessera::faces::FaceScene scene;
+  scene.name = a.obj;
+  scene.mesh = *mesh;
+  tessera::scene::Camera camera = tessera::faces::face_orbit_camera(scene, a.orbit_k, a.orbit_n);
+  if (a.fov > 0.0f) camera.fov_y_degrees = a.fov;
+  const std::vector<tessera::Vec3> normals = tessera::faces::smooth_face_normals(scene.mesh);
+  std::vector<Vertex> verts;
+  std::vector<std::uint32_t> indices;
+  face_vertices(scene.mesh, normals, verts, indices);
+  const FrameBlock frame = make_frame_block(camera, a);
+
+  // ---- tessera, step 2: upload once; the binding points are the engine's choice ----
+  tessera::gl::FaceTexturesOptions to;
+  to.max_anisotropy = 1.0f;  // trilinear: the filter the CPU check uses
+  auto tex = tessera::gl::FaceTextures::upload(*set, to);
+  if (!tex) return fail(tex.status().message);
+  tessera::gl::FaceTexturesBindings bindings;
+  bindings.border_unit = 1;  // unit 0 stays free for the engine's own textures
+  bindings.clamp_unit = 17;  // after at most 16 classes
+  bindings.records_binding = 3;
+  // The engine compiles its own program; tessera gives the full fragment source: the defines
+  // after #version and seams.glsl in place of the #include (from the copy embedded in the
+  // library; --glsl DIR reads a development folder instead).
+  tessera::glsl::ExpandOptions so;
+  if (!a.glsl.empty()) so.shipped_dir = a.glsl;
+  so.preamble = tex->glsl_defines(bindings);
+  so.preamble.push_back(std::string("#define ENGINE_CLAMP ") + (a.method == "clamp" ? "1" : "0"));
+  auto fragment = tessera::glsl::expand_includes(
+      {tessera::glsl::Stage::fragment, kFragmentShader, "engine_ptex.frag"}, so);
+  if (!fragment) return fail(fragment.status().message);
+  std::string log;
+  const GLuint program = compile_program(kVertexShader, fragment->text.c_str(), log);
+  if (program == 0) return fail(tessera::glsl::format_log(log, fragment->files));
+  // ---- end of step 2 ----
+
+  EngineObjects obj;
+  if (std::string why = create_objects(obj, verts, indices, frame, a.w, a.h); !why.empty())
+    return fail(why);
+  const GLuint fbo = obj.fbo, ubo = obj.ubo, vao = obj.vao, colour_tex = obj.colour_tex;
+
+  // ---- the frame ----
+  const auto t0 = std::chrono::steady_clock::now();
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glViewport(0, 0, a.w, a.h);
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_CULL_FACE);  // counter-clockwise front faces, back faces culled (as the CPU)
+  const float background[4] = {tessera::faces::kFaceBackground[0],
+                               tessera::faces::kFaceBackground[1],
+                               tessera::faces::kFaceBackground[2], 0.0f};
+  const float far_depth = 1.0f;
+  glClearNamedFramebufferfv(fbo, GL_COLOR, 0, background);
+  glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far_depth);
+  glUseProgram(program);
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, ubo);
+  if (auto s = tex->bind(bindings); !s.ok()) return fail(s.message);  // tessera, per frame
+  glBindVertexArray(vao);
+  glDrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
+  glFinish();
+  const double gl_ms = ms_since(t0);
+  if (GLenum e = glGetError(); e != GL_NO_ERROR) return fail("GL error " + std::to_string(e));
+
+  // Read back; GL's row 0 is the bottom, tessera's images are top-down.
+  tessera::ImageRGBAF img(a.w, a.h);
+  std::vector<float> rows(img.pixels.size());
+  glGetTextureImage(colour_tex, 0, GL_RGBA, GL_FLOAT, GLsizei(rows.size() * 4), rows.data());
+  const std::size_t row = std::size_t(a.w) * 4;
+  for (int y = 0; y < a.h; ++y) {
+    std::copy_n(rows.data() + std::size_t(a.h - 1 - y) * row, row,
+                img.pixels.data() + std::size_t(y) * row);
+  }
+  const tessera::ImageRGBA8 srgb = tessera::to_srgb8(img);
+  int window_diff = -1;  // the frame in the window (sRGB encoded by the engine's present pass)
+  if (platform.windowed()) {
+    std::vector<std::uint8_t> shown;
+    platform.present(colour_tex, a.w, a.h, false, false, shown);
+    window_diff = engine::max_rgb_difference(shown, srgb.pixels.data());
+  }
+  if (!a.out.empty()) {
+    if (auto s = tessera::io::write_png(a.out, srgb); !s.ok()) return fail(s.message);
+  }
+
+  if (int rc = report(a, platform, scene, *set, camera, img, tex->class_count(), gl_ms, window_diff);
+      rc != 0)
+    return rc;
+  glDeleteProgram(program);
   return 0;
 }

@@ -1,41 +1,33 @@
-// tessera/gl.h — a small headless OpenGL 4.5 core runtime (EGL). Optional: the `tessera::gl`
-// library is built only where the EGL and OpenGL development files are found; the main
-// `tessera` library never depends on OpenGL.
+// tessera/gl.h — tessera's OpenGL 4.5 runtime (optional `tessera::gl` library). Contract: every
+// GL-touching call works on the OpenGL 4.5 core context CURRENT ON THE CALLING THREAD, whoever
+// made it (GLFW, SDL, Qt, EGL, GLX; or tessera's headless `Context`), and reads errors from it
+// with glGetError. Entry points: pass the host's GetProcAddress once to `load_entry_points`
+// (glfwGetProcAddress, SDL_GL_GetProcAddress, eglGetProcAddress, no cast); without it they are
+// resolved at the first call from libOpenGL.so.0 (Linux/GLVND), or by `Context::create`. The
+// table is process-wide: on GLVND and Mesa (EGL, GLX) its pointers serve every context; on WGL
+// (untested) they are only guaranteed for the context current when loaded. No current context:
+// a one-line error, not a crash. tessera never installs, replaces or leaves changed an engine's
+// glDebugMessageCallback; only its own `Context` collects debug output. EGL is used by
+// `Context` alone. Guide: docs/engine_integration.md; tests: tests/gl (gl_entry_points_test,
+// gl_engine_context*).
 //
-// What it gives:
-//  * `Context`: an OpenGL 4.5 core context without any window (EGL, surfaceless contexts that
-//    render to framebuffer objects). The EGL device is chosen by `ContextOptions::device` or
-//    the environment variable TESSERA_EGL_DEVICE: a device index, `hardware` (a GPU: a device
-//    whose extension string lacks EGL_MESA_device_software), `software` (Mesa llvmpipe),
-//    `surfaceless` (EGL_PLATFORM_SURFACELESS_MESA) or `auto` (default: hardware, else software,
-//    else surfaceless). A `GL_KHR_debug` callback collects driver messages; `check_errors`
-//    turns GL errors and debug errors into a `Status`.
-//  * RAII GL objects (`Object`), shader programs compiled from tessera/glsl.h sources with
-//    `#include "x.glsl"` resolution (compile errors name the file and line), GPU timer queries
-//    per named pass (`GpuTimer`), render targets and read-back into tessera's images.
-//  * Per-face (Ptex) textures packed for the GPU are in tessera/gl_ptex.h.
-//
-// Every fallible call returns `Status` / `Result` with one line ("no EGL device 7: 1 device
-// (0 software)"); nothing throws or aborts, including when there is no EGL or no GPU at all.
-//
-// Threads: a `Context` is current on at most one thread at a time; `Context::create` makes it
-// current on the calling thread. Every function below that touches GL (everything except
-// `parse_device_selection`) must be called on a thread
-// where a tessera context is current, and GL objects should be destroyed while the context
-// that made them is current and alive (destroy them before the context). Distinct contexts may
-// be used on distinct threads concurrently.
-//
-// Row order: textures keep tessera's convention (image row y = texel row y = GL row y, i.e.
-// v = 0 first), so uploading an image and reading it back is the identity. Framebuffer
-// read-back flips GL's bottom-up rows so the image is top-down, as displayed.
+// Also here: `Context` (headless EGL: device by `ContextOptions::device` / TESSERA_EGL_DEVICE:
+// an index, `hardware`, `software` (llvmpipe), `surfaceless` or `auto`), RAII objects
+// (`Object`), programs from tessera/glsl.h sources (`link_program`), GPU timers (`GpuTimer`),
+// render targets and read-back. Every fallible call returns `Status` / `Result` with one line;
+// nothing throws or aborts. Threads: a context is current on one thread at a time; destroy GL
+// objects while the context that made them is current. Row order: textures keep tessera's
+// (image row y = texel row y); framebuffer read-back flips GL's bottom-up rows to top-down.
 #pragma once
 
+#include <bit>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -43,6 +35,57 @@
 #include "tessera/glsl.h"
 
 namespace tessera::gl {
+
+// ---------------------------------------------------------------------------------------------
+// Entry points and the current context
+// ---------------------------------------------------------------------------------------------
+
+/// A GL function pointer of unknown type (what GetProcAddress functions return).
+using ProcAddress = void (*)();
+
+namespace detail {
+using ErasedLoader = ProcAddress (*)(const void* context, const char* name);
+Status load_entry_points(ErasedLoader loader, const void* context);
+}  // namespace detail
+
+/// Loads tessera's OpenGL entry points with the host's GetProcAddress: glfwGetProcAddress,
+/// SDL_GL_GetProcAddress (returns void*), eglGetProcAddress, glXGetProcAddressARB (takes
+/// const GLubyte*), or any `R (*)(NAME)` with R a pointer and NAME const char* or const
+/// unsigned char*; no cast needed. Call it once, with the engine's context current (some
+/// loaders need one), before tessera's first GL call and never while tessera GL calls run on
+/// other threads. All or nothing: fails (unsupported) naming the first function the loader
+/// does not know, leaving the previous table. A later call replaces the table.
+template <class R, class Name>
+Status load_entry_points(R (*get_proc_address)(Name)) {
+  static_assert(std::is_pointer_v<R>, "GetProcAddress must return a pointer");
+  using Get = R (*)(Name);
+  return detail::load_entry_points(
+      [](const void* context, const char* name) -> ProcAddress {
+        const R r = (*static_cast<const Get*>(context))(reinterpret_cast<Name>(name));
+        if constexpr (std::is_function_v<std::remove_pointer_t<R>>) {
+          return reinterpret_cast<ProcAddress>(r);
+        } else {
+          static_assert(sizeof(R) == sizeof(ProcAddress), "object and function pointers differ");
+          return std::bit_cast<ProcAddress>(r);
+        }
+      },
+      &get_proc_address);
+}
+
+/// As above with a loader that needs state (e.g. a wrapper around
+/// QOpenGLContext::getProcAddress): `loader(user, name)` for every name.
+Status load_entry_points(ProcAddress (*loader)(void* user, const char* name), void* user);
+
+/// True when tessera's entry points are loaded (by `load_entry_points`, `Context::create` or
+/// the first GL-touching call; see the header comment).
+bool entry_points_loaded();
+
+/// Succeeds when tessera's entry points are loaded (loading them first if needed) and an
+/// OpenGL 4.5 or later context is current on the calling thread; else fails with one line
+/// "WHAT: no OpenGL context is current on this thread" (invalid_argument), "WHAT: OpenGL 3.3
+/// is below 4.5" or "WHAT: no OpenGL entry points: ..." (unsupported). Every GL-touching call of
+/// tessera starts with this check.
+Status check_current_context(std::string_view what);
 
 // ---------------------------------------------------------------------------------------------
 // Context and device selection
@@ -144,6 +187,8 @@ class Context {
 
  private:
   Context() = default;
+  Status init_gl(bool debug);  // strings, extensions, limits, debug output, timer work-around
+  void discard_first_timer_query();
   std::unique_ptr<State> state_;
   std::string renderer_, version_, device_;
   int major_ = 0, minor_ = 0;
@@ -151,9 +196,10 @@ class Context {
   std::vector<std::string> extensions_;
 };
 
-/// Drains glGetError and the current context's error-type debug messages received since the
-/// last check; fails (invalid_argument) with "WHAT: GL_INVALID_OPERATION: <debug text>" when
-/// there was any. Also fails when no tessera context is current.
+/// Drains glGetError of the current context (any context) and, when that is a tessera `Context`,
+/// its error-type debug messages received since the last check; fails (invalid_argument) with
+/// "WHAT: GL_INVALID_OPERATION: <debug text>" when there was any. Also fails as
+/// `check_current_context` does when no OpenGL 4.5 context is current.
 Status check_errors(std::string_view what);
 
 // ---------------------------------------------------------------------------------------------

@@ -1,101 +1,14 @@
 // tessera/gl_adaptive.h — adaptive supersampling for deferred shading (Hollander, Boubekeur &
-// Eisemann 2013) as an engine component: the engine's own enlarged G-buffer and its own shading
-// in, the anti-aliased image out, on OpenGL 4.5 (tessera::gl).
-//
-// This header is the integration guide. The model is a GPU upscaler's context API: create one
-// `AdaptiveSupersampler` per (output size, m, options), call `dispatch` once per frame with the
-// engine's G-buffer textures, destroy it before the GL context. The engine keeps its resources,
-// its frame graph and its GL state.
-//
-// 1. The engine rasterises its scene into an ENLARGED G-buffer of (m*w) x (m*h) texels (w x h =
-//    the output image; m = 2..8; row 0 = the top grid row, so output pixel (x, y) owns the
-//    window of grid texels [m*x, m*x+m) x [m*y, m*y+m)). Whatever layout: up to four
-//    GL_TEXTURE_2D textures; `AdaptiveGBufferLayout` says which texture and which channels hold
-//      depth    1 channel   LINEAR view depth, > 0 (any unit: the depth metric uses d / mean d);
-//                           a hardware z-buffer must be linearised first
-//      normal   3 channels  the normal (world or view space, need not be unit length); stored
-//                           as unorm? set scale 2, bias -1
-//      id       1 channel   material or object id, rounded half away from zero; < 0 = empty
-//                           (background) texel. A unorm8 channel holding id / 255: scale 255
-//      uv       2 channels  optional: texture coordinates, for the UV-seam rule of the
-//      uv_derivatives 4     footprint (du/dx, dv/dx, du/dy, dv/dy per grid texel; both or none)
-//    Formats: any float or normalised colour format (R8 .. RGBA32F, RGB10_A2, R11F_G11F_B10F);
-//    integer formats (R32UI, ...) and sRGB formats are refused (ids: store them as floats or
-//    normalised values and scale).
-// 2. The engine's shading is GLSL, given as a source string (`AdaptiveShadingHook`) that
-//    defines exactly this function:
-//
-//      vec4 tessera_shade_sample(ivec2 grid_texel, float footprint);
-//
-//    the linear colour (HDR allowed; alpha is averaged like the colour) of the G-buffer sample
-//    at `grid_texel`. `footprint` is the paper's texture-footprint scale (§4.1): multiply the
-//    sample's UV derivatives by it before filtered texture lookups (textureGrad), so that a
-//    pixel shaded with fewer samples filters its textures more widely. Its values: m for the
-//    1 spp image S; sqrt(n / (k + 1)) in a one-material window with k extra samples;
-//    sqrt(A / N) at a material boundary (A = the window's texels of the sample's id, N = its
-//    shaded samples); 1 where the window has a UV seam and in the reference pass. A hook that
-//    does no texture filtering ignores it. The hook is compiled into every pass that shades:
-//    the first sample (S), the extra samples and the reference; it must be a pure function of
-//    its inputs and of what it reads (the same texel and footprint give the same colour in
-//    every pass).
-//    Before the hook the component declares, and the hook may call:
-//      float tessera_aa_depth(ivec2 g);   vec3 tessera_aa_normal(ivec2 g);
-//      int tessera_aa_id(ivec2 g);        (rounded; < 0 = empty)
-//      vec2 tessera_aa_uv(ivec2 g);       vec4 tessera_aa_uv_derivatives(ivec2 g);  (when given)
-//      TESSERA_AA_M, TESSERA_AA_N (= m*m), TESSERA_AA_WIDTH/HEIGHT (output pixels) as macros
-//    The hook reads anything else the engine binds (its own uniform blocks, storage buffers,
-//    samplers, with explicit `layout(binding = ...)`), but not the binding points the
-//    component uses (below). It must not declare `#version` or main(); it may `#include`
-//    files from `AdaptiveShadingHook::include_paths` and the shipped GLSL (tessera/glsl.h). Names beginning
-//    with `tessera_aa_` / `TESSERA_AA_` are reserved. Compile errors are reported as
-//    "HOOK_NAME:LINE: message" (the hook's own line numbers).
-//    Sample 0 again: a pixel with k > 0 shades its sample 0 again with its adaptive footprint
-//    (S used footprint m). By default that is one more tessera_shade_sample call. A hook that
-//    defines the macro TESSERA_AA_FIRST_AGAIN provides instead
-//      vec4 tessera_shade_first_again(ivec2 grid_texel, float footprint);
-//    which must return what tessera_shade_sample would, but may reuse what the hook kept from
-//    the first pass (the pass macro TESSERA_AA_PASS_FIRST is defined while the hook is compiled
-//    into it, and the first pass of a frame completes before any first-again call), e.g. the
-//    light terms, so that only the texture lookup is repeated. DeferredGlRenderer does this.
-//    Shading metric: the paper's k_s compares the luma of S around each pixel. The luma is
-//    tessera_luma_srgb(c) (adaptive_metrics.glsl: Rec.601 weights on the sRGB encoding of the
-//    colour clamped to [0, 1]); with `AdaptiveResolve::tonemap_weighted`, of the tonemapped
-//    colour T(c) (below). A hook that defines the macro TESSERA_AA_CUSTOM_LUMA provides
-//    `float tessera_shade_luma(vec4 colour)` instead (values in [0, 1] suit the thresholds
-//    t_min and t_edge).
-// 3. Per frame: `dispatch(frame)` runs the passes (S; k per pixel from the depth, normal and
-//    shading metrics of adaptive_metrics.glsl; the optional budget; the extra samples in the
-//    sample order with the footprints of adaptive_samples.glsl; the resolve) and returns the
-//    component's output texture: (w x h), the format of `AdaptiveSupersamplerOptions::output`,
-//    valid until the next dispatch or destruction. On request the per-pixel sample-count
-//    texture (GL_R8UI, k + 1 per pixel). `dispatch_reference` (all n samples, footprint 1:
-//    full supersampling) and `dispatch_first_sample` (S, 1 spp) write the same texture, for
-//    comparisons.
-//
-// Resources and GL state. The component owns one uniform buffer, two storage buffers, the
-// output texture(s) and its programs. During a dispatch it uses: texture units
-// `first_texture_unit` .. + 3 (one per G-buffer texture the layout names), uniform-buffer
-// binding `uniform_binding`, storage-buffer bindings `first_storage_binding` and + 1, image
-// units `first_image_unit` and + 1, the GL_DISPATCH_INDIRECT_BUFFER binding. Defaults: the
-// top of each range (the driver's GL_MAX_* - the count), so that an engine binding its own
-// resources from 0 upwards never collides. Every piece of state a dispatch changes is put back
-// before it returns: the current program, GL_ACTIVE_TEXTURE, the GL_TEXTURE_2D binding and
-// the sampler of each unit used, the indexed (name, offset, size) and generic bindings of
-// GL_UNIFORM_BUFFER and GL_SHADER_STORAGE_BUFFER at the indices used, the image units used
-// (texture, level, layered, layer, access, format), GL_DISPATCH_INDIRECT_BUFFER. Framebuffers,
-// viewport, pixel-store and vertex state are never touched (tests/gl/gl_adaptive_test.cpp checks
-// all of it). A dispatch ends with glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT |
-// GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
-// GL_TEXTURE_UPDATE_BARRIER_BIT), so the output can be sampled, read or blitted at once.
-// Without `profile` a dispatch neither waits for the GPU nor reads anything back. The G-buffer
-// textures are read with texelFetch through the component's own sampler object (nearest, so a
-// one-level texture with a mipmap filter is still complete); their own parameters are untouched.
-// A dispatch ends by checking and clearing GL's error state: call it with no error pending.
-// Memory: a work buffer of 16 bytes per output pixel + 8 KiB, the frame list (24 bytes per
-// item, `list_capacity`), the output and sample-count textures.
-//
-// Threads: as tessera/gl.h — all calls on the thread where the GL context is current; destroy
-// the component before the context. Not thread-safe.
+// Eisemann 2013) as an engine component on OpenGL 4.5: the engine's enlarged G-buffer textures
+// and its GLSL shading hook in, the anti-aliased image out. Contract: create, dispatch and
+// destroy on the thread where the engine's OpenGL 4.5 core context is current (any context, no
+// tessera `Context` needed; entry points as tessera/gl.h says: `load_entry_points` or first-use
+// resolution); destroy it before that context. A dispatch puts back every piece of GL state it
+// changes (the list is in docs/engine_integration.md) and never touches framebuffers, viewport,
+// pixel-store, vertex state or the debug callback; it reads no file (the GLSL is embedded) unless
+// `glsl_dir` asks. Without a current context every call fails with one line. The walkthrough
+// (G-buffer layout, hook contract, passes, resources) is docs/engine_integration.md; tests:
+// tests/gl/gl_adaptive_test.cpp (state), gl_engine_context* (engine contexts). Not thread-safe.
 #pragma once
 
 #include <array>
@@ -238,8 +151,7 @@ struct AdaptiveFrameResult {
   double total_wall_ms() const;
 };
 
-/// The component. Needs a current tessera `Context` (or any current GL 4.5 context on which a
-/// tessera Context was created before, so that the entry points are loaded).
+/// The component. Works on whatever OpenGL 4.5 core context is current (see the header comment).
 class AdaptiveSupersampler {
  public:
   /// Checks the options (invalid_argument naming the field: m outside 2..8, size <= 0, a

@@ -1,52 +1,14 @@
-// tessera/gl_ptex.h — per-face (Ptex-style) textures packed for the GPU: the layout of a
-// faces::FaceTextureSet as one GL_TEXTURE_2D_ARRAY per face-resolution class and one std430
-// face-record buffer (neighbours, edge mappings, valence-4 corners), which
-// share/tessera/glsl/seams.glsl reads (the GL twin of the CPU's adjacency and corner links).
-// Part of the optional `tessera::gl` library (src/gl/ptex_pack.cpp).
-//
-// `pack_faces` and `ptex_quad_mesh` are pure (no GL); `FaceTextures::upload` and `bind` need a
-// current tessera context on the calling thread (tessera/gl.h), and the objects should be
-// destroyed while it is current and alive.
-//
-// Recipe: per-face textures in an engine's own shader (examples/engine_ptex/main.cpp does all
-// of this in one file)
-// -------------------------------------------------------------------------------------------
-// What is supported: Ptex files of quad meshes (mesh type 1), including quad-mesh files whose
-// non-quad polygons were split into subfaces by the Ptex convention (the Disney samples
-// nonquad.ptx and pentagon.ptx: an n-gon becomes n quads, see faces::ptex_face_layout). Not
-// supported: Ptex triangle-mesh files (mesh type 0, e.g. triangle.ptx: `ptex_quad_mesh` and
-// faces::FaceTextureSet::from_ptex fail with unsupported), and any non-quad polygon of the mesh
-// that the Ptex file did not split (`ptex_quad_mesh` fails naming the polygon). A triangle mesh
-// can be used after splitting each triangle into three quads (corner, edge midpoint, centre,
-// edge midpoint; again faces::ptex_face_layout) and authoring the Ptex file on that layout.
-//
-//   1. Mesh and textures (pure):
-//        faces::PolygonMesh obj = faces::load_obj_polygons("teapot.obj")
-//        ptex::PtexFile file = ptex::read_ptex("teapot.ptx")
-//        faces::QuadMesh mesh = gl::ptex_quad_mesh(obj, file, "teapot")  // face f = Ptex face f
-//        faces::FaceTextureSet set = faces::FaceTextureSet::from_ptex(file, "teapot.ptx")
-//   2. Upload once, with the engine's context current:
-//        gl::FaceTextures tex = gl::FaceTextures::upload(set)
-//   3. Vertex stage (the engine's own): draw each quad face f as two triangles of its four
-//      corners 0..3 in mesh order, and pass to the fragment stage
-//        flat int face   = f                      (the Ptex face id = the face-record index)
-//        vec2 uv         = (0,0), (1,0), (1,1), (0,1) at corners 0, 1, 2, 3
-//      interpolated perspective-correctly (the default). Corners must not be shared between
-//      faces (each face has its own UV square), so a mesh of F faces draws 4F vertices.
-//      Triangles (0,1,2) and (0,2,3) are the split tessera's renderers use (the other diagonal
-//      works too, but draws a non-planar face differently).
-//   4. Fragment stage (the engine's own): the preamble `tex.glsl_defines(bindings)` (the
-//      class count and the binding points) after #version, `#include "seams.glsl"` (installed
-//      in tessera_GLSL_DIR; gl::link_program resolves it, or paste the file after the
-//      defines), then
-//        vec4 s = tessera_seams_sample_discard(face, uv, dFdx(uv), dFdy(uv), true);
-//      with the gradients taken in uniform control flow (the lookups use them explicitly, so
-//      the per-face class switch inside is safe). s.rgb is the filtered linear colour without
-//      seams (Toth 2013), s.a the coverage; light it as the engine likes.
-//   5. Per frame, before the draw: `tex.bind(bindings)` with the binding points the engine
-//      chose (FaceTexturesBindings). It binds exactly the units and the storage-buffer index
-//      named there and nothing else (see `bind`); the engine's own textures go on other
-//      units.
+// tessera/gl_ptex.h — per-face (Ptex-style) textures for the GPU: a faces::FaceTextureSet packed
+// as one GL_TEXTURE_2D_ARRAY per face-resolution class plus a std430 face-record buffer, which
+// the shipped seams.glsl reads in the engine's own shaders (tessera_seams_sample_discard, ...).
+// Contract: `pack_faces` and `ptex_quad_mesh` are pure; `FaceTextures::upload` and `bind` work
+// on the OpenGL 4.5 core context current on the calling thread, whoever made it (entry points as
+// tessera/gl.h says: `load_entry_points` or first-use resolution; no tessera `Context` needed),
+// and fail with one line without one. `upload` leaves the engine's GL state as it found it (it
+// sets and restores the pixel-unpack state); `bind` changes exactly the binding points it is
+// given. Destroy the objects while their context is current. The recipe (mesh, upload, vertex
+// and fragment stages, per-frame bind) is docs/engine_integration.md; examples/engine_ptex does
+// it in one file; tests: tests/gl/gl_ptex_bind_test.cpp, gl_engine_context*.
 #pragma once
 
 #include <array>
@@ -155,7 +117,8 @@ struct FaceTexturesBindings {
 /// border (0,0,0,0) and clamp-to-edge, both trilinear with anisotropy.
 class FaceTextures {
  public:
-  /// Packs and uploads `set` (checking the current context's limits). Needs a current context.
+  /// Packs and uploads `set` (checking the current context's limits); the pixel-unpack state
+  /// (alignment, row length, skips, GL_PIXEL_UNPACK_BUFFER) is set for the upload and restored.
   static Result<FaceTextures> upload(const faces::FaceTextureSet& set,
                                      const FaceTexturesOptions& options = {});
 

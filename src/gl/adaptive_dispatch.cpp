@@ -304,6 +304,7 @@ Status run_budget(Runner& run) {
 enum class Mode { adaptive, reference, first };
 
 Result<AdaptiveFrameResult> run_frame(State& st, const AdaptiveFrame& f, Mode mode) {
+  if (Status s = check_current_context("adaptive supersampler: dispatch"); !s.ok()) return s;
   if (Status s = check_frame(st, f); !s.ok()) return s;
   AdaptiveFrameResult r;
   Status status = Status::success();

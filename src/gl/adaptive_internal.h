@@ -32,8 +32,8 @@ inline constexpr std::size_t kAdaptiveHistogramUints = 8 * 256;
 inline constexpr std::size_t kAdaptiveListItemBytes = 24;
 inline constexpr std::size_t kAdaptiveMaxPixels = std::size_t(1) << 26;  // item packing
 
-/// The GL 4.5 entry points the component needs beyond tessera's table (src/gl/gl_api.h),
-/// loaded with eglGetProcAddress.
+/// The GL 4.5 entry points the dispatch code calls through its state (copies of tessera's table,
+/// src/gl/gl_api.h).
 struct AdaptiveGlExtra {
   PFNGLGETINTEGERI_VPROC GetIntegeri_v = nullptr;
   PFNGLGETINTEGER64I_VPROC GetInteger64i_v = nullptr;
@@ -42,8 +42,8 @@ struct AdaptiveGlExtra {
   PFNGLDISPATCHCOMPUTEINDIRECTPROC DispatchComputeIndirect = nullptr;
   PFNGLISTEXTUREPROC IsTexture = nullptr;
 };
-/// Loads them once; "" on success, else the first missing name.
-std::string load_adaptive_gl_extra(AdaptiveGlExtra& out);
+/// Copies them from the loaded table.
+AdaptiveGlExtra adaptive_gl_extra();
 
 struct AdaptiveSupersampler::State {
   AdaptiveSupersamplerOptions options;

@@ -1,7 +1,5 @@
 // AdaptiveSupersampler: options checks, the GLSL generated from the G-buffer layout (samplers
 // and accessors), the programs (hook + adaptive_component.glsl per pass) and the GL objects.
-#include <EGL/egl.h>
-
 #include <algorithm>
 #include <mutex>
 
@@ -14,24 +12,15 @@ namespace tessera::gl {
 
 using namespace api;
 
-std::string load_adaptive_gl_extra(AdaptiveGlExtra& out) {
-  static std::once_flag once;
-  static AdaptiveGlExtra table;
-  static std::string missing;
-  std::call_once(once, [] {
-    auto get = [](auto& fn, const char* name) {
-      fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(eglGetProcAddress(name));
-      if (fn == nullptr && missing.empty()) missing = name;
-    };
-    get(table.GetIntegeri_v, "glGetIntegeri_v");
-    get(table.GetInteger64i_v, "glGetInteger64i_v");
-    get(table.BindImageTexture, "glBindImageTexture");
-    get(table.BindBufferRange, "glBindBufferRange");
-    get(table.DispatchComputeIndirect, "glDispatchComputeIndirect");
-    get(table.IsTexture, "glIsTexture");
-  });
-  out = table;
-  return missing;
+AdaptiveGlExtra adaptive_gl_extra() {
+  AdaptiveGlExtra t;
+  t.GetIntegeri_v = glGetIntegeri_v;
+  t.GetInteger64i_v = glGetInteger64i_v;
+  t.BindImageTexture = glBindImageTexture;
+  t.BindBufferRange = glBindBufferRange;
+  t.DispatchComputeIndirect = glDispatchComputeIndirect;
+  t.IsTexture = glIsTexture;
+  return t;
 }
 
 namespace {
@@ -331,14 +320,8 @@ Result<std::unique_ptr<AdaptiveSupersampler>> AdaptiveSupersampler::create(
     const AdaptiveSupersamplerOptions& options) {
   auto st = std::make_unique<State>();
   st->options = options;
-  if (glGetIntegerv == nullptr) {
-    return Status::error(ErrorCode::unsupported,
-                         "adaptive supersampler: no GL entry points (create a tessera "
-                         "gl::Context first)");
-  }
-  if (std::string missing = load_adaptive_gl_extra(st->gl); !missing.empty()) {
-    return Status::error(ErrorCode::unsupported, "adaptive supersampler: no " + missing);
-  }
+  if (Status s = check_current_context("adaptive supersampler"); !s.ok()) return s;
+  st->gl = adaptive_gl_extra();
   if (Status s = check_options(*st); !s.ok()) return s;
 
   std::vector<std::string> passes = {"FIRST",  "METRICS", "HISTOGRAM",

@@ -157,19 +157,6 @@ void APIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GLenum sever
   while (int(state->messages.size()) > state->max_messages) state->messages.pop_front();
 }
 
-const char* gl_error_name(GLenum e) {
-  switch (e) {
-    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
-    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
-    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    default: return "GL error";
-  }
-}
-
 struct Candidate {
   std::string label;
   EGLenum platform = 0;
@@ -177,8 +164,6 @@ struct Candidate {
 };
 
 }  // namespace
-
-bool DebugMessage::is_error() const { return type == GL_DEBUG_TYPE_ERROR; }
 
 Result<DeviceSelection> parse_device_selection(std::string_view text) {
   DeviceSelection s;
@@ -213,7 +198,19 @@ Result<std::vector<DeviceInfo>> list_devices() {
   return out;
 }
 
-Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
+namespace {
+
+// The error-type debug messages of the current tessera Context (the check_errors hook).
+std::vector<DebugMessage> take_context_errors() {
+  std::vector<DebugMessage> errors;
+  if (g_current == nullptr || eglGetCurrentContext() != g_current->context) return errors;
+  std::lock_guard<std::mutex> lock(g_current->mutex);
+  errors.swap(g_current->unchecked_errors);
+  return errors;
+}
+
+// The candidates of a selection, in the order they are tried.
+Result<std::vector<Candidate>> choose_candidates(const ContextOptions& options) {
   std::string text = options.device, origin = "device";
   if (text.empty() && options.use_environment) {
     if (const char* env = std::getenv("TESSERA_EGL_DEVICE"); env != nullptr && *env != 0) {
@@ -256,18 +253,14 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     }
     add_device(infos[std::size_t(s.index)]);
   }
-  if (s.choice == DeviceChoice::automatic || s.choice == DeviceChoice::hardware) {
-    for (const DeviceInfo& d : infos) {
-      if (!d.software) add_device(d);
-    }
+  const bool any = s.choice == DeviceChoice::automatic;
+  for (const DeviceInfo& d : infos) {
+    if (!d.software && (any || s.choice == DeviceChoice::hardware)) add_device(d);
   }
-  if (s.choice == DeviceChoice::automatic || s.choice == DeviceChoice::software) {
-    for (const DeviceInfo& d : infos) {
-      if (d.software) add_device(d);
-    }
+  for (const DeviceInfo& d : infos) {
+    if (d.software && (any || s.choice == DeviceChoice::software)) add_device(d);
   }
-  if ((s.choice == DeviceChoice::automatic || s.choice == DeviceChoice::surfaceless) &&
-      surfaceless_ok) {
+  if ((any || s.choice == DeviceChoice::surfaceless) && surfaceless_ok) {
     candidates.push_back({"EGL surfaceless platform", EGL_PLATFORM_SURFACELESS_MESA,
                           EGL_DEFAULT_DISPLAY});
   }
@@ -280,135 +273,167 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
                          std::string(what) + " (" + std::to_string(infos.size()) +
                              " enumerated devices; install libegl-mesa0 libgl1-mesa-dri)");
   }
+  return candidates;
+}
 
+struct Opened {
+  EGLDisplay display = EGL_NO_DISPLAY;
+  EGLContext context = EGL_NO_CONTEXT;
+};
+
+// An OpenGL 4.5 core context on `c`, current on the calling thread without a surface; or why
+// not (nothing left acquired).
+Result<Opened> open_candidate(const Candidate& c, bool debug) {
+  auto fail = [&](const std::string& why) {
+    return Status::error(ErrorCode::unsupported, c.label + ": " + why);
+  };
+  EGLDisplay display = eglGetPlatformDisplay(c.platform, c.native, nullptr);
+  if (display == EGL_NO_DISPLAY || !acquire_display(display)) {
+    return fail("cannot initialise the display (" + egl_error_text() + ")");
+  }
+  const char* dext = eglQueryString(display, EGL_EXTENSIONS);
+  if (!has_word(dext, "EGL_KHR_surfaceless_context")) {
+    release_display(display);
+    return fail("EGL_KHR_surfaceless_context is missing");
+  }
+  EGLConfig config = EGL_NO_CONFIG_KHR;
+  if (!has_word(dext, "EGL_KHR_no_config_context") &&
+      !has_word(dext, "EGL_MESA_configless_context")) {
+    const EGLint attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    EGLint n = 0;
+    if (!eglChooseConfig(display, attribs, &config, 1, &n) || n < 1) {
+      release_display(display);
+      return fail("no EGL config renders OpenGL");
+    }
+  }
+  if (!eglBindAPI(EGL_OPENGL_API)) {
+    release_display(display);
+    return fail("eglBindAPI(EGL_OPENGL_API) failed: no desktop OpenGL");
+  }
+  const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                4,
+                                EGL_CONTEXT_MINOR_VERSION,
+                                5,
+                                EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                EGL_CONTEXT_OPENGL_DEBUG,
+                                debug ? EGL_TRUE : EGL_FALSE,
+                                EGL_NONE};
+  EGLContext egl_ctx = eglCreateContext(display, config, EGL_NO_CONTEXT, ctx_attribs);
+  if (egl_ctx == EGL_NO_CONTEXT) {
+    const std::string why = "cannot create an OpenGL 4.5 core context (" + egl_error_text() + ")";
+    release_display(display);
+    return fail(why);
+  }
+  if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, egl_ctx)) {
+    const std::string why = "eglMakeCurrent without a surface failed (" + egl_error_text() + ")";
+    eglDestroyContext(display, egl_ctx);
+    release_display(display);
+    return fail(why);
+  }
+  return Opened{display, egl_ctx};
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
+  Result<std::vector<Candidate>> candidates = choose_candidates(options);
+  if (!candidates) return candidates.status();
   std::string first_error;
-  for (const Candidate& c : candidates) {
-    auto fail = [&](const std::string& why) {
-      if (first_error.empty()) first_error = c.label + ": " + why;
-    };
-    EGLDisplay display = eglGetPlatformDisplay(c.platform, c.native, nullptr);
-    if (display == EGL_NO_DISPLAY || !acquire_display(display)) {
-      fail("cannot initialise the display (" + egl_error_text() + ")");
-      continue;
-    }
-    const char* dext = eglQueryString(display, EGL_EXTENSIONS);
-    if (!has_word(dext, "EGL_KHR_surfaceless_context")) {
-      release_display(display);
-      fail("EGL_KHR_surfaceless_context is missing");
-      continue;
-    }
-    EGLConfig config = EGL_NO_CONFIG_KHR;
-    if (!has_word(dext, "EGL_KHR_no_config_context") &&
-        !has_word(dext, "EGL_MESA_configless_context")) {
-      const EGLint attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
-      EGLint n = 0;
-      if (!eglChooseConfig(display, attribs, &config, 1, &n) || n < 1) {
-        release_display(display);
-        fail("no EGL config renders OpenGL");
-        continue;
-      }
-    }
-    if (!eglBindAPI(EGL_OPENGL_API)) {
-      release_display(display);
-      fail("eglBindAPI(EGL_OPENGL_API) failed: no desktop OpenGL");
-      continue;
-    }
-    const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
-                                  4,
-                                  EGL_CONTEXT_MINOR_VERSION,
-                                  5,
-                                  EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                  EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                  EGL_CONTEXT_OPENGL_DEBUG,
-                                  options.debug ? EGL_TRUE : EGL_FALSE,
-                                  EGL_NONE};
-    EGLContext egl_ctx = eglCreateContext(display, config, EGL_NO_CONTEXT, ctx_attribs);
-    if (egl_ctx == EGL_NO_CONTEXT) {
-      fail("cannot create an OpenGL 4.5 core context (" + egl_error_text() + ")");
-      release_display(display);
-      continue;
-    }
-    if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, egl_ctx)) {
-      fail("eglMakeCurrent without a surface failed (" + egl_error_text() + ")");
-      eglDestroyContext(display, egl_ctx);
-      release_display(display);
+  for (const Candidate& c : *candidates) {
+    Result<Opened> opened = open_candidate(c, options.debug);
+    if (!opened) {
+      if (first_error.empty()) first_error = opened.status().message;
       continue;
     }
     std::unique_ptr<Context> ctx(new Context());
     ctx->state_ = std::make_unique<State>();
-    ctx->state_->display = display;
-    ctx->state_->context = egl_ctx;
+    ctx->state_->display = opened->display;
+    ctx->state_->context = opened->context;
     ctx->state_->max_messages = std::max(1, options.max_debug_messages);
     ctx->device_ = c.label;
     g_current = ctx->state_.get();
-    if (const std::string missing = api::load(); !missing.empty()) {
-      fail("the OpenGL entry point " + missing + " is missing");
-      continue;  // ~Context releases the EGL objects
+    // The engine's loader, when it gave one, stays; else EGL's (GLVND stubs: every context).
+    if (!api::loaded()) {
+      if (Status s = load_entry_points(eglGetProcAddress); !s.ok()) {
+        if (first_error.empty()) first_error = c.label + ": " + s.message;
+        continue;  // ~Context releases the EGL objects
+      }
     }
-    glGetIntegerv(GL_MAJOR_VERSION, &ctx->major_);
-    glGetIntegerv(GL_MINOR_VERSION, &ctx->minor_);
-    auto str = [](GLenum name) {
-      const GLubyte* p = glGetString(name);
-      return p != nullptr ? std::string(reinterpret_cast<const char*>(p)) : std::string();
-    };
-    ctx->renderer_ = str(GL_RENDERER);
-    ctx->version_ = str(GL_VERSION);
-    if (ctx->major_ * 10 + ctx->minor_ < 45) {
-      fail("OpenGL " + ctx->version_ + " is below 4.5 (" + ctx->renderer_ + ")");
+    if (Status s = ctx->init_gl(options.debug); !s.ok()) {
+      if (first_error.empty()) first_error = c.label + ": " + s.message;
       continue;
     }
-    GLint n_ext = 0;
-    glGetIntegerv(GL_NUM_EXTENSIONS, &n_ext);
-    for (GLint i = 0; i < n_ext; ++i) {
-      const GLubyte* e = glGetStringi(GL_EXTENSIONS, GLuint(i));
-      if (e != nullptr) ctx->extensions_.emplace_back(reinterpret_cast<const char*>(e));
-    }
-    std::sort(ctx->extensions_.begin(), ctx->extensions_.end());
-    if (options.debug) {
-      glEnable(GL_DEBUG_OUTPUT);
-      glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
-      glDebugMessageCallback(debug_callback, ctx->state_.get());
-      glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
-    }
-    Limits& l = ctx->limits_;
-    glGetIntegerv(GL_MAX_SAMPLES, &l.max_samples);
-    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &l.max_array_layers);
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &l.max_texture_size);
-    glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &l.max_texture_units);
-    GLint64 ssbo = 0;
-    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &ssbo);
-    l.max_ssbo_bytes = ssbo;
-    if (ctx->major_ * 10 + ctx->minor_ >= 46 ||
-        ctx->has_extension("GL_ARB_texture_filter_anisotropic") ||
-        ctx->has_extension("GL_EXT_texture_filter_anisotropic")) {
-      glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &l.max_anisotropy);
-    }
-    l.bindless_textures = ctx->has_extension("GL_ARB_bindless_texture");
-    // Mesa 22.3 llvmpipe answers the first GL_TIME_ELAPSED query of a context that encloses
-    // rendering work with an absolute timestamp (about the system uptime); one discarded
-    // query around a 1x1 clear here keeps GpuTimer honest.
-    {
-      GLuint q = 0, fb = 0, rb = 0;
-      GLuint64 ns = 0;
-      const GLfloat black[4] = {0, 0, 0, 0};
-      glCreateFramebuffers(1, &fb);
-      glCreateRenderbuffers(1, &rb);
-      glNamedRenderbufferStorage(rb, GL_RGBA8, 1, 1);
-      glNamedFramebufferRenderbuffer(fb, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb);
-      glCreateQueries(GL_TIME_ELAPSED, 1, &q);
-      glBeginQuery(GL_TIME_ELAPSED, q);
-      glClearNamedFramebufferfv(fb, GL_COLOR, 0, black);
-      glEndQuery(GL_TIME_ELAPSED);
-      glGetQueryObjectui64v(q, GL_QUERY_RESULT, &ns);
-      glDeleteQueries(1, &q);
-      glDeleteFramebuffers(1, &fb);
-      glDeleteRenderbuffers(1, &rb);
-    }
-    while (glGetError() != GL_NO_ERROR) {
-    }
+    internal::set_context_error_source(&take_context_errors);
     return ctx;
   }
   return Status::error(ErrorCode::unsupported, first_error);
+}
+
+Status Context::init_gl(bool debug) {
+  glGetIntegerv(GL_MAJOR_VERSION, &major_);
+  glGetIntegerv(GL_MINOR_VERSION, &minor_);
+  auto str = [](GLenum name) {
+    const GLubyte* p = glGetString(name);
+    return p != nullptr ? std::string(reinterpret_cast<const char*>(p)) : std::string();
+  };
+  renderer_ = str(GL_RENDERER);
+  version_ = str(GL_VERSION);
+  if (major_ * 10 + minor_ < 45) {
+    return Status::error(ErrorCode::unsupported,
+                         "OpenGL " + version_ + " is below 4.5 (" + renderer_ + ")");
+  }
+  GLint n_ext = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &n_ext);
+  for (GLint i = 0; i < n_ext; ++i) {
+    const GLubyte* e = glGetStringi(GL_EXTENSIONS, GLuint(i));
+    if (e != nullptr) extensions_.emplace_back(reinterpret_cast<const char*>(e));
+  }
+  std::sort(extensions_.begin(), extensions_.end());
+  if (debug) {  // tessera's own context only: an engine's callback is never touched
+    glEnable(GL_DEBUG_OUTPUT);
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    glDebugMessageCallback(debug_callback, state_.get());
+    glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
+  }
+  Limits& l = limits_;
+  glGetIntegerv(GL_MAX_SAMPLES, &l.max_samples);
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &l.max_array_layers);
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &l.max_texture_size);
+  glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &l.max_texture_units);
+  GLint64 ssbo = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &ssbo);
+  l.max_ssbo_bytes = ssbo;
+  if (major_ * 10 + minor_ >= 46 || has_extension("GL_ARB_texture_filter_anisotropic") ||
+      has_extension("GL_EXT_texture_filter_anisotropic")) {
+    glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &l.max_anisotropy);
+  }
+  l.bindless_textures = has_extension("GL_ARB_bindless_texture");
+  discard_first_timer_query();
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  return Status::success();
+}
+
+// Mesa 22.3 llvmpipe answers the first GL_TIME_ELAPSED query of a context that encloses
+// rendering work with an absolute timestamp (about the system uptime); one discarded query
+// around a 1x1 clear keeps GpuTimer honest.
+void Context::discard_first_timer_query() {
+  GLuint q = 0, fb = 0, rb = 0;
+  GLuint64 ns = 0;
+  const GLfloat black[4] = {0, 0, 0, 0};
+  glCreateFramebuffers(1, &fb);
+  glCreateRenderbuffers(1, &rb);
+  glNamedRenderbufferStorage(rb, GL_RGBA8, 1, 1);
+  glNamedFramebufferRenderbuffer(fb, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb);
+  glCreateQueries(GL_TIME_ELAPSED, 1, &q);
+  glBeginQuery(GL_TIME_ELAPSED, q);
+  glClearNamedFramebufferfv(fb, GL_COLOR, 0, black);
+  glEndQuery(GL_TIME_ELAPSED);
+  glGetQueryObjectui64v(q, GL_QUERY_RESULT, &ns);
+  glDeleteQueries(1, &q);
+  glDeleteFramebuffers(1, &fb);
+  glDeleteRenderbuffers(1, &rb);
 }
 
 Context::~Context() {
@@ -445,28 +470,6 @@ std::vector<DebugMessage> Context::take_debug_messages() {
 int Context::debug_error_count() const {
   std::lock_guard<std::mutex> lock(state_->mutex);
   return state_->error_count;
-}
-
-Status check_errors(std::string_view what) {
-  if (g_current == nullptr || eglGetCurrentContext() != g_current->context) {
-    return Status::error(ErrorCode::invalid_argument,
-                         std::string(what) + ": no tessera OpenGL context is current");
-  }
-  GLenum first = GL_NO_ERROR;
-  for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) {
-    if (first == GL_NO_ERROR) first = e;
-  }
-  std::vector<DebugMessage> errors;
-  {
-    std::lock_guard<std::mutex> lock(g_current->mutex);
-    errors.swap(g_current->unchecked_errors);
-  }
-  if (first == GL_NO_ERROR && errors.empty()) return Status::success();
-  std::string msg = std::string(what) + ": ";
-  if (first != GL_NO_ERROR) msg += gl_error_name(first);
-  if (!errors.empty()) msg += (first != GL_NO_ERROR ? ": " : "") + errors.front().text;
-  std::replace(msg.begin(), msg.end(), '\n', ' ');
-  return Status::error(ErrorCode::invalid_argument, msg);
 }
 
 }  // namespace tessera::gl

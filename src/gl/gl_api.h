@@ -1,21 +1,30 @@
-// The OpenGL entry points tessera uses, loaded with eglGetProcAddress into function pointers
-// typed by <GL/glcorearb.h> (included without GL_GLEXT_PROTOTYPES, so it declares types only).
+// The OpenGL entry points tessera uses: one process-wide table of function pointers typed by
+// <GL/glcorearb.h> (included without GL_GLEXT_PROTOTYPES, so it declares types only).
 //
-// Why not libepoxy: this needs nothing beyond libEGL (the package the peer renderer already
-// uses; no extra build or run-time dependency, no libOpenGL link), EGL 1.5 with
-// EGL_KHR_client_get_all_proc_addresses returns core as well as extension functions, and under
-// GLVND the returned pointers are dispatch stubs valid for every context, so one table loaded
-// once serves all contexts. The cost is this list: a function not named here cannot be called.
+// How the table is filled (the rule tessera/gl.h states for users): by the host's
+// GetProcAddress through the public `gl::load_entry_points(loader)`; else by `gl::Context::create`
+// with eglGetProcAddress (context.cpp, the only EGL user); else, at the first GL-touching call,
+// from the exports of the GL library (Linux: GLVND's libOpenGL.so.0, whose stubs dispatch to
+// whichever GLX or EGL context is current; then libGL.so.1). No EGL here, so the components
+// build wherever a loader can be given (WGL, CGL).
+//
+// Why not libepoxy or glad: nothing beyond what an engine already has (no extra build or
+// run-time dependency), and the pointers GLVND and Mesa return are dispatch stubs valid for
+// every context, so one table serves all contexts. The cost is this list: a function not named
+// here cannot be called.
 //
 // Usage (inside tessera's GL code, the peer renderer and the tests):
 //   #include "gl/gl_api.h"
 //   using namespace tessera::gl::api;   // glClear(...) etc. are the loaded pointers
-// The pointers are loaded by `tessera::gl::Context::create` (the first successful one).
 #pragma once
 
 #include <GL/glcorearb.h>
 
 #include <string>
+#include <string_view>
+#include <vector>
+
+#include "tessera/gl.h"
 
 #ifndef GL_TEXTURE_MAX_ANISOTROPY
 #define GL_TEXTURE_MAX_ANISOTROPY 0x84FE
@@ -34,6 +43,7 @@
   X(glBindBufferRange, PFNGLBINDBUFFERRANGEPROC)                             \
   X(glBindBuffersBase, PFNGLBINDBUFFERSBASEPROC)                             \
   X(glBindFramebuffer, PFNGLBINDFRAMEBUFFERPROC)                             \
+  X(glBindImageTexture, PFNGLBINDIMAGETEXTUREPROC)                           \
   X(glBindSampler, PFNGLBINDSAMPLERPROC)                                     \
   X(glBindTexture, PFNGLBINDTEXTUREPROC)                                     \
   X(glBindTextureUnit, PFNGLBINDTEXTUREUNITPROC)                             \
@@ -71,6 +81,7 @@
   X(glDetachShader, PFNGLDETACHSHADERPROC)                                   \
   X(glDisable, PFNGLDISABLEPROC)                                             \
   X(glDispatchCompute, PFNGLDISPATCHCOMPUTEPROC)                             \
+  X(glDispatchComputeIndirect, PFNGLDISPATCHCOMPUTEINDIRECTPROC)             \
   X(glDrawArrays, PFNGLDRAWARRAYSPROC)                                       \
   X(glDrawElements, PFNGLDRAWELEMENTSPROC)                                   \
   X(glEnable, PFNGLENABLEPROC)                                               \
@@ -97,6 +108,7 @@
   X(glGetTextureParameteriv, PFNGLGETTEXTUREPARAMETERIVPROC)                 \
   X(glGetTextureSubImage, PFNGLGETTEXTURESUBIMAGEPROC)                       \
   X(glGetUniformLocation, PFNGLGETUNIFORMLOCATIONPROC)                       \
+  X(glIsTexture, PFNGLISTEXTUREPROC)                                         \
   X(glLinkProgram, PFNGLLINKPROGRAMPROC)                                     \
   X(glMemoryBarrier, PFNGLMEMORYBARRIERPROC)                                 \
   X(glNamedBufferData, PFNGLNAMEDBUFFERDATAPROC)                             \
@@ -139,9 +151,27 @@ namespace tessera::gl::api {
 TESSERA_GL_FUNCTIONS(TESSERA_GL_DECLARE)
 #undef TESSERA_GL_DECLARE
 
-/// Loads every pointer with eglGetProcAddress (once per process; later calls return the first
-/// result). Returns "" on success, else the name of the first function that could not be found.
-/// Needs a current context (some drivers resolve only then). Thread-safe.
-std::string load();
+/// Fills the whole table with `loader` (all or nothing: on a missing function the table is left
+/// as it was). Returns "" on success, else the name of the first function not found. Guarded by
+/// a mutex; must not run while tessera GL calls run on other threads.
+std::string load_with(detail::ErasedLoader loader, const void* context);
+
+/// True when the table is filled.
+bool loaded();
+
+/// True when the table is filled; when it is empty, first fills it from the GL library's
+/// exports (see the file comment; once per process).
+bool ensure_loaded();
 
 }  // namespace tessera::gl::api
+
+namespace tessera::gl::internal {
+
+/// The error-type debug messages of the current tessera `Context` not yet reported by
+/// `check_errors` (empty when the current context is not one of tessera's). Installed by
+/// context.cpp when the first Context is created, so that check_errors (current.cpp) needs no
+/// EGL.
+using TakeContextErrors = std::vector<DebugMessage> (*)();
+void set_context_error_source(TakeContextErrors source);
+
+}  // namespace tessera::gl::internal

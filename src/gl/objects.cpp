@@ -45,6 +45,7 @@ void Object::reset() {
 
 Object create_object(ObjectType type, std::uint32_t target) {
   GLuint n = 0;
+  if (!ensure_loaded()) return Object();  // name 0: the caller's check_errors says why
   switch (type) {
     case ObjectType::buffer: glCreateBuffers(1, &n); break;
     case ObjectType::texture: glCreateTextures(target, 1, &n); break;
@@ -62,6 +63,7 @@ Object create_object(ObjectType type, std::uint32_t target) {
 // ---- Timer queries --------------------------------------------------------------------------
 
 Status GpuTimer::begin(std::string pass) {
+  if (Status s = check_current_context("GpuTimer::begin(" + pass + ")"); !s.ok()) return s;
   if (open_) {
     return Status::error(ErrorCode::invalid_argument,
                          "GpuTimer: pass '" + pass + "' begun while '" + pending_.back().pass +
@@ -116,6 +118,7 @@ Result<RenderTarget> create_render_target(const RenderTargetOptions& o) {
                            std::to_string(o.height) + " " +
                            (o.colour == ColourFormat::rgba8 ? "RGBA8" : "RGBA32F") + " with " +
                            std::to_string(o.samples) + " sample" + (o.samples == 1 ? "" : "s");
+  if (Status s = check_current_context(what); !s.ok()) return s;
   GLint max_size = 0, max_samples = 0;
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
   glGetIntegerv(GL_MAX_SAMPLES, &max_samples);

@@ -131,9 +131,41 @@ Result<PackedFaces> pack_faces(const faces::FaceTextureSet& set, const PackLimit
   return p;
 }
 
+namespace {
+
+// The pixel-unpack state an upload needs (tight rows, no unpack buffer), set for the upload and
+// put back afterwards: the engine's own settings survive it.
+class UnpackStateGuard {
+ public:
+  UnpackStateGuard() {
+    for (std::size_t i = 0; i < kNames.size(); ++i) glGetIntegerv(kNames[i], &saved_[i]);
+    glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &buffer_);
+    for (std::size_t i = 0; i < kNames.size(); ++i) glPixelStorei(kNames[i], kUpload[i]);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  }
+  ~UnpackStateGuard() {
+    for (std::size_t i = 0; i < kNames.size(); ++i) glPixelStorei(kNames[i], saved_[i]);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, GLuint(buffer_));
+  }
+  UnpackStateGuard(const UnpackStateGuard&) = delete;
+  UnpackStateGuard& operator=(const UnpackStateGuard&) = delete;
+
+ private:
+  static constexpr std::array<GLenum, 8> kNames = {
+      GL_UNPACK_ALIGNMENT,   GL_UNPACK_ROW_LENGTH,  GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
+      GL_UNPACK_SKIP_ROWS,   GL_UNPACK_SKIP_IMAGES, GL_UNPACK_SWAP_BYTES,   GL_UNPACK_LSB_FIRST};
+  static constexpr std::array<GLint, 8> kUpload = {4, 0, 0, 0, 0, 0, 0, 0};
+  std::array<GLint, 8> saved_{};
+  GLint buffer_ = 0;
+};
+
+}  // namespace
+
 Result<FaceTextures> FaceTextures::upload(const faces::FaceTextureSet& set,
                                           const FaceTexturesOptions& options) {
+  if (Status s = check_current_context("FaceTextures::upload"); !s.ok()) return s;
   if (Status s = check_errors("FaceTextures::upload (errors before it)"); !s.ok()) return s;
+  const UnpackStateGuard unpack;
   PackLimits limits;
   GLint v = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &v);
@@ -150,8 +182,6 @@ Result<FaceTextures> FaceTextures::upload(const faces::FaceTextureSet& set,
   out.layout_ = std::move(*packed);
   const bool half = options.format == TexelFormat::rgba16f;
   const std::uint64_t texel_bytes = half ? 8 : 16;
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
   for (const FaceClass& c : out.layout_.classes) {
     Object tex = create_object(ObjectType::texture, GL_TEXTURE_2D_ARRAY);
     const int layers = int(c.faces.size());
@@ -200,6 +230,7 @@ Result<FaceTextures> FaceTextures::upload(const faces::FaceTextureSet& set,
 }
 
 Status FaceTextures::bind(const FaceTexturesBindings& b) const {
+  if (Status s = check_current_context("FaceTextures::bind"); !s.ok()) return s;
   GLint units = 0, ssbo_bindings = 0;
   glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &units);
   glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &ssbo_bindings);

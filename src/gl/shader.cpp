@@ -57,6 +57,9 @@ Result<Program> link_program(const std::vector<glsl::Source>& stages,
   if (stages.empty()) {
     return Status::error(ErrorCode::invalid_argument, "link_program: no shader stages");
   }
+  if (Status s = check_current_context("link_program (" + stages.front().name + ")"); !s.ok()) {
+    return s;
+  }
   Object program = create_object(ObjectType::program);
   std::vector<Object> shaders;
   std::string names;

@@ -2,9 +2,12 @@
 """The example engine examples/engine_aa (a deferred renderer of its own anti-aliased with
 tessera::gl::AdaptiveSupersampler) on this machine's OpenGL (Mesa llvmpipe without a GPU).
 
-Usage: engine_aa_test.py PATH/TO/engine_aa
-Exits 77 (CTest: skipped) when no OpenGL 4.5 context can be made, or fails when
-TESSERA_TEST_REQUIRE asks for gl.
+Usage: engine_aa_test.py PATH/TO/engine_aa headless|window
+  headless: engine_aa --headless (its own surfaceless EGL context)
+  window:   its GLFW window (GLX), run under xvfb-run: the frame in the window's back buffer must
+            be adaptive.png (window_max_diff <= 1)
+Exits 77 (CTest: skipped) when no OpenGL 4.5 context can be made (or, for window, no Xvfb
+display or no GLFW in the build), or fails when TESSERA_TEST_REQUIRE asks for gl / xvfb / glfw.
 
 Bounds, measured at 160x120, m = 4 on llvmpipe: the adaptive image is 40.2 dB from the
 component's own full supersampling with 41 % of its samples; the 1 spp image (and the same
@@ -22,7 +25,10 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from cli_harness import check, expect_error, finish, run_command, skip_or_fail  # noqa: E402
 
 ENGINE = sys.argv[1]
-SIZE = ["--size", "160x120"]
+MODE = sys.argv[2] if len(sys.argv) > 2 else "headless"
+if MODE == "window" and not os.environ.get("DISPLAY"):
+    skip_or_fail("xvfb", "no X display for the window (run under xvfb-run, Debian xvfb)")
+SIZE = ["--size", "160x120"] + (["--headless"] if MODE == "headless" else [])
 PSNR_MIN = 35.0
 
 
@@ -33,6 +39,8 @@ def run(*args, env=None):
 
 def report(*args):
     rc, out, err = run_command([ENGINE, *SIZE, "--json", *args], timeout=600)
+    if rc != 0 and "built without GLFW" in err:
+        skip_or_fail("glfw", f"engine_aa has no window: {err.strip()}")
     if rc != 0 and "no OpenGL 4.5 device" in err:
         skip_or_fail("gl", f"no OpenGL 4.5 context here: {err.strip()}")
     check(f"{args} exit 0", rc == 0, err)
@@ -44,6 +52,10 @@ def report(*args):
 
 
 r = report()
+check(f"{MODE}: the engine's own context", r.get("context") == ("egl" if MODE == "headless"
+                                                                else "glfw"), r)
+if MODE == "window":
+    check("window: the back buffer shows adaptive.png", 0 <= r.get("window_max_diff", -1) <= 1, r)
 check("samples % strictly between 0 and 100", 0.0 < r.get("samples_percent", 0) < 100.0, r)
 check(f"PSNR >= {PSNR_MIN} dB", r.get("psnr_db", 0) >= PSNR_MIN, r)
 check("1 spp below the bound", r.get("psnr_1spp_db", 99) < PSNR_MIN, r)
@@ -78,6 +90,7 @@ with tempfile.TemporaryDirectory() as d:
 expect_error(run, "bad --size", ["--size", "0x3"], 1, "--size")
 expect_error(run, "bad --schedule", [*SIZE, "--schedule", "bogus"], 1, "bogus")
 expect_error(run, "bad --m", [*SIZE, "--m", "9"], 1, "m = 9")
-env = dict(os.environ, TESSERA_EGL_DEVICE="7")
-expect_error(lambda *a: run(*a, env=env), "no EGL device 7", SIZE, 1, "no OpenGL 4.5 device")
+# Without a GL device: no EGL vendor library (headless), no X display (window): one line, exit 1.
+env = dict(os.environ, __EGL_VENDOR_LIBRARY_FILENAMES="/nonexistent.json", DISPLAY=":4097")
+expect_error(lambda *a: run(*a, env=env), "no GL device", SIZE, 1, "no OpenGL 4.5 device")
 sys.exit(finish())

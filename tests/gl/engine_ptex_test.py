@@ -3,9 +3,13 @@
 tessera_seams_sample_discard on the Disney Ptex samples) on this machine's OpenGL (Mesa llvmpipe
 without a GPU), against tessera's CPU renderer (faces::FaceRenderer, Discard, trilinear).
 
-Usage: engine_ptex_test.py PATH/TO/engine_ptex SHARED_DATA_DIR
-Exits 77 (CTest: skipped) when no OpenGL 4.5 context can be made or the Ptex samples are absent,
-or fails when TESSERA_TEST_REQUIRE asks for gl / shared.
+Usage: engine_ptex_test.py PATH/TO/engine_ptex SHARED_DATA_DIR [headless|window]
+  headless (default): engine_ptex --headless (its own surfaceless EGL context)
+  window:   its GLFW window (GLX), run under xvfb-run: the back buffer must be the -o image
+            (window_max_diff <= 1)
+Exits 77 (CTest: skipped) when no OpenGL 4.5 context can be made, the Ptex samples are absent or
+(window) there is no X display or no GLFW in the build, or fails when TESSERA_TEST_REQUIRE asks
+for gl / shared / xvfb / glfw.
 
 Bounds, measured on Mesa 22.3 llvmpipe at 320x240 (teapot, 448 faces in 15 classes, orbit
 frames 0, 1 and 3 of 8): PSNR 69.3-70.4 dB, no pixel >= 0.01 apart (largest 2-norm 0.0097).
@@ -30,6 +34,10 @@ from cli_harness import check, expect_error, finish, run_command, skip_or_fail  
 
 ENGINE = sys.argv[1]
 PTEX = os.path.join(sys.argv[2], "ptex") if len(sys.argv) > 2 else ""
+MODE = sys.argv[3] if len(sys.argv) > 3 else "headless"
+if MODE == "window" and not os.environ.get("DISPLAY"):
+    skip_or_fail("xvfb", "no X display for the window (run under xvfb-run, Debian xvfb)")
+CONTEXT = ["--headless"] if MODE == "headless" else []
 if not os.path.isdir(PTEX):
     skip_or_fail("shared", f"no Ptex samples at {PTEX!r}")
 
@@ -42,12 +50,14 @@ TEAPOT = sample("teapot")
 
 
 def run(*args, env=None):
-    p = subprocess.run([ENGINE, *args], capture_output=True, text=True, timeout=600, env=env)
+    p = subprocess.run([ENGINE, *args, *CONTEXT], capture_output=True, text=True, timeout=600, env=env)
     return p.returncode, p.stdout, p.stderr
 
 
 def report(*args):
-    rc, out, err = run_command([ENGINE, *args, "--json"], timeout=600)
+    rc, out, err = run_command([ENGINE, *args, *CONTEXT, "--json"], timeout=600)
+    if rc != 0 and "built without GLFW" in err:
+        skip_or_fail("glfw", f"engine_ptex has no window: {err.strip()}")
     if rc != 0 and "no OpenGL 4.5 device" in err:
         skip_or_fail("gl", f"no OpenGL 4.5 context here: {err.strip()}")
     check(f"{args[2:]} exit 0", rc == 0, err)
@@ -62,6 +72,10 @@ r = report(*TEAPOT, "--orbit", "0/8")
 exact = "llvmpipe" in r.get("device", "") or "softpipe" in r.get("device", "")
 PSNR_MIN, FRAC_MAX = (60.0, 0.001) if exact else (45.0, 0.10)
 print(f"device {r.get('device')}: bounds {PSNR_MIN} dB, {FRAC_MAX * 100} % of the pixels")
+check(f"{MODE}: the engine's own context", r.get("context") == ("egl" if MODE == "headless"
+                                                                else "glfw"), r)
+if MODE == "window":
+    check("window: the back buffer shows the image", 0 <= r.get("window_max_diff", -1) <= 1, r)
 check("teapot: 448 faces in several classes", r.get("faces") == 448 and r.get("classes", 0) > 1, r)
 for orbit in ("0/8", "3/8"):
     f = r if orbit == "0/8" else report(*TEAPOT, "--orbit", orbit)
@@ -113,8 +127,8 @@ expect_error(run, "bad fov", [*TEAPOT, "--fov", "0"], 1, "--fov")
 expect_error(run, "bad method", [*TEAPOT, "--shader-method", "traverse"], 1, "traverse")
 expect_error(run, "unknown argument", [*TEAPOT, "--bogus"], 1, "--bogus")
 expect_error(run, "no files", [], 1, "usage")
-# Without a GL device (no EGL vendor library): one line, exit 1.
-env = dict(os.environ, __EGL_VENDOR_LIBRARY_FILENAMES="/nonexistent.json")
+# Without a GL device (no EGL vendor library; no X display): one line, exit 1.
+env = dict(os.environ, __EGL_VENDOR_LIBRARY_FILENAMES="/nonexistent.json", DISPLAY=":4097")
 expect_error(lambda *a: run(*a, env=env), "no GL device", TEAPOT, 1, "no OpenGL 4.5 device")
 
 sys.exit(finish())
