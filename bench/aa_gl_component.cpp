@@ -1,8 +1,8 @@
-// gl::AdaptiveSupersampler against gl::DeferredRenderer on the same frame: DeferredGl renders
+// gl::AdaptiveSupersampler against gl::DeferredRenderer on the same frame: gl::DeferredRenderer renders
 // its G-buffer, shades it adaptively (itself through a component whose hook keeps S's light
 // terms for sample 0 again), and a component shades the same G-buffer textures with
-// DeferredGl's Blinn-Phong (deferred_shading.glsl) as a plain hook. Prints one JSON line per
-// method: samples %, whether the image equals DeferredGl's bit for bit, and the per-pass host times
+// gl::DeferredRenderer's Blinn-Phong (deferred_shading.glsl) as a plain hook. Prints one JSON line per
+// method: samples %, whether the image equals gl::DeferredRenderer's bit for bit, and the per-pass host times
 // (dispatch to the end of a glFinish; medians over the timed frames).
 //
 // Usage: aa_gl_component [--scene FILE.gltf] [--size WxH] [--m M] [--frames N] [--heavy]
@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
   shading.heavy = heavy;
   shading.heavy_terms = 256;
 
-  // DeferredGl: warm-up, then timed frames.
+  // gl::DeferredRenderer: warm-up, then timed frames.
   std::vector<std::vector<gl::PassTime>> dgl_frames;
   gl::ShadeResult dgl_result;
   for (int f = 0; f <= frames; ++f) {

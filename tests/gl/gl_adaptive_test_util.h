@@ -56,7 +56,7 @@ inline std::vector<std::uint8_t> read_counts(std::uint32_t tex, int w, int h) {
   return c;
 }
 
-/// Rgb of an RGBA image equal bit for bit to DeferredGl's (alpha: 1 in both).
+/// Rgb of an RGBA image equal bit for bit to gl::DeferredRenderer's (alpha: 1 in both).
 inline std::size_t differing_pixels(const std::vector<float>& a, const ImageRGBAF& b) {
   std::size_t n = 0;
   for (std::size_t i = 0; i < b.pixel_count(); ++i) {
@@ -107,7 +107,7 @@ class GlAdaptive : public ::testing::Test {
     h_ = h;
     m_ = m;
   }
-  // After a DeferredGl shade call its G-buffer sits on units 0..2 and its texture arrays on
+  // After a gl::DeferredRenderer shade call its G-buffer sits on units 0..2 and its texture arrays on
   // units 3..: the component reads the same textures, the hook shades through the same
   // bindings.
   std::array<std::uint32_t, 4> deferred_textures(int* classes) {

@@ -12,6 +12,9 @@
 # The installed share/tessera/glsl is moved away first: nothing may read it (the GLSL is
 # embedded in the library). No GL device (or no Xvfb / GLFW) skips those runs with a note, or
 # fails when TESSERA_TEST_REQUIRE asks for gl (or all).
+# Where tessera::vk was installed, first examples/engine_aa_vk with find_package(tessera
+# COMPONENTS vk), run at a small size with the installed GLSL folder moved away (no Vulkan device
+# is not an error here: the build is what is checked, the CTest engine_aa_vk checks the image).
 # Usage: install_test.sh SOURCE_DIR BINARY_DIR
 set -euo pipefail
 src="$1"
@@ -23,6 +26,20 @@ cmake -S "$src/examples/consumer" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=R
   -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/build" >/dev/null
 "$work/build/consumer"
+if ls "$work"/prefix/lib*/cmake/tessera/tesseraVkTargets.cmake >/dev/null 2>&1; then
+  cmake -S "$src/examples/engine_aa_vk" -B "$work/build_engine_aa_vk" -G Ninja \
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+  cmake --build "$work/build_engine_aa_vk" >/dev/null
+  vk_glsl=$(ls -d "$work"/prefix/share/tessera/glsl)
+  mv "$vk_glsl" "$work/glsl.vk.moved"  # engine_aa_vk must not need it
+  set +e
+  out=$(env -u TESSERA_GLSL_DIR "$work/build_engine_aa_vk/engine_aa_vk" --size 64x48 --m 2 2>&1)
+  rc=$?
+  set -e
+  mv "$work/glsl.vk.moved" "$vk_glsl"
+  echo "$out"
+  if [ $rc -ne 0 ] && ! grep -q "no Vulkan device" <<<"$out"; then exit 1; fi
+fi
 if ! ls "$work"/prefix/lib*/cmake/tessera/tesseraGlTargets.cmake >/dev/null 2>&1; then
   echo "install test: tessera::gl not installed (no EGL/GL development files): consumer only"
   exit 0

@@ -43,8 +43,8 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-// Vulkan (glslangValidator -V / glslc define VULKAN; no tessera runtime yet): every resource in
-// descriptor set TESSERA_ADAPTIVE_SET (default 0) at the same binding numbers.
+// Vulkan (VULKAN defined; host: tessera::vk::AdaptiveSupersampler, vk_adaptive.h): every
+// resource in descriptor set TESSERA_ADAPTIVE_SET (default 0) at the same binding numbers.
 #if defined(VULKAN)
 #ifndef TESSERA_ADAPTIVE_SET
 #define TESSERA_ADAPTIVE_SET 0

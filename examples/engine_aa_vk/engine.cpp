@@ -1,0 +1,388 @@
+// engine_aa_vk's own Vulkan plumbing (engine.h).
+#include "engine.h"
+
+#include <cstring>
+
+namespace engine {
+
+namespace {
+
+const std::uint32_t kVertSpirv[] = {
+#include "geometry.vert.inc"
+};
+const std::uint32_t kFragSpirv[] = {
+#include "geometry.frag.inc"
+};
+constexpr const char* kValidation = "VK_LAYER_KHRONOS_validation";
+
+VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                          VkDebugUtilsMessageTypeFlagsEXT,
+                                          const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                          void* user) {
+  auto* d = static_cast<Device*>(user);
+  if (d->messages++ == 0) d->first_message = data->pMessage ? data->pMessage : "?";
+  return VK_FALSE;
+}
+
+bool has_layer() {
+  std::uint32_t n = 0;
+  vkEnumerateInstanceLayerProperties(&n, nullptr);
+  std::vector<VkLayerProperties> layers(n);
+  vkEnumerateInstanceLayerProperties(&n, layers.data());
+  for (const VkLayerProperties& l : layers) {
+    if (std::strcmp(l.layerName, kValidation) == 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::string Device::create(bool want_validation) {
+  validation = want_validation && has_layer();
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO,
+                        nullptr,
+                        "engine_aa_vk",
+                        1,
+                        nullptr,
+                        0,
+                        VK_API_VERSION_1_3};
+  VkDebugUtilsMessengerCreateInfoEXT mi{};
+  mi.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
+  mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                   VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                   VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  mi.pfnUserCallback = &on_message;
+  mi.pUserData = this;
+  const VkValidationFeatureEnableEXT sync =
+      VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+  VkValidationFeaturesEXT vf{};
+  vf.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT;
+  vf.pNext = &mi;
+  vf.enabledValidationFeatureCount = 1;
+  vf.pEnabledValidationFeatures = &sync;
+  const char* ext = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+  VkInstanceCreateInfo ii{};
+  ii.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
+  ii.pApplicationInfo = &app;
+  if (validation) {
+    ii.pNext = &vf;
+    ii.enabledLayerCount = 1;
+    ii.ppEnabledLayerNames = &kValidation;
+    ii.enabledExtensionCount = 1;
+    ii.ppEnabledExtensionNames = &ext;
+  }
+  if (vkCreateInstance(&ii, nullptr, &instance) != VK_SUCCESS) return "no Vulkan instance";
+  if (validation) {
+    auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+    if (create_messenger) create_messenger(instance, &mi, nullptr, &messenger_);
+  }
+  std::uint32_t n = 0;
+  vkEnumeratePhysicalDevices(instance, &n, nullptr);
+  std::vector<VkPhysicalDevice> devs(n);
+  vkEnumeratePhysicalDevices(instance, &n, devs.data());
+  for (VkPhysicalDevice p : devs) {
+    VkPhysicalDeviceProperties props{};
+    vkGetPhysicalDeviceProperties(p, &props);
+    if (props.apiVersion < VK_API_VERSION_1_3 || physical != VK_NULL_HANDLE) continue;
+    std::uint32_t nf = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(p, &nf, nullptr);
+    std::vector<VkQueueFamilyProperties> fams(nf);
+    vkGetPhysicalDeviceQueueFamilyProperties(p, &nf, fams.data());
+    for (std::uint32_t f = 0; f < nf && physical == VK_NULL_HANDLE; ++f) {
+      if ((fams[f].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) ==
+          (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) {
+        physical = p;
+        family = f;
+        name = props.deviceName;
+      }
+    }
+  }
+  if (physical == VK_NULL_HANDLE) return "no Vulkan 1.3 device with a graphics + compute queue";
+  VkPhysicalDeviceFeatures supported{};
+  vkGetPhysicalDeviceFeatures(physical, &supported);
+  if (!supported.shaderFloat64) return "device " + name + " lacks shaderFloat64";
+  features.shaderFloat64 = VK_TRUE;
+  features.shaderStorageImageExtendedFormats = supported.shaderStorageImageExtendedFormats;
+  VkPhysicalDeviceVulkan13Features f13{};
+  f13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
+  f13.synchronization2 = VK_TRUE;
+  f13.dynamicRendering = VK_TRUE;
+  const float prio = 1.0f;
+  VkDeviceQueueCreateInfo qi{
+      VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, nullptr, 0, family, 1, &prio};
+  VkDeviceCreateInfo di{};
+  di.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+  di.pNext = &f13;
+  di.queueCreateInfoCount = 1;
+  di.pQueueCreateInfos = &qi;
+  di.pEnabledFeatures = &features;
+  if (vkCreateDevice(physical, &di, nullptr, &device) != VK_SUCCESS) return "vkCreateDevice failed";
+  vkGetDeviceQueue(device, family, 0, &queue);
+  VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr, 0, family};
+  vkCreateCommandPool(device, &pi, nullptr, &pool_);
+  return "";
+}
+
+void Device::destroy() {
+  if (device) {
+    vkDeviceWaitIdle(device);
+    vkDestroyCommandPool(device, pool_, nullptr);
+    vkDestroyDevice(device, nullptr);
+    device = VK_NULL_HANDLE;
+  }
+  if (instance) {
+    auto destroy_messenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy_messenger && messenger_) destroy_messenger(instance, messenger_, nullptr);
+    vkDestroyInstance(instance, nullptr);
+    instance = VK_NULL_HANDLE;
+  }
+}
+
+std::uint32_t Device::memory_type(std::uint32_t bits, VkMemoryPropertyFlags want) const {
+  VkPhysicalDeviceMemoryProperties mp{};
+  vkGetPhysicalDeviceMemoryProperties(physical, &mp);
+  for (std::uint32_t i = 0; i < mp.memoryTypeCount; ++i) {
+    if ((bits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & want) == want) return i;
+  }
+  return 0;
+}
+
+Buffer Device::buffer(VkDeviceSize bytes, VkBufferUsageFlags usage, bool host) {
+  Buffer b;
+  VkBufferCreateInfo bi{};
+  bi.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
+  bi.size = bytes;
+  bi.usage = usage;
+  vkCreateBuffer(device, &bi, nullptr, &b.buffer);
+  VkMemoryRequirements req{};
+  vkGetBufferMemoryRequirements(device, b.buffer, &req);
+  const VkMemoryPropertyFlags want =
+      host ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+           : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
+                          memory_type(req.memoryTypeBits, want)};
+  vkAllocateMemory(device, &ai, nullptr, &b.memory);
+  vkBindBufferMemory(device, b.buffer, b.memory, 0);
+  if (host) vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.data);
+  return b;
+}
+
+Image Device::image(VkFormat format, std::uint32_t w, std::uint32_t h, VkImageUsageFlags usage,
+                    VkImageAspectFlags aspect) {
+  Image img;
+  img.format = format;
+  img.usage = usage;
+  img.w = w;
+  img.h = h;
+  VkImageCreateInfo ci{};
+  ci.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
+  ci.imageType = VK_IMAGE_TYPE_2D;
+  ci.format = format;
+  ci.extent = {w, h, 1};
+  ci.mipLevels = ci.arrayLayers = 1;
+  ci.samples = VK_SAMPLE_COUNT_1_BIT;
+  ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+  ci.usage = usage;
+  vkCreateImage(device, &ci, nullptr, &img.image);
+  VkMemoryRequirements req{};
+  vkGetImageMemoryRequirements(device, img.image, &req);
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
+                          memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)};
+  vkAllocateMemory(device, &ai, nullptr, &img.memory);
+  vkBindImageMemory(device, img.image, img.memory, 0);
+  VkImageViewCreateInfo vi{};
+  vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+  vi.image = img.image;
+  vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  vi.format = format;
+  vi.subresourceRange = {aspect, 0, 1, 0, 1};
+  vkCreateImageView(device, &vi, nullptr, &img.view);
+  return img;
+}
+
+void Device::destroy(Buffer& b) {
+  if (b.data) vkUnmapMemory(device, b.memory);
+  vkDestroyBuffer(device, b.buffer, nullptr);
+  vkFreeMemory(device, b.memory, nullptr);
+  b = Buffer{};
+}
+
+void Device::destroy(Image& i) {
+  vkDestroyImageView(device, i.view, nullptr);
+  vkDestroyImage(device, i.image, nullptr);
+  vkFreeMemory(device, i.memory, nullptr);
+  i = Image{};
+}
+
+VkCommandBuffer Device::begin() {
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool_,
+                                 VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  vkAllocateCommandBuffers(device, &ai, &cmd);
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
+                              VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
+  vkBeginCommandBuffer(cmd, &bi);
+  return cmd;
+}
+
+void Device::submit_and_wait(VkCommandBuffer cmd) {
+  vkEndCommandBuffer(cmd);
+  VkSubmitInfo si{};
+  si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd;
+  vkQueueSubmit(queue, 1, &si, VK_NULL_HANDLE);
+  vkQueueWaitIdle(queue);
+  vkFreeCommandBuffers(device, pool_, 1, &cmd);
+}
+
+void barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+             VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+             VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access,
+             VkImageAspectFlags aspect) {
+  VkImageMemoryBarrier2 b{};
+  b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2;
+  b.srcStageMask = src_stage;
+  b.srcAccessMask = src_access;
+  b.dstStageMask = dst_stage;
+  b.dstAccessMask = dst_access;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image;
+  b.subresourceRange = {aspect, 0, 1, 0, 1};
+  VkDependencyInfo dep{};
+  dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
+  dep.imageMemoryBarrierCount = 1;
+  dep.pImageMemoryBarriers = &b;
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+std::vector<std::uint8_t> Device::read(const Image& img, std::size_t texel_bytes,
+                                       VkImageLayout layout, VkPipelineStageFlags2 stage,
+                                       VkAccessFlags2 access) {
+  const std::size_t bytes = std::size_t(img.w) * img.h * texel_bytes;
+  Buffer b = buffer(bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  VkCommandBuffer cmd = begin();
+  barrier(cmd, img.image, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, stage, access,
+          VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {img.w, img.h, 1};
+  vkCmdCopyImageToBuffer(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, b.buffer, 1,
+                         &region);
+  VkMemoryBarrier2 host{};
+  host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
+  host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+  host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+  host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+  host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+  VkDependencyInfo dep{};
+  dep.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
+  dep.memoryBarrierCount = 1;
+  dep.pMemoryBarriers = &host;
+  vkCmdPipelineBarrier2(cmd, &dep);
+  submit_and_wait(cmd);
+  std::vector<std::uint8_t> out(bytes);
+  std::memcpy(out.data(), b.data, bytes);
+  destroy(b);
+  return out;
+}
+
+GeometryPipeline geometry_pipeline(Device& d) {
+  GeometryPipeline g;
+  VkPushConstantRange pc{VK_SHADER_STAGE_VERTEX_BIT, 0, 128};
+  VkPipelineLayoutCreateInfo li{};
+  li.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+  li.pushConstantRangeCount = 1;
+  li.pPushConstantRanges = &pc;
+  vkCreatePipelineLayout(d.device, &li, nullptr, &g.layout);
+  VkShaderModule mods[2];
+  const std::pair<const std::uint32_t*, std::size_t> code[2] = {{kVertSpirv, sizeof kVertSpirv},
+                                                                {kFragSpirv, sizeof kFragSpirv}};
+  VkPipelineShaderStageCreateInfo stages[2]{};
+  for (int i = 0; i < 2; ++i) {
+    VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, nullptr, 0,
+                                code[i].second, code[i].first};
+    vkCreateShaderModule(d.device, &mi, nullptr, &mods[i]);
+    stages[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    stages[i].stage = i == 0 ? VK_SHADER_STAGE_VERTEX_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[i].module = mods[i];
+    stages[i].pName = "main";
+  }
+  VkVertexInputBindingDescription vb{0, 40, VK_VERTEX_INPUT_RATE_VERTEX};
+  VkVertexInputAttributeDescription va[4] = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
+                                             {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 12},
+                                             {2, 0, VK_FORMAT_R32G32B32_SFLOAT, 24},
+                                             {3, 0, VK_FORMAT_R32_SFLOAT, 36}};
+  VkPipelineVertexInputStateCreateInfo vi{};
+  vi.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
+  vi.vertexBindingDescriptionCount = 1;
+  vi.pVertexBindingDescriptions = &vb;
+  vi.vertexAttributeDescriptionCount = 4;
+  vi.pVertexAttributeDescriptions = va;
+  VkPipelineInputAssemblyStateCreateInfo ia{};
+  ia.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
+  ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo vp{};
+  vp.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
+  vp.viewportCount = vp.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo rs{};
+  rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
+  rs.polygonMode = VK_POLYGON_MODE_FILL;
+  rs.cullMode = VK_CULL_MODE_NONE;
+  rs.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo ms{};
+  ms.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
+  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo ds{};
+  ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
+  ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
+  ds.depthCompareOp = VK_COMPARE_OP_LESS;
+  VkPipelineColorBlendAttachmentState att[2]{};
+  for (auto& a : att) a.colorWriteMask = 0xf;
+  VkPipelineColorBlendStateCreateInfo cb{};
+  cb.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
+  cb.attachmentCount = 2;
+  cb.pAttachments = att;
+  const VkDynamicState dyn[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dy{};
+  dy.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
+  dy.dynamicStateCount = 2;
+  dy.pDynamicStates = dyn;
+  const VkFormat colour[2] = {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8G8B8A8_UNORM};
+  VkPipelineRenderingCreateInfo ri{};
+  ri.sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO;
+  ri.colorAttachmentCount = 2;
+  ri.pColorAttachmentFormats = colour;
+  ri.depthAttachmentFormat = VK_FORMAT_D32_SFLOAT;
+  VkGraphicsPipelineCreateInfo pi{};
+  pi.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
+  pi.pNext = &ri;
+  pi.stageCount = 2;
+  pi.pStages = stages;
+  pi.pVertexInputState = &vi;
+  pi.pInputAssemblyState = &ia;
+  pi.pViewportState = &vp;
+  pi.pRasterizationState = &rs;
+  pi.pMultisampleState = &ms;
+  pi.pDepthStencilState = &ds;
+  pi.pColorBlendState = &cb;
+  pi.pDynamicState = &dy;
+  pi.layout = g.layout;
+  vkCreateGraphicsPipelines(d.device, VK_NULL_HANDLE, 1, &pi, nullptr, &g.pipeline);
+  for (VkShaderModule m : mods) vkDestroyShaderModule(d.device, m, nullptr);
+  return g;
+}
+
+void destroy(Device& d, GeometryPipeline& p) {
+  vkDestroyPipeline(d.device, p.pipeline, nullptr);
+  vkDestroyPipelineLayout(d.device, p.layout, nullptr);
+  p = GeometryPipeline{};
+}
+
+}  // namespace engine

@@ -1,0 +1,78 @@
+// engine_aa_vk's own Vulkan plumbing (nothing here is tessera's): instance with the validation
+// layer when it is installed (synchronization validation on, a messenger counting warnings and
+// errors), a device with one graphics + compute queue, buffers, images, the geometry pipeline
+// (dynamic rendering into the enlarged G-buffer), submit-and-wait, read-back.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace engine {
+
+struct Buffer {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  void* data = nullptr;  // mapped when host-visible
+};
+struct Image {
+  VkImage image = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkImageUsageFlags usage = 0;
+  std::uint32_t w = 0, h = 0;
+};
+
+class Device {
+ public:
+  /// Creates everything; "" on success, else the reason (no device, no Vulkan 1.3, ...).
+  std::string create(bool validation);
+  void destroy();
+
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  std::uint32_t family = 0;
+  VkQueue queue = VK_NULL_HANDLE;
+  VkPhysicalDeviceFeatures features{};  // what was enabled
+  std::string name;
+  bool validation = false;
+  int messages = 0;  // validation warnings + errors
+  std::string first_message;
+
+  Buffer buffer(VkDeviceSize bytes, VkBufferUsageFlags usage, bool host);
+  Image image(VkFormat format, std::uint32_t w, std::uint32_t h, VkImageUsageFlags usage,
+              VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT);
+  void destroy(Buffer& b);
+  void destroy(Image& i);
+  VkCommandBuffer begin();
+  void submit_and_wait(VkCommandBuffer cmd);
+  /// Reads an RGBA16F / R8_UINT image left in `layout` after (stage, access) (synchronization2).
+  std::vector<std::uint8_t> read(const Image& img, std::size_t texel_bytes, VkImageLayout layout,
+                                 VkPipelineStageFlags2 stage, VkAccessFlags2 access);
+
+ private:
+  std::uint32_t memory_type(std::uint32_t bits, VkMemoryPropertyFlags want) const;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+};
+
+/// One image barrier (synchronization2).
+void barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+             VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+             VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access,
+             VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT);
+
+/// The geometry pipeline: vertex (p, n, albedo, id), push constants view + proj, two colour
+/// attachments (RGBA16F, RGBA8) and D32 depth, dynamic rendering.
+struct GeometryPipeline {
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+};
+GeometryPipeline geometry_pipeline(Device& d);
+void destroy(Device& d, GeometryPipeline& p);
+
+}  // namespace engine

@@ -1,0 +1,21 @@
+// Internal to src/vk: GLSL compute source (already include-expanded, with #line bookkeeping)
+// to SPIR-V with shaderc, and a compute pipeline from it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "vk/vk_api.h"
+
+namespace tessera::vk {
+
+/// Compiles `text` as a Vulkan 1.0 compute shader (VULKAN defined). On failure the status
+/// message is shaderc's log, unformatted (lines "FILE_INDEX:LINE: error: ...").
+Result<std::vector<std::uint32_t>> compile_compute_spirv(const std::string& text);
+
+/// A compute pipeline of `spirv` in `layout`; the shader module is destroyed before returning.
+Result<Pipeline> create_compute_pipeline(const Api& api, const std::vector<std::uint32_t>& spirv,
+                                         VkPipelineLayout layout, const std::string& what);
+
+}  // namespace tessera::vk

@@ -1,0 +1,95 @@
+// The Vulkan tests' engine: its own instance with VK_LAYER_KHRONOS_validation (synchronization
+// validation on through VkValidationFeaturesEXT), a debug-utils messenger that counts every
+// warning and error (any one fails the test), a device (lavapipe in CI) with a compute +
+// graphics queue, command buffers, and image upload / read-back. It links the Vulkan loader
+// and calls it directly, as an engine would; tessera::vk gets only the function pointers.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tessera/core.h"
+#include "tessera/vk.h"
+
+namespace tessera::vk_test {
+
+struct EngineOptions {
+  bool validation = true;
+  bool synchronization2 = true;  ///< Enable the feature (and tell tessera).
+  bool extended_formats = true;  ///< Enable shaderStorageImageExtendedFormats.
+  bool float64 = true;           ///< Enable shaderFloat64.
+};
+
+/// A device-local image the engine owns, with its memory and view.
+struct EngineImage {
+  VkImage image = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+  vk::ImageResource resource;
+};
+
+/// A host-visible, coherent, mapped buffer the engine owns.
+struct EngineBuffer {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  void* data = nullptr;
+};
+
+class Engine {
+ public:
+  /// Instance, messenger, device; an error (with the reason) when there is no Vulkan device or
+  /// no validation layer. `missing` says which: "vulkan" or "vulkan-validation".
+  static Result<std::unique_ptr<Engine>> create(const EngineOptions& options, std::string* missing);
+  ~Engine();
+  Engine(const Engine&) = delete;
+  Engine& operator=(const Engine&) = delete;
+
+  const vk::DeviceContext& context() const { return ctx_; }
+  std::string device_name() const;
+
+  /// A fresh primary command buffer, begun (one-time submit).
+  VkCommandBuffer begin();
+  /// A primary command buffer allocated but not begun (recording into it is a validation error).
+  VkCommandBuffer idle_command_buffer();
+  /// Ends, submits and waits for `cmd`, then frees it.
+  void submit_and_wait(VkCommandBuffer cmd);
+
+  /// An image of `format` (w x h) holding `texels` (RGBA floats per texel, converted to the
+  /// format: R32G32B32A32_SFLOAT or R16G16B16A16_SFLOAT), uploaded and left in
+  /// TRANSFER_DST_OPTIMAL after a copy (the resource's stage/access say so).
+  EngineImage upload_rgba(VkFormat format, int w, int h, const std::vector<float>& texels,
+                          VkImageUsageFlags extra_usage = 0);
+  void destroy(EngineImage& img);
+  EngineBuffer host_buffer(VkDeviceSize bytes, VkBufferUsageFlags usage);
+  void destroy(EngineBuffer& buf);
+  /// Reads back an image the component left in `from` (RGBA32F/RGBA16F as floats, R8_UINT as
+  /// one float per texel), recording the barrier from its stage/access.
+  std::vector<float> read_back(const vk::ImageResource& from);
+
+  /// Validation messages (warnings and errors) so far, and the first few texts.
+  int messages() const { return messages_.load(); }
+  std::string first_messages() const;
+  /// Destroys the device and the instance (leak reports arrive here); idempotent.
+  void shutdown();
+
+ private:
+  Engine() = default;
+  static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                   VkDebugUtilsMessageTypeFlagsEXT types,
+                                                   const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                   void* self);
+  std::uint32_t memory_type(std::uint32_t bits, VkMemoryPropertyFlags want) const;
+
+  vk::DeviceContext ctx_;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  std::atomic<int> messages_{0};
+  std::vector<std::string> texts_;
+};
+
+}  // namespace tessera::vk_test
