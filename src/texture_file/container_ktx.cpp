@@ -16,6 +16,9 @@ namespace tessera::texture_file {
 
 namespace {
 
+using container::corrupt;
+using container::unsupported;
+
 using container::hex32;
 using container::load_u32;
 using container::plural_bytes;
@@ -55,13 +58,6 @@ constexpr GlFormat kFormats[] = {
     {kSrgbAlphaPvrtc2, pvrtc::Format::pvrtc1_2bpp, true, true},
     {kSrgbAlphaPvrtc4, pvrtc::Format::pvrtc1_4bpp, true, true},
 };
-
-Status corrupt(const std::string& name, const std::string& what) {
-  return Status::error(ErrorCode::corrupt_data, name + ": " + what);
-}
-Status unsupported(const std::string& name, const std::string& what) {
-  return Status::error(ErrorCode::unsupported, name + ": " + what);
-}
 
 std::size_t pad4(std::size_t n) { return (4 - n % 4) % 4; }
 

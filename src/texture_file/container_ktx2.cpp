@@ -24,16 +24,12 @@ namespace tessera::texture_file {
 
 namespace {
 
+using container::corrupt;
+using container::unsupported;
+
 using container::load_u32;
 using container::load_u64;
 using container::plural_bytes;
-
-Status corrupt(const std::string& name, const std::string& what) {
-  return Status::error(ErrorCode::corrupt_data, name + ": " + what);
-}
-Status unsupported(const std::string& name, const std::string& what) {
-  return Status::error(ErrorCode::unsupported, name + ": " + what);
-}
 
 std::string scheme_name(std::uint32_t scheme) {
   switch (scheme) {

@@ -19,12 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json db_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
-
-std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
-
 bool is_folder(const std::string& output) {
   std::error_code ec;
   return output != "-" && (output.ends_with('/') || fs::is_directory(output, ec));
@@ -39,40 +33,6 @@ bool is_batch(const CompressArgs& args) {
   if (in.starts_with('@') || (in != "-" && fs::is_directory(in, ec))) return true;
   return is_folder(args.output);
 }
-
-}  // namespace
-
-Result<metrics::ImageComparison> measure_level0(const texture_file::CompressedImage& made,
-                                                int threads) {
-  const texture_file::CompressedTexture& tex = made.texture;
-  metrics::ImageComparison total;
-  metrics::CompareOptions co;
-  co.threads = threads;
-  int n = 0;
-  for (int layer = 0; layer < tex.layers; ++layer) {
-    for (int face = 0; face < tex.faces; ++face, ++n) {
-      Result<ImageRGBA8> decoded =
-          texture_file::decode_texture_image(tex, 0, layer, face, {threads});
-      if (!decoded) return decoded.status();
-      Result<metrics::ImageComparison> c =
-          metrics::compare_images(made.sources[std::size_t(n)], *decoded, co);
-      if (!c) return c.status();
-      total.mse_rgb += c->mse_rgb;
-      total.mse_alpha += c->mse_alpha;
-      total.has_alpha = total.has_alpha || c->has_alpha;
-      total.ssim_gray = n == 0 ? c->ssim_gray : total.ssim_gray + c->ssim_gray;
-      total.max_abs = std::max(total.max_abs, c->max_abs);
-    }
-  }
-  total.mse_rgb /= n;
-  total.mse_alpha /= n;
-  total.ssim_gray /= n;
-  total.psnr_rgb = metrics::psnr_from_mse(total.mse_rgb);
-  total.psnr_alpha = metrics::psnr_from_mse(total.mse_alpha);
-  return total;
-}
-
-namespace {
 
 int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
   texture_file::ContainerFormat container = texture_file::container_from_extension(args.output);
@@ -165,7 +125,8 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
 
   // Quality of level 0 against the (possibly resized and prepared) input, as astcenc's -tl
   // mode reports it.
-  Result<metrics::ImageComparison> cmp = measure_level0(*made, global.threads);
+  Result<metrics::ImageComparison> cmp =
+      texture_file::measure_level0(made->texture, made->sources, global.threads);
   if (!cmp) return fail(cmp.status());
   std::FILE* out = text_stream(args.output == "-");
   const std::string output_name = io::io_name(args.output, true);

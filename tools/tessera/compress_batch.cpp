@@ -296,17 +296,14 @@ Outcome run_job(const Job& job, const CompressArgs& args, const std::string& con
   o.has_alpha = tex.has_alpha;
   o.resized = made->resized;
   if (measure) {
-    if (Result<metrics::ImageComparison> cmp = measure_level0(*made, threads)) {
+    if (Result<metrics::ImageComparison> cmp =
+            texture_file::measure_level0(made->texture, made->sources, threads)) {
       o.psnr_rgb = cmp->psnr_rgb;
       o.ssim_gray = cmp->ssim_gray;
       o.psnr_alpha = cmp->psnr_alpha;
     }
   }
   return o;
-}
-
-nlohmann::json db_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
 const char* kind_name(Outcome::Kind k) {
