@@ -8,6 +8,7 @@
 # Included by the top-level CMakeLists.txt; run by CTest as a script:
 #   cmake -DPART=gl "-DREASON=..." -P cmake/require_or_skip.cmake
 if(CMAKE_SCRIPT_MODE_FILE)
+  cmake_minimum_required(VERSION 3.20)  # policies for IN_LIST in script mode
   string(REPLACE "," ";" _required "$ENV{TESSERA_TEST_REQUIRE}")
   if("all" IN_LIST _required OR PART IN_LIST _required)
     message(FATAL_ERROR "FAIL: ${REASON} (TESSERA_TEST_REQUIRE asks for ${PART})")
