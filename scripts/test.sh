@@ -8,7 +8,9 @@
 #      SIMD, PVRTC, texture and raster unit tests, and the PVRTC encoder's bytes on a fixed image
 #      set compared with x86-64's (AVX2 dispatch, SSE2, scalar): any differing byte fails
 #      (tests/arch/pvrtc_arch_bytes.sh).
-# Stages 1 and 2 require the GL device, the oracles and ../shared/data (TESSERA_TEST_REQUIRE=all).
+# Stages 1 and 2 require the GL device, the oracles and ../shared/data (TESSERA_TEST_REQUIRE=all);
+# every optional part must be built and every AVX2 test run (on an AVX2 CPU). At the end: the
+# counts of tests run, skipped and failed per stage and label.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 bash scripts/setup.sh --arm64
@@ -16,9 +18,19 @@ jobs="$(nproc)"
 # What CI has, the tests must find: without a GL device, the PVRTexTool or ktx-parse oracles or
 # ../shared/data, the tests that need them fail here and say why (a plain `ctest` skips them).
 export TESSERA_TEST_REQUIRE=all
+# At the end, pass or fail: the tests run, skipped and failed per stage and label
+# (scripts/test_summary.py, from each ctest run's JUnit file and the arm64 stage's counts).
+mkdir -p build build-asan build-arm64
+rm -f build/ctest-junit.xml build-asan/ctest-junit.xml build-arm64/test-counts.tsv
+summary() {
+  python3 scripts/test_summary.py "GCC Release=build:build/ctest-junit.xml" \
+    "Clang ASan+UBSan=build-asan:build-asan/ctest-junit.xml" \
+    --counts build-arm64/test-counts.tsv || true
+}
+trap summary EXIT
 
 echo "== GCC Release: all tests"
-ctest --test-dir build --output-on-failure -j "$jobs"
+ctest --test-dir build --output-on-failure -j "$jobs" --output-junit ctest-junit.xml
 
 echo "== Clang ASan+UBSan: unit and fuzz tests"
 cache="${TESSERA_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/tessera}"
@@ -27,7 +39,7 @@ CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWit
   -DTESSERA_PVRTEXTOOL="$cache/peers/PVRTexToolCLI" >/dev/null
 cmake --build build-asan
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-  ctest --test-dir build-asan --output-on-failure -j "$jobs" -L 'unit|fuzz'
+  ctest --test-dir build-asan --output-on-failure -j "$jobs" -L 'unit|fuzz' --output-junit ctest-junit.xml
 
 echo "== arm64 (cross-compiled, qemu-user): NEON bytes equal x86-64"
 bash tests/arch/pvrtc_arch_bytes.sh build

@@ -111,6 +111,9 @@ inline constexpr int kMaxImageDimension = 1 << 16;
 /// Largest pixel count tessera accepts for any image (256 Mpx = 1 GiB as RGBA8).
 inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 28;
 
+/// "WIDTHxHEIGHT" ("640x480"): how messages and reports write an image's size.
+std::string size_text(std::int64_t width, std::int64_t height);
+
 /// Checks `width` x `height` against the limits above before anything is allocated.
 /// `what` names the source (usually a file path) for the error message.
 Status check_image_size(std::int64_t width, std::int64_t height, const std::string& what);

@@ -46,6 +46,7 @@
 #include <vector>
 
 #include "tessera/core.h"
+#include "tessera/metrics.h"
 #include "tessera/mipmap.h"
 #include "tessera/pvrtc.h"
 
@@ -180,6 +181,16 @@ Result<CompressedImage> compress_image(ImageRGBA8 image, const CompressOptions& 
 Result<CompressedImage> compress_images(std::vector<ImageRGBA8> images, const TextureShape& shape,
                                         const CompressOptions& options,
                                         std::span<const std::string> names);
+
+/// The error of level 0 of `texture` against `sources`, what it approximates (one image per face
+/// of every layer, layer-major then face: `CompressedImage::sources`), pooled over the images as
+/// astcenc's -tl mode reports one image: the MSE averaged, then the PSNR; the SSIM averaged;
+/// the largest absolute difference. `tessera compress` prints and writes this. A count other
+/// than `texture.image_count()` is an invalid_argument error, a source of another size a
+/// size_mismatch; `threads` as `metrics::CompareOptions::threads`.
+Result<metrics::ImageComparison> measure_level0(const CompressedTexture& texture,
+                                                std::span<const ImageRGBA8> sources,
+                                                int threads = 0);
 
 /// The same texture as `compress_image(to_image(image), options, name).texture`, from pixels
 /// the caller owns: a power-of-two view without a mip chain and without preprocessing (flip,

@@ -201,33 +201,8 @@ py::object db_or_none(double v) {
   return std::isfinite(v) ? py::object(py::float_(v)) : py::none();
 }
 
-py::dict compare_py(const py::handle& a_object, const py::handle& b_object, bool premultiplied,
-                    bool normal, int threads) {
-  check_threads(threads);
-  Operand a = load_operand(a_object, "a");
-  Operand b = load_operand(b_object, "b");
-  const ImageRGBA8 &ia = a.image, &ib = b.image;
-  if (ia.width != ib.width || ia.height != ib.height) {
-    throw StatusError(Status::error(
-        ErrorCode::size_mismatch, b.name + ": size " + std::to_string(ib.width) + "x" +
-                                      std::to_string(ib.height) + " differs from " + a.name + " (" +
-                                      std::to_string(ia.width) + "x" + std::to_string(ia.height) +
-                                      ")"));
-  }
-  metrics::ImageComparison r;
-  {
-    py::gil_scoped_release release;
-    metrics::CompareOptions options;
-    options.threads = threads;
-    options.premultiplied = premultiplied;
-    options.normal = normal;
-    r = unwrap(metrics::compare_images(ia, ib, options));
-  }
-  py::dict d;
-  if (a.is_path) d["a"] = a.name;
-  if (b.is_path) d["b"] = b.name;
-  d["width"] = ia.width;
-  d["height"] = ia.height;
+// The keys of `tessera compare --json` from `r` (the error fields), added to `d`.
+void add_comparison(py::dict& d, const metrics::ImageComparison& r) {
   d["psnr_rgb"] = db_or_none(r.psnr_rgb);
   d["identical_rgb"] = !std::isfinite(r.psnr_rgb);
   d["mse"] = r.mse_rgb;
@@ -247,6 +222,61 @@ py::dict compare_py(const py::handle& a_object, const py::handle& b_object, bool
     d["angular_error_p99_deg"] = r.angular_error_p99_deg;
     d["angular_error_max_deg"] = r.angular_error_max_deg;
   }
+}
+
+py::dict compare_py(const py::handle& a_object, const py::handle& b_object, bool premultiplied,
+                    bool normal, int threads) {
+  check_threads(threads);
+  Operand a = load_operand(a_object, "a");
+  Operand b = load_operand(b_object, "b");
+  const ImageRGBA8 &ia = a.image, &ib = b.image;
+  if (ia.width != ib.width || ia.height != ib.height) {
+    throw StatusError(Status::error(ErrorCode::size_mismatch,
+                                    b.name + ": size " + size_text(ib.width, ib.height) +
+                                        " differs from " + a.name + " (" +
+                                        size_text(ia.width, ia.height) + ")"));
+  }
+  metrics::ImageComparison r;
+  {
+    py::gil_scoped_release release;
+    metrics::CompareOptions options;
+    options.threads = threads;
+    options.premultiplied = premultiplied;
+    options.normal = normal;
+    r = unwrap(metrics::compare_images(ia, ib, options));
+  }
+  py::dict d;
+  if (a.is_path) d["a"] = a.name;
+  if (b.is_path) d["b"] = b.name;
+  d["width"] = ia.width;
+  d["height"] = ia.height;
+  add_comparison(d, r);
+  return d;
+}
+
+// `tessera.measure_level0`: the sources as `encode` takes the images of a texture of this shape
+// (one array for a 2D texture; a leading axis or a list for a cube map or an array).
+py::dict measure_level0_py(const CompressedTexture& texture, const py::handle& images,
+                           int threads) {
+  check_threads(threads);
+  std::vector<ImageRGBA8> sources;
+  const bool sequence = py::isinstance<py::list>(images) || py::isinstance<py::tuple>(images);
+  if (texture.image_count() == 1 && !sequence) {
+    sources.push_back(image_from_array(images, "images"));
+  } else {
+    const texture_file::TextureShape shape{texture.faces, texture.faces == 1 || texture.layers > 1};
+    sources = images_of(images, shape, "images").images;
+  }
+  metrics::ImageComparison r;
+  {
+    py::gil_scoped_release release;
+    r = unwrap(texture_file::measure_level0(texture, sources, threads));
+  }
+  py::dict d;
+  d["width"] = texture.width;
+  d["height"] = texture.height;
+  d["images"] = texture.image_count();
+  add_comparison(d, r);
   return d;
 }
 
@@ -402,6 +432,16 @@ PYBIND11_MODULE(TESSERA_PYTHON_MODULE_NAME, m) {
         "as paths.",
         "a"_a, "b"_a, py::kw_only(), "premultiplied"_a = false, "normal"_a = false,
         "threads"_a = 0);
+  m.def("measure_level0", &measure_level0_py,
+        "The error of level 0 of `texture` against `images`, what it was encoded from, as "
+        "`tessera compress --json` reports it (texture_file::measure_level0): `images` in the "
+        "form `encode` takes for this texture (one (H, W, C) array; for a cube map or an array "
+        "a leading axis or a list, layer-major then face). Pooled over the images: the MSE "
+        "averaged, then the PSNR; the SSIM averaged; the largest difference. Returns a dict: "
+        "width, height, images, and compare's keys (psnr_rgb, None when identical; "
+        "identical_rgb, mse, ssim_gray, max_abs, has_alpha, psnr_alpha / mse_alpha). Another "
+        "image count raises InvalidArgumentError, another size tessera.Error.",
+        "texture"_a, "images"_a, py::kw_only(), "threads"_a = 0);
   register_experiments(m);
 #ifdef TESSERA_PYTHON_BENCH_FUNCTIONS
   add_bench_functions(m);

@@ -45,7 +45,8 @@ premultiplied or bled alpha, normal maps, KTX 2.0 with Zstandard::
 * ``read(path)``, ``write(path, texture, zstd=0)``, ``from_bytes(data)`` (PVR v3, KTX 1.1,
   KTX 2.0), ``read_image(path)``, ``write_image(path, array)`` (PNG), ``compare(a, b, *,
   premultiplied=False, normal=False)`` (the keys of ``tessera compare --json [--premultiplied]
-  [--normal]``).
+  [--normal]``); ``measure_level0(texture, images)``: the error of level 0 against the images
+  it was encoded from, pooled over faces and layers (what ``tessera compress --json`` reports).
 * Errors: ``tessera.Error`` (a ``RuntimeError``; ``.code`` is the category, the text is the
   message the CLI prints, with keywords where the CLI names its flags: ``resize_pot=True`` for
   ``--resize-pot``) and ``tessera.InvalidArgumentError`` (also a ``ValueError``); wrong array
@@ -73,6 +74,7 @@ from ._tessera import (  # noqa: F401  (re-exported API)
     encode_file,
     from_bytes,
     is_up_to_date,
+    measure_level0,
     read,
     read_image,
     run_aa,
@@ -119,6 +121,7 @@ __all__ = [
     "encode_file",
     "from_bytes",
     "is_up_to_date",
+    "measure_level0",
     "read",
     "read_image",
     "run_aa",

@@ -23,17 +23,19 @@ const char* error_code_name(ErrorCode code) {
   return "unknown";
 }
 
+std::string size_text(std::int64_t width, std::int64_t height) {
+  return std::to_string(width) + "x" + std::to_string(height);
+}
+
 Status check_image_size(std::int64_t width, std::int64_t height, const std::string& what) {
   if (width <= 0 || height <= 0) {
-    return Status::error(ErrorCode::corrupt_data, what + ": invalid image size " +
-                                                      std::to_string(width) + "x" +
-                                                      std::to_string(height));
+    return Status::error(ErrorCode::corrupt_data,
+                         what + ": invalid image size " + size_text(width, height));
   }
   if (width > kMaxImageDimension || height > kMaxImageDimension ||
       std::uint64_t(width) * std::uint64_t(height) > kMaxImagePixels) {
     return Status::error(ErrorCode::too_large,
-                         what + ": image size " + std::to_string(width) + "x" +
-                             std::to_string(height) + " exceeds the limit (" +
+                         what + ": image size " + size_text(width, height) + " exceeds the limit (" +
                              std::to_string(kMaxImageDimension) + " per side, " +
                              std::to_string(kMaxImagePixels >> 20) + " Mpx)");
   }

@@ -74,22 +74,14 @@ ImageRGBAF DeferredRenderer::shade_default(const GBuffer& gb, const ShadingOptio
   return img;
 }
 
-AdaptiveResult DeferredRenderer::shade_adaptive(const GBuffer& gb, const ShadingOptions& shading,
-                                                const AdaptiveOptions& a) const {
-  const ShadeContext ctx(*this, gb, shading);
-  const int m = gb.m, n = m * m, w = gb.width(), h = gb.height();
-  const std::span<const std::uint8_t> order = sample_order(m);
-  TESSERA_DCHECK(order.size() == std::size_t(n));  // every window cell once (Figure 3)
-  const int first = order[0];
-  const std::size_t npix = std::size_t(w) * std::size_t(h);
-  AdaptiveResult res;
-  res.image = ImageRGBAF(w, h);
-  res.samples.assign(npix, 1);
+namespace {
 
-  // Pass 1: shade the first sample of every window into S (colour, and its light terms).
-  auto t0 = std::chrono::steady_clock::now();
-  std::vector<LightTerms> terms(npix);
-  std::vector<float> luma(npix);
+/// Pass 1 of shade_adaptive: the first sample of every window shaded into `image` (S), with its
+/// light terms and its luma for the shading metric.
+void shade_first_samples(const ShadeContext& ctx, const GBuffer& gb, int first, int threads,
+                         ImageRGBAF& image, std::vector<LightTerms>& terms,
+                         std::vector<float>& luma) {
+  const int m = gb.m, w = gb.width(), h = gb.height();
   parallel_for(
       0, h, kRowGrain,
       [&](std::int64_t y0, std::int64_t y1) {
@@ -103,18 +95,21 @@ AdaptiveResult DeferredRenderer::shade_adaptive(const GBuffer& gb, const Shading
               terms[i] = ctx.lighting(gx, gy, s);
               c = combine(ctx.albedo(s, float(m)), terms[i]);
             }
-            store(res.image, x, y, c);
+            store(image, x, y, c);
             luma[i] = luma_srgb(c);
           }
         }
       },
-      {shading.threads});
-  res.ms_first = ms_since(t0);
+      {threads});
+}
 
-  // Pass 2: the number of extra samples per pixel.
-  t0 = std::chrono::steady_clock::now();
+/// Pass 2: the number of extra samples per pixel (the geometry and shading metrics).
+std::vector<std::uint8_t> extra_sample_counts(const ShadeContext& ctx, const GBuffer& gb,
+                                              const AdaptiveOptions& a,
+                                              const std::vector<float>& luma, int threads) {
+  const int m = gb.m, n = m * m, w = gb.width(), h = gb.height();
   const int k_max = n - 1;
-  std::vector<std::uint8_t> extra(npix, 0);
+  std::vector<std::uint8_t> extra(std::size_t(w) * std::size_t(h), 0);
   parallel_for(
       0, h, kRowGrain,
       [&](std::int64_t y0, std::int64_t y1) {
@@ -161,12 +156,18 @@ AdaptiveResult DeferredRenderer::shade_adaptive(const GBuffer& gb, const Shading
           }
         }
       },
-      {shading.threads});
-  res.ms_metric = ms_since(t0);
+      {threads});
+  return extra;
+}
 
-  // Pass 3: shade k more samples in index order and average them with the first.
-  t0 = std::chrono::steady_clock::now();
-  std::vector<std::uint8_t> relookup(npix, 0);
+/// Pass 3: k more samples per pixel in index order, averaged with the first; `samples` gets
+/// k + 1, `relookup` 1 where the first sample's albedo was looked up again.
+void shade_extra_samples(const ShadeContext& ctx, const GBuffer& gb, const AdaptiveOptions& a,
+                         std::span<const std::uint8_t> order,
+                         const std::vector<std::uint8_t>& extra,
+                         const std::vector<LightTerms>& terms, int threads, ImageRGBAF& image,
+                         std::vector<std::uint8_t>& samples, std::vector<std::uint8_t>& relookup) {
+  const int m = gb.m, n = m * m, w = gb.width(), h = gb.height();
   parallel_for(
       0, h, kRowGrain,
       [&](std::int64_t y0, std::int64_t y1) {
@@ -177,7 +178,7 @@ AdaptiveResult DeferredRenderer::shade_adaptive(const GBuffer& gb, const Shading
             const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
             const int k = extra[i];
             TESSERA_DCHECK(k >= 0 && k < n);  // k extra samples of the n = m x m window
-            res.samples[i] = std::uint8_t(k + 1);
+            samples[i] = std::uint8_t(k + 1);
             if (k == 0) continue;  // S already holds the pixel
             // Texture-footprint scales (the material-boundary rule, see deferred.h).
             bool uniform = true, seam = false;
@@ -242,11 +243,43 @@ AdaptiveResult DeferredRenderer::shade_adaptive(const GBuffer& gb, const Shading
               for (int q = 0; q < 3; ++q) sum[std::size_t(q)] += c[std::size_t(q)];
             }
             for (float& v : sum) v /= float(k + 1);
-            store(res.image, x, y, sum);
+            store(image, x, y, sum);
           }
         }
       },
-      {shading.threads});
+      {threads});
+}
+
+}  // namespace
+
+AdaptiveResult DeferredRenderer::shade_adaptive(const GBuffer& gb, const ShadingOptions& shading,
+                                                const AdaptiveOptions& a) const {
+  const ShadeContext ctx(*this, gb, shading);
+  const int m = gb.m, n = m * m, w = gb.width(), h = gb.height();
+  const std::span<const std::uint8_t> order = sample_order(m);
+  TESSERA_DCHECK(order.size() == std::size_t(n));  // every window cell once (Figure 3)
+  const std::size_t npix = std::size_t(w) * std::size_t(h);
+  AdaptiveResult res;
+  res.image = ImageRGBAF(w, h);
+  res.samples.assign(npix, 1);
+
+  // Pass 1: shade the first sample of every window into S (colour, and its light terms).
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<LightTerms> terms(npix);
+  std::vector<float> luma(npix);
+  shade_first_samples(ctx, gb, order[0], shading.threads, res.image, terms, luma);
+  res.ms_first = ms_since(t0);
+
+  // Pass 2: the number of extra samples per pixel.
+  t0 = std::chrono::steady_clock::now();
+  const std::vector<std::uint8_t> extra = extra_sample_counts(ctx, gb, a, luma, shading.threads);
+  res.ms_metric = ms_since(t0);
+
+  // Pass 3: shade k more samples in index order and average them with the first.
+  t0 = std::chrono::steady_clock::now();
+  std::vector<std::uint8_t> relookup(npix, 0);
+  shade_extra_samples(ctx, gb, a, order, extra, terms, shading.threads, res.image, res.samples,
+                      relookup);
   res.ms_rest = ms_since(t0);
   for (std::size_t i = 0; i < npix; ++i) {
     res.samples_shaded += res.samples[i];

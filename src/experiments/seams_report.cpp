@@ -106,7 +106,8 @@ constexpr const char* kNotComparedReason =
     "not compared: no CPU pattern has the driver's sample positions, and the CPU cannot draw "
     "at them (not known on its 1/16-pixel grid)";
 
-void fill_json(const SeamsConfig& c, const SeamsResult& res, nlohmann::json& summary) {
+/// command_config and scene: what was run, on what.
+void config_json(const SeamsConfig& c, const SeamsResult& res, nlohmann::json& summary) {
   summary["command_config"] = {{"scene", c.scene},
                                {"ptex", c.ptex},
                                {"msaa", c.msaa},
@@ -132,28 +133,33 @@ void fill_json(const SeamsConfig& c, const SeamsResult& res, nlohmann::json& sum
                       {"edge_pairings", res.edge_pairings},
                       {"valence4_corner_links", res.linked_corners},
                       {"corners", 4 * res.faces}};
-  const bool gl = res.backend == Backend::gl;
-  const bool both = res.backend == Backend::both;
-  summary["backend"] = backend_name(res.backend);
-  if (gl || both) {
-    summary["gl_renderer"] = res.gl_renderer;
-    summary["gl_version"] = res.gl_version;
-    summary["msaa_unsupported"] = res.msaa_unsupported;
-    nlohmann::json samples = nlohmann::json::object();
-    for (const SeamsSamplePattern& p : res.gl_sample_patterns) {
-      samples[rate_key(p.msaa)] = {{"samples", p.samples},
-                                   {"cpu_msaa", p.cpu_msaa},
-                                   {"positions", positions_json(p)},
-                                   {"compared_with", compared_with_json(res, p)}};
-    }
-    summary["gl_samples"] = samples;
-    const std::string read = software_gl(res) ? "the wall times (llvmpipe: the timer is partial)"
-                                              : "the GPU timer (a hardware GPU)";
-    summary["timing_note"] =
-        "GL: median_ms/frame_ms are GL_TIME_ELAPSED (draws + resolve), "
-        "wall_median_ms/wall_frame_ms the wall time to glFinish; read " +
-        read;
+}
+
+/// The GL device's keys (backend gl or both): renderer, the rates it refuses, its sample
+/// positions and how its timings read.
+void gl_device_json(const SeamsResult& res, nlohmann::json& summary) {
+  summary["gl_renderer"] = res.gl_renderer;
+  summary["gl_version"] = res.gl_version;
+  summary["msaa_unsupported"] = res.msaa_unsupported;
+  nlohmann::json samples = nlohmann::json::object();
+  for (const SeamsSamplePattern& p : res.gl_sample_patterns) {
+    samples[rate_key(p.msaa)] = {{"samples", p.samples},
+                                 {"cpu_msaa", p.cpu_msaa},
+                                 {"positions", positions_json(p)},
+                                 {"compared_with", compared_with_json(res, p)}};
   }
+  summary["gl_samples"] = samples;
+  const std::string read = software_gl(res) ? "the wall times (llvmpipe: the timer is partial)"
+                                            : "the GPU timer (a hardware GPU)";
+  summary["timing_note"] =
+      "GL: median_ms/frame_ms are GL_TIME_ELAPSED (draws + resolve), "
+      "wall_median_ms/wall_frame_ms the wall time to glFinish; read " +
+      read;
+}
+
+/// timing, quality and the NaN counts of every rate `primary` rendered.
+void rates_json(const SeamsResult& res, nlohmann::json& summary) {
+  const bool gl = res.backend == Backend::gl;
   nlohmann::json timing_j, quality_j, nan_j;
   for (const SeamsRateResult& rate : res.rates) {
     const std::string rk = rate_key(rate.msaa);
@@ -204,54 +210,64 @@ void fill_json(const SeamsConfig& c, const SeamsResult& res, nlohmann::json& sum
   summary["quality"] = quality_j;
   summary["nan_pixels_discard_without_fallback_frame0"] = nan_j;
   summary["reference_ms_total"] = res.reference_ms_total;
-  if (both) {
-    nlohmann::json tg = nlohmann::json::object(), agree = nlohmann::json::object();
-    bool standard = true;  // every rate compared with a CPU rate's standard pattern
-    for (const SeamsGlRateResult& g : res.gl_rates) {
-      const std::string rk = rate_key(g.msaa);
-      const bool compared = g.compared_with != SeamsGlComparison::none;
-      standard = standard && g.compared_with == SeamsGlComparison::cpu_rate;
-      for (const SeamsGlMethodResult& m : g.methods) {
-        const char* name = faces::method_name(m.method);
-        tg[rk][name] = times_json(m.gpu, &m.wall);
-        agree[rk][name] = {{"psnr_db", m.psnr_db}, {"fraction_ge_0.01", m.fraction_ge_001}};
-        if (!compared) {
-          // Explicit nulls, whatever the result holds: no agreement was measured.
-          agree[rk][name] = {{"psnr_db", nullptr},
-                             {"fraction_ge_0.01", nullptr},
-                             {"not_compared", kNotComparedReason}};
-        }
+}
+
+/// Backend both: the GL timings and the GL-vs-CPU agreement of every rate.
+void gl_comparison_json(const SeamsResult& res, nlohmann::json& summary) {
+  nlohmann::json tg = nlohmann::json::object(), agree = nlohmann::json::object();
+  bool standard = true;  // every rate compared with a CPU rate's standard pattern
+  for (const SeamsGlRateResult& g : res.gl_rates) {
+    const std::string rk = rate_key(g.msaa);
+    const bool compared = g.compared_with != SeamsGlComparison::none;
+    standard = standard && g.compared_with == SeamsGlComparison::cpu_rate;
+    for (const SeamsGlMethodResult& m : g.methods) {
+      const char* name = faces::method_name(m.method);
+      tg[rk][name] = times_json(m.gpu, &m.wall);
+      agree[rk][name] = {{"psnr_db", m.psnr_db}, {"fraction_ge_0.01", m.fraction_ge_001}};
+      if (!compared) {
+        // Explicit nulls, whatever the result holds: no agreement was measured.
+        agree[rk][name] = {{"psnr_db", nullptr},
+                           {"fraction_ge_0.01", nullptr},
+                           {"not_compared", kNotComparedReason}};
       }
     }
-    summary["timing_gl"] = tg;
-    summary["gl_vs_cpu"] = agree;
-    if (res.gl_reference_vs_cpu.measured) {
-      const SeamsReferenceAgreement& r = res.gl_reference_vs_cpu;
-      summary["gl_reference_vs_cpu"] = {{"psnr_db", r.psnr_db},
-                                        {"fraction_ge_0.01", r.fraction_ge_001},
-                                        {"worst_frame_psnr_db", r.worst_psnr_db},
-                                        {"worst_frame_fraction_ge_0.01", r.worst_fraction_ge_001}};
-    }
-    summary["gl_vs_cpu_note"] =
-        "GL frame against the CPU frame of the same camera, method and sample positions (the "
-        "CPU rate gl_samples[rate].cpu_msaa: the rate itself unless the driver draws it with "
-        "more samples), pooled over the " +
-        std::to_string(res.quality_frames) +
-        " quality frame(s), all pixels: psnr_db from the mean MSE of the 8-bit sRGB outputs "
-        "(null = identical), fraction_ge_0.01 = pixels whose linear-RGB 2-norm difference is >= "
-        "0.01 (NaN counts)";
-    if (!standard) {
-      // Only where a driver's positions are no standard pattern, so that the usual report
-      // (every rate matched, as on llvmpipe) keeps its exact text.
-      summary["gl_vs_cpu_note"] =
-          summary["gl_vs_cpu_note"].get<std::string>() +
-          ". Where cpu_msaa is 0 (no CPU pattern has the driver's positions), the CPU frame is "
-          "drawn at the driver's own positions (gl_samples[rate].compared_with \"cpu, the "
-          "driver's positions\"), or, where those are not on the CPU's 1/16-pixel grid "
-          "(positions null), the rate is not compared (compared_with null, psnr_db and "
-          "fraction_ge_0.01 null, not_compared says why)";
-    }
   }
+  summary["timing_gl"] = tg;
+  summary["gl_vs_cpu"] = agree;
+  if (res.gl_reference_vs_cpu.measured) {
+    const SeamsReferenceAgreement& r = res.gl_reference_vs_cpu;
+    summary["gl_reference_vs_cpu"] = {{"psnr_db", r.psnr_db},
+                                      {"fraction_ge_0.01", r.fraction_ge_001},
+                                      {"worst_frame_psnr_db", r.worst_psnr_db},
+                                      {"worst_frame_fraction_ge_0.01", r.worst_fraction_ge_001}};
+  }
+  summary["gl_vs_cpu_note"] =
+      "GL frame against the CPU frame of the same camera, method and sample positions (the "
+      "CPU rate gl_samples[rate].cpu_msaa: the rate itself unless the driver draws it with "
+      "more samples), pooled over the " +
+      std::to_string(res.quality_frames) +
+      " quality frame(s), all pixels: psnr_db from the mean MSE of the 8-bit sRGB outputs "
+      "(null = identical), fraction_ge_0.01 = pixels whose linear-RGB 2-norm difference is >= "
+      "0.01 (NaN counts)";
+  if (!standard) {
+    // Only where a driver's positions are no standard pattern, so that the usual report
+    // (every rate matched, as on llvmpipe) keeps its exact text.
+    summary["gl_vs_cpu_note"] =
+        summary["gl_vs_cpu_note"].get<std::string>() +
+        ". Where cpu_msaa is 0 (no CPU pattern has the driver's positions), the CPU frame is "
+        "drawn at the driver's own positions (gl_samples[rate].compared_with \"cpu, the "
+        "driver's positions\"), or, where those are not on the CPU's 1/16-pixel grid "
+        "(positions null), the rate is not compared (compared_with null, psnr_db and "
+        "fraction_ge_0.01 null, not_compared says why)";
+  }
+}
+
+void fill_json(const SeamsConfig& c, const SeamsResult& res, nlohmann::json& summary) {
+  config_json(c, res, summary);
+  summary["backend"] = backend_name(res.backend);
+  if (res.backend == Backend::gl || res.backend == Backend::both) gl_device_json(res, summary);
+  rates_json(res, summary);
+  if (res.backend == Backend::both) gl_comparison_json(res, summary);
 }
 
 std::string error_row(const std::string& label, int msaa, const ErrorStats& q) {
@@ -392,9 +408,10 @@ std::string driver_positions_sentence(const SeamsResult& res, const SeamsSampleP
   return s + ".";
 }
 
-std::string markdown(const SeamsConfig& c, const SeamsResult& res, bool images) {
-  const std::vector<SeamMethod>& methods = faces::all_methods();
-  std::ostringstream md;
+/// The title, the scene and the backend paragraph.
+void md_header(std::ostringstream& md, const SeamsConfig& c, const SeamsResult& res) {
+  const bool gl = res.backend == Backend::gl;
+  const bool both = res.backend == Backend::both;
   md << "# Seams experiment (Toth 2013, Table 1 and Figure 5)\n\n";
   md << "Scene: " << res.scene_description << "; " << res.faces << " faces, " << res.texels_level0
      << " level-0 texels, " << res.linked_corners << " of " << 4 * res.faces
@@ -404,8 +421,6 @@ std::string markdown(const SeamsConfig& c, const SeamsResult& res, bool images) 
              ? "trilinear filtering (the reference: 16x anisotropic)"
              : "16x anisotropic filtering")
      << ", " << res.threads << " thread(s).\n\n";
-  const bool gl = res.backend == Backend::gl;
-  const bool both = res.backend == Backend::both;
   if (gl || both) {
     md << "Backend: **" << (gl ? "OpenGL" : "CPU, and OpenGL beside it (`--backend both`)")
        << "**: " << res.gl_renderer << ", " << res.gl_version << ".";
@@ -434,6 +449,12 @@ std::string markdown(const SeamsConfig& c, const SeamsResult& res, bool images) 
               : "")
        << "\n\n";
   }
+}
+
+/// Table 1: the median times; whether Discard is at least 2x faster than Traverse everywhere.
+bool md_table1(std::ostringstream& md, const SeamsResult& res) {
+  const std::vector<SeamMethod>& methods = faces::all_methods();
+  const bool gl = res.backend == Backend::gl;
   md << "## Table 1 analogue: median ms per frame\n\n";
   bool speed_ok = true;
   if (gl) {
@@ -460,6 +481,12 @@ std::string markdown(const SeamsConfig& c, const SeamsResult& res, bool images) 
     }
     speed_ok = time_table(md, keys, rows, " %.1f |");
   }
+  return speed_ok;
+}
+
+/// Figure 5: the error tables (all pixels, near the seams, the character).
+void md_figure5(std::ostringstream& md, const SeamsConfig& c, const SeamsResult& res) {
+  const std::vector<SeamMethod>& methods = faces::all_methods();
   md << "## Figure 5 analogue\n\n";
   md << "Pixels counted: **geometry only** — pixels whose reference coverage (the alpha of the "
         "Mitchell-filtered supersampled reference) exceeds 0.01, over the quality frames, the "
@@ -513,6 +540,10 @@ std::string markdown(const SeamsConfig& c, const SeamsResult& res, bool images) 
       }
     }
   }
+}
+
+/// The targets and the zero-coverage fallback's NaN counts.
+void md_targets(std::ostringstream& md, const SeamsResult& res, bool speed_ok) {
   md << "\n## Targets\n\n";
   md << "- Discard at least 2x faster than Traverse at every rate: **"
      << (speed_ok ? "met" : "not met") << "** (ratios in the table).\n";
@@ -530,7 +561,15 @@ std::string markdown(const SeamsConfig& c, const SeamsResult& res, bool images) 
     md << " " << rate_key(rate.msaa) << ": " << rate.nan_pixels_without_fallback << ";";
   }
   md << " with the fallback: 0.\n";
-  if (both) md << gl_beside_cpu(res);
+}
+
+std::string markdown(const SeamsConfig& c, const SeamsResult& res, bool images) {
+  std::ostringstream md;
+  md_header(md, c, res);
+  const bool speed_ok = md_table1(md, res);
+  md_figure5(md, c, res);
+  md_targets(md, res, speed_ok);
+  if (res.backend == Backend::both) md << gl_beside_cpu(res);
   if (images) {
     md << "\n## Images\n\n`images/<method>_<rate>.png` (frame 0), `images/reference.png`, "
           "`images/zoom_*.png`: a 40x40 window at 4x where Clamp and Traverse differ most, and "

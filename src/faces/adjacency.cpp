@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "core/check.h"
+#include "scene/scene_internal.h"
 #include "tessera/faces.h"
 
 namespace tessera::faces {
@@ -36,13 +37,7 @@ Result<PolygonMesh> load_obj_polygons(const std::string& path) {
   config.vertex_color = false;
   tinyobj::ObjReader reader;
   if (!reader.ParseFromFile(path, config)) {
-    std::string why = reader.Error();
-    while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
-    for (char& c : why) {
-      if (c == '\n') c = ' ';
-    }
-    return Status::error(ErrorCode::corrupt_data,
-                         path + ": cannot read OBJ: " + (why.empty() ? "parse error" : why));
+    return scene::detail::obj_parse_error(path, reader.Error());
   }
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   PolygonMesh mesh;

@@ -239,9 +239,20 @@ float half_to_float(std::uint16_t h) {
   return f;
 }
 
-Result<PtexFile> parse_ptex(std::span<const std::uint8_t> bytes, const std::string& name,
-                            const ParseOptions& options) {
-  const Ctx ctx{bytes, name};
+namespace {
+
+/// Where the blocks lie, from the header: sizes and byte positions.
+struct Layout {
+  int nlevels = 0;
+  std::uint32_t nfaces = 0;
+  std::uint32_t faceinfo_size = 0, const_size = 0, levelinfo_size = 0;
+  std::uint64_t leveldata_size = 0;
+  std::uint64_t faceinfo_pos = 0, const_pos = 0, levelinfo_pos = 0, leveldata_pos = 0;
+};
+
+/// The header and the extended header into `file`; the block layout, checked against the bytes.
+Result<Layout> read_header(const Ctx& ctx, PtexFile& file) {
+  const std::span<const std::uint8_t> bytes = ctx.bytes;
   if (bytes.size() < kHeaderSize) return ctx.corrupt("shorter than a Ptex header (64 bytes)");
   const std::uint8_t* h = bytes.data();
   if (rd32(h) != kMagic) return ctx.corrupt("not a Ptex file (bad magic)");
@@ -249,7 +260,7 @@ Result<PtexFile> parse_ptex(std::span<const std::uint8_t> bytes, const std::stri
     return ctx.error(ErrorCode::unsupported, "Ptex version " + std::to_string(rd32(h + 4)) +
                                                  " (only version 1 is supported)");
   }
-  PtexFile file;
+  Layout L;
   const std::uint32_t mesh = rd32(h + 8), dtype = rd32(h + 12);
   if (mesh > 1) return ctx.corrupt("mesh type " + std::to_string(mesh) + " out of range");
   if (dtype > 3) return ctx.corrupt("data type " + std::to_string(dtype) + " out of range");
@@ -257,31 +268,33 @@ Result<PtexFile> parse_ptex(std::span<const std::uint8_t> bytes, const std::stri
   file.data_type = DataType(dtype);
   file.alpha_channel = std::int32_t(rd32(h + 16));
   file.channels = rd16(h + 20);
-  const int nlevels = rd16(h + 22);
-  const std::uint32_t nfaces = rd32(h + 24);
-  const std::uint32_t ext_size = rd32(h + 28), faceinfo_size = rd32(h + 32),
-                      const_size = rd32(h + 36), levelinfo_size = rd32(h + 40);
+  L.nlevels = rd16(h + 22);
+  L.nfaces = rd32(h + 24);
+  const std::uint32_t ext_size = rd32(h + 28);
+  L.faceinfo_size = rd32(h + 32);
+  L.const_size = rd32(h + 36);
+  L.levelinfo_size = rd32(h + 40);
   file.minor_version = int(rd32(h + 44));
-  const std::uint64_t leveldata_size = rd64(h + 48);
-  const std::uint32_t meta_zip_size = rd32(h + 56);
+  L.leveldata_size = rd64(h + 48);
+  // The meta data size (h + 56) is not needed: meta data follows the level data.
   if (file.channels < 1 || file.channels > 64) {
     return ctx.corrupt("channel count " + std::to_string(file.channels) + " out of range 1..64");
   }
   if (file.alpha_channel < -1 || file.alpha_channel >= file.channels) file.alpha_channel = -1;
-  if (nlevels < 1 || nlevels > kMaxFaceLog2 + 1) {
-    return ctx.corrupt("level count " + std::to_string(nlevels) + " out of range");
+  if (L.nlevels < 1 || L.nlevels > kMaxFaceLog2 + 1) {
+    return ctx.corrupt("level count " + std::to_string(L.nlevels) + " out of range");
   }
-  if (nfaces < 1) return ctx.corrupt("no faces");
+  if (L.nfaces < 1) return ctx.corrupt("no faces");
   // zlib cannot expand by more than ~1032:1, so the face count is bounded by the block size.
-  if (!plausible_zip(faceinfo_size, std::uint64_t(nfaces) * kFaceInfoSize) || nfaces > (1u << 24)) {
-    return ctx.corrupt("face count " + std::to_string(nfaces) +
+  if (!plausible_zip(L.faceinfo_size, std::uint64_t(L.nfaces) * kFaceInfoSize) ||
+      L.nfaces > (1u << 24)) {
+    return ctx.corrupt("face count " + std::to_string(L.nfaces) +
                        " does not fit the face-info block");
   }
-  if (levelinfo_size != std::uint64_t(nlevels) * kLevelInfoSize) {
-    return ctx.corrupt("level-info size " + std::to_string(levelinfo_size) + " for " +
-                       std::to_string(nlevels) + " levels");
+  if (L.levelinfo_size != std::uint64_t(L.nlevels) * kLevelInfoSize) {
+    return ctx.corrupt("level-info size " + std::to_string(L.levelinfo_size) + " for " +
+                       std::to_string(L.nlevels) + " levels");
   }
-  const Format fmt{file.data_type, file.channels, data_size(file.data_type) * file.channels};
 
   // Extended header (older files may have a shorter one; missing fields read as 0).
   std::uint8_t ext[kExtHeaderSize] = {};
@@ -296,86 +309,92 @@ Result<PtexFile> parse_ptex(std::span<const std::uint8_t> bytes, const std::stri
 
   // Block offsets.
   std::uint64_t pos = kHeaderSize + std::uint64_t(ext_size);
-  const std::uint64_t faceinfo_pos = pos;
-  pos += faceinfo_size;
-  const std::uint64_t const_pos = pos;
-  pos += const_size;
-  const std::uint64_t levelinfo_pos = pos;
-  pos += levelinfo_size;
-  const std::uint64_t leveldata_pos = pos;
-  if (!ctx.in_range(faceinfo_pos, std::uint64_t(faceinfo_size) + const_size + levelinfo_size) ||
-      !ctx.in_range(leveldata_pos, leveldata_size)) {
+  L.faceinfo_pos = pos;
+  pos += L.faceinfo_size;
+  L.const_pos = pos;
+  pos += L.const_size;
+  L.levelinfo_pos = pos;
+  pos += L.levelinfo_size;
+  L.leveldata_pos = pos;
+  if (!ctx.in_range(L.faceinfo_pos,
+                    std::uint64_t(L.faceinfo_size) + L.const_size + L.levelinfo_size) ||
+      !ctx.in_range(L.leveldata_pos, L.leveldata_size)) {
     return ctx.corrupt("header block sizes run past the end of the file (truncated?)");
   }
-  (void)meta_zip_size;  // meta data follows the level data; not needed.
+  return L;
+}
 
-  // Face info.
-  {
-    std::vector<std::uint8_t> fi(std::size_t(nfaces) * kFaceInfoSize);
-    if (!inflate_exact(bytes.subspan(std::size_t(faceinfo_pos), faceinfo_size), fi)) {
-      return ctx.corrupt("face-info zlib data corrupt or wrong size");
-    }
-    file.faces.resize(nfaces);
-    for (std::uint32_t f = 0; f < nfaces; ++f) {
-      const std::uint8_t* p = &fi[std::size_t(f) * kFaceInfoSize];
-      FaceInfo& info = file.faces[f];
-      info.ulog2 = std::int8_t(p[0]);
-      info.vlog2 = std::int8_t(p[1]);
-      if (info.ulog2 < 0 || info.vlog2 < 0 || info.ulog2 > kMaxFaceLog2 ||
-          info.vlog2 > kMaxFaceLog2) {
-        return ctx.error(ErrorCode::unsupported, "face " + std::to_string(f) + ": resolution 2^" +
-                                                     std::to_string(info.ulog2) + " x 2^" +
-                                                     std::to_string(info.vlog2) +
-                                                     " out of range 0..15");
-      }
-      for (int e = 0; e < 4; ++e) {
-        info.adj_edges[std::size_t(e)] = (p[2] >> (2 * e)) & 3;
-        const std::int32_t a = std::int32_t(rd32(p + 4 + 4 * e));
-        if (a < -1 || a >= std::int32_t(nfaces)) {
-          return ctx.corrupt("face " + std::to_string(f) + ": adjacent face " + std::to_string(a) +
-                             " out of range");
-        }
-        info.adj_faces[std::size_t(e)] = a;
-      }
-      info.constant = (p[3] & 1) != 0;
-      info.subface = (p[3] & 8) != 0;
-    }
+/// The face-info block: every face's resolution, adjacency and flags.
+Status read_face_info(const Ctx& ctx, const Layout& L, PtexFile& file) {
+  std::vector<std::uint8_t> fi(std::size_t(L.nfaces) * kFaceInfoSize);
+  if (!inflate_exact(ctx.bytes.subspan(std::size_t(L.faceinfo_pos), L.faceinfo_size), fi)) {
+    return ctx.corrupt("face-info zlib data corrupt or wrong size");
   }
-
-  // Constant data.
-  file.constant_data.resize(std::size_t(nfaces) * std::size_t(file.channels));
-  {
-    if (!plausible_zip(const_size, std::uint64_t(nfaces) * std::uint64_t(fmt.pixel_size))) {
-      return ctx.corrupt("constant-data block too small for " + std::to_string(nfaces) + " faces");
+  file.faces.resize(L.nfaces);
+  for (std::uint32_t f = 0; f < L.nfaces; ++f) {
+    const std::uint8_t* p = &fi[std::size_t(f) * kFaceInfoSize];
+    FaceInfo& info = file.faces[f];
+    info.ulog2 = std::int8_t(p[0]);
+    info.vlog2 = std::int8_t(p[1]);
+    if (info.ulog2 < 0 || info.vlog2 < 0 || info.ulog2 > kMaxFaceLog2 ||
+        info.vlog2 > kMaxFaceLog2) {
+      return ctx.error(ErrorCode::unsupported, "face " + std::to_string(f) + ": resolution 2^" +
+                                                   std::to_string(info.ulog2) + " x 2^" +
+                                                   std::to_string(info.vlog2) +
+                                                   " out of range 0..15");
     }
-    std::vector<std::uint8_t> cd(std::size_t(nfaces) * std::size_t(fmt.pixel_size));
-    if (!inflate_exact(bytes.subspan(std::size_t(const_pos), const_size), cd)) {
-      return ctx.corrupt("constant-data zlib data corrupt or wrong size");
+    for (int e = 0; e < 4; ++e) {
+      info.adj_edges[std::size_t(e)] = (p[2] >> (2 * e)) & 3;
+      const std::int32_t a = std::int32_t(rd32(p + 4 + 4 * e));
+      if (a < -1 || a >= std::int32_t(L.nfaces)) {
+        return ctx.corrupt("face " + std::to_string(f) + ": adjacent face " + std::to_string(a) +
+                           " out of range");
+      }
+      info.adj_faces[std::size_t(e)] = a;
     }
-    const int ds = data_size(fmt.type);
-    for (std::size_t i = 0; i < file.constant_data.size(); ++i) {
-      file.constant_data[i] = to_float(&cd[i * std::size_t(ds)], fmt.type);
-    }
+    info.constant = (p[3] & 1) != 0;
+    info.subface = (p[3] & 8) != 0;
   }
+  return Status::success();
+}
 
-  // Level info: sizes must add up to the level-data block.
+/// The constant-data block: one pixel per face, as floats.
+Status read_constant_data(const Ctx& ctx, const Layout& L, const Format& fmt, PtexFile& file) {
+  file.constant_data.resize(std::size_t(L.nfaces) * std::size_t(file.channels));
+  if (!plausible_zip(L.const_size, std::uint64_t(L.nfaces) * std::uint64_t(fmt.pixel_size))) {
+    return ctx.corrupt("constant-data block too small for " + std::to_string(L.nfaces) +
+                       " faces");
+  }
+  std::vector<std::uint8_t> cd(std::size_t(L.nfaces) * std::size_t(fmt.pixel_size));
+  if (!inflate_exact(ctx.bytes.subspan(std::size_t(L.const_pos), L.const_size), cd)) {
+    return ctx.corrupt("constant-data zlib data corrupt or wrong size");
+  }
+  const int ds = data_size(fmt.type);
+  for (std::size_t i = 0; i < file.constant_data.size(); ++i) {
+    file.constant_data[i] = to_float(&cd[i * std::size_t(ds)], fmt.type);
+  }
+  return Status::success();
+}
+
+/// The level-info block (sizes must add up to the level-data block), then the budget for
+/// decoded texels, checked before any face is allocated.
+Status read_level_info(const Ctx& ctx, const Layout& L, const ParseOptions& options,
+                       PtexFile& file) {
   std::uint64_t total = 0;
-  for (int l = 0; l < nlevels; ++l) {
-    const std::uint8_t* p = h + levelinfo_pos + std::size_t(l) * kLevelInfoSize;
+  for (int l = 0; l < L.nlevels; ++l) {
+    const std::uint8_t* p = ctx.bytes.data() + L.levelinfo_pos + std::size_t(l) * kLevelInfoSize;
     LevelInfo li{rd64(p), rd32(p + 8), rd32(p + 12)};
-    if (li.face_count > nfaces || (l == 0 && li.face_count != nfaces)) {
+    if (li.face_count > L.nfaces || (l == 0 && li.face_count != L.nfaces)) {
       return ctx.corrupt("level " + std::to_string(l) + ": face count " +
                          std::to_string(li.face_count) + " does not match " +
-                         std::to_string(nfaces) + " faces");
+                         std::to_string(L.nfaces) + " faces");
     }
-    if (li.data_size > leveldata_size - total || li.header_size > li.data_size) {
+    if (li.data_size > L.leveldata_size - total || li.header_size > li.data_size) {
       return ctx.corrupt("level " + std::to_string(l) + ": data size runs past the level data");
     }
     total += li.data_size;
     file.levels.push_back(li);
   }
-
-  // Budget for decoded texels, checked before any face is allocated.
   std::uint64_t floats = 0;
   for (const FaceInfo& f : file.faces) {
     floats += (std::uint64_t(1) << (f.ulog2 + f.vlog2)) * std::uint64_t(file.channels);
@@ -385,18 +404,43 @@ Result<PtexFile> parse_ptex(std::span<const std::uint8_t> bytes, const std::stri
                                                " values, more than the limit " +
                                                std::to_string(options.max_floats));
   }
+  return Status::success();
+}
 
-  // Every level: face-data headers, block sizes within the level. Level 0 is decoded.
-  std::uint64_t level_pos = leveldata_pos;
-  file.texels.resize(nfaces);
-  for (int l = 0; l < nlevels; ++l) {
+/// Face `f` of level 0 into file.texels[f]: the constant pixel, or its data decoded.
+Status read_level0_face(const Ctx& ctx, const Format& fmt, std::uint32_t f, std::uint32_t d,
+                        std::span<const std::uint8_t> data, PtexFile& file) {
+  const FaceInfo& info = file.faces[f];
+  std::vector<float>& tex = file.texels[f];
+  tex.resize((std::size_t(1) << (info.ulog2 + info.vlog2)) * std::size_t(file.channels));
+  const std::string where = "level 0 face " + std::to_string(f);
+  if (!info.constant) {
+    return decode_face(ctx, where, fmt, d >> 30, data, info.ulog2, info.vlog2, tex.data(),
+                       file.encodings);
+  }
+  // The constant-data pixel is authoritative for constant faces.
+  for (int c = 0; c < file.channels; ++c) {
+    tex[std::size_t(c)] = file.constant_data[std::size_t(f) * file.channels + c];
+  }
+  for (std::size_t i = std::size_t(file.channels); i < tex.size(); ++i) {
+    tex[i] = tex[i % std::size_t(file.channels)];
+  }
+  ++file.encodings.constant;
+  return Status::success();
+}
+
+/// Every level: face-data headers, block sizes within the level. Level 0 is decoded.
+Status read_levels(const Ctx& ctx, const Layout& L, const Format& fmt, PtexFile& file) {
+  std::uint64_t level_pos = L.leveldata_pos;
+  file.texels.resize(L.nfaces);
+  for (int l = 0; l < L.nlevels; ++l) {
     const LevelInfo& li = file.levels[std::size_t(l)];
     const std::string lname = "level " + std::to_string(l);
     if (!plausible_zip(li.header_size, std::uint64_t(li.face_count) * 4)) {
       return ctx.corrupt(lname + ": face-data header too small for its faces");
     }
     std::vector<std::uint8_t> fdh(std::size_t(li.face_count) * 4);
-    if (!inflate_exact(bytes.subspan(std::size_t(level_pos), li.header_size), fdh)) {
+    if (!inflate_exact(ctx.bytes.subspan(std::size_t(level_pos), li.header_size), fdh)) {
       return ctx.corrupt(lname + ": face-data header zlib data corrupt or wrong size");
     }
     std::uint64_t p = level_pos + li.header_size;
@@ -407,29 +451,29 @@ Result<PtexFile> parse_ptex(std::span<const std::uint8_t> bytes, const std::stri
       if (size > end - p)
         return ctx.corrupt(lname + " face " + std::to_string(f) + ": data runs past the level");
       if (l == 0) {
-        const FaceInfo& info = file.faces[f];
-        std::vector<float>& tex = file.texels[f];
-        tex.resize((std::size_t(1) << (info.ulog2 + info.vlog2)) * std::size_t(file.channels));
-        const std::string where = lname + " face " + std::to_string(f);
-        if (info.constant) {
-          // The constant-data pixel is authoritative for constant faces.
-          for (int c = 0; c < file.channels; ++c) {
-            tex[std::size_t(c)] = file.constant_data[std::size_t(f) * file.channels + c];
-          }
-          for (std::size_t i = std::size_t(file.channels); i < tex.size(); ++i) {
-            tex[i] = tex[i % std::size_t(file.channels)];
-          }
-          ++file.encodings.constant;
-        } else {
-          Status s = decode_face(ctx, where, fmt, d >> 30, bytes.subspan(std::size_t(p), size),
-                                 info.ulog2, info.vlog2, tex.data(), file.encodings);
-          if (!s.ok()) return s;
-        }
+        Status s = read_level0_face(ctx, fmt, f, d, ctx.bytes.subspan(std::size_t(p), size), file);
+        if (!s.ok()) return s;
       }
       p += size;
     }
     level_pos += li.data_size;
   }
+  return Status::success();
+}
+
+}  // namespace
+
+Result<PtexFile> parse_ptex(std::span<const std::uint8_t> bytes, const std::string& name,
+                            const ParseOptions& options) {
+  const Ctx ctx{bytes, name};
+  PtexFile file;
+  Result<Layout> layout = read_header(ctx, file);
+  if (!layout) return layout.status();
+  const Format fmt{file.data_type, file.channels, data_size(file.data_type) * file.channels};
+  if (Status s = read_face_info(ctx, *layout, file); !s.ok()) return s;
+  if (Status s = read_constant_data(ctx, *layout, fmt, file); !s.ok()) return s;
+  if (Status s = read_level_info(ctx, *layout, options, file); !s.ok()) return s;
+  if (Status s = read_levels(ctx, *layout, fmt, file); !s.ok()) return s;
   return file;
 }
 

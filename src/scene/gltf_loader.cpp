@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <functional>
 
 #include "scene_internal.h"
 #include "tessera/io.h"
@@ -162,12 +161,10 @@ Mat4 node_matrix(const tinygltf::Node& node) {
   return m;
 }
 
-}  // namespace
-
-Result<Scene> load_gltf(const std::string& path, const LoadOptions& options) {
+/// tinygltf's model of `path` and its images decoded by tessera's readers (ImageContext).
+Status load_model(const std::string& path, const LoadOptions& options, tinygltf::Model& model,
+                  std::vector<ImageRGBA8>& images) {
   tinygltf::TinyGLTF loader;
-  tinygltf::Model model;
-  std::vector<ImageRGBA8> images;
   std::vector<std::string> image_errors;
   ImageContext ctx{path, &images, &image_errors, options.load_textures};
   loader.SetImageLoader(load_image, &ctx);
@@ -190,20 +187,61 @@ Result<Scene> load_gltf(const std::string& path, const LoadOptions& options) {
     while (!why.empty() && why.back() == ' ') why.pop_back();
     return Status::error(ErrorCode::corrupt_data, path + ": cannot read glTF: " + why);
   }
+  return Status::success();
+}
 
-  Scene scene;
+/// The scene of a loaded model: materials and textures, then the node tree from its roots
+/// (lights and triangle meshes placed by their nodes' transforms).
+class SceneBuilder {
+ public:
+  SceneBuilder(const tinygltf::Model& model, const std::vector<ImageRGBA8>& images,
+               const std::string& path, const LoadOptions& options)
+      : model_(model), images_(images), path_(path), options_(options),
+        texture_map_(model.textures.size(), -1), depth_guard_(model.nodes.size(), 0) {}
+
+  void add_materials();
+  /// The node and its subtree under the world transform `parent`.
+  Status visit(int node_index, const Mat4& parent);
+  Scene take() { return std::move(scene_); }
+
+ private:
+  Status corrupt(const std::string& what) const {
+    return Status::error(ErrorCode::corrupt_data, path_ + ": " + what);
+  }
+  int texture_for(int tex_index, bool srgb);
+  void add_light(const tinygltf::Node& node, const Mat4& world);
+  Status add_primitive(const tinygltf::Mesh& gm, const tinygltf::Primitive& prim,
+                       const Mat4& world, const Mat4& normal_matrix);
+
+  const tinygltf::Model& model_;
+  const std::vector<ImageRGBA8>& images_;
+  const std::string& path_;
+  const LoadOptions& options_;
+  Scene scene_;
   // Textures: glTF textures point at images; keep one tessera texture per glTF texture.
-  std::vector<int> texture_map(model.textures.size(), -1);
-  auto texture_for = [&](int tex_index, bool srgb) -> int {
-    if (!options.load_textures || tex_index < 0 || std::size_t(tex_index) >= model.textures.size()) return -1;
-    if (texture_map[std::size_t(tex_index)] >= 0) return texture_map[std::size_t(tex_index)];
-    const int src = model.textures[std::size_t(tex_index)].source;
-    if (src < 0 || std::size_t(src) >= images.size() || images[std::size_t(src)].empty()) return -1;
-    texture_map[std::size_t(tex_index)] = int(scene.textures.size());
-    scene.textures.push_back({model.images[std::size_t(src)].uri, images[std::size_t(src)], srgb});
-    return texture_map[std::size_t(tex_index)];
-  };
-  for (const tinygltf::Material& m : model.materials) {
+  std::vector<int> texture_map_;
+  std::vector<int> depth_guard_;
+  int default_material_ = 0;
+  std::size_t triangles_ = 0;
+};
+
+int SceneBuilder::texture_for(int tex_index, bool srgb) {
+  if (!options_.load_textures || tex_index < 0 ||
+      std::size_t(tex_index) >= model_.textures.size()) {
+    return -1;
+  }
+  if (texture_map_[std::size_t(tex_index)] >= 0) return texture_map_[std::size_t(tex_index)];
+  const int src = model_.textures[std::size_t(tex_index)].source;
+  if (src < 0 || std::size_t(src) >= images_.size() || images_[std::size_t(src)].empty()) {
+    return -1;
+  }
+  texture_map_[std::size_t(tex_index)] = int(scene_.textures.size());
+  scene_.textures.push_back({model_.images[std::size_t(src)].uri, images_[std::size_t(src)], srgb});
+  return texture_map_[std::size_t(tex_index)];
+}
+
+void SceneBuilder::add_materials() {
+  for (const tinygltf::Material& m : model_.materials) {
     Material mat;
     mat.name = m.name;
     const auto& f = m.pbrMetallicRoughness.baseColorFactor;
@@ -214,115 +252,138 @@ Result<Scene> load_gltf(const std::string& path, const LoadOptions& options) {
     mat.alpha_mask = m.alphaMode == "MASK";
     mat.alpha_blend = m.alphaMode == "BLEND";
     mat.alpha_cutoff = float(m.alphaCutoff);
-    scene.materials.push_back(std::move(mat));
+    scene_.materials.push_back(std::move(mat));
   }
-  const int default_material = int(scene.materials.size());
-  scene.materials.push_back(Material{"default"});
+  default_material_ = int(scene_.materials.size());
+  scene_.materials.push_back(Material{"default"});
+}
 
-  // Lights (KHR_lights_punctual), placed by the nodes that reference them.
-  std::size_t triangles = 0;
-  Status status = Status::success();
-  std::vector<int> depth_guard(model.nodes.size(), 0);
-  std::function<void(int, const Mat4&)> visit = [&](int node_index, const Mat4& parent) {
-    if (!status.ok()) return;
-    if (node_index < 0 || std::size_t(node_index) >= model.nodes.size()) {
-      status = Status::error(ErrorCode::corrupt_data, path + ": node index " + std::to_string(node_index) + " out of range");
-      return;
+// Lights (KHR_lights_punctual), placed by the nodes that reference them.
+void SceneBuilder::add_light(const tinygltf::Node& node, const Mat4& world) {
+  int light = -1;
+  if (auto ext = node.extensions.find("KHR_lights_punctual"); ext != node.extensions.end()) {
+    if (ext->second.IsObject() && ext->second.Has("light") &&
+        ext->second.Get("light").IsNumber()) {
+      light = ext->second.Get("light").GetNumberAsInt();
     }
-    if (depth_guard[std::size_t(node_index)]++ > 0) {
-      status = Status::error(ErrorCode::corrupt_data, path + ": node " + std::to_string(node_index) + " is reached twice (cycle or shared child)");
-      return;
-    }
-    const tinygltf::Node& node = model.nodes[std::size_t(node_index)];
-    const Mat4 world = parent * node_matrix(node);
-    const Mat4 normal_matrix = transpose(inverse(world));
-    int light = -1;
-    if (auto ext = node.extensions.find("KHR_lights_punctual"); ext != node.extensions.end()) {
-      if (ext->second.IsObject() && ext->second.Has("light") &&
-          ext->second.Get("light").IsNumber()) {
-        light = ext->second.Get("light").GetNumberAsInt();
-      }
-    }
-    if (light >= 0 && std::size_t(light) < model.lights.size()) {
-      const tinygltf::Light& l = model.lights[std::size_t(light)];
-      if (l.type == "point") {
-        PointLight p;
-        p.position = world.transform_point({0, 0, 0});
-        for (std::size_t c = 0; c < 3 && c < l.color.size(); ++c) p.color[c] = float(l.color[c]);
-        p.intensity = float(l.intensity);
-        p.range = float(l.range);
-        scene.lights.push_back(p);
-      }
-    }
-    if (node.mesh >= 0) {
-      if (std::size_t(node.mesh) >= model.meshes.size()) {
-        status = Status::error(ErrorCode::corrupt_data, path + ": node " + std::to_string(node_index) + " refers to a missing mesh");
-        return;
-      }
-      const tinygltf::Mesh& gm = model.meshes[std::size_t(node.mesh)];
-      for (const tinygltf::Primitive& prim : gm.primitives) {
-        if (prim.mode != kTriangles) continue;  // points and lines are not rendered
-        Mesh mesh;
-        mesh.name = gm.name;
-        mesh.material = (prim.material >= 0 && prim.material < default_material) ? prim.material : default_material;
-        std::vector<float> pos, nrm, uv;
-        auto attr = [&](const char* key) {
-          auto it = prim.attributes.find(key);
-          return it == prim.attributes.end() ? -1 : it->second;
-        };
-        if (attr("POSITION") < 0) {
-          status = Status::error(ErrorCode::corrupt_data, path + ": mesh '" + gm.name + "' has a primitive without POSITION");
-          return;
-        }
-        if (Status s = read_floats(model, attr("POSITION"), 3, pos, path); !s.ok()) { status = s; return; }
-        if (attr("NORMAL") >= 0) {
-          if (Status s = read_floats(model, attr("NORMAL"), 3, nrm, path); !s.ok()) { status = s; return; }
-        }
-        if (attr("TEXCOORD_0") >= 0) {
-          if (Status s = read_floats(model, attr("TEXCOORD_0"), 2, uv, path); !s.ok()) { status = s; return; }
-        }
-        const std::size_t n = pos.size() / 3;
-        mesh.positions.resize(n);
-        for (std::size_t i = 0; i < n; ++i) {
-          mesh.positions[i] = world.transform_point({pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]});
-        }
-        if (nrm.size() == pos.size()) {
-          mesh.normals.resize(n);
-          for (std::size_t i = 0; i < n; ++i) {
-            mesh.normals[i] = normal_matrix.transform_vector({nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]});
-          }
-        }
-        if (uv.size() == 2 * n) {
-          mesh.uvs.resize(n);
-          for (std::size_t i = 0; i < n; ++i) mesh.uvs[i] = {uv[2 * i], uv[2 * i + 1]};
-        }
-        if (prim.indices >= 0) {
-          if (Status s = read_indices(model, prim.indices, mesh.indices, path); !s.ok()) { status = s; return; }
-        } else {
-          mesh.indices.resize(n - n % 3);
-          for (std::size_t i = 0; i < mesh.indices.size(); ++i) mesh.indices[i] = std::uint32_t(i);
-        }
-        triangles += mesh.triangle_count();
-        if (triangles > options.max_triangles) {
-          status = Status::error(ErrorCode::too_large, path + ": more than " + std::to_string(options.max_triangles) + " triangles");
-          return;
-        }
-        if (Status s = detail::finish_mesh(mesh, path); !s.ok()) { status = s; return; }
-        if (!mesh.indices.empty()) scene.meshes.push_back(std::move(mesh));
-      }
-    }
-    for (int child : node.children) visit(child, world);
+  }
+  if (light < 0 || std::size_t(light) >= model_.lights.size()) return;
+  const tinygltf::Light& l = model_.lights[std::size_t(light)];
+  if (l.type != "point") return;
+  PointLight p;
+  p.position = world.transform_point({0, 0, 0});
+  for (std::size_t c = 0; c < 3 && c < l.color.size(); ++c) p.color[c] = float(l.color[c]);
+  p.intensity = float(l.intensity);
+  p.range = float(l.range);
+  scene_.lights.push_back(p);
+}
+
+Status SceneBuilder::add_primitive(const tinygltf::Mesh& gm, const tinygltf::Primitive& prim,
+                                   const Mat4& world, const Mat4& normal_matrix) {
+  if (prim.mode != kTriangles) return Status::success();  // points and lines are not rendered
+  Mesh mesh;
+  mesh.name = gm.name;
+  mesh.material = (prim.material >= 0 && prim.material < default_material_) ? prim.material
+                                                                            : default_material_;
+  std::vector<float> pos, nrm, uv;
+  auto attr = [&](const char* key) {
+    auto it = prim.attributes.find(key);
+    return it == prim.attributes.end() ? -1 : it->second;
   };
+  if (attr("POSITION") < 0) {
+    return corrupt("mesh '" + gm.name + "' has a primitive without POSITION");
+  }
+  if (Status s = read_floats(model_, attr("POSITION"), 3, pos, path_); !s.ok()) return s;
+  if (attr("NORMAL") >= 0) {
+    if (Status s = read_floats(model_, attr("NORMAL"), 3, nrm, path_); !s.ok()) return s;
+  }
+  if (attr("TEXCOORD_0") >= 0) {
+    if (Status s = read_floats(model_, attr("TEXCOORD_0"), 2, uv, path_); !s.ok()) return s;
+  }
+  const std::size_t n = pos.size() / 3;
+  mesh.positions.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    mesh.positions[i] = world.transform_point({pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]});
+  }
+  if (nrm.size() == pos.size()) {
+    mesh.normals.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      mesh.normals[i] =
+          normal_matrix.transform_vector({nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]});
+    }
+  }
+  if (uv.size() == 2 * n) {
+    mesh.uvs.resize(n);
+    for (std::size_t i = 0; i < n; ++i) mesh.uvs[i] = {uv[2 * i], uv[2 * i + 1]};
+  }
+  if (prim.indices >= 0) {
+    if (Status s = read_indices(model_, prim.indices, mesh.indices, path_); !s.ok()) return s;
+  } else {
+    mesh.indices.resize(n - n % 3);
+    for (std::size_t i = 0; i < mesh.indices.size(); ++i) mesh.indices[i] = std::uint32_t(i);
+  }
+  triangles_ += mesh.triangle_count();
+  if (triangles_ > options_.max_triangles) {
+    return Status::error(ErrorCode::too_large, path_ + ": more than " +
+                                                   std::to_string(options_.max_triangles) +
+                                                   " triangles");
+  }
+  if (Status s = detail::finish_mesh(mesh, path_); !s.ok()) return s;
+  if (!mesh.indices.empty()) scene_.meshes.push_back(std::move(mesh));
+  return Status::success();
+}
+
+Status SceneBuilder::visit(int node_index, const Mat4& parent) {
+  if (node_index < 0 || std::size_t(node_index) >= model_.nodes.size()) {
+    return corrupt("node index " + std::to_string(node_index) + " out of range");
+  }
+  if (depth_guard_[std::size_t(node_index)]++ > 0) {
+    return corrupt("node " + std::to_string(node_index) +
+                   " is reached twice (cycle or shared child)");
+  }
+  const tinygltf::Node& node = model_.nodes[std::size_t(node_index)];
+  const Mat4 world = parent * node_matrix(node);
+  const Mat4 normal_matrix = transpose(inverse(world));
+  add_light(node, world);
+  if (node.mesh >= 0) {
+    if (std::size_t(node.mesh) >= model_.meshes.size()) {
+      return corrupt("node " + std::to_string(node_index) + " refers to a missing mesh");
+    }
+    const tinygltf::Mesh& gm = model_.meshes[std::size_t(node.mesh)];
+    for (const tinygltf::Primitive& prim : gm.primitives) {
+      if (Status s = add_primitive(gm, prim, world, normal_matrix); !s.ok()) return s;
+    }
+  }
+  for (int child : node.children) {
+    if (Status s = visit(child, world); !s.ok()) return s;
+  }
+  return Status::success();
+}
+
+}  // namespace
+
+Result<Scene> load_gltf(const std::string& path, const LoadOptions& options) {
+  tinygltf::Model model;
+  std::vector<ImageRGBA8> images;
+  if (Status s = load_model(path, options, model, images); !s.ok()) return s;
+  SceneBuilder builder(model, images, path, options);
+  builder.add_materials();
   std::vector<int> roots;
   if (!model.scenes.empty()) {
-    const int s = model.defaultScene >= 0 && std::size_t(model.defaultScene) < model.scenes.size() ? model.defaultScene : 0;
+    const int s = model.defaultScene >= 0 && std::size_t(model.defaultScene) < model.scenes.size()
+                      ? model.defaultScene
+                      : 0;
     roots = model.scenes[std::size_t(s)].nodes;
   } else {
     for (std::size_t i = 0; i < model.nodes.size(); ++i) roots.push_back(int(i));
   }
-  for (int r : roots) visit(r, Mat4::identity());
-  if (!status.ok()) return status;
-  if (scene.meshes.empty()) return Status::error(ErrorCode::corrupt_data, path + ": glTF file has no triangles");
+  for (int r : roots) {
+    if (Status s = builder.visit(r, Mat4::identity()); !s.ok()) return s;
+  }
+  Scene scene = builder.take();
+  if (scene.meshes.empty()) {
+    return Status::error(ErrorCode::corrupt_data, path + ": glTF file has no triangles");
+  }
   scene.update_bounds();
   return scene;
 }

@@ -39,13 +39,7 @@ Result<Scene> load_obj(const std::string& path, const LoadOptions& options) {
     return Status::error(ErrorCode::io_error, path + ": cannot open: " + std::strerror(errno));
   }
   if (!reader.ParseFromFile(path, config)) {
-    std::string why = reader.Error();
-    while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
-    for (char& c : why) {
-      if (c == '\n') c = ' ';
-    }
-    return Status::error(ErrorCode::corrupt_data,
-                         path + ": cannot read OBJ: " + (why.empty() ? "parse error" : why));
+    return scene::detail::obj_parse_error(path, reader.Error());
   }
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   const auto& shapes = reader.GetShapes();

@@ -1,21 +1,21 @@
 // The image-to-texture pipeline shared by `tessera compress` (single file and batch), the
 // Python module and tessera.batch: the preparation steps of `CompressOptions` (flip, alpha
 // detection, the power-of-two rule, premultiplication, the mip chain, alpha bleeding), then
-// every image's and level's encode, for 2D textures, cube maps and arrays.
+// every image's and level's encode, for 2D textures, cube maps and arrays; and the error of
+// what was made (`measure_level0`).
 #include <algorithm>
 #include <chrono>
 #include <functional>
 #include <span>
 
 #include "tessera/image_ops.h"
+#include "tessera/metrics.h"
 #include "tessera/mipmap.h"
 #include "tessera/texture_file.h"
 
 namespace tessera::texture_file {
 
 namespace {
-
-std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
 Status bad(const std::string& message) {
   return Status::error(ErrorCode::invalid_argument, message);
@@ -272,6 +272,40 @@ Result<CompressedTexture> compress_view(const ImageView8& image, const CompressO
     return s;
   }
   return tex;
+}
+
+Result<metrics::ImageComparison> measure_level0(const CompressedTexture& texture,
+                                                std::span<const ImageRGBA8> sources,
+                                                int threads) {
+  if (sources.size() != std::size_t(texture.image_count())) {
+    return bad("measure_level0: " + std::to_string(sources.size()) + " source image(s) for a " +
+               "texture of " + std::to_string(texture.image_count()) +
+               " (every face of every layer)");
+  }
+  metrics::ImageComparison total;
+  metrics::CompareOptions co;
+  co.threads = threads;
+  int n = 0;
+  for (int layer = 0; layer < texture.layers; ++layer) {
+    for (int face = 0; face < texture.faces; ++face, ++n) {
+      Result<ImageRGBA8> decoded = decode_texture_image(texture, 0, layer, face, {threads});
+      if (!decoded) return decoded.status();
+      Result<metrics::ImageComparison> c =
+          metrics::compare_images(sources[std::size_t(n)], *decoded, co);
+      if (!c) return c.status();
+      total.mse_rgb += c->mse_rgb;
+      total.mse_alpha += c->mse_alpha;
+      total.has_alpha = total.has_alpha || c->has_alpha;
+      total.ssim_gray = n == 0 ? c->ssim_gray : total.ssim_gray + c->ssim_gray;
+      total.max_abs = std::max(total.max_abs, c->max_abs);
+    }
+  }
+  total.mse_rgb /= n;
+  total.mse_alpha /= n;
+  total.ssim_gray /= n;
+  total.psnr_rgb = metrics::psnr_from_mse(total.mse_rgb);
+  total.psnr_alpha = metrics::psnr_from_mse(total.mse_alpha);
+  return total;
 }
 
 }  // namespace tessera::texture_file

@@ -1,4 +1,5 @@
-// Byte-level helpers shared by the PVR v3 and KTX 1.1 readers and writers (internal).
+// Byte-level helpers and error statuses shared by the PVR v3, KTX 1.1 and KTX 2.0 readers and
+// writers (internal).
 #pragma once
 
 #include <cstdint>
@@ -6,6 +7,8 @@
 #include <span>
 #include <string>
 #include <vector>
+
+#include "tessera/core.h"
 
 namespace tessera::texture_file::container {
 
@@ -39,6 +42,16 @@ inline std::string hex32(std::uint32_t v) {
 
 inline std::string plural_bytes(std::uint64_t n) {
   return std::to_string(n) + (n == 1 ? " byte" : " bytes");
+}
+
+/// A corrupt_data status "NAME: WHAT" (NAME: the file or stream being read).
+inline Status corrupt(const std::string& name, const std::string& what) {
+  return Status::error(ErrorCode::corrupt_data, name + ": " + what);
+}
+
+/// An unsupported status "NAME: WHAT".
+inline Status unsupported(const std::string& name, const std::string& what) {
+  return Status::error(ErrorCode::unsupported, name + ": " + what);
 }
 
 }  // namespace tessera::texture_file::container

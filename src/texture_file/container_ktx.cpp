@@ -16,6 +16,9 @@ namespace tessera::texture_file {
 
 namespace {
 
+using container::corrupt;
+using container::unsupported;
+
 using container::hex32;
 using container::load_u32;
 using container::plural_bytes;
@@ -56,18 +59,38 @@ constexpr GlFormat kFormats[] = {
     {kSrgbAlphaPvrtc4, pvrtc::Format::pvrtc1_4bpp, true, true},
 };
 
-Status corrupt(const std::string& name, const std::string& what) {
-  return Status::error(ErrorCode::corrupt_data, name + ": " + what);
-}
-Status unsupported(const std::string& name, const std::string& what) {
-  return Status::error(ErrorCode::unsupported, name + ": " + what);
-}
-
 std::size_t pad4(std::size_t n) { return (4 - n % 4) % 4; }
 
-}  // namespace
+/// The key/value entries (each a u32 size, the bytes, padding to 4) within their block.
+Status check_key_values(std::span<const std::uint8_t> bytes, std::uint32_t kv_bytes, bool swap,
+                        const std::string& name) {
+  std::size_t at = kHeaderSize;
+  const std::size_t end = kHeaderSize + kv_bytes;
+  while (at < end) {
+    if (end - at < 4) return corrupt(name, "malformed key/value data (partial entry size)");
+    const std::uint32_t n = load_u32(bytes, at, swap);
+    at += 4;
+    if (n > end - at) {
+      return corrupt(
+          name, "malformed key/value data (entry of " + plural_bytes(n) + " overruns the block)");
+    }
+    at += n;
+    at += std::min(pad4(n), end - at);
+  }
+  return Status::success();
+}
 
-Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const std::string& name) {
+/// What parse_ktx1 reads past the header: the byte order, the level count and the levels'
+/// start.
+struct Layout {
+  bool swap = false;
+  std::uint32_t mip_levels = 1;
+  std::size_t levels_at = 0;
+};
+
+/// The identifier, the header and the key/value data; `tex` without its levels.
+Status read_header(std::span<const std::uint8_t> bytes, const std::string& name,
+                   CompressedTexture& tex, Layout& layout) {
   if (bytes.size() < kKtxIdentifier.size() ||
       std::memcmp(bytes.data(), kKtxIdentifier.data(), kKtxIdentifier.size()) != 0) {
     if (bytes.size() >= 12 && std::memcmp(bytes.data(), "\xABKTX 20\xBB", 8) == 0) {
@@ -143,24 +166,7 @@ Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const 
                              " exceeds the " + plural_bytes(bytes.size() - kHeaderSize) +
                              " after the header");
   }
-  // Walk the key/value entries: each is a u32 size, the bytes, padding to 4.
-  {
-    std::size_t at = kHeaderSize;
-    const std::size_t end = kHeaderSize + kv_bytes;
-    while (at < end) {
-      if (end - at < 4) return corrupt(name, "malformed key/value data (partial entry size)");
-      const std::uint32_t n = load_u32(bytes, at, swap);
-      at += 4;
-      if (n > end - at) {
-        return corrupt(
-            name, "malformed key/value data (entry of " + plural_bytes(n) + " overruns the block)");
-      }
-      at += n;
-      at += std::min(pad4(n), end - at);
-    }
-  }
-
-  CompressedTexture tex;
+  if (Status s = check_key_values(bytes, kv_bytes, swap, name); !s.ok()) return s;
   tex.format = fmt->format;
   tex.has_alpha = fmt->alpha;
   tex.srgb = fmt->srgb;
@@ -169,11 +175,23 @@ Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const 
   tex.faces = int(faces);
   tex.array = array_elements != 0;
   tex.layers = tex.array ? int(array_elements) : 1;
+  layout.swap = swap;
+  layout.mip_levels = mip_levels;
+  layout.levels_at = kHeaderSize + kv_bytes;
+  return Status::success();
+}
+
+/// The levels after the header (imageSize, the data, padding), to the end of the file.
+Status read_levels(std::span<const std::uint8_t> bytes, const std::string& name,
+                   const Layout& layout, CompressedTexture& tex) {
+  const bool swap = layout.swap;
+  const std::uint32_t mip_levels = layout.mip_levels;
+  const std::uint32_t faces = std::uint32_t(tex.faces);
   // A cube map that is not an array stores each face with its own padding, and imageSize is
   // the size of one face; otherwise imageSize is the whole level.
   const bool face_by_face = faces == 6 && !tex.array;
   const std::size_t images = std::size_t(tex.image_count());
-  std::size_t at = kHeaderSize + kv_bytes;
+  std::size_t at = layout.levels_at;
   tex.levels.reserve(mip_levels);
   for (int i = 0; i < int(mip_levels); ++i) {
     const std::size_t expected = tex.image_size(i) * (face_by_face ? 1 : images);
@@ -212,6 +230,16 @@ Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const 
     return corrupt(name, plural_bytes(bytes.size() - at) + " of unexpected data after the " +
                              std::to_string(mip_levels) + " level(s)");
   }
+  return Status::success();
+}
+
+}  // namespace
+
+Result<CompressedTexture> parse_ktx1(std::span<const std::uint8_t> bytes, const std::string& name) {
+  CompressedTexture tex;
+  Layout layout;
+  if (Status s = read_header(bytes, name, tex, layout); !s.ok()) return s;
+  if (Status s = read_levels(bytes, name, layout, tex); !s.ok()) return s;
   return tex;
 }
 

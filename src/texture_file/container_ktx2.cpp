@@ -24,16 +24,12 @@ namespace tessera::texture_file {
 
 namespace {
 
+using container::corrupt;
+using container::unsupported;
+
 using container::load_u32;
 using container::load_u64;
 using container::plural_bytes;
-
-Status corrupt(const std::string& name, const std::string& what) {
-  return Status::error(ErrorCode::corrupt_data, name + ": " + what);
-}
-Status unsupported(const std::string& name, const std::string& what) {
-  return Status::error(ErrorCode::unsupported, name + ": " + what);
-}
 
 std::string scheme_name(std::uint32_t scheme) {
   switch (scheme) {
@@ -88,9 +84,31 @@ void append_key_value(std::vector<std::uint8_t>& kvd, const std::string& key,
 
 std::uint64_t align_up(std::uint64_t v, std::uint64_t a) { return (v + a - 1) / a * a; }
 
-}  // namespace
+/// The header fields parse_ktx2 reads, and what its checks derive from them.
+struct Header {
+  std::uint32_t vk_format = 0;
+  std::uint32_t type_size = 0;
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::uint32_t depth = 0;
+  std::uint32_t layer_count = 0;
+  std::uint32_t faces = 0;
+  std::uint32_t level_count = 0;
+  std::uint32_t scheme = 0;
+  std::uint64_t dfd_offset = 0;
+  std::uint64_t dfd_length = 0;
+  std::uint64_t kvd_offset = 0;
+  std::uint64_t kvd_length = 0;
+  std::uint64_t sgd_length = 0;
+  std::uint64_t size = 0;
+  const ktx2::VkPvrtcFormat* vk = nullptr;
+  std::uint32_t levels = 0;        ///< levelCount, 0 read as 1.
+  std::uint64_t index_end = 0;     ///< The end of the level index.
+  std::uint64_t metadata_end = 0;  ///< The end of the DFD and key/value data.
+  ktx2::DfdInfo dfd;
+};
 
-Result<CompressedTexture> parse_ktx2(std::span<const std::uint8_t> bytes, const std::string& name) {
+Result<Header> read_header(std::span<const std::uint8_t> bytes, const std::string& name) {
   if (bytes.size() < ktx2::kIdentifier.size() ||
       std::memcmp(bytes.data(), ktx2::kIdentifier.data(), ktx2::kIdentifier.size()) != 0) {
     return corrupt(name, "not a KTX 2.0 file (bad identifier)");
@@ -99,128 +117,129 @@ Result<CompressedTexture> parse_ktx2(std::span<const std::uint8_t> bytes, const 
     return corrupt(name, "truncated KTX 2.0 header: " + plural_bytes(bytes.size()) + " of " +
                              std::to_string(ktx2::kHeaderSize));
   }
-  const std::uint32_t vk_format = load_u32(bytes, 12);
-  const std::uint32_t type_size = load_u32(bytes, 16);
-  const std::uint32_t width = load_u32(bytes, 20);
-  const std::uint32_t height = load_u32(bytes, 24);
-  const std::uint32_t depth = load_u32(bytes, 28);
-  const std::uint32_t layer_count = load_u32(bytes, 32);
-  const std::uint32_t faces = load_u32(bytes, 36);
-  const std::uint32_t level_count = load_u32(bytes, 40);
-  const std::uint32_t scheme = load_u32(bytes, 44);
-  const std::uint64_t dfd_offset = load_u32(bytes, 48);
-  const std::uint64_t dfd_length = load_u32(bytes, 52);
-  const std::uint64_t kvd_offset = load_u32(bytes, 56);
-  const std::uint64_t kvd_length = load_u32(bytes, 60);
-  const std::uint64_t sgd_length = load_u64(bytes, 72);
-  const std::uint64_t size = bytes.size();
+  Header h;
+  h.vk_format = load_u32(bytes, 12);
+  h.type_size = load_u32(bytes, 16);
+  h.width = load_u32(bytes, 20);
+  h.height = load_u32(bytes, 24);
+  h.depth = load_u32(bytes, 28);
+  h.layer_count = load_u32(bytes, 32);
+  h.faces = load_u32(bytes, 36);
+  h.level_count = load_u32(bytes, 40);
+  h.scheme = load_u32(bytes, 44);
+  h.dfd_offset = load_u32(bytes, 48);
+  h.dfd_length = load_u32(bytes, 52);
+  h.kvd_offset = load_u32(bytes, 56);
+  h.kvd_length = load_u32(bytes, 60);
+  h.sgd_length = load_u64(bytes, 72);
+  h.size = bytes.size();
 
-  const ktx2::VkPvrtcFormat* vk = ktx2::find_vk_format(vk_format);
-  if (!vk) {
-    const std::string vk_name = ktx2::vk_format_name(vk_format);
-    return unsupported(name, "vkFormat " + std::to_string(vk_format) +
+  h.vk = ktx2::find_vk_format(h.vk_format);
+  if (!h.vk) {
+    const std::string vk_name = ktx2::vk_format_name(h.vk_format);
+    return unsupported(name, "vkFormat " + std::to_string(h.vk_format) +
                                  (vk_name.empty() ? "" : " (" + vk_name + ")") +
                                  " is not supported (only PVRTC1: "
                                  "VK_FORMAT_PVRTC1_{2,4}BPP_{UNORM,SRGB}_BLOCK_IMG)");
   }
-  if (scheme != ktx2::kSchemeNone && scheme != ktx2::kSchemeZstd) {
-    return unsupported(name, "supercompressionScheme " + std::to_string(scheme) + " (" +
-                                 scheme_name(scheme) +
+  if (h.scheme != ktx2::kSchemeNone && h.scheme != ktx2::kSchemeZstd) {
+    return unsupported(name, "supercompressionScheme " + std::to_string(h.scheme) + " (" +
+                                 scheme_name(h.scheme) +
                                  ") is not supported (only 0, none, and 2, Zstandard)");
   }
-  if (type_size != 1) {
-    return corrupt(name, "typeSize " + std::to_string(type_size) +
+  if (h.type_size != 1) {
+    return corrupt(name, "typeSize " + std::to_string(h.type_size) +
                              " (block-compressed formats have typeSize 1)");
   }
-  if (width == 0) return corrupt(name, "pixelWidth 0");
-  if (height == 0) return unsupported(name, "1D textures (pixelHeight 0) are not supported");
-  if (depth != 0) {
+  if (h.width == 0) return corrupt(name, "pixelWidth 0");
+  if (h.height == 0) return unsupported(name, "1D textures (pixelHeight 0) are not supported");
+  if (h.depth != 0) {
     return unsupported(name,
-                       "3D textures (pixelDepth " + std::to_string(depth) + ") are not supported");
+                       "3D textures (pixelDepth " + std::to_string(h.depth) +
+                           ") are not supported");
   }
-  if (faces != 1 && faces != 6) {
-    return corrupt(name, "faceCount " + std::to_string(faces) + " (1, or 6 for a cube map)");
+  if (h.faces != 1 && h.faces != 6) {
+    return corrupt(name, "faceCount " + std::to_string(h.faces) + " (1, or 6 for a cube map)");
   }
-  if (faces == 6 && width != height) {
-    return corrupt(name, "a cube map's faces must be square, not " + std::to_string(width) + "x" +
-                             std::to_string(height));
+  if (h.faces == 6 && h.width != h.height) {
+    return corrupt(name, "a cube map's faces must be square, not " + size_text(h.width, h.height));
   }
-  const std::uint32_t max_layers = std::uint32_t(kMaxTextureImages) / faces;
-  if (layer_count > max_layers) {
+  const std::uint32_t max_layers = std::uint32_t(kMaxTextureImages) / h.faces;
+  if (h.layer_count > max_layers) {
     return Status::error(ErrorCode::too_large,
-                         name + ": layerCount " + std::to_string(layer_count) +
+                         name + ": layerCount " + std::to_string(h.layer_count) +
                              " exceeds tessera's limit of " + std::to_string(max_layers) +
-                             (faces == 6 ? " cube map layers" : " layers"));
+                             (h.faces == 6 ? " cube map layers" : " layers"));
   }
-  if (Status s = check_image_size(width, height, name); !s.ok()) return s;
-  if (Status s = pvrtc::check_dimensions(int(width), int(height), name); !s.ok()) return s;
-  const int possible = mip_level_count(int(width), int(height));
+  if (Status s = check_image_size(h.width, h.height, name); !s.ok()) return s;
+  if (Status s = pvrtc::check_dimensions(int(h.width), int(h.height), name); !s.ok()) return s;
+  const int possible = mip_level_count(int(h.width), int(h.height));
   // levelCount 0 means "one level; the loader generates the rest".
-  const std::uint32_t levels = std::max<std::uint32_t>(level_count, 1);
-  if (levels > std::uint32_t(possible)) {
-    return corrupt(name, "levelCount " + std::to_string(level_count) + " is impossible for " +
-                             std::to_string(width) + "x" + std::to_string(height) + " (1 to " +
+  h.levels = std::max<std::uint32_t>(h.level_count, 1);
+  if (h.levels > std::uint32_t(possible)) {
+    return corrupt(name, "levelCount " + std::to_string(h.level_count) + " is impossible for " +
+                             size_text(h.width, h.height) + " (1 to " +
                              std::to_string(possible) + ")");
   }
-  const std::uint64_t index_end = ktx2::kHeaderSize + ktx2::kLevelEntrySize * levels;
-  if (index_end > size) {
-    return corrupt(name, "truncated: the level index of " + std::to_string(levels) +
-                             " level(s) ends at byte " + std::to_string(index_end) +
-                             ", past the end of the file (" + plural_bytes(size) + ")");
+  h.index_end = ktx2::kHeaderSize + ktx2::kLevelEntrySize * h.levels;
+  if (h.index_end > h.size) {
+    return corrupt(name, "truncated: the level index of " + std::to_string(h.levels) +
+                             " level(s) ends at byte " + std::to_string(h.index_end) +
+                             ", past the end of the file (" + plural_bytes(h.size) + ")");
   }
+  return h;
+}
 
-  // Data Format Descriptor, then key/value data, in that order after the level index.
-  if (dfd_length == 0) return corrupt(name, "no Data Format Descriptor (dfdByteLength 0)");
-  if (dfd_offset < index_end) {
-    return corrupt(name, "dfdByteOffset " + std::to_string(dfd_offset) +
+/// The Data Format Descriptor, then the key/value data, in that order after the level index;
+/// no supercompression global data. Sets h.dfd and h.metadata_end.
+Status read_metadata(std::span<const std::uint8_t> bytes, Header& h, const std::string& name) {
+  if (h.dfd_length == 0) return corrupt(name, "no Data Format Descriptor (dfdByteLength 0)");
+  if (h.dfd_offset < h.index_end) {
+    return corrupt(name, "dfdByteOffset " + std::to_string(h.dfd_offset) +
                              " lies inside the header or level index (which end at byte " +
-                             std::to_string(index_end) + ")");
+                             std::to_string(h.index_end) + ")");
   }
-  if (dfd_offset > size || dfd_length > size - dfd_offset) {
-    return corrupt(name, "truncated: the Data Format Descriptor (" + plural_bytes(dfd_length) +
-                             " at byte " + std::to_string(dfd_offset) +
-                             ") extends past the end of the file (" + plural_bytes(size) + ")");
+  if (h.dfd_offset > h.size || h.dfd_length > h.size - h.dfd_offset) {
+    return corrupt(name, "truncated: the Data Format Descriptor (" + plural_bytes(h.dfd_length) +
+                             " at byte " + std::to_string(h.dfd_offset) +
+                             ") extends past the end of the file (" + plural_bytes(h.size) +
+                             ")");
   }
   Result<ktx2::DfdInfo> dfd =
-      ktx2::read_dfd(bytes.subspan(std::size_t(dfd_offset), std::size_t(dfd_length)), *vk, name);
+      ktx2::read_dfd(bytes.subspan(std::size_t(h.dfd_offset), std::size_t(h.dfd_length)),
+                     *h.vk, name);
   if (!dfd) return dfd.status();
-  std::uint64_t metadata_end = dfd_offset + dfd_length;
-  if (kvd_length != 0) {
-    if (kvd_offset < metadata_end) {
-      return corrupt(name, "kvdByteOffset " + std::to_string(kvd_offset) +
+  h.dfd = *dfd;
+  h.metadata_end = h.dfd_offset + h.dfd_length;
+  if (h.kvd_length != 0) {
+    if (h.kvd_offset < h.metadata_end) {
+      return corrupt(name, "kvdByteOffset " + std::to_string(h.kvd_offset) +
                                " lies before the end of the Data Format Descriptor (byte " +
-                               std::to_string(metadata_end) + ")");
+                               std::to_string(h.metadata_end) + ")");
     }
-    if (kvd_offset > size || kvd_length > size - kvd_offset) {
-      return corrupt(name, "truncated: the key/value data (" + plural_bytes(kvd_length) +
-                               " at byte " + std::to_string(kvd_offset) +
-                               ") extends past the end of the file (" + plural_bytes(size) + ")");
+    if (h.kvd_offset > h.size || h.kvd_length > h.size - h.kvd_offset) {
+      return corrupt(name, "truncated: the key/value data (" + plural_bytes(h.kvd_length) +
+                               " at byte " + std::to_string(h.kvd_offset) +
+                               ") extends past the end of the file (" +
+                               plural_bytes(h.size) + ")");
     }
-    if (Status s =
-            check_key_values(bytes.subspan(std::size_t(kvd_offset), std::size_t(kvd_length)), name);
-        !s.ok()) {
-      return s;
-    }
-    metadata_end = kvd_offset + kvd_length;
+    const auto kvd = bytes.subspan(std::size_t(h.kvd_offset), std::size_t(h.kvd_length));
+    if (Status s = check_key_values(kvd, name); !s.ok()) return s;
+    h.metadata_end = h.kvd_offset + h.kvd_length;
   }
-  if (sgd_length != 0) {
-    return corrupt(name, "supercompression global data of " + plural_bytes(sgd_length) +
-                             " (scheme " + scheme_name(scheme) + " has none)");
+  if (h.sgd_length != 0) {
+    return corrupt(name, "supercompression global data of " + plural_bytes(h.sgd_length) +
+                             " (scheme " + scheme_name(h.scheme) + " has none)");
   }
+  return Status::success();
+}
 
-  CompressedTexture tex;
-  tex.format = vk->format;
-  tex.width = int(width);
-  tex.height = int(height);
-  tex.srgb = dfd->srgb;
-  tex.premultiplied = dfd->premultiplied;
-  tex.faces = int(faces);
-  tex.array = layer_count > 0;
-  tex.layers = tex.array ? int(layer_count) : 1;
-
-  // The level index: every level's range and sizes, all checked before any level is read.
-  std::vector<LevelEntry> entries(levels);
-  for (std::uint32_t i = 0; i < levels; ++i) {
+/// The level index: every level's range and sizes, all checked before any level is read.
+Result<std::vector<LevelEntry>> read_level_index(std::span<const std::uint8_t> bytes,
+                                                 const Header& h, const CompressedTexture& tex,
+                                                 const std::string& name) {
+  std::vector<LevelEntry> entries(h.levels);
+  for (std::uint32_t i = 0; i < h.levels; ++i) {
     const std::size_t at = ktx2::kHeaderSize + ktx2::kLevelEntrySize * i;
     LevelEntry& e = entries[i];
     e.offset = load_u64(bytes, at);
@@ -236,7 +255,7 @@ Result<CompressedTexture> parse_ktx2(std::span<const std::uint8_t> bytes, const 
                                std::to_string(tex.image_count()) + " image(s) (" +
                                plural_bytes(expected) + ")");
     }
-    if (scheme == ktx2::kSchemeNone) {
+    if (h.scheme == ktx2::kSchemeNone) {
       if (e.length != e.uncompressed) {
         return corrupt(name, level + " byteLength " + std::to_string(e.length) +
                                  " differs from its uncompressedByteLength " +
@@ -251,19 +270,19 @@ Result<CompressedTexture> parse_ktx2(std::span<const std::uint8_t> bytes, const 
       return corrupt(name, level + ": " + plural_bytes(e.length) +
                                " of Zstandard data cannot hold " + plural_bytes(e.uncompressed));
     }
-    if (e.offset < metadata_end) {
+    if (e.offset < h.metadata_end) {
       return corrupt(name, level + " byteOffset " + std::to_string(e.offset) +
                                " lies inside the header, index or metadata (which end at byte " +
-                               std::to_string(metadata_end) + ")");
+                               std::to_string(h.metadata_end) + ")");
     }
-    if (e.offset > size || e.length > size - e.offset) {
+    if (e.offset > h.size || e.length > h.size - e.offset) {
       return corrupt(name, "truncated: " + level + " (" + plural_bytes(e.length) + " at byte " +
                                std::to_string(e.offset) + ") extends past the end of the file (" +
-                               plural_bytes(size) + ")");
+                               plural_bytes(h.size) + ")");
     }
   }
-  std::vector<std::uint32_t> order(levels);
-  for (std::uint32_t i = 0; i < levels; ++i) order[i] = i;
+  std::vector<std::uint32_t> order(h.levels);
+  for (std::uint32_t i = 0; i < h.levels; ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
     return entries[a].offset < entries[b].offset;
   });
@@ -276,12 +295,34 @@ Result<CompressedTexture> parse_ktx2(std::span<const std::uint8_t> bytes, const 
                                " and " + std::to_string(entries[order[k]].offset) + ")");
     }
   }
+  return entries;
+}
 
-  tex.levels.reserve(levels);
-  for (std::uint32_t i = 0; i < levels; ++i) {
+}  // namespace
+
+Result<CompressedTexture> parse_ktx2(std::span<const std::uint8_t> bytes, const std::string& name) {
+  Result<Header> header = read_header(bytes, name);
+  if (!header) return header.status();
+  Header& h = *header;
+  if (Status s = read_metadata(bytes, h, name); !s.ok()) return s;
+  CompressedTexture tex;
+  tex.format = h.vk->format;
+  tex.width = int(h.width);
+  tex.height = int(h.height);
+  tex.srgb = h.dfd.srgb;
+  tex.premultiplied = h.dfd.premultiplied;
+  tex.faces = int(h.faces);
+  tex.array = h.layer_count > 0;
+  tex.layers = tex.array ? int(h.layer_count) : 1;
+
+  Result<std::vector<LevelEntry>> index = read_level_index(bytes, h, tex, name);
+  if (!index) return index.status();
+  const std::vector<LevelEntry>& entries = *index;
+  tex.levels.reserve(h.levels);
+  for (std::uint32_t i = 0; i < h.levels; ++i) {
     const LevelEntry& e = entries[i];
     const auto data = bytes.subspan(std::size_t(e.offset), std::size_t(e.length));
-    if (scheme == ktx2::kSchemeNone) {
+    if (h.scheme == ktx2::kSchemeNone) {
       tex.levels.emplace_back(data.begin(), data.end());
       continue;
     }
@@ -296,6 +337,7 @@ Result<CompressedTexture> parse_ktx2(std::span<const std::uint8_t> bytes, const 
                               [&](const auto& l) { return pvrtc::may_have_alpha(l, tex.format); });
   return tex;
 }
+
 
 Result<std::vector<std::uint8_t>> serialise_ktx2(const CompressedTexture& texture,
                                                  const Ktx2Options& options) {

@@ -16,6 +16,9 @@ namespace tessera::texture_file {
 
 namespace {
 
+using container::corrupt;
+using container::unsupported;
+
 using container::hex32;
 using container::load_u32;
 using container::load_u64;
@@ -73,13 +76,6 @@ std::string pixel_format_name(std::uint64_t format) {
   if (format < std::size(kNames)) return kNames[format];
   if (format <= 56) return "ASTC (format " + std::to_string(format) + ")";
   return "pixel format " + std::to_string(format);
-}
-
-Status corrupt(const std::string& name, const std::string& what) {
-  return Status::error(ErrorCode::corrupt_data, name + ": " + what);
-}
-Status unsupported(const std::string& name, const std::string& what) {
-  return Status::error(ErrorCode::unsupported, name + ": " + what);
 }
 
 }  // namespace

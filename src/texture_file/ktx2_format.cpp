@@ -116,9 +116,7 @@ std::vector<std::uint8_t> make_dfd(pvrtc::Format format, bool srgb, bool premult
 
 Result<DfdInfo> read_dfd(std::span<const std::uint8_t> dfd, const VkPvrtcFormat& vk,
                          const std::string& name) {
-  auto corrupt = [&](const std::string& what) {
-    return Status::error(ErrorCode::corrupt_data, name + ": " + what);
-  };
+  auto corrupt = [&](const std::string& what) { return container::corrupt(name, what); };
   constexpr std::size_t kMinSize = 4 + 24;  // dfdTotalSize and a basic block without samples
   if (dfd.size() < kMinSize) {
     return corrupt("Data Format Descriptor of " + plural_bytes(dfd.size()) +
@@ -192,9 +190,7 @@ Result<std::vector<std::uint8_t>> zstd_compress(std::span<const std::uint8_t> ra
 
 Status zstd_decompress(std::span<const std::uint8_t> frame, std::span<std::uint8_t> out,
                        const std::string& what) {
-  auto corrupt = [&](const std::string& why) {
-    return Status::error(ErrorCode::corrupt_data, what + ": " + why);
-  };
+  auto corrupt = [&](const std::string& why) { return container::corrupt(what, why); };
   const unsigned long long declared = ZSTD_getFrameContentSize(frame.data(), frame.size());
   if (declared == ZSTD_CONTENTSIZE_ERROR) return corrupt("not a Zstandard frame");
   if (declared == ZSTD_CONTENTSIZE_UNKNOWN) {

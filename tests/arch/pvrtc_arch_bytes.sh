@@ -24,11 +24,21 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/../.."
 native="${1:-build}"
 jobs="$(nproc)"
+# What the stage needs, by the tests' skip-or-fail rule (tests/support/test_require.h): where it
+# is missing, exit 77 (skipped) with a message, or fail where $TESSERA_TEST_REQUIRE names arm64
+# or is "all" (scripts/test.sh).
+missing() {
+  case ",${TESSERA_TEST_REQUIRE:-}," in
+    *,all,* | *,arm64,*) echo "FAIL: $1 (TESSERA_TEST_REQUIRE asks for arm64)" >&2; exit 1 ;;
+  esac
+  echo "SKIP: $1" >&2
+  exit 77
+}
 images="$PWD/../shared/data/images"
-[ -d "$images" ] || { echo "missing $images (shared/data beside the repository)" >&2; exit 1; }
+[ -d "$images" ] || missing "no $images (shared/data beside the repository)"
 [ -x "$native/bin/pvrtc_arch_bytes" ] || { echo "missing $native/bin/pvrtc_arch_bytes" >&2; exit 1; }
 for tool in aarch64-linux-gnu-g++ qemu-aarch64; do
-  command -v "$tool" >/dev/null || { echo "missing $tool: run bash scripts/setup.sh --arm64" >&2; exit 1; }
+  command -v "$tool" >/dev/null || missing "no $tool: run bash scripts/setup.sh --arm64"
 done
 # The loader and libc of the multiarch libc6:arm64 (see cmake/aarch64-linux-gnu.cmake).
 qemu=(qemu-aarch64 -L /)
@@ -52,17 +62,31 @@ echo "   (${SECONDS} s so far)"
 
 status=0
 echo "-- NEON unit tests under qemu-aarch64"
+# Counts for scripts/test.sh's summary: build-arm64/test-counts.tsv (stage, label, run, skipped,
+# failed), one line per test program; GoogleTest's own lines give them.
+counts=build-arm64/test-counts.tsv
+: >"$counts"
+gtest_count() {  # PATTERN LOG: the number on GoogleTest's summary line PATTERN, else 0
+  sed -n -E "s/^\[ *$1 *\] ([0-9]+) tests?.*/\1/p" "$2" | head -n 1 | grep . || echo 0
+}
 for t in "${arm64_tests[@]}"; do
   filter=()
   [ "$t" = pvrtc_codec_test ] && filter=(--gtest_filter=-PvrtcEncode.IdenticalForAnyThreadCount)
-  if "${qemu[@]}" "build-arm64/bin/$t" "${filter[@]}" >"build-arm64/$t.log" 2>&1; then
-    echo "$t: $(grep -E '^\[  PASSED  \]' "build-arm64/$t.log")"
+  log="build-arm64/$t.log"
+  if "${qemu[@]}" "build-arm64/bin/$t" "${filter[@]}" >"$log" 2>&1; then
+    echo "$t: $(grep -E '^\[  PASSED  \]' "$log")"
   else
     status=1
-    grep -E -A4 'Failure$' "build-arm64/$t.log" | head -60 >&2 || true
-    tail -n 15 "build-arm64/$t.log" >&2
-    echo "FAILED: $t (AArch64, NEON); the whole log: build-arm64/$t.log" >&2
+    grep -E -A4 'Failure$' "$log" | head -60 >&2 || true
+    tail -n 15 "$log" >&2
+    echo "FAILED: $t (AArch64, NEON); the whole log: $log" >&2
   fi
+  ran="$(sed -n -E 's/^\[==========\] ([0-9]+) tests? from .* ran.*/\1/p' "$log" | head -n 1)"
+  skipped="$(gtest_count SKIPPED "$log")"
+  failed="$(gtest_count FAILED "$log")"
+  # A program that stopped before its summary counts as one failed test.
+  [ -n "$ran" ] || { ran=1; skipped=0; failed=1; }
+  printf 'arm64 (qemu)\tunit\t%s\t%s\t%s\n' "$((ran - skipped))" "$skipped" "$failed" >>"$counts"
 done
 echo "   (${SECONDS} s so far)"
 
@@ -76,7 +100,17 @@ run() {  # NAME COMMAND...: writes $out/NAME/ and $out/NAME.sha256
   "$@" "$images" "$out/$name"
   (cd "$out/$name" && sha256sum -- * >"../$name.sha256")
 }
-run x86-64-dispatch "$native/bin/pvrtc_arch_bytes"
+run x86-64-dispatch "$native/bin/pvrtc_arch_bytes" | tee "$out/x86-64-dispatch.log"
+# Where the CPU has AVX2, the dispatched run must use the AVX2 kernels, or the comparison below
+# holds SSE2 to itself (the program's last line says "AVX2 kernels on|off").
+if grep -qw avx2 /proc/cpuinfo && ! grep -q "AVX2 kernels on" "$out/x86-64-dispatch.log"; then
+  case ",${TESSERA_TEST_REQUIRE:-}," in
+    *,all,* | *,avx2,*)
+      status=1
+      echo "FAILED: this CPU has AVX2 but $native/bin/pvrtc_arch_bytes did not dispatch the AVX2 kernels (TESSERA_TEST_REQUIRE asks for avx2)" >&2 ;;
+    *) echo "note: this CPU has AVX2 but $native/bin/pvrtc_arch_bytes did not dispatch the AVX2 kernels" ;;
+  esac
+fi
 run x86-64-sse2 "$native/bin/pvrtc_arch_bytes" --baseline
 run x86-64-scalar build-nosimd/bin/pvrtc_arch_bytes
 run arm64-neon "${qemu[@]}" build-arm64/bin/pvrtc_arch_bytes

@@ -29,13 +29,6 @@ std::optional<fs::path> pvrtextool() {
   return std::nullopt;
 }
 
-bool required(const std::string& what) {
-  const char* env = std::getenv("TESSERA_TEST_REQUIRE");
-  if (!env) return false;
-  const std::string list = std::string(",") + env + ",";
-  return list == ",all," || list.find("," + what + ",") != std::string::npos;
-}
-
 fs::path temp_dir(const std::string& name) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string leaf = name;

@@ -1,5 +1,5 @@
 // Helpers shared by the test programs: where the shared data and the oracle are, temporary
-// folders, and writing diff images on failure.
+// folders, and writing diff images on failure; the skip-or-fail rule is test_require.h.
 #pragma once
 
 #include <cstdint>
@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tessera/core.h"
+#include "test_require.h"  // required(), TESSERA_SKIP_OR_FAIL, TESSERA_SKIP_WITHOUT_AVX2
 
 namespace tessera::test {
 
@@ -15,11 +16,6 @@ namespace tessera::test {
 std::optional<std::filesystem::path> shared_data_dir();
 /// Path of PVRTexToolCLI configured at build time (or $TESSERA_PVRTEXTOOL); nullopt if missing.
 std::optional<std::filesystem::path> pvrtextool();
-/// Whether the run must have `what` ("gl", "pvrtextool", "shared", "ktx-parse"): named in the
-/// comma-separated $TESSERA_TEST_REQUIRE, or that variable is "all". The README's test command
-/// (scripts/test.sh) sets "all", so that a missing GL device, oracle or data set fails the run
-/// there; a plain `ctest` without it skips those tests with a message.
-bool required(const std::string& what);
 
 /// A fresh, empty folder under the build tree for this test (removed at the next run).
 std::filesystem::path temp_dir(const std::string& name);
@@ -49,16 +45,6 @@ inline bool float_texture_filtering(const std::string& gl_renderer) {
 }
 
 }  // namespace tessera::test
-
-/// Skips the current test with `message` when `what` is missing, or fails it when the run
-/// requires `what` (see `tessera::test::required`).
-#define TESSERA_SKIP_OR_FAIL(what, message)                                         \
-  do {                                                                              \
-    if (::tessera::test::required(what)) {                                          \
-      FAIL() << message << " (TESSERA_TEST_REQUIRE asks for " << (what) << ")";     \
-    }                                                                               \
-    GTEST_SKIP() << message;                                                        \
-  } while (0)
 
 /// Skips the current test with a message when the shared data folder is absent (fails it when
 /// the run requires "shared").

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "experiments_test_util.h"
 #include "tessera/experiments/aa_backend.h"
 #include "tessera/experiments/seams.h"
 
@@ -17,20 +18,6 @@ namespace tessera::experiments {
 namespace {
 
 using faces::SeamMethod;
-
-SeamsConfig tiny() {
-  SeamsConfig c;
-  c.figure1.ground = 6;
-  c.figure1.character = 4;
-  c.figure1.texels_per_unit = 24.0f;
-  c.width = 64;
-  c.height = 56;
-  c.frames = 2;
-  c.msaa = {1, 4};
-  c.reference_factor = 3;
-  c.threads = 2;
-  return c;
-}
 
 /// A stand-in for the GL backend: the CPU renderer that adds 0.02 to the red channel of the
 /// first n pixels of its n-th frame read back (so that frames agree with the CPU differently),
@@ -85,14 +72,14 @@ SeamsResult run(const SeamsConfig& c) {
 }
 
 SeamsConfig tiny_both() {
-  SeamsConfig c = tiny();
+  SeamsConfig c = test::tiny_seams();
   c.backend = Backend::both;
   c.gl_factory = std::make_shared<FakeGlFactory>();
   return c;
 }
 
 TEST(SeamsOptions, FilterChangesTheFramesNotTheReference) {
-  const SeamsConfig c = tiny();
+  const SeamsConfig c = test::tiny_seams();
   SeamsConfig t = c;
   t.filter = texture::TextureFilter::trilinear;
   const SeamsResult a = run(c), b = run(t);
@@ -210,7 +197,7 @@ TEST(SeamsOptions, UntimedCpuSideKeepsTheStatistics) {
 
 TEST(SeamsOptions, BothOnlyOptionsNeedBoth) {
   for (Backend b : {Backend::cpu, Backend::gl}) {
-    SeamsConfig c = tiny();
+    SeamsConfig c = test::tiny_seams();
     c.backend = b;
     c.gl_factory = std::make_shared<FakeGlFactory>();
     c.compare_references = true;
@@ -219,7 +206,7 @@ TEST(SeamsOptions, BothOnlyOptionsNeedBoth) {
     c.time_cpu = false;
     EXPECT_EQ(run_seams(c).status().code, ErrorCode::invalid_argument);
   }
-  SeamsConfig c = tiny();
+  SeamsConfig c = test::tiny_seams();
   c.repetitions = 0;
   EXPECT_EQ(run_seams(c).status().code, ErrorCode::invalid_argument);
 }

@@ -18,6 +18,7 @@
 #include "pvrtc/encode/modulation/modulation_kernel.h"
 #include "tessera/procedural.h"
 #include "tessera/pvrtc.h"
+#include "test_require.h"
 
 using namespace tessera;
 using namespace tessera::pvrtc;
@@ -183,7 +184,7 @@ void expect_same_bytes_as_baseline(const ImageRGBA8& img, const EncodeOptions& o
 }  // namespace
 
 TEST(PvrtcModulationAvx2, RowMatchesBaselineKernel) {
-  if (!modulation_avx2_supported()) GTEST_SKIP() << "no AVX2 kernel in this build or CPU";
+  TESSERA_SKIP_WITHOUT_AVX2(modulation_avx2_supported(), "no AVX2 kernel in this build or CPU");
   // Widths 8 .. 256 texels; 24 (a step and a 2-block tail) is no PVRTC width but the kernel's.
   for (int width : {8, 16, 24, 32, 64, 256}) {
     for (std::uint32_t seed = 1; seed <= 12; ++seed) {
@@ -198,7 +199,7 @@ TEST(PvrtcModulationAvx2, RowMatchesBaselineKernel) {
 }
 
 TEST(PvrtcModulationAvx2, RowWithEqualImagesKeepsFirstCandidate) {
-  if (!modulation_avx2_supported()) GTEST_SKIP() << "no AVX2 kernel in this build or CPU";
+  TESSERA_SKIP_WITHOUT_AVX2(modulation_avx2_supported(), "no AVX2 kernel in this build or CPU");
   // Both images equal: every blend decodes the same, so every texel keeps code 0 (mode 0) and
   // rank 0 (mode 1).
   Row r = make_row(16, Fill::flat, 7);
@@ -212,7 +213,7 @@ TEST(PvrtcModulationAvx2, RowWithEqualImagesKeepsFirstCandidate) {
 }
 
 TEST(PvrtcModulationAvx2, EncodeMatchesBaseline) {
-  if (!modulation_avx2_supported()) GTEST_SKIP() << "no AVX2 kernel in this build or CPU";
+  TESSERA_SKIP_WITHOUT_AVX2(modulation_avx2_supported(), "no AVX2 kernel in this build or CPU");
   const int sizes[][2] = {{8, 8}, {16, 64}, {128, 128}, {512, 128}};
   for (const auto& wh : sizes) {
     for (bool alpha : {false, true}) {
@@ -331,7 +332,7 @@ EncoderState make_state_2bpp(int w, int h, bool alpha, Content content, std::uin
 }  // namespace
 
 TEST(PvrtcModulation2bppAvx2, StateMatchesBaseline) {
-  if (!modulation_avx2_supported()) GTEST_SKIP() << "no AVX2 kernel in this build or CPU";
+  TESSERA_SKIP_WITHOUT_AVX2(modulation_avx2_supported(), "no AVX2 kernel in this build or CPU");
   const int sizes[][2] = {{8, 8},  {16, 8},   {8, 32},   {32, 8},  {128, 16},
                           {16, 64}, {64, 64}, {256, 32}, {512, 16}};
   int mode1_blocks = 0;
@@ -365,7 +366,7 @@ TEST(PvrtcModulation2bppAvx2, StateMatchesBaseline) {
 }
 
 TEST(PvrtcModulation2bppAvx2, EncodeMatchesBaseline) {
-  if (!modulation_avx2_supported()) GTEST_SKIP() << "no AVX2 kernel in this build or CPU";
+  TESSERA_SKIP_WITHOUT_AVX2(modulation_avx2_supported(), "no AVX2 kernel in this build or CPU");
   const int sizes[][2] = {{8, 8}, {16, 8}, {8, 32}, {32, 8}, {128, 16}, {64, 64}, {256, 128}};
   for (const auto& wh : sizes) {
     for (bool alpha : {false, true}) {

@@ -16,6 +16,7 @@
 #include "pvrtc/format/pvrtc_internal.h"
 #include "tessera/procedural.h"
 #include "tessera/pvrtc.h"
+#include "test_require.h"
 
 using namespace tessera;
 using namespace tessera::pvrtc;
@@ -336,7 +337,7 @@ void check_avx2_windows(int nch, bool punch, int alpha_weight, unsigned seed, bo
 }
 
 #define SKIP_WITHOUT_AVX2() \
-  if (!avx2_kernels_usable()) GTEST_SKIP() << "no AVX2 kernels in this build or CPU"
+  TESSERA_SKIP_WITHOUT_AVX2(avx2_kernels_usable(), "no AVX2 kernels in this build or CPU")
 
 TEST(PvrtcPolishAvx2, MatchesBaselineRgb) {
   SKIP_WITHOUT_AVX2();

@@ -15,6 +15,7 @@
 #include <limits>
 
 #include "simd_test_rng.h"
+#include "test_require.h"
 
 namespace {
 
@@ -85,7 +86,7 @@ void expect_same(float got, float want) {
 }
 
 TEST(SimdWide, Int32Lanes) {
-  if (skip_here()) GTEST_SKIP() << "no AVX2 on this CPU";
+  TESSERA_SKIP_WITHOUT_AVX2(!skip_here(), "no AVX2 on this CPU");
   Rng rng{7};
   for (int round = 0; round < 400; ++round) {
     I8 x, y, m, n;
@@ -163,7 +164,7 @@ TEST(SimdWide, Int32Lanes) {
 }
 
 TEST(SimdWide, FloatLanes) {
-  if (skip_here()) GTEST_SKIP() << "no AVX2 on this CPU";
+  TESSERA_SKIP_WITHOUT_AVX2(!skip_here(), "no AVX2 on this CPU");
   Rng rng{11};
   for (int round = 0; round < 400; ++round) {
     F8 x, y;
@@ -196,7 +197,7 @@ TEST(SimdWide, FloatLanes) {
 }
 
 TEST(SimdWide, PackedLanes) {
-  if (skip_here()) GTEST_SKIP() << "no AVX2 on this CPU";
+  TESSERA_SKIP_WITHOUT_AVX2(!skip_here(), "no AVX2 on this CPU");
   Rng rng{13};
   for (int round = 0; round < 400; ++round) {
     U16 x, y, m, idx;
@@ -310,7 +311,7 @@ TEST(SimdWide, PackedLanes) {
 }
 
 TEST(SimdWide, TexelPlanes) {
-  if (skip_here()) GTEST_SKIP() << "no AVX2 on this CPU";
+  TESSERA_SKIP_WITHOUT_AVX2(!skip_here(), "no AVX2 on this CPU");
   Rng rng{17};
   std::uint8_t tex[128];
   for (auto& t : tex) t = std::uint8_t(rng.next());
@@ -327,7 +328,7 @@ TEST(SimdWide, TexelPlanes) {
 }
 
 TEST(SimdWide, WidthGenericNames) {
-  if (skip_here()) GTEST_SKIP() << "no AVX2 on this CPU";
+  TESSERA_SKIP_WITHOUT_AVX2(!skip_here(), "no AVX2 on this CPU");
   static_assert(simd::kLanes<simd::vf4> == 4 && simd::kLanes<vf8> == 8);
   static_assert(simd::kLanes<simd::vint4> == 4 && simd::kLanes<vint8> == 8);
   static_assert(simd::kLanes<simd::vu16x8> == 8 && simd::kLanes<vu16x16> == 16);
@@ -357,7 +358,7 @@ TEST(SimdWide, WidthGenericNames) {
 // The operations of simd_generic.h that kernels written once use on both widths, including the
 // compositions the 4-lane backends spell out (div255_u32, load_planes, lookup8).
 TEST(SimdWide, KernelCompositionsOnBothWidths) {
-  if (skip_here()) GTEST_SKIP() << "no AVX2 on this CPU";
+  TESSERA_SKIP_WITHOUT_AVX2(!skip_here(), "no AVX2 on this CPU");
   Rng rng{23};
   for (int round = 0; round < 200; ++round) {
     std::int32_t x[8], r4[4], r8[8];

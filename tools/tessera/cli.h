@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <nlohmann/json_fwd.hpp>
 #include <functional>
 #include <memory>
 #include <string>
@@ -37,6 +38,10 @@ int refuse_binary_to_terminal(const std::string& path, const char* what);
 /// Where human-readable text goes: stderr when stdout carries data (`data_on_stdout`) or JSON,
 /// else stdout.
 std::FILE* text_stream(bool data_on_stdout);
+
+/// A value in dB for --json output: the number, or null where it is not finite (the PSNR of
+/// identical images is infinite, and JSON has no infinity).
+nlohmann::json db_or_null(double db);
 
 /// The command line this process was started with, words joined by spaces (quoted where they
 /// hold a space), for reports.

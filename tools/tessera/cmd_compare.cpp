@@ -19,10 +19,6 @@ struct CompareArgs {
   std::string heatmap;
 };
 
-nlohmann::json db_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
-
 int run_compare(const CompareArgs& args, const GlobalOptions& global) {
   if (args.b == "-") {
     return usage_error("compare: only the first image can be '-' (standard input)");

@@ -19,12 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json db_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
-
-std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
-
 bool is_folder(const std::string& output) {
   std::error_code ec;
   return output != "-" && (output.ends_with('/') || fs::is_directory(output, ec));
@@ -40,42 +34,11 @@ bool is_batch(const CompressArgs& args) {
   return is_folder(args.output);
 }
 
-}  // namespace
-
-Result<metrics::ImageComparison> measure_level0(const texture_file::CompressedImage& made,
-                                                int threads) {
-  const texture_file::CompressedTexture& tex = made.texture;
-  metrics::ImageComparison total;
-  metrics::CompareOptions co;
-  co.threads = threads;
-  int n = 0;
-  for (int layer = 0; layer < tex.layers; ++layer) {
-    for (int face = 0; face < tex.faces; ++face, ++n) {
-      Result<ImageRGBA8> decoded =
-          texture_file::decode_texture_image(tex, 0, layer, face, {threads});
-      if (!decoded) return decoded.status();
-      Result<metrics::ImageComparison> c =
-          metrics::compare_images(made.sources[std::size_t(n)], *decoded, co);
-      if (!c) return c.status();
-      total.mse_rgb += c->mse_rgb;
-      total.mse_alpha += c->mse_alpha;
-      total.has_alpha = total.has_alpha || c->has_alpha;
-      total.ssim_gray = n == 0 ? c->ssim_gray : total.ssim_gray + c->ssim_gray;
-      total.max_abs = std::max(total.max_abs, c->max_abs);
-    }
-  }
-  total.mse_rgb /= n;
-  total.mse_alpha /= n;
-  total.ssim_gray /= n;
-  total.psnr_rgb = metrics::psnr_from_mse(total.mse_rgb);
-  total.psnr_alpha = metrics::psnr_from_mse(total.mse_alpha);
-  return total;
-}
-
-namespace {
-
-int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
-  texture_file::ContainerFormat container = texture_file::container_from_extension(args.output);
+/// The output's container and its --container word ("pvr", "ktx", "ktx2"), and the usage
+/// checks of one texture; returns -1 to go on, else the exit code.
+int check_compress_one(const CompressArgs& args, texture_file::ContainerFormat& container,
+                       std::string& word) {
+  container = texture_file::container_from_extension(args.output);
   if (!args.container.empty()) {
     container = container_of(args.container);
   } else if (args.output == "-") {
@@ -86,10 +49,10 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
                        ": unknown output extension (use .pvr, .ktx or .ktx2, or --container "
                        "pvr|ktx|ktx2)");
   }
-  const std::string container_word = container == texture_file::ContainerFormat::ktx1   ? "ktx"
-                                     : container == texture_file::ContainerFormat::ktx2 ? "ktx2"
-                                                                                        : "pvr";
-  if (std::string problem = compress_usage_problem(args, container_word); !problem.empty()) {
+  word = container == texture_file::ContainerFormat::ktx1   ? "ktx"
+         : container == texture_file::ContainerFormat::ktx2 ? "ktx2"
+                                                            : "pvr";
+  if (std::string problem = compress_usage_problem(args, word); !problem.empty()) {
     return usage_error(problem);
   }
   if (std::count(args.inputs.begin(), args.inputs.end(), "-") > 1) {
@@ -100,14 +63,12 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
     std::fprintf(stderr, "tessera: warning: KTX 1.1 has no premultiplied-alpha flag: loaders of "
                  "%s cannot tell (.pvr and .ktx2 say it)\n", io::io_name(args.output, true).c_str());
   }
-  if (args.skip_up_to_date && up_to_date(args, container_word, args.inputs, args.output)) {
-    if (!args.quiet) {
-      std::fprintf(text_stream(args.json), "skipped %s: up to date\n", args.output.c_str());
-    }
-    return kExitOk;
-  }
-  std::vector<std::string> names;
-  std::vector<ImageRGBA8> images;
+  return -1;
+}
+
+/// The input images and their names for messages; returns -1 to go on, else the exit code.
+int read_inputs(const CompressArgs& args, std::vector<std::string>& names,
+                std::vector<ImageRGBA8>& images) {
   for (const std::string& input : args.inputs) {
     names.push_back(io::io_name(input));
     Result<ImageRGBA8> loaded = io::read_image(input);
@@ -120,23 +81,99 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
     }
     images.push_back(std::move(loaded).value());
   }
+  return -1;
+}
+
+/// Feeds the encoder's progress over every image and level to `bar`.
+void show_progress_on(ProgressBar& bar, const CompressArgs& args,
+                      const std::vector<ImageRGBA8>& images,
+                      texture_file::CompressOptions& options) {
+  double mpixels = 0;  // of every chain, for the rate
+  const int cap = args.mip_levels > 0 ? args.mip_levels : 1 << 30;
+  for (const ImageRGBA8& im : images) {
+    int level = 0;
+    for (int w = im.width, h = im.height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
+      mpixels += double(w) * double(h) / 1e6;
+      if (!args.mipmaps || (w == 1 && h == 1) || ++level >= cap) break;
+    }
+  }
+  options.encode.progress = [&bar, mpixels](double f) { bar.update(f, "", f * mpixels); };
+}
+
+/// The one-line summary of what was written.
+void print_summary(std::FILE* out, const CompressArgs& args, const std::string& output_name,
+                   const texture_file::CompressedImage& made, std::size_t bytes,
+                   const metrics::ImageComparison& cmp) {
+  const texture_file::CompressedTexture& tex = made.texture;
+  const std::string shape = tex.image_count() > 1 || tex.array
+                                ? " " + texture_file::texture_shape_name(tex) + ","
+                                : std::string();
+  char alpha[48] = "";
+  if (tex.has_alpha) std::snprintf(alpha, sizeof alpha, ", alpha %.2f dB", cmp.psnr_alpha);
+  std::fprintf(out,
+               "wrote %s: %s%s %s, %s%s%s, %d level(s), %zu bytes, encoded in %.1f ms (%s); "
+               "PSNR %.2f dB%s, SSIM %.4f\n",
+               output_name.c_str(), size_text(tex.width, tex.height).c_str(), shape.c_str(),
+               texture_file::texture_format_name(tex).c_str(), args.srgb ? "sRGB" : "linear",
+               tex.premultiplied ? ", premultiplied" : "",
+               made.resized ? " (resized with Lanczos-3)" : "", tex.level_count(), bytes,
+               made.encode_ms, args.quality.c_str(), cmp.psnr_rgb, alpha, cmp.ssim_gray);
+}
+
+/// The --json report of what was written.
+void print_json(std::FILE* out, const CompressArgs& args, const GlobalOptions& global,
+                const std::vector<std::string>& names, const std::string& output_name,
+                texture_file::ContainerFormat container,
+                const texture_file::CompressedImage& made, std::size_t bytes,
+                const metrics::ImageComparison& cmp) {
+  const texture_file::CompressedTexture& tex = made.texture;
+  nlohmann::json j = {
+      {"input", names.size() == 1 ? nlohmann::json(names.front()) : nlohmann::json(names)},
+      {"output", output_name},
+      {"container", texture_file::container_name(container)},
+      {"width", tex.width},
+      {"height", tex.height},
+      {"resized", made.resized},
+      {"format", args.format},
+      {"quality", args.quality},
+      {"iterations", args.iterations},
+      {"exact_search_rounds", args.exact_search_rounds},
+      {"srgb", args.srgb},
+      {"has_alpha", tex.has_alpha},
+      {"premultiplied", tex.premultiplied},
+      {"shape", texture_file::texture_shape_name(tex)},
+      {"faces", tex.faces},
+      {"layers", tex.layers},
+      {"levels", tex.level_count()},
+      {"bytes", bytes},
+      {"time_ms", made.encode_ms},
+      {"threads", global.threads > 0 ? global.threads : default_thread_count()},
+      {"psnr_rgb", db_or_null(cmp.psnr_rgb)},
+      {"ssim_gray", cmp.ssim_gray},
+  };
+  if (tex.has_alpha) j["psnr_alpha"] = db_or_null(cmp.psnr_alpha);
+  std::fprintf(out, "%s\n", j.dump(2).c_str());
+}
+
+int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
+  texture_file::ContainerFormat container = texture_file::ContainerFormat::unknown;
+  std::string container_word;
+  if (int rc = check_compress_one(args, container, container_word); rc >= 0) return rc;
+  if (args.skip_up_to_date && up_to_date(args, container_word, args.inputs, args.output)) {
+    if (!args.quiet) {
+      std::fprintf(text_stream(args.json), "skipped %s: up to date\n", args.output.c_str());
+    }
+    return kExitOk;
+  }
+  std::vector<std::string> names;
+  std::vector<ImageRGBA8> images;
+  if (int rc = read_inputs(args, names, images); rc >= 0) return rc;
   texture_file::CompressOptions options = compress_options(args, global.threads);
   // A progress bar on a terminal for an encode that takes a while (from 0.5 s on; never with
   // -q or --json): the encoder's progress over every image and level.
   const bool show_progress = !args.quiet && !args.json && ::isatty(STDERR_FILENO);
   ProgressBar bar(show_progress, 0.5);
-  if (show_progress) {
-    double mpixels = 0;  // of every chain, for the rate
-    const int cap = args.mip_levels > 0 ? args.mip_levels : 1 << 30;
-    for (const ImageRGBA8& im : images) {
-      int level = 0;
-      for (int w = im.width, h = im.height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
-        mpixels += double(w) * double(h) / 1e6;
-        if (!args.mipmaps || (w == 1 && h == 1) || ++level >= cap) break;
-      }
-    }
-    options.encode.progress = [&bar, mpixels](double f) { bar.update(f, "", f * mpixels); };
-  }
+  if (show_progress) show_progress_on(bar, args, images, options);
   Result<texture_file::CompressedImage> made =
       texture_file::compress_images(std::move(images), texture_shape(args), options, names);
   bar.clear();
@@ -165,52 +202,16 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
 
   // Quality of level 0 against the (possibly resized and prepared) input, as astcenc's -tl
   // mode reports it.
-  Result<metrics::ImageComparison> cmp = measure_level0(*made, global.threads);
+  Result<metrics::ImageComparison> cmp =
+      texture_file::measure_level0(made->texture, made->sources, global.threads);
   if (!cmp) return fail(cmp.status());
   std::FILE* out = text_stream(args.output == "-");
   const std::string output_name = io::io_name(args.output, true);
-  const std::string shape = tex.image_count() > 1 || tex.array
-                                ? " " + texture_file::texture_shape_name(tex) + ","
-                                : std::string();
   if (!args.json) {
-    char alpha[48] = "";
-    if (tex.has_alpha) std::snprintf(alpha, sizeof alpha, ", alpha %.2f dB", cmp->psnr_alpha);
-    std::fprintf(out,
-                 "wrote %s: %s%s %s, %s%s%s, %d level(s), %zu bytes, encoded in %.1f ms (%s); "
-                 "PSNR %.2f dB%s, SSIM %.4f\n",
-                 output_name.c_str(), size_text(tex.width, tex.height).c_str(), shape.c_str(),
-                 texture_file::texture_format_name(tex).c_str(), args.srgb ? "sRGB" : "linear",
-                 tex.premultiplied ? ", premultiplied" : "",
-                 made->resized ? " (resized with Lanczos-3)" : "", tex.level_count(), bytes,
-                 made->encode_ms, args.quality.c_str(), cmp->psnr_rgb, alpha, cmp->ssim_gray);
-    return kExitOk;
+    print_summary(out, args, output_name, *made, bytes, *cmp);
+  } else {
+    print_json(out, args, global, names, output_name, container, *made, bytes, *cmp);
   }
-  nlohmann::json j = {
-      {"input", names.size() == 1 ? nlohmann::json(names.front()) : nlohmann::json(names)},
-      {"output", output_name},
-      {"container", texture_file::container_name(container)},
-      {"width", tex.width},
-      {"height", tex.height},
-      {"resized", made->resized},
-      {"format", args.format},
-      {"quality", args.quality},
-      {"iterations", args.iterations},
-      {"exact_search_rounds", args.exact_search_rounds},
-      {"srgb", args.srgb},
-      {"has_alpha", tex.has_alpha},
-      {"premultiplied", tex.premultiplied},
-      {"shape", texture_file::texture_shape_name(tex)},
-      {"faces", tex.faces},
-      {"layers", tex.layers},
-      {"levels", tex.level_count()},
-      {"bytes", bytes},
-      {"time_ms", made->encode_ms},
-      {"threads", global.threads > 0 ? global.threads : default_thread_count()},
-      {"psnr_rgb", db_or_null(cmp->psnr_rgb)},
-      {"ssim_gray", cmp->ssim_gray},
-  };
-  if (tex.has_alpha) j["psnr_alpha"] = db_or_null(cmp->psnr_alpha);
-  std::fprintf(out, "%s\n", j.dump(2).c_str());
   return kExitOk;
 }
 

@@ -13,7 +13,6 @@ namespace tessera::cli {
 
 namespace {
 
-std::string size_text(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
 // ---------------------------------------------------------------------------------------------
 // decompress

@@ -71,11 +71,6 @@ Status write_sidecar(const CompressArgs& args, const std::string& container,
 /// ("with --resize-pot").
 std::string cli_option_names(std::string message);
 
-/// PSNR/SSIM of level 0 of every image of `made` against what was encoded, pooled over the
-/// images (MSE averaged, then PSNR; SSIM averaged), as astcenc's -tl mode reports one image.
-Result<metrics::ImageComparison> measure_level0(const texture_file::CompressedImage& made,
-                                                int threads);
-
 /// Batch mode: many inputs into the folder `args.output`.
 int run_compress_batch(const CompressArgs& args, const GlobalOptions& global);
 

@@ -296,7 +296,8 @@ Outcome run_job(const Job& job, const CompressArgs& args, const std::string& con
   o.has_alpha = tex.has_alpha;
   o.resized = made->resized;
   if (measure) {
-    if (Result<metrics::ImageComparison> cmp = measure_level0(*made, threads)) {
+    if (Result<metrics::ImageComparison> cmp =
+            texture_file::measure_level0(made->texture, made->sources, threads)) {
       o.psnr_rgb = cmp->psnr_rgb;
       o.ssim_gray = cmp->ssim_gray;
       o.psnr_alpha = cmp->psnr_alpha;
@@ -305,17 +306,35 @@ Outcome run_job(const Job& job, const CompressArgs& args, const std::string& con
   return o;
 }
 
-nlohmann::json db_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
-
 const char* kind_name(Outcome::Kind k) {
   return k == Outcome::Kind::done ? "done" : k == Outcome::Kind::skipped ? "skipped" : "failed";
 }
 
-}  // namespace
+/// The --json line of one file.
+nlohmann::json outcome_json(const Job& job, const Outcome& o) {
+  nlohmann::json j = {{"input", job.inputs.size() == 1 ? nlohmann::json(job.input())
+                                                       : nlohmann::json(job.inputs)},
+                      {"output", job.output},
+                      {"status", kind_name(o.kind)}};
+  if (o.kind == Outcome::Kind::failed) j["error"] = o.error;
+  if (o.kind == Outcome::Kind::done) {
+    j["width"] = o.width;
+    j["height"] = o.height;
+    j["resized"] = o.resized;
+    j["has_alpha"] = o.has_alpha;
+    j["levels"] = o.levels;
+    j["bytes"] = o.bytes;
+    j["time_ms"] = o.encode_ms;
+    j["psnr_rgb"] = db_or_null(o.psnr_rgb);
+    j["ssim_gray"] = o.ssim_gray;
+    if (o.has_alpha) j["psnr_alpha"] = db_or_null(o.psnr_alpha);
+  }
+  return j;
+}
 
-int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
+/// The usage checks of a batch, its jobs and the output folder; returns -1 to go on, else the
+/// exit code.
+int plan_batch(const CompressArgs& args, const std::string& container, std::vector<Job>& jobs) {
   if (args.output == "-") return usage_error("several inputs need a folder for -o, not '-'");
   std::error_code dir_ec;
   if (!fs::is_directory(args.output, dir_ec) &&
@@ -324,12 +343,11 @@ int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
     return usage_error("-o " + args.output +
                        ": several inputs (or a folder) need an output folder, not a file name");
   }
-  const std::string container = args.container.empty() ? "pvr" : args.container;
   if (std::string problem = compress_usage_problem(args, container); !problem.empty()) {
     return usage_error(problem);
   }
   std::vector<std::string> problems;
-  const std::vector<Job> jobs = plan_jobs(args, "." + container, problems);
+  jobs = plan_jobs(args, "." + container, problems);
   if (!problems.empty()) return usage_error(problems.front());
   std::error_code ec;
   fs::create_directories(args.output, ec);
@@ -338,6 +356,15 @@ int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
                                                        ": cannot create the output folder: " +
                                                        (ec ? ec.message() : "not a directory")));
   }
+  return -1;
+}
+
+}  // namespace
+
+int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
+  const std::string container = args.container.empty() ? "pvr" : args.container;
+  std::vector<Job> jobs;
+  if (int rc = plan_batch(args, container, jobs); rc >= 0) return rc;
 
   const int workers =
       std::max(1, std::min<int>(global.threads > 0 ? global.threads : default_thread_count(),
@@ -399,24 +426,7 @@ int run_compress_batch(const CompressArgs& args, const GlobalOptions& global) {
           break;
       }
       if (args.json) {
-        nlohmann::json j = {{"input", jobs[i].inputs.size() == 1 ? nlohmann::json(jobs[i].input())
-                                                                 : nlohmann::json(jobs[i].inputs)},
-                            {"output", jobs[i].output},
-                            {"status", kind_name(o.kind)}};
-        if (o.kind == Outcome::Kind::failed) j["error"] = o.error;
-        if (o.kind == Outcome::Kind::done) {
-          j["width"] = o.width;
-          j["height"] = o.height;
-          j["resized"] = o.resized;
-          j["has_alpha"] = o.has_alpha;
-          j["levels"] = o.levels;
-          j["bytes"] = o.bytes;
-          j["time_ms"] = o.encode_ms;
-          j["psnr_rgb"] = db_or_null(o.psnr_rgb);
-          j["ssim_gray"] = o.ssim_gray;
-          if (o.has_alpha) j["psnr_alpha"] = db_or_null(o.psnr_alpha);
-        }
-        std::printf("%s\n", j.dump().c_str());
+        std::printf("%s\n", outcome_json(jobs[i], o).dump().c_str());
         std::fflush(stdout);
       }
     }

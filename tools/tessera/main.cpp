@@ -1,6 +1,7 @@
 // tessera — command-line entry point: one program, one subcommand per job.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <unistd.h>
 
 #include <cstdio>
@@ -12,6 +13,8 @@
 #include <string_view>
 #include <utility>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "cli.h"
 #ifdef TESSERA_HAVE_GL
@@ -48,6 +51,10 @@ int refuse_binary_to_terminal(const std::string& path, const char* what) {
 }
 
 std::FILE* text_stream(bool data_on_stdout) { return data_on_stdout ? stderr : stdout; }
+
+nlohmann::json db_or_null(double db) {
+  return std::isfinite(db) ? nlohmann::json(db) : nlohmann::json(nullptr);
+}
 
 namespace {
 std::string g_command_line;
