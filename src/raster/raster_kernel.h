@@ -146,12 +146,12 @@ inline void quad_coverage32(const std::int64_t e0[3], const std::int32_t sx32[3]
     c[k] = std::int32_t(std::clamp(e0[k], -kNarrowClamp, kNarrowClamp));
   }
 #if TESSERA_SIMD_VECTOR
-  using simd::vint4;
+  using simd::vi32x4;
   if (samples == 1) {
-    vint4 v;
+    vi32x4 v;
     for (int k = 0; k < 3; ++k) {
-      const vint4 lanes(0, sx32[k], sy32[k], sx32[k] + sy32[k]);
-      v = v | (vint4(c[k] + off32[k][0]) + lanes);
+      const vi32x4 lanes(0, sx32[k], sy32[k], sx32[k] + sy32[k]);
+      v = v | (vi32x4(c[k] + off32[k][0]) + lanes);
     }
     const std::uint32_t in = ~std::uint32_t(simd::movemask(v));
     for (int lane = 0; lane < 4; ++lane) mask[lane] = in >> lane & 1u;
@@ -165,10 +165,10 @@ inline void quad_coverage32(const std::int64_t e0[3], const std::int32_t sx32[3]
     lanes[k][3] = lanes[k][2] + sx32[k];
   }
   for (int lane = 0; lane < 4; ++lane) {
-    const vint4 e[3] = {vint4(lanes[0][lane]), vint4(lanes[1][lane]), vint4(lanes[2][lane])};
+    const vi32x4 e[3] = {vi32x4(lanes[0][lane]), vi32x4(lanes[1][lane]), vi32x4(lanes[2][lane])};
     std::uint32_t m = 0;
     for (int s = 0; s < samples; s += 4) {
-      vint4 v = e[0] + simd::load4(off32[0] + s);
+      vi32x4 v = e[0] + simd::load4(off32[0] + s);
       v = v | (e[1] + simd::load4(off32[1] + s));
       v = v | (e[2] + simd::load4(off32[2] + s));
       m |= (~std::uint32_t(simd::movemask(v)) & 15u) << s;
@@ -277,7 +277,8 @@ inline f32x4 eval_plane4(const float p[3], f32x4 dx, f32x4 dy) {
 inline f32x4 clamp01(f32x4 v) {
   // simd::max / min return their second operand when the comparison fails (NaN included),
   // which is exactly std::clamp's `v < 0 ? 0 : (1 < v ? 1 : v)`.
-  return simd::to_f32x4(simd::min(simd::vf4(1.0f), simd::max(simd::vf4(), simd::from_f32x4(v))));
+  return simd::to_f32x4(
+      simd::min(simd::vf32x4(1.0f), simd::max(simd::vf32x4(), simd::from_f32x4(v))));
 }
 
 /// Centroid sample of a partially covered pixel: the covered sample nearest the pixel centre,
@@ -309,7 +310,7 @@ inline bool depth_passes(DepthTest test, float z, float stored) {
 
 /// `depth_passes` for four samples: bit i set when lane i passes.
 inline std::uint32_t depth_mask4(DepthTest test, f32x4 z, f32x4 stored) {
-  const simd::vf4 a = simd::from_f32x4(z), b = simd::from_f32x4(stored);
+  const simd::vf32x4 a = simd::from_f32x4(z), b = simd::from_f32x4(stored);
   switch (test) {
     case DepthTest::less:
       return std::uint32_t(simd::movemask(simd::cmplt(a, b)));

@@ -13,7 +13,8 @@
 
 namespace tessera::pvrtc::detail {
 
-/// One run of the 4 bpp exact search (exact_search.cpp, `polish`); `rounds` 0: not run.
+/// One run of the 4 bpp exact search (exact_search.cpp, `search_endpoints_4bpp`); `rounds` 0: not
+/// run.
 struct ExactSearchStep {
   int rounds = 0;               ///< Round bound; rounds stop early once no block changed.
   int passes = 1;               ///< Sweeps of the move list per block visit.

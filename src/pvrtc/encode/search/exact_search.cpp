@@ -1,4 +1,5 @@
-// Exact local search on 4 bpp endpoints: "reseed" (before the refinement) and "polish" (after).
+// Exact local search on 4 bpp endpoints: `reseed` (before the refinement) and
+// `search_endpoints_4bpp` (after it).
 //
 // Reseed: the principal-axis start sees each block's whole bilinear footprint, so where the
 // block's own texels span only part of it (stripes, thin dark creases next to bright areas)
@@ -44,14 +45,15 @@ namespace {
 
 std::atomic<bool> g_baseline_only{false};
 
-// The window evaluators, chosen once per reseed() / polish() call: exact_search_kernel.h's (the
-// evaluators of exact_search_evaluators.h with 4 lanes: SSE2, NEON or scalar through simd.h) or
-// exact_search_avx2.cpp's (the same with 8 lanes) where polish_avx2_active(). Same integers.
-// kWeighted: alpha-weighted colour error (a template flag, so that the unweighted search runs
-// the code it ran before the option existed; the AVX2 entry points read lw.weighted).
+// The window evaluators, chosen once per reseed() / search_endpoints_4bpp() call:
+// exact_search_kernel.h's (the evaluators of exact_search_evaluators.h with 4 lanes: SSE2, NEON or
+// scalar through simd.h) or exact_search_avx2.cpp's (the same with 8 lanes) where
+// exact_search_avx2_active(). Same integers. kWeighted: alpha-weighted colour error (a template
+// flag, so that the unweighted search runs the code it ran before the option existed; the AVX2
+// entry points read lw.weighted).
 template <bool kWeighted>
 struct Evaluators {
-  bool avx2 = polish_avx2_active();
+  bool avx2 = exact_search_avx2_active();
   std::uint32_t local(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
                       std::uint32_t bound) const {
     if (!avx2) {
@@ -94,7 +96,7 @@ struct Window {
 // The exact search counts the squared alpha error twice. Alpha PSNR is over one channel and
 // RGB PSNR over three, so alpha error costs more dB per unit; the final modulation choice stays
 // unweighted. Weight 3 traded too much RGB (docs/benchmarks/pvrtc_history.md).
-constexpr int kPolishAlphaWeight = 2;
+constexpr int kSearchAlphaWeight = 2;
 
 // Candidate endpoint pairs for block (bx, by) from its own 4x4 texels: their principal-axis
 // split (`split_pairs`: the half means and the two extreme texels, both orientations), then
@@ -391,7 +393,7 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
                       : reseed_t<false>(s, min_error, changed, alpha_weight);
 }
 
-bool polish_avx2_active() {
+bool exact_search_avx2_active() {
 #if defined(TESSERA_NO_SIMD)
   return false;  // the scalar build stays scalar (the AVX2 kernels are still built and tested)
 #else
@@ -399,24 +401,24 @@ bool polish_avx2_active() {
 #endif
 }
 
-bool set_polish_baseline_only(bool on) { return g_baseline_only.exchange(on); }
+bool set_exact_search_baseline_only(bool on) { return g_baseline_only.exchange(on); }
 
-void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
-  polish(s, rounds, passes, min_error, PolishOptions{});
+void search_endpoints_4bpp(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
+  search_endpoints_4bpp(s, rounds, passes, min_error, EndpointSearchOptions{});
 }
 
 namespace {
 
 template <bool kWeighted>
-void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
-              const PolishOptions& options) {
+void search_endpoints_4bpp_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
+                             const EndpointSearchOptions& options) {
   const Grid& g = s.g;
   std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
   for (std::size_t i = 0; i < g.blocks(); ++i) {
     ea[i] = expand_a(s.ca[i]);
     eb[i] = expand_b(s.cb[i]);
   }
-  const Window w{&s, &ea, &eb, &s.mode, s.alpha_mode ? 4 : 3, kPolishAlphaWeight};
+  const Window w{&s, &ea, &eb, &s.mode, s.alpha_mode ? 4 : 3, kSearchAlphaWeight};
   // A block's search depends only on the endpoints in its 3x3 neighbourhood (and the modes,
   // fixed here): once it has been searched, it is searched again only after one of those
   // changed (step stamps: phase 4 * round + colour class). Skipping is exact, so rounds can run
@@ -575,13 +577,13 @@ void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
 
 }  // namespace
 
-void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
-            const PolishOptions& options) {
+void search_endpoints_4bpp(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
+                           const EndpointSearchOptions& options) {
   if (s.g.format != Format::pvrtc1_4bpp || rounds <= 0) return;
   if (s.weighted()) {
-    polish_t<true>(s, rounds, passes, min_error, options);
+    search_endpoints_4bpp_t<true>(s, rounds, passes, min_error, options);
   } else {
-    polish_t<false>(s, rounds, passes, min_error, options);
+    search_endpoints_4bpp_t<false>(s, rounds, passes, min_error, options);
   }
 }
 

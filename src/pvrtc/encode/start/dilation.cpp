@@ -79,7 +79,7 @@ struct Band {
 using Extremes = DilationExtremes;
 
 // The baseline kernels: dilation_rows.h over the 4-lane types.
-constexpr DilationKernels kBaseline = RowKernels<simd::vf4, simd::vu8x16>::kTable;
+constexpr DilationKernels kBaseline = RowKernels<simd::vf32x4, simd::vu8x16>::kTable;
 
 std::atomic<bool> g_force_baseline{false};
 
