@@ -46,7 +46,7 @@
 #include <vector>
 
 #include "tessera/core.h"
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 #include "tessera/pvrtc.h"
 
 namespace tessera::texture_file {
@@ -125,7 +125,7 @@ struct CompressOptions {
   bool mipmaps = false;     ///< Encode a mip chain (see `mip_levels`, `mip_filter`).
   int mip_levels = 0;       ///< With `mipmaps`: at most this many levels, level 0 included
                             ///< (0 = down to 1x1).
-  image::MipFilter mip_filter = image::MipFilter::box;  ///< How each level is made (mipmap.h).
+  image::MipFilter mip_filter = image::MipFilter::box;  ///< How each level is made (image_mipmap.h).
   bool srgb = false;        ///< Mark the texture sRGB and filter (mips, resize, premultiply) in
                             ///< linear light.
   bool resize_pot = false;  ///< Resample non-power-of-two input (Lanczos-3); else it is an error.

@@ -5,8 +5,7 @@
 //   simd_int.h     backend selection; vi32x4 (4 x int32: texels, texel coordinates, offsets,
 //                  level sizes, comparison masks) and vi64x2 (2 x int64: fixed-point edges).
 //   simd_float.h   vf32x4 (4 x float, one IEEE operation per lane, compares -> vi32x4 masks,
-//                  selects, conversions, shuffles, 4x4 transpose) and f32x4 (the GCC / Clang
-//                  vector-extension type, with from_f32x4 / to_f32x4).
+//                  selects, conversions, shuffles, 4x4 transpose).
 //   simd_packed.h  vu16x8 (8 x uint16) and vu8x16 (16 x uint8): the PVRTC texel planes, with
 //                  their widening / narrowing to and from vi32x4 and vf32x4.
 //   simd_wide.h    the 8-lane types vi32x8, vf32x8, vu16x16 and vu8x32: two 4-lane halves, with an
@@ -43,8 +42,8 @@
 // into one fused multiply-add, rounding once. TESSERA_SIMD_VECTOR (1 with SSE2 or NEON, else 0)
 // tells kernels that also have a scalar per-lookup path (texture `sample4` / one-probe lookups,
 // raster quad coverage) whether to take the vector path; both paths give the same results, and
-// without a vector backend they take their own scalar code, unchanged by this wrapper. f32x4 is
-// a compiler vector type on every GCC / Clang target (SSE on x86-64, NEON on AArch64).
+// without a vector backend they take their own scalar code, unchanged by this wrapper.
+// Type names: v, the lane type (i signed, u unsigned, f float) and its bits, x, the lane count.
 // TESSERA_NO_SIMD must be the same for every translation unit of the library (the types
 // differ).
 #pragma once

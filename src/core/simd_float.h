@@ -1,12 +1,9 @@
 // simd_float.h — part of the SIMD wrapper (include "core/simd.h", which documents the whole set):
 // single-precision lanes.
-//   vf32x4    four float lanes: each operation is one IEEE single-precision operation per lane
-//          (correctly rounded add, sub, mul, sqrt; no fused multiply-add; min / max / compares
-//          with SSE's NaN rules, spelled out per function), so a lane gives the same bits as the
-//          scalar expression written in the comment. Comparisons return vi32x4 masks.
-//   f32x4  the GCC / Clang vector extension type (four floats, lane-wise C++ operators; SSE on
-//          x86-64, NEON on AArch64), for loops that want operators on any target; convert with
-//          from_f32x4 / to_f32x4 (free on SSE2).
+//   vf32x4 four float lanes: each operation is one IEEE single-precision operation per lane
+//          (correctly rounded add, sub, mul, div, sqrt; no fused multiply-add; min / max /
+//          compares with SSE's NaN rules, spelled out per function), so a lane gives the same
+//          bits as the scalar expression written in the comment. Comparisons return vi32x4 masks.
 #pragma once
 
 #include <bit>
@@ -18,10 +15,6 @@
 
 namespace tessera::simd {
 inline namespace TESSERA_SIMD_ISA {
-
-#if defined(__GNUC__)
-using f32x4 = float __attribute__((vector_size(16)));
-#endif
 
 #if defined(TESSERA_SIMD_SSE2)
 
@@ -38,13 +31,10 @@ inline void storef4(vf32x4 a, float* p) { _mm_storeu_ps(p, a.v); }
 /// `p` 16-byte aligned.
 inline vf32x4 loadf4_aligned(const float* p) { return vf32x4(_mm_load_ps(p)); }
 inline void storef4_aligned(vf32x4 a, float* p) { _mm_store_ps(p, a.v); }
-#if defined(__GNUC__)
-inline vf32x4 from_f32x4(f32x4 a) { return vf32x4(__m128(a)); }
-inline f32x4 to_f32x4(vf32x4 a) { return f32x4(a.v); }
-#endif
 inline vf32x4 operator+(vf32x4 a, vf32x4 b) { return vf32x4(_mm_add_ps(a.v, b.v)); }
 inline vf32x4 operator-(vf32x4 a, vf32x4 b) { return vf32x4(_mm_sub_ps(a.v, b.v)); }
 inline vf32x4 operator*(vf32x4 a, vf32x4 b) { return vf32x4(_mm_mul_ps(a.v, b.v)); }
+inline vf32x4 operator/(vf32x4 a, vf32x4 b) { return vf32x4(_mm_div_ps(a.v, b.v)); }
 inline vf32x4 sqrt(vf32x4 a) { return vf32x4(_mm_sqrt_ps(a.v)); }
 /// max: a > b ? a : b; min: a < b ? a : b (the second operand when the compare fails, NaN
 /// included).
@@ -133,13 +123,10 @@ inline vf32x4 loadf4(const float* p) { return vf32x4(vld1q_f32(p)); }
 inline void storef4(vf32x4 a, float* p) { vst1q_f32(p, a.v); }
 inline vf32x4 loadf4_aligned(const float* p) { return vf32x4(vld1q_f32(p)); }
 inline void storef4_aligned(vf32x4 a, float* p) { vst1q_f32(p, a.v); }
-#if defined(__GNUC__)
-inline vf32x4 from_f32x4(f32x4 a) { return vf32x4(std::bit_cast<float32x4_t>(a)); }
-inline f32x4 to_f32x4(vf32x4 a) { return std::bit_cast<f32x4>(a.v); }
-#endif
 inline vf32x4 operator+(vf32x4 a, vf32x4 b) { return vf32x4(vaddq_f32(a.v, b.v)); }
 inline vf32x4 operator-(vf32x4 a, vf32x4 b) { return vf32x4(vsubq_f32(a.v, b.v)); }
 inline vf32x4 operator*(vf32x4 a, vf32x4 b) { return vf32x4(vmulq_f32(a.v, b.v)); }
+inline vf32x4 operator/(vf32x4 a, vf32x4 b) { return vf32x4(vdivq_f32(a.v, b.v)); }
 inline vf32x4 sqrt(vf32x4 a) { return vf32x4(vsqrtq_f32(a.v)); }
 /// Not vmaxq_f32 / vminq_f32 (NaN when either lane is NaN, and +0 > -0): a compare and a
 /// bitwise select, which give SSE's maxps / minps exactly (`b` when the compare fails).
@@ -240,10 +227,6 @@ inline void storef4(vf32x4 a, float* p) {
 }
 inline vf32x4 loadf4_aligned(const float* p) { return loadf4(p); }
 inline void storef4_aligned(vf32x4 a, float* p) { storef4(a, p); }
-#if defined(__GNUC__)
-inline vf32x4 from_f32x4(f32x4 a) { return {a[0], a[1], a[2], a[3]}; }
-inline f32x4 to_f32x4(vf32x4 a) { return f32x4{a.l[0], a.l[1], a.l[2], a.l[3]}; }
-#endif
 #define TESSERA_SIMD_F4_BINOP(op, expr)   \
   inline vf32x4 op(vf32x4 a, vf32x4 b) {  \
     vf32x4 r;                             \
@@ -256,6 +239,7 @@ inline f32x4 to_f32x4(vf32x4 a) { return f32x4{a.l[0], a.l[1], a.l[2], a.l[3]}; 
 TESSERA_SIMD_F4_BINOP(operator+, x + y)
 TESSERA_SIMD_F4_BINOP(operator-, x - y)
 TESSERA_SIMD_F4_BINOP(operator*, x* y)
+TESSERA_SIMD_F4_BINOP(operator/, x / y)
 TESSERA_SIMD_F4_BINOP(max, x > y ? x : y)
 TESSERA_SIMD_F4_BINOP(min, x < y ? x : y)
 #undef TESSERA_SIMD_F4_BINOP

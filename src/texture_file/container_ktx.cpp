@@ -8,7 +8,7 @@
 #include <cstring>
 #include <string>
 
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 #include "tessera/texture_file.h"
 #include "texture_file/container_bytes.h"
 

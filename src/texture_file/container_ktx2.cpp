@@ -11,7 +11,7 @@
 #include <cstring>
 #include <string>
 
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 #include "tessera/texture_file.h"
 #include "texture_file/container_bytes.h"
 #include "texture_file/ktx2_format.h"

@@ -37,7 +37,7 @@ struct EncodeSchedule {
 
   // --- reseed (4 bpp, exact_search.cpp `reseed`), before the refinement
   int reseed_passes = 0;  ///< 0: none; pass k > 0 visits only blocks next to changed ones.
-  std::uint32_t reseed_min_error = 0;  ///< Blocks at most this (exact 8x8-window error) are kept.
+  std::uint32_t reseed_min_error = 0;  ///< Blocks at most this (exact 7x7-window error) are kept.
   int reseed_alpha_weight = 1;         ///< The squared alpha error counts this many times.
 
   // --- least-squares refinement (least_squares_refinement.cpp)
