@@ -1,6 +1,11 @@
 // The sampling driver of texture::Texture: resolves the kernel's taps (texture/sampler_kernel.h)
 // to texels, with the one-probe bilinear/trilinear hot path and its four-lane SIMD form
 // (sample4). Storage, mip chains and construction: texture.cpp.
+//
+// Cost (bench/sampler_bench.cpp): one `compute_footprint` per lookup (two square roots, one
+// log2), then a few tens of instructions per tap; trilinear reads 8 taps, 16x anisotropic 128.
+// The tap-list path stores 32 bytes per tap, so it is slower than `sample` (BM_TapsAniso16
+// against BM_SampleAniso/16 in docs/benchmarks/sampler.md).
 #include <algorithm>
 #include <array>
 #include <cmath>
