@@ -331,6 +331,7 @@ class FaceRenderer {
                                                       const FaceTextureSet& textures);
   ~FaceRenderer();
 
+  /// Renders one frame of the mesh from `camera` as `options` asks (method, filter, MSAA).
   Result<FaceFrame> render(const scene::Camera& camera, const FaceRenderOptions& options);
 
   /// The paper's reference: Traverse (16x anisotropic by default, `options.filter`) at
