@@ -7,10 +7,10 @@ Usage (from the repository root; needs `perf`, Debian's linux-perf):
 
 Each image is encoded once with `tessera -j 1 compress --quality Q` under `perf record` (DWARF
 call graphs); every sample is given to the outermost encoder pass on its stack: the start
-(principal axis or dilation), reseed, least-squares refinement, the exact search (`polish`),
-high's second encoding (`optimise_alt`: the dilation start's exact search) and the crossover
-with the resumed search (`optimise_crossover`); the rest (PNG read, file write, start-up) is
-"other". Prints a Markdown table of percentages per image and their mean. Standard library only.
+(principal axis or dilation), reseed, least-squares refinement, the exact endpoint search
+(`search_endpoints_4bpp`), high's second encoding (`optimise_alt`: the dilation start's exact
+search) and the crossover with the resumed search (`optimise_crossover`); the rest (PNG read,
+file write, start-up) is "other". Prints a Markdown table of percentages per image and their mean. Standard library only.
 """
 import argparse
 import collections
@@ -28,7 +28,7 @@ PASSES = [
     ("start", ("start_endpoints",)),
     ("reseed", ("reseed",)),
     ("least-squares refinement", ("refine",)),
-    ("exact search", ("polish",)),
+    ("exact search", ("search_endpoints_4bpp",)),
     ("2 bpp modulation descent / endpoint search",
      ("refine_modulation_2bpp", "search_endpoints_2bpp")),
     ("modulation choice", ("choose_modulation",)),

@@ -10,22 +10,8 @@
 //  * `parallel_for`: the one parallel loop, with an explicit thread count. Callers write each
 //    output element from exactly one iteration, so results are identical for any thread count.
 //
-// API conventions every public header follows:
-//  * `Status` and `Result<T>` are `[[nodiscard]]`: a fallible call's outcome must be handled
-//    (propagated, reported or checked). Where ignoring one is genuinely right, the call site
-//    says so with `(void)` and a comment.
-//  * Thread counts are never a bare trailing `int threads` argument. A function that has an
-//    options struct carries `int threads = 0` as a member of it; a function whose only knob is
-//    the thread count takes the shared vocabulary type `const Parallel& parallel = {}` (call it
-//    as `f(x)`, `f(x, {4})` or `f(x, Parallel{threads})`). In both forms 0 means all hardware
-//    threads, 1 the calling thread only, and results never depend on the value.
-//  * No runs of defaulted scalar parameters: a function with several defaulted knobs takes a
-//    small documented options struct instead (e.g. `metrics::SsimOptions`,
-//    `faces::ReferenceOptions`).
-//  * One namespace per system (`tessera::io`, `tessera::image`, `tessera::metrics`,
-//    `tessera::texture`, `tessera::texture_file`, `tessera::pvrtc`, ...; docs/architecture.md
-//    lists them all). This header, math.h and procedural.h are the shared vocabulary and stay in
-//    `tessera` itself. Headers name other systems' types qualified (`texture::Texture`).
+// API conventions every public header follows (nodiscard statuses, thread counts, options
+// structs, one namespace per system): docs/architecture.md, "Conventions".
 #pragma once
 
 #include <chrono>

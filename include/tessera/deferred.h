@@ -1,47 +1,16 @@
-// tessera/deferred.h — deferred shading with adaptive supersampling (Hollander, Boubekeur &
-// Eisemann 2013, "Adaptive Supersampling for Deferred Anti-Aliasing", JCGT 2(1)), and FXAA 3.11.
+// tessera/deferred.h — deferred shading with adaptive supersampling, and FXAA 3.11.
 //
-// The method, as in the paper's Listing 1:
-//  1. `DeferredRenderer::render_gbuffer` rasterises the scene into an enlarged G-buffer of
-//     (m*w) x (m*h) samples (tessera's rasteriser with ssaa = m, msaa = 1); output pixel (x, y)
-//     owns the m x m "window" of grid pixels (m*x + i, m*y + j). The G-buffer stores geometry and
-//     the *inputs* of the albedo lookup (material id, UV, UV derivatives), not the albedo (§4).
-//  2. The first sample of every window (position 0 of the index matrix, `sample_order`) is
-//     shaded into S (w x h).
-//  3. Per pixel, k = clamp(round(max(k_d, k_n, k_s)), 0, m^2 - 1) from the depth variance and the
-//     normal cone of the window (geometry) and the luminance range of S around the pixel
-//     (shading); see `AdaptiveOptions` for the exact formulas and constants.
-//  4. k more samples, positions 1..k of the index matrix, are shaded and averaged with the first.
-//
-// Baselines on the same G-buffer: `shade_reference` (all m^2 samples, a box filter: brute-force
-// SSAA with the same shader and texture filtering) and `shade_default` (one sample per pixel —
-// the window's first sample in index order — with a one-pixel texture footprint: plain 1x
-// deferred shading; identical to adaptive with k forced to 0). `fxaa` post-processes an 8-bit
-// image with FXAA 3.11 (quality preset 39 by default).
-//
-// Texture filtering (§4.1): every sample's albedo is an anisotropic `textureGrad` lookup with
-// the UV derivatives stored in the G-buffer (derivatives per grid pixel, computed by the
-// rasteriser from the geometry pass's 2x2 quads, so they never difference two triangles),
-// scaled by sqrt(area / samples) — the number of grid pixels each shaded sample stands for:
-//  * reference: scale 1 (each sample is one grid pixel);
-//  * one sample per pixel (S, default, adaptive k = 0): scale m (the sample stands for the pixel);
-//  * adaptive with k > 0 in a window of one material with no UV seam: m / sqrt(k + 1);
-//  * material-boundary rule: when the window holds several material ids (background counts as
-//    one) the scale of a sample is sqrt(A / N) with A the window's grid pixels of the sample's
-//    material and N the shaded samples of that material, so no footprint is enlarged over
-//    another material's part of the window; when a UV seam is detected (two adjacent samples of
-//    the window whose UV difference exceeds `AdaptiveOptions::seam_factor` times what their
-//    derivatives predict — a discontinuity of the texture coordinates), the scale is 1.
-// With k = m^2 - 1 every scale is 1 and adaptive equals the reference bit for bit.
-//
-// Shading is Blinn-Phong with any number of point lights (`ShadingOptions`), split as
-// colour = albedo * D + P (D: ambient + diffuse light, including the optional heavy term;
-// P: specular). S keeps D and P, so when k > 0 changes the first sample's texture footprint only
-// its albedo lookup is repeated, never its lighting.
-//
-// Threads and determinism: every driver runs `parallel_for` over rows and writes each output
-// pixel from one iteration; results are bit-identical for any thread count. A `DeferredRenderer`
-// is not thread-safe (it owns the rasteriser); its const shading methods may run concurrently.
+// What: `DeferredRenderer` rasterises a scene into an enlarged m x m G-buffer and shades each
+//   pixel with 1 + k of its m^2 samples, k from the window's depth, normal and shading
+//   variation (`AdaptiveOptions`); baselines: the reference (all samples), 1 spp, FXAA 3.11,
+//   edge-per-sample.
+// Paper: Holländer, Boubekeur & Eisemann 2013, "Adaptive Supersampling for Deferred
+//   Anti-Aliasing", JCGT 2(1): Listing 1, §3.1 (metrics), §4.1 (texture footprints).
+// Where: src/deferred/; GPU twin gl::DeferredRenderer (tessera/gl_deferred.h); engine
+//   component gl::AdaptiveSupersampler; the steps and footprint rules: docs/architecture.md,
+//   "Adaptive supersampling, pass by pass".
+// Threads: results are bit-identical for any thread count; a `DeferredRenderer` is not
+//   thread-safe (it owns the rasteriser), its const shading methods may run concurrently.
 #pragma once
 
 #include <array>

@@ -1,46 +1,18 @@
-// tessera/faces.h — per-face textures without seams: Discard (Toth 2013) vs Traverse
-// (McDonald 2013), on quad meshes with one texture per face (Ptex style).
+// tessera/faces.h — per-face textures without seams: Clamp, Discard (Toth 2013), Traverse
+// (McDonald 2013) and Traverse+corners, on quad meshes with one texture per face (Ptex style).
 //
-// Three layers, as in Ptex's kernel/traversal split:
-//  * Kernel (pure functions): the 16 edge-to-edge UV transforms (`edge_transform`), UV-gradient
-//    transforms, and the per-method tap arithmetic (`sample_face` divides the summed taps by the
-//    summed coverage weight, Equation 6 of the paper).
-//  * Data: `FaceAdjacency` (neighbour face and edge per edge, -1 on a boundary) built from any
-//    quad mesh by a directed-edge map (`build_adjacency`) or read from a .ptx file; the
-//    valence-4 diagonal neighbours (`CornerLink`); `FaceTextureSet` (one mipmapped
-//    `texture::Texture` per face, own resolution, non-square allowed, alpha = the constant-one
-//    coverage channel).
-//  * Drivers: `sample_face` walks the neighbours for Traverse; `FaceRenderer` rasterises a quad
-//    mesh with a texture lookup plus a light Lambert term; `render_reference` is the paper's
-//    high-quality reference (Traverse at f x f the resolution, Mitchell-Netravali downsampling).
-//
-// Face conventions (those of Ptex): a quad's vertices 0..3 sit at (u, v) = (0,0), (1,0), (1,1),
-// (0,1); edge e joins vertex e to vertex e+1 (0: v = 0, 1: u = 1, 2: v = 1, 3: u = 0); texel
-// row 0 is v = 0 (the `texture::Texture` convention). Neighbouring faces share an edge in
-// opposite directions (consistently oriented meshes), so my edge e from vertex A to B is the
-// neighbour's edge e' from B to A.
-//
-// Methods (`SeamMethod`), each with trilinear or up to 16x anisotropic filtering:
-//  * clamp: the face texture with clamp-to-edge addressing (the artefact baseline).
-//  * discard: border colour 0 and the coverage channel (alpha = 1 inside): the lookup sums
-//    w*T and w over the in-face taps only and returns Σ(w·T)/Σw. When no tap is inside
-//    (Σw = 0: a pixel centre or helper lane well outside its face at magnification) the paper's
-//    fallback repeats the lookup with clamp addressing. Without the fallback the result is
-//    0/0 = NaN; `SampleOptions::clamp_fallback = false` shows it (the experiment counts the NaN
-//    pixels it produces).
-//  * traverse: McDonald 2013 as in Listing 1 of the paper: the own face with border addressing
-//    plus the 4 edge neighbours, each sampled in its own UV space through the edge transform
-//    (gradients transformed too, so every face picks its own LOD and anisotropy), summed and
-//    divided by the summed coverage. All 4 neighbours are sampled unconditionally, as in the
-//    listing (a GPU would not branch per lane either).
-//  * traverse_corners (beyond the paper): traverse plus, at each corner whose vertex has
-//    valence 4, the diagonal face (reached by two edge steps, transform composed), so taps in
-//    the diagonal region are read instead of dropped. At other valences (3, 5, ..., and
-//    boundaries) the diagonal region is dropped (its weight renormalised away): at valence 3
-//    there is no surface there, at valence 5 no single face.
-//
-// Thread safety: all types are immutable after construction; sampling and rendering functions
-// are const and may run concurrently (a `FaceRenderer` owns a rasteriser: one per thread).
+// What: `FaceTextureSet` (one mipmapped texture per face + adjacency), the seam methods
+//   (`sample_face` and `sample_clamp` / `_discard` / `_traverse` / `_traverse_corners`), the
+//   experiment's renderer `FaceRenderer` and its supersampled reference `render_reference`.
+// Paper: Toth 2013, "Avoiding Texture Seams by Discarding Filter Taps", JCGT 2(2): Equation 6,
+//   Listing 1, Figure 1. The layers (kernel, data, drivers) and the methods in full:
+//   docs/architecture.md, "Per-face texturing: layers and methods".
+// Where: src/faces/; GLSL twin share/tessera/glsl/seams.glsl; GL twin gl::FaceRenderer.
+// Faces (Ptex's convention): vertices 0..3 at (u, v) = (0,0), (1,0), (1,1), (0,1); edge e joins
+//   vertex e to e+1 (0: v = 0, 1: u = 1, 2: v = 1, 3: u = 0); texel row 0 is v = 0;
+//   neighbours share an edge in opposite directions.
+// Threads: all types are immutable after construction; sampling and rendering are const and
+//   may run concurrently (a `FaceRenderer` owns a rasteriser: one per thread).
 #pragma once
 
 #include <array>
@@ -226,12 +198,34 @@ struct SampleOptions {
   bool clamp_fallback = true;
 };
 
-/// Filtered colour of face `face` at `uv` with UV gradients per pixel (normalised units of
-/// that face). Returns linear RGB and, in [3], the coverage Σw that was divided out (1 for
-/// clamp; after a fallback, 0).
+/// Filtered colour of face `face` at `uv` by `options.method` (one of the four functions
+/// below), with UV gradients per pixel in normalised units of that face. Returns linear RGB
+/// and, in [3], the coverage Σw that was divided out (1 for clamp; after a fallback, 0).
 std::array<float, 4> sample_face(const FaceTextureSet& set, int face, texture::Uv uv,
                                  const texture::UvGradients& gradients,
                                  const SampleOptions& options);
+
+// The four methods, named as their GLSL twins in share/tessera/glsl/seams.glsl
+// (tessera_seams_sample_clamp / _discard / _traverse / _traverse_corners); `options.method` is
+// not read. Arguments and result as `sample_face`'s.
+
+/// Clamp: the face alone with clamp-to-edge addressing (the seam-artefact baseline).
+std::array<float, 4> sample_clamp(const FaceTextureSet& set, int face, texture::Uv uv,
+                                  const texture::UvGradients& gradients,
+                                  const SampleOptions& options);
+/// Discard (Toth 2013): the face's taps with a zero border, the taps outside the face divided
+/// out; no covered tap: the clamp fallback (or NaN without `clamp_fallback`).
+std::array<float, 4> sample_discard(const FaceTextureSet& set, int face, texture::Uv uv,
+                                    const texture::UvGradients& gradients,
+                                    const SampleOptions& options);
+/// Traverse (McDonald 2013, Listing 1): the face and its four edge neighbours, normalised.
+std::array<float, 4> sample_traverse(const FaceTextureSet& set, int face, texture::Uv uv,
+                                     const texture::UvGradients& gradients,
+                                     const SampleOptions& options);
+/// Traverse plus the diagonal face at each valence-4 corner.
+std::array<float, 4> sample_traverse_corners(const FaceTextureSet& set, int face, texture::Uv uv,
+                                             const texture::UvGradients& gradients,
+                                             const SampleOptions& options);
 
 // ---------------------------------------------------------------------------------------------
 // Scenes
@@ -337,6 +331,7 @@ class FaceRenderer {
                                                       const FaceTextureSet& textures);
   ~FaceRenderer();
 
+  /// Renders one frame of the mesh from `camera` as `options` asks (method, filter, MSAA).
   Result<FaceFrame> render(const scene::Camera& camera, const FaceRenderOptions& options);
 
   /// The paper's reference: Traverse (16x anisotropic by default, `options.filter`) at

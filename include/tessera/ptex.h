@@ -1,45 +1,17 @@
 // tessera/ptex.h — a reader for Ptex (.ptx) per-face texture files.
 //
-// Written from the Ptex file-format documentation (Burley & Lacewell 2008; the layout of the
-// public Ptex library's files). A .ptx file is little-endian:
-//
-//   Header (64 bytes)      magic "Ptex", version 1, mesh type (0 triangle, 1 quad), data type
-//                          (0 u8, 1 u16, 2 half, 3 float), alpha channel (-1 = none), channel
-//                          count, level count, face count, the sizes of the blocks below, the
-//                          minor version, the level-data size and the meta-data sizes.
-//   Extended header        `extheadersize` bytes (40 in current files): border modes, edge
-//                          filter mode, large-meta-data sizes, edit-data size and position.
-//   Face info              zlib: 20 bytes per face — ulog2, vlog2 (int8), adjacent edges
-//                          (2 bits per edge), flags (1 constant, 2 has edits, 4 neighbourhood
-//                          constant, 8 subface), 4 adjacent faces (int32, -1 = none).
-//   Constant data          zlib: one pixel per face (the face's average colour).
-//   Level info             16 bytes per level: level-data size (u64), level-header size
-//                          (u32), face count (u32).
-//   Level data             per level: a zlib array of one u32 per face (bits 0..29 block size,
-//                          30..31 encoding), then the faces' blocks back to back. Encodings:
-//                          0 constant (one raw pixel), 1 zip, 2 zip of the running difference
-//                          (u8 / u16 only), 3 tiled (tile resolution, u32 tile-header size,
-//                          zlib tile headers, then the tiles, each encoded like a face).
-//                          Zipped pixel data is planar: each channel's plane of u x v values,
-//                          rows of increasing v.
-//   Meta data, edits       skipped (edits: rejected as unsupported, see below).
-//
-// What tessera does with it: `parse_ptex` validates every size and offset against the bytes
-// before allocating, decodes level 0 of every face (all four encodings and data types) to
-// normalised floats (u8 / 255, u16 / 65535, half and float as stored), and checks the stored
-// reduction levels' headers for consistency (their pixels are not decoded: `FaceTextureSet`
-// builds its own box-filtered mip chains from level 0). Triangle meshes, files with face-data
-// edits and face resolutions beyond 2^15 per side are refused with `unsupported`. Quad meshes
-// whose non-quad faces were split into subfaces (flag 8, the nonquad/pentagon samples) parse;
-// `subface` tells which faces are subfaces.
-//
-// Conventions: face f's texel (x, y) covers u in [x/w, (x+1)/w], v in [y/h, (y+1)/h] of the
-// face, where (u, v) = (0,0), (1,0), (1,1), (0,1) at the face's vertices 0..3 in mesh order,
-// and edge e joins vertices e and e+1 (0 bottom v=0, 1 right u=1, 2 top v=1, 3 left u=0).
-//
-// Errors are one line naming the file: "teapot.ptx: level 0 face 12: zlib data corrupt". The
-// parser never reads outside the given bytes and is fuzzed (fuzz/fuzz_ptex.cpp). Thread-safe
-// (pure functions).
+// What: `parse_ptex` turns the bytes of a .ptx file into level 0 of every face as normalised
+//   floats (u8 / 255, u16 / 65535, half and float as stored), with the adjacency the file
+//   stores; all four encodings and data types, quad meshes (split non-quad faces as subfaces).
+// Format: Burley & Lacewell 2008 and the Ptex file-format documentation; the layout, block by
+//   block, is in src/ptex/ptex_reader.cpp. Stored reduction levels are checked, not decoded
+//   (`faces::FaceTextureSet` builds its own mip chains).
+// Refused (`unsupported`): triangle meshes, face-data edits, faces beyond 2^15 texels a side.
+// Conventions: face f's texel (x, y) covers u in [x/w, (x+1)/w], v in [y/h, (y+1)/h], with
+//   (u, v) = (0,0), (1,0), (1,1), (0,1) at vertices 0..3 and edge e joining vertices e, e+1.
+// Errors: one line naming the file ("teapot.ptx: level 0 face 12: zlib data corrupt"); every
+//   size is checked before allocating, no read outside the bytes (fuzz/fuzz_ptex.cpp).
+// Threads: pure functions, thread-safe.
 #pragma once
 
 #include <array>

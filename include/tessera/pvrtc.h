@@ -1,35 +1,19 @@
 // tessera/pvrtc.h — PVRTC1 (4 bpp and 2 bpp) encoder and decoder.
 //
-// The decoder is bit-exact with Imagination's PVRTexTool 4.17 (the reference), including
-// punch-through blocks, translucent colours, non-square power-of-two sizes and textures
-// smaller than the 2x2-block minimum. The encoder implements "Fast PVRTC Compression using
-// Intensity Dilation" (Krajcevski & Manocha, JCGT 3(4), 2014) for `Quality::fast`. `normal` and
-// `high` run the two-stage scheme of the paper's §1.2: initial endpoints (principal-axis split of
-// each block's bilinear footprint: unlike intensity labelling it separates equally bright
-// colours, e.g. across the wrap-around seam; pairs of about equal brightness are oriented to
-// agree with their neighbours), an exact "reseed" of 4 bpp blocks the footprint start misses
-// (endpoints from the block's own texels, kept where the exactly decoded error drops), then
-// alternating least-squares optimisation of the block colours (modulation fixed) and
-// brute-force modulation (colours fixed), then (4 bpp) an exact greedy search over +-1 moves of
-// each block's endpoint codes scored by the exactly decoded error of its 7x7 texel window
-// (2 bpp: exact modulation descent, and at `high` an exact endpoint search over the 15x7
-// texels a block reaches). `high` also encodes from the dilation start and keeps, block by
-// block, the endpoints of whichever encoding errs less (a crossover: the two starts stop in
-// different local minima, the dilation one wins along sharp edges), then resumes the exact
-// search (2 bpp: the result is kept where its exact total error is lower).
-//
-// Modulation is always chosen against the exact decoder arithmetic, so the bytes an encode
-// returns decode (in tessera or PVRTexTool) to exactly the image the encoder scored.
-// 4 bpp RGBA input uses translucent endpoints where they quantise better and punch-through
-// (mode 1) blocks where they lower the error; RGB input writes only opaque endpoints.
-//
-// Data layout: compressed data is a sequence of 64-bit little-endian blocks in Morton
-// (twiddled) order, exactly as stored in a PVR v3 file's level data. Each level holds
-// `block_count(format, width, height)` blocks; dimensions must be powers of two (not
-// necessarily equal); anything smaller than 2x2 blocks is padded to 2x2 blocks.
-//
-// Threading: every function is thread-safe; `EncodeOptions::threads` and `decode`'s `parallel`
-// are the number of worker threads (0 = all). Output bytes are identical for any thread count.
+// What: `encode` turns an RGBA8 image into PVRTC1 blocks; `decode` turns blocks into RGBA8,
+//   bit-exact with Imagination's PVRTexTool 4.17 (punch-through blocks, translucent colours,
+//   non-square sizes, textures smaller than the 2x2-block minimum).
+// Paper: Krajcevski & Manocha, "Fast PVRTC Compression using Intensity Dilation", JCGT 3(4),
+//   2014: §4 is `Quality::fast`; `normal` and `high` add the two-stage refinement of its §1.2
+//   and exact searches (pass by pass: docs/architecture.md, "The quality presets").
+// Where: src/pvrtc/ (format/: bit layout, decoder; encode/: the passes); tessera/texture_file.h
+//   writes the blocks into PVR / KTX files.
+// Exactness: modulation is always chosen against the decoder's arithmetic, so the returned
+//   bytes decode (in tessera or PVRTexTool) to exactly the image the encoder scored.
+// Data: 64-bit little-endian blocks in Morton (twiddled) order, as in a PVR v3 file's level
+//   data; power-of-two sizes, padded to at least 2x2 blocks (`block_count`).
+// Threads: every function is thread-safe; `EncodeOptions::threads` and `decode`'s `parallel`
+//   are worker counts (0 = all); the output bytes are the same for any count.
 #pragma once
 
 #include <cstddef>
@@ -49,21 +33,14 @@ enum class Format {
   pvrtc1_2bpp,  ///< 8x4 texels per 64-bit block.
 };
 
-/// Encoder effort.
+/// Encoder effort: each level costs more time for a lower error (what each runs:
+/// docs/architecture.md, "The quality presets, pass by pass"; src/pvrtc/encode/schedule.cpp).
 enum class Quality {
-  fast,    ///< Intensity dilation only (the paper's algorithm), 4 bpp mode 0 (+ punch-through).
-  normal,  ///< Principal-axis start, 1 reseed pass (4 bpp), 3 refinement sweeps, then (4 bpp)
-           ///< one round of the exact search on blocks above ~6.4 RMS per channel; 4 bpp
-           ///< also tries mode 1. 2 bpp: every modulation choice of the refinement is followed
-           ///< by one sweep of exact coordinate descent on the stored modulation values and
-           ///< interpolation variants.
-  high,    ///< Principal-axis start, 2 reseed passes (4 bpp), then 4 bpp: 3 refinement sweeps
-           ///< and the exact search (with neighbour-copy moves) on every block until no block
-           ///< changes (alpha error weighted x2 for RGBA); then a second encoding from the
-           ///< dilation start, searched the same way, is crossed in block by block where it
-           ///< errs less, and the search resumes where the two meet. 2 bpp: refinement (with
-           ///< the modulation descent, as normal) until a sweep gains < 0.25% (at most 16
-           ///< sweeps), then two more descent sweeps.
+  fast,    ///< The paper's intensity dilation and brute-force modulation, nothing more.
+  normal,  ///< + a principal-axis start, least-squares refinement and one exact search round
+           ///< on the worst blocks (2 bpp: an exact modulation descent instead of the search).
+  high,    ///< + the exact search to convergence and a crossover with a second encoding from
+           ///< the dilation start (2 bpp: with an exact endpoint search).
 };
 
 /// Block width in texels (4 for 4 bpp, 8 for 2 bpp); blocks are always 4 texels high.
@@ -84,19 +61,23 @@ Status check_dimensions(int width, int height, const std::string& what);
 /// y bit 0, x bit 1, alternating; the surplus high bits of the larger dimension come above.
 std::uint32_t morton_index(std::uint32_t bx, std::uint32_t by, std::uint32_t bw, std::uint32_t bh);
 
-/// Encoder options.
+/// Encoder options: the format, the effort and what the input holds; defaults give 4 bpp at
+/// `normal`.
 struct EncodeOptions {
   Format format = Format::pvrtc1_4bpp;
   Quality quality = Quality::normal;
-  /// Refinement sweeps; -1 = the quality preset's default (fast 0, normal 3, high 3 at 4 bpp
-  /// and up to 16, until a sweep gains < 0.25%, at 2 bpp).
+  /// At most this many least-squares refinement sweeps; -1 = the preset's (fast 0, normal 3,
+  /// high 3 at 4 bpp and 4 at 2 bpp). Every refinement stops early once a sweep gains less than
+  /// 0.25% of the error. A value >= 0 also turns `high`'s crossover off.
   int iterations = -1;
-  /// 4 bpp only: rounds of exact greedy search over +-1 changes of each block's endpoint codes
-  /// after the refinement, keeping changes that lower the exactly decoded error, on blocks
-  /// above ~4.5 RMS per channel with up to 4 sweeps of the moves per block (0 = the preset's
-  /// default: see `Quality`). A positive value replaces the preset's search.
+  /// Rounds of the exact endpoint search after the refinement; 0 = the preset's. A positive
+  /// value replaces the preset's search: 4 bpp, that many rounds (stopping early once no block
+  /// changes) of greedy +-1 moves of each block's endpoint codes, kept where the exactly decoded
+  /// error drops, on blocks above ~4.5 RMS per channel (RGB), up to 4 sweeps of the moves per
+  /// block; 2 bpp, no endpoint search at all. It also turns `high`'s crossover off.
   int exact_search_rounds = 0;
-  /// Allow punch-through (modulation mode 1) blocks for RGBA input.
+  /// Allow punch-through (modulation mode 1) blocks for RGBA input. RGBA input also gets
+  /// translucent endpoints where they quantise better; RGB input only opaque ones.
   bool punch_through = true;
   /// Treat the input as RGBA even if `image.has_alpha` is false (otherwise alpha is ignored and
   /// only opaque colours are written).
@@ -115,7 +96,7 @@ struct EncodeOptions {
   /// otherwise it changes nothing). With `Format::pvrtc1_2bpp` `encode` fails with
   /// invalid_argument. Meant for straight alpha: premultiplied colour already carries alpha.
   bool alpha_weighted = false;
-  int threads = 0;
+  int threads = 0;  ///< Worker threads (0 = all); the bytes are the same for any count.
   /// Optional progress hook: called with the fraction of this encode done, from the thread
   /// that called `encode` only (never from a worker), between the encoder's passes, sweeps and
   /// search rounds. Fractions never decrease (the first may be 0); a successful encode's last
@@ -124,8 +105,8 @@ struct EncodeOptions {
   std::function<void(double fraction)> progress;
 };
 
-/// Encodes one level. `image` dimensions must pass `check_dimensions`. Output size is
-/// `level_size(options.format, image.width, image.height)`.
+/// Encodes one level of `image` into `level_size(options.format, width, height)` bytes of
+/// blocks. The dimensions must pass `check_dimensions` (else its error status).
 Result<std::vector<std::uint8_t>> encode(const ImageRGBA8& image, const EncodeOptions& options);
 
 /// Encodes one level straight from pixels the caller owns (RGB or RGBA, any strides: see

@@ -30,10 +30,7 @@
 //    Direct3D convention), see `sample_positions` and `FrameBuffer::sample_offsets`.
 //  * Front faces are counter-clockwise in NDC (y up) unless `DrawCall::front_ccw` is false.
 //
-// Pipeline: `Rasteriser::render` runs a geometry stage (fetch, clip, snap, cull, set up, bin;
-// parallel over fixed chunks of 1024 input triangles) and then a raster stage (parallel over
-// tiles: optional clear, 8x8 block trivial accept/reject, 2x2 quads, early depth test, shading,
-// per-sample writes). Memory: the rasteriser keeps its per-chunk buffers between calls.
+// Pipeline (geometry stage, then raster stage over tiles): src/raster/rasterizer.cpp.
 //
 // Determinism and threads: triangles are binned into 64x64 grid-pixel tiles; every tile is
 // rasterised by exactly one task, visiting its triangles in submission order (draw order, then

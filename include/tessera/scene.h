@@ -82,6 +82,8 @@ struct LoadOptions {
   bool load_textures = true;
 };
 
+/// Reads a Wavefront OBJ (+ MTL and its textures) / a glTF 2.0 (.gltf or .glb) scene; errors
+/// name the file.
 Result<Scene> load_obj(const std::string& path, const LoadOptions& options = {});
 Result<Scene> load_gltf(const std::string& path, const LoadOptions& options = {});
 /// By extension: .obj, .gltf, .glb.

@@ -28,11 +28,6 @@
 // divide by the remaining weight; or, cheaper, sample with `AddressMode::border`, a zero border
 // colour and alpha 1 in the texture, and divide rgb by a (the two agree; see texture_test).
 //
-// Cost (bench/sampler_bench.cpp): one `compute_footprint` per lookup (two square roots, one
-// log2), then a few tens of instructions per tap; trilinear reads 8 taps, 16x anisotropic 128.
-// The tap-list path stores 32 bytes per tap, so it is slower than `sample` (BM_TapsAniso16
-// against BM_SampleAniso/16 in docs/benchmarks/sampler.md).
-//
 // Thread safety: a `Texture` is immutable after construction; all its const methods (sampling
 // included) may be called concurrently from any number of threads. Kernel functions are pure.
 // Nothing on the sampling path allocates.

@@ -1,43 +1,17 @@
 // tessera/texture_file.h — compressed texture containers (PVR v3, KTX 1.1, KTX 2.0) and the
 // image-to-texture pipeline.
 //
-// A texture is a 2D texture, a cube map (6 faces), an array of either, with an optional mip
-// chain: every image of it shares one size, PVRTC format and colour space.
-//
-// Readers validate every size against the actual byte count before allocating (a lying header
-// gives `corrupt_data`, never a huge allocation) and return one-line errors naming the file.
-// Writers produce files PVRTexTool and OpenGL ES / Vulkan loaders accept; write them with
-// `write_texture_file`, which is atomic.
-//
-// PVR v3 (what PVRTexTool writes): 52-byte little-endian header, a metadata block (tessera
-// writes PVRTexTool's 15-byte orientation entry and skips any metadata when reading), then per
-// level, largest first, per surface (array layer), per face, one image of `pvrtc::level_size`
-// bytes. Pixel formats 0..3 (PVRTC1 2bpp RGB, 2bpp RGBA, 4bpp RGB, 4bpp RGBA) are supported;
-// depth must be 1, faces 1 or 6. Big-endian PVR files are rejected.
-//
-// KTX 1.1: 64-byte header, glType 0 / glFormat 0, glInternalFormat one of the
-// GL_IMG_texture_compression_pvrtc (0x8C00..0x8C03) or GL_EXT_pvrtc_sRGB (0x8A54..0x8A57)
-// formats, key/value data (tessera writes "KTXorientation" = "S=r,T=d"), then per level a
-// u32 imageSize and the level's images (array elements, then faces) padded to 4 bytes; for a
-// cube map that is not an array, imageSize is the size of one face, as the specification says
-// (and PVRTexTool writes). Both byte orders are read; files are written little-endian. No 3D
-// textures. Note: PVRTexTool 4.17 reads the 0x8C0x formats but rejects the sRGB EXT ones, and
-// itself writes sRGB data as 0x8C0x.
-//
-// KTX 2.0 (the Khronos container Vulkan, three.js and glTF pipelines read): vkFormat
-// VK_FORMAT_PVRTC1_{2,4}BPP_{UNORM,SRGB}_BLOCK_IMG, layerCount 0 unless an array, a Data Format
-// Descriptor (one basic block: colour model PVRTC, BT.709 primaries, sRGB or linear transfer
-// function, the ALPHA_PREMULTIPLIED flag, texel block 4x4 or 8x4, 8 bytes per block, one 64-bit
-// sample), the keys "KTXorientation" = "rd" and "KTXwriter" = "tessera <version>", a level
-// index (level 0 first; the data is stored smallest level first, 8-byte aligned), and optional
-// Zstandard supercompression (`Ktx2Options`: one frame per level, declaring its size; levels
-// then unaligned). The reader takes levelCount 0 as one level, wants the DFD to agree with
-// vkFormat, and refuses BasisLZ / ZLIB supercompression, 1D and 3D textures; each zstd frame
-// must declare exactly the level size the header's shape gives and be long enough to expand
-// that far (at most 128 KiB per 3 bytes) before the level is allocated, and never decompresses
-// past it. KTX 2.0 has no RGB/RGBA distinction for PVRTC: a file read back has alpha when any
-// block can decode a texel with alpha below 255 (`pvrtc::may_have_alpha`: a translucent
-// endpoint or a 4 bpp punch-through texel).
+// What: a `CompressedTexture` is a 2D texture, a cube map (6 faces) or an array of either, with
+//   an optional mip chain, every image of one size, PVRTC format and colour space; readers and
+//   writers for the three containers, and `compress_images` / `compress_image` (images ->
+//   prepared chains -> PVRTC blocks -> a texture).
+// Where: src/texture_file/; each container's layout and what tessera reads and writes of it is
+//   at the top of its file (container_pvr.cpp, container_ktx.cpp, container_ktx2.cpp).
+// Reading: every size is checked against the byte count before allocating (a lying header gives
+//   `corrupt_data`, never a huge allocation); errors are one line naming the file.
+// Writing: files PVRTexTool and OpenGL ES / Vulkan loaders accept; `write_texture_file` is
+//   atomic. KTX 2.0 has no RGB/RGBA distinction: a file read back has alpha when any block can
+//   decode a texel with alpha below 255 (`pvrtc::may_have_alpha`).
 #pragma once
 
 #include <cstdint>
@@ -46,8 +20,8 @@
 #include <vector>
 
 #include "tessera/core.h"
+#include "tessera/image_mipmap.h"
 #include "tessera/metrics.h"
-#include "tessera/mipmap.h"
 #include "tessera/pvrtc.h"
 
 namespace tessera::texture_file {
@@ -126,7 +100,7 @@ struct CompressOptions {
   bool mipmaps = false;     ///< Encode a mip chain (see `mip_levels`, `mip_filter`).
   int mip_levels = 0;       ///< With `mipmaps`: at most this many levels, level 0 included
                             ///< (0 = down to 1x1).
-  image::MipFilter mip_filter = image::MipFilter::box;  ///< How each level is made (mipmap.h).
+  image::MipFilter mip_filter = image::MipFilter::box;  ///< How each level is made (image_mipmap.h).
   bool srgb = false;        ///< Mark the texture sRGB and filter (mips, resize, premultiply) in
                             ///< linear light.
   bool resize_pot = false;  ///< Resample non-power-of-two input (Lanczos-3); else it is an error.

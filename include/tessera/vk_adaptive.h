@@ -6,7 +6,7 @@
 // The twin of gl::AdaptiveSupersampler (tessera/gl_adaptive.h, whose header comment is the
 // contract of everything shared): the same G-buffer layout descriptor, shading hook
 // (`vec4 tessera_shade_sample(ivec2 grid_texel, float footprint)` and its optional
-// TESSERA_ADAPTIVE_FIRST_AGAIN / TESSERA_ADAPTIVE_CUSTOM_LUMA), thresholds, sample order, schedules,
+// TESSERA_ADAPTIVE_SAMPLE0_AGAIN / TESSERA_ADAPTIVE_CUSTOM_LUMA), thresholds, sample order, schedules,
 // budget, HDR resolve and outputs, compiled from the same shipped GLSL
 // (adaptive_component.glsl), giving the same image. What differs is Vulkan's:
 //

@@ -2,14 +2,13 @@
 // sampling and rasterisation, which use it instead of raw intrinsics (no intrinsic appears
 // outside src/core/simd*.h). Include this header; it pulls in the parts:
 //
-//   simd_int.h     backend selection; vint4 (4 x int32: texels, texel coordinates, offsets,
+//   simd_int.h     backend selection; vi32x4 (4 x int32: texels, texel coordinates, offsets,
 //                  level sizes, comparison masks) and vi64x2 (2 x int64: fixed-point edges).
-//   simd_float.h   vf4 (4 x float, one IEEE operation per lane, compares -> vint4 masks,
-//                  selects, conversions, shuffles, 4x4 transpose) and f32x4 (the GCC / Clang
-//                  vector-extension type, with from_f32x4 / to_f32x4).
+//   simd_float.h   vf32x4 (4 x float, one IEEE operation per lane, compares -> vi32x4 masks,
+//                  selects, conversions, shuffles, 4x4 transpose).
 //   simd_packed.h  vu16x8 (8 x uint16) and vu8x16 (16 x uint8): the PVRTC texel planes, with
-//                  their widening / narrowing to and from vint4 and vf4.
-//   simd_wide.h    the 8-lane types vint8, vf8, vu16x16 and vu8x32: two 4-lane halves, with an
+//                  their widening / narrowing to and from vi32x4 and vf32x4.
+//   simd_wide.h    the 8-lane types vi32x8, vf32x8, vu16x16 and vu8x32: two 4-lane halves, with an
 //                  AVX2 backend where the translation unit is compiled with -mavx2.
 //   simd_generic.h width-generic names over both widths (kLanes, load_as, store, ...) for
 //                  kernels written once and compiled per width, and the operations such
@@ -43,8 +42,8 @@
 // into one fused multiply-add, rounding once. TESSERA_SIMD_VECTOR (1 with SSE2 or NEON, else 0)
 // tells kernels that also have a scalar per-lookup path (texture `sample4` / one-probe lookups,
 // raster quad coverage) whether to take the vector path; both paths give the same results, and
-// without a vector backend they take their own scalar code, unchanged by this wrapper. f32x4 is
-// a compiler vector type on every GCC / Clang target (SSE on x86-64, NEON on AArch64).
+// without a vector backend they take their own scalar code, unchanged by this wrapper.
+// Type names: v, the lane type (i signed, u unsigned, f float) and its bits, x, the lane count.
 // TESSERA_NO_SIMD must be the same for every translation unit of the library (the types
 // differ).
 #pragma once
@@ -62,7 +61,7 @@ inline namespace TESSERA_SIMD_ISA {
 
 /// sll_bytes: each 32-bit lane shifted left by 8 * `k` bits (k = 0..3), e.g. to put row k's
 /// 8-bit code into byte k of a packed word.
-inline vint4 sll_bytes(vint4 v, int k) {
+inline vi32x4 sll_bytes(vi32x4 v, int k) {
   switch (k) {
     case 0:
       return v;
@@ -77,8 +76,8 @@ inline vint4 sll_bytes(vint4 v, int k) {
 
 /// channel16: channel `c` (0 = R ... 3 = A) of the eight RGBA8 texels held in `t0` and `t1`
 /// (from load_texels4), as 16-bit lanes in texel order.
-inline vu16x8 channel16(vint4 t0, vint4 t1, int c) {
-  const vint4 m8(0xff);
+inline vu16x8 channel16(vi32x4 t0, vi32x4 t1, int c) {
+  const vi32x4 m8(0xff);
   switch (c) {
     case 1:
       return narrow16(srl<8>(t0) & m8, srl<8>(t1) & m8);
@@ -95,7 +94,7 @@ inline vu16x8 channel16(vint4 t0, vint4 t1, int c) {
 /// 4-lane form makes the first nch planes only; the 8-lane form is load_planes (all four).
 template <int nch>
 inline void load_texel_planes(const std::uint8_t* p, vu16x8 out[4]) {
-  const vint4 t0 = load_texels4(p), t1 = load_texels4(p + 16);
+  const vi32x4 t0 = load_texels4(p), t1 = load_texels4(p + 16);
   for (int c = 0; c < nch; ++c) out[c] = channel16(t0, t1, c);
 }
 template <int nch>

@@ -1,12 +1,9 @@
 // simd_float.h — part of the SIMD wrapper (include "core/simd.h", which documents the whole set):
 // single-precision lanes.
-//   vf4    four float lanes: each operation is one IEEE single-precision operation per lane
-//          (correctly rounded add, sub, mul, sqrt; no fused multiply-add; min / max / compares
-//          with SSE's NaN rules, spelled out per function), so a lane gives the same bits as the
-//          scalar expression written in the comment. Comparisons return vint4 masks.
-//   f32x4  the GCC / Clang vector extension type (four floats, lane-wise C++ operators; SSE on
-//          x86-64, NEON on AArch64), for loops that want operators on any target; convert with
-//          from_f32x4 / to_f32x4 (free on SSE2).
+//   vf32x4 four float lanes: each operation is one IEEE single-precision operation per lane
+//          (correctly rounded add, sub, mul, div, sqrt; no fused multiply-add; min / max /
+//          compares with SSE's NaN rules, spelled out per function), so a lane gives the same
+//          bits as the scalar expression written in the comment. Comparisons return vi32x4 masks.
 #pragma once
 
 #include <bit>
@@ -19,75 +16,76 @@
 namespace tessera::simd {
 inline namespace TESSERA_SIMD_ISA {
 
-#if defined(__GNUC__)
-using f32x4 = float __attribute__((vector_size(16)));
-#endif
-
 #if defined(TESSERA_SIMD_SSE2)
 
-struct vf4 {
+struct vf32x4 {
   __m128 v;
-  vf4() : v(_mm_setzero_ps()) {}
-  explicit vf4(__m128 x) : v(x) {}
-  explicit vf4(float a) : v(_mm_set1_ps(a)) {}
+  vf32x4() : v(_mm_setzero_ps()) {}
+  explicit vf32x4(__m128 x) : v(x) {}
+  explicit vf32x4(float a) : v(_mm_set1_ps(a)) {}
   /// Lanes (a, b, c, d), lane 0 first.
-  vf4(float a, float b, float c, float d) : v(_mm_setr_ps(a, b, c, d)) {}
+  vf32x4(float a, float b, float c, float d) : v(_mm_setr_ps(a, b, c, d)) {}
 };
-inline vf4 loadf4(const float* p) { return vf4(_mm_loadu_ps(p)); }
-inline void storef4(vf4 a, float* p) { _mm_storeu_ps(p, a.v); }
+inline vf32x4 loadf4(const float* p) { return vf32x4(_mm_loadu_ps(p)); }
+inline void storef4(vf32x4 a, float* p) { _mm_storeu_ps(p, a.v); }
 /// `p` 16-byte aligned.
-inline vf4 loadf4_aligned(const float* p) { return vf4(_mm_load_ps(p)); }
-inline void storef4_aligned(vf4 a, float* p) { _mm_store_ps(p, a.v); }
-#if defined(__GNUC__)
-inline vf4 from_f32x4(f32x4 a) { return vf4(__m128(a)); }
-inline f32x4 to_f32x4(vf4 a) { return f32x4(a.v); }
-#endif
-inline vf4 operator+(vf4 a, vf4 b) { return vf4(_mm_add_ps(a.v, b.v)); }
-inline vf4 operator-(vf4 a, vf4 b) { return vf4(_mm_sub_ps(a.v, b.v)); }
-inline vf4 operator*(vf4 a, vf4 b) { return vf4(_mm_mul_ps(a.v, b.v)); }
-inline vf4 sqrt(vf4 a) { return vf4(_mm_sqrt_ps(a.v)); }
+inline vf32x4 loadf4_aligned(const float* p) { return vf32x4(_mm_load_ps(p)); }
+inline void storef4_aligned(vf32x4 a, float* p) { _mm_store_ps(p, a.v); }
+inline vf32x4 operator+(vf32x4 a, vf32x4 b) { return vf32x4(_mm_add_ps(a.v, b.v)); }
+inline vf32x4 operator-(vf32x4 a, vf32x4 b) { return vf32x4(_mm_sub_ps(a.v, b.v)); }
+inline vf32x4 operator*(vf32x4 a, vf32x4 b) { return vf32x4(_mm_mul_ps(a.v, b.v)); }
+inline vf32x4 operator/(vf32x4 a, vf32x4 b) { return vf32x4(_mm_div_ps(a.v, b.v)); }
+inline vf32x4 sqrt(vf32x4 a) { return vf32x4(_mm_sqrt_ps(a.v)); }
 /// max: a > b ? a : b; min: a < b ? a : b (the second operand when the compare fails, NaN
 /// included).
-inline vf4 max(vf4 a, vf4 b) { return vf4(_mm_max_ps(a.v, b.v)); }
-inline vf4 min(vf4 a, vf4 b) { return vf4(_mm_min_ps(a.v, b.v)); }
+inline vf32x4 max(vf32x4 a, vf32x4 b) { return vf32x4(_mm_max_ps(a.v, b.v)); }
+inline vf32x4 min(vf32x4 a, vf32x4 b) { return vf32x4(_mm_min_ps(a.v, b.v)); }
 /// Compares as masks: all-ones lanes where `a op b`; false where either is NaN, except cmpnge
 /// (!(a >= b)), which is true there; cmpord is true where neither is NaN.
-inline vint4 cmpeq(vf4 a, vf4 b) { return vint4(_mm_castps_si128(_mm_cmpeq_ps(a.v, b.v))); }
-inline vint4 cmplt(vf4 a, vf4 b) { return vint4(_mm_castps_si128(_mm_cmplt_ps(a.v, b.v))); }
-inline vint4 cmple(vf4 a, vf4 b) { return vint4(_mm_castps_si128(_mm_cmple_ps(a.v, b.v))); }
-inline vint4 cmpgt(vf4 a, vf4 b) { return vint4(_mm_castps_si128(_mm_cmpgt_ps(a.v, b.v))); }
-inline vint4 cmpnge(vf4 a, vf4 b) { return vint4(_mm_castps_si128(_mm_cmpnge_ps(a.v, b.v))); }
-inline vint4 cmpord(vf4 a, vf4 b) { return vint4(_mm_castps_si128(_mm_cmpord_ps(a.v, b.v))); }
+inline vi32x4 cmpeq(vf32x4 a, vf32x4 b) { return vi32x4(_mm_castps_si128(_mm_cmpeq_ps(a.v, b.v))); }
+inline vi32x4 cmplt(vf32x4 a, vf32x4 b) { return vi32x4(_mm_castps_si128(_mm_cmplt_ps(a.v, b.v))); }
+inline vi32x4 cmple(vf32x4 a, vf32x4 b) { return vi32x4(_mm_castps_si128(_mm_cmple_ps(a.v, b.v))); }
+inline vi32x4 cmpgt(vf32x4 a, vf32x4 b) { return vi32x4(_mm_castps_si128(_mm_cmpgt_ps(a.v, b.v))); }
+inline vi32x4 cmpnge(vf32x4 a, vf32x4 b) {
+  return vi32x4(_mm_castps_si128(_mm_cmpnge_ps(a.v, b.v)));
+}
+inline vi32x4 cmpord(vf32x4 a, vf32x4 b) {
+  return vi32x4(_mm_castps_si128(_mm_cmpord_ps(a.v, b.v)));
+}
 /// Lanes of `a` where `mask` is all ones, else lanes of `b` (bitwise, NaN payloads kept).
-inline vf4 select(vint4 mask, vf4 a, vf4 b) {
+inline vf32x4 select(vi32x4 mask, vf32x4 a, vf32x4 b) {
   const __m128 m = _mm_castsi128_ps(mask.v);
-  return vf4(_mm_or_ps(_mm_and_ps(m, a.v), _mm_andnot_ps(m, b.v)));
+  return vf32x4(_mm_or_ps(_mm_and_ps(m, a.v), _mm_andnot_ps(m, b.v)));
 }
 /// mask & a: lanes of `a` where `mask` is all ones, +0.0f elsewhere.
-inline vf4 keep_where(vint4 mask, vf4 a) { return vf4(_mm_and_ps(_mm_castsi128_ps(mask.v), a.v)); }
+inline vf32x4 keep_where(vi32x4 mask, vf32x4 a) {
+  return vf32x4(_mm_and_ps(_mm_castsi128_ps(mask.v), a.v));
+}
 /// ~mask & a: +0.0f where `mask` is all ones, lanes of `a` elsewhere.
-inline vf4 zero_where(vint4 mask, vf4 a) {
-  return vf4(_mm_andnot_ps(_mm_castsi128_ps(mask.v), a.v));
+inline vf32x4 zero_where(vi32x4 mask, vf32x4 a) {
+  return vf32x4(_mm_andnot_ps(_mm_castsi128_ps(mask.v), a.v));
 }
 /// The lanes' bits reinterpreted (no conversion).
-inline vf4 as_float(vint4 a) { return vf4(_mm_castsi128_ps(a.v)); }
-inline vint4 as_int(vf4 a) { return vint4(_mm_castps_si128(a.v)); }
+inline vf32x4 as_float(vi32x4 a) { return vf32x4(_mm_castsi128_ps(a.v)); }
+inline vi32x4 as_int(vf32x4 a) { return vi32x4(_mm_castps_si128(a.v)); }
 /// int32 -> float, round to nearest even (exact below 2^24).
-inline vf4 to_float(vint4 a) { return vf4(_mm_cvtepi32_ps(a.v)); }
+inline vf32x4 to_float(vi32x4 a) { return vf32x4(_mm_cvtepi32_ps(a.v)); }
 /// float -> int32 truncating towards zero; lanes outside int32 and NaN give INT32_MIN (in
 /// every backend).
-inline vint4 to_int_trunc(vf4 a) { return vint4(_mm_cvttps_epi32(a.v)); }
+inline vi32x4 to_int_trunc(vf32x4 a) { return vi32x4(_mm_cvttps_epi32(a.v)); }
 /// Lanes (a0, a2, b0, b2) and (a1, a3, b1, b3): e.g. u and v of four interleaved (u, v) pairs.
-inline vf4 even_lanes(vf4 a, vf4 b) {
-  return vf4(_mm_shuffle_ps(a.v, b.v, _MM_SHUFFLE(2, 0, 2, 0)));
+inline vf32x4 even_lanes(vf32x4 a, vf32x4 b) {
+  return vf32x4(_mm_shuffle_ps(a.v, b.v, _MM_SHUFFLE(2, 0, 2, 0)));
 }
-inline vf4 odd_lanes(vf4 a, vf4 b) {
-  return vf4(_mm_shuffle_ps(a.v, b.v, _MM_SHUFFLE(3, 1, 3, 1)));
+inline vf32x4 odd_lanes(vf32x4 a, vf32x4 b) {
+  return vf32x4(_mm_shuffle_ps(a.v, b.v, _MM_SHUFFLE(3, 1, 3, 1)));
 }
 /// 4x4 transpose: row i of the result holds lane i of a, b, c, d.
-inline void transpose(vf4& a, vf4& b, vf4& c, vf4& d) { _MM_TRANSPOSE4_PS(a.v, b.v, c.v, d.v); }
-inline void transpose(vint4& a, vint4& b, vint4& c, vint4& d) {
-  vf4 fa = as_float(a), fb = as_float(b), fc = as_float(c), fd = as_float(d);
+inline void transpose(vf32x4& a, vf32x4& b, vf32x4& c, vf32x4& d) {
+  _MM_TRANSPOSE4_PS(a.v, b.v, c.v, d.v);
+}
+inline void transpose(vi32x4& a, vi32x4& b, vi32x4& c, vi32x4& d) {
+  vf32x4 fa = as_float(a), fb = as_float(b), fc = as_float(c), fd = as_float(d);
   transpose(fa, fb, fc, fd);
   a = as_int(fa);
   b = as_int(fb);
@@ -95,13 +93,13 @@ inline void transpose(vint4& a, vint4& b, vint4& c, vint4& d) {
   d = as_int(fd);
 }
 /// Every lane = the maximum (minimum) of the four lanes.
-inline vf4 hmax(vf4 a) {
+inline vf32x4 hmax(vf32x4 a) {
   const __m128 m = _mm_max_ps(a.v, _mm_shuffle_ps(a.v, a.v, _MM_SHUFFLE(2, 3, 0, 1)));
-  return vf4(_mm_max_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2))));
+  return vf32x4(_mm_max_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2))));
 }
-inline vf4 hmin(vf4 a) {
+inline vf32x4 hmin(vf32x4 a) {
   const __m128 m = _mm_min_ps(a.v, _mm_shuffle_ps(a.v, a.v, _MM_SHUFFLE(2, 3, 0, 1)));
-  return vf4(_mm_min_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2))));
+  return vf32x4(_mm_min_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2))));
 }
 
 #elif defined(TESSERA_SIMD_NEON)
@@ -111,63 +109,68 @@ inline vf4 hmin(vf4 a) {
 // default MXCSR; the build turns off GCC's contraction of a * b + c into a fused multiply-add:
 // see CMakeLists.txt). min / max and float -> int differ in their instructions and are
 // emulated; compares are the same predicates.
-struct vf4 {
+struct vf32x4 {
   float32x4_t v;
-  vf4() : v(vdupq_n_f32(0.0f)) {}
-  explicit vf4(float32x4_t x) : v(x) {}
-  explicit vf4(float a) : v(vdupq_n_f32(a)) {}
-  vf4(float a, float b, float c, float d) {
+  vf32x4() : v(vdupq_n_f32(0.0f)) {}
+  explicit vf32x4(float32x4_t x) : v(x) {}
+  explicit vf32x4(float a) : v(vdupq_n_f32(a)) {}
+  vf32x4(float a, float b, float c, float d) {
     const float t[4] = {a, b, c, d};
     v = vld1q_f32(t);
   }
 };
-inline vf4 loadf4(const float* p) { return vf4(vld1q_f32(p)); }
-inline void storef4(vf4 a, float* p) { vst1q_f32(p, a.v); }
-inline vf4 loadf4_aligned(const float* p) { return vf4(vld1q_f32(p)); }
-inline void storef4_aligned(vf4 a, float* p) { vst1q_f32(p, a.v); }
-#if defined(__GNUC__)
-inline vf4 from_f32x4(f32x4 a) { return vf4(std::bit_cast<float32x4_t>(a)); }
-inline f32x4 to_f32x4(vf4 a) { return std::bit_cast<f32x4>(a.v); }
-#endif
-inline vf4 operator+(vf4 a, vf4 b) { return vf4(vaddq_f32(a.v, b.v)); }
-inline vf4 operator-(vf4 a, vf4 b) { return vf4(vsubq_f32(a.v, b.v)); }
-inline vf4 operator*(vf4 a, vf4 b) { return vf4(vmulq_f32(a.v, b.v)); }
-inline vf4 sqrt(vf4 a) { return vf4(vsqrtq_f32(a.v)); }
+inline vf32x4 loadf4(const float* p) { return vf32x4(vld1q_f32(p)); }
+inline void storef4(vf32x4 a, float* p) { vst1q_f32(p, a.v); }
+inline vf32x4 loadf4_aligned(const float* p) { return vf32x4(vld1q_f32(p)); }
+inline void storef4_aligned(vf32x4 a, float* p) { vst1q_f32(p, a.v); }
+inline vf32x4 operator+(vf32x4 a, vf32x4 b) { return vf32x4(vaddq_f32(a.v, b.v)); }
+inline vf32x4 operator-(vf32x4 a, vf32x4 b) { return vf32x4(vsubq_f32(a.v, b.v)); }
+inline vf32x4 operator*(vf32x4 a, vf32x4 b) { return vf32x4(vmulq_f32(a.v, b.v)); }
+inline vf32x4 operator/(vf32x4 a, vf32x4 b) { return vf32x4(vdivq_f32(a.v, b.v)); }
+inline vf32x4 sqrt(vf32x4 a) { return vf32x4(vsqrtq_f32(a.v)); }
 /// Not vmaxq_f32 / vminq_f32 (NaN when either lane is NaN, and +0 > -0): a compare and a
 /// bitwise select, which give SSE's maxps / minps exactly (`b` when the compare fails).
-inline vf4 max(vf4 a, vf4 b) { return vf4(vbslq_f32(vcgtq_f32(a.v, b.v), a.v, b.v)); }
-inline vf4 min(vf4 a, vf4 b) { return vf4(vbslq_f32(vcltq_f32(a.v, b.v), a.v, b.v)); }
-inline vint4 cmpeq(vf4 a, vf4 b) { return vint4(vreinterpretq_s32_u32(vceqq_f32(a.v, b.v))); }
-inline vint4 cmplt(vf4 a, vf4 b) { return vint4(vreinterpretq_s32_u32(vcltq_f32(a.v, b.v))); }
-inline vint4 cmple(vf4 a, vf4 b) { return vint4(vreinterpretq_s32_u32(vcleq_f32(a.v, b.v))); }
-inline vint4 cmpgt(vf4 a, vf4 b) { return vint4(vreinterpretq_s32_u32(vcgtq_f32(a.v, b.v))); }
-inline vint4 cmpnge(vf4 a, vf4 b) {
-  return vint4(vreinterpretq_s32_u32(vmvnq_u32(vcgeq_f32(a.v, b.v))));
+inline vf32x4 max(vf32x4 a, vf32x4 b) { return vf32x4(vbslq_f32(vcgtq_f32(a.v, b.v), a.v, b.v)); }
+inline vf32x4 min(vf32x4 a, vf32x4 b) { return vf32x4(vbslq_f32(vcltq_f32(a.v, b.v), a.v, b.v)); }
+inline vi32x4 cmpeq(vf32x4 a, vf32x4 b) {
+  return vi32x4(vreinterpretq_s32_u32(vceqq_f32(a.v, b.v)));
 }
-inline vint4 cmpord(vf4 a, vf4 b) {
-  return vint4(vreinterpretq_s32_u32(vandq_u32(vceqq_f32(a.v, a.v), vceqq_f32(b.v, b.v))));
+inline vi32x4 cmplt(vf32x4 a, vf32x4 b) {
+  return vi32x4(vreinterpretq_s32_u32(vcltq_f32(a.v, b.v)));
 }
-inline vf4 select(vint4 mask, vf4 a, vf4 b) {
-  return vf4(vbslq_f32(vreinterpretq_u32_s32(mask.v), a.v, b.v));
+inline vi32x4 cmple(vf32x4 a, vf32x4 b) {
+  return vi32x4(vreinterpretq_s32_u32(vcleq_f32(a.v, b.v)));
 }
-inline vf4 keep_where(vint4 mask, vf4 a) {
-  return vf4(vreinterpretq_f32_s32(vandq_s32(mask.v, vreinterpretq_s32_f32(a.v))));
+inline vi32x4 cmpgt(vf32x4 a, vf32x4 b) {
+  return vi32x4(vreinterpretq_s32_u32(vcgtq_f32(a.v, b.v)));
 }
-inline vf4 zero_where(vint4 mask, vf4 a) {
-  return vf4(vreinterpretq_f32_s32(vbicq_s32(vreinterpretq_s32_f32(a.v), mask.v)));
+inline vi32x4 cmpnge(vf32x4 a, vf32x4 b) {
+  return vi32x4(vreinterpretq_s32_u32(vmvnq_u32(vcgeq_f32(a.v, b.v))));
 }
-inline vf4 as_float(vint4 a) { return vf4(vreinterpretq_f32_s32(a.v)); }
-inline vint4 as_int(vf4 a) { return vint4(vreinterpretq_s32_f32(a.v)); }
-inline vf4 to_float(vint4 a) { return vf4(vcvtq_f32_s32(a.v)); }
+inline vi32x4 cmpord(vf32x4 a, vf32x4 b) {
+  return vi32x4(vreinterpretq_s32_u32(vandq_u32(vceqq_f32(a.v, a.v), vceqq_f32(b.v, b.v))));
+}
+inline vf32x4 select(vi32x4 mask, vf32x4 a, vf32x4 b) {
+  return vf32x4(vbslq_f32(vreinterpretq_u32_s32(mask.v), a.v, b.v));
+}
+inline vf32x4 keep_where(vi32x4 mask, vf32x4 a) {
+  return vf32x4(vreinterpretq_f32_s32(vandq_s32(mask.v, vreinterpretq_s32_f32(a.v))));
+}
+inline vf32x4 zero_where(vi32x4 mask, vf32x4 a) {
+  return vf32x4(vreinterpretq_f32_s32(vbicq_s32(vreinterpretq_s32_f32(a.v), mask.v)));
+}
+inline vf32x4 as_float(vi32x4 a) { return vf32x4(vreinterpretq_f32_s32(a.v)); }
+inline vi32x4 as_int(vf32x4 a) { return vi32x4(vreinterpretq_s32_f32(a.v)); }
+inline vf32x4 to_float(vi32x4 a) { return vf32x4(vcvtq_f32_s32(a.v)); }
 /// fcvtzs saturates (>= 2^31 -> INT32_MAX, NaN -> 0) where cvttps2dq gives INT32_MIN for
 /// every lane it cannot represent: those lanes (NaN, >= 2^31; below -2^31 both give INT32_MIN)
 /// are set to INT32_MIN.
-inline vint4 to_int_trunc(vf4 a) {
+inline vi32x4 to_int_trunc(vf32x4 a) {
   const uint32x4_t in_range = vcltq_f32(a.v, vdupq_n_f32(2147483648.0f));
-  return vint4(vbslq_s32(in_range, vcvtq_s32_f32(a.v), vdupq_n_s32(INT32_MIN)));
+  return vi32x4(vbslq_s32(in_range, vcvtq_s32_f32(a.v), vdupq_n_s32(INT32_MIN)));
 }
-inline vf4 even_lanes(vf4 a, vf4 b) { return vf4(vuzp1q_f32(a.v, b.v)); }
-inline vf4 odd_lanes(vf4 a, vf4 b) { return vf4(vuzp2q_f32(a.v, b.v)); }
+inline vf32x4 even_lanes(vf32x4 a, vf32x4 b) { return vf32x4(vuzp1q_f32(a.v, b.v)); }
+inline vf32x4 odd_lanes(vf32x4 a, vf32x4 b) { return vf32x4(vuzp2q_f32(a.v, b.v)); }
 namespace detail {
 /// 4x4 transpose of 32-bit lanes (bits moved, never converted): trn1 / trn2 of the 32-bit
 /// lanes, then of the 64-bit halves.
@@ -182,55 +185,51 @@ inline void transpose_u32x4(uint32x4_t& a, uint32x4_t& b, uint32x4_t& c, uint32x
   d = vreinterpretq_u32_u64(vtrn2q_u64(ab1, cd1));
 }
 }  // namespace detail
-inline void transpose(vf4& a, vf4& b, vf4& c, vf4& d) {
+inline void transpose(vf32x4& a, vf32x4& b, vf32x4& c, vf32x4& d) {
   uint32x4_t w = vreinterpretq_u32_f32(a.v), x = vreinterpretq_u32_f32(b.v);
   uint32x4_t y = vreinterpretq_u32_f32(c.v), z = vreinterpretq_u32_f32(d.v);
   detail::transpose_u32x4(w, x, y, z);
-  a = vf4(vreinterpretq_f32_u32(w));
-  b = vf4(vreinterpretq_f32_u32(x));
-  c = vf4(vreinterpretq_f32_u32(y));
-  d = vf4(vreinterpretq_f32_u32(z));
+  a = vf32x4(vreinterpretq_f32_u32(w));
+  b = vf32x4(vreinterpretq_f32_u32(x));
+  c = vf32x4(vreinterpretq_f32_u32(y));
+  d = vf32x4(vreinterpretq_f32_u32(z));
 }
-inline void transpose(vint4& a, vint4& b, vint4& c, vint4& d) {
+inline void transpose(vi32x4& a, vi32x4& b, vi32x4& c, vi32x4& d) {
   uint32x4_t w = vreinterpretq_u32_s32(a.v), x = vreinterpretq_u32_s32(b.v);
   uint32x4_t y = vreinterpretq_u32_s32(c.v), z = vreinterpretq_u32_s32(d.v);
   detail::transpose_u32x4(w, x, y, z);
-  a = vint4(vreinterpretq_s32_u32(w));
-  b = vint4(vreinterpretq_s32_u32(x));
-  c = vint4(vreinterpretq_s32_u32(y));
-  d = vint4(vreinterpretq_s32_u32(z));
+  a = vi32x4(vreinterpretq_s32_u32(w));
+  b = vi32x4(vreinterpretq_s32_u32(x));
+  c = vi32x4(vreinterpretq_s32_u32(y));
+  d = vi32x4(vreinterpretq_s32_u32(z));
 }
 /// SSE2's pairwise order (lanes 1 0 3 2, then 2 3 0 1) with its max / min: the same NaN result.
-inline vf4 hmax(vf4 a) {
-  const vf4 m = max(a, vf4(vrev64q_f32(a.v)));
-  return max(m, vf4(vextq_f32(m.v, m.v, 2)));
+inline vf32x4 hmax(vf32x4 a) {
+  const vf32x4 m = max(a, vf32x4(vrev64q_f32(a.v)));
+  return max(m, vf32x4(vextq_f32(m.v, m.v, 2)));
 }
-inline vf4 hmin(vf4 a) {
-  const vf4 m = min(a, vf4(vrev64q_f32(a.v)));
-  return min(m, vf4(vextq_f32(m.v, m.v, 2)));
+inline vf32x4 hmin(vf32x4 a) {
+  const vf32x4 m = min(a, vf32x4(vrev64q_f32(a.v)));
+  return min(m, vf32x4(vextq_f32(m.v, m.v, 2)));
 }
 
 #else  // scalar backend
 
-struct vf4 {
+struct vf32x4 {
   float l[4] = {0, 0, 0, 0};
-  vf4() = default;
-  explicit vf4(float a) : l{a, a, a, a} {}
-  vf4(float a, float b, float c, float d) : l{a, b, c, d} {}
+  vf32x4() = default;
+  explicit vf32x4(float a) : l{a, a, a, a} {}
+  vf32x4(float a, float b, float c, float d) : l{a, b, c, d} {}
 };
-inline vf4 loadf4(const float* p) { return {p[0], p[1], p[2], p[3]}; }
-inline void storef4(vf4 a, float* p) {
+inline vf32x4 loadf4(const float* p) { return {p[0], p[1], p[2], p[3]}; }
+inline void storef4(vf32x4 a, float* p) {
   for (int i = 0; i < 4; ++i) p[i] = a.l[i];
 }
-inline vf4 loadf4_aligned(const float* p) { return loadf4(p); }
-inline void storef4_aligned(vf4 a, float* p) { storef4(a, p); }
-#if defined(__GNUC__)
-inline vf4 from_f32x4(f32x4 a) { return {a[0], a[1], a[2], a[3]}; }
-inline f32x4 to_f32x4(vf4 a) { return f32x4{a.l[0], a.l[1], a.l[2], a.l[3]}; }
-#endif
+inline vf32x4 loadf4_aligned(const float* p) { return loadf4(p); }
+inline void storef4_aligned(vf32x4 a, float* p) { storef4(a, p); }
 #define TESSERA_SIMD_F4_BINOP(op, expr)   \
-  inline vf4 op(vf4 a, vf4 b) {           \
-    vf4 r;                                \
+  inline vf32x4 op(vf32x4 a, vf32x4 b) {  \
+    vf32x4 r;                             \
     for (int i = 0; i < 4; ++i) {         \
       const float x = a.l[i], y = b.l[i]; \
       r.l[i] = (expr);                    \
@@ -240,15 +239,16 @@ inline f32x4 to_f32x4(vf4 a) { return f32x4{a.l[0], a.l[1], a.l[2], a.l[3]}; }
 TESSERA_SIMD_F4_BINOP(operator+, x + y)
 TESSERA_SIMD_F4_BINOP(operator-, x - y)
 TESSERA_SIMD_F4_BINOP(operator*, x* y)
+TESSERA_SIMD_F4_BINOP(operator/, x / y)
 TESSERA_SIMD_F4_BINOP(max, x > y ? x : y)
 TESSERA_SIMD_F4_BINOP(min, x < y ? x : y)
 #undef TESSERA_SIMD_F4_BINOP
-inline vf4 sqrt(vf4 a) {
+inline vf32x4 sqrt(vf32x4 a) {
   return {std::sqrt(a.l[0]), std::sqrt(a.l[1]), std::sqrt(a.l[2]), std::sqrt(a.l[3])};
 }
 #define TESSERA_SIMD_F4_CMP(op, expr)     \
-  inline vint4 op(vf4 a, vf4 b) {         \
-    vint4 r;                              \
+  inline vi32x4 op(vf32x4 a, vf32x4 b) {  \
+    vi32x4 r;                             \
     for (int i = 0; i < 4; ++i) {         \
       const float x = a.l[i], y = b.l[i]; \
       r.l[i] = (expr) ? -1 : 0;           \
@@ -262,57 +262,57 @@ TESSERA_SIMD_F4_CMP(cmpgt, x > y)
 TESSERA_SIMD_F4_CMP(cmpnge, !(x >= y))
 TESSERA_SIMD_F4_CMP(cmpord, x == x && y == y)
 #undef TESSERA_SIMD_F4_CMP
-inline vf4 as_float(vint4 a) {
-  vf4 r;
+inline vf32x4 as_float(vi32x4 a) {
+  vf32x4 r;
   for (int i = 0; i < 4; ++i) r.l[i] = std::bit_cast<float>(a.l[i]);
   return r;
 }
-inline vint4 as_int(vf4 a) {
-  vint4 r;
+inline vi32x4 as_int(vf32x4 a) {
+  vi32x4 r;
   for (int i = 0; i < 4; ++i) r.l[i] = std::bit_cast<std::int32_t>(a.l[i]);
   return r;
 }
-inline vf4 select(vint4 mask, vf4 a, vf4 b) {
+inline vf32x4 select(vi32x4 mask, vf32x4 a, vf32x4 b) {
   return as_float((mask & as_int(a)) | andnot(mask, as_int(b)));
 }
-inline vf4 keep_where(vint4 mask, vf4 a) { return as_float(mask & as_int(a)); }
-inline vf4 zero_where(vint4 mask, vf4 a) { return as_float(andnot(mask, as_int(a))); }
-inline vf4 to_float(vint4 a) {
+inline vf32x4 keep_where(vi32x4 mask, vf32x4 a) { return as_float(mask & as_int(a)); }
+inline vf32x4 zero_where(vi32x4 mask, vf32x4 a) { return as_float(andnot(mask, as_int(a))); }
+inline vf32x4 to_float(vi32x4 a) {
   return {float(a.l[0]), float(a.l[1]), float(a.l[2]), float(a.l[3])};
 }
 /// Lanes outside int32 (and NaN) give INT32_MIN, as SSE2's cvttps2dq.
-inline vint4 to_int_trunc(vf4 a) {
-  vint4 r;
+inline vi32x4 to_int_trunc(vf32x4 a) {
+  vi32x4 r;
   for (int i = 0; i < 4; ++i) {
     const float x = a.l[i];
     r.l[i] = x >= -2147483648.0f && x < 2147483648.0f ? std::int32_t(x) : INT32_MIN;
   }
   return r;
 }
-inline vf4 even_lanes(vf4 a, vf4 b) { return {a.l[0], a.l[2], b.l[0], b.l[2]}; }
-inline vf4 odd_lanes(vf4 a, vf4 b) { return {a.l[1], a.l[3], b.l[1], b.l[3]}; }
-inline void transpose(vf4& a, vf4& b, vf4& c, vf4& d) {
-  const vf4 r[4] = {a, b, c, d};
+inline vf32x4 even_lanes(vf32x4 a, vf32x4 b) { return {a.l[0], a.l[2], b.l[0], b.l[2]}; }
+inline vf32x4 odd_lanes(vf32x4 a, vf32x4 b) { return {a.l[1], a.l[3], b.l[1], b.l[3]}; }
+inline void transpose(vf32x4& a, vf32x4& b, vf32x4& c, vf32x4& d) {
+  const vf32x4 r[4] = {a, b, c, d};
   a = {r[0].l[0], r[1].l[0], r[2].l[0], r[3].l[0]};
   b = {r[0].l[1], r[1].l[1], r[2].l[1], r[3].l[1]};
   c = {r[0].l[2], r[1].l[2], r[2].l[2], r[3].l[2]};
   d = {r[0].l[3], r[1].l[3], r[2].l[3], r[3].l[3]};
 }
-inline void transpose(vint4& a, vint4& b, vint4& c, vint4& d) {
-  const vint4 r[4] = {a, b, c, d};
+inline void transpose(vi32x4& a, vi32x4& b, vi32x4& c, vi32x4& d) {
+  const vi32x4 r[4] = {a, b, c, d};
   a = {r[0].l[0], r[1].l[0], r[2].l[0], r[3].l[0]};
   b = {r[0].l[1], r[1].l[1], r[2].l[1], r[3].l[1]};
   c = {r[0].l[2], r[1].l[2], r[2].l[2], r[3].l[2]};
   d = {r[0].l[3], r[1].l[3], r[2].l[3], r[3].l[3]};
 }
 // hmax / hmin: the same pairwise order as the SSE2 shuffles, so NaN lanes give the same result.
-inline vf4 hmax(vf4 a) {
-  const vf4 m = max(a, vf4(a.l[1], a.l[0], a.l[3], a.l[2]));
-  return max(m, vf4(m.l[2], m.l[3], m.l[0], m.l[1]));
+inline vf32x4 hmax(vf32x4 a) {
+  const vf32x4 m = max(a, vf32x4(a.l[1], a.l[0], a.l[3], a.l[2]));
+  return max(m, vf32x4(m.l[2], m.l[3], m.l[0], m.l[1]));
 }
-inline vf4 hmin(vf4 a) {
-  const vf4 m = min(a, vf4(a.l[1], a.l[0], a.l[3], a.l[2]));
-  return min(m, vf4(m.l[2], m.l[3], m.l[0], m.l[1]));
+inline vf32x4 hmin(vf32x4 a) {
+  const vf32x4 m = min(a, vf32x4(a.l[1], a.l[0], a.l[3], a.l[2]));
+  return min(m, vf32x4(m.l[2], m.l[3], m.l[0], m.l[1]));
 }
 
 #endif

@@ -17,13 +17,13 @@ inline namespace TESSERA_SIMD_ISA {
 template <class V>
 inline constexpr int kLanes = -1;  // not a wrapper type
 template <>
-inline constexpr int kLanes<vf4> = 4;
+inline constexpr int kLanes<vf32x4> = 4;
 template <>
-inline constexpr int kLanes<vf8> = 8;
+inline constexpr int kLanes<vf32x8> = 8;
 template <>
-inline constexpr int kLanes<vint4> = 4;
+inline constexpr int kLanes<vi32x4> = 4;
 template <>
-inline constexpr int kLanes<vint8> = 8;
+inline constexpr int kLanes<vi32x8> = 8;
 template <>
 inline constexpr int kLanes<vu16x8> = 8;
 template <>
@@ -36,11 +36,11 @@ inline constexpr int kLanes<vu8x32> = 32;
 template <class V>
 V load_as(const float* p);
 template <>
-inline vf4 load_as<vf4>(const float* p) {
+inline vf32x4 load_as<vf32x4>(const float* p) {
   return loadf4(p);
 }
 template <>
-inline vf8 load_as<vf8>(const float* p) {
+inline vf32x8 load_as<vf32x8>(const float* p) {
   return loadf8(p);
 }
 template <class V>
@@ -64,36 +64,36 @@ inline vu8x32 load_as<vu8x32>(const std::uint8_t* p) {
   return load_u8x32(p);
 }
 /// store(v, p): the lanes of v to p.
-inline void store(vf4 a, float* p) { storef4(a, p); }
-inline void store(vf8 a, float* p) { storef8(a, p); }
+inline void store(vf32x4 a, float* p) { storef4(a, p); }
+inline void store(vf32x8 a, float* p) { storef8(a, p); }
 inline void store(vu16x8 a, std::uint16_t* p) { store_u16x8(a, p); }
 inline void store(vu16x16 a, std::uint16_t* p) { store_u16x16(a, p); }
 inline void store(vu8x16 a, std::uint8_t* p) { store_u8x16(a, p); }
 inline void store(vu8x32 a, std::uint8_t* p) { store_u8x32(a, p); }
 /// The 32-bit lanes as bytes, each clamped to 0..255 (store_u8x4 / store_u8x8).
-inline void store_bytes(vint4 a, std::uint8_t* p) { store_u8x4(a, p); }
-inline void store_bytes(vint8 a, std::uint8_t* p) { store_u8x8(a, p); }
+inline void store_bytes(vi32x4 a, std::uint8_t* p) { store_u8x4(a, p); }
+inline void store_bytes(vi32x8 a, std::uint8_t* p) { store_u8x8(a, p); }
 template <class V>
 V load_as(const std::int32_t* p);
 template <>
-inline vint4 load_as<vint4>(const std::int32_t* p) {
+inline vi32x4 load_as<vi32x4>(const std::int32_t* p) {
   return load4(p);
 }
 template <>
-inline vint8 load_as<vint8>(const std::int32_t* p) {
+inline vi32x8 load_as<vi32x8>(const std::int32_t* p) {
   return load8(p);
 }
-inline void store(vint4 a, std::int32_t* p) { store4(a, p); }
-inline void store(vint8 a, std::int32_t* p) { store8(a, p); }
+inline void store(vi32x4 a, std::int32_t* p) { store4(a, p); }
+inline void store(vi32x8 a, std::int32_t* p) { store8(a, p); }
 /// load_texels_as<V>(p): kLanes<V> RGBA8 texels as 32-bit lanes (load_texels4 / load_texels8).
 template <class V>
 V load_texels_as(const std::uint8_t* p);
 template <>
-inline vint4 load_texels_as<vint4>(const std::uint8_t* p) {
+inline vi32x4 load_texels_as<vi32x4>(const std::uint8_t* p) {
   return load_texels4(p);
 }
 template <>
-inline vint8 load_texels_as<vint8>(const std::uint8_t* p) {
+inline vi32x8 load_texels_as<vi32x8>(const std::uint8_t* p) {
   return load_texels8(p);
 }
 /// load_widen_as<V>(p): kLanes<V> bytes zero-extended to 16-bit lanes, in order (load_u8x8 /
@@ -110,8 +110,8 @@ inline vu16x16 load_widen_as<vu16x16>(const std::uint8_t* p) {
 }
 
 // ---- compositions the 4-lane backends have no one instruction for ----
-/// floor(x / 255) of each lane read as uint32, as div255_u32(vint8).
-inline vint4 div255_u32(vint4 a) {
+/// floor(x / 255) of each lane read as uint32, as div255_u32(vi32x8).
+inline vi32x4 div255_u32(vi32x4 a) {
   std::int32_t x[4];
   store4(a, x);
   for (auto& v : x) v = std::int32_t(std::uint32_t(v) / 255u);
@@ -120,9 +120,9 @@ inline vint4 div255_u32(vint4 a) {
 /// 16 RGBA8 texels at p (64 bytes) as one byte plane per channel: out[c] lane i = p[4 i + c],
 /// as load_planes(p, vu8x32[4]).
 inline void load_planes(const std::uint8_t* p, vu8x16 out[4]) {
-  const vint4 m8(0xff);
-  const vint4 t0 = load_texels4(p), t1 = load_texels4(p + 16), t2 = load_texels4(p + 32),
-              t3 = load_texels4(p + 48);
+  const vi32x4 m8(0xff);
+  const vi32x4 t0 = load_texels4(p), t1 = load_texels4(p + 16), t2 = load_texels4(p + 32),
+               t3 = load_texels4(p + 48);
   out[0] = narrow(t0 & m8, t1 & m8, t2 & m8, t3 & m8);
   out[1] = narrow(srl<8>(t0) & m8, srl<8>(t1) & m8, srl<8>(t2) & m8, srl<8>(t3) & m8);
   out[2] = narrow(srl<16>(t0) & m8, srl<16>(t1) & m8, srl<16>(t2) & m8, srl<16>(t3) & m8);

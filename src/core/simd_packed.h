@@ -1,6 +1,6 @@
 // simd_packed.h — part of the SIMD wrapper (include "core/simd.h", which documents the whole set):
 // the packed small-integer lanes of the PVRTC kernels, and their conversions to and from the
-// 32-bit lanes (vint4) and floats (vf4):
+// 32-bit lanes (vi32x4) and floats (vf32x4):
 //   vu16x8  eight unsigned 16-bit lanes: one plane of eight texels widened from bytes.
 //   vu8x16  sixteen unsigned 8-bit lanes: sixteen bytes of texels or codes.
 #pragma once
@@ -50,7 +50,7 @@ inline vu16x8 operator-(vu16x8 a, vu16x8 b) { return vu16x8(_mm_sub_epi16(a.v, b
 /// Low 16 bits of the lane products.
 inline vu16x8 mullo(vu16x8 a, vu16x8 b) { return vu16x8(_mm_mullo_epi16(a.v, b.v)); }
 /// Signed lanes: sums of adjacent products, a0*b0 + a1*b1, ... as four 32-bit lanes.
-inline vint4 madd(vu16x8 a, vu16x8 b) { return vint4(_mm_madd_epi16(a.v, b.v)); }
+inline vi32x4 madd(vu16x8 a, vu16x8 b) { return vi32x4(_mm_madd_epi16(a.v, b.v)); }
 /// Loads 8 bytes, zero-extended, from two 4-byte texels.
 inline vu16x8 load_u8x4x2(const std::uint8_t* p0, const std::uint8_t* p1) {
   std::int32_t a, b;
@@ -126,13 +126,13 @@ inline vu16x8 widen_hi(vu8x16 a) { return vu16x8(_mm_unpackhi_epi8(a.v, _mm_setz
 /// Lanes of lo then hi as bytes (each 0..255; others clamped as by store_u8x8).
 inline vu8x16 narrow(vu16x8 lo, vu16x8 hi) { return vu8x16(_mm_packus_epi16(lo.v, hi.v)); }
 /// Sixteen 32-bit lanes (in order a, b, c, d) as bytes, each clamped to 0..255.
-inline vu8x16 narrow(vint4 a, vint4 b, vint4 c, vint4 d) {
+inline vu8x16 narrow(vi32x4 a, vi32x4 b, vi32x4 c, vi32x4 d) {
   return vu8x16(_mm_packus_epi16(_mm_packs_epi32(a.v, b.v), _mm_packs_epi32(c.v, d.v)));
 }
 
 /// Lanes 0-3 of a then 0-3 of b as 16-bit lanes (each 0..32767; others clamped to
 /// -32768..32767, SSE2's packs_epi32, in every backend).
-inline vu16x8 narrow16(vint4 a, vint4 b) { return vu16x8(_mm_packs_epi32(a.v, b.v)); }
+inline vu16x8 narrow16(vi32x4 a, vi32x4 b) { return vu16x8(_mm_packs_epi32(a.v, b.v)); }
 /// Interleaves lanes 0-3 (zip_lo) or 4-7 (zip_hi) of a and b: a0 b0 a1 b1 ...
 inline vu16x8 zip_lo(vu16x8 a, vu16x8 b) { return vu16x8(_mm_unpacklo_epi16(a.v, b.v)); }
 inline vu16x8 zip_hi(vu16x8 a, vu16x8 b) { return vu16x8(_mm_unpackhi_epi16(a.v, b.v)); }
@@ -148,15 +148,15 @@ inline void taps8(const std::uint16_t* p, vu16x8& left, vu16x8& right) {
 }
 /// 2^23 + lane i of `a` (lanes 0-3: _lo, 4-7: _hi) as floats, exact: the 16-bit value placed in
 /// the mantissa of 2^23.
-inline vf4 f2p23_plus_lo(vu16x8 a) {
-  return vf4(_mm_castsi128_ps(_mm_unpacklo_epi16(a.v, _mm_set1_epi16(0x4b00))));
+inline vf32x4 f2p23_plus_lo(vu16x8 a) {
+  return vf32x4(_mm_castsi128_ps(_mm_unpacklo_epi16(a.v, _mm_set1_epi16(0x4b00))));
 }
-inline vf4 f2p23_plus_hi(vu16x8 a) {
-  return vf4(_mm_castsi128_ps(_mm_unpackhi_epi16(a.v, _mm_set1_epi16(0x4b00))));
+inline vf32x4 f2p23_plus_hi(vu16x8 a) {
+  return vf32x4(_mm_castsi128_ps(_mm_unpackhi_epi16(a.v, _mm_set1_epi16(0x4b00))));
 }
 /// Lanes 0-3 (_lo) or 4-7 (_hi) zero-extended to 32 bits.
-inline vint4 widen32_lo(vu16x8 a) { return vint4(_mm_unpacklo_epi16(a.v, _mm_setzero_si128())); }
-inline vint4 widen32_hi(vu16x8 a) { return vint4(_mm_unpackhi_epi16(a.v, _mm_setzero_si128())); }
+inline vi32x4 widen32_lo(vu16x8 a) { return vi32x4(_mm_unpacklo_epi16(a.v, _mm_setzero_si128())); }
+inline vi32x4 widen32_hi(vu16x8 a) { return vi32x4(_mm_unpackhi_epi16(a.v, _mm_setzero_si128())); }
 /// Eight texels of four 16-bit channels (p: 32 values, texel by texel) as one vector per
 /// channel: out[c] lane i = p[4 i + c].
 inline void transpose_8x4(const std::uint16_t* p, vu16x8 out[4]) {
@@ -199,10 +199,10 @@ inline vu16x8 operator-(vu16x8 a, vu16x8 b) { return vu16x8(vsubq_u16(a.v, b.v))
 inline vu16x8 mullo(vu16x8 a, vu16x8 b) { return vu16x8(vmulq_u16(a.v, b.v)); }
 /// pmaddwd: signed 16 x 16 -> 32-bit products, adjacent pairs added (wrapping: only
 /// 2 * (-32768)^2 overflows, to INT32_MIN, as pmaddwd).
-inline vint4 madd(vu16x8 a, vu16x8 b) {
+inline vi32x4 madd(vu16x8 a, vu16x8 b) {
   const int16x8_t x = vreinterpretq_s16_u16(a.v), y = vreinterpretq_s16_u16(b.v);
   const int32x4_t lo = vmull_s16(vget_low_s16(x), vget_low_s16(y));
-  return vint4(vpaddq_s32(lo, vmull_high_s16(x, y)));
+  return vi32x4(vpaddq_s32(lo, vmull_high_s16(x, y)));
 }
 inline vu16x8 load_u8x4x2(const std::uint8_t* p0, const std::uint8_t* p1) {
   std::uint32_t a, b;
@@ -283,13 +283,13 @@ inline vu8x16 narrow(vu16x8 lo, vu16x8 hi) {
   return vu8x16(vcombine_u8(vqmovun_s16(vreinterpretq_s16_u16(lo.v)),
                             vqmovun_s16(vreinterpretq_s16_u16(hi.v))));
 }
-inline vu8x16 narrow(vint4 a, vint4 b, vint4 c, vint4 d) {
+inline vu8x16 narrow(vi32x4 a, vi32x4 b, vi32x4 c, vi32x4 d) {
   const int16x8_t ab = vcombine_s16(vqmovn_s32(a.v), vqmovn_s32(b.v));
   const int16x8_t cd = vcombine_s16(vqmovn_s32(c.v), vqmovn_s32(d.v));
   return vu8x16(vcombine_u8(vqmovun_s16(ab), vqmovun_s16(cd)));
 }
 
-inline vu16x8 narrow16(vint4 a, vint4 b) {
+inline vu16x8 narrow16(vi32x4 a, vi32x4 b) {
   return vu16x8(vreinterpretq_u16_s16(vcombine_s16(vqmovn_s32(a.v), vqmovn_s32(b.v))));
 }
 inline vu16x8 zip_lo(vu16x8 a, vu16x8 b) { return vu16x8(vzip1q_u16(a.v, b.v)); }
@@ -302,16 +302,16 @@ inline void taps8(const std::uint16_t* p, vu16x8& left, vu16x8& right) {
   left = vu16x8(vreinterpretq_u16_u8(vqtbl1q_u8(x, vld1q_u8(kLeft))));
   right = vu16x8(vreinterpretq_u16_u8(vqtbl1q_u8(x, vld1q_u8(kRight))));
 }
-inline vf4 f2p23_plus_lo(vu16x8 a) {
-  return vf4(vreinterpretq_f32_u16(vzip1q_u16(a.v, vdupq_n_u16(0x4b00))));
+inline vf32x4 f2p23_plus_lo(vu16x8 a) {
+  return vf32x4(vreinterpretq_f32_u16(vzip1q_u16(a.v, vdupq_n_u16(0x4b00))));
 }
-inline vf4 f2p23_plus_hi(vu16x8 a) {
-  return vf4(vreinterpretq_f32_u16(vzip2q_u16(a.v, vdupq_n_u16(0x4b00))));
+inline vf32x4 f2p23_plus_hi(vu16x8 a) {
+  return vf32x4(vreinterpretq_f32_u16(vzip2q_u16(a.v, vdupq_n_u16(0x4b00))));
 }
-inline vint4 widen32_lo(vu16x8 a) {
-  return vint4(vreinterpretq_s32_u32(vmovl_u16(vget_low_u16(a.v))));
+inline vi32x4 widen32_lo(vu16x8 a) {
+  return vi32x4(vreinterpretq_s32_u32(vmovl_u16(vget_low_u16(a.v))));
 }
-inline vint4 widen32_hi(vu16x8 a) { return vint4(vreinterpretq_s32_u32(vmovl_high_u16(a.v))); }
+inline vi32x4 widen32_hi(vu16x8 a) { return vi32x4(vreinterpretq_s32_u32(vmovl_high_u16(a.v))); }
 /// vld4q_u16 de-interleaves exactly this way.
 inline void transpose_8x4(const std::uint16_t* p, vu16x8 out[4]) {
   const uint16x8x4_t t = vld4q_u16(p);
@@ -367,8 +367,8 @@ TESSERA_SIMD_U16_BINOP(operator|, a.l[i] | b.l[i])
 TESSERA_SIMD_U16_BINOP(mulhi, (std::uint32_t(a.l[i]) * b.l[i]) >> 16)
 TESSERA_SIMD_U16_BINOP(cmpeq, a.l[i] == b.l[i] ? 0xffff : 0)
 #undef TESSERA_SIMD_U16_BINOP
-inline vint4 madd(vu16x8 a, vu16x8 b) {
-  vint4 r;
+inline vi32x4 madd(vu16x8 a, vu16x8 b) {
+  vi32x4 r;
   for (int i = 0; i < 4; ++i) {
     r.l[i] = std::int32_t(std::int16_t(a.l[2 * i])) * std::int16_t(b.l[2 * i]) +
              std::int32_t(std::int16_t(a.l[2 * i + 1])) * std::int16_t(b.l[2 * i + 1]);
@@ -481,9 +481,9 @@ inline vu8x16 narrow(vu16x8 lo, vu16x8 hi) {
   }
   return r;
 }
-inline vu8x16 narrow(vint4 a, vint4 b, vint4 c, vint4 d) {
+inline vu8x16 narrow(vi32x4 a, vi32x4 b, vi32x4 c, vi32x4 d) {
   vu8x16 r;
-  const vint4* v[4] = {&a, &b, &c, &d};
+  const vi32x4* v[4] = {&a, &b, &c, &d};
   for (int i = 0; i < 16; ++i) {
     const std::int32_t x = v[i / 4]->l[i % 4];
     r.l[i] = std::uint8_t(x < 0 ? 0 : x > 255 ? 255 : x);
@@ -492,7 +492,7 @@ inline vu8x16 narrow(vint4 a, vint4 b, vint4 c, vint4 d) {
 }
 
 // SSE2's packs_epi32: clamped to -32768..32767.
-inline vu16x8 narrow16(vint4 a, vint4 b) {
+inline vu16x8 narrow16(vi32x4 a, vi32x4 b) {
   const auto packs = [](std::int32_t x) {
     return std::uint16_t(x < -32768 ? -32768 : x > 32767 ? 32767 : x);
   };
@@ -526,18 +526,18 @@ inline void taps8(const std::uint16_t* p, vu16x8& left, vu16x8& right) {
     right.l[i] = p[kL[i] + 1];
   }
 }
-inline vf4 f2p23_plus_lo(vu16x8 a) {
-  vf4 r;
+inline vf32x4 f2p23_plus_lo(vu16x8 a) {
+  vf32x4 r;
   for (int i = 0; i < 4; ++i) r.l[i] = 8388608.0f + float(a.l[i]);
   return r;
 }
-inline vf4 f2p23_plus_hi(vu16x8 a) {
-  vf4 r;
+inline vf32x4 f2p23_plus_hi(vu16x8 a) {
+  vf32x4 r;
   for (int i = 0; i < 4; ++i) r.l[i] = 8388608.0f + float(a.l[4 + i]);
   return r;
 }
-inline vint4 widen32_lo(vu16x8 a) { return {a.l[0], a.l[1], a.l[2], a.l[3]}; }
-inline vint4 widen32_hi(vu16x8 a) { return {a.l[4], a.l[5], a.l[6], a.l[7]}; }
+inline vi32x4 widen32_lo(vu16x8 a) { return {a.l[0], a.l[1], a.l[2], a.l[3]}; }
+inline vi32x4 widen32_hi(vu16x8 a) { return {a.l[4], a.l[5], a.l[6], a.l[7]}; }
 inline void transpose_8x4(const std::uint16_t* p, vu16x8 out[4]) {
   for (int c = 0; c < 4; ++c) {
     for (int i = 0; i < 8; ++i) out[c].l[i] = p[4 * i + c];

@@ -1,8 +1,8 @@
 // simd_wide.h — part of the SIMD wrapper (include "core/simd.h", which documents the whole set):
 // the 8-lane types, twice the width of the 4-lane ones, for the kernels built with -mavx2 and
 // dispatched at run time:
-//   vint8    eight int32 lanes        (vint4 x 2)
-//   vf8      eight float lanes        (vf4 x 2)
+//   vi32x8    eight int32 lanes        (vi32x4 x 2)
+//   vf32x8      eight float lanes        (vf32x4 x 2)
 //   vu16x16  sixteen uint16 lanes     (vu16x8 x 2)
 //   vu8x32   thirty-two uint8 lanes   (vu8x16 x 2)
 // Every type is two 128-bit halves, low(x) and high(x), and most operations are the 4-lane
@@ -38,20 +38,20 @@ inline namespace TESSERA_SIMD_ISA {
 
 #if defined(TESSERA_SIMD_AVX2)
 
-struct vint8 {
+struct vi32x8 {
   __m256i v;
-  vint8() : v(_mm256_setzero_si256()) {}
-  explicit vint8(__m256i x) : v(x) {}
-  explicit vint8(std::int32_t a) : v(_mm256_set1_epi32(a)) {}
+  vi32x8() : v(_mm256_setzero_si256()) {}
+  explicit vi32x8(__m256i x) : v(x) {}
+  explicit vi32x8(std::int32_t a) : v(_mm256_set1_epi32(a)) {}
   /// Lanes 0-3 from `lo`, 4-7 from `hi`.
-  vint8(vint4 lo, vint4 hi) : v(_mm256_set_m128i(hi.v, lo.v)) {}
+  vi32x8(vi32x4 lo, vi32x4 hi) : v(_mm256_set_m128i(hi.v, lo.v)) {}
 };
-struct vf8 {
+struct vf32x8 {
   __m256 v;
-  vf8() : v(_mm256_setzero_ps()) {}
-  explicit vf8(__m256 x) : v(x) {}
-  explicit vf8(float a) : v(_mm256_set1_ps(a)) {}
-  vf8(vf4 lo, vf4 hi) : v(_mm256_set_m128(hi.v, lo.v)) {}
+  vf32x8() : v(_mm256_setzero_ps()) {}
+  explicit vf32x8(__m256 x) : v(x) {}
+  explicit vf32x8(float a) : v(_mm256_set1_ps(a)) {}
+  vf32x8(vf32x4 lo, vf32x4 hi) : v(_mm256_set_m128(hi.v, lo.v)) {}
 };
 struct vu16x16 {
   __m256i v;
@@ -69,10 +69,10 @@ struct vu8x32 {
 };
 
 // ---- halves, loads, stores ----
-inline vint4 low(vint8 a) { return vint4(_mm256_castsi256_si128(a.v)); }
-inline vint4 high(vint8 a) { return vint4(_mm256_extracti128_si256(a.v, 1)); }
-inline vf4 low(vf8 a) { return vf4(_mm256_castps256_ps128(a.v)); }
-inline vf4 high(vf8 a) { return vf4(_mm256_extractf128_ps(a.v, 1)); }
+inline vi32x4 low(vi32x8 a) { return vi32x4(_mm256_castsi256_si128(a.v)); }
+inline vi32x4 high(vi32x8 a) { return vi32x4(_mm256_extracti128_si256(a.v, 1)); }
+inline vf32x4 low(vf32x8 a) { return vf32x4(_mm256_castps256_ps128(a.v)); }
+inline vf32x4 high(vf32x8 a) { return vf32x4(_mm256_extractf128_ps(a.v, 1)); }
 inline vu16x8 low(vu16x16 a) { return vu16x8(_mm256_castsi256_si128(a.v)); }
 inline vu16x8 high(vu16x16 a) { return vu16x8(_mm256_extracti128_si256(a.v, 1)); }
 inline vu8x16 low(vu8x32 a) { return vu8x16(_mm256_castsi256_si128(a.v)); }
@@ -82,16 +82,16 @@ namespace detail {
 inline __m256i load256(const void* p) { return _mm256_loadu_si256(static_cast<const __m256i*>(p)); }
 inline void store256(void* p, __m256i v) { _mm256_storeu_si256(static_cast<__m256i*>(p), v); }
 }  // namespace detail
-inline vint8 load8(const std::int32_t* p) { return vint8(detail::load256(p)); }
-inline void store8(vint8 a, std::int32_t* p) { detail::store256(p, a.v); }
-inline vf8 loadf8(const float* p) { return vf8(_mm256_loadu_ps(p)); }
-inline void storef8(vf8 a, float* p) { _mm256_storeu_ps(p, a.v); }
+inline vi32x8 load8(const std::int32_t* p) { return vi32x8(detail::load256(p)); }
+inline void store8(vi32x8 a, std::int32_t* p) { detail::store256(p, a.v); }
+inline vf32x8 loadf8(const float* p) { return vf32x8(_mm256_loadu_ps(p)); }
+inline void storef8(vf32x8 a, float* p) { _mm256_storeu_ps(p, a.v); }
 inline vu16x16 load_u16x16(const std::uint16_t* p) { return vu16x16(detail::load256(p)); }
 inline void store_u16x16(vu16x16 a, std::uint16_t* p) { detail::store256(p, a.v); }
 inline vu8x32 load_u8x32(const std::uint8_t* p) { return vu8x32(detail::load256(p)); }
 inline void store_u8x32(vu8x32 a, std::uint8_t* p) { detail::store256(p, a.v); }
 /// Eight 4-byte texels as eight 32-bit lanes (little-endian).
-inline vint8 load_texels8(const std::uint8_t* p) { return vint8(detail::load256(p)); }
+inline vi32x8 load_texels8(const std::uint8_t* p) { return vi32x8(detail::load256(p)); }
 /// Sixteen bytes zero-extended to 16-bit lanes, in order.
 inline vu16x16 load_u8x16_u16(const std::uint8_t* p) {
   return vu16x16(_mm256_cvtepu8_epi16(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))));
@@ -101,7 +101,7 @@ inline vu16x16 broadcast64(std::uint64_t x) {
   return vu16x16(_mm256_set1_epi64x(static_cast<long long>(x)));
 }
 /// The eight lanes as bytes, each clamped to 0..255 (as store_u8x4 twice).
-inline void store_u8x8(vint8 a, std::uint8_t* p) {
+inline void store_u8x8(vi32x8 a, std::uint8_t* p) {
   const __m128i p16 = _mm_packs_epi32(_mm256_castsi256_si128(a.v), _mm256_extracti128_si256(a.v, 1));
   _mm_storel_epi64(reinterpret_cast<__m128i*>(p), _mm_packus_epi16(p16, p16));
 }
@@ -111,58 +111,58 @@ inline void store_u8x16(vu16x16 a, std::uint8_t* p) {
   _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm256_castsi256_si128(b));
 }
 
-// ---- vint8 ----
-inline vint8 operator+(vint8 a, vint8 b) { return vint8(_mm256_add_epi32(a.v, b.v)); }
-inline vint8 operator-(vint8 a, vint8 b) { return vint8(_mm256_sub_epi32(a.v, b.v)); }
-inline vint8& operator+=(vint8& a, vint8 b) { return a = a + b; }
-inline vint8 operator*(vint8 a, vint8 b) { return vint8(_mm256_mullo_epi32(a.v, b.v)); }
-inline vint8 operator&(vint8 a, vint8 b) { return vint8(_mm256_and_si256(a.v, b.v)); }
-inline vint8 operator|(vint8 a, vint8 b) { return vint8(_mm256_or_si256(a.v, b.v)); }
-inline vint8 operator^(vint8 a, vint8 b) { return vint8(_mm256_xor_si256(a.v, b.v)); }
-inline vint8 andnot(vint8 a, vint8 b) { return vint8(_mm256_andnot_si256(a.v, b.v)); }
+// ---- vi32x8 ----
+inline vi32x8 operator+(vi32x8 a, vi32x8 b) { return vi32x8(_mm256_add_epi32(a.v, b.v)); }
+inline vi32x8 operator-(vi32x8 a, vi32x8 b) { return vi32x8(_mm256_sub_epi32(a.v, b.v)); }
+inline vi32x8& operator+=(vi32x8& a, vi32x8 b) { return a = a + b; }
+inline vi32x8 operator*(vi32x8 a, vi32x8 b) { return vi32x8(_mm256_mullo_epi32(a.v, b.v)); }
+inline vi32x8 operator&(vi32x8 a, vi32x8 b) { return vi32x8(_mm256_and_si256(a.v, b.v)); }
+inline vi32x8 operator|(vi32x8 a, vi32x8 b) { return vi32x8(_mm256_or_si256(a.v, b.v)); }
+inline vi32x8 operator^(vi32x8 a, vi32x8 b) { return vi32x8(_mm256_xor_si256(a.v, b.v)); }
+inline vi32x8 andnot(vi32x8 a, vi32x8 b) { return vi32x8(_mm256_andnot_si256(a.v, b.v)); }
 template <int N>
-inline vint8 sra(vint8 a) {
-  return vint8(_mm256_srai_epi32(a.v, N));
+inline vi32x8 sra(vi32x8 a) {
+  return vi32x8(_mm256_srai_epi32(a.v, N));
 }
 template <int N>
-inline vint8 srl(vint8 a) {
-  return vint8(_mm256_srli_epi32(a.v, N));
+inline vi32x8 srl(vi32x8 a) {
+  return vi32x8(_mm256_srli_epi32(a.v, N));
 }
 template <int N>
-inline vint8 sll(vint8 a) {
-  return vint8(_mm256_slli_epi32(a.v, N));
+inline vi32x8 sll(vi32x8 a) {
+  return vi32x8(_mm256_slli_epi32(a.v, N));
 }
 /// Lane i shifted left by lane i of `n` (as unsigned; 32 or more gives 0).
-inline vint8 sllv(vint8 a, vint8 n) { return vint8(_mm256_sllv_epi32(a.v, n.v)); }
+inline vi32x8 sllv(vi32x8 a, vi32x8 n) { return vi32x8(_mm256_sllv_epi32(a.v, n.v)); }
 /// Every lane shifted left by the run-time count `n` (0 .. 31; 32 or more gives 0).
-inline vint8 sll(vint8 a, int n) { return vint8(_mm256_sll_epi32(a.v, _mm_cvtsi32_si128(n))); }
-inline vint8 cmpeq(vint8 a, vint8 b) { return vint8(_mm256_cmpeq_epi32(a.v, b.v)); }
-inline vint8 cmpgt(vint8 a, vint8 b) { return vint8(_mm256_cmpgt_epi32(a.v, b.v)); }
-inline vint8 cmplt(vint8 a, vint8 b) { return vint8(_mm256_cmpgt_epi32(b.v, a.v)); }
-/// Bitwise, as vint4's select.
-inline vint8 select(vint8 mask, vint8 a, vint8 b) {
-  return vint8(_mm256_or_si256(_mm256_and_si256(mask.v, a.v), _mm256_andnot_si256(mask.v, b.v)));
+inline vi32x8 sll(vi32x8 a, int n) { return vi32x8(_mm256_sll_epi32(a.v, _mm_cvtsi32_si128(n))); }
+inline vi32x8 cmpeq(vi32x8 a, vi32x8 b) { return vi32x8(_mm256_cmpeq_epi32(a.v, b.v)); }
+inline vi32x8 cmpgt(vi32x8 a, vi32x8 b) { return vi32x8(_mm256_cmpgt_epi32(a.v, b.v)); }
+inline vi32x8 cmplt(vi32x8 a, vi32x8 b) { return vi32x8(_mm256_cmpgt_epi32(b.v, a.v)); }
+/// Bitwise, as vi32x4's select.
+inline vi32x8 select(vi32x8 mask, vi32x8 a, vi32x8 b) {
+  return vi32x8(_mm256_or_si256(_mm256_and_si256(mask.v, a.v), _mm256_andnot_si256(mask.v, b.v)));
 }
-inline vint8 min(vint8 a, vint8 b) { return vint8(_mm256_min_epi32(a.v, b.v)); }
-inline vint8 max(vint8 a, vint8 b) { return vint8(_mm256_max_epi32(a.v, b.v)); }
-/// Per half, as vint4: lanes (1, 0, 3, 2), and (2, 3, 0, 1).
-inline vint8 swap_pairs(vint8 a) { return vint8(_mm256_shuffle_epi32(a.v, 0xb1)); }
-inline vint8 swap_pairs64(vint8 a) { return vint8(_mm256_shuffle_epi32(a.v, 0x4e)); }
+inline vi32x8 min(vi32x8 a, vi32x8 b) { return vi32x8(_mm256_min_epi32(a.v, b.v)); }
+inline vi32x8 max(vi32x8 a, vi32x8 b) { return vi32x8(_mm256_max_epi32(a.v, b.v)); }
+/// Per half, as vi32x4: lanes (1, 0, 3, 2), and (2, 3, 0, 1).
+inline vi32x8 swap_pairs(vi32x8 a) { return vi32x8(_mm256_shuffle_epi32(a.v, 0xb1)); }
+inline vi32x8 swap_pairs64(vi32x8 a) { return vi32x8(_mm256_shuffle_epi32(a.v, 0x4e)); }
 /// The halves exchanged: lanes (4 .. 7, 0 .. 3).
-inline vint8 swap_halves(vint8 a) { return vint8(_mm256_permute2x128_si256(a.v, a.v, 0x01)); }
-/// Per half, as vint4: (a0 + a1, a2 + a3, b0 + b1, b2 + b3) and (a0, a2, b0, b2).
-inline vint8 pair_sums(vint8 a, vint8 b) { return vint8(_mm256_hadd_epi32(a.v, b.v)); }
-inline vint8 even_lanes(vint8 a, vint8 b) {
-  return vint8(_mm256_castps_si256(
+inline vi32x8 swap_halves(vi32x8 a) { return vi32x8(_mm256_permute2x128_si256(a.v, a.v, 0x01)); }
+/// Per half, as vi32x4: (a0 + a1, a2 + a3, b0 + b1, b2 + b3) and (a0, a2, b0, b2).
+inline vi32x8 pair_sums(vi32x8 a, vi32x8 b) { return vi32x8(_mm256_hadd_epi32(a.v, b.v)); }
+inline vi32x8 even_lanes(vi32x8 a, vi32x8 b) {
+  return vi32x8(_mm256_castps_si256(
       _mm256_shuffle_ps(_mm256_castsi256_ps(a.v), _mm256_castsi256_ps(b.v), 0x88)));
 }
 /// 64-bit units (lane pairs) picked across the halves: unit k of the result = unit Ik of `a`.
 template <int I0, int I1, int I2, int I3>
-inline vint8 permute64(vint8 a) {
-  return vint8(_mm256_permute4x64_epi64(a.v, I0 | I1 << 2 | I2 << 4 | I3 << 6));
+inline vi32x8 permute64(vi32x8 a) {
+  return vi32x8(_mm256_permute4x64_epi64(a.v, I0 | I1 << 2 | I2 << 4 | I3 << 6));
 }
 /// Sum of the eight lanes (wrapping).
-inline std::int32_t sum_lanes(vint8 a) {
+inline std::int32_t sum_lanes(vi32x8 a) {
   __m128i s = _mm_add_epi32(_mm256_castsi256_si128(a.v), _mm256_extracti128_si256(a.v, 1));
   s = _mm_add_epi32(s, _mm_shuffle_epi32(s, 0x4e));
   s = _mm_add_epi32(s, _mm_shuffle_epi32(s, 0xb1));
@@ -170,23 +170,27 @@ inline std::int32_t sum_lanes(vint8 a) {
 }
 /// floor(x / 255) of each lane read as uint32: (x * ceil(2^39 / 255)) >> 39, which is exact for
 /// every uint32 x (the compilers' own division by 255), on the even and the odd lanes.
-inline vint8 div255_u32(vint8 a) {
+inline vi32x8 div255_u32(vi32x8 a) {
   const __m256i k = _mm256_set1_epi32(static_cast<int>(0x80808081u));
   const __m256i even = _mm256_srli_epi64(_mm256_mul_epu32(a.v, k), 39);
   const __m256i odd = _mm256_srli_epi64(_mm256_mul_epu32(_mm256_srli_epi64(a.v, 32), k), 7);
-  return vint8(_mm256_blend_epi32(even, odd, 0xaa));
+  return vi32x8(_mm256_blend_epi32(even, odd, 0xaa));
 }
 
-// ---- vf8 (the rules of vf4, lane for lane) ----
-inline vf8 operator+(vf8 a, vf8 b) { return vf8(_mm256_add_ps(a.v, b.v)); }
-inline vf8 operator-(vf8 a, vf8 b) { return vf8(_mm256_sub_ps(a.v, b.v)); }
-inline vf8 operator*(vf8 a, vf8 b) { return vf8(_mm256_mul_ps(a.v, b.v)); }
-inline vf8 max(vf8 a, vf8 b) { return vf8(_mm256_max_ps(a.v, b.v)); }
-inline vf8 min(vf8 a, vf8 b) { return vf8(_mm256_min_ps(a.v, b.v)); }
-inline vint8 cmpeq(vf8 a, vf8 b) { return vint8(_mm256_castps_si256(_mm256_cmp_ps(a.v, b.v, _CMP_EQ_OQ))); }
-inline vint8 cmplt(vf8 a, vf8 b) { return vint8(_mm256_castps_si256(_mm256_cmp_ps(a.v, b.v, _CMP_LT_OS))); }
-inline vf8 to_float(vint8 a) { return vf8(_mm256_cvtepi32_ps(a.v)); }
-inline vint8 to_int_trunc(vf8 a) { return vint8(_mm256_cvttps_epi32(a.v)); }
+// ---- vf32x8 (the rules of vf32x4, lane for lane) ----
+inline vf32x8 operator+(vf32x8 a, vf32x8 b) { return vf32x8(_mm256_add_ps(a.v, b.v)); }
+inline vf32x8 operator-(vf32x8 a, vf32x8 b) { return vf32x8(_mm256_sub_ps(a.v, b.v)); }
+inline vf32x8 operator*(vf32x8 a, vf32x8 b) { return vf32x8(_mm256_mul_ps(a.v, b.v)); }
+inline vf32x8 max(vf32x8 a, vf32x8 b) { return vf32x8(_mm256_max_ps(a.v, b.v)); }
+inline vf32x8 min(vf32x8 a, vf32x8 b) { return vf32x8(_mm256_min_ps(a.v, b.v)); }
+inline vi32x8 cmpeq(vf32x8 a, vf32x8 b) {
+  return vi32x8(_mm256_castps_si256(_mm256_cmp_ps(a.v, b.v, _CMP_EQ_OQ)));
+}
+inline vi32x8 cmplt(vf32x8 a, vf32x8 b) {
+  return vi32x8(_mm256_castps_si256(_mm256_cmp_ps(a.v, b.v, _CMP_LT_OS)));
+}
+inline vf32x8 to_float(vi32x8 a) { return vf32x8(_mm256_cvtepi32_ps(a.v)); }
+inline vi32x8 to_int_trunc(vf32x8 a) { return vi32x8(_mm256_cvttps_epi32(a.v)); }
 
 // ---- vu16x16 ----
 inline vu16x16 operator+(vu16x16 a, vu16x16 b) { return vu16x16(_mm256_add_epi16(a.v, b.v)); }
@@ -211,15 +215,15 @@ inline vu16x16 select_alpha(vu16x16 rgb, vu16x16 a) {
   return vu16x16(_mm256_blend_epi16(rgb.v, a.v, 0x88));
 }
 /// Per half, as vu16x8: pmaddwd, the interleavings, and SSE2's packs_epi32 of (a, b).
-inline vint8 madd(vu16x16 a, vu16x16 b) { return vint8(_mm256_madd_epi16(a.v, b.v)); }
+inline vi32x8 madd(vu16x16 a, vu16x16 b) { return vi32x8(_mm256_madd_epi16(a.v, b.v)); }
 inline vu16x16 zip_lo(vu16x16 a, vu16x16 b) { return vu16x16(_mm256_unpacklo_epi16(a.v, b.v)); }
 inline vu16x16 zip_hi(vu16x16 a, vu16x16 b) { return vu16x16(_mm256_unpackhi_epi16(a.v, b.v)); }
-inline vu16x16 narrow16(vint8 a, vint8 b) { return vu16x16(_mm256_packs_epi32(a.v, b.v)); }
-inline vf8 f2p23_plus_lo(vu16x16 a) {
-  return vf8(_mm256_castsi256_ps(_mm256_unpacklo_epi16(a.v, _mm256_set1_epi16(0x4b00))));
+inline vu16x16 narrow16(vi32x8 a, vi32x8 b) { return vu16x16(_mm256_packs_epi32(a.v, b.v)); }
+inline vf32x8 f2p23_plus_lo(vu16x16 a) {
+  return vf32x8(_mm256_castsi256_ps(_mm256_unpacklo_epi16(a.v, _mm256_set1_epi16(0x4b00))));
 }
-inline vf8 f2p23_plus_hi(vu16x16 a) {
-  return vf8(_mm256_castsi256_ps(_mm256_unpackhi_epi16(a.v, _mm256_set1_epi16(0x4b00))));
+inline vf32x8 f2p23_plus_hi(vu16x16 a) {
+  return vf32x8(_mm256_castsi256_ps(_mm256_unpackhi_epi16(a.v, _mm256_set1_epi16(0x4b00))));
 }
 /// Per half, pshufb over the bytes: result byte i = byte (idx_i & 15) of the same half of
 /// `table`, or 0 where idx_i has its top bit set (bytes in little-endian order of the lanes).
@@ -294,17 +298,17 @@ inline void load_planes(const std::uint8_t* p, vu16x16 out[4]) {
 
 #else  // portable backend: two 4-lane halves
 
-struct vint8 {
-  vint4 lo, hi;
-  vint8() = default;
-  explicit vint8(std::int32_t a) : lo(a), hi(a) {}
-  vint8(vint4 l, vint4 h) : lo(l), hi(h) {}
+struct vi32x8 {
+  vi32x4 lo, hi;
+  vi32x8() = default;
+  explicit vi32x8(std::int32_t a) : lo(a), hi(a) {}
+  vi32x8(vi32x4 l, vi32x4 h) : lo(l), hi(h) {}
 };
-struct vf8 {
-  vf4 lo, hi;
-  vf8() = default;
-  explicit vf8(float a) : lo(a), hi(a) {}
-  vf8(vf4 l, vf4 h) : lo(l), hi(h) {}
+struct vf32x8 {
+  vf32x4 lo, hi;
+  vf32x8() = default;
+  explicit vf32x8(float a) : lo(a), hi(a) {}
+  vf32x8(vf32x4 l, vf32x4 h) : lo(l), hi(h) {}
 };
 struct vu16x16 {
   vu16x8 lo, hi;
@@ -319,10 +323,10 @@ struct vu8x32 {
   vu8x32(vu8x16 l, vu8x16 h) : lo(l), hi(h) {}
 };
 
-inline vint4 low(vint8 a) { return a.lo; }
-inline vint4 high(vint8 a) { return a.hi; }
-inline vf4 low(vf8 a) { return a.lo; }
-inline vf4 high(vf8 a) { return a.hi; }
+inline vi32x4 low(vi32x8 a) { return a.lo; }
+inline vi32x4 high(vi32x8 a) { return a.hi; }
+inline vf32x4 low(vf32x8 a) { return a.lo; }
+inline vf32x4 high(vf32x8 a) { return a.hi; }
 inline vu16x8 low(vu16x16 a) { return a.lo; }
 inline vu16x8 high(vu16x16 a) { return a.hi; }
 inline vu8x16 low(vu8x32 a) { return a.lo; }
@@ -336,13 +340,13 @@ struct I32x8 {
 struct U16x16 {
   std::uint16_t l[16];
 };
-inline I32x8 lanes(vint8 a) {
+inline I32x8 lanes(vi32x8 a) {
   I32x8 r;
   store4(a.lo, r.l);
   store4(a.hi, r.l + 4);
   return r;
 }
-inline vint8 from_lanes(const I32x8& r) { return vint8(load4(r.l), load4(r.l + 4)); }
+inline vi32x8 from_lanes(const I32x8& r) { return vi32x8(load4(r.l), load4(r.l + 4)); }
 inline U16x16 lanes(vu16x16 a) {
   U16x16 r;
   store_u16x8(a.lo, r.l);
@@ -354,13 +358,13 @@ inline vu16x16 from_lanes(const U16x16& r) {
 }
 }  // namespace detail
 
-inline vint8 load8(const std::int32_t* p) { return vint8(load4(p), load4(p + 4)); }
-inline void store8(vint8 a, std::int32_t* p) {
+inline vi32x8 load8(const std::int32_t* p) { return vi32x8(load4(p), load4(p + 4)); }
+inline void store8(vi32x8 a, std::int32_t* p) {
   store4(a.lo, p);
   store4(a.hi, p + 4);
 }
-inline vf8 loadf8(const float* p) { return vf8(loadf4(p), loadf4(p + 4)); }
-inline void storef8(vf8 a, float* p) {
+inline vf32x8 loadf8(const float* p) { return vf32x8(loadf4(p), loadf4(p + 4)); }
+inline void storef8(vf32x8 a, float* p) {
   storef4(a.lo, p);
   storef4(a.hi, p + 4);
 }
@@ -376,8 +380,8 @@ inline void store_u8x32(vu8x32 a, std::uint8_t* p) {
   store_u8x16(a.lo, p);
   store_u8x16(a.hi, p + 16);
 }
-inline vint8 load_texels8(const std::uint8_t* p) {
-  return vint8(load_texels4(p), load_texels4(p + 16));
+inline vi32x8 load_texels8(const std::uint8_t* p) {
+  return vi32x8(load_texels4(p), load_texels4(p + 16));
 }
 inline vu16x16 load_u8x16_u16(const std::uint8_t* p) {
   return vu16x16(load_u8x8(p), load_u8x8(p + 8));
@@ -387,7 +391,7 @@ inline vu16x16 broadcast64(std::uint64_t x) {
   for (int i = 0; i < 16; ++i) r.l[i] = std::uint16_t(x >> (16 * (i & 3)));
   return detail::from_lanes(r);
 }
-inline void store_u8x8(vint8 a, std::uint8_t* p) {
+inline void store_u8x8(vi32x8 a, std::uint8_t* p) {
   store_u8x4(a.lo, p);
   store_u8x4(a.hi, p + 4);
 }
@@ -401,34 +405,34 @@ inline void store_u8x16(vu16x16 a, std::uint8_t* p) {
 #define TESSERA_SIMD_HALVES2R(R, T, op)                                    \
   inline R op(T a, T b) { return R(op(a.lo, b.lo), op(a.hi, b.hi)); }
 
-// ---- vint8 ----
-TESSERA_SIMD_HALVES2(vint8, operator+)
-TESSERA_SIMD_HALVES2(vint8, operator-)
-TESSERA_SIMD_HALVES2(vint8, operator*)
-TESSERA_SIMD_HALVES2(vint8, operator&)
-TESSERA_SIMD_HALVES2(vint8, operator|)
-TESSERA_SIMD_HALVES2(vint8, operator^)
-TESSERA_SIMD_HALVES2(vint8, andnot)
-TESSERA_SIMD_HALVES2(vint8, cmpeq)
-TESSERA_SIMD_HALVES2(vint8, cmpgt)
-TESSERA_SIMD_HALVES2(vint8, cmplt)
-TESSERA_SIMD_HALVES2(vint8, min)
-TESSERA_SIMD_HALVES2(vint8, pair_sums)
-TESSERA_SIMD_HALVES2(vint8, even_lanes)
-inline vint8& operator+=(vint8& a, vint8 b) { return a = a + b; }
+// ---- vi32x8 ----
+TESSERA_SIMD_HALVES2(vi32x8, operator+)
+TESSERA_SIMD_HALVES2(vi32x8, operator-)
+TESSERA_SIMD_HALVES2(vi32x8, operator*)
+TESSERA_SIMD_HALVES2(vi32x8, operator&)
+TESSERA_SIMD_HALVES2(vi32x8, operator|)
+TESSERA_SIMD_HALVES2(vi32x8, operator^)
+TESSERA_SIMD_HALVES2(vi32x8, andnot)
+TESSERA_SIMD_HALVES2(vi32x8, cmpeq)
+TESSERA_SIMD_HALVES2(vi32x8, cmpgt)
+TESSERA_SIMD_HALVES2(vi32x8, cmplt)
+TESSERA_SIMD_HALVES2(vi32x8, min)
+TESSERA_SIMD_HALVES2(vi32x8, pair_sums)
+TESSERA_SIMD_HALVES2(vi32x8, even_lanes)
+inline vi32x8& operator+=(vi32x8& a, vi32x8 b) { return a = a + b; }
 template <int N>
-inline vint8 sra(vint8 a) {
-  return vint8(sra<N>(a.lo), sra<N>(a.hi));
+inline vi32x8 sra(vi32x8 a) {
+  return vi32x8(sra<N>(a.lo), sra<N>(a.hi));
 }
 template <int N>
-inline vint8 srl(vint8 a) {
-  return vint8(srl<N>(a.lo), srl<N>(a.hi));
+inline vi32x8 srl(vi32x8 a) {
+  return vi32x8(srl<N>(a.lo), srl<N>(a.hi));
 }
 template <int N>
-inline vint8 sll(vint8 a) {
-  return vint8(sll<N>(a.lo), sll<N>(a.hi));
+inline vi32x8 sll(vi32x8 a) {
+  return vi32x8(sll<N>(a.lo), sll<N>(a.hi));
 }
-inline vint8 sllv(vint8 a, vint8 n) {
+inline vi32x8 sllv(vi32x8 a, vi32x8 n) {
   detail::I32x8 x = detail::lanes(a);
   const detail::I32x8 s = detail::lanes(n);
   for (int i = 0; i < 8; ++i) {
@@ -437,23 +441,23 @@ inline vint8 sllv(vint8 a, vint8 n) {
   }
   return detail::from_lanes(x);
 }
-inline vint8 sll(vint8 a, int n) {
+inline vi32x8 sll(vi32x8 a, int n) {
   detail::I32x8 x = detail::lanes(a);
   for (auto& v : x.l) v = n >= 0 && n < 32 ? std::int32_t(std::uint32_t(v) << n) : 0;
   return detail::from_lanes(x);
 }
-inline vint8 select(vint8 mask, vint8 a, vint8 b) {
-  return vint8(select(mask.lo, a.lo, b.lo), select(mask.hi, a.hi, b.hi));
+inline vi32x8 select(vi32x8 mask, vi32x8 a, vi32x8 b) {
+  return vi32x8(select(mask.lo, a.lo, b.lo), select(mask.hi, a.hi, b.hi));
 }
-inline vint8 max(vint8 a, vint8 b) { return vint8(max(a.lo, b.lo), max(a.hi, b.hi)); }
-inline vint8 swap_pairs(vint8 a) { return vint8(swap_pairs(a.lo), swap_pairs(a.hi)); }
-inline vint8 swap_pairs64(vint8 a) {
+inline vi32x8 max(vi32x8 a, vi32x8 b) { return vi32x8(max(a.lo, b.lo), max(a.hi, b.hi)); }
+inline vi32x8 swap_pairs(vi32x8 a) { return vi32x8(swap_pairs(a.lo), swap_pairs(a.hi)); }
+inline vi32x8 swap_pairs64(vi32x8 a) {
   const detail::I32x8 x = detail::lanes(a);
   return detail::from_lanes(detail::I32x8{{x.l[2], x.l[3], x.l[0], x.l[1], x.l[6], x.l[7], x.l[4], x.l[5]}});
 }
-inline vint8 swap_halves(vint8 a) { return vint8(a.hi, a.lo); }
+inline vi32x8 swap_halves(vi32x8 a) { return vi32x8(a.hi, a.lo); }
 template <int I0, int I1, int I2, int I3>
-inline vint8 permute64(vint8 a) {
+inline vi32x8 permute64(vi32x8 a) {
   const detail::I32x8 x = detail::lanes(a);
   detail::I32x8 r;
   const int idx[4] = {I0, I1, I2, I3};
@@ -463,25 +467,25 @@ inline vint8 permute64(vint8 a) {
   }
   return detail::from_lanes(r);
 }
-inline std::int32_t sum_lanes(vint8 a) {
+inline std::int32_t sum_lanes(vi32x8 a) {
   return std::int32_t(std::uint32_t(sum_lanes(a.lo)) + std::uint32_t(sum_lanes(a.hi)));
 }
-inline vint8 div255_u32(vint8 a) {
+inline vi32x8 div255_u32(vi32x8 a) {
   detail::I32x8 x = detail::lanes(a);
   for (auto& v : x.l) v = std::int32_t(std::uint32_t(v) / 255u);
   return detail::from_lanes(x);
 }
 
-// ---- vf8 ----
-TESSERA_SIMD_HALVES2(vf8, operator+)
-TESSERA_SIMD_HALVES2(vf8, operator-)
-TESSERA_SIMD_HALVES2(vf8, operator*)
-TESSERA_SIMD_HALVES2(vf8, max)
-TESSERA_SIMD_HALVES2(vf8, min)
-TESSERA_SIMD_HALVES2R(vint8, vf8, cmpeq)
-TESSERA_SIMD_HALVES2R(vint8, vf8, cmplt)
-inline vf8 to_float(vint8 a) { return vf8(to_float(a.lo), to_float(a.hi)); }
-inline vint8 to_int_trunc(vf8 a) { return vint8(to_int_trunc(a.lo), to_int_trunc(a.hi)); }
+// ---- vf32x8 ----
+TESSERA_SIMD_HALVES2(vf32x8, operator+)
+TESSERA_SIMD_HALVES2(vf32x8, operator-)
+TESSERA_SIMD_HALVES2(vf32x8, operator*)
+TESSERA_SIMD_HALVES2(vf32x8, max)
+TESSERA_SIMD_HALVES2(vf32x8, min)
+TESSERA_SIMD_HALVES2R(vi32x8, vf32x8, cmpeq)
+TESSERA_SIMD_HALVES2R(vi32x8, vf32x8, cmplt)
+inline vf32x8 to_float(vi32x8 a) { return vf32x8(to_float(a.lo), to_float(a.hi)); }
+inline vi32x8 to_int_trunc(vf32x8 a) { return vi32x8(to_int_trunc(a.lo), to_int_trunc(a.hi)); }
 
 // ---- vu16x16 ----
 TESSERA_SIMD_HALVES2(vu16x16, operator+)
@@ -493,8 +497,8 @@ TESSERA_SIMD_HALVES2(vu16x16, mulhi)
 TESSERA_SIMD_HALVES2(vu16x16, cmpeq)
 TESSERA_SIMD_HALVES2(vu16x16, zip_lo)
 TESSERA_SIMD_HALVES2(vu16x16, zip_hi)
-TESSERA_SIMD_HALVES2R(vint8, vu16x16, madd)
-TESSERA_SIMD_HALVES2R(vu16x16, vint8, narrow16)
+TESSERA_SIMD_HALVES2R(vi32x8, vu16x16, madd)
+TESSERA_SIMD_HALVES2R(vu16x16, vi32x8, narrow16)
 template <int N>
 inline vu16x16 srl(vu16x16 a) {
   return vu16x16(srl<N>(a.lo), srl<N>(a.hi));
@@ -514,8 +518,8 @@ inline vu16x16 select_alpha(vu16x16 rgb, vu16x16 a) {
   for (int i = 3; i < 16; i += 4) r.l[i] = x.l[i];
   return detail::from_lanes(r);
 }
-inline vf8 f2p23_plus_lo(vu16x16 a) { return vf8(f2p23_plus_lo(a.lo), f2p23_plus_lo(a.hi)); }
-inline vf8 f2p23_plus_hi(vu16x16 a) { return vf8(f2p23_plus_hi(a.lo), f2p23_plus_hi(a.hi)); }
+inline vf32x8 f2p23_plus_lo(vu16x16 a) { return vf32x8(f2p23_plus_lo(a.lo), f2p23_plus_lo(a.hi)); }
+inline vf32x8 f2p23_plus_hi(vu16x16 a) { return vf32x8(f2p23_plus_hi(a.lo), f2p23_plus_hi(a.hi)); }
 inline vu16x16 shuffle_bytes(vu16x16 table, vu16x16 idx) {
   std::uint8_t t[32], x[32], r[32];
   const detail::U16x16 tl = detail::lanes(table), il = detail::lanes(idx);
@@ -581,8 +585,8 @@ inline void load_planes(const std::uint8_t* p, vu16x16 out[4]) {
 
 #endif
 
-/// Each lane shifted left by 8 * `k` bits (k = 0..3), as sll_bytes(vint4).
-inline vint8 sll_bytes(vint8 v, int k) { return sll(v, 8 * k); }
+/// Each lane shifted left by 8 * `k` bits (k = 0..3), as sll_bytes(vi32x4).
+inline vi32x8 sll_bytes(vi32x8 v, int k) { return sll(v, 8 * k); }
 
 }  // namespace TESSERA_SIMD_ISA
 }  // namespace tessera::simd

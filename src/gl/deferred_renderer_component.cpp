@@ -54,7 +54,7 @@ Result<AdaptiveSupersampler*> component(State& st) {
   o.hook.source = "#define TESSERA_DEFERRED_CLASSES " + std::to_string(classes) +
                   "\n#include \"deferred_shading.glsl\"\n"
                   "layout(std430, binding = 4) buffer DeferredTerms { vec4 deferred_terms[]; };\n"
-                  "#define TESSERA_ADAPTIVE_FIRST_AGAIN 1\n"
+                  "#define TESSERA_ADAPTIVE_SAMPLE0_AGAIN 1\n"
                   "int deferred_pixel(ivec2 g) {\n"
                   "  return (g.y / TESSERA_ADAPTIVE_M) * TESSERA_ADAPTIVE_WIDTH + g.x / TESSERA_ADAPTIVE_M;\n"
                   "}\n"
@@ -72,7 +72,7 @@ Result<AdaptiveSupersampler*> component(State& st) {
                   "#endif\n"
                   "  return vec4(c, 1.0);\n"
                   "}\n"
-                  "vec4 tessera_shade_first_again(ivec2 g, float footprint) {\n"
+                  "vec4 tessera_shade_sample0_again(ivec2 g, float footprint) {\n"
                   "  TesseraSample s = tessera_fetch(g);\n"
                   "  if (s.material < 0) return vec4(tessera_background.rgb, 1.0);\n"
                   "  int i = deferred_pixel(g);\n"

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "tessera/core.h"
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 
 namespace tessera::image::detail {
 

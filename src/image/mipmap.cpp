@@ -1,6 +1,6 @@
 // Mip chains (2x2 box or windowed sinc, gamma-correct, alpha-weighted, or as normal vectors)
 // and Lanczos-3 resampling.
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 
 #include <algorithm>
 #include <cmath>

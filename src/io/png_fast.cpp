@@ -195,18 +195,18 @@ void unfilter_rows_simd(const std::uint8_t* src0, const std::uint8_t* src1,
 
 /// The first bytes (grey samples) of 16 RGBA8 pixels.
 vu8x16 load_grey16(const std::uint8_t* p) {
-  const simd::vint4 low(0xff);
+  const simd::vi32x4 low(0xff);
   return simd::narrow(simd::load_texels4(p) & low, simd::load_texels4(p + 16) & low,
                       simd::load_texels4(p + 32) & low, simd::load_texels4(p + 48) & low);
 }
 
 /// Stores 16 grey samples as 16 opaque grey RGBA8 pixels.
 void store_grey16(std::uint8_t* p, vu8x16 g) {
-  const simd::vint4 alpha(std::int32_t(0xff000000u));  // little-endian: byte 3 of each pixel
+  const simd::vi32x4 alpha(std::int32_t(0xff000000u));  // little-endian: byte 3 of each pixel
   const vu16x8 g16[2] = {simd::widen_lo(g), simd::widen_hi(g)};
   for (int k = 0; k < 4; ++k) {
-    const simd::vint4 v = (k & 1) ? simd::widen32_hi(g16[k / 2]) : simd::widen32_lo(g16[k / 2]);
-    const simd::vint4 px = v | simd::sll<8>(v) | simd::sll<16>(v) | alpha;
+    const simd::vi32x4 v = (k & 1) ? simd::widen32_hi(g16[k / 2]) : simd::widen32_lo(g16[k / 2]);
+    const simd::vi32x4 px = v | simd::sll<8>(v) | simd::sll<16>(v) | alpha;
     simd::store4(px, reinterpret_cast<std::int32_t*>(p + 16 * k));
   }
 }

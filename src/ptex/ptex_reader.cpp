@@ -1,5 +1,29 @@
 // Ptex (.ptx) reader: header, extended header, face info, constant data, level info and the
 // level-0 face data in all four encodings. Every size is checked against the bytes before use.
+//
+// The file, little-endian (Ptex file-format documentation, Burley & Lacewell 2008; the layout of
+// the public Ptex library's files):
+//
+//   Header (64 bytes)      magic "Ptex", version 1, mesh type (0 triangle, 1 quad), data type
+//                          (0 u8, 1 u16, 2 half, 3 float), alpha channel (-1 = none), channel
+//                          count, level count, face count, the sizes of the blocks below, the
+//                          minor version, the level-data size and the meta-data sizes.
+//   Extended header        `extheadersize` bytes (40 in current files): border modes, edge
+//                          filter mode, large-meta-data sizes, edit-data size and position.
+//   Face info              zlib: 20 bytes per face — ulog2, vlog2 (int8), adjacent edges
+//                          (2 bits per edge), flags (1 constant, 2 has edits, 4 neighbourhood
+//                          constant, 8 subface), 4 adjacent faces (int32, -1 = none).
+//   Constant data          zlib: one pixel per face (the face's average colour).
+//   Level info             16 bytes per level: level-data size (u64), level-header size
+//                          (u32), face count (u32).
+//   Level data             per level: a zlib array of one u32 per face (bits 0..29 block size,
+//                          30..31 encoding), then the faces' blocks back to back. Encodings:
+//                          0 constant (one raw pixel), 1 zip, 2 zip of the running difference
+//                          (u8 / u16 only), 3 tiled (tile resolution, u32 tile-header size,
+//                          zlib tile headers, then the tiles, each encoded like a face).
+//                          Zipped pixel data is planar: each channel's plane of u x v values,
+//                          rows of increasing v.
+//   Meta data, edits       skipped (files with edits are refused as unsupported).
 #include <zlib.h>
 
 #include <cmath>

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <string>
 
+#include "core/simd.h"
 #include "tessera/raster.h"
 
 namespace tessera::raster {
@@ -215,10 +216,11 @@ inline std::uint8_t alpha8(float a) {
 /// additions in the same order, then one multiply).
 inline void resolve_row_rgba(const float* src, int w, int ns, float scale, const Srgb8Encoder& enc,
                              std::uint8_t* d) {
-  using f32x4 = float __attribute__((vector_size(16)));
-  const f32x4 vscale = {scale, scale, scale, scale};
-  const auto store = [&](f32x4 acc) {
-    acc *= vscale;
+  using simd::vf32x4;
+  const vf32x4 vscale(scale);
+  const auto store = [&](vf32x4 sum) {
+    alignas(16) float acc[4];
+    simd::storef4_aligned(sum * vscale, acc);
     d[0] = enc.encode(acc[0]);
     d[1] = enc.encode(acc[1]);
     d[2] = enc.encode(acc[2]);
@@ -226,20 +228,12 @@ inline void resolve_row_rgba(const float* src, int w, int ns, float scale, const
   };
   if (ns == 1) {
     // One sample: the same 0 + v and multiply as the loop below, without the loop.
-    for (int x = 0; x < w; ++x, d += 4, src += 4) {
-      f32x4 v;
-      std::memcpy(&v, src, sizeof v);
-      store(f32x4{0.0f, 0.0f, 0.0f, 0.0f} + v);
-    }
+    for (int x = 0; x < w; ++x, d += 4, src += 4) store(vf32x4() + simd::loadf4(src));
     return;
   }
   for (int x = 0; x < w; ++x, d += 4) {
-    f32x4 acc = {0.0f, 0.0f, 0.0f, 0.0f};
-    for (int s = 0; s < ns; ++s, src += 4) {
-      f32x4 v;
-      std::memcpy(&v, src, sizeof v);
-      acc += v;
-    }
+    vf32x4 acc;
+    for (int s = 0; s < ns; ++s, src += 4) acc = acc + simd::loadf4(src);
     store(acc);
   }
 }

@@ -146,12 +146,12 @@ inline void quad_coverage32(const std::int64_t e0[3], const std::int32_t sx32[3]
     c[k] = std::int32_t(std::clamp(e0[k], -kNarrowClamp, kNarrowClamp));
   }
 #if TESSERA_SIMD_VECTOR
-  using simd::vint4;
+  using simd::vi32x4;
   if (samples == 1) {
-    vint4 v;
+    vi32x4 v;
     for (int k = 0; k < 3; ++k) {
-      const vint4 lanes(0, sx32[k], sy32[k], sx32[k] + sy32[k]);
-      v = v | (vint4(c[k] + off32[k][0]) + lanes);
+      const vi32x4 lanes(0, sx32[k], sy32[k], sx32[k] + sy32[k]);
+      v = v | (vi32x4(c[k] + off32[k][0]) + lanes);
     }
     const std::uint32_t in = ~std::uint32_t(simd::movemask(v));
     for (int lane = 0; lane < 4; ++lane) mask[lane] = in >> lane & 1u;
@@ -165,10 +165,10 @@ inline void quad_coverage32(const std::int64_t e0[3], const std::int32_t sx32[3]
     lanes[k][3] = lanes[k][2] + sx32[k];
   }
   for (int lane = 0; lane < 4; ++lane) {
-    const vint4 e[3] = {vint4(lanes[0][lane]), vint4(lanes[1][lane]), vint4(lanes[2][lane])};
+    const vi32x4 e[3] = {vi32x4(lanes[0][lane]), vi32x4(lanes[1][lane]), vi32x4(lanes[2][lane])};
     std::uint32_t m = 0;
     for (int s = 0; s < samples; s += 4) {
-      vint4 v = e[0] + simd::load4(off32[0] + s);
+      vi32x4 v = e[0] + simd::load4(off32[0] + s);
       v = v | (e[1] + simd::load4(off32[1] + s));
       v = v | (e[2] + simd::load4(off32[2] + s));
       m |= (~std::uint32_t(simd::movemask(v)) & 15u) << s;
@@ -233,16 +233,9 @@ inline float eval_plane(const float p[3], float dx, float dy) {
 /// fixed-size loops below vectorise; the padding holds zeros.
 inline constexpr int padded_varyings(int n) { return (n + 3) & ~3; }
 
-/// Four floats in one SSE/NEON register (simd::f32x4, the GCC/Clang vector extension); the
-/// loops below run on N4 / 4 of them. Loads and stores go through memcpy, so no alignment is
-/// assumed.
-using simd::f32x4;
-inline f32x4 load4(const float* p) {
-  f32x4 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-inline void store4(float* p, f32x4 v) { std::memcpy(p, &v, sizeof v); }
+/// The loops below run on N4 / 4 groups of four floats (simd::vf32x4, unaligned loads and
+/// stores: simd::loadf4 / storef4).
+using simd::vf32x4;
 
 /// Perspective-correct varyings at offsets (dx, dy) from the triangle's anchor:
 /// v = v0 + b1 (v1 - v0) + b2 (v2 - v0) with b_i = (lambda_i / w_i) / (1 / w).
@@ -253,8 +246,11 @@ inline float interpolate(const TriSetup& t, const float* base, float dx, float d
   const float rcp = 1.0f / iw;
   const float b1 = eval_plane(t.l1, dx, dy) * rcp;
   const float b2 = eval_plane(t.l2, dx, dy) * rcp;
+  const vf32x4 vb1(b1), vb2(b2);
   for (int i = 0; i < N4; i += 4) {
-    store4(out + i, load4(base + i) + b1 * load4(base + N4 + i) + b2 * load4(base + 2 * N4 + i));
+    simd::storef4(simd::loadf4(base + i) + vb1 * simd::loadf4(base + N4 + i) +
+                      vb2 * simd::loadf4(base + 2 * N4 + i),
+                  out + i);
   }
   return iw;
 }
@@ -262,22 +258,24 @@ inline float interpolate(const TriSetup& t, const float* base, float dx, float d
 /// Varyings from the perspective-correct barycentrics b1, b2 (see `interpolate`).
 template <int N4>
 inline void interpolate_at(const float* base, float b1, float b2, float* out) {
+  const vf32x4 vb1(b1), vb2(b2);
   for (int i = 0; i < N4; i += 4) {
-    store4(out + i, load4(base + i) + b1 * load4(base + N4 + i) + b2 * load4(base + 2 * N4 + i));
+    simd::storef4(simd::loadf4(base + i) + vb1 * simd::loadf4(base + N4 + i) +
+                      vb2 * simd::loadf4(base + 2 * N4 + i),
+                  out + i);
   }
 }
 
 /// `eval_plane` at four positions at once (lane-wise the same operations).
-inline f32x4 eval_plane4(const float p[3], f32x4 dx, f32x4 dy) {
-  return f32x4{p[0], p[0], p[0], p[0]} + f32x4{p[1], p[1], p[1], p[1]} * dx +
-         f32x4{p[2], p[2], p[2], p[2]} * dy;
+inline vf32x4 eval_plane4(const float p[3], vf32x4 dx, vf32x4 dy) {
+  return vf32x4(p[0]) + vf32x4(p[1]) * dx + vf32x4(p[2]) * dy;
 }
 
 /// Lane-wise std::clamp(v, 0, 1) (NaN stays NaN, -0 stays -0).
-inline f32x4 clamp01(f32x4 v) {
+inline vf32x4 clamp01(vf32x4 v) {
   // simd::max / min return their second operand when the comparison fails (NaN included),
   // which is exactly std::clamp's `v < 0 ? 0 : (1 < v ? 1 : v)`.
-  return simd::to_f32x4(simd::min(simd::vf4(1.0f), simd::max(simd::vf4(), simd::from_f32x4(v))));
+  return simd::min(vf32x4(1.0f), simd::max(vf32x4(), v));
 }
 
 /// Centroid sample of a partially covered pixel: the covered sample nearest the pixel centre,
@@ -308,8 +306,7 @@ inline bool depth_passes(DepthTest test, float z, float stored) {
 }
 
 /// `depth_passes` for four samples: bit i set when lane i passes.
-inline std::uint32_t depth_mask4(DepthTest test, f32x4 z, f32x4 stored) {
-  const simd::vf4 a = simd::from_f32x4(z), b = simd::from_f32x4(stored);
+inline std::uint32_t depth_mask4(DepthTest test, vf32x4 a, vf32x4 b) {
   switch (test) {
     case DepthTest::less:
       return std::uint32_t(simd::movemask(simd::cmplt(a, b)));

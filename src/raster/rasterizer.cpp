@@ -1,5 +1,10 @@
 // Rasteriser driver: validates the draws, runs the geometry stage over fixed chunks of
 // triangles in parallel, then the raster stage over tiles in parallel, and sums the counters.
+//
+// The pipeline: `Rasteriser::render` runs a geometry stage (fetch, clip, snap, cull, set up, bin;
+// parallel over fixed chunks of 1024 input triangles) and then a raster stage (parallel over
+// tiles: optional clear, 8x8 block trivial accept/reject, 2x2 quads, early depth test, shading,
+// per-sample writes). Memory: the rasteriser keeps its per-chunk buffers between calls.
 #include <string>
 
 #include "raster/raster_internal.h"

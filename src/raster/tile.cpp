@@ -261,10 +261,14 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
   // lane centres at once (the same operations per lane as `eval_plane`).
   const float cdx = float(qx - t.x0) + 0.5f;
   const float cdy = float(qy - t.y0) + 0.5f;
-  const f32x4 ldx = f32x4{cdx, cdx, cdx, cdx} + f32x4{0.0f, 1.0f, 0.0f, 1.0f};
-  const f32x4 ldy = f32x4{cdy, cdy, cdy, cdy} + f32x4{0.0f, 0.0f, 1.0f, 1.0f};
-  const f32x4 zc = eval_plane4(t.z, ldx, ldy);
-  const f32x4 zcl = clamp01(zc);
+  const vf32x4 ldx = vf32x4(cdx) + vf32x4(0.0f, 1.0f, 0.0f, 1.0f);
+  const vf32x4 ldy = vf32x4(cdy) + vf32x4(0.0f, 0.0f, 1.0f, 1.0f);
+  const vf32x4 zc = eval_plane4(t.z, ldx, ldy);
+  const vf32x4 zcl = clamp01(zc);
+  // Lane by lane for the scalar code below.
+  alignas(16) float zc_lanes[4], zcl_lanes[4];
+  simd::storef4_aligned(zc, zc_lanes);
+  simd::storef4_aligned(zcl, zcl_lanes);
   std::uint32_t visible[4] = {0, 0, 0, 0};
   if (kSingle) {
     const DepthTest test = draw.depth_test;
@@ -274,7 +278,7 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
       alignas(16) float stored[4];
       std::memcpy(stored, depth_ + base[0], 2 * sizeof(float));
       std::memcpy(stored + 2, depth_ + base[2], 2 * sizeof(float));
-      const std::uint32_t pass = depth_mask4(test, zcl, load4(stored));
+      const std::uint32_t pass = depth_mask4(test, zcl, simd::loadf4_aligned(stored));
       for (int lane = 0; lane < 4; ++lane) {
         visible[lane] = mask[lane] ? (pass >> lane & 1u) : 0u;
       }
@@ -282,7 +286,7 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
       for (int lane = 0; lane < 4; ++lane) {
         // Lanes outside the grid have no coverage and must not read.
         visible[lane] =
-            mask[lane] ? std::uint32_t(depth_passes(test, zcl[lane], depth_[base[lane]])) : 0u;
+            mask[lane] ? std::uint32_t(depth_passes(test, zcl_lanes[lane], depth_[base[lane]])) : 0u;
       }
     }
   } else if (ns % 4 == 0) {
@@ -290,12 +294,12 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
     for (int lane = 0; lane < 4; ++lane) {
       if (!mask[lane]) continue;
       const float* stored = depth_ + base[lane];
-      const f32x4 z0 = {zc[lane], zc[lane], zc[lane], zc[lane]};
+      const vf32x4 z0(zc_lanes[lane]);
       std::uint32_t vis = 0;
       for (int s = 0; s < ns; s += 4) {
-        const f32x4 z = clamp01(z0 + load4(dz_ + s));
-        store4(zs_[lane] + s, z);
-        vis |= depth_mask4(draw.depth_test, z, load4(stored + s)) << s;
+        const vf32x4 z = clamp01(z0 + simd::loadf4(dz_ + s));
+        simd::storef4(z, zs_[lane] + s);
+        vis |= depth_mask4(draw.depth_test, z, simd::loadf4(stored + s)) << s;
       }
       visible[lane] = vis & mask[lane];
     }
@@ -306,7 +310,7 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
       std::uint32_t vis = 0;
       for (int s = 0; s < ns; ++s) {
         if (!(mask[lane] >> s & 1u)) continue;
-        const float z = std::clamp(zc[lane] + dz_[s], 0.0f, 1.0f);
+        const float z = std::clamp(zc_lanes[lane] + dz_[s], 0.0f, 1.0f);
         zs_[lane][s] = z;
         vis |= std::uint32_t(depth_passes(draw.depth_test, z, stored[s])) << s;
       }
@@ -318,10 +322,14 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
 
   // Perspective-correct varyings at the four pixel centres (1/w and the barycentrics for all
   // lanes at once, then N4 varyings per lane), then quad derivatives.
-  const f32x4 iw = eval_plane4(t.inv_w, ldx, ldy);
-  const f32x4 rcp = f32x4{1.0f, 1.0f, 1.0f, 1.0f} / iw;
-  const f32x4 b1 = eval_plane4(t.l1, ldx, ldy) * rcp;
-  const f32x4 b2 = eval_plane4(t.l2, ldx, ldy) * rcp;
+  const vf32x4 iw = eval_plane4(t.inv_w, ldx, ldy);
+  const vf32x4 rcp = vf32x4(1.0f) / iw;
+  alignas(16) float b1[4], b2[4], iw_lanes[4], ldx_lanes[4], ldy_lanes[4];
+  simd::storef4_aligned(iw, iw_lanes);
+  simd::storef4_aligned(ldx, ldx_lanes);
+  simd::storef4_aligned(ldy, ldy_lanes);
+  simd::storef4_aligned(eval_plane4(t.l1, ldx, ldy) * rcp, b1);
+  simd::storef4_aligned(eval_plane4(t.l2, ldx, ldy) * rcp, b2);
   for (int lane = 0; lane < 4; ++lane) interpolate_at<N4>(tv_, b1[lane], b2[lane], v_[lane]);
 
   const int nc = channels_;
@@ -333,7 +341,7 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
   stats_.helper_lanes += popcount4(helpers);
   stats_.lanes_shaded += popcount4(shaded);
   if (nc == 4) {
-    for (int lane = 0; lane < 4; ++lane) store4(out_[lane], f32x4{0.0f, 0.0f, 0.0f, 0.0f});
+    for (int lane = 0; lane < 4; ++lane) simd::storef4(vf32x4(), out_[lane]);
   } else {
     for (int lane = 0; lane < 4; ++lane) std::fill(out_[lane], out_[lane] + nc, 0.0f);
   }
@@ -341,13 +349,13 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
   if (active) {
     // Fine: ddx of each row, ddy of each column; coarse: the top row and left column only.
     for (int i = 0; i < N4; i += 4) {
-      store4(ddx_[0] + i, load4(v_[1] + i) - load4(v_[0] + i));
-      store4(ddy_[0] + i, load4(v_[2] + i) - load4(v_[0] + i));
+      simd::storef4(simd::loadf4(v_[1] + i) - simd::loadf4(v_[0] + i), ddx_[0] + i);
+      simd::storef4(simd::loadf4(v_[2] + i) - simd::loadf4(v_[0] + i), ddy_[0] + i);
     }
     if (opt_.derivatives == Derivatives::fine) {
       for (int i = 0; i < N4; i += 4) {
-        store4(ddx_[1] + i, load4(v_[3] + i) - load4(v_[2] + i));
-        store4(ddy_[1] + i, load4(v_[3] + i) - load4(v_[1] + i));
+        simd::storef4(simd::loadf4(v_[3] + i) - simd::loadf4(v_[2] + i), ddx_[1] + i);
+        simd::storef4(simd::loadf4(v_[3] + i) - simd::loadf4(v_[1] + i), ddy_[1] + i);
       }
     }
     const bool centroid = draw.centroid;
@@ -358,16 +366,16 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
       in.py = qy + (lane >> 1);
       in.x = float(in.px) + 0.5f;
       in.y = float(in.py) + 0.5f;
-      in.inv_w = iw[lane];
-      in.depth = zcl[lane];
+      in.inv_w = iw_lanes[lane];
+      in.depth = zcl_lanes[lane];
       if (centroid) {
         in.varyings = v_[lane];
         if (mask[lane] && mask[lane] != st_.full) {
           const int s = centroid_sample(mask[lane], st_.pos, ns);
           in.x += st_.ox[s];
           in.y += st_.oy[s];
-          const float sdx = ldx[lane] + st_.ox[s];
-          const float sdy = ldy[lane] + st_.oy[s];
+          const float sdx = ldx_lanes[lane] + st_.ox[s];
+          const float sdy = ldy_lanes[lane] + st_.oy[s];
           in.inv_w = interpolate<N4>(t, tv_, sdx, sdy, vc_[lane]);
           in.varyings = vc_[lane];
           in.depth = std::clamp(eval_plane(t.z, sdx, sdy), 0.0f, 1.0f);
@@ -394,7 +402,7 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
     for (int lane = 0; lane < 4; ++lane) {
       if (!visible[lane]) continue;
       const std::size_t i = base[lane];
-      if (write_depth) depth_[i] = zcl[lane];
+      if (write_depth) depth_[i] = zcl_lanes[lane];
       float* d = data_ + i * std::size_t(nc);
       if (nc == 4) {
         std::memcpy(d, out_[lane], 4 * sizeof(float));
@@ -414,8 +422,8 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
       // Fully visible multisampled pixel: contiguous depth and colour runs.
       if (write_depth) std::memcpy(depth_ + base[lane], zs_[lane], std::size_t(ns) * sizeof(float));
       float* d = data_ + base[lane] * 4;
-      const f32x4 c = load4(out);
-      for (int s = 0; s < ns; ++s) store4(d + 4 * s, c);
+      const vf32x4 c = simd::loadf4(out);
+      for (int s = 0; s < ns; ++s) simd::storef4(c, d + 4 * s);
       continue;
     }
     while (vis) {

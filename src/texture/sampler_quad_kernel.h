@@ -1,7 +1,7 @@
 // Private: the four-lane form of the isotropic one-probe lookup plan (bilinear / trilinear
 // `Texture::sample`): footprint lengths, LOD clamping, level choice, texel coordinates and
-// bilinear weights of four lookups at once, one lookup per SIMD lane (core/simd.h's vf4 and
-// vint4). Pure functions.
+// bilinear weights of four lookups at once, one lookup per SIMD lane (core/simd.h's vf32x4 and
+// vi32x4). Pure functions.
 //
 // Every lane performs the same IEEE single-precision operations in the same order as the scalar
 // path (`isotropic_lod_inline`, `clamp_lod`, `plan_levels`, `sample_one_probe`), so a lane's
@@ -20,18 +20,19 @@
 
 namespace tessera::texture::detail {
 
-using simd::vf4;
-using simd::vint4;
+using simd::vf32x4;
+using simd::vi32x4;
 
 /// `max(|d/dx|, |d/dy|)` of four lookups, the argument of the log2 in `isotropic_lod_inline`:
 /// lane i from gradients (dudx[i], dvdx[i], dudy[i], dvdy[i]) in normalised units, scaled by
 /// the level-0 size (w, h) first exactly as `Texture::sample` does.
-inline vf4 footprint_length4(vf4 dudx, vf4 dvdx, vf4 dudy, vf4 dvdy, float w, float h) {
-  const vf4 vw(w), vh(h);
-  const vf4 tux = dudx * vw, tvx = dvdx * vh;
-  const vf4 tuy = dudy * vw, tvy = dvdy * vh;
-  const vf4 px = simd::sqrt(tux * tux + tvx * tvx);
-  const vf4 py = simd::sqrt(tuy * tuy + tvy * tvy);
+inline vf32x4 footprint_length4(vf32x4 dudx, vf32x4 dvdx, vf32x4 dudy, vf32x4 dvdy, float w,
+                                float h) {
+  const vf32x4 vw(w), vh(h);
+  const vf32x4 tux = dudx * vw, tvx = dvdx * vh;
+  const vf32x4 tuy = dudy * vw, tvy = dvdy * vh;
+  const vf32x4 px = simd::sqrt(tux * tux + tvx * tvx);
+  const vf32x4 py = simd::sqrt(tuy * tuy + tvy * tvy);
   // px > py ? px : py (max returns its second operand when the compare fails, NaN included).
   return simd::max(px, py);
 }
@@ -44,25 +45,25 @@ inline bool magnification_shortcut(const SamplerState& sampler) {
 }
 
 /// `clamp_lod` of four raw LODs.
-inline vf4 clamp_lod4(const SamplerState& sampler, const TextureShape& shape, vf4 lod) {
-  const vf4 zero;
+inline vf32x4 clamp_lod4(const SamplerState& sampler, const TextureShape& shape, vf32x4 lod) {
+  const vf32x4 zero;
   lod = simd::keep_where(simd::cmpord(lod, lod), lod);  // NaN -> 0
-  lod = lod + vf4(sampler.lod_bias);
-  const vf4 max_lod(sampler.max_lod);
+  lod = lod + vf32x4(sampler.lod_bias);
+  const vf32x4 max_lod(sampler.max_lod);
   lod = simd::select(simd::cmpgt(lod, max_lod), max_lod, lod);
-  const vf4 min_lod(sampler.min_lod);
+  const vf32x4 min_lod(sampler.min_lod);
   lod = simd::select(simd::cmplt(lod, min_lod), min_lod, lod);
-  const vf4 last(float(shape.levels > 1 ? shape.levels - 1 : 0));
+  const vf32x4 last(float(shape.levels > 1 ? shape.levels - 1 : 0));
   lod = simd::zero_where(simd::cmpnge(lod, zero), lod);  // !(lod >= 0) -> 0
   return simd::select(simd::cmpgt(lod, last), last, lod);
 }
 
 /// Lane-wise `mip_dimension(size, level)` for 0 <= level < 31 and size < 2^24:
 /// size * 2^-level is exact in float, its truncation is size >> level, then max(1, .).
-inline vint4 level_size4(int size, vint4 level) {
-  const vf4 scale = simd::as_float(simd::sll<23>(vint4(127) - level));
-  const vint4 s = simd::to_int_trunc(vf4(float(size)) * scale);
-  return s - simd::cmpeq(s, vint4());  // 0 -> 1
+inline vi32x4 level_size4(int size, vi32x4 level) {
+  const vf32x4 scale = simd::as_float(simd::sll<23>(vi32x4(127) - level));
+  const vi32x4 s = simd::to_int_trunc(vf32x4(float(size)) * scale);
+  return s - simd::cmpeq(s, vi32x4());  // 0 -> 1
 }
 
 /// Whether `resolve_pair4` handles `mode` for an axis whose level-0 size is `size`: wrap of a
@@ -74,17 +75,17 @@ inline bool vector_address(AddressMode mode, int size) {
 
 /// `resolve_pair(x0, size, mode)` of four lanes for a mode accepted by `vector_address`:
 /// wrap by mask (two's complement x & (size - 1) is x mod size), clamp to [0, size - 1].
-inline void resolve_pair4(vint4 x0, vint4 size, AddressMode mode, vint4& r0, vint4& r1) {
-  const vint4 one(1);
-  const vint4 top = size - one;
-  const vint4 x1 = x0 + one;
+inline void resolve_pair4(vi32x4 x0, vi32x4 size, AddressMode mode, vi32x4& r0, vi32x4& r1) {
+  const vi32x4 one(1);
+  const vi32x4 top = size - one;
+  const vi32x4 x1 = x0 + one;
   if (mode == AddressMode::wrap) {
     r0 = x0 & top;
     r1 = x1 & top;
     return;
   }
   // clamp: x < 0 -> 0, x > size - 1 -> size - 1.
-  const vint4 zero;
+  const vi32x4 zero;
   r0 = simd::select(simd::cmpgt(x0, top), top, simd::andnot(simd::cmplt(x0, zero), x0));
   r1 = simd::select(simd::cmpgt(x1, top), top, simd::andnot(simd::cmplt(x1, zero), x1));
 }
@@ -109,21 +110,21 @@ struct OneProbe4 {
 /// Plans four lookups at (u, v) with LODs already clamped by `clamp_lod4`, for a bilinear or
 /// trilinear `sampler.filter`, as `plan_levels` + `sample_one_probe` do per lookup. Level sizes
 /// must be below 2^24 and hold fewer than 2^29 texels (as `check_image_size` guarantees).
-inline void plan_one_probe4(const SamplerState& sampler, const TextureShape& shape, vf4 lod, vf4 u,
-                            vf4 v, OneProbe4& out) {
-  const vint4 one_i(1);
-  const vf4 one(1.0f);
+inline void plan_one_probe4(const SamplerState& sampler, const TextureShape& shape, vf32x4 lod,
+                            vf32x4 u, vf32x4 v, OneProbe4& out) {
+  const vi32x4 one_i(1);
+  const vf32x4 one(1.0f);
   out.has_offsets = vector_address(sampler.address_u, shape.width) &&
                     vector_address(sampler.address_v, shape.height);
   const int last = shape.levels - 1;
-  vint4 lev0, lev1;
-  vf4 lw0, lw1;
-  vint4 single;
+  vi32x4 lev0, lev1;
+  vf32x4 lw0, lw1;
+  vi32x4 single;
   if (sampler.filter == TextureFilter::trilinear) {
     // l0 = int(lod) (lod >= 0), frac = lod - l0; one level when l0 >= last or frac <= 0.
-    const vint4 l0 = simd::to_int_trunc(lod);
-    const vf4 frac = lod - simd::to_float(l0);
-    single = simd::cmpgt(l0, vint4(last - 1)) | simd::cmple(frac, vf4());
+    const vi32x4 l0 = simd::to_int_trunc(lod);
+    const vf32x4 frac = lod - simd::to_float(l0);
+    single = simd::cmpgt(l0, vi32x4(last - 1)) | simd::cmple(frac, vf32x4());
     // lod <= last, so min(l0, last) = l0 on the single-level branch too.
     lev0 = l0;
     lev1 = simd::select(single, l0, l0 + one_i);
@@ -131,63 +132,63 @@ inline void plan_one_probe4(const SamplerState& sampler, const TextureShape& sha
     lw1 = simd::zero_where(single, frac);
   } else {
     // GL's nearest-level rule: 0 up to lod 0.5, then ceil(lod + 0.5) - 1, at most last.
-    const vf4 x = lod + vf4(0.5f);
-    const vint4 t = simd::to_int_trunc(x);  // x >= 0.5: truncation is floor
+    const vf32x4 x = lod + vf32x4(0.5f);
+    const vi32x4 t = simd::to_int_trunc(x);  // x >= 0.5: truncation is floor
     // ceil(x) - 1 = t - 1 + (x > t)
-    vint4 l = (t - one_i) - simd::cmpgt(x, simd::to_float(t));
-    l = simd::andnot(simd::cmple(lod, vf4(0.5f)), l);
-    const vint4 vlast(last);
+    vi32x4 l = (t - one_i) - simd::cmpgt(x, simd::to_float(t));
+    l = simd::andnot(simd::cmple(lod, vf32x4(0.5f)), l);
+    const vi32x4 vlast(last);
     l = simd::select(simd::cmpgt(l, vlast), vlast, l);
-    single = vint4(-1);
+    single = vi32x4(-1);
     lev0 = lev1 = l;
     lw0 = one;
-    lw1 = vf4();
+    lw1 = vf32x4();
   }
-  simd::store4_aligned(vint4(2) - (single & one_i), out.count);
-  const vint4 lev[2] = {lev0, lev1};
-  const vf4 lw[2] = {lw0, lw1};
-  const vf4 half(0.5f);
-  const vf4 lim(kCoordLimit);
-  const vf4 nlim(-kCoordLimit);
+  simd::store4_aligned(vi32x4(2) - (single & one_i), out.count);
+  const vi32x4 lev[2] = {lev0, lev1};
+  const vf32x4 lw[2] = {lw0, lw1};
+  const vf32x4 half(0.5f);
+  const vf32x4 lim(kCoordLimit);
+  const vf32x4 nlim(-kCoordLimit);
   for (int li = 0; li < 2; ++li) {
-    const vint4 w = level_size4(shape.width, lev[li]);
-    const vint4 h = level_size4(shape.height, lev[li]);
+    const vi32x4 w = level_size4(shape.width, lev[li]);
+    const vi32x4 h = level_size4(shape.height, lev[li]);
     simd::store4_aligned(lev[li], out.level[li]);
     simd::store4_aligned(w, out.w[li]);
     simd::store4_aligned(h, out.h[li]);
-    vf4 frac[2];
+    vf32x4 frac[2];
     for (int axis = 0; axis < 2; ++axis) {
-      const vf4 size = simd::to_float(axis == 0 ? w : h);
-      const vf4 p = (axis == 0 ? u : v) * size - half;
+      const vf32x4 size = simd::to_float(axis == 0 ? w : h);
+      const vf32x4 p = (axis == 0 ? u : v) * size - half;
       // clamp_coord, then floor_to_int.
-      const vf4 pc = simd::select(simd::cmpgt(p, nlim), simd::min(p, lim), nlim);
-      const vint4 tr = simd::to_int_trunc(pc);
-      const vint4 fl = tr + simd::cmplt(pc, simd::to_float(tr));
+      const vf32x4 pc = simd::select(simd::cmpgt(p, nlim), simd::min(p, lim), nlim);
+      const vi32x4 tr = simd::to_int_trunc(pc);
+      const vi32x4 fl = tr + simd::cmplt(pc, simd::to_float(tr));
       frac[axis] = pc - simd::to_float(fl);
       simd::store4_aligned(fl, axis == 0 ? out.x0[li] : out.y0[li]);
     }
     // wx = (1 - ax, ax), wy = ((1 - ay) * lw, ay * lw); tap (k, j) weighs wx[k] * wy[j].
-    const vf4 wx0 = one - frac[0];
-    const vf4 wx1 = frac[0];
-    const vf4 wy0 = (one - frac[1]) * lw[li];
-    const vf4 wy1 = frac[1] * lw[li];
-    vf4 t00 = wx0 * wy0, t10 = wx1 * wy0;
-    vf4 t01 = wx0 * wy1, t11 = wx1 * wy1;
+    const vf32x4 wx0 = one - frac[0];
+    const vf32x4 wx1 = frac[0];
+    const vf32x4 wy0 = (one - frac[1]) * lw[li];
+    const vf32x4 wy1 = frac[1] * lw[li];
+    vf32x4 t00 = wx0 * wy0, t10 = wx1 * wy0;
+    vf32x4 t01 = wx0 * wy1, t11 = wx1 * wy1;
     simd::transpose(t00, t10, t01, t11);  // now one vector per lane
     simd::storef4_aligned(t00, out.weight[li][0]);
     simd::storef4_aligned(t10, out.weight[li][1]);
     simd::storef4_aligned(t01, out.weight[li][2]);
     simd::storef4_aligned(t11, out.weight[li][3]);
     if (out.has_offsets) {
-      vint4 rx0, rx1, ry0, ry1;
+      vi32x4 rx0, rx1, ry0, ry1;
       resolve_pair4(simd::load4_aligned(out.x0[li]), w, sampler.address_u, rx0, rx1);
       resolve_pair4(simd::load4_aligned(out.y0[li]), h, sampler.address_v, ry0, ry1);
       // Products below 2^31 (fewer than 2^29 texels per level).
-      const vint4 row0 = ry0 * w, row1 = ry1 * w;
-      vint4 o00 = simd::sll<2>(row0 + rx0);
-      vint4 o10 = simd::sll<2>(row0 + rx1);
-      vint4 o01 = simd::sll<2>(row1 + rx0);
-      vint4 o11 = simd::sll<2>(row1 + rx1);
+      const vi32x4 row0 = ry0 * w, row1 = ry1 * w;
+      vi32x4 o00 = simd::sll<2>(row0 + rx0);
+      vi32x4 o10 = simd::sll<2>(row0 + rx1);
+      vi32x4 o01 = simd::sll<2>(row1 + rx0);
+      vi32x4 o11 = simd::sll<2>(row1 + rx1);
       simd::transpose(o00, o10, o01, o11);
       simd::store4_aligned(o00, out.offset[li][0]);
       simd::store4_aligned(o10, out.offset[li][1]);

@@ -1,6 +1,11 @@
 // The sampling driver of texture::Texture: resolves the kernel's taps (texture/sampler_kernel.h)
 // to texels, with the one-probe bilinear/trilinear hot path and its four-lane SIMD form
 // (sample4). Storage, mip chains and construction: texture.cpp.
+//
+// Cost (bench/sampler_bench.cpp): one `compute_footprint` per lookup (two square roots, one
+// log2), then a few tens of instructions per tap; trilinear reads 8 taps, 16x anisotropic 128.
+// The tap-list path stores 32 bytes per tap, so it is slower than `sample` (BM_TapsAniso16
+// against BM_SampleAniso/16 in docs/benchmarks/sampler.md).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -137,24 +142,24 @@ std::array<float, 4> sample_one_probe(const AccumulateSink& sink, const SamplerS
   float wx[2][2], wy[2][2];
 #if TESSERA_SIMD_VECTOR
   {
-    using simd::vf4;
-    using simd::vint4;
+    using simd::vf32x4;
+    using simd::vi32x4;
     // Lanes (x of level 0, y of level 0, x of level 1, y of level 1).
-    const vf4 size{float(w[0]), float(h[0]), float(w[1]), float(h[1])};
-    const vf4 p = vf4(u, v, u, v) * size - vf4(0.5f);
+    const vf32x4 size{float(w[0]), float(h[0]), float(w[1]), float(h[1])};
+    const vf32x4 p = vf32x4(u, v, u, v) * size - vf32x4(0.5f);
     // clamp_coord: p > -L ? (p < L ? p : L) : -L (NaN -> -L).
-    const vf4 lim(kCoordLimit);
-    const vf4 nlim(-kCoordLimit);
-    const vf4 pc = simd::select(simd::cmpgt(p, nlim), simd::min(p, lim), nlim);
+    const vf32x4 lim(kCoordLimit);
+    const vf32x4 nlim(-kCoordLimit);
+    const vf32x4 pc = simd::select(simd::cmpgt(p, nlim), simd::min(p, lim), nlim);
     // floor_to_int: truncate, then subtract 1 where p < float(trunc).
-    const vint4 tr = simd::to_int_trunc(pc);
-    const vint4 fl = tr + simd::cmplt(pc, simd::to_float(tr));
-    const vf4 frac = pc - simd::to_float(fl);
-    const vf4 lw(1.0f, plan.weight[0], 1.0f, plan.weight[1]);
+    const vi32x4 tr = simd::to_int_trunc(pc);
+    const vi32x4 fl = tr + simd::cmplt(pc, simd::to_float(tr));
+    const vf32x4 frac = pc - simd::to_float(fl);
+    const vf32x4 lw(1.0f, plan.weight[0], 1.0f, plan.weight[1]);
     alignas(16) float lo[4], hi[4];
     alignas(16) int ic[4];
     // x lanes: 1 - ax and ax (times 1, exact); y lanes: (1 - ay) * lw and ay * lw.
-    simd::storef4_aligned((vf4(1.0f) - frac) * lw, lo);
+    simd::storef4_aligned((vf32x4(1.0f) - frac) * lw, lo);
     simd::storef4_aligned(frac * lw, hi);
     simd::store4_aligned(fl, ic);
     for (int li = 0; li < 2; ++li) {
@@ -254,16 +259,16 @@ void Texture::sample4(const SamplerState& sampler, const std::array<Uv, 4>& uv,
         {0, 0, -1, 0},  {-1, 0, -1, 0},  {0, -1, -1, 0},  {-1, -1, -1, 0},
         {0, 0, 0, -1},  {-1, 0, 0, -1},  {0, -1, 0, -1},  {-1, -1, 0, -1},
         {0, 0, -1, -1}, {-1, 0, -1, -1}, {0, -1, -1, -1}, {-1, -1, -1, -1}};
-    const simd::vint4 lanes = simd::load4_aligned(kLaneBits[active]);
+    const simd::vi32x4 lanes = simd::load4_aligned(kLaneBits[active]);
     float in[16];
     std::memcpy(in, gradients.data(), sizeof in);  // dudx, dvdx, dudy, dvdy per lane
-    simd::vf4 dudx = simd::loadf4(in), dvdx = simd::loadf4(in + 4);
-    simd::vf4 dudy = simd::loadf4(in + 8), dvdy = simd::loadf4(in + 12);
+    simd::vf32x4 dudx = simd::loadf4(in), dvdx = simd::loadf4(in + 4);
+    simd::vf32x4 dudy = simd::loadf4(in + 8), dvdy = simd::loadf4(in + 12);
     simd::transpose(dudx, dvdx, dudy, dvdy);
     std::memcpy(in, uv.data(), 8 * sizeof(float));  // u, v per lane
-    const simd::vf4 uv01 = simd::loadf4(in), uv23 = simd::loadf4(in + 4);
-    const simd::vf4 u = simd::keep_where(lanes, simd::even_lanes(uv01, uv23));
-    const simd::vf4 v = simd::keep_where(lanes, simd::odd_lanes(uv01, uv23));
+    const simd::vf32x4 uv01 = simd::loadf4(in), uv23 = simd::loadf4(in + 4);
+    const simd::vf32x4 u = simd::keep_where(lanes, simd::even_lanes(uv01, uv23));
+    const simd::vf32x4 v = simd::keep_where(lanes, simd::odd_lanes(uv01, uv23));
     alignas(16) float len[4], raw_lod[4];
     simd::storef4_aligned(
         footprint_length4(simd::keep_where(lanes, dudx), simd::keep_where(lanes, dvdx),

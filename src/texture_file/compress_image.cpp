@@ -9,8 +9,8 @@
 #include <span>
 
 #include "tessera/image_ops.h"
+#include "tessera/image_mipmap.h"
 #include "tessera/metrics.h"
-#include "tessera/mipmap.h"
 #include "tessera/texture_file.h"
 
 namespace tessera::texture_file {

@@ -4,11 +4,21 @@
 // glInternalFormat, glBaseInternalFormat, pixelWidth, pixelHeight, pixelDepth,
 // numberOfArrayElements, numberOfFaces, numberOfMipmapLevels, bytesOfKeyValueData), the
 // key/value block, then per level a u32 imageSize, the data and padding to 4 bytes.
+//
+// What tessera reads and writes:
+// KTX 1.1: 64-byte header, glType 0 / glFormat 0, glInternalFormat one of the
+// GL_IMG_texture_compression_pvrtc (0x8C00..0x8C03) or GL_EXT_pvrtc_sRGB (0x8A54..0x8A57)
+// formats, key/value data (tessera writes "KTXorientation" = "S=r,T=d"), then per level a
+// u32 imageSize and the level's images (array elements, then faces) padded to 4 bytes; for a
+// cube map that is not an array, imageSize is the size of one face, as the specification says
+// (and PVRTexTool writes). Both byte orders are read; files are written little-endian. No 3D
+// textures. Note: PVRTexTool 4.17 reads the 0x8C0x formats but rejects the sRGB EXT ones, and
+// itself writes sRGB data as 0x8C0x.
 #include <array>
 #include <cstring>
 #include <string>
 
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 #include "tessera/texture_file.h"
 #include "texture_file/container_bytes.h"
 

@@ -7,11 +7,27 @@
 // key/value data, then the levels' data, smallest level first. Every offset and length is
 // checked in 64 bits against the file size, and every level's size against what the header's
 // shape requires, before anything is allocated.
+//
+// What tessera reads and writes:
+// KTX 2.0 (the Khronos container Vulkan, three.js and glTF pipelines read): vkFormat
+// VK_FORMAT_PVRTC1_{2,4}BPP_{UNORM,SRGB}_BLOCK_IMG, layerCount 0 unless an array, a Data Format
+// Descriptor (one basic block: colour model PVRTC, BT.709 primaries, sRGB or linear transfer
+// function, the ALPHA_PREMULTIPLIED flag, texel block 4x4 or 8x4, 8 bytes per block, one 64-bit
+// sample), the keys "KTXorientation" = "rd" and "KTXwriter" = "tessera <version>", a level
+// index (level 0 first; the data is stored smallest level first, 8-byte aligned), and optional
+// Zstandard supercompression (`Ktx2Options`: one frame per level, declaring its size; levels
+// then unaligned). The reader takes levelCount 0 as one level, wants the DFD to agree with
+// vkFormat, and refuses BasisLZ / ZLIB supercompression, 1D and 3D textures; each zstd frame
+// must declare exactly the level size the header's shape gives and be long enough to expand
+// that far (at most 128 KiB per 3 bytes) before the level is allocated, and never decompresses
+// past it. KTX 2.0 has no RGB/RGBA distinction for PVRTC: a file read back has alpha when any
+// block can decode a texel with alpha below 255 (`pvrtc::may_have_alpha`: a translucent
+// endpoint or a 4 bpp punch-through texel).
 #include <algorithm>
 #include <cstring>
 #include <string>
 
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 #include "tessera/texture_file.h"
 #include "texture_file/container_bytes.h"
 #include "texture_file/ktx2_format.h"

@@ -6,9 +6,16 @@
 // those its faces. PVR v3 has no array flag: more than one surface reads back as an array. Every
 // field is checked before it is used to size anything, and the level data must match the header
 // exactly (no missing or trailing bytes).
+//
+// What tessera reads and writes:
+// PVR v3 (what PVRTexTool writes): 52-byte little-endian header, a metadata block (tessera
+// writes PVRTexTool's 15-byte orientation entry and skips any metadata when reading), then per
+// level, largest first, per surface (array layer), per face, one image of `pvrtc::level_size`
+// bytes. Pixel formats 0..3 (PVRTC1 2bpp RGB, 2bpp RGBA, 4bpp RGB, 4bpp RGBA) are supported;
+// depth must be 1, faces 1 or 6. Big-endian PVR files are rejected.
 #include <string>
 
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 #include "tessera/texture_file.h"
 #include "texture_file/container_bytes.h"
 

@@ -7,7 +7,7 @@
 
 #include "core/check.h"
 #include "tessera/io.h"
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 #include "texture_file/container_bytes.h"
 
 namespace tessera::texture_file {

@@ -96,7 +96,7 @@ int main(int argc, char** argv) {
     pvrtc::detail::dilation_force_baseline(true);
     (void)pvrtc::detail::set_modulation_baseline_only(true);
     (void)pvrtc::detail::set_modulation_2bpp_baseline_only(true);
-    (void)pvrtc::detail::set_polish_baseline_only(true);
+    (void)pvrtc::detail::set_exact_search_baseline_only(true);
   }
 
   struct FileCrop {
@@ -190,7 +190,7 @@ int main(int argc, char** argv) {
 #else
   const char* backend = "scalar";
 #endif
-  std::printf("%d encodings written to %s (SIMD backend %s, AVX2 kernels %s)\n", cases,
-              out.c_str(), backend, pvrtc::detail::polish_avx2_active() ? "on" : "off");
+  std::printf("%d encodings written to %s (SIMD backend %s, AVX2 kernels %s)\n", cases, out.c_str(),
+              backend, pvrtc::detail::exact_search_avx2_active() ? "on" : "off");
   return 0;
 }

@@ -44,7 +44,7 @@ done
 qemu=(qemu-aarch64 -L /)
 
 # (Not pvrtc_modulation_test: all of it compares the AVX2 kernels with the baseline.)
-arm64_tests=(simd_test simd_int_test simd_wide_test pvrtc_codec_test pvrtc_search_test pvrtc_polish_test pvrtc_dilation_test
+arm64_tests=(simd_test simd_int_test simd_wide_test pvrtc_codec_test pvrtc_search_test pvrtc_search_kernel_test pvrtc_dilation_test
              texture_test texture_filtering_test raster_test core_test)
 
 echo "-- cross-compiling for AArch64 (build-arm64/)"

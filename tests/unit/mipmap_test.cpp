@@ -1,6 +1,6 @@
-// Tests of tessera/mipmap.h: mip chain sizes, sRGB-correct and alpha-weighted averaging,
+// Tests of tessera/image_mipmap.h: mip chain sizes, sRGB-correct and alpha-weighted averaging,
 // thread-count independence, the Lanczos and Kaiser filters, normal-map chains, and resizing.
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 
 #include <gtest/gtest.h>
 

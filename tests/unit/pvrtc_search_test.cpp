@@ -114,9 +114,9 @@ TEST(PvrtcSearch, NeighbourMovesReachALocalMinimum) {
   EncoderState s = state_from(img, encode_or_die(img, Quality::fast), false);
   choose_modulation(s);
   const std::uint64_t before = total_error(s);
-  PolishOptions po;
+  EndpointSearchOptions po;
   po.neighbour_moves = true;
-  polish(s, 64, 1, 0, po);
+  search_endpoints_4bpp(s, 64, 1, 0, po);
   const std::uint64_t after = total_error(s);
   EXPECT_LT(after, before);
   const Grid& g = s.g;
@@ -151,19 +151,19 @@ TEST(PvrtcSearch, NeighbourMovesReachALocalMinimum) {
 TEST(PvrtcSearch, SeededRoundsStartFromTheSeeds) {
   const ImageRGBA8 img = make_procedural(Procedural::noise, 32, 32);
   const EncoderState start = state_from(img, encode_or_die(img, Quality::fast), true);
-  PolishOptions po;
+  EndpointSearchOptions po;
   po.neighbour_moves = true;
   const std::vector<std::uint8_t> none(start.g.blocks(), 0), all(start.g.blocks(), 1);
   EncoderState a = start;
   po.seeds = &none;
-  polish(a, 64, 1, 0, po);
+  search_endpoints_4bpp(a, 64, 1, 0, po);
   EXPECT_EQ(a.ca, start.ca);
   EXPECT_EQ(a.cb, start.cb);
   EncoderState b = start, c = start;
   po.seeds = &all;
-  polish(b, 64, 1, 0, po);
+  search_endpoints_4bpp(b, 64, 1, 0, po);
   po.seeds = nullptr;
-  polish(c, 64, 1, 0, po);
+  search_endpoints_4bpp(c, 64, 1, 0, po);
   EXPECT_NE(b.ca, start.ca);
   EXPECT_EQ(b.words(), c.words());
 }
@@ -556,9 +556,9 @@ static void check_window2_scores() {
 TEST(PvrtcSearch, Window2bppScoreMatchesTheDecoder) {
   for (bool baseline_only : {true, false}) {
     SCOPED_TRACE(baseline_only ? "baseline evaluator" : "evaluator in use (AVX2 where usable)");
-    const bool previous = set_polish_baseline_only(baseline_only);
+    const bool previous = set_exact_search_baseline_only(baseline_only);
     check_window2_scores();
-    set_polish_baseline_only(previous);
+    set_exact_search_baseline_only(previous);
   }
 }
 

@@ -1,4 +1,4 @@
-// src/core/simd*.h: the integer and packed operations of the 4-lane wrapper (vint4, vi64x2,
+// src/core/simd*.h: the integer and packed operations of the 4-lane wrapper (vi32x4, vi64x2,
 // vu16x8, vu8x16), each against the scalar expression of its SSE2 semantics on generated lanes.
 // The float operations and the special-value checks are in simd_test.cpp. Built twice like it:
 // simd_int_test with the target's backend (SSE2 on x86-64, NEON on AArch64, also run under
@@ -20,9 +20,9 @@
 
 namespace {
 
-using tessera::simd::vf4;
+using tessera::simd::vf32x4;
+using tessera::simd::vi32x4;
 using tessera::simd::vi64x2;
-using tessera::simd::vint4;
 namespace simd = tessera::simd;
 using simd_test::ILanes;
 using simd_test::Lanes;
@@ -62,7 +62,7 @@ U8Lanes lanes(vu8x16 a) {
 }
 
 template <int N>
-void check_shifts(vint4 a, const std::int32_t* x) {
+void check_shifts(vi32x4 a, const std::int32_t* x) {
   const ILanes ra = lanes(simd::sra<N>(a)), rl = lanes(simd::srl<N>(a)), ll = lanes(simd::sll<N>(a));
   for (int i = 0; i < 4; ++i) {
     const std::uint32_t u = std::uint32_t(x[i]);
@@ -86,14 +86,14 @@ TEST(Simd, Int32LanesEveryOperation) {
       y[i] = rng.i32();
       m[i] = std::int32_t(rng.next());  // any bits: select is bitwise
     }
-    const vint4 a = simd::load4(x), b = simd::load4(y), mask = simd::load4(m);
+    const vi32x4 a = simd::load4(x), b = simd::load4(y), mask = simd::load4(m);
     const ILanes add = lanes(a + b), sub = lanes(a - b), mul = lanes(a * b);
     const ILanes an = lanes(a & b), orr = lanes(a | b), xr = lanes(a ^ b);
     const ILanes sel = lanes(simd::select(mask, a, b)), mn = lanes(simd::min(a, b));
     const ILanes sw = lanes(simd::swap_pairs(a)), sa = lanes(simd::select_alpha(a, b));
     const ILanes ps = lanes(simd::pair_sums(a, b)), ev = lanes(simd::even_lanes(a, b));
     const ILanes mx = lanes(simd::max(a, b)), sw64 = lanes(simd::swap_pairs64(a));
-    vint4 acc = a;
+    vi32x4 acc = a;
     acc += b;
     for (int i = 0; i < 4; ++i) {
       const std::int64_t p = x[i], q = y[i];
@@ -143,11 +143,11 @@ TEST(Simd, Int32LanesEveryOperation) {
                                            std::uint32_t(tex[4 * i + 3]) << 24);
     }
   }
-  const ILanes c = lanes(vint4(1, -2, 3, INT32_MIN)), s = lanes(vint4(-7));
+  const ILanes c = lanes(vi32x4(1, -2, 3, INT32_MIN)), s = lanes(vi32x4(-7));
   EXPECT_EQ(c.i[1], -2);
   EXPECT_EQ(c.i[3], INT32_MIN);
   EXPECT_EQ(s.i[2], -7);
-  EXPECT_EQ(lanes(vint4()).i[3], 0);
+  EXPECT_EQ(lanes(vi32x4()).i[3], 0);
 }
 
 TEST(Simd, Int64LanesEveryOperation) {
@@ -247,8 +247,8 @@ TEST(Simd, PackedLanesEveryOperation) {
     // 32-bit lanes narrowed (saturating) to 16 and 8 bits.
     std::int32_t v[16];
     for (int i = 0; i < 16; ++i) v[i] = rng.i32();
-    const vint4 q0 = simd::load4(v), q1 = simd::load4(v + 4);
-    const vint4 q2 = simd::load4(v + 8), q3 = simd::load4(v + 12);
+    const vi32x4 q0 = simd::load4(v), q1 = simd::load4(v + 4);
+    const vi32x4 q2 = simd::load4(v + 8), q3 = simd::load4(v + 12);
     const U16Lanes n16 = lanes(simd::narrow16(q0, q1));
     const U8Lanes n8 = lanes(simd::narrow(q0, q1, q2, q3));
     for (int i = 0; i < 8; ++i) EXPECT_EQ(std::int16_t(n16.u[i]), clamp_s16(v[i])) << v[i];
@@ -314,7 +314,7 @@ TEST(Simd, PackedLanesEveryOperation) {
     // channel16: channel c of eight RGBA8 texels.
     std::uint8_t texels[32];
     for (int i = 0; i < 32; ++i) texels[i] = std::uint8_t(rng.next());
-    const vint4 t0 = simd::load_texels4(texels), t1 = simd::load_texels4(texels + 16);
+    const vi32x4 t0 = simd::load_texels4(texels), t1 = simd::load_texels4(texels + 16);
     for (int ch = 0; ch < 4; ++ch) {
       const U16Lanes cl = lanes(simd::channel16(t0, t1, ch));
       for (int i = 0; i < 8; ++i) EXPECT_EQ(cl.u[i], texels[4 * i + ch]);

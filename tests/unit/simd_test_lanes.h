@@ -1,5 +1,6 @@
 // Helpers shared by the 4-lane wrapper tests (simd_test.cpp, simd_int_test.cpp): lane views of
-// vf4 / vint4, and (simd_test_rng.h) a fixed pseudo-random sequence of edge and generated values.
+// vf32x4 / vi32x4, and (simd_test_rng.h) a fixed pseudo-random sequence of edge and generated
+// values.
 #pragma once
 
 #include <cstdint>
@@ -10,13 +11,13 @@
 namespace simd_test {
 
 namespace simd = tessera::simd;
-using tessera::simd::vf4;
-using tessera::simd::vint4;
+using tessera::simd::vf32x4;
+using tessera::simd::vi32x4;
 
 struct Lanes {
   float f[4];
 };
-inline Lanes lanes(vf4 a) {
+inline Lanes lanes(vf32x4 a) {
   Lanes r;
   simd::storef4(a, r.f);
   return r;
@@ -24,7 +25,7 @@ inline Lanes lanes(vf4 a) {
 struct ILanes {
   std::int32_t i[4];
 };
-inline ILanes lanes(vint4 a) {
+inline ILanes lanes(vi32x4 a) {
   ILanes r;
   simd::store4(a, r.i);
   return r;

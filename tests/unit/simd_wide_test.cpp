@@ -20,8 +20,8 @@
 namespace {
 
 namespace simd = tessera::simd;
-using simd::vf8;
-using simd::vint8;
+using simd::vf32x8;
+using simd::vi32x8;
 using simd::vu16x16;
 using simd::vu8x32;
 
@@ -47,7 +47,7 @@ struct U8 {
 struct F8 {
   float l[8];
 };
-I8 lanes(vint8 a) {
+I8 lanes(vi32x8 a) {
   I8 r;
   simd::store8(a, r.l);
   return r;
@@ -62,7 +62,7 @@ U8 lanes(vu8x32 a) {
   simd::store_u8x32(a, r.l);
   return r;
 }
-F8 lanes(vf8 a) {
+F8 lanes(vf32x8 a) {
   F8 r;
   simd::storef8(a, r.l);
   return r;
@@ -96,7 +96,7 @@ TEST(SimdWide, Int32Lanes) {
       m.l[i] = (rng.next() & 1) ? -1 : 0;
       n.l[i] = std::int32_t(rng.next() % 40);
     }
-    const vint8 a = simd::load8(x.l), b = simd::load8(y.l);
+    const vi32x8 a = simd::load8(x.l), b = simd::load8(y.l);
     const I8 add = lanes(a + b), sub = lanes(a - b), mul = lanes(a * b), band = lanes(a & b),
              bor = lanes(a | b), bxor = lanes(a ^ b), anot = lanes(simd::andnot(a, b)),
              eq = lanes(simd::cmpeq(a, b)), gt = lanes(simd::cmpgt(a, b)),
@@ -150,7 +150,7 @@ TEST(SimdWide, Int32Lanes) {
     simd::store_u8x8(a, bytes);
     for (int i = 0; i < 8; ++i) EXPECT_EQ(bytes[i], clamp_u8(x.l[i]));
     // Halves and texel loads.
-    const I8 lh = lanes(vint8(simd::high(a), simd::low(a)));
+    const I8 lh = lanes(vi32x8(simd::high(a), simd::low(a)));
     for (int i = 0; i < 8; ++i) EXPECT_EQ(lh.l[i], x.l[i ^ 4]);
     std::uint8_t tex[32];
     std::memcpy(tex, x.l, 32);
@@ -174,7 +174,7 @@ TEST(SimdWide, FloatLanes) {
       y.l[i] = rng.f32();
       k.l[i] = rng.i32();
     }
-    const vf8 a = simd::loadf8(x.l), b = simd::loadf8(y.l);
+    const vf32x8 a = simd::loadf8(x.l), b = simd::loadf8(y.l);
     const F8 add = lanes(a + b), sub = lanes(a - b), mul = lanes(a * b), mx = lanes(simd::max(a, b)),
              mn = lanes(simd::min(a, b)), cv = lanes(simd::to_float(simd::load8(k.l)));
     const I8 eq = lanes(simd::cmpeq(a, b)), lt = lanes(simd::cmplt(a, b)),
@@ -191,7 +191,7 @@ TEST(SimdWide, FloatLanes) {
       EXPECT_EQ(lt.l[i], u < v ? -1 : 0);
       EXPECT_EQ(tr.l[i], u >= -2147483648.0f && u < 2147483648.0f ? std::int32_t(u) : INT32_MIN);
     }
-    const F8 lh = lanes(vf8(simd::high(a), simd::low(a)));
+    const F8 lh = lanes(vf32x8(simd::high(a), simd::low(a)));
     for (int i = 0; i < 8; ++i) EXPECT_EQ(fbits(lh.l[i]), fbits(x.l[i ^ 4]));
   }
 }
@@ -329,8 +329,8 @@ TEST(SimdWide, TexelPlanes) {
 
 TEST(SimdWide, WidthGenericNames) {
   TESSERA_SKIP_WITHOUT_AVX2(!skip_here(), "no AVX2 on this CPU");
-  static_assert(simd::kLanes<simd::vf4> == 4 && simd::kLanes<vf8> == 8);
-  static_assert(simd::kLanes<simd::vint4> == 4 && simd::kLanes<vint8> == 8);
+  static_assert(simd::kLanes<simd::vf32x4> == 4 && simd::kLanes<vf32x8> == 8);
+  static_assert(simd::kLanes<simd::vi32x4> == 4 && simd::kLanes<vi32x8> == 8);
   static_assert(simd::kLanes<simd::vu16x8> == 8 && simd::kLanes<vu16x16> == 16);
   static_assert(simd::kLanes<simd::vu8x16> == 16 && simd::kLanes<vu8x32> == 32);
   float f[8], g[8];
@@ -341,13 +341,13 @@ TEST(SimdWide, WidthGenericNames) {
     if (i < 16) h[i] = std::uint16_t(1000 * i + 7);
     b[i] = std::uint8_t(7 * i + 1);
   }
-  simd::store(simd::load_as<vf8>(f), g);
+  simd::store(simd::load_as<vf32x8>(f), g);
   simd::store(simd::load_as<vu16x16>(h), k);
   simd::store(simd::load_as<vu8x32>(b), c);
   EXPECT_EQ(std::memcmp(f, g, sizeof f), 0);
   EXPECT_EQ(std::memcmp(h, k, sizeof h), 0);
   EXPECT_EQ(std::memcmp(b, c, sizeof b), 0);
-  simd::store(simd::load_as<simd::vf4>(f + 4), g);
+  simd::store(simd::load_as<simd::vf32x4>(f + 4), g);
   EXPECT_EQ(std::memcmp(f + 4, g, 4 * sizeof(float)), 0);
   const std::int32_t v[8] = {-5, 0, 17, 255, 256, 1000, -1, 128};
   std::uint8_t o[8];
@@ -363,8 +363,8 @@ TEST(SimdWide, KernelCompositionsOnBothWidths) {
   for (int round = 0; round < 200; ++round) {
     std::int32_t x[8], r4[4], r8[8];
     for (auto& v : x) v = rng.i32();
-    simd::store(simd::div255_u32(simd::load_as<simd::vint4>(x)), r4);
-    simd::store(simd::div255_u32(simd::load_as<vint8>(x)), r8);
+    simd::store(simd::div255_u32(simd::load_as<simd::vi32x4>(x)), r4);
+    simd::store(simd::div255_u32(simd::load_as<vi32x8>(x)), r8);
     for (int i = 0; i < 8; ++i) {
       const auto want = std::int32_t(std::uint32_t(x[i]) / 255u);
       if (i < 4) {
@@ -374,8 +374,8 @@ TEST(SimdWide, KernelCompositionsOnBothWidths) {
     }
     std::uint8_t tex[64];
     for (auto& t : tex) t = std::uint8_t(rng.next());
-    simd::store(simd::load_texels_as<simd::vint4>(tex), r4);
-    simd::store(simd::load_texels_as<vint8>(tex), r8);
+    simd::store(simd::load_texels_as<simd::vi32x4>(tex), r4);
+    simd::store(simd::load_texels_as<vi32x8>(tex), r8);
     EXPECT_EQ(std::memcmp(r4, tex, 16), 0);
     EXPECT_EQ(std::memcmp(r8, tex, 32), 0);
     std::uint16_t w8[8], w16[16];

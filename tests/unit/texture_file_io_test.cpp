@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "tessera/io.h"
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 #include "tessera/procedural.h"
 #include "tessera/texture_file.h"
 #include "test_support.h"

@@ -1,6 +1,6 @@
 // Tests of tessera/texture_file.h's containers (PVR v3 and KTX 1.1): round trips, exact header
 // bytes, every malformed-header path, truncation at every offset. Detection, files and the
-// exchange with PVRTexToolCLI: texture_file_io_test.cpp; tessera/mipmap.h: mipmap_test.cpp.
+// exchange with PVRTexToolCLI: texture_file_io_test.cpp; tessera/image_mipmap.h: mipmap_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -9,7 +9,7 @@
 #include <string>
 #include <utility>
 
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 #include "tessera/texture_file.h"
 #include "texture_file_test_util.h"
 

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 #include "tessera/texture_file.h"
 
 namespace tessera::test {

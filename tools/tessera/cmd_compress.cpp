@@ -363,7 +363,7 @@ Command add_compress_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   sub->add_option("--iterations", args->iterations,
                   "Least-squares refinement sweeps instead of the quality's own (-1 = the "
-                  "quality's: fast 0, normal 3, high 3 at 4 bpp / up to 16 at 2 bpp; with "
+                  "quality's: fast 0, normal 3, high 3 at 4 bpp / 4 at 2 bpp; with "
                   "--quality fast, N > 0 refines the dilation result). A value other than -1, "
                   "or a non-zero --exact-search-rounds, leaves out high's crossover with a "
                   "second encoding")

@@ -8,7 +8,7 @@
 #include <filesystem>
 
 #include "cli.h"
-#include "seams.h"
+#include "report_seams.h"
 #include "tessera/io.h"
 
 namespace tessera::cli {

@@ -7,7 +7,7 @@
 #include "demo.h"
 #include "plot.h"
 #include "tessera/metrics.h"
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 #include "tessera/procedural.h"
 #include "tessera/pvrtc.h"
 #include "tessera/texture_file.h"

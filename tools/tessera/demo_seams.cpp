@@ -3,7 +3,7 @@
 #include <filesystem>
 
 #include "demo.h"
-#include "seams.h"
+#include "report_seams.h"
 
 namespace tessera::cli {
 

@@ -7,7 +7,7 @@
 #include <span>
 #include <string>
 
-#include "seams.h"
+#include "report_seams_internal.h"
 #include "tessera/io.h"
 
 namespace tessera::cli {

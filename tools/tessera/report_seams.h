@@ -1,29 +1,20 @@
-// Internal to the report of `tessera seams`: what its two halves share (report_seams.cpp: the
-// library's JSON and Markdown written; report_seams_plots.cpp: cdf.csv, the Figure-5 plots and
-// the frame-0 images).
+// Reports of the seam experiment of Toth 2013 (Table 1 and Figure 5), shared by `tessera seams`
+// and the demo report: the JSON summary, the Markdown tables, the CDF data and plots, and the
+// frame-0 images of an `experiments::run_seams` result.
 #pragma once
 
 #include <string>
 
 #include "tessera/experiments.h"
 
-namespace tessera::cli::seams_report {
+namespace tessera::cli {
 
-inline constexpr double kStep = experiments::kSeamsCdfStep;
-inline constexpr int kBins = experiments::kSeamsCdfBins;
+/// Writes DIR/seams.json, seams.md (experiments::to_json / to_markdown), cdf.csv,
+/// fig5_left.svg/.png, fig5_right.svg/.png and (with `write_images`, from the result's frame-0
+/// images) images/ for `result`, the outcome of `config`. DIR/images must exist when
+/// `write_images`. `json` receives the JSON written.
+Status write_seams_report(const experiments::SeamsConfig& config,
+                          const experiments::SeamsResult& result, const std::string& dir,
+                          bool write_images, std::string& json);
 
-/// "4x" for MSAA rate 4: the key of a rate in the JSON, CSV columns and file names.
-inline std::string rate_key(int r) { return experiments::seams_rate_key(r); }
-
-/// Writes `text` to `path` atomically.
-Status write_text(const std::string& path, const std::string& text);
-
-/// Frame 0 of every method and rate, the reference, and a zoom on the worst seam
-/// (experiments::seams_zoom_window) into DIR/images (which must exist).
-Status write_images(const experiments::SeamsConfig& c, const experiments::SeamsResult& res,
-                    const std::string& dir);
-
-/// DIR/cdf.csv and the Figure-5 plots (fig5_left/right.svg/.png, fig5_<rate>.svg).
-Status write_plots(const experiments::SeamsResult& res, const std::string& dir);
-
-}  // namespace tessera::cli::seams_report
+}  // namespace tessera::cli

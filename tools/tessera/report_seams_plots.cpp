@@ -9,7 +9,7 @@
 
 #include "plot.h"
 #include "report.h"
-#include "report_seams.h"
+#include "report_seams_internal.h"
 #include "tessera/io.h"
 #include "tessera/metrics.h"
 

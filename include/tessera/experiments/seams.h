@@ -205,6 +205,7 @@ struct SeamsReportOptions {
 struct SeamsZoomWindow {
   int x = 0, y = 0, w = 0, h = 0, scale = 4;
 };
+/// The zoom window of `result` (see `SeamsZoomWindow`).
 SeamsZoomWindow seams_zoom_window(const SeamsConfig& config, const SeamsResult& result);
 
 /// "4x" for MSAA rate 4: the key of a rate in the JSON (and in `tessera seams`' file names).

@@ -29,7 +29,7 @@
 //   TESSERA_ADAPTIVE_PASS_REFERENCE  all N samples, footprint 1 -> output image
 // Sample 0 is shaded again with its adaptive footprint when k > 0 (S used footprint m), so a
 // pixel's average is over k + 1 samples of consistent footprint (§4.1): by the hook, or by its
-// tessera_shade_first_again when it defines TESSERA_ADAPTIVE_FIRST_AGAIN (e.g. the albedo lookup alone,
+// tessera_shade_sample0_again when it defines TESSERA_ADAPTIVE_SAMPLE0_AGAIN (e.g. the albedo lookup alone,
 // with light terms the hook kept while compiled for TESSERA_ADAPTIVE_PASS_FIRST).
 //
 // Budget (AdaptiveFrame::budget): pixels are ranked by a unique 64-bit key (hi = the float bits
@@ -141,11 +141,11 @@ vec4 tessera_adaptive_average(vec4 sum, float wsum, int count) {
 }
 
 /// Sample p of `pixel` with `footprint`: sample 0 (already shaded into S with footprint m) goes
-/// to the hook's tessera_shade_first_again when it defines TESSERA_ADAPTIVE_FIRST_AGAIN.
+/// to the hook's tessera_shade_sample0_again when it defines TESSERA_ADAPTIVE_SAMPLE0_AGAIN.
 vec4 tessera_adaptive_shade(ivec2 pixel, int p, float footprint) {
   ivec2 g = tessera_adaptive_sample(pixel, p);
-#if defined(TESSERA_ADAPTIVE_FIRST_AGAIN)
-  if (p == 0) return tessera_shade_first_again(g, footprint);
+#if defined(TESSERA_ADAPTIVE_SAMPLE0_AGAIN)
+  if (p == 0) return tessera_shade_sample0_again(g, footprint);
 #endif
   return tessera_shade_sample(g, footprint);
 }

@@ -187,7 +187,7 @@ void tessera_window_scales(ivec2 pixel, int k, out float scales[TESSERA_ADAPTIVE
 }
 
 /// Sample 0 again with a new footprint: only its albedo lookup is repeated (S's light terms).
-vec3 tessera_first_again(ivec2 pixel, int i, float scale) {
+vec3 tessera_sample0_again(ivec2 pixel, int i, float scale) {
   TesseraSample s = tessera_fetch(tessera_window_sample(pixel, 0));
   if (s.material < 0) return tessera_background.rgb;
   return tessera_albedo(s, scale) * tessera_terms[2 * i].rgb + tessera_terms[2 * i + 1].rgb;
@@ -311,7 +311,7 @@ void main() {
   }
   float scales[TESSERA_ADAPTIVE_MAX_N];
   tessera_window_scales(pixel, k, scales);
-  tessera_out[i] = vec4(tessera_first_again(pixel, i, scales[0]), 1.0);
+  tessera_out[i] = vec4(tessera_sample0_again(pixel, i, scales[0]), 1.0);
   uint base = atomicAdd(tessera_list_total, uint(k));
   tessera_list_base[i] = base;
   if (base + uint(k) > tessera_list_capacity) return;  // the host grows the list and reruns
@@ -334,7 +334,7 @@ void main() {
   }
   float scales[TESSERA_ADAPTIVE_MAX_N];
   tessera_window_scales(pixel, k, scales);
-  vec3 sum = tessera_first_again(pixel, i, scales[0]);
+  vec3 sum = tessera_sample0_again(pixel, i, scales[0]);
   for (int p = 1; p <= k; ++p) sum += tessera_shade(tessera_window_sample(pixel, p), scales[p]);
   tessera_out[i] = vec4(sum / float(k + 1), 1.0);
 #else
@@ -345,7 +345,7 @@ void main() {
     float scales[TESSERA_ADAPTIVE_MAX_N];
     tessera_window_scales(pixel, k, scales);
     for (int p = 0; p <= k; ++p) tessera_scale_slots[local * uint(N) + uint(p)] = scales[p];
-    tessera_colour_slots[local * uint(N)] = tessera_first_again(pixel, i, scales[0]);
+    tessera_colour_slots[local * uint(N)] = tessera_sample0_again(pixel, i, scales[0]);
     uint base = atomicAdd(tessera_list_count, uint(k));
     for (int p = 1; p <= k; ++p) tessera_list[base + uint(p - 1)] = (local << 8) | uint(p);
   }

@@ -193,18 +193,18 @@ void refine(EncoderState& s, int iterations, std::uint64_t error);
 /// `passes` bounds the sweeps over the move list per block and round; blocks whose exact
 /// window error (7x7 texels) is at most `min_error` are skipped. Re-chooses the modulation at
 /// the end.
-void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error);
+void search_endpoints_4bpp(EncoderState& s, int rounds, int passes, std::uint32_t min_error);
 
-/// Extra choices of `polish`.
-struct PolishOptions {
+/// Extra choices of `search_endpoints_4bpp`.
+struct EndpointSearchOptions {
   /// Also try each neighbour's A, B or both as the block's pair (high).
   bool neighbour_moves = false;
   /// One flag per block: the first round searches only flagged blocks; the others are searched
   /// once a neighbour changes. Null: every block.
   const std::vector<std::uint8_t>* seeds = nullptr;
 };
-void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
-            const PolishOptions& options);
+void search_endpoints_4bpp(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
+                           const EndpointSearchOptions& options);
 
 /// 4 bpp only: replaces the endpoints of blocks whose exact window error exceeds `min_error`
 /// by pairs derived from the block's own texels where that lowers the exact window error

@@ -32,10 +32,10 @@ double search_cost(const ExactSearchStep& step) {
 void run_exact_search(EncoderState& s, const ExactSearchStep& step,
                       const std::vector<std::uint8_t>* seeds = nullptr) {
   if (step.rounds <= 0) return;
-  PolishOptions po;
+  EndpointSearchOptions po;
   po.neighbour_moves = step.neighbour_moves;
   po.seeds = seeds;
-  polish(s, step.rounds, step.passes, step.min_error, po);
+  search_endpoints_4bpp(s, step.rounds, step.passes, step.min_error, po);
 }
 
 }  // namespace

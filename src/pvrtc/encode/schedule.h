@@ -13,7 +13,8 @@
 
 namespace tessera::pvrtc::detail {
 
-/// One run of the 4 bpp exact search (exact_search.cpp, `polish`); `rounds` 0: not run.
+/// One run of the 4 bpp exact search (exact_search.cpp, `search_endpoints_4bpp`); `rounds` 0: not
+/// run.
 struct ExactSearchStep {
   int rounds = 0;               ///< Round bound; rounds stop early once no block changed.
   int passes = 1;               ///< Sweeps of the move list per block visit.
@@ -36,7 +37,7 @@ struct EncodeSchedule {
 
   // --- reseed (4 bpp, exact_search.cpp `reseed`), before the refinement
   int reseed_passes = 0;  ///< 0: none; pass k > 0 visits only blocks next to changed ones.
-  std::uint32_t reseed_min_error = 0;  ///< Blocks at most this (exact 8x8-window error) are kept.
+  std::uint32_t reseed_min_error = 0;  ///< Blocks at most this (exact 7x7-window error) are kept.
   int reseed_alpha_weight = 1;         ///< The squared alpha error counts this many times.
 
   // --- least-squares refinement (least_squares_refinement.cpp)

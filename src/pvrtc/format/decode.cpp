@@ -312,28 +312,28 @@ void modulation_map(const Grid& g, const std::uint64_t* words, std::uint8_t* m_e
 }
 
 void upscale_rows(const Grid& g, const Rgba5* e, int y0, int y1, std::uint8_t* out) {
-  using simd::vint4;
+  using simd::vi32x4;
   static_assert(sizeof(Rgba5) == 4 * sizeof(std::int32_t));
   const int bw = g.bw, half = bw / 2, wmask = g.pw - 1;
-  const vint4 step_scale(8 / bw);
+  const vi32x4 step_scale(8 / bw);
   for (int y = y0; y < y1; ++y) {
     const AxisTap ty = axis_tap(y, 4, g.ph);
     const Rgba5* r0 = e + std::size_t(ty.b0) * std::size_t(g.nbx);
     const Rgba5* r1 = e + std::size_t(ty.b1) * std::size_t(g.nbx);
-    const vint4 wy0(4 - ty.d), wy1(ty.d);
+    const vi32x4 wy0(4 - ty.d), wy1(ty.d);
     std::uint8_t* o = out + std::size_t(y - y0) * std::size_t(g.pw) * 4;
     // Between the centres of blocks bx and bx + 1 the column sums are linear in x: the bilinear
     // sum (weights scaled to 32) starts at 8 L and grows by (R - L) * 8 / bw per texel.
     for (int bx = 0; bx < g.nbx; ++bx) {
       const int bx1 = (bx + 1) & (g.nbx - 1);
-      const vint4 left = simd::load4(&r0[bx].r) * wy0 + simd::load4(&r1[bx].r) * wy1;
-      const vint4 right = simd::load4(&r0[bx1].r) * wy0 + simd::load4(&r1[bx1].r) * wy1;
-      vint4 w = left * vint4(8);
-      const vint4 step = (right - left) * step_scale;
+      const vi32x4 left = simd::load4(&r0[bx].r) * wy0 + simd::load4(&r1[bx].r) * wy1;
+      const vi32x4 right = simd::load4(&r0[bx1].r) * wy0 + simd::load4(&r1[bx1].r) * wy1;
+      vi32x4 w = left * vi32x4(8);
+      const vi32x4 step = (right - left) * step_scale;
       const int x0 = bx * bw + half;
       for (int d = 0; d < bw; ++d) {
-        const vint4 rgb = simd::sra<7>(w) + simd::sra<2>(w);
-        const vint4 a = simd::sra<5>(w) + simd::sra<1>(w);
+        const vi32x4 rgb = simd::sra<7>(w) + simd::sra<2>(w);
+        const vi32x4 a = simd::sra<5>(w) + simd::sra<1>(w);
         simd::store_u8x4(simd::select_alpha(rgb, a), o + std::size_t((x0 + d) & wmask) * 4);
         w += step;
       }

@@ -42,9 +42,9 @@ template <>
 /// p[b + 1]): per block b, left = p[b] x4 p[b + 1] x4, right = p[b + 1] x4 p[b + 2] x4.
 [[maybe_unused]] inline void mod2_taps(const std::uint16_t* p, simd::vu16x8& left,
                                        simd::vu16x8& right) {
-  const simd::vint4 p1(p[1]);
-  left = simd::narrow16(simd::vint4(p[0]), p1);
-  right = simd::narrow16(p1, simd::vint4(p[2]));
+  const simd::vi32x4 p1(p[1]);
+  left = simd::narrow16(simd::vi32x4(p[0]), p1);
+  right = simd::narrow16(p1, simd::vi32x4(p[2]));
 }
 [[maybe_unused]] inline void mod2_taps(const std::uint16_t* p, simd::vu16x16& left,
                                        simd::vu16x16& right) {
@@ -84,12 +84,12 @@ template <>
 }
 
 /// Per block, the sum of its four 32-bit lanes (wrapping).
-[[maybe_unused]] inline void mod2_block_sums(simd::vint4 x, std::uint32_t* out) {
+[[maybe_unused]] inline void mod2_block_sums(simd::vi32x4 x, std::uint32_t* out) {
   std::int32_t l[4];
   simd::store4(x, l);
   out[0] = std::uint32_t(l[0]) + std::uint32_t(l[1]) + std::uint32_t(l[2]) + std::uint32_t(l[3]);
 }
-[[maybe_unused]] inline void mod2_block_sums(simd::vint8 x, std::uint32_t* out) {
+[[maybe_unused]] inline void mod2_block_sums(simd::vi32x8 x, std::uint32_t* out) {
   out[0] = std::uint32_t(simd::sum_lanes(simd::low(x)));
   out[1] = std::uint32_t(simd::sum_lanes(simd::high(x)));
 }

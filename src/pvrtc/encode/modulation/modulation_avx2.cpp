@@ -37,7 +37,7 @@ inline void block_quad_errors(const std::uint16_t* const v[4], const std::uint8_
                               BlockModAvx2 out[4]) {
   // Lanes: 16-bit values of texels 0-7 (low half) and 8-15 (high); the 32-bit sums hold texels
   // 0-3 and 8-11 (acc[0]: blocks 0 and 2) or 4-7 and 12-15 (acc[1]: blocks 1 and 3).
-  ModAcc<vint8> acc[2];
+  ModAcc<vi32x8> acc[2];
   vu16x16 clear;  // all ones where some row's target alpha < 128
   mod_step<kAlpha, kExtra, kWeighted>(v, t, w, vstride, bx, acc, clear);
   mod_block_results<kExtra>(acc, out);

@@ -181,12 +181,12 @@ inline void mod_step(const std::uint16_t* const v[4], const std::uint8_t* const 
 /// The column codes of a step's blocks (32-bit lanes, one a column: the code of row j in byte j)
 /// moved to bit 2 * column within each block's 4 lanes: a multiply on 4 lanes (SSE2 has no
 /// per-lane shift; the lanes wrap, as the sums after), a per-lane shift on 8.
-[[maybe_unused]] inline simd::vint4 mod_column_bits(simd::vint4 b) {
-  return b * simd::vint4(1, 4, 16, 64);
+[[maybe_unused]] inline simd::vi32x4 mod_column_bits(simd::vi32x4 b) {
+  return b * simd::vi32x4(1, 4, 16, 64);
 }
-[[maybe_unused]] inline simd::vint8 mod_column_bits(simd::vint8 b) {
-  const simd::vint4 s(0, 2, 4, 6);
-  return simd::sllv(b, simd::vint8(s, s));
+[[maybe_unused]] inline simd::vi32x8 mod_column_bits(simd::vi32x8 b) {
+  const simd::vi32x4 s(0, 2, 4, 6);
+  return simd::sllv(b, simd::vi32x8(s, s));
 }
 
 /// The step's per-block results from its accumulators into out[0 .. kLanes<VI> / 2) (the

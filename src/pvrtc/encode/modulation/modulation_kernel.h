@@ -42,7 +42,7 @@ inline void block_pair_errors(const ModRow4& r, int bx, BlockMod out[2]) {
     t[j] = r.t[j] + std::size_t(bx) * 16;
     if constexpr (kWeighted) w[j] = r.w[j] + std::size_t(bx) * 4;
   }
-  ModAcc<simd::vint4> acc[2];
+  ModAcc<simd::vi32x4> acc[2];
   simd::vu16x8 clear_lanes;  // unused: the bytes below say it as cheaply
   mod_step<kAlpha, kExtra, kWeighted>(r.v, t, w, r.vstride, bx, acc, clear_lanes);
   mod_block_results<kExtra>(acc, out);

@@ -1,29 +1,13 @@
-// Exact local search on 4 bpp endpoints: "reseed" (before the refinement) and "polish" (after).
-//
-// Reseed: the principal-axis start sees each block's whole bilinear footprint, so where the
-// block's own texels span only part of it (stripes, thin dark creases next to bright areas)
-// one endpoint lands far from every texel, no texel selects it and the least-squares
-// refinement cannot move it again. Each block whose exact window error is high tries endpoint
-// pairs from its own 4x4 texels (principal split means and extreme texels, both orientations)
-// and keeps the best if it lowers the exact error of its window.
-//
-// The least-squares model is linear and ignores the decoder's truncations, so it stalls where
-// quantisation matters most (edges, saturated colours). Here each block's endpoint codes are
-// perturbed (one channel +-1, one channel of A and B together, or all colour channels of A, of
-// B or of both together; optionally a neighbour's A, B or both copied in) and a move is kept only
-// when the exact decoded error over the 7x7 texels the block influences drops, with every texel's
-// modulation re-chosen within its block's mode. Blocks are visited in the same 2x2 colouring as the
-// refinement, so the passes are parallel and deterministic; after the first round only blocks with
-// a changed neighbour are searched again (exact: nothing else in their window moved). A candidate's
-// window error is summed with the texels that erred most first (in the order sorted at the block's
-// first visit) and stops once it reaches the best so far (integer sums: every kept move is the
-// same). Candidate moves step the pair's codes, unpacked once (exact_search_moves.h). A candidate
-// that changes one colour channel only is scored channel-planar from the other channels' per-blend
-// errors (exact_search_kernel.h), and a pair already met in the visit is not scored again. Where
-// the CPU has AVX2 both evaluators run twice the texels a step (exact_search_avx2.cpp; the same
-// integers: the evaluators are written once, exact_search_evaluators.h). With alpha-weighted
-// colour error (EncodeOptions::alpha_weighted) the windows carry each texel's colour scale and
-// the evaluators scale its colour differences by it.
+// The exact searches on 4 bpp endpoints: `reseed` (before the least-squares refinement:
+// endpoint pairs from a block's own texels) and `search_endpoints_4bpp` (after it: greedy +-1
+// and neighbour-copy moves of each block's endpoint codes), each keeping a change only where the
+// exactly decoded error of the block's 7x7-texel window drops.
+// Where: steps "reseed" and 4 of docs/architecture.md's PVRTC table (the step-by-step
+// walkthrough is there, "The exact endpoint search"); driven by passes.cpp per schedule.cpp.
+// Pieces: the window evaluators (exact_search_kernel.h, _evaluators.h, _avx2.cpp), the moves
+// (exact_search_moves.h), the window layout (exact_search_window.h).
+// Exact and deterministic: integer sums, the 2x2 block colouring of the refinement, every kept
+// move the same whatever the thread count or evaluator width.
 #include <algorithm>
 #include <atomic>
 #include <bit>
@@ -44,14 +28,15 @@ namespace {
 
 std::atomic<bool> g_baseline_only{false};
 
-// The window evaluators, chosen once per reseed() / polish() call: exact_search_kernel.h's (the
-// evaluators of exact_search_evaluators.h with 4 lanes: SSE2, NEON or scalar through simd.h) or
-// exact_search_avx2.cpp's (the same with 8 lanes) where polish_avx2_active(). Same integers.
-// kWeighted: alpha-weighted colour error (a template flag, so that the unweighted search runs
-// the code it ran before the option existed; the AVX2 entry points read lw.weighted).
+// The window evaluators, chosen once per reseed() / search_endpoints_4bpp() call:
+// exact_search_kernel.h's (the evaluators of exact_search_evaluators.h with 4 lanes: SSE2, NEON or
+// scalar through simd.h) or exact_search_avx2.cpp's (the same with 8 lanes) where
+// exact_search_avx2_active(). Same integers. kWeighted: alpha-weighted colour error (a template
+// flag, so that the unweighted search does no per-texel scaling at all; the AVX2 entry points
+// read lw.weighted).
 template <bool kWeighted>
 struct Evaluators {
-  bool avx2 = polish_avx2_active();
+  bool avx2 = exact_search_avx2_active();
   std::uint32_t local(const LocalWindow& lw, const Rgba5& a, const Rgba5& b,
                       std::uint32_t bound) const {
     if (!avx2) {
@@ -94,7 +79,7 @@ struct Window {
 // The exact search counts the squared alpha error twice. Alpha PSNR is over one channel and
 // RGB PSNR over three, so alpha error costs more dB per unit; the final modulation choice stays
 // unweighted. Weight 3 traded too much RGB (docs/benchmarks/pvrtc_history.md).
-constexpr int kPolishAlphaWeight = 2;
+constexpr int kSearchAlphaWeight = 2;
 
 // Candidate endpoint pairs for block (bx, by) from its own 4x4 texels: their principal-axis
 // split (`split_pairs`: the half means and the two extreme texels, both orientations), then
@@ -391,7 +376,7 @@ int reseed(EncoderState& s, std::uint32_t min_error, std::vector<std::uint8_t>& 
                       : reseed_t<false>(s, min_error, changed, alpha_weight);
 }
 
-bool polish_avx2_active() {
+bool exact_search_avx2_active() {
 #if defined(TESSERA_NO_SIMD)
   return false;  // the scalar build stays scalar (the AVX2 kernels are still built and tested)
 #else
@@ -399,24 +384,171 @@ bool polish_avx2_active() {
 #endif
 }
 
-bool set_polish_baseline_only(bool on) { return g_baseline_only.exchange(on); }
+bool set_exact_search_baseline_only(bool on) { return g_baseline_only.exchange(on); }
 
-void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
-  polish(s, rounds, passes, min_error, PolishOptions{});
+void search_endpoints_4bpp(EncoderState& s, int rounds, int passes, std::uint32_t min_error) {
+  search_endpoints_4bpp(s, rounds, passes, min_error, EndpointSearchOptions{});
 }
 
 namespace {
 
+// What the block visits of one search_endpoints_4bpp call share.
 template <bool kWeighted>
-void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
-              const PolishOptions& options) {
+struct BlockSearch {
+  const EncoderState& s;
+  const Window& w;
+  const Evaluators<kWeighted>& ev;
+  /// Each block's texels by decreasing error under its pair at its first visit (texel indices,
+  /// raster 0-48; valid where has_order): later visits build their window in that order
+  /// without sorting again (the texels that err most change little while the search
+  /// converges; re-sorting each visit cost more than it saved).
+  std::vector<std::uint8_t>& orders;
+  std::vector<std::uint8_t>& has_order;
+  int passes;
+  std::uint32_t min_error;
+  bool neighbour_moves;
+};
+
+// Lays out block j's window (in its error order, sorting at the first visit) and returns its
+// exact error under the block's current pair.
+template <bool kWeighted>
+std::uint32_t block_window(const BlockSearch<kWeighted>& bs, int bx, int by, std::size_t j,
+                           LocalWindow& lw) {
+  const Window& w = bs.w;
+  std::uint8_t* order = &bs.orders[j * 49];
+  if (bs.has_order[j]) {
+    std::uint8_t slot_of[49];
+    for (int i = 0; i < 49; ++i) slot_of[order[i]] = std::uint8_t(i);
+    build_local<kWeighted>(w, bx, by, lw, slot_of);
+    return bs.ev.local(lw, (*w.ea)[j], (*w.eb)[j], std::numeric_limits<std::uint32_t>::max());
+  }
+  build_local<kWeighted>(w, bx, by, lw);
+  std::uint32_t err[52];
+  const std::uint32_t best = bs.ev.local_store(lw, (*w.ea)[j], (*w.eb)[j], err);
+  if (best <= bs.min_error) return best;  // skipped: no order needed
+  order_by_error(err, order);
+  permute_local(lw, order);
+  bs.has_order[j] = 1;
+  return best;
+}
+
+// One visit of block (bx, by): the greedy descent over the moves of its endpoint pair (and,
+// with neighbour moves, its neighbours' A, B or both). Returns the best pair found in
+// (pair_a, pair_b); false where the block is skipped or keeps its pair.
+template <bool kWeighted>
+bool search_block(const BlockSearch<kWeighted>& bs, int bx, int by, std::uint16_t& pair_a,
+                  std::uint16_t& pair_b) {
+  const EncoderState& s = bs.s;
+  const Grid& g = s.g;
+  const Evaluators<kWeighted>& ev = bs.ev;
+  const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+  LocalWindow lw;
+  std::uint32_t best = block_window(bs, bx, by, j, lw);
+  if (best <= bs.min_error) return false;
+  std::uint16_t cur_a = s.ca[j], cur_b = s.cb[j];
+  // Candidates differing from the current pair in one colour channel only (most
+  // of the +-1 moves) go to the channel-planar evaluator; its per-pair tables are
+  // built when first needed after each change of the current pair.
+  PlanarWindow pw;
+  bool planar_built = false;
+  unsigned planar_valid = 0;  // bit 0: planar_refresh; bit 1 + c: planar_rest(c)
+  Rgba5 cur5a = (*bs.w.ea)[j], cur5b = (*bs.w.eb)[j];
+  // c: the one colour channel the candidate changes, else -1 (then the general evaluator).
+  auto eval = [&](const Rgba5& a, const Rgba5& b, int c, std::uint32_t bound) {
+    if (c < 0) return ev.local(lw, a, b, bound);
+    if (!planar_built) {
+      build_planar(lw, pw);
+      planar_built = true;
+    }
+    if (!(planar_valid & 1u)) {
+      ev.refresh(pw, cur5a, cur5b);
+      planar_valid = 1;
+    }
+    if (!(planar_valid & (2u << c))) {
+      planar_rest(pw, c);
+      planar_valid |= 2u << c;
+    }
+    const std::int32_t va[3] = {a.r, a.g, a.b}, vb[3] = {b.r, b.g, b.b};
+    return ev.planar(pw, c, va[c], vb[c], bound);
+  };
+  PairCodes codes(cur_a, cur_b);
+  auto take = [&](std::uint16_t na, std::uint16_t nb) {
+    cur_a = na;
+    cur_b = nb;
+    cur5a = expand_a(na);
+    cur5b = expand_b(nb);
+    codes = PairCodes(na, nb);
+    planar_valid = 0;
+  };
+  SeenPairs seen;
+  seen.check_insert((std::uint32_t(cur_a) << 16) | cur_b);
+  bool improved = true;
+  for (int pass = 0; pass < bs.passes && improved; ++pass) {
+    improved = false;
+    for (int mv = 0; mv < kMoves; ++mv) {
+      std::uint16_t na, nb;
+      if (!codes.moved(mv, na, nb)) continue;
+      const std::uint32_t key = (std::uint32_t(na) << 16) | nb;
+      if (seen.check_insert(key)) continue;
+      const std::uint32_t e = eval(expand_a(na), expand_b(nb), kMoveTable.planar[mv], best);
+      if (e < best) {
+        best = e;
+        take(na, nb);
+        improved = true;
+      }
+    }
+    if (!bs.neighbour_moves) continue;  // next pass
+    // Copy moves: a neighbour's A, its B, or both (edges that cross several
+    // blocks want the same pair on both sides; the 2x2 colouring keeps the
+    // neighbours fixed while this class is searched, so this is deterministic).
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (dx == 0 && dy == 0) continue;
+        const std::size_t k = std::size_t((by + dy) & (g.nby - 1)) * std::size_t(g.nbx) +
+                              std::size_t((bx + dx) & (g.nbx - 1));
+        const std::uint16_t cand[3][2] = {{s.ca[k], cur_b}, {cur_a, s.cb[k]}, {s.ca[k], s.cb[k]}};
+        for (const auto& c : cand) {
+          if (seen.check_insert((std::uint32_t(c[0]) << 16) | c[1])) continue;
+          const Rgba5 a = expand_a(c[0]), b = expand_b(c[1]);
+          const std::uint32_t e =
+              eval(a, b, single_colour_channel(a, b, cur5a, cur5b, lw.nch), best);
+          if (e < best) {
+            best = e;
+            take(c[0], c[1]);
+            improved = true;
+          }
+        }
+      }
+    }
+  }
+  pair_a = cur_a;
+  pair_b = cur_b;
+  return cur_a != s.ca[j] || cur_b != s.cb[j];
+}
+
+// The latest step stamp of `changed_at` in the 3x3 blocks around (bx, by) (wrapping).
+int latest_change_around(const Grid& g, const std::vector<int>& changed_at, int bx, int by) {
+  int latest = -1;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      latest =
+          std::max(latest, changed_at[std::size_t((by + dy) & (g.nby - 1)) * std::size_t(g.nbx) +
+                                      std::size_t((bx + dx) & (g.nbx - 1))]);
+    }
+  }
+  return latest;
+}
+
+template <bool kWeighted>
+void search_endpoints_4bpp_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
+                             const EndpointSearchOptions& options) {
   const Grid& g = s.g;
   std::vector<Rgba5> ea(g.blocks()), eb(g.blocks());
   for (std::size_t i = 0; i < g.blocks(); ++i) {
     ea[i] = expand_a(s.ca[i]);
     eb[i] = expand_b(s.cb[i]);
   }
-  const Window w{&s, &ea, &eb, &s.mode, s.alpha_mode ? 4 : 3, kPolishAlphaWeight};
+  const Window w{&s, &ea, &eb, &s.mode, s.alpha_mode ? 4 : 3, kSearchAlphaWeight};
   // A block's search depends only on the endpoints in its 3x3 neighbourhood (and the modes,
   // fixed here): once it has been searched, it is searched again only after one of those
   // changed (step stamps: phase 4 * round + colour class). Skipping is exact, so rounds can run
@@ -429,130 +561,24 @@ void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
       if (!(*options.seeds)[j]) searched_at[j] = 0;
     }
   }
-  // Each block's texels by decreasing error under its pair at its first visit (texel indices,
-  // raster 0-48): later visits build their window in that order without sorting again (the
-  // texels that err most change little while the search converges; re-sorting each visit cost
-  // more than it saved).
   std::vector<std::uint8_t> orders(g.blocks() * 49), has_order(g.blocks(), 0);
   const Evaluators<kWeighted> ev;
+  const BlockSearch<kWeighted> bs{s,         w,      ev,        orders,
+                                  has_order, passes, min_error, options.neighbour_moves};
   double searched_total = 0, searched_before = 0;  // for the progress reports
   for (int round = 0; round < rounds; ++round) {
     std::vector<std::uint8_t> any_change(std::size_t(g.nby / 2), 0);
     for_each_block_2x2(g, s.threads, [&](int bx, int by) {
       const int step = 4 * round + (bx & 1) + 2 * (by & 1);  // the colour class's phase
       const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-      int latest = -1;
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          latest = std::max(
-              latest,
-              changed_at[std::size_t((by + dy) & (g.nby - 1)) * std::size_t(g.nbx) +
-                         std::size_t((bx + dx) & (g.nbx - 1))]);
-        }
-      }
-      if (latest < searched_at[j]) return;
+      if (latest_change_around(g, changed_at, bx, by) < searched_at[j]) return;
       searched_at[j] = step;
-      LocalWindow lw;
-      std::uint8_t* order = &orders[j * 49];
-      std::uint32_t best;
-      if (has_order[j]) {
-        std::uint8_t slot_of[49];
-        for (int i = 0; i < 49; ++i) slot_of[order[i]] = std::uint8_t(i);
-        build_local<kWeighted>(w, bx, by, lw, slot_of);
-        best = ev.local(lw, ea[j], eb[j], std::numeric_limits<std::uint32_t>::max());
-        if (best <= min_error) return;
-      } else {
-        build_local<kWeighted>(w, bx, by, lw);
-        std::uint32_t err[52];
-        best = ev.local_store(lw, ea[j], eb[j], err);
-        if (best <= min_error) return;
-        order_by_error(err, order);
-        permute_local(lw, order);
-        has_order[j] = 1;
-      }
-      std::uint16_t cur_a = s.ca[j], cur_b = s.cb[j];
-      // Candidates differing from the current pair in one colour channel only (most
-      // of the +-1 moves) go to the channel-planar evaluator; its per-pair tables are
-      // built when first needed after each change of the current pair.
-      PlanarWindow pw;
-      bool planar_built = false;
-      unsigned planar_valid = 0;  // bit 0: planar_refresh; bit 1 + c: planar_rest(c)
-      Rgba5 cur5a = ea[j], cur5b = eb[j];
-      // c: the one colour channel the candidate changes, else -1 (then the general evaluator).
-      auto eval = [&](const Rgba5& a, const Rgba5& b, int c, std::uint32_t bound) {
-        if (c < 0) return ev.local(lw, a, b, bound);
-        if (!planar_built) {
-          build_planar(lw, pw);
-          planar_built = true;
-        }
-        if (!(planar_valid & 1u)) {
-          ev.refresh(pw, cur5a, cur5b);
-          planar_valid = 1;
-        }
-        if (!(planar_valid & (2u << c))) {
-          planar_rest(pw, c);
-          planar_valid |= 2u << c;
-        }
-        const std::int32_t va[3] = {a.r, a.g, a.b}, vb[3] = {b.r, b.g, b.b};
-        return ev.planar(pw, c, va[c], vb[c], bound);
-      };
-      PairCodes codes(cur_a, cur_b);
-      auto take = [&](std::uint16_t na, std::uint16_t nb) {
-        cur_a = na;
-        cur_b = nb;
-        cur5a = expand_a(na);
-        cur5b = expand_b(nb);
-        codes = PairCodes(na, nb);
-        planar_valid = 0;
-      };
-      SeenPairs seen;
-      seen.check_insert((std::uint32_t(cur_a) << 16) | cur_b);
-      bool improved = true;
-      for (int pass = 0; pass < passes && improved; ++pass) {
-        improved = false;
-        for (int mv = 0; mv < kMoves; ++mv) {
-          std::uint16_t na, nb;
-          if (!codes.moved(mv, na, nb)) continue;
-          const std::uint32_t key = (std::uint32_t(na) << 16) | nb;
-          if (seen.check_insert(key)) continue;
-          const std::uint32_t e = eval(expand_a(na), expand_b(nb), kMoveTable.planar[mv], best);
-          if (e < best) {
-            best = e;
-            take(na, nb);
-            improved = true;
-          }
-        }
-        if (!options.neighbour_moves) continue;  // next pass
-        // Copy moves: a neighbour's A, its B, or both (edges that cross several
-        // blocks want the same pair on both sides; the 2x2 colouring keeps the
-        // neighbours fixed while this class is searched, so this is deterministic).
-        for (int dy = -1; dy <= 1; ++dy) {
-          for (int dx = -1; dx <= 1; ++dx) {
-            if (dx == 0 && dy == 0) continue;
-            const std::size_t k =
-                std::size_t((by + dy) & (g.nby - 1)) * std::size_t(g.nbx) +
-                std::size_t((bx + dx) & (g.nbx - 1));
-            const std::uint16_t cand[3][2] = {
-                {s.ca[k], cur_b}, {cur_a, s.cb[k]}, {s.ca[k], s.cb[k]}};
-            for (const auto& c : cand) {
-              if (seen.check_insert((std::uint32_t(c[0]) << 16) | c[1])) continue;
-              const Rgba5 a = expand_a(c[0]), b = expand_b(c[1]);
-              const std::uint32_t e =
-                  eval(a, b, single_colour_channel(a, b, cur5a, cur5b, lw.nch), best);
-              if (e < best) {
-                best = e;
-                take(c[0], c[1]);
-                improved = true;
-              }
-            }
-          }
-        }
-      }
-      if (cur_a == s.ca[j] && cur_b == s.cb[j]) return;
-      s.ca[j] = cur_a;
-      s.cb[j] = cur_b;
-      ea[j] = expand_a(cur_a);
-      eb[j] = expand_b(cur_b);
+      std::uint16_t a, b;
+      if (!search_block(bs, bx, by, a, b)) return;
+      s.ca[j] = a;
+      s.cb[j] = b;
+      ea[j] = expand_a(a);
+      eb[j] = expand_b(b);
       changed_at[j] = step;
       any_change[std::size_t(by / 2)] = 1;
     });
@@ -575,13 +601,13 @@ void polish_t(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
 
 }  // namespace
 
-void polish(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
-            const PolishOptions& options) {
+void search_endpoints_4bpp(EncoderState& s, int rounds, int passes, std::uint32_t min_error,
+                           const EndpointSearchOptions& options) {
   if (s.g.format != Format::pvrtc1_4bpp || rounds <= 0) return;
   if (s.weighted()) {
-    polish_t<true>(s, rounds, passes, min_error, options);
+    search_endpoints_4bpp_t<true>(s, rounds, passes, min_error, options);
   } else {
-    polish_t<false>(s, rounds, passes, min_error, options);
+    search_endpoints_4bpp_t<false>(s, rounds, passes, min_error, options);
   }
 }
 

@@ -57,7 +57,7 @@ constexpr double kSearchShare = 4.0, kSeededSearchShare = 1.9, kDescentShare = 0
                  kRefineShare = 0.33, kFinalShare = 0.45;
 
 // The bounded window error of the endpoint codes (ca, cb) (exact_search_2bpp_evaluator.h: the
-// decoder's arithmetic, four texels a step); `avx2` (polish_avx2_active(), read once per
+// decoder's arithmetic, four texels a step); `avx2` (exact_search_avx2_active(), read once per
 // search): the same evaluator with the 8-lane types (exact_search_2bpp_avx2.cpp), the same
 // integers. Takes the codes, not the expanded endpoints: passed by reference, those would be
 // split into eight scalar arguments for this one hot call.
@@ -202,7 +202,7 @@ int search(EncoderState& s, const std::vector<std::uint8_t>* seeds) {
   // its 3x3 neighbourhood changed since its last search.
   std::vector<int> changed_at(g.blocks(), -1), searched_at(g.blocks(), -2);
   std::vector<int> changes_per_row(std::size_t(g.nby), 0);
-  const bool avx2 = polish_avx2_active();
+  const bool avx2 = exact_search_avx2_active();
   if (seeds != nullptr) {
     for (std::size_t j = 0; j < g.blocks(); ++j) {
       if (!(*seeds)[j]) searched_at[j] = 0;  // waits for a changed neighbour
@@ -303,7 +303,7 @@ std::uint32_t window_error_2bpp(const EncoderState& s, int bx, int by, std::uint
   Window2 w;
   build_window(s, ea, eb, bx, by, w);
   const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-  const bool avx2 = polish_avx2_active();
+  const bool avx2 = exact_search_avx2_active();
   if (ordered) order_window(w, ea[j], eb[j], avx2);
   return eval(w, ca, cb, bound, avx2);
 }

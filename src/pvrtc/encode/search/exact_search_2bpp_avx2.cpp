@@ -5,7 +5,7 @@
 // checked less often (every 8 texels), which changes nothing below the bound.
 //
 // Compiled with -mavx2 (src/CMakeLists.txt), which gives the wrapper its AVX2 backend, and
-// called only where polish_avx2_active(). So that no AVX2 code can stand in for baseline code
+// called only where exact_search_avx2_active(). So that no AVX2 code can stand in for baseline code
 // elsewhere, the wrapper's functions compiled here live in their own inline namespace
 // (simd_int.h); otherwise this file includes no header with inline functions or templates of
 // external linkage (exact_search_2bpp_evaluator.h's have internal linkage; not pvrtc_kernel.h);
@@ -35,7 +35,7 @@ std::uint32_t window2_error_store_avx2(const Window2& w, const std::int32_t a[4]
 
 }  // namespace tessera::pvrtc::detail
 
-#else  // no AVX2 kernels in this build: polish_avx2_active() is false
+#else  // no AVX2 kernels in this build: exact_search_avx2_active() is false
 
 namespace tessera::pvrtc::detail {
 

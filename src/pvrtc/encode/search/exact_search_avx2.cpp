@@ -49,7 +49,7 @@ std::uint32_t planar_error_avx2(const PlanarWindow& pw, int c, std::int32_t av, 
 
 }  // namespace tessera::pvrtc::detail
 
-#else  // no AVX2 kernels in this build: polish_avx2_active() is false
+#else  // no AVX2 kernels in this build: exact_search_avx2_active() is false
 
 namespace tessera::pvrtc::detail {
 

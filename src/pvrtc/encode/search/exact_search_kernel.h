@@ -94,11 +94,11 @@ inline std::uint32_t local_error_weighted(const LocalWindow& lw, const Rgba5& a,
 /// kWeighted: colour differences scaled by pw.scale (pw.weighted).
 template <bool kWeighted>
 [[gnu::noinline]] inline void planar_refresh_t(PlanarWindow& pw, const Rgba5& a, const Rgba5& b) {
-  using simd::vf4;
-  using simd::vint4;
+  using simd::vf32x4;
+  using simd::vi32x4;
   using simd::vu16x8;
   const std::int32_t av[4] = {a.r, a.g, a.b, a.a}, bv[4] = {b.r, b.g, b.b, b.a};
-  const vint4 w(pw.alpha_weight);
+  const vi32x4 w(pw.alpha_weight);
   for (int g = 0; g < PlanarWindow::kGroups; ++g) {
     const int o = 8 * g;
     const vu16x8 own = simd::load_u16x8(&pw.own[o]);
@@ -128,9 +128,9 @@ template <bool kWeighted>
     for (int sl = 0; sl < PlanarWindow::kSlots; ++sl) {
       const vu16x8 e0 = simd::load_u16x8(&pw.e[0][sl][o]), e1 = simd::load_u16x8(&pw.e[1][sl][o]),
                    e2 = simd::load_u16x8(&pw.e[2][sl][o]);
-      vint4 lo = simd::widen32_lo(e0) + simd::widen32_lo(e1) + simd::widen32_lo(e2);
-      vint4 hi = simd::widen32_hi(e0) + simd::widen32_hi(e1) + simd::widen32_hi(e2);
-      vint4 plo, phi;  // punch-through (slot 4, RGBA): the colour of weight 4, alpha 0
+      vi32x4 lo = simd::widen32_lo(e0) + simd::widen32_lo(e1) + simd::widen32_lo(e2);
+      vi32x4 hi = simd::widen32_hi(e0) + simd::widen32_hi(e1) + simd::widen32_hi(e2);
+      vi32x4 plo, phi;  // punch-through (slot 4, RGBA): the colour of weight 4, alpha 0
       if (sl == 4 && pw.nch == 4) {
         plo = lo + simd::widen32_lo(tt) * w + simd::load4(&pw.excl4p[o]);
         phi = hi + simd::widen32_hi(tt) * w + simd::load4(&pw.excl4p[o + 4]);
@@ -144,7 +144,7 @@ template <bool kWeighted>
         lo += simd::load4(&ex[o]);
         hi += simd::load4(&ex[o + 4]);
       }
-      vf4 flo = simd::to_float(lo), fhi = simd::to_float(hi);
+      vf32x4 flo = simd::to_float(lo), fhi = simd::to_float(hi);
       if (sl == 4 && pw.nch == 4) {
         flo = simd::min(flo, simd::to_float(plo));
         fhi = simd::min(fhi, simd::to_float(phi));

@@ -54,10 +54,10 @@ template <>
 // float), excluded blends (2^24 and up) stay at least 2^24 once rounded, and the blends of
 // weight 0 and 8 are never excluded, so the minimum is the exact integer minimum. The 8-lane
 // ones (AVX2 has pminsd) take the integer minimum directly: the same number.
-[[maybe_unused]] inline simd::vf4 min_lanes(simd::vint4 x) { return simd::to_float(x); }
-[[maybe_unused]] inline simd::vint4 int_lanes(simd::vf4 x) { return simd::to_int_trunc(x); }
-[[maybe_unused]] inline simd::vint8 min_lanes(simd::vint8 x) { return x; }
-[[maybe_unused]] inline simd::vint8 int_lanes(simd::vint8 x) { return x; }
+[[maybe_unused]] inline simd::vf32x4 min_lanes(simd::vi32x4 x) { return simd::to_float(x); }
+[[maybe_unused]] inline simd::vi32x4 int_lanes(simd::vf32x4 x) { return simd::to_int_trunc(x); }
+[[maybe_unused]] inline simd::vi32x8 min_lanes(simd::vi32x8 x) { return x; }
+[[maybe_unused]] inline simd::vi32x8 int_lanes(simd::vi32x8 x) { return x; }
 
 // A step's per-texel lanes come from pair_sums of its two vectors, which sums per 128-bit half:
 // texels in order on 4 lanes, in the order 0 1 4 5 | 2 3 6 7 on 8.
@@ -66,21 +66,21 @@ template <>
 template <class VI>
 VI load_texel_lanes(const std::int32_t* p);
 template <>
-[[maybe_unused]] inline simd::vint4 load_texel_lanes<simd::vint4>(const std::int32_t* p) {
+[[maybe_unused]] inline simd::vi32x4 load_texel_lanes<simd::vi32x4>(const std::int32_t* p) {
   return simd::load4(p);
 }
 template <>
-[[maybe_unused]] inline simd::vint8 load_texel_lanes<simd::vint8>(const std::int32_t* p) {
+[[maybe_unused]] inline simd::vi32x8 load_texel_lanes<simd::vi32x8>(const std::int32_t* p) {
   return simd::permute64<0, 2, 1, 3>(simd::load8(p));
 }
 
 /// A step's per-texel errors (lanes in the order of pair_sums) stored in texel order, the first
 /// n of them (4-lane: 4 texels; 8-lane: 8 or 4).
-[[maybe_unused]] inline void store_texel_errors(simd::vint4 m, std::int32_t* p, int) {
+[[maybe_unused]] inline void store_texel_errors(simd::vi32x4 m, std::int32_t* p, int) {
   simd::store4(m, p);
 }
-[[maybe_unused]] inline void store_texel_errors(simd::vint8 m, std::int32_t* p, int n) {
-  const simd::vint8 ordered = simd::permute64<0, 2, 1, 3>(m);
+[[maybe_unused]] inline void store_texel_errors(simd::vi32x8 m, std::int32_t* p, int n) {
+  const simd::vi32x8 ordered = simd::permute64<0, 2, 1, 3>(m);
   if (n == 8) {
     simd::store8(ordered, p);
   } else {

@@ -64,7 +64,7 @@ struct PlanarWindow {
 // `local_error_simd_t<.., true, ..>` / `planar_error_t` of exact_search_kernel.h (the endpoints
 // as (r, g, b, a) 5-bit values), twice the texels a step; a bounded result below the bound is
 // exact, else it is >= bound (the bound is checked every 8 / 16 texels instead of 4 / 8). Call
-// only where `polish_avx2_active()`; in a build without the AVX2 kernels they return 0.
+// only where `exact_search_avx2_active()`; in a build without the AVX2 kernels they return 0.
 
 /// The window error of block j's endpoints (a, b); stops once it reaches `bound`.
 std::uint32_t local_error_avx2(const LocalWindow& lw, const std::int32_t a[4],
@@ -103,13 +103,14 @@ std::uint32_t window2_error_avx2(const Window2& w, const std::int32_t a[4],
 std::uint32_t window2_error_store_avx2(const Window2& w, const std::int32_t a[4],
                                        const std::int32_t b[4], std::uint32_t* texel_err);
 
-/// True when polish() (and the 2 bpp search) use the AVX2 evaluators: the build has them, the CPU
-/// (and OS) can run them, it is not the scalar build (TESSERA_NO_SIMD) and the tests have not
-/// switched them off.
-bool polish_avx2_active();
+/// True when search_endpoints_4bpp() (and the 2 bpp search) use the AVX2 evaluators: the build has
+/// them, the CPU (and OS) can run them, it is not the scalar build (TESSERA_NO_SIMD) and the tests
+/// have not switched them off.
+bool exact_search_avx2_active();
 
-/// Tests: true makes polish() and reseed() use the baseline evaluators even where the AVX2
-/// ones run (the output is the same). Returns the previous setting. Not for use while encoding.
-bool set_polish_baseline_only(bool on);
+/// Tests: true makes search_endpoints_4bpp() and reseed() use the baseline evaluators even where
+/// the AVX2 ones run (the output is the same). Returns the previous setting. Not for use while
+/// encoding.
+bool set_exact_search_baseline_only(bool on);
 
 }  // namespace tessera::pvrtc::detail

@@ -121,7 +121,7 @@ struct WindowSums {
   float alpha_aa = 0, alpha_ab = 0, alpha_bb = 0;
 };
 
-float lane_sum(simd::vf4 a) {
+float lane_sum(simd::vf32x4 a) {
   alignas(16) float l[4];
   simd::storef4(a, l);
   return (l[0] + l[1]) + (l[2] + l[3]);
@@ -133,7 +133,7 @@ float lane_sum(simd::vf4 a) {
 template <bool kWeighted>
 void window_sums(const EncoderState& s, const std::vector<float>& lv, int bx, int by,
                  WindowSums& out) {
-  using simd::vf4;
+  using simd::vf32x4;
   const Grid& g = s.g;
   const int bw = g.bw, width = 2 * bw, groups = width / 4;
   const int channels = s.alpha_mode ? 4 : 3;
@@ -159,18 +159,18 @@ void window_sums(const EncoderState& s, const std::vector<float>& lv, int bx, in
       wl[i] = float(bw - dx);
       wr[i] = float(dx);
     }
-    const vf4 wl_v = simd::loadf4(wl), wr_v = simd::loadf4(wr);
+    const vf32x4 wl_v = simd::loadf4(wl), wr_v = simd::loadf4(wr);
     for (int r = 0; r < 3; ++r) {
       const float* lo = r == 1 && left == 1 ? nullptr : nb[r][left];
       const float* hi = r == 1 && left == 0 ? nullptr : nb[r][left + 1];
       for (int k = 0; k < 8; ++k) {
-        vf4 acc;
+        vf32x4 acc;
         if (lo != nullptr && hi != nullptr) {
-          acc = wl_v * vf4(lo[k]) + wr_v * vf4(hi[k]);
+          acc = wl_v * vf32x4(lo[k]) + wr_v * vf32x4(hi[k]);
         } else if (lo != nullptr) {
-          acc = wl_v * vf4(lo[k]);
+          acc = wl_v * vf32x4(lo[k]);
         } else {
-          acc = wr_v * vf4(hi[k]);
+          acc = wr_v * vf32x4(hi[k]);
         }
         simd::storef4(acc, &h[r][k][4 * q]);
       }
@@ -179,7 +179,7 @@ void window_sums(const EncoderState& s, const std::vector<float>& lv, int bx, in
   const std::vector<std::uint8_t>& m_eff = s.scratch_m;
   const float inv_total = 1.0f / float(4 * bw);
   const auto& own = kOwnWeights.w[bw == 8 ? 1 : 0];
-  vf4 aa, ab, bb, ra[4], rb[4], alpha_aa, alpha_ab, alpha_bb;
+  vf32x4 aa, ab, bb, ra[4], rb[4], alpha_aa, alpha_ab, alpha_bb;
   alignas(16) std::uint8_t tex_wrap[16 * 4];
   std::uint8_t me_wrap[16], sc_wrap[16];
   const int x0 = bx * bw - bw / 2;
@@ -189,7 +189,7 @@ void window_sums(const EncoderState& s, const std::vector<float>& lv, int bx, in
   for (int v = 1; v < 8; ++v) {
     const int y = (by * 4 - 2 + v) & (g.ph - 1);
     const int top = v >= 4 ? 1 : 0, dy = v & 3;
-    const vf4 wy0(float(4 - dy) * inv_total), wy1(float(dy) * inv_total);
+    const vf32x4 wy0(float(4 - dy) * inv_total), wy1(float(dy) * inv_total);
     const std::size_t row = std::size_t(y) * std::size_t(g.pw);
     const std::uint8_t* tex = &s.target[(row + std::size_t(x0 < 0 ? 0 : x0)) * 4];
     const std::uint8_t* me = &m_eff[row + std::size_t(x0 < 0 ? 0 : x0)];
@@ -214,10 +214,10 @@ void window_sums(const EncoderState& s, const std::vector<float>& lv, int bx, in
         bias_l[i] = kModTables.bias[m];
         alpha_l[i] = kModTables.alpha[m];
       }
-      const vf4 fb = simd::loadf4(fb_l), fa = vf4(1.0f) - fb;
-      const vf4 wj = simd::loadf4(&own[v][4 * q]);
-      const vf4 ca = wj * fa, cb = wj * fb;
-      vf4 sw, caw = ca, cbw = cb;  // colour rows: scaled by the texels' colour scales
+      const vf32x4 fb = simd::loadf4(fb_l), fa = vf32x4(1.0f) - fb;
+      const vf32x4 wj = simd::loadf4(&own[v][4 * q]);
+      const vf32x4 ca = wj * fa, cb = wj * fb;
+      vf32x4 sw, caw = ca, cbw = cb;  // colour rows: scaled by the texels' colour scales
       if constexpr (kWeighted) {
         alignas(16) float sw_l[4];
         for (int i = 0; i < 4; ++i) sw_l[i] = float(sc[4 * q + i]) * 0.0625f;
@@ -228,30 +228,29 @@ void window_sums(const EncoderState& s, const std::vector<float>& lv, int bx, in
       aa = aa + caw * caw;
       ab = ab + caw * cbw;
       bb = bb + cbw * cbw;
-      const simd::vint4 t = simd::load_texels4(tex + 16 * q);
-      const vf4 bias = simd::loadf4(bias_l);
+      const simd::vi32x4 t = simd::load_texels4(tex + 16 * q);
+      const vf32x4 bias = simd::loadf4(bias_l);
       for (int c = 0; c < channels; ++c) {
-        const simd::vint4 tc_i =
-            c == 0   ? t & simd::vint4(0xff)
-            : c == 1 ? simd::srl<8>(t) & simd::vint4(0xff)
-            : c == 2 ? simd::srl<16>(t) & simd::vint4(0xff)
-                     : simd::srl<24>(t);
-        const vf4 oa = wy0 * simd::loadf4(&h[top][c][4 * q]) +
-                       wy1 * simd::loadf4(&h[top + 1][c][4 * q]);
-        const vf4 ob = wy0 * simd::loadf4(&h[top][4 + c][4 * q]) +
-                       wy1 * simd::loadf4(&h[top + 1][4 + c][4 * q]);
-        const vf4 other = fa * oa + fb * ob;
+        const simd::vi32x4 tc_i = c == 0   ? t & simd::vi32x4(0xff)
+                                  : c == 1 ? simd::srl<8>(t) & simd::vi32x4(0xff)
+                                  : c == 2 ? simd::srl<16>(t) & simd::vi32x4(0xff)
+                                           : simd::srl<24>(t);
+        const vf32x4 oa =
+            wy0 * simd::loadf4(&h[top][c][4 * q]) + wy1 * simd::loadf4(&h[top + 1][c][4 * q]);
+        const vf32x4 ob = wy0 * simd::loadf4(&h[top][4 + c][4 * q]) +
+                          wy1 * simd::loadf4(&h[top + 1][4 + c][4 * q]);
+        const vf32x4 other = fa * oa + fb * ob;
         if (c < 3) {
           // The decoder truncates twice (8-bit conversion, modulation): aim above the target
           // by the mean truncation loss so the linear model is unbiased.
-          vf4 res = (simd::to_float(tc_i) + bias) - other;
+          vf32x4 res = (simd::to_float(tc_i) + bias) - other;
           if constexpr (kWeighted) res = res * sw;
           ra[c] = ra[c] + caw * res;
           rb[c] = rb[c] + cbw * res;
         } else {
-          const vf4 am = simd::loadf4(alpha_l);
-          const vf4 ca_a = ca * am, cb_a = cb * am;
-          const vf4 res = simd::to_float(tc_i) - other;
+          const vf32x4 am = simd::loadf4(alpha_l);
+          const vf32x4 ca_a = ca * am, cb_a = cb * am;
+          const vf32x4 res = simd::to_float(tc_i) - other;
           alpha_aa = alpha_aa + ca_a * ca_a;
           alpha_ab = alpha_ab + ca_a * cb_a;
           alpha_bb = alpha_bb + cb_a * cb_a;

@@ -6,10 +6,9 @@
 //    uniform area can go: no extremum at all, or every texel both. Its authors' code (FasTC)
 //    takes the first: a texel is an extremum only where its neighbours are not all level with
 //    it, which measured better than marking uniform areas as both
-//    (docs/benchmarks/pvrtc_history.md): a uniform area next to a brighter one no longer
-//    spreads its colour into the
-//    bright side's high image (or a dark side's low image), and a uniform block falls back to
-//    its own extremes, which are its colour.
+//    (docs/benchmarks/pvrtc_history.md): a uniform area next to a brighter one does not
+//    spread its colour into the bright side's high image (or a dark side's low image), and a
+//    uniform block falls back to its own extremes, which are its colour.
 // 3. Dilation: each extremum image is dilated three times with a 3x3 kernel; an empty texel
 //    next to several filled ones takes their average (rounded).
 // 4. Block colours: the mean over the block's texels of the dilated image, where texels still
@@ -79,7 +78,7 @@ struct Band {
 using Extremes = DilationExtremes;
 
 // The baseline kernels: dilation_rows.h over the 4-lane types.
-constexpr DilationKernels kBaseline = RowKernels<simd::vf4, simd::vu8x16>::kTable;
+constexpr DilationKernels kBaseline = RowKernels<simd::vf32x4, simd::vu8x16>::kTable;
 
 std::atomic<bool> g_force_baseline{false};
 

@@ -24,7 +24,7 @@
 namespace tessera::pvrtc::detail {
 
 void fill_dilation_kernels_avx2(DilationKernels* k) {
-  *k = RowKernels<simd::vf8, simd::vu8x32>::kTable;
+  *k = RowKernels<simd::vf32x8, simd::vu8x32>::kTable;
 }
 
 }  // namespace tessera::pvrtc::detail

@@ -27,7 +27,7 @@ inline void wrap_pad(T* row, int w) {
   row[w] = row[0];
 }
 
-/// DilationKernels::intensity_row over float vectors VF (simd::vf4 or vf8).
+/// DilationKernels::intensity_row over float vectors VF (simd::vf32x4 or vf32x8).
 template <class VF>
 void intensity_row_t(const std::uint8_t* src, int w, bool alpha, float* out) {
   using namespace simd;
@@ -45,7 +45,7 @@ void intensity_row_t(const std::uint8_t* src, int w, bool alpha, float* out) {
   wrap_pad(out, w);
 }
 
-/// DilationKernels::label_row over float vectors VF (simd::vf4 or vf8): the vertical 3-max /
+/// DilationKernels::label_row over float vectors VF (simd::vf32x4 or vf32x8): the vertical 3-max /
 /// 3-min of each column into `mx` / `mn`, then each texel's label from the horizontal ones.
 template <class VF>
 void label_row_t(const float* i0, const float* i1, const float* i2, int w, float* mx, float* mn,
@@ -195,7 +195,8 @@ void accumulate_row_t(int planes, int w, const std::uint8_t* row, std::size_t st
   }
 }
 
-/// DilationKernels::block_extremes over float vectors VF (simd::vf4 or vf8), by keys: intensity
+/// DilationKernels::block_extremes over float vectors VF (simd::vf32x4 or vf32x8), by keys:
+/// intensity
 /// * 32 plus the texel's raster index in the block (31 minus it for the maximum), so one integer
 /// maximum (minimum) finds the brightest (darkest) texel and the first of equal ones.
 /// Intensities are integers below 2^24: keys stay below 2^29.
@@ -268,7 +269,8 @@ void block_sums_t(const std::uint16_t* acc, std::size_t astride, int planes, int
   }
 }
 
-/// The kernel table of one width: VF float lanes, VU8 byte lanes (vf4 / vu8x16 or vf8 / vu8x32).
+/// The kernel table of one width: VF float lanes, VU8 byte lanes (vf32x4 / vu8x16 or vf32x8 /
+/// vu8x32).
 template <class VF, class VU8>
 struct RowKernels {
   using VU16 = decltype(simd::widen_lo(VU8()));

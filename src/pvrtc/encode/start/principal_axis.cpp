@@ -124,13 +124,12 @@ void principal_endpoints(const EncoderState& s, std::vector<float>& low, std::ve
 //    seeds, neighbours in a fixed order): a neighbour joins when its pair clearly matches the
 //    current block's one way round (the better orientation's squared colour distance at most
 //    half the other's) and takes that orientation, so a region is oriented consistently from
-//    one end to the other. Before this step each block only looked at its four neighbours, and
-//    a long run of ambiguous blocks could keep two halves oriented against each other (a
-//    domain wall: each block agreed with two of its three neighbours). On the wrap-around seam
-//    of photo 03 this left the blocks on one side of a wall with one colour in both endpoints.
+//    one end to the other: decisions between neighbours alone can leave a long run of
+//    ambiguous blocks in two halves oriented against each other (a domain wall, each block
+//    agreeing with two of its three neighbours; docs/benchmarks/pvrtc_history.md, "Start").
 // 2. Each region as a whole is swapped when that brings it closer to the blocks around it.
 // 3. A few serial raster passes swap single ambiguous blocks where that brings the pair closer
-//    to its four neighbours' (the previous method, now a clean-up).
+//    to its four neighbours' (a clean-up).
 // Deterministic (serial) and cheap: a few flops per block and neighbour.
 void orient_endpoints(const Grid& g, int nch, std::vector<float>& low, std::vector<float>& high) {
   // A pair counts as ambiguous when its luma difference is under 0.3 of its colour distance.

@@ -1,4 +1,4 @@
-// tessera/mipmap.h — mip chains and resampling for texture compression.
+// tessera/image_mipmap.h — mip chains and resampling for texture compression.
 //
 // `generate_mipmaps` builds a full chain, each level from the one above, so non-square images
 // go all the way down to 1x1. The filter (`MipFilter`) is by default the 2x2 box (2x1 / 1x2

@@ -36,9 +36,7 @@ void random_window(std::mt19937& rng, int nch, bool punch, int alpha_weight, Loc
                    bool extremes = false) {
   auto uni0 = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
   const int one_mode = extremes ? uni0(0, 2) : 2;  // 0 / 1: every texel in that mode
-  auto uni = [&](int lo, int hi) {
-    return extremes ? (uni0(0, 1) != 0 ? hi : lo) : uni0(lo, hi);
-  };
+  auto uni = [&](int lo, int hi) { return extremes ? (uni0(0, 1) != 0 ? hi : lo) : uni0(lo, hi); };
   lw = LocalWindow{};
   lw.nch = nch;
   lw.punch = punch;
@@ -126,16 +124,16 @@ void check_windows(int nch, bool punch, int alpha_weight, unsigned seed) {
   }
 }
 
-TEST(PvrtcPolishKernel, PlanarMatchesGeneralRgb) { check_windows(3, false, 1, 1); }
-TEST(PvrtcPolishKernel, PlanarMatchesGeneralRgba) { check_windows(4, false, 2, 2); }
-TEST(PvrtcPolishKernel, PlanarMatchesGeneralRgbaPunchThrough) { check_windows(4, true, 2, 3); }
-TEST(PvrtcPolishKernel, PlanarMatchesGeneralRgbaWeight1) { check_windows(4, true, 1, 4); }
+TEST(PvrtcSearchKernel, PlanarMatchesGeneralRgb) { check_windows(3, false, 1, 1); }
+TEST(PvrtcSearchKernel, PlanarMatchesGeneralRgba) { check_windows(4, false, 2, 2); }
+TEST(PvrtcSearchKernel, PlanarMatchesGeneralRgbaPunchThrough) { check_windows(4, true, 2, 3); }
+TEST(PvrtcSearchKernel, PlanarMatchesGeneralRgbaWeight1) { check_windows(4, true, 1, 4); }
 
 // Alpha-weighted colour error (EncodeOptions::alpha_weighted): the vector scaling is the
 // scalar `scale_diff` for every difference and scale; scale 16 everywhere gives the unweighted
 // errors, scale 0 everywhere the alpha error alone; and the planar evaluator agrees with the
 // general one under random scales, bounded or not.
-TEST(PvrtcPolishKernel, ScaleDiffMatchesScalar) {
+TEST(PvrtcSearchKernel, ScaleDiffMatchesScalar) {
   for (int sc = 0; sc <= 16; ++sc) {
     for (int d0 = -255; d0 <= 255; d0 += 8) {
       alignas(16) std::uint16_t d[8], out[8];
@@ -163,7 +161,7 @@ void set_scales(LocalWindow& lw, std::mt19937& rng, int fixed) {
   }
 }
 
-TEST(PvrtcPolishKernel, WeightedScalesSixteenAreUnweighted) {
+TEST(PvrtcSearchKernel, WeightedScalesSixteenAreUnweighted) {
   std::mt19937 rng(21);
   for (int w = 0; w < 30; ++w) {
     LocalWindow lw;
@@ -186,7 +184,7 @@ TEST(PvrtcPolishKernel, WeightedScalesSixteenAreUnweighted) {
   }
 }
 
-TEST(PvrtcPolishKernel, WeightedScaleZeroIsAlphaAlone) {
+TEST(PvrtcSearchKernel, WeightedScaleZeroIsAlphaAlone) {
   std::mt19937 rng(22);
   for (int w = 0; w < 30; ++w) {
     LocalWindow lw;
@@ -205,7 +203,7 @@ TEST(PvrtcPolishKernel, WeightedScaleZeroIsAlphaAlone) {
   }
 }
 
-TEST(PvrtcPolishKernel, WeightedPlanarMatchesGeneral) {
+TEST(PvrtcSearchKernel, WeightedPlanarMatchesGeneral) {
   std::mt19937 rng(23);
   for (int w = 0; w < 40; ++w) {
     SCOPED_TRACE(testing::Message() << "window " << w);
@@ -247,7 +245,7 @@ TEST(PvrtcPolishKernel, WeightedPlanarMatchesGeneral) {
   }
 }
 
-TEST(PvrtcPolishKernel, SingleColourChannel) {
+TEST(PvrtcSearchKernel, SingleColourChannel) {
   const Rgba5 a{10, 11, 12, 13}, b{20, 21, 22, 14};
   Rgba5 x = a, y = b;
   EXPECT_EQ(single_colour_channel(x, y, a, b, 4), -1);  // nothing changed
@@ -274,8 +272,8 @@ void expect_bounded(std::uint32_t got, std::uint32_t exact, std::uint32_t bound)
 }
 
 std::vector<std::uint32_t> bounds_for(std::uint32_t exact) {
-  return {0u,        1u,        exact / 3, exact / 2, exact > 0 ? exact - 1 : 0u,
-          exact,     exact + 1, exact + 1000, ~0u};
+  return {0u,    1u,        exact / 3,    exact / 2, exact > 0 ? exact - 1 : 0u,
+          exact, exact + 1, exact + 1000, ~0u};
 }
 
 // weighted (nch 4): random colour scales, against the baseline's kWeighted evaluators.
@@ -339,50 +337,50 @@ void check_avx2_windows(int nch, bool punch, int alpha_weight, unsigned seed, bo
 #define SKIP_WITHOUT_AVX2() \
   TESSERA_SKIP_WITHOUT_AVX2(avx2_kernels_usable(), "no AVX2 kernels in this build or CPU")
 
-TEST(PvrtcPolishAvx2, MatchesBaselineRgb) {
+TEST(PvrtcSearchAvx2, MatchesBaselineRgb) {
   SKIP_WITHOUT_AVX2();
   check_avx2_windows(3, false, 1, 11, false);
   check_avx2_windows(3, false, 1, 12, true);
 }
-TEST(PvrtcPolishAvx2, MatchesBaselineRgba) {
+TEST(PvrtcSearchAvx2, MatchesBaselineRgba) {
   SKIP_WITHOUT_AVX2();
   check_avx2_windows(4, false, 2, 13, false);
   check_avx2_windows(4, false, 2, 14, true);
 }
-TEST(PvrtcPolishAvx2, MatchesBaselineRgbaPunchThrough) {
+TEST(PvrtcSearchAvx2, MatchesBaselineRgbaPunchThrough) {
   SKIP_WITHOUT_AVX2();
   check_avx2_windows(4, true, 2, 15, false);
   check_avx2_windows(4, true, 2, 16, true);
   check_avx2_windows(4, true, 1, 17, false);
   check_avx2_windows(4, true, 1, 18, true);
 }
-TEST(PvrtcPolishAvx2, MatchesBaselineWeighted) {
+TEST(PvrtcSearchAvx2, MatchesBaselineWeighted) {
   SKIP_WITHOUT_AVX2();
   check_avx2_windows(4, false, 2, 19, false, true);
   check_avx2_windows(4, true, 2, 20, false, true);
   check_avx2_windows(4, true, 2, 21, true, true);
 }
 
-// Sets `set_polish_baseline_only` for a scope.
-class PolishBaselineOnly {
+// Sets `set_exact_search_baseline_only` for a scope.
+class BaselineOnlyScope {
  public:
-  explicit PolishBaselineOnly(bool on) : previous_(set_polish_baseline_only(on)) {}
-  ~PolishBaselineOnly() { set_polish_baseline_only(previous_); }
-  PolishBaselineOnly(const PolishBaselineOnly&) = delete;
-  PolishBaselineOnly& operator=(const PolishBaselineOnly&) = delete;
+  explicit BaselineOnlyScope(bool on) : previous_(set_exact_search_baseline_only(on)) {}
+  ~BaselineOnlyScope() { set_exact_search_baseline_only(previous_); }
+  BaselineOnlyScope(const BaselineOnlyScope&) = delete;
+  BaselineOnlyScope& operator=(const BaselineOnlyScope&) = delete;
 
  private:
   bool previous_;
 };
 
-TEST(PvrtcPolishAvx2, EncodeMatchesBaseline) {
+TEST(PvrtcSearchAvx2, EncodeMatchesBaseline) {
   SKIP_WITHOUT_AVX2();
   {
-    PolishBaselineOnly only(true);
-    EXPECT_FALSE(polish_avx2_active());
+    BaselineOnlyScope only(true);
+    EXPECT_FALSE(exact_search_avx2_active());
   }
 #if !defined(TESSERA_NO_SIMD)
-  EXPECT_TRUE(polish_avx2_active());
+  EXPECT_TRUE(exact_search_avx2_active());
 #endif
   const int sizes[][2] = {{64, 16}, {16, 64}, {8, 8}, {128, 64}};
   for (const auto& wh : sizes) {
@@ -413,7 +411,7 @@ TEST(PvrtcPolishAvx2, EncodeMatchesBaseline) {
           o.punch_through = variant != 2;
           o.alpha_weighted = weighted;
           auto encode_with = [&](bool baseline_only) {
-            PolishBaselineOnly only(baseline_only);
+            BaselineOnlyScope only(baseline_only);
             return encode(img, o);
           };
           const auto base = encode_with(true), fast = encode_with(false);
