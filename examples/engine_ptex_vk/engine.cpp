@@ -45,8 +45,13 @@ std::uint32_t memory_type(VkPhysicalDevice pd, std::uint32_t bits, VkMemoryPrope
 
 std::string Device::create(bool want_validation) {
   validation = want_validation && has_layer();
-  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO, nullptr, "engine_ptex_vk", 1,
-                        nullptr, 0, VK_API_VERSION_1_1};
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO,
+                        nullptr,
+                        "engine_ptex_vk",
+                        1,
+                        nullptr,
+                        0,
+                        VK_API_VERSION_1_1};
   VkDebugUtilsMessengerCreateInfoEXT mi{};
   mi.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
   mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
@@ -104,8 +109,8 @@ std::string Device::create(bool want_validation) {
   }
   if (physical == VK_NULL_HANDLE) return "no Vulkan 1.1 device with a graphics + compute queue";
   const float prio = 1.0f;
-  VkDeviceQueueCreateInfo qi{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, nullptr, 0, family, 1,
-                             &prio};
+  VkDeviceQueueCreateInfo qi{
+      VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, nullptr, 0, family, 1, &prio};
   VkDeviceCreateInfo di{};
   di.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
   di.queueCreateInfoCount = 1;
@@ -140,10 +145,10 @@ Buffer Device::buffer(const void* data, VkDeviceSize bytes, VkBufferUsageFlags u
   vkCreateBuffer(device, &bi, nullptr, &b.buffer);
   VkMemoryRequirements req{};
   vkGetBufferMemoryRequirements(device, b.buffer, &req);
-  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
-                          memory_type(physical, req.memoryTypeBits,
-                                      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                          VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)};
+  VkMemoryAllocateInfo ai{
+      VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
+      memory_type(physical, req.memoryTypeBits,
+                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)};
   vkAllocateMemory(device, &ai, nullptr, &b.memory);
   vkBindBufferMemory(device, b.buffer, b.memory, 0);
   vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.data);
@@ -167,7 +172,8 @@ std::vector<std::uint32_t> compile(const std::string& glsl, bool vertex, const s
       compiler, glsl.data(), glsl.size(), vertex ? shaderc_vertex_shader : shaderc_fragment_shader,
       name.c_str(), "main", options);
   std::vector<std::uint32_t> spirv;
-  if (r != nullptr && shaderc_result_get_compilation_status(r) == shaderc_compilation_status_success) {
+  if (r != nullptr &&
+      shaderc_result_get_compilation_status(r) == shaderc_compilation_status_success) {
     spirv.resize(shaderc_result_get_length(r) / 4);
     std::memcpy(spirv.data(), shaderc_result_get_bytes(r), spirv.size() * 4);
   } else {

@@ -261,8 +261,8 @@ VkDescriptorSet create_layouts(VkDevice dev, Objects& o, const Frame& in, const 
 }
 
 // Records the frame into `cmd`; "" or what the caller's bind said.
-std::string record(const Objects& o, const Frame& f, VkDescriptorSet frame_set,
-                   const Buffer& vbo, const Buffer& ibo, const Buffer& out, VkCommandBuffer cmd) {
+std::string record(const Objects& o, const Frame& f, VkDescriptorSet frame_set, const Buffer& vbo,
+                   const Buffer& ibo, const Buffer& out, VkCommandBuffer cmd) {
   VkClearValue clear[2]{};
   std::memcpy(clear[0].color.float32, f.background, sizeof f.background);
   clear[1].depthStencil = {1.0f, 0};
@@ -334,8 +334,8 @@ std::vector<float> draw(Device& d, const Frame& f, double* ms, std::string& erro
       si.pCommandBuffers = &cmd;
       vkQueueSubmit(d.queue, 1, &si, o.fence);
       vkWaitForFences(d.device, 1, &o.fence, VK_TRUE, UINT64_MAX);
-      *ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                .count();
+      *ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       pixels.resize(texels * 4);
       std::memcpy(pixels.data(), out.data, texels * 16);
     }

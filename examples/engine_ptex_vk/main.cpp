@@ -107,8 +107,8 @@ std::string parse_args(int argc, char** argv, Args& a) {
     }
     if (k == "--size") {
       const std::string v = argv[++i];
-      if (std::sscanf(v.c_str(), "%dx%d", &a.w, &a.h) != 2 || a.w < 2 || a.h < 2 ||
-          a.w > 8192 || a.h > 8192 || a.w % 2 || a.h % 2)
+      if (std::sscanf(v.c_str(), "%dx%d", &a.w, &a.h) != 2 || a.w < 2 || a.h < 2 || a.w > 8192 ||
+          a.h > 8192 || a.w % 2 || a.h % 2)
         return "--size " + v + ": expected WxH, even, 2..8192 (2x2 derivative quads)";
     } else if (k == "--orbit") {
       const std::string v = argv[++i];
@@ -197,8 +197,8 @@ tessera::Result<double> agreement(const tessera::faces::FaceScene& scene,
   *cpu_ms = frame->ms();
   tessera::metrics::CompareOptions co;
   co.compute_ssim = false;
-  auto c = tessera::metrics::compare_images(tessera::to_srgb8(img),
-                                            tessera::to_srgb8(frame->image), co);
+  auto c =
+      tessera::metrics::compare_images(tessera::to_srgb8(img), tessera::to_srgb8(frame->image), co);
   if (!c) return c.status();
   return c->psnr_rgb;
 }
@@ -228,8 +228,8 @@ int main(int argc, char** argv) {
   tessera::faces::FaceScene scene;
   scene.name = a.obj;
   scene.mesh = *mesh;
-  const tessera::scene::Camera camera = tessera::faces::face_orbit_camera(scene, a.orbit_k,
-                                                                          a.orbit_n);
+  const tessera::scene::Camera camera =
+      tessera::faces::face_orbit_camera(scene, a.orbit_k, a.orbit_n);
   std::vector<Vertex> verts;
   engine::Frame frame = make_frame(a, scene.mesh, camera, verts);
 
@@ -281,8 +281,8 @@ int main(int argc, char** argv) {
   d.destroy();  // leaks are reported here
   if (!error.empty()) return fail(error);
   if (d.messages > 0) {
-    return fail(std::to_string(d.messages) + " validation message(s), the first: " +
-                d.first_message);
+    return fail(std::to_string(d.messages) +
+                " validation message(s), the first: " + d.first_message);
   }
   tessera::ImageRGBAF img(a.w, a.h);
   img.pixels = std::move(pixels);
@@ -301,10 +301,10 @@ int main(int argc, char** argv) {
         "\"classes\": %d, \"width\": %d, \"height\": %d, \"orbit\": \"%d/%d\", "
         "\"shift_px\": %.3f, \"face_shift\": %d, \"psnr_db\": %s, \"validation\": %s, "
         "\"validation_messages\": %d, \"vk_ms\": %.3f, \"cpu_ms\": %.3f}\n",
-        device_name.c_str(), scene.name.c_str(), scene.mesh.face_count(), classes,
-        a.w, a.h, a.orbit_k, a.orbit_n, double(a.shift_px), a.face_shift,
-        std::isfinite(*psnr) ? psnr_text : "null", validation ? "true" : "false", d.messages,
-        vk_ms, cpu_ms);
+        device_name.c_str(), scene.name.c_str(), scene.mesh.face_count(), classes, a.w, a.h,
+        a.orbit_k, a.orbit_n, double(a.shift_px), a.face_shift,
+        std::isfinite(*psnr) ? psnr_text : "null", validation ? "true" : "false", d.messages, vk_ms,
+        cpu_ms);
   } else {
     std::printf("engine_ptex_vk %dx%d, %d faces: Vulkan (%s) vs CPU Discard: PSNR %s dB\n", a.w,
                 a.h, scene.mesh.face_count(), device_name.c_str(), psnr_text);

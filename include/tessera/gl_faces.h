@@ -1,12 +1,13 @@
 // tessera/gl_faces.h — per-face (Ptex-style) textures for the GPU: a faces::FaceTextureSet packed
 // as one GL_TEXTURE_2D_ARRAY per face-resolution class plus a std430 face-record buffer, which
 // the shipped seams.glsl reads in the engine's own shaders (tessera_seams_sample_discard, ...).
-// Contract: `pack_faces` and `ptex_quad_mesh` (tessera/faces_gpu.h) are pure; `FaceTextureSet::upload` and `bind` work
-// on the OpenGL 4.5 core context current on the calling thread, whoever made it (entry points as
-// tessera/gl.h says: `load_entry_points` or first-use resolution; no tessera `Context` needed),
-// and fail with one line without one. `upload` leaves the engine's GL state as it found it (it
-// sets and restores the pixel-unpack state); `bind` changes exactly the binding points it is
-// given. Destroy the objects while their context is current. The recipe (mesh, upload, vertex
+// Contract: `pack_faces` and `ptex_quad_mesh` (the layout of tessera/faces_gpu.h) are pure;
+// `FaceTextureSet::upload` and `bind` work on the OpenGL 4.5 core context current on the
+// calling thread, whoever made it (entry points as tessera/gl.h says: `load_entry_points` or
+// first-use resolution; no tessera `Context` needed), and fail with one line without one.
+// `upload` leaves the engine's GL state as it found it (it sets and restores the pixel-unpack
+// state); `bind` changes exactly the binding points it is given. Destroy the objects while
+// their context is current. The recipe (mesh, upload, vertex
 // and fragment stages, per-frame bind) is docs/engine_integration.md; examples/engine_ptex does
 // it in one file; tests: tests/gl/gl_faces_bind_test.cpp, gl_engine_context*.
 #pragma once

@@ -23,10 +23,9 @@ Result<PackedFaces> pack_faces(const FaceTextureSet& set, const PackLimits& limi
     if (limits.max_texture_size > 0 &&
         (t.width() > limits.max_texture_size || t.height() > limits.max_texture_size)) {
       return Status::error(ErrorCode::too_large,
-                           "face " + std::to_string(f) + " is " + std::to_string(t.width()) +
-                               "x" + std::to_string(t.height()) +
-                               ", above " + names.texture_size + " = " +
-                               std::to_string(limits.max_texture_size));
+                           "face " + std::to_string(f) + " is " + std::to_string(t.width()) + "x" +
+                               std::to_string(t.height()) + ", above " + names.texture_size +
+                               " = " + std::to_string(limits.max_texture_size));
     }
     class_of.emplace(std::make_pair(t.height(), t.width()), 0);
   }
@@ -46,10 +45,10 @@ Result<PackedFaces> pack_faces(const FaceTextureSet& set, const PackLimits& limi
   }
   const std::int64_t bytes = std::int64_t(n) * std::int64_t(sizeof(FaceRecord));
   if (limits.max_ssbo_bytes > 0 && bytes > limits.max_ssbo_bytes) {
-    return Status::error(ErrorCode::too_large,
-                         std::to_string(n) + " face records (" + std::to_string(bytes) +
-                             " bytes) exceed " + names.ssbo_bytes + " = " +
-                             std::to_string(limits.max_ssbo_bytes));
+    return Status::error(ErrorCode::too_large, std::to_string(n) + " face records (" +
+                                                   std::to_string(bytes) + " bytes) exceed " +
+                                                   names.ssbo_bytes + " = " +
+                                                   std::to_string(limits.max_ssbo_bytes));
   }
   p.records.resize(std::size_t(n));
   for (int f = 0; f < n; ++f) {
@@ -60,10 +59,9 @@ Result<PackedFaces> pack_faces(const FaceTextureSet& set, const PackLimits& limi
       c.levels = t.level_count();
     } else if (c.levels != t.level_count()) {
       return Status::error(ErrorCode::invalid_argument,
-                           "face " + std::to_string(f) + " has " +
-                               std::to_string(t.level_count()) + " mip levels, other " +
-                               std::to_string(t.width()) + "x" + std::to_string(t.height()) +
-                               " faces " + std::to_string(c.levels));
+                           "face " + std::to_string(f) + " has " + std::to_string(t.level_count()) +
+                               " mip levels, other " + std::to_string(t.width()) + "x" +
+                               std::to_string(t.height()) + " faces " + std::to_string(c.levels));
     }
     FaceRecord& r = p.records[std::size_t(f)];
     r.info = {cls, int(c.faces.size()), t.width(), t.height()};
@@ -98,10 +96,9 @@ Result<PackedFaces> pack_faces(const FaceTextureSet& set, const PackLimits& limi
   for (const FaceClass& c : p.classes) {
     if (limits.max_array_layers > 0 && int(c.faces.size()) > limits.max_array_layers) {
       return Status::error(ErrorCode::too_large,
-                           std::to_string(c.faces.size()) + " faces of " +
-                               std::to_string(c.width) + "x" + std::to_string(c.height) +
-                               " exceed " + names.array_layers + " = " +
-                               std::to_string(limits.max_array_layers));
+                           std::to_string(c.faces.size()) + " faces of " + std::to_string(c.width) +
+                               "x" + std::to_string(c.height) + " exceed " + names.array_layers +
+                               " = " + std::to_string(limits.max_array_layers));
     }
   }
   return p;
@@ -136,10 +133,10 @@ Result<QuadMesh> ptex_quad_mesh(const PolygonMesh& mesh, const ptex::PtexFile& f
                 "are supported");
       }
       if (!split && sub) {
-        return Status::error(ErrorCode::size_mismatch,
-                             name + ": polygon " + std::to_string(p) +
-                                 " is a quad, but Ptex face " + std::to_string(next) +
-                                 " is a subface of a split polygon");
+        return Status::error(ErrorCode::size_mismatch, name + ": polygon " + std::to_string(p) +
+                                                           " is a quad, but Ptex face " +
+                                                           std::to_string(next) +
+                                                           " is a subface of a split polygon");
       }
     }
     next += quads;

@@ -165,23 +165,23 @@ void fill_staging(const detail::FaceTextureSetState& s, const faces::FaceTexture
               s.layout.records.size() * sizeof(faces::FaceRecord));
 }
 
-void image_barrier(const Api& api, VkCommandBuffer cmd, VkImage image,
-                   const faces::FaceClass& c, bool to_read) {
+void image_barrier(const Api& api, VkCommandBuffer cmd, VkImage image, const faces::FaceClass& c,
+                   bool to_read) {
   VkImageMemoryBarrier b{};
   b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
   b.srcAccessMask = to_read ? VK_ACCESS_TRANSFER_WRITE_BIT : 0;
   b.dstAccessMask = to_read ? VK_ACCESS_SHADER_READ_BIT : VK_ACCESS_TRANSFER_WRITE_BIT;
   b.oldLayout = to_read ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED;
-  b.newLayout = to_read ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
-                        : VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  b.newLayout =
+      to_read ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
   b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image;
   b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, std::uint32_t(c.levels), 0,
                         std::uint32_t(c.faces.size())};
-  api.CmdPipelineBarrier(cmd,
-                         to_read ? VK_PIPELINE_STAGE_TRANSFER_BIT : VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
-                         to_read ? VK_PIPELINE_STAGE_ALL_COMMANDS_BIT : VK_PIPELINE_STAGE_TRANSFER_BIT,
-                         0, 0, nullptr, 0, nullptr, 1, &b);
+  api.CmdPipelineBarrier(
+      cmd, to_read ? VK_PIPELINE_STAGE_TRANSFER_BIT : VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+      to_read ? VK_PIPELINE_STAGE_ALL_COMMANDS_BIT : VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr,
+      0, nullptr, 1, &b);
 }
 
 // The copies of the staging buffer into the images and the record buffer.
@@ -359,14 +359,15 @@ Status create_descriptors(detail::FaceTextureSetState& s) {
 
 }  // namespace
 
-Result<std::unique_ptr<FaceTextureSet>> FaceTextureSet::create(const DeviceContext& device,
-                                                               const faces::FaceTextureSet& set,
-                                                               const FaceTextureSetOptions& options) {
+Result<std::unique_ptr<FaceTextureSet>> FaceTextureSet::create(
+    const DeviceContext& device, const faces::FaceTextureSet& set,
+    const FaceTextureSetOptions& options) {
   if (set.face_count() == 0) return invalid("the face set has no faces");
   if (Status st = check_bindings(options.bindings); !st.ok()) return st;
   Result<Api> api = load_api(device);
   if (!api) return api.status();
-  if (device.queue == VK_NULL_HANDLE) return invalid("DeviceContext::queue is null (create uploads)");
+  if (device.queue == VK_NULL_HANDLE)
+    return invalid("DeviceContext::queue is null (create uploads)");
   auto s = std::make_unique<detail::FaceTextureSetState>();
   s->api = std::move(*api);
   s->bindings = options.bindings;
@@ -375,9 +376,9 @@ Result<std::unique_ptr<FaceTextureSet>> FaceTextureSet::create(const DeviceConte
   faces::PackLimits limits;
   limits.max_texture_size = int(std::min<std::uint32_t>(lim.maxImageDimension2D, 1u << 30));
   limits.max_array_layers = int(std::min<std::uint32_t>(lim.maxImageArrayLayers, 1u << 30));
-  limits.max_classes =
-      std::min<int>(kMaxClasses, int(std::min<std::uint32_t>(lim.maxPerStageDescriptorSamplers,
-                                                             2 * kMaxClasses) / 2));
+  limits.max_classes = std::min<int>(
+      kMaxClasses,
+      int(std::min<std::uint32_t>(lim.maxPerStageDescriptorSamplers, 2 * kMaxClasses) / 2));
   limits.max_ssbo_bytes = std::int64_t(lim.maxStorageBufferRange);
   faces::PackLimitNames names;
   names.texture_size = "maxImageDimension2D";
@@ -388,10 +389,10 @@ Result<std::unique_ptr<FaceTextureSet>> FaceTextureSet::create(const DeviceConte
     return Status::error(packed.status().code, "vk::FaceTextureSet: " + packed.status().message);
   }
   s->layout = std::move(*packed);
-  Result<Buffer> records = Buffer::create(
-      s->api, s->layout.records.size() * sizeof(faces::FaceRecord),
-      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
-      "vk::FaceTextureSet: face records");
+  Result<Buffer> records =
+      Buffer::create(s->api, s->layout.records.size() * sizeof(faces::FaceRecord),
+                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
+                     "vk::FaceTextureSet: face records");
   if (!records) return records.status();
   s->records = std::move(*records);
   if (Status st = create_images(*s); !st.ok()) return st;
@@ -426,8 +427,8 @@ Status FaceTextureSet::bind(VkCommandBuffer cmd, VkPipelineBindPoint bind_point,
   }
   const std::uint32_t max_sets = s_->api.properties.limits.maxBoundDescriptorSets;
   if (set >= max_sets) {
-    return invalid("bind: set " + std::to_string(set) + " >= maxBoundDescriptorSets = " +
-                   std::to_string(max_sets));
+    return invalid("bind: set " + std::to_string(set) +
+                   " >= maxBoundDescriptorSets = " + std::to_string(max_sets));
   }
   s_->api.CmdBindDescriptorSets(cmd, bind_point, pipeline_layout, set, 1, &s_->set, 0, nullptr);
   return Status::success();

@@ -79,8 +79,7 @@ std::uint32_t device_local_type(VkPhysicalDevice pd, std::uint32_t bits) {
   return 0;
 }
 
-void create_targets(const Engine& engine, DrawObjects& o, const EngineImage& colour, int w,
-                    int h) {
+void create_targets(const Engine& engine, DrawObjects& o, const EngineImage& colour, int w, int h) {
   const VkDevice dev = engine.context().device;
   VkImageCreateInfo ci{};
   ci.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
@@ -290,10 +289,9 @@ Result<std::vector<float>> draw(Engine& engine, const DrawInput& in) {
     return Status::error(ErrorCode::invalid_argument, "draw: no component set (index >= 1)");
   }
   const VkDevice dev = engine.context().device;
-  EngineImage colour = engine.upload_rgba(VK_FORMAT_R32G32B32A32_SFLOAT, in.width, in.height,
-                                          in.background,
-                                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
-                                              VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  EngineImage colour =
+      engine.upload_rgba(VK_FORMAT_R32G32B32A32_SFLOAT, in.width, in.height, in.background,
+                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   EngineBuffer vbo = engine.host_buffer(in.vertex_bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
   std::memcpy(vbo.data, in.vertices, in.vertex_bytes);
   EngineBuffer ibo = engine.host_buffer(in.indices.size() * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);

@@ -8,6 +8,8 @@
 // records, byte for byte). Bad input (no faces, colliding bindings, a null queue, a set index
 // past the device's limit, a null command buffer) fails with one line before anything is
 // created or recorded. Validation-clean and leak-free (vk_harness.h), or the test fails.
+#include "tessera/vk_faces.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,7 +21,6 @@
 #include "tessera/image_ops.h"
 #include "tessera/metrics.h"
 #include "tessera/ptex.h"
-#include "tessera/vk_faces.h"
 #include "test_support.h"
 #include "vk_draw.h"
 
@@ -116,14 +117,15 @@ DrawInput frame_input(const Teapot& t, const scene::Camera& camera, float shift_
   in.height = kH;
   in.background.assign(std::size_t(kW) * kH * 4, 0.0f);
   for (std::size_t i = 0; i < in.background.size(); i += 4) {
-    for (int c = 0; c < 3; ++c) in.background[i + std::size_t(c)] = faces::kFaceBackground[std::size_t(c)];
+    for (int c = 0; c < 3; ++c)
+      in.background[i + std::size_t(c)] = faces::kFaceBackground[std::size_t(c)];
   }
   const std::vector<Vec3> normals = faces::smooth_face_normals(t.scene.mesh);
   const float corner_uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   for (int f = 0; f < t.scene.mesh.face_count(); ++f) {
     for (int c = 0; c < 4; ++c) {
-      const Vec3& p = t.scene.mesh.positions[std::size_t(
-          t.scene.mesh.quads[std::size_t(f)][std::size_t(c)])];
+      const Vec3& p =
+          t.scene.mesh.positions[std::size_t(t.scene.mesh.quads[std::size_t(f)][std::size_t(c)])];
       const Vec3& n = normals[std::size_t(f) * 4 + std::size_t(c)];
       verts.push_back({{p.x, p.y, p.z}, {n.x, n.y, n.z}, {corner_uv[c][0], corner_uv[c][1]}, f});
     }
@@ -152,8 +154,8 @@ DrawInput frame_input(const Teapot& t, const scene::Camera& camera, float shift_
 }
 
 // The engine's fragment stage for the component at `set` (face + `shift` as the control).
-std::vector<std::uint32_t> fragment(const vk::FaceTextureSet& tex, std::uint32_t set,
-                                    int faces, int shift) {
+std::vector<std::uint32_t> fragment(const vk::FaceTextureSet& tex, std::uint32_t set, int faces,
+                                    int shift) {
   glsl::ExpandOptions so;
   so.preamble = tex.glsl_defines(set);
   so.preamble.push_back("#define ENGINE_FACES " + std::to_string(faces));
@@ -179,7 +181,7 @@ TEST_F(VkFaces, TeapotDiscardAgreesWithCpu) {
   const Teapot t = load_teapot(data);
   ASSERT_EQ(t.scene.mesh.face_count(), 448);
   vk::FaceTextureSetOptions to;
-  to.max_anisotropy = 1.0f;  // trilinear: the CPU renderer's filter
+  to.max_anisotropy = 1.0f;                               // trilinear: the CPU renderer's filter
   to.bindings = {2, 0, 5, VK_SHADER_STAGE_FRAGMENT_BIT};  // the engine's binding numbers
   auto tex = vk::FaceTextureSet::create(engine_->context(), t.set, to);
   ASSERT_TRUE(tex) << tex.status().message;
@@ -227,9 +229,10 @@ TEST_F(VkFaces, TeapotDiscardAgreesWithCpu) {
   const double discard = psnr_srgb8(render(0, 0.0f), cpu_frame->image);
   const double wrong_face = psnr_srgb8(render(1, 0.0f), cpu_frame->image);
   const double shifted = psnr_srgb8(render(0, 1.0f), cpu_frame->image);
-  std::printf("teapot %dx%d, %d classes: Vulkan Discard vs CPU %.2f dB; controls: face + 1 "
-              "%.2f dB, one pixel right %.2f dB\n",
-              kW, kH, (*tex)->class_count(), discard, wrong_face, shifted);
+  std::printf(
+      "teapot %dx%d, %d classes: Vulkan Discard vs CPU %.2f dB; controls: face + 1 "
+      "%.2f dB, one pixel right %.2f dB\n",
+      kW, kH, (*tex)->class_count(), discard, wrong_face, shifted);
   EXPECT_GE(discard, 60.0);
   EXPECT_LT(wrong_face, 40.0);
   EXPECT_LT(shifted, 45.0);
