@@ -1,12 +1,13 @@
 // tessera/gl_faces.h — per-face (Ptex-style) textures for the GPU: a faces::FaceTextureSet packed
 // as one GL_TEXTURE_2D_ARRAY per face-resolution class plus a std430 face-record buffer, which
 // the shipped seams.glsl reads in the engine's own shaders (tessera_seams_sample_discard, ...).
-// Contract: `pack_faces` and `ptex_quad_mesh` are pure; `FaceTextureSet::upload` and `bind` work
-// on the OpenGL 4.5 core context current on the calling thread, whoever made it (entry points as
-// tessera/gl.h says: `load_entry_points` or first-use resolution; no tessera `Context` needed),
-// and fail with one line without one. `upload` leaves the engine's GL state as it found it (it
-// sets and restores the pixel-unpack state); `bind` changes exactly the binding points it is
-// given. Destroy the objects while their context is current. The recipe (mesh, upload, vertex
+// Contract: `pack_faces` and `ptex_quad_mesh` (the layout of tessera/faces_gpu.h) are pure;
+// `FaceTextureSet::upload` and `bind` work on the OpenGL 4.5 core context current on the
+// calling thread, whoever made it (entry points as tessera/gl.h says: `load_entry_points` or
+// first-use resolution; no tessera `Context` needed), and fail with one line without one.
+// `upload` leaves the engine's GL state as it found it (it sets and restores the pixel-unpack
+// state); `bind` changes exactly the binding points it is given. Destroy the objects while
+// their context is current. The recipe (mesh, upload, vertex
 // and fragment stages, per-frame bind) is docs/engine_integration.md; examples/engine_ptex does
 // it in one file; tests: tests/gl/gl_faces_bind_test.cpp, gl_engine_context*.
 #pragma once
@@ -17,72 +18,22 @@
 #include <vector>
 
 #include "tessera/core.h"
+#include "tessera/faces_gpu.h"
 #include "tessera/gl.h"
-
-namespace tessera::faces {
-class FaceTextureSet;
-struct PolygonMesh;
-struct QuadMesh;
-}  // namespace tessera::faces
-
-namespace tessera::ptex {
-struct PtexFile;
-}
 
 namespace tessera::gl {
 
-// Per-face textures for the GPU (Toth 2013 / McDonald 2013 layout).
+// Per-face textures for the GPU (Toth 2013 / McDonald 2013 layout): the layout is the
+// backends' shared one (tessera/faces_gpu.h), named here as before.
+using faces::FaceClass;
+using faces::FaceRecord;
+using faces::PackedFaces;
+using faces::PackLimits;
+using faces::ptex_quad_mesh;
 
-/// One face's record in the face-record buffer: std430, 80 bytes, five ivec4:
-///
-///   struct FaceRecord {          // GLSL, std430 (share/tessera/glsl/seams.glsl)
-///     ivec4 info;                // x: class (the texture array), y: layer in it,
-///                                // z, w: level-0 width and height in texels
-///     ivec4 neighbour;           // face across edge e (0..3), -1 on a border
-///     ivec4 mapping;             // e * 4 + the neighbour's shared edge: the index of the
-///                                // transform my UV -> neighbour UV in the 16-entry table
-///                                // (faces::edge_transform_table); -1 on a border
-///     ivec4 corner;              // diagonal face at corner c (valence-4 vertex), -1 none
-///     ivec4 corner_mapping;      // m1 * 16 + m2: corner transform = table[m2] after
-///                                // table[m1] (across edge c, then across the next edge)
-///   };
-///   layout(std430) readonly buffer Faces { FaceRecord faces[]; };
-///
-/// Exactly the CPU `FaceTextureSet`'s adjacency (`adjacency(f)`) and corner links
-/// (`corner(f, c)`), so GL and CPU traverse the same faces through the same transforms.
-struct FaceRecord {
-  std::array<std::int32_t, 4> info{0, 0, 0, 0};
-  std::array<std::int32_t, 4> neighbour{-1, -1, -1, -1};
-  std::array<std::int32_t, 4> mapping{-1, -1, -1, -1};
-  std::array<std::int32_t, 4> corner{-1, -1, -1, -1};
-  std::array<std::int32_t, 4> corner_mapping{-1, -1, -1, -1};
-};
-static_assert(sizeof(FaceRecord) == 80, "FaceRecord must match the std430 layout");
-
-/// One texture array: the faces of one level-0 resolution.
-struct FaceClass {
-  int width = 0, height = 0;  ///< Level-0 texels.
-  int levels = 0;             ///< The full chain (as the CPU textures have).
-  std::vector<int> faces;     ///< Layer l holds face faces[l].
-};
-
-/// The GPU layout of a face set: classes ordered by (height, width), faces in index order
-/// within a class.
-struct PackedFaces {
-  std::vector<FaceClass> classes;
-  std::vector<FaceRecord> records;  ///< One per face, index = face id.
-};
-
-/// Limits the packing must respect (from `Context::limits()`; 0 = unchecked).
-struct PackLimits {
-  int max_texture_size = 0;
-  int max_array_layers = 0;
-  int max_classes = 0;  ///< E.g. the texture units a shader can bind.
-  std::int64_t max_ssbo_bytes = 0;
-};
-
-/// The layout of `set` for the GPU. Fails with too_large naming the limit ("97 faces of 64x64
-/// exceed GL_MAX_ARRAY_TEXTURE_LAYERS = 64") or invalid_argument on an empty set. Pure (no GL).
+/// faces::pack_faces with GL's names of the limits in its messages ("97 faces of 64x64 exceed
+/// GL_MAX_ARRAY_TEXTURE_LAYERS = 64", "above GL_MAX_TEXTURE_SIZE", "exceed
+/// GL_MAX_SHADER_STORAGE_BLOCK_SIZE"); invalid_argument on an empty set. Pure (no GL).
 Result<PackedFaces> pack_faces(const faces::FaceTextureSet& set, const PackLimits& limits = {});
 
 enum class TexelFormat {
@@ -165,16 +116,5 @@ class FaceTextureSet {
   Object records_, border_sampler_, clamp_sampler_;
   std::uint64_t texture_bytes_ = 0;
 };
-
-/// The quad mesh of a Ptex file's faces from the polygon mesh it was painted on (step 1 of the
-/// recipe above): face f of the result is Ptex face f. A quad of `mesh` is one face; an n-gon
-/// (n = 3 or n >= 5) must have been split by the file into n subfaces (FaceInfo::subface) and
-/// becomes the n quads of faces::ptex_face_layout. Fails with unsupported naming the polygon
-/// ("teapot: polygon 12 has 3 vertices, but Ptex face 12 is not a subface: only quads, and
-/// n-gons the Ptex file split into subfaces, are supported") when an n-gon was not split, with
-/// size_mismatch when the counts of faces differ or a quad meets a subface, and with
-/// unsupported on a triangle-mesh file. `name` prefixes the messages. Pure (no GL).
-Result<faces::QuadMesh> ptex_quad_mesh(const faces::PolygonMesh& mesh, const ptex::PtexFile& file,
-                                       const std::string& name);
 
 }  // namespace tessera::gl

@@ -2,10 +2,10 @@
 // Vulkan components its device, its images and its command buffers.
 //
 // The model is FidelityFX FSR2's Vulkan backend. The engine keeps its instance, device, queues,
-// frame graph and command buffers; a component (vk::AdaptiveSupersampler in vk_adaptive.h, the
-// per-face textures later) is created once on the engine's `DeviceContext`, owns its own
-// pipelines, descriptor pool, buffers and output images, and records its passes into the
-// engine's VkCommandBuffer. tessera calls no Vulkan loader symbol: every entry point comes from
+// frame graph and command buffers; a component (vk::AdaptiveSupersampler in vk_adaptive.h,
+// vk::FaceTextureSet in vk_faces.h) is created once on the engine's `DeviceContext`, owns its
+// own pipelines, descriptor pool, buffers and images, and records its passes into the engine's
+// VkCommandBuffer. tessera calls no Vulkan loader symbol: every entry point comes from
 // the engine's vkGetInstanceProcAddr / vkGetDeviceProcAddr (the library is compiled with
 // VK_NO_PROTOTYPES and links no libvulkan), so it runs on whatever loader, layer stack or
 // volk-style table the engine uses. Images cross the boundary as `ImageResource`: image, view,

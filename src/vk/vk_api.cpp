@@ -113,6 +113,8 @@ int memory_type(const Api& api, std::uint32_t bits, VkMemoryPropertyFlags want) 
   return -1;
 }
 
+}  // namespace
+
 Result<VkDeviceMemory> allocate(const Api& api, const VkMemoryRequirements& req,
                                 VkMemoryPropertyFlags want, VkMemoryPropertyFlags fallback,
                                 const std::string& what, bool* got_want) {
@@ -133,7 +135,6 @@ Result<VkDeviceMemory> allocate(const Api& api, const VkMemoryRequirements& req,
   return mem;
 }
 
-}  // namespace
 
 Buffer& Buffer::operator=(Buffer&& o) noexcept {
   if (this != &o) {
@@ -166,6 +167,15 @@ void Buffer::invalidate() const {
   range.memory = memory_;
   range.size = VK_WHOLE_SIZE;
   (void)api_->InvalidateMappedMemoryRanges(api_->device(), 1, &range);  // only OOM can fail
+}
+
+void Buffer::flush() const {
+  if (coherent_ || mapped_ == nullptr) return;
+  VkMappedMemoryRange range{};
+  range.sType = VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE;
+  range.memory = memory_;
+  range.size = VK_WHOLE_SIZE;
+  (void)api_->FlushMappedMemoryRanges(api_->device(), 1, &range);  // only OOM can fail
 }
 
 Result<Buffer> Buffer::create(const Api& api, VkDeviceSize bytes, VkBufferUsageFlags usage,

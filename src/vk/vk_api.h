@@ -63,7 +63,18 @@ namespace tessera::vk {
   X(CmdFillBuffer)                     \
   X(CmdCopyBuffer)                     \
   X(CmdWriteTimestamp)                 \
-  X(CmdResetQueryPool)
+  X(CmdResetQueryPool)                 \
+  X(CmdCopyBufferToImage)              \
+  X(FlushMappedMemoryRanges)           \
+  X(CreateCommandPool)                 \
+  X(DestroyCommandPool)                \
+  X(AllocateCommandBuffers)            \
+  X(BeginCommandBuffer)                \
+  X(EndCommandBuffer)                  \
+  X(QueueSubmit)                       \
+  X(CreateFence)                       \
+  X(DestroyFence)                      \
+  X(WaitForFences)
 
 /// The loaded table plus what components check about the device.
 struct Api {
@@ -89,6 +100,12 @@ Result<Api> load_api(const DeviceContext& ctx);
 /// A failed Vulkan call as an error status: unsupported, "what: VK_ERROR_...".
 Status vk_error(const std::string& what, VkResult r);
 
+/// Device memory for `req`: a type with all of `want`, else one with all of `fallback`
+/// (`*got_want` says which); unsupported naming `what` when none fits or the allocation fails.
+Result<VkDeviceMemory> allocate(const Api& api, const VkMemoryRequirements& req,
+                                VkMemoryPropertyFlags want, VkMemoryPropertyFlags fallback,
+                                const std::string& what, bool* got_want);
+
 /// A buffer and its memory, destroyed together.
 class Buffer {
  public:
@@ -104,6 +121,8 @@ class Buffer {
   /// Host-visible buffers: the mapped pointer (coherent or invalidated by `invalidate`).
   void* mapped() const { return mapped_; }
   void invalidate() const;
+  /// Host-visible buffers: makes host writes through `mapped()` visible to the device.
+  void flush() const;
 
  private:
   const Api* api_ = nullptr;
@@ -173,5 +192,10 @@ using ShaderModule = Owned<VkShaderModule, &Api::DestroyShaderModule>;
 using Pipeline = Owned<VkPipeline, &Api::DestroyPipeline>;
 using DescriptorPool = Owned<VkDescriptorPool, &Api::DestroyDescriptorPool>;
 using QueryPool = Owned<VkQueryPool, &Api::DestroyQueryPool>;
+using RawImage = Owned<VkImage, &Api::DestroyImage>;
+using ImageView = Owned<VkImageView, &Api::DestroyImageView>;
+using Memory = Owned<VkDeviceMemory, &Api::FreeMemory>;
+using CommandPool = Owned<VkCommandPool, &Api::DestroyCommandPool>;
+using Fence = Owned<VkFence, &Api::DestroyFence>;
 
 }  // namespace tessera::vk

@@ -12,8 +12,8 @@
 # The installed share/tessera/glsl is moved away first: nothing may read it (the GLSL is
 # embedded in the library). No GL device (or no Xvfb / GLFW) skips those runs with a note, or
 # fails when TESSERA_TEST_REQUIRE asks for gl (or all).
-# Where tessera::vk was installed, first examples/engine_aa_vk with find_package(tessera
-# COMPONENTS vk), run at a small size with the installed GLSL folder moved away (no Vulkan device
+# Where tessera::vk was installed, first examples/engine_aa_vk and examples/engine_ptex_vk with
+# find_package(tessera COMPONENTS vk), run at a small size with the installed GLSL folder moved away (no Vulkan device
 # is not an error here: the build is what is checked, the CTest engine_aa_vk checks the image).
 # Usage: install_test.sh SOURCE_DIR BINARY_DIR
 set -euo pipefail
@@ -39,6 +39,22 @@ if ls "$work"/prefix/lib*/cmake/tessera/tesseraVkTargets.cmake >/dev/null 2>&1; 
   mv "$work/glsl.vk.moved" "$vk_glsl"
   echo "$out"
   if [ $rc -ne 0 ] && ! grep -q "no Vulkan device" <<<"$out"; then exit 1; fi
+  # examples/engine_ptex_vk the same way, on the teapot when ../shared/data is there.
+  cmake -S "$src/examples/engine_ptex_vk" -B "$work/build_engine_ptex_vk" -G Ninja \
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+  cmake --build "$work/build_engine_ptex_vk" >/dev/null
+  vk_teapot="$src/../shared/data/ptex/teapot"
+  if [ -f "$vk_teapot/teapot.ptx" ]; then
+    mv "$vk_glsl" "$work/glsl.vk.moved"  # engine_ptex_vk must not need it either
+    set +e
+    out=$(env -u TESSERA_GLSL_DIR "$work/build_engine_ptex_vk/engine_ptex_vk" \
+      "$vk_teapot/teapot.obj" "$vk_teapot/teapot.ptx" --size 64x48 2>&1)
+    rc=$?
+    set -e
+    mv "$work/glsl.vk.moved" "$vk_glsl"
+    echo "$out"
+    if [ $rc -ne 0 ] && ! grep -q "no Vulkan device" <<<"$out"; then exit 1; fi
+  fi
 fi
 if ! ls "$work"/prefix/lib*/cmake/tessera/tesseraGlTargets.cmake >/dev/null 2>&1; then
   echo "install test: tessera::gl not installed (no EGL/GL development files): consumer only"

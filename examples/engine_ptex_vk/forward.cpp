@@ -1,0 +1,347 @@
+// engine_ptex_vk's forward pass (engine.h: draw): a render pass clearing an RGBA32F colour
+// target to the background and a D32 depth target, one indexed draw, a copy to a host buffer.
+#include <chrono>
+#include <cstring>
+
+#include "engine.h"
+
+namespace engine {
+
+namespace {
+
+struct Objects {
+  VkDevice device = VK_NULL_HANDLE;
+  VkImage images[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};  // colour, depth
+  VkDeviceMemory memory[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+  VkImageView views[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+  VkRenderPass pass = VK_NULL_HANDLE;
+  VkFramebuffer framebuffer = VK_NULL_HANDLE;
+  VkDescriptorSetLayout frame_layout = VK_NULL_HANDLE, empty_layout = VK_NULL_HANDLE;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkShaderModule modules[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkCommandPool cmd_pool = VK_NULL_HANDLE;
+  VkFence fence = VK_NULL_HANDLE;
+  ~Objects() {
+    if (device == VK_NULL_HANDLE) return;
+    vkDeviceWaitIdle(device);
+    vkDestroyFence(device, fence, nullptr);
+    vkDestroyCommandPool(device, cmd_pool, nullptr);
+    vkDestroyPipeline(device, pipeline, nullptr);
+    for (VkShaderModule m : modules) vkDestroyShaderModule(device, m, nullptr);
+    vkDestroyPipelineLayout(device, layout, nullptr);
+    vkDestroyDescriptorPool(device, pool, nullptr);
+    vkDestroyDescriptorSetLayout(device, empty_layout, nullptr);
+    vkDestroyDescriptorSetLayout(device, frame_layout, nullptr);
+    vkDestroyFramebuffer(device, framebuffer, nullptr);
+    vkDestroyRenderPass(device, pass, nullptr);
+    for (int i = 0; i < 2; ++i) {
+      vkDestroyImageView(device, views[i], nullptr);
+      vkDestroyImage(device, images[i], nullptr);
+      vkFreeMemory(device, memory[i], nullptr);
+    }
+  }
+};
+
+void create_targets(const Device& d, Objects& o, int w, int h) {
+  const VkFormat formats[2] = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_D32_SFLOAT};
+  const VkImageUsageFlags usage[2] = {
+      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT};
+  VkPhysicalDeviceMemoryProperties mp{};
+  vkGetPhysicalDeviceMemoryProperties(d.physical, &mp);
+  for (int i = 0; i < 2; ++i) {
+    VkImageCreateInfo ci{};
+    ci.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
+    ci.imageType = VK_IMAGE_TYPE_2D;
+    ci.format = formats[i];
+    ci.extent = {std::uint32_t(w), std::uint32_t(h), 1};
+    ci.mipLevels = ci.arrayLayers = 1;
+    ci.samples = VK_SAMPLE_COUNT_1_BIT;
+    ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+    ci.usage = usage[i];
+    vkCreateImage(d.device, &ci, nullptr, &o.images[i]);
+    VkMemoryRequirements req{};
+    vkGetImageMemoryRequirements(d.device, o.images[i], &req);
+    std::uint32_t type = 0;
+    for (std::uint32_t t = 0; t < mp.memoryTypeCount; ++t) {
+      if ((req.memoryTypeBits & (1u << t)) &&
+          (mp.memoryTypes[t].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
+        type = t;
+        break;
+      }
+    }
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size, type};
+    vkAllocateMemory(d.device, &ai, nullptr, &o.memory[i]);
+    vkBindImageMemory(d.device, o.images[i], o.memory[i], 0);
+    VkImageViewCreateInfo vi{};
+    vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+    vi.image = o.images[i];
+    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vi.format = formats[i];
+    vi.subresourceRange = {i == 0 ? VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT)
+                                  : VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT),
+                           0, 1, 0, 1};
+    vkCreateImageView(d.device, &vi, nullptr, &o.views[i]);
+  }
+  // Both cleared; colour left in TRANSFER_SRC_OPTIMAL for the copy (the dependency below).
+  VkAttachmentDescription att[2]{};
+  for (int i = 0; i < 2; ++i) {
+    att[i].format = formats[i];
+    att[i].samples = VK_SAMPLE_COUNT_1_BIT;
+    att[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    att[i].storeOp = i == 0 ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    att[i].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    att[i].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    att[i].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  }
+  att[0].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  att[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+  const VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  const VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription sub{};
+  sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  sub.colorAttachmentCount = 1;
+  sub.pColorAttachments = &cref;
+  sub.pDepthStencilAttachment = &dref;
+  VkSubpassDependency deps[2]{};
+  deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+  deps[0].dstSubpass = 0;
+  deps[0].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                         VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                         VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  deps[0].dstStageMask = deps[0].srcStageMask;
+  deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
+                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  deps[1].srcSubpass = 0;
+  deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+  deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+  VkRenderPassCreateInfo rp{};
+  rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
+  rp.attachmentCount = 2;
+  rp.pAttachments = att;
+  rp.subpassCount = 1;
+  rp.pSubpasses = &sub;
+  rp.dependencyCount = 2;
+  rp.pDependencies = deps;
+  vkCreateRenderPass(d.device, &rp, nullptr, &o.pass);
+  VkFramebufferCreateInfo fb{};
+  fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+  fb.renderPass = o.pass;
+  fb.attachmentCount = 2;
+  fb.pAttachments = o.views;
+  fb.width = std::uint32_t(w);
+  fb.height = std::uint32_t(h);
+  fb.layers = 1;
+  vkCreateFramebuffer(d.device, &fb, nullptr, &o.framebuffer);
+}
+
+std::string create_pipeline(VkDevice dev, Objects& o, const Frame& in) {
+  VkShaderModuleCreateInfo mi{};
+  mi.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+  mi.codeSize = in.vertex_spirv.size() * 4;
+  mi.pCode = in.vertex_spirv.data();
+  vkCreateShaderModule(dev, &mi, nullptr, &o.modules[0]);
+  mi.codeSize = in.fragment_spirv.size() * 4;
+  mi.pCode = in.fragment_spirv.data();
+  vkCreateShaderModule(dev, &mi, nullptr, &o.modules[1]);
+  VkPipelineShaderStageCreateInfo st[2]{};
+  for (int i = 0; i < 2; ++i) {
+    st[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    st[i].stage = i == 0 ? VK_SHADER_STAGE_VERTEX_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
+    st[i].module = o.modules[i];
+    st[i].pName = "main";
+  }
+  const VkVertexInputBindingDescription vb{0, in.stride, VK_VERTEX_INPUT_RATE_VERTEX};
+  VkPipelineVertexInputStateCreateInfo vin{};
+  vin.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
+  vin.vertexBindingDescriptionCount = 1;
+  vin.pVertexBindingDescriptions = &vb;
+  vin.vertexAttributeDescriptionCount = std::uint32_t(in.attributes.size());
+  vin.pVertexAttributeDescriptions = in.attributes.data();
+  VkPipelineInputAssemblyStateCreateInfo ia{};
+  ia.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
+  ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  // +y up: the viewport starts at the bottom row with a negative height (core since 1.1).
+  const VkViewport vp{0.0f, float(in.height), float(in.width), -float(in.height), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, {std::uint32_t(in.width), std::uint32_t(in.height)}};
+  VkPipelineViewportStateCreateInfo vs{};
+  vs.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
+  vs.viewportCount = vs.scissorCount = 1;
+  vs.pViewports = &vp;
+  vs.pScissors = &scissor;
+  VkPipelineRasterizationStateCreateInfo rs{};
+  rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
+  rs.polygonMode = VK_POLYGON_MODE_FILL;
+  rs.cullMode = VK_CULL_MODE_BACK_BIT;  // counter-clockwise front faces, as the CPU renderer
+  rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  rs.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo ms{};
+  ms.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
+  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo ds{};
+  ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
+  ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
+  ds.depthCompareOp = VK_COMPARE_OP_LESS;
+  VkPipelineColorBlendAttachmentState blend{};
+  blend.colorWriteMask = 0xf;
+  VkPipelineColorBlendStateCreateInfo cb{};
+  cb.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
+  cb.attachmentCount = 1;
+  cb.pAttachments = &blend;
+  VkGraphicsPipelineCreateInfo pi{};
+  pi.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
+  pi.stageCount = 2;
+  pi.pStages = st;
+  pi.pVertexInputState = &vin;
+  pi.pInputAssemblyState = &ia;
+  pi.pViewportState = &vs;
+  pi.pRasterizationState = &rs;
+  pi.pMultisampleState = &ms;
+  pi.pDepthStencilState = &ds;
+  pi.pColorBlendState = &cb;
+  pi.layout = o.layout;
+  pi.renderPass = o.pass;
+  if (VkResult r = vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &pi, nullptr, &o.pipeline);
+      r != VK_SUCCESS) {
+    return "vkCreateGraphicsPipelines: VkResult " + std::to_string(int(r));
+  }
+  return "";
+}
+
+// Set 0: the frame block (a pool of one set); 1..: the caller's layouts.
+VkDescriptorSet create_layouts(VkDevice dev, Objects& o, const Frame& in, const Buffer& ubo) {
+  const VkDescriptorSetLayoutBinding b{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+                                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                       nullptr};
+  VkDescriptorSetLayoutCreateInfo li{};
+  li.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+  li.bindingCount = 1;
+  li.pBindings = &b;
+  vkCreateDescriptorSetLayout(dev, &li, nullptr, &o.frame_layout);
+  li.bindingCount = 0;
+  vkCreateDescriptorSetLayout(dev, &li, nullptr, &o.empty_layout);
+  std::vector<VkDescriptorSetLayout> layouts{o.frame_layout};
+  for (VkDescriptorSetLayout l : in.extra_layouts) {
+    layouts.push_back(l != VK_NULL_HANDLE ? l : o.empty_layout);
+  }
+  VkPipelineLayoutCreateInfo pl{};
+  pl.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+  pl.setLayoutCount = std::uint32_t(layouts.size());
+  pl.pSetLayouts = layouts.data();
+  vkCreatePipelineLayout(dev, &pl, nullptr, &o.layout);
+  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
+  VkDescriptorPoolCreateInfo pi{};
+  pi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+  pi.maxSets = 1;
+  pi.poolSizeCount = 1;
+  pi.pPoolSizes = &size;
+  vkCreateDescriptorPool(dev, &pi, nullptr, &o.pool);
+  VkDescriptorSetAllocateInfo ai{};
+  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+  ai.descriptorPool = o.pool;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &o.frame_layout;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  vkAllocateDescriptorSets(dev, &ai, &set);
+  const VkDescriptorBufferInfo bi{ubo.buffer, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet w{};
+  w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+  w.dstSet = set;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  w.pBufferInfo = &bi;
+  vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
+  return set;
+}
+
+// Records the frame into `cmd`; "" or what the caller's bind said.
+std::string record(const Objects& o, const Frame& f, VkDescriptorSet frame_set, const Buffer& vbo,
+                   const Buffer& ibo, const Buffer& out, VkCommandBuffer cmd) {
+  VkClearValue clear[2]{};
+  std::memcpy(clear[0].color.float32, f.background, sizeof f.background);
+  clear[1].depthStencil = {1.0f, 0};
+  VkRenderPassBeginInfo rb{};
+  rb.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+  rb.renderPass = o.pass;
+  rb.framebuffer = o.framebuffer;
+  rb.renderArea = {{0, 0}, {std::uint32_t(f.width), std::uint32_t(f.height)}};
+  rb.clearValueCount = 2;
+  rb.pClearValues = clear;
+  vkCmdBeginRenderPass(cmd, &rb, VK_SUBPASS_CONTENTS_INLINE);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, o.pipeline);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, o.layout, 0, 1, &frame_set, 0,
+                          nullptr);
+  const std::string bound = f.bind_extra ? f.bind_extra(cmd, o.layout) : "";
+  const VkDeviceSize zero = 0;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vbo.buffer, &zero);
+  vkCmdBindIndexBuffer(cmd, ibo.buffer, 0, VK_INDEX_TYPE_UINT32);
+  vkCmdDrawIndexed(cmd, std::uint32_t(f.indices.size()), 1, 0, 0, 0);
+  vkCmdEndRenderPass(cmd);
+  VkBufferImageCopy region{};
+  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.imageExtent = {std::uint32_t(f.width), std::uint32_t(f.height), 1};
+  vkCmdCopyImageToBuffer(cmd, o.images[0], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, out.buffer, 1,
+                         &region);
+  VkMemoryBarrier host{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
+                       VK_ACCESS_HOST_READ_BIT};
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &host,
+                       0, nullptr, 0, nullptr);
+  return bound;
+}
+
+}  // namespace
+
+std::vector<float> draw(Device& d, const Frame& f, double* ms, std::string& error) {
+  const std::size_t texels = std::size_t(f.width) * std::size_t(f.height);
+  Buffer vbo = d.buffer(f.vertices, f.vertex_bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+  Buffer ibo = d.buffer(f.indices.data(), f.indices.size() * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  Buffer ubo = d.buffer(f.block.data(), f.block.size(), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+  Buffer out = d.buffer(nullptr, texels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  std::vector<float> pixels;
+  {
+    Objects o;
+    o.device = d.device;
+    create_targets(d, o, f.width, f.height);
+    const VkDescriptorSet frame_set = create_layouts(d.device, o, f, ubo);
+    error = create_pipeline(d.device, o, f);
+    VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr,
+                               VK_COMMAND_POOL_CREATE_TRANSIENT_BIT, d.family};
+    vkCreateCommandPool(d.device, &pi, nullptr, &o.cmd_pool);
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr,
+                                   o.cmd_pool, VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    vkAllocateCommandBuffers(d.device, &ai, &cmd);
+    VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, 0};
+    vkCreateFence(d.device, &fi, nullptr, &o.fence);
+    if (error.empty()) {
+      VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
+                                  VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
+      vkBeginCommandBuffer(cmd, &bi);
+      error = record(o, f, frame_set, vbo, ibo, out, cmd);
+      vkEndCommandBuffer(cmd);
+    }
+    if (error.empty()) {
+      const auto t0 = std::chrono::steady_clock::now();
+      VkSubmitInfo si{};
+      si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+      si.commandBufferCount = 1;
+      si.pCommandBuffers = &cmd;
+      vkQueueSubmit(d.queue, 1, &si, o.fence);
+      vkWaitForFences(d.device, 1, &o.fence, VK_TRUE, UINT64_MAX);
+      *ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      pixels.resize(texels * 4);
+      std::memcpy(pixels.data(), out.data, texels * 16);
+    }
+  }
+  for (Buffer* b : {&out, &ubo, &ibo, &vbo}) d.destroy(*b);
+  return pixels;
+}
+
+}  // namespace engine

@@ -1,0 +1,313 @@
+// engine_ptex_vk — a small Vulkan forward renderer that draws a Ptex mesh with its own shader
+// and tessera's seamless per-face lookup (seams.glsl, tessera_seams_sample_discard: Toth 2013),
+// the Vulkan twin of examples/engine_ptex.
+//
+// The engine side is all its own (engine.h): its instance (with the validation layer and
+// synchronization validation when installed; any validation message makes it exit 1), device
+// and queue, its vertex layout (position, normal, per-face UV, integer face id), its frame
+// uniform block at set 0, its render pass and pipeline, its GLSL compiled at load with shaderc.
+// The integration with tessera is the blocks marked "tessera" (tessera/vk_faces.h): mesh and
+// textures from the .obj and .ptx, one vk::FaceTextureSet::create on the engine's device and
+// queue, its set layout in the engine's pipeline layout at set index 2 (the engine's choice),
+// its glsl_defines before the engine's #include "seams.glsl", one bind per frame.
+//
+// Usage: engine_ptex_vk MESH.obj FILE.ptx [--size WxH] [--orbit K/N] [--shift-px X]
+//                       [--face-shift K] [--json] [-o FILE.png]
+//   --json         one JSON object with the agreement with tessera's CPU renderer
+//                  (faces::FaceRenderer: Discard, trilinear, same camera, resolution and
+//                  lighting): PSNR of the 8-bit sRGB images (psnr_db, null when identical),
+//                  and the validation messages counted
+//   -o FILE.png    the Vulkan image (8-bit sRGB)
+//   --shift-px X   moves the Vulkan camera's image X pixels right (the CPU frame stays)
+//   --face-shift K the shader reads face (f + K) mod faces: the wrong textures
+// The last two are negative controls for the agreement bound (tests/vk/engine_ptex_vk_test.py).
+// Exit 1 with one line when there is no Vulkan device, on bad arguments or input, or on any
+// validation message.
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "engine.h"
+#include "tessera/core.h"
+#include "tessera/faces.h"
+#include "tessera/faces_gpu.h"
+#include "tessera/glsl.h"
+#include "tessera/io.h"
+#include "tessera/metrics.h"
+#include "tessera/ptex.h"
+#include "tessera/vk_faces.h"
+
+namespace {
+
+struct Args {
+  std::string obj, ptx, out;
+  int w = 320, h = 240, orbit_k = 1, orbit_n = 8, face_shift = 0;
+  float shift_px = 0.0f;
+  bool json = false;
+};
+
+int fail(const std::string& msg) {
+  std::fprintf(stderr, "engine_ptex_vk: %s\n", msg.c_str());
+  return 1;
+}
+
+struct Vertex {
+  float position[3], normal[3], uv[2];
+  std::int32_t face;
+};
+
+const char* kVertexShader = R"(#version 450
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+layout(location = 2) in vec2 face_uv;
+layout(location = 3) in int face_id;
+layout(std140, set = 0, binding = 0) uniform Frame { mat4 view_proj; vec4 light_dir; vec4 shade; };
+layout(location = 0) out vec3 v_normal;
+layout(location = 1) out vec2 v_uv;
+layout(location = 2) flat out int v_face;
+void main() {
+  v_normal = normal;
+  v_uv = face_uv;
+  v_face = face_id;
+  gl_Position = view_proj * vec4(position, 1.0);
+  gl_Position.z = 0.5 * (gl_Position.z + gl_Position.w);  // GL-style depth to Vulkan's 0..1
+}
+)";
+
+// tessera's glsl_defines go after #version (glsl::ExpandOptions::preamble).
+const char* kFragmentShader = R"(#version 450
+#include "seams.glsl"
+layout(std140, set = 0, binding = 0) uniform Frame { mat4 view_proj; vec4 light_dir; vec4 shade; };
+layout(location = 0) in vec3 v_normal;
+layout(location = 1) in vec2 v_uv;
+layout(location = 2) flat in int v_face;
+layout(location = 0) out vec4 colour;
+void main() {
+  // Explicit fine gradients: the lookups sit in non-uniform control flow (a class per face).
+  vec2 dx = dFdxFine(v_uv), dy = dFdyFine(v_uv);
+  int face = (v_face + ENGINE_FACE_SHIFT) % ENGINE_FACES;
+  vec4 tex = tessera_seams_sample_discard(face, v_uv, dx, dy, true);
+  float nl = dot(v_normal, light_dir.xyz) / sqrt(dot(v_normal, v_normal) + 1e-20);
+  colour = vec4(tex.rgb * (shade.x + shade.y * max(nl, 0.0)), 1.0);
+}
+)";
+
+std::string parse_args(int argc, char** argv, Args& a) {
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i) {
+    const std::string k = argv[i];
+    if ((k == "--size" || k == "--orbit" || k == "--shift-px" || k == "--face-shift" ||
+         k == "-o") &&
+        i + 1 >= argc) {
+      return k + " needs a value";
+    }
+    if (k == "--size") {
+      const std::string v = argv[++i];
+      if (std::sscanf(v.c_str(), "%dx%d", &a.w, &a.h) != 2 || a.w < 2 || a.h < 2 || a.w > 8192 ||
+          a.h > 8192 || a.w % 2 || a.h % 2)
+        return "--size " + v + ": expected WxH, even, 2..8192 (2x2 derivative quads)";
+    } else if (k == "--orbit") {
+      const std::string v = argv[++i];
+      if (std::sscanf(v.c_str(), "%d/%d", &a.orbit_k, &a.orbit_n) != 2 || a.orbit_n <= 0 ||
+          a.orbit_k < 0)
+        return "--orbit " + v + ": expected K/N";
+    } else if (k == "--shift-px") {
+      a.shift_px = std::strtof(argv[++i], nullptr);
+    } else if (k == "--face-shift") {
+      a.face_shift = std::atoi(argv[++i]);
+      if (a.face_shift < 0) return "--face-shift: K >= 0";
+    } else if (k == "--json") {
+      a.json = true;
+    } else if (k == "-o") {
+      a.out = argv[++i];
+    } else if (!k.empty() && k[0] == '-') {
+      return "unknown argument " + k;
+    } else {
+      positional.push_back(k);
+    }
+  }
+  if (positional.size() != 2) return "usage: engine_ptex_vk MESH.obj FILE.ptx [options]";
+  a.obj = positional[0];
+  a.ptx = positional[1];
+  return "";
+}
+
+// The engine's frame: 4 vertices and 2 triangles per face, the camera (moved `shift_px`
+// pixels right), the light; vertex layout and the frame block's bytes.
+engine::Frame make_frame(const Args& a, const tessera::faces::QuadMesh& mesh,
+                         const tessera::scene::Camera& camera, std::vector<Vertex>& verts) {
+  engine::Frame f;
+  f.width = a.w;
+  f.height = a.h;
+  for (int c = 0; c < 3; ++c) f.background[c] = tessera::faces::kFaceBackground[std::size_t(c)];
+  const std::vector<tessera::Vec3> normals = tessera::faces::smooth_face_normals(mesh);
+  const float corner_uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int face = 0; face < mesh.face_count(); ++face) {
+    for (int c = 0; c < 4; ++c) {
+      const tessera::Vec3& p =
+          mesh.positions[std::size_t(mesh.quads[std::size_t(face)][std::size_t(c)])];
+      const tessera::Vec3& n = normals[std::size_t(face) * 4 + std::size_t(c)];
+      verts.push_back({{p.x, p.y, p.z}, {n.x, n.y, n.z}, {corner_uv[c][0], corner_uv[c][1]}, face});
+    }
+    const auto b = std::uint32_t(face) * 4;
+    for (std::uint32_t i : {b, b + 1, b + 2, b, b + 2, b + 3}) f.indices.push_back(i);
+  }
+  f.vertices = verts.data();
+  f.vertex_bytes = verts.size() * sizeof(Vertex);
+  f.stride = sizeof(Vertex);
+  f.attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
+                  {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 12},
+                  {2, 0, VK_FORMAT_R32G32_SFLOAT, 24},
+                  {3, 0, VK_FORMAT_R32_SINT, 32}};
+  float block[24] = {};
+  const tessera::Mat4 vp = camera.view_projection(float(a.w) / float(a.h));
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) block[c * 4 + r] = vp.m[c][r];
+    block[c * 4 + 0] += 2.0f * a.shift_px / float(a.w) * vp.m[c][3];
+  }
+  const float light[3] = {0.42f, 0.82f, 0.39f};
+  std::memcpy(block + 16, light, sizeof light);
+  block[20] = 0.35f;  // ambient
+  block[21] = 0.65f;  // diffuse
+  f.block.resize(sizeof block);
+  std::memcpy(f.block.data(), block, sizeof block);
+  return f;
+}
+
+// The Vulkan frame against tessera's CPU renderer (Discard, trilinear): PSNR of the 8-bit sRGB
+// images (infinite when identical).
+tessera::Result<double> agreement(const tessera::faces::FaceScene& scene,
+                                  const tessera::faces::FaceTextureSet& set,
+                                  const tessera::scene::Camera& camera,
+                                  const tessera::ImageRGBAF& img, double* cpu_ms) {
+  auto cpu = tessera::faces::FaceRenderer::create(scene, set);
+  if (!cpu) return cpu.status();
+  tessera::faces::FaceRenderOptions o;
+  o.width = img.width;
+  o.height = img.height;
+  o.sampling.method = tessera::faces::SeamMethod::discard;
+  o.sampling.filter = tessera::texture::TextureFilter::trilinear;
+  o.sampling.clamp_fallback = true;
+  auto frame = (*cpu)->render(camera, o);
+  if (!frame) return frame.status();
+  *cpu_ms = frame->ms();
+  tessera::metrics::CompareOptions co;
+  co.compute_ssim = false;
+  auto c =
+      tessera::metrics::compare_images(tessera::to_srgb8(img), tessera::to_srgb8(frame->image), co);
+  if (!c) return c.status();
+  return c->psnr_rgb;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args a;
+  if (std::string why = parse_args(argc, argv, a); !why.empty()) return fail(why);
+
+  // ---- tessera, step 1 (pure): the quad faces of the Ptex file and their textures ----
+  auto poly = tessera::faces::load_obj_polygons(a.obj);
+  if (!poly) return fail(poly.status().message);
+  auto file = tessera::ptex::read_ptex(a.ptx);
+  if (!file) return fail(file.status().message);
+  auto mesh = tessera::faces::ptex_quad_mesh(*poly, *file, a.ptx);
+  if (!mesh) return fail(mesh.status().message);
+  auto set = tessera::faces::FaceTextureSet::from_ptex(*file, a.ptx);
+  if (!set) return fail(set.status().message);
+  // ---- end of step 1 ----
+
+  engine::Device d;
+  if (std::string why = d.create(true); !why.empty()) {
+    d.destroy();
+    return fail("no Vulkan device: " + why);
+  }
+  tessera::faces::FaceScene scene;
+  scene.name = a.obj;
+  scene.mesh = *mesh;
+  const tessera::scene::Camera camera =
+      tessera::faces::face_orbit_camera(scene, a.orbit_k, a.orbit_n);
+  std::vector<Vertex> verts;
+  engine::Frame frame = make_frame(a, scene.mesh, camera, verts);
+
+  // ---- tessera, step 2: the engine's device, one upload; set index 2 is the engine's ----
+  tessera::vk::DeviceContext ctx;
+  ctx.instance = d.instance;
+  ctx.physical_device = d.physical;
+  ctx.device = d.device;
+  ctx.queue_family = d.family;
+  ctx.queue = d.queue;
+  ctx.get_instance_proc_addr = vkGetInstanceProcAddr;
+  ctx.get_device_proc_addr = vkGetDeviceProcAddr;
+  ctx.api_version = d.api_version;
+  ctx.enabled_features = d.features;
+  tessera::vk::FaceTextureSetOptions to;
+  to.max_anisotropy = 1.0f;  // trilinear: the filter the CPU check uses
+  auto tex = tessera::vk::FaceTextureSet::create(ctx, *set, to);
+  if (!tex) {
+    d.destroy();
+    return fail(tex.status().message);
+  }
+  const std::uint32_t kSet = 2;  // set 1 stays free for the engine's own material set
+  tessera::glsl::ExpandOptions so;
+  so.preamble = (*tex)->glsl_defines(kSet);
+  so.preamble.push_back("#define ENGINE_FACES " + std::to_string(scene.mesh.face_count()));
+  so.preamble.push_back("#define ENGINE_FACE_SHIFT " + std::to_string(a.face_shift));
+  auto fragment = tessera::glsl::expand_includes(
+      {tessera::glsl::Stage::fragment, kFragmentShader, "engine_ptex_vk.frag"}, so);
+  frame.extra_layouts = {VK_NULL_HANDLE, (*tex)->set_layout()};
+  frame.bind_extra = [&](VkCommandBuffer cmd, VkPipelineLayout layout) {
+    return (*tex)->bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, kSet).message;
+  };
+  // ---- end of step 2 ----
+
+  std::string error = fragment ? "" : fragment.status().message;
+  std::string log;
+  if (error.empty()) {
+    frame.vertex_spirv = engine::compile(kVertexShader, true, "engine_ptex_vk.vert", log);
+    frame.fragment_spirv = engine::compile(fragment->text, false, "engine_ptex_vk.frag", log);
+    if (!log.empty()) error = tessera::glsl::format_log(log, fragment->files);
+  }
+  double vk_ms = 0, cpu_ms = 0;
+  std::vector<float> pixels;
+  if (error.empty()) pixels = engine::draw(d, frame, &vk_ms, error);
+  const int classes = (*tex)->class_count();
+  (*tex).reset();  // tessera's objects before the engine's device
+  const std::string device_name = d.name;
+  const bool validation = d.validation;
+  d.destroy();  // leaks are reported here
+  if (!error.empty()) return fail(error);
+  if (d.messages > 0) {
+    return fail(std::to_string(d.messages) +
+                " validation message(s), the first: " + d.first_message);
+  }
+  tessera::ImageRGBAF img(a.w, a.h);
+  img.pixels = std::move(pixels);
+  if (!a.out.empty()) {
+    if (auto s = tessera::io::write_png(a.out, tessera::to_srgb8(img)); !s.ok()) {
+      return fail(s.message);
+    }
+  }
+  auto psnr = agreement(scene, *set, camera, img, &cpu_ms);
+  if (!psnr) return fail(psnr.status().message);
+  char psnr_text[32];
+  std::snprintf(psnr_text, sizeof psnr_text, "%.3f", *psnr);
+  if (a.json) {
+    std::printf(
+        "{\"backend\": \"vk\", \"device\": \"%s\", \"mesh\": \"%s\", \"faces\": %d, "
+        "\"classes\": %d, \"width\": %d, \"height\": %d, \"orbit\": \"%d/%d\", "
+        "\"shift_px\": %.3f, \"face_shift\": %d, \"psnr_db\": %s, \"validation\": %s, "
+        "\"validation_messages\": %d, \"vk_ms\": %.3f, \"cpu_ms\": %.3f}\n",
+        device_name.c_str(), scene.name.c_str(), scene.mesh.face_count(), classes, a.w, a.h,
+        a.orbit_k, a.orbit_n, double(a.shift_px), a.face_shift,
+        std::isfinite(*psnr) ? psnr_text : "null", validation ? "true" : "false", d.messages, vk_ms,
+        cpu_ms);
+  } else {
+    std::printf("engine_ptex_vk %dx%d, %d faces: Vulkan (%s) vs CPU Discard: PSNR %s dB\n", a.w,
+                a.h, scene.mesh.face_count(), device_name.c_str(), psnr_text);
+  }
+  return 0;
+}

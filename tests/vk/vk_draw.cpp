@@ -1,0 +1,349 @@
+// The Vulkan test engine's forward pass (vk_draw.h).
+#include "vk_draw.h"
+
+#include <shaderc/shaderc.h>
+
+#include <cstring>
+#include <memory>
+
+namespace tessera::vk_test {
+
+Result<std::vector<std::uint32_t>> compile_glsl(VkShaderStageFlagBits stage,
+                                                const std::string& text, const std::string& name) {
+  shaderc_compiler_t compiler = shaderc_compiler_initialize();
+  shaderc_compile_options_t options = shaderc_compile_options_initialize();
+  shaderc_compile_options_set_target_env(options, shaderc_target_env_vulkan,
+                                         shaderc_env_version_vulkan_1_1);
+  const shaderc_shader_kind kind =
+      stage == VK_SHADER_STAGE_VERTEX_BIT ? shaderc_vertex_shader : shaderc_fragment_shader;
+  shaderc_compilation_result_t result = shaderc_compile_into_spv(
+      compiler, text.data(), text.size(), kind, name.c_str(), "main", options);
+  Result<std::vector<std::uint32_t>> out =
+      Status::error(ErrorCode::invalid_argument, name + ": no result");
+  if (result != nullptr) {
+    if (shaderc_result_get_compilation_status(result) == shaderc_compilation_status_success) {
+      std::vector<std::uint32_t> spirv(shaderc_result_get_length(result) / 4);
+      std::memcpy(spirv.data(), shaderc_result_get_bytes(result), spirv.size() * 4);
+      out = std::move(spirv);
+    } else {
+      out = Status::error(ErrorCode::invalid_argument, shaderc_result_get_error_message(result));
+    }
+    shaderc_result_release(result);
+  }
+  shaderc_compile_options_release(options);
+  shaderc_compiler_release(compiler);
+  return out;
+}
+
+namespace {
+
+// Everything one draw creates, destroyed (after the queue is idle) in reverse.
+struct DrawObjects {
+  VkDevice device = VK_NULL_HANDLE;
+  VkImage depth = VK_NULL_HANDLE;
+  VkDeviceMemory depth_memory = VK_NULL_HANDLE;
+  VkImageView depth_view = VK_NULL_HANDLE;
+  VkRenderPass pass = VK_NULL_HANDLE;
+  VkFramebuffer framebuffer = VK_NULL_HANDLE;
+  VkDescriptorSetLayout frame_layout = VK_NULL_HANDLE, empty_layout = VK_NULL_HANDLE;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkShaderModule modules[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  ~DrawObjects() {
+    if (device == VK_NULL_HANDLE) return;
+    vkDeviceWaitIdle(device);
+    vkDestroyPipeline(device, pipeline, nullptr);
+    for (VkShaderModule m : modules) vkDestroyShaderModule(device, m, nullptr);
+    vkDestroyPipelineLayout(device, layout, nullptr);
+    vkDestroyDescriptorPool(device, pool, nullptr);
+    vkDestroyDescriptorSetLayout(device, empty_layout, nullptr);
+    vkDestroyDescriptorSetLayout(device, frame_layout, nullptr);
+    vkDestroyFramebuffer(device, framebuffer, nullptr);
+    vkDestroyRenderPass(device, pass, nullptr);
+    vkDestroyImageView(device, depth_view, nullptr);
+    vkDestroyImage(device, depth, nullptr);
+    vkFreeMemory(device, depth_memory, nullptr);
+  }
+};
+
+std::uint32_t device_local_type(VkPhysicalDevice pd, std::uint32_t bits) {
+  VkPhysicalDeviceMemoryProperties mp{};
+  vkGetPhysicalDeviceMemoryProperties(pd, &mp);
+  for (std::uint32_t i = 0; i < mp.memoryTypeCount; ++i) {
+    if ((bits & (1u << i)) &&
+        (mp.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
+      return i;
+    }
+  }
+  return 0;
+}
+
+void create_targets(const Engine& engine, DrawObjects& o, const EngineImage& colour, int w, int h) {
+  const VkDevice dev = engine.context().device;
+  VkImageCreateInfo ci{};
+  ci.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
+  ci.imageType = VK_IMAGE_TYPE_2D;
+  ci.format = VK_FORMAT_D32_SFLOAT;
+  ci.extent = {std::uint32_t(w), std::uint32_t(h), 1};
+  ci.mipLevels = ci.arrayLayers = 1;
+  ci.samples = VK_SAMPLE_COUNT_1_BIT;
+  ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+  ci.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+  vkCreateImage(dev, &ci, nullptr, &o.depth);
+  VkMemoryRequirements req{};
+  vkGetImageMemoryRequirements(dev, o.depth, &req);
+  VkMemoryAllocateInfo ai{};
+  ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+  ai.allocationSize = req.size;
+  ai.memoryTypeIndex = device_local_type(engine.context().physical_device, req.memoryTypeBits);
+  vkAllocateMemory(dev, &ai, nullptr, &o.depth_memory);
+  vkBindImageMemory(dev, o.depth, o.depth_memory, 0);
+  VkImageViewCreateInfo vi{};
+  vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+  vi.image = o.depth;
+  vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  vi.format = VK_FORMAT_D32_SFLOAT;
+  vi.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
+  vkCreateImageView(dev, &vi, nullptr, &o.depth_view);
+  // The colour target arrives in TRANSFER_DST after its upload (the background) and is kept
+  // (LOAD); depth is cleared. Left in COLOR_ATTACHMENT_OPTIMAL for read_back's barrier.
+  VkAttachmentDescription att[2]{};
+  att[0].format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  att[0].samples = VK_SAMPLE_COUNT_1_BIT;
+  att[0].loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  att[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  att[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  att[0].initialLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  att[0].finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  att[1] = att[0];
+  att[1].format = VK_FORMAT_D32_SFLOAT;
+  att[1].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  att[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  att[1].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  att[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+  const VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  const VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription sub{};
+  sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  sub.colorAttachmentCount = 1;
+  sub.pColorAttachments = &cref;
+  sub.pDepthStencilAttachment = &dref;
+  VkSubpassDependency dep{};
+  dep.srcSubpass = VK_SUBPASS_EXTERNAL;
+  dep.dstSubpass = 0;
+  dep.srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  dep.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  dep.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                     VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                     VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
+                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  VkRenderPassCreateInfo rp{};
+  rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
+  rp.attachmentCount = 2;
+  rp.pAttachments = att;
+  rp.subpassCount = 1;
+  rp.pSubpasses = &sub;
+  rp.dependencyCount = 1;
+  rp.pDependencies = &dep;
+  vkCreateRenderPass(dev, &rp, nullptr, &o.pass);
+  const VkImageView views[2] = {colour.view, o.depth_view};
+  VkFramebufferCreateInfo fb{};
+  fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+  fb.renderPass = o.pass;
+  fb.attachmentCount = 2;
+  fb.pAttachments = views;
+  fb.width = std::uint32_t(w);
+  fb.height = std::uint32_t(h);
+  fb.layers = 1;
+  vkCreateFramebuffer(dev, &fb, nullptr, &o.framebuffer);
+}
+
+Status create_pipeline(VkDevice dev, DrawObjects& o, const DrawInput& in) {
+  VkShaderModuleCreateInfo mi{};
+  mi.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+  mi.codeSize = in.vertex_spirv.size() * 4;
+  mi.pCode = in.vertex_spirv.data();
+  vkCreateShaderModule(dev, &mi, nullptr, &o.modules[0]);
+  mi.codeSize = in.fragment_spirv.size() * 4;
+  mi.pCode = in.fragment_spirv.data();
+  vkCreateShaderModule(dev, &mi, nullptr, &o.modules[1]);
+  VkPipelineShaderStageCreateInfo st[2]{};
+  for (int i = 0; i < 2; ++i) {
+    st[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    st[i].stage = i == 0 ? VK_SHADER_STAGE_VERTEX_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
+    st[i].module = o.modules[i];
+    st[i].pName = "main";
+  }
+  const VkVertexInputBindingDescription vb{0, in.stride, VK_VERTEX_INPUT_RATE_VERTEX};
+  VkPipelineVertexInputStateCreateInfo vin{};
+  vin.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
+  vin.vertexBindingDescriptionCount = 1;
+  vin.pVertexBindingDescriptions = &vb;
+  vin.vertexAttributeDescriptionCount = std::uint32_t(in.attributes.size());
+  vin.pVertexAttributeDescriptions = in.attributes.data();
+  VkPipelineInputAssemblyStateCreateInfo ia{};
+  ia.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
+  ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  // +y up: the viewport starts at the bottom row with a negative height (core since 1.1).
+  const VkViewport vp{0.0f, float(in.height), float(in.width), -float(in.height), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, {std::uint32_t(in.width), std::uint32_t(in.height)}};
+  VkPipelineViewportStateCreateInfo vs{};
+  vs.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
+  vs.viewportCount = vs.scissorCount = 1;
+  vs.pViewports = &vp;
+  vs.pScissors = &scissor;
+  VkPipelineRasterizationStateCreateInfo rs{};
+  rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
+  rs.polygonMode = VK_POLYGON_MODE_FILL;
+  rs.cullMode = in.cull_back ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;
+  rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  rs.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo ms{};
+  ms.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
+  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo ds{};
+  ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
+  ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
+  ds.depthCompareOp = VK_COMPARE_OP_LESS;
+  VkPipelineColorBlendAttachmentState blend{};
+  blend.colorWriteMask = 0xf;
+  VkPipelineColorBlendStateCreateInfo cb{};
+  cb.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
+  cb.attachmentCount = 1;
+  cb.pAttachments = &blend;
+  VkGraphicsPipelineCreateInfo pi{};
+  pi.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
+  pi.stageCount = 2;
+  pi.pStages = st;
+  pi.pVertexInputState = &vin;
+  pi.pInputAssemblyState = &ia;
+  pi.pViewportState = &vs;
+  pi.pRasterizationState = &rs;
+  pi.pMultisampleState = &ms;
+  pi.pDepthStencilState = &ds;
+  pi.pColorBlendState = &cb;
+  pi.layout = o.layout;
+  pi.renderPass = o.pass;
+  if (VkResult r = vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &pi, nullptr, &o.pipeline);
+      r != VK_SUCCESS) {
+    return Status::error(ErrorCode::unsupported,
+                         std::string("vkCreateGraphicsPipelines: ") + vk::result_name(r));
+  }
+  return Status::success();
+}
+
+// Set 0: the frame block; 1 .. component_set - 1: empty; component_set: the component's.
+VkDescriptorSet create_layouts(VkDevice dev, DrawObjects& o, const DrawInput& in,
+                               const EngineBuffer& ubo) {
+  const VkDescriptorSetLayoutBinding b{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+                                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                       nullptr};
+  VkDescriptorSetLayoutCreateInfo li{};
+  li.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+  li.bindingCount = 1;
+  li.pBindings = &b;
+  vkCreateDescriptorSetLayout(dev, &li, nullptr, &o.frame_layout);
+  li.bindingCount = 0;
+  vkCreateDescriptorSetLayout(dev, &li, nullptr, &o.empty_layout);
+  std::vector<VkDescriptorSetLayout> layouts(in.component_set + 1, o.empty_layout);
+  layouts[0] = o.frame_layout;
+  layouts[in.component_set] = in.component_layout;
+  VkPipelineLayoutCreateInfo pl{};
+  pl.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+  pl.setLayoutCount = std::uint32_t(layouts.size());
+  pl.pSetLayouts = layouts.data();
+  vkCreatePipelineLayout(dev, &pl, nullptr, &o.layout);
+  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
+  VkDescriptorPoolCreateInfo pi{};
+  pi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+  pi.maxSets = 1;
+  pi.poolSizeCount = 1;
+  pi.pPoolSizes = &size;
+  vkCreateDescriptorPool(dev, &pi, nullptr, &o.pool);
+  VkDescriptorSetAllocateInfo ai{};
+  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+  ai.descriptorPool = o.pool;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &o.frame_layout;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  vkAllocateDescriptorSets(dev, &ai, &set);
+  const VkDescriptorBufferInfo bi{ubo.buffer, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet w{};
+  w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+  w.dstSet = set;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  w.pBufferInfo = &bi;
+  vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
+  return set;
+}
+
+}  // namespace
+
+Result<std::vector<float>> draw(Engine& engine, const DrawInput& in) {
+  if (in.component_set < 1 || in.component_layout == VK_NULL_HANDLE || !in.bind_component) {
+    return Status::error(ErrorCode::invalid_argument, "draw: no component set (index >= 1)");
+  }
+  const VkDevice dev = engine.context().device;
+  EngineImage colour =
+      engine.upload_rgba(VK_FORMAT_R32G32B32A32_SFLOAT, in.width, in.height, in.background,
+                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  EngineBuffer vbo = engine.host_buffer(in.vertex_bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+  std::memcpy(vbo.data, in.vertices, in.vertex_bytes);
+  EngineBuffer ibo = engine.host_buffer(in.indices.size() * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  std::memcpy(ibo.data, in.indices.data(), in.indices.size() * 4);
+  EngineBuffer ubo = engine.host_buffer(in.frame.size(), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+  std::memcpy(ubo.data, in.frame.data(), in.frame.size());
+  Result<std::vector<float>> out = Status::error(ErrorCode::unsupported, "draw: not drawn");
+  {
+    DrawObjects o;
+    o.device = dev;
+    create_targets(engine, o, colour, in.width, in.height);
+    const VkDescriptorSet frame_set = create_layouts(dev, o, in, ubo);
+    if (Status s = create_pipeline(dev, o, in); !s.ok()) {
+      out = s;
+    } else {
+      VkCommandBuffer cmd = engine.begin();
+      VkClearValue clear[2]{};
+      clear[1].depthStencil = {1.0f, 0};
+      VkRenderPassBeginInfo rb{};
+      rb.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+      rb.renderPass = o.pass;
+      rb.framebuffer = o.framebuffer;
+      rb.renderArea = {{0, 0}, {std::uint32_t(in.width), std::uint32_t(in.height)}};
+      rb.clearValueCount = 2;
+      rb.pClearValues = clear;
+      vkCmdBeginRenderPass(cmd, &rb, VK_SUBPASS_CONTENTS_INLINE);
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, o.pipeline);
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, o.layout, 0, 1, &frame_set, 0,
+                              nullptr);
+      Status bound = in.bind_component(cmd, o.layout);  // the component's set
+      const VkDeviceSize zero = 0;
+      vkCmdBindVertexBuffers(cmd, 0, 1, &vbo.buffer, &zero);
+      vkCmdBindIndexBuffer(cmd, ibo.buffer, 0, VK_INDEX_TYPE_UINT32);
+      vkCmdDrawIndexed(cmd, std::uint32_t(in.indices.size()), 1, 0, 0, 0);
+      vkCmdEndRenderPass(cmd);
+      engine.submit_and_wait(cmd);
+      if (!bound.ok()) {
+        out = bound;
+      } else {
+        vk::ImageResource r = colour.resource;
+        r.layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        r.stage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+        r.access = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
+        out = engine.read_back(r);
+      }
+    }
+  }
+  engine.destroy(ubo);
+  engine.destroy(ibo);
+  engine.destroy(vbo);
+  engine.destroy(colour);
+  return out;
+}
+
+}  // namespace tessera::vk_test
