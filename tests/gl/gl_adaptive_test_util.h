@@ -70,8 +70,8 @@ inline std::size_t differing_pixels(const std::vector<float>& a, const ImageRGBA
   return n;
 }
 
-inline gl::AdaptiveGBufferLayout tessera_layout() {
-  gl::AdaptiveGBufferLayout l;
+inline AdaptiveGBufferLayout tessera_layout() {
+  AdaptiveGBufferLayout l;
   l.depth = {0, "r"};
   l.normal = {0, "gba"};
   l.id = {1, "r"};
@@ -136,7 +136,7 @@ class GlAdaptive : public ::testing::Test {
     o.width = w_;
     o.height = h_;
     o.m = m_;
-    o.output = gl::AdaptiveOutputFormat::rgba32f;
+    o.output = AdaptiveOutputFormat::rgba32f;
     o.sample_count_texture = true;
     o.glsl_dir = TESSERA_GLSL_DIR;
     o.layout = tessera_layout();
@@ -182,7 +182,7 @@ inline gl::AdaptiveSupersamplerOptions synthetic_options(int w, int h, int m) {
   o.width = w;
   o.height = h;
   o.m = m;
-  o.output = gl::AdaptiveOutputFormat::rgba32f;
+  o.output = AdaptiveOutputFormat::rgba32f;
   o.sample_count_texture = true;
   o.glsl_dir = TESSERA_GLSL_DIR;
   o.layout.depth = {0, "r"};

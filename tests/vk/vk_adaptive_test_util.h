@@ -54,8 +54,8 @@ inline SceneGBuffer scene_gbuffer(int w, int h, int m) {
   return g;
 }
 
-inline gl::AdaptiveGBufferLayout scene_layout() {
-  gl::AdaptiveGBufferLayout l;
+inline AdaptiveGBufferLayout scene_layout() {
+  AdaptiveGBufferLayout l;
   l.depth = {0, "r"};
   l.normal = {0, "gba"};
   l.id = {1, "r"};
@@ -92,7 +92,7 @@ Options scene_options(const SceneGBuffer& g) {
   o.width = g.w;
   o.height = g.h;
   o.m = g.m;
-  o.output = gl::AdaptiveOutputFormat::rgba32f;
+  o.output = AdaptiveOutputFormat::rgba32f;
   o.sample_count_texture = true;
   o.layout = scene_layout();
   o.hook.name = "scene_hook";
