@@ -82,8 +82,11 @@ enum class AdaptiveResolve {
   tonemap_weighted,
 };
 
+/// The colour output's format (GL_RGBA16F / GL_RGBA32F; R16G16B16A16 / R32G32B32A32_SFLOAT).
 enum class AdaptiveOutputFormat { rgba16f, rgba32f };
 
+/// What both components are asked for, fixed at `create` but `thresholds` (`set_thresholds`);
+/// gl:: and vk::AdaptiveSupersamplerOptions add their backend's bindings.
 struct AdaptiveCommonOptions {
   int width = 0, height = 0;  ///< Output pixels (> 0); the G-buffer is (m*width) x (m*height).
   int m = 4;                  ///< Window side, 2..8.
@@ -109,5 +112,9 @@ struct AdaptiveCommonOptions {
   /// Costs a stall or a read-back: for benchmarks, not for frames.
   bool profile = false;
 };
+
+/// The layout of tessera's own G-buffer packing (deferred_shading.glsl; gl::DeferredRenderer):
+/// slot 0 = depth "r", normal "gba"; slot 1 = id "r", uv "gb"; slot 2 = uv_derivatives "rgba".
+AdaptiveGBufferLayout deferred_gbuffer_layout();
 
 }  // namespace tessera

@@ -304,3 +304,17 @@ std::uint64_t extra_samples(const AdaptiveCommonOptions& o, Mode mode, std::uint
 }
 
 }  // namespace tessera::adaptive
+
+namespace tessera {
+
+AdaptiveGBufferLayout deferred_gbuffer_layout() {
+  AdaptiveGBufferLayout l;
+  l.depth = {0, "r"};
+  l.normal = {0, "gba"};
+  l.id = {1, "r"};
+  l.uv = {1, "gb"};
+  l.uv_derivatives = {2, "rgba"};
+  return l;
+}
+
+}  // namespace tessera
