@@ -103,7 +103,7 @@ struct AdaptiveCommonOptions {
   /// Pixels beyond it are still shaded (see above).
   std::size_t list_capacity = 0;
   AdaptiveResolve resolve = AdaptiveResolve::box;
-  float hdr_exposure = 1.0f;  ///< e of `tonemap_weighted` (> 0).
+  float hdr_exposure = 1.0f;                                    ///< e of `tonemap_weighted` (> 0).
   AdaptiveOutputFormat output = AdaptiveOutputFormat::rgba16f;  ///< The colour output.
   bool sample_count_texture = false;  ///< Also write k + 1 per pixel (GL_R8UI / R8_UINT).
   AdaptiveGBufferLayout layout;

@@ -35,9 +35,9 @@ Result<std::string> swizzle(const AdaptiveChannel& c, int width, const char* wha
   for (char ch : c.channels) {
     const std::size_t at = set.find(ch);
     if (at == std::string::npos) {
-      return error(bad, who,
-                   field + ".channels = \"" + c.channels +
-                       "\": use the letters of one set, rgba or xyzw");
+      return error(
+          bad, who,
+          field + ".channels = \"" + c.channels + "\": use the letters of one set, rgba or xyzw");
     }
     out += "xyzw"[at];
   }
@@ -202,8 +202,8 @@ std::size_t list_capacity(const AdaptiveCommonOptions& o, int n, std::size_t max
 }
 
 std::vector<std::string> pass_programs(AdaptiveSchedule schedule) {
-  std::vector<std::string> passes = {"FIRST", "METRICS", "HISTOGRAM", "SELECT", "APPLY",
-                                     "REFERENCE"};
+  std::vector<std::string> passes = {"FIRST",  "METRICS", "HISTOGRAM",
+                                     "SELECT", "APPLY",   "REFERENCE"};
   if (schedule == AdaptiveSchedule::frame_list) {
     passes.insert(passes.end(), {"LIST", "ARGS", "SHADE", "RESOLVE"});
   } else {

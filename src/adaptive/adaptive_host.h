@@ -42,7 +42,7 @@ enum class Mode { adaptive, reference, first };
 
 /// What `check_options` derives from the options.
 struct Derived {
-  int n = 0;                       ///< m*m.
+  int n = 0;                        ///< m*m.
   std::vector<std::uint8_t> order;  ///< The sample order (the default resolved).
   bool slot_used[4] = {false, false, false, false};
   /// Channels read from each slot: the highest component index + 1 (for the format check).

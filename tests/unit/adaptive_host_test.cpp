@@ -2,12 +2,13 @@
 // a GPU: the option checks and their one-line errors, the list capacity, the generated preamble
 // (GL bindings vs Vulkan's set), the parameter block and a frame's passes. The GPU behaviour is
 // tests/gl/gl_adaptive* and tests/vk/vk_adaptive*.
+#include "adaptive/adaptive_host.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <string>
 
-#include "adaptive/adaptive_host.h"
 #include "tessera/deferred.h"
 
 namespace tessera {
@@ -97,8 +98,9 @@ TEST(AdaptiveHost, PreambleBindsPerBackend) {
   EXPECT_TRUE(has(b, "layout(set = 2, binding = 6) uniform sampler2D tessera_adaptive_gbuffer1;"));
   EXPECT_TRUE(has(b, "#define TESSERA_ADAPTIVE_SET 2"));
   EXPECT_FALSE(has(a, "#define TESSERA_ADAPTIVE_SET 2"));  // negative control
-  EXPECT_TRUE(has(a, "vec2 tessera_adaptive_uv(ivec2 g) { return texelFetch("
-                     "tessera_adaptive_gbuffer1, g, 0).yz; }"));
+  EXPECT_TRUE(has(a,
+                  "vec2 tessera_adaptive_uv(ivec2 g) { return texelFetch("
+                  "tessera_adaptive_gbuffer1, g, 0).yz; }"));
   EXPECT_EQ(adaptive::pass_source(o, "METRICS").name, "adaptive_component.glsl (METRICS)");
   EXPECT_EQ(adaptive::pass_source(o, "SHADE").name, o.hook.name);
 }
