@@ -148,19 +148,19 @@ int main(int argc, char** argv) {
 
   const struct {
     const char* name;
-    gl::AdaptiveSchedule schedule;
+    AdaptiveSchedule schedule;
     bool budget;
-  } runs[] = {{"component frame_list", gl::AdaptiveSchedule::frame_list, false},
-              {"component tile_list", gl::AdaptiveSchedule::tile_list, false},
-              {"component loop", gl::AdaptiveSchedule::loop, false},
-              {"component frame_list, budget", gl::AdaptiveSchedule::frame_list, true}};
+  } runs[] = {{"component frame_list", AdaptiveSchedule::frame_list, false},
+              {"component tile_list", AdaptiveSchedule::tile_list, false},
+              {"component loop", AdaptiveSchedule::loop, false},
+              {"component frame_list, budget", AdaptiveSchedule::frame_list, true}};
   for (const auto& run : runs) {
     gl::AdaptiveSupersamplerOptions o;
     o.width = w;
     o.height = h;
     o.m = m;
     o.schedule = run.schedule;
-    o.output = gl::AdaptiveOutputFormat::rgba32f;
+    o.output = AdaptiveOutputFormat::rgba32f;
     o.glsl_dir = TESSERA_GLSL_DIR;
     o.profile = true;
     o.layout.depth = {0, "r"};

@@ -483,15 +483,15 @@ int main(int argc, char** argv) {
   o.layout.depth = {0, "a"};
   o.layout.id = {1, "a", 255.0f, -1.0f};  // (id + 1) / 255 in unorm8; sky = -1
   o.hook = {kShadingHook, "engine_shading.glsl", {}};
-  o.resolve = tessera::gl::AdaptiveResolve::tonemap_weighted;  // HDR lights
-  o.output = tessera::gl::AdaptiveOutputFormat::rgba16f;
+  o.resolve = tessera::AdaptiveResolve::tonemap_weighted;  // HDR lights
+  o.output = tessera::AdaptiveOutputFormat::rgba16f;
   o.sample_count_texture = true;
   o.glsl_dir = a.glsl;
   o.profile = true;  // pass times for --json (a stall per pass: not for shipping frames)
   if (a.schedule == "tile_list") {
-    o.schedule = tessera::gl::AdaptiveSchedule::tile_list;
+    o.schedule = tessera::AdaptiveSchedule::tile_list;
   } else if (a.schedule == "loop") {
-    o.schedule = tessera::gl::AdaptiveSchedule::loop;
+    o.schedule = tessera::AdaptiveSchedule::loop;
   } else if (a.schedule != "frame_list") {
     return fail("--schedule " + a.schedule + ": frame_list, tile_list or loop");
   }

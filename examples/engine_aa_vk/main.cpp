@@ -463,17 +463,17 @@ int run(engine::Device& d, const Args& a) {
   o.layout.id = {1, "a", 255.0f, -1.0f};  // (id + 1) / 255 in unorm8; sky = -1
   o.hook.source = kShadingHook;
   o.hook.name = "engine_shading.glsl";
-  o.hook.set_layouts = {f.set_layout};  // the hook's set 0; tessera's is set 1
-  o.resolve = tessera::vk::AdaptiveResolve::tonemap_weighted;  // HDR lights
-  o.output = tessera::vk::AdaptiveOutputFormat::rgba16f;
+  o.hook_set_layouts = {f.set_layout};  // the hook's set 0; tessera's is set 1
+  o.resolve = tessera::AdaptiveResolve::tonemap_weighted;  // HDR lights
+  o.output = tessera::AdaptiveOutputFormat::rgba16f;
   o.sample_count_texture = true;
   o.profile = true;  // timestamps and the sample count for --json
   int rc = 0;
   std::string err;
   if (a.schedule == "tile_list") {
-    o.schedule = tessera::vk::AdaptiveSchedule::tile_list;
+    o.schedule = tessera::AdaptiveSchedule::tile_list;
   } else if (a.schedule == "loop") {
-    o.schedule = tessera::vk::AdaptiveSchedule::loop;
+    o.schedule = tessera::AdaptiveSchedule::loop;
   } else if (a.schedule != "frame_list") {
     err = "--schedule " + a.schedule + ": frame_list, tile_list or loop";
   }

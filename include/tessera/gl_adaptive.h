@@ -19,97 +19,14 @@
 #include <string>
 #include <vector>
 
+#include "tessera/adaptive_supersampler.h"
 #include "tessera/core.h"
 #include "tessera/gl.h"
 
 namespace tessera::gl {
 
-/// Where one G-buffer quantity lives: texture slot (index into `AdaptiveFrame::gbuffer`) and
-/// channels. Decoded value = stored * scale + bias (per channel).
-struct AdaptiveChannel {
-  int texture = -1;      ///< 0..3; -1 = absent (only uv and uv_derivatives may be absent).
-  std::string channels;  ///< Swizzle of exactly the quantity's width: "r", "xyz", "wzy", ...
-                         ///< (letters of one set: rgba or xyzw).
-  float scale = 1.0f;
-  float bias = 0.0f;
-};
-
-/// Which texture and channels hold each quantity (fixed at creation; see the header comment).
-struct AdaptiveGBufferLayout {
-  AdaptiveChannel depth;           ///< 1 channel, linear view depth (> 0 where not empty).
-  AdaptiveChannel normal;          ///< 3 channels.
-  AdaptiveChannel id;              ///< 1 channel, material/object id; < 0 = empty texel.
-  AdaptiveChannel uv;              ///< 2 channels, optional (with uv_derivatives).
-  AdaptiveChannel uv_derivatives;  ///< 4 channels du/dx, dv/dx, du/dy, dv/dy, optional.
-};
-
-/// The engine's shading (see the header comment for the contract).
-struct AdaptiveShadingHook {
-  std::string source;                 ///< GLSL defining vec4 tessera_shade_sample(ivec2, float).
-  std::string name = "shading hook";  ///< Used in compile errors ("name:line: ...").
-  std::vector<std::filesystem::path> include_paths;  ///< Searched before the shipped GLSL.
-};
-
-/// The paper's thresholds (§3.1; the same formulas and defaults as deferred::AdaptiveOptions).
-/// With K = m*m - 1: k = clamp(round(max(k_d, k_n, k_s)), 0, K), k_d = c_depth*K*Var(d/mean d),
-/// k_n = c_normal*K*sqrt(1 - min |nbar.n_i|), k_s = c_shade*K*r when the luma range r around
-/// the pixel is >= max(t_min, l_max*t_edge), else 0. A window mixing empty and non-empty texels
-/// gets K. The unrounded max is the pixel's metric strength (what the budget ranks).
-struct AdaptiveThresholds {
-  float c_depth = 200.0f;
-  float c_normal = 2.0f;
-  float c_shade = 8.0f;
-  float t_min = 0.0312f;
-  float t_edge = 0.0625f;
-  bool use_geometry = true;  ///< k_d and k_n.
-  bool use_shading = true;   ///< k_s.
-  float seam_factor = 4.0f;  ///< UV-seam rule of the footprint (adaptive_samples.glsl).
-  int force_k = -1;          ///< >= 0: every pixel asks for min(force_k, K) (strength force_k).
-};
-
-/// How the extra samples are scheduled on the GPU; all give the same image, bit for bit.
-enum class AdaptiveSchedule {
-  /// One dense list of (pixel, sample) over the frame, one invocation per sample, then a
-  /// per-pixel resolve; sized by `list_capacity` (a pixel whose samples do not fit shades them
-  /// itself in the resolve pass: same image). No read-back (indirect dispatch).
-  frame_list,
-  tile_list,  ///< Per 8x8 tile, in shared memory (m <= 4; larger m runs `loop`).
-  loop,       ///< The paper's §4.2: each pixel's invocation shades its own samples.
-};
-
-/// How a pixel's shaded samples are averaged.
-enum class AdaptiveResolve {
-  box,  ///< Plain mean (sum of the samples in sample order, / (k + 1)).
-  /// Tonemap-weighted mean for HDR (bright samples do not dominate the edge): sample c with
-  /// luminance Y = dot(max(c.rgb, 0), (0.2126, 0.7152, 0.0722)) gets weight
-  /// w = 1 / (1 + e*Y), e = `hdr_exposure`; the pixel is sum(w*c) / sum(w) (all four
-  /// channels). The shading metric then uses the luma of T(c) = c * e / (1 + e*Y) (Reinhard
-  /// on luminance). The reference pass resolves the same way.
-  tonemap_weighted,
-};
-
-enum class AdaptiveOutputFormat { rgba16f, rgba32f };
-
-struct AdaptiveSupersamplerOptions {
-  int width = 0, height = 0;  ///< Output pixels (> 0); the G-buffer is (m*width) x (m*height).
-  int m = 4;                  ///< Window side, 2..8.
-  AdaptiveThresholds thresholds;
-  /// Sample order: entry p = the row-major window cell of sample p (p = 0 is S's sample); a
-  /// permutation of 0..m*m-1. Empty = tessera's (deferred::sample_order: the paper's Figure 3
-  /// index matrices for m = 2..4, ordered-dither matrices beyond).
-  std::vector<std::uint8_t> sample_order;
-  AdaptiveSchedule schedule = AdaptiveSchedule::frame_list;
-  /// frame_list items (shaded samples of pixels with k > 0, sample 0 counted), 24 bytes each;
-  /// 0 = w*h*(m*m/2), half of full supersampling (m = 4: 192 bytes per output pixel, 398 MB at
-  /// 1920x1080; with a budget B, B + w*h items always suffice). Clamped to what
-  /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE allows. Pixels beyond it are still shaded (see above).
-  std::size_t list_capacity = 0;
-  AdaptiveResolve resolve = AdaptiveResolve::box;
-  float hdr_exposure = 1.0f;  ///< e of `tonemap_weighted` (> 0).
-  AdaptiveOutputFormat output = AdaptiveOutputFormat::rgba16f;
-  bool sample_count_texture = false;  ///< Also write k + 1 per pixel to a GL_R8UI texture.
-  AdaptiveGBufferLayout layout;
-  AdaptiveShadingHook hook;
+/// The GL component's options: the shared ones (tessera/adaptive_supersampler.h) and GL's.
+struct AdaptiveSupersamplerOptions : AdaptiveCommonOptions {
   /// Development override: a folder read instead of the GLSL embedded in the library (see
   /// tessera/glsl.h). Empty (the default): $TESSERA_GLSL_DIR when set, else the embedded copy;
   /// no file is read.
@@ -119,10 +36,8 @@ struct AdaptiveSupersamplerOptions {
   int uniform_binding = -1;        ///< 1 uniform-buffer binding.
   int first_storage_binding = -1;  ///< 2 storage-buffer bindings.
   int first_image_unit = -1;       ///< 2 image units.
-  /// Measure every pass: GL_TIME_ELAPSED queries plus the host time to a glFinish after each
-  /// pass (llvmpipe's queries read 0 for compute), and read back the extra-sample count. Costs
-  /// a GPU stall per pass: for benchmarks, not for frames.
-  bool profile = false;
+  // `profile` on GL: GL_TIME_ELAPSED queries plus the host time to a glFinish after each pass
+  // (llvmpipe's queries read 0 for compute), and a read-back of the extra-sample count.
 };
 
 /// One frame's inputs.

@@ -61,7 +61,7 @@ enum class ExtraSchedule {
               ///< larger m falls back to `loop`).
   loop,       ///< The paper's §4.2: each invocation loops over its pixel's k samples.
   /// One dense list of (pixel, sample) over the whole frame, one invocation per extra sample,
-  /// then a per-pixel resolve (three passes; any m). Adaptive: gl::AdaptiveSchedule::frame_list
+  /// then a per-pixel resolve (three passes; any m). Adaptive: AdaptiveSchedule::frame_list
   /// (a list of fixed capacity; pixels beyond it shade their own samples, same image). Engine
   /// baseline: GPU buffers of 24 bytes per extra sample that grow with the frame's count (read
   /// back once per frame); past GL_MAX_SHADER_STORAGE_BLOCK_SIZE it falls back to `loop`.

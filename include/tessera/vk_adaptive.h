@@ -3,12 +3,13 @@
 // GLSL shading in, the anti-aliased image out, recorded into the engine's command buffer
 // (tessera::vk; the device hand-off is tessera/vk.h).
 //
-// The twin of gl::AdaptiveSupersampler (tessera/gl_adaptive.h, whose header comment is the
-// contract of everything shared): the same G-buffer layout descriptor, shading hook
-// (`vec4 tessera_shade_sample(ivec2 grid_texel, float footprint)` and its optional
-// TESSERA_ADAPTIVE_SAMPLE0_AGAIN / TESSERA_ADAPTIVE_CUSTOM_LUMA), thresholds, sample order, schedules,
-// budget, HDR resolve and outputs, compiled from the same shipped GLSL
-// (adaptive_component.glsl), giving the same image. What differs is Vulkan's:
+// The twin of gl::AdaptiveSupersampler (tessera/gl_adaptive.h): the same options
+// (tessera/adaptive_supersampler.h: G-buffer layout descriptor, shading hook
+// `vec4 tessera_shade_sample(ivec2 grid_texel, float footprint)` with its optional
+// TESSERA_ADAPTIVE_SAMPLE0_AGAIN / TESSERA_ADAPTIVE_CUSTOM_LUMA, thresholds, sample order,
+// schedules, HDR resolve, outputs), budget, compiled from the same shipped GLSL
+// (adaptive_component.glsl) by the same host code, giving the same image. What differs is
+// Vulkan's:
 //
 // 1. The hook becomes SPIR-V at `create`, with shaderc (Google's glslang front end, Debian
 //    libshaderc-dev, linked statically), one compute pipeline per pass: the hook is often
@@ -18,13 +19,14 @@
 //    `AdaptiveShadingHook::include_paths`, then to tessera's shipped files (compiled into the
 //    library: nothing is read from share/ at run time). VULKAN is defined.
 // 2. Descriptor sets. The hook may read the engine's own resources through the engine's
-//    descriptor-set layouts (`AdaptiveShadingHook::set_layouts`, sets 0 .. E-1, declared in the
-//    hook with `layout(set = s, binding = b)`); the component's own resources are in set
-//    E = set_layouts.size() (TESSERA_ADAPTIVE_SET), bindings 0 uniform block, 1 work buffer, 2 frame
-//    list, 3 output image, 4 sample-count image, 5 + s G-buffer slot s (combined image sampler,
-//    an immutable nearest/clamp sampler; read with texelFetch). `AdaptiveFrame::hook_sets` binds
-//    the engine's sets. The component keeps `descriptor_sets` sets of its own, one per
-//    combination of G-buffer views (the views of up to that many frames may be in flight).
+//    descriptor-set layouts (`AdaptiveSupersamplerOptions::hook_set_layouts`, sets 0 .. E-1,
+//    declared in the hook with `layout(set = s, binding = b)`); the component's own resources
+//    are in set E = hook_set_layouts.size() (TESSERA_ADAPTIVE_SET), bindings 0 uniform block,
+//    1 work buffer, 2 frame list, 3 output image, 4 sample-count image, 5 + s G-buffer slot s
+//    (combined image sampler, an immutable nearest/clamp sampler; read with texelFetch).
+//    `AdaptiveFrame::hook_sets` binds the engine's sets. The component keeps `descriptor_sets`
+//    sets of its own, one per combination of G-buffer views (the views of up to that many
+//    frames may be in flight).
 // 3. Recording. `record(cmd, frame)` records into the engine's VkCommandBuffer (primary or
 //    secondary, recording, outside a render pass, of `DeviceContext::queue_family`):
 //      * one barrier first: each G-buffer image from (its `layout`, `stage`, `access`) to
@@ -71,57 +73,29 @@
 #include <string>
 #include <vector>
 
+#include "tessera/adaptive_supersampler.h"
 #include "tessera/core.h"
-#include "tessera/gl_adaptive.h"  // the shared option types (plain structs; no OpenGL)
 #include "tessera/vk.h"
 
 namespace tessera::vk {
 
-// The same types as the GL component (see tessera/gl_adaptive.h for each field).
-using gl::AdaptiveChannel;
-using gl::AdaptiveGBufferLayout;
-using gl::AdaptiveOutputFormat;
-using gl::AdaptiveResolve;
-using gl::AdaptiveSchedule;
-using gl::AdaptiveThresholds;
-
-/// The engine's shading, as gl::AdaptiveShadingHook, plus the engine's descriptor sets.
-struct AdaptiveShadingHook {
-  std::string source;                 ///< GLSL defining vec4 tessera_shade_sample(ivec2, float).
-  std::string name = "shading hook";  ///< Used in compile errors ("name:line: ...").
-  std::vector<std::filesystem::path> include_paths;  ///< Searched before tessera's files.
+/// The Vulkan component's options: the shared ones (tessera/adaptive_supersampler.h; the
+/// largest list is clamped to maxStorageBufferRange, the outputs are R16G16B16A16_SFLOAT /
+/// R32G32B32A32_SFLOAT and R8_UINT) and Vulkan's. `profile` on Vulkan: timestamps per pass
+/// and the extra-sample count, read by `read_profile` once the command buffer has completed.
+struct AdaptiveSupersamplerOptions : AdaptiveCommonOptions {
   /// The engine's descriptor-set layouts the hook reads (sets 0 .. size-1); owned by the
   /// engine, alive while the component is.
-  std::vector<VkDescriptorSetLayout> set_layouts;
-};
-
-struct AdaptiveSupersamplerOptions {
-  int width = 0, height = 0;  ///< Output pixels (> 0); the G-buffer is (m*width) x (m*height).
-  int m = 4;                  ///< Window side, 2..8.
-  AdaptiveThresholds thresholds;
-  std::vector<std::uint8_t> sample_order;  ///< As gl::: empty = deferred::sample_order(m).
-  AdaptiveSchedule schedule = AdaptiveSchedule::frame_list;
-  /// frame_list items, 24 bytes each; 0 = w*h*(m*m/2). Clamped to maxStorageBufferRange.
-  std::size_t list_capacity = 0;
-  AdaptiveResolve resolve = AdaptiveResolve::box;
-  float hdr_exposure = 1.0f;  ///< e of `tonemap_weighted` (> 0).
-  AdaptiveOutputFormat output =
-      AdaptiveOutputFormat::rgba16f;  ///< R16G16B16A16/R32G32B32A32_SFLOAT
-  bool sample_count_texture = false;  ///< Also write k + 1 per pixel to an R8_UINT image.
-  AdaptiveGBufferLayout layout;
-  AdaptiveShadingHook hook;
+  std::vector<VkDescriptorSetLayout> hook_set_layouts;
   /// Component descriptor sets (one per G-buffer view combination in flight), >= 1.
   int descriptor_sets = 8;
-  /// Timestamps per pass and the extra-sample count, read by `read_profile` once the command
-  /// buffer has completed.
-  bool profile = false;
 };
 
 /// One frame's inputs.
 struct AdaptiveFrame {
   /// The G-buffer images by slot ((m*w) x (m*h), sampled usage); empty slots are ignored.
   std::array<ImageResource, 4> gbuffer{};
-  /// The engine's descriptor sets for the hook's set layouts (same count and order).
+  /// The engine's descriptor sets for `hook_set_layouts` (same count and order).
   std::vector<VkDescriptorSet> hook_sets;
   /// As gl::AdaptiveFrame::budget: at most this many extra samples; negative = an error.
   std::optional<std::int64_t> budget;
@@ -167,7 +141,7 @@ class AdaptiveSupersampler {
   Result<AdaptiveProfile> read_profile() const;
 
   const AdaptiveSupersamplerOptions& options() const;
-  /// The component's descriptor-set index (= hook.set_layouts.size()).
+  /// The component's descriptor-set index (= hook_set_layouts.size()).
   std::uint32_t descriptor_set_index() const;
 
   struct State;

@@ -65,14 +65,10 @@ std::string hex(GLint v) {
 /// Checks the frame's textures against the layout (no GL state changed, no error raised).
 Status check_frame(const State& st, const AdaptiveFrame& f) {
   const AdaptiveSupersamplerOptions& o = st.options;
-  if (f.budget && *f.budget < 0) {
-    return Status::error(ErrorCode::invalid_argument,
-                         "adaptive supersampler: budget = " + std::to_string(*f.budget) +
-                             " (>= 0 extra samples, or none)");
-  }
+  if (Status s = adaptive::check_budget(f.budget, "adaptive supersampler"); !s.ok()) return s;
   const int gw = o.m * o.width, gh = o.m * o.height;
   for (int s = 0; s < 4; ++s) {
-    if (!st.slot_used[s]) continue;
+    if (!st.derived.slot_used[s]) continue;
     const std::string slot = "adaptive supersampler: G-buffer slot " + std::to_string(s);
     const GLuint t = f.gbuffer[std::size_t(s)];
     if (t == 0 || !st.gl.IsTexture(t)) {
@@ -103,12 +99,12 @@ Status check_frame(const State& st, const AdaptiveFrame& f) {
                                ", not a float or normalised colour format (integer and sRGB "
                                "formats are not read)");
     }
-    if (channels < st.slot_channels[s]) {
+    if (channels < st.derived.slot_channels[s]) {
       return Status::error(ErrorCode::invalid_argument,
                            slot + ": texture " + std::to_string(t) + " (format " + hex(fmt) +
                                ") has " + std::to_string(channels) +
                                " channels, the layout reads channel " +
-                               std::to_string(st.slot_channels[s]) + " of it");
+                               std::to_string(st.derived.slot_channels[s]) + " of it");
     }
   }
   return Status::success();
@@ -203,7 +199,7 @@ class StateGuard {
 /// Binds the component's resources (inside a StateGuard).
 void bind(const State& st, const AdaptiveFrame& f) {
   for (int s = 0; s < 4; ++s) {
-    if (!st.slot_used[s]) continue;
+    if (!st.derived.slot_used[s]) continue;
     glBindTextureUnit(GLuint(st.texture_unit + s), f.gbuffer[std::size_t(s)]);
     glBindSampler(GLuint(st.texture_unit + s), st.sampler.get());
   }
@@ -290,18 +286,7 @@ class Runner {
   std::vector<std::string> names_;
 };
 
-/// The budget: eight histogram + select rounds over the rank key's digits (the select pass
-/// advances the digit in the work buffer), then the apply pass.
-Status run_budget(Runner& run) {
-  for (int d = 0; d < 8; ++d) {
-    const std::string digit = std::to_string(d);
-    if (Status s = run.pass("budget_histogram" + digit, "HISTOGRAM"); !s.ok()) return s;
-    if (Status s = run.pass("budget_select" + digit, "SELECT", 1); !s.ok()) return s;
-  }
-  return run.pass("budget_apply", "APPLY");
-}
-
-enum class Mode { adaptive, reference, first };
+using Mode = adaptive::Mode;
 
 Result<AdaptiveFrameResult> run_frame(State& st, const AdaptiveFrame& f, Mode mode) {
   if (Status s = check_current_context("adaptive supersampler: dispatch"); !s.ok()) return s;
@@ -310,47 +295,25 @@ Result<AdaptiveFrameResult> run_frame(State& st, const AdaptiveFrame& f, Mode mo
   Status status = Status::success();
   {
     StateGuard guard(st);
-    // The work header: counters 0, the budget's state; histograms cleared when budgeted.
-    std::vector<std::uint32_t> header(
-        kAdaptiveHeaderUints + (f.budget ? kAdaptiveHistogramUints : 0), 0u);
-    if (f.budget) {
-      header[5] = 1;
-      header[6] = std::uint32_t(std::min<std::int64_t>(*f.budget, 0xffffffffLL));
-    }
+    // The work header; histograms cleared when budgeted.
+    const auto head = adaptive::work_header(f.budget);
+    std::vector<std::uint32_t> header(head.begin(), head.end());
+    if (f.budget) header.resize(header.size() + adaptive::kHistogramUints, 0u);
     glNamedBufferSubData(st.work_buf.get(), 0, GLsizeiptr(header.size() * 4), header.data());
     bind(st, f);
     Runner run(st);
-    auto go = [&](const std::string& name, const std::string& program, GLuint gx = 0,
-                  bool indirect = false, const char* then = nullptr) {
-      if (status.ok()) status = run.pass(name, program, gx, indirect, then);
-    };
-    if (mode == Mode::reference) {
-      go("reference", "REFERENCE");
-    } else {
-      go("first", "FIRST");
-      if (mode == Mode::adaptive) {
-        go("metrics", "METRICS");
-        if (f.budget && status.ok()) status = run_budget(run);
-        if (st.options.schedule == AdaptiveSchedule::frame_list) {
-          // The list, then the shade pass's group counts (one invocation).
-          go("extra_list", "LIST", 0, false, "ARGS");
-          go("extra_shade", "SHADE", 0, true);
-          go("extra_resolve", "RESOLVE");
-        } else {
-          go("extra", "EXTRA");
-        }
-      }
+    for (const adaptive::Step& step :
+         adaptive::frame_steps(mode, st.options.schedule, f.budget.has_value())) {
+      status = run.pass(step.name, step.program, step.groups_x, step.indirect, step.then);
+      if (!status.ok()) break;
     }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                     GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     if (status.ok()) status = run.finish(r);
     if (status.ok() && st.options.profile) {
-      const std::size_t pixels = std::size_t(st.options.width) * std::size_t(st.options.height);
       std::uint32_t extra = 0;
       glGetNamedBufferSubData(st.work_buf.get(), 4, 4, &extra);
-      r.extra_samples = mode == Mode::adaptive    ? extra
-                        : mode == Mode::reference ? pixels * std::size_t(st.n - 1)
-                                                  : 0;
+      r.extra_samples = adaptive::extra_samples(st.options, mode, extra);
     }
   }
   if (!status.ok()) return status;

@@ -43,11 +43,7 @@ Result<AdaptiveSupersampler*> component(State& st) {
   o.profile = true;  // ShadeResult's pass times
   o.glsl_dir = st.options.glsl_dir;
   // The G-buffer of deferred_shading.glsl (units 0..2 of the renderer's own bindings).
-  o.layout.depth = {0, "r"};
-  o.layout.normal = {0, "gba"};
-  o.layout.id = {1, "r"};
-  o.layout.uv = {1, "gb"};
-  o.layout.uv_derivatives = {2, "rgba"};
+  o.layout = deferred_gbuffer_layout();
   o.hook.name = "DeferredRenderer's shading hook";
   // S keeps its light terms (D, P) in the renderer's SSBO 4 (deferred_passes.comp's layout),
   // and sample 0 again repeats only the albedo lookup, as deferred_passes.comp does.

@@ -1,6 +1,7 @@
 // Internal to src/vk: the state of tessera::vk::AdaptiveSupersampler, shared by
-// adaptive_supersampler.cpp (options, GLSL, pipelines, objects), adaptive_frame.cpp (the frame
-// checks, the descriptor sets) and adaptive_record.cpp (the recorded passes).
+// adaptive_supersampler.cpp (Vulkan's checks, SPIR-V), adaptive_objects.cpp (the objects, the
+// descriptor sets) and adaptive_record.cpp (the frame checks, the recorded passes); the
+// backend-neutral part is src/adaptive/.
 #pragma once
 
 #include <array>
@@ -9,43 +10,22 @@
 #include <string>
 #include <vector>
 
+#include "adaptive/adaptive_host.h"
 #include "tessera/vk_adaptive.h"
 #include "vk/vk_api.h"
 
 namespace tessera::vk {
 
-/// std140 layout of TesseraAaParams (adaptive_component.glsl); as the GL component's.
-struct AdaptiveParams {
-  std::int32_t size[4];
-  std::int32_t flags[4];
-  float metric[4];
-  float metric2[4];
-  std::uint32_t budget[4];
-  std::int32_t order[64];
-};
-static_assert(sizeof(AdaptiveParams) == 5 * 16 + 256, "std140 layout");
-
-/// Work-buffer layout (uints; adaptive_component.glsl's header comment).
-inline constexpr std::size_t kAdaptiveHeaderUints = 16;
-inline constexpr std::size_t kAdaptiveHistogramUints = 8 * 256;
-inline constexpr std::size_t kAdaptiveListItemBytes = 24;
-inline constexpr std::size_t kAdaptiveMaxPixels = std::size_t(1) << 26;  // item packing
-
 /// The component's bindings in its descriptor set.
 inline constexpr std::uint32_t kBindParams = 0, kBindWork = 1, kBindList = 2, kBindColour = 3,
                                kBindCounts = 4, kBindGBuffer = 5;
 
-enum class AdaptiveMode { adaptive, reference, first };
+using AdaptiveMode = adaptive::Mode;
 
 struct AdaptiveSupersampler::State {
   AdaptiveSupersamplerOptions options;
   Api api;
-  int n = 0;
-  std::vector<std::uint8_t> order;
-  std::size_t list_capacity = 0;
-  bool slot_used[4] = {false, false, false, false};
-  /// Channels read from each slot: the highest component index + 1 (for the format check).
-  int slot_channels[4] = {0, 0, 0, 0};
+  adaptive::Derived derived;  // n, sample order, slots, list capacity
   std::uint32_t set_index = 0;
   std::map<std::string, std::vector<std::uint32_t>> spirv;  // by pass, until the pipelines exist
 
@@ -73,8 +53,6 @@ struct AdaptiveSupersampler::State {
   bool recorded = false;
 };
 
-/// The parameter block of the current options.
-AdaptiveParams adaptive_params(const AdaptiveSupersampler::State& st);
 /// Checks the frame (nothing recorded); see vk_adaptive.h, 4.
 Status check_adaptive_frame(const AdaptiveSupersampler::State& st, VkCommandBuffer cmd,
                             const AdaptiveFrame& f);

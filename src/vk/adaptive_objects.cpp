@@ -44,7 +44,7 @@ Status create_layouts(State& st) {
   add(kBindColour, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
   if (st.options.sample_count_texture) add(kBindCounts, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
   for (std::uint32_t s = 0; s < 4; ++s) {
-    if (st.slot_used[s]) add(kBindGBuffer + s, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+    if (st.derived.slot_used[s]) add(kBindGBuffer + s, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
   }
   VkDescriptorSetLayoutCreateInfo li{};
   li.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
@@ -56,7 +56,7 @@ Status create_layouts(State& st) {
     return vk_error(kWhat + ": vkCreateDescriptorSetLayout", r);
   }
   st.set_layout = SetLayout(api, set_layout);
-  std::vector<VkDescriptorSetLayout> sets = st.options.hook.set_layouts;
+  std::vector<VkDescriptorSetLayout> sets = st.options.hook_set_layouts;
   sets.push_back(st.set_layout.get());
   VkPipelineLayoutCreateInfo pi{};
   pi.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
@@ -80,23 +80,23 @@ Status create_layouts(State& st) {
 Status create_resources(State& st) {
   const Api& api = st.api;
   const AdaptiveSupersamplerOptions& o = st.options;
-  const std::size_t pixels = std::size_t(o.width) * std::size_t(o.height);
   Result<Buffer> params =
-      Buffer::create(api, sizeof(AdaptiveParams),
+      Buffer::create(api, sizeof(adaptive::Params),
                      VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false,
                      kWhat + ": parameter block");
   if (!params) return params.status();
   st.params = std::move(*params);
   Result<Buffer> work =
-      Buffer::create(api, (kAdaptiveHeaderUints + kAdaptiveHistogramUints + 4 * pixels) * 4,
+      Buffer::create(api, adaptive::work_buffer_bytes(o),
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
                          VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                      false, kWhat + ": work buffer");
   if (!work) return work.status();
   st.work = std::move(*work);
   // std430: the items (8 bytes each), the colours from the next multiple of 16 bytes.
+  const std::size_t items = st.derived.list_capacity;
   Result<Buffer> list =
-      Buffer::create(api, (st.list_capacity * 8 + 15) / 16 * 16 + st.list_capacity * 16,
+      Buffer::create(api, (items * 8 + 15) / 16 * 16 + items * 16,
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false, kWhat + ": frame list");
   if (!list) return list.status();
   st.list = std::move(*list);
@@ -216,7 +216,7 @@ VkDescriptorSet acquire_adaptive_set(State& st, const AdaptiveFrame& f) {
   std::array<VkImageView, 4> views{};
   std::array<VkImageLayout, 4> layouts{};
   for (std::size_t s = 0; s < 4; ++s) {
-    if (!st.slot_used[s]) continue;
+    if (!st.derived.slot_used[s]) continue;
     views[s] = f.gbuffer[s].view;
     layouts[s] = adaptive_read_layout(f.gbuffer[s].layout);
   }
@@ -235,7 +235,7 @@ VkDescriptorSet acquire_adaptive_set(State& st, const AdaptiveFrame& f) {
   infos.reserve(4);
   std::vector<VkWriteDescriptorSet> w;
   for (std::uint32_t s = 0; s < 4; ++s) {
-    if (!st.slot_used[s]) continue;
+    if (!st.derived.slot_used[s]) continue;
     const ImageResource& img = f.gbuffer[s];
     infos.push_back({VK_NULL_HANDLE, img.view, layouts[s]});
     VkWriteDescriptorSet x{};

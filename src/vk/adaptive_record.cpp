@@ -14,8 +14,10 @@ namespace {
 
 using State = AdaptiveSupersampler::State;
 
+constexpr const char* kWho = "vk adaptive supersampler";
+
 Status frame_error(ErrorCode code, const std::string& what) {
-  return Status::error(code, "vk adaptive supersampler: " + what);
+  return Status::error(code, std::string(kWho) + ": " + what);
 }
 
 /// Channel count of the float/normalised colour formats a sampler2D reads; 0 = refused.
@@ -83,11 +85,11 @@ Status check_slot(const State& st, int s, const ImageResource& img) {
                            " is not a float or normalised colour format (integer and sRGB "
                            "formats are not read)");
   }
-  if (channels < st.slot_channels[s]) {
+  if (channels < st.derived.slot_channels[s]) {
     return frame_error(ErrorCode::invalid_argument,
                        slot + ": VkFormat " + std::to_string(int(img.format)) + " has " +
                            std::to_string(channels) + " channels, the layout reads channel " +
-                           std::to_string(st.slot_channels[s]) + " of it");
+                           std::to_string(st.derived.slot_channels[s]) + " of it");
   }
   if ((img.usage & VK_IMAGE_USAGE_SAMPLED_BIT) == 0) {
     return frame_error(ErrorCode::invalid_argument,
@@ -113,15 +115,12 @@ Status check_adaptive_frame(const State& st, VkCommandBuffer cmd, const Adaptive
   if (cmd == VK_NULL_HANDLE) {
     return frame_error(ErrorCode::invalid_argument, "no VkCommandBuffer");
   }
-  if (f.budget && *f.budget < 0) {
-    return frame_error(ErrorCode::invalid_argument,
-                       "budget = " + std::to_string(*f.budget) + " (>= 0 extra samples, or none)");
-  }
-  if (f.hook_sets.size() != st.options.hook.set_layouts.size()) {
+  if (Status s = adaptive::check_budget(f.budget, kWho); !s.ok()) return s;
+  if (f.hook_sets.size() != st.options.hook_set_layouts.size()) {
     return frame_error(ErrorCode::invalid_argument,
                        std::to_string(f.hook_sets.size()) + " hook_sets for " +
-                           std::to_string(st.options.hook.set_layouts.size()) +
-                           " hook.set_layouts");
+                           std::to_string(st.options.hook_set_layouts.size()) +
+                           " hook_set_layouts");
   }
   for (std::size_t i = 0; i < f.hook_sets.size(); ++i) {
     if (f.hook_sets[i] == VK_NULL_HANDLE) {
@@ -130,11 +129,11 @@ Status check_adaptive_frame(const State& st, VkCommandBuffer cmd, const Adaptive
     }
   }
   for (int s = 0; s < 4; ++s) {
-    if (!st.slot_used[s]) continue;
+    if (!st.derived.slot_used[s]) continue;
     if (Status e = check_slot(st, s, f.gbuffer[std::size_t(s)]); !e.ok()) return e;
     for (int t = 0; t < s; ++t) {
       const ImageResource &a = f.gbuffer[std::size_t(t)], &b = f.gbuffer[std::size_t(s)];
-      if (st.slot_used[t] && a.image == b.image && a.layout != b.layout) {
+      if (st.derived.slot_used[t] && a.image == b.image && a.layout != b.layout) {
         return frame_error(ErrorCode::invalid_argument,
                            "G-buffer slots " + std::to_string(t) + " and " + std::to_string(s) +
                                " share a VkImage but give different layouts");
@@ -206,7 +205,7 @@ void record_prologue(State& st, VkCommandBuffer cmd, const AdaptiveFrame& f) {
   Barrier in;
   std::vector<VkImage> done;
   for (std::size_t s = 0; s < 4; ++s) {
-    if (!st.slot_used[s]) continue;
+    if (!st.derived.slot_used[s]) continue;
     const ImageResource& img = f.gbuffer[s];
     if (std::find(done.begin(), done.end(), img.image) != done.end()) continue;
     done.push_back(img.image);
@@ -230,17 +229,13 @@ void record_prologue(State& st, VkCommandBuffer cmd, const AdaptiveFrame& f) {
     api.CmdResetQueryPool(cmd, st.queries.get(), 0, st.query_capacity);
     write_timestamp(api, cmd, st.queries.get(), 0);
   }
-  const AdaptiveParams params = adaptive_params(st);
+  const adaptive::Params params = adaptive::params(st.options, st.derived);
   api.CmdUpdateBuffer(cmd, st.params.get(), 0, sizeof params, &params);
-  // The work header: counters 0, the budget's state; histograms cleared when budgeted.
-  std::uint32_t header[kAdaptiveHeaderUints] = {};
+  // The work header; histograms cleared when budgeted.
+  const auto header = adaptive::work_header(f.budget);
+  api.CmdUpdateBuffer(cmd, st.work.get(), 0, sizeof header, header.data());
   if (f.budget) {
-    header[5] = 1;
-    header[6] = std::uint32_t(std::min<std::int64_t>(*f.budget, 0xffffffffLL));
-  }
-  api.CmdUpdateBuffer(cmd, st.work.get(), 0, sizeof header, header);
-  if (f.budget) {
-    api.CmdFillBuffer(cmd, st.work.get(), sizeof header, kAdaptiveHistogramUints * 4, 0u);
+    api.CmdFillBuffer(cmd, st.work.get(), sizeof header, adaptive::kHistogramUints * 4, 0u);
   }
   Barrier up;
   up.memory(
@@ -265,31 +260,6 @@ void record_epilogue(State& st, VkCommandBuffer cmd) {
   h.record(st.api, cmd);
 }
 
-void record_passes(State& st, Recorder& run, const AdaptiveFrame& f, AdaptiveMode mode) {
-  if (mode == AdaptiveMode::reference) {
-    run.pass("reference", "REFERENCE");
-    return;
-  }
-  run.pass("first", "FIRST");
-  if (mode != AdaptiveMode::adaptive) return;
-  run.pass("metrics", "METRICS");
-  if (f.budget) {
-    // Eight histogram + select rounds over the rank key's digits, then the apply pass.
-    for (int d = 0; d < 8; ++d) {
-      run.pass("budget_histogram" + std::to_string(d), "HISTOGRAM");
-      run.pass("budget_select" + std::to_string(d), "SELECT", 1);
-    }
-    run.pass("budget_apply", "APPLY");
-  }
-  if (st.options.schedule == AdaptiveSchedule::frame_list) {
-    run.pass("extra_list", "LIST", 0, false, "ARGS");
-    run.pass("extra_shade", "SHADE", 0, true);
-    run.pass("extra_resolve", "RESOLVE");
-  } else {
-    run.pass("extra", "EXTRA");
-  }
-}
-
 }  // namespace
 
 Result<AdaptiveRecord> record_adaptive(State& st, VkCommandBuffer cmd, const AdaptiveFrame& f,
@@ -305,7 +275,10 @@ Result<AdaptiveRecord> record_adaptive(State& st, VkCommandBuffer cmd, const Ada
   st.api.CmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, st.pipeline_layout.get(), 0,
                                std::uint32_t(sets.size()), sets.data(), 0, nullptr);
   Recorder run(st, cmd);
-  record_passes(st, run, f, mode);
+  for (const adaptive::Step& step :
+       adaptive::frame_steps(mode, st.options.schedule, f.budget.has_value())) {
+    run.pass(step.name, step.program, step.groups_x, step.indirect, step.then);
+  }
   record_epilogue(st, cmd);
 
   AdaptiveRecord r;
@@ -325,7 +298,7 @@ Result<AdaptiveRecord> record_adaptive(State& st, VkCommandBuffer cmd, const Ada
   if (st.counts.get() != VK_NULL_HANDLE) r.sample_counts = output(st.counts);
   for (std::size_t s = 0; s < 4; ++s) {
     r.gbuffer_layout[s] =
-        st.slot_used[s] ? adaptive_read_layout(f.gbuffer[s].layout) : f.gbuffer[s].layout;
+        st.derived.slot_used[s] ? adaptive_read_layout(f.gbuffer[s].layout) : f.gbuffer[s].layout;
   }
   return r;
 }
@@ -350,12 +323,9 @@ Result<AdaptiveProfile> AdaptiveSupersampler::read_profile() const {
   }
   if (!st.recorded) return frame_error(ErrorCode::invalid_argument, "read_profile before a record");
   AdaptiveProfile p;
-  const std::size_t pixels = std::size_t(st.options.width) * std::size_t(st.options.height);
   st.readback.invalidate();
   const std::uint32_t extra = *static_cast<const std::uint32_t*>(st.readback.mapped());
-  p.extra_samples = st.last_mode == AdaptiveMode::adaptive    ? extra
-                    : st.last_mode == AdaptiveMode::reference ? pixels * std::size_t(st.n - 1)
-                                                              : 0;
+  p.extra_samples = adaptive::extra_samples(st.options, st.last_mode, extra);
   const std::uint32_t count = std::uint32_t(st.last_passes.size()) + 1;
   std::vector<std::uint64_t> ticks(count);
   if (!st.timestamps) {

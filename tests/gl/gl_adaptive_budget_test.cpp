@@ -19,7 +19,7 @@ TEST_F(GlAdaptive, BudgetOnDeferredFrame) {
   const std::vector<int> asked = extra_of(ad->samples);
   const std::int64_t total = std::accumulate(asked.begin(), asked.end(), std::int64_t(0));
   ASSERT_GT(total, 100);
-  for (gl::AdaptiveSchedule sch : {gl::AdaptiveSchedule::frame_list, gl::AdaptiveSchedule::loop}) {
+  for (AdaptiveSchedule sch : {AdaptiveSchedule::frame_list, AdaptiveSchedule::loop}) {
     gl::AdaptiveSupersamplerOptions o = deferred_options(classes);
     o.schedule = sch;
     o.profile = true;
@@ -114,7 +114,7 @@ TEST_F(GlAdaptive, TonemapWeightedResolveFormula) {
   Synthetic s = synthetic(w, h, m, [](int, int) { return 1.0f; });
   gl::AdaptiveSupersamplerOptions o = synthetic_options(w, h, m);
   o.thresholds.force_k = 3;  // every sample of every window
-  o.resolve = gl::AdaptiveResolve::tonemap_weighted;
+  o.resolve = AdaptiveResolve::tonemap_weighted;
   o.hdr_exposure = 0.5f;
   for (bool reference : {false, true}) {
     Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);

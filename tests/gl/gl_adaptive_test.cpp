@@ -21,8 +21,8 @@ TEST_F(GlAdaptive, SameImagesAsDeferredRenderer) {
     int classes = 0;
     gl::AdaptiveFrame frame;
     frame.gbuffer = deferred_textures(&classes);
-    for (gl::AdaptiveSchedule s : {gl::AdaptiveSchedule::frame_list,
-                                   gl::AdaptiveSchedule::tile_list, gl::AdaptiveSchedule::loop}) {
+    for (AdaptiveSchedule s : {AdaptiveSchedule::frame_list,
+                                   AdaptiveSchedule::tile_list, AdaptiveSchedule::loop}) {
       gl::AdaptiveSupersamplerOptions o = deferred_options(classes);
       o.schedule = s;
       Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
@@ -32,7 +32,7 @@ TEST_F(GlAdaptive, SameImagesAsDeferredRenderer) {
       EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), ad->image), 0u)
           << "m=" << m << " schedule " << int(s);
       EXPECT_EQ(read_counts(r->sample_counts, w_, h_), ad->samples) << "m=" << m;
-      if (s != gl::AdaptiveSchedule::frame_list) continue;
+      if (s != AdaptiveSchedule::frame_list) continue;
       r = (*c)->dispatch_reference(frame);
       ASSERT_TRUE(r.ok()) << r.status().message;
       EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), ref->image), 0u) << "m=" << m;
@@ -108,8 +108,8 @@ TEST_F(GlAdaptive, RestoresEngineGlState) {
   auto bind_range =
       reinterpret_cast<PFNGLBINDBUFFERRANGEPROC>(eglGetProcAddress("glBindBufferRange"));
   auto get_i64 = reinterpret_cast<PFNGLGETINTEGER64I_VPROC>(eglGetProcAddress("glGetInteger64i_v"));
-  for (gl::AdaptiveSchedule sch :
-       {gl::AdaptiveSchedule::frame_list, gl::AdaptiveSchedule::tile_list}) {
+  for (AdaptiveSchedule sch :
+       {AdaptiveSchedule::frame_list, AdaptiveSchedule::tile_list}) {
     o.schedule = sch;
     Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
     ASSERT_TRUE(c.ok()) << c.status().message;

@@ -70,16 +70,6 @@ inline std::size_t differing_pixels(const std::vector<float>& a, const ImageRGBA
   return n;
 }
 
-inline gl::AdaptiveGBufferLayout tessera_layout() {
-  gl::AdaptiveGBufferLayout l;
-  l.depth = {0, "r"};
-  l.normal = {0, "gba"};
-  l.id = {1, "r"};
-  l.uv = {1, "gb"};
-  l.uv_derivatives = {2, "rgba"};
-  return l;
-}
-
 class GlAdaptive : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -136,10 +126,10 @@ class GlAdaptive : public ::testing::Test {
     o.width = w_;
     o.height = h_;
     o.m = m_;
-    o.output = gl::AdaptiveOutputFormat::rgba32f;
+    o.output = AdaptiveOutputFormat::rgba32f;
     o.sample_count_texture = true;
     o.glsl_dir = TESSERA_GLSL_DIR;
-    o.layout = tessera_layout();
+    o.layout = deferred_gbuffer_layout();
     o.hook.name = "blinn_phong_hook";
     o.hook.source = "#define TESSERA_DEFERRED_CLASSES " + std::to_string(std::max(classes, 1)) +
                     "\n#include \"deferred_shading.glsl\"\n"
@@ -182,7 +172,7 @@ inline gl::AdaptiveSupersamplerOptions synthetic_options(int w, int h, int m) {
   o.width = w;
   o.height = h;
   o.m = m;
-  o.output = gl::AdaptiveOutputFormat::rgba32f;
+  o.output = AdaptiveOutputFormat::rgba32f;
   o.sample_count_texture = true;
   o.glsl_dir = TESSERA_GLSL_DIR;
   o.layout.depth = {0, "r"};

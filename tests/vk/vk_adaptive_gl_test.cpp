@@ -90,7 +90,7 @@ TEST_F(VkAgainstGl, SameImagesAsTheGlComponent) {
   compare(vo, go, Which::adaptive, std::nullopt, "adaptive, frame list");
   auto vt = vo;
   auto gt = go;
-  vt.schedule = gt.schedule = gl::AdaptiveSchedule::tile_list;
+  vt.schedule = gt.schedule = AdaptiveSchedule::tile_list;
   compare(vt, gt, Which::adaptive, std::nullopt, "adaptive, tile list");
   compare(vo, go, Which::reference, std::nullopt, "full supersampling");
   compare(vo, go, Which::first, std::nullopt, "1 spp");
@@ -105,8 +105,8 @@ TEST_F(VkAgainstGl, SameImagesAsTheGlComponent) {
 TEST_F(VkAgainstGl, LoopScheduleHdrAndBudget) {
   auto vo = scene_options<vk::AdaptiveSupersamplerOptions>(g_);
   auto go = scene_options<gl::AdaptiveSupersamplerOptions>(g_);
-  vo.schedule = go.schedule = gl::AdaptiveSchedule::loop;
-  vo.resolve = go.resolve = gl::AdaptiveResolve::tonemap_weighted;
+  vo.schedule = go.schedule = AdaptiveSchedule::loop;
+  vo.resolve = go.resolve = AdaptiveResolve::tonemap_weighted;
   vo.hdr_exposure = go.hdr_exposure = 0.5f;
   const VkFrameOut all = run_vk(*engine_, vo, g_, Which::adaptive);
   const std::int64_t budget = std::int64_t(all.extra / 3);

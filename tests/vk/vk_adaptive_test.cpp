@@ -159,7 +159,7 @@ TEST_F(VkAdaptive, HookReadsTheEnginesDescriptorSet) {
   w.pBufferInfo = &bi;
   vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
 
-  o.hook.set_layouts = {layout};
+  o.hook_set_layouts = {layout};
   o.hook.source = renamed("scene_shade") +
                   "layout(set = 0, binding = 0) uniform EngineTint { vec4 engine_tint; };\n"
                   "vec4 tessera_shade_sample(ivec2 g, float f) {\n"
@@ -392,7 +392,7 @@ TEST_F(VkAdaptiveErrors, MissingImageUndefinedLayoutAndNegativeBudget) {
   EXPECT_NE(record_error(f).find("budget = -1"), std::string::npos);
   f = frame();
   f.hook_sets = {VK_NULL_HANDLE};
-  EXPECT_NE(record_error(f).find("1 hook_sets for 0 hook.set_layouts"), std::string::npos);
+  EXPECT_NE(record_error(f).find("1 hook_sets for 0 hook_set_layouts"), std::string::npos);
 }
 
 // The leak check can fail: an object left alive is reported when the device is destroyed.

@@ -54,16 +54,6 @@ inline SceneGBuffer scene_gbuffer(int w, int h, int m) {
   return g;
 }
 
-inline gl::AdaptiveGBufferLayout scene_layout() {
-  gl::AdaptiveGBufferLayout l;
-  l.depth = {0, "r"};
-  l.normal = {0, "gba"};
-  l.id = {1, "r"};
-  l.uv = {1, "gb"};
-  l.uv_derivatives = {2, "rgba"};
-  return l;
-}
-
 /// The hook: GLSL both components compile (its line 3 is `int id = ...`).
 inline const char* kSceneHook = R"(vec4 tessera_shade_sample(ivec2 g, float footprint) {
   // Background, then a checker filtered by the footprint, two lights and a sharp highlight.
@@ -92,9 +82,9 @@ Options scene_options(const SceneGBuffer& g) {
   o.width = g.w;
   o.height = g.h;
   o.m = g.m;
-  o.output = gl::AdaptiveOutputFormat::rgba32f;
+  o.output = AdaptiveOutputFormat::rgba32f;
   o.sample_count_texture = true;
-  o.layout = scene_layout();
+  o.layout = deferred_gbuffer_layout();
   o.hook.name = "scene_hook";
   o.hook.source = kSceneHook;
   return o;

@@ -265,7 +265,7 @@ void run_adaptive(Images& out, EngineState& engine, bool shift) {
   o.layout.depth = {0, "a"};
   o.layout.id = {1, "r"};
   o.hook = {kHook, "engine_hook.glsl", {}};
-  o.output = tessera::gl::AdaptiveOutputFormat::rgba32f;
+  o.output = tessera::AdaptiveOutputFormat::rgba32f;
   auto aa = tessera::gl::AdaptiveSupersampler::create(o);
   if (!aa) die(1, aa.status().message);
   tessera::gl::AdaptiveFrame frame;
