@@ -8,7 +8,7 @@
 #include "tessera/image_ops.h"
 #include "tessera/io.h"
 #include "tessera/metrics.h"
-#include "tessera/mipmap.h"
+#include "tessera/image_mipmap.h"
 #include "view.h"
 
 namespace tessera::cli {
