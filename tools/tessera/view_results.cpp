@@ -201,7 +201,8 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
   if (!file) return file.status();
   Result<std::vector<ImageRGBA8>> refs = reference_chain(input.image, options, *made);
   if (!refs) return refs.status();
-  Result<metrics::ImageComparison> total = measure_level0(*made, threads);
+  Result<metrics::ImageComparison> total =
+      texture_file::measure_level0(made->texture, made->sources, threads);
   if (!total) return total.status();
 
   nlohmann::json j = {{"input", input.name},
