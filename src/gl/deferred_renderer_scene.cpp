@@ -100,8 +100,8 @@ Object upload_materials(const std::vector<scene::Material>& materials,
   }
   if (mats.empty()) mats.push_back({{1, 1, 1, 1}, {-1, 0, 1, 1}});
   Object ssbo = create_object(ObjectType::buffer);
-  glNamedBufferStorage(ssbo.get(), GLsizeiptr(mats.size() * sizeof(MaterialRecord)),
-                       mats.data(), 0);
+  glNamedBufferStorage(ssbo.get(), GLsizeiptr(mats.size() * sizeof(MaterialRecord)), mats.data(),
+                       0);
   return ssbo;
 }
 

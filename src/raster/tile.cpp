@@ -47,15 +47,15 @@ struct SampleTable {
 
 /// One quad's per-lane values, handed from step to step (lane = pixel (lane & 1, lane >> 1)).
 struct QuadLanes {
-  int ns = 1;                  ///< Samples per pixel.
-  std::size_t base[4];         ///< Each lane's first sample in the frame buffer.
-  vf32x4 ldx, ldy;             ///< Lane centres relative to the triangle's origin.
+  int ns = 1;           ///< Samples per pixel.
+  std::size_t base[4];  ///< Each lane's first sample in the frame buffer.
+  vf32x4 ldx, ldy;      ///< Lane centres relative to the triangle's origin.
   alignas(16) float ldx_lanes[4], ldy_lanes[4];
-  alignas(16) float zc[4];     ///< The depth plane at the lane centres,
-  alignas(16) float zcl[4];    ///< and clamped to [0, 1].
-  alignas(16) float iw[4];     ///< 1/w at the lane centres.
+  alignas(16) float zc[4];                  ///< The depth plane at the lane centres,
+  alignas(16) float zcl[4];                 ///< and clamped to [0, 1].
+  alignas(16) float iw[4];                  ///< 1/w at the lane centres.
   std::uint32_t visible[4] = {0, 0, 0, 0};  ///< Covered samples that pass the depth test.
-  std::uint32_t helpers = 0;   ///< Bit per lane without a visible sample.
+  std::uint32_t helpers = 0;                ///< Bit per lane without a visible sample.
 };
 
 class TileRasteriser {
@@ -105,8 +105,8 @@ class TileRasteriser {
   TESSERA_QUAD_STEP void quad_varyings(QuadLanes& q);
   TESSERA_QUAD_STEP std::uint32_t quad_shaded_lanes(QuadLanes& q);
   template <int N4>
-  TESSERA_QUAD_STEP void quad_shade(int qx, int qy, const std::uint32_t* mask,
-                                    std::uint32_t active, const QuadLanes& q);
+  TESSERA_QUAD_STEP void quad_shade(int qx, int qy, const std::uint32_t* mask, std::uint32_t active,
+                                    const QuadLanes& q);
   template <bool kSingle>
   TESSERA_QUAD_STEP void quad_write(const QuadLanes& q);
 
@@ -480,7 +480,8 @@ void TileRasteriser::quad_write(const QuadLanes& q) {
     stats_.samples_written += popcount16(vis);
     if (vis == st_.full && ns % 4 == 0 && nc == 4 && !ids_) {
       // Fully visible multisampled pixel: contiguous depth and colour runs.
-      if (write_depth) std::memcpy(depth_ + q.base[lane], zs_[lane], std::size_t(ns) * sizeof(float));
+      if (write_depth)
+        std::memcpy(depth_ + q.base[lane], zs_[lane], std::size_t(ns) * sizeof(float));
       float* d = data_ + q.base[lane] * 4;
       const vf32x4 c = simd::loadf4(out);
       for (int s = 0; s < ns; ++s) simd::storef4(c, d + 4 * s);

@@ -55,7 +55,8 @@ template <class Value>
 std::vector<std::string> rate_row(std::string label, const experiments::SeamsResult& res,
                                   const char* format, Value value) {
   std::vector<std::string> row = {std::move(label)};
-  for (const experiments::SeamsRateResult& rate : res.rates) row.push_back(fmt(format, value(rate)));
+  for (const experiments::SeamsRateResult& rate : res.rates)
+    row.push_back(fmt(format, value(rate)));
   return row;
 }
 
@@ -64,9 +65,8 @@ void add_seams_tables(Report& report, const experiments::SeamsConfig& c,
                       const experiments::SeamsResult& res) {
   std::vector<std::vector<std::string>> rows;
   for (const faces::SeamMethod m : faces::all_methods()) {
-    rows.push_back(rate_row(faces::method_name(m), res, "%.1f", [m](const auto& rate) {
-      return rate.method(m).timing.median_ms();
-    }));
+    rows.push_back(rate_row(faces::method_name(m), res, "%.1f",
+                            [m](const auto& rate) { return rate.method(m).timing.median_ms(); }));
   }
   rows.push_back(rate_row("shading_only", res, "%.1f",
                           [](const auto& rate) { return rate.shading_only.median_ms(); }));
@@ -92,10 +92,9 @@ void add_seams_tables(Report& report, const experiments::SeamsConfig& c,
   report.figures(panels);
   rows.clear();
   for (const faces::SeamMethod m : faces::all_methods()) {
-    rows.push_back(rate_row(std::string(faces::method_name(m)) + " near seams", res, "%.5f",
-                            [m](const auto& rate) {
-                              return rate.method(m).vs_reference_near_seams.mean;
-                            }));
+    rows.push_back(
+        rate_row(std::string(faces::method_name(m)) + " near seams", res, "%.5f",
+                 [m](const auto& rate) { return rate.method(m).vs_reference_near_seams.mean; }));
   }
   header[0] = "mean error within 2 px of a face edge";
   report.table(header, rows);
