@@ -98,20 +98,19 @@ struct GlTimes {
   const FrameTimes* wall;
 };
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  Args a;
-  if (!parse(argc, argv, a)) {
-    std::fprintf(stderr,
-                 "usage: seams_gl_table1 [--width W] [--height H] [--frames N] [--reps R] "
-                 "[--msaa 1,2,4,8] [--filter aniso16|trilinear] [--agreement-frames K] "
-                 "[--cpu-threads T] [--reference]\n");
-    return 2;
+/// The GL times of `m` at the ri-th GL rate (from the GL side of a `Backend::both` run).
+GlTimes gl_times(const experiments::SeamsResult& res, std::size_t ri, faces::SeamMethod m) {
+  if (res.backend == experiments::Backend::both) {
+    const experiments::SeamsGlMethodResult& g = res.gl_rates[ri].method(m);
+    return {&g.gpu, &g.wall};
   }
+  const experiments::SeamsMethodResult& g = res.rates[ri].method(m);
+  return {&g.timing, &g.wall};
+}
+
+/// The Figure-1 scene exactly as `tessera seams` builds it (default options, pattern scale 1).
+experiments::SeamsConfig seams_config(const Args& a) {
   const bool compare = a.agreement_frames > 0 || a.reference;
-  // The Figure-1 scene exactly as `tessera seams` builds it (default options, pattern scale 1).
   experiments::SeamsConfig c;
   c.msaa = a.msaa;
   c.frames = a.frames;
@@ -129,14 +128,15 @@ int main(int argc, char** argv) {
   c.keep_images = false;
   c.near_seam_pixels = 0;
   c.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
-  Result<experiments::SeamsResult> run = experiments::run_seams(c);
-  if (!run) return fail(run.status().message);
-  const experiments::SeamsResult& res = *run;
-  const bool both = res.backend == experiments::Backend::both;
+  return c;
+}
 
+/// The header lines: driver, scene, refused rates, and what the driver draws each rate with (it
+/// may round a rate up: llvmpipe draws 2x with its 4x samples) and what run_seams compared it
+/// with (SeamsGlComparison). Returns the GL rates.
+std::vector<int> print_setup(const Args& a, const experiments::SeamsResult& res,
+                             const char* filter_name) {
   const char* lp = std::getenv("LP_NUM_THREADS");
-  const char* filter_name =
-      a.filter == tessera::texture::TextureFilter::trilinear ? "trilinear" : "16x anisotropic";
   std::printf("# %s, %s; LP_NUM_THREADS=%s\n", res.gl_renderer.c_str(), res.gl_version.c_str(),
               lp ? lp : "(unset)");
   std::printf("# Figure-1 scene: %d faces, %dx%d, %s, %d orbit frames x %d reps\n", res.faces,
@@ -146,8 +146,6 @@ int main(int argc, char** argv) {
     refused_text += (refused_text.empty() ? "" : ", ") + std::to_string(m) + "x";
   std::printf("# MSAA rates refused by the driver: %s\n",
               refused_text.empty() ? "none" : refused_text.c_str());
-  // What the driver draws each rate with (it may round a rate up: llvmpipe draws 2x with its 4x
-  // samples) and what run_seams compared it with (SeamsGlComparison).
   std::vector<int> rates;
   for (const experiments::SeamsSamplePattern& p : res.gl_sample_patterns) {
     rates.push_back(p.msaa);
@@ -161,15 +159,13 @@ int main(int argc, char** argv) {
                     ? "no CPU pattern (compared with the CPU drawn at these positions)"
                     : "no CPU pattern, off the CPU's 1/16-pixel grid (not compared)");
   }
-  const auto times = [&](std::size_t ri, faces::SeamMethod m) -> GlTimes {
-    if (both) {
-      const experiments::SeamsGlMethodResult& g = res.gl_rates[ri].method(m);
-      return {&g.gpu, &g.wall};
-    }
-    const experiments::SeamsMethodResult& g = res.rates[ri].method(m);
-    return {&g.timing, &g.wall};
-  };
+  return rates;
+}
 
+/// Table 1: GPU timer and wall medians of Traverse and Discard per rate, their ratios against
+/// the paper's, and whether Discard at 4x beats Traverse at 1x.
+void print_table1(const experiments::SeamsResult& res, const std::vector<int>& rates) {
+  const auto times = [&](std::size_t ri, faces::SeamMethod m) { return gl_times(res, ri, m); };
   const faces::SeamMethod methods[2] = {faces::SeamMethod::traverse, faces::SeamMethod::discard};
   const double paper_gtx[4] = {0.344 / 0.167, 0.446 / 0.265, 0.485 / 0.301, 0.568 / 0.412};
   const double paper_iris[4] = {2.36 / 0.815, 2.94 / 1.34, 3.25 / 1.48, 4.02 / 2.43};
@@ -221,43 +217,66 @@ int main(int argc, char** argv) {
   }
   std::printf("samples per cell: %zu\n",
               rates.empty() ? std::size_t(0) : times(0, methods[0]).gpu->frame_ms.size());
+}
 
-  // ---- GL vs CPU at the benchmark size (run_seams' quality frames, worst frame).
-  if (a.agreement_frames <= 0) std::printf("\nGL vs CPU: skipped (--agreement-frames 0)\n");
-  if (a.agreement_frames > 0) {
-    std::printf(
-        "\nGL vs CPU (%s, %d orbit frame(s)): PSNR dB (8-bit sRGB) / fraction of pixels "
-        "with ||GL - CPU||_2 >= 0.01 (linear RGB), worst frame\n\n| method |",
-        filter_name, res.quality_frames);
-    for (std::size_t ri = 0; ri < rates.size(); ++ri) {
-      const experiments::SeamsSamplePattern& p = res.gl_sample_patterns[ri];
-      const experiments::SeamsGlComparison cmp = res.gl_rates[ri].compared_with;
-      if (cmp == experiments::SeamsGlComparison::none) {
-        std::printf(" %dx (GL; not compared) |", rates[ri]);
-      } else if (cmp == experiments::SeamsGlComparison::driver_positions) {
-        std::printf(" %dx (GL) vs the CPU at its positions |", rates[ri]);
-      } else if (p.cpu_msaa == rates[ri]) {
-        std::printf(" %dx |", rates[ri]);
-      } else {
-        std::printf(" %dx (GL) vs %dx (CPU) |", rates[ri], p.cpu_msaa);
-      }
-    }
-    std::printf("\n|---|");
-    for (std::size_t i = 0; i < rates.size(); ++i) std::printf("---|");
-    std::printf("\n");
-    for (faces::SeamMethod m : faces::all_methods()) {
-      std::printf("| %s |", faces::method_name(m));
-      for (std::size_t ri = 0; ri < rates.size(); ++ri) {
-        const experiments::SeamsGlMethodResult& g = res.gl_rates[ri].method(m);
-        if (res.gl_rates[ri].compared_with == experiments::SeamsGlComparison::none) {
-          std::printf(" - |");  // no CPU frame has the driver's positions
-          continue;
-        }
-        std::printf(" %.2f / %.4f |", g.worst_psnr_db, g.worst_fraction_ge_001);
-      }
-      std::printf("\n");
+/// GL vs CPU at the benchmark size (run_seams' quality frames, worst frame), per method and rate.
+void print_agreement(const experiments::SeamsResult& res, const std::vector<int>& rates,
+                     const char* filter_name) {
+  std::printf(
+      "\nGL vs CPU (%s, %d orbit frame(s)): PSNR dB (8-bit sRGB) / fraction of pixels "
+      "with ||GL - CPU||_2 >= 0.01 (linear RGB), worst frame\n\n| method |",
+      filter_name, res.quality_frames);
+  for (std::size_t ri = 0; ri < rates.size(); ++ri) {
+    const experiments::SeamsSamplePattern& p = res.gl_sample_patterns[ri];
+    const experiments::SeamsGlComparison cmp = res.gl_rates[ri].compared_with;
+    if (cmp == experiments::SeamsGlComparison::none) {
+      std::printf(" %dx (GL; not compared) |", rates[ri]);
+    } else if (cmp == experiments::SeamsGlComparison::driver_positions) {
+      std::printf(" %dx (GL) vs the CPU at its positions |", rates[ri]);
+    } else if (p.cpu_msaa == rates[ri]) {
+      std::printf(" %dx |", rates[ri]);
+    } else {
+      std::printf(" %dx (GL) vs %dx (CPU) |", rates[ri], p.cpu_msaa);
     }
   }
+  std::printf("\n|---|");
+  for (std::size_t i = 0; i < rates.size(); ++i) std::printf("---|");
+  std::printf("\n");
+  for (faces::SeamMethod m : faces::all_methods()) {
+    std::printf("| %s |", faces::method_name(m));
+    for (std::size_t ri = 0; ri < rates.size(); ++ri) {
+      const experiments::SeamsGlMethodResult& g = res.gl_rates[ri].method(m);
+      if (res.gl_rates[ri].compared_with == experiments::SeamsGlComparison::none) {
+        std::printf(" - |");  // no CPU frame has the driver's positions
+        continue;
+      }
+      std::printf(" %.2f / %.4f |", g.worst_psnr_db, g.worst_fraction_ge_001);
+    }
+    std::printf("\n");
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  Args a;
+  if (!parse(argc, argv, a)) {
+    std::fprintf(stderr,
+                 "usage: seams_gl_table1 [--width W] [--height H] [--frames N] [--reps R] "
+                 "[--msaa 1,2,4,8] [--filter aniso16|trilinear] [--agreement-frames K] "
+                 "[--cpu-threads T] [--reference]\n");
+    return 2;
+  }
+  Result<experiments::SeamsResult> run = experiments::run_seams(seams_config(a));
+  if (!run) return fail(run.status().message);
+  const experiments::SeamsResult& res = *run;
+  const char* filter_name =
+      a.filter == tessera::texture::TextureFilter::trilinear ? "trilinear" : "16x anisotropic";
+  const std::vector<int> rates = print_setup(a, res, filter_name);
+  print_table1(res, rates);
+  if (a.agreement_frames <= 0) std::printf("\nGL vs CPU: skipped (--agreement-frames 0)\n");
+  if (a.agreement_frames > 0) print_agreement(res, rates, filter_name);
   if (a.reference) {
     const experiments::SeamsReferenceAgreement& r = res.gl_reference_vs_cpu;
     const std::string frames = res.quality_frames == 1

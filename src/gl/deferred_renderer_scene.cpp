@@ -22,40 +22,19 @@ namespace {
 
 constexpr int kMaxClasses = 8;
 
-}  // namespace
-
-DeferredRenderer::~DeferredRenderer() = default;
-
-const std::filesystem::path& DeferredRenderer::glsl_dir() const {
-  return state_->options.glsl_dir;
-}
-double DeferredRenderer::last_gbuffer_ms() const { return state_->gbuffer_ms; }
-double DeferredRenderer::last_gbuffer_wall_ms() const { return state_->gbuffer_wall_ms; }
-int DeferredRenderer::width() const { return state_->w; }
-int DeferredRenderer::height() const { return state_->h; }
-int DeferredRenderer::m() const { return state_->m; }
-
-Result<std::unique_ptr<DeferredRenderer>> DeferredRenderer::create(
-    const scene::Scene& scene, const DeferredRendererOptions& options) {
-  std::unique_ptr<DeferredRenderer> r(new DeferredRenderer());
-  r->state_ = std::make_unique<State>();
-  State& st = *r->state_;
-  st.scene = &scene;
-  st.options = options;
-
-  Result<std::vector<texture::Texture>> textures =
-      render::build_scene_textures(scene, {options.threads});
-  if (!textures) return textures.status();
-  st.cpu_textures = std::move(*textures);
-
-  // Base-colour textures grouped by size: one RGBA32F array per (width, height, levels).
+/// The base-colour textures of `materials` grouped by size, one RGBA32F array per (width,
+/// height, levels) into `arrays` (a 1x1 dummy when there is none, so that unit 3 holds a
+/// complete array); returns each texture's (class, layer), (-1, -1) for unused ones.
+Result<std::vector<std::array<int, 2>>> upload_texture_classes(
+    const std::vector<scene::Material>& materials, const std::vector<texture::Texture>& textures,
+    std::vector<Object>& arrays) {
   std::map<std::tuple<int, int, int>, std::vector<int>> classes;
-  std::vector<int> used(st.cpu_textures.size(), 0);
-  for (const scene::Material& mat : scene.materials) {
+  std::vector<int> used(textures.size(), 0);
+  for (const scene::Material& mat : materials) {
     const int t = mat.base_color_texture;
-    if (t >= 0 && std::size_t(t) < st.cpu_textures.size() && !used[std::size_t(t)]) {
+    if (t >= 0 && std::size_t(t) < textures.size() && !used[std::size_t(t)]) {
       used[std::size_t(t)] = 1;
-      const texture::Texture& tex = st.cpu_textures[std::size_t(t)];
+      const texture::Texture& tex = textures[std::size_t(t)];
       classes[{tex.width(), tex.height(), tex.level_count()}].push_back(t);
     }
   }
@@ -65,14 +44,14 @@ Result<std::unique_ptr<DeferredRenderer>> DeferredRenderer::create(
                              std::to_string(classes.size()) + " sizes; at most " +
                              std::to_string(kMaxClasses) + " texture arrays are supported");
   }
-  std::vector<std::array<int, 2>> where(st.cpu_textures.size(), {-1, -1});  // class, layer
+  std::vector<std::array<int, 2>> where(textures.size(), {-1, -1});  // class, layer
   int cls = 0;
   for (const auto& [key, members] : classes) {
     const auto [tw, th, levels] = key;
     Object arr = create_object(ObjectType::texture, GL_TEXTURE_2D_ARRAY);
     glTextureStorage3D(arr.get(), levels, GL_RGBA32F, tw, th, GLsizei(members.size()));
     for (std::size_t layer = 0; layer < members.size(); ++layer) {
-      const texture::Texture& tex = st.cpu_textures[std::size_t(members[layer])];
+      const texture::Texture& tex = textures[std::size_t(members[layer])];
       for (int l = 0; l < levels; ++l) {
         const texture::TextureLevelView v = tex.level(0, l);
         glTextureSubImage3D(arr.get(), l, 0, 0, GLint(layer), v.width, v.height, 1, GL_RGBA,
@@ -84,29 +63,34 @@ Result<std::unique_ptr<DeferredRenderer>> DeferredRenderer::create(
     glTextureParameteri(arr.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(arr.get(), GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTextureParameteri(arr.get(), GL_TEXTURE_WRAP_T, GL_REPEAT);
-    st.class_arrays.push_back(std::move(arr));
+    arrays.push_back(std::move(arr));
     ++cls;
   }
-  if (st.class_arrays.empty()) {  // a 1x1 dummy so that unit 3 holds a complete array
+  if (arrays.empty()) {  // a 1x1 dummy so that unit 3 holds a complete array
     Object arr = create_object(ObjectType::texture, GL_TEXTURE_2D_ARRAY);
     glTextureStorage3D(arr.get(), 1, GL_RGBA32F, 1, 1, 1);
     const float one[4] = {1, 1, 1, 1};
     glTextureSubImage3D(arr.get(), 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, one);
-    st.class_arrays.push_back(std::move(arr));
+    arrays.push_back(std::move(arr));
   }
+  return where;
+}
 
-  // Materials: vec4 base, ivec4 (class, layer, width, height).
+/// The materials as an SSBO of vec4 base, ivec4 (class, layer, width, height).
+Object upload_materials(const std::vector<scene::Material>& materials,
+                        const std::vector<texture::Texture>& textures,
+                        const std::vector<std::array<int, 2>>& where) {
   struct MaterialRecord {
     float base[4];
     std::int32_t tex[4];
   };
   std::vector<MaterialRecord> mats;
-  for (const scene::Material& mat : scene.materials) {
+  for (const scene::Material& mat : materials) {
     MaterialRecord rec{{mat.base_color[0], mat.base_color[1], mat.base_color[2], 1.0f},
                        {-1, 0, 1, 1}};
     const int t = mat.base_color_texture;
-    if (t >= 0 && std::size_t(t) < st.cpu_textures.size()) {
-      const texture::Texture& tex = st.cpu_textures[std::size_t(t)];
+    if (t >= 0 && std::size_t(t) < textures.size()) {
+      const texture::Texture& tex = textures[std::size_t(t)];
       rec.tex[0] = where[std::size_t(t)][0];
       rec.tex[1] = where[std::size_t(t)][1];
       rec.tex[2] = tex.width();
@@ -115,12 +99,15 @@ Result<std::unique_ptr<DeferredRenderer>> DeferredRenderer::create(
     mats.push_back(rec);
   }
   if (mats.empty()) mats.push_back({{1, 1, 1, 1}, {-1, 0, 1, 1}});
-  st.materials_ssbo = create_object(ObjectType::buffer);
-  glNamedBufferStorage(st.materials_ssbo.get(), GLsizeiptr(mats.size() * sizeof(MaterialRecord)),
-                       mats.data(), 0);
+  Object ssbo = create_object(ObjectType::buffer);
+  glNamedBufferStorage(ssbo.get(), GLsizeiptr(mats.size() * sizeof(MaterialRecord)), mats.data(),
+                       0);
+  return ssbo;
+}
 
-  // Meshes: a dynamic buffer (clip xyzw, linear depth) per frame, a static one (normal, uv).
-  for (const scene::Mesh& mesh : scene.meshes) {
+/// Per mesh: a dynamic buffer (clip xyzw, linear depth) per frame, a static one (normal, uv).
+void upload_meshes(const std::vector<scene::Mesh>& scene_meshes, std::vector<GlMesh>& meshes) {
+  for (const scene::Mesh& mesh : scene_meshes) {
     GlMesh g;
     g.vertices = mesh.positions.size();
     g.indices = mesh.indices.size();
@@ -156,9 +143,40 @@ Result<std::unique_ptr<DeferredRenderer>> DeferredRenderer::create(
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.ebo.get());
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
-    st.meshes.push_back(std::move(g));
+    meshes.push_back(std::move(g));
   }
+}
 
+}  // namespace
+
+DeferredRenderer::~DeferredRenderer() = default;
+
+const std::filesystem::path& DeferredRenderer::glsl_dir() const {
+  return state_->options.glsl_dir;
+}
+double DeferredRenderer::last_gbuffer_ms() const { return state_->gbuffer_ms; }
+double DeferredRenderer::last_gbuffer_wall_ms() const { return state_->gbuffer_wall_ms; }
+int DeferredRenderer::width() const { return state_->w; }
+int DeferredRenderer::height() const { return state_->h; }
+int DeferredRenderer::m() const { return state_->m; }
+
+Result<std::unique_ptr<DeferredRenderer>> DeferredRenderer::create(
+    const scene::Scene& scene, const DeferredRendererOptions& options) {
+  std::unique_ptr<DeferredRenderer> r(new DeferredRenderer());
+  r->state_ = std::make_unique<State>();
+  State& st = *r->state_;
+  st.scene = &scene;
+  st.options = options;
+
+  Result<std::vector<texture::Texture>> textures =
+      render::build_scene_textures(scene, {options.threads});
+  if (!textures) return textures.status();
+  st.cpu_textures = std::move(*textures);
+  Result<std::vector<std::array<int, 2>>> where =
+      upload_texture_classes(scene.materials, st.cpu_textures, st.class_arrays);
+  if (!where) return where.status();
+  st.materials_ssbo = upload_materials(scene.materials, st.cpu_textures, *where);
+  upload_meshes(scene.meshes, st.meshes);
   const std::filesystem::path& d = st.options.glsl_dir;
   Result<glsl::Source> vs = glsl::shipped_shader(glsl::Stage::vertex, "deferred_gbuffer.vert", d);
   if (!vs) return vs.status();

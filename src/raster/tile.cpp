@@ -42,6 +42,22 @@ struct SampleTable {
   float oy[kMaxSamples];
 };
 
+/// The steps of TileRasteriser::quad are inlined into it whatever the compiler's heuristics.
+#define TESSERA_QUAD_STEP [[gnu::always_inline]] inline
+
+/// One quad's per-lane values, handed from step to step (lane = pixel (lane & 1, lane >> 1)).
+struct QuadLanes {
+  int ns = 1;           ///< Samples per pixel.
+  std::size_t base[4];  ///< Each lane's first sample in the frame buffer.
+  vf32x4 ldx, ldy;      ///< Lane centres relative to the triangle's origin.
+  alignas(16) float ldx_lanes[4], ldy_lanes[4];
+  alignas(16) float zc[4];                  ///< The depth plane at the lane centres,
+  alignas(16) float zcl[4];                 ///< and clamped to [0, 1].
+  alignas(16) float iw[4];                  ///< 1/w at the lane centres.
+  std::uint32_t visible[4] = {0, 0, 0, 0};  ///< Covered samples that pass the depth test.
+  std::uint32_t helpers = 0;                ///< Bit per lane without a visible sample.
+};
+
 class TileRasteriser {
  public:
   TileRasteriser(const FrameContext& ctx, int x0, int y0, int x1, int y1, RasterStats& stats)
@@ -81,6 +97,18 @@ class TileRasteriser {
   /// One 2x2 quad; `kSingle`: one sample per pixel, at the centre (st_.single).
   template <int N4, bool kSingle>
   void quad(int qx, int qy, std::uint32_t* mask);
+  // The steps of `quad`, in order; force-inlined so that the kernel compiles as one function
+  // (the same instructions as before the split: docs/benchmarks/raster_history.md).
+  template <bool kSingle>
+  TESSERA_QUAD_STEP void quad_depth(int qx, int qy, const std::uint32_t* mask, QuadLanes& q);
+  template <int N4>
+  TESSERA_QUAD_STEP void quad_varyings(QuadLanes& q);
+  TESSERA_QUAD_STEP std::uint32_t quad_shaded_lanes(QuadLanes& q);
+  template <int N4>
+  TESSERA_QUAD_STEP void quad_shade(int qx, int qy, const std::uint32_t* mask, std::uint32_t active,
+                                    const QuadLanes& q);
+  template <bool kSingle>
+  TESSERA_QUAD_STEP void quad_write(const QuadLanes& q);
 
   const FrameContext& ctx_;
   FrameBuffer& fb_;
@@ -239,45 +267,58 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
   if (qx + 1 >= gw_) mask[1] = mask[3] = 0;
   if (qy + 1 >= gh_) mask[2] = mask[3] = 0;
   if (!(mask[0] | mask[1] | mask[2] | mask[3])) return;
-  const TriSetup& t = *t_;
-  const DrawCall& draw = *draw_;
-  const int ns = kSingle ? 1 : st_.count;
+  QuadLanes q;
+  q.ns = kSingle ? 1 : st_.count;
+  const int ns = q.ns;
   // The quad's top-left texel is inside the grid (its other lanes may not be: masked above).
   TESSERA_DCHECK(qx >= 0 && qy >= 0 && qx < gw_ && qy < gh_ && ns >= 1);
   const std::size_t row = std::size_t(gw_);
-  std::size_t base[4];
-  base[0] = (std::size_t(qy) * row + std::size_t(qx)) * std::size_t(ns);
-  base[1] = base[0] + std::size_t(ns);
-  base[2] = base[0] + row * std::size_t(ns);
-  base[3] = base[2] + std::size_t(ns);
+  q.base[0] = (std::size_t(qy) * row + std::size_t(qx)) * std::size_t(ns);
+  q.base[1] = q.base[0] + std::size_t(ns);
+  q.base[2] = q.base[0] + row * std::size_t(ns);
+  q.base[3] = q.base[2] + std::size_t(ns);
 
   if (counts_) {
     for (int lane = 0; lane < 4; ++lane) {
-      for (int s = 0; s < ns; ++s) counts_[base[lane] + std::size_t(s)] += mask[lane] >> s & 1u;
+      for (int s = 0; s < ns; ++s) counts_[q.base[lane] + std::size_t(s)] += mask[lane] >> s & 1u;
     }
   }
+  quad_depth<kSingle>(qx, qy, mask, q);
+  if (!(q.visible[0] | q.visible[1] | q.visible[2] | q.visible[3])) return;
+  ++stats_.quads;
+  quad_varyings<N4>(q);
+  const std::uint32_t shaded = quad_shaded_lanes(q);
+  const std::uint32_t active = has_shader_ ? shaded : 0u;
+  if (active) quad_shade<N4>(qx, qy, mask, active, q);
+  quad_write<kSingle>(q);
+}
 
-  // Early depth test at every covered sample. The depth plane is evaluated at the four
-  // lane centres at once (the same operations per lane as `eval_plane`).
+/// Early depth test at every covered sample into q.visible. The depth plane is evaluated at the
+/// four lane centres at once (the same operations per lane as `eval_plane`); multisampled
+/// lanes keep their clamped sample depths in zs_.
+template <bool kSingle>
+void TileRasteriser::quad_depth(int qx, int qy, const std::uint32_t* mask, QuadLanes& q) {
+  const TriSetup& t = *t_;
+  const DrawCall& draw = *draw_;
+  const int ns = q.ns;
   const float cdx = float(qx - t.x0) + 0.5f;
   const float cdy = float(qy - t.y0) + 0.5f;
-  const vf32x4 ldx = vf32x4(cdx) + vf32x4(0.0f, 1.0f, 0.0f, 1.0f);
-  const vf32x4 ldy = vf32x4(cdy) + vf32x4(0.0f, 0.0f, 1.0f, 1.0f);
-  const vf32x4 zc = eval_plane4(t.z, ldx, ldy);
+  q.ldx = vf32x4(cdx) + vf32x4(0.0f, 1.0f, 0.0f, 1.0f);
+  q.ldy = vf32x4(cdy) + vf32x4(0.0f, 0.0f, 1.0f, 1.0f);
+  const vf32x4 zc = eval_plane4(t.z, q.ldx, q.ldy);
   const vf32x4 zcl = clamp01(zc);
   // Lane by lane for the scalar code below.
-  alignas(16) float zc_lanes[4], zcl_lanes[4];
-  simd::storef4_aligned(zc, zc_lanes);
-  simd::storef4_aligned(zcl, zcl_lanes);
-  std::uint32_t visible[4] = {0, 0, 0, 0};
+  simd::storef4_aligned(zc, q.zc);
+  simd::storef4_aligned(zcl, q.zcl);
+  std::uint32_t* visible = q.visible;
   if (kSingle) {
     const DepthTest test = draw.depth_test;
     if (qx + 1 < gw_ && qy + 1 < gh_) {
       // The whole quad is inside the grid: one compare for the four lanes (depth_mask4 is
       // depth_passes lane-wise), kept for the covered lanes.
       alignas(16) float stored[4];
-      std::memcpy(stored, depth_ + base[0], 2 * sizeof(float));
-      std::memcpy(stored + 2, depth_ + base[2], 2 * sizeof(float));
+      std::memcpy(stored, depth_ + q.base[0], 2 * sizeof(float));
+      std::memcpy(stored + 2, depth_ + q.base[2], 2 * sizeof(float));
       const std::uint32_t pass = depth_mask4(test, zcl, simd::loadf4_aligned(stored));
       for (int lane = 0; lane < 4; ++lane) {
         visible[lane] = mask[lane] ? (pass >> lane & 1u) : 0u;
@@ -286,15 +327,15 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
       for (int lane = 0; lane < 4; ++lane) {
         // Lanes outside the grid have no coverage and must not read.
         visible[lane] =
-            mask[lane] ? std::uint32_t(depth_passes(test, zcl_lanes[lane], depth_[base[lane]])) : 0u;
+            mask[lane] ? std::uint32_t(depth_passes(test, q.zcl[lane], depth_[q.base[lane]])) : 0u;
       }
     }
   } else if (ns % 4 == 0) {
     // Four samples per vector: clamp, test, and keep the covered ones.
     for (int lane = 0; lane < 4; ++lane) {
       if (!mask[lane]) continue;
-      const float* stored = depth_ + base[lane];
-      const vf32x4 z0(zc_lanes[lane]);
+      const float* stored = depth_ + q.base[lane];
+      const vf32x4 z0(q.zc[lane]);
       std::uint32_t vis = 0;
       for (int s = 0; s < ns; s += 4) {
         const vf32x4 z = clamp01(z0 + simd::loadf4(dz_ + s));
@@ -306,37 +347,43 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
   } else {
     for (int lane = 0; lane < 4; ++lane) {
       if (!mask[lane]) continue;
-      const float* stored = depth_ + base[lane];
+      const float* stored = depth_ + q.base[lane];
       std::uint32_t vis = 0;
       for (int s = 0; s < ns; ++s) {
         if (!(mask[lane] >> s & 1u)) continue;
-        const float z = std::clamp(zc_lanes[lane] + dz_[s], 0.0f, 1.0f);
+        const float z = std::clamp(q.zc[lane] + dz_[s], 0.0f, 1.0f);
         zs_[lane][s] = z;
         vis |= std::uint32_t(depth_passes(draw.depth_test, z, stored[s])) << s;
       }
       visible[lane] = vis;
     }
   }
-  if (!(visible[0] | visible[1] | visible[2] | visible[3])) return;
-  ++stats_.quads;
+}
 
-  // Perspective-correct varyings at the four pixel centres (1/w and the barycentrics for all
-  // lanes at once, then N4 varyings per lane), then quad derivatives.
-  const vf32x4 iw = eval_plane4(t.inv_w, ldx, ldy);
+/// Perspective-correct varyings at the four pixel centres into v_: 1/w and the barycentrics for
+/// all lanes at once, then N4 varyings per lane.
+template <int N4>
+void TileRasteriser::quad_varyings(QuadLanes& q) {
+  const TriSetup& t = *t_;
+  const vf32x4 iw = eval_plane4(t.inv_w, q.ldx, q.ldy);
   const vf32x4 rcp = vf32x4(1.0f) / iw;
-  alignas(16) float b1[4], b2[4], iw_lanes[4], ldx_lanes[4], ldy_lanes[4];
-  simd::storef4_aligned(iw, iw_lanes);
-  simd::storef4_aligned(ldx, ldx_lanes);
-  simd::storef4_aligned(ldy, ldy_lanes);
-  simd::storef4_aligned(eval_plane4(t.l1, ldx, ldy) * rcp, b1);
-  simd::storef4_aligned(eval_plane4(t.l2, ldx, ldy) * rcp, b2);
+  alignas(16) float b1[4], b2[4];
+  simd::storef4_aligned(iw, q.iw);
+  simd::storef4_aligned(q.ldx, q.ldx_lanes);
+  simd::storef4_aligned(q.ldy, q.ldy_lanes);
+  simd::storef4_aligned(eval_plane4(t.l1, q.ldx, q.ldy) * rcp, b1);
+  simd::storef4_aligned(eval_plane4(t.l2, q.ldx, q.ldy) * rcp, b2);
   for (int lane = 0; lane < 4; ++lane) interpolate_at<N4>(tv_, b1[lane], b2[lane], v_[lane]);
+}
 
+/// Helper lanes (no visible sample) into q.helpers; returns the lanes to shade (helpers only on
+/// request) and clears the outputs (outputs of lanes that are not shaded are never written to
+/// the frame buffer).
+std::uint32_t TileRasteriser::quad_shaded_lanes(QuadLanes& q) {
   const int nc = channels_;
-  // Helper lanes (no visible sample) are shaded only on request; a shaded lane's outputs start
-  // at zero (outputs of lanes that are not shaded are never written to the frame buffer).
   std::uint32_t helpers = 0;
-  for (int lane = 0; lane < 4; ++lane) helpers |= std::uint32_t(visible[lane] == 0) << lane;
+  for (int lane = 0; lane < 4; ++lane) helpers |= std::uint32_t(q.visible[lane] == 0) << lane;
+  q.helpers = helpers;
   const std::uint32_t shaded = opt_.shade_helpers ? 15u : (~helpers & 15u);
   stats_.helper_lanes += popcount4(helpers);
   stats_.lanes_shaded += popcount4(shaded);
@@ -345,64 +392,77 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
   } else {
     for (int lane = 0; lane < 4; ++lane) std::fill(out_[lane], out_[lane] + nc, 0.0f);
   }
-  const std::uint32_t active = has_shader_ ? shaded : 0u;
-  if (active) {
-    // Fine: ddx of each row, ddy of each column; coarse: the top row and left column only.
+  return shaded;
+}
+
+/// Quad derivatives, the shader inputs of the `active` lanes (centroid-adjusted where asked),
+/// and the shader into out_.
+template <int N4>
+void TileRasteriser::quad_shade(int qx, int qy, const std::uint32_t* mask, std::uint32_t active,
+                                const QuadLanes& q) {
+  const TriSetup& t = *t_;
+  const DrawCall& draw = *draw_;
+  // Fine: ddx of each row, ddy of each column; coarse: the top row and left column only.
+  for (int i = 0; i < N4; i += 4) {
+    simd::storef4(simd::loadf4(v_[1] + i) - simd::loadf4(v_[0] + i), ddx_[0] + i);
+    simd::storef4(simd::loadf4(v_[2] + i) - simd::loadf4(v_[0] + i), ddy_[0] + i);
+  }
+  if (opt_.derivatives == Derivatives::fine) {
     for (int i = 0; i < N4; i += 4) {
-      simd::storef4(simd::loadf4(v_[1] + i) - simd::loadf4(v_[0] + i), ddx_[0] + i);
-      simd::storef4(simd::loadf4(v_[2] + i) - simd::loadf4(v_[0] + i), ddy_[0] + i);
-    }
-    if (opt_.derivatives == Derivatives::fine) {
-      for (int i = 0; i < N4; i += 4) {
-        simd::storef4(simd::loadf4(v_[3] + i) - simd::loadf4(v_[2] + i), ddx_[1] + i);
-        simd::storef4(simd::loadf4(v_[3] + i) - simd::loadf4(v_[1] + i), ddy_[1] + i);
-      }
-    }
-    const bool centroid = draw.centroid;
-    for (int lane = 0; lane < 4; ++lane) {
-      if (!(active >> lane & 1u)) continue;
-      ShadeInput& in = lanes_[lane];
-      in.px = qx + (lane & 1);
-      in.py = qy + (lane >> 1);
-      in.x = float(in.px) + 0.5f;
-      in.y = float(in.py) + 0.5f;
-      in.inv_w = iw_lanes[lane];
-      in.depth = zcl_lanes[lane];
-      if (centroid) {
-        in.varyings = v_[lane];
-        if (mask[lane] && mask[lane] != st_.full) {
-          const int s = centroid_sample(mask[lane], st_.pos, ns);
-          in.x += st_.ox[s];
-          in.y += st_.oy[s];
-          const float sdx = ldx_lanes[lane] + st_.ox[s];
-          const float sdy = ldy_lanes[lane] + st_.oy[s];
-          in.inv_w = interpolate<N4>(t, tv_, sdx, sdy, vc_[lane]);
-          in.varyings = vc_[lane];
-          in.depth = std::clamp(eval_plane(t.z, sdx, sdy), 0.0f, 1.0f);
-        }
-      }
-      in.coverage = mask[lane];
-      in.visible = visible[lane];
-      in.helper = visible[lane] == 0;
-    }
-    if (draw.quad_shader) {
-      draw.quad_shader(lanes_, active, out_[0]);
-    } else {
-      for (int lane = 0; lane < 4; ++lane) {
-        if (active >> lane & 1u) draw.shader(lanes_[lane], out_[lane]);
-      }
+      simd::storef4(simd::loadf4(v_[3] + i) - simd::loadf4(v_[2] + i), ddx_[1] + i);
+      simd::storef4(simd::loadf4(v_[3] + i) - simd::loadf4(v_[1] + i), ddy_[1] + i);
     }
   }
+  const bool centroid = draw.centroid;
+  for (int lane = 0; lane < 4; ++lane) {
+    if (!(active >> lane & 1u)) continue;
+    ShadeInput& in = lanes_[lane];
+    in.px = qx + (lane & 1);
+    in.py = qy + (lane >> 1);
+    in.x = float(in.px) + 0.5f;
+    in.y = float(in.py) + 0.5f;
+    in.inv_w = q.iw[lane];
+    in.depth = q.zcl[lane];
+    if (centroid) {
+      in.varyings = v_[lane];
+      if (mask[lane] && mask[lane] != st_.full) {
+        const int s = centroid_sample(mask[lane], st_.pos, q.ns);
+        in.x += st_.ox[s];
+        in.y += st_.oy[s];
+        const float sdx = q.ldx_lanes[lane] + st_.ox[s];
+        const float sdy = q.ldy_lanes[lane] + st_.oy[s];
+        in.inv_w = interpolate<N4>(t, tv_, sdx, sdy, vc_[lane]);
+        in.varyings = vc_[lane];
+        in.depth = std::clamp(eval_plane(t.z, sdx, sdy), 0.0f, 1.0f);
+      }
+    }
+    in.coverage = mask[lane];
+    in.visible = q.visible[lane];
+    in.helper = q.visible[lane] == 0;
+  }
+  if (draw.quad_shader) {
+    draw.quad_shader(lanes_, active, out_[0]);
+  } else {
+    for (int lane = 0; lane < 4; ++lane) {
+      if (active >> lane & 1u) draw.shader(lanes_[lane], out_[lane]);
+    }
+  }
+}
 
-  // Per-sample writes of depth, payload and id.
-  const bool write_depth = draw.depth_write;
+/// Per-sample writes of depth, payload and id for the visible samples.
+template <bool kSingle>
+void TileRasteriser::quad_write(const QuadLanes& q) {
+  const TriSetup& t = *t_;
+  const int ns = q.ns;
+  const int nc = channels_;
+  const bool write_depth = draw_->depth_write;
   if (kSingle) {
     // One sample per pixel (visible[lane] is 0 or 1): the general loop below for one bit.
-    stats_.samples_written += popcount4(~helpers & 15u);
+    stats_.samples_written += popcount4(~q.helpers & 15u);
     for (int lane = 0; lane < 4; ++lane) {
-      if (!visible[lane]) continue;
-      const std::size_t i = base[lane];
-      if (write_depth) depth_[i] = zcl_lanes[lane];
+      if (!q.visible[lane]) continue;
+      const std::size_t i = q.base[lane];
+      if (write_depth) depth_[i] = q.zcl[lane];
       float* d = data_ + i * std::size_t(nc);
       if (nc == 4) {
         std::memcpy(d, out_[lane], 4 * sizeof(float));
@@ -414,14 +474,15 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
     return;
   }
   for (int lane = 0; lane < 4; ++lane) {
-    std::uint32_t vis = visible[lane];
+    std::uint32_t vis = q.visible[lane];
     if (!vis) continue;
     const float* out = out_[lane];
     stats_.samples_written += popcount16(vis);
     if (vis == st_.full && ns % 4 == 0 && nc == 4 && !ids_) {
       // Fully visible multisampled pixel: contiguous depth and colour runs.
-      if (write_depth) std::memcpy(depth_ + base[lane], zs_[lane], std::size_t(ns) * sizeof(float));
-      float* d = data_ + base[lane] * 4;
+      if (write_depth)
+        std::memcpy(depth_ + q.base[lane], zs_[lane], std::size_t(ns) * sizeof(float));
+      float* d = data_ + q.base[lane] * 4;
       const vf32x4 c = simd::loadf4(out);
       for (int s = 0; s < ns; ++s) simd::storef4(c, d + 4 * s);
       continue;
@@ -429,7 +490,7 @@ void TileRasteriser::quad(int qx, int qy, std::uint32_t* mask) {
     while (vis) {
       const int s = std::countr_zero(vis);
       vis &= vis - 1;
-      const std::size_t i = base[lane] + std::size_t(s);
+      const std::size_t i = q.base[lane] + std::size_t(s);
       if (write_depth) depth_[i] = zs_[lane][s];
       float* d = data_ + i * std::size_t(nc);
       if (nc == 4) {

@@ -69,36 +69,38 @@ bool write(const std::string& path, const std::vector<std::uint8_t>& bytes) {
   return std::fclose(f) == 0 && ok;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::vector<std::string> paths;
+struct Args {
+  std::string images, out;
   bool baseline = false, timing = false;
+};
+
+/// Parses the command line into `args`; false (after a message) on a usage error.
+bool parse_args(int argc, char** argv, Args& args) {
+  std::vector<std::string> paths;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--baseline") == 0) {
-      baseline = true;
+      args.baseline = true;
     } else if (std::strcmp(argv[i], "--time") == 0) {
-      timing = true;
+      args.timing = true;
     } else if (argv[i][0] == '-') {
       std::fprintf(stderr, "unknown option %s\n", argv[i]);
-      return 2;
+      return false;
     } else {
       paths.emplace_back(argv[i]);
     }
   }
   if (paths.size() != 2) {
     std::fprintf(stderr, "usage: %s IMAGES_DIR OUT_DIR [--baseline] [--time]\n", argv[0]);
-    return 2;
+    return false;
   }
-  const std::string& images = paths[0];
-  const std::string& out = paths[1];
-  if (baseline) {
-    pvrtc::detail::dilation_force_baseline(true);
-    (void)pvrtc::detail::set_modulation_baseline_only(true);
-    (void)pvrtc::detail::set_modulation_2bpp_baseline_only(true);
-    (void)pvrtc::detail::set_exact_search_baseline_only(true);
-  }
+  args.images = paths[0];
+  args.out = paths[1];
+  return true;
+}
 
+/// The crops of the four files in `images` and the procedural images; false (after a message)
+/// when a file cannot be read.
+bool load_sources(const std::string& images, std::vector<Source>& sources) {
   struct FileCrop {
     const char* file;
     int x, y, size;
@@ -108,12 +110,11 @@ int main(int argc, char** argv) {
                                         {"ldr-rgb-05.png", 64, 64, 128, false},
                                         {"ldr-rgba-00.png", 64, 64, 128, false},
                                         {"ldr-xy-normal1.png", 448, 448, 128, true}};
-  std::vector<Source> sources;
   for (const FileCrop& f : kFiles) {
     Result<ImageRGBA8> img = io::read_image(images + "/" + f.file);
     if (!img) {
       std::fprintf(stderr, "%s\n", img.status().message.c_str());
-      return 1;
+      return false;
     }
     std::string name = f.file;
     name = name.substr(0, name.size() - 4);
@@ -126,12 +127,68 @@ int main(int argc, char** argv) {
   sources.push_back({"foliage", make_procedural(Procedural::foliage, 128, 128, 5), false});
   sources.push_back({"noise32x128", make_procedural(Procedural::noise, 32, 128, 2), false});
   sources.push_back({"noise8x8", make_procedural(Procedural::noise, 8, 8, 4), false});
+  return true;
+}
+
+static constexpr pvrtc::Quality kQualities[] = {pvrtc::Quality::fast, pvrtc::Quality::normal,
+                                                pvrtc::Quality::high};
+static constexpr const char* kQualityNames[] = {"fast", "normal", "high"};
+
+/// Encodes `s` (as RGBA when `alpha`) in `format` at quality case `q` (0..2: fast, normal,
+/// high; 3, 4: normal / high alpha-weighted), decodes it, and writes both into `args.out`;
+/// false (after a message) on an error.
+bool encode_case(const Args& args, const Source& s, bool alpha, pvrtc::Format format, int q) {
+  pvrtc::EncodeOptions options;
+  options.format = format;
+  options.quality = kQualities[q < 3 ? q : q - 2];
+  options.alpha_weighted = q >= 3;
+  options.normal_map = s.normal_map;
+  ImageRGBA8 input = s.image;
+  input.has_alpha = alpha;
+  const auto t0 = std::chrono::steady_clock::now();
+  Result<std::vector<std::uint8_t>> bytes = pvrtc::encode(input, options);
+  if (!bytes) {
+    std::fprintf(stderr, "%s: %s\n", s.name.c_str(), bytes.status().message.c_str());
+    return false;
+  }
+  Result<ImageRGBA8> decoded = pvrtc::decode(bytes.value(), format, input.width, input.height);
+  if (!decoded) {
+    std::fprintf(stderr, "%s: %s\n", s.name.c_str(), decoded.status().message.c_str());
+    return false;
+  }
+  const std::string name = args.out + "/" + s.name + (alpha ? ".rgba." : ".rgb.") +
+                           (format == pvrtc::Format::pvrtc1_4bpp ? "4bpp." : "2bpp.") +
+                           kQualityNames[q < 3 ? q : q - 2] + (q >= 3 ? ".weighted" : "");
+  if (!write(name + ".pvrtc", bytes.value()) ||
+      !write(name + ".decoded.rgba", decoded.value().pixels)) {
+    std::fprintf(stderr, "cannot write %s\n", name.c_str());
+    return false;
+  }
+  if (args.timing) {
+    const double sec =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr, "%8.3f s  %s\n", sec, name.c_str());
+  }
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args args;
+  if (!parse_args(argc, argv, args)) return 2;
+  const std::string& out = args.out;
+  if (args.baseline) {
+    pvrtc::detail::dilation_force_baseline(true);
+    (void)pvrtc::detail::set_modulation_baseline_only(true);
+    (void)pvrtc::detail::set_modulation_2bpp_baseline_only(true);
+    (void)pvrtc::detail::set_exact_search_baseline_only(true);
+  }
+  std::vector<Source> sources;
+  if (!load_sources(args.images, sources)) return 1;
 
   static constexpr pvrtc::Format kFormats[] = {pvrtc::Format::pvrtc1_4bpp,
                                                pvrtc::Format::pvrtc1_2bpp};
-  static constexpr pvrtc::Quality kQualities[] = {pvrtc::Quality::fast, pvrtc::Quality::normal,
-                                                  pvrtc::Quality::high};
-  static constexpr const char* kQualityNames[] = {"fast", "normal", "high"};
   int cases = 0;
   for (const Source& s : sources) {
     // The inputs themselves (decoded PNGs, procedural generators) must agree too.
@@ -145,39 +202,7 @@ int main(int argc, char** argv) {
         // q 3, 4: 4 bpp RGBA normal / high with alpha-weighted colour error.
         const int qualities = alpha && format == pvrtc::Format::pvrtc1_4bpp ? 5 : 3;
         for (int q = 0; q < qualities; ++q) {
-          pvrtc::EncodeOptions options;
-          options.format = format;
-          options.quality = kQualities[q < 3 ? q : q - 2];
-          options.alpha_weighted = q >= 3;
-          options.normal_map = s.normal_map;
-          ImageRGBA8 input = s.image;
-          input.has_alpha = alpha;
-          const auto t0 = std::chrono::steady_clock::now();
-          Result<std::vector<std::uint8_t>> bytes = pvrtc::encode(input, options);
-          if (!bytes) {
-            std::fprintf(stderr, "%s: %s\n", s.name.c_str(), bytes.status().message.c_str());
-            return 1;
-          }
-          Result<ImageRGBA8> decoded =
-              pvrtc::decode(bytes.value(), format, input.width, input.height);
-          if (!decoded) {
-            std::fprintf(stderr, "%s: %s\n", s.name.c_str(), decoded.status().message.c_str());
-            return 1;
-          }
-          const std::string name = out + "/" + s.name + (alpha ? ".rgba." : ".rgb.") +
-                                   (format == pvrtc::Format::pvrtc1_4bpp ? "4bpp." : "2bpp.") +
-                                   kQualityNames[q < 3 ? q : q - 2] +
-                                   (q >= 3 ? ".weighted" : "");
-          if (!write(name + ".pvrtc", bytes.value()) ||
-              !write(name + ".decoded.rgba", decoded.value().pixels)) {
-            std::fprintf(stderr, "cannot write %s\n", name.c_str());
-            return 1;
-          }
-          if (timing) {
-            const double sec =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            std::fprintf(stderr, "%8.3f s  %s\n", sec, name.c_str());
-          }
+          if (!encode_case(args, s, alpha, format, q)) return 1;
           ++cases;
         }
       }

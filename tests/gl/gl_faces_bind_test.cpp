@@ -76,6 +76,122 @@ Snapshot snapshot(int units, int bindings) {
   return s;
 }
 
+/// The engine's state: its own 2D and 2D-array textures and samplers on every unit, a buffer
+/// on every storage binding (a sub-range), the generic binding, a UBO, a program, a VAO and an
+/// FBO, active unit 7.
+struct EngineState {
+  GLuint tex2d = 0, array = 0, sampler = 0, buf = 0, vao = 0, fbo = 0;
+
+  EngineState(int units, int bindings) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex2d);
+    glTextureStorage2D(tex2d, 1, GL_RGBA8, 4, 4);
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &array);
+    glTextureStorage3D(array, 1, GL_RGBA8, 4, 4, 2);
+    glCreateSamplers(1, &sampler);
+    glCreateBuffers(1, &buf);
+    glNamedBufferStorage(buf, 4096, nullptr, 0);
+    glCreateVertexArrays(1, &vao);
+    glCreateFramebuffers(1, &fbo);
+    GLint align = 1;
+    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
+    for (int u = 0; u < units; ++u) {
+      glActiveTexture(GLenum(GL_TEXTURE0 + u));
+      glBindTexture(GL_TEXTURE_2D, tex2d);
+      glBindTexture(GL_TEXTURE_2D_ARRAY, array);
+      glBindSampler(GLuint(u), sampler);
+    }
+    for (int i = 0; i < bindings; ++i) {
+      glBindBufferRange(GL_SHADER_STORAGE_BUFFER, GLuint(i), buf, align, 256);
+    }
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buf);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, buf);
+    glBindVertexArray(vao);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    glActiveTexture(GL_TEXTURE7);
+  }
+  EngineState(const EngineState&) = delete;
+  EngineState& operator=(const EngineState&) = delete;
+  ~EngineState() {
+    glBindVertexArray(0);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glDeleteTextures(1, &tex2d);
+    glDeleteTextures(1, &array);
+    glDeleteSamplers(1, &sampler);
+    glDeleteBuffers(1, &buf);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteFramebuffers(1, &fbo);
+  }
+};
+
+/// After `tex.bind(b)`: exactly the units and the storage binding of `b` changed, the rest of
+/// the engine's state (`before`, `engine`) is as it was.
+void expect_only_bound_points(const FaceTextureSet& tex, const FaceTextureSetBindings& b,
+                              const EngineState& engine, const Snapshot& before,
+                              const Snapshot& after) {
+  const int classes = tex.class_count();
+  const int units = int(before.array.size()), bindings = int(before.ssbo.size());
+  int changed_units = 0;
+  for (int u = 0; u < units; ++u) {
+    SCOPED_TRACE("unit " + std::to_string(u));
+    const bool border = u >= b.border_unit && u < b.border_unit + classes;
+    const bool clamp = u >= b.clamp_unit && u < b.clamp_unit + classes;
+    EXPECT_EQ(after.tex2d[std::size_t(u)], before.tex2d[std::size_t(u)]);
+    if (border || clamp) {
+      const int c = u - (border ? b.border_unit : b.clamp_unit);
+      EXPECT_EQ(GLuint(after.array[std::size_t(u)]), tex.array_texture(c));
+      EXPECT_EQ(GLuint(after.sampler[std::size_t(u)]),
+                border ? tex.border_sampler() : tex.clamp_sampler());
+      ++changed_units;
+    } else {
+      EXPECT_EQ(after.array[std::size_t(u)], before.array[std::size_t(u)]);
+      EXPECT_EQ(after.sampler[std::size_t(u)], before.sampler[std::size_t(u)]);
+    }
+  }
+  EXPECT_EQ(changed_units, 2 * classes);
+  for (int i = 0; i < bindings; ++i) {
+    SCOPED_TRACE("storage binding " + std::to_string(i));
+    if (i == b.records_binding) {
+      EXPECT_EQ(GLuint(after.ssbo[std::size_t(i)]), tex.record_buffer());
+      EXPECT_EQ(after.ssbo_start[std::size_t(i)], 0);
+      EXPECT_EQ(after.ssbo_size[std::size_t(i)], 0);  // the whole buffer
+    } else {
+      EXPECT_EQ(after.ssbo[std::size_t(i)], before.ssbo[std::size_t(i)]);
+      EXPECT_EQ(after.ssbo_start[std::size_t(i)], before.ssbo_start[std::size_t(i)]);
+      EXPECT_EQ(after.ssbo_size[std::size_t(i)], before.ssbo_size[std::size_t(i)]);
+    }
+  }
+  EXPECT_EQ(after.active, GL_TEXTURE7);
+  EXPECT_EQ(GLuint(after.generic_ssbo), engine.buf);
+  EXPECT_EQ(after.ubo0, before.ubo0);
+  EXPECT_EQ(after.program, before.program);
+  EXPECT_EQ(after.vao, before.vao);
+  EXPECT_EQ(after.fbo, before.fbo);
+}
+
+/// Bad points: one-line invalid_argument, and no binding changed from `after`.
+void expect_bad_points_refused(const FaceTextureSet& tex, int max_units, int max_bindings,
+                               const Snapshot& after) {
+  const int classes = tex.class_count();
+  const int units = int(after.array.size()), bindings = int(after.ssbo.size());
+  const FaceTextureSetBindings bad[] = {
+      {-1, 20, 5, true},                        // negative unit
+      {3, 3 + classes - 1, 5, true},            // clamp range overlaps the border range
+      {max_units - classes + 1, -1, 5, false},  // past the last unit
+      {3, 20, max_bindings, true},              // past the last storage binding
+      {3, 20, -2, true},                        // negative binding
+  };
+  for (const FaceTextureSetBindings& x : bad) {
+    const Status s = tex.bind(x);
+    EXPECT_EQ(s.code, ErrorCode::invalid_argument) << s.message;
+    EXPECT_NE(s.message.find("FaceTextureSet::bind: "), std::string::npos) << s.message;
+    EXPECT_EQ(s.message.find('\n'), std::string::npos) << s.message;
+    const Snapshot again = snapshot(units, bindings);
+    EXPECT_EQ(again.array, after.array);
+    EXPECT_EQ(again.sampler, after.sampler);
+    EXPECT_EQ(again.ssbo, after.ssbo);
+  }
+}
+
 class GlPtexBind : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -101,78 +217,13 @@ TEST_F(GlPtexBind, BindsExactlyTheDocumentedPoints) {
   const FaceTextureSetBindings b{3, 20, 5, true};
   ASSERT_LE(b.clamp_unit + classes, units);
 
-  // The engine's state: its own 2D and 2D-array textures and samplers on every unit, a buffer
-  // on every storage binding (a sub-range), the generic binding, a UBO, a program, a VAO and an
-  // FBO, active unit 7.
-  GLuint engine_2d = 0, engine_array = 0, engine_sampler = 0, engine_buf = 0, vao = 0, fbo = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &engine_2d);
-  glTextureStorage2D(engine_2d, 1, GL_RGBA8, 4, 4);
-  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &engine_array);
-  glTextureStorage3D(engine_array, 1, GL_RGBA8, 4, 4, 2);
-  glCreateSamplers(1, &engine_sampler);
-  glCreateBuffers(1, &engine_buf);
-  glNamedBufferStorage(engine_buf, 4096, nullptr, 0);
-  glCreateVertexArrays(1, &vao);
-  glCreateFramebuffers(1, &fbo);
-  GLint align = 1;
-  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &align);
-  for (int u = 0; u < units; ++u) {
-    glActiveTexture(GLenum(GL_TEXTURE0 + u));
-    glBindTexture(GL_TEXTURE_2D, engine_2d);
-    glBindTexture(GL_TEXTURE_2D_ARRAY, engine_array);
-    glBindSampler(GLuint(u), engine_sampler);
-  }
-  for (int i = 0; i < bindings; ++i) {
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, GLuint(i), engine_buf, align, 256);
-  }
-  glBindBuffer(GL_SHADER_STORAGE_BUFFER, engine_buf);
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, engine_buf);
-  glBindVertexArray(vao);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
-  glActiveTexture(GL_TEXTURE7);
+  const EngineState engine(units, bindings);
   ASSERT_TRUE(check_errors("engine state").ok());
   const Snapshot before = snapshot(units, bindings);
-
   ASSERT_TRUE(tex->bind(b).ok());
   const Snapshot after = snapshot(units, bindings);
   ASSERT_TRUE(check_errors("snapshot").ok());
-
-  int changed_units = 0;
-  for (int u = 0; u < units; ++u) {
-    SCOPED_TRACE("unit " + std::to_string(u));
-    const bool border = u >= b.border_unit && u < b.border_unit + classes;
-    const bool clamp = u >= b.clamp_unit && u < b.clamp_unit + classes;
-    EXPECT_EQ(after.tex2d[std::size_t(u)], before.tex2d[std::size_t(u)]);
-    if (border || clamp) {
-      const int c = u - (border ? b.border_unit : b.clamp_unit);
-      EXPECT_EQ(GLuint(after.array[std::size_t(u)]), tex->array_texture(c));
-      EXPECT_EQ(GLuint(after.sampler[std::size_t(u)]),
-                border ? tex->border_sampler() : tex->clamp_sampler());
-      ++changed_units;
-    } else {
-      EXPECT_EQ(after.array[std::size_t(u)], before.array[std::size_t(u)]);
-      EXPECT_EQ(after.sampler[std::size_t(u)], before.sampler[std::size_t(u)]);
-    }
-  }
-  EXPECT_EQ(changed_units, 2 * classes);
-  for (int i = 0; i < bindings; ++i) {
-    SCOPED_TRACE("storage binding " + std::to_string(i));
-    if (i == b.records_binding) {
-      EXPECT_EQ(GLuint(after.ssbo[std::size_t(i)]), tex->record_buffer());
-      EXPECT_EQ(after.ssbo_start[std::size_t(i)], 0);
-      EXPECT_EQ(after.ssbo_size[std::size_t(i)], 0);  // the whole buffer
-    } else {
-      EXPECT_EQ(after.ssbo[std::size_t(i)], before.ssbo[std::size_t(i)]);
-      EXPECT_EQ(after.ssbo_start[std::size_t(i)], before.ssbo_start[std::size_t(i)]);
-      EXPECT_EQ(after.ssbo_size[std::size_t(i)], before.ssbo_size[std::size_t(i)]);
-    }
-  }
-  EXPECT_EQ(after.active, GL_TEXTURE7);
-  EXPECT_EQ(GLuint(after.generic_ssbo), engine_buf);
-  EXPECT_EQ(after.ubo0, before.ubo0);
-  EXPECT_EQ(after.program, before.program);
-  EXPECT_EQ(after.vao, before.vao);
-  EXPECT_EQ(after.fbo, before.fbo);
+  expect_only_bound_points(*tex, b, engine, before, after);
 
   // The shader side names the same points.
   const std::vector<std::string> defines = tex->glsl_defines(b);
@@ -185,45 +236,20 @@ TEST_F(GlPtexBind, BindsExactlyTheDocumentedPoints) {
   EXPECT_EQ(tex->glsl_defines({3, -1, 5, true})[2],
             "#define TESSERA_SEAMS_CLAMP_UNIT " + std::to_string(3 + classes));
 
-  // Bad points: one-line invalid_argument, and no binding changed.
-  const FaceTextureSetBindings bad[] = {
-      {-1, 20, 5, true},                        // negative unit
-      {3, 3 + classes - 1, 5, true},            // clamp range overlaps the border range
-      {max_units - classes + 1, -1, 5, false},  // past the last unit
-      {3, 20, max_bindings, true},              // past the last storage binding
-      {3, 20, -2, true},                        // negative binding
-  };
-  for (const FaceTextureSetBindings& x : bad) {
-    const Status s = tex->bind(x);
-    EXPECT_EQ(s.code, ErrorCode::invalid_argument) << s.message;
-    EXPECT_NE(s.message.find("FaceTextureSet::bind: "), std::string::npos) << s.message;
-    EXPECT_EQ(s.message.find('\n'), std::string::npos) << s.message;
-    const Snapshot again = snapshot(units, bindings);
-    EXPECT_EQ(again.array, after.array);
-    EXPECT_EQ(again.sampler, after.sampler);
-    EXPECT_EQ(again.ssbo, after.ssbo);
-  }
+  expect_bad_points_refused(*tex, max_units, max_bindings, after);
   // Without clamp units only the border units and the records change.
   for (int u = 0; u < units; ++u) {
-    glBindTextureUnit(GLuint(u), engine_array);
-    glBindSampler(GLuint(u), engine_sampler);
+    glBindTextureUnit(GLuint(u), engine.array);
+    glBindSampler(GLuint(u), engine.sampler);
   }
   ASSERT_TRUE(tex->bind({30, -1, 1, false}).ok());
   const Snapshot border_only = snapshot(units, bindings);
   for (int u = 0; u < units; ++u) {
     const bool mine = u >= 30 && u < 30 + classes;
     EXPECT_EQ(GLuint(border_only.array[std::size_t(u)]),
-              mine ? tex->array_texture(u - 30) : engine_array)
+              mine ? tex->array_texture(u - 30) : engine.array)
         << "unit " << u;
   }
-  glBindVertexArray(0);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  glDeleteTextures(1, &engine_2d);
-  glDeleteTextures(1, &engine_array);
-  glDeleteSamplers(1, &engine_sampler);
-  glDeleteBuffers(1, &engine_buf);
-  glDeleteVertexArrays(1, &vao);
-  glDeleteFramebuffers(1, &fbo);
 }
 
 // The recipe's mesh step on the Disney samples: quads only (teapot), n-gons split into subfaces

@@ -56,6 +56,36 @@ Result<Encoded> encode_decode(const ImageRGBA8& img, const Variant& v, int threa
   return Encoded{std::move(dec).value(), ms};
 }
 
+/// A gamma-correct, alpha-weighted mip chain of the RGBA image (n x n), each level
+/// PVRTC-compressed.
+Status demo_pvrtc_mips(Report& report, const DemoOptions& options, int n) {
+  const ImageRGBA8 foliage = make_procedural(Procedural::foliage, n, n);
+  image::MipmapOptions mo;
+  mo.srgb = true;
+  mo.max_levels = 5;
+  mo.threads = options.threads;
+  Result<std::vector<ImageRGBA8>> chain = image::generate_mipmaps(foliage, mo);
+  if (!chain) return chain.status();
+  std::vector<Figure> levels;
+  for (std::size_t i = 1; i < chain->size(); ++i) {
+    Result<Encoded> e = encode_decode((*chain)[i], kVariants[1], options.threads);
+    if (!e) return e.status();
+    std::string p;
+    if (Status s = report.save_image("pvrtc-mip" + std::to_string(i), e->decoded, p); !s.ok()) {
+      return s;
+    }
+    levels.push_back({p, "level " + std::to_string(i) + " (" +
+                             std::to_string((*chain)[i].width) + "x" +
+                             std::to_string((*chain)[i].height) + ")"});
+  }
+  report.paragraph(
+      "Mip levels 1-4 of the foliage texture (2x2 box filter in linear light, colour weighted "
+      "by alpha so transparent texels do not darken the edges), each compressed at 4bpp normal "
+      "as `tessera compress --mipmaps --srgb` does.");
+  report.figures(levels);
+  return Status::success();
+}
+
 }  // namespace
 
 Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
@@ -152,32 +182,7 @@ Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
   if (Status s = demo_pvrtc_quality_time(report, options, saved); !s.ok()) return s;
   if (Status s = demo_pvrtc_view(report, options, saved); !s.ok()) return s;
 
-  // A gamma-correct, alpha-weighted mip chain of the RGBA image, each level PVRTC-compressed.
-  const ImageRGBA8 foliage = make_procedural(Procedural::foliage, n, n);
-  image::MipmapOptions mo;
-  mo.srgb = true;
-  mo.max_levels = 5;
-  mo.threads = options.threads;
-  Result<std::vector<ImageRGBA8>> chain = image::generate_mipmaps(foliage, mo);
-  if (!chain) return chain.status();
-  std::vector<Figure> levels;
-  for (std::size_t i = 1; i < chain->size(); ++i) {
-    Result<Encoded> e = encode_decode((*chain)[i], kVariants[1], options.threads);
-    if (!e) return e.status();
-    std::string p;
-    if (Status s = report.save_image("pvrtc-mip" + std::to_string(i), e->decoded, p); !s.ok()) {
-      return s;
-    }
-    levels.push_back({p, "level " + std::to_string(i) + " (" +
-                             std::to_string((*chain)[i].width) + "x" +
-                             std::to_string((*chain)[i].height) + ")"});
-  }
-  report.paragraph(
-      "Mip levels 1-4 of the foliage texture (2x2 box filter in linear light, colour weighted "
-      "by alpha so transparent texels do not darken the edges), each compressed at 4bpp normal "
-      "as `tessera compress --mipmaps --srgb` does.");
-  report.figures(levels);
-  return Status::success();
+  return demo_pvrtc_mips(report, options, n);
 }
 
 }  // namespace tessera::cli
