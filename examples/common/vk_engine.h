@@ -2,8 +2,10 @@
 // adopts tessera: an instance with the validation layer when it is installed (synchronization
 // validation on, a messenger counting warnings and errors), the first physical device of at
 // least a given API version with one graphics + compute queue family, and the memory-type
-// look-up every buffer and image allocation needs. tessera never sees the instance: its
-// components work on the VkDevice and queue the engine hands them.
+// look-up every buffer and image allocation needs, and the forward pipeline (one colour target
+// and depth through a render pass) engine_ptex_vk and the tests' Vulkan engine (tests/vk) draw
+// with. tessera never sees the instance: its components work on the VkDevice and queue the engine
+// hands them.
 //
 // Header-only, shared by examples/engine_aa_vk and examples/engine_ptex_vk (each adds
 // examples/common to its include path, as the GL examples do for engine_context.h).
@@ -146,6 +148,91 @@ inline std::uint32_t memory_type(VkPhysicalDevice physical, std::uint32_t bits,
     if ((bits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & want) == want) return i;
   }
   return 0;
+}
+
+/// What forward_pipeline builds from: two SPIR-V stages, one vertex binding, a width x height
+/// target, the layout and the render pass (subpass 0, one colour attachment and depth).
+struct ForwardPipelineDesc {
+  const std::vector<std::uint32_t>* vertex_spirv = nullptr;
+  const std::vector<std::uint32_t>* fragment_spirv = nullptr;
+  std::uint32_t stride = 0;
+  const std::vector<VkVertexInputAttributeDescription>* attributes = nullptr;
+  int width = 0, height = 0;
+  bool cull_back = true;  // counter-clockwise front faces, as the CPU renderers
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkRenderPass pass = VK_NULL_HANDLE;
+};
+
+/// Creates a forward pipeline (triangle lists, +y up viewport, depth test less with writes, the
+/// colour written whole) and its two shader modules into `modules` (the caller destroys them).
+inline VkResult forward_pipeline(VkDevice dev, const ForwardPipelineDesc& in,
+                                 VkShaderModule modules[2], VkPipeline* pipeline) {
+  VkShaderModuleCreateInfo mi{};
+  mi.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+  mi.codeSize = in.vertex_spirv->size() * 4;
+  mi.pCode = in.vertex_spirv->data();
+  vkCreateShaderModule(dev, &mi, nullptr, &modules[0]);
+  mi.codeSize = in.fragment_spirv->size() * 4;
+  mi.pCode = in.fragment_spirv->data();
+  vkCreateShaderModule(dev, &mi, nullptr, &modules[1]);
+  VkPipelineShaderStageCreateInfo st[2]{};
+  for (int i = 0; i < 2; ++i) {
+    st[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    st[i].stage = i == 0 ? VK_SHADER_STAGE_VERTEX_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
+    st[i].module = modules[i];
+    st[i].pName = "main";
+  }
+  const VkVertexInputBindingDescription vb{0, in.stride, VK_VERTEX_INPUT_RATE_VERTEX};
+  VkPipelineVertexInputStateCreateInfo vin{};
+  vin.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
+  vin.vertexBindingDescriptionCount = 1;
+  vin.pVertexBindingDescriptions = &vb;
+  vin.vertexAttributeDescriptionCount = std::uint32_t(in.attributes->size());
+  vin.pVertexAttributeDescriptions = in.attributes->data();
+  VkPipelineInputAssemblyStateCreateInfo ia{};
+  ia.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
+  ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  // +y up: the viewport starts at the bottom row with a negative height (core since 1.1).
+  const VkViewport vp{0.0f, float(in.height), float(in.width), -float(in.height), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, {std::uint32_t(in.width), std::uint32_t(in.height)}};
+  VkPipelineViewportStateCreateInfo vs{};
+  vs.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
+  vs.viewportCount = vs.scissorCount = 1;
+  vs.pViewports = &vp;
+  vs.pScissors = &scissor;
+  VkPipelineRasterizationStateCreateInfo rs{};
+  rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
+  rs.polygonMode = VK_POLYGON_MODE_FILL;
+  rs.cullMode = in.cull_back ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;
+  rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  rs.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo ms{};
+  ms.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
+  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo ds{};
+  ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
+  ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
+  ds.depthCompareOp = VK_COMPARE_OP_LESS;
+  VkPipelineColorBlendAttachmentState blend{};
+  blend.colorWriteMask = 0xf;
+  VkPipelineColorBlendStateCreateInfo cb{};
+  cb.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
+  cb.attachmentCount = 1;
+  cb.pAttachments = &blend;
+  VkGraphicsPipelineCreateInfo pi{};
+  pi.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
+  pi.stageCount = 2;
+  pi.pStages = st;
+  pi.pVertexInputState = &vin;
+  pi.pInputAssemblyState = &ia;
+  pi.pViewportState = &vs;
+  pi.pRasterizationState = &rs;
+  pi.pMultisampleState = &ms;
+  pi.pDepthStencilState = &ds;
+  pi.pColorBlendState = &cb;
+  pi.layout = in.layout;
+  pi.renderPass = in.pass;
+  return vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &pi, nullptr, pipeline);
 }
 
 }  // namespace engine
