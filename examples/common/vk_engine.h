@@ -235,4 +235,55 @@ inline VkResult forward_pipeline(VkDevice dev, const ForwardPipelineDesc& in,
   return vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &pi, nullptr, pipeline);
 }
 
+/// The forward pass's set layouts: `frame` holds the engine's uniform block (binding 0, both
+/// stages), `empty` none (for the set indices between the engine's and a component's).
+inline void frame_set_layouts(VkDevice dev, VkDescriptorSetLayout* frame,
+                              VkDescriptorSetLayout* empty) {
+  const VkDescriptorSetLayoutBinding b{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+                                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                       nullptr};
+  VkDescriptorSetLayoutCreateInfo li{};
+  li.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+  li.bindingCount = 1;
+  li.pBindings = &b;
+  vkCreateDescriptorSetLayout(dev, &li, nullptr, frame);
+  li.bindingCount = 0;
+  vkCreateDescriptorSetLayout(dev, &li, nullptr, empty);
+}
+
+/// The pipeline layout of `layouts` (set 0 first: `frame`), a pool of one set, and that set of
+/// `frame` pointing at `ubo` (the caller destroys `*layout` and `*pool`).
+inline VkDescriptorSet frame_set(VkDevice dev, const std::vector<VkDescriptorSetLayout>& layouts,
+                                 VkDescriptorSetLayout frame, VkBuffer ubo,
+                                 VkPipelineLayout* layout, VkDescriptorPool* pool) {
+  VkPipelineLayoutCreateInfo pl{};
+  pl.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+  pl.setLayoutCount = std::uint32_t(layouts.size());
+  pl.pSetLayouts = layouts.data();
+  vkCreatePipelineLayout(dev, &pl, nullptr, layout);
+  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
+  VkDescriptorPoolCreateInfo pi{};
+  pi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+  pi.maxSets = 1;
+  pi.poolSizeCount = 1;
+  pi.pPoolSizes = &size;
+  vkCreateDescriptorPool(dev, &pi, nullptr, pool);
+  VkDescriptorSetAllocateInfo ai{};
+  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+  ai.descriptorPool = *pool;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &frame;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  vkAllocateDescriptorSets(dev, &ai, &set);
+  const VkDescriptorBufferInfo bi{ubo, 0, VK_WHOLE_SIZE};
+  VkWriteDescriptorSet w{};
+  w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+  w.dstSet = set;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  w.pBufferInfo = &bi;
+  vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
+  return set;
+}
+
 }  // namespace engine

@@ -159,48 +159,12 @@ std::string create_pipeline(VkDevice dev, Objects& o, const Frame& in) {
 
 // Set 0: the frame block (a pool of one set); 1..: the caller's layouts.
 VkDescriptorSet create_layouts(VkDevice dev, Objects& o, const Frame& in, const Buffer& ubo) {
-  const VkDescriptorSetLayoutBinding b{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
-                                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                                       nullptr};
-  VkDescriptorSetLayoutCreateInfo li{};
-  li.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  li.bindingCount = 1;
-  li.pBindings = &b;
-  vkCreateDescriptorSetLayout(dev, &li, nullptr, &o.frame_layout);
-  li.bindingCount = 0;
-  vkCreateDescriptorSetLayout(dev, &li, nullptr, &o.empty_layout);
+  frame_set_layouts(dev, &o.frame_layout, &o.empty_layout);
   std::vector<VkDescriptorSetLayout> layouts{o.frame_layout};
   for (VkDescriptorSetLayout l : in.extra_layouts) {
     layouts.push_back(l != VK_NULL_HANDLE ? l : o.empty_layout);
   }
-  VkPipelineLayoutCreateInfo pl{};
-  pl.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-  pl.setLayoutCount = std::uint32_t(layouts.size());
-  pl.pSetLayouts = layouts.data();
-  vkCreatePipelineLayout(dev, &pl, nullptr, &o.layout);
-  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
-  VkDescriptorPoolCreateInfo pi{};
-  pi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  pi.maxSets = 1;
-  pi.poolSizeCount = 1;
-  pi.pPoolSizes = &size;
-  vkCreateDescriptorPool(dev, &pi, nullptr, &o.pool);
-  VkDescriptorSetAllocateInfo ai{};
-  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  ai.descriptorPool = o.pool;
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = &o.frame_layout;
-  VkDescriptorSet set = VK_NULL_HANDLE;
-  vkAllocateDescriptorSets(dev, &ai, &set);
-  const VkDescriptorBufferInfo bi{ubo.buffer, 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet w{};
-  w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-  w.dstSet = set;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  w.pBufferInfo = &bi;
-  vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
-  return set;
+  return frame_set(dev, layouts, o.frame_layout, ubo.buffer, &o.layout, &o.pool);
 }
 
 // Records the frame into `cmd`; "" or what the caller's bind said.

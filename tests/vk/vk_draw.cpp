@@ -185,47 +185,11 @@ Status create_pipeline(VkDevice dev, DrawObjects& o, const DrawInput& in) {
 // Set 0: the frame block; 1 .. component_set - 1: empty; component_set: the component's.
 VkDescriptorSet create_layouts(VkDevice dev, DrawObjects& o, const DrawInput& in,
                                const EngineBuffer& ubo) {
-  const VkDescriptorSetLayoutBinding b{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
-                                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                                       nullptr};
-  VkDescriptorSetLayoutCreateInfo li{};
-  li.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  li.bindingCount = 1;
-  li.pBindings = &b;
-  vkCreateDescriptorSetLayout(dev, &li, nullptr, &o.frame_layout);
-  li.bindingCount = 0;
-  vkCreateDescriptorSetLayout(dev, &li, nullptr, &o.empty_layout);
+  engine::frame_set_layouts(dev, &o.frame_layout, &o.empty_layout);
   std::vector<VkDescriptorSetLayout> layouts(in.component_set + 1, o.empty_layout);
   layouts[0] = o.frame_layout;
   layouts[in.component_set] = in.component_layout;
-  VkPipelineLayoutCreateInfo pl{};
-  pl.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-  pl.setLayoutCount = std::uint32_t(layouts.size());
-  pl.pSetLayouts = layouts.data();
-  vkCreatePipelineLayout(dev, &pl, nullptr, &o.layout);
-  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
-  VkDescriptorPoolCreateInfo pi{};
-  pi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  pi.maxSets = 1;
-  pi.poolSizeCount = 1;
-  pi.pPoolSizes = &size;
-  vkCreateDescriptorPool(dev, &pi, nullptr, &o.pool);
-  VkDescriptorSetAllocateInfo ai{};
-  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  ai.descriptorPool = o.pool;
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = &o.frame_layout;
-  VkDescriptorSet set = VK_NULL_HANDLE;
-  vkAllocateDescriptorSets(dev, &ai, &set);
-  const VkDescriptorBufferInfo bi{ubo.buffer, 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet w{};
-  w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-  w.dstSet = set;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  w.pBufferInfo = &bi;
-  vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
-  return set;
+  return engine::frame_set(dev, layouts, o.frame_layout, ubo.buffer, &o.layout, &o.pool);
 }
 
 }  // namespace
