@@ -13,94 +13,17 @@ const std::uint32_t kVertSpirv[] = {
 const std::uint32_t kFragSpirv[] = {
 #include "geometry.frag.inc"
 };
-constexpr const char* kValidation = "VK_LAYER_KHRONOS_validation";
-
-VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT,
-                                          VkDebugUtilsMessageTypeFlagsEXT,
-                                          const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                          void* user) {
-  auto* d = static_cast<Device*>(user);
-  if (d->messages++ == 0) d->first_message = data->pMessage ? data->pMessage : "?";
-  return VK_FALSE;
-}
-
-bool has_layer() {
-  std::uint32_t n = 0;
-  vkEnumerateInstanceLayerProperties(&n, nullptr);
-  std::vector<VkLayerProperties> layers(n);
-  vkEnumerateInstanceLayerProperties(&n, layers.data());
-  for (const VkLayerProperties& l : layers) {
-    if (std::strcmp(l.layerName, kValidation) == 0) return true;
-  }
-  return false;
-}
 
 }  // namespace
 
 std::string Device::create(bool want_validation) {
-  validation = want_validation && has_layer();
-  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO,
-                        nullptr,
-                        "engine_aa_vk",
-                        1,
-                        nullptr,
-                        0,
-                        VK_API_VERSION_1_3};
-  VkDebugUtilsMessengerCreateInfoEXT mi{};
-  mi.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
-  mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                   VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                   VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-  mi.pfnUserCallback = &on_message;
-  mi.pUserData = this;
-  const VkValidationFeatureEnableEXT sync =
-      VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
-  VkValidationFeaturesEXT vf{};
-  vf.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT;
-  vf.pNext = &mi;
-  vf.enabledValidationFeatureCount = 1;
-  vf.pEnabledValidationFeatures = &sync;
-  const char* ext = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
-  VkInstanceCreateInfo ii{};
-  ii.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
-  ii.pApplicationInfo = &app;
-  if (validation) {
-    ii.pNext = &vf;
-    ii.enabledLayerCount = 1;
-    ii.ppEnabledLayerNames = &kValidation;
-    ii.enabledExtensionCount = 1;
-    ii.ppEnabledExtensionNames = &ext;
+  const std::string why = create_instance("engine_aa_vk", VK_API_VERSION_1_3, want_validation);
+  if (!why.empty()) return why;
+  VkPhysicalDeviceProperties props{};
+  if (!pick_device(VK_API_VERSION_1_3, physical, family, props)) {
+    return "no Vulkan 1.3 device with a graphics + compute queue";
   }
-  if (vkCreateInstance(&ii, nullptr, &instance) != VK_SUCCESS) return "no Vulkan instance";
-  if (validation) {
-    auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
-    if (create_messenger) create_messenger(instance, &mi, nullptr, &messenger_);
-  }
-  std::uint32_t n = 0;
-  vkEnumeratePhysicalDevices(instance, &n, nullptr);
-  std::vector<VkPhysicalDevice> devs(n);
-  vkEnumeratePhysicalDevices(instance, &n, devs.data());
-  for (VkPhysicalDevice p : devs) {
-    VkPhysicalDeviceProperties props{};
-    vkGetPhysicalDeviceProperties(p, &props);
-    if (props.apiVersion < VK_API_VERSION_1_3 || physical != VK_NULL_HANDLE) continue;
-    std::uint32_t nf = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(p, &nf, nullptr);
-    std::vector<VkQueueFamilyProperties> fams(nf);
-    vkGetPhysicalDeviceQueueFamilyProperties(p, &nf, fams.data());
-    for (std::uint32_t f = 0; f < nf && physical == VK_NULL_HANDLE; ++f) {
-      if ((fams[f].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) ==
-          (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) {
-        physical = p;
-        family = f;
-        name = props.deviceName;
-      }
-    }
-  }
-  if (physical == VK_NULL_HANDLE) return "no Vulkan 1.3 device with a graphics + compute queue";
+  name = props.deviceName;
   VkPhysicalDeviceFeatures supported{};
   vkGetPhysicalDeviceFeatures(physical, &supported);
   if (!supported.shaderFloat64) return "device " + name + " lacks shaderFloat64";
@@ -133,22 +56,7 @@ void Device::destroy() {
     vkDestroyDevice(device, nullptr);
     device = VK_NULL_HANDLE;
   }
-  if (instance) {
-    auto destroy_messenger = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
-    if (destroy_messenger && messenger_) destroy_messenger(instance, messenger_, nullptr);
-    vkDestroyInstance(instance, nullptr);
-    instance = VK_NULL_HANDLE;
-  }
-}
-
-std::uint32_t Device::memory_type(std::uint32_t bits, VkMemoryPropertyFlags want) const {
-  VkPhysicalDeviceMemoryProperties mp{};
-  vkGetPhysicalDeviceMemoryProperties(physical, &mp);
-  for (std::uint32_t i = 0; i < mp.memoryTypeCount; ++i) {
-    if ((bits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & want) == want) return i;
-  }
-  return 0;
+  destroy_instance();
 }
 
 Buffer Device::buffer(VkDeviceSize bytes, VkBufferUsageFlags usage, bool host) {
@@ -164,7 +72,7 @@ Buffer Device::buffer(VkDeviceSize bytes, VkBufferUsageFlags usage, bool host) {
       host ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
            : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
-                          memory_type(req.memoryTypeBits, want)};
+                          memory_type(physical, req.memoryTypeBits, want)};
   vkAllocateMemory(device, &ai, nullptr, &b.memory);
   vkBindBufferMemory(device, b.buffer, b.memory, 0);
   if (host) vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.data);
@@ -190,8 +98,9 @@ Image Device::image(VkFormat format, std::uint32_t w, std::uint32_t h, VkImageUs
   vkCreateImage(device, &ci, nullptr, &img.image);
   VkMemoryRequirements req{};
   vkGetImageMemoryRequirements(device, img.image, &req);
-  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
-                          memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)};
+  VkMemoryAllocateInfo ai{
+      VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
+      memory_type(physical, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)};
   vkAllocateMemory(device, &ai, nullptr, &img.memory);
   vkBindImageMemory(device, img.image, img.memory, 0);
   VkImageViewCreateInfo vi{};

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "vk_engine.h"  // examples/common: instance, validation messenger, device pick
+
 namespace engine {
 
 struct Buffer {
@@ -26,22 +28,18 @@ struct Image {
   std::uint32_t w = 0, h = 0;
 };
 
-class Device {
+class Device : public Instance {
  public:
   /// Creates everything; "" on success, else the reason (no device, no Vulkan 1.3, ...).
   std::string create(bool validation);
   void destroy();
 
-  VkInstance instance = VK_NULL_HANDLE;
   VkPhysicalDevice physical = VK_NULL_HANDLE;
   VkDevice device = VK_NULL_HANDLE;
   std::uint32_t family = 0;
   VkQueue queue = VK_NULL_HANDLE;
   VkPhysicalDeviceFeatures features{};  // what was enabled
   std::string name;
-  bool validation = false;
-  int messages = 0;  // validation warnings + errors
-  std::string first_message;
 
   Buffer buffer(VkDeviceSize bytes, VkBufferUsageFlags usage, bool host);
   Image image(VkFormat format, std::uint32_t w, std::uint32_t h, VkImageUsageFlags usage,
@@ -55,8 +53,6 @@ class Device {
                                  VkPipelineStageFlags2 stage, VkAccessFlags2 access);
 
  private:
-  std::uint32_t memory_type(std::uint32_t bits, VkMemoryPropertyFlags want) const;
-  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
   VkCommandPool pool_ = VK_NULL_HANDLE;
 };
 

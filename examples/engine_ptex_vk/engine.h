@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "vk_engine.h"  // examples/common: instance, validation messenger, device pick
+
 namespace engine {
 
 struct Buffer {
@@ -21,13 +23,12 @@ struct Buffer {
   void* data = nullptr;  // mapped (host-visible, coherent)
 };
 
-class Device {
+class Device : public Instance {
  public:
   /// Creates everything; "" on success, else the reason (no device, ...).
   std::string create(bool validation);
   void destroy();
 
-  VkInstance instance = VK_NULL_HANDLE;
   VkPhysicalDevice physical = VK_NULL_HANDLE;
   VkDevice device = VK_NULL_HANDLE;
   std::uint32_t family = 0;
@@ -35,15 +36,9 @@ class Device {
   std::uint32_t api_version = VK_API_VERSION_1_1;
   VkPhysicalDeviceFeatures features{};  // what was enabled
   std::string name;
-  bool validation = false;
-  int messages = 0;  // validation warnings + errors
-  std::string first_message;
 
   Buffer buffer(const void* data, VkDeviceSize bytes, VkBufferUsageFlags usage);
   void destroy(Buffer& b);
-
- private:
-  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
 };
 
 /// GLSL to SPIR-V for Vulkan 1.1 with shaderc; "" or shaderc's log in `log`.

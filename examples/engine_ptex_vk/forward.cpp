@@ -142,73 +142,16 @@ void create_targets(const Device& d, Objects& o, int w, int h) {
 }
 
 std::string create_pipeline(VkDevice dev, Objects& o, const Frame& in) {
-  VkShaderModuleCreateInfo mi{};
-  mi.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
-  mi.codeSize = in.vertex_spirv.size() * 4;
-  mi.pCode = in.vertex_spirv.data();
-  vkCreateShaderModule(dev, &mi, nullptr, &o.modules[0]);
-  mi.codeSize = in.fragment_spirv.size() * 4;
-  mi.pCode = in.fragment_spirv.data();
-  vkCreateShaderModule(dev, &mi, nullptr, &o.modules[1]);
-  VkPipelineShaderStageCreateInfo st[2]{};
-  for (int i = 0; i < 2; ++i) {
-    st[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    st[i].stage = i == 0 ? VK_SHADER_STAGE_VERTEX_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
-    st[i].module = o.modules[i];
-    st[i].pName = "main";
-  }
-  const VkVertexInputBindingDescription vb{0, in.stride, VK_VERTEX_INPUT_RATE_VERTEX};
-  VkPipelineVertexInputStateCreateInfo vin{};
-  vin.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
-  vin.vertexBindingDescriptionCount = 1;
-  vin.pVertexBindingDescriptions = &vb;
-  vin.vertexAttributeDescriptionCount = std::uint32_t(in.attributes.size());
-  vin.pVertexAttributeDescriptions = in.attributes.data();
-  VkPipelineInputAssemblyStateCreateInfo ia{};
-  ia.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
-  ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  // +y up: the viewport starts at the bottom row with a negative height (core since 1.1).
-  const VkViewport vp{0.0f, float(in.height), float(in.width), -float(in.height), 0.0f, 1.0f};
-  const VkRect2D scissor{{0, 0}, {std::uint32_t(in.width), std::uint32_t(in.height)}};
-  VkPipelineViewportStateCreateInfo vs{};
-  vs.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
-  vs.viewportCount = vs.scissorCount = 1;
-  vs.pViewports = &vp;
-  vs.pScissors = &scissor;
-  VkPipelineRasterizationStateCreateInfo rs{};
-  rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
-  rs.polygonMode = VK_POLYGON_MODE_FILL;
-  rs.cullMode = VK_CULL_MODE_BACK_BIT;  // counter-clockwise front faces, as the CPU renderer
-  rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-  rs.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo ms{};
-  ms.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
-  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo ds{};
-  ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
-  ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
-  ds.depthCompareOp = VK_COMPARE_OP_LESS;
-  VkPipelineColorBlendAttachmentState blend{};
-  blend.colorWriteMask = 0xf;
-  VkPipelineColorBlendStateCreateInfo cb{};
-  cb.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
-  cb.attachmentCount = 1;
-  cb.pAttachments = &blend;
-  VkGraphicsPipelineCreateInfo pi{};
-  pi.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
-  pi.stageCount = 2;
-  pi.pStages = st;
-  pi.pVertexInputState = &vin;
-  pi.pInputAssemblyState = &ia;
-  pi.pViewportState = &vs;
-  pi.pRasterizationState = &rs;
-  pi.pMultisampleState = &ms;
-  pi.pDepthStencilState = &ds;
-  pi.pColorBlendState = &cb;
-  pi.layout = o.layout;
-  pi.renderPass = o.pass;
-  if (VkResult r = vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &pi, nullptr, &o.pipeline);
-      r != VK_SUCCESS) {
+  ForwardPipelineDesc desc;
+  desc.vertex_spirv = &in.vertex_spirv;
+  desc.fragment_spirv = &in.fragment_spirv;
+  desc.stride = in.stride;
+  desc.attributes = &in.attributes;
+  desc.width = in.width;
+  desc.height = in.height;
+  desc.layout = o.layout;
+  desc.pass = o.pass;
+  if (VkResult r = forward_pipeline(dev, desc, o.modules, &o.pipeline); r != VK_SUCCESS) {
     return "vkCreateGraphicsPipelines: VkResult " + std::to_string(int(r));
   }
   return "";
@@ -216,48 +159,12 @@ std::string create_pipeline(VkDevice dev, Objects& o, const Frame& in) {
 
 // Set 0: the frame block (a pool of one set); 1..: the caller's layouts.
 VkDescriptorSet create_layouts(VkDevice dev, Objects& o, const Frame& in, const Buffer& ubo) {
-  const VkDescriptorSetLayoutBinding b{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
-                                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                                       nullptr};
-  VkDescriptorSetLayoutCreateInfo li{};
-  li.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  li.bindingCount = 1;
-  li.pBindings = &b;
-  vkCreateDescriptorSetLayout(dev, &li, nullptr, &o.frame_layout);
-  li.bindingCount = 0;
-  vkCreateDescriptorSetLayout(dev, &li, nullptr, &o.empty_layout);
+  frame_set_layouts(dev, &o.frame_layout, &o.empty_layout);
   std::vector<VkDescriptorSetLayout> layouts{o.frame_layout};
   for (VkDescriptorSetLayout l : in.extra_layouts) {
     layouts.push_back(l != VK_NULL_HANDLE ? l : o.empty_layout);
   }
-  VkPipelineLayoutCreateInfo pl{};
-  pl.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-  pl.setLayoutCount = std::uint32_t(layouts.size());
-  pl.pSetLayouts = layouts.data();
-  vkCreatePipelineLayout(dev, &pl, nullptr, &o.layout);
-  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
-  VkDescriptorPoolCreateInfo pi{};
-  pi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  pi.maxSets = 1;
-  pi.poolSizeCount = 1;
-  pi.pPoolSizes = &size;
-  vkCreateDescriptorPool(dev, &pi, nullptr, &o.pool);
-  VkDescriptorSetAllocateInfo ai{};
-  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  ai.descriptorPool = o.pool;
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = &o.frame_layout;
-  VkDescriptorSet set = VK_NULL_HANDLE;
-  vkAllocateDescriptorSets(dev, &ai, &set);
-  const VkDescriptorBufferInfo bi{ubo.buffer, 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet w{};
-  w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-  w.dstSet = set;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  w.pBufferInfo = &bi;
-  vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
-  return set;
+  return frame_set(dev, layouts, o.frame_layout, ubo.buffer, &o.layout, &o.pool);
 }
 
 // Records the frame into `cmd`; "" or what the caller's bind said.

@@ -40,6 +40,7 @@
 #include "tessera/metrics.h"
 #include "tessera/ptex.h"
 #include "tessera/vk_faces.h"
+#include "vertex_shader.h"
 
 namespace {
 
@@ -59,24 +60,6 @@ struct Vertex {
   float position[3], normal[3], uv[2];
   std::int32_t face;
 };
-
-const char* kVertexShader = R"(#version 450
-layout(location = 0) in vec3 position;
-layout(location = 1) in vec3 normal;
-layout(location = 2) in vec2 face_uv;
-layout(location = 3) in int face_id;
-layout(std140, set = 0, binding = 0) uniform Frame { mat4 view_proj; vec4 light_dir; vec4 shade; };
-layout(location = 0) out vec3 v_normal;
-layout(location = 1) out vec2 v_uv;
-layout(location = 2) flat out int v_face;
-void main() {
-  v_normal = normal;
-  v_uv = face_uv;
-  v_face = face_id;
-  gl_Position = view_proj * vec4(position, 1.0);
-  gl_Position.z = 0.5 * (gl_Position.z + gl_Position.w);  // GL-style depth to Vulkan's 0..1
-}
-)";
 
 // tessera's glsl_defines go after #version (glsl::ExpandOptions::preamble).
 const char* kFragmentShader = R"(#version 450
@@ -267,7 +250,7 @@ int main(int argc, char** argv) {
   std::string error = fragment ? "" : fragment.status().message;
   std::string log;
   if (error.empty()) {
-    frame.vertex_spirv = engine::compile(kVertexShader, true, "engine_ptex_vk.vert", log);
+    frame.vertex_spirv = engine::compile(engine::kVertexShader, true, "engine_ptex_vk.vert", log);
     frame.fragment_spirv = engine::compile(fragment->text, false, "engine_ptex_vk.frag", log);
     if (!log.empty()) error = tessera::glsl::format_log(log, fragment->files);
   }

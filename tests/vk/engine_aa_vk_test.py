@@ -13,40 +13,21 @@ component's own full supersampling with 41 % of its samples; the 1 spp image (an
 image and 10 dB over 1 spp. Every run must report zero validation messages (the engine exits 1
 on any, and the message is named).
 """
-import json
 import os
-import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
-from cli_harness import check, expect_error, finish, run_command, skip_or_fail  # noqa: E402
+from cli_harness import check, expect_error, finish  # noqa: E402
+from engine_vk_harness import reporter, runner  # noqa: E402
 
 ENGINE = sys.argv[1]
 SIZE = ["--size", "160x120"]
 PSNR_MIN = 35.0
 
 
-def run(*args, env=None):
-    p = subprocess.run([ENGINE, *args], capture_output=True, text=True, timeout=600, env=env)
-    return p.returncode, p.stdout, p.stderr
-
-
-def report(*args):
-    rc, out, err = run_command([ENGINE, *SIZE, "--json", *args], timeout=600)
-    if rc != 0 and "no Vulkan device" in err:
-        skip_or_fail("vulkan", f"no Vulkan 1.3 device here: {err.strip()}")
-    check(f"{args} exit 0", rc == 0, err)
-    try:
-        r = json.loads(out)
-    except json.JSONDecodeError:
-        check(f"{args} JSON", False, out)
-        return {}
-    if not r.get("validation"):
-        skip_or_fail("vulkan-validation",
-                     "no VK_LAYER_KHRONOS_validation (Debian: vulkan-validationlayers)")
-    check(f"{args} no validation message", r.get("validation_messages") == 0, r)
-    return r
+run = runner(ENGINE)
+report = reporter([ENGINE, *SIZE], "no Vulkan 1.3 device here")
 
 
 r = report()

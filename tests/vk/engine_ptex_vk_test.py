@@ -15,14 +15,13 @@ PSNR_MIN = 60 dB; the negative controls fall far below it: the camera one pixel 
 device (a hardware texture unit filters in fixed point) the bound is 45 dB, which both controls
 still fail. Every run must report zero validation messages (the engine exits 1 on any).
 """
-import json
 import os
-import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
-from cli_harness import check, expect_error, finish, run_command, skip_or_fail  # noqa: E402
+from cli_harness import check, expect_error, finish, skip_or_fail  # noqa: E402
+from engine_vk_harness import reporter, runner  # noqa: E402
 
 ENGINE = sys.argv[1]
 PTEX = os.path.join(sys.argv[2], "ptex") if len(sys.argv) > 2 else ""
@@ -31,26 +30,8 @@ if not os.path.isdir(PTEX):
 TEAPOT = [os.path.join(PTEX, "teapot", "teapot.obj"), os.path.join(PTEX, "teapot", "teapot.ptx")]
 
 
-def run(*args, env=None):
-    p = subprocess.run([ENGINE, *args], capture_output=True, text=True, timeout=600, env=env)
-    return p.returncode, p.stdout, p.stderr
-
-
-def report(*args):
-    rc, out, err = run_command([ENGINE, *TEAPOT, "--json", *args], timeout=600)
-    if rc != 0 and "no Vulkan device" in err:
-        skip_or_fail("vulkan", f"no Vulkan device here: {err.strip()}")
-    check(f"{args} exit 0", rc == 0, err)
-    try:
-        r = json.loads(out)
-    except json.JSONDecodeError:
-        check(f"{args} JSON", False, out)
-        return {}
-    if not r.get("validation"):
-        skip_or_fail("vulkan-validation",
-                     "no VK_LAYER_KHRONOS_validation (Debian: vulkan-validationlayers)")
-    check(f"{args} no validation message", r.get("validation_messages") == 0, r)
-    return r
+run = runner(ENGINE)
+report = reporter([ENGINE, *TEAPOT], "no Vulkan device here")
 
 
 r = report()

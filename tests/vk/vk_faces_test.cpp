@@ -22,28 +22,14 @@
 #include "tessera/metrics.h"
 #include "tessera/ptex.h"
 #include "test_support.h"
+#include "vertex_shader.h"  // examples/engine_ptex_vk
 #include "vk_draw.h"
 
 namespace tessera::vk_test {
 namespace {
 
-const char* kVertex = R"(#version 450
-layout(location = 0) in vec3 position;
-layout(location = 1) in vec3 normal;
-layout(location = 2) in vec2 face_uv;
-layout(location = 3) in int face_id;
-layout(std140, set = 0, binding = 0) uniform Frame { mat4 view_proj; vec4 light_dir; vec4 shade; };
-layout(location = 0) out vec3 v_normal;
-layout(location = 1) out vec2 v_uv;
-layout(location = 2) flat out int v_face;
-void main() {
-  v_normal = normal;
-  v_uv = face_uv;
-  v_face = face_id;
-  gl_Position = view_proj * vec4(position, 1.0);
-  gl_Position.z = 0.5 * (gl_Position.z + gl_Position.w);  // GL's -1..1 depth to Vulkan's 0..1
-}
-)";
+// The engine's vertex stage: examples/engine_ptex_vk's own.
+const char* const kVertex = engine::kVertexShader;
 
 // The defines of vk::FaceTextureSet::glsl_defines go after #version (ExpandOptions::preamble).
 const char* kFragment = R"(#version 450
