@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "engine.h"
-#include "scene.h"
+#include "aa_scene.h"
 #include "tessera/core.h"
 #include "tessera/io.h"
 #include "tessera/metrics.h"

@@ -1,16 +1,25 @@
-// engine_aa_vk's scene (scene.h).
-#include "scene.h"
+// The example engines' scene, shared by examples/engine_aa (OpenGL) and examples/engine_aa_vk
+// (Vulkan) so that the two twins render the same frame: a floor, boxes and spheres as triangle
+// vertices (position, normal, albedo, material id 0 floor / 1 box / 2 sphere), generated in
+// code, and a look-at camera (column-major matrices). Header-only, like engine_context.h.
+#pragma once
 
+#include <array>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 namespace engine {
 
-namespace {
+struct Vertex {
+  float p[3], n[3], albedo[3], id;
+};
 
 using F3 = std::array<float, 3>;
 
-void add_box(std::vector<Vertex>& v, const F3& c, const F3& s, const F3& col, float id) {
+using F3 = std::array<float, 3>;
+
+inline void add_box(std::vector<Vertex>& v, const F3& c, const F3& s, const F3& col, float id) {
   static const int faces[6][3] = {{0, 1, 2}, {0, 1, 2}, {1, 2, 0}, {1, 2, 0}, {2, 0, 1}, {2, 0, 1}};
   for (int f = 0; f < 6; ++f) {
     const int a = faces[f][0], b = faces[f][1], nrm = faces[f][2];
@@ -33,7 +42,7 @@ void add_box(std::vector<Vertex>& v, const F3& c, const F3& s, const F3& col, fl
   }
 }
 
-void add_sphere(std::vector<Vertex>& v, const F3& c, float r, const F3& col, float id) {
+inline void add_sphere(std::vector<Vertex>& v, const F3& c, float r, const F3& col, float id) {
   const int rings = 24, segments = 48;
   const float pi = 3.14159265f;
   auto vert = [&](int i, int j) {
@@ -54,9 +63,7 @@ void add_sphere(std::vector<Vertex>& v, const F3& c, float r, const F3& col, flo
   }
 }
 
-}  // namespace
-
-std::vector<Vertex> make_scene() {
+inline std::vector<Vertex> make_scene() {
   std::vector<Vertex> v;
   const F3 grey = {0.8f, 0.8f, 0.8f};
   add_box(v, F3{0, -0.05f, 0}, F3{8, 0.05f, 8}, grey, 0);  // floor
@@ -71,7 +78,7 @@ std::vector<Vertex> make_scene() {
   return v;
 }
 
-void look_at(const float eye[3], const float at[3], float view[16], float inv[16]) {
+inline void look_at(const float eye[3], const float at[3], float view[16], float inv[16]) {
   float f[3] = {at[0] - eye[0], at[1] - eye[1], at[2] - eye[2]};
   float fl = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
   for (float& x : f) x /= fl;
