@@ -1,5 +1,5 @@
 // tessera/gl_experiments.h — the OpenGL backends of the two paper experiments: the one
-// implementation of `experiments::GlBackendFactory` (tessera/experiments/common.h). Part of the
+// implementation of `experiments::GpuBackendFactory` (tessera/experiments/common.h). Part of the
 // optional `tessera_gl` library (src/gl/experiment_backends.cpp, seams_backend.cpp,
 // aa_backend.cpp), which defines what this header declares; the main `tessera` library, where
 // `run_seams` and `run_aa` live, never links OpenGL and reaches GL only through the factory a
@@ -27,10 +27,10 @@ struct ExperimentBackendOptions {
 
 /// The GL backends of both experiments. Creating a backend fails with one line when there is no
 /// usable OpenGL 4.5 device or the shaders are missing.
-std::shared_ptr<const experiments::GlBackendFactory> experiment_backends(
+std::shared_ptr<const experiments::GpuBackendFactory> experiment_backends(
     const ExperimentBackendOptions& options);
 /// The same with the default options and `glsl_dir`.
-std::shared_ptr<const experiments::GlBackendFactory> experiment_backends(
+std::shared_ptr<const experiments::GpuBackendFactory> experiment_backends(
     const std::filesystem::path& glsl_dir = {});
 
 }  // namespace tessera::gl

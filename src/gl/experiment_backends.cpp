@@ -1,5 +1,5 @@
 // gl::experiment_backends (tessera/gl_experiments.h): the one implementation of
-// experiments::GlBackendFactory, handing out the GL backends of seams_backend.cpp and
+// experiments::GpuBackendFactory, handing out the GL backends of seams_backend.cpp and
 // aa_backend.cpp.
 #include "gl/experiment_backends_internal.h"
 #include "tessera/gl_experiments.h"
@@ -8,9 +8,11 @@ namespace tessera::gl {
 
 namespace {
 
-class GlBackends final : public experiments::GlBackendFactory {
+class GlBackends final : public experiments::GpuBackendFactory {
  public:
   explicit GlBackends(ExperimentBackendOptions options) : options_(std::move(options)) {}
+
+  experiments::Backend backend() const override { return experiments::Backend::gl; }
 
   Result<std::unique_ptr<experiments::SeamsBackend>> create_seams(
       const faces::FaceScene& scene, const faces::FaceTextureSet& textures) const override {
@@ -27,12 +29,12 @@ class GlBackends final : public experiments::GlBackendFactory {
 
 }  // namespace
 
-std::shared_ptr<const experiments::GlBackendFactory> experiment_backends(
+std::shared_ptr<const experiments::GpuBackendFactory> experiment_backends(
     const ExperimentBackendOptions& options) {
   return std::make_shared<const GlBackends>(options);
 }
 
-std::shared_ptr<const experiments::GlBackendFactory> experiment_backends(
+std::shared_ptr<const experiments::GpuBackendFactory> experiment_backends(
     const std::filesystem::path& glsl_dir) {
   ExperimentBackendOptions options;
   options.glsl_dir = glsl_dir;

@@ -18,7 +18,9 @@ namespace tessera::vk {
   X(GetPhysicalDeviceProperties)            \
   X(GetPhysicalDeviceMemoryProperties)      \
   X(GetPhysicalDeviceQueueFamilyProperties) \
-  X(GetPhysicalDeviceFormatProperties)
+  X(GetPhysicalDeviceFormatProperties)     \
+  X(GetPhysicalDeviceFeatures)             \
+  X(GetPhysicalDeviceImageFormatProperties)
 
 // Device-level core 1.0 entry points (vkGetDeviceProcAddr).
 #define TESSERA_VK_DEVICE_FUNCTIONS(X) \
@@ -74,7 +76,36 @@ namespace tessera::vk {
   X(QueueSubmit)                       \
   X(CreateFence)                       \
   X(DestroyFence)                      \
-  X(WaitForFences)
+  X(WaitForFences)                     \
+  TESSERA_VK_GRAPHICS_FUNCTIONS(X)
+
+// Device-level core 1.0 entry points of drawing and read-back: what the experiments' Vulkan
+// backends (a device of their own, headless_device.h) record besides the components'.
+#define TESSERA_VK_GRAPHICS_FUNCTIONS(X) \
+  X(CreateGraphicsPipelines)             \
+  X(CreateRenderPass)                    \
+  X(DestroyRenderPass)                   \
+  X(CreateFramebuffer)                   \
+  X(DestroyFramebuffer)                  \
+  X(CmdBeginRenderPass)                  \
+  X(CmdEndRenderPass)                    \
+  X(CmdBindVertexBuffers)                \
+  X(CmdBindIndexBuffer)                  \
+  X(CmdDraw)                             \
+  X(CmdDrawIndexed)                      \
+  X(CmdSetViewport)                      \
+  X(CmdSetScissor)                       \
+  X(CmdPushConstants)                    \
+  X(CmdCopyImageToBuffer)                \
+  X(CmdCopyImage)                        \
+  X(CmdResolveImage)                     \
+  X(CmdClearColorImage)                  \
+  X(CmdBlitImage)                        \
+  X(FreeCommandBuffers)                  \
+  X(ResetCommandPool)                    \
+  X(ResetFences)                         \
+  X(QueueWaitIdle)                       \
+  X(DeviceWaitIdle)
 
 /// The loaded table plus what components check about the device.
 struct Api {
@@ -197,5 +228,7 @@ using ImageView = Owned<VkImageView, &Api::DestroyImageView>;
 using Memory = Owned<VkDeviceMemory, &Api::FreeMemory>;
 using CommandPool = Owned<VkCommandPool, &Api::DestroyCommandPool>;
 using Fence = Owned<VkFence, &Api::DestroyFence>;
+using RenderPass = Owned<VkRenderPass, &Api::DestroyRenderPass>;
+using Framebuffer = Owned<VkFramebuffer, &Api::DestroyFramebuffer>;
 
 }  // namespace tessera::vk

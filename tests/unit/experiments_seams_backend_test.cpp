@@ -79,7 +79,7 @@ class FakeGlRenderer final : public CpuBackedFakeGl {
   bool perturb_ = false;
 };
 
-std::shared_ptr<const GlBackendFactory> fake_gl_factory(std::vector<int> refused,
+std::shared_ptr<const GpuBackendFactory> fake_gl_factory(std::vector<int> refused,
                                                         bool perturb = false) {
   return test::seams_factory(
       [refused, perturb](

@@ -52,8 +52,9 @@ class FakeGl final : public SeamsBackend {
   int read_backs_ = 0;
 };
 
-class FakeGlFactory final : public GlBackendFactory {
+class FakeGlFactory final : public GpuBackendFactory {
  public:
+  Backend backend() const override { return Backend::gl; }
   Result<std::unique_ptr<SeamsBackend>> create_seams(
       const faces::FaceScene& scene, const faces::FaceTextureSet& textures) const override {
     Result<std::unique_ptr<SeamsBackend>> cpu = create_cpu_seams_backend(scene, textures);

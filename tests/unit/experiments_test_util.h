@@ -40,9 +40,10 @@ using SeamsFactoryFn = std::function<Result<std::unique_ptr<SeamsBackend>>(
     const faces::FaceScene&, const faces::FaceTextureSet&)>;
 using AaFactoryFn = std::function<Result<std::unique_ptr<AaBackend>>(const scene::Scene&)>;
 
-/// A GlBackendFactory whose backends come from two functions; an unset one fails (unsupported).
-class FunctionGlFactory final : public GlBackendFactory {
+/// A GpuBackendFactory whose backends come from two functions; an unset one fails (unsupported).
+class FunctionGlFactory final : public GpuBackendFactory {
  public:
+  Backend backend() const override { return Backend::gl; }
   FunctionGlFactory(SeamsFactoryFn seams, AaFactoryFn aa)
       : seams_(std::move(seams)), aa_(std::move(aa)) {}
   Result<std::unique_ptr<SeamsBackend>> create_seams(
@@ -60,10 +61,10 @@ class FunctionGlFactory final : public GlBackendFactory {
   AaFactoryFn aa_;
 };
 
-inline std::shared_ptr<const GlBackendFactory> seams_factory(SeamsFactoryFn fn) {
+inline std::shared_ptr<const GpuBackendFactory> seams_factory(SeamsFactoryFn fn) {
   return std::make_shared<const FunctionGlFactory>(std::move(fn), nullptr);
 }
-inline std::shared_ptr<const GlBackendFactory> aa_factory(AaFactoryFn fn) {
+inline std::shared_ptr<const GpuBackendFactory> aa_factory(AaFactoryFn fn) {
   return std::make_shared<const FunctionGlFactory>(nullptr, std::move(fn));
 }
 

@@ -50,7 +50,7 @@ const std::string& command_line();
 /// The OpenGL backends of `tessera seams` and `tessera aa` (gl::experiment_backends) with the
 /// shipped GLSL folder: $TESSERA_GLSL_DIR, else the source tree's share/tessera/glsl (a build
 /// tree), else the installed one; null when tessera is built without the GL runtime.
-std::shared_ptr<const experiments::GlBackendFactory> gl_backends();
+std::shared_ptr<const experiments::GpuBackendFactory> gl_backends();
 
 /// A registered subcommand: the CLI11 sub-app and the action run when it was selected.
 struct Command {

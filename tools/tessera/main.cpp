@@ -62,7 +62,7 @@ std::string g_command_line;
 
 const std::string& command_line() { return g_command_line; }
 
-std::shared_ptr<const experiments::GlBackendFactory> gl_backends() {
+std::shared_ptr<const experiments::GpuBackendFactory> gl_backends() {
 #ifdef TESSERA_HAVE_GL
   std::string dir = TESSERA_INSTALLED_GLSL_DIR;
   std::error_code ec;

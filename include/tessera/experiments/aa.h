@@ -57,7 +57,7 @@ struct AaConfig {
   Backend backend = Backend::cpu;
   /// Makes the GL backend (gl and both); unset: those fail with unsupported ("not built with
   /// the OpenGL runtime"). Called, and every G-buffer size checked, before `on_ready`.
-  std::shared_ptr<const GlBackendFactory> gl_factory;
+  std::shared_ptr<const GpuBackendFactory> gl_factory;
   ProgressFn progress;  ///< Optional: one line per rate.
   ReadyFn on_ready;     ///< Optional.
 };

@@ -1,7 +1,7 @@
 // tessera/experiments/aa_backend.h — the backend interface of the adaptive-supersampling
 // experiment (Holländer, Boubekeur & Eisemann 2013): an enlarged G-buffer and the shading
 // methods on it, rendered by the CPU (`create_cpu_aa_backend`, deferred::DeferredRenderer) or by
-// OpenGL (gl::DeferredRenderer, made by a `GlBackendFactory`, experiments/common.h).
+// OpenGL (gl::DeferredRenderer, made by a `GpuBackendFactory`, experiments/common.h).
 #pragma once
 
 #include <array>
@@ -60,7 +60,7 @@ struct AaShadeOptions {
 };
 
 /// A renderer of the AA experiment at one scene: the CPU (`create_cpu_aa_backend`, wrapping
-/// deferred::DeferredRenderer) or OpenGL (`GlBackendFactory::create_aa`, wrapping
+/// deferred::DeferredRenderer) or OpenGL (`GpuBackendFactory::create_aa`, wrapping
 /// gl::DeferredRenderer). It keeps the last G-buffer; `shade` works on it. Used on the
 /// calling thread only.
 class AaBackend : public BackendDevice {

@@ -58,7 +58,7 @@ struct SeamsConfig {
   Backend backend = Backend::cpu;
   /// Makes the GL backend (gl and both); unset: those fail with unsupported ("not built with
   /// the OpenGL runtime"). Called before `on_ready`.
-  std::shared_ptr<const GlBackendFactory> gl_factory;
+  std::shared_ptr<const GpuBackendFactory> gl_factory;
   /// The texture filter of the experiment's frames (every method, every backend; 16x
   /// anisotropic is the paper's). The reference stays the paper's: Traverse, 16x anisotropic.
   texture::TextureFilter filter = texture::TextureFilter::anisotropic;

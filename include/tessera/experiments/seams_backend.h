@@ -1,7 +1,7 @@
 // tessera/experiments/seams_backend.h — the backend interface of the seam experiment (Toth
 // 2013): one frame, the reference and the sample positions of an MSAA rate, rendered by the CPU
 // (`create_cpu_seams_backend`, faces::FaceRenderer) or by OpenGL (gl::FaceRenderer, made by a
-// `GlBackendFactory`, experiments/common.h), and the rule by which `run_seams` compares a GL
+// `GpuBackendFactory`, experiments/common.h), and the rule by which `run_seams` compares a GL
 // frame with a CPU frame.
 #pragma once
 
@@ -83,7 +83,7 @@ enum class SeamsGlComparison {
 SeamsGlComparison seams_gl_comparison(const SeamsSamplePattern& pattern);
 
 /// A renderer of the seam experiment's frames: the CPU (`create_cpu_seams_backend`, wrapping
-/// faces::FaceRenderer) or OpenGL (`GlBackendFactory::create_seams`, wrapping
+/// faces::FaceRenderer) or OpenGL (`GpuBackendFactory::create_seams`, wrapping
 /// gl::FaceRenderer). Used on the calling thread only.
 class SeamsBackend : public BackendDevice {
  public:
