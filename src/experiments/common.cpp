@@ -12,6 +12,8 @@ const char* backend_name(Backend backend) {
       return "cpu";
     case Backend::gl:
       return "gl";
+    case Backend::vk:
+      return "vk";
     case Backend::both:
       return "both";
   }
@@ -19,11 +21,11 @@ const char* backend_name(Backend backend) {
 }
 
 Result<Backend> parse_backend(std::string_view text) {
-  for (Backend b : {Backend::cpu, Backend::gl, Backend::both}) {
+  for (Backend b : {Backend::cpu, Backend::gl, Backend::vk, Backend::both}) {
     if (text == backend_name(b)) return b;
   }
   return Status::error(ErrorCode::invalid_argument,
-                       "backend '" + std::string(text) + "': expected cpu, gl or both");
+                       "backend '" + std::string(text) + "': expected cpu, gl, vk or both");
 }
 
 double FrameTimes::median_ms() const { return tessera::median(frame_ms); }

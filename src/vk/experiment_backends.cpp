@@ -28,7 +28,7 @@ class VkBackends final : public experiments::GpuBackendFactory {
   }
   Status device_status() const override {
     const int n = log_->messages.load();
-    if (n == 0) return Status::ok();
+    if (n == 0) return Status::success();
     std::lock_guard<std::mutex> lock(log_->mutex);
     return Status::error(ErrorCode::unsupported, "vulkan validation: " + std::to_string(n) +
                                                   " message(s), the first: " + log_->first);

@@ -71,6 +71,8 @@ class HeadlessDevice {
 
  private:
   HeadlessDevice() = default;
+  Status create_instance(const HeadlessDeviceOptions& options, std::shared_ptr<ValidationLog> log);
+  Status create_device(const HeadlessDeviceOptions& options);
   void destroy();
 
   void* loader_ = nullptr;  ///< dlopen handle, or null.

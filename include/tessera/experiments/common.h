@@ -81,7 +81,7 @@ class GpuBackendFactory {
   /// What the devices reported while they ran: `run_seams` and `run_aa` return it, once their
   /// backends are destroyed, in place of their result when it is not ok (Vulkan with
   /// validation on: any validation warning or error, the first one quoted).
-  virtual Status device_status() const { return Status::ok(); }
+  virtual Status device_status() const { return Status::success(); }
 };
 
 /// Progress report: one line of text (no trailing newline), e.g. "frame 2/8 done".
