@@ -404,6 +404,28 @@ using ReferenceTileFn = std::function<Result<ImageRGBAF>(const FrameWindow& wind
 Result<ImageRGBAF> render_reference_tiles(int width, int height, const ReferenceOptions& options,
                                           const ReferenceTileFn& render_tile);
 
+/// The reference of a GPU twin (gl::FaceRenderer, the Vulkan face renderer) through
+/// `render_reference_tiles`: each tile is `renderer.render(camera, o)` of frame options
+/// `Options` (fields method, filter, max_aniso, msaa and the FrameWindow fields) set to
+/// Traverse, `options.filter` at 16x, single-sampled, and the tile's window; the frame's
+/// `image` is the tile.
+template <typename Options, typename Renderer>
+Result<ImageRGBAF> render_reference_with(Renderer& renderer, const scene::Camera& camera,
+                                         int width, int height, const ReferenceOptions& options) {
+  Options o;
+  o.method = SeamMethod::traverse;
+  o.filter = options.filter;
+  o.max_aniso = 16;
+  o.msaa = 1;
+  const ReferenceTileFn tile = [&](const FrameWindow& w) -> Result<ImageRGBAF> {
+    set_frame_window(o, w);
+    auto frame = renderer.render(camera, o);
+    if (!frame) return frame.status();
+    return std::move(frame->image);
+  };
+  return render_reference_tiles(width, height, options, tile);
+}
+
 /// Separable Mitchell-Netravali down-sampling (B = C = 1/3) of a supersampled grid by `factor`:
 /// output pixel x reads grid columns [(x - margin) * factor, (x + margin) * factor) of a grid
 /// that starts `margin` output pixels before the output's first pixel, with normalised weights.

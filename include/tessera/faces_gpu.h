@@ -5,11 +5,13 @@
 // faces::FaceTextureSet). Pure CPU data: no GL, no Vulkan; the backends upload exactly these
 // bytes, so GL and Vulkan traverse the same faces through the same transforms as the CPU.
 // Contract: every function here is pure and thread-safe. `ptex_quad_mesh` maps a Ptex file's
-// polygon mesh to the quad mesh of its faces (the mesh an engine draws with these textures).
+// polygon mesh to the quad mesh of its faces (the mesh an engine draws with these textures);
+// `class_grouped_indices` is the class-grouped index list the GPU face renderers draw.
 // Tests: tests/gl/gl_faces_test.cpp (layout vs CPU adjacency), tests/vk/vk_faces_test.cpp.
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -87,6 +89,22 @@ struct PackLimitNames {
 /// empty set or faces of one resolution with different mip counts.
 Result<PackedFaces> pack_faces(const FaceTextureSet& set, const PackLimits& limits,
                                const PackLimitNames& names);
+
+/// One draw call of a class-grouped index list: face class `cls` (the texture array every face
+/// of the draw samples) and its `count` indices from index `first`.
+struct FaceClassDraw {
+  int cls = 0;
+  std::size_t first = 0, count = 0;
+};
+
+/// The index list every GPU face renderer draws (gl::FaceRenderer, the Vulkan seam backend):
+/// face f owns vertices 4f .. 4f+3, the faces grouped by `layout`'s classes (in face order
+/// within a class), two triangles per face on the CPU renderer's diagonal, (0,1,2) and (0,2,3)
+/// — or each reversed, (0,2,1) and (0,3,2), where `reversed` (OpenGL: the shaders' y flip
+/// mirrors the winding there). Appends to `indices`; one draw per class with faces, in class
+/// order.
+std::vector<FaceClassDraw> class_grouped_indices(const PackedFaces& layout, bool reversed,
+                                                 std::vector<std::uint32_t>& indices);
 
 /// The quad mesh of a Ptex file's faces from the polygon mesh it was painted on: face f of the
 /// result is Ptex face f. A quad of `mesh` is one face; an n-gon (n = 3 or n >= 5) must have

@@ -149,4 +149,23 @@ Result<QuadMesh> ptex_quad_mesh(const PolygonMesh& mesh, const ptex::PtexFile& f
   return ptex_face_layout(mesh);
 }
 
+std::vector<FaceClassDraw> class_grouped_indices(const PackedFaces& layout, bool reversed,
+                                                 std::vector<std::uint32_t>& indices) {
+  std::vector<FaceClassDraw> draws;
+  for (std::size_t c = 0; c < layout.classes.size(); ++c) {
+    const FaceClassDraw start{int(c), indices.size(), 0};
+    for (int f : layout.classes[c].faces) {
+      const std::uint32_t b = std::uint32_t(f) * 4;
+      const std::array<std::uint32_t, 6> tri =
+          reversed ? std::array<std::uint32_t, 6>{b, b + 2, b + 1, b, b + 3, b + 2}
+                   : std::array<std::uint32_t, 6>{b, b + 1, b + 2, b, b + 2, b + 3};
+      indices.insert(indices.end(), tri.begin(), tri.end());
+    }
+    if (indices.size() > start.first) {
+      draws.push_back({start.cls, start.first, indices.size() - start.first});
+    }
+  }
+  return draws;
+}
+
 }  // namespace tessera::faces

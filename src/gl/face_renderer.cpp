@@ -27,11 +27,7 @@ struct FaceRenderer::State {
   std::filesystem::path glsl_dir;
   Object vao, clip_buffer, normal_buffer, index_buffer;
   std::vector<float> clip;  // 4 floats per vertex, 4 vertices per face
-  struct Range {
-    int cls = 0;
-    std::size_t first = 0, count = 0;  // in indices
-  };
-  std::vector<Range> ranges;
+  std::vector<faces::FaceClassDraw> ranges;  // one draw per face class
   std::map<int, Program> programs;
   std::map<int, bool> msaa_ok;
   std::map<int, SamplePattern> patterns;  // by requested rate
@@ -139,18 +135,7 @@ Result<std::unique_ptr<FaceRenderer>> FaceRenderer::create(const faces::FaceScen
   // winding), same diagonal as the CPU: (0, 2, 1) and (0, 3, 2) for the CPU's (0,1,2), (0,2,3).
   std::vector<std::uint32_t> indices;
   indices.reserve(std::size_t(m.face_count()) * 6);
-  const PackedFaces& layout = s.textures.layout();
-  for (std::size_t c = 0; c < layout.classes.size(); ++c) {
-    State::Range range;
-    range.cls = int(c);
-    range.first = indices.size();
-    for (int f : layout.classes[c].faces) {
-      const std::uint32_t b = std::uint32_t(f) * 4;
-      for (std::uint32_t i : {b, b + 2, b + 1, b, b + 3, b + 2}) indices.push_back(i);
-    }
-    range.count = indices.size() - range.first;
-    if (range.count > 0) s.ranges.push_back(range);
-  }
+  s.ranges = faces::class_grouped_indices(s.textures.layout(), true, indices);
   s.clip.assign(std::size_t(m.face_count()) * 4 * 4, 0.0f);
   s.vao = create_object(ObjectType::vertex_array);
   s.clip_buffer = create_object(ObjectType::buffer);
@@ -350,7 +335,7 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceFr
   // absolute timestamp); llvmpipe defers full clears into the first binned command anyway.
   GpuTimer timer;
   if (Status st = timer.begin("draw"); !st.ok()) return st;
-  for (const State::Range& r : s.ranges) {
+  for (const faces::FaceClassDraw& r : s.ranges) {
     glProgramUniform1i(p.get(), class_loc, r.cls);
     glDrawElements(GL_TRIANGLES, GLsizei(r.count), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(r.first * sizeof(std::uint32_t)));
@@ -396,18 +381,7 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceFr
 Result<ImageRGBAF> FaceRenderer::render_reference(const scene::Camera& camera, int width,
                                                    int height,
                                                    const faces::ReferenceOptions& options) {
-  FaceFrameOptions o;
-  o.method = faces::SeamMethod::traverse;
-  o.filter = options.filter;
-  o.max_aniso = 16;
-  o.msaa = 1;
-  return faces::render_reference_tiles(width, height, options,
-                                       [&](const faces::FrameWindow& w) -> Result<ImageRGBAF> {
-                                         faces::set_frame_window(o, w);
-                                         Result<FaceFrame> f = render(camera, o);
-                                         if (!f) return f.status();
-                                         return std::move(f->image);
-                                       });
+  return faces::render_reference_with<FaceFrameOptions>(*this, camera, width, height, options);
 }
 
 }  // namespace tessera::gl

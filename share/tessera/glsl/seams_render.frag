@@ -15,11 +15,13 @@
 // seams.glsl's switch over the classes; the neighbours of Traverse can be of any class and go
 // through seams.glsl (tessera_seams_edge_sum, tessera_seams_face_lookup).
 //
-// Vulkan (VULKAN defined by glslangValidator -V or glslc; no tessera runtime yet): the class is
-// a push constant (block TesseraRenderPush, int at offset 0), the inputs are at locations 0, 1,
-// 2 (seams_render.vert), seams.glsl's bindings are its Vulkan defaults unless the host defines
-// them; indexing the sampler arrays by the class needs shaderSampledImageArrayDynamicIndexing.
-// OpenGL compiles exactly what it always did.
+// Vulkan (VULKAN defined by glslangValidator -V, glslc or shaderc; the experiment's Vulkan
+// backend, src/vk/face_renderer.h): the class is a push constant (block TesseraRenderPush, int
+// at offset 0), the inputs are at locations 0, 1, 2 (seams_render.vert), seams.glsl's bindings
+// are its Vulkan defaults unless the host defines them; indexing the sampler arrays by the class
+// needs shaderSampledImageArrayDynamicIndexing. Where the device lacks it the host defines
+// TESSERA_RENDER_CLASS_CONSTANT and sets the class as specialization constant 0 instead, one
+// pipeline per class. OpenGL compiles exactly what it always did.
 //
 // Per pixel (the CPU renderer's shader, faces::FaceRenderer): UV gradients are the fine 2x2
 // quad derivatives (helper pixels included), the method's sample is (linear rgb, coverage)
@@ -47,7 +49,13 @@
 #include "seams.glsl"
 
 #if defined(VULKAN)
+#if defined(TESSERA_RENDER_CLASS_CONSTANT)
+// Devices without shaderSampledImageArrayDynamicIndexing (Mesa 22.3 lavapipe): the class is
+// specialization constant 0, a constant index, one pipeline per class.
+layout(constant_id = 0) const int tessera_render_class = 0;
+#else
 layout(push_constant) uniform TesseraRenderPush { int tessera_render_class; };
+#endif
 
 layout(location = 0) in vec2 tessera_uv;
 layout(location = 1) in vec3 tessera_vnormal;

@@ -16,10 +16,12 @@
 // those of tessera's rasteriser (Direct3D patterns, y down). The negation mirrors the winding:
 // the host lists each triangle in reversed order so that front faces stay counter-clockwise.
 //
-// Vulkan (VULKAN defined by glslangValidator -V or glslc; no tessera runtime yet): outputs at
-// locations 0 (uv), 1 (normal), 2 (face); the face id from gl_VertexIndex (vkCmdDrawIndexed
-// with vertexOffset 0). The same y negation puts the image's top row in framebuffer row 0
-// (Vulkan's row 0 is at NDC y = -1); clip z stays OpenGL's [-w, w] (the host remaps it or uses
+// Vulkan (VULKAN defined by glslangValidator -V, glslc or shaderc; the experiment's Vulkan
+// backend, src/vk/face_renderer.h): outputs at locations 0 (uv), 1 (normal), 2 (face); the face
+// id from gl_VertexIndex (vkCmdDrawIndexed with vertexOffset 0). The same y negation puts the
+// image's top row in framebuffer row 0 (Vulkan's row 0 is at NDC y = -1); as Vulkan's
+// framebuffer y runs down, the CPU's own triangle order is front-facing (counter-clockwise)
+// there, not reversed. Clip z stays OpenGL's [-w, w] (the host remaps it or uses
 // VK_EXT_depth_clip_control). OpenGL compiles exactly what it always did.
 #version 450 core
 

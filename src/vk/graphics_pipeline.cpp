@@ -1,0 +1,170 @@
+// GLSL to SPIR-V for any stage (shaderc), shader modules and the graphics pipelines of the
+// experiments' drawing passes (graphics_pipeline.h).
+#include "vk/graphics_pipeline.h"
+
+#include <shaderc/shaderc.h>
+
+#include <memory>
+#include <type_traits>
+
+namespace tessera::vk {
+
+namespace {
+
+template <class T, void (*Release)(T)>
+struct ShadercDeleter {
+  void operator()(T p) const { Release(p); }
+};
+using Compiler = std::unique_ptr<std::remove_pointer_t<shaderc_compiler_t>,
+                                 ShadercDeleter<shaderc_compiler_t, shaderc_compiler_release>>;
+using CompileOptions =
+    std::unique_ptr<std::remove_pointer_t<shaderc_compile_options_t>,
+                    ShadercDeleter<shaderc_compile_options_t, shaderc_compile_options_release>>;
+using CompileResult =
+    std::unique_ptr<std::remove_pointer_t<shaderc_compilation_result_t>,
+                    ShadercDeleter<shaderc_compilation_result_t, shaderc_result_release>>;
+
+}  // namespace
+
+Result<std::vector<std::uint32_t>> compile_stage_spirv(VkShaderStageFlagBits stage,
+                                                       const std::string& text) {
+  shaderc_shader_kind kind = shaderc_glsl_compute_shader;
+  switch (stage) {
+    case VK_SHADER_STAGE_VERTEX_BIT: kind = shaderc_glsl_vertex_shader; break;
+    case VK_SHADER_STAGE_FRAGMENT_BIT: kind = shaderc_glsl_fragment_shader; break;
+    case VK_SHADER_STAGE_COMPUTE_BIT: kind = shaderc_glsl_compute_shader; break;
+    default:
+      return Status::error(ErrorCode::unsupported,
+                           "shaderc: only vertex, fragment and compute stages are compiled");
+  }
+  const Compiler compiler(shaderc_compiler_initialize());
+  const CompileOptions options(shaderc_compile_options_initialize());
+  if (!compiler || !options) {
+    return Status::error(ErrorCode::unsupported, "shaderc: cannot initialise the compiler");
+  }
+  shaderc_compile_options_set_target_env(options.get(), shaderc_target_env_vulkan,
+                                         shaderc_env_version_vulkan_1_0);
+  shaderc_compile_options_set_optimization_level(options.get(),
+                                                 shaderc_optimization_level_performance);
+  const CompileResult result(shaderc_compile_into_spv(compiler.get(), text.data(), text.size(),
+                                                      kind, "tessera", "main", options.get()));
+  if (!result) return Status::error(ErrorCode::unsupported, "shaderc: no result");
+  if (shaderc_result_get_compilation_status(result.get()) != shaderc_compilation_status_success) {
+    return Status::error(ErrorCode::invalid_argument,
+                         shaderc_result_get_error_message(result.get()));
+  }
+  const char* bytes = shaderc_result_get_bytes(result.get());
+  std::vector<std::uint32_t> spirv(shaderc_result_get_length(result.get()) / 4);
+  std::copy(bytes, bytes + spirv.size() * 4, reinterpret_cast<char*>(spirv.data()));
+  return spirv;
+}
+
+Result<ShaderModule> create_shader_module(const Api& api, const std::vector<std::uint32_t>& spirv,
+                                          const std::string& what) {
+  const VkShaderModuleCreateInfo info{.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+                                      .pNext = nullptr,
+                                      .flags = 0,
+                                      .codeSize = spirv.size() * 4,
+                                      .pCode = spirv.data()};
+  VkShaderModule raw = VK_NULL_HANDLE;
+  if (VkResult r = api.CreateShaderModule(api.device(), &info, api.alloc(), &raw);
+      r != VK_SUCCESS) {
+    return vk_error(what + ": vkCreateShaderModule", r);
+  }
+  return ShaderModule(api, raw);
+}
+
+Result<Pipeline> create_graphics_pipeline(const Api& api, const GraphicsPipelineDesc& d,
+                                          const std::string& what) {
+  if (d.vertex_spirv == nullptr || d.fragment_spirv == nullptr || d.layout == VK_NULL_HANDLE ||
+      d.render_pass == VK_NULL_HANDLE) {
+    return Status::error(ErrorCode::invalid_argument,
+                         what + ": a graphics pipeline needs both stages, a layout and a pass");
+  }
+  Result<ShaderModule> vs = create_shader_module(api, *d.vertex_spirv, what);
+  if (!vs) return vs.status();
+  Result<ShaderModule> fs = create_shader_module(api, *d.fragment_spirv, what);
+  if (!fs) return fs.status();
+  VkPipelineShaderStageCreateInfo stages[2]{};
+  for (VkPipelineShaderStageCreateInfo& s : stages) {
+    s.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    s.pName = "main";
+  }
+  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+  stages[0].module = vs->get();
+  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+  stages[1].module = fs->get();
+  stages[1].pSpecializationInfo = d.fragment_specialization;
+
+  const VkPipelineVertexInputStateCreateInfo input{
+      .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
+      .pNext = nullptr,
+      .flags = 0,
+      .vertexBindingDescriptionCount = std::uint32_t(d.bindings.size()),
+      .pVertexBindingDescriptions = d.bindings.data(),
+      .vertexAttributeDescriptionCount = std::uint32_t(d.attributes.size()),
+      .pVertexAttributeDescriptions = d.attributes.data()};
+  VkPipelineInputAssemblyStateCreateInfo assembly{};
+  assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
+  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo viewport{};  // both dynamic
+  viewport.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
+  viewport.viewportCount = viewport.scissorCount = 1;
+  const VkDynamicState dynamic_states[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  const VkPipelineDynamicStateCreateInfo dynamic{
+      .sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
+      .pNext = nullptr,
+      .flags = 0,
+      .dynamicStateCount = 2,
+      .pDynamicStates = dynamic_states};
+  VkPipelineRasterizationStateCreateInfo raster{};
+  raster.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = d.cull;
+  raster.frontFace = d.front_face;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo multisample{};
+  multisample.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
+  multisample.rasterizationSamples = d.samples;
+  VkPipelineDepthStencilStateCreateInfo depth{};
+  depth.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
+  depth.depthTestEnable = depth.depthWriteEnable = d.depth_test ? VK_TRUE : VK_FALSE;
+  depth.depthCompareOp = d.depth_compare;
+  std::vector<VkPipelineColorBlendAttachmentState> writes(d.colour_attachments);
+  for (VkPipelineColorBlendAttachmentState& w : writes) {
+    w.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                       VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  }
+  VkPipelineColorBlendStateCreateInfo blend{};
+  blend.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
+  blend.attachmentCount = d.colour_attachments;
+  blend.pAttachments = writes.data();
+
+  const VkGraphicsPipelineCreateInfo info{
+      .sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
+      .pNext = nullptr,
+      .flags = 0,
+      .stageCount = 2,
+      .pStages = stages,
+      .pVertexInputState = &input,
+      .pInputAssemblyState = &assembly,
+      .pTessellationState = nullptr,
+      .pViewportState = &viewport,
+      .pRasterizationState = &raster,
+      .pMultisampleState = &multisample,
+      .pDepthStencilState = &depth,
+      .pColorBlendState = &blend,
+      .pDynamicState = &dynamic,
+      .layout = d.layout,
+      .renderPass = d.render_pass,
+      .subpass = d.subpass,
+      .basePipelineHandle = VK_NULL_HANDLE,
+      .basePipelineIndex = -1};
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  const VkResult r =
+      api.CreateGraphicsPipelines(api.device(), VK_NULL_HANDLE, 1, &info, api.alloc(), &pipeline);
+  if (r != VK_SUCCESS) return vk_error(what + ": vkCreateGraphicsPipelines", r);
+  return Pipeline(api, pipeline);
+}
+
+}  // namespace tessera::vk

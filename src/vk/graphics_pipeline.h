@@ -1,0 +1,52 @@
+// Internal to src/vk: GLSL of any stage to SPIR-V with shaderc (compile_compute_spirv in
+// shader.h is its compute case), shader modules, and graphics pipelines for the experiments'
+// drawing passes (the seam backend's face renderer): triangle lists, a dynamic viewport and
+// scissor, one render pass subpass, no blending.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "vk/vk_api.h"
+
+namespace tessera::vk {
+
+/// Compiles `text` (already include-expanded) as a Vulkan 1.0 shader of `stage` (vertex,
+/// fragment or compute; VULKAN defined, as shaderc's Vulkan target does). On failure the status
+/// message is shaderc's log, unformatted ("FILE_INDEX:LINE: error: ...": glsl::format_log);
+/// unsupported for another stage.
+Result<std::vector<std::uint32_t>> compile_stage_spirv(VkShaderStageFlagBits stage,
+                                                       const std::string& text);
+
+/// A shader module of `spirv`; `what` names the caller in a failure.
+Result<ShaderModule> create_shader_module(const Api& api, const std::vector<std::uint32_t>& spirv,
+                                          const std::string& what);
+
+/// What `create_graphics_pipeline` builds from.
+struct GraphicsPipelineDesc {
+  const std::vector<std::uint32_t>* vertex_spirv = nullptr;
+  const std::vector<std::uint32_t>* fragment_spirv = nullptr;
+  /// The fragment stage's specialization constants (null: none).
+  const VkSpecializationInfo* fragment_specialization = nullptr;
+  std::vector<VkVertexInputBindingDescription> bindings;
+  std::vector<VkVertexInputAttributeDescription> attributes;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkRenderPass render_pass = VK_NULL_HANDLE;
+  std::uint32_t subpass = 0;
+  std::uint32_t colour_attachments = 1;  ///< Each written whole (RGBA), no blending.
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+  VkCullModeFlags cull = VK_CULL_MODE_BACK_BIT;
+  VkFrontFace front_face = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  bool depth_test = true;  ///< With writes, compare `depth_compare`.
+  VkCompareOp depth_compare = VK_COMPARE_OP_LESS;
+};
+
+/// A graphics pipeline: triangle lists, fill, the desc's vertex input, culling, samples
+/// (shading once per pixel: no sample shading) and depth state, viewport and scissor dynamic
+/// (vkCmdSetViewport / vkCmdSetScissor before drawing). The modules are destroyed before it
+/// returns. invalid_argument for a missing stage, layout or render pass.
+Result<Pipeline> create_graphics_pipeline(const Api& api, const GraphicsPipelineDesc& desc,
+                                          const std::string& what);
+
+}  // namespace tessera::vk
