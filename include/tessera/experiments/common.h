@@ -48,6 +48,12 @@ Result<Backend> parse_backend(std::string_view text);
 inline bool uses_gl(Backend backend) { return backend == Backend::gl || backend == Backend::both; }
 /// Whether `backend` renders on a GPU API (gl, vk, both).
 inline bool uses_gpu(Backend backend) { return backend != Backend::cpu; }
+/// Whether a GPU API renders the experiment's own results, with no CPU run (gl, vk).
+inline bool gpu_primary(Backend backend) {
+  return backend == Backend::gl || backend == Backend::vk;
+}
+/// Whether the CPU renderers run (cpu, both).
+inline bool uses_cpu(Backend backend) { return !gpu_primary(backend); }
 
 /// What every experiment backend (SeamsBackend, AaBackend) tells about itself.
 class BackendDevice {
