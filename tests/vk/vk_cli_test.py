@@ -174,4 +174,4 @@ try:
     errors(tmp)
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
-finish()
+sys.exit(finish())
