@@ -13,12 +13,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine_args.h"
 #include "tessera/core.h"
 #include "tessera/faces.h"
+#include "tessera/faces_gpu.h"
 #include "tessera/metrics.h"
+#include "tessera/ptex.h"
 
 namespace engine {
 
@@ -64,6 +67,30 @@ inline std::string parse_ptex_args(const CommandLine& cl, int argc, char** argv,
   a.obj = positional[0];
   a.ptx = positional[1];
   return "";
+}
+
+/// What both engines draw: the scene (named after the mesh) and its per-face textures.
+struct PtexScene {
+  tessera::faces::FaceScene scene;
+  tessera::faces::FaceTextureSet set;
+};
+
+/// tessera, step 1 (pure: no device yet): the mesh's polygons split into the quad faces of the
+/// Ptex file, and the file's per-face textures; a bad file is named in the status.
+inline tessera::Result<PtexScene> load_ptex_scene(const PtexArgs& a) {
+  auto poly = tessera::faces::load_obj_polygons(a.obj);
+  if (!poly) return poly.status();
+  auto file = tessera::ptex::read_ptex(a.ptx);
+  if (!file) return file.status();
+  auto mesh = tessera::faces::ptex_quad_mesh(*poly, *file, a.ptx);
+  if (!mesh) return mesh.status();
+  auto set = tessera::faces::FaceTextureSet::from_ptex(*file, a.ptx);
+  if (!set) return set.status();
+  PtexScene out;
+  out.scene.name = a.obj;
+  out.scene.mesh = std::move(*mesh);
+  out.set = std::move(*set);
+  return out;
 }
 
 /// The engine's vertex: position, normal, per-face UV, integer face id (40 bytes).

@@ -267,15 +267,12 @@ int main(int argc, char** argv) {
   Args a;
   if (std::string why = parse_args(argc, argv, a); !why.empty()) return fail(why);
 
-  // ---- tessera, step 1 (pure): the quad faces of the Ptex file and their textures ----
-  auto poly = tessera::faces::load_obj_polygons(a.obj);
-  if (!poly) return fail(poly.status().message);
-  auto file = tessera::ptex::read_ptex(a.ptx);
-  if (!file) return fail(file.status().message);
-  auto mesh = tessera::gl::ptex_quad_mesh(*poly, *file, a.ptx);
-  if (!mesh) return fail(mesh.status().message);
-  auto set = tessera::faces::FaceTextureSet::from_ptex(*file, a.ptx);
-  if (!set) return fail(set.status().message);
+  // ---- tessera, step 1 (pure; ptex_report.h, as engine_ptex_vk): the quad faces of the Ptex
+  // file and their textures ----
+  auto loaded = engine::load_ptex_scene(a);
+  if (!loaded) return fail(loaded.status().message);
+  const tessera::faces::FaceScene& scene = loaded->scene;
+  const tessera::faces::FaceTextureSet& set = loaded->set;
   // ---- end of step 1 ----
 
   // The engine's context, current from here on; tessera's entry points loaded from it.
@@ -285,9 +282,6 @@ int main(int argc, char** argv) {
 
   // The engine's scene data: a camera on an orbit, smooth normals, 4 vertices and 2 triangles
   // per face (tessera's helpers for both, so the CPU check sees the same geometry).
-  tessera::faces::FaceScene scene;
-  scene.name = a.obj;
-  scene.mesh = *mesh;
   tessera::scene::Camera camera = tessera::faces::face_orbit_camera(scene, a.orbit_k, a.orbit_n);
   if (a.fov > 0.0f) camera.fov_y_degrees = a.fov;
   std::vector<Vertex> verts;
@@ -299,7 +293,7 @@ int main(int argc, char** argv) {
   // ---- tessera, step 2: upload once; the binding points are the engine's choice ----
   tessera::gl::FaceTextureSetOptions to;
   to.max_anisotropy = 1.0f;  // trilinear: the filter the CPU check uses
-  auto tex = tessera::gl::FaceTextureSet::upload(*set, to);
+  auto tex = tessera::gl::FaceTextureSet::upload(set, to);
   if (!tex) return fail(tex.status().message);
   tessera::gl::FaceTextureSetBindings bindings;
   bindings.border_unit = 1;  // unit 0 stays free for the engine's own textures
@@ -366,7 +360,7 @@ int main(int argc, char** argv) {
     if (auto s = tessera::io::write_png(a.out, srgb); !s.ok()) return fail(s.message);
   }
 
-  if (int rc = report(a, platform, scene, *set, camera, img, tex->class_count(), gl_ms, window_diff);
+  if (int rc = report(a, platform, scene, set, camera, img, tex->class_count(), gl_ms, window_diff);
       rc != 0)
     return rc;
   glDeleteProgram(program);

@@ -40,7 +40,7 @@
 #include "tessera/io.h"
 #include "tessera/ptex.h"
 #include "tessera/vk_faces.h"
-#include "vertex_shader.h"
+#include "shaders.h"
 
 namespace {
 
@@ -57,23 +57,6 @@ int fail(const std::string& msg) {
 // The engine's vertex (ptex_report.h): 4 per Ptex face, each face with its own UVs.
 using Vertex = engine::FaceVertex;
 
-// tessera's glsl_defines go after #version (glsl::ExpandOptions::preamble).
-const char* kFragmentShader = R"(#version 450
-#include "seams.glsl"
-layout(std140, set = 0, binding = 0) uniform Frame { mat4 view_proj; vec4 light_dir; vec4 shade; };
-layout(location = 0) in vec3 v_normal;
-layout(location = 1) in vec2 v_uv;
-layout(location = 2) flat in int v_face;
-layout(location = 0) out vec4 colour;
-void main() {
-  // Explicit fine gradients: the lookups sit in non-uniform control flow (a class per face).
-  vec2 dx = dFdxFine(v_uv), dy = dFdyFine(v_uv);
-  int face = (v_face + ENGINE_FACE_SHIFT) % ENGINE_FACES;
-  vec4 tex = tessera_seams_sample_discard(face, v_uv, dx, dy, true);
-  float nl = dot(v_normal, light_dir.xyz) / sqrt(dot(v_normal, v_normal) + 1e-20);
-  colour = vec4(tex.rgb * (shade.x + shade.y * max(nl, 0.0)), 1.0);
-}
-)";
 
 // The command line; "" or the problem.
 std::string parse_args(int argc, char** argv, Args& a) {
@@ -114,15 +97,12 @@ int main(int argc, char** argv) {
   Args a;
   if (std::string why = parse_args(argc, argv, a); !why.empty()) return fail(why);
 
-  // ---- tessera, step 1 (pure): the quad faces of the Ptex file and their textures ----
-  auto poly = tessera::faces::load_obj_polygons(a.obj);
-  if (!poly) return fail(poly.status().message);
-  auto file = tessera::ptex::read_ptex(a.ptx);
-  if (!file) return fail(file.status().message);
-  auto mesh = tessera::faces::ptex_quad_mesh(*poly, *file, a.ptx);
-  if (!mesh) return fail(mesh.status().message);
-  auto set = tessera::faces::FaceTextureSet::from_ptex(*file, a.ptx);
-  if (!set) return fail(set.status().message);
+  // ---- tessera, step 1 (pure; ptex_report.h, as engine_ptex): the quad faces of the Ptex
+  // file and their textures ----
+  auto loaded = engine::load_ptex_scene(a);
+  if (!loaded) return fail(loaded.status().message);
+  const tessera::faces::FaceScene& scene = loaded->scene;
+  const tessera::faces::FaceTextureSet& set = loaded->set;
   // ---- end of step 1 ----
 
   engine::Device d;
@@ -130,9 +110,6 @@ int main(int argc, char** argv) {
     d.destroy();
     return fail("no Vulkan device: " + why);
   }
-  tessera::faces::FaceScene scene;
-  scene.name = a.obj;
-  scene.mesh = *mesh;
   const tessera::scene::Camera camera =
       tessera::faces::face_orbit_camera(scene, a.orbit_k, a.orbit_n);
   std::vector<Vertex> verts;
@@ -151,7 +128,7 @@ int main(int argc, char** argv) {
   ctx.enabled_features = d.features;
   tessera::vk::FaceTextureSetOptions to;
   to.max_anisotropy = 1.0f;  // trilinear: the filter the CPU check uses
-  auto tex = tessera::vk::FaceTextureSet::create(ctx, *set, to);
+  auto tex = tessera::vk::FaceTextureSet::create(ctx, set, to);
   if (!tex) {
     d.destroy();
     return fail(tex.status().message);
@@ -162,7 +139,7 @@ int main(int argc, char** argv) {
   so.preamble.push_back("#define ENGINE_FACES " + std::to_string(scene.mesh.face_count()));
   so.preamble.push_back("#define ENGINE_FACE_SHIFT " + std::to_string(a.face_shift));
   auto fragment = tessera::glsl::expand_includes(
-      {tessera::glsl::Stage::fragment, kFragmentShader, "engine_ptex_vk.frag"}, so);
+      {tessera::glsl::Stage::fragment, engine::kFragmentShader, "engine_ptex_vk.frag"}, so);
   frame.extra_layouts = {VK_NULL_HANDLE, (*tex)->set_layout()};
   frame.bind_extra = [&](VkCommandBuffer cmd, VkPipelineLayout layout) {
     return (*tex)->bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, kSet).message;
@@ -197,7 +174,7 @@ int main(int argc, char** argv) {
     }
   }
   // The same frame through tessera's CPU renderer (ptex_report.h).
-  auto agree = engine::cpu_agreement(scene, *set, camera, img);
+  auto agree = engine::cpu_agreement(scene, set, camera, img);
   if (!agree) return fail(agree.status().message);
   if (a.json) {
     std::printf(
