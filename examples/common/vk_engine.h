@@ -22,6 +22,20 @@
 
 namespace engine {
 
+inline constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+/// Whether the instance layer `name` is installed.
+inline bool has_layer(const char* name) {
+  std::uint32_t n = 0;
+  vkEnumerateInstanceLayerProperties(&n, nullptr);
+  std::vector<VkLayerProperties> layers(n);
+  vkEnumerateInstanceLayerProperties(&n, layers.data());
+  for (const VkLayerProperties& l : layers) {
+    if (std::strcmp(l.layerName, name) == 0) return true;
+  }
+  return false;
+}
+
 /// The engine's instance and its validation messenger. Each engine's Device derives from it; it
 /// must stay where it is between create_instance and destroy_instance (the messenger holds its
 /// address).
@@ -35,7 +49,7 @@ class Instance {
   /// Makes the instance (with the layer when `want_validation` and installed); "" or the reason.
   std::string create_instance(const char* app_name, std::uint32_t api_version,
                               bool want_validation) {
-    validation = want_validation && has_layer();
+    validation = want_validation && has_layer(kValidationLayer);
     VkApplicationInfo app{
         VK_STRUCTURE_TYPE_APPLICATION_INFO, nullptr, app_name, 1, nullptr, 0, api_version};
     VkDebugUtilsMessengerCreateInfoEXT mi{};
@@ -55,7 +69,7 @@ class Instance {
     vf.enabledValidationFeatureCount = 1;
     vf.pEnabledValidationFeatures = &sync;
     const char* ext = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
-    const char* layer = kValidation;
+    const char* layer = kValidationLayer;
     VkInstanceCreateInfo ii{};
     ii.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
     ii.pApplicationInfo = &app;
@@ -116,8 +130,6 @@ class Instance {
   }
 
  private:
-  static constexpr const char* kValidation = "VK_LAYER_KHRONOS_validation";
-
   static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT,
                                                    VkDebugUtilsMessageTypeFlagsEXT,
                                                    const VkDebugUtilsMessengerCallbackDataEXT* data,
@@ -127,18 +139,64 @@ class Instance {
     return VK_FALSE;
   }
 
-  static bool has_layer() {
-    std::uint32_t n = 0;
-    vkEnumerateInstanceLayerProperties(&n, nullptr);
-    std::vector<VkLayerProperties> layers(n);
-    vkEnumerateInstanceLayerProperties(&n, layers.data());
-    for (const VkLayerProperties& l : layers) {
-      if (std::strcmp(l.layerName, kValidation) == 0) return true;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+};
+
+/// The engine's device on its instance: the first physical device of at least an API version
+/// with a graphics + compute queue family, one queue of it, the features it enabled. Each
+/// engine's Device derives from it and adds its own resources.
+class DeviceBase : public Instance {
+ public:
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  std::uint32_t family = 0;
+  VkQueue queue = VK_NULL_HANDLE;
+  VkPhysicalDeviceFeatures features{};  // what was enabled
+  std::string name;
+
+ protected:
+  /// The instance (`app_name`, `api_version`, the layer when `want_validation` and installed)
+  /// and the physical device (`props`, `name`); "" or the reason.
+  std::string create_instance_and_pick(const char* app_name, std::uint32_t api_version,
+                                       bool want_validation, VkPhysicalDeviceProperties& props) {
+    const std::string why = create_instance(app_name, api_version, want_validation);
+    if (!why.empty()) return why;
+    if (!pick_device(api_version, physical, family, props)) {
+      return std::string("no Vulkan ") + std::to_string(VK_API_VERSION_MAJOR(api_version)) + "." +
+             std::to_string(VK_API_VERSION_MINOR(api_version)) +
+             " device with a graphics + compute queue";
     }
-    return false;
+    name = props.deviceName;
+    return "";
   }
 
-  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  /// The device with one queue of `family`, `features` and the `next` chain; "" or the reason.
+  std::string create_device(const void* next) {
+    const float prio = 1.0f;
+    VkDeviceQueueCreateInfo qi{
+        VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, nullptr, 0, family, 1, &prio};
+    VkDeviceCreateInfo di{};
+    di.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+    di.pNext = next;
+    di.queueCreateInfoCount = 1;
+    di.pQueueCreateInfos = &qi;
+    di.pEnabledFeatures = &features;
+    if (vkCreateDevice(physical, &di, nullptr, &device) != VK_SUCCESS) {
+      return "vkCreateDevice failed";
+    }
+    vkGetDeviceQueue(device, family, 0, &queue);
+    return "";
+  }
+
+  /// Destroys the device (idle first), then the instance.
+  void destroy_device_and_instance() {
+    if (device) {
+      vkDeviceWaitIdle(device);
+      vkDestroyDevice(device, nullptr);
+      device = VK_NULL_HANDLE;
+    }
+    destroy_instance();
+  }
 };
 
 /// The first memory type of `physical` allowed by `bits` with all of `want` (0 when none).
@@ -372,6 +430,55 @@ struct ForwardObjects {
   VkShaderModule modules[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
   VkPipeline pipeline = VK_NULL_HANDLE;
   VkDescriptorSet frame_set = VK_NULL_HANDLE;
+
+  /// The render pass, subpass 0 drawing into an RGBA32F colour target (stored; `colour_load`,
+  /// from `initial` to `final` layout) and D32 depth (cleared, not stored), after `deps`, and
+  /// its framebuffer of `views` (colour, depth), `width` x `height`.
+  void create_pass(VkDevice dev, VkAttachmentLoadOp colour_load, VkImageLayout initial,
+                   VkImageLayout final, const std::vector<VkSubpassDependency>& deps,
+                   const VkImageView views[2], int width, int height) {
+    VkAttachmentDescription att[2]{};
+    for (int i = 0; i < 2; ++i) {
+      att[i].samples = VK_SAMPLE_COUNT_1_BIT;
+      att[i].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+      att[i].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    }
+    att[0].format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    att[0].loadOp = colour_load;
+    att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    att[0].initialLayout = initial;
+    att[0].finalLayout = final;
+    att[1].format = VK_FORMAT_D32_SFLOAT;
+    att[1].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    att[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    att[1].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    att[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    const VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    const VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription sub{};
+    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    sub.colorAttachmentCount = 1;
+    sub.pColorAttachments = &cref;
+    sub.pDepthStencilAttachment = &dref;
+    VkRenderPassCreateInfo rp{};
+    rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
+    rp.attachmentCount = 2;
+    rp.pAttachments = att;
+    rp.subpassCount = 1;
+    rp.pSubpasses = &sub;
+    rp.dependencyCount = std::uint32_t(deps.size());
+    rp.pDependencies = deps.data();
+    vkCreateRenderPass(dev, &rp, nullptr, &pass);
+    VkFramebufferCreateInfo fb{};
+    fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+    fb.renderPass = pass;
+    fb.attachmentCount = 2;
+    fb.pAttachments = views;
+    fb.width = std::uint32_t(width);
+    fb.height = std::uint32_t(height);
+    fb.layers = 1;
+    vkCreateFramebuffer(dev, &fb, nullptr, &framebuffer);
+  }
 
   /// The set layouts, the pipeline layout of set 0 (the frame block, bound to `ubo`) and then
   /// `extra` (VK_NULL_HANDLE: an empty set), the pool and the frame set.

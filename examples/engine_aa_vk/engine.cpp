@@ -17,13 +17,10 @@ const std::uint32_t kFragSpirv[] = {
 }  // namespace
 
 std::string Device::create(bool want_validation) {
-  const std::string why = create_instance("engine_aa_vk", VK_API_VERSION_1_3, want_validation);
-  if (!why.empty()) return why;
   VkPhysicalDeviceProperties props{};
-  if (!pick_device(VK_API_VERSION_1_3, physical, family, props)) {
-    return "no Vulkan 1.3 device with a graphics + compute queue";
-  }
-  name = props.deviceName;
+  const std::string why =
+      create_instance_and_pick("engine_aa_vk", VK_API_VERSION_1_3, want_validation, props);
+  if (!why.empty()) return why;
   VkPhysicalDeviceFeatures supported{};
   vkGetPhysicalDeviceFeatures(physical, &supported);
   if (!supported.shaderFloat64) return "device " + name + " lacks shaderFloat64";
@@ -33,17 +30,7 @@ std::string Device::create(bool want_validation) {
   f13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
   f13.synchronization2 = VK_TRUE;
   f13.dynamicRendering = VK_TRUE;
-  const float prio = 1.0f;
-  VkDeviceQueueCreateInfo qi{
-      VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, nullptr, 0, family, 1, &prio};
-  VkDeviceCreateInfo di{};
-  di.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
-  di.pNext = &f13;
-  di.queueCreateInfoCount = 1;
-  di.pQueueCreateInfos = &qi;
-  di.pEnabledFeatures = &features;
-  if (vkCreateDevice(physical, &di, nullptr, &device) != VK_SUCCESS) return "vkCreateDevice failed";
-  vkGetDeviceQueue(device, family, 0, &queue);
+  if (std::string no = create_device(&f13); !no.empty()) return no;
   VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr, 0, family};
   vkCreateCommandPool(device, &pi, nullptr, &pool_);
   return "";
@@ -53,10 +40,8 @@ void Device::destroy() {
   if (device) {
     vkDeviceWaitIdle(device);
     vkDestroyCommandPool(device, pool_, nullptr);
-    vkDestroyDevice(device, nullptr);
-    device = VK_NULL_HANDLE;
   }
-  destroy_instance();
+  destroy_device_and_instance();
 }
 
 Buffer Device::buffer(VkDeviceSize bytes, VkBufferUsageFlags usage, bool host) {

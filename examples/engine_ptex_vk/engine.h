@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "vk_engine.h"  // examples/common: instance, validation messenger, device pick
+#include "vk_engine.h"  // examples/common: instance, validation messenger, device
 
 namespace engine {
 
@@ -23,19 +23,14 @@ struct Buffer {
   void* data = nullptr;  // mapped (host-visible, coherent)
 };
 
-class Device : public Instance {
+/// A Vulkan 1.1 device (vk_engine.h's DeviceBase) with no optional feature.
+class Device : public DeviceBase {
  public:
   /// Creates everything; "" on success, else the reason (no device, ...).
   std::string create(bool validation);
-  void destroy();
+  void destroy() { destroy_device_and_instance(); }
 
-  VkPhysicalDevice physical = VK_NULL_HANDLE;
-  VkDevice device = VK_NULL_HANDLE;
-  std::uint32_t family = 0;
-  VkQueue queue = VK_NULL_HANDLE;
-  std::uint32_t api_version = VK_API_VERSION_1_1;
-  VkPhysicalDeviceFeatures features{};  // what was enabled
-  std::string name;
+  std::uint32_t api_version = VK_API_VERSION_1_1;  // the device's, at most 1.3
 
   Buffer buffer(const void* data, VkDeviceSize bytes, VkBufferUsageFlags usage);
   void destroy(Buffer& b);

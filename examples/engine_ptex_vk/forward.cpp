@@ -43,26 +43,7 @@ void create_targets(const Device& d, Objects& o, int w, int h) {
                  aspect[i], &o.images[i], &o.memory[i], &o.views[i]);
   }
   // Both cleared; colour left in TRANSFER_SRC_OPTIMAL for the copy (the dependency below).
-  VkAttachmentDescription att[2]{};
-  for (int i = 0; i < 2; ++i) {
-    att[i].format = formats[i];
-    att[i].samples = VK_SAMPLE_COUNT_1_BIT;
-    att[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    att[i].storeOp = i == 0 ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    att[i].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    att[i].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    att[i].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  }
-  att[0].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-  att[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-  const VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-  const VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-  VkSubpassDescription sub{};
-  sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-  sub.colorAttachmentCount = 1;
-  sub.pColorAttachments = &cref;
-  sub.pDepthStencilAttachment = &dref;
-  VkSubpassDependency deps[2]{};
+  std::vector<VkSubpassDependency> deps(2);
   deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
   deps[0].dstSubpass = 0;
   deps[0].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
@@ -78,24 +59,8 @@ void create_targets(const Device& d, Objects& o, int w, int h) {
   deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
   deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
   deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-  VkRenderPassCreateInfo rp{};
-  rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
-  rp.attachmentCount = 2;
-  rp.pAttachments = att;
-  rp.subpassCount = 1;
-  rp.pSubpasses = &sub;
-  rp.dependencyCount = 2;
-  rp.pDependencies = deps;
-  vkCreateRenderPass(d.device, &rp, nullptr, &o.forward.pass);
-  VkFramebufferCreateInfo fb{};
-  fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
-  fb.renderPass = o.forward.pass;
-  fb.attachmentCount = 2;
-  fb.pAttachments = o.views;
-  fb.width = std::uint32_t(w);
-  fb.height = std::uint32_t(h);
-  fb.layers = 1;
-  vkCreateFramebuffer(d.device, &fb, nullptr, &o.forward.framebuffer);
+  o.forward.create_pass(d.device, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_IMAGE_LAYOUT_UNDEFINED,
+                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, deps, o.views, w, h);
 }
 
 // The pipeline (vk_engine.h's forward pipeline); "" or the problem.

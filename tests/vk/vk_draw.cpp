@@ -65,28 +65,6 @@ void create_targets(const Engine& engine, DrawObjects& o, const EngineImage& col
                        &o.depth, &o.depth_memory, &o.depth_view);
   // The colour target arrives in TRANSFER_DST after its upload (the background) and is kept
   // (LOAD); depth is cleared. Left in COLOR_ATTACHMENT_OPTIMAL for read_back's barrier.
-  VkAttachmentDescription att[2]{};
-  att[0].format = VK_FORMAT_R32G32B32A32_SFLOAT;
-  att[0].samples = VK_SAMPLE_COUNT_1_BIT;
-  att[0].loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-  att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  att[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  att[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  att[0].initialLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-  att[0].finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  att[1] = att[0];
-  att[1].format = VK_FORMAT_D32_SFLOAT;
-  att[1].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  att[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  att[1].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  att[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-  const VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-  const VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-  VkSubpassDescription sub{};
-  sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-  sub.colorAttachmentCount = 1;
-  sub.pColorAttachments = &cref;
-  sub.pDepthStencilAttachment = &dref;
   VkSubpassDependency dep{};
   dep.srcSubpass = VK_SUBPASS_EXTERNAL;
   dep.dstSubpass = 0;
@@ -98,25 +76,9 @@ void create_targets(const Engine& engine, DrawObjects& o, const EngineImage& col
   dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
                       VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
                       VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-  VkRenderPassCreateInfo rp{};
-  rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
-  rp.attachmentCount = 2;
-  rp.pAttachments = att;
-  rp.subpassCount = 1;
-  rp.pSubpasses = &sub;
-  rp.dependencyCount = 1;
-  rp.pDependencies = &dep;
-  vkCreateRenderPass(dev, &rp, nullptr, &o.forward.pass);
   const VkImageView views[2] = {colour.view, o.depth_view};
-  VkFramebufferCreateInfo fb{};
-  fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
-  fb.renderPass = o.forward.pass;
-  fb.attachmentCount = 2;
-  fb.pAttachments = views;
-  fb.width = std::uint32_t(w);
-  fb.height = std::uint32_t(h);
-  fb.layers = 1;
-  vkCreateFramebuffer(dev, &fb, nullptr, &o.forward.framebuffer);
+  o.forward.create_pass(dev, VK_ATTACHMENT_LOAD_OP_LOAD, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, {dep}, views, w, h);
 }
 
 Status create_pipeline(VkDevice dev, DrawObjects& o, const DrawInput& in) {
