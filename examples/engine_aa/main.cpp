@@ -55,21 +55,6 @@ using engine::Vertex;
 
 // ---- small GL helpers (the engine's own) ----------------------------------------------------
 
-GLuint compile(GLenum stage, const char* src) {
-  const GLuint s = glCreateShader(stage);
-  glShaderSource(s, 1, &src, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[1024] = {};
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    std::fprintf(stderr, "engine_aa: geometry shader: %s\n", log);
-    std::exit(1);
-  }
-  return s;
-}
-
 const char* kGeometryVs = R"(#version 450 core
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
@@ -180,10 +165,9 @@ std::string geometry_pass(GBuffer& g, const Camera& cam, int gw, int gh) {
     glVertexArrayAttribFormat(g.vao, i, GLint(sizes[i]), GL_FLOAT, GL_FALSE, offsets[i]);
     glVertexArrayAttribBinding(g.vao, i, 0);
   }
-  g.prog = glCreateProgram();
-  glAttachShader(g.prog, compile(GL_VERTEX_SHADER, kGeometryVs));
-  glAttachShader(g.prog, compile(GL_FRAGMENT_SHADER, kGeometryFs));
-  glLinkProgram(g.prog);
+  std::string log;
+  g.prog = engine::compile_program(kGeometryVs, kGeometryFs, log);  // engine_context.h
+  if (g.prog == 0) return "geometry shader: " + log;
   glFinish();
   auto t0 = std::chrono::steady_clock::now();
   glBindFramebuffer(GL_FRAMEBUFFER, g.fbo);

@@ -117,37 +117,6 @@ void main() {
 }
 )";
 
-// The engine's own shader compilation; 0 with the driver's log in `log` on failure.
-GLuint compile_program(const char* vs, const char* fs, std::string& log) {
-  const GLuint p = glCreateProgram();
-  for (const auto& [stage, src] : {std::pair{GL_VERTEX_SHADER, vs}, {GL_FRAGMENT_SHADER, fs}}) {
-    const GLuint s = glCreateShader(stage);
-    glShaderSource(s, 1, &src, nullptr);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-      char text[4096] = {};
-      glGetShaderInfoLog(s, sizeof text, nullptr, text);
-      log = text;
-      glDeleteShader(s);
-      glDeleteProgram(p);
-      return 0;
-    }
-    glAttachShader(p, s);
-    glDeleteShader(s);
-  }
-  glLinkProgram(p);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    log = "the program does not link";
-    glDeleteProgram(p);
-    return 0;
-  }
-  return p;
-}
-
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -310,7 +279,7 @@ int main(int argc, char** argv) {
       {tessera::glsl::Stage::fragment, kFragmentShader, "engine_ptex.frag"}, so);
   if (!fragment) return fail(fragment.status().message);
   std::string log;
-  const GLuint program = compile_program(kVertexShader, fragment->text.c_str(), log);
+  const GLuint program = engine::compile_program(kVertexShader, fragment->text.c_str(), log);
   if (program == 0) return fail(tessera::glsl::format_log(log, fragment->files));
   // ---- end of step 2 ----
 
