@@ -70,10 +70,7 @@ class GlSeams : public ::testing::Test {
 
   static void SetUpTestSuite() {
     scene_ = new faces::FaceScene(faces::figure1_scene());
-    Result<std::vector<faces::FaceAdjacency>> adj = faces::build_adjacency(scene_->mesh);
-    ASSERT_TRUE(adj.ok());
-    Result<faces::FaceTextureSet> set =
-        faces::FaceTextureSet::create(faces::bake_faces(*scene_), std::move(*adj));
+    Result<faces::FaceTextureSet> set = test::baked_texture_set(*scene_);
     ASSERT_TRUE(set.ok()) << set.status().message;
     set_ = new faces::FaceTextureSet(std::move(*set));
   }

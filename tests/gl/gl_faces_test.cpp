@@ -28,11 +28,7 @@ faces::FaceTextureSet figure1_set() {
   faces::Figure1Options o;
   o.ground = 6;
   o.character = 3;
-  const faces::FaceScene scene = faces::figure1_scene(o);
-  Result<std::vector<faces::FaceAdjacency>> adj = faces::build_adjacency(scene.mesh);
-  EXPECT_TRUE(adj.ok());
-  Result<faces::FaceTextureSet> set =
-      faces::FaceTextureSet::create(faces::bake_faces(scene), std::move(*adj));
+  Result<faces::FaceTextureSet> set = test::baked_texture_set(faces::figure1_scene(o));
   EXPECT_TRUE(set.ok()) << set.status().message;
   return std::move(*set);
 }

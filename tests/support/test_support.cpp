@@ -46,4 +46,10 @@ fs::path artifacts_dir() {
   return p;
 }
 
+Result<faces::FaceTextureSet> baked_texture_set(const faces::FaceScene& scene) {
+  Result<std::vector<faces::FaceAdjacency>> adj = faces::build_adjacency(scene.mesh);
+  if (!adj) return adj.status();
+  return faces::FaceTextureSet::create(faces::bake_faces(scene), std::move(*adj));
+}
+
 }  // namespace tessera::test
