@@ -142,6 +142,24 @@ class Instance {
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
 };
 
+/// The first memory type of `physical` allowed by `bits` with all of `want` (0 when none).
+inline std::uint32_t memory_type(VkPhysicalDevice physical, std::uint32_t bits,
+                                 VkMemoryPropertyFlags want) {
+  VkPhysicalDeviceMemoryProperties mp{};
+  vkGetPhysicalDeviceMemoryProperties(physical, &mp);
+  for (std::uint32_t i = 0; i < mp.memoryTypeCount; ++i) {
+    if ((bits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & want) == want) return i;
+  }
+  return 0;
+}
+
+/// A buffer and its memory; `data` is its mapping when host-visible (coherent).
+struct Buffer {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  void* data = nullptr;
+};
+
 /// The engine's device on its instance: the first physical device of at least an API version
 /// with a graphics + compute queue family, one queue of it, the features it enabled. Each
 /// engine's Device derives from it and adds its own resources.
@@ -153,6 +171,35 @@ class DeviceBase : public Instance {
   VkQueue queue = VK_NULL_HANDLE;
   VkPhysicalDeviceFeatures features{};  // what was enabled
   std::string name;
+
+  /// A buffer of `bytes` for `usage`: host-visible, coherent and mapped when `host`, else
+  /// device-local.
+  Buffer buffer(VkDeviceSize bytes, VkBufferUsageFlags usage, bool host) {
+    Buffer b;
+    VkBufferCreateInfo bi{};
+    bi.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
+    bi.size = bytes;
+    bi.usage = usage;
+    vkCreateBuffer(device, &bi, nullptr, &b.buffer);
+    VkMemoryRequirements req{};
+    vkGetBufferMemoryRequirements(device, b.buffer, &req);
+    const VkMemoryPropertyFlags want =
+        host ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+             : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
+                            memory_type(physical, req.memoryTypeBits, want)};
+    vkAllocateMemory(device, &ai, nullptr, &b.memory);
+    vkBindBufferMemory(device, b.buffer, b.memory, 0);
+    if (host) vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.data);
+    return b;
+  }
+
+  void destroy(Buffer& b) {
+    if (b.data) vkUnmapMemory(device, b.memory);
+    vkDestroyBuffer(device, b.buffer, nullptr);
+    vkFreeMemory(device, b.memory, nullptr);
+    b = Buffer{};
+  }
 
  protected:
   /// The instance (`app_name`, `api_version`, the layer when `want_validation` and installed)
@@ -198,17 +245,6 @@ class DeviceBase : public Instance {
     destroy_instance();
   }
 };
-
-/// The first memory type of `physical` allowed by `bits` with all of `want` (0 when none).
-inline std::uint32_t memory_type(VkPhysicalDevice physical, std::uint32_t bits,
-                                 VkMemoryPropertyFlags want) {
-  VkPhysicalDeviceMemoryProperties mp{};
-  vkGetPhysicalDeviceMemoryProperties(physical, &mp);
-  for (std::uint32_t i = 0; i < mp.memoryTypeCount; ++i) {
-    if ((bits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & want) == want) return i;
-  }
-  return 0;
-}
 
 /// A 2D image of one mip level and layer in device-local memory, and its view of `aspect`.
 inline void create_image(VkDevice dev, VkPhysicalDevice physical, VkFormat format, std::uint32_t w,

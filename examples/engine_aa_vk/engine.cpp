@@ -44,26 +44,6 @@ void Device::destroy() {
   destroy_device_and_instance();
 }
 
-Buffer Device::buffer(VkDeviceSize bytes, VkBufferUsageFlags usage, bool host) {
-  Buffer b;
-  VkBufferCreateInfo bi{};
-  bi.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
-  bi.size = bytes;
-  bi.usage = usage;
-  vkCreateBuffer(device, &bi, nullptr, &b.buffer);
-  VkMemoryRequirements req{};
-  vkGetBufferMemoryRequirements(device, b.buffer, &req);
-  const VkMemoryPropertyFlags want =
-      host ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-           : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
-                          memory_type(physical, req.memoryTypeBits, want)};
-  vkAllocateMemory(device, &ai, nullptr, &b.memory);
-  vkBindBufferMemory(device, b.buffer, b.memory, 0);
-  if (host) vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.data);
-  return b;
-}
-
 Image Device::image(VkFormat format, std::uint32_t w, std::uint32_t h, VkImageUsageFlags usage,
                     VkImageAspectFlags aspect) {
   Image img;
@@ -73,13 +53,6 @@ Image Device::image(VkFormat format, std::uint32_t w, std::uint32_t h, VkImageUs
   img.h = h;
   create_image(device, physical, format, w, h, usage, aspect, &img.image, &img.memory, &img.view);
   return img;
-}
-
-void Device::destroy(Buffer& b) {
-  if (b.data) vkUnmapMemory(device, b.memory);
-  vkDestroyBuffer(device, b.buffer, nullptr);
-  vkFreeMemory(device, b.memory, nullptr);
-  b = Buffer{};
 }
 
 void Device::destroy(Image& i) {

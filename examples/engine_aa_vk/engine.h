@@ -14,11 +14,6 @@
 
 namespace engine {
 
-struct Buffer {
-  VkBuffer buffer = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  void* data = nullptr;  // mapped when host-visible
-};
 struct Image {
   VkImage image = VK_NULL_HANDLE;
   VkDeviceMemory memory = VK_NULL_HANDLE;
@@ -36,10 +31,9 @@ class Device : public DeviceBase {
   std::string create(bool validation);
   void destroy();
 
-  Buffer buffer(VkDeviceSize bytes, VkBufferUsageFlags usage, bool host);
+  using DeviceBase::destroy;  // buffers (vk_engine.h)
   Image image(VkFormat format, std::uint32_t w, std::uint32_t h, VkImageUsageFlags usage,
               VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT);
-  void destroy(Buffer& b);
   void destroy(Image& i);
   VkCommandBuffer begin();
   void submit_and_wait(VkCommandBuffer cmd);

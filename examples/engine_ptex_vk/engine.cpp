@@ -17,32 +17,6 @@ std::string Device::create(bool want_validation) {
   return create_device(nullptr);
 }
 
-Buffer Device::buffer(const void* data, VkDeviceSize bytes, VkBufferUsageFlags usage) {
-  Buffer b;
-  VkBufferCreateInfo bi{};
-  bi.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
-  bi.size = bytes;
-  bi.usage = usage;
-  vkCreateBuffer(device, &bi, nullptr, &b.buffer);
-  VkMemoryRequirements req{};
-  vkGetBufferMemoryRequirements(device, b.buffer, &req);
-  VkMemoryAllocateInfo ai{
-      VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
-      memory_type(physical, req.memoryTypeBits,
-                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)};
-  vkAllocateMemory(device, &ai, nullptr, &b.memory);
-  vkBindBufferMemory(device, b.buffer, b.memory, 0);
-  vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.data);
-  if (data != nullptr) std::memcpy(b.data, data, bytes);
-  return b;
-}
-
-void Device::destroy(Buffer& b) {
-  vkDestroyBuffer(device, b.buffer, nullptr);
-  vkFreeMemory(device, b.memory, nullptr);
-  b = Buffer{};
-}
-
 std::vector<std::uint32_t> compile(const std::string& glsl, bool vertex, const std::string& name,
                                    std::string& log) {
   shaderc_compiler_t compiler = shaderc_compiler_initialize();
