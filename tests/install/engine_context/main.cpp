@@ -252,11 +252,8 @@ std::array<GLuint, 2> make_gbuffer(bool shift) {
   return tex;
 }
 
-void run_adaptive(Images& out, EngineState& engine, bool shift) {
-  engine.unbind_for_own_work();
-  const std::array<GLuint, 2> gbuffer = make_gbuffer(shift);
-  engine.rebind();
-  const Snapshot before = snapshot();
+// The component's options on the program's G-buffer (its layout, its hook).
+tessera::gl::AdaptiveSupersamplerOptions adaptive_options() {
   tessera::gl::AdaptiveSupersamplerOptions o;
   o.width = kW;
   o.height = kH;
@@ -265,6 +262,15 @@ void run_adaptive(Images& out, EngineState& engine, bool shift) {
   o.layout.depth = {0, "a"};
   o.layout.id = {1, "r"};
   o.hook = {kHook, "engine_hook.glsl", {}};
+  return o;
+}
+
+void run_adaptive(Images& out, EngineState& engine, bool shift) {
+  engine.unbind_for_own_work();
+  const std::array<GLuint, 2> gbuffer = make_gbuffer(shift);
+  engine.rebind();
+  const Snapshot before = snapshot();
+  tessera::gl::AdaptiveSupersamplerOptions o = adaptive_options();
   o.output = tessera::AdaptiveOutputFormat::rgba32f;
   auto aa = tessera::gl::AdaptiveSupersampler::create(o);
   if (!aa) die(1, aa.status().message);
@@ -446,14 +452,7 @@ std::string json_images(const Images& i) {
 // Calls with no context current: each must fail with one line.
 std::string no_context_errors() {
   std::string all;
-  tessera::gl::AdaptiveSupersamplerOptions o;
-  o.width = kW;
-  o.height = kH;
-  o.m = kM;
-  o.layout.normal = {0, "rgb"};
-  o.layout.depth = {0, "a"};
-  o.layout.id = {1, "r"};
-  o.hook = {kHook, "engine_hook.glsl", {}};
+  tessera::gl::AdaptiveSupersamplerOptions o = adaptive_options();
   auto aa = tessera::gl::AdaptiveSupersampler::create(o);
   all += aa ? std::string("created without a context") : aa.status().message;
   auto tex = tessera::gl::FaceTextureSet::upload(make_faces());
