@@ -4,7 +4,8 @@
 // --shift-px, --json, -o), the engine's vertex (4 a Ptex face: its corners are not shared, each
 // face has its own UVs) and per-frame block (view-projection, light), and the comparison with
 // tessera's CPU renderer (faces::FaceRenderer: Discard, trilinear, same camera, resolution and
-// lighting). Header-only, like engine_context.h.
+// lighting; tests/gl/gl_face_renderer_test.cpp measures its frames the same way). Header-only,
+// like engine_context.h.
 #pragma once
 
 #include <algorithm>
@@ -149,6 +150,31 @@ struct Agreement {
   int non_finite = 0;
 };
 
+/// How far `img` is from `reference` (the Agreement's measures but the CPU time).
+inline tessera::Result<Agreement> image_agreement(const tessera::ImageRGBAF& img,
+                                                  const tessera::ImageRGBAF& reference) {
+  tessera::metrics::CompareOptions co;
+  co.compute_ssim = false;
+  auto c =
+      tessera::metrics::compare_images(tessera::to_srgb8(img), tessera::to_srgb8(reference), co);
+  if (!c) return c.status();
+  auto norms = tessera::metrics::error_norms(img, reference);
+  if (!norms) return norms.status();
+  Agreement r;
+  r.psnr = c->psnr_rgb;
+  int over = 0;
+  for (float e : *norms) {
+    if (!std::isfinite(e)) {
+      ++r.non_finite;
+      continue;
+    }
+    over += e >= 0.01f;
+    r.max_norm = std::max(r.max_norm, double(e));
+  }
+  r.frac_001 = double(over) / double(norms->size());
+  return r;
+}
+
 /// Renders the frame of `camera` at `img`'s size with tessera's CPU renderer (Discard,
 /// trilinear, the Clamp fallback) and compares `img` with it.
 inline tessera::Result<Agreement> cpu_agreement(const tessera::faces::FaceScene& scene,
@@ -165,26 +191,8 @@ inline tessera::Result<Agreement> cpu_agreement(const tessera::faces::FaceScene&
   o.sampling.clamp_fallback = true;
   auto frame = (*cpu)->render(camera, o);
   if (!frame) return frame.status();
-  tessera::metrics::CompareOptions co;
-  co.compute_ssim = false;
-  auto c =
-      tessera::metrics::compare_images(tessera::to_srgb8(img), tessera::to_srgb8(frame->image), co);
-  if (!c) return c.status();
-  auto norms = tessera::metrics::error_norms(img, frame->image);
-  if (!norms) return norms.status();
-  Agreement r;
-  r.psnr = c->psnr_rgb;
-  r.cpu_ms = frame->ms();
-  int over = 0;
-  for (float e : *norms) {
-    if (!std::isfinite(e)) {
-      ++r.non_finite;
-      continue;
-    }
-    over += e >= 0.01f;
-    r.max_norm = std::max(r.max_norm, double(e));
-  }
-  r.frac_001 = double(over) / double(norms->size());
+  auto r = image_agreement(img, frame->image);
+  if (r) r->cpu_ms = frame->ms();
   return r;
 }
 

@@ -19,14 +19,10 @@
 // Built in the repository (tests/gl, CTest gl_engine_context*) and outside it against the
 // installed package (tests/install/install_test.sh). Exit 0 with the JSON; 1 with one line on
 // failure; 3 when no context of the kind can be made (no EGL device, no display).
-#define GL_GLEXT_PROTOTYPES 1
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
-#include <GL/glcorearb.h>
-#if ENGINE_HAVE_GLFW
-#define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>
-#endif
+// The GL, EGL and GLFW headers as the example engines include them, and their shader
+// compilation (examples/common/engine_context.h; its Platform is not used: this program makes
+// its contexts itself, in more ways).
+#include "engine_context.h"
 
 #include <array>
 #include <cmath>
@@ -44,10 +40,6 @@
 #include "tessera/gl_adaptive.h"
 #include "tessera/gl_faces.h"
 #include "tessera/glsl.h"
-
-#ifndef EGL_PLATFORM_SURFACELESS_MESA
-#define EGL_PLATFORM_SURFACELESS_MESA 0x31DD
-#endif
 
 namespace {
 
@@ -337,25 +329,9 @@ void main() {
 })";
 
 GLuint compile_program(const char* vs, const char* fs) {
-  const GLuint p = glCreateProgram();
-  for (const auto& [stage, src] : {std::pair{GL_VERTEX_SHADER, vs}, {GL_FRAGMENT_SHADER, fs}}) {
-    const GLuint sh = glCreateShader(stage);
-    glShaderSource(sh, 1, &src, nullptr);
-    glCompileShader(sh);
-    GLint ok = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-      char log[2048] = {};
-      glGetShaderInfoLog(sh, sizeof log, nullptr, log);
-      die(1, std::string("engine shader: ") + log);
-    }
-    glAttachShader(p, sh);
-    glDeleteShader(sh);
-  }
-  glLinkProgram(p);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (!ok) die(1, "engine program does not link");
+  std::string log;
+  const GLuint p = engine::compile_program(vs, fs, log);
+  if (p == 0) die(1, "engine shader: " + log);
   return p;
 }
 
