@@ -24,10 +24,7 @@ using namespace tessera::gl;
 using namespace tessera::gl::api;  // NOLINT(google-build-using-namespace)
 
 faces::FaceTextureSet small_set() {
-  faces::Figure1Options o;
-  o.ground = 4;
-  o.character = 2;
-  Result<faces::FaceTextureSet> set = test::baked_texture_set(faces::figure1_scene(o));
+  Result<faces::FaceTextureSet> set = test::figure1_texture_set(4, 2);
   EXPECT_TRUE(set.ok()) << set.status().message;
   return std::move(*set);
 }

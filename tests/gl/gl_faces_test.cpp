@@ -25,10 +25,7 @@ using namespace tessera::gl;
 using namespace tessera::gl::api;  // NOLINT(google-build-using-namespace)
 
 faces::FaceTextureSet figure1_set() {
-  faces::Figure1Options o;
-  o.ground = 6;
-  o.character = 3;
-  Result<faces::FaceTextureSet> set = test::baked_texture_set(faces::figure1_scene(o));
+  Result<faces::FaceTextureSet> set = test::figure1_texture_set(6, 3);
   EXPECT_TRUE(set.ok()) << set.status().message;
   return std::move(*set);
 }

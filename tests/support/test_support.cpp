@@ -52,4 +52,11 @@ Result<faces::FaceTextureSet> baked_texture_set(const faces::FaceScene& scene) {
   return faces::FaceTextureSet::create(faces::bake_faces(scene), std::move(*adj));
 }
 
+Result<faces::FaceTextureSet> figure1_texture_set(int ground, int character) {
+  faces::Figure1Options o;
+  o.ground = ground;
+  o.character = character;
+  return baked_texture_set(faces::figure1_scene(o));
+}
+
 }  // namespace tessera::test

@@ -26,6 +26,9 @@ std::filesystem::path artifacts_dir();
 /// The per-face texture set of `scene`: its faces baked (faces::bake_faces) with their
 /// adjacency; the status says which step failed.
 Result<faces::FaceTextureSet> baked_texture_set(const faces::FaceScene& scene);
+/// The baked texture set of faces::figure1_scene with a `ground` x `ground` ground plane and a
+/// 6 x `character` x `character` character (the GL tests' small scenes).
+Result<faces::FaceTextureSet> figure1_texture_set(int ground, int character);
 
 /// A w x h 8-bit image of one colour.
 inline ImageRGBA8 solid_rgba8(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b,
