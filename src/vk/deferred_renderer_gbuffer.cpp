@@ -1,0 +1,283 @@
+// vk::DeferredRenderer (deferred_renderer.h): the geometry pass — deferred_gbuffer.vert/.frag
+// compiled with VULKAN into a graphics pipeline, the G-buffer images and framebuffer, and the
+// timed draw of the scene with the CPU's clip positions (z remapped to Vulkan's [0, w]).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "tessera/glsl.h"
+#include "vk/deferred_renderer.h"
+#include "vk/shader.h"
+
+namespace tessera::vk {
+
+namespace {
+
+using State = DeferredRenderer::State;
+
+constexpr const char* kWho = "deferred VK";
+
+Result<ShaderModule> stage_module(const Api& api, glsl::Stage stage, const char* file) {
+  Result<glsl::Source> src = glsl::shipped_shader(stage, file);
+  if (!src) return src.status();
+  Result<glsl::Expanded> text = glsl::expand_includes(*src);
+  if (!text) return text.status();
+  Result<std::vector<std::uint32_t>> spirv = compile_graphics_spirv(text->text, stage);
+  if (!spirv) {
+    return Status::error(spirv.status().code,
+                         std::string(kWho) + ": " +
+                             glsl::format_log(spirv.status().message, text->files));
+  }
+  VkShaderModuleCreateInfo mi{};
+  mi.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+  mi.codeSize = spirv->size() * 4;
+  mi.pCode = spirv->data();
+  VkShaderModule raw = VK_NULL_HANDLE;
+  if (VkResult r = api.CreateShaderModule(api.device(), &mi, api.alloc(), &raw); r != VK_SUCCESS) {
+    return vk_error(std::string(kWho) + ": vkCreateShaderModule", r);
+  }
+  return ShaderModule(api, raw);
+}
+
+/// Vertex input: binding 0 = clip xyzw + linear depth (per frame), binding 1 = normal + uv.
+struct VertexInput {
+  std::array<VkVertexInputBindingDescription, 2> bindings{{{0, 20, VK_VERTEX_INPUT_RATE_VERTEX},
+                                                           {1, 20, VK_VERTEX_INPUT_RATE_VERTEX}}};
+  std::array<VkVertexInputAttributeDescription, 4> attributes{
+      {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
+       {1, 0, VK_FORMAT_R32_SFLOAT, 16},
+       {2, 1, VK_FORMAT_R32G32B32_SFLOAT, 0},
+       {3, 1, VK_FORMAT_R32G32_SFLOAT, 12}}};
+  VkPipelineVertexInputStateCreateInfo info() const {
+    VkPipelineVertexInputStateCreateInfo v{};
+    v.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
+    v.vertexBindingDescriptionCount = std::uint32_t(bindings.size());
+    v.pVertexBindingDescriptions = bindings.data();
+    v.vertexAttributeDescriptionCount = std::uint32_t(attributes.size());
+    v.pVertexAttributeDescriptions = attributes.data();
+    return v;
+  }
+};
+
+Status create_pipeline_layout(State& st) {
+  const Api& api = *st.api;
+  const VkPushConstantRange push{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4};  // TesseraGbufferPush
+  VkPipelineLayoutCreateInfo li{};
+  li.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+  li.pushConstantRangeCount = 1;
+  li.pPushConstantRanges = &push;
+  VkPipelineLayout raw = VK_NULL_HANDLE;
+  if (VkResult r = api.CreatePipelineLayout(api.device(), &li, api.alloc(), &raw);
+      r != VK_SUCCESS) {
+    return vk_error(std::string(kWho) + ": vkCreatePipelineLayout", r);
+  }
+  st.gbuffer_layout = PipelineLayout(api, raw);
+  return Status::success();
+}
+
+}  // namespace
+
+Status create_gbuffer_pipeline(State& st) {
+  const Api& api = *st.api;
+  if (Status s = create_pipeline_layout(st); !s.ok()) return s;
+  Result<ShaderModule> vs = stage_module(api, glsl::Stage::vertex, "deferred_gbuffer.vert");
+  if (!vs) return vs.status();
+  Result<ShaderModule> fs = stage_module(api, glsl::Stage::fragment, "deferred_gbuffer.frag");
+  if (!fs) return fs.status();
+  std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
+  for (std::size_t i = 0; i < 2; ++i) {
+    stages[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    stages[i].stage = i == 0 ? VK_SHADER_STAGE_VERTEX_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[i].module = i == 0 ? vs->get() : fs->get();
+    stages[i].pName = "main";
+  }
+  const VertexInput input;
+  const VkPipelineVertexInputStateCreateInfo vertex = input.info();
+  VkPipelineInputAssemblyStateCreateInfo ia{};
+  ia.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
+  ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo vp{};
+  vp.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
+  vp.viewportCount = 1;
+  vp.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo rs{};
+  rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
+  rs.polygonMode = VK_POLYGON_MODE_FILL;
+  rs.cullMode = VK_CULL_MODE_NONE;  // the CPU draws both sides
+  rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  rs.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo ms{};
+  ms.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
+  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo ds{};
+  ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
+  ds.depthTestEnable = VK_TRUE;
+  ds.depthWriteEnable = VK_TRUE;
+  ds.depthCompareOp = VK_COMPARE_OP_LESS;
+  std::array<VkPipelineColorBlendAttachmentState, 3> blend{};
+  for (VkPipelineColorBlendAttachmentState& b : blend) {
+    b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                       VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  }
+  VkPipelineColorBlendStateCreateInfo cb{};
+  cb.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
+  cb.attachmentCount = std::uint32_t(blend.size());
+  cb.pAttachments = blend.data();
+  const VkDynamicState dyn[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dy{};
+  dy.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
+  dy.dynamicStateCount = 2;
+  dy.pDynamicStates = dyn;
+  VkGraphicsPipelineCreateInfo pi{};
+  pi.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
+  pi.stageCount = std::uint32_t(stages.size());
+  pi.pStages = stages.data();
+  pi.pVertexInputState = &vertex;
+  pi.pInputAssemblyState = &ia;
+  pi.pViewportState = &vp;
+  pi.pRasterizationState = &rs;
+  pi.pMultisampleState = &ms;
+  pi.pDepthStencilState = &ds;
+  pi.pColorBlendState = &cb;
+  pi.pDynamicState = &dy;
+  pi.layout = st.gbuffer_layout.get();
+  pi.renderPass = st.render_pass.get();
+  VkPipeline raw = VK_NULL_HANDLE;
+  if (VkResult r =
+          api.CreateGraphicsPipelines(api.device(), VK_NULL_HANDLE, 1, &pi, api.alloc(), &raw);
+      r != VK_SUCCESS) {
+    return vk_error(std::string(kWho) + ": vkCreateGraphicsPipelines", r);
+  }
+  st.gbuffer_pipeline = Pipeline(api, raw);
+  return Status::success();
+}
+
+namespace {
+
+/// The G-buffer images and framebuffer for (m*w) x (m*h); the old ones are released first.
+Status allocate_gbuffer(State& st, int width, int height, int m) {
+  const Api& api = *st.api;
+  st.framebuffer.reset();
+  st.component.reset();  // it may hold descriptor sets naming the old views
+  const VkExtent2D extent{std::uint32_t(width * m), std::uint32_t(height * m)};
+  for (Image& img : st.g) {
+    Result<Image> i = Image::create(api, VK_FORMAT_R32G32B32A32_SFLOAT, extent,
+                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
+                                        VK_IMAGE_USAGE_SAMPLED_BIT,
+                                    std::string(kWho) + ": G-buffer");
+    if (!i) return i.status();
+    img = std::move(*i);
+  }
+  Result<Image> d = Image::create(api, VK_FORMAT_D32_SFLOAT, extent,
+                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                  std::string(kWho) + ": G-buffer depth");
+  if (!d) return d.status();
+  st.depth = std::move(*d);
+  const VkImageView views[4] = {st.g[0].view(), st.g[1].view(), st.g[2].view(), st.depth.view()};
+  VkFramebufferCreateInfo fi{};
+  fi.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+  fi.renderPass = st.render_pass.get();
+  fi.attachmentCount = 4;
+  fi.pAttachments = views;
+  fi.width = extent.width;
+  fi.height = extent.height;
+  fi.layers = 1;
+  VkFramebuffer raw = VK_NULL_HANDLE;
+  if (VkResult r = api.CreateFramebuffer(api.device(), &fi, api.alloc(), &raw); r != VK_SUCCESS) {
+    return vk_error(std::string(kWho) + ": vkCreateFramebuffer", r);
+  }
+  st.framebuffer = Framebuffer(api, raw);
+  st.g_layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  st.set_written = false;  // the set names the G-buffer views
+  st.w = width;
+  st.h = height;
+  st.m = m;
+  return Status::success();
+}
+
+/// Camera data and vertices exactly as DeferredRenderer::render_gbuffer; clip z from OpenGL's
+/// [-w, w] to Vulkan's [0, w].
+void write_vertices(State& st, const scene::Camera& camera, int width, int height) {
+  const deferred::GBufferCamera cam = deferred::gbuffer_camera(camera, width, height);
+  st.camera = deferred::gpu_camera(cam, camera.far_z);
+  for (std::size_t mi = 0; mi < st.scene->meshes.size(); ++mi) {
+    const scene::Mesh& mesh = st.scene->meshes[mi];
+    st.scratch.resize(mesh.positions.size() * 5);
+    deferred::transform_gbuffer_vertices(cam, mesh.positions, st.scratch.data(), 5,
+                                         st.scratch.data() + 4, 5, {});
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+      float* v = &st.scratch[i * 5];
+      v[2] = 0.5f * (v[2] + v[3]);
+    }
+    if (st.scratch.empty()) continue;
+    std::memcpy(st.meshes[mi].dynamic.mapped(), st.scratch.data(), st.scratch.size() * 4);
+    st.meshes[mi].dynamic.flush();
+  }
+}
+
+void record_draws(State& st, VkCommandBuffer cmd, float far_z) {
+  const Api& api = *st.api;
+  const std::uint32_t gw = std::uint32_t(st.w * st.m), gh = std::uint32_t(st.h * st.m);
+  std::array<VkClearValue, 4> clear{};
+  clear[0].color = {{far_z, 0, 0, 0}};
+  clear[1].color = {{-1, 0, 0, 0}};
+  clear[2].color = {{0, 0, 0, 0}};
+  clear[3].depthStencil = {1.0f, 0};
+  VkRenderPassBeginInfo bi{};
+  bi.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+  bi.renderPass = st.render_pass.get();
+  bi.framebuffer = st.framebuffer.get();
+  bi.renderArea = {{0, 0}, {gw, gh}};
+  bi.clearValueCount = std::uint32_t(clear.size());
+  bi.pClearValues = clear.data();
+  api.CmdBeginRenderPass(cmd, &bi, VK_SUBPASS_CONTENTS_INLINE);
+  const VkViewport viewport{0, 0, float(gw), float(gh), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, {gw, gh}};
+  api.CmdSetViewport(cmd, 0, 1, &viewport);
+  api.CmdSetScissor(cmd, 0, 1, &scissor);
+  api.CmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, st.gbuffer_pipeline.get());
+  for (const DeferredMesh& g : st.meshes) {
+    if (g.index_count == 0) continue;
+    const std::int32_t material = g.material;
+    api.CmdPushConstants(cmd, st.gbuffer_layout.get(), VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4,
+                         &material);
+    const VkBuffer buffers[2] = {g.dynamic.get(), g.statics.get()};
+    const VkDeviceSize offsets[2] = {0, 0};
+    api.CmdBindVertexBuffers(cmd, 0, 2, buffers, offsets);
+    api.CmdBindIndexBuffer(cmd, g.indices.get(), 0, VK_INDEX_TYPE_UINT32);
+    api.CmdDrawIndexed(cmd, std::uint32_t(g.index_count), 1, 0, 0, 0);
+  }
+  api.CmdEndRenderPass(cmd);
+}
+
+}  // namespace
+
+Result<experiments::AaPassTime> DeferredRenderer::render_gbuffer(const scene::Camera& camera,
+                                                                 int width, int height, int m) {
+  if (Status s = check_size(width, height, m); !s.ok()) return s;
+  State& st = *state_;
+  if (st.w != width || st.h != height || st.m != m || st.framebuffer.get() == VK_NULL_HANDLE) {
+    if (Status s = allocate_gbuffer(st, width, height, m); !s.ok()) {
+      st.framebuffer.reset();
+      st.w = st.h = st.m = 0;
+      return s;
+    }
+  }
+  write_vertices(st, camera, width, height);
+  Result<VkCommandBuffer> cmd = st.device->begin();
+  if (!cmd) return cmd.status();
+  const Api& api = *st.api;
+  record_full_barrier(api, *cmd);
+  record_timestamp(st, *cmd, 0);
+  record_draws(st, *cmd, camera.far_z);
+  record_timestamp(st, *cmd, 1);
+  const auto wall0 = std::chrono::steady_clock::now();
+  if (Status s = st.device->submit_and_wait(*cmd); !s.ok()) return s;
+  const double wall =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0).count();
+  st.g_layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  return experiments::AaPassTime{"gbuffer", wall, timestamp_ms(st)};
+}
+
+}  // namespace tessera::vk

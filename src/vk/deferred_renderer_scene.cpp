@@ -1,0 +1,344 @@
+// vk::DeferredRenderer (deferred_renderer.h): the scene upload (the CPU's texture chains as
+// RGBA32F arrays, materials, meshes), the geometry pass's render pass and pipeline
+// (deferred_gbuffer.vert/.frag with VULKAN), the size check and the geometry pass.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "tessera/glsl.h"
+#include "tessera/render.h"
+#include "vk/deferred_renderer.h"
+
+namespace tessera::vk {
+
+namespace {
+
+using State = DeferredRenderer::State;
+
+constexpr const char* kWho = "deferred VK";
+constexpr VkFormat kGFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+
+/// An image barrier over every level and layer of a colour image (Vulkan 1.0 form).
+void whole_image_barrier(const Api& api, VkCommandBuffer cmd, VkImage image, std::uint32_t levels,
+                         std::uint32_t layers, VkImageLayout from, VkImageLayout to,
+                         VkPipelineStageFlags src_stage, VkAccessFlags src_access,
+                         VkPipelineStageFlags dst_stage, VkAccessFlags dst_access) {
+  VkImageMemoryBarrier b{};
+  b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+  b.srcAccessMask = src_access;
+  b.dstAccessMask = dst_access;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image;
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, levels, 0, layers};
+  api.CmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+/// The texel data of one class: every layer's levels, tightly packed, with their copy regions.
+struct ClassUpload {
+  std::vector<float> texels;
+  std::vector<VkBufferImageCopy> regions;
+};
+
+ClassUpload pack_class(const deferred::GpuTextureClasses::Class& c,
+                       const std::vector<texture::Texture>& textures) {
+  ClassUpload u;
+  for (std::size_t layer = 0; layer < c.textures.size(); ++layer) {
+    const texture::Texture& tex = textures[std::size_t(c.textures[layer])];
+    for (int l = 0; l < c.levels; ++l) {
+      const texture::TextureLevelView v = tex.level(0, l);
+      VkBufferImageCopy r{};
+      r.bufferOffset = u.texels.size() * sizeof(float);
+      r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, std::uint32_t(l), std::uint32_t(layer), 1};
+      r.imageExtent = {std::uint32_t(v.width), std::uint32_t(v.height), 1};
+      u.regions.push_back(r);
+      u.texels.insert(u.texels.end(), v.texels,
+                      v.texels + std::size_t(v.width) * std::size_t(v.height) * 4);
+    }
+  }
+  return u;
+}
+
+/// Creates one class's array image and view and uploads it (a submission of its own).
+Status upload_class(State& st, const deferred::GpuTextureClasses::Class& c,
+                    const ClassUpload& u) {
+  const Api& api = *st.api;
+  TextureArray arr;
+  VkImageCreateInfo ci{};
+  ci.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
+  ci.imageType = VK_IMAGE_TYPE_2D;
+  ci.format = kGFormat;
+  ci.extent = {std::uint32_t(c.width), std::uint32_t(c.height), 1};
+  ci.mipLevels = std::uint32_t(c.levels);
+  ci.arrayLayers = std::uint32_t(c.textures.size());
+  ci.samples = VK_SAMPLE_COUNT_1_BIT;
+  ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+  ci.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkImage image = VK_NULL_HANDLE;
+  if (VkResult r = api.CreateImage(api.device(), &ci, api.alloc(), &image); r != VK_SUCCESS) {
+    return vk_error(std::string(kWho) + ": texture array: vkCreateImage", r);
+  }
+  arr.image = RawImage(api, image);
+  VkMemoryRequirements req{};
+  api.GetImageMemoryRequirements(api.device(), image, &req);
+  bool local = false;
+  Result<VkDeviceMemory> mem = allocate(api, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0,
+                                        std::string(kWho) + ": texture array", &local);
+  if (!mem) return mem.status();
+  arr.memory = Memory(api, *mem);
+  if (VkResult r = api.BindImageMemory(api.device(), image, *mem, 0); r != VK_SUCCESS) {
+    return vk_error(std::string(kWho) + ": texture array: vkBindImageMemory", r);
+  }
+  VkImageViewCreateInfo vi{};
+  vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+  vi.image = image;
+  vi.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+  vi.format = kGFormat;
+  vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, ci.mipLevels, 0, ci.arrayLayers};
+  VkImageView view = VK_NULL_HANDLE;
+  if (VkResult r = api.CreateImageView(api.device(), &vi, api.alloc(), &view); r != VK_SUCCESS) {
+    return vk_error(std::string(kWho) + ": texture array: vkCreateImageView", r);
+  }
+  arr.view = ImageView(api, view);
+
+  Result<Buffer> staging = Buffer::create(api, u.texels.size() * sizeof(float),
+                                          VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true,
+                                          std::string(kWho) + ": texture staging");
+  if (!staging) return staging.status();
+  std::memcpy(staging->mapped(), u.texels.data(), u.texels.size() * sizeof(float));
+  staging->flush();
+  Result<VkCommandBuffer> cmd = st.device->begin();
+  if (!cmd) return cmd.status();
+  whole_image_barrier(api, *cmd, image, ci.mipLevels, ci.arrayLayers, VK_IMAGE_LAYOUT_UNDEFINED,
+                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+  api.CmdCopyBufferToImage(*cmd, staging->get(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           std::uint32_t(u.regions.size()), u.regions.data());
+  whole_image_barrier(api, *cmd, image, ci.mipLevels, ci.arrayLayers,
+                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_SHADER_READ_BIT);
+  if (Status s = st.device->submit_and_wait(*cmd); !s.ok()) return s;
+  st.arrays.push_back(std::move(arr));
+  return Status::success();
+}
+
+/// The texture classes (a 1x1 white dummy without any, so that the array binding is complete)
+/// and the material buffer.
+Status upload_textures(State& st) {
+  Result<deferred::GpuTextureClasses> classes =
+      deferred::gpu_texture_classes(st.scene->materials, st.cpu_textures, kWho);
+  if (!classes) return classes.status();
+  for (const deferred::GpuTextureClasses::Class& c : classes->classes) {
+    if (Status s = upload_class(st, c, pack_class(c, st.cpu_textures)); !s.ok()) return s;
+  }
+  if (st.arrays.empty()) {
+    ClassUpload dummy;
+    dummy.texels = {1, 1, 1, 1};
+    VkBufferImageCopy r{};
+    r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    r.imageExtent = {1, 1, 1};
+    dummy.regions.push_back(r);
+    if (Status s = upload_class(st, {1, 1, 1, {-1}}, dummy); !s.ok()) return s;
+  }
+  const std::vector<deferred::GpuMaterial> mats =
+      deferred::gpu_materials(st.scene->materials, st.cpu_textures, *classes);
+  Result<Buffer> b = Buffer::create(*st.api, mats.size() * sizeof(deferred::GpuMaterial),
+                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true,
+                                    std::string(kWho) + ": materials");
+  if (!b) return b.status();
+  std::memcpy(b->mapped(), mats.data(), mats.size() * sizeof(deferred::GpuMaterial));
+  b->flush();
+  st.materials = std::move(*b);
+  return Status::success();
+}
+
+Result<Buffer> host_buffer(const Api& api, const void* data, std::size_t bytes,
+                           VkBufferUsageFlags usage, const char* what) {
+  Result<Buffer> b = Buffer::create(api, std::max<std::size_t>(bytes, 16), usage, true,
+                                    std::string(kWho) + ": " + what);
+  if (!b) return b;
+  if (data != nullptr && bytes > 0) std::memcpy(b->mapped(), data, bytes);
+  b->flush();
+  return b;
+}
+
+/// Per mesh: a host-visible vertex buffer rewritten per frame (clip xyzw, linear depth), a
+/// static one (normal, uv) and the indices.
+Status upload_meshes(State& st) {
+  for (const scene::Mesh& mesh : st.scene->meshes) {
+    DeferredMesh g;
+    g.vertices = mesh.positions.size();
+    g.index_count = mesh.indices.size();
+    g.material = mesh.material;
+    const std::vector<float> statics = deferred::gpu_static_vertices(mesh);
+    Result<Buffer> d = host_buffer(*st.api, nullptr, g.vertices * 20,
+                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertices");
+    Result<Buffer> s = host_buffer(*st.api, statics.data(), statics.size() * 4,
+                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertex attributes");
+    Result<Buffer> i = host_buffer(*st.api, mesh.indices.data(), mesh.indices.size() * 4,
+                                   VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "indices");
+    for (const Result<Buffer>* b : {&d, &s, &i}) {
+      if (!*b) return b->status();
+    }
+    g.dynamic = std::move(*d);
+    g.statics = std::move(*s);
+    g.indices = std::move(*i);
+    st.meshes.push_back(std::move(g));
+  }
+  return Status::success();
+}
+
+Status create_samplers(State& st) {
+  const Api& api = *st.api;
+  VkSamplerCreateInfo si{};
+  si.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
+  si.magFilter = VK_FILTER_LINEAR;
+  si.minFilter = VK_FILTER_LINEAR;
+  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  si.maxLod = VK_LOD_CLAMP_NONE;
+  VkSampler raw = VK_NULL_HANDLE;
+  if (VkResult r = api.CreateSampler(api.device(), &si, api.alloc(), &raw); r != VK_SUCCESS) {
+    return vk_error(std::string(kWho) + ": vkCreateSampler", r);
+  }
+  st.texture_sampler = Sampler(api, raw);
+  si.magFilter = si.minFilter = VK_FILTER_NEAREST;
+  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  si.maxLod = 0.0f;
+  if (VkResult r = api.CreateSampler(api.device(), &si, api.alloc(), &raw); r != VK_SUCCESS) {
+    return vk_error(std::string(kWho) + ": vkCreateSampler", r);
+  }
+  st.gbuffer_sampler = Sampler(api, raw);
+  VkQueryPoolCreateInfo qi{};
+  qi.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  qi.queryCount = 2;
+  VkQueryPool pool = VK_NULL_HANDLE;
+  if (VkResult r = api.CreateQueryPool(api.device(), &qi, api.alloc(), &pool); r != VK_SUCCESS) {
+    return vk_error(std::string(kWho) + ": vkCreateQueryPool", r);
+  }
+  st.queries = QueryPool(api, pool);
+  return Status::success();
+}
+
+/// Three RGBA32F colour targets and D32 depth, cleared; the colour targets end in
+/// COLOR_ATTACHMENT_OPTIMAL (the readers record their own transition).
+Status create_render_pass(State& st) {
+  const Api& api = *st.api;
+  std::array<VkAttachmentDescription, 4> att{};
+  for (std::size_t i = 0; i < 4; ++i) {
+    att[i].format = i < 3 ? kGFormat : VK_FORMAT_D32_SFLOAT;
+    att[i].samples = VK_SAMPLE_COUNT_1_BIT;
+    att[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    att[i].storeOp = i < 3 ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    att[i].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    att[i].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    att[i].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    att[i].finalLayout = i < 3 ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL
+                               : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+  }
+  const VkAttachmentReference colour[3] = {{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
+                                           {1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
+                                           {2, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}};
+  const VkAttachmentReference depth = {3, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription sub{};
+  sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  sub.colorAttachmentCount = 3;
+  sub.pColorAttachments = colour;
+  sub.pDepthStencilAttachment = &depth;
+  // The clears and the draws after the previous frame's compute reads and attachment writes.
+  VkSubpassDependency dep{};
+  dep.srcSubpass = VK_SUBPASS_EXTERNAL;
+  dep.dstSubpass = 0;
+  dep.srcStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
+                     VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                     VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+  dep.srcAccessMask =
+      VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  dep.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
+                     VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT |
+                     VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
+                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  VkRenderPassCreateInfo ri{};
+  ri.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
+  ri.attachmentCount = std::uint32_t(att.size());
+  ri.pAttachments = att.data();
+  ri.subpassCount = 1;
+  ri.pSubpasses = &sub;
+  ri.dependencyCount = 1;
+  ri.pDependencies = &dep;
+  VkRenderPass raw = VK_NULL_HANDLE;
+  if (VkResult r = api.CreateRenderPass(api.device(), &ri, api.alloc(), &raw); r != VK_SUCCESS) {
+    return vk_error(std::string(kWho) + ": vkCreateRenderPass", r);
+  }
+  st.render_pass = RenderPass(api, raw);
+  return Status::success();
+}
+
+}  // namespace
+
+DeferredRenderer::~DeferredRenderer() = default;
+
+Result<std::unique_ptr<DeferredRenderer>> DeferredRenderer::create(HeadlessDevice& device,
+                                                                   const scene::Scene& scene) {
+  std::unique_ptr<DeferredRenderer> r(new DeferredRenderer());
+  r->state_ = std::make_unique<State>();
+  State& st = *r->state_;
+  st.device = &device;
+  st.api = &device.api();
+  st.scene = &scene;
+  Result<std::vector<texture::Texture>> textures = render::build_scene_textures(scene, {});
+  if (!textures) return textures.status();
+  st.cpu_textures = std::move(*textures);
+  for (Status s : {create_samplers(st), upload_textures(st), upload_meshes(st),
+                   create_render_pass(st)}) {
+    if (!s.ok()) return s;
+  }
+  if (Status s = create_gbuffer_pipeline(st); !s.ok()) return s;
+  if (Status s = create_deferred_set(st); !s.ok()) return s;
+  return r;
+}
+
+Status DeferredRenderer::check_size(int width, int height, int m) const {
+  if (m < 1 || m > 8) {
+    return Status::error(ErrorCode::invalid_argument,
+                         std::string(kWho) + ": window size m must be in [1, 8], got " +
+                             std::to_string(m));
+  }
+  if (width < 1 || height < 1) {
+    return Status::error(ErrorCode::invalid_argument, std::string(kWho) + ": bad output size " +
+                                                          std::to_string(width) + "x" +
+                                                          std::to_string(height));
+  }
+  const VkPhysicalDeviceLimits& lim = state_->api->properties.limits;
+  const std::int64_t gw = std::int64_t(width) * m, gh = std::int64_t(height) * m;
+  struct Limit {
+    std::int64_t value;
+    std::uint32_t limit;
+    const char* name;
+  };
+  const Limit limits[] = {{std::max(gw, gh), lim.maxImageDimension2D, "maxImageDimension2D"},
+                          {gw, lim.maxFramebufferWidth, "maxFramebufferWidth"},
+                          {gh, lim.maxFramebufferHeight, "maxFramebufferHeight"}};
+  for (const Limit& l : limits) {
+    if (l.value > std::int64_t(l.limit)) {
+      return Status::error(ErrorCode::too_large,
+                           std::string(kWho) + ": G-buffer " + std::to_string(gw) + "x" +
+                               std::to_string(gh) + " (" + std::to_string(width) + "x" +
+                               std::to_string(height) + ", m = " + std::to_string(m) +
+                               ") exceeds " + l.name + " = " + std::to_string(l.limit));
+    }
+  }
+  return Status::success();
+}
+
+}  // namespace tessera::vk
