@@ -101,6 +101,11 @@ Status create_gbuffer_pipeline(State& st) {
   vp.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
   vp.viewportCount = 1;
   vp.scissorCount = 1;
+  VkPipelineViewportDepthClipControlCreateInfoEXT dcc{};
+  dcc.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_DEPTH_CLIP_CONTROL_CREATE_INFO_EXT;
+  dcc.negativeOneToOne = VK_TRUE;
+  if (st.device->depth_clip_control()) vp.pNext = &dcc;  // OpenGL's clip depth, as GL
+
   VkPipelineRasterizationStateCreateInfo rs{};
   rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
   rs.polygonMode = VK_POLYGON_MODE_FILL;
@@ -197,7 +202,9 @@ Status allocate_gbuffer(State& st, int width, int height, int m) {
 }
 
 /// Camera data and vertices exactly as DeferredRenderer::render_gbuffer; clip z from OpenGL's
-/// [-w, w] to Vulkan's [0, w].
+/// [-w, w] to Vulkan's [0, w] unless the pipeline keeps OpenGL's (VK_EXT_depth_clip_control:
+/// then the depth test sees GL's window depths, bit for bit; the remap's rounding flips the
+/// test where two surfaces meet).
 void write_vertices(State& st, const scene::Camera& camera, int width, int height) {
   const deferred::GBufferCamera cam = deferred::gbuffer_camera(camera, width, height);
   st.camera = deferred::gpu_camera(cam, camera.far_z);
@@ -208,7 +215,7 @@ void write_vertices(State& st, const scene::Camera& camera, int width, int heigh
                                          st.scratch.data() + 4, 5, {});
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
       float* v = &st.scratch[i * 5];
-      v[2] = 0.5f * (v[2] + v[3]);
+      if (!st.device->depth_clip_control()) v[2] = 0.5f * (v[2] + v[3]);
     }
     if (st.scratch.empty()) continue;
     std::memcpy(st.meshes[mi].dynamic.mapped(), st.scratch.data(), st.scratch.size() * 4);

@@ -72,15 +72,23 @@ Status read_component(State& st, const AdaptiveRecord& rec, bool counts, Deferre
   if (!cmd) return cmd.status();
   const Api& api = *st.api;
   record_full_barrier(api, *cmd);
+  // The outputs to TRANSFER_SRC (the component's next record starts them from UNDEFINED).
+  Barrier in;
+  for (const ImageResource* r : {&rec.colour, &rec.sample_counts}) {
+    if (r == &rec.sample_counts && !counts) continue;
+    in.image(r->image, r->layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r->stage, r->access,
+             VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  }
+  in.record(api, *cmd);
   const std::size_t pixels = std::size_t(st.w) * std::size_t(st.h);
   VkBufferImageCopy region{};
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   region.imageExtent = {std::uint32_t(st.w), std::uint32_t(st.h), 1};
-  api.CmdCopyImageToBuffer(*cmd, rec.colour.image, rec.colour.layout, st.readback.get(), 1,
-                           &region);
+  api.CmdCopyImageToBuffer(*cmd, rec.colour.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           st.readback.get(), 1, &region);
   if (counts) {
     region.bufferOffset = pixels * 16;
-    api.CmdCopyImageToBuffer(*cmd, rec.sample_counts.image, rec.sample_counts.layout,
+    api.CmdCopyImageToBuffer(*cmd, rec.sample_counts.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                              st.readback.get(), 1, &region);
   }
   Barrier h;
