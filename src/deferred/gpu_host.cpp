@@ -181,6 +181,29 @@ AdaptiveThresholds gpu_thresholds(const AdaptiveOptions& a) {
   return t;
 }
 
+std::vector<std::string> gpu_passes_preamble(int classes, int m,
+                                             const std::vector<std::string>& defines) {
+  std::vector<std::string> pre = {"#define TESSERA_DEFERRED_CLASSES " + std::to_string(classes),
+                                  "#define TESSERA_WINDOW_N " + std::to_string(m * m),
+                                  "#define TESSERA_ADAPTIVE_MAX_N " +
+                                      std::to_string(std::max(1, m * m))};
+  for (const std::string& d : defines) pre.push_back("#define " + d);
+  return pre;
+}
+
+void gpu_component_options(AdaptiveCommonOptions& o, int w, int h, int m, int classes,
+                           std::string_view terms_layout, std::string_view hook_name) {
+  o.width = w;
+  o.height = h;
+  o.m = m;
+  o.output = AdaptiveOutputFormat::rgba32f;
+  o.sample_count_texture = true;
+  o.profile = true;  // the pass times
+  o.layout = deferred_gbuffer_layout();
+  o.hook.name = std::string(hook_name);
+  o.hook.source = gpu_shading_hook(classes, terms_layout);
+}
+
 std::string gpu_shading_hook(int classes, std::string_view terms_layout) {
   return "#define TESSERA_DEFERRED_CLASSES " + std::to_string(classes) +
          "\n#include \"deferred_shading.glsl\"\n"

@@ -91,6 +91,17 @@ Result<std::vector<std::string>> gpu_fxaa_defines(const FxaaOptions& fxaa);
 /// The adaptive supersampler's thresholds of `adaptive`.
 AdaptiveThresholds gpu_thresholds(const AdaptiveOptions& adaptive);
 
+/// The preamble of a deferred_passes.comp program: its three always-defined macros (for `classes`
+/// texture classes and window m), then `#define D` per entry of `defines`.
+std::vector<std::string> gpu_passes_preamble(int classes, int m,
+                                             const std::vector<std::string>& defines);
+
+/// The options both renderers give their adaptive supersampler for a (w, h, m) G-buffer:
+/// RGBA32F output, sample counts, profiling, tessera's G-buffer layout and `gpu_shading_hook`
+/// (named `hook_name`); the schedule and the backend's own fields are the caller's.
+void gpu_component_options(AdaptiveCommonOptions& o, int w, int h, int m, int classes,
+                           std::string_view terms_layout, std::string_view hook_name);
+
 /// The shading hook of the renderers' adaptive passes: deferred_shading.glsl with `classes`
 /// texture classes; S's light terms (D, P) kept in the storage buffer DeferredTerms, declared
 /// with `terms_layout` (the backend's qualifiers, e.g. "std430, binding = 4"), so that sample 0

@@ -42,11 +42,8 @@ namespace {
 using State = DeferredRenderer::State;
 
 Result<const Program*> program(State& st, const std::vector<std::string>& defines) {
-  std::vector<std::string> pre = {
-      "#define TESSERA_DEFERRED_CLASSES " + std::to_string(st.class_arrays.size()),
-      "#define TESSERA_WINDOW_N " + std::to_string(st.m * st.m),
-      "#define TESSERA_ADAPTIVE_MAX_N " + std::to_string(std::max(1, st.m * st.m))};
-  for (const std::string& d : defines) pre.push_back("#define " + d);
+  const std::vector<std::string> pre =
+      deferred::gpu_passes_preamble(int(st.class_arrays.size()), st.m, defines);
   std::string key;
   for (const std::string& p : pre) key += p + "\n";
   auto it = st.programs.find(key);

@@ -34,20 +34,12 @@ Result<AdaptiveSupersampler*> component(State& st) {
   if (st.component && st.component_key == key) return st.component.get();
   st.component.reset();
   AdaptiveSupersamplerOptions o;
-  o.width = st.w;
-  o.height = st.h;
-  o.m = st.m;
+  // The G-buffer of deferred_shading.glsl (units 0..2 of the renderer's own bindings); S keeps
+  // its light terms (D, P) in the renderer's SSBO 4 (deferred_passes.comp's layout).
+  deferred::gpu_component_options(o, st.w, st.h, st.m, classes, "std430, binding = 4",
+                                  "DeferredRenderer's shading hook");
   o.schedule = schedule_of(st.options.schedule);
-  o.output = AdaptiveOutputFormat::rgba32f;
-  o.sample_count_texture = true;
-  o.profile = true;  // ShadeResult's pass times
   o.glsl_dir = st.options.glsl_dir;
-  // The G-buffer of deferred_shading.glsl (units 0..2 of the renderer's own bindings).
-  o.layout = deferred_gbuffer_layout();
-  o.hook.name = "DeferredRenderer's shading hook";
-  // S keeps its light terms (D, P) in the renderer's SSBO 4 (deferred_passes.comp's layout),
-  // and sample 0 again repeats only the albedo lookup, as deferred_passes.comp does.
-  o.hook.source = deferred::gpu_shading_hook(classes, "std430, binding = 4");
   Result<std::unique_ptr<AdaptiveSupersampler>> c = AdaptiveSupersampler::create(o);
   if (!c) return c.status();
   st.component = std::move(*c);

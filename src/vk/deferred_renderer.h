@@ -151,6 +151,8 @@ void record_gbuffer_readable(DeferredRenderer::State& st, VkCommandBuffer cmd);
 /// Everything earlier in submission order before everything in `cmd` (each submission opens
 /// with it).
 void record_full_barrier(const Api& api, VkCommandBuffer cmd);
+/// Transfer writes visible to the host (closes every read-back).
+void record_host_read_barrier(const Api& api, VkCommandBuffer cmd);
 /// One deferred_passes.comp pass over w x h pixels in a submission of its own, timed.
 Status run_deferred_pass(DeferredRenderer::State& st, const std::string& name,
                          const std::vector<std::string>& defines,

@@ -8,6 +8,7 @@
 
 #include "tessera/glsl.h"
 #include "tessera/render.h"
+#include "vk/barriers.h"
 #include "vk/deferred_renderer.h"
 
 namespace tessera::vk {
@@ -18,24 +19,6 @@ using State = DeferredRenderer::State;
 
 constexpr const char* kWho = "deferred VK";
 constexpr VkFormat kGFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-
-/// An image barrier over every level and layer of a colour image (Vulkan 1.0 form).
-void whole_image_barrier(const Api& api, VkCommandBuffer cmd, VkImage image, std::uint32_t levels,
-                         std::uint32_t layers, VkImageLayout from, VkImageLayout to,
-                         VkPipelineStageFlags src_stage, VkAccessFlags src_access,
-                         VkPipelineStageFlags dst_stage, VkAccessFlags dst_access) {
-  VkImageMemoryBarrier b{};
-  b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-  b.srcAccessMask = src_access;
-  b.dstAccessMask = dst_access;
-  b.oldLayout = from;
-  b.newLayout = to;
-  b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  b.image = image;
-  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, levels, 0, layers};
-  api.CmdPipelineBarrier(cmd, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
-}
 
 /// The texel data of one class: every layer's levels, tightly packed, with their copy regions.
 struct ClassUpload {
@@ -113,16 +96,19 @@ Status upload_class(State& st, const deferred::GpuTextureClasses::Class& c,
   staging->flush();
   Result<VkCommandBuffer> cmd = st.device->begin();
   if (!cmd) return cmd.status();
-  whole_image_barrier(api, *cmd, image, ci.mipLevels, ci.arrayLayers, VK_IMAGE_LAYOUT_UNDEFINED,
-                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
-                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+  Barrier to_dst;
+  to_dst.image(image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+               VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+               VK_ACCESS_2_TRANSFER_WRITE_BIT, ci.mipLevels, ci.arrayLayers);
+  to_dst.record(api, *cmd);
   api.CmdCopyBufferToImage(*cmd, staging->get(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                            std::uint32_t(u.regions.size()), u.regions.data());
-  whole_image_barrier(api, *cmd, image, ci.mipLevels, ci.arrayLayers,
-                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_SHADER_READ_BIT);
+  Barrier to_read;
+  to_read.image(image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                ci.mipLevels, ci.arrayLayers);
+  to_read.record(api, *cmd);
   if (Status s = st.device->submit_and_wait(*cmd); !s.ok()) return s;
   st.arrays.push_back(std::move(arr));
   return Status::success();

@@ -105,11 +105,8 @@ Status size_pass_buffers(State& st) {
 }
 
 Result<VkPipeline> program(State& st, const std::vector<std::string>& defines) {
-  std::vector<std::string> pre = {
-      "#define TESSERA_DEFERRED_CLASSES " + std::to_string(st.arrays.size()),
-      "#define TESSERA_WINDOW_N " + std::to_string(st.m * st.m),
-      "#define TESSERA_ADAPTIVE_MAX_N " + std::to_string(std::max(1, st.m * st.m))};
-  for (const std::string& d : defines) pre.push_back("#define " + d);
+  const std::vector<std::string> pre =
+      deferred::gpu_passes_preamble(int(st.arrays.size()), st.m, defines);
   std::string key;
   for (const std::string& p : pre) key += p + "\n";
   auto it = st.programs.find(key);
@@ -228,6 +225,13 @@ void record_full_barrier(const Api& api, VkCommandBuffer cmd) {
   b.record(api, cmd);
 }
 
+void record_host_read_barrier(const Api& api, VkCommandBuffer cmd) {
+  Barrier h;
+  h.memory(VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+           VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+  h.record(api, cmd);
+}
+
 void record_gbuffer_readable(State& st, VkCommandBuffer cmd) {
   if (st.g_layout == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) return;
   Barrier b;
@@ -290,10 +294,7 @@ Status read_pass_buffer(State& st, int index, std::size_t bytes, void* out) {
   record_full_barrier(api, *cmd);
   const VkBufferCopy copy{0, 0, bytes};
   api.CmdCopyBuffer(*cmd, st.pass[std::size_t(index)].get(), st.readback.get(), 1, &copy);
-  Barrier h;
-  h.memory(VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-           VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-  h.record(api, *cmd);
+  record_host_read_barrier(api, *cmd);
   if (Status s = st.device->submit_and_wait(*cmd); !s.ok()) return s;
   st.readback.invalidate();
   std::memcpy(out, st.readback.mapped(), bytes);

@@ -25,18 +25,12 @@ Result<AdaptiveSupersampler*> component(State& st) {
   if (st.component && st.component_key == key) return st.component.get();
   st.component.reset();
   AdaptiveSupersamplerOptions o;
-  o.width = st.w;
-  o.height = st.h;
-  o.m = st.m;
-  o.schedule = AdaptiveSchedule::frame_list;  // gl::DeferredRenderer's default
-  o.output = AdaptiveOutputFormat::rgba32f;
-  o.sample_count_texture = true;
-  o.profile = true;  // the passes' timestamps
-  o.layout = deferred_gbuffer_layout();
-  o.hook.name = "vk::DeferredRenderer's shading hook";
   // The hook reads the deferred set (set 0); S's light terms go to deferred_passes.comp's
   // SSBO 4 (binding 9).
-  o.hook.source = deferred::gpu_shading_hook(int(st.arrays.size()), "std430, set = 0, binding = 9");
+  deferred::gpu_component_options(o, st.w, st.h, st.m, int(st.arrays.size()),
+                                  "std430, set = 0, binding = 9",
+                                  "vk::DeferredRenderer's shading hook");
+  o.schedule = AdaptiveSchedule::frame_list;  // gl::DeferredRenderer's default
   o.hook_set_layouts = {st.set_layout.get()};
   o.descriptor_sets = 1;  // one G-buffer; the component is made again with it
   Result<std::unique_ptr<AdaptiveSupersampler>> c =
@@ -91,10 +85,7 @@ Status read_component(State& st, const AdaptiveRecord& rec, bool counts, Deferre
     api.CmdCopyImageToBuffer(*cmd, rec.sample_counts.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                              st.readback.get(), 1, &region);
   }
-  Barrier h;
-  h.memory(VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-           VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-  h.record(api, *cmd);
+  record_host_read_barrier(api, *cmd);
   if (Status s = st.device->submit_and_wait(*cmd); !s.ok()) return s;
   st.readback.invalidate();
   const auto* bytes = static_cast<const std::uint8_t*>(st.readback.mapped());
