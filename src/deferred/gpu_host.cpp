@@ -60,8 +60,7 @@ std::vector<GpuMaterial> gpu_materials(const std::vector<scene::Material>& mater
                                        const GpuTextureClasses& classes) {
   std::vector<GpuMaterial> mats;
   for (const scene::Material& mat : materials) {
-    GpuMaterial rec{{mat.base_color[0], mat.base_color[1], mat.base_color[2], 1.0f},
-                    {-1, 0, 1, 1}};
+    GpuMaterial rec{{mat.base_color[0], mat.base_color[1], mat.base_color[2], 1.0f}, {-1, 0, 1, 1}};
     const int t = mat.base_color_texture;
     if (t >= 0 && std::size_t(t) < textures.size()) {
       const texture::Texture& tex = textures[std::size_t(t)];
@@ -158,13 +157,13 @@ Result<std::vector<std::string>> gpu_fxaa_defines(const FxaaOptions& f) {
   std::string table = "float[12](";
   for (int i = 0; i < 12; ++i) table += (i ? ", " : "") + glsl::float_literal(preset->p[i]);
   table += ")";
-  return std::vector<std::string>{"TESSERA_PASS_FXAA",
-                                  "TESSERA_FXAA_STEPS " + std::to_string(preset->steps),
-                                  "TESSERA_FXAA_P " + table,
-                                  "TESSERA_FXAA_SUBPIX " + glsl::float_literal(f.subpix),
-                                  "TESSERA_FXAA_EDGE " + glsl::float_literal(f.edge_threshold),
-                                  "TESSERA_FXAA_EDGE_MIN " +
-                                      glsl::float_literal(f.edge_threshold_min)};
+  return std::vector<std::string>{
+      "TESSERA_PASS_FXAA",
+      "TESSERA_FXAA_STEPS " + std::to_string(preset->steps),
+      "TESSERA_FXAA_P " + table,
+      "TESSERA_FXAA_SUBPIX " + glsl::float_literal(f.subpix),
+      "TESSERA_FXAA_EDGE " + glsl::float_literal(f.edge_threshold),
+      "TESSERA_FXAA_EDGE_MIN " + glsl::float_literal(f.edge_threshold_min)};
 }
 
 AdaptiveThresholds gpu_thresholds(const AdaptiveOptions& a) {
@@ -183,10 +182,10 @@ AdaptiveThresholds gpu_thresholds(const AdaptiveOptions& a) {
 
 std::vector<std::string> gpu_passes_preamble(int classes, int m,
                                              const std::vector<std::string>& defines) {
-  std::vector<std::string> pre = {"#define TESSERA_DEFERRED_CLASSES " + std::to_string(classes),
-                                  "#define TESSERA_WINDOW_N " + std::to_string(m * m),
-                                  "#define TESSERA_ADAPTIVE_MAX_N " +
-                                      std::to_string(std::max(1, m * m))};
+  std::vector<std::string> pre = {
+      "#define TESSERA_DEFERRED_CLASSES " + std::to_string(classes),
+      "#define TESSERA_WINDOW_N " + std::to_string(m * m),
+      "#define TESSERA_ADAPTIVE_MAX_N " + std::to_string(std::max(1, m * m))};
   for (const std::string& d : defines) pre.push_back("#define " + d);
   return pre;
 }
@@ -207,11 +206,13 @@ void gpu_component_options(AdaptiveCommonOptions& o, int w, int h, int m, int cl
 std::string gpu_shading_hook(int classes, std::string_view terms_layout) {
   return "#define TESSERA_DEFERRED_CLASSES " + std::to_string(classes) +
          "\n#include \"deferred_shading.glsl\"\n"
-         "layout(" + std::string(terms_layout) +
+         "layout(" +
+         std::string(terms_layout) +
          ") buffer DeferredTerms { vec4 deferred_terms[]; };\n"
          "#define TESSERA_ADAPTIVE_SAMPLE0_AGAIN 1\n"
          "int deferred_pixel(ivec2 g) {\n"
-         "  return (g.y / TESSERA_ADAPTIVE_M) * TESSERA_ADAPTIVE_WIDTH + g.x / TESSERA_ADAPTIVE_M;\n"
+         "  return (g.y / TESSERA_ADAPTIVE_M) * TESSERA_ADAPTIVE_WIDTH + g.x / "
+         "TESSERA_ADAPTIVE_M;\n"
          "}\n"
          "vec4 tessera_shade_sample(ivec2 g, float footprint) {\n"
          "  TesseraSample s = tessera_fetch(g);\n"

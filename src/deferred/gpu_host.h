@@ -55,8 +55,8 @@ struct GpuTextureClasses {
     int width = 0, height = 0, levels = 0;
     std::vector<int> textures;  ///< Texture indices, by layer.
   };
-  std::vector<Class> classes;               ///< In (width, height, levels) order; may be empty.
-  std::vector<std::array<int, 2>> where;    ///< Per texture: (class, layer), (-1, -1) unused.
+  std::vector<Class> classes;             ///< In (width, height, levels) order; may be empty.
+  std::vector<std::array<int, 2>> where;  ///< Per texture: (class, layer), (-1, -1) unused.
 };
 /// Groups the textures the materials use; too_large ("`who`: ...") past kGpuMaxTextureClasses.
 Result<GpuTextureClasses> gpu_texture_classes(const std::vector<scene::Material>& materials,

@@ -12,15 +12,11 @@
 
 namespace tessera::vk {
 
-using experiments::AaBackend;
-using experiments::AaMethod;
-using experiments::AaPassTime;
-using experiments::AaShadeOptions;
-using experiments::AaShadeOutput;
-
 namespace {
 
-class VkAaBackend final : public AaBackend {
+using experiments::AaMethod;
+
+class VkAaBackend final : public experiments::AaBackend {
  public:
   VkAaBackend(std::unique_ptr<HeadlessDevice> device, std::unique_ptr<DeferredRenderer> r)
       : device_(std::move(device)), r_(std::move(r)) {}
@@ -33,13 +29,13 @@ class VkAaBackend final : public AaBackend {
     return r_->check_size(width, height, m);
   }
 
-  Result<AaPassTime> render_gbuffer(const scene::Camera& camera, int width, int height,
-                                    int m) override {
+  Result<experiments::AaPassTime> render_gbuffer(const scene::Camera& camera, int width, int height,
+                                                 int m) override {
     return r_->render_gbuffer(camera, width, height, m);
   }
 
-  Result<AaShadeOutput> shade(AaMethod method, const deferred::ShadingOptions& so,
-                              const AaShadeOptions& o) override {
+  Result<experiments::AaShadeOutput> shade(AaMethod method, const deferred::ShadingOptions& so,
+                                           const experiments::AaShadeOptions& o) override {
     Result<DeferredShade> x = method == AaMethod::fxaa ? r_->shade_default_fxaa(so, o.fxaa)
                               : method == AaMethod::default_1spp ? r_->shade_default(so)
                               : method == AaMethod::reference    ? r_->shade_reference(so)
@@ -47,7 +43,7 @@ class VkAaBackend final : public AaBackend {
                                   ? r_->shade_adaptive(so, o.adaptive)
                                   : r_->shade_edge_per_sample(so, o.edge);
     if (!x) return x.status();
-    AaShadeOutput out;
+    experiments::AaShadeOutput out;
     out.image = method == AaMethod::fxaa ? std::move(x->image8) : to_srgb8(x->image, {so.threads});
     if (method == AaMethod::adaptive || method == AaMethod::edge_per_sample) {
       out.samples = std::move(x->samples);
@@ -66,17 +62,16 @@ class VkAaBackend final : public AaBackend {
 
 }  // namespace
 
-Result<std::unique_ptr<AaBackend>> create_aa_backend(const scene::Scene& scene,
-                                                     const HeadlessDeviceOptions& options,
-                                                     std::shared_ptr<ValidationLog> log) {
+Result<std::unique_ptr<experiments::AaBackend>> create_aa_backend(
+    const scene::Scene& scene, const HeadlessDeviceOptions& options,
+    std::shared_ptr<ValidationLog> log) {
   Result<std::unique_ptr<HeadlessDevice>> device = HeadlessDevice::create(options, std::move(log));
   if (!device) {
-    return Status::error(device.status().code,
-                         "aa: no Vulkan backend: " + device.status().message);
+    return Status::error(device.status().code, "aa: no Vulkan backend: " + device.status().message);
   }
   Result<std::unique_ptr<DeferredRenderer>> r = DeferredRenderer::create(**device, scene);
   if (!r) return r.status();
-  return std::unique_ptr<AaBackend>(
+  return std::unique_ptr<experiments::AaBackend>(
       std::make_unique<VkAaBackend>(std::move(*device), std::move(*r)));
 }
 

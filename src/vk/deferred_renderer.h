@@ -58,8 +58,8 @@ class DeferredRenderer {
   /// maxFramebufferWidth/Height; allocates nothing.
   Status check_size(int width, int height, int m) const;
   /// The geometry pass (pass "gbuffer"); the G-buffer is reallocated when the size changes.
-  Result<experiments::AaPassTime> render_gbuffer(const scene::Camera& camera, int width,
-                                                 int height, int m);
+  Result<experiments::AaPassTime> render_gbuffer(const scene::Camera& camera, int width, int height,
+                                                 int m);
 
   Result<DeferredShade> shade_reference(const deferred::ShadingOptions& shading);
   Result<DeferredShade> shade_default(const deferred::ShadingOptions& shading);
@@ -123,9 +123,9 @@ struct DeferredRenderer::State {
   DescriptorPool pool;
   VkDescriptorSet set = VK_NULL_HANDLE;
   bool set_written = false;
-  Buffer params, lights, waves;            // host-visible, rewritten before each call
-  std::array<Buffer, kPassBuffers> pass;   // S, terms, k, out, rgba8, rgba8 out
-  Buffer readback;                         // host-visible, w*h*20 bytes
+  Buffer params, lights, waves;           // host-visible, rewritten before each call
+  std::array<Buffer, kPassBuffers> pass;  // S, terms, k, out, rgba8, rgba8 out
+  Buffer readback;                        // host-visible, w*h*20 bytes
   int buffers_w = 0, buffers_h = 0;
   std::map<std::string, Pipeline> programs;  // deferred_passes.comp by preamble
 
@@ -133,6 +133,25 @@ struct DeferredRenderer::State {
   std::unique_ptr<AdaptiveSupersampler> component;
   std::array<int, 3> component_key{};
 };
+
+/// A device object made by `create` (an Api member such as &Api::CreateSampler) from `info`, in
+/// its owner; vk_error "deferred VK: `what`: VK_ERROR_..." on failure.
+template <class Owner, class Info, class Create>
+Result<Owner> make_owned(const Api& api, Create create, const Info& info, const char* what) {
+  decltype(Owner().get()) raw = VK_NULL_HANDLE;
+  if (VkResult r = (api.*create)(api.device(), &info, api.alloc(), &raw); r != VK_SUCCESS) {
+    return vk_error(std::string("deferred VK: ") + what, r);
+  }
+  return Owner(api, raw);
+}
+
+/// `owner` = the result of make_owned, or its error.
+template <class Owner>
+Status assign(Owner& owner, Result<Owner>&& made) {
+  if (!made) return made.status();
+  owner = std::move(*made);
+  return Status::success();
+}
 
 // deferred_renderer_gbuffer.cpp
 /// The geometry pass's pipeline layout (a fragment push constant) and pipeline (at create).

@@ -10,6 +10,10 @@
 #include "vk/deferred_renderer.h"
 #include "vk/shader.h"
 
+// Vulkan's create-infos are written with designated initializers: the members left out are
+// zero-initialised, which is what Vulkan asks of them (null pNext, no flags).
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
 namespace tessera::vk {
 
 namespace {
@@ -25,25 +29,20 @@ Result<ShaderModule> stage_module(const Api& api, glsl::Stage stage, const char*
   if (!text) return text.status();
   Result<std::vector<std::uint32_t>> spirv = compile_graphics_spirv(text->text, stage);
   if (!spirv) {
-    return Status::error(spirv.status().code,
-                         std::string(kWho) + ": " +
-                             glsl::format_log(spirv.status().message, text->files));
+    return Status::error(
+        spirv.status().code,
+        std::string(kWho) + ": " + glsl::format_log(spirv.status().message, text->files));
   }
-  VkShaderModuleCreateInfo mi{};
-  mi.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
-  mi.codeSize = spirv->size() * 4;
-  mi.pCode = spirv->data();
-  VkShaderModule raw = VK_NULL_HANDLE;
-  if (VkResult r = api.CreateShaderModule(api.device(), &mi, api.alloc(), &raw); r != VK_SUCCESS) {
-    return vk_error(std::string(kWho) + ": vkCreateShaderModule", r);
-  }
-  return ShaderModule(api, raw);
+  const VkShaderModuleCreateInfo info{.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+                                      .codeSize = spirv->size() * 4,
+                                      .pCode = spirv->data()};
+  return make_owned<ShaderModule>(api, &Api::CreateShaderModule, info, "vkCreateShaderModule");
 }
 
 /// Vertex input: binding 0 = clip xyzw + linear depth (per frame), binding 1 = normal + uv.
 struct VertexInput {
-  std::array<VkVertexInputBindingDescription, 2> bindings{{{0, 20, VK_VERTEX_INPUT_RATE_VERTEX},
-                                                           {1, 20, VK_VERTEX_INPUT_RATE_VERTEX}}};
+  std::array<VkVertexInputBindingDescription, 2> bindings{
+      {{0, 20, VK_VERTEX_INPUT_RATE_VERTEX}, {1, 20, VK_VERTEX_INPUT_RATE_VERTEX}}};
   std::array<VkVertexInputAttributeDescription, 4> attributes{
       {{0, 0, VK_FORMAT_R32G32B32A32_SFLOAT, 0},
        {1, 0, VK_FORMAT_R32_SFLOAT, 16},
@@ -61,19 +60,12 @@ struct VertexInput {
 };
 
 Status create_pipeline_layout(State& st) {
-  const Api& api = *st.api;
   const VkPushConstantRange push{VK_SHADER_STAGE_FRAGMENT_BIT, 0, 4};  // TesseraGbufferPush
-  VkPipelineLayoutCreateInfo li{};
-  li.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-  li.pushConstantRangeCount = 1;
-  li.pPushConstantRanges = &push;
-  VkPipelineLayout raw = VK_NULL_HANDLE;
-  if (VkResult r = api.CreatePipelineLayout(api.device(), &li, api.alloc(), &raw);
-      r != VK_SUCCESS) {
-    return vk_error(std::string(kWho) + ": vkCreatePipelineLayout", r);
-  }
-  st.gbuffer_layout = PipelineLayout(api, raw);
-  return Status::success();
+  const VkPipelineLayoutCreateInfo info{.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                        .pushConstantRangeCount = 1,
+                                        .pPushConstantRanges = &push};
+  return assign(st.gbuffer_layout, make_owned<PipelineLayout>(*st.api, &Api::CreatePipelineLayout,
+                                                              info, "vkCreatePipelineLayout"));
 }
 
 }  // namespace
@@ -85,72 +77,71 @@ Status create_gbuffer_pipeline(State& st) {
   if (!vs) return vs.status();
   Result<ShaderModule> fs = stage_module(api, glsl::Stage::fragment, "deferred_gbuffer.frag");
   if (!fs) return fs.status();
-  std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
-  for (std::size_t i = 0; i < 2; ++i) {
-    stages[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    stages[i].stage = i == 0 ? VK_SHADER_STAGE_VERTEX_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
-    stages[i].module = i == 0 ? vs->get() : fs->get();
-    stages[i].pName = "main";
-  }
+  const std::array<VkPipelineShaderStageCreateInfo, 2> stages = {
+      VkPipelineShaderStageCreateInfo{.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                                      .stage = VK_SHADER_STAGE_VERTEX_BIT,
+                                      .module = vs->get(),
+                                      .pName = "main"},
+      VkPipelineShaderStageCreateInfo{.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                                      .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
+                                      .module = fs->get(),
+                                      .pName = "main"}};
   const VertexInput input;
   const VkPipelineVertexInputStateCreateInfo vertex = input.info();
-  VkPipelineInputAssemblyStateCreateInfo ia{};
-  ia.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
-  ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  VkPipelineViewportStateCreateInfo vp{};
-  vp.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
-  vp.viewportCount = 1;
-  vp.scissorCount = 1;
-  VkPipelineViewportDepthClipControlCreateInfoEXT dcc{};
-  dcc.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_DEPTH_CLIP_CONTROL_CREATE_INFO_EXT;
-  dcc.negativeOneToOne = VK_TRUE;
-  if (st.device->depth_clip_control()) vp.pNext = &dcc;  // OpenGL's clip depth, as GL
-
-  VkPipelineRasterizationStateCreateInfo rs{};
-  rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
-  rs.polygonMode = VK_POLYGON_MODE_FILL;
-  rs.cullMode = VK_CULL_MODE_NONE;  // the CPU draws both sides
-  rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-  rs.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo ms{};
-  ms.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
-  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo ds{};
-  ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
-  ds.depthTestEnable = VK_TRUE;
-  ds.depthWriteEnable = VK_TRUE;
-  ds.depthCompareOp = VK_COMPARE_OP_LESS;
-  std::array<VkPipelineColorBlendAttachmentState, 3> blend{};
-  for (VkPipelineColorBlendAttachmentState& b : blend) {
-    b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
-                       VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  }
-  VkPipelineColorBlendStateCreateInfo cb{};
-  cb.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
-  cb.attachmentCount = std::uint32_t(blend.size());
-  cb.pAttachments = blend.data();
-  const VkDynamicState dyn[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-  VkPipelineDynamicStateCreateInfo dy{};
-  dy.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
-  dy.dynamicStateCount = 2;
-  dy.pDynamicStates = dyn;
-  VkGraphicsPipelineCreateInfo pi{};
-  pi.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
-  pi.stageCount = std::uint32_t(stages.size());
-  pi.pStages = stages.data();
-  pi.pVertexInputState = &vertex;
-  pi.pInputAssemblyState = &ia;
-  pi.pViewportState = &vp;
-  pi.pRasterizationState = &rs;
-  pi.pMultisampleState = &ms;
-  pi.pDepthStencilState = &ds;
-  pi.pColorBlendState = &cb;
-  pi.pDynamicState = &dy;
-  pi.layout = st.gbuffer_layout.get();
-  pi.renderPass = st.render_pass.get();
+  const VkPipelineInputAssemblyStateCreateInfo assembly{
+      .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
+      .topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
+  // With VK_EXT_depth_clip_control the clip depth stays OpenGL's, as in the GL backend.
+  const VkPipelineViewportDepthClipControlCreateInfoEXT gl_depth{
+      .sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_DEPTH_CLIP_CONTROL_CREATE_INFO_EXT,
+      .negativeOneToOne = VK_TRUE};
+  const VkPipelineViewportStateCreateInfo viewport{
+      .sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO,
+      .pNext = st.device->depth_clip_control() ? &gl_depth : nullptr,
+      .viewportCount = 1,
+      .scissorCount = 1};
+  const VkPipelineRasterizationStateCreateInfo raster{
+      .sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO,
+      .polygonMode = VK_POLYGON_MODE_FILL,
+      .cullMode = VK_CULL_MODE_NONE,  // the CPU draws both sides
+      .frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE,
+      .lineWidth = 1.0f};
+  const VkPipelineMultisampleStateCreateInfo samples{
+      .sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
+      .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT};
+  const VkPipelineDepthStencilStateCreateInfo depth{
+      .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
+      .depthTestEnable = VK_TRUE,
+      .depthWriteEnable = VK_TRUE,
+      .depthCompareOp = VK_COMPARE_OP_LESS};                                // glDepthFunc(GL_LESS)
+  const VkPipelineColorBlendAttachmentState opaque{.colorWriteMask = 0xF};  // RGBA, no blend
+  const std::array<VkPipelineColorBlendAttachmentState, 3> targets = {opaque, opaque, opaque};
+  const VkPipelineColorBlendStateCreateInfo blend{
+      .sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
+      .attachmentCount = std::uint32_t(targets.size()),
+      .pAttachments = targets.data()};
+  const std::array<VkDynamicState, 2> dynamic_states = {VK_DYNAMIC_STATE_VIEWPORT,
+                                                        VK_DYNAMIC_STATE_SCISSOR};
+  const VkPipelineDynamicStateCreateInfo dynamic{
+      .sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
+      .dynamicStateCount = std::uint32_t(dynamic_states.size()),
+      .pDynamicStates = dynamic_states.data()};
+  const VkGraphicsPipelineCreateInfo info{.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
+                                          .stageCount = std::uint32_t(stages.size()),
+                                          .pStages = stages.data(),
+                                          .pVertexInputState = &vertex,
+                                          .pInputAssemblyState = &assembly,
+                                          .pViewportState = &viewport,
+                                          .pRasterizationState = &raster,
+                                          .pMultisampleState = &samples,
+                                          .pDepthStencilState = &depth,
+                                          .pColorBlendState = &blend,
+                                          .pDynamicState = &dynamic,
+                                          .layout = st.gbuffer_layout.get(),
+                                          .renderPass = st.render_pass.get()};
   VkPipeline raw = VK_NULL_HANDLE;
   if (VkResult r =
-          api.CreateGraphicsPipelines(api.device(), VK_NULL_HANDLE, 1, &pi, api.alloc(), &raw);
+          api.CreateGraphicsPipelines(api.device(), VK_NULL_HANDLE, 1, &info, api.alloc(), &raw);
       r != VK_SUCCESS) {
     return vk_error(std::string(kWho) + ": vkCreateGraphicsPipelines", r);
   }
@@ -167,32 +158,31 @@ Status allocate_gbuffer(State& st, int width, int height, int m) {
   st.component.reset();  // it may hold descriptor sets naming the old views
   const VkExtent2D extent{std::uint32_t(width * m), std::uint32_t(height * m)};
   for (Image& img : st.g) {
-    Result<Image> i = Image::create(api, VK_FORMAT_R32G32B32A32_SFLOAT, extent,
-                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
-                                        VK_IMAGE_USAGE_SAMPLED_BIT,
-                                    std::string(kWho) + ": G-buffer");
+    Result<Image> i =
+        Image::create(api, VK_FORMAT_R32G32B32A32_SFLOAT, extent,
+                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                      std::string(kWho) + ": G-buffer");
     if (!i) return i.status();
     img = std::move(*i);
   }
-  Result<Image> d = Image::create(api, VK_FORMAT_D32_SFLOAT, extent,
-                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                                  std::string(kWho) + ": G-buffer depth");
+  Result<Image> d =
+      Image::create(api, VK_FORMAT_D32_SFLOAT, extent, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                    std::string(kWho) + ": G-buffer depth");
   if (!d) return d.status();
   st.depth = std::move(*d);
   const VkImageView views[4] = {st.g[0].view(), st.g[1].view(), st.g[2].view(), st.depth.view()};
-  VkFramebufferCreateInfo fi{};
-  fi.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
-  fi.renderPass = st.render_pass.get();
-  fi.attachmentCount = 4;
-  fi.pAttachments = views;
-  fi.width = extent.width;
-  fi.height = extent.height;
-  fi.layers = 1;
-  VkFramebuffer raw = VK_NULL_HANDLE;
-  if (VkResult r = api.CreateFramebuffer(api.device(), &fi, api.alloc(), &raw); r != VK_SUCCESS) {
-    return vk_error(std::string(kWho) + ": vkCreateFramebuffer", r);
+  const VkFramebufferCreateInfo info{.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO,
+                                     .renderPass = st.render_pass.get(),
+                                     .attachmentCount = 4,
+                                     .pAttachments = views,
+                                     .width = extent.width,
+                                     .height = extent.height,
+                                     .layers = 1};
+  if (Status s = assign(st.framebuffer, make_owned<Framebuffer>(api, &Api::CreateFramebuffer, info,
+                                                                "vkCreateFramebuffer"));
+      !s.ok()) {
+    return s;
   }
-  st.framebuffer = Framebuffer(api, raw);
   st.g_layout = VK_IMAGE_LAYOUT_UNDEFINED;
   st.set_written = false;  // the set names the G-buffer views
   st.w = width;

@@ -11,6 +11,10 @@
 #include "vk/barriers.h"
 #include "vk/deferred_renderer.h"
 
+// Vulkan's create-infos are written with designated initializers: the members left out are
+// zero-initialised, which is what Vulkan asks of them (null pNext, no flags).
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
 namespace tessera::vk {
 
 namespace {
@@ -46,26 +50,27 @@ ClassUpload pack_class(const deferred::GpuTextureClasses::Class& c,
 }
 
 /// Creates one class's array image and view and uploads it (a submission of its own).
-Status upload_class(State& st, const deferred::GpuTextureClasses::Class& c,
-                    const ClassUpload& u) {
+Status upload_class(State& st, const deferred::GpuTextureClasses::Class& c, const ClassUpload& u) {
   const Api& api = *st.api;
   TextureArray arr;
-  VkImageCreateInfo ci{};
-  ci.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-  ci.imageType = VK_IMAGE_TYPE_2D;
-  ci.format = kGFormat;
-  ci.extent = {std::uint32_t(c.width), std::uint32_t(c.height), 1};
-  ci.mipLevels = std::uint32_t(c.levels);
-  ci.arrayLayers = std::uint32_t(c.textures.size());
-  ci.samples = VK_SAMPLE_COUNT_1_BIT;
-  ci.tiling = VK_IMAGE_TILING_OPTIMAL;
-  ci.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  VkImage image = VK_NULL_HANDLE;
-  if (VkResult r = api.CreateImage(api.device(), &ci, api.alloc(), &image); r != VK_SUCCESS) {
-    return vk_error(std::string(kWho) + ": texture array: vkCreateImage", r);
+  const std::uint32_t levels = std::uint32_t(c.levels), layers = std::uint32_t(c.textures.size());
+  const VkImageCreateInfo image_info{
+      .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+      .imageType = VK_IMAGE_TYPE_2D,
+      .format = kGFormat,
+      .extent = {std::uint32_t(c.width), std::uint32_t(c.height), 1},
+      .mipLevels = levels,
+      .arrayLayers = layers,
+      .samples = VK_SAMPLE_COUNT_1_BIT,
+      .tiling = VK_IMAGE_TILING_OPTIMAL,
+      .usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+      .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
+  if (Status s = assign(arr.image, make_owned<RawImage>(api, &Api::CreateImage, image_info,
+                                                        "texture array: vkCreateImage"));
+      !s.ok()) {
+    return s;
   }
-  arr.image = RawImage(api, image);
+  const VkImage image = arr.image.get();
   VkMemoryRequirements req{};
   api.GetImageMemoryRequirements(api.device(), image, &req);
   bool local = false;
@@ -76,21 +81,21 @@ Status upload_class(State& st, const deferred::GpuTextureClasses::Class& c,
   if (VkResult r = api.BindImageMemory(api.device(), image, *mem, 0); r != VK_SUCCESS) {
     return vk_error(std::string(kWho) + ": texture array: vkBindImageMemory", r);
   }
-  VkImageViewCreateInfo vi{};
-  vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-  vi.image = image;
-  vi.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-  vi.format = kGFormat;
-  vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, ci.mipLevels, 0, ci.arrayLayers};
-  VkImageView view = VK_NULL_HANDLE;
-  if (VkResult r = api.CreateImageView(api.device(), &vi, api.alloc(), &view); r != VK_SUCCESS) {
-    return vk_error(std::string(kWho) + ": texture array: vkCreateImageView", r);
+  const VkImageViewCreateInfo view_info{
+      .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+      .image = image,
+      .viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY,  // sampler2DArray, one layer per texture
+      .format = kGFormat,
+      .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, levels, 0, layers}};
+  if (Status s = assign(arr.view, make_owned<ImageView>(api, &Api::CreateImageView, view_info,
+                                                        "texture array: vkCreateImageView"));
+      !s.ok()) {
+    return s;
   }
-  arr.view = ImageView(api, view);
 
-  Result<Buffer> staging = Buffer::create(api, u.texels.size() * sizeof(float),
-                                          VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true,
-                                          std::string(kWho) + ": texture staging");
+  Result<Buffer> staging =
+      Buffer::create(api, u.texels.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true,
+                     std::string(kWho) + ": texture staging");
   if (!staging) return staging.status();
   std::memcpy(staging->mapped(), u.texels.data(), u.texels.size() * sizeof(float));
   staging->flush();
@@ -99,15 +104,15 @@ Status upload_class(State& st, const deferred::GpuTextureClasses::Class& c,
   Barrier to_dst;
   to_dst.image(image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-               VK_ACCESS_2_TRANSFER_WRITE_BIT, ci.mipLevels, ci.arrayLayers);
+               VK_ACCESS_2_TRANSFER_WRITE_BIT, levels, layers);
   to_dst.record(api, *cmd);
   api.CmdCopyBufferToImage(*cmd, staging->get(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                            std::uint32_t(u.regions.size()), u.regions.data());
   Barrier to_read;
-  to_read.image(image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
-                ci.mipLevels, ci.arrayLayers);
+  to_read.image(image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+                VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, levels, layers);
   to_read.record(api, *cmd);
   if (Status s = st.device->submit_and_wait(*cmd); !s.ok()) return s;
   st.arrays.push_back(std::move(arr));
@@ -134,9 +139,9 @@ Status upload_textures(State& st) {
   }
   const std::vector<deferred::GpuMaterial> mats =
       deferred::gpu_materials(st.scene->materials, st.cpu_textures, *classes);
-  Result<Buffer> b = Buffer::create(*st.api, mats.size() * sizeof(deferred::GpuMaterial),
-                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true,
-                                    std::string(kWho) + ": materials");
+  Result<Buffer> b =
+      Buffer::create(*st.api, mats.size() * sizeof(deferred::GpuMaterial),
+                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true, std::string(kWho) + ": materials");
   if (!b) return b.status();
   std::memcpy(b->mapped(), mats.data(), mats.size() * sizeof(deferred::GpuMaterial));
   b->flush();
@@ -182,35 +187,33 @@ Status upload_meshes(State& st) {
 
 Status create_samplers(State& st) {
   const Api& api = *st.api;
-  VkSamplerCreateInfo si{};
-  si.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
-  si.magFilter = VK_FILTER_LINEAR;
-  si.minFilter = VK_FILTER_LINEAR;
-  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-  si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-  si.maxLod = VK_LOD_CLAMP_NONE;
-  VkSampler raw = VK_NULL_HANDLE;
-  if (VkResult r = api.CreateSampler(api.device(), &si, api.alloc(), &raw); r != VK_SUCCESS) {
-    return vk_error(std::string(kWho) + ": vkCreateSampler", r);
+  // The texture arrays: trilinear, repeating, no hardware anisotropy (deferred_shading.glsl
+  // builds the CPU's anisotropic filter from textureLod probes); the G-buffer: texelFetch only.
+  const VkSamplerCreateInfo trilinear{.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+                                      .magFilter = VK_FILTER_LINEAR,
+                                      .minFilter = VK_FILTER_LINEAR,
+                                      .mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR,
+                                      .addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT,
+                                      .addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT,
+                                      .addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT,
+                                      .maxLod = VK_LOD_CLAMP_NONE};
+  VkSamplerCreateInfo nearest = trilinear;
+  nearest.magFilter = nearest.minFilter = VK_FILTER_NEAREST;
+  nearest.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  nearest.addressModeU = nearest.addressModeV = nearest.addressModeW =
+      VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  nearest.maxLod = 0.0f;
+  const VkQueryPoolCreateInfo timestamps{.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
+                                         .queryType = VK_QUERY_TYPE_TIMESTAMP,
+                                         .queryCount = 2};
+  for (Status s : {assign(st.texture_sampler, make_owned<Sampler>(api, &Api::CreateSampler,
+                                                                  trilinear, "vkCreateSampler")),
+                   assign(st.gbuffer_sampler, make_owned<Sampler>(api, &Api::CreateSampler, nearest,
+                                                                  "vkCreateSampler")),
+                   assign(st.queries, make_owned<QueryPool>(api, &Api::CreateQueryPool, timestamps,
+                                                            "vkCreateQueryPool"))}) {
+    if (!s.ok()) return s;
   }
-  st.texture_sampler = Sampler(api, raw);
-  si.magFilter = si.minFilter = VK_FILTER_NEAREST;
-  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-  si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  si.maxLod = 0.0f;
-  if (VkResult r = api.CreateSampler(api.device(), &si, api.alloc(), &raw); r != VK_SUCCESS) {
-    return vk_error(std::string(kWho) + ": vkCreateSampler", r);
-  }
-  st.gbuffer_sampler = Sampler(api, raw);
-  VkQueryPoolCreateInfo qi{};
-  qi.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
-  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-  qi.queryCount = 2;
-  VkQueryPool pool = VK_NULL_HANDLE;
-  if (VkResult r = api.CreateQueryPool(api.device(), &qi, api.alloc(), &pool); r != VK_SUCCESS) {
-    return vk_error(std::string(kWho) + ": vkCreateQueryPool", r);
-  }
-  st.queries = QueryPool(api, pool);
   return Status::success();
 }
 
@@ -254,20 +257,15 @@ Status create_render_pass(State& st) {
   dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
                       VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
                       VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-  VkRenderPassCreateInfo ri{};
-  ri.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
-  ri.attachmentCount = std::uint32_t(att.size());
-  ri.pAttachments = att.data();
-  ri.subpassCount = 1;
-  ri.pSubpasses = &sub;
-  ri.dependencyCount = 1;
-  ri.pDependencies = &dep;
-  VkRenderPass raw = VK_NULL_HANDLE;
-  if (VkResult r = api.CreateRenderPass(api.device(), &ri, api.alloc(), &raw); r != VK_SUCCESS) {
-    return vk_error(std::string(kWho) + ": vkCreateRenderPass", r);
-  }
-  st.render_pass = RenderPass(api, raw);
-  return Status::success();
+  const VkRenderPassCreateInfo info{.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO,
+                                    .attachmentCount = std::uint32_t(att.size()),
+                                    .pAttachments = att.data(),
+                                    .subpassCount = 1,
+                                    .pSubpasses = &sub,
+                                    .dependencyCount = 1,
+                                    .pDependencies = &dep};
+  return assign(st.render_pass,
+                make_owned<RenderPass>(api, &Api::CreateRenderPass, info, "vkCreateRenderPass"));
 }
 
 }  // namespace
@@ -285,8 +283,8 @@ Result<std::unique_ptr<DeferredRenderer>> DeferredRenderer::create(HeadlessDevic
   Result<std::vector<texture::Texture>> textures = render::build_scene_textures(scene, {});
   if (!textures) return textures.status();
   st.cpu_textures = std::move(*textures);
-  for (Status s : {create_samplers(st), upload_textures(st), upload_meshes(st),
-                   create_render_pass(st)}) {
+  for (Status s :
+       {create_samplers(st), upload_textures(st), upload_meshes(st), create_render_pass(st)}) {
     if (!s.ok()) return s;
   }
   if (Status s = create_gbuffer_pipeline(st); !s.ok()) return s;
@@ -296,9 +294,9 @@ Result<std::unique_ptr<DeferredRenderer>> DeferredRenderer::create(HeadlessDevic
 
 Status DeferredRenderer::check_size(int width, int height, int m) const {
   if (m < 1 || m > 8) {
-    return Status::error(ErrorCode::invalid_argument,
-                         std::string(kWho) + ": window size m must be in [1, 8], got " +
-                             std::to_string(m));
+    return Status::error(
+        ErrorCode::invalid_argument,
+        std::string(kWho) + ": window size m must be in [1, 8], got " + std::to_string(m));
   }
   if (width < 1 || height < 1) {
     return Status::error(ErrorCode::invalid_argument, std::string(kWho) + ": bad output size " +

@@ -11,6 +11,10 @@
 #include "vk/deferred_renderer.h"
 #include "vk/shader.h"
 
+// Vulkan's create-infos are written with designated initializers: the members left out are
+// zero-initialised, which is what Vulkan asks of them (null pNext, no flags).
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
 namespace tessera::vk {
 
 namespace {
@@ -86,10 +90,10 @@ Status size_pass_buffers(State& st) {
   if (st.buffers_w == st.w && st.buffers_h == st.h) return Status::success();
   const std::size_t pixels = std::size_t(st.w) * std::size_t(st.h);
   for (std::size_t i = 0; i < kPassBuffers; ++i) {
-    Result<Buffer> b = Buffer::create(
-        *st.api, pixels * kPassBytes[i],
-        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false,
-        std::string(kWho) + ": pass buffer");
+    Result<Buffer> b =
+        Buffer::create(*st.api, pixels * kPassBytes[i],
+                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, false,
+                       std::string(kWho) + ": pass buffer");
     if (!b) return b.status();
     st.pass[i] = std::move(*b);
   }
@@ -119,9 +123,9 @@ Result<VkPipeline> program(State& st, const std::vector<std::string>& defines) {
   if (!text) return text.status();
   Result<std::vector<std::uint32_t>> spirv = compile_compute_spirv(text->text);
   if (!spirv) {
-    return Status::error(spirv.status().code,
-                         std::string(kWho) + ": " +
-                             glsl::format_log(spirv.status().message, text->files));
+    return Status::error(
+        spirv.status().code,
+        std::string(kWho) + ": " + glsl::format_log(spirv.status().message, text->files));
   }
   Result<Pipeline> p = create_compute_pipeline(*st.api, *spirv, st.passes_layout.get(),
                                                std::string(kWho) + ": deferred_passes.comp");
@@ -139,54 +143,47 @@ Status create_deferred_set(State& st) {
   const Api& api = *st.api;
   std::vector<VkDescriptorSetLayoutBinding> bindings;
   for (std::uint32_t b = 0; b < kBindPasses + kPassBuffers; ++b) {
-    VkDescriptorSetLayoutBinding lb{};
-    lb.binding = b;
-    lb.descriptorType = binding_type(b);
-    lb.descriptorCount = b == kBindTextures ? std::uint32_t(st.arrays.size()) : 1;
-    lb.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
-    bindings.push_back(lb);
+    bindings.push_back({.binding = b,
+                        .descriptorType = binding_type(b),
+                        .descriptorCount = b == kBindTextures ? std::uint32_t(st.arrays.size()) : 1,
+                        .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT});
   }
-  VkDescriptorSetLayoutCreateInfo li{};
-  li.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  li.bindingCount = std::uint32_t(bindings.size());
-  li.pBindings = bindings.data();
-  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
-  if (VkResult r = api.CreateDescriptorSetLayout(api.device(), &li, api.alloc(), &layout);
-      r != VK_SUCCESS) {
-    return vk_error(std::string(kWho) + ": vkCreateDescriptorSetLayout", r);
+  const VkDescriptorSetLayoutCreateInfo set_info{
+      .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+      .bindingCount = std::uint32_t(bindings.size()),
+      .pBindings = bindings.data()};
+  if (Status s =
+          assign(st.set_layout, make_owned<SetLayout>(api, &Api::CreateDescriptorSetLayout,
+                                                      set_info, "vkCreateDescriptorSetLayout"));
+      !s.ok()) {
+    return s;
   }
-  st.set_layout = SetLayout(api, layout);
-  VkPipelineLayoutCreateInfo pi{};
-  pi.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-  pi.setLayoutCount = 1;
-  pi.pSetLayouts = &layout;
-  VkPipelineLayout pl = VK_NULL_HANDLE;
-  if (VkResult r = api.CreatePipelineLayout(api.device(), &pi, api.alloc(), &pl);
-      r != VK_SUCCESS) {
-    return vk_error(std::string(kWho) + ": vkCreatePipelineLayout", r);
+  const VkDescriptorSetLayout layout = st.set_layout.get();
+  const VkPipelineLayoutCreateInfo passes_info{
+      .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+      .setLayoutCount = 1,
+      .pSetLayouts = &layout};
+  const std::array<VkDescriptorPoolSize, 3> sizes = {
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 + kPassBuffers},
+      VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                           3 + std::uint32_t(st.arrays.size())}};
+  const VkDescriptorPoolCreateInfo pool_info{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                             .maxSets = 1,
+                                             .poolSizeCount = std::uint32_t(sizes.size()),
+                                             .pPoolSizes = sizes.data()};
+  for (Status s :
+       {assign(st.passes_layout, make_owned<PipelineLayout>(api, &Api::CreatePipelineLayout,
+                                                            passes_info, "vkCreatePipelineLayout")),
+        assign(st.pool, make_owned<DescriptorPool>(api, &Api::CreateDescriptorPool, pool_info,
+                                                   "vkCreateDescriptorPool"))}) {
+    if (!s.ok()) return s;
   }
-  st.passes_layout = PipelineLayout(api, pl);
-  const VkDescriptorPoolSize sizes[3] = {
-      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3 + kPassBuffers},
-      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 + std::uint32_t(st.arrays.size())}};
-  VkDescriptorPoolCreateInfo ci{};
-  ci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  ci.maxSets = 1;
-  ci.poolSizeCount = 3;
-  ci.pPoolSizes = sizes;
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  if (VkResult r = api.CreateDescriptorPool(api.device(), &ci, api.alloc(), &pool);
-      r != VK_SUCCESS) {
-    return vk_error(std::string(kWho) + ": vkCreateDescriptorPool", r);
-  }
-  st.pool = DescriptorPool(api, pool);
-  VkDescriptorSetAllocateInfo ai{};
-  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  ai.descriptorPool = pool;
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = &layout;
-  if (VkResult r = api.AllocateDescriptorSets(api.device(), &ai, &st.set); r != VK_SUCCESS) {
+  const VkDescriptorSetAllocateInfo alloc{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                          .descriptorPool = st.pool.get(),
+                                          .descriptorSetCount = 1,
+                                          .pSetLayouts = &layout};
+  if (VkResult r = api.AllocateDescriptorSets(api.device(), &alloc, &st.set); r != VK_SUCCESS) {
     return vk_error(std::string(kWho) + ": vkAllocateDescriptorSets", r);
   }
   return Status::success();
@@ -199,18 +196,18 @@ Status bind_deferred_inputs(State& st, const deferred::ShadingOptions& o,
     return Status::error(ErrorCode::invalid_argument, std::string(kWho) + ": no G-buffer yet");
   }
   if (o.filter != texture::TextureFilter::anisotropic) {
-    return Status::error(ErrorCode::unsupported,
-                         std::string(kWho) +
-                             ": only TextureFilter::anisotropic shading is implemented");
+    return Status::error(
+        ErrorCode::unsupported,
+        std::string(kWho) + ": only TextureFilter::anisotropic shading is implemented");
   }
   const deferred::GpuParams p = deferred::gpu_params(st.camera, st.w, st.h, st.m, o, a, e);
   const std::vector<float> lights = deferred::gpu_lights(o), waves = deferred::gpu_waves(o);
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-  for (Status s : {write_host(st, st.params, &p, sizeof p, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                              "parameters"),
-                   write_host(st, st.lights, lights.data(), lights.size() * 4, storage, "lights"),
-                   write_host(st, st.waves, waves.data(), waves.size() * 4, storage, "waves"),
-                   size_pass_buffers(st)}) {
+  for (Status s :
+       {write_host(st, st.params, &p, sizeof p, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "parameters"),
+        write_host(st, st.lights, lights.data(), lights.size() * 4, storage, "lights"),
+        write_host(st, st.waves, waves.data(), waves.size() * 4, storage, "waves"),
+        size_pass_buffers(st)}) {
     if (!s.ok()) return s;
   }
   if (!st.set_written) return write_set(st);
@@ -237,9 +234,8 @@ void record_gbuffer_readable(State& st, VkCommandBuffer cmd) {
   Barrier b;
   for (const Image& g : st.g) {
     b.image(g.get(), st.g_layout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-            VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-            VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-            VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+            VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   }
   b.record(*st.api, cmd);
   st.g_layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
@@ -255,8 +251,8 @@ double timestamp_ms(const State& st) {
   const double per_tick = st.device->timestamp_ms_per_tick();
   if (per_tick <= 0.0) return std::nan("");
   std::uint64_t ticks[2] = {0, 0};
-  if (st.api->GetQueryPoolResults(st.api->device(), st.queries.get(), 0, 2, sizeof ticks, ticks,
-                                  8, VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) !=
+  if (st.api->GetQueryPoolResults(st.api->device(), st.queries.get(), 0, 2, sizeof ticks, ticks, 8,
+                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) !=
       VK_SUCCESS) {
     return std::nan("");
   }

@@ -268,8 +268,8 @@ Result<DeferredShade> DeferredRenderer::shade_default_fxaa(const deferred::Shadi
   }
   total_times(out);
   out.image8 = ImageRGBA8(st.w, st.h);
-  if (Status s = read_pass_buffer(st, kBufRgba8Out, out.image8.pixels.size(),
-                                  out.image8.pixels.data());
+  if (Status s =
+          read_pass_buffer(st, kBufRgba8Out, out.image8.pixels.size(), out.image8.pixels.data());
       !s.ok()) {
     return s;
   }

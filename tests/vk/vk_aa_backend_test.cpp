@@ -4,9 +4,9 @@
 // identical and every method's sRGB8 image (adaptive, reference, default, FXAA,
 // edge-per-sample) >= 60 dB from GL's (FXAA >= 50 dB; the figures are printed), the same pass
 // names, and no validation message (device_status() after the backend, and so its device, is
-// gone: leaks count). Negative controls: a shifted camera and other thresholds fail the same comparisons.
-// Bad input: a G-buffer beyond the device's limits is too_large naming the limit, before
-// anything is allocated. Needs a Vulkan device with the validation layer (and, for the
+// gone: leaks count). Negative controls: a shifted camera and other thresholds fail the same
+// comparisons. Bad input: a G-buffer beyond the device's limits is too_large naming the limit,
+// before anything is allocated. Needs a Vulkan device with the validation layer (and, for the
 // comparisons, tessera_gl with an OpenGL 4.5 context): skips, or fails under
 // TESSERA_TEST_REQUIRE.
 #include <gtest/gtest.h>
@@ -117,10 +117,10 @@ TEST_F(VkAaBackend, EveryMethodMatchesGl) {
       const double db = psnr(v.image, g.image);
       const bool counted = method == AaMethod::adaptive || method == AaMethod::edge_per_sample;
       const double same = counted ? same_fraction(v.samples, g.samples) : 1.0;
-      std::printf("m = %d %-15s image %6.1f dB against GL's, k maps %.3f %% identical, "
-                  "%.1f ms (GPU %.1f ms), GL %.1f ms\n",
-                  m, experiments::aa_method_name(method), db, 100 * same, v.wall_ms, v.gpu_ms,
-                  g.wall_ms);
+      std::printf(
+          "m = %d %-15s image %6.1f dB against GL's, k maps %.3f %% identical, "
+          "%.1f ms (GPU %.1f ms), GL %.1f ms\n",
+          m, experiments::aa_method_name(method), db, 100 * same, v.wall_ms, v.gpu_ms, g.wall_ms);
       // FXAA's branches amplify the last-bit differences of the sRGB8 input (SPIR-V and GLSL
       // round a few values differently): 59.6 to 66.3 dB measured on lavapipe / llvmpipe; every
       // other method >= 79.7 dB.
