@@ -4,8 +4,8 @@
 // program linking tessera_vk hands it vk::experiment_backends(). The twin of
 // src/gl/aa_backend.cpp: the same passes and pass names, the same AaShadeOutput. Times: each
 // pass's GPU timestamps; the wall time from submit to fence (deferred_passes.comp passes are
-// one submission each; the component's passes share one, so their own wall time is NaN and
-// the method's is the submission's).
+// one submission each; the component's passes share one, whose wall time is the method's and
+// is split between its passes by their GPU times).
 #include "tessera/core.h"
 #include "vk/deferred_renderer.h"
 #include "vk/experiment_backends_internal.h"

@@ -12,7 +12,8 @@
 //    same set (bindings: the comments of deferred_shading.glsl and deferred_passes.comp).
 // Every submission waits for its fence; each deferred_passes.comp pass is its own submission
 // (its wall time from submit to fence, its GPU time from two timestamps), the component's passes
-// share one (their GPU times from its profile; the wall time is the submission's).
+// share one (their GPU times from its profile; the submission's wall time split between them
+// by those).
 // Files: deferred_renderer_scene.cpp (scene upload, size check), deferred_renderer_gbuffer.cpp
 // (geometry pass), deferred_renderer_set.cpp (descriptor set, buffers, deferred_passes.comp),
 // deferred_renderer_shade.cpp (the shading calls, the component).

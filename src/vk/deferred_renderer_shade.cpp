@@ -158,12 +158,16 @@ Status shade_with_component(State& st, adaptive::Mode mode, const deferred::Adap
   st.g_layout = rec->gbuffer_layout[0];
   Result<AdaptiveProfile> prof = (*c)->read_profile();
   if (!prof) return prof.status();
-  // One submission: each pass's GPU time; its own wall time is not measurable (NaN), the
-  // submission's is out.wall_ms.
+  // The component's passes share one submission: each has its GPU time, and the submission's
+  // wall time (out.wall_ms) is split between them by those times (evenly where they are
+  // unknown), so that the passes' wall times add up to the method's.
   out.gpu_ms = 0.0;
+  for (const PassTime& p : prof->passes) out.gpu_ms += p.ms;
+  const bool by_gpu = std::isfinite(out.gpu_ms) && out.gpu_ms > 0.0;
   for (const PassTime& p : prof->passes) {
-    out.passes.push_back({p.pass, std::nan(""), p.ms});
-    out.gpu_ms += p.ms;
+    const double share =
+        by_gpu ? p.ms / out.gpu_ms : 1.0 / double(std::max<std::size_t>(prof->passes.size(), 1));
+    out.passes.push_back({p.pass, out.wall_ms * share, p.ms});
   }
   const bool counts = mode == adaptive::Mode::adaptive;
   if (Status s = read_component(st, *rec, counts, out); !s.ok()) return s;

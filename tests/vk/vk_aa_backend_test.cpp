@@ -139,6 +139,13 @@ TEST_F(VkAaBackend, EveryMethodMatchesGl) {
         EXPECT_EQ(pass_names(v), pass_names(g)) << experiments::aa_method_name(method);
       }
       EXPECT_TRUE(std::isfinite(v.wall_ms) && v.wall_ms > 0.0);
+      double pass_wall = 0.0;
+      for (const experiments::AaPassTime& p : v.passes) {
+        EXPECT_GT(p.wall_ms, 0.0) << p.pass;
+        EXPECT_GE(p.gpu_ms, 0.0) << p.pass;  // timestamps (lavapipe has them)
+        pass_wall += p.wall_ms;
+      }
+      EXPECT_NEAR(pass_wall, v.wall_ms, 1e-6 * v.wall_ms);
     }
   }
 }
