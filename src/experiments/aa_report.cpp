@@ -253,9 +253,10 @@ Status backend_report(const AaConfig& c, const AaResult& res, const std::string&
 std::string gpu_note(const AaResult& res) {
   if (res.backend == Backend::vk) {
     return "Vulkan: `" + res.gpu_renderer + "`, `" + res.gpu_version +
-           "`. Vulkan ms are host wall times from each pass's submission to its fence "
-           "(read-back excluded); the GPU timestamps per pass are beside them in the pass table "
-           "and in aa.json (`gpu_shade_ms`, `passes`).\n\n";
+           "`. Vulkan ms are host wall times from each method's submission to its fence "
+           "(read-back excluded; passes recorded into one submission share its wall time in "
+           "proportion to their GPU timestamps); the GPU timestamps per pass are beside them in "
+           "the pass table and in aa.json (`gpu_shade_ms`, `passes`).\n\n";
   }
   std::string md = "OpenGL: `" + res.gpu_renderer + "`, `" + res.gpu_version +
                    "`. GL ms are host wall times from each pass's dispatch to the end of its "
