@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
       "# %s, %dx%d, m = %d, %s shading (%d terms), %zu lights; GL: %s; %d frames "
       "(medians; every method once untimed first)\n",
       scene_path.c_str(), c.width, c.height, m, heavy ? "heavy" : "normal", res->heavy_terms,
-      res->lights, res->gl_renderer.c_str(), c.frames);
+      res->lights, res->gpu_renderer.c_str(), c.frames);
   const std::string forced =
       c.adaptive.force_k >= 0 ? ", adaptive k forced to " + std::to_string(c.adaptive.force_k) : "";
   std::printf("# extra samples: %s schedule%s\n", schedule_name(go.schedule), forced.c_str());

@@ -137,7 +137,7 @@ experiments::SeamsConfig seams_config(const Args& a) {
 std::vector<int> print_setup(const Args& a, const experiments::SeamsResult& res,
                              const char* filter_name) {
   const char* lp = std::getenv("LP_NUM_THREADS");
-  std::printf("# %s, %s; LP_NUM_THREADS=%s\n", res.gl_renderer.c_str(), res.gl_version.c_str(),
+  std::printf("# %s, %s; LP_NUM_THREADS=%s\n", res.gpu_renderer.c_str(), res.gpu_version.c_str(),
               lp ? lp : "(unset)");
   std::printf("# Figure-1 scene: %d faces, %dx%d, %s, %d orbit frames x %d reps\n", res.faces,
               a.width, a.height, filter_name, a.frames, a.reps);
@@ -147,7 +147,7 @@ std::vector<int> print_setup(const Args& a, const experiments::SeamsResult& res,
   std::printf("# MSAA rates refused by the driver: %s\n",
               refused_text.empty() ? "none" : refused_text.c_str());
   std::vector<int> rates;
-  for (const experiments::SeamsSamplePattern& p : res.gl_sample_patterns) {
+  for (const experiments::SeamsSamplePattern& p : res.gpu_sample_patterns) {
     rates.push_back(p.msaa);
     const experiments::SeamsGlComparison cmp = experiments::seams_gl_comparison(p);
     std::printf("# %dx: %d sample(s) at", p.msaa, p.samples);
@@ -227,7 +227,7 @@ void print_agreement(const experiments::SeamsResult& res, const std::vector<int>
       "with ||GL - CPU||_2 >= 0.01 (linear RGB), worst frame\n\n| method |",
       filter_name, res.quality_frames);
   for (std::size_t ri = 0; ri < rates.size(); ++ri) {
-    const experiments::SeamsSamplePattern& p = res.gl_sample_patterns[ri];
+    const experiments::SeamsSamplePattern& p = res.gpu_sample_patterns[ri];
     const experiments::SeamsGlComparison cmp = res.gl_rates[ri].compared_with;
     if (cmp == experiments::SeamsGlComparison::none) {
       std::printf(" %dx (GL; not compared) |", rates[ri]);

@@ -7,7 +7,8 @@
 // The engine's own GL calls go through GLVND's libOpenGL (GL_GLEXT_PROTOTYPES, linked with
 // OpenGL::OpenGL), whose stubs dispatch to the current GLX or EGL context; an engine using glad
 // would call gladLoadGL(glfwGetProcAddress) here and give tessera the same function.
-// Header-only, shared by examples/engine_aa and examples/engine_ptex.
+// Header-only, shared by examples/engine_aa and examples/engine_ptex (with their shader
+// compilation, compile_program).
 #pragma once
 
 #define GL_GLEXT_PROTOTYPES 1
@@ -23,6 +24,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tessera/gl.h"
@@ -217,6 +219,38 @@ void main() {
   GLuint present_program_ = 0;
   std::string renderer_;
 };
+
+/// The engine's own shader compilation (a vertex and a fragment stage, linked); 0 with the
+/// driver's log in `log` on failure.
+inline GLuint compile_program(const char* vs, const char* fs, std::string& log) {
+  const GLuint p = glCreateProgram();
+  for (const auto& [stage, src] : {std::pair{GL_VERTEX_SHADER, vs}, {GL_FRAGMENT_SHADER, fs}}) {
+    const GLuint s = glCreateShader(stage);
+    glShaderSource(s, 1, &src, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      char text[4096] = {};
+      glGetShaderInfoLog(s, sizeof text, nullptr, text);
+      log = text;
+      glDeleteShader(s);
+      glDeleteProgram(p);
+      return 0;
+    }
+    glAttachShader(p, s);
+    glDeleteShader(s);
+  }
+  glLinkProgram(p);
+  GLint ok = 0;
+  glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    log = "the program does not link";
+    glDeleteProgram(p);
+    return 0;
+  }
+  return p;
+}
 
 /// The largest difference of the R, G and B bytes of two RGBA8 images of the same size.
 inline int max_rgb_difference(const std::vector<std::uint8_t>& a, const std::uint8_t* b) {

@@ -17,13 +17,10 @@ const std::uint32_t kFragSpirv[] = {
 }  // namespace
 
 std::string Device::create(bool want_validation) {
-  const std::string why = create_instance("engine_aa_vk", VK_API_VERSION_1_3, want_validation);
-  if (!why.empty()) return why;
   VkPhysicalDeviceProperties props{};
-  if (!pick_device(VK_API_VERSION_1_3, physical, family, props)) {
-    return "no Vulkan 1.3 device with a graphics + compute queue";
-  }
-  name = props.deviceName;
+  const std::string why =
+      create_instance_and_pick("engine_aa_vk", VK_API_VERSION_1_3, want_validation, props);
+  if (!why.empty()) return why;
   VkPhysicalDeviceFeatures supported{};
   vkGetPhysicalDeviceFeatures(physical, &supported);
   if (!supported.shaderFloat64) return "device " + name + " lacks shaderFloat64";
@@ -33,17 +30,7 @@ std::string Device::create(bool want_validation) {
   f13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
   f13.synchronization2 = VK_TRUE;
   f13.dynamicRendering = VK_TRUE;
-  const float prio = 1.0f;
-  VkDeviceQueueCreateInfo qi{
-      VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, nullptr, 0, family, 1, &prio};
-  VkDeviceCreateInfo di{};
-  di.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
-  di.pNext = &f13;
-  di.queueCreateInfoCount = 1;
-  di.pQueueCreateInfos = &qi;
-  di.pEnabledFeatures = &features;
-  if (vkCreateDevice(physical, &di, nullptr, &device) != VK_SUCCESS) return "vkCreateDevice failed";
-  vkGetDeviceQueue(device, family, 0, &queue);
+  if (std::string no = create_device(&f13); !no.empty()) return no;
   VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr, 0, family};
   vkCreateCommandPool(device, &pi, nullptr, &pool_);
   return "";
@@ -53,30 +40,8 @@ void Device::destroy() {
   if (device) {
     vkDeviceWaitIdle(device);
     vkDestroyCommandPool(device, pool_, nullptr);
-    vkDestroyDevice(device, nullptr);
-    device = VK_NULL_HANDLE;
   }
-  destroy_instance();
-}
-
-Buffer Device::buffer(VkDeviceSize bytes, VkBufferUsageFlags usage, bool host) {
-  Buffer b;
-  VkBufferCreateInfo bi{};
-  bi.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
-  bi.size = bytes;
-  bi.usage = usage;
-  vkCreateBuffer(device, &bi, nullptr, &b.buffer);
-  VkMemoryRequirements req{};
-  vkGetBufferMemoryRequirements(device, b.buffer, &req);
-  const VkMemoryPropertyFlags want =
-      host ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-           : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
-                          memory_type(physical, req.memoryTypeBits, want)};
-  vkAllocateMemory(device, &ai, nullptr, &b.memory);
-  vkBindBufferMemory(device, b.buffer, b.memory, 0);
-  if (host) vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.data);
-  return b;
+  destroy_device_and_instance();
 }
 
 Image Device::image(VkFormat format, std::uint32_t w, std::uint32_t h, VkImageUsageFlags usage,
@@ -86,38 +51,8 @@ Image Device::image(VkFormat format, std::uint32_t w, std::uint32_t h, VkImageUs
   img.usage = usage;
   img.w = w;
   img.h = h;
-  VkImageCreateInfo ci{};
-  ci.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-  ci.imageType = VK_IMAGE_TYPE_2D;
-  ci.format = format;
-  ci.extent = {w, h, 1};
-  ci.mipLevels = ci.arrayLayers = 1;
-  ci.samples = VK_SAMPLE_COUNT_1_BIT;
-  ci.tiling = VK_IMAGE_TILING_OPTIMAL;
-  ci.usage = usage;
-  vkCreateImage(device, &ci, nullptr, &img.image);
-  VkMemoryRequirements req{};
-  vkGetImageMemoryRequirements(device, img.image, &req);
-  VkMemoryAllocateInfo ai{
-      VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
-      memory_type(physical, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)};
-  vkAllocateMemory(device, &ai, nullptr, &img.memory);
-  vkBindImageMemory(device, img.image, img.memory, 0);
-  VkImageViewCreateInfo vi{};
-  vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-  vi.image = img.image;
-  vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-  vi.format = format;
-  vi.subresourceRange = {aspect, 0, 1, 0, 1};
-  vkCreateImageView(device, &vi, nullptr, &img.view);
+  create_image(device, physical, format, w, h, usage, aspect, &img.image, &img.memory, &img.view);
   return img;
-}
-
-void Device::destroy(Buffer& b) {
-  if (b.data) vkUnmapMemory(device, b.memory);
-  vkDestroyBuffer(device, b.buffer, nullptr);
-  vkFreeMemory(device, b.memory, nullptr);
-  b = Buffer{};
 }
 
 void Device::destroy(Image& i) {
@@ -213,77 +148,35 @@ GeometryPipeline geometry_pipeline(Device& d) {
   VkShaderModule mods[2];
   const std::pair<const std::uint32_t*, std::size_t> code[2] = {{kVertSpirv, sizeof kVertSpirv},
                                                                 {kFragSpirv, sizeof kFragSpirv}};
-  VkPipelineShaderStageCreateInfo stages[2]{};
   for (int i = 0; i < 2; ++i) {
     VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, nullptr, 0,
                                 code[i].second, code[i].first};
     vkCreateShaderModule(d.device, &mi, nullptr, &mods[i]);
-    stages[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    stages[i].stage = i == 0 ? VK_SHADER_STAGE_VERTEX_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
-    stages[i].module = mods[i];
-    stages[i].pName = "main";
   }
-  VkVertexInputBindingDescription vb{0, 40, VK_VERTEX_INPUT_RATE_VERTEX};
-  VkVertexInputAttributeDescription va[4] = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
-                                             {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 12},
-                                             {2, 0, VK_FORMAT_R32G32B32_SFLOAT, 24},
-                                             {3, 0, VK_FORMAT_R32_SFLOAT, 36}};
-  VkPipelineVertexInputStateCreateInfo vi{};
-  vi.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
-  vi.vertexBindingDescriptionCount = 1;
-  vi.pVertexBindingDescriptions = &vb;
-  vi.vertexAttributeDescriptionCount = 4;
-  vi.pVertexAttributeDescriptions = va;
-  VkPipelineInputAssemblyStateCreateInfo ia{};
-  ia.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
-  ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  VkPipelineViewportStateCreateInfo vp{};
-  vp.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
-  vp.viewportCount = vp.scissorCount = 1;
-  VkPipelineRasterizationStateCreateInfo rs{};
-  rs.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
-  rs.polygonMode = VK_POLYGON_MODE_FILL;
-  rs.cullMode = VK_CULL_MODE_NONE;
-  rs.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo ms{};
-  ms.sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO;
-  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo ds{};
-  ds.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
-  ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
-  ds.depthCompareOp = VK_COMPARE_OP_LESS;
-  VkPipelineColorBlendAttachmentState att[2]{};
-  for (auto& a : att) a.colorWriteMask = 0xf;
-  VkPipelineColorBlendStateCreateInfo cb{};
-  cb.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
-  cb.attachmentCount = 2;
-  cb.pAttachments = att;
-  const VkDynamicState dyn[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-  VkPipelineDynamicStateCreateInfo dy{};
-  dy.sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO;
-  dy.dynamicStateCount = 2;
-  dy.pDynamicStates = dyn;
+  const VkVertexInputAttributeDescription va[4] = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
+                                                   {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 12},
+                                                   {2, 0, VK_FORMAT_R32G32B32_SFLOAT, 24},
+                                                   {3, 0, VK_FORMAT_R32_SFLOAT, 36}};
   const VkFormat colour[2] = {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8G8B8A8_UNORM};
   VkPipelineRenderingCreateInfo ri{};
   ri.sType = VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO;
   ri.colorAttachmentCount = 2;
   ri.pColorAttachmentFormats = colour;
   ri.depthAttachmentFormat = VK_FORMAT_D32_SFLOAT;
-  VkGraphicsPipelineCreateInfo pi{};
-  pi.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
-  pi.pNext = &ri;
-  pi.stageCount = 2;
-  pi.pStages = stages;
-  pi.pVertexInputState = &vi;
-  pi.pInputAssemblyState = &ia;
-  pi.pViewportState = &vp;
-  pi.pRasterizationState = &rs;
-  pi.pMultisampleState = &ms;
-  pi.pDepthStencilState = &ds;
-  pi.pColorBlendState = &cb;
-  pi.pDynamicState = &dy;
-  pi.layout = g.layout;
-  vkCreateGraphicsPipelines(d.device, VK_NULL_HANDLE, 1, &pi, nullptr, &g.pipeline);
+  // vk_engine.h's pipeline state (triangles, depth test less with writes, no blending): no
+  // culling, the viewport set per pass, dynamic rendering into two colour targets and depth.
+  GraphicsPipelineDesc desc;
+  desc.vertex = mods[0];
+  desc.fragment = mods[1];
+  desc.stride = 40;
+  desc.attributes = va;
+  desc.attribute_count = 4;
+  desc.dynamic_viewport = true;
+  desc.cull = VK_CULL_MODE_NONE;
+  desc.colour_attachments = 2;
+  desc.layout = g.layout;
+  desc.next = &ri;
+  graphics_pipeline(d.device, desc, &g.pipeline);
   for (VkShaderModule m : mods) vkDestroyShaderModule(d.device, m, nullptr);
   return g;
 }

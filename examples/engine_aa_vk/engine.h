@@ -10,15 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "vk_engine.h"  // examples/common: instance, validation messenger, device pick
+#include "vk_engine.h"  // examples/common: instance, validation messenger, device
 
 namespace engine {
 
-struct Buffer {
-  VkBuffer buffer = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  void* data = nullptr;  // mapped when host-visible
-};
 struct Image {
   VkImage image = VK_NULL_HANDLE;
   VkDeviceMemory memory = VK_NULL_HANDLE;
@@ -28,23 +23,17 @@ struct Image {
   std::uint32_t w = 0, h = 0;
 };
 
-class Device : public Instance {
+/// A Vulkan 1.3 device (vk_engine.h's DeviceBase) with synchronization2, dynamic rendering and
+/// shaderFloat64, and a command pool.
+class Device : public DeviceBase {
  public:
   /// Creates everything; "" on success, else the reason (no device, no Vulkan 1.3, ...).
   std::string create(bool validation);
   void destroy();
 
-  VkPhysicalDevice physical = VK_NULL_HANDLE;
-  VkDevice device = VK_NULL_HANDLE;
-  std::uint32_t family = 0;
-  VkQueue queue = VK_NULL_HANDLE;
-  VkPhysicalDeviceFeatures features{};  // what was enabled
-  std::string name;
-
-  Buffer buffer(VkDeviceSize bytes, VkBufferUsageFlags usage, bool host);
+  using DeviceBase::destroy;  // buffers (vk_engine.h)
   Image image(VkFormat format, std::uint32_t w, std::uint32_t h, VkImageUsageFlags usage,
               VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT);
-  void destroy(Buffer& b);
   void destroy(Image& i);
   VkCommandBuffer begin();
   void submit_and_wait(VkCommandBuffer cmd);

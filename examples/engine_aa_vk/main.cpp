@@ -23,26 +23,21 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <string>
 #include <vector>
 
+#include "aa_report.h"  // examples/common: the flags, measures and report both AA engines share
+#include "aa_scene.h"   // examples/common: the scene, camera, lights and shading of both
 #include "engine.h"
-#include "aa_scene.h"
 #include "tessera/core.h"
-#include "tessera/io.h"
-#include "tessera/metrics.h"
 #include "tessera/vk_adaptive.h"
 
 namespace {
 
-struct Args {
-  int w = 320, h = 240, m = 4;
-  long long budget = -1;  // -1: none
-  std::string schedule = "frame_list", out;
-  bool json = false, validation = true;
+// The flags of engine_aa too (aa_report.h), and the Vulkan engine's own.
+struct Args : engine::AaArgs {
+  bool no_validation = false;
 };
 
 int fail(const std::string& msg) {
@@ -50,76 +45,13 @@ int fail(const std::string& msg) {
   return 1;
 }
 
-// The engine's shading, handed to tessera as the hook: its own frame block and albedo (RT1) in
-// its own descriptor set 0; tessera's resources are in set 1 (TESSERA_ADAPTIVE_SET).
-const char* kShadingHook = R"(
-layout(std140, set = 0, binding = 0) uniform EngineFrame {
-  mat4 inv_view;      // camera to world
-  vec4 eye_tan;       // eye xyz, tan(fov_y / 2)
-  vec4 grid_aspect;   // grid width, height, aspect
-  vec4 light_pos[6];  // xyz, radius
-  vec4 light_col[6];  // rgb intensity
-};
-layout(set = 0, binding = 1) uniform sampler2D engine_albedo;  // RT1
+// The engine's shading, handed to tessera as the hook (aa_scene.h): its own frame block and
+// albedo (RT1) in its own descriptor set 0; tessera's resources are in set 1
+// (TESSERA_ADAPTIVE_SET).
+const std::string kShadingHook =
+    engine::shading_hook("std140, set = 0, binding = 0", "set = 0, binding = 1");
 
-vec3 engine_position(ivec2 g, float depth) {
-  float nx = 2.0 * (float(g.x) + 0.5) / grid_aspect.x - 1.0;
-  float ny = 1.0 - 2.0 * (float(g.y) + 0.5) / grid_aspect.y;
-  float t = eye_tan.w;
-  return (inv_view * vec4(nx * t * grid_aspect.z * depth, ny * t * depth, -depth, 1.0)).xyz;
-}
-
-vec4 tessera_shade_sample(ivec2 g, float footprint) {
-  int id = tessera_adaptive_id(g);  // the component's accessor of the layout's id channel
-  if (id < 0) return vec4(0.25, 0.35, 0.55, 1.0) * (1.0 - float(g.y) / grid_aspect.y * 0.6);
-  vec3 n = normalize(tessera_adaptive_normal(g));
-  vec3 p = engine_position(g, tessera_adaptive_depth(g));
-  vec3 albedo = texelFetch(engine_albedo, g, 0).rgb;
-  float shininess = id == 2 ? 600.0 : (id == 1 ? 24.0 : 120.0);
-  float spec = id == 2 ? 6.0 : (id == 1 ? 0.3 : 1.5);
-  if (id == 0) {  // checker floor: a texture term that aliases in the distance
-    vec2 c = floor(p.xz * 4.0);
-    albedo *= mod(c.x + c.y, 2.0) < 1.0 ? 1.0 : 0.15;
-  }
-  vec3 v = normalize(eye_tan.xyz - p);
-  vec3 colour = 0.04 * albedo;
-  for (int i = 0; i < 6; ++i) {
-    vec3 to = light_pos[i].xyz - p;
-    float d2 = dot(to, to);
-    vec3 l = to * inversesqrt(d2);
-    float ndl = max(dot(n, l), 0.0);
-    if (ndl <= 0.0) continue;
-    float fall = light_col[i].w / d2;
-    float ndh = max(dot(n, normalize(l + v)), 0.0);
-    colour += light_col[i].rgb * fall * ndl * (albedo + spec * pow(ndh, shininess));
-  }
-  return vec4(colour, 1.0);
-}
-)";
-
-/// Display encoding: Reinhard c / (1 + c), then sRGB8.
-tessera::ImageRGBA8 display(const tessera::ImageRGBAF& hdr) {
-  tessera::ImageRGBAF ldr = hdr;
-  for (std::size_t i = 0; i < ldr.pixel_count(); ++i) {
-    for (int c = 0; c < 3; ++c) {
-      float& x = ldr.pixels[i * 4 + std::size_t(c)];
-      x = x / (1.0f + x);
-    }
-    ldr.pixels[i * 4 + 3] = 1.0f;
-  }
-  return tessera::to_srgb8(ldr);
-}
-
-double psnr(const tessera::ImageRGBA8& a, const tessera::ImageRGBA8& b) {
-  tessera::metrics::CompareOptions o;
-  o.compute_ssim = false;
-  auto r = tessera::metrics::compare_images(a, b, o);
-  return r ? r->psnr_rgb : 0.0;
-}
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
+using engine::ms_since;
 
 float half_to_float(std::uint16_t h) {
   const int e = (h >> 10) & 31, m = h & 1023;
@@ -129,45 +61,12 @@ float half_to_float(std::uint16_t h) {
   return s * std::ldexp(float(m | 1024), e - 25);
 }
 
-bool parse(int argc, char** argv, Args& a, std::string& err) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    auto next = [&](std::string& v) {
-      if (i + 1 >= argc) return false;
-      v = argv[++i];
-      return true;
-    };
-    std::string v;
-    if (k == "--json") {
-      a.json = true;
-    } else if (k == "--no-validation") {
-      a.validation = false;
-    } else if (k != "--size" && k != "--m" && k != "--budget" && k != "--schedule" && k != "-o") {
-      err = "unknown argument " + k;
-      return false;
-    } else if (!next(v)) {
-      err = k + " needs a value";
-      return false;
-    } else if (k == "--size") {
-      if (std::sscanf(v.c_str(), "%dx%d", &a.w, &a.h) != 2 || a.w <= 0 || a.h <= 0) {
-        err = "--size " + v + ": expected WxH";
-        return false;
-      }
-    } else if (k == "--m") {
-      a.m = std::atoi(v.c_str());
-    } else if (k == "--budget") {
-      a.budget = std::atoll(v.c_str());
-      if (a.budget < 0) {
-        err = "--budget must be >= 0";
-        return false;
-      }
-    } else if (k == "--schedule") {
-      a.schedule = v;
-    } else {
-      a.out = v;
-    }
-  }
-  return true;
+// The command line; "" or the problem.
+std::string parse_args(int argc, char** argv, Args& a) {
+  engine::CommandLine cl;
+  engine::add_aa_flags(cl, a);
+  cl.flag("--no-validation", &a.no_validation);
+  return cl.parse(argc, argv);
 }
 
 /// The engine's G-buffer and its frame data.
@@ -179,8 +78,7 @@ struct Frame {
   VkDescriptorSet set = VK_NULL_HANDLE;
   VkSampler sampler = VK_NULL_HANDLE;
   std::size_t vertex_count = 0;
-  float view[16], inv_view[16], proj[16] = {}, eye[3] = {3.2f, 2.2f, 4.2f}, tan_half = 0,
-                                aspect = 1;
+  engine::Camera cam;  // aa_scene.h's, with Vulkan's projection
 };
 
 void setup(engine::Device& d, const Args& a, Frame& f) {
@@ -195,34 +93,14 @@ void setup(engine::Device& d, const Args& a, Frame& f) {
   f.vertices =
       d.buffer(verts.size() * sizeof(engine::Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
   std::memcpy(f.vertices.data, verts.data(), verts.size() * sizeof(engine::Vertex));
-  const float at[3] = {0.0f, 0.4f, 0.0f};
-  f.tan_half = std::tan(0.8f / 2);
-  f.aspect = float(a.w) / float(a.h);
-  engine::look_at(f.eye, at, f.view, f.inv_view);
+  f.cam = engine::make_camera(a.w, a.h);
   const float zn = 0.1f, zf = 50.0f;  // Vulkan's depth range [0, 1]
-  f.proj[0] = 1.0f / (f.tan_half * f.aspect);
-  f.proj[5] = 1.0f / f.tan_half;
-  f.proj[10] = zf / (zn - zf);
-  f.proj[11] = -1.0f;
-  f.proj[14] = zn * zf / (zn - zf);
-  struct {
-    float inv_view[16], eye_tan[4], grid_aspect[4], light_pos[6][4], light_col[6][4];
-  } u{};
-  std::copy(f.inv_view, f.inv_view + 16, u.inv_view);
-  u.eye_tan[0] = f.eye[0], u.eye_tan[1] = f.eye[1], u.eye_tan[2] = f.eye[2];
-  u.eye_tan[3] = f.tan_half;
-  u.grid_aspect[0] = float(gw), u.grid_aspect[1] = float(gh), u.grid_aspect[2] = f.aspect;
-  const float lights[6][8] = {{2.5f, 3.0f, 2.0f, 0, 1.0f, 0.9f, 0.8f, 14.0f},
-                              {-3.0f, 2.5f, 1.5f, 0, 0.5f, 0.6f, 1.0f, 10.0f},
-                              {0.5f, 1.2f, 2.5f, 0, 1.0f, 0.5f, 0.3f, 4.0f},
-                              {-1.0f, 4.0f, -2.5f, 0, 0.9f, 0.9f, 1.0f, 12.0f},
-                              {3.0f, 0.6f, -1.0f, 0, 0.3f, 1.0f, 0.4f, 3.0f},
-                              {0.0f, 6.0f, 0.0f, 0, 1.0f, 1.0f, 1.0f, 16.0f}};
-  for (int i = 0; i < 6; ++i)
-    for (int c = 0; c < 4; ++c) {
-      u.light_pos[i][c] = lights[i][c];
-      u.light_col[i][c] = lights[i][4 + c];
-    }
+  f.cam.proj[0] = 1.0f / (f.cam.tan_half * f.cam.aspect);
+  f.cam.proj[5] = 1.0f / f.cam.tan_half;
+  f.cam.proj[10] = zf / (zn - zf);
+  f.cam.proj[11] = -1.0f;
+  f.cam.proj[14] = zn * zf / (zn - zf);
+  const engine::FrameBlock u = engine::frame_block(f.cam, int(gw), int(gh));
   f.ubo = d.buffer(sizeof u, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   std::memcpy(f.ubo.data, &u, sizeof u);
   // The engine's descriptor set 0 for the hook: its frame block, RT1 as a sampler.
@@ -304,8 +182,8 @@ void record_gbuffer(VkCommandBuffer cmd, const engine::GeometryPipeline& gp, con
   vkCmdSetViewport(cmd, 0, 1, &vp);
   vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
   float pc[32];
-  std::copy(f.view, f.view + 16, pc);
-  std::copy(f.proj, f.proj + 16, pc + 16);
+  std::copy(f.cam.view, f.cam.view + 16, pc);
+  std::copy(f.cam.proj, f.cam.proj + 16, pc + 16);
   vkCmdPushConstants(cmd, gp.layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof pc, pc);
   const VkDeviceSize zero = 0;
   vkCmdBindVertexBuffers(cmd, 0, 1, &f.vertices.buffer, &zero);
@@ -387,53 +265,15 @@ tessera::Result<Shot> frame(engine::Device& d, const engine::GeometryPipeline& g
   return s;
 }
 
-void write_outputs(const Args& a, const tessera::ImageRGBA8& img, const tessera::ImageRGBA8& ref,
-                   const tessera::ImageRGBA8& one, const std::vector<std::uint8_t>& counts,
-                   std::string& err) {
-  std::error_code ec;
-  std::filesystem::create_directories(a.out, ec);
-  tessera::ImageRGBA8 k(a.w, a.h);
-  for (std::size_t i = 0; i < counts.size(); ++i) {
-    const auto g = std::uint8_t(255 * (counts[i] - 1) / (a.m * a.m - 1));
-    k.pixels[i * 4] = k.pixels[i * 4 + 1] = k.pixels[i * 4 + 2] = g;
-    k.pixels[i * 4 + 3] = 255;
+// The report (aa_report.h) with the Vulkan engine's own keys: the backend, the validation.
+void print_report(const Args& a, const engine::Device& d, const engine::AaReport& r) {
+  if (!a.json) {
+    engine::print_aa_summary("engine_aa_vk", " on " + d.name, a, r);
+    return;
   }
-  for (const auto& [name, im] : {std::pair{"adaptive.png", &img},
-                                 {"reference.png", &ref},
-                                 {"first.png", &one},
-                                 {"samples.png", &k}}) {
-    const std::string path = (std::filesystem::path(a.out) / name).string();
-    if (auto s = tessera::io::write_png(path, *im); !s.ok()) {
-      err = s.message;
-      return;
-    }
-  }
-}
-
-void print_json(const Args& a, const engine::Device& d, const Shot& ad, const Shot& ref,
-                const Shot& one, double samples_pct, double p_adaptive, double p_one) {
-  std::printf(
-      "{\"device\": \"%s\", \"backend\": \"vk\", \"width\": %d, \"height\": %d, \"m\": %d, "
-      "\"schedule\": \"%s\", ",
-      d.name.c_str(), a.w, a.h, a.m, a.schedule.c_str());
-  if (a.budget >= 0) {
-    std::printf("\"budget\": %lld, ", a.budget);
-  } else {
-    std::printf("\"budget\": null, ");
-  }
-  std::printf(
-      "\"extra_samples\": %llu, \"samples_percent\": %.3f, \"psnr_db\": %.3f, "
-      "\"psnr_1spp_db\": %.3f, \"gbuffer_ms\": %.3f, \"passes_ms\": {",
-      (unsigned long long)ad.profile.extra_samples, samples_pct, p_adaptive, p_one, ad.gbuffer_ms);
-  for (std::size_t i = 0; i < ad.profile.passes.size(); ++i) {
-    std::printf("%s\"%s\": %.3f", i ? ", " : "", ad.profile.passes[i].pass.c_str(),
-                ad.profile.passes[i].ms);
-  }
-  std::printf(
-      "}, \"adaptive_ms\": %.3f, \"first_ms\": %.3f, \"reference_ms\": %.3f, "
-      "\"validation\": %s, \"validation_messages\": %d}\n",
-      ad.profile.total_ms(), one.profile.total_ms(), ref.profile.total_ms(),
-      d.validation ? "true" : "false", d.messages);
+  engine::print_aa_json(d.name, a, r, "\"backend\": \"vk\", ", "",
+                        std::string(", \"validation\": ") + (d.validation ? "true" : "false") +
+                            ", \"validation_messages\": " + std::to_string(d.messages));
 }
 
 /// Creates the component, runs the three kinds of frame (each twice: the first also pays the
@@ -455,31 +295,12 @@ int run(engine::Device& d, const Args& a) {
   ctx.synchronization2 = true;
   ctx.enabled_features = d.features;
   tessera::vk::AdaptiveSupersamplerOptions o;
-  o.width = a.w;
-  o.height = a.h;
-  o.m = a.m;
-  o.layout.normal = {0, "rgb"};
-  o.layout.depth = {0, "a"};
-  o.layout.id = {1, "a", 255.0f, -1.0f};  // (id + 1) / 255 in unorm8; sky = -1
-  o.hook.source = kShadingHook;
-  o.hook.name = "engine_shading.glsl";
+  // The G-buffer layout, the hook, the resolve: as engine_aa's (aa_report.h). Its pass times
+  // are GPU timestamps here, read back after each frame.
+  engine::set_aa_options(o, a, kShadingHook);
   o.hook_set_layouts = {f.set_layout};  // the hook's set 0; tessera's is set 1
-  o.resolve = tessera::AdaptiveResolve::tonemap_weighted;  // HDR lights
-  o.output = tessera::AdaptiveOutputFormat::rgba16f;
-  o.sample_count_texture = true;
-  o.profile = true;  // timestamps and the sample count for --json
   int rc = 0;
-  std::string err;
-  if (a.schedule == "tile_list") {
-    o.schedule = tessera::AdaptiveSchedule::tile_list;
-  } else if (a.schedule == "loop") {
-    o.schedule = tessera::AdaptiveSchedule::loop;
-  } else if (a.schedule != "frame_list") {
-    err = "--schedule " + a.schedule + ": frame_list, tile_list or loop";
-  }
-  auto aa = err.empty() ? tessera::vk::AdaptiveSupersampler::create(ctx, o)
-                        : tessera::Result<std::unique_ptr<tessera::vk::AdaptiveSupersampler>>(
-                              tessera::Status::error(tessera::ErrorCode::invalid_argument, err));
+  auto aa = tessera::vk::AdaptiveSupersampler::create(ctx, o);
   if (!aa) {
     rc = fail(aa.status().message);
   } else {
@@ -496,22 +317,21 @@ int run(engine::Device& d, const Args& a) {
       }
     }
     if (rc == 0) {
-      const tessera::ImageRGBA8 d_img = display(shots[0].image), d_ref = display(shots[1].image),
-                                d_one = display(shots[2].image);
-      const double pixels = double(a.w) * a.h;
-      const double samples_pct =
-          100.0 * (pixels + double(shots[0].profile.extra_samples)) / (pixels * a.m * a.m);
-      const double p_adaptive = psnr(d_img, d_ref), p_one = psnr(d_one, d_ref);
-      if (!a.out.empty()) write_outputs(a, d_img, d_ref, d_one, shots[0].counts, err);
+      engine::AaReport rep;
+      const engine::AaImages images =
+          engine::measure(a, shots[0].image, shots[1].image, shots[2].image,
+                          (unsigned long long)shots[0].profile.extra_samples, rep);
+      rep.gbuffer_ms = shots[0].gbuffer_ms;
+      rep.set_passes(shots[0].profile.passes);
+      rep.adaptive_ms = shots[0].profile.total_ms();
+      rep.reference_ms = shots[1].profile.total_ms();
+      rep.first_ms = shots[2].profile.total_ms();
+      const std::string err =
+          a.out.empty() ? "" : engine::write_aa_outputs(a, images, shots[0].counts);
       if (!err.empty()) {
         rc = fail(err);
-      } else if (a.json) {
-        print_json(a, d, shots[0], shots[1], shots[2], samples_pct, p_adaptive, p_one);
       } else {
-        std::printf(
-            "engine_aa_vk %dx%d m=%d on %s: %.1f %% samples, PSNR %.2f dB (1 spp %.2f dB) "
-            "against full supersampling\n",
-            a.w, a.h, a.m, d.name.c_str(), samples_pct, p_adaptive, p_one);
+        print_report(a, d, rep);
       }
     }
     aa->reset();
@@ -533,10 +353,9 @@ int run(engine::Device& d, const Args& a) {
 
 int main(int argc, char** argv) {
   Args a;
-  std::string err;
-  if (!parse(argc, argv, a, err)) return fail(err);
+  if (std::string why = parse_args(argc, argv, a); !why.empty()) return fail(why);
   engine::Device d;
-  if (std::string why = d.create(a.validation); !why.empty()) {
+  if (std::string why = d.create(!a.no_validation); !why.empty()) {
     d.destroy();
     return fail("no Vulkan device: " + why);
   }

@@ -43,23 +43,22 @@
 #include <string>
 #include <vector>
 
+#include "ptex_report.h"  // examples/common: the flags, vertex, frame block and CPU check of both
 #include "tessera/core.h"
 #include "tessera/faces.h"
 #include "tessera/gl.h"
 #include "tessera/gl_faces.h"
 #include "tessera/glsl.h"
 #include "tessera/io.h"
-#include "tessera/metrics.h"
 #include "tessera/ptex.h"
-
 
 namespace {
 
-struct Args {
-  std::string obj, ptx, out, glsl, method = "discard";
-  int w = 320, h = 240, orbit_k = 1, orbit_n = 8;
-  float shift_px = 0.0f, fov = 0.0f;  // fov 0: the orbit camera's
-  bool check = false, json = false, headless = false;
+// The flags of engine_ptex_vk too (ptex_report.h), and the GL engine's own.
+struct Args : engine::PtexArgs {
+  std::string glsl, method = "discard";
+  float fov = 0.0f;  // 0: the orbit camera's
+  bool check = false, headless = false;
 };
 
 int fail(const std::string& msg) {
@@ -67,18 +66,10 @@ int fail(const std::string& msg) {
   return 1;
 }
 
-// The engine's vertex: 4 per Ptex face (corners are not shared: each face has its own UVs).
-struct Vertex {
-  float position[3], normal[3], uv[2];
-  std::int32_t face;
-};
-
-// The engine's per-frame block (std140, binding 0).
-struct FrameBlock {
-  float view_proj[16];
-  float light_dir[4];  // xyz, w unused
-  float shade[4];      // ambient, diffuse
-};
+// The engine's vertex (ptex_report.h): 4 per Ptex face (corners are not shared: each face has
+// its own UVs); its per-frame block (std140, binding 0).
+using Vertex = engine::FaceVertex;
+using FrameBlock = engine::ForwardFrameBlock;
 
 const char* kVertexShader = R"(#version 450 core
 layout(location = 0) in vec3 position;
@@ -126,100 +117,8 @@ void main() {
 }
 )";
 
-// The engine's own shader compilation; 0 with the driver's log in `log` on failure.
-GLuint compile_program(const char* vs, const char* fs, std::string& log) {
-  const GLuint p = glCreateProgram();
-  for (const auto& [stage, src] : {std::pair{GL_VERTEX_SHADER, vs}, {GL_FRAGMENT_SHADER, fs}}) {
-    const GLuint s = glCreateShader(stage);
-    glShaderSource(s, 1, &src, nullptr);
-    glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-      char text[4096] = {};
-      glGetShaderInfoLog(s, sizeof text, nullptr, text);
-      log = text;
-      glDeleteShader(s);
-      glDeleteProgram(p);
-      return 0;
-    }
-    glAttachShader(p, s);
-    glDeleteShader(s);
-  }
-  glLinkProgram(p);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    log = "the program does not link";
-    glDeleteProgram(p);
-    return 0;
-  }
-  return p;
-}
-
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-struct Agreement {
-  double psnr = 0, frac_001 = 0, max_norm = 0;
-  int non_finite = 0;
-};
-
-tessera::Result<Agreement> agreement(const tessera::ImageRGBAF& a, const tessera::ImageRGBAF& b) {
-  tessera::metrics::CompareOptions o;
-  o.compute_ssim = false;
-  auto c = tessera::metrics::compare_images(tessera::to_srgb8(a), tessera::to_srgb8(b), o);
-  if (!c) return c.status();
-  auto norms = tessera::metrics::error_norms(a, b);
-  if (!norms) return norms.status();
-  Agreement r;
-  r.psnr = c->psnr_rgb;
-  int over = 0;
-  for (float e : *norms) {
-    if (!std::isfinite(e)) {
-      ++r.non_finite;
-      continue;
-    }
-    over += e >= 0.01f;
-    r.max_norm = std::max(r.max_norm, double(e));
-  }
-  r.frac_001 = double(over) / double(norms->size());
-  return r;
-}
-
-// Four vertices and two triangles per face (corners not shared: each face has its own UVs).
-void face_vertices(const tessera::faces::QuadMesh& mesh, const std::vector<tessera::Vec3>& normals,
-                   std::vector<Vertex>& verts, std::vector<std::uint32_t>& indices) {
-  const float corner_uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  for (int f = 0; f < mesh.face_count(); ++f) {
-    for (int c = 0; c < 4; ++c) {
-      const tessera::Vec3& p =
-          mesh.positions[std::size_t(mesh.quads[std::size_t(f)][std::size_t(c)])];
-      const tessera::Vec3& n = normals[std::size_t(f) * 4 + std::size_t(c)];
-      verts.push_back({{p.x, p.y, p.z}, {n.x, n.y, n.z}, {corner_uv[c][0], corner_uv[c][1]}, f});
-    }
-    const auto b = std::uint32_t(f) * 4;
-    for (std::uint32_t i : {b, b + 1, b + 2, b, b + 2, b + 3}) indices.push_back(i);
-  }
-}
-
-// The engine's per-frame block: the camera (moved `shift_px` pixels right), the light.
-FrameBlock make_frame_block(const tessera::scene::Camera& camera, const Args& a) {
-  FrameBlock frame{};
-  const tessera::Mat4 vp = camera.view_projection(float(a.w) / float(a.h));
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) frame.view_proj[c * 4 + r] = vp.m[c][r];
-  // A shift of X pixels to the right: clip x += (2 X / width) w.
-  for (int c = 0; c < 4; ++c) {
-    frame.view_proj[c * 4 + 0] += 2.0f * a.shift_px / float(a.w) * vp.m[c][3];
-  }
-  const float light[3] = {0.42f, 0.82f, 0.39f};
-  std::copy(light, light + 3, frame.light_dir);
-  frame.shade[0] = 0.35f;
-  frame.shade[1] = 0.65f;
-
-  return frame;
 }
 
 // The engine's GPU objects: vertex, index and frame buffers, vertex array, an RGBA32F colour
@@ -278,23 +177,10 @@ int report(const Args& a, const engine::Platform& platform, const tessera::faces
            const tessera::faces::FaceTextureSet& set, const tessera::scene::Camera& camera,
            const tessera::ImageRGBAF& img, int classes, double gl_ms, int window_diff) {
   if (a.check) {
-    auto cpu = tessera::faces::FaceRenderer::create(scene, set);
-    if (!cpu) return fail(cpu.status().message);
-    tessera::faces::FaceRenderOptions o;
-    o.width = a.w;
-    o.height = a.h;
-    o.sampling.method = tessera::faces::SeamMethod::discard;
-    o.sampling.filter = tessera::texture::TextureFilter::trilinear;
-    o.sampling.clamp_fallback = true;
-    auto cpu_frame = (*cpu)->render(camera, o);
-    if (!cpu_frame) return fail(cpu_frame.status().message);
-    auto agree = agreement(img, cpu_frame->image);
+    auto agree = engine::cpu_agreement(scene, set, camera, img);
     if (!agree) return fail(agree.status().message);
     if (a.json) {
-      // JSON has no infinity: identical 8-bit images (MSE 0) give null.
-      char psnr_text[32];
-      std::snprintf(psnr_text, sizeof psnr_text, "%.3f", agree->psnr);
-      const std::string psnr_json = std::isfinite(agree->psnr) ? psnr_text : "null";
+      const std::string psnr_json = engine::psnr_text(agree->psnr, true);
       std::printf(
           "{\"device\": \"%s\", \"mesh\": \"%s\", \"faces\": %d, \"classes\": %d, "
           "\"width\": %d, \"height\": %d, \"orbit\": \"%d/%d\", \"shader_method\": \"%s\", "
@@ -303,7 +189,7 @@ int report(const Args& a, const engine::Platform& platform, const tessera::faces
           platform.renderer().c_str(), scene.name.c_str(), scene.mesh.face_count(),
           classes, a.w, a.h, a.orbit_k, a.orbit_n, a.method.c_str(), double(a.shift_px),
           psnr_json.c_str(), agree->frac_001, agree->max_norm, agree->non_finite, gl_ms,
-          cpu_frame->ms(), platform.kind(),
+          agree->cpu_ms, platform.kind(),
           window_diff >= 0 ? (", \"window_max_diff\": " + std::to_string(window_diff)).c_str()
                            : "");
     } else {
@@ -323,55 +209,25 @@ int report(const Args& a, const engine::Platform& platform, const tessera::faces
 
 // The command line; "" or the problem.
 std::string parse_args(int argc, char** argv, Args& a) {
-  std::vector<std::string> positional;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "engine_ptex: %s needs a value\n", k.c_str());
-        std::exit(1);
-      }
-      return argv[++i];
-    };
-    if (k == "--size") {
-      const std::string v = next();
-      if (std::sscanf(v.c_str(), "%dx%d", &a.w, &a.h) != 2 || a.w <= 0 || a.h <= 0 || a.w > 8192 ||
-          a.h > 8192 || a.w % 2 || a.h % 2)
-        return "--size " + v + ": expected WxH, even, 2..8192 (2x2 derivative quads)";
-    } else if (k == "--orbit") {
-      const std::string v = next();
-      if (std::sscanf(v.c_str(), "%d/%d", &a.orbit_k, &a.orbit_n) != 2 || a.orbit_n <= 0 ||
-          a.orbit_k < 0)
-        return "--orbit " + v + ": expected K/N";
-    } else if (k == "--shader-method") {
-      a.method = next();
-      if (a.method != "discard" && a.method != "clamp")
-        return "--shader-method " + a.method + ": discard or clamp";
-    } else if (k == "--fov") {
-      a.fov = std::strtof(next().c_str(), nullptr);
-      if (!(a.fov > 0.0f && a.fov < 180.0f)) return "--fov: degrees in (0, 180)";
-    } else if (k == "--shift-px") {
-      a.shift_px = std::strtof(next().c_str(), nullptr);
-    } else if (k == "--glsl") {
-      a.glsl = next();
-    } else if (k == "--headless") {
-      a.headless = true;
-    } else if (k == "--check") {
-      a.check = true;
-    } else if (k == "--json") {
-      a.json = a.check = true;
-    } else if (k == "-o") {
-      a.out = next();
-    } else if (!k.empty() && k[0] == '-') {
-      return "unknown argument " + k;
-    } else {
-      positional.push_back(k);
-    }
-  }
-  if (positional.size() != 2) return "usage: engine_ptex MESH.obj FILE.ptx [options]";
-  a.obj = positional[0];
-  a.ptx = positional[1];
-  return "";
+  engine::CommandLine cl;
+  engine::add_ptex_flags(cl, a);
+  cl.option("--shader-method", [&a](const std::string& v) -> std::string {
+    a.method = v;
+    return v == "discard" || v == "clamp" ? "" : "--shader-method " + v + ": discard or clamp";
+  });
+  cl.option("--fov", [&a](const std::string& v) -> std::string {
+    a.fov = std::strtof(v.c_str(), nullptr);
+    return a.fov > 0.0f && a.fov < 180.0f ? "" : "--fov: degrees in (0, 180)";
+  });
+  cl.option("--glsl", [&a](const std::string& v) -> std::string {
+    a.glsl = v;
+    return "";
+  });
+  cl.flag("--headless", &a.headless);
+  cl.flag("--check", &a.check);
+  std::string why = engine::parse_ptex_args(cl, argc, argv, a, "engine_ptex");
+  a.check = a.check || a.json;  // --json implies --check
+  return why;
 }
 
 }  // namespace
@@ -380,15 +236,12 @@ int main(int argc, char** argv) {
   Args a;
   if (std::string why = parse_args(argc, argv, a); !why.empty()) return fail(why);
 
-  // ---- tessera, step 1 (pure): the quad faces of the Ptex file and their textures ----
-  auto poly = tessera::faces::load_obj_polygons(a.obj);
-  if (!poly) return fail(poly.status().message);
-  auto file = tessera::ptex::read_ptex(a.ptx);
-  if (!file) return fail(file.status().message);
-  auto mesh = tessera::gl::ptex_quad_mesh(*poly, *file, a.ptx);
-  if (!mesh) return fail(mesh.status().message);
-  auto set = tessera::faces::FaceTextureSet::from_ptex(*file, a.ptx);
-  if (!set) return fail(set.status().message);
+  // ---- tessera, step 1 (pure; ptex_report.h, as engine_ptex_vk): the quad faces of the Ptex
+  // file and their textures ----
+  auto loaded = engine::load_ptex_scene(a);
+  if (!loaded) return fail(loaded.status().message);
+  const tessera::faces::FaceScene& scene = loaded->scene;
+  const tessera::faces::FaceTextureSet& set = loaded->set;
   // ---- end of step 1 ----
 
   // The engine's context, current from here on; tessera's entry points loaded from it.
@@ -398,21 +251,18 @@ int main(int argc, char** argv) {
 
   // The engine's scene data: a camera on an orbit, smooth normals, 4 vertices and 2 triangles
   // per face (tessera's helpers for both, so the CPU check sees the same geometry).
-  tessera::faces::FaceScene scene;
-  scene.name = a.obj;
-  scene.mesh = *mesh;
   tessera::scene::Camera camera = tessera::faces::face_orbit_camera(scene, a.orbit_k, a.orbit_n);
   if (a.fov > 0.0f) camera.fov_y_degrees = a.fov;
-  const std::vector<tessera::Vec3> normals = tessera::faces::smooth_face_normals(scene.mesh);
   std::vector<Vertex> verts;
   std::vector<std::uint32_t> indices;
-  face_vertices(scene.mesh, normals, verts, indices);
-  const FrameBlock frame = make_frame_block(camera, a);
+  engine::face_vertices(scene.mesh, verts, indices);
+  // The camera moved `shift_px` pixels right, the light.
+  const FrameBlock frame = engine::forward_frame_block(camera, a.w, a.h, a.shift_px);
 
   // ---- tessera, step 2: upload once; the binding points are the engine's choice ----
   tessera::gl::FaceTextureSetOptions to;
   to.max_anisotropy = 1.0f;  // trilinear: the filter the CPU check uses
-  auto tex = tessera::gl::FaceTextureSet::upload(*set, to);
+  auto tex = tessera::gl::FaceTextureSet::upload(set, to);
   if (!tex) return fail(tex.status().message);
   tessera::gl::FaceTextureSetBindings bindings;
   bindings.border_unit = 1;  // unit 0 stays free for the engine's own textures
@@ -429,7 +279,7 @@ int main(int argc, char** argv) {
       {tessera::glsl::Stage::fragment, kFragmentShader, "engine_ptex.frag"}, so);
   if (!fragment) return fail(fragment.status().message);
   std::string log;
-  const GLuint program = compile_program(kVertexShader, fragment->text.c_str(), log);
+  const GLuint program = engine::compile_program(kVertexShader, fragment->text.c_str(), log);
   if (program == 0) return fail(tessera::glsl::format_log(log, fragment->files));
   // ---- end of step 2 ----
 
@@ -479,7 +329,7 @@ int main(int argc, char** argv) {
     if (auto s = tessera::io::write_png(a.out, srgb); !s.ok()) return fail(s.message);
   }
 
-  if (int rc = report(a, platform, scene, *set, camera, img, tex->class_count(), gl_ms, window_diff);
+  if (int rc = report(a, platform, scene, set, camera, img, tex->class_count(), gl_ms, window_diff);
       rc != 0)
     return rc;
   glDeleteProgram(program);

@@ -8,63 +8,13 @@
 
 namespace engine {
 
-namespace {}  // namespace
-
 std::string Device::create(bool want_validation) {
-  const std::string why = create_instance("engine_ptex_vk", VK_API_VERSION_1_1, want_validation);
-  if (!why.empty()) return why;
   VkPhysicalDeviceProperties props{};
-  if (!pick_device(VK_API_VERSION_1_1, physical, family, props)) {
-    return "no Vulkan 1.1 device with a graphics + compute queue";
-  }
-  name = props.deviceName;
+  const std::string why =
+      create_instance_and_pick("engine_ptex_vk", VK_API_VERSION_1_1, want_validation, props);
+  if (!why.empty()) return why;
   api_version = props.apiVersion < VK_API_VERSION_1_3 ? props.apiVersion : VK_API_VERSION_1_3;
-  const float prio = 1.0f;
-  VkDeviceQueueCreateInfo qi{
-      VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, nullptr, 0, family, 1, &prio};
-  VkDeviceCreateInfo di{};
-  di.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
-  di.queueCreateInfoCount = 1;
-  di.pQueueCreateInfos = &qi;
-  di.pEnabledFeatures = &features;
-  if (vkCreateDevice(physical, &di, nullptr, &device) != VK_SUCCESS) return "vkCreateDevice failed";
-  vkGetDeviceQueue(device, family, 0, &queue);
-  return "";
-}
-
-void Device::destroy() {
-  if (device) {
-    vkDeviceWaitIdle(device);
-    vkDestroyDevice(device, nullptr);
-    device = VK_NULL_HANDLE;
-  }
-  destroy_instance();
-}
-
-Buffer Device::buffer(const void* data, VkDeviceSize bytes, VkBufferUsageFlags usage) {
-  Buffer b;
-  VkBufferCreateInfo bi{};
-  bi.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
-  bi.size = bytes;
-  bi.usage = usage;
-  vkCreateBuffer(device, &bi, nullptr, &b.buffer);
-  VkMemoryRequirements req{};
-  vkGetBufferMemoryRequirements(device, b.buffer, &req);
-  VkMemoryAllocateInfo ai{
-      VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
-      memory_type(physical, req.memoryTypeBits,
-                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)};
-  vkAllocateMemory(device, &ai, nullptr, &b.memory);
-  vkBindBufferMemory(device, b.buffer, b.memory, 0);
-  vkMapMemory(device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.data);
-  if (data != nullptr) std::memcpy(b.data, data, bytes);
-  return b;
-}
-
-void Device::destroy(Buffer& b) {
-  vkDestroyBuffer(device, b.buffer, nullptr);
-  vkFreeMemory(device, b.memory, nullptr);
-  b = Buffer{};
+  return create_device(nullptr);
 }
 
 std::vector<std::uint32_t> compile(const std::string& glsl, bool vertex, const std::string& name,

@@ -9,36 +9,31 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <string>
 #include <vector>
 
-#include "vk_engine.h"  // examples/common: instance, validation messenger, device pick
+#include "vk_engine.h"  // examples/common: instance, validation messenger, device
 
 namespace engine {
 
-struct Buffer {
-  VkBuffer buffer = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  void* data = nullptr;  // mapped (host-visible, coherent)
-};
-
-class Device : public Instance {
+/// A Vulkan 1.1 device (vk_engine.h's DeviceBase) with no optional feature.
+class Device : public DeviceBase {
  public:
   /// Creates everything; "" on success, else the reason (no device, ...).
   std::string create(bool validation);
-  void destroy();
+  void destroy() { destroy_device_and_instance(); }
 
-  VkPhysicalDevice physical = VK_NULL_HANDLE;
-  VkDevice device = VK_NULL_HANDLE;
-  std::uint32_t family = 0;
-  VkQueue queue = VK_NULL_HANDLE;
-  std::uint32_t api_version = VK_API_VERSION_1_1;
-  VkPhysicalDeviceFeatures features{};  // what was enabled
-  std::string name;
+  std::uint32_t api_version = VK_API_VERSION_1_1;  // the device's, at most 1.3
 
-  Buffer buffer(const void* data, VkDeviceSize bytes, VkBufferUsageFlags usage);
-  void destroy(Buffer& b);
+  /// A host-visible buffer (vk_engine.h's) holding a copy of `data` (when not null).
+  Buffer buffer(const void* data, VkDeviceSize bytes, VkBufferUsageFlags usage) {
+    Buffer b = DeviceBase::buffer(bytes, usage, true);
+    if (data != nullptr) std::memcpy(b.data, data, bytes);
+    return b;
+  }
+  using DeviceBase::destroy;  // buffers
 };
 
 /// GLSL to SPIR-V for Vulkan 1.1 with shaderc; "" or shaderc's log in `log`.

@@ -9,18 +9,13 @@ namespace engine {
 
 namespace {
 
+// The targets (colour, depth), the pass's objects (vk_engine.h), the command pool and fence.
 struct Objects {
   VkDevice device = VK_NULL_HANDLE;
   VkImage images[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};  // colour, depth
   VkDeviceMemory memory[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
   VkImageView views[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
-  VkRenderPass pass = VK_NULL_HANDLE;
-  VkFramebuffer framebuffer = VK_NULL_HANDLE;
-  VkDescriptorSetLayout frame_layout = VK_NULL_HANDLE, empty_layout = VK_NULL_HANDLE;
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  VkPipelineLayout layout = VK_NULL_HANDLE;
-  VkShaderModule modules[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
-  VkPipeline pipeline = VK_NULL_HANDLE;
+  ForwardObjects forward;
   VkCommandPool cmd_pool = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
   ~Objects() {
@@ -28,14 +23,7 @@ struct Objects {
     vkDeviceWaitIdle(device);
     vkDestroyFence(device, fence, nullptr);
     vkDestroyCommandPool(device, cmd_pool, nullptr);
-    vkDestroyPipeline(device, pipeline, nullptr);
-    for (VkShaderModule m : modules) vkDestroyShaderModule(device, m, nullptr);
-    vkDestroyPipelineLayout(device, layout, nullptr);
-    vkDestroyDescriptorPool(device, pool, nullptr);
-    vkDestroyDescriptorSetLayout(device, empty_layout, nullptr);
-    vkDestroyDescriptorSetLayout(device, frame_layout, nullptr);
-    vkDestroyFramebuffer(device, framebuffer, nullptr);
-    vkDestroyRenderPass(device, pass, nullptr);
+    forward.destroy(device);
     for (int i = 0; i < 2; ++i) {
       vkDestroyImageView(device, views[i], nullptr);
       vkDestroyImage(device, images[i], nullptr);
@@ -49,63 +37,13 @@ void create_targets(const Device& d, Objects& o, int w, int h) {
   const VkImageUsageFlags usage[2] = {
       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT};
-  VkPhysicalDeviceMemoryProperties mp{};
-  vkGetPhysicalDeviceMemoryProperties(d.physical, &mp);
+  const VkImageAspectFlags aspect[2] = {VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_ASPECT_DEPTH_BIT};
   for (int i = 0; i < 2; ++i) {
-    VkImageCreateInfo ci{};
-    ci.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-    ci.imageType = VK_IMAGE_TYPE_2D;
-    ci.format = formats[i];
-    ci.extent = {std::uint32_t(w), std::uint32_t(h), 1};
-    ci.mipLevels = ci.arrayLayers = 1;
-    ci.samples = VK_SAMPLE_COUNT_1_BIT;
-    ci.tiling = VK_IMAGE_TILING_OPTIMAL;
-    ci.usage = usage[i];
-    vkCreateImage(d.device, &ci, nullptr, &o.images[i]);
-    VkMemoryRequirements req{};
-    vkGetImageMemoryRequirements(d.device, o.images[i], &req);
-    std::uint32_t type = 0;
-    for (std::uint32_t t = 0; t < mp.memoryTypeCount; ++t) {
-      if ((req.memoryTypeBits & (1u << t)) &&
-          (mp.memoryTypes[t].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
-        type = t;
-        break;
-      }
-    }
-    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size, type};
-    vkAllocateMemory(d.device, &ai, nullptr, &o.memory[i]);
-    vkBindImageMemory(d.device, o.images[i], o.memory[i], 0);
-    VkImageViewCreateInfo vi{};
-    vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-    vi.image = o.images[i];
-    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    vi.format = formats[i];
-    vi.subresourceRange = {i == 0 ? VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT)
-                                  : VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT),
-                           0, 1, 0, 1};
-    vkCreateImageView(d.device, &vi, nullptr, &o.views[i]);
+    create_image(d.device, d.physical, formats[i], std::uint32_t(w), std::uint32_t(h), usage[i],
+                 aspect[i], &o.images[i], &o.memory[i], &o.views[i]);
   }
   // Both cleared; colour left in TRANSFER_SRC_OPTIMAL for the copy (the dependency below).
-  VkAttachmentDescription att[2]{};
-  for (int i = 0; i < 2; ++i) {
-    att[i].format = formats[i];
-    att[i].samples = VK_SAMPLE_COUNT_1_BIT;
-    att[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    att[i].storeOp = i == 0 ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    att[i].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    att[i].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    att[i].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  }
-  att[0].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-  att[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-  const VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-  const VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-  VkSubpassDescription sub{};
-  sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-  sub.colorAttachmentCount = 1;
-  sub.pColorAttachments = &cref;
-  sub.pDepthStencilAttachment = &dref;
-  VkSubpassDependency deps[2]{};
+  std::vector<VkSubpassDependency> deps(2);
   deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
   deps[0].dstSubpass = 0;
   deps[0].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
@@ -121,26 +59,11 @@ void create_targets(const Device& d, Objects& o, int w, int h) {
   deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
   deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
   deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-  VkRenderPassCreateInfo rp{};
-  rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
-  rp.attachmentCount = 2;
-  rp.pAttachments = att;
-  rp.subpassCount = 1;
-  rp.pSubpasses = &sub;
-  rp.dependencyCount = 2;
-  rp.pDependencies = deps;
-  vkCreateRenderPass(d.device, &rp, nullptr, &o.pass);
-  VkFramebufferCreateInfo fb{};
-  fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
-  fb.renderPass = o.pass;
-  fb.attachmentCount = 2;
-  fb.pAttachments = o.views;
-  fb.width = std::uint32_t(w);
-  fb.height = std::uint32_t(h);
-  fb.layers = 1;
-  vkCreateFramebuffer(d.device, &fb, nullptr, &o.framebuffer);
+  o.forward.create_pass(d.device, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_IMAGE_LAYOUT_UNDEFINED,
+                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, deps, o.views, w, h);
 }
 
+// The pipeline (vk_engine.h's forward pipeline); "" or the problem.
 std::string create_pipeline(VkDevice dev, Objects& o, const Frame& in) {
   ForwardPipelineDesc desc;
   desc.vertex_spirv = &in.vertex_spirv;
@@ -149,47 +72,24 @@ std::string create_pipeline(VkDevice dev, Objects& o, const Frame& in) {
   desc.attributes = &in.attributes;
   desc.width = in.width;
   desc.height = in.height;
-  desc.layout = o.layout;
-  desc.pass = o.pass;
-  if (VkResult r = forward_pipeline(dev, desc, o.modules, &o.pipeline); r != VK_SUCCESS) {
+  if (VkResult r = o.forward.create_pipeline(dev, desc); r != VK_SUCCESS) {
     return "vkCreateGraphicsPipelines: VkResult " + std::to_string(int(r));
   }
   return "";
 }
 
-// Set 0: the frame block (a pool of one set); 1..: the caller's layouts.
-VkDescriptorSet create_layouts(VkDevice dev, Objects& o, const Frame& in, const Buffer& ubo) {
-  frame_set_layouts(dev, &o.frame_layout, &o.empty_layout);
-  std::vector<VkDescriptorSetLayout> layouts{o.frame_layout};
-  for (VkDescriptorSetLayout l : in.extra_layouts) {
-    layouts.push_back(l != VK_NULL_HANDLE ? l : o.empty_layout);
-  }
-  return frame_set(dev, layouts, o.frame_layout, ubo.buffer, &o.layout, &o.pool);
-}
-
-// Records the frame into `cmd`; "" or what the caller's bind said.
-std::string record(const Objects& o, const Frame& f, VkDescriptorSet frame_set, const Buffer& vbo,
-                   const Buffer& ibo, const Buffer& out, VkCommandBuffer cmd) {
+// Records the frame into `cmd`: the pass (the colour cleared to the background), then the copy
+// of the colour target to `out`; "" or what the caller's bind said.
+std::string record(const Objects& o, const Frame& f, const Buffer& vbo, const Buffer& ibo,
+                   const Buffer& out, VkCommandBuffer cmd) {
   VkClearValue clear[2]{};
   std::memcpy(clear[0].color.float32, f.background, sizeof f.background);
   clear[1].depthStencil = {1.0f, 0};
-  VkRenderPassBeginInfo rb{};
-  rb.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
-  rb.renderPass = o.pass;
-  rb.framebuffer = o.framebuffer;
-  rb.renderArea = {{0, 0}, {std::uint32_t(f.width), std::uint32_t(f.height)}};
-  rb.clearValueCount = 2;
-  rb.pClearValues = clear;
-  vkCmdBeginRenderPass(cmd, &rb, VK_SUBPASS_CONTENTS_INLINE);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, o.pipeline);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, o.layout, 0, 1, &frame_set, 0,
-                          nullptr);
-  const std::string bound = f.bind_extra ? f.bind_extra(cmd, o.layout) : "";
-  const VkDeviceSize zero = 0;
-  vkCmdBindVertexBuffers(cmd, 0, 1, &vbo.buffer, &zero);
-  vkCmdBindIndexBuffer(cmd, ibo.buffer, 0, VK_INDEX_TYPE_UINT32);
-  vkCmdDrawIndexed(cmd, std::uint32_t(f.indices.size()), 1, 0, 0, 0);
-  vkCmdEndRenderPass(cmd);
+  const std::string bound = o.forward.record(
+      cmd, f.width, f.height, clear, vbo.buffer, ibo.buffer, std::uint32_t(f.indices.size()),
+      [&f](VkCommandBuffer c, VkPipelineLayout l) {
+        return f.bind_extra ? f.bind_extra(c, l) : std::string();
+      });
   VkBufferImageCopy region{};
   region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   region.imageExtent = {std::uint32_t(f.width), std::uint32_t(f.height), 1};
@@ -215,7 +115,8 @@ std::vector<float> draw(Device& d, const Frame& f, double* ms, std::string& erro
     Objects o;
     o.device = d.device;
     create_targets(d, o, f.width, f.height);
-    const VkDescriptorSet frame_set = create_layouts(d.device, o, f, ubo);
+    // Set 0: the frame block; 1..: the caller's layouts.
+    o.forward.create_sets(d.device, f.extra_layouts, ubo.buffer);
     error = create_pipeline(d.device, o, f);
     VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr,
                                VK_COMMAND_POOL_CREATE_TRANSIENT_BIT, d.family};
@@ -230,7 +131,7 @@ std::vector<float> draw(Device& d, const Frame& f, double* ms, std::string& erro
       VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
                                   VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
       vkBeginCommandBuffer(cmd, &bi);
-      error = record(o, f, frame_set, vbo, ibo, out, cmd);
+      error = record(o, f, vbo, ibo, out, cmd);
       vkEndCommandBuffer(cmd);
     }
     if (error.empty()) {

@@ -32,23 +32,21 @@
 #include <vector>
 
 #include "engine.h"
+#include "ptex_report.h"  // examples/common: the flags, vertex, frame block and CPU check of both
 #include "tessera/core.h"
 #include "tessera/faces.h"
 #include "tessera/faces_gpu.h"
 #include "tessera/glsl.h"
 #include "tessera/io.h"
-#include "tessera/metrics.h"
 #include "tessera/ptex.h"
 #include "tessera/vk_faces.h"
-#include "vertex_shader.h"
+#include "shaders.h"
 
 namespace {
 
-struct Args {
-  std::string obj, ptx, out;
-  int w = 320, h = 240, orbit_k = 1, orbit_n = 8, face_shift = 0;
-  float shift_px = 0.0f;
-  bool json = false;
+// The flags of engine_ptex too (ptex_report.h), and the Vulkan engine's own.
+struct Args : engine::PtexArgs {
+  int face_shift = 0;
 };
 
 int fail(const std::string& msg) {
@@ -56,67 +54,19 @@ int fail(const std::string& msg) {
   return 1;
 }
 
-struct Vertex {
-  float position[3], normal[3], uv[2];
-  std::int32_t face;
-};
+// The engine's vertex (ptex_report.h): 4 per Ptex face, each face with its own UVs.
+using Vertex = engine::FaceVertex;
 
-// tessera's glsl_defines go after #version (glsl::ExpandOptions::preamble).
-const char* kFragmentShader = R"(#version 450
-#include "seams.glsl"
-layout(std140, set = 0, binding = 0) uniform Frame { mat4 view_proj; vec4 light_dir; vec4 shade; };
-layout(location = 0) in vec3 v_normal;
-layout(location = 1) in vec2 v_uv;
-layout(location = 2) flat in int v_face;
-layout(location = 0) out vec4 colour;
-void main() {
-  // Explicit fine gradients: the lookups sit in non-uniform control flow (a class per face).
-  vec2 dx = dFdxFine(v_uv), dy = dFdyFine(v_uv);
-  int face = (v_face + ENGINE_FACE_SHIFT) % ENGINE_FACES;
-  vec4 tex = tessera_seams_sample_discard(face, v_uv, dx, dy, true);
-  float nl = dot(v_normal, light_dir.xyz) / sqrt(dot(v_normal, v_normal) + 1e-20);
-  colour = vec4(tex.rgb * (shade.x + shade.y * max(nl, 0.0)), 1.0);
-}
-)";
 
+// The command line; "" or the problem.
 std::string parse_args(int argc, char** argv, Args& a) {
-  std::vector<std::string> positional;
-  for (int i = 1; i < argc; ++i) {
-    const std::string k = argv[i];
-    if ((k == "--size" || k == "--orbit" || k == "--shift-px" || k == "--face-shift" ||
-         k == "-o") &&
-        i + 1 >= argc) {
-      return k + " needs a value";
-    }
-    if (k == "--size") {
-      const std::string v = argv[++i];
-      if (std::sscanf(v.c_str(), "%dx%d", &a.w, &a.h) != 2 || a.w < 2 || a.h < 2 || a.w > 8192 ||
-          a.h > 8192 || a.w % 2 || a.h % 2)
-        return "--size " + v + ": expected WxH, even, 2..8192 (2x2 derivative quads)";
-    } else if (k == "--orbit") {
-      const std::string v = argv[++i];
-      if (std::sscanf(v.c_str(), "%d/%d", &a.orbit_k, &a.orbit_n) != 2 || a.orbit_n <= 0 ||
-          a.orbit_k < 0)
-        return "--orbit " + v + ": expected K/N";
-    } else if (k == "--shift-px") {
-      a.shift_px = std::strtof(argv[++i], nullptr);
-    } else if (k == "--face-shift") {
-      a.face_shift = std::atoi(argv[++i]);
-      if (a.face_shift < 0) return "--face-shift: K >= 0";
-    } else if (k == "--json") {
-      a.json = true;
-    } else if (k == "-o") {
-      a.out = argv[++i];
-    } else if (!k.empty() && k[0] == '-') {
-      return "unknown argument " + k;
-    } else {
-      positional.push_back(k);
-    }
-  }
-  if (positional.size() != 2) return "usage: engine_ptex_vk MESH.obj FILE.ptx [options]";
-  a.obj = positional[0];
-  a.ptx = positional[1];
-  return "";
+  engine::CommandLine cl;
+  engine::add_ptex_flags(cl, a);
+  cl.option("--face-shift", [&a](const std::string& v) -> std::string {
+    a.face_shift = std::atoi(v.c_str());
+    return a.face_shift < 0 ? "--face-shift: K >= 0" : "";
+  });
+  return engine::parse_ptex_args(cl, argc, argv, a, "engine_ptex_vk");
 }
 
 // The engine's frame: 4 vertices and 2 triangles per face, the camera (moved `shift_px`
@@ -127,18 +77,7 @@ engine::Frame make_frame(const Args& a, const tessera::faces::QuadMesh& mesh,
   f.width = a.w;
   f.height = a.h;
   for (int c = 0; c < 3; ++c) f.background[c] = tessera::faces::kFaceBackground[std::size_t(c)];
-  const std::vector<tessera::Vec3> normals = tessera::faces::smooth_face_normals(mesh);
-  const float corner_uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  for (int face = 0; face < mesh.face_count(); ++face) {
-    for (int c = 0; c < 4; ++c) {
-      const tessera::Vec3& p =
-          mesh.positions[std::size_t(mesh.quads[std::size_t(face)][std::size_t(c)])];
-      const tessera::Vec3& n = normals[std::size_t(face) * 4 + std::size_t(c)];
-      verts.push_back({{p.x, p.y, p.z}, {n.x, n.y, n.z}, {corner_uv[c][0], corner_uv[c][1]}, face});
-    }
-    const auto b = std::uint32_t(face) * 4;
-    for (std::uint32_t i : {b, b + 1, b + 2, b, b + 2, b + 3}) f.indices.push_back(i);
-  }
+  engine::face_vertices(mesh, verts, f.indices);
   f.vertices = verts.data();
   f.vertex_bytes = verts.size() * sizeof(Vertex);
   f.stride = sizeof(Vertex);
@@ -146,44 +85,10 @@ engine::Frame make_frame(const Args& a, const tessera::faces::QuadMesh& mesh,
                   {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 12},
                   {2, 0, VK_FORMAT_R32G32_SFLOAT, 24},
                   {3, 0, VK_FORMAT_R32_SINT, 32}};
-  float block[24] = {};
-  const tessera::Mat4 vp = camera.view_projection(float(a.w) / float(a.h));
-  for (int c = 0; c < 4; ++c) {
-    for (int r = 0; r < 4; ++r) block[c * 4 + r] = vp.m[c][r];
-    block[c * 4 + 0] += 2.0f * a.shift_px / float(a.w) * vp.m[c][3];
-  }
-  const float light[3] = {0.42f, 0.82f, 0.39f};
-  std::memcpy(block + 16, light, sizeof light);
-  block[20] = 0.35f;  // ambient
-  block[21] = 0.65f;  // diffuse
+  const engine::ForwardFrameBlock block = engine::forward_frame_block(camera, a.w, a.h, a.shift_px);
   f.block.resize(sizeof block);
-  std::memcpy(f.block.data(), block, sizeof block);
+  std::memcpy(f.block.data(), &block, sizeof block);
   return f;
-}
-
-// The Vulkan frame against tessera's CPU renderer (Discard, trilinear): PSNR of the 8-bit sRGB
-// images (infinite when identical).
-tessera::Result<double> agreement(const tessera::faces::FaceScene& scene,
-                                  const tessera::faces::FaceTextureSet& set,
-                                  const tessera::scene::Camera& camera,
-                                  const tessera::ImageRGBAF& img, double* cpu_ms) {
-  auto cpu = tessera::faces::FaceRenderer::create(scene, set);
-  if (!cpu) return cpu.status();
-  tessera::faces::FaceRenderOptions o;
-  o.width = img.width;
-  o.height = img.height;
-  o.sampling.method = tessera::faces::SeamMethod::discard;
-  o.sampling.filter = tessera::texture::TextureFilter::trilinear;
-  o.sampling.clamp_fallback = true;
-  auto frame = (*cpu)->render(camera, o);
-  if (!frame) return frame.status();
-  *cpu_ms = frame->ms();
-  tessera::metrics::CompareOptions co;
-  co.compute_ssim = false;
-  auto c =
-      tessera::metrics::compare_images(tessera::to_srgb8(img), tessera::to_srgb8(frame->image), co);
-  if (!c) return c.status();
-  return c->psnr_rgb;
 }
 
 }  // namespace
@@ -192,15 +97,12 @@ int main(int argc, char** argv) {
   Args a;
   if (std::string why = parse_args(argc, argv, a); !why.empty()) return fail(why);
 
-  // ---- tessera, step 1 (pure): the quad faces of the Ptex file and their textures ----
-  auto poly = tessera::faces::load_obj_polygons(a.obj);
-  if (!poly) return fail(poly.status().message);
-  auto file = tessera::ptex::read_ptex(a.ptx);
-  if (!file) return fail(file.status().message);
-  auto mesh = tessera::faces::ptex_quad_mesh(*poly, *file, a.ptx);
-  if (!mesh) return fail(mesh.status().message);
-  auto set = tessera::faces::FaceTextureSet::from_ptex(*file, a.ptx);
-  if (!set) return fail(set.status().message);
+  // ---- tessera, step 1 (pure; ptex_report.h, as engine_ptex): the quad faces of the Ptex
+  // file and their textures ----
+  auto loaded = engine::load_ptex_scene(a);
+  if (!loaded) return fail(loaded.status().message);
+  const tessera::faces::FaceScene& scene = loaded->scene;
+  const tessera::faces::FaceTextureSet& set = loaded->set;
   // ---- end of step 1 ----
 
   engine::Device d;
@@ -208,9 +110,6 @@ int main(int argc, char** argv) {
     d.destroy();
     return fail("no Vulkan device: " + why);
   }
-  tessera::faces::FaceScene scene;
-  scene.name = a.obj;
-  scene.mesh = *mesh;
   const tessera::scene::Camera camera =
       tessera::faces::face_orbit_camera(scene, a.orbit_k, a.orbit_n);
   std::vector<Vertex> verts;
@@ -229,7 +128,7 @@ int main(int argc, char** argv) {
   ctx.enabled_features = d.features;
   tessera::vk::FaceTextureSetOptions to;
   to.max_anisotropy = 1.0f;  // trilinear: the filter the CPU check uses
-  auto tex = tessera::vk::FaceTextureSet::create(ctx, *set, to);
+  auto tex = tessera::vk::FaceTextureSet::create(ctx, set, to);
   if (!tex) {
     d.destroy();
     return fail(tex.status().message);
@@ -240,7 +139,7 @@ int main(int argc, char** argv) {
   so.preamble.push_back("#define ENGINE_FACES " + std::to_string(scene.mesh.face_count()));
   so.preamble.push_back("#define ENGINE_FACE_SHIFT " + std::to_string(a.face_shift));
   auto fragment = tessera::glsl::expand_includes(
-      {tessera::glsl::Stage::fragment, kFragmentShader, "engine_ptex_vk.frag"}, so);
+      {tessera::glsl::Stage::fragment, engine::kFragmentShader, "engine_ptex_vk.frag"}, so);
   frame.extra_layouts = {VK_NULL_HANDLE, (*tex)->set_layout()};
   frame.bind_extra = [&](VkCommandBuffer cmd, VkPipelineLayout layout) {
     return (*tex)->bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, kSet).message;
@@ -254,7 +153,7 @@ int main(int argc, char** argv) {
     frame.fragment_spirv = engine::compile(fragment->text, false, "engine_ptex_vk.frag", log);
     if (!log.empty()) error = tessera::glsl::format_log(log, fragment->files);
   }
-  double vk_ms = 0, cpu_ms = 0;
+  double vk_ms = 0;
   std::vector<float> pixels;
   if (error.empty()) pixels = engine::draw(d, frame, &vk_ms, error);
   const int classes = (*tex)->class_count();
@@ -274,10 +173,9 @@ int main(int argc, char** argv) {
       return fail(s.message);
     }
   }
-  auto psnr = agreement(scene, *set, camera, img, &cpu_ms);
-  if (!psnr) return fail(psnr.status().message);
-  char psnr_text[32];
-  std::snprintf(psnr_text, sizeof psnr_text, "%.3f", *psnr);
+  // The same frame through tessera's CPU renderer (ptex_report.h).
+  auto agree = engine::cpu_agreement(scene, set, camera, img);
+  if (!agree) return fail(agree.status().message);
   if (a.json) {
     std::printf(
         "{\"backend\": \"vk\", \"device\": \"%s\", \"mesh\": \"%s\", \"faces\": %d, "
@@ -286,11 +184,12 @@ int main(int argc, char** argv) {
         "\"validation_messages\": %d, \"vk_ms\": %.3f, \"cpu_ms\": %.3f}\n",
         device_name.c_str(), scene.name.c_str(), scene.mesh.face_count(), classes, a.w, a.h,
         a.orbit_k, a.orbit_n, double(a.shift_px), a.face_shift,
-        std::isfinite(*psnr) ? psnr_text : "null", validation ? "true" : "false", d.messages, vk_ms,
-        cpu_ms);
+        engine::psnr_text(agree->psnr, true).c_str(), validation ? "true" : "false", d.messages,
+        vk_ms, agree->cpu_ms);
   } else {
     std::printf("engine_ptex_vk %dx%d, %d faces: Vulkan (%s) vs CPU Discard: PSNR %s dB\n", a.w,
-                a.h, scene.mesh.face_count(), device_name.c_str(), psnr_text);
+                a.h, scene.mesh.face_count(), device_name.c_str(),
+                engine::psnr_text(agree->psnr, false).c_str());
   }
   return 0;
 }

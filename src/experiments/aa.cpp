@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <initializer_list>
 
+#include "gpu_factory.h"
 #include "tessera/metrics.h"
 
 namespace tessera::experiments {
@@ -55,13 +56,13 @@ struct Run {
   const deferred::ShadingOptions& normal;
   const deferred::ShadingOptions& heavy;
   const AaShadeOptions& options;
-  bool gl() const { return be.backend() == Backend::gl; }
+  bool gpu() const { return be.backend() != Backend::cpu; }
 };
 
 /// Appends one call's times: wall (and, on GL, GPU) to `t`'s normal or heavy frames.
 void record(const Run& run, AaTiming& t, int mode, const AaShadeOutput& o) {
   (mode ? t.heavy : t.normal).frame_ms.push_back(o.wall_ms);
-  if (run.gl()) (mode ? t.gpu_heavy : t.gpu).frame_ms.push_back(o.gpu_ms);
+  if (run.gpu()) (mode ? t.gpu_heavy : t.gpu).frame_ms.push_back(o.gpu_ms);
 }
 
 void record_passes(const Run& run, std::vector<AaPassFrames>& passes, const AaShadeOutput& o) {
@@ -70,7 +71,7 @@ void record_passes(const Run& run, std::vector<AaPassFrames>& passes, const AaSh
                            [&](const AaPassFrames& f) { return f.pass == p.pass; });
     if (it == passes.end()) it = passes.insert(passes.end(), AaPassFrames{p.pass, {}, {}});
     it->wall.frame_ms.push_back(p.wall_ms);
-    if (run.gl()) it->gpu.frame_ms.push_back(p.gpu_ms);
+    if (run.gpu()) it->gpu.frame_ms.push_back(p.gpu_ms);
   }
 }
 
@@ -78,14 +79,14 @@ Status record_gbuffer(const Run& run, const Result<AaPassTime>& t, FrameTimes& w
                       FrameTimes& gpu) {
   if (!t) return t.status();
   wall.frame_ms.push_back(t->wall_ms);
-  if (run.gl()) gpu.frame_ms.push_back(t->gpu_ms);
+  if (run.gpu()) gpu.frame_ms.push_back(t->gpu_ms);
   return Status::success();
 }
 
 /// GL: one untimed call of each method (both shading modes) on a G-buffer of window m, so
 /// that compiling the pass variants of m is not timed. Nothing on the CPU.
 Status warm_up(const Run& run, int m, std::initializer_list<AaMethod> methods) {
-  if (!run.gl()) return Status::success();
+  if (!run.gpu()) return Status::success();
   if (Result<AaPassTime> t = run.be.render_gbuffer(run.camera, run.c.width, run.c.height, m); !t) {
     return t.status();
   }
@@ -209,14 +210,15 @@ Result<AaRateResult> run_rate(const Run& run, int m, int threads) {
 /// The whole experiment on one backend into `res`.
 Status run_backend(const Run& run, AaResult& res) {
   res.backend = run.be.backend();
-  res.gl_renderer = run.be.device_name();
-  res.gl_version = run.be.device_version();
+  res.gpu_renderer = run.be.device_name();
+  res.gpu_version = run.be.device_version();
   if (Status s = run_1x1(run, res); !s.ok()) return s;
   for (int m : run.c.ssaa) {
     Result<AaRateResult> rate = run_rate(run, m, res.threads);
     if (!rate) return rate.status();
     if (run.c.progress) {
-      run.c.progress((run.gl() ? "GL " : "") +
+      const Backend b = run.be.backend();
+      run.c.progress((b == Backend::gl ? "GL " : b == Backend::vk ? "Vulkan " : "") +
                      rate_line(*rate, rate->method(AaMethod::adaptive).samples_pct));
     }
     res.rates.push_back(std::move(*rate));
@@ -250,43 +252,27 @@ Status compare_backends(AaResult& cpu, const AaResult& gl) {
   return Status::success();
 }
 
-}  // namespace
-
-Result<AaResult> run_aa(const AaConfig& c) {
-  if (c.ssaa.empty() || c.width < 1 || c.height < 1 || c.frames < 1 || c.lights < 0 ||
-      !deferred::valid_fxaa_preset(c.fxaa_preset)) {
-    return Status::error(ErrorCode::invalid_argument, "aa: bad configuration");
-  }
-  for (int m : c.ssaa) {
-    if (m < 1 || m > 8) {
-      return Status::error(ErrorCode::invalid_argument,
-                           "aa: window size " + std::to_string(m) + " not in [1, 8]");
-    }
-  }
-  const bool use_gl = uses_gl(c.backend);
-  if (use_gl && !c.gl_factory) {
-    return Status::error(ErrorCode::unsupported, std::string("aa: backend '") +
-                                                     backend_name(c.backend) +
-                                                     "': not built with the OpenGL runtime");
-  }
+/// run_aa once the configuration is checked: the backends (`factory`: the GPU one, or null),
+/// every G-buffer size, `on_ready`, then the experiment on each.
+Result<AaResult> run_backends(const AaConfig& c, const GpuBackendFactory* factory) {
   const std::shared_ptr<const scene::Scene> sc =
       c.scene ? c.scene : std::make_shared<const scene::Scene>(scene::builtin_scene());
   const scene::Camera camera = c.camera ? *c.camera : scene::orbit_camera(*sc, 1, 8);
 
   // Backends and every G-buffer size before `on_ready` (no output folder when they fail).
-  std::unique_ptr<AaBackend> cpu, gl;
-  if (c.backend != Backend::gl) {
+  std::unique_ptr<AaBackend> cpu, gpu;
+  if (uses_cpu(c.backend)) {
     Result<std::unique_ptr<AaBackend>> r = create_cpu_aa_backend(*sc, {c.threads});
     if (!r) return r.status();
     cpu = std::move(*r);
   }
-  if (use_gl) {
-    Result<std::unique_ptr<AaBackend>> r = c.gl_factory->create_aa(*sc);
+  if (factory != nullptr) {
+    Result<std::unique_ptr<AaBackend>> r = factory->create_aa(*sc);
     if (!r) return r.status();
-    if (!*r) return Status::error(ErrorCode::unsupported, "aa: the GL factory returned nothing");
-    gl = std::move(*r);
+    if (!*r) return Status::error(ErrorCode::unsupported, "aa: the GPU factory returned nothing");
+    gpu = std::move(*r);
   }
-  for (AaBackend* be : {cpu.get(), gl.get()}) {
+  for (AaBackend* be : {cpu.get(), gpu.get()}) {
     if (!be) continue;
     if (Status s = be->check_size(c.width, c.height, 1); !s.ok()) return s;
     for (int m : c.ssaa) {
@@ -313,7 +299,7 @@ Result<AaResult> run_aa(const AaConfig& c) {
   options.edge = c.edge;
   options.edge.threads = c.threads;
 
-  AaBackend& primary = cpu ? *cpu : *gl;
+  AaBackend& primary = cpu ? *cpu : *gpu;
   if (Status s = run_backend(Run{c, primary, camera, normal, heavy, options}, res); !s.ok()) {
     return s;
   }
@@ -322,12 +308,35 @@ Result<AaResult> run_aa(const AaConfig& c) {
     g.threads = res.threads;
     g.heavy_terms = res.heavy_terms;
     g.lights = res.lights;
-    if (Status s = run_backend(Run{c, *gl, camera, normal, heavy, options}, g); !s.ok()) return s;
+    if (Status s = run_backend(Run{c, *gpu, camera, normal, heavy, options}, g); !s.ok()) return s;
     if (Status s = compare_backends(res, g); !s.ok()) return s;
-    res.gl_renderer = g.gl_renderer;
-    res.gl_version = g.gl_version;
+    res.gpu_renderer = g.gpu_renderer;
+    res.gpu_version = g.gpu_version;
     res.gl = std::make_shared<const AaResult>(std::move(g));
     res.backend = Backend::both;
+  }
+  return res;
+}
+
+}  // namespace
+
+Result<AaResult> run_aa(const AaConfig& c) {
+  if (c.ssaa.empty() || c.width < 1 || c.height < 1 || c.frames < 1 || c.lights < 0 ||
+      !deferred::valid_fxaa_preset(c.fxaa_preset)) {
+    return Status::error(ErrorCode::invalid_argument, "aa: bad configuration");
+  }
+  for (int m : c.ssaa) {
+    if (m < 1 || m > 8) {
+      return Status::error(ErrorCode::invalid_argument,
+                           "aa: window size " + std::to_string(m) + " not in [1, 8]");
+    }
+  }
+  Result<const GpuBackendFactory*> factory =
+      detail::gpu_factory("aa", c.backend, c.gl_factory, c.vk_factory);
+  if (!factory) return factory.status();
+  Result<AaResult> res = run_backends(c, *factory);  // the backends are gone when it returns
+  if (*factory != nullptr) {
+    if (Status s = (*factory)->device_status(); !s.ok()) return s;
   }
   return res;
 }

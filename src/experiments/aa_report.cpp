@@ -188,7 +188,7 @@ struct BackendReport {
 
 Status backend_report(const AaConfig& c, const AaResult& res, const std::string& prefix,
                       bool figures, BackendReport& out) {
-  const bool gl = res.backend == Backend::gl;
+  const bool gl = gpu_primary(res.backend);
   Tables& tables = out.tables;
   const double g1 = res.gbuffer_1x1.median_ms();
   tables.row("1×1", "Default", g1, res.default_1x1, "–", "–", "–", "–");
@@ -249,13 +249,20 @@ Status backend_report(const AaConfig& c, const AaResult& res, const std::string&
   return Status::success();
 }
 
-/// The GL paragraph of aa.md: the device and which times to read.
-std::string gl_note(const AaResult& res) {
-  std::string md = "OpenGL: `" + res.gl_renderer + "`, `" + res.gl_version +
+/// The GPU paragraph of aa.md: the device and which times to read.
+std::string gpu_note(const AaResult& res) {
+  if (res.backend == Backend::vk) {
+    return "Vulkan: `" + res.gpu_renderer + "`, `" + res.gpu_version +
+           "`. Vulkan ms are host wall times from each method's submission to its fence "
+           "(read-back excluded; passes recorded into one submission share its wall time in "
+           "proportion to their GPU timestamps); the GPU timestamps per pass are beside them in "
+           "the pass table and in aa.json (`gpu_shade_ms`, `passes`).\n\n";
+  }
+  std::string md = "OpenGL: `" + res.gpu_renderer + "`, `" + res.gpu_version +
                    "`. GL ms are host wall times from each pass's dispatch to the end of its "
                    "closing glFinish (read-back excluded); GL_TIME_ELAPSED per pass is beside "
                    "them in the pass table and in aa.json (`gpu_shade_ms`, `passes`).";
-  if (res.gl_renderer.find("llvmpipe") != std::string::npos) {
+  if (res.gpu_renderer.find("llvmpipe") != std::string::npos) {
     md +=
         " On llvmpipe the GPU timer reads 0 for compute dispatches: the wall times are the "
         "ones to read.";
@@ -263,14 +270,16 @@ std::string gl_note(const AaResult& res) {
   return md + "\n\n";
 }
 
-std::string pass_table(const std::string& rows) {
-  return "| rate | method | pass | wall ms | GL_TIME_ELAPSED ms |\n|---|---|---|---|---|\n" + rows;
+std::string pass_table(const AaResult& res, const std::string& rows) {
+  const char* timer = res.backend == Backend::vk ? "GPU timestamps ms" : "GL_TIME_ELAPSED ms";
+  return std::string("| rate | method | pass | wall ms | ") + timer +
+         " |\n|---|---|---|---|---|\n" + rows;
 }
 
 /// aa.json (unserialised) and aa.md of a result.
 Status build_report(const AaConfig& c, const AaResult& res, const std::string& scene_label,
                     nlohmann::json& jout, std::string& md) {
-  const bool gl = res.backend == Backend::gl;
+  const bool gl = gpu_primary(res.backend);
   BackendReport main{Tables(c.heavy), {}, nlohmann::json::array(), {}, {}};
   if (Status s = backend_report(c, res, "", true, main); !s.ok()) return s;
   nlohmann::json j1 = main.j1, jrates = main.jrates;
@@ -313,9 +322,9 @@ Status build_report(const AaConfig& c, const AaResult& res, const std::string& s
       {"rates", jrates}};
   jout = j;
   if (gl || res.gl) {
-    jout["backend"] = gl ? "gl" : "both";
-    jout["gl_renderer"] = res.gl_renderer;
-    jout["gl_version"] = res.gl_version;
+    jout["backend"] = backend_name(res.backend);
+    jout["gpu_renderer"] = res.gpu_renderer;
+    jout["gpu_version"] = res.gpu_version;
   }
   md.clear();
   md += "# Adaptive supersampling for deferred shading — `tessera aa`\n\n";
@@ -332,15 +341,15 @@ Status build_report(const AaConfig& c, const AaResult& res, const std::string& s
       "methods of a rate and timed once per frame. MSE on 8-bit RGB and, like the paper, "
       "×10⁻⁵ on [0, 1]; PSNR against the reference at the same rate. Samples % of the "
       "reference's shaded samples.\n\n";
-  if (gl) md += gl_note(res);
+  if (gl) md += gpu_note(res);
   md +=
       "| rate | method | ms/frame | heavy ms/frame | shading ms | heavy shading ms | MSE (8-bit) | "
       "MSE (×10⁻⁵) | PSNR dB | samples % |\n|---|---|---|---|---|---|---|---|---|---|\n";
   md += main.tables.rows;
-  if (gl) md += "\nPer pass (median ms):\n\n" + pass_table(main.md_passes);
+  if (gl) md += "\nPer pass (median ms):\n\n" + pass_table(res, main.md_passes);
   md += main.md_fig;
   if (res.gl) {
-    md += "\n## OpenGL beside the CPU (`--backend both`)\n\n" + gl_note(*res.gl) +
+    md += "\n## OpenGL beside the CPU (`--backend both`)\n\n" + gpu_note(*res.gl) +
           "The same experiment on GL, against GL's own reference (columns as above):\n\n"
           "| rate | method | ms/frame | heavy ms/frame | shading ms | heavy shading ms | MSE "
           "(8-bit) | MSE (×10⁻⁵) | PSNR dB | samples % |\n|---|---|---|---|---|---|---|---|---|"
@@ -354,7 +363,7 @@ Status build_report(const AaConfig& c, const AaResult& res, const std::string& s
       md += "| " + std::to_string(rate.m) + "×" + std::to_string(rate.m) + " | " + qs(q, 2) +
             " | " + jnum(100.0 * rate.gl_vs_cpu->k_mismatch_fraction, "%.3f") + " % |\n";
     }
-    md += "\nGL per pass (median ms):\n\n" + pass_table(side.md_passes);
+    md += "\nGL per pass (median ms):\n\n" + pass_table(*res.gl, side.md_passes);
   }
   return Status::success();
 }

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 
+#include "gpu_factory.h"
 #include "seams_content.h"
 #include "tessera/metrics.h"
 
@@ -139,12 +140,7 @@ Status check_config(const SeamsConfig& c) {
                            "seams: MSAA rate " + std::to_string(r) + " not in 1,2,4,8,16");
     }
   }
-  if (uses_gl(c.backend) && !c.gl_factory) {
-    return Status::error(ErrorCode::unsupported, std::string("seams: backend '") +
-                                                     backend_name(c.backend) +
-                                                     "': not built with the OpenGL runtime");
-  }
-  return Status::success();
+  return detail::gpu_factory("seams", c.backend, c.gl_factory, c.vk_factory).status();
 }
 
 /// What a quality frame is measured with: the reference and the masks of the counted pixels.
@@ -219,15 +215,17 @@ Status SeamsRun::make_backends() {
   Result<std::unique_ptr<faces::FaceRenderer>> renderer = faces::FaceRenderer::create(scene, set);
   if (!renderer) return renderer.status();
   renderer_ = std::move(*renderer);
-  if (uses_gl(c_.backend)) {
-    Result<std::unique_ptr<SeamsBackend>> made = c_.gl_factory->create_seams(scene, set);
+  const GpuBackendFactory* factory =
+      *detail::gpu_factory("seams", c_.backend, c_.gl_factory, c_.vk_factory);
+  if (factory != nullptr) {
+    Result<std::unique_ptr<SeamsBackend>> made = factory->create_seams(scene, set);
     if (!made) return made.status();
     if (!*made) {
-      return Status::error(ErrorCode::unsupported, "seams: the GL renderer factory made nothing");
+      return Status::error(ErrorCode::unsupported, "seams: the GPU renderer factory made nothing");
     }
     gl_ = std::move(*made);
   }
-  if (c_.backend != Backend::gl) {
+  if (uses_cpu(c_.backend)) {
     Result<std::unique_ptr<SeamsBackend>> made = create_cpu_seams_backend(scene, set);
     if (!made) return made.status();
     cpu_ = std::move(*made);
@@ -240,9 +238,9 @@ Status SeamsRun::make_backends() {
   rates_ = c_.msaa;
   gl_rate_.assign(c_.msaa.size(), false);
   if (gl_) {
-    res_.gl_renderer = gl_->device_name();
-    res_.gl_version = gl_->device_version();
-    if (c_.backend == Backend::gl) rates_.clear();
+    res_.gpu_renderer = gl_->device_name();
+    res_.gpu_version = gl_->device_version();
+    if (gpu_primary(c_.backend)) rates_.clear();
     for (std::size_t i = 0; i < c_.msaa.size(); ++i) {
       const int r = c_.msaa[i];
       gl_rate_[i] = gl_->msaa_supported(r);
@@ -252,14 +250,14 @@ Status SeamsRun::make_backends() {
           res_.msaa_unsupported.push_back(r);
         }
       } else {
-        res_.gl_sample_patterns.push_back(gl_->sample_pattern(r));
-        if (c_.backend == Backend::gl) rates_.push_back(r);
+        res_.gpu_sample_patterns.push_back(gl_->sample_pattern(r));
+        if (gpu_primary(c_.backend)) rates_.push_back(r);
       }
     }
     if (rates_.empty() ||
         (compare_gl_ && std::count(gl_rate_.begin(), gl_rate_.end(), true) == 0)) {
-      return Status::error(ErrorCode::unsupported, "seams: the OpenGL driver (" +
-                                                       res_.gl_renderer +
+      return Status::error(ErrorCode::unsupported, "seams: the GPU driver (" +
+                                                       res_.gpu_renderer +
                                                        ") refuses every MSAA rate asked for (" +
                                                        rates_text(res_.msaa_unsupported) + ")");
     }
@@ -557,8 +555,9 @@ SeamsResult SeamsRun::finish() {
 
 }  // namespace
 
-Result<SeamsResult> run_seams(const SeamsConfig& c) {
-  if (Status s = check_config(c); !s.ok()) return s;
+namespace {
+
+Result<SeamsResult> run_steps(const SeamsConfig& c) {
   SeamsRun run(c);
   if (Status s = run.make_backends(); !s.ok()) return s;
   if (Status s = run.start(); !s.ok()) return s;
@@ -567,6 +566,19 @@ Result<SeamsResult> run_seams(const SeamsConfig& c) {
     if (Status s = run.frame(f); !s.ok()) return s;
   }
   return run.finish();
+}
+
+}  // namespace
+
+Result<SeamsResult> run_seams(const SeamsConfig& c) {
+  if (Status s = check_config(c); !s.ok()) return s;
+  Result<SeamsResult> res = run_steps(c);  // the backends are gone when it returns
+  const GpuBackendFactory* factory = *detail::gpu_factory("seams", c.backend, c.gl_factory,
+                                                          c.vk_factory);
+  if (factory != nullptr) {
+    if (Status s = factory->device_status(); !s.ok()) return s;
+  }
+  return res;
 }
 
 }  // namespace tessera::experiments

@@ -34,7 +34,7 @@ nlohmann::json summary_json(const ErrorStats& q) {
           {"cdf", q.cdf}};
 }
 
-/// gl_samples[rate].positions: [x, y] per sample in 1/16 pixel from the centre, y down; null
+/// gpu_samples[rate].positions: [x, y] per sample in 1/16 pixel from the centre, y down; null
 /// where the driver's positions are not on that grid.
 nlohmann::json positions_json(const SeamsSamplePattern& p) {
   if (p.positions.empty()) return nullptr;
@@ -43,7 +43,7 @@ nlohmann::json positions_json(const SeamsSamplePattern& p) {
   return a;
 }
 
-/// gl_samples[rate].compared_with: the CPU frame the rate's GL frames were compared with; null
+/// gpu_samples[rate].compared_with: the CPU frame the rate's GL frames were compared with; null
 /// where they were not (`--backend gl`, or positions no CPU frame can have).
 nlohmann::json compared_with_json(const SeamsResult& res, const SeamsSamplePattern& p) {
   const SeamsGlRateResult* g = gl_rate_result(res, p.msaa);
@@ -93,20 +93,27 @@ void config_json(const SeamsConfig& c, const SeamsResult& res, nlohmann::json& s
                       {"corners", 4 * res.faces}};
 }
 
-/// The GL device's keys (backend gl or both): renderer, the rates it refuses, its sample
+/// The GPU device's keys (backend gl, vk or both): renderer, the rates it refuses, its sample
 /// positions and how its timings read.
-void gl_device_json(const SeamsResult& res, nlohmann::json& summary) {
-  summary["gl_renderer"] = res.gl_renderer;
-  summary["gl_version"] = res.gl_version;
+void gpu_device_json(const SeamsResult& res, nlohmann::json& summary) {
+  summary["gpu_renderer"] = res.gpu_renderer;
+  summary["gpu_version"] = res.gpu_version;
   summary["msaa_unsupported"] = res.msaa_unsupported;
   nlohmann::json samples = nlohmann::json::object();
-  for (const SeamsSamplePattern& p : res.gl_sample_patterns) {
+  for (const SeamsSamplePattern& p : res.gpu_sample_patterns) {
     samples[rate_key(p.msaa)] = {{"samples", p.samples},
                                  {"cpu_msaa", p.cpu_msaa},
                                  {"positions", positions_json(p)},
                                  {"compared_with", compared_with_json(res, p)}};
   }
-  summary["gl_samples"] = samples;
+  summary["gpu_samples"] = samples;
+  if (res.backend == Backend::vk) {
+    summary["timing_note"] =
+        "Vulkan: median_ms/frame_ms are GPU timestamps (draws + resolve), "
+        "wall_median_ms/wall_frame_ms the host time from submission to the fence; read the GPU "
+        "timer";
+    return;
+  }
   const std::string read = software_gl(res) ? "the wall times (llvmpipe: the timer is partial)"
                                             : "the GPU timer (a hardware GPU)";
   summary["timing_note"] =
@@ -117,7 +124,7 @@ void gl_device_json(const SeamsResult& res, nlohmann::json& summary) {
 
 /// timing, quality and the NaN counts of every rate `primary` rendered.
 void rates_json(const SeamsResult& res, nlohmann::json& summary) {
-  const bool gl = res.backend == Backend::gl;
+  const bool gl = gpu_primary(res.backend);
   nlohmann::json timing_j, quality_j, nan_j;
   for (const SeamsRateResult& rate : res.rates) {
     const std::string rk = rate_key(rate.msaa);
@@ -201,7 +208,7 @@ void gl_comparison_json(const SeamsResult& res, nlohmann::json& summary) {
   }
   summary["gl_vs_cpu_note"] =
       "GL frame against the CPU frame of the same camera, method and sample positions (the "
-      "CPU rate gl_samples[rate].cpu_msaa: the rate itself unless the driver draws it with "
+      "CPU rate gpu_samples[rate].cpu_msaa: the rate itself unless the driver draws it with "
       "more samples), pooled over the " +
       std::to_string(res.quality_frames) +
       " quality frame(s), all pixels: psnr_db from the mean MSE of the 8-bit sRGB outputs "
@@ -213,7 +220,7 @@ void gl_comparison_json(const SeamsResult& res, nlohmann::json& summary) {
     summary["gl_vs_cpu_note"] =
         summary["gl_vs_cpu_note"].get<std::string>() +
         ". Where cpu_msaa is 0 (no CPU pattern has the driver's positions), the CPU frame is "
-        "drawn at the driver's own positions (gl_samples[rate].compared_with \"cpu, the "
+        "drawn at the driver's own positions (gpu_samples[rate].compared_with \"cpu, the "
         "driver's positions\"), or, where those are not on the CPU's 1/16-pixel grid "
         "(positions null), the rate is not compared (compared_with null, psnr_db and "
         "fraction_ge_0.01 null, not_compared says why)";
@@ -223,7 +230,7 @@ void gl_comparison_json(const SeamsResult& res, nlohmann::json& summary) {
 void fill_json(const SeamsConfig& c, const SeamsResult& res, nlohmann::json& summary) {
   config_json(c, res, summary);
   summary["backend"] = backend_name(res.backend);
-  if (res.backend == Backend::gl || res.backend == Backend::both) gl_device_json(res, summary);
+  if (uses_gpu(res.backend)) gpu_device_json(res, summary);
   rates_json(res, summary);
   if (res.backend == Backend::both) gl_comparison_json(res, summary);
 }

@@ -43,9 +43,15 @@ inline nlohmann::json discard_catches_traverse(const SeamsResult& res) {
 }
 
 /// Whether GL ran on a software rasteriser (llvmpipe, softpipe): its GPU timer is partial.
+/// (Vulkan's timestamps on lavapipe, also "llvmpipe", are written in command order: whole.)
 inline bool software_gl(const SeamsResult& res) {
-  return res.gl_renderer.find("llvmpipe") != std::string::npos ||
-         res.gl_renderer.find("softpipe") != std::string::npos;
+  return res.backend != Backend::vk && (res.gpu_renderer.find("llvmpipe") != std::string::npos ||
+                                        res.gpu_renderer.find("softpipe") != std::string::npos);
+}
+
+/// "OpenGL" or "Vulkan": the API of a GPU result (gl, vk, both's GL side).
+inline const char* gpu_api_name(const SeamsResult& res) {
+  return res.backend == Backend::vk ? "Vulkan" : "OpenGL";
 }
 
 /// The GL-vs-CPU result of a GL rate (`--backend both`), or null.

@@ -73,9 +73,15 @@ bool gl_time_tables(std::ostringstream& md, const SeamsResult& res, const std::v
       for (const Rate& r : rates) row.ms.push_back(pick(r, m, gpu == 1)->median_ms());
       rows.push_back(std::move(row));
     }
-    md << (gpu ? "GPU timer (GL_TIME_ELAPSED of the draws and the resolve), median ms:\n\n"
-               : "Wall time (first GL call of the frame to glFinish after the resolve, "
-                 "read-back excluded), median ms:\n\n");
+    const bool vulkan = res.backend == Backend::vk;
+    md << (gpu ? (vulkan ? "GPU timer (timestamps around the draws and the resolve), median "
+                           "ms:\n\n"
+                         : "GPU timer (GL_TIME_ELAPSED of the draws and the resolve), median "
+                           "ms:\n\n")
+               : (vulkan ? "Wall time (submission to the fence after the resolve, read-back "
+                           "excluded), median ms:\n\n"
+                         : "Wall time (first GL call of the frame to glFinish after the "
+                           "resolve, read-back excluded), median ms:\n\n"));
     ok[gpu] = time_table(md, keys, rows, gpu ? " %.3f |" : " %.2f |");
   }
   md << "**Which to read:** "
@@ -83,8 +89,11 @@ bool gl_time_tables(std::ostringstream& md, const SeamsResult& res, const std::v
              ? "the wall times. This is llvmpipe, a software rasteriser: its GL_TIME_ELAPSED "
                "queries are executed per screen tile by the rasteriser threads and cover only "
                "part of the frame (gl_face_renderer.h)."
-             : "the GPU timer (a hardware GPU: the timer is the pass time; wall time adds the "
-               "driver's submission and the glFinish round trip).")
+             : res.backend == Backend::vk
+                 ? "the GPU timer (timestamps are written as the commands execute, on lavapipe "
+                   "as on hardware; wall time adds the submission and the fence round trip)."
+                 : "the GPU timer (a hardware GPU: the timer is the pass time; wall time adds "
+                   "the driver's submission and the glFinish round trip).")
      << "\n\n";
   return software_gl(res) ? ok[0] : ok[1];
 }
@@ -92,7 +101,7 @@ bool gl_time_tables(std::ostringstream& md, const SeamsResult& res, const std::v
 /// `--backend both`: the GL times and the GL-vs-CPU agreement.
 std::string gl_beside_cpu(const SeamsResult& res) {
   std::ostringstream md;
-  md << "\n## OpenGL beside the CPU\n\nThe same frames rendered by GL (" << res.gl_renderer
+  md << "\n## OpenGL beside the CPU\n\nThe same frames rendered by GL (" << res.gpu_renderer
      << "), methods alternating per frame";
   if (!res.msaa_unsupported.empty()) {
     md << "; refused by the driver and skipped on GL:";
@@ -157,7 +166,7 @@ std::string driver_positions_sentence(const SeamsResult& res, const SeamsSampleP
 
 /// The title, the scene and the backend paragraph.
 void md_header(std::ostringstream& md, const SeamsConfig& c, const SeamsResult& res) {
-  const bool gl = res.backend == Backend::gl;
+  const bool gl = gpu_primary(res.backend);
   const bool both = res.backend == Backend::both;
   md << "# Seams experiment (Toth 2013, Table 1 and Figure 5)\n\n";
   md << "Scene: " << res.scene_description << "; " << res.faces << " faces, " << res.texels_level0
@@ -169,14 +178,14 @@ void md_header(std::ostringstream& md, const SeamsConfig& c, const SeamsResult& 
              : "16x anisotropic filtering")
      << ", " << res.threads << " thread(s).\n\n";
   if (gl || both) {
-    md << "Backend: **" << (gl ? "OpenGL" : "CPU, and OpenGL beside it (`--backend both`)")
-       << "**: " << res.gl_renderer << ", " << res.gl_version << ".";
+    md << "Backend: **" << (gl ? gpu_api_name(res) : "CPU, and OpenGL beside it (`--backend both`)")
+       << "**: " << res.gpu_renderer << ", " << res.gpu_version << ".";
     if (!res.msaa_unsupported.empty()) {
       md << " MSAA rates the driver refuses, skipped" << (gl ? "" : " on GL") << ":";
       for (int r : res.msaa_unsupported) md << " " << rate_key(r);
       md << ".";
     }
-    for (const SeamsSamplePattern& p : res.gl_sample_patterns) {
+    for (const SeamsSamplePattern& p : res.gpu_sample_patterns) {
       if (p.cpu_msaa == 0) {
         md << driver_positions_sentence(res, p);
         continue;
@@ -190,7 +199,7 @@ void md_header(std::ostringstream& md, const SeamsConfig& c, const SeamsResult& 
       }
       md << ".";
     }
-    md << (gl ? " The reference is rendered by GL too (Traverse, 16x anisotropic, tiled); face "
+    md << (gl ? " The reference is rendered by the GPU too (Traverse, 16x anisotropic, tiled); face "
                 "ids (near-seam pixels) and the character mask come from the CPU renderer, "
                 "whose geometry is the same."
               : "")
@@ -201,12 +210,12 @@ void md_header(std::ostringstream& md, const SeamsConfig& c, const SeamsResult& 
 /// Table 1: the median times; whether Discard is at least 2x faster than Traverse everywhere.
 bool md_table1(std::ostringstream& md, const SeamsResult& res) {
   const std::vector<SeamMethod>& methods = faces::all_methods();
-  const bool gl = res.backend == Backend::gl;
+  const bool gl = gpu_primary(res.backend);
   md << "## Table 1 analogue: median ms per frame\n\n";
   bool speed_ok = true;
   if (gl) {
     md << "Draws + MSAA box resolve on the GPU, all methods rendered side by side in one run, "
-          "alternating per frame (no shading-only pass on GL).\n\n";
+          "alternating per frame (no shading-only pass on the GPU).\n\n";
     speed_ok = gl_time_tables(md, res, res.rates, [](const SeamsRateResult& r, SeamMethod m, bool gpu) {
       return gpu ? &r.method(m).timing : &r.method(m).wall;
     });

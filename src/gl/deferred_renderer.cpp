@@ -42,11 +42,8 @@ namespace {
 using State = DeferredRenderer::State;
 
 Result<const Program*> program(State& st, const std::vector<std::string>& defines) {
-  std::vector<std::string> pre = {
-      "#define TESSERA_DEFERRED_CLASSES " + std::to_string(st.class_arrays.size()),
-      "#define TESSERA_WINDOW_N " + std::to_string(st.m * st.m),
-      "#define TESSERA_ADAPTIVE_MAX_N " + std::to_string(std::max(1, st.m * st.m))};
-  for (const std::string& d : defines) pre.push_back("#define " + d);
+  const std::vector<std::string> pre =
+      deferred::gpu_passes_preamble(int(st.class_arrays.size()), st.m, defines);
   std::string key;
   for (const std::string& p : pre) key += p + "\n";
   auto it = st.programs.find(key);
@@ -70,59 +67,14 @@ Status bind_inputs(State& st, const deferred::ShadingOptions& o, const deferred:
     return Status::error(ErrorCode::unsupported,
                          "deferred GL: only TextureFilter::anisotropic shading is implemented");
   }
-  const int n = st.m * st.m;
-  DeferredParams p{};
-  p.size[0] = st.w;
-  p.size[1] = st.h;
-  p.size[2] = st.m;
-  p.size[3] = n;
-  p.counts[0] = int(o.lights.size());
-  p.counts[1] = o.heavy ? std::max(o.heavy_terms, 0) : 0;
-  p.counts[2] = a ? a->force_k : -1;
-  p.counts[3] = a ? (a->use_geometry ? 1 : 0) | (a->use_shading ? 2 : 0) : 3;
-  std::copy(st.camera_eye, st.camera_eye + 3, p.eye);
-  p.eye[3] = st.tan_half_fov;
-  p.view[0] = st.aspect;
-  p.view[1] = o.exposure;
-  p.view[2] = o.specular;
-  p.view[3] = o.shininess;
-  p.ambient[0] = o.ambient[0];
-  p.ambient[1] = o.ambient[1];
-  p.ambient[2] = o.ambient[2];
-  p.ambient[3] = float(std::clamp(o.max_aniso, 1, texture::kMaxAnisotropy));
-  const deferred::AdaptiveOptions def_a;
-  const deferred::EdgePerSampleOptions def_e;
-  const deferred::AdaptiveOptions& aa = a ? *a : def_a;
-  const deferred::EdgePerSampleOptions& ee = e ? *e : def_e;
-  p.metric[0] = aa.c_depth;
-  p.metric[1] = aa.c_normal;
-  p.metric[2] = aa.c_shade;
-  p.metric[3] = aa.t_min;
-  p.metric2[0] = aa.t_edge;
-  p.metric2[1] = aa.seam_factor;
-  p.metric2[2] = ee.min_normal_dot;
-  p.metric2[3] = ee.depth_slack;
-  p.background[0] = deferred::kBackground[0];
-  p.background[1] = deferred::kBackground[1];
-  p.background[2] = deferred::kBackground[2];
-  std::copy(st.inv_view, st.inv_view + 16, p.inv_view);
-  const std::span<const std::uint8_t> order = deferred::sample_order(st.m);
-  for (int i = 0; i < n; ++i) p.order[i] = order[std::size_t(i)];
-
+  const deferred::GpuParams p = deferred::gpu_params(st.camera, st.w, st.h, st.m, o, a, e);
   if (!st.params_ubo) st.params_ubo = create_object(ObjectType::buffer);
   glNamedBufferData(st.params_ubo.get(), sizeof p, &p, GL_DYNAMIC_DRAW);
-  std::vector<float> lights;
-  for (const deferred::Light& l : o.lights) {
-    lights.insert(lights.end(), {l.position.x, l.position.y, l.position.z, l.range, l.color[0],
-                                 l.color[1], l.color[2], l.intensity});
-  }
-  lights.resize(std::max<std::size_t>(lights.size(), 8), 0.0f);
+  const std::vector<float> lights = deferred::gpu_lights(o);
   if (!st.lights_ssbo) st.lights_ssbo = create_object(ObjectType::buffer);
   glNamedBufferData(st.lights_ssbo.get(), GLsizeiptr(lights.size() * 4), lights.data(),
                     GL_DYNAMIC_DRAW);
-  std::vector<float> waves = o.heavy ? deferred::make_heavy_waves(o.heavy_terms, o.heavy_wavelength)
-                                     : std::vector<float>{};
-  waves.resize(std::max<std::size_t>(waves.size(), 4), 0.0f);
+  const std::vector<float> waves = deferred::gpu_waves(o);
   if (!st.waves_ssbo) st.waves_ssbo = create_object(ObjectType::buffer);
   glNamedBufferData(st.waves_ssbo.get(), GLsizeiptr(waves.size() * 4), waves.data(),
                     GL_DYNAMIC_DRAW);
@@ -400,32 +352,10 @@ Result<ShadeResult> DeferredRenderer::shade_edge_per_sample(
   return r;
 }
 
-namespace {
-
-Result<std::vector<std::string>> fxaa_defines(const deferred::FxaaOptions& f) {
-  const deferred::FxaaPresetSteps* preset = deferred::fxaa_preset_steps(f.preset);
-  if (!preset) {
-    return Status::error(
-        ErrorCode::invalid_argument,
-        "fxaa: unknown quality preset " + std::to_string(f.preset) + " (10..15, 20..29 or 39)");
-  }
-  std::string table = "float[12](";
-  for (int i = 0; i < 12; ++i) table += (i ? ", " : "") + glsl::float_literal(preset->p[i]);
-  table += ")";
-  return std::vector<std::string>{"TESSERA_PASS_FXAA",
-                                  "TESSERA_FXAA_STEPS " + std::to_string(preset->steps),
-                                  "TESSERA_FXAA_P " + table,
-                                  "TESSERA_FXAA_SUBPIX " + glsl::float_literal(f.subpix),
-                                  "TESSERA_FXAA_EDGE " + glsl::float_literal(f.edge_threshold),
-                                  "TESSERA_FXAA_EDGE_MIN " + glsl::float_literal(f.edge_threshold_min)};
-}
-
-}  // namespace
-
 Result<FxaaResult> DeferredRenderer::shade_default_fxaa(const deferred::ShadingOptions& o,
                                                             const deferred::FxaaOptions& f) {
   State& st = *state_;
-  Result<std::vector<std::string>> fd = fxaa_defines(f);
+  Result<std::vector<std::string>> fd = deferred::gpu_fxaa_defines(f);
   if (!fd) return fd.status();
   if (Status s = bind_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
   FxaaResult r;
@@ -446,7 +376,7 @@ Result<FxaaResult> DeferredRenderer::fxaa(const ImageRGBA8& image,
                                               const deferred::FxaaOptions& f) {
   State& st = *state_;
   if (image.empty()) return Status::error(ErrorCode::invalid_argument, "fxaa: empty image");
-  Result<std::vector<std::string>> fd = fxaa_defines(f);
+  Result<std::vector<std::string>> fd = deferred::gpu_fxaa_defines(f);
   if (!fd) return fd.status();
   // The pass runs over w x h = the image's size: temporarily use its size for the buffers.
   if (!st.fbo) {

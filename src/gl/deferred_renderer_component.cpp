@@ -34,47 +34,12 @@ Result<AdaptiveSupersampler*> component(State& st) {
   if (st.component && st.component_key == key) return st.component.get();
   st.component.reset();
   AdaptiveSupersamplerOptions o;
-  o.width = st.w;
-  o.height = st.h;
-  o.m = st.m;
+  // The G-buffer of deferred_shading.glsl (units 0..2 of the renderer's own bindings); S keeps
+  // its light terms (D, P) in the renderer's SSBO 4 (deferred_passes.comp's layout).
+  deferred::gpu_component_options(o, st.w, st.h, st.m, classes, "std430, binding = 4",
+                                  "DeferredRenderer's shading hook");
   o.schedule = schedule_of(st.options.schedule);
-  o.output = AdaptiveOutputFormat::rgba32f;
-  o.sample_count_texture = true;
-  o.profile = true;  // ShadeResult's pass times
   o.glsl_dir = st.options.glsl_dir;
-  // The G-buffer of deferred_shading.glsl (units 0..2 of the renderer's own bindings).
-  o.layout = deferred_gbuffer_layout();
-  o.hook.name = "DeferredRenderer's shading hook";
-  // S keeps its light terms (D, P) in the renderer's SSBO 4 (deferred_passes.comp's layout),
-  // and sample 0 again repeats only the albedo lookup, as deferred_passes.comp does.
-  o.hook.source = "#define TESSERA_DEFERRED_CLASSES " + std::to_string(classes) +
-                  "\n#include \"deferred_shading.glsl\"\n"
-                  "layout(std430, binding = 4) buffer DeferredTerms { vec4 deferred_terms[]; };\n"
-                  "#define TESSERA_ADAPTIVE_SAMPLE0_AGAIN 1\n"
-                  "int deferred_pixel(ivec2 g) {\n"
-                  "  return (g.y / TESSERA_ADAPTIVE_M) * TESSERA_ADAPTIVE_WIDTH + g.x / TESSERA_ADAPTIVE_M;\n"
-                  "}\n"
-                  "vec4 tessera_shade_sample(ivec2 g, float footprint) {\n"
-                  "  TesseraSample s = tessera_fetch(g);\n"
-                  "  vec3 c = tessera_background.rgb, d = vec3(0.0), p = vec3(0.0);\n"
-                  "  if (s.material >= 0) {\n"
-                  "    tessera_lighting(g, s, d, p);\n"
-                  "    c = tessera_albedo(s, footprint) * d + p;\n"
-                  "  }\n"
-                  "#if defined(TESSERA_ADAPTIVE_PASS_FIRST)\n"
-                  "  int i = deferred_pixel(g);\n"
-                  "  deferred_terms[2 * i] = vec4(d, 0.0);\n"
-                  "  deferred_terms[2 * i + 1] = vec4(p, 0.0);\n"
-                  "#endif\n"
-                  "  return vec4(c, 1.0);\n"
-                  "}\n"
-                  "vec4 tessera_shade_sample0_again(ivec2 g, float footprint) {\n"
-                  "  TesseraSample s = tessera_fetch(g);\n"
-                  "  if (s.material < 0) return vec4(tessera_background.rgb, 1.0);\n"
-                  "  int i = deferred_pixel(g);\n"
-                  "  return vec4(tessera_albedo(s, footprint) * deferred_terms[2 * i].rgb +\n"
-                  "              deferred_terms[2 * i + 1].rgb, 1.0);\n"
-                  "}\n";
   Result<std::unique_ptr<AdaptiveSupersampler>> c = AdaptiveSupersampler::create(o);
   if (!c) return c.status();
   st.component = std::move(*c);
@@ -89,17 +54,7 @@ Status shade_with_component(State& st, int mode, const deferred::AdaptiveOptions
   Result<AdaptiveSupersampler*> c = component(st);
   if (!c) return c.status();
   if (a) {
-    AdaptiveThresholds t;
-    t.c_depth = a->c_depth;
-    t.c_normal = a->c_normal;
-    t.c_shade = a->c_shade;
-    t.t_min = a->t_min;
-    t.t_edge = a->t_edge;
-    t.use_geometry = a->use_geometry;
-    t.use_shading = a->use_shading;
-    t.seam_factor = a->seam_factor;
-    t.force_k = a->force_k;
-    (*c)->set_thresholds(t);
+    (*c)->set_thresholds(deferred::gpu_thresholds(*a));
   }
   AdaptiveFrame frame;
   frame.gbuffer = {st.g0.get(), st.g1.get(), st.g2.get(), 0};

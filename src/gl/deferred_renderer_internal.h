@@ -9,27 +9,13 @@
 #include <string>
 #include <vector>
 
+#include "deferred/gpu_host.h"
 #include "tessera/gl.h"
 #include "tessera/gl_adaptive.h"
 #include "tessera/gl_deferred.h"
 #include "tessera/texture.h"
 
 namespace tessera::gl {
-
-/// std140 layout of TesseraDeferredParams (deferred_shading.glsl).
-struct DeferredParams {
-  std::int32_t size[4];
-  std::int32_t counts[4];
-  float eye[4];
-  float view[4];
-  float ambient[4];
-  float metric[4];
-  float metric2[4];
-  float background[4];
-  float inv_view[16];
-  std::int32_t order[64];
-};
-static_assert(sizeof(DeferredParams) == 8 * 16 + 64 + 256, "std140 layout");
 
 struct GlMesh {
   Object vao, dynamic_vbo, static_vbo, ebo;
@@ -52,9 +38,7 @@ struct DeferredRenderer::State {
   int w = 0, h = 0, m = 0;
   Object fbo, g0, g1, g2, depth;
   double gbuffer_ms = 0.0, gbuffer_wall_ms = 0.0;
-  float camera_eye[3] = {0, 0, 0};
-  float tan_half_fov = 0.5f, aspect = 1.0f, far_z = 1000.0f;
-  float inv_view[16] = {};
+  deferred::GpuCamera camera;
 
   // Compute resources, reallocated with the output size.
   int buffers_w = 0, buffers_h = 0;

@@ -20,51 +20,29 @@ using namespace api;
 
 namespace {
 
-constexpr int kMaxClasses = 8;
-
-/// The base-colour textures of `materials` grouped by size, one RGBA32F array per (width,
-/// height, levels) into `arrays` (a 1x1 dummy when there is none, so that unit 3 holds a
-/// complete array); returns each texture's (class, layer), (-1, -1) for unused ones.
-Result<std::vector<std::array<int, 2>>> upload_texture_classes(
-    const std::vector<scene::Material>& materials, const std::vector<texture::Texture>& textures,
-    std::vector<Object>& arrays) {
-  std::map<std::tuple<int, int, int>, std::vector<int>> classes;
-  std::vector<int> used(textures.size(), 0);
-  for (const scene::Material& mat : materials) {
-    const int t = mat.base_color_texture;
-    if (t >= 0 && std::size_t(t) < textures.size() && !used[std::size_t(t)]) {
-      used[std::size_t(t)] = 1;
-      const texture::Texture& tex = textures[std::size_t(t)];
-      classes[{tex.width(), tex.height(), tex.level_count()}].push_back(t);
-    }
-  }
-  if (int(classes.size()) > kMaxClasses) {
-    return Status::error(ErrorCode::too_large,
-                         "deferred GL: the scene's base-colour textures come in " +
-                             std::to_string(classes.size()) + " sizes; at most " +
-                             std::to_string(kMaxClasses) + " texture arrays are supported");
-  }
-  std::vector<std::array<int, 2>> where(textures.size(), {-1, -1});  // class, layer
-  int cls = 0;
-  for (const auto& [key, members] : classes) {
-    const auto [tw, th, levels] = key;
+/// The base-colour textures' size classes (deferred::gpu_texture_classes), one RGBA32F array
+/// per class into `arrays` (a 1x1 dummy when there is none, so that unit 3 holds a complete
+/// array).
+void upload_texture_classes(const deferred::GpuTextureClasses& classes,
+                            const std::vector<texture::Texture>& textures,
+                            std::vector<Object>& arrays) {
+  for (const deferred::GpuTextureClasses::Class& c : classes.classes) {
     Object arr = create_object(ObjectType::texture, GL_TEXTURE_2D_ARRAY);
-    glTextureStorage3D(arr.get(), levels, GL_RGBA32F, tw, th, GLsizei(members.size()));
-    for (std::size_t layer = 0; layer < members.size(); ++layer) {
-      const texture::Texture& tex = textures[std::size_t(members[layer])];
-      for (int l = 0; l < levels; ++l) {
+    glTextureStorage3D(arr.get(), c.levels, GL_RGBA32F, c.width, c.height,
+                       GLsizei(c.textures.size()));
+    for (std::size_t layer = 0; layer < c.textures.size(); ++layer) {
+      const texture::Texture& tex = textures[std::size_t(c.textures[layer])];
+      for (int l = 0; l < c.levels; ++l) {
         const texture::TextureLevelView v = tex.level(0, l);
         glTextureSubImage3D(arr.get(), l, 0, 0, GLint(layer), v.width, v.height, 1, GL_RGBA,
                             GL_FLOAT, v.texels);
       }
-      where[std::size_t(members[layer])] = {cls, int(layer)};
     }
     glTextureParameteri(arr.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTextureParameteri(arr.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(arr.get(), GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTextureParameteri(arr.get(), GL_TEXTURE_WRAP_T, GL_REPEAT);
     arrays.push_back(std::move(arr));
-    ++cls;
   }
   if (arrays.empty()) {  // a 1x1 dummy so that unit 3 holds a complete array
     Object arr = create_object(ObjectType::texture, GL_TEXTURE_2D_ARRAY);
@@ -73,35 +51,13 @@ Result<std::vector<std::array<int, 2>>> upload_texture_classes(
     glTextureSubImage3D(arr.get(), 0, 0, 0, 0, 1, 1, 1, GL_RGBA, GL_FLOAT, one);
     arrays.push_back(std::move(arr));
   }
-  return where;
 }
 
-/// The materials as an SSBO of vec4 base, ivec4 (class, layer, width, height).
-Object upload_materials(const std::vector<scene::Material>& materials,
-                        const std::vector<texture::Texture>& textures,
-                        const std::vector<std::array<int, 2>>& where) {
-  struct MaterialRecord {
-    float base[4];
-    std::int32_t tex[4];
-  };
-  std::vector<MaterialRecord> mats;
-  for (const scene::Material& mat : materials) {
-    MaterialRecord rec{{mat.base_color[0], mat.base_color[1], mat.base_color[2], 1.0f},
-                       {-1, 0, 1, 1}};
-    const int t = mat.base_color_texture;
-    if (t >= 0 && std::size_t(t) < textures.size()) {
-      const texture::Texture& tex = textures[std::size_t(t)];
-      rec.tex[0] = where[std::size_t(t)][0];
-      rec.tex[1] = where[std::size_t(t)][1];
-      rec.tex[2] = tex.width();
-      rec.tex[3] = tex.height();
-    }
-    mats.push_back(rec);
-  }
-  if (mats.empty()) mats.push_back({{1, 1, 1, 1}, {-1, 0, 1, 1}});
+/// The materials as an SSBO (deferred::gpu_materials).
+Object upload_materials(const std::vector<deferred::GpuMaterial>& mats) {
   Object ssbo = create_object(ObjectType::buffer);
-  glNamedBufferStorage(ssbo.get(), GLsizeiptr(mats.size() * sizeof(MaterialRecord)), mats.data(),
-                       0);
+  glNamedBufferStorage(ssbo.get(), GLsizeiptr(mats.size() * sizeof(deferred::GpuMaterial)),
+                       mats.data(), 0);
   return ssbo;
 }
 
@@ -116,14 +72,7 @@ void upload_meshes(const std::vector<scene::Mesh>& scene_meshes, std::vector<GlM
     g.dynamic_vbo = create_object(ObjectType::buffer);
     g.static_vbo = create_object(ObjectType::buffer);
     g.ebo = create_object(ObjectType::buffer);
-    std::vector<float> st_data(g.vertices * 5);
-    for (std::size_t i = 0; i < g.vertices; ++i) {
-      st_data[i * 5 + 0] = mesh.normals[i].x;
-      st_data[i * 5 + 1] = mesh.normals[i].y;
-      st_data[i * 5 + 2] = mesh.normals[i].z;
-      st_data[i * 5 + 3] = mesh.uvs[i].x;
-      st_data[i * 5 + 4] = mesh.uvs[i].y;
-    }
+    const std::vector<float> st_data = deferred::gpu_static_vertices(mesh);
     glNamedBufferStorage(g.static_vbo.get(), GLsizeiptr(std::max<std::size_t>(1, st_data.size()) *
                                                         sizeof(float)),
                          st_data.empty() ? nullptr : st_data.data(), 0);
@@ -172,10 +121,12 @@ Result<std::unique_ptr<DeferredRenderer>> DeferredRenderer::create(
       render::build_scene_textures(scene, {options.threads});
   if (!textures) return textures.status();
   st.cpu_textures = std::move(*textures);
-  Result<std::vector<std::array<int, 2>>> where =
-      upload_texture_classes(scene.materials, st.cpu_textures, st.class_arrays);
-  if (!where) return where.status();
-  st.materials_ssbo = upload_materials(scene.materials, st.cpu_textures, *where);
+  Result<deferred::GpuTextureClasses> classes =
+      deferred::gpu_texture_classes(scene.materials, st.cpu_textures, "deferred GL");
+  if (!classes) return classes.status();
+  upload_texture_classes(*classes, st.cpu_textures, st.class_arrays);
+  st.materials_ssbo =
+      upload_materials(deferred::gpu_materials(scene.materials, st.cpu_textures, *classes));
   upload_meshes(scene.meshes, st.meshes);
   const std::filesystem::path& d = st.options.glsl_dir;
   Result<glsl::Source> vs = glsl::shipped_shader(glsl::Stage::vertex, "deferred_gbuffer.vert", d);
@@ -266,14 +217,7 @@ Status DeferredRenderer::render_gbuffer(const scene::Camera& camera, int width, 
   }
   // Camera data and vertices, exactly as DeferredRenderer::render_gbuffer.
   const deferred::GBufferCamera cam = deferred::gbuffer_camera(camera, width, height);
-  st.aspect = cam.aspect;
-  st.tan_half_fov = cam.tan_half_fov_y;
-  st.far_z = camera.far_z;
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) st.inv_view[c * 4 + r] = cam.inv_view.m[c][r];
-  st.camera_eye[0] = cam.eye.x;
-  st.camera_eye[1] = cam.eye.y;
-  st.camera_eye[2] = cam.eye.z;
+  st.camera = deferred::gpu_camera(cam, camera.far_z);
   const scene::Scene& sc = *st.scene;
   for (std::size_t mi = 0; mi < sc.meshes.size(); ++mi) {
     const scene::Mesh& mesh = sc.meshes[mi];
@@ -339,10 +283,10 @@ Result<deferred::GBuffer> DeferredRenderer::read_gbuffer() const {
   gb.fb = std::move(*fb);
   gb.m = st.m;
   for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) gb.inv_view.m[c][r] = st.inv_view[c * 4 + r];
-  gb.eye = {st.camera_eye[0], st.camera_eye[1], st.camera_eye[2]};
-  gb.tan_half_fov_y = st.tan_half_fov;
-  gb.aspect = st.aspect;
+    for (int r = 0; r < 4; ++r) gb.inv_view.m[c][r] = st.camera.inv_view[c * 4 + r];
+  gb.eye = {st.camera.eye[0], st.camera.eye[1], st.camera.eye[2]};
+  gb.tan_half_fov_y = st.camera.tan_half_fov;
+  gb.aspect = st.camera.aspect;
   const Object* tex[3] = {&st.g0, &st.g1, &st.g2};
   // Channel of each texture component (-1 = not stored).
   const int map[3][4] = {{deferred::kChDepth, deferred::kChNormal, deferred::kChNormal + 1,

@@ -36,7 +36,8 @@ void Barrier::memory(VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
 
 void Barrier::image(VkImage image, VkImageLayout from, VkImageLayout to,
                     VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
-                    VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
+                    VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access,
+                    std::uint32_t levels, std::uint32_t layers) {
   VkImageMemoryBarrier2 b{};
   b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2;
   b.srcStageMask = src_stage;
@@ -48,7 +49,7 @@ void Barrier::image(VkImage image, VkImageLayout from, VkImageLayout to,
   b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   b.image = image;
-  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, levels, 0, layers};
   images_.push_back(b);
 }
 

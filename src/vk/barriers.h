@@ -20,9 +20,11 @@ class Barrier {
   /// A global memory dependency.
   void memory(VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
               VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
-  /// An image dependency with a layout transition (colour aspect, level 0, layer 0).
+  /// An image dependency with a layout transition (colour aspect, levels 0 .. levels-1, layers
+  /// 0 .. layers-1).
   void image(VkImage image, VkImageLayout from, VkImageLayout to, VkPipelineStageFlags2 src_stage,
-             VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access);
+             VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access,
+             std::uint32_t levels = 1, std::uint32_t layers = 1);
   bool empty() const { return memory_.empty() && images_.empty(); }
   /// Records it into `cmd` (nothing when empty).
   void record(const Api& api, VkCommandBuffer cmd) const;

@@ -53,6 +53,35 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT
   return VK_FALSE;
 }
 
+constexpr const char* kDepthClipControl = "VK_EXT_depth_clip_control";
+
+/// Whether `pd` offers VK_EXT_depth_clip_control with its feature (OpenGL's [-w, w] clip depth,
+/// for the AA backend's G-buffer pass: the same depth values as OpenGL, bit for bit).
+bool has_depth_clip_control(PFN_vkGetInstanceProcAddr gipa, VkInstance instance,
+                            VkPhysicalDevice pd) {
+  auto extensions = instance_fn<PFN_vkEnumerateDeviceExtensionProperties>(
+      gipa, instance, "vkEnumerateDeviceExtensionProperties");
+  auto features2 = instance_fn<PFN_vkGetPhysicalDeviceFeatures2>(
+      gipa, instance, "vkGetPhysicalDeviceFeatures2");
+  if (extensions == nullptr || features2 == nullptr) return false;
+  std::uint32_t n = 0;
+  if (extensions(pd, nullptr, &n, nullptr) != VK_SUCCESS) return false;
+  std::vector<VkExtensionProperties> ext(n);
+  if (extensions(pd, nullptr, &n, ext.data()) != VK_SUCCESS) return false;
+  if (std::none_of(ext.begin(), ext.end(), [](const VkExtensionProperties& e) {
+        return std::strcmp(e.extensionName, kDepthClipControl) == 0;
+      })) {
+    return false;
+  }
+  VkPhysicalDeviceDepthClipControlFeaturesEXT dcc{};
+  dcc.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_CONTROL_FEATURES_EXT;
+  VkPhysicalDeviceFeatures2 f2{};
+  f2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+  f2.pNext = &dcc;
+  features2(pd, &f2);
+  return dcc.depthClipControl == VK_TRUE;
+}
+
 /// Which of the devices with a graphics + compute family to take.
 int wanted_device(int index) {
   if (index >= 0) return index;
@@ -230,6 +259,18 @@ Status HeadlessDevice::create_device(const HeadlessDeviceOptions& options) {
   VkDeviceCreateInfo di{};
   di.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
   di.pNext = ctx.synchronization2 ? &f13 : nullptr;
+  VkPhysicalDeviceDepthClipControlFeaturesEXT dcc{};
+  dcc.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_CONTROL_FEATURES_EXT;
+  dcc.depthClipControl = VK_TRUE;
+  depth_clip_control_ =
+      ctx.api_version >= VK_API_VERSION_1_1 &&
+      has_depth_clip_control(gipa, ctx.instance, ctx.physical_device);
+  if (depth_clip_control_) {
+    dcc.pNext = ctx.synchronization2 ? &f13 : nullptr;
+    di.pNext = &dcc;
+    di.enabledExtensionCount = 1;
+    di.ppEnabledExtensionNames = &kDepthClipControl;
+  }
   di.queueCreateInfoCount = 1;
   di.pQueueCreateInfos = &qi;
   di.pEnabledFeatures = &ctx.enabled_features;

@@ -8,7 +8,7 @@
 // synchronization validation and a debug-utils messenger counting every warning and error. The
 // device: the first physical device (or the `device_index`-th, $TESSERA_VK_DEVICE) with a
 // graphics + compute queue family, every supported core feature except robustBufferAccess, and
-// synchronization2 where the device has Vulkan 1.3.
+// synchronization2 where the device has Vulkan 1.3, VK_EXT_depth_clip_control where it has it.
 #pragma once
 
 #include <atomic>
@@ -66,6 +66,10 @@ class HeadlessDevice {
   /// Ends, submits and waits for `cmd` (a fence), then frees it; also on failure.
   Status submit_and_wait(VkCommandBuffer cmd);
 
+  /// Whether VK_EXT_depth_clip_control is enabled (where the device has it): pipelines may
+  /// keep OpenGL's [-w, w] clip depth (negativeOneToOne).
+  bool depth_clip_control() const { return depth_clip_control_; }
+
   /// Validation warnings and errors so far (0 without validation).
   int validation_messages() const { return log_ ? log_->messages.load() : 0; }
 
@@ -81,6 +85,7 @@ class HeadlessDevice {
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
   VkCommandPool pool_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
+  bool depth_clip_control_ = false;
 };
 
 }  // namespace tessera::vk

@@ -1,5 +1,5 @@
-// GLSL to SPIR-V with shaderc (the hook is known only at run time, see tessera/vk_adaptive.h),
-// and compute pipelines.
+// GLSL to SPIR-V with shaderc (the hook is known only at run time, see tessera/vk_adaptive.h;
+// the experiments' graphics stages are compiled the same way), and compute pipelines.
 #include "vk/shader.h"
 
 #include <shaderc/shaderc.h>
@@ -8,7 +8,9 @@
 
 namespace tessera::vk {
 
-Result<std::vector<std::uint32_t>> compile_compute_spirv(const std::string& text) {
+namespace {
+
+Result<std::vector<std::uint32_t>> compile_spirv(const std::string& text, shaderc_shader_kind kind) {
   std::unique_ptr<std::remove_pointer_t<shaderc_compiler_t>, void (*)(shaderc_compiler_t)> compiler(
       shaderc_compiler_initialize(), shaderc_compiler_release);
   std::unique_ptr<std::remove_pointer_t<shaderc_compile_options_t>,
@@ -24,7 +26,7 @@ Result<std::vector<std::uint32_t>> compile_compute_spirv(const std::string& text
   std::unique_ptr<std::remove_pointer_t<shaderc_compilation_result_t>,
                   void (*)(shaderc_compilation_result_t)>
       result(shaderc_compile_into_spv(compiler.get(), text.data(), text.size(),
-                                      shaderc_compute_shader, "tessera", "main", options.get()),
+                                      kind, "tessera", "main", options.get()),
              shaderc_result_release);
   if (!result) return Status::error(ErrorCode::unsupported, "shaderc: no result");
   if (shaderc_result_get_compilation_status(result.get()) != shaderc_compilation_status_success) {
@@ -36,6 +38,25 @@ Result<std::vector<std::uint32_t>> compile_compute_spirv(const std::string& text
   const char* data = shaderc_result_get_bytes(result.get());
   std::copy(data, data + spirv.size() * 4, reinterpret_cast<char*>(spirv.data()));
   return spirv;
+}
+
+}  // namespace
+
+Result<std::vector<std::uint32_t>> compile_compute_spirv(const std::string& text) {
+  return compile_spirv(text, shaderc_compute_shader);
+}
+
+Result<std::vector<std::uint32_t>> compile_graphics_spirv(const std::string& text,
+                                                          glsl::Stage stage) {
+  switch (stage) {
+    case glsl::Stage::vertex:
+      return compile_spirv(text, shaderc_vertex_shader);
+    case glsl::Stage::fragment:
+      return compile_spirv(text, shaderc_fragment_shader);
+    default:
+      return Status::error(ErrorCode::invalid_argument,
+                           "shaderc: compile_graphics_spirv takes a vertex or fragment stage");
+  }
 }
 
 Result<Pipeline> create_compute_pipeline(const Api& api, const std::vector<std::uint32_t>& spirv,

@@ -275,7 +275,10 @@ Result<Image> Image::create(const Api& api, VkFormat format, VkExtent2D extent,
   vi.image = img.image_;
   vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
   vi.format = format;
-  vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  const bool depth = format == VK_FORMAT_D32_SFLOAT || format == VK_FORMAT_D16_UNORM;
+  vi.subresourceRange = {depth ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT)
+                               : VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT),
+                         0, 1, 0, 1};
   if (VkResult r = api.CreateImageView(api.device(), &vi, api.alloc(), &img.view_);
       r != VK_SUCCESS) {
     return vk_error(what + ": vkCreateImageView", r);

@@ -164,7 +164,8 @@ class Buffer {
   bool coherent_ = true;
 };
 
-/// A 2D device-local image, its memory and a view.
+/// A 2D device-local image, its memory and a view (of the depth aspect for D32_SFLOAT and
+/// D16_UNORM, else of the colour aspect).
 class Image {
  public:
   Image() = default;

@@ -62,7 +62,7 @@ try:
     check("markdown table", "| 2×2 | Adaptive |" in md and "| 1×1 | FXAA |" in md, md[:400])
     check("markdown edge_per_sample row", "| 3×3 | Edge per sample (Lauritzen 2010) |" in md,
           md[:1600])
-    check("no backend key on the CPU", "backend" not in j and "gl_renderer" not in j, sorted(j))
+    check("no backend key on the CPU", "backend" not in j and "gpu_renderer" not in j, sorted(j))
     check("no probe left", not os.path.exists(os.path.join(out, ".tessera-aa-probe")))
 
     # Usage errors.

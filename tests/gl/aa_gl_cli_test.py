@@ -70,8 +70,8 @@ try:
     check("gl runs", rc == 0, se)
     j = json.load(open(os.path.join(out, "aa.json")))
     check("gl: backend key", j.get("backend") == "gl", j.get("backend"))
-    check("gl: renderer", isinstance(j.get("gl_renderer"), str) and j["gl_renderer"] != "", j.get("gl_renderer"))
-    check("gl: version", "4." in j.get("gl_version", ""), j.get("gl_version"))
+    check("gl: renderer", isinstance(j.get("gpu_renderer"), str) and j["gpu_renderer"] != "", j.get("gpu_renderer"))
+    check("gl: version", "4." in j.get("gpu_version", ""), j.get("gpu_version"))
     check("gl: rates", [r["m"] for r in j["rates"]] == [2, 4], j.get("rates"))
     for r in j["rates"]:
         check_gl_rate(f"gl {r['m']}", r)
@@ -81,7 +81,7 @@ try:
     check("gl md: table rows", "| 4×4 | Adaptive |" in md and
           "| 4×4 | Edge per sample (Lauritzen 2010) |" in md, md[:1200])
     check("gl md: pass table", "GL_TIME_ELAPSED ms |" in md and "| 4×4 | adaptive | extra_shade |" in md, md)
-    if "llvmpipe" in j["gl_renderer"]:
+    if "llvmpipe" in j["gpu_renderer"]:
         check("gl md: llvmpipe note", "the wall times are the ones to read" in md, md[:1500])
 
     out = os.path.join(tmp, "both")

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "ptex_report.h"  // examples/common: image_agreement
 #include "tessera/experiments.h"
 #include "tessera/faces.h"
 #include "tessera/gl.h"
@@ -30,33 +31,15 @@ using namespace tessera;
 using namespace tessera::gl;
 using tessera::texture::TextureFilter;
 
-struct Agreement {
-  double psnr = 0;      // 8-bit sRGB RGB PSNR (dB)
-  double frac_001 = 0;  // pixels with ||gl - cpu||_2 >= 0.01 (linear RGB)
-  double max_norm = 0;
-  int non_finite = 0;  // pixels with a NaN/inf channel in either image
-};
+// The agreement of two frames: 8-bit sRGB RGB PSNR (dB), the pixels with ||gl - cpu||_2 >= 0.01
+// (linear RGB) and the largest such norm, the pixels with a NaN/inf channel in either image
+// (examples/common/ptex_report.h: the example engines measure theirs the same way).
+using Agreement = engine::Agreement;
 
 Agreement agreement(const ImageRGBAF& gl_img, const ImageRGBAF& cpu) {
-  Agreement a;
-  Result<metrics::ImageComparison> c =
-      metrics::compare_images(to_srgb8(gl_img), to_srgb8(cpu), metrics::CompareOptions{false, 1});
-  EXPECT_TRUE(c.ok());
-  if (c) a.psnr = c->psnr_rgb;
-  Result<std::vector<float>> n = metrics::error_norms(gl_img, cpu);
-  EXPECT_TRUE(n.ok());
-  if (!n) return a;
-  int over = 0;
-  for (float e : *n) {
-    if (!std::isfinite(e)) {
-      ++a.non_finite;
-      continue;
-    }
-    over += e >= 0.01f;
-    a.max_norm = std::max(a.max_norm, double(e));
-  }
-  a.frac_001 = double(over) / double(n->size());
-  return a;
+  Result<Agreement> a = engine::image_agreement(gl_img, cpu);
+  EXPECT_TRUE(a.ok()) << a.status().message;
+  return a ? *a : Agreement{};
 }
 
 bool pixel_finite(const ImageRGBAF& img, std::size_t i) {
@@ -70,10 +53,7 @@ class GlSeams : public ::testing::Test {
 
   static void SetUpTestSuite() {
     scene_ = new faces::FaceScene(faces::figure1_scene());
-    Result<std::vector<faces::FaceAdjacency>> adj = faces::build_adjacency(scene_->mesh);
-    ASSERT_TRUE(adj.ok());
-    Result<faces::FaceTextureSet> set =
-        faces::FaceTextureSet::create(faces::bake_faces(*scene_), std::move(*adj));
+    Result<faces::FaceTextureSet> set = test::baked_texture_set(*scene_);
     ASSERT_TRUE(set.ok()) << set.status().message;
     set_ = new faces::FaceTextureSet(std::move(*set));
   }

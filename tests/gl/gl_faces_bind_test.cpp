@@ -24,14 +24,7 @@ using namespace tessera::gl;
 using namespace tessera::gl::api;  // NOLINT(google-build-using-namespace)
 
 faces::FaceTextureSet small_set() {
-  faces::Figure1Options o;
-  o.ground = 4;
-  o.character = 2;
-  const faces::FaceScene scene = faces::figure1_scene(o);
-  Result<std::vector<faces::FaceAdjacency>> adj = faces::build_adjacency(scene.mesh);
-  EXPECT_TRUE(adj.ok());
-  Result<faces::FaceTextureSet> set =
-      faces::FaceTextureSet::create(faces::bake_faces(scene), std::move(*adj));
+  Result<faces::FaceTextureSet> set = test::figure1_texture_set(4, 2);
   EXPECT_TRUE(set.ok()) << set.status().message;
   return std::move(*set);
 }

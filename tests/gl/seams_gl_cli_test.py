@@ -4,9 +4,9 @@
 Usage: seams_gl_cli_test.py PATH/TO/tessera
 Tiny frames (96x108, 2 orbit frames, MSAA 1,4,8) of the built-in Figure-1 scene:
   * `--backend gl` writes the usual report (the same JSON keys as the CPU's, plus `backend`,
-    `gl_renderer`, `gl_version`, `msaa_unsupported`, `gl_samples`, GPU-timer and wall times per
+    `gpu_renderer`, `gpu_version`, `msaa_unsupported`, `gpu_samples`, GPU-timer and wall times per
     frame); rates the driver refuses (8x on llvmpipe) are skipped and named in seams.md;
-    `gl_samples` gives each GL rate's drawn sample count and the CPU rate with its positions,
+    `gpu_samples` gives each GL rate's drawn sample count and the CPU rate with its positions,
     the driver's positions on the CPU's 1/16 grid and (with `both`) what it was compared with;
   * `--backend both` writes the CPU report byte for byte as `--backend cpu` does (plots, CSV,
     images) plus `timing_gl` and `gl_vs_cpu`, whose PSNR must stay above bounds measured on
@@ -74,27 +74,27 @@ try:
     cpu = load(cpu_out)
     check("cpu backend key", cpu.get("backend") == "cpu", str(cpu.get("backend")))
     check("cpu run has no GL keys",
-          not any(k in cpu for k in ("gl_renderer", "gl_vs_cpu", "timing_gl")), str(list(cpu)))
+          not any(k in cpu for k in ("gpu_renderer", "gl_vs_cpu", "timing_gl")), str(list(cpu)))
 
     # ---- --backend gl
     j = load(gl_out)
     check("gl backend key", j.get("backend") == "gl", str(j.get("backend")))
-    check("gl_renderer", isinstance(j.get("gl_renderer"), str) and j["gl_renderer"] != "",
-          str(j.get("gl_renderer")))
-    check("gl_version", isinstance(j.get("gl_version"), str) and j["gl_version"] != "",
-          str(j.get("gl_version")))
+    check("gpu_renderer", isinstance(j.get("gpu_renderer"), str) and j["gpu_renderer"] != "",
+          str(j.get("gpu_renderer")))
+    check("gpu_version", isinstance(j.get("gpu_version"), str) and j["gpu_version"] != "",
+          str(j.get("gpu_version")))
     unsupported = j.get("msaa_unsupported")
     check("msaa_unsupported is a list", isinstance(unsupported, list), str(unsupported))
     unsupported = unsupported if isinstance(unsupported, list) else []
     check("msaa_unsupported from the asked rates", set(unsupported) <= {1, 4, 8}, str(unsupported))
-    if "llvmpipe" in j.get("gl_renderer", ""):
+    if "llvmpipe" in j.get("gpu_renderer", ""):
         check("llvmpipe refuses 8x", unsupported == [8], str(unsupported))
     check("same top-level keys as cpu, plus the GL ones",
-          set(j) == set(cpu) | {"gl_renderer", "gl_version", "msaa_unsupported", "gl_samples",
+          set(j) == set(cpu) | {"gpu_renderer", "gpu_version", "msaa_unsupported", "gpu_samples",
                                 "timing_note"},
           f"gl={sorted(j)} cpu={sorted(cpu)}")
     rates = [f"{r}x" for r in (1, 4, 8) if r not in unsupported]
-    samples = j.get("gl_samples", {})
+    samples = j.get("gpu_samples", {})
     check("gl_samples per GL rate", sorted(samples) == sorted(rates), str(samples))
     for rate, p in samples.items():
         check(f"gl_samples {rate}", p["samples"] >= int(rate[:-1]) and
@@ -105,7 +105,7 @@ try:
                all(-8 <= v <= 7 for xy in p["positions"] for v in xy)), str(p))
         check(f"gl_samples {rate} compared_with", "compared_with" in p and
               p["compared_with"] is None, str(p))
-    if "llvmpipe" in j.get("gl_renderer", ""):
+    if "llvmpipe" in j.get("gpu_renderer", ""):
         check("llvmpipe draws the CPU's patterns",
               all(p["cpu_msaa"] == p["samples"] == int(r[:-1]) for r, p in samples.items()),
               str(samples))
@@ -127,7 +127,7 @@ try:
     with open(os.path.join(gl_out, "seams.md")) as f:
         md = f.read()
     check("gl md says which time to read", "Which to read" in md)
-    check("gl md names the renderer", j.get("gl_renderer", "?") in md)
+    check("gl md names the renderer", j.get("gpu_renderer", "?") in md)
     for r in unsupported:
         check(f"gl md names skipped {r}x", "skipped" in md and f" {r}x" in md)
     for f in ["cdf.csv", "fig5_left.svg", "fig5_right.png", "images/reference.png"] + \
@@ -146,7 +146,7 @@ try:
           str(sorted(b["timing"])))
     check("both gl rates", sorted(b["gl_vs_cpu"]) == sorted(rates) and
           sorted(b["timing_gl"]) == sorted(rates), str(sorted(b.get("gl_vs_cpu", {}))))
-    for rate, p in b.get("gl_samples", {}).items():
+    for rate, p in b.get("gpu_samples", {}).items():
         # What each GL rate was compared with: the CPU rate with its positions, else the CPU
         # drawn at the driver's own, else nothing (null, and gl_vs_cpu says why).
         expected = (f"cpu {p['cpu_msaa']}x" if p["cpu_msaa"] > 0 else
@@ -158,7 +158,7 @@ try:
             a = b["gl_vs_cpu"][rate][m]
             if "not_compared" in a:  # positions no CPU frame can have (not on llvmpipe)
                 check(f"gl_vs_cpu not compared {m} {rate}", a["psnr_db"] is None and
-                      b["gl_samples"][rate]["compared_with"] is None, str(a))
+                      b["gpu_samples"][rate]["compared_with"] is None, str(a))
             else:
                 check(f"gl_vs_cpu psnr {m} {rate}",
                       a["psnr_db"] is not None and a["psnr_db"] >= MIN_PSNR[m], str(a))

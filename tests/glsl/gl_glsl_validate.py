@@ -12,6 +12,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from cli_harness import check as harness_check, finish  # noqa: E402
+
 VALIDATOR, SEAMS = sys.argv[1], sys.argv[2]
 source = open(SEAMS, encoding="utf-8").read()
 
@@ -39,16 +42,10 @@ void main() {
 }
 """
 
-failures, passed = [], 0
-
 
 def check(name, cond, detail):
-    global passed
-    print(("ok   " if cond else "FAIL ") + name + ": " + detail)
-    if cond:
-        passed += 1
-    else:
-        failures.append(name)
+    """cli_harness.check, printing the passed checks too (their detail is the measurement)."""
+    harness_check(name, cond, detail, show_passed=True)
 
 
 def validate(stage, defines, main):
@@ -78,5 +75,4 @@ rc, out = validate("frag", ["TESSERA_SEAMS_CLASSES 17"], FRAG_MAIN)
 check("refused with 17 classes", rc != 0 and "1..16" in out,
       out.splitlines()[1] if len(out.splitlines()) > 1 else out)
 
-print(f"{passed} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+sys.exit(finish())

@@ -20,23 +20,17 @@ import numpy as np
 from PIL import Image
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
-from cli_harness import required  # noqa: E402
+from cli_harness import check as harness_check, finish, required  # noqa: E402
 
 TESSERA, GLPEER = sys.argv[1], sys.argv[2]
 HERE = os.path.dirname(os.path.abspath(__file__))
 shared = os.environ.get("TESSERA_SHARED", os.path.join(HERE, "..", "..", "..", "shared"))
 dungeon = os.path.join(shared, "data", "scenes", "dungeon", "level-dungeon.gltf")
 
-failures, passed = [], 0
-
 
 def check(name, cond, detail):
-    global passed
-    print(("ok   " if cond else "FAIL ") + name + ": " + detail)
-    if cond:
-        passed += 1
-    else:
-        failures.append(name)
+    """cli_harness.check, printing the passed checks too (their detail is the measurement)."""
+    harness_check(name, cond, detail, show_passed=True)
 
 
 def render_both(tmp, scene, extra, tag):
@@ -77,5 +71,4 @@ try:
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
 
-print(f"{passed} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+sys.exit(finish())

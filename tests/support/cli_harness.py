@@ -61,11 +61,14 @@ def write_png(path, width, height, pixel, alpha):
     return path
 
 
-def check(name, cond, detail=""):
-    """Counts one check; prints and remembers a failure."""
+def check(name, cond, detail="", show_passed=False):
+    """Counts one check; prints and remembers a failure (and, with `show_passed`, prints a
+    passed check with its detail: "ok   name: detail")."""
     global _passed
     if cond:
         _passed += 1
+        if show_passed:
+            print(f"ok   {name}: {detail}")
     else:
         _failures.append(f"{name}: {detail}")
         print(f"FAIL {name}: {detail}")

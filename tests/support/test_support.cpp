@@ -46,4 +46,17 @@ fs::path artifacts_dir() {
   return p;
 }
 
+Result<faces::FaceTextureSet> baked_texture_set(const faces::FaceScene& scene) {
+  Result<std::vector<faces::FaceAdjacency>> adj = faces::build_adjacency(scene.mesh);
+  if (!adj) return adj.status();
+  return faces::FaceTextureSet::create(faces::bake_faces(scene), std::move(*adj));
+}
+
+Result<faces::FaceTextureSet> figure1_texture_set(int ground, int character) {
+  faces::Figure1Options o;
+  o.ground = ground;
+  o.character = character;
+  return baked_texture_set(faces::figure1_scene(o));
+}
+
 }  // namespace tessera::test

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tessera/core.h"
+#include "tessera/faces.h"
 #include "test_require.h"  // required(), TESSERA_SKIP_OR_FAIL, TESSERA_SKIP_WITHOUT_AVX2
 
 namespace tessera::test {
@@ -21,6 +22,13 @@ std::optional<std::filesystem::path> pvrtextool();
 std::filesystem::path temp_dir(const std::string& name);
 /// Folder in the build tree where tests write diff images when they fail.
 std::filesystem::path artifacts_dir();
+
+/// The per-face texture set of `scene`: its faces baked (faces::bake_faces) with their
+/// adjacency; the status says which step failed.
+Result<faces::FaceTextureSet> baked_texture_set(const faces::FaceScene& scene);
+/// The baked texture set of faces::figure1_scene with a `ground` x `ground` ground plane and a
+/// 6 x `character` x `character` character (the GL tests' small scenes).
+Result<faces::FaceTextureSet> figure1_texture_set(int ground, int character);
 
 /// A w x h 8-bit image of one colour.
 inline ImageRGBA8 solid_rgba8(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b,

@@ -15,6 +15,8 @@
 #include "tessera/experiments.h"
 #include "tessera/metrics.h"
 
+#include <nlohmann/json.hpp>
+
 namespace tessera::experiments {
 namespace {
 
@@ -215,10 +217,11 @@ TEST(Aa, BadConfigurationAndBackendAreErrors) {
 
 // A backend whose size check fails stops the run before on_ready (the GL backend's
 // framebuffer limits); the CPU backend is used through the same interface.
-TEST(Aa, BackendSizeCheckComesBeforeReady) {
-  struct Limited final : AaBackend {
-    std::unique_ptr<AaBackend> cpu;
-    Backend backend() const override { return Backend::gl; }
+/// A CPU backend under a GPU's name whose G-buffer may be at most 64 x 64 (a device limit).
+struct Limited final : AaBackend {
+  std::unique_ptr<AaBackend> cpu;
+  Backend kind = Backend::gl;
+  Backend backend() const override { return kind; }
     std::string device_name() const override { return "limited"; }
     std::string device_version() const override { return "1"; }
     Status check_size(int w, int h, int m) const override {
@@ -232,17 +235,24 @@ TEST(Aa, BackendSizeCheckComesBeforeReady) {
                                 const AaShadeOptions& o) override {
       return cpu->shade(k, s, o);
     }
-  };
-  AaConfig c = tiny_aa();
-  c.frames = 1;
-  c.backend = Backend::gl;
-  c.gl_factory = test::aa_factory([](const scene::Scene& sc) -> Result<std::unique_ptr<AaBackend>> {
+};
+
+test::AaFactoryFn limited_backend(Backend kind) {
+  return [kind](const scene::Scene& sc) -> Result<std::unique_ptr<AaBackend>> {
     auto b = std::make_unique<Limited>();
+    b->kind = kind;
     Result<std::unique_ptr<AaBackend>> cpu = create_cpu_aa_backend(sc, {2});
     if (!cpu) return cpu.status();
     b->cpu = std::move(*cpu);
     return std::unique_ptr<AaBackend>(std::move(b));
-  });
+  };
+}
+
+TEST(Aa, BackendSizeCheckComesBeforeReady) {
+  AaConfig c = tiny_aa();
+  c.frames = 1;
+  c.backend = Backend::gl;
+  c.gl_factory = test::aa_factory(limited_backend(Backend::gl));
   bool ready = false;
   c.on_ready = [&] {
     ready = true;
@@ -256,9 +266,56 @@ TEST(Aa, BackendSizeCheckComesBeforeReady) {
   ASSERT_TRUE(r.ok()) << r.status().message;
   EXPECT_TRUE(ready);
   EXPECT_EQ(r->backend, Backend::gl);
-  EXPECT_EQ(r->gl_renderer, "limited");
+  EXPECT_EQ(r->gpu_renderer, "limited");
   EXPECT_EQ(r->rates[0].gbuffer_gpu.frame_ms.size(), 1u);  // GL records the GPU timer
   EXPECT_FALSE(r->rates[0].method(AaMethod::adaptive).passes.empty());
+}
+
+// Backend::vk goes through `vk_factory` (never `gl_factory`), reports as "vk" with the keys of
+// a GL report, and a device that reported validation messages fails the run after it.
+TEST(Aa, VulkanBackendHasTheKeysOfGlAndItsDeviceStatusDecides) {
+  AaConfig c = tiny_aa();
+  c.frames = 1;
+  c.ssaa = {2};
+  c.width = c.height = 32;
+  c.backend = Backend::vk;
+  c.gl_factory = test::aa_factory(limited_backend(Backend::gl));
+  Result<AaResult> none = run_aa(c);  // a GL factory does not make a Vulkan run
+  ASSERT_FALSE(none.ok());
+  EXPECT_EQ(none.status().code, ErrorCode::unsupported);
+  EXPECT_NE(none.status().message.find("backend 'vk': not built with the Vulkan runtime"),
+            std::string::npos)
+      << none.status().message;
+  c.vk_factory = test::aa_factory(limited_backend(Backend::vk), Backend::vk);
+  Result<AaResult> vk = run_aa(c);
+  ASSERT_TRUE(vk.ok()) << vk.status().message;
+  EXPECT_EQ(vk->backend, Backend::vk);
+  EXPECT_EQ(vk->gpu_renderer, "limited");
+  EXPECT_EQ(vk->rates[0].gbuffer_gpu.frame_ms.size(), 1u);  // GPU times recorded as on GL
+  c.backend = Backend::gl;
+  Result<AaResult> gl = run_aa(c);
+  ASSERT_TRUE(gl.ok()) << gl.status().message;
+  Result<std::string> sv = to_json(c, *vk), sg = to_json(c, *gl);
+  ASSERT_TRUE(sv.ok() && sg.ok());
+  const nlohmann::json jv = nlohmann::json::parse(*sv);
+  const nlohmann::json jg = nlohmann::json::parse(*sg);
+  EXPECT_EQ(jv["backend"], "vk");
+  EXPECT_EQ(jg["backend"], "gl");
+  std::vector<std::string> kv, kg;
+  for (const auto& [k, v] : jv.items()) kv.push_back(k);
+  for (const auto& [k, v] : jg.items()) kg.push_back(k);
+  EXPECT_EQ(kv, kg);
+  EXPECT_EQ(jv["rates"][0].size(), jg["rates"][0].size());
+  // Validation messages on the device: the run fails with the device's line.
+  c.backend = Backend::vk;
+  c.vk_factory = test::aa_factory(limited_backend(Backend::vk), Backend::vk,
+                                  Status::error(ErrorCode::unsupported,
+                                                "vulkan validation: 2 message(s), the first: x"));
+  Result<AaResult> bad = run_aa(c);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message, "vulkan validation: 2 message(s), the first: x");
+  EXPECT_EQ(*parse_backend("vk"), Backend::vk);
+  EXPECT_STREQ(backend_name(Backend::vk), "vk");
 }
 
 }  // namespace

@@ -16,6 +16,8 @@
 #include "experiments_test_util.h"
 #include "tessera/metrics.h"
 
+#include <nlohmann/json.hpp>
+
 namespace tessera::experiments {
 namespace {
 
@@ -35,7 +37,9 @@ class CpuBackedFakeGl : public SeamsBackend {
  public:
   CpuBackedFakeGl(std::unique_ptr<SeamsBackend> cpu, std::string name)
       : cpu_(std::move(cpu)), name_(std::move(name)) {}
-  Backend backend() const override { return Backend::gl; }
+  Backend backend() const override { return kind_; }
+  /// Stand in for a Vulkan backend instead.
+  void set_backend(Backend kind) { kind_ = kind; }
   std::string device_name() const override { return name_; }
   std::string device_version() const override { return "9.9"; }
   bool has_shading_only() const override { return false; }
@@ -49,6 +53,7 @@ class CpuBackedFakeGl : public SeamsBackend {
 
  private:
   std::string name_;
+  Backend kind_ = Backend::gl;
 };
 
 /// A stand-in for the GL backend: the CPU renderer under another name that refuses some MSAA
@@ -79,17 +84,62 @@ class FakeGlRenderer final : public CpuBackedFakeGl {
   bool perturb_ = false;
 };
 
+/// A factory of `FakeGlRenderer`s standing in for `kind` (gl or vk).
 std::shared_ptr<const GpuBackendFactory> fake_gl_factory(std::vector<int> refused,
-                                                        bool perturb = false) {
+                                                        bool perturb = false,
+                                                        Backend kind = Backend::gl,
+                                                        Status status = Status::success()) {
   return test::seams_factory(
-      [refused, perturb](
+      [refused, perturb, kind](
           const faces::FaceScene& scene,
           const faces::FaceTextureSet& set) -> Result<std::unique_ptr<SeamsBackend>> {
         Result<std::unique_ptr<SeamsBackend>> cpu = create_cpu_seams_backend(scene, set);
         if (!cpu) return cpu.status();
-        return std::unique_ptr<SeamsBackend>(
-            std::make_unique<FakeGlRenderer>(std::move(*cpu), refused, perturb));
-      });
+        auto fake = std::make_unique<FakeGlRenderer>(std::move(*cpu), refused, perturb);
+        fake->set_backend(kind);
+        return std::unique_ptr<SeamsBackend>(std::move(fake));
+      },
+      kind, std::move(status));
+}
+
+// Backend::vk goes through `vk_factory` alone, reports as "vk" with exactly the keys of a GL
+// report (its timing note says Vulkan), and a device that reported validation messages fails
+// the run after it.
+TEST(Seams, VulkanBackendHasTheKeysOfGlAndItsDeviceStatusDecides) {
+  SeamsConfig c = tiny_seams();
+  c.frames = 1;
+  c.backend = Backend::vk;
+  c.gl_factory = fake_gl_factory({});
+  Result<SeamsResult> none = run_seams(c);
+  ASSERT_FALSE(none.ok());
+  EXPECT_NE(none.status().message.find("backend 'vk': not built with the Vulkan runtime"),
+            std::string::npos)
+      << none.status().message;
+  c.vk_factory = fake_gl_factory({}, false, Backend::vk);
+  Result<SeamsResult> vk = run_seams(c);
+  ASSERT_TRUE(vk.ok()) << vk.status().message;
+  EXPECT_EQ(vk->backend, Backend::vk);
+  EXPECT_EQ(vk->gpu_renderer, "fake renderer");
+  ASSERT_EQ(vk->rates.size(), 2u);
+  c.backend = Backend::gl;
+  Result<SeamsResult> gl = run_seams(c);
+  ASSERT_TRUE(gl.ok()) << gl.status().message;
+  const nlohmann::json jv = nlohmann::json::parse(to_json(c, *vk));
+  const nlohmann::json jg = nlohmann::json::parse(to_json(c, *gl));
+  EXPECT_EQ(jv["backend"], "vk");
+  EXPECT_EQ(jg["backend"], "gl");
+  std::vector<std::string> kv, kg;
+  for (const auto& [k, v] : jv.items()) kv.push_back(k);
+  for (const auto& [k, v] : jg.items()) kg.push_back(k);
+  EXPECT_EQ(kv, kg);
+  EXPECT_NE(jv["timing_note"].get<std::string>().find("Vulkan"), std::string::npos);
+  EXPECT_NE(to_markdown(c, *vk).find("**Vulkan**: fake renderer"), std::string::npos);
+  c.backend = Backend::vk;
+  c.vk_factory = fake_gl_factory({}, false, Backend::vk,
+                                 Status::error(ErrorCode::unsupported, "vulkan validation: 1"));
+  Result<SeamsResult> bad = run_seams(c);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.status().message, "vulkan validation: 1");
 }
 
 TEST(Seams, GlBackendThroughTheFactorySkipsRefusedRates) {
@@ -99,8 +149,8 @@ TEST(Seams, GlBackendThroughTheFactorySkipsRefusedRates) {
   Result<SeamsResult> r = run_seams(c);
   ASSERT_TRUE(r.ok()) << r.status().message;
   EXPECT_EQ(r->backend, Backend::gl);
-  EXPECT_EQ(r->gl_renderer, "fake renderer");
-  EXPECT_EQ(r->gl_version, "9.9");
+  EXPECT_EQ(r->gpu_renderer, "fake renderer");
+  EXPECT_EQ(r->gpu_version, "9.9");
   EXPECT_EQ(r->msaa_unsupported, std::vector<int>{4});
   ASSERT_EQ(r->rates.size(), 1u);  // 4x skipped, not failed
   const SeamsResult& cpu = seams_result();
@@ -156,8 +206,8 @@ TEST(Seams, CompareGlKeepsTheCpuResultAndMeasuresAgreement) {
   EXPECT_EQ(r->gl_rates[0].msaa, 1);
   // A backend that does not say otherwise draws the standard pattern of the rate.
   EXPECT_EQ(r->gl_rates[0].compared_with, SeamsGlComparison::cpu_rate);
-  ASSERT_EQ(r->gl_sample_patterns.size(), 1u);
-  EXPECT_EQ(r->gl_sample_patterns[0].positions,
+  ASSERT_EQ(r->gpu_sample_patterns.size(), 1u);
+  EXPECT_EQ(r->gpu_sample_patterns[0].positions,
             std::vector<raster::SampleOffset>{raster::SampleOffset{}});
   for (SeamMethod m : faces::all_methods()) {
     const SeamsGlMethodResult& g = r->gl_rates[0].method(m);
@@ -213,11 +263,11 @@ TEST(Seams, CompareGlUsesTheDriversSamplePositions) {
         });
     Result<SeamsResult> r = run_seams(c);
     ASSERT_TRUE(r.ok()) << r.status().message;
-    ASSERT_EQ(r->gl_sample_patterns.size(), 2u);
-    EXPECT_EQ(r->gl_sample_patterns[0].msaa, 2);
-    EXPECT_EQ(r->gl_sample_patterns[0].samples, report ? 4 : 2);
-    EXPECT_EQ(r->gl_sample_patterns[0].cpu_msaa, report ? 4 : 2);
-    EXPECT_EQ(r->gl_sample_patterns[1].msaa, 4);
+    ASSERT_EQ(r->gpu_sample_patterns.size(), 2u);
+    EXPECT_EQ(r->gpu_sample_patterns[0].msaa, 2);
+    EXPECT_EQ(r->gpu_sample_patterns[0].samples, report ? 4 : 2);
+    EXPECT_EQ(r->gpu_sample_patterns[0].cpu_msaa, report ? 4 : 2);
+    EXPECT_EQ(r->gpu_sample_patterns[1].msaa, 4);
     ASSERT_EQ(r->gl_rates.size(), 2u);
     for (SeamMethod m : faces::all_methods()) {
       const SeamsGlMethodResult& g2 = r->gl_rates[0].method(m);
@@ -290,9 +340,9 @@ const std::vector<SampleOffset> kMirrored2x = {{-4, 4}, {4, -4}};
 TEST(Seams, CompareGlDrawsTheCpuAtTheDriversPositionsWhenNoRateHasThem) {
   Result<SeamsResult> r = run_pattern_fake(kMirrored2x, kMirrored2x, 0);
   ASSERT_TRUE(r.ok()) << r.status().message;
-  ASSERT_EQ(r->gl_sample_patterns.size(), 1u);
-  EXPECT_EQ(r->gl_sample_patterns[0].cpu_msaa, 0);
-  EXPECT_EQ(r->gl_sample_patterns[0].positions, kMirrored2x);
+  ASSERT_EQ(r->gpu_sample_patterns.size(), 1u);
+  EXPECT_EQ(r->gpu_sample_patterns[0].cpu_msaa, 0);
+  EXPECT_EQ(r->gpu_sample_patterns[0].positions, kMirrored2x);
   ASSERT_EQ(r->gl_rates.size(), 1u);
   EXPECT_EQ(r->gl_rates[0].compared_with, SeamsGlComparison::driver_positions);
   for (SeamMethod m : faces::all_methods()) {
@@ -317,8 +367,8 @@ TEST(Seams, CompareGlDrawsTheCpuAtTheDriversPositionsWhenNoRateHasThem) {
 TEST(Seams, CompareGlLeavesARateUncomparedWithoutReproduciblePositions) {
   Result<SeamsResult> r = run_pattern_fake({}, {}, 0);
   ASSERT_TRUE(r.ok()) << r.status().message;
-  ASSERT_EQ(r->gl_sample_patterns.size(), 1u);
-  EXPECT_TRUE(r->gl_sample_patterns[0].positions.empty());
+  ASSERT_EQ(r->gpu_sample_patterns.size(), 1u);
+  EXPECT_TRUE(r->gpu_sample_patterns[0].positions.empty());
   ASSERT_EQ(r->gl_rates.size(), 1u);
   EXPECT_EQ(r->gl_rates[0].msaa, 2);
   EXPECT_EQ(r->gl_rates[0].compared_with, SeamsGlComparison::none);

@@ -1,6 +1,6 @@
 // Helpers shared by the experiments tests (experiments_test.cpp, experiments_aa_test.cpp,
 // experiments_seams_backend_test.cpp): the tiny seam experiment and its one cached result, and
-// a GL backend factory made of functions (fake GL backends).
+// a GPU backend factory made of functions (fake GL / Vulkan backends).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -40,12 +40,15 @@ using SeamsFactoryFn = std::function<Result<std::unique_ptr<SeamsBackend>>(
     const faces::FaceScene&, const faces::FaceTextureSet&)>;
 using AaFactoryFn = std::function<Result<std::unique_ptr<AaBackend>>(const scene::Scene&)>;
 
-/// A GpuBackendFactory whose backends come from two functions; an unset one fails (unsupported).
-class FunctionGlFactory final : public GpuBackendFactory {
+/// A GpuBackendFactory of `kind` (gl or vk) whose backends come from two functions; an unset
+/// one fails (unsupported). `status` is its device_status().
+class FunctionGpuFactory final : public GpuBackendFactory {
  public:
-  Backend backend() const override { return Backend::gl; }
-  FunctionGlFactory(SeamsFactoryFn seams, AaFactoryFn aa)
-      : seams_(std::move(seams)), aa_(std::move(aa)) {}
+  FunctionGpuFactory(SeamsFactoryFn seams, AaFactoryFn aa, Backend kind = Backend::gl,
+                     Status status = Status::success())
+      : seams_(std::move(seams)), aa_(std::move(aa)), kind_(kind), status_(std::move(status)) {}
+  Backend backend() const override { return kind_; }
+  Status device_status() const override { return status_; }
   Result<std::unique_ptr<SeamsBackend>> create_seams(
       const faces::FaceScene& scene, const faces::FaceTextureSet& textures) const override {
     if (!seams_) return Status::error(ErrorCode::unsupported, "no fake seams backend");
@@ -59,13 +62,21 @@ class FunctionGlFactory final : public GpuBackendFactory {
  private:
   SeamsFactoryFn seams_;
   AaFactoryFn aa_;
+  Backend kind_;
+  Status status_;
 };
 
-inline std::shared_ptr<const GpuBackendFactory> seams_factory(SeamsFactoryFn fn) {
-  return std::make_shared<const FunctionGlFactory>(std::move(fn), nullptr);
+inline std::shared_ptr<const GpuBackendFactory> seams_factory(SeamsFactoryFn fn,
+                                                              Backend kind = Backend::gl,
+                                                              Status status = Status::success()) {
+  return std::make_shared<const FunctionGpuFactory>(std::move(fn), nullptr, kind,
+                                                    std::move(status));
 }
-inline std::shared_ptr<const GpuBackendFactory> aa_factory(AaFactoryFn fn) {
-  return std::make_shared<const FunctionGlFactory>(nullptr, std::move(fn));
+inline std::shared_ptr<const GpuBackendFactory> aa_factory(AaFactoryFn fn,
+                                                           Backend kind = Backend::gl,
+                                                           Status status = Status::success()) {
+  return std::make_shared<const FunctionGpuFactory>(nullptr, std::move(fn), kind,
+                                                    std::move(status));
 }
 
 }  // namespace tessera::experiments::test

@@ -39,99 +39,32 @@ Result<std::vector<std::uint32_t>> compile_glsl(VkShaderStageFlagBits stage,
 
 namespace {
 
-// Everything one draw creates, destroyed (after the queue is idle) in reverse.
+// Everything one draw creates, destroyed (after the queue is idle) in reverse: the depth
+// target and the forward pass's objects (examples/common/vk_engine.h).
 struct DrawObjects {
   VkDevice device = VK_NULL_HANDLE;
   VkImage depth = VK_NULL_HANDLE;
   VkDeviceMemory depth_memory = VK_NULL_HANDLE;
   VkImageView depth_view = VK_NULL_HANDLE;
-  VkRenderPass pass = VK_NULL_HANDLE;
-  VkFramebuffer framebuffer = VK_NULL_HANDLE;
-  VkDescriptorSetLayout frame_layout = VK_NULL_HANDLE, empty_layout = VK_NULL_HANDLE;
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  VkPipelineLayout layout = VK_NULL_HANDLE;
-  VkShaderModule modules[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
-  VkPipeline pipeline = VK_NULL_HANDLE;
+  engine::ForwardObjects forward;
   ~DrawObjects() {
     if (device == VK_NULL_HANDLE) return;
     vkDeviceWaitIdle(device);
-    vkDestroyPipeline(device, pipeline, nullptr);
-    for (VkShaderModule m : modules) vkDestroyShaderModule(device, m, nullptr);
-    vkDestroyPipelineLayout(device, layout, nullptr);
-    vkDestroyDescriptorPool(device, pool, nullptr);
-    vkDestroyDescriptorSetLayout(device, empty_layout, nullptr);
-    vkDestroyDescriptorSetLayout(device, frame_layout, nullptr);
-    vkDestroyFramebuffer(device, framebuffer, nullptr);
-    vkDestroyRenderPass(device, pass, nullptr);
+    forward.destroy(device);
     vkDestroyImageView(device, depth_view, nullptr);
     vkDestroyImage(device, depth, nullptr);
     vkFreeMemory(device, depth_memory, nullptr);
   }
 };
 
-std::uint32_t device_local_type(VkPhysicalDevice pd, std::uint32_t bits) {
-  VkPhysicalDeviceMemoryProperties mp{};
-  vkGetPhysicalDeviceMemoryProperties(pd, &mp);
-  for (std::uint32_t i = 0; i < mp.memoryTypeCount; ++i) {
-    if ((bits & (1u << i)) &&
-        (mp.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
-      return i;
-    }
-  }
-  return 0;
-}
-
 void create_targets(const Engine& engine, DrawObjects& o, const EngineImage& colour, int w, int h) {
   const VkDevice dev = engine.context().device;
-  VkImageCreateInfo ci{};
-  ci.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-  ci.imageType = VK_IMAGE_TYPE_2D;
-  ci.format = VK_FORMAT_D32_SFLOAT;
-  ci.extent = {std::uint32_t(w), std::uint32_t(h), 1};
-  ci.mipLevels = ci.arrayLayers = 1;
-  ci.samples = VK_SAMPLE_COUNT_1_BIT;
-  ci.tiling = VK_IMAGE_TILING_OPTIMAL;
-  ci.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-  vkCreateImage(dev, &ci, nullptr, &o.depth);
-  VkMemoryRequirements req{};
-  vkGetImageMemoryRequirements(dev, o.depth, &req);
-  VkMemoryAllocateInfo ai{};
-  ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-  ai.allocationSize = req.size;
-  ai.memoryTypeIndex = device_local_type(engine.context().physical_device, req.memoryTypeBits);
-  vkAllocateMemory(dev, &ai, nullptr, &o.depth_memory);
-  vkBindImageMemory(dev, o.depth, o.depth_memory, 0);
-  VkImageViewCreateInfo vi{};
-  vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-  vi.image = o.depth;
-  vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-  vi.format = VK_FORMAT_D32_SFLOAT;
-  vi.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
-  vkCreateImageView(dev, &vi, nullptr, &o.depth_view);
+  engine::create_image(dev, engine.context().physical_device, VK_FORMAT_D32_SFLOAT,
+                       std::uint32_t(w), std::uint32_t(h),
+                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT,
+                       &o.depth, &o.depth_memory, &o.depth_view);
   // The colour target arrives in TRANSFER_DST after its upload (the background) and is kept
   // (LOAD); depth is cleared. Left in COLOR_ATTACHMENT_OPTIMAL for read_back's barrier.
-  VkAttachmentDescription att[2]{};
-  att[0].format = VK_FORMAT_R32G32B32A32_SFLOAT;
-  att[0].samples = VK_SAMPLE_COUNT_1_BIT;
-  att[0].loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-  att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  att[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  att[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  att[0].initialLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-  att[0].finalLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  att[1] = att[0];
-  att[1].format = VK_FORMAT_D32_SFLOAT;
-  att[1].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  att[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  att[1].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  att[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-  const VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-  const VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-  VkSubpassDescription sub{};
-  sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-  sub.colorAttachmentCount = 1;
-  sub.pColorAttachments = &cref;
-  sub.pDepthStencilAttachment = &dref;
   VkSubpassDependency dep{};
   dep.srcSubpass = VK_SUBPASS_EXTERNAL;
   dep.dstSubpass = 0;
@@ -143,25 +76,9 @@ void create_targets(const Engine& engine, DrawObjects& o, const EngineImage& col
   dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
                       VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
                       VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-  VkRenderPassCreateInfo rp{};
-  rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
-  rp.attachmentCount = 2;
-  rp.pAttachments = att;
-  rp.subpassCount = 1;
-  rp.pSubpasses = &sub;
-  rp.dependencyCount = 1;
-  rp.pDependencies = &dep;
-  vkCreateRenderPass(dev, &rp, nullptr, &o.pass);
   const VkImageView views[2] = {colour.view, o.depth_view};
-  VkFramebufferCreateInfo fb{};
-  fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
-  fb.renderPass = o.pass;
-  fb.attachmentCount = 2;
-  fb.pAttachments = views;
-  fb.width = std::uint32_t(w);
-  fb.height = std::uint32_t(h);
-  fb.layers = 1;
-  vkCreateFramebuffer(dev, &fb, nullptr, &o.framebuffer);
+  o.forward.create_pass(dev, VK_ATTACHMENT_LOAD_OP_LOAD, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, {dep}, views, w, h);
 }
 
 Status create_pipeline(VkDevice dev, DrawObjects& o, const DrawInput& in) {
@@ -173,23 +90,11 @@ Status create_pipeline(VkDevice dev, DrawObjects& o, const DrawInput& in) {
   desc.width = in.width;
   desc.height = in.height;
   desc.cull_back = in.cull_back;
-  desc.layout = o.layout;
-  desc.pass = o.pass;
-  if (VkResult r = engine::forward_pipeline(dev, desc, o.modules, &o.pipeline); r != VK_SUCCESS) {
+  if (VkResult r = o.forward.create_pipeline(dev, desc); r != VK_SUCCESS) {
     return Status::error(ErrorCode::unsupported,
                          std::string("vkCreateGraphicsPipelines: ") + vk::result_name(r));
   }
   return Status::success();
-}
-
-// Set 0: the frame block; 1 .. component_set - 1: empty; component_set: the component's.
-VkDescriptorSet create_layouts(VkDevice dev, DrawObjects& o, const DrawInput& in,
-                               const EngineBuffer& ubo) {
-  engine::frame_set_layouts(dev, &o.frame_layout, &o.empty_layout);
-  std::vector<VkDescriptorSetLayout> layouts(in.component_set + 1, o.empty_layout);
-  layouts[0] = o.frame_layout;
-  layouts[in.component_set] = in.component_layout;
-  return engine::frame_set(dev, layouts, o.frame_layout, ubo.buffer, &o.layout, &o.pool);
 }
 
 }  // namespace
@@ -213,30 +118,18 @@ Result<std::vector<float>> draw(Engine& engine, const DrawInput& in) {
     DrawObjects o;
     o.device = dev;
     create_targets(engine, o, colour, in.width, in.height);
-    const VkDescriptorSet frame_set = create_layouts(dev, o, in, ubo);
+    // Set 0: the frame block; 1 .. component_set - 1: empty; component_set: the component's.
+    std::vector<VkDescriptorSetLayout> extra(in.component_set, VK_NULL_HANDLE);
+    extra.back() = in.component_layout;
+    o.forward.create_sets(dev, extra, ubo.buffer);
     if (Status s = create_pipeline(dev, o, in); !s.ok()) {
       out = s;
     } else {
       VkCommandBuffer cmd = engine.begin();
-      VkClearValue clear[2]{};
+      VkClearValue clear[2]{};  // the colour is loaded (the background), depth cleared
       clear[1].depthStencil = {1.0f, 0};
-      VkRenderPassBeginInfo rb{};
-      rb.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
-      rb.renderPass = o.pass;
-      rb.framebuffer = o.framebuffer;
-      rb.renderArea = {{0, 0}, {std::uint32_t(in.width), std::uint32_t(in.height)}};
-      rb.clearValueCount = 2;
-      rb.pClearValues = clear;
-      vkCmdBeginRenderPass(cmd, &rb, VK_SUBPASS_CONTENTS_INLINE);
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, o.pipeline);
-      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, o.layout, 0, 1, &frame_set, 0,
-                              nullptr);
-      Status bound = in.bind_component(cmd, o.layout);  // the component's set
-      const VkDeviceSize zero = 0;
-      vkCmdBindVertexBuffers(cmd, 0, 1, &vbo.buffer, &zero);
-      vkCmdBindIndexBuffer(cmd, ibo.buffer, 0, VK_INDEX_TYPE_UINT32);
-      vkCmdDrawIndexed(cmd, std::uint32_t(in.indices.size()), 1, 0, 0, 0);
-      vkCmdEndRenderPass(cmd);
+      const Status bound = o.forward.record(cmd, in.width, in.height, clear, vbo.buffer, ibo.buffer,
+                                            std::uint32_t(in.indices.size()), in.bind_component);
       engine.submit_and_wait(cmd);
       if (!bound.ok()) {
         out = bound;

@@ -15,6 +15,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "ptex_report.h"  // examples/common: the example engines' vertex and frame block
+#include "shaders.h"      // examples/engine_ptex_vk
 #include "tessera/faces.h"
 #include "tessera/faces_gpu.h"
 #include "tessera/glsl.h"
@@ -22,36 +24,18 @@
 #include "tessera/metrics.h"
 #include "tessera/ptex.h"
 #include "test_support.h"
-#include "vertex_shader.h"  // examples/engine_ptex_vk
 #include "vk_draw.h"
 
 namespace tessera::vk_test {
 namespace {
 
-// The engine's vertex stage: examples/engine_ptex_vk's own.
+// The engine's stages: examples/engine_ptex_vk's own (the defines of
+// vk::FaceTextureSet::glsl_defines go after #version: ExpandOptions::preamble).
 const char* const kVertex = engine::kVertexShader;
+const char* const kFragment = engine::kFragmentShader;
 
-// The defines of vk::FaceTextureSet::glsl_defines go after #version (ExpandOptions::preamble).
-const char* kFragment = R"(#version 450
-#include "seams.glsl"
-layout(std140, set = 0, binding = 0) uniform Frame { mat4 view_proj; vec4 light_dir; vec4 shade; };
-layout(location = 0) in vec3 v_normal;
-layout(location = 1) in vec2 v_uv;
-layout(location = 2) flat in int v_face;
-layout(location = 0) out vec4 colour;
-void main() {
-  vec2 dx = dFdxFine(v_uv), dy = dFdyFine(v_uv);
-  vec4 tex = tessera_seams_sample_discard((v_face + ENGINE_FACE_SHIFT) % ENGINE_FACES, v_uv, dx,
-                                          dy, true);
-  float nl = dot(v_normal, light_dir.xyz) / sqrt(dot(v_normal, v_normal) + 1e-20);
-  colour = vec4(tex.rgb * (shade.x + shade.y * max(nl, 0.0)), 1.0);
-}
-)";
-
-struct Vertex {
-  float position[3], normal[3], uv[2];
-  std::int32_t face;
-};
+// The example engines' vertex (examples/common/ptex_report.h): 4 per face.
+using Vertex = engine::FaceVertex;
 
 struct Teapot {
   faces::FaceScene scene;
@@ -59,8 +43,6 @@ struct Teapot {
 };
 
 constexpr int kW = 320, kH = 240;
-constexpr float kLight[3] = {0.42f, 0.82f, 0.39f};
-constexpr float kAmbient = 0.35f, kDiffuse = 0.65f;
 
 class VkFaces : public ::testing::Test {
  protected:
@@ -95,7 +77,8 @@ Teapot load_teapot(const std::filesystem::path& data) {
   return t;
 }
 
-// The engine's frame: 4 vertices per face, the camera moved `shift_px` right, the light.
+// The engine's frame: 4 vertices per face, the camera moved `shift_px` right, the light (as
+// examples/engine_ptex_vk's).
 DrawInput frame_input(const Teapot& t, const scene::Camera& camera, float shift_px,
                       std::vector<Vertex>& verts) {
   DrawInput in;
@@ -106,18 +89,7 @@ DrawInput frame_input(const Teapot& t, const scene::Camera& camera, float shift_
     for (int c = 0; c < 3; ++c)
       in.background[i + std::size_t(c)] = faces::kFaceBackground[std::size_t(c)];
   }
-  const std::vector<Vec3> normals = faces::smooth_face_normals(t.scene.mesh);
-  const float corner_uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  for (int f = 0; f < t.scene.mesh.face_count(); ++f) {
-    for (int c = 0; c < 4; ++c) {
-      const Vec3& p =
-          t.scene.mesh.positions[std::size_t(t.scene.mesh.quads[std::size_t(f)][std::size_t(c)])];
-      const Vec3& n = normals[std::size_t(f) * 4 + std::size_t(c)];
-      verts.push_back({{p.x, p.y, p.z}, {n.x, n.y, n.z}, {corner_uv[c][0], corner_uv[c][1]}, f});
-    }
-    const auto b = std::uint32_t(f) * 4;
-    for (std::uint32_t i : {b, b + 1, b + 2, b, b + 2, b + 3}) in.indices.push_back(i);
-  }
+  engine::face_vertices(t.scene.mesh, verts, in.indices);
   in.vertices = verts.data();
   in.vertex_bytes = verts.size() * sizeof(Vertex);
   in.stride = sizeof(Vertex);
@@ -125,17 +97,10 @@ DrawInput frame_input(const Teapot& t, const scene::Camera& camera, float shift_
                    {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 12},
                    {2, 0, VK_FORMAT_R32G32_SFLOAT, 24},
                    {3, 0, VK_FORMAT_R32_SINT, 32}};
-  float block[24] = {};
-  const Mat4 vp = camera.view_projection(float(kW) / float(kH));
-  for (int c = 0; c < 4; ++c) {
-    for (int r = 0; r < 4; ++r) block[c * 4 + r] = vp.m[c][r];
-    block[c * 4 + 0] += 2.0f * shift_px / float(kW) * vp.m[c][3];
-  }
-  std::copy(kLight, kLight + 3, block + 16);
-  block[20] = kAmbient;
-  block[21] = kDiffuse;
+  // The example engines' frame block (view-projection, light, ambient and diffuse).
+  const engine::ForwardFrameBlock block = engine::forward_frame_block(camera, kW, kH, shift_px);
   in.frame.resize(sizeof block);
-  std::memcpy(in.frame.data(), block, sizeof block);
+  std::memcpy(in.frame.data(), &block, sizeof block);
   return in;
 }
 

@@ -5,22 +5,15 @@
 #include <cstring>
 #include <limits>
 
+#include "vk_engine.h"  // examples/common: the validation layer look-up
+
 namespace tessera::vk_test {
 
 namespace {
 
-constexpr const char* kValidation = "VK_LAYER_KHRONOS_validation";
-
-bool has_layer(const char* name) {
-  std::uint32_t n = 0;
-  vkEnumerateInstanceLayerProperties(&n, nullptr);
-  std::vector<VkLayerProperties> layers(n);
-  vkEnumerateInstanceLayerProperties(&n, layers.data());
-  for (const VkLayerProperties& l : layers) {
-    if (std::strcmp(l.layerName, name) == 0) return true;
-  }
-  return false;
-}
+// The layer and its look-up: examples/common/vk_engine.h's, as the example engines'.
+constexpr const char* kValidation = engine::kValidationLayer;
+using engine::has_layer;
 
 float half_to_float(std::uint16_t h) {
   const int e = (h >> 10) & 31, m = h & 1023;

@@ -52,6 +52,12 @@ const std::string& command_line();
 /// tree), else the installed one; null when tessera is built without the GL runtime.
 std::shared_ptr<const experiments::GpuBackendFactory> gl_backends();
 
+/// The Vulkan backends of `tessera seams` and `tessera aa` (vk::experiment_backends) on the
+/// loader libvulkan.so.1, under VK_LAYER_KHRONOS_validation when $TESSERA_VK_VALIDATION is 1 (a
+/// validation message then fails the command), on the device $TESSERA_VK_DEVICE numbers; null
+/// when tessera is built without the Vulkan runtime.
+std::shared_ptr<const experiments::GpuBackendFactory> vk_backends();
+
 /// A registered subcommand: the CLI11 sub-app and the action run when it was selected.
 struct Command {
   CLI::App* app = nullptr;

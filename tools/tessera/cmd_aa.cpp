@@ -30,6 +30,7 @@ struct AaArgs {
 void print_summary(std::FILE* out, const experiments::AaResult& res, const char* label = "") {
   using experiments::AaMethod;
   if (res.backend == experiments::Backend::gl) label = " (GL, wall ms)";
+  if (res.backend == experiments::Backend::vk) label = " (Vulkan, wall ms)";
   for (const experiments::AaRateResult& rate : res.rates) {
     const auto frame_ms = [&](AaMethod m) {
       return rate.gbuffer.median_ms() + rate.method(m).timing.normal.median_ms();
@@ -97,6 +98,7 @@ int run_aa(const AaArgs& args, const GlobalOptions& global) {
   if (!backend) return usage_error(backend.status().message);
   c.backend = *backend;
   c.gl_factory = gl_backends();
+  c.vk_factory = vk_backends();
   if (!args.quiet) {
     c.progress = [](const std::string& line) { std::fprintf(stderr, "aa: %s\n", line.c_str()); };
   }
@@ -184,9 +186,10 @@ Command add_aa_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--t-edge", args->adaptive.t_edge, "Shading metric: relative edge threshold")
       ->capture_default_str();
   sub->add_option("--backend", args->backend,
-                  "Who renders: cpu, gl (OpenGL; wall and GPU-timer times, GL reference) or "
-                  "both (the CPU report plus GL's under 'gl' and GL-vs-CPU agreement)")
-      ->check(CLI::IsMember({"cpu", "gl", "both"}))
+                  "Who renders: cpu, gl (OpenGL; wall and GPU-timer times, GL reference), vk "
+                  "(Vulkan; wall times and GPU timestamps, Vulkan reference) or both (the CPU "
+                  "report plus GL's under 'gl' and GL-vs-CPU agreement)")
+      ->check(CLI::IsMember({"cpu", "gl", "vk", "both"}))
       ->capture_default_str();
   sub->add_option("-o,--output,--out", args->out, "Output folder (aa.json, aa.md, PNGs)")
       ->required();

@@ -24,7 +24,9 @@ struct SeamsArgs {
 /// One line per rate: the Table-1 ratio and the Figure-5 means (the tables are in seams.md).
 void print_summary(std::FILE* out, const experiments::SeamsResult& res) {
   using faces::SeamMethod;
-  const bool gl = res.backend == experiments::Backend::gl;
+  const bool gl = experiments::gpu_primary(res.backend);
+  const char* wall_label =
+      res.backend == experiments::Backend::vk ? " (Vulkan, wall)" : " (GL, wall)";
   for (const experiments::SeamsRateResult& rate : res.rates) {
     const auto& t = rate.method(SeamMethod::traverse);
     const auto& d = rate.method(SeamMethod::discard);
@@ -33,7 +35,7 @@ void print_summary(std::FILE* out, const experiments::SeamsResult& res) {
     const experiments::FrameTimes& tt = gl ? t.wall : t.timing;
     const experiments::FrameTimes& dt = gl ? d.wall : d.timing;
     std::fprintf(out, "seams %dx%s: traverse %.1f ms, discard %.1f ms (%.2fx)", rate.msaa,
-                 gl ? " (GL, wall)" : "", tt.median_ms(), dt.median_ms(),
+                 gl ? wall_label : "", tt.median_ms(), dt.median_ms(),
                  tt.median_ms() / std::max(dt.median_ms(), 1e-9));
     if (gl) {
       std::fprintf(out, ", GPU timer %.2f / %.2f ms", t.timing.median_ms(), d.timing.median_ms());
@@ -101,9 +103,10 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::Range(0, 64))
       ->capture_default_str();
   sub->add_option("--backend", args->backend,
-                  "Who renders: cpu, gl (OpenGL; GPU-timer and wall times) or both (CPU report "
-                  "plus GL times and GL-vs-CPU agreement)")
-      ->check(CLI::IsMember({"cpu", "gl", "both"}))
+                  "Who renders: cpu, gl (OpenGL; GPU-timer and wall times), vk (Vulkan; GPU "
+                  "timestamps and wall times) or both (CPU report plus GL times and GL-vs-CPU "
+                  "agreement)")
+      ->check(CLI::IsMember({"cpu", "gl", "vk", "both"}))
       ->capture_default_str();
   sub->add_option("-o,--output,--out", args->out, "Output folder")->required();
   return {sub, [args, &global] {
@@ -116,6 +119,7 @@ Command add_seams_command(CLI::App& app, const GlobalOptions& global) {
             if (!backend) return usage_error(backend.status().message);
             cfg.backend = *backend;
             cfg.gl_factory = gl_backends();
+            cfg.vk_factory = vk_backends();
             const std::string out = args->out;
             if (!args->quiet) {
               cfg.progress = [](const std::string& line) {

@@ -20,6 +20,9 @@
 #ifdef TESSERA_HAVE_GL
 #include "tessera/gl_experiments.h"
 #endif
+#ifdef TESSERA_HAVE_VK
+#include "tessera/vk_experiments.h"
+#endif
 
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -72,6 +75,17 @@ std::shared_ptr<const experiments::GpuBackendFactory> gl_backends() {
     dir = TESSERA_SOURCE_GLSL_DIR;
   }
   return gl::experiment_backends(dir);
+#else
+  return nullptr;
+#endif
+}
+
+std::shared_ptr<const experiments::GpuBackendFactory> vk_backends() {
+#ifdef TESSERA_HAVE_VK
+  vk::ExperimentBackendOptions options;
+  const char* validation = std::getenv("TESSERA_VK_VALIDATION");
+  options.validation = validation != nullptr && std::string_view(validation) == "1";
+  return vk::experiment_backends(options);
 #else
   return nullptr;
 #endif

@@ -49,15 +49,19 @@ struct AaConfig {
   deferred::AdaptiveOptions adaptive;
   deferred::EdgePerSampleOptions edge;  ///< The engine baseline's classification.
   int threads = 0;                      ///< Worker threads (0 = all); results do not depend on it.
-  /// Who renders: the CPU; OpenGL through `gl_factory` (its own G-buffer and reference; times
-  /// are wall times to glFinish, GL_TIME_ELAPSED beside them; every method is called once
-  /// untimed per rate first, so shader compilation is not timed); or both: the CPU result plus
+  /// Who renders: the CPU; OpenGL through `gl_factory` or Vulkan through `vk_factory` (its own
+  /// G-buffer and reference; times are host wall times to glFinish / the fence, the GPU timer
+  /// beside them; every method is called once untimed per rate first, so shader compilation
+  /// is not timed); or both: the CPU result plus
   /// the whole experiment on GL (`AaResult::gl`), GL's adaptive image and k map compared with
   /// the CPU's per rate (`AaRateResult::gl_vs_cpu`).
   Backend backend = Backend::cpu;
   /// Makes the GL backend (gl and both); unset: those fail with unsupported ("not built with
   /// the OpenGL runtime"). Called, and every G-buffer size checked, before `on_ready`.
   std::shared_ptr<const GpuBackendFactory> gl_factory;
+  /// Makes the Vulkan backend (vk), as `gl_factory` does for GL (times: GPU timestamps, and
+  /// host time from submission to the fence). Its `device_status()` is checked at the end.
+  std::shared_ptr<const GpuBackendFactory> vk_factory;
   ProgressFn progress;  ///< Optional: one line per rate.
   ReadyFn on_ready;     ///< Optional.
 };
@@ -121,7 +125,7 @@ struct AaRateResult {
 
 struct AaResult {
   Backend backend = Backend::cpu;       ///< Who rendered `rates`; both: the CPU, `gl` beside.
-  std::string gl_renderer, gl_version;  ///< GL_RENDERER, GL_VERSION where GL was used.
+  std::string gpu_renderer, gpu_version;  ///< The GPU device where one was used.
   /// `Backend::both`: the whole experiment on GL (its own G-buffers and reference); else null.
   std::shared_ptr<const AaResult> gl;
   int threads = 0;         ///< Worker threads used (0 resolved).
@@ -165,8 +169,9 @@ Result<std::vector<AaRateImage>> aa_rate_images(const AaConfig& config, const Aa
 
 /// aa.json of `result`, the outcome of `config` (two-space indentation, no final newline): the
 /// configuration, the 1x1 rows, and per rate every method's times, quality and samples, the
-/// ablations and the images; with Backend::gl the device and GPU-timer and per-pass times, with
-/// both GL's side under "gl" and "gl_vs_cpu". Deterministic except for the times.
+/// ablations and the images; with Backend::gl / vk the device ("backend", "gpu_renderer",
+/// "gpu_version") and GPU-timer and per-pass times, with both GL's side under "gl" and
+/// "gl_vs_cpu". Deterministic except for the times.
 Result<std::string> to_json(const AaConfig& config, const AaResult& result,
                             const AaReportOptions& options = {});
 /// aa.md of `result`: Table 1 with our columns and the Figure 6a/7/8 blocks, which show the

@@ -44,10 +44,14 @@ const char* backend_name(Backend backend);
 /// Parses "cpu", "gl", "vk" or "both"; anything else is invalid_argument naming the text.
 Result<Backend> parse_backend(std::string_view text);
 
-/// Whether `backend` needs the GL factory (gl, both).
-inline bool uses_gl(Backend backend) { return backend == Backend::gl || backend == Backend::both; }
 /// Whether `backend` renders on a GPU API (gl, vk, both).
 inline bool uses_gpu(Backend backend) { return backend != Backend::cpu; }
+/// Whether a GPU API renders the experiment's own results, with no CPU run (gl, vk).
+inline bool gpu_primary(Backend backend) {
+  return backend == Backend::gl || backend == Backend::vk;
+}
+/// Whether the CPU renderers run (cpu, both).
+inline bool uses_cpu(Backend backend) { return !gpu_primary(backend); }
 
 /// What every experiment backend (SeamsBackend, AaBackend) tells about itself.
 class BackendDevice {

@@ -50,15 +50,18 @@ struct SeamsConfig {
   int reference_factor = 8;       ///< Reference at factor x factor the resolution.
   faces::Figure1Options figure1;  ///< The built-in scene's parameters.
   int threads = 0;                ///< Worker threads (0 = all); results do not depend on it.
-  /// Who renders: the CPU; OpenGL through `gl_factory` (then MSAA rates the driver refuses
-  /// are skipped and listed in `SeamsResult::msaa_unsupported`; the reference is the GL one;
-  /// face ids and the character mask come from the CPU renderer, the geometry being the same);
-  /// or both: the CPU result plus every frame, rate and method on GL (`SeamsResult::gl_rates`:
-  /// GL times and GL-vs-CPU agreement).
+  /// Who renders: the CPU; OpenGL through `gl_factory` or Vulkan through `vk_factory` (then
+  /// MSAA rates the driver refuses are skipped and listed in `SeamsResult::msaa_unsupported`;
+  /// the reference is the GPU one; face ids and the character mask come from the CPU renderer,
+  /// the geometry being the same); or both: the CPU result plus every frame, rate and method on
+  /// GL (`SeamsResult::gl_rates`: GL times and GL-vs-CPU agreement).
   Backend backend = Backend::cpu;
   /// Makes the GL backend (gl and both); unset: those fail with unsupported ("not built with
   /// the OpenGL runtime"). Called before `on_ready`.
   std::shared_ptr<const GpuBackendFactory> gl_factory;
+  /// Makes the Vulkan backend (vk); unset: vk fails with unsupported ("not built with the
+  /// Vulkan runtime"). Its `device_status()` (validation messages) is checked at the end.
+  std::shared_ptr<const GpuBackendFactory> vk_factory;
   /// The texture filter of the experiment's frames (every method, every backend; 16x
   /// anisotropic is the paper's). The reference stays the paper's: Traverse, 16x anisotropic.
   texture::TextureFilter filter = texture::TextureFilter::anisotropic;
@@ -148,20 +151,20 @@ struct SeamsGlRateResult {
 
 struct SeamsResult {
   // The backend.
-  /// Who rendered `rates` (cpu or gl); both: the CPU, with `gl_rates` filled beside it.
+  /// Who rendered `rates` (cpu, gl or vk); both: the CPU, with `gl_rates` filled beside it.
   Backend backend = Backend::cpu;
-  /// GL_RENDERER and GL_VERSION where GL was used.
-  std::string gl_renderer, gl_version;
-  /// Requested MSAA rates the GL driver refuses: skipped (not in `rates` for backend gl, not
-  /// in `gl_rates` with both).
+  /// The GPU device where one was used (BackendDevice::device_name / device_version).
+  std::string gpu_renderer, gpu_version;
+  /// Requested MSAA rates the GPU driver refuses: skipped (not in `rates` for backend gl / vk,
+  /// not in `gl_rates` with both).
   std::vector<int> msaa_unsupported;
   std::vector<SeamsGlRateResult> gl_rates;  ///< both: the GL side, per rate GL renders.
-  /// Where GL was used: per rate GL renders (in `SeamsConfig::msaa` order), the samples it
+  /// Where a GPU was used: per rate it renders (in `SeamsConfig::msaa` order), the samples it
   /// draws. With both, a GL frame is compared with the CPU frame at `cpu_msaa` (another
   /// CPU render, untimed, where that is not the rate itself); where `cpu_msaa` is 0 (no CPU
   /// pattern has the driver's positions), with a CPU frame drawn at the driver's `positions`,
   /// or not at all when those are unknown (`SeamsGlRateResult::compared_with`).
-  std::vector<SeamsSamplePattern> gl_sample_patterns;
+  std::vector<SeamsSamplePattern> gpu_sample_patterns;
   /// both with `compare_references`: the GL reference against the CPU's.
   SeamsReferenceAgreement gl_reference_vs_cpu;
   // The scene.

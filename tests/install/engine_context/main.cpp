@@ -19,14 +19,10 @@
 // Built in the repository (tests/gl, CTest gl_engine_context*) and outside it against the
 // installed package (tests/install/install_test.sh). Exit 0 with the JSON; 1 with one line on
 // failure; 3 when no context of the kind can be made (no EGL device, no display).
-#define GL_GLEXT_PROTOTYPES 1
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
-#include <GL/glcorearb.h>
-#if ENGINE_HAVE_GLFW
-#define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>
-#endif
+// The GL, EGL and GLFW headers as the example engines include them, and their shader
+// compilation (examples/common/engine_context.h; its Platform is not used: this program makes
+// its contexts itself, in more ways).
+#include "engine_context.h"
 
 #include <array>
 #include <cmath>
@@ -44,10 +40,6 @@
 #include "tessera/gl_adaptive.h"
 #include "tessera/gl_faces.h"
 #include "tessera/glsl.h"
-
-#ifndef EGL_PLATFORM_SURFACELESS_MESA
-#define EGL_PLATFORM_SURFACELESS_MESA 0x31DD
-#endif
 
 namespace {
 
@@ -252,11 +244,8 @@ std::array<GLuint, 2> make_gbuffer(bool shift) {
   return tex;
 }
 
-void run_adaptive(Images& out, EngineState& engine, bool shift) {
-  engine.unbind_for_own_work();
-  const std::array<GLuint, 2> gbuffer = make_gbuffer(shift);
-  engine.rebind();
-  const Snapshot before = snapshot();
+// The component's options on the program's G-buffer (its layout, its hook).
+tessera::gl::AdaptiveSupersamplerOptions adaptive_options() {
   tessera::gl::AdaptiveSupersamplerOptions o;
   o.width = kW;
   o.height = kH;
@@ -265,6 +254,15 @@ void run_adaptive(Images& out, EngineState& engine, bool shift) {
   o.layout.depth = {0, "a"};
   o.layout.id = {1, "r"};
   o.hook = {kHook, "engine_hook.glsl", {}};
+  return o;
+}
+
+void run_adaptive(Images& out, EngineState& engine, bool shift) {
+  engine.unbind_for_own_work();
+  const std::array<GLuint, 2> gbuffer = make_gbuffer(shift);
+  engine.rebind();
+  const Snapshot before = snapshot();
+  tessera::gl::AdaptiveSupersamplerOptions o = adaptive_options();
   o.output = tessera::AdaptiveOutputFormat::rgba32f;
   auto aa = tessera::gl::AdaptiveSupersampler::create(o);
   if (!aa) die(1, aa.status().message);
@@ -331,25 +329,9 @@ void main() {
 })";
 
 GLuint compile_program(const char* vs, const char* fs) {
-  const GLuint p = glCreateProgram();
-  for (const auto& [stage, src] : {std::pair{GL_VERTEX_SHADER, vs}, {GL_FRAGMENT_SHADER, fs}}) {
-    const GLuint sh = glCreateShader(stage);
-    glShaderSource(sh, 1, &src, nullptr);
-    glCompileShader(sh);
-    GLint ok = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-      char log[2048] = {};
-      glGetShaderInfoLog(sh, sizeof log, nullptr, log);
-      die(1, std::string("engine shader: ") + log);
-    }
-    glAttachShader(p, sh);
-    glDeleteShader(sh);
-  }
-  glLinkProgram(p);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (!ok) die(1, "engine program does not link");
+  std::string log;
+  const GLuint p = engine::compile_program(vs, fs, log);
+  if (p == 0) die(1, "engine shader: " + log);
   return p;
 }
 
@@ -446,14 +428,7 @@ std::string json_images(const Images& i) {
 // Calls with no context current: each must fail with one line.
 std::string no_context_errors() {
   std::string all;
-  tessera::gl::AdaptiveSupersamplerOptions o;
-  o.width = kW;
-  o.height = kH;
-  o.m = kM;
-  o.layout.normal = {0, "rgb"};
-  o.layout.depth = {0, "a"};
-  o.layout.id = {1, "r"};
-  o.hook = {kHook, "engine_hook.glsl", {}};
+  tessera::gl::AdaptiveSupersamplerOptions o = adaptive_options();
   auto aa = tessera::gl::AdaptiveSupersampler::create(o);
   all += aa ? std::string("created without a context") : aa.status().message;
   auto tex = tessera::gl::FaceTextureSet::upload(make_faces());
