@@ -10,6 +10,7 @@
 #include "vk/barriers.h"
 #include "vk/face_renderer_internal.h"
 #include "vk/graphics_pipeline.h"
+#include "vk/shader.h"
 
 namespace tessera::vk {
 
@@ -77,9 +78,7 @@ Result<std::vector<std::uint32_t>> compile_shipped(glsl::Stage stage, const char
   eo.preamble = preamble;
   Result<glsl::Expanded> e = glsl::expand_includes(*src, eo);
   if (!e) return e.status();
-  const VkShaderStageFlagBits vk_stage =
-      stage == glsl::Stage::vertex ? VK_SHADER_STAGE_VERTEX_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
-  Result<std::vector<std::uint32_t>> spirv = compile_stage_spirv(vk_stage, e->text);
+  Result<std::vector<std::uint32_t>> spirv = compile_graphics_spirv(e->text, stage);
   if (!spirv) {
     return Status::error(spirv.status().code, std::string(kWho) + ": " +
                                                   glsl::format_log(spirv.status().message,

@@ -1,63 +1,8 @@
-// GLSL to SPIR-V for any stage (shaderc), shader modules and the graphics pipelines of the
-// experiments' drawing passes (graphics_pipeline.h).
+// Shader modules and the graphics pipelines of the experiments' drawing passes
+// (graphics_pipeline.h).
 #include "vk/graphics_pipeline.h"
 
-#include <shaderc/shaderc.h>
-
-#include <memory>
-#include <type_traits>
-
 namespace tessera::vk {
-
-namespace {
-
-template <class T, void (*Release)(T)>
-struct ShadercDeleter {
-  void operator()(T p) const { Release(p); }
-};
-using Compiler = std::unique_ptr<std::remove_pointer_t<shaderc_compiler_t>,
-                                 ShadercDeleter<shaderc_compiler_t, shaderc_compiler_release>>;
-using CompileOptions =
-    std::unique_ptr<std::remove_pointer_t<shaderc_compile_options_t>,
-                    ShadercDeleter<shaderc_compile_options_t, shaderc_compile_options_release>>;
-using CompileResult =
-    std::unique_ptr<std::remove_pointer_t<shaderc_compilation_result_t>,
-                    ShadercDeleter<shaderc_compilation_result_t, shaderc_result_release>>;
-
-}  // namespace
-
-Result<std::vector<std::uint32_t>> compile_stage_spirv(VkShaderStageFlagBits stage,
-                                                       const std::string& text) {
-  shaderc_shader_kind kind = shaderc_glsl_compute_shader;
-  switch (stage) {
-    case VK_SHADER_STAGE_VERTEX_BIT: kind = shaderc_glsl_vertex_shader; break;
-    case VK_SHADER_STAGE_FRAGMENT_BIT: kind = shaderc_glsl_fragment_shader; break;
-    case VK_SHADER_STAGE_COMPUTE_BIT: kind = shaderc_glsl_compute_shader; break;
-    default:
-      return Status::error(ErrorCode::unsupported,
-                           "shaderc: only vertex, fragment and compute stages are compiled");
-  }
-  const Compiler compiler(shaderc_compiler_initialize());
-  const CompileOptions options(shaderc_compile_options_initialize());
-  if (!compiler || !options) {
-    return Status::error(ErrorCode::unsupported, "shaderc: cannot initialise the compiler");
-  }
-  shaderc_compile_options_set_target_env(options.get(), shaderc_target_env_vulkan,
-                                         shaderc_env_version_vulkan_1_0);
-  shaderc_compile_options_set_optimization_level(options.get(),
-                                                 shaderc_optimization_level_performance);
-  const CompileResult result(shaderc_compile_into_spv(compiler.get(), text.data(), text.size(),
-                                                      kind, "tessera", "main", options.get()));
-  if (!result) return Status::error(ErrorCode::unsupported, "shaderc: no result");
-  if (shaderc_result_get_compilation_status(result.get()) != shaderc_compilation_status_success) {
-    return Status::error(ErrorCode::invalid_argument,
-                         shaderc_result_get_error_message(result.get()));
-  }
-  const char* bytes = shaderc_result_get_bytes(result.get());
-  std::vector<std::uint32_t> spirv(shaderc_result_get_length(result.get()) / 4);
-  std::copy(bytes, bytes + spirv.size() * 4, reinterpret_cast<char*>(spirv.data()));
-  return spirv;
-}
 
 Result<ShaderModule> create_shader_module(const Api& api, const std::vector<std::uint32_t>& spirv,
                                           const std::string& what) {

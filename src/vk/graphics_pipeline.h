@@ -1,7 +1,7 @@
-// Internal to src/vk: GLSL of any stage to SPIR-V with shaderc (compile_compute_spirv in
-// shader.h is its compute case), shader modules, and graphics pipelines for the experiments'
-// drawing passes (the seam backend's face renderer): triangle lists, a dynamic viewport and
-// scissor, one render pass subpass, no blending.
+// Internal to src/vk: shader modules, and graphics pipelines for the experiments' drawing
+// passes (the seam backend's face renderer; the stages compiled by shader.h's
+// compile_graphics_spirv): triangle lists, a dynamic viewport and scissor, one render pass
+// subpass, no blending.
 #pragma once
 
 #include <cstdint>
@@ -11,13 +11,6 @@
 #include "vk/vk_api.h"
 
 namespace tessera::vk {
-
-/// Compiles `text` (already include-expanded) as a Vulkan 1.0 shader of `stage` (vertex,
-/// fragment or compute; VULKAN defined, as shaderc's Vulkan target does). On failure the status
-/// message is shaderc's log, unformatted ("FILE_INDEX:LINE: error: ...": glsl::format_log);
-/// unsupported for another stage.
-Result<std::vector<std::uint32_t>> compile_stage_spirv(VkShaderStageFlagBits stage,
-                                                       const std::string& text);
 
 /// A shader module of `spirv`; `what` names the caller in a failure.
 Result<ShaderModule> create_shader_module(const Api& api, const std::vector<std::uint32_t>& spirv,

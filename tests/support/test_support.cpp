@@ -5,6 +5,9 @@
 #include <cstdlib>
 #include <string>
 
+#include "tessera/image_ops.h"
+#include "tessera/metrics.h"
+
 namespace tessera::test {
 
 namespace fs = std::filesystem;
@@ -57,6 +60,14 @@ Result<faces::FaceTextureSet> figure1_texture_set(int ground, int character) {
   o.ground = ground;
   o.character = character;
   return baked_texture_set(faces::figure1_scene(o));
+}
+
+double psnr_srgb8(const ImageRGBAF& a, const ImageRGBAF& b) {
+  metrics::CompareOptions o;
+  o.compute_ssim = false;
+  Result<metrics::ImageComparison> c = metrics::compare_images(to_srgb8(a), to_srgb8(b), o);
+  EXPECT_TRUE(c) << c.status().message;
+  return c ? c->psnr_rgb : 0.0;
 }
 
 }  // namespace tessera::test

@@ -30,6 +30,11 @@ Result<faces::FaceTextureSet> baked_texture_set(const faces::FaceScene& scene);
 /// 6 x `character` x `character` character (the GL tests' small scenes).
 Result<faces::FaceTextureSet> figure1_texture_set(int ground, int character);
 
+/// The RGB PSNR (dB) of two linear-RGB frames as 8-bit sRGB (to_srgb8, metrics::compare_images
+/// without SSIM), the measure the GPU-vs-CPU tests bound; a failed comparison (different sizes)
+/// is a gtest failure and returns 0.
+double psnr_srgb8(const ImageRGBAF& a, const ImageRGBAF& b);
+
 /// A w x h 8-bit image of one colour.
 inline ImageRGBA8 solid_rgba8(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b,
                               std::uint8_t a = 255) {

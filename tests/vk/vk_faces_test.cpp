@@ -119,14 +119,6 @@ std::vector<std::uint32_t> fragment(const vk::FaceTextureSet& tex, std::uint32_t
   return spirv ? *spirv : std::vector<std::uint32_t>{};
 }
 
-double psnr_srgb8(const ImageRGBAF& a, const ImageRGBAF& b) {
-  metrics::CompareOptions o;
-  o.compute_ssim = false;
-  auto c = metrics::compare_images(to_srgb8(a), to_srgb8(b), o);
-  EXPECT_TRUE(c) << c.status().message;
-  return c ? c->psnr_rgb : 0.0;
-}
-
 TEST_F(VkFaces, TeapotDiscardAgreesWithCpu) {
   TESSERA_REQUIRE_SHARED_DATA(data);
   const Teapot t = load_teapot(data);
@@ -177,9 +169,9 @@ TEST_F(VkFaces, TeapotDiscardAgreesWithCpu) {
     if (pixels) img.pixels = *pixels;
     return img;
   };
-  const double discard = psnr_srgb8(render(0, 0.0f), cpu_frame->image);
-  const double wrong_face = psnr_srgb8(render(1, 0.0f), cpu_frame->image);
-  const double shifted = psnr_srgb8(render(0, 1.0f), cpu_frame->image);
+  const double discard = test::psnr_srgb8(render(0, 0.0f), cpu_frame->image);
+  const double wrong_face = test::psnr_srgb8(render(1, 0.0f), cpu_frame->image);
+  const double shifted = test::psnr_srgb8(render(0, 1.0f), cpu_frame->image);
   std::printf(
       "teapot %dx%d, %d classes: Vulkan Discard vs CPU %.2f dB; controls: face + 1 "
       "%.2f dB, one pixel right %.2f dB\n",

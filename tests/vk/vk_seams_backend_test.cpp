@@ -19,8 +19,6 @@
 #include "tessera/experiments/seams_backend.h"
 #include "tessera/faces.h"
 #include "tessera/faces_gpu.h"
-#include "tessera/image_ops.h"
-#include "tessera/metrics.h"
 #include "tessera/ptex.h"
 #include "tessera/raster.h"
 #include "tessera/vk_experiments.h"
@@ -54,14 +52,6 @@ Teapot* load_teapot(const std::filesystem::path& data) {
   t->scene.mesh = std::move(*mesh);
   t->set = std::move(*set);
   return t;
-}
-
-double psnr_srgb8(const ImageRGBAF& a, const ImageRGBAF& b) {
-  metrics::CompareOptions o;
-  o.compute_ssim = false;
-  auto c = metrics::compare_images(to_srgb8(a), to_srgb8(b), o);
-  EXPECT_TRUE(c) << c.status().message;
-  return c ? c->psnr_rgb : 0.0;
 }
 
 int non_finite_pixels(const ImageRGBAF& img) {
@@ -118,13 +108,9 @@ class VkSeamsBackend : public ::testing::Test {
   }
 
   static FaceFrameOptions frame_options(SeamMethod m, TextureFilter filter, int msaa) {
-    FaceFrameOptions o;
-    o.width = kW;
-    o.height = kH;
-    o.msaa = msaa;
-    o.method = m;
-    o.filter = filter;
-    return o;
+    return {.width = kW, .height = kH, .msaa = msaa, .method = m, .filter = filter,
+            .max_aniso = 16, .clamp_fallback = true, .shading_only = false, .keep_image = true,
+            .threads = 0, .sample_pattern = {}};
   }
   ImageRGBAF frame(SeamsBackend& b, const scene::Camera& cam, const FaceFrameOptions& o) {
     auto f = b.render(cam, o);
@@ -149,11 +135,11 @@ TEST_F(VkSeamsBackend, DiscardTrilinearAgreesWithTheCpuAt1xAnd4x) {
     const FaceFrameOptions o = frame_options(SeamMethod::discard, TextureFilter::trilinear, msaa);
     const ImageRGBAF g = frame(*vk_, camera(), o);
     const ImageRGBAF c = frame(*cpu_, camera(), o);
-    const double psnr = psnr_srgb8(g, c);
+    const double psnr = test::psnr_srgb8(g, c);
     FaceFrameOptions clamp = o;
     clamp.method = SeamMethod::clamp;
-    const double vs_clamp = psnr_srgb8(g, frame(*cpu_, camera(), clamp));
-    const double vs_shift = psnr_srgb8(g, shifted_one_pixel(c));
+    const double vs_clamp = test::psnr_srgb8(g, frame(*cpu_, camera(), clamp));
+    const double vs_shift = test::psnr_srgb8(g, shifted_one_pixel(c));
     std::printf("%dx Discard trilinear: Vulkan vs CPU %.2f dB; controls: CPU Clamp %.2f dB, "
                 "CPU moved one pixel %.2f dB\n",
                 msaa, psnr, vs_clamp, vs_shift);
@@ -193,8 +179,8 @@ TEST_F(VkSeamsBackend, EveryMethodAgreesWithTheCpuWithinItsBound) {
         auto g = vk_->render(camera(), o);
         ASSERT_TRUE(g) << g.status().message;
         const ImageRGBAF c = frame(*cpu_, camera(), o);
-        const double psnr = psnr_srgb8(g->image, c);
-        const double shifted = psnr_srgb8(g->image, shifted_one_pixel(c));
+        const double psnr = test::psnr_srgb8(g->image, c);
+        const double shifted = test::psnr_srgb8(g->image, shifted_one_pixel(c));
         std::printf("%s %dx %-16s Vulkan vs CPU %.2f dB (one pixel moved: %.2f dB); %.3f ms, "
                     "wall %.3f ms\n",
                     tri ? "trilinear" : "aniso16", msaa, faces::method_name(m), psnr, shifted,
@@ -252,14 +238,14 @@ TEST_F(VkSeamsBackend, ReferenceAgreesWithTheCpuReference) {
   ASSERT_TRUE(c) << c.status().message;
   ASSERT_EQ(g->width, w);
   ASSERT_EQ(g->height, h);
-  const double psnr = psnr_srgb8(*g, *c);
+  const double psnr = test::psnr_srgb8(*g, *c);
   auto other = cpu_->render_reference(camera(2), w, h, ro);
   ASSERT_TRUE(other);
   FaceFrameOptions o = frame_options(SeamMethod::discard, TextureFilter::trilinear, 1);
   o.width = w;
   o.height = h;
-  const double vs_other = psnr_srgb8(*g, *other);
-  const double vs_frame = psnr_srgb8(frame(*vk_, camera(), o), *c);
+  const double vs_other = test::psnr_srgb8(*g, *other);
+  const double vs_frame = test::psnr_srgb8(frame(*vk_, camera(), o), *c);
   std::printf("reference %dx%d x%d: Vulkan vs CPU %.2f dB; controls: another frame %.2f dB, the "
               "1x frame %.2f dB\n",
               w, h, ro.factor, psnr, vs_other, vs_frame);
