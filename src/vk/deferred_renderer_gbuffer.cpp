@@ -8,7 +8,7 @@
 
 #include "tessera/glsl.h"
 #include "vk/deferred_renderer.h"
-#include "vk/shader.h"
+#include "vk/graphics_pipeline.h"
 
 // Vulkan's create-infos are written with designated initializers: the members left out are
 // zero-initialised, which is what Vulkan asks of them (null pNext, no flags).
@@ -22,23 +22,6 @@ using State = DeferredRenderer::State;
 
 constexpr const char* kWho = "deferred VK";
 
-Result<ShaderModule> stage_module(const Api& api, glsl::Stage stage, const char* file) {
-  Result<glsl::Source> src = glsl::shipped_shader(stage, file);
-  if (!src) return src.status();
-  Result<glsl::Expanded> text = glsl::expand_includes(*src);
-  if (!text) return text.status();
-  Result<std::vector<std::uint32_t>> spirv = compile_graphics_spirv(text->text, stage);
-  if (!spirv) {
-    return Status::error(
-        spirv.status().code,
-        std::string(kWho) + ": " + glsl::format_log(spirv.status().message, text->files));
-  }
-  const VkShaderModuleCreateInfo info{.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-                                      .codeSize = spirv->size() * 4,
-                                      .pCode = spirv->data()};
-  return make_owned<ShaderModule>(api, &Api::CreateShaderModule, info, "vkCreateShaderModule");
-}
-
 /// Vertex input: binding 0 = clip xyzw + linear depth (per frame), binding 1 = normal + uv.
 struct VertexInput {
   std::array<VkVertexInputBindingDescription, 2> bindings{
@@ -48,15 +31,6 @@ struct VertexInput {
        {1, 0, VK_FORMAT_R32_SFLOAT, 16},
        {2, 1, VK_FORMAT_R32G32B32_SFLOAT, 0},
        {3, 1, VK_FORMAT_R32G32_SFLOAT, 12}}};
-  VkPipelineVertexInputStateCreateInfo info() const {
-    VkPipelineVertexInputStateCreateInfo v{};
-    v.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
-    v.vertexBindingDescriptionCount = std::uint32_t(bindings.size());
-    v.pVertexBindingDescriptions = bindings.data();
-    v.vertexAttributeDescriptionCount = std::uint32_t(attributes.size());
-    v.pVertexAttributeDescriptions = attributes.data();
-    return v;
-  }
 };
 
 Status create_pipeline_layout(State& st) {
@@ -71,81 +45,29 @@ Status create_pipeline_layout(State& st) {
 }  // namespace
 
 Status create_gbuffer_pipeline(State& st) {
-  const Api& api = *st.api;
   if (Status s = create_pipeline_layout(st); !s.ok()) return s;
-  Result<ShaderModule> vs = stage_module(api, glsl::Stage::vertex, "deferred_gbuffer.vert");
+  Result<std::vector<std::uint32_t>> vs =
+      compile_shipped_stage(glsl::Stage::vertex, "deferred_gbuffer.vert", {}, kWho);
   if (!vs) return vs.status();
-  Result<ShaderModule> fs = stage_module(api, glsl::Stage::fragment, "deferred_gbuffer.frag");
+  Result<std::vector<std::uint32_t>> fs =
+      compile_shipped_stage(glsl::Stage::fragment, "deferred_gbuffer.frag", {}, kWho);
   if (!fs) return fs.status();
-  const std::array<VkPipelineShaderStageCreateInfo, 2> stages = {
-      VkPipelineShaderStageCreateInfo{.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                                      .stage = VK_SHADER_STAGE_VERTEX_BIT,
-                                      .module = vs->get(),
-                                      .pName = "main"},
-      VkPipelineShaderStageCreateInfo{.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                                      .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
-                                      .module = fs->get(),
-                                      .pName = "main"}};
   const VertexInput input;
-  const VkPipelineVertexInputStateCreateInfo vertex = input.info();
-  const VkPipelineInputAssemblyStateCreateInfo assembly{
-      .sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO,
-      .topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST};
+  GraphicsPipelineDesc d;
+  d.vertex_spirv = &*vs;
+  d.fragment_spirv = &*fs;
+  d.bindings.assign(input.bindings.begin(), input.bindings.end());
+  d.attributes.assign(input.attributes.begin(), input.attributes.end());
+  d.layout = st.gbuffer_layout.get();
+  d.render_pass = st.render_pass.get();
+  d.colour_attachments = 3;              // RGBA each, no blending
+  d.cull = VK_CULL_MODE_NONE;            // the CPU draws both sides
+  d.depth_compare = VK_COMPARE_OP_LESS;  // glDepthFunc(GL_LESS)
   // With VK_EXT_depth_clip_control the clip depth stays OpenGL's, as in the GL backend.
-  const VkPipelineViewportDepthClipControlCreateInfoEXT gl_depth{
-      .sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_DEPTH_CLIP_CONTROL_CREATE_INFO_EXT,
-      .negativeOneToOne = VK_TRUE};
-  const VkPipelineViewportStateCreateInfo viewport{
-      .sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO,
-      .pNext = st.device->depth_clip_control() ? &gl_depth : nullptr,
-      .viewportCount = 1,
-      .scissorCount = 1};
-  const VkPipelineRasterizationStateCreateInfo raster{
-      .sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO,
-      .polygonMode = VK_POLYGON_MODE_FILL,
-      .cullMode = VK_CULL_MODE_NONE,  // the CPU draws both sides
-      .frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE,
-      .lineWidth = 1.0f};
-  const VkPipelineMultisampleStateCreateInfo samples{
-      .sType = VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO,
-      .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT};
-  const VkPipelineDepthStencilStateCreateInfo depth{
-      .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
-      .depthTestEnable = VK_TRUE,
-      .depthWriteEnable = VK_TRUE,
-      .depthCompareOp = VK_COMPARE_OP_LESS};                                // glDepthFunc(GL_LESS)
-  const VkPipelineColorBlendAttachmentState opaque{.colorWriteMask = 0xF};  // RGBA, no blend
-  const std::array<VkPipelineColorBlendAttachmentState, 3> targets = {opaque, opaque, opaque};
-  const VkPipelineColorBlendStateCreateInfo blend{
-      .sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
-      .attachmentCount = std::uint32_t(targets.size()),
-      .pAttachments = targets.data()};
-  const std::array<VkDynamicState, 2> dynamic_states = {VK_DYNAMIC_STATE_VIEWPORT,
-                                                        VK_DYNAMIC_STATE_SCISSOR};
-  const VkPipelineDynamicStateCreateInfo dynamic{
-      .sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
-      .dynamicStateCount = std::uint32_t(dynamic_states.size()),
-      .pDynamicStates = dynamic_states.data()};
-  const VkGraphicsPipelineCreateInfo info{.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
-                                          .stageCount = std::uint32_t(stages.size()),
-                                          .pStages = stages.data(),
-                                          .pVertexInputState = &vertex,
-                                          .pInputAssemblyState = &assembly,
-                                          .pViewportState = &viewport,
-                                          .pRasterizationState = &raster,
-                                          .pMultisampleState = &samples,
-                                          .pDepthStencilState = &depth,
-                                          .pColorBlendState = &blend,
-                                          .pDynamicState = &dynamic,
-                                          .layout = st.gbuffer_layout.get(),
-                                          .renderPass = st.render_pass.get()};
-  VkPipeline raw = VK_NULL_HANDLE;
-  if (VkResult r =
-          api.CreateGraphicsPipelines(api.device(), VK_NULL_HANDLE, 1, &info, api.alloc(), &raw);
-      r != VK_SUCCESS) {
-    return vk_error(std::string(kWho) + ": vkCreateGraphicsPipelines", r);
-  }
-  st.gbuffer_pipeline = Pipeline(api, raw);
+  d.gl_depth = st.device->depth_clip_control();
+  Result<Pipeline> p = create_graphics_pipeline(*st.api, d, kWho);
+  if (!p) return p.status();
+  st.gbuffer_pipeline = std::move(*p);
   return Status::success();
 }
 

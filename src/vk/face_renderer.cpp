@@ -6,11 +6,9 @@
 #include <cstring>
 #include <string>
 
-#include "tessera/glsl.h"
 #include "vk/barriers.h"
 #include "vk/face_renderer_internal.h"
 #include "vk/graphics_pipeline.h"
-#include "vk/shader.h"
 
 namespace tessera::vk {
 
@@ -67,24 +65,6 @@ Status check_device_support(const HeadlessDevice& device) {
     return unsupported("D32_SFLOAT is no depth attachment here");
   }
   return Status::success();
-}
-
-/// A shipped stage with the preamble, expanded and compiled; errors name the file and line.
-Result<std::vector<std::uint32_t>> compile_shipped(glsl::Stage stage, const char* name,
-                                                   const std::vector<std::string>& preamble) {
-  Result<glsl::Source> src = glsl::shipped_shader(stage, name);
-  if (!src) return src.status();
-  glsl::ExpandOptions eo;
-  eo.preamble = preamble;
-  Result<glsl::Expanded> e = glsl::expand_includes(*src, eo);
-  if (!e) return e.status();
-  Result<std::vector<std::uint32_t>> spirv = compile_graphics_spirv(e->text, stage);
-  if (!spirv) {
-    return Status::error(spirv.status().code, std::string(kWho) + ": " +
-                                                  glsl::format_log(spirv.status().message,
-                                                                   e->files));
-  }
-  return spirv;
 }
 
 /// A host-visible buffer holding `bytes` bytes of `data` (null: left for later writes).
@@ -180,7 +160,7 @@ Result<VkPipeline> FaceRenderer::State::pipeline(const FaceVariant& v) {
     preamble.push_back("#define TESSERA_RENDER_OUTPUT " + std::to_string(v.output));
     if (class_constant) preamble.push_back("#define TESSERA_RENDER_CLASS_CONSTANT 1");
     Result<std::vector<std::uint32_t>> spirv =
-        compile_shipped(glsl::Stage::fragment, "seams_render.frag", preamble);
+        compile_shipped_stage(glsl::Stage::fragment, "seams_render.frag", preamble, kWho);
     if (!spirv) return spirv.status();
     fs = fragment_spirv.emplace(shader_key, std::move(*spirv)).first;
   }
@@ -229,8 +209,8 @@ Result<std::unique_ptr<FaceRenderer>> FaceRenderer::create(HeadlessDevice& devic
   s.sets.emplace(s.textures->anisotropy(), s.textures->descriptor_set());
   if (Status st = create_mesh(s); !st.ok()) return st;
   if (Status st = create_layout_and_queries(s); !st.ok()) return st;
-  Result<std::vector<std::uint32_t>> vs = compile_shipped(glsl::Stage::vertex, "seams_render.vert",
-                                                          {});
+  Result<std::vector<std::uint32_t>> vs =
+      compile_shipped_stage(glsl::Stage::vertex, "seams_render.vert", {}, kWho);
   if (!vs) return vs.status();
   s.vertex_spirv = std::move(*vs);
   return r;

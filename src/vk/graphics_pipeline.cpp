@@ -2,7 +2,26 @@
 // (graphics_pipeline.h).
 #include "vk/graphics_pipeline.h"
 
+#include "vk/shader.h"
+
 namespace tessera::vk {
+
+Result<std::vector<std::uint32_t>> compile_shipped_stage(glsl::Stage stage, const char* file,
+                                                         const std::vector<std::string>& preamble,
+                                                         const std::string& who) {
+  Result<glsl::Source> src = glsl::shipped_shader(stage, file);
+  if (!src) return src.status();
+  glsl::ExpandOptions eo;
+  eo.preamble = preamble;
+  Result<glsl::Expanded> e = glsl::expand_includes(*src, eo);
+  if (!e) return e.status();
+  Result<std::vector<std::uint32_t>> spirv = compile_graphics_spirv(e->text, stage);
+  if (!spirv) {
+    return Status::error(spirv.status().code,
+                         who + ": " + glsl::format_log(spirv.status().message, e->files));
+  }
+  return spirv;
+}
 
 Result<ShaderModule> create_shader_module(const Api& api, const std::vector<std::uint32_t>& spirv,
                                           const std::string& what) {
@@ -52,8 +71,12 @@ Result<Pipeline> create_graphics_pipeline(const Api& api, const GraphicsPipeline
   VkPipelineInputAssemblyStateCreateInfo assembly{};
   assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
   assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportDepthClipControlCreateInfoEXT clip_control{};
+  clip_control.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_DEPTH_CLIP_CONTROL_CREATE_INFO_EXT;
+  clip_control.negativeOneToOne = VK_TRUE;
   VkPipelineViewportStateCreateInfo viewport{};  // both dynamic
   viewport.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
+  viewport.pNext = d.gl_depth ? &clip_control : nullptr;
   viewport.viewportCount = viewport.scissorCount = 1;
   const VkDynamicState dynamic_states[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
   const VkPipelineDynamicStateCreateInfo dynamic{

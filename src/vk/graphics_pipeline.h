@@ -8,9 +8,17 @@
 #include <string>
 #include <vector>
 
+#include "tessera/glsl.h"
 #include "vk/vk_api.h"
 
 namespace tessera::vk {
+
+/// Shipped GLSL file `file` (glsl::shipped_shader: embedded, or $TESSERA_GLSL_DIR) as `stage`
+/// with `preamble` after #version, its includes expanded, compiled to SPIR-V
+/// (compile_graphics_spirv); a compile error is "WHO: FILE:LINE: message" (glsl::format_log).
+Result<std::vector<std::uint32_t>> compile_shipped_stage(glsl::Stage stage, const char* file,
+                                                         const std::vector<std::string>& preamble,
+                                                         const std::string& who);
 
 /// A shader module of `spirv`; `what` names the caller in a failure.
 Result<ShaderModule> create_shader_module(const Api& api, const std::vector<std::uint32_t>& spirv,
@@ -32,6 +40,9 @@ struct GraphicsPipelineDesc {
   VkCullModeFlags cull = VK_CULL_MODE_BACK_BIT;
   VkFrontFace front_face = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   bool depth_test = true;  ///< With writes, compare `depth_compare`.
+  /// Clip z in OpenGL's [-w, w] (VkPipelineViewportDepthClipControlCreateInfoEXT::
+  /// negativeOneToOne; only where the device enabled VK_EXT_depth_clip_control).
+  bool gl_depth = false;
   VkCompareOp depth_compare = VK_COMPARE_OP_LESS;
 };
 
