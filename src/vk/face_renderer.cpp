@@ -198,15 +198,15 @@ Result<std::unique_ptr<FaceRenderer>> FaceRenderer::create(HeadlessDevice& devic
   s.device = &device;
   s.api = &device.api();
   s.scene = &scene;
+  s.set = &set;
   s.ms_per_tick = device.timestamp_ms_per_tick();
   s.sample_counts = attachment_sample_counts(*s.api);
   s.class_constant = device.features().shaderSampledImageArrayDynamicIndexing != VK_TRUE;
   FaceTextureSetOptions to;
-  to.max_anisotropy = 16.0f;  // the paper's filter; trilinear frames get sets of their own
+  to.max_anisotropy = 16.0f;  // the paper's filter; trilinear frames get a set of their own
   Result<std::unique_ptr<FaceTextureSet>> tex = FaceTextureSet::create(device.context(), set, to);
   if (!tex) return tex.status();
   s.textures = std::move(*tex);
-  s.sets.emplace(s.textures->anisotropy(), s.textures->descriptor_set());
   if (Status st = create_mesh(s); !st.ok()) return st;
   if (Status st = create_layout_and_queries(s); !st.ok()) return st;
   Result<std::vector<std::uint32_t>> vs =

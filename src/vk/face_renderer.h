@@ -18,8 +18,9 @@
 //    row 0 is the image's top row (the shader's y flip), so the standard sample locations are
 //    the CPU rasteriser's raster::sample_positions.
 // Anisotropic frames use samplers with maxAnisotropy = the frame's max_aniso (clamped to the
-// device's), trilinear ones samplers without: descriptor sets of the component's images and
-// records with those samplers, made once per anisotropy.
+// device's), trilinear ones samplers without: a sampler's anisotropy is fixed at creation, so
+// there is one vk::FaceTextureSet per anisotropy in use (16x made with the renderer, trilinear's
+// on the first trilinear frame).
 // Timing: timestamps before the render pass, after it and after the resolve; the wall time runs
 // from vkQueueSubmit to the fence. The read-back is a second submission, outside both times.
 #pragma once

@@ -1,6 +1,6 @@
 // Internal to the Vulkan face renderer (face_renderer.h): its state, shared by
 // face_renderer.cpp (creation, pipelines, the frame) and face_renderer_targets.cpp (render
-// passes, attachments, descriptor sets per anisotropy, read-back).
+// passes, attachments, texture sets per anisotropy, read-back).
 #pragma once
 
 #include <map>
@@ -46,7 +46,8 @@ struct FaceRenderer::State {
   HeadlessDevice* device = nullptr;
   const Api* api = nullptr;
   const faces::FaceScene* scene = nullptr;
-  std::unique_ptr<FaceTextureSet> textures;
+  const faces::FaceTextureSet* set = nullptr;
+  std::unique_ptr<FaceTextureSet> textures;  ///< maxAnisotropy 16 (the paper's filter)
   VkSampleCountFlags sample_counts = 0;  ///< What msaa_supported allows.
   double ms_per_tick = 0;
   std::uint64_t timestamp_mask = ~std::uint64_t(0);
@@ -60,10 +61,8 @@ struct FaceRenderer::State {
   bool class_constant = false;
   std::map<int, RenderPass> passes;  ///< By sample count.
 
-  /// Descriptor sets of the textures with samplers of other anisotropies (by anisotropy).
-  DescriptorPool pool;
-  std::vector<Sampler> samplers;
-  std::map<float, VkDescriptorSet> sets;
+  /// The textures with samplers of other anisotropies (by anisotropy; `textures` is 16x).
+  std::map<float, std::unique_ptr<FaceTextureSet>> other_textures;
 
   Buffer clip, normals, indices;
   std::vector<float> clip_host;  ///< 16 floats per face.
@@ -74,7 +73,7 @@ struct FaceRenderer::State {
   // face_renderer_targets.cpp
   Result<VkRenderPass> render_pass(int samples);
   Status ensure_targets(int width, int height, int samples);
-  /// The descriptor set whose samplers have `anisotropy` (1 = trilinear).
+  /// The descriptor set of the textures whose samplers have `anisotropy` (1 = trilinear).
   Result<VkDescriptorSet> descriptor_set(float anisotropy);
   /// The resolved (or single-sampled) colour of the last frame, through a second submission.
   Result<ImageRGBAF> read_back();

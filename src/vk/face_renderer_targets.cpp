@@ -1,5 +1,5 @@
 // The Vulkan face renderer's render passes, attachments (colour, depth, resolve target, read-back
-// buffer), descriptor sets of other anisotropies and read-back (face_renderer_internal.h).
+// buffer), texture sets of other anisotropies and read-back (face_renderer_internal.h).
 #include <cstring>
 #include <string>
 
@@ -155,79 +155,19 @@ Status FaceRenderer::State::ensure_targets(int width, int height, int samples) {
   return Status::success();
 }
 
-// The component's images and records with samplers of another anisotropy: its own samplers'
-// settings (vk_faces.h: linear, all levels, border transparent black / clamp to edge).
+// A sampler's maxAnisotropy is fixed when it is made, so each anisotropy has a texture set of its
+// own: the 16x one made with the renderer, others (trilinear frames: 1) on first use.
 Result<VkDescriptorSet> FaceRenderer::State::descriptor_set(float anisotropy) {
-  if (auto it = sets.find(anisotropy); it != sets.end()) return it->second;
-  const auto classes = std::uint32_t(textures->class_count());
-  if (pool.get() == VK_NULL_HANDLE) {
-    constexpr std::uint32_t kMaxSets = 16;  // anisotropies 1..16 (whole numbers)
-    const VkDescriptorPoolSize sizes[2] = {
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kMaxSets},
-        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * classes * kMaxSets}};
-    const VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, nullptr, 0,
-                                        kMaxSets, 2, sizes};
-    VkDescriptorPool raw = VK_NULL_HANDLE;
-    if (VkResult r = api->CreateDescriptorPool(api->device(), &pi, api->alloc(), &raw);
-        r != VK_SUCCESS) {
-      return vk_error(who("vkCreateDescriptorPool"), r);
-    }
-    pool = DescriptorPool(*api, raw);
+  if (anisotropy == textures->anisotropy()) return textures->descriptor_set();
+  auto it = other_textures.find(anisotropy);
+  if (it == other_textures.end()) {
+    FaceTextureSetOptions to;
+    to.max_anisotropy = anisotropy;
+    Result<std::unique_ptr<FaceTextureSet>> t = FaceTextureSet::create(device->context(), *set, to);
+    if (!t) return t.status();
+    it = other_textures.emplace(anisotropy, std::move(*t)).first;
   }
-  VkSampler pair[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
-  for (int i = 0; i < 2; ++i) {
-    const VkSamplerAddressMode mode =
-        i == 0 ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER : VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    const VkSamplerCreateInfo si{.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-                                 .pNext = nullptr,
-                                 .flags = 0,
-                                 .magFilter = VK_FILTER_LINEAR,
-                                 .minFilter = VK_FILTER_LINEAR,
-                                 .mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR,
-                                 .addressModeU = mode,
-                                 .addressModeV = mode,
-                                 .addressModeW = mode,
-                                 .mipLodBias = 0.0f,
-                                 .anisotropyEnable = anisotropy > 1.0f ? VK_TRUE : VK_FALSE,
-                                 .maxAnisotropy = anisotropy,
-                                 .compareEnable = VK_FALSE,
-                                 .compareOp = VK_COMPARE_OP_NEVER,
-                                 .minLod = 0.0f,
-                                 .maxLod = VK_LOD_CLAMP_NONE,
-                                 .borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK,
-                                 .unnormalizedCoordinates = VK_FALSE};
-    if (VkResult r = api->CreateSampler(api->device(), &si, api->alloc(), &pair[i]);
-        r != VK_SUCCESS) {
-      return vk_error(who("vkCreateSampler"), r);
-    }
-    samplers.emplace_back(*api, pair[i]);
-  }
-  const VkDescriptorSetLayout set_layout = textures->set_layout();
-  const VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, nullptr,
-                                       pool.get(), 1, &set_layout};
-  VkDescriptorSet set = VK_NULL_HANDLE;
-  if (VkResult r = api->AllocateDescriptorSets(api->device(), &ai, &set); r != VK_SUCCESS) {
-    return vk_error(who("vkAllocateDescriptorSets"), r);
-  }
-  std::vector<VkDescriptorImageInfo> images;  // border samplers, then clamp
-  for (int i = 0; i < 2; ++i) {
-    for (std::uint32_t c = 0; c < classes; ++c) {
-      images.push_back({pair[i], textures->image_view(int(c)),
-                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
-    }
-  }
-  const VkDescriptorBufferInfo records{textures->record_buffer(), 0, VK_WHOLE_SIZE};
-  const FaceTextureSetBindings& b = textures->bindings();
-  const VkWriteDescriptorSet writes[3] = {
-      {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, b.faces, 0, 1,
-       VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &records, nullptr},
-      {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, b.border, 0, classes,
-       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, images.data(), nullptr, nullptr},
-      {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set, b.clamp, 0, classes,
-       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, images.data() + classes, nullptr, nullptr}};
-  api->UpdateDescriptorSets(api->device(), 3, writes, 0, nullptr);
-  sets.emplace(anisotropy, set);
-  return set;
+  return it->second->descriptor_set();
 }
 
 Result<ImageRGBAF> FaceRenderer::State::read_back() {
