@@ -84,7 +84,9 @@ Status create_mesh(FaceRenderer::State& s) {
   const faces::QuadMesh& m = s.scene->mesh;
   std::vector<float> normals;
   normals.reserve(std::size_t(m.face_count()) * 12);
-  for (const Vec3& n : faces::smooth_face_normals(m)) normals.insert(normals.end(), {n.x, n.y, n.z});
+  for (const Vec3& n : faces::smooth_face_normals(m)) {
+    normals.insert(normals.end(), {n.x, n.y, n.z});
+  }
   std::vector<std::uint32_t> indices;
   indices.reserve(std::size_t(m.face_count()) * 6);
   s.draws = faces::class_grouped_indices(s.textures->layout(), false, indices);
@@ -229,6 +231,49 @@ bool FaceRenderer::standard_sample_locations() const {
 
 int FaceRenderer::class_count() const { return s_->textures->class_count(); }
 
+int FaceRenderer::State::record_pass(VkCommandBuffer cmd, VkRenderPass pass,
+                                     const FaceFrameOptions& o,
+                                     const std::vector<VkPipeline>& class_pipelines,
+                                     VkDescriptorSet textures_set) {
+  api->CmdResetQueryPool(cmd, timestamps.get(), 0, 3);
+  write_timestamp(*api, cmd, timestamps.get(), 0);
+  const bool flags = o.output == SeamsOutput::zero_coverage;  // background 0: nothing flagged
+  VkClearValue clear[2]{};
+  for (std::size_t c = 0; c < 3; ++c) {
+    clear[0].color.float32[c] = flags ? 0.0f : faces::kFaceBackground[c];
+  }
+  clear[1].depthStencil = {1.0f, 0};
+  const VkExtent2D extent{std::uint32_t(o.width), std::uint32_t(o.height)};
+  const VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO, nullptr, pass,
+                                 targets.framebuffer.get(), {{0, 0}, extent}, 2, clear};
+  api->CmdBeginRenderPass(cmd, &bi, VK_SUBPASS_CONTENTS_INLINE);
+  const VkViewport viewport{0.0f, 0.0f, float(o.width), float(o.height), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, extent};
+  api->CmdSetViewport(cmd, 0, 1, &viewport);
+  api->CmdSetScissor(cmd, 0, 1, &scissor);
+  api->CmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout.get(), 0, 1,
+                             &textures_set, 0, nullptr);
+  const VkBuffer vertex_buffers[2] = {clip.get(), normals.get()};
+  const VkDeviceSize offsets[2] = {0, 0};
+  api->CmdBindVertexBuffers(cmd, 0, 2, vertex_buffers, offsets);
+  api->CmdBindIndexBuffer(cmd, indices.get(), 0, VK_INDEX_TYPE_UINT32);
+  for (std::size_t i = 0; i < draws.size(); ++i) {
+    const faces::FaceClassDraw& d = draws[i];
+    if (i == 0 || class_constant) {
+      api->CmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                           class_pipelines[class_constant ? i : 0]);
+    }
+    if (!class_constant) {
+      const std::int32_t cls = d.cls;
+      api->CmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof cls, &cls);
+    }
+    api->CmdDrawIndexed(cmd, std::uint32_t(d.count), 1, std::uint32_t(d.first), 0, 0);
+  }
+  api->CmdEndRenderPass(cmd);
+  write_timestamp(*api, cmd, timestamps.get(), 1);
+  return int(draws.size());
+}
+
 Result<ImageRGBAF> FaceRenderer::render_reference(const scene::Camera& camera, int width,
                                                   int height,
                                                   const faces::ReferenceOptions& options) {
@@ -271,67 +316,13 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceFr
   std::memcpy(s.clip.mapped(), s.clip_host.data(), s.clip_host.size() * 4);
   s.clip.flush();
 
+  Result<VkRenderPass> pass = s.render_pass(o.msaa);  // made with the targets
+  if (!pass) return pass.status();
   Result<VkCommandBuffer> cmd = s.device->begin();
   if (!cmd) return cmd.status();
-  api.CmdResetQueryPool(*cmd, s.timestamps.get(), 0, 3);
-  write_timestamp(api, *cmd, s.timestamps.get(), 0);
-  const bool flags = o.output == SeamsOutput::zero_coverage;  // background 0: nothing flagged
-  VkClearValue clear[2]{};
-  for (int c = 0; c < 3; ++c) clear[0].color.float32[c] = flags ? 0.0f : faces::kFaceBackground[std::size_t(c)];
-  clear[1].depthStencil = {1.0f, 0};
-  const VkExtent2D extent{std::uint32_t(o.width), std::uint32_t(o.height)};
-  Result<VkRenderPass> pass = s.render_pass(o.msaa);
-  if (!pass) return pass.status();
-  const VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO, nullptr, *pass,
-                                 s.targets.framebuffer.get(), {{0, 0}, extent}, 2, clear};
-  api.CmdBeginRenderPass(*cmd, &bi, VK_SUBPASS_CONTENTS_INLINE);
-  const VkViewport viewport{0.0f, 0.0f, float(o.width), float(o.height), 0.0f, 1.0f};
-  const VkRect2D scissor{{0, 0}, extent};
-  api.CmdSetViewport(*cmd, 0, 1, &viewport);
-  api.CmdSetScissor(*cmd, 0, 1, &scissor);
-  api.CmdBindDescriptorSets(*cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, s.layout.get(), 0, 1, &*set, 0,
-                            nullptr);
-  const VkBuffer vertex_buffers[2] = {s.clip.get(), s.normals.get()};
-  const VkDeviceSize offsets[2] = {0, 0};
-  api.CmdBindVertexBuffers(*cmd, 0, 2, vertex_buffers, offsets);
-  api.CmdBindIndexBuffer(*cmd, s.indices.get(), 0, VK_INDEX_TYPE_UINT32);
   FaceFrame frame;
-  for (std::size_t i = 0; i < s.draws.size(); ++i) {
-    const faces::FaceClassDraw& d = s.draws[i];
-    if (i == 0 || s.class_constant) {
-      api.CmdBindPipeline(*cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                          pipelines[s.class_constant ? i : 0]);
-    }
-    if (!s.class_constant) {
-      const std::int32_t cls = d.cls;
-      api.CmdPushConstants(*cmd, s.layout.get(), VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof cls,
-                           &cls);
-    }
-    api.CmdDrawIndexed(*cmd, std::uint32_t(d.count), 1, std::uint32_t(d.first), 0, 0);
-    ++frame.draw_calls;
-  }
-  api.CmdEndRenderPass(*cmd);
-  write_timestamp(api, *cmd, s.timestamps.get(), 1);
-  if (o.msaa > 1) {
-    const VkImage resolved = s.targets.resolved.image.get();
-    Barrier to_dst;  // after the previous frame's copy out of it
-    to_dst.image(resolved, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                 VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                 VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    to_dst.record(api, *cmd);
-    VkImageResolve region{};
-    region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.extent = {extent.width, extent.height, 1};
-    api.CmdResolveImage(*cmd, s.targets.colour.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                        resolved, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-    Barrier to_src;  // for the read-back's copy
-    to_src.image(resolved, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                 VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
-                 VK_ACCESS_2_TRANSFER_READ_BIT);
-    to_src.record(api, *cmd);
-    write_timestamp(api, *cmd, s.timestamps.get(), 2);
-  }
+  frame.draw_calls = s.record_pass(*cmd, *pass, o, pipelines, *set);
+  if (o.msaa > 1) s.record_resolve(*cmd);
   const auto t0 = std::chrono::steady_clock::now();
   if (Status st = s.device->submit_and_wait(*cmd); !st.ok()) return st;
   frame.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)

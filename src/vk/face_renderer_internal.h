@@ -77,8 +77,15 @@ struct FaceRenderer::State {
   Result<VkDescriptorSet> descriptor_set(float anisotropy);
   /// The resolved (or single-sampled) colour of the last frame, through a second submission.
   Result<ImageRGBAF> read_back();
+  /// The resolve of a multisampled frame and its timestamp (after `record_pass`).
+  void record_resolve(VkCommandBuffer cmd);
   // face_renderer.cpp
   Result<VkPipeline> pipeline(const FaceVariant& v);
+  /// The timestamps' reset and first two, the render pass and the class-grouped draws (the
+  /// class's pipeline per draw, or one pipeline and the class in the push constant); returns
+  /// the draw calls.
+  int record_pass(VkCommandBuffer cmd, VkRenderPass pass, const FaceFrameOptions& o,
+                  const std::vector<VkPipeline>& class_pipelines, VkDescriptorSet textures_set);
 };
 
 }  // namespace tessera::vk

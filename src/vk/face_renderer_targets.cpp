@@ -170,6 +170,28 @@ Result<VkDescriptorSet> FaceRenderer::State::descriptor_set(float anisotropy) {
   return it->second->descriptor_set();
 }
 
+// The multisampled colour (TRANSFER_SRC_OPTIMAL after the pass) resolved into `resolved`, left
+// in TRANSFER_SRC_OPTIMAL for the read-back, then the third timestamp.
+void FaceRenderer::State::record_resolve(VkCommandBuffer cmd) {
+  const VkImage resolved = targets.resolved.image.get();
+  Barrier to_dst;  // after the previous frame's copy out of it
+  to_dst.image(resolved, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+               VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+               VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  to_dst.record(*api, cmd);
+  VkImageResolve region{};
+  region.srcSubresource = region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  region.extent = {std::uint32_t(targets.width), std::uint32_t(targets.height), 1};
+  api->CmdResolveImage(cmd, targets.colour.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                       resolved, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+  Barrier to_src;  // for the read-back's copy
+  to_src.image(resolved, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+               VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+               VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+  to_src.record(*api, cmd);
+  write_timestamp(*api, cmd, timestamps.get(), 2);
+}
+
 Result<ImageRGBAF> FaceRenderer::State::read_back() {
   FaceTargets& t = targets;
   const VkImage src = t.samples > 1 ? t.resolved.image.get() : t.colour.image.get();

@@ -1,13 +1,14 @@
 // The Vulkan backend of the seam experiment (vk::experiment_backends, src/vk/seams_backend.cpp)
 // against the CPU backend (experiments::create_cpu_seams_backend) on the Disney teapot from
-// ../shared/data/ptex, small frames: Discard under trilinear filtering at >= 60 dB at 1x and 4x,
-// every method, trilinear and anisotropic, within the bounds below (measured on lavapipe), a
-// one-pixel shift and a swapped method as negative controls; Discard's NaNs without the fallback; the tiled reference
-// against the CPU reference; the rates and sample positions the backend reports; refusals and
-// one-line errors. Every backend runs under VK_LAYER_KHRONOS_validation with synchronization
-// validation: the factory's device_status() must be ok once it is destroyed (a validation
-// message, or an object leaked at vkDestroyDevice, fails the test). Without a Vulkan device or
-// the layer the tests skip, or fail under TESSERA_TEST_REQUIRE=all.
+// ../shared/data/ptex, small frames: Discard under trilinear filtering at >= 60 dB at 1x and 4x;
+// every method, trilinear and anisotropic, within the bounds below (measured on lavapipe); a
+// one-pixel shift and a swapped method as negative controls; Discard's NaNs without the
+// fallback; the tiled reference against the CPU reference; the rates and sample positions the
+// backend reports; refusals and one-line errors. Every backend runs under
+// VK_LAYER_KHRONOS_validation with synchronization validation: the factory's device_status()
+// must be ok once it is destroyed (a validation message, or an object leaked at
+// vkDestroyDevice, fails the test). Without a Vulkan device or the layer the tests skip, or
+// fail under TESSERA_TEST_REQUIRE=all.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -120,7 +121,9 @@ class VkSeamsBackend : public ::testing::Test {
     EXPECT_EQ(f->image.height, o.height);
     return std::move(f->image);
   }
-  scene::Camera camera(int frame = 1) const { return faces::face_orbit_camera(teapot_->scene, frame, 8); }
+  scene::Camera camera(int frame = 1) const {
+    return faces::face_orbit_camera(teapot_->scene, frame, 8);
+  }
 
   static Teapot* teapot_;
   std::shared_ptr<const experiments::GpuBackendFactory> factory_;
