@@ -354,7 +354,7 @@ class FaceRenderer {
 };
 
 // ---------------------------------------------------------------------------------------------
-// Host set-up shared by the CPU renderer and its GL twin (gl::FaceRenderer)
+// Host set-up shared by the CPU renderer and its GPU twins (gl::FaceRenderer, the Vulkan one)
 // ---------------------------------------------------------------------------------------------
 
 /// Smooth vertex normals of a quad mesh, one per face vertex (4 per face, face-major): the

@@ -467,6 +467,16 @@ for classes, method, fallback, output in RENDER:
     if res is not None:
         check(f"{name}: seams.glsl defaults, class as push constant",
               res == seams_vk(0, 1, 2) and "PushConstant" in classes_used, f"got {res}")
+# Devices without shaderSampledImageArrayDynamicIndexing (lavapipe): the class as specialization
+# constant 0 (src/vk/face_renderer.h), the same resources, no push constant.
+for method in (1, 3):
+    name = f"seams_render.frag 4 classes method {method}, class constant"
+    res, _, classes_used = vulkan_check(name, [
+        "-DTESSERA_GLSLANG", "-DTESSERA_SEAMS_CLASSES=4", f"-DTESSERA_RENDER_METHOD={method}",
+        "-DTESSERA_RENDER_CLASS_CONSTANT=1", os.path.join(GLSL, "seams_render.frag")])
+    if res is not None:
+        check(f"{name}: seams.glsl defaults, no push constant",
+              res == seams_vk(0, 1, 2) and "PushConstant" not in classes_used, f"got {res}")
 for stage in ("seams_render.vert", "deferred_gbuffer.vert", "deferred_gbuffer.frag"):
     res, _, classes_used = vulkan_check(stage, [os.path.join(GLSL, stage)])
     if res is not None:
