@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 
+#include "tessera/faces_gpu.h"
 #include "test_support.h"
 
 namespace tessera {
@@ -413,6 +414,39 @@ TEST(Faces, MitchellNetravali) {
     for (int k = -2; k <= 2; ++k) s += faces::mitchell_netravali(x + float(k));
     EXPECT_NEAR(s, 1.0f, 1e-5f);
   }
+}
+
+// The GPU renderers' index list (faces_gpu.h): every face once, in the draw of its class, two
+// triangles on the CPU's diagonal; reversed flips each triangle and nothing else. Negative
+// control: a class with no faces gets no draw.
+TEST(Faces, ClassGroupedIndicesCoverEveryFaceOnce) {
+  faces::PackedFaces layout;
+  layout.classes = {{4, 4, 3, {2, 0}}, {8, 8, 4, {}}, {8, 4, 4, {1, 3}}};
+  std::vector<std::uint32_t> indices = {99};  // appended to
+  const std::vector<faces::FaceClassDraw> draws =
+      faces::class_grouped_indices(layout, false, indices);
+  ASSERT_EQ(draws.size(), 2u);
+  EXPECT_EQ(draws[0].cls, 0);
+  EXPECT_EQ(draws[1].cls, 2);
+  EXPECT_EQ(draws[0].first, 1u);
+  EXPECT_EQ(draws[0].count, 12u);
+  EXPECT_EQ(draws[1].first, 13u);
+  ASSERT_EQ(indices.size(), 25u);
+  const std::vector<std::uint32_t> face2 = {8, 9, 10, 8, 10, 11};
+  EXPECT_TRUE(std::equal(face2.begin(), face2.end(), indices.begin() + 1));
+  std::vector<std::uint32_t> reversed;
+  const std::vector<faces::FaceClassDraw> rdraws =
+      faces::class_grouped_indices(layout, true, reversed);
+  ASSERT_EQ(rdraws.size(), 2u);
+  ASSERT_EQ(reversed.size(), 24u);
+  for (std::size_t t = 0; t < 8; ++t) {  // triangle t: (a, b, c) became (a, c, b)
+    EXPECT_EQ(reversed[t * 3], indices[1 + t * 3]);
+    EXPECT_EQ(reversed[t * 3 + 1], indices[1 + t * 3 + 2]);
+    EXPECT_EQ(reversed[t * 3 + 2], indices[1 + t * 3 + 1]);
+  }
+  std::multiset<std::uint32_t> faces_seen;
+  for (std::size_t k = 1; k < indices.size(); ++k) faces_seen.insert(indices[k] / 4);
+  for (std::uint32_t f = 0; f < 4; ++f) EXPECT_EQ(faces_seen.count(f), 6u) << f;
 }
 
 }  // namespace
