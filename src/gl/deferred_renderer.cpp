@@ -277,40 +277,41 @@ Status read_samples(const State& st, ShadeResult& r) {
 
 }  // namespace
 
-Result<ShadeResult> DeferredRenderer::shade_reference(const deferred::ShadingOptions& o) {
-  State& st = *state_;
+namespace {
+
+/// The reference (component kind 1) or 1 spp (kind 2): the adaptive component where m >= 2,
+/// else the one pass `define` of deferred_passes.comp, whose colours land in `buffer`, with
+/// `samples_per_pixel` samples shaded per pixel.
+Result<ShadeResult> shade_one_pass(State& st, const deferred::ShadingOptions& o, int kind,
+                                   const char* pass, const char* define, const Object& buffer,
+                                   std::uint64_t samples_per_pixel) {
   if (Status s = bind_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
   ShadeResult r;
   if (st.m >= 2) {
-    if (Status s = shade_with_component(st, 1, nullptr, r); !s.ok()) return s;
+    if (Status s = shade_with_component(st, kind, nullptr, r); !s.ok()) return s;
     return r;
   }
   PassTimer timer;
-  if (Status s = run_pass(st, timer, "reference", {"TESSERA_PASS_REFERENCE"}); !s.ok()) return s;
+  if (Status s = run_pass(st, timer, pass, {define}); !s.ok()) return s;
   if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
-  Result<ImageRGBAF> img = read_rgba(st, st.out_buf);
+  Result<ImageRGBAF> img = read_rgba(st, buffer);
   if (!img) return img.status();
   r.image = std::move(*img);
-  r.samples_shaded = std::uint64_t(st.w) * std::uint64_t(st.h) * std::uint64_t(st.m * st.m);
+  r.samples_shaded = std::uint64_t(st.w) * std::uint64_t(st.h) * samples_per_pixel;
   return r;
+}
+
+}  // namespace
+
+Result<ShadeResult> DeferredRenderer::shade_reference(const deferred::ShadingOptions& o) {
+  State& st = *state_;
+  return shade_one_pass(st, o, 1, "reference", "TESSERA_PASS_REFERENCE", st.out_buf,
+                        std::uint64_t(st.m * st.m));
 }
 
 Result<ShadeResult> DeferredRenderer::shade_default(const deferred::ShadingOptions& o) {
   State& st = *state_;
-  if (Status s = bind_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
-  ShadeResult r;
-  if (st.m >= 2) {
-    if (Status s = shade_with_component(st, 2, nullptr, r); !s.ok()) return s;
-    return r;
-  }
-  PassTimer timer;
-  if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
-  if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
-  Result<ImageRGBAF> img = read_rgba(st, st.s_buf);
-  if (!img) return img.status();
-  r.image = std::move(*img);
-  r.samples_shaded = std::uint64_t(st.w) * std::uint64_t(st.h);
-  return r;
+  return shade_one_pass(st, o, 2, "first", "TESSERA_PASS_FIRST", st.s_buf, 1);
 }
 
 Result<ShadeResult> DeferredRenderer::shade_adaptive(const deferred::ShadingOptions& o,
