@@ -36,6 +36,46 @@ inline bool has_layer(const char* name) {
   return false;
 }
 
+/// The validation set-up of an engine's instance: warnings and errors to `callback` (with
+/// `user`), synchronization validation on. `features` goes into VkInstanceCreateInfo::pNext (it
+/// chains `messenger`), and `messenger` makes the messenger once the instance exists. Not
+/// copyable: `features` points at the members.
+struct ValidationChain {
+  VkDebugUtilsMessengerCreateInfoEXT messenger{};
+  VkValidationFeatureEnableEXT sync = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+  VkValidationFeaturesEXT features{};
+
+  ValidationChain(PFN_vkDebugUtilsMessengerCallbackEXT callback, void* user) {
+    messenger.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
+    messenger.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                            VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                            VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    messenger.pfnUserCallback = callback;
+    messenger.pUserData = user;
+    features.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT;
+    features.pNext = &messenger;
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = &sync;
+  }
+  ValidationChain(const ValidationChain&) = delete;
+  ValidationChain& operator=(const ValidationChain&) = delete;
+};
+
+/// Writes `buffer` (from 0, `range` bytes) as the uniform buffer at binding 0 of `set`.
+inline void write_uniform_buffer(VkDevice dev, VkDescriptorSet set, VkBuffer buffer,
+                                 VkDeviceSize range = VK_WHOLE_SIZE) {
+  const VkDescriptorBufferInfo bi{buffer, 0, range};
+  VkWriteDescriptorSet w{};
+  w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+  w.dstSet = set;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  w.pBufferInfo = &bi;
+  vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
+}
+
 /// The engine's instance and its validation messenger. Each engine's Device derives from it; it
 /// must stay where it is between create_instance and destroy_instance (the messenger holds its
 /// address).
@@ -52,29 +92,14 @@ class Instance {
     validation = want_validation && has_layer(kValidationLayer);
     VkApplicationInfo app{
         VK_STRUCTURE_TYPE_APPLICATION_INFO, nullptr, app_name, 1, nullptr, 0, api_version};
-    VkDebugUtilsMessengerCreateInfoEXT mi{};
-    mi.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
-    mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                         VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                     VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                     VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-    mi.pfnUserCallback = &on_message;
-    mi.pUserData = this;
-    const VkValidationFeatureEnableEXT sync =
-        VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
-    VkValidationFeaturesEXT vf{};
-    vf.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT;
-    vf.pNext = &mi;
-    vf.enabledValidationFeatureCount = 1;
-    vf.pEnabledValidationFeatures = &sync;
+    const ValidationChain chain(&on_message, this);
     const char* ext = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
     const char* layer = kValidationLayer;
     VkInstanceCreateInfo ii{};
     ii.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
     ii.pApplicationInfo = &app;
     if (validation) {
-      ii.pNext = &vf;
+      ii.pNext = &chain.features;
       ii.enabledLayerCount = 1;
       ii.ppEnabledLayerNames = &layer;
       ii.enabledExtensionCount = 1;
@@ -84,7 +109,7 @@ class Instance {
     if (validation) {
       auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
           vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
-      if (create_messenger) create_messenger(instance, &mi, nullptr, &messenger_);
+      if (create_messenger) create_messenger(instance, &chain.messenger, nullptr, &messenger_);
     }
     return "";
   }
@@ -443,14 +468,7 @@ inline VkDescriptorSet frame_set(VkDevice dev, const std::vector<VkDescriptorSet
   ai.pSetLayouts = &frame;
   VkDescriptorSet set = VK_NULL_HANDLE;
   vkAllocateDescriptorSets(dev, &ai, &set);
-  const VkDescriptorBufferInfo bi{ubo, 0, VK_WHOLE_SIZE};
-  VkWriteDescriptorSet w{};
-  w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-  w.dstSet = set;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  w.pBufferInfo = &bi;
-  vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
+  write_uniform_buffer(dev, set, ubo);
   return set;
 }
 

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "vk_adaptive_test_util.h"
+#include "vk_engine.h"  // examples/common: write_uniform_buffer
 
 namespace tessera::vk_test {
 namespace {
@@ -150,14 +151,7 @@ TEST_F(VkAdaptive, HookReadsTheEnginesDescriptorSet) {
   ai.pSetLayouts = &layout;
   VkDescriptorSet set = VK_NULL_HANDLE;
   ASSERT_EQ(vkAllocateDescriptorSets(dev, &ai, &set), VK_SUCCESS);
-  VkDescriptorBufferInfo bi{tint.buffer, 0, 16};
-  VkWriteDescriptorSet w{};
-  w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-  w.dstSet = set;
-  w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  w.pBufferInfo = &bi;
-  vkUpdateDescriptorSets(dev, 1, &w, 0, nullptr);
+  engine::write_uniform_buffer(dev, set, tint.buffer, 16);
 
   o.hook_set_layouts = {layout};
   o.hook.source = renamed("scene_shade") +

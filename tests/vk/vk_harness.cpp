@@ -73,22 +73,7 @@ Result<std::unique_ptr<Engine>> Engine::create(const EngineOptions& options, std
   app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
   app.pApplicationName = "tessera vk tests";
   app.apiVersion = VK_API_VERSION_1_3;
-  VkDebugUtilsMessengerCreateInfoEXT mi{};
-  mi.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT;
-  mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                   VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                   VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-  mi.pfnUserCallback = &Engine::on_message;
-  mi.pUserData = e.get();
-  const VkValidationFeatureEnableEXT enables[] = {
-      VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
-  VkValidationFeaturesEXT vf{};
-  vf.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT;
-  vf.enabledValidationFeatureCount = 1;
-  vf.pEnabledValidationFeatures = enables;
-  vf.pNext = &mi;
+  const engine::ValidationChain chain(&Engine::on_message, e.get());
   const char* ext = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
   VkInstanceCreateInfo ii{};
   ii.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
@@ -98,7 +83,7 @@ Result<std::unique_ptr<Engine>> Engine::create(const EngineOptions& options, std
   if (options.validation) {
     ii.enabledLayerCount = 1;
     ii.ppEnabledLayerNames = &kValidation;
-    ii.pNext = &vf;
+    ii.pNext = &chain.features;
   }
   if (VkResult r = vkCreateInstance(&ii, nullptr, &e->ctx_.instance); r != VK_SUCCESS) {
     return Status::error(ErrorCode::unsupported,
@@ -106,7 +91,9 @@ Result<std::unique_ptr<Engine>> Engine::create(const EngineOptions& options, std
   }
   auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
       vkGetInstanceProcAddr(e->ctx_.instance, "vkCreateDebugUtilsMessengerEXT"));
-  if (create_messenger) create_messenger(e->ctx_.instance, &mi, nullptr, &e->messenger_);
+  if (create_messenger) {
+    create_messenger(e->ctx_.instance, &chain.messenger, nullptr, &e->messenger_);
+  }
   std::uint32_t n = 0;
   vkEnumeratePhysicalDevices(e->ctx_.instance, &n, nullptr);
   std::vector<VkPhysicalDevice> devices(n);
