@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "gl/gl_api.h"
+#include "glsl/log_text.h"
 #include "tessera/gl.h"
 #include "tessera/glsl.h"
 
@@ -13,21 +14,6 @@ namespace tessera::gl {
 using namespace api;  // NOLINT(google-build-using-namespace): the loaded GL entry points
 
 namespace {
-
-std::vector<std::string> split_lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string::npos) end = text.size();
-    std::string line = text.substr(start, end - start);
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    lines.push_back(std::move(line));
-    if (end == text.size() || end + 1 == text.size()) break;  // no empty line after a final \n
-    start = end + 1;
-  }
-  return lines;
-}
 
 GLenum stage_enum(glsl::Stage s) {
   switch (s) {
@@ -39,13 +25,6 @@ GLenum stage_enum(glsl::Stage s) {
     case glsl::Stage::tess_evaluation: return GL_TESS_EVALUATION_SHADER;
   }
   return GL_FRAGMENT_SHADER;
-}
-
-std::string trim(std::string s) {
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\n' || s.back() == '\r')) s.pop_back();
-  std::size_t b = 0;
-  while (b < s.size() && s[b] == ' ') ++b;
-  return s.substr(b);
 }
 
 }  // namespace
@@ -93,13 +72,7 @@ Result<Program> link_program(const std::vector<glsl::Source>& stages,
     std::string log(std::size_t(std::max(length, 1)), '\0');
     glGetProgramInfoLog(program.get(), GLsizei(log.size()), nullptr, log.data());
     log.resize(log.find('\0') == std::string::npos ? log.size() : log.find('\0'));
-    std::string first;
-    for (const std::string& l : split_lines(log)) {
-      if (!trim(l).empty()) {
-        first = trim(l);
-        break;
-      }
-    }
+    const std::string first = glsl::detail::first_nonempty_line(log);
     return Status::error(ErrorCode::invalid_argument,
                          "link error (" + names + "): " + (first.empty() ? "no log" : first));
   }

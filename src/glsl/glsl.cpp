@@ -9,17 +9,12 @@
 #include <sstream>
 
 #include "core/embedded.h"
+#include "glsl/log_text.h"
 #include "tessera/io.h"
 
 namespace tessera::glsl {
 
-namespace {
-
-constexpr int kMaxIncludeDepth = 32;
-constexpr int kMaxFiles = 2147483647 / kIncludeLineStride - 1;
-
-// First line number of source-string `index` (see kIncludeLineStride).
-long line_base(int index) { return long(index) * kIncludeLineStride; }
+namespace detail {
 
 std::vector<std::string> split_lines(const std::string& text) {
   std::vector<std::string> lines;
@@ -36,6 +31,33 @@ std::vector<std::string> split_lines(const std::string& text) {
   return lines;
 }
 
+std::string trim(std::string s) {
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\n' || s.back() == '\r')) s.pop_back();
+  std::size_t b = 0;
+  while (b < s.size() && s[b] == ' ') ++b;
+  return s.substr(b);
+}
+
+std::string first_nonempty_line(std::string_view log) {
+  for (const std::string& line : split_lines(std::string(log))) {
+    if (std::string t = trim(line); !t.empty()) return t;
+  }
+  return {};
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::split_lines;
+using detail::trim;
+
+constexpr int kMaxIncludeDepth = 32;
+constexpr int kMaxFiles = 2147483647 / kIncludeLineStride - 1;
+
+// First line number of source-string `index` (see kIncludeLineStride).
+long line_base(int index) { return long(index) * kIncludeLineStride; }
+
 // The quoted name of an `#include "x"` line, or "" when the line is not one.
 std::string include_target(const std::string& line) {
   static const std::regex re(R"re(^\s*#\s*include\s*"([^"]+)"\s*(//.*)?$)re");
@@ -46,13 +68,6 @@ std::string include_target(const std::string& line) {
 bool is_version_line(const std::string& line) {
   static const std::regex re(R"(^\s*#\s*version\b.*$)");
   return std::regex_match(line, re);
-}
-
-std::string trim(std::string s) {
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\n' || s.back() == '\r')) s.pop_back();
-  std::size_t b = 0;
-  while (b < s.size() && s[b] == ' ') ++b;
-  return s.substr(b);
 }
 
 const EmbeddedFile* find_embedded(std::string_view name) {
