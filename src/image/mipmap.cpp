@@ -17,21 +17,26 @@ namespace {
 /// alpha in [0, 1].
 using Work = ImageRGBAF;
 
-Work to_work(const ImageRGBA8& img, const MipmapOptions& o) {
-  Work w(img.width, img.height);
+/// Writes `texel(s, d)` for every pixel: `s` the pixel of `src`, `d` the same pixel of `dst`
+/// (the same size), rows in parallel.
+template <class Src, class Dst, class Texel>
+void map_texels(const Src& src, Dst& dst, int threads, Texel texel) {
   parallel_for(
-      0, img.height, 16,
+      0, src.height, 16,
       [&](std::int64_t y0, std::int64_t y1) {
         for (std::int64_t y = y0; y < y1; ++y) {
-          for (int x = 0; x < img.width; ++x) {
-            const std::uint8_t* s = img.at(x, int(y));
-            float* d = w.at(x, int(y));
-            for (int c = 0; c < 3; ++c) d[c] = o.srgb ? srgb8_to_linear(s[c]) : s[c] / 255.0f;
-            d[3] = s[3] / 255.0f;
-          }
+          for (int x = 0; x < src.width; ++x) texel(src.at(x, int(y)), dst.at(x, int(y)));
         }
       },
-      {o.threads});
+      {threads});
+}
+
+Work to_work(const ImageRGBA8& img, const MipmapOptions& o) {
+  Work w(img.width, img.height);
+  map_texels(img, w, o.threads, [&](const std::uint8_t* s, float* d) {
+    for (int c = 0; c < 3; ++c) d[c] = o.srgb ? srgb8_to_linear(s[c]) : s[c] / 255.0f;
+    d[3] = s[3] / 255.0f;
+  });
   return w;
 }
 
@@ -39,75 +44,43 @@ std::uint8_t quantise_unit(float v) {
   return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
 }
 
-ImageRGBA8 from_work(const Work& w, bool has_alpha, const MipmapOptions& o) {
+/// The 8-bit image of `w`: colour through `colour(float) -> std::uint8_t` per channel, alpha
+/// quantised (255 where `has_alpha` is false).
+template <class Colour>
+ImageRGBA8 to_rgba8(const Work& w, bool has_alpha, int threads, Colour colour) {
   ImageRGBA8 img(w.width, w.height);
   img.has_alpha = has_alpha;
-  parallel_for(
-      0, w.height, 16,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (std::int64_t y = y0; y < y1; ++y) {
-          for (int x = 0; x < w.width; ++x) {
-            const float* s = w.at(x, int(y));
-            std::uint8_t* d = img.at(x, int(y));
-            for (int c = 0; c < 3; ++c) d[c] = o.srgb ? linear_to_srgb8(s[c]) : quantise_unit(s[c]);
-            d[3] = has_alpha ? quantise_unit(s[3]) : 255;
-          }
-        }
-      },
-      {o.threads});
+  map_texels(w, img, threads, [&](const float* s, std::uint8_t* d) {
+    for (int c = 0; c < 3; ++c) d[c] = colour(s[c]);
+    d[3] = has_alpha ? quantise_unit(s[3]) : 255;
+  });
   return img;
+}
+
+ImageRGBA8 from_work(const Work& w, bool has_alpha, const MipmapOptions& o) {
+  return to_rgba8(w, has_alpha, o.threads,
+                  [&](float v) { return o.srgb ? linear_to_srgb8(v) : quantise_unit(v); });
 }
 
 /// Normal maps: RGB as unit vectors (decoded, normalised; zero becomes +Z), alpha in [0, 1].
 Work to_normal_work(const ImageRGBA8& img, int threads) {
   Work w(img.width, img.height);
-  parallel_for(
-      0, img.height, 16,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (std::int64_t y = y0; y < y1; ++y) {
-          for (int x = 0; x < img.width; ++x) {
-            const std::uint8_t* s = img.at(x, int(y));
-            float* d = w.at(x, int(y));
-            for (int c = 0; c < 3; ++c) d[c] = float(detail::decode_normal(s[c]));
-            detail::normalise_or_z(d);
-            d[3] = s[3] / 255.0f;
-          }
-        }
-      },
-      {threads});
+  map_texels(img, w, threads, [](const std::uint8_t* s, float* d) {
+    for (int c = 0; c < 3; ++c) d[c] = float(detail::decode_normal(s[c]));
+    detail::normalise_or_z(d);
+    d[3] = s[3] / 255.0f;
+  });
   return w;
 }
 
 /// Scales every vector of a filtered normal-map level back to unit length (zero becomes +Z).
 void renormalise(Work& w, int threads) {
-  parallel_for(
-      0, w.height, 16,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (std::int64_t y = y0; y < y1; ++y) {
-          for (int x = 0; x < w.width; ++x) detail::normalise_or_z(w.at(x, int(y)));
-        }
-      },
-      {threads});
+  map_texels(w, w, threads, [](const float*, float* d) { detail::normalise_or_z(d); });
 }
 
 /// Normal maps: each vector stored as in `normalise_normals`, alpha as in `from_work`.
 ImageRGBA8 from_normal_work(const Work& w, bool has_alpha, int threads) {
-  ImageRGBA8 img(w.width, w.height);
-  img.has_alpha = has_alpha;
-  parallel_for(
-      0, w.height, 16,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (std::int64_t y = y0; y < y1; ++y) {
-          for (int x = 0; x < w.width; ++x) {
-            const float* s = w.at(x, int(y));
-            std::uint8_t* d = img.at(x, int(y));
-            for (int c = 0; c < 3; ++c) d[c] = detail::encode_normal(s[c]);
-            d[3] = has_alpha ? quantise_unit(s[3]) : 255;
-          }
-        }
-      },
-      {threads});
-  return img;
+  return to_rgba8(w, has_alpha, threads, [](float v) { return detail::encode_normal(v); });
 }
 
 /// Accumulates texels with weights: alpha-weighted colour, plain colour and alpha.
