@@ -14,6 +14,33 @@
 
 namespace tessera::faces {
 
+namespace {
+
+/// Edge midpoints, each made once: `mid(a, b)` is the index in `out` of the midpoint of vertices
+/// a and b of `in`, appended to `out` the first time the edge (either way round) is asked for.
+class EdgeMidpoints {
+ public:
+  EdgeMidpoints(const std::vector<Vec3>& in, std::vector<Vec3>& out) : in_(in), out_(out) {}
+
+  int operator()(int a, int b) {
+    const std::uint64_t k =
+        (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
+    auto it = mids_.find(k);
+    if (it != mids_.end()) return it->second;
+    const int id = int(out_.size());
+    out_.push_back((in_[std::size_t(a)] + in_[std::size_t(b)]) * 0.5f);
+    mids_.emplace(k, id);
+    return id;
+  }
+
+ private:
+  const std::vector<Vec3>& in_;
+  std::vector<Vec3>& out_;
+  std::unordered_map<std::uint64_t, int> mids_;
+};
+
+}  // namespace
+
 Vec3 QuadMesh::point(int face, texture::Uv uv) const {
   const std::array<int, 4>& q = quads[std::size_t(face)];
   const Vec3& p0 = positions[std::size_t(q[0])];
@@ -97,17 +124,7 @@ QuadMesh ptex_face_layout(const PolygonMesh& mesh, std::vector<bool>* subface) {
   QuadMesh q;
   q.positions = mesh.positions;
   if (subface) subface->clear();
-  std::unordered_map<std::uint64_t, int> mids;
-  auto mid = [&](int a, int b) {
-    const std::uint64_t k =
-        (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
-    auto it = mids.find(k);
-    if (it != mids.end()) return it->second;
-    const int id = int(q.positions.size());
-    q.positions.push_back((mesh.positions[std::size_t(a)] + mesh.positions[std::size_t(b)]) * 0.5f);
-    mids.emplace(k, id);
-    return id;
-  };
+  EdgeMidpoints mid(mesh.positions, q.positions);
   for (const std::vector<int>& f : mesh.faces) {
     const int n = int(f.size());
     if (n == 4) {
@@ -228,18 +245,7 @@ std::array<int, 16> edge_pairing_histogram(const std::vector<FaceAdjacency>& adj
 QuadMesh subdivide(const QuadMesh& mesh) {
   QuadMesh out;
   out.positions = mesh.positions;
-  std::unordered_map<std::uint64_t, int> mids;
-  auto mid = [&](int a, int b) {
-    const std::uint64_t k =
-        (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
-    auto it = mids.find(k);
-    if (it != mids.end()) return it->second;
-    const int id = int(out.positions.size());
-    out.positions.push_back((mesh.positions[std::size_t(a)] + mesh.positions[std::size_t(b)]) *
-                            0.5f);
-    mids.emplace(k, id);
-    return id;
-  };
+  EdgeMidpoints mid(mesh.positions, out.positions);
   for (int f = 0; f < mesh.face_count(); ++f) {
     const std::array<int, 4>& q = mesh.quads[std::size_t(f)];
     const int ab = mid(q[0], q[1]), bc = mid(q[1], q[2]), cd = mid(q[2], q[3]),
