@@ -110,47 +110,44 @@ void modulate_run(const std::uint8_t* a, const std::uint8_t* b, const std::uint8
   for (; i < n; ++i) modulate(a + i * 4, b + i * 4, m_eff[i], out + i * 4);
 }
 
-void morton_tables(const Grid& g, std::vector<std::uint32_t>& mx, std::vector<std::uint32_t>& my) {
-  mx.resize(std::size_t(g.nbx));
-  my.resize(std::size_t(g.nby));
+/// Calls `f(m, i)` for every block of `g`: `m` its Morton-order index in the data, `i` its
+/// row-major index.
+template <class F>
+void for_each_block(const Grid& g, F f) {
+  std::vector<std::uint32_t> mx(std::size_t(g.nbx)), my(std::size_t(g.nby));
   for (int bx = 0; bx < g.nbx; ++bx) {
     mx[std::size_t(bx)] = morton(std::uint32_t(bx), 0, std::uint32_t(g.nbx), std::uint32_t(g.nby));
   }
   for (int by = 0; by < g.nby; ++by) {
     my[std::size_t(by)] = morton(0, std::uint32_t(by), std::uint32_t(g.nbx), std::uint32_t(g.nby));
   }
+  for (int by = 0; by < g.nby; ++by) {
+    for (int bx = 0; bx < g.nbx; ++bx) {
+      const std::uint32_t m = mx[std::size_t(bx)] | my[std::size_t(by)];
+      TESSERA_DCHECK(m < g.blocks());
+      f(std::size_t(m), std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx));
+    }
+  }
 }
 
 }  // namespace
 
 void load_words(const Grid& g, const std::uint8_t* data, std::uint64_t* words) {
-  std::vector<std::uint32_t> mx, my;
-  morton_tables(g, mx, my);
-  for (int by = 0; by < g.nby; ++by) {
-    for (int bx = 0; bx < g.nbx; ++bx) {
-      const std::uint32_t m = mx[std::size_t(bx)] | my[std::size_t(by)];
-      TESSERA_DCHECK(m < g.blocks());
-      std::uint64_t w = 0;
-      for (int i = 7; i >= 0; --i) w = (w << 8) | data[std::size_t(m) * 8 + std::size_t(i)];
-      words[std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx)] = w;
-    }
-  }
+  for_each_block(g, [&](std::size_t m, std::size_t i) {
+    std::uint64_t w = 0;
+    for (int k = 7; k >= 0; --k) w = (w << 8) | data[m * 8 + std::size_t(k)];
+    words[i] = w;
+  });
 }
 
 void store_words(const Grid& g, const std::uint64_t* words, std::uint8_t* data) {
-  std::vector<std::uint32_t> mx, my;
-  morton_tables(g, mx, my);
-  for (int by = 0; by < g.nby; ++by) {
-    for (int bx = 0; bx < g.nbx; ++bx) {
-      const std::uint32_t m = mx[std::size_t(bx)] | my[std::size_t(by)];
-      TESSERA_DCHECK(m < g.blocks());
-      std::uint64_t w = words[std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx)];
-      for (int i = 0; i < 8; ++i) {
-        data[std::size_t(m) * 8 + std::size_t(i)] = std::uint8_t(w & 0xff);
-        w >>= 8;
-      }
+  for_each_block(g, [&](std::size_t m, std::size_t i) {
+    std::uint64_t w = words[i];
+    for (int k = 0; k < 8; ++k) {
+      data[m * 8 + std::size_t(k)] = std::uint8_t(w & 0xff);
+      w >>= 8;
     }
-  }
+  });
 }
 
 void expand_endpoints(const Grid& g, const std::uint64_t* words, Rgba5* ea, Rgba5* eb,
