@@ -11,6 +11,7 @@
 #include "pvrtc/encode/modulation/modulation_2bpp.h"
 #include "pvrtc/encode/modulation/modulation_avx2.h"
 #include "pvrtc/encode/modulation/modulation_kernel.h"
+#include "pvrtc/encode/modulation/planar_endpoints.h"
 
 namespace tessera::pvrtc::detail {
 
@@ -54,13 +55,7 @@ template <bool kAlpha, bool kExtra, bool kWeighted = false>
 std::uint64_t choose_modulation_4bpp_impl(EncoderState& s) {
   const Grid& g = s.g;
   const std::size_t nb = g.blocks();
-  // Expanded endpoints, planar: plane (image * 4 + channel), one u16 per block.
-  std::vector<std::uint16_t> ep(8 * nb);
-  for (std::size_t i = 0; i < nb; ++i) {
-    const Rgba5 a = expand_a(s.ca[i]), b = expand_b(s.cb[i]);
-    const std::int32_t v[8] = {a.r, a.g, a.b, a.a, b.r, b.g, b.b, b.a};
-    for (int k = 0; k < 8; ++k) ep[std::size_t(k) * nb + i] = std::uint16_t(v[k]);
-  }
+  const std::vector<std::uint16_t> ep = planar_endpoints(s);
   std::vector<std::uint64_t> row_err(std::size_t(g.nby), 0);
   const std::size_t vstride = std::size_t(g.nbx) + 8;  // block_row_errors_avx2 reads 8 from bx
   const bool avx2 = use_avx2();

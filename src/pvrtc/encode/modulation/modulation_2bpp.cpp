@@ -31,6 +31,7 @@
 #include "core/simd.h"
 #include "pvrtc/encode/modulation/modulation_2bpp_avx2.h"
 #include "pvrtc/encode/modulation/modulation_2bpp_rows.h"
+#include "pvrtc/encode/modulation/planar_endpoints.h"
 
 namespace tessera::pvrtc::detail {
 
@@ -123,13 +124,7 @@ template <bool kAlpha>
 std::uint64_t choose_2bpp_impl(EncoderState& s) {
   const Grid& g = s.g;
   const std::size_t nb = g.blocks();
-  // Expanded endpoints, planar: plane (image * 4 + channel), one u16 per block.
-  std::vector<std::uint16_t> ep(8 * nb);
-  for (std::size_t i = 0; i < nb; ++i) {
-    const Rgba5 a = expand_a(s.ca[i]), b = expand_b(s.cb[i]);
-    const std::int32_t v[8] = {a.r, a.g, a.b, a.a, b.r, b.g, b.b, b.a};
-    for (int c = 0; c < 8; ++c) ep[std::size_t(c) * nb + i] = std::uint16_t(v[c]);
-  }
+  const std::vector<std::uint16_t> ep = planar_endpoints(s);
   Maps maps;
   maps.stride = std::size_t(g.pw) + 2 * kGuard;
   maps.greedy.assign(maps.stride * std::size_t(g.ph), 0);
