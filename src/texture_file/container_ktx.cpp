@@ -26,12 +26,7 @@ namespace tessera::texture_file {
 
 namespace {
 
-using container::corrupt;
-using container::unsupported;
-
-using container::hex32;
-using container::load_u32;
-using container::plural_bytes;
+using namespace container;  // NOLINT(google-build-using-namespace): container_bytes.h
 
 constexpr std::array<std::uint8_t, 12> kKtxIdentifier = {0xAB, 'K',  'T',  'X',  ' ',  '1',
                                                          '1',  0xBB, '\r', '\n', 0x1A, '\n'};

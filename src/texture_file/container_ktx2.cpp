@@ -40,12 +40,7 @@ namespace tessera::texture_file {
 
 namespace {
 
-using container::corrupt;
-using container::unsupported;
-
-using container::load_u32;
-using container::load_u64;
-using container::plural_bytes;
+using namespace container;  // NOLINT(google-build-using-namespace): container_bytes.h
 
 std::string scheme_name(std::uint32_t scheme) {
   switch (scheme) {

@@ -23,13 +23,7 @@ namespace tessera::texture_file {
 
 namespace {
 
-using container::corrupt;
-using container::unsupported;
-
-using container::hex32;
-using container::load_u32;
-using container::load_u64;
-using container::plural_bytes;
+using namespace container;  // NOLINT(google-build-using-namespace): container_bytes.h
 
 constexpr std::uint32_t kPvr3Magic = 0x03525650u;         // "PVR\3" read little-endian
 constexpr std::uint32_t kPvr3MagicSwapped = 0x50565203u;  // the same written big-endian
