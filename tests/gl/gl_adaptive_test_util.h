@@ -21,6 +21,7 @@
 #include "tessera/gl_adaptive.h"
 #include "tessera/gl_deferred.h"
 #include "tessera/scene.h"
+#include "gl_test_fixture.h"
 #include "test_support.h"
 
 namespace tessera::aa_test {
@@ -70,16 +71,11 @@ inline std::size_t differing_pixels(const std::vector<float>& a, const ImageRGBA
   return n;
 }
 
-class GlAdaptive : public ::testing::Test {
+class GlAdaptive : public test::GlTest {
  protected:
-  void SetUp() override {
-    Result<std::unique_ptr<gl::Context>> c = gl::Context::create();
-    if (!c) TESSERA_SKIP_OR_FAIL("gl", "no OpenGL 4.5 context: " << c.status().message);
-    ctx_ = std::move(*c);
-  }
   void TearDown() override {
     deferred_.reset();
-    ctx_.reset();
+    test::GlTest::TearDown();
   }
 
   // DeferredRenderer on the built-in scene, its G-buffer at w x h x m, its adaptive image.
@@ -138,7 +134,6 @@ class GlAdaptive : public ::testing::Test {
     return o;
   }
 
-  std::unique_ptr<gl::Context> ctx_;
   std::unique_ptr<scene::Scene> scene_;
   scene::Camera camera_;
   std::unique_ptr<gl::DeferredRenderer> deferred_;

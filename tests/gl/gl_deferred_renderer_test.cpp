@@ -16,6 +16,7 @@
 #include "tessera/gl.h"
 #include "tessera/metrics.h"
 #include "tessera/scene.h"
+#include "gl_test_fixture.h"
 #include "test_support.h"
 
 namespace tessera {
@@ -45,16 +46,11 @@ double agreement(const std::vector<std::uint8_t>& a, const std::vector<std::uint
   return a.empty() ? 1.0 : double(same) / double(a.size());
 }
 
-class GlDeferred : public ::testing::Test {
+class GlDeferred : public test::GlTest {
  protected:
-  void SetUp() override {
-    Result<std::unique_ptr<gl::Context>> c = gl::Context::create();
-    if (!c) TESSERA_SKIP_OR_FAIL("gl", "no OpenGL 4.5 context: " << c.status().message);
-    ctx_ = std::move(*c);
-  }
   void TearDown() override {
     gl_.reset();
-    ctx_.reset();
+    test::GlTest::TearDown();
   }
   // Loads the scene and makes the GL and CPU renderers and shading options.
   void use_scene(scene::Scene sc, const scene::Camera& cam, bool heavy) {
@@ -111,7 +107,6 @@ class GlDeferred : public ::testing::Test {
     EXPECT_GE(p_same, min_psnr);
   }
 
-  std::unique_ptr<gl::Context> ctx_;
   std::unique_ptr<scene::Scene> scene_;
   scene::Camera camera_;
   std::unique_ptr<gl::DeferredRenderer> gl_;

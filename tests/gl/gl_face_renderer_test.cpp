@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "gl_test_fixture.h"
 #include "ptex_report.h"  // examples/common: image_agreement
 #include "tessera/experiments.h"
 #include "tessera/faces.h"
@@ -47,7 +48,7 @@ bool pixel_finite(const ImageRGBAF& img, std::size_t i) {
   return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
 }
 
-class GlSeams : public ::testing::Test {
+class GlSeams : public test::GlTest {
  protected:
   static constexpr int kW = 96, kH = 108;
 
@@ -63,9 +64,8 @@ class GlSeams : public ::testing::Test {
   }
 
   void SetUp() override {
-    Result<std::unique_ptr<Context>> c = Context::create();
-    if (!c) TESSERA_SKIP_OR_FAIL("gl", "no OpenGL 4.5 context: " << c.status().message);
-    ctx_ = std::move(*c);
+    test::GlTest::SetUp();
+    if (!ctx_) return;
     FaceRendererOptions ro;
     ro.glsl_dir = TESSERA_GLSL_DIR;
     Result<std::unique_ptr<FaceRenderer>> r = FaceRenderer::create(*scene_, *set_, ro);
@@ -77,7 +77,7 @@ class GlSeams : public ::testing::Test {
   }
   void TearDown() override {
     gl_.reset();  // GL objects go before the context
-    ctx_.reset();
+    test::GlTest::TearDown();
   }
 
   ImageRGBAF cpu_frame(const scene::Camera& cam, faces::SeamMethod m, TextureFilter filter, int msaa,
@@ -196,7 +196,6 @@ class GlSeams : public ::testing::Test {
 
   static faces::FaceScene* scene_;
   static faces::FaceTextureSet* set_;
-  std::unique_ptr<Context> ctx_;
   std::unique_ptr<FaceRenderer> gl_;
   std::unique_ptr<faces::FaceRenderer> cpu_;
 };

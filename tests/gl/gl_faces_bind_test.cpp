@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "gl/gl_api.h"
+#include "gl_test_fixture.h"
 #include "tessera/faces.h"
 #include "tessera/gl.h"
 #include "tessera/gl_faces.h"
@@ -22,12 +23,6 @@ namespace {
 using namespace tessera;
 using namespace tessera::gl;
 using namespace tessera::gl::api;  // NOLINT(google-build-using-namespace)
-
-faces::FaceTextureSet small_set() {
-  Result<faces::FaceTextureSet> set = test::figure1_texture_set(4, 2);
-  EXPECT_TRUE(set.ok()) << set.status().message;
-  return std::move(*set);
-}
 
 /// The bindings `bind` may touch, per texture unit and per storage-buffer index.
 struct Snapshot {
@@ -185,20 +180,12 @@ void expect_bad_points_refused(const FaceTextureSet& tex, int max_units, int max
   }
 }
 
-class GlPtexBind : public ::testing::Test {
- protected:
-  void SetUp() override {
-    Result<std::unique_ptr<Context>> c = Context::create();
-    if (!c) TESSERA_SKIP_OR_FAIL("gl", "no OpenGL 4.5 context: " << c.status().message);
-    ctx_ = std::move(*c);
-  }
-  std::unique_ptr<Context> ctx_;
-};
+class GlPtexBind : public test::GlTest {};
 
 // Distinctive engine state on every unit and binding; bind to caller-chosen points (border
 // units 3.., clamp units 20.., records at 5); exactly those points change.
 TEST_F(GlPtexBind, BindsExactlyTheDocumentedPoints) {
-  const faces::FaceTextureSet set = small_set();
+  const faces::FaceTextureSet set = test::figure1_texture_set(4, 2);
   Result<FaceTextureSet> tex = FaceTextureSet::upload(set);
   ASSERT_TRUE(tex.ok()) << tex.status().message;
   const int classes = tex->class_count();

@@ -13,6 +13,7 @@
 #include <set>
 
 #include "gl/gl_api.h"
+#include "gl_test_fixture.h"
 #include "tessera/faces.h"
 #include "tessera/gl.h"
 #include "tessera/ptex.h"
@@ -23,12 +24,6 @@ namespace {
 using namespace tessera;
 using namespace tessera::gl;
 using namespace tessera::gl::api;  // NOLINT(google-build-using-namespace)
-
-faces::FaceTextureSet figure1_set() {
-  Result<faces::FaceTextureSet> set = test::figure1_texture_set(6, 3);
-  EXPECT_TRUE(set.ok()) << set.status().message;
-  return std::move(*set);
-}
 
 // Checks every record against the CPU set: class/layer consistent with the classes, size,
 // neighbours, edge mappings, and corner mappings composing to the CPU corner transforms.
@@ -77,7 +72,7 @@ void expect_mirrors(const faces::FaceTextureSet& set, const PackedFaces& p,
 }
 
 TEST(GlPack, Figure1LayoutMirrorsTheCpuSet) {
-  const faces::FaceTextureSet set = figure1_set();
+  const faces::FaceTextureSet set = test::figure1_texture_set(6, 3);
   Result<PackedFaces> p = pack_faces(set);
   ASSERT_TRUE(p.ok()) << p.status().message;
   expect_mirrors(set, *p, p->records, "figure1");
@@ -96,7 +91,7 @@ TEST(GlPack, Figure1LayoutMirrorsTheCpuSet) {
 }
 
 TEST(GlPack, LimitsGiveOneLineErrors) {
-  const faces::FaceTextureSet set = figure1_set();
+  const faces::FaceTextureSet set = test::figure1_texture_set(6, 3);
   PackLimits l;
   l.max_array_layers = 1;
   Result<PackedFaces> p = pack_faces(set, l);
@@ -119,15 +114,28 @@ TEST(GlPack, LimitsGiveOneLineErrors) {
   EXPECT_FALSE(pack_faces(faces::FaceTextureSet{}).ok());
 }
 
-class GlPtex : public ::testing::Test {
- protected:
-  void SetUp() override {
-    Result<std::unique_ptr<Context>> c = Context::create();
-    if (!c) TESSERA_SKIP_OR_FAIL("gl", "no OpenGL 4.5 context: " << c.status().message);
-    ctx_ = std::move(*c);
-  }
-  std::unique_ptr<Context> ctx_;
-};
+class GlPtex : public test::GlTest {};
+
+// Runs compute program `prog` (local size 64, uniform `count`) on `queries` (storage buffer 1)
+// and returns the `count` vec4s it writes to storage buffer 2; the caller binds its textures.
+// A GL error fails it, `what` naming the lookups.
+Result<std::vector<std::array<float, 4>>> run_lookups(const Program& prog,
+                                                      const std::vector<float>& queries,
+                                                      int count, const std::string& what) {
+  Object qbuf = create_object(ObjectType::buffer), rbuf = create_object(ObjectType::buffer);
+  glNamedBufferData(qbuf.get(), GLsizeiptr(queries.size() * 4), queries.data(), GL_STATIC_DRAW);
+  glNamedBufferData(rbuf.get(), GLsizeiptr(count * 16), nullptr, GL_STATIC_READ);
+  glUseProgram(prog.get());
+  glProgramUniform1i(prog.get(), prog.uniform("count"), count);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, qbuf.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rbuf.get());
+  glDispatchCompute(GLuint((count + 63) / 64), 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<std::array<float, 4>> got(static_cast<std::size_t>(count));
+  glGetNamedBufferSubData(rbuf.get(), 0, GLsizeiptr(count * 16), got.data());
+  if (Status s = check_errors(what); !s.ok()) return s;
+  return got;
+}
 
 // The shared Disney samples that FaceTextureSet accepts (quad meshes).
 std::vector<std::pair<std::string, faces::FaceTextureSet>> disney_sets(
@@ -201,7 +209,7 @@ TEST_F(GlPtex, DisneySamplesUploadAndReadBackExactly) {
 // Hardware clamp-to-border trilinear lookups of the packed arrays (Σ w·T in rgb, Σ w in alpha:
 // Discard's numerator and denominator) against tessera's sampler on the same texels.
 TEST_F(GlPtex, BorderLookupsMatchTheCpuSampler) {
-  const faces::FaceTextureSet set = figure1_set();
+  const faces::FaceTextureSet set = test::figure1_texture_set(6, 3);
   FaceTextureSetOptions options;
   options.max_anisotropy = 1.0f;  // trilinear (anisotropic filtering is implementation-defined)
   Result<FaceTextureSet> gpu = FaceTextureSet::upload(set, options);
@@ -242,23 +250,14 @@ void main() {
       }
     }
     const int count = int(expected.size());
-    Object qbuf = create_object(ObjectType::buffer), rbuf = create_object(ObjectType::buffer);
-    glNamedBufferData(qbuf.get(), GLsizeiptr(queries.size() * 4), queries.data(), GL_STATIC_DRAW);
-    glNamedBufferData(rbuf.get(), GLsizeiptr(count * 16), nullptr, GL_STATIC_READ);
-    glUseProgram(prog->get());
-    glProgramUniform1i(prog->get(), prog->uniform("count"), count);
     glBindTextureUnit(0, gpu->array_texture(c));
     glBindSampler(0, gpu->border_sampler());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, qbuf.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rbuf.get());
-    glDispatchCompute(GLuint((count + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<std::array<float, 4>> got(static_cast<std::size_t>(count));
-    glGetNamedBufferSubData(rbuf.get(), 0, GLsizeiptr(count * 16), got.data());
-    ASSERT_TRUE(check_errors("border lookups").ok());
+    Result<std::vector<std::array<float, 4>>> got =
+        run_lookups(*prog, queries, count, "border lookups");
+    ASSERT_TRUE(got.ok()) << got.status().message;
     for (int i = 0; i < count; ++i) {
       for (int k = 0; k < 4; ++k) {
-        const double d = std::fabs(got[std::size_t(i)][std::size_t(k)] -
+        const double d = std::fabs((*got)[std::size_t(i)][std::size_t(k)] -
                                    expected[std::size_t(i)][std::size_t(k)]);
         max_diff = std::max(max_diff, d);
       }
@@ -282,7 +281,7 @@ namespace {
 // all four methods, at points inside, near edges and corners and beyond the face, with
 // footprints from magnified to several texels.
 TEST_F(GlPtex, SeamsGlslMatchesTheCpuMethods) {
-  const faces::FaceTextureSet set = figure1_set();
+  const faces::FaceTextureSet set = test::figure1_texture_set(6, 3);
   FaceTextureSetOptions options;
   options.max_anisotropy = 1.0f;
   Result<FaceTextureSet> gpu = FaceTextureSet::upload(set, options);
@@ -328,23 +327,14 @@ void main() {
     }
   }
   const int count = int(expected.size());
-  Object qbuf = create_object(ObjectType::buffer), rbuf = create_object(ObjectType::buffer);
-  glNamedBufferData(qbuf.get(), GLsizeiptr(queries.size() * 4), queries.data(), GL_STATIC_DRAW);
-  glNamedBufferData(rbuf.get(), GLsizeiptr(count * 16), nullptr, GL_STATIC_READ);
-  glUseProgram(prog->get());
-  glProgramUniform1i(prog->get(), prog->uniform("count"), count);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, qbuf.get());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, rbuf.get());
-  glDispatchCompute(GLuint((count + 63) / 64), 1, 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  std::vector<std::array<float, 4>> got(static_cast<std::size_t>(count));
-  glGetNamedBufferSubData(rbuf.get(), 0, GLsizeiptr(count * 16), got.data());
-  ASSERT_TRUE(check_errors("seams lookups").ok());
+  Result<std::vector<std::array<float, 4>>> got =
+      run_lookups(*prog, queries, count, "seams lookups");
+  ASSERT_TRUE(got.ok()) << got.status().message;
   std::array<double, 4> max_diff{};
   for (int i = 0; i < count; ++i) {
     const int m = i % 4;
     for (int k = 0; k < 4; ++k) {
-      const double d = std::fabs(double(got[std::size_t(i)][std::size_t(k)]) -
+      const double d = std::fabs(double((*got)[std::size_t(i)][std::size_t(k)]) -
                                  double(expected[std::size_t(i)][std::size_t(k)]));
       max_diff[std::size_t(m)] = std::max(max_diff[std::size_t(m)], std::isnan(d) ? 1e9 : d);
     }

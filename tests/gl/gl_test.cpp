@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "gl/gl_api.h"
+#include "gl_test_fixture.h"
 #include "tessera/gl.h"
 #include "test_support.h"
 
@@ -17,16 +18,13 @@ using namespace tessera;
 using namespace tessera::gl;
 using namespace tessera::gl::api;  // NOLINT(google-build-using-namespace)
 
-class Gl : public ::testing::Test {
+class Gl : public test::GlTest {
  protected:
   void SetUp() override {
     ContextOptions o;
     o.use_environment = true;
-    Result<std::unique_ptr<Context>> c = Context::create(o);
-    if (!c) TESSERA_SKIP_OR_FAIL("gl", "no OpenGL 4.5 context: " << c.status().message);
-    ctx_ = std::move(*c);
+    create_context(o);
   }
-  std::unique_ptr<Context> ctx_;
 };
 
 void write_text(const std::filesystem::path& p, const std::string& text) {

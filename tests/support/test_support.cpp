@@ -55,11 +55,17 @@ Result<faces::FaceTextureSet> baked_texture_set(const faces::FaceScene& scene) {
   return faces::FaceTextureSet::create(faces::bake_faces(scene), std::move(*adj));
 }
 
-Result<faces::FaceTextureSet> figure1_texture_set(int ground, int character) {
+faces::FaceTextureSet figure1_texture_set(int ground, int character) {
   faces::Figure1Options o;
   o.ground = ground;
   o.character = character;
-  return baked_texture_set(faces::figure1_scene(o));
+  Result<faces::FaceTextureSet> set = baked_texture_set(faces::figure1_scene(o));
+  if (!set) {
+    ADD_FAILURE() << "figure1_texture_set(" << ground << ", " << character
+                  << "): " << set.status().message;
+    return {};
+  }
+  return std::move(*set);
 }
 
 double psnr_srgb8(const ImageRGBAF& a, const ImageRGBAF& b) {
