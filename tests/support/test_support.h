@@ -36,10 +36,10 @@ faces::FaceTextureSet figure1_texture_set(int ground, int character);
 /// is a gtest failure and returns 0.
 double psnr_srgb8(const ImageRGBAF& a, const ImageRGBAF& b);
 
-/// A w x h 8-bit image of one colour.
-inline ImageRGBA8 solid_rgba8(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b,
-                              std::uint8_t a = 255) {
-  ImageRGBA8 img(w, h);
+/// A w x h `Image` (ImageRGBA8 or ImageRGBAF) of one colour.
+template <class Image, class T>
+Image solid_image(int w, int h, T r, T g, T b, T a) {
+  Image img(w, h);
   for (std::size_t i = 0; i < img.pixel_count(); ++i) {
     img.pixels[i * 4 + 0] = r;
     img.pixels[i * 4 + 1] = g;
@@ -47,6 +47,12 @@ inline ImageRGBA8 solid_rgba8(int w, int h, std::uint8_t r, std::uint8_t g, std:
     img.pixels[i * 4 + 3] = a;
   }
   return img;
+}
+
+/// A w x h 8-bit image of one colour.
+inline ImageRGBA8 solid_rgba8(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b,
+                              std::uint8_t a = 255) {
+  return solid_image<ImageRGBA8>(w, h, r, g, b, a);
 }
 
 /// True for an OpenGL renderer that filters textures in float (Mesa's software rasterisers),

@@ -20,13 +20,7 @@
 namespace tessera::texture {
 namespace {
 
-using test::constant_image;
-using test::kAllFilters;
-using test::kAllModes;
-using test::make_texture;
-using test::ramp_image;
-using test::random_image;
-using test::texel_grad;
+using namespace test;  // NOLINT(google-build-using-namespace): texture_test_util.h
 
 double channel_mean(const ImageRGBAF& img, int c) {
   double sum = 0;

@@ -10,6 +10,7 @@
 
 #include "tessera/core.h"
 #include "tessera/texture.h"
+#include "test_support.h"
 
 namespace tessera::test {
 
@@ -21,14 +22,7 @@ inline constexpr texture::AddressMode kAllModes[] = {
     texture::AddressMode::border};
 
 inline ImageRGBAF constant_image(int w, int h, float r, float g, float b, float a) {
-  ImageRGBAF img(w, h);
-  for (std::size_t i = 0; i < img.pixel_count(); ++i) {
-    img.pixels[i * 4 + 0] = r;
-    img.pixels[i * 4 + 1] = g;
-    img.pixels[i * 4 + 2] = b;
-    img.pixels[i * 4 + 3] = a;
-  }
-  return img;
+  return solid_image<ImageRGBAF>(w, h, r, g, b, a);
 }
 
 /// Red channel = column index, green = row index: bilinear must reproduce both ramps.
