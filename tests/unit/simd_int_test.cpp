@@ -20,23 +20,12 @@
 
 namespace {
 
-using tessera::simd::vf32x4;
-using tessera::simd::vi32x4;
-using tessera::simd::vi64x2;
-namespace simd = tessera::simd;
-using simd_test::ILanes;
-using simd_test::Lanes;
-using simd_test::lanes;
-using simd_test::Rng;
-
+using namespace simd_test;  // NOLINT(google-build-using-namespace): the 4-lane types, lanes(), Rng
+using simd_test::lanes;     // overloaded below for vu16x8 and vu8x16
 
 // ---- Every integer and packed operation against its SSE2 semantics, on generated lanes -------
 // Lanes mix edge values (zero, +-1, the 8- / 16- / 32-bit limits, 255 / 256, 0x7fff / 0x8000)
 // with pseudo-random ones; each backend must give the bits the reference expression does.
-
-using tessera::simd::vu16x8;
-using tessera::simd::vu8x16;
-
 
 std::int32_t wrap(std::int64_t x) { return std::int32_t(std::uint32_t(std::uint64_t(x))); }
 std::uint8_t clamp_u8(std::int32_t x) { return std::uint8_t(x < 0 ? 0 : x > 255 ? 255 : x); }

@@ -21,14 +21,7 @@
 
 namespace {
 
-using tessera::simd::vf32x4;
-using tessera::simd::vi32x4;
-using tessera::simd::vi64x2;
-namespace simd = tessera::simd;
-using simd_test::ILanes;
-using simd_test::Lanes;
-using simd_test::lanes;
-using simd_test::Rng;
+using namespace simd_test;  // NOLINT(google-build-using-namespace): the 4-lane types, lanes(), Rng
 
 std::uint32_t bits(float x) { return std::bit_cast<std::uint32_t>(x); }
 

@@ -1,6 +1,6 @@
-// Helpers shared by the 4-lane wrapper tests (simd_test.cpp, simd_int_test.cpp): lane views of
-// vf32x4 / vi32x4, and (simd_test_rng.h) a fixed pseudo-random sequence of edge and generated
-// values.
+// Helpers shared by the 4-lane wrapper tests (simd_test.cpp, simd_int_test.cpp): the wrapper's
+// 4-lane types, lane views of vf32x4 / vi32x4, and (simd_test_rng.h) a fixed pseudo-random
+// sequence of edge and generated values.
 #pragma once
 
 #include <cstdint>
@@ -13,6 +13,9 @@ namespace simd_test {
 namespace simd = tessera::simd;
 using tessera::simd::vf32x4;
 using tessera::simd::vi32x4;
+using tessera::simd::vi64x2;
+using tessera::simd::vu16x8;
+using tessera::simd::vu8x16;
 
 struct Lanes {
   float f[4];
