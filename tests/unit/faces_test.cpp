@@ -333,16 +333,22 @@ SmallScene small_scene(int ground) {
   return out;
 }
 
+/// The frames the tests render the small scene at: 64 x 48, `msaa` samples, 2 threads.
+faces::FaceRenderOptions small_frame(int msaa) {
+  faces::FaceRenderOptions o;
+  o.width = 64;
+  o.height = 48;
+  o.msaa = msaa;
+  o.threads = 2;
+  return o;
+}
+
 TEST(Faces, RendersEveryMethod) {
   const SmallScene sc = small_scene(8);
   ASSERT_TRUE(sc.renderer);
   faces::FaceRenderer& renderer = *sc.renderer;
   const scene::Camera& cam = sc.camera;
-  faces::FaceRenderOptions o;
-  o.width = 64;
-  o.height = 48;
-  o.msaa = 4;
-  o.threads = 2;
+  faces::FaceRenderOptions o = small_frame(4);
   std::vector<ImageRGBAF> images;
   for (SeamMethod m : faces::all_methods()) {
     o.sampling.method = m;
@@ -379,11 +385,7 @@ TEST(Faces, RendersAtAnExplicitSamplePattern) {
   ASSERT_TRUE(sc.renderer);
   faces::FaceRenderer& renderer = *sc.renderer;
   const scene::Camera& cam = sc.camera;
-  faces::FaceRenderOptions o;
-  o.width = 64;
-  o.height = 48;
-  o.msaa = 2;
-  o.threads = 2;
+  faces::FaceRenderOptions o = small_frame(2);
   const auto frame = [&](std::vector<raster::SampleOffset> pattern) {
     o.sample_pattern = std::move(pattern);
     Result<faces::FaceFrame> f = renderer.render(cam, o);
