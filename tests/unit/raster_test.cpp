@@ -215,6 +215,23 @@ std::array<float, 4> project(double x, double y, double z, double near = 0.1,
           float(-z)};
 }
 
+/// A draw of `pos` (clip-space x, y, z, w per vertex) with two varyings per vertex (`var`), no
+/// culling, whose shader writes (varying 0, varying 1, 1): channel 2 marks the covered samples.
+DrawCall two_varying_draw(const std::vector<float>& pos, const std::vector<float>& var) {
+  DrawCall d;
+  d.positions = pos.data();
+  d.varyings = var.data();
+  d.varying_count = 2;
+  d.vertex_count = pos.size() / 4;
+  d.cull = CullMode::none;
+  d.shader = [](const ShadeInput& in, float* out) {
+    out[0] = in.varyings[0];
+    out[1] = in.varyings[1];
+    out[2] = 1.0f;
+  };
+  return d;
+}
+
 // Perspective-correct interpolation on a tilted quad against the analytic ray/plane value.
 TEST(RasterInterpolation, PerspectiveCorrectOnTiltedQuad) {
   constexpr int kSize = 64;
@@ -229,19 +246,9 @@ TEST(RasterInterpolation, PerspectiveCorrectOnTiltedQuad) {
     var.push_back(float(c[1]));
   }
   const std::uint32_t idx[] = {0, 1, 2, 0, 2, 3};
-  DrawCall d;
-  d.positions = pos.data();
-  d.varyings = var.data();
-  d.varying_count = 2;
-  d.vertex_count = 4;
+  DrawCall d = two_varying_draw(pos, var);
   d.indices = idx;
   d.index_count = 6;
-  d.cull = CullMode::none;
-  d.shader = [](const ShadeInput& in, float* out) {
-    out[0] = in.varyings[0];
-    out[1] = in.varyings[1];
-    out[2] = 1.0f;
-  };
   FrameBuffer fb = make_fb(kSize, kSize);
   Rasteriser r({.threads = 1});
   render_ok(r, fb, d);
@@ -277,17 +284,7 @@ TEST(RasterClipping, NearPlaneTriangleCrossingCamera) {
     var.push_back(i == 1 ? 1.0f : 0.0f);  // barycentric of vertex 1
     var.push_back(i == 2 ? 1.0f : 0.0f);  // barycentric of vertex 2
   }
-  DrawCall d;
-  d.positions = pos.data();
-  d.varyings = var.data();
-  d.varying_count = 2;
-  d.vertex_count = 3;
-  d.cull = CullMode::none;
-  d.shader = [](const ShadeInput& in, float* out) {
-    out[0] = in.varyings[0];
-    out[1] = in.varyings[1];
-    out[2] = 1.0f;
-  };
+  const DrawCall d = two_varying_draw(pos, var);
   FrameBuffer fb = make_fb(kSize, kSize);
   Rasteriser r({.threads = 1});
   const RasterStats st = render_ok(r, fb, d);
