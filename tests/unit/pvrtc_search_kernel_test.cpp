@@ -26,6 +26,17 @@ namespace {
 
 constexpr std::int32_t kExclude = 1 << 24;  // as build_local
 
+// The early exit of an evaluator given `bound`: the exact error below the bound, else a value
+// from the bound up to the exact error.
+void expect_bounded(std::uint32_t got, std::uint32_t exact, std::uint32_t bound) {
+  if (exact < bound) {
+    EXPECT_EQ(got, exact) << "bound " << bound;
+  } else {
+    EXPECT_GE(got, bound) << "exact " << exact;
+    EXPECT_LE(got, exact) << "bound " << bound;
+  }
+}
+
 // A random window as build_local lays one out: per texel the other blocks' share of the A and B
 // sums (bounded so that the whole sum stays within 16 times the channel maximum), block j's
 // weight, the target and the blends its block mode lacks; texels 49-55 zero pads.
@@ -97,16 +108,8 @@ void check_windows(int nch, bool punch, int alpha_weight, unsigned seed) {
           << "window " << w << " channel " << c;
       for (const std::uint32_t bound : {exact / 3, exact, exact + 1, exact + 1000}) {
         const std::uint32_t p = planar_error(pw, c, channel(ca, c), channel(cb, c), bound);
-        const std::uint32_t g = local_error_simd(lw, ca, cb, bound);
-        if (exact < bound) {
-          EXPECT_EQ(p, exact);
-          EXPECT_EQ(g, exact);
-        } else {
-          EXPECT_GE(p, bound);
-          EXPECT_GE(g, bound);
-          EXPECT_LE(p, exact);
-          EXPECT_LE(g, exact);
-        }
+        expect_bounded(p, exact, bound);
+        expect_bounded(local_error_simd(lw, ca, cb, bound), exact, bound);
       }
     }
     // The current pair itself (no channel changed) through the planar tables.
@@ -226,14 +229,8 @@ TEST(PvrtcSearchKernel, WeightedPlanarMatchesGeneral) {
       ASSERT_EQ(planar_error_t<true>(pw, c, channel(ca, c), channel(cb, c), ~0u), exact);
       for (const std::uint32_t bound : {exact / 3, exact, exact + 1}) {
         const std::uint32_t p = planar_error_t<true>(pw, c, channel(ca, c), channel(cb, c), bound);
-        const std::uint32_t g = local_error_weighted(lw, ca, cb, bound);
-        if (exact < bound) {
-          EXPECT_EQ(p, exact);
-          EXPECT_EQ(g, exact);
-        } else {
-          EXPECT_GE(p, bound);
-          EXPECT_GE(g, bound);
-        }
+        expect_bounded(p, exact, bound);
+        expect_bounded(local_error_weighted(lw, ca, cb, bound), exact, bound);
       }
     }
     std::uint32_t texel[52];
@@ -261,16 +258,7 @@ TEST(PvrtcSearchKernel, SingleColourChannel) {
 }
 
 // The AVX2 evaluators against the baseline ones: the same error below the bound, >= the bound
-// (and no more than the error) otherwise; the same per-texel errors.
-void expect_bounded(std::uint32_t got, std::uint32_t exact, std::uint32_t bound) {
-  if (exact < bound) {
-    EXPECT_EQ(got, exact) << "bound " << bound;
-  } else {
-    EXPECT_GE(got, bound) << "exact " << exact;
-    EXPECT_LE(got, exact) << "bound " << bound;
-  }
-}
-
+// (and no more than the error) otherwise (expect_bounded); the same per-texel errors.
 std::vector<std::uint32_t> bounds_for(std::uint32_t exact) {
   return {0u,    1u,        exact / 3,    exact / 2, exact > 0 ? exact - 1 : 0u,
           exact, exact + 1, exact + 1000, ~0u};
