@@ -121,14 +121,18 @@ DrawCall make_draw() {
   return d;
 }
 
-void BM_RasterFrame(benchmark::State& state) {
-  const int msaa = int(state.range(0));
-  const int threads = int(state.range(1));
+/// The benchmarks' kWidth x kHeight frame buffer at `msaa` samples per pixel.
+FrameBuffer frame_buffer(int msaa) {
   FrameBufferDesc desc;
   desc.width = kWidth;
   desc.height = kHeight;
   desc.msaa = msaa;
-  FrameBuffer fb = std::move(FrameBuffer::create(desc)).value();
+  return std::move(FrameBuffer::create(desc)).value();
+}
+
+void BM_RasterFrame(benchmark::State& state) {
+  const int threads = int(state.range(1));
+  FrameBuffer fb = frame_buffer(int(state.range(0)));
   Rasteriser r({.threads = threads});
   const DrawCall d = make_draw();
   ClearValues clear;
@@ -152,13 +156,8 @@ BENCHMARK(BM_RasterFrame)
     ->UseRealTime();
 
 void BM_Resolve(benchmark::State& state) {
-  const int msaa = int(state.range(0));
   const int threads = int(state.range(1));
-  FrameBufferDesc desc;
-  desc.width = kWidth;
-  desc.height = kHeight;
-  desc.msaa = msaa;
-  FrameBuffer fb = std::move(FrameBuffer::create(desc)).value();
+  FrameBuffer fb = frame_buffer(int(state.range(0)));
   Rasteriser r({.threads = threads});
   ClearValues clear;
   if (tessera::Result<RasterStats> st = r.render(fb, make_draw(), &clear); !st) {
