@@ -18,26 +18,19 @@ import sys
 import tempfile
 import zlib
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests",
+                                "support"))
+from cli_harness import png_bytes as harness_png_bytes  # noqa: E402
+from cli_harness import png_chunk  # noqa: E402
+
 TESSERA = sys.argv[1]
 OUT = sys.argv[2] if len(sys.argv) > 2 else os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                                          "corpus")
 
 
 def png_bytes(width, height, channels, pixel):
-    colour_type = {1: 0, 2: 4, 3: 2, 4: 6}[channels]
-    raw = bytearray()
-    for y in range(height):
-        raw.append(0)
-        for x in range(width):
-            raw.extend(pixel(x, y)[:channels])
-
-    def chunk(kind, data):
-        c = kind + data
-        return struct.pack(">I", len(data)) + c + struct.pack(">I", zlib.crc32(c) & 0xFFFFFFFF)
-
-    ihdr = struct.pack(">IIBBBBB", width, height, 8, colour_type, 0, 0, 0)
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(bytes(raw), 9))
-            + chunk(b"IEND", b""))
+    """cli_harness.png_bytes at zlib level 9 (the committed seeds' bytes)."""
+    return harness_png_bytes(width, height, channels, pixel, level=9)
 
 
 def filtered_png_bytes(width, height, channels, pixel, extra_chunks=(), idat_parts=1):
@@ -58,17 +51,12 @@ def filtered_png_bytes(width, height, channels, pixel, extra_chunks=(), idat_par
             paeth = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
             raw.append((v - (0, a, b, (a + b) // 2, paeth)[kind]) % 256)
         prev = row
-
-    def chunk(kind, data):
-        c = kind + data
-        return struct.pack(">I", len(data)) + c + struct.pack(">I", zlib.crc32(c) & 0xFFFFFFFF)
-
     stream = zlib.compress(bytes(raw), 9)
     step = -(-len(stream) // idat_parts)
-    idats = b"".join(chunk(b"IDAT", stream[i:i + step]) for i in range(0, len(stream), step))
+    idats = b"".join(png_chunk(b"IDAT", stream[i:i + step]) for i in range(0, len(stream), step))
     ihdr = struct.pack(">IIBBBBB", width, height, 8, colour_type, 0, 0, 0)
-    extras = b"".join(chunk(kind, data) for kind, data in extra_chunks)
-    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + extras + idats + chunk(b"IEND", b"")
+    extras = b"".join(png_chunk(kind, data) for kind, data in extra_chunks)
+    return b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", ihdr) + extras + idats + png_chunk(b"IEND", b"")
 
 
 def png_diff_seeds():

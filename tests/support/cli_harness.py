@@ -40,24 +40,32 @@ def run_on_pty(program, args):
     return os.WEXITSTATUS(status), text
 
 
-def write_png(path, width, height, pixel, alpha):
-    """Writes an 8-bit RGB or RGBA PNG with the standard library; pixel(x, y) returns a tuple of
-    3 or 4 ints. Returns `path`."""
-    channels = 4 if alpha else 3
+def png_chunk(kind, data):
+    """One PNG chunk: the length of `data`, the 4-byte `kind`, `data` and the CRC."""
+    c = kind + data
+    return struct.pack(">I", len(data)) + c + struct.pack(">I", zlib.crc32(c) & 0xFFFFFFFF)
+
+
+def png_bytes(width, height, channels, pixel, level=-1):
+    """An 8-bit PNG made with the standard library: `channels` 1 to 4 (grey, grey + alpha, RGB,
+    RGBA), filter None on every row, zlib `level` (-1: zlib's default); pixel(x, y) returns a
+    tuple of at least `channels` ints."""
+    colour_type = {1: 0, 2: 4, 3: 2, 4: 6}[channels]
     raw = bytearray()
     for y in range(height):
         raw.append(0)
         for x in range(width):
             raw.extend(pixel(x, y)[:channels])
+    ihdr = struct.pack(">IIBBBBB", width, height, 8, colour_type, 0, 0, 0)
+    return (b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", ihdr)
+            + png_chunk(b"IDAT", zlib.compress(bytes(raw), level)) + png_chunk(b"IEND", b""))
 
-    def chunk(kind, data):
-        c = kind + data
-        return struct.pack(">I", len(data)) + c + struct.pack(">I", zlib.crc32(c) & 0xFFFFFFFF)
 
-    ihdr = struct.pack(">IIBBBBB", width, height, 8, 6 if alpha else 2, 0, 0, 0)
+def write_png(path, width, height, pixel, alpha):
+    """Writes an 8-bit RGB or RGBA PNG (`png_bytes`); pixel(x, y) returns a tuple of 3 or 4 ints.
+    Returns `path`."""
     with open(path, "wb") as f:
-        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(bytes(raw)))
-                + chunk(b"IEND", b""))
+        f.write(png_bytes(width, height, 4 if alpha else 3, pixel))
     return path
 
 
