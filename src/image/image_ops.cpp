@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "image/normal_kernel.h"
+#include "image/texel_loops.h"
 
 namespace tessera::image {
 
@@ -118,21 +119,13 @@ void flip_y(ImageRGBA8& image) {
 void premultiply_alpha(ImageRGBA8& image, bool srgb, const Parallel& parallel) {
   if (!image.has_alpha || image.empty()) return;
   const std::uint8_t* table = srgb ? srgb_premultiply_table().data() : nullptr;
-  parallel_for(
-      0, image.height, 16,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (std::int64_t y = y0; y < y1; ++y) {
-          for (int x = 0; x < image.width; ++x) {
-            std::uint8_t* p = image.at(x, int(y));
-            const unsigned a = p[3];
-            for (int c = 0; c < 3; ++c) {
-              // (c a + 127) / 255 is c a / 255 rounded to nearest: c a / 255 is never k + 1/2.
-              p[c] = table ? table[a * 256 + p[c]] : std::uint8_t((p[c] * a + 127) / 255);
-            }
-          }
-        }
-      },
-      parallel);
+  detail::for_each_texel(image, parallel, [&](std::uint8_t* p) {
+    const unsigned a = p[3];
+    for (int c = 0; c < 3; ++c) {
+      // (c a + 127) / 255 is c a / 255 rounded to nearest: c a / 255 is never k + 1/2.
+      p[c] = table ? table[a * 256 + p[c]] : std::uint8_t((p[c] * a + 127) / 255);
+    }
+  });
 }
 
 void bleed_alpha(ImageRGBA8& image, const Parallel& parallel) {
@@ -225,20 +218,12 @@ void bleed_alpha(ImageRGBA8& image, const Parallel& parallel) {
 }
 
 void normalise_normals(ImageRGBA8& image, const Parallel& parallel) {
-  parallel_for(
-      0, image.height, 16,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (std::int64_t y = y0; y < y1; ++y) {
-          for (int x = 0; x < image.width; ++x) {
-            std::uint8_t* p = image.at(x, int(y));
-            double v[3] = {detail::decode_normal(p[0]), detail::decode_normal(p[1]),
-                           detail::decode_normal(p[2])};
-            detail::normalise_or_z(v);
-            for (int c = 0; c < 3; ++c) p[c] = detail::encode_normal(v[c]);
-          }
-        }
-      },
-      parallel);
+  detail::for_each_texel(image, parallel, [](std::uint8_t* p) {
+    double v[3] = {detail::decode_normal(p[0]), detail::decode_normal(p[1]),
+                   detail::decode_normal(p[2])};
+    detail::normalise_or_z(v);
+    for (int c = 0; c < 3; ++c) p[c] = detail::encode_normal(v[c]);
+  });
 }
 
 }  // namespace tessera::image

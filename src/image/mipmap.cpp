@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "image/mip_filters.h"
 #include "image/normal_kernel.h"
+#include "image/texel_loops.h"
 
 namespace tessera::image {
 
@@ -17,23 +17,12 @@ namespace {
 /// alpha in [0, 1].
 using Work = ImageRGBAF;
 
-/// Writes `texel(s, d)` for every pixel: `s` the pixel of `src`, `d` the same pixel of `dst`
-/// (the same size), rows in parallel.
-template <class Src, class Dst, class Texel>
-void map_texels(const Src& src, Dst& dst, int threads, Texel texel) {
-  parallel_for(
-      0, src.height, 16,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (std::int64_t y = y0; y < y1; ++y) {
-          for (int x = 0; x < src.width; ++x) texel(src.at(x, int(y)), dst.at(x, int(y)));
-        }
-      },
-      {threads});
-}
+using detail::for_each_texel;
+using detail::map_texels;
 
 Work to_work(const ImageRGBA8& img, const MipmapOptions& o) {
   Work w(img.width, img.height);
-  map_texels(img, w, o.threads, [&](const std::uint8_t* s, float* d) {
+  map_texels(img, w, {o.threads}, [&](const std::uint8_t* s, float* d) {
     for (int c = 0; c < 3; ++c) d[c] = o.srgb ? srgb8_to_linear(s[c]) : s[c] / 255.0f;
     d[3] = s[3] / 255.0f;
   });
@@ -50,7 +39,7 @@ template <class Colour>
 ImageRGBA8 to_rgba8(const Work& w, bool has_alpha, int threads, Colour colour) {
   ImageRGBA8 img(w.width, w.height);
   img.has_alpha = has_alpha;
-  map_texels(w, img, threads, [&](const float* s, std::uint8_t* d) {
+  map_texels(w, img, {threads}, [&](const float* s, std::uint8_t* d) {
     for (int c = 0; c < 3; ++c) d[c] = colour(s[c]);
     d[3] = has_alpha ? quantise_unit(s[3]) : 255;
   });
@@ -65,7 +54,7 @@ ImageRGBA8 from_work(const Work& w, bool has_alpha, const MipmapOptions& o) {
 /// Normal maps: RGB as unit vectors (decoded, normalised; zero becomes +Z), alpha in [0, 1].
 Work to_normal_work(const ImageRGBA8& img, int threads) {
   Work w(img.width, img.height);
-  map_texels(img, w, threads, [](const std::uint8_t* s, float* d) {
+  map_texels(img, w, {threads}, [](const std::uint8_t* s, float* d) {
     for (int c = 0; c < 3; ++c) d[c] = float(detail::decode_normal(s[c]));
     detail::normalise_or_z(d);
     d[3] = s[3] / 255.0f;
@@ -75,7 +64,7 @@ Work to_normal_work(const ImageRGBA8& img, int threads) {
 
 /// Scales every vector of a filtered normal-map level back to unit length (zero becomes +Z).
 void renormalise(Work& w, int threads) {
-  map_texels(w, w, threads, [](const float*, float* d) { detail::normalise_or_z(d); });
+  for_each_texel(w, {threads}, [](float* p) { detail::normalise_or_z(p); });
 }
 
 /// Normal maps: each vector stored as in `normalise_normals`, alpha as in `from_work`.
@@ -133,14 +122,6 @@ Work box_half(const Work& src, bool premultiply, int threads) {
   return dst;
 }
 
-double sinc(double x) {
-  if (std::abs(x) < 1e-9) return 1.0;
-  const double px = std::numbers::pi * x;
-  return std::sin(px) / px;
-}
-
-double lanczos3(double x) { return std::abs(x) < 3.0 ? sinc(x) * sinc(x / 3.0) : 0.0; }
-
 /// Taps of one output coordinate: first source index and normalised weights.
 struct Taps {
   int first = 0;
@@ -160,7 +141,7 @@ std::vector<Taps> make_taps(int src, int dst) {
     t.first = lo;
     double sum = 0;
     for (int s = lo; s <= hi; ++s) {
-      const double wgt = lanczos3((s + 0.5 - centre) / stretch);
+      const double wgt = detail::mip_kernel(MipFilter::lanczos, (s + 0.5 - centre) / stretch);
       t.weights.push_back(wgt);
       sum += wgt;
     }
