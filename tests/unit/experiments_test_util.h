@@ -7,10 +7,24 @@
 
 #include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "tessera/experiments.h"
 
 namespace tessera::experiments::test {
+
+/// The JSON reports of one experiment run on Vulkan (`jv`) and on GL (`jg`) are twins: each
+/// names its backend, and they have the same top-level keys.
+inline void expect_twin_reports(const nlohmann::json& jv, const nlohmann::json& jg) {
+  EXPECT_EQ(jv["backend"], "vk");
+  EXPECT_EQ(jg["backend"], "gl");
+  std::vector<std::string> kv, kg;
+  for (const auto& [k, v] : jv.items()) kv.push_back(k);
+  for (const auto& [k, v] : jg.items()) kg.push_back(k);
+  EXPECT_EQ(kv, kg);
+}
 
 inline SeamsConfig tiny_seams() {
   SeamsConfig c;
