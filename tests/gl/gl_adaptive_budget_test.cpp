@@ -9,41 +9,35 @@ namespace {
 
 TEST_F(GlAdaptive, BudgetOnDeferredFrame) {
   use_deferred(40, 32, 4);
-  Result<gl::ShadeResult> one = deferred_->shade_default(shading_);
-  ASSERT_TRUE(one.ok()) << one.status().message;
-  Result<gl::ShadeResult> ad = deferred_->shade_adaptive(shading_, d::AdaptiveOptions{});
-  ASSERT_TRUE(ad.ok()) << ad.status().message;
-  int classes = 0;
-  gl::AdaptiveFrame frame;
-  frame.gbuffer = deferred_textures(&classes);
-  const std::vector<int> asked = extra_of(ad->samples);
+  ASSERT_NO_FATAL_FAILURE(shade_default_and_adaptive());
+  const std::vector<int> asked = extra_of(ad_->samples);
   const std::int64_t total = std::accumulate(asked.begin(), asked.end(), std::int64_t(0));
   ASSERT_GT(total, 100);
   for (AdaptiveSchedule sch : {AdaptiveSchedule::frame_list, AdaptiveSchedule::loop}) {
-    gl::AdaptiveSupersamplerOptions o = deferred_options(classes);
+    gl::AdaptiveSupersamplerOptions o = deferred_options(classes_);
     o.schedule = sch;
     o.profile = true;
     Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
     ASSERT_TRUE(c.ok()) << c.status().message;
     // Budget 0: the 1 spp image.
-    frame.budget = 0;
-    Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(frame);
+    frame_.budget = 0;
+    Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(frame_);
     ASSERT_TRUE(r.ok()) << r.status().message;
-    EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), one->image), 0u);
+    EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), one_->image), 0u);
     EXPECT_EQ(r->extra_samples, 0u);
     // Not binding (exactly the total, and far above): the unbudgeted image.
     for (std::int64_t b : {total, std::int64_t(1) << 40}) {
-      frame.budget = b;
-      r = (*c)->dispatch(frame);
+      frame_.budget = b;
+      r = (*c)->dispatch(frame_);
       ASSERT_TRUE(r.ok()) << r.status().message;
-      EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), ad->image), 0u) << b;
+      EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), ad_->image), 0u) << b;
       EXPECT_EQ(r->extra_samples, std::uint64_t(total));
     }
     // Binding: exactly the budget; every pixel keeps all its samples or none, but one; the
     // same result twice.
     for (std::int64_t b : {total / 3, total - 1, std::int64_t(1)}) {
-      frame.budget = b;
-      r = (*c)->dispatch(frame);
+      frame_.budget = b;
+      r = (*c)->dispatch(frame_);
       ASSERT_TRUE(r.ok()) << r.status().message;
       const std::vector<float> img = read_rgba32f(r->colour);
       const std::vector<int> got = extra_of(read_counts(r->sample_counts, w_, h_));
@@ -55,17 +49,17 @@ TEST_F(GlAdaptive, BudgetOnDeferredFrame) {
         partial += got[i] != 0 && got[i] != asked[i];
       }
       EXPECT_LE(partial, 1);
-      Result<gl::AdaptiveFrameResult> again = (*c)->dispatch(frame);
+      Result<gl::AdaptiveFrameResult> again = (*c)->dispatch(frame_);
       ASSERT_TRUE(again.ok());
       EXPECT_EQ(read_rgba32f(again->colour), img);
       EXPECT_EQ(extra_of(read_counts(again->sample_counts, w_, h_)), got);
     }
   }
-  gl::AdaptiveSupersamplerOptions o = deferred_options(classes);
+  gl::AdaptiveSupersamplerOptions o = deferred_options(classes_);
   Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
   ASSERT_TRUE(c.ok());
-  frame.budget = -1;
-  Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(frame);
+  frame_.budget = -1;
+  Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(frame_);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.status().message.find("budget = -1"), std::string::npos) << r.status().message;
 }

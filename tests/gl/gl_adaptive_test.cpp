@@ -14,41 +14,35 @@ TEST_F(GlAdaptive, SameImagesAsDeferredRenderer) {
     use_deferred(40, 32, m);
     Result<gl::ShadeResult> ref = deferred_->shade_reference(shading_);
     ASSERT_TRUE(ref.ok()) << ref.status().message;
-    Result<gl::ShadeResult> one = deferred_->shade_default(shading_);
-    ASSERT_TRUE(one.ok()) << one.status().message;
-    Result<gl::ShadeResult> ad = deferred_->shade_adaptive(shading_, d::AdaptiveOptions{});
-    ASSERT_TRUE(ad.ok()) << ad.status().message;
-    int classes = 0;
-    gl::AdaptiveFrame frame;
-    frame.gbuffer = deferred_textures(&classes);
+    ASSERT_NO_FATAL_FAILURE(shade_default_and_adaptive());
     for (AdaptiveSchedule s : {AdaptiveSchedule::frame_list,
                                    AdaptiveSchedule::tile_list, AdaptiveSchedule::loop}) {
-      gl::AdaptiveSupersamplerOptions o = deferred_options(classes);
+      gl::AdaptiveSupersamplerOptions o = deferred_options(classes_);
       o.schedule = s;
       Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
       ASSERT_TRUE(c.ok()) << c.status().message;
-      Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(frame);
+      Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(frame_);
       ASSERT_TRUE(r.ok()) << r.status().message;
-      EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), ad->image), 0u)
+      EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), ad_->image), 0u)
           << "m=" << m << " schedule " << int(s);
-      EXPECT_EQ(read_counts(r->sample_counts, w_, h_), ad->samples) << "m=" << m;
+      EXPECT_EQ(read_counts(r->sample_counts, w_, h_), ad_->samples) << "m=" << m;
       if (s != AdaptiveSchedule::frame_list) continue;
-      r = (*c)->dispatch_reference(frame);
+      r = (*c)->dispatch_reference(frame_);
       ASSERT_TRUE(r.ok()) << r.status().message;
       EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), ref->image), 0u) << "m=" << m;
-      r = (*c)->dispatch_first_sample(frame);
+      r = (*c)->dispatch_first_sample(frame_);
       ASSERT_TRUE(r.ok()) << r.status().message;
-      EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), one->image), 0u) << "m=" << m;
+      EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), one_->image), 0u) << "m=" << m;
     }
     // A frame list too small for the frame: the pixels that do not fit shade their own
     // samples in the resolve pass, the image is the same.
-    gl::AdaptiveSupersamplerOptions o = deferred_options(classes);
+    gl::AdaptiveSupersamplerOptions o = deferred_options(classes_);
     o.list_capacity = 37;
     Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
     ASSERT_TRUE(c.ok()) << c.status().message;
-    Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(frame);
+    Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(frame_);
     ASSERT_TRUE(r.ok()) << r.status().message;
-    EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), ad->image), 0u) << "m=" << m;
+    EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), ad_->image), 0u) << "m=" << m;
   }
 }
 

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -117,6 +118,19 @@ class GlAdaptive : public test::GlTest {
     glActiveTexture(GLenum(active));
     return t;
   }
+  // DeferredRenderer's 1 spp (one_) and adaptive (ad_) images of the use_deferred G-buffer,
+  // and the frame a component reads it from: frame_.gbuffer the textures the adaptive shade left
+  // bound, classes_ its texture arrays.
+  void shade_default_and_adaptive() {
+    Result<gl::ShadeResult> one = deferred_->shade_default(shading_);
+    ASSERT_TRUE(one.ok()) << one.status().message;
+    Result<gl::ShadeResult> ad = deferred_->shade_adaptive(shading_, d::AdaptiveOptions{});
+    ASSERT_TRUE(ad.ok()) << ad.status().message;
+    one_ = std::move(*one);
+    ad_ = std::move(*ad);
+    frame_ = {};
+    frame_.gbuffer = deferred_textures(&classes_);
+  }
   gl::AdaptiveSupersamplerOptions deferred_options(int classes) const {
     gl::AdaptiveSupersamplerOptions o;
     o.width = w_;
@@ -139,6 +153,9 @@ class GlAdaptive : public test::GlTest {
   std::unique_ptr<gl::DeferredRenderer> deferred_;
   d::ShadingOptions shading_;
   int w_ = 0, h_ = 0, m_ = 0;
+  std::optional<gl::ShadeResult> one_, ad_;
+  gl::AdaptiveFrame frame_;
+  int classes_ = 0;
 };
 
 // A synthetic G-buffer: slot 0 = (depth, normal), slot 1 = (id, 0, 0, 0), RGBA32F.
