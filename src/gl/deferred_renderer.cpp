@@ -275,9 +275,15 @@ Status read_samples(const State& st, ShadeResult& r) {
   return check_errors("deferred GL: k map read-back");
 }
 
-}  // namespace
-
-namespace {
+/// The end of the adaptive and edge-per-sample passes: the timers into `r`, the image (SSBO 6)
+/// and the per-pixel sample counts read back.
+Status read_timed_result(State& st, PassTimer& timer, ShadeResult& r) {
+  if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
+  Result<ImageRGBAF> img = read_rgba(st, st.out_buf);
+  if (!img) return img.status();
+  r.image = std::move(*img);
+  return read_samples(st, r);
+}
 
 /// The reference (component kind 1) or 1 spp (kind 2): the adaptive component where m >= 2,
 /// else the one pass `define` of deferred_passes.comp, whose colours land in `buffer`, with
@@ -329,11 +335,7 @@ Result<ShadeResult> DeferredRenderer::shade_adaptive(const deferred::ShadingOpti
   if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
   if (Status s = run_pass(st, timer, "metrics", {"TESSERA_PASS_METRICS"}); !s.ok()) return s;
   if (Status s = run_extra(st, timer, "extra", false); !s.ok()) return s;
-  if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
-  Result<ImageRGBAF> img = read_rgba(st, st.out_buf);
-  if (!img) return img.status();
-  r.image = std::move(*img);
-  if (Status s = read_samples(st, r); !s.ok()) return s;
+  if (Status s = read_timed_result(st, timer, r); !s.ok()) return s;
   return r;
 }
 
@@ -345,11 +347,7 @@ Result<ShadeResult> DeferredRenderer::shade_edge_per_sample(
   PassTimer timer;
   if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
   if (Status s = run_extra(st, timer, "edge_extra", true); !s.ok()) return s;
-  if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
-  Result<ImageRGBAF> img = read_rgba(st, st.out_buf);
-  if (!img) return img.status();
-  r.image = std::move(*img);
-  if (Status s = read_samples(st, r); !s.ok()) return s;
+  if (Status s = read_timed_result(st, timer, r); !s.ok()) return s;
   return r;
 }
 

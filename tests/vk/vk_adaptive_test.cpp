@@ -14,22 +14,7 @@
 namespace tessera::vk_test {
 namespace {
 
-class VkAdaptive : public ::testing::Test {
- protected:
-  void SetUp() override { make_engine({}); }
-  void make_engine(const EngineOptions& eo) {
-    std::string missing;
-    auto e = Engine::create(eo, &missing);
-    if (!e) TESSERA_SKIP_OR_FAIL(missing, e.status().message);
-    engine_ = std::move(*e);
-  }
-  void TearDown() override {
-    if (!engine_) return;
-    engine_->shutdown();
-    EXPECT_EQ(engine_->messages(), 0) << "validation messages:" << engine_->first_messages();
-  }
-  std::unique_ptr<Engine> engine_;
-};
+using VkAdaptive = EngineTest;
 
 TEST_F(VkAdaptive, BudgetIsExactAndCountsAgree) {
   const SceneGBuffer g = scene_gbuffer(32, 24, 4);

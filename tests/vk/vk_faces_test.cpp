@@ -44,21 +44,7 @@ struct Teapot {
 
 constexpr int kW = 320, kH = 240;
 
-class VkFaces : public ::testing::Test {
- protected:
-  void SetUp() override {
-    std::string missing;
-    auto e = Engine::create({}, &missing);
-    if (!e) TESSERA_SKIP_OR_FAIL(missing, e.status().message);
-    engine_ = std::move(*e);
-  }
-  void TearDown() override {
-    if (!engine_) return;
-    engine_->shutdown();
-    EXPECT_EQ(engine_->messages(), 0) << "validation messages:" << engine_->first_messages();
-  }
-  std::unique_ptr<Engine> engine_;
-};
+using VkFaces = EngineTest;
 
 Teapot load_teapot(const std::filesystem::path& data) {
   const std::string dir = (data / "ptex" / "teapot").string();

@@ -5,6 +5,7 @@
 // and calls it directly, as an engine would; tessera::vk gets only the function pointers.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <vulkan/vulkan.h>
 
 #include <atomic>
@@ -15,6 +16,7 @@
 
 #include "tessera/core.h"
 #include "tessera/vk.h"
+#include "test_require.h"
 
 namespace tessera::vk_test {
 
@@ -90,6 +92,27 @@ class Engine {
   VkCommandPool pool_ = VK_NULL_HANDLE;
   std::atomic<int> messages_{0};
   std::vector<std::string> texts_;
+};
+
+/// A test with an engine of its own (`make_engine`, by default in SetUp with the default
+/// options): it skips, or fails under TESSERA_TEST_REQUIRE, without a Vulkan device or the
+/// validation layer, and TearDown fails it on any validation message (leaks included: they are
+/// reported when the engine shuts down).
+class EngineTest : public ::testing::Test {
+ protected:
+  void SetUp() override { make_engine({}); }
+  void make_engine(const EngineOptions& eo) {
+    std::string missing;
+    auto e = Engine::create(eo, &missing);
+    if (!e) TESSERA_SKIP_OR_FAIL(missing, e.status().message);
+    engine_ = std::move(*e);
+  }
+  void TearDown() override {
+    if (!engine_) return;
+    engine_->shutdown();
+    EXPECT_EQ(engine_->messages(), 0) << "validation messages:" << engine_->first_messages();
+  }
+  std::unique_ptr<Engine> engine_;
 };
 
 }  // namespace tessera::vk_test
