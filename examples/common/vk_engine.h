@@ -399,6 +399,20 @@ struct ForwardPipelineDesc {
   bool cull_back = true;  // counter-clockwise front faces, as the CPU renderers
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkRenderPass pass = VK_NULL_HANDLE;
+
+  /// The stages, vertex layout and size of a frame description `in` (members vertex_spirv,
+  /// fragment_spirv, stride, attributes, width, height), culling back faces.
+  template <class Frame>
+  static ForwardPipelineDesc of(const Frame& in) {
+    ForwardPipelineDesc d;
+    d.vertex_spirv = &in.vertex_spirv;
+    d.fragment_spirv = &in.fragment_spirv;
+    d.stride = in.stride;
+    d.attributes = &in.attributes;
+    d.width = in.width;
+    d.height = in.height;
+    return d;
+  }
 };
 
 /// Creates a forward pipeline (triangle lists, +y up viewport, depth test less with writes, the

@@ -65,14 +65,7 @@ void create_targets(const Device& d, Objects& o, int w, int h) {
 
 // The pipeline (vk_engine.h's forward pipeline); "" or the problem.
 std::string create_pipeline(VkDevice dev, Objects& o, const Frame& in) {
-  ForwardPipelineDesc desc;
-  desc.vertex_spirv = &in.vertex_spirv;
-  desc.fragment_spirv = &in.fragment_spirv;
-  desc.stride = in.stride;
-  desc.attributes = &in.attributes;
-  desc.width = in.width;
-  desc.height = in.height;
-  if (VkResult r = o.forward.create_pipeline(dev, desc); r != VK_SUCCESS) {
+  if (VkResult r = o.forward.create_pipeline(dev, ForwardPipelineDesc::of(in)); r != VK_SUCCESS) {
     return "vkCreateGraphicsPipelines: VkResult " + std::to_string(int(r));
   }
   return "";

@@ -82,13 +82,7 @@ void create_targets(const Engine& engine, DrawObjects& o, const EngineImage& col
 }
 
 Status create_pipeline(VkDevice dev, DrawObjects& o, const DrawInput& in) {
-  engine::ForwardPipelineDesc desc;
-  desc.vertex_spirv = &in.vertex_spirv;
-  desc.fragment_spirv = &in.fragment_spirv;
-  desc.stride = in.stride;
-  desc.attributes = &in.attributes;
-  desc.width = in.width;
-  desc.height = in.height;
+  engine::ForwardPipelineDesc desc = engine::ForwardPipelineDesc::of(in);
   desc.cull_back = in.cull_back;
   if (VkResult r = o.forward.create_pipeline(dev, desc); r != VK_SUCCESS) {
     return Status::error(ErrorCode::unsupported,
