@@ -163,7 +163,7 @@ GeometryPipeline geometry_pipeline(Device& d) {
   ri.colorAttachmentCount = 2;
   ri.pColorAttachmentFormats = colour;
   ri.depthAttachmentFormat = VK_FORMAT_D32_SFLOAT;
-  // vk_engine.h's pipeline state (triangles, depth test less with writes, no blending): no
+  // vk_pipelines.h's pipeline state (triangles, depth test less with writes, no blending): no
   // culling, the viewport set per pass, dynamic rendering into two colour targets and depth.
   GraphicsPipelineDesc desc;
   desc.vertex = mods[0];

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "vk_engine.h"  // examples/common: instance, validation messenger, device
+#include "vk_pipelines.h"  // examples/common: instance, device (vk_engine.h), pipelines
 
 namespace engine {
 

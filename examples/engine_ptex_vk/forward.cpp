@@ -9,7 +9,7 @@ namespace engine {
 
 namespace {
 
-// The targets (colour, depth), the pass's objects (vk_engine.h), the command pool and fence.
+// The targets (colour, depth), the pass's objects (vk_pipelines.h), the command pool and fence.
 struct Objects {
   VkDevice device = VK_NULL_HANDLE;
   VkImage images[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};  // colour, depth
@@ -63,7 +63,7 @@ void create_targets(const Device& d, Objects& o, int w, int h) {
                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, deps, o.views, w, h);
 }
 
-// The pipeline (vk_engine.h's forward pipeline); "" or the problem.
+// The pipeline (vk_pipelines.h's forward pipeline); "" or the problem.
 std::string create_pipeline(VkDevice dev, Objects& o, const Frame& in) {
   if (VkResult r = o.forward.create_pipeline(dev, ForwardPipelineDesc::of(in)); r != VK_SUCCESS) {
     return "vkCreateGraphicsPipelines: VkResult " + std::to_string(int(r));

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <memory>
 
-#include "vk_engine.h"  // examples/common: the forward pipeline engine_ptex_vk draws with
+#include "vk_pipelines.h"  // examples/common: the forward pipeline engine_ptex_vk draws with
 
 namespace tessera::vk_test {
 
@@ -40,7 +40,7 @@ Result<std::vector<std::uint32_t>> compile_glsl(VkShaderStageFlagBits stage,
 namespace {
 
 // Everything one draw creates, destroyed (after the queue is idle) in reverse: the depth
-// target and the forward pass's objects (examples/common/vk_engine.h).
+// target and the forward pass's objects (examples/common/vk_pipelines.h).
 struct DrawObjects {
   VkDevice device = VK_NULL_HANDLE;
   VkImage depth = VK_NULL_HANDLE;
