@@ -5,6 +5,7 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cstdlib>
 #include <cstring>
 
@@ -82,12 +83,21 @@ bool has_depth_clip_control(PFN_vkGetInstanceProcAddr gipa, VkInstance instance,
   return dcc.depthClipControl == VK_TRUE;
 }
 
-/// Which of the devices with a graphics + compute family to take.
-int wanted_device(int index) {
+/// Which of the devices with a graphics + compute family to take: `index`, else
+/// $TESSERA_VK_DEVICE (a decimal index), else 0; invalid_argument naming a bad value.
+Result<int> wanted_device(int index) {
   if (index >= 0) return index;
   const char* env = std::getenv("TESSERA_VK_DEVICE");
   if (env == nullptr || *env == '\0') return 0;
-  return std::max(0, std::atoi(env));
+  int value = 0;
+  const char* end = env + std::strlen(env);
+  const auto [ptr, ec] = std::from_chars(env, end, value);
+  if (ec != std::errc() || ptr != end || value < 0) {
+    return Status::error(ErrorCode::invalid_argument,
+                         std::string("vulkan: TESSERA_VK_DEVICE '") + env +
+                             "': expected a device index (0, 1, ...)");
+  }
+  return value;
 }
 
 }  // namespace
@@ -215,7 +225,9 @@ Status HeadlessDevice::create_device(const HeadlessDeviceOptions& options) {
   enumerate(ctx.instance, &n, devices.data());
   devices.resize(n);
   int usable = 0;
-  const int want = wanted_device(options.device_index);
+  const Result<int> wanted = wanted_device(options.device_index);
+  if (!wanted) return wanted.status();
+  const int want = *wanted;
   for (VkPhysicalDevice pd : devices) {
     std::uint32_t nf = 0;
     families(pd, &nf, nullptr);

@@ -5,6 +5,8 @@
 // negative control that the count is live).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "test_require.h"
 #include "vk/headless_device.h"
 
@@ -62,6 +64,13 @@ TEST(VkHeadlessDevice, DeviceIndexPastTheUsableOnesIsOneLine) {
   EXPECT_EQ(s.code, ErrorCode::invalid_argument);
   EXPECT_NE(s.message.find("device 99"), std::string::npos) << s.message;
   EXPECT_EQ(s.message.find('\n'), std::string::npos) << s.message;
+  // A $TESSERA_VK_DEVICE that is no index: named, not read as device 0.
+  setenv("TESSERA_VK_DEVICE", "gpu0", 1);
+  d = make({nullptr, false, -1}, nullptr, &s);
+  unsetenv("TESSERA_VK_DEVICE");
+  ASSERT_EQ(d, nullptr);
+  EXPECT_EQ(s.code, ErrorCode::invalid_argument);
+  EXPECT_NE(s.message.find("TESSERA_VK_DEVICE 'gpu0'"), std::string::npos) << s.message;
 }
 
 }  // namespace
