@@ -38,6 +38,8 @@ enum class ErrorCode {
   unsupported,       ///< A valid file uses a feature tessera does not implement.
   too_large,         ///< A size exceeds tessera's limits (checked before allocating).
   size_mismatch,     ///< Two inputs that must have equal sizes do not.
+  out_of_memory,     ///< Host or device memory ran out (VK_ERROR_OUT_OF_*_MEMORY, a full pool).
+  device_lost,       ///< The GPU device was lost (VK_ERROR_DEVICE_LOST): recreate the device.
 };
 
 /// Short lowercase name of an error code ("io_error", ...).

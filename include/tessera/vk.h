@@ -13,6 +13,22 @@
 // component can record the one barrier that makes them readable and say in which state it
 // leaves them. Not thread-safe: one thread records a component at a time (the engine's rules
 // for its command buffer apply).
+//
+// Frames in flight (the contract of every component that records per frame): the engine keeps
+// F frames in flight, a ring of F frame slots each guarded by its own fence, and creates the
+// component with `frames_in_flight = F`. Once per frame, before recording it, the engine calls
+// `begin_frame(i)` with the frame's slot i < F, after waiting for the fence of the last
+// submission that recorded the component in slot i (nothing to wait for the first F frames).
+// Everything the GPU may still read or write after a submission and the host touches
+// (descriptor sets, output images, query pools, read-back buffers) belongs to one (slot, view)
+// pair: a record never rewrites what a submitted command buffer still uses, and no record waits
+// for the GPU. Any number of records (views) per frame: the first frame that records more views
+// than any before grows the slot's resources (allocations once; none after). The component's
+// scratch buffers are shared by all records and ordered by the barrier each record begins with,
+// so command buffers that record a component are submitted to one queue (or ordered across
+// queues by the engine's semaphores). Results that come back to the host (read_profile) are
+// read per (slot, view), once that frame's fence has signalled. Errors keep Vulkan's meaning:
+// `result_code` below. Tests: tests/vk/vk_frames_test.cpp.
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -82,5 +98,10 @@ Status check_device(const DeviceContext& device);
 
 /// Vulkan's name of `result` ("VK_ERROR_OUT_OF_DEVICE_MEMORY", ...), for messages.
 const char* result_name(VkResult result);
+/// The error code every tessera::vk call returns for a failed `result`: out_of_memory for
+/// VK_ERROR_OUT_OF_HOST_MEMORY / _DEVICE_MEMORY / _POOL_MEMORY, VK_ERROR_FRAGMENTED_POOL and
+/// VK_ERROR_TOO_MANY_OBJECTS; device_lost for VK_ERROR_DEVICE_LOST; unsupported for the rest
+/// (feature, format, extension, driver); ok for VK_SUCCESS. The message names the result.
+ErrorCode result_code(VkResult result);
 
 }  // namespace tessera::vk

@@ -19,6 +19,8 @@ const char* error_code_name(ErrorCode code) {
     case ErrorCode::unsupported: return "unsupported";
     case ErrorCode::too_large: return "too_large";
     case ErrorCode::size_mismatch: return "size_mismatch";
+    case ErrorCode::out_of_memory: return "out_of_memory";
+    case ErrorCode::device_lost: return "device_lost";
   }
   return "unknown";
 }

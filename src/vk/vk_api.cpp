@@ -33,8 +33,25 @@ const char* result_name(VkResult r) {
   }
 }
 
+ErrorCode result_code(VkResult result) {
+  switch (result) {
+    case VK_SUCCESS:
+      return ErrorCode::ok;
+    case VK_ERROR_OUT_OF_HOST_MEMORY:
+    case VK_ERROR_OUT_OF_DEVICE_MEMORY:
+    case VK_ERROR_OUT_OF_POOL_MEMORY:
+    case VK_ERROR_FRAGMENTED_POOL:
+    case VK_ERROR_TOO_MANY_OBJECTS:
+      return ErrorCode::out_of_memory;
+    case VK_ERROR_DEVICE_LOST:
+      return ErrorCode::device_lost;
+    default:
+      return ErrorCode::unsupported;
+  }
+}
+
 Status vk_error(const std::string& what, VkResult r) {
-  return Status::error(ErrorCode::unsupported, what + ": " + result_name(r));
+  return Status::error(result_code(r), what + ": " + result_name(r));
 }
 
 namespace {
