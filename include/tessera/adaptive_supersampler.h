@@ -85,10 +85,18 @@ enum class AdaptiveResolve {
 /// The colour output's format (GL_RGBA16F / GL_RGBA32F; R16G16B16A16 / R32G32B32A32_SFLOAT).
 enum class AdaptiveOutputFormat { rgba16f, rgba32f };
 
+/// A size in output pixels (the render size of one frame on GL; Vulkan's is a VkExtent2D).
+struct AdaptiveExtent {
+  int width = 0, height = 0;
+};
+
 /// What both components are asked for, fixed at `create` but `thresholds` (`set_thresholds`);
 /// gl:: and vk::AdaptiveSupersamplerOptions add their backend's bindings.
 struct AdaptiveCommonOptions {
-  int width = 0, height = 0;  ///< Output pixels (> 0); the G-buffer is (m*width) x (m*height).
+  /// Output pixels (> 0): the largest output a frame renders. Each frame may name a smaller
+  /// render size (dynamic resolution; AdaptiveFrame::render_size on GL and Vulkan), its
+  /// G-buffer m times it; buffers are sized for this largest size.
+  int width = 0, height = 0;
   int m = 4;                  ///< Window side, 2..8.
   AdaptiveThresholds thresholds;
   /// Sample order: entry p = the row-major window cell of sample p (p = 0 is S's sample); a

@@ -42,9 +42,14 @@ struct AdaptiveSupersamplerOptions : AdaptiveCommonOptions {
 
 /// One frame's inputs.
 struct AdaptiveFrame {
-  /// The G-buffer textures (GL_TEXTURE_2D names, (m*w) x (m*h), owned by the engine) by slot;
-  /// 0 for slots the layout does not use.
+  /// The G-buffer textures (GL_TEXTURE_2D names, at least (m*w) x (m*h) for the render size
+  /// w x h, owned by the engine; the top-left m*w x m*h texels are read) by slot; 0 for slots
+  /// the layout does not use.
   std::array<std::uint32_t, 4> gbuffer{};
+  /// This frame's output size (dynamic resolution), at most options.width x options.height;
+  /// {0, 0} = that largest size. Any size, any order, no re-create: the same bytes as a
+  /// component created for that size.
+  AdaptiveExtent render_size{};
   /// At most this many extra samples (samples beyond S) in this frame. When the metrics ask
   /// for more, pixels are ranked by metric strength (the unrounded max(k_d, k_n, k_s)), ties
   /// by pixel index (row-major y*w + x, lower first); whole pixels keep their k in rank order
@@ -56,7 +61,10 @@ struct AdaptiveFrame {
 
 /// What a dispatch returns.
 struct AdaptiveFrameResult {
-  std::uint32_t colour = 0;         ///< The output texture (owned by the component).
+  /// The output texture (owned by the component, options.width x options.height): its
+  /// top-left `render_size` texels hold the image.
+  std::uint32_t colour = 0;
+  AdaptiveExtent render_size{};     ///< The texels written, from (0, 0).
   std::uint32_t sample_counts = 0;  ///< GL_R8UI k + 1 per pixel (0 unless requested).
   /// With `profile`: the extra samples shaded (sum of k) and, per pass in order, the
   /// GL_TIME_ELAPSED time (NaN when the driver's is impossible) and the host time.
@@ -80,9 +88,11 @@ class AdaptiveSupersampler {
   AdaptiveSupersampler(const AdaptiveSupersampler&) = delete;
   AdaptiveSupersampler& operator=(const AdaptiveSupersampler&) = delete;
 
-  /// The adaptive image. Fails (invalid_argument, nothing dispatched) when a texture the layout
-  /// needs is 0, not a GL_TEXTURE_2D, not (m*w) x (m*h), of an integer/sRGB/unknown format or
-  /// lacks a channel the layout reads, or the budget is negative. The message names the slot.
+  /// The adaptive image. Fails (invalid_argument / size_mismatch / too_large, nothing
+  /// dispatched) when a texture the layout needs is 0, not a GL_TEXTURE_2D, smaller than
+  /// (m*w) x (m*h), of an integer/sRGB/unknown format or lacks a channel the layout reads, the
+  /// render size exceeds the options' size, or the budget is negative. The message names the
+  /// slot or the size.
   Result<AdaptiveFrameResult> dispatch(const AdaptiveFrame& frame);
   /// Full supersampling: all m*m samples, footprint 1 (same checks).
   Result<AdaptiveFrameResult> dispatch_reference(const AdaptiveFrame& frame);

@@ -24,16 +24,30 @@
 //    are in set E = hook_set_layouts.size() (TESSERA_ADAPTIVE_SET), bindings 0 uniform block,
 //    1 work buffer, 2 frame list, 3 output image, 4 sample-count image, 5 + s G-buffer slot s
 //    (combined image sampler, an immutable nearest/clamp sampler; read with texelFetch).
-//    `AdaptiveFrame::hook_sets` binds the engine's sets. The component keeps `descriptor_sets`
-//    sets of its own, one per combination of G-buffer views (the views of up to that many
-//    frames may be in flight).
+//    `AdaptiveFrame::hook_sets` binds the engine's sets. The component's own set is one per
+//    (frame slot, view), written by the record that uses it (tessera/vk.h, frames in flight).
+// 2b. Frames, views, sizes. `begin_frame(i)` opens frame slot i (< `frames_in_flight`) once
+//    the engine's fence says the slot's last submission completed; the frame's records are its
+//    views 0, 1, 2, ... in recording order, each with its own descriptor set, output images and
+//    profile queries. `options.width` x `options.height` is the largest output; each record
+//    names its `render_size` (dynamic resolution: any size up to the largest, no re-create, no
+//    wait, the same bytes as a component created for that size) and reads the G-buffer's
+//    top-left (m*w) x (m*h) texels (images may be larger: an engine's max-size G-buffer). The
+//    output is the component's own image for that (slot, view), valid until `begin_frame` opens
+//    the slot again, or the engine's own image (`AdaptiveFrame::output`), written in its
+//    top-left w x h texels.
+// 2c. Devices. Without shaderFloat64 the depth metric accumulates in float (compensated sums;
+//    k maps agree with the double path on >= 99.9 % of pixels, tests/vk/vk_frames_test.cpp);
+//    `tile_list` needs 64*m*m*24 + 4 bytes of workgroup memory (24,580 at m = 4, above the
+//    16 KiB every device has): beyond maxComputeSharedMemorySize it runs `loop` (the same image;
+//    `schedule()` says which runs).
 // 3. Recording. `record(cmd, frame)` records into the engine's VkCommandBuffer (primary or
 //    secondary, recording, outside a render pass, of `DeviceContext::queue_family`):
 //      * one barrier first: each G-buffer image from (its `layout`, `stage`, `access`) to
 //        SHADER_READ_ONLY_OPTIMAL (GENERAL stays GENERAL) for COMPUTE_SHADER /
-//        SHADER_SAMPLED_READ; the output images from UNDEFINED (their contents are rewritten)
-//        after ALL_COMMANDS / MEMORY_WRITE to GENERAL for COMPUTE_SHADER /
-//        SHADER_STORAGE_WRITE; the
+//        SHADER_SAMPLED_READ; the output images from UNDEFINED (their contents are rewritten;
+//        an engine-owned output from its `stage`/`access`) after ALL_COMMANDS / MEMORY_WRITE to
+//        GENERAL for COMPUTE_SHADER / SHADER_STORAGE_WRITE; the
 //        component's buffers from its previous record (COMPUTE_SHADER, DRAW_INDIRECT, TRANSFER)
 //        to TRANSFER writes;
 //      * vkCmdUpdateBuffer / vkCmdFillBuffer of the parameter block and the work header, a
@@ -41,8 +55,10 @@
 //        vkCmdDispatchIndirect for the frame list), each followed by a global memory barrier
 //        COMPUTE_SHADER (storage write) -> COMPUTE_SHADER | DRAW_INDIRECT (uniform, storage,
 //        indirect-command reads and writes);
-//      * with `profile`, timestamps around the passes and a copy of the sample counter to a
-//        host-visible buffer (TRANSFER -> HOST barrier).
+//      * with `profile`, timestamps around the passes, then copies of them
+//        (vkCmdCopyQueryPoolResults), of the sample counter and of the frame number to the
+//        (slot, view)'s host-visible buffer (TRANSFER -> HOST barrier): read_profile answers
+//        once that frame number is there, and never calls vkGetQueryPoolResults.
 //    Barriers are vkCmdPipelineBarrier2 when `DeviceContext::synchronization2`, else
 //    vkCmdPipelineBarrier with the same scopes. The compute pipeline and compute descriptor
 //    bindings of `cmd` are left changed (rebind yours after), nothing else: no graphics state,
@@ -53,16 +69,20 @@
 //    SHADER_STORAGE_WRITE: the engine's next use records its own barrier from that scope. It
 //    may leave the output in any layout: the next record starts from UNDEFINED.
 // 4. Creation checks the device (the queue family's compute support; the features, named when
-//    missing from DeviceContext::enabled_features: shaderFloat64 always (the depth metric's
-//    variance is accumulated in double, as on the CPU), shaderStorageImageExtendedFormats for
-//    the r8ui sample counts; the storage formats of the outputs) and the options,
-//    then compiles; `record` checks the frame (null handles, extent, format, usage without
-//    VK_IMAGE_USAGE_SAMPLED_BIT, a layout that cannot be sampled, a negative budget, the hook's
-//    set count) before recording anything: one-line errors, nothing recorded on failure.
-// Resources: device-local buffers (parameter block, work buffer of 16 bytes per output pixel
-// + 8 KiB, the frame list of 24 bytes per item), the output image(s), one host-visible buffer
-// and one timestamp query pool with `profile`. Destroy the component before the device, after
-// the engine's last command buffer that recorded it has completed.
+//    missing from DeviceContext::enabled_features: shaderStorageImageExtendedFormats for the
+//    r8ui sample counts; the storage formats of the outputs; shaderFloat64 picks the depth
+//    metric's precision, 2c) and the options, then compiles; `record` checks the frame (no
+//    begin_frame, null handles, a render size above the largest or a G-buffer smaller than
+//    m x it, format, usage without VK_IMAGE_USAGE_SAMPLED_BIT, a layout that cannot be sampled,
+//    an output image of the wrong format, usage or size, a negative budget, the hook's set
+//    count) before recording anything: one-line errors, nothing recorded on failure. Vulkan
+//    failures keep their meaning (vk::result_code: out_of_memory, device_lost, unsupported).
+// Resources: device-local buffers shared by every record (parameter block, work buffer of 16
+// bytes per output pixel + 8 KiB, the frame list of 24 bytes per item, all at the largest
+// size); per (frame slot, view): a descriptor set, the output image(s) unless the engine gives
+// its own, and with `profile` a timestamp query pool and a 16-byte host-visible buffer.
+// Destroy the component before the device, after every command buffer that recorded it has
+// completed.
 #pragma once
 
 #include <array>
@@ -87,14 +107,24 @@ struct AdaptiveSupersamplerOptions : AdaptiveCommonOptions {
   /// The engine's descriptor-set layouts the hook reads (sets 0 .. size-1); owned by the
   /// engine, alive while the component is.
   std::vector<VkDescriptorSetLayout> hook_set_layouts;
-  /// Component descriptor sets (one per G-buffer view combination in flight), >= 1.
-  int descriptor_sets = 8;
+  /// The engine's frames in flight F (1..16): `begin_frame` takes a slot index below it.
+  std::uint32_t frames_in_flight = 2;
 };
 
-/// One frame's inputs.
+/// One record's inputs (one view of the current frame).
 struct AdaptiveFrame {
-  /// The G-buffer images by slot ((m*w) x (m*h), sampled usage); empty slots are ignored.
+  /// The G-buffer images by slot (at least (m*w) x (m*h) for the render size w x h, sampled
+  /// usage; the top-left m*w x m*h texels are read); empty slots are ignored.
   std::array<ImageResource, 4> gbuffer{};
+  /// This record's output size w x h, at most options.width x options.height; {0, 0} = that
+  /// largest size.
+  VkExtent2D render_size{0, 0};
+  /// The engine's own colour output (FSR2's `output`): the image, its view, extent at least the
+  /// render size, format R16G16B16A16_SFLOAT / R32G32B32A32_SFLOAT as `options.output`, usage
+  /// with VK_IMAGE_USAGE_STORAGE_BIT, and the layout/stage/access of its last use (its
+  /// contents are replaced in the top-left render-size texels, the rest may be undefined).
+  /// VK_NULL_HANDLE image = the component's own image for this (frame slot, view).
+  ImageResource output{};
   /// The engine's descriptor sets for `hook_set_layouts` (same count and order).
   std::vector<VkDescriptorSet> hook_sets;
   /// As gl::AdaptiveFrame::budget: at most this many extra samples; negative = an error.
@@ -103,13 +133,22 @@ struct AdaptiveFrame {
 
 /// What `record` leaves (see the header comment, 3.).
 struct AdaptiveRecord {
-  ImageResource colour;         ///< The output image (owned by the component).
+  /// The output image: `AdaptiveFrame::output` when given, else the component's own for this
+  /// (frame slot, view), valid until begin_frame opens the slot again. Its top-left
+  /// `render_size` texels hold the image (the own image's extent is the largest size).
+  ImageResource colour;
   ImageResource sample_counts;  ///< R8_UINT k + 1 per pixel (null unless requested).
   std::array<VkImageLayout, 4> gbuffer_layout{};  ///< Each slot's layout after the commands.
+  VkExtent2D render_size{0, 0};                   ///< The texels written, from (0, 0).
+  std::uint32_t frame_slot = 0;                   ///< begin_frame's index.
+  std::uint32_t view = 0;                         ///< This record's place in its frame (0, 1, ...).
 };
 
-/// With `profile`: what the last completed record measured.
+/// With `profile`: what one completed record measured.
 struct AdaptiveProfile {
+  std::uint64_t frame = 0;  ///< The frame that recorded it: the count of begin_frame calls.
+  std::uint32_t frame_slot = 0, view = 0;
+  VkExtent2D render_size{0, 0};
   std::uint64_t extra_samples = 0;  ///< Sum of k (all m*m-1 per pixel for the reference).
   std::vector<PassTime> passes;     ///< GPU timestamps per pass, in order.
   double total_ms() const;
@@ -126,8 +165,15 @@ class AdaptiveSupersampler {
   AdaptiveSupersampler(const AdaptiveSupersampler&) = delete;
   AdaptiveSupersampler& operator=(const AdaptiveSupersampler&) = delete;
 
-  /// Records the adaptive image into `cmd`. Fails (invalid_argument / size_mismatch naming the
-  /// slot; nothing recorded) on a bad frame (see the header comment, 4.).
+  /// Opens frame slot `frame_slot` (< frames_in_flight) for the following records, after the
+  /// engine waited for the fence of the slot's last submission (tessera/vk.h). The slot's
+  /// previous outputs and profiles are then reused. invalid_argument when out of range.
+  Status begin_frame(std::uint32_t frame_slot);
+
+  /// Records the adaptive image into `cmd` as the next view of the current frame. Fails
+  /// (invalid_argument / size_mismatch / too_large naming the slot or the size;
+  /// out_of_memory when a new view's resources cannot be made; nothing recorded) on a bad
+  /// frame (see the header comment, 4.).
   Result<AdaptiveRecord> record(VkCommandBuffer cmd, const AdaptiveFrame& frame);
   /// Full supersampling: all m*m samples, footprint 1 (same checks).
   Result<AdaptiveRecord> record_reference(VkCommandBuffer cmd, const AdaptiveFrame& frame);
@@ -136,11 +182,17 @@ class AdaptiveSupersampler {
 
   /// Replaces the thresholds for the following records (recorded with each; no recompilation).
   void set_thresholds(const AdaptiveThresholds& thresholds);
-  /// With `profile`, after the command buffer of the last record completed: its counts and
-  /// pass times (unsupported without `profile`; invalid_argument before any record).
-  Result<AdaptiveProfile> read_profile() const;
+  /// With `profile`: what the record of (frame slot, view) measured, once the command buffer
+  /// that holds it has completed (unsupported without `profile`; invalid_argument for a
+  /// (slot, view) never recorded, or whose record has not completed: its queries are not all
+  /// available). The profile names the frame that recorded it.
+  Result<AdaptiveProfile> read_profile(std::uint32_t frame_slot, std::uint32_t view = 0) const;
 
   const AdaptiveSupersamplerOptions& options() const;
+  /// The schedule that runs (tile_list falls back to loop beyond the device's shared memory).
+  AdaptiveSchedule schedule() const;
+  /// True when the depth metric accumulates in double (the device's shaderFloat64 enabled).
+  bool float64() const;
   /// The component's descriptor-set index (= hook_set_layouts.size()).
   std::uint32_t descriptor_set_index() const;
 

@@ -131,10 +131,10 @@ std::vector<std::string> preamble(const AdaptiveCommonOptions& o, const Derived&
   if (o.layout.uv.texture >= 0) p.push_back("#define TESSERA_ADAPTIVE_HAS_UV 1");
   if (o.sample_count_texture) p.push_back("#define TESSERA_ADAPTIVE_SAMPLE_COUNTS 1");
   if (o.resolve == AdaptiveResolve::tonemap_weighted) p.push_back("#define TESSERA_ADAPTIVE_HDR 1");
+  if (!d.float64) p.push_back("#define TESSERA_ADAPTIVE_NO_FP64 1");
   if (pass == "EXTRA") {
-    const bool tile = o.schedule == AdaptiveSchedule::tile_list && o.m <= 4;
-    p.push_back(tile ? "#define TESSERA_ADAPTIVE_SCHEDULE_TILE 1"
-                     : "#define TESSERA_ADAPTIVE_SCHEDULE_LOOP 1");
+    p.push_back(d.tile ? "#define TESSERA_ADAPTIVE_SCHEDULE_TILE 1"
+                       : "#define TESSERA_ADAPTIVE_SCHEDULE_LOOP 1");
   }
   const std::string set = b.set ? "set = " + std::to_string(*b.set) + ", " : "";
   for (int s = 0; s < 4; ++s) {
@@ -185,6 +185,7 @@ Status check_options(const AdaptiveCommonOptions& o, std::string_view who, Deriv
                      "footprint)");
   }
   d.n = o.m * o.m;
+  d.tile = o.schedule == AdaptiveSchedule::tile_list && o.m <= 4;
   if (Status s = check_sample_order(o, who, d); !s.ok()) return s;
   return check_layout(o.layout, who, d);
 }
@@ -234,10 +235,15 @@ glsl::ExpandOptions pass_expand_options(const AdaptiveCommonOptions& o, const De
   return eo;
 }
 
-Params params(const AdaptiveCommonOptions& o, const Derived& d) {
+std::size_t tile_shared_bytes(int n) {
+  // adaptive_component.glsl: a uint count, then per item (64 * n) a uint, a float and a vec4.
+  return 4 + std::size_t(64) * std::size_t(n) * (4 + 4 + 16);
+}
+
+Params params(const AdaptiveCommonOptions& o, const Derived& d, int w, int h) {
   Params p{};
-  p.size[0] = o.width;
-  p.size[1] = o.height;
+  p.size[0] = w;
+  p.size[1] = h;
   p.size[2] = o.m;
   p.size[3] = d.n;
   p.flags[0] = o.thresholds.force_k >= 0 ? std::min(o.thresholds.force_k, d.n - 1) : -1;
@@ -296,8 +302,8 @@ std::vector<Step> frame_steps(Mode mode, AdaptiveSchedule schedule, bool budgete
   return steps;
 }
 
-std::uint64_t extra_samples(const AdaptiveCommonOptions& o, Mode mode, std::uint64_t counted) {
-  const std::uint64_t pixels = std::uint64_t(o.width) * std::uint64_t(o.height);
+std::uint64_t extra_samples(const AdaptiveCommonOptions& o, Mode mode, std::uint64_t counted,
+                            std::uint64_t pixels) {
   return mode == Mode::adaptive    ? counted
          : mode == Mode::reference ? pixels * std::uint64_t(o.m * o.m - 1)
                                    : 0;

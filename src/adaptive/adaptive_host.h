@@ -20,7 +20,7 @@
 
 namespace tessera::adaptive {
 
-/// std140 layout of TesseraAaParams (adaptive_component.glsl).
+/// std140 layout of TesseraAdaptiveParams (adaptive_component.glsl).
 struct Params {
   std::int32_t size[4];
   std::int32_t flags[4];
@@ -48,7 +48,16 @@ struct Derived {
   /// Channels read from each slot: the highest component index + 1 (for the format check).
   int slot_channels[4] = {0, 0, 0, 0};
   std::size_t list_capacity = 0;  ///< frame_list items (1 for the other schedules).
+  /// The depth metric accumulates in double (GLSL's double); false: compensated float sums
+  /// (TESSERA_ADAPTIVE_NO_FP64, for devices without fp64). Set by the backend.
+  bool float64 = true;
+  /// The EXTRA pass runs per 8x8 tile in shared memory (tile_list, m <= 4 and the backend's
+  /// shared memory holds tile_shared_bytes(n)); else each pixel loops over its samples.
+  bool tile = false;
 };
+
+/// Workgroup (shared) memory of the tile_list schedule's EXTRA pass for n = m*m samples.
+std::size_t tile_shared_bytes(int n);
 
 /// Checks what every backend checks (m, size, hdr_exposure, the hook's entry point, the sample
 /// order, the layout); errors are invalid_argument / too_large "`who`: message". Fills `d`
@@ -75,8 +84,9 @@ glsl::Source pass_source(const AdaptiveCommonOptions& o, const std::string& pass
 glsl::ExpandOptions pass_expand_options(const AdaptiveCommonOptions& o, const Derived& d,
                                         const GlslBindings& b, const std::string& pass);
 
-/// The parameter block of the current options.
-Params params(const AdaptiveCommonOptions& o, const Derived& d);
+/// The parameter block of the current options for a frame of w x h output pixels (at most
+/// the options' width x height: dynamic resolution).
+Params params(const AdaptiveCommonOptions& o, const Derived& d, int w, int h);
 /// A frame's budget check: invalid_argument "`who`: budget = ..." when negative.
 Status check_budget(const std::optional<std::int64_t>& budget, std::string_view who);
 /// The work header a frame starts from (counters 0, the budget's state); with a budget the
@@ -93,7 +103,9 @@ struct Step {
 };
 /// The passes of a frame, in order.
 std::vector<Step> frame_steps(Mode mode, AdaptiveSchedule schedule, bool budgeted);
-/// The extra samples (sum of k) of a frame, `counted` being the adaptive frame's counter.
-std::uint64_t extra_samples(const AdaptiveCommonOptions& o, Mode mode, std::uint64_t counted);
+/// The extra samples (sum of k) of a frame of `pixels` output pixels, `counted` being the
+/// adaptive frame's counter.
+std::uint64_t extra_samples(const AdaptiveCommonOptions& o, Mode mode, std::uint64_t counted,
+                            std::uint64_t pixels);
 
 }  // namespace tessera::adaptive

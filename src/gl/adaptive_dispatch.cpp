@@ -63,10 +63,18 @@ std::string hex(GLint v) {
 }
 
 /// Checks the frame's textures against the layout (no GL state changed, no error raised).
-Status check_frame(const State& st, const AdaptiveFrame& f) {
+Status check_frame(const State& st, const AdaptiveFrame& f, AdaptiveExtent size) {
   const AdaptiveSupersamplerOptions& o = st.options;
   if (Status s = adaptive::check_budget(f.budget, "adaptive supersampler"); !s.ok()) return s;
-  const int gw = o.m * o.width, gh = o.m * o.height;
+  if (size.width <= 0 || size.height <= 0 || size.width > o.width || size.height > o.height) {
+    return Status::error(ErrorCode::too_large,
+                         "adaptive supersampler: render size " +
+                             std::to_string(f.render_size.width) + "x" +
+                             std::to_string(f.render_size.height) + " (1.." +
+                             std::to_string(o.width) + " x 1.." + std::to_string(o.height) +
+                             ", the largest size of the options)");
+  }
+  const int gw = o.m * size.width, gh = o.m * size.height;
   for (int s = 0; s < 4; ++s) {
     if (!st.derived.slot_used[s]) continue;
     const std::string slot = "adaptive supersampler: G-buffer slot " + std::to_string(s);
@@ -85,11 +93,14 @@ Status check_frame(const State& st, const AdaptiveFrame& f) {
     glGetTextureLevelParameteriv(t, 0, GL_TEXTURE_WIDTH, &w);
     glGetTextureLevelParameteriv(t, 0, GL_TEXTURE_HEIGHT, &h);
     glGetTextureLevelParameteriv(t, 0, GL_TEXTURE_INTERNAL_FORMAT, &fmt);
-    if (w != gw || h != gh) {
+    if (w < gw || h < gh) {
       return Status::error(ErrorCode::size_mismatch,
                            slot + ": texture " + std::to_string(t) + " is " + std::to_string(w) +
-                               "x" + std::to_string(h) + ", the G-buffer is " + std::to_string(gw) +
-                               "x" + std::to_string(gh) + " (m = " + std::to_string(o.m) + ")");
+                               "x" + std::to_string(h) + ", smaller than the G-buffer " +
+                               std::to_string(gw) + "x" + std::to_string(gh) + " (m = " +
+                               std::to_string(o.m) + ", render size " +
+                               std::to_string(size.width) + "x" + std::to_string(size.height) +
+                               ")");
     }
     const int channels = format_channels(fmt);
     if (channels == 0) {
@@ -223,7 +234,7 @@ constexpr GLbitfield kBarriers = GL_SHADER_STORAGE_BARRIER_BIT |
 /// Dispatches the passes of one frame, timed when profiling.
 class Runner {
  public:
-  explicit Runner(State& st) : st_(st) {}
+  Runner(State& st, AdaptiveExtent size) : st_(st), size_(size) {}
 
   /// One pass: `groups_x` = 0 means one group per 8x8 output pixels; `indirect` = from the
   /// work buffer's group counts.
@@ -244,8 +255,7 @@ class Runner {
     } else if (groups_x > 0) {
       glDispatchCompute(groups_x, 1, 1);
     } else {
-      glDispatchCompute(GLuint((st_.options.width + 7) / 8), GLuint((st_.options.height + 7) / 8),
-                        1);
+      glDispatchCompute(GLuint((size_.width + 7) / 8), GLuint((size_.height + 7) / 8), 1);
     }
     glMemoryBarrier(kBarriers);
     if (then != nullptr) {
@@ -281,6 +291,7 @@ class Runner {
 
  private:
   State& st_;
+  AdaptiveExtent size_;
   GpuTimer timer_;
   std::vector<PassTime> wall_;
   std::vector<std::string> names_;
@@ -290,7 +301,10 @@ using Mode = adaptive::Mode;
 
 Result<AdaptiveFrameResult> run_frame(State& st, const AdaptiveFrame& f, Mode mode) {
   if (Status s = check_current_context("adaptive supersampler: dispatch"); !s.ok()) return s;
-  if (Status s = check_frame(st, f); !s.ok()) return s;
+  const AdaptiveExtent size = f.render_size.width == 0 && f.render_size.height == 0
+                                   ? AdaptiveExtent{st.options.width, st.options.height}
+                                   : f.render_size;
+  if (Status s = check_frame(st, f, size); !s.ok()) return s;
   AdaptiveFrameResult r;
   Status status = Status::success();
   {
@@ -300,8 +314,12 @@ Result<AdaptiveFrameResult> run_frame(State& st, const AdaptiveFrame& f, Mode mo
     std::vector<std::uint32_t> header(head.begin(), head.end());
     if (f.budget) header.resize(header.size() + adaptive::kHistogramUints, 0u);
     glNamedBufferSubData(st.work_buf.get(), 0, GLsizeiptr(header.size() * 4), header.data());
+    // The parameter block of this frame's render size and the current thresholds.
+    const adaptive::Params params =
+        adaptive::params(st.options, st.derived, size.width, size.height);
+    glNamedBufferSubData(st.params_ubo.get(), 0, sizeof params, &params);
     bind(st, f);
-    Runner run(st);
+    Runner run(st, size);
     for (const adaptive::Step& step :
          adaptive::frame_steps(mode, st.options.schedule, f.budget.has_value())) {
       status = run.pass(step.name, step.program, step.groups_x, step.indirect, step.then);
@@ -313,11 +331,13 @@ Result<AdaptiveFrameResult> run_frame(State& st, const AdaptiveFrame& f, Mode mo
     if (status.ok() && st.options.profile) {
       std::uint32_t extra = 0;
       glGetNamedBufferSubData(st.work_buf.get(), 4, 4, &extra);
-      r.extra_samples = adaptive::extra_samples(st.options, mode, extra);
+      r.extra_samples = adaptive::extra_samples(
+          st.options, mode, extra, std::uint64_t(size.width) * std::uint64_t(size.height));
     }
   }
   if (!status.ok()) return status;
   if (Status s = check_errors("adaptive supersampler: dispatch"); !s.ok()) return s;
+  r.render_size = size;
   r.colour = st.colour_tex.get();
   r.sample_counts = st.counts_tex.get();
   return r;

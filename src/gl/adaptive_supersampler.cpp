@@ -122,9 +122,10 @@ Object make_texture(GLenum format, int w, int h) {
   return t;
 }
 
-/// The parameter block (TesseraAaParams) from the options; (re)uploaded.
+/// The parameter block (TesseraAdaptiveParams) from the options; (re)uploaded.
 void upload_params(AdaptiveSupersampler::State& st) {
-  const adaptive::Params params = adaptive::params(st.options, st.derived);
+  const adaptive::Params params =
+      adaptive::params(st.options, st.derived, st.options.width, st.options.height);
   glNamedBufferData(st.params_ubo.get(), sizeof params, &params, GL_DYNAMIC_DRAW);
 }
 

@@ -1,7 +1,9 @@
 // vk::AdaptiveSupersampler's Vulkan objects: the immutable sampler, the descriptor-set and
-// pipeline layouts, one compute pipeline per pass, the buffers, the output images, the
-// descriptor pool and its sets (one per G-buffer view combination), the profile's queries.
+// pipeline layouts, one compute pipeline per pass, the shared buffers; per (frame slot, view)
+// the descriptor set (from pools grown kSetsPerPool at a time), the output images and the
+// profile's queries and read-back, made at the view's first record.
 #include <algorithm>
+#include <cstring>
 
 #include "vk/adaptive_internal.h"
 #include "vk/shader.h"
@@ -100,103 +102,135 @@ Status create_resources(State& st) {
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false, kWhat + ": frame list");
   if (!list) return list.status();
   st.list = std::move(*list);
+  if (o.profile) {
+    st.query_capacity = 32;  // the start, the budget's 17 passes + 5 others
+    st.timestamps = api.queue_family.timestampValidBits > 0;
+  }
+  st.frames.resize(o.frames_in_flight);
+  return Status::success();
+}
+
+/// One more descriptor set of the component's layout (a new pool of kSetsPerPool when full).
+Result<VkDescriptorSet> allocate_set(State& st) {
+  const Api& api = st.api;
+  if (st.pool_sets_left == 0) {
+    const std::uint32_t n = kSetsPerPool;
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, n},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * n},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2 * n},
+                                          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 * n}};
+    VkDescriptorPoolCreateInfo pi{};
+    pi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+    pi.maxSets = n;
+    pi.poolSizeCount = 4;
+    pi.pPoolSizes = sizes;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    if (VkResult r = api.CreateDescriptorPool(api.device(), &pi, api.alloc(), &pool);
+        r != VK_SUCCESS) {
+      return vk_error(kWhat + ": vkCreateDescriptorPool", r);
+    }
+    st.pools.emplace_back(api, pool);
+    st.pool_sets_left = n;
+  }
+  const VkDescriptorSetLayout layout = st.set_layout.get();
+  VkDescriptorSetAllocateInfo ai{};
+  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+  ai.descriptorPool = st.pools.back().get();
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &layout;
+  VkDescriptorSet set = VK_NULL_HANDLE;
+  if (VkResult r = api.AllocateDescriptorSets(api.device(), &ai, &set); r != VK_SUCCESS) {
+    return vk_error(kWhat + ": vkAllocateDescriptorSets", r);
+  }
+  --st.pool_sets_left;
+  return set;
+}
+
+/// A new view's descriptor set and, with `profile`, its query pool and read-back buffer.
+Status create_view(State& st, State::View& v) {
+  const Api& api = st.api;
+  Result<VkDescriptorSet> set = allocate_set(st);
+  if (!set) return set.status();
+  v.set = *set;
+  if (!st.options.profile) return Status::success();
+  const std::size_t bytes = kReadbackTicks + 8 * std::size_t(st.query_capacity);
+  Result<Buffer> rb = Buffer::create(api, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true,
+                                     kWhat + ": profile read-back");
+  if (!rb) return rb.status();
+  v.readback = std::move(*rb);
+  std::memset(v.readback.mapped(), 0, bytes);
+  v.readback.flush();
+  VkQueryPoolCreateInfo qi{};
+  qi.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  qi.queryCount = st.query_capacity;
+  VkQueryPool pool = VK_NULL_HANDLE;
+  if (VkResult r = api.CreateQueryPool(api.device(), &qi, api.alloc(), &pool); r != VK_SUCCESS) {
+    return vk_error(kWhat + ": vkCreateQueryPool", r);
+  }
+  v.queries = QueryPool(api, pool);
+  return Status::success();
+}
+
+/// The view's own output images (largest size), made when first needed.
+Status create_outputs(State& st, State::View& v, bool colour) {
+  const Api& api = st.api;
+  const AdaptiveSupersamplerOptions& o = st.options;
   const VkExtent2D extent{std::uint32_t(o.width), std::uint32_t(o.height)};
   const VkImageUsageFlags usage =
       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-  Result<Image> colour =
-      Image::create(api,
-                    o.output == AdaptiveOutputFormat::rgba32f ? VK_FORMAT_R32G32B32A32_SFLOAT
-                                                              : VK_FORMAT_R16G16B16A16_SFLOAT,
-                    extent, usage, kWhat + ": output image");
-  if (!colour) return colour.status();
-  st.colour = std::move(*colour);
-  if (o.sample_count_texture) {
-    Result<Image> counts =
-        Image::create(api, VK_FORMAT_R8_UINT, extent, usage, kWhat + ": sample-count image");
-    if (!counts) return counts.status();
-    st.counts = std::move(*counts);
+  if (colour && v.colour.get() == VK_NULL_HANDLE) {
+    Result<Image> img = Image::create(api, adaptive_output_format(o), extent, usage,
+                                      kWhat + ": output image");
+    if (!img) return img.status();
+    v.colour = std::move(*img);
   }
-  if (o.profile) {
-    Result<Buffer> rb = Buffer::create(api, 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true,
-                                       kWhat + ": profile read-back");
-    if (!rb) return rb.status();
-    st.readback = std::move(*rb);
-    st.query_capacity = 32;  // the budget's 17 passes + 7 others, and the start
-    VkQueryPoolCreateInfo qi{};
-    qi.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
-    qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    qi.queryCount = st.query_capacity;
-    VkQueryPool pool = VK_NULL_HANDLE;
-    if (VkResult r = api.CreateQueryPool(api.device(), &qi, api.alloc(), &pool); r != VK_SUCCESS) {
-      return vk_error(kWhat + ": vkCreateQueryPool", r);
-    }
-    st.queries = QueryPool(api, pool);
-    st.timestamps = api.queue_family.timestampValidBits > 0;
+  if (o.sample_count_texture && v.counts.get() == VK_NULL_HANDLE) {
+    Result<Image> img =
+        Image::create(api, VK_FORMAT_R8_UINT, extent, usage, kWhat + ": sample-count image");
+    if (!img) return img.status();
+    v.counts = std::move(*img);
   }
   return Status::success();
 }
 
-Status create_sets(State& st) {
-  const Api& api = st.api;
-  const std::uint32_t count = std::uint32_t(st.options.descriptor_sets);
-  const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, count},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * count},
-                                        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2 * count},
-                                        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 * count}};
-  VkDescriptorPoolCreateInfo pi{};
-  pi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-  pi.maxSets = count;
-  pi.poolSizeCount = 4;
-  pi.pPoolSizes = sizes;
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  if (VkResult r = api.CreateDescriptorPool(api.device(), &pi, api.alloc(), &pool);
-      r != VK_SUCCESS) {
-    return vk_error(kWhat + ": vkCreateDescriptorPool", r);
-  }
-  st.pool = DescriptorPool(api, pool);
-  std::vector<VkDescriptorSetLayout> layouts(count, st.set_layout.get());
-  std::vector<VkDescriptorSet> sets(count);
-  VkDescriptorSetAllocateInfo ai{};
-  ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
-  ai.descriptorPool = pool;
-  ai.descriptorSetCount = count;
-  ai.pSetLayouts = layouts.data();
-  if (VkResult r = api.AllocateDescriptorSets(api.device(), &ai, sets.data()); r != VK_SUCCESS) {
-    return vk_error(kWhat + ": vkAllocateDescriptorSets", r);
-  }
-  // The component's own resources, the same in every set.
+/// Writes every binding of the view's set: the shared buffers, this record's outputs and
+/// G-buffer views.
+void write_view_set(State& st, const State::View& v, const AdaptiveFrame& f) {
   const VkDescriptorBufferInfo params{st.params.get(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo work{st.work.get(), 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo list{st.list.get(), 0, VK_WHOLE_SIZE};
-  const VkDescriptorImageInfo colour{VK_NULL_HANDLE, st.colour.view(), VK_IMAGE_LAYOUT_GENERAL};
-  const VkDescriptorImageInfo counts{VK_NULL_HANDLE, st.counts.view(), VK_IMAGE_LAYOUT_GENERAL};
-  for (VkDescriptorSet set : sets) {
-    std::vector<VkWriteDescriptorSet> w;
-    auto write = [&](std::uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* bi,
-                     const VkDescriptorImageInfo* ii) {
-      VkWriteDescriptorSet x{};
-      x.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-      x.dstSet = set;
-      x.dstBinding = binding;
-      x.descriptorCount = 1;
-      x.descriptorType = type;
-      x.pBufferInfo = bi;
-      x.pImageInfo = ii;
-      w.push_back(x);
-    };
-    write(kBindParams, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &params, nullptr);
-    write(kBindWork, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &work, nullptr);
-    write(kBindList, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &list, nullptr);
-    write(kBindColour, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, nullptr, &colour);
-    if (st.options.sample_count_texture) {
-      write(kBindCounts, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, nullptr, &counts);
-    }
-    api.UpdateDescriptorSets(api.device(), std::uint32_t(w.size()), w.data(), 0, nullptr);
-    State::Set entry;
-    entry.set = set;
-    st.sets.push_back(entry);
+  const VkImageView out = f.output.image != VK_NULL_HANDLE ? f.output.view : v.colour.view();
+  const VkDescriptorImageInfo colour{VK_NULL_HANDLE, out, VK_IMAGE_LAYOUT_GENERAL};
+  const VkDescriptorImageInfo counts{VK_NULL_HANDLE, v.counts.view(), VK_IMAGE_LAYOUT_GENERAL};
+  std::array<VkDescriptorImageInfo, 4> gbuffer{};
+  std::vector<VkWriteDescriptorSet> w;
+  auto write = [&](std::uint32_t binding, VkDescriptorType type, const VkDescriptorBufferInfo* bi,
+                   const VkDescriptorImageInfo* ii) {
+    VkWriteDescriptorSet x{};
+    x.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    x.dstSet = v.set;
+    x.dstBinding = binding;
+    x.descriptorCount = 1;
+    x.descriptorType = type;
+    x.pBufferInfo = bi;
+    x.pImageInfo = ii;
+    w.push_back(x);
+  };
+  write(kBindParams, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &params, nullptr);
+  write(kBindWork, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &work, nullptr);
+  write(kBindList, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &list, nullptr);
+  write(kBindColour, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, nullptr, &colour);
+  if (st.options.sample_count_texture) {
+    write(kBindCounts, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, nullptr, &counts);
   }
-  return Status::success();
+  for (std::uint32_t s = 0; s < 4; ++s) {
+    if (!st.derived.slot_used[s]) continue;
+    const ImageResource& img = f.gbuffer[s];
+    gbuffer[s] = {VK_NULL_HANDLE, img.view, adaptive_read_layout(img.layout)};
+    write(kBindGBuffer + s, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, nullptr, &gbuffer[s]);
+  }
+  st.api.UpdateDescriptorSets(st.api.device(), std::uint32_t(w.size()), w.data(), 0, nullptr);
 }
 
 }  // namespace
@@ -206,52 +240,27 @@ VkImageLayout adaptive_read_layout(VkImageLayout layout) {
                                            : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 }
 
-Status create_adaptive_objects(State& st) {
-  if (Status s = create_layouts(st); !s.ok()) return s;
-  if (Status s = create_resources(st); !s.ok()) return s;
-  return create_sets(st);
+VkFormat adaptive_output_format(const AdaptiveCommonOptions& o) {
+  return o.output == AdaptiveOutputFormat::rgba32f ? VK_FORMAT_R32G32B32A32_SFLOAT
+                                                   : VK_FORMAT_R16G16B16A16_SFLOAT;
 }
 
-VkDescriptorSet acquire_adaptive_set(State& st, const AdaptiveFrame& f) {
-  std::array<VkImageView, 4> views{};
-  std::array<VkImageLayout, 4> layouts{};
-  for (std::size_t s = 0; s < 4; ++s) {
-    if (!st.derived.slot_used[s]) continue;
-    views[s] = f.gbuffer[s].view;
-    layouts[s] = adaptive_read_layout(f.gbuffer[s].layout);
+Status create_adaptive_objects(State& st) {
+  if (Status s = create_layouts(st); !s.ok()) return s;
+  return create_resources(st);
+}
+
+Result<State::View*> acquire_adaptive_view(State& st, const AdaptiveFrame& f) {
+  std::deque<State::View>& views = st.frames[st.slot];
+  if (views.size() <= st.views) {
+    State::View v;
+    if (Status s = create_view(st, v); !s.ok()) return s;
+    views.push_back(std::move(v));
   }
-  ++st.records;
-  for (State::Set& set : st.sets) {
-    if (set.used != 0 && set.views == views && set.layouts == layouts) {
-      set.used = st.records;
-      return set.set;
-    }
-  }
-  // The least recently used set takes the new views (see descriptor_sets in vk_adaptive.h).
-  State::Set& set =
-      *std::min_element(st.sets.begin(), st.sets.end(),
-                        [](const State::Set& a, const State::Set& b) { return a.used < b.used; });
-  std::vector<VkDescriptorImageInfo> infos;
-  infos.reserve(4);
-  std::vector<VkWriteDescriptorSet> w;
-  for (std::uint32_t s = 0; s < 4; ++s) {
-    if (!st.derived.slot_used[s]) continue;
-    const ImageResource& img = f.gbuffer[s];
-    infos.push_back({VK_NULL_HANDLE, img.view, layouts[s]});
-    VkWriteDescriptorSet x{};
-    x.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-    x.dstSet = set.set;
-    x.dstBinding = kBindGBuffer + s;
-    x.descriptorCount = 1;
-    x.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    x.pImageInfo = &infos.back();
-    w.push_back(x);
-  }
-  st.api.UpdateDescriptorSets(st.api.device(), std::uint32_t(w.size()), w.data(), 0, nullptr);
-  set.views = views;
-  set.layouts = layouts;
-  set.used = st.records;
-  return set.set;
+  State::View& v = views[st.views];
+  if (Status s = create_outputs(st, v, f.output.image == VK_NULL_HANDLE); !s.ok()) return s;
+  write_view_set(st, v, f);
+  return &v;
 }
 
 }  // namespace tessera::vk

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "vk/adaptive_internal.h"
 #include "vk/barriers.h"
@@ -63,20 +64,21 @@ std::string hex(std::uint64_t v) {
   return b;
 }
 
-Status check_slot(const State& st, int s, const ImageResource& img) {
+Status check_slot(const State& st, int s, const ImageResource& img, VkExtent2D size) {
   const AdaptiveSupersamplerOptions& o = st.options;
   const std::string slot = "G-buffer slot " + std::to_string(s);
   if (img.image == VK_NULL_HANDLE || img.view == VK_NULL_HANDLE) {
     return frame_error(ErrorCode::invalid_argument,
                        slot + ": no VkImage/VkImageView (the layout reads it)");
   }
-  const std::uint32_t gw = std::uint32_t(o.m * o.width), gh = std::uint32_t(o.m * o.height);
-  if (img.extent.width != gw || img.extent.height != gh) {
+  const std::uint32_t gw = std::uint32_t(o.m) * size.width, gh = std::uint32_t(o.m) * size.height;
+  if (img.extent.width < gw || img.extent.height < gh) {
     return frame_error(ErrorCode::size_mismatch,
                        slot + ": image is " + std::to_string(img.extent.width) + "x" +
-                           std::to_string(img.extent.height) + ", the G-buffer is " +
-                           std::to_string(gw) + "x" + std::to_string(gh) +
-                           " (m = " + std::to_string(o.m) + ")");
+                           std::to_string(img.extent.height) + ", smaller than the G-buffer " +
+                           std::to_string(gw) + "x" + std::to_string(gh) + " (m = " +
+                           std::to_string(o.m) + ", render size " + std::to_string(size.width) +
+                           "x" + std::to_string(size.height) + ")");
   }
   const int channels = format_channels(img.format);
   if (channels == 0) {
@@ -109,11 +111,56 @@ Status check_slot(const State& st, int s, const ImageResource& img) {
   return Status::success();
 }
 
+/// The engine's own colour output: handles, format, storage usage, extent.
+Status check_output(const State& st, const ImageResource& out, VkExtent2D size) {
+  const std::string what = "output image: ";
+  if (out.view == VK_NULL_HANDLE) {
+    return frame_error(ErrorCode::invalid_argument, what + "no VkImageView");
+  }
+  const VkFormat want = adaptive_output_format(st.options);
+  if (out.format != want) {
+    return frame_error(ErrorCode::invalid_argument,
+                       what + "VkFormat " + std::to_string(int(out.format)) + ", the options' " +
+                           "output is VkFormat " + std::to_string(int(want)));
+  }
+  if ((out.usage & VK_IMAGE_USAGE_STORAGE_BIT) == 0) {
+    return frame_error(ErrorCode::invalid_argument,
+                       what + "usage " + hex(out.usage) + " lacks VK_IMAGE_USAGE_STORAGE_BIT");
+  }
+  if (out.extent.width < size.width || out.extent.height < size.height) {
+    return frame_error(ErrorCode::size_mismatch,
+                       what + std::to_string(out.extent.width) + "x" +
+                           std::to_string(out.extent.height) + ", smaller than the render size " +
+                           std::to_string(size.width) + "x" + std::to_string(size.height));
+  }
+  if (out.layout == VK_IMAGE_LAYOUT_PREINITIALIZED) {
+    return frame_error(ErrorCode::invalid_argument, what + "layout PREINITIALIZED");
+  }
+  return Status::success();
+}
+
 }  // namespace
 
-Status check_adaptive_frame(const State& st, VkCommandBuffer cmd, const AdaptiveFrame& f) {
+Status check_adaptive_frame(const State& st, VkCommandBuffer cmd, const AdaptiveFrame& f,
+                            VkExtent2D size) {
   if (cmd == VK_NULL_HANDLE) {
     return frame_error(ErrorCode::invalid_argument, "no VkCommandBuffer");
+  }
+  if (!st.frame_open) {
+    return frame_error(ErrorCode::invalid_argument,
+                       "record before begin_frame (which frame slot the record belongs to)");
+  }
+  const AdaptiveSupersamplerOptions& o = st.options;
+  if (size.width == 0 || size.height == 0 || size.width > std::uint32_t(o.width) ||
+      size.height > std::uint32_t(o.height)) {
+    return frame_error(ErrorCode::too_large,
+                       "render size " + std::to_string(f.render_size.width) + "x" +
+                           std::to_string(f.render_size.height) + " (1.." +
+                           std::to_string(o.width) + " x 1.." + std::to_string(o.height) +
+                           ", the largest size of the options)");
+  }
+  if (f.output.image != VK_NULL_HANDLE) {
+    if (Status s = check_output(st, f.output, size); !s.ok()) return s;
   }
   if (Status s = adaptive::check_budget(f.budget, kWho); !s.ok()) return s;
   if (f.hook_sets.size() != st.options.hook_set_layouts.size()) {
@@ -130,7 +177,7 @@ Status check_adaptive_frame(const State& st, VkCommandBuffer cmd, const Adaptive
   }
   for (int s = 0; s < 4; ++s) {
     if (!st.derived.slot_used[s]) continue;
-    if (Status e = check_slot(st, s, f.gbuffer[std::size_t(s)]); !e.ok()) return e;
+    if (Status e = check_slot(st, s, f.gbuffer[std::size_t(s)], size); !e.ok()) return e;
     for (int t = 0; t < s; ++t) {
       const ImageResource &a = f.gbuffer[std::size_t(t)], &b = f.gbuffer[std::size_t(s)];
       if (st.derived.slot_used[t] && a.image == b.image && a.layout != b.layout) {
@@ -150,10 +197,17 @@ constexpr VkAccessFlags2 kPassReads = VK_ACCESS_2_UNIFORM_READ_BIT |
                                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
                                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
 
+/// One record's view, size and mode, as the recording steps below see it.
+struct Target {
+  State::View& view;
+  VkExtent2D size;
+  const AdaptiveFrame& frame;
+};
+
 /// Records the passes, one barrier between each two, timestamps when profiling.
 class Recorder {
  public:
-  Recorder(State& st, VkCommandBuffer cmd) : st_(st), cmd_(cmd) {}
+  Recorder(State& st, VkCommandBuffer cmd, const Target& t) : st_(st), cmd_(cmd), t_(t) {}
 
   void pass(const std::string& name, const std::string& program, std::uint32_t groups_x = 0,
             bool indirect = false, const char* then = nullptr) {
@@ -164,9 +218,11 @@ class Recorder {
       dispatch(then, 1, false);
     }
     if (st_.options.profile) {
-      st_.last_passes.push_back(name);
-      if (st_.timestamps)
-        write_timestamp(st_.api, cmd_, st_.queries.get(), std::uint32_t(st_.last_passes.size()));
+      t_.view.passes.push_back(name);
+      if (st_.timestamps) {
+        write_timestamp(st_.api, cmd_, t_.view.queries.get(),
+                        std::uint32_t(t_.view.passes.size()));
+      }
     }
   }
 
@@ -189,19 +245,20 @@ class Recorder {
     } else if (groups_x > 0) {
       st_.api.CmdDispatch(cmd_, groups_x, 1, 1);
     } else {
-      st_.api.CmdDispatch(cmd_, std::uint32_t((st_.options.width + 7) / 8),
-                          std::uint32_t((st_.options.height + 7) / 8), 1);
+      st_.api.CmdDispatch(cmd_, (t_.size.width + 7) / 8, (t_.size.height + 7) / 8, 1);
     }
   }
   State& st_;
   VkCommandBuffer cmd_;
+  const Target& t_;
   bool first_ = true;
 };
 
-/// The first barrier (G-buffer in, outputs from UNDEFINED, the buffers after the previous
+/// The first barrier (G-buffer in, outputs to GENERAL, the shared buffers after every earlier
 /// record) and the parameter and work-header uploads.
-void record_prologue(State& st, VkCommandBuffer cmd, const AdaptiveFrame& f) {
+void record_prologue(State& st, VkCommandBuffer cmd, const Target& t) {
   const Api& api = st.api;
+  const AdaptiveFrame& f = t.frame;
   Barrier in;
   std::vector<VkImage> done;
   for (std::size_t s = 0; s < 4; ++s) {
@@ -212,12 +269,19 @@ void record_prologue(State& st, VkCommandBuffer cmd, const AdaptiveFrame& f) {
     in.image(img.image, img.layout, adaptive_read_layout(img.layout), img.stage, img.access,
              kCompute, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
   }
-  const VkImage outputs[2] = {st.colour.get(), st.counts.get()};
-  for (VkImage out : outputs) {
-    if (out == VK_NULL_HANDLE) continue;
-    // The transition writes the image: after every earlier write (the previous record's
-    // passes, or whatever the engine did with it), not only after earlier reads.
-    in.image(out, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+  // The transition writes the image: after every earlier write (the view's previous record, or
+  // whatever the engine did with it), not only after earlier reads. The engine's own output
+  // keeps its contents beyond the render size (from its layout, after its last use).
+  if (f.output.image != VK_NULL_HANDLE) {
+    in.image(f.output.image, f.output.layout, VK_IMAGE_LAYOUT_GENERAL, f.output.stage,
+             f.output.access, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  } else {
+    in.image(t.view.colour.get(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+             VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, kCompute,
+             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  }
+  if (t.view.counts.get() != VK_NULL_HANDLE) {
+    in.image(t.view.counts.get(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
              VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, kCompute,
              VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   }
@@ -226,10 +290,11 @@ void record_prologue(State& st, VkCommandBuffer cmd, const AdaptiveFrame& f) {
             VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
   in.record(api, cmd);
   if (st.timestamps) {
-    api.CmdResetQueryPool(cmd, st.queries.get(), 0, st.query_capacity);
-    write_timestamp(api, cmd, st.queries.get(), 0);
+    api.CmdResetQueryPool(cmd, t.view.queries.get(), 0, st.query_capacity);
+    write_timestamp(api, cmd, t.view.queries.get(), 0);
   }
-  const adaptive::Params params = adaptive::params(st.options, st.derived);
+  const adaptive::Params params =
+      adaptive::params(st.options, st.derived, int(t.size.width), int(t.size.height));
   api.CmdUpdateBuffer(cmd, st.params.get(), 0, sizeof params, &params);
   // The work header; histograms cleared when budgeted.
   const auto header = adaptive::work_header(f.budget);
@@ -245,62 +310,105 @@ void record_prologue(State& st, VkCommandBuffer cmd, const AdaptiveFrame& f) {
   up.record(api, cmd);
 }
 
-/// With `profile`: the extra-sample counter copied to the host-visible buffer.
-void record_epilogue(State& st, VkCommandBuffer cmd) {
+/// With `profile`: the timestamps, the extra-sample counter and the frame number copied to the
+/// view's host-visible buffer (read_profile's "completed" is that frame number there).
+void record_epilogue(State& st, VkCommandBuffer cmd, const Target& t) {
   if (!st.options.profile) return;
   Barrier b;
   b.memory(kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
            VK_ACCESS_2_TRANSFER_READ_BIT);
   b.record(st.api, cmd);
+  const VkBuffer rb = t.view.readback.get();
+  if (st.timestamps) {
+    st.api.CmdCopyQueryPoolResults(cmd, t.view.queries.get(), 0,
+                                   std::uint32_t(t.view.passes.size()) + 1, rb, kReadbackTicks,
+                                   8, VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+  }
   const VkBufferCopy copy{4, 0, 4};
-  st.api.CmdCopyBuffer(cmd, st.work.get(), st.readback.get(), 1, &copy);
+  st.api.CmdCopyBuffer(cmd, st.work.get(), rb, 1, &copy);
+  const std::uint64_t frame = st.frame_count;
+  st.api.CmdUpdateBuffer(cmd, rb, 8, 8, &frame);
   Barrier h;
   h.memory(VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
            VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
   h.record(st.api, cmd);
 }
 
+ImageResource output_resource(VkImage image, VkImageView view, VkFormat format,
+                              VkExtent2D extent, VkImageUsageFlags usage) {
+  ImageResource o;
+  o.image = image;
+  o.view = view;
+  o.format = format;
+  o.extent = extent;
+  o.usage = usage;
+  o.layout = VK_IMAGE_LAYOUT_GENERAL;
+  o.stage = kCompute;
+  o.access = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+  return o;
+}
+ImageResource output_resource(const Image& img) {
+  return output_resource(img.get(), img.view(), img.format(), img.extent(), img.usage());
+}
+
 }  // namespace
 
 Result<AdaptiveRecord> record_adaptive(State& st, VkCommandBuffer cmd, const AdaptiveFrame& f,
                                        AdaptiveMode mode) {
-  if (Status s = check_adaptive_frame(st, cmd, f); !s.ok()) return s;
-  const VkDescriptorSet set = acquire_adaptive_set(st, f);
-  st.last_passes.clear();
-  st.last_mode = mode;
-  st.recorded = true;
-  record_prologue(st, cmd, f);
+  const AdaptiveSupersamplerOptions& o = st.options;
+  const bool largest = f.render_size.width == 0 && f.render_size.height == 0;
+  const VkExtent2D size =
+      largest ? VkExtent2D{std::uint32_t(o.width), std::uint32_t(o.height)} : f.render_size;
+  if (Status s = check_adaptive_frame(st, cmd, f, size); !s.ok()) return s;
+  Result<State::View*> acquired = acquire_adaptive_view(st, f);
+  if (!acquired) return acquired.status();
+  State::View& view = **acquired;
+  view.passes.clear();
+  view.mode = mode;
+  view.size = size;
+  view.frame = st.frame_count;
+  const Target t{view, size, f};
+  record_prologue(st, cmd, t);
   std::vector<VkDescriptorSet> sets = f.hook_sets;
-  sets.push_back(set);
+  sets.push_back(view.set);
   st.api.CmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, st.pipeline_layout.get(), 0,
                                std::uint32_t(sets.size()), sets.data(), 0, nullptr);
-  Recorder run(st, cmd);
-  for (const adaptive::Step& step :
-       adaptive::frame_steps(mode, st.options.schedule, f.budget.has_value())) {
+  Recorder run(st, cmd, t);
+  for (const adaptive::Step& step : adaptive::frame_steps(mode, o.schedule, f.budget.has_value())) {
     run.pass(step.name, step.program, step.groups_x, step.indirect, step.then);
   }
-  record_epilogue(st, cmd);
+  record_epilogue(st, cmd, t);
 
   AdaptiveRecord r;
-  auto output = [](const Image& img) {
-    ImageResource o;
-    o.image = img.get();
-    o.view = img.view();
-    o.format = img.format();
-    o.extent = img.extent();
-    o.usage = img.usage();
-    o.layout = VK_IMAGE_LAYOUT_GENERAL;
-    o.stage = kCompute;
-    o.access = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    return o;
-  };
-  r.colour = output(st.colour);
-  if (st.counts.get() != VK_NULL_HANDLE) r.sample_counts = output(st.counts);
+  r.colour = f.output.image != VK_NULL_HANDLE
+                 ? output_resource(f.output.image, f.output.view, f.output.format,
+                                   f.output.extent, f.output.usage)
+                 : output_resource(view.colour);
+  if (view.counts.get() != VK_NULL_HANDLE) r.sample_counts = output_resource(view.counts);
   for (std::size_t s = 0; s < 4; ++s) {
     r.gbuffer_layout[s] =
         st.derived.slot_used[s] ? adaptive_read_layout(f.gbuffer[s].layout) : f.gbuffer[s].layout;
   }
+  r.render_size = size;
+  r.frame_slot = st.slot;
+  r.view = st.views++;
   return r;
+}
+
+Status AdaptiveSupersampler::begin_frame(std::uint32_t frame_slot) {
+  State& st = *state_;
+  if (frame_slot >= st.options.frames_in_flight) {
+    return frame_error(ErrorCode::invalid_argument,
+                       "begin_frame(" + std::to_string(frame_slot) + "): frame slots are 0.." +
+                           std::to_string(st.options.frames_in_flight - 1) +
+                           " (frames_in_flight = " +
+                           std::to_string(st.options.frames_in_flight) + ")");
+  }
+  st.frame_open = true;
+  st.slot = frame_slot;
+  st.views = 0;
+  ++st.frame_count;
+  return Status::success();
 }
 
 Result<AdaptiveRecord> AdaptiveSupersampler::record(VkCommandBuffer cmd,
@@ -316,35 +424,47 @@ Result<AdaptiveRecord> AdaptiveSupersampler::record_first_sample(VkCommandBuffer
   return record_adaptive(*state_, cmd, frame, AdaptiveMode::first);
 }
 
-Result<AdaptiveProfile> AdaptiveSupersampler::read_profile() const {
+Result<AdaptiveProfile> AdaptiveSupersampler::read_profile(std::uint32_t frame_slot,
+                                                           std::uint32_t view) const {
   const State& st = *state_;
   if (!st.options.profile) {
     return frame_error(ErrorCode::unsupported, "read_profile needs options.profile");
   }
-  if (!st.recorded) return frame_error(ErrorCode::invalid_argument, "read_profile before a record");
+  const std::string which =
+      "read_profile(" + std::to_string(frame_slot) + ", " + std::to_string(view) + ")";
+  if (frame_slot >= st.frames.size() || view >= st.frames[frame_slot].size() ||
+      st.frames[frame_slot][view].frame == 0) {
+    return frame_error(ErrorCode::invalid_argument, which + ": nothing recorded there");
+  }
+  const State::View& v = st.frames[frame_slot][view];
+  const std::string pending = which + ": the command buffer of frame " +
+                              std::to_string(v.frame) + " has not completed";
+  v.readback.invalidate();
+  const auto* bytes = static_cast<const unsigned char*>(v.readback.mapped());
+  std::uint32_t counter = 0;
+  std::uint64_t written = 0;
+  std::memcpy(&counter, bytes, 4);
+  std::memcpy(&written, bytes + 8, 8);
+  if (written != v.frame) return frame_error(ErrorCode::invalid_argument, pending);
   AdaptiveProfile p;
-  st.readback.invalidate();
-  const std::uint32_t extra = *static_cast<const std::uint32_t*>(st.readback.mapped());
-  p.extra_samples = adaptive::extra_samples(st.options, st.last_mode, extra);
-  const std::uint32_t count = std::uint32_t(st.last_passes.size()) + 1;
-  std::vector<std::uint64_t> ticks(count);
+  p.frame = v.frame;
+  p.frame_slot = frame_slot;
+  p.view = view;
+  p.render_size = v.size;
+  p.extra_samples = adaptive::extra_samples(st.options, v.mode, counter,
+                                            std::uint64_t(v.size.width) * v.size.height);
   if (!st.timestamps) {
-    for (const std::string& name : st.last_passes) p.passes.push_back({name, std::nan("")});
+    for (const std::string& name : v.passes) p.passes.push_back({name, std::nan("")});
     return p;
   }
-  const VkResult r = st.api.GetQueryPoolResults(st.api.device(), st.queries.get(), 0, count,
-                                                count * 8, ticks.data(), 8, VK_QUERY_RESULT_64_BIT);
-  if (r == VK_NOT_READY) {
-    return frame_error(ErrorCode::invalid_argument,
-                       "read_profile: the last recorded command buffer has not completed");
-  }
-  if (r != VK_SUCCESS) return vk_error("vk adaptive supersampler: vkGetQueryPoolResults", r);
+  std::vector<std::uint64_t> ticks(v.passes.size() + 1);
+  std::memcpy(ticks.data(), bytes + kReadbackTicks, ticks.size() * 8);
   const std::uint32_t bits = st.api.queue_family.timestampValidBits;
   const double period = double(st.api.properties.limits.timestampPeriod);
   const std::uint64_t mask = bits >= 64 ? ~0ull : (1ull << bits) - 1;
-  for (std::uint32_t i = 1; i < count; ++i) {
+  for (std::size_t i = 1; i < ticks.size(); ++i) {
     const double ms = double((ticks[i] - ticks[i - 1]) & mask) * period * 1e-6;
-    p.passes.push_back({st.last_passes[i - 1], ms});
+    p.passes.push_back({v.passes[i - 1], ms});
   }
   return p;
 }

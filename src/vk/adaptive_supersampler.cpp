@@ -40,8 +40,8 @@ Status check_storage_format(const State& st, VkFormat f, const char* name) {
 Status check_options(State& st) {
   const AdaptiveSupersamplerOptions& o = st.options;
   if (Status s = adaptive::check_options(o, kWho, st.derived); !s.ok()) return s;
-  if (o.descriptor_sets < 1 || o.descriptor_sets > 1024) {
-    return invalid("descriptor_sets = " + std::to_string(o.descriptor_sets) + " (1..1024)");
+  if (o.frames_in_flight < 1 || o.frames_in_flight > 16) {
+    return invalid("frames_in_flight = " + std::to_string(o.frames_in_flight) + " (1..16)");
   }
   for (std::size_t i = 0; i < o.hook_set_layouts.size(); ++i) {
     if (o.hook_set_layouts[i] == VK_NULL_HANDLE) {
@@ -75,10 +75,11 @@ Status check_options(State& st) {
   st.derived.list_capacity = adaptive::list_capacity(
       o, st.derived.n,
       (std::size_t(lim.maxStorageBufferRange) - 16) / adaptive::kListItemBytes);
-  if (!st.api.ctx.enabled_features.shaderFloat64) {
-    return unsupported(
-        "needs the device feature shaderFloat64 (the depth metric's variance is computed in "
-        "double, as on the CPU and GL), not enabled in DeviceContext::enabled_features");
+  // Without fp64 the depth metric accumulates in float; tile_list beyond the device's shared
+  // memory runs `loop` (the same image).
+  st.derived.float64 = st.api.ctx.enabled_features.shaderFloat64 == VK_TRUE;
+  if (st.derived.tile && adaptive::tile_shared_bytes(st.derived.n) > lim.maxComputeSharedMemorySize) {
+    st.derived.tile = false;
   }
   if (o.sample_count_texture) {
     if (!st.api.ctx.enabled_features.shaderStorageImageExtendedFormats) {
@@ -130,6 +131,14 @@ AdaptiveSupersampler::~AdaptiveSupersampler() = default;
 
 const AdaptiveSupersamplerOptions& AdaptiveSupersampler::options() const { return state_->options; }
 std::uint32_t AdaptiveSupersampler::descriptor_set_index() const { return state_->set_index; }
+AdaptiveSchedule AdaptiveSupersampler::schedule() const {
+  const State& st = *state_;
+  if (st.options.schedule == AdaptiveSchedule::tile_list && !st.derived.tile) {
+    return AdaptiveSchedule::loop;
+  }
+  return st.options.schedule;
+}
+bool AdaptiveSupersampler::float64() const { return state_->derived.float64; }
 
 void AdaptiveSupersampler::set_thresholds(const AdaptiveThresholds& thresholds) {
   state_->options.thresholds = thresholds;  // recorded with the next record

@@ -32,7 +32,7 @@ Result<AdaptiveSupersampler*> component(State& st) {
                                   "vk::DeferredRenderer's shading hook");
   o.schedule = AdaptiveSchedule::frame_list;  // gl::DeferredRenderer's default
   o.hook_set_layouts = {st.set_layout.get()};
-  o.descriptor_sets = 1;  // one G-buffer; the component is made again with it
+  o.frames_in_flight = 1;  // each frame is submitted and waited for
   Result<std::unique_ptr<AdaptiveSupersampler>> c =
       AdaptiveSupersampler::create(st.device->context(), o);
   if (!c) return c.status();
@@ -145,6 +145,7 @@ Status shade_with_component(State& st, adaptive::Mode mode, const deferred::Adap
   if (!cmd) return cmd.status();
   record_full_barrier(*st.api, *cmd);
   const AdaptiveFrame frame = component_frame(st);
+  if (Status s = (*c)->begin_frame(0); !s.ok()) return s;  // the last frame completed
   Result<AdaptiveRecord> rec = mode == adaptive::Mode::adaptive ? (*c)->record(*cmd, frame)
                                : mode == adaptive::Mode::reference
                                    ? (*c)->record_reference(*cmd, frame)
@@ -156,7 +157,7 @@ Status shade_with_component(State& st, adaptive::Mode mode, const deferred::Adap
   out.wall_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0).count();
   st.g_layout = rec->gbuffer_layout[0];
-  Result<AdaptiveProfile> prof = (*c)->read_profile();
+  Result<AdaptiveProfile> prof = (*c)->read_profile(rec->frame_slot, rec->view);
   if (!prof) return prof.status();
   // The component's passes share one submission: each has its GPU time, and the submission's
   // wall time (out.wall_ms) is split between them by those times (evenly where they are

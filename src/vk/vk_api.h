@@ -66,6 +66,7 @@ namespace tessera::vk {
   X(CmdCopyBuffer)                     \
   X(CmdWriteTimestamp)                 \
   X(CmdResetQueryPool)                 \
+  X(CmdCopyQueryPoolResults)           \
   X(CmdCopyBufferToImage)              \
   X(FlushMappedMemoryRanges)           \
   X(CreateCommandPool)                 \

@@ -110,7 +110,9 @@ TEST(AdaptiveHost, ParamsHeaderAndSteps) {
   AdaptiveCommonOptions o = valid();
   o.thresholds.force_k = 99;
   ASSERT_TRUE(adaptive::check_options(o, "who", d).ok());
-  const adaptive::Params p = adaptive::params(o, d);
+  const adaptive::Params p = adaptive::params(o, d, 7, 5);  // a smaller render size
+  EXPECT_EQ(p.size[0], 7);
+  EXPECT_EQ(p.size[1], 5);
   EXPECT_EQ(p.flags[0], 15);  // force_k clamped to m*m - 1
   EXPECT_EQ(p.order[1], int(d.order[1]));
   EXPECT_EQ(adaptive::work_header(std::nullopt)[5], 0u);
@@ -123,7 +125,14 @@ TEST(AdaptiveHost, ParamsHeaderAndSteps) {
   EXPECT_EQ(adaptive::frame_steps(Mode::adaptive, o.schedule, false).size(), 5u);
   EXPECT_EQ(adaptive::frame_steps(Mode::adaptive, o.schedule, true).size(), 5u + 17u);
   EXPECT_EQ(adaptive::frame_steps(Mode::adaptive, AdaptiveSchedule::loop, false).size(), 3u);
-  EXPECT_EQ(adaptive::extra_samples(o, Mode::reference, 0), 16u * 8u * 15u);
+  EXPECT_EQ(adaptive::extra_samples(o, Mode::reference, 0, 16u * 8u), 16u * 8u * 15u);
+  EXPECT_EQ(adaptive::extra_samples(o, Mode::adaptive, 37, 16u * 8u), 37u);
+  // tile_list's shared memory: a count, then 24 bytes per item (64 * m*m items).
+  EXPECT_EQ(adaptive::tile_shared_bytes(16), 24580u);
+  EXPECT_FALSE(d.tile);  // frame_list
+  o.schedule = AdaptiveSchedule::tile_list;
+  ASSERT_TRUE(adaptive::check_options(o, "who", d).ok());
+  EXPECT_TRUE(d.tile);
 }
 
 }  // namespace

@@ -54,7 +54,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #define TESSERA_ADAPTIVE_LAYOUT(b) binding = (b)
 #endif
 
-layout(std140, TESSERA_ADAPTIVE_LAYOUT(TESSERA_ADAPTIVE_UBO_BINDING)) uniform TesseraAaParams {
+layout(std140, TESSERA_ADAPTIVE_LAYOUT(TESSERA_ADAPTIVE_UBO_BINDING)) uniform TesseraAdaptiveParams {
   ivec4 tessera_adaptive_size;     // w, h, m, n
   ivec4 tessera_adaptive_flags;    // force_k (-1 off), metrics (1 geometry, 2 shading), budget on,
                              // list capacity (items)
@@ -68,10 +68,10 @@ layout(std140, TESSERA_ADAPTIVE_LAYOUT(TESSERA_ADAPTIVE_UBO_BINDING)) uniform Te
 // pass's group counts, [5] budget still binding, [6] remainder R, [7] key hi, [8] key lo,
 // [9] the budget's current digit (0 = most significant .. 7),
 // [16 .. 16 + 8*256) digit histograms, then per pixel (P = w*h): luma, k, strength, list base.
-layout(std430, TESSERA_ADAPTIVE_LAYOUT(TESSERA_ADAPTIVE_WORK_BINDING)) buffer TesseraAaWork { uint tessera_adaptive_work[]; };
+layout(std430, TESSERA_ADAPTIVE_LAYOUT(TESSERA_ADAPTIVE_WORK_BINDING)) buffer TesseraAdaptiveWork { uint tessera_adaptive_work[]; };
 // Frame list of TESSERA_ADAPTIVE_LIST_CAPACITY items: (pixel | sample << 26, footprint bits) each,
 // then their colours.
-layout(std430, TESSERA_ADAPTIVE_LAYOUT(TESSERA_ADAPTIVE_WORK_BINDING + 1)) buffer TesseraAaList {
+layout(std430, TESSERA_ADAPTIVE_LAYOUT(TESSERA_ADAPTIVE_WORK_BINDING + 1)) buffer TesseraAdaptiveList {
   uvec2 tessera_adaptive_items[TESSERA_ADAPTIVE_LIST_CAPACITY];
   vec4 tessera_adaptive_colours[];
 };
