@@ -23,8 +23,8 @@ std::string Device::create(bool want_validation) {
   if (!why.empty()) return why;
   VkPhysicalDeviceFeatures supported{};
   vkGetPhysicalDeviceFeatures(physical, &supported);
-  if (!supported.shaderFloat64) return "device " + name + " lacks shaderFloat64";
-  features.shaderFloat64 = VK_TRUE;
+  // tessera's depth metric runs in double where the device has fp64, else in float.
+  features.shaderFloat64 = supported.shaderFloat64;
   features.shaderStorageImageExtendedFormats = supported.shaderStorageImageExtendedFormats;
   VkPhysicalDeviceVulkan13Features f13{};
   f13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
@@ -83,6 +83,29 @@ void Device::submit_and_wait(VkCommandBuffer cmd) {
   vkQueueWaitIdle(queue);
   vkFreeCommandBuffers(device, pool_, 1, &cmd);
 }
+
+VkFence Device::fence() {
+  VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO, nullptr, 0};
+  VkFence f = VK_NULL_HANDLE;
+  vkCreateFence(device, &fi, nullptr, &f);
+  return f;
+}
+
+void Device::submit(VkCommandBuffer cmd, VkFence fence) {
+  vkEndCommandBuffer(cmd);
+  VkSubmitInfo si{};
+  si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd;
+  vkQueueSubmit(queue, 1, &si, fence);
+}
+
+void Device::wait(VkFence fence) {
+  vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
+  vkResetFences(device, 1, &fence);
+}
+
+void Device::free(VkCommandBuffer cmd) { vkFreeCommandBuffers(device, pool_, 1, &cmd); }
 
 void barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
              VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,

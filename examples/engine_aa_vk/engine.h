@@ -23,8 +23,8 @@ struct Image {
   std::uint32_t w = 0, h = 0;
 };
 
-/// A Vulkan 1.3 device (vk_engine.h's DeviceBase) with synchronization2, dynamic rendering and
-/// shaderFloat64, and a command pool.
+/// A Vulkan 1.3 device (vk_engine.h's DeviceBase) with synchronization2, dynamic rendering,
+/// shaderFloat64 where the device has it, and a command pool.
 class Device : public DeviceBase {
  public:
   /// Creates everything; "" on success, else the reason (no device, no Vulkan 1.3, ...).
@@ -37,6 +37,12 @@ class Device : public DeviceBase {
   void destroy(Image& i);
   VkCommandBuffer begin();
   void submit_and_wait(VkCommandBuffer cmd);
+  /// The frame loop's: a fence, a submission of `cmd` (ended here) signalling it, the wait for
+  /// it (then reset), freeing a command buffer once its fence signalled.
+  VkFence fence();
+  void submit(VkCommandBuffer cmd, VkFence fence);
+  void wait(VkFence fence);
+  void free(VkCommandBuffer cmd);
   /// Reads an RGBA16F / R8_UINT image left in `layout` after (stage, access) (synchronization2).
   std::vector<std::uint8_t> read(const Image& img, std::size_t texel_bytes, VkImageLayout layout,
                                  VkPipelineStageFlags2 stage, VkAccessFlags2 access);

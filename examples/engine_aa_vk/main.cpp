@@ -13,6 +13,10 @@
 //
 // Usage: engine_aa_vk [--size WxH] [--m M] [--budget B] [--schedule frame_list|tile_list|loop]
 //                     [--no-validation] [--json] [-o DIR]
+//                     [--frame-loop N [--frames-in-flight F] [--views V]]
+//   --frame-loop N  runs N frames as an engine does (frame_loop.h): F frames in flight (2),
+//           V views (2), the render scale cycling 100 % -> 70 % -> 85 %; --json reports per
+//           frame and view the render size, the extra samples and tessera's GPU time
 //   --json  one JSON object: samples %, PSNR of the adaptive and the 1 spp image against the
 //           component's own full supersampling (tonemapped, sRGB8), the component's pass times
 //           (GPU timestamps; lavapipe runs them on the CPU), validation messages
@@ -30,6 +34,8 @@
 #include "aa_report.h"  // examples/common: the flags, measures and report both AA engines share
 #include "aa_scene.h"   // examples/common: the scene, camera, lights and shading of both
 #include "engine.h"
+#include "frame_loop.h"
+#include "scene_frame.h"
 #include "tessera/core.h"
 #include "tessera/vk_adaptive.h"
 
@@ -38,6 +44,8 @@ namespace {
 // The flags of engine_aa too (aa_report.h), and the Vulkan engine's own.
 struct Args : engine::AaArgs {
   bool no_validation = false;
+  int frame_loop = 0;  // frames of the frame loop (frame_loop.h); 0: the three measured frames
+  int frames_in_flight = 2, views = 2;
 };
 
 int fail(const std::string& msg) {
@@ -66,145 +74,20 @@ std::string parse_args(int argc, char** argv, Args& a) {
   engine::CommandLine cl;
   engine::add_aa_flags(cl, a);
   cl.flag("--no-validation", &a.no_validation);
+  auto count = [](const char* flag, int lo, int hi, int& to) {
+    return [flag, lo, hi, &to](const std::string& v) -> std::string {
+      to = std::atoi(v.c_str());
+      return to < lo || to > hi ? std::string(flag) + " " + v + ": expected " +
+                                      std::to_string(lo) + ".." + std::to_string(hi)
+                                : "";
+    };
+  };
+  cl.option("--frame-loop", count("--frame-loop", 1, 100000, a.frame_loop));
+  cl.option("--frames-in-flight", count("--frames-in-flight", 1, 16, a.frames_in_flight));
+  cl.option("--views", count("--views", 1, 16, a.views));
   return cl.parse(argc, argv);
 }
 
-/// The engine's G-buffer and its frame data.
-struct Frame {
-  engine::Image rt0, rt1, depth;
-  engine::Buffer vertices, ubo;
-  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  VkDescriptorSet set = VK_NULL_HANDLE;
-  VkSampler sampler = VK_NULL_HANDLE;
-  std::size_t vertex_count = 0;
-  engine::Camera cam;  // aa_scene.h's, with Vulkan's projection
-};
-
-void setup(engine::Device& d, const Args& a, Frame& f) {
-  const std::uint32_t gw = std::uint32_t(a.w * a.m), gh = std::uint32_t(a.h * a.m);
-  const VkImageUsageFlags rt = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-  f.rt0 = d.image(VK_FORMAT_R16G16B16A16_SFLOAT, gw, gh, rt);
-  f.rt1 = d.image(VK_FORMAT_R8G8B8A8_UNORM, gw, gh, rt);
-  f.depth = d.image(VK_FORMAT_D32_SFLOAT, gw, gh, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                    VK_IMAGE_ASPECT_DEPTH_BIT);
-  const std::vector<engine::Vertex> verts = engine::make_scene();
-  f.vertex_count = verts.size();
-  f.vertices =
-      d.buffer(verts.size() * sizeof(engine::Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
-  std::memcpy(f.vertices.data, verts.data(), verts.size() * sizeof(engine::Vertex));
-  f.cam = engine::make_camera(a.w, a.h);
-  const float zn = 0.1f, zf = 50.0f;  // Vulkan's depth range [0, 1]
-  f.cam.proj[0] = 1.0f / (f.cam.tan_half * f.cam.aspect);
-  f.cam.proj[5] = 1.0f / f.cam.tan_half;
-  f.cam.proj[10] = zf / (zn - zf);
-  f.cam.proj[11] = -1.0f;
-  f.cam.proj[14] = zn * zf / (zn - zf);
-  const engine::FrameBlock u = engine::frame_block(f.cam, int(gw), int(gh));
-  f.ubo = d.buffer(sizeof u, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-  std::memcpy(f.ubo.data, &u, sizeof u);
-  // The engine's descriptor set 0 for the hook: its frame block, RT1 as a sampler.
-  VkSamplerCreateInfo si{};
-  si.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
-  vkCreateSampler(d.device, &si, nullptr, &f.sampler);
-  const VkDescriptorSetLayoutBinding b[2] = {
-      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
-  VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, nullptr,
-                                     0, 2, b};
-  vkCreateDescriptorSetLayout(d.device, &li, nullptr, &f.set_layout);
-  const VkDescriptorPoolSize ps[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}};
-  VkDescriptorPoolCreateInfo pi{
-      VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, nullptr, 0, 1, 2, ps};
-  vkCreateDescriptorPool(d.device, &pi, nullptr, &f.pool);
-  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, nullptr, f.pool, 1,
-                                 &f.set_layout};
-  vkAllocateDescriptorSets(d.device, &ai, &f.set);
-  const VkDescriptorBufferInfo bi{f.ubo.buffer, 0, VK_WHOLE_SIZE};
-  // tessera leaves the G-buffer in SHADER_READ_ONLY_OPTIMAL while its passes run.
-  const VkDescriptorImageInfo ii{f.sampler, f.rt1.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  VkWriteDescriptorSet w[2]{};
-  for (int i = 0; i < 2; ++i) {
-    w[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-    w[i].dstSet = f.set;
-    w[i].dstBinding = std::uint32_t(i);
-    w[i].descriptorCount = 1;
-  }
-  w[0].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  w[0].pBufferInfo = &bi;
-  w[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  w[1].pImageInfo = &ii;
-  vkUpdateDescriptorSets(d.device, 2, w, 0, nullptr);
-}
-
-/// The geometry pass: dynamic rendering into RT0, RT1 and depth (from UNDEFINED: cleared).
-void record_gbuffer(VkCommandBuffer cmd, const engine::GeometryPipeline& gp, const Frame& f) {
-  const VkPipelineStageFlags2 out = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-  for (const engine::Image* rt : {&f.rt0, &f.rt1}) {
-    engine::barrier(
-        cmd, rt->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0, out, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-  }
-  const VkPipelineStageFlags2 tests =
-      VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-  engine::barrier(cmd, f.depth.image, VK_IMAGE_LAYOUT_UNDEFINED,
-                  VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, tests,
-                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, tests,
-                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
-                  VK_IMAGE_ASPECT_DEPTH_BIT);
-  VkRenderingAttachmentInfo colour[2]{};
-  for (int i = 0; i < 2; ++i) {
-    colour[i].sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
-    colour[i].imageView = i == 0 ? f.rt0.view : f.rt1.view;
-    colour[i].imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    colour[i].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    colour[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  }
-  VkRenderingAttachmentInfo depth{};
-  depth.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
-  depth.imageView = f.depth.view;
-  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  depth.clearValue.depthStencil = {1.0f, 0};
-  VkRenderingInfo ri{};
-  ri.sType = VK_STRUCTURE_TYPE_RENDERING_INFO;
-  ri.renderArea = {{0, 0}, {f.rt0.w, f.rt0.h}};
-  ri.layerCount = 1;
-  ri.colorAttachmentCount = 2;
-  ri.pColorAttachments = colour;
-  ri.pDepthAttachment = &depth;
-  vkCmdBeginRendering(cmd, &ri);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gp.pipeline);
-  const VkViewport vp{0, 0, float(f.rt0.w), float(f.rt0.h), 0, 1};
-  vkCmdSetViewport(cmd, 0, 1, &vp);
-  vkCmdSetScissor(cmd, 0, 1, &ri.renderArea);
-  float pc[32];
-  std::copy(f.cam.view, f.cam.view + 16, pc);
-  std::copy(f.cam.proj, f.cam.proj + 16, pc + 16);
-  vkCmdPushConstants(cmd, gp.layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof pc, pc);
-  const VkDeviceSize zero = 0;
-  vkCmdBindVertexBuffers(cmd, 0, 1, &f.vertices.buffer, &zero);
-  vkCmdDraw(cmd, std::uint32_t(f.vertex_count), 1, 0, 0);
-  vkCmdEndRendering(cmd);
-}
-
-/// tessera's view of an engine image just rendered (COLOR_ATTACHMENT_OPTIMAL, written by the
-/// colour-attachment output stage).
-tessera::vk::ImageResource rendered(const engine::Image& img) {
-  tessera::vk::ImageResource r;
-  r.image = img.image;
-  r.view = img.view;
-  r.format = img.format;
-  r.extent = {img.w, img.h};
-  r.usage = img.usage;
-  r.layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  r.stage = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-  r.access = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
-  return r;
-}
 
 struct Shot {
   tessera::ImageRGBAF image;
@@ -216,10 +99,10 @@ struct Shot {
 enum class Kind { adaptive, reference, first };
 
 /// One frame: geometry pass then tessera, in one command buffer; the output read back.
-tessera::Result<Shot> frame(engine::Device& d, const engine::GeometryPipeline& gp, const Frame& f,
+tessera::Result<Shot> frame(engine::Device& d, const engine::GeometryPipeline& gp, const engine::Frame& f,
                             tessera::vk::AdaptiveSupersampler& aa, const Args& a, Kind kind) {
   VkCommandBuffer geometry = d.begin();
-  record_gbuffer(geometry, gp, f);
+  engine::record_gbuffer(geometry, gp, f);
   const auto t0 = std::chrono::steady_clock::now();
   d.submit_and_wait(geometry);
   Shot s;
@@ -228,10 +111,12 @@ tessera::Result<Shot> frame(engine::Device& d, const engine::GeometryPipeline& g
   VkCommandBuffer cmd = d.begin();
   // ---- tessera: per frame, the engine's G-buffer images in, the commands into its buffer ----
   tessera::vk::AdaptiveFrame in;
-  in.gbuffer[0] = rendered(f.rt0);
-  in.gbuffer[1] = rendered(f.rt1);
+  in.gbuffer[0] = engine::rendered(f.rt0);
+  in.gbuffer[1] = engine::rendered(f.rt1);
   in.hook_sets = {f.set};
   if (a.budget >= 0) in.budget = a.budget;
+  // This frame is the only one in flight (the engine waited for the last): slot 0.
+  if (tessera::Status st = aa.begin_frame(0); !st.ok()) return st;
   tessera::Result<tessera::vk::AdaptiveRecord> r = kind == Kind::adaptive ? aa.record(cmd, in)
                                                    : kind == Kind::reference
                                                        ? aa.record_reference(cmd, in)
@@ -239,7 +124,7 @@ tessera::Result<Shot> frame(engine::Device& d, const engine::GeometryPipeline& g
   // ---- end of the integration: r->colour is the anti-aliased HDR image (GENERAL) ----
   d.submit_and_wait(cmd);
   if (!r) return r.status();
-  auto p = aa.read_profile();
+  auto p = aa.read_profile(r->frame_slot, r->view);
   if (!p) return p.status();
   s.profile = *p;
   engine::Image colour{
@@ -276,12 +161,56 @@ void print_report(const Args& a, const engine::Device& d, const engine::AaReport
                             ", \"validation_messages\": " + std::to_string(d.messages));
 }
 
+/// The frame loop (frame_loop.h) and its report: per frame and view the render size, the extra
+/// samples and tessera's GPU time.
+int frame_loop(engine::Device& d, const engine::GeometryPipeline& gp, const Args& a,
+               tessera::vk::AdaptiveSupersampler& aa) {
+  engine::FrameLoopOptions lo;
+  lo.w = a.w;
+  lo.h = a.h;
+  lo.m = a.m;
+  lo.frames = a.frame_loop;
+  lo.frames_in_flight = std::uint32_t(a.frames_in_flight);
+  lo.views = a.views;
+  lo.budget = a.budget;
+  std::vector<engine::FrameResult> frames;
+  if (std::string e = engine::run_frame_loop(d, gp, lo, aa, frames); !e.empty()) return fail(e);
+  if (!a.json) {
+    for (const engine::FrameResult& f : frames) {
+      for (const engine::ViewResult& v : f.views) {
+        std::printf("frame %llu (slot %u) view %d: %ux%u (%d %%), %llu extra samples, %.2f ms\n",
+                    f.frame, f.slot, v.view, v.w, v.h, f.scale_percent, v.extra_samples,
+                    v.tessera_gpu_ms);
+      }
+    }
+    return 0;
+  }
+  std::printf("{\"backend\": \"vk\", \"device\": \"%s\", \"frames_in_flight\": %d, \"views\": %d, "
+              "\"frames\": [",
+              d.name.c_str(), a.frames_in_flight, a.views);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const engine::FrameResult& f = frames[i];
+    std::printf("%s{\"frame\": %llu, \"slot\": %u, \"scale_percent\": %d, \"views\": [",
+                i ? ", " : "", f.frame, f.slot, f.scale_percent);
+    for (std::size_t k = 0; k < f.views.size(); ++k) {
+      const engine::ViewResult& v = f.views[k];
+      std::printf("%s{\"view\": %d, \"render_size\": [%u, %u], \"extra_samples\": %llu, "
+                  "\"tessera_gpu_ms\": %.4f}",
+                  k ? ", " : "", v.view, v.w, v.h, v.extra_samples, v.tessera_gpu_ms);
+    }
+    std::printf("]}");
+  }
+  std::printf("], \"validation\": %s, \"validation_messages\": %d}\n",
+              d.validation ? "true" : "false", d.messages);
+  return 0;
+}
+
 /// Creates the component, runs the three kinds of frame (each twice: the first also pays the
 /// driver's pipeline compilation), reports.
 int run(engine::Device& d, const Args& a) {
   engine::GeometryPipeline gp = engine::geometry_pipeline(d);
-  Frame f;
-  setup(d, a, f);
+  engine::Frame f;
+  engine::setup(d, a.w, a.h, a.m, 0, f);
   // ---- tessera: create once per (size, m, options) on the engine's device ----
   tessera::vk::DeviceContext ctx;
   ctx.instance = d.instance;
@@ -299,10 +228,17 @@ int run(engine::Device& d, const Args& a) {
   // are GPU timestamps here, read back after each frame.
   engine::set_aa_options(o, a, kShadingHook);
   o.hook_set_layouts = {f.set_layout};  // the hook's set 0; tessera's is set 1
+  if (a.frame_loop > 0) {
+    o.frames_in_flight = std::uint32_t(a.frames_in_flight);
+    o.profile = true;  // per view and frame: extra samples and GPU time, read after the fence
+  }
   int rc = 0;
   auto aa = tessera::vk::AdaptiveSupersampler::create(ctx, o);
   if (!aa) {
     rc = fail(aa.status().message);
+  } else if (a.frame_loop > 0) {
+    rc = frame_loop(d, gp, a, **aa);
+    aa->reset();
   } else {
     std::array<Shot, 3> shots;
     const Kind kinds[3] = {Kind::adaptive, Kind::reference, Kind::first};
@@ -337,14 +273,7 @@ int run(engine::Device& d, const Args& a) {
     aa->reset();
   }
   vkDeviceWaitIdle(d.device);
-  vkDestroyDescriptorPool(d.device, f.pool, nullptr);
-  vkDestroyDescriptorSetLayout(d.device, f.set_layout, nullptr);
-  vkDestroySampler(d.device, f.sampler, nullptr);
-  d.destroy(f.vertices);
-  d.destroy(f.ubo);
-  d.destroy(f.rt0);
-  d.destroy(f.rt1);
-  d.destroy(f.depth);
+  engine::destroy(d, f);
   engine::destroy(d, gp);
   return rc;
 }

@@ -31,6 +31,33 @@ report = reporter([ENGINE, *SIZE], "no Vulkan 1.3 device here")
 r = check_engine(report, run, SIZE)
 check("backend vk", r.get("backend") == "vk", r)
 
+# The frame loop: 3 frames in flight, 2 views, the render scale 100 -> 70 -> 85 % (frame_loop.h),
+# every record of a frame before the GPU finished the frames before it.
+loop = report(*SIZE, "--frame-loop", "6", "--frames-in-flight", "3", "--views", "2")
+frames = loop.get("frames", [])
+check("frame loop: 6 frames", len(frames) == 6, loop)
+w, h = (int(v) for v in SIZE[1].split("x"))
+for i, f in enumerate(frames):
+    scale = (100, 70, 85)[i % 3]
+    size = [(w * scale + 50) // 100, (h * scale + 50) // 100]
+    check(f"frame {i + 1}: numbered, slot {i % 3}, {scale} %",
+          (f.get("frame"), f.get("slot"), f.get("scale_percent")) == (i + 1, i % 3, scale), f)
+    views = f.get("views", [])
+    check(f"frame {i + 1}: 2 views at {size}",
+          len(views) == 2 and all(v.get("render_size") == size for v in views), f)
+    check(f"frame {i + 1}: extra samples in every view",
+          all(v.get("extra_samples", 0) > 0 for v in views), f)
+if len(frames) == 6:
+    # The same view at the same size gives the same samples, frames in flight or not.
+    for i in range(3):
+        a, b = frames[i]["views"], frames[i + 3]["views"]
+        check(f"frames {i + 1} and {i + 4}: the same samples",
+              [v["extra_samples"] for v in a] == [v["extra_samples"] for v in b], (a, b))
+    smaller = frames[1]["views"][0]["extra_samples"] < frames[0]["views"][0]["extra_samples"]
+    check("70 % shades fewer samples than 100 %", smaller, frames[:2])
+expect_error(run, "--frames-in-flight 0", [*SIZE, "--frame-loop", "2", "--frames-in-flight", "0"],
+             1, "--frames-in-flight 0")
+
 env = dict(os.environ, VK_ICD_FILENAMES="/nonexistent/icd.json")
 expect_error(lambda *a: run(*a, env=env), "no Vulkan driver", SIZE, 1, "no Vulkan device")
 sys.exit(finish())

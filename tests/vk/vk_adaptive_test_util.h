@@ -115,6 +115,7 @@ inline VkFrameOut run_vk(Engine& engine, vk::AdaptiveSupersamplerOptions o, cons
     frame.gbuffer[s] = imgs[s].resource;
   }
   frame.budget = budget;
+  EXPECT_TRUE((*c)->begin_frame(0).ok());
   VkCommandBuffer cmd = engine.begin();
   Result<vk::AdaptiveRecord> r = which == Which::adaptive ? (*c)->record(cmd, frame)
                                  : which == Which::reference
@@ -125,7 +126,7 @@ inline VkFrameOut run_vk(Engine& engine, vk::AdaptiveSupersamplerOptions o, cons
   if (r) {
     out.colour = engine.read_back(r->colour);
     out.counts = engine.read_back(r->sample_counts);
-    Result<vk::AdaptiveProfile> p = (*c)->read_profile();
+    Result<vk::AdaptiveProfile> p = (*c)->read_profile(r->frame_slot, r->view);
     EXPECT_TRUE(p.ok()) << p.status().message;
     if (p) out.extra = p->extra_samples;
   }

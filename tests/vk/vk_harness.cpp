@@ -127,6 +127,10 @@ Result<std::unique_ptr<Engine>> Engine::create(const EngineOptions& options, std
   VkPhysicalDeviceVulkan13Features f13{};
   f13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
   f13.synchronization2 = VK_TRUE;
+  // Timeline semaphores (core 1.2): the frames-in-flight tests hold the GPU behind with one.
+  VkPhysicalDeviceVulkan12Features f12{};
+  f12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
+  f12.timelineSemaphore = VK_TRUE;
   e->ctx_.synchronization2 = options.synchronization2 && e->ctx_.api_version >= VK_API_VERSION_1_3;
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo qi{};
@@ -136,7 +140,8 @@ Result<std::unique_ptr<Engine>> Engine::create(const EngineOptions& options, std
   qi.pQueuePriorities = &priority;
   VkDeviceCreateInfo di{};
   di.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
-  di.pNext = e->ctx_.synchronization2 ? &f13 : nullptr;
+  f12.pNext = e->ctx_.synchronization2 ? &f13 : nullptr;
+  di.pNext = &f12;
   di.queueCreateInfoCount = 1;
   di.pQueueCreateInfos = &qi;
   di.pEnabledFeatures = &e->ctx_.enabled_features;
@@ -340,15 +345,18 @@ void Engine::destroy(EngineBuffer& buf) {
   buf = EngineBuffer{};
 }
 
-std::vector<float> Engine::read_back(const vk::ImageResource& from) {
-  const std::size_t texels = std::size_t(from.extent.width) * from.extent.height;
-  const std::size_t texel_bytes = from.format == VK_FORMAT_R32G32B32A32_SFLOAT   ? 16
-                                  : from.format == VK_FORMAT_R16G16B16A16_SFLOAT ? 8
-                                                                                 : 1;
-  HostBuffer hb;
+PendingRead Engine::record_read(VkCommandBuffer cmd, const vk::ImageResource& from,
+                                VkExtent2D region) {
+  if (region.width == 0) region = from.extent;
+  PendingRead pr;
+  pr.texels = std::size_t(region.width) * region.height;
+  pr.texel_bytes = from.format == VK_FORMAT_R32G32B32A32_SFLOAT   ? 16
+                   : from.format == VK_FORMAT_R16G16B16A16_SFLOAT ? 8
+                                                                  : 1;
+  HostBuffer& hb = pr.buffer;
   VkBufferCreateInfo bi{};
   bi.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
-  bi.size = texels * texel_bytes;
+  bi.size = pr.texels * pr.texel_bytes;
   bi.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   vkCreateBuffer(ctx_.device, &bi, nullptr, &hb.buffer);
   VkMemoryRequirements req{};
@@ -360,7 +368,6 @@ std::vector<float> Engine::read_back(const vk::ImageResource& from) {
                                                            VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   vkAllocateMemory(ctx_.device, &ai, nullptr, &hb.memory);
   vkBindBufferMemory(ctx_.device, hb.buffer, hb.memory, 0);
-  VkCommandBuffer cmd = begin();
   VkImageMemoryBarrier b{};
   b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
   b.srcAccessMask = access1(from.access);
@@ -372,34 +379,101 @@ std::vector<float> Engine::read_back(const vk::ImageResource& from) {
   b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
   vkCmdPipelineBarrier(cmd, stage1(from.stage), VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
                        nullptr, 1, &b);
-  VkBufferImageCopy region{};
-  region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  region.imageExtent = {from.extent.width, from.extent.height, 1};
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  copy.imageExtent = {region.width, region.height, 1};
   vkCmdCopyImageToBuffer(cmd, from.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, hb.buffer, 1,
-                         &region);
+                         &copy);
   VkMemoryBarrier host{};
   host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
   host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
   host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &host,
                        0, nullptr, 0, nullptr);
-  submit_and_wait(cmd);
+  return pr;
+}
+
+std::vector<float> Engine::finish_read(PendingRead& pr) {
+  HostBuffer& hb = pr.buffer;
   vkMapMemory(ctx_.device, hb.memory, 0, VK_WHOLE_SIZE, 0, &hb.data);
   std::vector<float> out;
-  if (texel_bytes == 16) {
-    out.resize(texels * 4);
-    std::memcpy(out.data(), hb.data, texels * 16);
-  } else if (texel_bytes == 8) {
+  if (pr.texel_bytes == 16) {
+    out.resize(pr.texels * 4);
+    std::memcpy(out.data(), hb.data, pr.texels * 16);
+  } else if (pr.texel_bytes == 8) {
     const auto* h = static_cast<const std::uint16_t*>(hb.data);
-    for (std::size_t i = 0; i < texels * 4; ++i) out.push_back(half_to_float(h[i]));
+    for (std::size_t i = 0; i < pr.texels * 4; ++i) out.push_back(half_to_float(h[i]));
   } else {
     const auto* u = static_cast<const std::uint8_t*>(hb.data);
-    for (std::size_t i = 0; i < texels; ++i) out.push_back(float(u[i]));
+    for (std::size_t i = 0; i < pr.texels; ++i) out.push_back(float(u[i]));
   }
   vkUnmapMemory(ctx_.device, hb.memory);
+  // Its copy completed (no device wait: later frames may still be held behind a semaphore).
   vkDestroyBuffer(ctx_.device, hb.buffer, nullptr);
   vkFreeMemory(ctx_.device, hb.memory, nullptr);
+  hb = EngineBuffer{};
   return out;
 }
+
+std::vector<float> Engine::read_back(const vk::ImageResource& from, VkExtent2D region) {
+  VkCommandBuffer cmd = begin();
+  PendingRead pr = record_read(cmd, from, region);
+  submit_and_wait(cmd);
+  return finish_read(pr);
+}
+
+VkSemaphore Engine::timeline_semaphore() {
+  VkSemaphoreTypeCreateInfo ti{};
+  ti.sType = VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO;
+  ti.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
+  VkSemaphoreCreateInfo si{};
+  si.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO;
+  si.pNext = &ti;
+  VkSemaphore s = VK_NULL_HANDLE;
+  vkCreateSemaphore(ctx_.device, &si, nullptr, &s);
+  return s;
+}
+
+void Engine::signal(VkSemaphore timeline, std::uint64_t value) {
+  VkSemaphoreSignalInfo si{};
+  si.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SIGNAL_INFO;
+  si.semaphore = timeline;
+  si.value = value;
+  vkSignalSemaphore(ctx_.device, &si);
+}
+
+VkFence Engine::fence() {
+  VkFenceCreateInfo fi{};
+  fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
+  VkFence f = VK_NULL_HANDLE;
+  vkCreateFence(ctx_.device, &fi, nullptr, &f);
+  return f;
+}
+
+void Engine::submit(VkCommandBuffer cmd, VkSemaphore timeline, std::uint64_t wait_value,
+                    VkFence fence) {
+  vkEndCommandBuffer(cmd);
+  VkTimelineSemaphoreSubmitInfo ti{};
+  ti.sType = VK_STRUCTURE_TYPE_TIMELINE_SEMAPHORE_SUBMIT_INFO;
+  ti.waitSemaphoreValueCount = 1;
+  ti.pWaitSemaphoreValues = &wait_value;
+  const VkPipelineStageFlags stage = VK_PIPELINE_STAGE_ALL_COMMANDS_BIT;
+  VkSubmitInfo si{};
+  si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+  si.pNext = &ti;
+  si.waitSemaphoreCount = 1;
+  si.pWaitSemaphores = &timeline;
+  si.pWaitDstStageMask = &stage;
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd;
+  vkQueueSubmit(ctx_.queue, 1, &si, fence);
+}
+
+void Engine::wait_and_reset(VkFence fence) {
+  vkWaitForFences(ctx_.device, 1, &fence, VK_TRUE, UINT64_MAX);
+  vkResetFences(ctx_.device, 1, &fence);
+}
+
+void Engine::free(VkCommandBuffer cmd) { vkFreeCommandBuffers(ctx_.device, pool_, 1, &cmd); }
 
 }  // namespace tessera::vk_test

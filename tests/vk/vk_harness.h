@@ -42,6 +42,12 @@ struct EngineBuffer {
   void* data = nullptr;
 };
 
+/// A copy of an image into a host buffer, recorded; its floats once the commands completed.
+struct PendingRead {
+  EngineBuffer buffer;
+  std::size_t texels = 0, texel_bytes = 0;
+};
+
 class Engine {
  public:
   /// Instance, messenger, device; an error (with the reason) when there is no Vulkan device or
@@ -70,8 +76,23 @@ class Engine {
   EngineBuffer host_buffer(VkDeviceSize bytes, VkBufferUsageFlags usage);
   void destroy(EngineBuffer& buf);
   /// Reads back an image the component left in `from` (RGBA32F/RGBA16F as floats, R8_UINT as
-  /// one float per texel), recording the barrier from its stage/access.
-  std::vector<float> read_back(const vk::ImageResource& from);
+  /// one float per texel), recording the barrier from its stage/access; `region` = its
+  /// top-left texels (0 = the whole image). Leaves it in TRANSFER_SRC_OPTIMAL.
+  std::vector<float> read_back(const vk::ImageResource& from, VkExtent2D region = {0, 0});
+  /// The same, recorded into `cmd` (the engine's frame); finish_read once it completed.
+  PendingRead record_read(VkCommandBuffer cmd, const vk::ImageResource& from,
+                          VkExtent2D region = {0, 0});
+  std::vector<float> finish_read(PendingRead& read);
+
+  /// Frames in flight: a timeline semaphore the host signals, a fence, a submission of `cmd`
+  /// (ended here) that waits for `timeline` >= `wait_value` and signals `fence`, the wait for
+  /// a fence (then reset), freeing a command buffer.
+  VkSemaphore timeline_semaphore();
+  void signal(VkSemaphore timeline, std::uint64_t value);
+  VkFence fence();
+  void submit(VkCommandBuffer cmd, VkSemaphore timeline, std::uint64_t wait_value, VkFence fence);
+  void wait_and_reset(VkFence fence);
+  void free(VkCommandBuffer cmd);
 
   /// Validation messages (warnings and errors) so far, and the first few texts.
   int messages() const { return messages_.load(); }
