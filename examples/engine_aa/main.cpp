@@ -17,6 +17,10 @@
 //           component's own full supersampling (tonemapped, sRGB8), pass times (host time to a
 //           glFinish after each pass: llvmpipe's GL_TIME_ELAPSED reads 0 for compute)
 //   -o DIR  writes adaptive.png, reference.png, first.png, samples.png (k + 1, grey)
+//   --frame-loop N  N frames with dynamic resolution: the render scale cycles 100 % -> 70 % ->
+//           85 %, the G-buffer drawn into the top-left of the full-size targets, one component
+//           dispatched at each frame's render size (no re-create); --json reports per frame the
+//           render size, the extra samples and tessera's time
 // In the window the adaptive image is drawn to the default framebuffer and shown; --json then
 // also reports "window_max_diff", the largest byte difference between the back buffer read back
 // and adaptive.png. Exit 1 with one line when there is no OpenGL 4.5 device or on bad arguments.
@@ -40,6 +44,7 @@ namespace {
 struct Args : engine::AaArgs {
   std::string glsl;
   bool headless = false;
+  int frame_loop = 0;
 };
 
 int fail(const std::string& msg) {
@@ -108,7 +113,7 @@ GLuint make_frame_ubo(const Camera& cam, int gw, int gh) {
   const engine::FrameBlock frame_ubo = engine::frame_block(cam, gw, gh);
   GLuint ubo;
   glCreateBuffers(1, &ubo);
-  glNamedBufferStorage(ubo, sizeof frame_ubo, &frame_ubo, 0);
+  glNamedBufferStorage(ubo, sizeof frame_ubo, &frame_ubo, GL_DYNAMIC_STORAGE_BIT);
   return ubo;
 }
 
@@ -128,6 +133,7 @@ void print_report(const Args& a, const engine::Platform& platform, const engine:
 // a depth buffer), its geometry and program.
 struct GBuffer {
   GLuint rt[2] = {0, 0}, depth_rb = 0, fbo = 0, vao = 0, vbo = 0, prog = 0;
+  GLsizei count = 0;
   double ms = 0;  // the geometry pass, to a glFinish
   ~GBuffer() {
     glDeleteProgram(prog);
@@ -138,6 +144,22 @@ struct GBuffer {
     glDeleteTextures(2, rt);
   }
 };
+
+// Rasterises the scene into the top-left gw x gh texels of the G-buffer (the rest cleared).
+void draw_gbuffer(const GBuffer& g, const Camera& cam, int gw, int gh) {
+  glBindFramebuffer(GL_FRAMEBUFFER, g.fbo);
+  glViewport(0, 0, gw, gh);
+  glEnable(GL_DEPTH_TEST);
+  const float zero[4] = {0, 0, 0, 0}, far_depth = 1.0f;
+  glClearNamedFramebufferfv(g.fbo, GL_COLOR, 0, zero);
+  glClearNamedFramebufferfv(g.fbo, GL_COLOR, 1, zero);
+  glClearNamedFramebufferfv(g.fbo, GL_DEPTH, 0, &far_depth);
+  glUseProgram(g.prog);
+  glUniformMatrix4fv(glGetUniformLocation(g.prog, "view"), 1, GL_FALSE, cam.view);
+  glUniformMatrix4fv(glGetUniformLocation(g.prog, "proj"), 1, GL_FALSE, cam.proj);
+  glBindVertexArray(g.vao);
+  glDrawArrays(GL_TRIANGLES, 0, g.count);
+}
 
 // Creates the G-buffer of gw x gh texels and rasterises the scene into it; "" or the problem.
 std::string geometry_pass(GBuffer& g, const Camera& cam, int gw, int gh) {
@@ -168,20 +190,10 @@ std::string geometry_pass(GBuffer& g, const Camera& cam, int gw, int gh) {
   std::string log;
   g.prog = engine::compile_program(kGeometryVs, kGeometryFs, log);  // engine_context.h
   if (g.prog == 0) return "geometry shader: " + log;
+  g.count = GLsizei(verts.size());
   glFinish();
   auto t0 = std::chrono::steady_clock::now();
-  glBindFramebuffer(GL_FRAMEBUFFER, g.fbo);
-  glViewport(0, 0, gw, gh);
-  glEnable(GL_DEPTH_TEST);
-  const float zero[4] = {0, 0, 0, 0}, far_depth = 1.0f;
-  glClearNamedFramebufferfv(g.fbo, GL_COLOR, 0, zero);
-  glClearNamedFramebufferfv(g.fbo, GL_COLOR, 1, zero);
-  glClearNamedFramebufferfv(g.fbo, GL_DEPTH, 0, &far_depth);
-  glUseProgram(g.prog);
-  glUniformMatrix4fv(glGetUniformLocation(g.prog, "view"), 1, GL_FALSE, cam.view);
-  glUniformMatrix4fv(glGetUniformLocation(g.prog, "proj"), 1, GL_FALSE, cam.proj);
-  glBindVertexArray(g.vao);
-  glDrawArrays(GL_TRIANGLES, 0, GLsizei(verts.size()));
+  draw_gbuffer(g, cam, gw, gh);
   glFinish();
   g.ms = ms_since(t0);
   return "";
@@ -196,7 +208,47 @@ std::string parse_args(int argc, char** argv, Args& a) {
     return "";
   });
   cl.flag("--headless", &a.headless);
+  cl.option("--frame-loop", [&a](const std::string& v) -> std::string {
+    a.frame_loop = std::atoi(v.c_str());
+    return a.frame_loop < 1 ? "--frame-loop " + v + ": expected a frame count >= 1" : "";
+  });
   return cl.parse(argc, argv);
+}
+
+// --frame-loop: a new render size every frame (100 % -> 70 % -> 85 %) on one component: the
+// G-buffer drawn into the top-left of the full-size targets, the frame block's grid updated,
+// one dispatch at that render size. Prints per frame the size, extra samples and time.
+int frame_loop(const Args& a, const GBuffer& g, const Camera& cam, GLuint ubo,
+               tessera::gl::AdaptiveSupersampler& aa) {
+  static const int kScales[3] = {100, 70, 85};
+  std::string frames;
+  for (int i = 0; i < a.frame_loop; ++i) {
+    const int scale = kScales[i % 3];
+    const int w = (a.w * scale + 50) / 100, h = (a.h * scale + 50) / 100;
+    draw_gbuffer(g, cam, w * a.m, h * a.m);
+    const engine::FrameBlock block = engine::frame_block(cam, w * a.m, h * a.m);
+    glNamedBufferSubData(ubo, 0, sizeof block, &block);
+    // ---- tessera: this frame's render size, the same component ----
+    tessera::gl::AdaptiveFrame frame;
+    frame.gbuffer = {g.rt[0], g.rt[1], 0, 0};
+    frame.render_size = {w, h};
+    if (a.budget >= 0) frame.budget = a.budget;
+    auto r = aa.dispatch(frame);
+    if (!r) return fail(r.status().message);
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "%s{\"frame\": %d, \"scale_percent\": %d, \"render_size\": [%d, %d], "
+                  "\"extra_samples\": %llu, \"tessera_ms\": %.3f}",
+                  i ? ", " : "", i + 1, scale, r->render_size.width, r->render_size.height,
+                  static_cast<unsigned long long>(r->extra_samples), r->total_wall_ms());
+    frames += line;
+    if (!a.json) {
+      std::printf("frame %d: %dx%d (%d %%), %llu extra samples, %.2f ms\n", i + 1, w, h, scale,
+                  static_cast<unsigned long long>(r->extra_samples), r->total_wall_ms());
+    }
+  }
+  if (a.json) std::printf("{\"backend\": \"gl\", \"frames\": [%s]}\n", frames.c_str());
+  return 0;
 }
 
 }  // namespace
@@ -229,6 +281,12 @@ int main(int argc, char** argv) {
   o.glsl_dir = a.glsl;
   auto aa = tessera::gl::AdaptiveSupersampler::create(o);
   if (!aa) return fail(aa.status().message);
+  if (a.frame_loop > 0) {
+    const int rc = frame_loop(a, gbuf, cam, ubo, **aa);
+    glDeleteBuffers(1, &ubo);
+    aa->reset();
+    return rc;
+  }
   tessera::gl::AdaptiveFrame frame;
   frame.gbuffer = {rt[0], rt[1], 0, 0};
   if (a.budget >= 0) frame.budget = a.budget;

@@ -56,6 +56,22 @@ if MODE == "window":
     check("window: the back buffer shows adaptive.png", 0 <= r.get("window_max_diff", -1) <= 1, r)
 
 # Without a GL device: no EGL vendor library (headless), no X display (window): one line, exit 1.
+# Dynamic resolution: 100 -> 70 -> 85 % on one component; the same size gives the same samples.
+loop = report("--frame-loop", "4")
+frames = loop.get("frames", [])
+w, h = (int(v) for v in AA_SIZE[1].split("x"))
+check("frame loop: 4 frames", len(frames) == 4, loop)
+for i, f in enumerate(frames):
+    scale = (100, 70, 85)[i % 3]
+    size = [(w * scale + 50) // 100, (h * scale + 50) // 100]
+    check(f"frame {i + 1}: {scale} % = {size}",
+          f.get("scale_percent") == scale and f.get("render_size") == size, f)
+if len(frames) == 4:
+    check("frames 1 and 4 (100 %): the same samples",
+          frames[0]["extra_samples"] == frames[3]["extra_samples"] > 0, frames)
+    check("70 % shades fewer samples", frames[1]["extra_samples"] < frames[0]["extra_samples"],
+          frames)
+
 env = dict(os.environ, __EGL_VENDOR_LIBRARY_FILENAMES="/nonexistent.json", DISPLAY=":4097")
 expect_error(lambda *a: run(*a, env=env), "no GL device", SIZE, 1, "no OpenGL 4.5 device")
 sys.exit(finish())
