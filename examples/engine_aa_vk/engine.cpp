@@ -1,7 +1,11 @@
 // engine_aa_vk's own Vulkan plumbing (engine.h).
 #include "engine.h"
 
+#include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 
 namespace engine {
 
@@ -82,6 +86,27 @@ void Device::submit_and_wait(VkCommandBuffer cmd) {
   vkQueueSubmit(queue, 1, &si, VK_NULL_HANDLE);
   vkQueueWaitIdle(queue);
   vkFreeCommandBuffers(device, pool_, 1, &cmd);
+}
+
+std::string read_file(const std::string& path, std::vector<std::uint8_t>& bytes) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return "";
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return path + ": cannot open";
+  bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return in.bad() ? path + ": cannot read" : "";
+}
+
+std::string write_file(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    if (!out) return tmp + ": cannot write";
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  return ec ? path + ": " + ec.message() : "";
 }
 
 VkFence Device::fence() {

@@ -51,6 +51,11 @@ class Device : public DeviceBase {
   VkCommandPool pool_ = VK_NULL_HANDLE;
 };
 
+/// A whole file's bytes ("" or the problem; a missing file reads as empty), and a file written
+/// through a temporary and a rename ("" or the problem).
+std::string read_file(const std::string& path, std::vector<std::uint8_t>& bytes);
+std::string write_file(const std::string& path, const std::vector<std::uint8_t>& bytes);
+
 /// One image barrier (synchronization2).
 void barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
              VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,

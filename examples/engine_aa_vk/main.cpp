@@ -12,7 +12,7 @@
 // The integration with tessera is the block marked "tessera" below.
 //
 // Usage: engine_aa_vk [--size WxH] [--m M] [--budget B] [--schedule frame_list|tile_list|loop]
-//                     [--no-validation] [--json] [-o DIR]
+//                     [--no-validation] [--json] [-o DIR] [--shader-binary FILE]
 //                     [--frame-loop N [--frames-in-flight F] [--views V]]
 //   --frame-loop N  runs N frames as an engine does (frame_loop.h): F frames in flight (2),
 //           V views (2), the render scale cycling 100 % -> 70 % -> 85 %; --json reports per
@@ -21,6 +21,8 @@
 //           component's own full supersampling (tonemapped, sRGB8), the component's pass times
 //           (GPU timestamps; lavapipe runs them on the CPU), validation messages
 //   -o DIR  writes adaptive.png, reference.png, first.png, samples.png (k + 1, grey)
+//   --shader-binary FILE  tessera's SPIR-V ahead of time: loaded from FILE when it exists (no
+//           GLSL compiled at create), else written there after create; --json has create_ms
 // Exit 1 with one line when there is no Vulkan 1.3 device, on bad arguments, or when the
 // validation layer reported anything.
 #include <array>
@@ -46,6 +48,7 @@ struct Args : engine::AaArgs {
   bool no_validation = false;
   int frame_loop = 0;  // frames of the frame loop (frame_loop.h); 0: the three measured frames
   int frames_in_flight = 2, views = 2;
+  std::string shader_binary;  // --shader-binary FILE: load tessera's SPIR-V, or save it there
 };
 
 int fail(const std::string& msg) {
@@ -60,6 +63,8 @@ const std::string kShadingHook =
     engine::shading_hook("std140, set = 0, binding = 0", "set = 0, binding = 1");
 
 using engine::ms_since;
+
+double g_create_ms = 0;  // the component's create, host time (--json: create_ms)
 
 float half_to_float(std::uint16_t h) {
   const int e = (h >> 10) & 31, m = h & 1023;
@@ -85,6 +90,10 @@ std::string parse_args(int argc, char** argv, Args& a) {
   cl.option("--frame-loop", count("--frame-loop", 1, 100000, a.frame_loop));
   cl.option("--frames-in-flight", count("--frames-in-flight", 1, 16, a.frames_in_flight));
   cl.option("--views", count("--views", 1, 16, a.views));
+  cl.option("--shader-binary", [&a](const std::string& v) -> std::string {
+    a.shader_binary = v;
+    return v.empty() ? "--shader-binary: expected a file" : "";
+  });
   return cl.parse(argc, argv);
 }
 
@@ -156,7 +165,9 @@ void print_report(const Args& a, const engine::Device& d, const engine::AaReport
     engine::print_aa_summary("engine_aa_vk", " on " + d.name, a, r);
     return;
   }
-  engine::print_aa_json(d.name, a, r, "\"backend\": \"vk\", ", "",
+  char create[64];
+  std::snprintf(create, sizeof create, "\"create_ms\": %.1f, ", g_create_ms);
+  engine::print_aa_json(d.name, a, r, std::string("\"backend\": \"vk\", ") + create, "",
                         std::string(", \"validation\": ") + (d.validation ? "true" : "false") +
                             ", \"validation_messages\": " + std::to_string(d.messages));
 }
@@ -232,10 +243,23 @@ int run(engine::Device& d, const Args& a) {
     o.frames_in_flight = std::uint32_t(a.frames_in_flight);
     o.profile = true;  // per view and frame: extra samples and GPU time, read after the fence
   }
+  if (!a.shader_binary.empty()) {
+    if (std::string why = engine::read_file(a.shader_binary, o.shader_binary); !why.empty()) {
+      return fail(why);
+    }
+  }
   int rc = 0;
+  const auto t_create = std::chrono::steady_clock::now();
   auto aa = tessera::vk::AdaptiveSupersampler::create(ctx, o);
+  g_create_ms = ms_since(t_create);
+  if (aa && !a.shader_binary.empty() && o.shader_binary.empty()) {
+    if (std::string why = engine::write_file(a.shader_binary, (*aa)->shader_binary());
+        !why.empty()) {
+      return fail(why);
+    }
+  }
   if (!aa) {
-    rc = fail(aa.status().message);
+    rc = fail((o.shader_binary.empty() ? "" : a.shader_binary + ": ") + aa.status().message);
   } else if (a.frame_loop > 0) {
     rc = frame_loop(d, gp, a, **aa);
     aa->reset();

@@ -14,7 +14,9 @@
 // 1. The hook becomes SPIR-V at `create`, with shaderc (Google's glslang front end, Debian
 //    libshaderc-dev, linked statically), one compute pipeline per pass: the hook is often
 //    generated from the engine's material system at run time and its G-buffer accessors from the
-//    layout, so an offline step would have to know both. Errors name the hook's own lines:
+//    layout. Ahead of time: `shader_binary()` returns every pass's SPIR-V, keyed by the options
+//    and the device's limits; given back as `options.shader_binary`, `create` compiles no GLSL
+//    (and `options.pipeline_cache`, the engine's VkPipelineCache, skips the driver's work). Errors name the hook's own lines:
 //    "HOOK_NAME:LINE: message". The hook's `#include "x.glsl"` resolve to
 //    `AdaptiveShadingHook::include_paths`, then to tessera's shipped files (compiled into the
 //    library: nothing is read from share/ at run time). VULKAN is defined.
@@ -109,6 +111,16 @@ struct AdaptiveSupersamplerOptions : AdaptiveCommonOptions {
   std::vector<VkDescriptorSetLayout> hook_set_layouts;
   /// The engine's frames in flight F (1..16): `begin_frame` takes a slot index below it.
   std::uint32_t frames_in_flight = 2;
+  /// The engine's VkPipelineCache for the component's compute pipelines (optional, owned by
+  /// the engine and externally synchronised as Vulkan requires): a warm cache skips the
+  /// driver's compilation at `create`.
+  VkPipelineCache pipeline_cache = VK_NULL_HANDLE;
+  /// A shader binary from `shader_binary()` of a component created with the same options on a
+  /// device of the same limits and features: `create` then compiles no GLSL (an engine ships
+  /// it and needs no GLSL compiler at run time). A binary made for other options, another
+  /// device's limits (maxStorageBufferRange, maxComputeSharedMemorySize, shaderFloat64) or
+  /// another tessera is refused (invalid_argument), a malformed one is corrupt_data.
+  std::vector<std::uint8_t> shader_binary;
 };
 
 /// One record's inputs (one view of the current frame).
@@ -193,6 +205,9 @@ class AdaptiveSupersampler {
   AdaptiveSchedule schedule() const;
   /// True when the depth metric accumulates in double (the device's shaderFloat64 enabled).
   bool float64() const;
+  /// Every pass's SPIR-V with the key of these options and device: store it (a file, the
+  /// engine's asset cache) and give it back as `options.shader_binary` to skip compilation.
+  const std::vector<std::uint8_t>& shader_binary() const;
   /// The component's descriptor-set index (= hook_set_layouts.size()).
   std::uint32_t descriptor_set_index() const;
 

@@ -29,6 +29,7 @@ struct AdaptiveSupersampler::State {
   adaptive::Derived derived;  // n, sample order, slots, list capacity, precision, tile
   std::uint32_t set_index = 0;
   std::map<std::string, std::vector<std::uint32_t>> spirv;  // by pass, until the pipelines exist
+  std::vector<std::uint8_t> binary;  // every pass's SPIR-V, keyed (shader_binary.h)
 
   Sampler sampler;
   SetLayout set_layout;

@@ -72,7 +72,8 @@ Status create_layouts(State& st) {
   st.pipeline_layout = PipelineLayout(api, layout);
   for (const auto& [pass, spirv] : st.spirv) {
     Result<Pipeline> p =
-        create_compute_pipeline(api, spirv, st.pipeline_layout.get(), kWhat + " (" + pass + ")");
+        create_compute_pipeline(api, spirv, st.pipeline_layout.get(), kWhat + " (" + pass + ")",
+                                st.options.pipeline_cache);
     if (!p) return p.status();
     st.pipelines.emplace(pass, std::move(*p));
   }

@@ -7,6 +7,7 @@
 #include "tessera/glsl.h"
 #include "vk/adaptive_internal.h"
 #include "vk/shader.h"
+#include "vk/shader_binary.h"
 
 namespace tessera::vk {
 
@@ -95,8 +96,8 @@ Status check_options(State& st) {
                               f32 ? "R32G32B32A32_SFLOAT" : "R16G16B16A16_SFLOAT");
 }
 
-/// One pass to SPIR-V; a compile error is "vk adaptive supersampler: HOOK:LINE: message".
-Status compile(State& st, const std::string& pass) {
+/// One pass's GLSL, expanded (the preamble, the hook, tessera's files).
+Result<glsl::Expanded> expand(const State& st, const std::string& pass) {
   adaptive::GlslBindings b;
   b.set = int(st.set_index);
   b.gbuffer = int(kBindGBuffer);
@@ -107,13 +108,41 @@ Status compile(State& st, const std::string& pass) {
   const glsl::ExpandOptions eo = adaptive::pass_expand_options(st.options, st.derived, b, pass);
   Result<glsl::Expanded> e = glsl::expand_includes(src, eo);
   if (!e) return Status::error(e.status().code, std::string(kWho) + ": " + e.status().message);
-  Result<std::vector<std::uint32_t>> spirv = compile_compute_spirv(e->text);
-  if (!spirv) {
-    return Status::error(
-        spirv.status().code,
-        std::string(kWho) + ": " + glsl::format_log(spirv.status().message, e->files));
+  return e;
+}
+
+/// Every pass's SPIR-V: from the options' shader binary when its key matches, else compiled
+/// (a compile error is "vk adaptive supersampler: HOOK:LINE: message"); the binary kept.
+Status make_spirv(State& st) {
+  std::map<std::string, glsl::Expanded> expanded;
+  std::map<std::string, std::string> texts;
+  const std::vector<std::string> passes = adaptive::pass_programs(st.options.schedule);
+  for (const std::string& p : passes) {
+    Result<glsl::Expanded> e = expand(st, p);
+    if (!e) return e.status();
+    texts.emplace(p, e->text);
+    expanded.emplace(p, std::move(*e));
   }
-  st.spirv.emplace(pass, std::move(*spirv));
+  const std::uint64_t key = shader_key(texts);
+  if (!st.options.shader_binary.empty()) {
+    auto spirv = read_shader_binary(st.options.shader_binary, key, passes);
+    if (!spirv) {
+      return Status::error(spirv.status().code, std::string(kWho) + ": " + spirv.status().message);
+    }
+    st.spirv = std::move(*spirv);
+  } else {
+    for (const std::string& p : passes) {
+      const glsl::Expanded& e = expanded.at(p);
+      Result<std::vector<std::uint32_t>> spirv = compile_compute_spirv(e.text);
+      if (!spirv) {
+        return Status::error(
+            spirv.status().code,
+            std::string(kWho) + ": " + glsl::format_log(spirv.status().message, e.files));
+      }
+      st.spirv.emplace(p, std::move(*spirv));
+    }
+  }
+  st.binary = write_shader_binary(key, st.spirv);
   return Status::success();
 }
 
@@ -139,6 +168,9 @@ AdaptiveSchedule AdaptiveSupersampler::schedule() const {
   return st.options.schedule;
 }
 bool AdaptiveSupersampler::float64() const { return state_->derived.float64; }
+const std::vector<std::uint8_t>& AdaptiveSupersampler::shader_binary() const {
+  return state_->binary;
+}
 
 void AdaptiveSupersampler::set_thresholds(const AdaptiveThresholds& thresholds) {
   state_->options.thresholds = thresholds;  // recorded with the next record
@@ -153,9 +185,7 @@ Result<std::unique_ptr<AdaptiveSupersampler>> AdaptiveSupersampler::create(
     return Status::error(api.status().code, std::string(kWho) + ": " + api.status().message);
   st->api = std::move(*api);
   if (Status s = check_options(*st); !s.ok()) return s;
-  for (const std::string& p : adaptive::pass_programs(options.schedule)) {
-    if (Status s = compile(*st, p); !s.ok()) return s;
-  }
+  if (Status s = make_spirv(*st); !s.ok()) return s;
   if (Status s = create_adaptive_objects(*st); !s.ok()) return s;
   st->spirv.clear();
   std::unique_ptr<AdaptiveSupersampler> r(new AdaptiveSupersampler());

@@ -60,7 +60,8 @@ Result<std::vector<std::uint32_t>> compile_graphics_spirv(const std::string& tex
 }
 
 Result<Pipeline> create_compute_pipeline(const Api& api, const std::vector<std::uint32_t>& spirv,
-                                         VkPipelineLayout layout, const std::string& what) {
+                                         VkPipelineLayout layout, const std::string& what,
+                                         VkPipelineCache cache) {
   VkShaderModuleCreateInfo mi{};
   mi.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
   mi.codeSize = spirv.size() * 4;
@@ -80,7 +81,7 @@ Result<Pipeline> create_compute_pipeline(const Api& api, const std::vector<std::
   pi.layout = layout;
   VkPipeline raw = VK_NULL_HANDLE;
   if (VkResult r =
-          api.CreateComputePipelines(api.device(), VK_NULL_HANDLE, 1, &pi, api.alloc(), &raw);
+          api.CreateComputePipelines(api.device(), cache, 1, &pi, api.alloc(), &raw);
       r != VK_SUCCESS) {
     return vk_error(what + ": vkCreateComputePipelines", r);
   }

@@ -15,6 +15,7 @@ the message is named).
 """
 import os
 import sys
+import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from cli_harness import check, expect_error, finish  # noqa: E402
@@ -57,6 +58,24 @@ if len(frames) == 6:
     check("70 % shades fewer samples than 100 %", smaller, frames[:2])
 expect_error(run, "--frames-in-flight 0", [*SIZE, "--frame-loop", "2", "--frames-in-flight", "0"],
              1, "--frames-in-flight 0")
+
+# Shaders ahead of time: the first run saves tessera's SPIR-V, the second loads it (no GLSL
+# compiled): the same frame; a file that is not a shader binary is refused, naming the file.
+with tempfile.TemporaryDirectory() as tmp:
+    binary = os.path.join(tmp, "tessera_aa.spv")
+    saved = report(*SIZE, "--shader-binary", binary)
+    check("shader binary written", os.path.getsize(binary) > 1000 if os.path.exists(binary)
+          else False)
+    loaded = report(*SIZE, "--shader-binary", binary)
+    check("shader binary loaded: the same frame",
+          (saved.get("extra_samples"), saved.get("psnr_db")) ==
+          (loaded.get("extra_samples"), loaded.get("psnr_db")), (saved, loaded))
+    check("create_ms reported", loaded.get("create_ms", -1) >= 0, loaded)
+    bogus = os.path.join(tmp, "bogus.spv")
+    with open(bogus, "wb") as f:
+        f.write(b"\x89PNG not tessera")
+    expect_error(run, "--shader-binary of another file", [*SIZE, "--shader-binary", bogus], 1,
+                 bogus)
 
 env = dict(os.environ, VK_ICD_FILENAMES="/nonexistent/icd.json")
 expect_error(lambda *a: run(*a, env=env), "no Vulkan driver", SIZE, 1, "no Vulkan device")

@@ -286,5 +286,73 @@ TEST_F(VkFrames, WithoutFloat64KMapsAgree) {
   }
 }
 
+/// Shaders ahead of time: the shader binary of one component given to the next (no GLSL
+/// compiled) and the engine's VkPipelineCache, filled, saved and loaded: the same image; a
+/// binary for other options or truncated is refused in one line.
+TEST_F(VkFrames, ShaderBinaryAndPipelineCache) {
+  const SceneGBuffer g = scene_gbuffer(16, 12, 2);
+  auto o = scene_options<vk::AdaptiveSupersamplerOptions>(g);
+  const VkFrameOut compiled = run_vk(*engine_, o, g, Which::adaptive);
+  const VkDevice dev = engine_->context().device;
+  VkPipelineCacheCreateInfo ci{};
+  ci.sType = VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO;
+  VkPipelineCache cache = VK_NULL_HANDLE;
+  ASSERT_EQ(vkCreatePipelineCache(dev, &ci, nullptr, &cache), VK_SUCCESS);
+  std::vector<std::uint8_t> binary;
+  {
+    o.pipeline_cache = cache;
+    auto c = vk::AdaptiveSupersampler::create(engine_->context(), o);
+    ASSERT_TRUE(c.ok()) << c.status().message;
+    binary = (*c)->shader_binary();
+  }
+  ASSERT_GT(binary.size(), 1000u);
+  std::size_t bytes = 0;
+  ASSERT_EQ(vkGetPipelineCacheData(dev, cache, &bytes, nullptr), VK_SUCCESS);
+  std::vector<std::uint8_t> data(bytes);
+  ASSERT_EQ(vkGetPipelineCacheData(dev, cache, &bytes, data.data()), VK_SUCCESS);
+  vkDestroyPipelineCache(dev, cache, nullptr);
+  // The cache's header names this device (lavapipe keeps no pipeline data: the header alone).
+  ASSERT_GE(bytes, 32u);
+  std::uint32_t header[4];
+  std::memcpy(header, data.data(), sizeof header);
+  VkPhysicalDeviceProperties props{};
+  vkGetPhysicalDeviceProperties(engine_->context().physical_device, &props);
+  EXPECT_EQ(header[0], 32u);
+  EXPECT_EQ(header[1], std::uint32_t(VK_PIPELINE_CACHE_HEADER_VERSION_ONE));
+  EXPECT_EQ(header[2], props.vendorID);
+  EXPECT_EQ(header[3], props.deviceID);
+  // The next run of the engine: its saved cache and the binary.
+  ci.initialDataSize = data.size();
+  ci.pInitialData = data.data();
+  ASSERT_EQ(vkCreatePipelineCache(dev, &ci, nullptr, &cache), VK_SUCCESS);
+  o.pipeline_cache = cache;
+  o.shader_binary = binary;
+  const VkFrameOut loaded = run_vk(*engine_, o, g, Which::adaptive);
+  EXPECT_EQ(loaded.colour, compiled.colour);
+  EXPECT_EQ(loaded.counts, compiled.counts);
+  // Refused: other options (another hook, another m), a truncated or foreign binary.
+  auto other = o;
+  other.hook.source += "\n// another hook\n";
+  auto c = vk::AdaptiveSupersampler::create(engine_->context(), other);
+  ASSERT_FALSE(c.ok());
+  EXPECT_EQ(c.status().code, ErrorCode::invalid_argument);
+  EXPECT_NE(c.status().message.find("shader_binary: made for other options"), std::string::npos)
+      << c.status().message;
+  other = o;
+  other.m = 4;
+  EXPECT_FALSE(vk::AdaptiveSupersampler::create(engine_->context(), other).ok());
+  other = o;
+  other.shader_binary.resize(other.shader_binary.size() / 2);
+  c = vk::AdaptiveSupersampler::create(engine_->context(), other);
+  ASSERT_FALSE(c.ok());
+  EXPECT_EQ(c.status().code, ErrorCode::corrupt_data) << c.status().message;
+  other.shader_binary = {'P', 'N', 'G', 0, 1, 2, 3, 4};
+  c = vk::AdaptiveSupersampler::create(engine_->context(), other);
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(c.status().message.find("not a tessera shader binary"), std::string::npos);
+  EXPECT_EQ(c.status().message.find('\n'), std::string::npos);
+  vkDestroyPipelineCache(dev, cache, nullptr);
+}
+
 }  // namespace
 }  // namespace tessera::vk_test
