@@ -90,6 +90,21 @@ struct PackLimitNames {
 Result<PackedFaces> pack_faces(const FaceTextureSet& set, const PackLimits& limits,
                                const PackLimitNames& names);
 
+/// How the backends store the texels of the face arrays (gl:: and vk::FaceTextureSetOptions).
+enum class TexelFormat {
+  rgba32f,      ///< Exactly the CPU texels (default): the GPU samples tessera's values.
+  rgba16f,      ///< binary16, half the memory (rounded to nearest even).
+  rgba8_unorm,  ///< 8 bits per channel of the linear values (round(255 * clamp(v, 0, 1))).
+  rgba8_srgb,   ///< 8-bit sRGB-encoded colour (exact curve, rounded), linear alpha; the GPU
+                ///< decodes to linear when it samples: a quarter of the memory.
+};
+/// Bytes per texel of `format` (16, 8, 4, 4).
+std::size_t texel_bytes(TexelFormat format);
+/// Converts `texels` RGBA float texels to `format` into `out` (texel_bytes(format) each),
+/// little-endian as the GPU formats store them. The same bytes on every CPU. Pure.
+void convert_texels(const float* rgba, std::size_t texels, TexelFormat format,
+                    std::uint8_t* out);
+
 /// One draw call of a class-grouped index list: face class `cls` (the texture array every face
 /// of the draw samples) and its `count` indices from index `first`.
 struct FaceClassDraw {

@@ -140,7 +140,7 @@ struct FaceRendererOptions {
   /// tessera/glsl.h). Empty (the default): $TESSERA_GLSL_DIR when set, else the embedded copy;
   /// no file is read.
   std::filesystem::path glsl_dir;
-  TexelFormat texels = TexelFormat::rgba32f;
+  faces::TexelFormat texels = faces::TexelFormat::rgba32f;
 };
 
 /// Draws a per-face-textured quad mesh with OpenGL. Owns the uploaded textures, the vertex

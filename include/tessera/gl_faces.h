@@ -36,13 +36,11 @@ using faces::ptex_quad_mesh;
 /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE"); invalid_argument on an empty set. Pure (no GL).
 Result<PackedFaces> pack_faces(const faces::FaceTextureSet& set, const PackLimits& limits = {});
 
-enum class TexelFormat {
-  rgba32f,  ///< Exactly the CPU texels (default): GL samples the same values as tessera.
-  rgba16f,  ///< Half the memory; texels rounded to binary16 by the driver on upload.
-};
-
 struct FaceTextureSetOptions {
-  TexelFormat format = TexelFormat::rgba32f;
+  /// The arrays' texel format (tessera/faces_gpu.h): GL_RGBA32F (the CPU texels, default),
+  /// GL_RGBA16F, GL_RGBA8, GL_SRGB8_ALPHA8 (converted by faces::convert_texels: the bytes
+  /// Vulkan uploads).
+  faces::TexelFormat format = faces::TexelFormat::rgba32f;
   /// Upper bound of the GL_TEXTURE_MAX_ANISOTROPY of the samplers (1..16; clamped to the
   /// implementation's maximum).
   float max_anisotropy = 16.0f;

@@ -91,13 +91,22 @@ Result<FaceTextureSet> FaceTextureSet::upload(const faces::FaceTextureSet& set,
 
   FaceTextureSet out;
   out.layout_ = std::move(*packed);
-  const bool half = options.format == TexelFormat::rgba16f;
-  const std::uint64_t texel_bytes = half ? 8 : 16;
+  const faces::TexelFormat format = options.format;
+  const std::uint64_t texel_bytes = faces::texel_bytes(format);
+  // Every format but RGBA32F from faces::convert_texels (the driver's own float-to-half
+  // conversion rounds differently: Mesa's is not round-to-nearest-even everywhere).
+  const bool converted_upload = format != faces::TexelFormat::rgba32f;
+  const GLenum upload_type =
+      format == faces::TexelFormat::rgba16f ? GL_HALF_FLOAT : GL_UNSIGNED_BYTE;
+  const GLenum internal = format == faces::TexelFormat::rgba32f   ? GL_RGBA32F
+                          : format == faces::TexelFormat::rgba16f ? GL_RGBA16F
+                          : format == faces::TexelFormat::rgba8_unorm ? GL_RGBA8
+                                                                     : GL_SRGB8_ALPHA8;
+  std::vector<std::uint8_t> converted;  // faces::convert_texels's bytes
   for (const FaceClass& c : out.layout_.classes) {
     Object tex = create_object(ObjectType::texture, GL_TEXTURE_2D_ARRAY);
     const int layers = int(c.faces.size());
-    glTextureStorage3D(tex.get(), c.levels, half ? GL_RGBA16F : GL_RGBA32F, c.width, c.height,
-                       layers);
+    glTextureStorage3D(tex.get(), c.levels, internal, c.width, c.height, layers);
     const std::string what = "FaceTextureSet::upload: " + std::to_string(layers) + " faces of " +
                              std::to_string(c.width) + "x" + std::to_string(c.height);
     if (Status s = check_errors(what); !s.ok()) return s;
@@ -105,8 +114,16 @@ Result<FaceTextureSet> FaceTextureSet::upload(const faces::FaceTextureSet& set,
       const texture::Texture& t = set.texture(c.faces[std::size_t(layer)]);
       for (int level = 0; level < c.levels; ++level) {
         const texture::TextureLevelView view = t.level(0, level);
-        glTextureSubImage3D(tex.get(), level, 0, 0, layer, view.width, view.height, 1, GL_RGBA,
-                            GL_FLOAT, view.texels);
+        if (converted_upload) {
+          const std::size_t texels = std::size_t(view.width) * std::size_t(view.height);
+          converted.resize(texels * texel_bytes);
+          faces::convert_texels(view.texels, texels, format, converted.data());
+          glTextureSubImage3D(tex.get(), level, 0, 0, layer, view.width, view.height, 1, GL_RGBA,
+                              upload_type, converted.data());
+        } else {
+          glTextureSubImage3D(tex.get(), level, 0, 0, layer, view.width, view.height, 1,
+                              GL_RGBA, GL_FLOAT, view.texels);
+        }
         if (layer == 0) {
           out.texture_bytes_ += std::uint64_t(view.width) * std::uint64_t(view.height) *
                                 std::uint64_t(layers) * texel_bytes;

@@ -13,13 +13,38 @@ namespace tessera::vk {
 
 namespace {
 
-constexpr VkFormat kFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-constexpr std::uint64_t kTexelBytes = 16;
 constexpr int kMaxClasses = 16;  // seams.glsl's TESSERA_SEAMS_CLASSES range
 
 Status invalid(const std::string& msg) {
   return Status::error(ErrorCode::invalid_argument, "vk::FaceTextureSet: " + msg);
 }
+
+VkFormat vk_format(faces::TexelFormat f) {
+  switch (f) {
+    case faces::TexelFormat::rgba32f: return VK_FORMAT_R32G32B32A32_SFLOAT;
+    case faces::TexelFormat::rgba16f: return VK_FORMAT_R16G16B16A16_SFLOAT;
+    case faces::TexelFormat::rgba8_unorm: return VK_FORMAT_R8G8B8A8_UNORM;
+    case faces::TexelFormat::rgba8_srgb: return VK_FORMAT_R8G8B8A8_SRGB;
+  }
+  return VK_FORMAT_R32G32B32A32_SFLOAT;
+}
+
+const char* format_name(faces::TexelFormat f) {
+  switch (f) {
+    case faces::TexelFormat::rgba32f: return "R32G32B32A32_SFLOAT";
+    case faces::TexelFormat::rgba16f: return "R16G16B16A16_SFLOAT";
+    case faces::TexelFormat::rgba8_unorm: return "R8G8B8A8_UNORM";
+    case faces::TexelFormat::rgba8_srgb: return "R8G8B8A8_SRGB";
+  }
+  return "?";
+}
+
+// The staging buffer's contents: per class, per level, per layer the level's texels (tight
+// rows), then the face records. `regions[c]` are the class's copies.
+struct Staging {
+  std::vector<std::vector<VkBufferImageCopy>> regions;
+  VkDeviceSize records_offset = 0, bytes = 0;
+};
 
 }  // namespace
 
@@ -37,6 +62,12 @@ struct detail::FaceTextureSetState {
   VkDescriptorSet set = VK_NULL_HANDLE;
   float anisotropy = 1.0f;
   std::uint64_t texture_bytes = 0;
+  faces::TexelFormat format = faces::TexelFormat::rgba32f;
+  // FaceUpload::engine_command_buffer: the filled staging buffer until release_staging.
+  FaceUpload upload = FaceUpload::queue_submit;
+  Buffer staging;
+  Staging plan;
+  bool recorded = false;
 };
 
 namespace {
@@ -51,16 +82,17 @@ Status check_bindings(const FaceTextureSetBindings& b) {
   return Status::success();
 }
 
-Status check_format(const Api& api) {
+Status check_format(const Api& api, faces::TexelFormat format) {
   VkFormatProperties fp{};
-  api.GetPhysicalDeviceFormatProperties(api.ctx.physical_device, kFormat, &fp);
+  api.GetPhysicalDeviceFormatProperties(api.ctx.physical_device, vk_format(format), &fp);
   const VkFormatFeatureFlags need = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
                                     VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT |
                                     VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
   if ((fp.optimalTilingFeatures & need) != need) {
     return Status::error(ErrorCode::unsupported,
-                         "vk::FaceTextureSet: the device does not sample R32G32B32A32_SFLOAT "
-                         "optimal-tiling images with linear filtering (needed for the CPU texels)");
+                         std::string("vk::FaceTextureSet: the device does not sample ") +
+                             format_name(format) +
+                             " optimal-tiling images with linear filtering (options.format)");
   }
   return Status::success();
 }
@@ -75,7 +107,7 @@ Status create_images(detail::FaceTextureSetState& s) {
     VkImageCreateInfo ci{};
     ci.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
     ci.imageType = VK_IMAGE_TYPE_2D;
-    ci.format = kFormat;
+    ci.format = vk_format(s.format);
     ci.extent = {std::uint32_t(c.width), std::uint32_t(c.height), 1};
     ci.mipLevels = std::uint32_t(c.levels);
     ci.arrayLayers = std::uint32_t(c.faces.size());
@@ -103,7 +135,7 @@ Status create_images(detail::FaceTextureSetState& s) {
     vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
     vi.image = image;
     vi.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-    vi.format = kFormat;
+    vi.format = vk_format(s.format);
     vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, ci.mipLevels, 0, ci.arrayLayers};
     VkImageView view = VK_NULL_HANDLE;
     if (VkResult r = api.CreateImageView(api.device(), &vi, api.alloc(), &view); r != VK_SUCCESS) {
@@ -113,13 +145,6 @@ Status create_images(detail::FaceTextureSetState& s) {
   }
   return Status::success();
 }
-
-// The staging buffer's contents: per class, per level, per layer the level's texels (tight
-// rows), then the face records. `regions[c]` are the class's copies.
-struct Staging {
-  std::vector<std::vector<VkBufferImageCopy>> regions;
-  VkDeviceSize records_offset = 0, bytes = 0;
-};
 
 Staging plan_staging(detail::FaceTextureSetState& s, const faces::FaceTextureSet& set) {
   Staging st;
@@ -135,8 +160,8 @@ Staging plan_staging(detail::FaceTextureSetState& s, const faces::FaceTextureSet
                             std::uint32_t(c.faces.size())};
       r.imageExtent = {std::uint32_t(v.width), std::uint32_t(v.height), 1};
       regions.push_back(r);
-      const VkDeviceSize bytes =
-          VkDeviceSize(v.width) * VkDeviceSize(v.height) * c.faces.size() * kTexelBytes;
+      const VkDeviceSize bytes = VkDeviceSize(v.width) * VkDeviceSize(v.height) *
+                                 c.faces.size() * faces::texel_bytes(s.format);
       at += bytes;
       s.texture_bytes += bytes;
     }
@@ -155,9 +180,9 @@ void fill_staging(const detail::FaceTextureSetState& s, const faces::FaceTexture
       std::uint8_t* at = dst + st.regions[ci][std::size_t(level)].bufferOffset;
       for (int face : c.faces) {
         const texture::TextureLevelView v = set.texture(face).level(0, level);
-        const std::size_t bytes = std::size_t(v.width) * std::size_t(v.height) * kTexelBytes;
-        std::memcpy(at, v.texels, bytes);
-        at += bytes;
+        const std::size_t texels = std::size_t(v.width) * std::size_t(v.height);
+        faces::convert_texels(v.texels, texels, s.format, at);
+        at += texels * faces::texel_bytes(s.format);
       }
     }
   }
@@ -184,9 +209,11 @@ void image_barrier(const Api& api, VkCommandBuffer cmd, VkImage image, const fac
       0, nullptr, 1, &b);
 }
 
+}  // namespace
+
 // The copies of the staging buffer into the images and the record buffer.
-void record_upload(const detail::FaceTextureSetState& s, const Staging& st, VkBuffer staging,
-                   VkCommandBuffer cmd) {
+void record_upload_commands(const detail::FaceTextureSetState& s, const Staging& st,
+                            VkBuffer staging, VkCommandBuffer cmd) {
   const Api& api = s.api;
   for (std::size_t c = 0; c < s.images.size(); ++c) {
     image_barrier(api, cmd, s.images[c].get(), s.layout.classes[c], false);
@@ -207,15 +234,26 @@ void record_upload(const detail::FaceTextureSetState& s, const Staging& st, VkBu
                          0, nullptr, 1, &bb, 0, nullptr);
 }
 
-// Staging buffer, one command buffer on the engine's queue, one submit, one fence waited on.
-Status upload(detail::FaceTextureSetState& s, const faces::FaceTextureSet& set) {
-  const Api& api = s.api;
-  const Staging st = plan_staging(s, set);
-  Result<Buffer> staging = Buffer::create(api, st.bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true,
-                                          "vk::FaceTextureSet: staging buffer");
+namespace {
+
+// The staging buffer, planned and filled (kept in the state).
+Status stage(detail::FaceTextureSetState& s, const faces::FaceTextureSet& set) {
+  s.plan = plan_staging(s, set);
+  Result<Buffer> staging = Buffer::create(s.api, s.plan.bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                          true, "vk::FaceTextureSet: staging buffer");
   if (!staging) return staging.status();
-  fill_staging(s, set, st, static_cast<std::uint8_t*>(staging->mapped()));
-  staging->flush();
+  s.staging = std::move(*staging);
+  fill_staging(s, set, s.plan, static_cast<std::uint8_t*>(s.staging.mapped()));
+  s.staging.flush();
+  return Status::success();
+}
+
+// FaceUpload::queue_submit: one command buffer on the engine's queue, one submit, one fence
+// waited on; the staging buffer freed.
+Status upload(detail::FaceTextureSetState& s) {
+  const Api& api = s.api;
+  const Staging& st = s.plan;
+  const Buffer* staging = &s.staging;
   VkCommandPoolCreateInfo pi{};
   pi.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
   pi.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
@@ -241,7 +279,7 @@ Status upload(detail::FaceTextureSetState& s, const faces::FaceTextureSet& set) 
   if (VkResult r = api.BeginCommandBuffer(cmd, &bi); r != VK_SUCCESS) {
     return vk_error("vk::FaceTextureSet: vkBeginCommandBuffer", r);
   }
-  record_upload(s, st, staging->get(), cmd);
+  record_upload_commands(s, st, staging->get(), cmd);
   if (VkResult r = api.EndCommandBuffer(cmd); r != VK_SUCCESS) {
     return vk_error("vk::FaceTextureSet: vkEndCommandBuffer", r);
   }
@@ -264,6 +302,8 @@ Status upload(detail::FaceTextureSetState& s, const faces::FaceTextureSet& set) 
       r != VK_SUCCESS) {
     return vk_error("vk::FaceTextureSet: vkWaitForFences", r);
   }
+  s.staging.reset();
+  s.recorded = true;
   return Status::success();
 }
 
@@ -366,12 +406,14 @@ Result<std::unique_ptr<FaceTextureSet>> FaceTextureSet::create(
   if (Status st = check_bindings(options.bindings); !st.ok()) return st;
   Result<Api> api = load_api(device);
   if (!api) return api.status();
-  if (device.queue == VK_NULL_HANDLE)
-    return invalid("DeviceContext::queue is null (create uploads)");
+  if (device.queue == VK_NULL_HANDLE && options.upload == FaceUpload::queue_submit)
+    return invalid("DeviceContext::queue is null (create uploads; or FaceUpload::engine_command_buffer)");
   auto s = std::make_unique<detail::FaceTextureSetState>();
   s->api = std::move(*api);
   s->bindings = options.bindings;
-  if (Status st = check_format(s->api); !st.ok()) return st;
+  s->format = options.format;
+  s->upload = options.upload;
+  if (Status st = check_format(s->api, s->format); !st.ok()) return st;
   const VkPhysicalDeviceLimits& lim = s->api.properties.limits;
   faces::PackLimits limits;
   limits.max_texture_size = int(std::min<std::uint32_t>(lim.maxImageDimension2D, 1u << 30));
@@ -396,7 +438,10 @@ Result<std::unique_ptr<FaceTextureSet>> FaceTextureSet::create(
   if (!records) return records.status();
   s->records = std::move(*records);
   if (Status st = create_images(*s); !st.ok()) return st;
-  if (Status st = upload(*s, set); !st.ok()) return st;
+  if (Status st = stage(*s, set); !st.ok()) return st;
+  if (s->upload == FaceUpload::queue_submit) {
+    if (Status st = upload(*s); !st.ok()) return st;
+  }
   if (Status st = create_samplers(*s, options.max_anisotropy); !st.ok()) return st;
   if (Status st = create_descriptors(*s); !st.ok()) return st;
   return std::unique_ptr<FaceTextureSet>(new FaceTextureSet(std::move(s)));
@@ -419,6 +464,25 @@ VkSampler FaceTextureSet::border_sampler() const { return s_->border.get(); }
 VkSampler FaceTextureSet::clamp_sampler() const { return s_->clamp.get(); }
 float FaceTextureSet::anisotropy() const { return s_->anisotropy; }
 std::uint64_t FaceTextureSet::texture_bytes() const { return s_->texture_bytes; }
+faces::TexelFormat FaceTextureSet::format() const { return s_->format; }
+bool FaceTextureSet::upload_recorded() const { return s_->recorded; }
+
+Status FaceTextureSet::record_upload(VkCommandBuffer cmd) {
+  if (s_->upload != FaceUpload::engine_command_buffer) {
+    return invalid("record_upload: create uploaded already (options.upload = queue_submit)");
+  }
+  if (s_->recorded) return invalid("record_upload: the upload is recorded already");
+  if (cmd == VK_NULL_HANDLE) return invalid("record_upload: no VkCommandBuffer");
+  record_upload_commands(*s_, s_->plan, s_->staging.get(), cmd);
+  s_->recorded = true;
+  return Status::success();
+}
+
+Status FaceTextureSet::release_staging() {
+  if (!s_->recorded) return invalid("release_staging before record_upload");
+  s_->staging.reset();
+  return Status::success();
+}
 
 Status FaceTextureSet::bind(VkCommandBuffer cmd, VkPipelineBindPoint bind_point,
                             VkPipelineLayout pipeline_layout, std::uint32_t set) const {

@@ -260,7 +260,7 @@ TEST_F(GlAdaptive, BadInputIsOneLineError) {
   gl::Object small = make_texture(GL_RGBA32F, w, h, {});
   f = s.frame;
   f.gbuffer[0] = small.get();
-  frame_fails(f, "is 8x4, the G-buffer is 16x8 (m = 2)");
+  frame_fails(f, "is 8x4, smaller than the G-buffer 16x8 (m = 2, render size 8x4)");
   gl::Object integer = make_texture(GL_RGBA32UI, w * m, h * m, {});
   f = s.frame;
   f.gbuffer[1] = integer.get();

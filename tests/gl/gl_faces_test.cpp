@@ -206,6 +206,41 @@ TEST_F(GlPtex, DisneySamplesUploadAndReadBackExactly) {
   }
 }
 
+// The smaller texel formats hold faces::convert_texels's bytes (the bytes Vulkan uploads): the
+// first face of every class, level 0, read back raw.
+TEST_F(GlPtex, TexelFormatsHoldTheConvertedBytes) {
+  TESSERA_REQUIRE_SHARED_DATA(data);
+  if (!std::filesystem::is_directory(data / "ptex")) TESSERA_SKIP_OR_FAIL("shared", "no ptex samples");
+  const auto sets = disney_sets(data);
+  ASSERT_FALSE(sets.empty());
+  const auto& [name, set] = *sets.begin();
+  struct Case {
+    faces::TexelFormat format;
+    GLenum type;
+  };
+  for (const Case& k : {Case{faces::TexelFormat::rgba16f, GL_HALF_FLOAT},
+                        Case{faces::TexelFormat::rgba8_unorm, GL_UNSIGNED_BYTE},
+                        Case{faces::TexelFormat::rgba8_srgb, GL_UNSIGNED_BYTE}}) {
+    FaceTextureSetOptions o;
+    o.format = k.format;
+    Result<FaceTextureSet> gpu = FaceTextureSet::upload(set, o);
+    ASSERT_TRUE(gpu.ok()) << gpu.status().message;
+    for (int c = 0; c < gpu->class_count(); ++c) {
+      const FaceClass& cls = gpu->layout().classes[std::size_t(c)];
+      const texture::TextureLevelView v = set.texture(cls.faces[0]).level(0, 0);
+      const std::size_t texels = std::size_t(v.width) * std::size_t(v.height);
+      const std::size_t bytes = texels * faces::texel_bytes(k.format);
+      std::vector<std::uint8_t> want(bytes), got(bytes);
+      faces::convert_texels(v.texels, texels, k.format, want.data());
+      glGetTextureSubImage(gpu->array_texture(c), 0, 0, 0, 0, v.width, v.height, 1, GL_RGBA,
+                           k.type, GLsizei(bytes), got.data());
+      ASSERT_TRUE(check_errors("read back").ok());
+      EXPECT_EQ(got, want) << name << " class " << c << " format " << int(k.format);
+    }
+    EXPECT_EQ(gpu->texture_bytes() % faces::texel_bytes(k.format), 0u);
+  }
+}
+
 // Hardware clamp-to-border trilinear lookups of the packed arrays (Σ w·T in rgb, Σ w in alpha:
 // Discard's numerator and denominator) against tessera's sampler on the same texels.
 TEST_F(GlPtex, BorderLookupsMatchTheCpuSampler) {

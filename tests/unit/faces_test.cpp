@@ -451,5 +451,39 @@ TEST(Faces, ClassGroupedIndicesCoverEveryFaceOnce) {
   for (std::uint32_t f = 0; f < 4; ++f) EXPECT_EQ(faces_seen.count(f), 6u) << f;
 }
 
+// The texel formats every GPU backend uploads (faces::convert_texels): binary16 rounded to
+// nearest even (normals, subnormals, overflow, infinities, NaN), unorm8 and sRGB8 rounded.
+TEST(TexelFormat, ConvertsAsTheGpuFormatsStore) {
+  auto half = [](float v) {
+    const float texel[4] = {v, 0, 0, 0};
+    std::uint8_t out[8];
+    faces::convert_texels(texel, 1, faces::TexelFormat::rgba16f, out);
+    return unsigned(out[0] | (out[1] << 8));
+  };
+  EXPECT_EQ(half(1.0f), 0x3c00u);
+  EXPECT_EQ(half(-2.0f), 0xc000u);
+  EXPECT_EQ(half(0.1f), 0x2e66u);
+  EXPECT_EQ(half(65504.0f), 0x7bffu);
+  EXPECT_EQ(half(65519.0f), 0x7bffu);  // below the midpoint to 65536
+  EXPECT_EQ(half(65520.0f), 0x7c00u);  // the midpoint rounds to even: infinity
+  EXPECT_EQ(half(std::ldexp(1.0f, -24)), 0x0001u);  // the smallest subnormal
+  EXPECT_EQ(half(std::ldexp(1.0f, -25)), 0x0000u);  // half of it: ties to even (0)
+  EXPECT_EQ(half(std::ldexp(3.0f, -26)), 0x0001u);  // above the tie
+  EXPECT_EQ(half(std::ldexp(1.0f, -14)), 0x0400u);  // the smallest normal
+  EXPECT_EQ(half(1.0f + std::ldexp(1.0f, -11)), 0x3c00u);  // tie: to even
+  EXPECT_EQ(half(1.0f + std::ldexp(3.0f, -11)), 0x3c02u);  // tie: to even (up)
+  EXPECT_EQ(half(INFINITY), 0x7c00u);
+  EXPECT_EQ(half(NAN) & 0x7c00u, 0x7c00u);
+  EXPECT_NE(half(NAN) & 0x3ffu, 0u);
+  const float texel[4] = {0.5f, 1.5f, -0.25f, 0.5f};
+  std::uint8_t u[4], s[4];
+  faces::convert_texels(texel, 1, faces::TexelFormat::rgba8_unorm, u);
+  faces::convert_texels(texel, 1, faces::TexelFormat::rgba8_srgb, s);
+  EXPECT_EQ(std::vector<int>(u, u + 4), (std::vector<int>{128, 255, 0, 128}));
+  EXPECT_EQ(std::vector<int>(s, s + 4), (std::vector<int>{188, 255, 0, 128}));  // alpha linear
+  EXPECT_EQ(faces::texel_bytes(faces::TexelFormat::rgba8_srgb), 4u);
+  EXPECT_EQ(faces::texel_bytes(faces::TexelFormat::rgba16f), 8u);
+}
+
 }  // namespace
 }  // namespace tessera

@@ -122,8 +122,11 @@ Result<std::vector<float>> draw(Engine& engine, const DrawInput& in) {
       VkCommandBuffer cmd = engine.begin();
       VkClearValue clear[2]{};  // the colour is loaded (the background), depth cleared
       clear[1].depthStencil = {1.0f, 0};
-      const Status bound = o.forward.record(cmd, in.width, in.height, clear, vbo.buffer, ibo.buffer,
-                                            std::uint32_t(in.indices.size()), in.bind_component);
+      Status bound = in.before_pass ? in.before_pass(cmd) : Status::success();
+      if (bound.ok()) {
+        bound = o.forward.record(cmd, in.width, in.height, clear, vbo.buffer, ibo.buffer,
+                                 std::uint32_t(in.indices.size()), in.bind_component);
+      }
       engine.submit_and_wait(cmd);
       if (!bound.ok()) {
         out = bound;

@@ -36,6 +36,8 @@ struct DrawInput {
   VkDescriptorSetLayout component_layout = VK_NULL_HANDLE;
   std::uint32_t component_set = 1;
   std::function<Status(VkCommandBuffer, VkPipelineLayout)> bind_component;
+  /// Recorded into the frame's command buffer before its render pass (an upload); optional.
+  std::function<Status(VkCommandBuffer)> before_pass;
   bool cull_back = true;  ///< Counter-clockwise front faces, as the CPU renderers.
 };
 
