@@ -105,6 +105,19 @@ std::vector<std::uint32_t> fragment(const vk::FaceTextureSet& tex, std::uint32_t
   return spirv ? *spirv : std::vector<std::uint32_t>{};
 }
 
+/// The CPU Discard renderer's frame (trilinear, the zero-coverage fallback): the reference.
+Result<faces::FaceFrame> cpu_discard_frame(const Teapot& t, const scene::Camera& camera) {
+  auto cpu = faces::FaceRenderer::create(t.scene, t.set);
+  if (!cpu) return cpu.status();
+  faces::FaceRenderOptions o;
+  o.width = kW;
+  o.height = kH;
+  o.sampling.method = faces::SeamMethod::discard;
+  o.sampling.filter = texture::TextureFilter::trilinear;
+  o.sampling.clamp_fallback = true;
+  return (*cpu)->render(camera, o);
+}
+
 /// The teapot drawn by the test engine with `tex` at set 2 (set 1 is an empty hole), the
 /// fragment shader reading face + `face_shift`, the camera `shift_px` right; `before_pass`
 /// records into the frame's command buffer before its render pass (an upload).
@@ -151,15 +164,7 @@ TEST_F(VkFaces, TeapotDiscardAgreesWithCpu) {
             0);
 
   const scene::Camera camera = faces::face_orbit_camera(t.scene, 1, 8);
-  auto cpu = faces::FaceRenderer::create(t.scene, t.set);
-  ASSERT_TRUE(cpu) << cpu.status().message;
-  faces::FaceRenderOptions o;
-  o.width = kW;
-  o.height = kH;
-  o.sampling.method = faces::SeamMethod::discard;
-  o.sampling.filter = texture::TextureFilter::trilinear;
-  o.sampling.clamp_fallback = true;
-  auto cpu_frame = (*cpu)->render(camera, o);
+  const Result<faces::FaceFrame> cpu_frame = cpu_discard_frame(t, camera);
   ASSERT_TRUE(cpu_frame) << cpu_frame.status().message;
 
   auto render = [&](int face_shift, float shift_px) {
@@ -186,15 +191,7 @@ TEST_F(VkFaces, EveryTexelFormatUploadedInTheEnginesCommandBuffer) {
   TESSERA_REQUIRE_SHARED_DATA(data);
   const Teapot t = load_teapot(data);
   const scene::Camera camera = faces::face_orbit_camera(t.scene, 1, 8);
-  auto cpu = faces::FaceRenderer::create(t.scene, t.set);
-  ASSERT_TRUE(cpu) << cpu.status().message;
-  faces::FaceRenderOptions ro;
-  ro.width = kW;
-  ro.height = kH;
-  ro.sampling.method = faces::SeamMethod::discard;
-  ro.sampling.filter = texture::TextureFilter::trilinear;
-  ro.sampling.clamp_fallback = true;
-  auto cpu_frame = (*cpu)->render(camera, ro);
+  const Result<faces::FaceFrame> cpu_frame = cpu_discard_frame(t, camera);
   ASSERT_TRUE(cpu_frame) << cpu_frame.status().message;
   vk::FaceTextureSetOptions to;
   to.max_anisotropy = 1.0f;
