@@ -102,9 +102,9 @@ void copy_rows(const ImageRGBA8& image, std::uint8_t* rgba, std::size_t row_pitc
 
 using tessera::c_api::guarded;
 
-extern "C" {
+namespace tessera::c_api::entry {
 
-const char* tessera_error_string(tessera_error code) {
+const char* error_string(tessera_error code) {
   switch (code) {
     case TESSERA_SUCCESS: return "success";
     case TESSERA_ERROR_INVALID_ARGUMENT: return "invalid argument";
@@ -123,16 +123,16 @@ const char* tessera_error_string(tessera_error code) {
   return "unknown error";
 }
 
-const char* tessera_version(void) { return TESSERA_VERSION_STRING; }
+const char* version(void) { return TESSERA_VERSION_STRING; }
 
-tessera_error tessera_context_config_init(tessera_context_config* config) {
+tessera_error context_config_init(tessera_context_config* config) {
   if (config == nullptr) return TESSERA_ERROR_NULL_POINTER;
   *config = tessera_context_config{};
   config->struct_size = sizeof(tessera_context_config);
   return TESSERA_SUCCESS;
 }
 
-tessera_error tessera_context_create(const tessera_context_config* config,
+tessera_error context_create(const tessera_context_config* config,
                                      tessera_context** context) {
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
   *context = nullptr;
@@ -151,12 +151,12 @@ tessera_error tessera_context_create(const tessera_context_config* config,
   });
 }
 
-void tessera_context_free(tessera_context* context) { delete context; }
+void context_free(tessera_context* context) { delete context; }
 
-const char* tessera_context_last_error(const tessera_context* context) {
+const char* context_last_error(const tessera_context* context) {
   return context == nullptr ? "" : context->last_error.c_str();
 }
 
-void tessera_free(void* data) { std::free(data); }
+void free(void* data) { std::free(data); }
 
-}  // extern "C"
+}  // namespace tessera::c_api::entry

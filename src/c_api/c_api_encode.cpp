@@ -259,9 +259,9 @@ tessera_error compare(tessera_context* context, const tessera_image* a, const te
 using tessera::c_api::guarded;
 using tessera::c_api::require;
 
-extern "C" {
+namespace tessera::c_api::entry {
 
-tessera_error tessera_encode_options_init(tessera_encode_options* options) {
+tessera_error encode_options_init(tessera_encode_options* options) {
   if (options == nullptr) return TESSERA_ERROR_NULL_POINTER;
   *options = tessera_encode_options{};
   options->struct_size = sizeof(tessera_encode_options);
@@ -273,7 +273,7 @@ tessera_error tessera_encode_options_init(tessera_encode_options* options) {
   return TESSERA_SUCCESS;
 }
 
-tessera_error tessera_encode(tessera_context* context, const tessera_image* images,
+tessera_error encode(tessera_context* context, const tessera_image* images,
                              uint32_t image_count, const tessera_encode_options* options,
                              tessera_texture** texture) {
   if (texture != nullptr) *texture = nullptr;
@@ -285,7 +285,7 @@ tessera_error tessera_encode(tessera_context* context, const tessera_image* imag
   });
 }
 
-tessera_error tessera_pvrtc_level_size(tessera_format format, uint32_t width, uint32_t height,
+tessera_error pvrtc_level_size(tessera_format format, uint32_t width, uint32_t height,
                                        size_t* size) {
   if (size == nullptr) return TESSERA_ERROR_NULL_POINTER;
   return guarded(nullptr, [&] {
@@ -298,7 +298,7 @@ tessera_error tessera_pvrtc_level_size(tessera_format format, uint32_t width, ui
   });
 }
 
-tessera_error tessera_pvrtc_encode(tessera_context* context, const tessera_image* image,
+tessera_error pvrtc_encode(tessera_context* context, const tessera_image* image,
                                    const tessera_encode_options* options, uint8_t* blocks,
                                    size_t capacity, size_t* size) {
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
@@ -308,7 +308,7 @@ tessera_error tessera_pvrtc_encode(tessera_context* context, const tessera_image
   });
 }
 
-tessera_error tessera_pvrtc_decode(tessera_context* context, tessera_format format,
+tessera_error pvrtc_decode(tessera_context* context, tessera_format format,
                                    uint32_t width, uint32_t height, const uint8_t* blocks,
                                    size_t blocks_size, uint8_t* rgba, size_t row_pitch,
                                    size_t capacity) {
@@ -319,7 +319,7 @@ tessera_error tessera_pvrtc_decode(tessera_context* context, tessera_format form
   });
 }
 
-tessera_error tessera_compare(tessera_context* context, const tessera_image* a,
+tessera_error compare(tessera_context* context, const tessera_image* a,
                               const tessera_image* b, int32_t compute_ssim,
                               tessera_metrics* metrics) {
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
@@ -327,4 +327,4 @@ tessera_error tessera_compare(tessera_context* context, const tessera_image* a,
                  [&] { return tessera::c_api::compare(context, a, b, compute_ssim, metrics); });
 }
 
-}  // extern "C"
+}  // namespace tessera::c_api::entry

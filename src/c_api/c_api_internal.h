@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "c_api/c_api_entry.h"
 #include "tessera/core.h"
 #include "tessera/tessera_c.h"
 #include "tessera/texture_file.h"

@@ -84,9 +84,9 @@ using tessera::c_api::fail;
 using tessera::c_api::guarded;
 using tessera::c_api::require;
 
-extern "C" {
+namespace tessera::c_api::entry {
 
-tessera_error tessera_texture_get_info(const tessera_texture* texture,
+tessera_error texture_get_info(const tessera_texture* texture,
                                        tessera_texture_info* info) {
   if (texture == nullptr || info == nullptr) return TESSERA_ERROR_NULL_POINTER;
   if (info->struct_size != sizeof(tessera_texture_info)) return TESSERA_ERROR_BAD_STRUCT_SIZE;
@@ -108,7 +108,7 @@ tessera_error tessera_texture_get_info(const tessera_texture* texture,
   return TESSERA_SUCCESS;
 }
 
-tessera_error tessera_texture_get_blocks(const tessera_texture* texture, uint32_t level,
+tessera_error texture_get_blocks(const tessera_texture* texture, uint32_t level,
                                          uint32_t layer, uint32_t face, const uint8_t** blocks,
                                          size_t* size) {
   if (texture == nullptr || blocks == nullptr || size == nullptr) {
@@ -127,7 +127,7 @@ tessera_error tessera_texture_get_blocks(const tessera_texture* texture, uint32_
   });
 }
 
-tessera_error tessera_texture_decode(tessera_context* context, const tessera_texture* texture,
+tessera_error texture_decode(tessera_context* context, const tessera_texture* texture,
                                      uint32_t level, uint32_t layer, uint32_t face,
                                      uint8_t* rgba, size_t row_pitch, size_t capacity) {
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
@@ -152,9 +152,9 @@ tessera_error tessera_texture_decode(tessera_context* context, const tessera_tex
   });
 }
 
-void tessera_texture_free(tessera_texture* texture) { delete texture; }
+void texture_free(tessera_texture* texture) { delete texture; }
 
-tessera_error tessera_texture_read_memory(tessera_context* context, const void* data,
+tessera_error texture_read_memory(tessera_context* context, const void* data,
                                           size_t size, tessera_texture** texture) {
   if (texture != nullptr) *texture = nullptr;
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
@@ -167,7 +167,7 @@ tessera_error tessera_texture_read_memory(tessera_context* context, const void* 
   });
 }
 
-tessera_error tessera_texture_read_file(tessera_context* context, const char* path,
+tessera_error texture_read_file(tessera_context* context, const char* path,
                                         tessera_texture** texture) {
   if (texture != nullptr) *texture = nullptr;
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
@@ -178,7 +178,7 @@ tessera_error tessera_texture_read_file(tessera_context* context, const char* pa
   });
 }
 
-tessera_error tessera_texture_write_memory(tessera_context* context, tessera_texture* texture,
+tessera_error texture_write_memory(tessera_context* context, tessera_texture* texture,
                                            tessera_container container, int32_t zstd_level,
                                            void* data, size_t capacity, size_t* size) {
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
@@ -202,7 +202,7 @@ tessera_error tessera_texture_write_memory(tessera_context* context, tessera_tex
   });
 }
 
-tessera_error tessera_texture_write_alloc(tessera_context* context, tessera_texture* texture,
+tessera_error texture_write_alloc(tessera_context* context, tessera_texture* texture,
                                           tessera_container container, int32_t zstd_level,
                                           void** data, size_t* size) {
   if (data != nullptr) *data = nullptr;
@@ -224,7 +224,7 @@ tessera_error tessera_texture_write_alloc(tessera_context* context, tessera_text
   });
 }
 
-tessera_error tessera_texture_write_file(tessera_context* context,
+tessera_error texture_write_file(tessera_context* context,
                                          const tessera_texture* texture, const char* path,
                                          int32_t zstd_level) {
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
@@ -249,4 +249,4 @@ tessera_error tessera_texture_write_file(tessera_context* context,
   });
 }
 
-}  // extern "C"
+}  // namespace tessera::c_api::entry
