@@ -44,12 +44,21 @@ extern "C" {
 /** Version of this interface: bumped when a function or a struct field is added. */
 #define TESSERA_C_API_VERSION 1
 
+/* Enumerations are 32-bit ints in C and C++ alike; in C++ every int32_t value is a valid value
+ * of them (a fixed underlying type), so a caller's out-of-range value is an error code, never
+ * undefined behaviour inside the library. */
+#ifdef __cplusplus
+#define TESSERA_ENUM(name) enum name : int32_t
+#else
+#define TESSERA_ENUM(name) enum name
+#endif
+
 /* ---------------------------------------------------------------------------------------- */
 /* Errors                                                                                   */
 /* ---------------------------------------------------------------------------------------- */
 
 /** What every call returns. The first seven mirror tessera::ErrorCode. */
-typedef enum tessera_error {
+typedef TESSERA_ENUM(tessera_error) {
   TESSERA_SUCCESS = 0,
   TESSERA_ERROR_INVALID_ARGUMENT = 1, /**< A value out of range or options that conflict. */
   TESSERA_ERROR_IO = 2,               /**< A file could not be opened, read or written. */
@@ -124,19 +133,19 @@ typedef struct tessera_image {
 /* Encoding                                                                                 */
 /* ---------------------------------------------------------------------------------------- */
 
-typedef enum tessera_format {
+typedef TESSERA_ENUM(tessera_format) {
   TESSERA_FORMAT_PVRTC1_4BPP = 0, /**< 4x4 texels per 64-bit block. */
   TESSERA_FORMAT_PVRTC1_2BPP = 1  /**< 8x4 texels per 64-bit block. */
 } tessera_format;
 
 /** The encoder's effort (tessera/pvrtc.h, pvrtc::Quality). */
-typedef enum tessera_quality {
+typedef TESSERA_ENUM(tessera_quality) {
   TESSERA_QUALITY_FAST = 0,
   TESSERA_QUALITY_NORMAL = 1,
   TESSERA_QUALITY_HIGH = 2
 } tessera_quality;
 
-typedef enum tessera_mip_filter {
+typedef TESSERA_ENUM(tessera_mip_filter) {
   TESSERA_MIP_FILTER_BOX = 0,
   TESSERA_MIP_FILTER_LANCZOS = 1,
   TESSERA_MIP_FILTER_KAISER = 2
@@ -209,7 +218,7 @@ tessera_error tessera_pvrtc_decode(tessera_context* context, tessera_format form
 /* Textures and containers                                                                  */
 /* ---------------------------------------------------------------------------------------- */
 
-typedef enum tessera_container {
+typedef TESSERA_ENUM(tessera_container) {
   TESSERA_CONTAINER_PVR3 = 0, /**< PVR v3 (.pvr). */
   TESSERA_CONTAINER_KTX1 = 1, /**< KTX 1.1 (.ktx). */
   TESSERA_CONTAINER_KTX2 = 2  /**< KTX 2.0 (.ktx2), optionally Zstandard-supercompressed. */
