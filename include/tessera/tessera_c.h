@@ -27,9 +27,9 @@
  * Linking: `pkg-config --cflags --libs tessera` (the shared library libtessera.so.0, which
  *   exports only `tessera_*` and the C++ `tessera::` API), or CMake `tessera::shared`.
  * Guide: docs/c_api.md. Tests: tests/c_api/ (c_api_test.cpp: each call against the C++ API byte
- *   for byte and every bad input; consumer.c and consumer_ctypes.py against `tessera compress`
- *   from an installed tree; the exported symbols; abidiff against tests/c_api/abi/); the
- *   fuzzer fuzz/fuzz_c_api_read.cpp.
+ *   for byte; c_api_bad_input_test.cpp: every bad input; consumer.c and consumer_ctypes.py
+ *   against `tessera compress` from an installed tree; the exported symbols; abidiff against
+ *   tests/c_api/abi/); the fuzzer fuzz/fuzz_c_api_read.cpp; scripts/package.sh (the .debs).
  */
 #ifndef TESSERA_TESSERA_C_H
 #define TESSERA_TESSERA_C_H
