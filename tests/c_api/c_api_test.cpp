@@ -344,6 +344,34 @@ TEST(CApi, ProgressRisesToOneAndCancelStopsTheEncode) {
             c_file(context.get(), done.get(), TESSERA_CONTAINER_PVR3));
 }
 
+TEST(CApi, CancellingAtEveryProgressPointOfACubeMapLeavesNothing) {
+  std::vector<ImageRGBA8> faces;
+  std::vector<tessera_image> views;
+  for (int i = 0; i < 6; ++i) faces.push_back(test_image(16, 16, i, true));
+  for (const ImageRGBA8& f : faces) views.push_back(c_image(f));
+  tessera_encode_options o;
+  tessera_encode_options_init(&o);
+  o.faces = 6;
+  o.quality = TESSERA_QUALITY_FAST;
+  o.flags = TESSERA_FLAG_MIPMAPS;
+  ProgressLog count;
+  Context counting = make_context(2, log_progress, &count);
+  tessera_texture* raw = nullptr;
+  ASSERT_EQ(tessera_encode(counting.get(), views.data(), 6, &o, &raw), TESSERA_SUCCESS);
+  tessera_texture_free(raw);
+  ASSERT_GE(count.fractions.size(), 6u);  // at least one point per face
+  for (std::size_t stop_at = 0; stop_at < count.fractions.size(); ++stop_at) {
+    ProgressLog stop;
+    stop.cancel_after = int(stop_at);
+    Context cancelling = make_context(2, log_progress, &stop);
+    raw = nullptr;
+    ASSERT_EQ(tessera_encode(cancelling.get(), views.data(), 6, &o, &raw), TESSERA_ERROR_CANCELLED)
+        << "cancelled at call " << stop_at;
+    EXPECT_EQ(raw, nullptr);
+    EXPECT_EQ(stop.fractions.size(), stop_at + 1);
+  }
+}
+
 TEST(CApi, ErrorStringsAndVersion) {
   EXPECT_STREQ(tessera_error_string(TESSERA_SUCCESS), "success");
   EXPECT_STREQ(tessera_error_string(TESSERA_ERROR_BUFFER_TOO_SMALL), "buffer too small");
