@@ -33,8 +33,9 @@ for compiler in "${compilers[@]}"; do
     -Wl,-rpath,"$libdir" -o "$work/consumer-$(basename "$compiler")"
 done
 consumer="$work/consumer-$(basename "${compilers[0]}")"
-if ! ldd "$consumer" | grep -q "=> $(readlink -f "$libdir")/libtessera.so.0 \|=> $libdir/libtessera.so.0 "; then
-  echo "FAIL: the consumer does not load libtessera.so.0 from $libdir:"
+loaded=$(ldd "$consumer" | awk '$1 == "libtessera.so.0" { print $3 }')
+if [ -z "$loaded" ] || [ "$(readlink -f "$loaded")" != "$(readlink -f "$libdir/libtessera.so.0")" ]; then
+  echo "FAIL: the consumer loads libtessera.so.0 from '$loaded', not from $libdir:"
   ldd "$consumer"
   exit 1
 fi
