@@ -45,6 +45,8 @@ packages=(
   vulkan-validationlayers vulkan-tools         # validation layer (a message fails a test)
   glslc libshaderc-dev                         # GLSL to SPIR-V: offline (glslc) and at create
   libcpp-httplib-dev                           # `tessera view`'s local HTTP server
+  abigail-tools                                # abidw/abidiff: the C ABI against its baseline (c_api_abi)
+  debhelper dh-python lintian                  # scripts/package.sh: the Debian packages, checked
   libgtest-dev libgmock-dev libbenchmark-dev   # tests, benchmarks
   python3 python3-numpy python3-skimage python3-pil  # independent SSIM/PSNR, image checks
 )
