@@ -29,6 +29,8 @@ tessera_error fail(tessera_context* context, const Status& status) {
     case ErrorCode::unsupported: code = TESSERA_ERROR_UNSUPPORTED; break;
     case ErrorCode::too_large: code = TESSERA_ERROR_TOO_LARGE; break;
     case ErrorCode::size_mismatch: code = TESSERA_ERROR_SIZE_MISMATCH; break;
+    case ErrorCode::out_of_memory: code = TESSERA_ERROR_OUT_OF_MEMORY; break;
+    case ErrorCode::device_lost: code = TESSERA_ERROR_INTERNAL; break;  // the codec has no device
   }
   return fail(context, code, status.message);
 }
