@@ -1,58 +1,104 @@
-// GLSL to SPIR-V with shaderc (the hook is known only at run time, see tessera/vk_adaptive.h;
-// the experiments' graphics stages are compiled the same way), and compute pipelines.
+// GLSL to SPIR-V through the compiler module tessera-vk-glsl.so (glsl_module.cpp, loaded here
+// the first time tessera::vk compiles: the hook is known only at run time, see
+// tessera/vk_adaptive.h; the experiments' graphics stages are compiled the same way), and
+// compute pipelines.
 #include "vk/shader.h"
 
-#include <shaderc/shaderc.h>
+#include <dlfcn.h>
 
-#include <memory>
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+
+#include "vk/glsl_module.h"
 
 namespace tessera::vk {
 
 namespace {
 
-Result<std::vector<std::uint32_t>> compile_spirv(const std::string& text, shaderc_shader_kind kind) {
-  std::unique_ptr<std::remove_pointer_t<shaderc_compiler_t>, void (*)(shaderc_compiler_t)> compiler(
-      shaderc_compiler_initialize(), shaderc_compiler_release);
-  std::unique_ptr<std::remove_pointer_t<shaderc_compile_options_t>,
-                  void (*)(shaderc_compile_options_t)>
-      options(shaderc_compile_options_initialize(), shaderc_compile_options_release);
-  if (!compiler || !options) {
-    return Status::error(ErrorCode::unsupported, "shaderc: cannot initialise the compiler");
-  }
-  shaderc_compile_options_set_target_env(options.get(), shaderc_target_env_vulkan,
-                                         shaderc_env_version_vulkan_1_0);
-  shaderc_compile_options_set_optimization_level(options.get(),
-                                                 shaderc_optimization_level_performance);
-  std::unique_ptr<std::remove_pointer_t<shaderc_compilation_result_t>,
-                  void (*)(shaderc_compilation_result_t)>
-      result(shaderc_compile_into_spv(compiler.get(), text.data(), text.size(),
-                                      kind, "tessera", "main", options.get()),
-             shaderc_result_release);
-  if (!result) return Status::error(ErrorCode::unsupported, "shaderc: no result");
-  if (shaderc_result_get_compilation_status(result.get()) != shaderc_compilation_status_success) {
-    return Status::error(ErrorCode::invalid_argument,
-                         shaderc_result_get_error_message(result.get()));
-  }
-  const std::size_t bytes = shaderc_result_get_length(result.get());
-  std::vector<std::uint32_t> spirv(bytes / 4);
-  const char* data = shaderc_result_get_bytes(result.get());
-  std::copy(data, data + spirv.size() * 4, reinterpret_cast<char*>(spirv.data()));
+struct GlslModule {
+  TesseraVkGlslCompile compile = nullptr;
+  TesseraVkGlslFree free = nullptr;
+  std::string why;  // when it could not be loaded
+};
+
+/// Where the module may be: $TESSERA_VK_GLSL; beside the program (bin/../lib/tessera/);
+/// where it was installed; where it was built.
+std::vector<std::string> module_candidates() {
+  std::vector<std::string> c;
+  if (const char* env = std::getenv("TESSERA_VK_GLSL"); env && *env) c.push_back(env);
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) c.push_back((exe.parent_path() / ".." / "lib" / "tessera" / "tessera-vk-glsl.so").string());
+#ifdef TESSERA_VK_GLSL_INSTALLED
+  c.push_back(TESSERA_VK_GLSL_INSTALLED);
+#endif
+#ifdef TESSERA_VK_GLSL_BUILD
+  c.push_back(TESSERA_VK_GLSL_BUILD);
+#endif
+  return c;
+}
+
+const GlslModule& glsl_module() {
+  static GlslModule m;
+  static std::once_flag once;
+  std::call_once(once, [] {
+    std::string tried;
+    for (const std::string& path : module_candidates()) {
+      std::error_code ec;
+      if (!std::filesystem::exists(path, ec)) {
+        tried += (tried.empty() ? "" : ", ") + path;
+        continue;
+      }
+      void* h = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (h == nullptr) {
+        m.why = path + ": " + dlerror();
+        return;
+      }
+      m.compile = reinterpret_cast<TesseraVkGlslCompile>(dlsym(h, "tessera_vk_glsl_compile"));
+      m.free = reinterpret_cast<TesseraVkGlslFree>(dlsym(h, "tessera_vk_glsl_free"));
+      if (m.compile == nullptr || m.free == nullptr) {
+        m.compile = nullptr;
+        m.why = path + ": not tessera's GLSL compiler module";
+      }
+      return;  // the module stays loaded for the process
+    }
+    m.why = "no GLSL compiler module tessera-vk-glsl.so (looked at " + tried +
+            "; set TESSERA_VK_GLSL, or give a shader binary)";
+  });
+  return m;
+}
+
+Result<std::vector<std::uint32_t>> compile_spirv(const std::string& text, int stage) {
+  const GlslModule& m = glsl_module();
+  if (m.compile == nullptr) return Status::error(ErrorCode::unsupported, m.why);
+  std::uint32_t* words = nullptr;
+  std::size_t count = 0;
+  char* log = nullptr;
+  const int r = m.compile(text.data(), text.size(), stage, &words, &count, &log);
+  const std::string message = log != nullptr ? log : "";
+  std::vector<std::uint32_t> spirv;
+  if (r == TESSERA_VK_GLSL_OK) spirv.assign(words, words + count);
+  m.free(words);
+  m.free(log);
+  if (r == TESSERA_VK_GLSL_ERROR) return Status::error(ErrorCode::invalid_argument, message);
+  if (r != TESSERA_VK_GLSL_OK) return Status::error(ErrorCode::unsupported, message);
   return spirv;
 }
 
 }  // namespace
 
 Result<std::vector<std::uint32_t>> compile_compute_spirv(const std::string& text) {
-  return compile_spirv(text, shaderc_compute_shader);
+  return compile_spirv(text, TESSERA_VK_GLSL_COMPUTE);
 }
 
 Result<std::vector<std::uint32_t>> compile_graphics_spirv(const std::string& text,
                                                           glsl::Stage stage) {
   switch (stage) {
     case glsl::Stage::vertex:
-      return compile_spirv(text, shaderc_vertex_shader);
+      return compile_spirv(text, TESSERA_VK_GLSL_VERTEX);
     case glsl::Stage::fragment:
-      return compile_spirv(text, shaderc_fragment_shader);
+      return compile_spirv(text, TESSERA_VK_GLSL_FRAGMENT);
     default:
       return Status::error(ErrorCode::invalid_argument,
                            "shaderc: compile_graphics_spirv takes a vertex or fragment stage");

@@ -1,5 +1,7 @@
-// Internal to src/vk: GLSL compute (or vertex / fragment) source (already include-expanded, with #line bookkeeping)
-// to SPIR-V with shaderc, and a compute pipeline from it.
+// Internal to src/vk: GLSL compute (or vertex / fragment) source (already include-expanded, with
+// #line bookkeeping) to SPIR-V with shaderc inside the compiler module tessera-vk-glsl.so
+// (loaded at the first compile; an `unsupported` error naming where it looked when it is not
+// there), and a compute pipeline from it.
 #pragma once
 
 #include <cstdint>

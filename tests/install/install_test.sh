@@ -12,6 +12,9 @@
 # The installed share/tessera/glsl is moved away first: nothing may read it (the GLSL is
 # embedded in the library). No GL device (or no Xvfb / GLFW) skips those runs with a note, or
 # fails when TESSERA_TEST_REQUIRE asks for gl (or all).
+# The exported targets carry no build-only target (tessera_warnings, tessera_sanitizers); the Vulkan
+# ones no GLSL compiler (shaderc, glslang, SPIRV-Tools live in the module tessera-vk-glsl.so, which
+# exports two C functions), and engine_aa_vk's compile and link lines name none.
 # Where tessera::vk was installed, first examples/engine_aa_vk and examples/engine_ptex_vk with
 # find_package(tessera COMPONENTS vk), run at a small size with the installed GLSL folder moved away (no Vulkan device
 # is not an error here: the build is what is checked, the CTest engine_aa_vk checks the image).
@@ -26,14 +29,38 @@ cmake -S "$src/examples/consumer" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=R
   -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/build" >/dev/null
 "$work/build/consumer"
+# The package exports no build-only target (warnings, sanitizers) to its consumers.
+if grep -l "tessera_warnings\|tessera_sanitizers" "$work"/prefix/lib*/cmake/tessera/*.cmake; then
+  echo "install test: the package exports tessera_warnings / tessera_sanitizers" >&2
+  exit 1
+fi
 if ls "$work"/prefix/lib*/cmake/tessera/tesseraVkTargets.cmake >/dev/null 2>&1; then
+  # tessera::vk brings no GLSL compiler onto an engine's link line (its own glslang of any
+  # version links beside it): shaderc is inside the module tessera-vk-glsl.so, all local.
+  if grep -il "shaderc\|glslang\|SPIRV" "$work"/prefix/lib*/cmake/tessera/tesseraVk*.cmake; then
+    echo "install test: tesseraVkTargets names shaderc / glslang / SPIRV-Tools" >&2
+    exit 1
+  fi
+  vk_module=$(ls "$work"/prefix/lib*/tessera/tessera-vk-glsl.so)
+  if nm -D --defined-only "$vk_module" | grep -v " tessera_vk_glsl_\(compile\|free\)$" |
+    grep " [TDBW] "; then
+    echo "install test: $vk_module exports more than its two C functions" >&2
+    exit 1
+  fi
   cmake -S "$src/examples/engine_aa_vk" -B "$work/build_engine_aa_vk" -G Ninja \
     -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
   cmake --build "$work/build_engine_aa_vk" >/dev/null
+  if ninja -C "$work/build_engine_aa_vk" -t commands engine_aa_vk |
+    grep -i "shaderc\|glslang\|SPIRV-Tools"; then
+    echo "install test: engine_aa_vk's compile or link line names a GLSL compiler" >&2
+    exit 1
+  fi
   vk_glsl=$(ls -d "$work"/prefix/share/tessera/glsl)
   mv "$vk_glsl" "$work/glsl.vk.moved"  # engine_aa_vk must not need it
   set +e
-  out=$(env -u TESSERA_GLSL_DIR "$work/build_engine_aa_vk/engine_aa_vk" --size 64x48 --m 2 2>&1)
+  # The installed compiler module, named as an engine that ships it elsewhere would.
+  out=$(env -u TESSERA_GLSL_DIR TESSERA_VK_GLSL="$vk_module" \
+    "$work/build_engine_aa_vk/engine_aa_vk" --size 64x48 --m 2 2>&1)
   rc=$?
   set -e
   mv "$work/glsl.vk.moved" "$vk_glsl"
