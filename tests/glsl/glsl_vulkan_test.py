@@ -395,6 +395,7 @@ for label, defines, want in SHADING_VARIANTS:
 PURE = [
     ("adaptive_metrics.glsl", [], "", METRICS_COMP),
     ("adaptive_metrics.glsl", ["TESSERA_ADAPTIVE_MAX_N 16"], "", METRICS_COMP),
+    ("adaptive_metrics.glsl", ["TESSERA_ADAPTIVE_NO_FP64 1"], "", METRICS_COMP),
     ("adaptive_samples.glsl", [], "", SAMPLES_COMP),
     ("edge_classify.glsl", [], "", EDGE_COMP),
     ("fxaa.glsl", ["TESSERA_FXAA_STEPS 12"], FXAA_PRELUDE, FXAA_COMP),
@@ -406,7 +407,9 @@ for include, defines, prelude, body in PURE:
     res, caps, _ = vulkan_case(name, text, "comp")
     expect_resources(name + " (no bindings)", res, {})
     if include == "adaptive_metrics.glsl" and res is not None:
-        check(f"{name}: Float64 capability (documented)", "Float64" in caps, f"caps {caps}")
+        no_fp64 = "TESSERA_ADAPTIVE_NO_FP64 1" in defines
+        check(f"{name}: Float64 capability {'absent' if no_fp64 else 'present'} (documented)",
+              ("Float64" in caps) != no_fp64, f"caps {caps}")
     gl_case(name, text, "comp", {})
 
 # --- tessera's own programs --------------------------------------------------------------------
@@ -447,6 +450,10 @@ for variant, defines in PASSES.items():
                      "TesseraListColours": (0, 16)})
         check("deferred_passes.comp frame_list: default sets and bindings", res == want,
               f"got {res}")
+# A pass macro that names no pass (renamed or misspelt) is a compile error, not an empty main.
+rc, out, _ = compile_vulkan([*PASS_COMMON, "-DTESSERA_PASS_FRIST", PASSES_FILE])
+check("deferred_passes.comp with an unknown pass: a compile error",
+      rc != 0 and "no known TESSERA_PASS_" in out, last_line(out))
 res, _, _ = vulkan_check("deferred_passes.comp frame_list, set 2, first binding 4",
                          [*PASS_COMMON, *PASSES["frame_list"], "-DTESSERA_DEFERRED_SET=2",
                           "-DTESSERA_DEFERRED_FIRST_BINDING=4", PASSES_FILE])

@@ -448,5 +448,7 @@ void main() {
     tessera_adaptive_accumulate(sum, wsum, tessera_shade_sample(tessera_adaptive_sample(pixel, p), 1.0));
   tessera_adaptive_store(pixel, tessera_adaptive_average(sum, wsum, TESSERA_ADAPTIVE_N));
   tessera_adaptive_store_count(pixel, TESSERA_ADAPTIVE_N);
+#else
+#error "adaptive_component.glsl: no known TESSERA_ADAPTIVE_PASS_* is defined"
 #endif
 }

@@ -410,5 +410,7 @@ void main() {
   vec4 v = (c00 * (1.0 - a.x) + c10 * a.x) * (1.0 - a.y) + (c01 * (1.0 - a.x) + c11 * a.x) * a.y;
   uvec3 b = uvec3(clamp(floor(v.rgb * 255.0 + 0.5), 0.0, 255.0));
   tessera_rgba8_out[i] = b.r | (b.g << 8) | (b.b << 16) | (in_texel & 0xff000000u);
+#else
+#error "deferred_passes.comp: no known TESSERA_PASS_* is defined"
 #endif
 }
