@@ -54,6 +54,8 @@ struct Frame {
   /// Extra set layouts (index 1, 2, ...; VK_NULL_HANDLE: an empty one) and what binds them.
   std::vector<VkDescriptorSetLayout> extra_layouts;
   std::function<std::string(VkCommandBuffer, VkPipelineLayout)> bind_extra;
+  /// Recorded into the frame's command buffer before its render pass (uploads); "" or why not.
+  std::function<std::string(VkCommandBuffer)> before_pass;
 };
 
 /// Draws `f` (negative viewport height: +y up as GL's matrices; the vertex stage maps GL's z)

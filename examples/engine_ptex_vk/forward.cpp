@@ -78,6 +78,9 @@ std::string record(const Objects& o, const Frame& f, const Buffer& vbo, const Bu
   VkClearValue clear[2]{};
   std::memcpy(clear[0].color.float32, f.background, sizeof f.background);
   clear[1].depthStencil = {1.0f, 0};
+  if (f.before_pass) {
+    if (std::string e = f.before_pass(cmd); !e.empty()) return e;
+  }
   const std::string bound = o.forward.record(
       cmd, f.width, f.height, clear, vbo.buffer, ibo.buffer, std::uint32_t(f.indices.size()),
       [&f](VkCommandBuffer c, VkPipelineLayout l) {

@@ -7,9 +7,10 @@
 // and queue, its vertex layout (position, normal, per-face UV, integer face id), its frame
 // uniform block at set 0, its render pass and pipeline, its GLSL compiled at load with shaderc.
 // The integration with tessera is the blocks marked "tessera" (tessera/vk_faces.h): mesh and
-// textures from the .obj and .ptx, one vk::FaceTextureSet::create on the engine's device and
-// queue, its set layout in the engine's pipeline layout at set index 2 (the engine's choice),
-// its glsl_defines before the engine's #include "seams.glsl", one bind per frame.
+// textures from the .obj and .ptx, one vk::FaceTextureSet::create on the engine's device, its
+// upload recorded into the engine's first frame (released after that frame's fence), its set
+// layout in the engine's pipeline layout at set index 2 (the engine's choice), its
+// glsl_defines before the engine's #include "seams.glsl", one bind per frame.
 //
 // Usage: engine_ptex_vk MESH.obj FILE.ptx [--size WxH] [--orbit K/N] [--shift-px X]
 //                       [--face-shift K] [--json] [-o FILE.png]
@@ -128,6 +129,8 @@ int main(int argc, char** argv) {
   ctx.enabled_features = d.features;
   tessera::vk::FaceTextureSetOptions to;
   to.max_anisotropy = 1.0f;  // trilinear: the filter the CPU check uses
+  // The upload goes into the engine's first frame (no submit inside tessera).
+  to.upload = tessera::vk::FaceUpload::engine_command_buffer;
   auto tex = tessera::vk::FaceTextureSet::create(ctx, set, to);
   if (!tex) {
     d.destroy();
@@ -144,6 +147,9 @@ int main(int argc, char** argv) {
   frame.bind_extra = [&](VkCommandBuffer cmd, VkPipelineLayout layout) {
     return (*tex)->bind(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, kSet).message;
   };
+  frame.before_pass = [&](VkCommandBuffer cmd) {
+    return (*tex)->upload_recorded() ? std::string() : (*tex)->record_upload(cmd).message;
+  };
   // ---- end of step 2 ----
 
   std::string error = fragment ? "" : fragment.status().message;
@@ -156,6 +162,7 @@ int main(int argc, char** argv) {
   double vk_ms = 0;
   std::vector<float> pixels;
   if (error.empty()) pixels = engine::draw(d, frame, &vk_ms, error);
+  if (error.empty()) error = (*tex)->release_staging().message;  // the frame completed
   const int classes = (*tex)->class_count();
   (*tex).reset();  // tessera's objects before the engine's device
   const std::string device_name = d.name;
