@@ -84,14 +84,15 @@ class Instance {
   int messages = 0;         // validation warnings + errors
   std::string first_message;
 
-  /// Makes the instance (with the layer when `want_validation` and installed); "" or the reason.
+  /// Makes the instance (with the layer when `want_validation` and installed, and the instance
+  /// `extensions`, e.g. a window system's surface ones); "" or the reason.
   std::string create_instance(const char* app_name, std::uint32_t api_version,
-                              bool want_validation) {
+                              bool want_validation,
+                              std::vector<const char*> extensions = {}) {
     validation = want_validation && has_layer(kValidationLayer);
     VkApplicationInfo app{
         VK_STRUCTURE_TYPE_APPLICATION_INFO, nullptr, app_name, 1, nullptr, 0, api_version};
     const ValidationChain chain(&on_message, this);
-    const char* ext = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
     const char* layer = kValidationLayer;
     VkInstanceCreateInfo ii{};
     ii.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
@@ -100,9 +101,10 @@ class Instance {
       ii.pNext = &chain.features;
       ii.enabledLayerCount = 1;
       ii.ppEnabledLayerNames = &layer;
-      ii.enabledExtensionCount = 1;
-      ii.ppEnabledExtensionNames = &ext;
+      extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     }
+    ii.enabledExtensionCount = std::uint32_t(extensions.size());
+    ii.ppEnabledExtensionNames = extensions.data();
     if (vkCreateInstance(&ii, nullptr, &instance) != VK_SUCCESS) return "no Vulkan instance";
     if (validation) {
       auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
@@ -228,8 +230,9 @@ class DeviceBase : public Instance {
   /// The instance (`app_name`, `api_version`, the layer when `want_validation` and installed)
   /// and the physical device (`props`, `name`); "" or the reason.
   std::string create_instance_and_pick(const char* app_name, std::uint32_t api_version,
-                                       bool want_validation, VkPhysicalDeviceProperties& props) {
-    const std::string why = create_instance(app_name, api_version, want_validation);
+                                       bool want_validation, VkPhysicalDeviceProperties& props,
+                                       const std::vector<const char*>& extensions = {}) {
+    const std::string why = create_instance(app_name, api_version, want_validation, extensions);
     if (!why.empty()) return why;
     if (!pick_device(api_version, physical, family, props)) {
       return std::string("no Vulkan ") + std::to_string(VK_API_VERSION_MAJOR(api_version)) + "." +
@@ -241,13 +244,15 @@ class DeviceBase : public Instance {
   }
 
   /// The device with one queue of `family`, `features` and the `next` chain; "" or the reason.
-  std::string create_device(const void* next) {
+  std::string create_device(const void* next, const std::vector<const char*>& extensions = {}) {
     const float prio = 1.0f;
     VkDeviceQueueCreateInfo qi{
         VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, nullptr, 0, family, 1, &prio};
     VkDeviceCreateInfo di{};
     di.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
     di.pNext = next;
+    di.enabledExtensionCount = std::uint32_t(extensions.size());
+    di.ppEnabledExtensionNames = extensions.data();
     di.queueCreateInfoCount = 1;
     di.pQueueCreateInfos = &qi;
     di.pEnabledFeatures = &features;

@@ -20,10 +20,11 @@ const std::uint32_t kFragSpirv[] = {
 
 }  // namespace
 
-std::string Device::create(bool want_validation) {
+std::string Device::create(bool want_validation, const std::vector<const char*>& instance_extensions,
+                           const std::vector<const char*>& device_extensions) {
   VkPhysicalDeviceProperties props{};
-  const std::string why =
-      create_instance_and_pick("engine_aa_vk", VK_API_VERSION_1_3, want_validation, props);
+  const std::string why = create_instance_and_pick("engine_aa_vk", VK_API_VERSION_1_3,
+                                                   want_validation, props, instance_extensions);
   if (!why.empty()) return why;
   VkPhysicalDeviceFeatures supported{};
   vkGetPhysicalDeviceFeatures(physical, &supported);
@@ -34,7 +35,7 @@ std::string Device::create(bool want_validation) {
   f13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
   f13.synchronization2 = VK_TRUE;
   f13.dynamicRendering = VK_TRUE;
-  if (std::string no = create_device(&f13); !no.empty()) return no;
+  if (std::string no = create_device(&f13, device_extensions); !no.empty()) return no;
   VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr, 0, family};
   vkCreateCommandPool(device, &pi, nullptr, &pool_);
   return "";
@@ -116,12 +117,18 @@ VkFence Device::fence() {
   return f;
 }
 
-void Device::submit(VkCommandBuffer cmd, VkFence fence) {
+void Device::submit(VkCommandBuffer cmd, VkFence fence, VkSemaphore wait, VkSemaphore signal) {
   vkEndCommandBuffer(cmd);
+  const VkPipelineStageFlags stage = VK_PIPELINE_STAGE_TRANSFER_BIT;  // the blit to the window
   VkSubmitInfo si{};
   si.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+  si.waitSemaphoreCount = wait != VK_NULL_HANDLE ? 1 : 0;
+  si.pWaitSemaphores = &wait;
+  si.pWaitDstStageMask = &stage;
   si.commandBufferCount = 1;
   si.pCommandBuffers = &cmd;
+  si.signalSemaphoreCount = signal != VK_NULL_HANDLE ? 1 : 0;
+  si.pSignalSemaphores = &signal;
   vkQueueSubmit(queue, 1, &si, fence);
 }
 

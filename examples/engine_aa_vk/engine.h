@@ -27,8 +27,10 @@ struct Image {
 /// shaderFloat64 where the device has it, and a command pool.
 class Device : public DeviceBase {
  public:
-  /// Creates everything; "" on success, else the reason (no device, no Vulkan 1.3, ...).
-  std::string create(bool validation);
+  /// Creates everything; "" on success, else the reason (no device, no Vulkan 1.3, ...). The
+  /// extensions: a window's surface (instance) and swapchain (device), for --window.
+  std::string create(bool validation, const std::vector<const char*>& instance_extensions = {},
+                     const std::vector<const char*>& device_extensions = {});
   void destroy();
 
   using DeviceBase::destroy;  // buffers (vk_engine.h)
@@ -37,10 +39,12 @@ class Device : public DeviceBase {
   void destroy(Image& i);
   VkCommandBuffer begin();
   void submit_and_wait(VkCommandBuffer cmd);
-  /// The frame loop's: a fence, a submission of `cmd` (ended here) signalling it, the wait for
-  /// it (then reset), freeing a command buffer once its fence signalled.
+  /// The frame loop's: a fence, a submission of `cmd` (ended here) signalling it (waiting for
+  /// `wait` at the transfer stage and signalling `signal` where given: the window's acquire and
+  /// present), the wait for it (then reset), freeing a command buffer once its fence signalled.
   VkFence fence();
-  void submit(VkCommandBuffer cmd, VkFence fence);
+  void submit(VkCommandBuffer cmd, VkFence fence, VkSemaphore wait = VK_NULL_HANDLE,
+              VkSemaphore signal = VK_NULL_HANDLE);
   void wait(VkFence fence);
   void free(VkCommandBuffer cmd);
   /// Reads an RGBA16F / R8_UINT image left in `layout` after (stage, access) (synchronization2).

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "scene_frame.h"
+#include "window.h"
 
 namespace engine {
 
@@ -88,10 +89,19 @@ std::string run_frame_loop(Device& d, const GeometryPipeline& gp, const FrameLoo
         break;
       }
       // r->colour (GENERAL, top-left `size` texels) is this view's image until the slot comes
-      // round again: an engine would composite or present it here.
+      // round again: the engine composites or presents it (view 0 to the window).
+      if (v == 0 && o.window != nullptr) {
+        err = o.window->acquire(d, slot);
+        if (err.empty()) o.window->record_blit(s.cmd, r->colour, size);
+      }
       s.pending.views.push_back({v, size.width, size.height, 0, 0.0});
     }
-    d.submit(s.cmd, s.fence);  // no wait: the next frame starts at once
+    if (o.window == nullptr) {
+      d.submit(s.cmd, s.fence);  // no wait: the next frame starts at once
+    } else if (err.empty()) {
+      d.submit(s.cmd, s.fence, o.window->acquired(slot), o.window->rendered());
+      err = o.window->present(d);
+    }
   }
   for (std::uint32_t k = 0; k < o.frames_in_flight; ++k) {  // drain, oldest first
     const std::uint32_t slot = std::uint32_t(o.frames + int(k)) % o.frames_in_flight;

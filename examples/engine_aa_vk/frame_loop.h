@@ -14,12 +14,15 @@
 
 namespace engine {
 
+class Window;
+
 struct FrameLoopOptions {
   int w = 0, h = 0, m = 4;  ///< The largest output size and the window side.
   int frames = 0;           ///< Frames to run.
   std::uint32_t frames_in_flight = 2;
   int views = 2;
   long long budget = -1;  ///< -1: none.
+  Window* window = nullptr;  ///< --window: view 0 presented every frame (window.h).
 };
 
 /// One view of one completed frame, as its profile reported it.

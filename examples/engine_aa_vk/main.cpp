@@ -13,10 +13,12 @@
 //
 // Usage: engine_aa_vk [--size WxH] [--m M] [--budget B] [--schedule frame_list|tile_list|loop]
 //                     [--no-validation] [--json] [-o DIR] [--shader-binary FILE]
-//                     [--frame-loop N [--frames-in-flight F] [--views V]]
+//                     [--frame-loop N [--frames-in-flight F] [--views V] [--window]]
 //   --frame-loop N  runs N frames as an engine does (frame_loop.h): F frames in flight (2),
 //           V views (2), the render scale cycling 100 % -> 70 % -> 85 %; --json reports per
 //           frame and view the render size, the extra samples and tessera's GPU time
+//   --window  with --frame-loop: view 0 presented every frame in a GLFW window (window.h;
+//           under Xvfb lavapipe presents through X11); --json adds the frames presented
 //   --json  one JSON object: samples %, PSNR of the adaptive and the 1 spp image against the
 //           component's own full supersampling (tonemapped, sRGB8), the component's pass times
 //           (GPU timestamps; lavapipe runs them on the CPU), validation messages
@@ -38,6 +40,7 @@
 #include "engine.h"
 #include "frame_loop.h"
 #include "scene_frame.h"
+#include "window.h"
 #include "tessera/core.h"
 #include "tessera/vk_adaptive.h"
 
@@ -48,6 +51,7 @@ struct Args : engine::AaArgs {
   bool no_validation = false;
   int frame_loop = 0;  // frames of the frame loop (frame_loop.h); 0: the three measured frames
   int frames_in_flight = 2, views = 2;
+  bool window = false;  // --window: present view 0 of the frame loop in a GLFW window
   std::string shader_binary;  // --shader-binary FILE: load tessera's SPIR-V, or save it there
 };
 
@@ -90,6 +94,7 @@ std::string parse_args(int argc, char** argv, Args& a) {
   cl.option("--frame-loop", count("--frame-loop", 1, 100000, a.frame_loop));
   cl.option("--frames-in-flight", count("--frames-in-flight", 1, 16, a.frames_in_flight));
   cl.option("--views", count("--views", 1, 16, a.views));
+  cl.flag("--window", &a.window);
   cl.option("--shader-binary", [&a](const std::string& v) -> std::string {
     a.shader_binary = v;
     return v.empty() ? "--shader-binary: expected a file" : "";
@@ -175,7 +180,7 @@ void print_report(const Args& a, const engine::Device& d, const engine::AaReport
 /// The frame loop (frame_loop.h) and its report: per frame and view the render size, the extra
 /// samples and tessera's GPU time.
 int frame_loop(engine::Device& d, const engine::GeometryPipeline& gp, const Args& a,
-               tessera::vk::AdaptiveSupersampler& aa) {
+               tessera::vk::AdaptiveSupersampler& aa, engine::Window* window) {
   engine::FrameLoopOptions lo;
   lo.w = a.w;
   lo.h = a.h;
@@ -184,6 +189,7 @@ int frame_loop(engine::Device& d, const engine::GeometryPipeline& gp, const Args
   lo.frames_in_flight = std::uint32_t(a.frames_in_flight);
   lo.views = a.views;
   lo.budget = a.budget;
+  lo.window = window;
   std::vector<engine::FrameResult> frames;
   if (std::string e = engine::run_frame_loop(d, gp, lo, aa, frames); !e.empty()) return fail(e);
   if (!a.json) {
@@ -211,14 +217,15 @@ int frame_loop(engine::Device& d, const engine::GeometryPipeline& gp, const Args
     }
     std::printf("]}");
   }
-  std::printf("], \"validation\": %s, \"validation_messages\": %d}\n",
-              d.validation ? "true" : "false", d.messages);
+  std::printf("], \"presented\": %d, \"validation\": %s, \"validation_messages\": %d}\n",
+              window != nullptr ? window->presented : 0, d.validation ? "true" : "false",
+              d.messages);
   return 0;
 }
 
 /// Creates the component, runs the three kinds of frame (each twice: the first also pays the
 /// driver's pipeline compilation), reports.
-int run(engine::Device& d, const Args& a) {
+int run(engine::Device& d, const Args& a, engine::Window* window) {
   engine::GeometryPipeline gp = engine::geometry_pipeline(d);
   engine::Frame f;
   engine::setup(d, a.w, a.h, a.m, 0, f);
@@ -261,7 +268,7 @@ int run(engine::Device& d, const Args& a) {
   if (!aa) {
     rc = fail((o.shader_binary.empty() ? "" : a.shader_binary + ": ") + aa.status().message);
   } else if (a.frame_loop > 0) {
-    rc = frame_loop(d, gp, a, **aa);
+    rc = frame_loop(d, gp, a, **aa, window);
     aa->reset();
   } else {
     std::array<Shot, 3> shots;
@@ -307,12 +314,35 @@ int run(engine::Device& d, const Args& a) {
 int main(int argc, char** argv) {
   Args a;
   if (std::string why = parse_args(argc, argv, a); !why.empty()) return fail(why);
+  if (a.window && a.frame_loop == 0) return fail("--window needs --frame-loop N");
+  // --window: the engine's window first (its surface extensions go into the instance).
+  engine::Window window;
+  std::vector<const char*> instance_extensions, device_extensions;
+  if (a.window) {
+    if (std::string why = window.open(a.w, a.h); !why.empty()) {
+      window.close();
+      return fail("no window: " + why);
+    }
+    instance_extensions = window.instance_extensions();
+    device_extensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
+  }
   engine::Device d;
-  if (std::string why = d.create(!a.no_validation); !why.empty()) {
+  if (std::string why = d.create(!a.no_validation, instance_extensions, device_extensions);
+      !why.empty()) {
+    if (a.window) window.destroy(d);
     d.destroy();
     return fail("no Vulkan device: " + why);
   }
-  int rc = run(d, a);
+  if (a.window) {
+    if (std::string why = window.create_swapchain(d, std::uint32_t(a.frames_in_flight));
+        !why.empty()) {
+      window.destroy(d);
+      d.destroy();
+      return fail("no swapchain: " + why);
+    }
+  }
+  int rc = run(d, a, a.window ? &window : nullptr);
+  if (a.window) window.destroy(d);  // before the device
   d.destroy();  // leak reports of the validation layer arrive here
   if (d.messages > 0) {
     return fail(std::to_string(d.messages) +

@@ -3,7 +3,8 @@
 anti-aliased with tessera::vk::AdaptiveSupersampler) on this machine's Vulkan (lavapipe
 without a GPU), under the validation layer with synchronization validation.
 
-Usage: engine_aa_vk_test.py PATH/TO/engine_aa_vk
+Usage: engine_aa_vk_test.py PATH/TO/engine_aa_vk [headless|window]
+  window: the frame loop presenting in its GLFW window, under xvfb-run
 Exits 77 (CTest: skipped) when there is no Vulkan 1.3 device or no validation layer, or fails
 when TESSERA_TEST_REQUIRE asks for vulkan / vulkan-validation (or is "all").
 
@@ -18,15 +19,28 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
-from cli_harness import check, expect_error, finish  # noqa: E402
+from cli_harness import check, expect_error, finish, skip_or_fail  # noqa: E402
 from engine_aa_checks import SIZE, check_engine  # noqa: E402
 from engine_vk_harness import reporter, runner  # noqa: E402
 
 ENGINE = sys.argv[1]
+MODE = sys.argv[2] if len(sys.argv) > 2 else "headless"
 
 
 run = runner(ENGINE)
 report = reporter([ENGINE, *SIZE], "no Vulkan 1.3 device here")
+
+if MODE == "window":
+    # The frame loop presenting view 0 in a GLFW window every frame (lavapipe presents to X11):
+    # 3 frames in flight, 2 views, 100 -> 70 -> 85 %, validation-clean, every frame presented.
+    if not os.environ.get("DISPLAY"):
+        skip_or_fail("xvfb", "no X display for the window (run under xvfb-run, Debian xvfb)")
+    win = report("--frame-loop", "6", "--frames-in-flight", "3", "--window")
+    check("window: 6 frames presented", win.get("presented") == 6, win)
+    check("window: the render scales", [f.get("scale_percent") for f in win.get("frames", [])] ==
+          [100, 70, 85, 100, 70, 85], win)
+    expect_error(run, "--window without --frame-loop", [*SIZE, "--window"], 1, "--frame-loop")
+    sys.exit(finish())
 
 
 r = check_engine(report, run, SIZE)
