@@ -13,6 +13,15 @@
 # counts of tests run, skipped and failed per stage and label.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
+# Each stage's wall time, printed at the end beside the counts (what grew, where).
+stage_names=() stage_secs=() stage_start=$(date +%s) stage_name="setup and build"
+stage() {
+  local now
+  now=$(date +%s)
+  stage_names+=("$stage_name") stage_secs+=($((now - stage_start)))
+  stage_name="$1" stage_start=$now
+  echo "== $1"
+}
 bash scripts/setup.sh --arm64
 jobs="$(nproc)"
 # What CI has, the tests must find: without a GL device, the PVRTexTool or ktx-parse oracles or
@@ -23,16 +32,19 @@ export TESSERA_TEST_REQUIRE=all
 mkdir -p build build-asan build-arm64
 rm -f build/ctest-junit.xml build-asan/ctest-junit.xml build-arm64/test-counts.tsv
 summary() {
+  stage "(end)" >/dev/null
+  echo "Wall time per stage (seconds):"
+  for i in "${!stage_names[@]}"; do printf '  %-44s %6d\n' "${stage_names[$i]}" "${stage_secs[$i]}"; done
   python3 scripts/test_summary.py "GCC Release=build:build/ctest-junit.xml" \
     "Clang ASan+UBSan=build-asan:build-asan/ctest-junit.xml" \
     --counts build-arm64/test-counts.tsv || true
 }
 trap summary EXIT
 
-echo "== GCC Release: all tests"
+stage "GCC Release: all tests"
 ctest --test-dir build --output-on-failure -j "$jobs" --output-junit ctest-junit.xml
 
-echo "== Clang ASan+UBSan: unit and fuzz tests"
+stage "Clang ASan+UBSan: build, unit and fuzz tests"
 cache="${TESSERA_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/tessera}"
 CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DTESSERA_SANITIZE=ON -DTESSERA_WERROR=ON -DTESSERA_BUILD_BENCH=OFF -DTESSERA_BUILD_FUZZ=ON \
@@ -41,5 +53,5 @@ cmake --build build-asan
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-asan --output-on-failure -j "$jobs" -L 'unit|fuzz' --output-junit ctest-junit.xml
 
-echo "== arm64 (cross-compiled, qemu-user): NEON bytes equal x86-64"
+stage "arm64 (cross-compiled, qemu-user): NEON bytes equal x86-64"
 bash tests/arch/pvrtc_arch_bytes.sh build
