@@ -41,23 +41,7 @@ if [ -z "$loaded" ] || [ "$(readlink -f "$loaded")" != "$(readlink -f "$libdir/l
 fi
 
 # The image: raw RGBA8 for the consumers, the same texels as a PNG for the CLI.
-/usr/bin/env python3 - "$work/in.rgba" "$work/in.png" <<'PY'
-import struct, sys, zlib
-w = h = 64
-px = bytearray()
-for y in range(h):
-    for x in range(w):
-        a = 0 if (x < 16 and y < 16) else 96 + (x * 159) // (w - 1)
-        px += bytes((x * 4 & 255, (y * 4 + 30) & 255, 200 if (x // 8 + y // 8) % 2 else 40, a))
-open(sys.argv[1], "wb").write(px)
-def chunk(kind, data):
-    body = kind + data
-    return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
-rows = b"".join(b"\0" + bytes(px[y * w * 4:(y + 1) * w * 4]) for y in range(h))
-png = (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0))
-       + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
-open(sys.argv[2], "wb").write(png)
-PY
+/usr/bin/env python3 "$(dirname "${BASH_SOURCE[0]}")/make_test_image.py" "$work/in.rgba" "$work/in.png"
 
 "$bin/bin/tessera" compress "$work/in.png" -o "$work/cli.ktx2" --quality fast --mipmaps \
   --alpha-bleed --zstd 5 -q
