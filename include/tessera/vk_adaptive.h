@@ -85,6 +85,9 @@
 // its own, and with `profile` a timestamp query pool and a 16-byte host-visible buffer.
 // Destroy the component before the device, after every command buffer that recorded it has
 // completed.
+// Tests: tests/vk/vk_adaptive_test.cpp (budget, barriers, hook sets, bad input),
+// vk_frames_test.cpp (frames in flight, views, render sizes, output, no fp64, shader binary),
+// vk_adaptive_gl_test.cpp (the GL twin's image).
 #pragma once
 
 #include <array>
