@@ -58,7 +58,9 @@ export LD_LIBRARY_PATH="$libdir"
 PKG_CONFIG_PATH="$libdir/pkgconfig" cc -std=c99 -Wall -Wextra -Werror -pedantic \
   tests/c_api/consumer.c $(PKG_CONFIG_PATH="$libdir/pkgconfig" pkg-config --cflags --libs tessera) \
   -o "$work/consumer"
-if ! ldd "$work/consumer" | grep -q "=> $libdir/libtessera.so.0 "; then
+# (ldd's output captured first: `ldd | grep -q` under pipefail fails when grep stops reading early)
+loaded=$(ldd "$work/consumer")
+if ! grep -q "=> $libdir/libtessera.so.0 " <<<"$loaded"; then
   echo "FAIL: the consumer does not load the unpacked libtessera.so.0"
   ldd "$work/consumer"
   exit 1
