@@ -1,9 +1,9 @@
-// gl::AdaptiveSupersampler against gl::DeferredRenderer on the same frame: gl::DeferredRenderer renders
-// its G-buffer, shades it adaptively (itself through a component whose hook keeps S's light
+// gl::AdaptiveSupersampler against gl::DeferredRenderer on the same frame: gl::DeferredRenderer
+// renders its G-buffer, shades it adaptively (itself through a component whose hook keeps S's light
 // terms for sample 0 again), and a component shades the same G-buffer textures with
-// gl::DeferredRenderer's Blinn-Phong (deferred_shading.glsl) as a plain hook. Prints one JSON line per
-// method: samples %, whether the image equals gl::DeferredRenderer's bit for bit, and the per-pass host times
-// (dispatch to the end of a glFinish; medians over the timed frames).
+// gl::DeferredRenderer's Blinn-Phong (deferred_shading.glsl) as a plain hook. Prints one JSON line
+// per method: samples %, whether the image equals gl::DeferredRenderer's bit for bit, and the
+// per-pass host times (dispatch to the end of a glFinish; medians over the timed frames).
 //
 // Usage: aa_gl_component [--scene FILE.gltf] [--size WxH] [--m M] [--frames N] [--heavy]
 //                        [--budget-fraction F]

@@ -48,8 +48,8 @@ std::filesystem::path shared_images() {
 
 /// Registers one benchmark per shared image that exists (none when the folder is absent).
 void register_shared_images() {
-  for (const char* name : {"ldr-rgb-metalrough.png", "ldr-rgb-diffuse.png",
-                           "ldr-rgba-diffuse.png", "ldr-l-occlusion.png"}) {
+  for (const char* name : {"ldr-rgb-metalrough.png", "ldr-rgb-diffuse.png", "ldr-rgba-diffuse.png",
+                           "ldr-l-occlusion.png"}) {
     const std::filesystem::path path = shared_images() / name;
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) continue;
@@ -64,10 +64,7 @@ void register_shared_images() {
 
 }  // namespace
 
-BENCHMARK(BM_DecodePngGenerated)
-    ->Args({1024, 0})
-    ->Args({1024, 1})
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DecodePngGenerated)->Args({1024, 0})->Args({1024, 1})->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);

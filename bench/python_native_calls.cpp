@@ -19,8 +19,8 @@ void add_bench_functions(py::module_& m) {
   using namespace pybind11::literals;
   m.def(
       "native_encode_ms",
-      [](const py::handle& array, int calls, const std::string& format,
-         const std::string& quality, int threads) {
+      [](const py::handle& array, int calls, const std::string& format, const std::string& quality,
+         int threads) {
         CompressKeywords k;
         k.format = format;
         k.quality = quality;

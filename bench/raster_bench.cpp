@@ -49,8 +49,8 @@ const Scene& scene() {
         sc.pos.insert(sc.pos.end(),
                       {float(fx * vx), float(fy * vy),
                        float((f + n) / (n - f) * vz + 2.0 * f * n / (n - f)), float(-vz)});
-        sc.var.insert(sc.var.end(), {float(u * 8.0), float(v * 8.0), float(nx), float(ny),
-                                     float(nz)});
+        sc.var.insert(sc.var.end(),
+                      {float(u * 8.0), float(v * 8.0), float(nx), float(ny), float(nz)});
       }
     }
     for (int j = 0; j < kCells; ++j) {
@@ -97,8 +97,8 @@ void shade(const ShadeInput& in, float* out) {
   const float* t10 = &tex[(std::size_t(y0) * kTex + std::size_t(x1)) * 4];
   const float* t01 = &tex[(std::size_t(y1) * kTex + std::size_t(x0)) * 4];
   const float* t11 = &tex[(std::size_t(y1) * kTex + std::size_t(x1)) * 4];
-  const float lambert = std::max(0.0f, 0.3f * in.varyings[2] + 0.9f * in.varyings[3] +
-                                           0.3f * in.varyings[4]);
+  const float lambert =
+      std::max(0.0f, 0.3f * in.varyings[2] + 0.9f * in.varyings[3] + 0.3f * in.varyings[4]);
   for (int c = 0; c < 3; ++c) {
     const float top = t00[c] + au * (t10[c] - t00[c]);
     const float bottom = t01[c] + au * (t11[c] - t01[c]);

@@ -20,8 +20,7 @@ void require(bool ok) {
 
 bool same_info(const tessera_texture_info& a, const tessera_texture_info& b) {
   return a.format == b.format && a.width == b.width && a.height == b.height &&
-         a.levels == b.levels && a.faces == b.faces && a.layers == b.layers &&
-         a.srgb == b.srgb;
+         a.levels == b.levels && a.faces == b.faces && a.layers == b.layers && a.srgb == b.srgb;
 }
 
 tessera_texture_info info_of(const tessera_texture* texture) {
@@ -54,8 +53,8 @@ void decode_all(tessera_context* context, const tessera_texture* texture,
     }
   }
   std::vector<std::uint8_t> one(4);
-  require(tessera_texture_decode(context, texture, info.levels, 0, 0, one.data(), 0,
-                                 one.size()) == TESSERA_ERROR_INVALID_ARGUMENT);
+  require(tessera_texture_decode(context, texture, info.levels, 0, 0, one.data(), 0, one.size()) ==
+          TESSERA_ERROR_INVALID_ARGUMENT);
 }
 
 /// Written to `container` and read back: the same info and level-0 blocks.
@@ -70,11 +69,10 @@ void round_trip(tessera_context* context, tessera_texture* texture,
   require(tessera_texture_write_memory(context, texture, container, 0, file.data(), size - 1,
                                        &again) == TESSERA_ERROR_BUFFER_TOO_SMALL);
   require(again == size && file[0] == 0x5a);
-  require(tessera_texture_write_memory(context, texture, container, 0, file.data(), size,
-                                       &again) == TESSERA_SUCCESS);
-  tessera_texture* back = nullptr;
-  require(tessera_texture_read_memory(context, file.data(), file.size(), &back) ==
+  require(tessera_texture_write_memory(context, texture, container, 0, file.data(), size, &again) ==
           TESSERA_SUCCESS);
+  tessera_texture* back = nullptr;
+  require(tessera_texture_read_memory(context, file.data(), file.size(), &back) == TESSERA_SUCCESS);
   require(same_info(info_of(back), info));
   const std::uint8_t* a = nullptr;
   const std::uint8_t* b = nullptr;
@@ -99,8 +97,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   tessera_texture* texture = reinterpret_cast<tessera_texture*>(&context);  // must become NULL
   // A copy of exactly `size` bytes, so that a read past the end is caught by ASan.
   std::vector<std::uint8_t> bytes(data, data + size);
-  const tessera_error e = tessera_texture_read_memory(context, size ? bytes.data() : data, size,
-                                                      &texture);
+  const tessera_error e =
+      tessera_texture_read_memory(context, size ? bytes.data() : data, size, &texture);
   if (e != TESSERA_SUCCESS) {
     require(texture == nullptr);
     require(std::strlen(tessera_context_last_error(context)) > 0);

@@ -12,8 +12,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 9) return 0;
-  const auto format = (data[0] & 1) ? tessera::pvrtc::Format::pvrtc1_2bpp
-                                    : tessera::pvrtc::Format::pvrtc1_4bpp;
+  const auto format =
+      (data[0] & 1) ? tessera::pvrtc::Format::pvrtc1_2bpp : tessera::pvrtc::Format::pvrtc1_4bpp;
   std::int32_t width = 0, height = 0;
   std::memcpy(&width, data + 1, 4);
   std::memcpy(&height, data + 5, 4);

@@ -28,6 +28,7 @@ done
 packages=(
   build-essential cmake ninja-build pkg-config git ca-certificates
   clang lld libclang-rt-14-dev                 # second compiler, sanitizers, libFuzzer
+  clang-format                                 # the test command checks the C++ formatting
   libspng-dev zlib1g-dev libstb-dev            # PNG, zlib, JPEG/TGA/BMP
   libdeflate-dev                               # PNG fast path (inflate)
   libzstd-dev                                  # KTX 2.0 Zstandard supercompression

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Sets up everything and runs every test:
+#   0. clang-format 14 (.clang-format): any unformatted C/C++ file fails (scripts/check_format.sh);
 #   1. GCC Release build (warnings are errors): the whole CTest suite, PVRTexTool oracle included;
 #   2. Clang build with AddressSanitizer + UndefinedBehaviorSanitizer (warnings are errors), with
 #      the libFuzzer targets: the unit tests again, and each fuzzer over its seeds plus a bounded
@@ -40,6 +41,9 @@ summary() {
     --counts build-arm64/test-counts.tsv || true
 }
 trap summary EXIT
+
+stage "clang-format: every C/C++ file formatted"
+bash scripts/check_format.sh
 
 stage "GCC Release: all tests"
 ctest --test-dir build --output-on-failure -j "$jobs" --output-junit ctest-junit.xml

@@ -47,8 +47,8 @@ class Platform {
   std::string open(bool headless, int w, int h, const char* title) {
     std::string why = headless ? open_egl() : open_window(w, h, title);
     if (!why.empty()) return why;
-    // tessera: the context's own GetProcAddress, no cast (glfwGetProcAddress returns a
-    // function pointer, SDL_GL_GetProcAddress a void*: both are accepted).
+      // tessera: the context's own GetProcAddress, no cast (glfwGetProcAddress returns a
+      // function pointer, SDL_GL_GetProcAddress a void*: both are accepted).
 #if ENGINE_HAVE_GLFW
     tessera::Status s = window_ ? tessera::gl::load_entry_points(glfwGetProcAddress)
                                 : tessera::gl::load_entry_points(eglGetProcAddress);
@@ -130,19 +130,21 @@ class Platform {
   std::string open_egl() {
     const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     const bool surfaceless =
-        client != nullptr && std::string(client).find("EGL_MESA_platform_surfaceless") !=
-                                 std::string::npos;
-    display_ = surfaceless
-                   ? eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
-                                           nullptr)
-                   : eglGetDisplay(EGL_DEFAULT_DISPLAY);
+        client != nullptr &&
+        std::string(client).find("EGL_MESA_platform_surfaceless") != std::string::npos;
+    display_ = surfaceless ? eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA,
+                                                   EGL_DEFAULT_DISPLAY, nullptr)
+                           : eglGetDisplay(EGL_DEFAULT_DISPLAY);
     if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, nullptr, nullptr)) {
       return "no EGL display";
     }
     if (!eglBindAPI(EGL_OPENGL_API)) return "EGL without desktop OpenGL";
-    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,       4,
-                              EGL_CONTEXT_MINOR_VERSION,       5,
-                              EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                              4,
+                              EGL_CONTEXT_MINOR_VERSION,
+                              5,
+                              EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                               EGL_NONE};
     context_ = eglCreateContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
     if (context_ == EGL_NO_CONTEXT) return "no OpenGL 4.5 core EGL context";

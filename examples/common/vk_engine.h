@@ -86,8 +86,7 @@ class Instance {
 
   /// Makes the instance (with the layer when `want_validation` and installed, and the instance
   /// `extensions`, e.g. a window system's surface ones); "" or the reason.
-  std::string create_instance(const char* app_name, std::uint32_t api_version,
-                              bool want_validation,
+  std::string create_instance(const char* app_name, std::uint32_t api_version, bool want_validation,
                               std::vector<const char*> extensions = {}) {
     validation = want_validation && has_layer(kValidationLayer);
     VkApplicationInfo app{

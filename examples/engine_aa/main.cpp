@@ -24,8 +24,6 @@
 // In the window the adaptive image is drawn to the default framebuffer and shown; --json then
 // also reports "window_max_diff", the largest byte difference between the back buffer read back
 // and adaptive.png. Exit 1 with one line when there is no OpenGL 4.5 device or on bad arguments.
-#include "engine_context.h"  // first: the engine's GL and window headers
-
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -34,6 +32,7 @@
 
 #include "aa_report.h"  // examples/common: the flags, measures and report both AA engines share
 #include "aa_scene.h"   // examples/common: the scene, camera, lights and shading of both
+#include "engine_context.h"  // first: the engine's GL and window headers
 #include "tessera/core.h"
 #include "tessera/gl.h"
 #include "tessera/gl_adaptive.h"

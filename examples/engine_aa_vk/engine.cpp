@@ -20,7 +20,8 @@ const std::uint32_t kFragSpirv[] = {
 
 }  // namespace
 
-std::string Device::create(bool want_validation, const std::vector<const char*>& instance_extensions,
+std::string Device::create(bool want_validation,
+                           const std::vector<const char*>& instance_extensions,
                            const std::vector<const char*>& device_extensions) {
   VkPhysicalDeviceProperties props{};
   const std::string why = create_instance_and_pick("engine_aa_vk", VK_API_VERSION_1_3,

@@ -25,8 +25,8 @@ struct Slot {
 };
 
 /// The profiles of the slot's frame, once its fence signalled.
-std::string collect(Device& d, tessera::vk::AdaptiveSupersampler& aa, std::uint32_t slot,
-                    Slot& s, std::vector<FrameResult>& out) {
+std::string collect(Device& d, tessera::vk::AdaptiveSupersampler& aa, std::uint32_t slot, Slot& s,
+                    std::vector<FrameResult>& out) {
   d.wait(s.fence);
   d.free(s.cmd);
   s.cmd = VK_NULL_HANDLE;
@@ -75,7 +75,8 @@ std::string run_frame_loop(Device& d, const GeometryPipeline& gp, const FrameLoo
     for (int v = 0; v < o.views && err.empty(); ++v) {
       Frame& f = *s.views[std::size_t(v)];
       set_grid(f, size.width * std::uint32_t(o.m), size.height * std::uint32_t(o.m));
-      record_gbuffer(s.cmd, gp, f, {size.width * std::uint32_t(o.m), size.height * std::uint32_t(o.m)});
+      record_gbuffer(s.cmd, gp, f,
+                     {size.width * std::uint32_t(o.m), size.height * std::uint32_t(o.m)});
       // ---- tessera: this view's G-buffer in, its record into the frame's command buffer ----
       tessera::vk::AdaptiveFrame in;
       in.gbuffer[0] = rendered(f.rt0);

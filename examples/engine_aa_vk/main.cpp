@@ -40,9 +40,9 @@
 #include "engine.h"
 #include "frame_loop.h"
 #include "scene_frame.h"
-#include "window.h"
 #include "tessera/core.h"
 #include "tessera/vk_adaptive.h"
+#include "window.h"
 
 namespace {
 
@@ -51,7 +51,7 @@ struct Args : engine::AaArgs {
   bool no_validation = false;
   int frame_loop = 0;  // frames of the frame loop (frame_loop.h); 0: the three measured frames
   int frames_in_flight = 2, views = 2;
-  bool window = false;  // --window: present view 0 of the frame loop in a GLFW window
+  bool window = false;        // --window: present view 0 of the frame loop in a GLFW window
   std::string shader_binary;  // --shader-binary FILE: load tessera's SPIR-V, or save it there
 };
 
@@ -86,8 +86,8 @@ std::string parse_args(int argc, char** argv, Args& a) {
   auto count = [](const char* flag, int lo, int hi, int& to) {
     return [flag, lo, hi, &to](const std::string& v) -> std::string {
       to = std::atoi(v.c_str());
-      return to < lo || to > hi ? std::string(flag) + " " + v + ": expected " +
-                                      std::to_string(lo) + ".." + std::to_string(hi)
+      return to < lo || to > hi ? std::string(flag) + " " + v + ": expected " + std::to_string(lo) +
+                                      ".." + std::to_string(hi)
                                 : "";
     };
   };
@@ -102,7 +102,6 @@ std::string parse_args(int argc, char** argv, Args& a) {
   return cl.parse(argc, argv);
 }
 
-
 struct Shot {
   tessera::ImageRGBAF image;
   std::vector<std::uint8_t> counts;
@@ -113,8 +112,9 @@ struct Shot {
 enum class Kind { adaptive, reference, first };
 
 /// One frame: geometry pass then tessera, in one command buffer; the output read back.
-tessera::Result<Shot> frame(engine::Device& d, const engine::GeometryPipeline& gp, const engine::Frame& f,
-                            tessera::vk::AdaptiveSupersampler& aa, const Args& a, Kind kind) {
+tessera::Result<Shot> frame(engine::Device& d, const engine::GeometryPipeline& gp,
+                            const engine::Frame& f, tessera::vk::AdaptiveSupersampler& aa,
+                            const Args& a, Kind kind) {
   VkCommandBuffer geometry = d.begin();
   engine::record_gbuffer(geometry, gp, f);
   const auto t0 = std::chrono::steady_clock::now();
@@ -202,18 +202,20 @@ int frame_loop(engine::Device& d, const engine::GeometryPipeline& gp, const Args
     }
     return 0;
   }
-  std::printf("{\"backend\": \"vk\", \"device\": \"%s\", \"frames_in_flight\": %d, \"views\": %d, "
-              "\"frames\": [",
-              d.name.c_str(), a.frames_in_flight, a.views);
+  std::printf(
+      "{\"backend\": \"vk\", \"device\": \"%s\", \"frames_in_flight\": %d, \"views\": %d, "
+      "\"frames\": [",
+      d.name.c_str(), a.frames_in_flight, a.views);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const engine::FrameResult& f = frames[i];
     std::printf("%s{\"frame\": %llu, \"slot\": %u, \"scale_percent\": %d, \"views\": [",
                 i ? ", " : "", f.frame, f.slot, f.scale_percent);
     for (std::size_t k = 0; k < f.views.size(); ++k) {
       const engine::ViewResult& v = f.views[k];
-      std::printf("%s{\"view\": %d, \"render_size\": [%u, %u], \"extra_samples\": %llu, "
-                  "\"tessera_gpu_ms\": %.4f}",
-                  k ? ", " : "", v.view, v.w, v.h, v.extra_samples, v.tessera_gpu_ms);
+      std::printf(
+          "%s{\"view\": %d, \"render_size\": [%u, %u], \"extra_samples\": %llu, "
+          "\"tessera_gpu_ms\": %.4f}",
+          k ? ", " : "", v.view, v.w, v.h, v.extra_samples, v.tessera_gpu_ms);
     }
     std::printf("]}");
   }
@@ -343,7 +345,7 @@ int main(int argc, char** argv) {
   }
   int rc = run(d, a, a.window ? &window : nullptr);
   if (a.window) window.destroy(d);  // before the device
-  d.destroy();  // leak reports of the validation layer arrive here
+  d.destroy();                      // leak reports of the validation layer arrive here
   if (d.messages > 0) {
     return fail(std::to_string(d.messages) +
                 " validation message(s), the first: " + d.first_message);

@@ -7,8 +7,6 @@
 
 namespace engine {
 
-
-
 void setup(Device& d, int width, int height, int m, int view, Frame& f) {
   const std::uint32_t gw = std::uint32_t(width * m), gh = std::uint32_t(height * m);
   const VkImageUsageFlags rt = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
@@ -18,8 +16,7 @@ void setup(Device& d, int width, int height, int m, int view, Frame& f) {
                     VK_IMAGE_ASPECT_DEPTH_BIT);
   const std::vector<Vertex> verts = make_scene();
   f.vertex_count = verts.size();
-  f.vertices =
-      d.buffer(verts.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
+  f.vertices = d.buffer(verts.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
   std::memcpy(f.vertices.data, verts.data(), verts.size() * sizeof(Vertex));
   f.cam = make_camera(width, height);
   if (view > 0) {  // another viewport: the camera turned about the scene's vertical axis
@@ -96,18 +93,16 @@ void record_gbuffer(VkCommandBuffer cmd, const GeometryPipeline& gp, const Frame
   if (area.width == 0) area = {f.rt0.w, f.rt0.h};
   const VkPipelineStageFlags2 out = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
   for (const Image* rt : {&f.rt0, &f.rt1}) {
-    barrier(
-        cmd, rt->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0, out, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    barrier(cmd, rt->image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 0, out, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
   }
   const VkPipelineStageFlags2 tests =
       VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-  barrier(cmd, f.depth.image, VK_IMAGE_LAYOUT_UNDEFINED,
-                  VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, tests,
-                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, tests,
-                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
-                      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
-                  VK_IMAGE_ASPECT_DEPTH_BIT);
+  barrier(cmd, f.depth.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+          tests, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, tests,
+          VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+              VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
+          VK_IMAGE_ASPECT_DEPTH_BIT);
   VkRenderingAttachmentInfo colour[2]{};
   for (int i = 0; i < 2; ++i) {
     colour[i].sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;

@@ -59,9 +59,9 @@ std::string Window::create_swapchain(Device& d, std::uint32_t frames_in_flight) 
   VkSwapchainCreateInfoKHR si{};
   si.sType = VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR;
   si.surface = surface_;
-  si.minImageCount = std::max(caps.minImageCount, std::min(frames_in_flight + 1,
-                                                           caps.maxImageCount ? caps.maxImageCount
-                                                                              : 16u));
+  si.minImageCount =
+      std::max(caps.minImageCount,
+               std::min(frames_in_flight + 1, caps.maxImageCount ? caps.maxImageCount : 16u));
   si.imageFormat = format.format;
   si.imageColorSpace = format.colorSpace;
   si.imageExtent = extent_;
@@ -78,7 +78,8 @@ std::string Window::create_swapchain(Device& d, std::uint32_t frames_in_flight) 
   vkGetSwapchainImagesKHR(d.device, swapchain_, &n, nullptr);
   images_.resize(n);
   vkGetSwapchainImagesKHR(d.device, swapchain_, &n, images_.data());
-  for (std::uint32_t i = 0; i < frames_in_flight; ++i) acquired_.push_back(make_semaphore(d.device));
+  for (std::uint32_t i = 0; i < frames_in_flight; ++i)
+    acquired_.push_back(make_semaphore(d.device));
   for (std::uint32_t i = 0; i < n; ++i) rendered_.push_back(make_semaphore(d.device));
   return "";
 }
@@ -111,8 +112,8 @@ void Window::record_blit(VkCommandBuffer cmd, const tessera::vk::ImageResource& 
   vkCmdBlitImage(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst,
                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region, VK_FILTER_LINEAR);
   barrier(cmd, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
-          VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-          VK_PIPELINE_STAGE_2_NONE, 0);
+          VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_NONE,
+          0);
 }
 
 std::string Window::present(Device& d) {

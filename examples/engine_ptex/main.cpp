@@ -11,7 +11,8 @@
 // blocks marked "tessera": mesh and textures from the .obj and .ptx, one upload, the binding
 // points the engine chose (FaceTextureSetBindings) as shader defines and as one bind per frame.
 //
-// Usage: engine_ptex MESH.obj FILE.ptx [--headless] [--size WxH] [--orbit K/N] [--fov DEG] [--shader-method
+// Usage: engine_ptex MESH.obj FILE.ptx [--headless] [--size WxH] [--orbit K/N] [--fov DEG]
+// [--shader-method
 //                    discard|clamp] [--shift-px X] [--glsl DIR] [--check] [--json] [-o FILE.png]
 //   --headless        a surfaceless EGL context instead of the window (the image is the same;
 //                     in the window the frame is shown, and --json reports "window_max_diff",
@@ -31,8 +32,6 @@
 // The last two are negative controls for the agreement bounds (tests/gl/engine_ptex_test.py).
 // Exit 1 with one line when there is no OpenGL 4.5 device, on bad arguments or input (a mesh
 // polygon the Ptex file did not split into quads is named).
-#include "engine_context.h"  // first: the engine's GL and window headers
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -43,6 +42,7 @@
 #include <string>
 #include <vector>
 
+#include "engine_context.h"  // first: the engine's GL and window headers
 #include "ptex_report.h"  // examples/common: the flags, vertex, frame block and CPU check of both
 #include "tessera/core.h"
 #include "tessera/faces.h"
@@ -186,10 +186,10 @@ int report(const Args& a, const engine::Platform& platform, const tessera::faces
           "\"width\": %d, \"height\": %d, \"orbit\": \"%d/%d\", \"shader_method\": \"%s\", "
           "\"shift_px\": %.3f, \"psnr_db\": %s, \"frac_001\": %.6f, \"max_norm\": %.4f, "
           "\"non_finite\": %d, \"gl_ms\": %.3f, \"cpu_ms\": %.3f, \"context\": \"%s\"%s}\n",
-          platform.renderer().c_str(), scene.name.c_str(), scene.mesh.face_count(),
-          classes, a.w, a.h, a.orbit_k, a.orbit_n, a.method.c_str(), double(a.shift_px),
-          psnr_json.c_str(), agree->frac_001, agree->max_norm, agree->non_finite, gl_ms,
-          agree->cpu_ms, platform.kind(),
+          platform.renderer().c_str(), scene.name.c_str(), scene.mesh.face_count(), classes, a.w,
+          a.h, a.orbit_k, a.orbit_n, a.method.c_str(), double(a.shift_px), psnr_json.c_str(),
+          agree->frac_001, agree->max_norm, agree->non_finite, gl_ms, agree->cpu_ms,
+          platform.kind(),
           window_diff >= 0 ? (", \"window_max_diff\": " + std::to_string(window_diff)).c_str()
                            : "");
     } else {

@@ -34,6 +34,7 @@
 
 #include "engine.h"
 #include "ptex_report.h"  // examples/common: the flags, vertex, frame block and CPU check of both
+#include "shaders.h"
 #include "tessera/core.h"
 #include "tessera/faces.h"
 #include "tessera/faces_gpu.h"
@@ -41,7 +42,6 @@
 #include "tessera/io.h"
 #include "tessera/ptex.h"
 #include "tessera/vk_faces.h"
-#include "shaders.h"
 
 namespace {
 
@@ -57,7 +57,6 @@ int fail(const std::string& msg) {
 
 // The engine's vertex (ptex_report.h): 4 per Ptex face, each face with its own UVs.
 using Vertex = engine::FaceVertex;
-
 
 // The command line; "" or the problem.
 std::string parse_args(int argc, char** argv, Args& a) {

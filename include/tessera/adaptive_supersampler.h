@@ -97,7 +97,7 @@ struct AdaptiveCommonOptions {
   /// render size (dynamic resolution; AdaptiveFrame::render_size on GL and Vulkan), its
   /// G-buffer m times it; buffers are sized for this largest size.
   int width = 0, height = 0;
-  int m = 4;                  ///< Window side, 2..8.
+  int m = 4;  ///< Window side, 2..8.
   AdaptiveThresholds thresholds;
   /// Sample order: entry p = the row-major window cell of sample p (p = 0 is S's sample); a
   /// permutation of 0..m*m-1. Empty = tessera's (deferred::sample_order: the paper's Figure 3

@@ -192,8 +192,8 @@ bool parse_method(const std::string& text, SeamMethod& out);
 struct SampleOptions {
   SeamMethod method = SeamMethod::discard;
   texture::TextureFilter filter =
-      texture::TextureFilter::anisotropic;            ///< trilinear or anisotropic.
-  int max_aniso = 16;                                 ///< 1..16.
+      texture::TextureFilter::anisotropic;  ///< trilinear or anisotropic.
+  int max_aniso = 16;                       ///< 1..16.
   /// The paper's zero-coverage fallback (clamp lookup). Off: 0/0 gives NaN.
   bool clamp_fallback = true;
 };
@@ -410,8 +410,8 @@ Result<ImageRGBAF> render_reference_tiles(int width, int height, const Reference
 /// Traverse, `options.filter` at 16x, single-sampled, and the tile's window; the frame's
 /// `image` is the tile.
 template <typename Options, typename Renderer>
-Result<ImageRGBAF> render_reference_with(Renderer& renderer, const scene::Camera& camera,
-                                         int width, int height, const ReferenceOptions& options) {
+Result<ImageRGBAF> render_reference_with(Renderer& renderer, const scene::Camera& camera, int width,
+                                         int height, const ReferenceOptions& options) {
   Options o;
   o.method = SeamMethod::traverse;
   o.filter = options.filter;

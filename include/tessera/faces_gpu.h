@@ -102,8 +102,7 @@ enum class TexelFormat {
 std::size_t texel_bytes(TexelFormat format);
 /// Converts `texels` RGBA float texels to `format` into `out` (texel_bytes(format) each),
 /// little-endian as the GPU formats store them. The same bytes on every CPU. Pure.
-void convert_texels(const float* rgba, std::size_t texels, TexelFormat format,
-                    std::uint8_t* out);
+void convert_texels(const float* rgba, std::size_t texels, TexelFormat format, std::uint8_t* out);
 
 /// One draw call of a class-grouped index list: face class `cls` (the texture array every face
 /// of the draw samples) and its `count` indices from index `first`.

@@ -136,23 +136,23 @@ Result<std::vector<DeviceInfo>> list_devices();
 
 /// Implementation limits of the current context.
 struct Limits {
-  int max_samples = 0;             ///< GL_MAX_SAMPLES (colour and depth renderbuffers).
-  int max_array_layers = 0;        ///< GL_MAX_ARRAY_TEXTURE_LAYERS.
-  int max_texture_size = 0;        ///< GL_MAX_TEXTURE_SIZE (texels per side).
-  int max_texture_units = 0;       ///< GL_MAX_TEXTURE_IMAGE_UNITS (fragment stage).
+  int max_samples = 0;              ///< GL_MAX_SAMPLES (colour and depth renderbuffers).
+  int max_array_layers = 0;         ///< GL_MAX_ARRAY_TEXTURE_LAYERS.
+  int max_texture_size = 0;         ///< GL_MAX_TEXTURE_SIZE (texels per side).
+  int max_texture_units = 0;        ///< GL_MAX_TEXTURE_IMAGE_UNITS (fragment stage).
   std::int64_t max_ssbo_bytes = 0;  ///< GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
-  float max_anisotropy = 1.0f;     ///< GL_MAX_TEXTURE_MAX_ANISOTROPY (1 when unsupported).
-  bool bindless_textures = false;  ///< GL_ARB_bindless_texture is exposed.
+  float max_anisotropy = 1.0f;      ///< GL_MAX_TEXTURE_MAX_ANISOTROPY (1 when unsupported).
+  bool bindless_textures = false;   ///< GL_ARB_bindless_texture is exposed.
 };
 
 /// A message from the GL_KHR_debug callback.
 struct DebugMessage {
-  std::uint32_t source = 0;    ///< GL_DEBUG_SOURCE_*.
-  std::uint32_t type = 0;      ///< GL_DEBUG_TYPE_*.
+  std::uint32_t source = 0;  ///< GL_DEBUG_SOURCE_*.
+  std::uint32_t type = 0;    ///< GL_DEBUG_TYPE_*.
   std::uint32_t id = 0;
   std::uint32_t severity = 0;  ///< GL_DEBUG_SEVERITY_*.
   std::string text;
-  bool is_error() const;       ///< type == GL_DEBUG_TYPE_ERROR.
+  bool is_error() const;  ///< type == GL_DEBUG_TYPE_ERROR.
 };
 
 /// A headless OpenGL 4.5 core context. Owns its EGL context (and a reference on its display).
@@ -207,7 +207,15 @@ Status check_errors(std::string_view what);
 // ---------------------------------------------------------------------------------------------
 
 enum class ObjectType {
-  buffer, texture, framebuffer, renderbuffer, vertex_array, query, sampler, program, shader
+  buffer,
+  texture,
+  framebuffer,
+  renderbuffer,
+  vertex_array,
+  query,
+  sampler,
+  program,
+  shader
 };
 
 /// Owns one GL object name; deletes it on destruction (move-only). Name 0 = none.
@@ -301,7 +309,7 @@ struct RenderTargetOptions {
   int width = 256, height = 256;  ///< Pixels, 1..GL_MAX_RENDERBUFFER_SIZE.
   int samples = 1;                ///< 1 = single-sampled; else <= GL_MAX_SAMPLES.
   ColourFormat colour = ColourFormat::rgba32f;
-  bool depth = true;              ///< A GL_DEPTH_COMPONENT32F renderbuffer.
+  bool depth = true;  ///< A GL_DEPTH_COMPONENT32F renderbuffer.
 };
 
 /// A framebuffer with one colour renderbuffer and optionally depth.

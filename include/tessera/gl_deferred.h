@@ -109,8 +109,8 @@ class DeferredRenderer {
   /// Builds the CPU texture chains (as DeferredRenderer does), uploads them and the meshes,
   /// and compiles the geometry pass. Fails (io_error) when the GLSL folder is missing,
   /// (too_large) when the textures need more than 8 size classes, or on GL errors.
-  static Result<std::unique_ptr<DeferredRenderer>> create(const scene::Scene& scene,
-                                                            const DeferredRendererOptions& options = {});
+  static Result<std::unique_ptr<DeferredRenderer>> create(
+      const scene::Scene& scene, const DeferredRendererOptions& options = {});
   ~DeferredRenderer();
   DeferredRenderer(const DeferredRenderer&) = delete;
   DeferredRenderer& operator=(const DeferredRenderer&) = delete;
@@ -141,13 +141,13 @@ class DeferredRenderer {
   Result<ShadeResult> shade_default(const deferred::ShadingOptions& shading);
   /// Adaptive (passes: "first", "metrics", "extra").
   Result<ShadeResult> shade_adaptive(const deferred::ShadingOptions& shading,
-                                       const deferred::AdaptiveOptions& adaptive);
+                                     const deferred::AdaptiveOptions& adaptive);
   /// Engine baseline (passes: "first", "edge_extra": classification + shading per tile).
   Result<ShadeResult> shade_edge_per_sample(const deferred::ShadingOptions& shading,
-                                              const deferred::EdgePerSampleOptions& edge = {});
+                                            const deferred::EdgePerSampleOptions& edge = {});
   /// 1 spp, sRGB8 encoding and FXAA 3.11, all on the GPU (passes: "first", "srgb8", "fxaa").
   Result<FxaaResult> shade_default_fxaa(const deferred::ShadingOptions& shading,
-                                          const deferred::FxaaOptions& fxaa = {});
+                                        const deferred::FxaaOptions& fxaa = {});
   /// FXAA 3.11 of an 8-bit image on the GPU (passes: "fxaa"); the CPU `deferred::fxaa`'s
   /// arithmetic. Independent of the G-buffer.
   Result<FxaaResult> fxaa(const ImageRGBA8& image, const deferred::FxaaOptions& fxaa = {});

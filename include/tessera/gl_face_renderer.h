@@ -1,5 +1,6 @@
-// tessera/gl_face_renderer.h — the seams experiment (Toth 2013) drawn on the GPU: a per-face-textured
-// quad mesh rendered with OpenGL 4.5 through share/tessera/glsl/seams_render.{vert,frag}, which
+// tessera/gl_face_renderer.h — the seams experiment (Toth 2013) drawn on the GPU: a
+// per-face-textured quad mesh rendered with OpenGL 4.5 through
+// share/tessera/glsl/seams_render.{vert,frag}, which
 // `#include "seams.glsl"` (Clamp / Discard / Traverse / Traverse+corners), into a multisampled
 // RGBA32F target, box-resolved in linear light and read back. Part of `tessera::gl` (built only
 // where EGL/GL are found); every call needs the tessera GL context current on the calling
@@ -100,10 +101,10 @@ enum class SeamsOutput {
 
 /// One frame's settings (the GL counterpart of faces::FaceRenderOptions).
 struct FaceFrameOptions {
-  int width = 480;   ///< The paper's frame size.
+  int width = 480;  ///< The paper's frame size.
   int height = 540;
-  int msaa = 1;      ///< 1, 2, 4 or 8 samples (8 is refused where GL_MAX_SAMPLES < 8); the
-                     ///< driver may draw with more (FaceFrame::samples, sample_pattern).
+  int msaa = 1;  ///< 1, 2, 4 or 8 samples (8 is refused where GL_MAX_SAMPLES < 8); the
+                 ///< driver may draw with more (FaceFrame::samples, sample_pattern).
   faces::SeamMethod method = faces::SeamMethod::discard;
   /// trilinear, or anisotropic (GL_TEXTURE_MAX_ANISOTROPY = max_aniso on both samplers).
   texture::TextureFilter filter = texture::TextureFilter::anisotropic;
@@ -152,8 +153,8 @@ class FaceRenderer {
   /// outlive the renderer; face counts must match (size_mismatch). Fails (unsupported) when the
   /// face classes need more texture units than the fragment stage has (2 per class).
   static Result<std::unique_ptr<FaceRenderer>> create(const faces::FaceScene& scene,
-                                                       const faces::FaceTextureSet& textures,
-                                                       const FaceRendererOptions& options = {});
+                                                      const faces::FaceTextureSet& textures,
+                                                      const FaceRendererOptions& options = {});
   ~FaceRenderer();
   FaceRenderer(const FaceRenderer&) = delete;
   FaceRenderer& operator=(const FaceRenderer&) = delete;

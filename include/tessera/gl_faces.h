@@ -69,7 +69,7 @@ class FaceTextureSet {
   /// Packs and uploads `set` (checking the current context's limits); the pixel-unpack state
   /// (alignment, row length, skips, GL_PIXEL_UNPACK_BUFFER) is set for the upload and restored.
   static Result<FaceTextureSet> upload(const faces::FaceTextureSet& set,
-                                     const FaceTextureSetOptions& options = {});
+                                       const FaceTextureSetOptions& options = {});
 
   const PackedFaces& layout() const { return layout_; }
   int class_count() const { return int(arrays_.size()); }

@@ -62,7 +62,7 @@ struct MipmapOptions {
   /// vectors and renormalised (a vector that averages to zero becomes +Z); `srgb` and
   /// `premultiply` do not apply to RGB then.
   bool normal_map = false;
-  int threads = 0;          ///< Worker threads (0 = all).
+  int threads = 0;  ///< Worker threads (0 = all).
 };
 
 // Level sizes and counts: `mip_dimension` and `mip_level_count` (tessera/core.h).

@@ -57,8 +57,7 @@ Result<ImageRGBA8> decode_image(std::span<const std::uint8_t> bytes, const std::
 
 /// Decodes an image keeping 16-bit precision: values in [0, 1], colour space unchanged (no
 /// sRGB conversion).
-Result<ImageRGBAF> decode_image_float(std::span<const std::uint8_t> bytes,
-                                      const std::string& name);
+Result<ImageRGBAF> decode_image_float(std::span<const std::uint8_t> bytes, const std::string& name);
 
 /// Reads and decodes an image file (`read_file` + `decode_image`).
 Result<ImageRGBA8> read_image(const std::string& path);

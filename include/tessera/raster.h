@@ -96,13 +96,13 @@ struct ClearValues {
 /// Shape of a frame buffer. Output size `width` x `height`; the rasterised grid is
 /// (`ssaa`*width) x (`ssaa`*height) grid pixels with `msaa` samples each.
 struct FrameBufferDesc {
-  int width = 0;       ///< Output (resolved) width in pixels, >= 1.
-  int height = 0;      ///< Output (resolved) height in pixels, >= 1.
+  int width = 0;   ///< Output (resolved) width in pixels, >= 1.
+  int height = 0;  ///< Output (resolved) height in pixels, >= 1.
   /// Samples per grid pixel: 1, 2, 4, 8 or 16 at the D3D standard positions; with an explicit
   /// `sample_pattern`, 1..kMaxSamples at those positions.
   int msaa = 1;
-  int ssaa = 1;        ///< Supersampling factor m in [1, 8]: m x m grid pixels per output pixel.
-  int channels = 4;    ///< Float channels per sample, 1..kMaxChannels (4 = linear RGBA colour).
+  int ssaa = 1;      ///< Supersampling factor m in [1, 8]: m x m grid pixels per output pixel.
+  int channels = 4;  ///< Float channels per sample, 1..kMaxChannels (4 = linear RGBA colour).
   bool primitive_ids = false;    ///< Keep a per-sample primitive id (`kNoPrimitive` if none).
   bool coverage_counts = false;  ///< Count, per sample, every triangle that covered it (any
                                  ///< depth): a watertightness diagnostic.
@@ -228,11 +228,11 @@ struct ShadeInput {
   /// computes itself (f(quad_varyings[1]) - f(quad_varyings[0]) is ddx_coarse of f).
   std::array<const float*, 4> quad_varyings{};
   int varying_count = 0;
-  float x = 0, y = 0;    ///< Shading position in grid coordinates (pixel centre, or centroid).
-  float depth = 0;       ///< Window depth in [0, 1] at the shading position.
-  float inv_w = 0;       ///< 1 / w_clip at the shading position.
-  int px = 0, py = 0;    ///< Grid pixel.
-  int lane = 0;          ///< Quad lane 0..3.
+  float x = 0, y = 0;  ///< Shading position in grid coordinates (pixel centre, or centroid).
+  float depth = 0;     ///< Window depth in [0, 1] at the shading position.
+  float inv_w = 0;     ///< 1 / w_clip at the shading position.
+  int px = 0, py = 0;  ///< Grid pixel.
+  int lane = 0;        ///< Quad lane 0..3.
   std::uint32_t primitive_id = 0;  ///< DrawCall::primitive_id_base + triangle index.
   std::uint32_t coverage = 0;      ///< Raster coverage mask of this pixel (bit s = sample s).
   std::uint32_t visible = 0;       ///< Samples of `coverage` that passed the depth test.
@@ -273,12 +273,12 @@ struct DrawCall {
   /// Three indices per triangle; null = non-indexed (vertex_count / 3 triangles).
   const std::uint32_t* indices = nullptr;
   std::size_t index_count = 0;
-  ShadeFn shader;                    ///< Null = output zeros (depth-only pass).
+  ShadeFn shader;  ///< Null = output zeros (depth-only pass).
   /// Per-quad form of the material; when set it is used instead of `shader`.
   QuadShadeFn quad_shader;
   std::uint32_t primitive_id_base = 0;
   CullMode cull = CullMode::back;
-  bool front_ccw = true;             ///< Counter-clockwise in NDC is front.
+  bool front_ccw = true;  ///< Counter-clockwise in NDC is front.
   DepthTest depth_test = DepthTest::less;
   bool depth_write = true;
   /// Centroid interpolation: partially covered pixels shade at the covered sample nearest the

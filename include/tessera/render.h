@@ -59,7 +59,7 @@ struct FrameOptions {
 
 /// Result of one frame.
 struct Frame {
-  ImageRGBA8 image;        ///< Resolved, sRGB-encoded.
+  ImageRGBA8 image;  ///< Resolved, sRGB-encoded.
   raster::RasterStats stats;
   double ms_transform = 0;  ///< Vertex transform time.
   double ms_raster = 0;     ///< Rasterisation + shading time.

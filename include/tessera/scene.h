@@ -32,17 +32,17 @@ struct Material {
                                        ///< baseColorTexture).
   int normal_texture = -1;             ///< Index into Scene::textures, -1 for none.
   bool double_sided = true;
-  bool alpha_mask = false;     ///< glTF alphaMode MASK.
+  bool alpha_mask = false;  ///< glTF alphaMode MASK.
   float alpha_cutoff = 0.5f;
-  bool alpha_blend = false;    ///< glTF alphaMode BLEND (rendered as opaque by tessera).
+  bool alpha_blend = false;  ///< glTF alphaMode BLEND (rendered as opaque by tessera).
 };
 
 /// Triangles with one material, vertices in world space.
 struct Mesh {
   std::string name;
   std::vector<Vec3> positions;
-  std::vector<Vec3> normals;  ///< Same count as positions, unit length.
-  std::vector<Vec2> uvs;      ///< Same count as positions.
+  std::vector<Vec3> normals;           ///< Same count as positions, unit length.
+  std::vector<Vec2> uvs;               ///< Same count as positions.
   std::vector<std::uint32_t> indices;  ///< 3 per triangle, each < positions.size().
   int material = 0;                    ///< Index into Scene::materials.
 

@@ -58,20 +58,20 @@ extern "C" {
 /* ---------------------------------------------------------------------------------------- */
 
 /** What every call returns. The first seven mirror tessera::ErrorCode. */
-typedef TESSERA_ENUM(tessera_error) {
-  TESSERA_SUCCESS = 0,
-  TESSERA_ERROR_INVALID_ARGUMENT = 1, /**< A value out of range or options that conflict. */
-  TESSERA_ERROR_IO = 2,               /**< A file could not be opened, read or written. */
-  TESSERA_ERROR_CORRUPT_DATA = 3,     /**< Truncated or inconsistent container bytes. */
-  TESSERA_ERROR_UNSUPPORTED = 4,      /**< A valid file using a feature tessera lacks. */
-  TESSERA_ERROR_TOO_LARGE = 5,        /**< A size beyond tessera's limits. */
-  TESSERA_ERROR_SIZE_MISMATCH = 6,    /**< Images that must share a size do not. */
-  TESSERA_ERROR_NULL_POINTER = 7,     /**< A required pointer argument is NULL. */
-  TESSERA_ERROR_BUFFER_TOO_SMALL = 8, /**< The output buffer is short; `*size` says how big. */
-  TESSERA_ERROR_BAD_STRUCT_SIZE = 9,  /**< An options struct's `struct_size` is unknown. */
-  TESSERA_ERROR_CANCELLED = 10,       /**< The progress callback asked to stop. */
-  TESSERA_ERROR_OUT_OF_MEMORY = 11,   /**< An allocation failed. */
-  TESSERA_ERROR_INTERNAL = 12         /**< A bug in tessera (please report it). */
+typedef TESSERA_ENUM(tessera_error){
+    TESSERA_SUCCESS = 0,
+    TESSERA_ERROR_INVALID_ARGUMENT = 1, /**< A value out of range or options that conflict. */
+    TESSERA_ERROR_IO = 2,               /**< A file could not be opened, read or written. */
+    TESSERA_ERROR_CORRUPT_DATA = 3,     /**< Truncated or inconsistent container bytes. */
+    TESSERA_ERROR_UNSUPPORTED = 4,      /**< A valid file using a feature tessera lacks. */
+    TESSERA_ERROR_TOO_LARGE = 5,        /**< A size beyond tessera's limits. */
+    TESSERA_ERROR_SIZE_MISMATCH = 6,    /**< Images that must share a size do not. */
+    TESSERA_ERROR_NULL_POINTER = 7,     /**< A required pointer argument is NULL. */
+    TESSERA_ERROR_BUFFER_TOO_SMALL = 8, /**< The output buffer is short; `*size` says how big. */
+    TESSERA_ERROR_BAD_STRUCT_SIZE = 9,  /**< An options struct's `struct_size` is unknown. */
+    TESSERA_ERROR_CANCELLED = 10,       /**< The progress callback asked to stop. */
+    TESSERA_ERROR_OUT_OF_MEMORY = 11,   /**< An allocation failed. */
+    TESSERA_ERROR_INTERNAL = 12         /**< A bug in tessera (please report it). */
 } tessera_error;
 
 /** Static English name of a code ("buffer too small"); "unknown error" for other values.
@@ -124,7 +124,7 @@ typedef struct tessera_image {
   const uint8_t* pixels;
   uint32_t width;
   uint32_t height;
-  size_t row_pitch; /**< Bytes from one row to the next, at least 4 * width; 0 = 4 * width. */
+  size_t row_pitch;  /**< Bytes from one row to the next, at least 4 * width; 0 = 4 * width. */
   int32_t has_alpha; /**< Nonzero: alpha is meaningful (an RGBA source). An alpha of 255
                           everywhere still gives an RGB texture, as `tessera compress`. */
 } tessera_image;
@@ -133,23 +133,17 @@ typedef struct tessera_image {
 /* Encoding                                                                                 */
 /* ---------------------------------------------------------------------------------------- */
 
-typedef TESSERA_ENUM(tessera_format) {
-  TESSERA_FORMAT_PVRTC1_4BPP = 0, /**< 4x4 texels per 64-bit block. */
-  TESSERA_FORMAT_PVRTC1_2BPP = 1  /**< 8x4 texels per 64-bit block. */
+typedef TESSERA_ENUM(tessera_format){
+    TESSERA_FORMAT_PVRTC1_4BPP = 0, /**< 4x4 texels per 64-bit block. */
+    TESSERA_FORMAT_PVRTC1_2BPP = 1  /**< 8x4 texels per 64-bit block. */
 } tessera_format;
 
 /** The encoder's effort (tessera/pvrtc.h, pvrtc::Quality). */
-typedef TESSERA_ENUM(tessera_quality) {
-  TESSERA_QUALITY_FAST = 0,
-  TESSERA_QUALITY_NORMAL = 1,
-  TESSERA_QUALITY_HIGH = 2
-} tessera_quality;
+typedef TESSERA_ENUM(tessera_quality){TESSERA_QUALITY_FAST = 0, TESSERA_QUALITY_NORMAL = 1,
+                                      TESSERA_QUALITY_HIGH = 2} tessera_quality;
 
-typedef TESSERA_ENUM(tessera_mip_filter) {
-  TESSERA_MIP_FILTER_BOX = 0,
-  TESSERA_MIP_FILTER_LANCZOS = 1,
-  TESSERA_MIP_FILTER_KAISER = 2
-} tessera_mip_filter;
+typedef TESSERA_ENUM(tessera_mip_filter){TESSERA_MIP_FILTER_BOX = 0, TESSERA_MIP_FILTER_LANCZOS = 1,
+                                         TESSERA_MIP_FILTER_KAISER = 2} tessera_mip_filter;
 
 /** `tessera_encode_options::flags`: the asset options of `tessera compress`, same names. */
 #define TESSERA_FLAG_MIPMAPS 0x0001u        /**< Encode the mip chain (see mip_levels). */
@@ -164,17 +158,17 @@ typedef TESSERA_ENUM(tessera_mip_filter) {
 /** Encoder and pipeline options; fill with `tessera_encode_options_init`. The defaults are
  *  `tessera compress`'s: 4 bpp, normal quality, no mips, linear colour, one 2D image. */
 typedef struct tessera_encode_options {
-  uint32_t struct_size;       /**< sizeof(tessera_encode_options), set by the init. */
+  uint32_t struct_size; /**< sizeof(tessera_encode_options), set by the init. */
   tessera_format format;
   tessera_quality quality;
-  int32_t iterations;          /**< Refinement sweeps, -1 = the preset's (default). */
-  int32_t exact_search_rounds; /**< Exact endpoint search rounds, 0 = the preset's. */
-  uint32_t flags;              /**< TESSERA_FLAG_* bits. */
-  int32_t mip_levels;          /**< At most this many levels (0 = full chain); >0 implies
-                                    TESSERA_FLAG_MIPMAPS. */
+  int32_t iterations;            /**< Refinement sweeps, -1 = the preset's (default). */
+  int32_t exact_search_rounds;   /**< Exact endpoint search rounds, 0 = the preset's. */
+  uint32_t flags;                /**< TESSERA_FLAG_* bits. */
+  int32_t mip_levels;            /**< At most this many levels (0 = full chain); >0 implies
+                                      TESSERA_FLAG_MIPMAPS. */
   tessera_mip_filter mip_filter; /**< Needs mips, like `--mip-filter`. */
-  int32_t faces;               /**< 1 (default), or 6 for a cube map: +X, -X, +Y, -Y, +Z, -Z. */
-  int32_t array;               /**< Nonzero: the images are the layers of an array texture. */
+  int32_t faces;                 /**< 1 (default), or 6 for a cube map: +X, -X, +Y, -Y, +Z, -Z. */
+  int32_t array;                 /**< Nonzero: the images are the layers of an array texture. */
 } tessera_encode_options;
 
 /** Fills `options` with the defaults and sets `struct_size`. Thread-safe. */
@@ -209,39 +203,37 @@ tessera_error tessera_pvrtc_encode(tessera_context* context, const tessera_image
  *  RGBA8 buffer (`row_pitch` >= 4 * width, 0 = packed; `capacity` at least
  *  row_pitch * (height - 1) + 4 * width). Bit-exact with PVRTexTool. Thread rule: the
  *  context's. */
-tessera_error tessera_pvrtc_decode(tessera_context* context, tessera_format format,
-                                   uint32_t width, uint32_t height, const uint8_t* blocks,
-                                   size_t blocks_size, uint8_t* rgba, size_t row_pitch,
-                                   size_t capacity);
+tessera_error tessera_pvrtc_decode(tessera_context* context, tessera_format format, uint32_t width,
+                                   uint32_t height, const uint8_t* blocks, size_t blocks_size,
+                                   uint8_t* rgba, size_t row_pitch, size_t capacity);
 
 /* ---------------------------------------------------------------------------------------- */
 /* Textures and containers                                                                  */
 /* ---------------------------------------------------------------------------------------- */
 
-typedef TESSERA_ENUM(tessera_container) {
-  TESSERA_CONTAINER_PVR3 = 0, /**< PVR v3 (.pvr). */
-  TESSERA_CONTAINER_KTX1 = 1, /**< KTX 1.1 (.ktx). */
-  TESSERA_CONTAINER_KTX2 = 2  /**< KTX 2.0 (.ktx2), optionally Zstandard-supercompressed. */
+typedef TESSERA_ENUM(tessera_container){
+    TESSERA_CONTAINER_PVR3 = 0, /**< PVR v3 (.pvr). */
+    TESSERA_CONTAINER_KTX1 = 1, /**< KTX 1.1 (.ktx). */
+    TESSERA_CONTAINER_KTX2 = 2  /**< KTX 2.0 (.ktx2), optionally Zstandard-supercompressed. */
 } tessera_container;
 
 /** What a texture holds (`tessera_texture_get_info`). */
 typedef struct tessera_texture_info {
   uint32_t struct_size; /**< Set by the caller to sizeof(tessera_texture_info). */
   tessera_format format;
-  uint32_t width;       /**< Of level 0. */
+  uint32_t width; /**< Of level 0. */
   uint32_t height;
-  uint32_t levels;      /**< Mip levels, level 0 included. */
-  uint32_t faces;       /**< 1, or 6 for a cube map. */
-  uint32_t layers;      /**< Array layers (1 unless an array). */
-  int32_t array;        /**< Nonzero: an array texture (even of one layer). */
-  int32_t has_alpha;    /**< RGBA (nonzero) or RGB pixel format. */
+  uint32_t levels;   /**< Mip levels, level 0 included. */
+  uint32_t faces;    /**< 1, or 6 for a cube map. */
+  uint32_t layers;   /**< Array layers (1 unless an array). */
+  int32_t array;     /**< Nonzero: an array texture (even of one layer). */
+  int32_t has_alpha; /**< RGBA (nonzero) or RGB pixel format. */
   int32_t srgb;
   int32_t premultiplied;
 } tessera_texture_info;
 
 /** Fills `info`; `info->struct_size` must be set first. Thread-safe (reads only). */
-tessera_error tessera_texture_get_info(const tessera_texture* texture,
-                                       tessera_texture_info* info);
+tessera_error tessera_texture_get_info(const tessera_texture* texture, tessera_texture_info* info);
 
 /** The raw blocks of image (layer, face) of `level`: a pointer into the texture (valid while
  *  it lives) and its byte count. Thread-safe (reads only). */
@@ -253,16 +245,16 @@ tessera_error tessera_texture_get_blocks(const tessera_texture* texture, uint32_
  *  as `tessera_pvrtc_decode`; the level's size from `tessera_texture_get_info`, halved per
  *  level, at least 1). Thread rule: the context's. */
 tessera_error tessera_texture_decode(tessera_context* context, const tessera_texture* texture,
-                                     uint32_t level, uint32_t layer, uint32_t face,
-                                     uint8_t* rgba, size_t row_pitch, size_t capacity);
+                                     uint32_t level, uint32_t layer, uint32_t face, uint8_t* rgba,
+                                     size_t row_pitch, size_t capacity);
 
 /** Frees a texture (NULL is a no-op). */
 void tessera_texture_free(tessera_texture* texture);
 
 /** Parses a PVR v3, KTX 1.1 or KTX 2.0 file held in memory (chosen by its magic). Safe on any
  *  bytes: sizes are checked before allocating. Thread rule: the context's. */
-tessera_error tessera_texture_read_memory(tessera_context* context, const void* data,
-                                          size_t size, tessera_texture** texture);
+tessera_error tessera_texture_read_memory(tessera_context* context, const void* data, size_t size,
+                                          tessera_texture** texture);
 /** Reads a .pvr, .ktx or .ktx2 file (format by magic). Thread rule: the context's. */
 tessera_error tessera_texture_read_file(tessera_context* context, const char* path,
                                         tessera_texture** texture);
@@ -282,9 +274,8 @@ tessera_error tessera_texture_write_alloc(tessera_context* context, tessera_text
                                           void** data, size_t* size);
 /** Writes `path` atomically, in the container its extension names (.pvr, .ktx, .ktx2).
  *  Thread rule: the context's. */
-tessera_error tessera_texture_write_file(tessera_context* context,
-                                         const tessera_texture* texture, const char* path,
-                                         int32_t zstd_level);
+tessera_error tessera_texture_write_file(tessera_context* context, const tessera_texture* texture,
+                                         const char* path, int32_t zstd_level);
 
 /** Frees memory the library allocated (`*_alloc`); NULL is a no-op. Thread-safe. */
 void tessera_free(void* data);

@@ -97,15 +97,16 @@ struct CompressOptions {
   /// whole texture (each image and level weighted by its pixels), on the calling thread,
   /// ending at 1.0.
   pvrtc::EncodeOptions encode;
-  bool mipmaps = false;     ///< Encode a mip chain (see `mip_levels`, `mip_filter`).
-  int mip_levels = 0;       ///< With `mipmaps`: at most this many levels, level 0 included
-                            ///< (0 = down to 1x1).
-  image::MipFilter mip_filter = image::MipFilter::box;  ///< How each level is made (image_mipmap.h).
-  bool srgb = false;        ///< Mark the texture sRGB and filter (mips, resize, premultiply) in
-                            ///< linear light.
-  bool resize_pot = false;  ///< Resample non-power-of-two input (Lanczos-3); else it is an error.
-  bool flip_y = false;      ///< Flip every image upside down first (row 0 becomes the last), for
-                            ///< pipelines whose texture origin is bottom-left.
+  bool mipmaps = false;  ///< Encode a mip chain (see `mip_levels`, `mip_filter`).
+  int mip_levels = 0;    ///< With `mipmaps`: at most this many levels, level 0 included
+                         ///< (0 = down to 1x1).
+  image::MipFilter mip_filter =
+      image::MipFilter::box;  ///< How each level is made (image_mipmap.h).
+  bool srgb = false;          ///< Mark the texture sRGB and filter (mips, resize, premultiply) in
+                              ///< linear light.
+  bool resize_pot = false;    ///< Resample non-power-of-two input (Lanczos-3); else it is an error.
+  bool flip_y = false;        ///< Flip every image upside down first (row 0 becomes the last), for
+                              ///< pipelines whose texture origin is bottom-left.
   /// Multiply colour by alpha (in linear light with `srgb`) and mark the texture premultiplied.
   /// Images without alpha are left as they are (the CLI warns).
   bool premultiply = false;
@@ -135,8 +136,8 @@ struct CompressedImage {
   /// Level 0 of every image as encoded (after flipping, resizing, premultiplication and
   /// bleeding), layer-major then face: what the texture's level 0 approximates.
   std::vector<ImageRGBA8> sources;
-  bool resized = false;   ///< The input was not a power of two and was resampled.
-  double encode_ms = 0;   ///< Wall time of the encodes (all images and levels), milliseconds.
+  bool resized = false;  ///< The input was not a power of two and was resampled.
+  double encode_ms = 0;  ///< Wall time of the encodes (all images and levels), milliseconds.
 };
 
 /// Compresses one decoded image: an alpha channel that is 255 everywhere gives an RGB texture;
@@ -229,8 +230,8 @@ struct RecordedOptions {
   int iterations = -1;              ///< -1: the quality preset's schedule.
   int exact_search_rounds = 0;      ///< 0: the quality preset's schedule.
   bool mipmaps = false;
-  int mip_levels = 0;               ///< 0: the full chain (with `mipmaps`).
-  std::string mip_filter = "box";   ///< "box", "lanczos" or "kaiser".
+  int mip_levels = 0;              ///< 0: the full chain (with `mipmaps`).
+  std::string mip_filter = "box";  ///< "box", "lanczos" or "kaiser".
   bool srgb = false;
   bool resize_pot = false;
   bool flip_y = false;
@@ -238,9 +239,9 @@ struct RecordedOptions {
   bool alpha_bleed = false;
   bool alpha_weighted = false;
   bool normal_map = false;
-  int zstd = 0;                     ///< KTX 2.0 Zstandard level, 1..22; 0 = none.
-  bool cube = false;                ///< The inputs are the faces of a cube map.
-  bool array = false;               ///< The inputs are the layers of an array.
+  int zstd = 0;        ///< KTX 2.0 Zstandard level, 1..22; 0 = none.
+  bool cube = false;   ///< The inputs are the faces of a cube map.
+  bool array = false;  ///< The inputs are the layers of an array.
 };
 
 /// What is appended to an output's path to name its up-to-date record ("a.pvr.json").

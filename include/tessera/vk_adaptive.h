@@ -16,9 +16,9 @@
 //    generated from the engine's material system at run time and its G-buffer accessors from the
 //    layout. Ahead of time: `shader_binary()` returns every pass's SPIR-V, keyed by the options
 //    and the device's limits; given back as `options.shader_binary`, `create` compiles no GLSL
-//    (and `options.pipeline_cache`, the engine's VkPipelineCache, skips the driver's work). Errors name the hook's own lines:
-//    "HOOK_NAME:LINE: message". The hook's `#include "x.glsl"` resolve to
-//    `AdaptiveShadingHook::include_paths`, then to tessera's shipped files (compiled into the
+//    (and `options.pipeline_cache`, the engine's VkPipelineCache, skips the driver's work). Errors
+//    name the hook's own lines: "HOOK_NAME:LINE: message". The hook's `#include "x.glsl"` resolve
+//    to `AdaptiveShadingHook::include_paths`, then to tessera's shipped files (compiled into the
 //    library: nothing is read from share/ at run time). VULKAN is defined.
 // 2. Descriptor sets. The hook may read the engine's own resources through the engine's
 //    descriptor-set layouts (`AdaptiveSupersamplerOptions::hook_set_layouts`, sets 0 .. E-1,

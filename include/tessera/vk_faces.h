@@ -12,8 +12,9 @@
 // (FaceUpload::queue_submit, the default: one staging buffer, one submit, one fence waited on
 // before it returns; the queue must not be used by another thread during `create`). Afterwards
 // the images are in SHADER_READ_ONLY_OPTIMAL and the uploads visible to every later command on
-// that queue; the object records nothing and submits nothing more. Not thread-safe; destroy it after the GPU is
-// done with every command buffer that bound its descriptor set. Recipe: docs/engine_integration.md
+// that queue; the object records nothing and submits nothing more. Not thread-safe; destroy it
+// after the GPU is done with every command buffer that bound its descriptor set. Recipe:
+// docs/engine_integration.md
 // ("vk::FaceTextureSet"); examples/engine_ptex_vk; tests/vk/vk_faces_test.cpp.
 #pragma once
 
@@ -66,22 +67,23 @@ struct FaceTextureSetOptions {
 };
 
 /// The Vulkan objects of a packed face set. Images: of `options.format` (R32G32B32A32_SFLOAT,
-/// the default, exactly the CPU texels), 2D arrays with the full mip chain, usage SAMPLED | TRANSFER_DST, sharing EXCLUSIVE
-/// to `DeviceContext::queue_family` (another family needs the engine's ownership transfer),
-/// left in SHADER_READ_ONLY_OPTIMAL. Samplers: LINEAR / LINEAR / mipmap LINEAR, all levels,
-/// one with CLAMP_TO_BORDER and FLOAT_TRANSPARENT_BLACK (the zero taps Discard needs, a
-/// standard border colour), one with CLAMP_TO_EDGE. The engine must not write, transition or
-/// destroy these objects, nor update or free the descriptor set; it binds the set with
-/// vkCmdBindDescriptorSets (or `bind`) at the set index its pipeline layout put
-/// `set_layout()` at, the index it also gives `glsl_defines`.
+/// the default, exactly the CPU texels), 2D arrays with the full mip chain, usage SAMPLED |
+/// TRANSFER_DST, sharing EXCLUSIVE to `DeviceContext::queue_family` (another family needs the
+/// engine's ownership transfer), left in SHADER_READ_ONLY_OPTIMAL. Samplers: LINEAR / LINEAR /
+/// mipmap LINEAR, all levels, one with CLAMP_TO_BORDER and FLOAT_TRANSPARENT_BLACK (the zero taps
+/// Discard needs, a standard border colour), one with CLAMP_TO_EDGE. The engine must not write,
+/// transition or destroy these objects, nor update or free the descriptor set; it binds the set
+/// with vkCmdBindDescriptorSets (or `bind`) at the set index its pipeline layout put `set_layout()`
+/// at, the index it also gives `glsl_defines`.
 class FaceTextureSet {
  public:
   /// Packs `set` against the device's limits (maxImageDimension2D, maxImageArrayLayers,
   /// maxStorageBufferRange, at most 16 classes and maxPerStageDescriptorSamplers / 2), checks
   /// the bindings and that `options.format` is sampled with linear filtering, then creates
-  /// everything and uploads it (queue_submit) or fills the staging buffer (engine_command_buffer) (see the file comment). One-line errors before anything is created
-  /// or submitted: invalid_argument (no faces, bindings that collide), too_large (a limit, by
-  /// its Vulkan name), unsupported (the device, the format); a failed Vulkan call names itself.
+  /// everything and uploads it (queue_submit) or fills the staging buffer (engine_command_buffer)
+  /// (see the file comment). One-line errors before anything is created or submitted:
+  /// invalid_argument (no faces, bindings that collide), too_large (a limit, by its Vulkan name),
+  /// unsupported (the device, the format); a failed Vulkan call names itself.
   static Result<std::unique_ptr<FaceTextureSet>> create(const DeviceContext& device,
                                                         const faces::FaceTextureSet& set,
                                                         const FaceTextureSetOptions& options = {});

@@ -85,12 +85,12 @@ auto with_encode_keywords(Fn fn) {
 
 /// The keywords of encode and encode_file, with the CLI's defaults (ENCODE_DEFAULTS).
 auto encode_keyword_args() {
-  return std::make_tuple(
-      "format"_a = "pvrtc1-4", "quality"_a = "normal", "mipmaps"_a = false, "srgb"_a = false,
-      "threads"_a = 0, "iterations"_a = -1, "exact_search_rounds"_a = 0, "resize_pot"_a = false,
-      "mip_levels"_a = 0, "mip_filter"_a = "box", "flip_y"_a = false, "premultiply"_a = false,
-      "alpha_bleed"_a = false, "alpha_weighted"_a = false, "normal_map"_a = false,
-      "cube"_a = false, "array"_a = false);
+  return std::make_tuple("format"_a = "pvrtc1-4", "quality"_a = "normal", "mipmaps"_a = false,
+                         "srgb"_a = false, "threads"_a = 0, "iterations"_a = -1,
+                         "exact_search_rounds"_a = 0, "resize_pot"_a = false, "mip_levels"_a = 0,
+                         "mip_filter"_a = "box", "flip_y"_a = false, "premultiply"_a = false,
+                         "alpha_bleed"_a = false, "alpha_weighted"_a = false,
+                         "normal_map"_a = false, "cube"_a = false, "array"_a = false);
 }
 
 /// m.def(name, f, doc, first, *, the encode keywords, extra...).

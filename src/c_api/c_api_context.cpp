@@ -22,15 +22,33 @@ tessera_error fail(tessera_context* context, tessera_error code, const std::stri
 tessera_error fail(tessera_context* context, const Status& status) {
   tessera_error code = TESSERA_ERROR_INTERNAL;
   switch (status.code) {
-    case ErrorCode::ok: code = TESSERA_SUCCESS; break;
-    case ErrorCode::invalid_argument: code = TESSERA_ERROR_INVALID_ARGUMENT; break;
-    case ErrorCode::io_error: code = TESSERA_ERROR_IO; break;
-    case ErrorCode::corrupt_data: code = TESSERA_ERROR_CORRUPT_DATA; break;
-    case ErrorCode::unsupported: code = TESSERA_ERROR_UNSUPPORTED; break;
-    case ErrorCode::too_large: code = TESSERA_ERROR_TOO_LARGE; break;
-    case ErrorCode::size_mismatch: code = TESSERA_ERROR_SIZE_MISMATCH; break;
-    case ErrorCode::out_of_memory: code = TESSERA_ERROR_OUT_OF_MEMORY; break;
-    case ErrorCode::device_lost: code = TESSERA_ERROR_INTERNAL; break;  // the codec has no device
+    case ErrorCode::ok:
+      code = TESSERA_SUCCESS;
+      break;
+    case ErrorCode::invalid_argument:
+      code = TESSERA_ERROR_INVALID_ARGUMENT;
+      break;
+    case ErrorCode::io_error:
+      code = TESSERA_ERROR_IO;
+      break;
+    case ErrorCode::corrupt_data:
+      code = TESSERA_ERROR_CORRUPT_DATA;
+      break;
+    case ErrorCode::unsupported:
+      code = TESSERA_ERROR_UNSUPPORTED;
+      break;
+    case ErrorCode::too_large:
+      code = TESSERA_ERROR_TOO_LARGE;
+      break;
+    case ErrorCode::size_mismatch:
+      code = TESSERA_ERROR_SIZE_MISMATCH;
+      break;
+    case ErrorCode::out_of_memory:
+      code = TESSERA_ERROR_OUT_OF_MEMORY;
+      break;
+    case ErrorCode::device_lost:
+      code = TESSERA_ERROR_INTERNAL;
+      break;  // the codec has no device
   }
   return fail(context, code, status.message);
 }
@@ -62,15 +80,15 @@ tessera_error image_view(tessera_context* context, const tessera_image* image, c
                     " is less than a row of " + std::to_string(image->width) + " RGBA8 texels (" +
                     std::to_string(row) + " bytes)");
   }
-  view = ImageView8{image->pixels, int(image->width), int(image->height), 4, 4,
+  view = ImageView8{image->pixels,         int(image->width),    int(image->height), 4, 4,
                     std::ptrdiff_t(pitch), image->has_alpha != 0};
   if (Status s = check_view(view, what); !s.ok()) return fail(context, s);
   return TESSERA_SUCCESS;
 }
 
-tessera_error check_rgba_output(tessera_context* context, std::uint32_t width,
-                                std::uint32_t height, const std::uint8_t* rgba,
-                                std::size_t& row_pitch, std::size_t capacity) {
+tessera_error check_rgba_output(tessera_context* context, std::uint32_t width, std::uint32_t height,
+                                const std::uint8_t* rgba, std::size_t& row_pitch,
+                                std::size_t capacity) {
   if (tessera_error e = require(context, rgba, "rgba"); e != TESSERA_SUCCESS) return e;
   const std::size_t row = std::size_t(width) * 4;
   if (row_pitch == 0) row_pitch = row;
@@ -95,8 +113,7 @@ tessera_error check_rgba_output(tessera_context* context, std::uint32_t width,
 void copy_rows(const ImageRGBA8& image, std::uint8_t* rgba, std::size_t row_pitch) {
   const std::size_t row = std::size_t(image.width) * 4;
   for (int y = 0; y < image.height; ++y) {
-    std::memcpy(rgba + std::size_t(y) * row_pitch, image.pixels.data() + std::size_t(y) * row,
-                row);
+    std::memcpy(rgba + std::size_t(y) * row_pitch, image.pixels.data() + std::size_t(y) * row, row);
   }
 }
 
@@ -108,19 +125,32 @@ namespace tessera::c_api::entry {
 
 const char* error_string(tessera_error code) {
   switch (code) {
-    case TESSERA_SUCCESS: return "success";
-    case TESSERA_ERROR_INVALID_ARGUMENT: return "invalid argument";
-    case TESSERA_ERROR_IO: return "input/output error";
-    case TESSERA_ERROR_CORRUPT_DATA: return "corrupt data";
-    case TESSERA_ERROR_UNSUPPORTED: return "unsupported";
-    case TESSERA_ERROR_TOO_LARGE: return "too large";
-    case TESSERA_ERROR_SIZE_MISMATCH: return "size mismatch";
-    case TESSERA_ERROR_NULL_POINTER: return "null pointer";
-    case TESSERA_ERROR_BUFFER_TOO_SMALL: return "buffer too small";
-    case TESSERA_ERROR_BAD_STRUCT_SIZE: return "bad struct size";
-    case TESSERA_ERROR_CANCELLED: return "cancelled";
-    case TESSERA_ERROR_OUT_OF_MEMORY: return "out of memory";
-    case TESSERA_ERROR_INTERNAL: return "internal error";
+    case TESSERA_SUCCESS:
+      return "success";
+    case TESSERA_ERROR_INVALID_ARGUMENT:
+      return "invalid argument";
+    case TESSERA_ERROR_IO:
+      return "input/output error";
+    case TESSERA_ERROR_CORRUPT_DATA:
+      return "corrupt data";
+    case TESSERA_ERROR_UNSUPPORTED:
+      return "unsupported";
+    case TESSERA_ERROR_TOO_LARGE:
+      return "too large";
+    case TESSERA_ERROR_SIZE_MISMATCH:
+      return "size mismatch";
+    case TESSERA_ERROR_NULL_POINTER:
+      return "null pointer";
+    case TESSERA_ERROR_BUFFER_TOO_SMALL:
+      return "buffer too small";
+    case TESSERA_ERROR_BAD_STRUCT_SIZE:
+      return "bad struct size";
+    case TESSERA_ERROR_CANCELLED:
+      return "cancelled";
+    case TESSERA_ERROR_OUT_OF_MEMORY:
+      return "out of memory";
+    case TESSERA_ERROR_INTERNAL:
+      return "internal error";
   }
   return "unknown error";
 }
@@ -134,8 +164,7 @@ tessera_error context_config_init(tessera_context_config* config) {
   return TESSERA_SUCCESS;
 }
 
-tessera_error context_create(const tessera_context_config* config,
-                                     tessera_context** context) {
+tessera_error context_create(const tessera_context_config* config, tessera_context** context) {
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
   *context = nullptr;
   tessera_context_config c{};

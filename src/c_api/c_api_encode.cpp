@@ -135,7 +135,8 @@ tessera_error encode(tessera_context* context, const tessera_image* images,
   }
   auto made = std::make_unique<tessera_texture>();
   if (image_count == 1 && o.faces == 1 && o.array == 0) {
-    Result<texture_file::CompressedTexture> tex = texture_file::compress_view(views[0], co, names[0]);
+    Result<texture_file::CompressedTexture> tex =
+        texture_file::compress_view(views[0], co, names[0]);
     if (!tex) return fail(context, tex.status());
     made->texture = std::move(tex).value();
   } else {
@@ -175,8 +176,9 @@ tessera_error pvrtc_encode(tessera_context* context, const tessera_image* image,
   texture_file::CompressOptions co;
   if (tessera_error e = compress_options(context, options, o, co); e != TESSERA_SUCCESS) return e;
   if (co.mipmaps || co.resize_pot || o.faces != 1 || o.array != 0) {
-    return bad(context, "tessera_pvrtc_encode makes one level of one image: no mips, "
-                        "RESIZE_POT, faces or array (use tessera_encode)");
+    return bad(context,
+               "tessera_pvrtc_encode makes one level of one image: no mips, "
+               "RESIZE_POT, faces or array (use tessera_encode)");
   }
   ImageView8 view;
   if (tessera_error e = image_view(context, image, "image", view); e != TESSERA_SUCCESS) return e;
@@ -273,9 +275,8 @@ tessera_error encode_options_init(tessera_encode_options* options) {
   return TESSERA_SUCCESS;
 }
 
-tessera_error encode(tessera_context* context, const tessera_image* images,
-                             uint32_t image_count, const tessera_encode_options* options,
-                             tessera_texture** texture) {
+tessera_error encode(tessera_context* context, const tessera_image* images, uint32_t image_count,
+                     const tessera_encode_options* options, tessera_texture** texture) {
   if (texture != nullptr) *texture = nullptr;
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
   return guarded(context, [&] {
@@ -286,21 +287,21 @@ tessera_error encode(tessera_context* context, const tessera_image* images,
 }
 
 tessera_error pvrtc_level_size(tessera_format format, uint32_t width, uint32_t height,
-                                       size_t* size) {
+                               size_t* size) {
   if (size == nullptr) return TESSERA_ERROR_NULL_POINTER;
   return guarded(nullptr, [&] {
     tessera_error e = tessera::c_api::check_level(nullptr, format, width, height);
     if (e == TESSERA_SUCCESS) {
-      *size = tessera::pvrtc::level_size(tessera::c_api::format_of(format), int(width),
-                                         int(height));
+      *size =
+          tessera::pvrtc::level_size(tessera::c_api::format_of(format), int(width), int(height));
     }
     return e;
   });
 }
 
 tessera_error pvrtc_encode(tessera_context* context, const tessera_image* image,
-                                   const tessera_encode_options* options, uint8_t* blocks,
-                                   size_t capacity, size_t* size) {
+                           const tessera_encode_options* options, uint8_t* blocks, size_t capacity,
+                           size_t* size) {
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
   return guarded(context, [&] {
     if (tessera_error e = require(context, size, "size"); e != TESSERA_SUCCESS) return e;
@@ -308,10 +309,9 @@ tessera_error pvrtc_encode(tessera_context* context, const tessera_image* image,
   });
 }
 
-tessera_error pvrtc_decode(tessera_context* context, tessera_format format,
-                                   uint32_t width, uint32_t height, const uint8_t* blocks,
-                                   size_t blocks_size, uint8_t* rgba, size_t row_pitch,
-                                   size_t capacity) {
+tessera_error pvrtc_decode(tessera_context* context, tessera_format format, uint32_t width,
+                           uint32_t height, const uint8_t* blocks, size_t blocks_size,
+                           uint8_t* rgba, size_t row_pitch, size_t capacity) {
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
   return guarded(context, [&] {
     return tessera::c_api::pvrtc_decode(context, format, width, height, blocks, blocks_size, rgba,
@@ -319,9 +319,8 @@ tessera_error pvrtc_decode(tessera_context* context, tessera_format format,
   });
 }
 
-tessera_error compare(tessera_context* context, const tessera_image* a,
-                              const tessera_image* b, int32_t compute_ssim,
-                              tessera_metrics* metrics) {
+tessera_error compare(tessera_context* context, const tessera_image* a, const tessera_image* b,
+                      int32_t compute_ssim, tessera_metrics* metrics) {
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
   return guarded(context,
                  [&] { return tessera::c_api::compare(context, a, b, compute_ssim, metrics); });

@@ -66,9 +66,9 @@ tessera_error image_view(tessera_context* context, const tessera_image* image, c
 
 /// Checks an output RGBA8 buffer of `width` x `height` with `row_pitch` (0 = packed, which it
 /// then becomes) and `capacity` bytes.
-tessera_error check_rgba_output(tessera_context* context, std::uint32_t width,
-                                std::uint32_t height, const std::uint8_t* rgba,
-                                std::size_t& row_pitch, std::size_t capacity);
+tessera_error check_rgba_output(tessera_context* context, std::uint32_t width, std::uint32_t height,
+                                const std::uint8_t* rgba, std::size_t& row_pitch,
+                                std::size_t capacity);
 /// Copies `image` (packed) into the checked output buffer, row by row.
 void copy_rows(const ImageRGBA8& image, std::uint8_t* rgba, std::size_t row_pitch);
 

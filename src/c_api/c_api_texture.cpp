@@ -41,9 +41,10 @@ tessera_error serialise(tessera_context* context, tessera_texture* texture,
   if (texture->cached_container == int(container) && texture->cached_zstd == zstd_level) {
     return TESSERA_SUCCESS;
   }
-  const tf::ContainerFormat format = container == TESSERA_CONTAINER_KTX1   ? tf::ContainerFormat::ktx1
-                                     : container == TESSERA_CONTAINER_KTX2 ? tf::ContainerFormat::ktx2
-                                                                           : tf::ContainerFormat::pvr3;
+  const tf::ContainerFormat format = container == TESSERA_CONTAINER_KTX1 ? tf::ContainerFormat::ktx1
+                                     : container == TESSERA_CONTAINER_KTX2
+                                         ? tf::ContainerFormat::ktx2
+                                         : tf::ContainerFormat::pvr3;
   Result<std::vector<std::uint8_t>> file =
       tf::serialise_texture(texture->texture, format, tf::Ktx2Options{zstd_level});
   if (!file) return fail(context, file.status());
@@ -86,8 +87,7 @@ using tessera::c_api::require;
 
 namespace tessera::c_api::entry {
 
-tessera_error texture_get_info(const tessera_texture* texture,
-                                       tessera_texture_info* info) {
+tessera_error texture_get_info(const tessera_texture* texture, tessera_texture_info* info) {
   if (texture == nullptr || info == nullptr) return TESSERA_ERROR_NULL_POINTER;
   if (info->struct_size != sizeof(tessera_texture_info)) return TESSERA_ERROR_BAD_STRUCT_SIZE;
   const tessera::texture_file::CompressedTexture& t = texture->texture;
@@ -108,9 +108,8 @@ tessera_error texture_get_info(const tessera_texture* texture,
   return TESSERA_SUCCESS;
 }
 
-tessera_error texture_get_blocks(const tessera_texture* texture, uint32_t level,
-                                         uint32_t layer, uint32_t face, const uint8_t** blocks,
-                                         size_t* size) {
+tessera_error texture_get_blocks(const tessera_texture* texture, uint32_t level, uint32_t layer,
+                                 uint32_t face, const uint8_t** blocks, size_t* size) {
   if (texture == nullptr || blocks == nullptr || size == nullptr) {
     return TESSERA_ERROR_NULL_POINTER;
   }
@@ -128,8 +127,8 @@ tessera_error texture_get_blocks(const tessera_texture* texture, uint32_t level,
 }
 
 tessera_error texture_decode(tessera_context* context, const tessera_texture* texture,
-                                     uint32_t level, uint32_t layer, uint32_t face,
-                                     uint8_t* rgba, size_t row_pitch, size_t capacity) {
+                             uint32_t level, uint32_t layer, uint32_t face, uint8_t* rgba,
+                             size_t row_pitch, size_t capacity) {
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
   return guarded(context, [&] {
     if (tessera_error e = tessera::c_api::check_index(context, texture, level, layer, face);
@@ -139,8 +138,8 @@ tessera_error texture_decode(tessera_context* context, const tessera_texture* te
     const tessera::texture_file::CompressedTexture& t = texture->texture;
     const auto w = std::uint32_t(t.level_width(int(level)));
     const auto h = std::uint32_t(t.level_height(int(level)));
-    if (tessera_error e = tessera::c_api::check_rgba_output(context, w, h, rgba, row_pitch,
-                                                            capacity);
+    if (tessera_error e =
+            tessera::c_api::check_rgba_output(context, w, h, rgba, row_pitch, capacity);
         e != TESSERA_SUCCESS) {
       return e;
     }
@@ -154,8 +153,8 @@ tessera_error texture_decode(tessera_context* context, const tessera_texture* te
 
 void texture_free(tessera_texture* texture) { delete texture; }
 
-tessera_error texture_read_memory(tessera_context* context, const void* data,
-                                          size_t size, tessera_texture** texture) {
+tessera_error texture_read_memory(tessera_context* context, const void* data, size_t size,
+                                  tessera_texture** texture) {
   if (texture != nullptr) *texture = nullptr;
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
   return guarded(context, [&] {
@@ -168,7 +167,7 @@ tessera_error texture_read_memory(tessera_context* context, const void* data,
 }
 
 tessera_error texture_read_file(tessera_context* context, const char* path,
-                                        tessera_texture** texture) {
+                                tessera_texture** texture) {
   if (texture != nullptr) *texture = nullptr;
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
   return guarded(context, [&] {
@@ -179,8 +178,8 @@ tessera_error texture_read_file(tessera_context* context, const char* path,
 }
 
 tessera_error texture_write_memory(tessera_context* context, tessera_texture* texture,
-                                           tessera_container container, int32_t zstd_level,
-                                           void* data, size_t capacity, size_t* size) {
+                                   tessera_container container, int32_t zstd_level, void* data,
+                                   size_t capacity, size_t* size) {
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
   return guarded(context, [&] {
     if (tessera_error e = require(context, size, "size"); e != TESSERA_SUCCESS) return e;
@@ -203,8 +202,8 @@ tessera_error texture_write_memory(tessera_context* context, tessera_texture* te
 }
 
 tessera_error texture_write_alloc(tessera_context* context, tessera_texture* texture,
-                                          tessera_container container, int32_t zstd_level,
-                                          void** data, size_t* size) {
+                                  tessera_container container, int32_t zstd_level, void** data,
+                                  size_t* size) {
   if (data != nullptr) *data = nullptr;
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
   return guarded(context, [&] {
@@ -224,9 +223,8 @@ tessera_error texture_write_alloc(tessera_context* context, tessera_texture* tex
   });
 }
 
-tessera_error texture_write_file(tessera_context* context,
-                                         const tessera_texture* texture, const char* path,
-                                         int32_t zstd_level) {
+tessera_error texture_write_file(tessera_context* context, const tessera_texture* texture,
+                                 const char* path, int32_t zstd_level) {
   if (context == nullptr) return TESSERA_ERROR_NULL_POINTER;
   return guarded(context, [&] {
     if (tessera_error e = require(context, texture, "texture"); e != TESSERA_SUCCESS) return e;
@@ -244,8 +242,7 @@ tessera_error texture_write_file(tessera_context* context,
     }
     tessera::texture_file::Ktx2Options ktx2;
     ktx2.zstd_level = zstd_level;
-    return fail(context,
-                tessera::texture_file::write_texture_file(path, texture->texture, ktx2));
+    return fail(context, tessera::texture_file::write_texture_file(path, texture->texture, ktx2));
   });
 }
 

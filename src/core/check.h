@@ -23,9 +23,8 @@ namespace tessera::detail {
 }  // namespace tessera::detail
 
 #if TESSERA_DCHECKS_ENABLED
-#define TESSERA_DCHECK(cond)                                                       \
-  ((cond) ? static_cast<void>(0)                                                   \
-          : ::tessera::detail::dcheck_failed(__FILE__, __LINE__, #cond))
+#define TESSERA_DCHECK(cond) \
+  ((cond) ? static_cast<void>(0) : ::tessera::detail::dcheck_failed(__FILE__, __LINE__, #cond))
 #else
 // Not evaluated; sizeof keeps the expression type-checked (and its variables "used").
 #define TESSERA_DCHECK(cond) static_cast<void>(sizeof(static_cast<bool>(cond)))

@@ -1,4 +1,6 @@
 // Status names, image size limits, image views and sRGB conversion.
+#include "tessera/core.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -6,21 +8,28 @@
 
 #include "core/simd_dispatch.h"
 
-#include "tessera/core.h"
-
 namespace tessera {
 
 const char* error_code_name(ErrorCode code) {
   switch (code) {
-    case ErrorCode::ok: return "ok";
-    case ErrorCode::invalid_argument: return "invalid_argument";
-    case ErrorCode::io_error: return "io_error";
-    case ErrorCode::corrupt_data: return "corrupt_data";
-    case ErrorCode::unsupported: return "unsupported";
-    case ErrorCode::too_large: return "too_large";
-    case ErrorCode::size_mismatch: return "size_mismatch";
-    case ErrorCode::out_of_memory: return "out_of_memory";
-    case ErrorCode::device_lost: return "device_lost";
+    case ErrorCode::ok:
+      return "ok";
+    case ErrorCode::invalid_argument:
+      return "invalid_argument";
+    case ErrorCode::io_error:
+      return "io_error";
+    case ErrorCode::corrupt_data:
+      return "corrupt_data";
+    case ErrorCode::unsupported:
+      return "unsupported";
+    case ErrorCode::too_large:
+      return "too_large";
+    case ErrorCode::size_mismatch:
+      return "size_mismatch";
+    case ErrorCode::out_of_memory:
+      return "out_of_memory";
+    case ErrorCode::device_lost:
+      return "device_lost";
   }
   return "unknown";
 }
@@ -37,9 +46,9 @@ Status check_image_size(std::int64_t width, std::int64_t height, const std::stri
   if (width > kMaxImageDimension || height > kMaxImageDimension ||
       std::uint64_t(width) * std::uint64_t(height) > kMaxImagePixels) {
     return Status::error(ErrorCode::too_large,
-                         what + ": image size " + size_text(width, height) + " exceeds the limit (" +
-                             std::to_string(kMaxImageDimension) + " per side, " +
-                             std::to_string(kMaxImagePixels >> 20) + " Mpx)");
+                         what + ": image size " + size_text(width, height) +
+                             " exceeds the limit (" + std::to_string(kMaxImageDimension) +
+                             " per side, " + std::to_string(kMaxImagePixels >> 20) + " Mpx)");
   }
   return Status::success();
 }

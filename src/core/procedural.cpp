@@ -1,8 +1,8 @@
 // Deterministic procedural images for demos and tests.
+#include "tessera/procedural.h"
+
 #include <algorithm>
 #include <cmath>
-
-#include "tessera/procedural.h"
 
 namespace tessera {
 
@@ -70,11 +70,16 @@ const std::vector<Procedural>& all_procedurals() {
 
 const char* procedural_name(Procedural kind) {
   switch (kind) {
-    case Procedural::gradient: return "gradient";
-    case Procedural::bricks: return "bricks";
-    case Procedural::noise: return "noise";
-    case Procedural::foliage: return "foliage";
-    case Procedural::text: return "text";
+    case Procedural::gradient:
+      return "gradient";
+    case Procedural::bricks:
+      return "bricks";
+    case Procedural::noise:
+      return "noise";
+    case Procedural::foliage:
+      return "foliage";
+    case Procedural::text:
+      return "text";
   }
   return "unknown";
 }
@@ -139,8 +144,7 @@ ImageRGBA8 make_procedural(Procedural kind, int width, int height, std::uint32_t
           if ((h & 4) && std::abs(lv - 4.0) < 0.9 && lu > 2 && lu < 9) ink = true;
           if ((h & 8) && std::abs(lv - 8.0) < 0.9 && lu > 2 && lu < 9) ink = true;
           if ((h & 16) && std::abs(lv - 12.0) < 0.9 && lu > 2 && lu < 9) ink = true;
-          if ((h & 32) && std::abs((lu - 2.0) * 10.0 / 7.0 - (lv - 3.0)) < 1.0 && lv > 3 &&
-              lv < 13)
+          if ((h & 32) && std::abs((lu - 2.0) * 10.0 / 7.0 - (lv - 3.0)) < 1.0 && lv > 3 && lv < 13)
             ink = true;
           const double paper = 0.93 - 0.05 * (v / 256.0);
           if (ink) {

@@ -51,9 +51,9 @@
 #include <cstdint>
 
 #include "core/simd_float.h"
+#include "core/simd_generic.h"
 #include "core/simd_int.h"
 #include "core/simd_packed.h"
-#include "core/simd_generic.h"
 #include "core/simd_wide.h"
 
 namespace tessera::simd {

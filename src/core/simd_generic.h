@@ -142,8 +142,8 @@ inline vu16x16 lookup8(const std::uint16_t* table, vu16x16 idx) {
   // Bytes (2 idx, 2 idx + 1) of the table in each half; for idx -8..-1 both have the top bit
   // set, which shuffles in 0.
   const vu16x8 t = load_u16x8(table);
-  return shuffle_bytes(vu16x16(t, t), mullo(idx, vu16x16(std::uint16_t{514})) +
-                                          vu16x16(std::uint16_t{256}));
+  return shuffle_bytes(vu16x16(t, t),
+                       mullo(idx, vu16x16(std::uint16_t{514})) + vu16x16(std::uint16_t{256}));
 #else
   return vu16x16(lookup8(table, low(idx)), lookup8(table, high(idx)));
 #endif

@@ -330,8 +330,8 @@ struct vi64x2 {
   vi64x2() : v(vdupq_n_s64(0)) {}
   explicit vi64x2(int64x2_t x) : v(x) {}
   explicit vi64x2(std::int64_t a) : v(vdupq_n_s64(a)) {}
-  vi64x2(std::int64_t lo, std::int64_t hi) : v(vcombine_s64(vcreate_s64(std::uint64_t(lo)),
-                                                             vcreate_s64(std::uint64_t(hi)))) {}
+  vi64x2(std::int64_t lo, std::int64_t hi)
+      : v(vcombine_s64(vcreate_s64(std::uint64_t(lo)), vcreate_s64(std::uint64_t(hi)))) {}
 };
 inline vi64x2 load_i64x2(const std::int64_t* p) { return vi64x2(vld1q_s64(p)); }
 inline vi64x2 operator+(vi64x2 a, vi64x2 b) { return vi64x2(vaddq_s64(a.v, b.v)); }

@@ -237,10 +237,12 @@ inline vu16x8 select(vu16x8 mask, vu16x8 a, vu16x8 b) {
 }
 
 inline vu16x8 max_s16(vu16x8 a, vu16x8 b) {
-  return vu16x8(vreinterpretq_u16_s16(vmaxq_s16(vreinterpretq_s16_u16(a.v), vreinterpretq_s16_u16(b.v))));
+  return vu16x8(
+      vreinterpretq_u16_s16(vmaxq_s16(vreinterpretq_s16_u16(a.v), vreinterpretq_s16_u16(b.v))));
 }
 inline vu16x8 min_s16(vu16x8 a, vu16x8 b) {
-  return vu16x8(vreinterpretq_u16_s16(vminq_s16(vreinterpretq_s16_u16(a.v), vreinterpretq_s16_u16(b.v))));
+  return vu16x8(
+      vreinterpretq_u16_s16(vminq_s16(vreinterpretq_s16_u16(a.v), vreinterpretq_s16_u16(b.v))));
 }
 inline vu16x8 cmpgt_s16(vu16x8 a, vu16x8 b) {
   return vu16x8(vcgtq_s16(vreinterpretq_s16_u16(a.v), vreinterpretq_s16_u16(b.v)));
@@ -255,7 +257,8 @@ inline vu16x8 load_u8x4_lo(const std::uint8_t* p) {
   return vu16x8(vmovl_u8(vreinterpret_u8_u32(vset_lane_u32(w, vdup_n_u32(0), 0))));
 }
 inline void store_u8x4(vu16x8 a, std::uint8_t* p) {
-  const std::uint32_t w = vget_lane_u32(vreinterpret_u32_u8(vqmovun_s16(vreinterpretq_s16_u16(a.v))), 0);
+  const std::uint32_t w =
+      vget_lane_u32(vreinterpret_u32_u8(vqmovun_s16(vreinterpretq_s16_u16(a.v))), 0);
   std::memcpy(p, &w, 4);
 }
 
@@ -272,9 +275,7 @@ inline vu8x16 operator&(vu8x16 a, vu8x16 b) { return vu8x16(vandq_u8(a.v, b.v));
 inline vu8x16 operator|(vu8x16 a, vu8x16 b) { return vu8x16(vorrq_u8(a.v, b.v)); }
 inline vu8x16 cmpeq(vu8x16 a, vu8x16 b) { return vu8x16(vceqq_u8(a.v, b.v)); }
 inline vu8x16 andnot(vu8x16 a, vu8x16 b) { return vu8x16(vbicq_u8(b.v, a.v)); }
-inline vu8x16 select(vu8x16 mask, vu8x16 a, vu8x16 b) {
-  return vu8x16(vbslq_u8(mask.v, a.v, b.v));
-}
+inline vu8x16 select(vu8x16 mask, vu8x16 a, vu8x16 b) { return vu8x16(vbslq_u8(mask.v, a.v, b.v)); }
 /// A lane has its top bit set exactly when the largest lane does.
 inline bool any(vu8x16 mask) { return vmaxvq_u8(mask.v) >= 0x80; }
 inline vu16x8 widen_lo(vu8x16 a) { return vu16x8(vmovl_u8(vget_low_u8(a.v))); }
@@ -400,12 +401,14 @@ inline vu16x8 select(vu16x8 mask, vu16x8 a, vu16x8 b) {
 
 inline vu16x8 max_s16(vu16x8 a, vu16x8 b) {
   vu16x8 r;
-  for (int i = 0; i < 8; ++i) r.l[i] = std::int16_t(a.l[i]) > std::int16_t(b.l[i]) ? a.l[i] : b.l[i];
+  for (int i = 0; i < 8; ++i)
+    r.l[i] = std::int16_t(a.l[i]) > std::int16_t(b.l[i]) ? a.l[i] : b.l[i];
   return r;
 }
 inline vu16x8 min_s16(vu16x8 a, vu16x8 b) {
   vu16x8 r;
-  for (int i = 0; i < 8; ++i) r.l[i] = std::int16_t(a.l[i]) < std::int16_t(b.l[i]) ? a.l[i] : b.l[i];
+  for (int i = 0; i < 8; ++i)
+    r.l[i] = std::int16_t(a.l[i]) < std::int16_t(b.l[i]) ? a.l[i] : b.l[i];
   return r;
 }
 inline vu16x8 cmpgt_s16(vu16x8 a, vu16x8 b) {

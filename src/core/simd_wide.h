@@ -102,7 +102,8 @@ inline vu16x16 broadcast64(std::uint64_t x) {
 }
 /// The eight lanes as bytes, each clamped to 0..255 (as store_u8x4 twice).
 inline void store_u8x8(vi32x8 a, std::uint8_t* p) {
-  const __m128i p16 = _mm_packs_epi32(_mm256_castsi256_si128(a.v), _mm256_extracti128_si256(a.v, 1));
+  const __m128i p16 =
+      _mm_packs_epi32(_mm256_castsi256_si128(a.v), _mm256_extracti128_si256(a.v, 1));
   _mm_storel_epi64(reinterpret_cast<__m128i*>(p), _mm_packus_epi16(p16, p16));
 }
 /// The sixteen lanes as bytes, each read as int16 and clamped to 0..255 (as store_u8x8 twice).
@@ -256,7 +257,9 @@ inline vu8x32 select(vu8x32 mask, vu8x32 a, vu8x32 b) {
 /// Whether some lane has its top bit set.
 inline bool any(vu8x32 mask) { return _mm256_movemask_epi8(mask.v) != 0; }
 /// Lanes 0-15 (widen_lo) or 16-31 (widen_hi) zero-extended to 16 bits, in order.
-inline vu16x16 widen_lo(vu8x32 a) { return vu16x16(_mm256_cvtepu8_epi16(_mm256_castsi256_si128(a.v))); }
+inline vu16x16 widen_lo(vu8x32 a) {
+  return vu16x16(_mm256_cvtepu8_epi16(_mm256_castsi256_si128(a.v)));
+}
 inline vu16x16 widen_hi(vu8x32 a) {
   return vu16x16(_mm256_cvtepu8_epi16(_mm256_extracti128_si256(a.v, 1)));
 }
@@ -265,8 +268,8 @@ inline vu16x16 widen_hi(vu8x32 a) {
 /// 32 RGBA8 texels at p (128 bytes) as one byte plane per channel: out[c] lane i = p[4 i + c].
 inline void load_planes(const std::uint8_t* p, vu8x32 out[4]) {
   // Per half, 4 texels to R0..R3 G0..G3 B0..B3 A0..A3; then a dword transposition.
-  const __m256i shuf = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0,
-                                        4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
+  const __m256i shuf = _mm256_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15, 0, 4,
+                                        8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
   const __m256i order = _mm256_setr_epi32(0, 4, 1, 5, 2, 6, 3, 7);
   __m256i v[4];
   for (int i = 0; i < 4; ++i) v[i] = _mm256_shuffle_epi8(detail::load256(p + 32 * i), shuf);
@@ -353,9 +356,7 @@ inline U16x16 lanes(vu16x16 a) {
   store_u16x8(a.hi, r.l + 8);
   return r;
 }
-inline vu16x16 from_lanes(const U16x16& r) {
-  return vu16x16(load_u16x8(r.l), load_u16x8(r.l + 8));
-}
+inline vu16x16 from_lanes(const U16x16& r) { return vu16x16(load_u16x8(r.l), load_u16x8(r.l + 8)); }
 }  // namespace detail
 
 inline vi32x8 load8(const std::int32_t* p) { return vi32x8(load4(p), load4(p + 4)); }
@@ -375,7 +376,9 @@ inline void store_u16x16(vu16x16 a, std::uint16_t* p) {
   store_u16x8(a.lo, p);
   store_u16x8(a.hi, p + 8);
 }
-inline vu8x32 load_u8x32(const std::uint8_t* p) { return vu8x32(load_u8x16(p), load_u8x16(p + 16)); }
+inline vu8x32 load_u8x32(const std::uint8_t* p) {
+  return vu8x32(load_u8x16(p), load_u8x16(p + 16));
+}
 inline void store_u8x32(vu8x32 a, std::uint8_t* p) {
   store_u8x16(a.lo, p);
   store_u8x16(a.hi, p + 16);
@@ -400,9 +403,9 @@ inline void store_u8x16(vu16x16 a, std::uint8_t* p) {
   store_u8x8(a.hi, p + 8);
 }
 
-#define TESSERA_SIMD_HALVES2(T, op)                                        \
+#define TESSERA_SIMD_HALVES2(T, op) \
   inline T op(T a, T b) { return T(op(a.lo, b.lo), op(a.hi, b.hi)); }
-#define TESSERA_SIMD_HALVES2R(R, T, op)                                    \
+#define TESSERA_SIMD_HALVES2R(R, T, op) \
   inline R op(T a, T b) { return R(op(a.lo, b.lo), op(a.hi, b.hi)); }
 
 // ---- vi32x8 ----
@@ -453,7 +456,8 @@ inline vi32x8 max(vi32x8 a, vi32x8 b) { return vi32x8(max(a.lo, b.lo), max(a.hi,
 inline vi32x8 swap_pairs(vi32x8 a) { return vi32x8(swap_pairs(a.lo), swap_pairs(a.hi)); }
 inline vi32x8 swap_pairs64(vi32x8 a) {
   const detail::I32x8 x = detail::lanes(a);
-  return detail::from_lanes(detail::I32x8{{x.l[2], x.l[3], x.l[0], x.l[1], x.l[6], x.l[7], x.l[4], x.l[5]}});
+  return detail::from_lanes(
+      detail::I32x8{{x.l[2], x.l[3], x.l[0], x.l[1], x.l[6], x.l[7], x.l[4], x.l[5]}});
 }
 inline vi32x8 swap_halves(vi32x8 a) { return vi32x8(a.hi, a.lo); }
 template <int I0, int I1, int I2, int I3>

@@ -65,17 +65,16 @@ std::vector<std::uint8_t> classify_edge_per_sample(const GBuffer& gb,
   std::vector<std::uint8_t> out(std::size_t(w) * std::size_t(h), 0);
   if (w <= 0 || h <= 0 || gb.m < 1) return out;
   const int first = sample_order(gb.m)[0];
-  parallel_for(
-      0, h, 1,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (int y = int(y0); y < int(y1); ++y) {
-          for (int x = 0; x < w; ++x) {
-            out[std::size_t(y) * std::size_t(w) + std::size_t(x)] =
-                complex_pixel(gb, x, y, first, options) ? 1 : 0;
-          }
-        }
-      },
-      {options.threads});
+  parallel_for(0, h, 1,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 for (int y = int(y0); y < int(y1); ++y) {
+                   for (int x = 0; x < w; ++x) {
+                     out[std::size_t(y) * std::size_t(w) + std::size_t(x)] =
+                         complex_pixel(gb, x, y, first, options) ? 1 : 0;
+                   }
+                 }
+               },
+               {options.threads});
   return out;
 }
 
@@ -95,34 +94,34 @@ AdaptiveResult shade_edge_per_sample(const DeferredRenderer& renderer, const GBu
   res.ms_metric = std::chrono::duration<double, std::milli>(clock::now() - t0).count();
   t0 = clock::now();
   res.samples.assign(complex.size(), 1);
-  parallel_for(
-      0, h, 1,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (int y = int(y0); y < int(y1); ++y) {
-          for (int x = 0; x < w; ++x) {
-            const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
-            std::array<float, 3> c{0, 0, 0};
-            if (complex[i]) {
-              for (int p = 0; p < n; ++p) {
-                const int cell = order[std::size_t(p)];
-                const std::array<float, 3> s = ctx.shade(m * x + cell % m, m * y + cell / m, 1.0f);
-                for (int k = 0; k < 3; ++k) c[std::size_t(k)] += s[std::size_t(k)];
-              }
-              for (float& v : c) v /= float(n);
-              res.samples[i] = std::uint8_t(n);
-            } else {
-              const int cell = order[0];
-              c = ctx.shade(m * x + cell % m, m * y + cell / m, float(m));
-            }
-            float* px = res.image.at(x, y);
-            px[0] = c[0];
-            px[1] = c[1];
-            px[2] = c[2];
-            px[3] = 1.0f;
-          }
-        }
-      },
-      {shading.threads});
+  parallel_for(0, h, 1,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 for (int y = int(y0); y < int(y1); ++y) {
+                   for (int x = 0; x < w; ++x) {
+                     const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
+                     std::array<float, 3> c{0, 0, 0};
+                     if (complex[i]) {
+                       for (int p = 0; p < n; ++p) {
+                         const int cell = order[std::size_t(p)];
+                         const std::array<float, 3> s =
+                             ctx.shade(m * x + cell % m, m * y + cell / m, 1.0f);
+                         for (int k = 0; k < 3; ++k) c[std::size_t(k)] += s[std::size_t(k)];
+                       }
+                       for (float& v : c) v /= float(n);
+                       res.samples[i] = std::uint8_t(n);
+                     } else {
+                       const int cell = order[0];
+                       c = ctx.shade(m * x + cell % m, m * y + cell / m, float(m));
+                     }
+                     float* px = res.image.at(x, y);
+                     px[0] = c[0];
+                     px[1] = c[1];
+                     px[2] = c[2];
+                     px[3] = 1.0f;
+                   }
+                 }
+               },
+               {shading.threads});
   res.ms_rest = std::chrono::duration<double, std::milli>(clock::now() - t0).count();
   for (std::uint8_t s : res.samples) res.samples_shaded += s;
   return res;

@@ -70,8 +70,7 @@ struct Plane {
 
 /// FxaaPixelShader for pixel (x, y): returns the sampling position (posM after the offset).
 void fxaa_pixel(const Plane& luma, int x, int y, const FxaaPresetSteps& preset,
-                const FxaaOptions& o,
-                float& out_x, float& out_y, bool& early_exit) {
+                const FxaaOptions& o, float& out_x, float& out_y, bool& early_exit) {
   float posMx = float(x) + 0.5f, posMy = float(y) + 0.5f;
   out_x = posMx;
   out_y = posMy;
@@ -220,31 +219,30 @@ Result<ImageRGBA8> fxaa(const ImageRGBA8& image, const FxaaOptions& options) {
   const Plane luma{rgbl.data() + 3, w, h, 4};
   ImageRGBA8 out(w, h);
   out.has_alpha = image.has_alpha;
-  parallel_for(
-      0, h, 4,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (int y = int(y0); y < int(y1); ++y) {
-          for (int x = 0; x < w; ++x) {
-            float px = 0, py = 0;
-            bool early = false;
-            fxaa_pixel(luma, x, y, preset->steps, options, px, py, early);
-            std::uint8_t* o = out.at(x, y);
-            const std::uint8_t* in = image.at(x, y);
-            o[3] = in[3];
-            if (early) {
-              o[0] = in[0];
-              o[1] = in[1];
-              o[2] = in[2];
-              continue;
-            }
-            for (int c = 0; c < 3; ++c) {
-              const float v = colour.bilinear(px, py, c);
-              o[c] = std::uint8_t(std::clamp(std::lround(v * 255.0f), 0L, 255L));
-            }
-          }
-        }
-      },
-      {options.threads});
+  parallel_for(0, h, 4,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 for (int y = int(y0); y < int(y1); ++y) {
+                   for (int x = 0; x < w; ++x) {
+                     float px = 0, py = 0;
+                     bool early = false;
+                     fxaa_pixel(luma, x, y, preset->steps, options, px, py, early);
+                     std::uint8_t* o = out.at(x, y);
+                     const std::uint8_t* in = image.at(x, y);
+                     o[3] = in[3];
+                     if (early) {
+                       o[0] = in[0];
+                       o[1] = in[1];
+                       o[2] = in[2];
+                       continue;
+                     }
+                     for (int c = 0; c < 3; ++c) {
+                       const float v = colour.bilinear(px, py, c);
+                       o[c] = std::uint8_t(std::clamp(std::lround(v * 255.0f), 0L, 255L));
+                     }
+                   }
+                 }
+               },
+               {options.threads});
   return out;
 }
 

@@ -36,23 +36,23 @@ ImageRGBAF DeferredRenderer::shade_reference(const GBuffer& gb,
   const int m = gb.m, n = m * m, w = gb.width(), h = gb.height();
   const std::span<const std::uint8_t> order = sample_order(m);
   ImageRGBAF img(w, h);
-  parallel_for(
-      0, h, kRowGrain,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (int y = int(y0); y < int(y1); ++y) {
-          for (int x = 0; x < w; ++x) {
-            std::array<float, 3> sum{0, 0, 0};
-            for (int p = 0; p < n; ++p) {
-              const int cell = order[std::size_t(p)];
-              const std::array<float, 3> c = ctx.shade(m * x + cell % m, m * y + cell / m, 1.0f);
-              for (int k = 0; k < 3; ++k) sum[std::size_t(k)] += c[std::size_t(k)];
-            }
-            for (float& v : sum) v /= float(n);
-            store(img, x, y, sum);
-          }
-        }
-      },
-      {shading.threads});
+  parallel_for(0, h, kRowGrain,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 for (int y = int(y0); y < int(y1); ++y) {
+                   for (int x = 0; x < w; ++x) {
+                     std::array<float, 3> sum{0, 0, 0};
+                     for (int p = 0; p < n; ++p) {
+                       const int cell = order[std::size_t(p)];
+                       const std::array<float, 3> c =
+                           ctx.shade(m * x + cell % m, m * y + cell / m, 1.0f);
+                       for (int k = 0; k < 3; ++k) sum[std::size_t(k)] += c[std::size_t(k)];
+                     }
+                     for (float& v : sum) v /= float(n);
+                     store(img, x, y, sum);
+                   }
+                 }
+               },
+               {shading.threads});
   return img;
 }
 
@@ -61,16 +61,15 @@ ImageRGBAF DeferredRenderer::shade_default(const GBuffer& gb, const ShadingOptio
   const int m = gb.m, w = gb.width(), h = gb.height();
   const int first = sample_order(m)[0];
   ImageRGBAF img(w, h);
-  parallel_for(
-      0, h, kRowGrain,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (int y = int(y0); y < int(y1); ++y) {
-          for (int x = 0; x < w; ++x) {
-            store(img, x, y, ctx.shade(m * x + first % m, m * y + first / m, float(m)));
-          }
-        }
-      },
-      {shading.threads});
+  parallel_for(0, h, kRowGrain,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 for (int y = int(y0); y < int(y1); ++y) {
+                   for (int x = 0; x < w; ++x) {
+                     store(img, x, y, ctx.shade(m * x + first % m, m * y + first / m, float(m)));
+                   }
+                 }
+               },
+               {shading.threads});
   return img;
 }
 
@@ -82,25 +81,24 @@ void shade_first_samples(const ShadeContext& ctx, const GBuffer& gb, int first, 
                          ImageRGBAF& image, std::vector<LightTerms>& terms,
                          std::vector<float>& luma) {
   const int m = gb.m, w = gb.width(), h = gb.height();
-  parallel_for(
-      0, h, kRowGrain,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (int y = int(y0); y < int(y1); ++y) {
-          for (int x = 0; x < w; ++x) {
-            const int gx = m * x + first % m, gy = m * y + first / m;
-            const float* s = gb.sample(gx, gy);
-            const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
-            std::array<float, 3> c = kBackground;
-            if (ctx.material(s) >= 0) {
-              terms[i] = ctx.lighting(gx, gy, s);
-              c = combine(ctx.albedo(s, float(m)), terms[i]);
-            }
-            store(image, x, y, c);
-            luma[i] = luma_srgb(c);
-          }
-        }
-      },
-      {threads});
+  parallel_for(0, h, kRowGrain,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 for (int y = int(y0); y < int(y1); ++y) {
+                   for (int x = 0; x < w; ++x) {
+                     const int gx = m * x + first % m, gy = m * y + first / m;
+                     const float* s = gb.sample(gx, gy);
+                     const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
+                     std::array<float, 3> c = kBackground;
+                     if (ctx.material(s) >= 0) {
+                       terms[i] = ctx.lighting(gx, gy, s);
+                       c = combine(ctx.albedo(s, float(m)), terms[i]);
+                     }
+                     store(image, x, y, c);
+                     luma[i] = luma_srgb(c);
+                   }
+                 }
+               },
+               {threads});
 }
 
 /// Pass 2: the number of extra samples per pixel (the geometry and shading metrics).
@@ -110,53 +108,53 @@ std::vector<std::uint8_t> extra_sample_counts(const ShadeContext& ctx, const GBu
   const int m = gb.m, n = m * m, w = gb.width(), h = gb.height();
   const int k_max = n - 1;
   std::vector<std::uint8_t> extra(std::size_t(w) * std::size_t(h), 0);
-  parallel_for(
-      0, h, kRowGrain,
-      [&](std::int64_t y0, std::int64_t y1) {
-        std::vector<float> depths(static_cast<std::size_t>(n)),
-            normals(static_cast<std::size_t>(n) * 3);
-        for (int y = int(y0); y < int(y1); ++y) {
-          for (int x = 0; x < w; ++x) {
-            const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
-            if (a.force_k >= 0) {
-              extra[i] = std::uint8_t(std::min(a.force_k, k_max));
-              continue;
-            }
-            float k = 0.0f;
-            if (a.use_geometry) {
-              int background = 0;
-              for (int j = 0; j < m; ++j) {
-                for (int c = 0; c < m; ++c) {
-                  const float* s = gb.sample(m * x + c, m * y + j);
-                  const std::size_t q = std::size_t(j * m + c);
-                  depths[q] = s[kChDepth];
-                  const bool bg = ctx.material(s) < 0;
-                  background += bg ? 1 : 0;
-                  for (int d = 0; d < 3; ++d)
-                    normals[q * 3 + std::size_t(d)] = bg ? 0.0f : s[kChNormal + d];
-                }
-              }
-              if (background > 0 && background < n) {
-                k = float(k_max);
-              } else if (background == 0) {
-                k = std::max(metric_depth(depths, a.c_depth),
-                             metric_normal(normals, a.c_normal, n));
-              }
-            }
-            if (a.use_shading && k < float(k_max)) {
-              auto l = [&](int xx, int yy) {
-                xx = std::clamp(xx, 0, w - 1);
-                yy = std::clamp(yy, 0, h - 1);
-                return luma[std::size_t(yy) * std::size_t(w) + std::size_t(xx)];
-              };
-              k = std::max(k, metric_shading(luma[i], l(x, y - 1), l(x, y + 1), l(x - 1, y),
-                                             l(x + 1, y), a.t_min, a.t_edge, a.c_shade, n));
-            }
-            extra[i] = std::uint8_t(std::clamp(int(std::lround(k)), 0, k_max));
-          }
-        }
-      },
-      {threads});
+  parallel_for(0, h, kRowGrain,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 std::vector<float> depths(static_cast<std::size_t>(n)),
+                     normals(static_cast<std::size_t>(n) * 3);
+                 for (int y = int(y0); y < int(y1); ++y) {
+                   for (int x = 0; x < w; ++x) {
+                     const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
+                     if (a.force_k >= 0) {
+                       extra[i] = std::uint8_t(std::min(a.force_k, k_max));
+                       continue;
+                     }
+                     float k = 0.0f;
+                     if (a.use_geometry) {
+                       int background = 0;
+                       for (int j = 0; j < m; ++j) {
+                         for (int c = 0; c < m; ++c) {
+                           const float* s = gb.sample(m * x + c, m * y + j);
+                           const std::size_t q = std::size_t(j * m + c);
+                           depths[q] = s[kChDepth];
+                           const bool bg = ctx.material(s) < 0;
+                           background += bg ? 1 : 0;
+                           for (int d = 0; d < 3; ++d)
+                             normals[q * 3 + std::size_t(d)] = bg ? 0.0f : s[kChNormal + d];
+                         }
+                       }
+                       if (background > 0 && background < n) {
+                         k = float(k_max);
+                       } else if (background == 0) {
+                         k = std::max(metric_depth(depths, a.c_depth),
+                                      metric_normal(normals, a.c_normal, n));
+                       }
+                     }
+                     if (a.use_shading && k < float(k_max)) {
+                       auto l = [&](int xx, int yy) {
+                         xx = std::clamp(xx, 0, w - 1);
+                         yy = std::clamp(yy, 0, h - 1);
+                         return luma[std::size_t(yy) * std::size_t(w) + std::size_t(xx)];
+                       };
+                       k = std::max(k,
+                                    metric_shading(luma[i], l(x, y - 1), l(x, y + 1), l(x - 1, y),
+                                                   l(x + 1, y), a.t_min, a.t_edge, a.c_shade, n));
+                     }
+                     extra[i] = std::uint8_t(std::clamp(int(std::lround(k)), 0, k_max));
+                   }
+                 }
+               },
+               {threads});
   return extra;
 }
 

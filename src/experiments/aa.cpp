@@ -218,7 +218,9 @@ Status run_backend(const Run& run, AaResult& res) {
     if (!rate) return rate.status();
     if (run.c.progress) {
       const Backend b = run.be.backend();
-      run.c.progress((b == Backend::gl ? "GL " : b == Backend::vk ? "Vulkan " : "") +
+      run.c.progress((b == Backend::gl   ? "GL "
+                      : b == Backend::vk ? "Vulkan "
+                                         : "") +
                      rate_line(*rate, rate->method(AaMethod::adaptive).samples_pct));
     }
     res.rates.push_back(std::move(*rate));
@@ -244,10 +246,9 @@ Status compare_backends(AaResult& cpu, const AaResult& gl) {
     for (std::size_t p = 0; p < a.adaptive_samples.size(); ++p) {
       differ += a.adaptive_samples[p] != b.adaptive_samples[p];
     }
-    a.gl_vs_cpu = AaGlVsCpu{
-        q->psnr_rgb, a.adaptive_samples.empty()
-                         ? 0.0
-                         : double(differ) / double(a.adaptive_samples.size())};
+    a.gl_vs_cpu = AaGlVsCpu{q->psnr_rgb, a.adaptive_samples.empty()
+                                             ? 0.0
+                                             : double(differ) / double(a.adaptive_samples.size())};
   }
   return Status::success();
 }

@@ -18,10 +18,10 @@ inline Result<const GpuBackendFactory*> gpu_factory(
   const bool vulkan = backend == Backend::vk;
   const GpuBackendFactory* f = vulkan ? vk.get() : gl.get();
   if (f == nullptr) {
-    return Status::error(ErrorCode::unsupported,
-                         std::string(experiment) + ": backend '" + backend_name(backend) +
-                             "': not built with the " + (vulkan ? "Vulkan" : "OpenGL") +
-                             " runtime");
+    return Status::error(ErrorCode::unsupported, std::string(experiment) + ": backend '" +
+                                                     backend_name(backend) +
+                                                     "': not built with the " +
+                                                     (vulkan ? "Vulkan" : "OpenGL") + " runtime");
   }
   return f;
 }

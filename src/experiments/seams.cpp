@@ -199,7 +199,7 @@ class SeamsRun {
   std::vector<SeamsSamplePattern> gl_patterns_;  // per entry of res.gl_rates
   Agreement ref_agree_;
   faces::FaceRenderOptions o_;  // the CPU's face-id and mask frames
-  FaceFrameOptions fo_;        // the frames of the experiment (kept from frame to frame)
+  FaceFrameOptions fo_;         // the frames of the experiment (kept from frame to frame)
 };
 
 Status SeamsRun::make_backends() {
@@ -256,8 +256,7 @@ Status SeamsRun::make_backends() {
     }
     if (rates_.empty() ||
         (compare_gl_ && std::count(gl_rate_.begin(), gl_rate_.end(), true) == 0)) {
-      return Status::error(ErrorCode::unsupported, "seams: the GPU driver (" +
-                                                       res_.gpu_renderer +
+      return Status::error(ErrorCode::unsupported, "seams: the GPU driver (" + res_.gpu_renderer +
                                                        ") refuses every MSAA rate asked for (" +
                                                        rates_text(res_.msaa_unsupported) + ")");
     }
@@ -282,8 +281,7 @@ Status SeamsRun::start() {
   // The character-only breakdown (Figure-1 scenes): curved geometry, where Traverse's
   // extrapolation is approximate.
   res_.has_character = scene.ground_faces > 0 && scene.ground_faces < set.face_count();
-  res_.quality_frames =
-      c_.quality_frames > 0 ? std::min(c_.quality_frames, c_.frames) : c_.frames;
+  res_.quality_frames = c_.quality_frames > 0 ? std::min(c_.quality_frames, c_.frames) : c_.frames;
   res_.near_seam_pixels = c_.near_seam_pixels;
   res_.threads = c_.threads > 0 ? c_.threads : default_thread_count();
   for (int i = 0; i < kSeamsCdfBins; ++i) res_.thresholds.push_back(double(i) * kSeamsCdfStep);
@@ -573,8 +571,8 @@ Result<SeamsResult> run_steps(const SeamsConfig& c) {
 Result<SeamsResult> run_seams(const SeamsConfig& c) {
   if (Status s = check_config(c); !s.ok()) return s;
   Result<SeamsResult> res = run_steps(c);  // the backends are gone when it returns
-  const GpuBackendFactory* factory = *detail::gpu_factory("seams", c.backend, c.gl_factory,
-                                                          c.vk_factory);
+  const GpuBackendFactory* factory =
+      *detail::gpu_factory("seams", c.backend, c.gl_factory, c.vk_factory);
   if (factory != nullptr) {
     if (Status s = factory->device_status(); !s.ok()) return s;
   }

@@ -1,7 +1,7 @@
 // seams.json of a `run_seams` result (tessera/experiments/seams.h): Table 1 (median ms per
 // frame) and Figure 5 (CDFs of per-pixel linear-RGB 2-norm errors), with the GL-vs-CPU part of
-// Backend::both, and the zoom window; seams.md is seams_report_markdown.cpp. `tessera seams` writes them, the plots and
-// the images beside them; the key names are what users script against.
+// Backend::both, and the zoom window; seams.md is seams_report_markdown.cpp. `tessera seams` writes
+// them, the plots and the images beside them; the key names are what users script against.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -89,11 +89,11 @@ bool gl_time_tables(std::ostringstream& md, const SeamsResult& res, const std::v
              ? "the wall times. This is llvmpipe, a software rasteriser: its GL_TIME_ELAPSED "
                "queries are executed per screen tile by the rasteriser threads and cover only "
                "part of the frame (gl_face_renderer.h)."
-             : res.backend == Backend::vk
-                 ? "the GPU timer (timestamps are written as the commands execute, on lavapipe "
-                   "as on hardware; wall time adds the submission and the fence round trip)."
-                 : "the GPU timer (a hardware GPU: the timer is the pass time; wall time adds "
-                   "the driver's submission and the glFinish round trip).")
+         : res.backend == Backend::vk
+             ? "the GPU timer (timestamps are written as the commands execute, on lavapipe "
+               "as on hardware; wall time adds the submission and the fence round trip)."
+             : "the GPU timer (a hardware GPU: the timer is the pass time; wall time adds "
+               "the driver's submission and the glFinish round trip).")
      << "\n\n";
   return software_gl(res) ? ok[0] : ok[1];
 }
@@ -199,7 +199,8 @@ void md_header(std::ostringstream& md, const SeamsConfig& c, const SeamsResult& 
       }
       md << ".";
     }
-    md << (gl ? " The reference is rendered by the GPU too (Traverse, 16x anisotropic, tiled); face "
+    md << (gl ? " The reference is rendered by the GPU too (Traverse, 16x anisotropic, tiled); "
+                "face "
                 "ids (near-seam pixels) and the character mask come from the CPU renderer, "
                 "whose geometry is the same."
               : "")
@@ -216,9 +217,10 @@ bool md_table1(std::ostringstream& md, const SeamsResult& res) {
   if (gl) {
     md << "Draws + MSAA box resolve on the GPU, all methods rendered side by side in one run, "
           "alternating per frame (no shading-only pass on the GPU).\n\n";
-    speed_ok = gl_time_tables(md, res, res.rates, [](const SeamsRateResult& r, SeamMethod m, bool gpu) {
-      return gpu ? &r.method(m).timing : &r.method(m).wall;
-    });
+    speed_ok =
+        gl_time_tables(md, res, res.rates, [](const SeamsRateResult& r, SeamMethod m, bool gpu) {
+          return gpu ? &r.method(m).timing : &r.method(m).wall;
+        });
   } else {
     md << "Raster + shading + MSAA box resolve, all variants rendered side by side in one run, "
           "alternating per frame; `shading only` is the same pass without the texture "

@@ -84,17 +84,17 @@ Result<PolygonMesh> load_obj_polygons(const std::string& path) {
       for (std::size_t k = 0; k < count; ++k) {
         const long idx = shape.mesh.indices[at + k].vertex_index;
         if (idx < 0 || idx >= n) {
-          return Status::error(ErrorCode::corrupt_data,
-                               path + ": face " + std::to_string(mesh.faces.size()) +
-                                   " has a vertex index out of range");
+          return Status::error(ErrorCode::corrupt_data, path + ": face " +
+                                                            std::to_string(mesh.faces.size()) +
+                                                            " has a vertex index out of range");
         }
         face.push_back(int(idx));
       }
       at += count;
       if (face.size() < 3) {
-        return Status::error(ErrorCode::corrupt_data,
-                             path + ": face " + std::to_string(mesh.faces.size()) +
-                                 " has fewer than 3 vertices");
+        return Status::error(
+            ErrorCode::corrupt_data,
+            path + ": face " + std::to_string(mesh.faces.size()) + " has fewer than 3 vertices");
       }
       mesh.faces.push_back(std::move(face));
     }

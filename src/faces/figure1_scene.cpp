@@ -183,28 +183,27 @@ void assign_resolutions(FaceScene& s, float texels_per_unit, int min_log2, int m
 
 std::vector<ImageRGBAF> bake_faces(const FaceScene& s, const BakeOptions& options) {
   std::vector<ImageRGBAF> images(std::size_t(s.mesh.face_count()));
-  parallel_for(
-      0, s.mesh.face_count(), 16,
-      [&](std::int64_t b, std::int64_t e) {
-        for (std::int64_t f = b; f < e; ++f) {
-          const int w = 1 << s.ulog2[std::size_t(f)], h = 1 << s.vlog2[std::size_t(f)];
-          ImageRGBAF img(w, h);
-          for (int y = 0; y < h; ++y) {
-            for (int x = 0; x < w; ++x) {
-              const Vec3 p = s.mesh.point(
-                  int(f), {(float(x) + 0.5f) / float(w), (float(y) + 0.5f) / float(h)});
-              const std::array<float, 3> c = procedural_colour(p, options.scale);
-              float* px = img.at(x, y);
-              px[0] = c[0];
-              px[1] = c[1];
-              px[2] = c[2];
-              px[3] = 1.0f;
-            }
-          }
-          images[std::size_t(f)] = std::move(img);
-        }
-      },
-      {options.threads});
+  parallel_for(0, s.mesh.face_count(), 16,
+               [&](std::int64_t b, std::int64_t e) {
+                 for (std::int64_t f = b; f < e; ++f) {
+                   const int w = 1 << s.ulog2[std::size_t(f)], h = 1 << s.vlog2[std::size_t(f)];
+                   ImageRGBAF img(w, h);
+                   for (int y = 0; y < h; ++y) {
+                     for (int x = 0; x < w; ++x) {
+                       const Vec3 p = s.mesh.point(
+                           int(f), {(float(x) + 0.5f) / float(w), (float(y) + 0.5f) / float(h)});
+                       const std::array<float, 3> c = procedural_colour(p, options.scale);
+                       float* px = img.at(x, y);
+                       px[0] = c[0];
+                       px[1] = c[1];
+                       px[2] = c[2];
+                       px[3] = 1.0f;
+                     }
+                   }
+                   images[std::size_t(f)] = std::move(img);
+                 }
+               },
+               {options.threads});
   return images;
 }
 

@@ -25,8 +25,8 @@ inline void add(std::array<float, 4>& acc, const std::array<float, 4>& c) {
 }  // namespace
 
 const std::vector<SeamMethod>& all_methods() {
-  static const std::vector<SeamMethod> m = {SeamMethod::clamp, SeamMethod::discard, SeamMethod::traverse,
-                                        SeamMethod::traverse_corners};
+  static const std::vector<SeamMethod> m = {SeamMethod::clamp, SeamMethod::discard,
+                                            SeamMethod::traverse, SeamMethod::traverse_corners};
   return m;
 }
 

@@ -21,7 +21,7 @@ std::uint16_t to_half(float f) {
     return std::uint16_t(sign | 0x7c00u | (abs > 0x7f800000u ? 0x200u : 0u));
   }
   if (abs >= 0x477ff000u) return std::uint16_t(sign | 0x7c00u);  // rounds past 65504
-  if (abs < 0x38800000u) {  // below the smallest normal half: a subnormal (or zero)
+  if (abs < 0x38800000u) {               // below the smallest normal half: a subnormal (or zero)
     if (abs < 0x33000000u) return sign;  // below half the smallest subnormal
     const std::uint32_t mant = (abs & 0x7fffffu) | 0x800000u;
     const int shift = 126 - int(abs >> 23);  // 14..24 from the float's exponent
@@ -48,16 +48,18 @@ std::uint8_t to_unorm8(float v) {
 
 std::size_t texel_bytes(TexelFormat format) {
   switch (format) {
-    case TexelFormat::rgba32f: return 16;
-    case TexelFormat::rgba16f: return 8;
+    case TexelFormat::rgba32f:
+      return 16;
+    case TexelFormat::rgba16f:
+      return 8;
     case TexelFormat::rgba8_unorm:
-    case TexelFormat::rgba8_srgb: return 4;
+    case TexelFormat::rgba8_srgb:
+      return 4;
   }
   return 16;
 }
 
-void convert_texels(const float* rgba, std::size_t texels, TexelFormat format,
-                    std::uint8_t* out) {
+void convert_texels(const float* rgba, std::size_t texels, TexelFormat format, std::uint8_t* out) {
   const std::size_t n = texels * 4;
   switch (format) {
     case TexelFormat::rgba32f:

@@ -56,10 +56,9 @@ class GlAaBackend final : public GlBackend<AaBackend, DeferredRenderer> {
       return out;
     }
     Result<ShadeResult> x = method == AaMethod::default_1spp ? r_->shade_default(so)
-                              : method == AaMethod::reference  ? r_->shade_reference(so)
-                              : method == AaMethod::adaptive
-                                  ? r_->shade_adaptive(so, o.adaptive)
-                                  : r_->shade_edge_per_sample(so, o.edge);
+                            : method == AaMethod::reference  ? r_->shade_reference(so)
+                            : method == AaMethod::adaptive   ? r_->shade_adaptive(so, o.adaptive)
+                                                           : r_->shade_edge_per_sample(so, o.edge);
     if (!x) return x.status();
     out.image = to_srgb8(x->image, {so.threads});
     if (method == AaMethod::adaptive || method == AaMethod::edge_per_sample) {
@@ -80,16 +79,14 @@ Result<std::unique_ptr<AaBackend>> create_aa_backend(const scene::Scene& scene,
                                                      ExtraSchedule schedule) {
   Result<std::unique_ptr<Context>> ctx = Context::create();
   if (!ctx) {
-    return Status::error(ctx.status().code,
-                         "aa: no OpenGL backend: " + ctx.status().message);
+    return Status::error(ctx.status().code, "aa: no OpenGL backend: " + ctx.status().message);
   }
   DeferredRendererOptions go;
   go.glsl_dir = glsl_dir;
   go.schedule = schedule;
   Result<std::unique_ptr<DeferredRenderer>> r = DeferredRenderer::create(scene, go);
   if (!r) return r.status();
-  return std::unique_ptr<AaBackend>(
-      std::make_unique<GlAaBackend>(std::move(*ctx), std::move(*r)));
+  return std::unique_ptr<AaBackend>(std::make_unique<GlAaBackend>(std::move(*ctx), std::move(*r)));
 }
 
 }  // namespace tessera::gl

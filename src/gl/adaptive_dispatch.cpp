@@ -67,12 +67,11 @@ Status check_frame(const State& st, const AdaptiveFrame& f, AdaptiveExtent size)
   const AdaptiveSupersamplerOptions& o = st.options;
   if (Status s = adaptive::check_budget(f.budget, "adaptive supersampler"); !s.ok()) return s;
   if (size.width <= 0 || size.height <= 0 || size.width > o.width || size.height > o.height) {
-    return Status::error(ErrorCode::too_large,
-                         "adaptive supersampler: render size " +
-                             std::to_string(f.render_size.width) + "x" +
-                             std::to_string(f.render_size.height) + " (1.." +
-                             std::to_string(o.width) + " x 1.." + std::to_string(o.height) +
-                             ", the largest size of the options)");
+    return Status::error(
+        ErrorCode::too_large,
+        "adaptive supersampler: render size " + std::to_string(f.render_size.width) + "x" +
+            std::to_string(f.render_size.height) + " (1.." + std::to_string(o.width) + " x 1.." +
+            std::to_string(o.height) + ", the largest size of the options)");
   }
   const int gw = o.m * size.width, gh = o.m * size.height;
   for (int s = 0; s < 4; ++s) {
@@ -94,13 +93,12 @@ Status check_frame(const State& st, const AdaptiveFrame& f, AdaptiveExtent size)
     glGetTextureLevelParameteriv(t, 0, GL_TEXTURE_HEIGHT, &h);
     glGetTextureLevelParameteriv(t, 0, GL_TEXTURE_INTERNAL_FORMAT, &fmt);
     if (w < gw || h < gh) {
-      return Status::error(ErrorCode::size_mismatch,
-                           slot + ": texture " + std::to_string(t) + " is " + std::to_string(w) +
-                               "x" + std::to_string(h) + ", smaller than the G-buffer " +
-                               std::to_string(gw) + "x" + std::to_string(gh) + " (m = " +
-                               std::to_string(o.m) + ", render size " +
-                               std::to_string(size.width) + "x" + std::to_string(size.height) +
-                               ")");
+      return Status::error(
+          ErrorCode::size_mismatch,
+          slot + ": texture " + std::to_string(t) + " is " + std::to_string(w) + "x" +
+              std::to_string(h) + ", smaller than the G-buffer " + std::to_string(gw) + "x" +
+              std::to_string(gh) + " (m = " + std::to_string(o.m) + ", render size " +
+              std::to_string(size.width) + "x" + std::to_string(size.height) + ")");
     }
     const int channels = format_channels(fmt);
     if (channels == 0) {
@@ -302,8 +300,8 @@ using Mode = adaptive::Mode;
 Result<AdaptiveFrameResult> run_frame(State& st, const AdaptiveFrame& f, Mode mode) {
   if (Status s = check_current_context("adaptive supersampler: dispatch"); !s.ok()) return s;
   const AdaptiveExtent size = f.render_size.width == 0 && f.render_size.height == 0
-                                   ? AdaptiveExtent{st.options.width, st.options.height}
-                                   : f.render_size;
+                                  ? AdaptiveExtent{st.options.width, st.options.height}
+                                  : f.render_size;
   if (Status s = check_frame(st, f, size); !s.ok()) return s;
   AdaptiveFrameResult r;
   Status status = Status::success();

@@ -68,8 +68,8 @@ Status check_options(AdaptiveSupersampler::State& st) {
         "adaptive supersampler: work buffer of " + std::to_string(work_bytes) +
             " bytes exceeds GL_MAX_SHADER_STORAGE_BLOCK_SIZE = " + std::to_string(max_block));
   }
-  st.derived.list_capacity = adaptive::list_capacity(
-      o, st.derived.n, std::size_t(max_block) / adaptive::kListItemBytes);
+  st.derived.list_capacity =
+      adaptive::list_capacity(o, st.derived.n, std::size_t(max_block) / adaptive::kListItemBytes);
   Result<int> tu = binding(o.first_texture_unit, 4, GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS,
                            "first_texture_unit", "GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS");
   if (!tu) return tu.status();

@@ -103,8 +103,8 @@ EglDevices enumerate_devices(const char* client_extensions) {
   r.query_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
       eglGetProcAddress("eglQueryDeviceStringEXT"));
   EGLint count = 0;
-  if (query_devices == nullptr || r.query_string == nullptr ||
-      !query_devices(0, nullptr, &count) || count <= 0) {
+  if (query_devices == nullptr || r.query_string == nullptr || !query_devices(0, nullptr, &count) ||
+      count <= 0) {
     return r;
   }
   r.devices.resize(std::size_t(count));
@@ -128,12 +128,14 @@ DeviceInfo describe(const EglDevices& d, int i) {
 
 std::string device_label(const DeviceInfo& d) {
   return "EGL device " + std::to_string(d.index) + " (" +
-         (d.software ? std::string("software") : d.drm_file.empty() ? "hardware" : d.drm_file) +
+         (d.software           ? std::string("software")
+          : d.drm_file.empty() ? "hardware"
+                               : d.drm_file) +
          ")";
 }
 
-void APIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GLenum severity,
-                             GLsizei length, const GLchar* message, const void* user) {
+void APIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
+                             const GLchar* message, const void* user) {
   auto* state = static_cast<Context::State*>(const_cast<void*>(user));
   DebugMessage m;
   m.source = source;
@@ -168,9 +170,12 @@ struct Candidate {
 Result<DeviceSelection> parse_device_selection(std::string_view text) {
   DeviceSelection s;
   if (text.empty() || text == "auto") return s;
-  if (text == "hardware") s.choice = DeviceChoice::hardware;
-  else if (text == "software") s.choice = DeviceChoice::software;
-  else if (text == "surfaceless") s.choice = DeviceChoice::surfaceless;
+  if (text == "hardware")
+    s.choice = DeviceChoice::hardware;
+  else if (text == "software")
+    s.choice = DeviceChoice::software;
+  else if (text == "surfaceless")
+    s.choice = DeviceChoice::surfaceless;
   else {
     int v = -1;
     const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
@@ -234,8 +239,8 @@ Result<std::vector<Candidate>> choose_candidates(const ContextOptions& options) 
 
   std::vector<Candidate> candidates;
   auto add_device = [&](const DeviceInfo& d) {
-    candidates.push_back({device_label(d), EGL_PLATFORM_DEVICE_EXT,
-                          devices.devices[std::size_t(d.index)]});
+    candidates.push_back(
+        {device_label(d), EGL_PLATFORM_DEVICE_EXT, devices.devices[std::size_t(d.index)]});
   };
   const DeviceSelection s = *sel;
   if (s.choice == DeviceChoice::index) {
@@ -248,8 +253,8 @@ Result<std::vector<Candidate>> choose_candidates(const ContextOptions& options) 
       return Status::error(ErrorCode::invalid_argument,
                            origin + "=" + text + ": no EGL device " + std::to_string(s.index) +
                                " (" + std::to_string(infos.size()) + " device" +
-                               (infos.size() == 1 ? "" : "s") +
-                               (list.empty() ? "" : ": " + list) + ")");
+                               (infos.size() == 1 ? "" : "s") + (list.empty() ? "" : ": " + list) +
+                               ")");
     }
     add_device(infos[std::size_t(s.index)]);
   }
@@ -261,8 +266,8 @@ Result<std::vector<Candidate>> choose_candidates(const ContextOptions& options) 
     if (d.software && (any || s.choice == DeviceChoice::software)) add_device(d);
   }
   if ((any || s.choice == DeviceChoice::surfaceless) && surfaceless_ok) {
-    candidates.push_back({"EGL surfaceless platform", EGL_PLATFORM_SURFACELESS_MESA,
-                          EGL_DEFAULT_DISPLAY});
+    candidates.push_back(
+        {"EGL surfaceless platform", EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY});
   }
   if (candidates.empty()) {
     const char* what = s.choice == DeviceChoice::hardware      ? "no hardware EGL device"

@@ -18,14 +18,22 @@ std::atomic<internal::TakeContextErrors> g_context_errors{nullptr};
 
 const char* gl_error_name(GLenum e) {
   switch (e) {
-    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
-    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
-    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    default: return "GL error";
+    case GL_INVALID_ENUM:
+      return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE:
+      return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION:
+      return "GL_INVALID_OPERATION";
+    case GL_STACK_OVERFLOW:
+      return "GL_STACK_OVERFLOW";
+    case GL_STACK_UNDERFLOW:
+      return "GL_STACK_UNDERFLOW";
+    case GL_OUT_OF_MEMORY:
+      return "GL_OUT_OF_MEMORY";
+    case GL_INVALID_FRAMEBUFFER_OPERATION:
+      return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    default:
+      return "GL error";
   }
 }
 
@@ -56,9 +64,9 @@ Status check_current_context(std::string_view what) {
   if (major * 10 + minor < 45) {
     while (glGetError() != GL_NO_ERROR) {  // GL_MAJOR_VERSION is unknown before 3.0
     }
-    return Status::error(ErrorCode::unsupported,
-                         std::string(what) + ": OpenGL " +
-                             reinterpret_cast<const char*>(version) + " is below 4.5");
+    return Status::error(
+        ErrorCode::unsupported,
+        std::string(what) + ": OpenGL " + reinterpret_cast<const char*>(version) + " is below 4.5");
   }
   return Status::success();
 }

@@ -321,7 +321,7 @@ Result<ShadeResult> DeferredRenderer::shade_default(const deferred::ShadingOptio
 }
 
 Result<ShadeResult> DeferredRenderer::shade_adaptive(const deferred::ShadingOptions& o,
-                                                         const deferred::AdaptiveOptions& a) {
+                                                     const deferred::AdaptiveOptions& a) {
   State& st = *state_;
   if (Status s = bind_inputs(st, o, &a, nullptr); !s.ok()) return s;
   ShadeResult r;
@@ -352,7 +352,7 @@ Result<ShadeResult> DeferredRenderer::shade_edge_per_sample(
 }
 
 Result<FxaaResult> DeferredRenderer::shade_default_fxaa(const deferred::ShadingOptions& o,
-                                                            const deferred::FxaaOptions& f) {
+                                                        const deferred::FxaaOptions& f) {
   State& st = *state_;
   Result<std::vector<std::string>> fd = deferred::gpu_fxaa_defines(f);
   if (!fd) return fd.status();
@@ -371,8 +371,7 @@ Result<FxaaResult> DeferredRenderer::shade_default_fxaa(const deferred::ShadingO
   return r;
 }
 
-Result<FxaaResult> DeferredRenderer::fxaa(const ImageRGBA8& image,
-                                              const deferred::FxaaOptions& f) {
+Result<FxaaResult> DeferredRenderer::fxaa(const ImageRGBA8& image, const deferred::FxaaOptions& f) {
   State& st = *state_;
   if (image.empty()) return Status::error(ErrorCode::invalid_argument, "fxaa: empty image");
   Result<std::vector<std::string>> fd = deferred::gpu_fxaa_defines(f);

@@ -1,5 +1,6 @@
 // Internal to src/gl: the state of tessera::gl::DeferredRenderer, shared by
-// deferred_renderer_scene.cpp (textures, meshes, geometry pass) and deferred_renderer.cpp (compute passes).
+// deferred_renderer_scene.cpp (textures, meshes, geometry pass) and deferred_renderer.cpp (compute
+// passes).
 #pragma once
 
 #include <array>
@@ -27,7 +28,7 @@ struct DeferredRenderer::State {
   const scene::Scene* scene = nullptr;
   DeferredRendererOptions options;
   std::vector<texture::Texture> cpu_textures;  // the CPU chains (render::build_scene_textures)
-  std::vector<Object> class_arrays;   // one GL_TEXTURE_2D_ARRAY per texture size
+  std::vector<Object> class_arrays;            // one GL_TEXTURE_2D_ARRAY per texture size
   Object materials_ssbo;
   std::vector<GlMesh> meshes;
   std::vector<float> scratch;  // per-frame vertex data
@@ -49,8 +50,8 @@ struct DeferredRenderer::State {
   std::size_t list_base_pixels = 0, list_capacity = 0;
   std::map<std::string, Program> programs;  // by preamble
   // The adaptive, reference and 1 spp passes for m >= 2: gl::AdaptiveSupersampler with this
-  // G-buffer and deferred_shading.glsl's shading as its hook (deferred_renderer_component.cpp), made
-  // again when (w, h, m, schedule, texture classes) change.
+  // G-buffer and deferred_shading.glsl's shading as its hook (deferred_renderer_component.cpp),
+  // made again when (w, h, m, schedule, texture classes) change.
   std::unique_ptr<AdaptiveSupersampler> component;
   std::array<int, 5> component_key{};
 };

@@ -73,8 +73,8 @@ void upload_meshes(const std::vector<scene::Mesh>& scene_meshes, std::vector<GlM
     g.static_vbo = create_object(ObjectType::buffer);
     g.ebo = create_object(ObjectType::buffer);
     const std::vector<float> st_data = deferred::gpu_static_vertices(mesh);
-    glNamedBufferStorage(g.static_vbo.get(), GLsizeiptr(std::max<std::size_t>(1, st_data.size()) *
-                                                        sizeof(float)),
+    glNamedBufferStorage(g.static_vbo.get(),
+                         GLsizeiptr(std::max<std::size_t>(1, st_data.size()) * sizeof(float)),
                          st_data.empty() ? nullptr : st_data.data(), 0);
     glNamedBufferStorage(g.ebo.get(),
                          GLsizeiptr(std::max<std::size_t>(1, g.indices) * sizeof(std::uint32_t)),
@@ -100,9 +100,7 @@ void upload_meshes(const std::vector<scene::Mesh>& scene_meshes, std::vector<GlM
 
 DeferredRenderer::~DeferredRenderer() = default;
 
-const std::filesystem::path& DeferredRenderer::glsl_dir() const {
-  return state_->options.glsl_dir;
-}
+const std::filesystem::path& DeferredRenderer::glsl_dir() const { return state_->options.glsl_dir; }
 double DeferredRenderer::last_gbuffer_ms() const { return state_->gbuffer_ms; }
 double DeferredRenderer::last_gbuffer_wall_ms() const { return state_->gbuffer_wall_ms; }
 int DeferredRenderer::width() const { return state_->w; }
@@ -131,8 +129,7 @@ Result<std::unique_ptr<DeferredRenderer>> DeferredRenderer::create(
   const std::filesystem::path& d = st.options.glsl_dir;
   Result<glsl::Source> vs = glsl::shipped_shader(glsl::Stage::vertex, "deferred_gbuffer.vert", d);
   if (!vs) return vs.status();
-  Result<glsl::Source> fs =
-      glsl::shipped_shader(glsl::Stage::fragment, "deferred_gbuffer.frag", d);
+  Result<glsl::Source> fs = glsl::shipped_shader(glsl::Stage::fragment, "deferred_gbuffer.frag", d);
   if (!fs) return fs.status();
   glsl::ExpandOptions so;
   so.shipped_dir = d;
@@ -150,9 +147,9 @@ Status DeferredRenderer::check_size(int width, int height, int m) const {
                          "deferred GL: window size m must be in [1, 8], got " + std::to_string(m));
   }
   if (width < 1 || height < 1) {
-    return Status::error(ErrorCode::invalid_argument,
-                         "deferred GL: bad output size " + std::to_string(width) + "x" +
-                             std::to_string(height));
+    return Status::error(
+        ErrorCode::invalid_argument,
+        "deferred GL: bad output size " + std::to_string(width) + "x" + std::to_string(height));
   }
   GLint fw = 0, fh = 0, tex = 0, rb = 0;
   glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &fw);
@@ -164,7 +161,8 @@ Status DeferredRenderer::check_size(int width, int height, int m) const {
                            std::to_string(gh) + " (" + std::to_string(width) + "x" +
                            std::to_string(height) + ", m = " + std::to_string(m) + ") exceeds ";
   const std::pair<std::int64_t, std::pair<GLint, const char*>> checks[] = {
-      {gw, {fw, "GL_MAX_FRAMEBUFFER_WIDTH"}}, {gh, {fh, "GL_MAX_FRAMEBUFFER_HEIGHT"}},
+      {gw, {fw, "GL_MAX_FRAMEBUFFER_WIDTH"}},
+      {gh, {fh, "GL_MAX_FRAMEBUFFER_HEIGHT"}},
       {std::max(gw, gh), {tex, "GL_MAX_TEXTURE_SIZE"}},
       {std::max(gw, gh), {rb, "GL_MAX_RENDERBUFFER_SIZE"}}};
   for (const auto& [value, limit] : checks) {
@@ -176,8 +174,7 @@ Status DeferredRenderer::check_size(int width, int height, int m) const {
   return Status::success();
 }
 
-Status DeferredRenderer::render_gbuffer(const scene::Camera& camera, int width, int height,
-                                          int m) {
+Status DeferredRenderer::render_gbuffer(const scene::Camera& camera, int width, int height, int m) {
   if (Status s = check_size(width, height, m); !s.ok()) return s;
   State& st = *state_;
   const int gw = width * m, gh = height * m;
@@ -202,14 +199,16 @@ Status DeferredRenderer::render_gbuffer(const scene::Camera& camera, int width, 
     const GLenum status = glCheckNamedFramebufferStatus(st.fbo.get(), GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
       st.fbo.reset();
-      return Status::error(ErrorCode::unsupported,
-                           "deferred GL: G-buffer framebuffer " + std::to_string(gw) + "x" +
-                               std::to_string(gh) + " (3 x RGBA32F + D32F) is incomplete (0x" +
-                               [&] {
-                                 char b[16];
-                                 std::snprintf(b, sizeof b, "%04X", status);
-                                 return std::string(b);
-                               }() + ")");
+      return Status::error(
+          ErrorCode::unsupported, "deferred GL: G-buffer framebuffer " + std::to_string(gw) + "x" +
+                                      std::to_string(gh) +
+                                      " (3 x RGBA32F + D32F) is incomplete (0x" +
+                                      [&] {
+                                        char b[16];
+                                        std::snprintf(b, sizeof b, "%04X", status);
+                                        return std::string(b);
+                                      }() +
+                                      ")");
     }
     st.w = width;
     st.h = height;
@@ -289,11 +288,10 @@ Result<deferred::GBuffer> DeferredRenderer::read_gbuffer() const {
   gb.aspect = st.camera.aspect;
   const Object* tex[3] = {&st.g0, &st.g1, &st.g2};
   // Channel of each texture component (-1 = not stored).
-  const int map[3][4] = {{deferred::kChDepth, deferred::kChNormal, deferred::kChNormal + 1,
-                          deferred::kChNormal + 2},
-                         {deferred::kChMaterial, deferred::kChUv, deferred::kChUv + 1, -1},
-                         {deferred::kChDuvDx, deferred::kChDuvDx + 1, deferred::kChDuvDy,
-                          deferred::kChDuvDy + 1}};
+  const int map[3][4] = {
+      {deferred::kChDepth, deferred::kChNormal, deferred::kChNormal + 1, deferred::kChNormal + 2},
+      {deferred::kChMaterial, deferred::kChUv, deferred::kChUv + 1, -1},
+      {deferred::kChDuvDx, deferred::kChDuvDx + 1, deferred::kChDuvDy, deferred::kChDuvDy + 1}};
   for (int t = 0; t < 3; ++t) {
     Result<ImageRGBAF> img = read_texture_rgbaf(tex[t]->get(), 0, 0);
     if (!img) return img.status();

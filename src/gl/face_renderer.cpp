@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "gl/gl_api.h"
-#include "tessera/glsl.h"
 #include "tessera/gl_face_renderer.h"
+#include "tessera/glsl.h"
 #include "tessera/raster.h"
 
 namespace tessera::gl {
@@ -26,7 +26,7 @@ struct FaceRenderer::State {
   FaceTextureSet textures;
   std::filesystem::path glsl_dir;
   Object vao, clip_buffer, normal_buffer, index_buffer;
-  std::vector<float> clip;  // 4 floats per vertex, 4 vertices per face
+  std::vector<float> clip;                   // 4 floats per vertex, 4 vertices per face
   std::vector<faces::FaceClassDraw> ranges;  // one draw per face class
   std::map<int, Program> programs;
   std::map<int, bool> msaa_ok;
@@ -44,7 +44,8 @@ Result<const Program*> FaceRenderer::State::program(const FaceFrameOptions& o) {
   const int output = int(o.output);
   const int key = method * 4 + fallback * 2 + output;
   if (auto it = programs.find(key); it != programs.end()) return &it->second;
-  Result<glsl::Source> vs = glsl::shipped_shader(glsl::Stage::vertex, "seams_render.vert", glsl_dir);
+  Result<glsl::Source> vs =
+      glsl::shipped_shader(glsl::Stage::vertex, "seams_render.vert", glsl_dir);
   if (!vs) return vs.status();
   Result<glsl::Source> fs =
       glsl::shipped_shader(glsl::Stage::fragment, "seams_render.frag", glsl_dir);
@@ -92,8 +93,8 @@ const FaceTextureSet& FaceRenderer::textures() const { return state_->textures; 
 const std::filesystem::path& FaceRenderer::glsl_dir() const { return state_->glsl_dir; }
 
 Result<std::unique_ptr<FaceRenderer>> FaceRenderer::create(const faces::FaceScene& scene,
-                                                             const faces::FaceTextureSet& set,
-                                                             const FaceRendererOptions& options) {
+                                                           const faces::FaceTextureSet& set,
+                                                           const FaceRendererOptions& options) {
   const faces::QuadMesh& m = scene.mesh;
   if (m.face_count() != set.face_count()) {
     return Status::error(ErrorCode::size_mismatch,
@@ -117,10 +118,11 @@ Result<std::unique_ptr<FaceRenderer>> FaceRenderer::create(const faces::FaceScen
   const int classes = s.textures.class_count();
   if (classes > 16 || 2 * classes > units) {
     return Status::error(ErrorCode::unsupported,
-                         scene.name + ": " + std::to_string(classes) +
-                             " face classes need " + std::to_string(2 * classes) +
+                         scene.name + ": " + std::to_string(classes) + " face classes need " +
+                             std::to_string(2 * classes) +
                              " fragment texture units (seams.glsl: at most 16 classes; "
-                             "GL_MAX_TEXTURE_IMAGE_UNITS = " + std::to_string(units) + ")");
+                             "GL_MAX_TEXTURE_IMAGE_UNITS = " +
+                             std::to_string(units) + ")");
   }
   glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &s.max_anisotropy);
   s.max_anisotropy = std::max(1.0f, s.max_anisotropy);
@@ -180,9 +182,9 @@ Result<SamplePattern> FaceRenderer::sample_pattern(int msaa) {
   }
   if (auto it = state_->patterns.find(msaa); it != state_->patterns.end()) return it->second;
   if (!msaa_supported(msaa)) {
-    return Status::error(ErrorCode::unsupported,
-                         "face renderer: the driver refuses " + std::to_string(msaa) +
-                             "x MSAA for RGBA32F + depth");
+    return Status::error(
+        ErrorCode::unsupported,
+        "face renderer: the driver refuses " + std::to_string(msaa) + "x MSAA for RGBA32F + depth");
   }
   SamplePattern p;
   p.requested = msaa;
@@ -210,9 +212,9 @@ Result<SamplePattern> FaceRenderer::sample_pattern(int msaa) {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(previous));
     if (Status st = check_errors("face renderer: sample positions"); !st.ok()) return st;
     if (samples < msaa) {
-      return Status::error(ErrorCode::unsupported,
-                           "face renderer: the driver gave " + std::to_string(samples) +
-                               " samples for " + std::to_string(msaa) + "x MSAA");
+      return Status::error(ErrorCode::unsupported, "face renderer: the driver gave " +
+                                                       std::to_string(samples) + " samples for " +
+                                                       std::to_string(msaa) + "x MSAA");
     }
     p.samples = int(samples);
   }
@@ -285,9 +287,9 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceFr
                          "face renderer: the filter must be trilinear or anisotropic");
   }
   if (!msaa_supported(o.msaa)) {
-    return Status::error(ErrorCode::unsupported,
-                         "face renderer: the driver refuses " + std::to_string(o.msaa) +
-                             "x MSAA for RGBA32F + depth");
+    return Status::error(ErrorCode::unsupported, "face renderer: the driver refuses " +
+                                                     std::to_string(o.msaa) +
+                                                     "x MSAA for RGBA32F + depth");
   }
   Result<SamplePattern> pattern = sample_pattern(o.msaa);
   if (!pattern) return pattern.status();
@@ -345,9 +347,8 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceFr
   std::uint32_t read_fb = s.target.framebuffer.get();
   if (o.msaa > 1) {
     if (Status st = timer.begin("resolve"); !st.ok()) return st;
-    glBlitNamedFramebuffer(s.target.framebuffer.get(), s.resolved.framebuffer.get(), 0, 0,
-                           o.width, o.height, 0, 0, o.width, o.height, GL_COLOR_BUFFER_BIT,
-                           GL_NEAREST);
+    glBlitNamedFramebuffer(s.target.framebuffer.get(), s.resolved.framebuffer.get(), 0, 0, o.width,
+                           o.height, 0, 0, o.width, o.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     if (Status st = timer.end(); !st.ok()) return st;
     read_fb = s.resolved.framebuffer.get();
   }
@@ -379,8 +380,8 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceFr
 }
 
 Result<ImageRGBAF> FaceRenderer::render_reference(const scene::Camera& camera, int width,
-                                                   int height,
-                                                   const faces::ReferenceOptions& options) {
+                                                  int height,
+                                                  const faces::ReferenceOptions& options) {
   return faces::render_reference_with<FaceFrameOptions>(*this, camera, width, height, options);
 }
 

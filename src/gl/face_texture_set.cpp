@@ -63,8 +63,8 @@ class UnpackStateGuard {
 
  private:
   static constexpr std::array<GLenum, 8> kNames = {
-      GL_UNPACK_ALIGNMENT,   GL_UNPACK_ROW_LENGTH,  GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
-      GL_UNPACK_SKIP_ROWS,   GL_UNPACK_SKIP_IMAGES, GL_UNPACK_SWAP_BYTES,   GL_UNPACK_LSB_FIRST};
+      GL_UNPACK_ALIGNMENT, GL_UNPACK_ROW_LENGTH,  GL_UNPACK_IMAGE_HEIGHT, GL_UNPACK_SKIP_PIXELS,
+      GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_IMAGES, GL_UNPACK_SWAP_BYTES,   GL_UNPACK_LSB_FIRST};
   static constexpr std::array<GLint, 8> kUpload = {4, 0, 0, 0, 0, 0, 0, 0};
   std::array<GLint, 8> saved_{};
   GLint buffer_ = 0;
@@ -73,7 +73,7 @@ class UnpackStateGuard {
 }  // namespace
 
 Result<FaceTextureSet> FaceTextureSet::upload(const faces::FaceTextureSet& set,
-                                          const FaceTextureSetOptions& options) {
+                                              const FaceTextureSetOptions& options) {
   if (Status s = check_current_context("FaceTextureSet::upload"); !s.ok()) return s;
   if (Status s = check_errors("FaceTextureSet::upload (errors before it)"); !s.ok()) return s;
   const UnpackStateGuard unpack;
@@ -98,10 +98,10 @@ Result<FaceTextureSet> FaceTextureSet::upload(const faces::FaceTextureSet& set,
   const bool converted_upload = format != faces::TexelFormat::rgba32f;
   const GLenum upload_type =
       format == faces::TexelFormat::rgba16f ? GL_HALF_FLOAT : GL_UNSIGNED_BYTE;
-  const GLenum internal = format == faces::TexelFormat::rgba32f   ? GL_RGBA32F
-                          : format == faces::TexelFormat::rgba16f ? GL_RGBA16F
+  const GLenum internal = format == faces::TexelFormat::rgba32f       ? GL_RGBA32F
+                          : format == faces::TexelFormat::rgba16f     ? GL_RGBA16F
                           : format == faces::TexelFormat::rgba8_unorm ? GL_RGBA8
-                                                                     : GL_SRGB8_ALPHA8;
+                                                                      : GL_SRGB8_ALPHA8;
   std::vector<std::uint8_t> converted;  // faces::convert_texels's bytes
   for (const FaceClass& c : out.layout_.classes) {
     Object tex = create_object(ObjectType::texture, GL_TEXTURE_2D_ARRAY);
@@ -121,8 +121,8 @@ Result<FaceTextureSet> FaceTextureSet::upload(const faces::FaceTextureSet& set,
           glTextureSubImage3D(tex.get(), level, 0, 0, layer, view.width, view.height, 1, GL_RGBA,
                               upload_type, converted.data());
         } else {
-          glTextureSubImage3D(tex.get(), level, 0, 0, layer, view.width, view.height, 1,
-                              GL_RGBA, GL_FLOAT, view.texels);
+          glTextureSubImage3D(tex.get(), level, 0, 0, layer, view.width, view.height, 1, GL_RGBA,
+                              GL_FLOAT, view.texels);
         }
         if (layer == 0) {
           out.texture_bytes_ += std::uint64_t(view.width) * std::uint64_t(view.height) *
@@ -187,9 +187,9 @@ Status FaceTextureSet::bind(const FaceTextureSetBindings& b) const {
                 range(clamp_unit, classes));
   }
   if (b.records_binding >= ssbo_bindings) {
-    return fail("records_binding " + std::to_string(b.records_binding) +
-                " exceeds GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS = " +
-                std::to_string(ssbo_bindings));
+    return fail(
+        "records_binding " + std::to_string(b.records_binding) +
+        " exceeds GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS = " + std::to_string(ssbo_bindings));
   }
   for (int c = 0; c < classes; ++c) {
     glBindTextureUnit(GLuint(b.border_unit + c), array_texture(c));

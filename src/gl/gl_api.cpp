@@ -30,8 +30,8 @@ struct Table {
 
 // Resolves every name with `loader` into `t`; "" or the first missing name.
 std::string resolve(detail::ErasedLoader loader, const void* context, Table& t) {
-#define TESSERA_GL_RESOLVE(name, type)                         \
-  t.name = reinterpret_cast<type>(loader(context, #name));     \
+#define TESSERA_GL_RESOLVE(name, type)                     \
+  t.name = reinterpret_cast<type>(loader(context, #name)); \
   if (t.name == nullptr) return #name;
   TESSERA_GL_FUNCTIONS(TESSERA_GL_RESOLVE)
 #undef TESSERA_GL_RESOLVE
@@ -105,8 +105,9 @@ Status detail::load_entry_points(ErasedLoader loader, const void* context) {
     return Status::error(ErrorCode::invalid_argument, "gl::load_entry_points: no loader");
   }
   if (const std::string missing = api::load_with(loader, context); !missing.empty()) {
-    return Status::error(ErrorCode::unsupported, "gl::load_entry_points: the loader does not know " +
-                                                     missing + " (OpenGL 4.5 core is needed)");
+    return Status::error(ErrorCode::unsupported,
+                         "gl::load_entry_points: the loader does not know " + missing +
+                             " (OpenGL 4.5 core is needed)");
   }
   return Status::success();
 }

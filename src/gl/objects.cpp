@@ -29,15 +29,33 @@ void Object::reset() {
   if (glDeleteBuffers != nullptr) {
     const GLuint n = name_;
     switch (type_) {
-      case ObjectType::buffer: glDeleteBuffers(1, &n); break;
-      case ObjectType::texture: glDeleteTextures(1, &n); break;
-      case ObjectType::framebuffer: glDeleteFramebuffers(1, &n); break;
-      case ObjectType::renderbuffer: glDeleteRenderbuffers(1, &n); break;
-      case ObjectType::vertex_array: glDeleteVertexArrays(1, &n); break;
-      case ObjectType::query: glDeleteQueries(1, &n); break;
-      case ObjectType::sampler: glDeleteSamplers(1, &n); break;
-      case ObjectType::program: glDeleteProgram(n); break;
-      case ObjectType::shader: glDeleteShader(n); break;
+      case ObjectType::buffer:
+        glDeleteBuffers(1, &n);
+        break;
+      case ObjectType::texture:
+        glDeleteTextures(1, &n);
+        break;
+      case ObjectType::framebuffer:
+        glDeleteFramebuffers(1, &n);
+        break;
+      case ObjectType::renderbuffer:
+        glDeleteRenderbuffers(1, &n);
+        break;
+      case ObjectType::vertex_array:
+        glDeleteVertexArrays(1, &n);
+        break;
+      case ObjectType::query:
+        glDeleteQueries(1, &n);
+        break;
+      case ObjectType::sampler:
+        glDeleteSamplers(1, &n);
+        break;
+      case ObjectType::program:
+        glDeleteProgram(n);
+        break;
+      case ObjectType::shader:
+        glDeleteShader(n);
+        break;
     }
   }
   name_ = 0;
@@ -47,15 +65,33 @@ Object create_object(ObjectType type, std::uint32_t target) {
   GLuint n = 0;
   if (!ensure_loaded()) return Object();  // name 0: the caller's check_errors says why
   switch (type) {
-    case ObjectType::buffer: glCreateBuffers(1, &n); break;
-    case ObjectType::texture: glCreateTextures(target, 1, &n); break;
-    case ObjectType::framebuffer: glCreateFramebuffers(1, &n); break;
-    case ObjectType::renderbuffer: glCreateRenderbuffers(1, &n); break;
-    case ObjectType::vertex_array: glCreateVertexArrays(1, &n); break;
-    case ObjectType::query: glCreateQueries(target, 1, &n); break;
-    case ObjectType::sampler: glCreateSamplers(1, &n); break;
-    case ObjectType::program: n = glCreateProgram(); break;
-    case ObjectType::shader: n = glCreateShader(target); break;
+    case ObjectType::buffer:
+      glCreateBuffers(1, &n);
+      break;
+    case ObjectType::texture:
+      glCreateTextures(target, 1, &n);
+      break;
+    case ObjectType::framebuffer:
+      glCreateFramebuffers(1, &n);
+      break;
+    case ObjectType::renderbuffer:
+      glCreateRenderbuffers(1, &n);
+      break;
+    case ObjectType::vertex_array:
+      glCreateVertexArrays(1, &n);
+      break;
+    case ObjectType::query:
+      glCreateQueries(target, 1, &n);
+      break;
+    case ObjectType::sampler:
+      glCreateSamplers(1, &n);
+      break;
+    case ObjectType::program:
+      n = glCreateProgram();
+      break;
+    case ObjectType::shader:
+      n = glCreateShader(target);
+      break;
   }
   return Object(type, n);
 }
@@ -96,9 +132,9 @@ Result<std::vector<PassTime>> GpuTimer::collect() {
     glGetQueryObjectui64v(p.query.get(), GL_QUERY_RESULT, &ns);  // waits for the result
     const double ms = double(ns) * 1e-6;
     // The GPU cannot have worked on the pass before begin() or after the result arrived.
-    const double wall_ms = std::chrono::duration<double, std::milli>(
-                               std::chrono::steady_clock::now() - p.begun)
-                               .count();
+    const double wall_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - p.begun)
+            .count();
     if (ms > wall_ms + 1.0) {
       return Status::error(ErrorCode::unsupported,
                            "GpuTimer: pass '" + p.pass + "' reports " + std::to_string(ms) +
@@ -127,9 +163,9 @@ Result<RenderTarget> create_render_target(const RenderTargetOptions& o) {
                          what + ": size outside 1.." + std::to_string(max_size));
   }
   if (o.samples < 1 || o.samples > std::max(1, max_samples)) {
-    return Status::error(ErrorCode::unsupported,
-                         what + ": the implementation supports at most " +
-                             std::to_string(max_samples) + " samples (GL_MAX_SAMPLES)");
+    return Status::error(ErrorCode::unsupported, what + ": the implementation supports at most " +
+                                                     std::to_string(max_samples) +
+                                                     " samples (GL_MAX_SAMPLES)");
   }
   RenderTarget t;
   t.width = o.width;
@@ -145,8 +181,8 @@ Result<RenderTarget> create_render_target(const RenderTargetOptions& o) {
                                  t.colour.get());
   if (o.depth) {
     t.depth = create_object(ObjectType::renderbuffer);
-    glNamedRenderbufferStorageMultisample(t.depth.get(), samples, GL_DEPTH_COMPONENT32F,
-                                          o.width, o.height);
+    glNamedRenderbufferStorageMultisample(t.depth.get(), samples, GL_DEPTH_COMPONENT32F, o.width,
+                                          o.height);
     glNamedFramebufferRenderbuffer(t.framebuffer.get(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
                                    t.depth.get());
   }
@@ -210,9 +246,9 @@ Result<Image> read_texture(std::uint32_t texture, int level, int layer, GLenum t
   }
   const int layers = target == GL_TEXTURE_2D_ARRAY ? depth : 1;
   if (layer < 0 || layer >= layers) {
-    return Status::error(ErrorCode::invalid_argument,
-                         std::string(what) + ": layer " + std::to_string(layer) +
-                             " outside 0.." + std::to_string(layers - 1));
+    return Status::error(ErrorCode::invalid_argument, std::string(what) + ": layer " +
+                                                          std::to_string(layer) + " outside 0.." +
+                                                          std::to_string(layers - 1));
   }
   Image img(w, h);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -243,9 +279,8 @@ Result<ImageRGBAF> read_texture_rgbaf(std::uint32_t texture, int level, int laye
 }
 
 Result<ImageRGBA8> read_texture_rgba8(std::uint32_t texture, int level, int layer) {
-  Result<ImageRGBA8> r = read_texture<ImageRGBA8, std::uint8_t>(texture, level, layer,
-                                                                GL_UNSIGNED_BYTE,
-                                                                "read_texture_rgba8");
+  Result<ImageRGBA8> r = read_texture<ImageRGBA8, std::uint8_t>(
+      texture, level, layer, GL_UNSIGNED_BYTE, "read_texture_rgba8");
   if (r) r->has_alpha = true;
   return r;
 }

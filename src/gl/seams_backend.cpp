@@ -1,8 +1,8 @@
-// The OpenGL backend of the seam experiment: gl::FaceRenderer (tessera/gl_face_renderer.h) on a headless
-// context of its own behind the SeamsBackend interface of tessera/experiments/seams_backend.h,
-// so that `experiments::run_seams` (in the GL-free main library) renders with OpenGL when a
-// program linking tessera_gl hands it gl::experiment_backends() (`tessera seams --backend
-// gl|both`). The CPU twin is src/experiments/seams_backend_cpu.cpp.
+// The OpenGL backend of the seam experiment: gl::FaceRenderer (tessera/gl_face_renderer.h) on a
+// headless context of its own behind the SeamsBackend interface of
+// tessera/experiments/seams_backend.h, so that `experiments::run_seams` (in the GL-free main
+// library) renders with OpenGL when a program linking tessera_gl hands it gl::experiment_backends()
+// (`tessera seams --backend gl|both`). The CPU twin is src/experiments/seams_backend_cpu.cpp.
 #include "gl/experiment_backends_internal.h"
 #include "tessera/gl.h"
 #include "tessera/gl_face_renderer.h"

@@ -17,12 +17,18 @@ namespace {
 
 GLenum stage_enum(glsl::Stage s) {
   switch (s) {
-    case glsl::Stage::vertex: return GL_VERTEX_SHADER;
-    case glsl::Stage::fragment: return GL_FRAGMENT_SHADER;
-    case glsl::Stage::compute: return GL_COMPUTE_SHADER;
-    case glsl::Stage::geometry: return GL_GEOMETRY_SHADER;
-    case glsl::Stage::tess_control: return GL_TESS_CONTROL_SHADER;
-    case glsl::Stage::tess_evaluation: return GL_TESS_EVALUATION_SHADER;
+    case glsl::Stage::vertex:
+      return GL_VERTEX_SHADER;
+    case glsl::Stage::fragment:
+      return GL_FRAGMENT_SHADER;
+    case glsl::Stage::compute:
+      return GL_COMPUTE_SHADER;
+    case glsl::Stage::geometry:
+      return GL_GEOMETRY_SHADER;
+    case glsl::Stage::tess_control:
+      return GL_TESS_CONTROL_SHADER;
+    case glsl::Stage::tess_evaluation:
+      return GL_TESS_EVALUATION_SHADER;
   }
   return GL_FRAGMENT_SHADER;
 }
@@ -57,8 +63,7 @@ Result<Program> link_program(const std::vector<glsl::Source>& stages,
       std::string log(std::size_t(std::max(length, 1)), '\0');
       glGetShaderInfoLog(shader.get(), GLsizei(log.size()), nullptr, log.data());
       log.resize(log.find('\0') == std::string::npos ? log.size() : log.find('\0'));
-      return Status::error(ErrorCode::invalid_argument,
-                           glsl::format_log(log, expanded->files));
+      return Status::error(ErrorCode::invalid_argument, glsl::format_log(log, expanded->files));
     }
     glAttachShader(program.get(), shader.get());
     shaders.push_back(std::move(shader));

@@ -72,10 +72,9 @@ bool is_version_line(const std::string& line) {
 
 const EmbeddedFile* find_embedded(std::string_view name) {
   const auto files = embedded::glsl_files();
-  const auto it = std::lower_bound(files.begin(), files.end(), name,
-                                   [](const EmbeddedFile& f, std::string_view n) {
-                                     return f.name < n;
-                                   });
+  const auto it =
+      std::lower_bound(files.begin(), files.end(), name,
+                       [](const EmbeddedFile& f, std::string_view n) { return f.name < n; });
   return it != files.end() && it->name == name ? &*it : nullptr;
 }
 
@@ -114,8 +113,8 @@ struct Expander {
       return Included{c.string(), (ec ? c : canonical).string(),
                       std::string(bytes->begin(), bytes->end()), c.parent_path()};
     }
-    if (options.shipped_includes && (!override_dir(options.shipped_dir).empty() ||
-                                     find_embedded(target) != nullptr)) {
+    if (options.shipped_includes &&
+        (!override_dir(options.shipped_dir).empty() || find_embedded(target) != nullptr)) {
       Result<std::string> text = shipped_source(target, options.shipped_dir);
       if (!text) return Status::error(text.status().code, where + text.status().message);
       return Included{target, "shipped:" + target, std::move(*text), {}};
@@ -125,14 +124,12 @@ struct Expander {
       searched += (searched.empty() ? "" : ", ") + c.parent_path().string();
     }
     if (options.shipped_includes) searched += std::string(searched.empty() ? "" : ", ") + "shipped";
-    return Status::error(ErrorCode::io_error, where + "cannot find include file \"" + target +
-                                                  "\" (searched: " +
-                                                  (searched.empty() ? "no folders" : searched) +
-                                                  ")");
+    return Status::error(ErrorCode::io_error,
+                         where + "cannot find include file \"" + target +
+                             "\" (searched: " + (searched.empty() ? "no folders" : searched) + ")");
   }
 
-  Status expand(const std::string& text, const std::filesystem::path& dir, int index,
-                int depth) {
+  Status expand(const std::string& text, const std::filesystem::path& dir, int index, int depth) {
     const std::vector<std::string> lines = split_lines(text);
     for (std::size_t i = 0; i < lines.size(); ++i) {
       const std::string& line = lines[i];
@@ -163,13 +160,12 @@ struct Expander {
       }
       const int child = int(out.files.size());
       if (child > kMaxFiles) {
-        return Status::error(ErrorCode::invalid_argument, where + "more than " +
-                                                              std::to_string(kMaxFiles) +
-                                                              " included files");
+        return Status::error(ErrorCode::invalid_argument,
+                             where + "more than " + std::to_string(kMaxFiles) + " included files");
       }
       out.files.push_back(found->name);
-      out.text += "#line " + std::to_string(line_base(child) + 1) + " " + std::to_string(child) +
-                  "\n";
+      out.text +=
+          "#line " + std::to_string(line_base(child) + 1) + " " + std::to_string(child) + "\n";
       if (Status s = expand(found->text, found->dir, child, depth + 1); !s.ok()) return s;
       out.text += "#line " + std::to_string(line_base(index) + line_no + 1) + " " +
                   std::to_string(index) + "\n";
@@ -230,10 +226,8 @@ Result<Expanded> expand_includes(const Source& source, const ExpandOptions& opti
     if (dir.empty()) dir = ".";
     e.included.insert(std::filesystem::weakly_canonical(source.name, ec).string());
   }
-  const bool has_version =
-      std::ranges::any_of(split_lines(source.text), [](const std::string& l) {
-        return is_version_line(l);
-      });
+  const bool has_version = std::ranges::any_of(
+      split_lines(source.text), [](const std::string& l) { return is_version_line(l); });
   if (!has_version) {
     for (const std::string& p : options.preamble) e.out.text += p + "\n";
     if (!options.preamble.empty()) e.out.text += "#line 1 0\n";

@@ -1,13 +1,12 @@
 // Mip chains (2x2 box or windowed sinc, gamma-correct, alpha-weighted, or as normal vectors)
 // and Lanczos-3 resampling.
-#include "tessera/image_mipmap.h"
-
 #include <algorithm>
 #include <cmath>
 
 #include "image/mip_filters.h"
 #include "image/normal_kernel.h"
 #include "image/texel_loops.h"
+#include "tessera/image_mipmap.h"
 
 namespace tessera::image {
 
@@ -101,24 +100,23 @@ Work box_half(const Work& src, bool premultiply, int threads) {
   const int w = mip_dimension(src.width, 1), h = mip_dimension(src.height, 1);
   const int fx = src.width > 1 ? 2 : 1, fy = src.height > 1 ? 2 : 1;
   Work dst(w, h);
-  parallel_for(
-      0, h, 8,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (std::int64_t y = y0; y < y1; ++y) {
-          for (int x = 0; x < w; ++x) {
-            Accum acc;
-            for (int dy = 0; dy < fy; ++dy) {
-              const int sy = std::min(int(y) * fy + dy, src.height - 1);
-              for (int dx = 0; dx < fx; ++dx) {
-                const int sx = std::min(x * fx + dx, src.width - 1);
-                acc.add(src.at(sx, sy), 1.0);
-              }
-            }
-            acc.store(dst.at(x, int(y)), premultiply);
-          }
-        }
-      },
-      {threads});
+  parallel_for(0, h, 8,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 for (std::int64_t y = y0; y < y1; ++y) {
+                   for (int x = 0; x < w; ++x) {
+                     Accum acc;
+                     for (int dy = 0; dy < fy; ++dy) {
+                       const int sy = std::min(int(y) * fy + dy, src.height - 1);
+                       for (int dx = 0; dx < fx; ++dx) {
+                         const int sx = std::min(x * fx + dx, src.width - 1);
+                         acc.add(src.at(sx, sy), 1.0);
+                       }
+                     }
+                     acc.store(dst.at(x, int(y)), premultiply);
+                   }
+                 }
+               },
+               {threads});
   return dst;
 }
 
@@ -224,52 +222,51 @@ Result<ImageRGBA8> resize_image(const ImageRGBA8& image, int width, int height,
 
   // Horizontal pass: src.width x src.height -> width x src.height (7 channels).
   Wide mid{width, image.height, std::vector<float>(std::size_t(width) * image.height * 7)};
-  parallel_for(
-      0, image.height, 8,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (std::int64_t y = y0; y < y1; ++y) {
-          for (int x = 0; x < width; ++x) {
-            const Taps& t = tx[std::size_t(x)];
-            double acc[7] = {0, 0, 0, 0, 0, 0, 0};
-            for (std::size_t k = 0; k < t.weights.size(); ++k) {
-              const int sx = std::clamp(t.first + int(k), 0, image.width - 1);
-              const float* p = src.at(sx, int(y));
-              const double wgt = t.weights[k];
-              for (int c = 0; c < 3; ++c) {
-                acc[c] += wgt * p[3] * p[c];
-                acc[3 + c] += wgt * p[c];
-              }
-              acc[6] += wgt * p[3];
-            }
-            float* o = mid.at(x, int(y));
-            for (int c = 0; c < 7; ++c) o[c] = float(acc[c]);
-          }
-        }
-      },
-      {options.threads});
+  parallel_for(0, image.height, 8,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 for (std::int64_t y = y0; y < y1; ++y) {
+                   for (int x = 0; x < width; ++x) {
+                     const Taps& t = tx[std::size_t(x)];
+                     double acc[7] = {0, 0, 0, 0, 0, 0, 0};
+                     for (std::size_t k = 0; k < t.weights.size(); ++k) {
+                       const int sx = std::clamp(t.first + int(k), 0, image.width - 1);
+                       const float* p = src.at(sx, int(y));
+                       const double wgt = t.weights[k];
+                       for (int c = 0; c < 3; ++c) {
+                         acc[c] += wgt * p[3] * p[c];
+                         acc[3 + c] += wgt * p[c];
+                       }
+                       acc[6] += wgt * p[3];
+                     }
+                     float* o = mid.at(x, int(y));
+                     for (int c = 0; c < 7; ++c) o[c] = float(acc[c]);
+                   }
+                 }
+               },
+               {options.threads});
 
   // Vertical pass and normalisation.
   Work dst(width, height);
-  parallel_for(
-      0, height, 8,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (std::int64_t y = y0; y < y1; ++y) {
-          const Taps& t = ty[std::size_t(y)];
-          for (int x = 0; x < width; ++x) {
-            double acc[7] = {0, 0, 0, 0, 0, 0, 0};
-            for (std::size_t k = 0; k < t.weights.size(); ++k) {
-              const int sy = std::clamp(t.first + int(k), 0, image.height - 1);
-              const float* p = mid.at(x, sy);
-              for (int c = 0; c < 7; ++c) acc[c] += t.weights[k] * p[c];
-            }
-            float* o = dst.at(x, int(y));
-            const bool use_alpha = premultiply && acc[6] > 1e-4;
-            for (int c = 0; c < 3; ++c) o[c] = float(use_alpha ? acc[c] / acc[6] : acc[3 + c]);
-            o[3] = float(std::clamp(acc[6], 0.0, 1.0));
-          }
-        }
-      },
-      {options.threads});
+  parallel_for(0, height, 8,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 for (std::int64_t y = y0; y < y1; ++y) {
+                   const Taps& t = ty[std::size_t(y)];
+                   for (int x = 0; x < width; ++x) {
+                     double acc[7] = {0, 0, 0, 0, 0, 0, 0};
+                     for (std::size_t k = 0; k < t.weights.size(); ++k) {
+                       const int sy = std::clamp(t.first + int(k), 0, image.height - 1);
+                       const float* p = mid.at(x, sy);
+                       for (int c = 0; c < 7; ++c) acc[c] += t.weights[k] * p[c];
+                     }
+                     float* o = dst.at(x, int(y));
+                     const bool use_alpha = premultiply && acc[6] > 1e-4;
+                     for (int c = 0; c < 3; ++c)
+                       o[c] = float(use_alpha ? acc[c] / acc[6] : acc[3 + c]);
+                     o[3] = float(std::clamp(acc[6], 0.0, 1.0));
+                   }
+                 }
+               },
+               {options.threads});
   return from_work(dst, image.has_alpha, options);
 }
 

@@ -120,8 +120,7 @@ Result<WriteTarget> resolve_write_target(const std::string& path) {
   // Follow the chain of links by hand, so the rename replaces the final target, never a link.
   for (int hop = 0;; ++hop) {
     if (hop == 40) {
-      return Status::error(ErrorCode::io_error,
-                           path + ": cannot write: " + errno_text(ELOOP));
+      return Status::error(ErrorCode::io_error, path + ": cannot write: " + errno_text(ELOOP));
     }
     if (under_proc(t.path)) {
       // /dev/stdout -> /proc/self/fd/1 -> "pipe:[…]" or a terminal: only the kernel can

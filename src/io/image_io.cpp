@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <iterator>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <string>
@@ -54,8 +54,8 @@ Result<PngRaw> decode_png_raw(std::span<const std::uint8_t> bytes, const std::st
   // DEFLATE expands at most 1032:1, so a header announcing more than the file's bytes can
   // hold is a truncated or corrupt file: refuse it before allocating the image (a 30-byte file
   // claiming 4101 x 64218 16-bit grey made the decode below allocate 2 GiB).
-  const std::uint64_t channels = ihdr.color_type == SPNG_COLOR_TYPE_TRUECOLOR_ALPHA ? 4
-                                 : ihdr.color_type == SPNG_COLOR_TYPE_TRUECOLOR      ? 3
+  const std::uint64_t channels = ihdr.color_type == SPNG_COLOR_TYPE_TRUECOLOR_ALPHA   ? 4
+                                 : ihdr.color_type == SPNG_COLOR_TYPE_TRUECOLOR       ? 3
                                  : ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE_ALPHA ? 2
                                                                                       : 1;
   const std::uint64_t min_inflated =
@@ -97,7 +97,8 @@ Result<PngRaw> decode_png_raw(std::span<const std::uint8_t> bytes, const std::st
     return spng_status(name, "truncated PNG (no IEND)", e);
   }
   // libspng does not insist on IEND's CRC; the chunk is fixed, so look for all 12 bytes.
-  static constexpr std::uint8_t kIend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+  static constexpr std::uint8_t kIend[12] = {0,   0,   0,    0,    'I',  'E',
+                                             'N', 'D', 0xAE, 0x42, 0x60, 0x82};
   if (std::search(bytes.begin(), bytes.end(), std::begin(kIend), std::end(kIend)) == bytes.end()) {
     return Status::error(ErrorCode::corrupt_data, name + ": truncated PNG (incomplete IEND chunk)");
   }
@@ -142,11 +143,11 @@ Status check_payload(std::span<const std::uint8_t> b, ImageFormat format, std::u
     need = px / 512;
   }
   if (have < need) {
-    return Status::error(ErrorCode::corrupt_data,
-                         name + ": truncated image: header says " + std::to_string(w) + "x" +
-                             std::to_string(h) + " but only " + std::to_string(have) +
-                             " bytes of pixel data follow (at least " + std::to_string(need) +
-                             " needed)");
+    return Status::error(ErrorCode::corrupt_data, name + ": truncated image: header says " +
+                                                      std::to_string(w) + "x" + std::to_string(h) +
+                                                      " but only " + std::to_string(have) +
+                                                      " bytes of pixel data follow (at least " +
+                                                      std::to_string(need) + " needed)");
   }
   return Status::success();
 }
@@ -187,8 +188,8 @@ ImageFormat detect_image_format(std::span<const std::uint8_t> b) {
   // pixel depth).
   if (b.size() >= 18) {
     const std::uint8_t cmap = b[1], type = b[2], depth = b[16];
-    const bool type_ok = type == 1 || type == 2 || type == 3 || type == 9 || type == 10 ||
-                         type == 11;
+    const bool type_ok =
+        type == 1 || type == 2 || type == 3 || type == 9 || type == 10 || type == 11;
     const bool depth_ok = depth == 8 || depth == 15 || depth == 16 || depth == 24 || depth == 32;
     if (cmap <= 1 && type_ok && depth_ok) return ImageFormat::tga;
   }

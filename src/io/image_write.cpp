@@ -24,9 +24,8 @@ Result<ImageFormat> image_format_for_output(const std::string& path) {
   if (ext == "bmp") return ImageFormat::bmp;
   if (ext == "tga") return ImageFormat::tga;
   if (ext == "jpg" || ext == "jpeg") return ImageFormat::jpeg;
-  return Status::error(ErrorCode::invalid_argument,
-                       path + ": cannot write '." + ext +
-                           "' images (use .png, .bmp, .tga or .jpg)");
+  return Status::error(ErrorCode::invalid_argument, path + ": cannot write '." + ext +
+                                                        "' images (use .png, .bmp, .tga or .jpg)");
 }
 
 Result<std::vector<std::uint8_t>> encode_image(const ImageRGBA8& image, ImageFormat format) {
@@ -37,9 +36,15 @@ Result<std::vector<std::uint8_t>> encode_image(const ImageRGBA8& image, ImageFor
   }
   detail::StbFormat f = detail::StbFormat::bmp;
   switch (format) {
-    case ImageFormat::bmp: f = detail::StbFormat::bmp; break;
-    case ImageFormat::tga: f = detail::StbFormat::tga; break;
-    case ImageFormat::jpeg: f = detail::StbFormat::jpeg; break;
+    case ImageFormat::bmp:
+      f = detail::StbFormat::bmp;
+      break;
+    case ImageFormat::tga:
+      f = detail::StbFormat::tga;
+      break;
+    case ImageFormat::jpeg:
+      f = detail::StbFormat::jpeg;
+      break;
     case ImageFormat::png:
     case ImageFormat::unknown:
       return Status::error(ErrorCode::invalid_argument, "image encoder: unknown format");

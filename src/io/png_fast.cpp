@@ -230,8 +230,7 @@ void unfilter_grey_rows_simd(const std::uint8_t* src0, const std::uint8_t* src1,
   }
   if (x < width) {
     unfilter_rows_scalar<1, kF0, kF1, kTwo>(src0 + x, kTwo ? src1 + x : nullptr, prev + 4 * x,
-                                            out0 + 4 * x, kTwo ? out1 + 4 * x : nullptr,
-                                            width - x);
+                                            out0 + 4 * x, kTwo ? out1 + 4 * x : nullptr, width - x);
   }
 }
 #endif
@@ -313,8 +312,7 @@ std::optional<ImageRGBA8> decode_png_fast(std::span<const std::uint8_t> bytes) {
       return std::nullopt;
     }
     pos += std::size_t(length) + 12;
-    if (!is_letter(type[0]) || !is_letter(type[1]) || !is_letter(type[2]) ||
-        !is_letter(type[3])) {
+    if (!is_letter(type[0]) || !is_letter(type[1]) || !is_letter(type[2]) || !is_letter(type[3])) {
       return std::nullopt;
     }
     if (state == kHeader) {
@@ -390,8 +388,7 @@ std::optional<ImageRGBA8> decode_png_fast(std::span<const std::uint8_t> bytes) {
   // start. The buffer is value-initialised, so the kSlack bytes after the rows are zeros.
   const std::size_t stride = 1 + row_bytes, out_row = 4 * std::size_t(width);
   const std::size_t out_bytes = out_row * height;
-  const std::size_t raw_at =
-      2 * out_row + (height - 1) * (out_row > stride ? out_row - stride : 0);
+  const std::size_t raw_at = 2 * out_row + (height - 1) * (out_row > stride ? out_row - stride : 0);
   ImageRGBA8 img;
   img.width = int(width);
   img.height = int(height);

@@ -15,7 +15,7 @@ enum class StbFormat { bmp, tga, jpeg };
 /// Encodes `width` x `height` 8-bit pixels of `components` (3 = RGB, 4 = RGBA) channels, rows
 /// top to bottom, into `out`. JPEG is written at quality 95 (it has no alpha: RGBA drops it).
 /// Returns false when stb_image_write fails.
-bool stb_encode(StbFormat format, int width, int height, int components,
-                const std::uint8_t* pixels, std::vector<std::uint8_t>& out);
+bool stb_encode(StbFormat format, int width, int height, int components, const std::uint8_t* pixels,
+                std::vector<std::uint8_t>& out);
 
 }  // namespace tessera::io::detail

@@ -19,8 +19,8 @@ void append(void* context, void* data, int size) {
 }
 }  // namespace
 
-bool stb_encode(StbFormat format, int width, int height, int components,
-                const std::uint8_t* pixels, std::vector<std::uint8_t>& out) {
+bool stb_encode(StbFormat format, int width, int height, int components, const std::uint8_t* pixels,
+                std::vector<std::uint8_t>& out) {
   out.clear();
   switch (format) {
     case StbFormat::bmp:

@@ -42,7 +42,8 @@ void colour_map_rgb(ColourMap map, float t, std::uint8_t rgb[3]) {
   const int i = std::min(7, int(f));
   const float w = f - float(i);
   for (int c = 0; c < 3; ++c) {
-    rgb[c] = std::uint8_t(std::lround(float(table[i][c]) * (1.0f - w) + float(table[i + 1][c]) * w));
+    rgb[c] =
+        std::uint8_t(std::lround(float(table[i][c]) * (1.0f - w) + float(table[i + 1][c]) * w));
   }
 }
 

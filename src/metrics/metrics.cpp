@@ -1,4 +1,6 @@
 // MSE / PSNR / max error, image comparison and the error CDF of Toth 2013.
+#include "tessera/metrics.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -7,16 +9,15 @@
 #include <vector>
 
 #include "image/normal_kernel.h"
-#include "tessera/metrics.h"
 
 namespace tessera::metrics {
 
 namespace {
 Status size_mismatch(const char* what, int aw, int ah, int bw, int bh) {
-  return Status::error(ErrorCode::size_mismatch,
-                       std::string(what) + ": image sizes differ (" + std::to_string(aw) + "x" +
-                           std::to_string(ah) + " vs " + std::to_string(bw) + "x" +
-                           std::to_string(bh) + ")");
+  return Status::error(ErrorCode::size_mismatch, std::string(what) + ": image sizes differ (" +
+                                                     std::to_string(aw) + "x" + std::to_string(ah) +
+                                                     " vs " + std::to_string(bw) + "x" +
+                                                     std::to_string(bh) + ")");
 }
 
 constexpr std::int64_t kGrain = 1 << 14;
@@ -24,22 +25,21 @@ constexpr std::int64_t kGrain = 1 << 14;
 /// Colour x alpha: sum over texels and R, G, B of (ca * aa - cb * ab)^2, in 8-bit units times
 /// 255 (integers, so exact within each chunk); an image without alpha counts as opaque.
 double premultiplied_sse(const ImageRGBA8& a, const ImageRGBA8& b, int threads) {
-  return parallel_sum(
-      0, std::int64_t(a.pixel_count()), kGrain,
-      [&](std::int64_t i0, std::int64_t i1) {
-        std::int64_t s = 0;
-        for (std::int64_t i = i0; i < i1; ++i) {
-          const int alpha_a = a.has_alpha ? a.pixels[i * 4 + 3] : 255;
-          const int alpha_b = b.has_alpha ? b.pixels[i * 4 + 3] : 255;
-          for (int c = 0; c < 3; ++c) {
-            const std::int64_t d =
-                int(a.pixels[i * 4 + c]) * alpha_a - int(b.pixels[i * 4 + c]) * alpha_b;
-            s += d * d;
-          }
-        }
-        return double(s);
-      },
-      {threads});
+  return parallel_sum(0, std::int64_t(a.pixel_count()), kGrain,
+                      [&](std::int64_t i0, std::int64_t i1) {
+                        std::int64_t s = 0;
+                        for (std::int64_t i = i0; i < i1; ++i) {
+                          const int alpha_a = a.has_alpha ? a.pixels[i * 4 + 3] : 255;
+                          const int alpha_b = b.has_alpha ? b.pixels[i * 4 + 3] : 255;
+                          for (int c = 0; c < 3; ++c) {
+                            const std::int64_t d = int(a.pixels[i * 4 + c]) * alpha_a -
+                                                   int(b.pixels[i * 4 + c]) * alpha_b;
+                            s += d * d;
+                          }
+                        }
+                        return double(s);
+                      },
+                      {threads});
 }
 
 /// The angle in degrees between the normals texel `i` of `a` and `b` hold.
@@ -63,22 +63,21 @@ double normal_angle_deg(const ImageRGBA8& a, const ImageRGBA8& b, std::size_t i)
 void angular_errors(const ImageRGBA8& a, const ImageRGBA8& b, int threads, ImageComparison& r) {
   const std::int64_t n = std::int64_t(a.pixel_count());
   std::vector<double> angles(static_cast<std::size_t>(n));
-  parallel_for(
-      0, n, kGrain,
-      [&](std::int64_t i0, std::int64_t i1) {
-        for (std::int64_t i = i0; i < i1; ++i) {
-          angles[std::size_t(i)] = normal_angle_deg(a, b, std::size_t(i));
-        }
-      },
-      {threads});
-  const double sum = parallel_sum(
-      0, n, kGrain,
-      [&](std::int64_t i0, std::int64_t i1) {
-        double s = 0.0;
-        for (std::int64_t i = i0; i < i1; ++i) s += angles[std::size_t(i)];
-        return s;
-      },
-      {threads});
+  parallel_for(0, n, kGrain,
+               [&](std::int64_t i0, std::int64_t i1) {
+                 for (std::int64_t i = i0; i < i1; ++i) {
+                   angles[std::size_t(i)] = normal_angle_deg(a, b, std::size_t(i));
+                 }
+               },
+               {threads});
+  const double sum = parallel_sum(0, n, kGrain,
+                                  [&](std::int64_t i0, std::int64_t i1) {
+                                    double s = 0.0;
+                                    for (std::int64_t i = i0; i < i1; ++i)
+                                      s += angles[std::size_t(i)];
+                                    return s;
+                                  },
+                                  {threads});
   r.has_normal = true;
   r.angular_error_mean_deg = sum / double(n);
   r.angular_error_max_deg = *std::max_element(angles.begin(), angles.end());
@@ -108,30 +107,30 @@ Result<ImageComparison> compare_images(const ImageRGBA8& a, const ImageRGBA8& b,
   r.has_normal = options.normal;
   if (n == 0) return r;
   // Sums of squared 8-bit differences are integers: exact in double up to 2^53.
-  const double sse_rgb = parallel_sum(
-      0, n, kGrain,
-      [&](std::int64_t i0, std::int64_t i1) {
-        std::int64_t s = 0;
-        for (std::int64_t i = i0; i < i1; ++i) {
-          for (int c = 0; c < 3; ++c) {
-            const int d = int(a.pixels[i * 4 + c]) - int(b.pixels[i * 4 + c]);
-            s += d * d;
-          }
-        }
-        return double(s);
-      },
-      {options.threads});
-  const double sse_alpha = parallel_sum(
-      0, n, kGrain,
-      [&](std::int64_t i0, std::int64_t i1) {
-        std::int64_t s = 0;
-        for (std::int64_t i = i0; i < i1; ++i) {
-          const int d = int(a.pixels[i * 4 + 3]) - int(b.pixels[i * 4 + 3]);
-          s += d * d;
-        }
-        return double(s);
-      },
-      {options.threads});
+  const double sse_rgb = parallel_sum(0, n, kGrain,
+                                      [&](std::int64_t i0, std::int64_t i1) {
+                                        std::int64_t s = 0;
+                                        for (std::int64_t i = i0; i < i1; ++i) {
+                                          for (int c = 0; c < 3; ++c) {
+                                            const int d =
+                                                int(a.pixels[i * 4 + c]) - int(b.pixels[i * 4 + c]);
+                                            s += d * d;
+                                          }
+                                        }
+                                        return double(s);
+                                      },
+                                      {options.threads});
+  const double sse_alpha = parallel_sum(0, n, kGrain,
+                                        [&](std::int64_t i0, std::int64_t i1) {
+                                          std::int64_t s = 0;
+                                          for (std::int64_t i = i0; i < i1; ++i) {
+                                            const int d =
+                                                int(a.pixels[i * 4 + 3]) - int(b.pixels[i * 4 + 3]);
+                                            s += d * d;
+                                          }
+                                          return double(s);
+                                        },
+                                        {options.threads});
   const int channels = r.has_alpha ? 4 : 3;
   int max_abs = 0;
   for (std::int64_t i = 0; i < n; ++i) {

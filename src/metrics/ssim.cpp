@@ -66,13 +66,11 @@ const Weights& weights() {
   return w;
 }
 
-double ssim_value(double ux, double uy, double uxx, double uyy, double uxy, double c1,
-                  double c2) {
+double ssim_value(double ux, double uy, double uxx, double uyy, double uxy, double c1, double c2) {
   const double vx = uxx - ux * ux;
   const double vy = uyy - uy * uy;
   const double vxy = uxy - ux * uy;
-  return ((2.0 * ux * uy + c1) * (2.0 * vxy + c2)) /
-         ((ux * ux + uy * uy + c1) * (vx + vy + c2));
+  return ((2.0 * ux * uy + c1) * (2.0 * vxy + c2)) / ((ux * ux + uy * uy + c1) * (vx + vy + c2));
 }
 
 /// Global SSIM with uniform weights, for images smaller than the window.

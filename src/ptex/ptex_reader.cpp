@@ -386,8 +386,7 @@ Status read_face_info(const Ctx& ctx, const Layout& L, PtexFile& file) {
 Status read_constant_data(const Ctx& ctx, const Layout& L, const Format& fmt, PtexFile& file) {
   file.constant_data.resize(std::size_t(L.nfaces) * std::size_t(file.channels));
   if (!plausible_zip(L.const_size, std::uint64_t(L.nfaces) * std::uint64_t(fmt.pixel_size))) {
-    return ctx.corrupt("constant-data block too small for " + std::to_string(L.nfaces) +
-                       " faces");
+    return ctx.corrupt("constant-data block too small for " + std::to_string(L.nfaces) + " faces");
   }
   std::vector<std::uint8_t> cd(std::size_t(L.nfaces) * std::size_t(fmt.pixel_size));
   if (!inflate_exact(ctx.bytes.subspan(std::size_t(L.const_pos), L.const_size), cd)) {

@@ -23,8 +23,8 @@ enum ClipBit : std::uint32_t {
   kGuardTop = 1u << 9,
 };
 inline constexpr std::uint32_t kRejectMask = 0x3Fu;
-inline constexpr std::uint32_t kMustClipMask = kClipNear | kClipFar | kGuardLeft | kGuardRight |
-                                               kGuardBottom | kGuardTop;
+inline constexpr std::uint32_t kMustClipMask =
+    kClipNear | kClipFar | kGuardLeft | kGuardRight | kGuardBottom | kGuardTop;
 inline constexpr int kMaxClipVertices = 12;  // 3 + one per clipping plane (6), with slack
 
 struct ClipParams {
@@ -59,13 +59,20 @@ struct ClipVertex {
 /// Signed distance of `p` to the plane identified by `bit` (>= 0 inside).
 inline float plane_distance(std::uint32_t bit, const float p[4], const ClipParams& cp) {
   switch (bit) {
-    case kClipNear: return p[2] + cp.near_z_weight * p[3];
-    case kClipFar: return p[3] - p[2];
-    case kGuardLeft: return p[0] + cp.guard_x * p[3];
-    case kGuardRight: return cp.guard_x * p[3] - p[0];
-    case kGuardBottom: return p[1] + cp.guard_y * p[3];
-    case kGuardTop: return cp.guard_y * p[3] - p[1];
-    default: return 0.0f;
+    case kClipNear:
+      return p[2] + cp.near_z_weight * p[3];
+    case kClipFar:
+      return p[3] - p[2];
+    case kGuardLeft:
+      return p[0] + cp.guard_x * p[3];
+    case kGuardRight:
+      return cp.guard_x * p[3] - p[0];
+    case kGuardBottom:
+      return p[1] + cp.guard_y * p[3];
+    case kGuardTop:
+      return cp.guard_y * p[3] - p[1];
+    default:
+      return 0.0f;
   }
 }
 

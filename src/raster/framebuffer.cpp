@@ -50,29 +50,28 @@ Result<FrameBuffer> FrameBuffer::create(const FrameBufferDesc& desc) {
     return Status::error(ErrorCode::invalid_argument, s.message);
   }
   if (desc.sample_pattern.empty() && !valid_msaa(desc.msaa)) {
-    return Status::error(ErrorCode::invalid_argument,
-                         "frame buffer: msaa must be 1, 2, 4, 8 or 16 (got " +
-                             std::to_string(desc.msaa) + ")");
+    return Status::error(
+        ErrorCode::invalid_argument,
+        "frame buffer: msaa must be 1, 2, 4, 8 or 16 (got " + std::to_string(desc.msaa) + ")");
   }
   if (Status s = check_sample_pattern(desc); !s.ok()) return s;
   if (desc.ssaa < 1 || desc.ssaa > 8) {
-    return Status::error(ErrorCode::invalid_argument,
-                         "frame buffer: ssaa must be in [1, 8] (got " +
-                             std::to_string(desc.ssaa) + ")");
+    return Status::error(ErrorCode::invalid_argument, "frame buffer: ssaa must be in [1, 8] (got " +
+                                                          std::to_string(desc.ssaa) + ")");
   }
   if (desc.channels < 1 || desc.channels > kMaxChannels) {
-    return Status::error(ErrorCode::invalid_argument,
-                         "frame buffer: channels must be in [1, " + std::to_string(kMaxChannels) +
-                             "] (got " + std::to_string(desc.channels) + ")");
+    return Status::error(ErrorCode::invalid_argument, "frame buffer: channels must be in [1, " +
+                                                          std::to_string(kMaxChannels) + "] (got " +
+                                                          std::to_string(desc.channels) + ")");
   }
   const std::int64_t gw = std::int64_t(desc.width) * desc.ssaa;
   const std::int64_t gh = std::int64_t(desc.height) * desc.ssaa;
   if (Status s = check_image_size(gw, gh, "frame buffer grid"); !s.ok()) return s;
   const std::uint64_t samples = std::uint64_t(gw) * std::uint64_t(gh) * std::uint64_t(desc.msaa);
   if (samples > kMaxImagePixels || samples * std::uint64_t(desc.channels) > kMaxPayloadFloats) {
-    return Status::error(ErrorCode::too_large,
-                         "frame buffer: " + std::to_string(samples) + " samples of " +
-                             std::to_string(desc.channels) + " channels exceed the limit");
+    return Status::error(ErrorCode::too_large, "frame buffer: " + std::to_string(samples) +
+                                                   " samples of " + std::to_string(desc.channels) +
+                                                   " channels exceed the limit");
   }
   FrameBuffer fb;
   fb.desc_ = desc;
@@ -250,9 +249,9 @@ std::vector<float> resolve_channels(const FrameBuffer& fb, const Parallel& paral
       [&](std::int64_t yb, std::int64_t ye) {
         for (std::int64_t y = yb; y < ye; ++y) {
           for (int x = 0; x < w; ++x) {
-            average_pixel(fb, data, x, int(y), nc, scale,
-                          &out[(std::size_t(y) * std::size_t(w) + std::size_t(x)) *
-                               std::size_t(nc)]);
+            average_pixel(
+                fb, data, x, int(y), nc, scale,
+                &out[(std::size_t(y) * std::size_t(w) + std::size_t(x)) * std::size_t(nc)]);
           }
         }
       },

@@ -206,11 +206,11 @@ inline int classify_block(const Edge& e, std::int64_t x0, std::int64_t y0, std::
 
 /// Screen-space geometry of a snapped triangle for plane set-up (double precision, pixels).
 struct PlaneBasis {
-  double px0, py0;    ///< Vertex 0.
-  double e1x, e1y;    ///< Vertex 1 - vertex 0.
-  double e2x, e2y;    ///< Vertex 2 - vertex 0.
-  double inv_area;    ///< 1 / (e1 x e2).
-  double ax, ay;      ///< Anchor (where the plane constant is evaluated).
+  double px0, py0;  ///< Vertex 0.
+  double e1x, e1y;  ///< Vertex 1 - vertex 0.
+  double e2x, e2y;  ///< Vertex 2 - vertex 0.
+  double inv_area;  ///< 1 / (e1 x e2).
+  double ax, ay;    ///< Anchor (where the plane constant is evaluated).
 };
 
 /// Plane (value at anchor, d/dx, d/dy) of a quantity that is linear in screen space and takes
@@ -297,10 +297,14 @@ inline int centroid_sample(std::uint32_t mask, const SampleOffset* pos, int samp
 /// Depth test of a new value against the stored one.
 inline bool depth_passes(DepthTest test, float z, float stored) {
   switch (test) {
-    case DepthTest::less: return z < stored;
-    case DepthTest::less_equal: return z <= stored;
-    case DepthTest::equal: return z == stored;
-    case DepthTest::always: return true;
+    case DepthTest::less:
+      return z < stored;
+    case DepthTest::less_equal:
+      return z <= stored;
+    case DepthTest::equal:
+      return z == stored;
+    case DepthTest::always:
+      return true;
   }
   return false;
 }

@@ -33,9 +33,8 @@ Status validate(const FrameBuffer& fb, std::span<const DrawCall> draws) {
     const DrawCall& d = draws[i];
     const std::string where = "raster: draw " + std::to_string(i) + ": ";
     if (d.varying_count < 0 || d.varying_count > kMaxVaryings) {
-      return Status::error(ErrorCode::invalid_argument,
-                           where + "varying_count must be in [0, " +
-                               std::to_string(kMaxVaryings) + "]");
+      return Status::error(ErrorCode::invalid_argument, where + "varying_count must be in [0, " +
+                                                            std::to_string(kMaxVaryings) + "]");
     }
     if (d.vertex_count > 0 && !d.positions) {
       return Status::error(ErrorCode::invalid_argument, where + "positions are null");
@@ -78,15 +77,14 @@ Result<RasterStats> Rasteriser::render(FrameBuffer& fb, std::span<const DrawCall
   const int tiles = tiles_x * tiles_y;
 
   // Geometry stage: one task per chunk, each writing only its own chunk.
-  parallel_for(
-      0, nchunks, 1,
-      [&](std::int64_t c0, std::int64_t c1) {
-        for (std::int64_t c = c0; c < c1; ++c) {
-          detail::process_chunk(c, draws, im.first_triangle, fb, options_, tiles_x, tiles_y,
-                                im.chunks[std::size_t(c)]);
-        }
-      },
-      {threads});
+  parallel_for(0, nchunks, 1,
+               [&](std::int64_t c0, std::int64_t c1) {
+                 for (std::int64_t c = c0; c < c1; ++c) {
+                   detail::process_chunk(c, draws, im.first_triangle, fb, options_, tiles_x,
+                                         tiles_y, im.chunks[std::size_t(c)]);
+                 }
+               },
+               {threads});
 
   RasterStats stats;
   const std::span<const detail::Chunk> chunks(im.chunks.data(), std::size_t(nchunks));
@@ -111,14 +109,13 @@ Result<RasterStats> Rasteriser::render(FrameBuffer& fb, std::span<const DrawCall
   ctx.tiles_x = tiles_x;
   ctx.tiles_y = tiles_y;
   im.tile_stats.assign(std::size_t(tiles), RasterStats{});
-  parallel_for(
-      0, tiles, 1,
-      [&](std::int64_t t0, std::int64_t t1) {
-        for (std::int64_t t = t0; t < t1; ++t) {
-          detail::render_tile(ctx, int(t), im.tile_stats[std::size_t(t)]);
-        }
-      },
-      {threads});
+  parallel_for(0, tiles, 1,
+               [&](std::int64_t t0, std::int64_t t1) {
+                 for (std::int64_t t = t0; t < t1; ++t) {
+                   detail::render_tile(ctx, int(t), im.tile_stats[std::size_t(t)]);
+                 }
+               },
+               {threads});
   for (const RasterStats& t : im.tile_stats) {
     stats.quads += t.quads;
     stats.lanes_shaded += t.lanes_shaded;

@@ -13,16 +13,16 @@ namespace tessera::raster::detail {
 namespace {
 
 struct Viewport {
-  double gw, gh;            // grid size in pixels
-  double z_scale, z_bias;   // window depth = z_ndc * z_scale + z_bias
+  double gw, gh;           // grid size in pixels
+  double z_scale, z_bias;  // window depth = z_ndc * z_scale + z_bias
   std::int32_t max_x, max_y;
 };
 
 /// Sets up one (possibly clipped) triangle given clip-space positions and varying pointers.
 /// Appends to `chunk` unless it is culled; returns true when a triangle was emitted.
-bool setup_triangle(const float* const p[3], const float* const v[3], int nv,
-                    const DrawCall& draw, std::uint32_t draw_index, std::uint32_t prim_id,
-                    const Viewport& vp, Chunk& chunk) {
+bool setup_triangle(const float* const p[3], const float* const v[3], int nv, const DrawCall& draw,
+                    std::uint32_t draw_index, std::uint32_t prim_id, const Viewport& vp,
+                    Chunk& chunk) {
   std::int64_t fx[3], fy[3];
   double zw[3], iw[3];
   for (int i = 0; i < 3; ++i) {
@@ -167,8 +167,10 @@ void process_chunk(std::int64_t index, std::span<const DrawCall> draws,
   const std::uint64_t begin = std::uint64_t(index) * kChunkTriangles;
   const std::uint64_t end = std::min<std::uint64_t>(begin + kChunkTriangles, first_triangle.back());
   // The draw holding `begin`: the last draw whose first triangle is <= begin.
-  std::size_t d = std::size_t(std::upper_bound(first_triangle.begin(), first_triangle.end(),
-                                               begin) - first_triangle.begin()) - 1;
+  std::size_t d =
+      std::size_t(std::upper_bound(first_triangle.begin(), first_triangle.end(), begin) -
+                  first_triangle.begin()) -
+      1;
   ClipVertex poly[kMaxClipVertices], scratch[kMaxClipVertices];
   for (std::uint64_t tri = begin; tri < end; ++tri) {
     while (tri >= first_triangle[d + 1]) ++d;
@@ -179,8 +181,7 @@ void process_chunk(std::int64_t index, std::span<const DrawCall> draws,
       const std::uint64_t slot = local * 3 + std::uint64_t(k);
       vi[k] = draw.indices ? draw.indices[slot] : std::uint32_t(slot);
     }
-    if (vi[0] >= draw.vertex_count || vi[1] >= draw.vertex_count ||
-        vi[2] >= draw.vertex_count) {
+    if (vi[0] >= draw.vertex_count || vi[1] >= draw.vertex_count || vi[2] >= draw.vertex_count) {
       chunk.bad_index = true;
       return;
     }
@@ -193,8 +194,7 @@ void process_chunk(std::int64_t index, std::span<const DrawCall> draws,
       v[k] = nv > 0 ? draw.varyings + std::size_t(vi[k]) * std::size_t(nv) : nullptr;
     }
     const std::uint32_t prim_id = draw.primitive_id_base + std::uint32_t(local);
-    const std::uint32_t oc0 = outcode(p[0], cp), oc1 = outcode(p[1], cp),
-                        oc2 = outcode(p[2], cp);
+    const std::uint32_t oc0 = outcode(p[0], cp), oc1 = outcode(p[1], cp), oc2 = outcode(p[2], cp);
     if (oc0 & oc1 & oc2 & kRejectMask) {
       ++chunk.stats.triangles_culled;
       continue;

@@ -127,9 +127,9 @@ class TileRasteriser {
   const DrawCall* draw_ = nullptr;
   const float* tv_ = nullptr;  // varying block
   QuadFn quad_fn_ = nullptr;
-  bool has_shader_ = false;    // draw_->shader or draw_->quad_shader is set
-  ShadeInput in_;              // fields shared by the triangle's invocations
-  ShadeInput lanes_[4];        // per-lane inputs of the quad shader
+  bool has_shader_ = false;  // draw_->shader or draw_->quad_shader is set
+  ShadeInput in_;            // fields shared by the triangle's invocations
+  ShadeInput lanes_[4];      // per-lane inputs of the quad shader
   std::int64_t off_[3][kMaxSamples];
   alignas(16) std::int32_t off32_[3][kMaxSamples];  // narrow triangles: off_ as int32
   alignas(16) float dz_[kMaxSamples];
@@ -209,8 +209,8 @@ void TileRasteriser::triangle(const TriSetup& t, const float* varyings) {
       for (int s = 0; s < ns; ++s) off32_[e][s] = std::int32_t(off_[e][s]);
     }
   }
-  const Edge edges[3] = {{t.a[0], t.b[0], t.c[0]}, {t.a[1], t.b[1], t.c[1]},
-                         {t.a[2], t.b[2], t.c[2]}};
+  const Edge edges[3] = {
+      {t.a[0], t.b[0], t.c[0]}, {t.a[1], t.b[1], t.c[1]}, {t.a[2], t.b[2], t.c[2]}};
   const std::int64_t step_x[3] = {t.a[0] * kSubpixel, t.a[1] * kSubpixel, t.a[2] * kSubpixel};
   const std::int64_t step_y[3] = {t.b[0] * kSubpixel, t.b[1] * kSubpixel, t.b[2] * kSubpixel};
   // Samples of pixel p lie in [256 p, 256 p + 240]; a block's sample region is therefore

@@ -80,20 +80,19 @@ Result<Frame> SceneRenderer::render(const scene::Camera& camera, const FrameOpti
   for (std::size_t mi = 0; mi < sc.meshes.size(); ++mi) {
     const scene::Mesh& m = sc.meshes[mi];
     std::vector<float>& clip = clip_[mi];
-    parallel_for(
-        0, std::int64_t(m.positions.size()), 4096,
-        [&](std::int64_t b, std::int64_t e) {
-          for (std::int64_t i = b; i < e; ++i) {
-            const Vec3& p = m.positions[std::size_t(i)];
-            const Vec4 c = vp * Vec4{p.x, p.y, p.z, 1.0f};
-            float* o = &clip[std::size_t(i) * 4];
-            o[0] = c.x;
-            o[1] = c.y;
-            o[2] = c.z;
-            o[3] = c.w;
-          }
-        },
-        {options.threads});
+    parallel_for(0, std::int64_t(m.positions.size()), 4096,
+                 [&](std::int64_t b, std::int64_t e) {
+                   for (std::int64_t i = b; i < e; ++i) {
+                     const Vec3& p = m.positions[std::size_t(i)];
+                     const Vec4 c = vp * Vec4{p.x, p.y, p.z, 1.0f};
+                     float* o = &clip[std::size_t(i) * 4];
+                     o[0] = c.x;
+                     o[1] = c.y;
+                     o[2] = c.z;
+                     o[3] = c.w;
+                   }
+                 },
+                 {options.threads});
   }
   frame.ms_transform = ms_since(t0);
 

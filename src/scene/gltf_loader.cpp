@@ -23,8 +23,8 @@ struct ImageContext {
 
 // tinygltf hands us the encoded bytes of each image (file, data URI or GLB buffer view); we
 // decode them with tessera's readers (size limits, one-line errors) and keep them ourselves.
-bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int,
-                int, const unsigned char* bytes, int size, void* user) {
+bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                const unsigned char* bytes, int size, void* user) {
   auto* ctx = static_cast<ImageContext*>(user);
   if (index < 0) return false;
   if (std::size_t(index) >= ctx->images->size()) ctx->images->resize(std::size_t(index) + 1);
@@ -53,7 +53,9 @@ Status read_floats(const tinygltf::Model& model, int accessor_index, int comps,
   }
   const tinygltf::Accessor& acc = model.accessors[std::size_t(accessor_index)];
   const int type_comps = tinygltf::GetNumComponentsInType(std::uint32_t(acc.type));
-  if (type_comps != comps) return bad("has " + std::to_string(type_comps) + " components, expected " + std::to_string(comps));
+  if (type_comps != comps)
+    return bad("has " + std::to_string(type_comps) + " components, expected " +
+               std::to_string(comps));
   if (acc.bufferView < 0 || std::size_t(acc.bufferView) >= model.bufferViews.size()) {
     return bad("has no buffer view (sparse accessors are not supported)");
   }
@@ -69,7 +71,9 @@ Status read_floats(const tinygltf::Model& model, int accessor_index, int comps,
     return bad("buffer view exceeds its buffer");
   }
   if (count > 0 && (acc.byteOffset > view.byteLength ||
-                    (count - 1) > (view.byteLength - acc.byteOffset - std::min(elem, view.byteLength - acc.byteOffset)) / stride ||
+                    (count - 1) > (view.byteLength - acc.byteOffset -
+                                   std::min(elem, view.byteLength - acc.byteOffset)) /
+                                      stride ||
                     acc.byteOffset + (count - 1) * stride + elem > view.byteLength)) {
     return bad("reads past its buffer view");
   }
@@ -81,15 +85,20 @@ Status read_floats(const tinygltf::Model& model, int accessor_index, int comps,
       float v = 0.0f;
       const std::uint8_t* q = p + std::size_t(c) * std::size_t(csize);
       switch (acc.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&v, q, 4); break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: v = acc.normalized ? *q / 255.0f : float(*q); break;
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+          std::memcpy(&v, q, 4);
+          break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+          v = acc.normalized ? *q / 255.0f : float(*q);
+          break;
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
           std::uint16_t s;
           std::memcpy(&s, q, 2);
           v = acc.normalized ? s / 65535.0f : float(s);
           break;
         }
-        default: return bad("unsupported component type for a vertex attribute");
+        default:
+          return bad("unsupported component type for a vertex attribute");
       }
       out[i * std::size_t(comps) + std::size_t(c)] = v;
     }
@@ -103,10 +112,12 @@ Status read_indices(const tinygltf::Model& model, int accessor_index,
     return Status::error(ErrorCode::corrupt_data,
                          what + ": index accessor " + std::to_string(accessor_index) + ": " + why);
   };
-  if (accessor_index < 0 || std::size_t(accessor_index) >= model.accessors.size()) return bad("does not exist");
+  if (accessor_index < 0 || std::size_t(accessor_index) >= model.accessors.size())
+    return bad("does not exist");
   const tinygltf::Accessor& acc = model.accessors[std::size_t(accessor_index)];
   if (acc.type != TINYGLTF_TYPE_SCALAR) return bad("is not scalar");
-  if (acc.bufferView < 0 || std::size_t(acc.bufferView) >= model.bufferViews.size()) return bad("has no buffer view");
+  if (acc.bufferView < 0 || std::size_t(acc.bufferView) >= model.bufferViews.size())
+    return bad("has no buffer view");
   const tinygltf::BufferView& view = model.bufferViews[std::size_t(acc.bufferView)];
   if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size()) return bad("bad buffer");
   const auto& data = model.buffers[std::size_t(view.buffer)].data;
@@ -152,8 +163,8 @@ Mat4 node_matrix(const tinygltf::Node& node) {
                          float(node.translation[2])});
   }
   if (node.rotation.size() == 4) {
-    m = m * rotation_quat(float(node.rotation[0]), float(node.rotation[1]),
-                          float(node.rotation[2]), float(node.rotation[3]));
+    m = m * rotation_quat(float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2]),
+                          float(node.rotation[3]));
   }
   if (node.scale.size() == 3) {
     m = m * scaling({float(node.scale[0]), float(node.scale[1]), float(node.scale[2])});
@@ -196,8 +207,12 @@ class SceneBuilder {
  public:
   SceneBuilder(const tinygltf::Model& model, const std::vector<ImageRGBA8>& images,
                const std::string& path, const LoadOptions& options)
-      : model_(model), images_(images), path_(path), options_(options),
-        texture_map_(model.textures.size(), -1), depth_guard_(model.nodes.size(), 0) {}
+      : model_(model),
+        images_(images),
+        path_(path),
+        options_(options),
+        texture_map_(model.textures.size(), -1),
+        depth_guard_(model.nodes.size(), 0) {}
 
   void add_materials();
   /// The node and its subtree under the world transform `parent`.
@@ -210,8 +225,8 @@ class SceneBuilder {
   }
   int texture_for(int tex_index, bool srgb);
   void add_light(const tinygltf::Node& node, const Mat4& world);
-  Status add_primitive(const tinygltf::Mesh& gm, const tinygltf::Primitive& prim,
-                       const Mat4& world, const Mat4& normal_matrix);
+  Status add_primitive(const tinygltf::Mesh& gm, const tinygltf::Primitive& prim, const Mat4& world,
+                       const Mat4& normal_matrix);
 
   const tinygltf::Model& model_;
   const std::vector<ImageRGBA8>& images_;
@@ -262,8 +277,7 @@ void SceneBuilder::add_materials() {
 void SceneBuilder::add_light(const tinygltf::Node& node, const Mat4& world) {
   int light = -1;
   if (auto ext = node.extensions.find("KHR_lights_punctual"); ext != node.extensions.end()) {
-    if (ext->second.IsObject() && ext->second.Has("light") &&
-        ext->second.Get("light").IsNumber()) {
+    if (ext->second.IsObject() && ext->second.Has("light") && ext->second.Get("light").IsNumber()) {
       light = ext->second.Get("light").GetNumberAsInt();
     }
   }
@@ -283,8 +297,8 @@ Status SceneBuilder::add_primitive(const tinygltf::Mesh& gm, const tinygltf::Pri
   if (prim.mode != kTriangles) return Status::success();  // points and lines are not rendered
   Mesh mesh;
   mesh.name = gm.name;
-  mesh.material = (prim.material >= 0 && prim.material < default_material_) ? prim.material
-                                                                            : default_material_;
+  mesh.material =
+      (prim.material >= 0 && prim.material < default_material_) ? prim.material : default_material_;
   std::vector<float> pos, nrm, uv;
   auto attr = [&](const char* key) {
     auto it = prim.attributes.find(key);
@@ -324,9 +338,9 @@ Status SceneBuilder::add_primitive(const tinygltf::Mesh& gm, const tinygltf::Pri
   }
   triangles_ += mesh.triangle_count();
   if (triangles_ > options_.max_triangles) {
-    return Status::error(ErrorCode::too_large, path_ + ": more than " +
-                                                   std::to_string(options_.max_triangles) +
-                                                   " triangles");
+    return Status::error(
+        ErrorCode::too_large,
+        path_ + ": more than " + std::to_string(options_.max_triangles) + " triangles");
   }
   if (Status s = detail::finish_mesh(mesh, path_); !s.ok()) return s;
   if (!mesh.indices.empty()) scene_.meshes.push_back(std::move(mesh));

@@ -12,9 +12,9 @@ Status finish_mesh(Mesh& mesh, const std::string& what) {
   }
   for (std::uint32_t i : mesh.indices) {
     if (i >= n) {
-      return Status::error(ErrorCode::corrupt_data,
-                           what + ": vertex index " + std::to_string(i) + " out of range (" +
-                               std::to_string(n) + " vertices) in mesh '" + mesh.name + "'");
+      return Status::error(ErrorCode::corrupt_data, what + ": vertex index " + std::to_string(i) +
+                                                        " out of range (" + std::to_string(n) +
+                                                        " vertices) in mesh '" + mesh.name + "'");
     }
   }
   for (const Vec3& p : mesh.positions) {
@@ -51,8 +51,7 @@ Result<ImageRGBA8> load_texture_image(const std::string& scene_path,
                                       const std::string& image_path) {
   Result<ImageRGBA8> img = io::read_image(image_path);
   if (!img) {
-    return Status::error(img.status().code,
-                         scene_path + ": texture: " + img.status().message);
+    return Status::error(img.status().code, scene_path + ": texture: " + img.status().message);
   }
   return img;
 }

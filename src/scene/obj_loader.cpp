@@ -81,14 +81,14 @@ Result<Scene> load_obj(const std::string& path, const LoadOptions& options) {
     for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
       const int fv = shape.mesh.num_face_vertices[f];
       if (fv != 3 || offset + 3 > idx.size()) {
-        return Status::error(ErrorCode::corrupt_data,
-                             path + ": face " + std::to_string(f) + " of '" + shape.name +
-                                 "' could not be triangulated");
+        return Status::error(ErrorCode::corrupt_data, path + ": face " + std::to_string(f) +
+                                                          " of '" + shape.name +
+                                                          "' could not be triangulated");
       }
       if (++triangles > options.max_triangles) {
-        return Status::error(ErrorCode::too_large, path + ": more than " +
-                                                       std::to_string(options.max_triangles) +
-                                                       " triangles");
+        return Status::error(
+            ErrorCode::too_large,
+            path + ": more than " + std::to_string(options.max_triangles) + " triangles");
       }
       int mat = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
       if (mat < 0 || mat >= default_material) mat = default_material;
@@ -107,8 +107,8 @@ Result<Scene> load_obj(const std::string& path, const LoadOptions& options) {
         auto [it, inserted] = map.emplace(key, std::uint32_t(mesh.positions.size()));
         if (inserted) {
           const std::size_t v = std::size_t(i.vertex_index);
-          mesh.positions.push_back({attrib.vertices[3 * v], attrib.vertices[3 * v + 1],
-                                    attrib.vertices[3 * v + 2]});
+          mesh.positions.push_back(
+              {attrib.vertices[3 * v], attrib.vertices[3 * v + 1], attrib.vertices[3 * v + 2]});
           if (i.normal_index >= 0) {
             const std::size_t n = std::size_t(i.normal_index);
             mesh.normals.push_back(

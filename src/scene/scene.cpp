@@ -1,13 +1,13 @@
 // Scene helpers: bounds, loading by extension, camera parsing and orbits.
+#include "tessera/scene.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
-#include <cstdio>
 #include <sstream>
-
-#include "tessera/scene.h"
 
 namespace tessera::scene {
 
@@ -70,7 +70,8 @@ Result<Camera> parse_camera(const std::string& text) {
   c.up = {v[6], v[7], v[8]};
   c.fov_y_degrees = v[9];
   if (!(c.fov_y_degrees > 0.5f && c.fov_y_degrees < 179.5f)) {
-    return Status::error(ErrorCode::invalid_argument, "--camera: field of view must be in (0.5, 179.5) degrees");
+    return Status::error(ErrorCode::invalid_argument,
+                         "--camera: field of view must be in (0.5, 179.5) degrees");
   }
   if (length(c.target - c.eye) == 0.0f || length(cross(c.target - c.eye, c.up)) == 0.0f) {
     return Status::error(ErrorCode::invalid_argument,
@@ -107,8 +108,7 @@ Result<Camera> camera_from_text(const Scene& scene, const std::string& camera,
   if (!orbit.empty()) {
     int f = -1, n = 0;
     char tail = 0;
-    if (std::sscanf(orbit.c_str(), "%d/%d%c", &f, &n, &tail) != 2 || n <= 0 || f < 0 ||
-        f >= n) {
+    if (std::sscanf(orbit.c_str(), "%d/%d%c", &f, &n, &tail) != 2 || n <= 0 || f < 0 || f >= n) {
       return Status::error(ErrorCode::invalid_argument,
                            "--orbit: expected FRAME/N with 0 <= FRAME < N, got '" + orbit + "'");
     }

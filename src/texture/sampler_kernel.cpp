@@ -17,7 +17,6 @@ int clamp_aniso(int max_aniso) {
 
 }  // namespace
 
-
 UvGradients quad_gradients(const std::array<Uv, 4>& quad) {
   UvGradients g;
   g.dudx = quad[1].u - quad[0].u;

@@ -63,36 +63,35 @@ ImageRGBAF downsample_box(const ImageRGBAF& image, const TextureOptions& options
   const AxisFilter fx(image.width, dw);
   const AxisFilter fy(image.height, dh);
   ImageRGBAF out(dw, dh);
-  parallel_for(
-      0, dh, 8,
-      [&](std::int64_t y_begin, std::int64_t y_end) {
-        for (std::int64_t yy = y_begin; yy < y_end; ++yy) {
-          const int y = int(yy);
-          for (int x = 0; x < dw; ++x) {
-            double plain[3] = {0, 0, 0};  // sum w * c
-            double pre[3] = {0, 0, 0};    // sum w * a * c
-            double alpha = 0;             // sum w * a
-            for (int j = 0; j < fy.count[y]; ++j) {
-              const double wy = fy.weight[std::size_t(y) * AxisFilter::kMaxSpan + j];
-              const int sy = fy.first[y] + j;
-              for (int i = 0; i < fx.count[x]; ++i) {
-                const double w = wy * fx.weight[std::size_t(x) * AxisFilter::kMaxSpan + i];
-                const float* s = image.at(fx.first[x] + i, sy);
-                for (int c = 0; c < 3; ++c) {
-                  plain[c] += w * s[c];
-                  pre[c] += w * s[3] * s[c];
-                }
-                alpha += w * s[3];
-              }
-            }
-            float* d = out.at(x, y);
-            const bool use_pre = alpha_weighted && alpha > 0.0;
-            for (int c = 0; c < 3; ++c) d[c] = float(use_pre ? pre[c] / alpha : plain[c]);
-            d[3] = float(alpha);
-          }
-        }
-      },
-      {options.threads});
+  parallel_for(0, dh, 8,
+               [&](std::int64_t y_begin, std::int64_t y_end) {
+                 for (std::int64_t yy = y_begin; yy < y_end; ++yy) {
+                   const int y = int(yy);
+                   for (int x = 0; x < dw; ++x) {
+                     double plain[3] = {0, 0, 0};  // sum w * c
+                     double pre[3] = {0, 0, 0};    // sum w * a * c
+                     double alpha = 0;             // sum w * a
+                     for (int j = 0; j < fy.count[y]; ++j) {
+                       const double wy = fy.weight[std::size_t(y) * AxisFilter::kMaxSpan + j];
+                       const int sy = fy.first[y] + j;
+                       for (int i = 0; i < fx.count[x]; ++i) {
+                         const double w = wy * fx.weight[std::size_t(x) * AxisFilter::kMaxSpan + i];
+                         const float* s = image.at(fx.first[x] + i, sy);
+                         for (int c = 0; c < 3; ++c) {
+                           plain[c] += w * s[c];
+                           pre[c] += w * s[3] * s[c];
+                         }
+                         alpha += w * s[3];
+                       }
+                     }
+                     float* d = out.at(x, y);
+                     const bool use_pre = alpha_weighted && alpha > 0.0;
+                     for (int c = 0; c < 3; ++c) d[c] = float(use_pre ? pre[c] / alpha : plain[c]);
+                     d[3] = float(alpha);
+                   }
+                 }
+               },
+               {options.threads});
   return out;
 }
 

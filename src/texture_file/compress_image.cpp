@@ -8,8 +8,8 @@
 #include <functional>
 #include <span>
 
-#include "tessera/image_ops.h"
 #include "tessera/image_mipmap.h"
+#include "tessera/image_ops.h"
 #include "tessera/metrics.h"
 #include "tessera/texture_file.h"
 
@@ -275,8 +275,7 @@ Result<CompressedTexture> compress_view(const ImageView8& image, const CompressO
 }
 
 Result<metrics::ImageComparison> measure_level0(const CompressedTexture& texture,
-                                                std::span<const ImageRGBA8> sources,
-                                                int threads) {
+                                                std::span<const ImageRGBA8> sources, int threads) {
   if (sources.size() != std::size_t(texture.image_count())) {
     return bad("measure_level0: " + std::to_string(sources.size()) + " source image(s) for a " +
                "texture of " + std::to_string(texture.image_count()) +

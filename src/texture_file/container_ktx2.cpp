@@ -165,9 +165,8 @@ Result<Header> read_header(std::span<const std::uint8_t> bytes, const std::strin
   if (h.width == 0) return corrupt(name, "pixelWidth 0");
   if (h.height == 0) return unsupported(name, "1D textures (pixelHeight 0) are not supported");
   if (h.depth != 0) {
-    return unsupported(name,
-                       "3D textures (pixelDepth " + std::to_string(h.depth) +
-                           ") are not supported");
+    return unsupported(
+        name, "3D textures (pixelDepth " + std::to_string(h.depth) + ") are not supported");
   }
   if (h.faces != 1 && h.faces != 6) {
     return corrupt(name, "faceCount " + std::to_string(h.faces) + " (1, or 6 for a cube map)");
@@ -189,8 +188,8 @@ Result<Header> read_header(std::span<const std::uint8_t> bytes, const std::strin
   h.levels = std::max<std::uint32_t>(h.level_count, 1);
   if (h.levels > std::uint32_t(possible)) {
     return corrupt(name, "levelCount " + std::to_string(h.level_count) + " is impossible for " +
-                             size_text(h.width, h.height) + " (1 to " +
-                             std::to_string(possible) + ")");
+                             size_text(h.width, h.height) + " (1 to " + std::to_string(possible) +
+                             ")");
   }
   h.index_end = ktx2::kHeaderSize + ktx2::kLevelEntrySize * h.levels;
   if (h.index_end > h.size) {
@@ -213,12 +212,10 @@ Status read_metadata(std::span<const std::uint8_t> bytes, Header& h, const std::
   if (h.dfd_offset > h.size || h.dfd_length > h.size - h.dfd_offset) {
     return corrupt(name, "truncated: the Data Format Descriptor (" + plural_bytes(h.dfd_length) +
                              " at byte " + std::to_string(h.dfd_offset) +
-                             ") extends past the end of the file (" + plural_bytes(h.size) +
-                             ")");
+                             ") extends past the end of the file (" + plural_bytes(h.size) + ")");
   }
-  Result<ktx2::DfdInfo> dfd =
-      ktx2::read_dfd(bytes.subspan(std::size_t(h.dfd_offset), std::size_t(h.dfd_length)),
-                     *h.vk, name);
+  Result<ktx2::DfdInfo> dfd = ktx2::read_dfd(
+      bytes.subspan(std::size_t(h.dfd_offset), std::size_t(h.dfd_length)), *h.vk, name);
   if (!dfd) return dfd.status();
   h.dfd = *dfd;
   h.metadata_end = h.dfd_offset + h.dfd_length;
@@ -231,8 +228,7 @@ Status read_metadata(std::span<const std::uint8_t> bytes, Header& h, const std::
     if (h.kvd_offset > h.size || h.kvd_length > h.size - h.kvd_offset) {
       return corrupt(name, "truncated: the key/value data (" + plural_bytes(h.kvd_length) +
                                " at byte " + std::to_string(h.kvd_offset) +
-                               ") extends past the end of the file (" +
-                               plural_bytes(h.size) + ")");
+                               ") extends past the end of the file (" + plural_bytes(h.size) + ")");
     }
     const auto kvd = bytes.subspan(std::size_t(h.kvd_offset), std::size_t(h.kvd_length));
     if (Status s = check_key_values(kvd, name); !s.ok()) return s;
@@ -348,7 +344,6 @@ Result<CompressedTexture> parse_ktx2(std::span<const std::uint8_t> bytes, const 
                               [&](const auto& l) { return pvrtc::may_have_alpha(l, tex.format); });
   return tex;
 }
-
 
 Result<std::vector<std::uint8_t>> serialise_ktx2(const CompressedTexture& texture,
                                                  const Ktx2Options& options) {

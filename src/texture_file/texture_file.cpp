@@ -6,8 +6,8 @@
 #include <cstring>
 
 #include "core/check.h"
-#include "tessera/io.h"
 #include "tessera/image_mipmap.h"
+#include "tessera/io.h"
 #include "texture_file/container_bytes.h"
 
 namespace tessera::texture_file {

@@ -58,10 +58,10 @@ struct AdaptiveSupersampler::State {
   std::vector<DescriptorPool> pools;     // kSetsPerPool sets each; grown with the views
   std::uint32_t pool_sets_left = 0;      // in pools.back()
   bool frame_open = false;
-  std::uint32_t slot = 0;              // the open frame slot
-  std::uint32_t views = 0;             // records made in the open frame
-  std::uint64_t frame_count = 0;       // begin_frame calls
-  bool timestamps = false;  // profile and the queue family has timestamps
+  std::uint32_t slot = 0;         // the open frame slot
+  std::uint32_t views = 0;        // records made in the open frame
+  std::uint64_t frame_count = 0;  // begin_frame calls
+  bool timestamps = false;        // profile and the queue family has timestamps
   std::uint32_t query_capacity = 0;
 };
 

@@ -71,9 +71,8 @@ Status create_layouts(State& st) {
   }
   st.pipeline_layout = PipelineLayout(api, layout);
   for (const auto& [pass, spirv] : st.spirv) {
-    Result<Pipeline> p =
-        create_compute_pipeline(api, spirv, st.pipeline_layout.get(), kWhat + " (" + pass + ")",
-                                st.options.pipeline_cache);
+    Result<Pipeline> p = create_compute_pipeline(
+        api, spirv, st.pipeline_layout.get(), kWhat + " (" + pass + ")", st.options.pipeline_cache);
     if (!p) return p.status();
     st.pipelines.emplace(pass, std::move(*p));
   }
@@ -181,8 +180,8 @@ Status create_outputs(State& st, State::View& v, bool colour) {
   const VkImageUsageFlags usage =
       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   if (colour && v.colour.get() == VK_NULL_HANDLE) {
-    Result<Image> img = Image::create(api, adaptive_output_format(o), extent, usage,
-                                      kWhat + ": output image");
+    Result<Image> img =
+        Image::create(api, adaptive_output_format(o), extent, usage, kWhat + ": output image");
     if (!img) return img.status();
     v.colour = std::move(*img);
   }

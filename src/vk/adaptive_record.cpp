@@ -76,9 +76,9 @@ Status check_slot(const State& st, int s, const ImageResource& img, VkExtent2D s
     return frame_error(ErrorCode::size_mismatch,
                        slot + ": image is " + std::to_string(img.extent.width) + "x" +
                            std::to_string(img.extent.height) + ", smaller than the G-buffer " +
-                           std::to_string(gw) + "x" + std::to_string(gh) + " (m = " +
-                           std::to_string(o.m) + ", render size " + std::to_string(size.width) +
-                           "x" + std::to_string(size.height) + ")");
+                           std::to_string(gw) + "x" + std::to_string(gh) +
+                           " (m = " + std::to_string(o.m) + ", render size " +
+                           std::to_string(size.width) + "x" + std::to_string(size.height) + ")");
   }
   const int channels = format_channels(img.format);
   if (channels == 0) {
@@ -153,11 +153,11 @@ Status check_adaptive_frame(const State& st, VkCommandBuffer cmd, const Adaptive
   const AdaptiveSupersamplerOptions& o = st.options;
   if (size.width == 0 || size.height == 0 || size.width > std::uint32_t(o.width) ||
       size.height > std::uint32_t(o.height)) {
-    return frame_error(ErrorCode::too_large,
-                       "render size " + std::to_string(f.render_size.width) + "x" +
-                           std::to_string(f.render_size.height) + " (1.." +
-                           std::to_string(o.width) + " x 1.." + std::to_string(o.height) +
-                           ", the largest size of the options)");
+    return frame_error(ErrorCode::too_large, "render size " + std::to_string(f.render_size.width) +
+                                                 "x" + std::to_string(f.render_size.height) +
+                                                 " (1.." + std::to_string(o.width) + " x 1.." +
+                                                 std::to_string(o.height) +
+                                                 ", the largest size of the options)");
   }
   if (f.output.image != VK_NULL_HANDLE) {
     if (Status s = check_output(st, f.output, size); !s.ok()) return s;
@@ -220,8 +220,7 @@ class Recorder {
     if (st_.options.profile) {
       t_.view.passes.push_back(name);
       if (st_.timestamps) {
-        write_timestamp(st_.api, cmd_, t_.view.queries.get(),
-                        std::uint32_t(t_.view.passes.size()));
+        write_timestamp(st_.api, cmd_, t_.view.queries.get(), std::uint32_t(t_.view.passes.size()));
       }
     }
   }
@@ -321,8 +320,8 @@ void record_epilogue(State& st, VkCommandBuffer cmd, const Target& t) {
   const VkBuffer rb = t.view.readback.get();
   if (st.timestamps) {
     st.api.CmdCopyQueryPoolResults(cmd, t.view.queries.get(), 0,
-                                   std::uint32_t(t.view.passes.size()) + 1, rb, kReadbackTicks,
-                                   8, VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+                                   std::uint32_t(t.view.passes.size()) + 1, rb, kReadbackTicks, 8,
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
   }
   const VkBufferCopy copy{4, 0, 4};
   st.api.CmdCopyBuffer(cmd, st.work.get(), rb, 1, &copy);
@@ -334,8 +333,8 @@ void record_epilogue(State& st, VkCommandBuffer cmd, const Target& t) {
   h.record(st.api, cmd);
 }
 
-ImageResource output_resource(VkImage image, VkImageView view, VkFormat format,
-                              VkExtent2D extent, VkImageUsageFlags usage) {
+ImageResource output_resource(VkImage image, VkImageView view, VkFormat format, VkExtent2D extent,
+                              VkImageUsageFlags usage) {
   ImageResource o;
   o.image = image;
   o.view = view;
@@ -381,8 +380,8 @@ Result<AdaptiveRecord> record_adaptive(State& st, VkCommandBuffer cmd, const Ada
 
   AdaptiveRecord r;
   r.colour = f.output.image != VK_NULL_HANDLE
-                 ? output_resource(f.output.image, f.output.view, f.output.format,
-                                   f.output.extent, f.output.usage)
+                 ? output_resource(f.output.image, f.output.view, f.output.format, f.output.extent,
+                                   f.output.usage)
                  : output_resource(view.colour);
   if (view.counts.get() != VK_NULL_HANDLE) r.sample_counts = output_resource(view.counts);
   for (std::size_t s = 0; s < 4; ++s) {
@@ -401,8 +400,8 @@ Status AdaptiveSupersampler::begin_frame(std::uint32_t frame_slot) {
     return frame_error(ErrorCode::invalid_argument,
                        "begin_frame(" + std::to_string(frame_slot) + "): frame slots are 0.." +
                            std::to_string(st.options.frames_in_flight - 1) +
-                           " (frames_in_flight = " +
-                           std::to_string(st.options.frames_in_flight) + ")");
+                           " (frames_in_flight = " + std::to_string(st.options.frames_in_flight) +
+                           ")");
   }
   st.frame_open = true;
   st.slot = frame_slot;
@@ -437,8 +436,8 @@ Result<AdaptiveProfile> AdaptiveSupersampler::read_profile(std::uint32_t frame_s
     return frame_error(ErrorCode::invalid_argument, which + ": nothing recorded there");
   }
   const State::View& v = st.frames[frame_slot][view];
-  const std::string pending = which + ": the command buffer of frame " +
-                              std::to_string(v.frame) + " has not completed";
+  const std::string pending =
+      which + ": the command buffer of frame " + std::to_string(v.frame) + " has not completed";
   v.readback.invalidate();
   const auto* bytes = static_cast<const unsigned char*>(v.readback.mapped());
   std::uint32_t counter = 0;

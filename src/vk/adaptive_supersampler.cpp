@@ -74,12 +74,12 @@ Status check_options(State& st) {
         " bytes exceeds maxStorageBufferRange = " + std::to_string(lim.maxStorageBufferRange));
   }
   st.derived.list_capacity = adaptive::list_capacity(
-      o, st.derived.n,
-      (std::size_t(lim.maxStorageBufferRange) - 16) / adaptive::kListItemBytes);
+      o, st.derived.n, (std::size_t(lim.maxStorageBufferRange) - 16) / adaptive::kListItemBytes);
   // Without fp64 the depth metric accumulates in float; tile_list beyond the device's shared
   // memory runs `loop` (the same image).
   st.derived.float64 = st.api.ctx.enabled_features.shaderFloat64 == VK_TRUE;
-  if (st.derived.tile && adaptive::tile_shared_bytes(st.derived.n) > lim.maxComputeSharedMemorySize) {
+  if (st.derived.tile &&
+      adaptive::tile_shared_bytes(st.derived.n) > lim.maxComputeSharedMemorySize) {
     st.derived.tile = false;
   }
   if (o.sample_count_texture) {

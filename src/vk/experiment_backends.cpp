@@ -31,7 +31,7 @@ class VkBackends final : public experiments::GpuBackendFactory {
     if (n == 0) return Status::success();
     std::lock_guard<std::mutex> lock(log_->mutex);
     return Status::error(ErrorCode::unsupported, "vulkan validation: " + std::to_string(n) +
-                                                  " message(s), the first: " + log_->first);
+                                                     " message(s), the first: " + log_->first);
   }
 
  private:

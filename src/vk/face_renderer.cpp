@@ -31,9 +31,9 @@ VkSampleCountFlags attachment_sample_counts(const Api& api) {
   const struct {
     VkFormat format;
     VkImageUsageFlags usage;
-  } formats[2] = {{kColourFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
-                                      VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
-                  {kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT}};
+  } formats[2] = {
+      {kColourFormat, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT},
+      {kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT}};
   for (const auto& f : formats) {
     VkImageFormatProperties p{};
     if (api.GetPhysicalDeviceImageFormatProperties(api.ctx.physical_device, f.format,
@@ -70,8 +70,8 @@ Status check_device_support(const HeadlessDevice& device) {
 /// A host-visible buffer holding `bytes` bytes of `data` (null: left for later writes).
 Result<Buffer> host_buffer(const Api& api, const void* data, std::size_t bytes,
                            VkBufferUsageFlags usage, const char* what) {
-  Result<Buffer> b = Buffer::create(api, VkDeviceSize(bytes), usage, true,
-                                    std::string(kWho) + ": " + what);
+  Result<Buffer> b =
+      Buffer::create(api, VkDeviceSize(bytes), usage, true, std::string(kWho) + ": " + what);
   if (!b) return b.status();
   if (data != nullptr) {
     std::memcpy(b->mapped(), data, bytes);
@@ -110,16 +110,16 @@ Status create_layout_and_queries(FaceRenderer::State& s) {
   const Api& api = *s.api;
   const VkDescriptorSetLayout set_layout = s.textures->set_layout();
   const VkPushConstantRange push{VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(std::int32_t)};
-  const VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, nullptr, 0, 1,
-                                      &set_layout, 1, &push};
+  const VkPipelineLayoutCreateInfo li{
+      VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, nullptr, 0, 1, &set_layout, 1, &push};
   VkPipelineLayout layout = VK_NULL_HANDLE;
   if (VkResult r = api.CreatePipelineLayout(api.device(), &li, api.alloc(), &layout);
       r != VK_SUCCESS) {
     return vk_error(std::string(kWho) + ": vkCreatePipelineLayout", r);
   }
   s.layout = PipelineLayout(api, layout);
-  const VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO, nullptr, 0,
-                                 VK_QUERY_TYPE_TIMESTAMP, 3, 0};
+  const VkQueryPoolCreateInfo qi{
+      VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO, nullptr, 0, VK_QUERY_TYPE_TIMESTAMP, 3, 0};
   VkQueryPool pool = VK_NULL_HANDLE;
   if (VkResult r = api.CreateQueryPool(api.device(), &qi, api.alloc(), &pool); r != VK_SUCCESS) {
     return vk_error(std::string(kWho) + ": vkCreateQueryPool", r);
@@ -143,8 +143,9 @@ Status check_frame(const FaceFrameOptions& o) {
   }
   if (o.shading_only) return unsupported("no shading-only pass");
   if (!o.sample_pattern.empty()) {
-    return unsupported("frames are drawn at the device's sample locations, not at an explicit "
-                       "pattern");
+    return unsupported(
+        "frames are drawn at the device's sample locations, not at an explicit "
+        "pattern");
   }
   return Status::success();
 }
@@ -244,8 +245,13 @@ int FaceRenderer::State::record_pass(VkCommandBuffer cmd, VkRenderPass pass,
   }
   clear[1].depthStencil = {1.0f, 0};
   const VkExtent2D extent{std::uint32_t(o.width), std::uint32_t(o.height)};
-  const VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO, nullptr, pass,
-                                 targets.framebuffer.get(), {{0, 0}, extent}, 2, clear};
+  const VkRenderPassBeginInfo bi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO,
+                                 nullptr,
+                                 pass,
+                                 targets.framebuffer.get(),
+                                 {{0, 0}, extent},
+                                 2,
+                                 clear};
   api->CmdBeginRenderPass(cmd, &bi, VK_SUBPASS_CONTENTS_INLINE);
   const VkViewport viewport{0.0f, 0.0f, float(o.width), float(o.height), 0.0f, 1.0f};
   const VkRect2D scissor{{0, 0}, extent};
@@ -325,8 +331,8 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceFr
   if (o.msaa > 1) s.record_resolve(*cmd);
   const auto t0 = std::chrono::steady_clock::now();
   if (Status st = s.device->submit_and_wait(*cmd); !st.ok()) return st;
-  frame.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                      .count();
+  frame.wall_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::uint64_t ticks[3] = {0, 0, 0};
   const std::uint32_t stamps = o.msaa > 1 ? 3 : 2;
   if (VkResult r = api.GetQueryPoolResults(api.device(), s.timestamps.get(), 0, stamps,

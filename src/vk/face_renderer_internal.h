@@ -48,7 +48,7 @@ struct FaceRenderer::State {
   const faces::FaceScene* scene = nullptr;
   const faces::FaceTextureSet* set = nullptr;
   std::unique_ptr<FaceTextureSet> textures;  ///< maxAnisotropy 16 (the paper's filter)
-  VkSampleCountFlags sample_counts = 0;  ///< What msaa_supported allows.
+  VkSampleCountFlags sample_counts = 0;      ///< What msaa_supported allows.
   double ms_per_tick = 0;
   std::uint64_t timestamp_mask = ~std::uint64_t(0);
 

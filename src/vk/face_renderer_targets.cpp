@@ -51,8 +51,14 @@ Result<Attachment> create_attachment(const Api& api, VkFormat format, int width,
     return vk_error(who("vkBindImageMemory"), r);
   }
   if (aspect == 0) return a;
-  const VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, nullptr, 0, image,
-                                 VK_IMAGE_VIEW_TYPE_2D, format, {}, {aspect, 0, 1, 0, 1}};
+  const VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+                                 nullptr,
+                                 0,
+                                 image,
+                                 VK_IMAGE_VIEW_TYPE_2D,
+                                 format,
+                                 {},
+                                 {aspect, 0, 1, 0, 1}};
   VkImageView view = VK_NULL_HANDLE;
   if (VkResult r = api.CreateImageView(api.device(), &vi, api.alloc(), &view); r != VK_SUCCESS) {
     return vk_error(who("vkCreateImageView"), r);
@@ -71,15 +77,16 @@ Result<VkRenderPass> FaceRenderer::State::render_pass(int samples) {
   const auto n = VkSampleCountFlagBits(samples);
   const VkAttachmentDescription att[2] = {
       {0, kColourFormat, n, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE,
-       VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE,
-       VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL},
+       VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE, VK_IMAGE_LAYOUT_UNDEFINED,
+       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL},
       {0, kDepthFormat, n, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_DONT_CARE,
-       VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE,
-       VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL}};
+       VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE, VK_IMAGE_LAYOUT_UNDEFINED,
+       VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL}};
   const VkAttachmentReference colour_ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
   const VkAttachmentReference depth_ref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-  const VkSubpassDescription subpass{0, VK_PIPELINE_BIND_POINT_GRAPHICS, 0, nullptr, 1,
-                                     &colour_ref, nullptr, &depth_ref, 0, nullptr};
+  const VkSubpassDescription subpass{
+      0,      VK_PIPELINE_BIND_POINT_GRAPHICS, 0, nullptr, 1, &colour_ref, nullptr, &depth_ref, 0,
+      nullptr};
   const VkPipelineStageFlags tests =
       VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
   const VkSubpassDependency deps[2] = {
@@ -92,8 +99,8 @@ Result<VkRenderPass> FaceRenderer::State::render_pass(int samples) {
       {0, VK_SUBPASS_EXTERNAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
        VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
        VK_ACCESS_TRANSFER_READ_BIT, 0}};
-  const VkRenderPassCreateInfo info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO, nullptr, 0, 2, att,
-                                    1, &subpass, 2, deps};
+  const VkRenderPassCreateInfo info{
+      VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO, nullptr, 0, 2, att, 1, &subpass, 2, deps};
   VkRenderPass raw = VK_NULL_HANDLE;
   if (VkResult r = api->CreateRenderPass(api->device(), &info, api->alloc(), &raw);
       r != VK_SUCCESS) {
@@ -121,9 +128,9 @@ Status FaceRenderer::State::ensure_targets(int width, int height, int samples) {
                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
   if (!depth) return depth.status();
   if (samples > 1) {
-    Result<Attachment> resolved = create_attachment(
-        *api, kColourFormat, width, height, 1,
-        VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, 0);
+    Result<Attachment> resolved =
+        create_attachment(*api, kColourFormat, width, height, 1,
+                          VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, 0);
     if (!resolved) return resolved.status();
     t.resolved = std::move(*resolved);
   }
@@ -140,8 +147,7 @@ Status FaceRenderer::State::ensure_targets(int width, int height, int samples) {
                                    std::uint32_t(height),
                                    1};
   VkFramebuffer fb = VK_NULL_HANDLE;
-  if (VkResult r = api->CreateFramebuffer(api->device(), &fi, api->alloc(), &fb);
-      r != VK_SUCCESS) {
+  if (VkResult r = api->CreateFramebuffer(api->device(), &fi, api->alloc(), &fb); r != VK_SUCCESS) {
     return vk_error(who("vkCreateFramebuffer"), r);
   }
   t.framebuffer = Framebuffer(*api, fb);

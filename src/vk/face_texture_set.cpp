@@ -21,20 +21,28 @@ Status invalid(const std::string& msg) {
 
 VkFormat vk_format(faces::TexelFormat f) {
   switch (f) {
-    case faces::TexelFormat::rgba32f: return VK_FORMAT_R32G32B32A32_SFLOAT;
-    case faces::TexelFormat::rgba16f: return VK_FORMAT_R16G16B16A16_SFLOAT;
-    case faces::TexelFormat::rgba8_unorm: return VK_FORMAT_R8G8B8A8_UNORM;
-    case faces::TexelFormat::rgba8_srgb: return VK_FORMAT_R8G8B8A8_SRGB;
+    case faces::TexelFormat::rgba32f:
+      return VK_FORMAT_R32G32B32A32_SFLOAT;
+    case faces::TexelFormat::rgba16f:
+      return VK_FORMAT_R16G16B16A16_SFLOAT;
+    case faces::TexelFormat::rgba8_unorm:
+      return VK_FORMAT_R8G8B8A8_UNORM;
+    case faces::TexelFormat::rgba8_srgb:
+      return VK_FORMAT_R8G8B8A8_SRGB;
   }
   return VK_FORMAT_R32G32B32A32_SFLOAT;
 }
 
 const char* format_name(faces::TexelFormat f) {
   switch (f) {
-    case faces::TexelFormat::rgba32f: return "R32G32B32A32_SFLOAT";
-    case faces::TexelFormat::rgba16f: return "R16G16B16A16_SFLOAT";
-    case faces::TexelFormat::rgba8_unorm: return "R8G8B8A8_UNORM";
-    case faces::TexelFormat::rgba8_srgb: return "R8G8B8A8_SRGB";
+    case faces::TexelFormat::rgba32f:
+      return "R32G32B32A32_SFLOAT";
+    case faces::TexelFormat::rgba16f:
+      return "R16G16B16A16_SFLOAT";
+    case faces::TexelFormat::rgba8_unorm:
+      return "R8G8B8A8_UNORM";
+    case faces::TexelFormat::rgba8_srgb:
+      return "R8G8B8A8_SRGB";
   }
   return "?";
 }
@@ -160,8 +168,8 @@ Staging plan_staging(detail::FaceTextureSetState& s, const faces::FaceTextureSet
                             std::uint32_t(c.faces.size())};
       r.imageExtent = {std::uint32_t(v.width), std::uint32_t(v.height), 1};
       regions.push_back(r);
-      const VkDeviceSize bytes = VkDeviceSize(v.width) * VkDeviceSize(v.height) *
-                                 c.faces.size() * faces::texel_bytes(s.format);
+      const VkDeviceSize bytes = VkDeviceSize(v.width) * VkDeviceSize(v.height) * c.faces.size() *
+                                 faces::texel_bytes(s.format);
       at += bytes;
       s.texture_bytes += bytes;
     }
@@ -407,7 +415,8 @@ Result<std::unique_ptr<FaceTextureSet>> FaceTextureSet::create(
   Result<Api> api = load_api(device);
   if (!api) return api.status();
   if (device.queue == VK_NULL_HANDLE && options.upload == FaceUpload::queue_submit)
-    return invalid("DeviceContext::queue is null (create uploads; or FaceUpload::engine_command_buffer)");
+    return invalid(
+        "DeviceContext::queue is null (create uploads; or FaceUpload::engine_command_buffer)");
   auto s = std::make_unique<detail::FaceTextureSetState>();
   s->api = std::move(*api);
   s->bindings = options.bindings;

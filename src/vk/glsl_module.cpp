@@ -4,6 +4,8 @@
 // shaderc, glslang and SPIRV-Tools are linked into it from Debian's static archives with every
 // one of their symbols local (-Wl,--exclude-libs,ALL; hidden visibility): an engine linking its
 // own glslang or shaderc, of any version, meets none of them. Two C functions leave it.
+#include "vk/glsl_module.h"
+
 #include <shaderc/shaderc.h>
 
 #include <cstdint>
@@ -11,8 +13,6 @@
 #include <cstring>
 #include <memory>
 #include <type_traits>
-
-#include "vk/glsl_module.h"
 
 namespace {
 

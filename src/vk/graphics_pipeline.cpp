@@ -108,26 +108,25 @@ Result<Pipeline> create_graphics_pipeline(const Api& api, const GraphicsPipeline
   blend.attachmentCount = d.colour_attachments;
   blend.pAttachments = writes.data();
 
-  const VkGraphicsPipelineCreateInfo info{
-      .sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
-      .pNext = nullptr,
-      .flags = 0,
-      .stageCount = 2,
-      .pStages = stages,
-      .pVertexInputState = &input,
-      .pInputAssemblyState = &assembly,
-      .pTessellationState = nullptr,
-      .pViewportState = &viewport,
-      .pRasterizationState = &raster,
-      .pMultisampleState = &multisample,
-      .pDepthStencilState = &depth,
-      .pColorBlendState = &blend,
-      .pDynamicState = &dynamic,
-      .layout = d.layout,
-      .renderPass = d.render_pass,
-      .subpass = d.subpass,
-      .basePipelineHandle = VK_NULL_HANDLE,
-      .basePipelineIndex = -1};
+  const VkGraphicsPipelineCreateInfo info{.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
+                                          .pNext = nullptr,
+                                          .flags = 0,
+                                          .stageCount = 2,
+                                          .pStages = stages,
+                                          .pVertexInputState = &input,
+                                          .pInputAssemblyState = &assembly,
+                                          .pTessellationState = nullptr,
+                                          .pViewportState = &viewport,
+                                          .pRasterizationState = &raster,
+                                          .pMultisampleState = &multisample,
+                                          .pDepthStencilState = &depth,
+                                          .pColorBlendState = &blend,
+                                          .pDynamicState = &dynamic,
+                                          .layout = d.layout,
+                                          .renderPass = d.render_pass,
+                                          .subpass = d.subpass,
+                                          .basePipelineHandle = VK_NULL_HANDLE,
+                                          .basePipelineIndex = -1};
   VkPipeline pipeline = VK_NULL_HANDLE;
   const VkResult r =
       api.CreateGraphicsPipelines(api.device(), VK_NULL_HANDLE, 1, &info, api.alloc(), &pipeline);

@@ -30,8 +30,8 @@ Fn instance_fn(PFN_vkGetInstanceProcAddr gipa, VkInstance instance, const char* 
 }
 
 bool has_layer(PFN_vkGetInstanceProcAddr gipa, const char* name) {
-  auto enumerate = global_fn<PFN_vkEnumerateInstanceLayerProperties>(
-      gipa, "vkEnumerateInstanceLayerProperties");
+  auto enumerate =
+      global_fn<PFN_vkEnumerateInstanceLayerProperties>(gipa, "vkEnumerateInstanceLayerProperties");
   if (enumerate == nullptr) return false;
   std::uint32_t n = 0;
   if (enumerate(&n, nullptr) != VK_SUCCESS) return false;
@@ -62,8 +62,8 @@ bool has_depth_clip_control(PFN_vkGetInstanceProcAddr gipa, VkInstance instance,
                             VkPhysicalDevice pd) {
   auto extensions = instance_fn<PFN_vkEnumerateDeviceExtensionProperties>(
       gipa, instance, "vkEnumerateDeviceExtensionProperties");
-  auto features2 = instance_fn<PFN_vkGetPhysicalDeviceFeatures2>(
-      gipa, instance, "vkGetPhysicalDeviceFeatures2");
+  auto features2 =
+      instance_fn<PFN_vkGetPhysicalDeviceFeatures2>(gipa, instance, "vkGetPhysicalDeviceFeatures2");
   if (extensions == nullptr || features2 == nullptr) return false;
   std::uint32_t n = 0;
   if (extensions(pd, nullptr, &n, nullptr) != VK_SUCCESS) return false;
@@ -93,17 +93,17 @@ Result<int> wanted_device(int index) {
   const char* end = env + std::strlen(env);
   const auto [ptr, ec] = std::from_chars(env, end, value);
   if (ec != std::errc() || ptr != end || value < 0) {
-    return Status::error(ErrorCode::invalid_argument,
-                         std::string("vulkan: TESSERA_VK_DEVICE '") + env +
-                             "': expected a device index (0, 1, ...)");
+    return Status::error(ErrorCode::invalid_argument, std::string("vulkan: TESSERA_VK_DEVICE '") +
+                                                          env +
+                                                          "': expected a device index (0, 1, ...)");
   }
   return value;
 }
 
 }  // namespace
 
-Result<std::unique_ptr<HeadlessDevice>> HeadlessDevice::create(
-    const HeadlessDeviceOptions& options, std::shared_ptr<ValidationLog> log) {
+Result<std::unique_ptr<HeadlessDevice>> HeadlessDevice::create(const HeadlessDeviceOptions& options,
+                                                               std::shared_ptr<ValidationLog> log) {
   std::unique_ptr<HeadlessDevice> d(new HeadlessDevice());
   PFN_vkGetInstanceProcAddr gipa = options.get_instance_proc_addr;
   if (gipa == nullptr) {
@@ -150,7 +150,8 @@ Status HeadlessDevice::create_instance(const HeadlessDeviceOptions& options,
   auto create = global_fn<PFN_vkCreateInstance>(gipa, "vkCreateInstance");
   if (create == nullptr) return unsupported("the loader has no vkCreateInstance");
   std::uint32_t loader_version = VK_API_VERSION_1_0;
-  if (auto version = global_fn<PFN_vkEnumerateInstanceVersion>(gipa, "vkEnumerateInstanceVersion")) {
+  if (auto version =
+          global_fn<PFN_vkEnumerateInstanceVersion>(gipa, "vkEnumerateInstanceVersion")) {
     version(&loader_version);
   }
   VkApplicationInfo app{};
@@ -204,19 +205,18 @@ Status HeadlessDevice::create_instance(const HeadlessDeviceOptions& options,
 Status HeadlessDevice::create_device(const HeadlessDeviceOptions& options) {
   DeviceContext& ctx = api_.ctx;
   PFN_vkGetInstanceProcAddr gipa = ctx.get_instance_proc_addr;
-  auto enumerate = instance_fn<PFN_vkEnumeratePhysicalDevices>(gipa, ctx.instance,
-                                                                "vkEnumeratePhysicalDevices");
-  auto properties = instance_fn<PFN_vkGetPhysicalDeviceProperties>(
-      gipa, ctx.instance, "vkGetPhysicalDeviceProperties");
+  auto enumerate =
+      instance_fn<PFN_vkEnumeratePhysicalDevices>(gipa, ctx.instance, "vkEnumeratePhysicalDevices");
+  auto properties = instance_fn<PFN_vkGetPhysicalDeviceProperties>(gipa, ctx.instance,
+                                                                   "vkGetPhysicalDeviceProperties");
   auto families = instance_fn<PFN_vkGetPhysicalDeviceQueueFamilyProperties>(
       gipa, ctx.instance, "vkGetPhysicalDeviceQueueFamilyProperties");
   auto features = instance_fn<PFN_vkGetPhysicalDeviceFeatures>(gipa, ctx.instance,
-                                                                "vkGetPhysicalDeviceFeatures");
+                                                               "vkGetPhysicalDeviceFeatures");
   auto create = instance_fn<PFN_vkCreateDevice>(gipa, ctx.instance, "vkCreateDevice");
   ctx.get_device_proc_addr =
       instance_fn<PFN_vkGetDeviceProcAddr>(gipa, ctx.instance, "vkGetDeviceProcAddr");
-  if (!enumerate || !properties || !families || !features || !create ||
-      !ctx.get_device_proc_addr) {
+  if (!enumerate || !properties || !families || !features || !create || !ctx.get_device_proc_addr) {
     return unsupported("the loader lacks a Vulkan 1.0 instance entry point");
   }
   std::uint32_t n = 0;
@@ -249,9 +249,10 @@ Status HeadlessDevice::create_device(const HeadlessDeviceOptions& options) {
           "no Vulkan device with a graphics + compute queue (Debian: mesa-vulkan-drivers for "
           "lavapipe)");
     }
-    return Status::error(ErrorCode::invalid_argument,
-                         "vulkan: device " + std::to_string(want) + " asked for ($TESSERA_VK_DEVICE "
-                         "or device_index), " + std::to_string(usable) + " usable");
+    return Status::error(ErrorCode::invalid_argument, "vulkan: device " + std::to_string(want) +
+                                                          " asked for ($TESSERA_VK_DEVICE "
+                                                          "or device_index), " +
+                                                          std::to_string(usable) + " usable");
   }
   VkPhysicalDeviceProperties props{};
   properties(ctx.physical_device, &props);
@@ -274,9 +275,8 @@ Status HeadlessDevice::create_device(const HeadlessDeviceOptions& options) {
   VkPhysicalDeviceDepthClipControlFeaturesEXT dcc{};
   dcc.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DEPTH_CLIP_CONTROL_FEATURES_EXT;
   dcc.depthClipControl = VK_TRUE;
-  depth_clip_control_ =
-      ctx.api_version >= VK_API_VERSION_1_1 &&
-      has_depth_clip_control(gipa, ctx.instance, ctx.physical_device);
+  depth_clip_control_ = ctx.api_version >= VK_API_VERSION_1_1 &&
+                        has_depth_clip_control(gipa, ctx.instance, ctx.physical_device);
   if (depth_clip_control_) {
     dcc.pNext = ctx.synchronization2 ? &f13 : nullptr;
     di.pNext = &dcc;

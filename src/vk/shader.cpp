@@ -29,7 +29,8 @@ std::vector<std::string> module_candidates() {
   if (const char* env = std::getenv("TESSERA_VK_GLSL"); env && *env) c.push_back(env);
   std::error_code ec;
   const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) c.push_back((exe.parent_path() / ".." / "lib" / "tessera" / "tessera-vk-glsl.so").string());
+  if (!ec)
+    c.push_back((exe.parent_path() / ".." / "lib" / "tessera" / "tessera-vk-glsl.so").string());
 #ifdef TESSERA_VK_GLSL_INSTALLED
   c.push_back(TESSERA_VK_GLSL_INSTALLED);
 #endif
@@ -126,8 +127,7 @@ Result<Pipeline> create_compute_pipeline(const Api& api, const std::vector<std::
   pi.stage.pName = "main";
   pi.layout = layout;
   VkPipeline raw = VK_NULL_HANDLE;
-  if (VkResult r =
-          api.CreateComputePipelines(api.device(), cache, 1, &pi, api.alloc(), &raw);
+  if (VkResult r = api.CreateComputePipelines(api.device(), cache, 1, &pi, api.alloc(), &raw);
       r != VK_SUCCESS) {
     return vk_error(what + ": vkCreateComputePipelines", r);
   }

@@ -113,16 +113,16 @@ Result<std::map<std::string, std::vector<std::uint32_t>>> read_shader_binary(
   if (got != key) {
     return Status::error(ErrorCode::invalid_argument,
                          "shader_binary: made for other options, another device's limits or "
-                         "another tessera (key " + hex(got) + ", these options need " +
-                         hex(key) + ")");
+                         "another tessera (key " +
+                             hex(got) + ", these options need " + hex(key) + ")");
   }
   std::map<std::string, std::vector<std::uint32_t>> spirv;
   for (std::uint32_t i = 0; i < count; ++i) {
     std::uint32_t name_bytes = 0, words = 0;
     if (!r.get(name_bytes) || name_bytes > 64) return corrupt("pass " + std::to_string(i));
     std::string name(name_bytes, '\0');
-    if (!r.bytes(name.data(), name_bytes) || !r.skip((4 - name_bytes % 4) % 4) ||
-        !r.get(words) || words == 0 || words > (bytes.size() / 4)) {
+    if (!r.bytes(name.data(), name_bytes) || !r.skip((4 - name_bytes % 4) % 4) || !r.get(words) ||
+        words == 0 || words > (bytes.size() / 4)) {
       return corrupt("truncated at pass " + std::to_string(i));
     }
     std::vector<std::uint32_t> code(words);

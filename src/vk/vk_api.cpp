@@ -152,7 +152,6 @@ Result<VkDeviceMemory> allocate(const Api& api, const VkMemoryRequirements& req,
   return mem;
 }
 
-
 Buffer& Buffer::operator=(Buffer&& o) noexcept {
   if (this != &o) {
     reset();

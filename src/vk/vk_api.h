@@ -18,8 +18,8 @@ namespace tessera::vk {
   X(GetPhysicalDeviceProperties)            \
   X(GetPhysicalDeviceMemoryProperties)      \
   X(GetPhysicalDeviceQueueFamilyProperties) \
-  X(GetPhysicalDeviceFormatProperties)     \
-  X(GetPhysicalDeviceFeatures)             \
+  X(GetPhysicalDeviceFormatProperties)      \
+  X(GetPhysicalDeviceFeatures)              \
   X(GetPhysicalDeviceImageFormatProperties)
 
 // Device-level core 1.0 entry points (vkGetDeviceProcAddr).

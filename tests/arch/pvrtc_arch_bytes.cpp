@@ -165,8 +165,7 @@ bool encode_case(const Args& args, const Source& s, bool alpha, pvrtc::Format fo
     return false;
   }
   if (args.timing) {
-    const double sec =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr, "%8.3f s  %s\n", sec, name.c_str());
   }
   return true;

@@ -58,8 +58,8 @@ TEST_F(CApiBadInput, NullPointers) {
   EXPECT_EQ(tessera_texture_read_memory(context(), nullptr, 10, &out), TESSERA_ERROR_NULL_POINTER);
   EXPECT_EQ(tessera_texture_read_file(context(), nullptr, &out), TESSERA_ERROR_NULL_POINTER);
   std::size_t size = 0;
-  EXPECT_EQ(tessera_texture_write_memory(context(), nullptr, TESSERA_CONTAINER_PVR3, 0, nullptr,
-                                         0, &size),
+  EXPECT_EQ(tessera_texture_write_memory(context(), nullptr, TESSERA_CONTAINER_PVR3, 0, nullptr, 0,
+                                         &size),
             TESSERA_ERROR_NULL_POINTER);
   EXPECT_EQ(tessera_texture_write_memory(context(), texture_.get(), TESSERA_CONTAINER_PVR3, 0,
                                          nullptr, 0, nullptr),
@@ -116,11 +116,13 @@ TEST_F(CApiBadInput, ShortBuffersReturnTheSizeAndWriteNothing) {
   EXPECT_EQ(rgba, std::vector<std::uint8_t>(16 * 16 * 4 - 1, 0xcd));
   // A pitch of 80 needs 15 * 80 + 64 bytes, one less is short.
   rgba.assign(15 * 80 + 63, 0xcd);
-  EXPECT_EQ(tessera_texture_decode(context(), texture_.get(), 0, 0, 0, rgba.data(), 80, rgba.size()),
-            TESSERA_ERROR_BUFFER_TOO_SMALL);
+  EXPECT_EQ(
+      tessera_texture_decode(context(), texture_.get(), 0, 0, 0, rgba.data(), 80, rgba.size()),
+      TESSERA_ERROR_BUFFER_TOO_SMALL);
   rgba.push_back(0xcd);
-  EXPECT_EQ(tessera_texture_decode(context(), texture_.get(), 0, 0, 0, rgba.data(), 80, rgba.size()),
-            TESSERA_SUCCESS);
+  EXPECT_EQ(
+      tessera_texture_decode(context(), texture_.get(), 0, 0, 0, rgba.data(), 80, rgba.size()),
+      TESSERA_SUCCESS);
   const std::uint8_t* b = nullptr;
   ASSERT_EQ(tessera_texture_get_blocks(texture_.get(), 0, 0, 0, &b, &size), TESSERA_SUCCESS);
   EXPECT_EQ(tessera_pvrtc_decode(context(), TESSERA_FORMAT_PVRTC1_4BPP, 16, 16, b, size - 1,
@@ -138,8 +140,9 @@ TEST_F(CApiBadInput, PitchBelowARow) {
   m.struct_size = sizeof m;
   EXPECT_EQ(tessera_compare(context(), &view_, &narrow, 1, &m), TESSERA_ERROR_INVALID_ARGUMENT);
   std::vector<std::uint8_t> rgba(16 * 16 * 4, 0xcd);
-  EXPECT_EQ(tessera_texture_decode(context(), texture_.get(), 0, 0, 0, rgba.data(), 60, rgba.size()),
-            TESSERA_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(
+      tessera_texture_decode(context(), texture_.get(), 0, 0, 0, rgba.data(), 60, rgba.size()),
+      TESSERA_ERROR_INVALID_ARGUMENT);
   EXPECT_EQ(rgba, std::vector<std::uint8_t>(16 * 16 * 4, 0xcd));
 }
 
@@ -166,9 +169,9 @@ TEST_F(CApiBadInput, SizesPvrtcCannotHold) {
   EXPECT_EQ(tessera_encode(context(), &v, 1, nullptr, &out), TESSERA_ERROR_INVALID_ARGUMENT);
   std::vector<std::uint8_t> blocks(1024);
   const tessera_image odd_view = c_image(odd);
-  EXPECT_EQ(tessera_pvrtc_encode(context(), &odd_view, nullptr, blocks.data(), blocks.size(),
-                                 &size),
-            TESSERA_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(
+      tessera_pvrtc_encode(context(), &odd_view, nullptr, blocks.data(), blocks.size(), &size),
+      TESSERA_ERROR_INVALID_ARGUMENT);
   // A cube map's faces must be six of one square size.
   tessera_encode_options cube = options_;
   cube.faces = 6;

@@ -24,8 +24,8 @@ namespace tf = texture_file;
 
 struct Case {
   const char* name;
-  tessera_encode_options c;             // the C options
-  tf::CompressOptions cxx;              // the same in C++
+  tessera_encode_options c;  // the C options
+  tf::CompressOptions cxx;   // the same in C++
   tf::TextureShape shape;
   int images = 1;
   bool alpha = true;
@@ -119,8 +119,10 @@ TEST(CApi, EncodeEqualsCxxInEveryContainer) {
     cxx.encode.threads = 2;
     Result<tf::CompressedImage> want = tf::compress_images(images, k.shape, cxx, names);
     ASSERT_TRUE(want.ok()) << want.status().message;
-    EXPECT_EQ(c_file(context.get(), raw, TESSERA_CONTAINER_PVR3), *tf::serialise_pvr3(want->texture));
-    EXPECT_EQ(c_file(context.get(), raw, TESSERA_CONTAINER_KTX1), *tf::serialise_ktx1(want->texture));
+    EXPECT_EQ(c_file(context.get(), raw, TESSERA_CONTAINER_PVR3),
+              *tf::serialise_pvr3(want->texture));
+    EXPECT_EQ(c_file(context.get(), raw, TESSERA_CONTAINER_KTX1),
+              *tf::serialise_ktx1(want->texture));
     EXPECT_EQ(c_file(context.get(), raw, TESSERA_CONTAINER_KTX2, 3),
               *tf::serialise_ktx2(want->texture, tf::Ktx2Options{3}));
     tessera_texture_info info{};
@@ -227,13 +229,14 @@ TEST(CApi, ReadsEveryContainerFromMemoryAndFiles) {
     SCOPED_TRACE(ext);
     const std::string path = (dir / (std::string("cube") + ext)).string();
     ASSERT_TRUE(tf::write_texture_file(path, want).ok());
-    Result<std::vector<std::uint8_t>> bytes = tf::serialise_texture(
-        want, tf::container_from_extension(path));
+    Result<std::vector<std::uint8_t>> bytes =
+        tf::serialise_texture(want, tf::container_from_extension(path));
     ASSERT_TRUE(bytes.ok());
     tessera_texture* from_memory = nullptr;
     tessera_texture* from_file = nullptr;
-    ASSERT_EQ(tessera_texture_read_memory(context.get(), bytes->data(), bytes->size(), &from_memory),
-              TESSERA_SUCCESS)
+    ASSERT_EQ(
+        tessera_texture_read_memory(context.get(), bytes->data(), bytes->size(), &from_memory),
+        TESSERA_SUCCESS)
         << tessera_context_last_error(context.get());
     ASSERT_EQ(tessera_texture_read_file(context.get(), path.c_str(), &from_file), TESSERA_SUCCESS);
     Texture a(from_memory), b(from_file);
@@ -265,9 +268,9 @@ TEST(CApi, ReadsEveryContainerFromMemoryAndFiles) {
     const int w = want.level_width(1), h = want.level_height(1);
     const std::size_t pitch = std::size_t(w) * 4 + 4;
     std::vector<std::uint8_t> rgba(pitch * h);
-    ASSERT_EQ(tessera_texture_decode(context.get(), from_file, 1, 0, 3, rgba.data(), pitch,
-                                     rgba.size()),
-              TESSERA_SUCCESS);
+    ASSERT_EQ(
+        tessera_texture_decode(context.get(), from_file, 1, 0, 3, rgba.data(), pitch, rgba.size()),
+        TESSERA_SUCCESS);
     Result<ImageRGBA8> decoded = tf::decode_texture_image(want, 1, 0, 3);
     ASSERT_TRUE(decoded.ok());
     for (int y = 0; y < h; ++y) {

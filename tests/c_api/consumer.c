@@ -11,7 +11,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
 #include <tessera/tessera_c.h>
 
 static int progress_calls = 0;
@@ -69,7 +68,10 @@ static int run(tessera_context* context, const tessera_image* image, const char*
 
   /* The size first, then the bytes into our own buffer. */
   e = tessera_texture_write_memory(context, texture, TESSERA_CONTAINER_KTX2, 5, NULL, 0, &size);
-  if (e != TESSERA_SUCCESS) { rc = fail(context, "size of the KTX2 file", e); goto done; }
+  if (e != TESSERA_SUCCESS) {
+    rc = fail(context, "size of the KTX2 file", e);
+    goto done;
+  }
   file = (unsigned char*)malloc(size);
   if (file == NULL) goto done;
   e = tessera_texture_write_memory(context, texture, TESSERA_CONTAINER_KTX2, 5, file, size - 1,
@@ -79,7 +81,10 @@ static int run(tessera_context* context, const tessera_image* image, const char*
     goto done;
   }
   e = tessera_texture_write_memory(context, texture, TESSERA_CONTAINER_KTX2, 5, file, size, &size);
-  if (e != TESSERA_SUCCESS) { rc = fail(context, "KTX2 file", e); goto done; }
+  if (e != TESSERA_SUCCESS) {
+    rc = fail(context, "KTX2 file", e);
+    goto done;
+  }
   f = fopen(out_path, "wb");
   if (f == NULL || fwrite(file, 1, size, f) != size || fclose(f) != 0) {
     fprintf(stderr, "consumer: cannot write %s\n", out_path);
@@ -88,15 +93,24 @@ static int run(tessera_context* context, const tessera_image* image, const char*
 
   /* Read it back, decode level 0 into a padded buffer and measure it. */
   e = tessera_texture_read_file(context, out_path, &back);
-  if (e != TESSERA_SUCCESS) { rc = fail(context, "read back", e); goto done; }
+  if (e != TESSERA_SUCCESS) {
+    rc = fail(context, "read back", e);
+    goto done;
+  }
   info.struct_size = sizeof info;
   e = tessera_texture_get_info(back, &info);
-  if (e != TESSERA_SUCCESS) { rc = fail(context, "info", e); goto done; }
+  if (e != TESSERA_SUCCESS) {
+    rc = fail(context, "info", e);
+    goto done;
+  }
   pitch = 4u * info.width + 12u;
   pixels = (unsigned char*)malloc(pitch * info.height);
   if (pixels == NULL) goto done;
   e = tessera_texture_decode(context, back, 0, 0, 0, pixels, pitch, pitch * info.height);
-  if (e != TESSERA_SUCCESS) { rc = fail(context, "decode", e); goto done; }
+  if (e != TESSERA_SUCCESS) {
+    rc = fail(context, "decode", e);
+    goto done;
+  }
   decoded.pixels = pixels;
   decoded.width = info.width;
   decoded.height = info.height;
@@ -104,10 +118,13 @@ static int run(tessera_context* context, const tessera_image* image, const char*
   decoded.has_alpha = info.has_alpha;
   metrics.struct_size = sizeof metrics;
   e = tessera_compare(context, image, &decoded, 1, &metrics);
-  if (e != TESSERA_SUCCESS) { rc = fail(context, "compare", e); goto done; }
+  if (e != TESSERA_SUCCESS) {
+    rc = fail(context, "compare", e);
+    goto done;
+  }
   printf("%ux%u, %u levels, %lu bytes, PSNR %.2f dB, SSIM %.4f, %d progress calls (last %.3f)\n",
-         info.width, info.height, info.levels, (unsigned long)size, metrics.psnr_rgb,
-         metrics.ssim, progress_calls, last_fraction);
+         info.width, info.height, info.levels, (unsigned long)size, metrics.psnr_rgb, metrics.ssim,
+         progress_calls, last_fraction);
   rc = progress_calls > 0 && last_fraction == 1.0 ? 0 : 1;
 
 done:

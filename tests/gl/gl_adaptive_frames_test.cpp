@@ -45,7 +45,8 @@ TEST_F(GlAdaptive, DynamicResolutionEveryFrame) {
     int w, h;
     std::optional<std::int64_t> budget;
   };
-  const Step steps[] = {{24, 16, {}}, {17, 11, {}}, {20, 13, 40}, {12, 8, {}}, {24, 16, 25}, {9, 7, {}}};
+  const Step steps[] = {{24, 16, {}}, {17, 11, {}}, {20, 13, 40},
+                        {12, 8, {}},  {24, 16, 25}, {9, 7, {}}};
   gl::AdaptiveSupersamplerOptions o = synthetic_options(W, H, m);
   o.profile = true;
   Result<std::unique_ptr<gl::AdaptiveSupersampler>> dynamic = gl::AdaptiveSupersampler::create(o);

@@ -15,8 +15,8 @@ TEST_F(GlAdaptive, SameImagesAsDeferredRenderer) {
     Result<gl::ShadeResult> ref = deferred_->shade_reference(shading_);
     ASSERT_TRUE(ref.ok()) << ref.status().message;
     ASSERT_NO_FATAL_FAILURE(shade_default_and_adaptive());
-    for (AdaptiveSchedule s : {AdaptiveSchedule::frame_list,
-                                   AdaptiveSchedule::tile_list, AdaptiveSchedule::loop}) {
+    for (AdaptiveSchedule s :
+         {AdaptiveSchedule::frame_list, AdaptiveSchedule::tile_list, AdaptiveSchedule::loop}) {
       gl::AdaptiveSupersamplerOptions o = deferred_options(classes_);
       o.schedule = s;
       Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
@@ -102,8 +102,7 @@ TEST_F(GlAdaptive, RestoresEngineGlState) {
   auto bind_range =
       reinterpret_cast<PFNGLBINDBUFFERRANGEPROC>(eglGetProcAddress("glBindBufferRange"));
   auto get_i64 = reinterpret_cast<PFNGLGETINTEGER64I_VPROC>(eglGetProcAddress("glGetInteger64i_v"));
-  for (AdaptiveSchedule sch :
-       {AdaptiveSchedule::frame_list, AdaptiveSchedule::tile_list}) {
+  for (AdaptiveSchedule sch : {AdaptiveSchedule::frame_list, AdaptiveSchedule::tile_list}) {
     o.schedule = sch;
     Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
     ASSERT_TRUE(c.ok()) << c.status().message;
@@ -111,8 +110,8 @@ TEST_F(GlAdaptive, RestoresEngineGlState) {
     const int sb = (*c)->storage_binding(), iu = (*c)->image_unit();
     // The engine's objects.
     Result<gl::Program> prog = gl::link_program(
-        {{glsl::Stage::compute,
-          "#version 450 core\nlayout(local_size_x = 1) in;\nvoid main() {}\n", "engine.comp"}});
+        {{glsl::Stage::compute, "#version 450 core\nlayout(local_size_x = 1) in;\nvoid main() {}\n",
+          "engine.comp"}});
     ASSERT_TRUE(prog.ok()) << prog.status().message;
     std::vector<gl::Object> texs;
     for (int i = 0; i < 6; ++i) texs.push_back(make_texture(GL_RGBA8, 4, 4, {}));

@@ -17,12 +17,12 @@
 #include <vector>
 
 #include "gl/gl_api.h"
+#include "gl_test_fixture.h"
 #include "tessera/deferred.h"
 #include "tessera/gl.h"
 #include "tessera/gl_adaptive.h"
 #include "tessera/gl_deferred.h"
 #include "tessera/scene.h"
-#include "gl_test_fixture.h"
 #include "test_support.h"
 
 namespace tessera::aa_test {
@@ -94,9 +94,8 @@ class GlAdaptive : public test::GlTest {
     h_ = h;
     m_ = m;
   }
-  // After a gl::DeferredRenderer shade call its G-buffer sits on units 0..2 and its texture arrays on
-  // units 3..: the component reads the same textures, the hook shades through the same
-  // bindings.
+  // After a gl::DeferredRenderer shade call its G-buffer sits on units 0..2 and its texture arrays
+  // on units 3..: the component reads the same textures, the hook shades through the same bindings.
   std::array<std::uint32_t, 4> deferred_textures(int* classes) {
     std::array<std::uint32_t, 4> t{};
     GLint active = 0;

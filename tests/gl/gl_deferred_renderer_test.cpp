@@ -1,8 +1,6 @@
 // GPU adaptive supersampling (tessera/gl_deferred.h) against the CPU path (tessera/deferred.h):
 // G-buffer, k maps, forced-k identities, images, the edge-per-sample baseline, FXAA and the
 // framebuffer-size check. Skips when no OpenGL 4.5 context can be made.
-#include "tessera/gl_deferred.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,11 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "gl_test_fixture.h"
 #include "tessera/deferred.h"
 #include "tessera/gl.h"
+#include "tessera/gl_deferred.h"
 #include "tessera/metrics.h"
 #include "tessera/scene.h"
-#include "gl_test_fixture.h"
 #include "test_support.h"
 
 namespace tessera {
@@ -208,8 +207,7 @@ TEST_F(GlDeferred, EveryScheduleGivesTheTileScheduleImage) {
       gl::DeferredRendererOptions o;
       o.glsl_dir = TESSERA_GLSL_DIR;
       o.schedule = schedule;
-      Result<std::unique_ptr<gl::DeferredRenderer>> g =
-          gl::DeferredRenderer::create(*scene_, o);
+      Result<std::unique_ptr<gl::DeferredRenderer>> g = gl::DeferredRenderer::create(*scene_, o);
       if (!g) return g.status();
       if (Status s = (*g)->render_gbuffer(camera_, 64, 48, m); !s.ok()) return s;
       Result<gl::ShadeResult> adaptive = (*g)->shade_adaptive(shading_, {});

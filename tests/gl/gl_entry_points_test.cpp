@@ -28,9 +28,13 @@ struct OwnContext {
     display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (display == EGL_NO_DISPLAY || !eglInitialize(display, nullptr, nullptr)) return;
     eglBindAPI(EGL_OPENGL_API);
-    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                              4,
+                              EGL_CONTEXT_MINOR_VERSION,
+                              5,
                               EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                              EGL_NONE};
     context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
     if (context != EGL_NO_CONTEXT) {
       eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context);
@@ -43,8 +47,8 @@ struct OwnContext {
   }
 };
 
-#define REQUIRE_OWN_CONTEXT(ctx)                                                    \
-  OwnContext ctx;                                                                   \
+#define REQUIRE_OWN_CONTEXT(ctx) \
+  OwnContext ctx;                \
   if (!ctx.ok()) TESSERA_SKIP_OR_FAIL("gl", "no OpenGL 4.5 core EGL context here")
 
 // Loaders of the usual shapes: SDL_GL_GetProcAddress returns void*, glXGetProcAddressARB takes
@@ -113,8 +117,8 @@ TEST(GlEntryPoints, NoCurrentContextIsOneLineNotACrash) {
   EXPECT_NE(t.status().message.find("no OpenGL context is current"), std::string::npos);
   GpuTimer timer;
   EXPECT_FALSE(timer.begin("pass").ok());
-  Result<Program> p = link_program({{glsl::Stage::compute, "#version 450\nvoid main() {}\n",
-                                     "probe.comp"}});
+  Result<Program> p =
+      link_program({{glsl::Stage::compute, "#version 450\nvoid main() {}\n", "probe.comp"}});
   ASSERT_FALSE(p.ok());
   EXPECT_NE(p.status().message.find("no OpenGL context is current"), std::string::npos);
 }

@@ -80,8 +80,8 @@ class GlSeams : public test::GlTest {
     test::GlTest::TearDown();
   }
 
-  ImageRGBAF cpu_frame(const scene::Camera& cam, faces::SeamMethod m, TextureFilter filter, int msaa,
-                       bool fallback = true) {
+  ImageRGBAF cpu_frame(const scene::Camera& cam, faces::SeamMethod m, TextureFilter filter,
+                       int msaa, bool fallback = true) {
     faces::FaceRenderOptions o;
     o.width = kW;
     o.height = kH;
@@ -97,7 +97,7 @@ class GlSeams : public test::GlTest {
   }
 
   FaceFrame gl_frame(const scene::Camera& cam, faces::SeamMethod m, TextureFilter filter, int msaa,
-                      bool fallback = true, SeamsOutput output = SeamsOutput::colour) {
+                     bool fallback = true, SeamsOutput output = SeamsOutput::colour) {
     FaceFrameOptions o;
     o.width = kW;
     o.height = kH;
@@ -250,10 +250,10 @@ TEST_F(GlSeams, DiscardNanOnlyWhereCoverageIsZero) {
           gl_frame(cam, faces::SeamMethod::discard, TextureFilter::trilinear, msaa, false);
       const FaceFrame with_fb =
           gl_frame(cam, faces::SeamMethod::discard, TextureFilter::trilinear, msaa, true);
-      const FaceFrame flag = gl_frame(cam, faces::SeamMethod::discard, TextureFilter::trilinear, msaa,
-                                       false, SeamsOutput::zero_coverage);
+      const FaceFrame flag = gl_frame(cam, faces::SeamMethod::discard, TextureFilter::trilinear,
+                                      msaa, false, SeamsOutput::zero_coverage);
       const FaceFrame flag_fb = gl_frame(cam, faces::SeamMethod::discard, TextureFilter::trilinear,
-                                          msaa, true, SeamsOutput::zero_coverage);
+                                         msaa, true, SeamsOutput::zero_coverage);
       const ImageRGBAF cpu =
           cpu_frame(cam, faces::SeamMethod::discard, TextureFilter::trilinear, msaa, false);
       ASSERT_EQ(no_fb.image.pixel_count(), flag.image.pixel_count());

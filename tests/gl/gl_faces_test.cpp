@@ -120,8 +120,8 @@ class GlPtex : public test::GlTest {};
 // and returns the `count` vec4s it writes to storage buffer 2; the caller binds its textures.
 // A GL error fails it, `what` naming the lookups.
 Result<std::vector<std::array<float, 4>>> run_lookups(const Program& prog,
-                                                      const std::vector<float>& queries,
-                                                      int count, const std::string& what) {
+                                                      const std::vector<float>& queries, int count,
+                                                      const std::string& what) {
   Object qbuf = create_object(ObjectType::buffer), rbuf = create_object(ObjectType::buffer);
   glNamedBufferData(qbuf.get(), GLsizeiptr(queries.size() * 4), queries.data(), GL_STATIC_DRAW);
   glNamedBufferData(rbuf.get(), GLsizeiptr(count * 16), nullptr, GL_STATIC_READ);
@@ -168,7 +168,8 @@ std::vector<std::pair<std::string, faces::FaceTextureSet>> disney_sets(
 
 TEST_F(GlPtex, DisneySamplesUploadAndReadBackExactly) {
   TESSERA_REQUIRE_SHARED_DATA(data);
-  if (!std::filesystem::is_directory(data / "ptex")) TESSERA_SKIP_OR_FAIL("shared", "no ptex samples");
+  if (!std::filesystem::is_directory(data / "ptex"))
+    TESSERA_SKIP_OR_FAIL("shared", "no ptex samples");
   const auto sets = disney_sets(data);
   ASSERT_GE(sets.size(), 5u);
   for (const auto& [name, set] : sets) {
@@ -210,7 +211,8 @@ TEST_F(GlPtex, DisneySamplesUploadAndReadBackExactly) {
 // first face of every class, level 0, read back raw.
 TEST_F(GlPtex, TexelFormatsHoldTheConvertedBytes) {
   TESSERA_REQUIRE_SHARED_DATA(data);
-  if (!std::filesystem::is_directory(data / "ptex")) TESSERA_SKIP_OR_FAIL("shared", "no ptex samples");
+  if (!std::filesystem::is_directory(data / "ptex"))
+    TESSERA_SKIP_OR_FAIL("shared", "no ptex samples");
   const auto sets = disney_sets(data);
   ASSERT_FALSE(sets.empty());
   const auto& [name, set] = *sets.begin();
@@ -232,8 +234,8 @@ TEST_F(GlPtex, TexelFormatsHoldTheConvertedBytes) {
       const std::size_t bytes = texels * faces::texel_bytes(k.format);
       std::vector<std::uint8_t> want(bytes), got(bytes);
       faces::convert_texels(v.texels, texels, k.format, want.data());
-      glGetTextureSubImage(gpu->array_texture(c), 0, 0, 0, 0, v.width, v.height, 1, GL_RGBA,
-                           k.type, GLsizei(bytes), got.data());
+      glGetTextureSubImage(gpu->array_texture(c), 0, 0, 0, 0, v.width, v.height, 1, GL_RGBA, k.type,
+                           GLsizei(bytes), got.data());
       ASSERT_TRUE(check_errors("read back").ok());
       EXPECT_EQ(got, want) << name << " class " << c << " format " << int(k.format);
     }
@@ -260,7 +262,8 @@ void main() {
   if (i >= uint(count)) return;
   vec4 a = q[2 * i], g = q[2 * i + 1];
   r[i] = textureGrad(faces, a.xyz, g.xy, g.zw);
-})", "border_lookup.comp"}});
+})",
+                                        "border_lookup.comp"}});
   ASSERT_TRUE(prog.ok()) << prog.status().message;
   tessera::texture::SamplerState border;
   border.filter = tessera::texture::TextureFilter::trilinear;
@@ -337,7 +340,9 @@ void main() {
   if (i >= count) return;
   Query x = q[i];
   r[i] = tessera_seams_sample(int(x.a.w), int(x.a.z), x.a.xy, x.g.xy, x.g.zw);
-})", "seams_test.comp"}}, so);
+})",
+                                        "seams_test.comp"}},
+                                      so);
   ASSERT_TRUE(prog.ok()) << prog.status().message;
   ASSERT_TRUE(gpu->bind(0, 0).ok());
 

@@ -1,6 +1,8 @@
 // The OpenGL runtime (tessera/gl.h): context creation and device selection, shader errors that
 // name file and line, clear/upload + read-back round trips, timer queries, debug errors.
 // Tests that need a context skip with the reason when EGL cannot create one at all.
+#include "tessera/gl.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 
 #include "gl/gl_api.h"
 #include "gl_test_fixture.h"
-#include "tessera/gl.h"
 #include "test_support.h"
 
 namespace {
@@ -59,8 +60,7 @@ TEST(GlPure, NonexistentDeviceIndexFailsWithOneLine) {
   EXPECT_TRUE(one_line(c.status().message)) << c.status().message;
   // Without EGL at all the message says so instead; with EGL it names the missing device.
   if (c.status().code == ErrorCode::invalid_argument) {
-    EXPECT_NE(c.status().message.find("TESSERA_EGL_DEVICE=99: no EGL device 99"),
-              std::string::npos)
+    EXPECT_NE(c.status().message.find("TESSERA_EGL_DEVICE=99: no EGL device 99"), std::string::npos)
         << c.status().message;
   }
   ContextOptions o;
@@ -86,9 +86,8 @@ TEST_F(Gl, ContextReportsGl45AndRenderer) {
   EXPECT_GE(l.max_ssbo_bytes, std::int64_t{1} << 24);
   EXPECT_TRUE(check_errors("after creation").ok());
   std::printf("renderer: %s | %s | %s | max samples %d, layers %d, size %d, aniso %.0f\n",
-              ctx_->renderer().c_str(), ctx_->version().c_str(),
-              ctx_->device_description().c_str(), l.max_samples, l.max_array_layers,
-              l.max_texture_size, double(l.max_anisotropy));
+              ctx_->renderer().c_str(), ctx_->version().c_str(), ctx_->device_description().c_str(),
+              l.max_samples, l.max_array_layers, l.max_texture_size, double(l.max_anisotropy));
 }
 
 TEST_F(Gl, ExplicitDeviceChoicesWork) {

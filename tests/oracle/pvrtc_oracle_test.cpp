@@ -262,7 +262,7 @@ TEST(OracleDecode, SrgbFlagMakesTheOracleWriteLinearValues) {
 // block's neighbours are the block itself): every quality, both formats, RGBA and RGB.
 std::vector<Case> small_cases() {
   std::vector<Case> cases;
-  const int sizes[][2] = {{1, 1},  {2, 2},  {1, 16},   {16, 1},  {2, 32},
+  const int sizes[][2] = {{1, 1},  {2, 2},   {1, 16},  {16, 1}, {2, 32},
                           {32, 2}, {1, 256}, {256, 4}, {4, 128}};
   for (const auto& s : sizes) {
     cases.push_back({Procedural::foliage, s[0], s[1]});
@@ -271,12 +271,11 @@ std::vector<Case> small_cases() {
   return cases;
 }
 
-INSTANTIATE_TEST_SUITE_P(Small, OracleEncode,
-                         ::testing::Combine(::testing::ValuesIn(small_cases()),
-                                            ::testing::Values(Format::pvrtc1_4bpp,
-                                                              Format::pvrtc1_2bpp),
-                                            ::testing::Values(Quality::fast, Quality::normal,
-                                                              Quality::high)));
+INSTANTIATE_TEST_SUITE_P(
+    Small, OracleEncode,
+    ::testing::Combine(::testing::ValuesIn(small_cases()),
+                       ::testing::Values(Format::pvrtc1_4bpp, Format::pvrtc1_2bpp),
+                       ::testing::Values(Quality::fast, Quality::normal, Quality::high)));
 
 }  // namespace
 }  // namespace tessera::pvrtc

@@ -34,24 +34,24 @@ inline bool cpu_has_avx2() {
 
 /// Skips the current test with `message` when `what` is missing, or fails it when the run
 /// requires `what` (see `tessera::test::required`).
-#define TESSERA_SKIP_OR_FAIL(what, message)                                         \
-  do {                                                                              \
-    if (::tessera::test::required(what)) {                                          \
-      FAIL() << message << " (TESSERA_TEST_REQUIRE asks for " << (what) << ")";     \
-    }                                                                               \
-    GTEST_SKIP() << message;                                                        \
+#define TESSERA_SKIP_OR_FAIL(what, message)                                     \
+  do {                                                                          \
+    if (::tessera::test::required(what)) {                                      \
+      FAIL() << message << " (TESSERA_TEST_REQUIRE asks for " << (what) << ")"; \
+    }                                                                           \
+    GTEST_SKIP() << message;                                                    \
   } while (0)
 
-/// Lets the test run where `available` (the AVX2 code under test is built and runs); else skips with
-/// `message` where the CPU has no AVX2, and where it has (the build lacks the AVX2 code) skips
+/// Lets the test run where `available` (the AVX2 code under test is built and runs); else skips
+/// with `message` where the CPU has no AVX2, and where it has (the build lacks the AVX2 code) skips
 /// or fails by the rule above for "avx2": a run that requires it cannot pass with these tests
 /// skipped on a CPU that could run them.
-#define TESSERA_SKIP_WITHOUT_AVX2(available, message)                               \
-  do {                                                                              \
-    if (!(available)) {                                                             \
-      if (::tessera::test::cpu_has_avx2()) {                                        \
-        TESSERA_SKIP_OR_FAIL("avx2", message << " (this CPU has AVX2)");            \
-      }                                                                             \
-      GTEST_SKIP() << message;                                                      \
-    }                                                                               \
+#define TESSERA_SKIP_WITHOUT_AVX2(available, message)                    \
+  do {                                                                   \
+    if (!(available)) {                                                  \
+      if (::tessera::test::cpu_has_avx2()) {                             \
+        TESSERA_SKIP_OR_FAIL("avx2", message << " (this CPU has AVX2)"); \
+      }                                                                  \
+      GTEST_SKIP() << message;                                           \
+    }                                                                    \
   } while (0)

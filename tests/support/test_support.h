@@ -68,7 +68,7 @@ inline bool float_texture_filtering(const std::string& gl_renderer) {
 
 /// Skips the current test with a message when the shared data folder is absent (fails it when
 /// the run requires "shared").
-#define TESSERA_REQUIRE_SHARED_DATA(var)                                                \
-  auto var##_opt = ::tessera::test::shared_data_dir();                                  \
+#define TESSERA_REQUIRE_SHARED_DATA(var)                                                  \
+  auto var##_opt = ::tessera::test::shared_data_dir();                                    \
   if (!var##_opt) TESSERA_SKIP_OR_FAIL("shared", "../shared/data not present; skipping"); \
   const std::filesystem::path var = *var##_opt

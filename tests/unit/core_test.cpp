@@ -179,17 +179,16 @@ TEST(Parallel, CoversRangeOnceWithFixedChunks) {
   for (int threads : {1, 2, 3, 0}) {
     std::vector<int> hits(1000, 0);
     std::vector<std::int64_t> starts(1000, -1);
-    parallel_for(
-        0, 1000, 64,
-        [&](std::int64_t b, std::int64_t e) {
-          EXPECT_EQ(b % 64, 0);
-          EXPECT_LE(e - b, 64);
-          for (std::int64_t i = b; i < e; ++i) {
-            ++hits[i];
-            starts[i] = b;
-          }
-        },
-        {threads});
+    parallel_for(0, 1000, 64,
+                 [&](std::int64_t b, std::int64_t e) {
+                   EXPECT_EQ(b % 64, 0);
+                   EXPECT_LE(e - b, 64);
+                   for (std::int64_t i = b; i < e; ++i) {
+                     ++hits[i];
+                     starts[i] = b;
+                   }
+                 },
+                 {threads});
     for (int i = 0; i < 1000; ++i) {
       EXPECT_EQ(hits[i], 1);
       EXPECT_EQ(starts[i], (i / 64) * 64);
@@ -214,12 +213,12 @@ TEST(Parallel, SumIsBitIdenticalForAnyThreadCount) {
 
 TEST(Parallel, NestedLoopsComplete) {
   std::atomic<int> total{0};
-  parallel_for(
-      0, 8, 1,
-      [&](std::int64_t, std::int64_t) {
-        parallel_for(0, 100, 10, [&](std::int64_t b, std::int64_t e) { total += int(e - b); }, {2});
-      },
-      {2});
+  parallel_for(0, 8, 1,
+               [&](std::int64_t, std::int64_t) {
+                 parallel_for(0, 100, 10,
+                              [&](std::int64_t b, std::int64_t e) { total += int(e - b); }, {2});
+               },
+               {2});
   EXPECT_EQ(total.load(), 800);
 }
 

@@ -122,8 +122,8 @@ TEST(EdgePerSample, ImageIsDefaultOrReferencePerPixel) {
       complex += c[i];
     }
   }
-  EXPECT_GT(complex, 0u);           // the scene has edges
-  EXPECT_LT(complex, 48u * 32u);    // and flat regions
+  EXPECT_GT(complex, 0u);         // the scene has edges
+  EXPECT_LT(complex, 48u * 32u);  // and flat regions
   EXPECT_EQ(e.samples_shaded, 48u * 32u + complex * 8u);
 }
 

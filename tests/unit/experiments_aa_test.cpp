@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,8 +15,6 @@
 #include "experiments_test_util.h"
 #include "tessera/experiments.h"
 #include "tessera/metrics.h"
-
-#include <nlohmann/json.hpp>
 
 namespace tessera::experiments {
 namespace {
@@ -222,19 +221,19 @@ struct Limited final : AaBackend {
   std::unique_ptr<AaBackend> cpu;
   Backend kind = Backend::gl;
   Backend backend() const override { return kind; }
-    std::string device_name() const override { return "limited"; }
-    std::string device_version() const override { return "1"; }
-    Status check_size(int w, int h, int m) const override {
-      return w * m > 64 || h * m > 64 ? Status::error(ErrorCode::too_large, "over 64")
-                                      : Status::success();
-    }
-    Result<AaPassTime> render_gbuffer(const scene::Camera& cam, int w, int h, int m) override {
-      return cpu->render_gbuffer(cam, w, h, m);
-    }
-    Result<AaShadeOutput> shade(AaMethod k, const deferred::ShadingOptions& s,
-                                const AaShadeOptions& o) override {
-      return cpu->shade(k, s, o);
-    }
+  std::string device_name() const override { return "limited"; }
+  std::string device_version() const override { return "1"; }
+  Status check_size(int w, int h, int m) const override {
+    return w * m > 64 || h * m > 64 ? Status::error(ErrorCode::too_large, "over 64")
+                                    : Status::success();
+  }
+  Result<AaPassTime> render_gbuffer(const scene::Camera& cam, int w, int h, int m) override {
+    return cpu->render_gbuffer(cam, w, h, m);
+  }
+  Result<AaShadeOutput> shade(AaMethod k, const deferred::ShadingOptions& s,
+                              const AaShadeOptions& o) override {
+    return cpu->shade(k, s, o);
+  }
 };
 
 test::AaFactoryFn limited_backend(Backend kind) {
@@ -303,9 +302,9 @@ TEST(Aa, VulkanBackendHasTheKeysOfGlAndItsDeviceStatusDecides) {
   EXPECT_EQ(jv["rates"][0].size(), jg["rates"][0].size());
   // Validation messages on the device: the run fails with the device's line.
   c.backend = Backend::vk;
-  c.vk_factory = test::aa_factory(limited_backend(Backend::vk), Backend::vk,
-                                  Status::error(ErrorCode::unsupported,
-                                                "vulkan validation: 2 message(s), the first: x"));
+  c.vk_factory = test::aa_factory(
+      limited_backend(Backend::vk), Backend::vk,
+      Status::error(ErrorCode::unsupported, "vulkan validation: 2 message(s), the first: x"));
   Result<AaResult> bad = run_aa(c);
   ASSERT_FALSE(bad.ok());
   EXPECT_EQ(bad.status().message, "vulkan validation: 2 message(s), the first: x");

@@ -1,22 +1,20 @@
 // The seam experiment of tessera/experiments.h through the SeamsBackend interface: fake GL
 // backends that refuse some MSAA rates, perturb or round their frames, and Backend::both's
 // agreement measures against the CPU renderer. (The CPU backend: experiments_test.cpp.)
-#include "tessera/experiments.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "experiments_test_util.h"
+#include "tessera/experiments.h"
 #include "tessera/metrics.h"
-
-#include <nlohmann/json.hpp>
 
 namespace tessera::experiments {
 namespace {
@@ -86,13 +84,12 @@ class FakeGlRenderer final : public CpuBackedFakeGl {
 
 /// A factory of `FakeGlRenderer`s standing in for `kind` (gl or vk).
 std::shared_ptr<const GpuBackendFactory> fake_gl_factory(std::vector<int> refused,
-                                                        bool perturb = false,
-                                                        Backend kind = Backend::gl,
-                                                        Status status = Status::success()) {
+                                                         bool perturb = false,
+                                                         Backend kind = Backend::gl,
+                                                         Status status = Status::success()) {
   return test::seams_factory(
-      [refused, perturb, kind](
-          const faces::FaceScene& scene,
-          const faces::FaceTextureSet& set) -> Result<std::unique_ptr<SeamsBackend>> {
+      [refused, perturb, kind](const faces::FaceScene& scene, const faces::FaceTextureSet& set)
+          -> Result<std::unique_ptr<SeamsBackend>> {
         Result<std::unique_ptr<SeamsBackend>> cpu = create_cpu_seams_backend(scene, set);
         if (!cpu) return cpu.status();
         auto fake = std::make_unique<FakeGlRenderer>(std::move(*cpu), refused, perturb);
@@ -291,9 +288,7 @@ class PatternFakeGlRenderer final : public CpuBackedFakeGl {
         reported_(std::move(reported)),
         cpu_msaa_(cpu_msaa) {}
   bool msaa_supported(int samples) override { return samples == 2; }
-  SeamsSamplePattern sample_pattern(int msaa) override {
-    return {msaa, 2, cpu_msaa_, reported_};
-  }
+  SeamsSamplePattern sample_pattern(int msaa) override { return {msaa, 2, cpu_msaa_, reported_}; }
   Result<SeamsBackendFrame> render(const scene::Camera& camera,
                                    const FaceFrameOptions& options) override {
     EXPECT_TRUE(options.sample_pattern.empty());  // GL frames are drawn at the driver's

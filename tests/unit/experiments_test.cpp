@@ -109,7 +109,8 @@ TEST(Seams, EveryMethodAtEveryRate) {
     }
     expect_valid_cdf(rate.traverse_vs_discard, "traverse vs discard");
     // The same geometry pixels are counted for every comparison of a rate.
-    EXPECT_EQ(rate.traverse_vs_discard.counted, rate.method(SeamMethod::clamp).vs_reference.counted);
+    EXPECT_EQ(rate.traverse_vs_discard.counted,
+              rate.method(SeamMethod::clamp).vs_reference.counted);
     // Traverse and Discard differ somewhere (near seams), so the CDF leaves 1 after bin 0.
     EXPECT_LT(rate.traverse_vs_discard.cdf[1], 1.0);
     EXPECT_GT(rate.traverse_vs_discard.mean, 0.0);

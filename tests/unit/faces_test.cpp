@@ -16,8 +16,8 @@ namespace tessera {
 namespace {
 
 using faces::FaceAdjacency;
-using faces::SeamMethod;
 using faces::QuadMesh;
+using faces::SeamMethod;
 using texture::TextureFilter;
 using texture::Uv;
 using texture::UvGradients;
@@ -162,7 +162,8 @@ TEST(Faces, DiscardRenormalisesWeightsToOne) {
   const float corners[4][2] = {{0.5f, 0.02f}, {0.98f, 0.5f}, {0.5f, 0.98f}, {0.02f, 0.5f}};
   const Uv near_edge{corners[e0][0], corners[e0][1]};
   const UvGradients g{0.15f, 0.0f, 0.0f, 0.15f};  // footprint much wider than the distance
-  const std::array<float, 4> d = faces::sample_face(t.set, 0, near_edge, g, opts(SeamMethod::discard));
+  const std::array<float, 4> d =
+      faces::sample_face(t.set, 0, near_edge, g, opts(SeamMethod::discard));
   EXPECT_NEAR(d[0], 0.2f, 1e-6f);
   EXPECT_GT(d[3], 0.0f);
   EXPECT_LT(d[3], 1.0f);  // some taps were outside
@@ -196,8 +197,9 @@ TEST(Faces, TraverseIsContinuousAcrossAnEdgeAtMagnification) {
       const Uv on{pts[e0][0], pts[e0][1]};
       const std::array<float, 4> a =
           faces::sample_face(t.set, 0, on, g, opts(SeamMethod::traverse, TextureFilter::trilinear));
-      const std::array<float, 4> b = faces::sample_face(
-          t.set, 1, tr.apply(on), tr.apply(g), opts(SeamMethod::traverse, TextureFilter::trilinear));
+      const std::array<float, 4> b =
+          faces::sample_face(t.set, 1, tr.apply(on), tr.apply(g),
+                             opts(SeamMethod::traverse, TextureFilter::trilinear));
       for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[std::size_t(k)], b[std::size_t(k)], 1e-5f);
       // The texture is linear in 3D, so bilinear reconstruction across the seam is exact
       // (the value at the edge is the function there); Discard and Clamp are not.
@@ -325,8 +327,7 @@ SmallScene small_scene(int ground) {
   EXPECT_TRUE(set.ok());
   if (!set) return out;
   out.set = std::move(*set);
-  Result<std::unique_ptr<faces::FaceRenderer>> r =
-      faces::FaceRenderer::create(out.scene, *out.set);
+  Result<std::unique_ptr<faces::FaceRenderer>> r = faces::FaceRenderer::create(out.scene, *out.set);
   EXPECT_TRUE(r.ok());
   if (r) out.renderer = std::move(*r);
   out.camera = faces::face_orbit_camera(out.scene, 1, 8);
@@ -464,12 +465,12 @@ TEST(TexelFormat, ConvertsAsTheGpuFormatsStore) {
   EXPECT_EQ(half(-2.0f), 0xc000u);
   EXPECT_EQ(half(0.1f), 0x2e66u);
   EXPECT_EQ(half(65504.0f), 0x7bffu);
-  EXPECT_EQ(half(65519.0f), 0x7bffu);  // below the midpoint to 65536
-  EXPECT_EQ(half(65520.0f), 0x7c00u);  // the midpoint rounds to even: infinity
-  EXPECT_EQ(half(std::ldexp(1.0f, -24)), 0x0001u);  // the smallest subnormal
-  EXPECT_EQ(half(std::ldexp(1.0f, -25)), 0x0000u);  // half of it: ties to even (0)
-  EXPECT_EQ(half(std::ldexp(3.0f, -26)), 0x0001u);  // above the tie
-  EXPECT_EQ(half(std::ldexp(1.0f, -14)), 0x0400u);  // the smallest normal
+  EXPECT_EQ(half(65519.0f), 0x7bffu);                      // below the midpoint to 65536
+  EXPECT_EQ(half(65520.0f), 0x7c00u);                      // the midpoint rounds to even: infinity
+  EXPECT_EQ(half(std::ldexp(1.0f, -24)), 0x0001u);         // the smallest subnormal
+  EXPECT_EQ(half(std::ldexp(1.0f, -25)), 0x0000u);         // half of it: ties to even (0)
+  EXPECT_EQ(half(std::ldexp(3.0f, -26)), 0x0001u);         // above the tie
+  EXPECT_EQ(half(std::ldexp(1.0f, -14)), 0x0400u);         // the smallest normal
   EXPECT_EQ(half(1.0f + std::ldexp(1.0f, -11)), 0x3c00u);  // tie: to even
   EXPECT_EQ(half(1.0f + std::ldexp(3.0f, -11)), 0x3c02u);  // tie: to even (up)
   EXPECT_EQ(half(INFINITY), 0x7c00u);

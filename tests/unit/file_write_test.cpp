@@ -2,12 +2,11 @@
 // dangling), FIFOs, character devices, standard input and output, existing files' modes and
 // failed writes. Run under ASan/UBSan in CI (label unit).
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -211,7 +210,8 @@ TEST(StreamRead, LimitHoldsForStreams) {
   const fs::path fifo = dir / "in";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
   // The reader closes the FIFO early: the writer must see EPIPE, not die of SIGPIPE.
-  struct sigaction ignore {}, old {};
+  struct sigaction ignore {
+  }, old{};
   ignore.sa_handler = SIG_IGN;
   ASSERT_EQ(::sigaction(SIGPIPE, &ignore, &old), 0);
   std::thread writer([&] {

@@ -81,8 +81,7 @@ TEST_F(Glsl, OverrideFolderIsReadInsteadOfTheEmbeddedCopy) {
 TEST_F(Glsl, EngineShaderIncludesResolveToTheShippedFiles) {
   // What an engine does with its own fragment shader: expand, then compile the string itself.
   glsl::Source src{glsl::Stage::fragment,
-                   "#version 450 core\n#include \"seams.glsl\"\nvoid main() {}\n",
-                   "engine.frag"};
+                   "#version 450 core\n#include \"seams.glsl\"\nvoid main() {}\n", "engine.frag"};
   glsl::ExpandOptions o;
   o.preamble = {"#define TESSERA_SEAMS_CLASSES 2"};
   Result<glsl::Expanded> e = glsl::expand_includes(src, o);
@@ -156,8 +155,7 @@ TEST_F(Glsl, ExpandsIncludesWithLineDirectives) {
   ASSERT_FALSE(bad.ok());
   EXPECT_EQ(bad.status().code, ErrorCode::io_error);
   EXPECT_TRUE(one_line(bad.status().message));
-  EXPECT_EQ(bad.status().message.rfind("main.frag:3: cannot find include file \"missing.glsl\"",
-                                       0),
+  EXPECT_EQ(bad.status().message.rfind("main.frag:3: cannot find include file \"missing.glsl\"", 0),
             0u)
       << bad.status().message;
 }

@@ -24,7 +24,6 @@ namespace {
 namespace fs = std::filesystem;
 using test::encode_raw_png;
 
-
 std::uint32_t crc32_of(const std::uint8_t* p, std::size_t n) {
   std::uint32_t crc = 0xFFFFFFFFu;
   for (std::size_t i = 0; i < n; ++i) {
@@ -106,8 +105,8 @@ void expect_same_as_spng(const std::vector<std::uint8_t>& png, const std::string
 }
 
 TEST(PngFastPath, MatchesLibspngForEveryFilterWidthAndColourType) {
-  const int choices[] = {SPNG_FILTER_CHOICE_NONE, SPNG_FILTER_CHOICE_SUB, SPNG_FILTER_CHOICE_UP,
-                         SPNG_FILTER_CHOICE_AVG, SPNG_FILTER_CHOICE_PAETH, SPNG_FILTER_CHOICE_ALL};
+  const int choices[] = {SPNG_FILTER_CHOICE_NONE, SPNG_FILTER_CHOICE_SUB,   SPNG_FILTER_CHOICE_UP,
+                         SPNG_FILTER_CHOICE_AVG,  SPNG_FILTER_CHOICE_PAETH, SPNG_FILTER_CHOICE_ALL};
   const std::pair<std::uint8_t, int> types[] = {{0, 1}, {2, 3}, {4, 2}, {6, 4}};
   for (auto [color_type, channels] : types) {
     for (std::uint32_t w : {1u, 3u, 17u, 257u}) {
@@ -144,17 +143,17 @@ TEST(PngFastPath, IgnoresTheSameAncillaryChunksAsLibspng) {
       {"sRGB", {9}},           // invalid rendering intent
       {"cHRM", {1, 2, 3}},     // wrong size
       {"tEXt", {'C', 'o', 'm', 'm', 'e', 'n', 't', 0, 'h', 'i'}},
-      {"zTXt", {'k', 0, 0, 1, 2, 3}},                // corrupt zlib stream
+      {"zTXt", {'k', 0, 0, 1, 2, 3}},                       // corrupt zlib stream
       {"iCCP", {'p', 0, 0, 0x78, 0x9C, 3, 0, 0, 0, 0, 1}},  // empty profile
-      {"iCCP", {'p', 'r', 'o'}},                             // no name terminator
-      {"tEXt", {0, 'x'}},                                    // empty keyword
-      {"tIME", {0x07, 0xE6, 13, 40, 25, 61, 61}},            // impossible date
-      {"pHYs", {0, 0, 0, 1, 0, 0, 0, 1, 7}},                 // unknown unit
-      {"bKGD", {0, 1}},                                      // wrong size for RGB
-      {"sBIT", {0, 9, 8}},                                   // out of range
-      {"hIST", {0, 1, 0, 2}},                                // no PLTE
-      {"oFFs", {0, 0, 0, 1, 0, 0, 0, 1, 2}},                 // unknown unit
-      {"prVt", {1, 2, 3}},                                   // unknown, safe to copy
+      {"iCCP", {'p', 'r', 'o'}},                            // no name terminator
+      {"tEXt", {0, 'x'}},                                   // empty keyword
+      {"tIME", {0x07, 0xE6, 13, 40, 25, 61, 61}},           // impossible date
+      {"pHYs", {0, 0, 0, 1, 0, 0, 0, 1, 7}},                // unknown unit
+      {"bKGD", {0, 1}},                                     // wrong size for RGB
+      {"sBIT", {0, 9, 8}},                                  // out of range
+      {"hIST", {0, 1, 0, 2}},                               // no PLTE
+      {"oFFs", {0, 0, 0, 1, 0, 0, 0, 1, 2}},                // unknown unit
+      {"prVt", {1, 2, 3}},                                  // unknown, safe to copy
   };
   for (const auto& [type, body] : chunks) {
     std::vector<std::uint8_t> before = base;
@@ -219,8 +218,8 @@ TEST(PngFastPath, CorruptFilesGiveTheSameResultAsLibspng) {
     EXPECT_EQ(r.status().message.rfind("crc.png: ", 0), 0u) << r.status().message;
   }
   // Truncated anywhere is an error.
-  for (std::size_t cut : {std::size_t(8), std::size_t(30), idat + 4, idat + 20,
-                          idat + 8 + idat_len, png.size() - 12, png.size() - 1}) {
+  for (std::size_t cut : {std::size_t(8), std::size_t(30), idat + 4, idat + 20, idat + 8 + idat_len,
+                          png.size() - 12, png.size() - 1}) {
     std::vector<std::uint8_t> part(png.begin(), png.begin() + std::ptrdiff_t(cut));
     EXPECT_FALSE(detail::decode_png_fast(part).has_value()) << "cut at " << cut;
     Result<ImageRGBA8> r = decode_image(part, "cut.png");
@@ -273,15 +272,16 @@ std::vector<std::uint8_t> png_with_filters(const std::vector<std::uint8_t>& samp
   const std::vector<std::uint8_t> zeros(row_bytes, 0);
   for (std::size_t y = 0; y < h; ++y) {
     raw[y * (1 + row_bytes)] = std::uint8_t(filters[y]);
-    filter_row(filters[y], &samples[y * row_bytes], y ? &samples[(y - 1) * row_bytes] : zeros.data(),
-               row_bytes, channels, &raw[y * (1 + row_bytes) + 1]);
+    filter_row(filters[y], &samples[y * row_bytes],
+               y ? &samples[(y - 1) * row_bytes] : zeros.data(), row_bytes, channels,
+               &raw[y * (1 + row_bytes) + 1]);
   }
   std::vector<std::uint8_t> z = {0x78, 0x01};  // zlib header, then stored blocks
   for (std::size_t at = 0; at == 0 || at < raw.size();) {
     const std::size_t n = std::min<std::size_t>(raw.size() - at, 65535);
     const bool last = at + n == raw.size();
-    z.insert(z.end(), {std::uint8_t(last), std::uint8_t(n), std::uint8_t(n >> 8),
-                       std::uint8_t(~n), std::uint8_t(~n >> 8)});
+    z.insert(z.end(), {std::uint8_t(last), std::uint8_t(n), std::uint8_t(n >> 8), std::uint8_t(~n),
+                       std::uint8_t(~n >> 8)});
     z.insert(z.end(), raw.begin() + std::ptrdiff_t(at), raw.begin() + std::ptrdiff_t(at + n));
     at += n;
   }
@@ -342,11 +342,10 @@ TEST(PngFastPath, MatchesLibspngForEverySequenceOfRowFilters) {
       for (const std::vector<int>& filters : sequences) {
         const std::uint32_t h = std::uint32_t(filters.size());
         const std::vector<std::uint8_t> samples = test_samples(w, h, int(channels));
-        std::string what = "type " + std::to_string(color_type) + " width " + std::to_string(w) +
-                           " filters";
+        std::string what =
+            "type " + std::to_string(color_type) + " width " + std::to_string(w) + " filters";
         for (int f : filters) what.append(1, ' ').append(std::to_string(f));
-        expect_fast_matches_spng(png_with_filters(samples, w, color_type, channels, filters),
-                                 what);
+        expect_fast_matches_spng(png_with_filters(samples, w, color_type, channels, filters), what);
         if (HasFailure()) return;  // one report is enough
       }
     }
@@ -361,9 +360,9 @@ TEST(PngFastPath, ExtremeSamplesWrapAroundLikeLibspng) {
     for (std::size_t i = 0; i < samples.size(); ++i) samples[i] = ((i / 5) % 3 == 1) ? 0 : 255;
     for (int f = 0; f < 5; ++f) {
       const std::vector<int> filters = {f, 4, f, 3, 1, f, 2, f, f, 4};
-      expect_fast_matches_spng(png_with_filters(samples, w, color_type, channels, filters),
-                               "extremes type " + std::to_string(color_type) + " filter " +
-                                   std::to_string(f));
+      expect_fast_matches_spng(
+          png_with_filters(samples, w, color_type, channels, filters),
+          "extremes type " + std::to_string(color_type) + " filter " + std::to_string(f));
     }
   }
 }

@@ -14,10 +14,9 @@ namespace tessera::test {
 
 /// Encodes raw samples as PNG with libspng directly (to make 16-bit, grey and palette files).
 /// `filters`: an SPNG_FILTER_CHOICE_* mask (libspng picks per row among those allowed).
-inline std::vector<std::uint8_t> encode_raw_png(const void* data, std::size_t size,
-                                                std::uint32_t w, std::uint32_t h,
-                                                std::uint8_t color_type, std::uint8_t depth,
-                                                const spng_plte* plte = nullptr,
+inline std::vector<std::uint8_t> encode_raw_png(const void* data, std::size_t size, std::uint32_t w,
+                                                std::uint32_t h, std::uint8_t color_type,
+                                                std::uint8_t depth, const spng_plte* plte = nullptr,
                                                 const spng_trns* trns = nullptr,
                                                 int filters = SPNG_FILTER_CHOICE_ALL,
                                                 std::uint8_t interlace = 0) {
@@ -42,7 +41,8 @@ inline std::vector<std::uint8_t> encode_raw_png(const void* data, std::size_t si
   std::size_t n = 0;
   int err = 0;
   void* buf = spng_get_png_buffer(ctx.get(), &n, &err);
-  std::vector<std::uint8_t> out(static_cast<std::uint8_t*>(buf), static_cast<std::uint8_t*>(buf) + n);
+  std::vector<std::uint8_t> out(static_cast<std::uint8_t*>(buf),
+                                static_cast<std::uint8_t*>(buf) + n);
   std::free(buf);
   return out;
 }

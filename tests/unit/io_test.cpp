@@ -1,6 +1,8 @@
 // Tests of tessera/io.h: PNG in all its flavours, JPEG/TGA/BMP through stb, atomic writes and
 // the error paths (missing, truncated, corrupt, wrong magic, absurd sizes). The PNG fast path
 // against libspng: io_png_fast_test.cpp.
+#include "tessera/io.h"
+
 #include <gtest/gtest.h>
 #include <spng.h>
 #include <stb_image_write.h>
@@ -14,7 +16,6 @@
 
 #include "io/png_fast.h"
 #include "io_png_test_util.h"
-#include "tessera/io.h"
 #include "tessera/procedural.h"
 #include "test_support.h"
 
@@ -69,7 +70,8 @@ TEST(Png, SixteenBitIsRoundedNotTruncated) {
 
 TEST(Png, GreyAndGreyAlphaExpandToRgba) {
   const std::uint8_t grey[4] = {0, 100, 200, 255};
-  Result<ImageRGBA8> g = decode_image(encode_raw_png(grey, 4, 2, 2, SPNG_COLOR_TYPE_GRAYSCALE, 8), "g");
+  Result<ImageRGBA8> g =
+      decode_image(encode_raw_png(grey, 4, 2, 2, SPNG_COLOR_TYPE_GRAYSCALE, 8), "g");
   ASSERT_TRUE(g.ok());
   EXPECT_FALSE(g->has_alpha);
   for (int i = 0; i < 4; ++i) {
@@ -105,8 +107,8 @@ TEST(Png, PaletteWithTransparency) {
   trns.n_type3_entries = 1;
   trns.type3_alpha[0] = 128;
   const std::uint8_t idx[2] = {0, 1};
-  Result<ImageRGBA8> img = decode_image(
-      encode_raw_png(idx, 2, 2, 1, SPNG_COLOR_TYPE_INDEXED, 8, &plte, &trns), "pal");
+  Result<ImageRGBA8> img =
+      decode_image(encode_raw_png(idx, 2, 2, 1, SPNG_COLOR_TYPE_INDEXED, 8, &plte, &trns), "pal");
   ASSERT_TRUE(img.ok()) << img.status().message;
   EXPECT_TRUE(img->has_alpha);
   const std::uint8_t expect[8] = {255, 0, 0, 128, 0, 0, 255, 255};

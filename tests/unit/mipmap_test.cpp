@@ -1,7 +1,5 @@
 // Tests of tessera/image_mipmap.h: mip chain sizes, sRGB-correct and alpha-weighted averaging,
 // thread-count independence, the Lanczos and Kaiser filters, normal-map chains, and resizing.
-#include "tessera/image_mipmap.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include "tessera/image_mipmap.h"
 #include "tessera/image_ops.h"
 #include "tessera/metrics.h"
 #include "tessera/procedural.h"

@@ -31,9 +31,9 @@ struct Row {
 
 /// Skips the test where the AVX2 kernels are not built or the CPU cannot run them (fails where
 /// the CPU has AVX2 and the run requires it: test_require.h).
-#define REQUIRE_AVX2()                                                      \
-  const DilationKernels* avx2 = dilation_kernels_avx2();                    \
-  const DilationKernels* base = dilation_kernels_baseline();                \
+#define REQUIRE_AVX2()                                       \
+  const DilationKernels* avx2 = dilation_kernels_avx2();     \
+  const DilationKernels* base = dilation_kernels_baseline(); \
   TESSERA_SKIP_WITHOUT_AVX2(avx2 != nullptr, "AVX2 dilation kernels not available")
 
 std::vector<std::uint8_t> random_texels(std::mt19937& rng, int w, bool structured) {
@@ -208,9 +208,8 @@ TEST(PvrtcDilationKernels, DilateRowMatchesBaseline) {
           avx2->dilate_row(np, w, rows, b.ptr, vfb.p(), vsb.data() + kPad, vstride);
           for (int c = 0; c <= np; ++c) {
             for (int x = 0; x < w; ++x) {
-              ASSERT_EQ(a.ptr[c][x], b.ptr[c][x])
-                  << "w " << w << " np " << np << " density " << density << " c " << c
-                  << " x " << x;
+              ASSERT_EQ(a.ptr[c][x], b.ptr[c][x]) << "w " << w << " np " << np << " density "
+                                                  << density << " c " << c << " x " << x;
             }
           }
         }
@@ -378,7 +377,6 @@ TEST(PvrtcDilationEncode, ForcedBaselineGivesTheSameBytes) {
   }
 }
 
-
 // The dilation's per-block flat flags (which gate the homogeneous-block shortcut) mark exactly
 // the blocks whose texels all have one intensity: the uniform blocks, not the one with a single
 // texel changed (nor any noise block).
@@ -460,7 +458,8 @@ TEST(PvrtcDilationEncode, FlatFlagsMarkBlocksOfOneIntensity) {
     fill_block(1, 0, 0, 0, 0);
     fill_block(2, 1, 255, 255, 255);
     fill_block(1, 2, 90, 90, 90);
-    img.pixels[(std::size_t(9) * 64 + std::size_t(bw + 1)) * 4] = 91;  // block (1, 2): one texel off
+    img.pixels[(std::size_t(9) * 64 + std::size_t(bw + 1)) * 4] =
+        91;  // block (1, 2): one texel off
     for (bool rgba : {false, true}) {
       std::vector<float> low, high;
       std::vector<std::uint8_t> flat;

@@ -37,8 +37,8 @@ enum class Fill {
 struct Row {
   int nbx = 0;
   std::size_t vstride = 0;
-  std::vector<std::uint16_t> planes;            // [row][image * 4 + channel][vstride]
-  std::vector<std::vector<std::uint8_t>> rows;  // 4 target rows, nbx * 16 bytes each
+  std::vector<std::uint16_t> planes;              // [row][image * 4 + channel][vstride]
+  std::vector<std::vector<std::uint8_t>> rows;    // 4 target rows, nbx * 16 bytes each
   std::vector<std::vector<std::uint8_t>> scales;  // 4 colour-scale rows, nbx * 4 bytes each
   const std::uint16_t* v[4] = {};
   const std::uint8_t* t[4] = {};
@@ -333,7 +333,7 @@ EncoderState make_state_2bpp(int w, int h, bool alpha, Content content, std::uin
 
 TEST(PvrtcModulation2bppAvx2, StateMatchesBaseline) {
   TESSERA_SKIP_WITHOUT_AVX2(modulation_avx2_supported(), "no AVX2 kernel in this build or CPU");
-  const int sizes[][2] = {{8, 8},  {16, 8},   {8, 32},   {32, 8},  {128, 16},
+  const int sizes[][2] = {{8, 8},   {16, 8},  {8, 32},   {32, 8},  {128, 16},
                           {16, 64}, {64, 64}, {256, 32}, {512, 16}};
   int mode1_blocks = 0;
   for (const auto& wh : sizes) {
@@ -370,8 +370,8 @@ TEST(PvrtcModulation2bppAvx2, EncodeMatchesBaseline) {
   const int sizes[][2] = {{8, 8}, {16, 8}, {8, 32}, {32, 8}, {128, 16}, {64, 64}, {256, 128}};
   for (const auto& wh : sizes) {
     for (bool alpha : {false, true}) {
-      ImageRGBA8 img = make_procedural(alpha ? Procedural::foliage : Procedural::noise, wh[0],
-                                       wh[1], 3);
+      ImageRGBA8 img =
+          make_procedural(alpha ? Procedural::foliage : Procedural::noise, wh[0], wh[1], 3);
       for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
         if (q == Quality::high && wh[0] * wh[1] > 64 * 64) continue;  // slow; normal covers it
         SCOPED_TRACE(testing::Message()

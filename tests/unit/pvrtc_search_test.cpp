@@ -224,8 +224,8 @@ TEST(PvrtcSearch, CrossoverTakesTheBetterBlocks) {
 TEST(PvrtcSearch, Crossover2bppComparesWholeBlocks) {
   for (Procedural kind : {Procedural::bricks, Procedural::foliage}) {
     const ImageRGBA8 img = make_procedural(kind, 64, 32);
-    const EncoderState fast = state_from(img, encode_or_die(img, Quality::fast, Format::pvrtc1_2bpp),
-                                         false, Format::pvrtc1_2bpp);
+    const EncoderState fast = state_from(
+        img, encode_or_die(img, Quality::fast, Format::pvrtc1_2bpp), false, Format::pvrtc1_2bpp);
     const EncoderState normal = state_from(
         img, encode_or_die(img, Quality::normal, Format::pvrtc1_2bpp), false, Format::pvrtc1_2bpp);
     const int aw = img.has_alpha ? 2 : 0;
@@ -271,8 +271,7 @@ TEST(PvrtcSearch, OptimiseCrossoverNeverRaisesTheError) {
   for (Format format : {Format::pvrtc1_4bpp, Format::pvrtc1_2bpp}) {
     for (Procedural kind : {Procedural::bricks, Procedural::foliage, Procedural::noise}) {
       const ImageRGBA8 img = make_procedural(kind, 64, 32);
-      EncoderState s =
-          state_from(img, encode_or_die(img, Quality::normal, format), true, format);
+      EncoderState s = state_from(img, encode_or_die(img, Quality::normal, format), true, format);
       EncoderState alt = state_from(img, encode_or_die(img, Quality::fast, format), true, format);
       s.modulation_descent = alt.modulation_descent = format == Format::pvrtc1_2bpp ? 1 : 0;
       const std::uint64_t before = choose_modulation(s);
@@ -316,9 +315,8 @@ TEST(PvrtcSearch, Pack2bppInvertsUnpack) {
 TEST(PvrtcSearch, ModulationDescent2bppReachesALocalMinimum) {
   for (Procedural kind : {Procedural::noise, Procedural::foliage}) {
     const ImageRGBA8 img = make_procedural(kind, 32, 16);
-    EncoderState s =
-        state_from(img, encode_or_die(img, Quality::fast, Format::pvrtc1_2bpp), false,
-                   Format::pvrtc1_2bpp);
+    EncoderState s = state_from(img, encode_or_die(img, Quality::fast, Format::pvrtc1_2bpp), false,
+                                Format::pvrtc1_2bpp);
     const std::uint64_t before = total_error(s);
     const std::uint64_t after = refine_modulation_2bpp(s, 16);
     EXPECT_EQ(after, total_error(s));
@@ -375,8 +373,8 @@ TEST(PvrtcSearch, NearestCodeTableMatchesTheSearch) {
     const NearestCodeTable* table;
     int bits, channel;
   };
-  const Kind kinds[] = {{&kNearest5, 5, 0}, {&kNearest4, 4, 0}, {&kNearest3, 3, 0},
-                        {&kNearestAlpha3, 3, 3}};
+  const Kind kinds[] = {
+      {&kNearest5, 5, 0}, {&kNearest4, 4, 0}, {&kNearest3, 3, 0}, {&kNearestAlpha3, 3, 3}};
   std::vector<float> levels;
   for (int k = -64 * 20; k <= 64 * 280; ++k) levels.push_back(float(k) / 64.0f);
   for (int h = -4; h <= 2 * 260; ++h) {
@@ -516,8 +514,8 @@ static void check_window2_scores() {
                               at(eb, ty.b1, tx.b1), tx.d, ty.d, 8, ub);
                 const std::uint8_t* t =
                     &s.target[(std::size_t(y) * std::size_t(g.pw) + std::size_t(x)) * 4];
-                const bool interp = s.mode[std::size_t(y / 4) * std::size_t(g.nbx) +
-                                           std::size_t(x / 8)] != 0;
+                const bool interp =
+                    s.mode[std::size_t(y / 4) * std::size_t(g.nbx) + std::size_t(x / 8)] != 0;
                 std::vector<int> weights = {0, 8};
                 if (interp && ((x ^ y) & 1) != 0) {
                   weights = {0, 3, 4, 5, 8};
@@ -537,8 +535,8 @@ static void check_window2_scores() {
               }
             }
             const std::uint32_t got = window_error_2bpp(s, bx, by, ca, cb, ~0u, false);
-            ASSERT_EQ(got, expected) << procedural_name(kind) << " " << w << "x" << h
-                                     << " block " << bx << "," << by << " trial " << trial;
+            ASSERT_EQ(got, expected) << procedural_name(kind) << " " << w << "x" << h << " block "
+                                     << bx << "," << by << " trial " << trial;
             EXPECT_EQ(window_error_2bpp(s, bx, by, ca, cb, ~0u, true), expected);
             const auto bound = std::uint32_t(expected / 2 + 1);
             EXPECT_GE(window_error_2bpp(s, bx, by, ca, cb, bound, true), bound);

@@ -28,8 +28,8 @@ Mesh random_scene(int count, int w, int h, unsigned seed) {
     std::uint32_t id[3];
     for (int k = 0; k < 3; ++k) {
       const double x = cx + s * (ww(rng) - 1.0), y = cy + s * (ww(rng) - 1.0);
-      id[k] = m.add(x, y, w, h, zz(rng), ww(rng),
-                    {float(x / w), float(y / h), float(i % 7) / 7.0f});
+      id[k] =
+          m.add(x, y, w, h, zz(rng), ww(rng), {float(x / w), float(y / h), float(i % 7) / 7.0f});
     }
     m.tri(id[0], id[1], id[2]);
   }
@@ -57,12 +57,11 @@ TEST(RasterDeterminism, IdenticalForAnyThreadCount) {
       fbs.push_back(std::move(fb));
     }
     for (std::size_t i = 1; i < fbs.size(); ++i) {
-      ASSERT_EQ(0, std::memcmp(fbs[0].data().data(), fbs[i].data().data(),
-                               fbs[0].data().size_bytes()));
+      ASSERT_EQ(
+          0, std::memcmp(fbs[0].data().data(), fbs[i].data().data(), fbs[0].data().size_bytes()));
       ASSERT_EQ(0, std::memcmp(fbs[0].depth_data().data(), fbs[i].depth_data().data(),
                                fbs[0].depth_data().size_bytes()));
-      ASSERT_EQ(0, std::memcmp(fbs[0].primitive_id_data().data(),
-                               fbs[i].primitive_id_data().data(),
+      ASSERT_EQ(0, std::memcmp(fbs[0].primitive_id_data().data(), fbs[i].primitive_id_data().data(),
                                fbs[0].primitive_id_data().size_bytes()));
       EXPECT_EQ(stats[0].samples_written, stats[i].samples_written);
       EXPECT_EQ(stats[0].quads, stats[i].quads);
@@ -202,9 +201,8 @@ TEST(RasterCulling, BackFacesAndFacingFlag) {
   const auto c = m.add(8, 2, kSize, kSize);
   m.tri(a, b, c);  // CCW in NDC: front
   m.tri(a, c, b);  // back
-  DrawCall d = m.draw([](const ShadeInput& in, float* out) {
-    out[0] = in.front_facing ? 1.0f : 2.0f;
-  });
+  DrawCall d =
+      m.draw([](const ShadeInput& in, float* out) { out[0] = in.front_facing ? 1.0f : 2.0f; });
   Rasteriser r({.threads = 1});
   const std::pair<CullMode, float> cases[] = {{CullMode::back, 1.0f}, {CullMode::front, 2.0f}};
   for (const auto& [cull, expect] : cases) {

@@ -1,6 +1,8 @@
 // Rasteriser tests: sample patterns, half-plane coverage, watertightness (top-left rule),
 // perspective-correct interpolation, near/far and guard-band clipping, depth ordering, quad
 // derivatives with helper pixels and centroid. Output-side tests are in raster_output_test.cpp.
+#include "tessera/raster.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 #include <vector>
 
 #include "raster_test_support.h"
-#include "tessera/raster.h"
 
 namespace tessera::raster {
 namespace {
@@ -180,8 +181,8 @@ TEST(RasterCoverage, TopLeftRuleOnSamplePositions) {
     const auto pos = sample_positions(n);
     for (int s = 0; s < n; ++s) {
       for (int vertical = 0; vertical < 2; ++vertical) {
-        const double edge = 12.5 + (vertical ? pos[std::size_t(s)].x : pos[std::size_t(s)].y) /
-                                       16.0;
+        const double edge =
+            12.5 + (vertical ? pos[std::size_t(s)].x : pos[std::size_t(s)].y) / 16.0;
         Mesh m(0);
         // Two rectangles [4, edge] and [edge, 24] along one axis, [4, 24] along the other.
         auto add = [&](double u, double v) {
@@ -207,12 +208,10 @@ TEST(RasterCoverage, TopLeftRuleOnSamplePositions) {
 }
 
 /// GL perspective projection of a view-space point (camera at origin looking down -z).
-std::array<float, 4> project(double x, double y, double z, double near = 0.1,
-                             double far = 100.0) {
+std::array<float, 4> project(double x, double y, double z, double near = 0.1, double far = 100.0) {
   const double f = 1.0;  // 90 degree field of view, aspect 1
-  return {float(f * x), float(f * y), float((far + near) / (near - far) * z +
-                                           2.0 * far * near / (near - far)),
-          float(-z)};
+  return {float(f * x), float(f * y),
+          float((far + near) / (near - far) * z + 2.0 * far * near / (near - far)), float(-z)};
 }
 
 /// A draw of `pos` (clip-space x, y, z, w per vertex) with two varyings per vertex (`var`), no
@@ -316,8 +315,8 @@ TEST(RasterClipping, NearPlaneTriangleCrossingCamera) {
       const bool got = fb.data(x, y, 0)[2] == 1.0f;
       if (got) {
         ++covered;
-        max_err = std::max({max_err, std::fabs(fb.data(x, y, 0)[0] - bu),
-                            std::fabs(fb.data(x, y, 0)[1] - bv)});
+        max_err = std::max(
+            {max_err, std::fabs(fb.data(x, y, 0)[0] - bu), std::fabs(fb.data(x, y, 0)[1] - bv)});
       }
       if (got != inside && std::fabs(margin) > 0.02) ++mismatches;
     }

@@ -32,9 +32,7 @@ struct Mesh {
     var.insert(var.end(), v.begin(), v.end());
     return std::uint32_t(pos.size() / 4 - 1);
   }
-  void tri(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    idx.insert(idx.end(), {a, b, c});
-  }
+  void tri(std::uint32_t a, std::uint32_t b, std::uint32_t c) { idx.insert(idx.end(), {a, b, c}); }
   DrawCall draw(ShadeFn shader = {}) const {
     DrawCall d;
     d.positions = pos.data();
@@ -50,7 +48,7 @@ struct Mesh {
 };
 
 inline FrameBuffer make_fb(int w, int h, int msaa = 1, int ssaa = 1, int channels = 4,
-                    bool ids = false, bool counts = false) {
+                           bool ids = false, bool counts = false) {
   FrameBufferDesc d;
   d.width = w;
   d.height = h;

@@ -1,11 +1,12 @@
 // Tests of tessera/math.h and tessera/scene.h: matrices, OBJ/glTF loading, errors, cameras.
+#include "tessera/scene.h"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "tessera/io.h"
 #include "tessera/procedural.h"
-#include "tessera/scene.h"
 #include "test_support.h"
 
 namespace tessera::scene {
@@ -18,8 +19,8 @@ void write_text(const fs::path& p, const std::string& text) {
 }
 
 TEST(Math, InverseAndProjection) {
-  const Mat4 m = translation({1, 2, 3}) * rotation_quat(0, 0.38268343f, 0, 0.92387953f) *
-                 scaling({2, 3, 4});
+  const Mat4 m =
+      translation({1, 2, 3}) * rotation_quat(0, 0.38268343f, 0, 0.92387953f) * scaling({2, 3, 4});
   const Mat4 id = m * inverse(m);
   for (int c = 0; c < 4; ++c) {
     for (int r = 0; r < 4; ++r) EXPECT_NEAR(id.m[c][r], c == r ? 1.0f : 0.0f, 1e-5f);
@@ -91,7 +92,8 @@ TEST(Gltf, MinimalFileWithDataUriAndTransforms) {
     "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",
                   "min":[0,0,0],"max":[1,1,0]}],
     "bufferViews":[{"buffer":0,"byteLength":36}],
-    "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" + b64 + R"("}]})";
+    "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" +
+                           b64 + R"("}]})";
   const fs::path dir = test::temp_dir("gltf");
   write_text(dir / "t.gltf", gltf);
   Result<Scene> s = load_scene((dir / "t.gltf").string());

@@ -4,8 +4,6 @@
 // simd_int_test with the target's backend (SSE2 on x86-64, NEON on AArch64, also run under
 // qemu-aarch64 by tests/arch/pvrtc_arch_bytes.sh) and simd_int_scalar_test with TESSERA_NO_SIMD
 // (the portable backend), so every backend is held to the same expressions.
-#include "core/simd.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +14,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/simd.h"
 #include "simd_test_lanes.h"
 
 namespace {
@@ -52,7 +51,8 @@ U8Lanes lanes(vu8x16 a) {
 
 template <int N>
 void check_shifts(vi32x4 a, const std::int32_t* x) {
-  const ILanes ra = lanes(simd::sra<N>(a)), rl = lanes(simd::srl<N>(a)), ll = lanes(simd::sll<N>(a));
+  const ILanes ra = lanes(simd::sra<N>(a)), rl = lanes(simd::srl<N>(a)),
+               ll = lanes(simd::sll<N>(a));
   for (int i = 0; i < 4; ++i) {
     const std::uint32_t u = std::uint32_t(x[i]);
     EXPECT_EQ(ra.i[i], x[i] >> (N < 32 ? N : 31)) << N;

@@ -41,7 +41,6 @@ std::vector<float> special_values() {
           1e30f, -1e30f, inf,  -inf,  nan,  -nan,  1e-40f, -1e-40f, 0.1f,  255.5f};
 }
 
-
 /// Runs `check(x[k], y[k], lane)` for all pairs of special values, four pairs per vector.
 template <class F>
 void for_pairs(F check) {
@@ -184,16 +183,16 @@ TEST(Simd, Int64LanesAddOrAndSigns) {
   EXPECT_EQ(simd::movemask(vi64x2(std::numeric_limits<std::int64_t>::max()) + vi64x2(1)), 3);
 }
 
-
 TEST(Simd, FloatToIntOutOfRangeAndHorizontalMinMax) {
   const float inf = std::numeric_limits<float>::infinity();
   const float nan = std::numeric_limits<float>::quiet_NaN();
   // cvttps2dq: every lane it cannot represent (NaN, >= 2^31, < -2^31) gives INT32_MIN.
-  const float in[12] = {2147483648.0f, 2147483520.0f, -2147483648.0f, -2147483904.0f,
-                        inf,           -inf,          nan,            -nan,
-                        1e20f,         -1e20f,        -0.99f,         2147483000.0f};
-  const std::int32_t want[12] = {INT32_MIN, 2147483520, INT32_MIN, INT32_MIN, INT32_MIN, INT32_MIN,
-                                 INT32_MIN, INT32_MIN,  INT32_MIN, INT32_MIN, 0,         2147483008};
+  const float in[12] = {2147483648.0f, 2147483520.0f, -2147483648.0f, -2147483904.0f, inf,
+                        -inf,          nan,           -nan,           1e20f,          -1e20f,
+                        -0.99f,        2147483000.0f};
+  const std::int32_t want[12] = {INT32_MIN, 2147483520, INT32_MIN, INT32_MIN,
+                                 INT32_MIN, INT32_MIN,  INT32_MIN, INT32_MIN,
+                                 INT32_MIN, INT32_MIN,  0,         2147483008};
   for (int k = 0; k < 12; k += 4) {
     const ILanes t = lanes(simd::to_int_trunc(simd::loadf4(in + k)));
     for (int i = 0; i < 4; ++i) EXPECT_EQ(t.i[i], want[k + i]) << in[k + i];
@@ -231,7 +230,8 @@ TEST(Simd, FloatSelectIsBitwiseAndMultiplyAddRoundsTwice) {
     // once: the build turns contraction off (-ffp-contract=off); this catches a build without.
     const Lanes fma = lanes(a * c + b);
     for (int i = 0; i < 4; ++i) {
-      const std::uint32_t u = (std::uint32_t(m[i]) & bits(x[i])) | (~std::uint32_t(m[i]) & bits(y[i]));
+      const std::uint32_t u =
+          (std::uint32_t(m[i]) & bits(x[i])) | (~std::uint32_t(m[i]) & bits(y[i]));
       EXPECT_EQ(bits(sel.f[i]), u);
       volatile float product = x[i] * z[i];  // rounded to float before the addition
       expect_same(fma.f[i], product + y[i]);

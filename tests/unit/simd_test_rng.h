@@ -18,10 +18,9 @@ struct Rng {
     return std::uint32_t(z ^ (z >> 31));
   }
   std::int32_t i32() {
-    static constexpr std::int32_t kEdge[] = {0,     1,      -1,     2,      255,    256,
-                                             -255,  -256,   32767,  32768,  -32768, -32769,
-                                             65535, 65536,  46340,  -46341, 1 << 30,
-                                             INT32_MAX,     INT32_MIN,      INT32_MIN + 1};
+    static constexpr std::int32_t kEdge[] = {
+        0,      1,      -1,    2,     255,   256,    -255,    -256,      32767,     32768,
+        -32768, -32769, 65535, 65536, 46340, -46341, 1 << 30, INT32_MAX, INT32_MIN, INT32_MIN + 1};
     const std::uint32_t r = next();
     switch (r & 3) {
       case 0:
@@ -45,8 +44,8 @@ struct Rng {
     }
   }
   float f32() {
-    static constexpr float kEdge[] = {0.0f, -0.0f, 1.0f, -1.5f, 8388608.0f, 2147483648.0f,
-                                      -3e9f, 1e-40f, 255.5f};
+    static constexpr float kEdge[] = {0.0f,          -0.0f, 1.0f,   -1.5f, 8388608.0f,
+                                      2147483648.0f, -3e9f, 1e-40f, 255.5f};
     const std::uint32_t r = next();
     if ((r & 3) == 0) return kEdge[(r >> 2) % (sizeof(kEdge) / sizeof(kEdge[0]))];
     if ((r & 3) == 1) return std::numeric_limits<float>::quiet_NaN();

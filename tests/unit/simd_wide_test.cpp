@@ -1,12 +1,10 @@
 // src/core/simd_wide.h: every operation of the 8-lane types, checked lane by lane (bit for bit)
 // against a scalar reference expression, on edge values and generated ones. Built three ways
-// (tests/unit/CMakeLists.txt): simd_wide_test with the target's portable backend (two SSE2 halves on
-// x86-64, two NEON halves on AArch64, where the arm64 stage runs it under qemu-aarch64),
+// (tests/unit/CMakeLists.txt): simd_wide_test with the target's portable backend (two SSE2 halves
+// on x86-64, two NEON halves on AArch64, where the arm64 stage runs it under qemu-aarch64),
 // simd_wide_scalar_test with TESSERA_NO_SIMD (two scalar halves), and on x86-64
 // simd_wide_avx2_test compiled with -mavx2 (the AVX2 backend; skipped on CPUs without AVX2).
 // So every backend is held to the same expressions.
-#include "core/simd.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +12,7 @@
 #include <cstring>
 #include <limits>
 
+#include "core/simd.h"
 #include "simd_test_rng.h"
 #include "test_require.h"
 
@@ -105,10 +104,10 @@ TEST(SimdWide, Int32Lanes) {
              sra = lanes(simd::sra<5>(a)), srl = lanes(simd::srl<7>(a)),
              sll = lanes(simd::sll<9>(a)), sllv = lanes(simd::sllv(a, simd::load8(n.l))),
              sb = lanes(simd::sll_bytes(a, round & 3)), div = lanes(simd::div255_u32(a)),
-             slln = lanes(simd::sll(a, round % 40)),
-             swp = lanes(simd::swap_pairs(a)), swp64 = lanes(simd::swap_pairs64(a)),
-             swh = lanes(simd::swap_halves(a)), ps = lanes(simd::pair_sums(a, b)),
-             ev = lanes(simd::even_lanes(a, b)), p64 = lanes(simd::permute64<0, 2, 1, 3>(a)),
+             slln = lanes(simd::sll(a, round % 40)), swp = lanes(simd::swap_pairs(a)),
+             swp64 = lanes(simd::swap_pairs64(a)), swh = lanes(simd::swap_halves(a)),
+             ps = lanes(simd::pair_sums(a, b)), ev = lanes(simd::even_lanes(a, b)),
+             p64 = lanes(simd::permute64<0, 2, 1, 3>(a)),
              p64b = lanes(simd::permute64<3, 3, 0, 1>(a));
     std::int64_t sum = 0;
     for (int i = 0; i < 8; ++i) {
@@ -156,9 +155,9 @@ TEST(SimdWide, Int32Lanes) {
     std::memcpy(tex, x.l, 32);
     const I8 t = lanes(simd::load_texels8(tex));
     for (int i = 0; i < 8; ++i) {
-      EXPECT_EQ(std::uint32_t(t.l[i]), std::uint32_t(tex[4 * i]) | std::uint32_t(tex[4 * i + 1]) << 8 |
-                                           std::uint32_t(tex[4 * i + 2]) << 16 |
-                                           std::uint32_t(tex[4 * i + 3]) << 24);
+      EXPECT_EQ(std::uint32_t(t.l[i]),
+                std::uint32_t(tex[4 * i]) | std::uint32_t(tex[4 * i + 1]) << 8 |
+                    std::uint32_t(tex[4 * i + 2]) << 16 | std::uint32_t(tex[4 * i + 3]) << 24);
     }
   }
 }
@@ -175,8 +174,9 @@ TEST(SimdWide, FloatLanes) {
       k.l[i] = rng.i32();
     }
     const vf32x8 a = simd::loadf8(x.l), b = simd::loadf8(y.l);
-    const F8 add = lanes(a + b), sub = lanes(a - b), mul = lanes(a * b), mx = lanes(simd::max(a, b)),
-             mn = lanes(simd::min(a, b)), cv = lanes(simd::to_float(simd::load8(k.l)));
+    const F8 add = lanes(a + b), sub = lanes(a - b), mul = lanes(a * b),
+             mx = lanes(simd::max(a, b)), mn = lanes(simd::min(a, b)),
+             cv = lanes(simd::to_float(simd::load8(k.l)));
     const I8 eq = lanes(simd::cmpeq(a, b)), lt = lanes(simd::cmplt(a, b)),
              tr = lanes(simd::to_int_trunc(a));
     for (int i = 0; i < 8; ++i) {

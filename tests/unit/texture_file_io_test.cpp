@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "tessera/io.h"
 #include "tessera/image_mipmap.h"
+#include "tessera/io.h"
 #include "tessera/procedural.h"
 #include "tessera/texture_file.h"
 #include "test_support.h"
@@ -46,7 +46,8 @@ TEST(TextureFile, DetectsContainers) {
   EXPECT_EQ(container_from_extension("dir.pvr/x"), ContainerFormat::unknown);
   Result<CompressedTexture> r = parse_texture(Bytes{1, 2, 3, 4, 5}, "junk.bin");
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.status().message, "junk.bin: not a PVR v3, KTX 1.1 or KTX 2.0 texture (unrecognised magic)");
+  EXPECT_EQ(r.status().message,
+            "junk.bin: not a PVR v3, KTX 1.1 or KTX 2.0 texture (unrecognised magic)");
 }
 
 TEST(TextureFile, ValidateRejectsInconsistentTextures) {
@@ -181,8 +182,7 @@ TEST(Oracle, ReadsPvrTexToolFilesAndMatchesItsDecode) {
                                     " -q pvrtcfastest -legacypvr -shh"));
     Result<CompressedTexture> v2 = read_texture_file(stem + "-v2.pvr");
     ASSERT_FALSE(v2.ok());
-    EXPECT_NE(v2.status().message.find("legacy PVR v2"), std::string::npos)
-        << v2.status().message;
+    EXPECT_NE(v2.status().message.find("legacy PVR v2"), std::string::npos) << v2.status().message;
   }
 }
 
@@ -192,7 +192,8 @@ TEST(Oracle, PvrTexToolReadsOurFiles) {
   const fs::path dir = test::temp_dir("oracle-out");
   for (pvrtc::Format f : {pvrtc::Format::pvrtc1_4bpp, pvrtc::Format::pvrtc1_2bpp}) {
     for (bool alpha : {false, true}) {
-      const ImageRGBA8 img = make_procedural(alpha ? Procedural::foliage : Procedural::noise, 64, 32);
+      const ImageRGBA8 img =
+          make_procedural(alpha ? Procedural::foliage : Procedural::noise, 64, 32);
       pvrtc::EncodeOptions eo;
       eo.format = f;
       eo.quality = pvrtc::Quality::fast;
@@ -214,8 +215,8 @@ TEST(Oracle, PvrTexToolReadsOurFiles) {
                     (alpha ? "a" : "") + (ext[1] == 'p' ? "-pvr" : "-ktx")))
                 .string();
         ASSERT_TRUE(write_texture_file(stem + ext, t).ok());
-        ASSERT_TRUE(run_tool(*tool, "-i " + stem + ext + " -o " + stem + "-scratch.pvr -f r8g8b8a8 -d " +
-                                        stem + "-dec.png -shh"))
+        ASSERT_TRUE(run_tool(*tool, "-i " + stem + ext + " -o " + stem +
+                                        "-scratch.pvr -f r8g8b8a8 -d " + stem + "-dec.png -shh"))
             << "PVRTexToolCLI rejected " << stem << ext;
         Result<ImageRGBA8> theirs = io::read_image(stem + "-dec.png");
         ASSERT_TRUE(theirs.ok()) << theirs.status().message;
@@ -234,7 +235,6 @@ TEST(Oracle, PvrTexToolReadsOurFiles) {
   }
 }
 
-
 // ---------------------------------------------------------------------------------------------
 // The up-to-date record (OUTPUT.json) of `tessera compress --skip-up-to-date` and tessera.batch.
 
@@ -245,9 +245,9 @@ void set_mtime_ns(const std::string& path, std::int64_t ns) {
 }
 
 void write_text_file(const std::string& path, const std::string& text) {
-  ASSERT_TRUE(io::write_file_atomic(path, {reinterpret_cast<const std::uint8_t*>(text.data()),
-                                           text.size()})
-                  .ok());
+  ASSERT_TRUE(
+      io::write_file_atomic(path, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()})
+          .ok());
 }
 
 TEST(UpToDateRecord, HoldsTheOptionsAndTheInputsSizeAndTime) {
@@ -277,7 +277,8 @@ TEST(UpToDateRecord, HoldsTheOptionsAndTheInputsSizeAndTime) {
   Result<std::string> several = up_to_date_record(o, std::vector<std::string>{in, in2});
   ASSERT_TRUE(several.ok());
   EXPECT_NE(several->find("\"inputs\": [\n  {\n   \"mtime_ns\": 1700000000123456789,\n   "
-                          "\"path\": \"" + in + "\",\n   \"size\": 3\n  },"),
+                          "\"path\": \"" +
+                          in + "\",\n   \"size\": 3\n  },"),
             std::string::npos)
       << *several;
   EXPECT_NE(several->find("\"cube\": true"), std::string::npos);

@@ -1,6 +1,8 @@
 // Tests of tessera/texture_file.h's containers (PVR v3 and KTX 1.1): round trips, exact header
 // bytes, every malformed-header path, truncation at every offset. Detection, files and the
 // exchange with PVRTexToolCLI: texture_file_io_test.cpp; tessera/image_mipmap.h: mipmap_test.cpp.
+#include "tessera/texture_file.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -10,7 +12,6 @@
 #include <utility>
 
 #include "tessera/image_mipmap.h"
-#include "tessera/texture_file.h"
 #include "texture_file_test_util.h"
 
 namespace tessera::texture_file {
@@ -77,25 +78,28 @@ TEST(Pvr3, HeaderMatchesPvrTexToolLayout) {
   const Bytes b = pvr_bytes(t);
   ASSERT_GE(b.size(), 67u);
   EXPECT_EQ(get_u32(b, 0), 0x03525650u);
-  EXPECT_EQ(get_u32(b, 4), 0u);            // flags
-  EXPECT_EQ(get_u32(b, 8), 3u);            // PVRTC1 4bpp RGBA
-  EXPECT_EQ(get_u32(b, 12), 0u);           // pixel format high word
-  EXPECT_EQ(get_u32(b, 16), 1u);           // sRGB
-  EXPECT_EQ(get_u32(b, 20), 0u);           // channel type
-  EXPECT_EQ(get_u32(b, 24), 128u);         // height
-  EXPECT_EQ(get_u32(b, 28), 256u);         // width
-  EXPECT_EQ(get_u32(b, 32), 1u);           // depth
-  EXPECT_EQ(get_u32(b, 36), 1u);           // surfaces
-  EXPECT_EQ(get_u32(b, 40), 1u);           // faces
-  EXPECT_EQ(get_u32(b, 44), 3u);           // mip count
-  EXPECT_EQ(get_u32(b, 48), 15u);          // metadata size
+  EXPECT_EQ(get_u32(b, 4), 0u);     // flags
+  EXPECT_EQ(get_u32(b, 8), 3u);     // PVRTC1 4bpp RGBA
+  EXPECT_EQ(get_u32(b, 12), 0u);    // pixel format high word
+  EXPECT_EQ(get_u32(b, 16), 1u);    // sRGB
+  EXPECT_EQ(get_u32(b, 20), 0u);    // channel type
+  EXPECT_EQ(get_u32(b, 24), 128u);  // height
+  EXPECT_EQ(get_u32(b, 28), 256u);  // width
+  EXPECT_EQ(get_u32(b, 32), 1u);    // depth
+  EXPECT_EQ(get_u32(b, 36), 1u);    // surfaces
+  EXPECT_EQ(get_u32(b, 40), 1u);    // faces
+  EXPECT_EQ(get_u32(b, 44), 3u);    // mip count
+  EXPECT_EQ(get_u32(b, 48), 15u);   // metadata size
   const std::uint8_t meta[15] = {'P', 'V', 'R', 3, 3, 0, 0, 0, 3, 0, 0, 0, 0, 0, 0};
   EXPECT_EQ(std::memcmp(b.data() + 52, meta, 15), 0);
   EXPECT_EQ(b.size(), 67u + 256 * 128 / 2 + 128 * 64 / 2 + 64 * 32 / 2);
   // 2bpp RGB code is 0, 4bpp RGB 2, 2bpp RGBA 1.
-  EXPECT_EQ(get_u32(pvr_bytes(fake_texture(pvrtc::Format::pvrtc1_2bpp, 16, 16, 1, false, false)), 8), 0u);
-  EXPECT_EQ(get_u32(pvr_bytes(fake_texture(pvrtc::Format::pvrtc1_4bpp, 16, 16, 1, false, false)), 8), 2u);
-  EXPECT_EQ(get_u32(pvr_bytes(fake_texture(pvrtc::Format::pvrtc1_2bpp, 16, 16, 1, true, false)), 8), 1u);
+  EXPECT_EQ(
+      get_u32(pvr_bytes(fake_texture(pvrtc::Format::pvrtc1_2bpp, 16, 16, 1, false, false)), 8), 0u);
+  EXPECT_EQ(
+      get_u32(pvr_bytes(fake_texture(pvrtc::Format::pvrtc1_4bpp, 16, 16, 1, false, false)), 8), 2u);
+  EXPECT_EQ(get_u32(pvr_bytes(fake_texture(pvrtc::Format::pvrtc1_2bpp, 16, 16, 1, true, false)), 8),
+            1u);
 }
 
 TEST(Pvr3, SmallLevelsArePaddedToTwoByTwoBlocks) {

@@ -382,8 +382,9 @@ TEST_F(VkAdaptiveErrors, FrameSlotAndRenderSize) {
             std::string::npos)
       << m;
   options_.frames_in_flight = 0;
-  EXPECT_NE(vk::AdaptiveSupersampler::create(ctx_, options_).status().message.find(
-                "frames_in_flight = 0 (1..16)"),
+  EXPECT_NE(vk::AdaptiveSupersampler::create(ctx_, options_)
+                .status()
+                .message.find("frames_in_flight = 0 (1..16)"),
             std::string::npos);
 }
 

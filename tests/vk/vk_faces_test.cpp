@@ -207,20 +207,20 @@ TEST_F(VkFaces, EveryTexelFormatUploadedInTheEnginesCommandBuffer) {
     std::uint64_t bytes_per_texel;
   };
   // Bounds: measured on lavapipe (69.3, 69.1, 65.5, 64.4 dB; printed below) less 2 dB.
-  for (const Case& c : {Case{faces::TexelFormat::rgba32f, 60.0, 16},
-                        Case{faces::TexelFormat::rgba16f, 67.0, 8},
-                        Case{faces::TexelFormat::rgba8_unorm, 63.0, 4},
-                        Case{faces::TexelFormat::rgba8_srgb, 62.0, 4}}) {
+  for (const Case& c :
+       {Case{faces::TexelFormat::rgba32f, 60.0, 16}, Case{faces::TexelFormat::rgba16f, 67.0, 8},
+        Case{faces::TexelFormat::rgba8_unorm, 63.0, 4},
+        Case{faces::TexelFormat::rgba8_srgb, 62.0, 4}}) {
     to.format = c.format;
     to.upload = vk::FaceUpload::engine_command_buffer;
     auto tex = vk::FaceTextureSet::create(engine_->context(), t.set, to);
     ASSERT_TRUE(tex) << tex.status().message;
     EXPECT_FALSE((*tex)->upload_recorded());
-    EXPECT_EQ((*tex)->texture_bytes(),
-              (*submitted)->texture_bytes() / 16 * c.bytes_per_texel);
+    EXPECT_EQ((*tex)->texture_bytes(), (*submitted)->texture_bytes() / 16 * c.bytes_per_texel);
     EXPECT_FALSE((*tex)->release_staging().ok());  // nothing recorded yet
-    const ImageRGBAF img = render_teapot(*engine_, t, camera, **tex, 0, 0.0f,
-                                         [&](VkCommandBuffer cmd) { return (*tex)->record_upload(cmd); });
+    const ImageRGBAF img =
+        render_teapot(*engine_, t, camera, **tex, 0, 0.0f,
+                      [&](VkCommandBuffer cmd) { return (*tex)->record_upload(cmd); });
     EXPECT_TRUE((*tex)->upload_recorded());
     EXPECT_TRUE((*tex)->release_staging().ok());  // draw() waited for the frame
     const Status again = (*tex)->record_upload(engine_->idle_command_buffer());

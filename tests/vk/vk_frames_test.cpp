@@ -84,8 +84,7 @@ void frame_loop(Engine& e, vk::AdaptiveSupersampler& aa, std::uint32_t F,
   std::vector<Pending> pending(F);
   auto check = [&](Pending& p) {
     for (std::size_t v = 0; v < p.views.size(); ++v) {
-      const std::string where =
-          "frame " + std::to_string(p.frame) + " view " + std::to_string(v);
+      const std::string where = "frame " + std::to_string(p.frame) + " view " + std::to_string(v);
       EXPECT_EQ(e.finish_read(p.colour[v]), p.views[v].expect->colour) << where;
       EXPECT_EQ(e.finish_read(p.counts[v]), p.views[v].expect->counts) << where;
       Result<vk::AdaptiveProfile> prof = aa.read_profile(p.slot, std::uint32_t(v));
@@ -194,8 +193,8 @@ TEST_F(VkFrames, DynamicResolutionEveryFrame) {
   std::vector<std::vector<View>> frames;
   for (const VkExtent2D& s : sizes) {
     const SceneGBuffer g = scene_gbuffer(int(s.width), int(s.height), m);
-    alone.push_back(run_vk(*engine_, scene_options<vk::AdaptiveSupersamplerOptions>(g), g,
-                           Which::adaptive));
+    alone.push_back(
+        run_vk(*engine_, scene_options<vk::AdaptiveSupersamplerOptions>(g), g, Which::adaptive));
     gbuffers.push_back(upload(*engine_, g, W * m, H * m));
   }
   for (std::size_t i = 0; i < sizes.size(); ++i) {
@@ -222,8 +221,9 @@ TEST_F(VkFrames, EngineOwnedOutput) {
   const VkFrameOut alone = run_vk(*engine_, o, g, Which::adaptive);
   std::unique_ptr<Uploaded> in = upload(*engine_, g);
   const std::vector<float> fill(20 * 14 * 4, 0.625f);
-  EngineImage out = engine_->upload_rgba(VK_FORMAT_R32G32B32A32_SFLOAT, 20, 14, fill,
-                                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  EngineImage out =
+      engine_->upload_rgba(VK_FORMAT_R32G32B32A32_SFLOAT, 20, 14, fill,
+                           VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   auto aa = vk::AdaptiveSupersampler::create(engine_->context(), o);
   ASSERT_TRUE(aa.ok()) << aa.status().message;
   ASSERT_TRUE((*aa)->begin_frame(0).ok());
@@ -260,8 +260,8 @@ TEST_F(VkFrames, WithoutFloat64KMapsAgree) {
   const std::array<SceneGBuffer, 2> scenes = {scene_gbuffer(64, 48, 4), scene_gbuffer(96, 64, 2)};
   std::array<VkFrameOut, 2> with, without;
   for (std::size_t i = 0; i < scenes.size(); ++i) {
-    with[i] = run_vk(*engine_, scene_options<vk::AdaptiveSupersamplerOptions>(scenes[i]),
-                     scenes[i], Which::adaptive);
+    with[i] = run_vk(*engine_, scene_options<vk::AdaptiveSupersamplerOptions>(scenes[i]), scenes[i],
+                     Which::adaptive);
   }
   TearDown();
   EngineOptions eo;

@@ -28,9 +28,9 @@ TEST(VkHeadlessDevice, SubmitsUnderValidationWithoutMessages) {
   Status s = Status::success();
   std::unique_ptr<HeadlessDevice> d = make({nullptr, true, -1}, log, &s);
   if (!d) {
-    TESSERA_SKIP_OR_FAIL(s.message.find("validation") != std::string::npos ? "vulkan-validation"
-                                                                           : "vulkan",
-                         s.message);
+    TESSERA_SKIP_OR_FAIL(
+        s.message.find("validation") != std::string::npos ? "vulkan-validation" : "vulkan",
+        s.message);
   }
   EXPECT_FALSE(d->device_name().empty());
   EXPECT_EQ(d->device_version().rfind("Vulkan 1.", 0), 0u) << d->device_version();

@@ -109,9 +109,17 @@ class VkSeamsBackend : public ::testing::Test {
   }
 
   static FaceFrameOptions frame_options(SeamMethod m, TextureFilter filter, int msaa) {
-    return {.width = kW, .height = kH, .msaa = msaa, .method = m, .filter = filter,
-            .max_aniso = 16, .clamp_fallback = true, .shading_only = false, .keep_image = true,
-            .threads = 0, .sample_pattern = {}};
+    return {.width = kW,
+            .height = kH,
+            .msaa = msaa,
+            .method = m,
+            .filter = filter,
+            .max_aniso = 16,
+            .clamp_fallback = true,
+            .shading_only = false,
+            .keep_image = true,
+            .threads = 0,
+            .sample_pattern = {}};
   }
   ImageRGBAF frame(SeamsBackend& b, const scene::Camera& cam, const FaceFrameOptions& o) {
     auto f = b.render(cam, o);
@@ -143,9 +151,10 @@ TEST_F(VkSeamsBackend, DiscardTrilinearAgreesWithTheCpuAt1xAnd4x) {
     clamp.method = SeamMethod::clamp;
     const double vs_clamp = test::psnr_srgb8(g, frame(*cpu_, camera(), clamp));
     const double vs_shift = test::psnr_srgb8(g, shifted_one_pixel(c));
-    std::printf("%dx Discard trilinear: Vulkan vs CPU %.2f dB; controls: CPU Clamp %.2f dB, "
-                "CPU moved one pixel %.2f dB\n",
-                msaa, psnr, vs_clamp, vs_shift);
+    std::printf(
+        "%dx Discard trilinear: Vulkan vs CPU %.2f dB; controls: CPU Clamp %.2f dB, "
+        "CPU moved one pixel %.2f dB\n",
+        msaa, psnr, vs_clamp, vs_shift);
     EXPECT_GE(psnr, 60.0) << msaa << "x";
     EXPECT_EQ(non_finite_pixels(g), 0);
     // Negative controls: a misplaced sample grid fails the bound (measured on lavapipe: 31-33
@@ -186,12 +195,13 @@ class VkSeamsMethods : public VkSeamsBackend {
       const ImageRGBAF c = frame(*cpu_, camera(), o);
       const double psnr = test::psnr_srgb8(g->image, c);
       const double shifted = test::psnr_srgb8(g->image, shifted_one_pixel(c));
-      std::printf("%s %dx %-16s Vulkan vs CPU %.2f dB (one pixel moved: %.2f dB); %.3f ms, "
-                  "wall %.3f ms\n",
-                  tri ? "trilinear" : "aniso16", msaa, faces::method_name(m), psnr, shifted, g->ms,
-                  g->wall_ms);
-      const double floor = tri ? (exact ? 58.0 : 45.0)
-                               : (exact ? kLavapipeAnisoFloor[int(m)] : 25.0);
+      std::printf(
+          "%s %dx %-16s Vulkan vs CPU %.2f dB (one pixel moved: %.2f dB); %.3f ms, "
+          "wall %.3f ms\n",
+          tri ? "trilinear" : "aniso16", msaa, faces::method_name(m), psnr, shifted, g->ms,
+          g->wall_ms);
+      const double floor =
+          tri ? (exact ? 58.0 : 45.0) : (exact ? kLavapipeAnisoFloor[int(m)] : 25.0);
       EXPECT_GE(psnr, floor) << faces::method_name(m) << " " << msaa << "x";
       EXPECT_GE(psnr, shifted + (tri ? 10.0 : 3.0)) << faces::method_name(m) << " " << msaa;
       EXPECT_EQ(non_finite_pixels(g->image), 0);
@@ -201,12 +211,8 @@ class VkSeamsMethods : public VkSeamsBackend {
   }
 };
 
-TEST_F(VkSeamsMethods, TrilinearAt1xWithinTheBound) {
-  every_method(TextureFilter::trilinear, 1);
-}
-TEST_F(VkSeamsMethods, TrilinearAt4xWithinTheBound) {
-  every_method(TextureFilter::trilinear, 4);
-}
+TEST_F(VkSeamsMethods, TrilinearAt1xWithinTheBound) { every_method(TextureFilter::trilinear, 1); }
+TEST_F(VkSeamsMethods, TrilinearAt4xWithinTheBound) { every_method(TextureFilter::trilinear, 4); }
 TEST_F(VkSeamsMethods, AnisotropicAt1xWithinTheBound) {
   every_method(TextureFilter::anisotropic, 1);
 }
@@ -263,9 +269,10 @@ TEST_F(VkSeamsBackend, ReferenceAgreesWithTheCpuReference) {
   o.height = h;
   const double vs_other = test::psnr_srgb8(*g, *other);
   const double vs_frame = test::psnr_srgb8(frame(*vk_, camera(), o), *c);
-  std::printf("reference %dx%d x%d: Vulkan vs CPU %.2f dB; controls: another frame %.2f dB, the "
-              "1x frame %.2f dB\n",
-              w, h, ro.factor, psnr, vs_other, vs_frame);
+  std::printf(
+      "reference %dx%d x%d: Vulkan vs CPU %.2f dB; controls: another frame %.2f dB, the "
+      "1x frame %.2f dB\n",
+      w, h, ro.factor, psnr, vs_other, vs_frame);
   EXPECT_GE(psnr, lavapipe(*vk_) ? 55.0 : 45.0);
   EXPECT_LT(vs_other, 30.0);
   EXPECT_LT(vs_frame, psnr - 10.0);
@@ -294,8 +301,8 @@ TEST_F(VkSeamsBackend, ReportsRatesAndSamplePositions) {
       EXPECT_EQ(p.cpu_msaa, 0) << msaa;
       EXPECT_TRUE(p.positions.empty()) << msaa;
       EXPECT_EQ(experiments::seams_gl_comparison(p), experiments::SeamsGlComparison::none);
-      auto f = vk_->render(camera(), frame_options(SeamMethod::discard, TextureFilter::trilinear,
-                                                   msaa));
+      auto f =
+          vk_->render(camera(), frame_options(SeamMethod::discard, TextureFilter::trilinear, msaa));
       ASSERT_FALSE(f);
       EXPECT_EQ(f.status().code, ErrorCode::unsupported) << f.status().message;
       continue;

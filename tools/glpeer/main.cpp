@@ -67,7 +67,7 @@ struct GpuMesh {
 /// The command line.
 struct Options {
   std::string scene_path, out_path, camera_text, orbit_text, json_path, filter = "trilinear",
-      shading = "textured";
+                                                                        shading = "textured";
   std::string egl_device;
   int width = 1024, height = 768, msaa = 1, frames = 1;
 };
@@ -76,8 +76,7 @@ struct Options {
 int parse_args(int argc, char** argv, Options& o) {
   CLI::App app{"Render a scene with OpenGL (Mesa llvmpipe) as the peer of `tessera render`",
                "tessera-glpeer"};
-  app.add_option("SCENE", o.scene_path, "Scene file (.obj, .gltf, .glb) or 'builtin'")
-      ->required();
+  app.add_option("SCENE", o.scene_path, "Scene file (.obj, .gltf, .glb) or 'builtin'")->required();
   app.add_option("--width", o.width)->check(CLI::Range(1, 8192));
   app.add_option("--height", o.height)->check(CLI::Range(1, 8192));
   app.add_option("--camera", o.camera_text, "eye,target,up,fov (10 numbers)");
@@ -133,8 +132,8 @@ std::vector<GpuMesh> upload_meshes(const scene::Scene& sc) {
     std::vector<float> v;
     v.reserve(m.positions.size() * 5);
     for (std::size_t i = 0; i < m.positions.size(); ++i) {
-      v.insert(v.end(), {m.positions[i].x, m.positions[i].y, m.positions[i].z, m.uvs[i].x,
-                         m.uvs[i].y});
+      v.insert(v.end(),
+               {m.positions[i].x, m.positions[i].y, m.positions[i].z, m.uvs[i].x, m.uvs[i].y});
     }
     g.vao = gl::create_object(gl::ObjectType::vertex_array);
     g.vbo = gl::create_object(gl::ObjectType::buffer);
@@ -215,8 +214,8 @@ Status write_report(const Options& o, const gl::Context& context, const scene::S
     std::printf("%s\n", j.dump(2).c_str());
   } else if (!o.json_path.empty()) {
     const std::string text = j.dump(2) + "\n";
-    return io::write_file_atomic(
-        o.json_path, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
+    return io::write_file_atomic(o.json_path,
+                                 {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
   }
   return Status::success();
 }
@@ -246,9 +245,9 @@ int main(int argc, char** argv) {
   Result<std::unique_ptr<gl::Context>> context = gl::Context::create(context_options);
   if (!context) return fail(context.status().message);
 
-  Result<gl::Program> program = gl::link_program(
-      {{glsl::Stage::vertex, kVertex, "glpeer.vert"},
-       {glsl::Stage::fragment, kFragment, "glpeer.frag"}});
+  Result<gl::Program> program =
+      gl::link_program({{glsl::Stage::vertex, kVertex, "glpeer.vert"},
+                        {glsl::Stage::fragment, kFragment, "glpeer.frag"}});
   if (!program) return fail("shader: " + program.status().message);
   const GLuint prog = program->get();
   glUseProgram(prog);

@@ -11,8 +11,8 @@
 
 #include "cli.h"
 #include "report_aa.h"
-#include "tessera/io.h"
 #include "tessera/experiments.h"
+#include "tessera/io.h"
 
 namespace tessera::cli {
 

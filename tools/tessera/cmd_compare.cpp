@@ -126,8 +126,7 @@ Command add_compare_command(CLI::App& app, const GlobalOptions& global) {
   CLI::App* sub = app.add_subcommand(
       "compare",
       "Compare two images: PSNR over RGB (and alpha), SSIM on Rec.709 grey, MSE, max error");
-  sub->add_option("A", args->a, "Reference image (PNG, JPEG, TGA, BMP; '-' = stdin)")
-      ->required();
+  sub->add_option("A", args->a, "Reference image (PNG, JPEG, TGA, BMP; '-' = stdin)")->required();
   sub->add_option("B", args->b, "Test image of the same size")->required();
   sub->add_flag("--json", args->json,
                 "Print one JSON object (keys psnr_rgb, ssim_gray, mse, max_abs, ...; "

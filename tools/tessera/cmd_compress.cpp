@@ -60,8 +60,10 @@ int check_compress_one(const CompressArgs& args, texture_file::ContainerFormat& 
   }
   if (int rc = refuse_binary_to_terminal(args.output, "a compressed texture")) return rc;
   if (args.premultiply && container == texture_file::ContainerFormat::ktx1 && !args.quiet) {
-    std::fprintf(stderr, "tessera: warning: KTX 1.1 has no premultiplied-alpha flag: loaders of "
-                 "%s cannot tell (.pvr and .ktx2 say it)\n", io::io_name(args.output, true).c_str());
+    std::fprintf(stderr,
+                 "tessera: warning: KTX 1.1 has no premultiplied-alpha flag: loaders of "
+                 "%s cannot tell (.pvr and .ktx2 say it)\n",
+                 io::io_name(args.output, true).c_str());
   }
   return -1;
 }
@@ -123,9 +125,8 @@ void print_summary(std::FILE* out, const CompressArgs& args, const std::string& 
 /// The --json report of what was written.
 void print_json(std::FILE* out, const CompressArgs& args, const GlobalOptions& global,
                 const std::vector<std::string>& names, const std::string& output_name,
-                texture_file::ContainerFormat container,
-                const texture_file::CompressedImage& made, std::size_t bytes,
-                const metrics::ImageComparison& cmp) {
+                texture_file::ContainerFormat container, const texture_file::CompressedImage& made,
+                std::size_t bytes, const metrics::ImageComparison& cmp) {
   const texture_file::CompressedTexture& tex = made.texture;
   nlohmann::json j = {
       {"input", names.size() == 1 ? nlohmann::json(names.front()) : nlohmann::json(names)},

@@ -13,7 +13,6 @@ namespace tessera::cli {
 
 namespace {
 
-
 struct DecompressArgs {
   std::string input, output;
   int level = 0;  ///< Meaningful when given (`level_given`): else level 0 for a single output,

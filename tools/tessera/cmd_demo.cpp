@@ -63,7 +63,8 @@ std::string summary_html(const nlohmann::json& s) {
     const nlohmann::json& rates = s["seams"]["msaa"];
     std::string ratio, err;
     for (std::size_t i = 0; i < rates.size(); ++i) {
-      const double t = number(m["traverse"]["median_ms"][i]), d = number(m["discard"]["median_ms"][i]);
+      const double t = number(m["traverse"]["median_ms"][i]),
+                   d = number(m["discard"]["median_ms"][i]);
       ratio += (i ? " / " : "") + cell("%.2f", t / d);
       err += (i ? ", " : "") + cell("%.4f", number(m["discard"]["error_near_seams"][i])) + " vs " +
              cell("%.4f", number(m["traverse"]["error_near_seams"][i]));

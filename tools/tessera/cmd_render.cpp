@@ -86,8 +86,7 @@ Command add_render_command(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* sub = app.add_subcommand(
       "render", "Render a scene (OBJ, glTF or 'builtin') with the software rasteriser");
-  sub->add_option("SCENE", args->scene, "Scene file (.obj, .gltf, .glb) or 'builtin'")
-      ->required();
+  sub->add_option("SCENE", args->scene, "Scene file (.obj, .gltf, .glb) or 'builtin'")->required();
   sub->add_option("--width", args->width)->check(CLI::Range(1, 16384))->capture_default_str();
   sub->add_option("--height", args->height)->check(CLI::Range(1, 16384))->capture_default_str();
   auto* cam = sub->add_option("--camera", args->camera,

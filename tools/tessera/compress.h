@@ -17,18 +17,18 @@ struct CompressArgs {
   std::string format = "pvrtc1-4";
   std::string quality = "normal";
   bool mipmaps = false;
-  int mip_levels = 0;               ///< --mip-levels N (implies --mipmaps); 0 = the full chain.
+  int mip_levels = 0;  ///< --mip-levels N (implies --mipmaps); 0 = the full chain.
   std::string mip_filter = "box";
   bool srgb = false;
   bool resize_pot = false;
-  bool cube = false;                ///< --cube: the inputs are faces (6 per layer).
-  bool array = false;               ///< --array: the inputs are layers.
+  bool cube = false;   ///< --cube: the inputs are faces (6 per layer).
+  bool array = false;  ///< --array: the inputs are layers.
   bool flip_y = false;
   bool premultiply = false;
   bool alpha_bleed = false;
-  bool alpha_weighted = false;      ///< --alpha-weighted (4 bpp, straight alpha).
+  bool alpha_weighted = false;  ///< --alpha-weighted (4 bpp, straight alpha).
   bool normal_map = false;
-  int zstd = 0;                     ///< --zstd [LEVEL] (KTX 2.0); 0 = none.
+  int zstd = 0;  ///< --zstd [LEVEL] (KTX 2.0); 0 = none.
   bool json = false;
   bool quiet = false;
   bool recursive = false;

@@ -312,10 +312,10 @@ const char* kind_name(Outcome::Kind k) {
 
 /// The --json line of one file.
 nlohmann::json outcome_json(const Job& job, const Outcome& o) {
-  nlohmann::json j = {{"input", job.inputs.size() == 1 ? nlohmann::json(job.input())
-                                                       : nlohmann::json(job.inputs)},
-                      {"output", job.output},
-                      {"status", kind_name(o.kind)}};
+  nlohmann::json j = {
+      {"input", job.inputs.size() == 1 ? nlohmann::json(job.input()) : nlohmann::json(job.inputs)},
+      {"output", job.output},
+      {"status", kind_name(o.kind)}};
   if (o.kind == Outcome::Kind::failed) j["error"] = o.error;
   if (o.kind == Outcome::Kind::done) {
     j["width"] = o.width;

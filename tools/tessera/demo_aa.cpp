@@ -45,13 +45,14 @@ Status demo_aa_section(Report& report, const DemoOptions& options) {
     const ImageRGBA8* image;
   };
   const ImageRGBA8 heat = metrics::heatmap(counts, w, h, float(m * m));
-  const Item items[] = {{"aa-reference", "4x4 reference (16 samples/pixel)", &ref},
-                        {"aa-adaptive", "adaptive", &adi},
-                        {"aa-samples", "samples per pixel (1..16, Fig. 6a)", &heat},
-                        {"aa-diff-ref", "|adaptive - reference| (max abs channel difference)", &*d_ref},
-                        {"aa-default", "1 sample/pixel", &one},
-                        {"aa-fxaa", "1 sample/pixel + FXAA", &fx},
-                        {"aa-diff-1x", "|adaptive - 1 sample| (max abs channel difference)", &*d_one}};
+  const Item items[] = {
+      {"aa-reference", "4x4 reference (16 samples/pixel)", &ref},
+      {"aa-adaptive", "adaptive", &adi},
+      {"aa-samples", "samples per pixel (1..16, Fig. 6a)", &heat},
+      {"aa-diff-ref", "|adaptive - reference| (max abs channel difference)", &*d_ref},
+      {"aa-default", "1 sample/pixel", &one},
+      {"aa-fxaa", "1 sample/pixel + FXAA", &fx},
+      {"aa-diff-1x", "|adaptive - 1 sample| (max abs channel difference)", &*d_one}};
   std::vector<Figure> row1, row2, zoom;
   for (std::size_t i = 0; i < std::size(items); ++i) {
     std::string p;

@@ -6,8 +6,8 @@
 
 #include "demo.h"
 #include "plot.h"
-#include "tessera/metrics.h"
 #include "tessera/image_mipmap.h"
+#include "tessera/metrics.h"
 #include "tessera/procedural.h"
 #include "tessera/pvrtc.h"
 #include "tessera/texture_file.h"
@@ -74,9 +74,8 @@ Status demo_pvrtc_mips(Report& report, const DemoOptions& options, int n) {
     if (Status s = report.save_image("pvrtc-mip" + std::to_string(i), e->decoded, p); !s.ok()) {
       return s;
     }
-    levels.push_back({p, "level " + std::to_string(i) + " (" +
-                             std::to_string((*chain)[i].width) + "x" +
-                             std::to_string((*chain)[i].height) + ")"});
+    levels.push_back({p, "level " + std::to_string(i) + " (" + std::to_string((*chain)[i].width) +
+                             "x" + std::to_string((*chain)[i].height) + ")"});
   }
   report.paragraph(
       "Mip levels 1-4 of the foliage texture (2x2 box filter in linear light, colour weighted "
@@ -105,8 +104,10 @@ Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
   if (n != options.size) {
     report.paragraph("The images of this section are " + std::to_string(n) + "x" +
                      std::to_string(n) + ", not " + std::to_string(options.size) + "x" +
-                     std::to_string(options.size) + " as --size asked: PVRTC needs power-of-two "
-                     "sides, and " + std::to_string(n) + " is the nearest power of two.");
+                     std::to_string(options.size) +
+                     " as --size asked: PVRTC needs power-of-two "
+                     "sides, and " +
+                     std::to_string(n) + " is the nearest power of two.");
   }
   std::vector<PvrtcDemoImage> saved;
   for (Procedural kind : all_procedurals()) {
@@ -176,8 +177,7 @@ Status demo_pvrtc_section(Report& report, const DemoOptions& options) {
     }
     report.figures({{bar, "Colour bar of the difference heatmaps"}});
   }
-  report.table({"image", "variant", "PSNR RGB (dB)", "PSNR alpha (dB)", "SSIM grey",
-                "encode (ms)"},
+  report.table({"image", "variant", "PSNR RGB (dB)", "PSNR alpha (dB)", "SSIM grey", "encode (ms)"},
                rows);
   if (Status s = demo_pvrtc_quality_time(report, options, saved); !s.ok()) return s;
   if (Status s = demo_pvrtc_view(report, options, saved); !s.ok()) return s;

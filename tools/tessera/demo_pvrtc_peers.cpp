@@ -42,8 +42,7 @@ double run_timed(const std::vector<std::string>& argv) {
   if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     return -1;
   }
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-      .count();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 /// PVRTexToolCLI as scripts/setup.sh caches it ($TESSERA_PVRTEXTOOL overrides); "" if absent.
@@ -62,8 +61,8 @@ std::string find_pvrtextool() {
 }
 
 /// PSNR (RGB) and SSIM of a texture file's level 0 against `original`.
-bool measure(const std::string& texture_path, const ImageRGBA8& original, int threads,
-             double& psnr, double& ssim) {
+bool measure(const std::string& texture_path, const ImageRGBA8& original, int threads, double& psnr,
+             double& ssim) {
   Result<texture_file::CompressedTexture> tex = texture_file::read_texture_file(texture_path);
   if (!tex) return false;
   Result<ImageRGBA8> dec = texture_file::decode_texture_level(*tex, 0, {threads});
@@ -83,8 +82,10 @@ struct Level {
 };
 
 constexpr Level kTessera[] = {{"fast", "fast"}, {"normal", "normal"}, {"high", "high"}};
-constexpr Level kPeer[] = {{"fastest", "pvrtcfastest"}, {"fast", "pvrtcfast"},
-                           {"normal", "pvrtcnormal"},   {"high", "pvrtchigh"},
+constexpr Level kPeer[] = {{"fastest", "pvrtcfastest"},
+                           {"fast", "pvrtcfast"},
+                           {"normal", "pvrtcnormal"},
+                           {"high", "pvrtchigh"},
                            {"best", "pvrtcbest"}};
 
 }  // namespace
@@ -109,12 +110,19 @@ Status demo_pvrtc_quality_time(Report& report, const DemoOptions& options,
                                     .string();
         std::vector<std::string> argv;
         if (is_peer) {
-          argv = {peer, "-i", img.png_path, "-o", out, "-f",
-                  img.has_alpha ? "PVRTC1_4,UBN,lRGB" : "PVRTC1_4_RGB,UBN,lRGB", "-q",
-                  levels[l].quality, "-shh"};
+          argv = {peer,
+                  "-i",
+                  img.png_path,
+                  "-o",
+                  out,
+                  "-f",
+                  img.has_alpha ? "PVRTC1_4,UBN,lRGB" : "PVRTC1_4_RGB,UBN,lRGB",
+                  "-q",
+                  levels[l].quality,
+                  "-shh"};
         } else {
-          argv = {self, "-j", "1", "compress", img.png_path, "-o", out, "--quality",
-                  levels[l].quality, "-q"};
+          argv = {self, "-j", "1",         "compress",        img.png_path,
+                  "-o", out,  "--quality", levels[l].quality, "-q"};
         }
         const double t = run_timed(argv);
         double p = 0, s2 = 0;

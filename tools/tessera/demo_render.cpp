@@ -71,8 +71,7 @@ Status demo_render_section(Report& report, const DemoOptions& options) {
            {"ssim_vs_reference", c->ssim_gray}});
     }
     rows.push_back({variants[i].label, std::to_string(frames[i].stats.triangles_setup),
-                    std::to_string(frames[i].stats.lanes_shaded),
-                    fmt("%.1f", frames[i].ms_total()),
+                    std::to_string(frames[i].stats.lanes_shaded), fmt("%.1f", frames[i].ms_total()),
                     std::isfinite(c->psnr_rgb) ? fmt("%.2f", c->psnr_rgb) : "(reference)",
                     fmt("%.4f", c->ssim_gray)});
   }

@@ -1,20 +1,19 @@
 // tessera — command-line entry point: one program, one subcommand per job.
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <unistd.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <string>
-#include <iostream>
 #include <string_view>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "cli.h"
 #ifdef TESSERA_HAVE_GL
@@ -109,7 +108,8 @@ std::string_view subcommand_name(int argc, char** argv) {
   return {};
 }
 
-constexpr std::string_view kCommandList = "aa, compare, compress, decompress, demo, info, render, seams, view";
+constexpr std::string_view kCommandList =
+    "aa, compare, compress, decompress, demo, info, render, seams, view";
 
 bool is_global_option(std::string_view a) {
   return a == "-j" || a == "--threads" || a.rfind("--threads=", 0) == 0 ||
@@ -169,8 +169,8 @@ std::string first_unknown_option(int argc, char** argv, const CLI::App* sub) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--") break;
-    if (a.size() < 2 || a[0] != '-' || !(std::isalpha(static_cast<unsigned char>(a[1])) ||
-                                         (a[1] == '-' && a.size() > 2))) {
+    if (a.size() < 2 || a[0] != '-' ||
+        !(std::isalpha(static_cast<unsigned char>(a[1])) || (a[1] == '-' && a.size() > 2))) {
       continue;
     }
     if (is_global_option(a) || a == "-h" || a == "--help") continue;
@@ -186,8 +186,9 @@ std::string first_unknown_option(int argc, char** argv, const CLI::App* sub) {
 std::string describe_parse_error(const CLI::ParseError& e, const CLI::App* sub) {
   const std::string what = e.what();
   const std::string name = e.get_name();
-  if (const std::size_t colon = what.find(": "); colon != std::string::npos &&
-      what.find(" required ", colon) != std::string::npos && what.ends_with(" missing")) {
+  if (const std::size_t colon = what.find(": ");
+      colon != std::string::npos && what.find(" required ", colon) != std::string::npos &&
+      what.ends_with(" missing")) {
     return what.substr(0, colon) + ": needs a value";  // "--width: 1 required INT ... missing"
   }
   if (name == "ExtrasError" || what.rfind("The following argument", 0) == 0) {
@@ -329,8 +330,9 @@ int main(int argc, char** argv) {
     for (const auto& [name, add] : kCommands) commands.push_back(add(app, global));
   }
   for (const Command& c : commands) {
-    c.app->footer("Global option, accepted before or after the subcommand: -j,--threads N "
-                  "(worker threads, 0 = all hardware threads; output is the same for any N)");
+    c.app->footer(
+        "Global option, accepted before or after the subcommand: -j,--threads N "
+        "(worker threads, 0 = all hardware threads; output is the same for any N)");
   }
 
   // Options whose value is optional (`--zstd [LEVEL]`): given without a number, they take the

@@ -79,9 +79,9 @@ double Layout::px(double x) const {
 }
 
 double Layout::py(double y) const {
-  const double t = log_y ? (std::log10(std::max(y, y0)) - std::log10(y0)) /
-                               (std::log10(y1) - std::log10(y0))
-                         : (y - y0) / (y1 - y0);
+  const double t =
+      log_y ? (std::log10(std::max(y, y0)) - std::log10(y0)) / (std::log10(y1) - std::log10(y0))
+            : (y - y0) / (y1 - y0);
   return top + (1 - t) * ph;
 }
 
@@ -167,8 +167,8 @@ std::string plot_svg(const Plot& plot) {
   auto py = [&](double y) { return l.py(y); };
 
   std::ostringstream s;
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << W << ' ' << H
-    << "\" width=\"" << W << "\" height=\"" << H
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << W << ' ' << H << "\" width=\""
+    << W << "\" height=\"" << H
     << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" "
        "fill=\"white\"/>\n";
   if (!plot.title.empty()) {
@@ -184,9 +184,9 @@ std::string plot_svg(const Plot& plot) {
   }
   for (double v : l.y_ticks) {
     const double y = py(v);
-    s << "<line x1=\"" << left << "\" y1=\"" << num(y) << "\" x2=\"" << num(left + pw)
-      << "\" y2=\"" << num(y) << "\" stroke=\"#e4e4e4\"/>\n<text x=\"" << left - 6 << "\" y=\""
-      << num(y + 4) << "\" text-anchor=\"end\">" << tick_text(v) << "</text>\n";
+    s << "<line x1=\"" << left << "\" y1=\"" << num(y) << "\" x2=\"" << num(left + pw) << "\" y2=\""
+      << num(y) << "\" stroke=\"#e4e4e4\"/>\n<text x=\"" << left - 6 << "\" y=\"" << num(y + 4)
+      << "\" text-anchor=\"end\">" << tick_text(v) << "</text>\n";
   }
   s << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << num(pw) << "\" height=\""
     << num(ph) << "\" fill=\"none\" stroke=\"#444\"/>\n";
@@ -231,14 +231,13 @@ std::string plot_svg(const Plot& plot) {
     l.legend_entry(i, lx, ly);
     s << "<line x1=\"" << num(lx) << "\" y1=\"" << num(ly - 4) << "\" x2=\"" << num(lx + 24)
       << "\" y2=\"" << num(ly - 4) << "\" stroke=\"" << ser.colour << "\" stroke-width=\"2\""
-      << dash_attribute(ser) << (ser.line ? "" : " opacity=\"0\"")
-      << "/>\n";
+      << dash_attribute(ser) << (ser.line ? "" : " opacity=\"0\"") << "/>\n";
     if (ser.markers) {
       s << "<circle cx=\"" << num(lx + 12) << "\" cy=\"" << num(ly - 4) << "\" r=\"4\" fill=\""
         << ser.colour << "\"/>\n";
     }
-    s << "<text x=\"" << num(lx + 30) << "\" y=\"" << num(ly) << "\">"
-      << Report::escape(ser.label) << "</text>\n";
+    s << "<text x=\"" << num(lx + 30) << "\" y=\"" << num(ly) << "\">" << Report::escape(ser.label)
+      << "</text>\n";
   }
   s << "</svg>\n";
   return s.str();
@@ -261,13 +260,13 @@ std::string colour_bar_svg(metrics::ColourMap map, double min, double max, int t
     std::snprintf(c, sizeof c, "#%02x%02x%02x", rgb[0], rgb[1], rgb[2]);
     s << "<stop offset=\"" << num(i * 6.25) << "%\" stop-color=\"" << c << "\"/>";
   }
-  s << "</linearGradient></defs>\n<rect x=\"" << pad << "\" y=\"" << top << "\" width=\""
-    << num(bw) << "\" height=\"" << bar_h << "\" fill=\"url(#cb)\" stroke=\"#444\"/>\n";
+  s << "</linearGradient></defs>\n<rect x=\"" << pad << "\" y=\"" << top << "\" width=\"" << num(bw)
+    << "\" height=\"" << bar_h << "\" fill=\"url(#cb)\" stroke=\"#444\"/>\n";
   for (int i = 0; i < ticks; ++i) {
     const double t = ticks > 1 ? double(i) / (ticks - 1) : 0;
     const double x = pad + t * bw;
-    s << "<line x1=\"" << num(x) << "\" y1=\"" << top + bar_h << "\" x2=\"" << num(x)
-      << "\" y2=\"" << top + bar_h + 4 << "\" stroke=\"#444\"/><text x=\"" << num(x) << "\" y=\""
+    s << "<line x1=\"" << num(x) << "\" y1=\"" << top + bar_h << "\" x2=\"" << num(x) << "\" y2=\""
+      << top + bar_h + 4 << "\" stroke=\"#444\"/><text x=\"" << num(x) << "\" y=\""
       << top + bar_h + 16 << "\" text-anchor=\"middle\">" << tick_text(min + t * (max - min))
       << "</text>\n";
   }
@@ -281,9 +280,8 @@ std::string category_legend_svg(const std::vector<std::pair<std::string, std::st
   const int cell = 64, H = 50;
   const int W = std::max(200, int(entries.size()) * cell + 16);
   std::ostringstream s;
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << W << ' ' << H
-    << "\" width=\"" << W << "\" height=\"" << H
-    << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << W << ' ' << H << "\" width=\""
+    << W << "\" height=\"" << H << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const int x = 8 + int(i) * cell;
     s << "<rect x=\"" << x << "\" y=\"4\" width=\"18\" height=\"14\" fill=\"" << entries[i].second

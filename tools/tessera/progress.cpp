@@ -34,8 +34,7 @@ void ProgressBar::update(double fraction, const std::string& count, double mpixe
   bar.resize(kWidth, ' ');
   const double rate = s > 0 ? mpixels / s : 0;
   const double eta = fraction > 0 ? s * (1.0 - fraction) / fraction : 0;
-  const std::string shown =
-      count.empty() ? std::to_string(int(fraction * 100.0)) + "%" : count;
+  const std::string shown = count.empty() ? std::to_string(int(fraction * 100.0)) + "%" : count;
   std::fprintf(stderr, "\r[%s] %s  %.1f MPixel/s  ETA %d:%02d ", bar.c_str(), shown.c_str(), rate,
                int(eta) / 60, int(eta) % 60);
   std::fflush(stderr);

@@ -30,17 +30,27 @@ std::string fmt(const char* format, double value) {
   return buf;
 }
 
-Report::Report(std::string dir, std::string title) : dir_(std::move(dir)), title_(std::move(title)) {}
+Report::Report(std::string dir, std::string title)
+    : dir_(std::move(dir)), title_(std::move(title)) {}
 
 std::string Report::escape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -79,9 +89,7 @@ std::string inline_markup(const std::string& text) {
 }
 }  // namespace
 
-void Report::paragraph(const std::string& text) {
-  body_ += "<p>" + inline_markup(text) + "</p>\n";
-}
+void Report::paragraph(const std::string& text) { body_ += "<p>" + inline_markup(text) + "</p>\n"; }
 
 Status Report::save_svg(const std::string& name, const std::string& svg, std::string& rel) {
   std::error_code ec;
@@ -109,11 +117,11 @@ void Report::figures(const std::vector<Figure>& figures, int zoom) {
   body_ += "<div class=\"row\">";
   for (const Figure& f : figures) {
     const bool svg = f.path.size() > 4 && f.path.compare(f.path.size() - 4, 4, ".svg") == 0;
-    body_ += "<figure><img src=\"" + escape(f.path) + "\"" +
-             (svg ? std::string(" class=\"plot\"")
-                  : " style=\"zoom:" + std::to_string(zoom) + "\"") +
-             " alt=\"" + escape(f.caption) + "\"><figcaption>" + inline_markup(f.caption) +
-             "</figcaption></figure>";
+    body_ +=
+        "<figure><img src=\"" + escape(f.path) + "\"" +
+        (svg ? std::string(" class=\"plot\"") : " style=\"zoom:" + std::to_string(zoom) + "\"") +
+        " alt=\"" + escape(f.caption) + "\"><figcaption>" + inline_markup(f.caption) +
+        "</figcaption></figure>";
   }
   body_ += "</div>\n";
 }

@@ -173,9 +173,10 @@ Status write_plots(const experiments::SeamsResult& res, const std::string& dir) 
   // reference (line style: method, colour: rate). The PNGs are the same plots without text.
   Plot left = cdf_axes("Traverse vs Discard", "linear-RGB 2-norm difference x",
                        "fraction of pixels with error \u2265 x");
-  Plot right = cdf_axes("Deviation from the reference (solid Discard, dashed Traverse, dotted "
-                        "Clamp)",
-                        left.x_title, left.y_title);
+  Plot right = cdf_axes(
+      "Deviation from the reference (solid Discard, dashed Traverse, dotted "
+      "Clamp)",
+      left.x_title, left.y_title);
   left.height = right.height = 420;
   left.legend_column = right.legend_column = 180;
   for (std::size_t ri = 0; ri < res.rates.size(); ++ri) {
@@ -194,19 +195,19 @@ Status write_plots(const experiments::SeamsResult& res, const std::string& dir) 
   // geometry pixels (solid) and near the seams (dashed).
   for (std::size_t ri = 0; ri < res.rates.size(); ++ri) {
     const SeamsRateResult& rate = res.rates[ri];
-    Plot plot = cdf_axes("Figure 5, " + rate_key(rate.msaa) + " MSAA: error against the reference",
-                         "x: per-pixel linear-RGB error (2-norm)",
-                         "fraction of pixels with error >= x");
+    Plot plot =
+        cdf_axes("Figure 5, " + rate_key(rate.msaa) + " MSAA: error against the reference",
+                 "x: per-pixel linear-RGB error (2-norm)", "fraction of pixels with error >= x");
     std::size_t colour = 0;
     for (SeamMethod m : {SeamMethod::clamp, SeamMethod::discard, SeamMethod::traverse}) {
       for (bool near : {false, true}) {
         if (near && res.near_seam_pixels == 0) continue;
         const ErrorStats& q =
             near ? rate.method(m).vs_reference_near_seams : rate.method(m).vs_reference;
-        PlotSeries ser = cdf_series(std::string(faces::method_name(m)) +
-                                        (near ? ", near seams" : ", all pixels") +
-                                        fmt(" (mean %.4f)", q.mean),
-                                    series_colour(colour), near ? "6 4" : "", q.cdf);
+        PlotSeries ser =
+            cdf_series(std::string(faces::method_name(m)) +
+                           (near ? ", near seams" : ", all pixels") + fmt(" (mean %.4f)", q.mean),
+                       series_colour(colour), near ? "6 4" : "", q.cdf);
         plot.series.push_back(std::move(ser));
       }
       ++colour;

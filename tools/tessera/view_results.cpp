@@ -5,10 +5,10 @@
 #include <filesystem>
 
 #include "plot.h"
+#include "tessera/image_mipmap.h"
 #include "tessera/image_ops.h"
 #include "tessera/io.h"
 #include "tessera/metrics.h"
-#include "tessera/image_mipmap.h"
 #include "view.h"
 
 namespace tessera::cli {

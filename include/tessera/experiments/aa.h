@@ -124,7 +124,7 @@ struct AaRateResult {
 };
 
 struct AaResult {
-  Backend backend = Backend::cpu;       ///< Who rendered `rates`; both: the CPU, `gl` beside.
+  Backend backend = Backend::cpu;         ///< Who rendered `rates`; both: the CPU, `gl` beside.
   std::string gpu_renderer, gpu_version;  ///< The GPU device where one was used.
   /// `Backend::both`: the whole experiment on GL (its own G-buffers and reference); else null.
   std::shared_ptr<const AaResult> gl;

@@ -47,21 +47,21 @@ std::uint16_t quantise_either(const float c[4]) {
   o.opaque = true;
   o.r = nearest_rgb<5>(c[0]);
   o.g = nearest_rgb<5>(c[1]);
-  o.b = nearest_rgb<kB ? 5 : 4>(c[2]);
+  o.b = nearest_rgb < kB ? 5 : 4 > (c[2]);
   float eo = (255.0f - c[3]) * (255.0f - c[3]);
   eo += code_err<5>(o.r, c[0]);
   eo += code_err<5>(o.g, c[1]);
-  eo += code_err<kB ? 5 : 4>(o.b, c[2]);
+  eo += code_err < kB ? 5 : 4 > (o.b, c[2]);
   EndpointCodes t;
   t.opaque = false;
   t.a = code_nearest_fast(kNearestAlpha3, c[3]);
   float et = (float(code_level_alpha(t.a)) - c[3]) * (float(code_level_alpha(t.a)) - c[3]);
   t.r = nearest_rgb<4>(c[0]);
   t.g = nearest_rgb<4>(c[1]);
-  t.b = nearest_rgb<kB ? 4 : 3>(c[2]);
+  t.b = nearest_rgb < kB ? 4 : 3 > (c[2]);
   et += code_err<4>(t.r, c[0]);
   et += code_err<4>(t.g, c[1]);
-  et += code_err<kB ? 4 : 3>(t.b, c[2]);
+  et += code_err < kB ? 4 : 3 > (t.b, c[2]);
   return std::uint16_t(pack_endpoint(kB, et < eo ? t : o));
 }
 
@@ -255,8 +255,8 @@ Result<std::vector<std::uint8_t>> encode(const ImageView8& image, const EncodeOp
     return Status::error(ErrorCode::invalid_argument,
                          "pvrtc::encode: alpha_weighted is for PVRTC1 4 bpp only, not 2 bpp");
   }
-  const EncodeSchedule schedule = resolve_schedule(
-      options.quality, options.format, options.iterations, options.exact_search_rounds);
+  const EncodeSchedule schedule = resolve_schedule(options.quality, options.format,
+                                                   options.iterations, options.exact_search_rounds);
   EncoderState s;
   s.g = make_grid(options.format, image.width, image.height);
   s.alpha_mode = image.has_alpha || options.force_alpha;
@@ -300,15 +300,14 @@ Result<std::vector<std::uint8_t>> encode(const ImageView8& image, const EncodeOp
   if (options.alpha_weighted && s.alpha_mode) {
     // Colour error weighted by alpha (encode_internal.h: colour_scale_of, scale_diff).
     s.colour_scale.resize(g.texels());
-    parallel_for(
-        0, std::int64_t(g.texels()), 1 << 16,
-        [&](std::int64_t i0, std::int64_t i1) {
-          for (std::int64_t i = i0; i < i1; ++i) {
-            s.colour_scale[std::size_t(i)] =
-                std::uint8_t(colour_scale_of(s.target[std::size_t(i) * 4 + 3]));
-          }
-        },
-        {s.threads});
+    parallel_for(0, std::int64_t(g.texels()), 1 << 16,
+                 [&](std::int64_t i0, std::int64_t i1) {
+                   for (std::int64_t i = i0; i < i1; ++i) {
+                     s.colour_scale[std::size_t(i)] =
+                         std::uint8_t(colour_scale_of(s.target[std::size_t(i) * 4 + 3]));
+                   }
+                 },
+                 {s.threads});
   }
   s.ca.assign(g.blocks(), 0);
   s.cb.assign(g.blocks(), 0);

@@ -108,15 +108,14 @@ template <class Fn>
 void for_each_block_2x2(const Grid& g, int threads, Fn&& fn) {
   for (int cls = 0; cls < 4; ++cls) {
     const int ox = cls & 1, oy = cls >> 1;
-    parallel_for(
-        0, g.nby / 2, 4,
-        [&](std::int64_t r0, std::int64_t r1) {
-          for (int r = int(r0); r < int(r1); ++r) {
-            TESSERA_DCHECK(2 * r + oy < g.nby);
-            for (int bx = ox; bx < g.nbx; bx += 2) fn(bx, 2 * r + oy);
-          }
-        },
-        {threads});
+    parallel_for(0, g.nby / 2, 4,
+                 [&](std::int64_t r0, std::int64_t r1) {
+                   for (int r = int(r0); r < int(r1); ++r) {
+                     TESSERA_DCHECK(2 * r + oy < g.nby);
+                     for (int bx = ox; bx < g.nbx; bx += 2) fn(bx, 2 * r + oy);
+                   }
+                 },
+                 {threads});
   }
 }
 

@@ -114,8 +114,7 @@ void optimise_alt(EncoderState& alt, std::uint64_t alt_error, const EncodeSchedu
 
 // The crossover with the second encoding (crossover.cpp): the two starts stop in different
 // local minima, the dilation one wins along sharp edges.
-void optimise_crossover(EncoderState& s, const EncoderState& alt,
-                        const EncodeSchedule& schedule) {
+void optimise_crossover(EncoderState& s, const EncoderState& alt, const EncodeSchedule& schedule) {
   const Progress whole = s.progress;
   ProgressSteps steps(whole, crossover_cost(schedule, s.g.format));
   std::vector<std::uint8_t> seeds;

@@ -40,7 +40,8 @@ constexpr Row kPresets[] = {
     // labelling merges), mode 1, one reseed pass for blocks whose footprint-wide start misses
     // their own texels (thin features, stripes), 3 refinement sweeps, then one round of the
     // exact search on the blocks that still err a lot.
-    {Quality::normal, k4bpp,
+    {Quality::normal,
+     k4bpp,
      {.dilation_start = false,
       .try_mode1 = true,
       .reseed_passes = 1,
@@ -49,13 +50,15 @@ constexpr Row kPresets[] = {
       .exact_search = {.rounds = 1, .passes = 1, .min_error = kHighWindowSse}}},
     // normal, 2 bpp: principal-axis start, the exact modulation descent after every modulation
     // choice (it sees the decoder's truncations the least-squares model ignores), 3 sweeps.
-    {Quality::normal, k2bpp,
+    {Quality::normal,
+     k2bpp,
      {.dilation_start = false, .try_mode1 = true, .modulation_descent = 1, .refinement_sweeps = 3}},
     // high, 4 bpp: a second reseed pass next to changed blocks; few refinement sweeps, as the
     // exact search (every block, neighbour moves, to convergence) does most of the work; then
     // the crossover with a dilation-started encoding that goes straight to the same search (a
     // refinement first moved it towards the first encoding's minimum, leaving less to gain).
-    {Quality::high, k4bpp,
+    {Quality::high,
+     k4bpp,
      {.dilation_start = false,
       .try_mode1 = true,
       .reseed_passes = 2,
@@ -69,7 +72,8 @@ constexpr Row kPresets[] = {
     // high, 2 bpp: as normal, with 4 sweeps (the endpoint search refines again after it), two
     // more descent sweeps, the exact endpoint search, and the crossover with a second encoding
     // run through the same passes.
-    {Quality::high, k2bpp,
+    {Quality::high,
+     k2bpp,
      {.dilation_start = false,
       .try_mode1 = true,
       .modulation_descent = 1,

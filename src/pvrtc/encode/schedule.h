@@ -16,8 +16,8 @@ namespace tessera::pvrtc::detail {
 /// One run of the 4 bpp exact search (exact_search.cpp, `search_endpoints_4bpp`); `rounds` 0: not
 /// run.
 struct ExactSearchStep {
-  int rounds = 0;               ///< Round bound; rounds stop early once no block changed.
-  int passes = 1;               ///< Sweeps of the move list per block visit.
+  int rounds = 0;  ///< Round bound; rounds stop early once no block changed.
+  int passes = 1;  ///< Sweeps of the move list per block visit.
   /// Blocks whose exact 7x7-window error is at most this are skipped.
   std::uint32_t min_error = 0;
   bool neighbour_moves = false;  ///< Also try copying a neighbour's A, B or both.

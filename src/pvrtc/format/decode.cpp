@@ -152,15 +152,14 @@ void store_words(const Grid& g, const std::uint64_t* words, std::uint8_t* data) 
 
 void expand_endpoints(const Grid& g, const std::uint64_t* words, Rgba5* ea, Rgba5* eb,
                       int threads) {
-  parallel_for(
-      0, std::int64_t(g.blocks()), 4096,
-      [&](std::int64_t b0, std::int64_t b1) {
-        for (std::int64_t i = b0; i < b1; ++i) {
-          ea[i] = expand_a(std::uint32_t(words[i] >> 32) & 0xffffu);
-          eb[i] = expand_b(std::uint32_t(words[i] >> 48));
-        }
-      },
-      {threads});
+  parallel_for(0, std::int64_t(g.blocks()), 4096,
+               [&](std::int64_t b0, std::int64_t b1) {
+                 for (std::int64_t i = b0; i < b1; ++i) {
+                   ea[i] = expand_a(std::uint32_t(words[i] >> 32) & 0xffffu);
+                   eb[i] = expand_b(std::uint32_t(words[i] >> 48));
+                 }
+               },
+               {threads});
 }
 
 void unpack_2bpp_block(std::uint64_t word, std::uint8_t values[32], int& mode) {
@@ -196,7 +195,7 @@ void unpack_2bpp_block(std::uint64_t word, std::uint8_t values[32], int& mode) {
 }
 
 std::uint32_t pack_2bpp_block(const std::uint8_t v[32], int mode) {
-  TESSERA_DCHECK(mode >= 0 && mode <= 3);  // direct, interpolated, H only, V only
+  TESSERA_DCHECK(mode >= 0 && mode <= 3);                  // direct, interpolated, H only, V only
   for (int i = 0; i < 32; ++i) TESSERA_DCHECK(v[i] <= 3);  // 2-bit stored modulation values
   if (mode == 0) {
     std::uint32_t bits = 0;
@@ -215,8 +214,7 @@ std::uint32_t pack_2bpp_block(const std::uint8_t v[32], int mode) {
   // Texel (0, 0): bit 1 is its value (0 or 3), bit 0 flags H / V only.
   bits = (bits & ~3u) | (v[0] == 3 ? 2u : 0u) | (mode != 1 ? 1u : 0u);
   if (mode != 1) {  // texel (4, 2) is bits 20-21: bit 21 its value, bit 20 flags V only
-    bits = (bits & ~(3u << 20)) | (v[2 * 8 + 4] == 3 ? 1u << 21 : 0u) |
-           (mode == 3 ? 1u << 20 : 0u);
+    bits = (bits & ~(3u << 20)) | (v[2 * 8 + 4] == 3 ? 1u << 21 : 0u) | (mode == 3 ? 1u << 20 : 0u);
   }
   return bits;
 }
@@ -224,88 +222,88 @@ std::uint32_t pack_2bpp_block(const std::uint8_t v[32], int mode) {
 void modulation_map(const Grid& g, const std::uint64_t* words, std::uint8_t* m_eff, int threads) {
   const int pw = g.pw;
   if (g.format == Format::pvrtc1_4bpp) {
-    parallel_for(
-        0, g.nby, 8,
-        [&](std::int64_t by0, std::int64_t by1) {
-          for (std::int64_t by = by0; by < by1; ++by) {
-            for (int bx = 0; bx < g.nbx; ++bx) {
-              const std::uint64_t w = words[std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx)];
-              const bool mode1 = (w >> 32) & 1;
-              const std::uint32_t bits = std::uint32_t(w);
-              for (int y = 0; y < 4; ++y) {
-                std::uint8_t* row = m_eff +
-                                    (std::size_t(by) * 4 + std::size_t(y)) * std::size_t(pw) +
-                                    std::size_t(bx) * 4;
-                for (int x = 0; x < 4; ++x) {
-                  const std::uint32_t v = (bits >> (2 * (4 * y + x))) & 3;
-                  if (mode1) {
-                    row[x] = std::uint8_t(kMod4Mode1[v] | (v == 2 ? kPunchFlag : 0));
-                  } else {
-                    row[x] = std::uint8_t(kMod4Mode0[v]);
-                  }
-                }
-              }
-            }
-          }
-        },
-        {threads});
+    parallel_for(0, g.nby, 8,
+                 [&](std::int64_t by0, std::int64_t by1) {
+                   for (std::int64_t by = by0; by < by1; ++by) {
+                     for (int bx = 0; bx < g.nbx; ++bx) {
+                       const std::uint64_t w =
+                           words[std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx)];
+                       const bool mode1 = (w >> 32) & 1;
+                       const std::uint32_t bits = std::uint32_t(w);
+                       for (int y = 0; y < 4; ++y) {
+                         std::uint8_t* row =
+                             m_eff + (std::size_t(by) * 4 + std::size_t(y)) * std::size_t(pw) +
+                             std::size_t(bx) * 4;
+                         for (int x = 0; x < 4; ++x) {
+                           const std::uint32_t v = (bits >> (2 * (4 * y + x))) & 3;
+                           if (mode1) {
+                             row[x] = std::uint8_t(kMod4Mode1[v] | (v == 2 ? kPunchFlag : 0));
+                           } else {
+                             row[x] = std::uint8_t(kMod4Mode0[v]);
+                           }
+                         }
+                       }
+                     }
+                   }
+                 },
+                 {threads});
     return;
   }
   // 2 bpp: unpack stored values and modes, then resolve interpolated texels.
   std::vector<std::uint8_t> stored(g.texels());
   std::vector<std::uint8_t> modes(g.blocks());
-  parallel_for(
-      0, g.nby, 8,
-      [&](std::int64_t by0, std::int64_t by1) {
-        std::uint8_t vals[32];
-        for (std::int64_t by = by0; by < by1; ++by) {
-          for (int bx = 0; bx < g.nbx; ++bx) {
-            const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-            int mode = 0;
-            unpack_2bpp_block(words[bi], vals, mode);
-            modes[bi] = std::uint8_t(mode);
-            for (int y = 0; y < 4; ++y) {
-              std::memcpy(&stored[(std::size_t(by) * 4 + std::size_t(y)) * std::size_t(pw) +
-                                  std::size_t(bx) * 8],
-                          &vals[y * 8], 8);
-            }
-          }
-        }
-      },
-      {threads});
+  parallel_for(0, g.nby, 8,
+               [&](std::int64_t by0, std::int64_t by1) {
+                 std::uint8_t vals[32];
+                 for (std::int64_t by = by0; by < by1; ++by) {
+                   for (int bx = 0; bx < g.nbx; ++bx) {
+                     const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+                     int mode = 0;
+                     unpack_2bpp_block(words[bi], vals, mode);
+                     modes[bi] = std::uint8_t(mode);
+                     for (int y = 0; y < 4; ++y) {
+                       std::memcpy(
+                           &stored[(std::size_t(by) * 4 + std::size_t(y)) * std::size_t(pw) +
+                                   std::size_t(bx) * 8],
+                           &vals[y * 8], 8);
+                     }
+                   }
+                 }
+               },
+               {threads});
   const int wmask = g.pw - 1, hmask = g.ph - 1;
-  parallel_for(
-      0, g.ph, 32,
-      [&](std::int64_t y0, std::int64_t y1) {
-        for (std::int64_t yy = y0; yy < y1; ++yy) {
-          const int y = int(yy);
-          const std::uint8_t* row = &stored[std::size_t(y) * std::size_t(pw)];
-          const std::uint8_t* up = &stored[std::size_t((y - 1) & hmask) * std::size_t(pw)];
-          const std::uint8_t* dn = &stored[std::size_t((y + 1) & hmask) * std::size_t(pw)];
-          std::uint8_t* out = m_eff + std::size_t(y) * std::size_t(pw);
-          for (int x = 0; x < pw; ++x) {
-            const int mode = modes[std::size_t(y >> 2) * std::size_t(g.nbx) + std::size_t(x >> 3)];
-            if (mode == 0 || ((x ^ y) & 1) == 0) {
-              out[x] = std::uint8_t(kMod4Mode0[row[x]]);
-              continue;
-            }
-            const std::int32_t l = kMod4Mode0[row[(x - 1) & wmask]];
-            const std::int32_t r = kMod4Mode0[row[(x + 1) & wmask]];
-            const std::int32_t u = kMod4Mode0[up[x]];
-            const std::int32_t d = kMod4Mode0[dn[x]];
-            std::int32_t m;
-            if (mode == 1) {
-              m = (u + d + l + r + 2) / 4;
-            } else if (mode == 2) {
-              m = (l + r + 1) / 2;
-            } else {
-              m = (u + d + 1) / 2;
-            }
-            out[x] = std::uint8_t(m);
-          }
-        }
-      },
-      {threads});
+  parallel_for(0, g.ph, 32,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 for (std::int64_t yy = y0; yy < y1; ++yy) {
+                   const int y = int(yy);
+                   const std::uint8_t* row = &stored[std::size_t(y) * std::size_t(pw)];
+                   const std::uint8_t* up = &stored[std::size_t((y - 1) & hmask) * std::size_t(pw)];
+                   const std::uint8_t* dn = &stored[std::size_t((y + 1) & hmask) * std::size_t(pw)];
+                   std::uint8_t* out = m_eff + std::size_t(y) * std::size_t(pw);
+                   for (int x = 0; x < pw; ++x) {
+                     const int mode =
+                         modes[std::size_t(y >> 2) * std::size_t(g.nbx) + std::size_t(x >> 3)];
+                     if (mode == 0 || ((x ^ y) & 1) == 0) {
+                       out[x] = std::uint8_t(kMod4Mode0[row[x]]);
+                       continue;
+                     }
+                     const std::int32_t l = kMod4Mode0[row[(x - 1) & wmask]];
+                     const std::int32_t r = kMod4Mode0[row[(x + 1) & wmask]];
+                     const std::int32_t u = kMod4Mode0[up[x]];
+                     const std::int32_t d = kMod4Mode0[dn[x]];
+                     std::int32_t m;
+                     if (mode == 1) {
+                       m = (u + d + l + r + 2) / 4;
+                     } else if (mode == 2) {
+                       m = (l + r + 1) / 2;
+                     } else {
+                       m = (u + d + 1) / 2;
+                     }
+                     out[x] = std::uint8_t(m);
+                   }
+                 }
+               },
+               {threads});
 }
 
 void upscale_rows(const Grid& g, const Rgba5* e, int y0, int y1, std::uint8_t* out) {
@@ -343,18 +341,17 @@ void decode_padded(const Grid& g, const std::uint64_t* words, std::uint8_t* out,
   expand_endpoints(g, words, ea.data(), eb.data(), threads);
   std::vector<std::uint8_t> m(g.texels());
   modulation_map(g, words, m.data(), threads);
-  parallel_for(
-      0, g.ph, 16,
-      [&](std::int64_t y0, std::int64_t y1) {
-        std::vector<std::uint8_t> ua(std::size_t(g.pw) * 4 * std::size_t(y1 - y0));
-        std::vector<std::uint8_t> ub(ua.size());
-        upscale_rows(g, ea.data(), int(y0), int(y1), ua.data());
-        upscale_rows(g, eb.data(), int(y0), int(y1), ub.data());
-        const std::size_t first = std::size_t(y0) * std::size_t(g.pw);
-        modulate_run(ua.data(), ub.data(), &m[first], std::size_t(y1 - y0) * std::size_t(g.pw),
-                     out + first * 4);
-      },
-      {threads});
+  parallel_for(0, g.ph, 16,
+               [&](std::int64_t y0, std::int64_t y1) {
+                 std::vector<std::uint8_t> ua(std::size_t(g.pw) * 4 * std::size_t(y1 - y0));
+                 std::vector<std::uint8_t> ub(ua.size());
+                 upscale_rows(g, ea.data(), int(y0), int(y1), ua.data());
+                 upscale_rows(g, eb.data(), int(y0), int(y1), ub.data());
+                 const std::size_t first = std::size_t(y0) * std::size_t(g.pw);
+                 modulate_run(ua.data(), ub.data(), &m[first],
+                              std::size_t(y1 - y0) * std::size_t(g.pw), out + first * 4);
+               },
+               {threads});
 }
 
 }  // namespace detail

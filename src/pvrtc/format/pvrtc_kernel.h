@@ -174,7 +174,7 @@ inline constexpr NearestCodeTable kNearestAlpha3 = make_nearest_code_table(3, tr
 /// Table index of a level: ceil(2 level) clamped to 0..511.
 inline int nearest_code_index(float level) {
   const float t = std::clamp(2.0f * level, -1.0f, 511.0f);
-  const int i = int(t);                  // truncation: the ceiling for t <= 0
+  const int i = int(t);  // truncation: the ceiling for t <= 0
   return std::max(i + (float(i) < t ? 1 : 0), 0);
 }
 

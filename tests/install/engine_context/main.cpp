@@ -22,18 +22,17 @@
 // The GL, EGL and GLFW headers as the example engines include them, and their shader
 // compilation (examples/common/engine_context.h; its Platform is not used: this program makes
 // its contexts itself, in more ways).
-#include "engine_context.h"
-
 #include <array>
 #include <cmath>
-#include <cstdlib>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "engine_context.h"
 #include "tessera/core.h"
 #include "tessera/faces.h"
 #include "tessera/gl.h"
@@ -85,10 +84,14 @@ std::unique_ptr<EglContext> make_egl() {
     die(3, "no EGL surfaceless display");
   }
   eglBindAPI(EGL_OPENGL_API);
-  const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,       4,
-                            EGL_CONTEXT_MINOR_VERSION,       5,
-                            EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                            EGL_CONTEXT_OPENGL_DEBUG,        EGL_TRUE,
+  const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                            4,
+                            EGL_CONTEXT_MINOR_VERSION,
+                            5,
+                            EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                            EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                            EGL_CONTEXT_OPENGL_DEBUG,
+                            EGL_TRUE,
                             EGL_NONE};
   e->context = eglCreateContext(e->display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attribs);
   if (e->context == EGL_NO_CONTEXT) die(3, "no OpenGL 4.5 core EGL context");
@@ -120,12 +123,12 @@ struct Snapshot {
 // put back; gl_faces.h: upload changes nothing, bind only its units and storage binding).
 Snapshot snapshot() {
   Snapshot s;
-  for (GLenum e : {GL_CURRENT_PROGRAM, GL_ACTIVE_TEXTURE, GL_DRAW_FRAMEBUFFER_BINDING,
-                   GL_READ_FRAMEBUFFER_BINDING, GL_VERTEX_ARRAY_BINDING, GL_UNIFORM_BUFFER_BINDING,
-                   GL_SHADER_STORAGE_BUFFER_BINDING, GL_PIXEL_UNPACK_BUFFER_BINDING,
-                   GL_UNPACK_ALIGNMENT, GL_UNPACK_ROW_LENGTH, GL_PACK_ALIGNMENT,
-                   GL_DISPATCH_INDIRECT_BUFFER_BINDING, GL_DEBUG_OUTPUT,
-                   GL_DEBUG_OUTPUT_SYNCHRONOUS}) {
+  for (GLenum e :
+       {GL_CURRENT_PROGRAM, GL_ACTIVE_TEXTURE, GL_DRAW_FRAMEBUFFER_BINDING,
+        GL_READ_FRAMEBUFFER_BINDING, GL_VERTEX_ARRAY_BINDING, GL_UNIFORM_BUFFER_BINDING,
+        GL_SHADER_STORAGE_BUFFER_BINDING, GL_PIXEL_UNPACK_BUFFER_BINDING, GL_UNPACK_ALIGNMENT,
+        GL_UNPACK_ROW_LENGTH, GL_PACK_ALIGNMENT, GL_DISPATCH_INDIRECT_BUFFER_BINDING,
+        GL_DEBUG_OUTPUT, GL_DEBUG_OUTPUT_SYNCHRONOUS}) {
     GLint v = 0;
     glGetIntegerv(e, &v);
     s.ints.push_back(v);
@@ -351,8 +354,8 @@ void run_faces(Images& out, EngineState& engine, bool shift) {
   // copy embedded in the library, no file read).
   tessera::glsl::ExpandOptions eo;
   eo.preamble = tex->glsl_defines(b);
-  auto fs = tessera::glsl::expand_includes({tessera::glsl::Stage::fragment, kFacesFs, "faces.frag"},
-                                           eo);
+  auto fs =
+      tessera::glsl::expand_includes({tessera::glsl::Stage::fragment, kFacesFs, "faces.frag"}, eo);
   if (!fs) die(1, fs.status().message);
   const GLuint program = compile_program(kFacesVs, fs->text.c_str());
   if (tessera::Status s = tex->bind(b); !s.ok()) die(1, s.message);

@@ -59,56 +59,58 @@ std::uint64_t choose_modulation_4bpp_impl(EncoderState& s) {
   std::vector<std::uint64_t> row_err(std::size_t(g.nby), 0);
   const std::size_t vstride = std::size_t(g.nbx) + 8;  // block_row_errors_avx2 reads 8 from bx
   const bool avx2 = use_avx2();
-  parallel_for(
-      0, g.nby, 4,
-      [&](std::int64_t by0, std::int64_t by1) {
-        // Column sums of the 4 rows of a block row: [row][image * 4 + channel][block + 1].
-        std::vector<std::uint16_t> vp(4 * 8 * vstride, 0);
-        std::vector<BlockModAvx2> row_mods(avx2 ? std::size_t(g.nbx) : 0);
-        ModRow4 r;
-        for (int by = int(by0); by < int(by1); ++by) {
-          for (int j = 0; j < 4; ++j) {
-            const AxisTap ty = axis_tap(by * 4 + j, 4, g.ph);
-            const std::uint16_t wy0 = std::uint16_t(4 - ty.d), wy1 = std::uint16_t(ty.d);
-            for (int k = 0; k < 8; ++k) {
-              if ((k & 3) == 3 && !kAlpha) continue;
-              const std::uint16_t* e0 = &ep[std::size_t(k) * nb + std::size_t(ty.b0) * std::size_t(g.nbx)];
-              const std::uint16_t* e1 = &ep[std::size_t(k) * nb + std::size_t(ty.b1) * std::size_t(g.nbx)];
-              std::uint16_t* v = &vp[(std::size_t(j) * 8 + std::size_t(k)) * vstride];
-              for (int bx = 0; bx < g.nbx; ++bx) {
-                v[bx + 1] = std::uint16_t(e0[bx] * wy0 + e1[bx] * wy1);
-              }
-              v[0] = v[g.nbx];
-              v[g.nbx + 1] = v[1];
-            }
-            r.v[j] = &vp[std::size_t(j) * 8 * vstride];
-            r.t[j] = &s.target[std::size_t(by * 4 + j) * std::size_t(g.pw) * 4];
-            if constexpr (kWeighted) {
-              r.w[j] = &s.colour_scale[std::size_t(by * 4 + j) * std::size_t(g.pw)];
-            }
-          }
-          r.vstride = vstride;
-          std::uint64_t err_row = 0;
-          const std::size_t row0 = std::size_t(by) * std::size_t(g.nbx);
-          if (avx2) {
-            block_row_errors_avx2(r.v, r.t, kWeighted ? r.w : nullptr, vstride, g.nbx, kAlpha,
-                                  kExtra, row_mods.data());
-            for (int bx = 0; bx < g.nbx; ++bx) {
-              err_row += pick<kExtra>(s, row_mods[std::size_t(bx)], row0 + std::size_t(bx));
-            }
-          } else {
-            for (int bx = 0; bx < g.nbx; bx += 2) {
-              BlockMod m[2];
-              block_pair_errors<kAlpha, kExtra, kWeighted>(r, bx, m);
-              for (int h = 0; h < 2; ++h) {
-                err_row += pick<kExtra>(s, m[h], row0 + std::size_t(bx + h));
-              }
-            }
-          }
-          row_err[std::size_t(by)] = err_row;
-        }
-      },
-      {s.threads});
+  parallel_for(0, g.nby, 4,
+               [&](std::int64_t by0, std::int64_t by1) {
+                 // Column sums of the 4 rows of a block row: [row][image * 4 + channel][block + 1].
+                 std::vector<std::uint16_t> vp(4 * 8 * vstride, 0);
+                 std::vector<BlockModAvx2> row_mods(avx2 ? std::size_t(g.nbx) : 0);
+                 ModRow4 r;
+                 for (int by = int(by0); by < int(by1); ++by) {
+                   for (int j = 0; j < 4; ++j) {
+                     const AxisTap ty = axis_tap(by * 4 + j, 4, g.ph);
+                     const std::uint16_t wy0 = std::uint16_t(4 - ty.d), wy1 = std::uint16_t(ty.d);
+                     for (int k = 0; k < 8; ++k) {
+                       if ((k & 3) == 3 && !kAlpha) continue;
+                       const std::uint16_t* e0 =
+                           &ep[std::size_t(k) * nb + std::size_t(ty.b0) * std::size_t(g.nbx)];
+                       const std::uint16_t* e1 =
+                           &ep[std::size_t(k) * nb + std::size_t(ty.b1) * std::size_t(g.nbx)];
+                       std::uint16_t* v = &vp[(std::size_t(j) * 8 + std::size_t(k)) * vstride];
+                       for (int bx = 0; bx < g.nbx; ++bx) {
+                         v[bx + 1] = std::uint16_t(e0[bx] * wy0 + e1[bx] * wy1);
+                       }
+                       v[0] = v[g.nbx];
+                       v[g.nbx + 1] = v[1];
+                     }
+                     r.v[j] = &vp[std::size_t(j) * 8 * vstride];
+                     r.t[j] = &s.target[std::size_t(by * 4 + j) * std::size_t(g.pw) * 4];
+                     if constexpr (kWeighted) {
+                       r.w[j] = &s.colour_scale[std::size_t(by * 4 + j) * std::size_t(g.pw)];
+                     }
+                   }
+                   r.vstride = vstride;
+                   std::uint64_t err_row = 0;
+                   const std::size_t row0 = std::size_t(by) * std::size_t(g.nbx);
+                   if (avx2) {
+                     block_row_errors_avx2(r.v, r.t, kWeighted ? r.w : nullptr, vstride, g.nbx,
+                                           kAlpha, kExtra, row_mods.data());
+                     for (int bx = 0; bx < g.nbx; ++bx) {
+                       err_row +=
+                           pick<kExtra>(s, row_mods[std::size_t(bx)], row0 + std::size_t(bx));
+                     }
+                   } else {
+                     for (int bx = 0; bx < g.nbx; bx += 2) {
+                       BlockMod m[2];
+                       block_pair_errors<kAlpha, kExtra, kWeighted>(r, bx, m);
+                       for (int h = 0; h < 2; ++h) {
+                         err_row += pick<kExtra>(s, m[h], row0 + std::size_t(bx + h));
+                       }
+                     }
+                   }
+                   row_err[std::size_t(by)] = err_row;
+                 }
+               },
+               {s.threads});
   // The per-texel errors are those of the exact decode, so their sum is the total error.
   std::uint64_t total = 0;
   for (std::uint64_t e : row_err) total += e;

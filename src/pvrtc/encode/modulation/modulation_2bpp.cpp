@@ -58,8 +58,7 @@ bool use_avx2(const Grid& g) {
 class ColumnSums {
  public:
   ColumnSums(const Grid& g, const std::vector<std::uint16_t>& ep, bool alpha)
-      : g_(g), ep_(ep), alpha_(alpha), vstride_(std::size_t(g.nbx) + 8),
-        vp_(4 * 8 * vstride_, 0) {}
+      : g_(g), ep_(ep), alpha_(alpha), vstride_(std::size_t(g.nbx) + 8), vp_(4 * 8 * vstride_, 0) {}
 
   /// The column sums and target rows of block row `by` into r.v, r.t and r.vstride.
   void fill(const EncoderState& s, int by, Mod2Row& r) {
@@ -97,13 +96,12 @@ class ColumnSums {
 template <class Fn>
 void for_each_block_row(const EncoderState& s, const std::vector<std::uint16_t>& ep, bool alpha,
                         Fn&& fn) {
-  parallel_for(
-      0, s.g.nby, 4,
-      [&](std::int64_t by0, std::int64_t by1) {
-        ColumnSums cs(s.g, ep, alpha);
-        for (int by = int(by0); by < int(by1); ++by) fn(by, cs);
-      },
-      {s.threads});
+  parallel_for(0, s.g.nby, 4,
+               [&](std::int64_t by0, std::int64_t by1) {
+                 ColumnSums cs(s.g, ep, alpha);
+                 for (int by = int(by0); by < int(by1); ++by) fn(by, cs);
+               },
+               {s.threads});
 }
 
 struct Maps {

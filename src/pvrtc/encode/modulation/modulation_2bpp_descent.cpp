@@ -40,7 +40,7 @@ struct Mod2 {
 struct Region {
   static constexpr int kW = 12, kH = 8;
   static constexpr int kInner = 64;  ///< 60 inner texels, 4 zero pads
-  std::uint8_t sw[kH][kW];  ///< stored weight (0, 3, 5, 8) of the texel's stored value
+  std::uint8_t sw[kH][kW];           ///< stored weight (0, 3, 5, 8) of the texel's stored value
   std::uint8_t bm[kH][kW];  ///< mode of the texel's block (0 direct, 1 H+V, 2 H only, 3 V only)
   // Inner texel (rx, ry) at slot (ry - 1) * 10 + rx - 1, per channel (alpha zero if RGB): 8 A,
   // B - A (mod 2^16) and the target; A and B the upscaled endpoints.
@@ -77,9 +77,7 @@ struct Region {
   }
 
   /// Error of inner texel (rx, ry) at weight w.
-  std::uint32_t error(int rx, int ry, int w) const {
-    return std::uint32_t(err[w][slot(rx, ry)]);
-  }
+  std::uint32_t error(int rx, int ry, int w) const { return std::uint32_t(err[w][slot(rx, ry)]); }
   /// Weight of an interpolated texel under block mode m (1..3) from its stored neighbours.
   int interpolated_weight(int rx, int ry, int m) const {
     const int l = sw[ry][rx - 1], r = sw[ry][rx + 1];
@@ -140,8 +138,7 @@ class Descent {
     for (int y = 0; y < 4; ++y) {
       for (int x = 0; x < 8; ++x) {
         if (mode != 0 && ((x ^ y) & 1)) continue;  // interpolated
-        const bool restricted =
-            mode == 0 || (x == 0 && y == 0) || (x == 4 && y == 2 && mode != 1);
+        const bool restricted = mode == 0 || (x == 0 && y == 0) || (x == 4 && y == 2 && mode != 1);
         std::uint8_t& v = val(x, y);
         std::uint8_t& sw = r.sw[y + 2][x + 2];
         const std::uint8_t cur = v;

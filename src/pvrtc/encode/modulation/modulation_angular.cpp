@@ -91,7 +91,8 @@ void choose_modulation_angular(EncoderState& s) {
             };
             auto target = [&](int tx, int ty) {
               return s.target.data() +
-                     (std::size_t(by * 4 + ty) * std::size_t(g.pw) + std::size_t(bx * g.bw + tx)) * 4;
+                     (std::size_t(by * 4 + ty) * std::size_t(g.pw) + std::size_t(bx * g.bw + tx)) *
+                         4;
             };
             if (is4) {
               // Mode 0: codes 0..3 are weights 0, 3, 5, 8. Mode 1: codes 0, 1, 3 are weights

@@ -28,27 +28,26 @@ std::vector<std::uint64_t> block_errors(const EncoderState& s, int alpha_weight)
   std::vector<std::uint64_t> err(g.blocks(), 0);
   const int bw = g.bw;
   const std::uint8_t* scale = s.weighted() ? s.colour_scale.data() : nullptr;
-  parallel_for(
-      0, g.nby, 16,
-      [&](std::int64_t by0, std::int64_t by1) {
-        for (int by = int(by0); by < int(by1); ++by) {
-          for (int y = by * 4; y < by * 4 + 4; ++y) {
-            const std::size_t row = std::size_t(y) * std::size_t(g.pw);
-            for (int x = 0; x < g.pw; ++x) {
-              const std::size_t i = (row + std::size_t(x)) * 4;
-              std::uint64_t e = 0;
-              for (int c = 0; c < 4; ++c) {
-                std::int32_t d = std::int32_t(dec[i + std::size_t(c)]) -
-                                 std::int32_t(s.target[i + std::size_t(c)]);
-                if (scale != nullptr && c < 3) d = scale_diff(d, scale[i / 4]);
-                e += std::uint64_t(d * d) * std::uint64_t(c == 3 ? alpha_weight : 1);
-              }
-              err[std::size_t(by) * std::size_t(g.nbx) + std::size_t(x / bw)] += e;
-            }
-          }
-        }
-      },
-      {s.threads});
+  parallel_for(0, g.nby, 16,
+               [&](std::int64_t by0, std::int64_t by1) {
+                 for (int by = int(by0); by < int(by1); ++by) {
+                   for (int y = by * 4; y < by * 4 + 4; ++y) {
+                     const std::size_t row = std::size_t(y) * std::size_t(g.pw);
+                     for (int x = 0; x < g.pw; ++x) {
+                       const std::size_t i = (row + std::size_t(x)) * 4;
+                       std::uint64_t e = 0;
+                       for (int c = 0; c < 4; ++c) {
+                         std::int32_t d = std::int32_t(dec[i + std::size_t(c)]) -
+                                          std::int32_t(s.target[i + std::size_t(c)]);
+                         if (scale != nullptr && c < 3) d = scale_diff(d, scale[i / 4]);
+                         e += std::uint64_t(d * d) * std::uint64_t(c == 3 ? alpha_weight : 1);
+                       }
+                       err[std::size_t(by) * std::size_t(g.nbx) + std::size_t(x / bw)] += e;
+                     }
+                   }
+                 }
+               },
+               {s.threads});
   return err;
 }
 

@@ -587,9 +587,9 @@ void search_endpoints_4bpp_t(EncoderState& s, int rounds, int passes, std::uint3
       const double searched = double(std::count_if(searched_at.begin(), searched_at.end(),
                                                    [&](int t) { return t >= 4 * round; }));
       searched_total += searched;
-      s.progress.at(round + 1 == rounds ? 1.0
-                                        : convergence_fraction(searched_total, searched,
-                                                               searched_before));
+      s.progress.at(round + 1 == rounds
+                        ? 1.0
+                        : convergence_fraction(searched_total, searched, searched_before));
       searched_before = searched;
     }
     if (std::find(any_change.begin(), any_change.end(), 1) == any_change.end()) break;

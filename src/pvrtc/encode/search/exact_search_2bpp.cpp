@@ -70,8 +70,8 @@ std::uint32_t eval(const Window2& w, std::uint16_t ca, std::uint16_t cb, std::ui
 }
 
 // Fills the window of block (bx, by) from the expanded endpoints of every block.
-void build_window(const EncoderState& s, const std::vector<Rgba5>& ea,
-                  const std::vector<Rgba5>& eb, int bx, int by, Window2& w) {
+void build_window(const EncoderState& s, const std::vector<Rgba5>& ea, const std::vector<Rgba5>& eb,
+                  int bx, int by, Window2& w) {
   const Grid& g = s.g;
   const std::size_t j = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
   const int nch = s.alpha_mode ? 4 : 3;
@@ -89,8 +89,8 @@ void build_window(const EncoderState& s, const std::vector<Rgba5>& ea,
       const std::size_t r1 = std::size_t(ty.b1) * std::size_t(g.nbx);
       const std::size_t blk[4] = {r0 + std::size_t(tx.b0), r0 + std::size_t(tx.b1),
                                   r1 + std::size_t(tx.b0), r1 + std::size_t(tx.b1)};
-      const std::int32_t wt[4] = {(8 - tx.d) * (4 - ty.d), tx.d * (4 - ty.d),
-                                  (8 - tx.d) * ty.d, tx.d * ty.d};
+      const std::int32_t wt[4] = {(8 - tx.d) * (4 - ty.d), tx.d * (4 - ty.d), (8 - tx.d) * ty.d,
+                                  tx.d * ty.d};
       std::int32_t ra[4] = {0, 0, 0, 0}, rb[4] = {0, 0, 0, 0}, own = 0;
       for (int i = 0; i < 4; ++i) {
         if (blk[i] == j) {
@@ -217,9 +217,9 @@ int search(EncoderState& s, const std::vector<std::uint8_t>* seeds) {
       int latest = -1;
       for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
-          latest = std::max(latest, changed_at[std::size_t((by + dy) & (g.nby - 1)) *
-                                                   std::size_t(g.nbx) +
-                                               std::size_t((bx + dx) & (g.nbx - 1))]);
+          latest = std::max(latest,
+                            changed_at[std::size_t((by + dy) & (g.nby - 1)) * std::size_t(g.nbx) +
+                                       std::size_t((bx + dx) & (g.nbx - 1))]);
         }
       }
       if (latest < searched_at[j]) return;

@@ -23,8 +23,8 @@
 
 namespace tessera::pvrtc::detail {
 
-std::uint32_t window2_error_avx2(const Window2& w, const std::int32_t a[4],
-                                 const std::int32_t b[4], std::uint32_t bound) {
+std::uint32_t window2_error_avx2(const Window2& w, const std::int32_t a[4], const std::int32_t b[4],
+                                 std::uint32_t bound) {
   return window2_error_bounded<simd::vu16x16>(w, a, b, bound);
 }
 

@@ -97,8 +97,8 @@ struct Window2 {
 
 /// 2 bpp: the window error of the block's endpoints (a, b) as exact_search_2bpp.cpp's baseline,
 /// eight texels a step instead of four; stops once it reaches `bound` (checked every 8 texels).
-std::uint32_t window2_error_avx2(const Window2& w, const std::int32_t a[4],
-                                 const std::int32_t b[4], std::uint32_t bound);
+std::uint32_t window2_error_avx2(const Window2& w, const std::int32_t a[4], const std::int32_t b[4],
+                                 std::uint32_t bound);
 /// 2 bpp: the window error of (a, b), no bound, with each slot's error in texel_err[0 .. 112).
 std::uint32_t window2_error_store_avx2(const Window2& w, const std::int32_t a[4],
                                        const std::int32_t b[4], std::uint32_t* texel_err);

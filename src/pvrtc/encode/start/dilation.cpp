@@ -62,12 +62,11 @@ struct Ring {
   }
 };
 
-
 // Plane layout of one extremum image: colour planes 0..nplanes-1, then the filled flag (0/1).
 struct Band {
-  Ring<float> inten;              // intensity
-  Ring<std::uint8_t> lab;         // 1 = local maximum, 2 = local minimum
-  Ring<std::uint8_t> img[2][3];   // [max/min][initial, pass 1, pass 2]
+  Ring<float> inten;                  // intensity
+  Ring<std::uint8_t> lab;             // 1 = local maximum, 2 = local minimum
+  Ring<std::uint8_t> img[2][3];       // [max/min][initial, pass 1, pass 2]
   std::vector<std::uint8_t> last[2];  // pass 3 rows (consumed at once), nplanes + 1 planes
   std::vector<float> tmax, tmin;      // vertical 3-max / 3-min of one row (padded)
   std::vector<std::uint8_t> vf;       // vertical flag sums of one row (padded)
@@ -99,144 +98,139 @@ const DilationKernels* native_kernels() {
 template <int nplanes>
 void dilate_band(const DilationKernels& kern, const EncoderState& s, int by0, int by1,
                  std::vector<float>& low, std::vector<float>& high, std::uint8_t* flat) {
-        const Grid& g = s.g;
-        const std::uint8_t* t = s.target.data();
-        const int w = g.pw, hm = g.ph - 1, bw = g.bw;
-        const std::size_t W = std::size_t(w);
-        const int Y0 = int(by0) * 4, Y1 = int(by1) * 4;
-        // Band-local row numbering: texel row y is local row y - Y0 + 8 (>= 0).
-        auto local = [&](int y) { return y - Y0 + 8; };
-        Band b;
-        constexpr int np1 = nplanes + 1;
-        b.inten.init(1, w);
-        b.lab.init(1, w);
-        for (auto& img : b.img) {
-          for (auto& r : img) r.init(np1, w);
-        }
-        const std::size_t rstride = W + 2 * kPad;
-        for (auto& l : b.last) l.assign(std::size_t(np1) * rstride, 0);
-        b.tmax.assign(rstride, 0.0f);
-        b.tmin.assign(rstride, 0.0f);
-        b.vf.assign(rstride, 0);
-        b.vs.assign(std::size_t(nplanes) * rstride, 0);
-        const std::size_t astride = W + kPad;
-        for (auto& a : b.acc) a.assign(std::size_t(np1) * astride, 0);
-        // Block extremes of two block rows: the pipeline finishes a block row 4 rows after its
-        // intensity, while the next block row's extremes are being found.
-        std::vector<Extremes> ext_rows[2];
-        for (auto& e : ext_rows) e.resize(std::size_t(g.nbx));
-        std::vector<float> brow(4 * W);  // intensity of the current block row
-        std::vector<std::uint32_t> bsum[2];  // per image: block sums of each plane
-        for (auto& v : bsum) v.resize(std::size_t(np1) * std::size_t(g.nbx));
+  const Grid& g = s.g;
+  const std::uint8_t* t = s.target.data();
+  const int w = g.pw, hm = g.ph - 1, bw = g.bw;
+  const std::size_t W = std::size_t(w);
+  const int Y0 = int(by0) * 4, Y1 = int(by1) * 4;
+  // Band-local row numbering: texel row y is local row y - Y0 + 8 (>= 0).
+  auto local = [&](int y) { return y - Y0 + 8; };
+  Band b;
+  constexpr int np1 = nplanes + 1;
+  b.inten.init(1, w);
+  b.lab.init(1, w);
+  for (auto& img : b.img) {
+    for (auto& r : img) r.init(np1, w);
+  }
+  const std::size_t rstride = W + 2 * kPad;
+  for (auto& l : b.last) l.assign(std::size_t(np1) * rstride, 0);
+  b.tmax.assign(rstride, 0.0f);
+  b.tmin.assign(rstride, 0.0f);
+  b.vf.assign(rstride, 0);
+  b.vs.assign(std::size_t(nplanes) * rstride, 0);
+  const std::size_t astride = W + kPad;
+  for (auto& a : b.acc) a.assign(std::size_t(np1) * astride, 0);
+  // Block extremes of two block rows: the pipeline finishes a block row 4 rows after its
+  // intensity, while the next block row's extremes are being found.
+  std::vector<Extremes> ext_rows[2];
+  for (auto& e : ext_rows) e.resize(std::size_t(g.nbx));
+  std::vector<float> brow(4 * W);      // intensity of the current block row
+  std::vector<std::uint32_t> bsum[2];  // per image: block sums of each plane
+  for (auto& v : bsum) v.resize(std::size_t(np1) * std::size_t(g.nbx));
 
-        auto planes_of = [&](Ring<std::uint8_t>& r, int y, std::uint8_t** p) {
-          for (int k = 0; k < np1; ++k) p[k] = r.row(k, local(y));
-        };
-        for (int L = Y0 - kHalo; L < Y1 + kHalo; ++L) {
-          // Intensity row L, and the block extremes of the band's own rows.
-          const std::uint8_t* srcL = t + std::size_t(L & hm) * W * 4;
-          float* il = b.inten.row(0, local(L));
-          kern.intensity_row(srcL, w, s.alpha_mode, il);
-          if (L >= Y0 && L < Y1) {
-            std::memcpy(&brow[std::size_t(L & 3) * W], il, W * sizeof(float));
-            if ((L & 3) == 3) {
-              Extremes* ext = ext_rows[(L >> 2) & 1].data();
-              kern.block_extremes(brow.data(), W, g.nbx, bw, L - 3, ext);
+  auto planes_of = [&](Ring<std::uint8_t>& r, int y, std::uint8_t** p) {
+    for (int k = 0; k < np1; ++k) p[k] = r.row(k, local(y));
+  };
+  for (int L = Y0 - kHalo; L < Y1 + kHalo; ++L) {
+    // Intensity row L, and the block extremes of the band's own rows.
+    const std::uint8_t* srcL = t + std::size_t(L & hm) * W * 4;
+    float* il = b.inten.row(0, local(L));
+    kern.intensity_row(srcL, w, s.alpha_mode, il);
+    if (L >= Y0 && L < Y1) {
+      std::memcpy(&brow[std::size_t(L & 3) * W], il, W * sizeof(float));
+      if ((L & 3) == 3) {
+        Extremes* ext = ext_rows[(L >> 2) & 1].data();
+        kern.block_extremes(brow.data(), W, g.nbx, bw, L - 3, ext);
+      }
+    }
+    // Labels and initial planes of row L - 1.
+    const int yl = L - 1;
+    if (yl < Y0 - kDilations) continue;
+    std::uint8_t* lab = b.lab.row(0, local(yl));
+    kern.label_row(b.inten.row(0, local(yl - 1)), b.inten.row(0, local(yl)), il, w,
+                   b.tmax.data() + kPad, b.tmin.data() + kPad, lab);
+    {
+      std::uint8_t *p0[5], *p1[5];
+      planes_of(b.img[0][0], yl, p0);
+      planes_of(b.img[1][0], yl, p1);
+      kern.init_rows(nplanes, lab, t + std::size_t(yl & hm) * W * 4, w, p0, p1);
+    }
+    // Dilation passes: pass p produces row L - 1 - p from rows L - 2 - p .. L - p.
+    for (int pass = 1; pass <= kDilations; ++pass) {
+      const int y = L - 1 - pass;
+      if (y < Y0 - kDilations + pass) break;
+      for (int k = 0; k < 2; ++k) {
+        const std::uint8_t* in[3][5];
+        for (int d = 0; d < 3; ++d) {
+          for (int c = 0; c < np1; ++c) in[d][c] = b.img[k][pass - 1].row(c, local(y - 1 + d));
+        }
+        std::uint8_t* out[5];
+        if (pass < kDilations) {
+          planes_of(b.img[k][pass], y, out);
+        } else {
+          for (int c = 0; c < np1; ++c) out[c] = b.last[k].data() + std::size_t(c) * rstride + kPad;
+        }
+        kern.dilate_row(nplanes, w, in, out, b.vf.data() + kPad, b.vs.data() + kPad, rstride);
+        if (pass == kDilations) {
+          kern.accumulate_row(np1, w, out[0], rstride, b.acc[k].data(), astride, (y & 3) == 0);
+        }
+      }
+    }
+    // A finished block row: block means, empty texels taking the block's extreme colour.
+    const int yf = L - 1 - kDilations;
+    if (yf < Y0 || (yf & 3) != 3) continue;
+    const int by = yf >> 2;
+    const std::uint32_t n = std::uint32_t(4 * bw);
+    const float inv = 1.0f / float(n);
+    for (int k = 0; k < 2; ++k) {
+      kern.block_sums(b.acc[k].data(), astride, np1, w, bw, bsum[k].data(), std::size_t(g.nbx));
+    }
+    for (int bx = 0; bx < g.nbx; ++bx) {
+      const Extremes& e = ext_rows[by & 1][std::size_t(bx)];
+      const std::uint8_t* fill_c[2] = {t + (std::size_t(e.ymax) * W + std::size_t(e.xmax)) * 4,
+                                       t + (std::size_t(e.ymin) * W + std::size_t(e.xmin)) * 4};
+      const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
+      // Ties go to the first texel in raster order for both, so the brightest and the
+      // darkest texel are the same one exactly when all intensities are equal.
+      const bool one_intensity = e.xmax == e.xmin && e.ymax == e.ymin;
+      if (flat != nullptr) flat[bi] = one_intensity;
+      // A block of one intensity (uniform, or fully transparent with alpha premultiplied
+      // into the intensity, or equally bright hues) has every texel as its brightest and
+      // darkest: there the colours' own Rec.709 luma breaks the tie, so the texels the
+      // dilation left empty take the block's brightest and darkest colour (first in
+      // raster order on ties) instead of its first texel for both.
+      if (one_intensity) {
+        int lmax = -1, lmin = 1 << 30;
+        for (int yy = 0; yy < 4; ++yy) {
+          const std::uint8_t* row = t + (std::size_t(by * 4 + yy) * W + std::size_t(bx * bw)) * 4;
+          for (int xx = 0; xx < bw; ++xx) {
+            const std::uint8_t* p = row + std::size_t(xx) * 4;
+            const int l = 2126 * p[0] + 7152 * p[1] + 722 * p[2];
+            if (l > lmax) {
+              lmax = l;
+              fill_c[0] = p;
             }
-          }
-          // Labels and initial planes of row L - 1.
-          const int yl = L - 1;
-          if (yl < Y0 - kDilations) continue;
-          std::uint8_t* lab = b.lab.row(0, local(yl));
-          kern.label_row(b.inten.row(0, local(yl - 1)), b.inten.row(0, local(yl)), il, w,
-                         b.tmax.data() + kPad, b.tmin.data() + kPad, lab);
-          {
-            std::uint8_t *p0[5], *p1[5];
-            planes_of(b.img[0][0], yl, p0);
-            planes_of(b.img[1][0], yl, p1);
-            kern.init_rows(nplanes, lab, t + std::size_t(yl & hm) * W * 4, w, p0, p1);
-          }
-          // Dilation passes: pass p produces row L - 1 - p from rows L - 2 - p .. L - p.
-          for (int pass = 1; pass <= kDilations; ++pass) {
-            const int y = L - 1 - pass;
-            if (y < Y0 - kDilations + pass) break;
-            for (int k = 0; k < 2; ++k) {
-              const std::uint8_t* in[3][5];
-              for (int d = 0; d < 3; ++d) {
-                for (int c = 0; c < np1; ++c) in[d][c] = b.img[k][pass - 1].row(c, local(y - 1 + d));
-              }
-              std::uint8_t* out[5];
-              if (pass < kDilations) {
-                planes_of(b.img[k][pass], y, out);
-              } else {
-                for (int c = 0; c < np1; ++c) out[c] = b.last[k].data() + std::size_t(c) * rstride + kPad;
-              }
-              kern.dilate_row(nplanes, w, in, out, b.vf.data() + kPad, b.vs.data() + kPad,
-                              rstride);
-              if (pass == kDilations) {
-                kern.accumulate_row(np1, w, out[0], rstride, b.acc[k].data(), astride,
-                                    (y & 3) == 0);
-              }
-            }
-          }
-          // A finished block row: block means, empty texels taking the block's extreme colour.
-          const int yf = L - 1 - kDilations;
-          if (yf < Y0 || (yf & 3) != 3) continue;
-          const int by = yf >> 2;
-          const std::uint32_t n = std::uint32_t(4 * bw);
-          const float inv = 1.0f / float(n);
-          for (int k = 0; k < 2; ++k) {
-            kern.block_sums(b.acc[k].data(), astride, np1, w, bw, bsum[k].data(),
-                            std::size_t(g.nbx));
-          }
-          for (int bx = 0; bx < g.nbx; ++bx) {
-            const Extremes& e = ext_rows[by & 1][std::size_t(bx)];
-            const std::uint8_t* fill_c[2] = {t + (std::size_t(e.ymax) * W + std::size_t(e.xmax)) * 4,
-                                             t + (std::size_t(e.ymin) * W + std::size_t(e.xmin)) * 4};
-            const std::size_t bi = std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx);
-            // Ties go to the first texel in raster order for both, so the brightest and the
-            // darkest texel are the same one exactly when all intensities are equal.
-            const bool one_intensity = e.xmax == e.xmin && e.ymax == e.ymin;
-            if (flat != nullptr) flat[bi] = one_intensity;
-            // A block of one intensity (uniform, or fully transparent with alpha premultiplied
-            // into the intensity, or equally bright hues) has every texel as its brightest and
-            // darkest: there the colours' own Rec.709 luma breaks the tie, so the texels the
-            // dilation left empty take the block's brightest and darkest colour (first in
-            // raster order on ties) instead of its first texel for both.
-            if (one_intensity) {
-              int lmax = -1, lmin = 1 << 30;
-              for (int yy = 0; yy < 4; ++yy) {
-                const std::uint8_t* row =
-                    t + (std::size_t(by * 4 + yy) * W + std::size_t(bx * bw)) * 4;
-                for (int xx = 0; xx < bw; ++xx) {
-                  const std::uint8_t* p = row + std::size_t(xx) * 4;
-                  const int l = 2126 * p[0] + 7152 * p[1] + 722 * p[2];
-                  if (l > lmax) {
-                    lmax = l;
-                    fill_c[0] = p;
-                  }
-                  if (l < lmin) {
-                    lmin = l;
-                    fill_c[1] = p;
-                  }
-                }
-              }
-            }
-            float* dst[2] = {&high[bi * 4], &low[bi * 4]};
-            for (int k = 0; k < 2; ++k) {
-              std::uint32_t sum[5] = {};
-              for (int c = 0; c < np1; ++c) {
-                sum[c] = bsum[k][std::size_t(c) * std::size_t(g.nbx) + std::size_t(bx)];
-              }
-              const std::uint32_t empty = n - sum[nplanes];
-              for (int c = 0; c < 4; ++c) {
-                const std::uint32_t v =
-                    c < nplanes ? sum[c] + empty * fill_c[k][c] : 255u * n;
-                dst[k][c] = float(v) * inv;
-              }
+            if (l < lmin) {
+              lmin = l;
+              fill_c[1] = p;
             }
           }
         }
+      }
+      float* dst[2] = {&high[bi * 4], &low[bi * 4]};
+      for (int k = 0; k < 2; ++k) {
+        std::uint32_t sum[5] = {};
+        for (int c = 0; c < np1; ++c) {
+          sum[c] = bsum[k][std::size_t(c) * std::size_t(g.nbx) + std::size_t(bx)];
+        }
+        const std::uint32_t empty = n - sum[nplanes];
+        for (int c = 0; c < 4; ++c) {
+          const std::uint32_t v = c < nplanes ? sum[c] + empty * fill_c[k][c] : 255u * n;
+          dst[k][c] = float(v) * inv;
+        }
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -255,17 +249,16 @@ void dilation_endpoints(const EncoderState& s, std::vector<float>& low, std::vec
   const int band = serial ? g.nby : std::clamp(g.nby / 4, 1, 32);
   const DilationKernels& kern =
       g_force_baseline.load(std::memory_order_relaxed) ? kBaseline : *native_kernels();
-  parallel_for(
-      0, g.nby, band,
-      [&](std::int64_t by0, std::int64_t by1) {
-        // Alpha is 255 everywhere unless alpha_mode: three colour planes.
-        if (s.alpha_mode) {
-          dilate_band<4>(kern, s, int(by0), int(by1), low, high, flat_out);
-        } else {
-          dilate_band<3>(kern, s, int(by0), int(by1), low, high, flat_out);
-        }
-      },
-      {s.threads});
+  parallel_for(0, g.nby, band,
+               [&](std::int64_t by0, std::int64_t by1) {
+                 // Alpha is 255 everywhere unless alpha_mode: three colour planes.
+                 if (s.alpha_mode) {
+                   dilate_band<4>(kern, s, int(by0), int(by1), low, high, flat_out);
+                 } else {
+                   dilate_band<3>(kern, s, int(by0), int(by1), low, high, flat_out);
+                 }
+               },
+               {s.threads});
 }
 
 const DilationKernels* dilation_kernels_baseline() { return &kBaseline; }

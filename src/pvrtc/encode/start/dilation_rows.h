@@ -163,8 +163,8 @@ void dilate_row_t(int w, const std::uint8_t* const (*rows)[5], std::uint8_t* con
       const std::uint16_t* v = vs + std::size_t(c) * vstride + x;
       VU16 avg[2];
       for (int k = 0; k < 2; ++k) {
-        const VU16 sum = load_as<VU16>(v + h * k - 1) + load_as<VU16>(v + h * k) +
-                         load_as<VU16>(v + h * k + 1);
+        const VU16 sum =
+            load_as<VU16>(v + h * k - 1) + load_as<VU16>(v + h * k) + load_as<VU16>(v + h * k + 1);
         avg[k] = select(single[k], sum, mulhi(sum + hv[k], rcv[k]));
       }
       store(select(need, narrow(avg[0], avg[1]), load_as<VU8>(in[1][c] + x)), out[c] + x);
@@ -214,7 +214,8 @@ void block_extremes_t(const float* rows, std::size_t W, int nbx, int bw, int y0,
     VI mx(-1), mn(0x7fffffff);
     for (int q = 0; q < step; q += n) {  // two vectors a block where bw = 8 > n
       for (int j = 0; j < 4; ++j) {
-        const VI v = sll<5>(to_int_trunc(load_as<VF>(rows + std::size_t(j) * W + std::size_t(x + q))));
+        const VI v =
+            sll<5>(to_int_trunc(load_as<VF>(rows + std::size_t(j) * W + std::size_t(x + q))));
         const VI idx = col0 + VI(q + j * bw);
         mx = max(mx, v + (k31 - idx));
         mn = min(mn, v + idx);
@@ -258,7 +259,7 @@ void block_sums_t(const std::uint16_t* acc, std::size_t astride, int planes, int
     std::uint32_t* o = out + std::size_t(c) * ostride;
     for (int x = 0; x < w; x += n) {
       std::int32_t p[m];
-      store(madd(load_as<VU16>(a + x), ones), p);  // column pairs (sums below 2^15)
+      store(madd(load_as<VU16>(a + x), ones), p);           // column pairs (sums below 2^15)
       const int pairs = (w - x) / 2 < m ? (w - x) / 2 : m;  // lanes past w: the row's pad
       for (int i = 0; i < pairs; i += BW / 2) {
         std::int32_t sum = 0;
@@ -291,8 +292,8 @@ struct RowKernels {
       dilate_row_t<VU8, 3>(w, in, out, vf, vs, vstride);
     }
   }
-  static void block_sums(const std::uint16_t* acc, std::size_t astride, int planes, int w,
-                         int bw, std::uint32_t* out, std::size_t ostride) {
+  static void block_sums(const std::uint16_t* acc, std::size_t astride, int planes, int w, int bw,
+                         std::uint32_t* out, std::size_t ostride) {
     if (bw == 4) {
       block_sums_t<VU16, 4>(acc, astride, planes, w, out, ostride);
     } else {
@@ -300,8 +301,8 @@ struct RowKernels {
     }
   }
   static constexpr DilationKernels kTable = {
-      intensity_row_t<VF>, label_row_t<VF>,      init_rows, dilate_row, accumulate_row_t<VU8>,
-      block_extremes_t<VF>, block_sums};
+      intensity_row_t<VF>,   label_row_t<VF>,      init_rows, dilate_row,
+      accumulate_row_t<VU8>, block_extremes_t<VF>, block_sums};
 };
 
 }  // namespace

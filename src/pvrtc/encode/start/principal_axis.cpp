@@ -97,21 +97,21 @@ void principal_endpoints(const EncoderState& s, std::vector<float>& low, std::ve
   const Grid& g = s.g;
   low.assign(g.blocks() * 4, 0.0f);
   high.assign(g.blocks() * 4, 0.0f);
-  parallel_for(
-      0, g.nby, 4,
-      [&](std::int64_t by0, std::int64_t by1) {
-        for (int by = int(by0); by < int(by1); ++by) {
-          for (int bx = 0; bx < g.nbx; ++bx) {
-            const std::size_t bi = (std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx)) * 4;
-            if (s.alpha_mode) {
-              principal_block<4>(s, bx, by, &low[bi], &high[bi]);
-            } else {
-              principal_block<3>(s, bx, by, &low[bi], &high[bi]);
-            }
-          }
-        }
-      },
-      {s.threads});
+  parallel_for(0, g.nby, 4,
+               [&](std::int64_t by0, std::int64_t by1) {
+                 for (int by = int(by0); by < int(by1); ++by) {
+                   for (int bx = 0; bx < g.nbx; ++bx) {
+                     const std::size_t bi =
+                         (std::size_t(by) * std::size_t(g.nbx) + std::size_t(bx)) * 4;
+                     if (s.alpha_mode) {
+                       principal_block<4>(s, bx, by, &low[bi], &high[bi]);
+                     } else {
+                       principal_block<3>(s, bx, by, &low[bi], &high[bi]);
+                     }
+                   }
+                 }
+               },
+               {s.threads});
 }
 
 // Consistent endpoint orientation (see encode_internal.h). Neighbouring blocks blend their A
