@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
         "usage: encode_call IMAGE [--format F] [--quality Q] [--threads N] "
         "[--repeats N | --serve]");
   const std::string path = argv[1];
-  std::string format = "pvrtc1-4", quality = "normal";
+  texture_file::RecordedOptions words;  // the CLI's words and defaults
   int threads = 0, repeats = 7;
   bool serve = false;
   for (int i = 2; i < argc; i += 2) {
@@ -51,9 +51,9 @@ int main(int argc, char** argv) {
     if (i + 1 >= argc) return fail("option '" + key + "' needs a value");
     const std::string value = argv[i + 1];
     if (key == "--format")
-      format = value;
+      words.format = value;
     else if (key == "--quality")
-      quality = value;
+      words.quality = value;
     else if (key == "--threads")
       threads = std::atoi(value.c_str());
     else if (key == "--repeats")
@@ -61,20 +61,13 @@ int main(int argc, char** argv) {
     else
       return fail("unknown option '" + key + "'");
   }
-  if (format != "pvrtc1-4" && format != "pvrtc1-2") return fail("bad --format '" + format + "'");
-  if (quality != "fast" && quality != "normal" && quality != "high") {
-    return fail("bad --quality '" + quality + "'");
-  }
+  Result<texture_file::CompressOptions> options = texture_file::compress_options(words, threads);
+  if (!options) return fail(options.status().message);
+  const texture_file::CompressOptions& o = *options;
   if (repeats < 1) return fail("--repeats must be positive");
 
   auto image = io::read_image(path);
   if (!image.ok()) return fail(image.status().message);
-  texture_file::CompressOptions o;
-  o.encode.format = format == "pvrtc1-2" ? pvrtc::Format::pvrtc1_2bpp : pvrtc::Format::pvrtc1_4bpp;
-  o.encode.quality = quality == "fast"   ? pvrtc::Quality::fast
-                     : quality == "high" ? pvrtc::Quality::high
-                                         : pvrtc::Quality::normal;
-  o.encode.threads = threads;
 
   std::size_t bytes = 0;
   // `count` timed calls (after `warm_up` untimed ones), each on a fresh copy of the image made

@@ -21,11 +21,10 @@ void add_bench_functions(py::module_& m) {
       "native_encode_ms",
       [](const py::handle& array, int calls, const std::string& format, const std::string& quality,
          int threads) {
-        CompressKeywords k;
-        k.format = format;
-        k.quality = quality;
-        k.threads = threads;
-        const texture_file::CompressOptions options = unwrap(compress_options(k));
+        texture_file::RecordedOptions words;
+        words.format = format;
+        words.quality = quality;
+        const texture_file::CompressOptions options = unwrap(keyword_options(words, threads));
         py::array keep;
         const ImageView8 view = view_of_array(array, "array", keep);
         std::vector<double> ms;

@@ -12,11 +12,15 @@
 // Writing: files PVRTexTool and OpenGL ES / Vulkan loaders accept; `write_texture_file` is
 //   atomic. KTX 2.0 has no RGB/RGBA distinction: a file read back has alpha when any block can
 //   decode a texel with alpha below 255 (`pvrtc::may_have_alpha`).
+// Tests: tests/unit/texture_file_test.cpp, texture_file_io_test.cpp, ktx2_test.cpp,
+// compress_words_test.cpp, texture_shape_test.cpp; tests/oracle/ (PVRTexTool, ktx-parse).
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tessera/core.h"
@@ -243,6 +247,24 @@ struct RecordedOptions {
   bool cube = false;   ///< The inputs are the faces of a cube map.
   bool array = false;  ///< The inputs are the layers of an array.
 };
+
+/// How a front end spells an option in its messages: `field` is a RecordedOptions member
+/// ("normal_map", "mip_filter"), `value` the word given with it ("" for the option alone, "True"
+/// for a switch that is on, "N" for a number). The CLI writes "--mip-filter lanczos" and
+/// "--mipmaps", Python "mip_filter='lanczos'" and "mipmaps=True"; empty = the member's name,
+/// then "=value" when there is one.
+using OptionSpeller = std::function<std::string(std::string_view field, std::string_view value)>;
+
+/// The options `words` name (what a user typed: `tessera compress`'s flags, Python's keywords,
+/// an up-to-date record), checked and converted: the one conversion of the CLI, Python, the
+/// batch and the benchmarks. invalid_argument, naming the options as `spell` spells them, for a
+/// word that is not one of its values or a number out of range ("quality: 'best' is not one of
+/// 'fast', 'normal', 'high'") and for two options that conflict ("normal_map and srgb: a normal
+/// map holds vectors, never sRGB colour"). `container`, `zstd`, `cube` and `array` belong to
+/// the container and the texture's shape, not to CompressOptions (not checked here); `threads`
+/// as EncodeOptions::threads (>= 0).
+Result<CompressOptions> compress_options(const RecordedOptions& words, int threads,
+                                         const OptionSpeller& spell = {});
 
 /// What is appended to an output's path to name its up-to-date record ("a.pvr.json").
 inline constexpr const char* kRecordSuffix = ".json";

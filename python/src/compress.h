@@ -1,6 +1,6 @@
-// The Python keywords of `encode` / `encode_file` (the CLI's option names and values) as the
-// library's `texture_file::CompressOptions`, checked the way the CLI's parser checks them, and
-// library messages in the keywords' words.
+// The Python keywords of `encode` / `encode_file` (the CLI's option names and values, held in
+// texture_file::RecordedOptions) as the library's `texture_file::CompressOptions`, and library
+// messages in the keywords' words.
 #pragma once
 
 #include <string>
@@ -10,29 +10,13 @@
 
 namespace tessera::python {
 
-/// The options of `tessera compress`, with the CLI's names and defaults.
-struct CompressKeywords {
-  std::string format = "pvrtc1-4";  ///< "pvrtc1-4" or "pvrtc1-2".
-  std::string quality = "normal";   ///< "fast", "normal" or "high".
-  int iterations = -1;              ///< -1..1000, as --iterations.
-  int exact_search_rounds = 0;      ///< 0..1000, as --exact-search-rounds.
-  bool mipmaps = false;
-  int mip_levels = 0;              ///< 0..17; > 0 implies `mipmaps`, as --mip-levels N does.
-  std::string mip_filter = "box";  ///< "box", "lanczos" or "kaiser".
-  bool srgb = false;
-  bool resize_pot = false;
-  bool flip_y = false;
-  bool premultiply = false;
-  bool alpha_bleed = false;
-  bool alpha_weighted = false;  ///< As --alpha-weighted (4 bpp, straight alpha).
-  bool normal_map = false;
-  int threads = 0;  ///< As -j: 0 = all hardware threads.
-};
-
-/// The library options for `keywords`, or an invalid_argument status naming the keyword and
-/// the values it takes, or the two keywords that conflict (the CLI's usage errors, in
-/// keywords: "normal_map and srgb: a normal map holds vectors, never sRGB colour").
-Result<texture_file::CompressOptions> compress_options(const CompressKeywords& keywords);
+/// The library options for the keywords `words` (RecordedOptions: the CLI's option names and
+/// defaults) and `threads` (as -j: 0 = all hardware threads): texture_file::compress_options
+/// with the keywords' spelling, so an invalid_argument status names the keyword and the values
+/// it takes, or the two keywords that conflict ("normal_map and srgb: a normal map holds
+/// vectors, never sRGB colour", "mip_filter='lanczos' needs mipmaps=True or mip_levels=N").
+Result<texture_file::CompressOptions> keyword_options(const texture_file::RecordedOptions& words,
+                                                      int threads);
 
 /// A library message with the library's option names as Python keywords ("resample to 64x64
 /// with resize_pot" -> "... with resize_pot=True"), as the CLI shows its flags.

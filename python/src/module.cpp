@@ -42,14 +42,14 @@ void check_threads(int threads) {
   if (threads < 0) throw py::value_error("threads: " + std::to_string(threads) + " is negative");
 }
 
-/// The keywords encode and encode_file share; `cube` / `array` give the texture's shape.
+/// The keywords encode and encode_file share (`words.cube` / `words.array` give the texture's
+/// shape; container and zstd are not theirs).
 struct EncodeKeywords {
-  CompressKeywords options;
-  bool cube = false;
-  bool array = false;
+  texture_file::RecordedOptions words;
+  int threads = 0;
 
-  TextureShape shape() const { return {cube ? 6 : 1, array}; }
-  bool several() const { return cube || array; }
+  TextureShape shape() const { return {words.cube ? 6 : 1, words.array}; }
+  bool several() const { return words.cube || words.array; }
 };
 
 /// A function of (x, the keywords of `encode_keyword_args` in order, extra...) that calls
@@ -62,23 +62,23 @@ auto with_encode_keywords(Fn fn) {
               bool alpha_bleed, bool alpha_weighted, bool normal_map, bool cube, bool array,
               const Extra&... extra) {
     EncodeKeywords k;
-    k.options.format = format;
-    k.options.quality = quality;
-    k.options.mipmaps = mipmaps;
-    k.options.srgb = srgb;
-    k.options.threads = threads;
-    k.options.iterations = iterations;
-    k.options.exact_search_rounds = exact_search_rounds;
-    k.options.resize_pot = resize_pot;
-    k.options.mip_levels = mip_levels;
-    k.options.mip_filter = mip_filter;
-    k.options.flip_y = flip_y;
-    k.options.premultiply = premultiply;
-    k.options.alpha_bleed = alpha_bleed;
-    k.options.alpha_weighted = alpha_weighted;
-    k.options.normal_map = normal_map;
-    k.cube = cube;
-    k.array = array;
+    k.words.format = format;
+    k.words.quality = quality;
+    k.words.mipmaps = mipmaps;
+    k.words.srgb = srgb;
+    k.words.iterations = iterations;
+    k.words.exact_search_rounds = exact_search_rounds;
+    k.words.resize_pot = resize_pot;
+    k.words.mip_levels = mip_levels;
+    k.words.mip_filter = mip_filter;
+    k.words.flip_y = flip_y;
+    k.words.premultiply = premultiply;
+    k.words.alpha_bleed = alpha_bleed;
+    k.words.alpha_weighted = alpha_weighted;
+    k.words.normal_map = normal_map;
+    k.words.cube = cube;
+    k.words.array = array;
+    k.threads = threads;
     return fn(x, k, extra...);
   };
 }
@@ -108,10 +108,10 @@ void def_encode(py::module_& m, const char* name, F f, const char* doc, py::arg 
 // Several (cube / array): each image copied, then compress_images, as `compress --cube`.
 CompressedTexture encode_array(const py::handle& x, const EncodeKeywords& k,
                                const std::string& name) {
-  const texture_file::CompressOptions o = unwrap(compress_options(k.options));
+  const texture_file::CompressOptions o = unwrap(keyword_options(k.words, k.threads));
   if (k.several()) {
     ShapedImages in = images_of(x, k.shape(), name);
-    if (k.options.premultiply) {
+    if (k.words.premultiply) {
       for (std::size_t i = 0; i < in.images.size(); ++i) {
         if (!in.images[i].has_alpha) warn_premultiply_without_alpha(in.names[i]);
       }
@@ -126,7 +126,7 @@ CompressedTexture encode_array(const py::handle& x, const EncodeKeywords& k,
   // holds it for the call, and an array with a live reference cannot be resized meanwhile.
   py::array keep;
   const ImageView8 view = view_of_array(x, name, keep);
-  if (k.options.premultiply && !view.has_alpha) warn_premultiply_without_alpha(name);
+  if (k.words.premultiply && !view.has_alpha) warn_premultiply_without_alpha(name);
   py::gil_scoped_release release;
   return unwrap(in_python_words(texture_file::compress_view(view, o, name)));
 }
@@ -136,17 +136,17 @@ bool is_path(const py::handle& x) {
 }
 
 CompressedTexture encode_file(const py::object& paths, const EncodeKeywords& k) {
-  const texture_file::CompressOptions o = unwrap(compress_options(k.options));
+  const texture_file::CompressOptions o = unwrap(keyword_options(k.words, k.threads));
   std::vector<std::string> names;
   if (is_path(paths)) {
     if (k.several()) {
-      throw py::value_error(paths.cast<Path>().string() + ": " +
-                            std::string(k.cube && k.array ? "cube=True, array=True"
-                                        : k.cube          ? "cube=True"
-                                                          : "array=True") +
-                            " takes a list of paths (" +
-                            (k.cube ? "6 faces per layer, +X, -X, +Y, -Y, +Z, -Z" : "the layers") +
-                            ")");
+      throw py::value_error(
+          paths.cast<Path>().string() + ": " +
+          std::string(k.words.cube && k.words.array ? "cube=True, array=True"
+                      : k.words.cube                ? "cube=True"
+                                                    : "array=True") +
+          " takes a list of paths (" +
+          (k.words.cube ? "6 faces per layer, +X, -X, +Y, -Y, +Z, -Z" : "the layers") + ")");
     }
     names.push_back(paths.cast<Path>().string());
   } else if (py::isinstance<py::list>(paths) || py::isinstance<py::tuple>(paths)) {
@@ -165,7 +165,7 @@ CompressedTexture encode_file(const py::object& paths, const EncodeKeywords& k) 
     py::gil_scoped_release release;
     for (const std::string& path : names) images.push_back(unwrap(io::read_image(path)));
   }
-  if (k.options.premultiply) {
+  if (k.words.premultiply) {
     for (std::size_t i = 0; i < images.size(); ++i) {
       if (!images[i].has_alpha) warn_premultiply_without_alpha(names[i]);
     }

@@ -40,27 +40,6 @@ texture_file::RecordedOptions recorded(const std::string& container, int zstd, b
                                        int mip_levels, const std::string& mip_filter, bool flip_y,
                                        bool premultiply, bool alpha_bleed, bool alpha_weighted,
                                        bool normal_map) {
-  CompressKeywords k;
-  k.format = format;
-  k.quality = quality;
-  k.mipmaps = mipmaps;
-  k.srgb = srgb;
-  k.iterations = iterations;
-  k.exact_search_rounds = exact_search_rounds;
-  k.resize_pot = resize_pot;
-  k.mip_levels = mip_levels;
-  k.mip_filter = mip_filter;
-  k.flip_y = flip_y;
-  k.premultiply = premultiply;
-  k.alpha_bleed = alpha_bleed;
-  k.alpha_weighted = alpha_weighted;
-  k.normal_map = normal_map;
-  unwrap(compress_options(k));
-  if (container != "pvr" && container != "ktx" && container != "ktx2") {
-    check(Status::error(ErrorCode::invalid_argument,
-                        "container: '" + container + "' is not one of 'pvr', 'ktx', 'ktx2'"));
-  }
-  check(check_zstd(zstd, container == "ktx2", "container='ktx2'"));
   texture_file::RecordedOptions r;
   r.container = container;
   r.format = format;
@@ -80,6 +59,12 @@ texture_file::RecordedOptions recorded(const std::string& container, int zstd, b
   r.zstd = zstd;
   r.cube = cube;
   r.array = array;
+  unwrap(keyword_options(r, 0));
+  if (container != "pvr" && container != "ktx" && container != "ktx2") {
+    check(Status::error(ErrorCode::invalid_argument,
+                        "container: '" + container + "' is not one of 'pvr', 'ktx', 'ktx2'"));
+  }
+  check(check_zstd(zstd, container == "ktx2", "container='ktx2'"));
   return r;
 }
 

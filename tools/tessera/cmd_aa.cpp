@@ -23,7 +23,7 @@ struct AaArgs {
   int width = 1024, height = 768, frames = 3, lights = 8, heavy_terms = -1, fxaa_preset = 39;
   bool heavy = false;
   bool quiet = false, json = false, markdown = false;
-  deferred::AdaptiveOptions adaptive;
+  AdaptiveThresholds adaptive;
 };
 
 /// One line per rate: what a reader wants from a run (the tables are in aa.md).

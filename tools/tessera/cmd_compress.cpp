@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 #include "compress.h"
 #include "progress.h"
@@ -26,7 +27,7 @@ bool is_folder(const std::string& output) {
 
 bool is_batch(const CompressArgs& args) {
   // --cube / --array: the inputs are one texture unless -o names a folder.
-  if (args.cube || args.array) return is_folder(args.output);
+  if (args.words.cube || args.words.array) return is_folder(args.output);
   if (args.inputs.size() != 1) return true;
   const std::string& in = args.inputs.front();
   std::error_code ec;
@@ -59,7 +60,7 @@ int check_compress_one(const CompressArgs& args, texture_file::ContainerFormat& 
     return usage_error("'-' (stdin) can be only one of the inputs");
   }
   if (int rc = refuse_binary_to_terminal(args.output, "a compressed texture")) return rc;
-  if (args.premultiply && container == texture_file::ContainerFormat::ktx1 && !args.quiet) {
+  if (args.words.premultiply && container == texture_file::ContainerFormat::ktx1 && !args.quiet) {
     std::fprintf(stderr,
                  "tessera: warning: KTX 1.1 has no premultiplied-alpha flag: loaders of "
                  "%s cannot tell (.pvr and .ktx2 say it)\n",
@@ -75,7 +76,7 @@ int read_inputs(const CompressArgs& args, std::vector<std::string>& names,
     names.push_back(io::io_name(input));
     Result<ImageRGBA8> loaded = io::read_image(input);
     if (!loaded) return fail(loaded.status());
-    if (args.premultiply && !args.quiet && !loaded->has_alpha) {
+    if (args.words.premultiply && !args.quiet && !loaded->has_alpha) {
       std::fprintf(stderr,
                    "tessera: warning: %s has no alpha channel: --premultiply leaves it "
                    "as it is\n",
@@ -91,12 +92,12 @@ void show_progress_on(ProgressBar& bar, const CompressArgs& args,
                       const std::vector<ImageRGBA8>& images,
                       texture_file::CompressOptions& options) {
   double mpixels = 0;  // of every chain, for the rate
-  const int cap = args.mip_levels > 0 ? args.mip_levels : 1 << 30;
+  const int cap = args.words.mip_levels > 0 ? args.words.mip_levels : 1 << 30;
   for (const ImageRGBA8& im : images) {
     int level = 0;
     for (int w = im.width, h = im.height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
       mpixels += double(w) * double(h) / 1e6;
-      if (!args.mipmaps || (w == 1 && h == 1) || ++level >= cap) break;
+      if (!args.words.mipmaps || (w == 1 && h == 1) || ++level >= cap) break;
     }
   }
   options.encode.progress = [&bar, mpixels](double f) { bar.update(f, "", f * mpixels); };
@@ -116,10 +117,10 @@ void print_summary(std::FILE* out, const CompressArgs& args, const std::string& 
                "wrote %s: %s%s %s, %s%s%s, %d level(s), %zu bytes, encoded in %.1f ms (%s); "
                "PSNR %.2f dB%s, SSIM %.4f\n",
                output_name.c_str(), size_text(tex.width, tex.height).c_str(), shape.c_str(),
-               texture_file::texture_format_name(tex).c_str(), args.srgb ? "sRGB" : "linear",
+               texture_file::texture_format_name(tex).c_str(), args.words.srgb ? "sRGB" : "linear",
                tex.premultiplied ? ", premultiplied" : "",
                made.resized ? " (resized with Lanczos-3)" : "", tex.level_count(), bytes,
-               made.encode_ms, args.quality.c_str(), cmp.psnr_rgb, alpha, cmp.ssim_gray);
+               made.encode_ms, args.words.quality.c_str(), cmp.psnr_rgb, alpha, cmp.ssim_gray);
 }
 
 /// The --json report of what was written.
@@ -135,11 +136,11 @@ void print_json(std::FILE* out, const CompressArgs& args, const GlobalOptions& g
       {"width", tex.width},
       {"height", tex.height},
       {"resized", made.resized},
-      {"format", args.format},
-      {"quality", args.quality},
-      {"iterations", args.iterations},
-      {"exact_search_rounds", args.exact_search_rounds},
-      {"srgb", args.srgb},
+      {"format", args.words.format},
+      {"quality", args.words.quality},
+      {"iterations", args.words.iterations},
+      {"exact_search_rounds", args.words.exact_search_rounds},
+      {"srgb", args.words.srgb},
       {"has_alpha", tex.has_alpha},
       {"premultiplied", tex.premultiplied},
       {"shape", texture_file::texture_shape_name(tex)},
@@ -169,7 +170,9 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
   std::vector<std::string> names;
   std::vector<ImageRGBA8> images;
   if (int rc = read_inputs(args, names, images); rc >= 0) return rc;
-  texture_file::CompressOptions options = compress_options(args, global.threads);
+  Result<texture_file::CompressOptions> checked = compress_options(args, global.threads);
+  if (!checked) return fail(checked.status());
+  texture_file::CompressOptions options = std::move(*checked);
   // A progress bar on a terminal for an encode that takes a while (from 0.5 s on; never with
   // -q or --json): the encoder's progress over every image and level.
   const bool show_progress = !args.quiet && !args.json && ::isatty(STDERR_FILENO);
@@ -188,7 +191,7 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
   std::size_t bytes = 0;
   {
     texture_file::Ktx2Options ktx2;
-    ktx2.zstd_level = args.zstd;
+    ktx2.zstd_level = args.words.zstd;
     Result<std::vector<std::uint8_t>> file = texture_file::serialise_texture(tex, container, ktx2);
     if (!file) return fail(file.status());
     bytes = file->size();
@@ -218,29 +221,20 @@ int run_compress_one(const CompressArgs& args, const GlobalOptions& global) {
 
 }  // namespace
 
-texture_file::CompressOptions compress_options(const CompressArgs& args, int threads) {
-  texture_file::CompressOptions o;
-  o.encode.format =
-      args.format == "pvrtc1-2" ? pvrtc::Format::pvrtc1_2bpp : pvrtc::Format::pvrtc1_4bpp;
-  o.encode.quality = args.quality == "fast"   ? pvrtc::Quality::fast
-                     : args.quality == "high" ? pvrtc::Quality::high
-                                              : pvrtc::Quality::normal;
-  o.encode.iterations = args.iterations;
-  o.encode.exact_search_rounds = args.exact_search_rounds;
-  o.encode.threads = threads;
-  o.mipmaps = args.mipmaps || args.mip_levels > 0;
-  o.mip_levels = args.mip_levels;
-  o.mip_filter = args.mip_filter == "lanczos"  ? image::MipFilter::lanczos
-                 : args.mip_filter == "kaiser" ? image::MipFilter::kaiser
-                                               : image::MipFilter::box;
-  o.srgb = args.srgb;
-  o.resize_pot = args.resize_pot;
-  o.flip_y = args.flip_y;
-  o.premultiply = args.premultiply;
-  o.alpha_bleed = args.alpha_bleed;
-  o.encode.alpha_weighted = args.alpha_weighted;
-  o.normal_map = args.normal_map;
-  return o;
+namespace {
+
+/// This CLI's spelling of an option in messages: "--mip-filter lanczos", "--mipmaps".
+std::string flag_spelling(std::string_view field, std::string_view value) {
+  std::string flag = "--" + std::string(field);
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  if (value.empty() || value == "True") return flag;
+  return flag + " " + std::string(value);
+}
+
+}  // namespace
+
+Result<texture_file::CompressOptions> compress_options(const CompressArgs& args, int threads) {
+  return texture_file::compress_options(args.words, threads, flag_spelling);
 }
 
 std::string cli_option_names(std::string message) {
@@ -255,7 +249,7 @@ std::string cli_option_names(std::string message) {
 }
 
 texture_file::TextureShape texture_shape(const CompressArgs& args) {
-  return {args.cube ? 6 : 1, args.array};
+  return {args.words.cube ? 6 : 1, args.words.array};
 }
 
 texture_file::ContainerFormat container_of(const std::string& word) {
@@ -266,25 +260,10 @@ texture_file::ContainerFormat container_of(const std::string& word) {
 }
 
 std::string compress_usage_problem(const CompressArgs& args, const std::string& container) {
-  if (args.normal_map && args.srgb) {
-    return "--normal-map and --srgb: a normal map holds vectors, never sRGB colour";
+  if (Result<texture_file::CompressOptions> o = compress_options(args, 0); !o) {
+    return o.status().message;
   }
-  if (args.premultiply && args.alpha_bleed) {
-    return "--alpha-bleed and --premultiply: bleeding is for straight alpha (premultiplied "
-           "transparent texels are black already)";
-  }
-  if (args.alpha_weighted && args.premultiply) {
-    return "--alpha-weighted and --premultiply: weighting is for straight alpha (premultiplied "
-           "colour carries alpha already)";
-  }
-  if (args.alpha_weighted && args.format == "pvrtc1-2") {
-    return "--alpha-weighted and --format pvrtc1-2: alpha-weighted colour error is for 4 bpp "
-           "only";
-  }
-  if (args.mip_filter != "box" && !args.mipmaps && args.mip_levels == 0) {
-    return "--mip-filter " + args.mip_filter + " needs --mipmaps or --mip-levels N";
-  }
-  if (args.zstd && !container.empty() && container != "ktx2") {
+  if (args.words.zstd && !container.empty() && container != "ktx2") {
     return "--zstd needs a KTX 2.0 output (.ktx2 or --container ktx2)";
   }
   return "";
@@ -292,25 +271,8 @@ std::string compress_usage_problem(const CompressArgs& args, const std::string& 
 
 texture_file::RecordedOptions recorded_options(const CompressArgs& args,
                                                const std::string& container) {
-  texture_file::RecordedOptions r;
+  texture_file::RecordedOptions r = args.words;
   r.container = container;
-  r.format = args.format;
-  r.quality = args.quality;
-  r.iterations = args.iterations;
-  r.exact_search_rounds = args.exact_search_rounds;
-  r.mipmaps = args.mipmaps;
-  r.mip_levels = args.mip_levels;
-  r.mip_filter = args.mip_filter;
-  r.srgb = args.srgb;
-  r.resize_pot = args.resize_pot;
-  r.flip_y = args.flip_y;
-  r.premultiply = args.premultiply;
-  r.alpha_bleed = args.alpha_bleed;
-  r.alpha_weighted = args.alpha_weighted;
-  r.normal_map = args.normal_map;
-  r.zstd = args.zstd;
-  r.cube = args.cube;
-  r.array = args.array;
   return r;
 }
 
@@ -348,21 +310,21 @@ Command add_compress_command(CLI::App& app, const GlobalOptions& global) {
                   "Container, instead of the output's extension: pvr (PVR v3), ktx (KTX 1.1) or "
                   "ktx2 (KTX 2.0); the batch default is pvr")
       ->check(CLI::IsMember({"pvr", "ktx", "ktx2"}));
-  sub->add_flag("--cube", args->cube,
+  sub->add_flag("--cube", args->words.cube,
                 "The inputs are the 6 faces of a cube map, in the order +X, -X, +Y, -Y, +Z, -Z "
                 "(square, one size); with --array, 6 per layer. In a batch (-o DIR/), each input "
                 "folder is one cube map");
-  sub->add_flag("--array", args->array,
+  sub->add_flag("--array", args->words.array,
                 "The inputs are the layers of an array texture (one size). In a batch (-o DIR/), "
                 "each input folder is one array, its images in name order");
-  sub->add_option("--format", args->format, "PVRTC1 variant")
+  sub->add_option("--format", args->words.format, "PVRTC1 variant")
       ->check(CLI::IsMember({"pvrtc1-4", "pvrtc1-2"}))
       ->capture_default_str();
-  sub->add_option("--quality", args->quality,
+  sub->add_option("--quality", args->words.quality,
                   "fast = intensity dilation only; normal/high add refinement")
       ->check(CLI::IsMember({"fast", "normal", "high"}))
       ->capture_default_str();
-  sub->add_option("--iterations", args->iterations,
+  sub->add_option("--iterations", args->words.iterations,
                   "Least-squares refinement sweeps instead of the quality's own (-1 = the "
                   "quality's: fast 0, normal 3, high 3 at 4 bpp / 4 at 2 bpp; with "
                   "--quality fast, N > 0 refines the dilation result). A value other than -1, "
@@ -370,44 +332,44 @@ Command add_compress_command(CLI::App& app, const GlobalOptions& global) {
                   "second encoding")
       ->check(CLI::Range(-1, 1000))
       ->capture_default_str();
-  sub->add_option("--exact-search-rounds", args->exact_search_rounds,
+  sub->add_option("--exact-search-rounds", args->words.exact_search_rounds,
                   "4 bpp: rounds of the exact endpoint search after the refinement, on blocks "
                   "above ~4.5 RMS per channel, instead of the quality's own schedule (0 = the "
                   "quality's)")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
-  sub->add_flag("--mipmaps", args->mipmaps,
+  sub->add_flag("--mipmaps", args->words.mipmaps,
                 "Build and encode the mip chain (alpha-weighted; in linear light with --srgb; "
                 "as vectors with --normal-map)");
-  sub->add_option("--mip-levels", args->mip_levels,
+  sub->add_option("--mip-levels", args->words.mip_levels,
                   "Encode at most N levels, level 0 included (implies --mipmaps)")
       ->check(CLI::Range(1, 17));
-  sub->add_option("--mip-filter", args->mip_filter,
+  sub->add_option("--mip-filter", args->words.mip_filter,
                   "How each mip level is made: box (2x2), lanczos (Lanczos-3) or kaiser "
                   "(Kaiser-windowed sinc)")
       ->check(CLI::IsMember({"box", "lanczos", "kaiser"}))
       ->capture_default_str();
-  sub->add_flag("--flip-y", args->flip_y,
+  sub->add_flag("--flip-y", args->words.flip_y,
                 "Flip the images upside down first (for pipelines whose origin is bottom-left)");
-  sub->add_flag("--premultiply", args->premultiply,
+  sub->add_flag("--premultiply", args->words.premultiply,
                 "Multiply colour by alpha (in linear light with --srgb) and mark the texture "
                 "premultiplied (PVR v3 flag, KTX 2.0 DFD flag)");
-  sub->add_flag("--alpha-bleed", args->alpha_bleed,
+  sub->add_flag("--alpha-bleed", args->words.alpha_bleed,
                 "Give fully transparent texels the colour of the nearest visible texel, so that "
                 "filtering and PVRTC's block interpolation pull no invisible colour into edges");
-  sub->add_flag("--alpha-weighted", args->alpha_weighted,
+  sub->add_flag("--alpha-weighted", args->words.alpha_weighted,
                 "4 bpp, straight alpha: weight each texel's colour error by its alpha (what a "
                 "blending renderer shows), so no bits go to the colour of invisible texels");
-  sub->add_flag("--normal-map", args->normal_map,
+  sub->add_flag("--normal-map", args->words.normal_map,
                 "The input is a normal map (RGB = x, y, z in [-1, 1]): renormalised, mips "
                 "averaged as vectors; never sRGB");
-  sub->add_option("--zstd", args->zstd,
+  sub->add_option("--zstd", args->words.zstd,
                   "KTX 2.0: Zstandard supercompression at LEVEL (1-22; 3 when no level follows)")
       ->check(CLI::Range(1, 22));
-  sub->add_flag("--srgb", args->srgb,
+  sub->add_flag("--srgb", args->words.srgb,
                 "Mark the texture sRGB (colour space flag / sRGB KTX format) and filter in "
                 "linear light");
-  sub->add_flag("--resize-pot", args->resize_pot,
+  sub->add_flag("--resize-pot", args->words.resize_pot,
                 "Resample non-power-of-two input to the nearest power of two (separable "
                 "Lanczos-3)");
   sub->add_flag("-r,--recursive", args->recursive,

@@ -14,31 +14,17 @@ struct CompressArgs {
   std::vector<std::string> inputs;  ///< Files, folders, @lists; "-" = stdin (single mode).
   std::string output;               ///< A file, "-", or (batch) a folder.
   std::string container;            ///< "pvr", "ktx" or "ktx2"; "" = from the output's extension.
-  std::string format = "pvrtc1-4";
-  std::string quality = "normal";
-  bool mipmaps = false;
-  int mip_levels = 0;  ///< --mip-levels N (implies --mipmaps); 0 = the full chain.
-  std::string mip_filter = "box";
-  bool srgb = false;
-  bool resize_pot = false;
-  bool cube = false;   ///< --cube: the inputs are faces (6 per layer).
-  bool array = false;  ///< --array: the inputs are layers.
-  bool flip_y = false;
-  bool premultiply = false;
-  bool alpha_bleed = false;
-  bool alpha_weighted = false;  ///< --alpha-weighted (4 bpp, straight alpha).
-  bool normal_map = false;
-  int zstd = 0;  ///< --zstd [LEVEL] (KTX 2.0); 0 = none.
+  /// The options as typed (`words.container` is `container` once known: `recorded_options`).
+  texture_file::RecordedOptions words;
   bool json = false;
   bool quiet = false;
   bool recursive = false;
   bool skip_up_to_date = false;
-  int iterations = -1;          ///< -1: the quality preset's schedule.
-  int exact_search_rounds = 0;  ///< 0: the quality preset's schedule.
 };
 
-/// The library options of these arguments, with `threads` encoder threads.
-texture_file::CompressOptions compress_options(const CompressArgs& args, int threads);
+/// The library options of these arguments, with `threads` encoder threads
+/// (texture_file::compress_options; a failure names the flags as this CLI spells them).
+Result<texture_file::CompressOptions> compress_options(const CompressArgs& args, int threads);
 
 /// The texture shape of --cube / --array.
 texture_file::TextureShape texture_shape(const CompressArgs& args);

@@ -139,7 +139,8 @@ void plan_texture_jobs(const CompressArgs& args, const std::string& ext,
       const fs::path rel = d.lexically_normal().lexically_relative(base);
       if (!rel.empty() && rel != ".") name /= rel;
       Job job;
-      for (const fs::path& f : texture_order(files, args.cube)) job.inputs.push_back(f.string());
+      for (const fs::path& f : texture_order(files, args.words.cube))
+        job.inputs.push_back(f.string());
       job.output = (out_dir / name).string() + ext;
       if (job.inputs.empty()) {
         job.inputs.push_back(d.string());
@@ -180,7 +181,7 @@ std::vector<Job> plan_jobs(const CompressArgs& args, const std::string& ext,
     }
   }
   const fs::path out_dir = args.output;
-  if (args.cube || args.array) {
+  if (args.words.cube || args.words.array) {
     plan_texture_jobs(args, ext, words, jobs, usage_problems);
     words.clear();
   }
@@ -255,15 +256,20 @@ Outcome run_job(const Job& job, const CompressArgs& args, const std::string& con
     }
     images.push_back(std::move(loaded).value());
   }
-  Result<texture_file::CompressedImage> made = texture_file::compress_images(
-      std::move(images), texture_shape(args), compress_options(args, threads), job.inputs);
+  Result<texture_file::CompressOptions> options = compress_options(args, threads);
+  if (!options) {
+    o.error = options.status().message;
+    return o;
+  }
+  Result<texture_file::CompressedImage> made =
+      texture_file::compress_images(std::move(images), texture_shape(args), *options, job.inputs);
   if (!made) {
     o.error = cli_option_names(made.status().message);
     return o;
   }
   const texture_file::CompressedTexture& tex = made->texture;
   texture_file::Ktx2Options ktx2;
-  ktx2.zstd_level = args.zstd;
+  ktx2.zstd_level = args.words.zstd;
   Result<std::vector<std::uint8_t>> file =
       texture_file::serialise_texture(tex, container_of(container), ktx2);
   if (!file) {

@@ -120,17 +120,17 @@ CompressArgs compress_args(const ViewSettings& s, const std::string& input,
   CompressArgs a;
   a.inputs = {input};
   a.output = output;
-  a.format = s.format;
-  a.quality = s.quality;
-  a.alpha_bleed = s.alpha_bleed;
-  a.alpha_weighted = s.alpha_weighted;
-  a.premultiply = s.premultiply;
-  a.normal_map = s.normal_map;
-  a.srgb = s.srgb;
-  a.mip_levels = s.mip_levels;
-  a.mipmaps = s.mip_levels > 0;
+  a.words.format = s.format;
+  a.words.quality = s.quality;
+  a.words.alpha_bleed = s.alpha_bleed;
+  a.words.alpha_weighted = s.alpha_weighted;
+  a.words.premultiply = s.premultiply;
+  a.words.normal_map = s.normal_map;
+  a.words.srgb = s.srgb;
+  a.words.mip_levels = s.mip_levels;
+  a.words.mipmaps = s.mip_levels > 0;
   // --mip-filter only means something with a chain (compress refuses it otherwise).
-  a.mip_filter = s.mip_levels > 0 ? s.mip_filter : "box";
+  a.words.mip_filter = s.mip_levels > 0 ? s.mip_filter : "box";
   return a;
 }
 

@@ -188,7 +188,9 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
   if (std::string p = compress_usage_problem(args, "pvr"); !p.empty()) {
     return Status::error(ErrorCode::invalid_argument, p);
   }
-  texture_file::CompressOptions options = compress_options(args, threads);
+  Result<texture_file::CompressOptions> checked = compress_options(args, threads);
+  if (!checked) return checked.status();
+  texture_file::CompressOptions options = std::move(*checked);
   options.encode.progress = progress;
   std::vector<ImageRGBA8> images{input.image};
   const std::vector<std::string> names{input.name};
