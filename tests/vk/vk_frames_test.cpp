@@ -2,7 +2,8 @@
 // 2 and 3 frames in flight with the GPU held behind by a timeline semaphore, several views a
 // frame (more than a descriptor pool holds), each output copied out in the frame's own command
 // buffer; dynamic resolution (a new render size every frame, inside max-size G-buffer images
-// padded with other values); an engine-owned output image; a device without shaderFloat64. Each
+// padded with other values); an engine-owned output image; a device without shaderFloat64;
+// shader binaries and pipeline caches, also compiled without a device for two device kinds. Each
 // output is compared bit for bit with the same G-buffer run alone (one record, submitted and
 // waited for, by a component created for that size); every run is under the validation layer
 // with synchronization validation (any message fails the test).
@@ -113,7 +114,7 @@ void frame_loop(Engine& e, vk::AdaptiveSupersampler& aa, std::uint32_t F,
       vk::AdaptiveFrame f = view.in->frame;
       f.render_size = view.size;
       f.output = view.output;
-      Result<vk::AdaptiveRecord> r = aa.record(p.cmd, f);
+      Result<vk::AdaptiveOutput> r = aa.record(p.cmd, f);
       ASSERT_TRUE(r.ok()) << r.status().message;
       EXPECT_EQ(r->view, v);
       EXPECT_EQ(r->frame_slot, slot);
@@ -230,7 +231,7 @@ TEST_F(VkFrames, EngineOwnedOutput) {
   VkCommandBuffer cmd = engine_->begin();
   vk::AdaptiveFrame f = in->frame;
   f.output = out.resource;
-  Result<vk::AdaptiveRecord> r = (*aa)->record(cmd, f);
+  Result<vk::AdaptiveOutput> r = (*aa)->record(cmd, f);
   ASSERT_TRUE(r.ok()) << r.status().message;
   EXPECT_EQ(r->colour.image, out.image);
   engine_->submit_and_wait(cmd);
@@ -352,6 +353,61 @@ TEST_F(VkFrames, ShaderBinaryAndPipelineCache) {
   EXPECT_NE(c.status().message.find("not a tessera shader binary"), std::string::npos);
   EXPECT_EQ(c.status().message.find('\n'), std::string::npos);
   vkDestroyPipelineCache(dev, cache, nullptr);
+}
+
+/// The offline path: a shader binary compiled without a device for two device kinds (this one,
+/// and the same without shaderFloat64) loads on both and gives the runtime-compiled images; one
+/// made for this device alone is refused by the device without fp64.
+TEST_F(VkFrames, ShaderBinaryCompiledWithoutADevice) {
+  const SceneGBuffer g = scene_gbuffer(16, 12, 2);
+  const auto o = scene_options<vk::AdaptiveSupersamplerOptions>(g);
+  Result<vk::AdaptiveShaderTarget> here =
+      vk::AdaptiveSupersampler::shader_target(engine_->context());
+  ASSERT_TRUE(here.ok()) << here.status().message;
+  ASSERT_TRUE(here->float64);
+  vk::AdaptiveShaderTarget no_fp64 = *here;
+  no_fp64.float64 = false;
+  using Binary = Result<std::vector<std::uint8_t>>;
+  const Binary both = vk::AdaptiveSupersampler::compile_shader_binary(o, {*here, no_fp64, *here});
+  const Binary alone = vk::AdaptiveSupersampler::compile_shader_binary(o, {*here});
+  ASSERT_TRUE(both.ok()) << both.status().message;
+  ASSERT_TRUE(alone.ok()) << alone.status().message;
+  EXPECT_GT(both->size(), alone->size() + alone->size() / 2);  // two entries (one per kind)
+  const Binary none = vk::AdaptiveSupersampler::compile_shader_binary(o, {});
+  ASSERT_FALSE(none.ok());
+  EXPECT_EQ(none.status().code, ErrorCode::invalid_argument);
+  auto bad_hook = o;
+  bad_hook.hook.source += "\nvoid broken( {}\n";
+  const Binary bad = vk::AdaptiveSupersampler::compile_shader_binary(bad_hook, {*here});
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.status().message.find("scene_hook:"), std::string::npos) << bad.status().message;
+
+  auto loaded = o;
+  loaded.shader_binary = *both;
+  const VkFrameOut compiled = run_vk(*engine_, o, g, Which::adaptive);
+  const VkFrameOut from_both = run_vk(*engine_, loaded, g, Which::adaptive);
+  EXPECT_EQ(from_both.colour, compiled.colour);
+  EXPECT_EQ(from_both.counts, compiled.counts);
+
+  TearDown();
+  EngineOptions eo;
+  eo.float64 = false;
+  make_engine(eo);
+  Result<vk::AdaptiveShaderTarget> small =
+      vk::AdaptiveSupersampler::shader_target(engine_->context());
+  ASSERT_TRUE(small.ok());
+  EXPECT_FALSE(small->float64);
+  const VkFrameOut compiled_float = run_vk(*engine_, o, g, Which::adaptive);
+  const VkFrameOut loaded_float = run_vk(*engine_, loaded, g, Which::adaptive);
+  EXPECT_EQ(loaded_float.colour, compiled_float.colour);
+  EXPECT_EQ(loaded_float.counts, compiled_float.counts);
+  auto wrong = o;
+  wrong.shader_binary = *alone;
+  auto c = vk::AdaptiveSupersampler::create(engine_->context(), wrong);
+  ASSERT_FALSE(c.ok());
+  EXPECT_EQ(c.status().code, ErrorCode::invalid_argument);
+  EXPECT_NE(c.status().message.find("shader_binary: made for other options"), std::string::npos)
+      << c.status().message;
 }
 
 }  // namespace
