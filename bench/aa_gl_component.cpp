@@ -38,15 +38,15 @@ double median(std::vector<double> v) {
 }
 
 /// Median per pass name over frames, in first-frame order; "budget*" passes summed per frame.
-std::string passes_json(const std::vector<std::vector<gl::PassTime>>& frames, double* total) {
+std::string passes_json(const std::vector<std::vector<PassTime>>& frames, double* total) {
   std::vector<std::string> order;
   std::map<std::string, std::vector<double>> ms;
   for (const auto& f : frames) {
     std::map<std::string, double> sum;
-    for (const gl::PassTime& p : f) {
+    for (const PassTime& p : f) {
       const std::string name = p.pass.rfind("budget_", 0) == 0 ? "budget" : p.pass;
       if (std::find(order.begin(), order.end(), name) == order.end()) order.push_back(name);
-      sum[name] += p.ms;
+      sum[name] += p.wall_ms;
     }
     for (const auto& [k, v] : sum) ms[k].push_back(v);
   }
@@ -136,7 +136,7 @@ gl::AdaptiveSupersamplerOptions component_options(const Args& a, AdaptiveSchedul
 /// One JSON line: `method`'s samples %, whether its image is the renderer's (`same`: -1 for
 /// not compared) and the median pass times.
 void print_method(const Args& a, const char* method,
-                  const std::vector<std::vector<gl::PassTime>>& times, std::uint64_t extra,
+                  const std::vector<std::vector<PassTime>>& times, std::uint64_t extra,
                   long long budget, long long same) {
   const std::size_t pixels = std::size_t(a.w) * std::size_t(a.h);
   double total = 0;
@@ -177,15 +177,15 @@ int main(int argc, char** argv) {
   shading.heavy_terms = 256;
 
   // gl::DeferredRenderer: warm-up, then timed frames.
-  std::vector<std::vector<gl::PassTime>> dgl_frames;
-  gl::ShadeResult dgl_result;
+  std::vector<std::vector<PassTime>> dgl_frames;
+  deferred::ShadeResult dgl_result;
   for (int f = 0; f <= frames; ++f) {
-    Result<gl::ShadeResult> r = (*dgl)->shade_adaptive(shading, deferred::AdaptiveOptions{});
+    Result<deferred::ShadeResult> r = (*dgl)->shade_adaptive(shading, AdaptiveThresholds{});
     if (!r) return fail(r.status().message);
-    if (f > 0) dgl_frames.push_back(r->wall_passes);
+    if (f > 0) dgl_frames.push_back(r->passes);
     dgl_result = std::move(*r);
   }
-  const gl::ShadeResult* ref = &dgl_result;
+  const deferred::ShadeResult* ref = &dgl_result;
   gl::AdaptiveFrame frame;
   const int classes = bound_gbuffer(frame);
   std::uint64_t asked = 0;
@@ -205,14 +205,14 @@ int main(int argc, char** argv) {
     if (!c) return fail(c.status().message);
     frame.budget.reset();
     if (run.budget) frame.budget = std::int64_t(double(asked) * a.budget_fraction);
-    std::vector<std::vector<gl::PassTime>> times;
+    std::vector<std::vector<PassTime>> times;
     std::uint64_t extra = 0;
     long long same = -1;
     for (int f = 0; f <= frames; ++f) {
       auto r = (*c)->dispatch(frame);
       if (!r) return fail(r.status().message);
       if (f == 0) continue;
-      times.push_back(r->wall_passes);
+      times.push_back(r->passes);
       extra = r->extra_samples;
       Result<ImageRGBAF> img = gl::read_texture_rgbaf(r->colour);
       if (!img) return fail(img.status().message);

@@ -124,11 +124,11 @@ struct AaReport {
   unsigned long long extra = 0;
   std::vector<std::pair<std::string, double>> passes;  // the adaptive frame's, in order
 
-  /// The adaptive frame's pass times (gl::PassTime or vk::PassTime: pass, ms).
-  template <class PassTime>
-  void set_passes(const std::vector<PassTime>& times) {
+  /// The adaptive frame's pass times: each pass's `ms` (&PassTime::wall_ms on GL, whose
+  /// llvmpipe reads 0 for compute; &PassTime::gpu_ms on Vulkan).
+  void set_passes(const std::vector<tessera::PassTime>& times, double tessera::PassTime::*ms) {
     passes.clear();
-    for (const PassTime& t : times) passes.emplace_back(t.pass, t.ms);
+    for (const tessera::PassTime& t : times) passes.emplace_back(t.pass, t.*ms);
   }
 };
 

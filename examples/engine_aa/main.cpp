@@ -289,7 +289,7 @@ int main(int argc, char** argv) {
   tessera::gl::AdaptiveFrame frame;
   frame.gbuffer = {rt[0], rt[1], 0, 0};
   if (a.budget >= 0) frame.budget = a.budget;
-  tessera::Result<tessera::gl::AdaptiveFrameResult> adaptive = (*aa)->dispatch(frame);
+  tessera::Result<tessera::gl::AdaptiveOutput> adaptive = (*aa)->dispatch(frame);
   if (!adaptive) return fail(adaptive.status().message);
   // ---- end of the integration: adaptive->colour is the anti-aliased HDR image ----
 
@@ -305,7 +305,7 @@ int main(int argc, char** argv) {
   glGetTextureImage(adaptive->sample_counts, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE,
                     GLsizei(counts.size()), counts.data());
   const auto extra = adaptive->extra_samples;
-  const auto adaptive_passes = adaptive->wall_passes;
+  const auto adaptive_passes = adaptive->passes;
   auto reference = (*aa)->dispatch_reference(frame);
   if (reference) reference = (*aa)->dispatch_reference(frame);
   if (!reference) return fail(reference.status().message);
@@ -329,7 +329,7 @@ int main(int argc, char** argv) {
   rep.gbuffer_ms = gbuffer_ms;
   rep.first_ms = first_ms;
   rep.reference_ms = reference_ms;
-  rep.set_passes(adaptive_passes);
+  rep.set_passes(adaptive_passes, &tessera::PassTime::wall_ms);
   for (const auto& pass : rep.passes) rep.adaptive_ms += pass.second;
   print_report(a, platform, rep, window_diff);
   glDeleteBuffers(1, &ubo);

@@ -35,7 +35,7 @@ std::string collect(Device& d, tessera::vk::AdaptiveSupersampler& aa, std::uint3
     if (!p) return p.status().message;
     s.pending.frame = p->frame;
     v.extra_samples = p->extra_samples;
-    v.tessera_gpu_ms = p->total_ms();
+    v.tessera_gpu_ms = p->total_gpu_ms();
   }
   out.push_back(s.pending);
   return "";
@@ -84,7 +84,7 @@ std::string run_frame_loop(Device& d, const GeometryPipeline& gp, const FrameLoo
       in.hook_sets = {f.set};
       in.render_size = size;
       if (o.budget >= 0) in.budget = o.budget;
-      tessera::Result<tessera::vk::AdaptiveRecord> r = aa.record(s.cmd, in);
+      tessera::Result<tessera::vk::AdaptiveOutput> r = aa.record(s.cmd, in);
       if (!r) {
         err = r.status().message;
         break;

@@ -131,7 +131,7 @@ tessera::Result<Shot> frame(engine::Device& d, const engine::GeometryPipeline& g
   if (a.budget >= 0) in.budget = a.budget;
   // This frame is the only one in flight (the engine waited for the last): slot 0.
   if (tessera::Status st = aa.begin_frame(0); !st.ok()) return st;
-  tessera::Result<tessera::vk::AdaptiveRecord> r = kind == Kind::adaptive ? aa.record(cmd, in)
+  tessera::Result<tessera::vk::AdaptiveOutput> r = kind == Kind::adaptive ? aa.record(cmd, in)
                                                    : kind == Kind::reference
                                                        ? aa.record_reference(cmd, in)
                                                        : aa.record_first_sample(cmd, in);
@@ -291,10 +291,10 @@ int run(engine::Device& d, const Args& a, engine::Window* window) {
           engine::measure(a, shots[0].image, shots[1].image, shots[2].image,
                           (unsigned long long)shots[0].profile.extra_samples, rep);
       rep.gbuffer_ms = shots[0].gbuffer_ms;
-      rep.set_passes(shots[0].profile.passes);
-      rep.adaptive_ms = shots[0].profile.total_ms();
-      rep.reference_ms = shots[1].profile.total_ms();
-      rep.first_ms = shots[2].profile.total_ms();
+      rep.set_passes(shots[0].profile.passes, &tessera::PassTime::gpu_ms);
+      rep.adaptive_ms = shots[0].profile.total_gpu_ms();
+      rep.reference_ms = shots[1].profile.total_gpu_ms();
+      rep.first_ms = shots[2].profile.total_gpu_ms();
       const std::string err =
           a.out.empty() ? "" : engine::write_aa_outputs(a, images, shots[0].counts);
       if (!err.empty()) {

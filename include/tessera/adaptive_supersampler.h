@@ -4,7 +4,7 @@
 // format, shared by gl::AdaptiveSupersampler (tessera/gl_adaptive.h) and vk::AdaptiveSupersampler
 // (tessera/vk_adaptive.h), whose option structs extend `AdaptiveCommonOptions` with their
 // backend's bindings. Part of the core `tessera` library: plain structs, no OpenGL, no Vulkan.
-// The CPU experiment's counterpart is deferred::AdaptiveOptions (tessera/deferred.h). The hook
+// The thresholds are AdaptiveThresholds (tessera/adaptive_thresholds.h), as on the CPU. The hook
 // contract, the G-buffer layout and the passes: docs/engine_integration.md. Checked by each
 // backend's `create` (one-line errors naming the field); tests: tests/gl/gl_adaptive_test.cpp,
 // tests/vk/vk_adaptive_test.cpp.
@@ -15,6 +15,8 @@
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "tessera/adaptive_thresholds.h"
 
 namespace tessera {
 
@@ -42,23 +44,6 @@ struct AdaptiveShadingHook {
   std::string source;                 ///< GLSL defining vec4 tessera_shade_sample(ivec2, float).
   std::string name = "shading hook";  ///< Used in compile errors ("name:line: ...").
   std::vector<std::filesystem::path> include_paths;  ///< Searched before the shipped GLSL.
-};
-
-/// The paper's thresholds (§3.1; the same formulas and defaults as deferred::AdaptiveOptions).
-/// With K = m*m - 1: k = clamp(round(max(k_d, k_n, k_s)), 0, K), k_d = c_depth*K*Var(d/mean d),
-/// k_n = c_normal*K*sqrt(1 - min |nbar.n_i|), k_s = c_shade*K*r when the luma range r around
-/// the pixel is >= max(t_min, l_max*t_edge), else 0. A window mixing empty and non-empty texels
-/// gets K. The unrounded max is the pixel's metric strength (what the budget ranks).
-struct AdaptiveThresholds {
-  float c_depth = 200.0f;
-  float c_normal = 2.0f;
-  float c_shade = 8.0f;
-  float t_min = 0.0312f;
-  float t_edge = 0.0625f;
-  bool use_geometry = true;  ///< k_d and k_n.
-  bool use_shading = true;   ///< k_s.
-  float seam_factor = 4.0f;  ///< UV-seam rule of the footprint (adaptive_samples.glsl).
-  int force_k = -1;          ///< >= 0: every pixel asks for min(force_k, K) (strength force_k).
 };
 
 /// How the extra samples are scheduled on the GPU; all give the same image, bit for bit.

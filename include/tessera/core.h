@@ -12,12 +12,14 @@
 //
 // API conventions every public header follows (nodiscard statuses, thread counts, options
 // structs, one namespace per system): docs/architecture.md, "Conventions".
+// Tests: tests/unit/core_test.cpp (Status, images, sRGB), file_write_test.cpp (atomic writes).
 #pragma once
 
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -89,6 +91,21 @@ struct Parallel {
   int threads = 0;  ///< 0 = all hardware threads, 1 = the calling thread only; results never
                     ///< depend on it.
 };
+
+/// Times of one named pass of a renderer (GPU or CPU), in milliseconds; NaN where not measured:
+/// the CPU has no GPU time, a Vulkan profile has GPU timestamps only (its commands run after the
+/// record returns), a GL driver's impossible GL_TIME_ELAPSED reads NaN.
+struct PassTime {
+  std::string pass;
+  /// Host time: on GL from the pass's dispatch to the end of a closing glFinish; on the CPU the
+  /// pass's call.
+  double wall_ms = std::numeric_limits<double>::quiet_NaN();
+  /// GPU time: GL_TIME_ELAPSED, or the difference of Vulkan timestamps.
+  double gpu_ms = std::numeric_limits<double>::quiet_NaN();
+};
+/// The sums of the passes' times (NaN when one of them is NaN; 0 for no pass).
+double total_wall_ms(const std::vector<PassTime>& passes);
+double total_gpu_ms(const std::vector<PassTime>& passes);
 
 // ---------------------------------------------------------------------------------------------
 // Images

@@ -2,7 +2,7 @@
 //
 // What: `DeferredRenderer` rasterises a scene into an enlarged m x m G-buffer and shades each
 //   pixel with 1 + k of its m^2 samples, k from the window's depth, normal and shading
-//   variation (`AdaptiveOptions`); baselines: the reference (all samples), 1 spp, FXAA 3.11,
+//   variation (`AdaptiveThresholds`); baselines: the reference (all samples), 1 spp, FXAA 3.11,
 //   edge-per-sample.
 // Paper: Holländer, Boubekeur & Eisemann 2013, "Adaptive Supersampling for Deferred
 //   Anti-Aliasing", JCGT 2(1): Listing 1, §3.1 (metrics), §4.1 (texture footprints).
@@ -11,6 +11,8 @@
 //   "Adaptive supersampling, pass by pass".
 // Threads: results are bit-identical for any thread count; a `DeferredRenderer` is not
 //   thread-safe (it owns the rasteriser), its const shading methods may run concurrently.
+// Tests: tests/unit/deferred_test.cpp (kernels, metrics, the renderer), deferred_edge_test.cpp
+// (edge-per-sample), tests/gl/gl_deferred_renderer_test.cpp (GPU = CPU).
 #pragma once
 
 #include <array>
@@ -19,6 +21,7 @@
 #include <span>
 #include <vector>
 
+#include "tessera/adaptive_thresholds.h"
 #include "tessera/core.h"
 #include "tessera/math.h"
 #include "tessera/raster.h"
@@ -144,34 +147,7 @@ ShadingOptions scene_shading(const scene::Scene& scene, int extra_lights = 0,
 // Adaptive sampling
 // ---------------------------------------------------------------------------------------------
 
-/// Constants of the metrics. With n = m^2 the window size and K = n - 1 the most extra samples,
-/// per pixel (the paper's formulas; the constants c are expressed in units of K so that one set
-/// serves every m, and depth is made scale-free by dividing by the mean):
-///   k_d = c_depth  * K * Var(d_i / mean(d))                       (over the n window samples)
-///   k_n = c_normal * K * sqrt(1 - min_ij |nbar . n_ij|)           (nbar: normalised mean)
-///   k_s = 0 if r < max(t_min, l_max * t_edge), else c_shade * K * r
-///         with l_max, l_min, r = l_max - l_min over the luma of S at the pixel and its four
-///         direct neighbours (luma: Rec.601 weights on sRGB-encoded, clamped colour, as FXAA)
-///   k   = clamp(round(max(k_d, k_n, k_s)), 0, K)
-/// Background samples (no geometry) take part in k_d with the far-plane depth and are skipped
-/// by k_n; a window mixing background and geometry gets k = K.
-/// The defaults were chosen on the built-in scene and the dungeon benchmark scene: at m = 4 they
-/// shade a fraction of the samples for a PSNR against the reference close to full
-/// supersampling's (docs/benchmarks/aa.md has both).
-struct AdaptiveOptions {
-  float c_depth = 200.0f;
-  float c_normal = 2.0f;
-  float c_shade = 8.0f;
-  float t_min = 0.0312f;     ///< As FXAA's "edge threshold min" ("visible limit").
-  float t_edge = 0.0625f;    ///< As FXAA's "edge threshold" ("overkill": texture detail too).
-  bool use_geometry = true;  ///< k_d and k_n (Figure 8 ablation: shading only when false).
-  bool use_shading = true;   ///< k_s (Figure 8 ablation: geometry only when false).
-  /// UV seam detection for the material-boundary rule: a jump larger than this many times the
-  /// derivative prediction (plus 1e-6) between adjacent window samples is a seam.
-  float seam_factor = 4.0f;
-  /// Tests and experiments: when >= 0, every pixel uses k = min(force_k, m^2 - 1).
-  int force_k = -1;
-};
+// The thresholds: AdaptiveThresholds (tessera/adaptive_thresholds.h), shared with the GPU.
 
 /// Depth term k_d of a window of `n` linear depths (kernel; K = n - 1).
 float metric_depth(std::span<const float> depths, float c_depth);
@@ -191,6 +167,32 @@ struct AdaptiveResult {
   double ms_first = 0;                ///< Shading S.
   double ms_metric = 0;               ///< Evaluating k.
   double ms_rest = 0;                 ///< Shading the k extra samples and averaging.
+};
+
+/// What the experiment's GPU renderers (gl::DeferredRenderer; the Vulkan twin inside
+/// `tessera aa --backend vk`) return from one shading call: the image, the pass times and, for
+/// adaptive and edge-per-sample, the per-pixel sample counts.
+struct ShadeResult {
+  ImageRGBAF image;                   ///< Linear RGB, alpha 1 (w x h).
+  std::vector<std::uint8_t> samples;  ///< Shaded samples per pixel (k + 1); empty for others.
+  std::uint64_t samples_shaded = 0;   ///< Sum of `samples` (or w*h*n for the reference, w*h
+                                      ///< for 1 spp).
+  /// Per pass, in order. GL: gpu_ms = GL_TIME_ELAPSED (NaN when the driver's result is
+  /// impossible; Mesa 22.3 llvmpipe reports 0 for compute dispatches), wall_ms = host time
+  /// from its dispatch to the end of glFinish (every pass ends with glFinish): what llvmpipe's
+  /// compute work costs. Vulkan: gpu_ms from timestamps, wall_ms the submission's submit-to-
+  /// fence time shared out by the GPU times.
+  std::vector<PassTime> passes;
+  double total_gpu_ms() const;   ///< Sum of the passes' gpu_ms.
+  double total_wall_ms() const;  ///< Sum of the passes' wall_ms.
+};
+
+/// FXAA's 8-bit result, from the same renderers.
+struct FxaaResult {
+  ImageRGBA8 image;
+  std::vector<PassTime> passes;  ///< As ShadeResult::passes.
+  double total_gpu_ms() const;
+  double total_wall_ms() const;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -251,7 +253,7 @@ class DeferredRenderer {
   ImageRGBAF shade_default(const GBuffer& gb, const ShadingOptions& shading) const;
   /// The adaptive method (Listing 1).
   AdaptiveResult shade_adaptive(const GBuffer& gb, const ShadingOptions& shading,
-                                const AdaptiveOptions& adaptive) const;
+                                const AdaptiveThresholds& adaptive) const;
 
  private:
   DeferredRenderer() = default;

@@ -10,6 +10,8 @@
 //
 // Both calls return plain result structs and print nothing; writing files is the caller's
 // business (`tessera seams` / `tessera aa`).
+// Tests: tests/unit/experiments_test.cpp, experiments_aa_test.cpp,
+// experiments_seams_backend_test.cpp.
 #pragma once
 
 #include "tessera/experiments/aa.h"

@@ -13,6 +13,8 @@
 //   neighbours share an edge in opposite directions.
 // Threads: all types are immutable after construction; sampling and rendering are const and
 //   may run concurrently (a `FaceRenderer` owns a rasteriser: one per thread).
+// Tests: tests/unit/faces_test.cpp (sampling, adjacency, the renderer),
+// tests/gl/gl_face_renderer_test.cpp.
 #pragma once
 
 #include <array>

@@ -30,7 +30,7 @@ struct QuadMesh;
 
 /// One face's record in the face-record buffer: std430, 80 bytes, five ivec4:
 ///
-///   struct FaceRecord {          // GLSL, std430 (share/tessera/glsl/seams.glsl)
+///   struct TesseraFaceRecord {   // GLSL, std430 (share/tessera/glsl/seams.glsl)
 ///     ivec4 info;                // x: class (the texture array), y: layer in it,
 ///                                // z, w: level-0 width and height in texels
 ///     ivec4 neighbour;           // face across edge e (0..3), -1 on a border
@@ -41,7 +41,7 @@ struct QuadMesh;
 ///     ivec4 corner_mapping;      // m1 * 16 + m2: corner transform = table[m2] after
 ///                                // table[m1] (across edge c, then across the next edge)
 ///   };
-///   layout(std430) readonly buffer Faces { FaceRecord faces[]; };
+///   layout(std430) readonly buffer Faces { TesseraFaceRecord faces[]; };
 ///
 /// Exactly the CPU `FaceTextureSet`'s adjacency (`adjacency(f)`) and corner links
 /// (`corner(f, c)`), so the GPU and the CPU traverse the same faces through the same transforms.

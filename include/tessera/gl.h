@@ -273,12 +273,6 @@ Result<Program> link_program(const std::vector<glsl::Source>& stages,
 // Timers, render targets, read-back
 // ---------------------------------------------------------------------------------------------
 
-/// GPU time of one named pass.
-struct PassTime {
-  std::string pass;
-  double ms = 0.0;  ///< GL_TIME_ELAPSED, milliseconds.
-};
-
 /// GL_TIME_ELAPSED queries around named passes. Passes must not nest (GL allows one elapsed
 /// query at a time); each begin/end pair is one query, read back by `collect`.
 class GpuTimer {
@@ -287,7 +281,8 @@ class GpuTimer {
   Status begin(std::string pass);
   /// Ends the open pass. Fails if none is open.
   Status end();
-  /// Waits for every ended pass and returns them in begin order (clears them). Fails if a pass
+  /// Waits for every ended pass and returns them in begin order (clears them; PassTime::gpu_ms
+  /// set, wall_ms NaN). Fails if a pass
   /// is still open, or (unsupported) if the driver reports a pass longer than the wall time
   /// from its `begin` to its result (a driver bug; Mesa 22.3 llvmpipe's first query in a
   /// context does this, which `Context::create` works around with one discarded query).

@@ -59,18 +59,20 @@ struct AdaptiveFrame {
   std::optional<std::int64_t> budget;
 };
 
-/// What a dispatch returns.
-struct AdaptiveFrameResult {
+/// What a dispatch leaves (vk::AdaptiveOutput's twin; GL runs the passes within the call, so
+/// the profile's figures come with it, where Vulkan's come from read_profile).
+struct AdaptiveOutput {
   /// The output texture (owned by the component, options.width x options.height): its
   /// top-left `render_size` texels hold the image.
   std::uint32_t colour = 0;
-  AdaptiveExtent render_size{};     ///< The texels written, from (0, 0).
   std::uint32_t sample_counts = 0;  ///< GL_R8UI k + 1 per pixel (0 unless requested).
+  AdaptiveExtent render_size{};     ///< The texels written, from (0, 0).
   /// With `profile`: the extra samples shaded (sum of k) and, per pass in order, the
-  /// GL_TIME_ELAPSED time (NaN when the driver's is impossible) and the host time.
+  /// GL_TIME_ELAPSED time (gpu_ms, NaN when the driver's is impossible) and the host time
+  /// (wall_ms).
   std::uint64_t extra_samples = 0;
   std::vector<PassTime> passes;
-  std::vector<PassTime> wall_passes;
+  double total_gpu_ms() const;
   double total_wall_ms() const;
 };
 
@@ -93,11 +95,11 @@ class AdaptiveSupersampler {
   /// (m*w) x (m*h), of an integer/sRGB/unknown format or lacks a channel the layout reads, the
   /// render size exceeds the options' size, or the budget is negative. The message names the
   /// slot or the size.
-  Result<AdaptiveFrameResult> dispatch(const AdaptiveFrame& frame);
+  Result<AdaptiveOutput> dispatch(const AdaptiveFrame& frame);
   /// Full supersampling: all m*m samples, footprint 1 (same checks).
-  Result<AdaptiveFrameResult> dispatch_reference(const AdaptiveFrame& frame);
+  Result<AdaptiveOutput> dispatch_reference(const AdaptiveFrame& frame);
   /// S alone: one sample per pixel (sample 0 of the order), footprint m.
-  Result<AdaptiveFrameResult> dispatch_first_sample(const AdaptiveFrame& frame);
+  Result<AdaptiveOutput> dispatch_first_sample(const AdaptiveFrame& frame);
 
   /// Replaces the thresholds for the following dispatches (an upload of the parameter block;
   /// no recompilation), e.g. for tuning per scene.

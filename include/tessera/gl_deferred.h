@@ -16,7 +16,7 @@
 //    the technique. The engine baseline, sRGB8, FXAA and m = 1 run deferred_passes.comp.
 //  * Compute passes (share/tessera/glsl/deferred_passes.comp): S = the first sample of every
 //    window (footprint scale m), k per pixel from the depth/normal/shading metrics
-//    (adaptive_metrics.glsl, AdaptiveOptions' formulas and constants), the k extra samples
+//    (adaptive_metrics.glsl, AdaptiveThresholds' formulas and constants), the k extra samples
 //    (Figure-3 order, footprints of adaptive_samples.glsl: scaled to the samples used, §4.1
 //    material-boundary and UV-seam rules) and the resolve; the full-SSAA reference; 1 spp (S);
 //    FXAA 3.11 (fxaa.glsl) on the sRGB8-encoded 1 spp image; and the engine baseline, deferred
@@ -77,32 +77,6 @@ struct DeferredRendererOptions {
   int threads = 0;  ///< CPU threads for the texture chains and vertex transforms.
 };
 
-/// One GPU result: the image, the pass times and, for adaptive and edge-per-sample, the
-/// per-pixel sample counts.
-struct ShadeResult {
-  ImageRGBAF image;                   ///< Linear RGB, alpha 1 (w x h).
-  std::vector<std::uint8_t> samples;  ///< Shaded samples per pixel (k + 1); empty for others.
-  std::uint64_t samples_shaded = 0;   ///< Sum of `samples` (or w*h*n for the reference, w*h
-                                      ///< for 1 spp).
-  std::vector<PassTime> passes;       ///< GL_TIME_ELAPSED per pass, in order (NaN when the
-                                      ///< driver's result is impossible). Mesa 22.3 llvmpipe
-                                      ///< reports 0 for compute dispatches.
-  std::vector<PassTime> wall_passes;  ///< Host time of each pass from its dispatch to the end
-                                      ///< of glFinish (every pass ends with glFinish): what
-                                      ///< llvmpipe's compute work costs.
-  double total_ms() const;            ///< Sum of `passes`.
-  double total_wall_ms() const;       ///< Sum of `wall_passes`.
-};
-
-/// FXAA's 8-bit result.
-struct FxaaResult {
-  ImageRGBA8 image;
-  std::vector<PassTime> passes;
-  std::vector<PassTime> wall_passes;  ///< As ShadeResult::wall_passes.
-  double total_ms() const;
-  double total_wall_ms() const;
-};
-
 /// The GPU deferred renderer of one scene. Needs a current `Context` for every call.
 class DeferredRenderer {
  public:
@@ -136,21 +110,22 @@ class DeferredRenderer {
   Result<deferred::GBuffer> read_gbuffer() const;
 
   /// Full SSAA: all m^2 samples, footprint scale 1 (passes: "reference").
-  Result<ShadeResult> shade_reference(const deferred::ShadingOptions& shading);
+  Result<deferred::ShadeResult> shade_reference(const deferred::ShadingOptions& shading);
   /// 1 spp: the first sample, footprint scale m (passes: "first").
-  Result<ShadeResult> shade_default(const deferred::ShadingOptions& shading);
+  Result<deferred::ShadeResult> shade_default(const deferred::ShadingOptions& shading);
   /// Adaptive (passes: "first", "metrics", "extra").
-  Result<ShadeResult> shade_adaptive(const deferred::ShadingOptions& shading,
-                                     const deferred::AdaptiveOptions& adaptive);
+  Result<deferred::ShadeResult> shade_adaptive(const deferred::ShadingOptions& shading,
+                                               const AdaptiveThresholds& adaptive);
   /// Engine baseline (passes: "first", "edge_extra": classification + shading per tile).
-  Result<ShadeResult> shade_edge_per_sample(const deferred::ShadingOptions& shading,
-                                            const deferred::EdgePerSampleOptions& edge = {});
+  Result<deferred::ShadeResult> shade_edge_per_sample(
+      const deferred::ShadingOptions& shading, const deferred::EdgePerSampleOptions& edge = {});
   /// 1 spp, sRGB8 encoding and FXAA 3.11, all on the GPU (passes: "first", "srgb8", "fxaa").
-  Result<FxaaResult> shade_default_fxaa(const deferred::ShadingOptions& shading,
-                                        const deferred::FxaaOptions& fxaa = {});
+  Result<deferred::FxaaResult> shade_default_fxaa(const deferred::ShadingOptions& shading,
+                                                  const deferred::FxaaOptions& fxaa = {});
   /// FXAA 3.11 of an 8-bit image on the GPU (passes: "fxaa"); the CPU `deferred::fxaa`'s
   /// arithmetic. Independent of the G-buffer.
-  Result<FxaaResult> fxaa(const ImageRGBA8& image, const deferred::FxaaOptions& fxaa = {});
+  Result<deferred::FxaaResult> fxaa(const ImageRGBA8& image,
+                                    const deferred::FxaaOptions& fxaa = {});
 
   const std::filesystem::path& glsl_dir() const;
 

@@ -8,6 +8,8 @@
 // The seam backend is gl::FaceRenderer (tessera/gl_face_renderer.h), the AA backend
 // gl::DeferredRenderer (tessera/gl_deferred.h), each on a headless context of its own created
 // on the calling thread with the device TESSERA_EGL_DEVICE names (gl.h).
+// Tests: tests/gl/gl_face_renderer_test.cpp, tests/gl/gl_deferred_renderer_test.cpp,
+// tests/gl/aa_gl_cli_test.py, seams_gl_cli_test.py.
 #pragma once
 
 #include <filesystem>

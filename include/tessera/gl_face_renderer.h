@@ -46,6 +46,7 @@
 // query commands are executed per screen tile by the rasteriser threads, so the timer grows
 // more slowly with the pixel count than the wall time does; docs/benchmarks/seams_gl.md), so
 // use `wall_ms` (ended by glFinish) there; on hardware GPUs the timer is the pass time.
+// Tests: tests/gl/gl_face_renderer_test.cpp (against faces::FaceRenderer).
 #pragma once
 
 #include <filesystem>

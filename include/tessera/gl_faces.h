@@ -1,7 +1,7 @@
 // tessera/gl_faces.h — per-face (Ptex-style) textures for the GPU: a faces::FaceTextureSet packed
 // as one GL_TEXTURE_2D_ARRAY per face-resolution class plus a std430 face-record buffer, which
 // the shipped seams.glsl reads in the engine's own shaders (tessera_seams_sample_discard, ...).
-// Contract: `pack_faces` and `ptex_quad_mesh` (the layout of tessera/faces_gpu.h) are pure;
+// Contract: `pack_faces` (the layout of tessera/faces_gpu.h) is pure;
 // `FaceTextureSet::upload` and `bind` work on the OpenGL 4.5 core context current on the
 // calling thread, whoever made it (entry points as tessera/gl.h says: `load_entry_points` or
 // first-use resolution; no tessera `Context` needed), and fail with one line without one.
@@ -24,17 +24,13 @@
 namespace tessera::gl {
 
 // Per-face textures for the GPU (Toth 2013 / McDonald 2013 layout): the layout is the
-// backends' shared one (tessera/faces_gpu.h), named here as before.
-using faces::FaceClass;
-using faces::FaceRecord;
-using faces::PackedFaces;
-using faces::PackLimits;
-using faces::ptex_quad_mesh;
+// backends' shared one (tessera/faces_gpu.h: faces::PackedFaces, faces::FaceRecord, ...).
 
 /// faces::pack_faces with GL's names of the limits in its messages ("97 faces of 64x64 exceed
 /// GL_MAX_ARRAY_TEXTURE_LAYERS = 64", "above GL_MAX_TEXTURE_SIZE", "exceed
 /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE"); invalid_argument on an empty set. Pure (no GL).
-Result<PackedFaces> pack_faces(const faces::FaceTextureSet& set, const PackLimits& limits = {});
+Result<faces::PackedFaces> pack_faces(const faces::FaceTextureSet& set,
+                                      const faces::PackLimits& limits = {});
 
 struct FaceTextureSetOptions {
   /// The arrays' texel format (tessera/faces_gpu.h): GL_RGBA32F (the CPU texels, default),
@@ -62,7 +58,7 @@ struct FaceTextureSetBindings {
 
 /// The GL objects of a packed face set: one GL_TEXTURE_2D_ARRAY per class with every mip
 /// level uploaded from the CPU chains (no glGenerateMipmap: GL and CPU filter the same
-/// texels), a GL_SHADER_STORAGE_BUFFER of `FaceRecord`s, and two sampler objects: clamp-to-
+/// texels), a GL_SHADER_STORAGE_BUFFER of `faces::FaceRecord`s, and two sampler objects: clamp-to-
 /// border (0,0,0,0) and clamp-to-edge, both trilinear with anisotropy.
 class FaceTextureSet {
  public:
@@ -71,7 +67,7 @@ class FaceTextureSet {
   static Result<FaceTextureSet> upload(const faces::FaceTextureSet& set,
                                        const FaceTextureSetOptions& options = {});
 
-  const PackedFaces& layout() const { return layout_; }
+  const faces::PackedFaces& layout() const { return layout_; }
   int class_count() const { return int(arrays_.size()); }
   std::uint32_t array_texture(int cls) const { return arrays_[std::size_t(cls)].get(); }
   std::uint32_t record_buffer() const { return records_.get(); }
@@ -109,7 +105,7 @@ class FaceTextureSet {
   std::vector<std::string> glsl_defines(const FaceTextureSetBindings& b) const;
 
  private:
-  PackedFaces layout_;
+  faces::PackedFaces layout_;
   std::vector<Object> arrays_;
   Object records_, border_sampler_, clamp_sampler_;
   std::uint64_t texture_bytes_ = 0;

@@ -8,6 +8,7 @@
 // instead of the embedded copies). An engine that compiles its own shaders calls
 // `expand_includes` on them and compiles the full string itself (glShaderSource, shaderc, ...).
 // Every function is pure or reads files only; all are thread-safe.
+// Tests: tests/unit/glsl_test.cpp (includes, #line, logs), tests/glsl/ (the shipped GLSL compiled).
 #pragma once
 
 #include <filesystem>

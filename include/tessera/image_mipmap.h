@@ -28,6 +28,7 @@
 // `tessera compress --resize-pot`.
 //
 // All functions are deterministic (identical output for any thread count) and thread-safe.
+// Tests: tests/unit/mipmap_test.cpp.
 #pragma once
 
 #include <vector>

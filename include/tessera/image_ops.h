@@ -4,6 +4,7 @@
 // `texture_file::compress_image` applies them in the order its `CompressOptions` documents;
 // they are public so that a pipeline can run them on its own. Every function is deterministic
 // (the same bytes for any thread count) and thread-safe on distinct images.
+// Tests: tests/unit/image_ops_test.cpp.
 #pragma once
 
 #include "tessera/core.h"

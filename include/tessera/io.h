@@ -7,6 +7,8 @@
 // error message names the file and the problem in one line. Writers never leave a partial
 // output and never replace what is not the user's file (see `write_file_atomic`). "-" means
 // standard input or output wherever a path is taken.
+// Tests: tests/unit/io_test.cpp, io_png_fast_test.cpp, file_write_test.cpp;
+// tests/cli/cli_io_test.py.
 #pragma once
 
 #include <cstdint>

@@ -4,6 +4,7 @@
 // (m[column][row]) like OpenGL/glTF. `perspective` maps view-space depth to OpenGL clip space
 // (z in [-w, w] after projection, camera looking down -z). The vector functions keep GLSL's
 // names (`dot`, `cross`, `length`, `normalize`): the CPU kernels mirror the shaders.
+// Tests: tests/unit/scene_test.cpp (cameras and transforms), raster_test.cpp.
 #pragma once
 
 #include <cmath>

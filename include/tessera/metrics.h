@@ -18,6 +18,7 @@
 //    threshold x, the fraction of counted pixels whose error is >= x.
 //
 // All functions are deterministic (identical results for any thread count) and thread-safe.
+// Tests: tests/unit/metrics_test.cpp, ssim_exact_test.cpp.
 #pragma once
 
 #include <cstdint>

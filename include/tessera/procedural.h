@@ -3,6 +3,7 @@
 // Built-in demos and most tests use these images instead of files. Every generator is a pure
 // function of its arguments (integer hashing, no global random state), so the same call gives
 // the same bytes on every machine and thread count.
+// Tests: tests/unit/core_test.cpp (the procedural images are fixed bytes).
 #pragma once
 
 #include <cstdint>

@@ -12,6 +12,8 @@
 // Errors: one line naming the file ("teapot.ptx: level 0 face 12: zlib data corrupt"); every
 //   size is checked before allocating, no read outside the bytes (fuzz/fuzz_ptex.cpp).
 // Threads: pure functions, thread-safe.
+// Tests: tests/unit/ptex_test.cpp (reader, bad files), tests/gl/gl_faces_test.cpp (the Disney
+// samples).
 #pragma once
 
 #include <array>

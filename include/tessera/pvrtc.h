@@ -14,6 +14,8 @@
 //   data; power-of-two sizes, padded to at least 2x2 blocks (`block_count`).
 // Threads: every function is thread-safe; `EncodeOptions::threads` and `decode`'s `parallel`
 //   are worker counts (0 = all); the output bytes are the same for any count.
+// Tests: tests/unit/pvrtc_*_test.cpp; tests/oracle/pvrtc_oracle_test.cpp (PVRTexTool); tests/arch/
+// (bytes on every SIMD backend).
 #pragma once
 
 #include <cstddef>

@@ -38,6 +38,7 @@
 // A `Rasteriser` is not thread-safe (it owns scratch memory); use one per thread. Shaders are
 // called concurrently from several threads and must be thread-safe (pure functions of their
 // input plus read-only state).
+// Tests: tests/unit/raster_test.cpp, raster_output_test.cpp, raster_sample_pattern_test.cpp.
 #pragma once
 
 #include <array>

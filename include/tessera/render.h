@@ -10,6 +10,7 @@
 // Conventions shared with tools/glpeer: OpenGL clip space, counter-clockwise front faces, no
 // culling (glTF materials are double-sided in the test scenes), depth test less, background
 // `kBackground` (linear), colour resolved with a box filter in linear light, encoded to sRGB.
+// Tests: tests/unit/raster_output_test.cpp, scene_test.cpp; tests/cli/cli_test.py (tessera render).
 #pragma once
 
 #include <array>

@@ -13,6 +13,7 @@
 // double-sidedness, and KHR_lights_punctual point lights. Skins and animations are ignored
 // (meshes render in their bind pose). Missing normals are computed (area-weighted), missing UVs
 // are zero.
+// Tests: tests/unit/scene_test.cpp (OBJ, glTF, cameras, bad files).
 #pragma once
 
 #include <cstdint>

@@ -31,6 +31,7 @@
 // Thread safety: a `Texture` is immutable after construction; all its const methods (sampling
 // included) may be called concurrently from any number of threads. Kernel functions are pure.
 // Nothing on the sampling path allocates.
+// Tests: tests/unit/texture_test.cpp, texture_filtering_test.cpp.
 #pragma once
 
 #include <array>

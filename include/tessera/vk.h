@@ -85,12 +85,6 @@ struct ImageResource {
   VkAccessFlags2 access = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
 };
 
-/// Time of one named pass: GPU timestamps (NaN where the queue family has no timestamps).
-struct PassTime {
-  std::string pass;
-  double ms = 0.0;
-};
-
 /// Checks a DeviceContext before a component uses it: non-null handles and entry points, a
 /// queue family that exists and supports compute, and every core entry point tessera records
 /// with (invalid_argument / unsupported naming the first thing missing). Creates nothing.

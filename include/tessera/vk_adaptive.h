@@ -15,8 +15,10 @@
 //    libshaderc-dev, linked statically), one compute pipeline per pass: the hook is often
 //    generated from the engine's material system at run time and its G-buffer accessors from the
 //    layout. Ahead of time: `shader_binary()` returns every pass's SPIR-V, keyed by the options
-//    and the device's limits; given back as `options.shader_binary`, `create` compiles no GLSL
-//    (and `options.pipeline_cache`, the engine's VkPipelineCache, skips the driver's work). Errors
+//    and the device's limits, and `compile_shader_binary` makes the same without a device (a
+//    build step, for every device kind the engine ships on: `shader_target`); given back as
+//    `options.shader_binary`, `create` compiles no GLSL and needs no compiler module (and
+//    `options.pipeline_cache`, the engine's VkPipelineCache, skips the driver's work). Errors
 //    name the hook's own lines: "HOOK_NAME:LINE: message". The hook's `#include "x.glsl"` resolve
 //    to `AdaptiveShadingHook::include_paths`, then to tessera's shipped files (compiled into the
 //    library: nothing is read from share/ at run time). VULKAN is defined.
@@ -65,8 +67,8 @@
 //    vkCmdPipelineBarrier with the same scopes. The compute pipeline and compute descriptor
 //    bindings of `cmd` are left changed (rebind yours after), nothing else: no graphics state,
 //    no push constants. It never submits, waits or reads anything back.
-//    After the commands: the G-buffer images are in the layout `AdaptiveRecord::gbuffer_layout`
-//    says, last read at COMPUTE_SHADER / SHADER_SAMPLED_READ; the output (`AdaptiveRecord::
+//    After the commands: the G-buffer images are in the layout `AdaptiveOutput::gbuffer_layout`
+//    says, last read at COMPUTE_SHADER / SHADER_SAMPLED_READ; the output (`AdaptiveOutput::
 //    colour`, and `sample_counts`) is in GENERAL, last written at COMPUTE_SHADER /
 //    SHADER_STORAGE_WRITE: the engine's next use records its own barrier from that scope. It
 //    may leave the output in any layout: the next record starts from UNDEFINED.
@@ -119,11 +121,22 @@ struct AdaptiveSupersamplerOptions : AdaptiveCommonOptions {
   /// driver's compilation at `create`.
   VkPipelineCache pipeline_cache = VK_NULL_HANDLE;
   /// A shader binary from `shader_binary()` of a component created with the same options on a
-  /// device of the same limits and features: `create` then compiles no GLSL (an engine ships
-  /// it and needs no GLSL compiler at run time). A binary made for other options, another
+  /// device of the same limits and features, or from `compile_shader_binary` for a list of
+  /// targets including this device's: `create` then compiles no GLSL (an engine ships it and
+  /// needs no GLSL compiler at run time). A binary made for other options, another
   /// device's limits (maxStorageBufferRange, maxComputeSharedMemorySize, shaderFloat64) or
   /// another tessera is refused (invalid_argument), a malformed one is corrupt_data.
   std::vector<std::uint8_t> shader_binary;
+};
+
+/// What of a device decides the component's shaders (its GLSL defines), for compiling them
+/// without the device: `AdaptiveSupersampler::shader_target(device)` reads it from one.
+struct AdaptiveShaderTarget {
+  bool float64 = true;  ///< shaderFloat64 enabled (else the float depth metric).
+  /// maxComputeSharedMemorySize (tile_list runs `loop` where its tile does not fit).
+  std::uint32_t max_compute_shared_memory_size = 32768;
+  /// maxStorageBufferRange (the frame list's capacity is bounded by it).
+  std::uint32_t max_storage_buffer_range = 1u << 27;
 };
 
 /// One record's inputs (one view of the current frame).
@@ -146,8 +159,9 @@ struct AdaptiveFrame {
   std::optional<std::int64_t> budget;
 };
 
-/// What `record` leaves (see the header comment, 3.).
-struct AdaptiveRecord {
+/// What `record` leaves (see the header comment, 3.; gl::AdaptiveOutput's twin, whose profile
+/// figures come with it: here they come from read_profile once the frame completed).
+struct AdaptiveOutput {
   /// The output image: `AdaptiveFrame::output` when given, else the component's own for this
   /// (frame slot, view), valid until begin_frame opens the slot again. Its top-left
   /// `render_size` texels hold the image (the own image's extent is the largest size).
@@ -165,8 +179,10 @@ struct AdaptiveProfile {
   std::uint32_t frame_slot = 0, view = 0;
   VkExtent2D render_size{0, 0};
   std::uint64_t extra_samples = 0;  ///< Sum of k (all m*m-1 per pixel for the reference).
-  std::vector<PassTime> passes;     ///< GPU timestamps per pass, in order.
-  double total_ms() const;
+  /// Per pass, in order: gpu_ms from GPU timestamps (NaN where the queue family has none);
+  /// wall_ms NaN (the commands run after `record` returns).
+  std::vector<PassTime> passes;
+  double total_gpu_ms() const;
 };
 
 class AdaptiveSupersampler {
@@ -189,11 +205,11 @@ class AdaptiveSupersampler {
   /// (invalid_argument / size_mismatch / too_large naming the slot or the size;
   /// out_of_memory when a new view's resources cannot be made; nothing recorded) on a bad
   /// frame (see the header comment, 4.).
-  Result<AdaptiveRecord> record(VkCommandBuffer cmd, const AdaptiveFrame& frame);
+  Result<AdaptiveOutput> record(VkCommandBuffer cmd, const AdaptiveFrame& frame);
   /// Full supersampling: all m*m samples, footprint 1 (same checks).
-  Result<AdaptiveRecord> record_reference(VkCommandBuffer cmd, const AdaptiveFrame& frame);
+  Result<AdaptiveOutput> record_reference(VkCommandBuffer cmd, const AdaptiveFrame& frame);
   /// S alone: one sample per pixel (sample 0 of the order), footprint m.
-  Result<AdaptiveRecord> record_first_sample(VkCommandBuffer cmd, const AdaptiveFrame& frame);
+  Result<AdaptiveOutput> record_first_sample(VkCommandBuffer cmd, const AdaptiveFrame& frame);
 
   /// Replaces the thresholds for the following records (recorded with each; no recompilation).
   void set_thresholds(const AdaptiveThresholds& thresholds);
@@ -211,6 +227,18 @@ class AdaptiveSupersampler {
   /// Every pass's SPIR-V with the key of these options and device: store it (a file, the
   /// engine's asset cache) and give it back as `options.shader_binary` to skip compilation.
   const std::vector<std::uint8_t>& shader_binary() const;
+
+  /// The shader binary `create` with `options` loads on a device of any of `targets`, made
+  /// without a device (the GLSL compiler module is needed here, not where it is loaded): one
+  /// entry per distinct target, each every pass's SPIR-V. Of the options only what the shaders
+  /// depend on is read (the Vulkan handles are not: `hook_set_layouts` gives the set index by
+  /// its size); the option checks and errors are `create`'s, compile errors name the hook's
+  /// lines; invalid_argument for no target.
+  static Result<std::vector<std::uint8_t>> compile_shader_binary(
+      const AdaptiveSupersamplerOptions& options, const std::vector<AdaptiveShaderTarget>& targets);
+  /// The target of `device` (its enabled shaderFloat64 and its limits): what an engine lists
+  /// for each device kind it ships on.
+  static Result<AdaptiveShaderTarget> shader_target(const DeviceContext& device);
   /// The component's descriptor-set index (= hook_set_layouts.size()).
   std::uint32_t descriptor_set_index() const;
 

@@ -11,6 +11,7 @@
 // and vk::FaceTextureSet (tessera/vk_faces.h), the AA backend rasterises the G-buffer with
 // deferred_gbuffer.vert/.frag and shades it with vk::AdaptiveSupersampler (tessera/vk_adaptive.h)
 // and deferred_passes.comp: the same shipped GLSL as OpenGL's backends. Times are GPU timestamps.
+// Tests: tests/vk/vk_aa_backend_test.cpp, vk_seams_backend_test.cpp, vk_cli_test.py.
 #pragma once
 
 #include <vulkan/vulkan.h>

@@ -34,6 +34,18 @@ const char* error_code_name(ErrorCode code) {
   return "unknown";
 }
 
+double total_wall_ms(const std::vector<PassTime>& passes) {
+  double t = 0.0;
+  for (const PassTime& p : passes) t += p.wall_ms;
+  return t;
+}
+
+double total_gpu_ms(const std::vector<PassTime>& passes) {
+  double t = 0.0;
+  for (const PassTime& p : passes) t += p.gpu_ms;
+  return t;
+}
+
 std::string size_text(std::int64_t width, std::int64_t height) {
   return std::to_string(width) + "x" + std::to_string(height);
 }

@@ -10,6 +10,11 @@
 
 namespace tessera::deferred {
 
+double ShadeResult::total_gpu_ms() const { return tessera::total_gpu_ms(passes); }
+double ShadeResult::total_wall_ms() const { return tessera::total_wall_ms(passes); }
+double FxaaResult::total_gpu_ms() const { return tessera::total_gpu_ms(passes); }
+double FxaaResult::total_wall_ms() const { return tessera::total_wall_ms(passes); }
+
 GpuCamera gpu_camera(const GBufferCamera& cam, float far_z) {
   GpuCamera g;
   g.aspect = cam.aspect;
@@ -88,7 +93,7 @@ std::vector<float> gpu_static_vertices(const scene::Mesh& mesh) {
 }
 
 GpuParams gpu_params(const GpuCamera& cam, int w, int h, int m, const ShadingOptions& o,
-                     const AdaptiveOptions* a, const EdgePerSampleOptions* e) {
+                     const AdaptiveThresholds* a, const EdgePerSampleOptions* e) {
   const int n = m * m;
   GpuParams p{};
   p.size[0] = w;
@@ -109,9 +114,9 @@ GpuParams gpu_params(const GpuCamera& cam, int w, int h, int m, const ShadingOpt
   p.ambient[1] = o.ambient[1];
   p.ambient[2] = o.ambient[2];
   p.ambient[3] = float(std::clamp(o.max_aniso, 1, texture::kMaxAnisotropy));
-  const AdaptiveOptions def_a;
+  const AdaptiveThresholds def_a;
   const EdgePerSampleOptions def_e;
-  const AdaptiveOptions& aa = a ? *a : def_a;
+  const AdaptiveThresholds& aa = a ? *a : def_a;
   const EdgePerSampleOptions& ee = e ? *e : def_e;
   p.metric[0] = aa.c_depth;
   p.metric[1] = aa.c_normal;
@@ -166,18 +171,27 @@ Result<std::vector<std::string>> gpu_fxaa_defines(const FxaaOptions& f) {
       "TESSERA_FXAA_EDGE_MIN " + glsl::float_literal(f.edge_threshold_min)};
 }
 
-AdaptiveThresholds gpu_thresholds(const AdaptiveOptions& a) {
-  AdaptiveThresholds t;
-  t.c_depth = a.c_depth;
-  t.c_normal = a.c_normal;
-  t.c_shade = a.c_shade;
-  t.t_min = a.t_min;
-  t.t_edge = a.t_edge;
-  t.use_geometry = a.use_geometry;
-  t.use_shading = a.use_shading;
-  t.seam_factor = a.seam_factor;
-  t.force_k = a.force_k;
-  return t;
+Result<std::vector<GpuPass>> gpu_method_passes(GpuMethod method, const FxaaOptions& fxaa) {
+  const GpuPass first{"first", {"TESSERA_PASS_FIRST"}};
+  switch (method) {
+    case GpuMethod::reference:
+      return std::vector<GpuPass>{{"reference", {"TESSERA_PASS_REFERENCE"}}};
+    case GpuMethod::first:
+      return std::vector<GpuPass>{first};
+    case GpuMethod::adaptive:
+      return std::vector<GpuPass>{
+          first, {"metrics", {"TESSERA_PASS_METRICS"}}, {"extra", {"TESSERA_PASS_EXTRA"}, true}};
+    case GpuMethod::edge_per_sample:
+      return std::vector<GpuPass>{first,
+                                  {"edge_extra", {"TESSERA_PASS_EXTRA", "TESSERA_EDGE"}, true}};
+    case GpuMethod::fxaa: {
+      Result<std::vector<std::string>> fd = gpu_fxaa_defines(fxaa);
+      if (!fd) return fd.status();
+      return std::vector<GpuPass>{
+          first, {"srgb8", {"TESSERA_PASS_SRGB8", "TESSERA_SRGB_FROM_S"}}, {"fxaa", *fd}};
+    }
+  }
+  return Status::error(ErrorCode::invalid_argument, "unknown GPU method");
 }
 
 std::vector<std::string> gpu_passes_preamble(int classes, int m,

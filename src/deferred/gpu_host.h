@@ -79,7 +79,7 @@ std::vector<float> gpu_static_vertices(const scene::Mesh& mesh);
 /// The parameter block of a shading call on a (w, h, m) G-buffer; `adaptive` / `edge` null
 /// for the other methods (their defaults are written).
 GpuParams gpu_params(const GpuCamera& camera, int w, int h, int m, const ShadingOptions& shading,
-                     const AdaptiveOptions* adaptive, const EdgePerSampleOptions* edge);
+                     const AdaptiveThresholds* adaptive, const EdgePerSampleOptions* edge);
 /// The lights as 2 vec4 each (position + range, colour + intensity), at least 8 floats.
 std::vector<float> gpu_lights(const ShadingOptions& shading);
 /// The heavy term's waves (vec4 each), at least 4 floats.
@@ -88,8 +88,22 @@ std::vector<float> gpu_waves(const ShadingOptions& shading);
 /// The defines of deferred_passes.comp's FXAA pass (invalid_argument for an unknown preset).
 Result<std::vector<std::string>> gpu_fxaa_defines(const FxaaOptions& fxaa);
 
-/// The adaptive supersampler's thresholds of `adaptive`.
-AdaptiveThresholds gpu_thresholds(const AdaptiveOptions& adaptive);
+/// The experiments' shading methods as the GPU renderers run them.
+enum class GpuMethod { reference, first, adaptive, edge_per_sample, fxaa };
+/// One pass of deferred_passes.comp: its name (the PassTime's) and defines. `extra`: the
+/// extra-sample pass, which each backend runs with its schedule's defines added (GL: loop, tile
+/// or the frame list's list, shade and resolve passes; Vulkan: loop).
+struct GpuPass {
+  std::string name;
+  std::vector<std::string> defines;
+  bool extra = false;
+};
+/// The passes of `method`, in order, the one list both backends run (deferred_passes.comp's;
+/// at m >= 2 the reference, 1 spp and adaptive run the engine component instead):
+/// reference "reference"; first "first"; adaptive "first", "metrics", "extra"; edge per sample
+/// "first", "edge_extra"; fxaa "first", "srgb8", "fxaa" (`fxaa`'s preset: invalid_argument
+/// when unknown, as gpu_fxaa_defines).
+Result<std::vector<GpuPass>> gpu_method_passes(GpuMethod method, const FxaaOptions& fxaa = {});
 
 /// The preamble of a deferred_passes.comp program: its three always-defined macros (for `classes`
 /// texture classes and window m), then `#define D` per entry of `defines`.

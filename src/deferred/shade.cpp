@@ -103,7 +103,7 @@ void shade_first_samples(const ShadeContext& ctx, const GBuffer& gb, int first, 
 
 /// Pass 2: the number of extra samples per pixel (the geometry and shading metrics).
 std::vector<std::uint8_t> extra_sample_counts(const ShadeContext& ctx, const GBuffer& gb,
-                                              const AdaptiveOptions& a,
+                                              const AdaptiveThresholds& a,
                                               const std::vector<float>& luma, int threads) {
   const int m = gb.m, n = m * m, w = gb.width(), h = gb.height();
   const int k_max = n - 1;
@@ -160,7 +160,7 @@ std::vector<std::uint8_t> extra_sample_counts(const ShadeContext& ctx, const GBu
 
 /// Pass 3: k more samples per pixel in index order, averaged with the first; `samples` gets
 /// k + 1, `relookup` 1 where the first sample's albedo was looked up again.
-void shade_extra_samples(const ShadeContext& ctx, const GBuffer& gb, const AdaptiveOptions& a,
+void shade_extra_samples(const ShadeContext& ctx, const GBuffer& gb, const AdaptiveThresholds& a,
                          std::span<const std::uint8_t> order,
                          const std::vector<std::uint8_t>& extra,
                          const std::vector<LightTerms>& terms, int threads, ImageRGBAF& image,
@@ -251,7 +251,7 @@ void shade_extra_samples(const ShadeContext& ctx, const GBuffer& gb, const Adapt
 }  // namespace
 
 AdaptiveResult DeferredRenderer::shade_adaptive(const GBuffer& gb, const ShadingOptions& shading,
-                                                const AdaptiveOptions& a) const {
+                                                const AdaptiveThresholds& a) const {
   const ShadeContext ctx(*this, gb, shading);
   const int m = gb.m, n = m * m, w = gb.width(), h = gb.height();
   const std::span<const std::uint8_t> order = sample_order(m);

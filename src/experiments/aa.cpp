@@ -66,7 +66,7 @@ void record(const Run& run, AaTiming& t, int mode, const AaShadeOutput& o) {
 }
 
 void record_passes(const Run& run, std::vector<AaPassFrames>& passes, const AaShadeOutput& o) {
-  for (const AaPassTime& p : o.passes) {
+  for (const PassTime& p : o.passes) {
     auto it = std::find_if(passes.begin(), passes.end(),
                            [&](const AaPassFrames& f) { return f.pass == p.pass; });
     if (it == passes.end()) it = passes.insert(passes.end(), AaPassFrames{p.pass, {}, {}});
@@ -75,7 +75,7 @@ void record_passes(const Run& run, std::vector<AaPassFrames>& passes, const AaSh
   }
 }
 
-Status record_gbuffer(const Run& run, const Result<AaPassTime>& t, FrameTimes& wall,
+Status record_gbuffer(const Run& run, const Result<PassTime>& t, FrameTimes& wall,
                       FrameTimes& gpu) {
   if (!t) return t.status();
   wall.frame_ms.push_back(t->wall_ms);
@@ -87,7 +87,7 @@ Status record_gbuffer(const Run& run, const Result<AaPassTime>& t, FrameTimes& w
 /// that compiling the pass variants of m is not timed. Nothing on the CPU.
 Status warm_up(const Run& run, int m, std::initializer_list<AaMethod> methods) {
   if (!run.gpu()) return Status::success();
-  if (Result<AaPassTime> t = run.be.render_gbuffer(run.camera, run.c.width, run.c.height, m); !t) {
+  if (Result<PassTime> t = run.be.render_gbuffer(run.camera, run.c.width, run.c.height, m); !t) {
     return t.status();
   }
   for (int mode = 0; mode < (run.c.heavy ? 2 : 1); ++mode) {

@@ -1,6 +1,7 @@
 // The CPU backend of the adaptive-supersampling experiment: deferred::DeferredRenderer behind
-// the AaBackend interface of tessera/experiments/aa_backend.h (the GL twin is
-// src/gl/aa_backend.cpp).
+// the AaBackend interface of tessera/experiments/aa_backend.h (the GL and Vulkan twins are
+// src/gl/aa_backend.cpp and src/vk/aa_backend.cpp), and aa_shade_output, which both GPU
+// backends' results go through.
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -32,11 +33,11 @@ class CpuAaBackend final : public AaBackend {
     return Status::success();
   }
 
-  Result<AaPassTime> render_gbuffer(const scene::Camera& camera, int width, int height,
-                                    int m) override {
+  Result<PassTime> render_gbuffer(const scene::Camera& camera, int width, int height,
+                                  int m) override {
     const auto t0 = std::chrono::steady_clock::now();
     if (Status s = r_->render_gbuffer(camera, width, height, m, gb_); !s.ok()) return s;
-    return AaPassTime{"gbuffer", elapsed_ms(t0), kNoGpu};
+    return PassTime{"gbuffer", elapsed_ms(t0), kNoGpu};
   }
 
   Result<AaShadeOutput> shade(AaMethod method, const deferred::ShadingOptions& so,
@@ -95,6 +96,28 @@ Result<std::unique_ptr<AaBackend>> create_cpu_aa_backend(const scene::Scene& sce
       deferred::DeferredRenderer::create(scene, parallel);
   if (!r) return r.status();
   return std::unique_ptr<AaBackend>(std::make_unique<CpuAaBackend>(std::move(*r), parallel));
+}
+
+AaShadeOutput aa_shade_output(AaMethod method, deferred::ShadeResult result, int threads) {
+  AaShadeOutput out;
+  out.image = to_srgb8(result.image, {threads});
+  if (method == AaMethod::adaptive || method == AaMethod::edge_per_sample) {
+    out.samples = std::move(result.samples);
+    out.samples_shaded = result.samples_shaded;
+  }
+  out.wall_ms = result.total_wall_ms();
+  out.gpu_ms = result.total_gpu_ms();
+  out.passes = std::move(result.passes);
+  return out;
+}
+
+AaShadeOutput aa_shade_output(deferred::FxaaResult result) {
+  AaShadeOutput out;
+  out.image = std::move(result.image);
+  out.wall_ms = result.total_wall_ms();
+  out.gpu_ms = result.total_gpu_ms();
+  out.passes = std::move(result.passes);
+  return out;
 }
 
 }  // namespace tessera::experiments

@@ -298,7 +298,7 @@ Status build_report(const AaConfig& c, const AaResult& res, const std::string& s
     }
   }
 
-  const deferred::AdaptiveOptions& a = c.adaptive;
+  const AdaptiveThresholds& a = c.adaptive;
   const nlohmann::json j = {
       {"scene", scene_label},
       {"width", c.width},

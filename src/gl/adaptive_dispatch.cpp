@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/check.h"
 #include "gl/adaptive_internal.h"
 #include "gl/gl_api.h"
 
@@ -267,22 +268,20 @@ class Runner {
       wall_.push_back(
           {name, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                      .count()});
-      names_.push_back(name);
       if (Status s = timer_.end(); !s.ok()) return s;
     }
     return Status::success();
   }
 
-  Status finish(AdaptiveFrameResult& r) {
+  Status finish(AdaptiveOutput& r) {
     if (!st_.options.profile) return Status::success();
-    r.wall_passes = wall_;
+    r.passes = wall_;  // the names and host times, one per pass
     Result<std::vector<PassTime>> t = timer_.collect();
-    if (t) {
-      r.passes = std::move(*t);
-    } else if (t.status().code == ErrorCode::unsupported) {
-      for (const std::string& n : names_) r.passes.push_back({n, std::nan("")});
-    } else {
-      return t.status();
+    if (!t) return t.status().code == ErrorCode::unsupported ? Status::success() : t.status();
+    TESSERA_DCHECK(t->size() == r.passes.size());  // one query and one host time per pass
+    for (std::size_t i = 0; i < r.passes.size() && i < t->size(); ++i) {
+      TESSERA_DCHECK((*t)[i].pass == r.passes[i].pass);
+      r.passes[i].gpu_ms = (*t)[i].gpu_ms;
     }
     return Status::success();
   }
@@ -292,18 +291,17 @@ class Runner {
   AdaptiveExtent size_;
   GpuTimer timer_;
   std::vector<PassTime> wall_;
-  std::vector<std::string> names_;
 };
 
 using Mode = adaptive::Mode;
 
-Result<AdaptiveFrameResult> run_frame(State& st, const AdaptiveFrame& f, Mode mode) {
+Result<AdaptiveOutput> run_frame(State& st, const AdaptiveFrame& f, Mode mode) {
   if (Status s = check_current_context("adaptive supersampler: dispatch"); !s.ok()) return s;
   const AdaptiveExtent size = f.render_size.width == 0 && f.render_size.height == 0
                                   ? AdaptiveExtent{st.options.width, st.options.height}
                                   : f.render_size;
   if (Status s = check_frame(st, f, size); !s.ok()) return s;
-  AdaptiveFrameResult r;
+  AdaptiveOutput r;
   Status status = Status::success();
   {
     StateGuard guard(st);
@@ -343,14 +341,13 @@ Result<AdaptiveFrameResult> run_frame(State& st, const AdaptiveFrame& f, Mode mo
 
 }  // namespace
 
-Result<AdaptiveFrameResult> AdaptiveSupersampler::dispatch(const AdaptiveFrame& frame) {
+Result<AdaptiveOutput> AdaptiveSupersampler::dispatch(const AdaptiveFrame& frame) {
   return run_frame(*state_, frame, Mode::adaptive);
 }
-Result<AdaptiveFrameResult> AdaptiveSupersampler::dispatch_reference(const AdaptiveFrame& frame) {
+Result<AdaptiveOutput> AdaptiveSupersampler::dispatch_reference(const AdaptiveFrame& frame) {
   return run_frame(*state_, frame, Mode::reference);
 }
-Result<AdaptiveFrameResult> AdaptiveSupersampler::dispatch_first_sample(
-    const AdaptiveFrame& frame) {
+Result<AdaptiveOutput> AdaptiveSupersampler::dispatch_first_sample(const AdaptiveFrame& frame) {
   return run_frame(*state_, frame, Mode::first);
 }
 

@@ -131,11 +131,8 @@ void upload_params(AdaptiveSupersampler::State& st) {
 
 }  // namespace
 
-double AdaptiveFrameResult::total_wall_ms() const {
-  double t = 0;
-  for (const PassTime& p : wall_passes) t += p.ms;
-  return t;
-}
+double AdaptiveOutput::total_gpu_ms() const { return tessera::total_gpu_ms(passes); }
+double AdaptiveOutput::total_wall_ms() const { return tessera::total_wall_ms(passes); }
 
 AdaptiveSupersampler::~AdaptiveSupersampler() = default;
 

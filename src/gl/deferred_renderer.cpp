@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/check.h"
 #include "deferred/deferred_internal.h"
 #include "gl/deferred_renderer_internal.h"
 #include "gl/gl_api.h"
@@ -17,12 +18,6 @@ using namespace api;
 
 namespace {
 
-double sum_ms(const std::vector<PassTime>& passes) {
-  double t = 0;
-  for (const PassTime& p : passes) t += p.ms;
-  return t;
-}
-
 Object make_buffer(std::size_t bytes) {
   Object b = create_object(ObjectType::buffer);
   glNamedBufferData(b.get(), GLsizeiptr(std::max<std::size_t>(bytes, 16)), nullptr,
@@ -31,11 +26,6 @@ Object make_buffer(std::size_t bytes) {
 }
 
 }  // namespace
-
-double ShadeResult::total_ms() const { return sum_ms(passes); }
-double ShadeResult::total_wall_ms() const { return sum_ms(wall_passes); }
-double FxaaResult::total_ms() const { return sum_ms(passes); }
-double FxaaResult::total_wall_ms() const { return sum_ms(wall_passes); }
 
 namespace {
 
@@ -60,7 +50,7 @@ Result<const Program*> program(State& st, const std::vector<std::string>& define
 }
 
 /// Uploads the parameters, lights and waves and binds everything the passes read.
-Status bind_inputs(State& st, const deferred::ShadingOptions& o, const deferred::AdaptiveOptions* a,
+Status bind_inputs(State& st, const deferred::ShadingOptions& o, const AdaptiveThresholds* a,
                    const deferred::EdgePerSampleOptions* e) {
   if (!st.fbo) return Status::error(ErrorCode::invalid_argument, "deferred GL: no G-buffer yet");
   if (o.filter != texture::TextureFilter::anisotropic) {
@@ -110,15 +100,11 @@ Status bind_inputs(State& st, const deferred::ShadingOptions& o, const deferred:
   return check_errors("deferred GL: binding the shading inputs");
 }
 
-/// GpuTimer plus the pass names (kept when the driver's times are rejected).
+/// GpuTimer plus each pass's name and host time (kept when the driver's times are rejected).
 struct PassTimer {
   GpuTimer timer;
-  std::vector<std::string> names;
   std::vector<PassTime> wall;
-  Status begin(const std::string& name) {
-    names.push_back(name);
-    return timer.begin(name);
-  }
+  Status begin(const std::string& name) { return timer.begin(name); }
   Status end() { return timer.end(); }
 };
 
@@ -165,10 +151,10 @@ Result<ImageRGBA8> read_rgba8(const State& st, const Object& buf) {
   return img;
 }
 
-/// The extra pass's defines for `schedule` (tile_list falls back to loop for m > 4).
-std::vector<std::string> extra_defines(const State& st, bool edge, ExtraSchedule schedule) {
-  std::vector<std::string> d = {"TESSERA_PASS_EXTRA"};
-  if (edge) d.push_back("TESSERA_EDGE");
+/// The extra pass's defines: `base` (gpu_method_passes') and `schedule`'s (tile_list falls back
+/// to loop for m > 4).
+std::vector<std::string> extra_defines(const State& st, std::vector<std::string> d,
+                                       ExtraSchedule schedule) {
   if (schedule == ExtraSchedule::frame_list) {
     d.push_back("TESSERA_SCHEDULE_FRAME");
   } else if (schedule == ExtraSchedule::loop || st.m > 4) {
@@ -189,11 +175,12 @@ bool size_frame_list(State& st, std::size_t capacity) {
   return true;
 }
 
-/// The extra samples (`name`: "extra" or "edge_extra"): one pass, or with
+/// The extra samples (`pass`: "extra" or "edge_extra"): one pass, or with
 /// ExtraSchedule::frame_list the list, shade and resolve passes ("<name>_list", ...).
-Status run_extra(State& st, PassTimer& timer, const std::string& name, bool edge) {
+Status run_extra(State& st, PassTimer& timer, const deferred::GpuPass& pass) {
+  const std::string& name = pass.name;
   if (st.options.schedule != ExtraSchedule::frame_list) {
-    return run_pass(st, timer, name, extra_defines(st, edge, st.options.schedule));
+    return run_pass(st, timer, name, extra_defines(st, pass.defines, st.options.schedule));
   }
   const std::size_t pixels = std::size_t(st.w) * std::size_t(st.h);
   if (st.list_base_pixels != pixels) {
@@ -204,17 +191,17 @@ Status run_extra(State& st, PassTimer& timer, const std::string& name, bool edge
   // more.
   if (st.list_capacity == 0 && !size_frame_list(st, pixels) &&
       !size_frame_list(st, std::size_t(1) << 16)) {
-    return run_pass(st, timer, name, extra_defines(st, edge, ExtraSchedule::loop));
+    return run_pass(st, timer, name, extra_defines(st, pass.defines, ExtraSchedule::loop));
   }
   auto bind = [&] {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, st.list_base_buf.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, st.list_items_buf.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, st.list_colours_buf.get());
   };
-  const std::vector<std::string> base = extra_defines(st, edge, ExtraSchedule::frame_list);
-  auto with = [&](const char* pass) {
+  const std::vector<std::string> base = extra_defines(st, pass.defines, ExtraSchedule::frame_list);
+  auto with = [&](const char* step) {
     std::vector<std::string> d = base;
-    d.push_back(pass);
+    d.push_back(step);
     return d;
   };
   std::uint32_t total = 0;
@@ -233,7 +220,7 @@ Status run_extra(State& st, PassTimer& timer, const std::string& name, bool edge
     // The same k map gives the same count, so one regrowth suffices; a list beyond the
     // driver's block size is shaded by the per-pixel loop instead (same image).
     if (attempt > 0 || !size_frame_list(st, std::size_t(total) + total / 4)) {
-      return run_pass(st, timer, name, extra_defines(st, edge, ExtraSchedule::loop));
+      return run_pass(st, timer, name, extra_defines(st, pass.defines, ExtraSchedule::loop));
     }
   }
   if (total > 0) {
@@ -247,22 +234,36 @@ Status run_extra(State& st, PassTimer& timer, const std::string& name, bool edge
   return run_pass(st, timer, name + "_resolve", with("TESSERA_FRAME_RESOLVE"));
 }
 
-Status finish(PassTimer& timer, std::vector<PassTime>& passes, std::vector<PassTime>& wall) {
-  wall = timer.wall;
-  Result<std::vector<PassTime>> t = timer.timer.collect();
-  if (!t) {
-    // Mesa 22.3 llvmpipe's occasional impossible GL_TIME_ELAPSED (GpuTimer::collect checks
-    // each pass against the wall time): the results stand, the times are unknown (NaN).
-    if (t.status().code != ErrorCode::unsupported) return t.status();
-    passes.clear();
-    for (const std::string& n : timer.names) passes.push_back({n, std::nan("")});
-    return Status::success();
+/// Runs `method`'s passes (deferred::gpu_method_passes, the list the Vulkan renderer runs too),
+/// the extra pass with the options' schedule.
+Status run_method(State& st, PassTimer& timer, deferred::GpuMethod method,
+                  const deferred::FxaaOptions& fxaa = {}) {
+  Result<std::vector<deferred::GpuPass>> passes = deferred::gpu_method_passes(method, fxaa);
+  if (!passes) return passes.status();
+  for (const deferred::GpuPass& p : *passes) {
+    Status s = p.extra ? run_extra(st, timer, p) : run_pass(st, timer, p.name, p.defines);
+    if (!s.ok()) return s;
   }
-  passes = std::move(*t);
   return Status::success();
 }
 
-Status read_samples(const State& st, ShadeResult& r) {
+Status finish(PassTimer& timer, std::vector<PassTime>& passes) {
+  passes = timer.wall;  // the names and host times, one per pass
+  Result<std::vector<PassTime>> t = timer.timer.collect();
+  if (!t) {
+    // Mesa 22.3 llvmpipe's occasional impossible GL_TIME_ELAPSED (GpuTimer::collect checks
+    // each pass against the wall time): the results stand, the GPU times are unknown (NaN).
+    return t.status().code == ErrorCode::unsupported ? Status::success() : t.status();
+  }
+  TESSERA_DCHECK(t->size() == passes.size());  // one query and one host time per pass
+  for (std::size_t i = 0; i < passes.size() && i < t->size(); ++i) {
+    TESSERA_DCHECK((*t)[i].pass == passes[i].pass);
+    passes[i].gpu_ms = (*t)[i].gpu_ms;
+  }
+  return Status::success();
+}
+
+Status read_samples(const State& st, deferred::ShadeResult& r) {
   const std::size_t pixels = std::size_t(st.w) * std::size_t(st.h);
   std::vector<std::uint32_t> k(pixels);
   glGetNamedBufferSubData(st.k_buf.get(), 0, GLsizeiptr(pixels * 4), k.data());
@@ -277,8 +278,8 @@ Status read_samples(const State& st, ShadeResult& r) {
 
 /// The end of the adaptive and edge-per-sample passes: the timers into `r`, the image (SSBO 6)
 /// and the per-pixel sample counts read back.
-Status read_timed_result(State& st, PassTimer& timer, ShadeResult& r) {
-  if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
+Status read_timed_result(State& st, PassTimer& timer, deferred::ShadeResult& r) {
+  if (Status s = finish(timer, r.passes); !s.ok()) return s;
   Result<ImageRGBAF> img = read_rgba(st, st.out_buf);
   if (!img) return img.status();
   r.image = std::move(*img);
@@ -286,20 +287,20 @@ Status read_timed_result(State& st, PassTimer& timer, ShadeResult& r) {
 }
 
 /// The reference (component kind 1) or 1 spp (kind 2): the adaptive component where m >= 2,
-/// else the one pass `define` of deferred_passes.comp, whose colours land in `buffer`, with
-/// `samples_per_pixel` samples shaded per pixel.
-Result<ShadeResult> shade_one_pass(State& st, const deferred::ShadingOptions& o, int kind,
-                                   const char* pass, const char* define, const Object& buffer,
-                                   std::uint64_t samples_per_pixel) {
+/// else `method`'s one pass, whose colours land in `buffer`, with `samples_per_pixel` samples
+/// shaded per pixel.
+Result<deferred::ShadeResult> shade_one_pass(State& st, const deferred::ShadingOptions& o, int kind,
+                                             deferred::GpuMethod method, const Object& buffer,
+                                             std::uint64_t samples_per_pixel) {
   if (Status s = bind_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
-  ShadeResult r;
+  deferred::ShadeResult r;
   if (st.m >= 2) {
     if (Status s = shade_with_component(st, kind, nullptr, r); !s.ok()) return s;
     return r;
   }
   PassTimer timer;
-  if (Status s = run_pass(st, timer, pass, {define}); !s.ok()) return s;
-  if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
+  if (Status s = run_method(st, timer, method); !s.ok()) return s;
+  if (Status s = finish(timer, r.passes); !s.ok()) return s;
   Result<ImageRGBAF> img = read_rgba(st, buffer);
   if (!img) return img.status();
   r.image = std::move(*img);
@@ -309,22 +310,22 @@ Result<ShadeResult> shade_one_pass(State& st, const deferred::ShadingOptions& o,
 
 }  // namespace
 
-Result<ShadeResult> DeferredRenderer::shade_reference(const deferred::ShadingOptions& o) {
+Result<deferred::ShadeResult> DeferredRenderer::shade_reference(const deferred::ShadingOptions& o) {
   State& st = *state_;
-  return shade_one_pass(st, o, 1, "reference", "TESSERA_PASS_REFERENCE", st.out_buf,
+  return shade_one_pass(st, o, 1, deferred::GpuMethod::reference, st.out_buf,
                         std::uint64_t(st.m * st.m));
 }
 
-Result<ShadeResult> DeferredRenderer::shade_default(const deferred::ShadingOptions& o) {
+Result<deferred::ShadeResult> DeferredRenderer::shade_default(const deferred::ShadingOptions& o) {
   State& st = *state_;
-  return shade_one_pass(st, o, 2, "first", "TESSERA_PASS_FIRST", st.s_buf, 1);
+  return shade_one_pass(st, o, 2, deferred::GpuMethod::first, st.s_buf, 1);
 }
 
-Result<ShadeResult> DeferredRenderer::shade_adaptive(const deferred::ShadingOptions& o,
-                                                     const deferred::AdaptiveOptions& a) {
+Result<deferred::ShadeResult> DeferredRenderer::shade_adaptive(const deferred::ShadingOptions& o,
+                                                               const AdaptiveThresholds& a) {
   State& st = *state_;
   if (Status s = bind_inputs(st, o, &a, nullptr); !s.ok()) return s;
-  ShadeResult r;
+  deferred::ShadeResult r;
   // One implementation of the technique: gl::AdaptiveSupersampler (deferred_renderer_component.cpp)
   // with deferred_shading.glsl's shading as its hook; m = 1 has no window to adapt.
   if (st.m >= 2) {
@@ -332,46 +333,39 @@ Result<ShadeResult> DeferredRenderer::shade_adaptive(const deferred::ShadingOpti
     return r;
   }
   PassTimer timer;
-  if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
-  if (Status s = run_pass(st, timer, "metrics", {"TESSERA_PASS_METRICS"}); !s.ok()) return s;
-  if (Status s = run_extra(st, timer, "extra", false); !s.ok()) return s;
+  if (Status s = run_method(st, timer, deferred::GpuMethod::adaptive); !s.ok()) return s;
   if (Status s = read_timed_result(st, timer, r); !s.ok()) return s;
   return r;
 }
 
-Result<ShadeResult> DeferredRenderer::shade_edge_per_sample(
+Result<deferred::ShadeResult> DeferredRenderer::shade_edge_per_sample(
     const deferred::ShadingOptions& o, const deferred::EdgePerSampleOptions& e) {
   State& st = *state_;
   if (Status s = bind_inputs(st, o, nullptr, &e); !s.ok()) return s;
-  ShadeResult r;
+  deferred::ShadeResult r;
   PassTimer timer;
-  if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
-  if (Status s = run_extra(st, timer, "edge_extra", true); !s.ok()) return s;
+  if (Status s = run_method(st, timer, deferred::GpuMethod::edge_per_sample); !s.ok()) return s;
   if (Status s = read_timed_result(st, timer, r); !s.ok()) return s;
   return r;
 }
 
-Result<FxaaResult> DeferredRenderer::shade_default_fxaa(const deferred::ShadingOptions& o,
-                                                        const deferred::FxaaOptions& f) {
+Result<deferred::FxaaResult> DeferredRenderer::shade_default_fxaa(const deferred::ShadingOptions& o,
+                                                                  const deferred::FxaaOptions& f) {
   State& st = *state_;
-  Result<std::vector<std::string>> fd = deferred::gpu_fxaa_defines(f);
-  if (!fd) return fd.status();
+  if (Status s = deferred::gpu_fxaa_defines(f).status(); !s.ok()) return s;
   if (Status s = bind_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
-  FxaaResult r;
+  deferred::FxaaResult r;
   PassTimer timer;
-  if (Status s = run_pass(st, timer, "first", {"TESSERA_PASS_FIRST"}); !s.ok()) return s;
-  if (Status s = run_pass(st, timer, "srgb8", {"TESSERA_PASS_SRGB8", "TESSERA_SRGB_FROM_S"});
-      !s.ok())
-    return s;
-  if (Status s = run_pass(st, timer, "fxaa", *fd); !s.ok()) return s;
-  if (Status s = finish(timer, r.passes, r.wall_passes); !s.ok()) return s;
+  if (Status s = run_method(st, timer, deferred::GpuMethod::fxaa, f); !s.ok()) return s;
+  if (Status s = finish(timer, r.passes); !s.ok()) return s;
   Result<ImageRGBA8> img = read_rgba8(st, st.rgba8_out_buf);
   if (!img) return img.status();
   r.image = std::move(*img);
   return r;
 }
 
-Result<FxaaResult> DeferredRenderer::fxaa(const ImageRGBA8& image, const deferred::FxaaOptions& f) {
+Result<deferred::FxaaResult> DeferredRenderer::fxaa(const ImageRGBA8& image,
+                                                    const deferred::FxaaOptions& f) {
   State& st = *state_;
   if (image.empty()) return Status::error(ErrorCode::invalid_argument, "fxaa: empty image");
   Result<std::vector<std::string>> fd = deferred::gpu_fxaa_defines(f);
@@ -385,7 +379,7 @@ Result<FxaaResult> DeferredRenderer::fxaa(const ImageRGBA8& image, const deferre
   st.w = image.width;
   st.h = image.height;
   Status bound = bind_inputs(st, deferred::ShadingOptions{}, nullptr, nullptr);
-  FxaaResult r;
+  deferred::FxaaResult r;
   Status s = bound;
   if (s.ok()) {
     std::vector<std::uint8_t> in(image.pixels.begin(), image.pixels.end());
@@ -393,7 +387,7 @@ Result<FxaaResult> DeferredRenderer::fxaa(const ImageRGBA8& image, const deferre
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, st.rgba8_buf.get());
     PassTimer timer;
     s = run_pass(st, timer, "fxaa", *fd);
-    if (s.ok()) s = finish(timer, r.passes, r.wall_passes);
+    if (s.ok()) s = finish(timer, r.passes);
     if (s.ok()) {
       Result<ImageRGBA8> img = read_rgba8(st, st.rgba8_out_buf);
       if (img) {

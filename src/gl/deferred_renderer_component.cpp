@@ -49,21 +49,20 @@ Result<AdaptiveSupersampler*> component(State& st) {
 
 }  // namespace
 
-Status shade_with_component(State& st, int mode, const deferred::AdaptiveOptions* a,
-                            ShadeResult& r) {
+Status shade_with_component(State& st, int mode, const AdaptiveThresholds* a,
+                            deferred::ShadeResult& r) {
   Result<AdaptiveSupersampler*> c = component(st);
   if (!c) return c.status();
   if (a) {
-    (*c)->set_thresholds(deferred::gpu_thresholds(*a));
+    (*c)->set_thresholds(*a);
   }
   AdaptiveFrame frame;
   frame.gbuffer = {st.g0.get(), st.g1.get(), st.g2.get(), 0};
-  Result<AdaptiveFrameResult> f = mode == 0   ? (*c)->dispatch(frame)
-                                  : mode == 1 ? (*c)->dispatch_reference(frame)
-                                              : (*c)->dispatch_first_sample(frame);
+  Result<AdaptiveOutput> f = mode == 0   ? (*c)->dispatch(frame)
+                             : mode == 1 ? (*c)->dispatch_reference(frame)
+                                         : (*c)->dispatch_first_sample(frame);
   if (!f) return f.status();
   r.passes = std::move(f->passes);
-  r.wall_passes = std::move(f->wall_passes);
   r.image = ImageRGBAF(st.w, st.h);
   glGetTextureSubImage(f->colour, 0, 0, 0, 0, st.w, st.h, 1, GL_RGBA, GL_FLOAT,
                        GLsizei(r.image.pixels.size() * 4), r.image.pixels.data());

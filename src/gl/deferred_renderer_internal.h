@@ -59,6 +59,6 @@ struct DeferredRenderer::State {
 /// The component's image (RGBA32F, alpha 1) and per-pixel sample counts into `r`, after
 /// binding the shading inputs; `mode`: 0 adaptive, 1 reference, 2 first sample.
 Status shade_with_component(DeferredRenderer::State& st, int mode,
-                            const deferred::AdaptiveOptions* adaptive, ShadeResult& r);
+                            const AdaptiveThresholds* adaptive, deferred::ShadeResult& r);
 
 }  // namespace tessera::gl

@@ -263,7 +263,7 @@ Status DeferredRenderer::render_gbuffer(const scene::Camera& camera, int width, 
   // after a framebuffer is (re)allocated (GpuTimer::collect detects it): the frame is fine,
   // only its time is unknown (NaN).
   Result<std::vector<PassTime>> times = timer.collect();
-  st.gbuffer_ms = times && !times->empty() ? times->front().ms : std::nan("");
+  st.gbuffer_ms = times && !times->empty() ? times->front().gpu_ms : std::nan("");
   return check_errors("deferred GL: geometry pass");
 }
 

@@ -361,7 +361,7 @@ Result<FaceFrame> FaceRenderer::render(const scene::Camera& camera, const FaceFr
   Result<std::vector<PassTime>> times = timer.collect();
   if (!times) return times.status();
   for (const PassTime& t : *times) {
-    (t.pass == "draw" ? frame.gpu_ms_draw : frame.gpu_ms_resolve) += t.ms;
+    (t.pass == "draw" ? frame.gpu_ms_draw : frame.gpu_ms_resolve) += t.gpu_ms;
   }
 
   if (o.read_back) {

@@ -34,7 +34,8 @@ bool anisotropy_supported() {
 }
 }  // namespace
 
-Result<PackedFaces> pack_faces(const faces::FaceTextureSet& set, const PackLimits& limits) {
+Result<faces::PackedFaces> pack_faces(const faces::FaceTextureSet& set,
+                                      const faces::PackLimits& limits) {
   faces::PackLimitNames names;
   names.texture_size = "GL_MAX_TEXTURE_SIZE";
   names.array_layers = "GL_MAX_ARRAY_TEXTURE_LAYERS";
@@ -77,7 +78,7 @@ Result<FaceTextureSet> FaceTextureSet::upload(const faces::FaceTextureSet& set,
   if (Status s = check_current_context("FaceTextureSet::upload"); !s.ok()) return s;
   if (Status s = check_errors("FaceTextureSet::upload (errors before it)"); !s.ok()) return s;
   const UnpackStateGuard unpack;
-  PackLimits limits;
+  faces::PackLimits limits;
   GLint v = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &v);
   limits.max_texture_size = v;
@@ -86,7 +87,7 @@ Result<FaceTextureSet> FaceTextureSet::upload(const faces::FaceTextureSet& set,
   GLint64 ssbo = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &ssbo);
   limits.max_ssbo_bytes = ssbo;
-  Result<PackedFaces> packed = pack_faces(set, limits);
+  Result<faces::PackedFaces> packed = pack_faces(set, limits);
   if (!packed) return packed.status();
 
   FaceTextureSet out;
@@ -103,7 +104,7 @@ Result<FaceTextureSet> FaceTextureSet::upload(const faces::FaceTextureSet& set,
                           : format == faces::TexelFormat::rgba8_unorm ? GL_RGBA8
                                                                       : GL_SRGB8_ALPHA8;
   std::vector<std::uint8_t> converted;  // faces::convert_texels's bytes
-  for (const FaceClass& c : out.layout_.classes) {
+  for (const faces::FaceClass& c : out.layout_.classes) {
     Object tex = create_object(ObjectType::texture, GL_TEXTURE_2D_ARRAY);
     const int layers = int(c.faces.size());
     glTextureStorage3D(tex.get(), c.levels, internal, c.width, c.height, layers);
@@ -149,7 +150,7 @@ Result<FaceTextureSet> FaceTextureSet::upload(const faces::FaceTextureSet& set,
   }
   out.records_ = create_object(ObjectType::buffer);
   glNamedBufferStorage(out.records_.get(),
-                       GLsizeiptr(out.layout_.records.size() * sizeof(FaceRecord)),
+                       GLsizeiptr(out.layout_.records.size() * sizeof(faces::FaceRecord)),
                        out.layout_.records.data(), 0);
   if (Status s = check_errors("FaceTextureSet::upload: samplers and face records"); !s.ok()) {
     return s;

@@ -141,7 +141,10 @@ Result<std::vector<PassTime>> GpuTimer::collect() {
                                " ms, more than the " + std::to_string(wall_ms) +
                                " ms since it began (driver timer query bug)");
     }
-    out.push_back({p.pass, ms});
+    PassTime t;
+    t.pass = p.pass;
+    t.gpu_ms = ms;
+    out.push_back(std::move(t));
   }
   if (Status s = check_errors("GpuTimer::collect"); !s.ok()) return s;
   return out;

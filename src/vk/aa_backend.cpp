@@ -6,6 +6,7 @@
 // pass's GPU timestamps; the wall time from submit to fence (deferred_passes.comp passes are
 // one submission each; the component's passes share one, whose wall time is the method's and
 // is split between its passes by their GPU times).
+#include "experiments/gpu_shade.h"
 #include "tessera/core.h"
 #include "vk/deferred_renderer.h"
 #include "vk/experiment_backends_internal.h"
@@ -29,30 +30,14 @@ class VkAaBackend final : public experiments::AaBackend {
     return r_->check_size(width, height, m);
   }
 
-  Result<experiments::AaPassTime> render_gbuffer(const scene::Camera& camera, int width, int height,
-                                                 int m) override {
+  Result<PassTime> render_gbuffer(const scene::Camera& camera, int width, int height,
+                                  int m) override {
     return r_->render_gbuffer(camera, width, height, m);
   }
 
   Result<experiments::AaShadeOutput> shade(AaMethod method, const deferred::ShadingOptions& so,
                                            const experiments::AaShadeOptions& o) override {
-    Result<DeferredShade> x = method == AaMethod::fxaa ? r_->shade_default_fxaa(so, o.fxaa)
-                              : method == AaMethod::default_1spp ? r_->shade_default(so)
-                              : method == AaMethod::reference    ? r_->shade_reference(so)
-                              : method == AaMethod::adaptive
-                                  ? r_->shade_adaptive(so, o.adaptive)
-                                  : r_->shade_edge_per_sample(so, o.edge);
-    if (!x) return x.status();
-    experiments::AaShadeOutput out;
-    out.image = method == AaMethod::fxaa ? std::move(x->image8) : to_srgb8(x->image, {so.threads});
-    if (method == AaMethod::adaptive || method == AaMethod::edge_per_sample) {
-      out.samples = std::move(x->samples);
-      out.samples_shaded = x->samples_shaded;
-    }
-    out.wall_ms = x->wall_ms;
-    out.gpu_ms = x->gpu_ms;
-    out.passes = std::move(x->passes);
-    return out;
+    return experiments::shade_on_gpu(*r_, method, so, o);
   }
 
  private:

@@ -82,7 +82,7 @@ VkFormat adaptive_output_format(const AdaptiveCommonOptions& o);
 Result<AdaptiveSupersampler::State::View*> acquire_adaptive_view(AdaptiveSupersampler::State& st,
                                                                  const AdaptiveFrame& f);
 /// Records one frame (checked first).
-Result<AdaptiveRecord> record_adaptive(AdaptiveSupersampler::State& st, VkCommandBuffer cmd,
+Result<AdaptiveOutput> record_adaptive(AdaptiveSupersampler::State& st, VkCommandBuffer cmd,
                                        const AdaptiveFrame& f, AdaptiveMode mode);
 
 }  // namespace tessera::vk

@@ -352,7 +352,7 @@ ImageResource output_resource(const Image& img) {
 
 }  // namespace
 
-Result<AdaptiveRecord> record_adaptive(State& st, VkCommandBuffer cmd, const AdaptiveFrame& f,
+Result<AdaptiveOutput> record_adaptive(State& st, VkCommandBuffer cmd, const AdaptiveFrame& f,
                                        AdaptiveMode mode) {
   const AdaptiveSupersamplerOptions& o = st.options;
   const bool largest = f.render_size.width == 0 && f.render_size.height == 0;
@@ -378,7 +378,7 @@ Result<AdaptiveRecord> record_adaptive(State& st, VkCommandBuffer cmd, const Ada
   }
   record_epilogue(st, cmd, t);
 
-  AdaptiveRecord r;
+  AdaptiveOutput r;
   r.colour = f.output.image != VK_NULL_HANDLE
                  ? output_resource(f.output.image, f.output.view, f.output.format, f.output.extent,
                                    f.output.usage)
@@ -410,15 +410,15 @@ Status AdaptiveSupersampler::begin_frame(std::uint32_t frame_slot) {
   return Status::success();
 }
 
-Result<AdaptiveRecord> AdaptiveSupersampler::record(VkCommandBuffer cmd,
+Result<AdaptiveOutput> AdaptiveSupersampler::record(VkCommandBuffer cmd,
                                                     const AdaptiveFrame& frame) {
   return record_adaptive(*state_, cmd, frame, AdaptiveMode::adaptive);
 }
-Result<AdaptiveRecord> AdaptiveSupersampler::record_reference(VkCommandBuffer cmd,
+Result<AdaptiveOutput> AdaptiveSupersampler::record_reference(VkCommandBuffer cmd,
                                                               const AdaptiveFrame& frame) {
   return record_adaptive(*state_, cmd, frame, AdaptiveMode::reference);
 }
-Result<AdaptiveRecord> AdaptiveSupersampler::record_first_sample(VkCommandBuffer cmd,
+Result<AdaptiveOutput> AdaptiveSupersampler::record_first_sample(VkCommandBuffer cmd,
                                                                  const AdaptiveFrame& frame) {
   return record_adaptive(*state_, cmd, frame, AdaptiveMode::first);
 }
@@ -453,7 +453,7 @@ Result<AdaptiveProfile> AdaptiveSupersampler::read_profile(std::uint32_t frame_s
   p.extra_samples = adaptive::extra_samples(st.options, v.mode, counter,
                                             std::uint64_t(v.size.width) * v.size.height);
   if (!st.timestamps) {
-    for (const std::string& name : v.passes) p.passes.push_back({name, std::nan("")});
+    for (const std::string& name : v.passes) p.passes.push_back({name});  // times NaN
     return p;
   }
   std::vector<std::uint64_t> ticks(v.passes.size() + 1);
@@ -462,8 +462,10 @@ Result<AdaptiveProfile> AdaptiveSupersampler::read_profile(std::uint32_t frame_s
   const double period = double(st.api.properties.limits.timestampPeriod);
   const std::uint64_t mask = bits >= 64 ? ~0ull : (1ull << bits) - 1;
   for (std::size_t i = 1; i < ticks.size(); ++i) {
-    const double ms = double((ticks[i] - ticks[i - 1]) & mask) * period * 1e-6;
-    p.passes.push_back({v.passes[i - 1], ms});
+    PassTime t;
+    t.pass = v.passes[i - 1];
+    t.gpu_ms = double((ticks[i] - ticks[i - 1]) & mask) * period * 1e-6;
+    p.passes.push_back(std::move(t));
   }
   return p;
 }

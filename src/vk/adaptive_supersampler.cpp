@@ -37,6 +37,28 @@ Status check_storage_format(const State& st, VkFormat f, const char* name) {
   return Status::success();
 }
 
+/// What of `api`'s device decides the shaders.
+AdaptiveShaderTarget target_of(const Api& api) {
+  AdaptiveShaderTarget t;
+  t.float64 = api.ctx.enabled_features.shaderFloat64 == VK_TRUE;
+  t.max_compute_shared_memory_size = api.properties.limits.maxComputeSharedMemorySize;
+  t.max_storage_buffer_range = api.properties.limits.maxStorageBufferRange;
+  return t;
+}
+
+/// The derived fields a device decides: the frame list's capacity; without fp64 the depth
+/// metric accumulates in float; tile_list beyond the device's shared memory runs `loop` (the
+/// same image).
+void apply_target(const AdaptiveSupersamplerOptions& o, const AdaptiveShaderTarget& t,
+                  adaptive::Derived& d) {
+  d.list_capacity = adaptive::list_capacity(
+      o, d.n, (std::size_t(t.max_storage_buffer_range) - 16) / adaptive::kListItemBytes);
+  d.float64 = t.float64;
+  if (d.tile && adaptive::tile_shared_bytes(d.n) > t.max_compute_shared_memory_size) {
+    d.tile = false;
+  }
+}
+
 /// Checks everything that needs no Vulkan object; fills the state's derived fields.
 Status check_options(State& st) {
   const AdaptiveSupersamplerOptions& o = st.options;
@@ -73,15 +95,7 @@ Status check_options(State& st) {
         "work buffer of " + std::to_string(work_bytes) +
         " bytes exceeds maxStorageBufferRange = " + std::to_string(lim.maxStorageBufferRange));
   }
-  st.derived.list_capacity = adaptive::list_capacity(
-      o, st.derived.n, (std::size_t(lim.maxStorageBufferRange) - 16) / adaptive::kListItemBytes);
-  // Without fp64 the depth metric accumulates in float; tile_list beyond the device's shared
-  // memory runs `loop` (the same image).
-  st.derived.float64 = st.api.ctx.enabled_features.shaderFloat64 == VK_TRUE;
-  if (st.derived.tile &&
-      adaptive::tile_shared_bytes(st.derived.n) > lim.maxComputeSharedMemorySize) {
-    st.derived.tile = false;
-  }
+  apply_target(o, target_of(st.api), st.derived);
   if (o.sample_count_texture) {
     if (!st.api.ctx.enabled_features.shaderStorageImageExtendedFormats) {
       return unsupported(
@@ -97,52 +111,75 @@ Status check_options(State& st) {
 }
 
 /// One pass's GLSL, expanded (the preamble, the hook, tessera's files).
-Result<glsl::Expanded> expand(const State& st, const std::string& pass) {
+Result<glsl::Expanded> expand(const AdaptiveSupersamplerOptions& o, const adaptive::Derived& d,
+                              std::uint32_t set_index, const std::string& pass) {
   adaptive::GlslBindings b;
-  b.set = int(st.set_index);
+  b.set = int(set_index);
   b.gbuffer = int(kBindGBuffer);
   b.params = int(kBindParams);
   b.work = int(kBindWork);
   b.image = int(kBindColour);
-  const glsl::Source src = adaptive::pass_source(st.options, pass);
-  const glsl::ExpandOptions eo = adaptive::pass_expand_options(st.options, st.derived, b, pass);
+  const glsl::Source src = adaptive::pass_source(o, pass);
+  const glsl::ExpandOptions eo = adaptive::pass_expand_options(o, d, b, pass);
   Result<glsl::Expanded> e = glsl::expand_includes(src, eo);
   if (!e) return Status::error(e.status().code, std::string(kWho) + ": " + e.status().message);
   return e;
 }
 
-/// Every pass's SPIR-V: from the options' shader binary when its key matches, else compiled
-/// (a compile error is "vk adaptive supersampler: HOOK:LINE: message"); the binary kept.
-Status make_spirv(State& st) {
+/// Every pass's GLSL, expanded, and the shader binary's key of them.
+struct ExpandedPasses {
+  std::vector<std::string> passes;
   std::map<std::string, glsl::Expanded> expanded;
+  std::uint64_t key = 0;
+};
+Result<ExpandedPasses> expand_all(const AdaptiveSupersamplerOptions& o, const adaptive::Derived& d,
+                                  std::uint32_t set_index) {
+  ExpandedPasses x;
+  x.passes = adaptive::pass_programs(o.schedule);
   std::map<std::string, std::string> texts;
-  const std::vector<std::string> passes = adaptive::pass_programs(st.options.schedule);
-  for (const std::string& p : passes) {
-    Result<glsl::Expanded> e = expand(st, p);
+  for (const std::string& p : x.passes) {
+    Result<glsl::Expanded> e = expand(o, d, set_index, p);
     if (!e) return e.status();
     texts.emplace(p, e->text);
-    expanded.emplace(p, std::move(*e));
+    x.expanded.emplace(p, std::move(*e));
   }
-  const std::uint64_t key = shader_key(texts);
+  x.key = shader_key(texts);
+  return x;
+}
+
+/// Every pass compiled (a compile error is "vk adaptive supersampler: HOOK:LINE: message").
+Result<ShaderPasses> compile_all(const ExpandedPasses& x) {
+  ShaderPasses spirv;
+  for (const std::string& p : x.passes) {
+    const glsl::Expanded& e = x.expanded.at(p);
+    Result<std::vector<std::uint32_t>> code = compile_compute_spirv(e.text);
+    if (!code) {
+      return Status::error(
+          code.status().code,
+          std::string(kWho) + ": " + glsl::format_log(code.status().message, e.files));
+    }
+    spirv.emplace(p, std::move(*code));
+  }
+  return spirv;
+}
+
+/// Every pass's SPIR-V: from the options' shader binary when it has an entry for these options
+/// and this device, else compiled; the binary of this device kept.
+Status make_spirv(State& st) {
+  Result<ExpandedPasses> x = expand_all(st.options, st.derived, st.set_index);
+  if (!x) return x.status();
   if (!st.options.shader_binary.empty()) {
-    auto spirv = read_shader_binary(st.options.shader_binary, key, passes);
+    auto spirv = read_shader_binary(st.options.shader_binary, x->key, x->passes);
     if (!spirv) {
       return Status::error(spirv.status().code, std::string(kWho) + ": " + spirv.status().message);
     }
     st.spirv = std::move(*spirv);
   } else {
-    for (const std::string& p : passes) {
-      const glsl::Expanded& e = expanded.at(p);
-      Result<std::vector<std::uint32_t>> spirv = compile_compute_spirv(e.text);
-      if (!spirv) {
-        return Status::error(
-            spirv.status().code,
-            std::string(kWho) + ": " + glsl::format_log(spirv.status().message, e.files));
-      }
-      st.spirv.emplace(p, std::move(*spirv));
-    }
+    Result<ShaderPasses> spirv = compile_all(*x);
+    if (!spirv) return spirv.status();
+    st.spirv = std::move(*spirv);
   }
-  st.binary = write_shader_binary(key, st.spirv);
+  st.binary = write_shader_binary({{x->key, st.spirv}});
   return Status::success();
 }
 
@@ -150,11 +187,7 @@ Status make_spirv(State& st) {
 
 Status create_adaptive_objects(State& st);  // adaptive_objects.cpp
 
-double AdaptiveProfile::total_ms() const {
-  double t = 0;
-  for (const PassTime& p : passes) t += p.ms;
-  return t;
-}
+double AdaptiveProfile::total_gpu_ms() const { return tessera::total_gpu_ms(passes); }
 
 AdaptiveSupersampler::~AdaptiveSupersampler() = default;
 
@@ -191,6 +224,35 @@ Result<std::unique_ptr<AdaptiveSupersampler>> AdaptiveSupersampler::create(
   std::unique_ptr<AdaptiveSupersampler> r(new AdaptiveSupersampler());
   r->state_ = std::move(st);
   return r;
+}
+
+Result<std::vector<std::uint8_t>> AdaptiveSupersampler::compile_shader_binary(
+    const AdaptiveSupersamplerOptions& options, const std::vector<AdaptiveShaderTarget>& targets) {
+  if (targets.empty()) return invalid("compile_shader_binary: no device target");
+  std::vector<ShaderBinaryEntry> entries;
+  for (const AdaptiveShaderTarget& t : targets) {
+    adaptive::Derived d;
+    if (Status s = adaptive::check_options(options, kWho, d); !s.ok()) return s;
+    apply_target(options, t, d);
+    Result<ExpandedPasses> x =
+        expand_all(options, d, std::uint32_t(options.hook_set_layouts.size()));
+    if (!x) return x.status();
+    const bool known = std::any_of(entries.begin(), entries.end(),
+                                   [&](const ShaderBinaryEntry& e) { return e.key == x->key; });
+    if (known) continue;  // another target with the same shaders
+    Result<ShaderPasses> spirv = compile_all(*x);
+    if (!spirv) return spirv.status();
+    entries.push_back({x->key, std::move(*spirv)});
+  }
+  return write_shader_binary(entries);
+}
+
+Result<AdaptiveShaderTarget> AdaptiveSupersampler::shader_target(const DeviceContext& device) {
+  Result<Api> api = load_api(device);
+  if (!api) {
+    return Status::error(api.status().code, std::string(kWho) + ": " + api.status().message);
+  }
+  return target_of(*api);
 }
 
 }  // namespace tessera::vk

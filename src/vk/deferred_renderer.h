@@ -34,17 +34,6 @@
 
 namespace tessera::vk {
 
-/// One shading call: the linear image (alpha 1), sample counts and times.
-struct DeferredShade {
-  ImageRGBAF image;
-  ImageRGBA8 image8;                  ///< FXAA: the 8-bit result (`image` empty).
-  std::vector<std::uint8_t> samples;  ///< adaptive, edge per sample: k + 1 per pixel.
-  std::uint64_t samples_shaded = 0;
-  std::vector<experiments::AaPassTime> passes;
-  double wall_ms = 0.0;  ///< Sum of the submissions' submit-to-fence times (read-back excluded).
-  double gpu_ms = 0.0;   ///< Sum of the passes' timestamp times.
-};
-
 class DeferredRenderer {
  public:
   /// Uploads the scene to `device` (which must outlive the renderer) and makes the geometry
@@ -59,18 +48,17 @@ class DeferredRenderer {
   /// maxFramebufferWidth/Height; allocates nothing.
   Status check_size(int width, int height, int m) const;
   /// The geometry pass (pass "gbuffer"); the G-buffer is reallocated when the size changes.
-  Result<experiments::AaPassTime> render_gbuffer(const scene::Camera& camera, int width, int height,
-                                                 int m);
+  Result<PassTime> render_gbuffer(const scene::Camera& camera, int width, int height, int m);
 
-  Result<DeferredShade> shade_reference(const deferred::ShadingOptions& shading);
-  Result<DeferredShade> shade_default(const deferred::ShadingOptions& shading);
-  Result<DeferredShade> shade_adaptive(const deferred::ShadingOptions& shading,
-                                       const deferred::AdaptiveOptions& adaptive);
-  Result<DeferredShade> shade_edge_per_sample(const deferred::ShadingOptions& shading,
-                                              const deferred::EdgePerSampleOptions& edge);
-  /// 1 spp, sRGB8, FXAA 3.11 (passes "first", "srgb8", "fxaa"); the result in `image8`.
-  Result<DeferredShade> shade_default_fxaa(const deferred::ShadingOptions& shading,
-                                           const deferred::FxaaOptions& fxaa);
+  Result<deferred::ShadeResult> shade_reference(const deferred::ShadingOptions& shading);
+  Result<deferred::ShadeResult> shade_default(const deferred::ShadingOptions& shading);
+  Result<deferred::ShadeResult> shade_adaptive(const deferred::ShadingOptions& shading,
+                                               const AdaptiveThresholds& adaptive);
+  Result<deferred::ShadeResult> shade_edge_per_sample(const deferred::ShadingOptions& shading,
+                                                      const deferred::EdgePerSampleOptions& edge);
+  /// 1 spp, sRGB8, FXAA 3.11 (passes "first", "srgb8", "fxaa"); the result in `image`.
+  Result<deferred::FxaaResult> shade_default_fxaa(const deferred::ShadingOptions& shading,
+                                                  const deferred::FxaaOptions& fxaa);
 
   struct State;
 
@@ -164,7 +152,7 @@ Status create_deferred_set(DeferredRenderer::State& st);
 /// Writes the parameters, lights and waves; (re)allocates the per-pixel buffers and rewrites
 /// the set when needed.
 Status bind_deferred_inputs(DeferredRenderer::State& st, const deferred::ShadingOptions& shading,
-                            const deferred::AdaptiveOptions* adaptive,
+                            const AdaptiveThresholds* adaptive,
                             const deferred::EdgePerSampleOptions* edge);
 /// Records a barrier making the G-buffer readable by compute shaders (from `g_layout`).
 void record_gbuffer_readable(DeferredRenderer::State& st, VkCommandBuffer cmd);
@@ -175,8 +163,7 @@ void record_full_barrier(const Api& api, VkCommandBuffer cmd);
 void record_host_read_barrier(const Api& api, VkCommandBuffer cmd);
 /// One deferred_passes.comp pass over w x h pixels in a submission of its own, timed.
 Status run_deferred_pass(DeferredRenderer::State& st, const std::string& name,
-                         const std::vector<std::string>& defines,
-                         std::vector<experiments::AaPassTime>& passes);
+                         const std::vector<std::string>& defines, std::vector<PassTime>& passes);
 /// Copies `bytes` of pass buffer `index` (0 = S ... 5 = rgba8 out) to the host.
 Status read_pass_buffer(DeferredRenderer::State& st, int index, std::size_t bytes, void* out);
 /// Timestamp `query` (0: opens a submission's timed work, resetting the pool; 1: closes it);
@@ -188,6 +175,6 @@ double timestamp_ms(const DeferredRenderer::State& st);
 // deferred_renderer_shade.cpp
 /// The component's image and, for `mode` adaptive, its sample counts (m >= 2).
 Status shade_with_component(DeferredRenderer::State& st, adaptive::Mode mode,
-                            const deferred::AdaptiveOptions* adaptive, DeferredShade& out);
+                            const AdaptiveThresholds* adaptive, deferred::ShadeResult& out);
 
 }  // namespace tessera::vk

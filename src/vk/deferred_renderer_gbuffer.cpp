@@ -172,8 +172,8 @@ void record_draws(State& st, VkCommandBuffer cmd, float far_z) {
 
 }  // namespace
 
-Result<experiments::AaPassTime> DeferredRenderer::render_gbuffer(const scene::Camera& camera,
-                                                                 int width, int height, int m) {
+Result<PassTime> DeferredRenderer::render_gbuffer(const scene::Camera& camera, int width,
+                                                  int height, int m) {
   if (Status s = check_size(width, height, m); !s.ok()) return s;
   State& st = *state_;
   if (st.w != width || st.h != height || st.m != m || st.framebuffer.get() == VK_NULL_HANDLE) {
@@ -196,7 +196,7 @@ Result<experiments::AaPassTime> DeferredRenderer::render_gbuffer(const scene::Ca
   const double wall =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0).count();
   st.g_layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-  return experiments::AaPassTime{"gbuffer", wall, timestamp_ms(st)};
+  return PassTime{"gbuffer", wall, timestamp_ms(st)};
 }
 
 }  // namespace tessera::vk

@@ -190,8 +190,7 @@ Status create_deferred_set(State& st) {
 }
 
 Status bind_deferred_inputs(State& st, const deferred::ShadingOptions& o,
-                            const deferred::AdaptiveOptions* a,
-                            const deferred::EdgePerSampleOptions* e) {
+                            const AdaptiveThresholds* a, const deferred::EdgePerSampleOptions* e) {
   if (st.framebuffer.get() == VK_NULL_HANDLE) {
     return Status::error(ErrorCode::invalid_argument, std::string(kWho) + ": no G-buffer yet");
   }
@@ -262,8 +261,7 @@ double timestamp_ms(const State& st) {
 }
 
 Status run_deferred_pass(State& st, const std::string& name,
-                         const std::vector<std::string>& defines,
-                         std::vector<experiments::AaPassTime>& passes) {
+                         const std::vector<std::string>& defines, std::vector<PassTime>& passes) {
   Result<VkPipeline> p = program(st, defines);
   if (!p) return p.status();
   Result<VkCommandBuffer> cmd = st.device->begin();

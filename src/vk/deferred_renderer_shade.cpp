@@ -61,7 +61,8 @@ AdaptiveFrame component_frame(const State& st) {
 }
 
 /// The component's colour (and sample counts) into the read-back buffer.
-Status read_component(State& st, const AdaptiveRecord& rec, bool counts, DeferredShade& out) {
+Status read_component(State& st, const AdaptiveOutput& rec, bool counts,
+                      deferred::ShadeResult& out) {
   Result<VkCommandBuffer> cmd = st.device->begin();
   if (!cmd) return cmd.status();
   const Api& api = *st.api;
@@ -100,17 +101,21 @@ Status read_component(State& st, const AdaptiveRecord& rec, bool counts, Deferre
   return Status::success();
 }
 
-/// Sums of the passes' times.
-void total_times(DeferredShade& out) {
-  out.wall_ms = out.gpu_ms = 0.0;
-  for (const experiments::AaPassTime& p : out.passes) {
-    out.wall_ms += p.wall_ms;
-    out.gpu_ms += p.gpu_ms;
+/// Runs `method`'s passes (deferred::gpu_method_passes, the list the GL renderer runs too), the
+/// extra pass with the loop schedule.
+Status run_method(State& st, deferred::GpuMethod method, std::vector<PassTime>& passes,
+                  const deferred::FxaaOptions& fxaa = {}) {
+  Result<std::vector<deferred::GpuPass>> list = deferred::gpu_method_passes(method, fxaa);
+  if (!list) return list.status();
+  for (deferred::GpuPass& p : *list) {
+    if (p.extra) p.defines.push_back("TESSERA_SCHEDULE_LOOP");
+    if (Status s = run_deferred_pass(st, p.name, p.defines, passes); !s.ok()) return s;
   }
+  return Status::success();
 }
 
 /// A pass buffer of float4 per pixel as the image (alpha 1).
-Status read_rgba(State& st, int index, DeferredShade& out) {
+Status read_rgba(State& st, int index, deferred::ShadeResult& out) {
   out.image = ImageRGBAF(st.w, st.h);
   if (Status s = read_pass_buffer(st, index, out.image.pixels.size() * 4, out.image.pixels.data());
       !s.ok()) {
@@ -121,7 +126,7 @@ Status read_rgba(State& st, int index, DeferredShade& out) {
 }
 
 /// The k map (k per pixel) as samples per pixel (k + 1).
-Status read_samples(State& st, DeferredShade& out) {
+Status read_samples(State& st, deferred::ShadeResult& out) {
   const std::size_t pixels = std::size_t(st.w) * std::size_t(st.h);
   std::vector<std::uint32_t> k(pixels);
   if (Status s = read_pass_buffer(st, kBufK, pixels * 4, k.data()); !s.ok()) return s;
@@ -136,17 +141,17 @@ Status read_samples(State& st, DeferredShade& out) {
 
 }  // namespace
 
-Status shade_with_component(State& st, adaptive::Mode mode, const deferred::AdaptiveOptions* a,
-                            DeferredShade& out) {
+Status shade_with_component(State& st, adaptive::Mode mode, const AdaptiveThresholds* a,
+                            deferred::ShadeResult& out) {
   Result<AdaptiveSupersampler*> c = component(st);
   if (!c) return c.status();
-  if (a) (*c)->set_thresholds(deferred::gpu_thresholds(*a));
+  if (a) (*c)->set_thresholds(*a);
   Result<VkCommandBuffer> cmd = st.device->begin();
   if (!cmd) return cmd.status();
   record_full_barrier(*st.api, *cmd);
   const AdaptiveFrame frame = component_frame(st);
   if (Status s = (*c)->begin_frame(0); !s.ok()) return s;  // the last frame completed
-  Result<AdaptiveRecord> rec = mode == adaptive::Mode::adaptive ? (*c)->record(*cmd, frame)
+  Result<AdaptiveOutput> rec = mode == adaptive::Mode::adaptive ? (*c)->record(*cmd, frame)
                                : mode == adaptive::Mode::reference
                                    ? (*c)->record_reference(*cmd, frame)
                                    : (*c)->record_first_sample(*cmd, frame);
@@ -154,21 +159,20 @@ Status shade_with_component(State& st, adaptive::Mode mode, const deferred::Adap
   Status submitted = st.device->submit_and_wait(*cmd);  // also frees it when recording failed
   if (!rec) return rec.status();
   if (!submitted.ok()) return submitted;
-  out.wall_ms =
+  const double wall_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall0).count();
   st.g_layout = rec->gbuffer_layout[0];
   Result<AdaptiveProfile> prof = (*c)->read_profile(rec->frame_slot, rec->view);
   if (!prof) return prof.status();
   // The component's passes share one submission: each has its GPU time, and the submission's
-  // wall time (out.wall_ms) is split between them by those times (evenly where they are
-  // unknown), so that the passes' wall times add up to the method's.
-  out.gpu_ms = 0.0;
-  for (const PassTime& p : prof->passes) out.gpu_ms += p.ms;
-  const bool by_gpu = std::isfinite(out.gpu_ms) && out.gpu_ms > 0.0;
+  // wall time is split between them by those times (evenly where they are unknown), so that
+  // the passes' wall times add up to the method's.
+  const double gpu_ms = total_gpu_ms(prof->passes);
+  const bool by_gpu = std::isfinite(gpu_ms) && gpu_ms > 0.0;
   for (const PassTime& p : prof->passes) {
     const double share =
-        by_gpu ? p.ms / out.gpu_ms : 1.0 / double(std::max<std::size_t>(prof->passes.size(), 1));
-    out.passes.push_back({p.pass, out.wall_ms * share, p.ms});
+        by_gpu ? p.gpu_ms / gpu_ms : 1.0 / double(std::max<std::size_t>(prof->passes.size(), 1));
+    out.passes.push_back({p.pass, wall_ms * share, p.gpu_ms});
   }
   const bool counts = mode == adaptive::Mode::adaptive;
   if (Status s = read_component(st, *rec, counts, out); !s.ok()) return s;
@@ -180,101 +184,78 @@ Status shade_with_component(State& st, adaptive::Mode mode, const deferred::Adap
   return Status::success();
 }
 
-Result<DeferredShade> DeferredRenderer::shade_reference(const deferred::ShadingOptions& o) {
+Result<deferred::ShadeResult> DeferredRenderer::shade_reference(const deferred::ShadingOptions& o) {
   State& st = *state_;
   if (Status s = bind_deferred_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
-  DeferredShade out;
+  deferred::ShadeResult out;
   if (st.m >= 2) {
     if (Status s = shade_with_component(st, adaptive::Mode::reference, nullptr, out); !s.ok()) {
       return s;
     }
     return out;
   }
-  if (Status s = run_deferred_pass(st, "reference", {"TESSERA_PASS_REFERENCE"}, out.passes);
-      !s.ok()) {
-    return s;
-  }
-  total_times(out);
+  if (Status s = run_method(st, deferred::GpuMethod::reference, out.passes); !s.ok()) return s;
   if (Status s = read_rgba(st, kBufOut, out); !s.ok()) return s;
   out.samples_shaded = std::uint64_t(st.w) * std::uint64_t(st.h) * std::uint64_t(st.m * st.m);
   return out;
 }
 
-Result<DeferredShade> DeferredRenderer::shade_default(const deferred::ShadingOptions& o) {
+Result<deferred::ShadeResult> DeferredRenderer::shade_default(const deferred::ShadingOptions& o) {
   State& st = *state_;
   if (Status s = bind_deferred_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
-  DeferredShade out;
+  deferred::ShadeResult out;
   if (st.m >= 2) {
     if (Status s = shade_with_component(st, adaptive::Mode::first, nullptr, out); !s.ok()) {
       return s;
     }
     return out;
   }
-  if (Status s = run_deferred_pass(st, "first", {"TESSERA_PASS_FIRST"}, out.passes); !s.ok()) {
-    return s;
-  }
-  total_times(out);
+  if (Status s = run_method(st, deferred::GpuMethod::first, out.passes); !s.ok()) return s;
   if (Status s = read_rgba(st, kBufS, out); !s.ok()) return s;
   out.samples_shaded = std::uint64_t(st.w) * std::uint64_t(st.h);
   return out;
 }
 
-Result<DeferredShade> DeferredRenderer::shade_adaptive(const deferred::ShadingOptions& o,
-                                                       const deferred::AdaptiveOptions& a) {
+Result<deferred::ShadeResult> DeferredRenderer::shade_adaptive(const deferred::ShadingOptions& o,
+                                                               const AdaptiveThresholds& a) {
   State& st = *state_;
   if (Status s = bind_deferred_inputs(st, o, &a, nullptr); !s.ok()) return s;
-  DeferredShade out;
+  deferred::ShadeResult out;
   if (st.m >= 2) {  // m = 1 has no window to adapt: deferred_passes.comp's three passes
     if (Status s = shade_with_component(st, adaptive::Mode::adaptive, &a, out); !s.ok()) {
       return s;
     }
     return out;
   }
-  for (const auto& [name, defines] :
-       {std::pair<const char*, std::vector<std::string>>{"first", {"TESSERA_PASS_FIRST"}},
-        {"metrics", {"TESSERA_PASS_METRICS"}},
-        {"extra", {"TESSERA_PASS_EXTRA", "TESSERA_SCHEDULE_LOOP"}}}) {
-    if (Status s = run_deferred_pass(st, name, defines, out.passes); !s.ok()) return s;
-  }
-  total_times(out);
+  if (Status s = run_method(st, deferred::GpuMethod::adaptive, out.passes); !s.ok()) return s;
   if (Status s = read_rgba(st, kBufOut, out); !s.ok()) return s;
   if (Status s = read_samples(st, out); !s.ok()) return s;
   return out;
 }
 
-Result<DeferredShade> DeferredRenderer::shade_edge_per_sample(
+Result<deferred::ShadeResult> DeferredRenderer::shade_edge_per_sample(
     const deferred::ShadingOptions& o, const deferred::EdgePerSampleOptions& e) {
   State& st = *state_;
   if (Status s = bind_deferred_inputs(st, o, nullptr, &e); !s.ok()) return s;
-  DeferredShade out;
-  for (const auto& [name, defines] :
-       {std::pair<const char*, std::vector<std::string>>{"first", {"TESSERA_PASS_FIRST"}},
-        {"edge_extra", {"TESSERA_PASS_EXTRA", "TESSERA_EDGE", "TESSERA_SCHEDULE_LOOP"}}}) {
-    if (Status s = run_deferred_pass(st, name, defines, out.passes); !s.ok()) return s;
+  deferred::ShadeResult out;
+  if (Status s = run_method(st, deferred::GpuMethod::edge_per_sample, out.passes); !s.ok()) {
+    return s;
   }
-  total_times(out);
   if (Status s = read_rgba(st, kBufOut, out); !s.ok()) return s;
   if (Status s = read_samples(st, out); !s.ok()) return s;
   return out;
 }
 
-Result<DeferredShade> DeferredRenderer::shade_default_fxaa(const deferred::ShadingOptions& o,
-                                                           const deferred::FxaaOptions& f) {
+Result<deferred::FxaaResult> DeferredRenderer::shade_default_fxaa(const deferred::ShadingOptions& o,
+                                                                  const deferred::FxaaOptions& f) {
   State& st = *state_;
-  Result<std::vector<std::string>> fd = deferred::gpu_fxaa_defines(f);
-  if (!fd) return fd.status();
+  if (Status s = deferred::gpu_fxaa_defines(f).status(); !s.ok()) return s;
   if (Status s = bind_deferred_inputs(st, o, nullptr, nullptr); !s.ok()) return s;
-  DeferredShade out;
-  for (const auto& [name, defines] :
-       {std::pair<const char*, std::vector<std::string>>{"first", {"TESSERA_PASS_FIRST"}},
-        {"srgb8", {"TESSERA_PASS_SRGB8", "TESSERA_SRGB_FROM_S"}},
-        {"fxaa", *fd}}) {
-    if (Status s = run_deferred_pass(st, name, defines, out.passes); !s.ok()) return s;
-  }
-  total_times(out);
-  out.image8 = ImageRGBA8(st.w, st.h);
+  deferred::FxaaResult out;
+  if (Status s = run_method(st, deferred::GpuMethod::fxaa, out.passes, f); !s.ok()) return s;
+  out.image = ImageRGBA8(st.w, st.h);
   if (Status s =
-          read_pass_buffer(st, kBufRgba8Out, out.image8.pixels.size(), out.image8.pixels.data());
+          read_pass_buffer(st, kBufRgba8Out, out.image.pixels.size(), out.image.pixels.data());
       !s.ok()) {
     return s;
   }

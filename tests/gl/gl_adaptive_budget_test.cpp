@@ -21,7 +21,7 @@ TEST_F(GlAdaptive, BudgetOnDeferredFrame) {
     ASSERT_TRUE(c.ok()) << c.status().message;
     // Budget 0: the 1 spp image.
     frame_.budget = 0;
-    Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(frame_);
+    Result<gl::AdaptiveOutput> r = (*c)->dispatch(frame_);
     ASSERT_TRUE(r.ok()) << r.status().message;
     EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), one_->image), 0u);
     EXPECT_EQ(r->extra_samples, 0u);
@@ -49,7 +49,7 @@ TEST_F(GlAdaptive, BudgetOnDeferredFrame) {
         partial += got[i] != 0 && got[i] != asked[i];
       }
       EXPECT_LE(partial, 1);
-      Result<gl::AdaptiveFrameResult> again = (*c)->dispatch(frame_);
+      Result<gl::AdaptiveOutput> again = (*c)->dispatch(frame_);
       ASSERT_TRUE(again.ok());
       EXPECT_EQ(read_rgba32f(again->colour), img);
       EXPECT_EQ(extra_of(read_counts(again->sample_counts, w_, h_)), got);
@@ -59,7 +59,7 @@ TEST_F(GlAdaptive, BudgetOnDeferredFrame) {
   Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
   ASSERT_TRUE(c.ok());
   frame_.budget = -1;
-  Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(frame_);
+  Result<gl::AdaptiveOutput> r = (*c)->dispatch(frame_);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.status().message.find("budget = -1"), std::string::npos) << r.status().message;
 }
@@ -80,7 +80,7 @@ TEST_F(GlAdaptive, BudgetRanksByMetricStrengthThenPixelIndex) {
   Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
   ASSERT_TRUE(c.ok()) << c.status().message;
   s.frame.budget = 3 * 5 + 2;
-  Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(s.frame);
+  Result<gl::AdaptiveOutput> r = (*c)->dispatch(s.frame);
   ASSERT_TRUE(r.ok()) << r.status().message;
   const std::vector<int> got = extra_of(read_counts(r->sample_counts, w, h));
   std::vector<int> rank(std::size_t(w * h));
@@ -113,7 +113,7 @@ TEST_F(GlAdaptive, TonemapWeightedResolveFormula) {
   for (bool reference : {false, true}) {
     Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
     ASSERT_TRUE(c.ok()) << c.status().message;
-    Result<gl::AdaptiveFrameResult> r =
+    Result<gl::AdaptiveOutput> r =
         reference ? (*c)->dispatch_reference(s.frame) : (*c)->dispatch(s.frame);
     ASSERT_TRUE(r.ok()) << r.status().message;
     const std::vector<float> img = read_rgba32f(r->colour);
@@ -151,7 +151,7 @@ TEST_F(GlAdaptive, CallersSampleOrder) {
   o.sample_order = {8, 0, 1, 2, 3, 4, 5, 6, 7};  // S = the bottom-right cell
   Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
   ASSERT_TRUE(c.ok()) << c.status().message;
-  Result<gl::AdaptiveFrameResult> r = (*c)->dispatch_first_sample(s.frame);
+  Result<gl::AdaptiveOutput> r = (*c)->dispatch_first_sample(s.frame);
   ASSERT_TRUE(r.ok()) << r.status().message;
   const std::vector<float> img = read_rgba32f(r->colour);
   for (int y = 0; y < h; ++y) {
@@ -171,7 +171,7 @@ TEST_F(GlAdaptive, HookLumaDrivesTheShadingMetric) {
   // Default luma: the analytic hook's colours vary from pixel to pixel, k_s > 0 somewhere.
   Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
   ASSERT_TRUE(c.ok()) << c.status().message;
-  Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(s.frame);
+  Result<gl::AdaptiveOutput> r = (*c)->dispatch(s.frame);
   ASSERT_TRUE(r.ok()) << r.status().message;
   const std::vector<int> with_default = extra_of(read_counts(r->sample_counts, w, h));
   EXPECT_GT(std::accumulate(with_default.begin(), with_default.end(), 0), 0);

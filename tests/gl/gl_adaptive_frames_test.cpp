@@ -61,13 +61,13 @@ TEST_F(GlAdaptive, DynamicResolutionEveryFrame) {
     oa.profile = true;
     Result<std::unique_ptr<gl::AdaptiveSupersampler>> alone = gl::AdaptiveSupersampler::create(oa);
     ASSERT_TRUE(alone.ok()) << alone.status().message;
-    Result<gl::AdaptiveFrameResult> want = (*alone)->dispatch(exact.frame);
+    Result<gl::AdaptiveOutput> want = (*alone)->dispatch(exact.frame);
     ASSERT_TRUE(want.ok()) << want.status().message;
     // The same frame on the component of the largest size.
     Synthetic big = padded(st.w, st.h, m, W * m, H * m);
     big.frame.render_size = {st.w, st.h};
     big.frame.budget = st.budget;
-    Result<gl::AdaptiveFrameResult> got = (*dynamic)->dispatch(big.frame);
+    Result<gl::AdaptiveOutput> got = (*dynamic)->dispatch(big.frame);
     ASSERT_TRUE(got.ok()) << at << ": " << got.status().message;
     EXPECT_EQ(got->render_size.width, st.w);
     EXPECT_EQ(got->render_size.height, st.h);
@@ -81,7 +81,7 @@ TEST_F(GlAdaptive, DynamicResolutionEveryFrame) {
   // Beyond the largest size: one line, nothing dispatched.
   Synthetic big = padded(W, H, m, W * m, H * m);
   big.frame.render_size = {W + 1, H};
-  Result<gl::AdaptiveFrameResult> r = (*dynamic)->dispatch(big.frame);
+  Result<gl::AdaptiveOutput> r = (*dynamic)->dispatch(big.frame);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.status().message.find("render size 25x16 (1..24 x 1..16"), std::string::npos)
       << r.status().message;

@@ -12,7 +12,7 @@ namespace {
 TEST_F(GlAdaptive, SameImagesAsDeferredRenderer) {
   for (int m : {2, 4}) {
     use_deferred(40, 32, m);
-    Result<gl::ShadeResult> ref = deferred_->shade_reference(shading_);
+    Result<deferred::ShadeResult> ref = deferred_->shade_reference(shading_);
     ASSERT_TRUE(ref.ok()) << ref.status().message;
     ASSERT_NO_FATAL_FAILURE(shade_default_and_adaptive());
     for (AdaptiveSchedule s :
@@ -21,7 +21,7 @@ TEST_F(GlAdaptive, SameImagesAsDeferredRenderer) {
       o.schedule = s;
       Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
       ASSERT_TRUE(c.ok()) << c.status().message;
-      Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(frame_);
+      Result<gl::AdaptiveOutput> r = (*c)->dispatch(frame_);
       ASSERT_TRUE(r.ok()) << r.status().message;
       EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), ad_->image), 0u)
           << "m=" << m << " schedule " << int(s);
@@ -40,7 +40,7 @@ TEST_F(GlAdaptive, SameImagesAsDeferredRenderer) {
     o.list_capacity = 37;
     Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
     ASSERT_TRUE(c.ok()) << c.status().message;
-    Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(frame_);
+    Result<gl::AdaptiveOutput> r = (*c)->dispatch(frame_);
     ASSERT_TRUE(r.ok()) << r.status().message;
     EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), ad_->image), 0u) << "m=" << m;
   }
@@ -48,7 +48,7 @@ TEST_F(GlAdaptive, SameImagesAsDeferredRenderer) {
 
 TEST_F(GlAdaptive, ForeignLayoutSameImage) {
   use_deferred(40, 32, 4);
-  Result<gl::ShadeResult> ad = deferred_->shade_adaptive(shading_, d::AdaptiveOptions{});
+  Result<deferred::ShadeResult> ad = deferred_->shade_adaptive(shading_, AdaptiveThresholds{});
   ASSERT_TRUE(ad.ok()) << ad.status().message;
   int classes = 0;
   deferred_textures(&classes);
@@ -83,7 +83,7 @@ TEST_F(GlAdaptive, ForeignLayoutSameImage) {
   ASSERT_TRUE(comp.ok()) << comp.status().message;
   gl::AdaptiveFrame frame;
   frame.gbuffer = {a.get(), b.get(), c.get(), e.get()};
-  Result<gl::AdaptiveFrameResult> r = (*comp)->dispatch(frame);
+  Result<gl::AdaptiveOutput> r = (*comp)->dispatch(frame);
   ASSERT_TRUE(r.ok()) << r.status().message;
   EXPECT_EQ(differing_pixels(read_rgba32f(r->colour), ad->image), 0u);
   EXPECT_EQ(read_counts(r->sample_counts, w_, h_), ad->samples);
@@ -139,7 +139,7 @@ TEST_F(GlAdaptive, RestoresEngineGlState) {
     glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
     glViewport(1, 2, 3, 4);
     s.frame.budget = 5;
-    Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(s.frame);
+    Result<gl::AdaptiveOutput> r = (*c)->dispatch(s.frame);
     ASSERT_TRUE(r.ok()) << r.status().message;
     r = (*c)->dispatch_reference(s.frame);
     ASSERT_TRUE(r.ok()) << r.status().message;
@@ -249,7 +249,7 @@ TEST_F(GlAdaptive, BadInputIsOneLineError) {
   Result<std::unique_ptr<gl::AdaptiveSupersampler>> c = gl::AdaptiveSupersampler::create(o);
   ASSERT_TRUE(c.ok()) << c.status().message;
   auto frame_fails = [&](const gl::AdaptiveFrame& f, const std::string& needle) {
-    Result<gl::AdaptiveFrameResult> r = (*c)->dispatch(f);
+    Result<gl::AdaptiveOutput> r = (*c)->dispatch(f);
     ASSERT_FALSE(r.ok()) << needle;
     EXPECT_NE(r.status().message.find(needle), std::string::npos) << r.status().message;
   };

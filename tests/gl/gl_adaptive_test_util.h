@@ -121,9 +121,9 @@ class GlAdaptive : public test::GlTest {
   // and the frame a component reads it from: frame_.gbuffer the textures the adaptive shade left
   // bound, classes_ its texture arrays.
   void shade_default_and_adaptive() {
-    Result<gl::ShadeResult> one = deferred_->shade_default(shading_);
+    Result<deferred::ShadeResult> one = deferred_->shade_default(shading_);
     ASSERT_TRUE(one.ok()) << one.status().message;
-    Result<gl::ShadeResult> ad = deferred_->shade_adaptive(shading_, d::AdaptiveOptions{});
+    Result<deferred::ShadeResult> ad = deferred_->shade_adaptive(shading_, AdaptiveThresholds{});
     ASSERT_TRUE(ad.ok()) << ad.status().message;
     one_ = std::move(*one);
     ad_ = std::move(*ad);
@@ -152,7 +152,7 @@ class GlAdaptive : public test::GlTest {
   std::unique_ptr<gl::DeferredRenderer> deferred_;
   d::ShadingOptions shading_;
   int w_ = 0, h_ = 0, m_ = 0;
-  std::optional<gl::ShadeResult> one_, ad_;
+  std::optional<deferred::ShadeResult> one_, ad_;
   gl::AdaptiveFrame frame_;
   int classes_ = 0;
 };

@@ -84,8 +84,8 @@ class GlDeferred : public test::GlTest {
   // GL vs CPU adaptive: k-map agreement and PSNR, on the CPU's own G-buffer (the whole
   // pipeline) and on the GL G-buffer read back (the shading passes alone).
   void compare_adaptive(const char* what, double min_k_own, double min_k_same, double min_psnr) {
-    const d::AdaptiveOptions a;
-    Result<gl::ShadeResult> g = gl_->shade_adaptive(shading_, a);
+    const AdaptiveThresholds a;
+    Result<deferred::ShadeResult> g = gl_->shade_adaptive(shading_, a);
     ASSERT_TRUE(g.ok()) << g.status().message;
     const d::AdaptiveResult own = cpu_->shade_adaptive(cpu_gb_, shading_, a);
     const d::AdaptiveResult same = cpu_->shade_adaptive(gl_gb_, shading_, a);
@@ -163,16 +163,16 @@ TEST_F(GlDeferred, ForcedKIdentities) {
   use_builtin();
   for (int m : {2, 4}) {
     render(64, 48, m);
-    Result<gl::ShadeResult> ref = gl_->shade_reference(shading_);
+    Result<deferred::ShadeResult> ref = gl_->shade_reference(shading_);
     ASSERT_TRUE(ref.ok()) << ref.status().message;
-    Result<gl::ShadeResult> one = gl_->shade_default(shading_);
+    Result<deferred::ShadeResult> one = gl_->shade_default(shading_);
     ASSERT_TRUE(one.ok()) << one.status().message;
-    d::AdaptiveOptions a;
+    AdaptiveThresholds a;
     a.force_k = m * m - 1;
-    Result<gl::ShadeResult> all = gl_->shade_adaptive(shading_, a);
+    Result<deferred::ShadeResult> all = gl_->shade_adaptive(shading_, a);
     ASSERT_TRUE(all.ok()) << all.status().message;
     a.force_k = 0;
-    Result<gl::ShadeResult> none = gl_->shade_adaptive(shading_, a);
+    Result<deferred::ShadeResult> none = gl_->shade_adaptive(shading_, a);
     ASSERT_TRUE(none.ok()) << none.status().message;
     // k = m^2 - 1 runs the same shading of the same samples as the reference (the first sample's
     // light terms come from S, computed by the same function), summed in the same order.
@@ -196,12 +196,12 @@ TEST_F(GlDeferred, EveryScheduleGivesTheTileScheduleImage) {
   use_builtin();
   for (int m : {2, 4}) {
     render(64, 48, m);
-    d::AdaptiveOptions all;
+    AdaptiveThresholds all;
     all.force_k = 15;
     // A renderer with `schedule` on this G-buffer, and its adaptive, forced-k and edge results.
     struct Results {
       std::unique_ptr<gl::DeferredRenderer> renderer;
-      Result<gl::ShadeResult> adaptive, all, edge;
+      Result<deferred::ShadeResult> adaptive, all, edge;
     };
     auto shade_with = [&](gl::ExtraSchedule schedule) -> Result<Results> {
       gl::DeferredRendererOptions o;
@@ -210,26 +210,26 @@ TEST_F(GlDeferred, EveryScheduleGivesTheTileScheduleImage) {
       Result<std::unique_ptr<gl::DeferredRenderer>> g = gl::DeferredRenderer::create(*scene_, o);
       if (!g) return g.status();
       if (Status s = (*g)->render_gbuffer(camera_, 64, 48, m); !s.ok()) return s;
-      Result<gl::ShadeResult> adaptive = (*g)->shade_adaptive(shading_, {});
-      Result<gl::ShadeResult> forced = (*g)->shade_adaptive(shading_, all);
-      Result<gl::ShadeResult> edge = (*g)->shade_edge_per_sample(shading_);
+      Result<deferred::ShadeResult> adaptive = (*g)->shade_adaptive(shading_, {});
+      Result<deferred::ShadeResult> forced = (*g)->shade_adaptive(shading_, all);
+      Result<deferred::ShadeResult> edge = (*g)->shade_edge_per_sample(shading_);
       return Results{std::move(*g), std::move(adaptive), std::move(forced), std::move(edge)};
     };
     Result<Results> tiles = shade_with(gl::ExtraSchedule::tile_list);
     ASSERT_TRUE(tiles.ok()) << tiles.status().message;
     ASSERT_TRUE(tiles->adaptive.ok() && tiles->all.ok() && tiles->edge.ok());
-    const gl::ShadeResult& tile = *tiles->adaptive;
-    const gl::ShadeResult& tile_all = *tiles->all;
-    const gl::ShadeResult& tile_edge = *tiles->edge;
+    const deferred::ShadeResult& tile = *tiles->adaptive;
+    const deferred::ShadeResult& tile_all = *tiles->all;
+    const deferred::ShadeResult& tile_edge = *tiles->edge;
     ASSERT_EQ(tile.passes.back().pass, "extra");
     for (gl::ExtraSchedule schedule : {gl::ExtraSchedule::loop, gl::ExtraSchedule::frame_list}) {
       SCOPED_TRACE("m=" + std::to_string(m) +
                    (schedule == gl::ExtraSchedule::loop ? " loop" : " frame_list"));
       Result<Results> g = shade_with(schedule);
       ASSERT_TRUE(g.ok()) << g.status().message;
-      Result<gl::ShadeResult>& r = g->adaptive;
-      Result<gl::ShadeResult>& r_all = g->all;
-      Result<gl::ShadeResult>& r_edge = g->edge;
+      Result<deferred::ShadeResult>& r = g->adaptive;
+      Result<deferred::ShadeResult>& r_all = g->all;
+      Result<deferred::ShadeResult>& r_edge = g->edge;
       ASSERT_TRUE(r.ok()) << r.status().message;
       ASSERT_TRUE(r_all.ok()) << r_all.status().message;
       ASSERT_TRUE(r_edge.ok()) << r_edge.status().message;
@@ -241,11 +241,11 @@ TEST_F(GlDeferred, EveryScheduleGivesTheTileScheduleImage) {
       EXPECT_EQ(max_abs_diff(r_edge->image, tile_edge.image), 0.0f);
       if (schedule == gl::ExtraSchedule::frame_list) {
         // Once grown (by r_all), a frame runs each pass once, named after its part of the work.
-        Result<gl::ShadeResult> again = g->renderer->shade_adaptive(shading_, {});
+        Result<deferred::ShadeResult> again = g->renderer->shade_adaptive(shading_, {});
         ASSERT_TRUE(again.ok());
         EXPECT_EQ(max_abs_diff(again->image, tile.image), 0.0f);
         std::vector<std::string> names;
-        for (const gl::PassTime& t : again->passes) names.push_back(t.pass);
+        for (const PassTime& t : again->passes) names.push_back(t.pass);
         EXPECT_EQ(names, (std::vector<std::string>{"first", "metrics", "extra_list", "extra_shade",
                                                    "extra_resolve"}));
       }
@@ -257,7 +257,7 @@ TEST_F(GlDeferred, EdgePerSampleMatchesCpu) {
   use_builtin();
   for (int m : {2, 4}) {
     render(64, 48, m);
-    Result<gl::ShadeResult> g = gl_->shade_edge_per_sample(shading_);
+    Result<deferred::ShadeResult> g = gl_->shade_edge_per_sample(shading_);
     ASSERT_TRUE(g.ok()) << g.status().message;
     const d::AdaptiveResult same = d::shade_edge_per_sample(*cpu_, gl_gb_, shading_);
     const d::AdaptiveResult own = d::shade_edge_per_sample(*cpu_, cpu_gb_, shading_);
@@ -280,10 +280,10 @@ TEST_F(GlDeferred, EdgePerSampleMatchesCpu) {
 TEST_F(GlDeferred, FxaaMatchesCpu) {
   use_builtin();
   render(64, 48, 2);
-  Result<gl::ShadeResult> one = gl_->shade_default(shading_);
+  Result<deferred::ShadeResult> one = gl_->shade_default(shading_);
   ASSERT_TRUE(one.ok());
   const ImageRGBA8 in = to_srgb8(one->image);
-  Result<gl::FxaaResult> g = gl_->fxaa(in);
+  Result<deferred::FxaaResult> g = gl_->fxaa(in);
   ASSERT_TRUE(g.ok()) << g.status().message;
   Result<ImageRGBA8> c = d::fxaa(in);
   ASSERT_TRUE(c.ok());
@@ -306,7 +306,7 @@ TEST_F(GlDeferred, FxaaMatchesCpu) {
   EXPECT_GE(frac, 0.995);
   EXPECT_LE(worst, 2);
   // The all-GPU pipeline (1x, sRGB8, FXAA) gives the same bytes as FXAA of the read-back.
-  Result<gl::FxaaResult> pipe = gl_->shade_default_fxaa(shading_);
+  Result<deferred::FxaaResult> pipe = gl_->shade_default_fxaa(shading_);
   ASSERT_TRUE(pipe.ok()) << pipe.status().message;
   ASSERT_EQ(pipe->passes.size(), 3u);
   std::size_t pipe_same = 0;

@@ -2,8 +2,8 @@
 // `FaceTextureSet::bind(FaceTextureSetBindings)` binds exactly the documented points and nothing
 // else (distinctive engine state set on every unit and buffer binding beforehand, read back
 // after), refuses bad binding points before touching any state, and `glsl_defines` names the
-// same points; `ptex_quad_mesh` maps the Disney samples' OBJ polygons to their Ptex faces and
-// refuses an unsplit non-quad polygon naming it, and triangle-mesh files. Skips the GL test
+// same points; `faces::ptex_quad_mesh` maps the Disney samples' OBJ polygons to their Ptex faces
+// and refuses an unsplit non-quad polygon naming it, and triangle-mesh files. Skips the GL test
 // when no OpenGL 4.5 context can be made, the data tests without ../shared/data.
 #include <gtest/gtest.h>
 
@@ -249,7 +249,7 @@ TEST(PtexQuadMesh, DisneySamplesAndRefusals) {
     SCOPED_TRACE(name);
     auto [obj, file] = load(name);
     ASSERT_TRUE(file.ok()) << file.status().message;
-    Result<faces::QuadMesh> mesh = ptex_quad_mesh(obj, *file, name);
+    Result<faces::QuadMesh> mesh = faces::ptex_quad_mesh(obj, *file, name);
     ASSERT_TRUE(mesh.ok()) << mesh.status().message;
     EXPECT_EQ(mesh->face_count(), file->face_count());
     // The file's own adjacency agrees with the mesh's (face f of the mesh is Ptex face f).
@@ -282,19 +282,19 @@ TEST(PtexQuadMesh, DisneySamplesAndRefusals) {
     auto [obj, file] = load("nonquad");
     auto [tobj, tfile] = load("teapot");
     ASSERT_TRUE(tfile.ok());
-    Result<faces::QuadMesh> mesh = ptex_quad_mesh(obj, *tfile, "nonquad.obj");
+    Result<faces::QuadMesh> mesh = faces::ptex_quad_mesh(obj, *tfile, "nonquad.obj");
     ASSERT_FALSE(mesh.ok());
     EXPECT_EQ(mesh.status().code, ErrorCode::unsupported);
     std::printf("refused: %s\n", mesh.status().message.c_str());
     EXPECT_NE(mesh.status().message.find("nonquad.obj: polygon "), std::string::npos);
     EXPECT_NE(mesh.status().message.find("is not a subface"), std::string::npos);
     // A quad mesh against a file with subfaces, and against fewer faces.
-    Result<faces::QuadMesh> swapped = ptex_quad_mesh(tobj, *file, "teapot.obj");
+    Result<faces::QuadMesh> swapped = faces::ptex_quad_mesh(tobj, *file, "teapot.obj");
     ASSERT_FALSE(swapped.ok());
     EXPECT_EQ(swapped.status().code, ErrorCode::size_mismatch);
     faces::PolygonMesh fewer = tobj;
     fewer.faces.pop_back();
-    Result<faces::QuadMesh> short_mesh = ptex_quad_mesh(fewer, *tfile, "teapot.obj");
+    Result<faces::QuadMesh> short_mesh = faces::ptex_quad_mesh(fewer, *tfile, "teapot.obj");
     ASSERT_FALSE(short_mesh.ok());
     EXPECT_NE(short_mesh.status().message.find("the file has"), std::string::npos)
         << short_mesh.status().message;
@@ -302,7 +302,7 @@ TEST(PtexQuadMesh, DisneySamplesAndRefusals) {
     auto [tri_obj, tri] = load("triangle");
     ASSERT_TRUE(tri.ok()) << tri.status().message;
     ASSERT_EQ(tri->mesh_type, ptex::MeshType::triangle);
-    Result<faces::QuadMesh> t = ptex_quad_mesh(tri_obj, *tri, "triangle.ptx");
+    Result<faces::QuadMesh> t = faces::ptex_quad_mesh(tri_obj, *tri, "triangle.ptx");
     ASSERT_FALSE(t.ok());
     EXPECT_EQ(t.status().code, ErrorCode::unsupported);
     EXPECT_NE(t.status().message.find("triangle.ptx: a triangle-mesh Ptex file"), std::string::npos)

@@ -27,17 +27,17 @@ using namespace tessera::gl::api;  // NOLINT(google-build-using-namespace)
 
 // Checks every record against the CPU set: class/layer consistent with the classes, size,
 // neighbours, edge mappings, and corner mappings composing to the CPU corner transforms.
-void expect_mirrors(const faces::FaceTextureSet& set, const PackedFaces& p,
-                    const std::vector<FaceRecord>& records, const std::string& name) {
+void expect_mirrors(const faces::FaceTextureSet& set, const faces::PackedFaces& p,
+                    const std::vector<faces::FaceRecord>& records, const std::string& name) {
   ASSERT_EQ(int(records.size()), set.face_count()) << name;
   const auto& table = faces::edge_transform_table();
   int checked_corners = 0;
   for (int f = 0; f < set.face_count(); ++f) {
-    const FaceRecord& r = records[std::size_t(f)];
+    const faces::FaceRecord& r = records[std::size_t(f)];
     SCOPED_TRACE(name + " face " + std::to_string(f));
     ASSERT_GE(r.info[0], 0);
     ASSERT_LT(r.info[0], int(p.classes.size()));
-    const FaceClass& c = p.classes[std::size_t(r.info[0])];
+    const faces::FaceClass& c = p.classes[std::size_t(r.info[0])];
     ASSERT_LT(r.info[1], int(c.faces.size()));
     EXPECT_EQ(c.faces[std::size_t(r.info[1])], f);
     EXPECT_EQ(r.info[2], set.texture(f).width());
@@ -73,14 +73,14 @@ void expect_mirrors(const faces::FaceTextureSet& set, const PackedFaces& p,
 
 TEST(GlPack, Figure1LayoutMirrorsTheCpuSet) {
   const faces::FaceTextureSet set = test::figure1_texture_set(6, 3);
-  Result<PackedFaces> p = pack_faces(set);
+  Result<faces::PackedFaces> p = pack_faces(set);
   ASSERT_TRUE(p.ok()) << p.status().message;
   expect_mirrors(set, *p, p->records, "figure1");
   // Classes sorted by (height, width), each face in exactly one layer.
   std::set<int> seen;
   for (std::size_t i = 0; i < p->classes.size(); ++i) {
     if (i > 0) {
-      const FaceClass &a = p->classes[i - 1], &b = p->classes[i];
+      const faces::FaceClass &a = p->classes[i - 1], &b = p->classes[i];
       EXPECT_LT(std::make_pair(a.height, a.width), std::make_pair(b.height, b.width));
     }
     for (int f : p->classes[i].faces) EXPECT_TRUE(seen.insert(f).second);
@@ -92,9 +92,9 @@ TEST(GlPack, Figure1LayoutMirrorsTheCpuSet) {
 
 TEST(GlPack, LimitsGiveOneLineErrors) {
   const faces::FaceTextureSet set = test::figure1_texture_set(6, 3);
-  PackLimits l;
+  faces::PackLimits l;
   l.max_array_layers = 1;
-  Result<PackedFaces> p = pack_faces(set, l);
+  Result<faces::PackedFaces> p = pack_faces(set, l);
   ASSERT_FALSE(p.ok());
   EXPECT_EQ(p.status().code, ErrorCode::too_large);
   EXPECT_NE(p.status().message.find("exceed GL_MAX_ARRAY_TEXTURE_LAYERS = 1"), std::string::npos)
@@ -176,15 +176,15 @@ TEST_F(GlPtex, DisneySamplesUploadAndReadBackExactly) {
     SCOPED_TRACE(name);
     Result<FaceTextureSet> gpu = FaceTextureSet::upload(set);
     ASSERT_TRUE(gpu.ok()) << gpu.status().message;
-    const PackedFaces& p = gpu->layout();
-    std::vector<FaceRecord> records(std::size_t(set.face_count()));
+    const faces::PackedFaces& p = gpu->layout();
+    std::vector<faces::FaceRecord> records(std::size_t(set.face_count()));
     glGetNamedBufferSubData(gpu->record_buffer(), 0,
-                            GLsizeiptr(records.size() * sizeof(FaceRecord)), records.data());
+                            GLsizeiptr(records.size() * sizeof(faces::FaceRecord)), records.data());
     ASSERT_TRUE(check_errors("records").ok());
     expect_mirrors(set, p, records, name);
     // Every level of (up to) 3 faces per class reads back bit-identical to the CPU chain.
     for (int c = 0; c < gpu->class_count(); ++c) {
-      const FaceClass& cls = p.classes[std::size_t(c)];
+      const faces::FaceClass& cls = p.classes[std::size_t(c)];
       for (std::size_t layer = 0; layer < cls.faces.size(); layer += 1 + cls.faces.size() / 3) {
         const texture::Texture& t = set.texture(cls.faces[layer]);
         for (int level = 0; level < cls.levels; ++level) {
@@ -228,7 +228,7 @@ TEST_F(GlPtex, TexelFormatsHoldTheConvertedBytes) {
     Result<FaceTextureSet> gpu = FaceTextureSet::upload(set, o);
     ASSERT_TRUE(gpu.ok()) << gpu.status().message;
     for (int c = 0; c < gpu->class_count(); ++c) {
-      const FaceClass& cls = gpu->layout().classes[std::size_t(c)];
+      const faces::FaceClass& cls = gpu->layout().classes[std::size_t(c)];
       const texture::TextureLevelView v = set.texture(cls.faces[0]).level(0, 0);
       const std::size_t texels = std::size_t(v.width) * std::size_t(v.height);
       const std::size_t bytes = texels * faces::texel_bytes(k.format);
@@ -271,7 +271,7 @@ void main() {
   double max_diff = 0.0;
   int lookups = 0;
   for (int c = 0; c < gpu->class_count(); ++c) {
-    const FaceClass& cls = gpu->layout().classes[std::size_t(c)];
+    const faces::FaceClass& cls = gpu->layout().classes[std::size_t(c)];
     std::vector<float> queries;
     std::vector<std::array<float, 4>> expected;
     for (std::size_t layer = 0; layer < cls.faces.size(); ++layer) {

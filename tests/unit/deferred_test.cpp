@@ -155,7 +155,7 @@ TEST(Deferred, AdaptiveExtremesMatchReferenceAndDefault) {
     const GBuffer gb = f.gbuffer(48, 36, m);
     const ImageRGBAF ref = f.renderer->shade_reference(gb, f.shading);
     const ImageRGBAF one = f.renderer->shade_default(gb, f.shading);
-    AdaptiveOptions a;
+    AdaptiveThresholds a;
     a.force_k = m * m - 1;
     const AdaptiveResult full = f.renderer->shade_adaptive(gb, f.shading, a);
     EXPECT_TRUE(same_pixels(full.image, ref)) << "m=" << m;
@@ -174,7 +174,7 @@ TEST(Deferred, HeavyModeChangesPixelsAndStillMatches) {
   f.shading.heavy_terms = 16;
   const GBuffer gb = f.gbuffer(40, 30, 2);
   const ImageRGBAF ref = f.renderer->shade_reference(gb, f.shading);
-  AdaptiveOptions a;
+  AdaptiveThresholds a;
   a.force_k = 3;
   EXPECT_TRUE(same_pixels(f.renderer->shade_adaptive(gb, f.shading, a).image, ref));
   ShadingOptions light = f.shading;
@@ -206,9 +206,9 @@ TEST(Deferred, AdaptiveIsBetweenDefaultAndReferenceAndThreadIndependent) {
   one_thread.threads = 1;
   EXPECT_TRUE(same_pixels(f.renderer->shade_adaptive(gb, one_thread, {}).image, ad.image));
   // Ablations: each metric alone shades fewer samples than both together.
-  AdaptiveOptions geo;
+  AdaptiveThresholds geo;
   geo.use_shading = false;
-  AdaptiveOptions shd;
+  AdaptiveThresholds shd;
   shd.use_geometry = false;
   EXPECT_LE(f.renderer->shade_adaptive(gb, f.shading, geo).samples_shaded, ad.samples_shaded);
   EXPECT_LE(f.renderer->shade_adaptive(gb, f.shading, shd).samples_shaded, ad.samples_shaded);

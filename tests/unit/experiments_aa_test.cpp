@@ -227,7 +227,7 @@ struct Limited final : AaBackend {
     return w * m > 64 || h * m > 64 ? Status::error(ErrorCode::too_large, "over 64")
                                     : Status::success();
   }
-  Result<AaPassTime> render_gbuffer(const scene::Camera& cam, int w, int h, int m) override {
+  Result<PassTime> render_gbuffer(const scene::Camera& cam, int w, int h, int m) override {
     return cpu->render_gbuffer(cam, w, h, m);
   }
   Result<AaShadeOutput> shade(AaMethod k, const deferred::ShadingOptions& s,

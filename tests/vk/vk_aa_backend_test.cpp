@@ -50,7 +50,7 @@ double psnr(const ImageRGBA8& a, const ImageRGBA8& b) {
 
 std::vector<std::string> pass_names(const AaShadeOutput& o) {
   std::vector<std::string> n;
-  for (const experiments::AaPassTime& p : o.passes) n.push_back(p.pass);
+  for (const PassTime& p : o.passes) n.push_back(p.pass);
   return n;
 }
 
@@ -91,7 +91,7 @@ class VkAaBackend : public ::testing::Test {
     return r ? std::move(*r) : AaShadeOutput{};
   }
   void render(AaBackend& be, const scene::Camera& camera, int m) {
-    Result<experiments::AaPassTime> t = be.render_gbuffer(camera, kW, kH, m);
+    Result<PassTime> t = be.render_gbuffer(camera, kW, kH, m);
     ASSERT_TRUE(t.ok()) << t.status().message;
     EXPECT_EQ(t->pass, "gbuffer");
   }
@@ -140,7 +140,7 @@ TEST_F(VkAaBackend, EveryMethodMatchesGl) {
       }
       EXPECT_TRUE(std::isfinite(v.wall_ms) && v.wall_ms > 0.0);
       double pass_wall = 0.0;
-      for (const experiments::AaPassTime& p : v.passes) {
+      for (const PassTime& p : v.passes) {
         EXPECT_GT(p.wall_ms, 0.0) << p.pass;
         EXPECT_GE(p.gpu_ms, 0.0) << p.pass;  // timestamps (lavapipe has them)
         pass_wall += p.wall_ms;
@@ -179,7 +179,7 @@ TEST_F(VkAaBackend, GBufferBeyondTheDeviceLimitsIsTooLarge) {
   EXPECT_EQ(s.code, ErrorCode::too_large);
   EXPECT_NE(s.message.find("maxImageDimension2D"), std::string::npos) << s.message;
   EXPECT_NE(s.message.find(std::to_string(2 * w) + "x16"), std::string::npos) << s.message;
-  Result<experiments::AaPassTime> r = vk_->render_gbuffer(camera_, w, 8, 2);
+  Result<PassTime> r = vk_->render_gbuffer(camera_, w, 8, 2);
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code, ErrorCode::too_large) << r.status().message;
   EXPECT_EQ(vk_->check_size(64, 48, 9).code, ErrorCode::invalid_argument);

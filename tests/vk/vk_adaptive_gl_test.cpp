@@ -37,10 +37,9 @@ GlFrameOut run_gl(gl::AdaptiveSupersamplerOptions o, const SceneGBuffer& g, Whic
   auto c = gl::AdaptiveSupersampler::create(o);
   EXPECT_TRUE(c.ok()) << c.status().message;
   if (!c) return out;
-  Result<gl::AdaptiveFrameResult> r = which == Which::adaptive ? (*c)->dispatch(frame)
-                                      : which == Which::reference
-                                          ? (*c)->dispatch_reference(frame)
-                                          : (*c)->dispatch_first_sample(frame);
+  Result<gl::AdaptiveOutput> r = which == Which::adaptive    ? (*c)->dispatch(frame)
+                                 : which == Which::reference ? (*c)->dispatch_reference(frame)
+                                                             : (*c)->dispatch_first_sample(frame);
   EXPECT_TRUE(r.ok()) << r.status().message;
   if (!r) return out;
   Result<ImageRGBAF> img = gl::read_texture_rgbaf(r->colour);

@@ -93,7 +93,7 @@ TEST_F(VkAdaptive, RecordsInOneCommandBufferAndViewChanges) {
   }
   ASSERT_TRUE((*c)->begin_frame(0).ok());
   VkCommandBuffer cmd = engine_->begin();
-  Result<vk::AdaptiveRecord> r = (*c)->record(cmd, fa);
+  Result<vk::AdaptiveOutput> r = (*c)->record(cmd, fa);
   ASSERT_TRUE(r.ok()) << r.status().message;
   EXPECT_EQ(r->view, 0u);
   for (std::size_t s = 0; s < 3; ++s) {  // the state the first record left them in
@@ -180,7 +180,7 @@ TEST_F(VkAdaptive, HookReadsTheEnginesDescriptorSet) {
     frame.hook_sets = {set};
     ASSERT_TRUE((*c)->begin_frame(0).ok());
     VkCommandBuffer cmd = engine_->begin();
-    Result<vk::AdaptiveRecord> r = (*c)->record(cmd, frame);
+    Result<vk::AdaptiveOutput> r = (*c)->record(cmd, frame);
     ASSERT_TRUE(r.ok()) << r.status().message;
     engine_->submit_and_wait(cmd);
     bound.colour = engine_->read_back(r->colour);
@@ -271,7 +271,7 @@ class VkAdaptiveErrors : public VkAdaptive {
     if (!c) return "";
     EXPECT_TRUE((*c)->begin_frame(0).ok());
     g_recorded = 0;
-    Result<vk::AdaptiveRecord> r = (*c)->record(engine_->idle_command_buffer(), f);
+    Result<vk::AdaptiveOutput> r = (*c)->record(engine_->idle_command_buffer(), f);
     EXPECT_FALSE(r.ok());
     EXPECT_EQ(g_recorded.load(), 0);
     const std::string m = r ? "" : r.status().message;
@@ -365,7 +365,7 @@ TEST_F(VkAdaptiveErrors, FrameSlotAndRenderSize) {
   auto c = vk::AdaptiveSupersampler::create(ctx_, options_);
   ASSERT_TRUE(c.ok()) << c.status().message;
   g_recorded = 0;
-  Result<vk::AdaptiveRecord> r = (*c)->record(engine_->idle_command_buffer(), frame());
+  Result<vk::AdaptiveOutput> r = (*c)->record(engine_->idle_command_buffer(), frame());
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.status().message.find("record before begin_frame"), std::string::npos);
   const Status s = (*c)->begin_frame(2);  // frames_in_flight = 2

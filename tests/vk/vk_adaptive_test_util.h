@@ -117,7 +117,7 @@ inline VkFrameOut run_vk(Engine& engine, vk::AdaptiveSupersamplerOptions o, cons
   frame.budget = budget;
   EXPECT_TRUE((*c)->begin_frame(0).ok());
   VkCommandBuffer cmd = engine.begin();
-  Result<vk::AdaptiveRecord> r = which == Which::adaptive ? (*c)->record(cmd, frame)
+  Result<vk::AdaptiveOutput> r = which == Which::adaptive ? (*c)->record(cmd, frame)
                                  : which == Which::reference
                                      ? (*c)->record_reference(cmd, frame)
                                      : (*c)->record_first_sample(cmd, frame);

@@ -303,9 +303,9 @@ int main(int argc, char** argv) {
     times.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
-  Result<std::vector<gl::PassTime>> passes = timer.collect();
+  Result<std::vector<PassTime>> passes = timer.collect();
   if (!passes) return fail(passes.status().message);
-  for (const gl::PassTime& p : *passes) gpu_times.push_back(p.ms);
+  for (const PassTime& p : *passes) gpu_times.push_back(p.gpu_ms);
   // Read back (flipped to top-down) and encode like tessera does.
   Result<ImageRGBAF> lin = gl::read_framebuffer_rgbaf(fbo, 0, width, height);
   if (!lin) return fail(lin.status().message);

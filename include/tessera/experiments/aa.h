@@ -9,6 +9,7 @@
 // prints nothing: progress goes to the optional callback. Every number and image except the
 // timings is identical for any thread count and from run to run. Errors come back as a
 // `Status`; a GL backend without a factory is `ErrorCode::unsupported`.
+// Tests: tests/unit/experiments_aa_test.cpp; tests/cli/aa_cli_test.py.
 #pragma once
 
 #include <array>
@@ -46,7 +47,7 @@ struct AaConfig {
   bool heavy = false;                 ///< Also time the heavy per-sample shader.
   int heavy_terms = -1;               ///< Heavy sinusoids per sample; < 0 = the default.
   int fxaa_preset = 39;               ///< FXAA 3.11 quality preset.
-  deferred::AdaptiveOptions adaptive;
+  AdaptiveThresholds adaptive;
   deferred::EdgePerSampleOptions edge;  ///< The engine baseline's classification.
   int threads = 0;                      ///< Worker threads (0 = all); results do not depend on it.
   /// Who renders: the CPU; OpenGL through `gl_factory` or Vulkan through `vk_factory` (its own

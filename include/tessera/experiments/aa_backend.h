@@ -2,6 +2,7 @@
 // experiment (Holländer, Boubekeur & Eisemann 2013): an enlarged G-buffer and the shading
 // methods on it, rendered by the CPU (`create_cpu_aa_backend`, deferred::DeferredRenderer) or by
 // OpenGL (gl::DeferredRenderer, made by a `GpuBackendFactory`, experiments/common.h).
+// Tests: tests/unit/experiments_aa_test.cpp, tests/vk/vk_aa_backend_test.cpp.
 #pragma once
 
 #include <array>
@@ -31,14 +32,6 @@ inline constexpr std::array<AaMethod, 5> kAaMethods = {AaMethod::default_1spp, A
 /// "default", "fxaa", "reference", "adaptive", "edge_per_sample" (the JSON keys of `tessera aa`).
 const char* aa_method_name(AaMethod method);
 
-/// Times of one pass of an AA backend (ms).
-struct AaPassTime {
-  std::string pass;
-  double wall_ms = 0.0;  ///< Host time (GL: from the dispatch to the end of a closing glFinish).
-  double gpu_ms = 0.0;   ///< GL_TIME_ELAPSED (GL only; NaN on the CPU and where the driver's
-                         ///< result is impossible; Mesa 22.3 llvmpipe reads 0 for compute).
-};
-
 /// One shading call of an AA backend.
 struct AaShadeOutput {
   ImageRGBA8 image;                   ///< 8-bit sRGB, w x h.
@@ -48,16 +41,23 @@ struct AaShadeOutput {
   /// The method's time: CPU = the whole call (shading, sRGB encoding, FXAA); GL = the sum of
   /// the passes' wall times (read-back excluded).
   double wall_ms = 0.0;
-  double gpu_ms = 0.0;             ///< GL: sum of the passes' GL_TIME_ELAPSED; CPU: NaN.
-  std::vector<AaPassTime> passes;  ///< In order; adaptive: "first", "metrics", "extra".
+  double gpu_ms = 0.0;           ///< GL: sum of the passes' GL_TIME_ELAPSED; CPU: NaN.
+  std::vector<PassTime> passes;  ///< In order; adaptive: "first", "metrics", "extra".
 };
 
 /// What an AA backend shades with besides the method.
 struct AaShadeOptions {
-  deferred::AdaptiveOptions adaptive;
+  AdaptiveThresholds adaptive;
   deferred::FxaaOptions fxaa;
   deferred::EdgePerSampleOptions edge;
 };
+
+/// A GPU renderer's shading call as an AA backend's output (the GL and Vulkan backends'): the
+/// image as 8-bit sRGB (`threads` for the encoding), the sample counts of adaptive and
+/// edge-per-sample, the passes and their sums.
+AaShadeOutput aa_shade_output(AaMethod method, deferred::ShadeResult result, int threads);
+/// The same for FXAA's 8-bit result.
+AaShadeOutput aa_shade_output(deferred::FxaaResult result);
 
 /// A renderer of the AA experiment at one scene: the CPU (`create_cpu_aa_backend`, wrapping
 /// deferred::DeferredRenderer) or OpenGL (`GpuBackendFactory::create_aa`, wrapping
@@ -69,8 +69,8 @@ class AaBackend : public BackendDevice {
   /// (GL: the framebuffer and texture limits; too_large naming the limit).
   virtual Status check_size(int width, int height, int m) const = 0;
   /// The geometry pass into the enlarged G-buffer; its time (pass "gbuffer").
-  virtual Result<AaPassTime> render_gbuffer(const scene::Camera& camera, int width, int height,
-                                            int m) = 0;
+  virtual Result<PassTime> render_gbuffer(const scene::Camera& camera, int width, int height,
+                                          int m) = 0;
   /// Shades the last G-buffer with `method`.
   virtual Result<AaShadeOutput> shade(AaMethod method, const deferred::ShadingOptions& shading,
                                       const AaShadeOptions& options) = 0;

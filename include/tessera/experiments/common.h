@@ -9,6 +9,7 @@
 // main library links neither GPU API: a caller that wants one hands the config a
 // `GpuBackendFactory`, implemented by `gl::experiment_backends()` (tessera/gl_experiments.h) and
 // `vk::experiment_backends()` (tessera/vk_experiments.h).
+// Tests: tests/unit/experiments_test.cpp.
 #pragma once
 
 #include <functional>

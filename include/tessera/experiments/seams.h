@@ -10,6 +10,7 @@
 // images) and prints nothing: progress goes to the optional callback. Every number and image
 // except the timings is identical for any thread count and from run to run. Errors come back as
 // a `Status`; a GL backend without a factory is `ErrorCode::unsupported`.
+// Tests: tests/unit/experiments_seams_options_test.cpp; tests/cli/seams_cli_test.py.
 #pragma once
 
 #include <array>

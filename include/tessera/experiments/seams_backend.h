@@ -3,6 +3,7 @@
 // (`create_cpu_seams_backend`, faces::FaceRenderer) or by OpenGL (gl::FaceRenderer, made by a
 // `GpuBackendFactory`, experiments/common.h), and the rule by which `run_seams` compares a GL
 // frame with a CPU frame.
+// Tests: tests/unit/experiments_seams_backend_test.cpp, tests/vk/vk_seams_backend_test.cpp.
 #pragma once
 
 #include <memory>

@@ -1,6 +1,6 @@
 // adaptive_metrics.glsl — public GLSL API: the sample-count metrics of adaptive supersampling
-// (Hollander, Boubekeur & Eisemann 2013, §3.1), the same formulas and constants as the CPU's
-// tessera::deferred::AdaptiveOptions (include/tessera/deferred.h). Pure functions: no bindings,
+// (Hollander, Boubekeur & Eisemann 2013, §3.1), the same formulas and constants as
+// tessera::AdaptiveThresholds (include/tessera/adaptive_thresholds.h). Pure functions: no bindings,
 // so an engine can lift them into its own passes. Requires GLSL 4.00 (double precision for the
 // depth variance, which the CPU accumulates in double too).
 //

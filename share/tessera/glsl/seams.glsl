@@ -81,8 +81,8 @@
 #endif
 #endif
 
-/// One face record (std430, 80 bytes) — tessera::gl::FaceRecord.
-struct TesseraFace {
+/// One face record (std430, 80 bytes): tessera::faces::FaceRecord (tessera/faces_gpu.h).
+struct TesseraFaceRecord {
   ivec4 info;            // class, layer, level-0 width, height
   ivec4 neighbour;       // face across edge e, -1 on a border
   ivec4 mapping;         // e * 4 + neighbour's edge: index into tessera_seams_uv; -1 border
@@ -93,7 +93,7 @@ struct TesseraFace {
 #if defined(VULKAN)
 layout(std430, set = TESSERA_SEAMS_SET, binding = TESSERA_SEAMS_FACES_BINDING)
 readonly buffer TesseraSeamsFaces {
-  TesseraFace tessera_seams_faces[];
+  TesseraFaceRecord tessera_seams_faces[];
 };
 
 layout(set = TESSERA_SEAMS_SET, binding = TESSERA_SEAMS_BORDER_BINDING)
@@ -102,7 +102,7 @@ layout(set = TESSERA_SEAMS_SET, binding = TESSERA_SEAMS_CLAMP_BINDING)
 uniform sampler2DArray tessera_seams_clamp[TESSERA_SEAMS_CLASSES];
 #else
 layout(std430, binding = TESSERA_SEAMS_FACES_BINDING) readonly buffer TesseraSeamsFaces {
-  TesseraFace tessera_seams_faces[];
+  TesseraFaceRecord tessera_seams_faces[];
 };
 
 layout(binding = TESSERA_SEAMS_FIRST_UNIT)
@@ -283,7 +283,7 @@ vec4 tessera_seams_sample_discard(int face, vec2 uv, vec2 dx, vec2 dy, bool clam
 
 /// The four edge neighbours' border lookups in their own UV spaces (Listing 1, lines 4-12).
 vec4 tessera_seams_edge_sum(int face, vec2 uv, vec2 dx, vec2 dy) {
-  TesseraFace f = tessera_seams_faces[face];
+  TesseraFaceRecord f = tessera_seams_faces[face];
   vec4 c = vec4(0.0);
   for (int e = 0; e < 4; ++e) {
     int id = f.neighbour[e];
@@ -306,7 +306,7 @@ vec4 tessera_seams_sample_traverse(int face, vec2 uv, vec2 dx, vec2 dy) {
 /// transforms composed); the diagonal region is dropped at other valences.
 vec4 tessera_seams_sample_traverse_corners(int face, vec2 uv, vec2 dx, vec2 dy) {
   vec4 c = tessera_seams_face_lookup(face, uv, dx, dy) + tessera_seams_edge_sum(face, uv, dx, dy);
-  TesseraFace f = tessera_seams_faces[face];
+  TesseraFaceRecord f = tessera_seams_faces[face];
   for (int k = 0; k < 4; ++k) {
     int id = f.corner[k];
     if (id < 0) continue;

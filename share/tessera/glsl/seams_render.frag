@@ -101,7 +101,7 @@ vec4 tessera_render_sample(int face, vec2 uv, vec2 dx, vec2 dy) {
   vec4 c = tessera_render_own_border(layer, uv, dx, dy) + tessera_seams_edge_sum(face, uv, dx, dy);
 #if TESSERA_RENDER_METHOD == 3
   // The diagonal faces at valence-4 corners (tessera_seams_sample_traverse_corners).
-  TesseraFace f = tessera_seams_faces[face];
+  TesseraFaceRecord f = tessera_seams_faces[face];
   for (int k = 0; k < 4; ++k) {
     int id = f.corner[k];
     if (id < 0) continue;
