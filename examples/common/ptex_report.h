@@ -175,25 +175,32 @@ inline tessera::Result<Agreement> image_agreement(const tessera::ImageRGBAF& img
   return r;
 }
 
-/// Renders the frame of `camera` at `img`'s size with tessera's CPU renderer (Discard,
+/// Renders the frame of `camera` at `img`'s size with tessera's CPU renderer `cpu` (Discard,
 /// trilinear, the Clamp fallback) and compares `img` with it.
-inline tessera::Result<Agreement> cpu_agreement(const tessera::faces::FaceScene& scene,
-                                                const tessera::faces::FaceTextureSet& set,
+inline tessera::Result<Agreement> cpu_agreement(tessera::faces::FaceRenderer& cpu,
                                                 const tessera::scene::Camera& camera,
                                                 const tessera::ImageRGBAF& img) {
-  auto cpu = tessera::faces::FaceRenderer::create(scene, set);
-  if (!cpu) return cpu.status();
   tessera::faces::FaceRenderOptions o;
   o.width = img.width;
   o.height = img.height;
   o.sampling.method = tessera::faces::SeamMethod::discard;
   o.sampling.filter = tessera::texture::TextureFilter::trilinear;
   o.sampling.clamp_fallback = true;
-  auto frame = (*cpu)->render(camera, o);
+  auto frame = cpu.render(camera, o);
   if (!frame) return frame.status();
   auto r = image_agreement(img, frame->image);
   if (r) r->cpu_ms = frame->ms();
   return r;
+}
+
+/// The same with a CPU renderer made for the one frame.
+inline tessera::Result<Agreement> cpu_agreement(const tessera::faces::FaceScene& scene,
+                                                const tessera::faces::FaceTextureSet& set,
+                                                const tessera::scene::Camera& camera,
+                                                const tessera::ImageRGBAF& img) {
+  auto cpu = tessera::faces::FaceRenderer::create(scene, set);
+  if (!cpu) return cpu.status();
+  return cpu_agreement(**cpu, camera, img);
 }
 
 /// A PSNR as the reports print it ("%.3f"); for JSON, which has no infinity, identical 8-bit

@@ -114,6 +114,9 @@ struct ForwardPipelineDesc {
   const std::vector<VkVertexInputAttributeDescription>* attributes = nullptr;
   int width = 0, height = 0;
   bool cull_back = true;  // counter-clockwise front faces, as the CPU renderers
+  /// The viewport and scissor set by the command buffer (a render size per frame) instead of
+  /// width x height.
+  bool dynamic_viewport = false;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   VkRenderPass pass = VK_NULL_HANDLE;
 
@@ -153,6 +156,7 @@ inline VkResult forward_pipeline(VkDevice dev, const ForwardPipelineDesc& in,
   g.stride = in.stride;
   g.attributes = in.attributes->data();
   g.attribute_count = std::uint32_t(in.attributes->size());
+  g.dynamic_viewport = in.dynamic_viewport;
   g.cull = in.cull_back ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;
   g.layout = in.layout;
   g.pass = in.pass;
@@ -203,6 +207,64 @@ inline VkDescriptorSet frame_set(VkDevice dev, const std::vector<VkDescriptorSet
   return set;
 }
 
+/// The forward pass's render pass: subpass 0 drawing into an RGBA32F colour target (stored;
+/// `colour_load`, from `initial` to `final` layout) and D32 depth (cleared, not stored), after
+/// `deps`.
+inline VkRenderPass forward_render_pass(VkDevice dev, VkAttachmentLoadOp colour_load,
+                                        VkImageLayout initial, VkImageLayout final,
+                                        const std::vector<VkSubpassDependency>& deps) {
+  VkAttachmentDescription att[2]{};
+  for (int i = 0; i < 2; ++i) {
+    att[i].samples = VK_SAMPLE_COUNT_1_BIT;
+    att[i].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    att[i].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  }
+  att[0].format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  att[0].loadOp = colour_load;
+  att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  att[0].initialLayout = initial;
+  att[0].finalLayout = final;
+  att[1].format = VK_FORMAT_D32_SFLOAT;
+  att[1].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  att[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  att[1].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  att[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+  const VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  const VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription sub{};
+  sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  sub.colorAttachmentCount = 1;
+  sub.pColorAttachments = &cref;
+  sub.pDepthStencilAttachment = &dref;
+  VkRenderPassCreateInfo rp{};
+  rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
+  rp.attachmentCount = 2;
+  rp.pAttachments = att;
+  rp.subpassCount = 1;
+  rp.pSubpasses = &sub;
+  rp.dependencyCount = std::uint32_t(deps.size());
+  rp.pDependencies = deps.data();
+  VkRenderPass pass = VK_NULL_HANDLE;
+  vkCreateRenderPass(dev, &rp, nullptr, &pass);
+  return pass;
+}
+
+/// A framebuffer of `pass` on `views` (colour, depth), `width` x `height`.
+inline VkFramebuffer forward_framebuffer(VkDevice dev, VkRenderPass pass,
+                                         const VkImageView views[2], int width, int height) {
+  VkFramebufferCreateInfo fb{};
+  fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+  fb.renderPass = pass;
+  fb.attachmentCount = 2;
+  fb.pAttachments = views;
+  fb.width = std::uint32_t(width);
+  fb.height = std::uint32_t(height);
+  fb.layers = 1;
+  VkFramebuffer framebuffer = VK_NULL_HANDLE;
+  vkCreateFramebuffer(dev, &fb, nullptr, &framebuffer);
+  return framebuffer;
+}
+
 /// The objects of one forward pass but its targets: the render pass and framebuffer, set 0's
 /// layout (the frame block) and an empty one, the pool of the frame set, the pipeline layout,
 /// the pipeline and its shader modules. `destroy` destroys them (the device idle).
@@ -216,53 +278,13 @@ struct ForwardObjects {
   VkPipeline pipeline = VK_NULL_HANDLE;
   VkDescriptorSet frame_set = VK_NULL_HANDLE;
 
-  /// The render pass, subpass 0 drawing into an RGBA32F colour target (stored; `colour_load`,
-  /// from `initial` to `final` layout) and D32 depth (cleared, not stored), after `deps`, and
-  /// its framebuffer of `views` (colour, depth), `width` x `height`.
+  /// The render pass (forward_render_pass) and its framebuffer of `views` (colour, depth),
+  /// `width` x `height`.
   void create_pass(VkDevice dev, VkAttachmentLoadOp colour_load, VkImageLayout initial,
                    VkImageLayout final, const std::vector<VkSubpassDependency>& deps,
                    const VkImageView views[2], int width, int height) {
-    VkAttachmentDescription att[2]{};
-    for (int i = 0; i < 2; ++i) {
-      att[i].samples = VK_SAMPLE_COUNT_1_BIT;
-      att[i].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-      att[i].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    }
-    att[0].format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    att[0].loadOp = colour_load;
-    att[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    att[0].initialLayout = initial;
-    att[0].finalLayout = final;
-    att[1].format = VK_FORMAT_D32_SFLOAT;
-    att[1].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    att[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    att[1].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    att[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-    const VkAttachmentReference cref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-    const VkAttachmentReference dref{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-    VkSubpassDescription sub{};
-    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    sub.colorAttachmentCount = 1;
-    sub.pColorAttachments = &cref;
-    sub.pDepthStencilAttachment = &dref;
-    VkRenderPassCreateInfo rp{};
-    rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
-    rp.attachmentCount = 2;
-    rp.pAttachments = att;
-    rp.subpassCount = 1;
-    rp.pSubpasses = &sub;
-    rp.dependencyCount = std::uint32_t(deps.size());
-    rp.pDependencies = deps.data();
-    vkCreateRenderPass(dev, &rp, nullptr, &pass);
-    VkFramebufferCreateInfo fb{};
-    fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
-    fb.renderPass = pass;
-    fb.attachmentCount = 2;
-    fb.pAttachments = views;
-    fb.width = std::uint32_t(width);
-    fb.height = std::uint32_t(height);
-    fb.layers = 1;
-    vkCreateFramebuffer(dev, &fb, nullptr, &framebuffer);
+    pass = forward_render_pass(dev, colour_load, initial, final, deps);
+    framebuffer = forward_framebuffer(dev, pass, views, width, height);
   }
 
   /// The set layouts, the pipeline layout of set 0 (the frame block, bound to `ubo`) and then

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "scene_frame.h"
-#include "window.h"
+#include "vk_window.h"  // examples/common: the GLFW window and swapchain
 
 namespace engine {
 
@@ -93,7 +93,14 @@ std::string run_frame_loop(Device& d, const GeometryPipeline& gp, const FrameLoo
       // round again: the engine composites or presents it (view 0 to the window).
       if (v == 0 && o.window != nullptr) {
         err = o.window->acquire(d, slot);
-        if (err.empty()) o.window->record_blit(s.cmd, r->colour, size);
+        if (err.empty()) {
+          // The blit's source: from tessera's last write to TRANSFER_SRC_OPTIMAL (its next
+          // record of the image starts from UNDEFINED).
+          barrier(s.cmd, r->colour.image, r->colour.layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                  r->colour.stage, r->colour.access, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                  VK_ACCESS_2_TRANSFER_READ_BIT);
+          o.window->record_blit(s.cmd, r->colour.image, size);
+        }
       }
       s.pending.views.push_back({v, size.width, size.height, 0, 0.0});
     }

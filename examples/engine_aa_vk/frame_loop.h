@@ -21,8 +21,9 @@ struct FrameLoopOptions {
   int frames = 0;           ///< Frames to run.
   std::uint32_t frames_in_flight = 2;
   int views = 2;
-  long long budget = -1;     ///< -1: none.
-  Window* window = nullptr;  ///< --window: view 0 presented every frame (window.h).
+  long long budget = -1;  ///< -1: none.
+  Window* window =
+      nullptr;  ///< --window: view 0 presented every frame (examples/common/vk_window.h).
 };
 
 /// One view of one completed frame, as its profile reported it.

@@ -17,7 +17,7 @@
 //   --frame-loop N  runs N frames as an engine does (frame_loop.h): F frames in flight (2),
 //           V views (2), the render scale cycling 100 % -> 70 % -> 85 %; --json reports per
 //           frame and view the render size, the extra samples and tessera's GPU time
-//   --window  with --frame-loop: view 0 presented every frame in a GLFW window (window.h;
+//   --window  with --frame-loop: view 0 presented every frame in a GLFW window (vk_window.h;
 //           under Xvfb lavapipe presents through X11); --json adds the frames presented
 //   --json  one JSON object: samples %, PSNR of the adaptive and the 1 spp image against the
 //           component's own full supersampling (tonemapped, sRGB8), the component's pass times
@@ -42,7 +42,7 @@
 #include "scene_frame.h"
 #include "tessera/core.h"
 #include "tessera/vk_adaptive.h"
-#include "window.h"
+#include "vk_window.h"  // examples/common: the GLFW window and swapchain
 
 namespace {
 
@@ -321,7 +321,7 @@ int main(int argc, char** argv) {
   engine::Window window;
   std::vector<const char*> instance_extensions, device_extensions;
   if (a.window) {
-    if (std::string why = window.open(a.w, a.h); !why.empty()) {
+    if (std::string why = window.open(a.w, a.h, "engine_aa_vk"); !why.empty()) {
       window.close();
       return fail("no window: " + why);
     }

@@ -8,13 +8,15 @@
 
 namespace engine {
 
-std::string Device::create(bool want_validation) {
+std::string Device::create(bool want_validation,
+                           const std::vector<const char*>& instance_extensions,
+                           const std::vector<const char*>& device_extensions) {
   VkPhysicalDeviceProperties props{};
-  const std::string why =
-      create_instance_and_pick("engine_ptex_vk", VK_API_VERSION_1_1, want_validation, props);
+  const std::string why = create_instance_and_pick("engine_ptex_vk", VK_API_VERSION_1_1,
+                                                   want_validation, props, instance_extensions);
   if (!why.empty()) return why;
   api_version = props.apiVersion < VK_API_VERSION_1_3 ? props.apiVersion : VK_API_VERSION_1_3;
-  return create_device(nullptr);
+  return create_device(nullptr, device_extensions);
 }
 
 std::vector<std::uint32_t> compile(const std::string& glsl, bool vertex, const std::string& name,

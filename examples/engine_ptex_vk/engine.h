@@ -21,8 +21,10 @@ namespace engine {
 /// A Vulkan 1.1 device (vk_engine.h's DeviceBase) with no optional feature.
 class Device : public DeviceBase {
  public:
-  /// Creates everything; "" on success, else the reason (no device, ...).
-  std::string create(bool validation);
+  /// Creates everything; "" on success, else the reason (no device, ...). The extensions: a
+  /// window's surface (instance) and swapchain (device), for --frame-loop --window.
+  std::string create(bool validation, const std::vector<const char*>& instance_extensions = {},
+                     const std::vector<const char*>& device_extensions = {});
   void destroy() { destroy_device_and_instance(); }
 
   std::uint32_t api_version = VK_API_VERSION_1_1;  // the device's, at most 1.3

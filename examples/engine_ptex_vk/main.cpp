@@ -14,11 +14,23 @@
 //
 // Usage: engine_ptex_vk MESH.obj FILE.ptx [--size WxH] [--orbit K/N] [--shift-px X]
 //                       [--face-shift K] [--json] [-o FILE.png]
+//                       [--frame-loop N [--frames-in-flight F] [--views V] [--window]]
 //   --json         one JSON object with the agreement with tessera's CPU renderer
 //                  (faces::FaceRenderer: Discard, trilinear, same camera, resolution and
 //                  lighting): PSNR of the 8-bit sRGB images (psnr_db, null when identical),
 //                  and the validation messages counted
-//   -o FILE.png    the Vulkan image (8-bit sRGB)
+//   -o FILE.png    the Vulkan image (8-bit sRGB; with --frame-loop: view 0 of the last frame)
+//   --frame-loop N runs N frames as an engine does (frame_loop.h): F frames in flight (2..3,
+//                  default 2), V views (default 2; view v at orbit (K + v max(1, N/V))/N,
+//                  each frame's camera a further 1/64 of an orbit step round), the render scale
+//                  cycling 100 % -> 70 % -> 85 % of --size (each side rounded to even), the texture
+//                  set's upload in the first frame's command buffer; --json reports per frame
+//                  and view the slot, scale and render size, and for the last frame of each
+//                  scale (the last 3 frames) every view's image, read back after its fence,
+//                  against the CPU renderer at that size and camera (psnr_db)
+//   --window       with --frame-loop: view 0 presented every frame in a GLFW window
+//                  (examples/common/vk_window.h; under Xvfb lavapipe presents through X11);
+//                  --json adds the frames presented
 //   --shift-px X   moves the Vulkan camera's image X pixels right (the CPU frame stays)
 //   --face-shift K the shader reads face (f + K) mod faces: the wrong textures
 // The last two are negative controls for the agreement bound (tests/vk/engine_ptex_vk_test.py).
@@ -33,6 +45,7 @@
 #include <vector>
 
 #include "engine.h"
+#include "frame_loop.h"
 #include "ptex_report.h"  // examples/common: the flags, vertex, frame block and CPU check of both
 #include "shaders.h"
 #include "tessera/core.h"
@@ -42,13 +55,25 @@
 #include "tessera/io.h"
 #include "tessera/ptex.h"
 #include "tessera/vk_faces.h"
+#include "vk_window.h"  // examples/common: the GLFW window and swapchain
 
 namespace {
 
 // The flags of engine_ptex too (ptex_report.h), and the Vulkan engine's own.
 struct Args : engine::PtexArgs {
   int face_shift = 0;
+  int frame_loop = 0;  // frames of the frame loop (frame_loop.h); 0: one frame
+  int frames_in_flight = 2, views = 2;
+  bool window = false;  // --window: present view 0 of the frame loop in a GLFW window
 };
+
+// The frame loop's cameras: view v at orbit (K + v max(1, N / V))/N (the views spread round
+// the orbit: 1/8 and 5/8 by default, the single frame's two checked orbits), frame i a further
+// i/kOrbitSteps of an orbit step round (an engine's camera moves every frame, so a view drawn
+// with another frame's uniform buffer would not match its check).
+constexpr int kOrbitSteps = 64;
+// The frames whose views are checked against the CPU renderer: the last of each render scale.
+constexpr int kCheckedFrames = 3;
 
 int fail(const std::string& msg) {
   std::fprintf(stderr, "engine_ptex_vk: %s\n", msg.c_str());
@@ -66,7 +91,23 @@ std::string parse_args(int argc, char** argv, Args& a) {
     a.face_shift = std::atoi(v.c_str());
     return a.face_shift < 0 ? "--face-shift: K >= 0" : "";
   });
-  return engine::parse_ptex_args(cl, argc, argv, a, "engine_ptex_vk");
+  auto count = [](const char* flag, int lo, int hi, int& to) {
+    return [flag, lo, hi, &to](const std::string& v) -> std::string {
+      to = std::atoi(v.c_str());
+      return to < lo || to > hi ? std::string(flag) + " " + v + ": expected " + std::to_string(lo) +
+                                      ".." + std::to_string(hi)
+                                : "";
+    };
+  };
+  cl.option("--frame-loop", count("--frame-loop", 1, 100000, a.frame_loop));
+  cl.option("--frames-in-flight", count("--frames-in-flight", 2, 3, a.frames_in_flight));
+  cl.option("--views", count("--views", 1, 16, a.views));
+  cl.flag("--window", &a.window);
+  if (std::string why = engine::parse_ptex_args(cl, argc, argv, a, "engine_ptex_vk");
+      !why.empty()) {
+    return why;
+  }
+  return a.window && a.frame_loop == 0 ? "--window needs --frame-loop N" : "";
 }
 
 // The engine's frame: 4 vertices and 2 triangles per face, the camera (moved `shift_px`
@@ -91,6 +132,98 @@ engine::Frame make_frame(const Args& a, const tessera::faces::QuadMesh& mesh,
   return f;
 }
 
+// The frame block's bytes of `camera` at w x h (the shift applied).
+std::vector<std::uint8_t> block_bytes(const Args& a, const tessera::scene::Camera& camera, int w,
+                                      int h) {
+  const engine::ForwardFrameBlock block = engine::forward_frame_block(camera, w, h, a.shift_px);
+  std::vector<std::uint8_t> bytes(sizeof block);
+  std::memcpy(bytes.data(), &block, sizeof block);
+  return bytes;
+}
+
+// The camera of view `view` in frame `frame` of the frame loop: orbit position
+// loop_orbit(...) of a.orbit_n * kOrbitSteps.
+int loop_orbit(const Args& a, int frame, int view) {
+  return (a.orbit_k + view * std::max(1, a.orbit_n / a.views)) * kOrbitSteps + frame;
+}
+tessera::scene::Camera loop_camera(const Args& a, const tessera::faces::FaceScene& scene, int frame,
+                                   int view) {
+  return tessera::faces::face_orbit_camera(scene, loop_orbit(a, frame, view),
+                                           a.orbit_n * kOrbitSteps);
+}
+
+// An RGBA32F image of w x h from read-back texels.
+tessera::ImageRGBAF to_image(int w, int h, std::vector<float> pixels) {
+  tessera::ImageRGBAF img(w, h);
+  img.pixels = std::move(pixels);
+  return img;
+}
+
+// The frame loop's report: per frame and view the slot, scale and render size, and for the
+// read-back views the agreement with the CPU renderer at that size and camera.
+int report_loop(const Args& a, const tessera::faces::FaceScene& scene,
+                const tessera::faces::FaceTextureSet& set, int classes,
+                const std::string& device_name, bool validation, int messages, int presented,
+                const std::vector<engine::FrameResult>& frames) {
+  auto cpu = tessera::faces::FaceRenderer::create(scene, set);
+  if (!cpu) return fail(cpu.status().message);
+  std::string text;
+  double psnr_min = INFINITY, cpu_ms = 0;
+  int checked = 0;
+  char buf[512];
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const engine::FrameResult& f = frames[i];
+    std::snprintf(buf, sizeof buf,
+                  "%s{\"frame\": %d, \"slot\": %u, \"scale_percent\": %d, \"views\": [",
+                  i ? ", " : "", f.frame, f.slot, f.scale_percent);
+    text += buf;
+    for (std::size_t k = 0; k < f.views.size(); ++k) {
+      const engine::ViewResult& v = f.views[k];
+      std::snprintf(
+          buf, sizeof buf, "%s{\"view\": %d, \"render_size\": [%u, %u], \"orbit\": \"%d/%d\"",
+          k ? ", " : "", v.view, v.w, v.h, loop_orbit(a, f.frame, v.view), a.orbit_n * kOrbitSteps);
+      text += buf;
+      std::string psnr = "unchecked";
+      if (!v.image.empty()) {
+        const tessera::ImageRGBAF img = to_image(int(v.w), int(v.h), v.image);
+        auto agree = engine::cpu_agreement(**cpu, loop_camera(a, scene, f.frame, v.view), img);
+        if (!agree) return fail(agree.status().message);
+        ++checked;
+        cpu_ms += agree->cpu_ms;
+        psnr_min = std::min(psnr_min, agree->psnr);
+        text += ", \"psnr_db\": " + engine::psnr_text(agree->psnr, true);
+        psnr = engine::psnr_text(agree->psnr, false) + " dB";
+      }
+      text += "}";
+      if (!a.json) {
+        std::printf("frame %d (slot %u) view %d: %ux%u (%d %%), PSNR vs CPU Discard: %s\n", f.frame,
+                    f.slot, v.view, v.w, v.h, f.scale_percent, psnr.c_str());
+      }
+    }
+    text += "]}";
+  }
+  if (!a.out.empty() && !frames.empty() && !frames.back().views.empty() &&
+      !frames.back().views[0].image.empty()) {
+    const engine::ViewResult& v = frames.back().views[0];
+    const tessera::ImageRGBAF img = to_image(int(v.w), int(v.h), v.image);
+    if (auto s = tessera::io::write_png(a.out, tessera::to_srgb8(img)); !s.ok()) {
+      return fail(s.message);
+    }
+  }
+  if (!a.json) return 0;
+  std::printf(
+      "{\"backend\": \"vk\", \"device\": \"%s\", \"mesh\": \"%s\", \"faces\": %d, "
+      "\"classes\": %d, \"width\": %d, \"height\": %d, \"frames_in_flight\": %d, "
+      "\"views\": %d, \"shift_px\": %.3f, \"face_shift\": %d, \"frames\": [%s], "
+      "\"checked\": %d, \"psnr_min_db\": %s, \"cpu_ms\": %.3f, \"presented\": %d, "
+      "\"validation\": %s, \"validation_messages\": %d}\n",
+      device_name.c_str(), scene.name.c_str(), scene.mesh.face_count(), classes, a.w, a.h,
+      a.frames_in_flight, a.views, double(a.shift_px), a.face_shift, text.c_str(), checked,
+      checked ? engine::psnr_text(psnr_min, true).c_str() : "null", cpu_ms, presented,
+      validation ? "true" : "false", messages);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -105,10 +238,30 @@ int main(int argc, char** argv) {
   const tessera::faces::FaceTextureSet& set = loaded->set;
   // ---- end of step 1 ----
 
+  // --window: the engine's window first (its surface extensions go into the instance).
+  engine::Window window;
+  std::vector<const char*> instance_extensions, device_extensions;
+  if (a.window) {
+    if (std::string why = window.open(a.w, a.h, "engine_ptex_vk"); !why.empty()) {
+      window.close();
+      return fail("no window: " + why);
+    }
+    instance_extensions = window.instance_extensions();
+    device_extensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
+  }
   engine::Device d;
-  if (std::string why = d.create(true); !why.empty()) {
+  if (std::string why = d.create(true, instance_extensions, device_extensions); !why.empty()) {
+    if (a.window) window.destroy(d);
     d.destroy();
     return fail("no Vulkan device: " + why);
+  }
+  if (a.window) {
+    if (std::string why = window.create_swapchain(d, std::uint32_t(a.frames_in_flight));
+        !why.empty()) {
+      window.destroy(d);
+      d.destroy();
+      return fail("no swapchain: " + why);
+    }
   }
   const tessera::scene::Camera camera =
       tessera::faces::face_orbit_camera(scene, a.orbit_k, a.orbit_n);
@@ -132,6 +285,7 @@ int main(int argc, char** argv) {
   to.upload = tessera::vk::FaceUpload::engine_command_buffer;
   auto tex = tessera::vk::FaceTextureSet::create(ctx, set, to);
   if (!tex) {
+    if (a.window) window.destroy(d);
     d.destroy();
     return fail(tex.status().message);
   }
@@ -160,10 +314,29 @@ int main(int argc, char** argv) {
   }
   double vk_ms = 0;
   std::vector<float> pixels;
-  if (error.empty()) pixels = engine::draw(d, frame, &vk_ms, error);
-  if (error.empty()) error = (*tex)->release_staging().message;  // the frame completed
+  std::vector<engine::FrameResult> frames;
+  if (error.empty() && a.frame_loop > 0) {
+    engine::FrameLoopOptions lo;
+    lo.w = a.w;
+    lo.h = a.h;
+    lo.frames = a.frame_loop;
+    lo.frames_in_flight = std::uint32_t(a.frames_in_flight);
+    lo.views = a.views;
+    lo.read_back_from = std::max(0, a.frame_loop - kCheckedFrames);
+    lo.frame_block = [&](int i, int v, VkExtent2D size) {
+      return block_bytes(a, loop_camera(a, scene, i, v), int(size.width), int(size.height));
+    };
+    // ---- tessera: the first frame's command buffer (the upload) completed ----
+    lo.first_frame_completed = [&] { return (*tex)->release_staging().message; };
+    lo.window = a.window ? &window : nullptr;
+    error = engine::run_frame_loop(d, frame, lo, frames);
+  } else if (error.empty()) {
+    pixels = engine::draw(d, frame, &vk_ms, error);
+    if (error.empty()) error = (*tex)->release_staging().message;  // the frame completed
+  }
   const int classes = (*tex)->class_count();
-  (*tex).reset();  // tessera's objects before the engine's device
+  (*tex).reset();                   // tessera's objects before the engine's device
+  if (a.window) window.destroy(d);  // before the device
   const std::string device_name = d.name;
   const bool validation = d.validation;
   d.destroy();  // leaks are reported here
@@ -171,6 +344,10 @@ int main(int argc, char** argv) {
   if (d.messages > 0) {
     return fail(std::to_string(d.messages) +
                 " validation message(s), the first: " + d.first_message);
+  }
+  if (a.frame_loop > 0) {
+    return report_loop(a, scene, set, classes, device_name, validation, d.messages,
+                       window.presented, frames);
   }
   tessera::ImageRGBAF img(a.w, a.h);
   img.pixels = std::move(pixels);
