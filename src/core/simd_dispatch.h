@@ -9,10 +9,9 @@
 #include <cstdint>
 #include <cstring>
 
-#include "core/simd_int.h"
+#include "core/simd_select.h"
 
-#if defined(TESSERA_SIMD_SSE2) && (defined(__x86_64__) || defined(__i386__))
-#define TESSERA_SIMD_X86_DISPATCH 1
+#if defined(TESSERA_SIMD_X86_DISPATCH)  // defined by simd_select.h
 #include <tmmintrin.h>
 #endif
 

@@ -1,8 +1,8 @@
-// src/core/simd_wide.h: every operation of the 8-lane types, checked lane by lane (bit for bit)
-// against a scalar reference expression, on edge values and generated ones. Built three ways
-// (tests/unit/CMakeLists.txt): simd_wide_test with the target's portable backend (two SSE2 halves
-// on x86-64, two NEON halves on AArch64, where the arm64 stage runs it under qemu-aarch64),
-// simd_wide_scalar_test with TESSERA_NO_SIMD (two scalar halves), and on x86-64
+// src/core/simd_avx2.h and simd_halves.h: every operation of the 8-lane types, checked lane by
+// lane (bit for bit) against a scalar reference expression, on edge values and generated ones.
+// Built three ways (tests/unit/CMakeLists.txt): simd_wide_test with the target's portable backend
+// (two SSE2 halves on x86-64, two NEON halves on AArch64, where the arm64 stage runs it under
+// qemu-aarch64), simd_wide_scalar_test with TESSERA_NO_SIMD (two scalar halves), and on x86-64
 // simd_wide_avx2_test compiled with -mavx2 (the AVX2 backend; skipped on CPUs without AVX2).
 // So every backend is held to the same expressions.
 #include <gtest/gtest.h>
@@ -356,7 +356,8 @@ TEST(SimdWide, WidthGenericNames) {
 }
 
 // The operations of simd_generic.h that kernels written once use on both widths, including the
-// compositions the 4-lane backends spell out (div255_u32, load_planes, lookup8).
+// compositions the 4-lane backends spell out (simd_compose4.h: div255_u32, load_planes,
+// lookup8).
 TEST(SimdWide, KernelCompositionsOnBothWidths) {
   TESSERA_SKIP_WITHOUT_AVX2(!skip_here(), "no AVX2 on this CPU");
   Rng rng{23};

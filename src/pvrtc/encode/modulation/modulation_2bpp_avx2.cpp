@@ -1,12 +1,12 @@
 // modulation_2bpp_avx2.cpp — the three 2 bpp modulation passes (modulation_2bpp_rows.h, written
-// once for both widths) with the SIMD wrapper's 8-lane types (core/simd_wide.h): two blocks a
+// once for both widths) with the SIMD wrapper's 8-lane types (core/simd_avx2.h): two blocks a
 // step (block bx in the low half, bx + 1 in the high) instead of one, the same operations lane
 // for lane, so the same maps, bits, modes and errors (ties included).
 //
 // Compiled with -mavx2 (src/CMakeLists.txt), which gives the wrapper its AVX2 backend, and
 // called only after the run-time CPU check in modulation_2bpp.cpp. So that no AVX2 code can
 // stand in for baseline code elsewhere, the wrapper's functions compiled here live in their own
-// inline namespace (simd_int.h); otherwise this file includes no header with inline functions
+// inline namespace (simd_select.h); otherwise this file includes no header with inline functions
 // or templates of external linkage (modulation_2bpp_rows.h's have internal linkage,
 // modulation_2bpp_avx2.h holds plain declarations; not encode_internal.h or the standard
 // containers); it exports the three `mod2_pass*_row_avx2` functions only.

@@ -1,12 +1,12 @@
 // modulation_avx2.cpp — the 4 bpp brute-force modulation kernel (modulation_blends.h, written
-// once for both widths) with the SIMD wrapper's 8-lane types (core/simd_wide.h): four blocks
+// once for both widths) with the SIMD wrapper's 8-lane types (core/simd_avx2.h): four blocks
 // (16 texels a row) a step instead of two, the same operations lane for lane, so the same bits
 // and errors (ties to the earlier candidate included), alpha-weighted colour error included.
 //
 // Compiled with -mavx2 (src/CMakeLists.txt), which gives the wrapper its AVX2 backend, and
 // called only after the run-time CPU check in modulation.cpp. So that no AVX2 code can stand
 // in for baseline code elsewhere, the wrapper's functions compiled here live in their own
-// inline namespace (simd_int.h); otherwise this file includes no header with inline functions
+// inline namespace (simd_select.h); otherwise this file includes no header with inline functions
 // or templates of external linkage (modulation_blends.h's have internal linkage; not
 // modulation_kernel.h or the standard containers) and keeps its helpers in an anonymous
 // namespace; it exports `block_row_errors_avx2` only.

@@ -1,13 +1,13 @@
 // exact_search_2bpp_avx2.cpp — the window evaluator of the 2 bpp exact endpoint search
 // (exact_search_2bpp_evaluator.h, written once for both widths) with the SIMD wrapper's 8-lane
-// types (core/simd_wide.h): four texels (16 lanes) a vector and eight a step instead of two and
+// types (core/simd_avx2.h): four texels (16 lanes) a vector and eight a step instead of two and
 // four. The same operations lane for lane, so the same per-texel errors; only the bound is
 // checked less often (every 8 texels), which changes nothing below the bound.
 //
 // Compiled with -mavx2 (src/CMakeLists.txt), which gives the wrapper its AVX2 backend, and
 // called only where exact_search_avx2_active(). So that no AVX2 code can stand in for baseline code
 // elsewhere, the wrapper's functions compiled here live in their own inline namespace
-// (simd_int.h); otherwise this file includes no header with inline functions or templates of
+// (simd_select.h); otherwise this file includes no header with inline functions or templates of
 // external linkage (exact_search_2bpp_evaluator.h's have internal linkage; not pvrtc_kernel.h);
 // it exports the two functions of exact_search_window.h for the 2 bpp window only.
 #include "pvrtc/encode/search/exact_search_window.h"

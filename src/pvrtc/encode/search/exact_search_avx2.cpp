@@ -1,6 +1,6 @@
 // exact_search_avx2.cpp — the window evaluators of the 4 bpp exact search
 // (exact_search_evaluators.h, written once for both widths) with the SIMD wrapper's 8-lane types
-// (core/simd_wide.h): `local_error_lanes` four texels (16 lanes) a vector and 8 a step instead
+// (core/simd_avx2.h): `local_error_lanes` four texels (16 lanes) a vector and 8 a step instead
 // of two and four, `planar_error_lanes` 16 texels a step instead of 8, alpha-weighted colour
 // error included. The same operations lane for lane, so the same per-texel errors; only the
 // bound is checked less often (every 8 / 16 texels), which changes nothing below the bound.
@@ -8,7 +8,7 @@
 // Compiled with -mavx2 (src/CMakeLists.txt), which gives the wrapper its AVX2 backend, and
 // called only after the run-time CPU check in exact_search.cpp. So that no AVX2 code can stand
 // in for baseline code elsewhere, the wrapper's functions compiled here live in their own
-// inline namespace (simd_int.h); otherwise this file includes no header with inline functions
+// inline namespace (simd_select.h); otherwise this file includes no header with inline functions
 // or templates of external linkage (exact_search_evaluators.h's have internal linkage; not
 // exact_search_kernel.h or pvrtc_kernel.h); it exports the three functions of
 // exact_search_window.h only.
