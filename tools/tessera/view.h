@@ -84,6 +84,10 @@ std::vector<std::uint8_t> deflate_rgba(const ImageRGBA8& image);
 /// input with `error` set (the view shows it and goes on); a missing folder too.
 std::vector<ViewInput> load_view_inputs(const std::vector<std::string>& paths);
 
+/// `j` as JSON text; strings that are not UTF-8 (a file name in another encoding) are written
+/// with U+FFFD for their bad bytes rather than throwing.
+std::string dump_json(const nlohmann::json& j);
+
 /// The page's description of an input (without results).
 nlohmann::json input_json(const ViewInput& input, int index);
 

@@ -39,16 +39,18 @@ bool same_secret(const std::string& a, const std::string& b) {
   return d == 0;
 }
 
-/// {"error": message} with quotes and backslashes escaped (messages are this file's own words
-/// plus a header value, which may hold anything).
+/// {"error": message} with quotes and backslashes escaped and anything outside printable ASCII
+/// replaced (messages are this file's own words plus a header value, which may hold anything,
+/// not UTF-8 included).
 std::string error_json(const std::string& message) {
   std::string out = "{\"error\":\"";
   for (char c : message) {
+    const auto u = static_cast<unsigned char>(c);
     if (c == '"' || c == '\\') {
       out += '\\';
       out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += ' ';
+    } else if (u < 0x20 || u >= 0x7f) {
+      out += '?';
     } else {
       out += c;
     }
@@ -120,6 +122,19 @@ void add_routes(httplib::Server& svr, ViewBackend& backend, const std::string& t
                       "application/json");
     }
   });
+  svr.set_exception_handler(
+      [](const httplib::Request& req, httplib::Response& res, std::exception_ptr ep) {
+        std::string what = "unknown";
+        try {
+          if (ep) std::rethrow_exception(ep);
+        } catch (const std::exception& e) {
+          what = e.what();
+        } catch (...) {
+        }
+        std::fprintf(stderr, "tessera view: %s %s: internal error: %s\n", req.method.c_str(),
+                     req.path.c_str(), what.c_str());
+        reply(res, 500, error_json("internal error: " + what));
+      });
 }
 
 /// Opens `url` in the desktop's browser when there is a desktop (xdg-open), not waiting.

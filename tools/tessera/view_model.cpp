@@ -59,11 +59,51 @@ bool word_in(const std::string& w, std::initializer_list<const char*> words) {
   return std::any_of(words.begin(), words.end(), [&](const char* x) { return w == x; });
 }
 
+/// True when `s` is valid UTF-8 (no overlong forms, surrogates or values past U+10FFFF).
+bool valid_utf8(const std::string& s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    const int n = c < 0x80 ? 0 : (c >> 5) == 6 ? 1 : (c >> 4) == 14 ? 2 : (c >> 3) == 30 ? 3 : -1;
+    if (n < 0) return false;
+    std::uint32_t cp = n == 0 ? c : c & (0x3f >> n);
+    for (int k = 1; k <= n; ++k) {
+      if (i + std::size_t(k) >= s.size()) return false;
+      const auto d = static_cast<unsigned char>(s[i + std::size_t(k)]);
+      if ((d >> 6) != 2) return false;
+      cp = (cp << 6) | (d & 0x3f);
+    }
+    static constexpr std::uint32_t kMin[] = {0, 0x80, 0x800, 0x10000};
+    if (cp < kMin[n] || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff)) return false;
+    i += std::size_t(n) + 1;
+  }
+  return true;
+}
+
 std::string quoted(const std::string& word) {
   if (word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
                              "._-/+=:,@") == std::string::npos &&
       !word.empty()) {
     return word;
+  }
+  if (!valid_utf8(word)) {
+    // Bytes that are not text (a file name in another encoding): the shell's $'...' with \xHH
+    // for them, so that the command names the same bytes and stays ASCII on the page.
+    std::string q = "$'";
+    for (char c : word) {
+      const auto u = static_cast<unsigned char>(c);
+      if (c == '\'' || c == '\\') {
+        q += '\\';
+        q += c;
+      } else if (u < 0x20 || u >= 0x7f) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "\\x%02x", u);
+        q += hex;
+      } else {
+        q += c;
+      }
+    }
+    return q + "'";
   }
   std::string q = "'";
   for (char c : word) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -197,6 +237,10 @@ std::vector<ViewInput> load_view_inputs(const std::vector<std::string>& paths) {
     }
   }
   return out;
+}
+
+std::string dump_json(const nlohmann::json& j) {
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 std::vector<std::pair<int, int>> texture_pairs(const std::vector<ViewInput>& inputs) {

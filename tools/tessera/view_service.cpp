@@ -66,23 +66,23 @@ class Service final : public ViewBackend {
     nlohmann::json body = nlohmann::json::parse(body_text, nullptr, false);
     if (body.is_discarded() || !body.is_object() || !body.contains("input") ||
         !body["input"].is_number_integer() || !body.contains("settings")) {
-      out = error("bad request: want {\"input\": N, \"settings\": {...}}").dump();
+      out = dump_json(error("bad request: want {\"input\": N, \"settings\": {...}}"));
       return 400;
     }
     const long long input = body["input"].get<long long>();
     if (input < 0 || input >= static_cast<long long>(inputs_.size()) ||
         inputs_[std::size_t(input)].is_texture || !inputs_[std::size_t(input)].error.empty()) {
-      out = error("no such image input").dump();
+      out = dump_json(error("no such image input"));
       return 404;
     }
     Result<ViewSettings> s = settings_from_json(body["settings"]);
     if (!s) {
-      out = error(s.status().message).dump();
+      out = dump_json(error(s.status().message));
       return 400;
     }
     const std::string id = submit(int(input), *s);
     if (id.empty()) {
-      out = error("busy: too many encodes queued").dump();
+      out = dump_json(error("busy: too many encodes queued"));
       return 503;
     }
     return job(id, out);
@@ -92,14 +92,14 @@ class Service final : public ViewBackend {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = jobs_.find(id);
     if (it == jobs_.end()) {
-      out = error("no such job").dump();
+      out = dump_json(error("no such job"));
       return 404;
     }
     const Job& j = *it->second;
     nlohmann::json r = {{"id", id}, {"state", j.state}, {"fraction", j.fraction.load()}};
     if (j.state == "done") r["result"] = results_.at(j.result);
     if (j.state == "error") r["error"] = j.error;
-    out = r.dump();
+    out = dump_json(r);
     return 200;
   }
 
@@ -151,7 +151,7 @@ class Service final : public ViewBackend {
   /// The id of the job of (input, settings): an existing one with the same key (unless it
   /// failed), or a new queued one; "" when the queue is full.
   std::string submit(int input, const ViewSettings& settings) {
-    const std::string key = std::to_string(input) + settings_to_json(settings).dump();
+    const std::string key = std::to_string(input) + dump_json(settings_to_json(settings));
     std::lock_guard<std::mutex> lock(mutex_);
     for (const auto& [jid, job] : jobs_) {
       if (job->key == key && job->state != "error") return jid;
