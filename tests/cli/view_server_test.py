@@ -205,7 +205,191 @@ def shlex_quote(s):
     return shlex.quote(s)
 
 
-PARTS = {"utf8": part_utf8}
+def part_port(tmp):
+    """--port on a port where a tessera view listens: the second one fails with one line and
+    does not share the port; every request still reaches the first."""
+    write_png(os.path.join(tmp, "sprite.png"), 32, 32, sprite, False)
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        fixed = s.getsockname()[1]
+    p, _, port, token = start_server(["sprite.png", "--port", str(fixed)], tmp)
+    if not port:
+        return
+    try:
+        second = subprocess.run([TESSERA, "view", "sprite.png", "--port", str(fixed), "--no-open"],
+                                cwd=tmp, capture_output=True, text=True, timeout=30)
+        rc, err = second.returncode, second.stderr
+    except subprocess.TimeoutExpired as e:
+        rc, err = "still serving", (e.stderr or b"").decode() if isinstance(e.stderr, bytes) else ""
+    lines = [x for x in err.splitlines() if x.strip()]
+    check("--port in use: the second server exits non-zero", rc not in (0, "still serving"), rc)
+    check("--port in use: one line naming the port", len(lines) == 1 and str(fixed) in err, err)
+    ok = sum(get(port, "/?token=" + token)[0] == 200 for _ in range(20))
+    check("--port in use: all 20 requests reach the first server", ok == 20, ok)
+    stop(p)
+
+
+def part_body(tmp):
+    """A chunked 16 MiB body with the token: 413 while it streams, RSS bounded; an over-limit
+    Content-Length: 413 at once, before any of the body; a small chunked body is read."""
+    write_png(os.path.join(tmp, "sprite.png"), 32, 32, sprite, False)
+    p, _, port, token = start_server(["sprite.png"], tmp)
+    if not port:
+        return
+    time.sleep(0.5)
+    before = rss_kib(p.pid)
+    s = socket.create_connection(("127.0.0.1", port), timeout=20)
+    s.sendall((f"POST /api/encode?token={token} HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n"
+               "Content-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n").encode())
+    reply = {}
+    reader = threading.Thread(target=lambda: reply.update(r=read_reply(s)))
+    reader.start()
+    chunk = b"x" * 65536
+    sent = 0
+    try:
+        while sent < 16 << 20:
+            s.sendall(b"10000\r\n" + chunk + b"\r\n")
+            sent += len(chunk)
+        s.sendall(b"0\r\n\r\n")
+    except (BrokenPipeError, ConnectionResetError, socket.timeout):
+        pass
+    reader.join(30)
+    s.close()
+    status = reply.get("r", (0, b""))[0]
+    check("chunked 16 MiB body: 413", status == 413, (status, reply.get("r", (0, b""))[1][:200]))
+    check("chunked 16 MiB body: not read whole", sent < 16 << 20, f"{sent} bytes sent")
+    peak, after = rss_kib(p.pid, "VmHWM"), rss_kib(p.pid)
+    print(f"chunked 16 MiB body: RSS {before} KiB before, {after} KiB after, peak {peak} KiB; "
+          f"{sent} bytes sent")
+    check("chunked 16 MiB body: RSS bounded (under +8 MiB, peak included)",
+          peak - before < 8192 and after - before < 8192, (before, peak, after))
+    # A declared length over the cap, none of it sent: refused at once.
+    t0 = time.monotonic()
+    status, _ = raw(port, (f"POST /api/encode?token={token} HTTP/1.1\r\nHost: 127.0.0.1:{port}"
+                           "\r\nContent-Type: application/json\r\nContent-Length: 1073741824"
+                           "\r\n\r\n").encode())
+    took = time.monotonic() - t0
+    check("over-limit Content-Length: 413 before the body", status == 413 and took < 2,
+          (status, f"{took:.2f} s"))
+    # A chunked body within the cap is read.
+    body = b'{"input":0,"settings":{"quality":"fast"}}'
+    status, got = raw(port, (f"POST /api/encode?token={token} HTTP/1.1\r\nHost: 127.0.0.1:{port}"
+                             "\r\nContent-Type: application/json\r\nTransfer-Encoding: chunked"
+                             "\r\nConnection: close\r\n\r\n").encode()
+                      + b"%x\r\n" % len(body) + body + b"\r\n0\r\n\r\n")
+    check("small chunked body: accepted", status == 200 and b'"state"' in got, got[-200:])
+    # A body where none is read (another path): refused before reading it.
+    status, _ = raw(port, (f"POST /api/job?token={token} HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n"
+                           "Transfer-Encoding: chunked\r\n\r\n").encode())
+    check("chunked body to another path: refused", status in (404, 413), status)
+    answers(port, token, "bodies")
+    stop(p)
+
+
+def part_slow(tmp):
+    """64 connections that send only a request line do not hold up a valid request; they are
+    closed when their read times out."""
+    write_png(os.path.join(tmp, "sprite.png"), 32, 32, sprite, False)
+    p, _, port, token = start_server(["sprite.png"], tmp)
+    if not port:
+        return
+    slow = []
+    for _ in range(64):
+        c = socket.create_connection(("127.0.0.1", port), timeout=30)
+        c.sendall(b"GET / HTTP/1.1\r\n")
+        slow.append(c)
+    time.sleep(0.5)
+    t0 = time.monotonic()
+    status, body = get(port, "/?token=" + token, timeout=10)
+    took = time.monotonic() - t0
+    print(f"64 slow connections: a valid request answered in {took:.3f} s")
+    check("64 slow connections: a valid request answered (10 s socket timeout)",
+          status == 200 and b"tessera view" in body, (status, f"{took:.2f} s"))
+    t0 = time.monotonic()
+    closed = 0
+    for c in slow:
+        try:
+            c.settimeout(max(0.1, 20 - (time.monotonic() - t0)))
+            status, _ = read_reply(c)
+            closed += 1
+        except OSError:
+            pass
+        c.close()
+    print(f"64 slow connections: closed by the server within {time.monotonic() - t0:.1f} s")
+    check("64 slow connections: the server closes them (read timeout)",
+          closed == 64 and time.monotonic() - t0 < 20, closed)
+    answers(port, token, "slow connections")
+    stop(p)
+
+
+def part_opener(tmp):
+    """The browser launcher gets a private page that redirects to the URL, never the token."""
+    write_png(os.path.join(tmp, "sprite.png"), 32, 32, sprite, False)
+    log = os.path.join(tmp, "opener.json")
+    opener = os.path.join(tmp, "opener.py")
+    with open(opener, "w") as f:
+        f.write("#!/usr/bin/env python3\nimport json, os, stat, sys\n"
+                "a = sys.argv[1:]\n"
+                "info = {'argv': a}\n"
+                "if a and os.path.isfile(a[0]):\n"
+                "    info['mode'] = stat.S_IMODE(os.stat(a[0]).st_mode)\n"
+                "    info['dir_mode'] = stat.S_IMODE(os.stat(os.path.dirname(a[0])).st_mode)\n"
+                "    info['text'] = open(a[0]).read()\n"
+                f"open({log!r} + '.tmp', 'w').write(json.dumps(info))\n"
+                f"os.rename({log!r} + '.tmp', {log!r})\n")
+    os.chmod(opener, 0o755)
+    env = {**os.environ, "DISPLAY": ":99", "TESSERA_VIEW_OPENER": opener}
+    p, _, port, token = start_server(["sprite.png"], tmp, env=env, no_open=False)
+    if not port:
+        return
+    for _ in range(300):
+        if os.path.exists(log):
+            break
+        time.sleep(0.1)
+    info = json.load(open(log)) if os.path.exists(log) else {}
+    argv = info.get("argv", [])
+    check("opener: started with one argument", len(argv) == 1, info)
+    check("opener: no token in its argv", argv and all(token not in a for a in argv), argv)
+    check("opener: the page it opens is private (0600 in a 0700 folder)",
+          info.get("mode") == 0o600 and info.get("dir_mode") == 0o700, info)
+    check("opener: the page redirects to the URL with the token",
+          f"http://127.0.0.1:{port}/?token={token}" in info.get("text", ""), info.get("text"))
+    answers(port, token, "opener")
+    stop(p)
+    check("opener: the page is removed when the server stops",
+          bool(argv) and not os.path.exists(argv[0]), argv)
+
+
+def part_hosts(tmp):
+    """Host and Origin must name this server exactly: rebinding-style names, a Host without a
+    port, a duplicate Host are refused; then a real request still passes."""
+    write_png(os.path.join(tmp, "sprite.png"), 32, 32, sprite, False)
+    p, _, port, token = start_server(["sprite.png"], tmp)
+    if not port:
+        return
+    t = "/?token=" + token
+    for host in (f"localhost.evil.example:{port}", f"127.0.0.1.evil.example:{port}",
+                 "127.0.0.1", "localhost", f"127.0.0.1:{port}.evil.example",
+                 f"evil.example:{port}", f"127.0.0.1:{port + 1}", ""):
+        status, _ = get(port, t, host=host)
+        check(f"Host '{host}': refused", status in (400, 403), status)
+    for origin in ("http://127.0.0.1.evil.example", f"http://127.0.0.1.evil.example:{port}",
+                   f"http://localhost.evil.example:{port}", f"http://127.0.0.1:{port}.evil.example",
+                   "http://127.0.0.1", "null", f"https://127.0.0.1:{port}"):
+        status, _ = get(port, t, origin=origin)
+        check(f"Origin '{origin}': refused", status == 403, status)
+    for first, second in ((f"127.0.0.1:{port}", "evil.example"),
+                          (f"127.0.0.1:{port}", f"127.0.0.1:{port}")):
+        status, _ = raw(port, (f"GET {t} HTTP/1.1\r\nHost: {first}\r\nHost: {second}\r\n"
+                               "Connection: close\r\n\r\n").encode())
+        check(f"two Host headers ({second}): 400", status == 400, status)
+    status, _ = get(port, t, origin=f"http://localhost:{port}", host=f"localhost:{port}")
+    check("Host and Origin localhost:PORT pass", status == 200, status)
+    answers(port, token, "hosts")
+    stop(p)
+
+
+PARTS = {"utf8": part_utf8, "port": part_port, "body": part_body, "slow": part_slow, "opener": part_opener, "hosts": part_hosts}
 
 
 def main():

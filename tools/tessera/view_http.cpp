@@ -1,22 +1,33 @@
 // tessera view's HTTP server module (tessera-view-http.so, loaded by `tessera view`): cpp-httplib
 // bound to 127.0.0.1 only, a random token that every request carries (?token=), Host and
-// Origin checked against DNS rebinding, request bodies capped (413), nothing routed but the
-// page, the blobs of the opened inputs' results and the encode/job API; clean shutdown on
-// SIGINT and SIGTERM. See view_http.h for why it is a module.
+// Origin checked exactly against DNS rebinding, nothing routed but the page, the blobs of the
+// opened inputs' results and the encode/job API; clean shutdown on SIGINT and SIGTERM.
+//
+// What it holds against (the README, `tessera view`): the port is never shared (no SO_REUSEPORT);
+// every request body is refused before it is read unless it is an encode request, whose body is
+// read through a cap that stops it as it streams (chunked or not: 413, connection closed);
+// reads time out (ViewHttpOptions::read_timeout_s) and each connection has its own thread
+// from a pool that grows to max_connections, so clients that send half a request cannot hold
+// up the others; one Host header. See view_http.h for why this is a module.
 #include "view_http.h"
 
 #include <fcntl.h>
 #include <httplib.h>
 #include <pthread.h>
 #include <spawn.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <condition_variable>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
+#include <mutex>
 #include <random>
 #include <thread>
+#include <vector>
 
 extern char** environ;
 
@@ -63,36 +74,96 @@ void reply(httplib::Response& res, int status, const std::string& json) {
   res.set_content(json, "application/json");
 }
 
-/// The checks every request passes before routing: Host and Origin name this server (a page
-/// of another site that rebinds its name to 127.0.0.1 sends its own), and the token.
+/// Replies and then closes the connection: for a request whose body is not read (or not read
+/// to its end), which would otherwise be parsed as the next request. cpp-httplib closes a
+/// keep-alive connection when writing a response fails; a content provider that writes the
+/// whole reply and then reports failure makes it do so after the reply is sent.
+void reply_and_close(httplib::Response& res, int status, const std::string& json) {
+  res.status = status;
+  res.set_header("Connection", "close");
+  auto body = std::make_shared<const std::string>(json);
+  res.set_content_provider(body->size(), "application/json",
+                           [body](std::size_t offset, std::size_t, httplib::DataSink& sink) {
+                             if (offset < body->size()) {
+                               sink.write(body->data() + offset, body->size() - offset);
+                             }
+                             return false;
+                           });
+}
+
+/// True when `req` may carry a body: a method cpp-httplib reads one for, or a length or a
+/// transfer coding.
+bool may_have_body(const httplib::Request& req) {
+  return req.method == "POST" || req.method == "PUT" || req.method == "PATCH" ||
+         req.method == "DELETE" || req.method == "PRI" || req.has_header("Transfer-Encoding") ||
+         (req.has_header("Content-Length") && req.get_header_value("Content-Length") != "0");
+}
+
+/// The checks every request passes before routing (and before its body is read): one Host,
+/// naming this server exactly, and any Origin too (a page of another site that rebinds its
+/// name to 127.0.0.1 sends its own); the token; then a body only where one is read (POST
+/// /api/encode), its declared length within the cap. Every refusal closes the connection.
 httplib::Server::HandlerResponse guard(const httplib::Request& req, httplib::Response& res,
-                                       int port, const std::string& token) {
+                                       int port, const std::string& token, std::size_t max_body) {
   const std::string p = std::to_string(port);
-  const std::string host = req.get_header_value("Host");
   res.set_header("Cache-Control", "no-store");
   res.set_header("X-Content-Type-Options", "nosniff");
   res.set_header("Referrer-Policy", "no-referrer");
+  using HR = httplib::Server::HandlerResponse;
+  for (const char* once : {"Host", "Origin", "Content-Length", "Transfer-Encoding"}) {
+    if (req.get_header_value_count(once) > 1) {
+      reply_and_close(res, 400, error_json(std::string("bad request: more than one ") + once));
+      return HR::Handled;
+    }
+  }
+  const std::string host = req.get_header_value("Host");
   if (host != "127.0.0.1:" + p && host != "localhost:" + p) {
-    reply(res, 403, error_json("forbidden: Host '" + host + "' is not this server"));
-    return httplib::Server::HandlerResponse::Handled;
+    reply_and_close(res, 403, error_json("forbidden: Host '" + host + "' is not this server"));
+    return HR::Handled;
   }
   if (req.has_header("Origin")) {
     const std::string origin = req.get_header_value("Origin");
     if (origin != "http://127.0.0.1:" + p && origin != "http://localhost:" + p) {
-      reply(res, 403, error_json("forbidden: Origin '" + origin + "' is not this server"));
-      return httplib::Server::HandlerResponse::Handled;
+      reply_and_close(res, 403,
+                      error_json("forbidden: Origin '" + origin + "' is not this server"));
+      return HR::Handled;
     }
   }
   if (!same_secret(req.get_param_value("token"), token)) {
-    reply(res, 403,
-          error_json("forbidden: a missing or wrong token (use the URL tessera view "
-                     "printed)"));
-    return httplib::Server::HandlerResponse::Handled;
+    reply_and_close(res, 403,
+                    error_json("forbidden: a missing or wrong token (use the URL tessera view "
+                               "printed)"));
+    return HR::Handled;
   }
-  return httplib::Server::HandlerResponse::Unhandled;
+  if (!may_have_body(req)) return HR::Unhandled;
+  if (req.method != "POST" || req.path != "/api/encode") {
+    reply_and_close(res, 404, error_json("not found"));
+    return HR::Handled;
+  }
+  if (req.has_header("Transfer-Encoding")) {
+    if (req.has_header("Content-Length") ||
+        req.get_header_value("Transfer-Encoding") != "chunked") {
+      reply_and_close(res, 400, error_json("bad request: a transfer coding other than chunked"));
+      return HR::Handled;
+    }
+    return HR::Unhandled;  // read through the cap (add_routes)
+  }
+  const std::string length = req.get_header_value("Content-Length");
+  if (!length.empty()) {
+    if (length.find_first_not_of("0123456789") != std::string::npos || length.size() > 18) {
+      reply_and_close(res, length.size() > 18 ? 413 : 400, error_json("bad Content-Length"));
+      return HR::Handled;
+    }
+    if (std::stoull(length) > max_body) {
+      reply_and_close(res, 413, error_json("request body too large"));
+      return HR::Handled;
+    }
+  }
+  return HR::Unhandled;
 }
 
-void add_routes(httplib::Server& svr, ViewBackend& backend, const std::string& token) {
+void add_routes(httplib::Server& svr, ViewBackend& backend, const std::string& token,
+                std::size_t max_body) {
   svr.Get("/", [&backend, token](const httplib::Request&, httplib::Response& res) {
     res.set_header("Content-Security-Policy",
                    "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; "
@@ -111,13 +182,28 @@ void add_routes(httplib::Server& svr, ViewBackend& backend, const std::string& t
     const int status = backend.job(req.get_param_value("id"), json);
     reply(res, status, json);
   });
-  svr.Post("/api/encode", [&backend](const httplib::Request& req, httplib::Response& res) {
+  // The body is read through a cap as it streams (a chunked body has no length to check
+  // first): past `max_body` the reading stops, 413, and the connection closes.
+  svr.Post("/api/encode", [&backend, max_body](const httplib::Request&, httplib::Response& res,
+                                               const httplib::ContentReader& read) {
+    std::string body;
+    bool over = false;
+    const bool ok = read([&](const char* data, std::size_t n) {
+      if (body.size() + n > max_body) {
+        over = true;
+        return false;
+      }
+      body.append(data, n);
+      return true;
+    });
+    if (over) return reply_and_close(res, 413, error_json("request body too large"));
+    if (!ok) return reply_and_close(res, 400, error_json("bad request: the body did not arrive"));
     std::string json;
-    const int status = backend.encode(req.body, json);
+    const int status = backend.encode(body, json);
     reply(res, status, json);
   });
   svr.set_error_handler([](const httplib::Request&, httplib::Response& res) {
-    if (res.body.empty()) {
+    if (res.body.empty() && !res.content_provider_) {
       res.set_content(error_json(res.status == 413 ? "request body too large" : "not found"),
                       "application/json");
     }
@@ -137,17 +223,115 @@ void add_routes(httplib::Server& svr, ViewBackend& backend, const std::string& t
       });
 }
 
-/// Opens `url` in the desktop's browser when there is a desktop (xdg-open), not waiting.
-void open_browser(const std::string& url) {
+/// The connection threads: one per connection, the pool growing on demand to `max_threads`
+/// (an idle keep-alive connection or one that sends half a request holds only its own thread,
+/// until its read times out). With every thread busy, up to `max_waiting` connections wait
+/// for one; beyond that the accept loop waits here and new connections stay in the kernel's
+/// backlog.
+class ConnectionPool final : public httplib::TaskQueue {
+ public:
+  ConnectionPool(std::size_t max_threads, std::size_t max_waiting)
+      : max_threads_(max_threads), max_waiting_(max_waiting) {}
+  ConnectionPool(const ConnectionPool&) = delete;
+  ConnectionPool& operator=(const ConnectionPool&) = delete;
+  ~ConnectionPool() override = default;
+
+  void enqueue(std::function<void()> fn) override {
+    std::unique_lock<std::mutex> lock(mutex_);
+    room_.wait(lock, [&] { return jobs_.size() < max_waiting_; });
+    jobs_.push_back(std::move(fn));
+    if (jobs_.size() > idle_ && threads_.size() < max_threads_) {
+      threads_.emplace_back([this] { work(); });
+    } else {
+      ready_.notify_one();
+    }
+  }
+
+  void shutdown() override {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stopping_ = true;
+    }
+    ready_.notify_all();
+    for (std::thread& t : threads_) t.join();
+  }
+
+ private:
+  void work() {
+    for (;;) {
+      std::function<void()> fn;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        ++idle_;
+        ready_.wait(lock, [&] { return stopping_ || !jobs_.empty(); });
+        --idle_;
+        if (jobs_.empty()) return;  // stopping, nothing left
+        fn = std::move(jobs_.front());
+        jobs_.pop_front();
+      }
+      room_.notify_one();
+      fn();
+    }
+  }
+
+  const std::size_t max_threads_, max_waiting_;
+  std::mutex mutex_;
+  std::condition_variable ready_, room_;
+  std::deque<std::function<void()>> jobs_;
+  std::vector<std::thread> threads_;
+  std::size_t idle_ = 0;
+  bool stopping_ = false;
+};
+
+/// The listening socket's options: SO_REUSEADDR only (a restart need not wait out TIME_WAIT).
+/// cpp-httplib's default sets SO_REUSEPORT, which lets a second process listen on the same
+/// port and take a share of the connections: the token's requests among them.
+void exclusive_socket_options(socket_t sock) {
+  int yes = 1;
+  setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+}
+
+/// A private directory (0700) with a page (0600) that sends the browser on to `url`, so that
+/// the browser is started with the page's path, not the token (a process's arguments are
+/// visible to every user in `ps`). "" when it cannot be made.
+std::string write_redirect_page(const std::string& url, std::string& dir) {
+  const char* tmp = std::getenv("TMPDIR");
+  std::string templ = std::string(tmp && *tmp ? tmp : "/tmp") + "/tessera-view-XXXXXX";
+  if (!mkdtemp(templ.data())) return "";
+  dir = templ;
+  const std::string path = dir + "/open.html";
+  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0) return "";
+  const std::string page =
+      "<!doctype html><meta charset=\"utf-8\"><meta name=\"referrer\" content=\"no-referrer\">"
+      "<meta http-equiv=\"refresh\" content=\"0;url=" +
+      url + "\"><title>tessera view</title><a href=\"" + url + "\">tessera view</a>\n";
+  const bool ok = write(fd, page.data(), page.size()) == static_cast<ssize_t>(page.size());
+  close(fd);
+  return ok ? path : "";
+}
+
+/// Opens `url` in the desktop's browser when there is a desktop, not waiting: the opener
+/// ($TESSERA_VIEW_OPENER, else xdg-open) gets the path of a private page that redirects to the
+/// URL, never the URL itself. `dir` gets the page's directory (removed when serving ends).
+void open_browser(const std::string& url, std::string& dir) {
   if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY")) return;
+  std::string page = write_redirect_page(url, dir);
+  if (page.empty()) {
+    std::fprintf(stderr,
+                 "tessera view: cannot write the page that opens the browser; open the "
+                 "URL above\n");
+    return;
+  }
+  const char* env = std::getenv("TESSERA_VIEW_OPENER");
+  std::string prog = env && *env ? env : "xdg-open";
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-  std::string prog = "xdg-open", arg = url;
-  char* argv[] = {prog.data(), arg.data(), nullptr};
+  char* argv[] = {prog.data(), page.data(), nullptr};
   pid_t pid = 0;
-  posix_spawnp(&pid, "xdg-open", &fa, nullptr, argv, environ);
+  posix_spawnp(&pid, prog.c_str(), &fa, nullptr, argv, environ);
   posix_spawn_file_actions_destroy(&fa);
 }
 
@@ -168,23 +352,37 @@ extern "C" __attribute__((visibility("default"))) int tessera_view_http_serve(
   std::signal(SIGPIPE, SIG_IGN);
 
   httplib::Server svr;
+  svr.set_socket_options(exclusive_socket_options);
+  // Declared lengths are checked in the guard before reading; this is cpp-httplib's own cap.
   svr.set_payload_max_length(options->max_body);
   // A browser holds idle keep-alive connections: short timeouts let Ctrl-C end the server at
-  // once rather than after httplib's default 5 s.
+  // once rather than after httplib's default 5 s. A read that waits longer than
+  // read_timeout_s ends its connection (a client sending half a request).
   svr.set_keep_alive_timeout(1);
-  svr.set_read_timeout(10, 0);
+  svr.set_keep_alive_max_count(100);
+  svr.set_read_timeout(options->read_timeout_s, 0);
+  svr.set_write_timeout(10, 0);  // a browser reads what it asked for at once
+  const std::size_t max_connections = options->max_connections;
+  svr.new_task_queue = [max_connections] {
+    return new ConnectionPool(max_connections, max_connections);
+  };
   const int port = options->port
                        ? (svr.bind_to_port("127.0.0.1", options->port) ? options->port : -1)
                        : svr.bind_to_any_port("127.0.0.1");
   if (port <= 0) {
-    std::fprintf(stderr, "tessera: cannot listen on 127.0.0.1:%d (in use?)\n", options->port);
+    std::fprintf(stderr,
+                 "tessera: view: cannot listen on 127.0.0.1:%d: in use (choose another "
+                 "--port, or leave it out for a free one)\n",
+                 options->port);
     return 1;
   }
   const std::string token = random_token();
-  svr.set_pre_routing_handler([port, token](const httplib::Request& req, httplib::Response& res) {
-    return guard(req, res, port, token);
-  });
-  add_routes(svr, *backend, token);
+  const std::size_t max_body = options->max_body;
+  svr.set_pre_routing_handler(
+      [port, token, max_body](const httplib::Request& req, httplib::Response& res) {
+        return guard(req, res, port, token, max_body);
+      });
+  add_routes(svr, *backend, token, max_body);
 
   std::atomic<bool> signalled{false};
   std::thread waiter([&svr, &stop_signals, &signalled] {
@@ -200,9 +398,14 @@ extern "C" __attribute__((visibility("default"))) int tessera_view_http_serve(
     std::fprintf(stderr, "tessera view: serving %zu input(s) on 127.0.0.1:%d; Ctrl-C stops\n",
                  backend->input_count(), port);
   }
-  if (options->open) open_browser(url);
+  std::string open_dir;
+  if (options->open) open_browser(url, open_dir);
   svr.listen_after_bind();
   if (!signalled) pthread_kill(waiter.native_handle(), SIGTERM);  // listen ended on its own
   waiter.join();
+  if (!open_dir.empty()) {
+    unlink((open_dir + "/open.html").c_str());
+    rmdir(open_dir.c_str());
+  }
   return 0;
 }

@@ -32,7 +32,9 @@ struct ViewHttpOptions {
   int port = 0;        ///< 0 = a random free port.
   bool open = true;    ///< Start the desktop's browser (xdg-open) when there is a display.
   bool quiet = false;  ///< Print only the URL.
-  std::size_t max_body = 64 * 1024;  ///< Larger request bodies get 413.
+  std::size_t max_body = 64 * 1024;   ///< Larger request bodies get 413 (chunked ones too).
+  int read_timeout_s = 3;             ///< A read that waits longer ends its connection.
+  std::size_t max_connections = 128;  ///< Connections served at once (a thread each).
 };
 
 /// The module's entry point (C linkage, found with dlsym): serves on 127.0.0.1 until SIGINT or
