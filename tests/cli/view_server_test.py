@@ -322,6 +322,59 @@ def part_slow(tmp):
     stop(p)
 
 
+def part_memory(tmp):
+    """30 re-encodes of a SIZE x SIZE input (noise: nothing shared between results) under
+    --memory 64: RSS stays under the start's RSS plus the budget plus a margin, the oldest
+    results are evicted (their job is gone, their blobs 404) and the pinned one is kept."""
+    size = int(os.environ.get("TESSERA_VIEW_MEMORY_TEST_SIZE", "2048"))
+    rows = b"".join(b"\0" + os.urandom(size * 3) for _ in range(size))
+    with open(os.path.join(tmp, "noise.png"), "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", struct.pack(">IIBBBBB", size, size, 8, 2,
+                                                                     0, 0, 0))
+                + png_chunk(b"IDAT", zlib.compress(rows, 1)) + png_chunk(b"IEND", b""))
+    budget = 64
+    p, _, port, token = start_server(["noise.png", "--memory", str(budget)], tmp)
+    if not port:
+        return
+    time.sleep(0.5)
+    start = rss_kib(p.pid)
+    settings = [{"quality": "fast", "format": f, "mip_levels": m}
+                for m in range(15) for f in ("pvrtc1-4", "pvrtc1-2")][:30]
+    jobs, rss = [], []
+    t0 = time.monotonic()
+    for i, s in enumerate(settings):
+        job = encode(port, token, 0, s)
+        jobs.append(job)
+        if i == 0 and job.get("state") == "done":
+            status, _ = get(port, f"/api/pin?token={token}&id={job['result']['id']}&pinned=1")
+            check("memory: pin the first result", status == 200, status)
+        rss.append(rss_kib(p.pid))
+    took = time.monotonic() - t0
+    done = sum(j.get("state") == "done" for j in jobs)
+    check("memory: 30 encodes done", done == 30, [j.get("error") for j in jobs if j.get("state") != "done"])
+    print(f"memory: {size}x{size}, --memory {budget}: RSS {start} KiB at start, "
+          f"{max(rss)} KiB at most, {rss[-1]} KiB after 30 encodes ({took:.1f} s)")
+    limit = start + (budget + 96) * 1024
+    check(f"memory: RSS under start + {budget} MiB + 96 MiB after every encode", max(rss) < limit,
+          (start, max(rss), limit))
+    if done == 30:
+        pinned, old = jobs[0]["result"], jobs[1]["result"]
+        check("memory: the pinned result's texture is still served",
+              get(port, f"/blob/{pinned['file']}?token={token}")[0] == 200)
+        check("memory: an old unpinned result was evicted (its texture 404)",
+              get(port, f"/blob/{old['file']}?token={token}")[0] == 404)
+        check("memory: its job is forgotten",
+              get(port, f"/api/job?token={token}&id={jobs[1]['id']}")[0] == 404)
+        again = encode(port, token, 0, settings[1])
+        check("memory: the same settings again encode again", again.get("state") == "done"
+              and again.get("id") != jobs[1]["id"], again.get("id"))
+        last = jobs[-1]["result"]
+        check("memory: the newest result is served",
+              get(port, f"/blob/{last['file']}?token={token}")[0] == 200)
+    answers(port, token, "memory")
+    stop(p)
+
+
 def part_opener(tmp):
     """The browser launcher gets a private page that redirects to the URL, never the token."""
     write_png(os.path.join(tmp, "sprite.png"), 32, 32, sprite, False)
@@ -389,7 +442,7 @@ def part_hosts(tmp):
     stop(p)
 
 
-PARTS = {"utf8": part_utf8, "port": part_port, "body": part_body, "slow": part_slow, "opener": part_opener, "hosts": part_hosts}
+PARTS = {"utf8": part_utf8, "port": part_port, "body": part_body, "slow": part_slow, "opener": part_opener, "hosts": part_hosts, "memory": part_memory}
 
 
 def main():

@@ -69,9 +69,14 @@ class BlobStore {
   std::shared_ptr<const Blob> get(const std::string& key) const;
   /// Every key, for the static export.
   std::vector<std::string> keys() const;
+  /// Drops the blob of `key` (a result evicted under the memory budget).
+  void erase(const std::string& key);
+  /// The bytes of every blob held.
+  std::size_t bytes() const;
 
  private:
   mutable std::mutex mutex_;
+  std::size_t bytes_ = 0;
   std::map<std::string, std::shared_ptr<const Blob>> blobs_;
 };
 
@@ -129,6 +134,9 @@ struct ViewServeOptions {
   bool quiet = false;
   int threads = 0;
   std::vector<ViewSettings> initial;  ///< Settings of the first encode of each image.
+  /// Memory for results (their images, heatmaps and files): beyond it the least recently used
+  /// results that are not pinned are evicted.
+  std::size_t memory_budget = std::size_t{512} << 20;
 };
 
 /// Serves the view on 127.0.0.1 until SIGINT or SIGTERM; prints the URL (with its token) on

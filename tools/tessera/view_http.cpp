@@ -1,7 +1,7 @@
 // tessera view's HTTP server module (tessera-view-http.so, loaded by `tessera view`): cpp-httplib
 // bound to 127.0.0.1 only, a random token that every request carries (?token=), Host and
 // Origin checked exactly against DNS rebinding, nothing routed but the page, the blobs of the
-// opened inputs' results and the encode/job API; clean shutdown on SIGINT and SIGTERM.
+// opened inputs' results and the encode/job/pin API; clean shutdown on SIGINT and SIGTERM.
 //
 // What it holds against (the README, `tessera view`): the port is never shared (no SO_REUSEPORT);
 // every request body is refused before it is read unless it is an encode request, whose body is
@@ -180,6 +180,12 @@ void add_routes(httplib::Server& svr, ViewBackend& backend, const std::string& t
   svr.Get("/api/job", [&backend](const httplib::Request& req, httplib::Response& res) {
     std::string json;
     const int status = backend.job(req.get_param_value("id"), json);
+    reply(res, status, json);
+  });
+  svr.Get("/api/pin", [&backend](const httplib::Request& req, httplib::Response& res) {
+    std::string json;
+    const int status =
+        backend.pin(req.get_param_value("id"), req.get_param_value("pinned") != "0", json);
     reply(res, status, json);
   });
   // The body is read through a cap as it streams (a chunked body has no length to check

@@ -23,6 +23,8 @@ class ViewBackend {
   virtual int encode(const std::string& body, std::string& json) = 0;
   /// The state of job `id`; returns the HTTP status, `json` the reply.
   virtual int job(const std::string& id, std::string& json) = 0;
+  /// Pins (or unpins) result `id`: a pinned result is never evicted under the memory budget.
+  virtual int pin(const std::string& id, bool pinned, std::string& json) = 0;
   /// Opened inputs (for the start-up line).
   virtual std::size_t input_count() const = 0;
 };

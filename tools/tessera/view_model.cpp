@@ -197,7 +197,10 @@ std::string BlobStore::put(std::string mime, std::vector<std::uint8_t> bytes) {
   std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(h));
   std::lock_guard<std::mutex> lock(mutex_);
   auto& slot = blobs_[key];
-  if (!slot) slot = std::make_shared<const Blob>(Blob{std::move(mime), std::move(bytes)});
+  if (!slot) {
+    bytes_ += bytes.size();
+    slot = std::make_shared<const Blob>(Blob{std::move(mime), std::move(bytes)});
+  }
   return key;
 }
 
@@ -205,6 +208,19 @@ std::shared_ptr<const BlobStore::Blob> BlobStore::get(const std::string& key) co
   std::lock_guard<std::mutex> lock(mutex_);
   auto it = blobs_.find(key);
   return it == blobs_.end() ? nullptr : it->second;
+}
+
+void BlobStore::erase(const std::string& key) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto it = blobs_.find(key);
+  if (it == blobs_.end()) return;
+  bytes_ -= it->second->bytes.size();
+  blobs_.erase(it);
+}
+
+std::size_t BlobStore::bytes() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return bytes_;
 }
 
 std::vector<std::string> BlobStore::keys() const {
