@@ -375,6 +375,34 @@ def part_memory(tmp):
     stop(p)
 
 
+def part_symlink(tmp):
+    """A link in an input folder that resolves outside it is skipped, with a line naming it; a
+    link to a file inside the folder is kept."""
+    d = os.path.join(tmp, "linked")
+    outside = os.path.join(tmp, "outside")
+    os.makedirs(d)
+    os.makedirs(outside)
+    write_png(os.path.join(d, "a.png"), 32, 32, sprite, False)
+    write_png(os.path.join(outside, "secret.png"), 32, 32, sprite, False)
+    os.symlink(os.path.join(outside, "secret.png"), os.path.join(d, "out.png"))
+    os.symlink(os.path.join("..", "outside", "secret.png"), os.path.join(d, "out2.png"))
+    os.symlink("a.png", os.path.join(d, "in.png"))
+    p, _, port, token = start_server([d], tmp)
+    if not port:
+        return
+    status, body = get(port, "/?token=" + token)
+    names = [i["name"] for i in page_data(body.decode())["inputs"]] if status == 200 else []
+    check("symlinks: the links out of the folder are not inputs; the one inside is",
+          names == ["a.png", "in.png"], names)
+    answers(port, token, "symlinks")
+    err = stop(p).decode(errors="replace")
+    for name in ("out.png", "out2.png"):
+        lines = [x for x in err.splitlines() if name in x]
+        check(f"symlinks: one line in the terminal names {name}",
+              len(lines) == 1 and "outside" in lines[0], err)
+    check("symlinks: nothing said of the link inside", "in.png" not in err, err)
+
+
 def part_opener(tmp):
     """The browser launcher gets a private page that redirects to the URL, never the token."""
     write_png(os.path.join(tmp, "sprite.png"), 32, 32, sprite, False)
@@ -442,7 +470,9 @@ def part_hosts(tmp):
     stop(p)
 
 
-PARTS = {"utf8": part_utf8, "port": part_port, "body": part_body, "slow": part_slow, "opener": part_opener, "hosts": part_hosts, "memory": part_memory}
+PARTS = {"utf8": part_utf8, "port": part_port, "body": part_body, "slow": part_slow,
+         "symlink": part_symlink, "opener": part_opener, "hosts": part_hosts,
+         "memory": part_memory}
 
 
 def main():

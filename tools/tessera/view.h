@@ -85,8 +85,9 @@ class BlobStore {
 std::vector<std::uint8_t> deflate_rgba(const ImageRGBA8& image);
 
 /// Reads the inputs: files by their bytes (images, .pvr/.ktx/.ktx2), folders as the images
-/// and textures in them (not recursive, in name order). A file that cannot be read becomes an
-/// input with `error` set (the view shows it and goes on); a missing folder too.
+/// and textures in them (not recursive, in name order; links that resolve outside the folder are
+/// skipped with a line on stderr). A file that cannot be read becomes an input with `error` set
+/// (the view shows it and goes on); a missing folder too.
 std::vector<ViewInput> load_view_inputs(const std::vector<std::string>& paths);
 
 /// `j` as JSON text; strings that are not UTF-8 (a file name in another encoding) are written

@@ -235,9 +235,23 @@ std::vector<ViewInput> load_view_inputs(const std::vector<std::string>& paths) {
   for (const std::string& p : paths) {
     std::error_code ec;
     if (fs::is_directory(p, ec)) {
+      // A folder's files, by their real paths: a link that resolves outside the folder is
+      // refused (a folder given to view shares what is in it, not what its links point to).
+      const fs::path root = fs::weakly_canonical(p, ec);
       std::vector<std::string> files;
       for (const fs::directory_entry& e : fs::directory_iterator(p, ec)) {
-        if (e.is_regular_file(ec) && viewable_name(e.path())) files.push_back(e.path().string());
+        std::error_code fec;
+        if (!e.is_regular_file(fec) || !viewable_name(e.path())) continue;
+        if (e.is_symlink(fec)) {
+          const fs::path target = fs::weakly_canonical(e.path(), fec);
+          const fs::path rel = fec ? fs::path("..") : target.lexically_relative(root);
+          if (rel.empty() || *rel.begin() == ".." || rel.is_absolute()) {
+            std::fprintf(stderr, "tessera: view: %s: a link out of the folder (to %s): skipped\n",
+                         e.path().c_str(), target.c_str());
+            continue;
+          }
+        }
+        files.push_back(e.path().string());
       }
       std::sort(files.begin(), files.end());
       if (files.empty()) {
