@@ -286,6 +286,36 @@ def part_body(tmp):
     stop(p)
 
 
+def part_line(tmp):
+    """An endless request line, no token: the connection is shut down past 4 MiB (cpp-httplib
+    0.11 would buffer all of it) and RSS stays bounded."""
+    write_png(os.path.join(tmp, "sprite.png"), 32, 32, sprite, False)
+    p, _, port, token = start_server(["sprite.png"], tmp)
+    if not port:
+        return
+    time.sleep(0.5)
+    before = rss_kib(p.pid)
+    s = socket.create_connection(("127.0.0.1", port), timeout=20)
+    sent = 0
+    try:
+        s.sendall(b"GET /")
+        while sent < 64 << 20:
+            s.sendall(b"a" * 65536)
+            sent += 65536
+    except (BrokenPipeError, ConnectionResetError, socket.timeout):
+        pass
+    s.close()
+    time.sleep(0.2)
+    peak = rss_kib(p.pid, "VmHWM")
+    print(f"endless request line: {sent >> 20} MiB sent; RSS {before} KiB before, peak {peak} KiB")
+    check("endless request line: the connection is cut before 64 MiB", sent < 64 << 20, sent)
+    check("endless request line: peak RSS under +32 MiB", peak - before < 32768, (before, peak))
+    answers(port, token, "endless request line")
+    err = stop(p).decode(errors="replace")
+    check("endless request line: one line in the terminal",
+          len([x for x in err.splitlines() if "sent over" in x]) == 1, err)
+
+
 def part_slow(tmp):
     """64 connections that send only a request line do not hold up a valid request; they are
     closed when their read times out."""
@@ -470,7 +500,8 @@ def part_hosts(tmp):
     stop(p)
 
 
-PARTS = {"utf8": part_utf8, "port": part_port, "body": part_body, "slow": part_slow,
+PARTS = {"utf8": part_utf8, "port": part_port, "body": part_body, "line": part_line,
+         "slow": part_slow,
          "symlink": part_symlink, "opener": part_opener, "hosts": part_hosts,
          "memory": part_memory}
 

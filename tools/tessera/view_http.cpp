@@ -8,21 +8,28 @@
 // read through a cap that stops it as it streams (chunked or not: 413, connection closed);
 // reads time out (ViewHttpOptions::read_timeout_s) and each connection has its own thread
 // from a pool that grows to max_connections, so clients that send half a request cannot hold
-// up the others; one Host header. See view_http.h for why this is a module.
+// up the others; one Host header; a connection that receives more than any page sends (an
+// endless request line) is reset. See view_http.h for why this is a module.
 #include "view_http.h"
 
+#include <arpa/inet.h>
+#include <dirent.h>
 #include <fcntl.h>
 #include <httplib.h>
+#include <netinet/in.h>
 #include <pthread.h>
 #include <spawn.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <deque>
 #include <mutex>
 #include <random>
@@ -289,6 +296,82 @@ class ConnectionPool final : public httplib::TaskQueue {
   bool stopping_ = false;
 };
 
+/// The bytes connection `fd` has received, from TCP_INFO's tcpi_bytes_received (Linux 4.1 and
+/// later, at byte 128 of the kernel's struct tcp_info, a fixed ABI; glibc's <netinet/tcp.h>
+/// declares the struct only to byte 104); -1 when unknown or no longer established.
+long long bytes_received(int fd) {
+  alignas(8) unsigned char info[256] = {};
+  socklen_t length = sizeof info;
+  if (getsockopt(fd, IPPROTO_TCP, TCP_INFO, info, &length) != 0 || length < 136) return -1;
+  if (info[0] != 1) return -1;  // tcpi_state: not TCP_ESTABLISHED (already shut down, say)
+  std::uint64_t bytes = 0;
+  std::memcpy(&bytes, info + 128, sizeof bytes);
+  return static_cast<long long>(bytes);
+}
+
+/// Shuts down every connection to 127.0.0.1:`port` that has received more than `cap` bytes.
+/// cpp-httplib 0.11 reads a request line or header line whole before checking its length, so
+/// one endless line (no token needed) would grow the server's memory for as long as it is sent;
+/// no page of this server sends a connection more than a few hundred KiB.
+void cut_floods(int port, std::uint64_t cap) {
+  DIR* dir = opendir("/proc/self/fd");
+  if (!dir) return;
+  while (const dirent* e = readdir(dir)) {
+    char* end = nullptr;
+    const long fd = std::strtol(e->d_name, &end, 10);
+    if (end == e->d_name || *end != '\0' || fd == dirfd(dir)) continue;
+    sockaddr_in local{}, peer{};
+    socklen_t n = sizeof local, m = sizeof peer;
+    if (getsockname(int(fd), reinterpret_cast<sockaddr*>(&local), &n) != 0 ||
+        local.sin_family != AF_INET || ntohs(local.sin_port) != port ||
+        getpeername(int(fd), reinterpret_cast<sockaddr*>(&peer), &m) != 0) {
+      continue;  // not a connection to this server (the listener has no peer)
+    }
+    const long long bytes = bytes_received(int(fd));
+    if (bytes >= 0 && std::uint64_t(bytes) > cap) {
+      // Reset rather than close it in order: its reads end at once (SHUT_RD) and, lingering
+      // 0 s, cpp-httplib's close answers the sender with RST, so it stops sending.
+      const linger reset{1, 0};
+      setsockopt(int(fd), SOL_SOCKET, SO_LINGER, &reset, sizeof reset);
+      shutdown(int(fd), SHUT_RD);
+      std::fprintf(stderr, "tessera view: a connection sent over %llu MiB: closed\n",
+                   static_cast<unsigned long long>(cap >> 20));
+    }
+  }
+  closedir(dir);
+}
+
+/// Runs cut_floods every 20 ms until destroyed.
+class FloodWatch {
+ public:
+  FloodWatch(int port, std::uint64_t cap)
+      : thread_([this, port, cap] {
+          std::unique_lock<std::mutex> lock(mutex_);
+          while (!stop_) {
+            lock.unlock();
+            cut_floods(port, cap);
+            lock.lock();
+            wake_.wait_for(lock, std::chrono::milliseconds(20), [this] { return stop_; });
+          }
+        }) {}
+  FloodWatch(const FloodWatch&) = delete;
+  FloodWatch& operator=(const FloodWatch&) = delete;
+  ~FloodWatch() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::thread thread_;
+};
+
 /// The listening socket's options: SO_REUSEADDR only (a restart need not wait out TIME_WAIT).
 /// cpp-httplib's default sets SO_REUSEPORT, which lets a second process listen on the same
 /// port and take a share of the connections: the token's requests among them.
@@ -406,7 +489,10 @@ extern "C" __attribute__((visibility("default"))) int tessera_view_http_serve(
   }
   std::string open_dir;
   if (options->open) open_browser(url, open_dir);
-  svr.listen_after_bind();
+  {
+    FloodWatch watch(port, options->max_connection_bytes);
+    svr.listen_after_bind();
+  }
   if (!signalled) pthread_kill(waiter.native_handle(), SIGTERM);  // listen ended on its own
   waiter.join();
   if (!open_dir.empty()) {

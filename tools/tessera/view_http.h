@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 namespace tessera::cli {
@@ -37,6 +38,8 @@ struct ViewHttpOptions {
   std::size_t max_body = 64 * 1024;   ///< Larger request bodies get 413 (chunked ones too).
   int read_timeout_s = 3;             ///< A read that waits longer ends its connection.
   std::size_t max_connections = 128;  ///< Connections served at once (a thread each).
+  /// A connection that receives more is shut down (an endless request line).
+  std::uint64_t max_connection_bytes = std::uint64_t{4} << 20;
 };
 
 /// The module's entry point (C linkage, found with dlsym): serves on 127.0.0.1 until SIGINT or
