@@ -194,6 +194,7 @@ def check_guards(port, token):
 
 
 def main():
+    shutil.rmtree(OUT, ignore_errors=True)  # this run's screenshots only
     os.makedirs(OUT, exist_ok=True)
     tmp = tempfile.mkdtemp(prefix="tessera-view-")
     try:

@@ -15,6 +15,7 @@ struct ViewArgs {
   bool html = false;
   std::string output;
   bool quiet = false;
+  int memory_mib = 512;
   ViewSettings settings;
 };
 
@@ -27,6 +28,9 @@ int run_view(const ViewArgs& args, const CLI::App& sub, const GlobalOptions& glo
   if (!args.html && !args.output.empty()) return usage_error("-o is for --html (the export)");
   if (args.html && sub.count("--port")) {
     return usage_error("--port and --html cannot be used together");
+  }
+  if (args.html && sub.count("--memory")) {
+    return usage_error("--memory is for serving, not --html");
   }
   if (sub.count("--mip-filter") && args.settings.mip_levels == 0) {
     return usage_error("--mip-filter " + args.settings.mip_filter + " needs --mip-levels N");
@@ -59,6 +63,7 @@ int run_view(const ViewArgs& args, const CLI::App& sub, const GlobalOptions& glo
   o.quiet = args.quiet;
   o.threads = global.threads;
   o.initial = settings;
+  o.memory_budget = std::size_t(args.memory_mib) << 20;
   return serve_view(std::move(inputs), o);
 }
 
@@ -78,6 +83,10 @@ Command add_view_command(CLI::App& app, const GlobalOptions& global) {
   sub->add_option("--port", args->port, "Port on 127.0.0.1 (default: a random free one)")
       ->check(CLI::Range(1, 65535));
   sub->add_flag("--no-open", args->no_open, "Print the URL only; do not start a browser");
+  sub->add_option("--memory", args->memory_mib,
+                  "MiB of results (images, heatmaps, files) kept while serving; beyond it the "
+                  "least recently used results that are not pinned are evicted (default 512)")
+      ->check(CLI::Range(16, 1 << 20));
   sub->add_flag("--html", args->html,
                 "Write a self-contained static view to -o FILE instead of serving (the given "
                 "encoder options, else fast, normal, high and, with alpha, --alpha-bleed and "

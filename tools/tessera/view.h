@@ -69,9 +69,14 @@ class BlobStore {
   std::shared_ptr<const Blob> get(const std::string& key) const;
   /// Every key, for the static export.
   std::vector<std::string> keys() const;
+  /// Drops the blob of `key` (a result evicted under the memory budget).
+  void erase(const std::string& key);
+  /// The bytes of every blob held.
+  std::size_t bytes() const;
 
  private:
   mutable std::mutex mutex_;
+  std::size_t bytes_ = 0;
   std::map<std::string, std::shared_ptr<const Blob>> blobs_;
 };
 
@@ -80,9 +85,14 @@ class BlobStore {
 std::vector<std::uint8_t> deflate_rgba(const ImageRGBA8& image);
 
 /// Reads the inputs: files by their bytes (images, .pvr/.ktx/.ktx2), folders as the images
-/// and textures in them (not recursive, in name order). A file that cannot be read becomes an
-/// input with `error` set (the view shows it and goes on); a missing folder too.
+/// and textures in them (not recursive, in name order; links that resolve outside the folder are
+/// skipped with a line on stderr). A file that cannot be read becomes an input with `error` set
+/// (the view shows it and goes on); a missing folder too.
 std::vector<ViewInput> load_view_inputs(const std::vector<std::string>& paths);
+
+/// `j` as JSON text; strings that are not UTF-8 (a file name in another encoding) are written
+/// with U+FFFD for their bad bytes rather than throwing.
+std::string dump_json(const nlohmann::json& j);
 
 /// The page's description of an input (without results).
 nlohmann::json input_json(const ViewInput& input, int index);
@@ -125,6 +135,9 @@ struct ViewServeOptions {
   bool quiet = false;
   int threads = 0;
   std::vector<ViewSettings> initial;  ///< Settings of the first encode of each image.
+  /// Memory for results (their images, heatmaps and files): beyond it the least recently used
+  /// results that are not pinned are evicted.
+  std::size_t memory_budget = std::size_t{512} << 20;
 };
 
 /// Serves the view on 127.0.0.1 until SIGINT or SIGTERM; prints the URL (with its token) on

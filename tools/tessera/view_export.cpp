@@ -43,7 +43,7 @@ std::string view_page(const nlohmann::json& data) {
   // Inside <script>, "</script" would end the element and "<!--" change how it is parsed: every
   // "<" (only ever inside a JSON string) is written as the same string's "\u003c".
   std::string json;
-  for (char c : data.dump()) {
+  for (char c : dump_json(data)) {
     if (c == '<') {
       json += "\\u003c";
     } else {

@@ -1,22 +1,40 @@
 // tessera view's HTTP server module (tessera-view-http.so, loaded by `tessera view`): cpp-httplib
 // bound to 127.0.0.1 only, a random token that every request carries (?token=), Host and
-// Origin checked against DNS rebinding, request bodies capped (413), nothing routed but the
-// page, the blobs of the opened inputs' results and the encode/job API; clean shutdown on
-// SIGINT and SIGTERM. See view_http.h for why it is a module.
+// Origin checked exactly against DNS rebinding, nothing routed but the page, the blobs of the
+// opened inputs' results and the encode/job/pin API; clean shutdown on SIGINT and SIGTERM.
+//
+// What it holds against (the README, `tessera view`): the port is never shared (no SO_REUSEPORT);
+// every request body is refused before it is read unless it is an encode request, whose body is
+// read through a cap that stops it as it streams (chunked or not: 413, connection closed);
+// reads time out (ViewHttpOptions::read_timeout_s) and each connection has its own thread
+// from a pool that grows to max_connections, so clients that send half a request cannot hold
+// up the others; one Host header; a connection that receives more than any page sends (an
+// endless request line) is reset. See view_http.h for why this is a module.
 #include "view_http.h"
 
+#include <arpa/inet.h>
+#include <dirent.h>
 #include <fcntl.h>
 #include <httplib.h>
+#include <netinet/in.h>
 #include <pthread.h>
 #include <spawn.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <mutex>
 #include <random>
 #include <thread>
+#include <vector>
 
 extern char** environ;
 
@@ -39,16 +57,18 @@ bool same_secret(const std::string& a, const std::string& b) {
   return d == 0;
 }
 
-/// {"error": message} with quotes and backslashes escaped (messages are this file's own words
-/// plus a header value, which may hold anything).
+/// {"error": message} with quotes and backslashes escaped and anything outside printable ASCII
+/// replaced (messages are this file's own words plus a header value, which may hold anything,
+/// not UTF-8 included).
 std::string error_json(const std::string& message) {
   std::string out = "{\"error\":\"";
   for (char c : message) {
+    const auto u = static_cast<unsigned char>(c);
     if (c == '"' || c == '\\') {
       out += '\\';
       out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += ' ';
+    } else if (u < 0x20 || u >= 0x7f) {
+      out += '?';
     } else {
       out += c;
     }
@@ -61,36 +81,96 @@ void reply(httplib::Response& res, int status, const std::string& json) {
   res.set_content(json, "application/json");
 }
 
-/// The checks every request passes before routing: Host and Origin name this server (a page
-/// of another site that rebinds its name to 127.0.0.1 sends its own), and the token.
+/// Replies and then closes the connection: for a request whose body is not read (or not read
+/// to its end), which would otherwise be parsed as the next request. cpp-httplib closes a
+/// keep-alive connection when writing a response fails; a content provider that writes the
+/// whole reply and then reports failure makes it do so after the reply is sent.
+void reply_and_close(httplib::Response& res, int status, const std::string& json) {
+  res.status = status;
+  res.set_header("Connection", "close");
+  auto body = std::make_shared<const std::string>(json);
+  res.set_content_provider(body->size(), "application/json",
+                           [body](std::size_t offset, std::size_t, httplib::DataSink& sink) {
+                             if (offset < body->size()) {
+                               sink.write(body->data() + offset, body->size() - offset);
+                             }
+                             return false;
+                           });
+}
+
+/// True when `req` may carry a body: a method cpp-httplib reads one for, or a length or a
+/// transfer coding.
+bool may_have_body(const httplib::Request& req) {
+  return req.method == "POST" || req.method == "PUT" || req.method == "PATCH" ||
+         req.method == "DELETE" || req.method == "PRI" || req.has_header("Transfer-Encoding") ||
+         (req.has_header("Content-Length") && req.get_header_value("Content-Length") != "0");
+}
+
+/// The checks every request passes before routing (and before its body is read): one Host,
+/// naming this server exactly, and any Origin too (a page of another site that rebinds its
+/// name to 127.0.0.1 sends its own); the token; then a body only where one is read (POST
+/// /api/encode), its declared length within the cap. Every refusal closes the connection.
 httplib::Server::HandlerResponse guard(const httplib::Request& req, httplib::Response& res,
-                                       int port, const std::string& token) {
+                                       int port, const std::string& token, std::size_t max_body) {
   const std::string p = std::to_string(port);
-  const std::string host = req.get_header_value("Host");
   res.set_header("Cache-Control", "no-store");
   res.set_header("X-Content-Type-Options", "nosniff");
   res.set_header("Referrer-Policy", "no-referrer");
+  using HR = httplib::Server::HandlerResponse;
+  for (const char* once : {"Host", "Origin", "Content-Length", "Transfer-Encoding"}) {
+    if (req.get_header_value_count(once) > 1) {
+      reply_and_close(res, 400, error_json(std::string("bad request: more than one ") + once));
+      return HR::Handled;
+    }
+  }
+  const std::string host = req.get_header_value("Host");
   if (host != "127.0.0.1:" + p && host != "localhost:" + p) {
-    reply(res, 403, error_json("forbidden: Host '" + host + "' is not this server"));
-    return httplib::Server::HandlerResponse::Handled;
+    reply_and_close(res, 403, error_json("forbidden: Host '" + host + "' is not this server"));
+    return HR::Handled;
   }
   if (req.has_header("Origin")) {
     const std::string origin = req.get_header_value("Origin");
     if (origin != "http://127.0.0.1:" + p && origin != "http://localhost:" + p) {
-      reply(res, 403, error_json("forbidden: Origin '" + origin + "' is not this server"));
-      return httplib::Server::HandlerResponse::Handled;
+      reply_and_close(res, 403,
+                      error_json("forbidden: Origin '" + origin + "' is not this server"));
+      return HR::Handled;
     }
   }
   if (!same_secret(req.get_param_value("token"), token)) {
-    reply(res, 403,
-          error_json("forbidden: a missing or wrong token (use the URL tessera view "
-                     "printed)"));
-    return httplib::Server::HandlerResponse::Handled;
+    reply_and_close(res, 403,
+                    error_json("forbidden: a missing or wrong token (use the URL tessera view "
+                               "printed)"));
+    return HR::Handled;
   }
-  return httplib::Server::HandlerResponse::Unhandled;
+  if (!may_have_body(req)) return HR::Unhandled;
+  if (req.method != "POST" || req.path != "/api/encode") {
+    reply_and_close(res, 404, error_json("not found"));
+    return HR::Handled;
+  }
+  if (req.has_header("Transfer-Encoding")) {
+    if (req.has_header("Content-Length") ||
+        req.get_header_value("Transfer-Encoding") != "chunked") {
+      reply_and_close(res, 400, error_json("bad request: a transfer coding other than chunked"));
+      return HR::Handled;
+    }
+    return HR::Unhandled;  // read through the cap (add_routes)
+  }
+  const std::string length = req.get_header_value("Content-Length");
+  if (!length.empty()) {
+    if (length.find_first_not_of("0123456789") != std::string::npos || length.size() > 18) {
+      reply_and_close(res, length.size() > 18 ? 413 : 400, error_json("bad Content-Length"));
+      return HR::Handled;
+    }
+    if (std::stoull(length) > max_body) {
+      reply_and_close(res, 413, error_json("request body too large"));
+      return HR::Handled;
+    }
+  }
+  return HR::Unhandled;
 }
 
-void add_routes(httplib::Server& svr, ViewBackend& backend, const std::string& token) {
+void add_routes(httplib::Server& svr, ViewBackend& backend, const std::string& token,
+                std::size_t max_body) {
   svr.Get("/", [&backend, token](const httplib::Request&, httplib::Response& res) {
     res.set_header("Content-Security-Policy",
                    "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; "
@@ -109,30 +189,238 @@ void add_routes(httplib::Server& svr, ViewBackend& backend, const std::string& t
     const int status = backend.job(req.get_param_value("id"), json);
     reply(res, status, json);
   });
-  svr.Post("/api/encode", [&backend](const httplib::Request& req, httplib::Response& res) {
+  svr.Get("/api/pin", [&backend](const httplib::Request& req, httplib::Response& res) {
     std::string json;
-    const int status = backend.encode(req.body, json);
+    const int status =
+        backend.pin(req.get_param_value("id"), req.get_param_value("pinned") != "0", json);
+    reply(res, status, json);
+  });
+  // The body is read through a cap as it streams (a chunked body has no length to check
+  // first): past `max_body` the reading stops, 413, and the connection closes.
+  svr.Post("/api/encode", [&backend, max_body](const httplib::Request&, httplib::Response& res,
+                                               const httplib::ContentReader& read) {
+    std::string body;
+    bool over = false;
+    const bool ok = read([&](const char* data, std::size_t n) {
+      if (body.size() + n > max_body) {
+        over = true;
+        return false;
+      }
+      body.append(data, n);
+      return true;
+    });
+    if (over) return reply_and_close(res, 413, error_json("request body too large"));
+    if (!ok) return reply_and_close(res, 400, error_json("bad request: the body did not arrive"));
+    std::string json;
+    const int status = backend.encode(body, json);
     reply(res, status, json);
   });
   svr.set_error_handler([](const httplib::Request&, httplib::Response& res) {
-    if (res.body.empty()) {
+    if (res.body.empty() && !res.content_provider_) {
       res.set_content(error_json(res.status == 413 ? "request body too large" : "not found"),
                       "application/json");
     }
   });
+  svr.set_exception_handler(
+      [](const httplib::Request& req, httplib::Response& res, std::exception_ptr ep) {
+        std::string what = "unknown";
+        try {
+          if (ep) std::rethrow_exception(ep);
+        } catch (const std::exception& e) {
+          what = e.what();
+        } catch (...) {
+        }
+        std::fprintf(stderr, "tessera view: %s %s: internal error: %s\n", req.method.c_str(),
+                     req.path.c_str(), what.c_str());
+        reply(res, 500, error_json("internal error: " + what));
+      });
 }
 
-/// Opens `url` in the desktop's browser when there is a desktop (xdg-open), not waiting.
-void open_browser(const std::string& url) {
+/// The connection threads: one per connection, the pool growing on demand to `max_threads`
+/// (an idle keep-alive connection or one that sends half a request holds only its own thread,
+/// until its read times out). With every thread busy, up to `max_waiting` connections wait
+/// for one; beyond that the accept loop waits here and new connections stay in the kernel's
+/// backlog.
+class ConnectionPool final : public httplib::TaskQueue {
+ public:
+  ConnectionPool(std::size_t max_threads, std::size_t max_waiting)
+      : max_threads_(max_threads), max_waiting_(max_waiting) {}
+  ConnectionPool(const ConnectionPool&) = delete;
+  ConnectionPool& operator=(const ConnectionPool&) = delete;
+  ~ConnectionPool() override = default;
+
+  void enqueue(std::function<void()> fn) override {
+    std::unique_lock<std::mutex> lock(mutex_);
+    room_.wait(lock, [&] { return jobs_.size() < max_waiting_; });
+    jobs_.push_back(std::move(fn));
+    if (jobs_.size() > idle_ && threads_.size() < max_threads_) {
+      threads_.emplace_back([this] { work(); });
+    } else {
+      ready_.notify_one();
+    }
+  }
+
+  void shutdown() override {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stopping_ = true;
+    }
+    ready_.notify_all();
+    for (std::thread& t : threads_) t.join();
+  }
+
+ private:
+  void work() {
+    for (;;) {
+      std::function<void()> fn;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        ++idle_;
+        ready_.wait(lock, [&] { return stopping_ || !jobs_.empty(); });
+        --idle_;
+        if (jobs_.empty()) return;  // stopping, nothing left
+        fn = std::move(jobs_.front());
+        jobs_.pop_front();
+      }
+      room_.notify_one();
+      fn();
+    }
+  }
+
+  const std::size_t max_threads_, max_waiting_;
+  std::mutex mutex_;
+  std::condition_variable ready_, room_;
+  std::deque<std::function<void()>> jobs_;
+  std::vector<std::thread> threads_;
+  std::size_t idle_ = 0;
+  bool stopping_ = false;
+};
+
+/// The bytes connection `fd` has received, from TCP_INFO's tcpi_bytes_received (Linux 4.1 and
+/// later, at byte 128 of the kernel's struct tcp_info, a fixed ABI; glibc's <netinet/tcp.h>
+/// declares the struct only to byte 104); -1 when unknown or no longer established.
+long long bytes_received(int fd) {
+  alignas(8) unsigned char info[256] = {};
+  socklen_t length = sizeof info;
+  if (getsockopt(fd, IPPROTO_TCP, TCP_INFO, info, &length) != 0 || length < 136) return -1;
+  if (info[0] != 1) return -1;  // tcpi_state: not TCP_ESTABLISHED (already shut down, say)
+  std::uint64_t bytes = 0;
+  std::memcpy(&bytes, info + 128, sizeof bytes);
+  return static_cast<long long>(bytes);
+}
+
+/// Shuts down every connection to 127.0.0.1:`port` that has received more than `cap` bytes.
+/// cpp-httplib 0.11 reads a request line or header line whole before checking its length, so
+/// one endless line (no token needed) would grow the server's memory for as long as it is sent;
+/// no page of this server sends a connection more than a few hundred KiB.
+void cut_floods(int port, std::uint64_t cap) {
+  DIR* dir = opendir("/proc/self/fd");
+  if (!dir) return;
+  while (const dirent* e = readdir(dir)) {
+    char* end = nullptr;
+    const long fd = std::strtol(e->d_name, &end, 10);
+    if (end == e->d_name || *end != '\0' || fd == dirfd(dir)) continue;
+    sockaddr_in local{}, peer{};
+    socklen_t n = sizeof local, m = sizeof peer;
+    if (getsockname(int(fd), reinterpret_cast<sockaddr*>(&local), &n) != 0 ||
+        local.sin_family != AF_INET || ntohs(local.sin_port) != port ||
+        getpeername(int(fd), reinterpret_cast<sockaddr*>(&peer), &m) != 0) {
+      continue;  // not a connection to this server (the listener has no peer)
+    }
+    const long long bytes = bytes_received(int(fd));
+    if (bytes >= 0 && std::uint64_t(bytes) > cap) {
+      // Reset rather than close it in order: its reads end at once (SHUT_RD) and, lingering
+      // 0 s, cpp-httplib's close answers the sender with RST, so it stops sending.
+      const linger reset{1, 0};
+      setsockopt(int(fd), SOL_SOCKET, SO_LINGER, &reset, sizeof reset);
+      shutdown(int(fd), SHUT_RD);
+      std::fprintf(stderr, "tessera view: a connection sent over %llu MiB: closed\n",
+                   static_cast<unsigned long long>(cap >> 20));
+    }
+  }
+  closedir(dir);
+}
+
+/// Runs cut_floods every 20 ms until destroyed.
+class FloodWatch {
+ public:
+  FloodWatch(int port, std::uint64_t cap)
+      : thread_([this, port, cap] {
+          std::unique_lock<std::mutex> lock(mutex_);
+          while (!stop_) {
+            lock.unlock();
+            cut_floods(port, cap);
+            lock.lock();
+            wake_.wait_for(lock, std::chrono::milliseconds(20), [this] { return stop_; });
+          }
+        }) {}
+  FloodWatch(const FloodWatch&) = delete;
+  FloodWatch& operator=(const FloodWatch&) = delete;
+  ~FloodWatch() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::thread thread_;
+};
+
+/// The listening socket's options: SO_REUSEADDR only (a restart need not wait out TIME_WAIT).
+/// cpp-httplib's default sets SO_REUSEPORT, which lets a second process listen on the same
+/// port and take a share of the connections: the token's requests among them.
+void exclusive_socket_options(socket_t sock) {
+  int yes = 1;
+  setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+}
+
+/// A private directory (0700) with a page (0600) that sends the browser on to `url`, so that
+/// the browser is started with the page's path, not the token (a process's arguments are
+/// visible to every user in `ps`). "" when it cannot be made.
+std::string write_redirect_page(const std::string& url, std::string& dir) {
+  const char* tmp = std::getenv("TMPDIR");
+  std::string templ = std::string(tmp && *tmp ? tmp : "/tmp") + "/tessera-view-XXXXXX";
+  if (!mkdtemp(templ.data())) return "";
+  dir = templ;
+  const std::string path = dir + "/open.html";
+  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0) return "";
+  const std::string page =
+      "<!doctype html><meta charset=\"utf-8\"><meta name=\"referrer\" content=\"no-referrer\">"
+      "<meta http-equiv=\"refresh\" content=\"0;url=" +
+      url + "\"><title>tessera view</title><a href=\"" + url + "\">tessera view</a>\n";
+  const bool ok = write(fd, page.data(), page.size()) == static_cast<ssize_t>(page.size());
+  close(fd);
+  return ok ? path : "";
+}
+
+/// Opens `url` in the desktop's browser when there is a desktop, not waiting: the opener
+/// ($TESSERA_VIEW_OPENER, else xdg-open) gets the path of a private page that redirects to the
+/// URL, never the URL itself. `dir` gets the page's directory (removed when serving ends).
+void open_browser(const std::string& url, std::string& dir) {
   if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY")) return;
+  std::string page = write_redirect_page(url, dir);
+  if (page.empty()) {
+    std::fprintf(stderr,
+                 "tessera view: cannot write the page that opens the browser; open the "
+                 "URL above\n");
+    return;
+  }
+  const char* env = std::getenv("TESSERA_VIEW_OPENER");
+  std::string prog = env && *env ? env : "xdg-open";
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-  std::string prog = "xdg-open", arg = url;
-  char* argv[] = {prog.data(), arg.data(), nullptr};
+  char* argv[] = {prog.data(), page.data(), nullptr};
   pid_t pid = 0;
-  posix_spawnp(&pid, "xdg-open", &fa, nullptr, argv, environ);
+  posix_spawnp(&pid, prog.c_str(), &fa, nullptr, argv, environ);
   posix_spawn_file_actions_destroy(&fa);
 }
 
@@ -153,23 +441,37 @@ extern "C" __attribute__((visibility("default"))) int tessera_view_http_serve(
   std::signal(SIGPIPE, SIG_IGN);
 
   httplib::Server svr;
+  svr.set_socket_options(exclusive_socket_options);
+  // Declared lengths are checked in the guard before reading; this is cpp-httplib's own cap.
   svr.set_payload_max_length(options->max_body);
   // A browser holds idle keep-alive connections: short timeouts let Ctrl-C end the server at
-  // once rather than after httplib's default 5 s.
+  // once rather than after httplib's default 5 s. A read that waits longer than
+  // read_timeout_s ends its connection (a client sending half a request).
   svr.set_keep_alive_timeout(1);
-  svr.set_read_timeout(10, 0);
+  svr.set_keep_alive_max_count(100);
+  svr.set_read_timeout(options->read_timeout_s, 0);
+  svr.set_write_timeout(10, 0);  // a browser reads what it asked for at once
+  const std::size_t max_connections = options->max_connections;
+  svr.new_task_queue = [max_connections] {
+    return new ConnectionPool(max_connections, max_connections);
+  };
   const int port = options->port
                        ? (svr.bind_to_port("127.0.0.1", options->port) ? options->port : -1)
                        : svr.bind_to_any_port("127.0.0.1");
   if (port <= 0) {
-    std::fprintf(stderr, "tessera: cannot listen on 127.0.0.1:%d (in use?)\n", options->port);
+    std::fprintf(stderr,
+                 "tessera: view: cannot listen on 127.0.0.1:%d: in use (choose another "
+                 "--port, or leave it out for a free one)\n",
+                 options->port);
     return 1;
   }
   const std::string token = random_token();
-  svr.set_pre_routing_handler([port, token](const httplib::Request& req, httplib::Response& res) {
-    return guard(req, res, port, token);
-  });
-  add_routes(svr, *backend, token);
+  const std::size_t max_body = options->max_body;
+  svr.set_pre_routing_handler(
+      [port, token, max_body](const httplib::Request& req, httplib::Response& res) {
+        return guard(req, res, port, token, max_body);
+      });
+  add_routes(svr, *backend, token, max_body);
 
   std::atomic<bool> signalled{false};
   std::thread waiter([&svr, &stop_signals, &signalled] {
@@ -185,9 +487,17 @@ extern "C" __attribute__((visibility("default"))) int tessera_view_http_serve(
     std::fprintf(stderr, "tessera view: serving %zu input(s) on 127.0.0.1:%d; Ctrl-C stops\n",
                  backend->input_count(), port);
   }
-  if (options->open) open_browser(url);
-  svr.listen_after_bind();
+  std::string open_dir;
+  if (options->open) open_browser(url, open_dir);
+  {
+    FloodWatch watch(port, options->max_connection_bytes);
+    svr.listen_after_bind();
+  }
   if (!signalled) pthread_kill(waiter.native_handle(), SIGTERM);  // listen ended on its own
   waiter.join();
+  if (!open_dir.empty()) {
+    unlink((open_dir + "/open.html").c_str());
+    rmdir(open_dir.c_str());
+  }
   return 0;
 }

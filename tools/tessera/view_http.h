@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 namespace tessera::cli {
@@ -23,6 +24,8 @@ class ViewBackend {
   virtual int encode(const std::string& body, std::string& json) = 0;
   /// The state of job `id`; returns the HTTP status, `json` the reply.
   virtual int job(const std::string& id, std::string& json) = 0;
+  /// Pins (or unpins) result `id`: a pinned result is never evicted under the memory budget.
+  virtual int pin(const std::string& id, bool pinned, std::string& json) = 0;
   /// Opened inputs (for the start-up line).
   virtual std::size_t input_count() const = 0;
 };
@@ -32,7 +35,11 @@ struct ViewHttpOptions {
   int port = 0;        ///< 0 = a random free port.
   bool open = true;    ///< Start the desktop's browser (xdg-open) when there is a display.
   bool quiet = false;  ///< Print only the URL.
-  std::size_t max_body = 64 * 1024;  ///< Larger request bodies get 413.
+  std::size_t max_body = 64 * 1024;   ///< Larger request bodies get 413 (chunked ones too).
+  int read_timeout_s = 3;             ///< A read that waits longer ends its connection.
+  std::size_t max_connections = 128;  ///< Connections served at once (a thread each).
+  /// A connection that receives more is shut down (an endless request line).
+  std::uint64_t max_connection_bytes = std::uint64_t{4} << 20;
 };
 
 /// The module's entry point (C linkage, found with dlsym): serves on 127.0.0.1 until SIGINT or

@@ -59,11 +59,51 @@ bool word_in(const std::string& w, std::initializer_list<const char*> words) {
   return std::any_of(words.begin(), words.end(), [&](const char* x) { return w == x; });
 }
 
+/// True when `s` is valid UTF-8 (no overlong forms, surrogates or values past U+10FFFF).
+bool valid_utf8(const std::string& s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    const int n = c < 0x80 ? 0 : (c >> 5) == 6 ? 1 : (c >> 4) == 14 ? 2 : (c >> 3) == 30 ? 3 : -1;
+    if (n < 0) return false;
+    std::uint32_t cp = n == 0 ? c : c & (0x3f >> n);
+    for (int k = 1; k <= n; ++k) {
+      if (i + std::size_t(k) >= s.size()) return false;
+      const auto d = static_cast<unsigned char>(s[i + std::size_t(k)]);
+      if ((d >> 6) != 2) return false;
+      cp = (cp << 6) | (d & 0x3f);
+    }
+    static constexpr std::uint32_t kMin[] = {0, 0x80, 0x800, 0x10000};
+    if (cp < kMin[n] || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff)) return false;
+    i += std::size_t(n) + 1;
+  }
+  return true;
+}
+
 std::string quoted(const std::string& word) {
   if (word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
                              "._-/+=:,@") == std::string::npos &&
       !word.empty()) {
     return word;
+  }
+  if (!valid_utf8(word)) {
+    // Bytes that are not text (a file name in another encoding): the shell's $'...' with \xHH
+    // for them, so that the command names the same bytes and stays ASCII on the page.
+    std::string q = "$'";
+    for (char c : word) {
+      const auto u = static_cast<unsigned char>(c);
+      if (c == '\'' || c == '\\') {
+        q += '\\';
+        q += c;
+      } else if (u < 0x20 || u >= 0x7f) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "\\x%02x", u);
+        q += hex;
+      } else {
+        q += c;
+      }
+    }
+    return q + "'";
   }
   std::string q = "'";
   for (char c : word) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -157,7 +197,10 @@ std::string BlobStore::put(std::string mime, std::vector<std::uint8_t> bytes) {
   std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(h));
   std::lock_guard<std::mutex> lock(mutex_);
   auto& slot = blobs_[key];
-  if (!slot) slot = std::make_shared<const Blob>(Blob{std::move(mime), std::move(bytes)});
+  if (!slot) {
+    bytes_ += bytes.size();
+    slot = std::make_shared<const Blob>(Blob{std::move(mime), std::move(bytes)});
+  }
   return key;
 }
 
@@ -165,6 +208,19 @@ std::shared_ptr<const BlobStore::Blob> BlobStore::get(const std::string& key) co
   std::lock_guard<std::mutex> lock(mutex_);
   auto it = blobs_.find(key);
   return it == blobs_.end() ? nullptr : it->second;
+}
+
+void BlobStore::erase(const std::string& key) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto it = blobs_.find(key);
+  if (it == blobs_.end()) return;
+  bytes_ -= it->second->bytes.size();
+  blobs_.erase(it);
+}
+
+std::size_t BlobStore::bytes() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return bytes_;
 }
 
 std::vector<std::string> BlobStore::keys() const {
@@ -179,9 +235,23 @@ std::vector<ViewInput> load_view_inputs(const std::vector<std::string>& paths) {
   for (const std::string& p : paths) {
     std::error_code ec;
     if (fs::is_directory(p, ec)) {
+      // A folder's files, by their real paths: a link that resolves outside the folder is
+      // refused (a folder given to view shares what is in it, not what its links point to).
+      const fs::path root = fs::weakly_canonical(p, ec);
       std::vector<std::string> files;
       for (const fs::directory_entry& e : fs::directory_iterator(p, ec)) {
-        if (e.is_regular_file(ec) && viewable_name(e.path())) files.push_back(e.path().string());
+        std::error_code fec;
+        if (!e.is_regular_file(fec) || !viewable_name(e.path())) continue;
+        if (e.is_symlink(fec)) {
+          const fs::path target = fs::weakly_canonical(e.path(), fec);
+          const fs::path rel = fec ? fs::path("..") : target.lexically_relative(root);
+          if (rel.empty() || *rel.begin() == ".." || rel.is_absolute()) {
+            std::fprintf(stderr, "tessera: view: %s: a link out of the folder (to %s): skipped\n",
+                         e.path().c_str(), target.c_str());
+            continue;
+          }
+        }
+        files.push_back(e.path().string());
       }
       std::sort(files.begin(), files.end());
       if (files.empty()) {
@@ -197,6 +267,10 @@ std::vector<ViewInput> load_view_inputs(const std::vector<std::string>& paths) {
     }
   }
   return out;
+}
+
+std::string dump_json(const nlohmann::json& j) {
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 std::vector<std::pair<int, int>> texture_pairs(const std::vector<ViewInput>& inputs) {

@@ -1,7 +1,12 @@
 // tessera view, serving: the inputs, results and encode jobs behind the HTTP module
 // (view_http.h), which this file loads with dlopen. Encodes run one at a time on a worker
-// thread; their progress (EncodeOptions::progress) is what the page polls.
+// thread; their progress (EncodeOptions::progress) is what the page polls. Results are kept
+// under a memory budget: past it the least recently used results that are not pinned are
+// evicted (their blobs freed, their jobs forgotten: asking again encodes again).
 #include <dlfcn.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <pthread.h>
 
 #include <condition_variable>
@@ -10,6 +15,8 @@
 #include <cstdlib>
 #include <deque>
 #include <filesystem>
+#include <iterator>
+#include <set>
 #include <thread>
 
 #include "view.h"
@@ -22,6 +29,7 @@ namespace {
 constexpr std::size_t kMaxQueued = 8;  ///< Encodes waiting at once: 503 above.
 
 struct Job {
+  std::string id;
   int input = 0;
   ViewSettings settings;
   std::string key;
@@ -33,10 +41,28 @@ struct Job {
 
 nlohmann::json error(const std::string& message) { return {{"error", message}}; }
 
+/// Gives freed memory back to the system (glibc keeps it otherwise, and RSS would only grow).
+void trim_heap() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
+}
+
+/// The blob keys in a result's JSON: every string that names a blob of `blobs`.
+void collect_blob_keys(const nlohmann::json& j, const BlobStore& blobs,
+                       std::set<std::string>& keys) {
+  if (j.is_string()) {
+    const std::string& s = j.get_ref<const std::string&>();
+    if (s.size() == 16 && blobs.get(s)) keys.insert(s);
+  } else if (j.is_structured()) {
+    for (const auto& v : j) collect_blob_keys(v, blobs, keys);
+  }
+}
+
 class Service final : public ViewBackend {
  public:
-  Service(std::vector<ViewInput> inputs, int threads)
-      : inputs_(std::move(inputs)), threads_(threads) {}
+  Service(std::vector<ViewInput> inputs, int threads, std::size_t budget)
+      : inputs_(std::move(inputs)), threads_(threads), budget_(budget) {}
 
   /// The page's start-up data (inputs, initial settings), set once before serving.
   void set_page(nlohmann::json page) { page_ = std::move(page); }
@@ -50,13 +76,19 @@ class Service final : public ViewBackend {
     data["token"] = token;
     std::lock_guard<std::mutex> lock(mutex_);
     data["results"] = nlohmann::json::array();
-    for (const auto& [id, r] : results_) data["results"].push_back(r);
+    for (const auto& [id, r] : results_) data["results"].push_back(r.json);
     return view_page(data);
   }
 
   bool blob(const std::string& key, std::string& mime, std::string& bytes) override {
     std::shared_ptr<const BlobStore::Blob> b = blobs_.get(key);
     if (!b) return false;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (auto it = users_.find(key); it != users_.end()) {
+        for (const std::string& id : it->second) touch(id);
+      }
+    }
     mime = b->mime;
     bytes.assign(b->bytes.begin(), b->bytes.end());
     return true;
@@ -66,23 +98,23 @@ class Service final : public ViewBackend {
     nlohmann::json body = nlohmann::json::parse(body_text, nullptr, false);
     if (body.is_discarded() || !body.is_object() || !body.contains("input") ||
         !body["input"].is_number_integer() || !body.contains("settings")) {
-      out = error("bad request: want {\"input\": N, \"settings\": {...}}").dump();
+      out = dump_json(error("bad request: want {\"input\": N, \"settings\": {...}}"));
       return 400;
     }
     const long long input = body["input"].get<long long>();
     if (input < 0 || input >= static_cast<long long>(inputs_.size()) ||
         inputs_[std::size_t(input)].is_texture || !inputs_[std::size_t(input)].error.empty()) {
-      out = error("no such image input").dump();
+      out = dump_json(error("no such image input"));
       return 404;
     }
     Result<ViewSettings> s = settings_from_json(body["settings"]);
     if (!s) {
-      out = error(s.status().message).dump();
+      out = dump_json(error(s.status().message));
       return 400;
     }
     const std::string id = submit(int(input), *s);
     if (id.empty()) {
-      out = error("busy: too many encodes queued").dump();
+      out = dump_json(error("busy: too many encodes queued"));
       return 503;
     }
     return job(id, out);
@@ -92,22 +124,47 @@ class Service final : public ViewBackend {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = jobs_.find(id);
     if (it == jobs_.end()) {
-      out = error("no such job").dump();
+      out = dump_json(error("no such job"));
       return 404;
     }
     const Job& j = *it->second;
     nlohmann::json r = {{"id", id}, {"state", j.state}, {"fraction", j.fraction.load()}};
-    if (j.state == "done") r["result"] = results_.at(j.result);
+    if (j.state == "done") {
+      r["result"] = results_.at(j.result).json;
+      touch(j.result);
+    }
     if (j.state == "error") r["error"] = j.error;
-    out = r.dump();
+    out = dump_json(r);
     return 200;
   }
 
-  std::string add_result(nlohmann::json result) {
+  int pin(const std::string& id, bool pinned, std::string& out) override {
     std::lock_guard<std::mutex> lock(mutex_);
-    const std::string id = "r" + std::to_string(results_.size());
+    auto it = results_.find(id);
+    if (it == results_.end()) {
+      out = dump_json(error("no such result (evicted?)"));
+      return 404;
+    }
+    it->second.pinned = pinned;
+    touch(id);
+    out = dump_json({{"id", id}, {"pinned", pinned}});
+    return 200;
+  }
+
+  /// Adds a result; `permanent` ones (a texture input's own) are never evicted.
+  std::string add_result(nlohmann::json result, bool permanent = false) {
+    std::set<std::string> keys;
+    collect_blob_keys(result, blobs_, keys);
+    std::lock_guard<std::mutex> lock(mutex_);
+    const std::string id = "r" + std::to_string(next_result_++);
     result["id"] = id;
-    results_[id] = std::move(result);
+    Entry& e = results_[id];
+    e.json = std::move(result);
+    e.pinned = permanent;
+    e.keys.assign(keys.begin(), keys.end());
+    for (const std::string& k : e.keys) users_[k].insert(id);
+    touch(id);
+    evict(id);
     return id;
   }
 
@@ -134,10 +191,15 @@ class Service final : public ViewBackend {
       } else {
         std::fprintf(stderr, "tessera: %s\n", r.status().message.c_str());
       }
-      std::lock_guard<std::mutex> lock(mutex_);
-      job->state = r ? "done" : "error";
-      job->result = id;
-      if (!r) job->error = r.status().message;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        job->state = r ? "done" : "error";
+        job->result = id;
+        if (!r) job->error = r.status().message;
+        // An evicted result's job is forgotten too: the same settings encode again.
+        if (r && !results_.count(id)) jobs_.erase(job->id);
+      }
+      trim_heap();
     }
   }
 
@@ -148,10 +210,50 @@ class Service final : public ViewBackend {
   }
 
  private:
+  struct Entry {
+    nlohmann::json json;
+    std::vector<std::string> keys;  ///< The blobs it shows.
+    bool pinned = false;
+    std::uint64_t used = 0;  ///< Its last use (a clock of uses).
+  };
+
+  void touch(const std::string& id) {
+    if (auto it = results_.find(id); it != results_.end()) it->second.used = ++clock_;
+  }
+
+  /// Evicts the least recently used results that are neither pinned nor `keep` (the newest)
+  /// while the blobs are over the budget; a blob goes with the last result that shows it.
+  void evict(const std::string& keep) {
+    bool freed = false;
+    while (blobs_.bytes() > budget_) {
+      auto victim = results_.end();
+      for (auto it = results_.begin(); it != results_.end(); ++it) {
+        if (it->second.pinned || it->first == keep) continue;
+        if (victim == results_.end() || it->second.used < victim->second.used) victim = it;
+      }
+      if (victim == results_.end()) break;  // everything left is pinned
+      for (const std::string& k : victim->second.keys) {
+        auto u = users_.find(k);
+        if (u == users_.end()) continue;
+        u->second.erase(victim->first);
+        if (u->second.empty()) {
+          users_.erase(u);
+          blobs_.erase(k);
+        }
+      }
+      for (auto j = jobs_.begin(); j != jobs_.end();) {
+        j = j->second->result == victim->first ? jobs_.erase(j) : std::next(j);
+      }
+      results_.erase(victim);
+      freed = true;
+    }
+    if (freed) trim_heap();
+  }
+
   /// The id of the job of (input, settings): an existing one with the same key (unless it
   /// failed), or a new queued one; "" when the queue is full.
   std::string submit(int input, const ViewSettings& settings) {
-    const std::string key = std::to_string(input) + settings_to_json(settings).dump();
+    const std::string key = std::to_string(input) + dump_json(settings_to_json(settings));
     std::lock_guard<std::mutex> lock(mutex_);
     for (const auto& [jid, job] : jobs_) {
       if (job->key == key && job->state != "error") return jid;
@@ -161,7 +263,8 @@ class Service final : public ViewBackend {
     job->input = input;
     job->settings = settings;
     job->key = key;
-    const std::string id = "j" + std::to_string(jobs_.size());
+    const std::string id = "j" + std::to_string(next_job_++);
+    job->id = id;
     jobs_[id] = job;
     queue_.push_back(job);
     wake_.notify_one();
@@ -171,13 +274,16 @@ class Service final : public ViewBackend {
   std::vector<ViewInput> inputs_;
   nlohmann::json page_;
   int threads_;
+  std::size_t budget_;
   BlobStore blobs_;
   std::mutex mutex_;
   std::condition_variable wake_;
   bool stopping_ = false;
-  std::map<std::string, nlohmann::json> results_;
+  std::map<std::string, Entry> results_;
+  std::map<std::string, std::set<std::string>> users_;  ///< Blob key -> results showing it.
   std::map<std::string, std::shared_ptr<Job>> jobs_;
   std::deque<std::shared_ptr<Job>> queue_;
+  std::uint64_t clock_ = 0, next_result_ = 0, next_job_ = 0;
 };
 
 /// The HTTP module's entry point: $TESSERA_VIEW_HTTP, else beside the build tree's binary
@@ -229,7 +335,7 @@ int serve_view(std::vector<ViewInput> inputs, const ViewServeOptions& options) {
   sigaddset(&stop_signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
 
-  Service service(std::move(inputs), options.threads);
+  Service service(std::move(inputs), options.threads, options.memory_budget);
   nlohmann::json page = {{"mode", "server"},
                          {"version", TESSERA_VERSION_STRING},
                          {"inputs", nlohmann::json::array()},
@@ -247,7 +353,7 @@ int serve_view(std::vector<ViewInput> inputs, const ViewServeOptions& options) {
     }
     nlohmann::json j = std::move(r).value();
     j["input_index"] = int(i);
-    service.add_result(std::move(j));
+    service.add_result(std::move(j), true);
   }
   for (const auto& [t, im] : texture_pairs(service.inputs())) {
     const ViewInput& image = service.inputs()[std::size_t(im)];
@@ -256,7 +362,7 @@ int serve_view(std::vector<ViewInput> inputs, const ViewServeOptions& options) {
     if (!r) continue;  // reported above, as the texture's own result
     nlohmann::json j = std::move(r).value();
     j["input_index"] = im;
-    service.add_result(std::move(j));
+    service.add_result(std::move(j), true);
   }
   service.set_page(std::move(page));
 

@@ -177,12 +177,21 @@ function setForm(s) {
 }
 function togglePin() {
   const at = S.pinned.indexOf(S.result);
-  if (at >= 0) S.pinned.splice(at, 1);
-  else if (S.result) {
-    if (S.pinned.length === 4) S.pinned.shift();  // at most four
+  if (at >= 0) {
+    S.pinned.splice(at, 1);
+    tellPin(S.result, false);
+  } else if (S.result) {
+    if (S.pinned.length === 4) tellPin(S.pinned.shift(), false);  // at most four
     S.pinned.push(S.result);
+    tellPin(S.result, true);
   }
   refresh();
+}
+/** The server keeps pinned results when it evicts others under its memory budget. */
+function tellPin(id, pinned) {
+  if (D.mode === "server") {
+    api(`/api/pin?id=${encodeURIComponent(id)}&pinned=${pinned ? 1 : 0}`).catch((e) => showError(e.message));
+  }
 }
 
 function selectInput(index) {
