@@ -12,11 +12,14 @@
 // Vulkan's:
 //
 // 1. The hook becomes SPIR-V at `create`, with shaderc (Google's glslang front end, Debian
-//    libshaderc-dev, linked statically), one compute pipeline per pass: the hook is often
-//    generated from the engine's material system at run time and its G-buffer accessors from the
-//    layout. Ahead of time: `shader_binary()` returns every pass's SPIR-V, keyed by the options
-//    and the device's limits, and `compile_shader_binary` makes the same without a device (a
-//    build step, for every device kind the engine ships on: `shader_target`); given back as
+//    libshaderc-dev, in the optional module tessera-vk-glsl.so), one compute pipeline per pass:
+//    the hook is often generated from the engine's material system at run time and its G-buffer
+//    accessors from the layout. The passes that read neither (the budget's histogram, select and
+//    apply, the frame list's dispatch arguments) are SPIR-V compiled when tessera is built and
+//    embedded; `create` compiles only the passes that shade or read the G-buffer. Ahead of
+//    time: `shader_binary()` returns every pass's SPIR-V, keyed by the options and the device's
+//    limits, and `compile_shader_binary` makes the same without a device (a build step, for
+//    every device kind the engine ships on: `shader_target`); given back as
 //    `options.shader_binary`, `create` compiles no GLSL and needs no compiler module (and
 //    `options.pipeline_cache`, the engine's VkPipelineCache, skips the driver's work). Errors
 //    name the hook's own lines: "HOOK_NAME:LINE: message". The hook's `#include "x.glsl"` resolve

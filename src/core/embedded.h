@@ -16,6 +16,9 @@ struct EmbeddedFile {
 namespace embedded {
 /// share/tessera/glsl: every shipped GLSL file (src/glsl/glsl_files.cpp, generated).
 std::span<const EmbeddedFile> glsl_files();
+/// tessera::vk only: the SPIR-V of vk::AdaptiveSupersampler's embedded passes, "PASS.spv"
+/// (tools/vk_passes + glslangValidator at build time; empty without glslangValidator).
+std::span<const EmbeddedFile> adaptive_pass_spirv();
 }  // namespace embedded
 
 }  // namespace tessera

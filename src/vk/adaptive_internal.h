@@ -13,13 +13,10 @@
 
 #include "adaptive/adaptive_host.h"
 #include "tessera/vk_adaptive.h"
+#include "vk/adaptive_bindings.h"
 #include "vk/vk_api.h"
 
 namespace tessera::vk {
-
-/// The component's bindings in its descriptor set.
-inline constexpr std::uint32_t kBindParams = 0, kBindWork = 1, kBindList = 2, kBindColour = 3,
-                               kBindCounts = 4, kBindGBuffer = 5;
 
 using AdaptiveMode = adaptive::Mode;
 

@@ -6,6 +6,7 @@
 
 #include "tessera/glsl.h"
 #include "vk/adaptive_internal.h"
+#include "vk/embedded_passes.h"
 #include "vk/shader.h"
 #include "vk/shader_binary.h"
 
@@ -128,6 +129,7 @@ Result<glsl::Expanded> expand(const AdaptiveSupersamplerOptions& o, const adapti
 
 /// Every pass's GLSL, expanded, and the shader binary's key of them.
 struct ExpandedPasses {
+  std::uint32_t set_index = 0;
   std::vector<std::string> passes;
   std::map<std::string, glsl::Expanded> expanded;
   std::uint64_t key = 0;
@@ -135,6 +137,7 @@ struct ExpandedPasses {
 Result<ExpandedPasses> expand_all(const AdaptiveSupersamplerOptions& o, const adaptive::Derived& d,
                                   std::uint32_t set_index) {
   ExpandedPasses x;
+  x.set_index = set_index;
   x.passes = adaptive::pass_programs(o.schedule);
   std::map<std::string, std::string> texts;
   for (const std::string& p : x.passes) {
@@ -147,10 +150,15 @@ Result<ExpandedPasses> expand_all(const AdaptiveSupersamplerOptions& o, const ad
   return x;
 }
 
-/// Every pass compiled (a compile error is "vk adaptive supersampler: HOOK:LINE: message").
+/// Every pass's SPIR-V: the embedded ones' (embedded_passes.h) in the component's set, the
+/// others compiled (a compile error is "vk adaptive supersampler: HOOK:LINE: message").
 Result<ShaderPasses> compile_all(const ExpandedPasses& x) {
   ShaderPasses spirv;
   for (const std::string& p : x.passes) {
+    if (std::vector<std::uint32_t> words = embedded_pass(p, x.set_index); !words.empty()) {
+      spirv.emplace(p, std::move(words));
+      continue;
+    }
     const glsl::Expanded& e = x.expanded.at(p);
     Result<std::vector<std::uint32_t>> code = compile_compute_spirv(e.text);
     if (!code) {

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "vk/embedded_passes.h"
 #include "vk_adaptive_test_util.h"
 #include "vk_engine.h"  // examples/common: write_uniform_buffer
 
@@ -459,6 +460,29 @@ TEST(VkValidation, NegativeControlLeakIsCounted) {
   EXPECT_EQ((*e)->messages(), 0);
   (*e)->shutdown();
   EXPECT_GT((*e)->messages(), 0) << "the leaked VkSampler was not reported";
+}
+
+/// The passes the build compiles to SPIR-V and embeds (src/vk/embedded_passes.h, tools/vk_passes):
+/// each a SPIR-V module whose every DescriptorSet decoration is the component's set as given;
+/// the passes that shade are not embedded (compiled with the hook at create).
+TEST(VkEmbeddedPasses, BudgetAndListPassesAreEmbeddedInTheComponentsSet) {
+  for (const char* pass : vk::kEmbeddedPasses) {
+    for (std::uint32_t set : {0u, 3u}) {
+      const std::vector<std::uint32_t> w = vk::embedded_pass(pass, set);
+      ASSERT_GT(w.size(), 5u) << pass << " is not embedded (glslangValidator at build time?)";
+      EXPECT_EQ(w[0], 0x07230203u) << pass;  // the SPIR-V magic number
+      int decorations = 0;
+      for (std::size_t at = 5; at < w.size() && (w[at] >> 16) > 0; at += w[at] >> 16) {
+        if ((w[at] & 0xffffu) == 71 && (w[at] >> 16) == 4 && w[at + 2] == 34) {  // DescriptorSet
+          EXPECT_EQ(w[at + 3], set) << pass;
+          ++decorations;
+        }
+      }
+      EXPECT_GE(decorations, 2) << pass;  // the parameter block and the work buffer at least
+    }
+  }
+  EXPECT_TRUE(vk::embedded_pass("FIRST", 0).empty());
+  EXPECT_TRUE(vk::embedded_pass("METRICS", 0).empty());
 }
 
 }  // namespace
