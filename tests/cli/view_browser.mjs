@@ -76,6 +76,29 @@ async function texelAtCentre(page, canvas, zoom) {
                                 text: document.getElementById("readout").textContent }));
 }
 
+/** The readout's texel at page point (x, y) (the pointer moved there). */
+async function readoutAt(page, x, y) {
+  await page.mouse.move(x + 1, y);
+  await page.mouse.move(x, y);
+  await page.waitForFunction(() => document.getElementById("readout").dataset.decoded, WAIT);
+  return page.evaluate(() => ({ x: document.getElementById("readout").dataset.x,
+                                y: document.getElementById("readout").dataset.y }));
+}
+
+/** One wheel step out at an off-centre point of `canvas`: the texel under it before and after. */
+async function wheelAt(page, canvas) {
+  const box = await (await page.$(canvas)).boundingBox();
+  const x = box.x + box.width * 0.4, y = box.y + box.height * 0.4;
+  const before = await readoutAt(page, x, y);
+  const zoom = await page.evaluate(() => window.tesseraView.state.zoom);
+  await page.mouse.wheel({ deltaY: 100 });
+  await page.waitForFunction((z) => window.tesseraView.state.zoom !== z &&
+      document.body.dataset.drawn.endsWith(":" + window.tesseraView.state.zoom), WAIT, zoom);
+  const after = await readoutAt(page, x, y);
+  return { before, after, zoom_before: zoom,
+           zoom_after: await page.evaluate(() => window.tesseraView.state.zoom) };
+}
+
 async function shot(page, name, width, height) {
   await page.setViewport({ width, height });
   await page.evaluate(() => new Promise((ok) => requestAnimationFrame(() => requestAnimationFrame(ok))));
@@ -109,6 +132,7 @@ async function serverScenario(page) {
   await page.select("#right", "result");
   s.sprite_texel = await texelAtCentre(page, "#canvas-b", "32");
   await shot(page, "view-zoom32-1366x768.png", 1366, 768);
+  s.wheel = await wheelAt(page, "#canvas-b");
   await page.select("#zoom", "fit");
   await page.select("#mode", "wipe");
   await shot(page, "view-wipe-1366x768.png", 1366, 768);
@@ -122,9 +146,14 @@ async function serverScenario(page) {
       document.body.dataset.drawn.startsWith(window.tesseraView.state.result + ":"), WAIT);
   s.cube_first = await snapshot(page);
   before = s.cube_first.drawn;
+  // The pointer over the face, still while the level and face change: the readout follows.
+  const cb = await (await page.$("#canvas-b")).boundingBox();
+  await page.mouse.move(cb.x + cb.width / 2, cb.y + cb.height / 2);
+  await page.waitForFunction(() => document.getElementById("readout").textContent.includes("level 0"), WAIT);
   await page.select("#level", "1");
   await page.select("#face", "3");
   await page.waitForFunction(() => document.body.dataset.drawn.includes(":1:3:0:"), WAIT);
+  s.cube_readout = await page.$eval("#readout", (e) => e.textContent);  // not moved since level 0
   s.cube = await snapshot(page);
   s.cube_texel = await texelAtCentre(page, "#canvas-b", null);
   await page.select("#level", "0");

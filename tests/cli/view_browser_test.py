@@ -270,6 +270,12 @@ def check_steps(s, tmp):
               [int(v) for v in t["decoded"].split(",")] == texel_of(dec, x, y), t)
         check("zoom 32: original value as the PNG",
               [int(v) for v in t["original"].split(",")] == list(sprite(x, y)), t)
+    w = s.get("wheel", {})
+    check("wheel zoom on the cursor: the texel under it stays",
+          w.get("before") is not None and w.get("before") == w.get("after")
+          and w.get("zoom_before") == 32 and w.get("zoom_after") == 16, w)
+    check("readout refreshed by a change under a still pointer (level 1 read)",
+          "level 1" in s.get("cube_readout", ""), s.get("cube_readout"))
     check("pin: one pinned row", s.get("pinned_rows") == 1, s.get("pinned_rows"))
     check("heatmap: colour bar shown", s.get("colourbar") is True)
     check("heatmap of colour x alpha shown", "colour x alpha" in s.get("premultiplied_heatmap", ""))
@@ -468,14 +474,16 @@ def check_static(tmp):
     if not s:
         return
     commands = [r["command"] for r in s.get("results", [])]
+    # The input by its path as typed (here absolute), so the command runs from anywhere.
+    src = shlex.quote(os.path.join(tmp, "sprite.png"))
     check("static export: fast, normal, high, bleed, weighted", commands == [
-        "tessera compress sprite.png -o sprite.pvr --quality fast",
-        "tessera compress sprite.png -o sprite.pvr",
-        "tessera compress sprite.png -o sprite.pvr --quality high",
-        "tessera compress sprite.png -o sprite.pvr --alpha-bleed",
-        "tessera compress sprite.png -o sprite.pvr --alpha-weighted"], commands)
+        f"tessera compress {src} -o sprite.pvr --quality fast",
+        f"tessera compress {src} -o sprite.pvr",
+        f"tessera compress {src} -o sprite.pvr --quality high",
+        f"tessera compress {src} -o sprite.pvr --alpha-bleed",
+        f"tessera compress {src} -o sprite.pvr --alpha-weighted"], commands)
     for r in s.get("results", [])[:3] + s.get("results", [])[4:]:
-        check_against_cli("static " + r["command"][38:], r, tmp)
+        check_against_cli("static " + r["command"].split(" -o ")[-1], r, tmp)
     t = s.get("texel")
     check("static export: texel readout", bool(t and t.get("decoded")), t)
 

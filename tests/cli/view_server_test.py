@@ -186,8 +186,8 @@ def part_utf8(tmp):
     check("non-UTF-8 name: its encode is done", job.get("state") == "done", job)
     if job.get("state") == "done":
         r = job["result"]
-        check("non-UTF-8 name: the command names its bytes",
-              r["command"] == "tessera compress $'ic\\xf4ne.png' -o $'ic\\xf4ne.pvr' --quality fast",
+        check("non-UTF-8 name: the command names its bytes, by the path as typed",
+              r["command"] == f"tessera compress $'{d}/ic\\xf4ne.png' -o $'ic\\xf4ne.pvr' --quality fast",
               r["command"])
         status, tex = get(port, f"/blob/{r['file']}?token={token}")
         words = ["bash", "-c", r["command"].replace("tessera ", shlex_quote(TESSERA) + " ", 1) + " -q"]

@@ -209,7 +209,7 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
 
   nlohmann::json j = {{"input", input.name},
                       {"settings", settings_to_json(settings)},
-                      {"command", compress_command(settings, input.name, output)},
+                      {"command", compress_command(settings, input.path, output)},  // the path as typed
                       {"texture", texture_json(tex)},
                       {"file_name", output},
                       {"file", blobs.put("application/octet-stream", *file)},

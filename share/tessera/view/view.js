@@ -458,6 +458,7 @@ async function draw() {
       ctx.fillRect(Math.round(split * dpr), 0, Math.max(1, dpr), ca.height);
       $("caption-a").textContent = `wipe: ${a.caption} (left) | ${b.caption} (right)`;
     }
+    refreshReadout();
     document.body.dataset.drawn = `${S.result}:${im.level}:${im.face}:${im.layer}:${S.zoom}`;
   } catch (e) {
     showError(e.message);
@@ -480,6 +481,7 @@ async function drawCross(r, ticket) {
   });
   S.shown = { cross: true, faces, n };
   $("caption-a").textContent = `cube map as a cross (level ${S.level}): ${faces[0].p.caption}`;
+  refreshReadout();
   document.body.dataset.drawn = `${S.result}:${S.level}:cross:${S.layer}:${S.zoom}`;
 }
 
@@ -513,9 +515,17 @@ function readout(t) {
   const ro = $("readout").dataset;
   ro.x = t.x; ro.y = t.y; ro.decoded = b.join(","); ro.original = a ? a.join(",") : "";
 }
+/** The texel under the pointer's last place, read again after a change (input, result, level,
+ *  face, view, zoom): the readout never shows a texel of what is no longer drawn. */
+function refreshReadout() {
+  const p = S.pointer;
+  readout(p ? texelUnder(p.canvas, p) : null);
+}
 function attachPointer(canvas) {
   let drag = null;
+  canvas.addEventListener("pointerleave", () => { S.pointer = null; });
   canvas.addEventListener("pointermove", (ev) => {
+    S.pointer = { canvas, clientX: ev.clientX, clientY: ev.clientY };
     if (drag && S.zoom !== "fit") {
       const z = S.zoom;
       S.cx = drag.cx - (ev.clientX - drag.x) / z;
@@ -536,6 +546,12 @@ function attachPointer(canvas) {
     const steps = ZOOMS.slice(1);
     let i = steps.findIndex((z) => z >= S.zoom);
     i = Math.max(0, Math.min(steps.length - 1, i + (ev.deltaY < 0 ? 1 : -1)));
+    // On the cursor: the point under it stays under it (texel = centre + offset / zoom).
+    const rect = canvas.getBoundingClientRect();
+    const dx = ev.clientX - rect.left - canvas.clientWidth / 2;
+    const dy = ev.clientY - rect.top - canvas.clientHeight / 2;
+    S.cx += dx / S.zoom - dx / steps[i];
+    S.cy += dy / S.zoom - dy / steps[i];
     setZoom(steps[i]);
   }, { passive: false });
 }
