@@ -207,18 +207,19 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
       texture_file::measure_level0(made->texture, made->sources, threads);
   if (!total) return total.status();
 
-  nlohmann::json j = {{"input", input.name},
-                      {"settings", settings_to_json(settings)},
-                      {"command", compress_command(settings, input.path, output)},  // the path as typed
-                      {"texture", texture_json(tex)},
-                      {"file_name", output},
-                      {"file", blobs.put("application/octet-stream", *file)},
-                      {"bytes", file->size()},
-                      {"encode_ms", made->encode_ms},
-                      {"resized", made->resized},
-                      {"metrics", metrics_json(*total)},
-                      {"colour_bars", colour_bars(blobs)},
-                      {"images", nlohmann::json::array()}};
+  nlohmann::json j = {
+      {"input", input.name},
+      {"settings", settings_to_json(settings)},
+      {"command", compress_command(settings, input.path, output)},  // the path as typed
+      {"texture", texture_json(tex)},
+      {"file_name", output},
+      {"file", blobs.put("application/octet-stream", *file)},
+      {"bytes", file->size()},
+      {"encode_ms", made->encode_ms},
+      {"resized", made->resized},
+      {"metrics", metrics_json(*total)},
+      {"colour_bars", colour_bars(blobs)},
+      {"images", nlohmann::json::array()}};
   for (int level = 0; level < tex.level_count(); ++level) {
     Result<ImageRGBA8> dec = texture_file::decode_texture_image(tex, level, 0, 0, {threads});
     if (!dec) return dec.status();
