@@ -5,7 +5,7 @@ outside the SIMD wrapper's AVX2 inline namespace (labels unit).
 A weak (COMDAT) definition there -- an inline function or template instantiation of external
 linkage that the compiler did not inline -- could be the copy the linker keeps for the whole
 program, and then run AVX2 instructions on a CPU without AVX2. The wrapper's own functions live
-in tessera::simd::avx2 (core/simd_int.h), which only AVX2 code calls; anything else must have
+in tessera::simd::avx2 (core/simd_select.h), which only AVX2 code calls; anything else must have
 internal linkage. Type information objects (`typeinfo for ...`, `typeinfo name for ...`, which
 Clang's -fsanitize=function emits as weak data for function types) hold no code and are not
 counted. Skips (77) where the build has no AVX2 objects (not x86-64).
