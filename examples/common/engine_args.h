@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <string>
 #include <utility>
@@ -59,6 +60,34 @@ class CommandLine {
   std::vector<std::pair<std::string, bool*>> flags_;
   std::vector<std::pair<std::string, std::function<std::string(const std::string&)>>> options_;
 };
+
+/// An option's integer in [lo, hi] into `to` ("FLAG V: expected LO..HI" otherwise).
+inline std::function<std::string(const std::string&)> count_option(const char* flag, int lo, int hi,
+                                                                   int& to) {
+  return [flag, lo, hi, &to](const std::string& v) -> std::string {
+    to = std::atoi(v.c_str());
+    return to < lo || to > hi ? std::string(flag) + " " + v + ": expected " + std::to_string(lo) +
+                                    ".." + std::to_string(hi)
+                              : "";
+  };
+}
+
+/// The frame-loop flags both Vulkan engines take: --frame-loop N, --frames-in-flight F,
+/// --views V, --window.
+struct FrameLoopArgs {
+  int frame_loop = 0;  ///< Frames of the frame loop; 0: the engine's single-frame mode.
+  int frames_in_flight = 2, views = 2;
+  bool window = false;  ///< Present view 0 of the frame loop in a GLFW window.
+};
+/// --frames-in-flight takes `min_in_flight`..`max_in_flight`.
+inline void add_frame_loop_flags(CommandLine& cl, FrameLoopArgs& a, int min_in_flight,
+                                 int max_in_flight) {
+  cl.option("--frame-loop", count_option("--frame-loop", 1, 100000, a.frame_loop));
+  cl.option("--frames-in-flight",
+            count_option("--frames-in-flight", min_in_flight, max_in_flight, a.frames_in_flight));
+  cl.option("--views", count_option("--views", 1, 16, a.views));
+  cl.flag("--window", &a.window);
+}
 
 /// `WxH` into `w`, `h`; false unless two positive integers.
 inline bool parse_size(const std::string& v, int& w, int& h) {

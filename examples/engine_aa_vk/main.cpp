@@ -46,12 +46,10 @@
 
 namespace {
 
-// The flags of engine_aa too (aa_report.h), and the Vulkan engine's own.
-struct Args : engine::AaArgs {
+// The flags of engine_aa too (aa_report.h), the frame loop's (engine_args.h; frame_loop 0: the
+// three measured frames), and the Vulkan engine's own.
+struct Args : engine::AaArgs, engine::FrameLoopArgs {
   bool no_validation = false;
-  int frame_loop = 0;  // frames of the frame loop (frame_loop.h); 0: the three measured frames
-  int frames_in_flight = 2, views = 2;
-  bool window = false;        // --window: present view 0 of the frame loop in a GLFW window
   std::string shader_binary;  // --shader-binary FILE: load tessera's SPIR-V, or save it there
 };
 
@@ -83,18 +81,7 @@ std::string parse_args(int argc, char** argv, Args& a) {
   engine::CommandLine cl;
   engine::add_aa_flags(cl, a);
   cl.flag("--no-validation", &a.no_validation);
-  auto count = [](const char* flag, int lo, int hi, int& to) {
-    return [flag, lo, hi, &to](const std::string& v) -> std::string {
-      to = std::atoi(v.c_str());
-      return to < lo || to > hi ? std::string(flag) + " " + v + ": expected " + std::to_string(lo) +
-                                      ".." + std::to_string(hi)
-                                : "";
-    };
-  };
-  cl.option("--frame-loop", count("--frame-loop", 1, 100000, a.frame_loop));
-  cl.option("--frames-in-flight", count("--frames-in-flight", 1, 16, a.frames_in_flight));
-  cl.option("--views", count("--views", 1, 16, a.views));
-  cl.flag("--window", &a.window);
+  engine::add_frame_loop_flags(cl, a, 1, 16);
   cl.option("--shader-binary", [&a](const std::string& v) -> std::string {
     a.shader_binary = v;
     return v.empty() ? "--shader-binary: expected a file" : "";

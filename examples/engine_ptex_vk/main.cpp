@@ -59,12 +59,10 @@
 
 namespace {
 
-// The flags of engine_ptex too (ptex_report.h), and the Vulkan engine's own.
-struct Args : engine::PtexArgs {
+// The flags of engine_ptex too (ptex_report.h), the frame loop's (engine_args.h; frame_loop 0:
+// one frame), and the Vulkan engine's own.
+struct Args : engine::PtexArgs, engine::FrameLoopArgs {
   int face_shift = 0;
-  int frame_loop = 0;  // frames of the frame loop (frame_loop.h); 0: one frame
-  int frames_in_flight = 2, views = 2;
-  bool window = false;  // --window: present view 0 of the frame loop in a GLFW window
 };
 
 // The frame loop's cameras: view v at orbit (K + v max(1, N / V))/N (the views spread round
@@ -91,18 +89,7 @@ std::string parse_args(int argc, char** argv, Args& a) {
     a.face_shift = std::atoi(v.c_str());
     return a.face_shift < 0 ? "--face-shift: K >= 0" : "";
   });
-  auto count = [](const char* flag, int lo, int hi, int& to) {
-    return [flag, lo, hi, &to](const std::string& v) -> std::string {
-      to = std::atoi(v.c_str());
-      return to < lo || to > hi ? std::string(flag) + " " + v + ": expected " + std::to_string(lo) +
-                                      ".." + std::to_string(hi)
-                                : "";
-    };
-  };
-  cl.option("--frame-loop", count("--frame-loop", 1, 100000, a.frame_loop));
-  cl.option("--frames-in-flight", count("--frames-in-flight", 2, 3, a.frames_in_flight));
-  cl.option("--views", count("--views", 1, 16, a.views));
-  cl.flag("--window", &a.window);
+  engine::add_frame_loop_flags(cl, a, 2, 3);
   if (std::string why = engine::parse_ptex_args(cl, argc, argv, a, "engine_ptex_vk");
       !why.empty()) {
     return why;
