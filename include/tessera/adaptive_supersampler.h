@@ -6,7 +6,7 @@
 // backend's bindings. Part of the core `tessera` library: plain structs, no OpenGL, no Vulkan.
 // The thresholds are AdaptiveThresholds (tessera/adaptive_thresholds.h), as on the CPU. The hook
 // contract, the G-buffer layout and the passes: docs/engine_integration.md. Checked by each
-// backend's `create` (one-line errors naming the field); tests: tests/gl/gl_adaptive_test.cpp,
+// backend's `create` (one-line errors naming the field); Tests: tests/gl/gl_adaptive_test.cpp,
 // tests/vk/vk_adaptive_test.cpp.
 #pragma once
 

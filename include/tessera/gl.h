@@ -8,7 +8,7 @@
 // (untested) they are only guaranteed for the context current when loaded. No current context:
 // a one-line error, not a crash. tessera never installs, replaces or leaves changed an engine's
 // glDebugMessageCallback; only its own `Context` collects debug output. EGL is used by
-// `Context` alone. Guide: docs/engine_integration.md; tests: tests/gl (gl_entry_points_test,
+// `Context` alone. Guide: docs/engine_integration.md; Tests: tests/gl (gl_entry_points_test,
 // gl_engine_context*).
 //
 // Also here: `Context` (headless EGL: device by `ContextOptions::device` / TESSERA_EGL_DEVICE:

@@ -7,7 +7,7 @@
 // changes (the list is in docs/engine_integration.md) and never touches framebuffers, viewport,
 // pixel-store, vertex state or the debug callback; it reads no file (the GLSL is embedded) unless
 // `glsl_dir` asks. Without a current context every call fails with one line. The walkthrough
-// (G-buffer layout, hook contract, passes, resources) is docs/engine_integration.md; tests:
+// (G-buffer layout, hook contract, passes, resources) is docs/engine_integration.md; Tests:
 // tests/gl/gl_adaptive_test.cpp (state), gl_engine_context* (engine contexts). Not thread-safe.
 #pragma once
 

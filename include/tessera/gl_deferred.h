@@ -40,6 +40,7 @@
 //
 // Threads: as tessera/gl.h — all calls on the thread where the context is current; destroy the
 // renderer before the context. Not thread-safe.
+// Tests: tests/gl/gl_deferred_renderer_test.cpp (GPU = CPU), tests/gl/aa_gl_cli_test.py.
 #pragma once
 
 #include <cstdint>

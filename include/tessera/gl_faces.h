@@ -9,7 +9,7 @@
 // state); `bind` changes exactly the binding points it is given. Destroy the objects while
 // their context is current. The recipe (mesh, upload, vertex
 // and fragment stages, per-frame bind) is docs/engine_integration.md; examples/engine_ptex does
-// it in one file; tests: tests/gl/gl_faces_bind_test.cpp, gl_engine_context*.
+// it in one file; Tests: tests/gl/gl_faces_bind_test.cpp, gl_engine_context*.
 #pragma once
 
 #include <array>

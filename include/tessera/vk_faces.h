@@ -15,7 +15,9 @@
 // that queue; the object records nothing and submits nothing more. Not thread-safe; destroy it
 // after the GPU is done with every command buffer that bound its descriptor set. Recipe:
 // docs/engine_integration.md
-// ("vk::FaceTextureSet"); examples/engine_ptex_vk; tests/vk/vk_faces_test.cpp.
+// ("vk::FaceTextureSet"); examples/engine_ptex_vk.
+// Tests: tests/vk/vk_faces_test.cpp (against the CPU renderer; every texel format and the upload
+// recorded in the engine's command buffer), tests/vk/engine_ptex_vk_test.py.
 #pragma once
 
 #include <vulkan/vulkan.h>
