@@ -31,6 +31,10 @@ std::string base64(const std::vector<std::uint8_t>& bytes) {
   return out;
 }
 
+/// The page's scripts (share/tessera/view/), in order: one <script>, one scope (an arrow
+/// function's), so their top-level names are shared and none is global. view_start.js is last.
+constexpr const char* kViewScripts[] = {"view.js", "view_start.js"};
+
 void replace_once(std::string& text, const std::string& marker, std::string_view with) {
   const std::size_t at = text.find(marker);
   if (at != std::string::npos) text.replace(at, marker.size(), with);
@@ -52,7 +56,10 @@ std::string view_page(const nlohmann::json& data) {
   }
   replace_once(page, "/*TESSERA_VIEW_CSS*/", view_asset("view.css"));
   replace_once(page, "/*TESSERA_VIEW_DATA*/", json);
-  replace_once(page, "/*TESSERA_VIEW_JS*/", view_asset("view.js"));
+  std::string script = "(() => {\n";
+  for (const char* name : kViewScripts) script.append(view_asset(name)).append("\n");
+  script += "})();";
+  replace_once(page, "/*TESSERA_VIEW_JS*/", script);
   return page;
 }
 

@@ -1,10 +1,12 @@
-// tessera view: the page. Plain JavaScript, no libraries, nothing fetched from elsewhere.
+// tessera view: the page's core (state, data, controls, drawing, pointer). Plain JavaScript, no
+// libraries, nothing fetched from elsewhere. The page's scripts are concatenated into one
+// <script> in the order of kViewScripts (tools/tessera/view_export.cpp), so their top-level
+// names are shared; view_start.js, last, starts the page.
 // Data: the JSON in #tessera-data (mode "server": inputs and a token, results fetched and
 // encoded through /api/...; mode "static": every result and blob inline as data: URIs).
 // Texels arrive as zlib-compressed RGBA8 (exact values: a canvas would premultiply a PNG);
 // heatmaps and colour bars as PNG/SVG. window.tesseraView exposes the state for tests.
 "use strict";
-(() => {
 const D = JSON.parse(document.getElementById("tessera-data").textContent);
 const $ = (id) => document.getElementById(id);
 const S = {  // the page's state
@@ -573,10 +575,3 @@ function centreOn(x, y, z) {
   S.cx = x + 0.5; S.cy = y + 0.5;
   setZoom(z);
 }
-
-// ---- start ---------------------------------------------------------------------------------
-setupControls();
-for (const r of D.results || []) addResult(r);
-window.tesseraView = { state: S, data: D, centreOn, selectInput, selectResult, draw };
-if (D.inputs.length) selectInput(0);
-})();
