@@ -14,10 +14,12 @@
 // 1. The hook becomes SPIR-V at `create`, with shaderc (Google's glslang front end, Debian
 //    libshaderc-dev, in the optional module tessera-vk-glsl.so), one compute pipeline per pass:
 //    the hook is often generated from the engine's material system at run time and its G-buffer
-//    accessors from the layout. The passes that read neither (the budget's histogram, select and
-//    apply, the frame list's dispatch arguments) are SPIR-V compiled when tessera is built and
-//    embedded; `create` compiles only the passes that shade or read the G-buffer. Ahead of
-//    time: `shader_binary()` returns every pass's SPIR-V, keyed by the options and the device's
+//    accessors from the layout. The passes that do not shade (the metrics, the budget's
+//    histogram, select and apply, the frame list and its dispatch arguments) are SPIR-V compiled
+//    when tessera is built and embedded, the metrics and the frame list reading m and the
+//    layout as specialization constants; `create` compiles only the passes with the hook (the
+//    first sample, the extra samples or the frame list's shade and resolve, the reference). Ahead
+//    of time: `shader_binary()` returns every pass's SPIR-V, keyed by the options and the device's
 //    limits, and `compile_shader_binary` makes the same without a device (a build step, for
 //    every device kind the engine ships on: `shader_target`); given back as
 //    `options.shader_binary`, `create` compiles no GLSL and needs no compiler module (and

@@ -84,6 +84,33 @@ glsl::Source pass_source(const AdaptiveCommonOptions& o, const std::string& pass
 glsl::ExpandOptions pass_expand_options(const AdaptiveCommonOptions& o, const Derived& d,
                                         const GlslBindings& b, const std::string& pass);
 
+/// Built-in passes (compiled when tessera is built, tools/vk_passes; adaptive_specialized.cpp):
+/// METRICS and LIST read the window size, the presence of UVs and the G-buffer layout as
+/// specialization constants and each quantity through a sampler of its own, so one module serves
+/// every option set but `float64` (METRICS) and `sample_count_texture` (LIST), its variants.
+inline constexpr const char* kSpecializedPasses[] = {"METRICS", "LIST"};
+/// The variant of `pass` (a kSpecializedPasses entry) for these options: "METRICS" or
+/// "METRICS_NO_FP64", "LIST" or "LIST_COUNTS".
+std::string specialized_variant(const AdaptiveCommonOptions& o, const Derived& d,
+                                const std::string& pass);
+/// Every variant's name.
+std::vector<std::string> specialized_variants();
+/// The expansion options of a variant: its preamble (specialization constants with the
+/// defaults of `o`, a sampler per quantity at binding `b.gbuffer`, accessors reading them).
+glsl::ExpandOptions specialized_expand_options(const std::string& variant, const GlslBindings& b);
+/// One specialization constant: its constant_id and its 32 bits (int, float or VkBool32).
+struct SpecConstant {
+  std::uint32_t id = 0, bits = 0;
+};
+/// The constants that specialize a built-in pass to `o` (m, UVs, the layout's channels,
+/// scales and biases).
+std::vector<SpecConstant> specialization(const AdaptiveCommonOptions& o);
+/// The sampler of each quantity in a built-in pass ("tessera_adaptive_depth_texture", ...) and
+/// its binding for `o`'s layout: `gbuffer` + the quantity's slot (absent UVs: the id's slot,
+/// never read).
+std::vector<std::pair<std::string, std::uint32_t>> specialized_samplers(
+    const AdaptiveCommonOptions& o, std::uint32_t gbuffer);
+
 /// The parameter block of the current options for a frame of w x h output pixels (at most
 /// the options' width x height: dynamic resolution).
 Params params(const AdaptiveCommonOptions& o, const Derived& d, int w, int h);

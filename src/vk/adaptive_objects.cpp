@@ -70,9 +70,21 @@ Status create_layouts(State& st) {
     return vk_error(kWhat + ": vkCreatePipelineLayout", r);
   }
   st.pipeline_layout = PipelineLayout(api, layout);
+  // The built-in METRICS and LIST read m and the layout as specialization constants (ids a
+  // module does not declare are ignored: the same info serves every pass).
+  const std::vector<adaptive::SpecConstant> constants = adaptive::specialization(st.options);
+  std::vector<VkSpecializationMapEntry> entries;
+  std::vector<std::uint32_t> values;
+  for (const adaptive::SpecConstant& c : constants) {
+    entries.push_back({c.id, std::uint32_t(values.size() * 4), 4});
+    values.push_back(c.bits);
+  }
+  VkSpecializationInfo specialization{std::uint32_t(entries.size()), entries.data(),
+                                      values.size() * 4, values.data()};
   for (const auto& [pass, spirv] : st.spirv) {
-    Result<Pipeline> p = create_compute_pipeline(
-        api, spirv, st.pipeline_layout.get(), kWhat + " (" + pass + ")", st.options.pipeline_cache);
+    Result<Pipeline> p =
+        create_compute_pipeline(api, spirv, st.pipeline_layout.get(), kWhat + " (" + pass + ")",
+                                st.options.pipeline_cache, &specialization);
     if (!p) return p.status();
     st.pipelines.emplace(pass, std::move(*p));
   }

@@ -150,12 +150,19 @@ Result<ExpandedPasses> expand_all(const AdaptiveSupersamplerOptions& o, const ad
   return x;
 }
 
-/// Every pass's SPIR-V: the embedded ones' (embedded_passes.h) in the component's set, the
+/// Every pass's SPIR-V: the embedded ones' (embedded_passes.h) in the component's set (METRICS
+/// and LIST: their variant for `o` and `d`, its samplers bound to the layout's slots), the
 /// others compiled (a compile error is "vk adaptive supersampler: HOOK:LINE: message").
-Result<ShaderPasses> compile_all(const ExpandedPasses& x) {
+Result<ShaderPasses> compile_all(const AdaptiveSupersamplerOptions& o, const adaptive::Derived& d,
+                                 const ExpandedPasses& x) {
   ShaderPasses spirv;
+  const auto samplers = adaptive::specialized_samplers(o, kBindGBuffer);
   for (const std::string& p : x.passes) {
-    if (std::vector<std::uint32_t> words = embedded_pass(p, x.set_index); !words.empty()) {
+    const bool specialized = p == "METRICS" || p == "LIST";
+    const std::string name = adaptive::specialized_variant(o, d, p);
+    std::vector<std::uint32_t> words =
+        specialized ? embedded_pass(name, x.set_index, samplers) : embedded_pass(name, x.set_index);
+    if (!words.empty()) {
       spirv.emplace(p, std::move(words));
       continue;
     }
@@ -183,7 +190,7 @@ Status make_spirv(State& st) {
     }
     st.spirv = std::move(*spirv);
   } else {
-    Result<ShaderPasses> spirv = compile_all(*x);
+    Result<ShaderPasses> spirv = compile_all(st.options, st.derived, *x);
     if (!spirv) return spirv.status();
     st.spirv = std::move(*spirv);
   }
@@ -248,7 +255,7 @@ Result<std::vector<std::uint8_t>> AdaptiveSupersampler::compile_shader_binary(
     const bool known = std::any_of(entries.begin(), entries.end(),
                                    [&](const ShaderBinaryEntry& e) { return e.key == x->key; });
     if (known) continue;  // another target with the same shaders
-    Result<ShaderPasses> spirv = compile_all(*x);
+    Result<ShaderPasses> spirv = compile_all(options, d, *x);
     if (!spirv) return spirv.status();
     entries.push_back({x->key, std::move(*spirv)});
   }

@@ -108,7 +108,8 @@ Result<std::vector<std::uint32_t>> compile_graphics_spirv(const std::string& tex
 
 Result<Pipeline> create_compute_pipeline(const Api& api, const std::vector<std::uint32_t>& spirv,
                                          VkPipelineLayout layout, const std::string& what,
-                                         VkPipelineCache cache) {
+                                         VkPipelineCache cache,
+                                         const VkSpecializationInfo* specialization) {
   VkShaderModuleCreateInfo mi{};
   mi.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
   mi.codeSize = spirv.size() * 4;
@@ -125,6 +126,7 @@ Result<Pipeline> create_compute_pipeline(const Api& api, const std::vector<std::
   pi.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   pi.stage.module = module.get();
   pi.stage.pName = "main";
+  pi.stage.pSpecializationInfo = specialization;
   pi.layout = layout;
   VkPipeline raw = VK_NULL_HANDLE;
   if (VkResult r = api.CreateComputePipelines(api.device(), cache, 1, &pi, api.alloc(), &raw);

@@ -20,10 +20,11 @@ Result<std::vector<std::uint32_t>> compile_compute_spirv(const std::string& text
 Result<std::vector<std::uint32_t>> compile_graphics_spirv(const std::string& text,
                                                           glsl::Stage stage);
 
-/// A compute pipeline of `spirv` in `layout` (through the engine's `cache` when not null); the
-/// shader module is destroyed before returning.
+/// A compute pipeline of `spirv` in `layout` (through the engine's `cache` when not null, with
+/// `specialization` when not null); the shader module is destroyed before returning.
 Result<Pipeline> create_compute_pipeline(const Api& api, const std::vector<std::uint32_t>& spirv,
                                          VkPipelineLayout layout, const std::string& what,
-                                         VkPipelineCache cache = VK_NULL_HANDLE);
+                                         VkPipelineCache cache = VK_NULL_HANDLE,
+                                         const VkSpecializationInfo* specialization = nullptr);
 
 }  // namespace tessera::vk

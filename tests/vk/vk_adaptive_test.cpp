@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdio>
 #include <cstring>
+#include <map>
 
 #include "vk/embedded_passes.h"
 #include "vk_adaptive_test_util.h"
@@ -51,6 +52,82 @@ TEST_F(VkAdaptive, ImageApproachesFullSupersampling) {
   EXPECT_EQ(none.colour, first.colour);
   EXPECT_EQ(none.extra, 0u);
   EXPECT_LT(psnr_rgb(none.colour, reference.colour), a - 6.0);
+}
+
+/// The built-in METRICS and LIST read any layout: the scene's G-buffer repacked (other slots,
+/// permuted channels, stored with a scale and a bias that are exact in float) under the layout
+/// that says so gives the same bytes as the scene's own layout, with UVs and without, at m = 2
+/// and 3. The negative control: the repacked G-buffer read with the scene's layout differs.
+TEST_F(VkAdaptive, BuiltInPassesReadAnyLayout) {
+  for (int m : {2, 3}) {
+    const SceneGBuffer g = scene_gbuffer(24, 16, m);
+    SceneGBuffer r = g;
+    for (std::size_t i = 0; i < g.slots[0].size(); i += 4) {
+      const float* a = &g.slots[0][i];  // depth, normal
+      const float* b = &g.slots[1][i];  // id, uv, 0
+      const float* c = &g.slots[2][i];  // uv derivatives
+      std::copy_n(std::array<float, 4>{b[2], 0.25f * a[0], b[1], 2.0f * b[0] - 6.0f}.data(), 4,
+                  &r.slots[0][i]);
+      std::copy_n(std::array<float, 4>{a[3], a[1], 0.0f, a[2]}.data(), 4, &r.slots[1][i]);
+      std::copy_n(std::array<float, 4>{c[3], c[2], c[1], c[0]}.data(), 4, &r.slots[2][i]);
+    }
+    AdaptiveGBufferLayout l;
+    l.depth = {0, "g", 4.0f, 0.0f};
+    l.normal = {1, "ywx"};
+    l.id = {0, "a", 0.5f, 3.0f};
+    l.uv = {0, "br"};
+    l.uv_derivatives = {2, "abgr"};
+    for (bool uv : {true, false}) {
+      auto o = scene_options<vk::AdaptiveSupersamplerOptions>(g);
+      if (!uv) {
+        o.layout.uv = o.layout.uv_derivatives = {};
+        o.hook.source = R"(vec4 tessera_shade_sample(ivec2 g, float footprint) {
+  int id = tessera_adaptive_id(g);
+  if (id < 0) return vec4(0.05, 0.05, 0.08, 1.0);
+  vec3 n = normalize(tessera_adaptive_normal(g));
+  float d = tessera_adaptive_depth(g);
+  return vec4(vec3(0.2 + 0.1 * float(id % 5)) * max(n.z, 0.0) + vec3(fract(d)), 1.0);
+}
+)";
+      }
+      auto repacked = o;
+      repacked.layout = l;
+      if (!uv) repacked.layout.uv = repacked.layout.uv_derivatives = {};
+      const VkFrameOut want = run_vk(*engine_, o, g, Which::adaptive);
+      const VkFrameOut got = run_vk(*engine_, repacked, r, Which::adaptive);
+      ASSERT_FALSE(want.counts.empty());
+      EXPECT_GT(want.extra, 0u);
+      EXPECT_EQ(got.counts, want.counts) << "m = " << m << (uv ? ", UVs" : "");
+      EXPECT_EQ(got.colour, want.colour) << "m = " << m << (uv ? ", UVs" : "");
+      if (uv && m == 2) {
+        const VkFrameOut wrong = run_vk(*engine_, o, r, Which::adaptive);
+        EXPECT_NE(wrong.counts, want.counts);
+      }
+    }
+  }
+}
+
+/// `create` takes METRICS and LIST built in (their modules name the specialization constants
+/// in the component's shader binary) and compiles the passes with the hook only.
+TEST_F(VkAdaptive, CreateTakesTheBuiltInMetricsAndListPasses) {
+  const SceneGBuffer g = scene_gbuffer(16, 8, 3);
+  const bool device_fp64 = engine_->context().enabled_features.shaderFloat64 == VK_TRUE;
+  for (bool fp64 : {device_fp64, false}) {
+    auto o = scene_options<vk::AdaptiveSupersamplerOptions>(g);
+    vk::DeviceContext ctx = engine_->context();
+    ctx.enabled_features.shaderFloat64 = fp64 ? VK_TRUE : VK_FALSE;
+    auto c = vk::AdaptiveSupersampler::create(ctx, o);
+    ASSERT_TRUE(c.ok()) << c.status().message;
+    EXPECT_EQ((*c)->float64(), fp64);
+    const std::vector<std::uint8_t>& b = (*c)->shader_binary();
+    const std::string bytes(b.begin(), b.end());
+    int built_in = 0;
+    for (std::size_t at = bytes.find("tessera_adaptive_spec_has_uv"); at != std::string::npos;
+         at = bytes.find("tessera_adaptive_spec_has_uv", at + 1)) {
+      ++built_in;
+    }
+    EXPECT_EQ(built_in, 2) << "METRICS and LIST, fp64 " << fp64;
+  }
 }
 
 TEST_F(VkAdaptive, WithoutSynchronization2SameBytes) {
@@ -482,7 +559,38 @@ TEST(VkEmbeddedPasses, BudgetAndListPassesAreEmbeddedInTheComponentsSet) {
     }
   }
   EXPECT_TRUE(vk::embedded_pass("FIRST", 0).empty());
-  EXPECT_TRUE(vk::embedded_pass("METRICS", 0).empty());
+  EXPECT_TRUE(vk::embedded_pass("SHADE", 0).empty());
+}
+
+/// METRICS and LIST are embedded in their variants, their samplers' bindings patched to the
+/// layout's slots: each named sampler's Binding is the one asked for.
+TEST(VkEmbeddedPasses, MetricsAndListVariantsTakeTheLayoutsBindings) {
+  const std::vector<std::pair<std::string, std::uint32_t>> samplers = {
+      {"tessera_adaptive_depth_texture", 7},
+      {"tessera_adaptive_normal_texture", 6},
+      {"tessera_adaptive_id_value_texture", 8},
+      {"tessera_adaptive_uv_texture", 5},
+      {"tessera_adaptive_uv_derivatives_texture", 5}};
+  for (const char* variant : {"METRICS", "METRICS_NO_FP64", "LIST", "LIST_COUNTS"}) {
+    const std::vector<std::uint32_t> w = vk::embedded_pass(variant, 2, samplers);
+    ASSERT_GT(w.size(), 5u) << variant << " is not embedded";
+    std::map<std::uint32_t, std::string> names;
+    std::map<std::string, std::uint32_t> bound;
+    for (std::size_t at = 5; at < w.size() && (w[at] >> 16) > 0; at += w[at] >> 16) {
+      const std::uint32_t count = w[at] >> 16, op = w[at] & 0xffffu;
+      if (op == 5) names[w[at + 1]] = reinterpret_cast<const char*>(&w[at + 2]);  // OpName
+      if (op == 71 && count == 4 && w[at + 2] == 33 && names.count(w[at + 1])) {  // Binding
+        bound[names[w[at + 1]]] = w[at + 3];
+      }
+    }
+    int found = 0;
+    for (const auto& [name, binding] : samplers) {
+      if (!bound.count(name)) continue;
+      EXPECT_EQ(bound[name], binding) << variant << " " << name;
+      ++found;
+    }
+    EXPECT_GE(found, 3) << variant;  // depth, normal, id (METRICS); id, uv, derivatives (LIST)
+  }
 }
 
 }  // namespace

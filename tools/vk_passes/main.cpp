@@ -1,11 +1,15 @@
 // vk_passes OUTPUT_DIR — a build step of tessera::vk: writes the GLSL of vk::AdaptiveSupersampler's
-// passes that read neither the engine's hook nor its G-buffer layout (the budget's HISTOGRAM,
-// SELECT and APPLY, the frame list's ARGS: they read only the parameter block and the work
-// buffer) as OUTPUT_DIR/PASS.comp, expanded as `create` expands them (src/adaptive/: the
-// preamble, the shipped adaptive_component.glsl) for canonical options. The build compiles them
-// with glslangValidator to SPIR-V and embeds them (src/CMakeLists.txt); `create` then compiles
-// only the passes that shade or read the G-buffer, and patches the embedded modules' descriptor
-// set to the component's (src/vk/embedded_passes.cpp).
+// passes that do not shade as OUTPUT_DIR/NAME.comp, expanded as `create` expands them
+// (src/adaptive/: the preamble, the shipped adaptive_component.glsl):
+//   * HISTOGRAM, SELECT, APPLY (the budget) and ARGS (the frame list's group counts) read only
+//     the parameter block and the work buffer: expanded for canonical options;
+//   * METRICS and LIST read the G-buffer: expanded with m, the UVs and the layout as
+//     specialization constants (adaptive_specialized.cpp), in their variants METRICS_NO_FP64
+//     (devices without shaderFloat64) and LIST_COUNTS (with the sample-count image).
+// The build compiles them with glslangValidator to SPIR-V and embeds them (src/CMakeLists.txt);
+// `create` compiles only the passes with the hook, patches the embedded modules' descriptor set
+// (and the samplers' bindings) to the component's and specializes them
+// (src/vk/embedded_passes.cpp).
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -44,18 +48,33 @@ int main(int argc, char** argv) {
   b.params = int(vk::kBindParams);
   b.work = int(vk::kBindWork);
   b.image = int(vk::kBindColour);
-  for (const char* pass : vk::kEmbeddedPasses) {
-    Result<glsl::Expanded> e = glsl::expand_includes(adaptive::pass_source(o, pass),
-                                                     adaptive::pass_expand_options(o, d, b, pass));
+  auto write = [&](const std::string& name, const glsl::Source& src,
+                   const glsl::ExpandOptions& eo) {
+    Result<glsl::Expanded> e = glsl::expand_includes(src, eo);
     if (!e) {
       std::fprintf(stderr, "vk_passes: %s\n", e.status().message.c_str());
-      return 1;
+      return false;
     }
-    const std::string path = std::string(argv[1]) + "/" + pass + ".comp";
+    const std::string path = std::string(argv[1]) + "/" + name + ".comp";
     std::ofstream out(path, std::ios::binary);
     out << e->text;  // glslangValidator -V defines VULKAN, as shaderc does at create
     if (!out) {
       std::fprintf(stderr, "vk_passes: cannot write %s\n", path.c_str());
+      return false;
+    }
+    return true;
+  };
+  for (const char* pass : vk::kEmbeddedPasses) {
+    if (!write(pass, adaptive::pass_source(o, pass),
+               adaptive::pass_expand_options(o, d, b, pass))) {
+      return 1;
+    }
+  }
+  // METRICS and LIST: the layout, m and UVs as specialization constants.
+  for (const std::string& variant : adaptive::specialized_variants()) {
+    const std::string pass = variant.substr(0, variant.find('_'));
+    if (!write(variant, adaptive::pass_source(o, pass),
+               adaptive::specialized_expand_options(variant, b))) {
       return 1;
     }
   }

@@ -27,6 +27,11 @@
 //   TESSERA_ADAPTIVE_PASS_SHADE      frame list: one invocation per item
 //   TESSERA_ADAPTIVE_PASS_RESOLVE    frame list: per pixel, its slots in sample order -> output image
 //   TESSERA_ADAPTIVE_PASS_REFERENCE  all N samples, footprint 1 -> output image
+// Built-in passes (Vulkan): METRICS and LIST are also compiled when tessera is built, with
+// TESSERA_ADAPTIVE_SPECIALIZED and a preamble (adaptive_specialized.cpp) that declares m, the
+// presence of UVs and the layout's channels, scales and biases as specialization constants and
+// one sampler per G-buffer quantity (its binding set at create): one module serves every window
+// size and layout.
 // Sample 0 is shaded again with its adaptive footprint when k > 0 (S used footprint m), so a
 // pixel's average is over k + 1 samples of consistent footprint (§4.1): by the hook, or by its
 // tessera_shade_sample0_again when it defines TESSERA_ADAPTIVE_SAMPLE0_AGAIN (e.g. the albedo lookup alone,
@@ -71,10 +76,17 @@ layout(std140, TESSERA_ADAPTIVE_LAYOUT(TESSERA_ADAPTIVE_UBO_BINDING)) uniform Te
 layout(std430, TESSERA_ADAPTIVE_LAYOUT(TESSERA_ADAPTIVE_WORK_BINDING)) buffer TesseraAdaptiveWork { uint tessera_adaptive_work[]; };
 // Frame list of TESSERA_ADAPTIVE_LIST_CAPACITY items: (pixel | sample << 26, footprint bits) each,
 // then their colours.
+#if defined(TESSERA_ADAPTIVE_PASS_LIST)
+// The list pass writes items only (below the capacity in the parameter block).
+layout(std430, TESSERA_ADAPTIVE_LAYOUT(TESSERA_ADAPTIVE_WORK_BINDING + 1)) buffer TesseraAdaptiveList {
+  uvec2 tessera_adaptive_items[];
+};
+#else
 layout(std430, TESSERA_ADAPTIVE_LAYOUT(TESSERA_ADAPTIVE_WORK_BINDING + 1)) buffer TesseraAdaptiveList {
   uvec2 tessera_adaptive_items[TESSERA_ADAPTIVE_LIST_CAPACITY];
   vec4 tessera_adaptive_colours[];
 };
+#endif
 layout(TESSERA_ADAPTIVE_LAYOUT(TESSERA_ADAPTIVE_IMAGE_UNIT), TESSERA_ADAPTIVE_OUT_FORMAT) uniform writeonly image2D
     tessera_adaptive_out;
 #if defined(TESSERA_ADAPTIVE_SAMPLE_COUNTS)
@@ -161,6 +173,9 @@ void tessera_adaptive_store_count(ivec2 pixel, int samples) {
 /// True when the window of `pixel` has a UV seam (adaptive_samples.glsl's rule).
 bool tessera_adaptive_window_seam(ivec2 pixel) {
 #if defined(TESSERA_ADAPTIVE_HAS_UV)
+#if defined(TESSERA_ADAPTIVE_SPECIALIZED)
+  if (!tessera_adaptive_spec_has_uv) return false;
+#endif
   const int m = TESSERA_ADAPTIVE_M;
   for (int q = 0; q < m * m; ++q) {
     int cx = q % m, cy = q / m;
