@@ -2,11 +2,13 @@
 // Chromium (puppeteer-core) on a `tessera view --html` export of texture + reference pairs.
 // Prints one JSON object on stdout; view_heatmap_test.py checks it. Screenshots go to OUT.
 //
-//   node view_heatmap.mjs PUPPETEER_DIR CHROMIUM URL OUT
+//   node view_heatmap.mjs PUPPETEER_DIR CHROMIUM URL OUT [URL2 URL3]
+// URL: texture + reference pairs "low" and "one"; URL2: an image with alpha; URL3: a normal map
+// encoded with --normal-map.
 import { createRequire } from "node:module";
 import { join } from "node:path";
 
-const [dir, chromium, url, out] = process.argv.slice(2);
+const [dir, chromium, url, out, url2, url3] = process.argv.slice(2);
 const puppeteer = createRequire(join(dir, "package.json"))("puppeteer-core");
 const WAIT = { timeout: 120000, polling: 50 };  // every wait is bounded
 
@@ -91,6 +93,32 @@ async function paneStats(page) {
              caption: document.getElementById("caption-b").textContent };
   });
 }
+/** The right pane at zoom 1 against the server's own PNG of map `kind` (static mode: a data:
+ *  URI) at its scale (`gain`): {n: texels compared, differ: how many differ, max: scale}. */
+async function againstServer(page, kind, gain) {
+  await select(page, "right", kind);
+  await select(page, "gain", gain);
+  const z = await paneAtZoom1(page);
+  return page.evaluate(async (z, kind) => {
+    const v = window.tesseraView, im = v.state.shown.im;
+    const img = new Image();
+    img.src = v.data.blobs[im[kind]];
+    await img.decode();
+    const c = document.createElement("canvas");
+    c.width = img.width;
+    c.height = img.height;
+    const ctx = c.getContext("2d");
+    ctx.drawImage(img, 0, 0);
+    const [x0, y0, w, h] = z.texels, want = ctx.getImageData(x0, y0, w, h).data;
+    const got = Uint8Array.from(atob(z.rgba), (ch) => ch.charCodeAt(0));
+    let differ = 0;
+    for (let i = 0; i < want.length; i += 4) {
+      if (got[i] !== want[i] || got[i + 1] !== want[i + 1] || got[i + 2] !== want[i + 2]) differ++;
+    }
+    return { n: w * h, differ, caption: document.getElementById("caption-b").textContent,
+             bar: { ...document.getElementById("colourbar").dataset } };
+  }, z, kind);
+}
 async function key(page, k) {
   await page.keyboard.press(k);
   await settled(page);
@@ -108,7 +136,32 @@ async function readoutAtCentre(page) {
   return page.evaluate(() => ({ ...document.getElementById("readout").dataset }));
 }
 
+/** Pages of one input each: an image with alpha (URL2) and a normal map (URL3). The colour x
+ *  alpha and angular maps at the server's scales are the server's PNGs. */
+async function serverMaps(page, s) {
+  for (const [u, name, kinds] of [[url2, "alpha", [["heatmap", "64"], ["heatmap_premultiplied", "64"]]],
+                                  [url3, "nrm", [["angle_map", "10"], ["heatmap", "64"]]]]) {
+    await page.goto(u);
+    await page.waitForFunction(() => (document.body.dataset.drawn || "").startsWith("r"), WAIT);
+    for (const [kind, gain] of kinds) {
+      s[`${name}_${kind}`] = await againstServer(page, kind, gain);
+      if (kind === "angle_map") {
+        await select(page, "zoom", "fit");
+        await select(page, "gain", "max");
+        s.angle_max = await page.evaluate(() => ({ ...document.getElementById("colourbar").dataset,
+            caption: document.getElementById("caption-b").textContent }));
+        await page.screenshot({ path: join(out, "heat-angle-max.png") });
+      }
+    }
+  }
+}
+
 async function scenario(page, s) {
+  if (url2 && url3) {
+    await serverMaps(page, s);
+    await page.goto(url);
+    await page.waitForFunction(() => (document.body.dataset.drawn || "").startsWith("r"), WAIT);
+  }
   // A low error everywhere: the scale changes what is drawn.
   await openPair(page, "low");
   await select(page, "right", "heatmap");

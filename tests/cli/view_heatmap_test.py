@@ -9,6 +9,7 @@ Usage: view_heatmap_test.py PATH/TO/tessera PUPPETEER_DIR OUT [CHROMIUM]
 """
 import base64
 import json
+import math
 import os
 import random
 import shutil
@@ -78,6 +79,13 @@ def one_texel(px, w, h):
     px[513, 301] = ((r + 128) % 256, g, b)
 
 
+def normal(x, y):
+    """A bumpy tangent-space normal map (RGB = 127.5 (n + 1))."""
+    nx, ny = math.sin(x / 5.0) * 0.6, math.cos(y / 7.0) * 0.6
+    nz = math.sqrt(max(0.0, 1 - nx * nx - ny * ny))
+    return tuple(int(round(127.5 * (c + 1))) for c in (nx, ny, nz))
+
+
 def field_stats(ref, dec):
     """(max, 99th percentile) of the max abs channel difference, as the page computes them."""
     a, b = Image.open(ref).convert("RGB").tobytes(), Image.open(dec).convert("RGB").tobytes()
@@ -116,7 +124,15 @@ def main():
         page = os.path.join(tmp, "view.html")
         run("view", "--html", "-o", page, "--quality", "fast", "low.pvr", "one.pvr", "ref/low.png",
             "ref/one.png", cwd=tmp)
-        p = subprocess.run(["node", SCRIPT, PUPPETEER, CHROMIUM, "file://" + page, OUT],
+        write_png(os.path.join(tmp, "alpha.png"), 128, 128,
+                  lambda x, y: (*pattern(x, y), (x * 2 + y) % 256), True)
+        write_png(os.path.join(tmp, "nrm.png"), 128, 128, normal, False)
+        page2 = os.path.join(tmp, "maps.html")
+        run("view", "--html", "-o", page2, "--quality", "fast", "alpha.png", cwd=tmp)
+        page3 = os.path.join(tmp, "nrm.html")
+        run("view", "--html", "-o", page3, "--quality", "fast", "--normal-map", "nrm.png", cwd=tmp)
+        p = subprocess.run(["node", SCRIPT, PUPPETEER, CHROMIUM, "file://" + page, OUT,
+                            "file://" + page2, "file://" + page3],
                            capture_output=True, text=True, timeout=900)
         try:
             r = json.loads(p.stdout.strip().splitlines()[-1])
@@ -143,6 +159,15 @@ def main():
               and f"scale {mx} levels" in lmax.get("caption", ""), (l64, lmax))
         same_as_compare("low", s.get("low_zoom1"), low_ref, low_dec, tmp)
         same_as_compare("one", s.get("one_zoom1"), one_ref, one_dec, tmp)
+        for name, kind in (("alpha", "heatmap"), ("alpha", "heatmap_premultiplied"),
+                           ("nrm", "angle_map"), ("nrm", "heatmap")):
+            m = s.get(f"{name}_{kind}", {})
+            check(f"{name}: the page's {kind} at the server's scale = the server's PNG",
+                  m.get("n", 0) == 128 * 128 and m.get("differ") == 0, m)
+        am = s.get("angle_max", {})
+        check("angular map: the colour bar in degrees, auto max below 10",
+              am.get("unit") == "angle" and 0 < float(am.get("scale", 0)) < 45
+              and "°" in am.get("caption", ""), am)
         f = s.get("one_fit", {})
         check("one bad texel at fit (zoom < 1): a bright pixel is drawn (max filter)",
               f.get("fit_zoom", 1) < 1 and 1 <= f.get("bright", 0) <= 4, f)

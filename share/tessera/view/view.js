@@ -415,7 +415,7 @@ async function draw() {
   showHeatControls(im);
   try {
     if (mode === "cross") return await drawCross(r, ticket);
-    const a = await paneSource("a", im, r), b = await paneSource("b", im, r);
+    const [a, b] = await Promise.all([paneSource("a", im, r), paneSource("b", im, r)]);
     if (ticket !== drawing) return;
     S.shown = { a, b, im, cross: false };
     if (mode === "side") {
