@@ -122,8 +122,8 @@ async function serverScenario(page) {
   // Error heatmap with its colour bar.
   let before = await page.evaluate(() => document.body.dataset.drawn);
   await page.select("#right", "heatmap");
-  await page.waitForFunction(() => document.getElementById("colourbar").naturalWidth > 0, WAIT);
-  s.colourbar = await page.$eval("#colourbar", (i) => !i.hidden && i.naturalWidth > 0);
+  await page.waitForFunction(() => document.getElementById("colourbar").dataset.scale, WAIT);
+  s.colourbar = await page.$eval("#colourbar", (c) => !c.hidden && c.width > 0 && c.dataset.unit === "levels");
   await shot(page, "view-heatmap-1366x768.png", 1366, 768);
   await page.select("#right", "heatmap_premultiplied");
   await page.waitForFunction(() => document.getElementById("caption-b").textContent.includes("colour x alpha"), WAIT);

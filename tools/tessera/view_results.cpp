@@ -126,6 +126,7 @@ Result<nlohmann::json> image_json(const ImageRGBA8* reference, const ImageRGBA8&
   Result<metrics::ImageComparison> c = metrics::compare_images(*reference, decoded, co);
   if (!c) return c.status();
   j["metrics"] = metrics_json(*c);
+  j["alpha"] = co.premultiplied;  // whether the difference heatmap counts alpha (the page's)
   Result<ImageRGBA8> heat = metrics::difference_heatmap(*reference, decoded, kDiffScale);
   if (!heat) return heat.status();
   j["heatmap"] = put_png(blobs, *heat);

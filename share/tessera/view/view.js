@@ -143,7 +143,7 @@ function setupControls() {
   fillSelect($("input"), D.inputs.map((i) => [i.index, i.name + (i.error ? " (error)" : "")]), 0);
   fillSelect($("zoom"), ZOOMS.map((z) => [z, z === "fit" ? "fit" : `${z}x`]), "fit");
   $("input").onchange = () => selectInput(Number($("input").value));
-  for (const id of ["mode", "channel", "blend", "right", "left"]) $(id).onchange = () => draw();
+  for (const id of ["mode", "channel", "blend", "right", "left", "gain"]) $(id).onchange = () => draw();
   for (const id of ["level", "face", "layer"]) {
     $(id).onchange = () => { S[id] = Number($(id).value); refresh(); };
   }
@@ -336,38 +336,13 @@ function showPinned() {
 }
 
 // ---- drawing -------------------------------------------------------------------------------
-/** An opaque canvas of texels `t` as `channel` shows them (alpha composited as a renderer
- *  blends: straight c*a + bg*(1-a), premultiplied c + bg*(1-a)). */
+/** An opaque picture of texels `t` as `channel` shows them (view_tiles.js), cached. */
 function channelCanvas(key, t, channel, premultiplied) {
   const ck = `${key}|${channel}|${premultiplied}`;
-  if (viewCache.has(ck)) return viewCache.get(ck);
-  const c = document.createElement("canvas");
-  c.width = t.width;
-  c.height = t.height;
-  const ctx = c.getContext("2d");
-  const out = ctx.createImageData(t.width, t.height), s = t.data, d = out.data;
-  const sq = Math.max(1, Math.round(Math.max(t.width, t.height) / 32));
-  for (let y = 0, i = 0; y < t.height; ++y) {
-    for (let x = 0; x < t.width; ++x, i += 4) {
-      const r = s[i], g = s[i + 1], b = s[i + 2], a = s[i + 3];
-      let o;
-      if (channel === "rgb") o = [r, g, b];
-      else if (channel === "r") o = [r, r, r];
-      else if (channel === "g") o = [g, g, g];
-      else if (channel === "b") o = [b, b, b];
-      else if (channel === "a") o = [a, a, a];
-      else {
-        const bg = channel === "black" ? 0 : channel === "white" ? 255
-            : ((Math.floor(x / sq) + Math.floor(y / sq)) & 1) ? 204 : 153;
-        const k = a / 255, w = premultiplied ? 1 : k;
-        o = [r * w + bg * (1 - k), g * w + bg * (1 - k), b * w + bg * (1 - k)];
-      }
-      d[i] = o[0]; d[i + 1] = o[1]; d[i + 2] = o[2]; d[i + 3] = 255;
-    }
+  if (!viewCache.has(ck)) {
+    viewCache.set(ck, new Picture(t.width, t.height, fillChannel(t, channel, premultiplied)));
   }
-  ctx.putImageData(out, 0, 0);
-  viewCache.set(ck, c);
-  return c;
+  return viewCache.get(ck);
 }
 
 /** What a pane shows: {canvas-like source, texels, caption} for `side` ("a" or "b"). */
@@ -388,10 +363,11 @@ async function paneSource(side, im, r) {
   const t = await texels(im.decoded, im.width, im.height);
   const right = $("right").value;
   if (right !== "result" && im[right]) {
-    const captions = { heatmap: "error heatmap (as tessera compare --heatmap)",
+    const captions = { heatmap: "error heatmap (max abs channel difference)",
                        heatmap_premultiplied: "error heatmap of colour x alpha (what blending shows)",
                        angle_map: "angular error" };
-    return { src: await image(im[right]), texels: t, caption: captions[right] };
+    const src = await heatPicture(im, right);
+    return { src, texels: t, caption: `${captions[right]}; ${src.note}` };
   }
   return { src: channelCanvas(im.decoded, t, channel, premult), texels: t, caption: label(r) };
 }
@@ -418,6 +394,7 @@ function transform(canvas, w, h) {
   return { z, ox: canvas.clientWidth / 2 - cx * z, oy: canvas.clientHeight / 2 - cy * z };
 }
 function blit(ctx, dpr, src, tr, clip) {
+  if (src.drawTo) { src.drawTo(ctx, dpr, tr, clip); return; }
   ctx.save();
   if (clip) { ctx.beginPath(); ctx.rect(clip[0] * dpr, 0, clip[1] * dpr, ctx.canvas.height); ctx.clip(); }
   ctx.setTransform(tr.z * dpr, 0, 0, tr.z * dpr, tr.ox * dpr, tr.oy * dpr);
@@ -435,13 +412,10 @@ async function draw() {
   const ca = $("canvas-a"), cb = $("canvas-b");
   if (!r) { prepare(ca); prepare(cb); return; }
   const im = currentImage(r);
-  const bar = r.colour_bars && $("right").value !== "result" && im[$("right").value]
-      ? r.colour_bars[$("right").value] : null;
-  $("colourbar").hidden = !bar;
-  if (bar) $("colourbar").src = blobUrl(bar);
+  showHeatControls(im);
   try {
     if (mode === "cross") return await drawCross(r, ticket);
-    const a = await paneSource("a", im, r), b = await paneSource("b", im, r);
+    const [a, b] = await Promise.all([paneSource("a", im, r), paneSource("b", im, r)]);
     if (ticket !== drawing) return;
     S.shown = { a, b, im, cross: false };
     if (mode === "side") {
