@@ -10,6 +10,8 @@ namespace {
 
 struct ViewArgs {
   std::vector<std::string> inputs;
+  std::vector<std::vector<std::string>> cubes;   ///< --cube +X -X +Y -Y +Z -Z, each.
+  std::vector<std::vector<std::string>> arrays;  ///< --array L0 L1 ..., each.
   int port = 0;
   bool no_open = false;
   bool html = false;
@@ -43,11 +45,19 @@ int run_view(const ViewArgs& args, const CLI::App& sub, const GlobalOptions& glo
     if (std::string p = compress_usage_problem(c, "pvr"); !p.empty()) return usage_error(p);
     settings.push_back(args.settings);
   }
+  if (args.inputs.empty() && args.cubes.empty() && args.arrays.empty()) {
+    return usage_error("nothing to view: give INPUT files or folders, --cube or --array");
+  }
   std::vector<ViewInput> inputs = load_view_inputs(args.inputs);
+  for (const auto& faces : args.cubes) inputs.push_back(load_view_group(faces, {6, false}));
+  for (const auto& layers : args.arrays) inputs.push_back(load_view_group(layers, {1, true}));
   if (args.html) {
-    if (Status s = write_view_export(inputs, settings, global.threads, args.output); !s.ok()) {
-      return fail(s);
-    }
+    std::vector<std::string> errors;
+    Status s = write_view_export(inputs, settings, global.threads, args.output, &errors,
+                                 args.settings.resize_pot);
+    if (!s.ok()) return fail(s);
+    // The page shows each bad input's error; the terminal gets the same lines.
+    for (const std::string& e : errors) std::fprintf(stderr, "tessera: %s\n", e.c_str());
     if (!args.quiet) {
       std::fprintf(text_stream(args.output == "-"), "wrote %s: %zu input(s)\n",
                    args.output == "-" ? "<stdout>" : args.output.c_str(), inputs.size());
@@ -57,6 +67,8 @@ int run_view(const ViewArgs& args, const CLI::App& sub, const GlobalOptions& glo
   for (const ViewInput& in : inputs) {
     if (!in.error.empty()) std::fprintf(stderr, "tessera: %s\n", in.error.c_str());
   }
+  // --resize-pot alone still makes the first encode resample (the page's checkbox set).
+  if (settings.empty() && args.settings.resize_pot) settings.push_back(args.settings);
   ViewServeOptions o;
   o.port = args.port;
   o.open = !args.no_open;
@@ -78,8 +90,17 @@ Command add_view_command(CLI::App& app, const GlobalOptions& global) {
       "served on 127.0.0.1 with a token, or exported as one HTML file (--html)");
   sub->add_option("INPUT", args->inputs,
                   "Images (PNG, JPEG, TGA, BMP) to encode, textures (.pvr, .ktx, .ktx2) to "
-                  "look at, or folders of them")
-      ->required();
+                  "look at, or folders of them. An input that cannot be read or encoded shows "
+                  "its one-line error (also on stderr) and the others go on; --html exits 0 "
+                  "when at least one input works");
+  sub->add_option("--cube", args->cubes,
+                  "Six images, the faces +X -X +Y -Y +Z -Z of one cube map (square, one size), "
+                  "encoded as tessera compress --cube encodes them; repeat for more cube maps")
+      ->expected(6);
+  sub->add_option("--array", args->arrays,
+                  "Images up to the next option: the layers of one array texture (one size), "
+                  "as tessera compress --array; repeat for more arrays")
+      ->expected(1, 1 << 16);
   sub->add_option("--port", args->port, "Port on 127.0.0.1 (default: a random free one)")
       ->check(CLI::Range(1, 65535));
   sub->add_flag("--no-open", args->no_open, "Print the URL only; do not start a browser");
@@ -106,6 +127,10 @@ Command add_view_command(CLI::App& app, const GlobalOptions& global) {
       ->check(CLI::Range(1, 17));
   sub->add_option("--mip-filter", s.mip_filter, "As tessera compress --mip-filter")
       ->check(CLI::IsMember({"box", "lanczos", "kaiser"}));
+  sub->add_flag("--resize-pot", s.resize_pot,
+                "As tessera compress --resize-pot: resample a non-power-of-two input to the "
+                "nearest power of two (Lanczos-3) and measure against that; without it such an "
+                "input shows its original and this fix");
   sub->add_flag("-q,--quiet", args->quiet, "Print only the URL (serving) or nothing (--html)");
   return {sub, [args, sub, &global] { return run_view(*args, *sub, global); }};
 }

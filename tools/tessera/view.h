@@ -23,7 +23,12 @@ struct ViewInput {
   std::string path;  ///< As given (or found in a folder).
   std::string name;  ///< File name shown on the page.
   bool is_texture = false;
-  ImageRGBA8 image;                         ///< An image input, as read.
+  ImageRGBA8 image;  ///< An image input, as read (a group's first).
+  /// A --cube / --array input (a group): its files and images, faces +X, -X, +Y, -Y, +Z, -Z
+  /// or layers in order, encoded as one texture of `shape`; empty for one image or a texture.
+  std::vector<std::string> sources;
+  std::vector<ImageRGBA8> images;
+  texture_file::TextureShape shape;
   texture_file::CompressedTexture texture;  ///< A texture input, as read.
   std::vector<std::uint8_t> file;           ///< A texture input's file (its download).
   std::string error;                        ///< One line when it could not be read; else "".
@@ -41,7 +46,8 @@ struct ViewSettings {
   bool srgb = false;
   int mip_levels = 0;  ///< 0: no mip chain; N: N levels (`--mip-levels N`).
   std::string mip_filter = "box";
-  std::string label;  ///< Shown on the page ("normal", "high + weighted"); "" = derived.
+  bool resize_pot = false;  ///< `--resize-pot`: resample a non-power-of-two input.
+  std::string label;        ///< Shown on the page ("normal", "high + weighted"); "" = derived.
 };
 
 /// The settings in `j` (the page's JSON), checked: an unknown value or a combination `tessera
@@ -54,6 +60,11 @@ CompressArgs compress_args(const ViewSettings& s, const std::string& input,
 /// The exact `tessera compress` command line that writes the same texture.
 std::string compress_command(const ViewSettings& s, const std::string& input,
                              const std::string& output);
+/// The same for several inputs of `shape` (`--cube` with 6 faces, `--array` with layers).
+CompressArgs compress_args(const ViewSettings& s, const std::vector<std::string>& inputs,
+                           const std::string& output, texture_file::TextureShape shape);
+std::string compress_command(const ViewSettings& s, const std::vector<std::string>& inputs,
+                             const std::string& output, texture_file::TextureShape shape);
 
 /// Content-addressed bytes the page loads (PNG images, SVG colour bars, texture files): the
 /// key is a hash of the bytes, so an image shared by several results is kept once.
@@ -90,12 +101,35 @@ std::vector<std::uint8_t> deflate_rgba(const ImageRGBA8& image);
 /// (the view shows it and goes on); a missing folder too.
 std::vector<ViewInput> load_view_inputs(const std::vector<std::string>& paths);
 
+/// One input of the images `paths` as one texture of `shape` (`tessera view --cube` / `--array`,
+/// the checks of `tessera compress`'s): named after their files' common stem ("sky_px.png",
+/// ..., "sky_nz.png": "sky"); a file that cannot be read, a wrong count or mixed sizes set
+/// `error`.
+ViewInput load_view_group(const std::vector<std::string>& paths, texture_file::TextureShape shape);
+
+/// The files an input encodes (a group's, or its own path) and the texture file's name the
+/// view writes for it ("sky.pvr").
+std::vector<std::string> view_sources(const ViewInput& input);
+std::string view_output_name(const ViewInput& input);
+
+/// True when an image input (or group) has a side that is not a power of two: PVRTC1 needs
+/// `--resize-pot` for it.
+bool needs_resize_pot(const ViewInput& input);
+
+/// The input's own images as the page shows them before (or without) an encode: every face or
+/// layer's texels as `originals` [{face, layer, width, height, original}] in `j` (input_json's),
+/// for an input that cannot be encoded as it is (not a power of two).
+void add_originals(nlohmann::json& j, const ViewInput& input, BlobStore& blobs);
+
 /// `j` as JSON text; strings that are not UTF-8 (a file name in another encoding) are written
 /// with U+FFFD for their bad bytes rather than throwing.
 std::string dump_json(const nlohmann::json& j);
 
 /// The page's description of an input (without results).
 nlohmann::json input_json(const ViewInput& input, int index);
+/// input_json's fields of a group (shape, faces, layers, sources) and of an input that needs
+/// --resize-pot (needs_resize_pot, note: one line naming the fix).
+void add_group_json(nlohmann::json& j, const ViewInput& input);
 
 /// Encodes an image input with `settings` as `tessera compress` would (same library calls,
 /// same bytes), decodes every level, face and layer and measures each against what was
@@ -109,24 +143,37 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
 /// when given (the image it was made from: see `texture_pairs`), else against nothing.
 Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, BlobStore& blobs,
                                            const ImageRGBA8* reference = nullptr);
+/// The same with a reference for every image of level 0 (layer-major then face: a group's
+/// `images` against a cube map or array file made from them).
+Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, BlobStore& blobs,
+                                           const std::vector<ImageRGBA8>& references);
 
-/// (texture, image) input indices of a 2D texture and an image with the same file stem and
-/// size ("sprite.pvr", "sprite.png"): the texture is shown as a result of the image too.
+/// The references of a texture input paired with image input `image` (texture_pairs): the
+/// image, or a group's images.
+std::vector<ImageRGBA8> pair_references(const ViewInput& image);
+
+/// (texture, image) input indices of a texture and an image with the same file stem and
+/// size ("sprite.pvr", "sprite.png"), or of a cube map or array and a --cube / --array input of
+/// the same stem, shape and size: the texture is shown as a result of the image too.
 std::vector<std::pair<int, int>> texture_pairs(const std::vector<ViewInput>& inputs);
 
 /// The settings the static export encodes by default: fast, normal, high and, for an input with
 /// alpha, normal with --alpha-bleed and with --alpha-weighted.
-std::vector<ViewSettings> default_export_settings(bool has_alpha);
+/// With `resize_pot`, each with --resize-pot.
+std::vector<ViewSettings> default_export_settings(bool has_alpha, bool resize_pot = false);
 
 /// The page (HTML with its script and style inline) with `data` as its start-up JSON.
 std::string view_page(const nlohmann::json& data);
 
 /// Writes the self-contained static view of `inputs` (every image through every setting of
-/// `settings`, or `default_export_settings` when empty) to `output` (atomically; "-" =
-/// stdout): blobs inlined as data: URIs, no server needed.
+/// `settings`, or `default_export_settings(.., resize_pot)` when empty) to `output`
+/// (atomically; "-" = stdout): blobs inlined as data: URIs, no server needed. An input that
+/// cannot be read or encoded shows its one-line error on the page (and in `errors`); the
+/// others are written. Only when no input works is it an error, and nothing is written.
 Status write_view_export(const std::vector<ViewInput>& inputs,
                          const std::vector<ViewSettings>& settings, int threads,
-                         const std::string& output);
+                         const std::string& output, std::vector<std::string>* errors = nullptr,
+                         bool resize_pot = false);
 
 /// How `tessera view` serves.
 struct ViewServeOptions {

@@ -1,5 +1,6 @@
 // tessera view --html: one self-contained HTML file (page, script, style and every image as a
 // data: URI) with the results of a fixed set of settings.
+#include <algorithm>
 #include <cstdio>
 
 #include "tessera/io.h"
@@ -33,8 +34,8 @@ std::string base64(const std::vector<std::uint8_t>& bytes) {
 
 /// The page's scripts (share/tessera/view/), in order: one <script>, one scope (an arrow
 /// function's), so their top-level names are shared and none is global. view_start.js is last.
-constexpr const char* kViewScripts[] = {"view.js", "view_tiles.js", "view_heatmap.js",
-                                        "view_keys.js", "view_start.js"};
+constexpr const char* kViewScripts[] = {"view.js",      "view_tiles.js", "view_heatmap.js",
+                                        "view_keys.js", "view_cube.js",  "view_start.js"};
 
 void replace_once(std::string& text, const std::string& marker, std::string_view with) {
   const std::size_t at = text.find(marker);
@@ -66,44 +67,78 @@ std::string view_page(const nlohmann::json& data) {
 
 Status write_view_export(const std::vector<ViewInput>& inputs,
                          const std::vector<ViewSettings>& settings, int threads,
-                         const std::string& output) {
+                         const std::string& output, std::vector<std::string>* errors,
+                         bool resize_pot) {
   BlobStore blobs;
   nlohmann::json data = {{"mode", "static"},
                          {"version", TESSERA_VERSION_STRING},
                          {"inputs", nlohmann::json::array()},
                          {"results", nlohmann::json::array()}};
   const std::vector<std::pair<int, int>> pairs = texture_pairs(inputs);
+  std::string first_error;
+  int working = 0;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const ViewInput& in = inputs[i];
-    if (!in.error.empty()) return Status::error(ErrorCode::io_error, in.error);
     data["inputs"].push_back(input_json(in, int(i)));
+    nlohmann::json& ij = data["inputs"].back();
+    // One bad input (unreadable, or an encode that fails) shows its one-line error on the page
+    // and in `errors`; the others go on.
+    auto bad = [&](std::string message) {
+      if (message.rfind(in.name, 0) != 0 && message.rfind(in.path, 0) != 0) {
+        message = in.path + ": " + message;
+      }
+      if (!ij.contains("error")) ij["error"] = message;
+      if (errors) errors->push_back(message);
+      if (first_error.empty()) first_error = message;
+    };
+    if (!in.error.empty()) {
+      bad(in.error);
+      continue;
+    }
     std::vector<Result<nlohmann::json>> made;
     if (in.is_texture) {
       made.push_back(texture_view_result(in, threads, blobs));
+    } else if (needs_resize_pot(in) && !resize_pot &&
+               std::none_of(settings.begin(), settings.end(),
+                            [](const ViewSettings& s) { return s.resize_pot; })) {
+      // Not a power of two: the original with its note (the fix: --resize-pot).
+      add_originals(ij, in, blobs);
+      if (errors) errors->push_back(in.path + ": " + ij.value("note", std::string()));
+      ++working;
+      continue;
     } else {
-      const bool alpha = data["inputs"].back().value("has_alpha", false);
-      for (const ViewSettings& s : settings.empty() ? default_export_settings(alpha) : settings) {
+      const bool alpha = ij.value("has_alpha", false);
+      for (const ViewSettings& s :
+           settings.empty() ? default_export_settings(alpha, resize_pot) : settings) {
         made.push_back(encode_view_result(in, s, threads, blobs, {}));
       }
       for (const auto& [t, im] : pairs) {
         if (im == int(i)) {
-          made.push_back(texture_view_result(inputs[std::size_t(t)], threads, blobs, &in.image));
+          made.push_back(
+              texture_view_result(inputs[std::size_t(t)], threads, blobs, pair_references(in)));
         }
       }
     }
+    bool any = false;
     for (Result<nlohmann::json>& r : made) {
       if (!r) {
-        Status s = r.status();
-        if (s.message.rfind(in.name, 0) != 0 && s.message.rfind(in.path, 0) != 0) {
-          s.message = in.path + ": " + s.message;
-        }
-        return s;
+        bad(r.status().message);
+        continue;
       }
       nlohmann::json j = std::move(r).value();
       j["input_index"] = int(i);
       j["id"] = "r" + std::to_string(data["results"].size());
       data["results"].push_back(std::move(j));
+      any = true;
     }
+    if (any) {
+      ++working;
+      if (ij.contains("error")) ij["note"] = ij["error"];  // some settings failed: a note
+      ij.erase("error");
+    }
+  }
+  if (working == 0 && !first_error.empty()) {
+    return Status::error(ErrorCode::io_error, first_error);
   }
   nlohmann::json uris = nlohmann::json::object();
   for (const std::string& key : blobs.keys()) {

@@ -126,6 +126,7 @@ Result<ViewSettings> settings_from_json(const nlohmann::json& j) {
     s.srgb = j.value("srgb", false);
     s.mip_levels = j.value("mip_levels", 0);
     s.mip_filter = j.value("mip_filter", s.mip_filter);
+    s.resize_pot = j.value("resize_pot", false);
     s.label = j.value("label", std::string());
   } catch (const nlohmann::json::exception&) {
     return bad("settings: a value has the wrong type");
@@ -152,14 +153,22 @@ nlohmann::json settings_to_json(const ViewSettings& s) {
           {"srgb", s.srgb},
           {"mip_levels", s.mip_levels},
           {"mip_filter", s.mip_filter},
+          {"resize_pot", s.resize_pot},
           {"label", s.label}};
 }
 
 CompressArgs compress_args(const ViewSettings& s, const std::string& input,
                            const std::string& output) {
+  return compress_args(s, std::vector<std::string>{input}, output, {});
+}
+
+CompressArgs compress_args(const ViewSettings& s, const std::vector<std::string>& inputs,
+                           const std::string& output, texture_file::TextureShape shape) {
   CompressArgs a;
-  a.inputs = {input};
+  a.inputs = inputs;
   a.output = output;
+  a.words.cube = shape.faces == 6;
+  a.words.array = shape.array;
   a.words.format = s.format;
   a.words.quality = s.quality;
   a.words.alpha_bleed = s.alpha_bleed;
@@ -167,6 +176,7 @@ CompressArgs compress_args(const ViewSettings& s, const std::string& input,
   a.words.premultiply = s.premultiply;
   a.words.normal_map = s.normal_map;
   a.words.srgb = s.srgb;
+  a.words.resize_pot = s.resize_pot;
   a.words.mip_levels = s.mip_levels;
   a.words.mipmaps = s.mip_levels > 0;
   // --mip-filter only means something with a chain (compress refuses it otherwise).
@@ -176,7 +186,16 @@ CompressArgs compress_args(const ViewSettings& s, const std::string& input,
 
 std::string compress_command(const ViewSettings& s, const std::string& input,
                              const std::string& output) {
-  std::string c = "tessera compress " + quoted(input) + " -o " + quoted(output);
+  return compress_command(s, std::vector<std::string>{input}, output, {});
+}
+
+std::string compress_command(const ViewSettings& s, const std::vector<std::string>& inputs,
+                             const std::string& output, texture_file::TextureShape shape) {
+  std::string c = "tessera compress";
+  if (shape.faces == 6) c += " --cube";
+  if (shape.array) c += " --array";
+  for (const std::string& input : inputs) c += " " + quoted(input);
+  c += " -o " + quoted(output);
   if (s.format != "pvrtc1-4") c += " --format " + s.format;
   if (s.quality != "normal") c += " --quality " + s.quality;
   if (s.mip_levels > 0) c += " --mip-levels " + std::to_string(s.mip_levels);
@@ -186,6 +205,7 @@ std::string compress_command(const ViewSettings& s, const std::string& input,
   if (s.alpha_bleed) c += " --alpha-bleed";
   if (s.alpha_weighted) c += " --alpha-weighted";
   if (s.normal_map) c += " --normal-map";
+  if (s.resize_pot) c += " --resize-pot";
   return c;
 }
 
@@ -277,12 +297,15 @@ std::vector<std::pair<int, int>> texture_pairs(const std::vector<ViewInput>& inp
   std::vector<std::pair<int, int>> pairs;
   for (std::size_t t = 0; t < inputs.size(); ++t) {
     const ViewInput& tex = inputs[t];
-    if (!tex.is_texture || !tex.error.empty() || tex.texture.image_count() != 1) continue;
+    if (!tex.is_texture || !tex.error.empty()) continue;
+    const texture_file::CompressedTexture& x = tex.texture;
     for (std::size_t i = 0; i < inputs.size(); ++i) {
       const ViewInput& im = inputs[i];
-      if (im.is_texture || !im.error.empty() ||
-          fs::path(im.name).stem() != fs::path(tex.name).stem() ||
-          im.image.width != tex.texture.width || im.image.height != tex.texture.height) {
+      const std::size_t count = im.images.empty() ? 1 : im.images.size();
+      const int faces = im.images.empty() ? 1 : im.shape.faces;
+      if (im.is_texture || !im.error.empty() || int(count) != x.image_count() || faces != x.faces ||
+          fs::path(view_output_name(im)).stem() != fs::path(tex.name).stem() ||
+          im.image.width != x.width || im.image.height != x.height) {
         continue;
       }
       pairs.emplace_back(int(t), int(i));
@@ -307,11 +330,12 @@ nlohmann::json input_json(const ViewInput& input, int index) {
     j["width"] = input.image.width;
     j["height"] = input.image.height;
     j["has_alpha"] = input.image.has_alpha && !all_opaque(ImageView8::of(input.image));
+    add_group_json(j, input);
   }
   return j;
 }
 
-std::vector<ViewSettings> default_export_settings(bool has_alpha) {
+std::vector<ViewSettings> default_export_settings(bool has_alpha, bool resize_pot) {
   std::vector<ViewSettings> v;
   for (const char* q : {"fast", "normal", "high"}) {
     ViewSettings s;
@@ -326,6 +350,7 @@ std::vector<ViewSettings> default_export_settings(bool has_alpha) {
     weighted.alpha_weighted = true;
     v.push_back(weighted);
   }
+  for (ViewSettings& s : v) s.resize_pot = resize_pot;
   return v;
 }
 

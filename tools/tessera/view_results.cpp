@@ -2,7 +2,6 @@
 // measured against what was encoded, with its heatmaps; the page's JSON and blobs.
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 
 #include "plot.h"
 #include "tessera/image_mipmap.h"
@@ -76,13 +75,15 @@ nlohmann::json metrics_json(const metrics::ImageComparison& c) {
   return m;
 }
 
-/// The references of levels 1.. of a chain: the input prepared as compress_images prepares it
-/// (resampled, premultiplied, mip-filtered, bled), level 0 being `made.sources[0]`.
+/// The references of levels 1.. of image `index`'s chain: the input prepared as
+/// compress_images prepares it (resampled, premultiplied, mip-filtered, bled), level 0 being
+/// `made.sources[index]`.
 Result<std::vector<ImageRGBA8>> reference_chain(const ImageRGBA8& input,
                                                 const texture_file::CompressOptions& o,
-                                                const texture_file::CompressedImage& made) {
+                                                const texture_file::CompressedImage& made,
+                                                std::size_t index) {
   const int levels = made.texture.level_count();
-  if (levels <= 1) return std::vector<ImageRGBA8>{made.sources[0]};
+  if (levels <= 1) return std::vector<ImageRGBA8>{made.sources[index]};
   ImageRGBA8 image = input;
   if (image.has_alpha) image.has_alpha = !all_opaque(ImageView8::of(image));
   image::MipmapOptions filter;
@@ -106,7 +107,7 @@ Result<std::vector<ImageRGBA8>> reference_chain(const ImageRGBA8& input,
   if (o.alpha_bleed) {
     for (ImageRGBA8& level : *chain) image::bleed_alpha(level, {o.encode.threads});
   }
-  (*chain)[0] = made.sources[0];
+  (*chain)[0] = made.sources[index];
   return chain;
 }
 
@@ -174,8 +175,6 @@ nlohmann::json colour_bars(BlobStore& blobs) {
                                            "saturate)"))}};
 }
 
-std::string stem_of(const std::string& name) { return std::filesystem::path(name).stem().string(); }
-
 }  // namespace
 
 Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSettings& settings,
@@ -184,8 +183,11 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
   if (input.is_texture || !input.error.empty()) {
     return Status::error(ErrorCode::invalid_argument, input.name + ": not an image to encode");
   }
-  const std::string output = stem_of(input.name) + ".pvr";
-  CompressArgs args = compress_args(settings, input.path, output);
+  const std::string output = view_output_name(input);
+  const std::vector<std::string> sources = view_sources(input);
+  const texture_file::TextureShape shape =
+      input.images.empty() ? texture_file::TextureShape{} : input.shape;
+  CompressArgs args = compress_args(settings, sources, output, shape);
   if (std::string p = compress_usage_problem(args, "pvr"); !p.empty()) {
     return Status::error(ErrorCode::invalid_argument, p);
   }
@@ -193,17 +195,21 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
   if (!checked) return checked.status();
   texture_file::CompressOptions options = std::move(*checked);
   options.encode.progress = progress;
-  std::vector<ImageRGBA8> images{input.image};
-  const std::vector<std::string> names{input.name};
+  const std::vector<ImageRGBA8> inputs = pair_references(input);
+  std::vector<std::string> names;
+  for (const std::string& p : sources) names.push_back(io::io_name(p));
+  if (input.images.empty()) names = {input.name};
   Result<texture_file::CompressedImage> made =
-      texture_file::compress_images(std::move(images), texture_shape(args), options, names);
-  if (!made) return made.status();
+      texture_file::compress_images(inputs, texture_shape(args), options, names);
+  if (!made) {
+    Status s = made.status();
+    s.message = cli_option_names(s.message);
+    return s;
+  }
   const texture_file::CompressedTexture& tex = made->texture;
   Result<std::vector<std::uint8_t>> file =
       texture_file::serialise_texture(tex, texture_file::ContainerFormat::pvr3);
   if (!file) return file.status();
-  Result<std::vector<ImageRGBA8>> refs = reference_chain(input.image, options, *made);
-  if (!refs) return refs.status();
   Result<metrics::ImageComparison> total =
       texture_file::measure_level0(made->texture, made->sources, threads);
   if (!total) return total.status();
@@ -211,7 +217,7 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
   nlohmann::json j = {
       {"input", input.name},
       {"settings", settings_to_json(settings)},
-      {"command", compress_command(settings, input.path, output)},  // the path as typed
+      {"command", compress_command(settings, sources, output, shape)},  // the paths as typed
       {"texture", texture_json(tex)},
       {"file_name", output},
       {"file", blobs.put("application/octet-stream", *file)},
@@ -221,25 +227,41 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
       {"metrics", metrics_json(*total)},
       {"colour_bars", colour_bars(blobs)},
       {"images", nlohmann::json::array()}};
-  for (int level = 0; level < tex.level_count(); ++level) {
-    Result<ImageRGBA8> dec = texture_file::decode_texture_image(tex, level, 0, 0, {threads});
-    if (!dec) return dec.status();
-    Result<nlohmann::json> im = image_json(&(*refs)[std::size_t(level)], *dec, level, 0, 0,
-                                           settings.normal_map, tex.premultiplied, threads, blobs);
-    if (!im) return im.status();
-    j["images"].push_back(std::move(im).value());
+  if (made->resized) j["resized_from"] = {input.image.width, input.image.height};
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    Result<std::vector<ImageRGBA8>> refs = reference_chain(inputs[i], options, *made, i);
+    if (!refs) return refs.status();
+    const int layer = int(i) / tex.faces, face = int(i) % tex.faces;
+    for (int level = 0; level < tex.level_count(); ++level) {
+      Result<ImageRGBA8> dec =
+          texture_file::decode_texture_image(tex, level, layer, face, {threads});
+      if (!dec) return dec.status();
+      Result<nlohmann::json> im =
+          image_json(&(*refs)[std::size_t(level)], *dec, level, layer, face, settings.normal_map,
+                     tex.premultiplied, threads, blobs);
+      if (!im) return im.status();
+      j["images"].push_back(std::move(im).value());
+    }
   }
   return j;
 }
 
 Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, BlobStore& blobs,
                                            const ImageRGBA8* reference) {
+  return texture_view_result(
+      input, threads, blobs,
+      reference ? std::vector<ImageRGBA8>{*reference} : std::vector<ImageRGBA8>{});
+}
+
+Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, BlobStore& blobs,
+                                           const std::vector<ImageRGBA8>& references) {
   if (!input.is_texture || !input.error.empty()) {
     return Status::error(ErrorCode::invalid_argument, input.name + ": not a texture");
   }
   const texture_file::CompressedTexture& tex = input.texture;
+  const bool measured = !references.empty() && int(references.size()) == tex.image_count();
   nlohmann::json j = {{"input", input.name},
-                      {"label", reference ? "file " + input.name : std::string()},
+                      {"label", measured ? "file " + input.name : std::string()},
                       {"texture", texture_json(tex)},
                       {"file_name", input.name},
                       {"file", blobs.put("application/octet-stream", input.file)},
@@ -252,8 +274,10 @@ Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, 
         Result<ImageRGBA8> dec =
             texture_file::decode_texture_image(tex, level, layer, face, {threads});
         if (!dec) return dec.status();
-        Result<nlohmann::json> im = image_json(level == 0 ? reference : nullptr, *dec, level, layer,
-                                               face, false, tex.premultiplied, threads, blobs);
+        const ImageRGBA8* ref =
+            level == 0 && measured ? &references[std::size_t(layer * tex.faces + face)] : nullptr;
+        Result<nlohmann::json> im =
+            image_json(ref, *dec, level, layer, face, false, tex.premultiplied, threads, blobs);
         if (!im) return im.status();
         j["images"].push_back(std::move(im).value());
       }

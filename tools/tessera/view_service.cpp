@@ -344,6 +344,7 @@ int serve_view(std::vector<ViewInput> inputs, const ViewServeOptions& options) {
   for (std::size_t i = 0; i < service.inputs().size(); ++i) {
     const ViewInput& in = service.inputs()[i];
     page["inputs"].push_back(input_json(in, int(i)));
+    if (needs_resize_pot(in)) add_originals(page["inputs"][i], in, service.blobs());
     if (!in.is_texture || !in.error.empty()) continue;
     Result<nlohmann::json> r = texture_view_result(in, options.threads, service.blobs());
     if (!r) {
@@ -357,8 +358,8 @@ int serve_view(std::vector<ViewInput> inputs, const ViewServeOptions& options) {
   }
   for (const auto& [t, im] : texture_pairs(service.inputs())) {
     const ViewInput& image = service.inputs()[std::size_t(im)];
-    Result<nlohmann::json> r = texture_view_result(service.inputs()[std::size_t(t)],
-                                                   options.threads, service.blobs(), &image.image);
+    Result<nlohmann::json> r = texture_view_result(
+        service.inputs()[std::size_t(t)], options.threads, service.blobs(), pair_references(image));
     if (!r) continue;  // reported above, as the texture's own result
     nlohmann::json j = std::move(r).value();
     j["input_index"] = im;

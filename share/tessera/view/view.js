@@ -156,7 +156,9 @@ function setupControls() {
   };
   $("wipe").oninput = () => draw();
   $("options").onchange = () => {
-    if (D.mode === "server") encode(formSettings());
+    if (D.mode !== "server") return;
+    if (npotBlocked(D.inputs[S.input], formSettings())) showOriginals(S.input);
+    else encode(formSettings());
   };
   $("pin").onclick = togglePin;
   $("copy").onclick = () => navigator.clipboard && navigator.clipboard.writeText($("command").textContent);
@@ -167,14 +169,14 @@ function setupControls() {
 function formSettings() {
   const f = $("options").elements, s = {};
   for (const k of ["format", "quality", "mip_filter"]) s[k] = f[k].value;
-  for (const k of ["alpha_bleed", "alpha_weighted", "premultiply", "normal_map", "srgb"]) s[k] = f[k].checked;
+  for (const k of ["alpha_bleed", "alpha_weighted", "premultiply", "normal_map", "srgb", "resize_pot"]) s[k] = f[k].checked;
   s.mip_levels = Number(f.mip_levels.value) || 0;
   return s;
 }
 function setForm(s) {
   const f = $("options").elements;
   for (const k of ["format", "quality", "mip_filter"]) f[k].value = s[k];
-  for (const k of ["alpha_bleed", "alpha_weighted", "premultiply", "normal_map", "srgb"]) f[k].checked = !!s[k];
+  for (const k of ["alpha_bleed", "alpha_weighted", "premultiply", "normal_map", "srgb", "resize_pot"]) f[k].checked = !!s[k];
   f.mip_levels.value = s.mip_levels || 0;
 }
 function togglePin() {
@@ -204,22 +206,25 @@ function selectInput(index) {
   const form = $("options");
   const editable = D.mode === "server" && inp.kind === "image" && !inp.error;
   for (const el of form.elements) el.disabled = !editable;
-  $("options-note").hidden = editable;
   $("options-note").textContent = inp.kind === "texture"
       ? "A texture file, shown as decoded: open its source image to try options."
       : D.mode === "static" ? "A static view: these results were encoded by tessera view --html."
       : "";
+  if (inputNote(inp)) $("options-note").textContent += (editable ? "" : " ") + inputNote(inp);
+  $("options-note").hidden = !$("options-note").textContent;
   if (inp.kind === "texture") setForm({ format: "pvrtc1-4", quality: "normal", mip_filter: "box" });
   const mine = resultsOf(index);
   const id = S.current.get(index) || (mine.length ? mine[0].id : null);
   S.level = S.face = S.layer = 0;
   // Alpha is what an artist checks first: an input with alpha opens composited.
   $("channel").value = inp.has_alpha ? "checker" : "rgb";
+  const first = D.initial && D.initial.length ? D.initial[0] : formSettings();
   if (id) selectResult(id);
+  else if ((!editable || npotBlocked(inp, first)) && showOriginals(index)) setForm(first);
   else {
     S.result = null;
     refresh();
-    if (editable) encode(D.initial && D.initial.length ? D.initial[0] : formSettings());
+    if (editable) encode(first);
   }
 }
 function selectResult(id) {
@@ -265,6 +270,7 @@ function refresh() {
   }
   const keepLeft = $("left").value;
   fillSelect($("left"), left, left.some(([v]) => v === keepLeft) ? keepLeft : "original");
+  markRightChoices(r, currentImage(r));
   showMetrics(r);
   showPinned();
   draw();
@@ -274,8 +280,8 @@ function showMetrics(r) {
   const body = $("metrics").tBodies[0];
   body.innerHTML = "";
   const im = currentImage(r);
-  const rows = [];
-  if (r && im) {
+  const rows = r && im && r.original_only ? originalRows(r, im) : [];
+  if (r && im && !r.original_only) {
     const m = im.metrics || {};
     rows.push(["image", `${im.width}x${im.height}, level ${im.level}` +
         (r.texture.faces === 6 ? `, face ${im.face}` : "") + (r.texture.layers > 1 ? `, layer ${im.layer}` : "")]);
@@ -290,8 +296,9 @@ function showMetrics(r) {
         rows.push(["angular_error_p99_deg", "angle p99 (°)", fmt(m.angular_error_p99_deg, 3)]);
         rows.push(["angular_error_max_deg", "angle max (°)", fmt(m.angular_error_max_deg, 3)]);
       }
+      rows.push(...referenceRows(r));
     } else {
-      rows.push(["note", "no reference: a texture opened as it is"]);
+      rows.push(["note", noReferenceText(r)]);
     }
     rows.push(["format", "format", r.texture.format + (r.texture.srgb ? ", sRGB" : "") + (r.texture.premultiplied ? ", premultiplied" : "")]);
     rows.push(["shape", "shape", `${r.texture.shape}, ${r.texture.levels} level(s)`]);
@@ -309,8 +316,8 @@ function showMetrics(r) {
   }
   $("command").textContent = r && r.command ? r.command : r ? "(a texture file, opened as it is)" : "";
   const dl = $("download");
-  dl.hidden = !r;
-  if (r) {
+  dl.hidden = !r || !!r.original_only;
+  if (r && !r.original_only) {
     dl.href = blobUrl(r.file);
     dl.download = r.file_name;
     dl.textContent = `download ${r.file_name}`;
@@ -358,8 +365,10 @@ async function paneSource(side, im, r) {
     }
     if (!im.original) return { src: null, texels: null, caption: "no original (a texture opened as it is)" };
     const t = await texels(im.original, im.width, im.height);
-    return { src: channelCanvas(im.original, t, channel, premult), texels: t, caption: "original" };
+    const caption = r.resized_from ? `original, resized to ${r.texture.width}x${r.texture.height} (--resize-pot)` : "original";
+    return { src: channelCanvas(im.original, t, channel, premult), texels: t, caption };
   }
+  if (r.original_only) return { src: null, texels: null, caption: "not encoded: " + inputNote(D.inputs[r.input_index]) };
   const t = await texels(im.decoded, im.width, im.height);
   const right = $("right").value;
   if (right !== "result" && im[right]) {
@@ -369,6 +378,7 @@ async function paneSource(side, im, r) {
     const src = await heatPicture(im, right);
     return { src, texels: t, caption: `${captions[right]}; ${src.note}` };
   }
+  if (right !== "result") return { src: channelCanvas(im.decoded, t, channel, premult), texels: t, caption: `${label(r)} (no ${right.replace("_", " ")}: ${whyNoMap(r, im)})` };
   return { src: channelCanvas(im.decoded, t, channel, premult), texels: t, caption: label(r) };
 }
 
@@ -429,7 +439,7 @@ async function draw() {
       const tr = transform(ca, im.width, im.height);
       const split = ca.clientWidth * Number($("wipe").value) / 1000;
       if (a.src) blit(ctx, dpr, a.src, tr, [0, split]);
-      blit(ctx, dpr, b.src, tr, [split, ca.clientWidth - split]);
+      if (b.src) blit(ctx, dpr, b.src, tr, [split, ca.clientWidth - split]);
       ctx.fillStyle = "#fff";
       ctx.fillRect(Math.round(split * dpr), 0, Math.max(1, dpr), ca.height);
       $("caption-a").textContent = `wipe: ${a.caption} (left) | ${b.caption} (right)`;
@@ -446,7 +456,7 @@ async function drawCross(r, ticket) {
   const faces = [];
   for (let f = 0; f < 6; ++f) {
     const im = r.images.find((i) => i.level === S.level && i.layer === S.layer && i.face === f);
-    faces.push({ im, p: await paneSource("b", im, r) });
+    faces.push({ im, p: await paneSource(r.original_only ? "a" : "b", im, r) });
   }
   if (ticket !== drawing) return;
   const ca = $("canvas-a"), n = faces[0].im.width;
@@ -485,11 +495,11 @@ function readout(t) {
   const a = at(t.a), b = at(t.b);
   const lines = [`texel (${t.x}, ${t.y})` + (S.shown.cross ? ` face ${t.face}` : "") + ` level ${S.level}`];
   if (a) lines.push(`${$("left").value === "original" ? "original" : "left"} ${a.join(" ")}`);
-  lines.push(`decoded  ${b.join(" ")}`);
-  if (a) lines.push(`difference ${b.map((v, i) => (v - a[i] >= 0 ? "+" : "") + (v - a[i])).join(" ")}`);
+  lines.push(b ? `decoded  ${b.join(" ")}` : "not encoded");
+  if (a && b) lines.push(`difference ${b.map((v, i) => (v - a[i] >= 0 ? "+" : "") + (v - a[i])).join(" ")}`);
   $("readout").textContent = lines.join("\n");
   const ro = $("readout").dataset;
-  ro.x = t.x; ro.y = t.y; ro.decoded = b.join(","); ro.original = a ? a.join(",") : "";
+  ro.x = t.x; ro.y = t.y; ro.decoded = b ? b.join(",") : ""; ro.original = a ? a.join(",") : "";
 }
 /** The texel under the pointer's last place, read again after a change (input, result, level,
  *  face, view, zoom): the readout never shows a texel of what is no longer drawn. */
