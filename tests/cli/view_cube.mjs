@@ -3,12 +3,13 @@
 // JSON object on stdout; view_cube_test.py checks it against `tessera compress --cube/--array`,
 // `decompress` and `compare`. Screenshots go to OUT.
 //
-//   node view_cube.mjs PUPPETEER_DIR CHROMIUM URL OUT cube|shot [SHOT.png]
-// "shot" only opens the first input in the cube cross with its heatmap and saves SHOT.png.
+//   node view_cube.mjs PUPPETEER_DIR CHROMIUM URL OUT cube|shot [SHOT.png [RIGHT]]
+// "shot" only opens the first input in the cube cross with RIGHT (default: its heatmap) and
+// saves SHOT.png (docs/images/tessera-view-cube.png was made so).
 import { createRequire } from "node:module";
 import { join } from "node:path";
 
-const [dir, chromium, url, out, mode, shotPath] = process.argv.slice(2);
+const [dir, chromium, url, out, mode, shotPath, shotRight = "heatmap"] = process.argv.slice(2);
 const puppeteer = createRequire(join(dir, "package.json"))("puppeteer-core");
 const WAIT = { timeout: 120000, polling: 50 };  // every wait is bounded
 
@@ -165,7 +166,7 @@ async function docsShot(page) {
   await snapshot(page, "r");
   await page.select("#mode", "cross");
   await page.waitForFunction(() => document.body.dataset.drawn.includes(":cross:"), WAIT);
-  await page.select("#right", "heatmap");
+  await page.select("#right", shotRight);
   await shot(page, shotPath, 1366, 768);
   result.steps.shot = shotPath;
 }

@@ -314,7 +314,9 @@ function showMetrics(r) {
     b.className = "num";
     b.dataset.value = row.length === 3 ? row[2] : "";
   }
-  $("command").textContent = r && r.command ? r.command : r ? "(a texture file, opened as it is)" : "";
+  $("command").textContent = r && r.command ? r.command : r && r.original_only ? "(not encoded)"
+      : r ? "(a texture file, opened as it is)" : "";
+  $("pin").hidden = !!(r && r.original_only);
   const dl = $("download");
   dl.hidden = !r || !!r.original_only;
   if (r && !r.original_only) {
@@ -368,7 +370,7 @@ async function paneSource(side, im, r) {
     const caption = r.resized_from ? `original, resized to ${r.texture.width}x${r.texture.height} (--resize-pot)` : "original";
     return { src: channelCanvas(im.original, t, channel, premult), texels: t, caption };
   }
-  if (r.original_only) return { src: null, texels: null, caption: "not encoded: " + inputNote(D.inputs[r.input_index]) };
+  if (r.original_only) return { src: null, texels: null, caption: "not encoded: " + shortNote(D.inputs[r.input_index]) };
   const t = await texels(im.decoded, im.width, im.height);
   const right = $("right").value;
   if (right !== "result" && im[right]) {

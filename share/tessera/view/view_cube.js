@@ -66,7 +66,13 @@ function originalRows(r, im) {
   const inp = D.inputs[r.input_index];
   return [["image", `${im.width}x${im.height}` + (r.texture.faces === 6 ? `, face ${im.face}` : "")
               + (r.texture.layers > 1 ? `, layer ${im.layer}` : "")],
-          ["note", "not encoded", inputNote(inp) || inp.error || ""]];
+          ["note", "not encoded", shortNote(inp)]];
+}
+/** One short line: why input `inp` is not encoded. */
+function shortNote(inp) {
+  if (!inp.needs_resize_pot) return inp.error || "";
+  return D.mode === "static" ? "not a power of two (tessera view --resize-pot encodes it)"
+                             : "not a power of two: tick --resize-pot";
 }
 function referenceRows(r) {
   if (!r.resized_from) return [];
