@@ -213,6 +213,10 @@ def check_npot_and_bad(tmp):
     check("--cube with 2 files: refused", rc != 0 and "cube" in err, (rc, err))
     rc, _, err = run("view", "--html", "-o", html, cwd=tmp)
     check("nothing to view: a usage error", rc == 2, (rc, err))
+    rc, _, err = run("view", "--cube", *[f"sky_{n}.png" for n in FACE_NAMES], "good.png", "--html",
+                     "-o", html, cwd=tmp)
+    check("--cube with 7 files: one line saying so", rc == 1 and "got 7" in err
+          and len(err.strip().splitlines()) == 1, (rc, err))
 
 
 def start_server(args, cwd):

@@ -93,9 +93,11 @@ Command add_view_command(CLI::App& app, const GlobalOptions& global) {
                   "look at, or folders of them. An input that cannot be read or encoded shows "
                   "its one-line error (also on stderr) and the others go on; --html exits 0 "
                   "when at least one input works");
-  sub->add_option("--cube", args->cubes,
-                  "Six images, the faces +X -X +Y -Y +Z -Z of one cube map (square, one size), "
-                  "encoded as tessera compress --cube encodes them; repeat for more cube maps")
+  sub->add_option(
+         "--cube", args->cubes,
+         "Six images, the faces +X -X +Y -Y +Z -Z of one cube map (square, one size), "
+         "encoded as tessera compress --cube encodes them; repeat for more cube maps (other "
+         "inputs go before it)")
       ->expected(6);
   sub->add_option("--array", args->arrays,
                   "Images up to the next option: the layers of one array texture (one size), "

@@ -48,7 +48,7 @@ ViewInput load_view_group(const std::vector<std::string>& paths, texture_file::T
   in.path = paths.empty() ? stem : paths.front();
   if (cube && paths.size() != 6) {
     in.error = in.name + ": --cube takes 6 faces (+X, -X, +Y, -Y, +Z, -Z), got " +
-               std::to_string(paths.size());
+               std::to_string(paths.size()) + " (other inputs go before --cube)";
     return in;
   }
   if (paths.empty()) {
