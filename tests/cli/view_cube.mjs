@@ -3,7 +3,8 @@
 // JSON object on stdout; view_cube_test.py checks it against `tessera compress --cube/--array`,
 // `decompress` and `compare`. Screenshots go to OUT.
 //
-//   node view_cube.mjs PUPPETEER_DIR CHROMIUM URL OUT cube|shot [SHOT.png [RIGHT]]
+//   node view_cube.mjs PUPPETEER_DIR CHROMIUM URL OUT cube|static|shot [SHOT.png [RIGHT]]
+// "static" opens an --html export of good.png, bad.png and npot.png.
 // "shot" only opens the first input in the cube cross with RIGHT (default: its heatmap) and
 // saves SHOT.png (docs/images/tessera-view-cube.png was made so).
 import { createRequire } from "node:module";
@@ -25,13 +26,15 @@ try {
   await page.setRequestInterception(true);
   page.on("request", (req) => {
     const u = req.url();
-    const local = u.startsWith("data:") || u.startsWith(new URL(url).origin);
+    const local = u.startsWith("data:") || (url.startsWith("file:") ? u.startsWith("file:")
+                                                                     : u.startsWith(new URL(url).origin));
     if (!local) { result.external.push(u); req.abort(); } else req.continue();
   });
   await page.setViewport({ width: 1366, height: 768 });
   await page.goto(url);
   await page.waitForFunction(() => (document.body.dataset.drawn || "") !== "", WAIT);
   if (mode === "shot") await docsShot(page);
+  else if (mode === "static") await staticScenario(page);
   else await scenario(page);
 } catch (e) {
   result.errors.push("scenario: " + e.message);
@@ -169,4 +172,19 @@ async function docsShot(page) {
   await page.select("#right", shotRight);
   await shot(page, shotPath, 1366, 768);
   result.steps.shot = shotPath;
+}
+
+/** The --html export with a bad input: the good one drawn, the bad one's error, the NPOT one's
+ *  original and note. */
+async function staticScenario(page) {
+  const s = result.steps;
+  s.good = await snapshot(page, "r");
+  await selectInput(page, 1);
+  await page.waitForFunction(() => document.getElementById("error").textContent.length > 0, WAIT);
+  s.bad_error = await page.$eval("#error", (e) => e.textContent);
+  await selectInput(page, 2);
+  s.npot = await snapshot(page, "o");
+  s.npot.original_lit = (await canvasHash(page, "canvas-a")).lit;
+  await shot(page, "static-npot-390x844.png", 390, 844);
+  s.phone_overflow = await page.evaluate(() => document.documentElement.scrollWidth > window.innerWidth + 1);
 }

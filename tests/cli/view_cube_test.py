@@ -200,6 +200,8 @@ def check_npot_and_bad(tmp):
     check("bad input: its one-line error on the page", "bad.png" in e and "\n" not in e, e)
     check("bad input: the npot input shows its original",
           "originals" in d["inputs"][2] and "error" not in d["inputs"][2], d["inputs"][2])
+    if not MISSING and rc == 0:
+        check_static_page(html)
     lines = [line for line in err.splitlines() if line.startswith("tessera:")]
     check("bad input: one stderr line each for bad.png and npot.png",
           len(lines) == 2 and "bad.png" in lines[0] and "npot.png" in lines[1], err)
@@ -240,6 +242,21 @@ def browse(url, mode, *extra):
     check(f"{mode}: no page errors", r["errors"] == [], r["errors"])
     check(f"{mode}: nothing fetched from elsewhere", r["external"] == [], r["external"])
     return r["steps"]
+
+
+def check_static_page(html):
+    """The export with a bad input in the browser: each input shows what it can."""
+    s = browse("file://" + html, "static")
+    if not s:
+        return
+    check("static: the good input drawn", s.get("good", {}).get("drawn", "").startswith("r"), s.get("good"))
+    e = s.get("bad_error", "")
+    check("static: the bad input's one-line error", "bad.png" in e and "\n" not in e, e)
+    npot = s.get("npot", {})
+    check("static: the npot input's original drawn with its note",
+          npot.get("caption_a") == "original" and npot.get("original_lit", 0) > 1000
+          and "--resize-pot" in npot.get("note", ""), npot)
+    check("static: phone, no sideways scrolling", s.get("phone_overflow") is False)
 
 
 def check_browser(tmp, faces, layers):
