@@ -116,6 +116,7 @@ function label(r) {
     if (s[k]) parts.push(k.replace("alpha_", "").replace("_map", ""));
   }
   if (s.mip_levels) parts.push(`${s.mip_levels} mips`);
+  if (s.resize_pot) parts.push("resized");
   return parts.join(" ");
 }
 function currentImage(r = S.results.get(S.result)) {
