@@ -65,8 +65,17 @@ class BlobStore {
   };
   /// Stores `bytes` and returns its key (16 hex digits).
   std::string put(std::string mime, std::vector<std::uint8_t> bytes);
-  /// The blob of `key`, or null.
+  /// Registers a blob that `make` makes on its first `get` (a heatmap the page may never
+  /// show) under `key` (16 hex digits naming what it is made of). Returns `key`.
+  std::string put_lazy(std::string key, std::string mime,
+                       std::function<std::vector<std::uint8_t>()> make);
+  /// The blob of `key` (made now when it is a lazy one), or null.
   std::shared_ptr<const Blob> get(const std::string& key) const;
+  /// Whether `key` names a blob, made or lazy (never makes one).
+  bool has(const std::string& key) const;
+  /// The libdeflate level of the PNG images put here (view_png.h): fast for the server, small
+  /// for the static export.
+  int png_level = 1;
   /// Every key, for the static export.
   std::vector<std::string> keys() const;
   /// Drops the blob of `key` (a result evicted under the memory budget).
@@ -75,14 +84,17 @@ class BlobStore {
   std::size_t bytes() const;
 
  private:
+  struct Lazy {
+    std::string mime;
+    std::function<std::vector<std::uint8_t>()> make;
+    std::once_flag once;
+    std::shared_ptr<const Blob> blob;
+  };
   mutable std::mutex mutex_;
-  std::size_t bytes_ = 0;
-  std::map<std::string, std::shared_ptr<const Blob>> blobs_;
+  mutable std::size_t bytes_ = 0;
+  mutable std::map<std::string, std::shared_ptr<const Blob>> blobs_;
+  mutable std::map<std::string, std::shared_ptr<Lazy>> lazy_;
 };
-
-/// zlib-compressed RGBA8 texels (`width * height * 4` bytes inflated): the page reads them
-/// exactly, where a canvas would premultiply a PNG's translucent texels.
-std::vector<std::uint8_t> deflate_rgba(const ImageRGBA8& image);
 
 /// Reads the inputs: files by their bytes (images, .pvr/.ktx/.ktx2), folders as the images
 /// and textures in them (not recursive, in name order; links that resolve outside the folder are
