@@ -32,12 +32,17 @@ async function decodePng(bytes) {
   const bpp = type === 6 ? 4 : 3, stride = w * bpp;
   if (raw.length < h * (stride + 1)) throw new Error("texels: a PNG cut short");
   const out = new Uint8ClampedArray(w * h * 4);
+  const out32 = new Uint32Array(out.buffer), little = new Uint8Array(new Uint32Array([1]).buffer)[0] === 1;
   let prev = new Uint8Array(stride), cur = new Uint8Array(stride);
   for (let y = 0; y < h; ++y) {
     const f = raw[y * (stride + 1)], src = raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1));
     unfilter(f, src, cur, prev, bpp);
     if (bpp === 4) {
       out.set(cur, y * stride);
+    } else if (little) {  // a texel a store: 0xAABBGGRR
+      for (let x = 0, i = 0, o = y * w; x < w; ++x, i += 3) {
+        out32[o + x] = 0xff000000 | (cur[i + 2] << 16) | (cur[i + 1] << 8) | cur[i];
+      }
     } else {
       for (let x = 0, o = y * w * 4; x < w; ++x, o += 4) {
         out[o] = cur[x * 3]; out[o + 1] = cur[x * 3 + 1]; out[o + 2] = cur[x * 3 + 2]; out[o + 3] = 255;
@@ -54,15 +59,20 @@ function unfilter(f, src, cur, prev, bpp) {
   if (f === 0) {
     cur.set(src);
   } else if (f === 1) {
-    for (let x = 0; x < n; ++x) cur[x] = src[x] + (x >= bpp ? cur[x - bpp] : 0);
+    for (let x = 0; x < bpp; ++x) cur[x] = src[x];
+    for (let x = bpp; x < n; ++x) cur[x] = src[x] + cur[x - bpp];
   } else if (f === 2) {
     for (let x = 0; x < n; ++x) cur[x] = src[x] + prev[x];
   } else if (f === 3) {
-    for (let x = 0; x < n; ++x) cur[x] = src[x] + (((x >= bpp ? cur[x - bpp] : 0) + prev[x]) >> 1);
+    for (let x = 0; x < bpp; ++x) cur[x] = src[x] + (prev[x] >> 1);
+    for (let x = bpp; x < n; ++x) cur[x] = src[x] + ((cur[x - bpp] + prev[x]) >> 1);
   } else if (f === 4) {
-    for (let x = 0; x < n; ++x) {
-      const a = x >= bpp ? cur[x - bpp] : 0, b = prev[x], c = x >= bpp ? prev[x - bpp] : 0;
-      const pa = Math.abs(b - c), pb = Math.abs(a - c), pc = Math.abs(a + b - 2 * c);
+    // The first texel has no left neighbours: Paeth of (0, b, 0) is b.
+    for (let x = 0; x < bpp; ++x) cur[x] = src[x] + prev[x];
+    for (let x = bpp; x < n; ++x) {
+      const a = cur[x - bpp], b = prev[x], c = prev[x - bpp];
+      const p = b - c, q = a - c, pa = p < 0 ? -p : p, pb = q < 0 ? -q : q;
+      const pc = p + q < 0 ? -(p + q) : p + q;
       cur[x] = src[x] + (pa <= pb && pa <= pc ? a : pb <= pc ? b : c);
     }
   } else {
