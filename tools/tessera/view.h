@@ -56,7 +56,8 @@ std::string compress_command(const ViewSettings& s, const std::string& input,
                              const std::string& output);
 
 /// Content-addressed bytes the page loads (PNG images, SVG colour bars, texture files): the
-/// key is a hash of the bytes, so an image shared by several results is kept once.
+/// key is a hash of the bytes, so an image shared by several results is kept once; a lazy
+/// blob's key names what it is made from.
 class BlobStore {
  public:
   struct Blob {
@@ -111,8 +112,9 @@ nlohmann::json input_json(const ViewInput& input, int index);
 
 /// Encodes an image input with `settings` as `tessera compress` would (same library calls,
 /// same bytes), decodes every level, face and layer and measures each against what was
-/// encoded; images, heatmaps and the texture go into `blobs`. `progress` (may be empty) gets
-/// the encode's fraction. Returns the result's JSON (see view.js for its fields).
+/// encoded; images (PNG), heatmaps (made when first fetched) and the texture go into `blobs`.
+/// `progress` (may be empty) gets the fraction of the whole job done, the encode and the steps
+/// after it, always below 1. Returns the result's JSON (see view.js for its fields).
 Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSettings& settings,
                                           int threads, BlobStore& blobs,
                                           const std::function<void(double)>& progress);
