@@ -67,7 +67,8 @@ std::string compress_command(const ViewSettings& s, const std::vector<std::strin
                              const std::string& output, texture_file::TextureShape shape);
 
 /// Content-addressed bytes the page loads (PNG images, SVG colour bars, texture files): the
-/// key is a hash of the bytes, so an image shared by several results is kept once.
+/// key is a hash of the bytes, so an image shared by several results is kept once; a lazy
+/// blob's key names what it is made from.
 class BlobStore {
  public:
   struct Blob {
@@ -76,8 +77,17 @@ class BlobStore {
   };
   /// Stores `bytes` and returns its key (16 hex digits).
   std::string put(std::string mime, std::vector<std::uint8_t> bytes);
-  /// The blob of `key`, or null.
+  /// Registers a blob that `make` makes on its first `get` (a heatmap the page may never
+  /// show) under `key` (16 hex digits naming what it is made of). Returns `key`.
+  std::string put_lazy(std::string key, std::string mime,
+                       std::function<std::vector<std::uint8_t>()> make);
+  /// The blob of `key` (made now when it is a lazy one), or null.
   std::shared_ptr<const Blob> get(const std::string& key) const;
+  /// Whether `key` names a blob, made or lazy (never makes one).
+  bool has(const std::string& key) const;
+  /// The libdeflate level of the PNG images put here (view_png.h): fast for the server, small
+  /// for the static export.
+  int png_level = 1;
   /// Every key, for the static export.
   std::vector<std::string> keys() const;
   /// Drops the blob of `key` (a result evicted under the memory budget).
@@ -86,14 +96,17 @@ class BlobStore {
   std::size_t bytes() const;
 
  private:
+  struct Lazy {
+    std::string mime;
+    std::function<std::vector<std::uint8_t>()> make;
+    std::once_flag once;
+    std::shared_ptr<const Blob> blob;
+  };
   mutable std::mutex mutex_;
-  std::size_t bytes_ = 0;
-  std::map<std::string, std::shared_ptr<const Blob>> blobs_;
+  mutable std::size_t bytes_ = 0;
+  mutable std::map<std::string, std::shared_ptr<const Blob>> blobs_;
+  mutable std::map<std::string, std::shared_ptr<Lazy>> lazy_;
 };
-
-/// zlib-compressed RGBA8 texels (`width * height * 4` bytes inflated): the page reads them
-/// exactly, where a canvas would premultiply a PNG's translucent texels.
-std::vector<std::uint8_t> deflate_rgba(const ImageRGBA8& image);
 
 /// Reads the inputs: files by their bytes (images, .pvr/.ktx/.ktx2), folders as the images
 /// and textures in them (not recursive, in name order; links that resolve outside the folder are
@@ -133,8 +146,9 @@ void add_group_json(nlohmann::json& j, const ViewInput& input);
 
 /// Encodes an image input with `settings` as `tessera compress` would (same library calls,
 /// same bytes), decodes every level, face and layer and measures each against what was
-/// encoded; images, heatmaps and the texture go into `blobs`. `progress` (may be empty) gets
-/// the encode's fraction. Returns the result's JSON (see view.js for its fields).
+/// encoded; images (PNG), heatmaps (made when first fetched) and the texture go into `blobs`.
+/// `progress` (may be empty) gets the fraction of the whole job done, the encode and the steps
+/// after it, always below 1. Returns the result's JSON (see view.js for its fields).
 Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSettings& settings,
                                           int threads, BlobStore& blobs,
                                           const std::function<void(double)>& progress);

@@ -5,6 +5,7 @@
 
 #include "tessera/io.h"
 #include "view.h"
+#include "view_png.h"
 
 namespace tessera::cli {
 
@@ -34,8 +35,9 @@ std::string base64(const std::vector<std::uint8_t>& bytes) {
 
 /// The page's scripts (share/tessera/view/), in order: one <script>, one scope (an arrow
 /// function's), so their top-level names are shared and none is global. view_start.js is last.
-constexpr const char* kViewScripts[] = {"view.js",      "view_tiles.js", "view_heatmap.js",
-                                        "view_keys.js", "view_cube.js",  "view_start.js"};
+constexpr const char* kViewScripts[] = {"view.js",         "view_png.js",  "view_tiles.js",
+                                        "view_heatmap.js", "view_keys.js", "view_cube.js",
+                                        "view_start.js"};
 
 void replace_once(std::string& text, const std::string& marker, std::string_view with) {
   const std::size_t at = text.find(marker);
@@ -70,6 +72,7 @@ Status write_view_export(const std::vector<ViewInput>& inputs,
                          const std::string& output, std::vector<std::string>* errors,
                          bool resize_pot) {
   BlobStore blobs;
+  blobs.png_level = kPngLevelSmall;  // written once, kept and sent around: small over fast
   nlohmann::json data = {{"mode", "static"},
                          {"version", TESSERA_VERSION_STRING},
                          {"inputs", nlohmann::json::array()},

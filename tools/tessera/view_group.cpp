@@ -7,6 +7,7 @@
 #include "tessera/image_mipmap.h"
 #include "tessera/io.h"
 #include "view.h"
+#include "view_png.h"
 
 namespace tessera::cli {
 
@@ -136,7 +137,7 @@ void add_originals(nlohmann::json& j, const ViewInput& input, BlobStore& blobs) 
          {"level", 0},
          {"width", images[i].width},
          {"height", images[i].height},
-         {"original", blobs.put("application/x-tessera-rgba-deflate", deflate_rgba(images[i]))}});
+         {"original", blobs.put("image/png", encode_view_png(images[i], blobs.png_level))}});
   }
 }
 

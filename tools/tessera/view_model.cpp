@@ -1,9 +1,9 @@
 // tessera view: inputs, settings, blobs, and the `tessera compress` command line of a result.
-#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include "tessera/io.h"
@@ -210,9 +210,18 @@ std::string compress_command(const ViewSettings& s, const std::vector<std::strin
 }
 
 std::string BlobStore::put(std::string mime, std::vector<std::uint8_t> bytes) {
-  std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the MIME type and the bytes
+  // FNV-1a over the MIME type, then over the bytes 8 at a time (a texel image is tens of MB).
+  std::uint64_t h = 1469598103934665603ull;
   for (char c : mime) h = (h ^ std::uint8_t(c)) * 1099511628211ull;
-  for (std::uint8_t b : bytes) h = (h ^ b) * 1099511628211ull;
+  std::size_t i = 0;
+  for (; i + 8 <= bytes.size(); i += 8) {
+    std::uint64_t w;
+    std::memcpy(&w, &bytes[i], 8);
+    h = (h ^ w) * 1099511628211ull;
+    h ^= h >> 29;
+  }
+  for (; i < bytes.size(); ++i) h = (h ^ bytes[i]) * 1099511628211ull;
+  h = (h ^ bytes.size()) * 1099511628211ull;
   char key[17];
   std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(h));
   std::lock_guard<std::mutex> lock(mutex_);
@@ -224,14 +233,48 @@ std::string BlobStore::put(std::string mime, std::vector<std::uint8_t> bytes) {
   return key;
 }
 
-std::shared_ptr<const BlobStore::Blob> BlobStore::get(const std::string& key) const {
+std::string BlobStore::put_lazy(std::string key, std::string mime,
+                                std::function<std::vector<std::uint8_t>()> make) {
   std::lock_guard<std::mutex> lock(mutex_);
-  auto it = blobs_.find(key);
-  return it == blobs_.end() ? nullptr : it->second;
+  if (blobs_.count(key) || lazy_.count(key)) return key;
+  auto l = std::make_shared<Lazy>();
+  l->mime = std::move(mime);
+  l->make = std::move(make);
+  lazy_[key] = std::move(l);
+  return key;
+}
+
+std::shared_ptr<const BlobStore::Blob> BlobStore::get(const std::string& key) const {
+  std::shared_ptr<Lazy> l;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (auto it = blobs_.find(key); it != blobs_.end()) return it->second;
+    auto it = lazy_.find(key);
+    if (it == lazy_.end()) return nullptr;
+    l = it->second;
+  }
+  // Made outside the lock (other blobs are served meanwhile), once however many ask.
+  std::call_once(l->once, [&] {
+    l->blob = std::make_shared<const Blob>(Blob{l->mime, l->make()});
+    l->make = nullptr;  // frees what it captured
+  });
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (auto it = lazy_.find(key); it != lazy_.end() && it->second == l) {
+    bytes_ += l->blob->bytes.size();
+    blobs_[key] = l->blob;
+    lazy_.erase(it);
+  }
+  return l->blob;
+}
+
+bool BlobStore::has(const std::string& key) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return blobs_.count(key) || lazy_.count(key);
 }
 
 void BlobStore::erase(const std::string& key) {
   std::lock_guard<std::mutex> lock(mutex_);
+  lazy_.erase(key);
   auto it = blobs_.find(key);
   if (it == blobs_.end()) return;
   bytes_ -= it->second->bytes.size();
@@ -247,6 +290,8 @@ std::vector<std::string> BlobStore::keys() const {
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<std::string> k;
   for (const auto& [key, blob] : blobs_) k.push_back(key);
+  for (const auto& [key, blob] : lazy_) k.push_back(key);
+  std::sort(k.begin(), k.end());
   return k;
 }
 
@@ -352,17 +397,6 @@ std::vector<ViewSettings> default_export_settings(bool has_alpha, bool resize_po
   }
   for (ViewSettings& s : v) s.resize_pot = resize_pot;
   return v;
-}
-
-/// zlib-compressed RGBA8 texels: the page reads them exactly (a canvas would premultiply).
-std::vector<std::uint8_t> deflate_rgba(const ImageRGBA8& image) {
-  uLongf n = compressBound(uLong(image.pixels.size()));
-  std::vector<std::uint8_t> out(n);
-  if (compress2(out.data(), &n, image.pixels.data(), uLong(image.pixels.size()), 6) != Z_OK) {
-    return {};
-  }
-  out.resize(n);
-  return out;
 }
 
 }  // namespace tessera::cli

@@ -2,6 +2,10 @@
 // measured against what was encoded, with its heatmaps; the page's JSON and blobs.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <future>
+#include <memory>
 
 #include "plot.h"
 #include "tessera/image_mipmap.h"
@@ -9,6 +13,7 @@
 #include "tessera/io.h"
 #include "tessera/metrics.h"
 #include "view.h"
+#include "view_png.h"
 
 namespace tessera::cli {
 
@@ -24,12 +29,73 @@ nlohmann::json num(double v) {
 }
 
 std::string put_png(BlobStore& blobs, const ImageRGBA8& image) {
-  Result<std::vector<std::uint8_t>> png = io::encode_png(image);
-  return png ? blobs.put("image/png", std::move(png).value()) : std::string();
+  std::vector<std::uint8_t> png = encode_view_png(image, blobs.png_level);
+  return png.empty() ? std::string() : blobs.put("image/png", std::move(png));
 }
 
-std::string put_rgba(BlobStore& blobs, const ImageRGBA8& image) {
-  return blobs.put("application/x-tessera-rgba-deflate", deflate_rgba(image));
+std::string hex_key(std::uint64_t h) {
+  char key[17];
+  std::snprintf(key, sizeof key, "%016llx", static_cast<unsigned long long>(h));
+  return key;
+}
+
+/// FNV-1a-like hash of `n` bytes, 8 at a time, continuing `h`.
+std::uint64_t hash_bytes(const void* data, std::size_t n, std::uint64_t h) {
+  const auto* p = static_cast<const std::uint8_t*>(data);
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    std::uint64_t w;
+    std::memcpy(&w, p + i, 8);
+    h = (h ^ w) * 1099511628211ull;
+    h ^= h >> 29;
+  }
+  for (; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  return (h ^ n) * 1099511628211ull;
+}
+
+/// The PNG blob of an original. The original is the same at every setting, so the blob made for
+/// one encode is reused by the next ones (while `blobs` holds it): found by a hash of the texels,
+/// which costs a fraction of making the PNG again.
+std::string put_original(BlobStore& blobs, const ImageRGBA8& image) {
+  static std::mutex mutex;
+  static std::map<std::uint64_t, std::string> made;
+  const int shape[4] = {image.width, image.height, int(image.has_alpha), blobs.png_level};
+  const std::uint64_t h = hash_bytes(image.pixels.data(), image.pixels.size(),
+                                     hash_bytes(shape, sizeof shape, 1469598103934665603ull));
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (auto it = made.find(h); it != made.end() && blobs.has(it->second)) return it->second;
+  }
+  std::string key = put_png(blobs, image);
+  std::lock_guard<std::mutex> lock(mutex);
+  if (made.size() >= 64) made.clear();  // a bound: the few inputs of one session fit
+  made[h] = key;
+  return key;
+}
+
+/// An image's texels kept as its PNG blob, read back when needed (exact: view_png.h).
+struct Texels {
+  const BlobStore* blobs;
+  std::string key;
+  bool has_alpha;
+  Result<ImageRGBA8> read() const {
+    std::shared_ptr<const BlobStore::Blob> b = blobs->get(key);
+    if (!b) return Status::error(ErrorCode::io_error, "view: blob " + key + " is gone");
+    Result<ImageRGBA8> image = io::decode_image(b->bytes, "view texels");
+    if (image) image->has_alpha = has_alpha;  // as measured (the PNG is RGB when opaque)
+    return image;
+  }
+};
+
+/// A heatmap PNG made when the page first asks for it (most are never shown): `what` names it
+/// (its kind and the blobs it is made from).
+std::string lazy_png(BlobStore& blobs, const std::string& what,
+                     std::function<Result<ImageRGBA8>()> make) {
+  const std::string key = hex_key(hash_bytes(what.data(), what.size(), 1469598103934665603ull));
+  return blobs.put_lazy(key, "image/png", [make = std::move(make), level = blobs.png_level] {
+    Result<ImageRGBA8> image = make();
+    return image ? encode_view_png(*image, level, true) : std::vector<std::uint8_t>();
+  });
 }
 
 /// Per-texel angle (degrees) between the normalised vectors 2 c / 255 - 1 of `a` and `b`, as
@@ -111,41 +177,75 @@ Result<std::vector<ImageRGBA8>> reference_chain(const ImageRGBA8& input,
   return chain;
 }
 
-/// One image of a result: texels, decoded texels, heatmaps and metrics.
+/// One image of a result: texels, decoded texels, metrics (also in `comparison` when given) and
+/// heatmaps (made when first asked for). The PNGs are made while the metrics are measured;
+/// `step` (may be empty) hears 0.5 when the metrics are done.
 Result<nlohmann::json> image_json(const ImageRGBA8* reference, const ImageRGBA8& decoded, int level,
                                   int layer, int face, bool normal_map, bool premultiplied,
-                                  int threads, BlobStore& blobs) {
-  nlohmann::json j = {
-      {"level", level},         {"layer", layer},           {"face", face},
-      {"width", decoded.width}, {"height", decoded.height}, {"decoded", put_rgba(blobs, decoded)}};
-  if (!reference) return j;
-  j["original"] = put_rgba(blobs, *reference);
+                                  int threads, BlobStore& blobs,
+                                  metrics::ImageComparison* comparison = nullptr,
+                                  const std::function<void(double)>& step = {}) {
+  std::future<std::string> dec =
+      std::async(std::launch::async, [&] { return put_png(blobs, decoded); });
+  nlohmann::json j = {{"level", level},
+                      {"layer", layer},
+                      {"face", face},
+                      {"width", decoded.width},
+                      {"height", decoded.height}};
+  if (!reference) {
+    j["decoded"] = dec.get();
+    return j;
+  }
+  std::future<std::string> orig =
+      std::async(std::launch::async, [&] { return put_original(blobs, *reference); });
   metrics::CompareOptions co;
   co.threads = threads;
   co.premultiplied = reference->has_alpha || decoded.has_alpha;
   co.normal = normal_map;
   Result<metrics::ImageComparison> c = metrics::compare_images(*reference, decoded, co);
+  if (step) step(0.5);  // measured; the PNGs may still be under way
+  const std::string d = dec.get(), o = orig.get();
   if (!c) return c.status();
+  if (comparison) *comparison = *c;
+  j["decoded"] = d;
+  j["original"] = o;
   j["metrics"] = metrics_json(*c);
   j["alpha"] = co.premultiplied;  // whether the difference heatmap counts alpha (the page's)
-  Result<ImageRGBA8> heat = metrics::difference_heatmap(*reference, decoded, kDiffScale);
-  if (!heat) return heat.status();
-  j["heatmap"] = put_png(blobs, *heat);
+  // The heatmaps read the two images back from their PNGs (exact) when asked for: a result
+  // holds no image for them meanwhile.
+  const Texels ref_texels{&blobs, o, reference->has_alpha};
+  const Texels dec_texels{&blobs, d, decoded.has_alpha};
+  j["heatmap"] = lazy_png(blobs, "heatmap " + o + " " + d, [=]() -> Result<ImageRGBA8> {
+    Result<ImageRGBA8> a = ref_texels.read(), b = dec_texels.read();
+    if (!a || !b) return !a ? a.status() : b.status();
+    return metrics::difference_heatmap(*a, *b, kDiffScale);
+  });
   if (co.premultiplied && !premultiplied) {
     // What blending shows: the same heatmap over colour x alpha (colour under alpha 0 counts
     // for nothing), where --alpha-weighted's gains are seen.
-    ImageRGBA8 a = *reference, b = decoded;
-    image::premultiply_alpha(a, false, {threads});
-    image::premultiply_alpha(b, false, {threads});
-    Result<ImageRGBA8> pm = metrics::difference_heatmap(a, b, kDiffScale);
-    if (!pm) return pm.status();
-    j["heatmap_premultiplied"] = put_png(blobs, *pm);
+    j["heatmap_premultiplied"] =
+        lazy_png(blobs, "heatmap_premultiplied " + o + " " + d, [=]() -> Result<ImageRGBA8> {
+          Result<ImageRGBA8> a = ref_texels.read(), b = dec_texels.read();
+          if (!a || !b) return !a ? a.status() : b.status();
+          image::premultiply_alpha(*a, false, {threads});
+          image::premultiply_alpha(*b, false, {threads});
+          return metrics::difference_heatmap(*a, *b, kDiffScale);
+        });
   }
   if (normal_map) {
-    j["angle_map"] = put_png(blobs, metrics::heatmap(angle_map(*reference, decoded), decoded.width,
-                                                     decoded.height, kAngleScale));
+    j["angle_map"] = lazy_png(blobs, "angle_map " + o + " " + d, [=]() -> Result<ImageRGBA8> {
+      Result<ImageRGBA8> a = ref_texels.read(), b = dec_texels.read();
+      if (!a || !b) return !a ? a.status() : b.status();
+      return metrics::heatmap(angle_map(*a, *b), b->width, b->height, kAngleScale);
+    });
   }
   return j;
+}
+
+/// The share of a view encode's time the encoder itself takes (the rest: decoding, measuring,
+/// PNGs), by quality: what the job's fraction gives the encode.
+double encode_share(const ViewSettings& s) {
+  return s.quality == "fast" ? 0.2 : s.quality == "normal" ? 0.6 : 0.9;
 }
 
 nlohmann::json texture_json(const texture_file::CompressedTexture& tex) {
@@ -194,7 +294,14 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
   Result<texture_file::CompressOptions> checked = compress_options(args, threads);
   if (!checked) return checked.status();
   texture_file::CompressOptions options = std::move(*checked);
-  options.encode.progress = progress;
+  // The job's fraction covers the whole job: the encode's own fraction scaled to its share,
+  // then the steps after it; below 1 (the service says 1 when the job is done).
+  const double share = encode_share(settings);
+  auto report = [&](double f) {
+    if (progress) progress(std::min(0.99, f));
+  };
+  if (progress) options.encode.progress = [&](double f) { report(share * f); };
+  auto after = [&](double f) { report(share + (1.0 - share) * f); };
   const std::vector<ImageRGBA8> inputs = pair_references(input);
   std::vector<std::string> names;
   for (const std::string& p : sources) names.push_back(io::io_name(p));
@@ -210,10 +317,56 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
   Result<std::vector<std::uint8_t>> file =
       texture_file::serialise_texture(tex, texture_file::ContainerFormat::pvr3);
   if (!file) return file.status();
-  Result<metrics::ImageComparison> total =
-      texture_file::measure_level0(made->texture, made->sources, threads);
-  if (!total) return total.status();
-
+  std::vector<std::vector<ImageRGBA8>> chains;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    Result<std::vector<ImageRGBA8>> refs = reference_chain(inputs[i], options, *made, i);
+    if (!refs) return refs.status();
+    chains.push_back(std::move(refs).value());
+  }
+  after(0.05);
+  // One image (a 2D texture): its level 0 comparison below is measure_level0's; else measured
+  // here over every face and layer.
+  const bool single = tex.image_count() == 1;
+  metrics::ImageComparison total;
+  if (!single) {
+    Result<metrics::ImageComparison> t = texture_file::measure_level0(tex, made->sources, threads);
+    if (!t) return t.status();
+    total = *t;
+  }
+  nlohmann::json images_json = nlohmann::json::array();
+  double done = 0, all = 0;
+  for (int level = 0; level < tex.level_count(); ++level) {
+    all += double(tex.level_width(level)) * tex.level_height(level) * double(inputs.size());
+  }
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const int layer = int(i) / tex.faces, face = int(i) % tex.faces;
+    for (int level = 0; level < tex.level_count(); ++level) {
+      // Within an image: decoded 20 %, measured 60 %, its PNGs done 100 %.
+      const double pixels = double(tex.level_width(level)) * tex.level_height(level);
+      auto step = [&](double f) { after(0.05 + 0.95 * (done + f * pixels) / all); };
+      Result<ImageRGBA8> dec =
+          texture_file::decode_texture_image(tex, level, layer, face, {threads});
+      if (!dec) return dec.status();
+      step(0.2);
+      metrics::ImageComparison c;
+      Result<nlohmann::json> im =
+          image_json(&chains[i][std::size_t(level)], *dec, level, layer, face, settings.normal_map,
+                     tex.premultiplied, threads, blobs, &c, [&](double f) { step(0.2 + 0.8 * f); });
+      if (!im) return im.status();
+      if (level == 0 && single) {
+        total.mse_rgb = c.mse_rgb;
+        total.mse_alpha = c.mse_alpha;
+        total.has_alpha = c.has_alpha;
+        total.ssim_gray = c.ssim_gray;
+        total.max_abs = c.max_abs;
+        total.psnr_rgb = metrics::psnr_from_mse(total.mse_rgb);
+        total.psnr_alpha = metrics::psnr_from_mse(total.mse_alpha);
+      }
+      images_json.push_back(std::move(im).value());
+      done += pixels;
+      after(0.05 + 0.95 * done / all);
+    }
+  }
   nlohmann::json j = {
       {"input", input.name},
       {"settings", settings_to_json(settings)},
@@ -224,25 +377,10 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
       {"bytes", file->size()},
       {"encode_ms", made->encode_ms},
       {"resized", made->resized},
-      {"metrics", metrics_json(*total)},
+      {"metrics", metrics_json(total)},
       {"colour_bars", colour_bars(blobs)},
-      {"images", nlohmann::json::array()}};
+      {"images", std::move(images_json)}};
   if (made->resized) j["resized_from"] = {input.image.width, input.image.height};
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    Result<std::vector<ImageRGBA8>> refs = reference_chain(inputs[i], options, *made, i);
-    if (!refs) return refs.status();
-    const int layer = int(i) / tex.faces, face = int(i) % tex.faces;
-    for (int level = 0; level < tex.level_count(); ++level) {
-      Result<ImageRGBA8> dec =
-          texture_file::decode_texture_image(tex, level, layer, face, {threads});
-      if (!dec) return dec.status();
-      Result<nlohmann::json> im =
-          image_json(&(*refs)[std::size_t(level)], *dec, level, layer, face, settings.normal_map,
-                     tex.premultiplied, threads, blobs);
-      if (!im) return im.status();
-      j["images"].push_back(std::move(im).value());
-    }
-  }
   return j;
 }
 

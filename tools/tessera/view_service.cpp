@@ -53,7 +53,7 @@ void collect_blob_keys(const nlohmann::json& j, const BlobStore& blobs,
                        std::set<std::string>& keys) {
   if (j.is_string()) {
     const std::string& s = j.get_ref<const std::string&>();
-    if (s.size() == 16 && blobs.get(s)) keys.insert(s);
+    if (s.size() == 16 && blobs.has(s)) keys.insert(s);
   } else if (j.is_structured()) {
     for (const auto& v : j) collect_blob_keys(v, blobs, keys);
   }
@@ -182,7 +182,9 @@ class Service final : public ViewBackend {
       }
       Result<nlohmann::json> r =
           encode_view_result(inputs_[std::size_t(job->input)], job->settings, threads_, blobs_,
-                             [&job](double f) { job->fraction.store(f); });
+                             [&job](double f) {  // never backwards
+                               if (f > job->fraction.load()) job->fraction.store(f);
+                             });
       std::string id;
       if (r) {
         nlohmann::json j = std::move(r).value();
@@ -194,6 +196,7 @@ class Service final : public ViewBackend {
       {
         std::lock_guard<std::mutex> lock(mutex_);
         job->state = r ? "done" : "error";
+        if (r) job->fraction.store(1.0);  // 1 only when done
         job->result = id;
         if (!r) job->error = r.status().message;
         // An evicted result's job is forgotten too: the same settings encode again.
@@ -322,6 +325,12 @@ ViewHttpServe load_http_module(std::string& why) {
 }  // namespace
 
 int serve_view(std::vector<ViewInput> inputs, const ViewServeOptions& options) {
+#if defined(__GLIBC__)
+  // Image-sized buffers (decoded texels, PNGs) are made on several threads: mapped and unmapped
+  // on their own, they go back to the system when freed instead of staying in a thread's heap
+  // (glibc otherwise raises this threshold after the first such free).
+  mallopt(M_MMAP_THRESHOLD, 1 << 20);
+#endif
   std::string why;
   const ViewHttpServe serve = load_http_module(why);
   if (!serve) {

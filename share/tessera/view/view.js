@@ -4,7 +4,7 @@
 // names are shared; view_start.js, last, starts the page.
 // Data: the JSON in #tessera-data (mode "server": inputs and a token, results fetched and
 // encoded through /api/...; mode "static": every result and blob inline as data: URIs).
-// Texels arrive as zlib-compressed RGBA8 (exact values: a canvas would premultiply a PNG);
+// Texels arrive as PNG, read by view_png.js (exact values: a canvas would premultiply them);
 // heatmaps and colour bars as PNG/SVG. window.tesseraView exposes the state for tests.
 "use strict";
 const D = JSON.parse(document.getElementById("tessera-data").textContent);
@@ -30,14 +30,10 @@ async function blobBytes(key) {
   if (!r.ok) throw new Error(`blob ${key}: HTTP ${r.status}`);
   return new Uint8Array(await r.arrayBuffer());
 }
-async function inflate(bytes) {
-  const stream = new Blob([bytes]).stream().pipeThrough(new DecompressionStream("deflate"));
-  return new Uint8ClampedArray(await new Response(stream).arrayBuffer());
-}
-/** {width, height, data} of an image's texels (RGBA8), cached. */
+/** {width, height, data} of an image's texels (RGBA8, read exactly: view_png.js), cached. */
 function texels(key, width, height) {
   if (!texelCache.has(key)) {
-    texelCache.set(key, blobBytes(key).then(inflate).then((data) => ({ width, height, data })));
+    texelCache.set(key, blobBytes(key).then(decodePng).then((data) => ({ width, height, data })));
   }
   return texelCache.get(key);
 }

@@ -2,5 +2,5 @@
 "use strict";
 setupControls();
 for (const r of D.results || []) addResult(r);
-window.tesseraView = { state: S, data: D, centreOn, selectInput, selectResult, draw };
+window.tesseraView = { state: S, data: D, centreOn, selectInput, selectResult, draw, texels };
 if (D.inputs.length) selectInput(0);
