@@ -90,6 +90,23 @@ std::vector<std::uint8_t> deflate_rgba(const ImageRGBA8& image);
 /// (the view shows it and goes on); a missing folder too.
 std::vector<ViewInput> load_view_inputs(const std::vector<std::string>& paths);
 
+/// An input made of a file's `bytes` (an image, or a .pvr/.ktx/.ktx2 by its magic), as
+/// load_view_inputs reads a file: bytes it cannot read give an input with `error` set.
+ViewInput view_input_from_bytes(const std::string& path, const std::string& name,
+                                std::vector<std::uint8_t> bytes);
+
+/// The overview's thumbnail of an input (image or texture level 0): at most `size` texels a
+/// side, box-reduced, as a PNG blob of `blobs`; "" for an input with an error.
+std::string put_thumbnail(const ViewInput& input, int size, int threads, BlobStore& blobs);
+
+/// Level 0 (layer 0, face 0) of the texture file `file` decoded to PNG, as `tessera decompress`
+/// writes it.
+Result<std::vector<std::uint8_t>> decoded_png(const std::vector<std::uint8_t>& file, int threads);
+
+/// `name` as a file name for an input opened from the page: its last path component, at most
+/// 255 bytes, "opened" when nothing is left.
+std::string opened_file_name(const std::string& name);
+
 /// `j` as JSON text; strings that are not UTF-8 (a file name in another encoding) are written
 /// with U+FFFD for their bad bytes rather than throwing.
 std::string dump_json(const nlohmann::json& j);

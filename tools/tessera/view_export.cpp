@@ -33,7 +33,7 @@ std::string base64(const std::vector<std::uint8_t>& bytes) {
 
 /// The page's scripts (share/tessera/view/), in order: one <script>, one scope (an arrow
 /// function's), so their top-level names are shared and none is global. view_start.js is last.
-constexpr const char* kViewScripts[] = {"view.js", "view_start.js"};
+constexpr const char* kViewScripts[] = {"view.js", "view_flow.js", "view_start.js"};
 
 void replace_once(std::string& text, const std::string& marker, std::string_view with) {
   const std::size_t at = text.find(marker);
@@ -71,11 +71,14 @@ Status write_view_export(const std::vector<ViewInput>& inputs,
                          {"version", TESSERA_VERSION_STRING},
                          {"inputs", nlohmann::json::array()},
                          {"results", nlohmann::json::array()}};
+  // The overview lists every input at these settings (the first of the set).
+  data["overview_settings"] = settings_to_json(settings.empty() ? ViewSettings{} : settings[0]);
   const std::vector<std::pair<int, int>> pairs = texture_pairs(inputs);
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const ViewInput& in = inputs[i];
     if (!in.error.empty()) return Status::error(ErrorCode::io_error, in.error);
     data["inputs"].push_back(input_json(in, int(i)));
+    data["inputs"].back()["thumbnail"] = put_thumbnail(in, 96, threads, blobs);
     std::vector<Result<nlohmann::json>> made;
     if (in.is_texture) {
       made.push_back(texture_view_result(in, threads, blobs));

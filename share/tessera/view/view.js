@@ -27,7 +27,7 @@ async function blobBytes(key) {
     return out;
   }
   const r = await fetch(blobUrl(key));
-  if (!r.ok) throw new Error(`blob ${key}: HTTP ${r.status}`);
+  if (!r.ok) throw Object.assign(new Error(`blob ${key}: HTTP ${r.status}`), { status: r.status });
   return new Uint8Array(await r.arrayBuffer());
 }
 async function inflate(bytes) {
@@ -37,7 +37,8 @@ async function inflate(bytes) {
 /** {width, height, data} of an image's texels (RGBA8), cached. */
 function texels(key, width, height) {
   if (!texelCache.has(key)) {
-    texelCache.set(key, blobBytes(key).then(inflate).then((data) => ({ width, height, data })));
+    texelCache.set(key, blobBytes(key).then(inflate).then((data) => ({ width, height, data }),
+        (e) => { texelCache.delete(key); throw e; }));
   }
   return texelCache.get(key);
 }
@@ -315,6 +316,7 @@ function showMetrics(r) {
     dl.download = r.file_name;
     dl.textContent = `download ${r.file_name}`;
   }
+  showDownloads(r);
   $("pin").textContent = S.pinned.includes(S.result) ? "unpin" : "pin";
 }
 function showPinned() {
@@ -463,7 +465,7 @@ async function draw() {
     refreshReadout();
     document.body.dataset.drawn = `${S.result}:${im.level}:${im.face}:${im.layer}:${S.zoom}`;
   } catch (e) {
-    showError(e.message);
+    if (!reencodeEvicted(e)) showError(e.message);
   }
 }
 
