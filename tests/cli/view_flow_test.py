@@ -306,7 +306,7 @@ def part_open(tmp):
     file name), a bad file (an input with a one-line error), a body over the cap refused as it
     streams (413), no token (403), a body past the 4 MiB flood cap of header lines accepted."""
     write_png(os.path.join(tmp, "first.png"), 32, 32, gradient, False)
-    picked = write_png(os.path.join(tmp, "picked sprite.png"), 48, 32, checker, False)
+    picked = write_png(os.path.join(tmp, "picked sprite.png"), 64, 32, checker, False)
     bad = os.path.join(tmp, "broken.png")
     with open(bad, "wb") as f:
         f.write(b"\x89PNG\r\n\x1a\nnot an image at all")
@@ -386,7 +386,7 @@ def chunked_over_cap(port, token):
 def part_evict(tmp):
     """Under --memory 16, input 0's result is evicted by input 1's encodes; showing input 0 again
     encodes its settings again with a one-line note (no 404 on the page)."""
-    for name, side, seed in (("big0.png", 1024, 1), ("big1.png", 768, 2)):
+    for name, side, seed in (("big0.png", 1024, 1), ("big1.png", 1024, 2)):
         raw = bytes((i * 2654435761 + seed * 97) >> 13 & 255 for i in range(side * side * 3))
         Image.frombytes("RGB", (side, side), raw).save(os.path.join(tmp, name))
     p, url, port, token = start_server(["big0.png", "big1.png", "--memory", "16"], tmp)

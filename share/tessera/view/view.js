@@ -80,6 +80,7 @@ async function encode(settings) {
       job = await api(`/api/job?id=${job.id}`);
     }
     if (job.state === "error") throw new Error(job.error);
+    job.result.job = job.id;  // gone when the server evicts the result (checkEvicted)
     addResult(job.result);
     S.current.set(input, job.result.id);
     if (S.input === input) selectResult(job.result.id);
@@ -234,6 +235,7 @@ function selectResult(id) {
   S.layer = Math.min(S.layer, t.layers - 1);
   if ($("mode").value === "cross" && t.faces !== 6) $("mode").value = "side";
   refresh();
+  checkEvicted(r);
 }
 
 /** Rebuilds everything that depends on the current result and image, then draws. */

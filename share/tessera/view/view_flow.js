@@ -183,6 +183,15 @@ function reencodeEvicted(err) {
   return true;
 }
 
+/** Whether the server still holds result `r` (its job goes with it): a result whose texels the
+ *  page has cached would draw, but its downloads would not be there. */
+async function checkEvicted(r) {
+  if (D.mode !== "server" || !r.job || r.evicted) return;
+  const res = await fetch(`/api/job?id=${encodeURIComponent(r.job)}&token=${encodeURIComponent(D.token)}`)
+      .catch(() => null);
+  if (res && res.status === 404 && S.result === r.id) reencodeEvicted({ status: 404 });
+}
+
 function setupFlow() {
   $("overview-button").onclick = () => showOverview(!OV.shown);
   if (D.mode !== "server") return;
