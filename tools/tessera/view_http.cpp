@@ -1,15 +1,18 @@
 // tessera view's HTTP server module (tessera-view-http.so, loaded by `tessera view`): cpp-httplib
 // bound to 127.0.0.1 only, a random token that every request carries (?token=), Host and
 // Origin checked exactly against DNS rebinding, nothing routed but the page, the blobs of the
-// opened inputs' results and the encode/job/pin API; clean shutdown on SIGINT and SIGTERM.
+// opened inputs' results, the encode/job/pin API and the workflow's overview/open/download
+// (view_http_flow.cpp); clean shutdown on SIGINT and SIGTERM.
 //
 // What it holds against (the README, `tessera view`): the port is never shared (no SO_REUSEPORT);
-// every request body is refused before it is read unless it is an encode request, whose body is
-// read through a cap that stops it as it streams (chunked or not: 413, connection closed);
-// reads time out (ViewHttpOptions::read_timeout_s) and each connection has its own thread
-// from a pool that grows to max_connections, so clients that send half a request cannot hold
-// up the others; one Host header; a connection that receives more than any page sends (an
-// endless request line) is reset. See view_http.h for why this is a module.
+// every request body is refused before it is read unless it is an encode or open request, whose
+// body is read through its route's cap that stops it as it streams (chunked or not: 413,
+// connection closed); reads time out (ViewHttpOptions::read_timeout_s) and each connection has
+// its own thread from a pool that grows to max_connections, so clients that send half a request
+// cannot hold up the others; one Host header; a connection that receives more request line and
+// headers than any page sends (an endless line), or takes longer than header_deadline_s to send
+// them (a byte at a time), is reset (view_http_watch.cpp). See view_http.h for why this is a
+// module.
 #include "view_http.h"
 
 #include <arpa/inet.h>
