@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """`tessera view`'s server against what a careless file system or a hostile process of the same
 user can do, through real HTTP requests (no browser): a file name that is not UTF-8, a second
-server on the same --port, chunked and over-long bodies, connections that send half a request,
-results kept under --memory over many re-encodes, links out of an input folder, the token kept
-out of the browser launcher's argv, and exact Host/Origin checks (rebinding-style names, a
-duplicate Host). Each part ends by checking that the server still answers a real request.
+server on the same --port, chunked and over-long bodies, connections that send half a request
+or trickle one a byte every 2 s, results kept under --memory over many re-encodes, links out of
+an input folder, the token kept out of the browser launcher's argv, and exact Host/Origin checks
+(rebinding-style names, a duplicate Host). Each part ends by checking that the server still answers a real request.
 
 Usage: view_server_test.py PATH/TO/tessera [PART...]   (parts: the names in PARTS)
 """

@@ -103,6 +103,11 @@ std::string put_thumbnail(const ViewInput& input, int size, int threads, BlobSto
 /// writes it.
 Result<std::vector<std::uint8_t>> decoded_png(const std::vector<std::uint8_t>& file, int threads);
 
+/// The texture file `file` in `container` ("pvr", "ktx", "ktx2"): the bytes `tessera compress
+/// -o NAME.<container>` writes for the same texture (KTX 2.0 without supercompression).
+Result<std::vector<std::uint8_t>> convert_texture(const std::vector<std::uint8_t>& file,
+                                                  const std::string& container);
+
 /// `name` as a file name for an input opened from the page: its last path component, at most
 /// 255 bytes, "opened" when nothing is left.
 std::string opened_file_name(const std::string& name);

@@ -35,6 +35,19 @@ std::string base64(const std::vector<std::uint8_t>& bytes) {
 /// function's), so their top-level names are shared and none is global. view_start.js is last.
 constexpr const char* kViewScripts[] = {"view.js", "view_flow.js", "view_start.js"};
 
+/// An encoded result's texture in the other containers too (`files`), for the page's downloads:
+/// the server makes them on request, a static view has them inline.
+void add_containers(nlohmann::json& result, BlobStore& blobs) {
+  if (!result.contains("settings")) return;
+  std::shared_ptr<const BlobStore::Blob> pvr = blobs.get(result["file"].get<std::string>());
+  if (!pvr) return;
+  result["files"] = {{"pvr", result["file"]}};
+  for (const char* container : {"ktx", "ktx2"}) {
+    Result<std::vector<std::uint8_t>> file = convert_texture(pvr->bytes, container);
+    if (file) result["files"][container] = blobs.put("application/octet-stream", std::move(*file));
+  }
+}
+
 void replace_once(std::string& text, const std::string& marker, std::string_view with) {
   const std::size_t at = text.find(marker);
   if (at != std::string::npos) text.replace(at, marker.size(), with);
@@ -103,6 +116,7 @@ Status write_view_export(const std::vector<ViewInput>& inputs,
       }
       nlohmann::json j = std::move(r).value();
       j["input_index"] = int(i);
+      add_containers(j, blobs);
       j["id"] = "r" + std::to_string(data["results"].size());
       data["results"].push_back(std::move(j));
     }

@@ -62,6 +62,22 @@ Result<std::vector<std::uint8_t>> decoded_png(const std::vector<std::uint8_t>& f
   return io::encode_png(*image);
 }
 
+Result<std::vector<std::uint8_t>> convert_texture(const std::vector<std::uint8_t>& file,
+                                                  const std::string& container) {
+  const texture_file::ContainerFormat to =
+      container == "pvr"    ? texture_file::ContainerFormat::pvr3
+      : container == "ktx"  ? texture_file::ContainerFormat::ktx1
+      : container == "ktx2" ? texture_file::ContainerFormat::ktx2
+                            : texture_file::ContainerFormat::unknown;
+  if (to == texture_file::ContainerFormat::unknown) {
+    return Status::error(ErrorCode::invalid_argument, "no container '" + container + "'");
+  }
+  if (texture_file::detect_container(file) == to) return file;
+  Result<texture_file::CompressedTexture> tex = texture_file::parse_texture(file, "result");
+  if (!tex) return tex.status();
+  return texture_file::serialise_texture(*tex, to);
+}
+
 std::string opened_file_name(const std::string& name) {
   std::string n = name.substr(std::min(name.size(), name.find_last_of("/\\") + 1));
   if (n.size() > 255) n.resize(255);

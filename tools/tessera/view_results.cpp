@@ -220,13 +220,6 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
       {"metrics", metrics_json(*total)},
       {"colour_bars", colour_bars(blobs)},
       {"images", nlohmann::json::array()}};
-  // The same texture in the other containers, as `tessera compress -o NAME.ktx/.ktx2` writes it.
-  j["files"] = {{"pvr", j["file"]}};
-  for (const auto& [word, container] : {std::pair{"ktx", texture_file::ContainerFormat::ktx1},
-                                        std::pair{"ktx2", texture_file::ContainerFormat::ktx2}}) {
-    Result<std::vector<std::uint8_t>> other = texture_file::serialise_texture(tex, container);
-    if (other) j["files"][word] = blobs.put("application/octet-stream", std::move(other).value());
-  }
   for (int level = 0; level < tex.level_count(); ++level) {
     Result<ImageRGBA8> dec = texture_file::decode_texture_image(tex, level, 0, 0, {threads});
     if (!dec) return dec.status();

@@ -419,10 +419,8 @@ int Service::download(const std::string& id, const std::string& as, std::string&
     touch(id);
   }
   std::string key;
-  if (as == "pvr" || as == "png") {
-    key = r.value("file", "");
-  } else if (as == "ktx" || as == "ktx2") {
-    key = r.contains("files") ? r["files"].value(as, "") : "";
+  if (as == "pvr" || as == "png" || as == "ktx" || as == "ktx2") {
+    key = r.value("file", "");  // another container or the decoded image made on request
   } else if (as == "heatmap") {
     key = r["images"].empty() ? "" : r["images"][0].value("heatmap", "");
   } else {
@@ -442,6 +440,14 @@ int Service::download(const std::string& id, const std::string& as, std::string&
     }
     mime = "image/png";
     bytes.assign(png->begin(), png->end());
+  } else if (as != "heatmap") {
+    Result<std::vector<std::uint8_t>> file = convert_texture(b->bytes, as);
+    if (!file) {
+      out = dump_json(error(file.status().message));
+      return 500;
+    }
+    mime = "application/octet-stream";
+    bytes.assign(file->begin(), file->end());
   } else {
     mime = b->mime;
     bytes.assign(b->bytes.begin(), b->bytes.end());

@@ -152,8 +152,10 @@ function showDownloads(r) {
   box.replaceChildren();
   if (!r) return;
   const stem = r.file_name.replace(/\.[^.]*$/, ""), im = r.images[0];
-  const wanted = [["ktx", `${stem}.ktx`, r.files && r.files.ktx], ["ktx2", `${stem}.ktx2`, r.files && r.files.ktx2],
-    ["png", `${stem}_decoded.png`, D.mode === "server" ? r.file : ""],
+  const server = D.mode === "server";  // the server converts on request
+  const wanted = [["ktx", `${stem}.ktx`, server ? r.file : r.files && r.files.ktx],
+    ["ktx2", `${stem}.ktx2`, server ? r.file : r.files && r.files.ktx2],
+    ["png", `${stem}_decoded.png`, server ? r.file : ""],
     ["heatmap", `${stem}_heatmap.png`, im && im.heatmap]];
   for (const [as, name, key] of wanted) {
     if (!key) continue;
