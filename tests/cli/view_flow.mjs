@@ -4,7 +4,7 @@
 //   node view_flow.mjs PUPPETEER_DIR CHROMIUM URL OUT overview|open|evict|shot [FILE...]
 //   overview: the overview's order, then a click on its first item.
 //   open:     FILEs through the "open…" picker (uploadFile); the inputs and errors after each.
-//   evict:    input 0, then input 1 in three settings (evicting input 0's result under
+//   evict:    input 0, then input 1 in two settings (evicting input 0's result under
 //             --memory), then input 0 again: the note and the result encoded again.
 //   shot:     the overview at 1366x768 and 390x844 (OUT/FILE for the first).
 import { createRequire } from "node:module";
@@ -112,7 +112,7 @@ async function evict(page) {
   await page.evaluate(() => window.tesseraView.selectInput(1));
   await page.waitForFunction(() => window.tesseraView.state.input === 1 && !window.tesseraView.state.jobs
       && (document.body.dataset.drawn || "").startsWith(window.tesseraView.state.result + ":"), WAIT);
-  for (const q of ["fast", "high", "normal"]) await pick(page, q);
+  await pick(page, "fast");
   result.steps.first = first;
   result.steps.evicted_before = await page.evaluate(async (id) => {
     const r = await fetch(`/api/pin?id=${id}&pinned=0&token=${window.tesseraView.data.token}`);

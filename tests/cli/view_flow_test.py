@@ -394,11 +394,12 @@ def chunked_over_cap(port, token):
 
 
 def part_evict(tmp):
-    """Under --memory 16, input 0's result is evicted by input 1's encodes; showing input 0 again
-    encodes its settings again with a one-line note (no 404 on the page)."""
-    for name, side, seed in (("big0.png", 1024, 1), ("big1.png", 1024, 2)):
-        raw = bytes((i * 2654435761 + seed * 97) >> 13 & 255 for i in range(side * side * 3))
-        Image.frombytes("RGB", (side, side), raw).save(os.path.join(tmp, name))
+    """Under --memory 16, input 0's result is evicted by input 1's (2048x2048 noise: one result
+    of it is over the budget); showing input 0 again encodes its settings again with a one-line
+    note (no 404 on the page)."""
+    for name, side in (("big0.png", 1024), ("big1.png", 2048)):  # noise: nothing shared
+        Image.frombytes("RGB", (side, side), os.urandom(side * side * 3)).save(
+            os.path.join(tmp, name), compress_level=1)
     p, url, port, token = start_server(["big0.png", "big1.png", "--memory", "16"], tmp)
     if not port:
         return

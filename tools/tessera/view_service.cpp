@@ -382,6 +382,7 @@ int Service::open(const std::string& name, std::string bytes, std::string& out) 
     added = &opened_.back();
     j = input_json(*added, index);
     if (!thumbnail.empty()) j["thumbnail"] = thumbnail;
+    page_["inputs"].push_back(j);  // in index order (a texture's error is added below)
   }
   nlohmann::json results = nlohmann::json::array();
   if (added->is_texture && added->error.empty()) {
@@ -397,9 +398,9 @@ int Service::open(const std::string& name, std::string bytes, std::string& out) 
       j["error"] = r.status().message;
     }
   }
-  {
+  if (j.contains("error")) {
     std::lock_guard<std::mutex> lock(mutex_);
-    page_["inputs"].push_back(j);
+    page_["inputs"][j["index"].get<std::size_t>()] = j;
   }
   out = dump_json({{"input", j}, {"results", results}});
   return 200;
