@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """`tessera view`'s server against what a careless file system or a hostile process of the same
 user can do, through real HTTP requests (no browser): a file name that is not UTF-8, a second
-server on the same --port, chunked and over-long bodies, connections that send half a request,
-results kept under --memory over many re-encodes, links out of an input folder, the token kept
-out of the browser launcher's argv, and exact Host/Origin checks (rebinding-style names, a
-duplicate Host). Each part ends by checking that the server still answers a real request.
+server on the same --port, chunked and over-long bodies, connections that send half a request
+or trickle one a byte every 2 s, results kept under --memory over many re-encodes, links out of
+an input folder, the token kept out of the browser launcher's argv, and exact Host/Origin checks
+(rebinding-style names, a duplicate Host). Each part ends by checking that the server still answers a real request.
 
 Usage: view_server_test.py PATH/TO/tessera [PART...]   (parts: the names in PARTS)
 """
@@ -352,6 +352,67 @@ def part_slow(tmp):
     stop(p)
 
 
+def part_trickle(tmp):
+    """64 connections that send a request one byte every 2 s (each read well within the 3 s read
+    timeout) do not hold up a valid request, which is answered while they are connected; the
+    server closes each at its header deadline (10 s for the request line and headers), long
+    before its ~100-byte request could be sent whole (about 200 s)."""
+    write_png(os.path.join(tmp, "sprite.png"), 32, 32, sprite, False)
+    p, _, port, token = start_server(["sprite.png"], tmp)
+    if not port:
+        return
+    request = (f"GET /?token={token} HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n"
+               "\r\n").encode()
+    sent = [0] * 64   # bytes each had sent when the server closed it
+    closed = [False] * 64
+    done = threading.Event()
+
+    def trickle(i):
+        c = socket.create_connection(("127.0.0.1", port), timeout=30)
+        try:
+            for b in request:
+                if done.is_set():
+                    return
+                c.sendall(bytes([b]))
+                sent[i] += 1
+                ready, _, _ = select.select([c], [], [], 2.0)
+                if ready:  # the server closed it (an end of file or a reset)
+                    try:
+                        gone = c.recv(1) == b""
+                    except OSError:
+                        gone = True
+                    if gone:
+                        closed[i] = True
+                        return
+        except OSError:
+            closed[i] = True
+        finally:
+            c.close()
+
+    threads = [threading.Thread(target=trickle, args=(i,), daemon=True) for i in range(64)]
+    for t in threads:
+        t.start()
+    time.sleep(4)  # every one is mid-request, past a read timeout's worth of time
+    connected = sum(1 for c in closed if not c)
+    status, body = get(port, "/?token=" + token, timeout=10)
+    still = sum(1 for c in closed if not c)
+    print(f"64 trickling connections: {connected} connected before, {still} after a valid request")
+    check("64 trickling connections: a valid request answered while they are connected",
+          status == 200 and b"tessera view" in body and connected == 64 and still == 64,
+          (status, connected, still))
+    for t in threads:
+        t.join(timeout=120)
+    done.set()
+    print(f"64 trickling connections: {sum(closed)} closed by the server, after "
+          f"{min(sent)} to {max(sent)} of {len(request)} bytes")
+    check("64 trickling connections: the server closes each before its request is whole "
+          "(header deadline)", all(closed) and max(sent) < len(request), (sum(closed), max(sent)))
+    answers(port, token, "trickling connections")
+    err = stop(p).decode(errors="replace")
+    check("trickling connections: a line in the terminal", "to send a request's headers" in err,
+          err[-300:])
+
+
 def part_memory(tmp):
     """30 re-encodes of a SIZE x SIZE input (noise: nothing shared between results) under
     --memory 64: RSS stays under the start's RSS plus the budget plus a margin, the oldest
@@ -501,7 +562,7 @@ def part_hosts(tmp):
 
 
 PARTS = {"utf8": part_utf8, "port": part_port, "body": part_body, "line": part_line,
-         "slow": part_slow,
+         "slow": part_slow, "trickle": part_trickle,
          "symlink": part_symlink, "opener": part_opener, "hosts": part_hosts,
          "memory": part_memory}
 

@@ -134,6 +134,28 @@ bool needs_resize_pot(const ViewInput& input);
 /// for an input that cannot be encoded as it is (not a power of two).
 void add_originals(nlohmann::json& j, const ViewInput& input, BlobStore& blobs);
 
+/// An input made of a file's `bytes` (an image, or a .pvr/.ktx/.ktx2 by its magic), as
+/// load_view_inputs reads a file: bytes it cannot read give an input with `error` set.
+ViewInput view_input_from_bytes(const std::string& path, const std::string& name,
+                                std::vector<std::uint8_t> bytes);
+
+/// The overview's thumbnail of an input (image or texture level 0): at most `size` texels a
+/// side, box-reduced, as a PNG blob of `blobs`; "" for an input with an error.
+std::string put_thumbnail(const ViewInput& input, int size, int threads, BlobStore& blobs);
+
+/// Level 0 (layer 0, face 0) of the texture file `file` decoded to PNG, as `tessera decompress`
+/// writes it.
+Result<std::vector<std::uint8_t>> decoded_png(const std::vector<std::uint8_t>& file, int threads);
+
+/// The texture file `file` in `container` ("pvr", "ktx", "ktx2"): the bytes `tessera compress
+/// -o NAME.<container>` writes for the same texture (KTX 2.0 without supercompression).
+Result<std::vector<std::uint8_t>> convert_texture(const std::vector<std::uint8_t>& file,
+                                                  const std::string& container);
+
+/// `name` as a file name for an input opened from the page: its last path component, at most
+/// 255 bytes, "opened" when nothing is left.
+std::string opened_file_name(const std::string& name);
+
 /// `j` as JSON text; strings that are not UTF-8 (a file name in another encoding) are written
 /// with U+FFFD for their bad bytes rather than throwing.
 std::string dump_json(const nlohmann::json& j);

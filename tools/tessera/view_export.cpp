@@ -37,7 +37,20 @@ std::string base64(const std::vector<std::uint8_t>& bytes) {
 /// function's), so their top-level names are shared and none is global. view_start.js is last.
 constexpr const char* kViewScripts[] = {"view.js",         "view_png.js",  "view_tiles.js",
                                         "view_heatmap.js", "view_keys.js", "view_cube.js",
-                                        "view_start.js"};
+                                        "view_flow.js",    "view_start.js"};
+
+/// An encoded result's texture in the other containers too (`files`), for the page's downloads:
+/// the server makes them on request, a static view has them inline.
+void add_containers(nlohmann::json& result, BlobStore& blobs) {
+  if (!result.contains("settings")) return;
+  std::shared_ptr<const BlobStore::Blob> pvr = blobs.get(result["file"].get<std::string>());
+  if (!pvr) return;
+  result["files"] = {{"pvr", result["file"]}};
+  for (const char* container : {"ktx", "ktx2"}) {
+    Result<std::vector<std::uint8_t>> file = convert_texture(pvr->bytes, container);
+    if (file) result["files"][container] = blobs.put("application/octet-stream", std::move(*file));
+  }
+}
 
 void replace_once(std::string& text, const std::string& marker, std::string_view with) {
   const std::size_t at = text.find(marker);
@@ -77,6 +90,8 @@ Status write_view_export(const std::vector<ViewInput>& inputs,
                          {"version", TESSERA_VERSION_STRING},
                          {"inputs", nlohmann::json::array()},
                          {"results", nlohmann::json::array()}};
+  // The overview lists every input at these settings (the first of the set).
+  data["overview_settings"] = settings_to_json(settings.empty() ? ViewSettings{} : settings[0]);
   const std::vector<std::pair<int, int>> pairs = texture_pairs(inputs);
   std::string first_error;
   int working = 0;
@@ -84,6 +99,7 @@ Status write_view_export(const std::vector<ViewInput>& inputs,
     const ViewInput& in = inputs[i];
     data["inputs"].push_back(input_json(in, int(i)));
     nlohmann::json& ij = data["inputs"].back();
+    ij["thumbnail"] = put_thumbnail(in, 96, threads, blobs);
     // One bad input (unreadable, or an encode that fails) shows its one-line error on the page
     // and in `errors`; the others go on.
     auto bad = [&](std::string message) {
@@ -130,6 +146,7 @@ Status write_view_export(const std::vector<ViewInput>& inputs,
       }
       nlohmann::json j = std::move(r).value();
       j["input_index"] = int(i);
+      add_containers(j, blobs);
       j["id"] = "r" + std::to_string(data["results"].size());
       data["results"].push_back(std::move(j));
       any = true;

@@ -1,15 +1,18 @@
 // tessera view's HTTP server module (tessera-view-http.so, loaded by `tessera view`): cpp-httplib
 // bound to 127.0.0.1 only, a random token that every request carries (?token=), Host and
 // Origin checked exactly against DNS rebinding, nothing routed but the page, the blobs of the
-// opened inputs' results and the encode/job/pin API; clean shutdown on SIGINT and SIGTERM.
+// opened inputs' results, the encode/job/pin API and the workflow's overview/open/download
+// (view_http_flow.cpp); clean shutdown on SIGINT and SIGTERM.
 //
 // What it holds against (the README, `tessera view`): the port is never shared (no SO_REUSEPORT);
-// every request body is refused before it is read unless it is an encode request, whose body is
-// read through a cap that stops it as it streams (chunked or not: 413, connection closed);
-// reads time out (ViewHttpOptions::read_timeout_s) and each connection has its own thread
-// from a pool that grows to max_connections, so clients that send half a request cannot hold
-// up the others; one Host header; a connection that receives more than any page sends (an
-// endless request line) is reset. See view_http.h for why this is a module.
+// every request body is refused before it is read unless it is an encode or open request, whose
+// body is read through its route's cap that stops it as it streams (chunked or not: 413,
+// connection closed); reads time out (ViewHttpOptions::read_timeout_s) and each connection has
+// its own thread from a pool that grows to max_connections, so clients that send half a request
+// cannot hold up the others; one Host header; a connection that receives more request line and
+// headers than any page sends (an endless line), or takes longer than header_deadline_s to send
+// them (a byte at a time), is reset (view_http_watch.cpp). See view_http.h for why this is a
+// module.
 #include "view_http.h"
 
 #include <arpa/inet.h>
@@ -22,6 +25,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -35,6 +39,9 @@
 #include <random>
 #include <thread>
 #include <vector>
+
+#include "view_http_flow.h"
+#include "view_http_watch.h"
 
 extern char** environ;
 
@@ -56,6 +63,8 @@ bool same_secret(const std::string& a, const std::string& b) {
   for (std::size_t i = 0; i < a.size(); ++i) d |= static_cast<unsigned char>(a[i] ^ b[i]);
   return d == 0;
 }
+
+}  // namespace
 
 /// {"error": message} with quotes and backslashes escaped and anything outside printable ASCII
 /// replaced (messages are this file's own words plus a header value, which may hold anything,
@@ -98,6 +107,8 @@ void reply_and_close(httplib::Response& res, int status, const std::string& json
                            });
 }
 
+namespace {
+
 /// True when `req` may carry a body: a method cpp-httplib reads one for, or a length or a
 /// transfer coding.
 bool may_have_body(const httplib::Request& req) {
@@ -109,7 +120,8 @@ bool may_have_body(const httplib::Request& req) {
 /// The checks every request passes before routing (and before its body is read): one Host,
 /// naming this server exactly, and any Origin too (a page of another site that rebinds its
 /// name to 127.0.0.1 sends its own); the token; then a body only where one is read (POST
-/// /api/encode), its declared length within the cap. Every refusal closes the connection.
+/// /api/encode, /api/open), its declared length within the route's cap. Every refusal closes the
+/// connection.
 httplib::Server::HandlerResponse guard(const httplib::Request& req, httplib::Response& res,
                                        int port, const std::string& token, std::size_t max_body) {
   const std::string p = std::to_string(port);
@@ -143,7 +155,7 @@ httplib::Server::HandlerResponse guard(const httplib::Request& req, httplib::Res
     return HR::Handled;
   }
   if (!may_have_body(req)) return HR::Unhandled;
-  if (req.method != "POST" || req.path != "/api/encode") {
+  if (req.method != "POST" || (req.path != "/api/encode" && req.path != "/api/open")) {
     reply_and_close(res, 404, error_json("not found"));
     return HR::Handled;
   }
@@ -296,82 +308,6 @@ class ConnectionPool final : public httplib::TaskQueue {
   bool stopping_ = false;
 };
 
-/// The bytes connection `fd` has received, from TCP_INFO's tcpi_bytes_received (Linux 4.1 and
-/// later, at byte 128 of the kernel's struct tcp_info, a fixed ABI; glibc's <netinet/tcp.h>
-/// declares the struct only to byte 104); -1 when unknown or no longer established.
-long long bytes_received(int fd) {
-  alignas(8) unsigned char info[256] = {};
-  socklen_t length = sizeof info;
-  if (getsockopt(fd, IPPROTO_TCP, TCP_INFO, info, &length) != 0 || length < 136) return -1;
-  if (info[0] != 1) return -1;  // tcpi_state: not TCP_ESTABLISHED (already shut down, say)
-  std::uint64_t bytes = 0;
-  std::memcpy(&bytes, info + 128, sizeof bytes);
-  return static_cast<long long>(bytes);
-}
-
-/// Shuts down every connection to 127.0.0.1:`port` that has received more than `cap` bytes.
-/// cpp-httplib 0.11 reads a request line or header line whole before checking its length, so
-/// one endless line (no token needed) would grow the server's memory for as long as it is sent;
-/// no page of this server sends a connection more than a few hundred KiB.
-void cut_floods(int port, std::uint64_t cap) {
-  DIR* dir = opendir("/proc/self/fd");
-  if (!dir) return;
-  while (const dirent* e = readdir(dir)) {
-    char* end = nullptr;
-    const long fd = std::strtol(e->d_name, &end, 10);
-    if (end == e->d_name || *end != '\0' || fd == dirfd(dir)) continue;
-    sockaddr_in local{}, peer{};
-    socklen_t n = sizeof local, m = sizeof peer;
-    if (getsockname(int(fd), reinterpret_cast<sockaddr*>(&local), &n) != 0 ||
-        local.sin_family != AF_INET || ntohs(local.sin_port) != port ||
-        getpeername(int(fd), reinterpret_cast<sockaddr*>(&peer), &m) != 0) {
-      continue;  // not a connection to this server (the listener has no peer)
-    }
-    const long long bytes = bytes_received(int(fd));
-    if (bytes >= 0 && std::uint64_t(bytes) > cap) {
-      // Reset rather than close it in order: its reads end at once (SHUT_RD) and, lingering
-      // 0 s, cpp-httplib's close answers the sender with RST, so it stops sending.
-      const linger reset{1, 0};
-      setsockopt(int(fd), SOL_SOCKET, SO_LINGER, &reset, sizeof reset);
-      shutdown(int(fd), SHUT_RD);
-      std::fprintf(stderr, "tessera view: a connection sent over %llu MiB: closed\n",
-                   static_cast<unsigned long long>(cap >> 20));
-    }
-  }
-  closedir(dir);
-}
-
-/// Runs cut_floods every 20 ms until destroyed.
-class FloodWatch {
- public:
-  FloodWatch(int port, std::uint64_t cap)
-      : thread_([this, port, cap] {
-          std::unique_lock<std::mutex> lock(mutex_);
-          while (!stop_) {
-            lock.unlock();
-            cut_floods(port, cap);
-            lock.lock();
-            wake_.wait_for(lock, std::chrono::milliseconds(20), [this] { return stop_; });
-          }
-        }) {}
-  FloodWatch(const FloodWatch&) = delete;
-  FloodWatch& operator=(const FloodWatch&) = delete;
-  ~FloodWatch() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
-    }
-    wake_.notify_all();
-    thread_.join();
-  }
-
- private:
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  bool stop_ = false;
-  std::thread thread_;
-};
-
 /// The listening socket's options: SO_REUSEADDR only (a restart need not wait out TIME_WAIT).
 /// cpp-httplib's default sets SO_REUSEPORT, which lets a second process listen on the same
 /// port and take a share of the connections: the token's requests among them.
@@ -442,8 +378,9 @@ extern "C" __attribute__((visibility("default"))) int tessera_view_http_serve(
 
   httplib::Server svr;
   svr.set_socket_options(exclusive_socket_options);
-  // Declared lengths are checked in the guard before reading; this is cpp-httplib's own cap.
-  svr.set_payload_max_length(options->max_body);
+  // Declared lengths are checked in the guard before reading, each route's bodies capped as
+  // they stream; this is cpp-httplib's own cap, the largest of them.
+  svr.set_payload_max_length(std::max(options->max_body, options->max_open_body));
   // A browser holds idle keep-alive connections: short timeouts let Ctrl-C end the server at
   // once rather than after httplib's default 5 s. A read that waits longer than
   // read_timeout_s ends its connection (a client sending half a request).
@@ -466,12 +403,19 @@ extern "C" __attribute__((visibility("default"))) int tessera_view_http_serve(
     return 1;
   }
   const std::string token = random_token();
-  const std::size_t max_body = options->max_body;
-  svr.set_pre_routing_handler(
-      [port, token, max_body](const httplib::Request& req, httplib::Response& res) {
-        return guard(req, res, port, token, max_body);
-      });
+  const std::size_t max_body = options->max_body, max_open = options->max_open_body;
+  ConnectionWatch watch(port, options->max_connection_bytes,
+                        std::chrono::seconds(options->header_deadline_s));
+  svr.set_pre_routing_handler([port, token, max_body, max_open, &watch](const httplib::Request& req,
+                                                                        httplib::Response& res) {
+    watch.headers_read(req.remote_addr, req.remote_port);
+    return guard(req, res, port, token, req.path == "/api/open" ? max_open : max_body);
+  });
+  svr.set_post_routing_handler([&watch](const httplib::Request& req, httplib::Response&) {
+    watch.request_done(req.remote_addr, req.remote_port);
+  });
   add_routes(svr, *backend, token, max_body);
+  add_flow_routes(svr, *backend, max_open);
 
   std::atomic<bool> signalled{false};
   std::thread waiter([&svr, &stop_signals, &signalled] {
@@ -489,10 +433,7 @@ extern "C" __attribute__((visibility("default"))) int tessera_view_http_serve(
   }
   std::string open_dir;
   if (options->open) open_browser(url, open_dir);
-  {
-    FloodWatch watch(port, options->max_connection_bytes);
-    svr.listen_after_bind();
-  }
+  svr.listen_after_bind();
   if (!signalled) pthread_kill(waiter.native_handle(), SIGTERM);  // listen ended on its own
   waiter.join();
   if (!open_dir.empty()) {

@@ -27,32 +27,15 @@ bool viewable_name(const fs::path& p) {
 }
 
 ViewInput load_one(const std::string& path) {
-  ViewInput in;
-  in.path = path;
-  in.name = fs::path(path).filename().string();
   Result<std::vector<std::uint8_t>> bytes = io::read_file(path, std::uint64_t{1} << 30);
   if (!bytes) {
+    ViewInput in;
+    in.path = path;
+    in.name = fs::path(path).filename().string();
     in.error = bytes.status().message;
     return in;
   }
-  if (texture_file::detect_container(*bytes) != texture_file::ContainerFormat::unknown) {
-    in.is_texture = true;
-    Result<texture_file::CompressedTexture> t = texture_file::parse_texture(*bytes, path);
-    if (!t) {
-      in.error = t.status().message;
-    } else {
-      in.texture = std::move(t).value();
-      in.file = std::move(bytes).value();
-    }
-    return in;
-  }
-  Result<ImageRGBA8> im = io::decode_image(*bytes, path);
-  if (!im) {
-    in.error = im.status().message;
-  } else {
-    in.image = std::move(im).value();
-  }
-  return in;
+  return view_input_from_bytes(path, fs::path(path).filename().string(), std::move(*bytes));
 }
 
 bool word_in(const std::string& w, std::initializer_list<const char*> words) {
@@ -111,6 +94,31 @@ std::string quoted(const std::string& word) {
 }
 
 }  // namespace
+
+ViewInput view_input_from_bytes(const std::string& path, const std::string& name,
+                                std::vector<std::uint8_t> bytes) {
+  ViewInput in;
+  in.path = path;
+  in.name = name;
+  if (texture_file::detect_container(bytes) != texture_file::ContainerFormat::unknown) {
+    in.is_texture = true;
+    Result<texture_file::CompressedTexture> t = texture_file::parse_texture(bytes, path);
+    if (!t) {
+      in.error = t.status().message;
+    } else {
+      in.texture = std::move(t).value();
+      in.file = std::move(bytes);
+    }
+    return in;
+  }
+  Result<ImageRGBA8> im = io::decode_image(bytes, path);
+  if (!im) {
+    in.error = im.status().message;
+  } else {
+    in.image = std::move(im).value();
+  }
+  return in;
+}
 
 Result<ViewSettings> settings_from_json(const nlohmann::json& j) {
   if (!j.is_object()) return Status::error(ErrorCode::invalid_argument, "settings: not an object");

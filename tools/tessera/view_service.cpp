@@ -9,6 +9,7 @@
 #endif
 #include <pthread.h>
 
+#include <algorithm>
 #include <condition_variable>
 #include <csignal>
 #include <cstdio>
@@ -27,6 +28,9 @@ namespace tessera::cli {
 namespace {
 
 constexpr std::size_t kMaxQueued = 8;  ///< Encodes waiting at once: 503 above.
+/// Places in the queue the overview's background encodes leave to the page's own.
+constexpr std::size_t kOverviewRoom = 2;
+constexpr int kThumbnail = 96;  ///< The overview's thumbnails: texels on their longer side.
 
 struct Job {
   std::string id;
@@ -64,17 +68,21 @@ class Service final : public ViewBackend {
   Service(std::vector<ViewInput> inputs, int threads, std::size_t budget)
       : inputs_(std::move(inputs)), threads_(threads), budget_(budget) {}
 
-  /// The page's start-up data (inputs, initial settings), set once before serving.
-  void set_page(nlohmann::json page) { page_ = std::move(page); }
+  /// The page's start-up data (inputs, initial settings), set once before serving; the
+  /// overview measures every image with `overview` (the first encode's settings).
+  void set_page(nlohmann::json page, const ViewSettings& overview) {
+    page_ = std::move(page);
+    overview_settings_ = overview;
+  }
 
   std::size_t input_count() const override { return inputs_.size(); }
   const std::vector<ViewInput>& inputs() const { return inputs_; }
   BlobStore& blobs() { return blobs_; }
 
   std::string page(const std::string& token) override {
+    std::lock_guard<std::mutex> lock(mutex_);
     nlohmann::json data = page_;
     data["token"] = token;
-    std::lock_guard<std::mutex> lock(mutex_);
     data["results"] = nlohmann::json::array();
     for (const auto& [id, r] : results_) data["results"].push_back(r.json);
     return view_page(data);
@@ -102,8 +110,8 @@ class Service final : public ViewBackend {
       return 400;
     }
     const long long input = body["input"].get<long long>();
-    if (input < 0 || input >= static_cast<long long>(inputs_.size()) ||
-        inputs_[std::size_t(input)].is_texture || !inputs_[std::size_t(input)].error.empty()) {
+    const ViewInput* in = input_at(input);
+    if (!in || in->is_texture || !in->error.empty()) {
       out = dump_json(error("no such image input"));
       return 404;
     }
@@ -151,6 +159,11 @@ class Service final : public ViewBackend {
     return 200;
   }
 
+  int overview(std::string& out) override;
+  int open(const std::string& name, std::string bytes, std::string& out) override;
+  int download(const std::string& id, const std::string& as, std::string& mime, std::string& bytes,
+               std::string& out) override;
+
   /// Adds a result; `permanent` ones (a texture input's own) are never evicted.
   std::string add_result(nlohmann::json result, bool permanent = false) {
     std::set<std::string> keys;
@@ -181,7 +194,7 @@ class Service final : public ViewBackend {
         job->state = "running";
       }
       Result<nlohmann::json> r =
-          encode_view_result(inputs_[std::size_t(job->input)], job->settings, threads_, blobs_,
+          encode_view_result(*input_at(job->input), job->settings, threads_, blobs_,
                              [&job](double f) {  // never backwards
                                if (f > job->fraction.load()) job->fraction.store(f);
                              });
@@ -199,6 +212,12 @@ class Service final : public ViewBackend {
         if (r) job->fraction.store(1.0);  // 1 only when done
         job->result = id;
         if (!r) job->error = r.status().message;
+        if (r && job->key == key_of(job->input, overview_settings_)) {
+          const nlohmann::json m =
+              results_.count(id) ? results_.at(id).json["metrics"] : nlohmann::json::object();
+          measured_[job->input] = {{"psnr", m.value("psnr_rgb", nlohmann::json())},
+                                   {"max_abs", m.value("max_abs", nlohmann::json())}};
+        }
         // An evicted result's job is forgotten too: the same settings encode again.
         if (r && !results_.count(id)) jobs_.erase(job->id);
       }
@@ -256,12 +275,19 @@ class Service final : public ViewBackend {
   /// The id of the job of (input, settings): an existing one with the same key (unless it
   /// failed), or a new queued one; "" when the queue is full.
   std::string submit(int input, const ViewSettings& settings) {
-    const std::string key = std::to_string(input) + dump_json(settings_to_json(settings));
     std::lock_guard<std::mutex> lock(mutex_);
+    return submit_locked(input, settings, kMaxQueued);
+  }
+  static std::string key_of(int input, const ViewSettings& settings) {
+    return std::to_string(input) + dump_json(settings_to_json(settings));
+  }
+  /// submit() under mutex_, with room for `limit` queued encodes.
+  std::string submit_locked(int input, const ViewSettings& settings, std::size_t limit) {
+    const std::string key = key_of(input, settings);
     for (const auto& [jid, job] : jobs_) {
       if (job->key == key && job->state != "error") return jid;
     }
-    if (queue_.size() >= kMaxQueued) return "";
+    if (queue_.size() >= limit) return "";
     auto job = std::make_shared<Job>();
     job->input = input;
     job->settings = settings;
@@ -274,7 +300,23 @@ class Service final : public ViewBackend {
     return id;
   }
 
+  /// Input `i`: one given on the command line, then those opened from the page (a deque:
+  /// an opened input stays where it is while more are added).
+  const ViewInput* input_at(long long i) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return input_at_locked(i);
+  }
+  const ViewInput* input_at_locked(long long i) const {
+    if (i < 0) return nullptr;
+    if (std::size_t(i) < inputs_.size()) return &inputs_[std::size_t(i)];
+    i -= static_cast<long long>(inputs_.size());
+    return std::size_t(i) < opened_.size() ? &opened_[std::size_t(i)] : nullptr;
+  }
+
   std::vector<ViewInput> inputs_;
+  std::deque<ViewInput> opened_;
+  ViewSettings overview_settings_;
+  std::map<int, nlohmann::json> measured_;  ///< The overview's metrics, kept past eviction.
   nlohmann::json page_;
   int threads_;
   std::size_t budget_;
@@ -288,6 +330,134 @@ class Service final : public ViewBackend {
   std::deque<std::shared_ptr<Job>> queue_;
   std::uint64_t clock_ = 0, next_result_ = 0, next_job_ = 0;
 };
+
+int Service::overview(std::string& out) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  nlohmann::json items = nlohmann::json::array();
+  const std::size_t limit = kMaxQueued - kOverviewRoom;
+  for (const nlohmann::json& in : page_["inputs"]) {
+    const int i = in["index"].get<int>();
+    nlohmann::json e = {{"index", i},         {"name", in["name"]},
+                        {"kind", in["kind"]}, {"thumbnail", in.value("thumbnail", "")},
+                        {"psnr", nullptr},    {"max_abs", nullptr}};
+    if (in.contains("error")) {
+      e["state"] = "error";
+      e["error"] = in["error"];
+    } else if (in["kind"] == "texture") {
+      e["state"] = "texture";  // shown as it is: nothing to measure it against
+    } else if (auto m = measured_.find(i); m != measured_.end()) {
+      e["state"] = "done";
+      e["psnr"] = m->second["psnr"];
+      e["max_abs"] = m->second["max_abs"];
+    } else {
+      // Not measured yet: its encode at the overview's settings, queued while there is room
+      // (once: an encode that failed is reported, not tried again).
+      const std::string key = key_of(i, overview_settings_);
+      auto job = std::find_if(jobs_.begin(), jobs_.end(),
+                              [&](const auto& j) { return j.second->key == key; });
+      if (job == jobs_.end()) {
+        const std::string id = submit_locked(i, overview_settings_, limit);
+        job = id.empty() ? jobs_.end() : jobs_.find(id);
+      }
+      e["state"] = job == jobs_.end() ? "waiting" : job->second->state;
+      if (job != jobs_.end() && job->second->state == "error") e["error"] = job->second->error;
+    }
+    items.push_back(std::move(e));
+  }
+  out = dump_json({{"settings", settings_to_json(overview_settings_)}, {"inputs", items}});
+  return 200;
+}
+
+int Service::open(const std::string& name, std::string bytes, std::string& out) {
+  const std::string file_name = opened_file_name(name);
+  ViewInput in = view_input_from_bytes(file_name, file_name,
+                                       std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+  bytes.clear();
+  bytes.shrink_to_fit();
+  if (!in.error.empty()) std::fprintf(stderr, "tessera: view: %s\n", in.error.c_str());
+  const std::string thumbnail = put_thumbnail(in, kThumbnail, threads_, blobs_);
+  const ViewInput* added = nullptr;
+  nlohmann::json j;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const int index = int(inputs_.size() + opened_.size());
+    opened_.push_back(std::move(in));
+    added = &opened_.back();
+    j = input_json(*added, index);
+    if (!thumbnail.empty()) j["thumbnail"] = thumbnail;
+    page_["inputs"].push_back(j);  // in index order (a texture's error is added below)
+  }
+  nlohmann::json results = nlohmann::json::array();
+  if (added->is_texture && added->error.empty()) {
+    Result<nlohmann::json> r = texture_view_result(*added, threads_, blobs_);
+    if (r) {
+      nlohmann::json t = std::move(r).value();
+      t["input_index"] = j["index"];
+      const std::string id = add_result(t, true);
+      t["id"] = id;
+      results.push_back(std::move(t));
+    } else {
+      std::fprintf(stderr, "tessera: view: %s\n", r.status().message.c_str());
+      j["error"] = r.status().message;
+    }
+  }
+  if (j.contains("error")) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    page_["inputs"][j["index"].get<std::size_t>()] = j;
+  }
+  out = dump_json({{"input", j}, {"results", results}});
+  return 200;
+}
+
+int Service::download(const std::string& id, const std::string& as, std::string& mime,
+                      std::string& bytes, std::string& out) {
+  nlohmann::json r;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = results_.find(id);
+    if (it == results_.end()) {
+      out = dump_json(error("no such result (evicted?)"));
+      return 404;
+    }
+    r = it->second.json;
+    touch(id);
+  }
+  std::string key;
+  if (as == "pvr" || as == "png" || as == "ktx" || as == "ktx2") {
+    key = r.value("file", "");  // another container or the decoded image made on request
+  } else if (as == "heatmap") {
+    key = r["images"].empty() ? "" : r["images"][0].value("heatmap", "");
+  } else {
+    out = dump_json(error("as: want pvr, ktx, ktx2, png or heatmap"));
+    return 400;
+  }
+  std::shared_ptr<const BlobStore::Blob> b = key.empty() ? nullptr : blobs_.get(key);
+  if (!b) {
+    out = dump_json(error("this result has no " + as + " download"));
+    return 404;
+  }
+  if (as == "png") {
+    Result<std::vector<std::uint8_t>> png = decoded_png(b->bytes, threads_);
+    if (!png) {
+      out = dump_json(error(png.status().message));
+      return 500;
+    }
+    mime = "image/png";
+    bytes.assign(png->begin(), png->end());
+  } else if (as != "heatmap") {
+    Result<std::vector<std::uint8_t>> file = convert_texture(b->bytes, as);
+    if (!file) {
+      out = dump_json(error(file.status().message));
+      return 500;
+    }
+    mime = "application/octet-stream";
+    bytes.assign(file->begin(), file->end());
+  } else {
+    mime = b->mime;
+    bytes.assign(b->bytes.begin(), b->bytes.end());
+  }
+  return 200;
+}
 
 /// The HTTP module's entry point: $TESSERA_VIEW_HTTP, else beside the build tree's binary
 /// (bin/../lib/), else where it is installed; null with `why` set when none loads.
@@ -354,6 +524,8 @@ int serve_view(std::vector<ViewInput> inputs, const ViewServeOptions& options) {
     const ViewInput& in = service.inputs()[i];
     page["inputs"].push_back(input_json(in, int(i)));
     if (needs_resize_pot(in)) add_originals(page["inputs"][i], in, service.blobs());
+    const std::string thumbnail = put_thumbnail(in, kThumbnail, options.threads, service.blobs());
+    if (!thumbnail.empty()) page["inputs"][i]["thumbnail"] = thumbnail;
     if (!in.is_texture || !in.error.empty()) continue;
     Result<nlohmann::json> r = texture_view_result(in, options.threads, service.blobs());
     if (!r) {
@@ -374,7 +546,8 @@ int serve_view(std::vector<ViewInput> inputs, const ViewServeOptions& options) {
     j["input_index"] = im;
     service.add_result(std::move(j), true);
   }
-  service.set_page(std::move(page));
+  service.set_page(std::move(page),
+                   options.initial.empty() ? ViewSettings{} : options.initial.front());
 
   std::thread worker([&service] { service.work(); });
   ViewHttpOptions http;

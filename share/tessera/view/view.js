@@ -27,13 +27,14 @@ async function blobBytes(key) {
     return out;
   }
   const r = await fetch(blobUrl(key));
-  if (!r.ok) throw new Error(`blob ${key}: HTTP ${r.status}`);
+  if (!r.ok) throw Object.assign(new Error(`blob ${key}: HTTP ${r.status}`), { status: r.status });
   return new Uint8Array(await r.arrayBuffer());
 }
 /** {width, height, data} of an image's texels (RGBA8, read exactly: view_png.js), cached. */
 function texels(key, width, height) {
   if (!texelCache.has(key)) {
-    texelCache.set(key, blobBytes(key).then(decodePng).then((data) => ({ width, height, data })));
+    texelCache.set(key, blobBytes(key).then(decodePng).then((data) => ({ width, height, data }),
+        (e) => { texelCache.delete(key); throw e; }));
   }
   return texelCache.get(key);
 }
@@ -75,6 +76,7 @@ async function encode(settings) {
       job = await api(`/api/job?id=${job.id}`);
     }
     if (job.state === "error") throw new Error(job.error);
+    job.result.job = job.id;  // gone when the server evicts the result (checkEvicted)
     addResult(job.result);
     S.current.set(input, job.result.id);
     if (S.input === input) selectResult(job.result.id);
@@ -235,6 +237,7 @@ function selectResult(id) {
   S.layer = Math.min(S.layer, t.layers - 1);
   if ($("mode").value === "cross" && t.faces !== 6) $("mode").value = "side";
   refresh();
+  checkEvicted(r);
 }
 
 /** Rebuilds everything that depends on the current result and image, then draws. */
@@ -321,6 +324,7 @@ function showMetrics(r) {
     dl.download = r.file_name;
     dl.textContent = `download ${r.file_name}`;
   }
+  showDownloads(r);
   $("pin").textContent = S.pinned.includes(S.result) ? "unpin" : "pin";
 }
 function showPinned() {
@@ -446,7 +450,7 @@ async function draw() {
     refreshReadout();
     document.body.dataset.drawn = `${S.result}:${im.level}:${im.face}:${im.layer}:${S.zoom}`;
   } catch (e) {
-    showError(e.message);
+    if (!reencodeEvicted(e)) showError(e.message);
   }
 }
 
