@@ -221,7 +221,7 @@ function selectInput(index) {
   else {
     S.result = null;
     refresh();
-    if (editable) encode(first);
+    if (editable) afterOriginal(() => encode(first));
   }
 }
 function selectResult(id) {

@@ -46,3 +46,16 @@ function encodingNote(ctx, dpr, x) {
   ctx.textAlign = "center";
   ctx.fillText("encoding…", x, ctx.canvas.height / 2);
 }
+
+/** Runs `then` (the first encode) once the current input's original is in the page (or could
+ *  not be had): the server makes the original's blob on request, and an encode started at the
+ *  same time would share the CPU with it and delay the first draw. */
+function afterOriginal(then) {
+  const index = S.input, inp = D.inputs[index];
+  if (!inp || !inp.original) { then(); return; }
+  showBusy(0);
+  texels(inp.original, inp.width, inp.height).catch(() => {}).then(() => {
+    if (S.input === index) then();  // else: encoded when the input is chosen again
+    else if (!S.jobs) $("busy").hidden = true;
+  });
+}
