@@ -43,6 +43,11 @@ try {
   s.wipe = await state(page);
   await shot(page, "view-first-original-wipe-1366x768.png");
   await page.select("#mode", "side");
+  await page.setViewport({ width: 390, height: 844 });
+  await page.evaluate(() => window.tesseraView.draw());
+  await shot(page, "view-first-original-390x844.png");
+  s.phone_overflow = await page.evaluate(() => document.documentElement.scrollWidth > window.innerWidth + 1);
+  await page.setViewport({ width: 1366, height: 768 });
   // The encode goes on: the result replaces the "encoding…" pane, the readout gets its texel.
   holding = false;
   for (const req of held.splice(0)) req.continue();

@@ -88,6 +88,8 @@ with tempfile.TemporaryDirectory() as tmp:
           (t, want))
     check("original: wipe mode draws it too", s.get("wipe", {}).get("drawn") == "original:0:32"
           and "encoding" in s.get("wipe", {}).get("caption_a", ""), s.get("wipe"))
+    check("original: no sideways scroll on a phone (390x844)", s.get("phone_overflow") is False,
+          s.get("phone_overflow"))
     after = s.get("after", {})
     check("then the result is drawn as usual", after.get("drawn", "").startswith("r0:")
           and after.get("results", 0) >= 1 and after.get("caption_b") != "encoding…", after)
