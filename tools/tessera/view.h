@@ -219,7 +219,9 @@ struct ViewServeOptions {
   int threads = 0;
   std::vector<ViewSettings> initial;  ///< Settings of the first encode of each image.
   /// Memory for results (their images, heatmaps and files): beyond it the least recently used
-  /// results that are not pinned are evicted.
+  /// results that are not pinned are evicted. The inputs are not counted: each image input as
+  /// read, and its original's PNG for the page's first draw once the page asks for it
+  /// (view_originals.h), are kept while the server runs.
   std::size_t memory_budget = std::size_t{512} << 20;
 };
 

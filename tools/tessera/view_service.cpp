@@ -22,6 +22,7 @@
 
 #include "view.h"
 #include "view_http.h"
+#include "view_originals.h"
 
 namespace tessera::cli {
 
@@ -78,6 +79,11 @@ class Service final : public ViewBackend {
   std::size_t input_count() const override { return inputs_.size(); }
   const std::vector<ViewInput>& inputs() const { return inputs_; }
   BlobStore& blobs() { return blobs_; }
+  /// The blob key of image input `index`'s own texels (the page's first draw, before any
+  /// result: view_originals.h).
+  std::string original_key(int index) {
+    return originals_.add(index, inputs_[std::size_t(index)].path);
+  }
 
   std::string page(const std::string& token) override {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -89,6 +95,11 @@ class Service final : public ViewBackend {
   }
 
   bool blob(const std::string& key, std::string& mime, std::string& bytes) override {
+    if (std::shared_ptr<const BlobStore::Blob> o = originals_.get(key, inputs_)) {
+      mime = o->mime;
+      bytes.assign(o->bytes.begin(), o->bytes.end());
+      return true;
+    }
     std::shared_ptr<const BlobStore::Blob> b = blobs_.get(key);
     if (!b) return false;
     {
@@ -321,6 +332,7 @@ class Service final : public ViewBackend {
   int threads_;
   std::size_t budget_;
   BlobStore blobs_;
+  ViewOriginals originals_;
   std::mutex mutex_;
   std::condition_variable wake_;
   bool stopping_ = false;
@@ -526,6 +538,9 @@ int serve_view(std::vector<ViewInput> inputs, const ViewServeOptions& options) {
     if (needs_resize_pot(in)) add_originals(page["inputs"][i], in, service.blobs());
     const std::string thumbnail = put_thumbnail(in, kThumbnail, options.threads, service.blobs());
     if (!thumbnail.empty()) page["inputs"][i]["thumbnail"] = thumbnail;
+    if (!in.is_texture && in.error.empty() && in.images.empty() && !needs_resize_pot(in)) {
+      page["inputs"][i]["original"] = service.original_key(int(i));  // drawn while encoding
+    }
     if (!in.is_texture || !in.error.empty()) continue;
     Result<nlohmann::json> r = texture_view_result(in, options.threads, service.blobs());
     if (!r) {

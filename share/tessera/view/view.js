@@ -223,7 +223,7 @@ function selectInput(index) {
   else {
     S.result = null;
     refresh();
-    if (editable) encode(first);
+    if (editable) afterOriginal(() => encode(first));
   }
 }
 function selectResult(id) {
@@ -256,7 +256,8 @@ function refresh() {
     b.onclick = () => selectResult(x.id);
     tabs.appendChild(b);
   }
-  const t = r ? r.texture : { levels: 1, faces: 1, layers: 1 };
+  const inp = D.inputs[S.input] || {};
+  const t = r ? r.texture : { levels: 1, faces: 1, layers: 1, width: inp.width, height: inp.height };
   fillSelect($("level"), [...Array(t.levels).keys()].map((l) => [l, `${l} (${Math.max(1, t.width >> l)}x${Math.max(1, t.height >> l)})`]), S.level);
   fillSelect($("face"), [...Array(t.faces).keys()].map((f) => [f, t.faces === 6 ? ["+X", "-X", "+Y", "-Y", "+Z", "-Z"][f] : String(f)]), S.face);
   fillSelect($("layer"), [...Array(t.layers).keys()].map((l) => [l, String(l)]), S.layer);
@@ -423,7 +424,11 @@ async function draw() {
   document.body.classList.toggle("single", mode !== "side");
   $("wipe").hidden = mode !== "wipe";
   const ca = $("canvas-a"), cb = $("canvas-b");
-  if (!r) { prepare(ca); prepare(cb); return; }
+  if (!r) {
+    S.shown = null;
+    if (!(await drawOriginal(ticket).catch(() => false))) { prepare(ca); prepare(cb); }
+    return;
+  }
   const im = currentImage(r);
   showHeatControls(im);
   try {
@@ -498,7 +503,7 @@ function readout(t) {
   const a = at(t.a), b = at(t.b);
   const lines = [`texel (${t.x}, ${t.y})` + (S.shown.cross ? ` face ${t.face}` : "") + ` level ${S.level}`];
   if (a) lines.push(`${$("left").value === "original" ? "original" : "left"} ${a.join(" ")}`);
-  lines.push(b ? `decoded  ${b.join(" ")}` : "not encoded");
+  lines.push(b ? `decoded  ${b.join(" ")}` : S.result ? "not encoded" : "decoded  (encoding…)");
   if (a && b) lines.push(`difference ${b.map((v, i) => (v - a[i] >= 0 ? "+" : "") + (v - a[i])).join(" ")}`);
   $("readout").textContent = lines.join("\n");
   const ro = $("readout").dataset;
