@@ -71,6 +71,7 @@ async function overview(page) {
   // The page's own download link of the KTX 2.0 file: its bytes, to compare with compress.
   result.steps.ktx2 = await page.evaluate(async () => {
     const a = document.querySelector('#downloads a[data-as="ktx2"]');
+    if (!a) return null;  // a static view has none
     const bytes = new Uint8Array(await (await fetch(a.href)).arrayBuffer());
     let bin = "";
     for (const b of bytes) bin += String.fromCharCode(b);

@@ -39,19 +39,6 @@ constexpr const char* kViewScripts[] = {"view.js",         "view_png.js",   "vie
                                         "view_heatmap.js", "view_keys.js",  "view_cube.js",
                                         "view_flow.js",    "view_first.js", "view_start.js"};
 
-/// An encoded result's texture in the other containers too (`files`), for the page's downloads:
-/// the server makes them on request, a static view has them inline.
-void add_containers(nlohmann::json& result, BlobStore& blobs) {
-  if (!result.contains("settings")) return;
-  std::shared_ptr<const BlobStore::Blob> pvr = blobs.get(result["file"].get<std::string>());
-  if (!pvr) return;
-  result["files"] = {{"pvr", result["file"]}};
-  for (const char* container : {"ktx", "ktx2"}) {
-    Result<std::vector<std::uint8_t>> file = convert_texture(pvr->bytes, container);
-    if (file) result["files"][container] = blobs.put("application/octet-stream", std::move(*file));
-  }
-}
-
 void replace_once(std::string& text, const std::string& marker, std::string_view with) {
   const std::size_t at = text.find(marker);
   if (at != std::string::npos) text.replace(at, marker.size(), with);
@@ -146,7 +133,6 @@ Status write_view_export(const std::vector<ViewInput>& inputs,
       }
       nlohmann::json j = std::move(r).value();
       j["input_index"] = int(i);
-      add_containers(j, blobs);
       j["id"] = "r" + std::to_string(data["results"].size());
       data["results"].push_back(std::move(j));
       any = true;
