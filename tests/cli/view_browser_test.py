@@ -21,41 +21,19 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
-from cli_harness import check, finish, missing_part, write_png  # noqa: E402
+from cli_harness import check, finish, write_png  # noqa: E402
+from view_harness import ViewTest, page_data  # noqa: E402
 
-TESSERA = os.path.abspath(sys.argv[1])
-PUPPETEER = sys.argv[2] if len(sys.argv) > 2 else ""
-OUT = os.path.abspath(sys.argv[3] if len(sys.argv) > 3 else "view_browser_out")
-CHROMIUM = sys.argv[4] if len(sys.argv) > 4 else shutil.which("chromium")
-SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "view_browser.mjs")
+T = ViewTest("view_browser")
+TESSERA, PUPPETEER, OUT, CHROMIUM, SCRIPT = T.tessera, T.puppeteer, T.out, T.chromium, T.script
 
 
-
-def browser_missing():
-    """Why the browser parts cannot run ("" when they can): the HTTP, CLI and export checks
-    run without a browser; the browser parts are skipped with a note, or fail under
-    TESSERA_TEST_REQUIRE (chromium, puppeteer or all)."""
-    if not CHROMIUM or not os.path.exists(CHROMIUM):
-        return "chromium", "chromium not found (scripts/setup.sh installs it)"
-    if not shutil.which("node"):
-        return "puppeteer", "node not found (scripts/setup.sh installs nodejs)"
-    if not PUPPETEER or not os.path.isfile(os.path.join(PUPPETEER, "node_modules",
-                                                        "puppeteer-core", "package.json")):
-        return "puppeteer", (f"puppeteer-core not found in '{PUPPETEER}' (scripts/setup.sh "
-                             "installs it; configure with -DTESSERA_PUPPETEER=DIR)")
-    return None
-
-
-MISSING = browser_missing()
-if MISSING:
-    missing_part(MISSING[0], MISSING[1] + ": the browser parts are skipped")
+MISSING = T.note_missing_browser()
 
 from PIL import Image  # noqa: E402  (python3-pil, after the skips)
 
 
-def run(*args, cwd=None):
-    p = subprocess.run([TESSERA, *args], capture_output=True, text=True, timeout=600, cwd=cwd)
-    return p.returncode, p.stdout, p.stderr
+run = T.run
 
 
 def sprite(x, y):
@@ -410,15 +388,6 @@ def check_usage(tmp):
         rc, _, err = run(*args, cwd=tmp)
         check(f"usage: {' '.join(args)}: exit 2 naming {word}", rc == 2 and word in err
               and len(err.strip().splitlines()) == 1, (rc, err))
-
-
-def page_data(path):
-    """The start-up JSON of a static view."""
-    with open(path, encoding="utf-8") as f:
-        text = f.read()
-    start = text.index('<script id="tessera-data" type="application/json">')
-    start = text.index(">", start) + 1
-    return json.loads(text[start:text.index("</script>", start)])
 
 
 def check_normal_map_and_demo(tmp):

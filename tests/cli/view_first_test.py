@@ -11,42 +11,26 @@ Usage: view_first_test.py PATH/TO/tessera PUPPETEER_DIR OUT [CHROMIUM]
 import json
 import os
 import select
-import shutil
 import signal
 import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
-from cli_harness import check, finish, missing_part, write_png  # noqa: E402
+from cli_harness import check, finish, write_png  # noqa: E402
+from view_harness import ViewTest, page_data  # noqa: E402
 
-TESSERA = os.path.abspath(sys.argv[1])
-PUPPETEER = sys.argv[2] if len(sys.argv) > 2 else ""
-OUT = os.path.abspath(sys.argv[3] if len(sys.argv) > 3 else "view_first_out")
-CHROMIUM = sys.argv[4] if len(sys.argv) > 4 else shutil.which("chromium")
-SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "view_first.mjs")
+T = ViewTest("view_first")
+TESSERA, PUPPETEER, OUT, CHROMIUM, SCRIPT = T.tessera, T.puppeteer, T.out, T.chromium, T.script
 
 # Every check needs the browser: without it the test is skipped (exit 77), or fails under
 # TESSERA_TEST_REQUIRE.
-if not CHROMIUM or not os.path.exists(CHROMIUM):
-    missing_part("chromium", "chromium not found (scripts/setup.sh installs it): skipped")
-    sys.exit(finish() or 77)
-if not shutil.which("node") or not PUPPETEER or not os.path.isfile(
-        os.path.join(PUPPETEER, "node_modules", "puppeteer-core", "package.json")):
-    missing_part("puppeteer", f"node or puppeteer-core in '{PUPPETEER}' not found "
-                 "(scripts/setup.sh installs them; -DTESSERA_PUPPETEER=DIR): skipped")
-    sys.exit(finish() or 77)
+T.require_browser()
 
 
 def texel(x, y):
     """Translucent texels: a canvas would premultiply them, the page must read them exactly."""
     return ((x * 37 + y * 11) % 256, (x * 5) % 256, (255 - y * 3) % 256, 40 + (x + y) % 200)
-
-
-def page_data(html):
-    start = html.index('<script id="tessera-data" type="application/json">')
-    start = html.index(">", start) + 1
-    return json.loads(html[start:html.index("</script>", start)])
 
 
 os.makedirs(OUT, exist_ok=True)

@@ -22,36 +22,19 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
-from cli_harness import check, finish, missing_part, png_bytes, write_png  # noqa: E402
+from cli_harness import check, finish, png_bytes, write_png  # noqa: E402
+from view_harness import ViewTest  # noqa: E402
 
-TESSERA = os.path.abspath(sys.argv[1])
-PUPPETEER = sys.argv[2] if len(sys.argv) > 2 else ""
-OUT = os.path.abspath(sys.argv[3] if len(sys.argv) > 3 else "view_flow_out")
-CHROMIUM = sys.argv[4] if len(sys.argv) > 4 else shutil.which("chromium")
-SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "view_flow.mjs")
+T = ViewTest("view_flow")
+TESSERA, PUPPETEER, OUT, CHROMIUM, SCRIPT = T.tessera, T.puppeteer, T.out, T.chromium, T.script
 
 
-def browser_missing():
-    if not CHROMIUM or not os.path.exists(CHROMIUM):
-        return "chromium", "chromium not found (scripts/setup.sh installs it)"
-    if not shutil.which("node"):
-        return "puppeteer", "node not found (scripts/setup.sh installs nodejs)"
-    if not PUPPETEER or not os.path.isfile(os.path.join(PUPPETEER, "node_modules",
-                                                        "puppeteer-core", "package.json")):
-        return "puppeteer", f"puppeteer-core not found in '{PUPPETEER}'"
-    return None
-
-
-MISSING = browser_missing()
-if MISSING:
-    missing_part(MISSING[0], MISSING[1] + ": the browser parts are skipped")
+MISSING = T.note_missing_browser()
 
 from PIL import Image  # noqa: E402  (python3-pil)
 
 
-def run(*args, cwd=None):
-    p = subprocess.run([TESSERA, *args], capture_output=True, text=True, timeout=600, cwd=cwd)
-    return p.returncode, p.stdout, p.stderr
+run = T.run
 
 
 def start_server(args, cwd):
