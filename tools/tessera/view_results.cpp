@@ -208,8 +208,9 @@ Result<nlohmann::json> image_json(const ImageRGBA8* reference, const ImageRGBA8&
                                   metrics::ImageComparison* comparison = nullptr,
                                   const std::function<void(double)>& step = {}) {
   const PvrImage pvr{pvr_file, level, layer, face};
-  std::future<std::string> dec = std::async(
-      std::launch::async, [&] { return pvr_file.empty() ? put_png(blobs, decoded) : pvr.key(); });
+  std::future<std::string> dec =
+      std::async(pvr_file.empty() ? std::launch::async : std::launch::deferred,
+                 [&] { return pvr_file.empty() ? put_png(blobs, decoded) : pvr.key(); });
   nlohmann::json j = {{"level", level},
                       {"layer", layer},
                       {"face", face},
@@ -234,9 +235,9 @@ Result<nlohmann::json> image_json(const ImageRGBA8* reference, const ImageRGBA8&
   j["original"] = o;
   j["metrics"] = metrics_json(*c);
   j["alpha"] = co.premultiplied;  // whether the difference heatmap counts alpha (the page's)
-  // The heatmaps read the two images back from their PNGs (exact) when asked for: a result
-  // holds no image for them meanwhile.
-  const Texels ref_texels{&blobs, o, reference->has_alpha};
+  // The heatmaps read the two images back from their PNGs (exact), the decoded one from the
+  // .pvr when it has one, when asked for: a result holds no image for them meanwhile.
+  const Texels ref_texels{&blobs, o, reference->has_alpha, {}};
   const Texels dec_texels{&blobs, d, decoded.has_alpha, pvr};
   j["heatmap"] = lazy_png(blobs, "heatmap " + o + " " + d, [=]() -> Result<ImageRGBA8> {
     Result<ImageRGBA8> a = ref_texels.read(), b = dec_texels.read();

@@ -56,9 +56,10 @@ function pvrtcMorton(bx, by, bw, bh) {
   return idx | ((bw > bh ? bx >> log : by >> log) << shift);
 }
 
+function x4(v) { return (v << 1) | (v >> 3); }  // expand4to5
+function x3(v) { return (v << 2) | (v >> 1); }  // expand3to5
 /** expand_a / expand_b: an endpoint (16-bit field) to r, g, b in 0..31 and a in 0..15, at o. */
 function pvrtcExpand(c, isB, e, o) {
-  const x4 = (v) => (v << 1) | (v >> 3), x3 = (v) => (v << 2) | (v >> 1);
   if (c & 0x8000) {
     e[o] = (c >> 10) & 31; e[o + 1] = (c >> 5) & 31; e[o + 2] = isB ? c & 31 : x4((c >> 1) & 15); e[o + 3] = 15;
   } else {
@@ -154,34 +155,39 @@ function decodePvrtc(bytes, twoBpp, width, height, hasAlpha) {
   const m = pvrtcModulation(twoBpp, lo, hi, nbx, nby);
   const out = new Uint8ClampedArray(width * height * 4);
   const half = bw >> 1, wmask = pw - 1, hmask = ph - 1, stepScale = 8 / bw;
-  const w = new Int32Array(8), step = new Int32Array(8);
+  const sum = (e, r0, r1, b, k, wy0, wy1) => e[(r0 + b) * 4 + k] * wy0 + e[(r1 + b) * 4 + k] * wy1;
   // upscale_rows: between the centres of blocks bx and bx + 1 the bilinear sum (weights scaled
   // to 32) starts at 8 L and grows by (R - L) * 8 / bw per texel; then modulate.
   for (let y = 0; y < height; ++y) {
     const yy = (y - 2) & hmask, b0 = yy >> 2, dy = yy & 3, b1 = (b0 + 1) & (nby - 1);
-    const r0 = b0 * nbx, r1 = b1 * nbx, wy0 = 4 - dy, wy1 = dy;
+    const r0 = b0 * nbx, r1 = b1 * nbx, wy0 = 4 - dy, wy1 = dy, mrow = y * pw, orow = y * width;
     for (let bx = 0; bx < nbx; ++bx) {
       const bx1 = (bx + 1) & (nbx - 1);
-      for (let c = 0; c < 8; ++c) {
-        const e = c < 4 ? ea : eb, k = c & 3;
-        const left = e[(r0 + bx) * 4 + k] * wy0 + e[(r1 + bx) * 4 + k] * wy1;
-        const right = e[(r0 + bx1) * 4 + k] * wy0 + e[(r1 + bx1) * 4 + k] * wy1;
-        w[c] = left * 8;
-        step[c] = (right - left) * stepScale;
-      }
+      let ar = sum(ea, r0, r1, bx, 0, wy0, wy1), ag = sum(ea, r0, r1, bx, 1, wy0, wy1);
+      let ab = sum(ea, r0, r1, bx, 2, wy0, wy1), aa = sum(ea, r0, r1, bx, 3, wy0, wy1);
+      let br = sum(eb, r0, r1, bx, 0, wy0, wy1), bg = sum(eb, r0, r1, bx, 1, wy0, wy1);
+      let bb = sum(eb, r0, r1, bx, 2, wy0, wy1), ba = sum(eb, r0, r1, bx, 3, wy0, wy1);
+      const sar = (sum(ea, r0, r1, bx1, 0, wy0, wy1) - ar) * stepScale;
+      const sag = (sum(ea, r0, r1, bx1, 1, wy0, wy1) - ag) * stepScale;
+      const sab = (sum(ea, r0, r1, bx1, 2, wy0, wy1) - ab) * stepScale;
+      const saa = (sum(ea, r0, r1, bx1, 3, wy0, wy1) - aa) * stepScale;
+      const sbr = (sum(eb, r0, r1, bx1, 0, wy0, wy1) - br) * stepScale;
+      const sbg = (sum(eb, r0, r1, bx1, 1, wy0, wy1) - bg) * stepScale;
+      const sbb = (sum(eb, r0, r1, bx1, 2, wy0, wy1) - bb) * stepScale;
+      const sba = (sum(eb, r0, r1, bx1, 3, wy0, wy1) - ba) * stepScale;
+      ar *= 8; ag *= 8; ab *= 8; aa *= 8; br *= 8; bg *= 8; bb *= 8; ba *= 8;
       const x0 = bx * bw + half;
       for (let d = 0; d < bw; ++d) {
         const x = (x0 + d) & wmask;
         if (x < width) {
-          const me = m[y * pw + x], mb = me & 15, ma = 8 - mb, o = (y * width + x) * 4;
-          for (let c = 0; c < 3; ++c) {
-            const a = (w[c] >> 7) + (w[c] >> 2), b = (w[c + 4] >> 7) + (w[c + 4] >> 2);
-            out[o + c] = (a * ma + b * mb) >> 3;
-          }
-          const a = (w[3] >> 5) + (w[3] >> 1), b = (w[7] >> 5) + (w[7] >> 1);
-          out[o + 3] = !hasAlpha ? 255 : me & PVRTC_PUNCH ? 0 : (a * ma + b * mb) >> 3;
+          const me = m[mrow + x], mb = me & 15, ma = 8 - mb, o = (orow + x) * 4;
+          out[o] = (((ar >> 7) + (ar >> 2)) * ma + ((br >> 7) + (br >> 2)) * mb) >> 3;
+          out[o + 1] = (((ag >> 7) + (ag >> 2)) * ma + ((bg >> 7) + (bg >> 2)) * mb) >> 3;
+          out[o + 2] = (((ab >> 7) + (ab >> 2)) * ma + ((bb >> 7) + (bb >> 2)) * mb) >> 3;
+          out[o + 3] = !hasAlpha ? 255 : me & PVRTC_PUNCH ? 0
+              : (((aa >> 5) + (aa >> 1)) * ma + ((ba >> 5) + (ba >> 1)) * mb) >> 3;
         }
-        for (let c = 0; c < 8; ++c) w[c] += step[c];
+        ar += sar; ag += sag; ab += sab; aa += saa; br += sbr; bg += sbg; bb += sbb; ba += sba;
       }
     }
   }
