@@ -14,9 +14,11 @@ mirrored into a 2x2 tile (4096x4096, the same statistics, no upscaling blur).
 One server per input: `tessera view IMG --no-open --port P -q`. A first encode (normal) plays the
 page's start-up (its original's texels are then in the client's cache, as in the page). Each
 timed run then POSTs the case's settings with a fresh label (so the server cannot reuse a
-finished job), polls /api/job every 100 ms as view.js does, and fetches level 0's decoded texels
-and its original's when the client has not fetched that key yet (the page's texel cache; the
-decoded ones are fetched every run, as a new setting's would be): the time ends when the last of
+finished job), polls /api/job every 100 ms as view.js does, and fetches what level 0's decoded
+texels come from (the result's .pvr blob, which the page decodes (view_pvrtc.js; that decode is
+not timed here), or a PNG of them from a tessera older than that) and its original's when the
+client has not fetched that key yet (the page's texel cache; the decoded ones are fetched every
+run, as a new setting's would be): the time ends when the last of
 them has arrived. `tessera compress` runs alternately with the view runs
 (same input, same options, same thread count), each a fresh process. Medians of --runs. The
 progress fractions seen are recorded with their times: the longest time the fraction did not
@@ -124,8 +126,11 @@ class Server:
         r = job["result"]
         im = r["images"][0]
         got = 0
-        for key in (im["decoded"], im.get("original")):
-            if key and (key == im["decoded"] or key not in self.fetched):
+        dec = im["decoded"]
+        if dec.startswith("pvrtc:"):  # decoded in the page from the result's .pvr: its blob
+            dec = dec.split(":")[1]
+        for key in (dec, im.get("original")):
+            if key and (key == dec or key not in self.fetched):
                 got += len(self.get(f"/blob/{key}"))
                 self.fetched.add(key)
         return time.perf_counter() - t0, got, trace, r

@@ -423,7 +423,7 @@ def part_memory(tmp):
         f.write(b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", struct.pack(">IIBBBBB", size, size, 8, 2,
                                                                      0, 0, 0))
                 + png_chunk(b"IDAT", zlib.compress(rows, 1)) + png_chunk(b"IEND", b""))
-    budget = 64
+    budget = 32  # MiB: less than 30 results' .pvr files (1-2.7 MiB each) and the originals
     p, _, port, token = start_server(["noise.png", "--memory", str(budget)], tmp)
     if not port:
         return

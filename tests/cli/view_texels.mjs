@@ -1,5 +1,5 @@
 // Reads every image's texels the way the page reads them (tesseraView.texels: the PNG blobs
-// decoded by view_png.js) in headless Chromium and prints them as one JSON object on stdout:
+// decoded by view_png.js, the .pvr blobs by view_pvrtc.js) in headless Chromium and prints them as one JSON object on stdout:
 // view_texels_test.py checks them against the input and `tessera decompress`.
 //
 //   node view_texels.mjs PUPPETEER_DIR CHROMIUM URL
@@ -26,7 +26,8 @@ try {
     for (const r of window.tesseraView.state.results.values()) {
       const images = [];
       for (const im of r.images) {
-        const one = { level: im.level, width: im.width, height: im.height };
+        const one = { level: im.level, layer: im.layer, face: im.face, width: im.width,
+                      height: im.height, key: im.decoded };
         for (const k of ["decoded", "original"]) {
           if (im[k]) one[k] = b64((await window.tesseraView.texels(im[k], im.width, im.height)).data);
         }

@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """tessera view's images are exact and its job progress is honest.
 
-The page reads texels from PNG blobs with its own decoder (view_png.js); here, in headless
-Chromium, every texel it reads is checked against the input PNG (original) and `tessera
-decompress` of the same `tessera compress` (decoded): for a translucent input whose alpha takes
-every value 0..255 (a canvas would premultiply those) and for an opaque one (stored as RGB), in
-the static export (--html) and from the server, with a mip chain. Without a browser (chromium,
+The page reads originals from PNG blobs with its own decoder (view_png.js) and decodes results
+from their .pvr blobs (view_pvrtc.js); here, in headless Chromium, every texel it reads is
+checked against the input PNG (original) and `tessera decompress` of the same `tessera compress`
+(decoded): for a translucent input whose alpha takes every value 0..255 (a canvas would
+premultiply those), an opaque one (stored as RGB), 2 bpp, a .pvr opened as it is, a cube map,
+a --resize-pot input, a 128x32 one (4 and 2 bpp) and a --normal-map one, in the static export
+(--html) and from the server, with mip chains. Without a browser (chromium,
 node, puppeteer-core) the browser parts are skipped and the rest runs. From the server, over
 HTTP: the heatmap (made when first asked for) is `tessera compare --heatmap`'s, texel for texel;
 a job's fraction never goes back, stays below 1 until the job is done and is 1 then.
@@ -68,11 +70,19 @@ def rgba_bytes(path):
     return Image.open(path).convert("RGBA").tobytes()
 
 
-def expected_decoded(tmp, src, quality_args, level):
-    """RGBA bytes of `tessera decompress --level LEVEL` of `tessera compress SRC ARGS`."""
-    pvr, png = os.path.join(tmp, "e.pvr"), os.path.join(tmp, f"e{level}.png")
-    run("compress", src, "-o", pvr, "-q", *quality_args)
-    run("decompress", pvr, "--level", str(level), "-o", png, "-q")
+COMPRESSED = {}
+
+
+def expected_decoded(tmp, compress_args, level, face=None):
+    """RGBA bytes of `tessera decompress --level LEVEL [--face FACE]` of `tessera compress
+    ARGS`."""
+    key = tuple(compress_args)
+    if key not in COMPRESSED:
+        COMPRESSED[key] = os.path.join(tmp, f"e{len(COMPRESSED)}.pvr")
+        run("compress", *compress_args, "-o", COMPRESSED[key], "-q")
+    png = os.path.join(tmp, "e.png")
+    face_args = [] if face is None else ["--face", str(face)]
+    run("decompress", COMPRESSED[key], "--level", str(level), *face_args, "-o", png, "-q")
     return rgba_bytes(png)
 
 
@@ -90,22 +100,40 @@ def browse(url):
     return r["results"]
 
 
-def check_texels(name, results, tmp, src, args, levels):
-    """Every image of the one result is the input's (original) and decompress's (decoded)."""
+def check_texels(name, results, tmp, compress_args, levels, src=None, faces=1):
+    """Every image of the one result is decompress's of `tessera compress COMPRESS_ARGS`
+    (decoded, in the page from the result's .pvr) and, with `src`, level 0's original is the
+    input's."""
     check(f"{name}: one result", results is not None and len(results) == 1,
           None if results is None else len(results))
     if not results or len(results) != 1:
         return
     images = results[0]["images"]
-    check(f"{name}: {levels} level(s)", len(images) == levels, len(images))
+    check(f"{name}: {levels} level(s) x {faces} face(s)", len(images) == levels * faces,
+          len(images))
     for im in images:
-        lv = im["level"]
+        lv, f = im["level"], im["face"]
+        check(f"{name}: level {lv} face {f} decoded in the page from the .pvr",
+              im["key"].startswith("pvrtc:"), im["key"])
         dec = base64.b64decode(im["decoded"])
-        check(f"{name}: level {lv} decoded texels as tessera decompress",
-              dec == expected_decoded(tmp, src, args, lv), f"{len(dec)} bytes")
-    orig = base64.b64decode(images[0]["original"])
-    check(f"{name}: level 0 original texels as the input PNG", orig == rgba_bytes(src),
-          f"{len(orig)} bytes")
+        check(f"{name}: level {lv} face {f} decoded texels as tessera decompress",
+              dec == expected_decoded(tmp, compress_args, lv, f if faces > 1 else None),
+              f"{len(dec)} bytes, {im['width']}x{im['height']}")
+    if src:
+        orig = base64.b64decode(images[0]["original"])
+        check(f"{name}: level 0 original texels as the input PNG", orig == rgba_bytes(src),
+              f"{len(orig)} bytes")
+
+
+def check_static(tmp, name, view_args, compress_args, levels, src=None, faces=1):
+    """`tessera view VIEW_ARGS --html`: its page's texels (check_texels)."""
+    html = os.path.join(tmp, name.replace(" ", "_") + ".html")
+    rc, _, err = run("view", *view_args, "--html", "-o", html, "-q")
+    check(f"static {name}: written", rc == 0, err)
+    if rc == 0:
+        results = browse("file://" + html)
+        if results is not None:
+            check_texels(f"static {name}", results, tmp, compress_args, levels, src, faces)
 
 
 def request(port, path, body=None):
@@ -130,7 +158,7 @@ def check_server(tmp, src):
         port, token = int(url.split(":")[2].split("/")[0]), url.split("token=")[1]
         results = browse(url)
         if results is not None:
-            check_texels("server", results, tmp, src, ["--mip-levels", "3"], 3)
+            check_texels("server", results, tmp, [src, "--mip-levels", "3"], 3, src)
         # Progress: a high-quality encode polled until done.
         body = json.dumps({"input": 0, "settings": {"quality": "high", "mip_levels": 2}})
         status, data = request(port, "/api/encode?token=" + token, body)
@@ -171,13 +199,32 @@ def main():
     try:
         for name, pixel, alpha in (("translucent", translucent, True), ("opaque", opaque, False)):
             src = write_png(os.path.join(tmp, name + ".png"), 64, 64, pixel, alpha)
-            html = os.path.join(tmp, name + ".html")
-            rc, _, err = run("view", src, "--html", "-o", html, "-q", "--quality", "fast")
-            check(f"static {name}: written", rc == 0, err)
-            if rc == 0:
-                results = browse("file://" + html)
-                if results is not None:
-                    check_texels(f"static {name}", results, tmp, src, ["--quality", "fast"], 1)
+            fast = ["--quality", "fast"]
+            check_static(tmp, name, [src, *fast], [src, *fast], 1, src)
+        src = os.path.join(tmp, "translucent.png")
+        two = ["--format", "pvrtc1-2", "--quality", "fast", "--mip-levels", "3"]
+        check_static(tmp, "2 bpp", [src, *two], [src, *two], 3, src)
+        # A .pvr opened as it is (2 bpp, translucent): decoded in the page too.
+        pvr = os.path.join(tmp, "opened.pvr")
+        run("compress", src, "-o", pvr, "-q", *two)
+        check_static(tmp, "opened .pvr", [pvr], [src, *two], 3)
+        faces = [write_png(os.path.join(tmp, f"face{f}.png"), 32, 32,
+                           lambda x, y, f=f: ((x * 8 + f * 40) % 256, (y * 8) % 256, f * 50, 255),
+                           False) for f in range(6)]
+        cube = ["--quality", "fast", "--mip-levels", "2"]
+        check_static(tmp, "cube", ["--cube", *faces, *cube], ["--cube", *faces, *cube], 2,
+                     faces=6)
+        npot = write_png(os.path.join(tmp, "npot.png"), 48, 40, translucent, True)
+        pot = ["--resize-pot", "--quality", "fast"]
+        check_static(tmp, "resize-pot", [npot, *pot], [npot, *pot], 1)
+        wide = write_png(os.path.join(tmp, "wide.png"), 128, 32, translucent, True)
+        mips = ["--quality", "fast", "--mip-levels", "4"]
+        check_static(tmp, "128x32", [wide, *mips], [wide, *mips], 4, wide)
+        check_static(tmp, "128x32 2 bpp", [wide, "--format", "pvrtc1-2", *mips],
+                     [wide, "--format", "pvrtc1-2", *mips], 4, wide)
+        normal = write_png(os.path.join(tmp, "normal.png"), 64, 64, opaque, False)
+        nm = ["--normal-map", "--quality", "fast"]
+        check_static(tmp, "normal map", [normal, *nm], [normal, *nm], 1, normal)
         check_server(tmp, os.path.join(tmp, "translucent.png"))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

@@ -35,9 +35,9 @@ std::string base64(const std::vector<std::uint8_t>& bytes) {
 
 /// The page's scripts (share/tessera/view/), in order: one <script>, one scope (an arrow
 /// function's), so their top-level names are shared and none is global. view_start.js is last.
-constexpr const char* kViewScripts[] = {"view.js",         "view_png.js",   "view_tiles.js",
-                                        "view_heatmap.js", "view_keys.js",  "view_cube.js",
-                                        "view_flow.js",    "view_first.js", "view_start.js"};
+constexpr const char* kViewScripts[] = {
+    "view.js",      "view_png.js",  "view_pvrtc.js", "view_tiles.js", "view_heatmap.js",
+    "view_keys.js", "view_cube.js", "view_flow.js",  "view_first.js", "view_start.js"};
 
 void replace_once(std::string& text, const std::string& marker, std::string_view with) {
   const std::size_t at = text.find(marker);

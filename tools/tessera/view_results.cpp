@@ -73,14 +73,35 @@ std::string put_original(BlobStore& blobs, const ImageRGBA8& image) {
   return key;
 }
 
-/// An image's texels kept as its PNG blob, read back when needed (exact: view_png.h).
+/// Where the page reads a decoded image from: the result's .pvr blob `file`, decoded in the page
+/// (share/tessera/view/view_pvrtc.js), or (`file` empty) a PNG of its texels.
+struct PvrImage {
+  std::string file;
+  int level = 0, layer = 0, face = 0;
+  /// The image's key for the page: "pvrtc:FILE:LEVEL:LAYER:FACE" (view_pvrtc.js reads it).
+  std::string key() const {
+    return "pvrtc:" + file + ":" + std::to_string(level) + ":" + std::to_string(layer) + ":" +
+           std::to_string(face);
+  }
+};
+
+/// An image's texels kept as its PNG blob `key`, or as image `pvr` of a .pvr blob, read back
+/// when needed (exact: view_png.h; the decoder's output).
 struct Texels {
   const BlobStore* blobs;
   std::string key;
   bool has_alpha;
+  PvrImage pvr;
   Result<ImageRGBA8> read() const {
-    std::shared_ptr<const BlobStore::Blob> b = blobs->get(key);
-    if (!b) return Status::error(ErrorCode::io_error, "view: blob " + key + " is gone");
+    const std::string& k = pvr.file.empty() ? key : pvr.file;
+    std::shared_ptr<const BlobStore::Blob> b = blobs->get(k);
+    if (!b) return Status::error(ErrorCode::io_error, "view: blob " + k + " is gone");
+    if (!pvr.file.empty()) {
+      Result<texture_file::CompressedTexture> tex =
+          texture_file::parse_texture(b->bytes, "view texels");
+      if (!tex) return tex.status();
+      return texture_file::decode_texture_image(*tex, pvr.level, pvr.layer, pvr.face, {1});
+    }
     Result<ImageRGBA8> image = io::decode_image(b->bytes, "view texels");
     if (image) image->has_alpha = has_alpha;  // as measured (the PNG is RGB when opaque)
     return image;
@@ -179,14 +200,17 @@ Result<std::vector<ImageRGBA8>> reference_chain(const ImageRGBA8& input,
 
 /// One image of a result: texels, decoded texels, metrics (also in `comparison` when given) and
 /// heatmaps (made when first asked for). The PNGs are made while the metrics are measured;
-/// `step` (may be empty) hears 0.5 when the metrics are done.
+/// `step` (may be empty) hears 0.5 when the metrics are done. With `pvr_file` (the key of the
+/// result's .pvr blob) the page decodes the texels from it: no PNG of `decoded` is made.
 Result<nlohmann::json> image_json(const ImageRGBA8* reference, const ImageRGBA8& decoded, int level,
                                   int layer, int face, bool normal_map, bool premultiplied,
-                                  int threads, BlobStore& blobs,
+                                  int threads, BlobStore& blobs, const std::string& pvr_file,
                                   metrics::ImageComparison* comparison = nullptr,
                                   const std::function<void(double)>& step = {}) {
+  const PvrImage pvr{pvr_file, level, layer, face};
   std::future<std::string> dec =
-      std::async(std::launch::async, [&] { return put_png(blobs, decoded); });
+      std::async(pvr_file.empty() ? std::launch::async : std::launch::deferred,
+                 [&] { return pvr_file.empty() ? put_png(blobs, decoded) : pvr.key(); });
   nlohmann::json j = {{"level", level},
                       {"layer", layer},
                       {"face", face},
@@ -211,10 +235,10 @@ Result<nlohmann::json> image_json(const ImageRGBA8* reference, const ImageRGBA8&
   j["original"] = o;
   j["metrics"] = metrics_json(*c);
   j["alpha"] = co.premultiplied;  // whether the difference heatmap counts alpha (the page's)
-  // The heatmaps read the two images back from their PNGs (exact) when asked for: a result
-  // holds no image for them meanwhile.
-  const Texels ref_texels{&blobs, o, reference->has_alpha};
-  const Texels dec_texels{&blobs, d, decoded.has_alpha};
+  // The heatmaps read the two images back from their PNGs (exact), the decoded one from the
+  // .pvr when it has one, when asked for: a result holds no image for them meanwhile.
+  const Texels ref_texels{&blobs, o, reference->has_alpha, {}};
+  const Texels dec_texels{&blobs, d, decoded.has_alpha, pvr};
   j["heatmap"] = lazy_png(blobs, "heatmap " + o + " " + d, [=]() -> Result<ImageRGBA8> {
     Result<ImageRGBA8> a = ref_texels.read(), b = dec_texels.read();
     if (!a || !b) return !a ? a.status() : b.status();
@@ -317,6 +341,8 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
   Result<std::vector<std::uint8_t>> file =
       texture_file::serialise_texture(tex, texture_file::ContainerFormat::pvr3);
   if (!file) return file.status();
+  const std::size_t file_bytes = file->size();
+  const std::string file_key = blobs.put("application/octet-stream", std::move(*file));
   std::vector<std::vector<ImageRGBA8>> chains;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     Result<std::vector<ImageRGBA8>> refs = reference_chain(inputs[i], options, *made, i);
@@ -349,9 +375,9 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
       if (!dec) return dec.status();
       step(0.2);
       metrics::ImageComparison c;
-      Result<nlohmann::json> im =
-          image_json(&chains[i][std::size_t(level)], *dec, level, layer, face, settings.normal_map,
-                     tex.premultiplied, threads, blobs, &c, [&](double f) { step(0.2 + 0.8 * f); });
+      Result<nlohmann::json> im = image_json(
+          &chains[i][std::size_t(level)], *dec, level, layer, face, settings.normal_map,
+          tex.premultiplied, threads, blobs, file_key, &c, [&](double f) { step(0.2 + 0.8 * f); });
       if (!im) return im.status();
       if (level == 0 && single) {
         total.mse_rgb = c.mse_rgb;
@@ -373,8 +399,8 @@ Result<nlohmann::json> encode_view_result(const ViewInput& input, const ViewSett
       {"command", compress_command(settings, sources, output, shape)},  // the paths as typed
       {"texture", texture_json(tex)},
       {"file_name", output},
-      {"file", blobs.put("application/octet-stream", *file)},
-      {"bytes", file->size()},
+      {"file", file_key},
+      {"bytes", file_bytes},
       {"encode_ms", made->encode_ms},
       {"resized", made->resized},
       {"metrics", metrics_json(total)},
@@ -398,11 +424,15 @@ Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, 
   }
   const texture_file::CompressedTexture& tex = input.texture;
   const bool measured = !references.empty() && int(references.size()) == tex.image_count();
+  const std::string file_key = blobs.put("application/octet-stream", input.file);
+  // A .pvr is decoded in the page; the other containers' texels go as PNGs.
+  const bool pvr =
+      texture_file::detect_container(input.file) == texture_file::ContainerFormat::pvr3;
   nlohmann::json j = {{"input", input.name},
                       {"label", measured ? "file " + input.name : std::string()},
                       {"texture", texture_json(tex)},
                       {"file_name", input.name},
-                      {"file", blobs.put("application/octet-stream", input.file)},
+                      {"file", file_key},
                       {"bytes", input.file.size()},
                       {"colour_bars", colour_bars(blobs)},
                       {"images", nlohmann::json::array()}};
@@ -415,7 +445,8 @@ Result<nlohmann::json> texture_view_result(const ViewInput& input, int threads, 
         const ImageRGBA8* ref =
             level == 0 && measured ? &references[std::size_t(layer * tex.faces + face)] : nullptr;
         Result<nlohmann::json> im =
-            image_json(ref, *dec, level, layer, face, false, tex.premultiplied, threads, blobs);
+            image_json(ref, *dec, level, layer, face, false, tex.premultiplied, threads, blobs,
+                       pvr ? file_key : std::string());
         if (!im) return im.status();
         j["images"].push_back(std::move(im).value());
       }

@@ -30,11 +30,13 @@ async function blobBytes(key) {
   if (!r.ok) throw Object.assign(new Error(`blob ${key}: HTTP ${r.status}`), { status: r.status });
   return new Uint8Array(await r.arrayBuffer());
 }
-/** {width, height, data} of an image's texels (RGBA8, read exactly: view_png.js), cached. */
+/** {width, height, data} of an image's texels (RGBA8, read exactly: view_png.js, or decoded
+ *  from a .pvr: view_pvrtc.js), cached. */
 function texels(key, width, height) {
   if (!texelCache.has(key)) {
-    texelCache.set(key, blobBytes(key).then(decodePng).then((data) => ({ width, height, data }),
-        (e) => { texelCache.delete(key); throw e; }));
+    const made = key.startsWith("pvrtc:") ? pvrtcTexels(key)
+        : blobBytes(key).then(decodePng).then((data) => ({ width, height, data }));
+    texelCache.set(key, made.catch((e) => { texelCache.delete(key); throw e; }));
   }
   return texelCache.get(key);
 }
