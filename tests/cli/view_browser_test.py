@@ -237,6 +237,8 @@ def check_steps(s, tmp):
     check("alpha-weighted: the command changed",
           weighted["command"].endswith("--quality high --alpha-weighted"), weighted["command"])
     check("alpha-weighted: the metrics changed", weighted["metrics"] != high["metrics"])
+    check("earlier results stay as tabs (normal, high, weighted)", weighted.get("tabs", 0) >= 3,
+          weighted.get("tabs"))
     for name, step in (("normal", first), ("high", high), ("weighted", weighted)):
         dec = check_against_cli(name, step, tmp)
     # The last one decoded is --alpha-weighted: the one shown when the texel was read.

@@ -139,6 +139,7 @@ function fillSelect(sel, values, current) {
   }
   sel.value = String(current);
 }
+const MAX_TABS = 8;  // unpinned results shown as tabs per input, the most recent
 const ZOOMS = ["fit", 0.25, 0.5, 1, 2, 4, 8, 16, 32];
 function setupControls() {
   fillSelect($("input"), D.inputs.map((i) => [i.index, i.name + (i.error ? " (error)" : "")]), 0);
@@ -247,8 +248,14 @@ function refresh() {
   const r = S.results.get(S.result);
   const tabs = $("tabs");
   tabs.innerHTML = "";
-  const shown = resultsOf(S.input).filter((x) => D.mode === "static" || !x.settings
-      || S.pinned.includes(x.id) || x.id === S.result);
+  // Every result of the input stays a tab (the pinned, the current, texture files, and the
+  // MAX_TABS most recent others): an earlier setting is one click away; one the server has
+  // evicted is encoded again when clicked (view_flow.js).
+  const mine = resultsOf(S.input);
+  const recent = new Set(mine.filter((x) => x.settings && !S.pinned.includes(x.id))
+      .slice(-MAX_TABS).map((x) => x.id));
+  const shown = mine.filter((x) => D.mode === "static" || !x.settings
+      || S.pinned.includes(x.id) || x.id === S.result || recent.has(x.id));
   for (const x of shown) {
     const b = document.createElement("button");
     b.type = "button";
