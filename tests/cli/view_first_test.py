@@ -11,6 +11,7 @@ Usage: view_first_test.py PATH/TO/tessera PUPPETEER_DIR OUT [CHROMIUM]
 import json
 import os
 import select
+import shutil
 import signal
 import subprocess
 import sys
@@ -33,6 +34,7 @@ def texel(x, y):
     return ((x * 37 + y * 11) % 256, (x * 5) % 256, (255 - y * 3) % 256, 40 + (x + y) % 200)
 
 
+shutil.rmtree(OUT, ignore_errors=True)  # this run's screenshots only
 os.makedirs(OUT, exist_ok=True)
 with tempfile.TemporaryDirectory() as tmp:
     N = 256
